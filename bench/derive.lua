@@ -1,0 +1,244 @@
+-- Derivation benchmark (issue 2): modules produced per second and peak memory of lsys on two
+-- fixed models, side by side with the npm package lindenmayer (peer, bench/peers/).
+--
+--   build/bin/lsys bench/derive.lua          run everything and print the table
+--   build/bin/lsys bench/derive.lua a [N]    one model in this process (the table run launches
+--                                            one such process per model)
+--
+-- (a) F --> F[+F]F[-F]F from F, 10 steps;  (b) A(s) --> F(s)[+A(s/R)][-A(s/R)] from A(1),
+-- R = 1.456, 21 steps. Modules/s = sum of the string lengths over all steps / derivation time
+-- (best of 3; the lsys program's monotonic wall clock, or os.clock CPU time under plain Lua).
+-- Peak memory = VmHWM of a fresh process per model, so it includes the interpreter, like the
+-- cpfg figures the targets are derived from.
+-- Plain Lua works too: LUA_PATH='./lua/?.lua;./lua/?/init.lua;;' LUA_CPATH='./build/?.so;;'
+-- lua5.4 bench/derive.lua
+
+local MODELS = {
+  a = {
+    title = "(a) F --> F[+F]F[-F]F", steps = 10,
+    rate_target = 300e6, mem_target = 90,      -- 2 x cpfg (45 MiB)
+    spec = { axiom = "F", productions = "F --> F[+F]F[-F]F" },
+  },
+  b = {
+    title = "(b) A(s) --> F(s)[+A(s/R)][-A(s/R)]", steps = 21,
+    rate_target = 100e6, mem_target = 154,     -- 2 x cpfg (77 MiB)
+    spec = { axiom = "A(1)", env = { R = 1.456 },
+             productions = "A(s) --> F(s)[+A(s/R)][-A(s/R)]" },
+  },
+}
+local RUNS = 3
+local PEER_TIMEOUT = 600          -- seconds per peer process
+
+local script = arg and arg[0] or "bench/derive.lua"
+local root = script:match("^(.*)/bench/[^/]*$") or (script:match("^bench/") and ".") or ".."
+
+-- require "lsys", falling back to the build tree next to this script
+local function load_lsys ()
+  local ok, mod = pcall(require, "lsys")
+  if ok then return mod end
+  package.path = root .. "/lua/?.lua;" .. root .. "/lua/?/init.lua;" .. package.path
+  package.cpath = root .. "/build/?.so;" .. package.cpath
+  return require "lsys"
+end
+
+local function shell_quote (s)
+  return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
+end
+
+local function read_file (path)
+  local f = io.open(path, "r")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+-- seconds: the lsys program's monotonic wall clock when there is one, else CPU time
+local host = package.loaded["lsys.host"]
+local clock = type(host) == "table" and host.clock or os.clock
+local clock_name = clock == os.clock and "CPU time (os.clock)" or "wall clock"
+
+local function peak_kib ()
+  local status = read_file("/proc/self/status") or ""
+  return tonumber(status:match("VmHWM:%s*(%d+)"))
+end
+
+-- The command that started this script (interpreter and its options), to launch it again.
+local function self_command ()
+  local lo = 0
+  while arg and arg[lo - 1] do lo = lo - 1 end
+  local parts = {}
+  for i = lo, -1 do parts[#parts + 1] = shell_quote(arg[i]) end
+  if #parts == 0 then
+    local p = io.popen("readlink /proc/" .. ((read_file("/proc/self/stat") or ""):match("^%d+") or "self") .. "/exe")
+    parts[1] = shell_quote(p and p:read("l") or "lua5.4")
+    if p then p:close() end
+  end
+  parts[#parts + 1] = shell_quote(script)
+  return table.concat(parts, " ")
+end
+
+------------------------------------------------------------------------------------------
+-- child: one model in this process; prints one machine-readable line
+
+local function run_child (name, steps)
+  local lsys = load_lsys()
+  local m = MODELS[name]
+  local spec = {}
+  for k, v in pairs(m.spec) do spec[k] = v end
+  spec.steps = steps
+  local model = lsys.lsystem(spec)
+
+  local best, length = math.huge, 0
+  for _ = 1, RUNS do
+    collectgarbage()
+    local t0 = clock()
+    local s = model:derive()
+    local t1 = clock()
+    best = math.min(best, t1 - t0)
+    length = #s
+    s = nil                                     -- luacheck: ignore
+  end
+  collectgarbage()
+  local hwm = peak_kib()
+
+  -- produced modules: the lengths of the strings of steps 1..n (untimed, after the peak reading)
+  local modules = 0
+  local s = model:lstring(spec.axiom)
+  for _ = 1, steps do
+    s = model:step(s)
+    modules = modules + #s
+    collectgarbage()
+  end
+  assert(#s == length, "step-by-step derivation disagrees with derive()")
+
+  io.write(string.format("RESULT model=%s steps=%d modules=%d length=%d seconds=%.9f peak_kib=%d\n",
+    name, steps, modules, length, best, hwm or -1))
+end
+
+------------------------------------------------------------------------------------------
+-- parent: launch the children and the peer, print the table
+
+local function parse_result (out)
+  local r = {}
+  local line = out:match("RESULT ([^\n]*)")
+  if not line then return nil end
+  for k, v in line:gmatch("(%w+)=(%S+)") do r[k] = tonumber(v) or v end
+  return r
+end
+
+local function capture (cmd)
+  local p = io.popen(cmd .. " 2>&1")
+  local out = p:read("a")
+  local ok, how, code = p:close()
+  return out, ok, how, code
+end
+
+local function measure_lsys (name, steps)
+  local out = capture(self_command() .. " " .. name .. " " .. steps)
+  local r = parse_result(out)
+  if not r then error("lsys run of model " .. name .. " failed:\n" .. out, 0) end
+  return r
+end
+
+local function node_path ()
+  local p = io.popen("command -v node 2>/dev/null")
+  local path = p:read("l")
+  p:close()
+  return path
+end
+
+-- lindenmayer at `steps`; on failure (out of memory, time out) retries with fewer steps.
+local function measure_peer (node, name, steps)
+  local js = root .. "/bench/peers/derive_lindenmayer.js"
+  local notes = {}
+  for n = steps, math.max(1, steps - 6), -1 do
+    local cmd = string.format("timeout %d %s %s %s %d", PEER_TIMEOUT, shell_quote(node),
+      shell_quote(js), name, n)
+    local out, ok = capture(cmd)
+    local json = out:match("(%b{})")
+    if ok and json then
+      local r = {}
+      for k, v in json:gmatch('"(%w+)":"?([^,"}]*)"?') do r[k] = tonumber(v) or v end
+      r.notes = notes
+      return r
+    end
+    local why = out:match("heap out of memory") and "ran out of memory"
+      or (out == "" and "timed out or was killed") or "failed"
+    notes[#notes + 1] = string.format("lindenmayer %s at %d steps (%s)", why, n,
+      (out:match("[^\n]*Error[^\n]*") or out:match("[^\n]+") or "no output"):sub(1, 80))
+  end
+  return nil, notes
+end
+
+local function mib (kib) return kib / 1024 end
+local function mrate (r) return r.modules / r.seconds / 1e6 end
+
+local function main ()
+  local lsys = load_lsys()
+  print(string.format("lsys %s derivation benchmark (%s; best of %d, %s)",
+    lsys._VERSION or "", _VERSION, RUNS, clock_name))
+  print()
+  print(string.format("%-38s %5s %11s %9s %9s %-14s %8s %-12s",
+    "model", "steps", "modules", "time s", "Mmod/s", "target", "peak MiB", "target"))
+  local results = {}
+  for _, name in ipairs { "a", "b" } do
+    local m = MODELS[name]
+    local r = measure_lsys(name, m.steps)
+    results[name] = r
+    local rate, mem = mrate(r), mib(r.peak_kib)
+    print(string.format("%-38s %5d %11d %9.4f %9.1f %-14s %8.1f %-12s",
+      m.title, r.steps, r.modules, r.seconds, rate,
+      string.format(">=%d %s", m.rate_target / 1e6, rate * 1e6 >= m.rate_target and "PASS" or "MISS"),
+      mem, string.format("<=%d %s", m.mem_target, mem <= m.mem_target and "PASS" or "MISS")))
+  end
+
+  print()
+  local node = node_path()
+  local installed = read_file(root .. "/bench/peers/node_modules/lindenmayer/package.json")
+  if not node then
+    print("peer: skipped, node is not installed")
+    return
+  elseif not installed then
+    print("peer: skipped, lindenmayer is not installed: npm ci --prefix " .. root .. "/bench/peers")
+    return
+  end
+  local v = capture(shell_quote(node) .. " --version"):match("%S+") or "?"
+  print(string.format("peer: lindenmayer %s (node %s); ratio = lsys / lindenmayer",
+    installed:match('"version"%s*:%s*"([^"]+)"') or "?", v))
+  print(string.format("%-38s %5s %11s %9s %9s %8s %12s %12s",
+    "model", "steps", "modules", "time s", "Mmod/s", "peak MiB", "speed ratio", "memory ratio"))
+  for _, name in ipairs { "a", "b" } do
+    local m = MODELS[name]
+    local p, notes = measure_peer(node, name, m.steps)
+    for _, n in ipairs(notes) do print("  note: " .. n) end
+    if not p then
+      print(string.format("%-38s  lindenmayer failed down to %d steps; no comparison",
+        m.title, math.max(1, m.steps - 6)))
+    else
+      local l = results[name]
+      if p.steps ~= m.steps then
+        print(string.format("  note: comparing both at %d steps (lsys measured again at that size)", p.steps))
+        l = measure_lsys(name, p.steps)
+      end
+      print(string.format("%-38s %5d %11d %9.4f %9.1f %8.1f %12s %12s",
+        "  lindenmayer " .. m.title:match("^%(%a%)"), p.steps, p.modules, p.seconds, mrate(p),
+        mib(p.peak_kib), string.format("%.1fx", mrate(l) / mrate(p)),
+        string.format("%.2fx", l.peak_kib / p.peak_kib)))
+      if p.steps ~= m.steps then
+        print(string.format("%-38s %5d %11d %9.4f %9.1f %8.1f", "  lsys " .. m.title:match("^%(%a%)"),
+          l.steps, l.modules, l.seconds, mrate(l), mib(l.peak_kib)))
+      end
+    end
+  end
+end
+
+local mode = arg and arg[1]
+if MODELS[mode] then
+  run_child(mode, tonumber(arg[2]) or MODELS[mode].steps)
+elseif mode == nil then
+  main()
+else
+  io.stderr:write("usage: derive.lua [a|b [STEPS]]\n")
+  os.exit(2)
+end

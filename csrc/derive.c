@@ -1,0 +1,645 @@
+/*
+** The derivation engine. See derive.h for the contract.
+**
+** A derivation step scans the source string once, carrying the parameter
+** offset along. For each module the rules for its symbol (active group
+** first, then group 0) are tried in declaration order: parameter count,
+** left context, right context, then the callback for conditions. The first
+** applicable deterministic rule wins; when the first applicable rule has a
+** weight, all applicable weighted rules compete (cpfg: the first whose
+** cumulative weight exceeds r * total). Contexts need the bracket-match and
+** parameter-offset tables, built once per step only when some active rule
+** has a context.
+*/
+#include <math.h>
+#include <string.h>
+
+#include "derive.h"
+
+#define NONE UINT32_MAX
+
+int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
+  memset(m, 0, sizeof *m);
+  m->ab = ab;
+  m->max_modules = 50000000;
+  m->maxdepth[LSYS_DECOMP] = 1;
+  m->maxdepth[LSYS_HOMO] = 1;
+  m->cur = &m->rng;
+  m->cur_rule = -1;
+  lsys_rng_seed(&m->rng, 0);
+  lsys_rng_seed(&m->hrng, 0);
+  return LSYS_OK;
+}
+
+void lsys_model_free (lsys_model *m) {
+  size_t i;
+  for (i = 0; i < m->nsets; i++) {
+    LSYS_FREE(m->sets[i].list);
+    LSYS_FREE(m->sets[i].byp);
+    LSYS_FREE(m->sets[i].start);
+  }
+  for (i = 0; i < m->nlevels; i++) lsys_lstring_free(&m->levels[i]);
+  LSYS_FREE(m->levels);
+  LSYS_FREE(m->sets);
+  LSYS_FREE(m->skips);
+  LSYS_FREE(m->rules);
+  LSYS_FREE(m->pat);
+  LSYS_FREE(m->tcode);
+  LSYS_FREE(m->tsrc);
+  LSYS_FREE(m->args);
+  LSYS_FREE(m->alt);
+  LSYS_FREE(m->match);
+  LSYS_FREE(m->poff);
+  LSYS_FREE(m->substack);
+  lsys_lstring_free(&m->dyn);
+  lsys_lstring_free(&m->tmp);
+  memset(m, 0, sizeof *m);
+}
+
+static lsys_ruleset *findset (const lsys_model *m, int kind, int sub, int group) {
+  size_t i;
+  for (i = 0; i < m->nsets; i++)
+    if (m->sets[i].kind == kind && m->sets[i].sub == sub && m->sets[i].group == group)
+      return &m->sets[i];
+  return NULL;
+}
+
+long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group) {
+  lsys_ruleset *s = findset(m, kind, sub, group);
+  return s ? (long)s->nlist : -1;
+}
+
+static lsys_skip *findskip (const lsys_model *m, int sub) {
+  size_t i;
+  for (i = 0; i < m->nskips; i++)
+    if (m->skips[i].sub == sub) return &m->skips[i];
+  return NULL;
+}
+
+int lsys_model_skiplist (lsys_model *m, int sub, int consider,
+                         const uint32_t *syms, size_t n) {
+  lsys_skip *k = findskip(m, sub);
+  size_t i;
+  if (k == NULL) {
+    if (lsys_grow((void **)&m->skips, &m->skipcap, m->nskips + 1, sizeof *m->skips) != LSYS_OK)
+      return LSYS_ENOMEM;
+    k = &m->skips[m->nskips++];
+  }
+  memset(k, 0, sizeof *k);
+  k->sub = sub;
+  k->consider = consider;
+  for (i = 0; i < n; i++)
+    if (syms[i] <= LSYS_MAXSYM) k->bits[syms[i] >> 3] |= (uint8_t)(1u << (syms[i] & 7));
+  return LSYS_OK;
+}
+
+long lsys_model_add (lsys_model *m, int kind, int sub, int group,
+                     const lsys_rulespec *sp, lsys_error *e) {
+  lsys_ruleset *set = findset(m, kind, sub, group);
+  lsys_rule *r;
+  uint32_t k, nargs = 0, lcargs = 0;
+  if (sp->pred.np > LSYS_MAXPARAMS)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
+  if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_STOCH))
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a rule with a function cannot have a weight");
+  if (set == NULL) {
+    if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
+      goto nomem;
+    set = &m->sets[m->nsets++];
+    memset(set, 0, sizeof *set);
+    set->kind = kind; set->sub = sub; set->group = group;
+  }
+  if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
+      lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
+      lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nrc, sizeof *m->pat) != LSYS_OK ||
+      lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc, sizeof *m->tcode) != LSYS_OK ||
+      lsys_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc, sizeof *m->tsrc) != LSYS_OK)
+    goto nomem;
+  r = &m->rules[m->nrules];
+  memset(r, 0, sizeof *r);
+  r->pred = sp->pred.sym;
+  r->pred_np = sp->pred.np;
+  r->flags = sp->flags;
+  r->weight = sp->weight;
+  r->id = sp->id;
+  r->nvals = sp->nvals;
+  r->lc = (uint32_t)m->npat;
+  r->nlc = sp->nlc;
+  for (k = 0; k < sp->nlc; k++) { m->pat[m->npat++] = sp->lc[k]; lcargs += sp->lc[k].np; }
+  r->rc = (uint32_t)m->npat;
+  r->nrc = sp->nrc;
+  for (k = 0; k < sp->nrc; k++) { m->pat[m->npat++] = sp->rc[k]; nargs += sp->rc[k].np; }
+  r->lcargs = lcargs;
+  r->nargs = lcargs + sp->pred.np + nargs;
+  r->succ = (uint32_t)m->ntcode;
+  r->nsucc = sp->nsucc;
+  if (sp->nsucc) memcpy(m->tcode + m->ntcode, sp->succ, sp->nsucc * sizeof *sp->succ);
+  m->ntcode += sp->nsucc;
+  r->src = (uint32_t)m->ntsrc;
+  r->nsrc = sp->nsrc;
+  for (k = 0; k < sp->nsrc; k++) {
+    const lsys_psrc *ps = &sp->src[k];
+    if ((ps->kind == LSYS_PS_ARG && ps->idx >= r->nargs) ||
+        (ps->kind == LSYS_PS_VAL && ps->idx >= r->nvals) || ps->kind > LSYS_PS_VAL)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "bad parameter source");
+    m->tsrc[m->ntsrc++] = *ps;
+  }
+  set->list[set->nlist++] = (uint32_t)m->nrules;
+  set->compiled = 0;
+  if (r->nlc || r->nrc) set->hasctx = 1;
+  return (long)m->nrules++;
+nomem:
+  return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
+}
+
+/* Groups the set's rules by predecessor (count, prefix sum, fill). */
+static int compileset (lsys_model *m, lsys_ruleset *s) {
+  uint32_t nsym = m->ab->n, i;
+  size_t k;
+  if (s->compiled && s->nsym == nsym) return LSYS_OK;
+  LSYS_FREE(s->start);
+  LSYS_FREE(s->byp);
+  s->start = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *s->start);
+  s->byp = (uint32_t *)LSYS_MALLOC((s->nlist + 1) * sizeof *s->byp);
+  if (s->start == NULL || s->byp == NULL) return LSYS_ENOMEM;
+  memset(s->start, 0, (nsym + 1) * sizeof *s->start);
+  for (k = 0; k < s->nlist; k++) s->start[m->rules[s->list[k]].pred + 1]++;
+  for (i = 0; i < nsym; i++) s->start[i + 1] += s->start[i];
+  /* stable fill in declaration order */
+  {
+    uint32_t *next = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *next);
+    if (next == NULL) return LSYS_ENOMEM;
+    memcpy(next, s->start, (nsym + 1) * sizeof *next);
+    for (k = 0; k < s->nlist; k++) s->byp[next[m->rules[s->list[k]].pred]++] = s->list[k];
+    LSYS_FREE(next);
+  }
+  s->nsym = nsym;
+  s->compiled = 1;
+  return LSYS_OK;
+}
+
+/* ---------------------------------------------------------------------- */
+/* A view of the string being matched: codes, parameters, and for contexts
+** the bracket matches and per-module parameter offsets. */
+typedef struct view {
+  const uint16_t *code;
+  const double *par;
+  size_t n;
+  const uint32_t *match;   /* NULL when no context tables were built */
+  const uint32_t *poff;
+  const lsys_skip *skip;
+  int ring;
+} view;
+
+static int buildtables (lsys_model *m, const lsys_lstring *s) {
+  size_t i, off = 0, depth = 0;
+  if (s->n >= NONE) return LSYS_ELIMIT;
+  if (m->matchcap < s->n + 1) {
+    size_t cap = m->matchcap;
+    uint32_t *mt = m->match, *po = m->poff;
+    size_t cap2 = cap;
+    if (lsys_grow((void **)&mt, &cap, s->n + 1, sizeof *mt) != LSYS_OK) return LSYS_ENOMEM;
+    m->match = mt;
+    if (lsys_grow((void **)&po, &cap2, s->n + 1, sizeof *po) != LSYS_OK) return LSYS_ENOMEM;
+    m->poff = po;
+    m->matchcap = cap < cap2 ? cap : cap2;
+  }
+  /* the open brackets are pushed on the match array itself: match[k] of an
+  ** open '[' temporarily links to the previous open one */
+  {
+    uint32_t top = NONE;
+    for (i = 0; i < s->n; i++) {
+      uint32_t sym = LSYS_CSYM(s->code[i]);
+      if (off > NONE) return LSYS_ELIMIT;
+      m->poff[i] = (uint32_t)off;
+      off += LSYS_CNP(s->code[i]);
+      m->match[i] = NONE;
+      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; depth++; }
+      else if (sym == LSYS_SYM_RBR && top != NONE) {
+        uint32_t prev = m->match[top];
+        m->match[top] = (uint32_t)i;
+        m->match[i] = top;
+        top = prev;
+        depth--;
+      }
+    }
+    while (top != NONE) { uint32_t prev = m->match[top]; m->match[top] = NONE; top = prev; }
+    m->poff[s->n] = (uint32_t)off;
+  }
+  (void)depth;
+  return LSYS_OK;
+}
+
+static inline int skipped (const view *v, uint32_t sym) {
+  int in;
+  if (v->skip == NULL || sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) return 0;
+  in = (v->skip->bits[sym >> 3] >> (sym & 7)) & 1;
+  return v->skip->consider ? !in : in;
+}
+
+/* Left context: scans left from 'i', skipping whole branches to the left
+** and climbing out of the current one; fills the lc parameters of 'args'. */
+static int matchleft (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
+                      double *args) {
+  long long j = (long long)i - 1;
+  size_t steps = 0;
+  double *a = args + r->lcargs;
+  uint32_t k;
+  for (k = r->nlc; k-- > 0;) {
+    const lsys_patmod *pm = &m->pat[r->lc + k];
+    for (;;) {
+      uint32_t sym;
+      if (j < 0) {
+        if (!v->ring || v->n == 0) return 0;
+        j = (long long)v->n - 1;
+      }
+      if (++steps > v->n) return 0;
+      sym = LSYS_CSYM(v->code[j]);
+      if (sym == LSYS_SYM_RBR) {
+        if (v->match[j] == NONE) return 0;
+        j = (long long)v->match[j] - 1;
+      }
+      else if (sym == LSYS_SYM_LBR || skipped(v, sym)) j--;
+      else break;
+    }
+    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    a -= pm->np;
+    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    j--;
+  }
+  return 1;
+}
+
+/* Right context from pattern module 'k' at string position 'j'; 'a' is where
+** the parameters of pattern module 'k' go. A '[' in the pattern tries the
+** sibling branches at that point in turn; a ']' skips the rest of the
+** current branch. */
+static int matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
+                       uint32_t k, double *a, size_t *steps) {
+  while (k < r->nrc) {
+    const lsys_patmod *pm = &m->pat[r->rc + k];
+    if (pm->sym == LSYS_SYM_LBR) {
+      for (;;) {
+        while (j < v->n && !(LSYS_CSYM(v->code[j]) == LSYS_SYM_LBR) &&
+               LSYS_CSYM(v->code[j]) != LSYS_SYM_RBR && skipped(v, LSYS_CSYM(v->code[j])))
+          j++;
+        if (j >= v->n || LSYS_CSYM(v->code[j]) != LSYS_SYM_LBR) return 0;
+        if (++(*steps) > 4 * v->n + 64) return 0;
+        if (matchright(m, v, j + 1, r, k + 1, a, steps)) return 1;
+        if (v->match[j] == NONE) return 0;
+        j = v->match[j] + 1;
+      }
+    }
+    if (pm->sym == LSYS_SYM_RBR) {
+      while (j < v->n) {
+        uint32_t sym = LSYS_CSYM(v->code[j]);
+        if (sym == LSYS_SYM_RBR) break;
+        if (sym == LSYS_SYM_LBR) {
+          if (v->match[j] == NONE) return 0;
+          j = v->match[j] + 1;
+        }
+        else j++;
+      }
+      if (j >= v->n) return 0;
+      j++; k++;
+      continue;
+    }
+    for (;;) {
+      uint32_t sym;
+      if (j >= v->n) {
+        if (!v->ring || v->n == 0) return 0;
+        j = 0;
+      }
+      if (++(*steps) > 4 * v->n + 64) return 0;
+      sym = LSYS_CSYM(v->code[j]);
+      if (sym == LSYS_SYM_LBR) {
+        if (v->match[j] == NONE) return 0;
+        j = v->match[j] + 1;
+      }
+      else if (sym == LSYS_SYM_RBR) return 0;
+      else if (skipped(v, sym)) j++;
+      else break;
+    }
+    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    a += pm->np;
+    j++; k++;
+  }
+  return 1;
+}
+
+/* Writes the successor of 'r' into 'out'. */
+static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
+                 const double *args, const double *vals) {
+  uint32_t k;
+  if (r->flags & LSYS_RF_DYN) {
+    if (out->n + m->dyn.n > m->max_modules) return LSYS_ELIMIT;
+    return lsys_lstring_append(out, &m->dyn, 0, m->dyn.n, 0);
+  }
+  if (out->n + r->nsucc > m->max_modules) return LSYS_ELIMIT;
+  if (lsys_lstring_reserve(out, r->nsucc, r->nsrc) != LSYS_OK) return LSYS_ENOMEM;
+  memcpy(out->code + out->n, m->tcode + r->succ, r->nsucc * sizeof *out->code);
+  out->n += r->nsucc;
+  for (k = 0; k < r->nsrc; k++) {
+    const lsys_psrc *ps = &m->tsrc[r->src + k];
+    out->par[out->npar++] = ps->kind == LSYS_PS_CONST ? ps->value :
+                            ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
+  }
+  return LSYS_OK;
+}
+
+static int needscratch (lsys_model *m, size_t nargs) {
+  if (m->argscap < nargs &&
+      lsys_grow((void **)&m->args, &m->argscap, nargs, sizeof *m->args) != LSYS_OK)
+    return LSYS_ENOMEM;
+  return LSYS_OK;
+}
+
+/*
+** Tries the rules of 'sets' for the module 'code' with parameters 'par'
+** whose context is position 'i' of 'v'. Returns 1 (successor written to
+** 'out'), 0 (no rule applies), or an error code.
+*/
+static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const view *v,
+                    size_t i, uint16_t code, const double *par, lsys_lstring *out) {
+  uint32_t sym = LSYS_CSYM(code), np = LSYS_CNP(code);
+  size_t nalt = 0, altn = 0;   /* alternatives and doubles used in m->alt */
+  double total = 0;
+  int si, st;
+  for (si = 0; si < nsets; si++) {
+    const lsys_ruleset *s = sets[si];
+    uint32_t b, e;
+    if (s == NULL || sym >= s->nsym) continue;
+    for (b = s->start[sym], e = s->start[sym + 1]; b < e; b++) {
+      const lsys_rule *r = &m->rules[s->byp[b]];
+      double *args, *vals, w;
+      size_t steps = 0;
+      if (r->pred_np != np) continue;
+      if (needscratch(m, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+      args = m->args;
+      vals = args + r->nargs;
+      if (r->nlc && (v->match == NULL || !matchleft(m, v, i, r, args))) continue;
+      if (r->nrc && (v->match == NULL ||
+                     !matchright(m, v, i + 1, r, 0, args + r->lcargs + np, &steps)))
+        continue;
+      if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
+      if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
+        m->cur_rule = (long)(r - m->rules);
+        m->cur_index = i;
+        if (r->flags & LSYS_RF_DYN) lsys_lstring_clear(&m->dyn);
+        st = m->fn(m->fnud, m, r, args, vals);
+        m->cur_rule = -1;
+        if (st < 0) return st;
+        if (st == 0) continue;
+      }
+      if (!(r->flags & LSYS_RF_STOCH)) {
+        if (nalt > 0) goto choose;            /* weighted alternatives came first */
+        st = emit(m, out, r, args, vals);
+        return st == LSYS_OK ? 1 : st;
+      }
+      w = (r->flags & LSYS_RF_WEXPR) ? vals[0] : r->weight;
+      if (!(w >= 0) || isinf(w)) {
+        m->cur_index = i;
+        m->cur_rule = (long)(r - m->rules);
+        return lsys_seterror(&m->err, LSYS_ERULE, i, "weight is %g, not a finite number >= 0", w);
+      }
+      {       /* keep the alternative: rule, weight, args, vals */
+        size_t need = altn + 2 + r->nargs + r->nvals;
+        if (m->altcap < need &&
+            lsys_grow((void **)&m->alt, &m->altcap, need, sizeof *m->alt) != LSYS_OK)
+          return LSYS_ENOMEM;
+        m->alt[altn] = (double)(r - m->rules);
+        m->alt[altn + 1] = w;
+        memcpy(m->alt + altn + 2, args, (r->nargs + r->nvals) * sizeof *args);
+        altn = need;
+        nalt++;
+        total += w;
+      }
+    }
+  }
+  if (nalt == 0) return 0;
+choose:
+  {
+    double target = nalt > 1 ? lsys_rng_uniform(&m->rng) * total : 0, cum = 0;
+    size_t at = 0, k;
+    const lsys_rule *r = NULL;
+    for (k = 0; k < nalt; k++) {
+      r = &m->rules[(size_t)m->alt[at]];
+      cum += m->alt[at + 1];
+      if (cum > target || k == nalt - 1) break;
+      at += 2 + r->nargs + r->nvals;
+    }
+    st = emit(m, out, r, m->alt + at + 2, m->alt + at + 2 + r->nargs);
+    return st == LSYS_OK ? 1 : st;
+  }
+}
+
+static int pushsub (lsys_model *m, uint32_t id) {
+  if (lsys_grow((void **)&m->substack, &m->subcap, m->nsub + 1, sizeof *m->substack) != LSYS_OK)
+    return LSYS_ENOMEM;
+  m->substack[m->nsub++] = id;
+  return LSYS_OK;
+}
+
+/* The production sets for sub-L-system 'sub': the active group, then 0. */
+static int prodsets (lsys_model *m, int sub, lsys_ruleset **sets) {
+  int n = 0;
+  if (m->group != 0 && (sets[n] = findset(m, LSYS_PROD, sub, m->group)) != NULL) n++;
+  if ((sets[n] = findset(m, LSYS_PROD, sub, 0)) != NULL) n++;
+  return n;
+}
+
+static int compileall (lsys_model *m, int kind, int *hasctx) {
+  size_t k;
+  *hasctx = 0;
+  for (k = 0; k < m->nsets; k++)
+    if (m->sets[k].kind == kind) {
+      if (compileset(m, &m->sets[k]) != LSYS_OK) return LSYS_ENOMEM;
+      if (m->sets[k].hasctx) *hasctx = 1;
+    }
+  return LSYS_OK;
+}
+
+static int limiterror (lsys_model *m, size_t i) {
+  return lsys_seterror(&m->err, LSYS_ELIMIT, i,
+                       "the string would exceed max_modules (%zu modules)", m->max_modules);
+}
+
+static int fail (lsys_model *m, int st, size_t i) {
+  if (st == LSYS_ELIMIT) return limiterror(m, i);
+  if (st == LSYS_ENOMEM) return lsys_seterror(&m->err, st, i, "not enough memory");
+  return st;
+}
+
+static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+  lsys_ruleset *sets[2];
+  int nsets, hasctx, st;
+  size_t i, p = 0, n = src->n;
+  view v;
+  lsys_lstring_clear(dst);
+  m->nsub = 0;
+  if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  memset(&v, 0, sizeof v);
+  v.code = src->code; v.par = src->par; v.n = n; v.ring = m->ring;
+  v.skip = findskip(m, 0);
+  if (hasctx) {
+    if ((st = buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
+    v.match = m->match;
+    v.poff = m->poff;
+  }
+  nsets = prodsets(m, 0, sets);
+  /* room for at least a copy of the source */
+  if (lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar) != LSYS_OK)
+    return fail(m, LSYS_ENOMEM, 0);
+  for (i = 0; i < n; i++) {
+    uint16_t c = src->code[i];
+    uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
+    const lsys_ruleset *s0 = nsets ? sets[nsets - 1] : NULL;
+    int done = 0;
+    if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
+      done = rewrite(m, sets, nsets, &v, i, c, src->par + p, dst);
+      if (done < 0) return fail(m, done, i);
+    }
+    if (!done) {
+      if (sym == LSYS_SYM_CUT) {       /* cut to the unmatched ']' (kept) or the end */
+        size_t depth = 0;
+        for (i++, p += np; i < n; i++) {
+          uint32_t s = LSYS_CSYM(src->code[i]);
+          if (s == LSYS_SYM_LBR) depth++;
+          else if (s == LSYS_SYM_RBR && depth-- == 0) break;
+          p += LSYS_CNP(src->code[i]);
+        }
+        i--;                           /* the loop increment lands on ']' */
+        continue;
+      }
+      if (dst->n >= m->max_modules) return limiterror(m, i);
+      if (dst->n == dst->cap || dst->npar + np > dst->parcap) {
+        if (lsys_lstring_reserve(dst, 1, np) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
+      }
+      dst->code[dst->n++] = c;
+      if (np) {
+        memcpy(dst->par + dst->npar, src->par + p, np * sizeof(double));
+        dst->npar += np;
+      }
+    }
+    if (sym == LSYS_SYM_SUB && np >= 1) {           /* ?(id, scale): enter */
+      double idd = src->par[p];
+      int sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
+      if (sub < 0 || (findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
+        return lsys_seterror(&m->err, LSYS_ERULE, i,
+                             "sub-L-system %g is not defined (module %zu)", idd, i + 1);
+      if (pushsub(m, (uint32_t)sub) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
+      nsets = prodsets(m, sub, sets);
+      v.skip = findskip(m, sub);
+    }
+    else if (sym == LSYS_SYM_SUBEND && m->nsub > 0) {  /* $: leave */
+      int sub = --m->nsub > 0 ? (int)m->substack[m->nsub - 1] : 0;
+      nsets = prodsets(m, sub, sets);
+      v.skip = findskip(m, sub);
+    }
+    p += np;
+  }
+  return LSYS_OK;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Decomposition and homomorphism: recursive rewriting of single modules. */
+
+static int needlevels (lsys_model *m, size_t n) {
+  if (m->nlevels < n) {
+    lsys_lstring *lv = (lsys_lstring *)LSYS_REALLOC(m->levels, n * sizeof *lv);
+    if (lv == NULL) return LSYS_ENOMEM;
+    m->levels = lv;
+    while (m->nlevels < n) lsys_lstring_init(&m->levels[m->nlevels++]);
+  }
+  return LSYS_OK;
+}
+
+static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int nsets,
+                      const view *v, size_t i, uint16_t code, const double *par, int depth,
+                      lsys_lstring *out) {
+  uint32_t np = LSYS_CNP(code);
+  if (depth < m->maxdepth[kind]) {
+    lsys_lstring *lv = &m->levels[depth];
+    int st;
+    lsys_lstring_clear(lv);
+    st = rewrite(m, sets, nsets, v, i, code, par, lv);
+    if (st < 0) return st;
+    if (st == 1) {
+      size_t k, p = 0;
+      for (k = 0; k < lv->n; k++) {
+        st = expandone(m, kind, sets, nsets, v, i, lv->code[k], lv->par + p, depth + 1, out);
+        if (st < 0) return st;
+        p += LSYS_CNP(lv->code[k]);
+      }
+      return LSYS_OK;
+    }
+  }
+  else if (!m->depth_hit) {        /* would a rule go deeper? (for the warning) */
+    lsys_lstring *lv = &m->levels[depth];
+    int st;
+    lsys_lstring_clear(lv);
+    st = rewrite(m, sets, nsets, v, i, code, par, lv);
+    if (st < 0) return st;
+    if (st == 1) m->depth_hit = 1;
+  }
+  if (out->n >= m->max_modules) return LSYS_ELIMIT;
+  return lsys_lstring_push(out, LSYS_CSYM(code), par, np);
+}
+
+static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
+  lsys_ruleset *sets[1];
+  int hasctx, st;
+  size_t i, p = 0;
+  view v;
+  lsys_lstring_clear(dst);
+  if (compileall(m, kind, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  if ((sets[0] = findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
+    return lsys_lstring_copy(dst, src) == LSYS_OK ? LSYS_OK : fail(m, LSYS_ENOMEM, 0);
+  if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  memset(&v, 0, sizeof v);
+  v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
+  v.skip = findskip(m, 0);
+  if (hasctx) {
+    if ((st = buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
+    v.match = m->match;
+    v.poff = m->poff;
+  }
+  for (i = 0; i < src->n; i++) {
+    st = expandone(m, kind, sets, 1, &v, i, src->code[i], src->par + p, 0, dst);
+    if (st < 0) return fail(m, st, i);
+    p += LSYS_CNP(src->code[i]);
+  }
+  return LSYS_OK;
+}
+
+int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
+  int st;
+  lsys_rng *keep = m->cur;
+  if (kind != LSYS_HOMO && kind != LSYS_DECOMP)
+    return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "bad rule kind");
+  if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
+  m->depth_hit = 0;
+  if (kind == LSYS_HOMO) m->cur = &m->hrng;
+  st = expandall(m, kind, src, dst);
+  m->cur = keep;
+  return st;
+}
+
+int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+  int st;
+  long sz;
+  if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "derive in place");
+  m->depth_hit = 0;
+  m->cur = &m->rng;
+  if ((st = productions(m, src, dst)) != LSYS_OK) return st;
+  sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
+  if (sz > 0) {
+    lsys_lstring t;
+    if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
+    t = *dst; *dst = m->tmp; m->tmp = t;    /* swap buffers */
+    dst->nck = 0;
+    m->tmp.nck = 0;
+  }
+  return LSYS_OK;
+}

@@ -1,0 +1,134 @@
+/*
+** The derivation engine (DESIGN.md §4-5): rule storage, context matching
+** with ignore/consider lists, parallel rewriting with stochastic choice,
+** cut, sub-L-systems, decomposition and homomorphism.
+**
+** Semantics follow cpfg (seed 004 Appendix A, CPFG-NOTES.md). Rules whose
+** successor needs computing (a condition, parameter expressions, a weight
+** expression, a function producing the successor) call back into the
+** binding through 'lsys_rulefn'; all other rules are pure template copies.
+*/
+#ifndef LSYS_DERIVE_H
+#define LSYS_DERIVE_H
+
+#include "lstring.h"
+#include "rng.h"
+
+enum { LSYS_PROD = 0, LSYS_DECOMP = 1, LSYS_HOMO = 2 };
+
+/* rule flags */
+#define LSYS_RF_CALL   1   /* call back: condition and/or computed values */
+#define LSYS_RF_DYN    2   /* the callback produces the successor into m->dyn */
+#define LSYS_RF_STOCH  4   /* has a weight */
+#define LSYS_RF_WEXPR  8   /* the weight is computed: vals[0] */
+
+/* where a successor parameter comes from */
+enum { LSYS_PS_CONST = 0, LSYS_PS_ARG = 1, LSYS_PS_VAL = 2 };
+
+typedef struct lsys_patmod { uint32_t sym, np; } lsys_patmod;
+typedef struct lsys_psrc { uint32_t kind, idx; double value; } lsys_psrc;
+
+typedef struct lsys_rule {
+  uint32_t pred, pred_np;
+  uint32_t flags;
+  uint32_t lc, nlc, lcargs;     /* pattern modules in m->pat; lcargs = params in lc */
+  uint32_t rc, nrc;
+  uint32_t succ, nsucc;         /* codes in m->tcode */
+  uint32_t src, nsrc;           /* parameter sources in m->tsrc */
+  uint32_t nargs, nvals;        /* formal parameters; values the callback returns */
+  double weight;
+  int id;                       /* the caller's rule number (messages) */
+} lsys_rule;
+
+typedef struct lsys_rulespec {
+  const lsys_patmod *lc; uint32_t nlc;
+  lsys_patmod pred;
+  const lsys_patmod *rc; uint32_t nrc;
+  const uint16_t *succ; uint32_t nsucc;   /* successor codes (sym, np) */
+  const lsys_psrc *src; uint32_t nsrc;    /* one per successor parameter */
+  uint32_t flags, nvals;
+  double weight;
+  int id;
+} lsys_rulespec;
+
+typedef struct lsys_ruleset {
+  int kind, sub, group;
+  uint32_t *list; size_t nlist, listcap;    /* rules in declaration order */
+  uint32_t *byp;                            /* rules grouped by predecessor */
+  uint32_t *start; uint32_t nsym;           /* byp[start[s] .. start[s+1]) */
+  int compiled, hasctx;
+} lsys_ruleset;
+
+typedef struct lsys_skip {
+  int sub, consider;
+  uint8_t bits[(LSYS_MAXSYM + 8) / 8];
+} lsys_skip;
+
+struct lsys_model;
+/*
+** Evaluates rule 'r' for the matched module: 'args' holds the formal
+** parameters (left context, predecessor, right context, in order). Writes
+** r->nvals values into 'vals' (RF_CALL) or the successor into m->dyn
+** (RF_DYN). Returns 1 when the rule applies, 0 when its condition fails,
+** or a negative LSYS_E* code with m->err set.
+*/
+typedef int (*lsys_rulefn) (void *ud, struct lsys_model *m, const lsys_rule *r,
+                            const double *args, double *vals);
+
+typedef struct lsys_model {
+  lsys_alphabet *ab;
+  lsys_rule *rules; size_t nrules, rulecap;
+  lsys_patmod *pat; size_t npat, patcap;
+  uint16_t *tcode; size_t ntcode, tcodecap;
+  lsys_psrc *tsrc; size_t ntsrc, tsrccap;
+  lsys_ruleset *sets; size_t nsets, setcap;
+  lsys_skip *skips; size_t nskips, skipcap;
+  /* settings */
+  int ring, group;
+  size_t max_modules;
+  int maxdepth[3];             /* by kind; [LSYS_PROD] unused */
+  lsys_rng rng, hrng;          /* derivation; homomorphism */
+  lsys_rng *cur;               /* the generator 'ran' uses now */
+  lsys_rulefn fn; void *fnud;
+  /* scratch, reused */
+  double *args; size_t argscap;
+  double *alt; size_t altcap;  /* stochastic alternatives: weight, rule, args, vals */
+  lsys_lstring dyn, tmp;
+  lsys_lstring *levels; size_t nlevels;
+  uint32_t *match, *poff; size_t matchcap;
+  uint32_t *substack; size_t nsub, subcap;
+  /* state for messages */
+  long cur_rule;               /* index in rules[] being evaluated, or -1 */
+  size_t cur_index;            /* module index being rewritten */
+  int depth_hit;               /* a depth limit stopped an applicable rule */
+  lsys_error err;
+} lsys_model;
+
+int lsys_model_init (lsys_model *m, lsys_alphabet *ab);
+void lsys_model_free (lsys_model *m);
+
+/* Adds a rule to the set (kind, sub, group); returns its index in
+** m->rules or a negative code (message in e). */
+long lsys_model_add (lsys_model *m, int kind, int sub, int group,
+                     const lsys_rulespec *spec, lsys_error *e);
+
+/* Sets the ignore (consider = 0) or consider list of sub-L-system 'sub'. */
+int lsys_model_skiplist (lsys_model *m, int sub, int consider,
+                         const uint32_t *syms, size_t n);
+
+/* Number of rules in the set (kind, sub, group); -1 when there is none. */
+long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
+
+/*
+** One parallel derivation step 'src' -> 'dst' (productions, cut, then
+** decomposition). 'dst' is reset first and must not be 'src'.
+** Returns LSYS_OK; LSYS_ELIMIT when 'dst' would exceed m->max_modules;
+** LSYS_ERULE (or what the callback returned) with m->err set.
+*/
+int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst);
+
+/* Applies the rules of 'kind' (LSYS_HOMO or LSYS_DECOMP) to every module
+** of 'src' recursively within m->maxdepth[kind], into 'dst'. */
+int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst);
+
+#endif

@@ -1,0 +1,199 @@
+/*
+** The module string: storage, text notation in and out.
+*/
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lstring.h"
+
+void lsys_lstring_init (lsys_lstring *s) {
+  memset(s, 0, sizeof *s);
+}
+
+void lsys_lstring_free (lsys_lstring *s) {
+  LSYS_FREE(s->code);
+  LSYS_FREE(s->par);
+  LSYS_FREE(s->ck);
+  memset(s, 0, sizeof *s);
+}
+
+int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
+  if (s->n + nmod > s->cap &&
+      lsys_grow((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code) != LSYS_OK)
+    return LSYS_ENOMEM;
+  if (s->npar + npar > s->parcap &&
+      lsys_grow((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par) != LSYS_OK)
+    return LSYS_ENOMEM;
+  return LSYS_OK;
+}
+
+int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np) {
+  if (lsys_lstring_reserve(s, 1, np) != LSYS_OK) return LSYS_ENOMEM;
+  s->code[s->n++] = LSYS_CODE(sym, np);
+  if (np > 0) memcpy(s->par + s->npar, p, np * sizeof *p);
+  s->npar += np;
+  return LSYS_OK;
+}
+
+int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
+                         size_t i, size_t j, size_t poff) {
+  size_t k, np = 0;
+  for (k = i; k < j; k++) np += LSYS_CNP(src->code[k]);
+  if (lsys_lstring_reserve(dst, j - i, np) != LSYS_OK) return LSYS_ENOMEM;
+  memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
+  if (np > 0) memcpy(dst->par + dst->npar, src->par + poff, np * sizeof *src->par);
+  dst->n += j - i;
+  dst->npar += np;
+  return LSYS_OK;
+}
+
+int lsys_lstring_copy (lsys_lstring *dst, const lsys_lstring *src) {
+  lsys_lstring_clear(dst);
+  return lsys_lstring_append(dst, src, 0, src->n, 0);
+}
+
+size_t lsys_lstring_poff (lsys_lstring *s, size_t i) {
+  size_t k = i / LSYS_CKSTEP, m, off;
+  if (k >= s->nck) {            /* extend the checkpoint table up to k */
+    size_t need = s->n / LSYS_CKSTEP + 1;
+    if (s->ckcap < need &&
+        lsys_grow((void **)&s->ck, &s->ckcap, need, sizeof *s->ck) != LSYS_OK) {
+      for (m = 0, off = 0; m < i; m++) off += LSYS_CNP(s->code[m]);
+      return off;               /* no memory for the table: plain scan */
+    }
+    if (s->nck == 0) { s->ck[0] = 0; s->nck = 1; }
+    while (s->nck <= k) {
+      size_t from = (s->nck - 1) * LSYS_CKSTEP;
+      off = s->ck[s->nck - 1];
+      for (m = from; m < from + LSYS_CKSTEP; m++) off += LSYS_CNP(s->code[m]);
+      s->ck[s->nck++] = off;
+    }
+  }
+  off = s->ck[k];
+  for (m = k * LSYS_CKSTEP; m < i; m++) off += LSYS_CNP(s->code[m]);
+  return off;
+}
+
+long long lsys_lstring_unbalanced (const lsys_lstring *s) {
+  size_t i, depth = 0, first = 0;
+  for (i = 0; i < s->n; i++) {
+    uint32_t sym = LSYS_CSYM(s->code[i]);
+    if (sym == LSYS_SYM_LBR) { if (depth++ == 0) first = i; }
+    else if (sym == LSYS_SYM_RBR) {
+      if (depth == 0) return (long long)i;
+      depth--;
+    }
+  }
+  return depth ? (long long)first : -1;
+}
+
+static int isspacec (int c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+
+int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
+                        lsys_alphabet *a, const lsys_names *decl, lsys_error *e) {
+  size_t i = 0;
+  double p[LSYS_MAXPARAMS];
+  while (i < len) {
+    size_t nl, start;
+    uint32_t sym, np = 0;
+    if (isspacec((unsigned char)text[i])) { i++; continue; }
+    start = i;
+    nl = lsys_scan_name(text + i, len - i, decl);
+    if (nl == 0)
+      return lsys_seterror(e, LSYS_ESYNTAX, i, "unexpected '%c'", text[i]);
+    sym = lsys_alphabet_intern(a, text + i, nl, e);
+    if (sym == 0) { e->pos = i; return e->code; }
+    i += nl;
+    while (i < len && isspacec((unsigned char)text[i])) i++;
+    if (i < len && text[i] == '(') {
+      i++;
+      for (;;) {
+        char num[64], *end;
+        size_t k = 0;
+        while (i < len && isspacec((unsigned char)text[i])) i++;
+        if (i < len && text[i] == ')' && np == 0) { i++; break; }   /* F() */
+        while (i < len && k < sizeof num - 1 && text[i] != ',' && text[i] != ')' &&
+               !isspacec((unsigned char)text[i]))
+          num[k++] = text[i++];
+        num[k] = '\0';
+        if (k == 0)
+          return lsys_seterror(e, LSYS_ESYNTAX, i, "number expected in parameters of '%s'",
+                               lsys_alphabet_name(a, sym));
+        errno = 0;
+        {
+          double x = strtod(num, &end);
+          if (*end != '\0')
+            return lsys_seterror(e, LSYS_ESYNTAX, i - k, "bad number '%s' in parameters of '%s'",
+                                 num, lsys_alphabet_name(a, sym));
+          if (np == LSYS_MAXPARAMS)
+            return lsys_seterror(e, LSYS_ESYNTAX, i - k, "too many parameters for '%s' (limit is %d)",
+                                 lsys_alphabet_name(a, sym), LSYS_MAXPARAMS);
+          p[np++] = x;
+        }
+        while (i < len && isspacec((unsigned char)text[i])) i++;
+        if (i >= len)
+          return lsys_seterror(e, LSYS_ESYNTAX, start, "unbalanced parentheses after '%s'",
+                               lsys_alphabet_name(a, sym));
+        if (text[i] == ',') { i++; continue; }
+        if (text[i] == ')') { i++; break; }
+        return lsys_seterror(e, LSYS_ESYNTAX, i, "',' or ')' expected in parameters of '%s'",
+                             lsys_alphabet_name(a, sym));
+      }
+      if (np > 0 && (sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR))
+        return lsys_seterror(e, LSYS_ESYNTAX, start, "'%s' takes no parameters",
+                             lsys_alphabet_name(a, sym));
+    }
+    if (lsys_lstring_push(s, sym, p, np) != LSYS_OK)
+      return lsys_seterror(e, LSYS_ENOMEM, start, "not enough memory");
+  }
+  return LSYS_OK;
+}
+
+int lsys_fmtnum (char *buf, size_t size, double x) {
+  int prec;
+  if (x == 0) return snprintf(buf, size, signbit(x) ? "-0" : "0");
+  if (x == trunc(x) && fabs(x) < 1e15) return snprintf(buf, size, "%.0f", x);
+  for (prec = 15; prec <= 17; prec++) {
+    snprintf(buf, size, "%.*g", prec, x);
+    if (strtod(buf, NULL) == x) break;
+  }
+  return (int)strlen(buf);
+}
+
+int lsys_buf_add (lsys_buf *b, const char *s, size_t len) {
+  if (lsys_grow((void **)&b->p, &b->cap, b->n + len + 1, 1) != LSYS_OK) return LSYS_ENOMEM;
+  memcpy(b->p + b->n, s, len);
+  b->n += len;
+  b->p[b->n] = '\0';
+  return LSYS_OK;
+}
+
+void lsys_buf_free (lsys_buf *b) {
+  LSYS_FREE(b->p);
+  memset(b, 0, sizeof *b);
+}
+
+int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
+                         size_t i, size_t j) {
+  size_t k, off = lsys_lstring_poff(s, i);
+  for (k = i; k < j; k++) {
+    uint32_t c = s->code[k], np = LSYS_CNP(c), m;
+    const char *name = lsys_alphabet_name(a, LSYS_CSYM(c));
+    if (lsys_buf_add(b, name, strlen(name)) != LSYS_OK) return LSYS_ENOMEM;
+    if (np == 0) continue;
+    for (m = 0; m < np; m++) {
+      char num[40];
+      int n = lsys_fmtnum(num, sizeof num, s->par[off + m]);
+      if (lsys_buf_add(b, m == 0 ? "(" : ",", 1) != LSYS_OK ||
+          lsys_buf_add(b, num, (size_t)n) != LSYS_OK)
+        return LSYS_ENOMEM;
+    }
+    off += np;
+    if (lsys_buf_add(b, ")", 1) != LSYS_OK) return LSYS_ENOMEM;
+  }
+  return LSYS_OK;
+}

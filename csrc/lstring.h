@@ -1,0 +1,82 @@
+/*
+** The module string (DESIGN.md §5): a struct of arrays.
+**
+** Every module is one 16-bit code, its symbol id (LSYS_SYMBITS bits) and its
+** parameter count (LSYS_NPBITS bits); the parameters of all modules follow
+** each other in one pool of doubles. Parameter offsets are not stored per
+** module: a scan carries them along, and random access goes through a
+** checkpoint table (one offset every LSYS_CKSTEP modules) built on demand.
+** That keeps a parameterless module at 2 bytes (cpfg spends about 1-2).
+*/
+#ifndef LSYS_LSTRING_H
+#define LSYS_LSTRING_H
+
+#include "alphabet.h"
+
+#define LSYS_NPBITS    5
+#define LSYS_MAXPARAMS ((1 << LSYS_NPBITS) - 1)     /* 31 parameters */
+#define LSYS_CKSTEP    64
+
+#define LSYS_CODE(sym, np) ((uint16_t)(((sym) << LSYS_NPBITS) | (np)))
+#define LSYS_CSYM(c)       ((uint32_t)(c) >> LSYS_NPBITS)
+#define LSYS_CNP(c)        ((uint32_t)(c) & LSYS_MAXPARAMS)
+
+typedef struct lsys_lstring {
+  uint16_t *code;      /* module codes */
+  size_t n, cap;
+  double *par;         /* parameter pool */
+  size_t npar, parcap;
+  size_t *ck;          /* ck[k] = offset of the parameters of module k*LSYS_CKSTEP */
+  size_t nck, ckcap;   /* nck checkpoints are valid */
+} lsys_lstring;
+
+/* A growable byte buffer for text output. */
+typedef struct lsys_buf {
+  char *p;
+  size_t n, cap;
+} lsys_buf;
+
+void lsys_lstring_init (lsys_lstring *s);
+void lsys_lstring_free (lsys_lstring *s);
+static inline void lsys_lstring_clear (lsys_lstring *s) { s->n = s->npar = s->nck = 0; }
+
+/* Makes room for 'nmod' more modules and 'npar' more parameters. */
+int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar);
+
+/* Appends one module. 'np' must be at most LSYS_MAXPARAMS. */
+int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np);
+
+/* Appends modules [i, j) of 'src' (0-based) whose parameters start at 'poff'. */
+int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
+                         size_t i, size_t j, size_t poff);
+
+/* Copies 'src' into 'dst' (which is cleared first). */
+int lsys_lstring_copy (lsys_lstring *dst, const lsys_lstring *src);
+
+/* Offset in the pool of the parameters of module 'i' (0-based, i <= n). */
+size_t lsys_lstring_poff (lsys_lstring *s, size_t i);
+
+/*
+** Parses cpfg text notation ("F(1,0.5)[+A]") and appends it to 's'.
+** White space between modules is ignored; parameters are numbers.
+** On error returns LSYS_ESYNTAX (or LSYS_ELIMIT/LSYS_ENOMEM) with e->pos the
+** byte offset of the problem.
+*/
+int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
+                        lsys_alphabet *a, const lsys_names *decl, lsys_error *e);
+
+/* Appends the text notation of modules [i, j) to 'b'. */
+int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
+                         size_t i, size_t j);
+
+/* Checks bracket balance; returns -1 when balanced, else the index of the
+** first module that is unbalanced (a ']' with no '[' or an unclosed '['). */
+long long lsys_lstring_unbalanced (const lsys_lstring *s);
+
+/* Writes the shortest of %.15g/%.16g/%.17g that reads back as 'x'. */
+int lsys_fmtnum (char *buf, size_t size, double x);
+
+int lsys_buf_add (lsys_buf *b, const char *s, size_t len);
+void lsys_buf_free (lsys_buf *b);
+
+#endif

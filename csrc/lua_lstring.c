@@ -1,0 +1,210 @@
+/*
+** lsys.Lstring: the module string as a Lua userdata.
+*/
+#include <string.h>
+
+#include "lua_lsys.h"
+
+lsys_lstring *lsys_newlstring (lua_State *L) {
+  lsys_lstring *s = (lsys_lstring *)lua_newuserdatauv(L, sizeof *s, 0);
+  lsys_lstring_init(s);               /* valid empty state before anything can fail */
+  luaL_setmetatable(L, LSTRING_T);
+  return s;
+}
+
+int lsys_raise (lua_State *L, int code, const lsys_error *e) {
+  if (code == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+  return luaL_error(L, "%s", e->msg);
+}
+
+static int lstring_gc (lua_State *L) {
+  lsys_lstring_free(checklstring(L, 1));
+  return 0;
+}
+
+static int lstring_len (lua_State *L) {
+  lua_pushinteger(L, (lua_Integer)checklstring(L, 1)->n);
+  return 1;
+}
+
+/* Pushes the text of modules [i, j) of 's'. */
+static void pushtext (lua_State *L, lsys_lstring *s, size_t i, size_t j) {
+  lsys_buf b = {0};
+  if (lsys_lstring_format(&b, s, lsys_getalphabet(L), i, j) != LSYS_OK) {
+    lsys_buf_free(&b);
+    luaL_error(L, "not enough memory");
+  }
+  lua_pushlstring(L, b.p ? b.p : "", b.n);
+  lsys_buf_free(&b);   /* lua_pushlstring may raise: a leak of b only on memory errors */
+}
+
+static int lstring_tostring (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  pushtext(L, s, 0, s->n);
+  return 1;
+}
+
+/* Converts a Lua index (1-based, negative from the end) like string.sub. */
+static size_t posrelat (lua_Integer pos, size_t len) {
+  if (pos > 0) return (size_t)pos;
+  else if (pos == 0) return 1;
+  else if (pos < -(lua_Integer)len) return 1;
+  else return len + (size_t)pos + 1;
+}
+
+static int lstring_sub (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1), *d;
+  size_t i = posrelat(luaL_checkinteger(L, 2), s->n);
+  lua_Integer je = luaL_optinteger(L, 3, -1);
+  size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
+  if (j > s->n) j = s->n;
+  d = lsys_newlstring(L);
+  if (i <= j && lsys_lstring_append(d, s, i - 1, j, lsys_lstring_poff(s, i - 1)) != LSYS_OK)
+    return luaL_error(L, "not enough memory");
+  return 1;
+}
+
+static int lstring_text (lua_State *L) {   /* s:text(i, j): text of a range */
+  lsys_lstring *s = checklstring(L, 1);
+  size_t i = posrelat(luaL_optinteger(L, 2, 1), s->n);
+  lua_Integer je = luaL_optinteger(L, 3, -1);
+  size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
+  if (j > s->n) j = s->n;
+  if (i > j) lua_pushliteral(L, "");
+  else pushtext(L, s, i - 1, j);
+  return 1;
+}
+
+/* Pushes name and parameters of module i (0-based) whose params are at 'off'. */
+static int pushmodule (lua_State *L, lsys_lstring *s, size_t i, size_t off) {
+  uint32_t c = s->code[i], np = LSYS_CNP(c), k;
+  luaL_checkstack(L, (int)np + 2, "too many parameters");
+  lua_pushstring(L, lsys_alphabet_name(lsys_getalphabet(L), LSYS_CSYM(c)));
+  for (k = 0; k < np; k++) lua_pushnumber(L, s->par[off + k]);
+  return (int)np + 1;
+}
+
+static int lstring_module (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  lua_Integer i = luaL_checkinteger(L, 2);
+  if (i < 0) i += (lua_Integer)s->n + 1;
+  luaL_argcheck(L, i >= 1 && (size_t)i <= s->n, 2, "module index out of range");
+  return pushmodule(L, s, (size_t)i - 1, lsys_lstring_poff(s, (size_t)i - 1));
+}
+
+static int modules_iter (lua_State *L) {
+  lsys_lstring *s = checklstring(L, lua_upvalueindex(1));
+  size_t i = (size_t)lua_tointeger(L, lua_upvalueindex(2));
+  size_t off = (size_t)lua_tointeger(L, lua_upvalueindex(3));
+  int n;
+  if (i >= s->n) return 0;
+  if (off > s->npar) off = lsys_lstring_poff(s, i);   /* the string changed */
+  lua_pushinteger(L, (lua_Integer)i + 1);
+  lua_replace(L, lua_upvalueindex(2));
+  lua_pushinteger(L, (lua_Integer)(off + LSYS_CNP(s->code[i])));
+  lua_replace(L, lua_upvalueindex(3));
+  lua_pushinteger(L, (lua_Integer)i + 1);
+  n = pushmodule(L, s, i, off);
+  return n + 1;
+}
+
+static int lstring_modules (lua_State *L) {
+  checklstring(L, 1);
+  lua_settop(L, 1);
+  lua_pushinteger(L, 0);
+  lua_pushinteger(L, 0);
+  lua_pushcclosure(L, modules_iter, 3);
+  return 1;
+}
+
+static int lstring_count (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  size_t len, i, n = 0;
+  const char *name = luaL_checklstring(L, 2, &len);
+  uint32_t sym = lsys_alphabet_find(lsys_getalphabet(L), name, len);
+  if (sym != 0)
+    for (i = 0; i < s->n; i++) n += LSYS_CSYM(s->code[i]) == sym;
+  lua_pushinteger(L, (lua_Integer)n);
+  return 1;
+}
+
+static int lstring_eq (lua_State *L) {
+  lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2);
+  lua_pushboolean(L, a->n == b->n && a->npar == b->npar &&
+                     (a->n == 0 || memcmp(a->code, b->code, a->n * sizeof *a->code) == 0) &&
+                     (a->npar == 0 || memcmp(a->par, b->par, a->npar * sizeof *a->par) == 0));
+  return 1;
+}
+
+static int lstring_concat (lua_State *L) {
+  lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2), *d = lsys_newlstring(L);
+  if (lsys_lstring_copy(d, a) != LSYS_OK || lsys_lstring_append(d, b, 0, b->n, 0) != LSYS_OK)
+    return luaL_error(L, "not enough memory");
+  return 1;
+}
+
+static int lstring_copy (lua_State *L) {
+  lsys_lstring *a = checklstring(L, 1), *d = lsys_newlstring(L);
+  if (lsys_lstring_copy(d, a) != LSYS_OK) return luaL_error(L, "not enough memory");
+  return 1;
+}
+
+/* s:bytes(): memory held by the string (codes, parameters), in bytes */
+static int lstring_bytes (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  lua_pushinteger(L, (lua_Integer)(s->cap * sizeof *s->code + s->parcap * sizeof *s->par));
+  return 1;
+}
+
+int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
+  while (*s) {
+    size_t n = 0;
+    while (*s == ' ' || *s == '\t' || *s == '\n' || *s == ',') s++;
+    while (s[n] && s[n] != ' ' && s[n] != '\t' && s[n] != '\n' && s[n] != ',') n++;
+    if (n > 0 && lsys_names_add(d, s, n) != LSYS_OK) return LSYS_ENOMEM;
+    s += n;
+  }
+  (void)L;
+  return LSYS_OK;
+}
+
+/* lsys.lstring(text [, names]): parses cpfg text notation */
+static int l_lstring (lua_State *L) {
+  size_t len;
+  const char *text = luaL_checklstring(L, 1, &len);
+  const char *names = luaL_optstring(L, 2, "");
+  lsys_names decl = {0};
+  lsys_error e;
+  lsys_lstring *s = lsys_newlstring(L);
+  int st = lsys_readnames(L, names, &decl);
+  if (st == LSYS_OK)
+    st = lsys_lstring_parse(s, text, len, lsys_getalphabet(L), &decl, &e);
+  lsys_names_free(&decl);
+  if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+  if (st != LSYS_OK)
+    return luaL_error(L, "lstring: %s at character %d", e.msg, (int)e.pos + 1);
+  return 1;
+}
+
+static const luaL_Reg lstring_methods[] = {
+  {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module},
+  {"modules", lstring_modules}, {"count", lstring_count}, {"copy", lstring_copy},
+  {"bytes", lstring_bytes}, {NULL, NULL}
+};
+
+static const luaL_Reg lstring_meta[] = {
+  {"__index", NULL},   /* placeholder: the method table */
+  {"__gc", lstring_gc}, {"__close", lstring_gc}, {"__len", lstring_len},
+  {"__tostring", lstring_tostring}, {"__eq", lstring_eq}, {"__concat", lstring_concat},
+  {NULL, NULL}
+};
+
+void lsys_open_lstring (lua_State *L) {
+  luaL_newmetatable(L, LSTRING_T);
+  luaL_setfuncs(L, lstring_meta, 0);
+  luaL_newlib(L, lstring_methods);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+  lua_pushcfunction(L, l_lstring);
+  lua_setfield(L, -2, "lstring");
+}

@@ -1,0 +1,29 @@
+/*
+** Shared declarations of the Lua binding files (only lua_*.c include Lua).
+*/
+#ifndef LSYS_LUA_LSYS_H
+#define LSYS_LUA_LSYS_H
+
+#include <lua.h>
+#include <lauxlib.h>
+
+#include "lstring.h"
+
+#define LSTRING_T "lsys.Lstring"
+#define checklstring(L, i) ((lsys_lstring *)luaL_checkudata(L, (i), LSTRING_T))
+
+/* The alphabet shared by all models and Lstrings of a Lua state. */
+lsys_alphabet *lsys_getalphabet (lua_State *L);
+
+/* Pushes a new empty Lstring and returns it. */
+lsys_lstring *lsys_newlstring (lua_State *L);
+
+/* Raises the error for a core status code (message from 'e'). */
+int lsys_raise (lua_State *L, int code, const lsys_error *e);
+
+/* Reads a list of module names separated by white space into 'd'. */
+int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
+
+void lsys_open_lstring (lua_State *L);   /* registers the metatable, adds functions to the table on top */
+
+#endif

@@ -1,0 +1,22 @@
+-- Context-sensitive plant after Hogeweg and Hesper, signals 0/1 travel along the branches,
+-- n = 30, δ = 22.5° (ABOP fig. 1.31a). Digits are module names; F, + and - are ignored as context.
+local lsys = require "lsys"
+
+return lsys.lsystem {
+  axiom = "F1F1F1",
+  steps = 30,
+  ignore = "+-F",
+  productions = [[
+    0 < 0 > 0 --> 0
+    0 < 0 > 1 --> 1[+F1F1]
+    0 < 1 > 0 --> 1
+    0 < 1 > 1 --> 1
+    1 < 0 > 0 --> 0
+    1 < 0 > 1 --> 1F1
+    1 < 1 > 0 --> 0
+    1 < 1 > 1 --> 0
+    + --> -
+    - --> +
+  ]],
+  view = { angle = 22.5 },
+}

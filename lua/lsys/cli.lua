@@ -1,0 +1,444 @@
+--- The `lsys` command line.
+-- The program (csrc/lua_main.c) calls `main(...)` with its arguments and exits with what it
+-- returns: 0 on success, 1 when something failed, 2 for a usage error. `main` prints its
+-- own messages (`lsys: ...` on stderr) and does not raise, so it can be called from Lua too:
+-- `require("lsys.cli").main("derive", "examples/default.lua", "--stats")`.
+--
+--   lsys                      the REPL (lsys.repl)
+--   lsys FILE.lua [ARGS]      run a Lua script, like `lua FILE.lua ARGS`
+--   lsys derive [MODEL] ...   derive a model; print the L-string or its statistics
+--   lsys render / export      not in this build yet (rendering arrives with issue 3)
+--   lsys help [COMMAND]       help
+-- @module lsys.cli
+local G = _G
+local type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require =
+      type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require
+local loadfile, getmetatable, setmetatable = loadfile, getmetatable, setmetatable
+local io, os, string, table, math, debug, package = io, os, string, table, math, debug, package
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+local USAGE = [[
+usage: lsys [COMMAND] [ARGS]
+
+  lsys                        start the REPL, with `lsys` loaded
+  lsys FILE.lua [ARGS]        run a Lua script (`-` reads it from stdin), like `lua FILE.lua`
+  lsys derive [MODEL] [OPTS]  derive a model; print the L-string or its statistics
+  lsys render [MODEL] [OPTS]  render a model to PNG (not in this build yet)
+  lsys export MODEL -o OUT    export a model's geometry (not in this build yet)
+  lsys help [COMMAND]         this help, or a command's help
+
+Options:
+  -h, --help      show this help
+  -v, --version   show the version
+
+Environment: LSYS_DEBUG=1 adds a Lua traceback to error messages; LUA_PATH and LUA_CPATH
+work as in `lua`. Exit status: 0 success, 1 error, 2 usage error.
+]]
+
+local HELP = {}
+
+HELP.derive = [[
+usage: lsys derive [MODEL] [--steps N] [--seed S] [--set NAME=VALUE]... [--name NAME]
+                   [--stats] [--progress]
+
+Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a table of named
+models), derives it and prints the resulting L-string in cpfg notation. Without MODEL,
+derives the default example (examples/default.lua). A MODEL that is not a file is looked up
+in the examples directory, with or without .lua: `lsys derive abop/fig1_24a`.
+
+Options:
+  --steps N          number of derivation steps (sets model.steps)
+  --seed S           random seed (sets model.seed)
+  --set NAME=VALUE   sets model.env[NAME] to VALUE, a number if it reads as one, else a
+                     string; may be repeated
+  --name NAME        the model to derive when MODEL returns a table of models (default:
+                     the first name in sorted order)
+  --stats            print statistics instead of the string: steps, modules, the count of
+                     each module name, and the derivation time
+  --progress         print "step k/N: M modules" on stderr after each step (the default
+                     when stderr is a terminal)
+  -h, --help         show this help
+]]
+
+HELP.render = [[
+usage: lsys render [MODEL] [OPTS]
+
+Renders a model to a PNG file. Not available in this build: rendering arrives with issue 3.
+Meanwhile `lsys derive MODEL --stats` derives a model and prints its statistics.
+]]
+
+HELP.export = [[
+usage: lsys export MODEL -o OUT
+
+Exports a model's geometry to OUT (.obj, .ply or .glb). Not available in this build: geometry
+arrives with issue 3.
+]]
+
+HELP.repl = [[
+usage: lsys [repl]
+
+The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
+prints its values; Lstrings print abbreviated. Incomplete statements continue on `>>` lines.
+Ctrl-C interrupts a running evaluation; Ctrl-D quits.
+]]
+
+HELP.help = [[
+usage: lsys help [COMMAND]
+
+Shows the list of commands, or the help of COMMAND.
+]]
+
+-- {===========================================================================================
+-- Errors and output
+
+local USAGE_ERROR = {}  -- metatable of usage errors
+
+-- Raises a usage error (exit status 2) for command 'cmd' (nil: the program itself).
+local function usage (cmd, fmt, ...)
+  error(setmetatable({ cmd = cmd, msg = format(fmt, ...) }, USAGE_ERROR), 0)
+end
+
+local function out (...)
+  io.stdout:write(...)
+end
+
+local function host ()
+  local h = package.loaded["lsys.host"]
+  return type(h) == "table" and h or {}
+end
+
+local function isatty (fd)
+  local f = host().isatty
+  return f ~= nil and f(fd) or false
+end
+
+local function clock ()
+  local f = host().clock
+  return f ~= nil and f() or os.clock()
+end
+
+local function isfile (path)
+  local f = io.open(path, "r")
+  if f == nil then return false end
+  local ok, err = f:read(0)  -- nil, msg for a directory (it opens but cannot be read)
+  f:close()
+  return ok ~= nil or err == nil
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- Option parsing
+
+--[[
+Parses args[first..] against 'spec', a table of option name -> "flag" | "value" | "list"
+(short aliases: spec.short = { h = "help", o = "output" }). Accepts `--name value`,
+`--name=value`, `-x value`, and `--` before positional arguments. Returns the options table
+and the list of positional arguments; raises usage errors for command 'cmd'.
+]]
+local function parse (cmd, spec, args, first)
+  local opts, pos = {}, {}
+  local i = first
+  while i <= args.n do
+    local a = args[i]
+    local name, val
+    if a == "--" then
+      for j = i + 1, args.n do pos[#pos + 1] = args[j] end
+      break
+    elseif a:sub(1, 2) == "--" then
+      name, val = a:match("^%-%-([^=]+)=(.*)$")
+      name = name or a:sub(3)
+    elseif #a == 2 and a:sub(1, 1) == "-" and a ~= "--" then
+      name = spec.short and spec.short[a:sub(2)]
+      if name == nil then usage(cmd, "unknown option '%s'", a) end
+    end
+    if name ~= nil then
+      local kind = spec[name]
+      if kind == nil or name == "short" then usage(cmd, "unknown option '--%s'", name) end
+      if kind == "flag" then
+        if val ~= nil then usage(cmd, "option '--%s' takes no value", name) end
+        opts[name] = true
+      else
+        if val == nil then
+          i = i + 1
+          val = args[i]
+          if val == nil then usage(cmd, "option '--%s' needs a value", name) end
+        end
+        if kind == "list" then
+          opts[name] = opts[name] or {}
+          table.insert(opts[name], val)
+        else
+          opts[name] = val
+        end
+      end
+    elseif a:sub(1, 1) == "-" and a ~= "-" then
+      usage(cmd, "unknown option '%s'", a)
+    else
+      pos[#pos + 1] = a
+    end
+    i = i + 1
+  end
+  return opts, pos
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- Models and examples
+
+-- Directories that may hold the examples, most specific first.
+local function example_dirs ()
+  local dirs = {}
+  local src = debug.getinfo(1, "S").source
+  local root = src:match("^@(.*)[/\\]lsys[/\\]cli%.lua$")
+  if root ~= nil then
+    dirs[#dirs + 1] = root .. "/../examples"           -- source tree: lua/../examples
+    dirs[#dirs + 1] = root .. "/../../lsys/examples"   -- install: share/lua/5.4/../../lsys
+  end
+  for _, d in ipairs(host().datadirs or {}) do
+    dirs[#dirs + 1] = d .. "/examples"
+  end
+  return dirs
+end
+
+-- The path of the model file named by 'arg' (nil: the default example).
+local function find_model (arg)
+  local dirs = example_dirs()
+  if arg ~= nil and isfile(arg) then return arg end
+  local names = arg == nil and { "default.lua" } or { arg, arg .. ".lua" }
+  if arg == nil or not arg:find("^/") then
+    for _, d in ipairs(dirs) do
+      for _, n in ipairs(names) do
+        if isfile(d .. "/" .. n) then return d .. "/" .. n end
+      end
+    end
+  end
+  if arg == nil then
+    error(format("no MODEL given and examples/default.lua was not found (looked in %s)",
+      table.concat(dirs, ", ")), 0)
+  end
+  error(format("cannot open model '%s'", arg), 0)
+end
+
+local function is_model (v)
+  if type(v) ~= "table" and type(v) ~= "userdata" then return false end
+  local ok, derive = pcall(function () return v.derive end)
+  return ok and type(derive) == "function"
+end
+
+--[[
+Runs the model file 'path' and returns the model it returns, and its name when the file
+returns a table of named models ('name' picks one; default: the first in sorted order).
+]]
+local function load_model (path, name)
+  local chunk, err = loadfile(path, "t")
+  if chunk == nil then error(err, 0) end
+  local v = chunk()
+  if is_model(v) then
+    if name ~= nil then
+      error(format("%s returns a single model; --name applies to a table of models", path), 0)
+    end
+    return v
+  end
+  if type(v) == "table" then
+    local names = {}
+    for k, x in pairs(v) do
+      if type(k) == "string" and is_model(x) then names[#names + 1] = k end
+    end
+    table.sort(names)
+    if #names > 0 then
+      if name == nil then return v[names[1]], names[1] end
+      if is_model(v[name]) then return v[name], name end
+      error(format("%s has no model named '%s' (models: %s)", path, name,
+        table.concat(names, ", ")), 0)
+    end
+  end
+  error(format("%s returned %s, not a model (end the file with `return lsys.lsystem { ... }`,"
+    .. " or return a table of models)", path, type(v)), 0)
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- Commands
+
+local commands = {}
+
+local DERIVE_OPTS = {
+  steps = "value", seed = "value", set = "list", name = "value",
+  stats = "flag", progress = "flag", help = "flag", short = { h = "help" },
+}
+
+-- The number of each module name in 's', as a sorted list of { name, count }.
+local function module_counts (s)
+  local counts = {}
+  local ok, f = pcall(function () return s.counts end)
+  if ok and type(f) == "function" then  -- a C-side count when the Lstring has one
+    counts = f(s)
+  else
+    for _, name in s:modules() do counts[name] = (counts[name] or 0) + 1 end
+  end
+  local list = {}
+  for name, n in pairs(counts) do list[#list + 1] = { name, n } end
+  table.sort(list, function (a, b) return a[1] < b[1] end)
+  return list
+end
+
+function commands.derive (args)
+  local opts, pos = parse("derive", DERIVE_OPTS, args, 2)
+  if opts.help then out(HELP.derive) return 0 end
+  if #pos > 1 then usage("derive", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
+  local steps, seed
+  if opts.steps ~= nil then
+    steps = math.tointeger(tonumber(opts.steps))
+    if steps == nil or steps < 0 then
+      usage("derive", "--steps expects a non-negative integer, got '%s'", opts.steps)
+    end
+  end
+  if opts.seed ~= nil then
+    seed = tonumber(opts.seed)
+    if seed == nil then usage("derive", "--seed expects a number, got '%s'", opts.seed) end
+    seed = math.tointeger(seed) or seed
+  end
+  local sets = {}
+  for _, s in ipairs(opts.set or {}) do
+    local k, v = s:match("^([%a_][%w_]*)=(.*)$")
+    if k == nil then usage("derive", "--set expects NAME=VALUE, got '%s'", s) end
+    local n = tonumber(v)
+    sets[#sets + 1] = { k, n ~= nil and (math.tointeger(n) or n) or v }
+  end
+
+  local path = find_model(pos[1])
+  local model = load_model(path, opts.name)
+  if steps ~= nil then model.steps = steps end
+  if seed ~= nil then model.seed = seed end
+  if #sets > 0 then
+    if model.env == nil then model.env = {} end
+    for _, kv in ipairs(sets) do model.env[kv[1]] = kv[2] end
+  end
+
+  local t0 = clock()
+  local s
+  if opts.progress or isatty(2) then
+    local function progress (step, nsteps, lstring)
+      io.stderr:write(format("step %d/%d: %d modules\n", step, nsteps, #lstring))
+      io.stderr:flush()
+    end
+    s = model:derive(model.steps, { progress = progress })
+  else
+    s = model:derive()
+  end
+  local elapsed = clock() - t0
+
+  if not opts.stats then
+    out(tostring(s), "\n")
+    return 0
+  end
+  local counts = module_counts(s)
+  local width = 1
+  for _, c in ipairs(counts) do width = math.max(width, #c[1]) end
+  out(format("steps %s\n", tostring(model.steps or 0)))
+  out(format("modules %d\n", #s))
+  for _, c in ipairs(counts) do out(format("  %-" .. width .. "s %d\n", c[1], c[2])) end
+  out(format("time %.3f s\n", elapsed))
+  return 0
+end
+
+local function not_built (cmd, what)
+  return function (args)
+    for i = 2, args.n do
+      if args[i] == "--" then break end
+      if args[i] == "-h" or args[i] == "--help" then out(HELP[cmd]) return 0 end
+    end
+    io.stderr:write(format("lsys: %s: %s is not available in this build (issue 3)\n", cmd, what))
+    return 1
+  end
+end
+
+commands.render = not_built("render", "rendering")
+commands.export = not_built("export", "export")
+
+function commands.repl (args)
+  local opts = parse("repl", { help = "flag", short = { h = "help" } }, args, 2)
+  if opts.help then out(HELP.repl) return 0 end
+  return require("lsys.repl").run()
+end
+
+function commands.help (args)
+  local cmd = args[2]
+  if cmd == nil then out(USAGE) return 0 end
+  if HELP[cmd] == nil then usage(nil, "no help for '%s': not a command", cmd) end
+  out(HELP[cmd])
+  return 0
+end
+
+-- Runs the script 'path' ("-": stdin) with args[first+1..] as `arg` and `...`, like lua.c.
+local function run_script (path, args, first)
+  local chunk, err = loadfile(path ~= "-" and path or nil)
+  if chunk == nil then error(err, 0) end
+  local sarg = { [-1] = G.arg ~= nil and G.arg[0] or "lsys", [0] = path }
+  for i = first + 1, args.n do sarg[#sarg + 1] = args[i] end
+  G.arg = sarg
+  chunk(table.unpack(sarg, 1, #sarg))
+  return 0
+end
+
+-- }===========================================================================================
+
+
+local function dispatch (args)
+  local a = args[1]
+  if a == nil then return require("lsys.repl").run() end
+  if a == "-h" or a == "--help" then out(USAGE) return 0 end
+  if a == "-v" or a == "--version" then
+    out(format("lsys %s (%s)\n", host().version or "scm", G._VERSION))
+    return 0
+  end
+  if commands[a] ~= nil then return commands[a](args) end
+  if a == "-" then return run_script(a, args, 1) end
+  if a:sub(1, 1) == "-" then usage(nil, "unknown option '%s'", a) end
+  if isfile(a) then return run_script(a, args, 1) end
+  if a:find("%.lua$") or a:find("/") then error(format("cannot open '%s'", a), 0) end
+  usage(nil, "unknown command '%s'", a)
+end
+
+local function handler (e)
+  if getmetatable(e) == USAGE_ERROR then return e end
+  local msg = e
+  if type(msg) ~= "string" then
+    local mt = getmetatable(e)
+    msg = (mt ~= nil and mt.__tostring ~= nil) and tostring(e)
+      or format("(error object is a %s value)", type(e))
+  end
+  if os.getenv("LSYS_DEBUG") ~= nil then msg = debug.traceback(msg, 2) end
+  return msg
+end
+
+--- Runs the command line `lsys ...` given its arguments (strings).
+-- @return the exit status: 0 success, 1 error, 2 usage error
+function M.main (...)
+  local args = table.pack(...)
+  local ok, r = xpcall(dispatch, handler, args)
+  io.stdout:flush()
+  if ok then return math.tointeger(r) or 0 end
+  if getmetatable(r) == USAGE_ERROR then
+    local prefix = r.cmd and ("lsys: " .. r.cmd .. ": ") or "lsys: "
+    local more = r.cmd and format("Run 'lsys %s --help' for its options.", r.cmd)
+      or "Run 'lsys --help' for the commands."
+    io.stderr:write(prefix, r.msg, "\n", more, "\n")
+    return 2
+  end
+  io.stderr:write("lsys: ", r, "\n")
+  return 1
+end
+
+M.usage = USAGE
+M.help = HELP
+
+return M

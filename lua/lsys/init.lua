@@ -1,0 +1,352 @@
+--- lsys: L-systems for plant modelling (DESIGN.md §3).
+-- `local lsys = require "lsys"`
+-- @module lsys
+local core = require "lsys.core"
+local grammar = require "lsys.grammar"
+
+local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
+      select, rawget, math, string, table, debug, _G, io =
+      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
+      select, rawget, math, string, table, debug, _G, io
+local format, concat = string.format, table.concat
+local function io_warn (msg) io.stderr:write(msg, "\n") end
+local _ENV = nil
+
+local M = {}
+M.lstring = core.lstring
+M.produce = core.produce
+M.nproduce = core.nproduce
+M.version = "0.1.0"
+
+local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
+local LSTRING_MT = getmetatable(core.lstring(""))
+
+--- True when `x` is an Lstring.
+function M.islstring (x) return getmetatable(x) == LSTRING_MT end
+
+-- Names usable in rule expressions besides `env`: Lua's math functions
+-- (radians, as in Lua), `pi`, and the standard library tables.
+local BUILTIN = {
+  math = math, string = string, table = table, pi = math.pi, huge = math.huge,
+  abs = math.abs, floor = math.floor, ceil = math.ceil, sqrt = math.sqrt, exp = math.exp,
+  log = math.log, sin = math.sin, cos = math.cos, tan = math.tan, asin = math.asin,
+  acos = math.acos, atan = math.atan, min = math.min, max = math.max, fmod = math.fmod,
+  type = _G.type, tostring = _G.tostring, tonumber = _G.tonumber, print = _G.print,
+  select = _G.select, error = _G.error, assert = _G.assert, pairs = _G.pairs, ipairs = _G.ipairs,
+}
+M.BUILTIN = BUILTIN
+
+local OPTIONS = {
+  axiom = "string", steps = "number", seed = "number", env = "table", modules = "string",
+  ignore = "string", consider = "string", productions = "rules", decomposition = "rules",
+  homomorphism = "rules", max_depth = "table", ring = "boolean", sub = "table",
+  groups = "table", start = "function", start_each = "function", end_each = "function",
+  finish = "function", max_modules = "number", view = "table", name = "string",
+  homomorphism_seed = "number", allow_system_calls = "boolean",
+}
+
+local Model = {}
+Model.__index = Model
+M.Model = Model
+
+-- Splits a rules value (string or list) into entries { text=, fn=, line= }.
+local function entries (rules, what, fail)
+  local out = {}
+  if type(rules) == "string" then
+    local line = 0
+    for l in (rules .. "\n"):gmatch("([^\n]*)\n") do
+      line = line + 1
+      if l:match("%S") then out[#out + 1] = { text = l:match("^%s*(.-)%s*$"), line = line } end
+    end
+  elseif type(rules) == "table" then
+    for i, e in ipairs(rules) do
+      if type(e) == "string" then
+        out[#out + 1] = { text = e:match("^%s*(.-)%s*$"), line = i, item = true }
+      elseif type(e) == "table" and type(e[1]) == "string" and type(e[2]) == "function" then
+        out[#out + 1] = { text = e[1], fn = e[2], line = i, item = true }
+      else
+        fail(format("%s: entry %d must be a rule string or {pattern, function}", what, i))
+      end
+    end
+  else
+    fail(format("%s must be a string or a list of rules", what))
+  end
+  return out
+end
+
+-- Compiles a rules value into the set (kind, sub, group).
+function Model:_addrules (rules, what, kind, sub, group, fail)
+  for _, e in ipairs(entries(rules, what, fail)) do
+    local n = #self._info + 1
+    local label = format("rule %d '%s' (%s %d of %s)", n, e.text, e.item and "entry" or "line",
+                         e.line, what)
+    local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
+    if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
+    local ok, spec, factory, frees = pcall(grammar.compile, r,
+      { label = label, fn = e.fn, id = n })
+    if not ok then fail(spec) end
+    local idx = self._rules:add(kind, sub, group, spec)
+    self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text }
+    if spec.fn then self._fns[idx + 1] = spec.fn end
+  end
+end
+
+--- Creates a model from its description (see DESIGN.md §3 and docs).
+-- Raises an error naming the rule and its line for malformed rules.
+function M.lsystem (opts)
+  if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
+  local info = debug.getinfo(2, "Sl")
+  local where = info and format("%s:%d", info.short_src, info.currentline) or "?"
+  local function fail (msg) error(where .. ": " .. msg, 0) end
+  for k, v in pairs(opts) do
+    local t = OPTIONS[k]
+    if t == nil then fail(format("unknown option '%s'", tostring(k))) end
+    if t == "rules" then
+      if type(v) ~= "string" and type(v) ~= "table" then
+        fail(format("option '%s' must be a string or a list of rules", k))
+      end
+    elseif type(v) ~= t then
+      fail(format("option '%s' must be a %s (got %s)", k, t, type(v)))
+    end
+  end
+  if opts.ignore and opts.consider then fail("give either 'ignore' or 'consider', not both") end
+  local rules = core.rules(opts.modules)
+  local self = setmetatable({
+    axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
+    env = opts.env or {}, view = opts.view or {}, name = opts.name,
+    homomorphism_seed = opts.homomorphism_seed,
+    start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
+    finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
+    _rules = rules, _info = {}, _where = where, _group = 0,
+  }, Model)
+  self._fns = debug.getuservalue(rules, 1)
+  if self.steps < 0 or self.steps ~= math.floor(self.steps) then
+    fail("option 'steps' must be a whole number >= 0")
+  end
+  if opts.productions then self:_addrules(opts.productions, "productions", PROD, 0, 0, fail) end
+  for g, rs in pairs(opts.groups or {}) do
+    if type(g) ~= "number" or g < 1 or g ~= math.floor(g) then
+      fail("groups: keys must be group numbers >= 1")
+    end
+    self:_addrules(rs, format("group %d", g), PROD, 0, g, fail)
+  end
+  for id, s in pairs(opts.sub or {}) do
+    if type(id) ~= "number" or id < 1 or id ~= math.floor(id) then
+      fail("sub: keys must be sub-L-system numbers >= 1")
+    end
+    if type(s) ~= "table" then fail(format("sub[%d] must be a table", id)) end
+    for k in pairs(s) do
+      if k ~= "productions" and k ~= "ignore" and k ~= "consider" then
+        fail(format("sub[%d]: unknown option '%s'", id, tostring(k)))
+      end
+    end
+    self:_addrules(s.productions or "", format("sub-L-system %d", id), PROD, id, 0, fail)
+    if rules:size(PROD, id, 0) < 0 then rules:add(PROD, id, 0, { pred = { 1, 99 } }) end
+    if s.ignore or s.consider then
+      rules:skiplist(id, s.consider ~= nil, s.consider or s.ignore)
+    end
+  end
+  if opts.decomposition then
+    self:_addrules(opts.decomposition, "decomposition", DECOMP, 0, 0, fail)
+  end
+  if opts.homomorphism then
+    self:_addrules(opts.homomorphism, "homomorphism", HOMO, 0, 0, fail)
+  end
+  if opts.ignore or opts.consider then
+    local ok, msg = pcall(rules.skiplist, rules, 0, opts.consider ~= nil,
+                          opts.consider or opts.ignore)
+    if not ok then fail(format("%s: %s", opts.consider and "consider" or "ignore", msg)) end
+  end
+  if opts.ring then rules:config("ring", true) end
+  if opts.max_modules then
+    local ok, msg = pcall(rules.config, rules, "max_modules", opts.max_modules)
+    if not ok then fail("max_modules must be between 1 and 1e12") end
+    self.max_modules = opts.max_modules
+  end
+  for k, d in pairs(opts.max_depth or {}) do
+    if k ~= "decomposition" and k ~= "homomorphism" then
+      fail(format("max_depth: unknown key '%s' (decomposition or homomorphism)", tostring(k)))
+    end
+    local ok = pcall(rules.config, rules, "depth_" .. k, d)
+    if not ok then fail(format("max_depth.%s must be a whole number from 0 to 1024", k)) end
+  end
+  -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
+  local ax, msg, pos = rules:parse(self.axiom, "successor")
+  if not ax then fail(format("axiom '%s': %s at character %d", self.axiom, msg, pos)) end
+  self._axiom = ax
+  self._axiomsrc = self.axiom
+  return self
+end
+
+-- The lookup table rule closures bind their free names from.
+function Model:_env ()
+  local ran, nran = self._rules:ran()
+  local env = self.env
+  return setmetatable({}, { __index = function (_, k)
+    if k == "ran" then return ran elseif k == "nran" then return nran end
+    local v = env[k]
+    if v == nil then v = BUILTIN[k] end
+    return v
+  end })
+end
+
+-- Binds every compiled rule to the current env (called before each step).
+function Model:_bind ()
+  local E = self:_env()
+  for i, info in pairs(self._info) do
+    if info.factory then
+      for name in pairs(info.frees) do
+        if E[name] == nil then
+          error(format("%s: %s: unknown name '%s' (not a parameter, not in env)",
+                       self._where, info.label, name), 0)
+        end
+      end
+      self._fns[i] = info.factory(E, type, error)
+    end
+  end
+  return E
+end
+
+-- The axiom as an Lstring, its expressions evaluated in env.
+function Model:_axiomlstring (E)
+  if self.axiom ~= self._axiomsrc then           -- the axiom field was changed
+    local ax, msg, pos = self._rules:parse(self.axiom, "successor")
+    if not ax then error(format("axiom '%s': %s at character %d", self.axiom, msg, pos), 0) end
+    self._axiom, self._axiomsrc = ax, self.axiom
+  end
+  local parts = {}
+  for _, m in ipairs(self._axiom.succ) do
+    if #m.params == 0 then parts[#parts + 1] = m.name
+    else
+      local vals = {}
+      for k, e in ipairs(m.params) do
+        local f, msg = _G.load("return " .. e, "=axiom", "t", E)
+        if not f then error(format("axiom: bad expression '%s': %s", e, msg), 0) end
+        local ok, x = pcall(f)
+        if not ok then error(format("axiom: expression '%s': %s", e, x), 0) end
+        if type(x) ~= "number" or x ~= x then
+          error(format("axiom: expression '%s' is %s, not a number", e, tostring(x)), 0)
+        end
+        vals[k] = format("%.17g", x)
+      end
+      parts[#parts + 1] = m.name .. "(" .. concat(vals, ",") .. ")"
+    end
+  end
+  if #self._axiom.succ == 0 then return core.lstring("") end
+  local s, msg = self._rules:lstring(concat(parts, " "))
+  if not s then error("axiom: " .. msg, 0) end
+  return s
+end
+
+--- Parses text with this model's declared module names.
+function Model:lstring (text)
+  local s, msg, pos = self._rules:lstring(text)
+  if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
+  return s
+end
+
+-- Runs a core call; turns a failure into a message naming rule and module.
+function Model:_core (what, ...)
+  local rules = self._rules
+  local ok, res = pcall(rules[what], rules, ...)
+  if ok then
+    local _, _, deep = rules:current()
+    if deep and not self._warned then
+      self._warned = true
+      io_warn(format("lsys: %s: the %s depth limit stopped a rule that still applies " ..
+                     "(raise max_depth)", self._where,
+                     what == "step" and "decomposition" or "homomorphism"))
+    end
+    return res
+  end
+  local idx, mod = rules:current()
+  local msg = type(res) == "string" and res or tostring(res)
+  if idx then
+    local info = self._info[idx + 1]
+    local label = info and info.label or format("rule %d", idx + 1)
+    msg = msg:gsub("^" .. label:gsub("%p", "%%%0") .. ":1: ", "")
+    error(format("%s: %s, module %d: %s", self._where, label, mod, msg), 0)
+  end
+  error(format("%s: %s", self._where, msg), 0)
+end
+
+local function checksteps (n, what)
+  if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
+    error(format("%s: the number of steps must be a whole number >= 0", what), 3)
+  end
+end
+
+--- Derives `n` steps (default `model.steps`) from the axiom and returns the
+-- Lstring. Reseeds the generator from `model.seed` first, so the result is
+-- reproducible. `opts.progress(step, n, lstring)` is called after each step.
+function Model:derive (n, opts)
+  n = n or self.steps
+  checksteps(n, "derive")
+  local rules = self._rules
+  rules:config("seed", self.seed)
+  rules:config("hseed", self.homomorphism_seed or self.seed)
+  self._warned = false
+  local E = self:_bind()
+  local s = self:_axiomlstring(E)
+  local progress = opts and opts.progress
+  if self.start then self.start(self) end
+  local spare                    -- the buffer two steps back, reused when private
+  for k = 1, n do
+    if self.start_each then
+      self.start_each(self, k)
+      self:_bind()
+    end
+    local t = self:_core("step", s, spare)
+    spare = nil
+    if self.end_each then
+      local r = self.end_each(self, t, k)
+      if r ~= nil then
+        if not M.islstring(r) then error("end_each must return an Lstring or nil", 0) end
+        t = r
+      end
+    elseif k > 1 and not progress then
+      spare = s                  -- s was produced here and nobody else holds it
+    end
+    if progress then progress(k, n, t) end
+    s = t
+  end
+  if spare then LSTRING_MT.__close(spare) end
+  if self.finish then
+    local r = self.finish(self, s)
+    if r ~= nil and M.islstring(r) then s = r end
+  end
+  return s
+end
+
+--- One derivation step from `s` (an Lstring or text); returns a new Lstring.
+-- The generator continues from where it was (no reseeding).
+function Model:step (s)
+  if type(s) == "string" then s = self:lstring(s) end
+  if not M.islstring(s) then error("step: an Lstring expected", 2) end
+  self:_bind()
+  return self:_core("step", s)
+end
+
+--- Applies the homomorphism to `s` (what the turtle sees); a new Lstring.
+function Model:expand (s)
+  if type(s) == "string" then s = self:lstring(s) end
+  if not M.islstring(s) then error("expand: an Lstring expected", 2) end
+  self:_bind()
+  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  return self:_core("expand", s, HOMO)
+end
+
+--- Selects the rule group `n` (0 = only the productions, always active).
+function Model:use_group (n)
+  if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
+    error("use_group: a group number >= 0 expected", 2)
+  end
+  self._group = n
+  self._rules:config("group", n)
+end
+
+function Model:__tostring ()
+  return format("lsys.Model(%s)", self.name or self._where)
+end
+
+return M

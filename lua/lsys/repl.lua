@@ -1,0 +1,143 @@
+--- The interactive REPL of the `lsys` program (`lsys` with no arguments).
+-- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global: a line is first tried as an
+-- expression (`return <line>`; `=expr` works too) and its values are printed, Lstrings
+-- abbreviated; otherwise it is run as a statement, continued on `>> ` lines while Lua reports
+-- it incomplete. Errors print their message and the session goes on. Line editing and
+-- history come from lsys.readline when the program was built with readline.
+-- @module lsys.repl
+local G = _G
+local type, tostring, pcall, xpcall, load, require, getmetatable =
+      type, tostring, pcall, xpcall, load, require, getmetatable
+local io, os, string, table, package, debug = io, os, string, table, package, debug
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+local WIDTH = 60  -- characters of an Lstring shown
+
+local function is_lstring (v)
+  if type(v) ~= "userdata" then return false end
+  local mt = getmetatable(v)
+  return type(mt) == "table" and mt.__name == "lsys.Lstring"
+end
+
+--- How the REPL shows a value: tostring, except Lstrings, which are abbreviated as
+-- `Lstring(1234 modules): F[+F]F...` (the first 60 characters of their text).
+function M.show (v)
+  if not is_lstring(v) then return tostring(v) end
+  local n = #v
+  local ok, text = pcall(function ()
+    -- convert only a prefix: a million-module string need not become text
+    return tostring(n > WIDTH and v:sub(1, WIDTH) or v)
+  end)
+  if not ok then text = "?" end
+  local more = n > WIDTH or #text > WIDTH
+  return format("Lstring(%d module%s): %s%s", n, n == 1 and "" or "s",
+    text:sub(1, WIDTH), more and "..." or "")
+end
+
+local function host ()
+  local h = package.loaded["lsys.host"]
+  return type(h) == "table" and h or {}
+end
+
+local function msghandler (e)
+  local msg = e
+  if type(msg) ~= "string" then
+    local mt = getmetatable(e)
+    msg = (type(mt) == "table" and mt.__tostring ~= nil) and tostring(e)
+      or format("(error object is a %s value)", type(e))
+  end
+  if os.getenv("LSYS_DEBUG") ~= nil then msg = debug.traceback(msg, 2) end
+  return msg
+end
+
+-- Lua reports an incomplete chunk as a syntax error at <eof> (lua.c's 'incomplete').
+local function incomplete (msg)
+  return msg:sub(-5) == "<eof>"
+end
+
+--[[
+Reads one chunk: a line tried as `return <line>`, else as a statement continued while
+incomplete. Returns the compiled function; nil, message for a syntax error; nil at the end
+of the input.
+]]
+local function loadchunk (read)
+  local line = read(tostring(G._PROMPT or "> "))
+  if line == nil then return nil end
+  if line:sub(1, 1) == "=" then line = "return " .. line:sub(2) end  -- Lua 5.1 style
+  local f = load("return " .. line, "=stdin", "t", G)
+  if f ~= nil then return f end
+  local buf = line
+  while true do
+    local err
+    f, err = load(buf, "=stdin", "t", G)
+    if f ~= nil then return f end
+    if not incomplete(err) then return nil, err end
+    local more = read(tostring(G._PROMPT2 or ">> "))
+    if more == nil then return nil, err end  -- end of input inside a statement
+    buf = buf .. "\n" .. more
+  end
+end
+
+--- Runs the REPL on stdin until its end (Ctrl-D) or os.exit.
+-- @return the exit status, 0
+function M.run ()
+  local h = host()
+  local interactive = h.isatty == nil or h.isatty(0)
+  local readline
+  if interactive then
+    local ok, rl = pcall(require, "lsys.readline")
+    if ok and type(rl) == "function" then readline = rl end
+  end
+  local function read (prompt)
+    if readline ~= nil then return readline(prompt) end
+    if interactive then
+      io.stdout:write(prompt)
+      io.stdout:flush()
+    end
+    return io.stdin:read("l")
+  end
+  local interrupt = h.interrupt or function () end
+
+  local ok, lsys = pcall(require, "lsys")
+  if ok then
+    G.lsys = lsys
+  else
+    io.stderr:write("lsys: warning: cannot load lsys: ", tostring(lsys), "\n")
+  end
+  if interactive then
+    io.stdout:write(format("lsys %s (%s); `lsys` is loaded; =expr prints; Ctrl-D quits\n",
+      h.version or "scm", G._VERSION))
+  end
+
+  while true do
+    local f, err = loadchunk(read)
+    if f == nil and err == nil then break end  -- end of input
+    if f ~= nil then
+      interrupt(true)
+      local r = table.pack(xpcall(f, msghandler))
+      interrupt(false)
+      if r[1] then
+        if r.n > 1 then
+          local shown = {}
+          for i = 2, r.n do shown[i - 1] = M.show(r[i]) end
+          local pok, perr = pcall(G.print, table.unpack(shown, 1, r.n - 1))
+          if not pok then io.stderr:write("error calling 'print' (", tostring(perr), ")\n") end
+        end
+      else
+        err = r[2]
+      end
+    end
+    if err ~= nil then
+      io.stderr:write(tostring(err), "\n")
+      io.stderr:flush()
+    end
+    io.stdout:flush()
+  end
+  if interactive then io.stdout:write("\n") end
+  return 0
+end
+
+return M

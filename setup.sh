@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Installs the Debian packages lsys needs (only those missing), builds into build/ and runs
+# the default example. Usage: ./setup.sh [--no-run]
+#   --no-run   install and build only (./test.sh uses this)
+# Environment: BUILD_DIR (default build), BUILD_TYPE (default Release), JOBS (default nproc).
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(
+  lua5.4 liblua5.4-dev lua-busted          # Lua, its headers, the test runner
+  cmake gcc libc6-dev make pkg-config      # the build
+  libpng-dev libosmesa6-dev libglfw3-dev   # PNG output, offscreen GL, the viewer window
+  libreadline-dev                          # line editing in the REPL
+  xvfb xauth                               # a virtual display for viewer tests
+)
+BUILD_DIR=${BUILD_DIR:-build}
+BUILD_TYPE=${BUILD_TYPE:-Release}
+JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+
+run_example=1
+for a in "$@"; do
+  case $a in
+    --no-run) run_example=0 ;;
+    -h|--help) sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "setup.sh: unknown argument '$a' (see ./setup.sh --help)" >&2; exit 2 ;;
+  esac
+done
+
+install_missing() {
+  local missing=() p
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' \
+      || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  if ! command -v apt-get >/dev/null; then
+    echo "setup.sh: missing packages (no apt-get to install them): ${missing[*]}" >&2
+    return 0  # try the build anyway: the tools may come from elsewhere
+  fi
+  local sudo=()
+  [ "$(id -u)" -ne 0 ] && sudo=(sudo)
+  echo "setup.sh: installing ${missing[*]}"
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$BUILD_TYPE"
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+install_missing
+build
+if [ $run_example -eq 1 ]; then
+  echo "+ $BUILD_DIR/bin/lsys derive examples/default.lua --stats"
+  "$BUILD_DIR/bin/lsys" derive examples/default.lua --stats
+fi

@@ -1,0 +1,286 @@
+-- Context-sensitive matching (ABOP ch. 1, section 1.8; cpfg behaviour in CPFG-NOTES.md).
+local H = require "tests.helper"
+local lsys = require "lsys"
+
+local derive = H.derive
+
+describe("left context", function()
+  it("matches the module just before", function()
+    assert.equal("AX", derive("AB", "A < B --> X", 1))
+  end)
+
+  it("does not match a different module", function()
+    assert.equal("CB", derive("CB", "A < B --> X", 1))
+  end)
+
+  it("fails at the start of the string", function()
+    assert.equal("B", derive("B", "A < B --> X", 1))
+  end)
+
+  it("skips a whole branch before the module (A < C matches A[B]C)", function()
+    assert.equal("A[B]X", derive("A[B]C", "A < C --> X", 1))
+  end)
+
+  it("skips several branches before the module", function()
+    assert.equal("A[B][D[E]]X", derive("A[B][D[E]]C", "A < C --> X", 1))
+  end)
+
+  it("does not see into a sibling branch (B < C fails in A[B]C)", function()
+    assert.equal("A[B]C", derive("A[B]C", "B < C --> X", 1))
+  end)
+
+  it("climbs out of the current branch (A < B matches the B in A[B])", function()
+    assert.equal("A[X]", derive("A[B]", "A < B --> X", 1))
+  end)
+
+  it("climbs out of several nested branch starts", function()
+    assert.equal("A[[X]]", derive("A[[C]]", "A < C --> X", 1))
+  end)
+
+  it("inside a branch, sees the branch's own earlier modules and skips their sub-branches", function()
+    assert.equal("A[B[C]X]", derive("A[B[C]D]", "B < D --> X", 1))
+    assert.equal("A[B[C]D]", derive("A[B[C]D]", "C < D --> X", 1))
+  end)
+
+  it("matches a multi-module left context", function()
+    assert.equal("ABX", derive("ABC", "AB < C --> X", 1))
+    assert.equal("DBC", derive("DBC", "AB < C --> X", 1))
+  end)
+
+  it("matches a multi-module left context across a skipped branch", function()
+    assert.equal("AB[E]X", derive("AB[E]C", "AB < C --> X", 1))
+  end)
+
+  it("matches a multi-module left context that climbs out of a branch", function()
+    assert.equal("AB[X]", derive("AB[C]", "AB < C --> X", 1))
+  end)
+
+  it("uses the string before the step (parallel rewriting: a signal moves one module per step)", function()
+    local m = H.model("BAAAA", "B < A --> B\nB --> A")
+    assert.same({ "BAAAA", "ABAAA", "AABAA", "AAABA", "AAAAB" }, H.steps(m, 4))
+  end)
+
+  it("matches a context module with parameters and binds its formals", function()
+    assert.equal("A(1)B(3)", derive("A(1)B(2)", "A(x) < B(y) --> B(x+y)", 1))
+  end)
+
+  it("requires the context module's parameter count to match", function()
+    assert.equal("A(1,2)B(2)", derive("A(1,2)B(2)", "A(x) < B(y) --> B(x+y)", 1))
+  end)
+end)
+
+describe("right context", function()
+  it("matches the module just after", function()
+    assert.equal("XB", derive("AB", "A > B --> X", 1))
+  end)
+
+  it("fails at the end of the string", function()
+    assert.equal("A", derive("A", "A > B --> X", 1))
+  end)
+
+  it("skips a branch it does not name (A > C matches A[B]C)", function()
+    assert.equal("X[B]C", derive("A[B]C", "A > C --> X", 1))
+  end)
+
+  it("skips several branches it does not name", function()
+    assert.equal("X[B][D[E]]C", derive("A[B][D[E]]C", "A > C --> X", 1))
+  end)
+
+  it("does not enter a branch it does not name (A > B fails in A[B])", function()
+    assert.equal("A[B]", derive("A[B]", "A > B --> X", 1))
+  end)
+
+  it("fails at the end of its branch (B > C fails in A[B]C)", function()
+    assert.equal("A[B]C", derive("A[B]C", "B > C --> X", 1))
+  end)
+
+  it("names a branch (A > [B]C matches A[B]C)", function()
+    assert.equal("X[B]C", derive("A[B]C", "A > [B]C --> X", 1))
+  end)
+
+  it("fails when the named branch holds something else (A > [B]C in A[D]C)", function()
+    assert.equal("A[D]C", derive("A[D]C", "A > [B]C --> X", 1))
+  end)
+
+  it("leaves a named branch at ] even when the branch goes on (S > G[H]M, ABOP p. 32)", function()
+    assert.equal("ABC[DE][XG[HI[JK]L]MNO]",
+      derive("ABC[DE][SG[HI[JK]L]MNO]", "BC < S > G[H]M --> X", 1))
+  end)
+
+  it("matches a multi-module right context", function()
+    assert.equal("XBC", derive("ABC", "A > BC --> X", 1))
+    assert.equal("ABD", derive("ABD", "A > BC --> X", 1))
+  end)
+
+  it("matches a right context module with parameters and binds its formals", function()
+    assert.equal("A(5)B(3)", derive("A(2)B(3)", "A(x) > B(y) --> A(x+y)", 1))
+  end)
+end)
+
+describe("both contexts", function()
+  it("match together (AB < C > DE)", function()
+    assert.equal("ABXDE", derive("ABCDE", "AB < C > DE --> X", 1))
+  end)
+
+  it("fail when one side fails", function()
+    assert.equal("ABCDF", derive("ABCDF", "AB < C > DE --> X", 1))
+    assert.equal("FBCDE", derive("FBCDE", "AB < C > DE --> X", 1))
+  end)
+
+  it("bind formals left to right: left context, predecessor, right context", function()
+    assert.equal("A(1)B(123)C(3)",
+      derive("A(1)B(2)C(3)", "A(a) < B(b) > C(c) --> B(a*100+b*10+c)", 1))
+  end)
+
+  it("a context-free rule after a failing context-sensitive one still applies", function()
+    assert.equal("Y[B]", derive("A[B]", "A > B --> X\nA --> Y", 1))
+  end)
+end)
+
+describe("ignore list", function()
+  it("left context skips symbols on the ignore list", function()
+    local m = lsys.lsystem { axiom = "A+B", ignore = "+", productions = "A < B --> C" }
+    assert.equal("A+C", tostring(m:derive(1)))
+  end)
+
+  it("without an ignore list the same rule does not match", function()
+    assert.equal("A+B", derive("A+B", "A < B --> C", 1))
+  end)
+
+  it("right context skips symbols on the ignore list", function()
+    assert.equal("X+-&B", derive("A+-&B", "A > B --> X", 1, { ignore = "+-&" }))
+  end)
+
+  it("ignores the symbols also inside a multi-module context", function()
+    assert.equal("A+B-X", derive("A+B-C", "AB < C --> X", 1, { ignore = "+-" }))
+  end)
+
+  it("does not stop ignored symbols from being rewritten", function()
+    assert.equal("AGX", derive("AFB", "A < B --> X\nF --> G", 1, { ignore = "F" }))
+  end)
+
+  it("never ignores brackets, even when they are listed", function()
+    -- the branch is still skipped as a whole: A > C would need to enter [B]
+    assert.equal("A[B]C", derive("A[B]C", "A > B --> X", 1, { ignore = "[]" }))
+  end)
+
+  it("cannot match a context module that is on the ignore list: it is skipped", function()
+    -- with F ignored, the left context of B is A, so F < B cannot match
+    assert.equal("AFB", derive("AFB", "F < B --> X", 1, { ignore = "F" }))
+    assert.equal("AFX", derive("AFB", "A < B --> X", 1, { ignore = "F" }))
+  end)
+end)
+
+describe("consider list", function()
+  it("left context sees only symbols on the consider list", function()
+    assert.equal("ACDX", derive("ACDB", "A < B --> X", 1, { consider = "AB" }))
+  end)
+
+  it("right context sees only symbols on the consider list", function()
+    assert.equal("XCDB", derive("ACDB", "A > B --> X", 1, { consider = "AB" }))
+  end)
+
+  it("does not make the right context ignore brackets (unlike cpfg)", function()
+    assert.equal("A[B]", derive("A[B]", "A > B --> X", 1, { consider = "AB" }))
+  end)
+
+  it("still lets the left context climb out of a branch", function()
+    assert.equal("A[C+X]", derive("A[C+B]", "A < B --> X", 1, { consider = "AB" }))
+  end)
+end)
+
+describe("ring = true", function()
+  it("wraps the left context from the first module to the last", function()
+    assert.equal("XBC", derive("ABC", "C < A --> X", 1, { ring = true }))
+  end)
+
+  it("wraps the right context from the last module to the first", function()
+    assert.equal("ABY", derive("ABC", "C > A --> Y", 1, { ring = true }))
+  end)
+
+  it("wraps both ways in the same step", function()
+    assert.equal("XBY", derive("ABC", "C < A --> X\nC > A --> Y", 1, { ring = true }))
+  end)
+
+  it("does not wrap without ring", function()
+    assert.equal("ABC", derive("ABC", "C < A --> X\nC > A --> Y", 1))
+  end)
+
+  it("a signal travels around the ring", function()
+    local m = H.model("AAB", "B < A --> B\nB --> A", { ring = true })
+    assert.same({ "AAB", "BAA", "ABA", "AAB" }, H.steps(m, 3))
+  end)
+end)
+
+-- ABOP fig. 1.31 (a): #ignore +-F, axiom F1F1F1, n = 30, delta = 22.5.
+-- `* < + > * -> -` is written `+ --> -` (no context).
+local FIG_1_31A = {
+  { lc = "0", pred = "0", rc = "0", succ = "0" },
+  { lc = "0", pred = "0", rc = "1", succ = "1[+F1F1]" },
+  { lc = "0", pred = "1", rc = "0", succ = "1" },
+  { lc = "0", pred = "1", rc = "1", succ = "1" },
+  { lc = "1", pred = "0", rc = "0", succ = "0" },
+  { lc = "1", pred = "0", rc = "1", succ = "1F1" },
+  { lc = "1", pred = "1", rc = "0", succ = "0" },
+  { lc = "1", pred = "1", rc = "1", succ = "0" },
+  { pred = "+", succ = "-" },
+  { pred = "-", succ = "+" },
+}
+-- ABOP fig. 1.31 (b).
+local FIG_1_31B = {
+  { lc = "0", pred = "0", rc = "0", succ = "1" },
+  { lc = "0", pred = "0", rc = "1", succ = "1[-F1F1]" },
+  { lc = "0", pred = "1", rc = "0", succ = "1" },
+  { lc = "0", pred = "1", rc = "1", succ = "1" },
+  { lc = "1", pred = "0", rc = "0", succ = "0" },
+  { lc = "1", pred = "0", rc = "1", succ = "1F1" },
+  { lc = "1", pred = "1", rc = "0", succ = "1" },
+  { lc = "1", pred = "1", rc = "1", succ = "0" },
+  { pred = "+", succ = "-" },
+  { pred = "-", succ = "+" },
+}
+
+local function fig_model (rules)
+  local text = {}
+  for i, r in ipairs(rules) do text[i] = H.rule_text(r) end
+  return lsys.lsystem { axiom = "F1F1F1", ignore = "+-F", productions = table.concat(text, "\n") }
+end
+
+describe("ABOP fig. 1.31 (a)", function()
+  it("gives the hand-computed strings for its first six steps", function()
+    assert.same({
+      "F1F1F1",
+      "F1F0F1",
+      "F1F1F1F1",
+      "F1F0F0F1",
+      "F1F0F1[+F1F1]F1",
+      "F1F1F1F1[-F0F1]F1",
+      "F1F0F0F0[+F1F1F1]F1",
+    }, H.steps(fig_model(FIG_1_31A), 6))
+  end)
+
+  it("agrees with the reference deriver after 30 steps", function()
+    local s = fig_model(FIG_1_31A):derive(30)
+    local ref = H.ref_derive("F1F1F1", FIG_1_31A, 30, "+-F")
+    assert.equal(#ref, #s)
+    assert.equal(ref, tostring(s))
+  end)
+end)
+
+describe("ABOP fig. 1.31 (b)", function()
+  it("gives the hand-computed strings for its first five steps", function()
+    assert.same({
+      "F1F1F1",
+      "F1F0F1",
+      "F1F1F1F1",
+      "F1F0F0F1",
+      "F1F0F1[-F1F1]F1",
+      "F1F1F1F1[+F0F1]F1",
+    }, H.steps(fig_model(FIG_1_31B), 5))
+  end)
+
+  it("agrees with the reference deriver after 30 steps", function()
+    local s = fig_model(FIG_1_31B):derive(30)
+    assert.equal(H.ref_derive("F1F1F1", FIG_1_31B, 30, "+-F"), tostring(s))
+  end)
+end)

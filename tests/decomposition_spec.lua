@@ -1,0 +1,84 @@
+-- Decomposition rules: applied after every derivation step, to a fixed point within max_depth.
+local H = require "tests.helper"
+local lsys = require "lsys"
+
+local function model (t)
+  t.axiom = t.axiom or "X"
+  t.productions = t.productions or "X --> A"
+  return lsys.lsystem(t)
+end
+
+describe("decomposition", function()
+  it("is not applied to the axiom", function()
+    local m = model { axiom = "D", productions = "X --> Y", decomposition = "D --> EE" }
+    assert.equal("D", tostring(m:derive(0)))
+  end)
+
+  it("is applied after the first step, also to modules no production rewrote", function()
+    local m = model { axiom = "D", productions = "X --> Y", decomposition = "D --> EE" }
+    assert.equal("EE", tostring(m:derive(1)))
+  end)
+
+  it("is applied to the successors of the step", function()
+    local m = model { decomposition = "A --> B[C]" }
+    assert.equal("B[C]", tostring(m:derive(1)))
+  end)
+
+  it("is applied after every step, and its results stay in the string", function()
+    local m = model { productions = "X --> A\nB --> BA", decomposition = "A --> B" }
+    assert.same({ "X", "B", "BB", "BBBB" }, H.steps(m, 3))
+  end)
+
+  it("is applied after m:step too", function()
+    local m = model { decomposition = "A --> B" }
+    assert.equal("B", tostring(m:step(lsys.lstring("X"))))
+  end)
+
+  it("with max depth 1 decomposes the step's result once", function()
+    local m = model { decomposition = "A --> B\nB --> C", max_depth = { decomposition = 1 } }
+    assert.equal("B", tostring(m:derive(1)))
+  end)
+
+  it("with max depth 2 decomposes the decomposed modules again", function()
+    local m = model { decomposition = "A --> B\nB --> C", max_depth = { decomposition = 2 } }
+    assert.equal("C", tostring(m:derive(1)))
+  end)
+
+  it("stops at a fixed point before max depth", function()
+    local m = model { decomposition = "A --> B\nB --> C", max_depth = { decomposition = 8 } }
+    assert.equal("C", tostring(m:derive(1)))
+  end)
+
+  it("stops a recursive decomposition at max depth", function()
+    local m = model { decomposition = "A --> AB", max_depth = { decomposition = 3 } }
+    assert.equal("ABBB", tostring(m:derive(1)))
+  end)
+
+  it("has max depth 1 by default (cpfg)", function()
+    local m = model { decomposition = "A --> B\nB --> C" }
+    assert.equal("B", tostring(m:derive(1)))
+  end)
+
+  it("computes parameters", function()
+    local m = model { productions = "X --> A(3)", decomposition = "A(x) --> B(x*2) [ C(x+1) ]" }
+    assert.equal("B(6)[C(4)]", tostring(m:derive(1)))
+  end)
+
+  it("reads context from the string before decomposition", function()
+    local m = model { productions = "X --> AB", decomposition = "A > B --> Y\nB --> C",
+                      max_depth = { decomposition = 4 } }
+    assert.equal("YC", tostring(m:derive(1)))
+  end)
+
+  it("uses the model's ignore list for its contexts", function()
+    local m = model { productions = "X --> A+B", ignore = "+", decomposition = "A > B --> Y" }
+    assert.equal("Y+B", tostring(m:derive(1)))
+  end)
+
+  it("gives the next step's productions the decomposed modules", function()
+    -- step 1: X --> A, decomposed to B; step 2 sees B (no rule), not A (which would give Z)
+    local m = model { productions = "X --> A\nA --> Z", decomposition = "A --> B" }
+    assert.equal("B", tostring(m:derive(1)))
+    assert.equal("B", tostring(m:derive(2)))
+  end)
+end)

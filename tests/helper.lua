@@ -1,0 +1,217 @@
+--- Test helpers shared by the busted specs.
+-- Loaded by busted as the `helper` (see .busted) and also `require "tests.helper"`-able
+-- from a spec, so a spec runs on its own too: `busted tests/context_spec.lua`.
+--
+-- Registers with luassert:
+--   assert.near(expected, actual, tol)      numbers, or (nested) lists of numbers elementwise
+--   assert.error_contains(fn, s1, s2, ...)  fn raises and the message contains every si (plain text)
+--
+-- Functions (module table H):
+--   H.model(axiom, productions, opts)  lsys.lsystem with axiom/productions merged into opts
+--   H.derive(axiom, productions, n, opts) tostring of n derivation steps
+--   H.steps(model, n)                  list of tostring for steps 0..n (via model:step)
+--   H.modules(s)                       list of { name, p1, p2, ... } for every module of s
+--   H.rep(text, n)                     text repeated n times
+--   H.binomial_tol(n, p, k)            k standard deviations of a binomial(n, p) count
+--   H.ref_derive(axiom, rules, n, ignore)  independent reference deriver (see below)
+local assert = require "luassert"
+local say = require "say"
+
+local H = package.loaded["tests.helper"]
+if H then return H end
+H = {}
+package.loaded["tests.helper"] = H
+
+-- Make `require "lsys"` work when a spec is run without the .busted paths.
+if not package.path:find("./lua/?/init.lua", 1, true) then
+  package.path = package.path .. ";./lua/?.lua;./lua/?/init.lua"
+end
+if not package.cpath:find("./build/?.so", 1, true) then
+  package.cpath = package.cpath .. ";./build/?.so"
+end
+
+local function flatten (x, out, path)
+  if type(x) == "table" then
+    for i = 1, #x do flatten(x[i], out, path .. "[" .. i .. "]") end
+  else
+    out[#out + 1] = { path = path, v = x }
+  end
+  return out
+end
+
+-- assert.near(expected, actual, tol): |expected - actual| <= tol, elementwise for lists.
+local function near (state, args)
+  local expected, actual, tol = args[1], args[2], args[3]
+  if type(tol) ~= "number" then
+    state.failure_message = "assert.near: tolerance (argument 3) must be a number"
+    return false
+  end
+  local e, a = flatten(expected, {}, ""), flatten(actual, {}, "")
+  if #e ~= #a then
+    state.failure_message = ("assert.near: expected %d numbers, got %d"):format(#e, #a)
+    return false
+  end
+  for i = 1, #e do
+    local x, y = e[i].v, a[i].v
+    if type(x) ~= "number" or type(y) ~= "number" or not (math.abs(x - y) <= tol) then
+      state.failure_message = ("assert.near: at %s expected %s, got %s (tolerance %s)")
+        :format(e[i].path ~= "" and e[i].path or "value", tostring(x), tostring(y), tostring(tol))
+      return false
+    end
+  end
+  return true
+end
+say:set("assertion.lsys_near.positive", "Expected values to be near.")
+say:set("assertion.lsys_near.negative", "Expected values not to be near.")
+assert:register("assertion", "near", near, "assertion.lsys_near.positive",
+  "assertion.lsys_near.negative")
+
+-- assert.error_contains(fn, "text", ...): fn raises and its message contains each text.
+local function error_contains (state, args)
+  local fn = args[1]
+  local ok, err = pcall(fn)
+  if ok then
+    state.failure_message = "expected an error, but the call succeeded"
+    return false
+  end
+  err = tostring(err)
+  for i = 2, args.n do
+    if not err:find(args[i], 1, true) then
+      state.failure_message = ("error message %q does not contain %q"):format(err, args[i])
+      return false
+    end
+  end
+  return true
+end
+say:set("assertion.error_contains.positive", "Expected an error containing the given texts.")
+say:set("assertion.error_contains.negative", "Expected no error containing the given texts.")
+assert:register("assertion", "error_contains", error_contains,
+  "assertion.error_contains.positive", "assertion.error_contains.negative")
+
+local function lsys () return require "lsys" end
+
+function H.model (axiom, productions, opts)
+  local t = {}
+  for k, v in pairs(opts or {}) do t[k] = v end
+  t.axiom = axiom
+  t.productions = productions
+  return lsys().lsystem(t)
+end
+
+function H.derive (axiom, productions, n, opts)
+  return tostring(H.model(axiom, productions, opts):derive(n or 1))
+end
+
+function H.steps (m, n)
+  local s = m:derive(0)
+  local out = { tostring(s) }
+  for _ = 1, n do
+    s = m:step(s)
+    out[#out + 1] = tostring(s)
+  end
+  return out
+end
+
+function H.modules (s)
+  local out = {}
+  for i = 1, #s do out[i] = table.pack(s:module(i)) ; out[i].n = nil end
+  return out
+end
+
+function H.rep (text, n) return string.rep(text, n) end
+
+function H.binomial_tol (n, p, k)
+  return (k or 5) * math.sqrt(n * p * (1 - p))
+end
+
+--[[
+Reference deriver, written independently of the core, for bracketed context-sensitive
+L-systems with one-character modules and no parameters (ABOP ch. 1, section 1.8):
+  rules: list of { lc = "..", pred = "X", rc = "..", succ = ".." } (lc/rc without brackets)
+  ignore: string of symbols skipped when matching contexts
+Left context skips whole branches and climbs out of the current branch; right context skips
+branches and fails at the end of its branch. First matching rule wins. Returns the string.
+]]
+function H.ref_derive (axiom, rules, n, ignore)
+  local ign = {}
+  for c in (ignore or ""):gmatch(".") do ign[c] = true end
+  local function left_ok (s, i, lc)
+    local k = #lc
+    local j = i - 1
+    while k >= 1 do
+      if j < 1 then return false end
+      local c = s:sub(j, j)
+      if c == "]" then          -- skip the whole branch backwards
+        local depth = 1
+        j = j - 1
+        while depth > 0 do
+          local d = s:sub(j, j)
+          if d == "]" then depth = depth + 1 elseif d == "[" then depth = depth - 1 end
+          j = j - 1
+        end
+      elseif c == "[" or ign[c] then  -- climb out of the branch / skip ignored
+        j = j - 1
+      else
+        if c ~= lc:sub(k, k) then return false end
+        k = k - 1
+        j = j - 1
+      end
+    end
+    return true
+  end
+  local function right_ok (s, i, rc)
+    local k = 1
+    local j = i + 1
+    while k <= #rc do
+      if j > #s then return false end
+      local c = s:sub(j, j)
+      if c == "[" then          -- skip the whole branch forwards
+        local depth = 1
+        j = j + 1
+        while depth > 0 do
+          local d = s:sub(j, j)
+          if d == "[" then depth = depth + 1 elseif d == "]" then depth = depth - 1 end
+          j = j + 1
+        end
+      elseif c == "]" then
+        return false            -- end of the branch
+      elseif ign[c] then
+        j = j + 1
+      else
+        if c ~= rc:sub(k, k) then return false end
+        k = k + 1
+        j = j + 1
+      end
+    end
+    return true
+  end
+  local s = axiom
+  for _ = 1, n do
+    local out = {}
+    for i = 1, #s do
+      local c = s:sub(i, i)
+      local succ = c
+      for _, r in ipairs(rules) do
+        if r.pred == c and left_ok(s, i, r.lc or "") and right_ok(s, i, r.rc or "") then
+          succ = r.succ
+          break
+        end
+      end
+      out[#out + 1] = succ
+    end
+    s = table.concat(out)
+  end
+  return s
+end
+
+-- Rule text "lc < p > rc --> succ" for ref_derive rules (same text the specs give lsys).
+function H.rule_text (r)
+  local t = {}
+  if r.lc and r.lc ~= "" then t[#t + 1] = r.lc .. " < " end
+  t[#t + 1] = r.pred
+  if r.rc and r.rc ~= "" then t[#t + 1] = " > " .. r.rc end
+  t[#t + 1] = " --> " .. (r.succ == "" and "*" or r.succ)
+  return table.concat(t)
+end
+
+return H

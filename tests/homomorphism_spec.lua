@@ -1,0 +1,80 @@
+-- Homomorphism rules: applied only when interpreting, i.e. by m:expand(s).
+local H = require "tests.helper"
+local lsys = require "lsys"
+
+describe("homomorphism", function()
+  it("does not change what derive returns", function()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> AB", homomorphism = "A --> FF" }
+    assert.equal("AB", tostring(m:derive(1)))
+    assert.equal("ABB", tostring(m:derive(2)))
+  end)
+
+  it("derive gives the same string with and without a homomorphism", function()
+    local rules = "A --> F[+A]B\nB --> BA"
+    local with = lsys.lsystem { axiom = "A", productions = rules, homomorphism = "A --> FF\nB --> G" }
+    local without = lsys.lsystem { axiom = "A", productions = rules }
+    assert.equal(tostring(without:derive(4)), tostring(with:derive(4)))
+  end)
+
+  it("is applied by m:expand(s)", function()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> AB", homomorphism = "A --> FF" }
+    assert.equal("FFB", tostring(m:expand(m:derive(1))))
+  end)
+
+  it("m:expand does not change its argument", function()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> AB", homomorphism = "A --> FF" }
+    local s = m:derive(1)
+    m:expand(s)
+    assert.equal("AB", tostring(s))
+  end)
+
+  it("expands the axiom and any Lstring given", function()
+    local m = lsys.lsystem { axiom = "AA", homomorphism = "A --> F" }
+    assert.equal("FF", tostring(m:expand(m:derive(0))))
+    assert.equal("F[+F]B", tostring(m:expand(lsys.lstring("A[+A]B"))))
+  end)
+
+  it("computes parameters", function()
+    local m = lsys.lsystem { axiom = "A(2)", homomorphism = "A(x) --> F(x*2) @O(x/4)" }
+    assert.equal("F(4)@O(0.5)", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("* expands to nothing", function()
+    local m = lsys.lsystem { axiom = "FAF", homomorphism = "A --> *" }
+    assert.equal("FF", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("with max depth 1 expands once", function()
+    local m = lsys.lsystem { axiom = "A", homomorphism = "A --> B\nB --> C",
+                             max_depth = { homomorphism = 1 } }
+    assert.equal("B", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("recurses up to its max depth", function()
+    local m = lsys.lsystem { axiom = "A", homomorphism = "A --> B\nB --> C\nC --> D",
+                             max_depth = { homomorphism = 2 } }
+    assert.equal("C", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("stops a self-recursive rule at its max depth", function()
+    local m = lsys.lsystem { axiom = "A", homomorphism = "A --> FA",
+                             max_depth = { homomorphism = 3 } }
+    assert.equal("FFFA", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("reads context from the un-expanded string", function()
+    local m = lsys.lsystem { axiom = "AB", homomorphism = "A > B --> X\nB --> C",
+                             max_depth = { homomorphism = 4 } }
+    assert.equal("XC", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("uses the model's ignore list for its contexts", function()
+    local m = lsys.lsystem { axiom = "A+B", ignore = "+", homomorphism = "A > B --> X" }
+    assert.equal("X+B", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("without homomorphism rules m:expand returns an equal string", function()
+    local m = lsys.lsystem { axiom = "F(1)[+A]", productions = "A --> B" }
+    assert.equal("F(1)[+B]", tostring(m:expand(m:derive(1))))
+  end)
+end)

@@ -1,0 +1,87 @@
+-- Stochastic productions: relative weights after the successor, one seeded generator per model.
+local H = require "tests.helper"
+
+local AB = "A --> B : 1\nA --> C : 1"
+
+describe("stochastic choice", function()
+  it("gives the same string for the same seed", function()
+    local axiom = H.rep("A", 64)
+    assert.equal(H.derive(axiom, AB, 1, { seed = 1 }), H.derive(axiom, AB, 1, { seed = 1 }))
+  end)
+
+  it("gives the same string when one model derives twice", function()
+    local m = H.model(H.rep("A", 64), AB, { seed = 11 })
+    assert.equal(tostring(m:derive(1)), tostring(m:derive(1)))
+  end)
+
+  it("gives a different string for a different seed (64 fair choices)", function()
+    local axiom = H.rep("A", 64)
+    assert.not_equal(H.derive(axiom, AB, 1, { seed = 1 }), H.derive(axiom, AB, 1, { seed = 2 }))
+  end)
+
+  it("only ever produces one of the alternatives", function()
+    local s = H.model(H.rep("A", 200), AB, { seed = 4 }):derive(1)
+    assert.equal(200, #s)
+    assert.equal(200, s:count("B") + s:count("C"))
+    assert.is_true(s:count("B") > 0 and s:count("C") > 0)
+  end)
+
+  it("treats weights as relative: 1 : 3 gives about 25% and 75%", function()
+    local n = 4000
+    local s = H.model(H.rep("A", n), "A --> B : 1\nA --> C : 3", { seed = 2024 }):derive(1)
+    assert.equal(n, s:count("B") + s:count("C"))
+    assert.near(n * 0.25, s:count("B"), H.binomial_tol(n, 0.25, 5))
+  end)
+
+  it("treats weights 0.5 : 1.5 like 1 : 3", function()
+    local n = 4000
+    local s = H.model(H.rep("A", n), "A --> B : 0.5\nA --> C : 1.5", { seed = 99 }):derive(1)
+    assert.near(n * 0.25, s:count("B"), H.binomial_tol(n, 0.25, 5))
+  end)
+
+  it("chooses with three alternatives in proportion to their weights", function()
+    local n = 6000
+    local s = H.model(H.rep("A", n), "A --> B : 1\nA --> C : 2\nA --> D : 3", { seed = 5 }):derive(1)
+    assert.near(n / 6, s:count("B"), H.binomial_tol(n, 1 / 6, 5))
+    assert.near(n / 3, s:count("C"), H.binomial_tol(n, 1 / 3, 5))
+    assert.near(n / 2, s:count("D"), H.binomial_tol(n, 1 / 2, 5))
+  end)
+
+  it("never chooses an alternative whose condition fails", function()
+    local n = 4000
+    local rules = "A(x) : x < 0 --> N : 1000\nA(x) --> B : 1\nA(x) --> C : 1"
+    local s = H.model(H.rep("A(1)", n), rules, { seed = 3 }):derive(1)
+    assert.equal(0, s:count("N"))
+    assert.near(n / 2, s:count("B"), H.binomial_tol(n, 0.5, 5))
+  end)
+
+  it("never chooses an alternative whose context fails", function()
+    local n = 4000
+    local rules = "X < A --> N : 1000\nA --> B : 1\nA --> C : 3"
+    local s = H.model(H.rep("A", n), rules, { seed = 8 }):derive(1)
+    assert.equal(0, s:count("N"))
+    assert.near(n / 4, s:count("B"), H.binomial_tol(n, 0.25, 5))
+  end)
+
+  it("lets the context-free alternative alone decide where the context fails", function()
+    local s = H.model("XA" .. H.rep("A", 20), "X < A --> N : 1\nA --> B : 1", { seed = 1 }):derive(1)
+    assert.equal("X", (s:module(1)))
+    assert.equal(21, s:count("N") + s:count("B"))
+    assert.is_true(s:count("N") <= 1)
+    assert.equal(H.rep("B", 20), tostring(s:sub(3, -1)))
+  end)
+
+  it("keeps a sequence of steps reproducible", function()
+    local rules = "A --> AB : 1\nA --> A[C] : 1\nB --> BA : 2\nB --> * : 1"
+    local a = H.model("A", rules, { seed = 12 }):derive(8)
+    local b = H.model("A", rules, { seed = 12 }):derive(8)
+    assert.equal(tostring(a), tostring(b))
+  end)
+
+  it("derive(n) equals n calls of step from derive(0) with the same seed", function()
+    local rules = "A --> AB : 1\nA --> A[C] : 1\nB --> BA : 2\nB --> * : 1"
+    local m = H.model("A", rules, { seed = 12 })
+    local via_steps = H.steps(m, 6)
+    assert.equal(tostring(m:derive(6)), via_steps[7])
+  end)
+end)

@@ -1,0 +1,62 @@
+-- Sub-L-systems: ?(id, scale) ... $ switch the production set (document 004, Appendix A).
+local lsys = require "lsys"
+
+local function model (axiom, extra)
+  local t = {
+    axiom = axiom,
+    productions = "A --> C\nS --> ?(2,0.5) A $",
+    sub = { [2] = { productions = "A --> B" }, [3] = { productions = "A --> D" } },
+  }
+  for k, v in pairs(extra or {}) do t[k] = v end
+  return lsys.lsystem(t)
+end
+
+describe("sub-L-systems", function()
+  it("use the sub-L-system's productions between ?(id, scale) and $", function()
+    assert.equal("C?(2,0.5)B$C", tostring(model("A?(2,0.5)A$A"):derive(1)))
+  end)
+
+  it("keep ? and $ with their parameters in the string", function()
+    local s = model("A?(2,0.5)A$A"):derive(3)
+    assert.equal(1, s:count("?"))
+    assert.equal(1, s:count("$"))
+    assert.same({ "?", 2, 0.5, n = 3 }, table.pack(s:module(2)))
+  end)
+
+  it("leave a module unchanged when only the main L-system has a rule for it", function()
+    local m = model("F?(2,1)F$F", { productions = "F --> FF\nA --> C" })
+    assert.equal("FF?(2,1)F$FF", tostring(m:derive(1)))
+  end)
+
+  it("return to the enclosing production set after a nested $", function()
+    assert.equal("C?(2,1)B?(3,1)D$B$C", tostring(model("A?(2,1)A?(3,1)A$A$A"):derive(1)))
+  end)
+
+  it("apply inside branches between ? and $", function()
+    assert.equal("?(2,1)[B]B$C", tostring(model("?(2,1)[A]A$A"):derive(1)))
+  end)
+
+  it("start applying in the step after a production creates ?(id, scale)", function()
+    local m = model("S")
+    assert.equal("?(2,0.5)A$", tostring(m:derive(1)))
+    assert.equal("?(2,0.5)B$", tostring(m:derive(2)))
+  end)
+
+  it("use the sub-L-system's own ignore list for contexts", function()
+    local m = lsys.lsystem {
+      axiom = "B+A?(2,1)B+A$",
+      productions = "B < A --> Y",
+      sub = { [2] = { productions = "B < A --> X", ignore = "+" } },
+    }
+    assert.equal("B+A?(2,1)B+X$", tostring(m:derive(1)))
+  end)
+
+  it("evaluate parametric sub-L-system rules", function()
+    local m = lsys.lsystem {
+      axiom = "A(1)?(2,1)A(1)$",
+      productions = "A(x) --> A(x+1)",
+      sub = { [2] = { productions = "A(x) --> A(x*10)" } },
+    }
+    assert.equal("A(3)?(2,1)A(100)$", tostring(m:derive(2)))
+  end)
+end)
