@@ -123,7 +123,7 @@ local function parse_result (out)
   local r = {}
   local line = out:match("RESULT ([^\n]*)")
   if not line then return nil end
-  for k, v in line:gmatch("(%w+)=(%S+)") do r[k] = tonumber(v) or v end
+  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
   return r
 end
 
@@ -159,7 +159,7 @@ local function measure_peer (node, name, steps)
     local json = out:match("(%b{})")
     if ok and json then
       local r = {}
-      for k, v in json:gmatch('"(%w+)":"?([^,"}]*)"?') do r[k] = tonumber(v) or v end
+      for k, v in json:gmatch('"([%w_]+)":"?([^,"}]*)"?') do r[k] = tonumber(v) or v end
       r.notes = notes
       return r
     end
@@ -177,7 +177,7 @@ local function mrate (r) return r.modules / r.seconds / 1e6 end
 local function main ()
   local lsys = load_lsys()
   print(string.format("lsys %s derivation benchmark (%s; best of %d, %s)",
-    lsys._VERSION or "", _VERSION, RUNS, clock_name))
+    lsys.version or "?", _VERSION, RUNS, clock_name))
   print()
   print(string.format("%-38s %5s %11s %9s %9s %-14s %8s %-12s",
     "model", "steps", "modules", "time s", "Mmod/s", "target", "peak MiB", "target"))
@@ -211,6 +211,7 @@ local function main ()
   for _, name in ipairs { "a", "b" } do
     local m = MODELS[name]
     local p, notes = measure_peer(node, name, m.steps)
+    notes = p and p.notes or notes
     for _, n in ipairs(notes) do print("  note: " .. n) end
     if not p then
       print(string.format("%-38s  lindenmayer failed down to %d steps; no comparison",

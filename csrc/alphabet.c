@@ -142,8 +142,7 @@ size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl) {
         size_t n = strlen(atnames[i]);
         if (n <= len && memcmp(atnames[i], s, n) == 0) return n;
       }
-      for (i = 1; i < len && isletter((unsigned char)s[i]); i++) {}
-      return i;
+      return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;
     }
     case '?':
       return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;

@@ -23,6 +23,11 @@ enum {
   LSYS_SYM_FIRSTFREE
 };
 
+typedef struct lsys_names {
+  char **v;
+  size_t n, cap;
+} lsys_names;
+
 typedef struct lsys_alphabet {
   char **names;        /* names[id], NUL-terminated; names[0] = "" */
   uint32_t n;          /* ids in use, including 0 */
@@ -31,11 +36,7 @@ typedef struct lsys_alphabet {
   uint32_t nslots;     /* power of two */
 } lsys_alphabet;
 
-/* A list of declared multi-character names (a model's `modules`). */
-typedef struct lsys_names {
-  char **v;
-  size_t n, cap;
-} lsys_names;
+/* lsys_names: a list of declared multi-character names (a model's `modules`). */
 
 int lsys_alphabet_init (lsys_alphabet *a);
 void lsys_alphabet_free (lsys_alphabet *a);
@@ -56,7 +57,7 @@ static inline const char *lsys_alphabet_name (const lsys_alphabet *a, uint32_t i
 ** Returns the length in bytes of the module name that starts at 's' (with
 ** 'len' bytes available), or 0 when no name starts there: at white space,
 ** '(' ')' '<' '>' ':', or a bad byte. Names: a declared name from 'decl'
-** (longest first), '@' followed by a known cpfg name or else by letters,
+** (longest first), '@' followed by a known cpfg name or else by one letter,
 ** '?' followed by a letter (query modules), '~' followed by one character
 ** (a predefined surface), one UTF-8 character otherwise.
 */

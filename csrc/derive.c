@@ -17,6 +17,8 @@
 #include "derive.h"
 
 #define NONE UINT32_MAX
+#define ACT_SLOW NONE
+#define ACT_COPY (NONE - 1)
 
 int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
   memset(m, 0, sizeof *m);
@@ -37,7 +39,9 @@ void lsys_model_free (lsys_model *m) {
     LSYS_FREE(m->sets[i].list);
     LSYS_FREE(m->sets[i].byp);
     LSYS_FREE(m->sets[i].start);
+    LSYS_FREE(m->sets[i].plain);
   }
+  for (i = 0; i < m->nrules; i++) LSYS_FREE(m->rules[i].vm);
   for (i = 0; i < m->nlevels; i++) lsys_lstring_free(&m->levels[i]);
   LSYS_FREE(m->levels);
   LSYS_FREE(m->sets);
@@ -51,6 +55,7 @@ void lsys_model_free (lsys_model *m) {
   LSYS_FREE(m->match);
   LSYS_FREE(m->poff);
   LSYS_FREE(m->substack);
+  LSYS_FREE(m->act);
   lsys_lstring_free(&m->dyn);
   lsys_lstring_free(&m->tmp);
   memset(m, 0, sizeof *m);
@@ -152,6 +157,25 @@ nomem:
   return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
 }
 
+int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
+  lsys_rule *r;
+  lsys_ins *c = NULL;
+  if (idx >= m->nrules) return LSYS_EARG;
+  r = &m->rules[idx];
+  if (code != NULL) {
+    if (!(r->flags & LSYS_RF_CALL) || (r->flags & LSYS_RF_DYN) ||
+        lsys_expr_check(code, n, (int)r->nargs) != (int)r->nvals)
+      return LSYS_EARG;
+    c = (lsys_ins *)LSYS_MALLOC((size_t)n * sizeof *c + 1);
+    if (c == NULL) return LSYS_ENOMEM;
+    memcpy(c, code, (size_t)n * sizeof *c);
+  }
+  LSYS_FREE(r->vm);
+  r->vm = c;
+  r->nvm = c ? n : 0;
+  return LSYS_OK;
+}
+
 /* Groups the set's rules by predecessor (count, prefix sum, fill). */
 static int compileset (lsys_model *m, lsys_ruleset *s) {
   uint32_t nsym = m->ab->n, i;
@@ -159,9 +183,11 @@ static int compileset (lsys_model *m, lsys_ruleset *s) {
   if (s->compiled && s->nsym == nsym) return LSYS_OK;
   LSYS_FREE(s->start);
   LSYS_FREE(s->byp);
+  LSYS_FREE(s->plain);
   s->start = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *s->start);
   s->byp = (uint32_t *)LSYS_MALLOC((s->nlist + 1) * sizeof *s->byp);
-  if (s->start == NULL || s->byp == NULL) return LSYS_ENOMEM;
+  s->plain = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *s->plain);
+  if (s->start == NULL || s->byp == NULL || s->plain == NULL) return LSYS_ENOMEM;
   memset(s->start, 0, (nsym + 1) * sizeof *s->start);
   for (k = 0; k < s->nlist; k++) s->start[m->rules[s->list[k]].pred + 1]++;
   for (i = 0; i < nsym; i++) s->start[i + 1] += s->start[i];
@@ -172,6 +198,12 @@ static int compileset (lsys_model *m, lsys_ruleset *s) {
     memcpy(next, s->start, (nsym + 1) * sizeof *next);
     for (k = 0; k < s->nlist; k++) s->byp[next[m->rules[s->list[k]].pred]++] = s->list[k];
     LSYS_FREE(next);
+  }
+  for (i = 0; i < nsym; i++) {         /* rules that always apply when np matches */
+    const lsys_rule *r = s->start[i] < s->start[i + 1] ? &m->rules[s->byp[s->start[i]]] : NULL;
+    s->plain[i] = (r != NULL && r->nlc == 0 && r->nrc == 0 &&
+                   !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN | LSYS_RF_STOCH)))
+                  ? s->byp[s->start[i]] : NONE;
   }
   s->nsym = nsym;
   s->compiled = 1;
@@ -383,7 +415,17 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
                      !matchright(m, v, i + 1, r, 0, args + r->lcargs + np, &steps)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
-      if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
+      if (r->vm != NULL) {
+        if (!lsys_expr_run(r->vm, r->nvm, args, vals, m->cur)) continue;
+        for (st = 0; st < (int)r->nvals; st++)
+          if (!isfinite(vals[st])) {
+            m->cur_rule = (long)(r - m->rules);
+            m->cur_index = i;
+            return lsys_seterror(&m->err, LSYS_ERULE, i, "value %d is %s, not a finite number",
+                                 st + 1, vals[st] != vals[st] ? "nan" : "infinite");
+          }
+      }
+      else if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
         m->cur_rule = (long)(r - m->rules);
         m->cur_index = i;
         if (r->flags & LSYS_RF_DYN) lsys_lstring_clear(&m->dyn);
@@ -474,7 +516,7 @@ static int fail (lsys_model *m, int st, size_t i) {
 static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[2];
   int nsets, hasctx, st;
-  size_t i, p = 0, n = src->n;
+  size_t i, p = 0, n = src->n, lim, nact;
   view v;
   lsys_lstring_clear(dst);
   m->nsub = 0;
@@ -491,12 +533,75 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   /* room for at least a copy of the source */
   if (lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
+  /* the fast loop's table: copy the module, copy a template (rule index), or the full path */
+  nact = 0;
+  if (nsets <= 1) {
+    const lsys_ruleset *s0 = nsets ? sets[0] : NULL;
+    uint32_t k;
+    nact = m->ab->n;
+    if (m->actcap < nact &&
+        lsys_grow((void **)&m->act, &m->actcap, nact, sizeof *m->act) != LSYS_OK)
+      return fail(m, LSYS_ENOMEM, 0);
+    for (k = 0; k < nact; k++) {
+      int hasrules = s0 != NULL && k < s0->nsym && s0->start[k] != s0->start[k + 1];
+      if (k == LSYS_SYM_CUT || k == LSYS_SYM_SUB || k == LSYS_SYM_SUBEND) m->act[k] = ACT_SLOW;
+      else if (!hasrules) m->act[k] = ACT_COPY;
+      else if (s0->plain[k] != NONE && m->rules[s0->plain[k]].nsrc == 0)
+        m->act[k] = s0->plain[k];
+      else m->act[k] = ACT_SLOW;
+    }
+  }
+  lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
   for (i = 0; i < n; i++) {
     uint16_t c = src->code[i];
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
     const lsys_ruleset *s0 = nsets ? sets[nsets - 1] : NULL;
     int done = 0;
-    if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
+    if (sym < nact && m->nsub == 0) {     /* the fast loop */
+      uint32_t a = m->act[sym];
+      if (a == ACT_COPY && dst->n < lim) {
+        if (np == 0) {
+          dst->code[dst->n++] = c;
+          continue;
+        }
+        if (dst->npar + np <= dst->parcap) {
+          const double *q = src->par + p;
+          double *o = dst->par + dst->npar;
+          uint32_t k;
+          for (k = 0; k < np; k++) o[k] = q[k];
+          dst->npar += np;
+          dst->code[dst->n++] = c;
+          p += np;
+          continue;
+        }
+      }
+      if (a < ACT_COPY) {
+        const lsys_rule *r = &m->rules[a];
+        if (r->pred_np == np && dst->n + r->nsucc <= lim) {
+          const uint16_t *t = m->tcode + r->succ;
+          uint16_t *o = dst->code + dst->n;
+          uint32_t k;
+          for (k = 0; k < r->nsucc; k++) o[k] = t[k];
+          dst->n += r->nsucc;
+          p += np;
+          continue;
+        }
+      }
+    }
+    if (nsets == 1 && sym < s0->nsym && s0->plain[sym] != NONE &&
+        m->rules[s0->plain[sym]].pred_np == np) {   /* fast path: a pure template copy */
+      const lsys_rule *r = &m->rules[s0->plain[sym]];
+      if (r->nsrc == 0 && dst->n + r->nsucc <= dst->cap && dst->n + r->nsucc <= m->max_modules) {
+        const uint16_t *t = m->tcode + r->succ;
+        uint16_t *o = dst->code + dst->n;
+        uint32_t k;
+        for (k = 0; k < r->nsucc; k++) o[k] = t[k];
+        dst->n += r->nsucc;
+      }
+      else if ((st = emit(m, dst, r, src->par + p, NULL)) != LSYS_OK) return fail(m, st, i);
+      done = 1;
+    }
+    else if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
       done = rewrite(m, sets, nsets, &v, i, c, src->par + p, dst);
       if (done < 0) return fail(m, done, i);
     }
@@ -538,6 +643,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       v.skip = findskip(m, sub);
     }
     p += np;
+    lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
   }
   return LSYS_OK;
 }

@@ -12,6 +12,7 @@
 #define LSYS_DERIVE_H
 
 #include "lstring.h"
+#include "expr.h"
 #include "rng.h"
 
 enum { LSYS_PROD = 0, LSYS_DECOMP = 1, LSYS_HOMO = 2 };
@@ -38,6 +39,7 @@ typedef struct lsys_rule {
   uint32_t nargs, nvals;        /* formal parameters; values the callback returns */
   double weight;
   int id;                       /* the caller's rule number (messages) */
+  lsys_ins *vm; int nvm;        /* when set, evaluated in C instead of the callback */
 } lsys_rule;
 
 typedef struct lsys_rulespec {
@@ -56,6 +58,7 @@ typedef struct lsys_ruleset {
   uint32_t *list; size_t nlist, listcap;    /* rules in declaration order */
   uint32_t *byp;                            /* rules grouped by predecessor */
   uint32_t *start; uint32_t nsym;           /* byp[start[s] .. start[s+1]) */
+  uint32_t *plain;   /* plain[s]: the first rule for s when it is a pure template copy */
   int compiled, hasctx;
 } lsys_ruleset;
 
@@ -97,6 +100,7 @@ typedef struct lsys_model {
   lsys_lstring *levels; size_t nlevels;
   uint32_t *match, *poff; size_t matchcap;
   uint32_t *substack; size_t nsub, subcap;
+  uint32_t *act; size_t actcap;   /* per symbol: what the fast loop does */
   /* state for messages */
   long cur_rule;               /* index in rules[] being evaluated, or -1 */
   size_t cur_index;            /* module index being rewritten */
@@ -111,6 +115,10 @@ void lsys_model_free (lsys_model *m);
 ** m->rules or a negative code (message in e). */
 long lsys_model_add (lsys_model *m, int kind, int sub, int group,
                      const lsys_rulespec *spec, lsys_error *e);
+
+/* Sets (code != NULL) or clears the expression program of rule 'idx'; it
+** must write exactly the rule's nvals values. Returns LSYS_OK or LSYS_EARG. */
+int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n);
 
 /* Sets the ignore (consider = 0) or consider list of sub-L-system 'sub'. */
 int lsys_model_skiplist (lsys_model *m, int sub, int consider,

@@ -224,12 +224,12 @@ int lsys_rule_parse (lsys_prule *r, const char *t, size_t len, int pattern_only,
   size_t arrow, colon, lb = 0, le, sb, se, k;
   int st;
   memset(r, 0, sizeof *r);
-  if (pattern_only == 2) {             /* a successor template */
+  if (pattern_only >= 2) {             /* a successor template (3: pieces, unchecked) */
     size_t b = 0, e = len;
     trim(t, &b, &e);
     if (e - b == 1 && t[b] == '*') { r->empty = 1; return LSYS_OK; }
     if ((st = parsemods(r, t, b, e, 0, a, decl, &r->nsucc, err)) != LSYS_OK) return st;
-    return checkbrackets(r, 0, r->nsucc, "successor", err);
+    return pattern_only == 3 ? LSYS_OK : checkbrackets(r, 0, r->nsucc, "successor", err);
   }
   arrow = findtop(t, 0, len, "-->");
   if (pattern_only) {

@@ -34,7 +34,8 @@ void lsys_prule_free (lsys_prule *r);
 /*
 ** Parses one rule. With 'pattern_only' the text is only 'lc < pred > rc'
 ** (a rule whose successor a Lua function produces) or a successor template
-** when 'pattern_only' is 2 (nmods = nsucc, parameters are expressions).
+** when 'pattern_only' is 2 (nmods = nsucc, parameters are expressions;
+** 3: the same without the bracket-balance check, for pieces of a successor).
 ** Returns LSYS_OK or LSYS_ESYNTAX with e->pos the byte offset at fault.
 */
 int lsys_rule_parse (lsys_prule *r, const char *text, size_t len, int pattern_only,

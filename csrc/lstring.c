@@ -129,6 +129,10 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
           if (*end != '\0')
             return lsys_seterror(e, LSYS_ESYNTAX, i - k, "bad number '%s' in parameters of '%s'",
                                  num, lsys_alphabet_name(a, sym));
+          if (!isfinite(x))
+            return lsys_seterror(e, LSYS_ESYNTAX, i - k,
+                                 "'%s' in parameters of '%s' is not a finite number",
+                                 num, lsys_alphabet_name(a, sym));
           if (np == LSYS_MAXPARAMS)
             return lsys_seterror(e, LSYS_ESYNTAX, i - k, "too many parameters for '%s' (limit is %d)",
                                  lsys_alphabet_name(a, sym), LSYS_MAXPARAMS);
@@ -178,12 +182,36 @@ void lsys_buf_free (lsys_buf *b) {
 }
 
 int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
-                         size_t i, size_t j) {
-  size_t k, off = lsys_lstring_poff(s, i);
+                         const lsys_names *decl, size_t i, size_t j) {
+  /* the starts and lengths of the latest parameterless names: a new name
+  ** must not make any of them read back longer */
+  size_t rs[16], rl[16], nr = 0, k, off = lsys_lstring_poff(s, i), window = 4, q;
+  if (decl != NULL)
+    for (q = 0; q < decl->n; q++)
+      if (strlen(decl->v[q]) + 1 > window) window = strlen(decl->v[q]) + 1;
+  if (window > 16) window = 16;
   for (k = i; k < j; k++) {
     uint32_t c = s->code[k], np = LSYS_CNP(c), m;
     const char *name = lsys_alphabet_name(a, LSYS_CSYM(c));
-    if (lsys_buf_add(b, name, strlen(name)) != LSYS_OK) return LSYS_ENOMEM;
+    size_t len = strlen(name), start = b->n;
+    if (lsys_buf_add(b, name, len) != LSYS_OK) return LSYS_ENOMEM;
+    for (q = 0; q < nr; q++)
+      if (lsys_scan_name(b->p + rs[q], b->n - rs[q], decl) != rl[q]) break;
+    if (q == nr && nr > 0 && np == 0 && lsys_scan_name(b->p + start, len, decl) != len)
+      q = 0;                           /* the name itself would not read back */
+    if (q < nr) {                      /* it would: separate with a space */
+      b->n = start;
+      if (lsys_buf_add(b, " ", 1) != LSYS_OK || lsys_buf_add(b, name, len) != LSYS_OK)
+        return LSYS_ENOMEM;
+      nr = 0;
+      start++;
+    }
+    if (np > 0) nr = 0;
+    else {
+      if (nr == window) { memmove(rs, rs + 1, (nr - 1) * sizeof *rs);
+                          memmove(rl, rl + 1, (nr - 1) * sizeof *rl); nr--; }
+      rs[nr] = start; rl[nr] = len; nr++;
+    }
     if (np == 0) continue;
     for (m = 0; m < np; m++) {
       char num[40];

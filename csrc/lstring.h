@@ -65,9 +65,11 @@ size_t lsys_lstring_poff (lsys_lstring *s, size_t i);
 int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
                         lsys_alphabet *a, const lsys_names *decl, lsys_error *e);
 
-/* Appends the text notation of modules [i, j) to 'b'. */
+/* Appends the text notation of modules [i, j) to 'b'. A space separates
+** two modules whose names would otherwise read back as one (with the
+** declared names 'decl', which may be NULL). */
 int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
-                         size_t i, size_t j);
+                         const lsys_names *decl, size_t i, size_t j);
 
 /* Checks bracket balance; returns -1 when balanced, else the index of the
 ** first module that is unbalanced (a ']' with no '[' or an unclosed '['). */

@@ -6,10 +6,22 @@
 #include "lua_lsys.h"
 
 lsys_lstring *lsys_newlstring (lua_State *L) {
-  lsys_lstring *s = (lsys_lstring *)lua_newuserdatauv(L, sizeof *s, 0);
+  lsys_lstring *s = (lsys_lstring *)lua_newuserdatauv(L, sizeof *s, 1);
   lsys_lstring_init(s);               /* valid empty state before anything can fail */
   luaL_setmetatable(L, LSTRING_T);
   return s;
+}
+
+void lsys_setowner (lua_State *L, int idx, int owner) {
+  idx = lua_absindex(L, idx);
+  lua_pushvalue(L, owner);
+  if (lua_type(L, -1) == LUA_TUSERDATA && lua_getmetatable(L, -1)) {
+    lua_pop(L, 1);
+    if (!luaL_testudata(L, -1, LSTRING_T)) { lua_setiuservalue(L, idx, 1); return; }
+    lua_pop(L, 1);
+    lua_getiuservalue(L, owner, 1);            /* an Lstring: share its owner */
+  }
+  lua_setiuservalue(L, idx, 1);
 }
 
 int lsys_raise (lua_State *L, int code, const lsys_error *e) {
@@ -28,9 +40,10 @@ static int lstring_len (lua_State *L) {
 }
 
 /* Pushes the text of modules [i, j) of 's'. */
-static void pushtext (lua_State *L, lsys_lstring *s, size_t i, size_t j) {
+static void pushtext (lua_State *L, int idx, size_t i, size_t j) {
+  lsys_lstring *s = checklstring(L, idx);
   lsys_buf b = {0};
-  if (lsys_lstring_format(&b, s, lsys_getalphabet(L), i, j) != LSYS_OK) {
+  if (lsys_lstring_format(&b, s, lsys_getalphabet(L), lsys_ownernames(L, idx), i, j) != LSYS_OK) {
     lsys_buf_free(&b);
     luaL_error(L, "not enough memory");
   }
@@ -40,7 +53,7 @@ static void pushtext (lua_State *L, lsys_lstring *s, size_t i, size_t j) {
 
 static int lstring_tostring (lua_State *L) {
   lsys_lstring *s = checklstring(L, 1);
-  pushtext(L, s, 0, s->n);
+  pushtext(L, 1, 0, s->n);
   return 1;
 }
 
@@ -59,6 +72,7 @@ static int lstring_sub (lua_State *L) {
   size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
   if (j > s->n) j = s->n;
   d = lsys_newlstring(L);
+  lsys_setowner(L, -1, 1);
   if (i <= j && lsys_lstring_append(d, s, i - 1, j, lsys_lstring_poff(s, i - 1)) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 1;
@@ -71,7 +85,7 @@ static int lstring_text (lua_State *L) {   /* s:text(i, j): text of a range */
   size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
   if (j > s->n) j = s->n;
   if (i > j) lua_pushliteral(L, "");
-  else pushtext(L, s, i - 1, j);
+  else pushtext(L, 1, i - 1, j);
   return 1;
 }
 
@@ -138,6 +152,7 @@ static int lstring_eq (lua_State *L) {
 
 static int lstring_concat (lua_State *L) {
   lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2), *d = lsys_newlstring(L);
+  lsys_setowner(L, -1, 1);
   if (lsys_lstring_copy(d, a) != LSYS_OK || lsys_lstring_append(d, b, 0, b->n, 0) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 1;
@@ -145,6 +160,7 @@ static int lstring_concat (lua_State *L) {
 
 static int lstring_copy (lua_State *L) {
   lsys_lstring *a = checklstring(L, 1), *d = lsys_newlstring(L);
+  lsys_setowner(L, -1, 1);
   if (lsys_lstring_copy(d, a) != LSYS_OK) return luaL_error(L, "not enough memory");
   return 1;
 }

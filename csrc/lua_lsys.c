@@ -51,6 +51,16 @@ lsys_alphabet *lsys_getalphabet (lua_State *L) {
   return a;
 }
 
+const lsys_names *lsys_ownernames (lua_State *L, int idx) {
+  lrules *R;
+  const lsys_names *d = NULL;
+  if (lua_getiuservalue(L, idx, 1) == LUA_TUSERDATA &&
+      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) != NULL && R->inited)
+    d = &R->decl;
+  lua_pop(L, 1);
+  return d;          /* the owner stays alive: the Lstring refers to it */
+}
+
 /* ---------------------------------------------------------------------- */
 static int rules_gc (lua_State *L) {
   lrules *R = checkrules(L, 1);
@@ -303,6 +313,38 @@ static int rules_config (lua_State *L) {
   return 0;
 }
 
+/* rules:setvm(idx, code): code = {op, a, k, ...} (expr.h) or nil to clear.
+** Returns true, or false when the program does not fit the rule. */
+static int rules_setvm (lua_State *L) {
+  lrules *R = checkrules(L, 1);
+  lua_Integer idx = luaL_checkinteger(L, 2), k, n;
+  lsys_ins *code;
+  int st;
+  luaL_argcheck(L, idx >= 0 && (size_t)idx < R->m.nrules, 2, "bad rule index");
+  if (lua_isnoneornil(L, 3)) {
+    lsys_model_setvm(&R->m, (size_t)idx, NULL, 0);
+    lua_pushboolean(L, 1);
+    return 1;
+  }
+  luaL_checktype(L, 3, LUA_TTABLE);
+  n = luaL_len(L, 3) / 3;
+  luaL_argcheck(L, n <= LSYS_EXPR_MAXCODE, 3, "program too long");
+  code = (lsys_ins *)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *code, 0);
+  for (k = 0; k < n; k++) {
+    lua_rawgeti(L, 3, 3 * k + 1);
+    lua_rawgeti(L, 3, 3 * k + 2);
+    lua_rawgeti(L, 3, 3 * k + 3);
+    code[k].op = (int32_t)luaL_checkinteger(L, -3);
+    code[k].a = (int32_t)luaL_checkinteger(L, -2);
+    code[k].k = luaL_checknumber(L, -1);
+    lua_pop(L, 3);
+  }
+  st = lsys_model_setvm(&R->m, (size_t)idx, code, (int)n);
+  if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+  lua_pushboolean(L, st == LSYS_OK);
+  return 1;
+}
+
 /* rules:size(kind, sub, group): number of rules or -1 */
 static int rules_size (lua_State *L) {
   lrules *R = checkrules(L, 1);
@@ -325,9 +367,11 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
     int keep = R->produced, res;
     R->produced = 0;
     lua_call(L, (int)r->nargs, 1);
-    res = R->produced || m->dyn.n > 0;
+    res = R->produced;               /* no produce: the rule does not apply */
     R->produced = keep;
     lua_pop(L, 1);
+    if (res && lsys_lstring_unbalanced(&m->dyn) >= 0)
+      return luaL_error(L, "unbalanced brackets in the produced successor");
     return res;
   }
   lua_call(L, (int)r->nargs, (int)r->nvals + 1);
@@ -358,12 +402,12 @@ static int run (lua_State *L, lrules *R, int what, lsys_lstring *src, lsys_lstri
   R->m.fn = rulefn;
   R->m.fnud = R;
   R->m.cur_rule = -1;
+  lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing");   /* restored after */
   lua_pushvalue(L, 1);                              /* the rules producing now */
   lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
   st = what < 0 ? lsys_derive_step(&R->m, src, dst) : lsys_expand(&R->m, what, src, dst);
   R->L = keepL;
   R->fnidx = keepidx;
-  lua_pushnil(L);
   lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
   lua_pop(L, 1);
   if (st != LSYS_OK) {
@@ -381,6 +425,7 @@ static int rules_step (lua_State *L) {
   lsys_lstring *src = checklstring(L, 2), *dst;
   if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); dst = lsys_newlstring(L); }
   else { dst = checklstring(L, 3); lua_settop(L, 3); }
+  lsys_setowner(L, 3, 1);
   luaL_argcheck(L, src != dst, 3, "source and destination are the same string");
   run(L, R, -1, src, dst);
   lua_settop(L, 3);
@@ -395,6 +440,7 @@ static int rules_expand (lua_State *L) {
   luaL_argcheck(L, kind == LSYS_HOMO || kind == LSYS_DECOMP, 3, "bad rule kind");
   lua_settop(L, 3);
   dst = lsys_newlstring(L);
+  lsys_setowner(L, 4, 1);
   run(L, R, kind, src, dst);
   lua_settop(L, 4);
   return 1;
@@ -418,7 +464,9 @@ static int rules_lstring (lua_State *L) {
   const char *text = luaL_checklstring(L, 2, &len);
   lsys_error e;
   lsys_lstring *s = lsys_newlstring(L);
-  int st = lsys_lstring_parse(s, text, len, R->m.ab, &R->decl, &e);
+  int st;
+  lsys_setowner(L, -1, 1);
+  st = lsys_lstring_parse(s, text, len, R->m.ab, &R->decl, &e);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   if (st != LSYS_OK) {
     lua_pushnil(L);
@@ -495,7 +543,7 @@ static ltemplate *gettemplate (lua_State *L, lrules *R, int tidx) {
     lua_setfield(L, -2, "__gc");
   }
   lua_setmetatable(L, -2);
-  st = lsys_rule_parse(&r, text, len, 2, R->m.ab, &R->decl, &e);
+  st = lsys_rule_parse(&r, text, len, 3, R->m.ab, &R->decl, &e);
   if (st != LSYS_OK) {
     lsys_prule_free(&r);
     return (ltemplate *)(intptr_t)luaL_error(L, "produce: %s at character %d in '%s'",
@@ -587,7 +635,7 @@ static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
-  {"ran", rules_ran}, {NULL, NULL}
+  {"ran", rules_ran}, {"setvm", rules_setvm}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

@@ -18,6 +18,13 @@ lsys_alphabet *lsys_getalphabet (lua_State *L);
 /* Pushes a new empty Lstring and returns it. */
 lsys_lstring *lsys_newlstring (lua_State *L);
 
+/* The declared names of the model that made the Lstring at 'idx' (its
+** owner, user value 1), or NULL. */
+const lsys_names *lsys_ownernames (lua_State *L, int idx);
+
+/* Makes the value at 'owner' the owner of the Lstring at 'idx'. */
+void lsys_setowner (lua_State *L, int idx, int owner);
+
 /* Raises the error for a core status code (message from 'e'). */
 int lsys_raise (lua_State *L, int code, const lsys_error *e);
 

@@ -107,6 +107,15 @@ describe("right context", function()
       derive("ABC[DE][SG[HI[JK]L]MNO]", "BC < S > G[H]M --> X", 1))
   end)
 
+  it("leaves the current branch through an explicit ] in the pattern (C > ]D in A[BC]D)", function()
+    assert.equal("A[BX]D", derive("A[BC]D", "C > ]D --> X", 1))
+  end)
+
+  it("skips the rest of the branch at an explicit ] (B > C]D in A[BC]D)", function()
+    assert.equal("A[XC]D", derive("A[BC]D", "B > C]D --> X", 1))
+    assert.equal("A[XCE]D", derive("A[BCE]D", "B > C]D --> X", 1))
+  end)
+
   it("matches a multi-module right context", function()
     assert.equal("XBC", derive("ABC", "A > BC --> X", 1))
     assert.equal("ABD", derive("ABD", "A > BC --> X", 1))

@@ -42,6 +42,12 @@ describe("cut %", function()
     assert.equal(1, calls)
   end)
 
+  it("cuts a % made by decomposition in the next step", function()
+    local m = lsys.lsystem { axiom = "F[A]F", productions = "X --> X", decomposition = "A --> %B" }
+    assert.equal("F[%B]F", tostring(m:derive(1)))
+    assert.equal("F[]F", tostring(m:derive(2)))
+  end)
+
   it("is prevented by a production that rewrites %", function()
     assert.equal("F[XFF]F", H.derive("F[%FF]F", "% --> X", 1))
   end)

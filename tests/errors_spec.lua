@@ -8,6 +8,11 @@ describe("max_modules", function()
     assert.equal(512, #m:derive(9))
   end)
 
+  it("allows a string of exactly max_modules modules", function()
+    local m = H.model("F", "F --> FF", { max_modules = 1024 })
+    assert.equal(1024, #m:derive(10))
+  end)
+
   it("raises an error naming max_modules when a step would exceed it", function()
     local m = H.model("F", "F --> FF", { max_modules = 1000 })
     assert.error_contains(function() m:derive(10) end, "max_modules")
@@ -62,8 +67,9 @@ describe("axiom errors", function()
     assert.error_contains(function() lsys.lsystem { axiom = "F(1" } end, "axiom")
   end)
 
-  it("a missing axiom raises", function()
-    assert.error_contains(function() lsys.lsystem { productions = "A --> B" } end, "axiom")
+  it("an axiom that is not a string raises naming the option", function()
+    assert.error_contains(function() lsys.lsystem { axiom = 5, productions = "A --> B" } end,
+      "axiom")
   end)
 end)
 
@@ -86,11 +92,21 @@ describe("model options", function()
     end, "prodcutions")
   end)
 
+  it("giving both ignore and consider raises", function()
+    assert.error_contains(function()
+      lsys.lsystem { axiom = "A", ignore = "+", consider = "A" }
+    end, "ignore", "consider")
+  end)
+
+  it("an option of the wrong type raises naming it", function()
+    assert.error_contains(function() lsys.lsystem { axiom = "A", steps = "ten" } end, "steps")
+  end)
+
   it("derive with a negative step count raises", function()
     assert.has_error(function() H.model("A", "A --> B"):derive(-1) end)
   end)
 
   it("step with something other than an Lstring raises", function()
-    assert.has_error(function() H.model("A", "A --> B"):step("A") end)
+    assert.has_error(function() H.model("A", "A --> B"):step({}) end)
   end)
 end)

@@ -73,6 +73,15 @@ describe("homomorphism", function()
     assert.equal("X+B", tostring(m:expand(m:derive(0))))
   end)
 
+  it("gives the same random values on every expand, whatever was derived between", function()
+    local m = lsys.lsystem { axiom = "AAAA", productions = "A --> A", seed = 3,
+                             homomorphism = "A --> F(ran(1))" }
+    local a = tostring(m:expand(m:derive(0)))
+    m:derive(3)
+    assert.equal(a, tostring(m:expand(m:derive(0))))
+    assert.not_equal("F(0)F(0)F(0)F(0)", a)
+  end)
+
   it("without homomorphism rules m:expand returns an equal string", function()
     local m = lsys.lsystem { axiom = "F(1)[+A]", productions = "A --> B" }
     assert.equal("F(1)[+B]", tostring(m:expand(m:derive(1))))

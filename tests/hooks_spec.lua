@@ -16,6 +16,25 @@ describe("hooks", function()
                   "finish ABB" }, log)
   end)
 
+  it("derive(0) calls start and finish but no per-step hook", function()
+    local log = {}
+    local m = lsys.lsystem {
+      axiom = "A", productions = "A --> AB",
+      start = function() log[#log + 1] = "start" end,
+      start_each = function() log[#log + 1] = "start_each" end,
+      end_each = function() log[#log + 1] = "end_each" end,
+      finish = function(_, s) log[#log + 1] = "finish " .. tostring(s) end,
+    }
+    m:derive(0)
+    assert.same({ "start", "finish A" }, log)
+  end)
+
+  it("an error in a hook reaches the caller", function()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> AB",
+                             start_each = function() error("hook failed") end }
+    assert.error_contains(function() m:derive(2) end, "hook failed")
+  end)
+
   it("receive the model as their first argument", function()
     local got = {}
     local m

@@ -102,6 +102,24 @@ describe("lsys.lstring malformed text", function()
     assert.has_error(function() lsys.lstring("F(1,)") end)
   end)
 
+  it("raises for nan as a parameter (parameters are finite numbers, as in rules)", function()
+    assert.has_error(function() lsys.lstring("F(nan)") end)
+  end)
+
+  it("raises for a parameter too large to be a finite number", function()
+    assert.has_error(function() lsys.lstring("F(1e999)") end)
+  end)
+
+  it("raises for inf as a parameter", function()
+    assert.has_error(function() lsys.lstring("F(inf)") end)
+  end)
+
+  it("reads 31 parameters and raises with the limit for 32", function()
+    assert.equal(1, #lsys.lstring("F(" .. string.rep("1,", 30) .. "1)"))
+    assert.error_contains(function() lsys.lstring("F(" .. string.rep("1,", 31) .. "1)") end,
+      "too many parameters")
+  end)
+
   it("raises when given something other than a string", function()
     assert.has_error(function() lsys.lstring({}) end)
   end)
@@ -175,6 +193,11 @@ describe("Lstring methods", function()
     assert.same({ "A", n = 1 }, table.pack(s:module(-2)))
   end)
 
+  it("module(i) raises for an index outside the string", function()
+    assert.has_error(function() s:module(0) end)
+    assert.has_error(function() s:module(6) end)
+  end)
+
   it("modules() iterates index, name and parameters in order", function()
     local seen = {}
     for i, name, a, b in s:modules() do
@@ -218,8 +241,26 @@ describe("declared multi-character module names", function()
     assert.equal("Apex", (s:module(2)))
   end)
 
-  it("declared names are printed as written", function()
-    assert.equal("Apex(1)[+Leaf]", tostring(m:lstring("Apex(1) [ + Leaf ]")))
+  it("prints declared names so that m:lstring reads the text back to the same modules", function()
+    local s = m:lstring("Apex(1) [ + Leaf ] Leaf Apex LeafA")
+    local t = m:lstring(tostring(s))
+    assert.equal(9, #t)
+    assert.same(H.modules(s), H.modules(t))
+  end)
+
+  it("prints declared names as written (spaces between modules aside)", function()
+    assert.equal("LeafApex", (tostring(m:lstring("Leaf Apex")):gsub(" ", "")))
+    assert.equal("Apex(1)[+Leaf]", (tostring(m:lstring("Apex(1) [ + Leaf ]")):gsub(" ", "")))
+  end)
+
+  it("prints single modules that spell a declared name so that they read back apart", function()
+    local m2 = lsys.lsystem { axiom = "A B", modules = "AB" }
+    local s = m2:lstring("A B AB")
+    assert.equal(3, #s)
+    assert.equal(1, #m2:lstring("AB"))
+    local t = m2:lstring(tostring(s))
+    assert.equal(3, #t)
+    assert.same(H.modules(s), H.modules(t))
   end)
 
   it("undeclared letters stay one-character modules in m:lstring", function()
@@ -231,7 +272,7 @@ describe("declared multi-character module names", function()
   it("productions rewrite declared names", function()
     local s = m:derive(2)
     assert.equal(3, #s)
-    assert.equal("LeafLeafApex", tostring(s))
+    assert.equal("LeafLeafApex", (tostring(s):gsub(" ", "")))
     assert.equal(2, s:count("Leaf"))
   end)
 

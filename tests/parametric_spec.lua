@@ -22,6 +22,14 @@ describe("conditions", function()
     assert.equal("CB", derive("A(1)A(5)", "A(x) : x > 2 --> B\nA(x) --> C", 1))
   end)
 
+  it("a condition that is the number 0 is false and any other number is true (cpfg)", function()
+    assert.equal("A(0)B", derive("A(0)A(2)", "A(x) : x --> B", 1))
+  end)
+
+  it("a condition that is nil is false", function()
+    assert.equal("A(1)", derive("A(1)", "A(x) : nil --> B", 1))
+  end)
+
   it("can combine formals with and/or/not", function()
     assert.equal("XA(1,1)A(2,1)",
       derive("A(2,2)A(1,1)A(2,1)", "A(x,y) : x == y and not (x < 2) --> X", 1))
@@ -231,13 +239,36 @@ describe("bad values from rule expressions", function()
       "A(x) --> B('a')")
   end)
 
+  it("a condition that gives a string raises naming the rule", function()
+    assert.error_contains(function() H.derive("FA(1)", "A(x) : 'yes' --> B", 1) end,
+      "A(x) : 'yes' --> B")
+  end)
+
   it("a parameter expression that gives nil raises naming the rule", function()
     assert.error_contains(function() H.derive("FA(1)", "A(x) --> B(undefined_name)", 1) end,
       "A(x) --> B(undefined_name)")
   end)
 
   it("a condition that raises names the rule and the module", function()
-    assert.error_contains(function() H.derive("FFA(1)", "A(x) : x < nothing --> B", 1) end,
-      "A(x) : x < nothing --> B", "module 3")
+    assert.error_contains(function()
+      H.derive("FFA(1)", "A(x) : x < t --> B", 1, { env = { t = {} } })
+    end, "A(x) : x < t --> B", "module 3")
+  end)
+
+  it("a name that is neither a formal nor in env raises naming the rule and the name", function()
+    assert.error_contains(function()
+      H.model("A(1)", "B --> C\nA(x) : x < nothing --> B"):derive(1)
+    end, "A(x) : x < nothing --> B", "line 2", "nothing")
+  end)
+
+  it("a name added to env after the model was made is found", function()
+    local m = H.model("A(1)", "A(x) : x < later --> B")
+    m.env.later = 5
+    assert.equal("B", tostring(m:derive(1)))
+  end)
+
+  it("an infinite parameter value raises naming the rule", function()
+    assert.error_contains(function() H.derive("A(1)", "A(x) --> B(x/0)", 1) end,
+      "A(x) --> B(x/0)", "module 1")
   end)
 end)

@@ -71,6 +71,48 @@ describe("function rules", function()
     assert.equal(12, calls)
   end)
 
+  it("a function that calls nproduce but not produce does not apply; its pieces are dropped", function()
+    local rules = { { "A(x)", function(x)
+      lsys.nproduce("N")
+      if x > 1 then return lsys.produce("B") end
+    end } }
+    assert.equal("A(1)NB", H.derive("A(1)A(2)", rules, 1))
+  end)
+
+  it("nproduce pieces may open a bracket that produce closes", function()
+    local rules = { { "A", function()
+      lsys.nproduce("[+F")
+      return lsys.produce("A]")
+    end } }
+    assert.equal("[+FA]", H.derive("A", rules, 1))
+  end)
+
+  it("produce still works after the function derived another model", function()
+    local other = lsys.lsystem { axiom = "X", productions = "X --> XY" }
+    local rules = { { "A(x)", function()
+      local t = other:derive(3)
+      return lsys.produce("A(?)", #t)
+    end } }
+    assert.equal("A(4)", H.derive("A(1)", rules, 1))
+  end)
+
+  it("can be used in decomposition rules", function()
+    local m = lsys.lsystem { axiom = "X", productions = "X --> A(2)",
+      decomposition = { { "A(x)", function(x) return lsys.produce("B(?)B", x) end } } }
+    assert.equal("B(2)B", tostring(m:derive(1)))
+  end)
+
+  it("can be used in homomorphism rules", function()
+    local m = lsys.lsystem { axiom = "A(2)",
+      homomorphism = { { "A(x)", function(x) return lsys.produce("F(?)", x * 3) end } } }
+    assert.equal("F(6)", tostring(m:expand(m:derive(0))))
+  end)
+
+  it("produce outside a rule function raises", function()
+    assert.has_error(function() lsys.produce("A") end)
+    assert.has_error(function() lsys.nproduce("A") end)
+  end)
+
   it("raise when produce gets fewer values than ? marks", function()
     local rules = { { "A", function() return lsys.produce("B(?,?)", 1) end } }
     assert.has_error(function() H.derive("A", rules, 1) end)

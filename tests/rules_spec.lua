@@ -4,7 +4,7 @@ local lsys = require "lsys"
 
 describe("rule text", function()
   it("rewrites every module in parallel, leaving modules without a rule unchanged", function()
-    assert.equal("ABAC", H.derive("AC", "A --> AB\nB --> A", 1))
+    assert.equal("ABC", H.derive("AC", "A --> AB\nB --> A", 1))
   end)
 
   it("* is the empty successor", function()
@@ -23,6 +23,14 @@ describe("rule text", function()
     assert.equal("BC", H.derive("AB", "\n\n  A --> B\n\n   \t\n B --> C\n", 1))
   end)
 
+  it("accepts tabs as whitespace", function()
+    assert.equal("CDB", H.derive("AB", "A\t-->\tC\tD", 1))
+  end)
+
+  it("accepts CRLF line ends", function()
+    assert.equal("CD", H.derive("AB", "A --> C\r\nB --> D\r\n", 1))
+  end)
+
   it("takes a list of rule strings", function()
     assert.equal("BA", H.derive("AB", { "A --> B", "B --> A" }, 1))
   end)
@@ -33,6 +41,26 @@ describe("rule text", function()
 
   it("rewrites brackets and punctuation when a rule names them", function()
     assert.equal("F-F", H.derive("F+F", "+ --> -", 1))
+  end)
+
+  it("rewrites @ and ?P modules", function()
+    assert.equal("@Gc(2)F(3)", H.derive("@Gs(1)?P(1,2)", "@Gs(x) --> @Gc(x+1)\n?P(x,y) --> F(x+y)", 1))
+  end)
+
+  it("rewrites $ outside any sub-L-system like any module", function()
+    assert.equal("BA", H.derive("$A", "$ --> B", 1))
+  end)
+
+  it("splits successor parameters only at top-level commas", function()
+    assert.equal("B(2,3)", H.derive("A(0)", "A(x) --> B(math.max(x, 2), 3)", 1))
+  end)
+
+  it("does not end a parameter expression at a ) inside a Lua string", function()
+    assert.equal("B(1)", H.derive("A(0)", "A(x) --> B(#')')", 1))
+  end)
+
+  it("reads < and > inside successor expressions as Lua operators", function()
+    assert.equal("B(1,2)", H.derive("A(0)", "A(x) --> B(x < 1 and 1 or 2, x > -1 and 2 or 3)", 1))
   end)
 
   it("rewrites digit modules", function()
@@ -100,6 +128,10 @@ describe("malformed rules", function()
     assert.error_contains(build("B --> C\nC --> D\nA -> B"), "A -> B", "line 3")
   end)
 
+  it("an arrow other than --> names the rule and its line", function()
+    assert.error_contains(build("B --> C\nA => B"), "A => B", "line 2")
+  end)
+
   it("a parameter expression that is not valid Lua names the rule", function()
     assert.error_contains(build("A(x) --> B(x ** 2)"), "A(x) --> B(x ** 2)", "line 1")
   end)
@@ -126,6 +158,10 @@ describe("malformed rules", function()
 
   it("a rule without a predecessor names the rule", function()
     assert.error_contains(build(" --> B"), "--> B", "line 1")
+  end)
+
+  it("a bracket as predecessor names the rule", function()
+    assert.error_contains(build("[ --> X"), "[ --> X", "line 1")
   end)
 
   it("a predecessor of more than one module names the rule", function()

@@ -47,6 +47,33 @@ describe("stochastic choice", function()
     assert.near(n / 2, s:count("D"), H.binomial_tol(n, 1 / 2, 5))
   end)
 
+  it("never chooses an alternative of weight 0", function()
+    local n = 20000
+    local s = H.model(H.rep("A", n), "A --> B : 0\nA --> C : 1", { seed = 1 }):derive(1)
+    assert.equal(0, s:count("B"))
+    s = H.model(H.rep("A", n), "A --> B : 1\nA --> C : 0", { seed = 1 }):derive(1)
+    assert.equal(0, s:count("C"))
+  end)
+
+  it("takes weights from env expressions", function()
+    local n = 4000
+    local s = H.model(H.rep("A", n), "A --> B : p\nA --> C : 1 - p",
+                      { seed = 3, env = { p = 0.25 } }):derive(1)
+    assert.near(n * 0.25, s:count("B"), H.binomial_tol(n, 0.25, 5))
+  end)
+
+  it("takes weights from the formal parameters", function()
+    local n = 4000
+    local s = H.model(H.rep("A(3)", n), "A(x) --> B : x\nA(x) --> C : 1", { seed = 3 }):derive(1)
+    assert.near(n * 0.75, s:count("B"), H.binomial_tol(n, 0.75, 5))
+  end)
+
+  it("a computed negative weight raises naming the rule", function()
+    assert.error_contains(function()
+      H.derive("A", "A --> B : w\nA --> C : 1", 1, { env = { w = -1 } })
+    end, "A --> B : w")
+  end)
+
   it("never chooses an alternative whose condition fails", function()
     local n = 4000
     local rules = "A(x) : x < 0 --> N : 1000\nA(x) --> B : 1\nA(x) --> C : 1"

@@ -191,17 +191,29 @@ end
 -- {===========================================================================================
 -- Models and examples
 
+-- 'path' without "." segments and with "dir/.." removed (for messages).
+local function normalize (path)
+  local segs = {}
+  for seg in path:gmatch("[^/]+") do
+    if seg == ".." and #segs > 0 and segs[#segs] ~= ".." then segs[#segs] = nil
+    elseif seg ~= "." then segs[#segs + 1] = seg end
+  end
+  local r = table.concat(segs, "/")
+  if path:sub(1, 1) == "/" then return "/" .. r end
+  return r ~= "" and r or "."
+end
+
 -- Directories that may hold the examples, most specific first.
 local function example_dirs ()
   local dirs = {}
   local src = debug.getinfo(1, "S").source
   local root = src:match("^@(.*)[/\\]lsys[/\\]cli%.lua$")
   if root ~= nil then
-    dirs[#dirs + 1] = root .. "/../examples"           -- source tree: lua/../examples
-    dirs[#dirs + 1] = root .. "/../../lsys/examples"   -- install: share/lua/5.4/../../lsys
+    dirs[#dirs + 1] = normalize(root .. "/../examples")          -- source tree: lua/..
+    dirs[#dirs + 1] = normalize(root .. "/../../lsys/examples")  -- share/lua/5.4/../../lsys
   end
   for _, d in ipairs(host().datadirs or {}) do
-    dirs[#dirs + 1] = d .. "/examples"
+    dirs[#dirs + 1] = normalize(d .. "/examples")
   end
   return dirs
 end

@@ -172,7 +172,244 @@ function M.compile (r, info)
   local src = factorysource(formals, r.cond, exprs, frees)
   local factory, msg = load(src, "=" .. label, "t")
   if not factory then fail("%s", msg) end
-  return spec, factory, frees
+  local trees = { formals = seen, exprs = {} }
+  if r.cond then trees.cond = M.parseexpr(r.cond); if not trees.cond then trees = nil end end
+  for k, e in ipairs(exprs) do
+    if trees then
+      trees.exprs[k] = M.parseexpr(e)
+      if not trees.exprs[k] then trees = nil end
+    end
+  end
+  return spec, factory, frees, trees
+end
+
+-- ---------------------------------------------------------------------------
+-- Expressions that run in C (csrc/expr.h). An expression is parsed once into
+-- a tree; when a model is bound to its env, the tree becomes stack-machine
+-- code if every name is a parameter, a number in env, a math function or
+-- ran/nran, and every operation means in C what it means in Lua. Otherwise
+-- the rule keeps its Lua closure.
+
+local OP = { K = 0, ARG = 1, ["+"] = 2, ["-"] = 3, ["*"] = 4, ["/"] = 5, ["%"] = 6, ["^"] = 7,
+             ["//"] = 8, UNM = 9, ["<"] = 10, ["<="] = 11, [">"] = 12, [">="] = 13,
+             ["=="] = 14, ["~="] = 15, NOT = 16, JF = 17, JT = 18, F1 = 19, F2 = 20,
+             RAN = 21, NRAN = 22, RET = 23, COND = 24 }
+M.OP = OP
+
+-- lparser.c priorities: {left, right}
+local PRIO = { ["or"] = {1, 1}, ["and"] = {2, 2}, ["<"] = {3, 3}, [">"] = {3, 3},
+  ["<="] = {3, 3}, [">="] = {3, 3}, ["~="] = {3, 3}, ["=="] = {3, 3}, ["+"] = {10, 10},
+  ["-"] = {10, 10}, ["*"] = {11, 11}, ["/"] = {11, 11}, ["//"] = {11, 11}, ["%"] = {11, 11},
+  ["^"] = {14, 13} }
+local UNARY = 12
+
+local function tokenize (s)
+  local toks, i, n = {}, 1, #s
+  while i <= n do
+    local c = s:sub(i, i)
+    if c:match("%s") then i = i + 1
+    else
+      local tok
+      tok = s:match("^0[xX][%x%.pP]+", i) or s:match("^%d*%.?%d+[eE][%+%-]?%d+", i) or
+            s:match("^%d+%.?%d*[eE][%+%-]?%d+", i) or s:match("^%d+%.?%d*", i) or
+            s:match("^%.%d+", i)
+      if tok then
+        local v = tonumber(tok)
+        if not v then return nil end
+        toks[#toks + 1] = { "num", v }
+      else
+        tok = s:match("^[%a_][%w_]*", i)
+        if tok then
+          if tok == "and" or tok == "or" or tok == "not" then toks[#toks + 1] = { "op", tok }
+          elseif tok == "true" or tok == "false" then toks[#toks + 1] = { "bool", tok == "true" }
+          elseif KEYWORDS[tok] then return nil
+          else toks[#toks + 1] = { "name", tok } end
+        else
+          tok = s:match("^//", i) or s:match("^[<>=~]=", i) or s:match("^[%+%-%*/%%%^<>%(%),%.]", i)
+          if not tok or tok == "=" then return nil end
+          toks[#toks + 1] = { "op", tok }
+        end
+      end
+      i = i + #tok
+    end
+  end
+  return toks
+end
+
+--- Parses a Lua expression into a tree, or returns nil when it uses
+-- anything outside arithmetic, comparisons, logic, names and calls.
+function M.parseexpr (s)
+  local toks = tokenize(s)
+  if not toks then return nil end
+  local pos = 1
+  local function peek () return toks[pos] end
+  local function isop (t, v) return t and t[1] == "op" and t[2] == v end
+  local subexpr
+  local function primary ()
+    local t = toks[pos]
+    if not t then return nil end
+    pos = pos + 1
+    if t[1] == "num" then return { "num", t[2] }
+    elseif t[1] == "bool" then return { "bool", t[2] }
+    elseif isop(t, "(") then
+      local e = subexpr(0)
+      if not e or not isop(peek(), ")") then return nil end
+      pos = pos + 1
+      return { "paren", e }
+    elseif t[1] == "name" then
+      local node = { "name", t[2] }
+      if isop(peek(), ".") then
+        pos = pos + 1
+        local f = toks[pos]
+        if not f or f[1] ~= "name" then return nil end
+        pos = pos + 1
+        node = { "field", t[2], f[2] }
+      end
+      if isop(peek(), "(") then
+        pos = pos + 1
+        local args = {}
+        if isop(peek(), ")") then pos = pos + 1
+        else
+          while true do
+            local a = subexpr(0)
+            if not a then return nil end
+            args[#args + 1] = a
+            local sep = peek()
+            pos = pos + 1
+            if isop(sep, ")") then break end
+            if not isop(sep, ",") then return nil end
+          end
+        end
+        return { "call", node, args }
+      end
+      return node
+    end
+    return nil
+  end
+  function subexpr (limit)
+    local left
+    local t = peek()
+    if isop(t, "-") or isop(t, "not") then
+      pos = pos + 1
+      local e = subexpr(UNARY)
+      if not e then return nil end
+      left = { "un", t[2], e }
+    else
+      left = primary()
+      if not left then return nil end
+    end
+    while true do
+      t = peek()
+      local p = t and t[1] == "op" and PRIO[t[2]]
+      if not p or p[1] <= limit then break end
+      pos = pos + 1
+      local right = subexpr(p[2])
+      if not right then return nil end
+      left = { "bin", t[2], left, right }
+    end
+    return left
+  end
+  local e = subexpr(0)
+  if not e or pos <= #toks then return nil end
+  return e
+end
+
+local F1 = { abs = 0, floor = 1, ceil = 2, sqrt = 3, exp = 4, log = 5, sin = 6, cos = 7,
+             tan = 8, asin = 9, acos = 10, atan = 11 }
+local F2 = { min = 12, max = 13, fmod = 14, atan = 15 }
+
+--- Generates machine code for tree `e` into `out` (flat {op, a, k}).
+-- `formals` maps names to argument indices; `E` resolves other names;
+-- `mathlib` is Lua's math table; `ran`/`nran` the model's functions.
+-- Returns the type ("n" number, "b" boolean) or nil when not compilable.
+function M.gen (e, out, formals, E, lib)
+  local function emit (op, a, k)
+    out[#out + 1] = op; out[#out + 1] = a or 0; out[#out + 1] = k or 0
+    return #out // 3 - 1
+  end
+  local gen
+  local function fnof (node)            -- which function a call names
+    local f
+    if node[1] == "name" then
+      if formals[node[2]] then return nil end
+      f = E[node[2]]
+    elseif node[1] == "field" then
+      if formals[node[2]] then return nil end
+      local base = E[node[2]]
+      if type(base) ~= "table" then return nil end
+      f = base[node[3]]
+    end
+    if f == nil then return nil end
+    if f == lib.ran then return "ran" elseif f == lib.nran then return "nran" end
+    for name, v in pairs(lib.math) do
+      if v == f and (F1[name] or F2[name]) then return name end
+    end
+    return nil
+  end
+  function gen (n)
+    local kind = n[1]
+    if kind == "num" then emit(OP.K, 0, n[2]); return "n"
+    elseif kind == "bool" then emit(OP.K, 0, n[2] and 1 or 0); return "b"
+    elseif kind == "paren" then return gen(n[2])
+    elseif kind == "name" then
+      local a = formals[n[2]]
+      if a then emit(OP.ARG, a); return "n" end
+      local v = E[n[2]]
+      if type(v) == "number" then emit(OP.K, 0, v); return "n" end
+      if type(v) == "boolean" then emit(OP.K, 0, v and 1 or 0); return "b" end
+      return nil
+    elseif kind == "field" then
+      if formals[n[2]] then return nil end
+      local base = E[n[2]]
+      local v = type(base) == "table" and base[n[3]]
+      if type(v) == "number" then emit(OP.K, 0, v); return "n" end
+      return nil
+    elseif kind == "un" then
+      local t = gen(n[3])
+      if n[2] == "-" and t == "n" then emit(OP.UNM); return "n" end
+      if n[2] == "not" and t == "b" then emit(OP.NOT); return "b" end
+      return nil
+    elseif kind == "bin" then
+      local op = n[2]
+      if op == "and" or op == "or" then
+        if gen(n[3]) ~= "b" then return nil end
+        local j = emit(op == "and" and OP.JF or OP.JT, 0)
+        if gen(n[4]) ~= "b" then return nil end
+        out[3 * j + 2] = #out // 3
+        return "b"
+      end
+      local ta = gen(n[3])
+      local tb = ta and gen(n[4])
+      if not tb then return nil end
+      if op == "==" or op == "~=" then
+        if ta ~= tb then return nil end
+        emit(OP[op]); return "b"
+      end
+      if ta ~= "n" or tb ~= "n" then return nil end
+      emit(OP[op])
+      return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
+    elseif kind == "call" then
+      local name, args = fnof(n[2]), n[3]
+      if not name then return nil end
+      for _, a in ipairs(args) do if gen(a) ~= "n" then return nil end end
+      if name == "ran" then
+        if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
+        emit(OP.RAN); return "n"
+      elseif name == "nran" then
+        if #args ~= 2 then return nil end
+        emit(OP.NRAN); return "n"
+      elseif (name == "min" or name == "max") and #args >= 2 then
+        for _ = 2, #args do emit(OP.F2, F2[name]) end
+        return "n"
+      elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
+      elseif name == "fmod" and #args == 2 then emit(OP.F2, F2.fmod); return "n"
+      elseif F1[name] and #args == 1 then emit(OP.F1, F1[name]); return "n"
+      end
+      return nil
+    end
+    return nil
+  end
+  return gen(e)
 end
 
 return M

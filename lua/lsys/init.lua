@@ -13,7 +13,14 @@ local function io_warn (msg) io.stderr:write(msg, "\n") end
 local _ENV = nil
 
 local M = {}
-M.lstring = core.lstring
+--- Parses cpfg text notation into an Lstring; `names` declares
+-- multi-character module names ("Apex Leaf").
+function M.lstring (text, names)
+  if names == nil or names == "" then return core.lstring(text) end
+  local s, msg, pos = core.rules(names):lstring(text)
+  if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
+  return s
+end
 M.produce = core.produce
 M.nproduce = core.nproduce
 M.version = "0.1.0"
@@ -82,11 +89,12 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
                          e.line, what)
     local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
     if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
-    local ok, spec, factory, frees = pcall(grammar.compile, r,
+    local ok, spec, factory, frees, trees = pcall(grammar.compile, r,
       { label = label, fn = e.fn, id = n })
     if not ok then fail(spec) end
     local idx = self._rules:add(kind, sub, group, spec)
-    self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text }
+    self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
+                            trees = trees }
     if spec.fn then self._fns[idx + 1] = spec.fn end
   end
 end
@@ -202,9 +210,32 @@ function Model:_bind ()
         end
       end
       self._fns[i] = info.factory(E, type, error)
+      self:_vm(i - 1, info, E)
     end
   end
   return E
+end
+
+-- Compiles the rule's expressions for the C machine when they allow it.
+function Model:_vm (idx, info, E)
+  local t = info.trees
+  local code, ok = {}, t ~= nil and not self.lua_expressions
+  if ok then
+    local lib = { math = math, ran = E.ran, nran = E.nran }
+    if t.cond then
+      local ty = grammar.gen(t.cond, code, t.formals, E, lib)
+      if ty == "n" then
+        code[#code + 1] = grammar.OP.K; code[#code + 1] = 0; code[#code + 1] = 0
+        code[#code + 1] = grammar.OP["~="]; code[#code + 1] = 0; code[#code + 1] = 0
+      elseif ty ~= "b" then ok = false end
+      code[#code + 1] = grammar.OP.COND; code[#code + 1] = 0; code[#code + 1] = 0
+    end
+    for _, e in ipairs(t.exprs) do
+      if ok and grammar.gen(e, code, t.formals, E, lib) ~= "n" then ok = false end
+      code[#code + 1] = grammar.OP.RET; code[#code + 1] = 0; code[#code + 1] = 0
+    end
+  end
+  if not (ok and self._rules:setvm(idx, code)) then self._rules:setvm(idx, nil) end
 end
 
 -- The axiom as an Lstring, its expressions evaluated in env.
@@ -278,7 +309,7 @@ end
 
 --- Derives `n` steps (default `model.steps`) from the axiom and returns the
 -- Lstring. Reseeds the generator from `model.seed` first, so the result is
--- reproducible. `opts.progress(step, n, lstring)` is called after each step.
+-- reproducible. `opts.progress(step, n, nmodules)` is called after each step.
 function Model:derive (n, opts)
   n = n or self.steps
   checksteps(n, "derive")
@@ -304,10 +335,10 @@ function Model:derive (n, opts)
         if not M.islstring(r) then error("end_each must return an Lstring or nil", 0) end
         t = r
       end
-    elseif k > 1 and not progress then
+    elseif k > 1 then
       spare = s                  -- s was produced here and nobody else holds it
     end
-    if progress then progress(k, n, t) end
+    if progress then progress(k, n, #t) end
     s = t
   end
   if spare then LSTRING_MT.__close(spare) end

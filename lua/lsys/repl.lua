@@ -1,8 +1,8 @@
 --- The interactive REPL of the `lsys` program (`lsys` with no arguments).
 -- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global: a line is first tried as an
--- expression (`return <line>`; `=expr` works too) and its values are printed, Lstrings
--- abbreviated; otherwise it is run as a statement, continued on `>> ` lines while Lua reports
--- it incomplete. Errors print their message and the session goes on. Line editing and
+-- expression list (`=expr` works too) and its values are printed, Lstrings abbreviated;
+-- otherwise it is run as a statement, continued on `>> ` lines while Lua reports it
+-- incomplete (a multi-line expression prints its values too). Errors print their message and the session goes on. Line editing and
 -- history come from lsys.readline when the program was built with readline.
 -- @module lsys.repl
 local G = _G
@@ -59,18 +59,30 @@ local function incomplete (msg)
 end
 
 --[[
-Reads one chunk: a line tried as `return <line>`, else as a statement continued while
-incomplete. Returns the compiled function; nil, message for a syntax error; nil at the end
-of the input.
+Compiles 'src' as an expression list, or returns nil. The values go through select() so
+that the last call is not a tail call: an error(msg, 2) raised by a function called from the
+REPL then names "stdin:1" instead of "[C]:-1". The ")" goes on its own line so that a
+trailing comment cannot swallow it.
+]]
+local function asexpr (src)
+  local e = src:gsub("[%s;]+$", "")
+  if e == "" then return nil end
+  return (load("return select(1, " .. e .. "\n)", "=stdin", "t", G))
+end
+
+--[[
+Reads one chunk: lines tried as an expression list (whose values are printed), else as a
+statement, continued on ">> " lines while Lua reports it incomplete. Returns the compiled
+function; nil, message for a syntax error; nil at the end of the input.
 ]]
 local function loadchunk (read)
   local line = read(tostring(G._PROMPT or "> "))
   if line == nil then return nil end
-  if line:sub(1, 1) == "=" then line = "return " .. line:sub(2) end  -- Lua 5.1 style
-  local f = load("return " .. line, "=stdin", "t", G)
-  if f ~= nil then return f end
+  if line:sub(1, 1) == "=" then line = line:sub(2) end  -- `=expr`, as in Lua 5.1
   local buf = line
   while true do
+    local f = asexpr(buf)
+    if f ~= nil then return f end
     local err
     f, err = load(buf, "=stdin", "t", G)
     if f ~= nil then return f end

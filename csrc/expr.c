@@ -1,0 +1,128 @@
+/*
+** The expression machine (see expr.h). Arithmetic follows Lua 5.4 on
+** floats: '%' is floored modulo, '//' floored division, '^' pow.
+*/
+#include <math.h>
+
+#include "expr.h"
+
+static int effect (int op) {       /* stack change */
+  switch (op) {
+    case LSYS_OP_K: case LSYS_OP_ARG: return 1;
+    case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_F1: case LSYS_OP_RAN: return 0;
+    case LSYS_OP_JF: case LSYS_OP_JT: return -1;   /* on the fall-through path */
+    default: return -1;
+  }
+}
+
+int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
+  /* a forward data flow: jumps go forward and carry their depth (the kept
+  ** value included) to the target, which must agree with the fall-through */
+  int at[LSYS_EXPR_MAXCODE + 1];
+  int pc, depth = 0, outs = 0, conds = 0;
+  if (n < 0 || n > LSYS_EXPR_MAXCODE) return -1;
+  for (pc = 0; pc <= n; pc++) at[pc] = -1;
+  for (pc = 0; pc < n; pc++) {
+    const lsys_ins *i = &code[pc];
+    int need;
+    if (at[pc] >= 0 && at[pc] != depth) return -1;
+    if (i->op < 0 || i->op >= LSYS_OP_NOPS) return -1;
+    switch (i->op) {
+      case LSYS_OP_K: need = 0; break;
+      case LSYS_OP_ARG: if (i->a < 0 || i->a >= nargs) return -1; need = 0; break;
+      case LSYS_OP_F1: if (i->a < LSYS_F_ABS || i->a > LSYS_F_ATAN) return -1; need = 1; break;
+      case LSYS_OP_F2: if (i->a < LSYS_F_MIN || i->a >= LSYS_F_NFUNCS) return -1; need = 2; break;
+      case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_RAN: need = 1; break;
+      case LSYS_OP_JF: case LSYS_OP_JT:
+        if (i->a <= pc + 1 || i->a > n || depth < 1) return -1;
+        if (at[i->a] >= 0 && at[i->a] != depth) return -1;
+        at[i->a] = depth;
+        need = 1;
+        break;
+      case LSYS_OP_RET: case LSYS_OP_COND:
+        if (depth != 1) return -1;
+        if (i->op == LSYS_OP_COND && (outs > 0 || conds > 0)) return -1;
+        if (i->op == LSYS_OP_COND) conds++; else outs++;
+        depth = 0;
+        continue;
+      default: need = 2; break;
+    }
+    if (depth < need) return -1;
+    depth += effect(i->op);
+    if (depth > LSYS_EXPR_STACK - 1) return -1;
+  }
+  if (at[n] >= 0 && at[n] != depth) return -1;
+  return depth == 0 ? outs : -1;
+}
+
+static double fn1 (int f, double x) {
+  switch (f) {
+    case LSYS_F_ABS: return fabs(x);
+    case LSYS_F_FLOOR: return floor(x);
+    case LSYS_F_CEIL: return ceil(x);
+    case LSYS_F_SQRT: return sqrt(x);
+    case LSYS_F_EXP: return exp(x);
+    case LSYS_F_LOG: return log(x);
+    case LSYS_F_SIN: return sin(x);
+    case LSYS_F_COS: return cos(x);
+    case LSYS_F_TAN: return tan(x);
+    case LSYS_F_ASIN: return asin(x);
+    case LSYS_F_ACOS: return acos(x);
+    default: return atan(x);
+  }
+}
+
+static double fn2 (int f, double x, double y) {
+  switch (f) {
+    case LSYS_F_MIN: return y < x ? y : x;     /* Lua: the first unless a later is smaller */
+    case LSYS_F_MAX: return y > x ? y : x;
+    case LSYS_F_FMOD: return fmod(x, y);
+    default: return atan2(x, y);
+  }
+}
+
+int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
+                   lsys_rng *rng) {
+  double st[LSYS_EXPR_STACK];
+  int sp = 0, pc;
+  for (pc = 0; pc < n; pc++) {
+    const lsys_ins *i = &code[pc];
+    double y;
+    switch (i->op) {
+      case LSYS_OP_K: st[sp++] = i->k; break;
+      case LSYS_OP_ARG: st[sp++] = args[i->a]; break;
+      case LSYS_OP_ADD: y = st[--sp]; st[sp - 1] += y; break;
+      case LSYS_OP_SUB: y = st[--sp]; st[sp - 1] -= y; break;
+      case LSYS_OP_MUL: y = st[--sp]; st[sp - 1] *= y; break;
+      case LSYS_OP_DIV: y = st[--sp]; st[sp - 1] /= y; break;
+      case LSYS_OP_MOD: {
+        double x = st[sp - 2], m;
+        y = st[--sp];
+        m = fmod(x, y);
+        if ((m > 0) ? y < 0 : (m < 0 && y != m)) m += y;   /* Lua's luai_nummod */
+        st[sp - 1] = m;
+        break;
+      }
+      case LSYS_OP_POW: y = st[--sp]; st[sp - 1] = pow(st[sp - 1], y); break;
+      case LSYS_OP_IDIV: y = st[--sp]; st[sp - 1] = floor(st[sp - 1] / y); break;
+      case LSYS_OP_UNM: st[sp - 1] = -st[sp - 1]; break;
+      case LSYS_OP_LT: y = st[--sp]; st[sp - 1] = st[sp - 1] < y; break;
+      case LSYS_OP_LE: y = st[--sp]; st[sp - 1] = st[sp - 1] <= y; break;
+      case LSYS_OP_GT: y = st[--sp]; st[sp - 1] = st[sp - 1] > y; break;
+      case LSYS_OP_GE: y = st[--sp]; st[sp - 1] = st[sp - 1] >= y; break;
+      case LSYS_OP_EQ: y = st[--sp]; st[sp - 1] = st[sp - 1] == y; break;
+      case LSYS_OP_NE: y = st[--sp]; st[sp - 1] = st[sp - 1] != y; break;
+      case LSYS_OP_NOT: st[sp - 1] = st[sp - 1] == 0; break;
+      case LSYS_OP_JF: if (st[sp - 1] == 0) pc = i->a - 1; else sp--; break;
+      case LSYS_OP_JT: if (st[sp - 1] != 0) pc = i->a - 1; else sp--; break;
+      case LSYS_OP_F1: st[sp - 1] = fn1(i->a, st[sp - 1]); break;
+      case LSYS_OP_F2: y = st[--sp]; st[sp - 1] = fn2(i->a, st[sp - 1], y); break;
+      case LSYS_OP_RAN: st[sp - 1] *= lsys_rng_uniform(rng); break;
+      case LSYS_OP_NRAN: y = st[--sp]; st[sp - 1] = lsys_rng_normal(rng, st[sp - 1], y); break;
+      case LSYS_OP_RET: *out++ = st[--sp]; break;
+      case LSYS_OP_COND: if (st[--sp] == 0) return 0; break;
+      default: return 0;
+    }
+  }
+  return 1;
+}

@@ -1,0 +1,52 @@
+/*
+** A small stack machine for rule expressions, so that conditions and
+** parameter expressions made of arithmetic, comparisons, logic, the usual
+** math functions and ran/nran run without entering Lua (DESIGN.md §5:
+** "stay out of Lua where possible"). The Lua side compiles an expression
+** to this code only when its meaning is exactly Lua's (lua/lsys/grammar.lua);
+** anything else stays a Lua closure.
+*/
+#ifndef LSYS_EXPR_H
+#define LSYS_EXPR_H
+
+#include "rng.h"
+
+enum {
+  LSYS_OP_K,      /* push k */
+  LSYS_OP_ARG,    /* push args[a] */
+  LSYS_OP_ADD, LSYS_OP_SUB, LSYS_OP_MUL, LSYS_OP_DIV, LSYS_OP_MOD, LSYS_OP_POW,
+  LSYS_OP_IDIV, LSYS_OP_UNM,
+  LSYS_OP_LT, LSYS_OP_LE, LSYS_OP_GT, LSYS_OP_GE, LSYS_OP_EQ, LSYS_OP_NE, LSYS_OP_NOT,
+  LSYS_OP_JF,     /* and: if top is 0 jump to a (keeping it), else pop */
+  LSYS_OP_JT,     /* or: if top is not 0 jump to a (keeping it), else pop */
+  LSYS_OP_F1,     /* top = f_a(top) */
+  LSYS_OP_F2,     /* top = f_a(below, top) */
+  LSYS_OP_RAN,    /* top = top * uniform */
+  LSYS_OP_NRAN,   /* top = normal(below, top) */
+  LSYS_OP_RET,    /* end of one expression: pop into the next output */
+  LSYS_OP_COND,   /* end of the condition: pop; stop with 0 when false */
+  LSYS_OP_NOPS
+};
+
+enum { LSYS_F_ABS, LSYS_F_FLOOR, LSYS_F_CEIL, LSYS_F_SQRT, LSYS_F_EXP, LSYS_F_LOG,
+       LSYS_F_SIN, LSYS_F_COS, LSYS_F_TAN, LSYS_F_ASIN, LSYS_F_ACOS, LSYS_F_ATAN,
+       LSYS_F_MIN, LSYS_F_MAX, LSYS_F_FMOD, LSYS_F_ATAN2, LSYS_F_NFUNCS };
+
+typedef struct lsys_ins { int32_t op, a; double k; } lsys_ins;
+
+#define LSYS_EXPR_STACK 64
+#define LSYS_EXPR_MAXCODE 1024
+
+/*
+** Checks a program: opcodes, argument indices below 'nargs', jumps
+** forward and inside, the stack within LSYS_EXPR_STACK. Returns the number
+** of outputs it writes, or -1 when it is malformed.
+*/
+int lsys_expr_check (const lsys_ins *code, int n, int nargs);
+
+/* Runs a checked program. Returns 1 and fills 'out', or 0 when the
+** condition is false. */
+int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
+                   lsys_rng *rng);
+
+#endif

@@ -1,0 +1,229 @@
+/*
+** C unit tests for the derivation engine: context matching, cut,
+** stochastic choice, decomposition depth, limits, the expression machine.
+** Rules are parsed with the core's rule parser; successor parameters are
+** numbers or formal names (no Lua here).
+*/
+#define _POSIX_C_SOURCE 200809L
+#undef NDEBUG
+#include <assert.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "derive.h"
+#include "grammar.h"
+
+static lsys_alphabet ab;
+
+static void addrule (lsys_model *m, int kind, const char *text) {
+  lsys_prule r;
+  lsys_error e;
+  lsys_patmod lc[16], rc[16];
+  uint16_t succ[64];
+  lsys_psrc src[64];
+  lsys_rulespec sp;
+  char names[32][16];
+  uint32_t k, j, nf = 0, ns = 0;
+  int st = lsys_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e);
+  if (st != LSYS_OK) { fprintf(stderr, "%s: %s\n", text, e.msg); abort(); }
+  memset(&sp, 0, sizeof sp);
+  for (k = 0; k < r.nlc + 1 + r.nrc; k++) {        /* formal names in order */
+    const lsys_pmod *pm = &r.mods[k];
+    lsys_patmod p = {pm->sym, pm->np};
+    if (k < r.nlc) lc[k] = p;
+    else if (k == r.nlc) sp.pred = p;
+    else rc[k - r.nlc - 1] = p;
+    for (j = 0; j < pm->np; j++) {
+      const lsys_span *s = &r.params[pm->first + j];
+      snprintf(names[nf++], sizeof names[0], "%.*s", (int)s->len, text + s->off);
+    }
+  }
+  for (k = r.nmods - r.nsucc; k < r.nmods; k++) {
+    const lsys_pmod *pm = &r.mods[k];
+    succ[sp.nsucc++] = LSYS_CODE(pm->sym, pm->np);
+    for (j = 0; j < pm->np; j++) {
+      const lsys_span *s = &r.params[pm->first + j];
+      char buf[32], *end;
+      uint32_t f;
+      snprintf(buf, sizeof buf, "%.*s", (int)s->len, text + s->off);
+      src[ns].kind = LSYS_PS_CONST;
+      src[ns].value = strtod(buf, &end);
+      for (f = 0; f < nf; f++)
+        if (strcmp(names[f], buf) == 0) { src[ns].kind = LSYS_PS_ARG; src[ns].idx = f; }
+      ns++;
+    }
+  }
+  sp.lc = lc; sp.nlc = r.nlc; sp.rc = rc; sp.nrc = r.nrc;
+  sp.succ = succ; sp.src = src; sp.nsrc = ns;
+  if (r.weight.len) { sp.flags |= LSYS_RF_STOCH; sp.weight = atof(text + r.weight.off); }
+  assert(lsys_model_add(m, kind, 0, 0, &sp, &e) >= 0);
+  lsys_prule_free(&r);
+}
+
+static void setstr (lsys_lstring *s, const char *text) {
+  lsys_error e;
+  lsys_lstring_clear(s);
+  assert(lsys_lstring_parse(s, text, strlen(text), &ab, NULL, &e) == LSYS_OK);
+}
+
+static void expect (lsys_lstring *s, const char *want) {
+  lsys_buf b = {0};
+  assert(lsys_lstring_format(&b, s, &ab, NULL, 0, s->n) == LSYS_OK);
+  if (strcmp(b.p ? b.p : "", want) != 0) {
+    fprintf(stderr, "expected %s, got %s\n", want, b.p ? b.p : "");
+    abort();
+  }
+  lsys_buf_free(&b);
+}
+
+/* one step of 'rules' (one per line) on 'axiom' must give 'want' */
+static void step (const char *rules, const char *ignore, const char *axiom, const char *want) {
+  lsys_model m;
+  lsys_lstring a, b;
+  char buf[512], *line, *save;
+  lsys_model_init(&m, &ab);
+  snprintf(buf, sizeof buf, "%s", rules);
+  for (line = strtok_r(buf, "\n", &save); line; line = strtok_r(NULL, "\n", &save))
+    addrule(&m, LSYS_PROD, line);
+  if (ignore) {
+    uint32_t syms[16];
+    size_t n = 0;
+    for (; *ignore; ignore++) syms[n++] = lsys_alphabet_intern(&ab, ignore, 1, NULL);
+    lsys_model_skiplist(&m, 0, 0, syms, n);
+  }
+  lsys_lstring_init(&a);
+  lsys_lstring_init(&b);
+  setstr(&a, axiom);
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_OK);
+  expect(&b, want);
+  lsys_lstring_free(&a);
+  lsys_lstring_free(&b);
+  lsys_model_free(&m);
+}
+
+static void test_context (void) {
+  step("A < C --> X", NULL, "A[B]C", "A[B]X");          /* skips the branch on the left */
+  step("A < B --> X", NULL, "A[B]", "A[X]");            /* climbs out of its branch */
+  step("B > C --> X", NULL, "A[B]C", "A[B]C");          /* fails at the end of its branch */
+  step("A > B --> X", NULL, "A[C]B", "X[C]B");          /* skips branches it does not name */
+  step("A > [B]C --> X", NULL, "A[B]C", "X[B]C");       /* names a branch */
+  step("A > [B]C --> X", NULL, "A[D][B]C", "X[D][B]C"); /* tries the sibling branches */
+  step("S > G[H]M --> X", NULL, "SG[H]M", "XG[H]M");
+  step("S > G[H]M --> X", NULL, "SG[H]N", "SG[H]N");
+  step("A < B > C --> X", "+", "A+B+C", "A+X+C");       /* ignore list */
+  step("A < B > C --> X", NULL, "A+B+C", "A+B+C");
+  step("A(x) < B(y) --> B(x)", NULL, "A(3)B(1)", "A(3)B(3)");
+  step("A B < C --> X", NULL, "AB[Q]C", "AB[Q]X");      /* multi-module left context */
+}
+
+static void test_cut (void) {
+  step("A --> A", NULL, "A[B%CD]E", "A[B]E");
+  step("A --> A", NULL, "AB%C[D]E", "AB");
+  step("% --> F", NULL, "A[B%CD]E", "A[BFCD]E");         /* a rule on % prevents the cut */
+}
+
+static void test_stochastic (void) {
+  lsys_model m;
+  lsys_lstring a, b;
+  int k, nfb = 0;
+  lsys_model_init(&m, &ab);
+  addrule(&m, LSYS_PROD, "B --> F : 1");
+  addrule(&m, LSYS_PROD, "B --> G : 3");
+  lsys_lstring_init(&a);
+  lsys_lstring_init(&b);
+  lsys_rng_seed(&m.rng, 42);
+  for (k = 0; k < 4000; k++) {
+    setstr(&a, "B");
+    assert(lsys_derive_step(&m, &a, &b) == LSYS_OK);
+    nfb += LSYS_CSYM(b.code[0]) == lsys_alphabet_find(&ab, "F", 1);
+  }
+  assert(nfb > 1000 - 110 && nfb < 1000 + 110);          /* 4 standard deviations */
+  lsys_lstring_free(&a);
+  lsys_lstring_free(&b);
+  lsys_model_free(&m);
+}
+
+static void test_limits (void) {
+  lsys_model m;
+  lsys_lstring a, b;
+  lsys_model_init(&m, &ab);
+  addrule(&m, LSYS_PROD, "F --> FF");
+  m.max_modules = 100;
+  lsys_lstring_init(&a);
+  lsys_lstring_init(&b);
+  setstr(&a, "FFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFFF");
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_ELIMIT);
+  assert(strstr(m.err.msg, "max_modules") != NULL);
+  lsys_lstring_free(&a);
+  lsys_lstring_free(&b);
+  lsys_model_free(&m);
+}
+
+static void test_decomposition (void) {
+  lsys_model m;
+  lsys_lstring a, b;
+  lsys_model_init(&m, &ab);
+  addrule(&m, LSYS_PROD, "A --> AB");
+  addrule(&m, LSYS_DECOMP, "B --> CD");
+  addrule(&m, LSYS_DECOMP, "C --> E");
+  lsys_lstring_init(&a);
+  lsys_lstring_init(&b);
+  setstr(&a, "A");
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_OK);
+  expect(&b, "ACD");                                     /* default depth 1 */
+  assert(m.depth_hit == 1);
+  m.maxdepth[LSYS_DECOMP] = 3;
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_OK);
+  expect(&b, "AED");
+  assert(m.depth_hit == 0);
+  lsys_lstring_free(&a);
+  lsys_lstring_free(&b);
+  lsys_model_free(&m);
+}
+
+static void test_expr (void) {
+  /* (x + 2) * 3 > 10 and not (x == 4) -> condition; then x % -3, 2 ^ x // 1 */
+  lsys_ins c[] = {
+    {LSYS_OP_ARG, 0, 0}, {LSYS_OP_K, 0, 2}, {LSYS_OP_ADD, 0, 0}, {LSYS_OP_K, 0, 3},
+    {LSYS_OP_MUL, 0, 0}, {LSYS_OP_K, 0, 10}, {LSYS_OP_GT, 0, 0}, {LSYS_OP_JF, 13, 0},
+    {LSYS_OP_ARG, 0, 0}, {LSYS_OP_K, 0, 4}, {LSYS_OP_EQ, 0, 0}, {LSYS_OP_NOT, 0, 0},
+    {LSYS_OP_K, 0, 1} /* unreachable filler replaced below */, {LSYS_OP_COND, 0, 0},
+    {LSYS_OP_ARG, 0, 0}, {LSYS_OP_K, 0, -3}, {LSYS_OP_MOD, 0, 0}, {LSYS_OP_RET, 0, 0},
+    {LSYS_OP_K, 0, 2}, {LSYS_OP_ARG, 0, 0}, {LSYS_OP_POW, 0, 0}, {LSYS_OP_K, 0, 1},
+    {LSYS_OP_IDIV, 0, 0}, {LSYS_OP_RET, 0, 0},
+  };
+  lsys_rng rng;
+  double x, out[2];
+  int n = (int)(sizeof c / sizeof c[0]);
+  lsys_rng_seed(&rng, 1);
+  /* the JF target must be the COND (index 13); drop the filler */
+  memmove(&c[12], &c[13], (size_t)(n - 13) * sizeof c[0]);
+  n--;
+  c[7].a = 12;
+  assert(lsys_expr_check(c, n, 1) == 2);
+  x = 5;
+  assert(lsys_expr_run(c, n, &x, out, &rng) == 1);
+  assert(out[0] == -1 && out[1] == 32);                  /* Lua: 5 % -3 == -1 */
+  x = 4;
+  assert(lsys_expr_run(c, n, &x, out, &rng) == 0);
+  x = 1;
+  assert(lsys_expr_run(c, n, &x, out, &rng) == 0);
+  c[0].a = 1;
+  assert(lsys_expr_check(c, n, 1) == -1);                /* argument out of range */
+  c[0].a = 0;
+  c[7].a = 3;
+  assert(lsys_expr_check(c, n, 1) == -1);                /* backward jump */
+}
+
+int main (void) {
+  assert(lsys_alphabet_init(&ab) == LSYS_OK);
+  test_context();
+  test_cut();
+  test_stochastic();
+  test_limits();
+  test_decomposition();
+  test_expr();
+  lsys_alphabet_free(&ab);
+  return 0;
+}

@@ -1,0 +1,117 @@
+/*
+** C unit tests for the Lstring, the alphabet and the name scanner.
+*/
+#undef NDEBUG
+#include <assert.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lstring.h"
+
+static void roundtrip (lsys_alphabet *a, const char *in, const char *out, size_t n) {
+  lsys_lstring s;
+  lsys_buf b = {0};
+  lsys_error e;
+  lsys_lstring_init(&s);
+  assert(lsys_lstring_parse(&s, in, strlen(in), a, NULL, &e) == LSYS_OK);
+  assert(s.n == n);
+  assert(lsys_lstring_format(&b, &s, a, NULL, 0, s.n) == LSYS_OK);
+  assert(strcmp(b.p ? b.p : "", out) == 0);
+  lsys_buf_free(&b);
+  lsys_lstring_free(&s);
+}
+
+static void test_text (void) {
+  lsys_alphabet a;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  roundtrip(&a, "F(1,0.5)[+A]", "F(1,0.5)[+A]", 5);
+  roundtrip(&a, " F ( 1 , 2 ) F1F1 ", "F(1,2)F1F1", 5);
+  roundtrip(&a, "A(0.1)B(-0)C(1e300)", "A(0.1)B(-0)C(1e+300)", 3);
+  roundtrip(&a, "@Gs@Gc(3)?P(1,2)~l$%", "@Gs@Gc(3)?P(1,2)~l$%", 6);
+  roundtrip(&a, "@ G", "@ G", 2);                 /* would read back as @G */
+  roundtrip(&a, "", "", 0);
+  lsys_alphabet_free(&a);
+}
+
+static void test_errors (void) {
+  lsys_alphabet a;
+  lsys_lstring s;
+  lsys_error e;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  assert(lsys_lstring_parse(&s, "F(1", 3, &a, NULL, &e) == LSYS_ESYNTAX);
+  assert(strstr(e.msg, "unbalanced parentheses") != NULL);
+  lsys_lstring_clear(&s);
+  assert(lsys_lstring_parse(&s, "F(1,,2)", 7, &a, NULL, &e) == LSYS_ESYNTAX);
+  assert(e.pos == 4);
+  lsys_lstring_clear(&s);
+  assert(lsys_lstring_parse(&s, "F(x)", 4, &a, NULL, &e) == LSYS_ESYNTAX);
+  assert(strstr(e.msg, "bad number 'x'") != NULL);
+  lsys_lstring_clear(&s);
+  assert(lsys_lstring_parse(&s, "[(1)", 4, &a, NULL, &e) == LSYS_ESYNTAX);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+static void test_poff (void) {
+  lsys_alphabet a;
+  lsys_lstring s;
+  double p[3] = {1, 2, 3};
+  size_t i, off = 0;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  for (i = 0; i < 1000; i++)
+    assert(lsys_lstring_push(&s, LSYS_SYM_FIRSTFREE, p, (uint32_t)(i % 4 == 0 ? 0 : i % 3 + 1)) == LSYS_OK);
+  for (i = 0; i <= s.n; i++) {        /* checkpoints agree with a plain scan */
+    assert(lsys_lstring_poff(&s, i) == off);
+    if (i < s.n) off += LSYS_CNP(s.code[i]);
+  }
+  assert(off == s.npar);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+static void test_alphabet (void) {
+  lsys_alphabet a;
+  lsys_error e;
+  char name[16];
+  uint32_t i, first;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  assert(lsys_alphabet_find(&a, "[", 1) == LSYS_SYM_LBR);
+  assert(lsys_alphabet_find(&a, "$", 1) == LSYS_SYM_SUBEND);
+  first = lsys_alphabet_intern(&a, "Apex", 4, &e);
+  assert(first == LSYS_SYM_FIRSTFREE);
+  assert(lsys_alphabet_intern(&a, "Apex", 4, &e) == first);
+  for (i = 0; a.n <= LSYS_MAXSYM; i++) {
+    int n = snprintf(name, sizeof name, "N%u", i);
+    assert(lsys_alphabet_intern(&a, name, (size_t)n, &e) != 0);
+  }
+  assert(lsys_alphabet_intern(&a, "onemore", 7, &e) == 0);
+  assert(e.code == LSYS_ELIMIT && strstr(e.msg, "limit is 2047") != NULL);
+  assert(lsys_alphabet_find(&a, "N5", 2) != 0);
+  lsys_alphabet_free(&a);
+}
+
+static void test_scan (void) {
+  lsys_names d = {0};
+  assert(lsys_scan_name("@GsA", 4, NULL) == 3);
+  assert(lsys_scan_name("@XY", 3, NULL) == 2);
+  assert(lsys_scan_name("?P(1)", 5, NULL) == 2);
+  assert(lsys_scan_name("?(1)", 4, NULL) == 1);
+  assert(lsys_scan_name("~ab", 3, NULL) == 2);
+  assert(lsys_scan_name("(", 1, NULL) == 0);
+  assert(lsys_scan_name("\xce\xb1x", 3, NULL) == 2);     /* one UTF-8 character */
+  assert(lsys_names_add(&d, "Apex", 4) == LSYS_OK);
+  assert(lsys_scan_name("Apex(1)", 7, &d) == 4);
+  assert(lsys_scan_name("Ape", 3, &d) == 1);
+  lsys_names_free(&d);
+}
+
+int main (void) {
+  test_text();
+  test_errors();
+  test_poff();
+  test_alphabet();
+  test_scan();
+  return 0;
+}
