@@ -7,6 +7,8 @@ source = {
   url = "git+file://.",  -- replace with the repository address when it is published
 }
 description = {
+  license = "MIT",
+  homepage = "https://example.invalid/lsys",  -- replace with the project page when it is published
   summary = "L-systems for modelling plants: a Lua 5.4 library with a C core",
   detailed = [[
 lsys derives L-systems written as Lua tables (cpfg rule language: context, parametric,

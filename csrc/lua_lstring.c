@@ -142,6 +142,27 @@ static int lstring_count (lua_State *L) {
   return 1;
 }
 
+/* s:counts() -> { name = count, ... } for every module name in s */
+static int lstring_counts (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  lsys_alphabet *a = lsys_getalphabet(L);
+  size_t *n = (size_t *)lua_newuserdatauv(L, (a->n + 1) * sizeof *n, 0);
+  size_t i;
+  uint32_t k;
+  memset(n, 0, (a->n + 1) * sizeof *n);
+  for (i = 0; i < s->n; i++) {
+    uint32_t sym = LSYS_CSYM(s->code[i]);
+    if (sym < a->n) n[sym]++;
+  }
+  lua_newtable(L);
+  for (k = 1; k < a->n; k++)
+    if (n[k] > 0) {
+      lua_pushinteger(L, (lua_Integer)n[k]);
+      lua_setfield(L, -2, lsys_alphabet_name(a, k));
+    }
+  return 1;
+}
+
 static int lstring_eq (lua_State *L) {
   lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2);
   lua_pushboolean(L, a->n == b->n && a->npar == b->npar &&
@@ -204,7 +225,7 @@ static int l_lstring (lua_State *L) {
 
 static const luaL_Reg lstring_methods[] = {
   {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module},
-  {"modules", lstring_modules}, {"count", lstring_count}, {"copy", lstring_copy},
+  {"modules", lstring_modules}, {"count", lstring_count}, {"counts", lstring_counts}, {"copy", lstring_copy},
   {"bytes", lstring_bytes}, {NULL, NULL}
 };
 

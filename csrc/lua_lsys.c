@@ -345,6 +345,14 @@ static int rules_setvm (lua_State *L) {
   return 1;
 }
 
+/* rules:hasvm(idx): whether rule idx runs on the expression machine */
+static int rules_hasvm (lua_State *L) {
+  lrules *R = checkrules(L, 1);
+  lua_Integer idx = luaL_checkinteger(L, 2);
+  lua_pushboolean(L, idx >= 0 && (size_t)idx < R->m.nrules && R->m.rules[idx].vm != NULL);
+  return 1;
+}
+
 /* rules:size(kind, sub, group): number of rules or -1 */
 static int rules_size (lua_State *L) {
   lrules *R = checkrules(L, 1);
@@ -635,7 +643,7 @@ static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
-  {"ran", rules_ran}, {"setvm", rules_setvm}, {NULL, NULL}
+  {"ran", rules_ran}, {"setvm", rules_setvm}, {"hasvm", rules_hasvm}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

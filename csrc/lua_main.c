@@ -213,8 +213,12 @@ static void pushluadir (lua_State *L, const char *exedir) {
   for (int i = top + 1; i <= lua_gettop(L); i++) {
     lua_pushfstring(L, "%s/lsys/cli.lua", lua_tostring(L, i));
     if (isfile(lua_tostring(L, -1))) {
-      lua_pop(L, 1);
-      lua_copy(L, i, top + 1);
+      char real[PATH_MAX];  /* without "bin/.." for readable messages */
+      if (realpath(lua_tostring(L, i), real) != NULL)
+        lua_pushstring(L, real);
+      else
+        lua_pushvalue(L, i);
+      lua_copy(L, -1, top + 1);
       lua_settop(L, top + 1);
       return;
     }

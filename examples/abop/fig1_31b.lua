@@ -1,5 +1,5 @@
--- Context-sensitive plant after Hogeweg and Hesper, signals 0/1 travel along the branches,
--- n = 30, δ = 22.5° (ABOP fig. 1.31b). Digits are module names; F, + and - are ignored as context.
+-- Context-sensitive plant: 0/1 signals travel along the branches, n = 30, δ = 22.5° (ABOP fig. 1.31b).
+-- After Hogeweg and Hesper. Digits are module names; F, + and - are ignored as context.
 local lsys = require "lsys"
 
 return lsys.lsystem {

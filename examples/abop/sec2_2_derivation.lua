@@ -1,5 +1,6 @@
--- The sample parametric L-system of ABOP section 2.2 (eq. 2.2, derivation shown in fig. 2.2):
--- conditions pick between productions; B(2)A(4,4) => B(1)B(4)A(1,0) => B(0)B(3)A(2,1) => ...
+-- The sample parametric L-system of ABOP section 2.2, whose derivation fig. 2.2 shows.
+-- Conditions pick between productions: B(2)A(4,4) => B(1)B(4)A(1,0) => B(0)B(3)A(2,1)
+-- => CB(2)A(4,3) => CB(1)A(8,7). Strings only: nothing here is drawn.
 local lsys = require "lsys"
 
 return lsys.lsystem {

@@ -1,5 +1,6 @@
 -- "Row of trees": a parametric Koch-like curve whose edges split unevenly, δ = 86° (ABOP section 2.2).
--- Each F(x) becomes four segments of lengths x·p, x·h, x·h, x·q with q = c - p and h = (p·q)^½.
+-- Each F(x) becomes four segments of lengths x·p, x·h, x·h, x·q with q = c - p and h = (p·q)^½;
+-- the row runs along the turtle's initial heading.
 local lsys = require "lsys"
 
 local c, p = 1, 0.3
