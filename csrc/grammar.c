@@ -231,6 +231,21 @@ int lsys_rule_parse (lsys_prule *r, const char *t, size_t len, int pattern_only,
     if ((st = parsemods(r, t, b, e, 0, a, decl, &r->nsucc, err)) != LSYS_OK) return st;
     return pattern_only == 3 ? LSYS_OK : checkbrackets(r, 0, r->nsucc, "successor", err);
   }
+  {                                    /* parentheses first: they hide the rest */
+    size_t i, open = 0;
+    int depth = 0;
+    char quote = 0;
+    for (i = 0; i < len; i++) {
+      char c = t[i];
+      if (quote) { if (c == '\\') i++; else if (c == quote) quote = 0; continue; }
+      if (depth > 0 && (c == '"' || c == '\'')) quote = c;
+      else if (c == '(') { if (depth++ == 0) open = i; }
+      else if (c == ')' && --depth < 0)
+        return lsys_seterror(err, LSYS_ESYNTAX, i, "unbalanced parentheses: ')' without '('");
+    }
+    if (depth > 0)
+      return lsys_seterror(err, LSYS_ESYNTAX, open, "unbalanced parentheses: '(' without ')'");
+  }
   arrow = findtop(t, 0, len, "-->");
   if (pattern_only) {
     if (arrow != (size_t)-1)

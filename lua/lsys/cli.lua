@@ -250,7 +250,12 @@ returns a table of named models ('name' picks one; default: the first in sorted 
 local function load_model (path, name)
   local chunk, err = loadfile(path, "t")
   if chunk == nil then error(err, 0) end
-  local v = chunk()
+  local ok, v = pcall(chunk)
+  if not ok then          -- name the model file when the message does not
+    local msg = tostring(v)
+    if msg:find(path, 1, true) == nil then msg = path .. ": " .. msg end
+    error(msg, 0)
+  end
   if is_model(v) then
     if name ~= nil then
       error(format("%s returns a single model; --name applies to a table of models", path), 0)

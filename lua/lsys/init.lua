@@ -103,9 +103,12 @@ end
 -- Raises an error naming the rule and its line for malformed rules.
 function M.lsystem (opts)
   if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
-  local info = debug.getinfo(2, "Sl")
-  local where = info and format("%s:%d", info.short_src, info.currentline) or "?"
-  local function fail (msg) error(where .. ": " .. msg, 0) end
+  -- where the model is defined; unknown when `return lsys.lsystem{...}`
+  -- was a tail call (the caller's frame is gone: the loader names the file)
+  local info = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "Sl")
+  local where = info and info.currentline > 0 and
+                format("%s:%d", info.short_src, info.currentline) or nil
+  local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
   for k, v in pairs(opts) do
     local t = OPTIONS[k]
     if t == nil then fail(format("unknown option '%s'", tostring(k))) end
@@ -125,7 +128,7 @@ function M.lsystem (opts)
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
-    _rules = rules, _info = {}, _where = where, _group = 0,
+    _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
