@@ -546,9 +546,16 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       int hasrules = s0 != NULL && k < s0->nsym && s0->start[k] != s0->start[k + 1];
       if (k == LSYS_SYM_CUT || k == LSYS_SYM_SUB || k == LSYS_SYM_SUBEND) m->act[k] = ACT_SLOW;
       else if (!hasrules) m->act[k] = ACT_COPY;
-      else if (s0->plain[k] != NONE && m->rules[s0->plain[k]].nsrc == 0)
+      else if (s0->plain[k] != NONE)
         m->act[k] = s0->plain[k];
-      else m->act[k] = ACT_SLOW;
+      else {       /* the only rule for k, computed by the expression machine */
+        const lsys_rule *r = &m->rules[s0->byp[s0->start[k]]];
+        m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
+                     r->nrc == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
+                    ? s0->byp[s0->start[k]] : ACT_SLOW;
+        if (m->act[k] != ACT_SLOW && needscratch(m, r->nvals + 1) != LSYS_OK)
+          return fail(m, LSYS_ENOMEM, 0);
+      }
     }
   }
   lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
@@ -577,7 +584,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       }
       if (a < ACT_COPY) {
         const lsys_rule *r = &m->rules[a];
-        if (r->pred_np == np && dst->n + r->nsucc <= lim) {
+        if (r->pred_np == np && r->vm == NULL && r->nsrc == 0 && dst->n + r->nsucc <= lim) {
           const uint16_t *t = m->tcode + r->succ;
           uint16_t *o = dst->code + dst->n;
           uint32_t k;
@@ -586,6 +593,43 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           p += np;
           continue;
         }
+        if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
+          uint32_t k;
+          if (lsys_expr_run(r->vm, r->nvm, src->par + p, m->args, m->cur)) {
+            for (k = 0; k < r->nvals; k++)
+              if (!isfinite(m->args[k])) break;
+            if (k == r->nvals) {
+              if ((st = emit(m, dst, r, src->par + p, m->args)) != LSYS_OK) return fail(m, st, i);
+              p += np;
+              lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
+              continue;
+            }
+          }
+          else {                           /* condition false: the module stays */
+            if (dst->n >= m->max_modules) return limiterror(m, i);
+            if (lsys_lstring_reserve(dst, 1, np) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
+            lsys_lstring_push(dst, sym, src->par + p, np);
+            p += np;
+            lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
+            continue;
+          }
+        }
+        else if (r->pred_np == np && r->nsrc > 0) {
+          if ((st = emit(m, dst, r, src->par + p, NULL)) != LSYS_OK) return fail(m, st, i);
+          p += np;
+          lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
+          continue;
+        }
+      }
+      if (a == ACT_COPY && dst->n < lim && dst->npar + np <= dst->parcap) {
+        const double *q = src->par + p;
+        double *o = dst->par + dst->npar;
+        uint32_t k;
+        for (k = 0; k < np; k++) o[k] = q[k];
+        dst->npar += np;
+        dst->code[dst->n++] = c;
+        p += np;
+        continue;
       }
     }
     if (nsets == 1 && sym < s0->nsym && s0->plain[sym] != NONE &&

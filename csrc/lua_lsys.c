@@ -10,7 +10,8 @@
 #include "grammar.h"
 
 #define RULES_T    "lsys.Rules"
-#define ALPHABET_T "lsys.Alphabet"
+#define ALPHABET_T "lsys.Alphabet"     /* its metatable */
+#define ALPHABET_KEY "lsys.alphabet"   /* the state's alphabet, in the registry */
 #define checkrules(L, i) ((lrules *)luaL_checkudata(L, (i), RULES_T))
 
 /* uservalue slots of a Rules userdata */
@@ -33,7 +34,7 @@ static int alphabet_gc (lua_State *L) {
 
 lsys_alphabet *lsys_getalphabet (lua_State *L) {
   lsys_alphabet *a;
-  if (lua_getfield(L, LUA_REGISTRYINDEX, ALPHABET_T) == LUA_TUSERDATA) {
+  if (lua_getfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY) == LUA_TUSERDATA) {
     a = (lsys_alphabet *)lua_touserdata(L, -1);
     lua_pop(L, 1);
     return a;
@@ -47,7 +48,7 @@ lsys_alphabet *lsys_getalphabet (lua_State *L) {
   }
   lua_setmetatable(L, -2);
   if (lsys_alphabet_init(a) != LSYS_OK) luaL_error(L, "not enough memory");
-  lua_setfield(L, LUA_REGISTRYINDEX, ALPHABET_T);
+  lua_setfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY);
   return a;
 }
 
