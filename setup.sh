@@ -12,6 +12,7 @@ PACKAGES=(
   libpng-dev libosmesa6-dev libglfw3-dev   # PNG output, offscreen GL, the viewer window
   libreadline-dev                          # line editing in the REPL
   xvfb xauth                               # a virtual display for viewer tests
+  valgrind                                 # the memcheck test (ctest -R memcheck)
 )
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}
