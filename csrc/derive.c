@@ -621,31 +621,8 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           continue;
         }
       }
-      if (a == ACT_COPY && dst->n < lim && dst->npar + np <= dst->parcap) {
-        const double *q = src->par + p;
-        double *o = dst->par + dst->npar;
-        uint32_t k;
-        for (k = 0; k < np; k++) o[k] = q[k];
-        dst->npar += np;
-        dst->code[dst->n++] = c;
-        p += np;
-        continue;
-      }
     }
-    if (nsets == 1 && sym < s0->nsym && s0->plain[sym] != NONE &&
-        m->rules[s0->plain[sym]].pred_np == np) {   /* fast path: a pure template copy */
-      const lsys_rule *r = &m->rules[s0->plain[sym]];
-      if (r->nsrc == 0 && dst->n + r->nsucc <= dst->cap && dst->n + r->nsucc <= m->max_modules) {
-        const uint16_t *t = m->tcode + r->succ;
-        uint16_t *o = dst->code + dst->n;
-        uint32_t k;
-        for (k = 0; k < r->nsucc; k++) o[k] = t[k];
-        dst->n += r->nsucc;
-      }
-      else if ((st = emit(m, dst, r, src->par + p, NULL)) != LSYS_OK) return fail(m, st, i);
-      done = 1;
-    }
-    else if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
+    if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
       done = rewrite(m, sets, nsets, &v, i, c, src->par + p, dst);
       if (done < 0) return fail(m, done, i);
     }
