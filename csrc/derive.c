@@ -98,6 +98,17 @@ int lsys_model_skiplist (lsys_model *m, int sub, int consider,
   return LSYS_OK;
 }
 
+int lsys_model_newset (lsys_model *m, int kind, int sub, int group) {
+  lsys_ruleset *set;
+  if (findset(m, kind, sub, group) != NULL) return LSYS_OK;
+  if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
+    return LSYS_ENOMEM;
+  set = &m->sets[m->nsets++];
+  memset(set, 0, sizeof *set);
+  set->kind = kind; set->sub = sub; set->group = group;
+  return LSYS_OK;
+}
+
 long lsys_model_add (lsys_model *m, int kind, int sub, int group,
                      const lsys_rulespec *sp, lsys_error *e) {
   lsys_ruleset *set = findset(m, kind, sub, group);
@@ -108,11 +119,8 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
   if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_STOCH))
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a rule with a function cannot have a weight");
   if (set == NULL) {
-    if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
-      goto nomem;
-    set = &m->sets[m->nsets++];
-    memset(set, 0, sizeof *set);
-    set->kind = kind; set->sub = sub; set->group = group;
+    if (lsys_model_newset(m, kind, sub, group) != LSYS_OK) goto nomem;
+    set = findset(m, kind, sub, group);
   }
   if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
       lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
@@ -461,15 +469,25 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
   }
   if (nalt == 0) return 0;
 choose:
+  if (!(total > 0)) return 0;          /* only weight 0 applies: nothing is chosen */
   {
+    /* the first alternative whose cumulative weight exceeds r * total; the
+    ** last one of positive weight when rounding leaves none */
     double target = nalt > 1 ? lsys_rng_uniform(&m->rng) * total : 0, cum = 0;
-    size_t at = 0, k;
+    size_t at = 0, k, last = 0;
     const lsys_rule *r = NULL;
     for (k = 0; k < nalt; k++) {
       r = &m->rules[(size_t)m->alt[at]];
-      cum += m->alt[at + 1];
-      if (cum > target || k == nalt - 1) break;
+      if (m->alt[at + 1] > 0) {
+        last = at;
+        cum += m->alt[at + 1];
+        if (cum > target) break;
+      }
       at += 2 + r->nargs + r->nvals;
+    }
+    if (k == nalt) {
+      at = last;
+      r = &m->rules[(size_t)m->alt[at]];
     }
     st = emit(m, out, r, m->alt + at + 2, m->alt + at + 2 + r->nargs);
     return st == LSYS_OK ? 1 : st;
@@ -702,13 +720,16 @@ static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int ns
       return LSYS_OK;
     }
   }
-  else if (!m->depth_hit) {        /* would a rule go deeper? (for the warning) */
-    lsys_lstring *lv = &m->levels[depth];
-    int st;
-    lsys_lstring_clear(lv);
-    st = rewrite(m, sets, nsets, v, i, code, par, lv);
-    if (st < 0) return st;
-    if (st == 1) m->depth_hit = 1;
+  else if (!m->depth_hit) {        /* could a rule go deeper? (for the warning; */
+    int k;                           /* nothing is evaluated: no side effects) */
+    uint32_t sym = LSYS_CSYM(code);
+    for (k = 0; k < nsets; k++) {
+      const lsys_ruleset *s = sets[k];
+      uint32_t b;
+      if (s == NULL || sym >= s->nsym) continue;
+      for (b = s->start[sym]; b < s->start[sym + 1]; b++)
+        if (m->rules[s->byp[b]].pred_np == np) m->depth_hit = 1;
+    }
   }
   if (out->n >= m->max_modules) return LSYS_ELIMIT;
   return lsys_lstring_push(out, LSYS_CSYM(code), par, np);

@@ -124,6 +124,10 @@ int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n);
 int lsys_model_skiplist (lsys_model *m, int sub, int consider,
                          const uint32_t *syms, size_t n);
 
+/* Creates the set (kind, sub, group) if it does not exist (a sub-L-system
+** with no rules of its own). */
+int lsys_model_newset (lsys_model *m, int kind, int sub, int group);
+
 /* Number of rules in the set (kind, sub, group); -1 when there is none. */
 long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 

@@ -169,9 +169,15 @@ static int checkbrackets (const lsys_prule *r, size_t from, size_t n, const char
       return lsys_seterror(err, LSYS_ESYNTAX, r->mods[k].pos,
                            "unbalanced brackets in %s: ']' without '['", what);
   }
-  if (depth > 0)
-    return lsys_seterror(err, LSYS_ESYNTAX, r->mods[from].pos,
+  if (depth > 0) {                     /* the last '[' that is never closed */
+    long d = 0;
+    for (k = from + n; k-- > from;) {
+      if (r->mods[k].sym == LSYS_SYM_RBR) d++;
+      else if (r->mods[k].sym == LSYS_SYM_LBR && d-- == 0) break;
+    }
+    return lsys_seterror(err, LSYS_ESYNTAX, r->mods[k].pos,
                          "unbalanced brackets in %s: '[' without ']'", what);
+  }
   return LSYS_OK;
 }
 

@@ -305,8 +305,8 @@ static int rules_config (lua_State *L) {
     default: {
       lua_Number s = luaL_checknumber(L, 3);
       uint64_t seed;
-      if (s >= -9.2e18 && s <= 9.2e18) seed = (uint64_t)(int64_t)s;
-      else memcpy(&seed, &s, sizeof seed);      /* huge or not a number: its bits */
+      if (s >= -9.2e18 && s <= 9.2e18 && s == (double)(int64_t)s) seed = (uint64_t)(int64_t)s;
+      else memcpy(&seed, &s, sizeof seed);      /* fractional, huge or nan: its bits */
       lsys_rng_seed(key == 5 ? &R->m.rng : &R->m.hrng, seed);
       break;
     }
@@ -352,6 +352,17 @@ static int rules_hasvm (lua_State *L) {
   lua_Integer idx = luaL_checkinteger(L, 2);
   lua_pushboolean(L, idx >= 0 && (size_t)idx < R->m.nrules && R->m.rules[idx].vm != NULL);
   return 1;
+}
+
+/* rules:newset(kind, sub, group): an empty rule set (a sub-L-system without rules) */
+static int rules_newset (lua_State *L) {
+  lrules *R = checkrules(L, 1);
+  int kind = (int)luaL_checkinteger(L, 2);
+  luaL_argcheck(L, kind >= LSYS_PROD && kind <= LSYS_HOMO, 2, "bad rule kind");
+  if (lsys_model_newset(&R->m, kind, (int)luaL_checkinteger(L, 3),
+                        (int)luaL_optinteger(L, 4, 0)) != LSYS_OK)
+    return luaL_error(L, "not enough memory");
+  return 0;
 }
 
 /* rules:size(kind, sub, group): number of rules or -1 */
@@ -583,9 +594,10 @@ static ltemplate *gettemplate (lua_State *L, lrules *R, int tidx) {
       t->slot[t->npar++] = 0;
       continue;
     bad:
+      lua_pushlstring(L, x, sp->len);      /* before the rule (and 'sp') is freed */
       lsys_prule_free(&r);
       luaL_error(L, "produce: parameters in a template are numbers or '?' (got '%s' in '%s')",
-                 (lua_pushlstring(L, x, sp->len), lua_tostring(L, -1)), text);
+                 lua_tostring(L, -1), text);
     }
   }
   t->nmod = (uint32_t)n;
@@ -636,6 +648,41 @@ static int produce (lua_State *L, int final) {
   return 1;
 }
 
+/* lsys.ran(x) / lsys.nran(m, sd) inside rule functions: the generator of
+** the model deriving now */
+static lrules *deriving (lua_State *L, const char *what) {
+  lrules *R;
+  if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing") != LUA_TUSERDATA ||
+      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) == NULL)
+    luaL_error(L, "%s called outside a derivation (use it in a rule function)", what);
+  lua_pop(L, 1);
+  return R;
+}
+
+static int l_ran (lua_State *L) {
+  lrules *R = deriving(L, "ran");
+  lua_pushnumber(L, luaL_optnumber(L, 1, 1) * lsys_rng_uniform(R->m.cur));
+  return 1;
+}
+
+static int l_nran (lua_State *L) {
+  lrules *R = deriving(L, "nran");
+  lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
+  lua_pushnumber(L, lsys_rng_normal(R->m.cur, mu, sd));
+  return 1;
+}
+
+/* core.producing([v]): the rules deriving now; with an argument, sets it
+** (the Lua side restores it after a step that raised) */
+static int l_producing (lua_State *L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing");
+  if (lua_gettop(L) > 1) {
+    lua_pushvalue(L, 1);
+    lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
+  }
+  return 1;
+}
+
 static int l_produce (lua_State *L) { return produce(L, 1); }
 static int l_nproduce (lua_State *L) { return produce(L, 0); }
 
@@ -644,7 +691,7 @@ static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
-  {"ran", rules_ran}, {"setvm", rules_setvm}, {"hasvm", rules_hasvm}, {NULL, NULL}
+  {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {
@@ -652,7 +699,8 @@ static const luaL_Reg rules_meta[] = {
 };
 
 static const luaL_Reg core_funcs[] = {
-  {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce}, {NULL, NULL}
+  {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
+  {"ran", l_ran}, {"nran", l_nran}, {"producing", l_producing}, {NULL, NULL}
 };
 
 int luaopen_lsys_core (lua_State *L) {

@@ -250,7 +250,10 @@ returns a table of named models ('name' picks one; default: the first in sorted 
 local function load_model (path, name)
   local chunk, err = loadfile(path, "t")
   if chunk == nil then error(err, 0) end
+  local lsys = require "lsys"
+  lsys._loading = path            -- names the file when `return lsys.lsystem{...}` is a tail call
   local ok, v = pcall(chunk)
+  lsys._loading = nil
   if not ok then          -- name the model file when the message does not
     local msg = tostring(v)
     if msg:find(path, 1, true) == nil then msg = path .. ": " .. msg end
@@ -343,8 +346,8 @@ function commands.derive (args)
   local t0 = clock()
   local s
   if opts.progress or isatty(2) then
-    local function progress (step, nsteps, lstring)
-      io.stderr:write(format("step %d/%d: %d modules\n", step, nsteps, #lstring))
+    local function progress (step, nsteps, nmodules)
+      io.stderr:write(format("step %d/%d: %d modules\n", step, nsteps, nmodules))
       io.stderr:flush()
     end
     s = model:derive(model.steps, { progress = progress })

@@ -8,8 +8,8 @@
 -- @module lsys.grammar
 local core = require "lsys.core"
 
-local type, tostring, tonumber, pairs, ipairs, error, load, select =
-      type, tostring, tonumber, pairs, ipairs, error, load, select
+local type, tostring, tonumber, pairs, ipairs, error, load, select, mathtype =
+      type, tostring, tonumber, pairs, ipairs, error, load, select, math.type
 local format, concat, insert, table_sort = string.format, table.concat, table.insert, table.sort
 local _ENV = nil
 
@@ -170,7 +170,7 @@ function M.compile (r, info)
   if r.cond then M.freenames(r.cond, seen, frees) end
   for _, e in ipairs(exprs) do M.freenames(e, seen, frees) end
   local src = factorysource(formals, r.cond, exprs, frees)
-  local factory, msg = load(src, "=" .. label, "t")
+  local factory, msg = load(src, "=rule", "t")   -- messages say 'rule:1:'
   if not factory then fail("%s", msg) end
   local trees = { formals = seen, exprs = {} }
   if r.cond then trees.cond = M.parseexpr(r.cond); if not trees.cond then trees = nil end end
@@ -293,7 +293,8 @@ function M.parseexpr (s)
       pos = pos + 1
       local e = subexpr(UNARY)
       if not e then return nil end
-      left = { "un", t[2], e }
+      if t[2] == "-" and e[1] == "num" then left = { "num", -e[2] }   -- folded, as Lua does
+      else left = { "un", t[2], e } end
     else
       left = primary()
       if not left then return nil end
@@ -321,7 +322,10 @@ local F2 = { min = 12, max = 13, fmod = 14, atan = 15 }
 --- Generates machine code for tree `e` into `out` (flat {op, a, k}).
 -- `formals` maps names to argument indices; `E` resolves other names;
 -- `mathlib` is Lua's math table; `ran`/`nran` the model's functions.
--- Returns the type ("n" number, "b" boolean) or nil when not compilable.
+-- Returns the type ("n" float, "i" integer constant, "b" boolean) or nil when
+-- the expression is not compilable. Lua computes integer op integer in
+-- integers (wrapping, raising on // 0): such expressions stay in Lua, as do
+-- integers beyond 2^53 that a double cannot hold.
 function M.gen (e, out, formals, E, lib)
   local function emit (op, a, k)
     out[#out + 1] = op; out[#out + 1] = a or 0; out[#out + 1] = k or 0
@@ -346,27 +350,37 @@ function M.gen (e, out, formals, E, lib)
     end
     return nil
   end
+  local function num (v)
+    if mathtype(v) == "integer" then
+      if v > 2 ^ 53 or v < -2 ^ 53 then return nil end
+      emit(OP.K, 0, v)
+      return "i"
+    end
+    emit(OP.K, 0, v)
+    return "n"
+  end
+  local function isnum (t) return t == "n" or t == "i" end
   function gen (n)
     local kind = n[1]
-    if kind == "num" then emit(OP.K, 0, n[2]); return "n"
+    if kind == "num" then return num(n[2])
     elseif kind == "bool" then emit(OP.K, 0, n[2] and 1 or 0); return "b"
     elseif kind == "paren" then return gen(n[2])
     elseif kind == "name" then
       local a = formals[n[2]]
       if a then emit(OP.ARG, a); return "n" end
       local v = E[n[2]]
-      if type(v) == "number" then emit(OP.K, 0, v); return "n" end
+      if type(v) == "number" then return num(v) end
       if type(v) == "boolean" then emit(OP.K, 0, v and 1 or 0); return "b" end
       return nil
     elseif kind == "field" then
       if formals[n[2]] then return nil end
       local base = E[n[2]]
       local v = type(base) == "table" and base[n[3]]
-      if type(v) == "number" then emit(OP.K, 0, v); return "n" end
+      if type(v) == "number" then return num(v) end
       return nil
     elseif kind == "un" then
       local t = gen(n[3])
-      if n[2] == "-" and t == "n" then emit(OP.UNM); return "n" end
+      if n[2] == "-" and t == "n" then emit(OP.UNM); return "n" end   -- not integers: they wrap
       if n[2] == "not" and t == "b" then emit(OP.NOT); return "b" end
       return nil
     elseif kind == "bin" then
@@ -382,16 +396,20 @@ function M.gen (e, out, formals, E, lib)
       local tb = ta and gen(n[4])
       if not tb then return nil end
       if op == "==" or op == "~=" then
-        if ta ~= tb then return nil end
+        if (ta == "b") ~= (tb == "b") then return nil end
         emit(OP[op]); return "b"
       end
-      if ta ~= "n" or tb ~= "n" then return nil end
+      if not isnum(ta) or not isnum(tb) then return nil end
+      if ta == "i" and tb == "i" and op ~= "/" and op ~= "^" and op ~= "<" and op ~= "<=" and
+         op ~= ">" and op ~= ">=" then
+        return nil                   -- integer arithmetic: Lua's own rules
+      end
       emit(OP[op])
       return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
     elseif kind == "call" then
       local name, args = fnof(n[2]), n[3]
       if not name then return nil end
-      for _, a in ipairs(args) do if gen(a) ~= "n" then return nil end end
+      for _, a in ipairs(args) do if not isnum(gen(a)) then return nil end end
       if name == "ran" then
         if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
         emit(OP.RAN); return "n"

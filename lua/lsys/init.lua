@@ -16,13 +16,19 @@ local M = {}
 --- Parses cpfg text notation into an Lstring; `names` declares
 -- multi-character module names ("Apex Leaf").
 function M.lstring (text, names)
-  if names == nil or names == "" then return core.lstring(text) end
+  if names == nil or names == "" then
+    local ok, s = pcall(core.lstring, text)
+    if not ok then error(s, 2) end
+    return s
+  end
   local s, msg, pos = core.rules(names):lstring(text)
   if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
   return s
 end
 M.produce = core.produce
 M.nproduce = core.nproduce
+M.ran = core.ran       -- ran(x), nran(m, sd) for rule functions: the deriving model's generator
+M.nran = core.nran
 M.version = "0.1.0"
 
 local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
@@ -38,6 +44,7 @@ local BUILTIN = {
   abs = math.abs, floor = math.floor, ceil = math.ceil, sqrt = math.sqrt, exp = math.exp,
   log = math.log, sin = math.sin, cos = math.cos, tan = math.tan, asin = math.asin,
   acos = math.acos, atan = math.atan, min = math.min, max = math.max, fmod = math.fmod,
+  deg = math.deg, rad = math.rad,
   type = _G.type, tostring = _G.tostring, tonumber = _G.tonumber, print = _G.print,
   select = _G.select, error = _G.error, assert = _G.assert, pairs = _G.pairs, ipairs = _G.ipairs,
 }
@@ -92,7 +99,8 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     local ok, spec, factory, frees, trees = pcall(grammar.compile, r,
       { label = label, fn = e.fn, id = n })
     if not ok then fail(spec) end
-    local idx = self._rules:add(kind, sub, group, spec)
+    local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
+    if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
                             trees = trees }
     if spec.fn then self._fns[idx + 1] = spec.fn end
@@ -107,7 +115,7 @@ function M.lsystem (opts)
   -- was a tail call (the caller's frame is gone: the loader names the file)
   local info = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "Sl")
   local where = info and info.currentline > 0 and
-                format("%s:%d", info.short_src, info.currentline) or nil
+                format("%s:%d", info.short_src, info.currentline) or M._loading
   local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
   for k, v in pairs(opts) do
     local t = OPTIONS[k]
@@ -152,7 +160,7 @@ function M.lsystem (opts)
       end
     end
     self:_addrules(s.productions or "", format("sub-L-system %d", id), PROD, id, 0, fail)
-    if rules:size(PROD, id, 0) < 0 then rules:add(PROD, id, 0, { pred = { 1, 99 } }) end
+    rules:newset(PROD, id, 0)
     if s.ignore or s.consider then
       rules:skiplist(id, s.consider ~= nil, s.consider or s.ignore)
     end
@@ -186,6 +194,8 @@ function M.lsystem (opts)
   if not ax then fail(format("axiom '%s': %s at character %d", self.axiom, msg, pos)) end
   self._axiom = ax
   self._axiomsrc = self.axiom
+  rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
+  rules:config("hseed", self.homomorphism_seed or self.seed)
   return self
 end
 
@@ -227,14 +237,15 @@ function Model:_vm (idx, info, E)
     local lib = { math = math, ran = E.ran, nran = E.nran }
     if t.cond then
       local ty = grammar.gen(t.cond, code, t.formals, E, lib)
-      if ty == "n" then
+      if ty == "n" or ty == "i" then
         code[#code + 1] = grammar.OP.K; code[#code + 1] = 0; code[#code + 1] = 0
         code[#code + 1] = grammar.OP["~="]; code[#code + 1] = 0; code[#code + 1] = 0
       elseif ty ~= "b" then ok = false end
       code[#code + 1] = grammar.OP.COND; code[#code + 1] = 0; code[#code + 1] = 0
     end
     for _, e in ipairs(t.exprs) do
-      if ok and grammar.gen(e, code, t.formals, E, lib) ~= "n" then ok = false end
+      local ty = ok and grammar.gen(e, code, t.formals, E, lib)
+      if ty ~= "n" and ty ~= "i" then ok = false end
       code[#code + 1] = grammar.OP.RET; code[#code + 1] = 0; code[#code + 1] = 0
     end
   end
@@ -255,11 +266,14 @@ function Model:_axiomlstring (E)
       local vals = {}
       for k, e in ipairs(m.params) do
         local f, msg = _G.load("return " .. e, "=axiom", "t", E)
-        if not f then error(format("axiom: bad expression '%s': %s", e, msg), 0) end
+        if not f then
+          error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
+        end
         local ok, x = pcall(f)
-        if not ok then error(format("axiom: expression '%s': %s", e, x), 0) end
-        if type(x) ~= "number" or x ~= x then
-          error(format("axiom: expression '%s' is %s, not a number", e, tostring(x)), 0)
+        if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
+        if type(x) ~= "number" or x ~= x or x == 1 / 0 or x == -1 / 0 then
+          error(format("%s: axiom: expression '%s' is %s, not a finite number",
+                       self._where, e, tostring(x)), 0)
         end
         vals[k] = format("%.17g", x)
       end
@@ -268,7 +282,7 @@ function Model:_axiomlstring (E)
   end
   if #self._axiom.succ == 0 then return core.lstring("") end
   local s, msg = self._rules:lstring(concat(parts, " "))
-  if not s then error("axiom: " .. msg, 0) end
+  if not s then error(self._where .. ": axiom: " .. msg, 0) end
   return s
 end
 
@@ -282,7 +296,9 @@ end
 -- Runs a core call; turns a failure into a message naming rule and module.
 function Model:_core (what, ...)
   local rules = self._rules
+  local producing = core.producing()
   local ok, res = pcall(rules[what], rules, ...)
+  if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
     if deep and not self._warned then
@@ -298,7 +314,7 @@ function Model:_core (what, ...)
   if idx then
     local info = self._info[idx + 1]
     local label = info and info.label or format("rule %d", idx + 1)
-    msg = msg:gsub("^" .. label:gsub("%p", "%%%0") .. ":1: ", "")
+    msg = msg:gsub("^rule:1: ", "")
     error(format("%s: %s, module %d: %s", self._where, label, mod, msg), 0)
   end
   error(format("%s: %s", self._where, msg), 0)
@@ -323,7 +339,10 @@ function Model:derive (n, opts)
   local E = self:_bind()
   local s = self:_axiomlstring(E)
   local progress = opts and opts.progress
-  if self.start then self.start(self) end
+  if self.start then
+    self.start(self)
+    self:_bind()                 -- start may change env
+  end
   local spare                    -- the buffer two steps back, reused when private
   for k = 1, n do
     if self.start_each then
@@ -338,6 +357,7 @@ function Model:derive (n, opts)
         if not M.islstring(r) then error("end_each must return an Lstring or nil", 0) end
         t = r
       end
+      if k < n and not self.start_each then self:_bind() end   -- end_each may change env
     elseif k > 1 then
       spare = s                  -- s was produced here and nobody else holds it
     end
@@ -347,7 +367,10 @@ function Model:derive (n, opts)
   if spare then LSTRING_MT.__close(spare) end
   if self.finish then
     local r = self.finish(self, s)
-    if r ~= nil and M.islstring(r) then s = r end
+    if r ~= nil then
+      if not M.islstring(r) then error("finish must return an Lstring or nil", 0) end
+      s = r
+    end
   end
   return s
 end

@@ -1,0 +1,463 @@
+---@meta
+-- LuaLS definitions for lsys (derivation part): the Lua API of `require "lsys"` and the
+-- C-implemented functions of `require "lsys.core"`. Nothing here runs. Point
+-- `workspace.library` at this docs/ directory; where the language server does not infer the
+-- module type, write `local lsys = require "lsys" ---@type lsys`.
+--
+-- Conventions: indices are 1-based unless a name ends in "idx" (0-based rule indices of the
+-- core); angles in module parameters are degrees (for the turtle), angles in expression
+-- functions radians (Lua's math); "raises" means a Lua error with the message shown.
+-- The user's manual is docs/manual.md.
+
+
+-- ===========================================================================================
+-- Types shared by the two modules
+
+--- A rule string: `lc < pred > rc : condition --> successor : weight` (manual §4.2).
+---@alias lsys.RuleText string
+
+--- A rule whose successor a Lua function builds with `lsys.produce`/`lsys.nproduce`
+--- (manual §7). The pattern is `lc < pred > rc` only (no condition, successor or weight);
+--- the function receives the formal parameters of left context, predecessor and right
+--- context in that order (Lua floats). The rule applies only if the function called
+--- `lsys.produce`; its return values are ignored.
+---@alias lsys.FnRule { [1]: string, [2]: fun(...: number): any }
+
+--- Rules: a string with one rule per line (blank lines skipped, no comments), or a list whose
+--- entries are rule strings (each may span lines) or `{ pattern, function }` pairs.
+---@alias lsys.RuleList string | (lsys.RuleText | lsys.FnRule)[]
+
+
+-- ===========================================================================================
+-- lsys: the Lua API
+
+---@class lsys
+---@field version string The library version, `"0.1.0"`.
+---@field BUILTIN table<string, any> Names visible in every rule expression after the formal parameters, `ran`/`nran` and `env`: `math string table pi huge abs floor ceil sqrt exp log sin cos tan asin acos atan min max fmod type tostring tonumber print select error assert pairs ipairs`. Changing this table changes what all models see.
+---@field Model lsys.Model The model metatable (its methods).
+local lsys = {}
+
+--- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
+--- Nothing is derived yet.
+---
+--- Raises, with the file and line of this call in front when Lua knows it (not when the call
+--- is a tail call such as `return lsys.lsystem{...}`):
+--- `lsys.lsystem: a table of options expected`; `unknown option 'NAME'`;
+--- `option 'NAME' must be a TYPE (got TYPE)`; `give either 'ignore' or 'consider', not both`;
+--- `option 'steps' must be a whole number >= 0`; `groups: keys must be group numbers >= 1`;
+--- `sub: keys must be sub-L-system numbers >= 1`; `sub[N]: unknown option 'NAME'`;
+--- `max_modules must be between 1 and 1e12`;
+--- `max_depth.KEY must be a whole number from 0 to 1024`;
+--- `rule N 'TEXT' (line L of productions): MESSAGE at character C` for a malformed rule
+--- (`entry E` for list entries; `decomposition`, `homomorphism`, `group G`,
+--- `sub-L-system S` instead of `productions`);
+--- `axiom 'TEXT': MESSAGE at character C` for a malformed axiom (brackets must balance).
+--- Names that are neither formal parameters nor in `env` are reported later, when a
+--- derivation binds the rules.
+---@param options lsys.Options
+---@return lsys.Model
+function lsys.lsystem(options) end
+
+--- Parses cpfg text notation (`"F(1,0.5)[+A]"`) into a new Lstring. White space between
+--- modules and inside parameter lists is ignored; parameters are finite numbers, at most 31
+--- per module; brackets need not balance.
+--- Raises `lstring: MESSAGE at character C` for malformed text (`unexpected ':'`,
+--- `unbalanced parentheses after 'F'`, `bad number 'x' in parameters of 'F'`, ...).
+---@param text string
+---@param names? string Multi-character module names, as in the `modules` option: `"Apex Leaf"`.
+---@return lsys.Lstring
+function lsys.lstring(text, names) end
+
+--- True when `x` is an Lstring.
+---@param x any
+---@return boolean
+function lsys.islstring(x) end
+
+--- Inside a rule function: appends the modules of `template` to the successor and marks the
+--- rule as applied. `template` is module text whose parameters are numbers or `?`; the `?`
+--- marks are filled in order with the extra arguments. Templates are parsed once per model
+--- and cached. Does not end the function: a second call appends more.
+---
+--- Raises `produce called outside a rule function`;
+--- `produce: the template 'T' has N '?' but M values were given`;
+--- `produce: value K is TYPE, not a number`; `produce: value K is not a finite number`;
+--- `produce: MESSAGE at character C in 'T'` for malformed text;
+--- `produce: parameters in a template are numbers or '?' (got 'X' in 'T')`;
+--- `produce: the successor would exceed max_modules`. When the function returns, a
+--- successor with unbalanced brackets raises `unbalanced brackets in the produced successor`.
+---@param template string
+---@param ... number One finite number per `?` mark.
+---@return true
+function lsys.produce(template, ...) end
+
+--- Inside a rule function: appends the modules of `template` to the successor without marking
+--- the rule as applied; the pieces are dropped if the function never calls `lsys.produce`.
+--- Pieces may leave brackets open for later pieces to close. Raises as `lsys.produce`
+--- (`nproduce called outside a rule function`).
+---@param template string
+---@param ... number One finite number per `?` mark.
+---@return true
+function lsys.nproduce(template, ...) end
+
+
+-- ===========================================================================================
+-- lsys.lsystem options
+
+--- The options of `lsys.lsystem`. Unknown keys are errors. Each option becomes a field of
+--- the model; see lsys.Model for which fields are read again after the model is made.
+---@class lsys.Options
+---@field axiom? string The starting string, in successor notation: parameters may be Lua expressions, evaluated in `env` at the start of every `derive`. Brackets must balance. Default `""` (empty; `"*"` is empty too).
+---@field steps? integer Steps done by `m:derive()` without a count; whole number >= 0. Default 1.
+---@field seed? number Seed of the derivation generator (stochastic choice, `ran`, `nran`); `derive` reseeds from it every time. The fractional part is dropped. Default 0.
+---@field env? table<string, any> Names visible in rule expressions besides the formal parameters. Values are read when a derivation starts, after every `start_each`, and at every `step`/`expand`. Default `{}`.
+---@field modules? string Multi-character module names separated by spaces, tabs, newlines or commas: `"Apex Leaf"`. They take precedence over every other name when text is split into modules. Default: none.
+---@field ignore? string Module names that context matching skips; brackets are never skipped. Not together with `consider`. Default: none.
+---@field consider? string The only module names context matching sees (brackets are always seen). Not together with `ignore`. Default: none.
+---@field productions? lsys.RuleList The productions: rule group 0, always active. Default: none (modules are copied).
+---@field decomposition? lsys.RuleList Rules applied after the productions of every step (not to the axiom), recursively within `max_depth.decomposition`. Default: none.
+---@field homomorphism? lsys.RuleList Rules applied by `m:expand` only (what the turtle draws), recursively within `max_depth.homomorphism`, with their own generator. Default: none.
+---@field max_depth? { decomposition?: integer, homomorphism?: integer } Levels of recursion, whole numbers from 0 (off) to 1024. Default 1 and 1, as cpfg. Other keys raise.
+---@field ring? boolean Contexts wrap around the ends of the string. Default false.
+---@field sub? table<integer, { productions: lsys.RuleList, ignore?: string, consider?: string }> Sub-L-systems by id >= 1, used between `?(id, scale)` and `$`. Each needs at least one production; its `ignore`/`consider` list replaces the model's inside it. Default: none.
+---@field groups? table<integer, lsys.RuleList> Rule groups by number >= 1, activated with `m:use_group(n)`; the active group's rules are tried before group 0's. Default: none.
+---@field start? fun(model: lsys.Model) Called by `derive` before the first step. Default: none.
+---@field start_each? fun(model: lsys.Model, step: integer) Called by `derive` before each step (`step` from 1); rules are bound to `env` again after it. Default: none.
+---@field end_each? fun(model: lsys.Model, s: lsys.Lstring, step: integer): lsys.Lstring? Called by `derive` after each step; an Lstring returned replaces the result, `nil` keeps it, anything else raises `end_each must return an Lstring or nil`. Default: none.
+---@field finish? fun(model: lsys.Model, s: lsys.Lstring): lsys.Lstring? Called by `derive` after the last step; an Lstring returned replaces the result, other values are ignored. Default: none.
+---@field max_modules? number Largest string (in modules) a step, decomposition, expansion or rule function may build, from 1 to 1e12; beyond it derivation raises `the string would exceed max_modules (N modules)`. Default 50 000 000.
+---@field view? table Turtle options (angle increment in degrees, widths, tropisms, ...); kept as `model.view`, not read by derivation. Default `{}`.
+---@field name? string Shown by `tostring(model)`. Default: none (the file and line of the `lsys.lsystem` call, or `model`).
+---@field homomorphism_seed? number Seed of the homomorphism generator, reset by every `m:expand`. Default: `seed`.
+---@field allow_system_calls? boolean For the turtle: `@S` is refused unless true. Not read by derivation. Default false.
+
+
+-- ===========================================================================================
+-- lsys.Model
+
+--- A model made by `lsys.lsystem`. Read again by every `derive`: `axiom` (re-parsed when
+--- changed), `steps`, `seed`, `homomorphism_seed`, `env`, the hooks, `lua_expressions`.
+--- Fixed when the model is made: the rules, `modules`, `ignore`/`consider`, `ring`,
+--- `max_modules`, `max_depth` (assigning those fields later has no effect).
+--- `tostring(model)` is `lsys.Model(NAME)`, NAME being `name` or where the model was made.
+---@class lsys.Model
+---@field axiom string
+---@field steps integer
+---@field seed number
+---@field env table<string, any>
+---@field view table
+---@field name string?
+---@field homomorphism_seed number?
+---@field allow_system_calls boolean
+---@field max_modules number? Set only when the option was given (the limit in force is 50 000 000 otherwise).
+---@field start fun(model: lsys.Model)?
+---@field start_each fun(model: lsys.Model, step: integer)?
+---@field end_each (fun(model: lsys.Model, s: lsys.Lstring, step: integer): lsys.Lstring?)?
+---@field finish (fun(model: lsys.Model, s: lsys.Lstring): lsys.Lstring?)?
+---@field lua_expressions boolean? When true, every rule runs its compiled Lua closure instead of the C expression machine (read when rules are bound: each derive, start_each, step, expand).
+local Model = {}
+
+--- Options of `Model:derive`.
+---@class lsys.DeriveOptions
+---@field progress? fun(step: integer, n: integer, nmodules: integer) Called after each step (after `end_each`) with the step number, the step count and the length of the result.
+
+--- Derives `n` steps from the axiom and returns the result as a new Lstring; `derive(0)`
+--- returns the axiom. Reseeds the derivation generator from `seed` and the homomorphism
+--- generator from `homomorphism_seed` (or `seed`), binds the rules to `env`, evaluates the
+--- axiom, then calls `start`, and per step `start_each`, the step (productions, cut,
+--- decomposition), `end_each` and `opts.progress`, and finally `finish`.
+---
+--- Raises `derive: the number of steps must be a whole number >= 0`;
+--- `WHERE: rule N 'TEXT' (line L of productions): unknown name 'X' (not a parameter, not in env)`;
+--- `WHERE: rule N 'TEXT' (...), module I: MESSAGE` for an error while rewriting module I
+--- (1-based) of the string being rewritten (Lua errors in expressions or rule functions,
+--- `value K is nan, not a finite number`, `weight is W, not a finite number >= 0`,
+--- `condition is TYPE, not a boolean or number`, produce errors);
+--- `WHERE: the string would exceed max_modules (N modules)`;
+--- `WHERE: sub-L-system S is not defined (module I)`; `axiom: expression 'E' is nil, not a
+--- number`; errors raised by hooks. WHERE is the file and line of the `lsys.lsystem` call,
+--- or `model`. The model stays usable after an error.
+--- Prints `lsys: WHERE: the decomposition depth limit stopped a rule that still applies
+--- (raise max_depth)` on stderr, once per call, when the depth limit cut a decomposition short.
+---@param n? integer Number of steps, whole >= 0. Default `self.steps`.
+---@param opts? lsys.DeriveOptions
+---@return lsys.Lstring
+function Model:derive(n, opts) end
+
+--- One derivation step (productions, cut, decomposition) from `s`; returns a new Lstring and
+--- leaves `s` unchanged. Binds the rules to `env`; calls no hook; does not reseed (the
+--- generator continues; before the first `derive` it is in the state of seed 0).
+--- Raises `step: an Lstring expected`, a parse error for text, and as `derive`.
+---@param s lsys.Lstring|string An Lstring, or text parsed with the model's declared names.
+---@return lsys.Lstring
+function Model:step(s) end
+
+--- Applies the homomorphism to `s` and returns a new Lstring (a copy when there are no
+--- homomorphism rules): what the turtle interprets. Reseeds the homomorphism generator from
+--- `homomorphism_seed` (or `seed`) first, so the same string always expands the same way.
+--- Contexts are matched in `s`; modules made by the homomorphism take the context of the
+--- module of `s` they came from. Raises `expand: an Lstring expected`, and as `derive`;
+--- warns on stderr when `max_depth.homomorphism` cut an expansion short.
+---@param s lsys.Lstring|string An Lstring, or text parsed with the model's declared names.
+---@return lsys.Lstring
+function Model:expand(s) end
+
+--- Makes rule group `n` active beside group 0 (`0`: group 0 alone). Takes effect from the
+--- next step and stays until changed. An `n` without rules is allowed (only group 0 then
+--- applies). Raises `use_group: a group number >= 0 expected`.
+---@param n integer Group number, whole >= 0.
+function Model:use_group(n) end
+
+--- Parses text with the model's declared `modules` names into a new Lstring whose
+--- `tostring` separates names where needed to read back the same modules.
+--- Raises `lstring: MESSAGE at character C`.
+---@param text string
+---@return lsys.Lstring
+function Model:lstring(text) end
+
+
+-- ===========================================================================================
+-- lsys.Lstring (C: csrc/lua_lstring.c, metatable "lsys.Lstring")
+
+--- A module string: symbol codes and a pool of double parameters in C arrays. Made by
+--- derive, step, expand, lsys.lstring and Model:lstring; methods never change it.
+--- `tostring(s)` gives cpfg text (numbers in the shortest form that reads back to the same
+--- double, integral values without a decimal point, spaces only where names would run
+--- together). `a == b` is true when both have the same modules and bit-identical
+--- parameters (`F(0)` and `F(-0)` differ). `a .. b` makes a new Lstring; both operands must
+--- be Lstrings (raises `bad argument #2 to 'concat' (lsys.Lstring expected, got TYPE)`).
+--- `local s <close> = ...` frees the memory when `s` goes out of scope; a closed Lstring is
+--- empty.
+---@class lsys.Lstring
+---@operator len: integer
+---@operator concat(lsys.Lstring): lsys.Lstring
+local Lstring = {}
+
+--- Modules `i` to `j` (inclusive) as a new Lstring with their parameters. Indices work as in
+--- `string.sub`: negative ones count from the end, out-of-range ones are clamped, `i > j`
+--- gives an empty Lstring.
+---@param i integer
+---@param j? integer Default -1 (the last module).
+---@return lsys.Lstring
+function Lstring:sub(i, j) end
+
+--- The text of modules `i` to `j`, like `tostring(s:sub(i, j))` without making an Lstring.
+---@param i? integer Default 1.
+---@param j? integer Default -1.
+---@return string
+function Lstring:text(i, j) end
+
+--- The name and the parameters (floats) of module `i`; negative `i` counts from the end.
+--- Raises `bad argument #1 to 'module' (module index out of range)`.
+---@param i integer
+---@return string name
+---@return number ... # the parameters, as many as the module has
+function Lstring:module(i) end
+
+--- An iterator over the modules: `for i, name, p1, p2 in s:modules() do ... end` gives the
+--- 1-based index, the name and the parameters (floats) of each module in order. Makes no
+--- table per module.
+---@return fun(): integer?, string, ...
+function Lstring:modules() end
+
+--- Number of modules named `name` (0 when no module of any model has that name).
+---@param name string
+---@return integer
+function Lstring:count(name) end
+
+--- Count of every module name in the string.
+---@return table<string, integer>
+function Lstring:counts() end
+
+--- A new Lstring with the same modules.
+---@return lsys.Lstring
+function Lstring:copy() end
+
+--- Memory held by the string's arrays, in bytes (capacity, not length).
+---@return integer
+function Lstring:bytes() end
+
+
+-- ===========================================================================================
+-- lsys.core: the C module (csrc/lua_lsys.c, csrc/lua_lstring.c). lsys.lsystem is built on
+-- it; use it directly only to write another front end.
+
+---@class lsys.core
+---@field MAXPARAMS integer Parameters per module at most: 31.
+---@field RF_CALL integer Rule flag 1: the rule has a condition or computed values (a callback or machine program).
+---@field RF_DYN integer Rule flag 2: a Lua function produces the successor.
+---@field RF_STOCH integer Rule flag 4: the rule has a weight.
+---@field RF_WEXPR integer Rule flag 8: the weight is computed (the first value the callback returns).
+local core = {}
+
+--- A new, empty rule store: the C side of one model. All stores of a Lua state share one
+--- alphabet of at most 2047 module names.
+---@param names? string Declared multi-character module names (`"Apex Leaf"`).
+---@return lsys.Rules
+function core.rules(names) end
+
+--- Parses text into an Lstring without declared names. Raises `lstring: MESSAGE at
+--- character C`.
+---@param text string
+---@return lsys.Lstring
+function core.lstring(text) end
+
+--- Same as `lsys.produce`.
+---@param template string
+---@param ... number
+---@return true
+function core.produce(template, ...) end
+
+--- Same as `lsys.nproduce`.
+---@param template string
+---@param ... number
+---@return true
+function core.nproduce(template, ...) end
+
+
+-- ===========================================================================================
+-- lsys.Rules (metatable "lsys.Rules")
+
+--- Rule kinds: 0 productions, 1 decomposition, 2 homomorphism.
+---@alias lsys.RuleKind 0|1|2
+
+--- A module of a parsed rule.
+---@class lsys.ParsedModule
+---@field sym integer Symbol id in the shared alphabet.
+---@field name string
+---@field pos integer 1-based byte offset of the name in the rule text.
+---@field params string[] Formal names (patterns) or expression texts (successors).
+
+--- The parts of a rule, from `Rules:parse`.
+---@class lsys.ParsedRule
+---@field lc lsys.ParsedModule[] Left context.
+---@field pred lsys.ParsedModule? Predecessor (absent in "successor" mode).
+---@field rc lsys.ParsedModule[] Right context.
+---@field succ lsys.ParsedModule[] Successor (empty for `*` and in "pattern" mode).
+---@field cond string? Condition text.
+---@field weight string? Weight text.
+---@field empty boolean The successor is `*`.
+
+--- A compiled rule for `Rules:add`. Module lists are flat `{sym, np, sym, np, ...}`;
+--- `src` has one `{kind, idx, value}` triple per successor parameter: kind 0 constant
+--- `value`, 1 formal parameter `idx` (0-based over lc, pred, rc), 2 computed value `idx`.
+---@class lsys.RuleSpec
+---@field lc? integer[]
+---@field pred integer[] `{sym, np}`
+---@field rc? integer[]
+---@field succ? integer[]
+---@field src? number[]
+---@field flags? integer Sum of `core.RF_*`. Default 0.
+---@field nvals? integer Values the callback returns after `true` (the weight first when RF_WEXPR). Default 0.
+---@field weight? number Constant weight (RF_STOCH). Default 1.
+---@field id? integer The caller's rule number, for messages. Default 0.
+---@field fn? function The callback: a closure `(formals...) -> true, values... | false` (RF_CALL) or a rule function that calls produce (RF_DYN).
+
+--- Keys of `Rules:config`.
+---@alias lsys.ConfigKey
+---| "ring"                # boolean: contexts wrap around
+---| "max_modules"         # number from 1 to 1e12
+---| "group"               # integer from 0 to 999999: the active rule group
+---| "depth_decomposition" # integer from 0 to 1024
+---| "depth_homomorphism"  # integer from 0 to 1024
+---| "seed"                # number: reseeds the derivation generator
+---| "hseed"               # number: reseeds the homomorphism generator
+
+--- The compiled rules of one model, their settings and the two generators.
+---@class lsys.Rules
+local Rules = {}
+
+--- Splits one rule into its parts without adding it. Module names are interned.
+---@param text string
+---@param mode? "rule"|"pattern"|"successor" `"rule"` (default): a full rule; `"pattern"`: `lc < pred > rc` only (function rules); `"successor"`: a successor or axiom (brackets must balance).
+---@return lsys.ParsedRule? rule
+---@return string? message When the text is malformed, e.g. `missing '-->'`.
+---@return integer? position 1-based byte offset of the problem.
+function Rules:parse(text, mode) end
+
+--- Adds a compiled rule to the set (kind, sub, group) and returns its 0-based index among
+--- all the store's rules. Raises `bad rule kind`, `rule without predecessor`,
+--- `bad successor module`, `pattern too long (limit is 64 modules)`, `too many parameters`,
+--- `bad parameter source`, `a rule with a function cannot have a weight`.
+---@param kind lsys.RuleKind
+---@param sub integer Sub-L-system id (0: the main one).
+---@param group integer Rule group (0: always active).
+---@param spec lsys.RuleSpec
+---@return integer idx
+function Rules:add(kind, sub, group, spec) end
+
+--- Sets the ignore list (`consider` false) or consider list (true) of sub-L-system `sub`,
+--- replacing any earlier one. Raises `bad module name at '...'`.
+---@param sub integer 0 for the main L-system.
+---@param consider boolean
+---@param names string Module names, white space allowed between them.
+function Rules:skiplist(sub, consider, names) end
+
+--- Changes a setting. Seeds in [-9.2e18, 9.2e18] are truncated to 64-bit integers; other
+--- numbers seed with their bit pattern. Raises for an unknown key or a value out of range
+--- (`max_modules must be between 1 and 1e12`, `maximum depth must be between 0 and 1024`,
+--- `bad group number`).
+---@param key lsys.ConfigKey
+---@param value boolean|number
+function Rules:config(key, value) end
+
+--- Number of rules in the set (kind, sub, group), or -1 when the set does not exist.
+---@param kind lsys.RuleKind
+---@param sub? integer Default 0.
+---@param group? integer Default 0.
+---@return integer
+function Rules:size(kind, sub, group) end
+
+--- One derivation step from `src` into `dst` (a new Lstring when absent; its buffer is
+--- reused otherwise) and returns `dst`. Raises the core's message without location
+--- (`the string would exceed max_modules (N modules)`, a rule's error, ...);
+--- `Rules:current` then tells which rule and module. Raises
+--- `source and destination are the same string` when `dst` is `src`.
+---@param src lsys.Lstring
+---@param dst? lsys.Lstring
+---@return lsys.Lstring dst
+function Rules:step(src, dst) end
+
+--- Applies the homomorphism (kind 2, default) or the decomposition (kind 1) to `src`,
+--- recursively within the configured depth; returns a new Lstring. Kind 2 draws from the
+--- homomorphism generator. Raises as `Rules:step`, and `bad rule kind`.
+---@param src lsys.Lstring
+---@param kind? 1|2
+---@return lsys.Lstring
+function Rules:expand(src, kind) end
+
+--- After an error in `step` or `expand`: the 0-based index of the rule being evaluated (nil
+--- when no rule was) and the 1-based index of the module being rewritten; also whether a
+--- depth limit stopped a rule that still applied during the last call. Clears the rule.
+---@return integer? idx
+---@return integer module
+---@return boolean depth_hit
+function Rules:current() end
+
+--- Parses text with this store's declared names into a new Lstring that knows those names.
+---@param text string
+---@return lsys.Lstring? s
+---@return string? message
+---@return integer? position 1-based byte offset of the problem.
+function Rules:lstring(text) end
+
+--- The functions `ran(x)` (uniform in [0, x), x default 1) and `nran(mean, sd)` (normal),
+--- drawing from the generator in use: the derivation's, or the homomorphism's during an
+--- expansion.
+---@return fun(x?: number): number ran
+---@return fun(mean: number, sd: number): number nran
+function Rules:ran() end
+
+--- Sets the expression-machine program of rule `idx` (flat `{op, a, k, ...}` triples, see
+--- csrc/expr.h), or clears it with nil. Returns false when the program does not fit the rule
+--- (the rule has no RF_CALL, is a function rule, or the program is malformed or writes the
+--- wrong number of values). Raises `bad rule index`, `program too long` (over 1024
+--- instructions).
+---@param idx integer 0-based rule index.
+---@param code? number[]
+---@return boolean
+function Rules:setvm(idx, code) end
+
+--- Whether rule `idx` currently runs on the expression machine.
+---@param idx integer 0-based rule index.
+---@return boolean
+function Rules:hasvm(idx) end
