@@ -33,7 +33,7 @@
 
 ---@class lsys
 ---@field version string The library version, `"0.1.0"`.
----@field BUILTIN table<string, any> Names visible in every rule expression after the formal parameters, `ran`/`nran` and `env`: `math string table pi huge abs floor ceil sqrt exp log sin cos tan asin acos atan min max fmod type tostring tonumber print select error assert pairs ipairs`. Changing this table changes what all models see.
+---@field BUILTIN table<string, any> Names visible in every rule expression after the formal parameters, `ran`/`nran` and `env`: `math string table pi huge abs floor ceil sqrt exp log sin cos tan asin acos atan min max fmod deg rad type tostring tonumber print select error assert pairs ipairs`. Changing this table changes what all models see.
 ---@field Model lsys.Model The model metatable (its methods).
 local lsys = {}
 
@@ -90,6 +90,20 @@ function lsys.islstring(x) end
 ---@return true
 function lsys.produce(template, ...) end
 
+--- Inside a rule function: uniform in [0, x) from the generator of the model deriving now
+--- (the same sequence as `ran` in rule expressions). Raises `ran called outside a
+--- derivation (use it in a rule function)` elsewhere.
+---@param x? number Default 1.
+---@return number
+function lsys.ran(x) end
+
+--- Inside a rule function: normal with mean `mean` and standard deviation `sd`, from the
+--- generator of the model deriving now. Raises outside a derivation, like `lsys.ran`.
+---@param mean number
+---@param sd number
+---@return number
+function lsys.nran(mean, sd) end
+
 --- Inside a rule function: appends the modules of `template` to the successor without marking
 --- the rule as applied; the pieces are dropped if the function never calls `lsys.produce`.
 --- Pieces may leave brackets open for later pieces to close. Raises as `lsys.produce`
@@ -108,7 +122,7 @@ function lsys.nproduce(template, ...) end
 ---@class lsys.Options
 ---@field axiom? string The starting string, in successor notation: parameters may be Lua expressions, evaluated in `env` at the start of every `derive`. Brackets must balance. Default `""` (empty; `"*"` is empty too).
 ---@field steps? integer Steps done by `m:derive()` without a count; whole number >= 0. Default 1.
----@field seed? number Seed of the derivation generator (stochastic choice, `ran`, `nran`); `derive` reseeds from it every time. The fractional part is dropped. Default 0.
+---@field seed? number Seed of the derivation generator (stochastic choice, `ran`, `nran`); `derive` and making the model reseed from it. Whole numbers seed with their value, others with the bits of their double. Default 0.
 ---@field env? table<string, any> Names visible in rule expressions besides the formal parameters. Values are read when a derivation starts, after every `start_each`, and at every `step`/`expand`. Default `{}`.
 ---@field modules? string Multi-character module names separated by spaces, tabs, newlines or commas: `"Apex Leaf"`. They take precedence over every other name when text is split into modules. Default: none.
 ---@field ignore? string Module names that context matching skips; brackets are never skipped. Not together with `consider`. Default: none.
@@ -176,8 +190,8 @@ local Model = {}
 --- `WHERE: sub-L-system S is not defined (module I)`; `axiom: expression 'E' is nil, not a
 --- number`; errors raised by hooks. WHERE is the file and line of the `lsys.lsystem` call,
 --- or `model`. The model stays usable after an error.
---- Prints `lsys: WHERE: the decomposition depth limit stopped a rule that still applies
---- (raise max_depth)` on stderr, once per call, when the depth limit cut a decomposition short.
+--- Prints `lsys: WHERE: the decomposition depth limit stopped at modules that have rules
+--- (raise max_depth if they should apply)` on stderr, once per call.
 ---@param n? integer Number of steps, whole >= 0. Default `self.steps`.
 ---@param opts? lsys.DeriveOptions
 ---@return lsys.Lstring
@@ -185,7 +199,7 @@ function Model:derive(n, opts) end
 
 --- One derivation step (productions, cut, decomposition) from `s`; returns a new Lstring and
 --- leaves `s` unchanged. Binds the rules to `env`; calls no hook; does not reseed (the
---- generator continues; before the first `derive` it is in the state of seed 0).
+--- generator continues; before the first `derive` it starts from `seed`).
 --- Raises `step: an Lstring expected`, a parse error for text, and as `derive`.
 ---@param s lsys.Lstring|string An Lstring, or text parsed with the model's declared names.
 ---@return lsys.Lstring
@@ -427,7 +441,7 @@ function Rules:expand(src, kind) end
 
 --- After an error in `step` or `expand`: the 0-based index of the rule being evaluated (nil
 --- when no rule was) and the 1-based index of the module being rewritten; also whether a
---- depth limit stopped a rule that still applied during the last call. Clears the rule.
+--- depth limit stopped at a module that has rules during the last call. Clears the rule.
 ---@return integer? idx
 ---@return integer module
 ---@return boolean depth_hit

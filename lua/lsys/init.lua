@@ -303,8 +303,8 @@ function Model:_core (what, ...)
     local _, _, deep = rules:current()
     if deep and not self._warned then
       self._warned = true
-      io_warn(format("lsys: %s: the %s depth limit stopped a rule that still applies " ..
-                     "(raise max_depth)", self._where,
+      io_warn(format("lsys: %s: the %s depth limit stopped at modules that have rules " ..
+                     "(raise max_depth if they should apply)", self._where,
                      what == "step" and "decomposition" or "homomorphism"))
     end
     return res
