@@ -232,7 +232,7 @@ typedef struct view {
 } view;
 
 static int buildtables (lsys_model *m, const lsys_lstring *s) {
-  size_t i, off = 0, depth = 0;
+  size_t i, off = 0;
   if (s->n >= NONE) return LSYS_ELIMIT;
   if (m->matchcap < s->n + 1) {
     size_t cap = m->matchcap;
@@ -254,19 +254,17 @@ static int buildtables (lsys_model *m, const lsys_lstring *s) {
       m->poff[i] = (uint32_t)off;
       off += LSYS_CNP(s->code[i]);
       m->match[i] = NONE;
-      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; depth++; }
+      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; }
       else if (sym == LSYS_SYM_RBR && top != NONE) {
         uint32_t prev = m->match[top];
         m->match[top] = (uint32_t)i;
         m->match[i] = top;
         top = prev;
-        depth--;
       }
     }
     while (top != NONE) { uint32_t prev = m->match[top]; m->match[top] = NONE; top = prev; }
     m->poff[s->n] = (uint32_t)off;
   }
-  (void)depth;
   return LSYS_OK;
 }
 
