@@ -712,6 +712,8 @@ int luaopen_lsys_core (lua_State *L) {
   lua_pop(L, 1);
   luaL_newlib(L, core_funcs);
   lsys_open_lstring(L);
+  lsys_open_scene(L);
+  lsys_open_render(L);
   lua_pushinteger(L, LSYS_MAXPARAMS);
   lua_setfield(L, -2, "MAXPARAMS");
   lua_pushinteger(L, LSYS_RF_CALL); lua_setfield(L, -2, "RF_CALL");

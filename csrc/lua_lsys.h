@@ -8,6 +8,7 @@
 #include <lauxlib.h>
 
 #include "lstring.h"
+#include "mesh.h"
 
 #define LSTRING_T "lsys.Lstring"
 #define checklstring(L, i) ((lsys_lstring *)luaL_checkudata(L, (i), LSTRING_T))
@@ -31,6 +32,16 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e);
 /* Reads a list of module names separated by white space into 'd'. */
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 
-void lsys_open_lstring (lua_State *L);   /* registers the metatable, adds functions to the table on top */
+#define SCENE_T "lsys.Scene"
+
+/* The mesh and palette of the lsys.Scene at 'idx' (raises when it is not a
+** scene). The palette has *npal >= 1 materials; colour c uses pal[c % npal]. */
+const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **pal,
+                                  size_t *npal);
+
+/* Each registers its metatables and adds its functions to the table on top. */
+void lsys_open_lstring (lua_State *L);
+void lsys_open_scene (lua_State *L);    /* lua_scene.c: Scene, interpret */
+void lsys_open_render (lua_State *L);   /* lua_render.c: render, png */
 
 #endif

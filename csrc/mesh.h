@@ -1,0 +1,88 @@
+/*
+** Scene geometry (DESIGN.md §1, §6-7): what the turtle writes and what the
+** renderer and the export writers read.
+**
+** One triangle mesh (indexed; per-vertex position, normal, uv and colour
+** index) and one set of wide line segments. Colour indices refer to a
+** palette of materials that the view supplies (lsys_material): colour c
+** uses pal[c % npal], so indices past the palette's end wrap around.
+** Arrays grow by doubling and are reused across interpretations.
+*/
+#ifndef LSYS_MESH_H
+#define LSYS_MESH_H
+
+#include "common.h"
+
+typedef struct lsys_mesh {
+  /* triangles: vertex arrays, 3 indices per triangle */
+  float *pos, *nrm, *uv;          /* 3, 3 and 2 floats per vertex */
+  uint16_t *col;                  /* colour (material) index per vertex */
+  uint8_t *twosided;              /* 1 when the vertex belongs to a surface lit on both
+                                     sides (polygons, leaves, discs), 0 for solids */
+  size_t nv, vcap;
+  uint32_t *tri;
+  size_t nt, tcap;                /* nt triangles: tri[3*nt] */
+  /* lines: 2 end points each, a width in pixels and a colour index */
+  float *lpos;                    /* 6 floats per segment */
+  float *lwidth;                  /* 2 per segment: width at each end */
+  uint16_t *lcol;
+  size_t nl, lcap;
+} lsys_mesh;
+
+/* A material (cpfg material file fields); a plain colour has diffuse set,
+** ambient = 0.3 * diffuse, no specular. Components in [0, 1]. */
+typedef struct lsys_material {
+  float ambient[4], diffuse[4], specular[4], emission[4];
+  float shininess;                /* 0..128 (OpenGL) */
+} lsys_material;
+
+void lsys_mesh_init (lsys_mesh *m);
+void lsys_mesh_free (lsys_mesh *m);
+void lsys_mesh_clear (lsys_mesh *m);
+
+/* Makes room for 'nv' more vertices and 'nt' more triangles. */
+int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt);
+/* Appends a vertex (room must have been reserved); returns its index. */
+static inline uint32_t lsys_mesh_vertex (lsys_mesh *m, const double p[3], const double n[3],
+                                         double u, double v, unsigned col, int twosided) {
+  size_t i = m->nv++;
+  float *P = m->pos + 3 * i, *N = m->nrm + 3 * i;
+  P[0] = (float)p[0]; P[1] = (float)p[1]; P[2] = (float)p[2];
+  N[0] = (float)n[0]; N[1] = (float)n[1]; N[2] = (float)n[2];
+  m->uv[2 * i] = (float)u; m->uv[2 * i + 1] = (float)v;
+  m->col[i] = (uint16_t)col;
+  m->twosided[i] = (uint8_t)twosided;
+  return (uint32_t)i;
+}
+/* Appends a triangle (room must have been reserved). */
+static inline void lsys_mesh_tri (lsys_mesh *m, uint32_t a, uint32_t b, uint32_t c) {
+  uint32_t *t = m->tri + 3 * m->nt++;
+  t[0] = a; t[1] = b; t[2] = c;
+}
+/* Appends a line segment from 'a' to 'b'. */
+int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
+                    double w0, double w1, unsigned col);
+
+/* Axis-aligned bounds of all vertices and line ends: lo[3], hi[3].
+** Returns 0 (and lo = hi = 0) for an empty mesh, else 1. */
+int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]);
+
+/* Fills a material from an RGB colour (diffuse), with the default ambient
+** and no specular highlight. */
+void lsys_material_color (lsys_material *mt, double r, double g, double b);
+
+/*
+** Export writers. 'pal' has 'npal' materials (npal may be 0: a grey
+** default). Formats: Wavefront OBJ with a .mtl next to it (same base name),
+** binary little-endian PLY with per-vertex normals and colours, glTF 2.0
+** binary (.glb) with one primitive per material, lines as LINES
+** primitives. Return LSYS_OK or an error with e->msg naming the file.
+*/
+int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                        const char *path, lsys_error *e);
+int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                        const char *path, lsys_error *e);
+int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                        const char *path, lsys_error *e);
+
+#endif
