@@ -772,6 +772,55 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
   return st;
 }
 
+/* Streaming homomorphism: the turtle asks for one module at a time. */
+int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
+  lsys_ruleset *set;
+  int hasctx = 0;
+  m->hsrc = NULL;
+  m->depth_hit = 0;
+  if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  set = findset(m, LSYS_HOMO, 0, 0);
+  if (set == NULL || set->nlist == 0 || m->maxdepth[LSYS_HOMO] < 1) return 0;
+  if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
+    return fail(m, LSYS_ENOMEM, 0);
+  if (hasctx) {
+    int st = buildtables(m, src);
+    if (st != LSYS_OK) return fail(m, st, 0);
+  }
+  m->hsrc = src;
+  m->hctx = hasctx;
+  m->hkeep = m->cur;
+  m->cur = &m->hrng;
+  return 1;
+}
+
+int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
+  lsys_ruleset *sets[1];
+  const lsys_lstring *src = m->hsrc;
+  uint16_t code;
+  uint32_t sym;
+  view v;
+  int st;
+  if (src == NULL || i >= src->n) return 0;
+  code = src->code[i];
+  sym = LSYS_CSYM(code);
+  sets[0] = findset(m, LSYS_HOMO, 0, 0);
+  if (sym >= sets[0]->nsym || sets[0]->start[sym] == sets[0]->start[sym + 1]) return 0;
+  memset(&v, 0, sizeof v);
+  v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
+  v.skip = findskip(m, 0);
+  if (m->hctx) { v.match = m->match; v.poff = m->poff; }
+  lsys_lstring_clear(out);
+  st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, src->par + poff, 0, out);
+  if (st < 0) return fail(m, st, i);
+  return 1;
+}
+
+void lsys_homo_end (lsys_model *m) {
+  if (m->hsrc != NULL) m->cur = m->hkeep;
+  m->hsrc = NULL;
+}
+
 int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   long sz;

@@ -105,6 +105,9 @@ typedef struct lsys_model {
   long cur_rule;               /* index in rules[] being evaluated, or -1 */
   size_t cur_index;            /* module index being rewritten */
   int depth_hit;               /* a depth limit stopped an applicable rule */
+  const lsys_lstring *hsrc;    /* streaming homomorphism: the string, its tables */
+  int hctx;
+  lsys_rng *hkeep;
   lsys_error err;
 } lsys_model;
 
@@ -142,5 +145,17 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst);
 /* Applies the rules of 'kind' (LSYS_HOMO or LSYS_DECOMP) to every module
 ** of 'src' recursively within m->maxdepth[kind], into 'dst'. */
 int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst);
+
+/*
+** The homomorphism one module at a time, for the turtle (no expanded copy).
+** lsys_homo_begin prepares 'src' (which must not change until
+** lsys_homo_end); it returns 1, 0 when there is no homomorphism, or an
+** error code. lsys_homo_module expands module 'i' (parameters at 'poff')
+** into 'out' and returns 1, or 0 when no homomorphism rule is for its
+** symbol (the module stands for itself), or an error code with m->err set.
+*/
+int lsys_homo_begin (lsys_model *m, lsys_lstring *src);
+int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out);
+void lsys_homo_end (lsys_model *m);
 
 #endif

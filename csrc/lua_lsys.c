@@ -413,23 +413,40 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
 }
 
 /* Runs a core operation with the callback wired to this Lua state. */
-static int run (lua_State *L, lrules *R, int what, lsys_lstring *src, lsys_lstring *dst) {
-  int st, keepidx = R->fnidx;
-  lua_State *keepL = R->L;
-  lua_getiuservalue(L, 1, UV_FNS);
+/* What lsys_rules_bind saved. */
+typedef struct lbind { lrules *R; lua_State *L; int fnidx; } lbind;
+
+lsys_model *lsys_rules_bind (lua_State *L, int idx, void *saved) {
+  lrules *R = checkrules(L, idx);
+  lbind *b = (lbind *)saved;
+  idx = lua_absindex(L, idx);
+  b->R = R; b->L = R->L; b->fnidx = R->fnidx;
+  lua_getiuservalue(L, idx, UV_FNS);
   R->L = L;
   R->fnidx = lua_gettop(L);
   R->m.fn = rulefn;
   R->m.fnud = R;
   R->m.cur_rule = -1;
   lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing");   /* restored after */
-  lua_pushvalue(L, 1);                              /* the rules producing now */
+  lua_pushvalue(L, idx);                            /* the rules producing now */
   lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
-  st = what < 0 ? lsys_derive_step(&R->m, src, dst) : lsys_expand(&R->m, what, src, dst);
-  R->L = keepL;
-  R->fnidx = keepidx;
+  return &R->m;
+}
+
+void lsys_rules_unbind (lua_State *L, void *saved) {
+  lbind *b = (lbind *)saved;
+  b->R->L = b->L;
+  b->R->fnidx = b->fnidx;
   lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
   lua_pop(L, 1);
+}
+
+static int run (lua_State *L, lrules *R, int what, lsys_lstring *src, lsys_lstring *dst) {
+  int st;
+  lbind b;
+  lsys_rules_bind(L, 1, &b);
+  st = what < 0 ? lsys_derive_step(&R->m, src, dst) : lsys_expand(&R->m, what, src, dst);
+  lsys_rules_unbind(L, &b);
   if (st != LSYS_OK) {
     lua_pushfstring(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : R->m.err.msg);
     return lua_error(L);

@@ -32,6 +32,15 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e);
 /* Reads a list of module names separated by white space into 'd'. */
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 
+/* Makes the rule functions of the Rules userdata at 'idx' callable from C
+** (for the homomorphism while the turtle runs) and returns its model.
+** Pushes two values; lsys_rules_unbind pops them. 'saved' points to at
+** least LSYS_BIND_SIZE bytes. */
+#define LSYS_BIND_SIZE 32
+struct lsys_model;
+struct lsys_model *lsys_rules_bind (lua_State *L, int idx, void *saved);
+void lsys_rules_unbind (lua_State *L, void *saved);
+
 #define SCENE_T "lsys.Scene"
 
 /* The mesh and palette of the lsys.Scene at 'idx' (raises when it is not a

@@ -7,7 +7,8 @@
 --   lsys                      the REPL (lsys.repl)
 --   lsys FILE.lua [ARGS]      run a Lua script, like `lua FILE.lua ARGS`
 --   lsys derive [MODEL] ...   derive a model; print the L-string or its statistics
---   lsys render / export      not in this build yet (rendering arrives with issue 3)
+--   lsys render [MODEL] ...   derive, interpret and render a model to PNG (headless, OSMesa)
+--   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local G = _G
@@ -26,8 +27,8 @@ usage: lsys [COMMAND] [ARGS]
   lsys                        start the REPL, with `lsys` loaded
   lsys FILE.lua [ARGS]        run a Lua script (`-` reads it from stdin), like `lua FILE.lua`
   lsys derive [MODEL] [OPTS]  derive a model; print the L-string or its statistics
-  lsys render [MODEL] [OPTS]  render a model to PNG (not in this build yet)
-  lsys export MODEL -o OUT    export a model's geometry (not in this build yet)
+  lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png)
+  lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -64,17 +65,32 @@ Options:
 ]]
 
 HELP.render = [[
-usage: lsys render [MODEL] [OPTS]
+usage: lsys render [MODEL] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
+                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME] [--progress]
 
-Renders a model to a PNG file. Not available in this build: rendering arrives with issue 3.
-Meanwhile `lsys derive MODEL --stats` derives a model and prints its statistics.
+Derives MODEL (a Lua file returning a model, or an example name as for `lsys derive`),
+interprets it with the turtle and renders it headless (OSMesa) to a PNG file. Without MODEL,
+renders the default example (examples/default.lua) to tree.png.
+
+Options:
+  -o, --output OUT   the PNG file (default: tree.png for the default model, else the
+                     model's file name with .png, in the current directory)
+  --size WxH         picture size in pixels (default 800x800)
+  --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
+  --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
+                     such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
+                     viewpoint=0,10,40, background=1,1,1, supersample=2, ...
+  -h, --help         show this help
 ]]
 
 HELP.export = [[
-usage: lsys export MODEL -o OUT
+usage: lsys export MODEL -o OUT.{obj,ply,glb} [--steps N] [--seed S] [--set NAME=VALUE]...
+                   [--view NAME=VALUE]... [--name NAME] [--progress]
 
-Exports a model's geometry to OUT (.obj, .ply or .glb). Not available in this build: geometry
-arrives with issue 3.
+Derives and interprets MODEL and writes its geometry: Wavefront OBJ (with a .mtl file next
+to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT.
+
+Options: as for `lsys render`; -o is required.
 ]]
 
 HELP.repl = [[
@@ -295,6 +311,12 @@ local DERIVE_OPTS = {
   stats = "flag", progress = "flag", help = "flag", short = { h = "help" },
 }
 
+local RENDER_OPTS = {
+  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+  output = "value", size = "value", progress = "flag", help = "flag",
+  short = { h = "help", o = "output" },
+}
+
 -- The number of each module name in 's', as a sorted list of { name, count }.
 local function module_counts (s)
   local counts = {}
@@ -310,28 +332,48 @@ local function module_counts (s)
   return list
 end
 
-function commands.derive (args)
-  local opts, pos = parse("derive", DERIVE_OPTS, args, 2)
-  if opts.help then out(HELP.derive) return 0 end
-  if #pos > 1 then usage("derive", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
+-- A value given on the command line: a number, a list of numbers (1,2,3), a boolean, or text.
+local function value (v)
+  local n = tonumber(v)
+  if n ~= nil then return math.tointeger(n) or n end
+  if v == "true" then return true elseif v == "false" then return false end
+  if v:find("^[-+%d.eE]+,[-+%d.eE,]+$") then
+    local l = {}
+    for x in v:gmatch("[^,]+") do
+      l[#l + 1] = tonumber(x)
+      if l[#l] == nil then return v end
+    end
+    return l
+  end
+  return v
+end
+
+-- Loads the model named by the positional arguments and applies --steps --seed --set.
+local function prepare (cmd, opts, pos)
+  if #pos > 1 then usage(cmd, "unexpected argument '%s' (one MODEL at most)", pos[2]) end
   local steps, seed
   if opts.steps ~= nil then
     steps = math.tointeger(tonumber(opts.steps))
     if steps == nil or steps < 0 then
-      usage("derive", "--steps expects a non-negative integer, got '%s'", opts.steps)
+      usage(cmd, "--steps expects a non-negative integer, got '%s'", opts.steps)
     end
   end
   if opts.seed ~= nil then
     seed = tonumber(opts.seed)
-    if seed == nil then usage("derive", "--seed expects a number, got '%s'", opts.seed) end
+    if seed == nil then usage(cmd, "--seed expects a number, got '%s'", opts.seed) end
     seed = math.tointeger(seed) or seed
   end
   local sets = {}
   for _, s in ipairs(opts.set or {}) do
     local k, v = s:match("^([%a_][%w_]*)=(.*)$")
-    if k == nil then usage("derive", "--set expects NAME=VALUE, got '%s'", s) end
-    local n = tonumber(v)
-    sets[#sets + 1] = { k, n ~= nil and (math.tointeger(n) or n) or v }
+    if k == nil then usage(cmd, "--set expects NAME=VALUE, got '%s'", s) end
+    sets[#sets + 1] = { k, value(v) }
+  end
+  local views = {}
+  for _, s in ipairs(opts.view or {}) do
+    local k, v = s:match("^([%a_][%w_]*)=(.*)$")
+    if k == nil then usage(cmd, "--view expects NAME=VALUE, got '%s'", s) end
+    views[k] = value(v)
   end
 
   local path = find_model(pos[1])
@@ -342,18 +384,28 @@ function commands.derive (args)
     if model.env == nil then model.env = {} end
     for _, kv in ipairs(sets) do model.env[kv[1]] = kv[2] end
   end
+  return model, path, views
+end
 
-  local t0 = clock()
-  local s
+-- Derives the model, with progress on stderr when asked or when stderr is a terminal.
+local function derive (model, opts)
   if opts.progress or isatty(2) then
     local function progress (step, nsteps, nmodules)
       io.stderr:write(format("step %d/%d: %d modules\n", step, nsteps, nmodules))
       io.stderr:flush()
     end
-    s = model:derive(model.steps, { progress = progress })
-  else
-    s = model:derive()
+    return model:derive(model.steps, { progress = progress })
   end
+  return model:derive()
+end
+
+function commands.derive (args)
+  local opts, pos = parse("derive", DERIVE_OPTS, args, 2)
+  if opts.help then out(HELP.derive) return 0 end
+  local model = prepare("derive", opts, pos)
+
+  local t0 = clock()
+  local s = derive(model, opts)
   local elapsed = clock() - t0
 
   if not opts.stats then
@@ -370,19 +422,68 @@ function commands.derive (args)
   return 0
 end
 
-local function not_built (cmd, what)
-  return function (args)
-    for i = 2, args.n do
-      if args[i] == "--" then break end
-      if args[i] == "-h" or args[i] == "--help" then out(HELP[cmd]) return 0 end
-    end
-    io.stderr:write(format("lsys: %s: %s is not available in this build (issue 3)\n", cmd, what))
-    return 1
+-- Derives and interprets the model of a render or export command line.
+local function scene_of (cmd, opts, pos)
+  local model, path, views = prepare(cmd, opts, pos)
+  local verbose = opts.progress or isatty(2)
+  local s = derive(model, opts)
+  local t0 = clock()
+  local scene = model:interpret(s, views)
+  if verbose then
+    io.stderr:write(format("interpreted %d modules: %d triangles, %d lines (%.2f s)\n", #s,
+      scene.ntriangles, scene.nlines, clock() - t0))
   end
+  return scene, path, views, verbose
 end
 
-commands.render = not_built("render", "rendering")
-commands.export = not_built("export", "export")
+function commands.render (args)
+  local opts, pos = parse("render", RENDER_OPTS, args, 2)
+  if opts.help then out(HELP.render) return 0 end
+  local w, h = 800, 800
+  if opts.size ~= nil then
+    w, h = opts.size:match("^(%d+)[xX](%d+)$")
+    w, h = tonumber(w), tonumber(h)
+    if w == nil or w < 1 or h < 1 or w > 16384 or h > 16384 then
+      usage("render", "--size expects WxH (1 to 16384 each), got '%s'", opts.size)
+    end
+  end
+  local outpath = opts.output
+  if outpath == nil then
+    outpath = pos[1] == nil and "tree.png" or (pos[1]:match("([^/]-)%.?[^./]*$") .. ".png")
+    if outpath == ".png" then outpath = "model.png" end
+  end
+  if not outpath:lower():find("%.png$") then
+    usage("render", "the output must be a .png file, got '%s'", outpath)
+  end
+  local scene, _, _, verbose = scene_of("render", opts, pos)
+  local lsys = require "lsys"
+  local t0 = clock()
+  lsys.render(scene, { out = outpath, width = w, height = h })
+  if verbose then
+    io.stderr:write(format("rendered %dx%d in %.2f s\n", w, h, clock() - t0))
+  end
+  out(format("wrote %s (%dx%d, %d triangles, %d lines)\n", outpath, w, h, scene.ntriangles,
+    scene.nlines))
+  return 0
+end
+
+function commands.export (args)
+  local opts, pos = parse("export", RENDER_OPTS, args, 2)
+  if opts.help then out(HELP.export) return 0 end
+  if opts.size ~= nil then usage("export", "--size applies to render only") end
+  if #pos == 0 then usage("export", "a MODEL is required") end
+  local outpath = opts.output
+  if outpath == nil then usage("export", "-o OUT.obj, OUT.ply or OUT.glb is required") end
+  local ext = outpath:lower():match("%.(%w+)$")
+  if ext ~= "obj" and ext ~= "ply" and ext ~= "glb" then
+    usage("export", "the output must end in .obj, .ply or .glb, got '%s'", outpath)
+  end
+  local scene = scene_of("export", opts, pos)
+  scene:save(outpath)
+  out(format("wrote %s (%d vertices, %d triangles, %d lines)\n", outpath, scene.nvertices,
+    scene.ntriangles, scene.nlines))
+  return 0
+end
 
 function commands.repl (args)
   local opts = parse("repl", { help = "flag", short = { h = "help" } }, args, 2)

@@ -3,11 +3,12 @@
 -- @module lsys
 local core = require "lsys.core"
 local grammar = require "lsys.grammar"
+local view = require "lsys.view"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io =
+      select, rawget, math, string, table, debug, _G, io, next =
       type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io
+      select, rawget, math, string, table, debug, _G, io, next
 local format, concat = string.format, table.concat
 local function io_warn (msg) io.stderr:write(msg, "\n") end
 local _ENV = nil
@@ -30,6 +31,7 @@ M.nproduce = core.nproduce
 M.ran = core.ran       -- ran(x), nran(m, sd) for rule functions: the deriving model's generator
 M.nran = core.nran
 M.version = "0.1.0"
+M.view = view
 
 local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
 local LSTRING_MT = getmetatable(core.lstring(""))
@@ -56,7 +58,7 @@ local OPTIONS = {
   homomorphism = "rules", max_depth = "table", ring = "boolean", sub = "table",
   groups = "table", start = "function", start_each = "function", end_each = "function",
   finish = "function", max_modules = "number", view = "table", name = "string",
-  homomorphism_seed = "number", allow_system_calls = "boolean",
+  homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
 }
 
 local Model = {}
@@ -104,6 +106,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
                             trees = trees }
     if spec.fn then self._fns[idx + 1] = spec.fn end
+    if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
   end
 end
 
@@ -136,6 +139,7 @@ function M.lsystem (opts)
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
+    system_call = opts.system_call,
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
@@ -189,6 +193,8 @@ function M.lsystem (opts)
     local ok = pcall(rules.config, rules, "depth_" .. k, d)
     if not ok then fail(format("max_depth.%s must be a whole number from 0 to 1024", k)) end
   end
+  view.normalize(opts.view, where or "model")     -- a bad view fails at definition
+  if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ax, msg, pos = rules:parse(self.axiom, "successor")
   if not ax then fail(format("axiom '%s': %s at character %d", self.axiom, msg, pos)) end
@@ -295,9 +301,14 @@ end
 
 -- Runs a core call; turns a failure into a message naming rule and module.
 function Model:_core (what, ...)
+  return self:_call(self._rules[what], what, self._rules, ...)
+end
+
+-- Runs fn(...), which may call rule functions; errors as for _core.
+function Model:_call (fn, what, ...)
   local rules = self._rules
   local producing = core.producing()
-  local ok, res = pcall(rules[what], rules, ...)
+  local ok, res = pcall(fn, ...)
   if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
@@ -349,6 +360,7 @@ function Model:derive (n, opts)
       self.start_each(self, k)
       self:_bind()
     end
+    if self._queries then self:_query(s) end
     local t = self:_core("step", s, spare)
     spare = nil
     if self.end_each then
@@ -365,6 +377,7 @@ function Model:derive (n, opts)
     s = t
   end
   if spare then LSTRING_MT.__close(spare) end
+  if self._queries then self:_query(s) end       -- the final string gets its pass too
   if self.finish then
     local r = self.finish(self, s)
     if r ~= nil then
@@ -381,6 +394,9 @@ function Model:step (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not M.islstring(s) then error("step: an Lstring expected", 2) end
   self:_bind()
+  if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
+    self:_query(s)
+  end
   return self:_core("step", s)
 end
 
@@ -391,6 +407,77 @@ function Model:expand (s)
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
   return self:_core("expand", s, HOMO)
+end
+
+-- The view of the model with `over` merged in, checked, defaults filled.
+function Model:_view (over)
+  return view.normalize(over and view.merge(self.view, over) or self.view, self._where)
+end
+
+-- Fills the query modules ?P ?H ?U ?L of `s` in place from an interpretation
+-- (cpfg: productions at step n see the values of string n-1).
+function Model:_query (s)
+  local opts = view.turtle(self:_view(), self.allow_system_calls)
+  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  return self:_call(core.query, "interpret", self._rules, s, opts)
+end
+
+local scene_views = setmetatable({}, { __mode = "k" })   -- scene -> its normalised view
+
+--- Interprets `s` (an Lstring or text; default: `self:derive()`) with the turtle and
+-- returns an lsys.Scene. `over` replaces fields of the model's view for this call.
+function Model:interpret (s, over)
+  if s == nil then s = self:derive()
+  elseif type(s) == "string" then s = self:lstring(s) end
+  if not M.islstring(s) then error("interpret: an Lstring expected", 2) end
+  if over ~= nil and type(over) ~= "table" then error("interpret: a view table expected", 2) end
+  local v = self:_view(over)
+  self:_bind()
+  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  local scene = self:_call(core.interpret, "interpret", self._rules, s,
+                           view.turtle(v, self.allow_system_calls))
+  scene_views[scene] = v
+  if self.allow_system_calls and self.system_call then
+    for _, r in scene:records() do
+      if r.kind == "system" then self.system_call(r.module, s:module(r.module)) end
+    end
+  end
+  return scene
+end
+
+local SCENE_MT = debug.getregistry()["lsys.Scene"]
+
+--- True when `x` is an lsys.Scene.
+function M.isscene (x) return getmetatable(x) == SCENE_MT end
+
+--- Renders `x` (a Scene, or a Model: derived and interpreted) to a PNG file.
+-- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
+-- width and height), width, height (800), and view fields (camera, background, light,
+-- supersample) that replace the scene's view for this picture; `opts.view` may hold them.
+function M.render (x, opts)
+  opts = opts or {}
+  if type(opts) ~= "table" then error("lsys.render: an options table expected", 2) end
+  if getmetatable(x) == Model then x = x:interpret() end
+  if not M.isscene(x) then error("lsys.render: a Scene or a Model expected", 2) end
+  local over = {}
+  for k, val in pairs(opts.view or {}) do over[k] = val end
+  for k, val in pairs(opts) do
+    if view.KINDS[k] then over[k] = val
+    elseif k ~= "out" and k ~= "width" and k ~= "height" and k ~= "view" then
+      error(format("lsys.render: unknown option '%s'", tostring(k)), 2)
+    end
+  end
+  local v = scene_views[x] or view.normalize({}, "lsys.render")
+  if next(over) then
+    local ok, r = pcall(view.normalize, view.merge(v, over), "lsys.render")
+    if not ok then error(r, 2) end
+    v = r
+  end
+  local ro = view.render(v)
+  ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
+  local ok, a, b, c = pcall(core.render, x, ro)
+  if not ok then error(a, 2) end
+  return a, b, c
 end
 
 --- Selects the rule group `n` (0 = only the productions, always active).

@@ -1,0 +1,510 @@
+/*
+** Binding of the turtle and of lsys.Scene (DESIGN.md §1, §6): interpret an
+** Lstring into a scene, fill query modules, read turtle states back.
+**
+**   core.interpret(rules, lstring, opts) -> Scene
+**   core.query(rules, lstring, opts)     -> number of query modules filled
+**   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
+**
+** 'opts' is the normalised view (lua/lsys/view.lua): angle, step, width,
+** width_increment, color, color_increment, style, sides, allow_system_calls,
+** homomorphism, tropisms = {{vector=, angle=, elasticity=, increment=,
+** torque=}}, palette = {[0]=material, material, ...} with materials
+** {diffuse={r,g,b[,a]}, ambient=, specular=, emission=, shininess=}.
+*/
+#include <math.h>
+#include <string.h>
+
+#include "lua_lsys.h"
+#include "derive.h"
+#include "turtle.h"
+
+/* uservalues of a Scene */
+enum { SV_RULES = 1, SV_LSTRING = 2, SV_OPTS = 3, NSV = 3 };
+
+typedef struct lscene {
+  lsys_mesh mesh;
+  lsys_material *pal;
+  size_t npal;
+  lsys_trec *rec;
+  size_t nrec;
+  int inited;
+} lscene;
+
+#define checkscene(L, i) ((lscene *)luaL_checkudata(L, (i), SCENE_T))
+
+/* ---------------------------------------------------------------------- */
+/* options */
+
+static double optnum (lua_State *L, int t, const char *k, double def) {
+  double x = def;
+  int ty = lua_getfield(L, t, k);
+  if (ty != LUA_TNIL) {
+    int ok;
+    x = lua_tonumberx(L, -1, &ok);
+    if (!ok || !isfinite(x))
+      luaL_error(L, "view option '%s' must be a finite number, got %s", k,
+                 ok ? "a non-finite number" : luaL_typename(L, -1));
+  }
+  lua_pop(L, 1);
+  return x;
+}
+
+static void optvec (lua_State *L, int t, const char *k, double *v, int n, const char *what) {
+  int i;
+  if (lua_getfield(L, t, k) != LUA_TTABLE)
+    luaL_error(L, "%s: '%s' must be a list of %d numbers", what, k, n);
+  for (i = 0; i < n; i++) {
+    int ok;
+    lua_geti(L, -1, i + 1);
+    v[i] = lua_tonumberx(L, -1, &ok);
+    if (!ok || !isfinite(v[i]))
+      luaL_error(L, "%s: '%s'[%d] must be a finite number", what, k, i + 1);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
+  const char *style;
+  luaL_checktype(L, t, LUA_TTABLE);
+  lsys_turtle_defaults(o);
+  o->angle = optnum(L, t, "angle", o->angle);
+  o->step = optnum(L, t, "step", o->step);
+  o->width = optnum(L, t, "width", o->width);
+  o->dwidth = optnum(L, t, "width_increment", o->dwidth);
+  o->color = (int)optnum(L, t, "color", o->color);
+  o->dcolor = (int)optnum(L, t, "color_increment", o->dcolor);
+  o->sides = (int)optnum(L, t, "sides", o->sides);
+  if (o->sides < 3 || o->sides > 1024)
+    luaL_error(L, "view option 'contour_sides' must be between 3 and 1024, got %d", o->sides);
+  lua_getfield(L, t, "allow_system_calls");
+  o->allow_system = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  lua_getfield(L, t, "style");
+  style = lua_isnil(L, -1) ? "line" : lua_tostring(L, -1);
+  if (style == NULL) luaL_error(L, "view option 'line_style' must be a string");
+  if (strcmp(style, "line") == 0) o->style = LSYS_STYLE_LINE;
+  else if (strcmp(style, "polygon") == 0) o->style = LSYS_STYLE_POLYGON;
+  else if (strcmp(style, "cylinder") == 0) o->style = LSYS_STYLE_CYLINDER;
+  else luaL_error(L, "view option 'line_style' must be \"line\", \"polygon\" or \"cylinder\", "
+                  "got \"%s\"", style);
+  lua_pop(L, 1);
+  if (lua_getfield(L, t, "tropisms") == LUA_TTABLE) {
+    int n = (int)luaL_len(L, -1), k, tt = lua_gettop(L);
+    if (n > LSYS_MAXTROPISMS)
+      luaL_error(L, "the view has %d tropisms and torques; at most %d are supported", n,
+                 LSYS_MAXTROPISMS);
+    for (k = 0; k < n; k++) {
+      lsys_tropism *tp = &o->trop[k];
+      char what[48];
+      snprintf(what, sizeof what, "view tropism %d", k + 1);
+      if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
+      optvec(L, -1, "vector", tp->vec, 3, what);
+      tp->angle = optnum(L, -1, "angle", 0);
+      tp->elasticity = optnum(L, -1, "elasticity", 0);
+      tp->increment = optnum(L, -1, "increment", 0);
+      lua_getfield(L, -1, "torque");
+      tp->torque = lua_toboolean(L, -1);
+      lua_pop(L, 2);
+    }
+    o->ntrop = n;
+  }
+  lua_pop(L, 1);
+}
+
+static void readcolor (lua_State *L, int t, const char *k, float *c, int required) {
+  int i, n;
+  if (lua_getfield(L, t, k) != LUA_TTABLE) {
+    if (required) luaL_error(L, "palette material: '%s' must be a list {r, g, b}", k);
+    lua_pop(L, 1);
+    return;
+  }
+  n = (int)luaL_len(L, -1);
+  if (n < 3 || n > 4) luaL_error(L, "palette material: '%s' must have 3 or 4 components", k);
+  for (i = 0; i < n; i++) {
+    int ok;
+    lua_geti(L, -1, i + 1);
+    c[i] = (float)lua_tonumberx(L, -1, &ok);
+    if (!ok || !(c[i] >= 0 && c[i] <= 1))
+      luaL_error(L, "palette material: '%s'[%d] must be a number in [0, 1]", k, i + 1);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+/* palette = {[0] = m0, m1, m2, ...}: index c uses entry c % n */
+static void readpalette (lua_State *L, int t, lscene *S) {
+  lua_Integer n, k;
+  if (lua_getfield(L, t, "palette") != LUA_TTABLE) {
+    lua_pop(L, 1);
+    S->pal = (lsys_material *)LSYS_MALLOC(sizeof *S->pal);
+    if (S->pal == NULL) luaL_error(L, "not enough memory");
+    lsys_material_color(S->pal, 0.6, 0.6, 0.6);
+    S->npal = 1;
+    return;
+  }
+  n = luaL_len(L, -1) + 1;
+  if (n > 65536) luaL_error(L, "the palette has more than 65536 entries");
+  S->pal = (lsys_material *)LSYS_MALLOC((size_t)n * sizeof *S->pal);
+  if (S->pal == NULL) luaL_error(L, "not enough memory");
+  S->npal = (size_t)n;
+  for (k = 0; k < n; k++) {
+    lsys_material *m = &S->pal[k];
+    lsys_material_color(m, 0.6, 0.6, 0.6);
+    if (lua_geti(L, -1, k) != LUA_TTABLE) {
+      if (k == 0) { lua_pop(L, 1); continue; }
+      luaL_error(L, "palette entry %d must be a material table", (int)k);
+    }
+    readcolor(L, -1, "diffuse", m->diffuse, 1);
+    m->ambient[0] = 0.3f * m->diffuse[0];
+    m->ambient[1] = 0.3f * m->diffuse[1];
+    m->ambient[2] = 0.3f * m->diffuse[2];
+    m->ambient[3] = m->diffuse[3];
+    readcolor(L, -1, "ambient", m->ambient, 0);
+    readcolor(L, -1, "specular", m->specular, 0);
+    readcolor(L, -1, "emission", m->emission, 0);
+    m->shininess = (float)optnum(L, -1, "shininess", m->shininess);
+    if (m->shininess < 0 || m->shininess > 128)
+      luaL_error(L, "palette entry %d: shininess must be in [0, 128]", (int)k);
+    lua_pop(L, 1);
+  }
+  if (S->pal[0].diffuse[0] == 0.6f && n > 1) {   /* no [0]: use entry 1 */
+    lua_geti(L, -1, 0);
+    if (lua_isnil(L, -1)) S->pal[0] = S->pal[1];
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+/* ---------------------------------------------------------------------- */
+/* running the turtle with the homomorphism streamed from the rules */
+
+typedef struct expander { lsys_model *m; } expander;
+
+static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_error *e) {
+  expander *x = (expander *)ud;
+  int st = lsys_homo_module(x->m, i, poff, out);
+  if (st < 0) *e = x->m->err;
+  return st;
+}
+
+/* Runs the turtle over the Lstring at 2 with the rules at 1 and options at
+** 'opt'. Raises on error (after cleaning up). */
+static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int opt) {
+  lsys_lstring *s = checklstring(L, 2);
+  double saved[LSYS_BIND_SIZE / sizeof(double)];
+  expander x;
+  int st, homo;
+  readopts(L, opt, o);
+  lua_getfield(L, opt, "homomorphism");
+  homo = lua_isnil(L, -1) || lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  t->o = o;
+  x.m = lsys_rules_bind(L, 1, saved);
+  st = homo ? lsys_homo_begin(x.m, s) : 0;
+  if (st > 0) { t->expand = expandfn; t->expandud = &x; st = LSYS_OK; }
+  if (st == LSYS_OK) st = lsys_turtle_run(t, s, lsys_getalphabet(L));
+  else t->err = x.m->err;
+  lsys_homo_end(x.m);
+  lsys_rules_unbind(L, saved);
+  if (st != LSYS_OK) {
+    char msg[300];
+    snprintf(msg, sizeof msg, "%s", st == LSYS_ENOMEM ? "not enough memory" : t->err.msg);
+    lsys_turtle_free(t);
+    luaL_error(L, "%s", msg);
+  }
+}
+
+/* core.interpret(rules, lstring, opts) -> Scene */
+static int l_interpret (lua_State *L) {
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  lscene *S;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  lua_settop(L, 3);
+  S = (lscene *)lua_newuserdatauv(L, sizeof *S, NSV);      /* 4 */
+  memset(S, 0, sizeof *S);
+  luaL_setmetatable(L, SCENE_T);
+  lsys_mesh_init(&S->mesh);
+  S->inited = 1;
+  readpalette(L, 3, S);
+  lsys_turtle_init(&t);
+  t.mode = LSYS_TURTLE_DRAW;
+  t.mesh = &S->mesh;
+  turtlerun(L, &t, &o, 3);
+  S->rec = t.rec; S->nrec = t.nrec;                     /* the scene keeps the records */
+  t.rec = NULL; t.reccap = 0;
+  lsys_turtle_free(&t);
+  lua_pushvalue(L, 1); lua_setiuservalue(L, 4, SV_RULES);
+  lua_pushvalue(L, 2); lua_setiuservalue(L, 4, SV_LSTRING);
+  lua_pushvalue(L, 3); lua_setiuservalue(L, 4, SV_OPTS);
+  lua_gc(L, LUA_GCSTEP, (int)((S->mesh.nv * 41 + S->mesh.nt * 12 + S->nrec * 96) >> 10));
+  lua_settop(L, 4);
+  return 1;
+}
+
+/* core.query(rules, lstring, opts) -> number of query modules filled */
+static int l_query (lua_State *L) {
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  size_t n;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  lua_settop(L, 3);
+  lsys_turtle_init(&t);
+  t.mode = LSYS_TURTLE_QUERY;
+  turtlerun(L, &t, &o, 3);
+  n = t.nqueries;
+  lsys_turtle_free(&t);
+  lua_pushinteger(L, (lua_Integer)n);
+  return 1;
+}
+
+static void pushvec (lua_State *L, const double *v) {
+  int k;
+  lua_createtable(L, 3, 0);
+  for (k = 0; k < 3; k++) { lua_pushnumber(L, v[k]); lua_rawseti(L, -2, k + 1); }
+}
+
+static void pushvecf (lua_State *L, const float *v) {
+  double d[3] = {v[0], v[1], v[2]};
+  pushvec(L, d);
+}
+
+/* core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U, width, color */
+static int l_turtle_state (lua_State *L) {
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  lsys_lstring *s = checklstring(L, 2);
+  lua_Integer i = luaL_checkinteger(L, 3);
+  luaL_argcheck(L, i >= 0 && (size_t)i <= s->n, 3, "module index out of range");
+  luaL_checktype(L, 4, LUA_TTABLE);
+  lua_settop(L, 4);
+  lsys_turtle_init(&t);
+  t.mode = LSYS_TURTLE_STATE;
+  t.stop = (size_t)i;
+  turtlerun(L, &t, &o, 4);
+  pushvec(L, t.state.pos);
+  pushvec(L, t.state.H);
+  pushvec(L, t.state.L);
+  pushvec(L, t.state.U);
+  lua_pushnumber(L, t.state.width);
+  lua_pushinteger(L, t.state.color);
+  lsys_turtle_free(&t);
+  return 6;
+}
+
+/* ---------------------------------------------------------------------- */
+/* Scene */
+
+const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **pal,
+                                  size_t *npal) {
+  lscene *S = checkscene(L, idx);
+  if (!S->inited) luaL_error(L, "the scene was freed");
+  if (pal) *pal = S->pal;
+  if (npal) *npal = S->npal;
+  return &S->mesh;
+}
+
+static int scene_gc (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  if (S->inited) {
+    lsys_mesh_free(&S->mesh);
+    LSYS_FREE(S->pal);
+    LSYS_FREE(S->rec);
+    S->inited = 0;
+  }
+  return 0;
+}
+
+static size_t countrec (const lscene *S, int kind) {
+  size_t k, n = 0;
+  for (k = 0; k < S->nrec; k++) n += S->rec[k].kind == kind;
+  return n;
+}
+
+static int scene_index (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  const char *k = luaL_checkstring(L, 2);
+  if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nt);
+  else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nv);
+  else if (strcmp(k, "nlines") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nl);
+  else if (strcmp(k, "nrecords") == 0) lua_pushinteger(L, (lua_Integer)S->nrec);
+  else if (strcmp(k, "nsegments") == 0)
+    lua_pushinteger(L, (lua_Integer)countrec(S, LSYS_REC_SEGMENT));
+  else if (strcmp(k, "lstring") == 0) lua_getiuservalue(L, 1, SV_LSTRING);
+  else {
+    lua_getmetatable(L, 1);
+    lua_getfield(L, -1, "__methods");
+    lua_getfield(L, -1, k);
+  }
+  return 1;
+}
+
+static int scene_tostring (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  lua_pushfstring(L, "lsys.Scene: %d triangles, %d line segments, %d turtle records",
+                  (int)S->mesh.nt, (int)S->mesh.nl, (int)S->nrec);
+  return 1;
+}
+
+/* scene:bounds() -> {xmin, ymin, zmin}, {xmax, ymax, zmax} (nil when empty) */
+static int scene_bounds (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  double lo[3], hi[3];
+  if (!lsys_mesh_bounds(&S->mesh, lo, hi)) { lua_pushnil(L); return 1; }
+  pushvec(L, lo);
+  pushvec(L, hi);
+  return 2;
+}
+
+/* scene:area() -> total area of the triangles */
+static int scene_area (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  const lsys_mesh *m = &S->mesh;
+  double a = 0;
+  size_t k;
+  for (k = 0; k < m->nt; k++) {
+    const float *p = m->pos + 3 * m->tri[3 * k], *q = m->pos + 3 * m->tri[3 * k + 1],
+                *r = m->pos + 3 * m->tri[3 * k + 2];
+    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                   u[0] * v[1] - u[1] * v[0]};
+    a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  }
+  lua_pushnumber(L, a);
+  return 1;
+}
+
+static const char *const kindname[] = {
+  "none", "segment", "sphere", "disc", "polygon", "label", "system"
+};
+
+static void pushrecord (lua_State *L, const lsys_trec *r) {
+  lua_createtable(L, 0, 12);
+  lua_pushstring(L, kindname[r->kind < 7 ? r->kind : 0]); lua_setfield(L, -2, "kind");
+  lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
+  if (r->parent != LSYS_NOREC) {
+    lua_pushinteger(L, (lua_Integer)r->parent + 1);
+    lua_setfield(L, -2, "parent");
+  }
+  pushvecf(L, r->p0); lua_setfield(L, -2, "p0");
+  pushvecf(L, r->p1); lua_setfield(L, -2, "p1");
+  pushvecf(L, r->H); lua_setfield(L, -2, "H");
+  pushvecf(L, r->L); lua_setfield(L, -2, "L");
+  pushvecf(L, r->U); lua_setfield(L, -2, "U");
+  lua_pushnumber(L, r->w0); lua_setfield(L, -2, "w0");
+  lua_pushnumber(L, r->w1); lua_setfield(L, -2, "w1");
+  lua_pushinteger(L, r->color); lua_setfield(L, -2, "color");
+  if (r->hasstiff) { pushvecf(L, r->stiff); lua_setfield(L, -2, "stiffness"); }
+}
+
+/* scene:record(k) -> table for turtle record k (1-based), or nil */
+static int scene_record (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2);
+  if (k < 1 || (size_t)k > S->nrec) { lua_pushnil(L); return 1; }
+  pushrecord(L, &S->rec[k - 1]);
+  return 1;
+}
+
+static int records_iter (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2) + 1;
+  if (k < 1 || (size_t)k > S->nrec) return 0;
+  lua_pushinteger(L, k);
+  pushrecord(L, &S->rec[k - 1]);
+  return 2;
+}
+
+/* for k, rec in scene:records() do ... end */
+static int scene_records (lua_State *L) {
+  checkscene(L, 1);
+  lua_pushcfunction(L, records_iter);
+  lua_pushvalue(L, 1);
+  lua_pushinteger(L, 0);
+  return 3;
+}
+
+/* scene:find(module) -> index of the first record of module i (1-based), or nil */
+static int scene_find (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  lua_Integer m = luaL_checkinteger(L, 2);
+  size_t k;
+  for (k = 0; k < S->nrec; k++)
+    if ((lua_Integer)S->rec[k].module + 1 == m) { lua_pushinteger(L, (lua_Integer)k + 1); return 1; }
+  lua_pushnil(L);
+  return 1;
+}
+
+/* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
+static int scene_turtle (lua_State *L) {
+  checkscene(L, 1);
+  lua_Integer i = luaL_checkinteger(L, 2);
+  lua_settop(L, 2);
+  lua_pushcfunction(L, l_turtle_state);
+  lua_getiuservalue(L, 1, SV_RULES);
+  lua_getiuservalue(L, 1, SV_LSTRING);
+  lua_pushinteger(L, i);
+  lua_getiuservalue(L, 1, SV_OPTS);
+  lua_call(L, 4, 6);
+  return 6;
+}
+
+/* scene:save(path) -> true; .obj (+ .mtl), .ply, .glb */
+static int scene_save (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  size_t len;
+  const char *path = luaL_checklstring(L, 2, &len), *ext = strrchr(path, '.');
+  lsys_error e;
+  int st;
+  memset(&e, 0, sizeof e);
+  if (ext != NULL && strcmp(ext, ".obj") == 0)
+    st = lsys_mesh_save_obj(&S->mesh, S->pal, S->npal, path, &e);
+  else if (ext != NULL && strcmp(ext, ".ply") == 0)
+    st = lsys_mesh_save_ply(&S->mesh, S->pal, S->npal, path, &e);
+  else if (ext != NULL && strcmp(ext, ".glb") == 0)
+    st = lsys_mesh_save_glb(&S->mesh, S->pal, S->npal, path, &e);
+  else
+    return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
+  if (st != LSYS_OK)
+    return luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
+static const luaL_Reg scene_methods[] = {
+  {"bounds", scene_bounds},
+  {"area", scene_area},
+  {"record", scene_record},
+  {"records", scene_records},
+  {"find", scene_find},
+  {"turtle", scene_turtle},
+  {"save", scene_save},
+  {NULL, NULL}
+};
+
+static const luaL_Reg scene_meta[] = {
+  {"__gc", scene_gc},
+  {"__close", scene_gc},
+  {"__index", scene_index},
+  {"__tostring", scene_tostring},
+  {NULL, NULL}
+};
+
+static const luaL_Reg scene_funcs[] = {
+  {"interpret", l_interpret},
+  {"query", l_query},
+  {"turtle_state", l_turtle_state},
+  {NULL, NULL}
+};
+
+void lsys_open_scene (lua_State *L) {
+  luaL_newmetatable(L, SCENE_T);
+  luaL_setfuncs(L, scene_meta, 0);
+  luaL_newlib(L, scene_methods);
+  lua_setfield(L, -2, "__methods");
+  lua_pop(L, 1);
+  luaL_setfuncs(L, scene_funcs, 0);
+}

@@ -1,0 +1,135 @@
+/*
+** The turtle (DESIGN.md §6): interprets an Lstring as drawing commands and
+** writes geometry into a scene (mesh.h) and one record per drawing module.
+**
+** Symbols and their meaning follow seed 004 (Appendix A; §2 discs and
+** spheres; §4.2 polygons; §6 tropisms and twist), with Z(sh,su,sl) joint
+** stiffness from seed 000 and @R from seed 001. Conventions as cpfg
+** (CPFG-NOTES.md): initial H = (0,1,0), L = (-1,0,0), U = (0,0,-1), so
+** that L = H x U and U = L x H; angles in degrees.
+*/
+#ifndef LSYS_TURTLE_H
+#define LSYS_TURTLE_H
+
+#include "lstring.h"
+#include "mesh.h"
+
+#define LSYS_MAXTROPISMS 16
+#define LSYS_NOREC       UINT32_MAX
+
+enum { LSYS_STYLE_LINE = 0, LSYS_STYLE_POLYGON = 1, LSYS_STYLE_CYLINDER = 2 };
+
+/* What a record stands for. */
+enum {
+  LSYS_REC_SEGMENT = 1,   /* F or G: p0 -> p1 */
+  LSYS_REC_SPHERE,        /* @O: centre p0 = p1, diameter w0 */
+  LSYS_REC_DISC,          /* @c, @o */
+  LSYS_REC_POLYGON,       /* }: p0 = first vertex, p1 = last */
+  LSYS_REC_LABEL,         /* @L */
+  LSYS_REC_SYSTEM         /* @S (only when system calls are allowed) */
+};
+
+/* A tropism (seed 004 §6, eq. 1-2) or a torque (§6.1) from the view. */
+typedef struct lsys_tropism {
+  double vec[3];          /* the stimulus direction (normalised when used) */
+  double angle;           /* diatropism angle gamma, degrees (tropisms only) */
+  double elasticity;      /* initial elasticity */
+  double increment;       /* for @Ti / @Td without a value */
+  int torque;             /* 1: twist response (§6.1) */
+} lsys_tropism;
+
+/* The numeric view options the turtle reads. */
+typedef struct lsys_turtle_opts {
+  double angle;           /* angle increment, degrees (90) */
+  double step;            /* step of F f G g without a parameter (1) */
+  double width, dwidth;   /* initial line width (1) and its increment (1) */
+  int color, dcolor;      /* initial colour index (1) and its increment (1) */
+  int style;              /* LSYS_STYLE_* (line) */
+  int sides;              /* contour sides of cylinders, discs, spheres (8) */
+  int allow_system;       /* @S allowed (0) */
+  lsys_tropism trop[LSYS_MAXTROPISMS];
+  int ntrop;
+} lsys_turtle_opts;
+
+void lsys_turtle_defaults (lsys_turtle_opts *o);
+
+/* Everything a record keeps about a drawing module. Single precision: the
+** records of a big plant take ~100 bytes per segment. */
+typedef struct lsys_trec {
+  uint32_t module;        /* index of the module in the string (0-based) */
+  uint32_t parent;        /* record of the segment this one starts from, or LSYS_NOREC */
+  uint8_t kind, hasstiff;
+  uint16_t color;
+  float w0, w1;           /* width at the start and at the end */
+  float p0[3], p1[3];     /* start and end points */
+  float H[3], L[3], U[3]; /* frame at the end */
+  float stiff[3];         /* Z(sh, su, sl) in effect for the joint before it */
+} lsys_trec;
+
+/* The turtle state (seed 004 §1), pushed and popped by [ and ]. */
+typedef struct lsys_tstate {
+  double pos[3], H[3], L[3], U[3];
+  double refH[3], refU[3];      /* frame of the last twist minimisation (§3.3, §6) */
+  double width, scale;
+  double elast[LSYS_MAXTROPISMS];
+  double stiff[3];
+  int color, color2, texture, contour, hasstiff;
+  uint32_t last;                /* last segment record, or LSYS_NOREC */
+  uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
+} lsys_tstate;
+
+/* Expands module 'i' (parameters at 'poff') by the homomorphism into
+** 'out' (cleared by the callee); returns 1 when it did, 0 when the module
+** stands for itself, or a negative LSYS_E* code (message in 'e'). */
+typedef int (*lsys_expandfn) (void *ud, size_t i, size_t poff, lsys_lstring *out,
+                              lsys_error *e);
+
+enum {
+  LSYS_TURTLE_DRAW = 0,   /* geometry and records */
+  LSYS_TURTLE_QUERY = 1,  /* only fill the parameters of ?P ?H ?U ?L */
+  LSYS_TURTLE_STATE = 2   /* only run the first 'stop' modules and keep the state */
+};
+
+typedef struct lsys_cylend lsys_cylend;
+typedef struct lsys_polygon lsys_polygon;
+struct lsys_polywork;
+
+typedef struct lsys_turtle {
+  /* inputs */
+  const lsys_turtle_opts *o;
+  lsys_expandfn expand; void *expandud;
+  int mode;
+  size_t stop;                  /* LSYS_TURTLE_STATE: modules to interpret */
+  /* outputs */
+  lsys_mesh *mesh;
+  lsys_trec *rec; size_t nrec, reccap;
+  lsys_tstate state;            /* the state when interpretation ended (or stopped) */
+  size_t nqueries;              /* query modules filled */
+  size_t nsyscalls;             /* @S modules seen (recorded when allowed) */
+  lsys_error err;
+  /* scratch, reused across calls */
+  lsys_tstate *stack; size_t nstack, stackcap;
+  lsys_polygon *polys; size_t npolys, polycap;
+  lsys_cylend *ends; size_t nends, endcap;
+  double *subscale; size_t nsub, subcap;
+  lsys_lstring hbuf;
+  struct lsys_polywork *pw;
+  uint8_t *op; size_t nop;      /* what each symbol id does */
+  const double *ring; int nring;/* cos/sin table for 'sides' */
+  double *ringbuf; size_t ringcap;
+} lsys_turtle;
+
+void lsys_turtle_init (lsys_turtle *t);
+void lsys_turtle_free (lsys_turtle *t);
+
+/*
+** Interprets 's' (symbol names from 'ab'). In DRAW mode the geometry is
+** appended to t->mesh (which must be set) and the records to t->rec (both
+** cleared first). In QUERY mode the parameters of the query modules of 's'
+** are overwritten with the turtle's position or vectors at that point. In
+** STATE mode t->state is the state after the first t->stop modules. Returns LSYS_OK
+** or an error code with t->err set (t->err.pos = the module index).
+*/
+int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab);
+
+#endif
