@@ -28,6 +28,7 @@ typedef struct lscene {
   size_t npal;
   lsys_trec *rec;
   size_t nrec;
+  float *stiff;
   int inited;
 } lscene;
 
@@ -80,7 +81,9 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
     luaL_error(L, "view option 'contour_sides' must be between 3 and 1024, got %d", o->sides);
   lua_getfield(L, t, "allow_system_calls");
   o->allow_system = lua_toboolean(L, -1);
-  lua_pop(L, 1);
+  lua_getfield(L, t, "records");
+  o->norecords = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
+  lua_pop(L, 2);
   lua_getfield(L, t, "style");
   style = lua_isnil(L, -1) ? "line" : lua_tostring(L, -1);
   if (style == NULL) luaL_error(L, "view option 'line_style' must be a string");
@@ -234,7 +237,9 @@ static int l_interpret (lua_State *L) {
   t.mesh = &S->mesh;
   turtlerun(L, &t, &o, 3);
   S->rec = t.rec; S->nrec = t.nrec;                     /* the scene keeps the records */
+  S->stiff = t.stiff;
   t.rec = NULL; t.reccap = 0;
+  t.stiff = NULL; t.stiffcap = 0;
   lsys_turtle_free(&t);
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, SV_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, SV_LSTRING);
@@ -312,6 +317,7 @@ static int scene_gc (lua_State *L) {
     lsys_mesh_free(&S->mesh);
     LSYS_FREE(S->pal);
     LSYS_FREE(S->rec);
+    LSYS_FREE(S->stiff);
     S->inited = 0;
   }
   return 0;
@@ -381,7 +387,11 @@ static const char *const kindname[] = {
   "none", "segment", "sphere", "disc", "polygon", "label", "system"
 };
 
-static void pushrecord (lua_State *L, const lsys_trec *r) {
+static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
+  float l[3];
+  l[0] = r->H[1] * r->U[2] - r->H[2] * r->U[1];          /* L = H x U */
+  l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
+  l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
   lua_createtable(L, 0, 12);
   lua_pushstring(L, kindname[r->kind < 7 ? r->kind : 0]); lua_setfield(L, -2, "kind");
   lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
@@ -392,12 +402,15 @@ static void pushrecord (lua_State *L, const lsys_trec *r) {
   pushvecf(L, r->p0); lua_setfield(L, -2, "p0");
   pushvecf(L, r->p1); lua_setfield(L, -2, "p1");
   pushvecf(L, r->H); lua_setfield(L, -2, "H");
-  pushvecf(L, r->L); lua_setfield(L, -2, "L");
+  pushvecf(L, l); lua_setfield(L, -2, "L");
   pushvecf(L, r->U); lua_setfield(L, -2, "U");
   lua_pushnumber(L, r->w0); lua_setfield(L, -2, "w0");
   lua_pushnumber(L, r->w1); lua_setfield(L, -2, "w1");
   lua_pushinteger(L, r->color); lua_setfield(L, -2, "color");
-  if (r->hasstiff) { pushvecf(L, r->stiff); lua_setfield(L, -2, "stiffness"); }
+  if (r->stiff != LSYS_NOREC) {
+    pushvecf(L, S->stiff + 3 * r->stiff);
+    lua_setfield(L, -2, "stiffness");
+  }
 }
 
 /* scene:record(k) -> table for turtle record k (1-based), or nil */
@@ -405,7 +418,7 @@ static int scene_record (lua_State *L) {
   lscene *S = checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   if (k < 1 || (size_t)k > S->nrec) { lua_pushnil(L); return 1; }
-  pushrecord(L, &S->rec[k - 1]);
+  pushrecord(L, S, &S->rec[k - 1]);
   return 1;
 }
 
@@ -414,7 +427,7 @@ static int records_iter (lua_State *L) {
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
   if (k < 1 || (size_t)k > S->nrec) return 0;
   lua_pushinteger(L, k);
-  pushrecord(L, &S->rec[k - 1]);
+  pushrecord(L, S, &S->rec[k - 1]);
   return 2;
 }
 

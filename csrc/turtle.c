@@ -147,6 +147,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   for (k = 0; k < t->polycap; k++) LSYS_FREE(t->polys[k].v);
   LSYS_FREE(t->polys);
   LSYS_FREE(t->rec);
+  LSYS_FREE(t->stiff);
   LSYS_FREE(t->stack);
   LSYS_FREE(t->ends);
   LSYS_FREE(t->subscale);
@@ -211,6 +212,7 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   lsys_turtle *t = R->t;
   lsys_trec *r;
   int k;
+  if (R->o->norecords) return LSYS_OK;
   if (t->nrec == t->reccap &&
       lsys_grow((void **)&t->rec, &t->reccap, t->nrec + 1, sizeof *t->rec) != LSYS_OK)
     return nomem(R);
@@ -219,13 +221,20 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   r->module = (uint32_t)R->mod;
   r->parent = R->st.last;
   r->kind = (uint8_t)kind;
-  r->hasstiff = (uint8_t)R->st.hasstiff;
+  r->pad = 0;
   r->color = (uint16_t)R->st.color;
   r->w0 = (float)w0; r->w1 = (float)w1;
   for (k = 0; k < 3; k++) {
     r->p0[k] = (float)p0[k]; r->p1[k] = (float)p1[k];
-    r->H[k] = (float)R->st.H[k]; r->L[k] = (float)R->st.L[k]; r->U[k] = (float)R->st.U[k];
-    r->stiff[k] = (float)R->st.stiff[k];
+    r->H[k] = (float)R->st.H[k]; r->U[k] = (float)R->st.U[k];
+  }
+  r->stiff = LSYS_NOREC;
+  if (R->st.hasstiff) {
+    if (lsys_grow((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float)) != LSYS_OK)
+      return nomem(R);
+    r->stiff = (uint32_t)t->nstiff;
+    for (k = 0; k < 3; k++) t->stiff[3 * t->nstiff + k] = (float)R->st.stiff[k];
+    t->nstiff++;
   }
   return LSYS_OK;
 }
@@ -583,7 +592,7 @@ static int move (run *R, int op, double d) {
                   st->width * st->scale)) != LSYS_OK)
     return s;
   st->hasstiff = 0;
-  R->prec = (uint32_t)(R->t->nrec - 1);
+  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->t->nrec - 1);
   st->last = R->prec;
   R->pending = 1;
   vcopy(R->p0, p0);
@@ -817,7 +826,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   int k, status = LSYS_OK;
   const lsys_turtle_opts *o = t->o;
   memset(&t->err, 0, sizeof t->err);
-  t->nrec = 0; t->npolys = 0; t->nends = 0; t->nsub = 0; t->nqueries = 0; t->nsyscalls = 0;
+  t->nrec = 0; t->nstiff = 0; t->npolys = 0; t->nends = 0; t->nsub = 0; t->nqueries = 0; t->nsyscalls = 0;
   if (o == NULL || (t->mode == LSYS_TURTLE_DRAW && t->mesh == NULL))
     return lsys_seterror(&t->err, LSYS_EARG, (size_t)-1, "turtle without options or mesh");
   if (o->sides < 3 || o->sides > 1024)

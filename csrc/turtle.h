@@ -47,23 +47,25 @@ typedef struct lsys_turtle_opts {
   int style;              /* LSYS_STYLE_* (line) */
   int sides;              /* contour sides of cylinders, discs, spheres (8) */
   int allow_system;       /* @S allowed (0) */
+  int norecords;          /* 1: no turtle records (big renders and exports) */
   lsys_tropism trop[LSYS_MAXTROPISMS];
   int ntrop;
 } lsys_turtle_opts;
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
 
-/* Everything a record keeps about a drawing module. Single precision: the
-** records of a big plant take ~100 bytes per segment. */
+/* Everything a record keeps about a drawing module, in 72 bytes: a big
+** plant has millions. L is H x U; the stiffness of the joint before a
+** segment, when Z set one, is t->stiff[3 * stiff .. 3 * stiff + 2]. */
 typedef struct lsys_trec {
   uint32_t module;        /* index of the module in the string (0-based) */
   uint32_t parent;        /* record of the segment this one starts from, or LSYS_NOREC */
-  uint8_t kind, hasstiff;
+  uint8_t kind, pad;
   uint16_t color;
   float w0, w1;           /* width at the start and at the end */
   float p0[3], p1[3];     /* start and end points */
-  float H[3], L[3], U[3]; /* frame at the end */
-  float stiff[3];         /* Z(sh, su, sl) in effect for the joint before it */
+  float H[3], U[3];       /* frame at the end */
+  uint32_t stiff;         /* Z(sh, su, sl) in effect for the joint before it, or LSYS_NOREC */
 } lsys_trec;
 
 /* The turtle state (seed 004 §1), pushed and popped by [ and ]. */
@@ -103,6 +105,7 @@ typedef struct lsys_turtle {
   /* outputs */
   lsys_mesh *mesh;
   lsys_trec *rec; size_t nrec, reccap;
+  float *stiff; size_t nstiff, stiffcap;   /* 3 per Z-stiffened record */
   lsys_tstate state;            /* the state when interpretation ended (or stopped) */
   size_t nqueries;              /* query modules filled */
   size_t nsyscalls;             /* @S modules seen (recorded when allowed) */

@@ -43,8 +43,9 @@ describe("rule text", function()
     assert.equal("F-F", H.derive("F+F", "+ --> -", 1))
   end)
 
-  it("rewrites @ and ?P modules", function()
-    assert.equal("@Gc(2)F(3)", H.derive("@Gs(1)?P(1,2)", "@Gs(x) --> @Gc(x+1)\n?P(x,y) --> F(x+y)", 1))
+  it("rewrites @ and ?P modules (?P filled with the turtle position first)", function()
+    assert.equal("@Gc(2)F(3)F(3)",
+                 H.derive("@Gs(1)F(3)?P(1,2)", "@Gs(x) --> @Gc(x+1)\n?P(x,y) --> F(x+y)", 1))
   end)
 
   it("rewrites $ outside any sub-L-system like any module", function()

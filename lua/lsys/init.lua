@@ -425,17 +425,25 @@ end
 local scene_views = setmetatable({}, { __mode = "k" })   -- scene -> its normalised view
 
 --- Interprets `s` (an Lstring or text; default: `self:derive()`) with the turtle and
--- returns an lsys.Scene. `over` replaces fields of the model's view for this call.
+-- returns an lsys.Scene. `over` replaces fields of the model's view for this call;
+-- `over.records = false` leaves out the turtle records (less memory for big exports).
 function Model:interpret (s, over)
   if s == nil then s = self:derive()
   elseif type(s) == "string" then s = self:lstring(s) end
   if not M.islstring(s) then error("interpret: an Lstring expected", 2) end
   if over ~= nil and type(over) ~= "table" then error("interpret: a view table expected", 2) end
+  local records = true
+  if over ~= nil and over.records ~= nil then
+    records = over.records
+    over = view.merge(over, nil)
+    over.records = nil
+  end
   local v = self:_view(over)
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
-  local scene = self:_call(core.interpret, "interpret", self._rules, s,
-                           view.turtle(v, self.allow_system_calls))
+  local topts = view.turtle(v, self.allow_system_calls)
+  topts.records = records and true or false
+  local scene = self:_call(core.interpret, "interpret", self._rules, s, topts)
   scene_views[scene] = v
   if self.allow_system_calls and self.system_call then
     for _, r in scene:records() do

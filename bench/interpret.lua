@@ -1,0 +1,107 @@
+-- Interpretation and rendering benchmark (issue 3).
+--
+--   build/bin/lsys bench/interpret.lua
+--
+-- (1) turtle throughput in "line" style on the ABOP fig. 1.24a string after 10 steps
+--     (F --> F[+F]F[-F]F, 24.4 M modules): modules per second, with and without turtle
+--     records (target >= 30 M modules/s);
+-- (2) triangles generated per second in "cylinder" style (8 sides) on the same model after
+--     7 steps (target >= 20 M triangles/s);
+-- (3) OSMesa render time of a scene of about 1 M triangles at 1024x1024, with the default
+--     3x supersampling and without.
+-- Times are wall clock (the lsys program's monotonic clock; os.clock CPU time under plain
+-- Lua), best of 3. Peak memory is this process's VmHWM at the end.
+
+local RUNS = 3
+local script = arg and arg[0] or "bench/interpret.lua"
+local root = script:match("^(.*)/bench/[^/]*$") or (script:match("^bench/") and ".") or ".."
+
+local function load_lsys ()
+  local ok, mod = pcall(require, "lsys")
+  if ok then return mod end
+  package.path = root .. "/lua/?.lua;" .. root .. "/lua/?/init.lua;" .. package.path
+  package.cpath = root .. "/build/?.so;" .. package.cpath
+  return require "lsys"
+end
+local lsys = load_lsys()
+
+local host = package.loaded["lsys.host"]
+local clock = type(host) == "table" and host.clock or os.clock
+local clock_name = clock == os.clock and "CPU time (os.clock)" or "wall clock"
+
+local function best (f)
+  local t, r = math.huge
+  for _ = 1, RUNS do
+    collectgarbage()
+    local t0 = clock()
+    r = f()
+    t = math.min(t, clock() - t0)
+  end
+  return t, r
+end
+
+local function peak_mib ()
+  local f = io.open("/proc/self/status", "r")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  local kb = s:match("VmHWM:%s*(%d+)")
+  return kb and tonumber(kb) / 1024
+end
+
+local function verdict (ok) return ok and "PASS" or "MISS" end
+
+print(string.format("lsys %s, %s, best of %d", lsys.version, clock_name, RUNS))
+
+-- (1) line style
+local m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F",
+                         view = { angle = 25.7, line_style = "line" } }
+local s = m:derive(10)
+local n = #s
+local t1, sc = best(function () return m:interpret(s) end)
+local nseg = sc.nsegments
+sc = nil
+local t1n = best(function () return m:interpret(s, { records = false }) end)
+print(string.format("(1) line style, fig. 1.24a n=10: %d modules, %d segments", n, nseg))
+print(string.format("    with records:    %.3f s  %7.1f M modules/s  (target >= 30)  %s",
+  t1, n / t1 / 1e6, verdict(n / t1 >= 30e6)))
+print(string.format("    without records: %.3f s  %7.1f M modules/s", t1n, n / t1n / 1e6))
+s = nil
+collectgarbage()
+
+-- (2) cylinder style
+local c = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F",
+                         view = { angle = 25.7, line_style = "cylinder", contour_sides = 8,
+                                  line_width = 0.3 } }
+local s7 = c:derive(7)
+local t2, csc = best(function () return c:interpret(s7, { records = false }) end)
+local ntri = csc.ntriangles
+print(string.format("(2) cylinder style, 8 sides, fig. 1.24a n=7: %d modules, %d triangles",
+  #s7, ntri))
+print(string.format("    %.3f s  %7.1f M triangles/s  (target >= 20)  %s", t2, ntri / t2 / 1e6,
+  verdict(ntri / t2 >= 20e6)))
+csc = nil
+collectgarbage()
+
+-- (3) rendering about 1 M triangles
+local r = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F",
+                         view = { angle = 25.7, line_style = "cylinder", contour_sides = 6,
+                                  line_width = 0.4, projection = "perspective" } }
+local rs = r:derive(6)
+local rsc = r:interpret(rs, { records = false })
+if not (lsys.core or require "lsys.core").has_render then
+  print("(3) rendering: not measured (lsys was built without OSMesa)")
+else
+  local out = os.tmpname() .. ".png"
+  local t3 = best(function () return lsys.render(rsc, { out = out, width = 1024, height = 1024 }) end)
+  local t3s = best(function ()
+    return lsys.render(rsc, { out = out, width = 1024, height = 1024, supersample = 1 })
+  end)
+  os.remove(out)
+  print(string.format("(3) OSMesa render of %d triangles at 1024x1024:", rsc.ntriangles))
+  print(string.format("    supersample 3: %.3f s (%.1f M triangles/s)   supersample 1: %.3f s",
+    t3, rsc.ntriangles / t3 / 1e6, t3s))
+end
+
+local peak = peak_mib()
+if peak then print(string.format("peak memory (VmHWM): %.1f MiB", peak)) end
