@@ -36,5 +36,7 @@ return lsys.lsystem {
   view = {
     angle = 24,
     tropisms = { { vector = { 0, -1, 0 }, elasticity = 0.1 } },
+    line_style = "cylinder", contour_sides = 10,
+    projection = "perspective", fov = 30,
   },
 }

@@ -14,7 +14,8 @@ local function tree (n, d1, d2, a, lr, T, e)
       F(l) --> F(l*lr)
       !(w) --> !(w*vr)
     ]],
-    view = { angle = a, tropisms = { { vector = T, elasticity = e } } },
+    view = { angle = a, tropisms = { { vector = T, elasticity = e } },
+             line_style = "cylinder", contour_sides = 10, projection = "perspective" },
   }
 end
 

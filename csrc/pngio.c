@@ -1,0 +1,168 @@
+/*
+** PNG reading and writing with libpng (pngio.h).
+**
+** libpng reports errors by calling an error function that must not return;
+** ours copies the message into the io record and longjmps back to the
+** setjmp in the caller. Our own read and write functions turn short reads
+** and failed writes into messages a user can act on. Anything that must be
+** freed after such a jump is declared volatile and set before setjmp.
+*/
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "pngio.h"
+
+typedef struct pngio {
+  FILE *f;
+  char msg[200];          /* the last libpng error */
+} pngio;
+
+static void onerror (png_structp png, png_const_charp msg) {
+  pngio *io = (pngio *)png_get_error_ptr(png);
+  snprintf(io->msg, sizeof io->msg, "%s", msg);
+  png_longjmp(png, 1);
+}
+
+static void onwarning (png_structp png, png_const_charp msg) {
+  (void)png; (void)msg;   /* warnings (bad ancillary chunks, ...) are not errors */
+}
+
+static void readfn (png_structp png, png_bytep p, size_t n) {
+  pngio *io = (pngio *)png_get_io_ptr(png);
+  if (fread(p, 1, n, io->f) != n)
+    png_error(png, ferror(io->f) ? strerror(errno) : "unexpected end of file");
+}
+
+static void writefn (png_structp png, png_bytep p, size_t n) {
+  pngio *io = (pngio *)png_get_io_ptr(png);
+  if (fwrite(p, 1, n, io->f) != n) png_error(png, strerror(errno));
+}
+
+static void flushfn (png_structp png) {
+  pngio *io = (pngio *)png_get_io_ptr(png);
+  if (fflush(io->f) != 0) png_error(png, strerror(errno));
+}
+
+int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
+                    lsys_error *e) {
+  pngio io = {NULL, ""};
+  png_structp png;
+  png_infop info;
+  int y, st = LSYS_OK;
+  if (w <= 0 || h <= 0 || w > LSYS_PNG_MAXSIZE || h > LSYS_PNG_MAXSIZE)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': bad image size %dx%d",
+                         path, w, h);
+  if ((io.f = fopen(path, "wb")) == NULL)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for writing: %s", path,
+                         strerror(errno));
+  png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onerror, onwarning);
+  info = png ? png_create_info_struct(png) : NULL;
+  if (info == NULL) {
+    png_destroy_write_struct(&png, NULL);
+    fclose(io.f);
+    remove(path);
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': not enough memory",
+                         path);
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    fclose(io.f);
+    remove(path);
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", path, io.msg);
+  }
+  png_set_write_fn(png, &io, writefn, flushfn);
+  png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8,
+               alpha ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (!alpha) png_set_filler(png, 0, PNG_FILLER_AFTER);   /* drop the 4th byte */
+  for (y = 0; y < h; y++) png_write_row(png, rgba + (size_t)4 * w * y);
+  png_write_end(png, NULL);
+  png_destroy_write_struct(&png, &info);
+  if (fclose(io.f) != 0) {
+    st = lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", path,
+                       strerror(errno));
+    remove(path);
+  }
+  return st;
+}
+
+int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
+  pngio io = {NULL, ""};
+  png_structp png;
+  png_infop info;
+  uint8_t sig[8];
+  uint8_t *volatile buf = NULL;
+  volatile int code = LSYS_ESYNTAX;
+  png_uint_32 pw, ph, y;
+  int pass, npass;
+  *rgba = NULL;
+  *w = *h = 0;
+  if ((io.f = fopen(path, "rb")) == NULL)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for reading: %s", path,
+                         strerror(errno));
+  if (fread(sig, 1, sizeof sig, io.f) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig)) {
+    int err = ferror(io.f) ? errno : 0;
+    fclose(io.f);
+    if (err)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path,
+                           strerror(err));
+    return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "'%s' is not a PNG file", path);
+  }
+  png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onerror, onwarning);
+  info = png ? png_create_info_struct(png) : NULL;
+  if (info == NULL) {
+    png_destroy_read_struct(&png, NULL, NULL);
+    fclose(io.f);
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot read '%s': not enough memory",
+                         path);
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(io.f);
+    LSYS_FREE(buf);
+    return lsys_seterror(e, code, (size_t)-1, "cannot read '%s': %s", path, io.msg);
+  }
+  png_set_read_fn(png, &io, readfn);
+  png_set_sig_bytes(png, sizeof sig);
+  png_read_info(png, info);
+  pw = png_get_image_width(png, info);
+  ph = png_get_image_height(png, info);
+  if (pw > LSYS_PNG_MAXSIZE || ph > LSYS_PNG_MAXSIZE) {
+    code = LSYS_ELIMIT;
+    snprintf(io.msg, sizeof io.msg, "%lux%lu pixels is larger than the limit of %d",
+             (unsigned long)pw, (unsigned long)ph, LSYS_PNG_MAXSIZE);
+    png_longjmp(png, 1);
+  }
+  /* whatever the file holds, deliver 8-bit RGBA */
+  png_set_expand(png);                  /* palette -> RGB, grey < 8 bits -> 8, tRNS -> alpha */
+  png_set_strip_16(png);
+  png_set_gray_to_rgb(png);
+  png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+  npass = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  if (png_get_rowbytes(png, info) != (size_t)4 * pw) {
+    snprintf(io.msg, sizeof io.msg, "unsupported pixel format");
+    png_longjmp(png, 1);
+  }
+  buf = (uint8_t *)LSYS_MALLOC((size_t)4 * pw * ph);
+  if (buf == NULL) {
+    code = LSYS_ENOMEM;
+    snprintf(io.msg, sizeof io.msg, "not enough memory for %lux%lu pixels",
+             (unsigned long)pw, (unsigned long)ph);
+    png_longjmp(png, 1);
+  }
+  /* an interlaced image is read in several passes over the same rows */
+  for (pass = 0; pass < npass; pass++)
+    for (y = 0; y < ph; y++) png_read_row(png, buf + (size_t)4 * pw * y, NULL);
+  png_read_end(png, NULL);
+  png_destroy_read_struct(&png, &info, NULL);
+  fclose(io.f);
+  *rgba = buf;
+  *w = (int)pw;
+  *h = (int)ph;
+  return LSYS_OK;
+}

@@ -1,0 +1,709 @@
+/*
+** The one OpenGL drawing path (render.h): camera fitting, projection, and
+** fixed-function drawing of a scene with vertex arrays.
+**
+** Triangles are grouped by material (a counting sort of the triangle
+** indices, once per frame, into a cached array) so that each group sets its
+** full material once; the diffuse colour still comes per vertex from a
+** colour array, so colour gradients along a surface survive. Groups of
+** two-sided vertices are drawn with GL_LIGHT_MODEL_TWO_SIDE; translucent
+** materials are drawn last, blended, without writing depth.
+**
+** Lines are unlit. Thin ones are GL lines grouped by width (glLineWidth is
+** per draw call). Wide ones are expanded on the CPU into bands in clip
+** coordinates: GL lines cannot taper, have no round ends, and stop at
+** 255 pixels in Mesa, which supersampling reaches quickly.
+*/
+#include <GL/gl.h>
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "render.h"
+
+#define PI 3.14159265358979323846
+
+/* Fraction of the half-width and half-height that the fitted bounding box
+** may fill: the margin is 5% of the image on each side. */
+#define FIT 0.9
+
+/* At most this many indices per glDrawElements call (GLsizei is an int). */
+#define MAXDRAW (3u << 22)
+
+/* ---------------------------------------------------------------------- */
+/* small vector helpers */
+
+static double dot (const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross (double r[3], const double a[3], const double b[3]) {
+  double x = a[1] * b[2] - a[2] * b[1];
+  double y = a[2] * b[0] - a[0] * b[2];
+  double z = a[0] * b[1] - a[1] * b[0];
+  r[0] = x; r[1] = y; r[2] = z;
+}
+
+static double normalize (double v[3]) {
+  double n = sqrt(dot(v, v));
+  if (n > 0) { v[0] /= n; v[1] /= n; v[2] /= n; }
+  return n;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void lsys_render_defaults (lsys_render_opts *o) {
+  memset(o, 0, sizeof *o);
+  o->width = o->height = 800;
+  o->supersample = 3;
+  o->background[0] = o->background[1] = o->background[2] = 1.0f;
+  o->light[0] = -1; o->light[1] = 1; o->light[2] = 1;
+  o->cam.up[1] = 1;
+  o->cam.dir[2] = -1;
+  o->cam.projection = LSYS_PERSPECTIVE;
+  o->cam.fov = 30;
+  o->cam.zoom = 1;
+}
+
+void lsys_render_cache_free (lsys_render_cache *c) {
+  LSYS_FREE(c->idx);
+  LSYS_FREE(c->rgba);
+  LSYS_FREE(c->lidx);
+  LSYS_FREE(c->start);
+  LSYS_FREE(c->wpos);
+  LSYS_FREE(c->wrgba);
+  LSYS_FREE(c->widx);
+  memset(c, 0, sizeof *c);
+}
+
+/* ---------------------------------------------------------------------- */
+/* entry points */
+
+#define GLFN(name) {"gl" #name, offsetof(lsys_gl, name)}
+
+static const struct { const char *name; size_t off; } glfns[] = {
+  GLFN(GetError), GLFN(GetFloatv), GLFN(GetIntegerv), GLFN(Viewport), GLFN(ClearColor),
+  GLFN(ClearDepth), GLFN(Clear), GLFN(Finish), GLFN(Enable), GLFN(Disable),
+  GLFN(EnableClientState), GLFN(DisableClientState), GLFN(MatrixMode), GLFN(LoadMatrixd),
+  GLFN(LoadIdentity), GLFN(DepthFunc), GLFN(DepthMask), GLFN(BlendFunc), GLFN(ShadeModel),
+  GLFN(PolygonMode), GLFN(LineWidth), GLFN(Lightfv), GLFN(LightModelfv), GLFN(LightModeli),
+  GLFN(Materialfv), GLFN(Materialf), GLFN(ColorMaterial), GLFN(VertexPointer),
+  GLFN(NormalPointer), GLFN(ColorPointer), GLFN(DrawElements)
+};
+
+/* Each pointer is stored through memcpy: all function pointers share one
+** representation on the platforms GL loaders run on (dlsym relies on it). */
+int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e) {
+  size_t i;
+  memset(gl, 0, sizeof *gl);
+  for (i = 0; i < sizeof glfns / sizeof glfns[0]; i++) {
+    lsys_glproc f = get(glfns[i].name);
+    if (f == NULL)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "OpenGL function %s not found",
+                           glfns[i].name);
+    memcpy((char *)gl + glfns[i].off, &f, sizeof f);
+  }
+  return LSYS_OK;
+}
+
+/* ---------------------------------------------------------------------- */
+/* camera */
+
+/* The 8 corners of the scene's bounds; an empty scene (or one with
+** infinite coordinates) is the cube [-1, 1]^3, a single point a cube of
+** size 2 around it. Returns the length of the box's diagonal (> 0). */
+static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, d[3];
+  int i;
+  if (m == NULL || !lsys_mesh_bounds(m, lo, hi) ||
+      !isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2])) {
+    lo[0] = lo[1] = lo[2] = -1;
+    hi[0] = hi[1] = hi[2] = 1;
+  }
+  for (i = 0; i < 3; i++) d[i] = hi[i] - lo[i];
+  if (d[0] <= 0 && d[1] <= 0 && d[2] <= 0) {
+    for (i = 0; i < 3; i++) { lo[i] -= 1; hi[i] += 1; d[i] = 2; }
+  }
+  for (i = 0; i < 8; i++) {
+    c[i][0] = (i & 1) ? hi[0] : lo[0];
+    c[i][1] = (i & 2) ? hi[1] : lo[1];
+    c[i][2] = (i & 4) ? hi[2] : lo[2];
+  }
+  for (i = 0; i < 3; i++) centre[i] = 0.5 * (lo[i] + hi[i]);
+  return sqrt(dot(d, d));
+}
+
+/* What fitting the camera accumulates over the scene's points. */
+typedef struct fitstate {
+  double ext;               /* parallel: half height needed */
+  double D;                 /* perspective: distance from the target needed */
+  int parallel;
+  double aspect, ty, target[3], r[3], u[3], f[3];
+} fitstate;
+
+static void fitpoint (fitstate *fs, const float p[3]) {
+  double q[3], x, y;
+  q[0] = p[0] - fs->target[0];
+  q[1] = p[1] - fs->target[1];
+  q[2] = p[2] - fs->target[2];
+  x = fabs(dot(q, fs->r));
+  y = fabs(dot(q, fs->u));
+  if (!isfinite(x + y)) return;       /* fmax would keep an infinity */
+  if (fs->parallel)
+    fs->ext = fmax(fs->ext, fmax(y, x / fs->aspect));
+  else
+    fs->D = fmax(fs->D, fmax(x / (fs->ty * fs->aspect * FIT), y / (fs->ty * FIT)) - dot(q, fs->f));
+}
+
+int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
+                        double proj[16], double view[16]) {
+  const lsys_camera *cam = &o->cam;
+  double c[8][3], centre[3], target[3], eye[3], f[3], up[3], r[3], u[3];
+  double aspect, diag, t, ct, st, dmin, dmax, pad, nearp, farp;
+  double fov = cam->fov > 0 && cam->fov < 180 ? cam->fov : 30;
+  double ty = tan(fov * PI / 360), halfh = 1;
+  double zoom = cam->zoom > 0 ? cam->zoom : 1;
+  int i, parallel = cam->projection == LSYS_PARALLEL;
+  if (w <= 0 || h <= 0) return LSYS_EARG;
+  aspect = (double)w / h;
+  diag = corners(m, c, centre);
+  memcpy(target, cam->has_target ? cam->target : centre, sizeof target);
+  if (cam->has_eye) {
+    for (i = 0; i < 3; i++) f[i] = target[i] - cam->eye[i];
+  } else
+    memcpy(f, cam->dir, sizeof f);
+  if (normalize(f) == 0) return LSYS_EARG;
+  /* camera frame: right r, up u, forward f; an up along f is replaced */
+  if (cam->has_up) memcpy(up, cam->up, sizeof up);
+  else { up[0] = 0; up[1] = 1; up[2] = 0; }
+  if (normalize(up) == 0) return LSYS_EARG;
+  cross(r, f, up);
+  if (normalize(r) < 1e-6) {
+    up[0] = 0; up[1] = 0; up[2] = f[1] < 0 ? -1 : 1;
+    if (fabs(f[2]) > 0.9) { up[1] = 1; up[2] = 0; }
+    cross(r, f, up);
+    normalize(r);
+  }
+  cross(u, r, f);
+  /* twist: turn the picture counterclockwise, i.e. the frame clockwise */
+  t = cam->twist * PI / 180;
+  ct = cos(t); st = sin(t);
+  for (i = 0; i < 3; i++) {
+    double ri = r[i], ui = u[i];
+    r[i] = ct * ri - st * ui;
+    u[i] = ct * ui + st * ri;
+  }
+  /* fit: in the camera frame around the target, a point is at (x, y, z),
+  ** z along f. Parallel: the half height must cover |y| and |x| / aspect.
+  ** Perspective: the eye at distance D behind the target sees the point
+  ** within the image when |x| <= (D + z) ty aspect and |y| <= (D + z) ty.
+  ** The points are the scene's vertices and line ends (the corners of the
+  ** box, seen in perspective, would leave a wide margin), or the corners
+  ** of the box for an empty scene. */
+  if (parallel || !cam->has_eye) {
+    fitstate fs;
+    size_t k, nv = m ? m->nv : 0, nl = m ? m->nl : 0;
+    memset(&fs, 0, sizeof fs);
+    fs.parallel = parallel;
+    fs.aspect = aspect;
+    fs.ty = ty;
+    memcpy(fs.target, target, sizeof target);
+    memcpy(fs.r, r, sizeof r);
+    memcpy(fs.u, u, sizeof u);
+    memcpy(fs.f, f, sizeof f);
+    for (k = 0; k < nv; k++) fitpoint(&fs, m->pos + 3 * k);
+    for (k = 0; k < 2 * nl; k++) fitpoint(&fs, m->lpos + 3 * k);
+    if (nv + nl == 0 || !(fs.ext > 0 || fs.D > 0))
+      for (i = 0; i < 8; i++) {
+        float p[3] = {(float)c[i][0], (float)c[i][1], (float)c[i][2]};
+        fitpoint(&fs, p);
+      }
+    halfh = fs.ext > 0 ? fs.ext / FIT : diag / 2;
+    if (!cam->has_eye) {
+      double D = fs.D, back = 0;
+      for (i = 0; i < 8; i++) {
+        double q[3] = {c[i][0] - target[0], c[i][1] - target[1], c[i][2] - target[2]};
+        back = fmax(back, -dot(q, f));
+      }
+      D = fmax(D, back + 0.05 * diag);   /* the eye stays outside the box */
+      for (i = 0; i < 3; i++) eye[i] = target[i] - D * f[i];
+    }
+  }
+  if (cam->has_eye) memcpy(eye, cam->eye, sizeof eye);
+  /* near and far planes: the depths of the corners, padded */
+  dmin = dmax = 0;
+  for (i = 0; i < 8; i++) {
+    double q[3] = {c[i][0] - eye[0], c[i][1] - eye[1], c[i][2] - eye[2]};
+    double d = dot(q, f);
+    if (i == 0 || d < dmin) dmin = d;
+    if (i == 0 || d > dmax) dmax = d;
+  }
+  pad = 0.02 * diag;
+  nearp = dmin - pad;
+  farp = dmax + pad;
+  if (!parallel) {
+    if (farp <= 0) farp = diag;          /* the scene is behind the eye */
+    if (nearp < farp * 1e-3) nearp = farp * 1e-3;
+  }
+  /* view: rows r, u, -f; translation -R eye (column-major) */
+  for (i = 0; i < 3; i++) {
+    view[4 * i + 0] = r[i];
+    view[4 * i + 1] = u[i];
+    view[4 * i + 2] = -f[i];
+    view[4 * i + 3] = 0;
+  }
+  view[12] = -dot(r, eye);
+  view[13] = -dot(u, eye);
+  view[14] = dot(f, eye);
+  view[15] = 1;
+  memset(proj, 0, 16 * sizeof proj[0]);
+  if (parallel) {
+    proj[0] = zoom / (halfh * aspect);
+    proj[5] = zoom / halfh;
+    proj[10] = -2 / (farp - nearp);
+    proj[14] = -(farp + nearp) / (farp - nearp);
+    proj[15] = 1;
+  } else {
+    proj[0] = zoom / (ty * aspect);
+    proj[5] = zoom / ty;
+    proj[10] = (farp + nearp) / (nearp - farp);
+    proj[11] = -1;
+    proj[14] = 2 * farp * nearp / (nearp - farp);
+  }
+  return LSYS_OK;
+}
+
+int lsys_render_project (const double proj[16], const double view[16], int w, int h,
+                         const double p[3], double out[3]) {
+  double v[4], clip[4];
+  int i;
+  for (i = 0; i < 4; i++)
+    v[i] = view[i] * p[0] + view[4 + i] * p[1] + view[8 + i] * p[2] + view[12 + i];
+  for (i = 0; i < 4; i++)
+    clip[i] = proj[i] * v[0] + proj[4 + i] * v[1] + proj[8 + i] * v[2] + proj[12 + i] * v[3];
+  if (!(clip[3] > 0)) {
+    out[0] = out[1] = out[2] = 0;
+    return 0;
+  }
+  out[0] = (clip[0] / clip[3] + 1) * 0.5 * w;
+  out[1] = (1 - clip[1] / clip[3]) * 0.5 * h;
+  out[2] = (clip[2] / clip[3] + 1) * 0.5;
+  return 1;
+}
+
+/* ---------------------------------------------------------------------- */
+/* drawing */
+
+static const lsys_material grey = {
+  {0.24f, 0.24f, 0.24f, 1}, {0.8f, 0.8f, 0.8f, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, 0
+};
+
+static uint8_t tobyte (float x) {
+  return x <= 0 ? 0 : x >= 1 ? 255 : (uint8_t)(x * 255 + 0.5f);
+}
+
+static void setrgba (uint8_t *d, const lsys_material *mt) {
+  d[0] = tobyte(mt->diffuse[0]);
+  d[1] = tobyte(mt->diffuse[1]);
+  d[2] = tobyte(mt->diffuse[2]);
+  d[3] = tobyte(mt->diffuse[3]);
+}
+
+static void setmaterial (const lsys_gl *gl, const lsys_material *mt) {
+  float sh = mt->shininess < 0 ? 0 : mt->shininess > 128 ? 128 : mt->shininess;
+  gl->Materialfv(GL_FRONT_AND_BACK, GL_AMBIENT, mt->ambient);
+  gl->Materialfv(GL_FRONT_AND_BACK, GL_SPECULAR, mt->specular);
+  gl->Materialfv(GL_FRONT_AND_BACK, GL_EMISSION, mt->emission);
+  gl->Materialf(GL_FRONT_AND_BACK, GL_SHININESS, sh);
+}
+
+/* Draws 'n' indices from 'idx' in slices that fit a GLsizei. */
+static void drawelements (const lsys_gl *gl, GLenum mode, const uint32_t *idx, size_t n) {
+  while (n > 0) {
+    size_t k = n < MAXDRAW ? n : MAXDRAW;
+    gl->DrawElements(mode, (GLsizei)k, GL_UNSIGNED_INT, idx);
+    idx += k;
+    n -= k;
+  }
+}
+
+/* One frame's view of the scene: what the drawing functions share. */
+typedef struct frame {
+  const lsys_gl *gl;
+  const lsys_mesh *m;
+  const lsys_material *pal;
+  size_t npal;
+  lsys_render_cache *c;
+  double proj[16], view[16], mvp[16];
+  int fbw, fbh, maxw;
+  float lscale;             /* framebuffer pixels per image pixel */
+  size_t nwv, nwi;          /* wide lines: vertices and indices written */
+} frame;
+
+/* ---------------------------------------------------------------------- */
+/* triangles */
+
+/* Sorts the triangles by group g = twosided * npal + material (of each
+** triangle's first vertex) into c->idx; c->start[g] is the first index of
+** group g and c->start[2 npal] the end. */
+static void sorttriangles (frame *F) {
+  const lsys_mesh *m = F->m;
+  size_t *start = F->c->start, t, g, sum = 0, npal = F->npal, ng = 2 * npal;
+  memset(start, 0, (ng + 1) * sizeof *start);
+  for (t = 0; t < m->nt; t++) {
+    uint32_t a = m->tri[3 * t];
+    start[(m->twosided[a] ? npal : 0) + m->col[a] % npal]++;
+  }
+  for (g = 0; g < ng; g++) {            /* counts -> first positions */
+    size_t k = start[g];
+    start[g] = sum;
+    sum += 3 * k;
+  }
+  start[ng] = sum;
+  for (t = 0; t < m->nt; t++) {
+    const uint32_t *tri = m->tri + 3 * t;
+    size_t *s = &start[(m->twosided[tri[0]] ? npal : 0) + m->col[tri[0]] % npal];
+    memcpy(F->c->idx + *s, tri, 3 * sizeof *tri);
+    *s += 3;
+  }
+  for (g = ng; g > 0; g--) start[g] = start[g - 1];   /* back to starts */
+  start[0] = 0;
+}
+
+/* Draws the groups of opaque materials (translucent 0) or of translucent
+** ones (1); c->idx and c->rgba must be filled. */
+static void drawtriangles (const frame *F, int translucent, int wireframe) {
+  const lsys_gl *gl = F->gl;
+  const lsys_mesh *m = F->m;
+  size_t g, npal = F->npal;
+  gl->Enable(GL_LIGHTING);
+  gl->EnableClientState(GL_VERTEX_ARRAY);
+  gl->EnableClientState(GL_NORMAL_ARRAY);
+  gl->EnableClientState(GL_COLOR_ARRAY);
+  gl->VertexPointer(3, GL_FLOAT, 0, m->pos);
+  gl->NormalPointer(GL_FLOAT, 0, m->nrm);
+  gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, F->c->rgba);
+  if (wireframe) {
+    gl->PolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    gl->LineWidth(F->lscale);
+  }
+  if (translucent) {
+    gl->Enable(GL_BLEND);
+    gl->BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl->DepthMask(GL_FALSE);
+  }
+  for (g = 0; g < 2 * npal; g++) {
+    const lsys_material *mt = &F->pal[g % npal];
+    size_t n = F->c->start[g + 1] - F->c->start[g];
+    if (n == 0 || (mt->diffuse[3] < 1) != translucent) continue;
+    gl->LightModeli(GL_LIGHT_MODEL_TWO_SIDE, g >= npal);
+    setmaterial(gl, mt);
+    drawelements(gl, GL_TRIANGLES, F->c->idx + F->c->start[g], n);
+  }
+  gl->DepthMask(GL_TRUE);
+  gl->Disable(GL_BLEND);
+  gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  gl->DisableClientState(GL_NORMAL_ARRAY);
+  gl->LightModeli(GL_LIGHT_MODEL_TWO_SIDE, 0);
+  gl->Disable(GL_LIGHTING);
+}
+
+/* ---------------------------------------------------------------------- */
+/* lines */
+
+/* Radius of end k (0..2 nl) in framebuffer pixels; widths that are not
+** numbers or not positive draw as thin as possible, huge ones are capped. */
+static float radius (const frame *F, size_t k) {
+  float w = F->m->lwidth[k];
+  return w > 0 ? 0.5f * (w < 16384 ? w : 16384) * F->lscale : 0;
+}
+
+/* Width of segment s in framebuffer pixels: the mean of its ends. */
+static float segwidth (const frame *F, size_t s) {
+  return radius(F, 2 * s) + radius(F, 2 * s + 1);
+}
+
+static int iswide (const frame *F, size_t s) {
+  return segwidth(F, s) >= LSYS_RENDER_WIDE * F->lscale;
+}
+
+/* Fan triangles of a round end of radius r framebuffer pixels: the arc
+** stays within half an image pixel, tol = lscale / 2 framebuffer pixels, of
+** the circle (r (1 - cos(pi / 2m)) < tol when m >= (pi/2) sqrt(r / 2 tol)). */
+static int capsteps (const frame *F, double r) {
+  double k = ceil(1.5708 * sqrt(r > 0 ? r / F->lscale : 0));
+  return k < 2 ? 2 : k > 32 ? 32 : (int)k;
+}
+
+/* Upper bounds of the vertices and indices of the wide lines. */
+static void widecount (const frame *F, size_t *nv, size_t *ni) {
+  size_t s, v = 0, i = 0;
+  for (s = 0; s < F->m->nl; s++) {
+    if (!iswide(F, s)) continue;
+    int a = capsteps(F, radius(F, 2 * s)), b = capsteps(F, radius(F, 2 * s + 1));
+    v += 4 + (size_t)a + (size_t)b;     /* band corners; per end: centre + arc inside */
+    i += 6 + 3 * ((size_t)a + (size_t)b);
+  }
+  *nv = v;
+  *ni = i;
+}
+
+static void transform (const double M[16], const float p[3], double c[4]) {
+  int i;
+  for (i = 0; i < 4; i++) c[i] = M[i] * p[0] + M[4 + i] * p[1] + M[8 + i] * p[2] + M[12 + i];
+}
+
+/* Appends a vertex at clip point c moved by (dx, dy) pixels on screen. */
+static uint32_t wvertex (frame *F, const double c[4], double dx, double dy,
+                         const uint8_t rgba[4]) {
+  float *p = F->c->wpos + 4 * F->nwv;
+  p[0] = (float)(c[0] + c[3] * dx * 2 / F->fbw);
+  p[1] = (float)(c[1] + c[3] * dy * 2 / F->fbh);
+  p[2] = (float)c[2];
+  p[3] = (float)c[3];
+  memcpy(F->c->wrgba + 4 * F->nwv, rgba, 4);
+  return (uint32_t)F->nwv++;
+}
+
+static void wtri (frame *F, uint32_t a, uint32_t b, uint32_t c) {
+  uint32_t *t = F->c->widx + F->nwi;
+  t[0] = a; t[1] = b; t[2] = c;
+  F->nwi += 3;
+}
+
+/* A half disc of radius r around clip point c, on the side of the unit
+** screen direction (ux, uy), between the band corners a (at +n) and b (at
+** -n), where n = (-uy, ux). */
+static void cap (frame *F, const double c[4], double r, double ux, double uy, uint32_t a,
+                 uint32_t b, const uint8_t rgba[4]) {
+  int k, m = capsteps(F, r);
+  double cs = cos(PI / m), sn = -sin(PI / m);       /* clockwise: +n, then u, then -n */
+  double x = -uy * r, y = ux * r;
+  uint32_t centre = wvertex(F, c, 0, 0, rgba), prev = a;
+  for (k = 1; k <= m; k++) {
+    uint32_t next = b;
+    if (k < m) {
+      double nx = cs * x - sn * y;
+      y = sn * x + cs * y;
+      x = nx;
+      next = wvertex(F, c, x, y, rgba);
+    }
+    wtri(F, centre, prev, next);
+    prev = next;
+  }
+}
+
+/*
+** Expands segment s into a band of its two end widths with round ends, in
+** clip coordinates. The part in front of the near plane (z >= -w) is kept;
+** an end cut there gets no round end.
+*/
+static void wideline (frame *F, size_t s, const uint8_t rgba[4]) {
+  const lsys_mesh *m = F->m;
+  double c0[4], c1[4], r0 = radius(F, 2 * s), r1 = radius(F, 2 * s + 1);
+  double d0, d1, x0, y0, x1, y1, ux, uy, len;
+  int cut0 = 0, cut1 = 0, i;
+  uint32_t a0, b0, a1, b1;
+  transform(F->mvp, m->lpos + 6 * s, c0);
+  transform(F->mvp, m->lpos + 6 * s + 3, c1);
+  d0 = c0[2] + c0[3];
+  d1 = c1[2] + c1[3];
+  if (!(d0 >= 0 || d1 >= 0)) return;          /* wholly behind the near plane (or NaN) */
+  if (d0 < 0 || d1 < 0) {
+    double t = d0 / (d0 - d1);
+    double *c = d0 < 0 ? c0 : c1;
+    for (i = 0; i < 4; i++) c[i] = c0[i] + t * (c1[i] - c0[i]);
+    if (d0 < 0) { r0 = r0 + t * (r1 - r0); cut0 = 1; }
+    else { r1 = r0 + t * (r1 - r0); cut1 = 1; }
+  }
+  if (!(c0[3] > 0 && c1[3] > 0)) return;
+  x0 = c0[0] / c0[3] * F->fbw / 2; y0 = c0[1] / c0[3] * F->fbh / 2;
+  x1 = c1[0] / c1[3] * F->fbw / 2; y1 = c1[1] / c1[3] * F->fbh / 2;
+  ux = x1 - x0; uy = y1 - y0;
+  len = sqrt(ux * ux + uy * uy);
+  if (!(len > 1e-9)) { ux = 1; uy = 0; }     /* seen end-on: the round ends make a disc */
+  else { ux /= len; uy /= len; }
+  a0 = wvertex(F, c0, -uy * r0, ux * r0, rgba);
+  b0 = wvertex(F, c0, uy * r0, -ux * r0, rgba);
+  a1 = wvertex(F, c1, -uy * r1, ux * r1, rgba);
+  b1 = wvertex(F, c1, uy * r1, -ux * r1, rgba);
+  wtri(F, a0, b0, b1);
+  wtri(F, a0, b1, a1);
+  if (!cut1) cap(F, c1, r1, ux, uy, a1, b1, rgba);
+  if (!cut0) cap(F, c0, r0, -ux, -uy, b0, a0, rgba);
+}
+
+/*
+** Thin lines: GL lines sorted by width in framebuffer pixels rounded to an
+** integer (what GL does with aliased widths anyway). Wide lines: the bands
+** of wideline, drawn with identity matrices as they are already in clip
+** coordinates.
+*/
+static void drawlines (frame *F) {
+  const lsys_gl *gl = F->gl;
+  const lsys_mesh *m = F->m;
+  lsys_render_cache *c = F->c;
+  uint8_t *rgba = c->rgba + 4 * m->nv;
+  size_t *start = c->start + 2 * F->npal + 1, s, k, sum = 0, maxw = (size_t)F->maxw;
+  for (s = 0; s < m->nl; s++) {
+    setrgba(rgba + 8 * s, &F->pal[m->lcol[s] % F->npal]);
+    memcpy(rgba + 8 * s + 4, rgba + 8 * s, 4);
+  }
+  /* counting sort of the thin segments by width (bucket k: k pixels) */
+  memset(start, 0, (maxw + 2) * sizeof *start);
+  for (s = 0; s < m->nl; s++) {
+    long kw = lroundf(segwidth(F, s));
+    if (!iswide(F, s)) start[kw < 1 ? 1 : (size_t)kw > maxw ? maxw : (size_t)kw]++;
+  }
+  for (k = 0; k <= maxw + 1; k++) {
+    size_t n = start[k];
+    start[k] = sum;
+    sum += 2 * n;
+  }
+  for (s = 0; s < m->nl; s++) {
+    long kw = lroundf(segwidth(F, s));
+    size_t *p;
+    if (iswide(F, s)) {
+      wideline(F, s, rgba + 8 * s);
+      continue;
+    }
+    p = &start[kw < 1 ? 1 : (size_t)kw > maxw ? maxw : (size_t)kw];
+    c->lidx[*p] = (uint32_t)(2 * s);
+    c->lidx[*p + 1] = (uint32_t)(2 * s + 1);
+    *p += 2;
+  }
+  for (k = maxw + 1; k > 0; k--) start[k] = start[k - 1];
+  start[0] = 0;
+  gl->EnableClientState(GL_VERTEX_ARRAY);
+  gl->EnableClientState(GL_COLOR_ARRAY);
+  gl->VertexPointer(3, GL_FLOAT, 0, m->lpos);
+  gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, rgba);
+  for (k = 1; k <= maxw; k++) {
+    size_t n = start[k + 1] - start[k];
+    if (n == 0) continue;
+    gl->LineWidth((GLfloat)k);
+    drawelements(gl, GL_LINES, c->lidx + start[k], n);
+  }
+  if (F->nwi > 0) {
+    gl->MatrixMode(GL_PROJECTION);
+    gl->LoadIdentity();
+    gl->MatrixMode(GL_MODELVIEW);
+    gl->LoadIdentity();
+    gl->VertexPointer(4, GL_FLOAT, 0, c->wpos);
+    gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, c->wrgba);
+    drawelements(gl, GL_TRIANGLES, c->widx, F->nwi);
+    gl->MatrixMode(GL_PROJECTION);
+    gl->LoadMatrixd(F->proj);
+    gl->MatrixMode(GL_MODELVIEW);
+    gl->LoadMatrixd(F->view);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+/* Makes room for the scratch arrays of one frame. */
+static int reserve (frame *F) {
+  const lsys_mesh *m = F->m;
+  lsys_render_cache *c = F->c;
+  size_t nstart = 2 * F->npal + 1 + (size_t)F->maxw + 2;   /* triangle groups, line widths */
+  size_t nwv = 0, nwi = 0;
+  if (m->nl > 0) widecount(F, &nwv, &nwi);
+  if (nwv > UINT32_MAX) return LSYS_ENOMEM;   /* indices are 32-bit */
+  if (lsys_grow((void **)&c->idx, &c->idxcap, 3 * m->nt, sizeof *c->idx) ||
+      lsys_grow((void **)&c->rgba, &c->rgbacap, 4 * (m->nv + 2 * m->nl), 1) ||
+      lsys_grow((void **)&c->lidx, &c->lidxcap, 2 * m->nl, sizeof *c->lidx) ||
+      lsys_grow((void **)&c->start, &c->startcap, nstart, sizeof *c->start) ||
+      lsys_grow((void **)&c->wpos, &c->wposcap, 4 * nwv, sizeof *c->wpos) ||
+      lsys_grow((void **)&c->wrgba, &c->wrgbacap, 4 * nwv, 1) ||
+      lsys_grow((void **)&c->widx, &c->widxcap, nwi, sizeof *c->widx))
+    return LSYS_ENOMEM;
+  return LSYS_OK;
+}
+
+int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
+                      lsys_error *e) {
+  static const GLfloat white[4] = {1, 1, 1, 1};
+  static const GLfloat key[4] = {0.75f, 0.75f, 0.75f, 1};
+  static const GLfloat black[4] = {0, 0, 0, 1};
+  static const lsys_mesh none = {0};
+  const lsys_gl *gl = o->gl;
+  lsys_render_cache local = {0};
+  frame F;
+  GLfloat range[2] = {1, 1}, pos[4];
+  GLenum err;
+  int i, j, k;
+  if (gl == NULL)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "no OpenGL entry points to draw with");
+  for (k = 0; k < 32 && gl->GetError() != GL_NO_ERROR; k++) {}   /* earlier errors are not ours */
+  memset(&F, 0, sizeof F);
+  F.gl = gl;
+  F.m = m ? m : &none;
+  F.c = o->cache ? o->cache : &local;
+  F.pal = o->pal;
+  F.npal = o->npal;
+  F.fbw = fbw;
+  F.fbh = fbh;
+  F.lscale = o->height > 0 ? (float)fbh / (float)o->height : 1;
+  if (lsys_render_camera(m, o, fbw, fbh, F.proj, F.view) != LSYS_OK)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1,
+                         "bad camera: the viewpoint and the target coincide, a zero "
+                         "direction or up vector, or an empty viewport");
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++)
+      F.mvp[4 * j + i] = F.proj[i] * F.view[4 * j] + F.proj[4 + i] * F.view[4 * j + 1] +
+                         F.proj[8 + i] * F.view[4 * j + 2] + F.proj[12 + i] * F.view[4 * j + 3];
+  if (F.pal == NULL || F.npal == 0) { F.pal = &grey; F.npal = 1; }
+  if (F.npal > 65536) F.npal = 65536;   /* colour indices are 16-bit */
+  gl->GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
+  F.maxw = range[1] >= 1 ? (int)range[1] : 1;
+  if (F.maxw > 1024) F.maxw = 1024;
+  if (reserve(&F) != LSYS_OK) {
+    lsys_render_cache_free(&local);
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory to draw the scene");
+  }
+  gl->Viewport(0, 0, fbw, fbh);
+  gl->ClearColor(o->background[0], o->background[1], o->background[2],
+               o->transparent ? 0.0f : 1.0f);
+  gl->ClearDepth(1);
+  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl->MatrixMode(GL_PROJECTION);
+  gl->LoadMatrixd(F.proj);
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadMatrixd(F.view);
+  gl->Enable(GL_DEPTH_TEST);
+  gl->DepthFunc(GL_LEQUAL);
+  gl->Disable(GL_CULL_FACE);
+  gl->Disable(GL_BLEND);
+  gl->ShadeModel(GL_SMOOTH);
+  gl->Enable(GL_NORMALIZE);
+  /* the key light: a direction (w = 0) in world space, as the modelview
+  ** matrix holds only the view transform here */
+  pos[0] = (GLfloat)o->light[0];
+  pos[1] = (GLfloat)o->light[1];
+  pos[2] = (GLfloat)o->light[2];
+  pos[3] = 0;
+  gl->Lightfv(GL_LIGHT0, GL_POSITION, pos);
+  gl->Lightfv(GL_LIGHT0, GL_AMBIENT, black);
+  gl->Lightfv(GL_LIGHT0, GL_DIFFUSE, key);
+  gl->Lightfv(GL_LIGHT0, GL_SPECULAR, white);
+  gl->Enable(GL_LIGHT0);
+  gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, white);
+  gl->LightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 0);
+  gl->ColorMaterial(GL_FRONT_AND_BACK, GL_DIFFUSE);
+  gl->Enable(GL_COLOR_MATERIAL);
+  if (F.m->nt > 0) {
+    size_t v;
+    for (v = 0; v < F.m->nv; v++) setrgba(F.c->rgba + 4 * v, &F.pal[F.m->col[v] % F.npal]);
+    sorttriangles(&F);
+    drawtriangles(&F, 0, o->wireframe);
+  }
+  if (F.m->nl > 0) drawlines(&F);
+  if (F.m->nt > 0) drawtriangles(&F, 1, o->wireframe);   /* translucent, over everything */
+  gl->DisableClientState(GL_VERTEX_ARRAY);
+  gl->DisableClientState(GL_COLOR_ARRAY);
+  lsys_render_cache_free(&local);
+  if ((err = gl->GetError()) != GL_NO_ERROR)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "OpenGL error 0x%04x while drawing",
+                         (unsigned)err);
+  return LSYS_OK;
+}

@@ -1,0 +1,198 @@
+/*
+** Drawing a scene with OpenGL (DESIGN.md §7). One drawing path serves the
+** offscreen renderer (osmesa.c) and the viewer window: the caller makes a
+** GL context current and calls lsys_render_draw with that context's entry
+** points. Camera fitting and projection are plain arithmetic and need no
+** GL context.
+**
+** Only fixed-function OpenGL 1.x calls are used (vertex arrays and
+** glDrawElements), so any compatibility context will do. This header does
+** not include the GL headers: a build without them still compiles the
+** Lua binding against it.
+*/
+#ifndef LSYS_RENDER_H
+#define LSYS_RENDER_H
+
+#include "mesh.h"
+
+/*
+** The OpenGL entry points lsys calls, fetched through the context's own
+** loader (OSMesaGetProcAddress, glfwGetProcAddress) rather than linked:
+** lsys.core then does not load libOSMesa (and LLVM) until the first render,
+** and an OSMesa context and a window context of another vendor can live in
+** one process, each with its table. Types are the GL ABI's (GLenum =
+** unsigned, GLsizei = int, GLfloat = float, GLboolean = unsigned char).
+*/
+#if defined(_WIN32)
+#define LSYS_GLAPI __stdcall
+#else
+#define LSYS_GLAPI
+#endif
+
+typedef struct lsys_gl {
+  unsigned (LSYS_GLAPI *GetError) (void);
+  void (LSYS_GLAPI *GetFloatv) (unsigned pname, float *v);
+  void (LSYS_GLAPI *GetIntegerv) (unsigned pname, int *v);
+  void (LSYS_GLAPI *Viewport) (int x, int y, int w, int h);
+  void (LSYS_GLAPI *ClearColor) (float r, float g, float b, float a);
+  void (LSYS_GLAPI *ClearDepth) (double d);
+  void (LSYS_GLAPI *Clear) (unsigned mask);
+  void (LSYS_GLAPI *Finish) (void);
+  void (LSYS_GLAPI *Enable) (unsigned cap);
+  void (LSYS_GLAPI *Disable) (unsigned cap);
+  void (LSYS_GLAPI *EnableClientState) (unsigned array);
+  void (LSYS_GLAPI *DisableClientState) (unsigned array);
+  void (LSYS_GLAPI *MatrixMode) (unsigned mode);
+  void (LSYS_GLAPI *LoadMatrixd) (const double *m);
+  void (LSYS_GLAPI *LoadIdentity) (void);
+  void (LSYS_GLAPI *DepthFunc) (unsigned func);
+  void (LSYS_GLAPI *DepthMask) (unsigned char flag);
+  void (LSYS_GLAPI *BlendFunc) (unsigned sfactor, unsigned dfactor);
+  void (LSYS_GLAPI *ShadeModel) (unsigned mode);
+  void (LSYS_GLAPI *PolygonMode) (unsigned face, unsigned mode);
+  void (LSYS_GLAPI *LineWidth) (float w);
+  void (LSYS_GLAPI *Lightfv) (unsigned light, unsigned pname, const float *v);
+  void (LSYS_GLAPI *LightModelfv) (unsigned pname, const float *v);
+  void (LSYS_GLAPI *LightModeli) (unsigned pname, int v);
+  void (LSYS_GLAPI *Materialfv) (unsigned face, unsigned pname, const float *v);
+  void (LSYS_GLAPI *Materialf) (unsigned face, unsigned pname, float v);
+  void (LSYS_GLAPI *ColorMaterial) (unsigned face, unsigned mode);
+  void (LSYS_GLAPI *VertexPointer) (int size, unsigned type, int stride, const void *p);
+  void (LSYS_GLAPI *NormalPointer) (unsigned type, int stride, const void *p);
+  void (LSYS_GLAPI *ColorPointer) (int size, unsigned type, int stride, const void *p);
+  void (LSYS_GLAPI *DrawElements) (unsigned mode, int count, unsigned type, const void *idx);
+} lsys_gl;
+
+typedef void (*lsys_glproc) (void);
+
+/* Fills 'gl' with get("glClear") and so on. Returns LSYS_OK, or LSYS_EARG
+** with e->msg naming the first entry point that 'get' did not find. */
+int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e);
+
+#define LSYS_PERSPECTIVE 0
+#define LSYS_PARALLEL    1
+
+/*
+** The camera. Without a target, it aims at the centre of the scene's
+** bounding box. Without an eye, it looks along 'dir' and steps back until
+** every vertex and line end is in the image with a margin of 5% of its
+** size on each side (around the target, so the margins may differ). A
+** parallel projection is scaled the same way. Near and far planes always
+** come from the bounding box.
+*/
+typedef struct lsys_camera {
+  double eye[3];        /* viewpoint, when has_eye */
+  double target[3];     /* view reference point, when has_target */
+  double up[3];         /* up vector, when has_up; default +y */
+  double dir[3];        /* view direction used when there is no eye; default (0, 0, -1) */
+  int has_eye, has_target, has_up;
+  int projection;       /* LSYS_PERSPECTIVE (default) or LSYS_PARALLEL */
+  double fov;           /* vertical field of view in degrees (perspective); default 30 */
+  double twist;         /* degrees; a positive twist turns the picture counterclockwise */
+  double zoom;          /* magnification about the image centre, after fitting; default 1 */
+} lsys_camera;
+
+/* Scratch arrays of lsys_render_draw, kept between frames so that
+** drawing allocates nothing once they are large enough. */
+typedef struct lsys_render_cache {
+  uint32_t *idx;        /* triangle indices grouped by material */
+  size_t idxcap;
+  uint8_t *rgba;        /* diffuse colour per vertex, then per line end */
+  size_t rgbacap;
+  uint32_t *lidx;       /* thin line end indices grouped by width */
+  size_t lidxcap;
+  size_t *start;        /* group offsets */
+  size_t startcap;
+  float *wpos;          /* wide lines as triangles: clip coordinates (4 per vertex) */
+  size_t wposcap;
+  uint8_t *wrgba;       /* their colours */
+  size_t wrgbacap;
+  uint32_t *widx;       /* their triangles */
+  size_t widxcap;
+} lsys_render_cache;
+
+typedef struct lsys_render_opts {
+  int width, height;        /* image size in pixels; default 800 x 800 */
+  int supersample;          /* offscreen: samples per pixel along each axis; default 3 */
+  float background[3];      /* RGB in [0, 1]; default white */
+  int transparent;          /* offscreen: background alpha 0 instead of 1 */
+  double light[3];          /* world-space direction towards the key light;
+                               default (-1, 1, 1): upper front left */
+  lsys_camera cam;
+  const lsys_material *pal; /* colour c uses pal[c % npal]; npal 0: a grey default */
+  size_t npal;
+  int wireframe;            /* draw triangle edges only */
+  lsys_render_cache *cache; /* optional scratch kept by the caller; NULL: temporary */
+  const lsys_gl *gl;        /* entry points of the current context (lsys_render_draw);
+                               lsys_render_offscreen uses its own */
+} lsys_render_opts;
+
+/* Fills 'o' with the defaults above (no palette, no cache). */
+void lsys_render_defaults (lsys_render_opts *o);
+
+/* Frees the arrays of 'c' and leaves it empty (reusable). */
+void lsys_render_cache_free (lsys_render_cache *c);
+
+/*
+** Computes the camera of 'o' for a w x h viewport: 'proj' and 'view' are
+** OpenGL matrices (column-major, ready for glLoadMatrixd). Returns LSYS_OK,
+** or LSYS_EARG when w or h is not positive, the eye and the target coincide,
+** or 'dir' or 'up' is the zero vector.
+*/
+int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
+                        double proj[16], double view[16]);
+
+/*
+** Projects the world point 'p' into a w x h window: out[0] is x in pixels
+** from the left edge, out[1] is y in pixels from the TOP edge (image rows,
+** and GLFW's cursor coordinates), out[2] the depth in [0, 1] between the
+** near and far planes. Returns 1 when the point is in front of the eye, 0
+** when it is behind it (out[] is then meaningless).
+*/
+int lsys_render_project (const double proj[16], const double view[16], int w, int h,
+                         const double p[3], double out[3]);
+
+/*
+** Draws 'm' into the current GL context's framebuffer of fbw x fbh pixels:
+** clears to the background, lights with the key light plus ambient, lights
+** two-sided vertices on both faces, and draws lines with their widths
+** scaled by fbh / o->height (the supersampling factor offscreen, the content
+** scale in a window). Lines narrower than LSYS_RENDER_WIDE pixels are GL
+** lines; wider ones are flat bands facing the eye, tapered from one end's
+** width to the other's, with round ends so that polylines join smoothly.
+** Leaves the GL state it changed set for the next frame.
+** Returns LSYS_OK, LSYS_ENOMEM, or LSYS_EARG (no o->gl, a bad camera or a GL
+** error), with e->msg set.
+*/
+#define LSYS_RENDER_WIDE 3
+
+int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
+                      lsys_error *e);
+
+/* osmesa.c ------------------------------------------------------------- */
+
+/* Largest number of samples (supersampled pixels) of one offscreen render;
+** the supersampling factor is lowered to stay within it. */
+#define LSYS_RENDER_MAX_SAMPLES (64 * 1024 * 1024)
+
+/*
+** Renders 'm' offscreen into 'rgba' (o->width * o->height * 4 bytes, top
+** row first, straight alpha). Draws at o->supersample times the size along
+** each axis, lowered to fit OSMesa's maximum size and
+** LSYS_RENDER_MAX_SAMPLES, and box-filters down. libOSMesa is loaded at the
+** first call and one context is kept for the process; calls from several
+** threads take turns. Returns LSYS_OK or an error with e->msg set (e.g.
+** libOSMesa missing, an image larger than OSMesa allows).
+*/
+int lsys_render_offscreen (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
+                           lsys_error *e);
+
+/* The largest image OSMesa can draw, asked once; returns LSYS_OK, or an
+** error when libOSMesa cannot be loaded or no context can be created. */
+int lsys_render_maxsize (int *maxw, int *maxh, lsys_error *e);
+
+/* Destroys the kept OSMesa context and its scratch (at exit, for leak
+** checkers); the next render creates them again. */
+void lsys_render_shutdown (void);
+
+#endif

@@ -1,0 +1,564 @@
+/*
+** C unit tests for rendering and PNG I/O: camera fitting and projection
+** (plain arithmetic, no GL), PNG round trips in several colour types,
+** damaged files, and offscreen renders of a small hand-made scene. A build
+** without OSMesa runs the PNG tests only. Set LSYS_RENDER_DUMP=dir to keep
+** the rendered images.
+*/
+#define _POSIX_C_SOURCE 200809L
+#undef NDEBUG
+#include <assert.h>
+#include <math.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "mesh.h"
+#include "pngio.h"
+#include "render.h"
+
+static char tmpdir[256];
+
+static const char *tmppath (const char *name) {
+  static char buf[4][512];
+  static int k;
+  char *p = buf[k++ & 3];
+  snprintf(p, sizeof buf[0], "%s/%s", tmpdir, name);
+  return p;
+}
+
+#ifndef LSYS_NO_RENDER
+
+/* A mesh made of the 8 corners of [lo, hi] (vertices only, no triangles). */
+static float boxpos[24], boxnrm[24], boxuv[16];
+static uint16_t boxcol[8];
+static uint8_t boxts[8];
+
+static lsys_mesh boxmesh (const double lo[3], const double hi[3]) {
+  lsys_mesh m = {0};
+  int i;
+  for (i = 0; i < 8; i++) {
+    boxpos[3 * i + 0] = (float)((i & 1) ? hi[0] : lo[0]);
+    boxpos[3 * i + 1] = (float)((i & 2) ? hi[1] : lo[1]);
+    boxpos[3 * i + 2] = (float)((i & 4) ? hi[2] : lo[2]);
+  }
+  m.pos = boxpos; m.nrm = boxnrm; m.uv = boxuv; m.col = boxcol; m.twosided = boxts;
+  m.nv = 8;
+  return m;
+}
+
+/* ---------------------------------------------------------------------- */
+
+static void project (const double proj[16], const double view[16], int w, int h, double x,
+                     double y, double z, double out[3]) {
+  double p[3] = {x, y, z};
+  assert(lsys_render_project(proj, view, w, h, p, out) == 1);
+}
+
+/* Every corner of the box lies inside the viewport with a margin, the box
+** fills most of it along one axis, and its centre is in the middle. */
+static void checkfit (const lsys_mesh *m, const lsys_render_opts *o, int w, int h) {
+  double proj[16], view[16], out[3], lo[3], hi[3], minx = 1e9, maxx = -1e9, miny = 1e9,
+         maxy = -1e9;
+  int i;
+  assert(lsys_render_camera(m, o, w, h, proj, view) == LSYS_OK);
+  lsys_mesh_bounds(m, lo, hi);
+  for (i = 0; i < 8; i++) {
+    project(proj, view, w, h, (i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1],
+            (i & 4) ? hi[2] : lo[2], out);
+    assert(out[2] > 0 && out[2] < 1);
+    minx = fmin(minx, out[0]); maxx = fmax(maxx, out[0]);
+    miny = fmin(miny, out[1]); maxy = fmax(maxy, out[1]);
+  }
+  assert(minx >= 0.04 * w && maxx <= 0.96 * w);
+  assert(miny >= 0.04 * h && maxy <= 0.96 * h);
+  assert(maxx - minx >= 0.8 * w || maxy - miny >= 0.8 * h);
+  project(proj, view, w, h, 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]),
+          0.5 * (lo[2] + hi[2]), out);
+  assert(fabs(out[0] - 0.5 * w) < 1 && fabs(out[1] - 0.5 * h) < 1);
+}
+
+static void test_fit (void) {
+  static const double lo[3] = {-1, 0, -0.5}, hi[3] = {1, 4, 0.5};
+  static const double dirs[4][3] = {{0, 0, -1}, {1, 0, 0}, {-1, -1, -1}, {0, -1, 0}};
+  lsys_mesh m = boxmesh(lo, hi), empty = {0};
+  lsys_render_opts o;
+  int d, p;
+  lsys_render_defaults(&o);
+  for (p = 0; p < 2; p++) {
+    o.cam.projection = p ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
+    for (d = 0; d < 4; d++) {
+      memcpy(o.cam.dir, dirs[d], sizeof o.cam.dir);
+      checkfit(&m, &o, 800, 600);
+      checkfit(&m, &o, 300, 900);
+      o.cam.twist = 30;
+      checkfit(&m, &o, 500, 500);
+      o.cam.twist = 0;
+    }
+    /* a given eye, perspective: the target is the box centre, the frame is not fitted */
+    o.cam.dir[0] = 0; o.cam.dir[1] = 0; o.cam.dir[2] = -1;
+    checkfit(&m, &o, 640, 480);
+  }
+  /* perspective fits the vertices, not the box: a square with points on
+  ** the view axis in front of and behind it still fills the image */
+  {
+    static const double slo[3] = {-1, -1, 0}, shi[3] = {1, 1, 0};
+    lsys_mesh sq = boxmesh(slo, shi);
+    double proj[16], view[16], out[3];
+    boxpos[2] = 1;                      /* vertex 0 -> (0, 0, 1), vertex 7 -> (0, 0, -10) */
+    boxpos[0] = boxpos[1] = 0;
+    boxpos[21] = boxpos[22] = 0; boxpos[23] = -10;
+    lsys_render_defaults(&o);
+    assert(lsys_render_camera(&sq, &o, 100, 100, proj, view) == LSYS_OK);
+    project(proj, view, 100, 100, 1, -1, 0, out);
+    assert(out[0] > 90 && out[0] <= 96 && out[1] > 90 && out[1] <= 96);
+    project(proj, view, 100, 100, 0, 0, 1, out);
+    assert(out[2] > 0 && out[2] < 1);   /* within the near plane */
+  }
+  /* a flat box (a 2D plant) and an empty scene */
+  {
+    static const double flo[3] = {-3, 0, 0}, fhi[3] = {3, 10, 0};
+    lsys_mesh f = boxmesh(flo, fhi);
+    double proj[16], view[16];
+    lsys_render_defaults(&o);
+    checkfit(&f, &o, 400, 400);
+    o.cam.projection = LSYS_PARALLEL;
+    checkfit(&f, &o, 400, 400);
+    assert(lsys_render_camera(&empty, &o, 10, 10, proj, view) == LSYS_OK);
+    assert(lsys_render_camera(NULL, &o, 10, 10, proj, view) == LSYS_OK);
+  }
+}
+
+/* Known points through a camera with a given eye. */
+static void test_project (void) {
+  static const double lo[3] = {-1, -1, 0}, hi[3] = {1, 1, 0};
+  lsys_mesh m = boxmesh(lo, hi);
+  lsys_render_opts o;
+  double proj[16], view[16], out[3], behind[3] = {0, 0, 20};
+  lsys_render_defaults(&o);
+  o.cam.has_eye = o.cam.has_target = 1;
+  o.cam.eye[2] = 10;                            /* target: the origin */
+  o.cam.fov = 90;                               /* half height = distance */
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  project(proj, view, 100, 100, 0, 0, 0, out);
+  assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 50) < 1e-9);
+  project(proj, view, 100, 100, 5, 0, 0, out);
+  assert(fabs(out[0] - 75) < 1e-9 && fabs(out[1] - 50) < 1e-9);
+  project(proj, view, 100, 100, 0, 5, 0, out);  /* y grows downwards */
+  assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 25) < 1e-9);
+  assert(lsys_render_project(proj, view, 100, 100, behind, out) == 0);
+  /* a wide viewport keeps the vertical angle */
+  assert(lsys_render_camera(&m, &o, 200, 100, proj, view) == LSYS_OK);
+  project(proj, view, 200, 100, 5, 5, 0, out);
+  assert(fabs(out[0] - 125) < 1e-9 && fabs(out[1] - 25) < 1e-9);
+  /* twist 90: the picture turns counterclockwise, +x goes up */
+  o.cam.twist = 90;
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  project(proj, view, 100, 100, 5, 0, 0, out);
+  assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 25) < 1e-9);
+  o.cam.twist = 0;
+  o.cam.zoom = 2;
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  project(proj, view, 100, 100, 5, 0, 0, out);
+  assert(fabs(out[0] - 100) < 1e-9);
+  o.cam.zoom = 1;
+  /* parallel: the box's half height 1 fills 90% of the half image */
+  o.cam.projection = LSYS_PARALLEL;
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  project(proj, view, 100, 100, 1, -1, 0, out);
+  assert(fabs(out[0] - 95) < 1e-9 && fabs(out[1] - 95) < 1e-9);
+  /* an up vector along the view axis is replaced, not an error */
+  o.cam.has_up = 1;
+  o.cam.up[0] = 0; o.cam.up[1] = 0; o.cam.up[2] = 1;
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  /* degenerate cameras */
+  o.cam.has_up = 0;
+  assert(lsys_render_camera(&m, &o, 0, 100, proj, view) == LSYS_EARG);
+  memset(o.cam.eye, 0, sizeof o.cam.eye);
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_EARG);
+  o.cam.has_eye = o.cam.has_target = 0;
+  memset(o.cam.dir, 0, sizeof o.cam.dir);
+  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_EARG);
+}
+
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* PNG */
+
+static void pattern (uint8_t *p, int w, int h) {
+  int x, y;
+  for (y = 0; y < h; y++)
+    for (x = 0; x < w; x++) {
+      uint8_t *q = p + 4 * (y * w + x);
+      q[0] = (uint8_t)(x * 37); q[1] = (uint8_t)(y * 53); q[2] = (uint8_t)(x * y);
+      q[3] = (uint8_t)(255 - x - y);
+    }
+}
+
+static long filesize (const char *path) {
+  FILE *f = fopen(path, "rb");
+  long n;
+  assert(f != NULL);
+  fseek(f, 0, SEEK_END);
+  n = ftell(f);
+  fclose(f);
+  return n;
+}
+
+static void writefile (const char *path, const void *p, size_t n) {
+  FILE *f = fopen(path, "wb");
+  assert(f != NULL && fwrite(p, 1, n, f) == n);
+  fclose(f);
+}
+
+static void *readfile (const char *path, size_t *n) {
+  FILE *f = fopen(path, "rb");
+  char *p;
+  assert(f != NULL);
+  fseek(f, 0, SEEK_END);
+  *n = (size_t)ftell(f);
+  fseek(f, 0, SEEK_SET);
+  p = malloc(*n);
+  assert(p != NULL && fread(p, 1, *n, f) == *n);
+  fclose(f);
+  return p;
+}
+
+/* Writes a PNG of another colour type directly with libpng. */
+static void writeraw (const char *path, int w, int h, int depth, int type, int interlace,
+                      const uint8_t *rows, size_t rowbytes, const png_color *plte, int nplte) {
+  FILE *f = fopen(path, "wb");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  png_infop info = png_create_info_struct(png);
+  int y, pass, npass;
+  assert(f && png && info);
+  png_init_io(png, f);
+  png_set_IHDR(png, info, w, h, depth, type, interlace, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  if (plte) png_set_PLTE(png, info, plte, nplte);
+  png_write_info(png, info);
+  npass = png_set_interlace_handling(png);
+  for (pass = 0; pass < npass; pass++)
+    for (y = 0; y < h; y++) png_write_row(png, rows + rowbytes * y);
+  png_write_end(png, NULL);
+  png_destroy_write_struct(&png, &info);
+  fclose(f);
+}
+
+static void test_png (void) {
+  enum { W = 7, H = 5 };
+  uint8_t src[W * H * 4], *got = NULL;
+  int w, h, i;
+  lsys_error e;
+  const char *p = tmppath("pattern.png");
+  pattern(src, W, H);
+  /* RGBA round trip */
+  assert(lsys_png_write(p, src, W, H, 1, &e) == LSYS_OK);
+  assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+  assert(w == W && h == H && memcmp(got, src, sizeof src) == 0);
+  free(got);
+  /* RGB: alpha dropped on writing, 255 on reading */
+  assert(lsys_png_write(p, src, W, H, 0, &e) == LSYS_OK);
+  assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+  for (i = 0; i < W * H; i++) {
+    assert(memcmp(got + 4 * i, src + 4 * i, 3) == 0);
+    assert(got[4 * i + 3] == 255);
+  }
+  free(got);
+  /* 4-bit palette */
+  {
+    static const png_color plte[3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}};
+    uint8_t rows[2][2] = {{0x01, 0x20}, {0x22, 0x10}};     /* 4 pixels a row, 2 rows */
+    static const uint8_t want[8] = {0, 1, 2, 0, 2, 2, 1, 0};
+    writeraw(p, 4, 2, 4, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE, rows[0], 2, plte, 3);
+    assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+    assert(w == 4 && h == 2);
+    for (i = 0; i < 8; i++) {
+      assert(memcmp(got + 4 * i, &plte[want[i]], 3) == 0);
+      assert(got[4 * i + 3] == 255);
+    }
+    free(got);
+  }
+  /* 16-bit grey + alpha, interlaced */
+  {
+    uint8_t rows[9][9 * 4];
+    int x, y;
+    for (y = 0; y < 9; y++)
+      for (x = 0; x < 9; x++) {
+        rows[y][4 * x] = (uint8_t)(x * 20 + y); rows[y][4 * x + 1] = 0x55;
+        rows[y][4 * x + 2] = (uint8_t)(y * 25); rows[y][4 * x + 3] = 0xaa;
+      }
+    writeraw(p, 9, 9, 16, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_INTERLACE_ADAM7, rows[0], 36, NULL,
+             0);
+    assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+    assert(w == 9 && h == 9);
+    for (y = 0; y < 9; y++)
+      for (x = 0; x < 9; x++) {
+        const uint8_t *q = got + 4 * (9 * y + x);
+        assert(q[0] == x * 20 + y && q[1] == q[0] && q[2] == q[0] && q[3] == y * 25);
+      }
+    free(got);
+  }
+  /* errors name the file and the reason, and never crash */
+  assert(lsys_png_write("/nonexistent-dir/x.png", src, W, H, 0, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "cannot open '/nonexistent-dir/x.png' for writing: "
+                       "No such file or directory") == 0);
+  assert(lsys_png_read("/nonexistent-dir/x.png", &got, &w, &h, &e) == LSYS_EARG);
+  assert(got == NULL && strstr(e.msg, "cannot open '/nonexistent-dir/x.png' for reading"));
+  {
+    const char *q = tmppath("bad.png");
+    size_t n, k;
+    uint8_t *good;
+    writefile(q, "hello, not a picture", 20);
+    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
+    assert(strstr(e.msg, "is not a PNG file") && strstr(e.msg, q));
+    writefile(q, "", 0);
+    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
+    /* every truncation of a valid file fails cleanly */
+    assert(lsys_png_write(p, src, W, H, 1, &e) == LSYS_OK);
+    good = readfile(p, &n);
+    for (k = 0; k < n; k++) {
+      writefile(q, good, k);
+      assert(lsys_png_read(q, &got, &w, &h, &e) != LSYS_OK && got == NULL);
+      assert(strstr(e.msg, q) != NULL);
+    }
+    /* a flipped byte anywhere after the signature: an error or a picture, no crash */
+    for (k = 8; k < n; k++) {
+      good[k] ^= 0x5a;
+      writefile(q, good, n);
+      if (lsys_png_read(q, &got, &w, &h, &e) == LSYS_OK) free(got);
+      else assert(got == NULL && strstr(e.msg, q) != NULL);
+      good[k] ^= 0x5a;
+    }
+    writefile(q, good, n / 2);
+    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX);
+    assert(strstr(e.msg, "unexpected end of file") != NULL);
+    free(good);
+    remove(q);
+  }
+  assert(filesize(p) > 0);
+  remove(p);
+}
+
+/* ---------------------------------------------------------------------- */
+/* offscreen rendering */
+
+#ifndef LSYS_NO_RENDER
+
+enum { IW = 64, IH = 64 };
+
+/* A red quad in the upper left (two triangles facing +z), a thick blue
+** line in the lower right (drawn as a band) and a thin one in the lower left
+** (a GL line). */
+static float qpos[12] = {-2, 0.2f, 0, -0.4f, 0.2f, 0, -0.4f, 1.8f, 0, -2, 1.8f, 0};
+static float qnrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+static float quv[8];
+static uint16_t qcol[4];
+static uint8_t qts[4];
+static uint32_t qtri[6] = {0, 1, 2, 0, 2, 3};
+static float lpos[12] = {0.4f, -1.8f, 0, 2, -0.2f, 0, -2, -1.5f, 0, -0.5f, -1.5f, 0};
+static float lwid[4] = {4, 4, 1, 1};
+static uint16_t lcol[2] = {1, 1};
+
+static lsys_mesh scene (void) {
+  lsys_mesh m = {0};
+  m.pos = qpos; m.nrm = qnrm; m.uv = quv; m.col = qcol; m.twosided = qts;
+  m.nv = 4;
+  m.tri = qtri; m.nt = 2;
+  m.lpos = lpos; m.lwidth = lwid; m.lcol = lcol; m.nl = 2;
+  return m;
+}
+
+static const uint8_t *pixel (const uint8_t *img, double x, double y) {
+  return img + 4 * ((int)y * IW + (int)x);
+}
+
+static void dump (const uint8_t *img, const char *name) {
+  const char *dir = getenv("LSYS_RENDER_DUMP");
+  char path[512];
+  lsys_error e;
+  if (dir == NULL) return;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  assert(lsys_png_write(path, img, IW, IH, 1, &e) == LSYS_OK);
+}
+
+static int brightness (const uint8_t *p) {
+  return p[0] + p[1] + p[2];
+}
+
+/* The bluest pixel within 'd' pixels of (x, y). */
+static const uint8_t *bluest (const uint8_t *img, double x, double y, int d) {
+  const uint8_t *best = pixel(img, x, y);
+  int i, j;
+  for (j = -d; j <= d; j++)
+    for (i = -d; i <= d; i++) {
+      const uint8_t *p = pixel(img, x + i, y + j);
+      if (p[2] - p[0] > best[2] - best[0]) best = p;
+    }
+  return best;
+}
+
+static void test_offscreen (void) {
+  lsys_material pal[3];
+  lsys_mesh m = scene(), empty = {0};
+  lsys_render_opts o;
+  lsys_error e;
+  double proj[16], view[16], q[3];
+  double quad[3] = {-1.2, 1.0, 0}, line[3] = {1.2, -1.0, 0}, thin[3] = {-1.25, -1.5, 0};
+  uint8_t img[IW * IH * 4];
+  const uint8_t *c;
+  int ss, i, back[2];
+  lsys_material_color(&pal[0], 1, 0, 0);
+  lsys_material_color(&pal[1], 0, 0, 1);
+  lsys_material_color(&pal[2], 1, 0, 0);
+  pal[2].diffuse[3] = 0.5f;                     /* translucent red */
+  lsys_render_defaults(&o);
+  o.width = IW; o.height = IH;
+  o.pal = pal; o.npal = 3;
+  assert(lsys_render_camera(&m, &o, IW, IH, proj, view) == LSYS_OK);
+  for (ss = 1; ss <= 3; ss += 2) {
+    o.supersample = ss;
+    memset(img, 0x33, sizeof img);
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    dump(img, ss == 1 ? "render1.png" : "render3.png");
+    /* corners: the white background */
+    for (i = 0; i < 4; i++) {
+      c = pixel(img, (i & 1) ? IW - 1 : 0, (i & 2) ? IH - 1 : 0);
+      assert(c[0] == 255 && c[1] == 255 && c[2] == 255 && c[3] == 255);
+    }
+    /* the quad is red, in the top half (top row first) */
+    lsys_render_project(proj, view, IW, IH, quad, q);
+    assert(q[1] < IH / 2);
+    c = pixel(img, q[0], q[1]);
+    assert(c[0] > 120 && c[1] < 40 && c[2] < 40);
+    c = pixel(img, q[0], IH - 1 - q[1]);           /* mirrored: background */
+    assert(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    /* the lines are blue */
+    lsys_render_project(proj, view, IW, IH, line, q);
+    c = pixel(img, q[0], q[1]);
+    assert(c[2] > 150 && c[0] < 100 && c[1] < 100);
+    lsys_render_project(proj, view, IW, IH, thin, q);
+    c = bluest(img, q[0], q[1], 1);
+    assert(c[2] > 150 && c[0] < 160 && c[1] < 160);
+    /* the wide line has a round end: blue 1.5 pixels past its end point,
+    ** background past its radius (2 pixels) */
+    {
+      double a[3] = {lpos[0], lpos[1], lpos[2]}, b[3] = {lpos[3], lpos[4], lpos[5]}, pa[3],
+             pb[3], dx, dy, len;
+      lsys_render_project(proj, view, IW, IH, a, pa);
+      lsys_render_project(proj, view, IW, IH, b, pb);
+      dx = pb[0] - pa[0]; dy = pb[1] - pa[1];
+      len = sqrt(dx * dx + dy * dy);
+      dx /= len; dy /= len;
+      c = pixel(img, pb[0] + 1.5 * dx, pb[1] + 1.5 * dy);
+      assert(c[2] > c[0] + 60);
+      c = pixel(img, pb[0] + 4 * dx, pb[1] + 4 * dy);
+      assert(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    }
+  }
+  /* anti-aliasing: with supersampling, edge pixels take in-between values */
+  {
+    int mixed = 0;
+    for (i = 0; i < IW * IH; i++) {
+      const uint8_t *p = img + 4 * i;
+      if (p[1] > 40 && p[1] < 215 && p[0] > p[1] + 20) mixed++;
+    }
+    assert(mixed > 10);
+  }
+  /* a translucent material blends with what is behind it */
+  for (i = 0; i < 4; i++) qcol[i] = 2;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  lsys_render_project(proj, view, IW, IH, quad, q);
+  c = pixel(img, q[0], q[1]);
+  assert(c[0] > 180 && c[1] > 60 && c[1] < 200 && c[1] == c[2]);
+  for (i = 0; i < 4; i++) qcol[i] = 0;
+  /* a transparent background */
+  o.transparent = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(pixel(img, 0, 0)[3] == 0);
+  lsys_render_project(proj, view, IW, IH, quad, q);
+  assert(pixel(img, q[0], q[1])[3] == 255);
+  o.transparent = 0;
+  /* two-sided: seen from behind with the light behind, a two-sided quad is
+  ** lit on its back face, a one-sided one only gets ambient light */
+  o.cam.dir[2] = 1;
+  o.light[0] = 0; o.light[1] = 0; o.light[2] = -1;
+  assert(lsys_render_camera(&m, &o, IW, IH, proj, view) == LSYS_OK);
+  lsys_render_project(proj, view, IW, IH, quad, q);
+  for (i = 0; i < 2; i++) {
+    memset(qts, i, sizeof qts);
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    dump(img, i ? "back2.png" : "back1.png");
+    back[i] = brightness(pixel(img, q[0], q[1]));
+  }
+  memset(qts, 0, sizeof qts);
+  assert(back[1] > back[0] + 100);
+  /* wireframe still draws, an empty scene is all background */
+  lsys_render_defaults(&o);
+  o.width = IW; o.height = IH; o.wireframe = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  o.wireframe = 0;
+  assert(lsys_render_offscreen(&empty, &o, img, &e) == LSYS_OK);
+  for (i = 0; i < IW * IH * 4; i++) assert(img[i] == 255);
+  /* a wide line through the eye is cut at the near plane */
+  {
+    static float zpos[6] = {0.1f, 0.1f, -3, 0.1f, 0.1f, 3};
+    lsys_mesh z = m;
+    z.lpos = zpos; z.nl = 1;
+    o.cam.has_eye = o.cam.has_target = 1;
+    o.cam.eye[0] = 0; o.cam.eye[1] = 0; o.cam.eye[2] = 0.5;
+    o.cam.target[0] = 0; o.cam.target[1] = 0; o.cam.target[2] = -1;
+    assert(lsys_render_offscreen(&z, &o, img, &e) == LSYS_OK);
+    o.cam.has_eye = o.cam.has_target = 0;
+  }
+  /* coordinates and widths that are not numbers draw nothing useful but
+  ** do not crash; the camera falls back to the finite part */
+  {
+    static float bpos[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0};
+    static float bl[12] = {0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0};
+    static float bw[4] = {1e30f, -2, 5, 5};
+    lsys_mesh b = m;
+    bpos[9] = NAN; bl[3] = INFINITY; bl[7] = NAN; bw[2] = NAN;
+    b.pos = bpos; b.lpos = bl; b.lwidth = bw;
+    assert(lsys_render_offscreen(&b, &o, img, &e) == LSYS_OK);
+    bl[3] = 1; bl[7] = 1;
+    assert(lsys_render_offscreen(&b, &o, img, &e) == LSYS_OK);
+  }
+  /* a scratch cache kept by the caller */
+  {
+    lsys_render_cache cache = {0};
+    o.cache = &cache;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    lsys_render_cache_free(&cache);
+    o.cache = NULL;
+  }
+  /* errors */
+  assert(lsys_render_draw(&m, &o, IW, IH, &e) == LSYS_EARG);      /* no entry points */
+  o.width = 0;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_EARG);
+  o.width = 1 << 20;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_ELIMIT);
+  assert(strstr(e.msg, "exceeds OSMesa's limit") != NULL);
+  lsys_render_shutdown();
+}
+
+#endif
+
+int main (void) {
+  snprintf(tmpdir, sizeof tmpdir, "/tmp/lsys_test_render_%ld", (long)getpid());
+  assert(mkdir(tmpdir, 0700) == 0);
+  test_png();
+#ifndef LSYS_NO_RENDER                /* render.c is left out of such a build */
+  test_fit();
+  test_project();
+  test_offscreen();
+#endif
+  rmdir(tmpdir);
+  printf("test_render: ok\n");
+  return 0;
+}
