@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages lsys needs (only those missing), builds into build/ and runs
-# the default example. Usage: ./setup.sh [--no-run]
+# Installs the Debian packages lsys needs (only those missing), builds into build/ and renders
+# the default plant headless to tree.png (OSMesa). Usage: ./setup.sh [--no-run]
 #   --no-run   install and build only (./test.sh uses this)
 # Environment: BUILD_DIR (default build), BUILD_TYPE (default Release), JOBS (default nproc).
 set -euo pipefail
@@ -54,6 +54,6 @@ build() {
 install_missing
 build
 if [ $run_example -eq 1 ]; then
-  echo "+ $BUILD_DIR/bin/lsys derive examples/default.lua --stats"
-  "$BUILD_DIR/bin/lsys" derive examples/default.lua --stats
+  echo "+ $BUILD_DIR/bin/lsys render -o tree.png"
+  "$BUILD_DIR/bin/lsys" render -o tree.png
 fi

@@ -33,6 +33,26 @@ typedef struct lscene {
 } lscene;
 
 #define checkscene(L, i) ((lscene *)luaL_checkudata(L, (i), SCENE_T))
+#define TURTLE_T "lsys.Turtle"
+
+/* A turtle for one call, owned by the Lua stack: a rule function raising an
+** error while the homomorphism is streamed leaves it to the collector. */
+static int turtle_gc (lua_State *L) {
+  lsys_turtle_free((lsys_turtle *)luaL_checkudata(L, 1, TURTLE_T));
+  return 0;
+}
+
+static lsys_turtle *newturtle (lua_State *L, int mode) {
+  lsys_turtle *t = (lsys_turtle *)lua_newuserdatauv(L, sizeof *t, 0);
+  lsys_turtle_init(t);
+  t->mode = mode;
+  if (luaL_newmetatable(L, TURTLE_T)) {
+    lua_pushcfunction(L, turtle_gc);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  return t;
+}
 
 /* ---------------------------------------------------------------------- */
 /* options */
@@ -211,17 +231,12 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   else t->err = x.m->err;
   lsys_homo_end(x.m);
   lsys_rules_unbind(L, saved);
-  if (st != LSYS_OK) {
-    char msg[300];
-    snprintf(msg, sizeof msg, "%s", st == LSYS_ENOMEM ? "not enough memory" : t->err.msg);
-    lsys_turtle_free(t);
-    luaL_error(L, "%s", msg);
-  }
+  if (st != LSYS_OK) luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : t->err.msg);
 }
 
 /* core.interpret(rules, lstring, opts) -> Scene */
 static int l_interpret (lua_State *L) {
-  lsys_turtle t;
+  lsys_turtle *t;
   lsys_turtle_opts o;
   lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
@@ -232,15 +247,14 @@ static int l_interpret (lua_State *L) {
   lsys_mesh_init(&S->mesh);
   S->inited = 1;
   readpalette(L, 3, S);
-  lsys_turtle_init(&t);
-  t.mode = LSYS_TURTLE_DRAW;
-  t.mesh = &S->mesh;
-  turtlerun(L, &t, &o, 3);
-  S->rec = t.rec; S->nrec = t.nrec;                     /* the scene keeps the records */
-  S->stiff = t.stiff;
-  t.rec = NULL; t.reccap = 0;
-  t.stiff = NULL; t.stiffcap = 0;
-  lsys_turtle_free(&t);
+  t = newturtle(L, LSYS_TURTLE_DRAW);                        /* 5 */
+  t->mesh = &S->mesh;
+  turtlerun(L, t, &o, 3);
+  S->rec = t->rec; S->nrec = t->nrec;                   /* the scene keeps the records */
+  S->stiff = t->stiff;
+  t->rec = NULL; t->reccap = 0;
+  t->stiff = NULL; t->stiffcap = 0;
+  lsys_turtle_free(t);
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, SV_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, SV_LSTRING);
   lua_pushvalue(L, 3); lua_setiuservalue(L, 4, SV_OPTS);
@@ -251,16 +265,15 @@ static int l_interpret (lua_State *L) {
 
 /* core.query(rules, lstring, opts) -> number of query modules filled */
 static int l_query (lua_State *L) {
-  lsys_turtle t;
+  lsys_turtle *t;
   lsys_turtle_opts o;
   size_t n;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
-  lsys_turtle_init(&t);
-  t.mode = LSYS_TURTLE_QUERY;
-  turtlerun(L, &t, &o, 3);
-  n = t.nqueries;
-  lsys_turtle_free(&t);
+  t = newturtle(L, LSYS_TURTLE_QUERY);
+  turtlerun(L, t, &o, 3);
+  n = t->nqueries;
+  lsys_turtle_free(t);
   lua_pushinteger(L, (lua_Integer)n);
   return 1;
 }
@@ -278,24 +291,23 @@ static void pushvecf (lua_State *L, const float *v) {
 
 /* core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U, width, color */
 static int l_turtle_state (lua_State *L) {
-  lsys_turtle t;
+  lsys_turtle *t;
   lsys_turtle_opts o;
   lsys_lstring *s = checklstring(L, 2);
   lua_Integer i = luaL_checkinteger(L, 3);
   luaL_argcheck(L, i >= 0 && (size_t)i <= s->n, 3, "module index out of range");
   luaL_checktype(L, 4, LUA_TTABLE);
   lua_settop(L, 4);
-  lsys_turtle_init(&t);
-  t.mode = LSYS_TURTLE_STATE;
-  t.stop = (size_t)i;
-  turtlerun(L, &t, &o, 4);
-  pushvec(L, t.state.pos);
-  pushvec(L, t.state.H);
-  pushvec(L, t.state.L);
-  pushvec(L, t.state.U);
-  lua_pushnumber(L, t.state.width);
-  lua_pushinteger(L, t.state.color);
-  lsys_turtle_free(&t);
+  t = newturtle(L, LSYS_TURTLE_STATE);
+  t->stop = (size_t)i;
+  turtlerun(L, t, &o, 4);
+  pushvec(L, t->state.pos);
+  pushvec(L, t->state.H);
+  pushvec(L, t->state.L);
+  pushvec(L, t->state.U);
+  lua_pushnumber(L, t->state.width);
+  lua_pushinteger(L, t->state.color);
+  lsys_turtle_free(t);
   return 6;
 }
 

@@ -153,6 +153,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->subscale);
   LSYS_FREE(t->op);
   LSYS_FREE(t->ringbuf);
+  LSYS_FREE(t->runbuf);
   lsys_lstring_free(&t->hbuf);
   if (t->pw) { lsys_polywork_free(t->pw); LSYS_FREE(t->pw); }
   memset(t, 0, sizeof *t);
@@ -837,8 +838,11 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
                          LSYS_MAXTROPISMS);
   if (buildops(t, ab) != LSYS_OK)
     return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
-  R = (run *)LSYS_MALLOC(sizeof *R);       /* the C-stack part of the stack is big */
-  if (R == NULL) return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
+  /* The run lives in the turtle, not on the C stack: its state stack is big,
+  ** and a homomorphism rule may raise a Lua error through us (longjmp). */
+  if (t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL)
+    return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
+  R = (run *)t->runbuf;
   memset(R, 0, sizeof *R);
   R->t = t; R->o = o;
   R->draw = t->mode == LSYS_TURTLE_DRAW;
@@ -852,7 +856,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   st->color = st->color2 = o->color;
   st->last = st->tip = LSYS_NOREC;
   for (k = 0; k < o->ntrop; k++) st->elast[k] = o->trop[k].elasticity;
-  if (setring(R) != LSYS_OK) { LSYS_FREE(R); return t->err.code; }
+  if (setring(R) != LSYS_OK) return t->err.code;
   for (i = 0; i < s->n && status == LSYS_OK; i++) {
     uint16_t c = s->code[i];
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
@@ -891,6 +895,5 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
     }
   }
   t->state = R->st;
-  LSYS_FREE(R);
   return status;
 }

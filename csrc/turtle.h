@@ -120,6 +120,7 @@ typedef struct lsys_turtle {
   uint8_t *op; size_t nop;      /* what each symbol id does */
   const double *ring; int nring;/* cos/sin table for 'sides' */
   double *ringbuf; size_t ringcap;
+  void *runbuf;                 /* the state of a run (kept: a rule error may longjmp out) */
 } lsys_turtle;
 
 void lsys_turtle_init (lsys_turtle *t);

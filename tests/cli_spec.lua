@@ -65,3 +65,78 @@ describe("lsys derive", function()
     assert.truthy(out:find("unknown option '--bogus'", 1, true))
   end)
 end)
+
+describe("lsys render and export", function()
+  local has_render = require("lsys.core").has_render
+  local dir
+  before_each(function()
+    dir = os.tmpname()
+    os.remove(dir)
+    assert(os.execute("mkdir -p " .. dir))
+  end)
+  after_each(function() os.execute("rm -rf " .. dir) end)
+
+  local function size_of (path)
+    local f = io.open(path, "rb")
+    if not f then return nil end
+    local n = f:seek("end")
+    f:close()
+    return n
+  end
+
+  it("renders the default plant to tree.png with no MODEL #gl", function()
+    if not has_render then return pending("built without OSMesa") end
+    local out, code = run("render -o " .. dir .. "/tree.png --size 200x150")
+    assert.equal(0, code, out)
+    assert.truthy(out:find("wrote " .. dir .. "/tree.png (200x150, ", 1, true))
+    local px, w, h = require("lsys.core").png_read(dir .. "/tree.png")
+    assert.equal(200, w); assert.equal(150, h); assert.equal(200 * 150 * 4, #px)
+  end)
+
+  it("applies --view and --set #gl", function()
+    if not has_render then return pending("built without OSMesa") end
+    local path = tmpmodel('local lsys = require "lsys"\n' ..
+      'return lsys.lsystem { axiom = "F(L)", env = { L = 1 }, view = { angle = 30 } }\n')
+    local out, code = run("render " .. path .. " -o " .. dir .. "/a.png --size 64x64" ..
+      " --view background=1,0,0 --view supersample=1 --set L=2")
+    os.remove(path)
+    assert.equal(0, code, out)
+    local px = require("lsys.core").png_read(dir .. "/a.png")
+    assert.equal(string.char(255, 0, 0, 255), px:sub(1, 4))      -- the corner is background
+  end)
+
+  it("exports OBJ, PLY and GLB", function()
+    for _, ext in ipairs { "obj", "ply", "glb" } do
+      local out, code = run("export abop/fig1_24a -o " .. dir .. "/t." .. ext ..
+        " --view line_style=cylinder --steps 2")
+      assert.equal(0, code, out)
+      assert.truthy(out:find("wrote " .. dir .. "/t." .. ext .. " (", 1, true))
+      assert.is_true(size_of(dir .. "/t." .. ext) > 1000)
+    end
+    assert.is_true(size_of(dir .. "/t.mtl") > 0)
+  end)
+
+  it("reports usage errors with exit status 2", function()
+    local out, code = run("export abop/fig1_24a -o " .. dir .. "/t.stl")
+    assert.equal(2, code)
+    assert.truthy(out:find("must end in .obj, .ply or .glb", 1, true))
+    out, code = run("export abop/fig1_24a")
+    assert.equal(2, code)
+    assert.truthy(out:find("-o OUT.obj", 1, true))
+    out, code = run("render --size 12 -o " .. dir .. "/x.png")
+    assert.equal(2, code)
+    assert.truthy(out:find("--size expects WxH", 1, true))
+    out, code = run("render -o " .. dir .. "/x.jpg")
+    assert.equal(2, code)
+    assert.truthy(out:find("must be a .png file", 1, true))
+  end)
+
+  it("reports a bad view option and an unwritable output as errors", function()
+    local out, code = run("export abop/fig1_24a -o " .. dir .. "/t.obj --view line_style=tube")
+    assert.equal(1, code)
+    assert.truthy(out:find("line_style", 1, true))
+    out, code = run("export abop/fig1_24a -o /nonexistent/dir/t.obj --steps 1")
+    assert.equal(1, code)
+    assert.truthy(out:find("cannot open '/nonexistent/dir/t.obj'", 1, true), out)
+  end)
+end)
