@@ -1,0 +1,125 @@
+/*
+** C unit tests for the turtle without Lua: records, states, queries, and the
+** checks that Lua-level inputs cannot reach (a NaN parameter pushed directly).
+*/
+#undef NDEBUG
+#include <assert.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "turtle.h"
+
+static void parse (lsys_lstring *s, lsys_alphabet *a, const char *text) {
+  lsys_error e;
+  lsys_lstring_clear(s);
+  assert(lsys_lstring_parse(s, text, strlen(text), a, NULL, &e) == LSYS_OK);
+}
+
+static int near (double a, double b) { return fabs(a - b) < 1e-9; }
+
+static void test_draw (void) {
+  lsys_alphabet a;
+  lsys_lstring s;
+  lsys_mesh m;
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  lsys_mesh_init(&m);
+  lsys_turtle_init(&t);
+  lsys_turtle_defaults(&o);
+  o.style = LSYS_STYLE_CYLINDER;
+  o.sides = 4;
+  t.o = &o;
+  t.mesh = &m;
+  parse(&s, &a, "F(2)[+F]!(0.5)F");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+  assert(t.nrec == 3);
+  assert(t.rec[0].module == 0 && t.rec[1].module == 3 && t.rec[2].module == 6);
+  assert(t.rec[1].parent == 0 && t.rec[2].parent == 0);
+  assert(near(t.rec[2].p0[1], 2) && near(t.rec[2].p1[1], 3));
+  /* F(2) ends at the bracket: top width 1; the last F starts at width 0.5 */
+  assert(t.rec[0].w1 == 1.0f && t.rec[2].w0 == 0.5f);
+  /* three cylinders of 4 sides, none sharing a ring (a width step and a turn), six caps */
+  assert(m.nt == 3 * 8 + 6 * 4);
+  /* a second run reuses the buffers and starts from a cleared mesh */
+  parse(&s, &a, "F");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+  assert(t.nrec == 1 && m.nt == 8 + 2 * 4);
+  lsys_turtle_free(&t);
+  lsys_mesh_free(&m);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+static void test_state_and_query (void) {
+  lsys_alphabet a;
+  lsys_lstring s;
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  lsys_turtle_init(&t);
+  lsys_turtle_defaults(&o);
+  t.o = &o;
+  parse(&s, &a, "F(3)+F(2)?P(0,0,0)?H(0,0,0)");
+  t.mode = LSYS_TURTLE_STATE;
+  t.stop = 2;                         /* after F(3) + */
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+  assert(near(t.state.pos[1], 3) && near(t.state.H[0], -1) && t.nrec == 0);
+  t.mode = LSYS_TURTLE_QUERY;
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+  assert(t.nqueries == 2);
+  assert(near(s.par[2], -2) && near(s.par[3], 3) && near(s.par[4], 0));   /* ?P */
+  assert(near(s.par[5], -1) && near(s.par[6], 0));                        /* ?H */
+  lsys_turtle_free(&t);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+static void test_errors (void) {
+  lsys_alphabet a;
+  lsys_lstring s;
+  lsys_mesh m;
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  lsys_error e;
+  double nan = NAN;
+  uint32_t F;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  lsys_mesh_init(&m);
+  lsys_turtle_init(&t);
+  lsys_turtle_defaults(&o);
+  t.o = &o;
+  t.mesh = &m;
+  parse(&s, &a, "FF");
+  F = lsys_alphabet_intern(&a, "F", 1, &e);
+  assert(lsys_lstring_push(&s, F, &nan, 1) == LSYS_OK);
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(t.err.pos == 2);
+  assert(strstr(t.err.msg, "module 3 'F': parameter 1 is not a finite number") != NULL);
+  parse(&s, &a, "F@S");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(strstr(t.err.msg, "refused") != NULL);
+  o.allow_system = 1;
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nsyscalls == 1);
+  o.sides = 2;
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  o.sides = 8;
+  parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nrec == 1);
+  lsys_turtle_free(&t);
+  lsys_mesh_free(&m);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+int main (void) {
+  test_draw();
+  test_state_and_query();
+  test_errors();
+  printf("test_turtle ok\n");
+  return 0;
+}
