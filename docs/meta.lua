@@ -228,6 +228,121 @@ function Model:use_group(n) end
 ---@return lsys.Lstring
 function Model:lstring(text) end
 
+--- Interprets `s` with the turtle (docs/drawing.md) and returns a Scene. Derives first when
+--- `s` is nil; text is parsed with the model's names. `view` replaces view options for this
+--- call; `view.records = false` leaves out the turtle records. The homomorphism is applied
+--- module by module while drawing. Raises for a bad view option, a module with a non-finite
+--- parameter (`module N 'F': parameter 1 is not a finite number`), `@S` without
+--- `allow_system_calls`, a bad tropism index, or an error in a homomorphism rule (named
+--- like derivation errors).
+---@param s? lsys.Lstring|string
+---@param view? lsys.View
+---@return lsys.Scene
+function Model:interpret(s, view) end
+
+--- View options (docs/drawing.md §2); every field is optional.
+---@class lsys.View
+---@field angle? number Angle increment, degrees (90).
+---@field step? number Step of F f G g without a parameter (1).
+---@field line_width? number Initial width (1): pixels in "line" style, model units otherwise.
+---@field width_increment? number What # and ! add or subtract (1).
+---@field color? integer Initial colour index (1).
+---@field color_increment? integer What ; and , add or subtract (1).
+---@field line_style? "line"|"polygon"|"cylinder"
+---@field contour_sides? integer Sides of tubes, discs and spheres (8).
+---@field tropisms? { vector: number[], angle?: number, elasticity?: number, increment?: number, torque?: boolean }[]
+---@field torques? { vector: number[], elasticity?: number, increment?: number }[]
+---@field palette? table<integer, number[]|string|{ diffuse: number[], ambient?: number[], specular?: number[], emission?: number[], shininess?: number }>
+---@field background? number[] {r, g, b} in 0..1.
+---@field viewpoint? number[] Camera position.
+---@field target? number[] View reference point.
+---@field up? number[] Up vector of the camera.
+---@field direction? number[] View direction when no viewpoint is given ({0, 0, -1}).
+---@field projection? "parallel"|"perspective"
+---@field fov? number Vertical field of view, degrees (30).
+---@field twist? number Rotation about the view axis, degrees.
+---@field light? number[] Direction the key light comes from.
+---@field supersample? integer Anti-aliasing factor (3).
+
+--- A turtle record (docs/drawing.md §5).
+---@class lsys.Record
+---@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"
+---@field module integer 1-based index of the module in the string.
+---@field parent? integer The record of the segment this one grows from.
+---@field p0 number[] Start point.
+---@field p1 number[] End point.
+---@field H number[] Heading at the end.
+---@field L number[]
+---@field U number[]
+---@field w0 number Width at the start.
+---@field w1 number Width at the end.
+---@field color integer
+---@field stiffness? number[] {sh, su, sl} from Z.
+
+--- The geometry and turtle records of an interpretation.
+---@class lsys.Scene
+---@field ntriangles integer
+---@field nvertices integer
+---@field nlines integer Line segments (line style).
+---@field nsegments integer Segment records (F and G drawn in any style).
+---@field nrecords integer
+---@field lstring lsys.Lstring The string the scene was made from.
+local Scene = {}
+
+--- Axis-aligned bounds, or nil for an empty scene.
+---@return number[]? lo
+---@return number[]? hi
+function Scene:bounds() end
+
+--- Total area of the triangles.
+---@return number
+function Scene:area() end
+
+--- The turtle state after module `i` (1-based; 0 is the start), interpreting again.
+---@param i integer
+---@return number[] pos
+---@return number[] H
+---@return number[] L
+---@return number[] U
+---@return number width
+---@return integer color
+function Scene:turtle(i) end
+
+---@param k integer 1-based record index.
+---@return lsys.Record?
+function Scene:record(k) end
+
+--- `for k, rec in scene:records() do ... end`
+---@return fun(): integer, lsys.Record
+function Scene:records() end
+
+--- The index of the first record of module `i`, or nil.
+---@param i integer
+---@return integer?
+function Scene:find(i) end
+
+--- Writes the geometry: `.obj` (and a `.mtl` next to it), `.ply` (binary) or `.glb`
+--- (glTF 2.0 binary). Raises `cannot open 'PATH' for writing: REASON` and
+--- `scene:save: unknown format of 'PATH' (use .obj, .ply or .glb)`.
+---@param path string
+---@return true
+function Scene:save(path) end
+
+--- Renders a Scene (or a Model: derived and interpreted) headless with OSMesa. With
+--- `opts.out` writes a PNG and returns true; otherwise returns the RGBA pixels (top row
+--- first), the width and the height. Other fields of `opts` (or `opts.view`) are view options
+--- for this picture: camera, background, light, supersample.
+---@param x lsys.Scene|lsys.Model
+---@param opts? { out?: string, width?: integer, height?: integer, view?: lsys.View }
+---@return true|string pixels
+---@return integer? width
+---@return integer? height
+function lsys.render(x, opts) end
+
+--- Whether `x` is a Scene.
+---@return boolean
+function lsys.isscene(x) end
+
 
 -- ===========================================================================================
 -- lsys.Lstring (C: csrc/lua_lstring.c, metatable "lsys.Lstring")
