@@ -411,7 +411,13 @@ static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
     lua_pushinteger(L, (lua_Integer)r->parent + 1);
     lua_setfield(L, -2, "parent");
   }
-  pushvecf(L, r->p0); lua_setfield(L, -2, "p0");
+  {
+    float p0[3];
+    int k;
+    for (k = 0; k < 3; k++) p0[k] = r->p1[k] - r->len * r->H[k];
+    pushvecf(L, p0); lua_setfield(L, -2, "p0");
+  }
+  lua_pushnumber(L, r->len); lua_setfield(L, -2, "length");
   pushvecf(L, r->p1); lua_setfield(L, -2, "p1");
   pushvecf(L, r->H); lua_setfield(L, -2, "H");
   pushvecf(L, l); lua_setfield(L, -2, "L");

@@ -11,6 +11,7 @@
 ** so that + turns anticlockwise seen from +z, as cpfg does.
 */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -102,14 +103,6 @@ static void vrotate (double *v, const double *k, double a) {
   v[2] = v[2] * c + kv[2] * s + k[2] * d * (1 - c);
 }
 
-/* Rotates the pair (a, b) in their plane: a toward b by angle 'deg'. */
-static void turn (double *a, double *b, double deg) {
-  double r = RAD(deg), c = cos(r), s = sin(r), na[3];
-  vlin(na, a, c, b, s);
-  vlin(b, b, c, a, -s);
-  vcopy(a, na);
-}
-
 /* Rebuilds an orthonormal frame from H and an approximate U. */
 static void orthonormal (lsys_tstate *st) {
   double d;
@@ -162,7 +155,8 @@ void lsys_turtle_free (lsys_turtle *t) {
 /* ---------------------------------------------------------------------- */
 /* the run */
 
-typedef struct run {
+typedef struct run run;
+struct run {
   lsys_turtle *t;
   const lsys_turtle_opts *o;
   lsys_tstate st;
@@ -171,12 +165,30 @@ typedef struct run {
   size_t mod;                   /* the module being interpreted (original index) */
   int draw;                     /* DRAW mode */
   int op;                       /* the operation being interpreted (messages) */
+  double tdeg, tcos, tsin;      /* the last turn angle and its cosine and sine */
+  size_t stsize;                /* bytes of the state that [ and ] copy */
   /* a segment whose top width may still change (! or # right after F) */
   int pending;
   uint32_t prec;                /* its record */
   double p0[3], p1[3], w0, len;
   int pcol, pkind;
-} run;
+};
+
+/* Rotates the pair (a, b) in their plane: a toward b by angle 'deg'. */
+static void turn (run *R, double *a, double *b, double deg) {
+  double c, s, na[3];
+  if (deg == R->tdeg) { c = R->tcos; s = R->tsin; }     /* most turns repeat one angle */
+  else if (deg == -R->tdeg) { c = R->tcos; s = -R->tsin; }
+  else {
+    double r = RAD(deg);
+    c = cos(r); s = sin(r);
+    R->tdeg = deg; R->tcos = c; R->tsin = s;
+  }
+  vlin(na, a, c, b, s);
+  vlin(b, b, c, a, -s);
+  vcopy(a, na);
+}
+
 
 /* An error about the current module: "module N: <fmt with what>". */
 static int fail (run *R, int code, const char *fmt, const char *what) {
@@ -225,8 +237,10 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   r->pad = 0;
   r->color = (uint16_t)R->st.color;
   r->w0 = (float)w0; r->w1 = (float)w1;
+  r->len = kind == LSYS_REC_SEGMENT ? (float)sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) +
+           (p1[1] - p0[1]) * (p1[1] - p0[1]) + (p1[2] - p0[2]) * (p1[2] - p0[2])) : 0.0f;
   for (k = 0; k < 3; k++) {
-    r->p0[k] = (float)p0[k]; r->p1[k] = (float)p1[k];
+    r->p1[k] = (float)p1[k];
     r->H[k] = (float)R->st.H[k]; r->U[k] = (float)R->st.U[k];
   }
   r->stiff = LSYS_NOREC;
@@ -567,7 +581,7 @@ static int polyend (run *R) {
   }
   for (k = 0; k < nt; k++)
     lsys_mesh_tri(t->mesh, first + tri[3 * k], first + tri[3 * k + 1], first + tri[3 * k + 2]);
-  return newrec(R, LSYS_REC_POLYGON, p->v, p->v + 3 * (p->n - 1), 0, 0);
+  return newrec(R, LSYS_REC_POLYGON, p->v + 3 * (p->n - 1), p->v + 3 * (p->n - 1), 0, 0);
 }
 
 /* --- moves ------------------------------------------------------------- */
@@ -608,14 +622,16 @@ static int move (run *R, int op, double d) {
 
 static int push (run *R) {
   lsys_turtle *t = R->t;
-  if (R->depth < NSTACK) R->cstack[R->depth] = R->st;
+  lsys_tstate *to;
+  if (R->depth < NSTACK) to = &R->cstack[R->depth];
   else {
     size_t k = R->depth - NSTACK;
     if (k >= t->stackcap &&
         lsys_grow((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack) != LSYS_OK)
       return nomem(R);
-    t->stack[k] = R->st;
+    to = &t->stack[k];
   }
+  memcpy(to, &R->st, R->stsize);
   R->depth++;
   return LSYS_OK;
 }
@@ -623,7 +639,8 @@ static int push (run *R) {
 static void pop (run *R) {
   if (R->depth == 0) return;                 /* unbalanced ']': ignored, as cpfg does */
   R->depth--;
-  R->st = R->depth < NSTACK ? R->cstack[R->depth] : R->t->stack[R->depth - NSTACK];
+  memcpy(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
+         R->stsize);
 }
 
 /* --- one module ---------------------------------------------------------- */
@@ -667,12 +684,12 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_LEFT: case OP_RIGHT: case OP_DOWN: case OP_UP: case OP_ROLLL: case OP_ROLLR:
       if ((s = arg(R, p, np, 0, o->angle, &x)) != LSYS_OK) return s;
       switch (op) {
-        case OP_LEFT: turn(st->H, st->L, x); break;
-        case OP_RIGHT: turn(st->H, st->L, -x); break;
-        case OP_DOWN: turn(st->H, st->U, -x); break;
-        case OP_UP: turn(st->H, st->U, x); break;
-        case OP_ROLLR: turn(st->L, st->U, x); break;
-        default: turn(st->L, st->U, -x); break;
+        case OP_LEFT: turn(R, st->H, st->L, x); break;
+        case OP_RIGHT: turn(R, st->H, st->L, -x); break;
+        case OP_DOWN: turn(R, st->H, st->U, -x); break;
+        case OP_UP: turn(R, st->H, st->U, x); break;
+        case OP_ROLLR: turn(R, st->L, st->U, x); break;
+        default: turn(R, st->L, st->U, -x); break;
       }
       return LSYS_OK;
     case OP_TURN:
@@ -847,6 +864,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   R->t = t; R->o = o;
   R->draw = t->mode == LSYS_TURTLE_DRAW;
   R->prec = LSYS_NOREC;
+  R->stsize = offsetof(lsys_tstate, elast) + (size_t)o->ntrop * sizeof(double);
   if (R->draw) lsys_mesh_clear(t->mesh);
   st = &R->st;
   memset(st, 0, sizeof *st);

@@ -54,8 +54,9 @@ typedef struct lsys_turtle_opts {
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
 
-/* Everything a record keeps about a drawing module, in 72 bytes: a big
-** plant has millions. L is H x U; the stiffness of the joint before a
+/* Everything a record keeps about a drawing module, in 64 bytes: a big
+** plant has millions. L is H x U. A segment starts at p1 - len * H (it runs
+** along H); other records have len = 0. The stiffness of the joint before a
 ** segment, when Z set one, is t->stiff[3 * stiff .. 3 * stiff + 2]. */
 typedef struct lsys_trec {
   uint32_t module;        /* index of the module in the string (0-based) */
@@ -63,7 +64,8 @@ typedef struct lsys_trec {
   uint8_t kind, pad;
   uint16_t color;
   float w0, w1;           /* width at the start and at the end */
-  float p0[3], p1[3];     /* start and end points */
+  float len;              /* length of a segment */
+  float p1[3];            /* end point (a sphere's or disc's centre, a polygon's last vertex) */
   float H[3], U[3];       /* frame at the end */
   uint32_t stiff;         /* Z(sh, su, sl) in effect for the joint before it, or LSYS_NOREC */
 } lsys_trec;
@@ -73,11 +75,11 @@ typedef struct lsys_tstate {
   double pos[3], H[3], L[3], U[3];
   double refH[3], refU[3];      /* frame of the last twist minimisation (§3.3, §6) */
   double width, scale;
-  double elast[LSYS_MAXTROPISMS];
   double stiff[3];
   int color, color2, texture, contour, hasstiff;
   uint32_t last;                /* last segment record, or LSYS_NOREC */
   uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
+  double elast[LSYS_MAXTROPISMS];   /* last: [ and ] copy only the view's tropisms */
 } lsys_tstate;
 
 /* Expands module 'i' (parameters at 'poff') by the homomorphism into

@@ -269,7 +269,8 @@ function Model:interpret(s, view) end
 ---@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"
 ---@field module integer 1-based index of the module in the string.
 ---@field parent? integer The record of the segment this one grows from.
----@field p0 number[] Start point.
+---@field p0 number[] Start point (p1 - length * H for a segment; p1 otherwise).
+---@field length number Length of a segment (0 for other kinds).
 ---@field p1 number[] End point.
 ---@field H number[] Heading at the end.
 ---@field L number[]

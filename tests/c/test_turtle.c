@@ -38,7 +38,7 @@ static void test_draw (void) {
   assert(t.nrec == 3);
   assert(t.rec[0].module == 0 && t.rec[1].module == 3 && t.rec[2].module == 6);
   assert(t.rec[1].parent == 0 && t.rec[2].parent == 0);
-  assert(near(t.rec[2].p0[1], 2) && near(t.rec[2].p1[1], 3));
+  assert(near(t.rec[2].p1[1] - t.rec[2].len * t.rec[2].H[1], 2) && near(t.rec[2].p1[1], 3));
   /* F(2) ends at the bracket: top width 1; the last F starts at width 0.5 */
   assert(t.rec[0].w1 == 1.0f && t.rec[2].w0 == 0.5f);
   /* three cylinders of 4 sides, none sharing a ring (a width step and a turn), six caps */
