@@ -87,7 +87,7 @@ collectgarbage()
 local r = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F",
                          view = { angle = 25.7, line_style = "cylinder", contour_sides = 6,
                                   line_width = 0.4, projection = "perspective" } }
-local rs = r:derive(6)
+local rs = r:derive(7)
 local rsc = r:interpret(rs, { records = false })
 if not (lsys.core or require "lsys.core").has_render then
   print("(3) rendering: not measured (lsys was built without OSMesa)")

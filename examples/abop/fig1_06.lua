@@ -6,5 +6,5 @@ return lsys.lsystem {
   axiom = "F-F-F-F",
   steps = 3,
   productions = "F --> F-F+F+FF-F-F+F",
-  view = { angle = 90 },
+  view = { angle = 90, line_width = 1.5, palette = { "#24426e" } },
 }

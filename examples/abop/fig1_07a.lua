@@ -5,5 +5,5 @@ return lsys.lsystem {
   axiom = "F-F-F-F",
   steps = 2,
   productions = "F --> F+FF-FF-F-F+F+FF-F-F+F+FF+FF-F",
-  view = { angle = 90 },
+  view = { angle = 90, line_width = 1.5, palette = { "#24426e" } },
 }

@@ -8,5 +8,5 @@ return lsys.lsystem {
     F --> F+f-FF+F+FF+Ff+FF-f+FF-F-FF-Ff-FFF
     f --> ffffff
   ]],
-  view = { angle = 90 },
+  view = { angle = 90, line_width = 1.5, palette = { "#24426e" } },
 }

@@ -7,7 +7,7 @@ local function koch (n, rule)
     axiom = "F-F-F-F",
     steps = n,
     productions = "F --> " .. rule,
-    view = { angle = 90 },
+    view = { angle = 90, line_width = 1.5, palette = { "#24426e" } },
   }
 end
 

@@ -14,5 +14,5 @@ return lsys.lsystem {
     Fl --> F
     Fr --> F
   ]],
-  view = { angle = 60 },
+  view = { angle = 60, line_width = 1.5, palette = { "#24426e" } },
 }

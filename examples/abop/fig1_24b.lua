@@ -5,5 +5,5 @@ return lsys.lsystem {
   axiom = "F",
   steps = 5,
   productions = "F --> F[+F]F[-F][F]",
-  view = { angle = 20 },
+  view = { angle = 20, line_width = 1, color = 8 },
 }

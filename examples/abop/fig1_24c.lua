@@ -5,5 +5,5 @@ return lsys.lsystem {
   axiom = "F",
   steps = 4,
   productions = "F --> FF-[-F+F+F]+[+F-F-F]",
-  view = { angle = 22.5 },
+  view = { angle = 22.5, line_width = 1.5, color = 8 },
 }

@@ -8,5 +8,5 @@ return lsys.lsystem {
     X --> F[+X]F[-X]+X
     F --> FF
   ]],
-  view = { angle = 20 },
+  view = { angle = 20, line_width = 1.5, color = 8 },
 }

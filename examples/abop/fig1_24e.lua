@@ -8,5 +8,5 @@ return lsys.lsystem {
     X --> F[+X][-X]FX
     F --> FF
   ]],
-  view = { angle = 25.7 },
+  view = { angle = 25.7, line_width = 1.5, color = 8 },
 }

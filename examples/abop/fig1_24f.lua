@@ -8,5 +8,5 @@ return lsys.lsystem {
     X --> F-[[X]+X]+F[+FX]-X
     F --> FF
   ]],
-  view = { angle = 22.5 },
+  view = { angle = 22.5, line_width = 1.5, color = 8 },
 }

@@ -22,5 +22,6 @@ return lsys.lsystem {
   view = {
     angle = 22.5, line_style = "cylinder", line_width = 0.35, width_increment = 0.045,
     contour_sides = 8, palette = palette, projection = "perspective",
+    direction = { 0, -0.25, -1 },      -- from a little above
   },
 }

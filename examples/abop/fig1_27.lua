@@ -12,5 +12,5 @@ return lsys.lsystem {
     F --> F[+F]F      : 0.33
     F --> F[-F]F      : 0.34
   ]],
-  view = { angle = 25.7 },
+  view = { angle = 25.7, line_width = 1, color = 8 },
 }

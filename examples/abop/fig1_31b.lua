@@ -18,5 +18,5 @@ return lsys.lsystem {
     + --> -
     - --> +
   ]],
-  view = { angle = 22.5 },
+  view = { angle = 22.5, line_width = 1.5, color = 8 },
 }

@@ -18,5 +18,5 @@ return lsys.lsystem {
     + --> -
     - --> +
   ]],
-  view = { angle = 25.75 },
+  view = { angle = 25.75, line_width = 1.5, color = 8 },
 }

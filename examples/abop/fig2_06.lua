@@ -2,6 +2,7 @@
 -- Returns a table of named models, one per panel. Constants: r1, r2 contraction ratios of the
 -- trunk and the branches, a0 branching angle from the trunk, a2 for lateral axes, d divergence
 -- angle, wr width decrease rate. ABOP's `$` (roll the turtle to horizontal) is cpfg's `@v`.
+-- Drawn in the default line style, so the widths !(w) are pixels (10 at the base of the trunk).
 local lsys = require "lsys"
 
 local function tree (r1, r2, a0, a2)
@@ -14,7 +15,7 @@ local function tree (r1, r2, a0, a2)
       B(l,w) --> !(w) F(l) [ -(a2) @v C(l*r2, w*wr) ] C(l*r1, w*wr)
       C(l,w) --> !(w) F(l) [ +(a2) @v B(l*r2, w*wr) ] B(l*r1, w*wr)
     ]],
-    view = { angle = 45 },
+    view = { angle = 45, direction = { 0, -0.25, -1 } },   -- seen from a little above
   }
 end
 

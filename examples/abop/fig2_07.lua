@@ -1,6 +1,7 @@
 -- Sympodial tree architectures after Aono and Kunii, n = 10 (ABOP fig. 2.7 a–d).
 -- Returns a table of named models, one per panel. Constants: r1, r2 contraction ratios,
 -- a1, a2 branching angles, wr width decrease rate. ABOP's `$` (roll to horizontal) is cpfg's `@v`.
+-- Drawn in the default line style, so the widths !(w) are pixels (10 at the base of the trunk).
 local lsys = require "lsys"
 
 local function tree (r1, r2, a1, a2)
@@ -12,7 +13,7 @@ local function tree (r1, r2, a1, a2)
       A(l,w) --> !(w) F(l) [ &(a1) B(l*r1, w*wr) ] /(180) [ &(a2) B(l*r2, w*wr) ]
       B(l,w) --> !(w) F(l) [ +(a1) @v B(l*r1, w*wr) ] [ -(a2) @v B(l*r2, w*wr) ]
     ]],
-    view = { angle = a1 },
+    view = { angle = a1, direction = { 0, -0.3, -1 } },   -- from a little above: the flat crowns
   }
 end
 

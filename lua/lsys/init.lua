@@ -458,9 +458,14 @@ local SCENE_MT = debug.getregistry()["lsys.Scene"]
 --- True when `x` is an lsys.Scene.
 function M.isscene (x) return getmetatable(x) == SCENE_MT end
 
+-- options of lsys.render that are not view options
+local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,
+                      transparent = true, wireframe = true }
+
 --- Renders `x` (a Scene, or a Model: derived and interpreted) to a PNG file.
 -- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
--- width and height), width, height (800), and view fields (camera, background, light,
+-- width and height), width, height (800), zoom (1: magnifies about the centre),
+-- transparent (a transparent background, RGBA PNG), wireframe, and view fields (camera, background, light,
 -- supersample) that replace the scene's view for this picture; `opts.view` may hold them.
 function M.render (x, opts)
   opts = opts or {}
@@ -471,7 +476,7 @@ function M.render (x, opts)
   for k, val in pairs(opts.view or {}) do over[k] = val end
   for k, val in pairs(opts) do
     if view.KINDS[k] then over[k] = val
-    elseif k ~= "out" and k ~= "width" and k ~= "height" and k ~= "view" then
+    elseif not RENDER_ONLY[k] then
       error(format("lsys.render: unknown option '%s'", tostring(k)), 2)
     end
   end
@@ -483,6 +488,7 @@ function M.render (x, opts)
   end
   local ro = view.render(v)
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
+  ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
   local ok, a, b, c = pcall(core.render, x, ro)
   if not ok then error(a, 2) end
   return a, b, c
