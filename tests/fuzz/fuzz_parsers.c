@@ -13,6 +13,7 @@
 
 #include "grammar.h"
 #include "lstring.h"
+#include "turtle.h"
 
 int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   lsys_alphabet a;
@@ -52,6 +53,29 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
         lsys_lstring_unbalanced(&s);
         lsys_lstring_free(&t);
         lsys_buf_free(&b);
+        {   /* the turtle draws any string in every style without a crash */
+          lsys_turtle tu;
+          lsys_turtle_opts o;
+          lsys_mesh m;
+          int style;
+          lsys_turtle_defaults(&o);
+          o.ntrop = 2;
+          o.trop[0].vec[1] = -1; o.trop[0].elasticity = 0.3; o.trop[0].angle = 40;
+          o.trop[1].vec[0] = 1; o.trop[1].elasticity = 0.2; o.trop[1].torque = 1;
+          o.sides = 3 + data[0] % 7;
+          lsys_mesh_init(&m);
+          lsys_turtle_init(&tu);
+          tu.o = &o;
+          tu.mesh = &m;
+          for (style = 0; style < 3; style++) {
+            o.style = style;
+            lsys_turtle_run(&tu, &s, &a);
+          }
+          tu.mode = LSYS_TURTLE_QUERY;
+          lsys_turtle_run(&tu, &s, &a);
+          lsys_turtle_free(&tu);
+          lsys_mesh_free(&m);
+        }
       }
       lsys_lstring_free(&s);
       break;
