@@ -30,16 +30,8 @@ local RUNS = 3
 local PEER_TIMEOUT = 600          -- seconds per peer process
 
 local script = arg and arg[0] or "bench/derive.lua"
-local root = script:match("^(.*)/bench/[^/]*$") or (script:match("^bench/") and ".") or ".."
-
--- require "lsys", falling back to the build tree next to this script
-local function load_lsys ()
-  local ok, mod = pcall(require, "lsys")
-  if ok then return mod end
-  package.path = root .. "/lua/?.lua;" .. root .. "/lua/?/init.lua;" .. package.path
-  package.cpath = root .. "/build/?.so;" .. package.cpath
-  return require "lsys"
-end
+local B = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
+local root, load_lsys = B.root, B.load_lsys
 
 local function shell_quote (s)
   return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
@@ -53,10 +45,8 @@ local function read_file (path)
   return s
 end
 
--- seconds: the lsys program's monotonic wall clock when there is one, else CPU time
-local host = package.loaded["lsys.host"]
-local clock = type(host) == "table" and host.clock or os.clock
-local clock_name = clock == os.clock and "CPU time (os.clock)" or "wall clock"
+local clock = B.clock
+local clock_name = B.clock_name
 
 local function peak_kib ()
   local status = read_file("/proc/self/status") or ""

@@ -13,21 +13,10 @@
 -- Lua), best of 3. Peak memory is this process's VmHWM at the end.
 
 local RUNS = 3
-local script = arg and arg[0] or "bench/interpret.lua"
-local root = script:match("^(.*)/bench/[^/]*$") or (script:match("^bench/") and ".") or ".."
-
-local function load_lsys ()
-  local ok, mod = pcall(require, "lsys")
-  if ok then return mod end
-  package.path = root .. "/lua/?.lua;" .. root .. "/lua/?/init.lua;" .. package.path
-  package.cpath = root .. "/build/?.so;" .. package.cpath
-  return require "lsys"
-end
-local lsys = load_lsys()
-
-local host = package.loaded["lsys.host"]
-local clock = type(host) == "table" and host.clock or os.clock
-local clock_name = clock == os.clock and "CPU time (os.clock)" or "wall clock"
+local B = dofile(((arg and arg[0] or "bench/interpret.lua"):match("^(.*)/[^/]*$") or ".")
+                 .. "/common.lua")
+local lsys = B.load_lsys()
+local clock, clock_name, peak_mib = B.clock, B.clock_name, B.peak_mib
 
 local function best (f)
   local t, r = math.huge
@@ -38,15 +27,6 @@ local function best (f)
     t = math.min(t, clock() - t0)
   end
   return t, r
-end
-
-local function peak_mib ()
-  local f = io.open("/proc/self/status", "r")
-  if not f then return nil end
-  local s = f:read("a")
-  f:close()
-  local kb = s:match("VmHWM:%s*(%d+)")
-  return kb and tonumber(kb) / 1024
 end
 
 local function verdict (ok) return ok and "PASS" or "MISS" end

@@ -1,0 +1,32 @@
+-- Shared by the benchmark scripts: finding lsys, the clock, peak memory.
+--   local B = dofile((arg[0]:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
+local B = {}
+
+local script = arg and arg[0] or "bench/x.lua"
+B.root = script:match("^(.*)/bench/[^/]*$") or (script:match("^bench/") and ".") or ".."
+
+--- require "lsys", falling back to the build tree next to the bench folder
+function B.load_lsys ()
+  local ok, mod = pcall(require, "lsys")
+  if ok then return mod end
+  package.path = B.root .. "/lua/?.lua;" .. B.root .. "/lua/?/init.lua;" .. package.path
+  package.cpath = B.root .. "/build/?.so;" .. package.cpath
+  return require "lsys"
+end
+
+-- seconds: the lsys program's monotonic wall clock when there is one, else CPU time
+local host = package.loaded["lsys.host"]
+B.clock = type(host) == "table" and host.clock or os.clock
+B.clock_name = B.clock == os.clock and "CPU time (os.clock)" or "wall clock"
+
+--- VmHWM of this process in MiB, or nil
+function B.peak_mib ()
+  local f = io.open("/proc/self/status", "r")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  local kb = s:match("VmHWM:%s*(%d+)")
+  return kb and tonumber(kb) / 1024
+end
+
+return B
