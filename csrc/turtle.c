@@ -653,6 +653,12 @@ static void query (run *R, int op, double *p, uint32_t np) {
   R->t->nqueries++;
 }
 
+/* A colour, texture or contour index from a parameter: truncated, kept in
+** 0..65535 (a huge parameter must not overflow the conversion to int). */
+static int toindex (double x) {
+  return x <= 0 ? 0 : x >= 65535 ? 65535 : (int)x;
+}
+
 static int tropindex (run *R, const double *p, uint32_t np, int *k) {
   *k = 0;
   double x;
@@ -730,8 +736,8 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_COLINC: case OP_COLDEC:
       if (np > 0) {
         if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
-        st->color = st->color2 = (int)x;
-        if (np > 1 && (s = arg(R, p, np, 1, 0, &x)) == LSYS_OK) st->color2 = (int)x;
+        st->color = st->color2 = toindex(x);
+        if (np > 1 && (s = arg(R, p, np, 1, 0, &x)) == LSYS_OK) st->color2 = toindex(x);
       }
       else {
         st->color += op == OP_COLINC ? o->dcolor : -o->dcolor;
@@ -740,14 +746,15 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
       if (st->color < 0) st->color = 0;
       if (st->color > 65535) st->color = 65535;
       if (st->color2 < 0) st->color2 = 0;
+      if (st->color2 > 65535) st->color2 = 65535;
       return s;
     case OP_TEXTURE:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
-      st->texture = (int)x;
+      st->texture = toindex(x);
       return LSYS_OK;
     case OP_CONTOUR:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
-      st->contour = (int)x;
+      st->contour = toindex(x);
       return LSYS_OK;
     case OP_DISCZ: case OP_DISC: case OP_SPHERE:
       if ((s = arg(R, p, np, 0, st->width, &x)) != LSYS_OK) return s;
@@ -878,7 +885,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   for (i = 0; i < s->n && status == LSYS_OK; i++) {
     uint16_t c = s->code[i];
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
-    double *p = s->par + off;
+    double *p = s->par != NULL ? s->par + off : NULL;
     if (t->mode == LSYS_TURTLE_STATE && i >= t->stop) break;
     R->mod = i;
     off += np;

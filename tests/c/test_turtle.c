@@ -108,6 +108,10 @@ static void test_errors (void) {
   o.sides = 2;
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   o.sides = 8;
+  /* found by the fuzzer: huge indices were converted to int unchecked */
+  parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(1e30)@#(4e9)F");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+  assert(t.rec[0].color == 65535 && t.rec[1].color == 0 && t.state.texture == 65535);
   parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nrec == 1);
   lsys_turtle_free(&t);
