@@ -71,6 +71,17 @@ static double optnum (lua_State *L, int t, const char *k, double def) {
   return x;
 }
 
+/* An integer option in [lo, hi], checked before the conversion to int. */
+static int optint (lua_State *L, int t, const char *k, int def, int lo, int hi) {
+  double x = optnum(L, t, k, def);
+  if (!(x >= lo && x <= hi)) {
+    char got[32];
+    snprintf(got, sizeof got, "%g", x);
+    luaL_error(L, "view option '%s' must be between %d and %d, got %s", k, lo, hi, got);
+  }
+  return (int)x;
+}
+
 static void optvec (lua_State *L, int t, const char *k, double *v, int n, const char *what) {
   int i;
   if (lua_getfield(L, t, k) != LUA_TTABLE)
@@ -94,11 +105,9 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   o->step = optnum(L, t, "step", o->step);
   o->width = optnum(L, t, "width", o->width);
   o->dwidth = optnum(L, t, "width_increment", o->dwidth);
-  o->color = (int)optnum(L, t, "color", o->color);
-  o->dcolor = (int)optnum(L, t, "color_increment", o->dcolor);
-  o->sides = (int)optnum(L, t, "sides", o->sides);
-  if (o->sides < 3 || o->sides > 1024)
-    luaL_error(L, "view option 'contour_sides' must be between 3 and 1024, got %d", o->sides);
+  o->color = optint(L, t, "color", o->color, 0, 65535);
+  o->dcolor = optint(L, t, "color_increment", o->dcolor, -65535, 65535);
+  o->sides = optint(L, t, "sides", o->sides, 3, 1024);
   lua_getfield(L, t, "allow_system_calls");
   o->allow_system = lua_toboolean(L, -1);
   lua_getfield(L, t, "records");
@@ -192,9 +201,8 @@ static void readpalette (lua_State *L, int t, lscene *S) {
       luaL_error(L, "palette entry %d: shininess must be in [0, 128]", (int)k);
     lua_pop(L, 1);
   }
-  if (S->pal[0].diffuse[0] == 0.6f && n > 1) {   /* no [0]: use entry 1 */
-    lua_geti(L, -1, 0);
-    if (lua_isnil(L, -1)) S->pal[0] = S->pal[1];
+  if (n > 1) {                                /* no [0]: it repeats entry 1 */
+    if (lua_geti(L, -1, 0) == LUA_TNIL) S->pal[0] = S->pal[1];
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

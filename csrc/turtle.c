@@ -171,7 +171,7 @@ struct run {
   int pending;
   uint32_t prec;                /* its record */
   double p0[3], p1[3], w0, len;
-  int pcol, pkind;
+  int pcol;
 };
 
 /* Rotates the pair (a, b) in their plane: a toward b by angle 'deg'. */

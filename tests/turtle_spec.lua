@@ -406,3 +406,20 @@ describe("turtle errors", function ()
     assert.error_contains(function () m:interpret("F A(1)") end, "homomorphism", "boom")
   end)
 end)
+
+describe("view options reaching the turtle", function ()
+  it("refuses out-of-range integers before converting them", function ()
+    local m = lsys.lsystem { axiom = "F" }
+    assert.error_contains(function () m:interpret("F", { color = 1e18 }) end,
+                          "view option 'color' must be between 0 and 65535")
+    assert.error_contains(function () m:interpret("F", { contour_sides = 1e12 }) end,
+                          "contour_sides")
+  end)
+
+  it("uses palette entry 1 for colour 0 when the palette has no [0]", function ()
+    local m = lsys.lsystem { view = { palette = { { 1, 0, 0 } } } }
+    assert.equal(1, m:interpret(";(0) F").nlines)
+    local m2 = lsys.lsystem { view = { palette = { [0] = { 0, 0, 1 } } } }
+    assert.equal(1, m2:interpret("F").nlines)
+  end)
+end)
