@@ -731,6 +731,9 @@ int luaopen_lsys_core (lua_State *L) {
   lsys_open_lstring(L);
   lsys_open_scene(L);
   lsys_open_render(L);
+  lsys_open_contour(L);
+  lsys_open_surface(L);
+  lsys_open_texture(L);
   lua_pushinteger(L, LSYS_MAXPARAMS);
   lua_setfield(L, -2, "MAXPARAMS");
   lua_pushinteger(L, LSYS_RF_CALL); lua_setfield(L, -2, "RF_CALL");

@@ -52,5 +52,8 @@ const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **p
 void lsys_open_lstring (lua_State *L);
 void lsys_open_scene (lua_State *L);    /* lua_scene.c: Scene, interpret */
 void lsys_open_render (lua_State *L);   /* lua_render.c: render, png */
+void lsys_open_contour (lua_State *L);  /* lua_contour.c: Contour */
+void lsys_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */
+void lsys_open_texture (lua_State *L);  /* lua_texture.c: Texture */
 
 #endif

@@ -35,13 +35,14 @@ void lsys_mesh_init (lsys_mesh *m) {
 
 void lsys_mesh_free (lsys_mesh *m) {
   LSYS_FREE(m->pos); LSYS_FREE(m->nrm); LSYS_FREE(m->uv);
-  LSYS_FREE(m->col); LSYS_FREE(m->twosided); LSYS_FREE(m->tri);
+  LSYS_FREE(m->col); LSYS_FREE(m->twosided); LSYS_FREE(m->tex); LSYS_FREE(m->tri);
   LSYS_FREE(m->lpos); LSYS_FREE(m->lwidth); LSYS_FREE(m->lcol);
   lsys_mesh_init(m);
 }
 
 void lsys_mesh_clear (lsys_mesh *m) {
   m->nv = m->nt = m->nl = 0;
+  m->curtex = 0;
 }
 
 /*
@@ -66,11 +67,11 @@ int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
   if (nv > (size_t)UINT32_MAX - m->nv || nt > ((size_t)-1 / 12) - m->nt)
     return LSYS_ELIMIT;
   if (m->nv + nv > m->vcap) {
-    void **arr[5] = { (void **)&m->pos, (void **)&m->nrm, (void **)&m->uv,
-                      (void **)&m->col, (void **)&m->twosided };
-    const size_t elem[5] = { 3 * sizeof(float), 3 * sizeof(float), 2 * sizeof(float),
-                             sizeof(uint16_t), sizeof(uint8_t) };
-    if (growall(arr, elem, 5, &m->vcap, m->nv + nv) != LSYS_OK) return LSYS_ENOMEM;
+    void **arr[6] = { (void **)&m->pos, (void **)&m->nrm, (void **)&m->uv,
+                      (void **)&m->col, (void **)&m->twosided, (void **)&m->tex };
+    const size_t elem[6] = { 3 * sizeof(float), 3 * sizeof(float), 2 * sizeof(float),
+                             sizeof(uint16_t), sizeof(uint8_t), sizeof(uint16_t) };
+    if (growall(arr, elem, 6, &m->vcap, m->nv + nv) != LSYS_OK) return LSYS_ENOMEM;
   }
   if (m->nt + nt > m->tcap &&
       lsys_grow((void **)&m->tri, &m->tcap, m->nt + nt, 3 * sizeof(uint32_t)) != LSYS_OK)

@@ -19,6 +19,10 @@ typedef struct lsys_mesh {
   uint16_t *col;                  /* colour (material) index per vertex */
   uint8_t *twosided;              /* 1 when the vertex belongs to a surface lit on both
                                      sides (polygons, leaves, discs), 0 for solids */
+  uint16_t *tex;                  /* texture index per vertex: 0 none, k the view's k-th
+                                     texture (seed 004 §5); a triangle takes its first
+                                     vertex's texture */
+  unsigned curtex;                /* the texture lsys_mesh_vertex gives new vertices */
   size_t nv, vcap;
   uint32_t *tri;
   size_t nt, tcap;                /* nt triangles: tri[3*nt] */
@@ -52,6 +56,7 @@ static inline uint32_t lsys_mesh_vertex (lsys_mesh *m, const double p[3], const 
   m->uv[2 * i] = (float)u; m->uv[2 * i + 1] = (float)v;
   m->col[i] = (uint16_t)col;
   m->twosided[i] = (uint8_t)twosided;
+  m->tex[i] = (uint16_t)m->curtex;
   return (uint32_t)i;
 }
 /* Appends a triangle (room must have been reserved). */
