@@ -27,15 +27,24 @@ void lsys_contour_free (lsys_contour *c);
 
 /*
 ** Parses the text of a contour file (Appendix B.1): a first line
-** "N dim open|closed" (dim 2 or 3), then N lines of dim numbers each. Blank
-** lines are skipped. 'name' (the file name) starts every message:
-** "name:LINE: what is wrong". Returns LSYS_OK, LSYS_ESYNTAX (e set) or
+** "N dim open|closed" (dim 2 or 3), then N lines of dim numbers each.
+** Numbers are separated by blanks (spaces, tabs; CR of CRLF files too),
+** blank lines are skipped and '#' starts a comment that runs to the end of
+** the line. Coordinates must be finite and at most 1e9 in magnitude;
+** nothing but comments may follow the N points. 'text' need not be
+** NUL-terminated: only its 'len' bytes are read. 'name' (the file name)
+** starts every message: "name:LINE: what is wrong", e.g.
+** "leaf.con:3: expected 2 numbers, got 1". 'c' must have been initialised;
+** its old points are freed. Returns LSYS_OK, LSYS_ESYNTAX (e set) or
 ** LSYS_ENOMEM; on failure 'c' is left empty.
 */
 int lsys_contour_parse (lsys_contour *c, const char *text, size_t len, const char *name,
                         lsys_error *e);
 
-/* Sets 'c' from n points (3 doubles each). Same checks as the parser. */
+/* Sets 'c' from n points (3 doubles each; z is ignored and set to 0 when
+** dim is 2). Same checks as the parser; messages name the point
+** ("point 3: coordinate 2 is not finite"). Returns LSYS_OK, LSYS_EARG (e
+** set; 'c' unchanged) or LSYS_ENOMEM. */
 int lsys_contour_set (lsys_contour *c, const double *pt, size_t n, int closed, int dim,
                       lsys_error *e);
 
@@ -49,12 +58,15 @@ int lsys_contour_set (lsys_contour *c, const double *pt, size_t n, int closed, i
 ** normals in the xy plane: the outward normal for a closed contour (on the
 ** side away from the enclosed area, whatever the winding of the file),
 ** the normal to the left of the direction of travel for an open one.
-** Returns LSYS_OK or LSYS_ENOMEM.
+** Normals follow the tangent of the sampled polyline (central differences,
+** interpolated like the vertices). Nothing is allocated. Returns LSYS_OK,
+** or LSYS_EARG (nothing written) when p < 3 or 'c' holds no contour.
 */
 int lsys_contour_sample (const lsys_contour *c, int p, double *out, double *nrm);
 
 /* The default contour (id 0): the unit circle, V_i = (cos 2πi/p, sin 2πi/p, 0),
-** normals equal to the vertices. Same layout as lsys_contour_sample. */
+** normals equal to the vertices, V_p = V_0 exactly. Same layout as
+** lsys_contour_sample; nothing is written when p < 3. */
 void lsys_contour_circle (int p, double *out, double *nrm);
 
 #endif

@@ -1,8 +1,225 @@
 /*
-** Lua binding of csrc/contour.h (being written).
+** Lua binding of csrc/contour.h: the lsys.Contour userdata.
+**
+**   core.contour_load(path) -> Contour       reads a contour file (Appendix B.1)
+**   core.contour(points [, closed]) -> Contour
+**       points = { {x, y [, z]}, ... } (all 2 or all 3 numbers); closed
+**       defaults to true
+**   c:sample(p) -> vertices, normals         p + 1 entries each, {x, y, z}
+**   c:size() -> n    c:closed() -> boolean    c:dim() -> 2 | 3
+**
+** A Contour is immutable once made.
 */
-#include "lua_lsys.h"
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lua_geom.h"
+
+#define MAXFILE (16u << 20)   /* bytes of a contour file */
+#define MAXSIDES 65536        /* p of c:sample(p) */
+
+#define checkcontour(L, i) ((lsys_contour *)luaL_checkudata(L, (i), CONTOUR_T))
+
+const lsys_contour *lsys_checkcontour (lua_State *L, int idx) {
+  return checkcontour(L, idx);
+}
+
+static lsys_contour *newcontour (lua_State *L) {
+  lsys_contour *c = (lsys_contour *)lua_newuserdatauv(L, sizeof *c, 0);
+  lsys_contour_init(c);
+  luaL_setmetatable(L, CONTOUR_T);
+  return c;
+}
+
+static int contour_gc (lua_State *L) {
+  lsys_contour_free(checkcontour(L, 1));
+  return 0;
+}
+
+/* Raises 'e' as is: the message already names the file and line. */
+static int fail (lua_State *L, int code, const lsys_error *e) {
+  lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
+  return lua_error(L);
+}
+
+/* Reads the whole file 'path' into a malloc'ed block; on failure returns
+** NULL with a message in 'msg'. No Lua call happens while the file is open. */
+static char *readfile (const char *path, size_t *len, char *msg, size_t msgsize) {
+  FILE *f = fopen(path, "rb");
+  char *buf = NULL, *nb;
+  size_t cap = 0, n = 0;
+  if (f == NULL) {
+    snprintf(msg, msgsize, "cannot open '%s': %s", path, strerror(errno));
+    return NULL;
+  }
+  for (;;) {
+    if (n == cap) {             /* capacity up to MAXFILE + 1, to see a larger file */
+      cap = cap == 0 ? 4096 : 2 * cap > MAXFILE ? MAXFILE + 1 : 2 * cap;
+      if ((nb = (char *)realloc(buf, cap)) == NULL) {
+        snprintf(msg, msgsize, "not enough memory");
+        break;
+      }
+      buf = nb;
+    }
+    n += fread(buf + n, 1, cap - n, f);
+    if (n > MAXFILE) {
+      snprintf(msg, msgsize, "cannot read '%s': larger than %u MiB", path, MAXFILE >> 20);
+      break;
+    }
+    if (ferror(f)) {
+      snprintf(msg, msgsize, "cannot read '%s': %s", path, strerror(errno));
+      break;
+    }
+    if (feof(f)) {
+      fclose(f);
+      *len = n;
+      return buf;
+    }
+  }
+  fclose(f);
+  free(buf);
+  return NULL;
+}
+
+/* core.contour_load(path) */
+static int l_contour_load (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  lsys_contour *c = newcontour(L);
+  lsys_error e;
+  size_t len = 0;
+  int st;
+  char *text = readfile(path, &len, e.msg, sizeof e.msg);
+  if (text == NULL) return fail(L, LSYS_ESYNTAX, &e);
+  st = lsys_contour_parse(c, text, len, path, &e);
+  free(text);
+  if (st != LSYS_OK) return fail(L, st, &e);
+  return 1;
+}
+
+/* core.contour(points [, closed]) */
+static int l_contour (lua_State *L) {
+  lua_Integer n, i;
+  int dim = 0, closed, k, st;
+  double *pt;
+  lsys_contour *c;
+  lsys_error e;
+  luaL_checktype(L, 1, LUA_TTABLE);
+  if (lua_isnoneornil(L, 2)) closed = 1;
+  else {
+    luaL_checktype(L, 2, LUA_TBOOLEAN);
+    closed = lua_toboolean(L, 2);
+  }
+  n = luaL_len(L, 1);
+  if (n < (closed ? 3 : 4))
+    return luaL_argerror(L, 1, lua_pushfstring(L, "%s contour needs at least %d points, got %I",
+                                                closed ? "a closed" : "an open",
+                                                closed ? 3 : 4, n));
+  if (n > LSYS_CONTOUR_MAXPOINTS)
+    return luaL_argerror(L, 1, lua_pushfstring(L, "too many points (limit is %d)",
+                                                LSYS_CONTOUR_MAXPOINTS));
+  pt = (double *)lua_newuserdatauv(L, 3 * (size_t)n * sizeof *pt, 0);   /* scratch */
+  for (i = 1; i <= n; i++) {
+    int d;
+    if (lua_geti(L, 1, i) != LUA_TTABLE)
+      return luaL_argerror(L, 1, lua_pushfstring(L, "point %I is a %s, not a table", i,
+                                                  luaL_typename(L, -1)));
+    d = (int)lua_rawlen(L, -1);
+    if (dim == 0) dim = d;
+    if (d != dim || (d != 2 && d != 3))
+      return luaL_argerror(L, 1, lua_pushfstring(L, d == 2 || d == 3
+                                                  ? "point %I has %d coordinates, point 1 has %d"
+                                                  : "point %I has %d coordinates, not 2 or 3",
+                                                  i, d, dim));
+    pt[3 * (i - 1) + 2] = 0.0;
+    for (k = 0; k < dim; k++) {
+      if (lua_rawgeti(L, -1, k + 1) != LUA_TNUMBER)
+        return luaL_argerror(L, 1, lua_pushfstring(L, "coordinate %d of point %I is a %s, "
+                                                    "not a number", k + 1, i,
+                                                    luaL_typename(L, -1)));
+      pt[3 * (i - 1) + k] = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  c = newcontour(L);
+  if ((st = lsys_contour_set(c, pt, (size_t)n, closed, dim, &e)) != LSYS_OK) {
+    if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+    return luaL_argerror(L, 1, e.msg);
+  }
+  return 1;
+}
+
+/* Pushes a list of p + 1 {x, y, z} tables. */
+static void pushpoints (lua_State *L, const double *v, int p) {
+  int i, k;
+  lua_createtable(L, p + 1, 0);
+  for (i = 0; i <= p; i++) {
+    lua_createtable(L, 3, 0);
+    for (k = 0; k < 3; k++) {
+      lua_pushnumber(L, v[3 * i + k]);
+      lua_rawseti(L, -2, k + 1);
+    }
+    lua_rawseti(L, -2, i + 1);
+  }
+}
+
+/* c:sample(p) -> vertices, normals */
+static int contour_sample (lua_State *L) {
+  const lsys_contour *c = checkcontour(L, 1);
+  lua_Integer p = luaL_checkinteger(L, 2);
+  double *v;
+  luaL_argcheck(L, p >= 3 && p <= MAXSIDES, 2, "must be between 3 and 65536");
+  luaL_argcheck(L, c->pt != NULL, 1, "empty contour");
+  v = (double *)lua_newuserdatauv(L, 6 * ((size_t)p + 1) * sizeof *v, 0);
+  lsys_contour_sample(c, (int)p, v, v + 3 * (p + 1));
+  pushpoints(L, v, (int)p);
+  pushpoints(L, v + 3 * (p + 1), (int)p);
+  return 2;
+}
+
+static int contour_size (lua_State *L) {
+  lua_pushinteger(L, (lua_Integer)checkcontour(L, 1)->n);
+  return 1;
+}
+
+static int contour_closed (lua_State *L) {
+  lua_pushboolean(L, checkcontour(L, 1)->closed);
+  return 1;
+}
+
+static int contour_dim (lua_State *L) {
+  lua_pushinteger(L, checkcontour(L, 1)->dim);
+  return 1;
+}
+
+static int contour_tostring (lua_State *L) {
+  const lsys_contour *c = checkcontour(L, 1);
+  lua_pushfstring(L, CONTOUR_T "(%I points, %s)", (lua_Integer)c->n,
+                  c->closed ? "closed" : "open");
+  return 1;
+}
+
+static const luaL_Reg contour_methods[] = {
+  {"sample", contour_sample}, {"size", contour_size}, {"closed", contour_closed},
+  {"dim", contour_dim}, {NULL, NULL}
+};
+
+static const luaL_Reg contour_meta[] = {
+  {"__index", NULL},  /* placeholder: set to the method table */
+  {"__gc", contour_gc}, {"__close", contour_gc}, {"__tostring", contour_tostring},
+  {NULL, NULL}
+};
+
+static const luaL_Reg contour_funcs[] = {
+  {"contour_load", l_contour_load}, {"contour", l_contour}, {NULL, NULL}
+};
 
 void lsys_open_contour (lua_State *L) {
-  (void)L;
+  luaL_newmetatable(L, CONTOUR_T);
+  luaL_setfuncs(L, contour_meta, 0);
+  luaL_newlib(L, contour_methods);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+  luaL_setfuncs(L, contour_funcs, 0);
 }

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lua_lsys.h"
+#include "lua_geom.h"
 #include "pngio.h"
 #include "render.h"
 
@@ -91,7 +91,8 @@ static int getvec3 (lua_State *L, int t, const char *key, int colour, double v[3
 
 static const char *const optnames[] = {
   "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
-  "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", NULL
+  "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
+  NULL
 };
 
 /* Fills 'o' from the options table at 't' (0: none), checking every field. */
@@ -155,8 +156,10 @@ static void readopts (lua_State *L, int t, lsys_render_opts *o) {
 ** core.render(scene [, opts]): draws the scene offscreen. With opts.out,
 ** writes that PNG file (RGB, or RGBA with opts.transparent) and returns
 ** true; otherwise returns the RGBA pixels (a string, top row first), the
-** width and the height. The supersampling factor is lowered when the
-** supersampled image would exceed OSMesa's maximum size or
+** width and the height. opts.textures is the list of lsys.Texture that the
+** scene's texture indices refer to (index k: the k-th); the options table
+** keeps them alive during the call. The supersampling factor is lowered
+** when the supersampled image would exceed OSMesa's maximum size or
 ** LSYS_RENDER_MAX_SAMPLES; width and height themselves must fit OSMesa.
 */
 static int l_render (lua_State *L) {
@@ -175,6 +178,7 @@ static int l_render (lua_State *L) {
   int t = lua_isnoneornil(L, 2) ? 0 : 2, maxw, maxh;
   if (t) luaL_checktype(L, 2, LUA_TTABLE);
   readopts(L, t, &o);
+  o.tex = lsys_opttextures(L, t, "lsys.render", &o.ntex);   /* pushes one value */
   if (field(L, t, "out")) {
     if (lua_type(L, -1) != LUA_TSTRING)
       luaL_error(L, "lsys.render: opts.out must be a file name, got %s", got(L, -1));

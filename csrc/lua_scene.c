@@ -15,7 +15,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lua_lsys.h"
+#include "lua_geom.h"
 #include "derive.h"
 #include "turtle.h"
 
@@ -97,6 +97,63 @@ static void optvec (lua_State *L, int t, const char *k, double *v, int n, const 
   lua_pop(L, 1);
 }
 
+/* opts.contours = {[id] = Contour}: an array by id (NULL holes) in a
+** userdata left on the stack, which keeps it alive for the run. */
+static void readcontours (lua_State *L, int t, lsys_turtle_opts *o) {
+  const lsys_contour **c;
+  lua_Integer max = 0;
+  if (lua_getfield(L, t, "contours") != LUA_TTABLE) { lua_pop(L, 1); return; }
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    lua_Integer id = lua_isinteger(L, -2) ? lua_tointeger(L, -2) : 0;
+    if (id < 1 || id > 65535) luaL_error(L, "view contours: ids must be integers from 1 to 65535");
+    if (id > max) max = id;
+    lua_pop(L, 1);
+  }
+  c = (const lsys_contour **)lua_newuserdatauv(L, (size_t)(max + 1) * sizeof *c, 0);
+  memset(c, 0, (size_t)(max + 1) * sizeof *c);
+  lua_pushnil(L);
+  while (lua_next(L, -3)) {
+    c[lua_tointeger(L, -2)] = lsys_checkcontour(L, -1);
+    lua_pop(L, 1);
+  }
+  lua_remove(L, -2);                        /* keep the array, drop the table */
+  o->contours = c;
+  o->ncontours = (int)max + 1;
+}
+
+/* opts.surfaces = {[name] = {surface=, scale=, texture=, s=, t=}}; the
+** array is left on the stack (names point into the keys of opts). */
+static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
+  lsys_surfuse *u;
+  int n = 0, k = 0;
+  if (lua_getfield(L, t, "surfaces") != LUA_TTABLE) { lua_pop(L, 1); return; }
+  lua_pushnil(L);
+  while (lua_next(L, -2)) { n++; lua_pop(L, 1); }
+  if (n > 4096) luaL_error(L, "view surfaces: at most 4096 surfaces");
+  u = (lsys_surfuse *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *u, 0);
+  lua_pushnil(L);
+  while (lua_next(L, -3)) {
+    if (lua_type(L, -2) != LUA_TSTRING || lua_type(L, -1) != LUA_TTABLE)
+      luaL_error(L, "view surfaces: entries must be name = {surface = ..., ...}");
+    u[k].name = lua_tostring(L, -2);
+    lua_getfield(L, -1, "surface");
+    u[k].s = lsys_checksurface(L, -1);
+    lua_pop(L, 1);
+    u[k].scale = optnum(L, -1, "scale", 1);
+    u[k].texture = optint(L, -1, "texture", 0, 0, 65535);
+    u[k].ns = optint(L, -1, "s", 4, 1, 256);
+    u[k].nt = optint(L, -1, "t", u[k].ns, 1, 256);
+    k++;
+    lua_pop(L, 1);
+  }
+  lua_remove(L, -2);
+  o->surfaces = u;
+  o->nsurfaces = n;
+}
+
+/* Reads the turtle options from the table at 't'. Leaves three values on
+** the stack that keep the contour, surface and texture arrays alive. */
 static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   const char *style;
   luaL_checktype(L, t, LUA_TTABLE);
@@ -143,6 +200,14 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
     o->ntrop = n;
   }
   lua_pop(L, 1);
+  lua_getfield(L, t, "minimize_twist");
+  o->minimize_twist = lua_isnil(L, -1) || lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  readcontours(L, t, o);
+  if (o->contours == NULL) lua_pushnil(L);
+  readsurfaces(L, t, o);
+  if (o->surfaces == NULL) lua_pushnil(L);
+  o->tex = lsys_opttextures(L, t, "view", &o->ntex);
 }
 
 static void readcolor (lua_State *L, int t, const char *k, float *c, int required) {
@@ -404,8 +469,9 @@ static int scene_area (lua_State *L) {
 }
 
 static const char *const kindname[] = {
-  "none", "segment", "sphere", "disc", "polygon", "label", "system"
+  "none", "segment", "sphere", "disc", "polygon", "label", "system", "gcyl", "surface"
 };
+#define NKINDS ((int)(sizeof kindname / sizeof kindname[0]))
 
 static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
   float l[3];
@@ -413,7 +479,7 @@ static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
   lua_createtable(L, 0, 12);
-  lua_pushstring(L, kindname[r->kind < 7 ? r->kind : 0]); lua_setfield(L, -2, "kind");
+  lua_pushstring(L, kindname[r->kind < NKINDS ? r->kind : 0]); lua_setfield(L, -2, "kind");
   lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
   if (r->parent != LSYS_NOREC) {
     lua_pushinteger(L, (lua_Integer)r->parent + 1);
@@ -497,14 +563,18 @@ static int scene_save (lua_State *L) {
   size_t len;
   const char *path = luaL_checklstring(L, 2, &len), *ext = strrchr(path, '.');
   lsys_error e;
-  int st;
+  const lsys_texture *const *tex;
+  int st, ntex;
   memset(&e, 0, sizeof e);
+  lua_settop(L, 2);                   /* the textures of the interpretation's options */
+  tex = lsys_opttextures(L, lua_getiuservalue(L, 1, SV_OPTS) == LUA_TTABLE ? 3 : 0,
+                         "scene:save", &ntex);
   if (ext != NULL && strcmp(ext, ".obj") == 0)
-    st = lsys_mesh_save_obj(&S->mesh, S->pal, S->npal, path, &e);
+    st = lsys_mesh_save_obj(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
   else if (ext != NULL && strcmp(ext, ".ply") == 0)
-    st = lsys_mesh_save_ply(&S->mesh, S->pal, S->npal, path, &e);
+    st = lsys_mesh_save_ply(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
   else if (ext != NULL && strcmp(ext, ".glb") == 0)
-    st = lsys_mesh_save_glb(&S->mesh, S->pal, S->npal, path, &e);
+    st = lsys_mesh_save_glb(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
   else
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
   if (st != LSYS_OK)

@@ -1,8 +1,260 @@
 /*
-** Lua binding of csrc/surface.h (being written).
+** Lua binding of csrc/surface.h: the lsys.Surface userdata (a cpfg surface
+** file, seed 004 §4.1) and patch evaluation.
+**
+**   core.surface_load(path) -> Surface        reads a surface file
+**   core.surface_parse(text [, name]) -> Surface
+**       the same from a string; 'name' (default "surface") starts messages
+**   s:info() -> {patches, contact, heading, up, end, lo, hi, size,
+**                precision = {s, t}, names = {...}}
+**   core.patch_eval(basis, ctrl, s, t) -> x, y, z
+**       basis 1 | 2 | 3 or "bezier" | "bspline" | "cardinal"; ctrl a list of
+**       16 {x, y, z}, row by row (row r, column c at 4 r + c + 1)
+**
+** Malformed files raise "name:LINE: what is wrong". A Surface is immutable
+** once made; it keeps its name as its user value.
 */
-#include "lua_lsys.h"
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lua_geom.h"
+
+#define MAXFILE ((size_t)16 << 20)    /* bytes of a surface file */
+
+#define checksurface(L, i) ((lsys_surface *)luaL_checkudata(L, (i), SURFACE_T))
+
+const lsys_surface *lsys_checksurface (lua_State *L, int idx) {
+  return checksurface(L, idx);
+}
+
+static int surface_gc (lua_State *L) {
+  lsys_surface_free(checksurface(L, 1));
+  return 0;
+}
+
+/* Pushes a new empty Surface whose user value is the string at 'name'. */
+static lsys_surface *newsurface (lua_State *L, int name) {
+  lsys_surface *s = (lsys_surface *)lua_newuserdatauv(L, sizeof *s, 1);
+  lsys_surface_init(s);
+  luaL_setmetatable(L, SURFACE_T);
+  lua_pushvalue(L, name);
+  lua_setiuservalue(L, -2, 1);
+  return s;
+}
+
+/* Raises for a failed parse: the message already names the file and line. */
+static int raise (lua_State *L, int code, const lsys_error *e) {
+  lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
+  return lua_error(L);
+}
+
+/*
+** Reads the whole file into a malloc'ed block (not NUL-terminated). On
+** failure returns NULL with a message in 'msg'. Makes no Lua call, so
+** nothing can raise while the file is open or the block is held.
+*/
+static char *readfile (const char *path, size_t *len, char *msg, size_t msgsize) {
+  FILE *f = fopen(path, "rb");
+  char *buf = NULL;
+  size_t n = 0, cap = 0;
+  if (f == NULL) {
+    snprintf(msg, msgsize, "cannot open '%s': %s", path, strerror(errno));
+    return NULL;
+  }
+  for (;;) {
+    size_t got;
+    if (n == cap) {
+      char *nb;
+      if (cap > MAXFILE) {
+        snprintf(msg, msgsize, "cannot read '%s': larger than %lu MiB", path,
+                 (unsigned long)(MAXFILE >> 20));
+        break;
+      }
+      cap = cap == 0 ? 4096 : 2 * cap;
+      if ((nb = (char *)realloc(buf, cap)) == NULL) {
+        snprintf(msg, msgsize, "not enough memory");
+        break;
+      }
+      buf = nb;
+    }
+    got = fread(buf + n, 1, cap - n, f);
+    n += got;
+    if (got == 0) {
+      if (ferror(f)) {
+        snprintf(msg, msgsize, "cannot read '%s': %s", path, strerror(errno));
+        break;
+      }
+      if (n > MAXFILE) {
+        snprintf(msg, msgsize, "cannot read '%s': larger than %lu MiB", path,
+                 (unsigned long)(MAXFILE >> 20));
+        break;
+      }
+      fclose(f);
+      *len = n;
+      return buf;
+    }
+  }
+  fclose(f);
+  free(buf);
+  return NULL;
+}
+
+/* core.surface_load(path) */
+static int l_surface_load (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  lsys_surface *s = newsurface(L, 1);
+  lsys_error e;
+  size_t len = 0;
+  int st;
+  char *text = readfile(path, &len, e.msg, sizeof e.msg);
+  if (text == NULL) return raise(L, LSYS_ESYNTAX, &e);
+  st = lsys_surface_parse(s, text, len, path, &e);
+  free(text);
+  if (st != LSYS_OK) return raise(L, st, &e);
+  return 1;
+}
+
+/* core.surface_parse(text [, name]) */
+static int l_surface_parse (lua_State *L) {
+  size_t len;
+  const char *text = luaL_checklstring(L, 1, &len);
+  const char *name = luaL_optstring(L, 2, "surface");
+  lsys_surface *s;
+  lsys_error e;
+  int st;
+  lua_settop(L, 2);
+  if (lua_isnil(L, 2)) {
+    lua_pushstring(L, name);
+    lua_replace(L, 2);
+  }
+  s = newsurface(L, 2);
+  st = lsys_surface_parse(s, text, len, name, &e);
+  if (st != LSYS_OK) return raise(L, st, &e);
+  return 1;
+}
+
+static void pushvec (lua_State *L, const double *v, int n) {
+  int k;
+  lua_createtable(L, n, 0);
+  for (k = 0; k < n; k++) {
+    lua_pushnumber(L, (lua_Number)v[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
+}
+
+/* s:info() */
+static int surface_info (lua_State *L) {
+  const lsys_surface *s = checksurface(L, 1);
+  double prec[2];
+  size_t i;
+  lua_createtable(L, 0, 11);
+  lua_pushinteger(L, (lua_Integer)s->npatch);
+  lua_setfield(L, -2, "patches");
+  pushvec(L, s->contact, 3);
+  lua_setfield(L, -2, "contact");
+  pushvec(L, s->heading, 3);
+  lua_setfield(L, -2, "heading");
+  pushvec(L, s->up, 3);
+  lua_setfield(L, -2, "up");
+  pushvec(L, s->end, 3);
+  lua_setfield(L, -2, "end");
+  pushvec(L, s->lo, 3);
+  lua_setfield(L, -2, "lo");
+  pushvec(L, s->hi, 3);
+  lua_setfield(L, -2, "hi");
+  lua_pushnumber(L, (lua_Number)s->size);
+  lua_setfield(L, -2, "size");
+  prec[0] = s->precision_s;
+  prec[1] = s->precision_t;
+  lua_createtable(L, 2, 0);
+  for (i = 0; i < 2; i++) {
+    lua_pushinteger(L, (lua_Integer)prec[i]);
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  lua_setfield(L, -2, "precision");
+  lua_createtable(L, (int)s->npatch, 0);
+  for (i = 0; i < s->npatch && s->info != NULL; i++) {
+    lua_pushstring(L, s->info[i].name);
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  lua_setfield(L, -2, "names");
+  return 1;
+}
+
+static int surface_tostring (lua_State *L) {
+  const lsys_surface *s = checksurface(L, 1);
+  lua_getiuservalue(L, 1, 1);
+  lua_pushfstring(L, "lsys.Surface(%s, %d patch%s)", luaL_optstring(L, -1, "?"),
+                  (int)s->npatch, s->npatch == 1 ? "" : "es");
+  return 1;
+}
+
+/* core.patch_eval(basis, ctrl, s, t) */
+static int l_patch_eval (lua_State *L) {
+  static const char *const names[] = {"bezier", "bspline", "cardinal", NULL};
+  lsys_patch p;
+  double s, t, pos[3];
+  int basis, i, k;
+  if (lua_type(L, 1) == LUA_TSTRING) basis = luaL_checkoption(L, 1, NULL, names) + 1;
+  else {
+    lua_Integer b = luaL_checkinteger(L, 1);
+    luaL_argcheck(L, b >= 1 && b <= 3, 1, "basis must be 1 (Bezier), 2 (B-spline) or 3 (Cardinal)");
+    basis = (int)b;
+  }
+  luaL_checktype(L, 2, LUA_TTABLE);
+  s = luaL_checknumber(L, 3);
+  t = luaL_checknumber(L, 4);
+  luaL_argcheck(L, isfinite(s), 3, "not a finite number");
+  luaL_argcheck(L, isfinite(t), 4, "not a finite number");
+  luaL_argcheck(L, luaL_len(L, 2) == 16, 2, "expected 16 control points");
+  for (i = 0; i < 16; i++) {
+    if (lua_geti(L, 2, i + 1) != LUA_TTABLE)
+      return luaL_argerror(L, 2, lua_pushfstring(L, "control point %d is a %s, not a table",
+                                                  i + 1, luaL_typename(L, -1)));
+    for (k = 0; k < 3; k++) {
+      int isnum;
+      lua_geti(L, -1, k + 1);
+      p.ctrl[3 * i + k] = (double)lua_tonumberx(L, -1, &isnum);
+      if (!isnum)
+        return luaL_argerror(L, 2, lua_pushfstring(L, "coordinate %d of control point %d is "
+                                                    "not a number", k + 1, i + 1));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lsys_patch_eval(basis, &p, s, t, pos, NULL, NULL);
+  for (k = 0; k < 3; k++) lua_pushnumber(L, (lua_Number)pos[k]);
+  return 3;
+}
+
+static const luaL_Reg surface_methods[] = {
+  {"info", surface_info},
+  {NULL, NULL}
+};
+
+static const luaL_Reg surface_meta[] = {
+  {"__index", NULL},  /* placeholder: the method table */
+  {"__gc", surface_gc},
+  {"__close", surface_gc},
+  {"__tostring", surface_tostring},
+  {NULL, NULL}
+};
+
+static const luaL_Reg funcs[] = {
+  {"surface_load", l_surface_load},
+  {"surface_parse", l_surface_parse},
+  {"patch_eval", l_patch_eval},
+  {NULL, NULL}
+};
 
 void lsys_open_surface (lua_State *L) {
-  (void)L;
+  luaL_newmetatable(L, SURFACE_T);
+  luaL_setfuncs(L, surface_meta, 0);
+  luaL_newlibtable(L, surface_methods);
+  luaL_setfuncs(L, surface_methods, 0);
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+  luaL_setfuncs(L, funcs, 0);
 }

@@ -361,57 +361,127 @@ static int checkmesh (const lsys_mesh *m, const char *path, lsys_error *e) {
   return LSYS_OK;
 }
 
-/* Triangles and segments sorted by material with a counting sort. */
+/*
+** Triangles and segments sorted by material with a counting sort. With
+** textures, the triangles are first sorted by texture, so that the stable
+** sort by material leaves each material's triangles in runs of one texture.
+** A material slot and a texture make one exported material: slot k alone
+** ('plain', for its untextured triangles and its segments) and slot k with
+** texture t, in the order of the runs.
+*/
+typedef struct run {
+  size_t first, end;           /* range of tord */
+  uint32_t slot;               /* material slot */
+  uint16_t tex;                /* texture index, 0 for none */
+  uint8_t twosided;            /* some triangle has a two-sided vertex */
+} run;
+
 typedef struct groups {
   size_t nmat;                 /* material slots: the palette size, at least 1 */
   size_t *tfirst, *lfirst;     /* nmat + 1 offsets into tord and lord */
   uint32_t *tord, *lord;       /* triangle and segment numbers, by material */
-  uint8_t *twosided;           /* per slot: some triangle has a two-sided vertex */
+  run *runs;                   /* the triangle runs, by slot then texture */
+  size_t nruns, runcap;
+  const lsys_texture *const *tex;
+  size_t ntex;                 /* textures that apply; 0 when none can */
 } groups;
 
 static void freegroups (groups *g) {
   LSYS_FREE(g->tfirst); LSYS_FREE(g->lfirst);
-  LSYS_FREE(g->tord); LSYS_FREE(g->lord); LSYS_FREE(g->twosided);
+  LSYS_FREE(g->tord); LSYS_FREE(g->lord); LSYS_FREE(g->runs);
+}
+
+/* The texture index of vertex a when its texture can be exported (it
+** exists and has a file), else 0. */
+static unsigned texof (const groups *g, const lsys_mesh *m, uint32_t a) {
+  unsigned k = g->ntex ? m->tex[a] : 0;
+  return k >= 1 && k <= g->ntex && g->tex[k - 1] != NULL && g->tex[k - 1]->path != NULL ? k : 0;
+}
+
+static int twosided (const lsys_mesh *m, const uint32_t *v) {
+  return (m->twosided[v[0]] | m->twosided[v[1]] | m->twosided[v[2]]) != 0;
 }
 
 /* Colour indices are 16-bit, so more than 65536 slots are never needed:
-** c % npal == c % 65536 == c when npal > 65536. */
-static int groupmesh (groups *g, const lsys_mesh *m, size_t npal, const char *path,
+** c % npal == c % 65536 == c when npal > 65536. Texture indices are
+** 16-bit too. */
+static int groupmesh (groups *g, const lsys_mesh *m, size_t npal,
+                      const lsys_texture *const *tex, int ntex, const char *path,
                       lsys_error *e) {
-  size_t k, t, nmat = npal == 0 ? 1 : (npal < 65536 ? npal : 65536);
+  size_t k, t, i, nmat = npal == 0 ? 1 : (npal < 65536 ? npal : 65536);
+  uint32_t *order = NULL;      /* triangles by texture, when textured */
+  size_t *tcount = NULL;
   *g = (groups){0};
   g->nmat = nmat;
+  if (tex != NULL && ntex > 0 && m->tex != NULL && m->nt > 0) {
+    g->tex = tex;
+    g->ntex = ntex < 65535 ? (size_t)ntex : 65535;
+  }
   g->tfirst = (size_t *)LSYS_MALLOC((nmat + 1) * sizeof(size_t));
   g->lfirst = (size_t *)LSYS_MALLOC((nmat + 1) * sizeof(size_t));
-  g->twosided = (uint8_t *)LSYS_MALLOC(nmat);
   g->tord = (uint32_t *)LSYS_MALLOC((m->nt ? m->nt : 1) * sizeof(uint32_t));
   g->lord = (uint32_t *)LSYS_MALLOC((m->nl ? m->nl : 1) * sizeof(uint32_t));
-  if (!g->tfirst || !g->lfirst || !g->twosided || !g->tord || !g->lord) {
+  if (g->ntex > 0) {
+    order = (uint32_t *)LSYS_MALLOC(m->nt * sizeof(uint32_t));
+    tcount = (size_t *)LSYS_MALLOC((g->ntex + 2) * sizeof(size_t));
+  }
+  if (!g->tfirst || !g->lfirst || !g->tord || !g->lord ||
+      (g->ntex > 0 && (order == NULL || tcount == NULL))) {
+    LSYS_FREE(order); LSYS_FREE(tcount);
     freegroups(g);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
   }
+  if (order != NULL) {                 /* by texture first (a counting sort) */
+    memset(tcount, 0, (g->ntex + 2) * sizeof(size_t));
+    for (t = 0; t < m->nt; t++) tcount[texof(g, m, m->tri[3 * t]) + 1]++;
+    for (k = 0; k <= g->ntex; k++) tcount[k + 1] += tcount[k];
+    for (t = 0; t < m->nt; t++) order[tcount[texof(g, m, m->tri[3 * t])]++] = (uint32_t)t;
+    LSYS_FREE(tcount);
+  }
   memset(g->tfirst, 0, (nmat + 1) * sizeof(size_t));
   memset(g->lfirst, 0, (nmat + 1) * sizeof(size_t));
-  memset(g->twosided, 0, nmat);
-  for (t = 0; t < m->nt; t++) {
-    const uint32_t *v = m->tri + 3 * t;
-    k = m->col[v[0]] % nmat;
-    g->tfirst[k + 1]++;
-    if (m->twosided[v[0]] | m->twosided[v[1]] | m->twosided[v[2]]) g->twosided[k] = 1;
-  }
+  for (t = 0; t < m->nt; t++) g->tfirst[m->col[m->tri[3 * t]] % nmat + 1]++;
   for (t = 0; t < m->nl; t++) g->lfirst[m->lcol[t] % nmat + 1]++;
   for (k = 0; k < nmat; k++) {
     g->tfirst[k + 1] += g->tfirst[k];
     g->lfirst[k + 1] += g->lfirst[k];
   }
   /* fill, using tfirst[k] as the cursor of slot k, then shift back */
-  for (t = 0; t < m->nt; t++) g->tord[g->tfirst[m->col[m->tri[3 * t]] % nmat]++] = (uint32_t)t;
+  for (i = 0; i < m->nt; i++) {
+    t = order != NULL ? order[i] : i;
+    g->tord[g->tfirst[m->col[m->tri[3 * t]] % nmat]++] = (uint32_t)t;
+  }
   for (t = 0; t < m->nl; t++) g->lord[g->lfirst[m->lcol[t] % nmat]++] = (uint32_t)t;
   for (k = nmat; k > 0; k--) {
     g->tfirst[k] = g->tfirst[k - 1];
     g->lfirst[k] = g->lfirst[k - 1];
   }
   g->tfirst[0] = g->lfirst[0] = 0;
+  LSYS_FREE(order);
+  /* the runs: one per slot and texture */
+  for (k = 0; k < nmat; k++)
+    for (i = g->tfirst[k]; i < g->tfirst[k + 1];) {
+      const uint32_t *v = m->tri + 3 * (size_t)g->tord[i];
+      unsigned tx = texof(g, m, v[0]);
+      run *r;
+      if (g->nruns == g->runcap &&
+          lsys_grow((void **)&g->runs, &g->runcap, g->nruns + 1, sizeof *g->runs) != LSYS_OK) {
+        freegroups(g);
+        return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory",
+                             path);
+      }
+      r = &g->runs[g->nruns++];
+      r->first = i;
+      r->slot = (uint32_t)k;
+      r->tex = (uint16_t)tx;
+      r->twosided = 0;
+      for (; i < g->tfirst[k + 1]; i++) {
+        v = m->tri + 3 * (size_t)g->tord[i];
+        if (texof(g, m, v[0]) != tx) break;
+        if (twosided(m, v)) r->twosided = 1;
+      }
+      r->end = i;
+    }
   return LSYS_OK;
 }
 
@@ -419,8 +489,11 @@ static const lsys_material *material (const lsys_material *pal, size_t npal, siz
   return npal == 0 ? &defmaterial : &pal[k];
 }
 
-static int used (const groups *g, size_t k) {
-  return g->tfirst[k + 1] > g->tfirst[k] || g->lfirst[k + 1] > g->lfirst[k];
+/* Whether slot k's plain material is used: by untextured triangles (the
+** first run of the slot, texture 0) or by segments. 'r' is the slot's
+** first run or NULL. */
+static int plainused (const groups *g, size_t k, const run *r) {
+  return (r != NULL && r->slot == k && r->tex == 0) || g->lfirst[k + 1] > g->lfirst[k];
 }
 
 /* ------------------------------------------------------------------ */
@@ -451,33 +524,63 @@ static void putrgb (writer *w, const char *tag, const float *c) {
   putvec(w, tag, v, 3);
 }
 
+/* "<tag> m<k>" or "<tag> m<k>_t<t>" and a newline: the name of slot k's
+** material with texture t (0: none). */
+static void putmtlname (writer *w, const char *tag, size_t k, unsigned t) {
+  char *s = (char *)wroom(w, 64);
+  while (*tag) *s++ = *tag++;
+  *s++ = ' '; *s++ = 'm';
+  s = putuint(s, k);
+  if (t > 0) {
+    *s++ = '_'; *s++ = 't';
+    s = putuint(s, t);
+  }
+  *s++ = '\n';
+  wdone(w, s);
+}
+
+/*
+** One MTL entry. With a texture: map_Kd names its file as it was given
+** when loaded (relative paths are then relative to where lsys ran, which
+** OBJ readers take as relative to the .mtl file: write the OBJ next to the
+** textures, or load them by absolute paths). Decal: Kd is white and illum 0
+** (colour without lighting), so the image is the colour.
+*/
+static void putmtl (writer *w, const lsys_material *mt, size_t k, const lsys_texture *tx,
+                    unsigned t) {
+  static const float white[3] = {1, 1, 1};
+  int spec = mt->specular[0] > 0 || mt->specular[1] > 0 || mt->specular[2] > 0;
+  int decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
+  float d = unit(mt->diffuse[3]);
+  wstr(w, "\n");
+  putmtlname(w, "newmtl", k, t);
+  putrgb(w, "Ka", mt->ambient);
+  putrgb(w, "Kd", decal ? white : mt->diffuse);
+  putrgb(w, "Ks", mt->specular);
+  putrgb(w, "Ke", mt->emission);
+  putvec(w, "Ns", &mt->shininess, 1);       /* the same Phong exponent as OpenGL's */
+  putvec(w, "d", &d, 1);
+  wstr(w, decal ? "illum 0\n" : spec ? "illum 2\n" : "illum 1\n");
+  if (tx != NULL) {
+    wstr(w, "map_Kd ");
+    wstr(w, tx->path);
+    wstr(w, "\n");
+  }
+}
+
 static int writemtl (const groups *g, const lsys_material *pal, size_t npal,
                      const char *path, lsys_error *e) {
   writer *w;
-  size_t k;
+  size_t k, r = 0;
   int st = wopen(&w, path, e);
   if (st != LSYS_OK) return st;
   wstr(w, "# lsys materials\n");
   for (k = 0; k < g->nmat; k++) {
     const lsys_material *mt = material(pal, npal, k);
-    int spec = mt->specular[0] > 0 || mt->specular[1] > 0 || mt->specular[2] > 0;
-    char *s;
-    if (!used(g, k)) continue;
-    s = (char *)wroom(w, 64);
-    memcpy(s, "\nnewmtl m", 9);
-    s = putuint(s + 9, k);
-    *s++ = '\n';
-    wdone(w, s);
-    putrgb(w, "Ka", mt->ambient);
-    putrgb(w, "Kd", mt->diffuse);
-    putrgb(w, "Ks", mt->specular);
-    putrgb(w, "Ke", mt->emission);
-    putvec(w, "Ns", &mt->shininess, 1);     /* the same Phong exponent as OpenGL's */
-    {
-      float d = unit(mt->diffuse[3]);
-      putvec(w, "d", &d, 1);
-    }
-    wstr(w, spec ? "illum 2\n" : "illum 1\n");
+    if (plainused(g, k, r < g->nruns ? &g->runs[r] : NULL)) putmtl(w, mt, k, NULL, 0);
+    for (; r < g->nruns && g->runs[r].slot == k; r++)
+      if (g->runs[r].tex > 0)
+        putmtl(w, mt, k, g->tex[g->runs[r].tex - 1], g->runs[r].tex);
   }
   return wclose(w, e);
 }
@@ -510,17 +613,20 @@ static void putline (writer *w, uint64_t a) {
 
 /*
 ** OBJ layout: the positions of the mesh vertices, then two per segment in
-** material order; the normals and texture coordinates of the mesh vertices;
-** then, per material, 'usemtl m<k>' followed by its faces and
-** its segments ('l' elements, which refer to positions only).
+** material order; the normals and texture coordinates of the mesh vertices
+** (texture.h: v up, as OBJ has it); then, per material slot, 'usemtl m<k>'
+** followed by its untextured faces and its segments ('l' elements, which
+** refer to positions only), and 'usemtl m<k>_t<t>' with the faces of slot
+** k textured with texture t.
 */
 int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e) {
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e) {
   groups g;
   writer *w;
   const char *mtlname;
   char *mpath, head[160];
-  size_t i, k;
+  size_t i, k, r;
   int st = checkmesh(m, path, e);
   if (st != LSYS_OK) return st;
   mpath = mtlpath(path, &mtlname);
@@ -533,7 +639,7 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
   }
   st = wopen(&w, path, e);               /* first, so that a bad path names the .obj */
   if (st == LSYS_OK) {
-    st = groupmesh(&g, m, npal, path, e);
+    st = groupmesh(&g, m, npal, tex, ntex, path, e);
     if (st == LSYS_OK) {
       st = writemtl(&g, pal, npal, mpath, e);
       if (st != LSYS_OK) freegroups(&g);
@@ -561,16 +667,21 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
   }
   for (i = 0; i < m->nv; i++) putvec(w, "vn", m->nrm + 3 * i, 3);
   for (i = 0; i < m->nv; i++) putvec(w, "vt", m->uv + 2 * i, 2);
-  for (k = 0; k < g.nmat; k++) {
-    char *s;
-    if (!used(&g, k)) continue;
-    s = (char *)wroom(w, 64);
-    memcpy(s, "usemtl m", 8);
-    s = putuint(s + 8, k);
-    *s++ = '\n';
-    wdone(w, s);
-    for (i = g.tfirst[k]; i < g.tfirst[k + 1]; i++) putface(w, m->tri + 3 * (size_t)g.tord[i]);
-    for (i = g.lfirst[k]; i < g.lfirst[k + 1]; i++) putline(w, m->nv + 2 * i + 1);
+  for (k = 0, r = 0; k < g.nmat; k++) {
+    const run *first = r < g.nruns && g.runs[r].slot == k ? &g.runs[r] : NULL;
+    if (plainused(&g, k, first)) {
+      putmtlname(w, "usemtl", k, 0);
+      if (first != NULL && first->tex == 0) {
+        for (i = first->first; i < first->end; i++) putface(w, m->tri + 3 * (size_t)g.tord[i]);
+        r++;
+      }
+      for (i = g.lfirst[k]; i < g.lfirst[k + 1]; i++) putline(w, m->nv + 2 * i + 1);
+    }
+    for (; r < g.nruns && g.runs[r].slot == k; r++) {
+      putmtlname(w, "usemtl", k, g.runs[r].tex);
+      for (i = g.runs[r].first; i < g.runs[r].end; i++)
+        putface(w, m->tri + 3 * (size_t)g.tord[i]);
+    }
   }
   freegroups(&g);
   LSYS_FREE(mpath);
@@ -600,14 +711,17 @@ static unsigned char *plyvertex (unsigned char *p, const float *pos, const float
 ** and texture coordinates 0); the faces; and, when there are segments, an
 ** 'edge' element (vertex1, vertex2) that refers to those extra vertices.
 ** Vertex colours are the diffuse colours of the materials. Line widths are
-** not kept.
+** not kept. Textures are ignored (PLY has no standard way to name an
+** image); the texture coordinates are there as s and t.
 */
 int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e) {
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e) {
   writer *w;
   char head[1024];
   size_t i, nmat = npal == 0 ? 1 : npal;
   int n, st = checkmesh(m, path, e);
+  (void)tex; (void)ntex;
   if (st != LSYS_OK) return st;
   if (m->nv + 2 * m->nl > (size_t)INT32_MAX)
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot write '%s': mesh too large", path);
@@ -734,23 +848,75 @@ static void minmax (const float *p, size_t n, size_t stride, float lo[3], float 
 ** result is capped at 0.8: plain colours (s = 0) get 0.8, s = 128 gives 0.35.
 ** metallicFactor is 0: L-system materials are dielectric.
 */
-static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided, int first) {
+static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided,
+                       const lsys_texture *tx, unsigned t, uint32_t gtex, int first) {
   float c[4], em[3], s = fin(mt->shininess), r;
-  int i;
+  int i, decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
   for (i = 0; i < 4; i++) c[i] = unit(mt->diffuse[i]);
   for (i = 0; i < 3; i++) em[i] = unit(mt->emission[i]);
+  if (decal) c[0] = c[1] = c[2] = 1;
   if (s < 0) s = 0;
   r = (float)pow(2.0 / (s + 2.0), 0.25);
   if (r > 0.8f) r = 0.8f;
-  jadd(j, "%s{\"name\":\"m%zu\",\"pbrMetallicRoughness\":{", first ? "" : ",", k);
+  jadd(j, "%s{\"name\":\"m%zu", first ? "" : ",", k);
+  if (tx != NULL) jadd(j, "_t%u", t);
+  jadd(j, "\",\"pbrMetallicRoughness\":{");
   jvec(j, "\"baseColorFactor\":", c, 4);
+  if (tx != NULL) jadd(j, ",\"baseColorTexture\":{\"index\":%lu}", (unsigned long)gtex);
   jadd(j, ",\"metallicFactor\":0,\"roughnessFactor\":");
   jnum(j, r);
   jadd(j, "}");
   if (em[0] > 0 || em[1] > 0 || em[2] > 0) jvec(j, ",\"emissiveFactor\":", em, 3);
   if (c[3] < 1) jadd(j, ",\"alphaMode\":\"BLEND\"");
+  else if (tx != NULL && !decal && lsys_texture_hasalpha(tx))
+    jadd(j, ",\"alphaMode\":\"MASK\"");     /* cut at alpha 1/2, as the renderer does */
   if (twosided) jadd(j, ",\"doubleSided\":true");
+  if (decal) jadd(j, ",\"extensions\":{\"KHR_materials_unlit\":{}}");
   jadd(j, "}");
+}
+
+/* Reads the whole file 'name' (a texture) into a new block; LSYS_OK, or an
+** error naming the .glb being written and the file. Refuses what is not a
+** PNG file (it may have changed since it was loaded). */
+static int slurpimage (const char *name, unsigned char **data, size_t *len,
+                       const char *path, lsys_error *e) {
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  FILE *f = fopen(name, "rb");
+  unsigned char *p = NULL;
+  size_t n = 0, cap = 0, k;
+  *data = NULL;
+  if (f == NULL)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': cannot read texture "
+                         "'%s': %s", path, name, strerror(errno));
+  for (;;) {
+    if (n == cap && (cap > (size_t)UINT32_MAX / 2 ||
+                     lsys_grow((void **)&p, &cap, n + 65536, 1) != LSYS_OK)) {
+      LSYS_FREE(p);
+      fclose(f);
+      if (cap > (size_t)UINT32_MAX / 2)
+        return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot write '%s': texture '%s' "
+                             "is too large for glTF binary", path, name);
+      return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
+    }
+    k = fread(p + n, 1, cap - n, f);
+    n += k;
+    if (k == 0) break;
+  }
+  if (ferror(f)) {
+    LSYS_FREE(p);
+    fclose(f);
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': cannot read texture "
+                         "'%s'", path, name);
+  }
+  fclose(f);
+  if (n < 8 || memcmp(p, sig, 8) != 0) {
+    LSYS_FREE(p);
+    return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "cannot write '%s': texture '%s' is no "
+                         "longer a PNG file", path, name);
+  }
+  *data = p;
+  *len = n;
+  return LSYS_OK;
 }
 
 #define GLB_MAGIC  0x46546C67u     /* "glTF" */
@@ -759,24 +925,39 @@ static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided,
 
 /*
 ** GLB layout. BIN chunk: the mesh vertices interleaved (position, unit
-** normal, uv: 32 bytes each) when there are triangles; the triangle indices
-** (uint32) in material order; the segment end points in material order.
-** JSON: one scene with one node and one mesh; per material used by
-** triangles, a TRIANGLES primitive sharing the three vertex accessors with
-** its own index accessor; per material used by segments, a LINES primitive
-** with its own POSITION accessor over its run of end points (no indices,
-** no normals; line widths have no glTF equivalent). An empty mesh gives a
-** scene without nodes.
+** normal, uv with v turned to glTF's downward axis: 32 bytes each) when
+** there are triangles; the triangle indices (uint32) in the order of the
+** runs (material slot, then texture); the segment end points in material
+** order; the texture images, each padded to 4 bytes. JSON: one scene with
+** one node and one mesh; per run, a TRIANGLES primitive sharing the three
+** vertex accessors with its own index accessor; per material used by
+** segments, a LINES primitive with its own POSITION accessor over its run
+** of end points (no indices, no normals; line widths have no glTF
+** equivalent). An empty mesh gives a scene without nodes.
+**
+** Textures: each one used gets an image (the PNG file's bytes, embedded), a
+** sampler (its filters, REPEAT wrapping) and a texture; each (slot,
+** texture) pair gets a material whose baseColorTexture is it: modulate
+** keeps the diffuse colour as the factor (glTF multiplies by the texel's
+** RGB, also for an intensity texture of a colour image), decal uses a white
+** factor and KHR_materials_unlit. A modulated texture with transparent
+** texels on an opaque material is cut at alpha 1/2 (alphaMode MASK).
 */
 int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e) {
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e) {
   groups g;
   jbuf j = {0};
   writer *w;
-  uint32_t *gmat = NULL;          /* palette slot -> glTF material number */
-  size_t k, i, nmat = 0, nacc, ntri = m->nt, nl = m->nl, nv = ntri ? m->nv : 0;
-  size_t vbytes = 32 * nv, ibytes = 12 * ntri, lbytes = 24 * nl, binlen, jlen, total;
-  int st = checkmesh(m, path, e), first;
+  uint32_t *pmat = NULL;          /* slot -> glTF material of its plain material */
+  uint32_t *rmat = NULL;          /* run -> glTF material */
+  uint32_t *gtex = NULL;          /* texture index -> glTF texture (UINT32_MAX: unused) */
+  unsigned char **img = NULL;     /* per glTF texture: the PNG bytes */
+  size_t *imglen = NULL;
+  uint16_t *imgtex = NULL;        /* per glTF texture: the texture index */
+  size_t k, i, r, nmat = 0, nimg = 0, nacc, ntri = m->nt, nl = m->nl, nv = ntri ? m->nv : 0;
+  size_t vbytes = 32 * nv, ibytes = 12 * ntri, lbytes = 24 * nl, ibase, binlen, jlen, total;
+  int st = checkmesh(m, path, e), first, unlit = 0;
   float lo[3], hi[3];
   unsigned char hdr[28], *p;
   if (st != LSYS_OK) return st;
@@ -784,17 +965,56 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
       (uint64_t)vbytes + ibytes + lbytes > UINT32_MAX - 1024)
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1,
                          "cannot write '%s': mesh too large for glTF binary (4 GiB)", path);
-  st = groupmesh(&g, m, npal, path, e);
+  st = groupmesh(&g, m, npal, tex, ntex, path, e);
   if (st != LSYS_OK) return st;
-  gmat = (uint32_t *)LSYS_MALLOC(g.nmat * sizeof *gmat);
-  if (gmat == NULL) {
-    freegroups(&g);
-    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
+  pmat = (uint32_t *)LSYS_MALLOC(g.nmat * sizeof *pmat);
+  rmat = (uint32_t *)LSYS_MALLOC((g.nruns ? g.nruns : 1) * sizeof *rmat);
+  gtex = (uint32_t *)LSYS_MALLOC((g.ntex + 1) * sizeof *gtex);
+  img = (unsigned char **)LSYS_MALLOC((g.ntex + 1) * sizeof *img);
+  imglen = (size_t *)LSYS_MALLOC((g.ntex + 1) * sizeof *imglen);
+  imgtex = (uint16_t *)LSYS_MALLOC((g.ntex + 1) * sizeof *imgtex);
+  if (pmat == NULL || rmat == NULL || gtex == NULL || img == NULL || imglen == NULL ||
+      imgtex == NULL) {
+    st = lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
+    goto done;
   }
-  for (k = 0; k < g.nmat; k++) gmat[k] = used(&g, k) ? (uint32_t)nmat++ : 0;
+  /* materials: per slot its plain one (if used), then one per texture run */
+  for (k = 0; k <= g.ntex; k++) gtex[k] = UINT32_MAX;
+  for (k = 0, r = 0; k < g.nmat; k++) {
+    pmat[k] = plainused(&g, k, r < g.nruns ? &g.runs[r] : NULL) ? (uint32_t)nmat++ : 0;
+    for (; r < g.nruns && g.runs[r].slot == k; r++) {
+      unsigned t = g.runs[r].tex;
+      rmat[r] = t == 0 ? pmat[k] : (uint32_t)nmat++;
+      if (t > 0 && g.tex[t - 1]->mode == LSYS_TEX_DECAL) unlit = 1;
+      if (t > 0 && gtex[t] == UINT32_MAX) {
+        gtex[t] = (uint32_t)nimg;
+        imgtex[nimg] = (uint16_t)t;
+        img[nimg] = NULL;
+        nimg++;
+      }
+    }
+  }
+  /* the images, read now: their sizes go into the JSON */
   binlen = vbytes + ibytes + lbytes;
+  ibase = binlen;
+  for (i = 0; i < nimg; i++) {
+    st = slurpimage(g.tex[imgtex[i] - 1]->path, &img[i], &imglen[i], path, e);
+    if (st != LSYS_OK) {
+      nimg = i;                   /* the ones read so far are freed below */
+      goto done;
+    }
+    if (imglen[i] > UINT32_MAX - 1024 - binlen) {
+      nimg = i + 1;
+      st = lsys_seterror(e, LSYS_ELIMIT, (size_t)-1,
+                         "cannot write '%s': mesh too large for glTF binary (4 GiB)", path);
+      goto done;
+    }
+    binlen += (imglen[i] + 3) & ~(size_t)3;
+  }
 
-  jadd(&j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"lsys\"},\"scene\":0,");
+  jadd(&j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"lsys\"},");
+  if (unlit) jadd(&j, "\"extensionsUsed\":[\"KHR_materials_unlit\"],");
+  jadd(&j, "\"scene\":0,");
   if (ntri == 0 && nl == 0) jadd(&j, "\"scenes\":[{}]}");
   else {
     size_t bv = 0, lview;
@@ -803,27 +1023,52 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
     jadd(&j, "\"meshes\":[{\"primitives\":[");
     nacc = ntri ? 3 : 0;
     first = 1;
-    for (k = 0; k < g.nmat; k++)
-      if (g.tfirst[k + 1] > g.tfirst[k]) {
-        jadd(&j, "%s{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},"
-             "\"indices\":%zu,\"material\":%lu,\"mode\":4}", first ? "" : ",", nacc++,
-             (unsigned long)gmat[k]);
-        first = 0;
-      }
+    for (r = 0; r < g.nruns; r++) {
+      jadd(&j, "%s{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},"
+           "\"indices\":%zu,\"material\":%lu,\"mode\":4}", first ? "" : ",", nacc++,
+           (unsigned long)rmat[r]);
+      first = 0;
+    }
     for (k = 0; k < g.nmat; k++)
       if (g.lfirst[k + 1] > g.lfirst[k]) {
         jadd(&j, "%s{\"attributes\":{\"POSITION\":%zu},\"material\":%lu,\"mode\":1}",
-             first ? "" : ",", nacc++, (unsigned long)gmat[k]);
+             first ? "" : ",", nacc++, (unsigned long)pmat[k]);
         first = 0;
       }
     jadd(&j, "]}],\"materials\":[");
     first = 1;
-    for (k = 0; k < g.nmat; k++)
-      if (used(&g, k)) {
-        jmaterial(&j, material(pal, npal, k), k, g.twosided[k], first);
+    for (k = 0, r = 0; k < g.nmat; k++) {
+      const lsys_material *mt = material(pal, npal, k);
+      const run *fr = r < g.nruns && g.runs[r].slot == k ? &g.runs[r] : NULL;
+      if (plainused(&g, k, fr)) {
+        jmaterial(&j, mt, k, fr != NULL && fr->tex == 0 && fr->twosided, NULL, 0, 0, first);
         first = 0;
       }
-    jadd(&j, "],\"buffers\":[{\"byteLength\":%zu}],\"bufferViews\":[", binlen);
+      for (; r < g.nruns && g.runs[r].slot == k; r++) {
+        unsigned t = g.runs[r].tex;
+        if (t == 0) continue;
+        jmaterial(&j, mt, k, g.runs[r].twosided, g.tex[t - 1], t, gtex[t], first);
+        first = 0;
+      }
+    }
+    jadd(&j, "],");
+    if (nimg > 0) {
+      jadd(&j, "\"textures\":[");
+      for (i = 0; i < nimg; i++)
+        jadd(&j, "%s{\"sampler\":%zu,\"source\":%zu}", i ? "," : "", i, i);
+      jadd(&j, "],\"samplers\":[");
+      for (i = 0; i < nimg; i++) {
+        const lsys_texture *tx = g.tex[imgtex[i] - 1];
+        jadd(&j, "%s{\"magFilter\":%d,\"minFilter\":%d,\"wrapS\":10497,\"wrapT\":10497}",
+             i ? "," : "", tx->mag_linear ? 9729 : 9728, tx->min_linear ? 9729 : 9728);
+      }
+      jadd(&j, "],\"images\":[");
+      for (i = 0; i < nimg; i++)
+        jadd(&j, "%s{\"bufferView\":%zu,\"mimeType\":\"image/png\"}", i ? "," : "",
+             (ntri ? 2 : 0) + (nl ? 1 : 0) + i);
+      jadd(&j, "],");
+    }
+    jadd(&j, "\"buffers\":[{\"byteLength\":%zu}],\"bufferViews\":[", binlen);
     if (ntri) {
       jadd(&j, "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%zu,\"byteStride\":32,"
            "\"target\":34962},", vbytes);
@@ -835,6 +1080,13 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
     if (nl)
       jadd(&j, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":12,"
            "\"target\":34962}", ntri ? "," : "", vbytes + ibytes, lbytes);
+    {
+      size_t off = ibase;
+      for (i = 0; i < nimg; i++) {
+        jadd(&j, ",{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", off, imglen[i]);
+        off += (imglen[i] + 3) & ~(size_t)3;
+      }
+    }
     jadd(&j, "],\"accessors\":[");
     first = 1;
     if (ntri) {
@@ -846,11 +1098,10 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
       jadd(&j, "},{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5126,\"count\":%zu,"
            "\"type\":\"VEC3\"},{\"bufferView\":0,\"byteOffset\":24,\"componentType\":5126,"
            "\"count\":%zu,\"type\":\"VEC2\"}", nv, nv);
-      for (k = 0; k < g.nmat; k++)
-        if (g.tfirst[k + 1] > g.tfirst[k])
-          jadd(&j, ",{\"bufferView\":1,\"byteOffset\":%zu,\"componentType\":5125,"
-               "\"count\":%zu,\"type\":\"SCALAR\"}", 12 * g.tfirst[k],
-               3 * (g.tfirst[k + 1] - g.tfirst[k]));
+      for (r = 0; r < g.nruns; r++)
+        jadd(&j, ",{\"bufferView\":1,\"byteOffset\":%zu,\"componentType\":5125,"
+             "\"count\":%zu,\"type\":\"SCALAR\"}", 12 * g.runs[r].first,
+             3 * (g.runs[r].end - g.runs[r].first));
       first = 0;
     }
     for (k = 0; k < g.nmat; k++) {
@@ -876,24 +1127,19 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
     }
     jadd(&j, "]}");
   }
-  LSYS_FREE(gmat);
   while (!j.err && j.n % 4 != 0) jadd(&j, " ");
   jlen = j.n;
   total = 12 + 8 + jlen + (binlen ? 8 + binlen : 0);
   if (j.err || jlen > UINT32_MAX - 1024 || total > UINT32_MAX) {
-    freegroups(&g);
-    LSYS_FREE(j.p);
     if (j.err)
-      return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
-    return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1,
+      st = lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
+    else
+      st = lsys_seterror(e, LSYS_ELIMIT, (size_t)-1,
                          "cannot write '%s': mesh too large for glTF binary (4 GiB)", path);
+    goto done;
   }
   st = wopen(&w, path, e);
-  if (st != LSYS_OK) {
-    freegroups(&g);
-    LSYS_FREE(j.p);
-    return st;
-  }
+  if (st != LSYS_OK) goto done;
   p = put32(hdr, GLB_MAGIC);
   p = put32(p, 2);
   p = put32(p, (uint32_t)total);
@@ -901,7 +1147,6 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
   p = put32(p, GLB_JSON);
   wbytes(w, hdr, (size_t)(p - hdr));
   wbytes(w, j.p, jlen);
-  LSYS_FREE(j.p);
   if (binlen) {
     p = put32(hdr, (uint32_t)binlen);
     p = put32(p, GLB_BIN);
@@ -922,7 +1167,7 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
       p = putf32(p, 0.0f); p = putf32(p, 0.0f); p = putf32(p, 1.0f);
     }
     p = putf32(p, fin(m->uv[2 * i]));
-    p = putf32(p, fin(m->uv[2 * i + 1]));
+    p = putf32(p, fin(1.0f - fin(m->uv[2 * i + 1])));
     wdone(w, p);
   }
   for (i = 0; i < ntri; i++) {
@@ -938,6 +1183,17 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
     for (c = 0; c < 6; c++) p = putf32(p, fin(q[c]));
     wdone(w, p);
   }
+  for (i = 0; i < nimg; i++) {
+    static const unsigned char zero[4] = {0, 0, 0, 0};
+    wbytes(w, img[i], imglen[i]);
+    wbytes(w, zero, (4 - imglen[i] % 4) % 4);
+  }
+  st = wclose(w, e);
+done:
+  for (i = 0; img != NULL && i < nimg; i++) LSYS_FREE(img[i]);
+  LSYS_FREE(img); LSYS_FREE(imglen); LSYS_FREE(imgtex);
+  LSYS_FREE(pmat); LSYS_FREE(rmat); LSYS_FREE(gtex);
+  LSYS_FREE(j.p);
   freegroups(&g);
-  return wclose(w, e);
+  return st;
 }

@@ -12,6 +12,7 @@
 #define LSYS_MESH_H
 
 #include "common.h"
+#include "texture.h"
 
 typedef struct lsys_mesh {
   /* triangles: vertex arrays, 3 indices per triangle */
@@ -78,16 +79,23 @@ void lsys_material_color (lsys_material *mt, double r, double g, double b);
 
 /*
 ** Export writers. 'pal' has 'npal' materials (npal may be 0: a grey
-** default). Formats: Wavefront OBJ with a .mtl next to it (same base name),
-** binary little-endian PLY with per-vertex normals and colours, glTF 2.0
-** binary (.glb) with one primitive per material, lines as LINES
-** primitives. Return LSYS_OK or an error with e->msg naming the file.
+** default); 'tex' has 'ntex' textures (tex may be NULL and ntex 0), texture
+** index k of the mesh being tex[k - 1]. Formats: Wavefront OBJ with a .mtl
+** next to it (same base name), binary little-endian PLY with per-vertex
+** normals and colours, glTF 2.0 binary (.glb) with one primitive per
+** material and texture, lines as LINES primitives. A triangle is textured
+** when its first vertex's texture exists and has a file ('path'): OBJ
+** materials then name the file (map_Kd), GLB files embed it; PLY ignores
+** textures. Return LSYS_OK or an error with e->msg naming the file.
 */
 int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e);
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e);
 int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e);
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e);
 int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const char *path, lsys_error *e);
+                        const lsys_texture *const *tex, int ntex, const char *path,
+                        lsys_error *e);
 
 #endif

@@ -9,6 +9,12 @@
 ** two-sided vertices are drawn with GL_LIGHT_MODEL_TWO_SIDE; translucent
 ** materials are drawn last, blended, without writing depth.
 **
+** Textured triangles (render.h) are grouped again, by texture, after the
+** untextured ones: a stable counting sort by material into a scratch array,
+** then by texture into the tail of the index array, so that each texture
+** is bound once and its triangles come in runs of one material. Without
+** textures none of this runs: the untextured path is the one above.
+**
 ** Lines are unlit. Thin ones are GL lines grouped by width (glLineWidth is
 ** per draw call). Wide ones are expanded on the CPU into bands in clip
 ** coordinates: GL lines cannot taper, have no round ends, and stop at
@@ -73,6 +79,10 @@ void lsys_render_cache_free (lsys_render_cache *c) {
   LSYS_FREE(c->wpos);
   LSYS_FREE(c->wrgba);
   LSYS_FREE(c->widx);
+  LSYS_FREE(c->tidx);
+  LSYS_FREE(c->texok);
+  LSYS_FREE(c->texname);
+  LSYS_FREE(c->texbuf);
   memset(c, 0, sizeof *c);
 }
 
@@ -88,7 +98,10 @@ static const struct { const char *name; size_t off; } glfns[] = {
   GLFN(LoadIdentity), GLFN(DepthFunc), GLFN(DepthMask), GLFN(BlendFunc), GLFN(ShadeModel),
   GLFN(PolygonMode), GLFN(LineWidth), GLFN(Lightfv), GLFN(LightModelfv), GLFN(LightModeli),
   GLFN(Materialfv), GLFN(Materialf), GLFN(ColorMaterial), GLFN(VertexPointer),
-  GLFN(NormalPointer), GLFN(ColorPointer), GLFN(DrawElements)
+  GLFN(NormalPointer), GLFN(ColorPointer), GLFN(DrawElements), GLFN(GetString),
+  GLFN(GenTextures), GLFN(DeleteTextures), GLFN(BindTexture), GLFN(TexImage2D),
+  GLFN(TexParameteri), GLFN(TexEnvi), GLFN(TexCoordPointer), GLFN(PixelStorei),
+  GLFN(AlphaFunc)
 };
 
 /* Each pointer is stored through memcpy: all function pointers share one
@@ -333,6 +346,9 @@ typedef struct frame {
   const lsys_mesh *m;
   const lsys_material *pal;
   size_t npal;
+  const lsys_texture *const *tex;
+  size_t ntex;              /* 0: no texture can apply (the untextured path) */
+  size_t *gstart, *tstart;  /* textured triangles: groups by material, buckets by texture */
   lsys_render_cache *c;
   double proj[16], view[16], mvp[16];
   int fbw, fbh, maxw;
@@ -370,6 +386,216 @@ static void sorttriangles (frame *F) {
   start[0] = 0;
 }
 
+/* The group of triangle vertex a: twosided * npal + material. */
+static size_t groupof (const frame *F, uint32_t a) {
+  return (F->m->twosided[a] ? F->npal : 0) + F->m->col[a] % F->npal;
+}
+
+/* The texture of vertex a: its index when that texture can be drawn, else 0. */
+static size_t texof (const frame *F, uint32_t a) {
+  size_t k = F->m->tex[a];
+  return k <= F->ntex && F->c->texok[k] ? k : 0;
+}
+
+/*
+** sorttriangles when textures may apply: the untextured triangles as
+** there; the textured ones after them in c->idx, by texture, each texture's
+** bucket by group (a stable sort by group into c->tidx, then by texture).
+** F->tstart[k] is the first index of texture k's bucket (k = 1..ntex) and
+** F->tstart[ntex + 1] the end.
+*/
+static void sorttextured (frame *F) {
+  const lsys_mesh *m = F->m;
+  lsys_render_cache *c = F->c;
+  size_t *start = c->start, *gs = F->gstart, *ts = F->tstart;
+  size_t t, g, k, n, sum = 0, tsum = 0, ng = 2 * F->npal, ntex = F->ntex;
+  memset(start, 0, (ng + 1) * sizeof *start);
+  memset(gs, 0, (ng + 1) * sizeof *gs);
+  memset(ts, 0, (ntex + 2) * sizeof *ts);
+  for (t = 0; t < m->nt; t++) {
+    uint32_t a = m->tri[3 * t];
+    g = groupof(F, a);
+    k = texof(F, a);
+    if (k == 0) start[g]++;
+    else { gs[g]++; ts[k]++; }
+  }
+  for (g = 0; g < ng; g++) {            /* counts -> first positions */
+    n = start[g]; start[g] = sum; sum += 3 * n;
+    n = gs[g]; gs[g] = tsum; tsum += 3 * n;
+  }
+  start[ng] = sum;
+  gs[ng] = tsum;
+  tsum = sum;                           /* the buckets follow the untextured triangles */
+  for (k = 1; k <= ntex; k++) { n = ts[k]; ts[k] = tsum; tsum += 3 * n; }
+  ts[ntex + 1] = tsum;
+  for (t = 0; t < m->nt; t++) {
+    const uint32_t *tri = m->tri + 3 * t;
+    g = groupof(F, tri[0]);
+    if (texof(F, tri[0])) {
+      memcpy(c->tidx + gs[g], tri, 3 * sizeof *tri);
+      gs[g] += 3;
+    } else {
+      memcpy(c->idx + start[g], tri, 3 * sizeof *tri);
+      start[g] += 3;
+    }
+  }
+  for (t = 0; t < gs[ng]; t += 3) {     /* gs[ng]: the textured indices, in group order */
+    size_t *p = &ts[texof(F, c->tidx[t])];
+    memcpy(c->idx + *p, c->tidx + t, 3 * sizeof *c->idx);
+    *p += 3;
+  }
+  for (g = ng; g > 0; g--) start[g] = start[g - 1];   /* back to starts */
+  start[0] = 0;
+  for (k = ntex; k > 1; k--) ts[k] = ts[k - 1];
+  ts[1] = sum;
+}
+
+/* ---------------------------------------------------------------------- */
+/* textures */
+
+/* Whether the context takes textures of any size (OpenGL 2.0 or the
+** extension); otherwise they are resampled to powers of two. */
+static int npotok (const lsys_gl *gl) {
+  const char *v = (const char *)gl->GetString(GL_VERSION), *x;
+  if (v != NULL && v[0] >= '2' && v[0] <= '9') return 1;
+  x = (const char *)gl->GetString(GL_EXTENSIONS);
+  return x != NULL && strstr(x, "GL_ARB_texture_non_power_of_two") != NULL;
+}
+
+/* The size a texture of n pixels is uploaded at: n itself, or the next
+** power of two when 'pot'; at most 'max' (a power of two in practice). */
+static int texsize (int n, int pot, int max) {
+  int p = 1;
+  if (!pot) return n < max ? n : max;
+  while (p < n && p <= max / 2) p *= 2;
+  return p;
+}
+
+/*
+** Uploads texture k to the texture object name c->texname[k]: RGBA, or
+** luminance (with alpha when some texel is not opaque) for an intensity
+** texture in modulate mode; resampled to the nearest texel when the
+** context cannot take its size. Returns LSYS_OK or LSYS_ENOMEM.
+*/
+static int upload (frame *F, size_t k, int pot, int maxsize) {
+  const lsys_gl *gl = F->gl;
+  const lsys_texture *t = F->tex[k - 1];
+  lsys_render_cache *c = F->c;
+  int lum = t->intensity && t->mode == LSYS_TEX_MODULATE;
+  int alpha = lum && lsys_texture_hasalpha(t), nc = lum ? (alpha ? 2 : 1) : 4;
+  int W = texsize(t->w, pot, maxsize), H = texsize(t->h, pot, maxsize);
+  GLenum fmt = lum ? (alpha ? GL_LUMINANCE_ALPHA : GL_LUMINANCE) : GL_RGBA;
+  const uint8_t *px = t->rgba;
+  if (W != t->w || H != t->h || nc != 4) {
+    int x, y;
+    uint8_t *d;
+    if (lsys_grow((void **)&c->texbuf, &c->texbufcap, (size_t)W * H * nc, 1) != LSYS_OK)
+      return LSYS_ENOMEM;
+    d = c->texbuf;
+    for (y = 0; y < H; y++) {
+      const uint8_t *row = t->rgba + 4 * (size_t)t->w * (size_t)((long long)y * t->h / H);
+      for (x = 0; x < W; x++) {
+        const uint8_t *s = row + 4 * (size_t)((long long)x * t->w / W);
+        if (nc == 4) { memcpy(d, s, 4); d += 4; }
+        else {
+          *d++ = lsys_texture_intensity(s);
+          if (alpha) *d++ = s[3];
+        }
+      }
+    }
+    px = c->texbuf;
+  }
+  gl->BindTexture(GL_TEXTURE_2D, c->texname[k]);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t->mag_linear ? GL_LINEAR : GL_NEAREST);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, t->min_linear ? GL_LINEAR : GL_NEAREST);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl->TexImage2D(GL_TEXTURE_2D, 0, (GLint)fmt, W, H, 0, fmt, GL_UNSIGNED_BYTE, px);
+  return LSYS_OK;
+}
+
+/* Creates and fills the texture objects of the textures with triangles. */
+static int uploadall (frame *F) {
+  const lsys_gl *gl = F->gl;
+  size_t k;
+  GLint maxsize = 0;
+  int pot = !npotok(gl);
+  gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxsize);
+  if (maxsize < 64) maxsize = 64;                  /* the least OpenGL guarantees */
+  for (k = 1; k <= F->ntex; k++) {
+    F->c->texname[k] = 0;
+    if (F->tstart[k + 1] == F->tstart[k]) continue;
+    gl->GenTextures(1, &F->c->texname[k]);
+    if (upload(F, k, pot, maxsize) != LSYS_OK) return LSYS_ENOMEM;
+  }
+  return LSYS_OK;
+}
+
+static void deleteall (frame *F) {
+  size_t k;
+  for (k = 1; k <= F->ntex; k++)
+    if (F->c->texname[k] != 0) {
+      F->gl->DeleteTextures(1, &F->c->texname[k]);
+      F->c->texname[k] = 0;
+    }
+}
+
+/* Draws the runs of one group in texture k's bucket whose material is
+** opaque (translucent 0) or translucent (1), textured unless 'plain'. */
+static void drawbucket (const frame *F, size_t k, int translucent, int plain) {
+  const lsys_gl *gl = F->gl;
+  const lsys_texture *t = F->tex[k - 1];
+  const uint32_t *idx = F->c->idx;
+  size_t i = F->tstart[k], end = F->tstart[k + 1], npal = F->npal;
+  int cut = 0;
+  if (i == end) return;
+  if (!plain) {
+    gl->BindTexture(GL_TEXTURE_2D, F->c->texname[k]);
+    gl->TexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE,
+                t->mode == LSYS_TEX_DECAL ? GL_DECAL : GL_MODULATE);
+    cut = !translucent && t->mode == LSYS_TEX_MODULATE && lsys_texture_hasalpha(t);
+    if (cut) {
+      gl->AlphaFunc(GL_GEQUAL, 0.5f);
+      gl->Enable(GL_ALPHA_TEST);
+    }
+  }
+  while (i < end) {
+    size_t g = groupof(F, idx[i]), j = i + 3;
+    const lsys_material *mt = &F->pal[g % npal];
+    while (j < end && groupof(F, idx[j]) == g) j += 3;
+    if ((mt->diffuse[3] < 1) == translucent) {
+      gl->LightModeli(GL_LIGHT_MODEL_TWO_SIDE, g >= npal);
+      setmaterial(gl, mt);
+      drawelements(gl, GL_TRIANGLES, idx + i, j - i);
+    }
+    i = j;
+  }
+  if (cut) gl->Disable(GL_ALPHA_TEST);
+}
+
+/* The textured triangles, after the untextured ones of drawtriangles. */
+static void drawtextured (const frame *F, int translucent, int wireframe) {
+  static const double flipv[16] = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1};
+  const lsys_gl *gl = F->gl;
+  size_t k;
+  if (F->tstart[F->ntex + 1] == F->tstart[1]) return;
+  if (!wireframe) {
+    gl->MatrixMode(GL_TEXTURE);
+    gl->LoadMatrixd(flipv);                     /* v = 0 is the image's bottom row */
+    gl->MatrixMode(GL_MODELVIEW);
+    gl->EnableClientState(GL_TEXTURE_COORD_ARRAY);
+    gl->TexCoordPointer(2, GL_FLOAT, 0, F->m->uv);
+    gl->Enable(GL_TEXTURE_2D);
+  }
+  for (k = 1; k <= F->ntex; k++) drawbucket(F, k, translucent, wireframe);
+  if (!wireframe) {
+    gl->Disable(GL_TEXTURE_2D);
+    gl->DisableClientState(GL_TEXTURE_COORD_ARRAY);
+    gl->BindTexture(GL_TEXTURE_2D, 0);
+  }
+}
+
 /* Draws the groups of opaque materials (translucent 0) or of translucent
 ** ones (1); c->idx and c->rgba must be filled. */
 static void drawtriangles (const frame *F, int translucent, int wireframe) {
@@ -400,6 +626,7 @@ static void drawtriangles (const frame *F, int translucent, int wireframe) {
     setmaterial(gl, mt);
     drawelements(gl, GL_TRIANGLES, F->c->idx + F->c->start[g], n);
   }
+  if (F->ntex > 0) drawtextured(F, translucent, wireframe);
   gl->DepthMask(GL_TRUE);
   gl->Disable(GL_BLEND);
   gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -606,7 +833,20 @@ static int reserve (frame *F) {
   const lsys_mesh *m = F->m;
   lsys_render_cache *c = F->c;
   size_t nstart = 2 * F->npal + 1 + (size_t)F->maxw + 2;   /* triangle groups, line widths */
-  size_t nwv = 0, nwi = 0;
+  size_t nwv = 0, nwi = 0, k;
+  if (F->ntex > 0) {                      /* textured: groups, texture buckets */
+    nstart += 2 * F->npal + 1 + F->ntex + 2;
+    if (lsys_grow((void **)&c->tidx, &c->tidxcap, 3 * m->nt, sizeof *c->tidx) ||
+        lsys_grow((void **)&c->texok, &c->texokcap, F->ntex + 1, 1) ||
+        lsys_grow((void **)&c->texname, &c->texnamecap, F->ntex + 1, sizeof *c->texname))
+      return LSYS_ENOMEM;
+    c->texok[0] = 0;
+    for (k = 1; k <= F->ntex; k++) {
+      const lsys_texture *t = F->tex[k - 1];
+      c->texok[k] = t != NULL && t->rgba != NULL && t->w > 0 && t->h > 0;
+      c->texname[k] = 0;
+    }
+  }
   if (m->nl > 0) widecount(F, &nwv, &nwi);
   if (nwv > UINT32_MAX) return LSYS_ENOMEM;   /* indices are 32-bit */
   if (lsys_grow((void **)&c->idx, &c->idxcap, 3 * m->nt, sizeof *c->idx) ||
@@ -617,6 +857,8 @@ static int reserve (frame *F) {
       lsys_grow((void **)&c->wrgba, &c->wrgbacap, 4 * nwv, 1) ||
       lsys_grow((void **)&c->widx, &c->widxcap, nwi, sizeof *c->widx))
     return LSYS_ENOMEM;
+  F->gstart = c->start + 2 * F->npal + 1 + (size_t)F->maxw + 2;
+  F->tstart = F->gstart + 2 * F->npal + 1;
   return LSYS_OK;
 }
 
@@ -654,6 +896,10 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
                          F.proj[8 + i] * F.view[4 * j + 2] + F.proj[12 + i] * F.view[4 * j + 3];
   if (F.pal == NULL || F.npal == 0) { F.pal = &grey; F.npal = 1; }
   if (F.npal > 65536) F.npal = 65536;   /* colour indices are 16-bit */
+  if (o->tex != NULL && o->ntex > 0 && F.m->tex != NULL && F.m->nt > 0) {
+    F.tex = o->tex;
+    F.ntex = o->ntex < 65535 ? (size_t)o->ntex : 65535;   /* texture indices are 16-bit */
+  }
   gl->GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
   F.maxw = range[1] >= 1 ? (int)range[1] : 1;
   if (F.maxw > 1024) F.maxw = 1024;
@@ -694,13 +940,22 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
   if (F.m->nt > 0) {
     size_t v;
     for (v = 0; v < F.m->nv; v++) setrgba(F.c->rgba + 4 * v, &F.pal[F.m->col[v] % F.npal]);
-    sorttriangles(&F);
+    if (F.ntex == 0) sorttriangles(&F);
+    else {
+      sorttextured(&F);
+      if (!o->wireframe && uploadall(&F) != LSYS_OK) {
+        deleteall(&F);
+        lsys_render_cache_free(&local);
+        return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory for the textures");
+      }
+    }
     drawtriangles(&F, 0, o->wireframe);
   }
   if (F.m->nl > 0) drawlines(&F);
   if (F.m->nt > 0) drawtriangles(&F, 1, o->wireframe);   /* translucent, over everything */
   gl->DisableClientState(GL_VERTEX_ARRAY);
   gl->DisableClientState(GL_COLOR_ARRAY);
+  if (F.ntex > 0) deleteall(&F);
   lsys_render_cache_free(&local);
   if ((err = gl->GetError()) != GL_NO_ERROR)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "OpenGL error 0x%04x while drawing",

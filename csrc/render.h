@@ -14,6 +14,7 @@
 #define LSYS_RENDER_H
 
 #include "mesh.h"
+#include "texture.h"
 
 /*
 ** The OpenGL entry points lsys calls, fetched through the context's own
@@ -61,6 +62,18 @@ typedef struct lsys_gl {
   void (LSYS_GLAPI *NormalPointer) (unsigned type, int stride, const void *p);
   void (LSYS_GLAPI *ColorPointer) (int size, unsigned type, int stride, const void *p);
   void (LSYS_GLAPI *DrawElements) (unsigned mode, int count, unsigned type, const void *idx);
+  /* textures (all OpenGL 1.1) */
+  const unsigned char *(LSYS_GLAPI *GetString) (unsigned name);
+  void (LSYS_GLAPI *GenTextures) (int n, unsigned *names);
+  void (LSYS_GLAPI *DeleteTextures) (int n, const unsigned *names);
+  void (LSYS_GLAPI *BindTexture) (unsigned target, unsigned name);
+  void (LSYS_GLAPI *TexImage2D) (unsigned target, int level, int internalformat, int w, int h,
+                                 int border, unsigned format, unsigned type, const void *px);
+  void (LSYS_GLAPI *TexParameteri) (unsigned target, unsigned pname, int v);
+  void (LSYS_GLAPI *TexEnvi) (unsigned target, unsigned pname, int v);
+  void (LSYS_GLAPI *TexCoordPointer) (int size, unsigned type, int stride, const void *p);
+  void (LSYS_GLAPI *PixelStorei) (unsigned pname, int v);
+  void (LSYS_GLAPI *AlphaFunc) (unsigned func, float ref);
 } lsys_gl;
 
 typedef void (*lsys_glproc) (void);
@@ -109,6 +122,14 @@ typedef struct lsys_render_cache {
   size_t wrgbacap;
   uint32_t *widx;       /* their triangles */
   size_t widxcap;
+  uint32_t *tidx;       /* textured triangles grouped by material, before grouping by texture */
+  size_t tidxcap;
+  uint8_t *texok;       /* per texture index: 1 when it can be drawn */
+  size_t texokcap;
+  unsigned *texname;    /* per texture index: its GL texture name, 0 when not uploaded */
+  size_t texnamecap;
+  uint8_t *texbuf;      /* a texture converted for uploading (grey, resampled) */
+  size_t texbufcap;
 } lsys_render_cache;
 
 typedef struct lsys_render_opts {
@@ -121,6 +142,8 @@ typedef struct lsys_render_opts {
   lsys_camera cam;
   const lsys_material *pal; /* colour c uses pal[c % npal]; npal 0: a grey default */
   size_t npal;
+  const lsys_texture *const *tex;   /* texture index k (mesh 'tex') uses tex[k - 1] */
+  int ntex;                 /* number of textures; 0: everything untextured */
   int wireframe;            /* draw triangle edges only */
   lsys_render_cache *cache; /* optional scratch kept by the caller; NULL: temporary */
   const lsys_gl *gl;        /* entry points of the current context (lsys_render_draw);
@@ -160,6 +183,18 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 ** scale in a window). Lines narrower than LSYS_RENDER_WIDE pixels are GL
 ** lines; wider ones are flat bands facing the eye, tapered from one end's
 ** width to the other's, with round ends so that polylines join smoothly.
+**
+** Textures: a triangle whose first vertex has texture index k in
+** 1..o->ntex, with o->tex[k - 1] non-NULL and holding pixels, is textured
+** with it (other indices draw untextured). Each texture in use is uploaded
+** once per call and deleted before returning. Modulate multiplies the lit
+** colour by the texel (by its intensity alone for an 'intensity' texture);
+** decal replaces the lit colour by the texel where the texel is opaque
+** (OpenGL's GL_DECAL: lighting does not reach those texels), blending by
+** its alpha elsewhere. In modulate mode on opaque materials, texels with
+** alpha below 1/2 are cut out (leaf silhouettes). Wireframe drawing ignores
+** textures. The texture matrix is set to flip v (texture.h).
+**
 ** Leaves the GL state it changed set for the next frame.
 ** Returns LSYS_OK, LSYS_ENOMEM, or LSYS_EARG (no o->gl, a bad camera or a GL
 ** error), with e->msg set.

@@ -2,6 +2,12 @@
 ** Textures (seed 004 §5, Appendix B.2): images read with libpng (PNG
 ** replaces cpfg's rgb/rle/tga), with the filters and environment mode of a
 ** `texture:` view entry.
+**
+** Texture coordinates follow OpenGL (and cpfg, and OBJ): (0, 0) is the
+** bottom left corner of the image, u grows to the right, v upwards, and
+** both repeat outside [0, 1]. The pixels are kept as the PNG stores them,
+** top row first; the renderer and the glTF writer, whose images start at
+** the top, flip v themselves.
 */
 #ifndef LSYS_TEXTURE_H
 #define LSYS_TEXTURE_H
@@ -21,12 +27,24 @@ typedef struct lsys_texture {
   char *path;             /* the file, for export writers (may be NULL) */
 } lsys_texture;
 
+/* An empty texture (no pixels, no path) with the default settings. */
 void lsys_texture_init (lsys_texture *t);
+/* Frees the pixels and the path and leaves 't' empty (idempotent). */
 void lsys_texture_free (lsys_texture *t);
 
 /* Reads a PNG file into 't' (filters and mode left as they are). A grey
-** image sets 'intensity'. Returns LSYS_OK or an error with e->msg naming
-** the file. */
+** image (every pixel has R = G = B) sets 'intensity', any other clears it.
+** On failure 't' is unchanged. Returns LSYS_OK, or the code of
+** lsys_png_read (LSYS_EARG: cannot open; LSYS_ESYNTAX: not a PNG or
+** damaged; LSYS_ELIMIT; LSYS_ENOMEM) with e->msg naming the file. */
 int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e);
+
+/* 1 when some pixel of 't' is not fully opaque (alpha < 255), else 0. */
+int lsys_texture_hasalpha (const lsys_texture *t);
+
+/* The intensity of an RGB pixel (§5), rounded: (299 R + 587 G + 114 B) / 1000. */
+static inline uint8_t lsys_texture_intensity (const uint8_t *px) {
+  return (uint8_t)((299u * px[0] + 587u * px[1] + 114u * px[2] + 500u) / 1000u);
+}
 
 #endif

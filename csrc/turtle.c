@@ -17,6 +17,7 @@
 
 #include "turtle.h"
 #include "polygon.h"
+#include "vec3.h"
 
 #define PI 3.14159265358979323846
 #define RAD(a) ((a) * (PI / 180.0))
@@ -36,7 +37,9 @@ enum {
   OP_SCALE, OP_SCALEMUL, OP_SCALEDIV,
   OP_LABEL, OP_SYSTEM, OP_STIFF,
   OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE,
-  OP_SUB, OP_SUBEND
+  OP_SUB, OP_SUBEND,
+  OP_GSTART, OP_GPOINT, OP_GEND, OP_GTAN, OP_GRAD,
+  OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE
 };
 
 static const struct { const char *name; uint8_t op; } symbols[] = {
@@ -55,11 +58,16 @@ static const struct { const char *name; uint8_t op; } symbols[] = {
   {"@Ts", OP_TSET}, {"@Ti", OP_TINC}, {"@Td", OP_TDEC}, {"@Tp", OP_TPREVENT},
   {"@Tf", OP_TFORCE},
   {"?", OP_SUB}, {"$", OP_SUBEND},
+  {"@Gs", OP_GSTART}, {"@Gc", OP_GPOINT}, {"@Ge", OP_GEND}, {"@Gt", OP_GTAN},
+  {"@Gr", OP_GRAD}, {"@PS", OP_PSTARTP}, {"@PC", OP_PCTRL}, {"@PD", OP_PDRAW},
   {NULL, 0}
 };
 
 /* A polygon being collected (§4.2): its vertices, 3 doubles each. */
-struct lsys_polygon { double *v; size_t n, cap; };
+struct lsys_polygon {
+  double *v; size_t n, cap;
+  double H[3], L[3];      /* the turtle's heading and left at the first vertex (§5.3) */
+};
 
 /* An open end of a cylinder: its top ring, so that the next segment can
 ** continue from it or a cap can close it at the end. */
@@ -69,39 +77,23 @@ struct lsys_cylend {
   int color, continued;
 };
 
-/* ---------------------------------------------------------------------- */
-/* vectors */
+/* A contour sampled for this run's number of sides (seed 004 §3.2.3). */
+struct lsys_csample {
+  double *v, *n;          /* sides + 1 vertices and normals */
+  uint32_t *cap;          /* end-cap triangles, anticlockwise in the contour's xy */
+  size_t vcap, capcap;
+  int ncap, left, closed, valid;
+};
 
-static inline void vset (double *a, double x, double y, double z) { a[0] = x; a[1] = y; a[2] = z; }
-static inline void vcopy (double *a, const double *b) { a[0] = b[0]; a[1] = b[1]; a[2] = b[2]; }
-static inline double vdot (const double *a, const double *b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static inline void vcross (double *r, const double *a, const double *b) {
-  double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
-         z = a[0] * b[1] - a[1] * b[0];
-  r[0] = x; r[1] = y; r[2] = z;
-}
-static inline double vlen (const double *a) { return sqrt(vdot(a, a)); }
-static inline int vnorm (double *a) {
-  double l = vlen(a);
-  if (!(l > 1e-300)) return 0;
-  a[0] /= l; a[1] /= l; a[2] /= l;
-  return 1;
-}
-/* r = a*ca + b*cb */
-static inline void vlin (double *r, const double *a, double ca, const double *b, double cb) {
-  double x = a[0] * ca + b[0] * cb, y = a[1] * ca + b[1] * cb, z = a[2] * ca + b[2] * cb;
-  r[0] = x; r[1] = y; r[2] = z;
-}
-/* Rotates 'v' about the unit axis 'k' by angle 'a' (Rodrigues). */
-static void vrotate (double *v, const double *k, double a) {
-  double c = cos(a), s = sin(a), kv[3], d = vdot(k, v);
-  vcross(kv, k, v);
-  v[0] = v[0] * c + kv[0] * s + k[0] * d * (1 - c);
-  v[1] = v[1] * c + kv[1] * s + k[1] * d * (1 - c);
-  v[2] = v[2] * c + kv[2] * s + k[2] * d * (1 - c);
-}
+/* A patch defined by @PS / @PC (§4.3). */
+struct lsys_lpatch {
+  lsys_patch p;
+  int basis, started;
+};
+
+#define MAXPATCHES 1024
+#define MAXSTRIPS 10000
+#define MAXLINES 256
 
 /* Rebuilds an orthonormal frame from H and an approximate U. */
 static void orthonormal (lsys_tstate *st) {
@@ -128,6 +120,7 @@ void lsys_turtle_defaults (lsys_turtle_opts *o) {
   o->color = 1; o->dcolor = 1;
   o->style = LSYS_STYLE_LINE;
   o->sides = 8;
+  o->minimize_twist = 1;
 }
 
 void lsys_turtle_init (lsys_turtle *t) {
@@ -147,6 +140,13 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->op);
   LSYS_FREE(t->ringbuf);
   LSYS_FREE(t->runbuf);
+  LSYS_FREE(t->gcp);
+  for (k = 0; k < t->ncs; k++) {
+    LSYS_FREE(t->cs[k].v); LSYS_FREE(t->cs[k].n); LSYS_FREE(t->cs[k].cap);
+  }
+  LSYS_FREE(t->cs);
+  LSYS_FREE(t->patch);
+  LSYS_FREE(t->surfsym);
   lsys_lstring_free(&t->hbuf);
   if (t->pw) { lsys_polywork_free(t->pw); LSYS_FREE(t->pw); }
   memset(t, 0, sizeof *t);
@@ -171,7 +171,9 @@ struct run {
   int pending;
   uint32_t prec;                /* its record */
   double p0[3], p1[3], w0, len;
-  int pcol;
+  int pcol, ptex;
+  uint32_t sym;                 /* the symbol being interpreted */
+  const lsys_alphabet *ab;
 };
 
 /* Rotates the pair (a, b) in their plane: a toward b by angle 'deg'. */
@@ -237,7 +239,7 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   r->pad = 0;
   r->color = (uint16_t)R->st.color;
   r->w0 = (float)w0; r->w1 = (float)w1;
-  r->len = kind == LSYS_REC_SEGMENT ? (float)sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) +
+  r->len = kind == LSYS_REC_SEGMENT || kind == LSYS_REC_GCYL ? (float)sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) +
            (p1[1] - p0[1]) * (p1[1] - p0[1]) + (p1[2] - p0[2]) * (p1[2] - p0[2])) : 0.0f;
   for (k = 0; k < 3; k++) {
     r->p1[k] = (float)p1[k];
@@ -395,6 +397,15 @@ static void cap (lsys_mesh *m, const double *c, const double *nn, uint32_t rng, 
   }
 }
 
+/* Width over height of the current texture (1 without one): v along a
+** stem grows by length x aspect / circumference (seed 004 §5.2). */
+static double texaspect (run *R) {
+  int k = R->st.texture;
+  const lsys_texture *tx;
+  if (k <= 0 || k > R->o->ntex || (tx = R->o->tex[k - 1]) == NULL || tx->h <= 0) return 1;
+  return (double)tx->w / tx->h;
+}
+
 /* A cylinder segment from p0 (width w0) to p1 (width w1) around the
 ** current frame; continues the open end st.tip when it can. */
 static int cylinder (run *R, const double *p0, const double *p1, double w0, double w1,
@@ -422,8 +433,9 @@ static int cylinder (run *R, const double *p0, const double *p1, double w0, doub
     vlin(back, R->st.H, -1, R->st.H, 0);
     cap(m, p0, back, base, n, col, 0);
   }
-  /* v runs along the stem in units of the circumference (texture aspect 1) */
-  top = ring(R, p1, r1, slope, v0 + (r0 + r1 > 0 ? len / (PI * (r0 + r1)) : 0), col);
+  /* v runs along the stem so that texture pixels keep their aspect (§5.2) */
+  top = ring(R, p1, r1, slope, v0 + (r0 + r1 > 0 ? len * texaspect(R) / (PI * (r0 + r1)) : 0),
+             col);
   for (k = 0; k < (uint32_t)n; k++) {     /* outward facing */
     lsys_mesh_tri(m, base + k, top + k + 1, base + k + 1);
     lsys_mesh_tri(m, base + k, top + k, top + k + 1);
@@ -459,6 +471,7 @@ static int flush (run *R) {
   int s = LSYS_OK;
   if (!R->pending) return LSYS_OK;
   R->pending = 0;
+  R->t->mesh->curtex = (unsigned)R->ptex;
   if (R->prec != LSYS_NOREC) R->t->rec[R->prec].w1 = (float)w1;
   switch (R->o->style) {
     case LSYS_STYLE_LINE:
@@ -533,6 +546,7 @@ static int polyvertex (run *R) {
   p = &t->polys[t->npolys - 1];
   if (lsys_grow((void **)&p->v, &p->cap, 3 * (p->n + 1), sizeof(double)) != LSYS_OK)
     return nomem(R);
+  if (p->n == 0) { vcopy(p->H, R->st.H); vcopy(p->L, R->st.L); }
   vcopy(p->v + 3 * p->n++, R->st.pos);
   return LSYS_OK;
 }
@@ -571,17 +585,312 @@ static int polyend (run *R) {
   if (nt < 0) return nomem(R);
   if (lsys_mesh_reserve(t->mesh, p->n, (size_t)nt) != LSYS_OK) return nomem(R);
   first = (uint32_t)t->mesh->nv;
-  for (k = 0; k < (long)p->n; k++) {
-    const double *v = p->v + 3 * k;
-    /* uv from the H and L axes at the first vertex (seed 004 §5.3) */
-    double d[3];
-    vlin(d, v, 1, p->v, -1);
-    lsys_mesh_vertex(t->mesh, v, nrm, vdot(d, R->st.L), vdot(d, R->st.H),
-                     (unsigned)R->st.color, 1);
+  t->mesh->curtex = (unsigned)R->st.texture;
+  {
+    /* uv: the coordinates along the right (-L) and heading axes, from the
+    ** first vertex, scaled to 0..1 over the polygon (seed 004 §5.3) */
+    double lo[2] = {0, 0}, hi[2] = {0, 0}, d[3], c[2];
+    for (k = 0; k < (long)p->n; k++) {
+      vlin(d, p->v + 3 * k, 1, p->v, -1);
+      c[0] = -vdot(d, p->L); c[1] = vdot(d, p->H);
+      if (c[0] < lo[0]) lo[0] = c[0];
+      if (c[0] > hi[0]) hi[0] = c[0];
+      if (c[1] < lo[1]) lo[1] = c[1];
+      if (c[1] > hi[1]) hi[1] = c[1];
+    }
+    for (k = 0; k < (long)p->n; k++) {
+      const double *v = p->v + 3 * k;
+      vlin(d, v, 1, p->v, -1);
+      c[0] = -vdot(d, p->L); c[1] = vdot(d, p->H);
+      lsys_mesh_vertex(t->mesh, v, nrm, hi[0] > lo[0] ? (c[0] - lo[0]) / (hi[0] - lo[0]) : 0,
+                       hi[1] > lo[1] ? (c[1] - lo[1]) / (hi[1] - lo[1]) : 0,
+                       (unsigned)R->st.color, 1);
+    }
   }
   for (k = 0; k < nt; k++)
     lsys_mesh_tri(t->mesh, first + tri[3 * k], first + tri[3 * k + 1], first + tri[3 * k + 2]);
   return newrec(R, LSYS_REC_POLYGON, p->v + 3 * (p->n - 1), p->v + 3 * (p->n - 1), 0, 0);
+}
+
+/* --- generalized cylinders (§3) -------------------------------------------- */
+
+/* The contour 'id' sampled with this run's sides, computed on first use. */
+static const lsys_csample *csample (run *R, int id) {
+  lsys_turtle *t = R->t;
+  lsys_csample *c;
+  int p = R->o->sides, k;
+  size_t need = 3 * ((size_t)p + 1);
+  if ((size_t)id >= t->ncs) {
+    size_t old = t->ncs, cap = t->ncs;
+    if (lsys_grow((void **)&t->cs, &cap, (size_t)id + 1, sizeof *t->cs) != LSYS_OK) return NULL;
+    memset(t->cs + old, 0, (cap - old) * sizeof *t->cs);
+    t->ncs = cap;
+  }
+  c = &t->cs[id];
+  if (c->valid) return c;
+  if (c->vcap < need) {
+    double *v = (double *)LSYS_REALLOC(c->v, need * sizeof(double));
+    double *n = v ? (double *)LSYS_REALLOC(c->n, need * sizeof(double)) : NULL;
+    if (v) c->v = v;
+    if (n == NULL) return NULL;
+    c->n = n;
+    c->vcap = need;
+  }
+  if (id == 0) { lsys_contour_circle(p, c->v, c->n); c->closed = 1; }
+  else {
+    const lsys_contour *ct = R->o->contours[id];
+    if (lsys_contour_sample(ct, p, c->v, c->n) != LSYS_OK) return NULL;
+    c->closed = ct->closed;
+  }
+  {   /* which side of the direction of travel the normals are on */
+    double side = 0;
+    for (k = 0; k < p; k++) {
+      const double *a = c->v + 3 * k, *b = a + 3, *nn = c->n + 3 * k;
+      side += -(b[1] - a[1]) * nn[0] + (b[0] - a[0]) * nn[1];
+    }
+    c->left = side > 0;
+  }
+  c->ncap = 0;
+  if (c->closed) {          /* the cap: the contour's xy polygon, ear-clipped */
+    const uint32_t *tri;
+    double nrm[3];
+    long nt;
+    if (t->pw == NULL) {
+      t->pw = (struct lsys_polywork *)LSYS_MALLOC(sizeof *t->pw);
+      if (t->pw == NULL) return NULL;
+      memset(t->pw, 0, sizeof *t->pw);
+    }
+    nt = lsys_polygon_triangulate(t->pw, c->v, (size_t)p, nrm, &tri);
+    if (nt < 0) return NULL;
+    if (lsys_grow((void **)&c->cap, &c->capcap, 3 * (size_t)(nt + 1), sizeof(uint32_t)) != LSYS_OK)
+      return NULL;
+    for (k = 0; k < nt; k++) {
+      const uint32_t *q = tri + 3 * k;
+      const double *a = c->v + 3 * q[0], *b = c->v + 3 * q[1], *d = c->v + 3 * q[2];
+      double z = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+      c->cap[3 * k] = q[0];
+      c->cap[3 * k + 1] = z >= 0 ? q[1] : q[2];
+      c->cap[3 * k + 2] = z >= 0 ? q[2] : q[1];
+    }
+    c->ncap = (int)nt;
+  }
+  c->valid = 1;
+  return c;
+}
+
+static void gccontour (lsys_gccontour *g, const lsys_csample *c) {
+  g->v = c->v; g->n = c->n;
+  g->left = c->left; g->closed = c->closed;
+  g->cap = c->ncap > 0 ? c->cap : NULL;
+  g->ncap = c->ncap;
+}
+
+/* A new control point from the turtle's state; returns its index. */
+static int gcpoint (run *R, uint32_t *idx) {
+  lsys_turtle *t = R->t;
+  lsys_tstate *st = &R->st;
+  lsys_gcpoint *g;
+  if (t->ngcp >= UINT32_MAX - 1) return fail(R, LSYS_ELIMIT, "%s", "too many control points");
+  if (t->ngcp == t->gcpcap &&
+      lsys_grow((void **)&t->gcp, &t->gcpcap, t->ngcp + 1, sizeof *t->gcp) != LSYS_OK)
+    return nomem(R);
+  g = &t->gcp[t->ngcp];
+  vcopy(g->pos, st->pos); vcopy(g->H, st->H); vcopy(g->U, st->U); vcopy(g->V, st->U);
+  g->r = st->width * st->scale / 2;
+  g->v = 0;
+  g->contour = st->contour; g->color = st->color; g->texture = st->texture;
+  g->first = 0;
+  g->ring = LSYS_NOREC;
+  *idx = (uint32_t)t->ngcp++;
+  return LSYS_OK;
+}
+
+/* @Gs, @Gc(n), @Ge(n) (§3.1): a control point, and the strips from the
+** active one (a branch continues from the point active where it began,
+** §3.4). */
+static int gcmodule (run *R, int op, const double *p, uint32_t np) {
+  lsys_turtle *t = R->t;
+  lsys_tstate *st = &R->st;
+  lsys_gcpoint *a, *b;
+  lsys_gcshape sh;
+  lsys_gccontour ca, cb;
+  const lsys_csample *sa, *sb;
+  uint32_t ib;
+  double x = 1;
+  int s;
+  if (op != OP_GSTART) {
+    if ((s = arg(R, p, np, 0, 1, &x)) != LSYS_OK) return s;
+    if (x < 1 || x > MAXSTRIPS) {
+      char m[120];
+      snprintf(m, sizeof m, "%%s: the number of strips must be from 1 to %d, got %g",
+               MAXSTRIPS, x);
+      return fail(R, LSYS_EARG, m, opname(op));
+    }
+  }
+  if (!R->draw) return LSYS_OK;
+  if (op == OP_GSTART || st->gc == LSYS_NOREC) {   /* @Gc without @Gs starts one */
+    if (op == OP_GEND) return LSYS_OK;
+    if ((s = gcpoint(R, &st->gc)) != LSYS_OK) return s;
+    t->gcp[st->gc].first = 1;
+    return LSYS_OK;
+  }
+  if ((s = gcpoint(R, &ib)) != LSYS_OK) return s;
+  a = &t->gcp[st->gc]; b = &t->gcp[ib];
+  sa = csample(R, a->contour);
+  sb = sa != NULL ? csample(R, b->contour) : NULL;
+  if (sb == NULL) return nomem(R);
+  sa = &t->cs[a->contour];                /* csample may have moved the array */
+  gccontour(&ca, sa); gccontour(&cb, sb);
+  sh.tan0 = st->gtan[0]; sh.tan1 = st->gtan[1];
+  memcpy(sh.rtan, st->grad, sizeof sh.rtan);
+  sh.adjust = st->gadjust;
+  sh.strips = (int)x;
+  sh.minimize = R->o->minimize_twist;
+  sh.aspect = b->texture > 0 && b->texture <= R->o->ntex && R->o->tex[b->texture - 1]->h > 0
+              ? (double)R->o->tex[b->texture - 1]->w / R->o->tex[b->texture - 1]->h : 1;
+  sh.capstart = a->first;
+  sh.capend = op == OP_GEND;
+  if (lsys_gcyl_segment(t->mesh, a, b, &sh, &ca, &cb, R->o->sides) != LSYS_OK) return nomem(R);
+  if ((s = newrec(R, LSYS_REC_GCYL, a->pos, b->pos, 2 * a->r, 2 * b->r)) != LSYS_OK) return s;
+  if (!R->o->norecords) {                 /* runs along the chord, so that p0 = a */
+    lsys_trec *r = &t->rec[t->nrec - 1];
+    double c[3], u[3];
+    int k;
+    vlin(c, b->pos, 1, a->pos, -1);
+    if (vnorm(c)) {
+      vlin(u, st->U, 1, c, -vdot(st->U, c));
+      if (!vnorm(u)) vcopy(u, st->H);
+      for (k = 0; k < 3; k++) { r->H[k] = (float)c[k]; r->U[k] = (float)u[k]; }
+    }
+  }
+  st->gc = op == OP_GEND ? LSYS_NOREC : ib;
+  return LSYS_OK;
+}
+
+/* @Gt(c0[,c1]) and @Gr(flag) / @Gr(a,l) / @Gr(a0,l0,a1,l1) (§3.2.1-2). */
+static int gcshape (run *R, int op, const double *p, uint32_t np) {
+  lsys_tstate *st = &R->st;
+  double v[4];
+  uint32_t k;
+  int s;
+  for (k = 0; k < np && k < 4; k++)
+    if ((s = arg(R, p, np, k, 0, &v[k])) != LSYS_OK) return s;
+  if (op == OP_GTAN) {
+    if (np == 0) { st->gtan[0] = st->gtan[1] = LSYS_GC_TANGENT; return LSYS_OK; }
+    st->gtan[0] = v[0];
+    st->gtan[1] = np > 1 ? v[1] : v[0];
+    return LSYS_OK;
+  }
+  switch (np) {
+    case 0: memset(st->grad, 0, sizeof st->grad); return LSYS_OK;   /* back to linear */
+    case 1: st->gadjust = v[0] != 0; return LSYS_OK;
+    case 2: st->grad[0] = st->grad[2] = v[0]; st->grad[1] = st->grad[3] = v[1]; return LSYS_OK;
+    case 3: return fail(R, LSYS_EARG, "%s takes 1, 2 or 4 parameters, not 3", opname(op));
+    default: memcpy(st->grad, v, sizeof st->grad); return LSYS_OK;
+  }
+}
+
+/* --- surfaces (§4.1, §4.3) ---------------------------------------------- */
+
+static void place (run *R, lsys_place *pl, double scale, int tex) {
+  lsys_tstate *st = &R->st;
+  vcopy(pl->origin, st->pos);
+  vcopy(pl->H, st->H); vcopy(pl->L, st->L); vcopy(pl->U, st->U);
+  pl->scale = scale;
+  pl->color = (unsigned)st->color;
+  pl->uv_surface = tex > 0 && tex <= R->o->ntex && R->o->tex[tex - 1]->per_surface;
+  R->t->mesh->curtex = (unsigned)tex;
+}
+
+/* ~X(s): the view's surface X at the turtle, scaled by s; the turtle then
+** stands at the surface's end point. */
+static int surface (run *R, uint32_t sym, const double *p, uint32_t np) {
+  const lsys_turtle_opts *o = R->o;
+  lsys_tstate *st = &R->st;
+  const lsys_surfuse *u = NULL;
+  lsys_place pl;
+  double x, p0[3];
+  int k, s, tex;
+  for (k = 0; k < o->nsurfaces; k++)
+    if (R->t->surfsym[k] == sym) { u = &o->surfaces[k]; break; }
+  if (u == NULL) return LSYS_OK;
+  if ((s = arg(R, p, np, 0, 1, &x)) != LSYS_OK) return s;
+  tex = u->texture > 0 ? u->texture : st->texture;
+  place(R, &pl, u->scale * x * st->scale, tex);
+  vcopy(p0, st->pos);
+  if (R->draw && (s = lsys_surface_mesh(R->t->mesh, u->s, &pl, u->ns, u->nt)) != LSYS_OK)
+    return s == LSYS_ENOMEM ? nomem(R) : fail(R, s, "%s", "the scene is too big");
+  lsys_surface_endpoint(u->s, &pl, st->pos);
+  st->tip = LSYS_NOREC;
+  return R->draw ? newrec(R, LSYS_REC_SURFACE, p0, st->pos, 0, 0) : LSYS_OK;
+}
+
+/* A whole-number parameter in lo..hi, with a message naming 'what'. */
+static int intarg (run *R, const double *p, uint32_t np, uint32_t k, double def, int lo,
+                   int hi, const char *what, int *out) {
+  double x;
+  int s;
+  if ((s = arg(R, p, np, k, def, &x)) != LSYS_OK) return s;
+  if (!(x >= lo && x <= hi)) {
+    char m[160];
+    snprintf(m, sizeof m, "%%s: %s must be from %d to %d, got %g", what, lo, hi, x);
+    return fail(R, LSYS_EARG, m, opname(R->op));
+  }
+  *out = (int)x;
+  return LSYS_OK;
+}
+
+/* @PS(i[,basis]), @PC(i,r,c), @PD(i,s,t) (§4.3, Appendix A). */
+static int patchmodule (run *R, int op, const double *p, uint32_t np) {
+  lsys_turtle *t = R->t;
+  lsys_lpatch *pt;
+  int i, a, b, s;
+  if (np == 0) return fail(R, LSYS_EARG, "%s needs a patch number", opname(op));
+  if ((s = intarg(R, p, np, 0, 0, 0, MAXPATCHES - 1, "the patch number", &i)) != LSYS_OK)
+    return s;
+  if ((size_t)i >= t->npatch) {
+    size_t old = t->npatch, cap = t->npatch;
+    if (lsys_grow((void **)&t->patch, &cap, (size_t)i + 1, sizeof *t->patch) != LSYS_OK)
+      return nomem(R);
+    memset(t->patch + old, 0, (cap - old) * sizeof *t->patch);
+    t->npatch = cap;
+  }
+  pt = &t->patch[i];
+  switch (op) {
+    case OP_PSTARTP:
+      if ((s = intarg(R, p, np, 1, LSYS_BASIS_BEZIER, 1, 3, "the basis (1 Bezier, 2 B-spline, "
+                      "3 Cardinal)", &a)) != LSYS_OK)
+        return s;
+      memset(pt->p.ctrl, 0, sizeof pt->p.ctrl);
+      pt->basis = a;
+      pt->started = 1;
+      return LSYS_OK;
+    case OP_PCTRL:
+      if (np < 3) return fail(R, LSYS_EARG, "%s needs a patch, a row and a column", opname(op));
+      if ((s = intarg(R, p, np, 1, 0, 0, 3, "the row", &a)) != LSYS_OK ||
+          (s = intarg(R, p, np, 2, 0, 0, 3, "the column", &b)) != LSYS_OK)
+        return s;
+      if (!pt->started) break;
+      vcopy(pt->p.ctrl + 3 * (4 * a + b), R->st.pos);
+      return LSYS_OK;
+    default: {
+      lsys_place pl;
+      if ((s = intarg(R, p, np, 1, 4, 1, MAXLINES, "the number of lines", &a)) != LSYS_OK ||
+          (s = intarg(R, p, np, 2, a, 1, MAXLINES, "the number of lines", &b)) != LSYS_OK)
+        return s;
+      if (!pt->started) break;
+      if (!R->draw) return LSYS_OK;
+      place(R, &pl, 1, R->st.texture);
+      if ((s = lsys_patch_mesh(t->mesh, pt->basis, &pt->p, &pl, a, b)) != LSYS_OK)
+        return s == LSYS_ENOMEM ? nomem(R) : fail(R, s, "%s", "the scene is too big");
+      return newrec(R, LSYS_REC_SURFACE, R->st.pos, R->st.pos, 0, 0);
+    }
+  }
+  {
+    char m[120];
+    snprintf(m, sizeof m, "%%s: patch %d was not started with @PS(%d)", i, i);
+    return fail(R, LSYS_EARG, m, opname(op));
+  }
 }
 
 /* --- moves ------------------------------------------------------------- */
@@ -615,6 +924,7 @@ static int move (run *R, int op, double d) {
   R->w0 = st->width * st->scale;
   R->len = fabs(d);
   R->pcol = st->color;
+  R->ptex = st->texture;
   return LSYS_OK;
 }
 
@@ -750,16 +1060,39 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
       return s;
     case OP_TEXTURE:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
-      st->texture = toindex(x);
+      k = toindex(x);
+      if (k > o->ntex) {
+        char m[160];
+        snprintf(m, sizeof m, "%%s: texture %d is not defined (the view has %d; "
+                 "view.textures)", k, o->ntex);
+        return fail(R, LSYS_EARG, m, opname(op));
+      }
+      st->texture = k;
       return LSYS_OK;
     case OP_CONTOUR:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
-      st->contour = toindex(x);
+      k = toindex(x);
+      if (k != 0 && (k >= o->ncontours || o->contours[k] == NULL)) {
+        char m[160];
+        snprintf(m, sizeof m, "%%s: contour %d is not defined (view.contours; 0 is the "
+                 "circle)", k);
+        return fail(R, LSYS_EARG, m, opname(op));
+      }
+      st->contour = k;
       return LSYS_OK;
+    case OP_GSTART: case OP_GPOINT: case OP_GEND: return gcmodule(R, op, p, np);
+    case OP_GTAN: case OP_GRAD: return gcshape(R, op, p, np);
+    case OP_PSTARTP: case OP_PCTRL: case OP_PDRAW: return patchmodule(R, op, p, np);
+    case OP_SURFACE: return surface(R, R->sym, p, np);
+    case OP_NOSURFACE:
+      return lsys_seterror(&R->t->err, LSYS_EARG, R->mod,
+                           "module %zu '%s': no such surface in the view (view.surfaces)",
+                           R->mod + 1, lsys_alphabet_name(R->ab, R->sym));
     case OP_DISCZ: case OP_DISC: case OP_SPHERE:
       if ((s = arg(R, p, np, 0, st->width, &x)) != LSYS_OK) return s;
       x *= st->scale;
       if (!R->draw) return LSYS_OK;
+      R->t->mesh->curtex = (unsigned)st->texture;
       if (op == OP_SPHERE) s = sphere(R, st->pos, x, st->color);
       else if (op == OP_DISC) s = disc(R, st->pos, st->H, st->L, st->U, x, st->color);
       else {
@@ -829,6 +1162,8 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
 }
 
 static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
+  const lsys_turtle_opts *o = t->o;
+  uint32_t id;
   int k;
   if (t->nop < ab->n) {
     uint8_t *op = (uint8_t *)LSYS_REALLOC(t->op, ab->n);
@@ -840,6 +1175,24 @@ static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
   for (k = 0; symbols[k].name; k++) {
     uint32_t id = lsys_alphabet_find(ab, symbols[k].name, strlen(symbols[k].name));
     if (id != 0 && id < ab->n) t->op[id] = symbols[k].op;
+  }
+  /* ~X: a view surface, or an error when the view has none called X */
+  for (id = 1; id < ab->n; id++)
+    if (ab->names[id][0] == '~' && ab->names[id][1] != '\0') t->op[id] = OP_NOSURFACE;
+  if (o->nsurfaces > 0) {
+    uint32_t *ss = (uint32_t *)LSYS_REALLOC(t->surfsym, (size_t)o->nsurfaces * sizeof *ss);
+    if (ss == NULL) return LSYS_ENOMEM;
+    t->surfsym = ss;
+    for (k = 0; k < o->nsurfaces; k++) {
+      char name[16];
+      size_t n = strlen(o->surfaces[k].name);
+      ss[k] = 0;
+      if (n + 2 > sizeof name) continue;
+      name[0] = '~';
+      memcpy(name + 1, o->surfaces[k].name, n + 1);
+      id = lsys_alphabet_find(ab, name, n + 1);
+      if (id != 0 && id < ab->n) { t->op[id] = OP_SURFACE; ss[k] = id; }
+    }
   }
   return LSYS_OK;
 }
@@ -879,7 +1232,12 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   vcopy(st->refH, st->H); vcopy(st->refU, st->U);
   st->width = o->width; st->scale = 1;
   st->color = st->color2 = o->color;
-  st->last = st->tip = LSYS_NOREC;
+  st->last = st->tip = st->gc = LSYS_NOREC;
+  st->gtan[0] = st->gtan[1] = LSYS_GC_TANGENT;
+  t->ngcp = 0;
+  for (k = 0; (size_t)k < t->ncs; k++) t->cs[k].valid = 0;
+  for (k = 0; (size_t)k < t->npatch; k++) t->patch[k].started = 0;
+  R->ab = ab;
   for (k = 0; k < o->ntrop; k++) st->elast[k] = o->trop[k].elasticity;
   if (setring(R) != LSYS_OK) return t->err.code;
   for (i = 0; i < s->n && status == LSYS_OK; i++) {
@@ -897,14 +1255,19 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
         for (j = 0; j < t->hbuf.n && status == LSYS_OK; j++) {
           uint16_t hc = t->hbuf.code[j];
           uint32_t hs = LSYS_CSYM(hc), hn = LSYS_CNP(hc);
-          if (hs < t->nop && t->op[hs])
+          if (hs < t->nop && t->op[hs]) {
+            R->sym = hs;
             status = module(R, t->op[hs], t->hbuf.par + hoff, hn, 0);
+          }
           hoff += hn;
         }
         goto next;
       }
     }
-    if (sym < t->nop && t->op[sym]) status = module(R, t->op[sym], p, np, 1);
+    if (sym < t->nop && t->op[sym]) {
+      R->sym = sym;
+      status = module(R, t->op[sym], p, np, 1);
+    }
   next:;
   }
   if (status == LSYS_OK) status = flush(R);

@@ -13,6 +13,10 @@
 
 #include "lstring.h"
 #include "mesh.h"
+#include "contour.h"
+#include "gcyl.h"
+#include "surface.h"
+#include "texture.h"
 
 #define LSYS_MAXTROPISMS 16
 #define LSYS_NOREC       UINT32_MAX
@@ -26,8 +30,20 @@ enum {
   LSYS_REC_DISC,          /* @c, @o */
   LSYS_REC_POLYGON,       /* }: p0 = first vertex, p1 = last */
   LSYS_REC_LABEL,         /* @L */
-  LSYS_REC_SYSTEM         /* @S (only when system calls are allowed) */
+  LSYS_REC_SYSTEM,        /* @S (only when system calls are allowed) */
+  LSYS_REC_GCYL,          /* a generalized-cylinder segment: previous control point ->
+                             p1 (the @Gc or @Ge module) */
+  LSYS_REC_SURFACE        /* ~X (p1: where the turtle ends) or @PD (p1: the turtle) */
 };
+
+/* A predefined surface of the view: ~name draws it (seed 004 §4.1). */
+typedef struct lsys_surfuse {
+  const char *name;       /* what follows the ~ (one character) */
+  const lsys_surface *s;
+  double scale;           /* multiplies the surface (and ~X(s) multiplies again) */
+  int texture;            /* 0: the turtle's current texture (@Tx) */
+  int ns, nt;             /* lines per patch */
+} lsys_surfuse;
 
 /* A tropism (seed 004 §6, eq. 1-2) or a torque (§6.1) from the view. */
 typedef struct lsys_tropism {
@@ -48,8 +64,13 @@ typedef struct lsys_turtle_opts {
   int sides;              /* contour sides of cylinders, discs, spheres (8) */
   int allow_system;       /* @S allowed (0) */
   int norecords;          /* 1: no turtle records (big renders and exports) */
+  int minimize_twist;     /* generalized cylinders: rotation-minimising frames (1) */
   lsys_tropism trop[LSYS_MAXTROPISMS];
   int ntrop;
+  /* contours[id] for @#(id), 1 <= id < ncontours (NULL: not defined); id 0 is the circle */
+  const lsys_contour *const *contours; int ncontours;
+  const lsys_texture *const *tex; int ntex;     /* @Tx(k): tex[k - 1] */
+  const lsys_surfuse *surfaces; int nsurfaces;
 } lsys_turtle_opts;
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
@@ -79,6 +100,11 @@ typedef struct lsys_tstate {
   int color, color2, texture, contour, hasstiff;
   uint32_t last;                /* last segment record, or LSYS_NOREC */
   uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
+  uint32_t gc;                  /* active generalized-cylinder control point (§3.4), or
+                                   LSYS_NOREC */
+  double gtan[2];               /* @Gt: tangent coefficients of the next segments */
+  double grad[4];               /* @Gr: radius tangents (angle, length) x 2 */
+  int gadjust;                  /* @Gr(1) */
   double elast[LSYS_MAXTROPISMS];   /* last: [ and ] copy only the view's tropisms */
 } lsys_tstate;
 
@@ -95,6 +121,8 @@ enum {
 };
 
 typedef struct lsys_cylend lsys_cylend;
+typedef struct lsys_csample lsys_csample;
+typedef struct lsys_lpatch lsys_lpatch;
 typedef struct lsys_polygon lsys_polygon;
 struct lsys_polywork;
 
@@ -123,6 +151,10 @@ typedef struct lsys_turtle {
   const double *ring; int nring;/* cos/sin table for 'sides' */
   double *ringbuf; size_t ringcap;
   void *runbuf;                 /* the state of a run (kept: a rule error may longjmp out) */
+  lsys_gcpoint *gcp; size_t ngcp, gcpcap;     /* generalized-cylinder control points */
+  lsys_csample *cs; size_t ncs;               /* sampled contours by id */
+  lsys_lpatch *patch; size_t npatch;          /* @PS/@PC/@PD patches by number */
+  uint32_t *surfsym;                          /* symbol id of each view surface */
 } lsys_turtle;
 
 void lsys_turtle_init (lsys_turtle *t);

@@ -425,3 +425,105 @@ describe("render-only options #gl", function()
     end)
   end)
 end)
+
+describe("textures #gl", function()
+  local lsys = require "lsys"
+  local core = require "lsys.core"
+  if not core.has_render then
+    pending("lsys was built without OSMesa: texture rendering specs skipped")
+    return
+  end
+  local dir, checker
+  -- the 2 x 2 checker, top row first: red green / blue white
+  local TEXELS = { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 }, { 255, 255, 255 } }
+  setup(function()
+    dir = tmpdir()
+    checker = dir .. "/checker.png"
+    local t = {}
+    for i, c in ipairs(TEXELS) do t[i] = string.char(c[1], c[2], c[3], 255) end
+    core.png_write(checker, table.concat(t), 2, 2, false)
+  end)
+  teardown(function() os.execute("rm -rf '" .. dir .. "'") end)
+
+  -- a white unit square drawn as a polygon heading up, 64 x 64 without supersampling
+  local function square (axiom, textures)
+    return draw(axiom or "@Tx(1) { f + f + f + f }",
+      { angle = 90, palette = { { 1, 1, 1 } }, textures = textures }, { supersample = 1 })
+  end
+  -- the centres of the square's quadrants in the picture: top left, top right, bottom left,
+  -- bottom right (the square fills 90% of the image)
+  local QUAD = { { 18, 18 }, { 45, 18 }, { 18, 45 }, { 45, 45 } }
+
+  it("maps the image upright onto a polygon; decal shows the texels themselves", function()
+    local px = square(nil, { { file = checker, mode = "decal" } })
+    for k, q in ipairs(QUAD) do
+      assert.same({ TEXELS[k][1], TEXELS[k][2], TEXELS[k][3], 255 }, { pixel(px, 64, q[1], q[2]) })
+    end
+  end)
+
+  it("multiplies the lit colour by the texel in modulate mode", function()
+    local plain = square("{ f + f + f + f }")
+    local lit = { pixel(plain, 64, 32, 32) }
+    assert.is_true(lit[1] > 100 and lit[1] < 250)
+    local px = square(nil, { checker })
+    for k, q in ipairs(QUAD) do
+      local got = { pixel(px, 64, q[1], q[2]) }
+      for c = 1, 3 do assert.near(lit[c] * TEXELS[k][c] / 255, got[c], 2) end
+    end
+  end)
+
+  it("modulates by intensity with a grey texture: I = 0.299 R + 0.587 G + 0.114 B", function()
+    local lit = pixel(square("{ f + f + f + f }"), 64, 32, 32)
+    local px = square(nil, { { file = checker, intensity = true } })
+    for k, q in ipairs(QUAD) do
+      local r, g, b = pixel(px, 64, q[1], q[2])
+      local I = math.floor(0.299 * TEXELS[k][1] + 0.587 * TEXELS[k][2] + 0.114 * TEXELS[k][3]
+                           + 0.5)
+      assert.near(lit * I / 255, r, 2)
+      assert.equal(r, g)
+      assert.equal(g, b)
+    end
+  end)
+
+  it("draws untextured geometry exactly as without textures", function()
+    local with = square("{ f + f + f + f } @Tx(0) { f - f - f - f }", { checker })
+    assert.equal(square("{ f + f + f + f } { f - f - f - f }"), with)
+  end)
+
+  it("wraps a stem in cylinder style, repeating along it", function()
+    local m = lsys.lsystem { axiom = "@Tx(1) F(12)",
+      view = { line_style = "cylinder", palette = { { 1, 1, 1 } },
+               textures = { { file = checker, mode = "decal" } } } }
+    local px, w, h = lsys.render(m, { width = 64, height = 64, supersample = 1 })
+    -- along the middle column: green and white alternate (the front half of the stem is
+    -- u > 1/2), about 12 / pi turns of the image
+    local changes, last = 0, nil
+    for y = 0, h - 1 do
+      local r, g, b = pixel(px, w, 32, y)
+      local c = (g == 255 and r == 0) and "green"
+                or (r == 255 and g == 255 and b == 255) and "white"
+      if c and c ~= last then
+        if last then changes = changes + 1 end
+        last = c
+      end
+    end
+    assert.is_true(changes >= 5 and changes <= 9, "colour changes along the stem: " .. changes)
+  end)
+
+  it("takes lsys.Texture values in core.render's opts.textures", function()
+    local m = lsys.lsystem { axiom = "@Tx(1) { f + f + f + f }",
+      view = { angle = 90, palette = { { 1, 1, 1 } }, textures = { checker } } }
+    local sc = m:interpret()
+    local t = core.texture_load(checker, { mode = "d" })
+    local px = core.render(sc, { width = 64, height = 64, supersample = 1, textures = { t } })
+    assert.same({ 255, 0, 0, 255 }, { pixel(px, 64, 18, 18) })
+    -- without textures the scene's indices draw untextured
+    local plain = core.render(sc, { width = 64, height = 64, supersample = 1 })
+    local r, g, b = pixel(plain, 64, 18, 18)
+    assert.is_true(r == g and g == b)
+    assert.has_error(function () core.render(sc, { textures = 5 }) end,
+      "lsys.render: opts.textures must be a list of textures (lsys.texture_load), got number")
+    assert.has_error(function () core.render(sc, { textures = { t, checker } }) end,
+      "lsys.render: opts.textures[2] must be a texture (lsys.texture_load), got string")
+  end)
+end)

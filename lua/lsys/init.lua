@@ -39,6 +39,13 @@ local LSTRING_MT = getmetatable(core.lstring(""))
 --- True when `x` is an Lstring.
 function M.islstring (x) return getmetatable(x) == LSTRING_MT end
 
+--- The directory of the Lua file that calls this ("." when it is not a file): for a
+-- model's contour, surface and texture files next to it, as `view = { dir = lsys.here() }`.
+function M.here ()
+  local src = debug.getinfo(2, "S").source
+  return src:match("^@(.*)/[^/]*$") or "."
+end
+
 -- Names usable in rule expressions besides `env`: Lua's math functions
 -- (radians, as in Lua), `pi`, and the standard library tables.
 local BUILTIN = {

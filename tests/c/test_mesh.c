@@ -34,6 +34,7 @@ static void *trealloc (void *p, size_t n) {
 #define LSYS_FREE(p)       free(p)
 #include "common.c"
 #include "mesh.c"
+#include "pngio.h"
 
 #define OUT "/tmp/lsys_test_mesh"
 
@@ -176,7 +177,7 @@ static void test_obj (void) {
   size_t len;
   char *s, *t;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_obj(&m, pal, 2, OUT ".obj", &e) == LSYS_OK);
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
   s = slurp(OUT ".obj", &len);
   assert(countlines(s, "mtllib lsys_test_mesh.mtl\n") == 1);
   assert(countlines(s, "v ") == 12 + 6);
@@ -203,7 +204,7 @@ static void test_obj (void) {
                    "Ke 0 0 0\nNs 32\nd 1\nillum 2\n") != NULL);
   free(s);
   /* no palette: one grey default */
-  assert(lsys_mesh_save_obj(&m, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
+  assert(lsys_mesh_save_obj(&m, NULL, 0, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
   s = slurp(OUT "_grey.mtl", &len);
   assert(countlines(s, "newmtl ") == 1 && strstr(s, "newmtl m0\n") && strstr(s, "Kd 0.8 0.8 0.8\n"));
   free(s);
@@ -214,7 +215,7 @@ static void test_obj (void) {
   remove(OUT "_grey.obj");
   remove(OUT "_grey.mtl");
   /* no extension: the .mtl is appended; a dot in a directory name is not one */
-  assert(lsys_mesh_save_obj(&m, pal, 2, "/tmp/lsys_test_mesh_noext", &e) == LSYS_OK);
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_mesh_noext", &e) == LSYS_OK);
   s = slurp("/tmp/lsys_test_mesh_noext.mtl", &len);
   free(s);
   remove("/tmp/lsys_test_mesh_noext");
@@ -260,7 +261,7 @@ static void test_numbers (void) {
     }
     lsys_mesh_vertex(&m, pt, n, 0, 0, 0, 0);
   }
-  assert(lsys_mesh_save_obj(&m, NULL, 0, OUT "_num.obj", &e) == LSYS_OK);
+  assert(lsys_mesh_save_obj(&m, NULL, 0, NULL, 0, OUT "_num.obj", &e) == LSYS_OK);
   s = slurp(OUT "_num.obj", &len);
   p = strstr(s, "\nv ");
   assert(p != NULL);
@@ -306,7 +307,7 @@ static void test_ply (void) {
   char *s, *h;
   const unsigned char *d;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_ply(&m, pal, 2, OUT ".ply", &e) == LSYS_OK);
+  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT ".ply", &e) == LSYS_OK);
   s = slurp(OUT ".ply", &len);
   assert(strncmp(s, "ply\nformat binary_little_endian 1.0\n", 36) == 0);
   h = strstr(s, "end_header\n");
@@ -344,7 +345,7 @@ static void test_ply (void) {
   free(s);
   /* without segments: no edge element */
   m.nl = 0;
-  assert(lsys_mesh_save_ply(&m, NULL, 0, OUT "_nl.ply", &e) == LSYS_OK);
+  assert(lsys_mesh_save_ply(&m, NULL, 0, NULL, 0, OUT "_nl.ply", &e) == LSYS_OK);
   s = slurp(OUT "_nl.ply", &len);
   assert(strstr(s, "element edge") == NULL && strstr(s, "element vertex 12\n") != NULL);
   h = strstr(s, "end_header\n");
@@ -376,7 +377,7 @@ static void test_glb (void) {
   unsigned char *s, *bin;
   char *json;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_glb(&m, pal, 2, OUT ".glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT ".glb", &len);
   assert(rd32(s) == 0x46546C67u && rd32(s + 4) == 2 && rd32(s + 8) == len);
   jlen = rd32(s + 12);
@@ -409,7 +410,8 @@ static void test_glb (void) {
     const unsigned char *v = bin + 32 * i;
     float nx = rdf32(v + 12), ny = rdf32(v + 16), nz = rdf32(v + 20);
     assert(nx == 0 && ny == 0 && nz == 1);
-    assert(rdf32(v) == m.pos[3 * i] && rdf32(v + 28) == m.uv[2 * i + 1]);
+    assert(rdf32(v) == m.pos[3 * i] && rdf32(v + 24) == m.uv[2 * i]);
+    assert(rdf32(v + 28) == 1 - m.uv[2 * i + 1]);       /* glTF's v points down */
   }
   /* indices in material order: triangles 0, 1 | 2, 3 */
   assert(rd32(bin + 384) == 0 && rd32(bin + 384 + 20) == 5 && rd32(bin + 384 + 24) == 6);
@@ -425,7 +427,7 @@ static void test_glb (void) {
   m.nrm[3] = NAN;
   m.nrm[6] = 3; m.nrm[7] = 4; m.nrm[8] = 0;
   m.pos[0] = NAN;
-  assert(lsys_mesh_save_glb(&m, NULL, 0, OUT "_n.glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, NULL, 0, NULL, 0, OUT "_n.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_n.glb", &len);
   jlen = rd32(s + 12);
   bin = s + 28 + jlen;
@@ -437,7 +439,7 @@ static void test_glb (void) {
 
   /* only segments */
   m.nt = 0;
-  assert(lsys_mesh_save_glb(&m, pal, 2, OUT "_l.glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_l.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_l.glb", &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 20 + jlen) == 72 && len == 28 + jlen + 72);
@@ -452,7 +454,7 @@ static void test_glb (void) {
 
   /* empty: a JSON chunk only, a scene without nodes */
   lsys_mesh_clear(&m);
-  assert(lsys_mesh_save_glb(&m, NULL, 0, OUT "_empty.glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, NULL, 0, NULL, 0, OUT "_empty.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_empty.glb", &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 8) == len && len == 20 + jlen && jlen % 4 == 0);
@@ -470,44 +472,215 @@ static void test_errors (void) {
   lsys_error e;
   FILE *f;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_obj(&m, pal, 2, "/nonexistent-lsys/x.obj", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.obj", &e) ==
+         LSYS_EARG);
   assert(strcmp(e.msg, "cannot open '/nonexistent-lsys/x.obj' for writing: "
                        "No such file or directory") == 0);
-  assert(lsys_mesh_save_ply(&m, pal, 2, "/nonexistent-lsys/x.ply", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.ply", &e) ==
+         LSYS_EARG);
   assert(strcmp(e.msg, "cannot open '/nonexistent-lsys/x.ply' for writing: "
                        "No such file or directory") == 0);
-  assert(lsys_mesh_save_glb(&m, pal, 2, "/nonexistent-lsys/x.glb", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.glb", &e) ==
+         LSYS_EARG);
   assert(strstr(e.msg, "'/nonexistent-lsys/x.glb'") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, "/tmp", &e) == LSYS_EARG);          /* a directory */
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp", &e) == LSYS_EARG);   /* a directory */
   assert(strstr(e.msg, "cannot open '/tmp' for writing") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, "/tmp/lsys_test_x.mtl", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_x.mtl", &e) ==
+         LSYS_EARG);
   assert(strstr(e.msg, "its own material file") != NULL);
   f = fopen("/dev/full", "wb");
   if (f != NULL) {                              /* a full disk: the error comes late */
     fclose(f);
-    assert(lsys_mesh_save_ply(&m, pal, 2, "/dev/full", &e) == LSYS_EARG);
+    assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
     assert(strcmp(e.msg, "cannot write '/dev/full': No space left on device") == 0);
-    assert(lsys_mesh_save_glb(&m, pal, 2, "/dev/full", &e) == LSYS_EARG);
+    assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
     assert(strcmp(e.msg, "cannot write '/dev/full': No space left on device") == 0);
   }
   m.tri[4] = 12;                                 /* a vertex that does not exist */
-  assert(lsys_mesh_save_glb(&m, pal, 2, OUT "_bad.glb", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_bad.glb", &e) == LSYS_EARG);
   assert(strstr(e.msg, "triangle 2 refers to vertex 12 of 12") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, OUT "_bad.obj", &e) == LSYS_EARG);
-  assert(lsys_mesh_save_ply(&m, pal, 2, OUT "_bad.ply", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT "_bad.obj", &e) == LSYS_EARG);
+  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT "_bad.ply", &e) == LSYS_EARG);
   f = fopen(OUT "_bad.glb", "rb");              /* nothing was created */
   assert(f == NULL);
   lsys_mesh_free(&m);
 }
 
+/* ---- textures ---- */
+
+/* The JSON chunk of a .glb as a string (free it), and the BIN chunk. */
+static char *glbjson (const char *path, unsigned char **file, size_t *len, unsigned char **bin,
+                      size_t *blen) {
+  unsigned char *s = (unsigned char *)slurp(path, len);
+  size_t jlen = rd32(s + 12);
+  char *json = malloc(jlen + 1);
+  assert(json != NULL && rd32(s + 8) == *len);
+  memcpy(json, s + 20, jlen);
+  json[jlen] = '\0';
+  *blen = rd32(s + 20 + jlen);
+  *bin = s + 28 + jlen;
+  assert(28 + jlen + *blen == *len && *blen % 4 == 0);
+  *file = s;
+  return json;
+}
+
+static int count (const char *s, const char *needle) {
+  int n = 0;
+  while ((s = strstr(s, needle)) != NULL) { n++; s++; }
+  return n;
+}
+
+/* The test mesh with textures by triangle: 0 -> 1, 1 -> none, 2 -> 2 (the
+** two-sided one), 3 -> 1; material slot 0 then has runs (none: triangle 1)
+** and (1: triangle 0), slot 1 runs (1: triangle 3) and (2: triangle 2). */
+static void test_textures (void) {
+  static uint8_t px1[16] = {255, 0, 0, 255, 0, 255, 0, 0, 0, 0, 255, 255, 9, 9, 9, 255};
+  static uint8_t px2[4] = {10, 20, 30, 255};
+  const char *p1 = OUT "_tex1.png", *p2 = OUT "_tex 2.png";
+  lsys_texture t1, t2, nopath;
+  const lsys_texture *list[3] = {&t1, &t2, &nopath};
+  lsys_mesh m;
+  lsys_material pal[2];
+  lsys_error e;
+  size_t len, len2, blen, blen2;
+  unsigned char *file, *file2, *bin, *bin2;
+  char *s, *s2, *t, *json, *json2;
+  int i;
+  lsys_texture_init(&t1); lsys_texture_init(&t2); lsys_texture_init(&nopath);
+  t1.rgba = px1; t1.w = 2; t1.h = 2; t1.path = (char *)p1;        /* modulate, with alpha */
+  t2.rgba = px2; t2.w = 1; t2.h = 1; t2.path = (char *)p2;        /* decal, linear */
+  t2.mode = LSYS_TEX_DECAL; t2.mag_linear = t2.min_linear = 1;
+  nopath.rgba = px2; nopath.w = 1; nopath.h = 1;
+  assert(lsys_png_write(p1, px1, 2, 2, 1, &e) == LSYS_OK);
+  assert(lsys_png_write(p2, px2, 1, 1, 0, &e) == LSYS_OK);
+  testmesh(&m, pal);
+  /* textures given, none used: the same files as without */
+  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
+  s = slurp(OUT ".mtl", &len);
+  assert(lsys_mesh_save_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
+  s2 = slurp(OUT "_t.mtl", &len2);
+  assert(len == len2 && memcmp(s, s2, len) == 0);
+  free(s2);
+  json = glbjson(OUT ".glb", &file, &len, &bin, &blen);
+  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  s2 = slurp(OUT "_t.glb", &len2);
+  assert(len == len2 && memcmp(file, s2, len) == 0);
+  free(s2); free(s); free(json); free(file);
+  /* textured */
+  m.tex[0] = 1; m.tex[6] = 2; m.tex[9] = 1;
+  m.tex[1] = 2;                                 /* only a triangle's first vertex counts */
+  assert(lsys_mesh_save_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
+  s = slurp(OUT "_t.mtl", &len);
+  assert(countlines(s, "newmtl ") == 5);
+  assert(strstr(s, "newmtl m0\n") < strstr(s, "newmtl m0_t1\n"));
+  assert(strstr(s, "newmtl m0_t1\n") < strstr(s, "newmtl m1\n"));
+  assert(strstr(s, "newmtl m1\n") < strstr(s, "newmtl m1_t1\n"));
+  assert(strstr(s, "newmtl m1_t1\n") < strstr(s, "newmtl m1_t2\n"));
+  assert(countlines(s, "map_Kd ") == 3);
+  assert(strstr(s, "illum 1\nmap_Kd " OUT "_tex1.png\n") != NULL);    /* after m0_t1 */
+  assert(strstr(s, "newmtl m1_t2\nKa 0.3 0.15 0\nKd 1 1 1\n") != NULL);   /* decal: white */
+  assert(strstr(s, "illum 0\nmap_Kd " OUT "_tex 2.png\n") != NULL);
+  assert(countlines(s, "illum 0") == 1);
+  free(s);
+  s = slurp(OUT "_t.obj", &len);
+  assert(countlines(s, "usemtl ") == 5 && countlines(s, "f ") == 4);
+  assert(countlines(s, "vt ") == 12);
+  t = strstr(s, "usemtl m0\nf 4/4/4 5/5/5 6/6/6\nl ");        /* plain: triangle 1, segments */
+  assert(t != NULL);
+  assert(strstr(s, "usemtl m0_t1\nf 1/1/1 2/2/2 3/3/3\nusemtl m1\nl ") != NULL);
+  assert(strstr(s, "usemtl m1_t1\nf 10/10/10 ") != NULL && strstr(s, "usemtl m1_t2\nf 7/7/7 "));
+  free(s);
+  /* glb: 4 triangle primitives, 2 line primitives, 5 materials, 2 images */
+  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
+  assert(count(json, "\"mode\":4") == 4 && count(json, "\"mode\":1") == 2);
+  assert(count(json, "\"name\":\"m") == 5);
+  assert(strstr(json, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") != NULL);
+  assert(strstr(json, "\"name\":\"m0_t1\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+                      "[0.2,0.6,0.1,1],\"baseColorTexture\":{\"index\":0},") != NULL);
+  assert(strstr(json, "\"name\":\"m1_t2\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+                      "[1,1,1,1],\"baseColorTexture\":{\"index\":1},") != NULL);
+  assert(count(json, "\"alphaMode\":\"MASK\"") == 2);          /* m0_t1, m1_t1 */
+  assert(count(json, "KHR_materials_unlit\":{}") == 1);        /* m1_t2 */
+  {                                             /* doubleSided: only m1_t2 (triangle 2) */
+    char *ds = strstr(json, "\"doubleSided\":true");
+    assert(count(json, "doubleSided") == 1 && ds > strstr(json, "\"name\":\"m1_t2\""));
+  }
+  assert(strstr(json, "\"textures\":[{\"sampler\":0,\"source\":0},"
+                      "{\"sampler\":1,\"source\":1}]"));
+  assert(strstr(json, "\"samplers\":[{\"magFilter\":9728,\"minFilter\":9728,\"wrapS\":10497,"
+                      "\"wrapT\":10497},{\"magFilter\":9729,\"minFilter\":9729,"));
+  assert(strstr(json, "\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"},"
+                      "{\"bufferView\":4,\"mimeType\":\"image/png\"}]"));
+  /* primitives by run: m0 (material 0), m0_t1 (1), m1_t1 (3), m1_t2 (4); lines m0, m1 (2) */
+  assert(strstr(json, "\"indices\":3,\"material\":0,"));
+  assert(strstr(json, "\"indices\":4,\"material\":1,"));
+  assert(strstr(json, "\"indices\":5,\"material\":3,"));
+  assert(strstr(json, "\"indices\":6,\"material\":4,"));
+  assert(strstr(json, "{\"POSITION\":7},\"material\":0,"));
+  assert(strstr(json, "{\"POSITION\":8},\"material\":2,"));
+  /* the BIN chunk ends with the two PNG files, each padded to 4 bytes */
+  {
+    size_t f1, f2, pad1;
+    unsigned char *png1 = (unsigned char *)slurp(p1, &f1);
+    unsigned char *png2 = (unsigned char *)slurp(p2, &f2);
+    pad1 = (f1 + 3) & ~(size_t)3;
+    assert(blen == 12 * 32 + 4 * 12 + 3 * 24 + pad1 + ((f2 + 3) & ~(size_t)3));
+    assert(memcmp(bin + 504, png1, f1) == 0 && memcmp(bin + 504 + pad1, png2, f2) == 0);
+    free(png1); free(png2);
+  }
+  /* indices by run: triangle 1, 0 | 3, 2 */
+  assert(rd32(bin + 384) == 3 && rd32(bin + 384 + 12) == 0 && rd32(bin + 384 + 24) == 9);
+  assert(rd32(bin + 384 + 36) == 6);
+  free(json); free(file);
+  /* a texture index past the list, or of a texture without a file: untextured */
+  m.tex[0] = 4; m.tex[6] = 3; m.tex[9] = 0;
+  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_t2.glb", &e) == LSYS_OK);
+  json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
+  json2 = glbjson(OUT "_t2.glb", &file2, &len2, &bin2, &blen2);
+  assert(strcmp(json, json2) == 0 && blen == blen2 && memcmp(bin, bin2, blen) == 0);
+  free(json); free(file); free(json2); free(file2);
+  /* a texture file that went missing or changed: an error naming both files */
+  m.tex[0] = 1;
+  t1.path = (char *)OUT "_missing.png";
+  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_EARG);
+  assert(strstr(e.msg, "cannot write '" OUT "_t.glb': cannot read texture '"
+                       OUT "_missing.png'"));
+  t1.path = (char *)OUT ".obj";
+  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_ESYNTAX);
+  assert(strstr(e.msg, "is no longer a PNG file") != NULL);
+  /* PLY ignores textures */
+  t1.path = (char *)p1;
+  assert(lsys_mesh_save_ply(&m, pal, 2, list, 3, OUT "_t.ply", &e) == LSYS_OK);
+  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT "_t2.ply", &e) == LSYS_OK);
+  s = slurp(OUT "_t.ply", &len);
+  s2 = slurp(OUT "_t2.ply", &len2);
+  assert(len == len2 && memcmp(s, s2, len) == 0);
+  free(s); free(s2);
+  lsys_mesh_free(&m);
+  for (i = 0; i < 2; i++) remove(i ? p2 : p1);
+  remove(OUT "_t.obj"); remove(OUT "_t.mtl"); remove(OUT "_t.glb"); remove(OUT "_t2.glb");
+  remove(OUT "_t.ply"); remove(OUT "_t2.ply");
+}
+
 /* ---- allocation failures ---- */
 
 /* Every allocation fails in turn: each call gives LSYS_OK or LSYS_ENOMEM
-** with a message, and nothing leaks (valgrind). */
+** with a message, and nothing leaks (valgrind). A third of the triangles
+** are textured, another third refer to a missing texture. */
 static void test_nomem (void) {
   static const char *paths[3] = { OUT "_nomem.obj", OUT "_nomem.ply", OUT "_nomem.glb" };
+  static uint8_t px[4] = { 1, 2, 3, 4 };
+  lsys_texture tx;
+  const lsys_texture *list[1] = { &tx };
+  lsys_error e0;
   long k;
   int f, done = 0;
+  lsys_texture_init(&tx);
+  tx.rgba = px; tx.w = tx.h = 1; tx.path = (char *)OUT "_nomem.png";
+  assert(lsys_png_write(tx.path, px, 1, 1, 1, &e0) == LSYS_OK);
   for (k = 0; !done; k++) {
     lsys_mesh m;
     lsys_material pal[2];
@@ -519,6 +692,7 @@ static void test_nomem (void) {
     failat = k;
     for (i = 0; i < 40 && st == LSYS_OK; i++) {
       st = lsys_mesh_reserve(&m, 3, 1);
+      m.curtex = (unsigned)(i % 3);
       if (st == LSYS_OK) {
         lsys_mesh_vertex(&m, p, n, 0, 0, (unsigned)i, i % 2);
         p[0] += 1;
@@ -533,9 +707,9 @@ static void test_nomem (void) {
     lsys_material_color(&pal[0], 1, 0, 0);
     lsys_material_color(&pal[1], 0, 1, 0);
     for (f = 0; f < 3 && st == LSYS_OK; f++) {
-      st = f == 0 ? lsys_mesh_save_obj(&m, pal, 2, paths[f], &e)
-         : f == 1 ? lsys_mesh_save_ply(&m, pal, 2, paths[f], &e)
-                  : lsys_mesh_save_glb(&m, pal, 2, paths[f], &e);
+      st = f == 0 ? lsys_mesh_save_obj(&m, pal, 2, list, 1, paths[f], &e)
+         : f == 1 ? lsys_mesh_save_ply(&m, pal, 2, list, 1, paths[f], &e)
+                  : lsys_mesh_save_glb(&m, pal, 2, list, 1, paths[f], &e);
       assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, "out of memory") &&
                                strstr(e.msg, OUT "_nomem.")));
     }
@@ -547,6 +721,7 @@ static void test_nomem (void) {
   assert(k > 20);
   for (f = 0; f < 3; f++) remove(paths[f]);
   remove(OUT "_nomem.mtl");
+  remove(tx.path);
 }
 
 /* ---- timing ---- */
@@ -587,13 +762,13 @@ static void bench (void) {
   for (i = 0; i < 8; i++) lsys_material_color(&pal[i], 0.1 * (double)i, 0.5, 0.2);
   printf("bench: %zu vertices, %zu triangles, %zu segments\n", m.nv, m.nt, m.nl);
   t0 = now();
-  assert(lsys_mesh_save_obj(&m, pal, 8, OUT "_bench.obj", &e) == LSYS_OK);
+  assert(lsys_mesh_save_obj(&m, pal, 8, NULL, 0, OUT "_bench.obj", &e) == LSYS_OK);
   printf("  obj %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_mesh_save_ply(&m, pal, 8, OUT "_bench.ply", &e) == LSYS_OK);
+  assert(lsys_mesh_save_ply(&m, pal, 8, NULL, 0, OUT "_bench.ply", &e) == LSYS_OK);
   printf("  ply %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_mesh_save_glb(&m, pal, 8, OUT "_bench.glb", &e) == LSYS_OK);
+  assert(lsys_mesh_save_glb(&m, pal, 8, NULL, 0, OUT "_bench.glb", &e) == LSYS_OK);
   printf("  glb %.3f s\n", now() - t0);
   lsys_mesh_free(&m);
 }
@@ -609,6 +784,7 @@ int main (int argc, char **argv) {
   test_ply();
   test_glb();
   test_errors();
+  test_textures();
   test_nomem();
   printf("test_mesh: ok\n");
   return 0;

@@ -19,6 +19,7 @@
 #include "mesh.h"
 #include "pngio.h"
 #include "render.h"
+#include "texture.h"
 
 static char tmpdir[256];
 
@@ -345,6 +346,52 @@ static void test_png (void) {
 }
 
 /* ---------------------------------------------------------------------- */
+/* textures: loading */
+
+static void test_texture_load (void) {
+  static const uint8_t grey[2 * 4] = {10, 10, 10, 255, 200, 200, 200, 128};
+  static const uint8_t colour[2 * 4] = {10, 10, 10, 255, 200, 201, 200, 255};
+  const char *p = tmppath("tex.png"), *q = tmppath("nottex.png");
+  lsys_texture t;
+  lsys_error e;
+  lsys_texture_init(&t);
+  assert(t.rgba == NULL && t.path == NULL && t.mode == LSYS_TEX_MODULATE && !t.intensity);
+  assert(!t.mag_linear && !t.min_linear && !t.per_surface);
+  /* a grey image sets intensity, a colour one clears it; the path is copied */
+  assert(lsys_png_write(p, grey, 2, 1, 1, &e) == LSYS_OK);
+  t.mode = LSYS_TEX_DECAL;
+  t.mag_linear = 1;
+  assert(lsys_texture_load(&t, p, &e) == LSYS_OK);
+  assert(t.w == 2 && t.h == 1 && t.intensity == 1 && memcmp(t.rgba, grey, 8) == 0);
+  assert(t.path != p && strcmp(t.path, p) == 0);
+  assert(t.mode == LSYS_TEX_DECAL && t.mag_linear == 1);      /* settings kept */
+  assert(lsys_texture_hasalpha(&t) == 1);
+  assert(lsys_png_write(p, colour, 2, 1, 1, &e) == LSYS_OK);
+  assert(lsys_texture_load(&t, p, &e) == LSYS_OK);            /* replaces the pixels */
+  assert(t.intensity == 0 && t.rgba[5] == 201 && lsys_texture_hasalpha(&t) == 0);
+  /* failures name the file and leave the texture as it was */
+  assert(lsys_texture_load(&t, "/nonexistent-dir/t.png", &e) == LSYS_EARG);
+  assert(strstr(e.msg, "/nonexistent-dir/t.png") != NULL);
+  writefile(q, "GIF89a not a png", 16);
+  assert(lsys_texture_load(&t, q, &e) == LSYS_ESYNTAX);
+  assert(strstr(e.msg, q) != NULL && strstr(e.msg, "not a PNG") != NULL);
+  assert(t.w == 2 && t.rgba[5] == 201 && strcmp(t.path, p) == 0);
+  /* the intensity of §5, rounded */
+  {
+    static const uint8_t red[3] = {255, 0, 0}, green[3] = {0, 255, 0}, blue[3] = {0, 0, 255};
+    static const uint8_t white[3] = {255, 255, 255}, mix[3] = {100, 150, 200};
+    assert(lsys_texture_intensity(red) == 76 && lsys_texture_intensity(green) == 150);
+    assert(lsys_texture_intensity(blue) == 29 && lsys_texture_intensity(white) == 255);
+    assert(lsys_texture_intensity(mix) == 141);     /* 29.9 + 88.05 + 22.8 = 140.75 */
+  }
+  lsys_texture_free(&t);
+  assert(t.rgba == NULL && t.path == NULL && t.w == 0);
+  lsys_texture_free(&t);                            /* idempotent */
+  remove(p);
+  remove(q);
+}
+
+/* ---------------------------------------------------------------------- */
 /* offscreen rendering */
 
 #ifndef LSYS_NO_RENDER
@@ -544,7 +591,236 @@ static void test_offscreen (void) {
   o.width = 1 << 20;
   assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_ELIMIT);
   assert(strstr(e.msg, "exceeds OSMesa's limit") != NULL);
-  lsys_render_shutdown();
+}
+
+/* ---------------------------------------------------------------------- */
+/* textured rendering */
+
+/* The square [-1, 1]^2 facing +z, uv (0, 0) at its bottom left corner and
+** (1, 1) at its top right; all vertices of colour 0 and texture 'k'. */
+static float tpos[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+static float tnrm[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+static float tuv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+static uint16_t tcol[4], ttex[4];
+static uint8_t tts[4];
+static uint32_t ttri[6] = {0, 1, 2, 0, 2, 3};
+
+static lsys_mesh texquad (unsigned k) {
+  lsys_mesh m = {0};
+  int i;
+  for (i = 0; i < 4; i++) ttex[i] = (uint16_t)k;
+  m.pos = tpos; m.nrm = tnrm; m.uv = tuv; m.col = tcol; m.twosided = tts; m.tex = ttex;
+  m.nv = 4;
+  m.tri = ttri; m.nt = 2;
+  return m;
+}
+
+/* The 2 x 2 checker, top row first: red green / blue white. */
+static uint8_t checker[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+
+static lsys_texture maketex (uint8_t *rgba, int w, int h) {
+  lsys_texture t;
+  lsys_texture_init(&t);
+  t.rgba = rgba; t.w = w; t.h = h;
+  return t;
+}
+
+/* The pixel at world point (x, y, 0). */
+static const uint8_t *at (const uint8_t *img, const lsys_mesh *m, const lsys_render_opts *o,
+                          double x, double y) {
+  double proj[16], view[16], p[3] = {x, y, 0}, q[3];
+  assert(lsys_render_camera(m, o, IW, IH, proj, view) == LSYS_OK);
+  assert(lsys_render_project(proj, view, IW, IH, p, q) == 1);
+  return pixel(img, q[0], q[1]);
+}
+
+static int near (int a, double b, double tol) {
+  return fabs(a - b) <= tol;
+}
+
+/* Each channel of the pixel is lit * texel / 255 within 'tol'. */
+static int modulated (const uint8_t *px, const uint8_t *lit, const uint8_t *texel, double tol) {
+  int i;
+  for (i = 0; i < 3; i++)
+    if (!near(px[i], lit[i] * texel[i] / 255.0, tol)) return 0;
+  return 1;
+}
+
+static void test_textured (void) {
+  /* quadrant centres (world) and the checker texel each shows */
+  static const double qx[4] = {-0.5, 0.5, -0.5, 0.5}, qy[4] = {0.5, 0.5, -0.5, -0.5};
+  lsys_material pal[2];
+  lsys_texture tx = maketex(checker, 2, 2), tx2;
+  const lsys_texture *list[3] = {&tx, NULL, NULL};
+  lsys_mesh m = texquad(1);
+  lsys_render_opts o;
+  lsys_error e;
+  uint8_t ref[IW * IH * 4], img[IW * IH * 4], lit[4];
+  int i, k;
+  lsys_material_color(&pal[0], 1, 1, 1);
+  lsys_material_color(&pal[1], 1, 1, 1);
+  pal[1].diffuse[3] = 0.5f;
+  lsys_render_defaults(&o);
+  o.width = IW; o.height = IH; o.supersample = 1;
+  o.cam.projection = LSYS_PARALLEL;
+  o.pal = pal; o.npal = 2;
+  /* without textures: the lit white square, the same with no texture array */
+  assert(lsys_render_offscreen(&m, &o, ref, &e) == LSYS_OK);
+  dump(ref, "tex_none.png");
+  memcpy(lit, at(ref, &m, &o, 0.5, 0.5), 4);
+  assert(lit[0] > 100 && lit[0] < 250 && lit[0] == lit[1] && lit[1] == lit[2]);
+  for (k = 0; k < 4; k++) assert(memcmp(at(ref, &m, &o, qx[k], qy[k]), lit, 4) == 0);
+  m.tex = NULL;
+  o.tex = list; o.ntex = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(memcmp(img, ref, sizeof img) == 0);
+  /* indices 0, past the end, or of a missing or empty texture draw untextured */
+  o.ntex = 2;
+  for (k = 0; k < 4; k++) {
+    static const unsigned idx[4] = {0, 3, 2, 2};
+    lsys_texture empty;
+    lsys_texture_init(&empty);
+    list[1] = k == 3 ? &empty : NULL;
+    m = texquad(idx[k]);
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(memcmp(img, ref, sizeof img) == 0);
+  }
+  list[1] = NULL;
+  /* modulate, nearest: each quadrant is the lit colour times its texel */
+  m = texquad(1);
+  o.ntex = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  dump(img, "tex_modulate.png");
+  for (k = 0; k < 4; k++)
+    assert(modulated(at(img, &m, &o, qx[k], qy[k]), lit, checker + 4 * k, 2));
+  /* the v axis points up the image: the bottom left quadrant is blue */
+  assert(at(img, &m, &o, -0.5, -0.5)[2] > 100 && at(img, &m, &o, -0.5, -0.5)[0] == 0);
+  /* decal: the texels themselves, unlit */
+  tx.mode = LSYS_TEX_DECAL;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  dump(img, "tex_decal.png");
+  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &o, qx[k], qy[k]), checker + 4 * k, 3) == 0);
+  /* intensity in modulate mode: grey levels I = 0.299 R + 0.587 G + 0.114 B */
+  tx.mode = LSYS_TEX_MODULATE;
+  tx.intensity = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  dump(img, "tex_intensity.png");
+  for (k = 0; k < 4; k++) {
+    const uint8_t *px = at(img, &m, &o, qx[k], qy[k]);
+    double want = lit[0] * lsys_texture_intensity(checker + 4 * k) / 255.0;
+    assert(near(px[0], want, 2) && px[0] == px[1] && px[1] == px[2]);
+  }
+  /* intensity is ignored by decal: the colours stay */
+  tx.mode = LSYS_TEX_DECAL;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &o, qx[k], qy[k]), checker + 4 * k, 3) == 0);
+  tx.intensity = 0;
+  /* linear magnification (decal still): the centre mixes the four texels, a
+  ** texel centre stays pure */
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  {
+    const uint8_t *c = at(img, &m, &o, 0, 0);
+    assert(c[0] < 5 || c[0] > 250 || c[1] < 5 || c[1] > 250 || c[2] < 5 || c[2] > 250);
+  }
+  tx.mag_linear = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  dump(img, "tex_linear.png");
+  {
+    const uint8_t *c = at(img, &m, &o, 0.02, 0.02);
+    for (i = 0; i < 3; i++) assert(c[i] > 60 && c[i] < 200);
+    c = at(img, &m, &o, -0.5, 0.5);     /* within a pixel (1/58 of the square) of the centre */
+    assert(c[0] > 240 && c[1] < 15 && c[2] < 15);
+  }
+  tx.mag_linear = 0;
+  /* alpha: in modulate mode a texel below 1/2 is cut out (the background
+  ** shows), in decal mode it lets the lit colour through */
+  {
+    uint8_t cut[16];
+    memcpy(cut, checker, 16);
+    cut[7] = 0;                                 /* green, transparent */
+    cut[15] = 200;                              /* white, mostly opaque */
+    tx2 = maketex(cut, 2, 2);
+    list[0] = &tx2;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    dump(img, "tex_cut.png");
+    assert(memcmp(at(img, &m, &o, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
+    assert(modulated(at(img, &m, &o, -0.5, 0.5), lit, checker, 2));
+    assert(modulated(at(img, &m, &o, 0.5, -0.5), lit, checker + 12, 2));
+    tx2.mode = LSYS_TEX_DECAL;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &o, 0.5, 0.5), lit, 3) == 0);
+    assert(memcmp(at(img, &m, &o, -0.5, 0.5), checker, 3) == 0);
+    list[0] = &tx;
+  }
+  /* a size that is not a power of two: 3 x 1, three vertical bands */
+  {
+    static uint8_t bands[12] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255};
+    tx2 = maketex(bands, 3, 1);
+    tx2.mode = LSYS_TEX_DECAL;
+    list[0] = &tx2;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    dump(img, "tex_bands.png");
+    for (k = 0; k < 3; k++)
+      for (i = 0; i < 3; i++)
+        assert(memcmp(at(img, &m, &o, -2.0 / 3 + k * 2.0 / 3, 0.8 - 0.8 * i), bands + 4 * k,
+                      3) == 0);
+    list[0] = &tx;
+  }
+  /* uv beyond [0, 1] repeats */
+  for (i = 0; i < 8; i++) tuv[i] *= 2;
+  tx.mode = LSYS_TEX_DECAL;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(memcmp(at(img, &m, &o, -0.75, 0.75), checker, 3) == 0);
+  assert(memcmp(at(img, &m, &o, -0.25, 0.75), checker + 4, 3) == 0);
+  assert(memcmp(at(img, &m, &o, 0.25, 0.75), checker, 3) == 0);
+  assert(memcmp(at(img, &m, &o, 0.25, 0.25), checker + 8, 3) == 0);
+  for (i = 0; i < 8; i++) tuv[i] /= 2;
+  tx.mode = LSYS_TEX_MODULATE;
+  /* a translucent material keeps its texture and blends with the background */
+  for (i = 0; i < 4; i++) tcol[i] = 1;
+  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  dump(img, "tex_translucent.png");
+  {
+    const uint8_t *c = at(img, &m, &o, -0.5, 0.5);    /* red at half: 255 / 2 + lit / 2 */
+    assert(near(c[0], 127.5 + lit[0] / 2.0, 3) && near(c[1], 127.5, 3) && c[1] == c[2]);
+  }
+  for (i = 0; i < 4; i++) tcol[i] = 0;
+  /* two textures in one scene, textured and plain triangles mixed in each
+  ** material group: the second triangle uses texture 2, a grey ramp */
+  {
+    static uint8_t g2[4] = {60, 60, 60, 255};
+    lsys_texture t2 = maketex(g2, 1, 1);
+    list[1] = &t2;
+    o.ntex = 2;
+    t2.mode = tx.mode = LSYS_TEX_DECAL;
+    ttex[0] = 2;                               /* triangle 0 1 2 (lower right) and 0 2 3 */
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    dump(img, "tex_two.png");
+    assert(memcmp(at(img, &m, &o, 0.6, -0.6), g2, 3) == 0);
+    assert(memcmp(at(img, &m, &o, -0.6, 0.6), g2, 3) == 0);   /* both share vertex 0 */
+    ttri[3] = 3; ttri[4] = 0; ttri[5] = 2;     /* the upper left triangle starts at vertex 3 */
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &o, 0.6, -0.6), g2, 3) == 0);
+    assert(memcmp(at(img, &m, &o, -0.5, 0.5), checker, 3) == 0);
+    ttri[3] = 0; ttri[4] = 2; ttri[5] = 3;
+    ttex[0] = 1;
+    tx.mode = LSYS_TEX_MODULATE;
+    list[1] = NULL;
+    o.ntex = 1;
+  }
+  /* wireframe ignores textures; a kept cache works across renders */
+  {
+    lsys_render_cache cache = {0};
+    o.wireframe = 1;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    o.wireframe = 0;
+    o.cache = &cache;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(lsys_render_offscreen(&m, &o, ref, &e) == LSYS_OK);
+    assert(memcmp(img, ref, sizeof img) == 0);
+    lsys_render_cache_free(&cache);
+    o.cache = NULL;
+  }
 }
 
 #endif
@@ -553,10 +829,13 @@ int main (void) {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/lsys_test_render_%ld", (long)getpid());
   assert(mkdir(tmpdir, 0700) == 0);
   test_png();
+  test_texture_load();
 #ifndef LSYS_NO_RENDER                /* render.c is left out of such a build */
   test_fit();
   test_project();
   test_offscreen();
+  test_textured();
+  lsys_render_shutdown();
 #endif
   rmdir(tmpdir);
   printf("test_render: ok\n");

@@ -1,0 +1,58 @@
+/*
+** Texture images (texture.h): a PNG file read into RGBA pixels, with the
+** settings of a cpfg `texture:` entry.
+*/
+#include <string.h>
+
+#include "pngio.h"
+#include "texture.h"
+
+void lsys_texture_init (lsys_texture *t) {
+  memset(t, 0, sizeof *t);
+  t->mode = LSYS_TEX_MODULATE;
+}
+
+void lsys_texture_free (lsys_texture *t) {
+  LSYS_FREE(t->rgba);
+  LSYS_FREE(t->path);
+  t->rgba = NULL;
+  t->path = NULL;
+  t->w = t->h = 0;
+}
+
+/* Every pixel has equal red, green and blue: a single-channel image (§5). */
+static int isgrey (const uint8_t *px, size_t n) {
+  size_t i;
+  for (i = 0; i < n; i++, px += 4)
+    if (px[0] != px[1] || px[1] != px[2]) return 0;
+  return 1;
+}
+
+int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e) {
+  uint8_t *px = NULL;
+  char *copy;
+  size_t len = strlen(path);
+  int w, h, st = lsys_png_read(path, &px, &w, &h, e);
+  if (st != LSYS_OK) return st;
+  copy = (char *)LSYS_MALLOC(len + 1);
+  if (copy == NULL) {
+    LSYS_FREE(px);
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot read '%s': out of memory", path);
+  }
+  memcpy(copy, path, len + 1);
+  LSYS_FREE(t->rgba);
+  LSYS_FREE(t->path);
+  t->rgba = px;
+  t->w = w;
+  t->h = h;
+  t->path = copy;
+  t->intensity = isgrey(px, (size_t)w * (size_t)h);
+  return LSYS_OK;
+}
+
+int lsys_texture_hasalpha (const lsys_texture *t) {
+  size_t i, n = t->rgba ? (size_t)t->w * (size_t)t->h : 0;
+  for (i = 0; i < n; i++)
+    if (t->rgba[4 * i + 3] != 255) return 1;
+  return 0;
+}

@@ -1,0 +1,15 @@
+-1 1 0 2 -0.5 0.5
+CONTACT POINT X: 0 Y: 0 Z: 0
+END POINT X: 0 Y: 2 Z: 0
+HEADING X: 0 Y: 1 Z: 0
+UP X: 0 Y: 0 Z: 1
+SIZE: 2
+leaf
+TOP COLOR: 1 DIFFUSE: 1 BOTTOM COLOR: 1 DIFFUSE: 1
+AL: ~ A: ~ AR: ~
+L: ~ R: ~
+BL: ~ B: ~ BR: ~
+-0.3 0 0 -0.1 0 0 0.1 0 0 0.3 0 0
+-1 0.7 0 -0.3 0.7 0.2 0.3 0.7 0.2 1 0.7 0
+-1 1.3 0 -0.3 1.3 0.2 0.3 1.3 0.2 1 1.3 0
+-0.2 2 0 -0.1 2 0 0.1 2 0 0.2 2 0
