@@ -152,9 +152,11 @@ static uint32_t emit (lsys_mesh *m, const ring *q, const lsys_gccontour *ca,
     vlin(P, P, 1, q->T, x[2]);
     vlin(P, q->F, 1, P, q->r);
     vlin(N, q->V, nn[0], q->R, nn[1]);
-    d = nn[0] * x[0] + nn[1] * x[1];           /* how far the normal leans with the taper */
-    vlin(N, N, 1, q->T, -q->slope * d);
-    vnorm(N);
+    if (q->slope != 0) {                       /* the normal leans with the taper */
+      d = nn[0] * x[0] + nn[1] * x[1];
+      vlin(N, N, 1, q->T, -q->slope * d);
+      vnorm(N);
+    }
     lsys_mesh_vertex(m, P, N, (double)k / p, v, col, twosided);
   }
   return first;

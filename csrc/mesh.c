@@ -11,6 +11,9 @@
 ** - the material of a triangle is the colour index of its first vertex,
 **   that of a segment its own colour index, both taken modulo the palette
 **   size; only materials that something uses are written;
+** - so is its texture (the texture index of its first vertex, when that
+**   texture exists and was loaded from a file): OBJ and GLB write one
+**   material per (colour, texture) pair, PLY ignores textures;
 ** - coordinates that are not finite are written as 0 (a JSON file cannot
 **   hold NaN, and most OBJ readers choke on it);
 ** - a failed write leaves the partial file in place: the output may be a

@@ -396,9 +396,13 @@ static int readpatch (reader *r, lsys_surface *s, nbref *ref) {
       return fail(r, r->line, "patch name '%s' has a control character", quote(q, w, n));
   memcpy(in->name, w, n);
   in->name[n] = '\0';
-  if (word(r, &w, &n))
+  if (word(r, &w, &n)) {
+    const char *a = r->lp, *z = r->le;
+    while (isblank_(*a)) a++;
+    while (isblank_(z[-1])) z--;
     return fail(r, r->line, "expected a patch name (one word), found '%s'",
-                quote(q, r->lp, (size_t)(r->le - r->lp)));
+                quote(q, a, (size_t)(z - a)));
+  }
   /* colours */
   if ((st = need(r, "TOP COLOR: %d DIFFUSE: %f BOTTOM COLOR: %d DIFFUSE: %f", in->name)) ||
       (st = scan(r, "TOP COLOR", "TOP COLOR: %d DIFFUSE: %f BOTTOM COLOR: %d DIFFUSE: %f", v,

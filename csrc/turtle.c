@@ -11,6 +11,7 @@
 ** so that + turns anticlockwise seen from +z, as cpfg does.
 */
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -207,6 +208,22 @@ static const char *opname (int op) {
   for (k = 0; symbols[k].name; k++)
     if (symbols[k].op == op) return symbols[k].name;
   return "?";
+}
+
+/* An error about the current module: "module N 'op': <printf fmt>". */
+static int failop (run *R, const char *fmt, ...)
+#if defined(__GNUC__)
+  __attribute__((format(printf, 2, 3)))
+#endif
+  ;
+static int failop (run *R, const char *fmt, ...) {
+  char msg[200];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return lsys_seterror(&R->t->err, LSYS_EARG, R->mod, "module %zu '%s': %s", R->mod + 1,
+                       opname(R->op), msg);
 }
 
 static inline int arg (run *R, const double *p, uint32_t np, uint32_t k, double def,
@@ -720,12 +737,8 @@ static int gcmodule (run *R, int op, const double *p, uint32_t np) {
   int s;
   if (op != OP_GSTART) {
     if ((s = arg(R, p, np, 0, 1, &x)) != LSYS_OK) return s;
-    if (x < 1 || x > MAXSTRIPS) {
-      char m[120];
-      snprintf(m, sizeof m, "%%s: the number of strips must be from 1 to %d, got %g",
-               MAXSTRIPS, x);
-      return fail(R, LSYS_EARG, m, opname(op));
-    }
+    if (x < 1 || x > MAXSTRIPS)
+      return failop(R, "the number of strips must be from 1 to %d, got %g", MAXSTRIPS, x);
   }
   if (!R->draw) return LSYS_OK;
   if (op == OP_GSTART || st->gc == LSYS_NOREC) {   /* @Gc without @Gs starts one */
@@ -785,7 +798,7 @@ static int gcshape (run *R, int op, const double *p, uint32_t np) {
     case 0: memset(st->grad, 0, sizeof st->grad); return LSYS_OK;   /* back to linear */
     case 1: st->gadjust = v[0] != 0; return LSYS_OK;
     case 2: st->grad[0] = st->grad[2] = v[0]; st->grad[1] = st->grad[3] = v[1]; return LSYS_OK;
-    case 3: return fail(R, LSYS_EARG, "%s takes 1, 2 or 4 parameters, not 3", opname(op));
+    case 3: return failop(R, "takes 1, 2 or 4 parameters, not 3");
     default: memcpy(st->grad, v, sizeof st->grad); return LSYS_OK;
   }
 }
@@ -831,11 +844,7 @@ static int intarg (run *R, const double *p, uint32_t np, uint32_t k, double def,
   double x;
   int s;
   if ((s = arg(R, p, np, k, def, &x)) != LSYS_OK) return s;
-  if (!(x >= lo && x <= hi)) {
-    char m[160];
-    snprintf(m, sizeof m, "%%s: %s must be from %d to %d, got %g", what, lo, hi, x);
-    return fail(R, LSYS_EARG, m, opname(R->op));
-  }
+  if (!(x >= lo && x <= hi)) return failop(R, "%s must be from %d to %d, got %g", what, lo, hi, x);
   *out = (int)x;
   return LSYS_OK;
 }
@@ -845,7 +854,7 @@ static int patchmodule (run *R, int op, const double *p, uint32_t np) {
   lsys_turtle *t = R->t;
   lsys_lpatch *pt;
   int i, a, b, s;
-  if (np == 0) return fail(R, LSYS_EARG, "%s needs a patch number", opname(op));
+  if (np == 0) return failop(R, "needs a patch number");
   if ((s = intarg(R, p, np, 0, 0, 0, MAXPATCHES - 1, "the patch number", &i)) != LSYS_OK)
     return s;
   if ((size_t)i >= t->npatch) {
@@ -866,7 +875,7 @@ static int patchmodule (run *R, int op, const double *p, uint32_t np) {
       pt->started = 1;
       return LSYS_OK;
     case OP_PCTRL:
-      if (np < 3) return fail(R, LSYS_EARG, "%s needs a patch, a row and a column", opname(op));
+      if (np < 3) return failop(R, "needs a patch, a row and a column");
       if ((s = intarg(R, p, np, 1, 0, 0, 3, "the row", &a)) != LSYS_OK ||
           (s = intarg(R, p, np, 2, 0, 0, 3, "the column", &b)) != LSYS_OK)
         return s;
@@ -886,11 +895,7 @@ static int patchmodule (run *R, int op, const double *p, uint32_t np) {
       return newrec(R, LSYS_REC_SURFACE, R->st.pos, R->st.pos, 0, 0);
     }
   }
-  {
-    char m[120];
-    snprintf(m, sizeof m, "%%s: patch %d was not started with @PS(%d)", i, i);
-    return fail(R, LSYS_EARG, m, opname(op));
-  }
+  return failop(R, "patch %d was not started with @PS(%d)", i, i);
 }
 
 /* --- moves ------------------------------------------------------------- */
@@ -1061,23 +1066,16 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_TEXTURE:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
       k = toindex(x);
-      if (k > o->ntex) {
-        char m[160];
-        snprintf(m, sizeof m, "%%s: texture %d is not defined (the view has %d; "
-                 "view.textures)", k, o->ntex);
-        return fail(R, LSYS_EARG, m, opname(op));
-      }
+      if (k > o->ntex)
+        return failop(R, "texture %d is not defined (the view has %d; view.textures)", k,
+                      o->ntex);
       st->texture = k;
       return LSYS_OK;
     case OP_CONTOUR:
       if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
       k = toindex(x);
-      if (k != 0 && (k >= o->ncontours || o->contours[k] == NULL)) {
-        char m[160];
-        snprintf(m, sizeof m, "%%s: contour %d is not defined (view.contours; 0 is the "
-                 "circle)", k);
-        return fail(R, LSYS_EARG, m, opname(op));
-      }
+      if (k != 0 && (k >= o->ncontours || o->contours[k] == NULL))
+        return failop(R, "contour %d is not defined (view.contours; 0 is the circle)", k);
       st->contour = k;
       return LSYS_OK;
     case OP_GSTART: case OP_GPOINT: case OP_GEND: return gcmodule(R, op, p, np);

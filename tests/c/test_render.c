@@ -766,6 +766,34 @@ static void test_textured (void) {
                       3) == 0);
     list[0] = &tx;
   }
+  /* wider than OpenGL's largest texture (16384 in Mesa): resampled, red
+  ** left of the middle, blue right of it */
+  {
+    enum { BIG = 20000 };
+    uint8_t *wide = malloc(4 * BIG);
+    assert(wide != NULL);
+    for (i = 0; i < BIG; i++) memcpy(wide + 4 * i, i < BIG / 2 ? checker : checker + 8, 4);
+    tx2 = maketex(wide, BIG, 1);
+    tx2.mode = LSYS_TEX_DECAL;
+    list[0] = &tx2;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &o, -0.1, 0.5), checker, 3) == 0);
+    assert(memcmp(at(img, &m, &o, 0.1, -0.5), checker + 8, 3) == 0);
+    free(wide);
+    list[0] = &tx;
+  }
+  /* an intensity texture with transparent texels: grey, and cut out */
+  {
+    uint8_t ga[16] = {100, 100, 100, 255, 200, 200, 200, 0, 50, 50, 50, 255, 0, 0, 0, 255};
+    tx2 = maketex(ga, 2, 2);
+    tx2.intensity = 1;
+    list[0] = &tx2;
+    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(near(at(img, &m, &o, -0.5, 0.5)[0], lit[0] * 100 / 255.0, 2));
+    assert(near(at(img, &m, &o, -0.5, -0.5)[1], lit[0] * 50 / 255.0, 2));
+    assert(memcmp(at(img, &m, &o, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
+    list[0] = &tx;
+  }
   /* uv beyond [0, 1] repeats */
   for (i = 0; i < 8; i++) tuv[i] *= 2;
   tx.mode = LSYS_TEX_DECAL;

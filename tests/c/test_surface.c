@@ -411,6 +411,7 @@ static void test_malformed (void) {
   bad(HEAD "p\n", "t.s:8: patch 'p' ends early: expected "
       "'TOP COLOR: n DIFFUSE: n BOTTOM COLOR: n DIFFUSE: n'");
   bad(HEAD "p q\n", "t.s:7: expected a patch name (one word), found 'p q'");
+  bad(HEAD "\t p  q \r\n", "t.s:7: expected a patch name (one word), found 'p  q'");
   bad(HEAD "abcdefghijabcdefghijabcdefghijabcdefghijabcdefghijabcdefghij1234\n",
       "t.s:7: patch name 'abcdefghijabcdefghijabcd...' is longer than 63 bytes");
   bad(HEAD "p\nTOP COLOR: -1 DIFFUSE: 0 BOTTOM COLOR: 0 DIFFUSE: 0\n",

@@ -109,9 +109,16 @@ static void test_errors (void) {
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   o.sides = 8;
   /* found by the fuzzer: huge indices were converted to int unchecked */
-  parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(1e30)@#(4e9)F");
+  parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(0)@#(-4e9)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(t.rec[0].color == 65535 && t.rec[1].color == 0 && t.state.texture == 65535);
+  assert(t.rec[0].color == 65535 && t.rec[1].color == 0 && t.state.contour == 0);
+  /* textures and contours the view does not define are errors */
+  parse(&s, &a, "F@Tx(1e30)");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(strstr(t.err.msg, "module 2 '@Tx': texture 65535 is not defined (the view has 0") != NULL);
+  parse(&s, &a, "F@#(4e9)");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(strstr(t.err.msg, "module 2 '@#': contour 65535 is not defined") != NULL);
   parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nrec == 1);
   lsys_turtle_free(&t);
