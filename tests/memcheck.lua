@@ -3,7 +3,9 @@
 -- with contexts, stochastic rules, decomposition, homomorphism, function
 -- rules, the expression machine, errors raised from inside a step), the turtle
 -- (every style, polygons, deep branching, tropisms, queries, the streamed
--- homomorphism, errors), the export writers and the finalizers at exit.
+-- homomorphism, errors), generalized cylinders with contours, surfaces, patches and
+-- textures (and their file parsers and errors), the export writers and the finalizers at
+-- exit.
 -- Rendering is left out: OSMesa's own allocations are not ours to check. It prints "memcheck ok" when every check held.
 local lsys = require "lsys"
 
@@ -65,4 +67,36 @@ check(not pcall(t.interpret, t, "@S"), "@S refused")
 check(not pcall(t.interpret, t, "@Ts(9,1)"), "bad tropism index")
 local he = lsys.lsystem { homomorphism = { { "A", function () error("boom") end } } }
 check(not pcall(he.interpret, he, "F A"), "error in a homomorphism rule")
+-- generalized cylinders, contours, surfaces, patches, textures (seed 004 §3-5)
+local core = require "lsys.core"
+local png = os.tmpname() .. ".png"
+local px = {}
+for i = 0, 15 do px[#px + 1] = string.char(i * 16, 255 - i * 16, 80, 255) end
+core.png_write(png, table.concat(px), 4, 4, false)
+local gv = {
+  contour_sides = 7, textures = { png, { file = png, mode = "decal" } },
+  contours = { [2] = "tests/data/contours/fig12a.con", [3] = "tests/data/contours/fig16a.con" },
+  surfaces = { L = { file = "tests/data/surfaces/leaf.s", scale = 0.5 } },
+}
+local gc = lsys.lsystem {
+  axiom = "@Tx(1) @#(2) @Gs A(1) @Ge(2) [ @#(3) @Gs f @Ge ]", view = gv,
+  productions = "A(x) : x < 5 --> f @Gc(3) [ +(30) /(90) @#(3) A(x+1) @Ge(2) ] @Gt(1,2) @Gr(20,1) A(x+1)",
+  homomorphism = "A(x) --> ~L(0.3) @PS(1,2) @PC(1,1,2) @PD(1,3,3)",
+}
+for _, twist in ipairs { true, false } do
+  local sc = gc:interpret(gc:derive(4), { minimize_twist = twist })
+  check(sc.ntriangles > 100, "generalized cylinders")
+  sc:save(tmp .. ".glb"); sc:save(tmp .. ".obj")
+end
+for _, ext in ipairs { ".obj", ".mtl", ".glb", "" } do os.remove(tmp .. ext) end
+os.remove(png)
+for _, bad in ipairs { "@#(9)", "@Tx(7)", "~Q", "@PC(0,0,0)", "@Gs f @Gc(0)" } do
+  check(not pcall(gc.interpret, gc, bad), "bad geometry module " .. bad)
+end
+local bad = os.tmpname()
+local fh = io.open(bad, "w"); fh:write("3 2 closed\n0 0\n1 1\n"); fh:close()
+check(not pcall(core.contour_load, bad), "truncated contour file")
+check(not pcall(core.surface_load, bad), "malformed surface file")
+check(not pcall(core.texture_load, bad), "not a png")
+os.remove(bad)
 print("memcheck ok")
