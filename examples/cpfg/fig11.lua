@@ -34,10 +34,11 @@ return {
     steps = 126,
     env = { R = 1.02, Ang1 = 20, Ang2 = 7, Wid = 5, k = 0.25 },
     productions = "A(s,n) --> +(Ang1) /(Ang2) F(s,n) A(s*R, 3-n)",
-    homomorphism = [[
-      F(s,n) : n == 1 --> f(s) #(0.75*s*Wid) +(Ang1/2) @Gr(-100,2.5,0,4) @Gc(4) -(Ang1/2)
-      F(s,n) : n == 2 --> f(s*(1-k)) #(s*Wid) +(Ang1/2) @Gr(0,3,60,2.5) @Gc(4) -(Ang1/2) f(s*k) +(Ang1/2) @Gr(60,1,-100,1) @Gc(2) -(Ang1/2)
-    ]],
+    homomorphism = {
+      "F(s,n) : n == 1 --> f(s) #(0.75*s*Wid) +(Ang1/2) @Gr(-100,2.5,0,4) @Gc(4) -(Ang1/2)",
+      "F(s,n) : n == 2 --> f(s*(1-k)) #(s*Wid) +(Ang1/2) @Gr(0,3,60,2.5) @Gc(4) -(Ang1/2)"
+        .. " f(s*k) +(Ang1/2) @Gr(60,1,-100,1) @Gc(2) -(Ang1/2)",
+    },
     view = { palette = palette, contour_sides = 24, direction = { 0, 1, -0.4 },
              up = { 0, 0, 1 }, light = { -0.4, -0.7, 0.7 } },
   },

@@ -5,8 +5,9 @@
 -- `b`: the contour at both ends of a straight generalized cylinder:
 -- `@#(2) @Gs f(1.2) @Ge(8)`; the contour's first vertex lies along the turtle's up vector.
 -- `c`: the circle at the base and the contour at the top only: `@Gs f(1.2) @#(2) @Ge(8)`;
--- the cross-section blends linearly from one into the other. The guide does not print these two strings (they are
--- missing from the text); lengths and strip counts are chosen here. Radius 0.5.
+-- the cross-section blends linearly from one into the other. The guide does not print
+-- these two strings (they are missing from the text); lengths and strip counts are chosen
+-- here. Radius 0.5.
 local lsys = require "lsys"
 local plot = dofile(lsys.here() .. "/plot.lua")
 

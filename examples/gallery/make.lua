@@ -1,15 +1,25 @@
--- Renders the gallery: every picture listed below into examples/gallery/*.png and the page
--- examples/gallery/README.md that shows them. Each picture uses its model's own view, so
--- `lsys render` of the same file draws the same picture.
+-- Renders the gallery: every picture listed below into examples/gallery/*.png (the figures
+-- of the cpfg guide into examples/gallery/cpfg/) and the page examples/gallery/README.md that
+-- shows them. Each picture uses its model's own view, so `lsys render` of the same file
+-- draws the same picture.
 --
---   build/bin/lsys examples/gallery/make.lua [SIZE]      (default 480: 480x480 pictures)
+--   build/bin/lsys examples/gallery/make.lua [SIZE] [PATTERN...]
+--
+-- SIZE (default 480) is the size of the ABOP pictures; the others are scaled with it.
+-- A PATTERN (a Lua pattern) draws only the pictures whose PNG name matches one of the
+-- patterns, e.g. `cpfg/fig1[0-3]`, and leaves README.md as it is.
 local lsys = require "lsys"
 
-local size = tonumber(arg and arg[1]) or 480
+local size, patterns = 480, {}
+for _, a in ipairs(arg or {}) do
+  if tonumber(a) then size = tonumber(a) else patterns[#patterns + 1] = a end
+end
 local dir = (arg and arg[0] or "examples/gallery/make.lua"):match("^(.*)/[^/]*$") or "."
 local examples = dir .. "/.."
 
--- { file, model name (files returning a table of models), title, caption, view overrides }
+-- { file, model name (files returning a table of models), title, caption, view overrides,
+--   png = name (default: from file and model), width =, height = (pixels at SIZE 480;
+--   default SIZE), render = { options of lsys.render, e.g. wireframe = true } }
 local PICTURES = {
   { "default.lua", nil, "The default tree",
     "What `lsys render` draws without a model: a ternary tree with random angles, bent down "
@@ -67,6 +77,155 @@ local PICTURES = {
     "Dragon curve by edge rewriting with left and right edges, n = 10." },
   { "abop/fig1_11a.lua", nil, "ABOP 1.11a",
     "Hexagonal Gosper curve (flowsnake) by edge rewriting, n = 4, δ = 60°." },
+  -- the cpfg guide (seed 004): generalized cylinders, surfaces, textures; examples/cpfg
+  { "cpfg/fig05.lua", "a", "Fig. 5a",
+    "`@Gs f -(45) f @Ge(6)`: the turtle path (grey), the two control points and the Hermite "
+    .. "curve between them; the curve leaves along the first heading and arrives along the "
+    .. "second.", width = 320, height = 320 },
+  { "cpfg/fig05.lua", "b", "Fig. 5b",
+    "The same curve swept by a disc of radius 0.2 in 6 mesh strips.", width = 320, height = 320 },
+  { "cpfg/fig05.lua", "b", "Fig. 5c",
+    "The same generalized cylinder as a wireframe: 6 strips of 8 quadrilaterals, flat caps.",
+    png = "cpfg/fig05_c.png", width = 320, height = 320, render = { wireframe = true } },
+  { "cpfg/fig06.lua", nil, "Fig. 6",
+    "The cylinder of fig. 5 with 1 to 5 mesh strips (wireframe): one strip is a straight "
+    .. "sheared tube, the bend appears as strips are added.", width = 640, height = 240,
+    render = { wireframe = true } },
+  { "cpfg/fig07.lua", "a", "Fig. 7a",
+    "The snake kolam, n = 2, drawn with lines.", width = 320, height = 320 },
+  { "cpfg/fig07.lua", "b", "Fig. 7b",
+    "The same curve as one closed generalized cylinder with a control point in the middle "
+    .. "of every segment (F → f @Gc(4) f): the corners become arcs.", width = 320, height = 320 },
+  { "cpfg/fig09.lua", "a", "Fig. 9a",
+    "The longitudinal section R(t) of `@Gr(30,4.5,0,3.5)`: from radius 0.2 to 0.1 over a "
+    .. "unit length, with tangents of 30° and 0°.", width = 320, height = 320 },
+  { "cpfg/fig09.lua", "bcd", "Fig. 9b–d",
+    "That section on a cylinder of length 1 (b) and 1.5 (c, d); d keeps the tangent angles "
+    .. "on the longer segment (@Gr(1)).", width = 320, height = 320 },
+  { "cpfg/fig10.lua", "a", "Fig. 10a",
+    "The same section on a curved cylinder `@Gs -(45) f -(45) @Ge(20)`: the bulge follows "
+    .. "the bend.", width = 320, height = 320 },
+  { "cpfg/fig08.lua", nil, "Fig. 8",
+    "Tangent coefficients of the axis, left to right: 1.2,1.2 (default); 2,2; 0.5,0.5; 4,1; "
+    .. "3,−2. Grey: the tangent vectors at 1/4 of their length.", width = 800, height = 240 },
+  { "cpfg/fig10.lua", "b", "Fig. 10b",
+    "Cross-sections swept along a bent axis, each perpendicular to it (wireframe).",
+    width = 320, height = 320, render = { wireframe = true } },
+  { "cpfg/fig10.lua", "c", "Fig. 10c",
+    "A radius larger than the radius of curvature: the cross-sections cross on the inside "
+    .. "of the bend (wireframe).", width = 320, height = 320, render = { wireframe = true } },
+  { "cpfg/fig11.lua", "a", "Fig. 11a",
+    "A shell: 117 segments of a helico-spiral (R 1.03, 20°, 2.1°) as one tapering generalized "
+    .. "cylinder with linear radius interpolation.", width = 320, height = 320 },
+  { "cpfg/fig11.lua", "b", "Fig. 11b",
+    "The precious wentletrap (reconstructed): the radius tangents of @Gr shape a rib at every "
+    .. "other segment; a tall, open spire.", width = 320, height = 320 },
+  { "cpfg/fig12.lua", "a", "Fig. 12a",
+    "A closed contour file: 12 control points (the first bigger), the closed B-spline and the "
+    .. "unit circle.", width = 320, height = 320 },
+  { "cpfg/fig12.lua", "b", "Fig. 12b",
+    "The contour at both ends of a straight generalized cylinder, 32 sides.",
+    width = 320, height = 320 },
+  { "cpfg/fig12.lua", "c", "Fig. 12c",
+    "A circle at the base and the contour at the top: the cross-section blends from one into "
+    .. "the other.", width = 320, height = 320 },
+  { "cpfg/fig13.lua", "a", "Fig. 13a",
+    "The contour of fig. 12 in 3D: the first control point is lifted by 1 along the axis.",
+    width = 320, height = 320 },
+  { "cpfg/fig13.lua", "b", "Fig. 13b",
+    "The 3D contour at both ends: a tongue rises from the rim along the axis.",
+    width = 320, height = 320 },
+  { "cpfg/fig13.lua", "c", "Fig. 13c",
+    "A circle at the base and the 3D contour at the top.", width = 320, height = 320 },
+  { "cpfg/fig14.lua", "b", "Fig. 14b",
+    "A stem segment with an 8-ribbed star contour and a pointed tip (radius tangent −45°).",
+    width = 320, height = 320 },
+  { "cpfg/fig14.lua", "c", "Fig. 14c",
+    "The cactus Lemaireocereus chende: the guide's stochastic L-system (seed 2, 16 steps); "
+    .. "the branches bend up under a tropism, apices that point down are cut.",
+    width = 320, height = 320 },
+  { "cpfg/fig15.lua", "a", "Fig. 15b",
+    "An aloe leaf: two control points, a keeled leaf contour and a bulging longitudinal "
+    .. "section (@Gr).", width = 320, height = 320 },
+  { "cpfg/fig15.lua", "c", "Fig. 15c",
+    "Aloe variegata (reconstructed): a rosette of leaves in three ranks, a tapering stalk and "
+    .. "a raceme of pendulous six-lobed flowers.", width = 320, height = 320 },
+  { "cpfg/fig16.lua", "a", "Fig. 16a",
+    "An open contour: 15 control points, the first and last repeated three times.",
+    width = 320, height = 320 },
+  { "cpfg/fig16.lua", "b", "Fig. 16b",
+    "A long leaf blade: one curved segment of length 10 with the open contour and a bulging "
+    .. "section, seen face on.", width = 320, height = 320 },
+  { "cpfg/fig16.lua", "c", "Fig. 16c",
+    "The same blade from the side: the open, wavy cross-section.", width = 320, height = 320 },
+  { "cpfg/fig17.lua", "a", "Fig. 17a",
+    "An open, nearly straight contour swept along a helico-spiral (R 1.04, Ang3 78°): a "
+    .. "conical shell.", width = 320, height = 320 },
+  { "cpfg/fig17.lua", "b", "Fig. 17b",
+    "A triangular open contour (R 1.02, Ang3 80°): whorls with a sharp keel.",
+    width = 320, height = 320 },
+  { "cpfg/fig17.lua", "c", "Fig. 17c",
+    "Two contours alternating between odd and even segments: a row of knobs on each whorl.",
+    width = 320, height = 320 },
+  { "cpfg/fig18.lua", nil, "Fig. 18",
+    "The pelican's foot shell: the contours of fig. 17c and, on the last, doubled segment, a "
+    .. "third contour that flares into a lip with fingers.", width = 320, height = 320 },
+  { "cpfg/fig19.lua", "a", "Fig. 19a",
+    "`@Gs f -(30) f /(180) @Ge(10)` with a star contour and twist minimisation off: the roll "
+    .. "twists the segment by 180°.", width = 320, height = 320 },
+  { "cpfg/fig19.lua", "b", "Fig. 19b",
+    "The same string with the twist minimised (the default): the roll has no effect.",
+    width = 320, height = 320 },
+  { "cpfg/fig19.lua", "c", "Fig. 19c",
+    "A twisted column: a roll of 12° before each of 32 control points, twist minimisation "
+    .. "off.", width = 320, height = 320 },
+  { "cpfg/fig21.lua", "a", "Fig. 21a",
+    "A branch fork `B F [ +(40) ! F E ] [ -(25) ! F E ]` drawn with straight cylinders.",
+    width = 320, height = 320 },
+  { "cpfg/fig21.lua", "b", "Fig. 21b",
+    "The parametric curves of the homomorphism F → f(0.5) @Gc(4) f(0.5) and their control "
+    .. "points; both branches leave from the same point.", width = 320, height = 320 },
+  { "cpfg/fig21.lua", "c", "Fig. 21c",
+    "The generalized cylinders (wireframe): the two daughter branches overlap at the fork.",
+    width = 320, height = 320, render = { wireframe = true } },
+  { "cpfg/fig21.lua", "c", "Fig. 21d",
+    "The same cylinders shaded: a smooth fork.", png = "cpfg/fig21_d.png",
+    width = 320, height = 320 },
+  { "cpfg/fig22.lua", nil, "Fig. 22",
+    "An apple blossom, 2 steps, δ = 18°: five calyx leaves and petals (predefined Bézier "
+    .. "surfaces ~C and ~P) and branched stamens.", width = 320, height = 320 },
+  { "cpfg/fig23.lua", nil, "Fig. 23",
+    "A fern frond: polygonal leaflets traced by the turtle grow by one F per edge each step; "
+    .. "the youngest are at the top.", width = 320, height = 320 },
+  { "cpfg/fig24.lua", nil, "Fig. 24",
+    "One polygon whose vertices (dots) are the ends of a branching framework, listed in "
+    .. "order around the outline.", width = 320, height = 320 },
+  { "cpfg/fig25.lua", nil, "Fig. 25",
+    "Stacked polygons: three planar pieces of a bent blade, all opened in one branch and "
+    .. "closed in another.", width = 320, height = 320 },
+  { "cpfg/fig27.lua", "all", "Fig. 27",
+    "Petals from one Bézier patch placed by the turtle (@PS, @PC, @PD): the parameter sets "
+    .. "a–e of the guide's table, left to right.", width = 800, height = 300 },
+  { "cpfg/fig28.lua", "all", "Fig. 28",
+    "The development of a petal: values interpolated over 10 steps; after 0, 2, ..., 10 "
+    .. "steps, left to right.", width = 800, height = 300 },
+  { "cpfg/fig31.lua", "a", "Fig. 31a",
+    "A chessboard texture per patch on a two-patch leaf surface: each patch gets the whole "
+    .. "image.", width = 320, height = 320 },
+  { "cpfg/fig31.lua", "b", "Fig. 31b",
+    "The same texture per surface: laid over the surface's bounding box.",
+    width = 320, height = 320 },
+  { "cpfg/fig34.lua", "a", "Fig. 34a",
+    "A texture on a polygon: the chessboard fills the polygon's bounding rectangle along "
+    .. "the heading and the right vector.", width = 320, height = 320 },
+  { "cpfg/fig33.lua", "a", "Fig. 33a",
+    "A bark texture on a tapering stem of four cylinders; it continues from segment to "
+    .. "segment.", width = 320, height = 320 },
+  { "cpfg/fig33.lua", "b", "Fig. 33b",
+    "The bark texture on a branching generalized cylinder; it is discontinuous at the forks, "
+    .. "where two cylinders overlap.", width = 320, height = 320 },
+  { "cpfg/fig34.lua", "b", "Fig. 34b",
+    "A textured polygon: a venation image on a leaf blade.", width = 320, height = 320 },
 }
 
 local function load (file, name)
@@ -76,22 +235,42 @@ local function load (file, name)
   return v
 end
 
-local rows, bytes = {}, 0
+local function wanted (png)
+  if #patterns == 0 then return true end
+  for _, pat in ipairs(patterns) do
+    if png:find(pat) then return true end
+  end
+  return false
+end
+
+local rows, bytes, drawn = {}, 0, 0
 for i, p in ipairs(PICTURES) do
   local file, name, title, caption, over = p[1], p[2], p[3], p[4], p[5]
-  local m = load(file, name)
-  local t0 = os.clock()
-  local s = m:derive()
-  local sc = m:interpret(s, over)
-  local png = file:gsub("^abop/", ""):gsub("%.lua$", "") .. (name and "_" .. name or "") .. ".png"
-  lsys.render(sc, { out = dir .. "/" .. png, width = size, height = size })
-  local f = assert(io.open(dir .. "/" .. png, "rb"))
-  bytes = bytes + f:seek("end")
-  f:close()
-  io.stderr:write(string.format("[%2d/%d] %-16s %8d modules %8d triangles %6d lines  %.2f s\n",
-    i, #PICTURES, png, #s, sc.ntriangles, sc.nlines, os.clock() - t0))
-  rows[#rows + 1] = { png = png, title = title, caption = caption, file = file, name = name,
-                      n = #s, tris = sc.ntriangles, lines = sc.nlines }
+  local png = p.png or
+    file:gsub("^abop/", ""):gsub("%.lua$", "") .. (name and "_" .. name or "") .. ".png"
+  if wanted(png) then
+    local m = load(file, name)
+    local t0 = os.clock()
+    local s = m:derive()
+    local sc = m:interpret(s, over)
+    local ro = { out = dir .. "/" .. png, width = math.floor((p.width or 480) * size / 480),
+                 height = math.floor((p.height or 480) * size / 480) }
+    for k, v in pairs(p.render or {}) do ro[k] = v end
+    lsys.render(sc, ro)
+    local f = assert(io.open(dir .. "/" .. png, "rb"))
+    bytes = bytes + f:seek("end")
+    f:close()
+    drawn = drawn + 1
+    io.stderr:write(string.format("[%2d/%d] %-20s %8d modules %8d triangles %6d lines  %.2f s\n",
+      i, #PICTURES, png, #s, sc.ntriangles, sc.nlines, os.clock() - t0))
+    rows[#rows + 1] = { png = png, title = title, caption = caption, file = file, name = name,
+                        n = #s, tris = sc.ntriangles, lines = sc.nlines }
+  end
+end
+if #patterns > 0 then
+  io.stderr:write(string.format("%d pictures, %.1f MB of PNG; README.md not rewritten "
+    .. "(a pattern was given)\n", drawn, bytes / 1e6))
+  return
 end
 
 local SECTIONS = {     -- heading, first picture of the section, pictures per row
@@ -102,6 +281,15 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Sympodial trees (ABOP 2.7)", "fig2_07_a.png", 2 },
   { "Trees bent by tropism (ABOP 2.8)", "fig2_08_a.png", 2 },
   { "Curves (ABOP 1.6, 1.10a, 1.11a)", "fig1_06.png", 3 },
+  { "Generalized cylinders (cpfg guide §3.1–3.2, figs. 5–11)", "cpfg/fig05_a.png", 3 },
+  { "Tangent coefficients (fig. 8)", "cpfg/fig08.png", 1 },
+  { "Curved cylinders and shells (figs. 10, 11)", "cpfg/fig10_b.png", 2 },
+  { "Contours (§3.2.3, figs. 12–18)", "cpfg/fig12_a.png", 3 },
+  { "Twist of generalized cylinders (§3.3, fig. 19)", "cpfg/fig19_a.png", 3 },
+  { "Branching generalized cylinders (§3.4, fig. 21)", "cpfg/fig21_a.png", 4 },
+  { "Surfaces (§4, figs. 22–25)", "cpfg/fig22.png", 2 },
+  { "Bicubic petals (§4.3, figs. 27, 28)", "cpfg/fig27_all.png", 1 },
+  { "Textures (§5, figs. 31, 33, 34)", "cpfg/fig31_a.png", 3 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
@@ -138,17 +326,21 @@ f:write([[
 # Gallery
 
 Pictures drawn by lsys from the model files in [`examples/`](..): the bracketed plants,
-trees and curves of *The Algorithmic Beauty of Plants* (ABOP), chapters 1 and 2, and the
-default tree. They are rendered headless with OSMesa, each with the view stored in its model
-file, so `build/bin/lsys render FILE -o out.png --size 480x480` draws the same picture (add
-`--name a` for a file that holds several models). Each caption says what the picture shows,
-then gives the model file, the number of modules in the derived string and the size of the
+trees and curves of *The Algorithmic Beauty of Plants* (ABOP), chapters 1 and 2, the
+default tree, and the figures of the cpfg guide to generalized cylinders, surfaces and
+textures ([`examples/cpfg/`](../cpfg), pictures in `cpfg/`). They are rendered headless with
+OSMesa, each with the view stored in its model file, so `build/bin/lsys render FILE -o
+out.png --size 480x480` draws the same picture (add `--name a` for a file that holds several
+models; the cpfg pictures are 320x320 or wider, and the wireframes are drawn with
+`lsys.render(scene, { wireframe = true })`). Each caption says what the picture shows, then
+gives the model file, the number of modules in the derived string and the size of the
 geometry.
 
 To draw them again after a build (a few seconds):
 
 ```sh
 build/bin/lsys examples/gallery/make.lua          # 480x480; an argument sets another size
+build/bin/lsys examples/gallery/make.lua cpfg/fig1[0-3]   # only these; README.md unchanged
 ```
 
 ]])

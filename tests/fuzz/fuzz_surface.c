@@ -9,7 +9,8 @@
 **
 **   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF
 **   cmake --build build-fuzz --target fuzz_surface
-**   build-fuzz/fuzz_surface -max_total_time=300 tests/fuzz/corpus_surface
+**   build-fuzz/fuzz_surface -max_total_time=300 -dict=tests/fuzz/surface.dict \
+**                           tests/fuzz/corpus_surface
 */
 #include <math.h>
 #include <stdint.h>

@@ -1,0 +1,79 @@
+-- Writes the texture images of the cpfg examples (small PNGs, committed next to this file):
+--   chessboard.png  128x128, 8x8 squares, red and white (fig31.lua)
+--   bark.png        128x128 bark with vertical fissures; it tiles in both directions, as
+--                   §5.2 of the guide asks of a texture repeated along a stem (fig33.lua)
+--   venation.png    128x128 a leaf blade with a midrib and side veins (fig34.lua)
+-- Run with the lsys module on the path, e.g. `build/bin/lsys examples/cpfg/textures/make.lua`;
+-- an argument names another directory to write to (tests/examples_spec.lua does that).
+-- Everything is computed from a fixed seed, so the files come out the same each time.
+local core = require "lsys.core"
+
+local dir = ... or (arg and arg[0] or ""):match("^(.*)/[^/]*$") or "."
+local char, floor, max, min = string.char, math.floor, math.max, math.min
+
+local function byte (x) return char(max(0, min(255, floor(x * 255 + 0.5)))) end
+
+-- an image from f(x, y) -> r, g, b in 0..1, x and y in [0, 1)
+local function write (name, w, h, f)
+  local px = {}
+  for j = 0, h - 1 do
+    for i = 0, w - 1 do
+      local r, g, b = f(i / w, j / h)
+      px[#px + 1] = byte(r) .. byte(g) .. byte(b) .. "\255"
+    end
+  end
+  core.png_write(dir .. "/" .. name, table.concat(px), w, h, false)
+end
+
+-- a small linear congruential generator: the same numbers on every machine
+local seed = 12345
+local function rand ()
+  seed = (seed * 1103515245 + 12345) % 2147483648
+  return seed / 2147483648
+end
+
+-- periodic value noise: a random grid of nx by ny values, smoothly interpolated and wrapped
+local function noise (nx, ny)
+  local g = {}
+  for j = 0, ny - 1 do
+    g[j] = {}
+    for i = 0, nx - 1 do g[j][i] = rand() end
+  end
+  return function (x, y)
+    local fx, fy = x * nx, y * ny
+    local i0, j0 = floor(fx), floor(fy)
+    local tx, ty = fx - i0, fy - j0
+    tx, ty = tx * tx * (3 - 2 * tx), ty * ty * (3 - 2 * ty)
+    local i1, j1 = (i0 + 1) % nx, (j0 + 1) % ny
+    i0, j0 = i0 % nx, j0 % ny
+    local a = g[j0][i0] + (g[j0][i1] - g[j0][i0]) * tx
+    local b = g[j1][i0] + (g[j1][i1] - g[j1][i0]) * tx
+    return a + (b - a) * ty
+  end
+end
+
+write("chessboard.png", 128, 128, function (x, y)
+  if (floor(x * 8) + floor(y * 8)) % 2 == 0 then return 0.85, 0.12, 0.10 end
+  return 0.97, 0.97, 0.94
+end)
+
+-- Bark: ridges across u (around the stem) wavering along v; dark fissures between them.
+local n1, n2, n3 = noise(8, 4), noise(16, 16), noise(32, 32)
+write("bark.png", 128, 128, function (x, y)
+  local u = x * 6 + 0.6 * n1(x, y) + 0.15 * n2(x, y)     -- 6 ridges around
+  local ridge = math.abs(math.sin(math.pi * u))           -- 0 in a fissure, 1 on a ridge
+  local t = ridge ^ 0.35 * (0.75 + 0.25 * n3(x, y))
+  return 0.16 + 0.42 * t, 0.11 + 0.30 * t, 0.07 + 0.18 * t
+end)
+
+-- Venation: x across the blade, y along it (the midrib at x = 0.5); side veins leave the
+-- midrib at 45° every 1/7 of the length.
+write("venation.png", 128, 128, function (x, y)
+  local d = math.abs(x - 0.5)
+  local vein = math.max(0, 1 - d / 0.018)                 -- the midrib
+  local s = (y - d * 0.9) * 7                             -- side veins, slanting up
+  local k = math.abs(s - floor(s + 0.5))
+  vein = math.max(vein, math.max(0, 1 - k / 0.06) * (1 - d * 1.6))
+  local shade = 0.85 + 0.15 * n2(x, y)
+  return (0.22 + 0.45 * vein) * shade, (0.48 + 0.35 * vein) * shade, (0.16 + 0.25 * vein) * shade
+end)
