@@ -148,6 +148,9 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->cs);
   LSYS_FREE(t->patch);
   LSYS_FREE(t->surfsym);
+  for (k = 0; k < t->nstess; k++) lsys_mesh_free(&t->stess[k]);
+  LSYS_FREE(t->stess);
+  LSYS_FREE(t->stessok);
   lsys_lstring_free(&t->hbuf);
   if (t->pw) { lsys_polywork_free(t->pw); LSYS_FREE(t->pw); }
   memset(t, 0, sizeof *t);
@@ -815,6 +818,42 @@ static void place (run *R, lsys_place *pl, double scale, int tex) {
   R->t->mesh->curtex = (unsigned)tex;
 }
 
+/* Surface k of the view tessellated in its own frame (contact point at the
+** origin, SIZE 1), once per run and uv mode: every ~X then only turns and
+** scales a copy. */
+static const lsys_mesh *surftess (run *R, int k, int uvsurf, int *status) {
+  lsys_turtle *t = R->t;
+  const lsys_surfuse *u = &R->o->surfaces[k];
+  size_t slot = 2 * (size_t)k + (size_t)uvsurf;
+  lsys_place pl;
+  if (slot >= t->nstess) {
+    size_t n = 2 * (size_t)R->o->nsurfaces, j;
+    lsys_mesh *m = (lsys_mesh *)LSYS_REALLOC(t->stess, n * sizeof *m);
+    uint8_t *ok = m ? (uint8_t *)LSYS_REALLOC(t->stessok, n) : NULL;
+    if (m) t->stess = m;
+    if (ok == NULL) { *status = nomem(R); return NULL; }
+    t->stessok = ok;
+    for (j = t->nstess; j < n; j++) { lsys_mesh_init(&t->stess[j]); ok[j] = 0; }
+    t->nstess = n;
+  }
+  if (!t->stessok[slot]) {
+    lsys_mesh *m = &t->stess[slot];
+    int s;
+    memset(&pl, 0, sizeof pl);
+    vcopy(pl.H, u->s->heading); vcopy(pl.U, u->s->up);
+    vcross(pl.L, pl.H, pl.U);
+    pl.scale = u->s->size > 0 ? u->s->size : 1;
+    pl.uv_surface = uvsurf;
+    lsys_mesh_clear(m);
+    if ((s = lsys_surface_mesh(m, u->s, &pl, u->ns, u->nt)) != LSYS_OK) {
+      *status = s == LSYS_ENOMEM ? nomem(R) : failop(R, "cannot tessellate the surface");
+      return NULL;
+    }
+    t->stessok[slot] = 1;
+  }
+  return &t->stess[slot];
+}
+
 /* ~X(s): the view's surface X at the turtle, scaled by s; the turtle then
 ** stands at the surface's end point. */
 static int surface (run *R, uint32_t sym, const double *p, uint32_t np) {
@@ -831,8 +870,32 @@ static int surface (run *R, uint32_t sym, const double *p, uint32_t np) {
   tex = u->texture > 0 ? u->texture : st->texture;
   place(R, &pl, u->scale * x * st->scale, tex);
   vcopy(p0, st->pos);
-  if (R->draw && (s = lsys_surface_mesh(R->t->mesh, u->s, &pl, u->ns, u->nt)) != LSYS_OK)
-    return s == LSYS_ENOMEM ? nomem(R) : fail(R, s, "%s", "the scene is too big");
+  if (R->draw) {
+    lsys_mesh *m = R->t->mesh;
+    const lsys_mesh *tm = surftess(R, k, pl.uv_surface, &s);
+    double Rw[3][3], kk = pl.scale / (u->s->size > 0 ? u->s->size : 1), LS[3];
+    uint32_t first;
+    size_t i;
+    int a, b;
+    if (tm == NULL) return s;
+    if (lsys_mesh_reserve(m, tm->nv, tm->nt) != LSYS_OK) return nomem(R);
+    vcross(LS, u->s->heading, u->s->up);
+    for (a = 0; a < 3; a++)              /* H_S -> H, U_S -> U, H_S x U_S -> L */
+      for (b = 0; b < 3; b++)
+        Rw[a][b] = st->L[a] * LS[b] + st->H[a] * u->s->heading[b] + st->U[a] * u->s->up[b];
+    first = (uint32_t)m->nv;
+    for (i = 0; i < tm->nv; i++) {
+      const float *q = tm->pos + 3 * i, *n = tm->nrm + 3 * i;
+      double P[3], N[3];
+      for (a = 0; a < 3; a++) {
+        P[a] = st->pos[a] + kk * (Rw[a][0] * q[0] + Rw[a][1] * q[1] + Rw[a][2] * q[2]);
+        N[a] = Rw[a][0] * n[0] + Rw[a][1] * n[1] + Rw[a][2] * n[2];
+      }
+      lsys_mesh_vertex(m, P, N, tm->uv[2 * i], tm->uv[2 * i + 1], pl.color, 1);
+    }
+    for (i = 0; i < tm->nt; i++)
+      lsys_mesh_tri(m, first + tm->tri[3 * i], first + tm->tri[3 * i + 1], first + tm->tri[3 * i + 2]);
+  }
   lsys_surface_endpoint(u->s, &pl, st->pos);
   st->tip = LSYS_NOREC;
   return R->draw ? newrec(R, LSYS_REC_SURFACE, p0, st->pos, 0, 0) : LSYS_OK;
@@ -1235,6 +1298,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   t->ngcp = 0;
   for (k = 0; (size_t)k < t->ncs; k++) t->cs[k].valid = 0;
   for (k = 0; (size_t)k < t->npatch; k++) t->patch[k].started = 0;
+  if (t->nstess > 0) memset(t->stessok, 0, t->nstess);
   R->ab = ab;
   for (k = 0; k < o->ntrop; k++) st->elast[k] = o->trop[k].elasticity;
   if (setring(R) != LSYS_OK) return t->err.code;

@@ -155,6 +155,8 @@ typedef struct lsys_turtle {
   lsys_csample *cs; size_t ncs;               /* sampled contours by id */
   lsys_lpatch *patch; size_t npatch;          /* @PS/@PC/@PD patches by number */
   uint32_t *surfsym;                          /* symbol id of each view surface */
+  lsys_mesh *stess; uint8_t *stessok; size_t nstess;  /* surfaces tessellated in their
+                                                 own frame: 2 per surface (uv modes) */
 } lsys_turtle;
 
 void lsys_turtle_init (lsys_turtle *t);

@@ -28,7 +28,7 @@ local COUNTS = {
   fig12 = { a = { 486, 1440, 208 }, b = { 5, 572, 0 }, c = { 5, 572, 0 } },
   fig13 = { a = { 486, 1440, 208 }, b = { 5, 572, 0 }, c = { 5, 572, 0 } },
   fig14 = { b = { 7, 1052, 0 }, c = { 405, 29004, 0 } },
-  fig15 = { a = { 1, 828, 0 }, c = { 181, 25852, 0 } },
+  fig15 = { a = { 1, 828, 0 }, c = { 182, 25852, 0 } },
   fig16 = { a = { 501, 1800, 208 }, b = { 10, 1280, 0 }, c = { 10, 1280, 0 } },
   fig17 = { a = { 187, 15360, 0 }, b = { 307, 25600, 0 }, c = { 307, 25600, 0 } },
   fig18 = { { 277, 34752, 0 } },
@@ -224,10 +224,10 @@ describe("examples/cpfg data files", function ()
     os.remove(tmp)
     assert(os.execute("mkdir -p " .. tmp))
     assert(loadfile(DIR .. "/textures/make.lua"))(tmp)
-    for _, f in ipairs { "chessboard.png", "bark.png", "venation.png" } do
+    for _, f in ipairs { "chessboard.png", "bark.png", "venation.png", "aloe.png" } do
       local pa, wa, ha = core.png_read(DIR .. "/textures/" .. f)
       local pb, wb, hb = core.png_read(tmp .. "/" .. f)
-      assert.same({ 128, 128 }, { wa, ha }, f)
+      assert.same({ f == "aloe.png" and 64 or 128, 128 }, { wa, ha }, f)
       assert.same({ wa, ha }, { wb, hb }, f)
       assert.is_true(pa == pb, f .. ": pixels differ")
       os.remove(tmp .. "/" .. f)

@@ -2,7 +2,7 @@
 -- prose only; this L-system is a reconstruction. The axiom lays out the plant: a whorl of
 -- thick leaves at the bottom (A), a tapered flower stalk (S F ... E) and a phyllotactic
 -- raceme of flowers at its top (P).
---   p1: A(n) makes one leaf L and a shorter step up the rosette per step; the leaf's
+--   p1: A(n) makes one leaf L and a short step up the rosette per step; the leaf's
 --       initial angle from the vertical decreases from the outer (first) leaf to the inner
 --       ones; divergence 121°, so the leaves stand in three slowly twisting ranks, as in
 --       the real plant.
@@ -14,13 +14,16 @@
 -- the tip. h2 draws a flower G as a thin pedicel and a pendulous tube with the six-lobed
 -- contour 3, again with two control points. The stalk is one generalized cylinder that
 -- tapers from S to E, with a control point at each internode. Contours are in fig15.v.
--- `a` is a single leaf (fig. 15b).
+-- The leaves carry the texture textures/aloe.png (@Tx(1); written by textures/make.lua):
+-- the broken pale bands across the leaves of the real plant. The /(40) of the axiom only
+-- turns the plant so that all three ranks of leaves show. `a` is a single leaf (fig. 15b).
 local lsys = require "lsys"
 
 local function view (over)
   local v = lsys.view.load(lsys.here() .. "/fig15.v")
+  v.textures = { { file = "textures/aloe.png", mag = "linear", min = "linear" } }
   v.palette = {
-    { diffuse = { 0.22, 0.36, 0.20 }, specular = { 0.25, 0.25, 0.25 }, shininess = 30 },
+    { diffuse = { 1, 1, 1 }, specular = { 0.25, 0.25, 0.25 }, shininess = 30 },  -- 1 leaves
     { 0.46, 0.52, 0.30 },                                       -- 2 stalk
     { diffuse = { 0.90, 0.42, 0.36 }, specular = { 0.2, 0.2, 0.2 }, shininess = 20 },
   }
@@ -29,7 +32,8 @@ local function view (over)
 end
 
 local homomorphism = {
-  "L(s) --> ;(1) @#(2) #(0.45*s) @Gs f(0.6*s) &(12) @Gr(12,1,-20,1) f(0.4*s) !(0.01) @Ge(12)",
+  "L(s) --> ;(1) @Tx(1) @#(2) #(0.45*s) @Gs f(0.6*s) &(12) @Gr(12,1,-20,1) f(0.4*s) !(0.01)"
+    .. " @Ge(12)",
   "G(s) --> ;(2) !(0.05) @Gs &(30) f(0.25) &(110) @Ge(3)"            -- the pedicel
     .. " ;(3) @#(3) !(0.22*s) @Gs f(s) !(0.3*s) @Ge(6)",               -- the flower
   "S --> ;(2) !(0.32) @Gs",
@@ -40,7 +44,7 @@ local homomorphism = {
 
 return {
   c = lsys.lsystem {
-    axiom = "A(NL) S F(5) P(NF) E",
+    axiom = "/(40) A(NL) S F(3.5) P(NF) E",
     steps = 16,
     env = { NL = 16, NF = 16, DIV = 121 },
     productions = {
@@ -50,7 +54,7 @@ return {
       "G(s) : s < 0.9 --> G(s*1.25)",
     },
     homomorphism = homomorphism,
-    view = view { direction = { 0, -0.35, -1 } },
+    view = view { direction = { 0, -0.5, -1 } },
   },
   a = lsys.lsystem {
     axiom = "L(4)",

@@ -148,8 +148,8 @@ local PICTURES = {
     "An aloe leaf: two control points, a keeled leaf contour and a bulging longitudinal "
     .. "section (@Gr).", width = 320, height = 320 },
   { "cpfg/fig15.lua", "c", "Fig. 15c",
-    "Aloe variegata (reconstructed): a rosette of leaves in three ranks, a tapering stalk and "
-    .. "a raceme of pendulous six-lobed flowers.", width = 320, height = 320 },
+    "Aloe variegata (reconstructed): a rosette of banded (textured) leaves in three ranks, a "
+    .. "tapering stalk and a raceme of pendulous six-lobed flowers.", width = 320, height = 320 },
   { "cpfg/fig16.lua", "a", "Fig. 16a",
     "An open contour: 15 control points, the first and last repeated three times.",
     width = 320, height = 320 },

@@ -3,6 +3,8 @@
 --   bark.png        128x128 bark with vertical fissures; it tiles in both directions, as
 --                   §5.2 of the guide asks of a texture repeated along a stem (fig33.lua)
 --   venation.png    128x128 a leaf blade with a midrib and side veins (fig34.lua)
+--   aloe.png        64x128 dark green with broken pale bands across, the leaf pattern of
+--                   Aloe variegata (fig15.lua); it tiles in both directions
 -- Run with the lsys module on the path, e.g. `build/bin/lsys examples/cpfg/textures/make.lua`;
 -- an argument names another directory to write to (tests/examples_spec.lua does that).
 -- Everything is computed from a fixed seed, so the files come out the same each time.
@@ -76,4 +78,14 @@ write("venation.png", 128, 128, function (x, y)
   vein = math.max(vein, math.max(0, 1 - k / 0.06) * (1 - d * 1.6))
   local shade = 0.85 + 0.15 * n2(x, y)
   return (0.22 + 0.45 * vein) * shade, (0.48 + 0.35 * vein) * shade, (0.16 + 0.25 * vein) * shade
+end)
+
+-- Aloe: v (along the leaf) crosses four pale bands, broken up by noise around u.
+local a1, a2 = noise(8, 8), noise(16, 32)
+write("aloe.png", 64, 128, function (x, y)
+  local band = math.sin(2 * math.pi * (4 * y + 0.35 * a1(x, y)))
+  local pale = math.max(0, band - 0.35 + 0.5 * (a2(x, y) - 0.5)) / 0.65
+  pale = math.min(1, pale * 1.6)
+  local g = 0.85 + 0.15 * a2(x, y)
+  return (0.16 + 0.62 * pale) * g, (0.30 + 0.55 * pale) * g, (0.14 + 0.58 * pale) * g
 end)
