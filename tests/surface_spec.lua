@@ -140,3 +140,73 @@ describe("core.patch_eval", function()
       "bad argument #3", "not a finite number")
   end)
 end)
+
+describe("surfaces drawn by the turtle", function()
+  local lsys = require "lsys"
+  local function model(view)
+    view = view or { surfaces = { L = "tests/data/surfaces/leaf.s" } }
+    return lsys.lsystem { axiom = "", view = view }
+  end
+  local function scene(text, view)
+    local m = model(view)
+    return m:interpret(m:lstring(text))
+  end
+
+  it("puts ~X's contact point at the turtle, its heading along H (seed 004 §4.1)", function()
+    local sc = scene("~L")
+    assert.equal(5 * 8 * 2, sc.ntriangles)          -- PRECISION S: 5 T: 8
+    assert.equal(6 * 9, sc.nvertices)
+    local lo, hi = sc:bounds()
+    assert.near(0, lo[2], 1e-6); assert.near(1, hi[2], 1e-6)
+    assert.is_true(hi[1] > 0.3 and lo[1] < -0.3)    -- the blade's width along L
+    -- turned: after +(90) the leaf runs along -x
+    lo, hi = scene("+(90) ~L"):bounds()
+    assert.near(-1, lo[1], 1e-6); assert.near(0, hi[1], 1e-6)
+  end)
+
+  it("leaves the turtle at the end point, scaled by the parameter and the entry", function()
+    local sc = scene("~L F")
+    assert.near({ 0, 1, 0 }, sc:record(2).p0, 1e-6)
+    assert.equal("surface", sc:record(1).kind)
+    sc = scene("~L(2) F")
+    assert.near({ 0, 2, 0 }, sc:record(2).p0, 1e-6)
+    sc = scene("~L(2) F", { surfaces = { L = { file = "tests/data/surfaces/leaf.s", scale = 0.25 } } })
+    assert.near({ 0, 0.5, 0 }, sc:record(2).p0, 1e-6)
+  end)
+
+  it("tessellates with the entry's precision", function()
+    local sc = scene("~L", { surfaces = { L = { file = "tests/data/surfaces/leaf.s",
+                                                precision = { 2, 3 } } } })
+    assert.equal(2 * 3 * 2, sc.ntriangles)
+  end)
+
+  it("draws L-system defined patches with @PS @PC @PD (§4.3)", function()
+    local cps = {}
+    for r = 0, 3 do
+      for c = 0, 3 do cps[#cps + 1] = ("@M(%d,%d,0) @PC(0,%d,%d)"):format(c, r, r, c) end
+    end
+    for basis = 1, 3 do
+      local sc = scene(("@PS(0,%d) %s @PD(0,3,4)"):format(basis, table.concat(cps, " ")))
+      assert.equal(3 * 4 * 2, sc.ntriangles)
+      assert.equal(4 * 5, sc.nvertices)
+      local lo, hi = sc:bounds()
+      if basis == 1 then                             -- Bezier: spans the control net
+        assert.near({ 0, 0, 0 }, lo, 1e-6); assert.near({ 3, 3, 0 }, hi, 1e-6)
+      elseif basis == 3 then                         -- Cardinal: the middle points
+        assert.near({ 1, 1, 0 }, lo, 1e-6); assert.near({ 2, 2, 0 }, hi, 1e-6)
+      end
+    end
+    assert.equal(2 * 4 * 4 * 2, scene("@PS(3) @PD(3) @PD(3,4,4)").ntriangles)
+  end)
+
+  it("rejects undefined surfaces and bad patch modules, naming the module", function()
+    assert.error_contains(function() scene("F ~Q") end, "module 2 '~Q'", "no such surface")
+    assert.error_contains(function() scene("@PD(1,4,4)") end, "module 1 '@PD'",
+                          "patch 1 was not started with @PS(1)")
+    assert.error_contains(function() scene("@PS(0) @PC(0,4,0)") end, "'@PC'",
+                          "the row must be from 0 to 3, got 4")
+    assert.error_contains(function() scene("@PS(0,5)") end, "'@PS'", "the basis")
+    assert.error_contains(function() scene("@PS(2000)") end, "the patch number")
+    assert.error_contains(function() scene("@PS(0) @PD(0,300)") end, "the number of lines")
+  end)
+end)
