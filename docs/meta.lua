@@ -263,10 +263,15 @@ function Model:interpret(s, view) end
 ---@field twist? number Rotation about the view axis, degrees.
 ---@field light? number[] Direction the key light comes from.
 ---@field supersample? integer Anti-aliasing factor (3).
+---@field dir? string Base directory of relative file names below (a .v file's directory after view.load).
+---@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in seed 004 Appendix B.1.
+---@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders").
+---@field textures? (string|{ file: string, mag?: "near"|"linear", min?: "near"|"linear", mode?: "modulate"|"decal", per_surface?: boolean, intensity?: boolean })[] PNG textures; @Tx(k) picks the k-th.
+---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
 
 --- A turtle record (docs/drawing.md §5).
 ---@class lsys.Record
----@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"
+---@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"|"gcyl"|"surface"
 ---@field module integer 1-based index of the module in the string.
 ---@field parent? integer The record of the segment this one grows from.
 ---@field p0 number[] Start point (p1 - length * H for a segment; p1 otherwise).
@@ -339,6 +344,34 @@ function Scene:save(path) end
 ---@return integer? width
 ---@return integer? height
 function lsys.render(x, opts) end
+
+--- The directory of the Lua file that calls this ("." when not a file), for files next to a
+--- model: `view = { dir = lsys.here(), contours = { [2] = "leaf.con" } }`.
+---@return string
+function lsys.here() end
+
+--- View options and cpfg view files (docs/drawing.md §2).
+---@class lsys.view
+lsys.view = {}
+
+--- Reads a cpfg view file (.v) into a view table; relative file names inside are resolved
+--- against its directory. Returns the view and the list of warnings about recognised but
+--- unsupported commands (also printed to stderr unless `opts.quiet`). Raises `file:LINE: ...`.
+---@param path string
+---@param opts? { quiet?: boolean }
+---@return lsys.View view
+---@return string[] warnings
+function lsys.view.load(path, opts) end
+
+--- Reads a cpfg colour map (.map: 256 RGB byte triples) into a palette table.
+---@param path string
+---@return table palette
+function lsys.view.load_colormap(path) end
+
+--- Reads a cpfg material file (.mat: 15-byte records) into a palette of materials.
+---@param path string
+---@return table palette
+function lsys.view.load_materials(path) end
 
 --- Whether `x` is a Scene.
 ---@return boolean

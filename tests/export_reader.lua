@@ -2,6 +2,7 @@
 --
 --   local R = require "tests.export_reader"
 --   local o = R.obj("tree.obj")   -- counts: o.v o.vn o.vt o.f o.l, o.materials, o.mtllib, ...
+--                                 -- and the values: o.vs[i] = {x,y,z}, o.vts[i] = {u,v}
 --   local mt = R.mtl("tree.mtl")  -- mt.names = { "m0", ... }; mt.m0.Kd = { r, g, b }, ...
 --   local p = R.ply("tree.ply")   -- p.counts.vertex, p.counts.face, p.first_vertex.x, ...
 --
@@ -42,7 +43,8 @@ end
 function M.obj (path)
   local text = lines(path)
   local r = { v = 0, vn = 0, vt = 0, f = 0, l = 0, triangles = 0, usemtl = 0, materials = {},
-              faces_by_material = {}, lines_by_material = {}, max_v = 0, max_vn = 0, max_vt = 0 }
+              faces_by_material = {}, lines_by_material = {}, max_v = 0, max_vn = 0, max_vt = 0,
+              vs = {}, vts = {} }
   local cur, ln = "", 0
   local last = {}                  -- kind -> line of the largest index
   -- A negative index counts back from the elements read so far; a positive one may refer
@@ -66,6 +68,8 @@ function M.obj (path)
       if #t < want then error(("%s:%d: '%s' needs %d numbers"):format(path, ln, tag, want), 2) end
       r[tag] = r[tag] + 1
       if tag == "v" and not r.first_v then r.first_v = { t[1], t[2], t[3] } end
+      if tag == "v" then r.vs[r.v] = { t[1], t[2], t[3] } end
+      if tag == "vt" then r.vts[r.vt] = { t[1], t[2] } end
     elseif tag == "f" or tag == "l" then
       local n = 0
       for corner in rest:gmatch("%S+") do

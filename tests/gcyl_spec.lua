@@ -151,3 +151,103 @@ describe("contours", function ()
     assert.is_true(math.min(h2[1] - l2[1], h2[3] - l2[3]) > 0.8)
   end)
 end)
+
+-- The mesh's vertices, read back from an OBJ export.
+local R = require "tests.export_reader"
+local function vertices (sc)
+  local path = os.tmpname()
+  sc:save(path .. ".obj")
+  local o = R.obj(path .. ".obj")
+  for _, ext in ipairs { ".obj", ".mtl", "" } do os.remove(path .. ext) end
+  return o
+end
+
+-- the centre of ring j (p + 1 vertices each, the last repeating the first) and the
+-- direction from it to the ring's first vertex
+local function ring (vs, p, j, first)
+  local c = { 0, 0, 0 }
+  for k = 0, p - 1 do
+    local v = vs[first + j * (p + 1) + k]
+    for i = 1, 3 do c[i] = c[i] + v[i] / p end
+  end
+  local v = vs[first + j * (p + 1)]
+  local d = { v[1] - c[1], v[2] - c[2], v[3] - c[3] }
+  local l = math.sqrt(d[1] ^ 2 + d[2] ^ 2 + d[3] ^ 2)
+  return c, { d[1] / l, d[2] / l, d[3] / l }
+end
+
+describe("generalized cylinder geometry", function ()
+  it("follows the Hermite axis: F(1/2) = (P0 + P1)/2 + (T0 - T1)/8 (§3.1)", function ()
+    -- P0 = 0, H0 = y; P1 = (s, 1 + s, 0), H1 = (s, s, 0) with s = sqrt(1/2); d = |P1 - P0|
+    local o = vertices(scene("@Gs f -(45) f @Ge(2)"))
+    local s = math.sqrt(0.5)
+    local d = math.sqrt(s ^ 2 + (1 + s) ^ 2)
+    local T0, T1 = { 0, 1.2 * d, 0 }, { 1.2 * d * s, 1.2 * d * s, 0 }
+    local want = {}
+    for i = 1, 3 do
+      local P1 = ({ s, 1 + s, 0 })[i]
+      want[i] = P1 / 2 + (T0[i] - T1[i]) / 8
+    end
+    -- the start cap's 8 vertices come first
+    local c = ring(o.vs, 8, 1, 9)
+    assert.near(want, c, 1e-5)
+    c = ring(o.vs, 8, 2, 9)
+    assert.near({ s, 1 + s, 0 }, c, 1e-5)
+  end)
+
+  it("keeps the frame from flipping along a helix (rotation-minimising, §3.3)", function ()
+    -- a helix of 60 control points while the turtle rolls by 25° at every one
+    local text = "!(0.2) @Gs" .. string.rep(" f(0.3) +(12) &(4) /(25) @Gc(2)", 60) .. " @Ge"
+    local nrings = 1 + 60 * 2 + 2
+    -- the largest and the total turn of the rings' first vertices, in degrees
+    local function turns (view)
+      local o = vertices(scene(text, view))
+      local prev, max, sum = nil, 0, 0
+      for j = 0, nrings - 1 do
+        local _, d = ring(o.vs, 8, j, 9)
+        if prev then
+          local a = math.deg(math.acos(math.min(1, d[1] * prev[1] + d[2] * prev[2] + d[3] * prev[3])))
+          max, sum = math.max(max, a), sum + a
+        end
+        prev = d
+      end
+      return max, sum
+    end
+    local max, sum = turns { angle = 45, contour_sides = 8 }
+    -- neighbouring rings turn only with the bend of the axis: no flip, and the rolls
+    -- (60 x 25° = 1500°) do not add up
+    assert.is_true(max < 20)
+    assert.is_true(sum < 1000)
+    -- with the twist kept, they do
+    local _, tsum = turns { angle = 45, contour_sides = 8, minimize_twist = false }
+    assert.is_true(tsum > sum + 700)
+  end)
+
+  it("interpolates the radius linearly by default (§3.2.2)", function ()
+    local o = vertices(scene("!(0.8) @Gs f(2) !(0.4) @Ge(4)"))
+    for j = 0, 4 do
+      local c, _ = ring(o.vs, 8, j, 9)
+      local v = o.vs[9 + j * 9]
+      local r = math.sqrt((v[1] - c[1]) ^ 2 + (v[2] - c[2]) ^ 2 + (v[3] - c[3]) ^ 2)
+      assert.near(0.4 - 0.05 * j, r, 1e-6)
+    end
+  end)
+
+  it("maps textures around and along with the image's aspect (§5.2)", function ()
+    local core = require "lsys.core"
+    local png = os.tmpname() .. ".png"
+    core.png_write(png, string.rep("\255\0\0\255", 8 * 4), 8, 4, false)   -- 8 x 4: aspect 2
+    local r = 1 / (2 * math.pi)
+    local o = vertices(scene(("#(%.17g) @Tx(1) @Gs @Gt(1) f(3) @Ge(3)"):format(2 * r),
+                             { contour_sides = 6, textures = { png } }))
+    os.remove(png)
+    -- rings after the 6 cap vertices; v grows by length x 2 / circumference = 2 per unit
+    for j = 0, 3 do
+      for k = 0, 6 do
+        local uv = o.vts[6 + j * 7 + k + 1]
+        assert.near(k / 6, uv[1], 1e-6)
+        assert.near(2 * j, uv[2], 1e-5)
+      end
+    end
+  end)
+end)
