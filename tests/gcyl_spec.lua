@@ -250,4 +250,13 @@ describe("generalized cylinder geometry", function ()
       end
     end
   end)
+
+  it("maps textures on polygons from the first vertex's right and heading axes (§5.3)", function ()
+    local o = vertices(scene("{ . f(1) -(90) f(2) -(90) f(1) }"))
+    assert.equal(4, o.vt)
+    assert.near({ { 0, 0 }, { 0, 1 }, { 1, 1 }, { 1, 0 } }, o.vts, 1e-6)
+    -- turned: the axes turn with the turtle
+    o = vertices(scene("+(90) { . f(1) -(90) f(2) -(90) f(1) }"))
+    assert.near({ { 0, 0 }, { 0, 1 }, { 1, 1 }, { 1, 0 } }, o.vts, 1e-6)
+  end)
 end)
