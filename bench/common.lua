@@ -29,4 +29,18 @@ function B.peak_mib ()
   return kb and tonumber(kb) / 1024
 end
 
+--- the shortest of 'runs' timed calls of f (after a full collection each), and f's last result
+function B.best (f, runs)
+  local t, r = math.huge
+  for _ = 1, runs or 3 do
+    collectgarbage()
+    local t0 = B.clock()
+    r = f()
+    t = math.min(t, B.clock() - t0)
+  end
+  return t, r
+end
+
+function B.verdict (ok) return ok and "PASS" or "MISS" end
+
 return B

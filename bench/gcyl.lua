@@ -18,20 +18,10 @@ local RUNS = 3
 local B = dofile(((arg and arg[0] or "bench/gcyl.lua"):match("^(.*)/[^/]*$") or ".")
                  .. "/common.lua")
 local lsys = B.load_lsys()
-local clock, clock_name, peak_mib = B.clock, B.clock_name, B.peak_mib
+local clock_name, peak_mib = B.clock_name, B.peak_mib
 
-local function best (f)
-  local t, r = math.huge
-  for _ = 1, RUNS do
-    collectgarbage()
-    local t0 = clock()
-    r = f()
-    t = math.min(t, clock() - t0)
-  end
-  return t, r
-end
-
-local function verdict (ok) return ok and "PASS" or "MISS" end
+local function best (f) return B.best(f, RUNS) end
+local verdict = B.verdict
 
 print(string.format("lsys %s, %s, best of %d", lsys.version, clock_name, RUNS))
 

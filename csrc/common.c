@@ -1,8 +1,10 @@
 /*
-** Error record and growable arrays shared by the core.
+** Error record, growable arrays and whole-file reading shared by the core.
 */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "common.h"
 
@@ -31,4 +33,42 @@ int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   *p = np;
   *cap = ncap;
   return LSYS_OK;
+}
+
+char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
+  FILE *f = fopen(path, "rb");
+  char *buf = NULL, *nb;
+  size_t cap = 0, n = 0;
+  if (f == NULL) {
+    lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s': %s", path, strerror(errno));
+    return NULL;
+  }
+  for (;;) {
+    if (n == cap) {             /* capacity up to max + 1, to see a larger file */
+      cap = cap == 0 ? 4096 : 2 * cap > max ? max + 1 : 2 * cap;
+      if ((nb = (char *)LSYS_REALLOC(buf, cap)) == NULL) {
+        lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
+        break;
+      }
+      buf = nb;
+    }
+    n += fread(buf + n, 1, cap - n, f);
+    if (n > max) {
+      lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %lu MiB", path,
+                    (unsigned long)(max >> 20));
+      break;
+    }
+    if (ferror(f)) {
+      lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path, strerror(errno));
+      break;
+    }
+    if (feof(f)) {
+      fclose(f);
+      *len = n;
+      return buf;
+    }
+  }
+  fclose(f);
+  LSYS_FREE(buf);
+  return NULL;
 }

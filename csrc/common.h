@@ -43,4 +43,10 @@ int lsys_seterror (lsys_error *e, int code, size_t pos, const char *fmt, ...)
 ** LSYS_ENOMEM (the old block stays valid). */
 int lsys_grow (void **p, size_t *cap, size_t need, size_t elem);
 
+/* Reads the whole file 'path' (at most 'max' bytes) into a new block (free
+** it with LSYS_FREE; not NUL-terminated) of *len bytes. On failure returns
+** NULL with e->msg naming the file ("cannot open 'x': ...", "cannot read
+** 'x': larger than N MiB"). */
+char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e);
+
 #endif

@@ -43,45 +43,6 @@ static int fail (lua_State *L, int code, const lsys_error *e) {
   return lua_error(L);
 }
 
-/* Reads the whole file 'path' into a malloc'ed block; on failure returns
-** NULL with a message in 'msg'. No Lua call happens while the file is open. */
-static char *readfile (const char *path, size_t *len, char *msg, size_t msgsize) {
-  FILE *f = fopen(path, "rb");
-  char *buf = NULL, *nb;
-  size_t cap = 0, n = 0;
-  if (f == NULL) {
-    snprintf(msg, msgsize, "cannot open '%s': %s", path, strerror(errno));
-    return NULL;
-  }
-  for (;;) {
-    if (n == cap) {             /* capacity up to MAXFILE + 1, to see a larger file */
-      cap = cap == 0 ? 4096 : 2 * cap > MAXFILE ? MAXFILE + 1 : 2 * cap;
-      if ((nb = (char *)realloc(buf, cap)) == NULL) {
-        snprintf(msg, msgsize, "not enough memory");
-        break;
-      }
-      buf = nb;
-    }
-    n += fread(buf + n, 1, cap - n, f);
-    if (n > MAXFILE) {
-      snprintf(msg, msgsize, "cannot read '%s': larger than %u MiB", path, MAXFILE >> 20);
-      break;
-    }
-    if (ferror(f)) {
-      snprintf(msg, msgsize, "cannot read '%s': %s", path, strerror(errno));
-      break;
-    }
-    if (feof(f)) {
-      fclose(f);
-      *len = n;
-      return buf;
-    }
-  }
-  fclose(f);
-  free(buf);
-  return NULL;
-}
-
 /* core.contour_load(path) */
 static int l_contour_load (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
@@ -89,10 +50,10 @@ static int l_contour_load (lua_State *L) {
   lsys_error e;
   size_t len = 0;
   int st;
-  char *text = readfile(path, &len, e.msg, sizeof e.msg);
+  char *text = lsys_readfile(path, MAXFILE, &len, &e);
   if (text == NULL) return fail(L, LSYS_ESYNTAX, &e);
   st = lsys_contour_parse(c, text, len, path, &e);
-  free(text);
+  LSYS_FREE(text);
   if (st != LSYS_OK) return fail(L, st, &e);
   return 1;
 }

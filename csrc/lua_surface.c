@@ -50,57 +50,6 @@ static int raise (lua_State *L, int code, const lsys_error *e) {
   return lua_error(L);
 }
 
-/*
-** Reads the whole file into a malloc'ed block (not NUL-terminated). On
-** failure returns NULL with a message in 'msg'. Makes no Lua call, so
-** nothing can raise while the file is open or the block is held.
-*/
-static char *readfile (const char *path, size_t *len, char *msg, size_t msgsize) {
-  FILE *f = fopen(path, "rb");
-  char *buf = NULL;
-  size_t n = 0, cap = 0;
-  if (f == NULL) {
-    snprintf(msg, msgsize, "cannot open '%s': %s", path, strerror(errno));
-    return NULL;
-  }
-  for (;;) {
-    size_t got;
-    if (n == cap) {
-      char *nb;
-      if (cap > MAXFILE) {
-        snprintf(msg, msgsize, "cannot read '%s': larger than %lu MiB", path,
-                 (unsigned long)(MAXFILE >> 20));
-        break;
-      }
-      cap = cap == 0 ? 4096 : 2 * cap;
-      if ((nb = (char *)realloc(buf, cap)) == NULL) {
-        snprintf(msg, msgsize, "not enough memory");
-        break;
-      }
-      buf = nb;
-    }
-    got = fread(buf + n, 1, cap - n, f);
-    n += got;
-    if (got == 0) {
-      if (ferror(f)) {
-        snprintf(msg, msgsize, "cannot read '%s': %s", path, strerror(errno));
-        break;
-      }
-      if (n > MAXFILE) {
-        snprintf(msg, msgsize, "cannot read '%s': larger than %lu MiB", path,
-                 (unsigned long)(MAXFILE >> 20));
-        break;
-      }
-      fclose(f);
-      *len = n;
-      return buf;
-    }
-  }
-  fclose(f);
-  free(buf);
-  return NULL;
-}
-
 /* core.surface_load(path) */
 static int l_surface_load (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
@@ -108,10 +57,10 @@ static int l_surface_load (lua_State *L) {
   lsys_error e;
   size_t len = 0;
   int st;
-  char *text = readfile(path, &len, e.msg, sizeof e.msg);
+  char *text = lsys_readfile(path, MAXFILE, &len, &e);
   if (text == NULL) return raise(L, LSYS_ESYNTAX, &e);
   st = lsys_surface_parse(s, text, len, path, &e);
-  free(text);
+  LSYS_FREE(text);
   if (st != LSYS_OK) return raise(L, st, &e);
   return 1;
 }
