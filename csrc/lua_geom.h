@@ -9,6 +9,7 @@
 #include "contour.h"
 #include "surface.h"
 #include "texture.h"
+#include "render.h"
 
 /* lua_contour.c: the contour of the lsys.Contour at 'idx' (raises when it
 ** is not one). */
@@ -29,5 +30,9 @@ const lsys_texture *lsys_checktexture (lua_State *L, int idx);
 ** Pushes one value that keeps the array alive (nil when NULL); raises,
 ** naming 'who', when the list holds anything but textures. */
 const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
+
+/* lua_render.c: fills 'o' from the lsys.render options table at 't' (0:
+** none), checking every field (only when built with rendering). */
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o);
 
 #endif

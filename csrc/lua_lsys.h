@@ -48,6 +48,17 @@ void lsys_rules_unbind (lua_State *L, void *saved);
 const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **pal,
                                   size_t *npal);
 
+/* The turtle records of the lsys.Scene at 'idx' (*n of them). */
+struct lsys_trec;
+const struct lsys_trec *lsys_scenerecords (lua_State *L, int idx, size_t *n);
+
+/* The name of a turtle record kind (LSYS_REC_*): "segment", "sphere", ... */
+const char *lsys_recordkind (int kind);
+
+/* Moves the mesh of the lsys.Scene at 'idx' into 'm' (initialised by the
+** callee); the scene is left with an empty mesh. */
+void lsys_scenetake (lua_State *L, int idx, lsys_mesh *m);
+
 /* Each registers its metatables and adds its functions to the table on top. */
 void lsys_open_lstring (lua_State *L);
 void lsys_open_scene (lua_State *L);    /* lua_scene.c: Scene, interpret */
@@ -55,5 +66,6 @@ void lsys_open_render (lua_State *L);   /* lua_render.c: render, png */
 void lsys_open_contour (lua_State *L);  /* lua_contour.c: Contour */
 void lsys_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */
 void lsys_open_texture (lua_State *L);  /* lua_texture.c: Texture */
+void lsys_open_viewer (lua_State *L);   /* lua_viewer.c: Viewer, filestamp */
 
 #endif

@@ -7,7 +7,6 @@
 
 #include "lua_geom.h"
 #include "pngio.h"
-#include "render.h"
 
 #define PIXELS_T "lsys.Pixels"   /* a malloc'd pixel block owned by Lua until copied */
 
@@ -96,7 +95,7 @@ static const char *const optnames[] = {
 };
 
 /* Fills 'o' from the options table at 't' (0: none), checking every field. */
-static void readopts (lua_State *L, int t, lsys_render_opts *o) {
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o) {
   lsys_camera *cam = &o->cam;
   double v[3];
   lsys_render_defaults(o);
@@ -177,7 +176,7 @@ static int l_render (lua_State *L) {
   uint8_t *px;
   int t = lua_isnoneornil(L, 2) ? 0 : 2, maxw, maxh;
   if (t) luaL_checktype(L, 2, LUA_TTABLE);
-  readopts(L, t, &o);
+  lsys_readrenderopts(L, t, &o);
   o.tex = lsys_opttextures(L, t, "lsys.render", &o.ntex);   /* pushes one value */
   if (field(L, t, "out")) {
     if (lua_type(L, -1) != LUA_TSTRING)

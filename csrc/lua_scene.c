@@ -396,6 +396,20 @@ const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **p
   return &S->mesh;
 }
 
+const lsys_trec *lsys_scenerecords (lua_State *L, int idx, size_t *n) {
+  lscene *S = checkscene(L, idx);
+  if (!S->inited) luaL_error(L, "the scene was freed");
+  *n = S->nrec;
+  return S->rec;
+}
+
+void lsys_scenetake (lua_State *L, int idx, lsys_mesh *m) {
+  lscene *S = checkscene(L, idx);
+  if (!S->inited) luaL_error(L, "the scene was freed");
+  *m = S->mesh;
+  lsys_mesh_init(&S->mesh);
+}
+
 static int scene_gc (lua_State *L) {
   lscene *S = checkscene(L, 1);
   if (S->inited) {
@@ -472,6 +486,10 @@ static const char *const kindname[] = {
   "none", "segment", "sphere", "disc", "polygon", "label", "system", "gcyl", "surface"
 };
 #define NKINDS ((int)(sizeof kindname / sizeof kindname[0]))
+
+const char *lsys_recordkind (int kind) {
+  return kindname[kind >= 0 && kind < NKINDS ? kind : 0];
+}
 
 static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
   float l[3];

@@ -48,6 +48,41 @@ void lsys_mesh_clear (lsys_mesh *m) {
   m->curtex = 0;
 }
 
+static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need);
+
+int lsys_mesh_copy (lsys_mesh *dst, const lsys_mesh *src) {
+  lsys_mesh_init(dst);
+  dst->curtex = src->curtex;
+  if ((src->nv > 0 || src->nt > 0) && lsys_mesh_reserve(dst, src->nv, src->nt) != LSYS_OK)
+    goto fail;
+  if (src->nv > 0) {
+    memcpy(dst->pos, src->pos, src->nv * 3 * sizeof(float));
+    memcpy(dst->nrm, src->nrm, src->nv * 3 * sizeof(float));
+    memcpy(dst->uv, src->uv, src->nv * 2 * sizeof(float));
+    memcpy(dst->col, src->col, src->nv * sizeof(uint16_t));
+    memcpy(dst->twosided, src->twosided, src->nv);
+    memcpy(dst->tex, src->tex, src->nv * sizeof(uint16_t));
+  }
+  if (src->nt > 0) memcpy(dst->tri, src->tri, src->nt * 3 * sizeof(uint32_t));
+  dst->nv = src->nv;
+  dst->nt = src->nt;
+  if (src->nl > 0) {
+    size_t cap = 0;
+    void **arr[3] = { (void **)&dst->lpos, (void **)&dst->lwidth, (void **)&dst->lcol };
+    const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
+    if (growall(arr, elem, 3, &cap, src->nl) != LSYS_OK) goto fail;
+    dst->lcap = cap;
+    memcpy(dst->lpos, src->lpos, src->nl * 6 * sizeof(float));
+    memcpy(dst->lwidth, src->lwidth, src->nl * 2 * sizeof(float));
+    memcpy(dst->lcol, src->lcol, src->nl * sizeof(uint16_t));
+    dst->nl = src->nl;
+  }
+  return LSYS_OK;
+fail:
+  lsys_mesh_free(dst);
+  return LSYS_ENOMEM;
+}
+
 /*
 ** Grows the 'k' arrays 'arr' (item sizes 'elem') that share the capacity
 ** '*cap' to hold 'need' items. Every array starts from the same capacity, so

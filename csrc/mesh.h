@@ -44,6 +44,9 @@ typedef struct lsys_material {
 void lsys_mesh_init (lsys_mesh *m);
 void lsys_mesh_free (lsys_mesh *m);
 void lsys_mesh_clear (lsys_mesh *m);
+/* Makes 'dst' (empty or freed) a copy of 'src' with capacities just the
+** sizes. Returns LSYS_OK, or LSYS_ENOMEM leaving 'dst' empty. */
+int lsys_mesh_copy (lsys_mesh *dst, const lsys_mesh *src);
 
 /* Makes room for 'nv' more vertices and 'nt' more triangles. */
 int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt);

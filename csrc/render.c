@@ -82,6 +82,7 @@ void lsys_render_cache_free (lsys_render_cache *c) {
   LSYS_FREE(c->tidx);
   LSYS_FREE(c->texok);
   LSYS_FREE(c->texname);
+  LSYS_FREE(c->texkey);
   LSYS_FREE(c->texbuf);
   memset(c, 0, sizeof *c);
 }
@@ -231,7 +232,7 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, in
         float p[3] = {(float)c[i][0], (float)c[i][1], (float)c[i][2]};
         fitpoint(&fs, p);
       }
-    halfh = fs.ext > 0 ? fs.ext / FIT : diag / 2;
+    halfh = cam->halfh > 0 ? cam->halfh : fs.ext > 0 ? fs.ext / FIT : diag / 2;
     if (!cam->has_eye) {
       double D = fs.D, back = 0;
       for (i = 0; i < 8; i++) {
@@ -352,6 +353,7 @@ typedef struct frame {
   lsys_render_cache *c;
   double proj[16], view[16], mvp[16];
   int fbw, fbh, maxw;
+  int keep;                 /* keep uploaded textures in the cache (keep_textures) */
   float lscale;             /* framebuffer pixels per image pixel */
   size_t nwv, nwi;          /* wide lines: vertices and indices written */
 } frame;
@@ -515,21 +517,36 @@ static int upload (frame *F, size_t k, int pot, int maxsize) {
   return LSYS_OK;
 }
 
-/* Creates and fills the texture objects of the textures with triangles. */
+/* Creates and fills the texture objects of the textures with triangles;
+** with keep_textures, those already holding the same texture stay. */
 static int uploadall (frame *F) {
   const lsys_gl *gl = F->gl;
+  lsys_render_cache *c = F->c;
   size_t k;
   GLint maxsize = 0;
   int pot = !npotok(gl);
   gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxsize);
   if (maxsize < 64) maxsize = 64;                  /* the least OpenGL guarantees */
   for (k = 1; k <= F->ntex; k++) {
-    F->c->texname[k] = 0;
+    if (!F->keep) c->texname[k] = 0;
     if (F->tstart[k + 1] == F->tstart[k]) continue;
-    gl->GenTextures(1, &F->c->texname[k]);
+    if (F->keep && c->texname[k] != 0 && c->texkey[k] == F->tex[k - 1]) continue;
+    if (c->texname[k] == 0) gl->GenTextures(1, &c->texname[k]);
+    c->texkey[k] = F->tex[k - 1];
     if (upload(F, k, pot, maxsize) != LSYS_OK) return LSYS_ENOMEM;
   }
   return LSYS_OK;
+}
+
+void lsys_render_cache_release (lsys_render_cache *c, const lsys_gl *gl) {
+  size_t k;
+  for (k = 1; k <= c->nkept; k++)
+    if (c->texname[k] != 0) {
+      gl->DeleteTextures(1, &c->texname[k]);
+      c->texname[k] = 0;
+      c->texkey[k] = NULL;
+    }
+  c->nkept = 0;
 }
 
 static void deleteall (frame *F) {
@@ -838,14 +855,19 @@ static int reserve (frame *F) {
     nstart += 2 * F->npal + 1 + F->ntex + 2;
     if (lsys_grow((void **)&c->tidx, &c->tidxcap, 3 * m->nt, sizeof *c->tidx) ||
         lsys_grow((void **)&c->texok, &c->texokcap, F->ntex + 1, 1) ||
-        lsys_grow((void **)&c->texname, &c->texnamecap, F->ntex + 1, sizeof *c->texname))
+        lsys_grow((void **)&c->texname, &c->texnamecap, F->ntex + 1, sizeof *c->texname) ||
+        lsys_grow((void **)&c->texkey, &c->texkeycap, F->ntex + 1, sizeof *c->texkey))
       return LSYS_ENOMEM;
     c->texok[0] = 0;
     for (k = 1; k <= F->ntex; k++) {
       const lsys_texture *t = F->tex[k - 1];
       c->texok[k] = t != NULL && t->rgba != NULL && t->w > 0 && t->h > 0;
-      c->texname[k] = 0;
+      if (!F->keep || k > c->nkept) {       /* kept names stay for uploadall to check */
+        c->texname[k] = 0;
+        c->texkey[k] = NULL;
+      }
     }
+    if (F->keep && c->nkept < F->ntex) c->nkept = F->ntex;
   }
   if (m->nl > 0) widecount(F, &nwv, &nwi);
   if (nwv > UINT32_MAX) return LSYS_ENOMEM;   /* indices are 32-bit */
@@ -896,6 +918,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
                          F.proj[8 + i] * F.view[4 * j + 2] + F.proj[12 + i] * F.view[4 * j + 3];
   if (F.pal == NULL || F.npal == 0) { F.pal = &grey; F.npal = 1; }
   if (F.npal > 65536) F.npal = 65536;   /* colour indices are 16-bit */
+  F.keep = o->keep_textures && o->cache != NULL;
   if (o->tex != NULL && o->ntex > 0 && F.m->tex != NULL && F.m->nt > 0) {
     F.tex = o->tex;
     F.ntex = o->ntex < 65535 ? (size_t)o->ntex : 65535;   /* texture indices are 16-bit */
@@ -955,7 +978,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
   if (F.m->nt > 0) drawtriangles(&F, 1, o->wireframe);   /* translucent, over everything */
   gl->DisableClientState(GL_VERTEX_ARRAY);
   gl->DisableClientState(GL_COLOR_ARRAY);
-  if (F.ntex > 0) deleteall(&F);
+  if (F.ntex > 0 && !F.keep) deleteall(&F);
   lsys_render_cache_free(&local);
   if ((err = gl->GetError()) != GL_NO_ERROR)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "OpenGL error 0x%04x while drawing",

@@ -103,6 +103,8 @@ typedef struct lsys_camera {
   double fov;           /* vertical field of view in degrees (perspective); default 30 */
   double twist;         /* degrees; a positive twist turns the picture counterclockwise */
   double zoom;          /* magnification about the image centre, after fitting; default 1 */
+  double halfh;         /* parallel: half the image height in world units (before zoom)
+                           when > 0, instead of fitting (the viewer keeps a scale) */
 } lsys_camera;
 
 /* Scratch arrays of lsys_render_draw, kept between frames so that
@@ -128,6 +130,9 @@ typedef struct lsys_render_cache {
   size_t texokcap;
   unsigned *texname;    /* per texture index: its GL texture name, 0 when not uploaded */
   size_t texnamecap;
+  const lsys_texture **texkey;   /* with keep_textures: the texture each name holds */
+  size_t texkeycap;
+  size_t nkept;         /* with keep_textures: entries 1..nkept of texname are valid */
   uint8_t *texbuf;      /* a texture converted for uploading (grey, resampled) */
   size_t texbufcap;
 } lsys_render_cache;
@@ -145,6 +150,9 @@ typedef struct lsys_render_opts {
   const lsys_texture *const *tex;   /* texture index k (mesh 'tex') uses tex[k - 1] */
   int ntex;                 /* number of textures; 0: everything untextured */
   int wireframe;            /* draw triangle edges only */
+  int keep_textures;        /* with a cache: keep uploaded textures in it for the next
+                               frames (a window redrawing the same scene); the caller
+                               deletes them with lsys_render_cache_release */
   lsys_render_cache *cache; /* optional scratch kept by the caller; NULL: temporary */
   const lsys_gl *gl;        /* entry points of the current context (lsys_render_draw);
                                lsys_render_offscreen uses its own */
@@ -153,8 +161,15 @@ typedef struct lsys_render_opts {
 /* Fills 'o' with the defaults above (no palette, no cache). */
 void lsys_render_defaults (lsys_render_opts *o);
 
-/* Frees the arrays of 'c' and leaves it empty (reusable). */
+/* Frees the arrays of 'c' and leaves it empty (reusable). Textures kept
+** with keep_textures must have been released first. */
 void lsys_render_cache_free (lsys_render_cache *c);
+
+/* Deletes the texture objects kept in 'c' (keep_textures) with 'gl', whose
+** context must be current. A kept texture is reused while the same
+** lsys_texture pointer comes back: release before freeing or changing the
+** textures the cache has seen. */
+void lsys_render_cache_release (lsys_render_cache *c, const lsys_gl *gl);
 
 /*
 ** Computes the camera of 'o' for a w x h viewport: 'proj' and 'view' are
@@ -187,7 +202,7 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 ** Textures: a triangle whose first vertex has texture index k in
 ** 1..o->ntex, with o->tex[k - 1] non-NULL and holding pixels, is textured
 ** with it (other indices draw untextured). Each texture in use is uploaded
-** once per call and deleted before returning. Modulate multiplies the lit
+** once per call and deleted before returning, unless o->keep_textures. Modulate multiplies the lit
 ** colour by the texel (by its intensity alone for an 'intensity' texture);
 ** decal replaces the lit colour by the texel where the texel is opaque
 ** (OpenGL's GL_DECAL: lighting does not reach those texels), blending by

@@ -20,6 +20,26 @@ void lsys_texture_free (lsys_texture *t) {
   t->w = t->h = 0;
 }
 
+int lsys_texture_copy (lsys_texture *dst, const lsys_texture *s) {
+  size_t n = (size_t)s->w * (size_t)s->h * 4;
+  *dst = *s;
+  dst->rgba = NULL;
+  dst->path = NULL;
+  if (s->rgba != NULL && n > 0) {
+    if ((dst->rgba = (uint8_t *)LSYS_MALLOC(n)) == NULL) goto fail;
+    memcpy(dst->rgba, s->rgba, n);
+  }
+  if (s->path != NULL) {
+    size_t len = strlen(s->path) + 1;
+    if ((dst->path = (char *)LSYS_MALLOC(len)) == NULL) goto fail;
+    memcpy(dst->path, s->path, len);
+  }
+  return LSYS_OK;
+fail:
+  lsys_texture_free(dst);
+  return LSYS_ENOMEM;
+}
+
 /* Every pixel has equal red, green and blue: a single-channel image (§5). */
 static int isgrey (const uint8_t *px, size_t n) {
   size_t i;

@@ -39,6 +39,10 @@ void lsys_texture_free (lsys_texture *t);
 ** damaged; LSYS_ELIMIT; LSYS_ENOMEM) with e->msg naming the file. */
 int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e);
 
+/* Makes 'dst' a copy of 's' (pixels, path, settings). Returns LSYS_OK, or
+** LSYS_ENOMEM leaving 'dst' empty. */
+int lsys_texture_copy (lsys_texture *dst, const lsys_texture *s);
+
 /* 1 when some pixel of 't' is not fully opaque (alpha < 255), else 0. */
 int lsys_texture_hasalpha (const lsys_texture *t);
 

@@ -69,6 +69,7 @@ local OPTIONS = {
 }
 
 local Model = {}
+local rules_models = setmetatable({}, { __mode = "k" })   -- Rules userdata -> its model
 Model.__index = Model
 M.Model = Model
 
@@ -150,6 +151,7 @@ function M.lsystem (opts)
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
+  rules_models[rules] = self
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
     fail("option 'steps' must be a whole number >= 0")
   end
@@ -346,7 +348,8 @@ end
 
 --- Derives `n` steps (default `model.steps`) from the axiom and returns the
 -- Lstring. Reseeds the generator from `model.seed` first, so the result is
--- reproducible. `opts.progress(step, n, nmodules)` is called after each step.
+-- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
+-- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
 function Model:derive (n, opts)
   n = n or self.steps
   checksteps(n, "derive")
@@ -357,11 +360,13 @@ function Model:derive (n, opts)
   local E = self:_bind()
   local s = self:_axiomlstring(E)
   local progress = opts and opts.progress
+  local each = opts and opts.each
   if self.start then
     self.start(self)
     self:_bind()                 -- start may change env
   end
   local spare                    -- the buffer two steps back, reused when private
+  if each and n > 0 then each(0, s) end   -- (n = 0: the axiom after finish, below)
   for k = 1, n do
     if self.start_each then
       self.start_each(self, k)
@@ -377,10 +382,11 @@ function Model:derive (n, opts)
         t = r
       end
       if k < n and not self.start_each then self:_bind() end   -- end_each may change env
-    elseif k > 1 then
+    elseif k > 1 and not each then
       spare = s                  -- s was produced here and nobody else holds it
     end
     if progress then progress(k, n, #t) end
+    if each and k < n then each(k, t) end
     s = t
   end
   if spare then LSTRING_MT.__close(spare) end
@@ -392,6 +398,7 @@ function Model:derive (n, opts)
       s = r
     end
   end
+  if each then each(n, s) end
   return s
 end
 
@@ -464,6 +471,21 @@ local SCENE_MT = debug.getregistry()["lsys.Scene"]
 
 --- True when `x` is an lsys.Scene.
 function M.isscene (x) return getmetatable(x) == SCENE_MT end
+
+--- True when `x` is a model made by lsys.lsystem.
+function M.ismodel (x) return getmetatable(x) == Model end
+
+-- The normalised view a scene was interpreted with (nil for scenes made elsewhere).
+function M._sceneview (scene) return scene_views[scene] end
+
+-- The model whose rules made the Lstring `s`, or nil.
+function M._owner (s)
+  local ok, r = pcall(debug.getuservalue, s, 1)
+  return ok and r ~= nil and rules_models[r] or nil
+end
+
+--- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
+function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end
 
 -- options of lsys.render that are not view options
 local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,

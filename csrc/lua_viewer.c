@@ -1,0 +1,380 @@
+/*
+** Lua binding of the viewer window (viewer.h) and a file-change helper.
+**
+**   core.has_viewer                      true when built with the viewer
+**   core.viewer_open([opts]) -> Viewer   opts: width, height (800), samples (4),
+**                                        visible (true), status (true)
+**   v:post(frames [, opts])              frames: list of { scene = Scene, step = n,
+**                                        modules = n, render = lsys.render options,
+**                                        world = widths in world units, take = move
+**                                        the mesh out of the scene instead of copying };
+**                                        opts: first (1-based), rate, title,
+**                                        keep_camera, textures = { Texture... }
+**   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
+**                                        "step" | "closed", frame (1-based), step,
+**                                        module (1-based), kind, x, y, path, ok, msg }
+**   v:screenshot([path])                 S key's screenshot of the next frame
+**   v:key(name)                          "right" "left" "home" "end" "space" "r" ...
+**   v:state() -> table                   open, drawn, width, height, frame, nframes,
+**                                        playing, wireframe
+**   v:project({x, y, z}) -> x, y, depth  window coordinates with the last camera drawn
+**   v:close()                            (also when collected)
+**   core.filestamp(path) -> mtime, size  or nil, message
+**
+** A posted snapshot is a deep copy (or, with take, the scene's own mesh):
+** the window never reads Lua memory, so Lua may change or collect
+** everything it posted while the window draws.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "lua_geom.h"
+#include "turtle.h"
+
+#ifndef LSYS_NO_VIEWER
+#include "viewer.h"
+
+#define VIEWER_T "lsys.Viewer"
+
+typedef struct lviewer { lsys_viewer *v; } lviewer;
+
+static lsys_viewer *checkviewer (lua_State *L, int idx) {
+  lviewer *lv = (lviewer *)luaL_checkudata(L, idx, VIEWER_T);
+  if (lv->v == NULL) luaL_error(L, "the viewer window is closed");
+  return lv->v;
+}
+
+static int optfield (lua_State *L, int t, const char *k, int type, const char *what) {
+  int ty;
+  if (t == 0) return 0;
+  ty = lua_getfield(L, t, k);
+  if (ty == LUA_TNIL) { lua_pop(L, 1); return 0; }
+  if (ty != type) luaL_error(L, "viewer: opts.%s must be %s, got %s", k, what,
+                             luaL_typename(L, -1));
+  return 1;
+}
+
+static int optint (lua_State *L, int t, const char *k, int lo, int hi, int def) {
+  lua_Integer x;
+  int isint;
+  if (!optfield(L, t, k, LUA_TNUMBER, "an integer")) return def;
+  x = lua_tointegerx(L, -1, &isint);
+  if (!isint || x < lo || x > hi)
+    luaL_error(L, "viewer: opts.%s must be an integer in [%d, %d]", k, lo, hi);
+  lua_pop(L, 1);
+  return (int)x;
+}
+
+static int optbool (lua_State *L, int t, const char *k, int def) {
+  int b;
+  if (!optfield(L, t, k, LUA_TBOOLEAN, "a boolean")) return def;
+  b = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return b;
+}
+
+static int l_viewer_open (lua_State *L) {
+  int t = lua_isnoneornil(L, 1) ? 0 : 1;
+  lsys_viewer_opts o;
+  lsys_error e;
+  lviewer *lv;
+  if (t) luaL_checktype(L, 1, LUA_TTABLE);
+  lsys_viewer_defaults(&o);
+  o.width = optint(L, t, "width", 1, 16384, o.width);
+  o.height = optint(L, t, "height", 1, 16384, o.height);
+  o.samples = optint(L, t, "samples", 0, 32, o.samples);
+  o.visible = optbool(L, t, "visible", o.visible);
+  o.status = optbool(L, t, "status", o.status);
+  lv = (lviewer *)lua_newuserdatauv(L, sizeof *lv, 0);
+  lv->v = NULL;
+  luaL_setmetatable(L, VIEWER_T);
+  if ((lv->v = lsys_viewer_open(&o, &e)) == NULL)
+    return luaL_error(L, "%s", e.msg);
+  return 1;
+}
+
+/* Fills frame f from the frame table at 'idx' (the caller's snapshot box
+** frees what is allocated when this raises). */
+static void readframe (lua_State *L, int idx, lsys_vframe *f) {
+  const lsys_material *pal;
+  const lsys_mesh *m;
+  const lsys_trec *rec;
+  size_t npal, nrec, k;
+  int take, world;
+  if (lua_getfield(L, idx, "scene") == LUA_TNIL)
+    luaL_error(L, "viewer:post: a frame without a scene");
+  m = lsys_checkscene(L, -1, &pal, &npal);
+  rec = lsys_scenerecords(L, -1, &nrec);
+  take = optbool(L, idx, "take", 0);
+  world = optbool(L, idx, "world", 0);
+  f->step = optint(L, idx, "step", -1, 1 << 30, -1);
+  if (optfield(L, idx, "modules", LUA_TNUMBER, "an integer")) {
+    f->nmodules = (size_t)lua_tointeger(L, -1);
+    lua_pop(L, 1);
+  }
+  if (optfield(L, idx, "render", LUA_TTABLE, "a table")) {
+    lsys_readrenderopts(L, lua_gettop(L), &f->ro);
+    lua_pop(L, 1);
+  }
+  f->pal = (lsys_material *)LSYS_MALLOC(npal * sizeof *f->pal);
+  f->picks = (lsys_vpick *)LSYS_MALLOC((nrec > 0 ? nrec : 1) * sizeof *f->picks);
+  if (f->pal == NULL || f->picks == NULL) luaL_error(L, "not enough memory for the viewer");
+  memcpy(f->pal, pal, npal * sizeof *pal);
+  f->npal = npal;
+  for (k = 0; k < nrec; k++) {
+    const lsys_trec *r = &rec[k];
+    lsys_vpick *p = &f->picks[f->npicks];
+    int i;
+    if (r->kind == LSYS_REC_LABEL || r->kind == LSYS_REC_SYSTEM) continue;
+    for (i = 0; i < 3; i++) {
+      p->p1[i] = r->p1[i];
+      p->p0[i] = r->p1[i] - r->len * r->H[i];
+    }
+    p->radius = world || r->kind == LSYS_REC_SPHERE ? 0.5f * (r->w0 > r->w1 ? r->w0 : r->w1)
+                                                     : 0;
+    p->module = r->module;
+    p->kind = r->kind;
+    f->npicks++;
+  }
+  if (take) lsys_scenetake(L, -1, &f->mesh);
+  else if (lsys_mesh_copy(&f->mesh, m) != LSYS_OK)
+    luaL_error(L, "not enough memory for the viewer");
+  lua_pop(L, 1);
+}
+
+/* The snapshot under construction, freed if an error interrupts it. */
+typedef struct snapbox { lsys_vsnap *s; } snapbox;
+
+static int snapbox_gc (lua_State *L) {
+  snapbox *b = (snapbox *)lua_touserdata(L, 1);
+  lsys_vsnap_free(b->s);
+  b->s = NULL;
+  return 0;
+}
+
+static int viewer_post (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  int t = lua_isnoneornil(L, 3) ? 0 : 3;
+  lua_Integer n, k;
+  snapbox *box;
+  lsys_vsnap *s;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  if (t) luaL_checktype(L, 3, LUA_TTABLE);
+  n = luaL_len(L, 2);
+  luaL_argcheck(L, n >= 1 && n <= (1 << 20), 2, "a list of 1 or more frames expected");
+  box = (snapbox *)lua_newuserdatauv(L, sizeof *box, 0);   /* frees on errors below */
+  box->s = NULL;
+  lua_newtable(L);
+  lua_pushcfunction(L, snapbox_gc);
+  lua_setfield(L, -2, "__gc");
+  lua_setmetatable(L, -2);
+  if ((box->s = s = lsys_vsnap_new((size_t)n)) == NULL)
+    return luaL_error(L, "not enough memory for the viewer");
+  for (k = 1; k <= n; k++) {
+    if (lua_rawgeti(L, 2, k) != LUA_TTABLE)
+      return luaL_error(L, "viewer:post: frame %d is not a table", (int)k);
+    readframe(L, lua_gettop(L), &s->frames[k - 1]);
+    lua_pop(L, 1);
+  }
+  s->first = (size_t)optint(L, t, "first", 1, (int)n, (int)n) - 1;
+  if (optfield(L, t, "rate", LUA_TNUMBER, "a number of frames per second")) {
+    double r = lua_tonumber(L, -1);
+    if (!(r > 0 && r <= 1000)) luaL_error(L, "viewer: opts.rate must be in (0, 1000]");
+    s->rate = r;
+    lua_pop(L, 1);
+  }
+  if (optfield(L, t, "title", LUA_TSTRING, "a string")) {
+    snprintf(s->title, sizeof s->title, "%s", lua_tostring(L, -1));
+    lua_pop(L, 1);
+  }
+  s->keep_camera = optbool(L, t, "keep_camera", 0);
+  {
+    int ntex = 0, i;
+    const lsys_texture *const *tex = lsys_opttextures(L, t, "viewer:post", &ntex);
+    if (ntex > 0) {
+      if ((s->tex = (lsys_texture *)LSYS_MALLOC((size_t)ntex * sizeof *s->tex)) == NULL)
+        return luaL_error(L, "not enough memory for the viewer");
+      for (i = 0; i < ntex; i++) {
+        if (lsys_texture_copy(&s->tex[i], tex[i]) != LSYS_OK)
+          return luaL_error(L, "not enough memory for the viewer");
+        s->ntex = i + 1;
+      }
+    }
+    lua_pop(L, 1);
+  }
+  box->s = NULL;
+  lsys_viewer_post(v, s);
+  return 0;
+}
+
+static const char *const evnames[] = {
+  "none", "pick", "miss", "screenshot", "step", "closed"
+};
+
+static int viewer_poll (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  double timeout = luaL_optnumber(L, 2, 0);
+  lsys_vevent ev;
+  if (!lsys_viewer_poll(v, &ev, timeout)) return 0;
+  lua_createtable(L, 0, 8);
+  lua_pushstring(L, evnames[ev.type]);
+  lua_setfield(L, -2, "type");
+  if (ev.frame >= 0) {
+    lua_pushinteger(L, ev.frame + 1);
+    lua_setfield(L, -2, "frame");
+  }
+  if (ev.step >= 0) {
+    lua_pushinteger(L, ev.step);
+    lua_setfield(L, -2, "step");
+  }
+  switch (ev.type) {
+    case LSYS_VEV_PICK:
+      lua_pushinteger(L, (lua_Integer)ev.module + 1);
+      lua_setfield(L, -2, "module");
+      lua_pushstring(L, lsys_recordkind(ev.kind));
+      lua_setfield(L, -2, "kind");
+      /* fall through */
+    case LSYS_VEV_MISS:
+      lua_pushnumber(L, ev.x);
+      lua_setfield(L, -2, "x");
+      lua_pushnumber(L, ev.y);
+      lua_setfield(L, -2, "y");
+      break;
+    case LSYS_VEV_SCREENSHOT:
+      lua_pushstring(L, ev.path);
+      lua_setfield(L, -2, "path");
+      lua_pushboolean(L, ev.ok);
+      lua_setfield(L, -2, "ok");
+      if (!ev.ok) {
+        lua_pushstring(L, ev.msg);
+        lua_setfield(L, -2, "msg");
+      }
+      break;
+    default:
+      break;
+  }
+  return 1;
+}
+
+static int viewer_screenshot (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  const char *path = luaL_optstring(L, 2, NULL);
+  lua_pushboolean(L, lsys_viewer_screenshot(v, path) == LSYS_OK);
+  return 1;
+}
+
+static int viewer_key (lua_State *L) {
+  static const char *const names[] = {
+    "right", "left", "home", "end", "space", "r", "f", "w", "s", "h", "q", "escape", "+", "-",
+    "redraw", NULL
+  };
+  static const int keys[] = {
+    LSYS_VKEY_RIGHT, LSYS_VKEY_LEFT, LSYS_VKEY_HOME, LSYS_VKEY_END, ' ', 'R', 'F', 'W', 'S',
+    'H', 'Q', 256, '=', '-', LSYS_VKEY_REDRAW
+  };
+  lsys_viewer *v = checkviewer(L, 1);
+  int i = luaL_checkoption(L, 2, NULL, names);
+  lsys_viewer_key(v, keys[i]);
+  return 0;
+}
+
+static void setint (lua_State *L, const char *k, lua_Integer x) {
+  lua_pushinteger(L, x);
+  lua_setfield(L, -2, k);
+}
+
+static int viewer_state (lua_State *L) {
+  lviewer *lv = (lviewer *)luaL_checkudata(L, 1, VIEWER_T);
+  lsys_vstate st;
+  lua_createtable(L, 0, 9);
+  if (lv->v == NULL) {
+    lua_pushboolean(L, 0);
+    lua_setfield(L, -2, "open");
+    return 1;
+  }
+  lsys_viewer_state(lv->v, &st);
+  lua_pushboolean(L, st.open);
+  lua_setfield(L, -2, "open");
+  setint(L, "drawn", st.drawn);
+  setint(L, "width", st.width);
+  setint(L, "height", st.height);
+  setint(L, "fbwidth", st.fbwidth);
+  setint(L, "fbheight", st.fbheight);
+  setint(L, "frame", st.frame + 1);
+  setint(L, "nframes", st.nframes);
+  lua_pushboolean(L, st.playing);
+  lua_setfield(L, -2, "playing");
+  lua_pushboolean(L, st.wireframe);
+  lua_setfield(L, -2, "wireframe");
+  return 1;
+}
+
+static int viewer_project (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  lsys_vstate st;
+  double p[3], out[3];
+  int i;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  for (i = 0; i < 3; i++) {
+    lua_rawgeti(L, 2, i + 1);
+    p[i] = luaL_checknumber(L, -1);
+    lua_pop(L, 1);
+  }
+  lsys_viewer_state(v, &st);
+  if (st.drawn == 0 || st.frame < 0 ||
+      !lsys_render_project(st.proj, st.view, st.width, st.height, p, out))
+    return 0;
+  lua_pushnumber(L, out[0]);
+  lua_pushnumber(L, out[1]);
+  lua_pushnumber(L, out[2]);
+  return 3;
+}
+
+static int viewer_close (lua_State *L) {
+  lviewer *lv = (lviewer *)luaL_checkudata(L, 1, VIEWER_T);
+  lsys_viewer_close(lv->v);
+  lv->v = NULL;
+  return 0;
+}
+
+static const luaL_Reg viewer_methods[] = {
+  {"post", viewer_post}, {"poll", viewer_poll}, {"screenshot", viewer_screenshot},
+  {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
+  {"close", viewer_close}, {NULL, NULL}
+};
+#endif
+
+/* core.filestamp(path) -> modification time (seconds, with fraction), size; or nil, msg */
+static int l_filestamp (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  struct stat sb;
+  if (stat(path, &sb) != 0) {
+    lua_pushnil(L);
+    lua_pushfstring(L, "%s: %s", path, strerror(errno));
+    return 2;
+  }
+  lua_pushnumber(L, (lua_Number)sb.st_mtim.tv_sec + (lua_Number)sb.st_mtim.tv_nsec * 1e-9);
+  lua_pushinteger(L, (lua_Integer)sb.st_size);
+  return 2;
+}
+
+void lsys_open_viewer (lua_State *L) {
+#ifndef LSYS_NO_VIEWER
+  luaL_newmetatable(L, VIEWER_T);
+  luaL_newlib(L, viewer_methods);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, viewer_close);
+  lua_setfield(L, -2, "__gc");
+  lua_pop(L, 1);
+  lua_pushcfunction(L, l_viewer_open);
+  lua_setfield(L, -2, "viewer_open");
+  lua_pushboolean(L, 1);
+#else
+  lua_pushboolean(L, 0);
+#endif
+  lua_setfield(L, -2, "has_viewer");
+  lua_pushcfunction(L, l_filestamp);
+  lua_setfield(L, -2, "filestamp");
+}

@@ -1,0 +1,151 @@
+/*
+** The interactive viewer window (DESIGN.md §7): a GLFW window with its own
+** thread and GL context, drawing with render.c what the caller hands over.
+**
+** The caller (the Lua binding) builds a snapshot -- the frames to show, one
+** per derivation step, with their meshes, palettes, textures and pick
+** records -- and posts it; the viewer takes ownership, and from then on the
+** snapshot is immutable and private to the viewer thread. A newer post
+** replaces an older one not yet taken (a mailbox of one). What happens in
+** the window comes back as events (picks, screenshots written, the window
+** closed) that the caller polls, so the caller's thread never waits on the
+** window and the window never waits on the caller.
+**
+** libglfw is opened with dlopen when the first window opens, as OSMesa is
+** (osmesa.c): lsys.core does not need it, nor a display, to load. GLFW
+** requires its calls to come from one thread; here that is the viewer
+** thread, which is fine on X11 and Wayland (not on macOS, where GLFW must
+** run on the main thread).
+*/
+#ifndef LSYS_VIEWER_H
+#define LSYS_VIEWER_H
+
+#include "render.h"
+
+/* Something that can be picked: a segment from p0 to p1 (p0 = p1 for a
+** sphere, disc, polygon or surface), with the module that drew it. */
+typedef struct lsys_vpick {
+  float p0[3], p1[3];
+  float radius;                 /* half the width in world units (0: lines in pixels) */
+  uint32_t module;              /* index in the string (0-based) */
+  uint8_t kind;                 /* the turtle record's kind (LSYS_REC_*) */
+} lsys_vpick;
+
+/* One picture: a scene with what drawing and picking it need. */
+typedef struct lsys_vframe {
+  lsys_mesh mesh;               /* owned */
+  lsys_material *pal;           /* owned; npal >= 1 */
+  size_t npal;
+  lsys_vpick *picks;            /* owned */
+  size_t npicks;
+  size_t nmodules;              /* length of the string it was drawn from */
+  int step;                     /* derivation step, or -1 when unknown */
+  lsys_render_opts ro;          /* background, light, camera of the view (width,
+                                   height, palette, textures, cache are set when drawn) */
+} lsys_vframe;
+
+/* What is shown: frames 0..nframes-1 (usually steps 0..n), textures shared
+** by all frames (texture index k of a mesh is tex[k - 1]). */
+typedef struct lsys_vsnap {
+  lsys_vframe *frames;
+  size_t nframes;
+  size_t first;                 /* the frame shown when the snapshot arrives */
+  lsys_texture *tex;            /* owned, ntex of them */
+  int ntex;
+  double rate;                  /* animation speed in frames per second (> 0) */
+  int keep_camera;              /* 1: keep the current camera (a reload), 0: fit anew */
+  char title[200];              /* window title (the model's name) */
+} lsys_vsnap;
+
+/* A new empty snapshot with room for n frames (each frame's mesh
+** initialised, palette empty), or NULL when out of memory. */
+lsys_vsnap *lsys_vsnap_new (size_t n);
+void lsys_vsnap_free (lsys_vsnap *s);
+
+typedef struct lsys_viewer_opts {
+  int width, height;            /* window size in screen coordinates (default 800 x 800) */
+  int samples;                  /* multisampling (default 4; 0 off) */
+  int visible;                  /* 1 (default): show the window */
+  int status;                   /* 1 (default): draw the status line */
+} lsys_viewer_opts;
+
+void lsys_viewer_defaults (lsys_viewer_opts *o);
+
+enum {
+  LSYS_VEV_NONE = 0,
+  LSYS_VEV_PICK,                /* a click on a pickable thing (frame, module, kind, x, y) */
+  LSYS_VEV_MISS,                /* a click on nothing (frame, x, y) */
+  LSYS_VEV_SCREENSHOT,          /* a screenshot was written (path) or failed (msg) */
+  LSYS_VEV_STEP,                /* the frame shown changed (frame) */
+  LSYS_VEV_CLOSED               /* the window was closed (by the user or an error: msg) */
+};
+
+typedef struct lsys_vevent {
+  int type;
+  int ok;                       /* SCREENSHOT: 1 written, 0 failed (msg says why) */
+  long frame;                   /* the frame index shown (-1 when none) */
+  long step;                    /* that frame's step */
+  uint32_t module;              /* PICK: the module */
+  int kind;                     /* PICK: the record's kind */
+  double x, y;                  /* PICK, MISS: window coordinates of the click */
+  char path[512];               /* SCREENSHOT: the file */
+  char msg[256];                /* SCREENSHOT failure, CLOSED by an error */
+} lsys_vevent;
+
+typedef struct lsys_viewer lsys_viewer;
+
+/* Opens the window on its thread and waits until it is on screen. Returns
+** NULL with e->msg set when libglfw is missing, no display can be opened
+** or no GL context created. */
+lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e);
+
+/* Hands 's' over to the viewer (which frees it); never blocks on drawing. */
+void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s);
+
+/* Takes the next event into 'ev'. Waits up to 'timeout' seconds (0: do not
+** wait) for one; returns 1 with an event, 0 without. */
+int lsys_viewer_poll (lsys_viewer *v, lsys_vevent *ev, double timeout);
+
+/* Asks for a screenshot of the next frame drawn, written to 'path' as a PNG
+** (the S key's path; NULL: lsys-NNN.png in the current directory); the
+** SCREENSHOT event tells the outcome. Returns LSYS_OK, or LSYS_EARG when
+** the window is closed. */
+int lsys_viewer_screenshot (lsys_viewer *v, const char *path);
+
+/* Asks the window to act as if a key was pressed (one of the keys of the
+** window: 'R', 'F', 'W', 'S', ' ', and LSYS_VKEY_* below). */
+#define LSYS_VKEY_REDRAW 1      /* no key: just draw again */
+#define LSYS_VKEY_RIGHT 262
+#define LSYS_VKEY_LEFT  263
+#define LSYS_VKEY_HOME  268
+#define LSYS_VKEY_END   269
+void lsys_viewer_key (lsys_viewer *v, int key);
+
+/* The state of the window as last drawn. */
+typedef struct lsys_vstate {
+  int open;                     /* 0 once closed */
+  int drawn;                    /* frames drawn so far */
+  int width, height;            /* window size in screen coordinates */
+  int fbwidth, fbheight;        /* framebuffer size in pixels */
+  long frame, nframes;          /* the frame shown (-1: none yet) and how many there are */
+  int playing;                  /* animating through the frames */
+  int wireframe;
+  double proj[16], view[16];    /* the camera of the last picture drawn */
+} lsys_vstate;
+
+void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st);
+
+/* Closes the window (if open), ends the thread and frees 'v'. */
+void lsys_viewer_close (lsys_viewer *v);
+
+/*
+** Finds what a click at (x, y) (window coordinates, y down) hits in frame
+** 'f' seen through proj/view in a w x h window: the pick whose projected
+** segment passes within max(tol, its projected radius) pixels, nearest to
+** the eye where several do. Returns its index, or -1. Plain arithmetic:
+** tested without a window.
+*/
+long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
+                      int w, int h, double x, double y, double tol);
+
+#endif

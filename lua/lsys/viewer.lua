@@ -1,0 +1,337 @@
+--- The viewer window from Lua (DESIGN.md §7): `lsys.show(x)` and what goes with it.
+--
+-- One window per process, opened by the first `show` and reused by the next ones (a
+-- closed window is opened again). The window runs on its own thread (csrc/glfw_viewer.c):
+-- `show` hands it a snapshot and returns at once, and Lua goes on while the window draws.
+-- What happens in the window (a click on a module, a screenshot written, the window
+-- closed) comes back as events, which `poll` turns into callbacks on the Lua thread.
+-- The `lsys` REPL polls while it waits at the prompt, and `lsys view` polls in its loop;
+-- a script polls with `lsys.wait()` (until the window closes) or `lsys.viewer.poll()`.
+--
+-- Showing a model derives it keeping the string of every step, interprets each, and
+-- lets the window step through them (left/right arrows, space animates); the camera
+-- is fitted to the step shown first (the last, by default) and kept while stepping, so
+-- the plant grows in place. The model's `view` is read at each show: change it and show
+-- again.
+-- @module lsys.viewer
+local core = require "lsys.core"
+local lsys = require "lsys"
+local view = require "lsys.view"
+
+local type, pairs, ipairs, error, pcall, tostring, select, setmetatable =
+      type, pairs, ipairs, error, pcall, tostring, select, setmetatable
+local io, os, string, math, table = io, os, string, math, table
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+local S = {             -- the one window and what it shows
+  viewer = nil,         -- core Viewer, nil before the first show or after close
+  strings = {},         -- frame index -> the Lstring it was drawn from
+  steps = {},           -- frame index -> derivation step (or nil)
+  model = nil,          -- the model shown, if any
+  on_pick = nil,        -- callback of the last show (or M.on_pick)
+  on_event = nil,
+}
+
+--- Called with the pick information when a click hits a module and the show did not
+-- give its own `on_pick`; nil by default (the `lsys` REPL and `lsys view` print it).
+M.on_pick = nil
+
+--- The last pick (see `show`), or nil.
+M.last_pick = nil
+
+local SHOW_OPTS = {
+  step = "number", steps = "boolean", rate = "number", title = "string", width = "number",
+  height = "number", on_pick = "function", on_event = "function", view = "table",
+  keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
+  model = "table",
+}
+
+local function fail (msg, level) error("lsys.show: " .. msg, level + 1) end
+
+local function checkopts (opts)
+  if opts == nil then return {} end
+  if type(opts) ~= "table" then fail("an options table expected", 3) end
+  for k, v in pairs(opts) do
+    local t = SHOW_OPTS[k]
+    if t == nil then fail(format("unknown option '%s'", tostring(k)), 3) end
+    if type(v) ~= t then fail(format("option '%s' must be a %s", k, t), 3) end
+  end
+  return opts
+end
+
+-- Widths in world units (cylinders, ribbons) or in pixels (lines), for picking.
+local function world (v)
+  return v ~= nil and v.line_style ~= nil and v.line_style ~= "line"
+end
+
+-- A frame table for the core from a scene.
+local function frame (scene, step, nmodules, take)
+  local v = lsys._sceneview(scene)
+  return {
+    scene = scene, step = step, modules = nmodules, take = take, world = world(v),
+    render = v and view.render(v) or nil,
+  }, v
+end
+
+-- A model's steps: derive keeping every string, interpret each.
+local function model_frames (m, opts)
+  local n = m.steps
+  local strings, frames = {}, {}
+  if opts.steps == false then
+    strings[n] = m:derive(n)
+  else
+    m:derive(n, { each = function (k, s) strings[k] = s end })
+  end
+  local first, last = opts.steps == false and n or 0, n
+  local textures
+  for k = first, last do
+    if opts.progress then opts.progress(k, last) end
+    local scene = m:interpret(strings[k], opts.view)
+    local f, v = frame(scene, k, #strings[k], true)
+    frames[#frames + 1] = f
+    S.strings[#frames], S.steps[#frames] = strings[k], k
+    if v and v.textures and #v.textures > 0 then textures = v.textures end
+  end
+  return frames, textures
+end
+
+-- The model to interpret an Lstring with: its own, the one given, the last shown, or a
+-- plain turtle.
+local plain
+local function model_of (s, opts)
+  if opts.model ~= nil then
+    if not lsys.ismodel(opts.model) then fail("option 'model' must be a model", 4) end
+    return opts.model
+  end
+  local m = lsys._owner(s) or S.model
+  if m == nil then
+    plain = plain or lsys.lsystem { axiom = "", name = "plain turtle" }
+    m = plain
+  end
+  return m
+end
+
+local function open (opts)
+  if S.viewer ~= nil and S.viewer:state().open then return S.viewer end
+  if S.viewer ~= nil then S.viewer:close() end
+  S.viewer = nil
+  if not core.has_viewer then
+    error("lsys.show: lsys was built without the viewer window: install libglfw3-dev and "
+      .. "rebuild (./setup.sh does)", 0)
+  end
+  local ok, v = pcall(core.viewer_open, {
+    width = opts.width and math.tointeger(opts.width) or nil,
+    height = opts.height and math.tointeger(opts.height) or nil,
+    samples = opts.samples and math.tointeger(opts.samples) or nil,
+    status = opts.status,
+  })
+  if not ok then
+    local msg = tostring(v)
+    if os.getenv("DISPLAY") == nil and os.getenv("WAYLAND_DISPLAY") == nil then
+      msg = msg .. " (no display: DISPLAY is not set; `lsys render` draws PNG files "
+        .. "without one)"
+    end
+    error("lsys.show: " .. msg, 0)
+  end
+  S.viewer = v
+  return v
+end
+
+--- Shows `x` in the viewer window, opening it if needed, and returns at once.
+-- `x` is a Model (derived; every step is kept and can be stepped through), an Lstring
+-- (interpreted with the model that made it, else `opts.model`, else the last model
+-- shown, else a plain turtle), a Scene, or a list of Scenes (frames to step through).
+-- opts: `step` (the step shown first; default the last), `steps = false` (a model's
+-- last step only: less work for big models), `rate` (animation, steps per second,
+-- default 2), `title`, `width`, `height` (of a new window, default 800 x 800),
+-- `samples` (multisampling of a new window), `status` (the status line, default true),
+-- `view` (view fields replacing the model's for this show), `keep_camera` (keep the
+-- window's camera instead of fitting), `on_pick(info)` (called by `poll` for a click
+-- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }),
+-- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
+-- `model` (for an Lstring).
+function M.show (x, opts)
+  opts = checkopts(opts)
+  local frames, textures, title
+  S.strings, S.steps = {}, {}
+  if lsys.ismodel(x) then
+    frames, textures = model_frames(x, opts)
+    S.model = x
+    title = x.name or x._where
+  elseif lsys.islstring(x) then
+    local m = model_of(x, opts)
+    local scene = m:interpret(x, opts.view)
+    local f, v = frame(scene, nil, #x, true)
+    frames = { f }
+    S.strings[1] = x
+    textures = v and v.textures
+    title = format("Lstring (%d modules)", #x)
+  elseif lsys.isscene(x) then
+    if opts.view ~= nil then fail("option 'view' needs a model or an Lstring", 2) end
+    local f, v = frame(x, nil, nil, false)
+    frames = { f }
+    S.strings[1] = x.lstring
+    textures = v and v.textures
+    title = "scene"
+  elseif type(x) == "table" and #x > 0 then
+    frames = {}
+    for i, sc in ipairs(x) do
+      if not lsys.isscene(sc) then fail(format("element %d of the list is not a Scene", i), 2) end
+      local f, v = frame(sc, i - 1, nil, false)
+      frames[i] = f
+      S.strings[i], S.steps[i] = sc.lstring, i - 1
+      textures = textures or (v and v.textures)
+    end
+    title = format("%d scenes", #x)
+  else
+    fail("a Model, an Lstring, a Scene or a list of Scenes expected", 2)
+  end
+  local first = #frames
+  if opts.step ~= nil then
+    first = nil
+    for i = 1, #frames do if S.steps[i] == opts.step then first = i end end
+    if first == nil then
+      fail(format("step %s is not among the steps shown (%s to %s)", tostring(opts.step),
+        tostring(S.steps[1] or 0), tostring(S.steps[#frames] or #frames - 1)), 2)
+    end
+  end
+  if opts.rate ~= nil and not (opts.rate > 0 and opts.rate <= 1000) then
+    fail("option 'rate' must be in (0, 1000] steps per second", 2)
+  end
+  local v = open(opts)
+  v:post(frames, {
+    first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
+    keep_camera = opts.keep_camera,
+    textures = textures and #textures > 0 and textures or nil,
+  })
+  S.on_pick, S.on_event = opts.on_pick, opts.on_event
+end
+
+-- What a click hit, for the callbacks.
+local function pickinfo (ev)
+  local s = S.strings[ev.frame]
+  local info = {
+    module = ev.module, step = ev.step, frame = ev.frame, kind = ev.kind, x = ev.x, y = ev.y,
+    lstring = s,
+  }
+  if s ~= nil and ev.module <= #s then
+    info.name = s:module(ev.module)
+    info.text = tostring(s:sub(ev.module, ev.module))
+  end
+  return info
+end
+
+--- Handles the window's events: calls `on_pick` for clicks on modules (and `on_event`
+-- for every event). Waits up to `timeout` seconds (default 0) for the first event.
+-- Returns true while the window is open.
+function M.poll (timeout)
+  local v = S.viewer
+  if v == nil then return false end
+  local ev = v:poll(timeout or 0)
+  while ev ~= nil do
+    if S.on_event then S.on_event(ev) end
+    if ev.type == "pick" then
+      local info = pickinfo(ev)
+      M.last_pick = info
+      local f = S.on_pick or M.on_pick
+      if f then f(info) end
+    elseif ev.type == "closed" then
+      v:close()
+      S.viewer = nil
+      return false
+    end
+    ev = v:poll(0)
+  end
+  return v:state().open
+end
+
+--- Runs `poll` until the window is closed (Esc, Q or its close button).
+function M.wait ()
+  while M.poll(0.25) do end
+end
+
+--- True while the window is open.
+function M.isopen ()
+  return S.viewer ~= nil and S.viewer:state().open
+end
+
+--- Closes the window.
+function M.close ()
+  if S.viewer ~= nil then S.viewer:close() end
+  S.viewer = nil
+end
+
+--- Saves the next picture the window draws as a PNG, as the S key does, and returns
+-- its path (`path` nil: lsys-NNN.png in the current directory). Raises when no window
+-- is open or the file cannot be written; waits at most `timeout` seconds (10).
+function M.screenshot (path, timeout)
+  local v = S.viewer
+  if v == nil or not v:state().open then error("lsys.viewer.screenshot: no window open", 2) end
+  v:screenshot(path)
+  local deadline = os.time() + (timeout or 10)
+  repeat
+    local ev = v:poll(0.25)
+    while ev ~= nil do
+      if S.on_event then S.on_event(ev) end
+      if ev.type == "screenshot" then
+        if not ev.ok then error("lsys.viewer.screenshot: " .. ev.msg, 2) end
+        return ev.path
+      elseif ev.type == "closed" then
+        M.close()
+        error("lsys.viewer.screenshot: the window was closed", 2)
+      elseif ev.type == "pick" then
+        M.last_pick = pickinfo(ev)
+        local f = S.on_pick or M.on_pick
+        if f then f(M.last_pick) end
+      end
+      ev = v:poll(0)
+    end
+  until os.time() > deadline
+  error("lsys.viewer.screenshot: no picture drawn within the time allowed", 2)
+end
+
+--- The window's state: { open, drawn, width, height, frame, nframes, playing,
+-- wireframe, step } (nil when no window was opened).
+function M.state ()
+  if S.viewer == nil then return nil end
+  local st = S.viewer:state()
+  st.step = S.steps[st.frame]
+  return st
+end
+
+--- Where the world point `p` ({x, y, z}) is in the window as last drawn: x, y in
+-- window coordinates (y down) and the depth, or nil.
+function M.project (p)
+  if S.viewer == nil then return nil end
+  return S.viewer:project(p)
+end
+
+--- Presses a key of the window: "right", "left", "home", "end", "space", "r", "f", "w",
+-- "s", "h", "q", "+", "-", "redraw".
+function M.key (name)
+  if S.viewer == nil then error("lsys.viewer.key: no window open", 2) end
+  S.viewer:key(name)
+end
+
+--- Waits until the window has drawn what was last shown (at most `timeout` seconds, 10);
+-- returns true when it has.
+function M.sync (timeout)
+  if S.viewer == nil then return false end
+  local deadline = os.time() + (timeout or 10)
+  -- the window takes posts and keys in order before drawing: a frame drawn after a
+  -- redraw request shows everything asked before it
+  local st = S.viewer:state()
+  local drawn = st.drawn
+  S.viewer:key("redraw")
+  repeat
+    M.poll(0.05)
+    if S.viewer == nil then return false end
+    st = S.viewer:state()
+  until st.drawn > drawn or os.time() > deadline
+  return st.drawn > drawn
+end
+
+return M
