@@ -11,7 +11,8 @@ PACKAGES=(
   cmake gcc libc6-dev make pkg-config      # the build
   libpng-dev libosmesa6-dev libglfw3-dev   # PNG output, offscreen GL, the viewer window
   libreadline-dev                          # line editing in the REPL
-  xvfb xauth                               # a virtual display for viewer tests
+  libgl1-mesa-dri libglx-mesa0             # OpenGL in the window (and software GL on Xvfb)
+  xvfb xauth xdotool                       # a virtual display and clicks for viewer tests
   valgrind                                 # the memcheck test (ctest -R memcheck)
 )
 BUILD_DIR=${BUILD_DIR:-build}

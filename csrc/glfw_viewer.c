@@ -206,6 +206,7 @@ long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double 
     t = t < 0 ? 0 : t > 1 ? 1 : t;
     d = hypot(pa[0] + t * dx - x, pa[1] + t * dy - y);
     z = pa[2] + t * (pb[2] - pa[2]);
+    if (z < 0 || z > 1) continue;          /* clipped by the near or far plane */
     if (p->radius > 0) {        /* the drawn width, projected where the click is nearest */
       for (i = 0; i < 3; i++) {
         q[i] = a[i] + t * (b[i] - a[i]);
@@ -1125,6 +1126,14 @@ int lsys_viewer_poll (lsys_viewer *v, lsys_vevent *ev, double timeout) {
   }
   pthread_mutex_unlock(&v->mu);
   return got;
+}
+
+int lsys_viewer_pending (lsys_viewer *v) {
+  int n;
+  pthread_mutex_lock(&v->mu);
+  n = (int)v->nev;
+  pthread_mutex_unlock(&v->mu);
+  return n;
 }
 
 int lsys_viewer_screenshot (lsys_viewer *v, const char *path) {

@@ -97,7 +97,23 @@ static int host_interrupt (lua_State *L) {
   return 0;
 }
 
+/* host.set_idle(f): the function the REPL's line editor calls while it waits (nil: none). */
+static int host_set_idle (lua_State *L) {
+  if (!lua_isnoneornil(L, 1)) luaL_checktype(L, 1, LUA_TFUNCTION);
+  lua_settop(L, 1);
+  lua_setfield(L, LUA_REGISTRYINDEX, "lsys.idle");
+  return 0;
+}
+
+#ifdef LSYS_WITH_READLINE
+static int host_clear_line (lua_State *L);
+#endif
+
 static const luaL_Reg host_funcs[] = {
+  {"set_idle", host_set_idle},
+#ifdef LSYS_WITH_READLINE
+  {"clear_line", host_clear_line},
+#endif
   {"isatty", host_isatty},
   {"clock", host_clock},
   {"interrupt", host_interrupt},
@@ -112,6 +128,8 @@ static const luaL_Reg host_funcs[] = {
 ** lsys.readline
 ** ===================================================================== */
 
+static lua_State *idleL = NULL;   /* the state inside l_readline, for the idle hook */
+
 static int pushline (lua_State *L) {
   lua_pushstring(L, (const char *)lua_touserdata(L, 1));
   return 1;
@@ -123,8 +141,11 @@ static int pushline (lua_State *L) {
 */
 static int l_readline (lua_State *L) {
   const char *prompt = luaL_optstring(L, 1, "");
-  char *line = readline(prompt);
+  char *line;
   int status;
+  idleL = L;
+  line = readline(prompt);
+  idleL = NULL;
   if (line == NULL) {
     lua_pushnil(L);
     return 1;
@@ -141,8 +162,46 @@ static int l_readline (lua_State *L) {
   return 1;
 }
 
+/*
+** The idle function: while readline waits for a key it calls rl_event_hook
+** about ten times a second; the hook calls the Lua function set with
+** host.set_idle (the REPL polls the viewer window there, so a click in the
+** window reaches its callback at the prompt). When the function returns
+** true it has printed something, after host.clear_line: the prompt and the
+** line being edited are drawn again below it.
+*/
+static int idlehook (void) {
+  lua_State *L = idleL;
+  int redraw = 0;
+  if (L == NULL) return 0;
+  if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.idle") != LUA_TFUNCTION) {
+    lua_pop(L, 1);
+    return 0;
+  }
+  if (lua_pcall(L, 0, 1, 0) != LUA_OK) {
+    const char *msg = lua_tostring(L, -1);
+    fprintf(stderr, "\n%s\n", msg != NULL ? msg : "(error in the idle function)");
+    redraw = 1;
+  }
+  else redraw = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  if (redraw) rl_forced_update_display();
+  return 0;
+}
+
+/* host.clear_line(): erases the prompt line being edited (before printing at the prompt). */
+static int host_clear_line (lua_State *L) {
+  (void)L;
+  if (idleL != NULL) {
+    rl_clear_visible_line();
+    fflush(rl_outstream != NULL ? rl_outstream : stdout);
+  }
+  return 0;
+}
+
 static int luaopen_lsys_readline (lua_State *L) {
   rl_readline_name = "lsys";  /* for $if lsys in ~/.inputrc */
+  rl_event_hook = idlehook;
   lua_pushcfunction(L, l_readline);
   return 1;
 }

@@ -13,6 +13,7 @@
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
 **                                        "step" | "closed", frame (1-based), step,
 **                                        module (1-based), kind, x, y, path, ok, msg }
+**   v:pending() -> n                     events waiting to be polled
 **   v:screenshot([path])                 S key's screenshot of the next frame
 **   v:key(name)                          "right" "left" "home" "end" "space" "r" ...
 **   v:state() -> table                   open, drawn, width, height, frame, nframes,
@@ -258,6 +259,12 @@ static int viewer_poll (lua_State *L) {
   return 1;
 }
 
+static int viewer_pending (lua_State *L) {
+  lviewer *lv = (lviewer *)luaL_checkudata(L, 1, VIEWER_T);
+  lua_pushinteger(L, lv->v != NULL ? lsys_viewer_pending(lv->v) : 0);
+  return 1;
+}
+
 static int viewer_screenshot (lua_State *L) {
   lsys_viewer *v = checkviewer(L, 1);
   const char *path = luaL_optstring(L, 2, NULL);
@@ -340,7 +347,7 @@ static int viewer_close (lua_State *L) {
 }
 
 static const luaL_Reg viewer_methods[] = {
-  {"post", viewer_post}, {"poll", viewer_poll}, {"screenshot", viewer_screenshot},
+  {"post", viewer_post}, {"poll", viewer_poll}, {"pending", viewer_pending}, {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
   {"close", viewer_close}, {NULL, NULL}
 };

@@ -106,6 +106,9 @@ void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s);
 ** wait) for one; returns 1 with an event, 0 without. */
 int lsys_viewer_poll (lsys_viewer *v, lsys_vevent *ev, double timeout);
 
+/* The number of events waiting to be polled. */
+int lsys_viewer_pending (lsys_viewer *v);
+
 /* Asks for a screenshot of the next frame drawn, written to 'path' as a PNG
 ** (the S key's path; NULL: lsys-NNN.png in the current directory); the
 ** SCREENSHOT event tells the outcome. Returns LSYS_OK, or LSYS_EARG when
@@ -142,7 +145,8 @@ void lsys_viewer_close (lsys_viewer *v);
 ** Finds what a click at (x, y) (window coordinates, y down) hits in frame
 ** 'f' seen through proj/view in a w x h window: the pick whose projected
 ** segment passes within max(tol, its projected radius) pixels, nearest to
-** the eye where several do. Returns its index, or -1. Plain arithmetic:
+** the eye where several do; points clipped by the near or far plane do not
+** count. Returns its index, or -1. Plain arithmetic:
 ** tested without a window.
 */
 long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],

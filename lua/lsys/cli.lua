@@ -9,12 +9,13 @@
 --   lsys derive [MODEL] ...   derive a model; print the L-string or its statistics
 --   lsys render [MODEL] ...   derive, interpret and render a model to PNG (headless, OSMesa)
 --   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
+--   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local G = _G
 local type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require =
       type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require
-local loadfile, getmetatable, setmetatable = loadfile, getmetatable, setmetatable
+local loadfile, getmetatable, setmetatable, next = loadfile, getmetatable, setmetatable, next
 local io, os, string, table, math, debug, package = io, os, string, table, math, debug, package
 local format = string.format
 local _ENV = nil
@@ -29,6 +30,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys derive [MODEL] [OPTS]  derive a model; print the L-string or its statistics
   lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png)
   lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
+  lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -93,12 +95,48 @@ to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT.
 Options: as for `lsys render`; -o is required.
 ]]
 
+HELP.view = [[
+usage: lsys view [MODEL] [--size WxH] [--step K] [--rate R] [--no-status]
+                 [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
+                 [--view NAME=VALUE]... [--name NAME]
+
+Opens the viewer window on MODEL (a Lua file returning a model, or an example name as for
+`lsys derive`; default: the default example) with every derivation step, the last one
+shown. When the model file changes on disk it is loaded again and the window updates,
+keeping its camera; an error (a syntax error, a bad rule) is printed here and the last
+good model stays on screen. A click on a module prints its index and text. The window
+closes with Esc or Q, and Ctrl-C here closes it too.
+
+In the window: drag to orbit, right-drag or shift-drag to pan, scroll to zoom; left and
+right arrows step through the derivation, space animates, + and - change the speed;
+R resets the view, F fits, W toggles wireframe, S saves a screenshot (lsys-NNN.png),
+H shows this list.
+
+Options:
+  --size WxH           window size (default 800x800)
+  --step K             the step shown first (default: the last)
+  --rate R             animation speed in steps per second (default 2)
+  --no-status          no status line at the bottom of the window
+  --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
+                       (through the same path as the S key) and exit
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME
+                       as for `lsys render`
+  -h, --help           show this help
+
+The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
+without one.
+]]
+
 HELP.repl = [[
 usage: lsys [repl]
 
 The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
-prints its values; Lstrings print abbreviated. Incomplete statements continue on `>>` lines.
-Ctrl-C interrupts a running evaluation; Ctrl-D quits.
+prints its values; Lstrings print abbreviated, scenes as a summary. Incomplete statements
+continue on `>>` lines. Ctrl-C interrupts a running evaluation; Ctrl-D quits.
+
+lsys.show(x) opens the viewer window on a model, an Lstring or a scene (or updates it) and
+returns at once; clicks on modules in the window are printed at the prompt (set
+lsys.viewer.on_pick to a function to handle them yourself).
 ]]
 
 HELP.help = [[
@@ -436,17 +474,22 @@ local function scene_of (cmd, opts, pos)
   return scene, path, views, verbose
 end
 
+-- --size WxH (nil when absent).
+local function size_opt (cmd, s)
+  if s == nil then return nil end
+  local w, h = s:match("^(%d+)[xX](%d+)$")
+  w, h = tonumber(w), tonumber(h)
+  if w == nil or w < 1 or h < 1 or w > 16384 or h > 16384 then
+    usage(cmd, "--size expects WxH (1 to 16384 each), got '%s'", s)
+  end
+  return w, h
+end
+
 function commands.render (args)
   local opts, pos = parse("render", RENDER_OPTS, args, 2)
   if opts.help then out(HELP.render) return 0 end
-  local w, h = 800, 800
-  if opts.size ~= nil then
-    w, h = opts.size:match("^(%d+)[xX](%d+)$")
-    w, h = tonumber(w), tonumber(h)
-    if w == nil or w < 1 or h < 1 or w > 16384 or h > 16384 then
-      usage("render", "--size expects WxH (1 to 16384 each), got '%s'", opts.size)
-    end
-  end
+  local w, h = size_opt("render", opts.size)
+  w, h = w or 800, h or 800
   local outpath = opts.output
   if outpath == nil then
     outpath = pos[1] == nil and "tree.png" or (pos[1]:match("([^/]-)%.?[^./]*$") .. ".png")
@@ -482,6 +525,120 @@ function commands.export (args)
   scene:save(outpath)
   out(format("wrote %s (%d vertices, %d triangles, %d lines)\n", outpath, scene.nvertices,
     scene.ntriangles, scene.nlines))
+  return 0
+end
+
+local VIEW_OPTS = {
+  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+  size = "value", step = "value", rate = "value", screenshot = "value",
+  ["no-status"] = "flag", help = "flag", short = { h = "help" },
+}
+
+function commands.view (args)
+  local opts, pos = parse("view", VIEW_OPTS, args, 2)
+  if opts.help then out(HELP.view) return 0 end
+  local w, h = size_opt("view", opts.size)
+  local step, rate
+  if opts.step ~= nil then
+    step = math.tointeger(tonumber(opts.step))
+    if step == nil or step < 0 then
+      usage("view", "--step expects a step number (0 or more), got '%s'", opts.step)
+    end
+  end
+  if opts.rate ~= nil then
+    rate = tonumber(opts.rate)
+    if rate == nil or not (rate > 0 and rate <= 1000) then
+      usage("view", "--rate expects steps per second in (0, 1000], got '%s'", opts.rate)
+    end
+  end
+  local shot = opts.screenshot
+  if shot ~= nil and not shot:lower():find("%.png$") then
+    usage("view", "the screenshot must be a .png file, got '%s'", shot)
+  end
+  local lsys = require "lsys"
+  local V = require "lsys.viewer"
+  local core = require "lsys.core"
+  local path = find_model(pos[1])
+  if #pos > 1 then usage("view", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
+  local verbose = isatty(2)
+
+  -- Loads and shows the model; returns true, or false and the message.
+  local shown = false
+  local function show (keep)
+    local ok, err = pcall(function ()
+      local model, _, views = prepare("view", opts, pos)
+      local t0 = clock()
+      local st = shown and V.state()
+      local first = step
+      if keep and st and st.step ~= nil and st.step <= model.steps then first = st.step end
+      if first ~= nil and first > model.steps then
+        error(format("--step %d: the model has %d steps", first, model.steps), 0)
+      end
+      V.show(model, {
+        width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
+        title = path:match("([^/]*)$"), status = not opts["no-status"] or nil,
+        view = next(views) and views or nil,
+        progress = verbose and function (k, n)
+          io.stderr:write(format("\rinterpreting step %d/%d", k, n))
+          if k == n then io.stderr:write("\n") end
+        end or nil,
+      })
+      local st2 = V.state()
+      if verbose or keep then
+        io.stderr:write(format("%s %s: %d steps (%.2f s)\n", keep and "reloaded" or "showing",
+          path, model.steps, clock() - t0))
+      end
+      return st2
+    end)
+    if not ok and getmetatable(err) == USAGE_ERROR then error(err, 0) end
+    if ok then shown = true end
+    return ok, err
+  end
+
+  local ok, err = show(false)
+  if shot ~= nil then
+    if not ok then error(err, 0) end
+    if not V.sync(30) then error("the window did not draw its first picture", 0) end
+    local written = V.screenshot(shot, 30)
+    local st = V.state()
+    V.close()
+    out(format("wrote %s (%dx%d)\n", written, st.fbwidth, st.fbheight))
+    return 0
+  end
+  if not ok then
+    if not V.isopen() then error(err, 0) end        -- no window: nothing to wait in
+    io.stderr:write("lsys: ", tostring(err), "\n")
+  end
+  if V.on_pick == nil then V.on_pick = require("lsys.repl").print_pick end
+
+  -- Watches the file: a change of its time or size, stable for 0.1 s, reloads it.
+  local function stamp ()
+    local t, size = core.filestamp(path)
+    return t and format("%.9f/%d", t, size) or "missing"
+  end
+  local last = stamp()
+  local interrupt = host().interrupt or function () end
+  local iok, ierr = pcall(function ()
+    interrupt(true)
+    while V.poll(0.2) do
+      local now = stamp()
+      if now ~= last and now ~= "missing" then
+        V.poll(0.1)
+        if stamp() == now then
+          last = now
+          local rok, rerr = show(true)
+          if not rok then
+            io.stderr:write("lsys: ", tostring(rerr), "\n",
+              shown and "lsys: (the last good model stays on screen)\n" or "")
+          end
+        end
+      end
+    end
+    interrupt(false)
+  end)
+  interrupt(false)
+  V.close()
+  if not iok and not tostring(ierr):find("interrupted!", 1, true) then error(ierr, 0) end
   return 0
 end
 

@@ -487,6 +487,15 @@ end
 --- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
 function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end
 
+--- Handles the window's events until it is closed (lsys.viewer.wait): the end of a script
+-- that shows a model.
+function M.wait () return _G.require("lsys.viewer").wait() end
+
+-- lsys.viewer: the window's module, loaded at first use (it needs this one loaded).
+setmetatable(M, { __index = function (_, k)
+  if k == "viewer" then return _G.require("lsys.viewer") end
+end })
+
 -- options of lsys.render that are not view options
 local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,
                       transparent = true, wireframe = true }

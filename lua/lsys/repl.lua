@@ -22,9 +22,31 @@ local function is_lstring (v)
   return type(mt) == "table" and mt.__name == "lsys.Lstring"
 end
 
+local function is_scene (v)
+  if type(v) ~= "userdata" then return false end
+  local mt = getmetatable(v)
+  return type(mt) == "table" and mt.__name == "lsys.Scene"
+end
+
+local function num (x) return format("%.4g", x) end
+
+-- A scene: its counts and extent.
+local function scene_summary (v)
+  local ok, s = pcall(function ()
+    local lo, hi = v:bounds()
+    local ext = lo and format("; x %s..%s, y %s..%s, z %s..%s", num(lo[1]), num(hi[1]),
+      num(lo[2]), num(hi[2]), num(lo[3]), num(hi[3])) or "; empty"
+    return format("Scene(%d triangles, %d lines, %d turtle records%s)", v.ntriangles,
+      v.nlines, v.nrecords, ext)
+  end)
+  return ok and s or tostring(v)
+end
+
 --- How the REPL shows a value: tostring, except Lstrings, which are abbreviated as
--- `Lstring(1234 modules): F[+F]F...` (the first 60 characters of their text).
+-- `Lstring(1234 modules): F[+F]F...` (the first 60 characters of their text), and
+-- scenes, summarised as `Scene(120 triangles, 40 lines, 55 turtle records; x -1..1, ...)`.
 function M.show (v)
+  if is_scene(v) then return scene_summary(v) end
   if not is_lstring(v) then return tostring(v) end
   local n = #v
   local ok, text = pcall(function ()
@@ -93,6 +115,26 @@ local function loadchunk (read)
   end
 end
 
+--- What the REPL prints for a click on a module in the viewer window (lsys.show).
+function M.print_pick (info)
+  local what = info.text or "?"
+  if #what > WIDTH then what = what:sub(1, WIDTH) .. "..." end
+  io.stdout:write(format("picked module %d: %s (%s%s)\n", info.module, what,
+    info.kind or "?", info.step and format(", step %d", info.step) or ""))
+  io.stdout:flush()
+end
+
+-- Handles the viewer window's events at the prompt; true when there were some (the
+-- prompt line was cleared for what the callbacks print, and must be drawn again).
+local function idle (h)
+  local V = package.loaded["lsys.viewer"]
+  if type(V) ~= "table" or V.pending() == 0 then return false end
+  if h.clear_line then h.clear_line() end
+  local ok, err = pcall(V.poll, 0)
+  if not ok then io.stderr:write(tostring(err), "\n") end
+  return true
+end
+
 --- Runs the REPL on stdin until its end (Ctrl-D) or os.exit.
 -- @return the exit status, 0
 function M.run ()
@@ -116,6 +158,9 @@ function M.run ()
   local ok, lsys = pcall(require, "lsys")
   if ok then
     G.lsys = lsys
+    local vok, V = pcall(require, "lsys.viewer")
+    if vok and V.on_pick == nil then V.on_pick = M.print_pick end
+    if h.set_idle then h.set_idle(function () return idle(h) end) end
   else
     io.stderr:write("lsys: warning: cannot load lsys: ", tostring(lsys), "\n")
   end
@@ -146,8 +191,10 @@ function M.run ()
       io.stderr:write(tostring(err), "\n")
       io.stderr:flush()
     end
+    if readline == nil then idle(h) end   -- no line editor to call it while waiting
     io.stdout:flush()
   end
+  if h.set_idle then h.set_idle(nil) end
   if interactive then io.stdout:write("\n") end
   return 0
 end

@@ -248,6 +248,11 @@ function M.poll (timeout)
   return v:state().open
 end
 
+--- The number of window events waiting for `poll` (0 without a window).
+function M.pending ()
+  return S.viewer ~= nil and S.viewer:pending() or 0
+end
+
 --- Runs `poll` until the window is closed (Esc, Q or its close button).
 function M.wait ()
   while M.poll(0.25) do end
