@@ -256,6 +256,8 @@ struct lsys_viewer {
   int shotreq;                    /* 1: a screenshot is asked for (path in shotpath, "" auto) */
   int keys[32];
   int nkeys;
+  int serial;                     /* requests made (posts, keys) */
+  int taken;                      /* (viewer thread) requests taken before drawing */
   lsys_vstate st;
   lsys_viewer_opts o;
   /* the viewer thread's own */
@@ -646,6 +648,7 @@ static void draw (lsys_viewer *v) {
   /* publish what was drawn */
   pthread_mutex_lock(&v->mu);
   v->st.drawn++;
+  v->st.serial = v->taken;
   v->st.width = v->winw;
   v->st.height = v->winh;
   v->st.fbwidth = v->fbw;
@@ -972,6 +975,8 @@ static void *run (void *arg) {
     nkeys = v->nkeys;
     memcpy(keys, v->keys, sizeof keys);
     v->nkeys = 0;
+    if (v->taken != v->serial) v->dirty = 1;
+    v->taken = v->serial;
     if (v->shotreq) v->dirty = 1;
     pthread_mutex_unlock(&v->mu);
     if (quit || G.WindowShouldClose(v->win)) break;
@@ -1099,6 +1104,7 @@ void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s) {
   pthread_mutex_lock(&v->mu);
   old = v->mail;
   v->mail = s;
+  v->serial++;
   wake_locked(v);
   pthread_mutex_unlock(&v->mu);
   lsys_vsnap_free(old);          /* never taken: replaced by a newer one */
@@ -1149,11 +1155,14 @@ int lsys_viewer_screenshot (lsys_viewer *v, const char *path) {
   return ok ? LSYS_OK : LSYS_EARG;
 }
 
-void lsys_viewer_key (lsys_viewer *v, int k) {
+int lsys_viewer_key (lsys_viewer *v, int k) {
+  int serial;
   pthread_mutex_lock(&v->mu);
   if (v->nkeys < (int)(sizeof v->keys / sizeof v->keys[0])) v->keys[v->nkeys++] = k;
+  serial = ++v->serial;
   wake_locked(v);
   pthread_mutex_unlock(&v->mu);
+  return serial;
 }
 
 void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st) {

@@ -15,9 +15,10 @@
 **                                        module (1-based), kind, x, y, path, ok, msg }
 **   v:pending() -> n                     events waiting to be polled
 **   v:screenshot([path])                 S key's screenshot of the next frame
-**   v:key(name)                          "right" "left" "home" "end" "space" "r" ...
-**   v:state() -> table                   open, drawn, width, height, frame, nframes,
-**                                        playing, wireframe
+**   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
+**                                        "redraw"; drawn when state().serial >= serial
+**   v:state() -> table                   open, drawn, serial, width, height, fbwidth,
+**                                        fbheight, frame, nframes, playing, wireframe
 **   v:project({x, y, z}) -> x, y, depth  window coordinates with the last camera drawn
 **   v:close()                            (also when collected)
 **   core.filestamp(path) -> mtime, size  or nil, message
@@ -283,8 +284,8 @@ static int viewer_key (lua_State *L) {
   };
   lsys_viewer *v = checkviewer(L, 1);
   int i = luaL_checkoption(L, 2, NULL, names);
-  lsys_viewer_key(v, keys[i]);
-  return 0;
+  lua_pushinteger(L, lsys_viewer_key(v, keys[i]));
+  return 1;
 }
 
 static void setint (lua_State *L, const char *k, lua_Integer x) {
@@ -305,6 +306,7 @@ static int viewer_state (lua_State *L) {
   lua_pushboolean(L, st.open);
   lua_setfield(L, -2, "open");
   setint(L, "drawn", st.drawn);
+  setint(L, "serial", st.serial);
   setint(L, "width", st.width);
   setint(L, "height", st.height);
   setint(L, "fbwidth", st.fbwidth);

@@ -116,18 +116,21 @@ int lsys_viewer_pending (lsys_viewer *v);
 int lsys_viewer_screenshot (lsys_viewer *v, const char *path);
 
 /* Asks the window to act as if a key was pressed (one of the keys of the
-** window: 'R', 'F', 'W', 'S', ' ', and LSYS_VKEY_* below). */
+** window: 'R', 'F', 'W', 'S', ' ', and LSYS_VKEY_* below). Returns the
+** request's serial number: once lsys_vstate.serial reaches it, a picture
+** drawn after the key (and everything posted before it) is on screen. */
 #define LSYS_VKEY_REDRAW 1      /* no key: just draw again */
 #define LSYS_VKEY_RIGHT 262
 #define LSYS_VKEY_LEFT  263
 #define LSYS_VKEY_HOME  268
 #define LSYS_VKEY_END   269
-void lsys_viewer_key (lsys_viewer *v, int key);
+int lsys_viewer_key (lsys_viewer *v, int key);
 
 /* The state of the window as last drawn. */
 typedef struct lsys_vstate {
   int open;                     /* 0 once closed */
   int drawn;                    /* frames drawn so far */
+  int serial;                   /* requests (posts, keys) handled before the last picture */
   int width, height;            /* window size in screen coordinates */
   int fbwidth, fbheight;        /* framebuffer size in pixels */
   long frame, nframes;          /* the frame shown (-1: none yet) and how many there are */

@@ -570,13 +570,17 @@ function commands.view (args)
       local t0 = clock()
       local st = shown and V.state()
       local first = step
-      if keep and st and st.step ~= nil and st.step <= model.steps then first = st.step end
+      -- a reload keeps a step stepped back to; from the last step it goes to the new last
+      if keep and st and st.step ~= nil and st.frame < st.nframes and
+         st.step <= model.steps then
+        first = st.step
+      end
       if first ~= nil and first > model.steps then
         error(format("--step %d: the model has %d steps", first, model.steps), 0)
       end
       V.show(model, {
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
-        title = path:match("([^/]*)$"), status = not opts["no-status"] or nil,
+        title = path:match("([^/]*)$"), status = not opts["no-status"],
         view = next(views) and views or nil,
         progress = verbose and function (k, n)
           io.stderr:write(format("\rinterpreting step %d/%d", k, n))
@@ -605,9 +609,10 @@ function commands.view (args)
     out(format("wrote %s (%dx%d)\n", written, st.fbwidth, st.fbheight))
     return 0
   end
-  if not ok then
-    if not V.isopen() then error(err, 0) end        -- no window: nothing to wait in
+  if not ok then             -- an empty window waits for the file to be fixed
     io.stderr:write("lsys: ", tostring(err), "\n")
+    V.open { width = w, height = h, status = not opts["no-status"] }
+    io.stderr:write(format("lsys: waiting for %s to change\n", path))
   end
   if V.on_pick == nil then V.on_pick = require("lsys.repl").print_pick end
 

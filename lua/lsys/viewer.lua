@@ -115,6 +115,7 @@ local function model_of (s, opts)
 end
 
 local function open (opts)
+  opts = opts or {}
   if S.viewer ~= nil and S.viewer:state().open then return S.viewer end
   if S.viewer ~= nil then S.viewer:close() end
   S.viewer = nil
@@ -138,6 +139,12 @@ local function open (opts)
   end
   S.viewer = v
   return v
+end
+
+--- Opens the window, empty (it waits for a `show`), unless it is open. `opts`: width,
+-- height, samples, status, as for `show`.
+function M.open (opts)
+  open(checkopts(opts))
 end
 
 --- Shows `x` in the viewer window, opening it if needed, and returns at once.
@@ -326,17 +333,16 @@ end
 function M.sync (timeout)
   if S.viewer == nil then return false end
   local deadline = os.time() + (timeout or 10)
-  -- the window takes posts and keys in order before drawing: a frame drawn after a
-  -- redraw request shows everything asked before it
-  local st = S.viewer:state()
-  local drawn = st.drawn
-  S.viewer:key("redraw")
+  -- the window takes posts and keys in order before drawing: once a picture drawn after
+  -- this redraw request is on screen, so is everything asked before it
+  local serial = S.viewer:key("redraw")
+  local st
   repeat
     M.poll(0.05)
     if S.viewer == nil then return false end
     st = S.viewer:state()
-  until st.drawn > drawn or os.time() > deadline
-  return st.drawn > drawn
+  until st.serial >= serial or os.time() > deadline
+  return st.serial >= serial
 end
 
 return M

@@ -1,0 +1,296 @@
+-- The viewer window (#gl): screenshots through the window, picking by real clicks
+-- (xdotool), stepping and animation, the S key, `lsys view` reloading its file, and the
+-- error without a display. Everything runs the lsys program on a private Xvfb
+-- (tests/display.lua); without Xvfb or a display the specs are reported pending with
+-- the reason.
+local core = require "lsys.core"
+local D = require "tests.display"
+
+local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+
+-- Runs a shell command; returns its output (stdout and stderr) and exit status.
+local function run (cmd)
+  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
+  local out = p:read("a")
+  p:close()
+  local code = tonumber(out:match("exit:(%d+)%s*$"))
+  return (out:gsub("exit:%d+%s*$", "")), code
+end
+
+local function write (path, text)
+  local f = assert(io.open(path, "w"))
+  f:write(text)
+  f:close()
+end
+
+local function read (path)
+  local f = io.open(path)
+  if f == nil then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+local function tmpdir ()
+  local d = os.tmpname()
+  os.remove(d)
+  assert(os.execute("mkdir -p " .. d))
+  return d
+end
+
+-- Pixels of a PNG that differ from its top left corner (the background): a mask
+-- (mask[y * w + x + 1] = true), their count, and the box around them.
+local function plant (path, rows)
+  local px, w, h = core.png_read(path)
+  local br, bg, bb = px:byte(1, 3)
+  local mask, n = {}, 0
+  local x0, y0, x1, y1 = w, h, -1, -1
+  for y = 0, (rows or h) - 1 do
+    for x = 0, w - 1 do
+      local i = 4 * (y * w + x)
+      local r, g, b = px:byte(i + 1, i + 3)
+      if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
+        mask[y * w + x + 1] = true
+        n = n + 1
+        if x < x0 then x0 = x end
+        if x > x1 then x1 = x end
+        if y < y0 then y0 = y end
+        if y > y1 then y1 = y end
+      end
+    end
+  end
+  return { mask = mask, n = n, w = w, h = h, box = { x0, y0, x1, y1 } }
+end
+
+-- The model file most specs show: F[+F][-F]F with 45 degree branches, as cylinders.
+local MODEL = [[
+local lsys = require "lsys"
+return lsys.lsystem {
+  name = "picks", axiom = "F[+F][-F]F", steps = %d,
+  productions = "F --> F[+F]F",
+  view = { angle = 45, line_style = "%s", line_width = 0.2, background = {1, 1, 1} },
+}
+]]
+
+local function display ()
+  local ok, why = D.start()
+  if not ok then pending(why) end
+  return ok
+end
+
+describe("#gl the viewer window", function()
+  teardown(function() D.stop() end)
+
+  it("takes a screenshot of an example that shows the plant as lsys render draws it",
+  function()
+    if not display() then return end
+    local dir = tmpdir()
+    local out, code = run(D.env .. BIN .. " view examples/abop/fig1_24d.lua --size 400x300 " ..
+      "--no-status --screenshot " .. dir .. "/win.png")
+    assert.equal(0, code, out)
+    assert.truthy(out:find("wrote " .. dir .. "/win.png (400x300)", 1, true), out)
+    local _, code2 = run(BIN .. " render examples/abop/fig1_24d.lua --size 400x300 -o " ..
+      dir .. "/off.png")
+    assert.equal(0, code2)
+    local a, b = plant(dir .. "/win.png"), plant(dir .. "/off.png")
+    assert.equal(400, a.w)
+    assert.equal(300, a.h)
+    -- not blank: the plant covers a good part of the picture
+    assert.is_true(a.n > 0.02 * a.w * a.h, "plant pixels: " .. a.n)
+    -- the same plant in the same place: boxes within 4 pixels, masks mostly shared
+    -- (the offscreen renderer supersamples, the window does not)
+    for i = 1, 4 do
+      assert.is_true(math.abs(a.box[i] - b.box[i]) <= 4, table.concat(a.box, " ") .. " vs " ..
+        table.concat(b.box, " "))
+    end
+    local both, either = 0, 0
+    for i = 1, a.w * a.h do
+      if a.mask[i] and b.mask[i] then both = both + 1 end
+      if a.mask[i] or b.mask[i] then either = either + 1 end
+    end
+    assert.is_true(both / either > 0.6, "overlap " .. both / either)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("reports the module of the segment clicked, through the turtle records", function()
+    if not display() then return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local dir = tmpdir()
+    write(dir .. "/picks.lua", MODEL:format(0, "cylinder"))
+    -- the script clicks the middle of each segment and a point off the plant
+    write(dir .. "/click.lua", [[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local m = dofile(arg[1])
+local events = {}
+lsys.show(m, { width = 400, height = 400, title = "click test", status = false,
+               on_event = function (ev) events[#events + 1] = ev end })
+assert(V.sync(10), "no picture")
+local function click (x, y)
+  events = {}
+  assert(os.execute(("xdotool search --name 'lsys: click test' mousemove --window %1 " ..
+    x // 1 .. " " .. y // 1 .. " click 1 >/dev/null 2>&1")))
+  for _ = 1, 40 do
+    V.poll(0.25)
+    for _, ev in ipairs(events) do
+      if ev.type == "pick" then return "pick " .. ev.module .. " " .. ev.kind end
+      if ev.type == "miss" then return "miss" end
+    end
+  end
+  return "nothing"
+end
+local scene = m:interpret()
+for _, r in scene:records() do
+  if r.kind == "segment" then
+    local mid = { (r.p0[1] + r.p1[1]) / 2, (r.p0[2] + r.p1[2]) / 2, (r.p0[3] + r.p1[3]) / 2 }
+    local x, y = V.project(mid)
+    print(r.module, click(x, y))
+  end
+end
+-- beside the trunk, within its radius (0.1): still the trunk
+local x, y = V.project({ 0.07, 0.5, 0 })
+print("edge", click(x, y))
+print("corner", click(5, 5))
+print("last", V.last_pick and V.last_pick.text)
+V.close()
+]])
+    local out, code = run("cd " .. dir .. " && " .. D.env .. " " ..
+      (BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN) ..
+      " click.lua picks.lua")
+    assert.equal(0, code, out)
+    -- F[+F][-F]F: the four F are modules 1, 4, 8 and 10
+    assert.equal("1\tpick 1 segment\n4\tpick 4 segment\n8\tpick 8 segment\n" ..
+      "10\tpick 10 segment\nedge\tpick 1 segment\ncorner\tmiss\nlast\tF\n", out)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("steps back and forward and animates through the derivation", function()
+    if not display() then return end
+    local dir = tmpdir()
+    write(dir .. "/m.lua", MODEL:format(3, "line"))
+    write(dir .. "/steps.lua", [[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local m = dofile(arg[1])
+local dir = arg[2]
+lsys.show(m, { width = 300, height = 300, rate = 20, status = false })
+assert(V.sync(10))
+local st = V.state()
+print("shown", st.frame, st.nframes, st.step)
+V.screenshot(dir .. "/s3.png")
+V.key("left") V.key("left")
+assert(V.sync(10))
+print("back", V.state().step)
+V.screenshot(dir .. "/s1.png")
+V.key("home") assert(V.sync(10)) print("home", V.state().step)
+V.key("right") assert(V.sync(10)) print("right", V.state().step)
+V.key("space")
+local t0 = os.time()
+repeat V.poll(0.1) until not V.state().playing or os.time() - t0 > 10
+print("played", V.state().step, V.state().playing)
+lsys.show(m, { step = 2 }) assert(V.sync(10)) print("show step", V.state().step)
+V.close()
+]])
+    local out, code = run(D.env .. BIN .. " " .. dir .. "/steps.lua " .. dir .. "/m.lua " .. dir)
+    assert.equal(0, code, out)
+    assert.equal("shown\t4\t4\t3\nback\t1\nhome\t0\nright\t1\nplayed\t3\tfalse\n" ..
+      "show step\t2\n", out)
+    -- the camera stays: step 1 is a smaller drawing inside step 3's box
+    local a, b = plant(dir .. "/s1.png"), plant(dir .. "/s3.png")
+    assert.is_true(a.n > 0 and a.n < b.n / 2, a.n .. " vs " .. b.n)
+    assert.is_true(a.box[2] >= b.box[2] and a.box[4] <= b.box[4] + 1)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("lsys view reloads the model when its file changes and keeps the last good one, " ..
+     "and the S key saves what the window shows", function()
+    if not display() then return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local dir = tmpdir()
+    local bin = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
+    write(dir .. "/m.lua", MODEL:format(1, "line"))
+    os.execute("cd " .. dir .. " && (" .. D.env .. "timeout 60 " .. bin ..
+      " view m.lua --size 300x300 >out.txt 2>err.txt; echo $? > rc.txt) &")
+    local win = D.env .. "timeout 10 xdotool search --sync --name 'lsys: m.lua' "
+    local function key (k)
+      return os.execute(win .. "windowfocus --sync %1 key " .. k .. " >/dev/null 2>&1")
+    end
+    local function wait_for (file, text)
+      for _ = 1, 100 do
+        local s = read(dir .. "/" .. file)
+        if s and s:find(text, 1, true) then return s end
+        D.sleep(0.1)
+      end
+      return read(dir .. "/" .. file) or ""
+    end
+    assert.truthy(key("s"))
+    wait_for("out.txt", "")
+    for _ = 1, 50 do if read(dir .. "/lsys-001.png") then break end D.sleep(0.1) end
+    D.sleep(0.3)
+    local first = plant(dir .. "/lsys-001.png", 280)   -- above the status line
+    assert.equal(300, first.w)
+    assert.is_true(first.n > 100)
+    -- a change: two more steps
+    D.sleep(1.1)                     -- a new modification time even on coarse clocks
+    write(dir .. "/m.lua", MODEL:format(3, "line"))
+    local err = wait_for("err.txt", "reloaded m.lua: 3 steps")
+    assert.truthy(err:find("reloaded m.lua: 3 steps", 1, true), err)
+    -- a syntax error: reported, the last good model stays
+    D.sleep(1.1)
+    write(dir .. "/m.lua", "local lsys = require 'lsys'\nreturn lsys.lsystem { axiom = }\n")
+    err = wait_for("err.txt", "stays on screen")
+    assert.truthy(err:find("m.lua:2: unexpected symbol near '}'", 1, true), err)
+    assert.truthy(err:find("the last good model stays on screen", 1, true), err)
+    -- the camera was kept through the reload; F fits the bigger plant
+    assert.truthy(key("f"))
+    assert.truthy(key("s"))
+    for _ = 1, 50 do if read(dir .. "/lsys-002.png") then break end D.sleep(0.1) end
+    D.sleep(0.3)
+    local second = plant(dir .. "/lsys-002.png", 280)
+    assert.is_true(second.n > 2 * first.n, second.n .. " vs " .. first.n)
+    key("Escape")             -- (xdotool may complain: the window goes while it works)
+    local rc = wait_for("rc.txt", "\n")
+    assert.equal("0\n", rc)
+    os.execute("rm -rf " .. dir)
+  end)
+end)
+
+describe("the viewer without a display", function()
+  it("says there is none and how to draw without one", function()
+    local dir = tmpdir()
+    write(dir .. "/show.lua", 'local lsys = require "lsys"\n' ..
+      'lsys.show(lsys.lsystem { axiom = "F" })\n')
+    local out, code = run("env -u DISPLAY -u WAYLAND_DISPLAY " .. BIN .. " " .. dir ..
+      "/show.lua")
+    assert.equal(1, code)
+    if core.has_viewer then
+      assert.truthy(out:find("lsys.show: ", 1, true), out)
+      assert.truthy(out:find("no display: DISPLAY is not set; `lsys render` draws PNG files " ..
+        "without one", 1, true), out)
+    else
+      assert.truthy(out:find("built without the viewer window", 1, true), out)
+    end
+    local out2, code2 = run("env -u DISPLAY -u WAYLAND_DISPLAY " .. BIN ..
+      " view examples/default.lua --screenshot " .. dir .. "/x.png")
+    assert.equal(1, code2)
+    assert.truthy(out2:find("no display", 1, true), out2)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("checks the options of lsys.show", function()
+    local lsys = require "lsys"
+    local m = lsys.lsystem { axiom = "F" }
+    assert.error_contains(function() lsys.show(m, { colour = 1 }) end,
+      "lsys.show: unknown option 'colour'")
+    assert.error_contains(function() lsys.show(m, { rate = "fast" }) end,
+      "lsys.show: option 'rate' must be a number")
+    assert.error_contains(function() lsys.show(42) end,
+      "lsys.show: a Model, an Lstring, a Scene or a list of Scenes expected")
+    local out, code = run(BIN .. " view --size 0x3")
+    assert.equal(2, code)
+    assert.truthy(out:find("--size expects WxH", 1, true))
+    out, code = run(BIN .. " view --screenshot x.jpg")
+    assert.equal(2, code)
+    assert.truthy(out:find("the screenshot must be a .png file, got 'x.jpg'", 1, true))
+  end)
+end)
