@@ -173,6 +173,7 @@ local Model = {}
 --- Options of `Model:derive`.
 ---@class lsys.DeriveOptions
 ---@field progress? fun(step: integer, n: integer, nmodules: integer) Called after each step (after `end_each`) with the step number, the step count and the length of the result.
+---@field each? fun(k: integer, s: lsys.Lstring) Receives the string of every step k = 0..n (n: after `finish`); they may be kept.
 
 --- Derives `n` steps from the axiom and returns the result as a new Lstring; `derive(0)`
 --- returns the axiom. Reseeds the derivation generator from `seed` and the homomorphism
@@ -344,6 +345,91 @@ function Scene:save(path) end
 ---@return integer? width
 ---@return integer? height
 function lsys.render(x, opts) end
+
+--- Shows a Model (every step, the last first), an Lstring, a Scene or a list of Scenes in
+--- the viewer window, opening it if needed, and returns at once (docs/viewer.md). Raises
+--- `lsys.show: ...` for bad options, and when no window can be opened (no display, lsys
+--- built without the viewer).
+---@param x lsys.Model|lsys.Lstring|lsys.Scene|lsys.Scene[]
+---@param opts? lsys.ShowOptions
+function lsys.show(x, opts) end
+
+--- Handles the window's events until it is closed (`lsys.viewer.wait`).
+function lsys.wait() end
+
+---@class lsys.ShowOptions
+---@field step? integer The step shown first (default: the last).
+---@field steps? boolean `false`: only a model's last step is interpreted.
+---@field rate? number Animation speed, steps per second (default 2).
+---@field view? lsys.View View fields replacing the model's for this show.
+---@field title? string Window title (after "lsys: ").
+---@field width? integer Width of a new window (800).
+---@field height? integer Height of a new window (800).
+---@field samples? integer Multisampling of a new window (4; none on software renderers).
+---@field status? boolean The status line (true).
+---@field keep_camera? boolean Keep the window's camera instead of fitting.
+---@field on_pick? fun(info: lsys.Pick) Called by `poll` for a click on a module.
+---@field on_event? fun(ev: table) Called by `poll` for every window event.
+---@field progress? fun(k: integer, n: integer) Called before interpreting step k of n.
+---@field model? lsys.Model The model to interpret an Lstring that has none.
+
+--- What a click in the window hit.
+---@class lsys.Pick
+---@field module integer Index of the module in the string of that step (1-based).
+---@field text? string The module in cpfg notation.
+---@field name? string The module's name.
+---@field lstring? lsys.Lstring The string of that step.
+---@field step? integer The derivation step shown.
+---@field frame integer The frame shown (1-based).
+---@field kind string The turtle record kind ("segment", "gcyl", "sphere", ...).
+---@field x number Window x of the click (pixels from the left).
+---@field y number Window y of the click (pixels from the top).
+
+--- The viewer window (docs/viewer.md).
+---@class lsys.viewer
+---@field on_pick? fun(info: lsys.Pick) Called for picks of shows without their own on_pick.
+---@field last_pick? lsys.Pick The last pick.
+lsys.viewer = {}
+
+--- Handles the window's events (callbacks run here), waiting up to `timeout` seconds (0)
+--- for the first. Returns true while the window is open.
+---@param timeout? number
+---@return boolean
+function lsys.viewer.poll(timeout) end
+--- Polls until the window is closed.
+function lsys.viewer.wait() end
+--- Opens an empty window unless one is open.
+---@param opts? { width?: integer, height?: integer, samples?: integer, status?: boolean }
+function lsys.viewer.open(opts) end
+---@return boolean
+function lsys.viewer.isopen() end
+function lsys.viewer.close() end
+--- Saves the next picture as the S key does; returns the path (default lsys-NNN.png).
+---@param path? string
+---@param timeout? number seconds (10)
+---@return string
+function lsys.viewer.screenshot(path, timeout) end
+--- Waits until everything shown or keyed so far is on screen; true when it is.
+---@param timeout? number seconds (10)
+---@return boolean
+function lsys.viewer.sync(timeout) end
+--- The window's state, nil before the first window.
+---@return { open: boolean, drawn: integer, width: integer, height: integer, fbwidth: integer, fbheight: integer, frame: integer, nframes: integer, step?: integer, playing: boolean, wireframe: boolean }?
+function lsys.viewer.state() end
+--- Window coordinates (pixels from the top left) and depth of a world point, with the
+--- camera last drawn; nil when it is behind the eye or nothing was drawn.
+---@param p number[]
+---@return number? x
+---@return number? y
+---@return number? depth
+function lsys.viewer.project(p) end
+--- Presses a key of the window: "right" "left" "home" "end" "space" "r" "f" "w" "s" "h"
+--- "q" "+" "-" "redraw".
+---@param name string
+function lsys.viewer.key(name) end
+--- Events waiting for `poll`.
+---@return integer
+function lsys.viewer.pending() end
 
 --- The directory of the Lua file that calls this ("." when not a file), for files next to a
 --- model: `view = { dir = lsys.here(), contours = { [2] = "leaf.con" } }`.

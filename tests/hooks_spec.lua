@@ -140,3 +140,24 @@ describe("rule groups", function()
     assert.equal("ABBC", tostring(m:derive(3)))
   end)
 end)
+
+describe("derive's each option", function()
+  it("hands over the string of every step, to keep, after end_each and finish", function()
+    local m = lsys.lsystem {
+      axiom = "A", productions = "A --> AB\nB --> C",
+      end_each = function(_, s, step) if step == 2 then return lsys.lstring("X" .. tostring(s)) end end,
+      finish = function(_, s) return lsys.lstring(tostring(s) .. "Z") end,
+    }
+    local kept = {}
+    local r = m:derive(4, { each = function(k, s) kept[k] = s end })
+    -- kept strings stay intact: derive does not recycle their buffers
+    local texts = {}
+    for k = 0, 4 do texts[k + 1] = tostring(kept[k]) end
+    assert.same({ "A", "AB", "XABC", "XABCC", "XABCCCZ" }, texts)
+    assert.equal(r, kept[4])
+    local zero = {}
+    assert.equal("AZ", tostring(m:derive(0, { each = function(k, s) zero[k] = s end })))
+    assert.equal("AZ", tostring(zero[0]))
+    assert.is_nil(zero[1])
+  end)
+end)

@@ -189,6 +189,9 @@ local t0 = os.time()
 repeat V.poll(0.1) until not V.state().playing or os.time() - t0 > 10
 print("played", V.state().step, V.state().playing)
 lsys.show(m, { step = 2 }) assert(V.sync(10)) print("show step", V.state().step)
+m.view.background = { 0, 0, 0 }          -- the view is read again at every show
+lsys.show(m, { status = false })
+V.screenshot(dir .. "/black.png")
 V.close()
 ]])
     local out, code = run(D.env .. BIN .. " " .. dir .. "/steps.lua " .. dir .. "/m.lua " .. dir)
@@ -199,6 +202,8 @@ V.close()
     local a, b = plant(dir .. "/s1.png"), plant(dir .. "/s3.png")
     assert.is_true(a.n > 0 and a.n < b.n / 2, a.n .. " vs " .. b.n)
     assert.is_true(a.box[2] >= b.box[2] and a.box[4] <= b.box[4] + 1)
+    local px = core.png_read(dir .. "/black.png")
+    assert.same({ 0, 0, 0 }, { px:byte(1, 3) })
     os.execute("rm -rf " .. dir)
   end)
 
