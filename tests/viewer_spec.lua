@@ -164,6 +164,64 @@ V.close()
     os.execute("rm -rf " .. dir)
   end)
 
+  it("orbits, pans and zooms with the mouse; R resets, F fits, W draws wireframes", function()
+    if not display() then return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local dir = tmpdir()
+    write(dir .. "/m.lua", MODEL:format(2, "cylinder"))
+    write(dir .. "/mouse.lua", [[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local m = dofile(arg[1])
+local dir = arg[2]
+lsys.show(m, { width = 300, height = 300, status = false, title = "mouse test",
+               view = { projection = "perspective" } })
+assert(V.sync(10))
+local function x (cmd)
+  assert(os.execute("xdotool search --name 'lsys: mouse test' " .. cmd .. " >/dev/null 2>&1"))
+  V.poll(0.3)
+  assert(V.sync(10))
+end
+local function shot (name) V.screenshot(dir .. "/" .. name .. ".png") end
+shot("home")
+x("mousemove --window %1 150 150 mousedown 1 mousemove --window %1 230 120 mouseup 1")
+shot("orbit")
+V.key("r") assert(V.sync(10)) shot("reset")
+x("mousemove --window %1 150 150 mousedown 3 mousemove --window %1 200 150 mouseup 3")
+shot("pan")
+V.key("r") assert(V.sync(10))
+x("mousemove --window %1 150 150 click 5 click 5 click 5")
+shot("zoom")
+V.key("f") assert(V.sync(10)) shot("fit")
+V.key("w") assert(V.sync(10)) shot("wire")
+print(V.last_pick == nil and "no pick" or "pick")
+V.close()
+]])
+    local out, code = run(D.env .. BIN .. " " .. dir .. "/mouse.lua " .. dir .. "/m.lua " .. dir)
+    assert.equal(0, code, out)
+    assert.equal("no pick\n", out)          -- drags are not clicks
+    local function png (name) return (core.png_read(dir .. "/" .. name .. ".png")) end
+    local home, reset, fit = plant(dir .. "/home.png"), png("reset"), plant(dir .. "/fit.png")
+    assert.equal(png("home"), reset)          -- R: exactly the arrival camera
+    assert.are_not.equal(png("home"), png("orbit"))
+    -- pan: the same picture moved 50 pixels right
+    local pan = plant(dir .. "/pan.png")
+    assert.near(home.box[1] + 50, pan.box[1], 2)
+    assert.near(home.box[2], pan.box[2], 2)
+    -- zoom: three wheel steps back, the eye 1 / 0.88^3 = 1.47 times as far: the plant
+    -- about 0.7 times as tall on screen
+    local zoom = plant(dir .. "/zoom.png")
+    local hh, zh = home.box[4] - home.box[2], zoom.box[4] - zoom.box[2]
+    assert.is_true(zh > 0.55 * hh and zh < 0.8 * hh, zh .. " vs " .. hh)
+    -- F: fitted again, as on arrival
+    for i = 1, 4 do assert.near(home.box[i], fit.box[i], 2) end
+    -- W: edges only (of thin cylinders: they cover most of what the faces did)
+    local wire = plant(dir .. "/wire.png")
+    assert.are_not.equal(png("fit"), png("wire"))
+    assert.is_true(wire.n < 0.98 * fit.n and wire.n > 0.3 * fit.n, wire.n .. " vs " .. fit.n)
+    os.execute("rm -rf " .. dir)
+  end)
+
   it("steps back and forward and animates through the derivation", function()
     if not display() then return end
     local dir = tmpdir()
