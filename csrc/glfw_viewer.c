@@ -91,7 +91,7 @@ static struct {
 
 static pthread_mutex_t glfwlock = PTHREAD_MUTEX_INITIALIZER;   /* loading; one window */
 static int glfwbusy;            /* a viewer is open (GLFW is process-wide) */
-static char glfwerr[256];       /* the last GLFW error, written on the viewer thread */
+static char glfwerr[192];       /* the last GLFW error, written on the viewer thread */
 
 static void onerror (int code, const char *msg) {
   snprintf(glfwerr, sizeof glfwerr, "%s (GLFW error 0x%x)", msg ? msg : "?", (unsigned)code);
@@ -882,8 +882,30 @@ static int softrenderer (const lsys_gl *gl) {
                        strstr(r, "swrast") != NULL);
 }
 
-static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
+/* Creates the window with 'samples' and makes its context current with
+** the GL entry points loaded; 0 (window destroyed, message in err) when
+** that fails. */
+static int mkwindow (lsys_viewer *v, int samples, char *err, size_t nerr) {
   lsys_error e;
+  G.WindowHint(GLFW_SAMPLES, samples);
+  v->win = G.CreateWindow(v->o.width, v->o.height, "lsys", NULL, NULL);
+  if (v->win == NULL) {
+    snprintf(err, nerr, "cannot open a window with an OpenGL context: %s",
+             glfwerr[0] ? glfwerr : "unknown error");
+    return 0;
+  }
+  G.MakeContextCurrent(v->win);
+  if (lsys_gl_load(&v->gl, getproc, &e) != LSYS_OK) {
+    snprintf(err, nerr, "%s", e.msg);
+    G.MakeContextCurrent(NULL);
+    G.DestroyWindow(v->win);
+    v->win = NULL;
+    return 0;
+  }
+  return 1;
+}
+
+static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   glfwerr[0] = '\0';
   G.SetErrorCallback(onerror);
   if (!G.Init()) {
@@ -893,22 +915,8 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   G.DefaultWindowHints();
   G.WindowHint(GLFW_VISIBLE, v->o.visible ? GLFW_TRUE : GLFW_FALSE);
   G.WindowHint(GLFW_DEPTH_BITS, 24);
-  G.WindowHint(GLFW_SAMPLES, v->o.samples);
-  v->win = G.CreateWindow(v->o.width, v->o.height, "lsys", NULL, NULL);
-  if (v->win == NULL && v->o.samples > 0) {       /* no multisampling here: try without */
-    G.WindowHint(GLFW_SAMPLES, 0);
-    v->win = G.CreateWindow(v->o.width, v->o.height, "lsys", NULL, NULL);
-  }
-  if (v->win == NULL) {
-    snprintf(err, nerr, "cannot open a window with an OpenGL context: %s",
-             glfwerr[0] ? glfwerr : "unknown error");
-    G.Terminate();
-    return 0;
-  }
-  G.MakeContextCurrent(v->win);
-  if (lsys_gl_load(&v->gl, getproc, &e) != LSYS_OK) {
-    snprintf(err, nerr, "%s", e.msg);
-    G.DestroyWindow(v->win);
+  if (!mkwindow(v, v->o.samples, err, nerr) &&
+      (v->o.samples == 0 || !mkwindow(v, 0, err, nerr))) {   /* no multisampling here? */
     G.Terminate();
     return 0;
   }
@@ -918,18 +926,7 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   if (v->o.samples > 0 && softrenderer(&v->gl)) {
     G.MakeContextCurrent(NULL);
     G.DestroyWindow(v->win);
-    G.WindowHint(GLFW_SAMPLES, 0);
-    v->win = G.CreateWindow(v->o.width, v->o.height, "lsys", NULL, NULL);
-    if (v->win == NULL) {
-      snprintf(err, nerr, "cannot open a window with an OpenGL context: %s",
-               glfwerr[0] ? glfwerr : "unknown error");
-      G.Terminate();
-      return 0;
-    }
-    G.MakeContextCurrent(v->win);
-    if (lsys_gl_load(&v->gl, getproc, &e) != LSYS_OK) {
-      snprintf(err, nerr, "%s", e.msg);
-      G.DestroyWindow(v->win);
+    if (!mkwindow(v, 0, err, nerr)) {
       G.Terminate();
       return 0;
     }

@@ -78,6 +78,13 @@ local function display ()
   return ok
 end
 
+-- A display, xdotool and a scratch directory, or nil (the spec is then pending).
+local function clicks ()
+  if not display() then return nil end
+  if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return nil end
+  return tmpdir()
+end
+
 describe("#gl the viewer window", function()
   teardown(function() D.stop() end)
 
@@ -113,9 +120,8 @@ describe("#gl the viewer window", function()
   end)
 
   it("reports the module of the segment clicked, through the turtle records", function()
-    if not display() then return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    local dir = tmpdir()
+    local dir = clicks()
+    if not dir then return end
     write(dir .. "/picks.lua", MODEL:format(0, "cylinder"))
     -- the script clicks the middle of each segment and a point off the plant
     write(dir .. "/click.lua", [[
@@ -165,9 +171,8 @@ V.close()
   end)
 
   it("orbits, pans and zooms with the mouse; R resets, F fits, W draws wireframes", function()
-    if not display() then return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    local dir = tmpdir()
+    local dir = clicks()
+    if not dir then return end
     write(dir .. "/m.lua", MODEL:format(2, "cylinder"))
     write(dir .. "/mouse.lua", [[
 local lsys = require "lsys"
@@ -267,9 +272,8 @@ V.close()
 
   it("lsys view reloads the model when its file changes and keeps the last good one, " ..
      "and the S key saves what the window shows", function()
-    if not display() then return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    local dir = tmpdir()
+    local dir = clicks()
+    if not dir then return end
     local bin = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
     write(dir .. "/m.lua", MODEL:format(1, "line"))
     os.execute("cd " .. dir .. " && (" .. D.env .. "timeout 60 " .. bin ..
