@@ -376,7 +376,8 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
   }
   if (out->n + r->nsucc > m->max_modules) return LSYS_ELIMIT;
   if (lsys_lstring_reserve(out, r->nsucc, r->nsrc) != LSYS_OK) return LSYS_ENOMEM;
-  memcpy(out->code + out->n, m->tcode + r->succ, r->nsucc * sizeof *out->code);
+  if (r->nsucc > 0)        /* an empty successor may have no array at all */
+    memcpy(out->code + out->n, m->tcode + r->succ, r->nsucc * sizeof *out->code);
   out->n += r->nsucc;
   for (k = 0; k < r->nsrc; k++) {
     const lsys_psrc *ps = &m->tsrc[r->src + k];

@@ -42,7 +42,7 @@ int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
   size_t k, np = 0;
   for (k = i; k < j; k++) np += LSYS_CNP(src->code[k]);
   if (lsys_lstring_reserve(dst, j - i, np) != LSYS_OK) return LSYS_ENOMEM;
-  memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
+  if (j > i) memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
   if (np > 0) memcpy(dst->par + dst->npar, src->par + poff, np * sizeof *src->par);
   dst->n += j - i;
   dst->npar += np;
