@@ -462,11 +462,14 @@ static void text (lsys_viewer *v, const char *s, float x, float y, float px,
   for (; *s; s++) {
     int row, col;
     if (*s == '\n') { x = x0; y += (LSYS_FONT_H + 3) * px; continue; }
+    /* letters with descenders are drawn within the 7 rows: lowered by 2,
+    ** their bowls sit on the baseline with the other small letters */
+    float dy = strchr("gjpqy", *s) != NULL ? 2 * px : 0;
     for (row = 0; row < LSYS_FONT_H; row++) {
       unsigned bits = lsys_font_row((unsigned char)*s, row);
       for (col = 0; col < LSYS_FONT_W; col++)
         if (bits & (1u << (LSYS_FONT_W - 1 - col)))
-          textquad(v, x + col * px, y + row * px, px, px, c);
+          textquad(v, x + col * px, y + dy + row * px, px, px, c);
     }
     x += (LSYS_FONT_W + 1) * px;
   }
