@@ -1,6 +1,7 @@
 /*
 ** lsys.Lstring: the module string as a Lua userdata.
 */
+#include <math.h>
 #include <string.h>
 
 #include "lua_lsys.h"
@@ -104,6 +105,28 @@ static int lstring_module (lua_State *L) {
   if (i < 0) i += (lua_Integer)s->n + 1;
   luaL_argcheck(L, i >= 1 && (size_t)i <= s->n, 2, "module index out of range");
   return pushmodule(L, s, (size_t)i - 1, lsys_lstring_poff(s, (size_t)i - 1));
+}
+
+/* s:set(i, p1, p2, ...): replaces the parameters of module i in place (as many
+** as it has; finite numbers). The arrangement (lsys.arrange) updates its @J
+** modules this way between interpretations. */
+static int lstring_set (lua_State *L) {
+  lsys_lstring *s = checklstring(L, 1);
+  lua_Integer i = luaL_checkinteger(L, 2);
+  size_t np, off, k;
+  if (i < 0) i += (lua_Integer)s->n + 1;
+  luaL_argcheck(L, i >= 1 && (size_t)i <= s->n, 2, "module index out of range");
+  np = LSYS_CNP(s->code[i - 1]);
+  if ((size_t)lua_gettop(L) - 2 != np)
+    return luaL_error(L, "set: module %d has %d parameters, got %d", (int)i, (int)np,
+                      lua_gettop(L) - 2);
+  off = lsys_lstring_poff(s, (size_t)i - 1);
+  for (k = 0; k < np; k++) {
+    double x = luaL_checknumber(L, (int)k + 3);
+    luaL_argcheck(L, isfinite(x), (int)k + 3, "not a finite number");
+    s->par[off + k] = x;
+  }
+  return 0;
 }
 
 static int modules_iter (lua_State *L) {
@@ -224,7 +247,7 @@ static int l_lstring (lua_State *L) {
 }
 
 static const luaL_Reg lstring_methods[] = {
-  {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module},
+  {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module}, {"set", lstring_set},
   {"modules", lstring_modules}, {"count", lstring_count}, {"counts", lstring_counts}, {"copy", lstring_copy},
   {"bytes", lstring_bytes}, {NULL, NULL}
 };

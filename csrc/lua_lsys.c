@@ -735,6 +735,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsys_open_surface(L);
   lsys_open_texture(L);
   lsys_open_viewer(L);
+  lsys_open_ik(L);
   lua_pushinteger(L, LSYS_MAXPARAMS);
   lua_setfield(L, -2, "MAXPARAMS");
   lua_pushinteger(L, LSYS_RF_CALL); lua_setfield(L, -2, "RF_CALL");

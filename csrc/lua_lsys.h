@@ -67,5 +67,6 @@ void lsys_open_contour (lua_State *L);  /* lua_contour.c: Contour */
 void lsys_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */
 void lsys_open_texture (lua_State *L);  /* lua_texture.c: Texture */
 void lsys_open_viewer (lua_State *L);   /* lua_viewer.c: Viewer, filestamp */
+void lsys_open_ik (lua_State *L);       /* lua_ik.c: IK chains (lsys.arrange) */
 
 #endif

@@ -40,7 +40,7 @@ enum {
   OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE,
   OP_SUB, OP_SUBEND,
   OP_GSTART, OP_GPOINT, OP_GEND, OP_GTAN, OP_GRAD,
-  OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE
+  OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE, OP_JOINT
 };
 
 static const struct { const char *name; uint8_t op; } symbols[] = {
@@ -61,6 +61,7 @@ static const struct { const char *name; uint8_t op; } symbols[] = {
   {"?", OP_SUB}, {"$", OP_SUBEND},
   {"@Gs", OP_GSTART}, {"@Gc", OP_GPOINT}, {"@Ge", OP_GEND}, {"@Gt", OP_GTAN},
   {"@Gr", OP_GRAD}, {"@PS", OP_PSTARTP}, {"@PC", OP_PCTRL}, {"@PD", OP_PDRAW},
+  {"@J", OP_JOINT},
   {NULL, 0}
 };
 
@@ -195,6 +196,15 @@ static void turn (run *R, double *a, double *b, double deg) {
   vcopy(a, na);
 }
 
+
+/* Turns the pair (a, b) by 'deg' degrees in their plane, a towards b (the
+** right-handed turn about a x b). */
+static void jointturn (double *a, double *b, double deg) {
+  double r = RAD(deg), c = cos(r), s = sin(r), na[3];
+  vlin(na, a, c, b, s);
+  vlin(b, b, c, a, -s);
+  vcopy(a, na);
+}
 
 /* An error about the current module: "module N: <fmt with what>". */
 static int fail (run *R, int code, const char *fmt, const char *what) {
@@ -1076,6 +1086,21 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
         default: turn(R, st->L, st->U, -x); break;
       }
       return LSYS_OK;
+    case OP_JOINT: {
+      /* @J(h, u, l): an arranged joint (seed 000 §3.1, ik.h): right-handed
+      ** turns in degrees about H, then the new U, then the new L, where L is
+      ** taken as U x H; the turtle's own L keeps its orientation to it */
+      double a[3], Lr[3], sign;
+      for (k = 0; k < 3; k++)
+        if ((s = arg(R, p, np, (uint32_t)k, 0, &a[k])) != LSYS_OK) return s;
+      vcross(Lr, st->U, st->H);
+      sign = vdot(Lr, st->L) < 0 ? -1 : 1;
+      jointturn(Lr, st->U, a[0]);       /* about H: L towards U */
+      jointturn(st->H, Lr, a[1]);       /* about U: H towards L */
+      jointturn(st->U, st->H, a[2]);    /* about L: U towards H */
+      vlin(st->L, Lr, sign, Lr, 0);
+      return LSYS_OK;
+    }
     case OP_TURN:
       vlin(st->H, st->H, -1, st->H, 0);
       vlin(st->L, st->L, -1, st->L, 0);
