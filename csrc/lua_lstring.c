@@ -202,6 +202,41 @@ static int lstring_concat (lua_State *L) {
   return 1;
 }
 
+/* s:insert(positions, piece): a new Lstring with 'piece' (an Lstring)
+** inserted before each of the module indices in the ascending list
+** 'positions' (n + 1: at the end), in one pass. */
+static int lstring_insert (lua_State *L) {
+  lsys_lstring *a = checklstring(L, 1), *b, *d;
+  lua_Integer k, np, prev = 1;
+  size_t off = 0;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  b = checklstring(L, 3);
+  np = luaL_len(L, 2);
+  d = lsys_newlstring(L);
+  lsys_setowner(L, -1, 1);
+  for (k = 1; k <= np + 1; k++) {
+    lua_Integer at = (lua_Integer)a->n + 1;
+    size_t o2;
+    if (k <= np) {
+      int isnum;
+      lua_rawgeti(L, 2, k);
+      at = lua_tointegerx(L, -1, &isnum);
+      lua_pop(L, 1);
+      if (!isnum || at < prev || at > (lua_Integer)a->n + 1)
+        return luaL_error(L, "insert: positions must be ascending module indices from 1 "
+                             "to %d (entry %d)", (int)a->n + 1, (int)k);
+    }
+    o2 = lsys_lstring_poff(a, (size_t)at - 1 < a->n ? (size_t)at - 1 : a->n);
+    if (at == (lua_Integer)a->n + 1) o2 = a->npar;
+    if (lsys_lstring_append(d, a, (size_t)prev - 1, (size_t)at - 1, off) != LSYS_OK ||
+        (k <= np && lsys_lstring_append(d, b, 0, b->n, 0) != LSYS_OK))
+      return luaL_error(L, "not enough memory");
+    off = o2;
+    prev = at;
+  }
+  return 1;
+}
+
 static int lstring_copy (lua_State *L) {
   lsys_lstring *a = checklstring(L, 1), *d = lsys_newlstring(L);
   lsys_setowner(L, -1, 1);
@@ -248,6 +283,7 @@ static int l_lstring (lua_State *L) {
 
 static const luaL_Reg lstring_methods[] = {
   {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module}, {"set", lstring_set},
+  {"insert", lstring_insert},
   {"modules", lstring_modules}, {"count", lstring_count}, {"counts", lstring_counts}, {"copy", lstring_copy},
   {"bytes", lstring_bytes}, {NULL, NULL}
 };

@@ -487,6 +487,9 @@ end
 --- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
 function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end
 
+--- Starts arranging a plant by inverse kinematics (lsys.arrange, docs/arrange.md).
+function M.arrange (model, s, opts) return _G.require("lsys.arrange")(model, s, opts) end
+
 --- Handles the window's events until it is closed (lsys.viewer.wait): the end of a script
 -- that shows a model.
 function M.wait () return _G.require("lsys.viewer").wait() end
