@@ -172,7 +172,7 @@ end
 --- Starts arranging `s` (an Lstring of `model`; default: model:derive()).
 -- opts: r0 (trunk radius, 1), s0u and s0h (trunk flexural and torsional stiffness, 1),
 -- radii ("width" or "davinci"; default: widths when the model sets them), weights wp, wt,
--- we, ws of eq. (1) (100, 10, 1, and 0 when the string has Z stiffness, 0.1 otherwise; wp
+-- we, ws of eq. (1) (1000, 1, 1, and 0 when the string has Z stiffness, 0.1 otherwise; wp
 -- is divided by |v-bar|^2 and the stiffness by its mean along the path, so that the
 -- defaults suit plants of any size: the targets are met and the stiffness decides where
 -- the path gives),
@@ -355,8 +355,8 @@ function Arr:_solve (p, s, t)
   local vlen = math.max(norm(self.bar.v), 1e-9)
   local res = self.ik:solve {
     p = p, s = s, t = t,
-    wp = (o.wp or 100) / (vlen * vlen),    -- positions relative to the path's length
-    wt = o.wt or 10, we = o.we or 1, ws = o.ws or (self.has_z and 0 or 0.1),
+    wp = (o.wp or 1000) / (vlen * vlen),    -- positions relative to the path's length
+    wt = o.wt or 1, we = o.we or 1, ws = o.ws or (self.has_z and 0 or 0.1),
     max_iter = o.max_iter,
   }
   local ang = self.ik:angles()

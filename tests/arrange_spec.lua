@@ -1,0 +1,175 @@
+-- Arrangement by inverse kinematics (lsys.arrange, seed 000): branch paths and their @J
+-- joints, the four draggers, the turtle drawing what the solver computed, stiffness from
+-- Z, widths and the da Vinci rule (eqs. 4-6), pruning, grow-arrange-grow (fig. 10).
+require "tests.helper"
+local lsys = require "lsys"
+
+local function near3 (a, b, tol)
+  for k = 1, 3 do
+    if math.abs(a[k] - b[k]) > tol then return false end
+  end
+  return true
+end
+
+local function count (s, name)
+  local n = 0
+  for _, m in s:modules() do if m == name then n = n + 1 end end
+  return n
+end
+
+-- A trunk of 4 segments with a lateral of 2 at the third, then 2 more trunk segments.
+local function plant ()
+  return lsys.lsystem { axiom = "F(1)F(1)F(1)F(1)[+(30)F(1)F(1)]F(1)F(1)", view = { angle = 30 } }
+end
+
+describe("lsys.arrange", function()
+  it("puts an @J before each segment of the selected path, once", function()
+    local m = plant()
+    local a = lsys.arrange(m, m:derive(0))
+    assert.equal(5, a:select { fixed = 2, moved = 8 })
+    assert.equal("F(1)@J(0,0,0)F(1)@J(0,0,0)F(1)@J(0,0,0)F(1)[+(30)@J(0,0,0)F(1)" ..
+      "@J(0,0,0)F(1)]F(1)F(1)", tostring(a:lstring()))
+    assert.same({ 3, 5, 7, 11, 13 }, a:path_modules())
+    assert.same({ 3, 5, 7, 11, 13, 15, 16 }, a:active_modules())
+    -- again, on the same path: nothing added
+    assert.equal(5, a:select { fixed = 3, moved = 13 })
+    assert.equal(5, count(a:lstring(), "@J"))
+  end)
+
+  it("draws exactly the pose the solver found", function()
+    local m = plant()
+    local a = lsys.arrange(m, m:derive(0))
+    a:select { fixed = 2, moved = 8 }
+    local r = a:spherical { axis = { 0, 0, 1 }, angle = -30 }
+    assert.is_true(r.dist < 0.05 * 4.4, "dist " .. r.dist)
+    local p, s, t = a.ik:forward()
+    local sc = a:interpret()
+    local rec = sc:record(sc:find(13))   -- the moved segment
+    assert.is_true(near3(rec.p1, p, 1e-5))
+    assert.is_true(near3(rec.U, t, 1e-5))
+    -- the spherical dragger turned the end about r by -30 degrees around z
+    local b = a.bar
+    local c, sn = math.cos(math.rad(-30)), math.sin(math.rad(-30))
+    local v = { b.v[1] * c - b.v[2] * sn, b.v[1] * sn + b.v[2] * c, b.v[3] }
+    assert.is_true(near3(p, { b.r[1] + v[1], b.r[2] + v[2], b.r[3] + v[3] }, 0.05 * 4.4))
+  end)
+
+  it("twists with the disc, pulls along the axis and moves in a plane", function()
+    local m = plant()
+    local a = lsys.arrange(m, m:derive(0))
+    a:select { fixed = 2, moved = 8 }
+    local b = a.bar
+    a:disc(40)
+    local p, s = a.ik:forward()
+    assert.is_true(near3(p, b.p, 0.05))           -- the end stays
+    local turned = math.deg(math.acos(math.max(-1, math.min(1, s[1] * b.s[1] + s[2] * b.s[2] + s[3] * b.s[3]))))
+    assert.is_true(turned > 20, "twist " .. turned)
+    a:undo_last()
+    a:axis(-0.5)                                  -- pulled in along v-bar
+    p = a.ik:forward()
+    local len = math.sqrt(b.v[1] ^ 2 + b.v[2] ^ 2 + b.v[3] ^ 2)
+    local want = {}
+    for k = 1, 3 do want[k] = b.p[k] - 0.5 * b.v[k] / len end
+    assert.is_true(near3(p, want, 0.05))
+    a:undo_last()
+    a:plane(0.5, -0.3, { right = { 1, 0, 0 }, up = { 0, 1, 0 } })
+    p = a.ik:forward()
+    assert.is_true(near3(p, { b.p[1] + 0.5, b.p[2] - 0.3, b.p[3] }, 0.05))
+  end)
+
+  it("assigns stiffness by the da Vinci rule, from widths, or from Z", function()
+    -- trunk radius r0 = 1 with two laterals: each gets r = 1 / sqrt(2), r^4 = 1/4
+    local m = lsys.lsystem { axiom = "F(1)F(2)[+F(1)]F(1)[-F(1)]F(1)", view = { angle = 30 } }
+    local a = lsys.arrange(m, m:derive(0), { s0u = 2, s0h = 3 })
+    -- eq. 4: s^u = 2 c_f r^4 / (l_{i-1} + l_i), c_f = s0u / r0^4 = 2; eq. 5 with c_t = 3
+    assert.same({ 3, 2, 2 }, a:stiffness(1))                -- first joint: l_{i-1} = l_i = 1
+    assert.near({ 2, 4 / 3, 4 / 3 }, a:stiffness(2), 1e-12) -- 2 * 2 / (1 + 2)
+    assert.near({ 0.5, 1 / 3, 1 / 3 }, a:stiffness(5), 1e-12)  -- 2*2/4/(2+1), a lateral
+    assert.near(1 / math.sqrt(2), a:radius(5), 1e-12)
+    -- widths: radius = width / 2 where the model sets widths
+    local w = lsys.lsystem { axiom = "!(2)F(1)!(1)F(1)", view = { angle = 30 } }
+    local aw = lsys.arrange(w, w:derive(0))
+    assert.near(1, aw:radius(2), 1e-12)
+    assert.near(0.5, aw:radius(4), 1e-12)
+    assert.near({ 0.0625, 0.0625, 0.0625 }, aw:stiffness(4), 1e-12)   -- 2 * 0.5^4 / 2
+    -- Z(sh, su, sl) in the string wins
+    local z = lsys.lsystem { axiom = "Z(5,6,7)F(1)F(1)", view = { angle = 30 } }
+    local az = lsys.arrange(z, z:derive(0))
+    assert.same({ 5, 6, 7 }, az:stiffness(2))
+  end)
+
+  it("bends stiff paths less where they are stiff (fig. 3)", function()
+    -- 11 segments, stiffness increasing (Z) towards the tip: the bend stays low
+    local parts = {}
+    for i = 1, 11 do parts[i] = ("Z(%d,%d,%d)F(1)"):format(i, i, i) end
+    local inc = lsys.lsystem { axiom = table.concat(parts), view = { angle = 30 } }
+    for i = 1, 11 do parts[i] = ("Z(%d,%d,%d)F(1)"):format(12 - i, 12 - i, 12 - i) end
+    local dec = lsys.lsystem { axiom = table.concat(parts), view = { angle = 30 } }
+    local function centre (m)
+      local a = lsys.arrange(m, m:derive(0))
+      a:select { fixed = 2, moved = 22 }
+      a:plane(4, -2)
+      local num, den = 0, 0
+      for i, ang in ipairs(a.ik:angles()) do
+        local bend = math.sqrt(ang[2] ^ 2 + ang[3] ^ 2)
+        num, den = num + i * bend, den + bend
+      end
+      return num / den
+    end
+    assert.is_true(centre(inc) + 1 < centre(dec))
+  end)
+
+  it("prunes a branch, leaving @X for productions to regrow", function()
+    local m = lsys.lsystem { axiom = "F(1)[+(30)F(1)F(1)]F(1)", view = { angle = 30 },
+                             productions = "@X --> [-(20)F(0.5)]" }
+    local a = lsys.arrange(m, m:derive(0))
+    assert.equal(2, a:prune(4))              -- F(1)F(1): from module 4 to the end of its branch
+    assert.equal("F(1)[+(30)@X]F(1)", tostring(a:lstring()))
+    assert.equal("F(1)[+(30)[-(20)F(0.5)]]F(1)", tostring(m:step(a:lstring())))
+    assert.is_true(a:undo_last())
+    assert.equal("F(1)[+(30)F(1)F(1)]F(1)", tostring(a:lstring()))
+  end)
+
+  it("grows, arranges and grows again; the bend survives and new growth attaches (fig. 10)",
+  function()
+    local m = lsys.lsystem { axiom = "F(1)A", steps = 3, view = { angle = 30 },
+                             productions = "A --> F(1)[+(40)F(0.5)]A" }
+    local s = m:derive()                      -- F F[+F] F[+F] F[+F] A
+    local a = lsys.arrange(m, s)
+    a:select { fixed = 1, moved = #s - 5 }    -- the last internode
+    a:plane(-1.5, -0.5)
+    local arranged = a:lstring()
+    local before = m:interpret(arranged)
+    local njoints = count(arranged, "@J")
+    local grown = m:step(arranged)
+    local after = m:interpret(grown)
+    -- the arranged segments are where they were; their joints are kept, not added to
+    assert.equal(njoints, count(grown, "@J"))
+    for k = 1, before.nrecords do
+      assert.is_true(near3(before:record(k).p1, after:record(k).p1, 1e-9))
+    end
+    -- the new internode starts at the old tip (the last trunk segment before A)
+    local tip = before:record(before:find(#arranged - 5))   -- the last internode
+    local newrec = after:record(before.nrecords + 1)
+    assert.is_true(near3(newrec.p0, tip.p1, 1e-6))
+    -- and a second arrangement updates the same @J modules
+    local a2 = lsys.arrange(m, grown)
+    a2:select { fixed = 2, moved = #grown - 5 }
+    a2:plane(0.5, 0)
+    assert.equal(njoints + 1, count(a2:lstring(), "@J"))   -- only the new segment's joint
+  end)
+
+  it("reports bad selections and options", function()
+    local m = plant()
+    local a = lsys.arrange(m, m:derive(0))
+    assert.error_contains(function() a:select { fixed = 8, moved = 2 } end,
+      "lsys.arrange: select: module 2 is not in the active branch of module 8 (above it)")
+    assert.error_contains(function() a:select { fixed = 5, moved = 8 } end,
+      "lsys.arrange: select: fixed: module 5 ([) draws nothing that can be arranged")
+    assert.error_contains(function() lsys.arrange(m, nil, { r0 = -1 }) end,
+      "lsys.arrange: option 'r0' must be > 0")
+    assert.error_contains(function() lsys.arrange(m, nil, { colour = 1 }) end,
+      "lsys.arrange: unknown option 'colour'")
+    assert.error_contains(function() a:disc(10) end, "select a branch path first")
+  end)
+end)
