@@ -172,6 +172,7 @@ void lsys_vsnap_free (lsys_vsnap *s) {
     lsys_mesh_free(&s->frames[k].mesh);
     LSYS_FREE(s->frames[k].pal);
     LSYS_FREE(s->frames[k].picks);
+    LSYS_FREE(s->frames[k].lines);
   }
   LSYS_FREE(s->frames);
   for (k = 0; k < (size_t)s->ntex; k++) lsys_texture_free(&s->tex[k]);
@@ -272,7 +273,7 @@ struct lsys_viewer {
   vcamera cam, home;              /* current and arrival cameras */
   lsys_render_cache cache;
   int winw, winh, fbw, fbh;
-  int button;                     /* 0 none, 1 orbiting, 2 panning */
+  int button;                     /* 0 none, 1 orbiting, 2 panning, 3 a tool's drag */
   double px, py, lastx, lasty;    /* press position, last cursor position */
   int moved;
   int playing;
@@ -310,6 +311,10 @@ static void event (lsys_viewer *v, int type, lsys_vevent *e) {
   e->type = type;
   e->frame = v->snap != NULL ? v->cur : -1;
   e->step = v->snap != NULL && v->cur >= 0 ? v->snap->frames[v->cur].step : -1;
+}
+
+static int capturing (const lsys_viewer *v) {
+  return v->snap != NULL && v->snap->capture;
 }
 
 static const lsys_vframe *curframe (const lsys_viewer *v) {
@@ -569,6 +574,37 @@ static void overlay (lsys_viewer *v) {
 /* ---------------------------------------------------------------------- */
 /* drawing and screenshots */
 
+/* The frame's highlight lines, with the scene's camera (render_draw leaves
+** its matrices loaded), depth-tested against the scene, unlit. */
+static void drawlines (lsys_viewer *v, const lsys_vframe *f) {
+  const lsys_gl *gl = &v->gl;
+  float scale = v->winh > 0 ? (float)v->fbh / (float)v->winh : 1;
+  size_t k;
+  gl->Disable(GL_LIGHTING);
+  gl->Disable(GL_TEXTURE_2D);
+  gl->Enable(GL_DEPTH_TEST);
+  gl->DepthFunc(GL_LEQUAL);
+  gl->EnableClientState(GL_VERTEX_ARRAY);
+  gl->EnableClientState(GL_COLOR_ARRAY);
+  for (k = 0; k < f->nlines; k++) {       /* few lines: one call each, own width */
+    static const uint32_t idx[2] = {0, 1};
+    const lsys_vline *l = &f->lines[k];
+    float pos[6];
+    uint8_t col[8];
+    memcpy(pos, l->p0, sizeof l->p0);
+    memcpy(pos + 3, l->p1, sizeof l->p1);
+    memcpy(col, l->rgba, 4);
+    memcpy(col + 4, l->rgba, 4);
+    gl->LineWidth(l->width * scale > 1 ? l->width * scale : 1);
+    gl->VertexPointer(3, GL_FLOAT, 0, pos);
+    gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, col);
+    gl->DrawElements(GL_LINES, 2, GL_UNSIGNED_INT, idx);
+  }
+  gl->DisableClientState(GL_VERTEX_ARRAY);
+  gl->DisableClientState(GL_COLOR_ARRAY);
+  gl->LineWidth(1);
+}
+
 static double now (void) {
   return G.GetTime();
 }
@@ -635,6 +671,7 @@ static void draw (lsys_viewer *v) {
     v->gl.ClearColor(1, 1, 1, 1);
     v->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
+  if (f != NULL && f->nlines > 0) drawlines(v, f);
   if (v->o.status) overlay(v);
   pthread_mutex_lock(&v->mu);
   wantshot = v->shotreq && (f != NULL || v->mail == NULL);
@@ -660,6 +697,7 @@ static void draw (lsys_viewer *v) {
   v->st.nframes = v->snap ? (long)v->snap->nframes : 0;
   v->st.playing = v->playing;
   v->st.wireframe = v->wireframe;
+  v->st.capture = capturing(v);
   if (f != NULL) lsys_render_camera(&f->mesh, &o, v->winw, v->winh, v->st.proj, v->st.view);
   pthread_cond_broadcast(&v->cv);
   pthread_mutex_unlock(&v->mu);
@@ -817,10 +855,30 @@ static lsys_viewer *self (GLFWwindow *w) {
 }
 
 static void onkey (GLFWwindow *w, int k, int scancode, int action, int mods) {
+  lsys_viewer *v = self(w);
   (void)scancode;
-  if (action == GLFW_PRESS || (action == GLFW_REPEAT && (k == GLFW_KEY_LEFT ||
-                                                         k == GLFW_KEY_RIGHT)))
-    key(self(w), k, mods);
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  if (capturing(v)) {             /* the tool hears every key; the arrows are its own */
+    lsys_vevent ev;
+    event(v, LSYS_VEV_KEY, &ev);
+    ev.key = k;
+    ev.mods = mods;
+    pushevent(v, &ev);
+    if (k == GLFW_KEY_LEFT || k == GLFW_KEY_RIGHT || k == GLFW_KEY_UP || k == GLFW_KEY_DOWN ||
+        k == GLFW_KEY_HOME || k == GLFW_KEY_END || (mods & GLFW_MOD_CONTROL) ||
+        action == GLFW_REPEAT)
+      return;
+  }
+  if (action == GLFW_PRESS || k == GLFW_KEY_LEFT || k == GLFW_KEY_RIGHT) key(v, k, mods);
+}
+
+static void dragevent (lsys_viewer *v, int phase, double x, double y) {
+  lsys_vevent ev;
+  event(v, LSYS_VEV_DRAG, &ev);
+  ev.phase = phase;
+  ev.x = x;
+  ev.y = y;
+  pushevent(v, &ev);
 }
 
 static void onbutton (GLFWwindow *w, int button, int action, int mods) {
@@ -829,11 +887,13 @@ static void onbutton (GLFWwindow *w, int button, int action, int mods) {
     if (v->button != 0) return;
     v->button = (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ||
                  (mods & GLFW_MOD_SHIFT)) ? 2 : 1;
+    if (v->button == 1 && (mods & GLFW_MOD_CONTROL) && capturing(v)) v->button = 3;
     v->px = v->lastx;
     v->py = v->lasty;
     v->moved = 0;
   } else if (action == GLFW_RELEASE && v->button != 0) {
-    if (!v->moved && button == GLFW_MOUSE_BUTTON_LEFT) pick(v, v->lastx, v->lasty);
+    if (v->button == 3 && v->moved) dragevent(v, 2, v->lastx, v->lasty);
+    else if (!v->moved && button == GLFW_MOUSE_BUTTON_LEFT) pick(v, v->lastx, v->lasty);
     v->button = 0;
   }
 }
@@ -845,9 +905,14 @@ static void oncursor (GLFWwindow *w, double x, double y) {
   v->lasty = y;
   if (v->button == 0) return;
   if (!v->moved && hypot(x - v->px, y - v->py) < CLICK_SLOP) return;
-  if (!v->moved) { dx = x - v->px; dy = y - v->py; }
+  if (!v->moved) {
+    dx = x - v->px;
+    dy = y - v->py;
+    if (v->button == 3) dragevent(v, 0, v->px, v->py);
+  }
   v->moved = 1;
-  if (v->button == 1) orbit(v, dx, dy);
+  if (v->button == 3) dragevent(v, 1, x, y);
+  else if (v->button == 1) orbit(v, dx, dy);
   else pan(v, dx, dy);
 }
 

@@ -9,10 +9,13 @@
 **                                        world = widths in world units, take = move
 **                                        the mesh out of the scene instead of copying };
 **                                        opts: first (1-based), rate, title,
-**                                        keep_camera, textures = { Texture... }
+**                                        keep_camera, capture, textures = { Texture... };
+**                                        a frame's lines = { { p0 =, p1 =, color = {r, g, b
+**                                        [, a]}, width = px }... } are drawn over it
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
-**                                        "step" | "closed", frame (1-based), step,
-**                                        module (1-based), kind, x, y, path, ok, msg }
+**                                        "step" | "closed" | "key" | "drag", frame
+**                                        (1-based), step, module (1-based), kind, x, y,
+**                                        path, ok, msg, key, ctrl, shift, phase }
 **   v:pending() -> n                     events waiting to be polled
 **   v:screenshot([path])                 S key's screenshot of the next frame
 **   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
@@ -140,6 +143,40 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     p->kind = r->kind;
     f->npicks++;
   }
+  if (optfield(L, idx, "lines", LUA_TTABLE, "a list of lines")) {
+    int t = lua_gettop(L);
+    lua_Integer n = luaL_len(L, t), q;
+    f->lines = (lsys_vline *)LSYS_MALLOC((size_t)(n > 0 ? n : 1) * sizeof *f->lines);
+    if (f->lines == NULL) luaL_error(L, "not enough memory for the viewer");
+    for (q = 1; q <= n; q++) {
+      lsys_vline *ln = &f->lines[f->nlines];
+      double c[4] = {1, 0, 0, 1};
+      int i;
+      if (lua_rawgeti(L, t, q) != LUA_TTABLE) luaL_error(L, "viewer:post: line %d is not a table", (int)q);
+      for (i = 0; i < 3; i++) {
+        lua_getfield(L, -1, "p0");
+        lua_rawgeti(L, -1, i + 1);
+        ln->p0[i] = (float)luaL_checknumber(L, -1);
+        lua_pop(L, 2);
+        lua_getfield(L, -1, "p1");
+        lua_rawgeti(L, -1, i + 1);
+        ln->p1[i] = (float)luaL_checknumber(L, -1);
+        lua_pop(L, 2);
+      }
+      if (lua_getfield(L, -1, "color") == LUA_TTABLE)
+        for (i = 0; i < 4; i++) {
+          if (lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER) c[i] = lua_tonumber(L, -1);
+          lua_pop(L, 1);
+        }
+      lua_pop(L, 1);
+      for (i = 0; i < 4; i++) ln->rgba[i] = (uint8_t)(255 * (c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i]) + 0.5);
+      lua_getfield(L, -1, "width");
+      ln->width = (float)luaL_optnumber(L, -1, 3);
+      lua_pop(L, 2);
+      f->nlines++;
+    }
+    lua_pop(L, 1);
+  }
   if (take) lsys_scenetake(L, -1, &f->mesh);
   else if (lsys_mesh_copy(&f->mesh, m) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
@@ -192,6 +229,7 @@ static int viewer_post (lua_State *L) {
     lua_pop(L, 1);
   }
   s->keep_camera = optbool(L, t, "keep_camera", 0);
+  s->capture = optbool(L, t, "capture", 0);
   {
     int ntex = 0, i;
     const lsys_texture *const *tex = lsys_opttextures(L, t, "viewer:post", &ntex);
@@ -212,8 +250,26 @@ static int viewer_post (lua_State *L) {
 }
 
 static const char *const evnames[] = {
-  "none", "pick", "miss", "screenshot", "step", "closed"
+  "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag"
 };
+
+/* A name for a GLFW key code: "a".."z", "0".."9", punctuation, or a word. */
+static const char *keyname (int k, char buf[2]) {
+  static const struct { int code; const char *name; } named[] = {
+    {256, "escape"}, {257, "enter"}, {258, "tab"}, {259, "backspace"}, {260, "insert"},
+    {261, "delete"}, {262, "right"}, {263, "left"}, {264, "down"}, {265, "up"},
+    {266, "pageup"}, {267, "pagedown"}, {268, "home"}, {269, "end"}, {32, "space"},
+    {334, "+"}, {333, "-"}, {335, "enter"}, {0, NULL}
+  };
+  int i;
+  for (i = 0; named[i].name; i++) if (named[i].code == k) return named[i].name;
+  if (k > 32 && k < 127) {
+    buf[0] = (char)(k >= 'A' && k <= 'Z' ? k - 'A' + 'a' : k);
+    buf[1] = '\0';
+    return buf;
+  }
+  return "?";
+}
 
 static int viewer_poll (lua_State *L) {
   lsys_viewer *v = checkviewer(L, 1);
@@ -239,6 +295,24 @@ static int viewer_poll (lua_State *L) {
       lua_setfield(L, -2, "kind");
       /* fall through */
     case LSYS_VEV_MISS:
+      lua_pushnumber(L, ev.x);
+      lua_setfield(L, -2, "x");
+      lua_pushnumber(L, ev.y);
+      lua_setfield(L, -2, "y");
+      break;
+    case LSYS_VEV_KEY: {
+      char buf[2];
+      lua_pushstring(L, keyname(ev.key, buf));
+      lua_setfield(L, -2, "key");
+      lua_pushboolean(L, (ev.mods & 0x2) != 0);
+      lua_setfield(L, -2, "ctrl");
+      lua_pushboolean(L, (ev.mods & 0x1) != 0);
+      lua_setfield(L, -2, "shift");
+      break;
+    }
+    case LSYS_VEV_DRAG:
+      lua_pushstring(L, ev.phase == 0 ? "begin" : ev.phase == 1 ? "move" : "end");
+      lua_setfield(L, -2, "phase");
       lua_pushnumber(L, ev.x);
       lua_setfield(L, -2, "x");
       lua_pushnumber(L, ev.y);
@@ -293,6 +367,15 @@ static void setint (lua_State *L, const char *k, lua_Integer x) {
   lua_setfield(L, -2, k);
 }
 
+static void pushv3 (lua_State *L, const double v[3]) {
+  int i;
+  lua_createtable(L, 3, 0);
+  for (i = 0; i < 3; i++) {
+    lua_pushnumber(L, v[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+}
+
 static int viewer_state (lua_State *L) {
   lviewer *lv = (lviewer *)luaL_checkudata(L, 1, VIEWER_T);
   lsys_vstate st;
@@ -317,6 +400,16 @@ static int viewer_state (lua_State *L) {
   lua_setfield(L, -2, "playing");
   lua_pushboolean(L, st.wireframe);
   lua_setfield(L, -2, "wireframe");
+  if (st.drawn > 0 && st.frame >= 0) {   /* the camera's axes in the world, rows of 'view' */
+    double r[3] = {st.view[0], st.view[4], st.view[8]}, u[3] = {st.view[1], st.view[5], st.view[9]},
+           f[3] = {-st.view[2], -st.view[6], -st.view[10]};
+    pushv3(L, r);
+    lua_setfield(L, -2, "right");
+    pushv3(L, u);
+    lua_setfield(L, -2, "up");
+    pushv3(L, f);
+    lua_setfield(L, -2, "forward");
+  }
   return 1;
 }
 

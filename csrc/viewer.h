@@ -31,6 +31,13 @@ typedef struct lsys_vpick {
   uint8_t kind;                 /* the turtle record's kind (LSYS_REC_*) */
 } lsys_vpick;
 
+/* A line drawn over a frame (highlights): from p0 to p1, 'width' pixels. */
+typedef struct lsys_vline {
+  float p0[3], p1[3];
+  uint8_t rgba[4];
+  float width;
+} lsys_vline;
+
 /* One picture: a scene with what drawing and picking it need. */
 typedef struct lsys_vframe {
   lsys_mesh mesh;               /* owned */
@@ -38,6 +45,8 @@ typedef struct lsys_vframe {
   size_t npal;
   lsys_vpick *picks;            /* owned */
   size_t npicks;
+  lsys_vline *lines;            /* owned: drawn over the scene (depth-tested) */
+  size_t nlines;
   size_t nmodules;              /* length of the string it was drawn from */
   int step;                     /* derivation step, or -1 when unknown */
   lsys_render_opts ro;          /* background, light, camera of the view (width,
@@ -54,6 +63,10 @@ typedef struct lsys_vsnap {
   int ntex;
   double rate;                  /* animation speed in frames per second (> 0) */
   int keep_camera;              /* 1: keep the current camera (a reload), 0: fit anew */
+  int capture;                  /* 1: a tool (lsys arrange) takes the keys and Ctrl-drags:
+                                   every key press comes back as a KEY event, the arrows
+                                   no longer step, and a left drag begun with Ctrl held
+                                   comes back as DRAG events instead of orbiting */
   char title[200];              /* window title (the model's name) */
 } lsys_vsnap;
 
@@ -77,7 +90,9 @@ enum {
   LSYS_VEV_MISS,                /* a click on nothing (frame, x, y) */
   LSYS_VEV_SCREENSHOT,          /* a screenshot was written (path) or failed (msg) */
   LSYS_VEV_STEP,                /* the frame shown changed (frame) */
-  LSYS_VEV_CLOSED               /* the window was closed (by the user or an error: msg) */
+  LSYS_VEV_CLOSED,              /* the window was closed (by the user or an error: msg) */
+  LSYS_VEV_KEY,                 /* capture: a key pressed (key: GLFW key code, mods) */
+  LSYS_VEV_DRAG                 /* capture: a Ctrl-drag (phase 0 begin, 1 move, 2 end; x, y) */
 };
 
 typedef struct lsys_vevent {
@@ -87,7 +102,8 @@ typedef struct lsys_vevent {
   long step;                    /* that frame's step */
   uint32_t module;              /* PICK: the module */
   int kind;                     /* PICK: the record's kind */
-  double x, y;                  /* PICK, MISS: window coordinates of the click */
+  double x, y;                  /* PICK, MISS, DRAG: window coordinates */
+  int key, mods, phase;         /* KEY, DRAG */
   char path[512];               /* SCREENSHOT: the file */
   char msg[256];                /* SCREENSHOT failure, CLOSED by an error */
 } lsys_vevent;
@@ -137,6 +153,7 @@ typedef struct lsys_vstate {
   int playing;                  /* animating through the frames */
   int wireframe;
   double proj[16], view[16];    /* the camera of the last picture drawn */
+  int capture;                  /* the snapshot shown captures keys and drags */
 } lsys_vstate;
 
 void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st);

@@ -329,6 +329,43 @@ function Arr:_tool ()
   self.bar = { p = p, s = s, t = t, r = pts[1][1], v = sub(p, pts[1][1]) }
 end
 
+--- Moves the fixed point (§3.2): "up" along its axis towards the branch end, "down"
+-- towards the base, "left" and "right" to the sibling branches. Clears the manipulated
+-- point (the path is the fixed segment alone). Returns the new fixed module, or nil
+-- when there is nowhere to go.
+function Arr:move_fixed (dir)
+  local f = self.fixed
+  if f == nil then fail("move_fixed: select a fixed point first", 2) end
+  local to
+  if dir == "up" then
+    for _, c in ipairs(f.children) do
+      if SEGMENT[c.kind] and not c.lateral then to = c break end
+    end
+    if to == nil then
+      for _, c in ipairs(f.children) do if SEGMENT[c.kind] then to = c break end end
+    end
+  elseif dir == "down" then
+    to = f.parent and self.recs[f.parent]
+    if to and not SEGMENT[to.kind] then to = nil end
+  elseif dir == "left" or dir == "right" then
+    local p = f.parent and self.recs[f.parent]
+    local sib = {}
+    for _, c in ipairs(p and p.children or {}) do
+      if SEGMENT[c.kind] then sib[#sib + 1] = c end
+    end
+    for i, c in ipairs(sib) do
+      if c == f and #sib > 1 then
+        to = sib[(i - 1 + (dir == "right" and 1 or -1)) % #sib + 1]
+      end
+    end
+  else
+    fail("move_fixed: 'up', 'down', 'left' or 'right' expected", 2)
+  end
+  if to == nil then return nil end
+  self:select { fixed = to.module }
+  return self.fixed.module
+end
+
 --- The selected path: the module indices of its segments, root first.
 function Arr:path_modules ()
   local out = {}

@@ -31,6 +31,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png)
   lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
   lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
+  lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -125,6 +126,35 @@ Options:
 
 The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
 without one.
+]]
+
+HELP.arrange = [[
+usage: lsys arrange [MODEL] [-o OUT.txt] [--string FILE] [--size WxH] [--r0 R] [--s0u S]
+                    [--s0h S] [--steps N] [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]...
+                    [--name NAME]
+
+Opens MODEL (default: the default example) derived in the viewer window for arranging by
+inverse kinematics (seed 000, ilsa; docs/arrange.md):
+
+  click           a segment: the fixed point; the active branch above it turns red
+  click again     within the red branch: the end of the branch path, which turns yellow
+  Ctrl-drag       move the path's end with the tool: G or 1 sphere (default), D or 2 disc
+                  (twist), A or 3 axis (in and out), P or 4 plane (in the view plane)
+  arrow keys      move the fixed point: up/down along the branch, left/right to siblings
+  Delete          prune the active branch (the marker @X takes its place)
+  U, Ctrl-Z       undo           Ctrl-S   save the arranged L-string to OUT
+  drag, scroll    orbit, zoom (as in lsys view)          Esc  quit
+
+Options:
+  -o, --output OUT   where Ctrl-S saves (default: MODEL's name with -arranged.txt)
+  --string FILE      start from an L-string saved before (cpfg text) instead of deriving
+  --size WxH         window size (default 800x800)
+  --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
+                     the automatic joint stiffness (default 1 each)
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME   as for render
+
+The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
+`model:step(lsys.lstring(text))`, or arrange it again with --string.
 ]]
 
 HELP.repl = [[
@@ -644,6 +674,47 @@ function commands.view (args)
   interrupt(false)
   V.close()
   if not iok and not tostring(ierr):find("interrupted!", 1, true) then error(ierr, 0) end
+  return 0
+end
+
+local ARRANGE_OPTS = {
+  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+  size = "value", output = "value", string = "value", r0 = "value", s0u = "value",
+  s0h = "value", help = "flag", short = { h = "help", o = "output" },
+}
+
+function commands.arrange (args)
+  local opts, pos = parse("arrange", ARRANGE_OPTS, args, 2)
+  if opts.help then out(HELP.arrange) return 0 end
+  local w, h = size_opt("arrange", opts.size)
+  local aopts = {}
+  for _, k in ipairs { "r0", "s0u", "s0h" } do
+    if opts[k] ~= nil then
+      aopts[k] = tonumber(opts[k])
+      if aopts[k] == nil or not (aopts[k] > 0) then
+        usage("arrange", "--%s expects a number > 0, got '%s'", k, opts[k])
+      end
+    end
+  end
+  local model, path, views = prepare("arrange", opts, pos)
+  if next(views) then aopts.view = views end
+  local s
+  if opts.string then
+    local f, err = io.open(opts.string)
+    if f == nil then error(format("cannot open '%s': %s", opts.string, tostring(err)), 0) end
+    local text = f:read("a")
+    f:close()
+    local ok, r = pcall(model.lstring, model, (text:gsub("%s+$", "")))
+    if not ok then error(format("%s: %s", opts.string, tostring(r)), 0) end
+    s = r
+  else
+    s = derive(model, opts)
+  end
+  local lsys = require "lsys"
+  local arr = lsys.arrange(model, s, aopts)
+  local outpath = opts.output or ((path:match("([^/]-)%.?[^./]*$") or "model") .. "-arranged.txt")
+  require("lsys.arrange_ui").run(arr, { out = outpath, width = w, height = h,
+                                        title = "arrange " .. path:match("([^/]*)$") })
   return 0
 end
 

@@ -46,7 +46,7 @@ local SHOW_OPTS = {
   step = "number", steps = "boolean", rate = "number", title = "string", width = "number",
   height = "number", on_pick = "function", on_event = "function", view = "table",
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
-  model = "table",
+  model = "table", lines = "table", capture = "boolean",
 }
 
 local function fail (msg, level) error("lsys.show: " .. msg, level + 1) end
@@ -159,7 +159,10 @@ end
 -- window's camera instead of fitting), `on_pick(info)` (called by `poll` for a click
 -- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
--- `model` (for an Lstring).
+-- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b}, width =
+-- pixels}, ... } drawn over it), `capture` (a tool takes the keys and Ctrl-drags: they
+-- come to `on_event` as { type = "key", key = "up", ctrl =, shift = } and
+-- { type = "drag", phase = "begin" | "move" | "end", x =, y = }).
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
@@ -178,7 +181,9 @@ function M.show (x, opts)
     title = format("Lstring (%d modules)", #x)
   elseif lsys.isscene(x) then
     if opts.view ~= nil then fail("option 'view' needs a model or an Lstring", 2) end
-    local f, v = frame(x, nil, nil, false)
+    local ls = x.lstring
+    local f, v = frame(x, nil, ls and #ls or nil, false)
+    f.lines = opts.lines
     frames = { f }
     S.strings[1] = x.lstring
     textures = v and v.textures
@@ -211,7 +216,7 @@ function M.show (x, opts)
   local v = open(opts)
   v:post(frames, {
     first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
-    keep_camera = opts.keep_camera,
+    keep_camera = opts.keep_camera, capture = opts.capture,
     textures = textures and #textures > 0 and textures or nil,
   })
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
