@@ -173,3 +173,72 @@ describe("lsys.arrange", function()
     assert.error_contains(function() a:disc(10) end, "select a branch path first")
   end)
 end)
+
+describe("#gl lsys arrange in the window", function()
+  local D = require "tests.display"
+  teardown(function() D.stop() end)
+
+  it("selects by clicks, bends by a real Ctrl-drag and saves with Ctrl-S", function()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    local dir = os.tmpname()
+    os.remove(dir)
+    os.execute("mkdir -p " .. dir)
+    local f = assert(io.open(dir .. "/m.lua", "w"))
+    f:write('local lsys = require "lsys"\nreturn lsys.lsystem { axiom = ' ..
+      '"F(1)F(1)F(1)F(1)[+(30)F(1)F(1)]F(1)F(1)", steps = 0, view = { angle = 30 } }\n')
+    f:close()
+    f = assert(io.open(dir .. "/drive.lua", "w"))
+    f:write([[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local UI = require "lsys.arrange_ui"
+local m = dofile(arg[1])
+local arr = lsys.arrange(m, m:derive())
+local function x (cmd)
+  assert(os.execute("xdotool search --name 'lsys: arrange test' " .. cmd .. " >/dev/null 2>&1"))
+  for _ = 1, 5 do V.poll(0.1) end
+  assert(V.sync(10))
+end
+local function at (module)         -- the window point of a segment's middle
+  local sc = arr:interpret()
+  local r = sc:record(sc:find(module))
+  local px, py = V.project({ (r.p0[1] + r.p1[1]) / 2, (r.p0[2] + r.p1[2]) / 2, 0 })
+  return px // 1, py // 1
+end
+V.wait = function ()
+  assert(V.sync(10))
+  x(("mousemove --window %%1 %d %d click 1"):format(at(2)))       -- fixed: the 2nd internode
+  local fixed = arr.fixed.module       -- 3: an @J went in before it
+  x(("mousemove --window %%1 %d %d click 1"):format(at(fixed + 6)))   -- the lateral's 2nd F
+  print("path", #arr.path)
+  local b = arr.bar
+  local px, py = V.project(b.p)
+  x(("mousemove --window %%1 %d %d keydown ctrl mousedown 1 mousemove --window %%1 %d %d " ..
+     "mousemove --window %%1 %d %d mouseup 1 keyup ctrl"):format(px // 1, py // 1,
+     px // 1 - 20, py // 1, px // 1 - 60, py // 1 + 30))
+  local p = arr.ik:forward()
+  print("moved", p[1] < b.p[1] - 0.5)
+  x("windowfocus --sync %1 key ctrl+s")
+  os.execute("xdotool search --name 'lsys: arrange test' windowfocus --sync %1 key Escape " ..
+    ">/dev/null 2>&1")                 -- (xdotool may complain: the window goes)
+  for _ = 1, 10 do V.poll(0.1) end
+end
+UI.run(arr, { width = 400, height = 400, title = "arrange test", out = arg[2],
+              say = function () end })
+]])
+    f:close()
+    local p = io.popen(D.env .. BIN .. " " .. dir .. "/drive.lua " .. dir .. "/m.lua " ..
+      dir .. "/out.txt 2>&1; echo exit:$?")
+    local out = p:read("a")
+    p:close()
+    assert.truthy(out:find("path\t5\nmoved\ttrue\n", 1, true), out)
+    assert.truthy(out:find("exit:0", 1, true), out)
+    local saved = io.open(dir .. "/out.txt"):read("a")
+    assert.truthy(saved:find("^F%(1%)@J%(0,%-?[%d.e-]+,0%)F%(1%)"), saved)
+    assert.equal(5, select(2, saved:gsub("@J", "")))
+    os.execute("rm -rf " .. dir)
+  end)
+end)
