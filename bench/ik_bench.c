@@ -268,27 +268,37 @@ static int cgsolve (bench *b, const lsys_ikgoal *G, lsys_ik_result *r) {
   return 0;
 }
 
-static void bench_cg (bench *b) {
+/* 'max_iter' 0: the default options; else the defaults with that iteration cap. Returns
+** the final objective value. */
+static double bench_cg (bench *b, const char *name, int max_iter) {
+  lsys_cg_opts o;
   lsys_ik_result r;
+  lsys_error e;
   double total = 0, t0, t, best = HUGE_VAL, med;
   int reps = 0;
+  lsys_cg_defaults(&o);
+  if (max_iter > 0) o.max_iter = max_iter;
   setstart(b);
   cgsolve(b, &b->goal, &r);                    /* warm-up */
-  while ((total < min_seconds || reps < 5) && reps < MAXREPS) {
+  while ((total < min_seconds || reps < 3) && reps < MAXREPS) {
     setstart(b);
     t0 = now();
-    cgsolve(b, &b->goal, &r);
+    if (lsys_ik_solve(&b->c, &b->goal, max_iter > 0 ? &o : NULL, b->work, &r, &e) != LSYS_OK) {
+      fprintf(stderr, "bench_ik: lsys_ik_solve failed: %s\n", e.msg);
+      exit(1);
+    }
     t = now() - t0;
     b->times[reps++] = t;
     total += t;
     if (t < best) best = t;
   }
   med = median(b->times, reps);
-  printf("cg n=%d best_ms=%.4f median_ms=%.4f reps=%d iters=%d evals=%d status=%s "
-         "f0=%.6e f=%.6e dist=%.3e gnorm=%.2e\n",
-         b->n, 1e3 * best, 1e3 * med, reps, r.cg.iterations, r.cg.evaluations,
-         cgstatus(r.cg.status), r.f0, r.f, r.dist, r.cg.gnorm);
+  printf("%s n=%d best_ms=%.4f median_ms=%.4f reps=%d iters=%d evals=%d status=%s "
+         "max_iter=%d f0=%.6e f=%.6e dist=%.3e gnorm=%.2e\n",
+         name, b->n, 1e3 * best, 1e3 * med, reps, r.cg.iterations, r.cg.evaluations,
+         cgstatus(r.cg.status), o.max_iter, r.f0, r.f, r.dist, r.cg.gnorm);
   fflush(stdout);
+  return r.f;
 }
 
 /* the whole drag, FRAMES solves each from the previous result, with the solver 'solve';
@@ -365,6 +375,8 @@ typedef struct lbctx {
   bench *b;
   const lsys_ikgoal *G;
   int evals, iters;
+  double fx;                  /* f at the last iteration */
+  double target;              /* stop once f <= target (0: never) */
 } lbctx;
 
 static lbfgsfloatval_t lb_eval (void *ud, const lbfgsfloatval_t *x, lbfgsfloatval_t *g,
@@ -380,9 +392,11 @@ static int lb_progress (void *ud, const lbfgsfloatval_t *x, const lbfgsfloatval_
                         const lbfgsfloatval_t fx, const lbfgsfloatval_t xnorm,
                         const lbfgsfloatval_t gnorm, const lbfgsfloatval_t step, int n, int k,
                         int ls) {
-  (void)x; (void)g; (void)fx; (void)xnorm; (void)gnorm; (void)step; (void)n; (void)ls;
-  ((lbctx *)ud)->iters = k;
-  return 0;
+  lbctx *c = (lbctx *)ud;
+  (void)x; (void)g; (void)xnorm; (void)gnorm; (void)step; (void)n; (void)ls;
+  c->iters = k;
+  c->fx = fx;
+  return c->target > 0 && fx <= c->target;    /* nonzero: cancel */
 }
 
 static const char *lbstatus (int st) {
@@ -390,6 +404,7 @@ static const char *lbstatus (int st) {
     case LBFGS_SUCCESS: return "converged";
     case LBFGS_STOP: return "stop";
     case LBFGS_ALREADY_MINIMIZED: return "already_minimized";
+    case LBFGSERR_CANCELED: return "reached_target";
     case LBFGSERR_ROUNDING_ERROR: return "rounding_error";
     case LBFGSERR_MAXIMUMLINESEARCH: return "max_linesearch";
     case LBFGSERR_MAXIMUMITERATION: return "max_iterations";
@@ -400,34 +415,40 @@ static const char *lbstatus (int st) {
   }
 }
 
-/* one L-BFGS solve from the angles in 'x' (3n), in place */
-static int lbsolve (bench *b, const lsys_ikgoal *G, lbfgs_parameter_t *par, lbfgsfloatval_t *x,
-                    lbfgsfloatval_t *fx, lbctx *c) {
+/* one L-BFGS solve (lbfgs_parameter_init defaults) from the angles in 'x' (3n), in place;
+** stops early once f <= target when target > 0 */
+static int lbsolve (bench *b, const lsys_ikgoal *G, double target, lbfgsfloatval_t *x,
+                    lbctx *c) {
+  lbfgs_parameter_t par;
+  lbfgsfloatval_t fx = 0;
+  int st;
+  lbfgs_parameter_init(&par);                  /* m = 6, More-Thuente, epsilon = 1e-5 */
   c->b = b;
   c->G = G;
   c->evals = c->iters = 0;
-  return lbfgs(3 * b->n, x, fx, lb_eval, lb_progress, c, par);
+  c->target = target;
+  st = lbfgs(3 * b->n, x, &fx, lb_eval, lb_progress, c, &par);
+  c->fx = fx;
+  return st;
 }
 
-static void bench_lbfgs (bench *b, const char *name, double epsilon) {
+/* 'target' > 0: the time L-BFGS takes to bring f down to it (the CG's final value) */
+static void bench_lbfgs (bench *b, const char *name, double target) {
+  lbfgsfloatval_t *x = lbfgs_malloc(3 * b->n);
   lbfgs_parameter_t par;
-  lbfgsfloatval_t *x = lbfgs_malloc(3 * b->n), fx = 0;
   lbctx c;
   double total = 0, t0, t, best = HUGE_VAL, med;
   size_t bytes = 3 * (size_t)b->n * sizeof *x;
-  int reps = 0, st;
+  int reps = 0, st = 0;
   if (x == NULL) {
     fprintf(stderr, "bench_ik: lbfgs_malloc failed\n");
     exit(1);
   }
-  lbfgs_parameter_init(&par);                  /* defaults: m = 6, More-Thuente, eps 1e-5 */
-  if (epsilon > 0) par.epsilon = epsilon;
-  memcpy(x, b->start, bytes);
-  st = lbsolve(b, &b->goal, &par, x, &fx, &c);  /* warm-up */
-  while ((total < min_seconds || reps < 5) && reps < MAXREPS) {
+  lbfgs_parameter_init(&par);
+  while ((total < min_seconds || reps < 3) && reps < MAXREPS) {
     memcpy(x, b->start, bytes);
     t0 = now();
-    st = lbsolve(b, &b->goal, &par, x, &fx, &c);
+    st = lbsolve(b, &b->goal, target, x, &c);
     t = now() - t0;
     b->times[reps++] = t;
     total += t;
@@ -437,7 +458,7 @@ static void bench_lbfgs (bench *b, const char *name, double epsilon) {
   printf("%s n=%d best_ms=%.4f median_ms=%.4f reps=%d iters=%d evals=%d status=%s code=%d "
          "m=%d epsilon=%.0e f=%.6e dist=%.3e\n",
          name, b->n, 1e3 * best, 1e3 * med, reps, c.iters, c.evals, lbstatus(st), st, par.m,
-         par.epsilon, (double)fx, tipdist(b, x, &b->goal));
+         par.epsilon, c.fx, tipdist(b, x, &b->goal));
   fflush(stdout);
   lbfgs_free(x);
 }
@@ -446,8 +467,6 @@ static void bench_lbfgs (bench *b, const char *name, double epsilon) {
 static double drag_lbfgs (bench *b, const lsys_ikgoal *G, int *iters) {
   static lbfgsfloatval_t *x;
   static int cap;
-  lbfgs_parameter_t par;
-  lbfgsfloatval_t fx;
   lbctx c;
   int i, k;
   if (b == NULL) {                             /* release the buffer */
@@ -461,10 +480,9 @@ static double drag_lbfgs (bench *b, const lsys_ikgoal *G, int *iters) {
     x = lbfgs_malloc(3 * b->n);
     cap = 3 * b->n;
   }
-  lbfgs_parameter_init(&par);
   for (i = 0; i < b->n; i++)
     for (k = 0; k < 3; k++) x[3 * i + k] = b->j[i].alpha[k];
-  lbsolve(b, G, &par, x, &fx, &c);
+  lbsolve(b, G, 0, x, &c);
   for (i = 0; i < b->n; i++)
     for (k = 0; k < 3; k++) b->j[i].alpha[k] = x[3 * i + k];
   *iters = c.iters;
@@ -505,13 +523,17 @@ int main (int argc, char **argv) {
 #endif
   for (s = 0; s < sizeof sizes / sizeof *sizes; s++) {
     bench b;
+    double fcg;
     build(&b, sizes[s]);
-    bench_cg(&b);
+    fcg = bench_cg(&b, "cg", 0);
     bench_eval(&b);
 #ifdef LSYS_HAVE_LBFGS
     bench_lbfgs(&b, "lbfgs", 0);
-    bench_lbfgs(&b, "lbfgs_tight", 1e-8);
+    bench_lbfgs(&b, "lbfgs_to_cg", fcg);
+#else
+    (void)fcg;
 #endif
+    bench_cg(&b, "cg_full", 20000);
     if (b.n == 100) {
       bench_drag(&b, "drag", drag_cg);
 #ifdef LSYS_HAVE_LBFGS

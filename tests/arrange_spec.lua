@@ -242,3 +242,24 @@ UI.run(arr, { width = 400, height = 400, title = "arrange test", out = arg[2],
     os.execute("rm -rf " .. dir)
   end)
 end)
+
+describe("the ilsa examples (figures 3, 4, 10)", function()
+  it("run and draw their pictures", function()
+    local core = require "lsys.core"
+    if not core.has_render then pending("built without rendering") return end
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    for _, fig in ipairs { "fig3", "fig4", "fig10" } do
+      local out = os.tmpname() .. ".png"
+      local p = io.popen(BIN .. " examples/ilsa/" .. fig .. ".lua " .. out .. " 2>&1; echo exit:$?")
+      local text = p:read("a")
+      p:close()
+      assert.truthy(text:find("wrote " .. out, 1, true), text)
+      assert.truthy(text:find("exit:0", 1, true), text)
+      local px, w, h = core.png_read(out)
+      local dark = 0
+      for i = 1, #px, 4 * 37 do if px:byte(i) < 128 then dark = dark + 1 end end
+      assert.is_true(w > 0 and h > 0 and dark > 20, fig .. ": " .. dark)
+      os.remove(out)
+    end
+  end)
+end)
