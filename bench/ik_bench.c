@@ -402,9 +402,9 @@ static int lb_progress (void *ud, const lbfgsfloatval_t *x, const lbfgsfloatval_
 static const char *lbstatus (int st) {
   switch (st) {
     case LBFGS_SUCCESS: return "converged";
-    case LBFGS_STOP: return "stop";
+    case LBFGS_STOP: return "stopped";          /* by the progress callback: target reached */
     case LBFGS_ALREADY_MINIMIZED: return "already_minimized";
-    case LBFGSERR_CANCELED: return "reached_target";
+    case LBFGSERR_CANCELED: return "canceled";
     case LBFGSERR_ROUNDING_ERROR: return "rounding_error";
     case LBFGSERR_MAXIMUMLINESEARCH: return "max_linesearch";
     case LBFGSERR_MAXIMUMITERATION: return "max_iterations";
@@ -457,7 +457,8 @@ static void bench_lbfgs (bench *b, const char *name, double target) {
   med = median(b->times, reps);
   printf("%s n=%d best_ms=%.4f median_ms=%.4f reps=%d iters=%d evals=%d status=%s code=%d "
          "m=%d epsilon=%.0e f=%.6e dist=%.3e\n",
-         name, b->n, 1e3 * best, 1e3 * med, reps, c.iters, c.evals, lbstatus(st), st, par.m,
+         name, b->n, 1e3 * best, 1e3 * med, reps, c.iters, c.evals,
+         target > 0 && st == LBFGS_STOP ? "reached_cg_f" : lbstatus(st), st, par.m,
          par.epsilon, c.fx, tipdist(b, x, &b->goal));
   fflush(stdout);
   lbfgs_free(x);
