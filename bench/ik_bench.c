@@ -6,12 +6,15 @@
 ** (lsys_ik_objective) as a reference. Run by bench/arrange.lua, which
 ** parses the result lines:
 **
-**   cg n=100 best_ms=... median_ms=... reps=... iters=... evals=... status=... f0=... f=...
-**      dist=... gnorm=...
-**   lbfgs n=100 best_ms=... median_ms=... reps=... iters=... evals=... status=... f=... dist=...
-**   lbfgs_tight n=100 ...        (L-BFGS with epsilon = 1e-8, near the CG's gtol)
-**   lbfgs unavailable            (built without liblbfgs)
-**   eval n=100 us=...            (one lsys_ik_objective call with gradient)
+**   cg n=100 best_ms=... median_ms=... reps=... iters=... evals=... status=... max_iter=200
+**      f0=... f=... dist=... gnorm=...          (lsys_ik_solve, default options)
+**   eval n=100 us=...            (one lsys_ik_objective call with its gradient)
+**   lbfgs n=100 best_ms=... median_ms=... reps=... iters=... evals=... status=... code=...
+**      m=6 epsilon=1e-05 f=... dist=...         (liblbfgs, lbfgs_parameter_init defaults)
+**   lbfgs_to_cg n=100 ...        (the same, stopped once f <= the CG's final f: the time
+**                                 L-BFGS needs for the CG's accuracy)
+**   lbfgs unavailable            (instead of the two above: built without liblbfgs)
+**   cg_full n=100 ...            (lsys_ik_solve with max_iter = 20000: to convergence)
 **   drag n=100 frames=60 reps=... mean_ms=... max_ms=... mean_iters=... max_dist=...
 **   lbfgs_drag n=100 ...         (the same drag with L-BFGS)
 **   mem peak_kib=...
@@ -24,12 +27,26 @@
 ** The chain: a gently curving 3-D branch of total length 10 (segments of
 ** length 10 / n), each joint's fixed turn 'pre' a rotation by about 60 / n
 ** degrees about an axis across the branch that turns slowly along it (with
-** a deterministic LCG jitter), so that every n gives a similar shape bent
-** by some 60 degrees in all. Radius tapering linearly from 1 to 0.3, joint
-** stiffness proportional to r^4 (eqs. 4, 5 with equal lengths), normalised to
-** mean 1 as lsys.arrange does; all three axes free; alpha = rest = 0.
+** a deterministic LCG jitter), so that every n gives a similar shape: turns
+** adding up to about 60 degrees, in a direction that goes 0.8 times round,
+** so that the tip heads 13-20 degrees away from the base (printed). Radius
+** tapering linearly from 1 to 0.3, joint stiffness proportional to r^4
+** (eqs. 4, 5 with equal lengths), normalised to mean 1 as lsys.arrange does;
+** all three axes free; alpha = rest = 0.
 ** Weights as lsys.arrange's defaults: wp = 1000 / |v|^2 (v: root to tip),
 ** wt = 1, we = 1, ws = 0.1.
+**
+** One step: the tip target moved by 2% of the path length across the tip's
+** heading (30 degrees from its L towards its U), the twist targets s, t
+** turned by 2 degrees about H x (that direction), from alpha = 0 (where the
+** old targets are met exactly). The drag (n = 100): 60 frames of the
+** spherical dragger, the path turned about its root by 1, 2, ... 60 degrees
+** (the tip moves about 1.5% of the path length a frame), each solve from the
+** previous result.
+**
+** The L-BFGS side pays a little more than the CG per evaluation:
+** lsys_ik_objective allocates its scratch (12n doubles) per call when
+** n > 64, and lbfgs() allocates its own memory on every call.
 */
 #define _POSIX_C_SOURCE 200809L
 
@@ -212,6 +229,10 @@ static void build (bench *b, int n) {
     G->wt = 1;
     G->we = 1;
     G->ws = 0.1;
+    printf("# n=%d: path length %g, |v| = %.3f (root to tip), tip heading %.1f deg from the "
+           "base's, stiffness %.3f at the root to %.3f at the tip (mean 1)\n", n, b->total,
+           vlen, acos(fmax(-1, fmin(1, vdot(H, b->Htip)))) * 180 / PI, b->j[0].stiff[1],
+           b->j[n - 1].stiff[1]);
   }
 }
 
@@ -237,14 +258,6 @@ static void draggoal (const bench *b, int f, lsys_ikgoal *G) {
   vrotate(G->t, b->tbar, kax, f * PI / 180);
 }
 
-static double tipdist (const bench *b, const double *a, const lsys_ikgoal *G) {
-  double p[3], d[3];
-  int k;
-  lsys_ik_forward(&b->c, a, p, NULL, NULL, NULL, NULL);
-  for (k = 0; k < 3; k++) d[k] = p[k] - G->p[k];
-  return sqrt(vdot(d, d));
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* conjugate gradients: lsys_ik_solve */
 
@@ -259,13 +272,12 @@ static const char *cgstatus (int st) {
   }
 }
 
-static int cgsolve (bench *b, const lsys_ikgoal *G, lsys_ik_result *r) {
+static void cgsolve (bench *b, const lsys_ikgoal *G, lsys_ik_result *r) {
   lsys_error e;
   if (lsys_ik_solve(&b->c, G, NULL, b->work, r, &e) != LSYS_OK) {
     fprintf(stderr, "bench_ik: lsys_ik_solve failed: %s\n", e.msg);
     exit(1);
   }
-  return 0;
 }
 
 /* 'max_iter' 0: the default options; else the defaults with that iteration cap. Returns
@@ -370,6 +382,15 @@ static void bench_eval (bench *b) {
 /* the reference: L-BFGS of liblbfgs on lsys_ik_objective */
 
 #ifdef LSYS_HAVE_LBFGS
+
+/* |p - p^| at the angles a */
+static double tipdist (const bench *b, const double *a, const lsys_ikgoal *G) {
+  double p[3], d[3];
+  int k;
+  lsys_ik_forward(&b->c, a, p, NULL, NULL, NULL, NULL);
+  for (k = 0; k < 3; k++) d[k] = p[k] - G->p[k];
+  return sqrt(vdot(d, d));
+}
 
 typedef struct lbctx {
   bench *b;
