@@ -526,6 +526,23 @@ static long peak_kib (void) {
   return kib;
 }
 
+/* How f and |p - p^| fall with the iteration cap (one solve each, from the start). */
+static void profile (bench *b) {
+  static const int caps[] = {5, 10, 20, 40, 80, 160};
+  lsys_cg_opts o;
+  lsys_ik_result r;
+  lsys_error e;
+  size_t k;
+  for (k = 0; k < sizeof caps / sizeof *caps; k++) {
+    lsys_cg_defaults(&o);
+    o.max_iter = caps[k];
+    setstart(b);
+    if (lsys_ik_solve(&b->c, &b->goal, &o, b->work, &r, &e) != LSYS_OK) exit(1);
+    printf("profile n=%d max_iter=%d iters=%d evals=%d f=%.6e dist=%.3e\n", b->n, caps[k],
+           r.cg.iterations, r.cg.evaluations, r.f, r.dist);
+  }
+}
+
 int main (int argc, char **argv) {
   static const int sizes[] = {10, 100, 1000};
   size_t s;
@@ -557,6 +574,7 @@ int main (int argc, char **argv) {
 #endif
     bench_cg(&b, "cg_full", 20000);
     if (b.n == 100) {
+      profile(&b);
       bench_drag(&b, "drag", drag_cg);
 #ifdef LSYS_HAVE_LBFGS
       bench_drag(&b, "lbfgs_drag", drag_lbfgs);

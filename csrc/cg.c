@@ -35,11 +35,13 @@ void lsys_cg_defaults (lsys_cg_opts *o) {
   o->step0 = 0;
   o->on_step = NULL;
   o->step_ud = NULL;
+  o->precond = NULL;
+  o->prec_ud = NULL;
 }
 
 size_t lsys_cg_work_size (int n) {
-  if (n < 1 || (size_t)n > ((size_t)-1) / (4 * sizeof(double))) return 0;
-  return 4 * (size_t)n * sizeof(double);
+  if (n < 1 || (size_t)n > ((size_t)-1) / (6 * sizeof(double))) return 0;
+  return 6 * (size_t)n * sizeof(double);      /* g, d, xt, gt, and z, zt for precond */
 }
 
 static double dot (const double *a, const double *b, int n) {
@@ -235,7 +237,7 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
                       void *work, lsys_cg_result *res, lsys_error *e) {
   lsys_cg_opts def;
   search s;
-  double *w, *g, *d, *t;
+  double *w, *g, *d, *t, *z, *zt;
   double fx, gnorm, gg, alpha;
   int st, maxeval, restart, i, evals = 0, k = 0, small = 0;
   if (f == NULL || x == NULL || res == NULL)
@@ -269,9 +271,23 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
                        isfinite(fx) ? "the gradient" : "the function");
     goto done;
   }
-  gg = dot(g, g, n);
-  for (i = 0; i < n; i++) d[i] = -g[i];
-  alpha = o->step0 > 0 ? o->step0 : 1 / sqrt(gg);
+  /* preconditioned PR+ (N&W §5.2): z = M^-1 g replaces g in the direction and in
+  ** beta = z_new.(g_new - g) / z.g; without a preconditioner z is g itself */
+  z = g;
+  zt = s.gt;
+  if (o->precond != NULL) {
+    z = w + 4 * n;
+    zt = w + 5 * n;
+    o->precond(o->prec_ud, x, g, z, n);
+  }
+  gg = dot(z, g, n);
+  if (!(gg > 0)) {            /* a preconditioner that is not positive definite here */
+    z = g;
+    zt = s.gt;
+    gg = dot(g, g, n);
+  }
+  for (i = 0; i < n; i++) d[i] = -z[i];
+  alpha = o->step0 > 0 ? o->step0 : z != g ? 1 : 1 / sqrt(gg);
   if (!(isfinite(alpha) && alpha > 0)) alpha = 1 / gnorm;   /* gg overflowed */
   for (;;) {
     double d0, dn, beta, gtg, ggt, a0;
@@ -287,12 +303,20 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
     if (r == LS_FAIL) { res->status = LSYS_CG_LINESEARCH; break; }
     if (r == LS_BUDGET) { res->status = LSYS_CG_MAXEVAL; break; }
     if (o->on_step != NULL) o->on_step(o->step_ud, s.at, fx, d0, s.ft, s.dt);
-    /* accept: x = xt, g <-> gt; beta_PR = gt.(gt - g) / g.g */
-    ggt = dot(s.gt, s.gt, n);
-    gtg = dot(s.gt, g, n);
-    beta = (ggt - gtg) / gg;
+    /* accept: x = xt, g <-> gt; beta_PR = zt.(gt - g) / z.g (zt = gt unpreconditioned) */
     memcpy(x, s.xt, (size_t)n * sizeof *x);
+    if (z != g) {
+      o->precond(o->prec_ud, x, s.gt, zt, n);
+      ggt = dot(zt, s.gt, n);
+      gtg = dot(zt, g, n);
+      t = z; z = zt; zt = t;
+    } else {
+      ggt = dot(s.gt, s.gt, n);
+      gtg = dot(s.gt, g, n);
+    }
+    beta = (ggt - gtg) / gg;
     t = g; g = s.gt; s.gt = t;
+    if (z == s.gt) z = g;        /* unpreconditioned: z follows g through the swap */
     small = fx - s.ft <= o->ftol * fmax(1, fabs(s.ft)) ? small + 1 : 0;
     fx = s.ft;
     gg = ggt;
@@ -302,12 +326,12 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
     /* the next direction d = -g + beta d, or -g on a restart */
     alpha = s.at * normi(d, n);                 /* how far x moved */
     if (r == LS_WOLFE && k < restart && beta > 0 && isfinite(beta)) {
-      for (i = 0; i < n; i++) d[i] = -g[i] + beta * d[i];
+      for (i = 0; i < n; i++) d[i] = -z[i] + beta * d[i];
       dn = dot(g, d, n);
     }
     else dn = 0;                                /* restart */
     if (!(dn < 0)) {
-      for (i = 0; i < n; i++) d[i] = -g[i];
+      for (i = 0; i < n; i++) d[i] = -z[i];
       dn = -gg;
       k = 0;
       res->restarts++;

@@ -46,6 +46,9 @@ typedef double (*lsys_cg_fn) (void *ud, const double *x, double *g, int n);
 typedef void (*lsys_cg_stepfn) (void *ud, double alpha, double f0, double g0d, double f1,
                                 double g1d);
 
+/* z = M^-1 g at x (n values). */
+typedef void (*lsys_cg_precfn) (void *ud, const double *x, const double *g, double *z, int n);
+
 typedef struct lsys_cg_opts {
   int max_iter;           /* iteration (accepted step) cap, >= 0 (default 200) */
   double gtol;            /* stop when ||g||_inf <= gtol * max(1, |f|), >= 0 (default 1e-8) */
@@ -61,6 +64,11 @@ typedef struct lsys_cg_opts {
                              (0 = 20 * max_iter but at least 1: the default) */
   double step0;           /* first trial step of the first line search, as a multiple of
                              d = -g (0 = 1 / ||g||_2, a step of length 1: the default) */
+  lsys_cg_precfn precond; /* a preconditioner z = M^-1 g (M symmetric positive definite,
+                             e.g. the diagonal of the Hessian), or NULL (default: none).
+                             Called once per iteration at the accepted point; the first
+                             trial step is then 1 (a Newton step when M is the Hessian) */
+  void *prec_ud;          /* first argument of precond */
   lsys_cg_stepfn on_step; /* test hook called on each accepted step, or NULL (default) */
   void *step_ud;          /* first argument of on_step */
 } lsys_cg_opts;

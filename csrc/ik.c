@@ -149,10 +149,15 @@ void lsys_ik_forward (const lsys_ikchain *c, const double *a, double p[3], doubl
 
 /* f and g with the scratch 'piv' (3n) and 'axes' (9n). */
 static double objective (const lsys_ikchain *c, const lsys_ikgoal *G, const double *a,
-                         double *g, double *piv, double *axes) {
+                         double *g, double *piv, double *axes, double *pst) {
   double p[3], s[3], t[3], dp[3], ds[3], dt[3], f;
   int i, k, n = c->n;
   run(c, a, p, s, t, NULL, NULL, g ? piv : NULL, g ? axes : NULL);
+  if (pst != NULL) {
+    memcpy(pst, p, sizeof p);
+    memcpy(pst + 3, s, sizeof s);
+    memcpy(pst + 6, t, sizeof t);
+  }
   for (k = 0; k < 3; k++) {
     dp[k] = p[k] - G->p[k];
     ds[k] = s[k] - G->s[k];
@@ -197,12 +202,44 @@ typedef struct work {
   const lsys_ikchain *c;
   const lsys_ikgoal *goal;
   double *piv, *axes;
+  double pst[9];          /* p, s, t of the last evaluation (for the preconditioner) */
 } work;
 
 static double cgfn (void *ud, const double *x, double *g, int n) {
   work *w = (work *)ud;
   (void)n;
-  return objective(w->c, w->goal, x, g, w->piv, w->axes);
+  return objective(w->c, w->goal, x, g, w->piv, w->axes, w->pst);
+}
+
+/*
+** The preconditioner: the diagonal of the Gauss-Newton Hessian of (1),
+**   2 wp |w x (p - x_i)|^2 + 2 wt (|w x s|^2 + |w x t|^2) + 2 we s_ik + 2 ws (neighbours),
+** from the joint axes and pivots of the last evaluation (the line search ends
+** by evaluating the point it accepts). The stiffness of a plant varies as r^4
+** along its branches, so without it the problem is badly conditioned.
+*/
+static void precond (void *ud, const double *x, const double *g, double *z, int n) {
+  const work *w = (const work *)ud;
+  const lsys_ikchain *c = w->c;
+  const lsys_ikgoal *G = w->goal;
+  const double *p = w->pst, *s = w->pst + 3, *t = w->pst + 6;
+  int i, k;
+  (void)x;
+  (void)n;
+  for (i = 0; i < c->n; i++) {
+    double v[3];
+    for (k = 0; k < 3; k++) v[k] = p[k] - w->piv[3 * i + k];
+    for (k = 0; k < 3; k++) {
+      const double *ax = w->axes + 9 * i + 3 * k;
+      double jp[3], js[3], jt[3], h;
+      cross(jp, ax, v);
+      cross(js, ax, s);
+      cross(jt, ax, t);
+      h = 2 * G->wp * dot(jp, jp) + 2 * G->wt * (dot(js, js) + dot(jt, jt)) +
+          2 * G->we * c->j[i].stiff[k] + 2 * G->ws * ((i > 0) + (i + 1 < c->n));
+      z[3 * i + k] = h > 1e-300 ? g[3 * i + k] / h : g[3 * i + k];
+    }
+  }
 }
 
 double lsys_ik_objective (const lsys_ikchain *c, const lsys_ikgoal *goal, const double *a,
@@ -213,7 +250,7 @@ double lsys_ik_objective (const lsys_ikchain *c, const lsys_ikgoal *goal, const 
     if (piv == NULL) return NAN;
     axes = piv + 3 * (size_t)c->n;
   }
-  f = objective(c, goal, a, g, piv, axes);
+  f = objective(c, goal, a, g, piv, axes, NULL);
   if (piv != sp) LSYS_FREE(piv);
   return f;
 }
@@ -225,14 +262,20 @@ size_t lsys_ik_work_size (int n) {
 
 int lsys_ik_solve (lsys_ikchain *c, const lsys_ikgoal *goal, const lsys_cg_opts *o,
                    void *mem, lsys_ik_result *res, lsys_error *e) {
-  lsys_cg_opts def;
+  lsys_cg_opts def, opts;
   work w;
   double *x, p[3], d[3];
   int i, k, st, own = mem == NULL;
   if (c->n < 1) return lsys_seterror(e, LSYS_EARG, (size_t)-1, "an empty branch path");
   if (own && (mem = LSYS_MALLOC(lsys_ik_work_size(c->n))) == NULL)
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory for the solver");
-  if (o == NULL) { lsys_cg_defaults(&def); o = &def; }
+  if (o == NULL) {
+    /* for dragging: stop once two iterations in a row gain less than a millionth of
+    ** the starting objective (the pose no longer changes visibly) */
+    lsys_cg_defaults(&def);
+    def.ftol = -1;               /* set below, when f0 is known */
+    o = &def;
+  }
   w.c = c;
   w.goal = goal;
   w.piv = (double *)mem;
@@ -240,7 +283,14 @@ int lsys_ik_solve (lsys_ikchain *c, const lsys_ikgoal *goal, const lsys_cg_opts 
   x = w.axes + 9 * (size_t)c->n;
   for (i = 0; i < c->n; i++)
     for (k = 0; k < 3; k++) x[3 * i + k] = c->j[i].alpha[k];
-  res->f0 = objective(c, goal, x, NULL, NULL, NULL);
+  res->f0 = objective(c, goal, x, NULL, NULL, NULL, NULL);
+  if (o == &def) def.ftol = isfinite(res->f0) && res->f0 > 0 ? 1e-6 * fmin(res->f0, 1) : 0;
+  if (o->precond == NULL) {    /* the Gauss-Newton diagonal below, unless given another */
+    opts = *o;
+    opts.precond = precond;
+    opts.prec_ud = &w;
+    o = &opts;
+  }
   st = lsys_cg_minimize(cgfn, &w, x, 3 * c->n, o, x + 3 * (size_t)c->n, &res->cg, e);
   if (st == LSYS_OK) {
     for (i = 0; i < c->n; i++)

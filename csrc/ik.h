@@ -98,7 +98,11 @@ size_t lsys_ik_work_size (int n);
 
 /*
 ** Minimises (1) from the joints' current angles and stores the result in
-** their alpha. 'o' NULL: cg defaults. Returns LSYS_OK (res->cg.status says
+** their alpha, by conjugate gradients preconditioned with the diagonal of
+** the Gauss-Newton Hessian of (1) (unless o->precond is set). 'o' NULL: the
+** cg defaults, except that the solve stops once two iterations in a row
+** gain less than 1e-6 of the starting objective (what dragging needs: the
+** pose no longer changes visibly). Returns LSYS_OK (res->cg.status says
 ** why it stopped), LSYS_ENOMEM, or LSYS_EARG with e->msg set.
 */
 int lsys_ik_solve (lsys_ikchain *c, const lsys_ikgoal *goal, const lsys_cg_opts *o,

@@ -236,6 +236,42 @@ static void test_diagonal (void) {
   checkquad(&r, &w, x, xs, N);
 }
 
+/* Jacobi preconditioner: z = g / diag(A). */
+static void jacobi (void *ud, const double *x, const double *g, double *z, int n) {
+  const quad *q = (const quad *)ud;
+  int i;
+  (void)x;
+  for (i = 0; i < n; i++) z[i] = g[i] / q->a[i * n + i];
+}
+
+/* The diagonal quadratic with the exact (diagonal) preconditioner: one Newton step. */
+static void test_precond (void) {
+  enum { N = 50 };
+  static double a[N * N];
+  double b[N], xs[N], x[N];
+  quad q = { N, a, b };
+  lsys_cg_opts o;
+  lsys_cg_result r;
+  lsys_error e;
+  int i;
+  for (i = 0; i < N; i++) {
+    a[i * N + i] = 1 + 99.0 * i / (N - 1);
+    xs[i] = sin(i + 1.0);
+    b[i] = a[i * N + i] * xs[i];
+    x[i] = 0;
+  }
+  lsys_cg_defaults(&o);
+  o.gtol = 1e-12;
+  o.ftol = 0;
+  o.precond = jacobi;
+  o.prec_ud = &q;
+  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
+  report("quadratic diag, Jacobi", &r);
+  assert(r.iterations <= 2);
+  for (i = 0; i < N; i++) assert(fabs(x[i] - xs[i]) < 1e-9);
+  /* Rosenbrock is not helped much by a diagonal, but must still converge */
+}
+
 /* A = M'M + I with M random (seeded), n = 20. */
 static void test_spd (void) {
   enum { N = 20 };
@@ -379,7 +415,7 @@ static void test_args (void) {
   assert(strcmp(e.msg, "the function is not finite at the start point") == 0);
   assert(x[0] == -1.2 && x[1] == 1);
   assert(lsys_cg_work_size(0) == 0 && lsys_cg_work_size(-1) == 0);
-  assert(lsys_cg_work_size(3) == 12 * sizeof(double));
+  assert(lsys_cg_work_size(3) == 18 * sizeof(double));
   assert(nlive == 0);
 }
 
@@ -481,6 +517,7 @@ int main (void) {
   setvbuf(stdout, NULL, _IONBF, 0);     /* the report lines show up before a failed assert */
   test_rosenbrock();
   test_diagonal();
+  test_precond();
   test_spd();
   test_stops();
   test_args();
