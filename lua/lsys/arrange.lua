@@ -529,6 +529,9 @@ function Arr:radius (i)
   return self:_record(i, "radius").radius
 end
 
-return setmetatable({ new = new, Arrangement = Arr }, { __call = function (_, ...)
+-- the vector helpers, for the window's tools (lsys.arrange_ui)
+local vec = { sub = sub, add = add, scale = scale, dot = dot, cross = cross, norm = norm }
+
+return setmetatable({ new = new, Arrangement = Arr, vec = vec }, { __call = function (_, ...)
   return new(...)
 end })

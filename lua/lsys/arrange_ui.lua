@@ -12,6 +12,7 @@
 -- @module lsys.arrange_ui
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local require = require
 
 local type, ipairs, tostring, pcall, error = type, ipairs, tostring, pcall, error
 local io, math, string = io, math, string
@@ -24,14 +25,9 @@ local RED, YELLOW = { 0.9, 0.15, 0.1, 1 }, { 1, 0.85, 0.1, 1 }
 local TOOLS = { g = "spherical", ["1"] = "spherical", d = "disc", ["2"] = "disc",
                 a = "axis", ["3"] = "axis", p = "plane", ["4"] = "plane" }
 
-local function sub (a, b) return { a[1] - b[1], a[2] - b[2], a[3] - b[3] } end
-local function add (a, b) return { a[1] + b[1], a[2] + b[2], a[3] + b[3] } end
-local function scale (a, k) return { a[1] * k, a[2] * k, a[3] * k } end
-local function dot (a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
-local function cross (a, b)
-  return { a[2] * b[3] - a[3] * b[2], a[3] * b[1] - a[1] * b[3], a[1] * b[2] - a[2] * b[1] }
-end
-local function norm (a) return math.sqrt(dot(a, a)) end
+local vec = require("lsys.arrange").vec
+local sub, add, scale, dot, cross, norm = vec.sub, vec.add, vec.scale, vec.dot, vec.cross,
+                                          vec.norm
 
 --- Runs the session until the window closes. `arr` is an lsys.arrange arrangement;
 -- opts: out (where Ctrl-S saves), width, height, title, say (a function printing

@@ -16,34 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static long nalloc, nlive, failat = -1;   /* allocation number 'failat' fails */
-
-static void *tmalloc (size_t n) {
-  void *p;
-  if (nalloc++ == failat) return NULL;
-  if ((p = malloc(n)) != NULL) {
-    nlive++;
-    memset(p, 0x55, n);                 /* garbage, not zeros */
-  }
-  return p;
-}
-
-static void *trealloc (void *p, size_t n) {
-  void *np;
-  if (nalloc++ == failat) return NULL;
-  np = realloc(p, n);
-  if (np != NULL && p == NULL) nlive++;
-  return np;
-}
-
-static void tfree (void *p) {
-  if (p != NULL) nlive--;
-  free(p);
-}
-
-#define LSYS_MALLOC(n)     tmalloc(n)
-#define LSYS_REALLOC(p, n) trealloc((p), (n))
-#define LSYS_FREE(p)       tfree(p)
+#include "talloc.h"
 #include "common.c"
 #include "cg.c"
 
