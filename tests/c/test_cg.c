@@ -183,6 +183,18 @@ static void checkquad (const lsys_cg_result *r, const wolfe *w, const double *x,
 }
 
 /* Diagonal A, eigenvalues 1 .. 100 (condition number 100), n = 50. */
+/* A diagonal A with condition number 100 (entries 1 to 100), x* = sin(i + 1),
+** b = A x*, start x = 0. */
+static void diagonal (double *a, double *b, double *xs, double *x, int n) {
+  int i;
+  for (i = 0; i < n; i++) {
+    a[i * n + i] = 1 + 99.0 * i / (n - 1);
+    xs[i] = sin(i + 1.0);
+    b[i] = a[i * n + i] * xs[i];
+    x[i] = 0;
+  }
+}
+
 static void test_diagonal (void) {
   enum { N = 50 };
   static double a[N * N];
@@ -193,12 +205,7 @@ static void test_diagonal (void) {
   lsys_error e;
   wolfe w;
   int i;
-  for (i = 0; i < N; i++) {
-    a[i * N + i] = 1 + 99.0 * i / (N - 1);
-    xs[i] = sin(i + 1.0);
-    b[i] = a[i * N + i] * xs[i];
-    x[i] = 0;
-  }
+  diagonal(a, b, xs, x, N);
   lsys_cg_defaults(&o);
   o.gtol = 1e-12;
   o.ftol = 0;           /* |f| ~ 600: f alone cannot place x within 1e-6 */
@@ -227,12 +234,7 @@ static void test_precond (void) {
   lsys_cg_result r;
   lsys_error e;
   int i;
-  for (i = 0; i < N; i++) {
-    a[i * N + i] = 1 + 99.0 * i / (N - 1);
-    xs[i] = sin(i + 1.0);
-    b[i] = a[i * N + i] * xs[i];
-    x[i] = 0;
-  }
+  diagonal(a, b, xs, x, N);
   lsys_cg_defaults(&o);
   o.gtol = 1e-12;
   o.ftol = 0;
