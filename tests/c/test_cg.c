@@ -204,7 +204,6 @@ static void test_diagonal (void) {
   lsys_cg_result r;
   lsys_error e;
   wolfe w;
-  int i;
   diagonal(a, b, xs, x, N);
   lsys_cg_defaults(&o);
   o.gtol = 1e-12;
