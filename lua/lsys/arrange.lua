@@ -22,8 +22,8 @@
 -- @module lsys.arrange
 local core = require "lsys.core"
 
-local type, pairs, ipairs, error, tostring, setmetatable, select =
-      type, pairs, ipairs, error, tostring, setmetatable, select
+local type, pairs, ipairs, error, tostring, setmetatable =
+      type, pairs, ipairs, error, tostring, setmetatable
 local math, string, table = math, string, table
 local format = string.format
 local _ENV = nil

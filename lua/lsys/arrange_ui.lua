@@ -14,7 +14,7 @@ local lsys = require "lsys"
 local V = require "lsys.viewer"
 local require = require
 
-local type, ipairs, tostring, pcall, error = type, ipairs, tostring, pcall, error
+local ipairs, tostring, pcall = ipairs, tostring, pcall
 local io, math, string = io, math, string
 local format = string.format
 local _ENV = nil

@@ -243,7 +243,6 @@ static void test_precond (void) {
   report("quadratic diag, Jacobi", &r);
   assert(r.iterations <= 2);
   for (i = 0; i < N; i++) assert(fabs(x[i] - xs[i]) < 1e-9);
-  /* Rosenbrock is not helped much by a diagonal, but must still converge */
 }
 
 /* A = M'M + I with M random (seeded), n = 20. */
