@@ -37,6 +37,8 @@ void lsys_cg_defaults (lsys_cg_opts *o) {
   o->step_ud = NULL;
   o->precond = NULL;
   o->prec_ud = NULL;
+  o->curv = NULL;
+  o->curv_ud = NULL;
 }
 
 size_t lsys_cg_work_size (int n) {
@@ -233,6 +235,19 @@ static int checkopts (const lsys_cg_opts *o, lsys_error *e) {
   return LSYS_OK;
 }
 
+/* The first trial from the caller's curvature estimate: the minimiser of
+** the quadratic model along d (slope 'd0' < 0 at 0), at most GROW times
+** the usual trial 'a0'; a0 when there is no estimate. */
+static double modelstep (const lsys_cg_opts *o, const double *x, const double *d, int n,
+                         double d0, double a0) {
+  double c, a;
+  if (o->curv == NULL) return a0;
+  c = o->curv(o->curv_ud, x, d, n);
+  a = -d0 / c;
+  if (!(c > 0 && isfinite(a) && a > 0)) return a0;
+  return a < GROW * a0 ? a : GROW * a0;
+}
+
 int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_opts *o,
                       void *work, lsys_cg_result *res, lsys_error *e) {
   lsys_cg_opts def;
@@ -289,6 +304,7 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
   for (i = 0; i < n; i++) d[i] = -z[i];
   alpha = o->step0 > 0 ? o->step0 : z != g ? 1 : 1 / sqrt(gg);
   if (!(isfinite(alpha) && alpha > 0)) alpha = 1 / gnorm;   /* gg overflowed */
+  if (o->step0 == 0) alpha = modelstep(o, x, d, n, -gg, alpha);
   for (;;) {
     double d0, dn, beta, gtg, ggt, a0;
     int r;
@@ -341,7 +357,7 @@ int lsys_cg_minimize (lsys_cg_fn f, void *ud, double *x, int n, const lsys_cg_op
     a0 = s.at * d0 / dn;
     alpha /= normi(d, n);                       /* the step moving x as far as the last */
     if (!(a0 > 0 && a0 <= GROW * alpha)) a0 = isfinite(a0) && a0 > 0 ? GROW * alpha : alpha;
-    alpha = a0;
+    alpha = modelstep(o, x, d, n, dn, a0);
   }
   res->f = fx;
   res->gnorm = gnorm;

@@ -49,6 +49,10 @@ typedef void (*lsys_cg_stepfn) (void *ud, double alpha, double f0, double g0d, d
 /* z = M^-1 g at x (n values). */
 typedef void (*lsys_cg_precfn) (void *ud, const double *x, const double *g, double *z, int n);
 
+/* An estimate of the curvature d' H(x) d of f along d at x (H the Hessian or
+** an approximation such as Gauss-Newton's); <= 0 or not finite: no estimate. */
+typedef double (*lsys_cg_curvfn) (void *ud, const double *x, const double *d, int n);
+
 typedef struct lsys_cg_opts {
   int max_iter;           /* iteration (accepted step) cap, >= 0 (default 200) */
   double gtol;            /* stop when ||g||_inf <= gtol * max(1, |f|), >= 0 (default 1e-8) */
@@ -69,6 +73,12 @@ typedef struct lsys_cg_opts {
                              Called once per iteration at the accepted point; the first
                              trial step is then 1 (a Newton step when M is the Hessian) */
   void *prec_ud;          /* first argument of precond */
+  lsys_cg_curvfn curv;    /* the curvature along each search direction, or NULL (default).
+                             When given, each line search first tries the minimiser
+                             -g.d / curv of the quadratic model along d (at most 10 times
+                             as far as eq. 3.60's trial); called at the current point right
+                             after f was evaluated there */
+  void *curv_ud;          /* first argument of curv */
   lsys_cg_stepfn on_step; /* test hook called on each accepted step, or NULL (default) */
   void *step_ud;          /* first argument of on_step */
 } lsys_cg_opts;

@@ -242,6 +242,43 @@ static void precond (void *ud, const double *x, const double *g, double *z, int 
   }
 }
 
+/*
+** The Gauss-Newton curvature of (1) along d, for the line search's first trial:
+** with omega_i = sum_k d_ik w_ik the turn of joint i and Omega their sum, the
+** first-order changes are dp = sum_i omega_i x (p - x_i), ds = Omega x s and
+** dt = Omega x t (eqs. 8-9), so d'Hd ~ 2 wp |dp|^2 + 2 wt (|ds|^2 + |dt|^2)
+** + 2 we sum s_ik d_ik^2 + 2 ws sum (d_i+1,k - d_ik)^2.
+*/
+static double curv (void *ud, const double *x, const double *d, int n) {
+  const work *w = (const work *)ud;
+  const lsys_ikchain *c = w->c;
+  const lsys_ikgoal *G = w->goal;
+  const double *p = w->pst, *s = w->pst + 3, *t = w->pst + 6;
+  double jp[3] = {0, 0, 0}, om[3] = {0, 0, 0}, js[3], jt[3], e = 0, sm = 0;
+  int i, k;
+  (void)x;
+  (void)n;
+  for (i = 0; i < c->n; i++) {
+    const double *ax = w->axes + 9 * i, *di = d + 3 * i;
+    double oi[3], v[3], r[3];
+    for (k = 0; k < 3; k++) {
+      oi[k] = di[0] * ax[k] + di[1] * ax[3 + k] + di[2] * ax[6 + k];
+      v[k] = p[k] - w->piv[3 * i + k];
+      om[k] += oi[k];
+    }
+    cross(r, oi, v);
+    for (k = 0; k < 3; k++) {
+      jp[k] += r[k];
+      e += c->j[i].stiff[k] * di[k] * di[k];
+      if (i + 1 < c->n) sm += (di[3 + k] - di[k]) * (di[3 + k] - di[k]);
+    }
+  }
+  cross(js, om, s);
+  cross(jt, om, t);
+  return 2 * G->wp * dot(jp, jp) + 2 * G->wt * (dot(js, js) + dot(jt, jt)) + 2 * G->we * e +
+         2 * G->ws * sm;
+}
+
 double lsys_ik_objective (const lsys_ikchain *c, const lsys_ikgoal *goal, const double *a,
                           double *g) {
   double sp[3 * 64], sa[9 * 64], *piv = sp, *axes = sa, f;
@@ -289,6 +326,12 @@ int lsys_ik_solve (lsys_ikchain *c, const lsys_ikgoal *goal, const lsys_cg_opts 
     opts = *o;
     opts.precond = precond;
     opts.prec_ud = &w;
+    o = &opts;
+  }
+  if (o->curv == NULL) {       /* and the Gauss-Newton curvature for the first trials */
+    if (o != &opts) opts = *o;
+    opts.curv = curv;
+    opts.curv_ud = &w;
     o = &opts;
   }
   st = lsys_cg_minimize(cgfn, &w, x, 3 * c->n, o, x + 3 * (size_t)c->n, &res->cg, e);

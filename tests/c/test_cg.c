@@ -57,6 +57,17 @@ static double quadf (void *ud, const double *x, double *g, int n) {
   return f;
 }
 
+/* d'Ad, the curvature of quadf along d. */
+static double quadcurv (void *ud, const double *x, const double *d, int n) {
+  const quad *q = (const quad *)ud;
+  double c = 0;
+  int i, j;
+  (void)x;
+  for (i = 0; i < n; i++)
+    for (j = 0; j < n; j++) c += d[i] * q->a[i * n + j] * d[j];
+  return c;
+}
+
 /* Barrier: f = sum (a_i x_i - log x_i), minimum at x_i = 1 / a_i; NaN
 ** where some x_i <= 0 (counted in 'outside'). */
 static int outside;
@@ -285,6 +296,19 @@ static void test_spd (void) {
   assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
   report("quadratic SPD c2=1e-3", &r);
   checkquad(&r, &w, x, xs, N);
+  /* the exact curvature d'Ad: every first trial is the exact minimiser along d,
+  ** so each line search takes one evaluation and PR+ is linear CG */
+  for (i = 0; i < N; i++) x[i] = 0;
+  o.c2 = 0.1;
+  o.curv = quadcurv;
+  o.curv_ud = &q;
+  hook(&o, &w);
+  w.noisy = 1;
+  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
+  report("quadratic SPD, exact curvature", &r);
+  checkquad(&r, &w, x, xs, N);
+  assert(r.evaluations == r.iterations + 1);
+  assert(r.iterations <= 2 * N);
 }
 
 static void test_stops (void) {
