@@ -280,15 +280,14 @@ static double curv (void *ud, const double *x, const double *d, int n) {
 }
 
 double lsys_ik_objective (const lsys_ikchain *c, const lsys_ikgoal *goal, const double *a,
-                          double *g) {
-  double sp[3 * 64], sa[9 * 64], *piv = sp, *axes = sa, f;
-  if (g != NULL && c->n > 64) {
+                          double *g, void *work) {
+  double sp[12 * 64], *piv = work != NULL ? (double *)work : sp, f;
+  if (g != NULL && work == NULL && c->n > 64) {
     piv = (double *)LSYS_MALLOC((size_t)c->n * 12 * sizeof *piv);
     if (piv == NULL) return NAN;
-    axes = piv + 3 * (size_t)c->n;
   }
-  f = objective(c, goal, a, g, piv, axes, NULL);
-  if (piv != sp) LSYS_FREE(piv);
+  f = objective(c, goal, a, g, piv, piv + 3 * (size_t)c->n, NULL);
+  if (piv != sp && piv != work) LSYS_FREE(piv);
   return f;
 }
 

@@ -82,9 +82,11 @@ void lsys_ik_forward (const lsys_ikchain *c, const double *a, double p[3], doubl
                       double t[3], double *frames, double *pts);
 
 /* Objective (1) at the angles 'a' (3n), and its gradient into 'g' (3n; NULL:
-** none). Fixed axes (free bit clear) get a zero gradient. */
+** none). Fixed axes (free bit clear) get a zero gradient. 'work' is scratch
+** of lsys_ik_work_size(n) bytes, or NULL: then a gradient for more than 64
+** joints allocates (and returns NaN when that fails). */
 double lsys_ik_objective (const lsys_ikchain *c, const lsys_ikgoal *goal, const double *a,
-                          double *g);
+                          double *g, void *work);
 
 typedef struct lsys_ik_result {
   lsys_cg_result cg;

@@ -80,11 +80,11 @@ static void test_gradient (void) {
     randgoal(&G);
     for (i = 0; i < 3 * n; i++) a[i] = urand(-PI, PI);
     if (trial % 4 == 3) j[n / 2].free = 5;           /* a fixed U axis: zero gradient */
-    lsys_ik_objective(&c, &G, a, g);
+    lsys_ik_objective(&c, &G, a, g, NULL);
     for (i = 0; i < 3 * n; i++) {
       double h = 1e-6, x = a[i], fp, fm, num, err;
-      a[i] = x + h; fp = lsys_ik_objective(&c, &G, a, NULL);
-      a[i] = x - h; fm = lsys_ik_objective(&c, &G, a, NULL);
+      a[i] = x + h; fp = lsys_ik_objective(&c, &G, a, NULL, NULL);
+      a[i] = x - h; fm = lsys_ik_objective(&c, &G, a, NULL, NULL);
       a[i] = x;
       num = (fp - fm) / (2 * h);
       if (!(j[i / 3].free & (1u << (i % 3)))) {
