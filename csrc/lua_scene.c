@@ -331,7 +331,7 @@ static int l_interpret (lua_State *L) {
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, SV_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, SV_LSTRING);
   lua_pushvalue(L, 3); lua_setiuservalue(L, 4, SV_OPTS);
-  lua_gc(L, LUA_GCSTEP, (int)((S->mesh.nv * 41 + S->mesh.nt * 12 + S->nrec * 96) >> 10));
+  lua_gc(L, LUA_GCSTEP, (int)((S->mesh.nv * 41 + S->mesh.nt * 12 + S->nrec * sizeof *S->rec) >> 10));
   lua_settop(L, 4);
   return 1;
 }
@@ -561,6 +561,32 @@ static int scene_find (lua_State *L) {
   return 1;
 }
 
+/* scene:edges(k) -> the wireframe of what record k drew: a list of edges
+** {{x, y, z}, {x, y, z}} of its triangles (empty for lines and records that
+** drew none; a leaf or flower gives its whole outline and inner edges) */
+static int scene_edges (lua_State *L) {
+  lscene *S = checkscene(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2);
+  const lsys_trec *r;
+  uint32_t *e;
+  size_t n, i;
+  if (!S->inited) return luaL_error(L, "the scene was freed");
+  if (k < 1 || (size_t)k > S->nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
+  r = &S->rec[k - 1];
+  e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
+  n = lsys_mesh_edges(&S->mesh, r->tri0, r->ntri, e);
+  lua_createtable(L, (int)n, 0);
+  for (i = 0; i < n; i++) {
+    lua_createtable(L, 2, 0);
+    pushvecf(L, S->mesh.pos + 3 * (size_t)e[2 * i]);
+    lua_rawseti(L, -2, 1);
+    pushvecf(L, S->mesh.pos + 3 * (size_t)e[2 * i + 1]);
+    lua_rawseti(L, -2, 2);
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  return 1;
+}
+
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   checkscene(L, 1);
@@ -607,6 +633,7 @@ static const luaL_Reg scene_methods[] = {
   {"record", scene_record},
   {"records", scene_records},
   {"find", scene_find},
+  {"edges", scene_edges},
   {"turtle", scene_turtle},
   {"save", scene_save},
   {NULL, NULL}

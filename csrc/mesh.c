@@ -24,6 +24,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "mesh.h"
@@ -150,6 +151,33 @@ static void addbounds (const float *p, size_t n, double lo[3], double hi[3]) {
       if (p[k] < lo[k]) lo[k] = p[k];
       if (p[k] > hi[k]) hi[k] = p[k];
     }
+}
+
+static int cmpedge (const void *x, const void *y) {
+  const uint32_t *a = (const uint32_t *)x, *b = (const uint32_t *)y;
+  return a[0] != b[0] ? (a[0] > b[0]) - (a[0] < b[0]) : (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edges) {
+  size_t i, n = 0, k;
+  if (t0 >= m->nt) return 0;
+  if (nt > m->nt - t0) nt = m->nt - t0;
+  for (i = t0; i < t0 + nt; i++)
+    for (k = 0; k < 3; k++) {
+      uint32_t a = m->tri[3 * i + k], b = m->tri[3 * i + (k + 1) % 3];
+      if (a == b) continue;                     /* degenerate */
+      edges[2 * n] = a < b ? a : b;
+      edges[2 * n + 1] = a < b ? b : a;
+      n++;
+    }
+  qsort(edges, n, 2 * sizeof *edges, cmpedge);
+  for (i = k = 0; i < n; i++)
+    if (k == 0 || edges[2 * i] != edges[2 * k - 2] || edges[2 * i + 1] != edges[2 * k - 1]) {
+      edges[2 * k] = edges[2 * i];
+      edges[2 * k + 1] = edges[2 * i + 1];
+      k++;
+    }
+  return k;
 }
 
 int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]) {

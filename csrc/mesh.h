@@ -76,6 +76,11 @@ int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
 ** Returns 0 (and lo = hi = 0) for an empty mesh, else 1. */
 int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]);
 
+/* The distinct edges of triangles t0 .. t0 + nt - 1 (a wireframe), as vertex
+** pairs a < b sorted by (a, b) into 'edges' (room for 6 nt values; triangles
+** beyond the mesh are ignored). Returns the number of edges. */
+size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edges);
+
 /* Fills a material from an RGB colour (diffuse), with the default ambient
 ** and no specular highlight. */
 void lsys_material_color (lsys_material *mt, double r, double g, double b);

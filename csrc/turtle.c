@@ -168,6 +168,7 @@ struct run {
   lsys_tstate cstack[NSTACK];
   size_t depth;                 /* states pushed */
   size_t mod;                   /* the module being interpreted (original index) */
+  size_t modtri;                /* the mesh's triangle count when it began */
   int draw;                     /* DRAW mode */
   int op;                       /* the operation being interpreted (messages) */
   double tdeg, tcos, tsin;      /* the last turn angle and its cosine and sine */
@@ -275,6 +276,8 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
     r->p1[k] = (float)p1[k];
     r->H[k] = (float)R->st.H[k]; r->U[k] = (float)R->st.U[k];
   }
+  r->tri0 = (uint32_t)R->modtri;
+  r->ntri = t->mesh != NULL && t->mesh->nt > R->modtri ? (uint32_t)(t->mesh->nt - R->modtri) : 0;
   r->stiff = LSYS_NOREC;
   if (R->st.hasstiff) {
     if (lsys_grow((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float)) != LSYS_OK)
@@ -1333,6 +1336,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
     double *p = s->par != NULL ? s->par + off : NULL;
     if (t->mode == LSYS_TURTLE_STATE && i >= t->stop) break;
     R->mod = i;
+    R->modtri = t->mesh != NULL ? t->mesh->nt : 0;
     off += np;
     if (t->expand != NULL) {
       int e = t->expand(t->expandud, i, off - np, &t->hbuf, &t->err);

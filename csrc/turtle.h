@@ -75,7 +75,7 @@ typedef struct lsys_turtle_opts {
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
 
-/* Everything a record keeps about a drawing module, in 64 bytes: a big
+/* Everything a record keeps about a drawing module, in 72 bytes: a big
 ** plant has millions. L is H x U. A segment starts at p1 - len * H (it runs
 ** along H); other records have len = 0. The stiffness of the joint before a
 ** segment, when Z set one, is t->stiff[3 * stiff .. 3 * stiff + 2]. */
@@ -89,6 +89,8 @@ typedef struct lsys_trec {
   float p1[3];            /* end point (a sphere's or disc's centre, a polygon's last vertex) */
   float H[3], U[3];       /* frame at the end */
   uint32_t stiff;         /* Z(sh, su, sl) in effect for the joint before it, or LSYS_NOREC */
+  uint32_t tri0, ntri;    /* the mesh triangles the module drew up to this record: for a
+                             polygon, surface, disc or sphere the whole shape (highlights) */
 } lsys_trec;
 
 /* The turtle state (seed 004 §1), pushed and popped by [ and ]. */

@@ -174,6 +174,48 @@ describe("lsys.arrange", function()
   end)
 end)
 
+describe("the arrange window's highlight (fig. 6)", function()
+  local UI = require "lsys.arrange_ui"
+  local function colors (lines)
+    local red, yellow = 0, 0
+    for _, l in ipairs(lines) do
+      if l.color == UI.RED then red = red + 1 elseif l.color == UI.YELLOW then yellow = yellow + 1 end
+    end
+    return red, yellow
+  end
+
+  it("draws segments as lines and leaves as their wireframe", function()
+    -- a trunk of 3, a lateral F ending in a square leaf (4 vertices: 2 triangles, 5 edges)
+    local m = lsys.lsystem { axiom = "F(1)F(1)[+(30)F(1){.-(30)f(1).+(60)f(1).+(120)f(1).}]F(1)",
+                             view = { angle = 30 } }
+    local arr = lsys.arrange(m, m:derive())
+    local sc = arr:interpret()
+    local leafrec
+    for k, r in sc:records() do if r.kind == "polygon" then leafrec = k end end
+    assert.equal(5, #sc:edges(leafrec))
+    assert.equal(0, #sc:edges(1))                       -- a segment drawn as a line
+    assert.has_error(function() sc:edges(99) end, "scene:edges: no record 99")
+    assert.same({}, UI.highlight(arr, sc))              -- nothing selected
+    arr:select { fixed = 2 }
+    local lines = UI.highlight(arr, arr:interpret())
+    -- the active branch: trunk segments 2 and 3, the lateral F and the leaf's 5 edges
+    assert.same({ 8, 0 }, { colors(lines) })
+    local corners = 0                                   -- the leaf's edges meet at its vertices
+    for _, l in ipairs(lines) do
+      if l.width == 2 and near3(l.p0, { -0.5, 2 + math.sqrt(3) / 2, 0 }, 1e-6) then
+        corners = corners + 1
+      end
+    end
+    assert.equal(2, corners)
+    -- the leaf as the manipulated point: its wireframe turns yellow
+    local leaf
+    for _, r in arr:interpret():records() do if r.kind == "polygon" then leaf = r.module end end
+    arr:select { fixed = arr.fixed.module, moved = leaf }
+    assert.is_true(arr.leaf)
+    assert.same({ 8, 5 }, { colors(UI.highlight(arr, arr:interpret())) })
+  end)
+end)
+
 describe("#gl lsys arrange in the window", function()
   local D = require "tests.display"
   teardown(function() D.stop() end)
@@ -222,6 +264,19 @@ V.wait = function ()
   local p = arr.ik:forward()
   print("moved", p[1] < b.p[1] - 0.5)
   x("windowfocus --sync %1 key ctrl+s")
+  -- the arrow keys move the fixed point: up along the trunk (F2 -> F5), right and left
+  -- between the siblings at the branching (the lateral's first F and F5), down back to F4
+  local f0 = arr.fixed.module
+  x("windowfocus --sync %1 key Up")
+  print("up", arr.recs[arr.fixed.parent].module == f0, arr.fixed.lateral)
+  x("windowfocus --sync %1 key Up Up")
+  local f5 = arr.fixed.module
+  x("windowfocus --sync %1 key Right")
+  print("right", arr.fixed.lateral, arr.fixed.module < f5)   -- [+F F] comes before F5
+  x("windowfocus --sync %1 key Left")
+  print("left", arr.fixed.lateral, arr.fixed.module == f5)
+  x("windowfocus --sync %1 key Down")
+  print("down", arr.fixed.module < f5, #arr.fixed.children)
   os.execute("xdotool search --name 'lsys: arrange test' windowfocus --sync %1 key Escape " ..
     ">/dev/null 2>&1")                 -- (xdotool may complain: the window goes)
   for _ = 1, 10 do V.poll(0.1) end
@@ -234,7 +289,8 @@ UI.run(arr, { width = 400, height = 400, title = "arrange test", out = arg[2],
       dir .. "/out.txt 2>&1; echo exit:$?")
     local out = p:read("a")
     p:close()
-    assert.truthy(out:find("path\t5\nmoved\ttrue\n", 1, true), out)
+    assert.truthy(out:find("path\t5\nmoved\ttrue\nup\ttrue\tfalse\nright\ttrue\ttrue\n" ..
+      "left\tfalse\ttrue\ndown\ttrue\t2\n", 1, true), out)
     assert.truthy(out:find("exit:0", 1, true), out)
     local saved = io.open(dir .. "/out.txt"):read("a")
     assert.truthy(saved:find("^F%(1%)@J%(0,%-?[%d.e-]+,0%)F%(1%)"), saved)

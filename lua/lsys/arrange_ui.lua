@@ -22,12 +22,40 @@ local _ENV = nil
 local M = {}
 
 local RED, YELLOW = { 0.9, 0.15, 0.1, 1 }, { 1, 0.85, 0.1, 1 }
+M.RED, M.YELLOW = RED, YELLOW
 local TOOLS = { g = "spherical", ["1"] = "spherical", d = "disc", ["2"] = "disc",
                 a = "axis", ["3"] = "axis", p = "plane", ["4"] = "plane" }
 
 local vec = require("lsys.arrange").vec
 local sub, add, scale, dot, cross, norm = vec.sub, vec.add, vec.scale, vec.dot, vec.cross,
                                           vec.norm
+
+--- The highlight of figure 6 as overlay lines for the viewer (`lines` of lsys.show): the
+-- active branch red, the branch path yellow; segments as thick lines over the model,
+-- leaves and flowers (polygons, surfaces, discs, spheres) as their wireframe. `scene` is
+-- `arr:interpret()`, before it is shown.
+function M.highlight (arr, scene)
+  local lines = {}
+  local function mark (m, color, width)
+    local k = scene:find(m)
+    local r = k and scene:record(k)
+    if r == nil then return end
+    if r.length and r.length > 0 then
+      lines[#lines + 1] = { p0 = r.p0, p1 = r.p1, color = color, width = width }
+    else
+      for _, e in ipairs(scene:edges(k)) do
+        lines[#lines + 1] = { p0 = e[1], p1 = e[2], color = color, width = width - 1 }
+      end
+    end
+  end
+  if arr.fixed then
+    for _, m in ipairs(arr:active_modules()) do mark(m, RED, 3) end
+    if arr.moved and (arr.moved ~= arr.fixed or arr.leaf) then
+      for _, m in ipairs(arr:path_modules()) do mark(m, YELLOW, 5) end
+    end
+  end
+  return lines
+end
 
 --- Runs the session until the window closes. `arr` is an lsys.arrange arrangement;
 -- opts: out (where Ctrl-S saves), width, height, title, say (a function printing
@@ -38,28 +66,10 @@ function M.run (arr, opts)
   local tool = "spherical"
   local drag
 
-  local function highlight (scene)
-    local lines = {}
-    local function seg (m, color, width)
-      local k = scene:find(m)
-      local r = k and scene:record(k)
-      if r and r.length and r.length > 0 then
-        lines[#lines + 1] = { p0 = r.p0, p1 = r.p1, color = color, width = width }
-      end
-    end
-    if arr.fixed then
-      for _, m in ipairs(arr:active_modules()) do seg(m, RED, 3) end
-      if arr.moved and arr.moved ~= arr.fixed then
-        for _, m in ipairs(arr:path_modules()) do seg(m, YELLOW, 5) end
-      end
-    end
-    return lines
-  end
-
   local first = true
   local function redraw ()
     local scene = arr:interpret()
-    V.show(scene, { lines = highlight(scene), capture = true, keep_camera = not first,
+    V.show(scene, { lines = M.highlight(arr, scene), capture = true, keep_camera = not first,
                     width = opts.width, height = opts.height,
                     title = opts.title or "arrange", on_event = M._handler })
     first = false
