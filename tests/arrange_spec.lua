@@ -277,6 +277,12 @@ V.wait = function ()
   print("left", arr.fixed.lateral, arr.fixed.module == f5)
   x("windowfocus --sync %1 key Down")
   print("down", arr.fixed.module < f5, #arr.fixed.children)
+  local n0 = #arr:lstring()
+  x("windowfocus --sync %1 key Delete")     -- prunes from F4 up: only F1..F3 and @X stay
+  local pruned = tostring(arr:lstring())
+  print("pruned", pruned:find("@X") ~= nil, select(2, pruned:gsub("F%(", "")))
+  x("windowfocus --sync %1 key u")
+  print("undone", #arr:lstring() == n0, (tostring(arr:lstring()):find("@X")))
   os.execute("xdotool search --name 'lsys: arrange test' windowfocus --sync %1 key Escape " ..
     ">/dev/null 2>&1")                 -- (xdotool may complain: the window goes)
   for _ = 1, 10 do V.poll(0.1) end
@@ -290,7 +296,7 @@ UI.run(arr, { width = 400, height = 400, title = "arrange test", out = arg[2],
     local out = p:read("a")
     p:close()
     assert.truthy(out:find("path\t5\nmoved\ttrue\nup\ttrue\tfalse\nright\ttrue\ttrue\n" ..
-      "left\tfalse\ttrue\ndown\ttrue\t2\n", 1, true), out)
+      "left\tfalse\ttrue\ndown\ttrue\t2\npruned\ttrue\t3\nundone\ttrue\tnil\n", 1, true), out)
     assert.truthy(out:find("exit:0", 1, true), out)
     local saved = io.open(dir .. "/out.txt"):read("a")
     assert.truthy(saved:find("^F%(1%)@J%(0,%-?[%d.e-]+,0%)F%(1%)"), saved)
