@@ -575,31 +575,38 @@ static void overlay (lsys_viewer *v) {
 /* drawing and screenshots */
 
 /* The frame's highlight lines, with the scene's camera (render_draw leaves
-** its matrices loaded), depth-tested against the scene, unlit. */
+** its matrices loaded), unlit: first those depth-tested against the scene,
+** then those drawn on top. */
 static void drawlines (lsys_viewer *v, const lsys_vframe *f) {
   const lsys_gl *gl = &v->gl;
   float scale = v->winh > 0 ? (float)v->fbh / (float)v->winh : 1;
   size_t k;
+  int pass;
   gl->Disable(GL_LIGHTING);
   gl->Disable(GL_TEXTURE_2D);
-  gl->Enable(GL_DEPTH_TEST);
   gl->DepthFunc(GL_LEQUAL);
   gl->EnableClientState(GL_VERTEX_ARRAY);
   gl->EnableClientState(GL_COLOR_ARRAY);
-  for (k = 0; k < f->nlines; k++) {       /* few lines: one call each, own width */
-    static const uint32_t idx[2] = {0, 1};
-    const lsys_vline *l = &f->lines[k];
-    float pos[6];
-    uint8_t col[8];
-    memcpy(pos, l->p0, sizeof l->p0);
-    memcpy(pos + 3, l->p1, sizeof l->p1);
-    memcpy(col, l->rgba, 4);
-    memcpy(col + 4, l->rgba, 4);
-    gl->LineWidth(l->width * scale > 1 ? l->width * scale : 1);
-    gl->VertexPointer(3, GL_FLOAT, 0, pos);
-    gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, col);
-    gl->DrawElements(GL_LINES, 2, GL_UNSIGNED_INT, idx);
+  for (pass = 0; pass < 2; pass++) {
+    if (pass == 0) gl->Enable(GL_DEPTH_TEST);
+    else gl->Disable(GL_DEPTH_TEST);
+    for (k = 0; k < f->nlines; k++) {     /* few lines: one call each, own width */
+      static const uint32_t idx[2] = {0, 1};
+      const lsys_vline *l = &f->lines[k];
+      float pos[6];
+      uint8_t col[8];
+      if ((l->ontop != 0) != pass) continue;
+      memcpy(pos, l->p0, sizeof l->p0);
+      memcpy(pos + 3, l->p1, sizeof l->p1);
+      memcpy(col, l->rgba, 4);
+      memcpy(col + 4, l->rgba, 4);
+      gl->LineWidth(l->width * scale > 1 ? l->width * scale : 1);
+      gl->VertexPointer(3, GL_FLOAT, 0, pos);
+      gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, col);
+      gl->DrawElements(GL_LINES, 2, GL_UNSIGNED_INT, idx);
+    }
   }
+  gl->Enable(GL_DEPTH_TEST);
   gl->DisableClientState(GL_VERTEX_ARRAY);
   gl->DisableClientState(GL_COLOR_ARRAY);
   gl->LineWidth(1);

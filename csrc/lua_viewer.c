@@ -172,7 +172,9 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
       for (i = 0; i < 4; i++) ln->rgba[i] = (uint8_t)(255 * (c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i]) + 0.5);
       lua_getfield(L, -1, "width");
       ln->width = (float)luaL_optnumber(L, -1, 3);
-      lua_pop(L, 2);
+      lua_getfield(L, -2, "ontop");
+      ln->ontop = lua_toboolean(L, -1);
+      lua_pop(L, 3);
       f->nlines++;
     }
     lua_pop(L, 1);

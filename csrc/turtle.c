@@ -168,7 +168,8 @@ struct run {
   lsys_tstate cstack[NSTACK];
   size_t depth;                 /* states pushed */
   size_t mod;                   /* the module being interpreted (original index) */
-  size_t modtri;                /* the mesh's triangle count when it began */
+  size_t modtri;                /* the mesh's triangle count when the module began (after
+                                   the segment before it was emitted) */
   int draw;                     /* DRAW mode */
   int op;                       /* the operation being interpreted (messages) */
   double tdeg, tcos, tsin;      /* the last turn angle and its cosine and sine */
@@ -1074,6 +1075,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
   R->op = op;
   /* width changes right after a segment set its top width */
   if (op != OP_WIDER && op != OP_THINNER && R->pending && (s = flush(R)) != LSYS_OK) return s;
+  R->modtri = R->t->mesh != NULL ? R->t->mesh->nt : 0;   /* what this module draws starts here */
   switch (op) {
     case OP_F: case OP_G: case OP_f: case OP_g:
       if ((s = arg(R, p, np, 0, o->step, &x)) != LSYS_OK) return s;
@@ -1336,7 +1338,6 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
     double *p = s->par != NULL ? s->par + off : NULL;
     if (t->mode == LSYS_TURTLE_STATE && i >= t->stop) break;
     R->mod = i;
-    R->modtri = t->mesh != NULL ? t->mesh->nt : 0;
     off += np;
     if (t->expand != NULL) {
       int e = t->expand(t->expandud, i, off - np, &t->hbuf, &t->err);

@@ -36,6 +36,7 @@ typedef struct lsys_vline {
   float p0[3], p1[3];
   uint8_t rgba[4];
   float width;
+  int ontop;                    /* drawn over everything (not depth-tested), after the rest */
 } lsys_vline;
 
 /* One picture: a scene with what drawing and picking it need. */

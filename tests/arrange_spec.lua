@@ -214,6 +214,26 @@ describe("the arrange window's highlight (fig. 6)", function()
     assert.is_true(arr.leaf)
     assert.same({ 8, 5 }, { colors(UI.highlight(arr, arr:interpret())) })
   end)
+
+  it("outlines only the shape itself, over tubes", function()
+    -- a sphere after a tube: the tube is emitted when the sphere's module begins, and its
+    -- triangles are not the sphere's
+    local function sphere_edges (axiom)
+      local m = lsys.lsystem { axiom = axiom, view = { line_style = "cylinder" } }
+      local sc = m:interpret(m:derive())
+      for k, r in sc:records() do if r.kind == "sphere" then return #sc:edges(k), sc end end
+    end
+    local alone = sphere_edges("@O(0.4)")
+    assert.is_true(alone > 20)
+    assert.equal(alone, (sphere_edges("!(0.3)F(1)@O(0.4)")))
+    -- highlights are drawn on top: a centre line inside a tube stays visible
+    local m = lsys.lsystem { axiom = "!(0.3)F(1)F(1)@O(0.4)", view = { line_style = "cylinder" } }
+    local arr = lsys.arrange(m, m:derive())
+    arr:select { fixed = 3 }
+    local lines = UI.highlight(arr, arr:interpret())
+    assert.equal(1 + alone, #lines)                     -- F(1) at module 3 and the sphere
+    for _, l in ipairs(lines) do assert.is_true(l.ontop) end
+  end)
 end)
 
 describe("#gl lsys arrange in the window", function()

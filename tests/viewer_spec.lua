@@ -270,6 +270,39 @@ V.close()
     os.execute("rm -rf " .. dir)
   end)
 
+  it("draws overlay lines depth-tested, or on top when asked", function()
+    if not display() then return end
+    local dir = tmpdir()
+    write(dir .. "/lines.lua", [[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local dir = arg[1]
+local m = lsys.lsystem { axiom = "!(0.5)F(2)", view = { line_style = "cylinder" } }
+for _, top in ipairs { false, true } do   -- a red line along the axis, inside the tube
+  local sc = m:interpret(m:derive())
+  lsys.show(sc, { width = 200, height = 200, status = false, lines = {
+    { p0 = { 0, 0, 0 }, p1 = { 0, 2, 0 }, color = { 1, 0, 0 }, width = 4, ontop = top } } })
+  assert(V.sync(10))
+  V.screenshot(dir .. "/" .. tostring(top) .. ".png")
+end
+V.close()
+]])
+    local out, code = run(D.env .. BIN .. " " .. dir .. "/lines.lua " .. dir)
+    assert.equal(0, code, out)
+    local function red (name)
+      local px = core.png_read(dir .. "/" .. name .. ".png")
+      local n = 0
+      for i = 1, #px, 4 do
+        local r, g, b = px:byte(i, i + 2)
+        if r > 200 and g < 60 and b < 60 then n = n + 1 end
+      end
+      return n
+    end
+    assert.equal(0, red("false"))            -- hidden inside the tube
+    assert.is_true(red("true") > 200, red("true"))
+    os.execute("rm -rf " .. dir)
+  end)
+
   it("lsys view reloads the model when its file changes and keeps the last good one, " ..
      "and the S key saves what the window shows", function()
     local dir = clicks()

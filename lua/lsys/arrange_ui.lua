@@ -41,10 +41,10 @@ function M.highlight (arr, scene)
     local r = k and scene:record(k)
     if r == nil then return end
     if r.length and r.length > 0 then
-      lines[#lines + 1] = { p0 = r.p0, p1 = r.p1, color = color, width = width }
+      lines[#lines + 1] = { p0 = r.p0, p1 = r.p1, color = color, width = width, ontop = true }
     else
       for _, e in ipairs(scene:edges(k)) do
-        lines[#lines + 1] = { p0 = e[1], p1 = e[2], color = color, width = width - 1 }
+        lines[#lines + 1] = { p0 = e[1], p1 = e[2], color = color, width = width - 1, ontop = true }
       end
     end
   end

@@ -160,7 +160,7 @@ end
 -- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
 -- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b}, width =
--- pixels}, ... } drawn over it), `capture` (a tool takes the keys and Ctrl-drags: they
+-- pixels, ontop = boolean}, ... } drawn over it, depth-tested unless `ontop`), `capture` (a tool takes the keys and Ctrl-drags: they
 -- come to `on_event` as { type = "key", key = "up", ctrl =, shift = } and
 -- { type = "drag", phase = "begin" | "move" | "end", x =, y = }).
 function M.show (x, opts)
