@@ -206,24 +206,32 @@ static void diagonal (double *a, double *b, double *xs, double *x, int n) {
   }
 }
 
+/* Minimises q from x with o (Wolfe-checked on every step, noise allowed) and
+** checks the minimum xs was found; returns the solver's result. */
+static lsys_cg_result solvequad (const char *name, quad *q, double *x, const double *xs,
+                                 lsys_cg_opts *o) {
+  lsys_cg_result r;
+  lsys_error e;
+  wolfe w;
+  hook(o, &w);
+  w.noisy = 1;
+  assert(lsys_cg_minimize(quadf, q, x, q->n, o, NULL, &r, &e) == LSYS_OK);
+  report(name, &r);
+  checkquad(&r, &w, x, xs, q->n);
+  return r;
+}
+
 static void test_diagonal (void) {
   enum { N = 50 };
   static double a[N * N];
   double b[N], xs[N], x[N];
   quad q = { N, a, b };
   lsys_cg_opts o;
-  lsys_cg_result r;
-  lsys_error e;
-  wolfe w;
   diagonal(a, b, xs, x, N);
   lsys_cg_defaults(&o);
   o.gtol = 1e-12;
   o.ftol = 0;           /* |f| ~ 600: f alone cannot place x within 1e-6 */
-  hook(&o, &w);
-  w.noisy = 1;
-  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
-  report("quadratic diag n=50", &r);
-  checkquad(&r, &w, x, xs, N);
+  solvequad("quadratic diag n=50", &q, x, xs, &o);
 }
 
 /* Jacobi preconditioner: z = g / diag(A). */
@@ -263,8 +271,6 @@ static void test_spd (void) {
   quad q = { N, a, b };
   lsys_cg_opts o;
   lsys_cg_result r;
-  lsys_error e;
-  wolfe w;
   int i, j, k;
   lcg = 12345;
   for (i = 0; i < N * N; i++) m[i] = rnd();
@@ -283,30 +289,18 @@ static void test_spd (void) {
   lsys_cg_defaults(&o);
   o.gtol = 1e-12;
   o.ftol = 0;           /* |f| ~ 600: f alone cannot place x within 1e-6 */
-  hook(&o, &w);
-  w.noisy = 1;
-  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
-  report("quadratic SPD n=20", &r);
-  checkquad(&r, &w, x, xs, N);
+  solvequad("quadratic SPD n=20", &q, x, xs, &o);
   /* a nearly exact line search (c2 = 0.001): close to linear CG */
   for (i = 0; i < N; i++) x[i] = 0;
   o.c2 = 1e-3;
-  hook(&o, &w);
-  w.noisy = 1;
-  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
-  report("quadratic SPD c2=1e-3", &r);
-  checkquad(&r, &w, x, xs, N);
+  solvequad("quadratic SPD c2=1e-3", &q, x, xs, &o);
   /* the exact curvature d'Ad: every first trial is the exact minimiser along d,
   ** so each line search takes one evaluation and PR+ is linear CG */
   for (i = 0; i < N; i++) x[i] = 0;
   o.c2 = 0.1;
   o.curv = quadcurv;
   o.curv_ud = &q;
-  hook(&o, &w);
-  w.noisy = 1;
-  assert(lsys_cg_minimize(quadf, &q, x, N, &o, NULL, &r, &e) == LSYS_OK);
-  report("quadratic SPD, exact curvature", &r);
-  checkquad(&r, &w, x, xs, N);
+  r = solvequad("quadratic SPD, exact curvature", &q, x, xs, &o);
   assert(r.evaluations == r.iterations + 1);
   assert(r.iterations <= 2 * N);
 }
