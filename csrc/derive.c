@@ -17,6 +17,14 @@
 #include "derive.h"
 
 #define NONE UINT32_MAX
+
+/* Parameters of strings that have none: a string without parameters may have
+** no pool at all, and even 'NULL + 0' is undefined behaviour. */
+static const double nopar[1];
+
+static inline const double *parof (const lsys_lstring *s, size_t p) {
+  return s->par != NULL ? s->par + p : nopar;
+}
 #define ACT_SLOW NONE
 #define ACT_COPY (NONE - 1)
 
@@ -534,6 +542,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[2];
   int nsets, hasctx, st;
   size_t i, p = 0, n = src->n, lim, nact;
+  const double *spar = parof(src, 0);
   view v;
   lsys_lstring_clear(dst);
   m->nsub = 0;
@@ -602,7 +611,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       if (a < ACT_COPY) {
         const lsys_rule *r = &m->rules[a];
         if (r->pred_np == np && r->vm == NULL && r->nsrc == 0 && dst->n + r->nsucc <= lim) {
-          const uint16_t *t = m->tcode + r->succ;
+          const uint16_t *t = r->nsucc > 0 ? m->tcode + r->succ : NULL;
           uint16_t *o = dst->code + dst->n;
           uint32_t k;
           for (k = 0; k < r->nsucc; k++) o[k] = t[k];
@@ -612,11 +621,11 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
         }
         if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
           uint32_t k;
-          if (lsys_expr_run(r->vm, r->nvm, src->par + p, m->args, m->cur)) {
+          if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur)) {
             for (k = 0; k < r->nvals; k++)
               if (!isfinite(m->args[k])) break;
             if (k == r->nvals) {
-              if ((st = emit(m, dst, r, src->par + p, m->args)) != LSYS_OK) return fail(m, st, i);
+              if ((st = emit(m, dst, r, spar + p, m->args)) != LSYS_OK) return fail(m, st, i);
               p += np;
               lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
               continue;
@@ -625,14 +634,14 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           else {                           /* condition false: the module stays */
             if (dst->n >= m->max_modules) return limiterror(m, i);
             if (lsys_lstring_reserve(dst, 1, np) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
-            lsys_lstring_push(dst, sym, src->par + p, np);
+            lsys_lstring_push(dst, sym, spar + p, np);
             p += np;
             lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
             continue;
           }
         }
         else if (r->pred_np == np && r->nsrc > 0) {
-          if ((st = emit(m, dst, r, src->par + p, NULL)) != LSYS_OK) return fail(m, st, i);
+          if ((st = emit(m, dst, r, spar + p, NULL)) != LSYS_OK) return fail(m, st, i);
           p += np;
           lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
           continue;
@@ -640,7 +649,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       }
     }
     if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
-      done = rewrite(m, sets, nsets, &v, i, c, src->par + p, dst);
+      done = rewrite(m, sets, nsets, &v, i, c, spar + p, dst);
       if (done < 0) return fail(m, done, i);
     }
     if (!done) {
@@ -712,7 +721,7 @@ static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int ns
     if (st == 1) {
       size_t k, p = 0;
       for (k = 0; k < lv->n; k++) {
-        st = expandone(m, kind, sets, nsets, v, i, lv->code[k], lv->par + p, depth + 1, out);
+        st = expandone(m, kind, sets, nsets, v, i, lv->code[k], parof(lv, p), depth + 1, out);
         if (st < 0) return st;
         p += LSYS_CNP(lv->code[k]);
       }
@@ -753,7 +762,7 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
     v.poff = m->poff;
   }
   for (i = 0; i < src->n; i++) {
-    st = expandone(m, kind, sets, 1, &v, i, src->code[i], src->par + p, 0, dst);
+    st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
     p += LSYS_CNP(src->code[i]);
   }
@@ -812,7 +821,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   v.skip = findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);
-  st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, src->par + poff, 0, out);
+  st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);
   if (st < 0) return fail(m, st, i);
   return 1;
 }

@@ -3,6 +3,7 @@
 ** floats: '%' is floored modulo, '//' floored division, '^' pow.
 */
 #include <math.h>
+#include <string.h>
 
 #include "expr.h"
 
@@ -15,18 +16,30 @@ static int effect (int op) {       /* stack change */
   }
 }
 
+/*
+** A forward data flow over the state of a path: stack depth, outputs written
+** and conditions passed. Jumps go forward only, so one pass sees every path
+** into an instruction before the instruction itself: a jump records its
+** state (the kept value included) at its target, and every path reaching
+** an instruction must bring the same state. So every run writes exactly the
+** outputs the check reports, whichever way its jumps go.
+*/
+typedef struct pstate { int depth, outs, conds; } pstate;
+
+static int samestate (const pstate *a, const pstate *b) {
+  return a->depth == b->depth && a->outs == b->outs && a->conds == b->conds;
+}
+
 int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
-  /* a forward data flow: jumps go forward and carry their depth (the kept
-  ** value included) to the target, which must agree with the fall-through */
-  int at[LSYS_EXPR_MAXCODE + 1];
-  int pc, depth = 0, outs = 0, conds = 0;
-  if (n < 0 || n > LSYS_EXPR_MAXCODE) return -1;
-  for (pc = 0; pc <= n; pc++) at[pc] = -1;
+  pstate at[LSYS_EXPR_MAXCODE + 1], cur = {0, 0, 0};
+  unsigned char seen[LSYS_EXPR_MAXCODE + 1];
+  int pc;
+  if (n < 0 || n > LSYS_EXPR_MAXCODE || (n > 0 && code == NULL)) return -1;
+  memset(seen, 0, (size_t)n + 1);
   for (pc = 0; pc < n; pc++) {
     const lsys_ins *i = &code[pc];
     int need;
-    if (at[pc] >= 0 && at[pc] != depth) return -1;
-    if (i->op < 0 || i->op >= LSYS_OP_NOPS) return -1;
+    if (seen[pc] && !samestate(&at[pc], &cur)) return -1;
     switch (i->op) {
       case LSYS_OP_K: need = 0; break;
       case LSYS_OP_ARG: if (i->a < 0 || i->a >= nargs) return -1; need = 0; break;
@@ -34,25 +47,34 @@ int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
       case LSYS_OP_F2: if (i->a < LSYS_F_MIN || i->a >= LSYS_F_NFUNCS) return -1; need = 2; break;
       case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_RAN: need = 1; break;
       case LSYS_OP_JF: case LSYS_OP_JT:
-        if (i->a <= pc + 1 || i->a > n || depth < 1) return -1;
-        if (at[i->a] >= 0 && at[i->a] != depth) return -1;
-        at[i->a] = depth;
+        if (i->a <= pc + 1 || i->a > n || cur.depth < 1) return -1;
+        if (seen[i->a] && !samestate(&at[i->a], &cur)) return -1;
+        at[i->a] = cur;              /* the tested value stays on the taken path */
+        seen[i->a] = 1;
         need = 1;
         break;
       case LSYS_OP_RET: case LSYS_OP_COND:
-        if (depth != 1) return -1;
-        if (i->op == LSYS_OP_COND && (outs > 0 || conds > 0)) return -1;
-        if (i->op == LSYS_OP_COND) conds++; else outs++;
-        depth = 0;
+        if (cur.depth != 1) return -1;
+        if (i->op == LSYS_OP_COND) {
+          if (cur.outs > 0 || cur.conds > 0) return -1;   /* one condition, first */
+          cur.conds++;
+        }
+        else if (++cur.outs > LSYS_EXPR_MAXCODE) return -1;
+        cur.depth = 0;
         continue;
-      default: need = 2; break;
+      case LSYS_OP_ADD: case LSYS_OP_SUB: case LSYS_OP_MUL: case LSYS_OP_DIV:
+      case LSYS_OP_MOD: case LSYS_OP_POW: case LSYS_OP_IDIV: case LSYS_OP_LT: case LSYS_OP_LE:
+      case LSYS_OP_GT: case LSYS_OP_GE: case LSYS_OP_EQ: case LSYS_OP_NE: case LSYS_OP_NRAN:
+        need = 2;
+        break;
+      default: return -1;            /* not an opcode */
     }
-    if (depth < need) return -1;
-    depth += effect(i->op);
-    if (depth > LSYS_EXPR_STACK - 1) return -1;
+    if (cur.depth < need) return -1;
+    cur.depth += effect(i->op);
+    if (cur.depth > LSYS_EXPR_STACK - 1) return -1;
   }
-  if (at[n] >= 0 && at[n] != depth) return -1;
-  return depth == 0 ? outs : -1;
+  if (seen[n] && !samestate(&at[n], &cur)) return -1;
+  return cur.depth == 0 ? cur.outs : -1;
 }
 
 static double fn1 (int f, double x) {

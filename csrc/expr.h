@@ -39,8 +39,10 @@ typedef struct lsys_ins { int32_t op, a; double k; } lsys_ins;
 
 /*
 ** Checks a program: opcodes, argument indices below 'nargs', jumps
-** forward and inside, the stack within LSYS_EXPR_STACK. Returns the number
-** of outputs it writes, or -1 when it is malformed.
+** forward and inside, the stack within LSYS_EXPR_STACK, and that every path
+** through it (whichever way each jump goes) writes the same number of
+** outputs and passes the same conditions. Returns that number of outputs,
+** or -1 when it is malformed.
 */
 int lsys_expr_check (const lsys_ins *code, int n, int nargs);
 

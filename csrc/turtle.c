@@ -1349,7 +1349,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
           uint32_t hs = LSYS_CSYM(hc), hn = LSYS_CNP(hc);
           if (hs < t->nop && t->op[hs]) {
             R->sym = hs;
-            status = module(R, t->op[hs], t->hbuf.par + hoff, hn, 0);
+            status = module(R, t->op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
           }
           hoff += hn;
         }

@@ -182,6 +182,41 @@ static void test_decomposition (void) {
   lsys_model_free(&m);
 }
 
+/* Every path through a checked program writes the outputs the check reports:
+** a jump over a RET (or a COND) is refused, a jump that meets the fall-through
+** with the same state is accepted. */
+static void test_expr_paths (void) {
+  /* K 1; JT ->5; K 2; RET; K 3; [5] RET: the taken jump writes one output,
+  ** the fall-through two (the audit's reproducer, reachable by setvm) */
+  lsys_ins over[] = {
+    {LSYS_OP_K, 0, 1}, {LSYS_OP_JT, 5, 0}, {LSYS_OP_K, 0, 2}, {LSYS_OP_RET, 0, 0},
+    {LSYS_OP_K, 0, 3}, {LSYS_OP_RET, 0, 0},
+  };
+  /* K 0; JF ->4; K 1; COND; [4] ... a jump past the condition */
+  lsys_ins cond[] = {
+    {LSYS_OP_K, 0, 0}, {LSYS_OP_JF, 4, 0}, {LSYS_OP_K, 0, 1}, {LSYS_OP_COND, 0, 0},
+    {LSYS_OP_K, 0, 1}, {LSYS_OP_RET, 0, 0},
+  };
+  /* x > 1 and x < 3: both paths reach the RET with one value */
+  lsys_ins ok[] = {
+    {LSYS_OP_ARG, 0, 0}, {LSYS_OP_K, 0, 1}, {LSYS_OP_GT, 0, 0}, {LSYS_OP_JF, 7, 0},
+    {LSYS_OP_ARG, 0, 0}, {LSYS_OP_K, 0, 3}, {LSYS_OP_LT, 0, 0}, {LSYS_OP_RET, 0, 0},
+  };
+  lsys_ins bad[] = {{LSYS_OP_NOPS, 0, 0}, {LSYS_OP_RET, 0, 0}};
+  lsys_rng rng;
+  double x = 2, out[3] = {-7, -7, -7};
+  lsys_rng_seed(&rng, 1);
+  assert(lsys_expr_check(over, 6, 0) == -1);
+  assert(lsys_expr_check(cond, 6, 0) == -1);
+  assert(lsys_expr_check(ok, 8, 1) == 1);
+  assert(lsys_expr_run(ok, 8, &x, out, &rng) == 1 && out[0] == 1 && out[1] == -7);
+  x = 0;
+  assert(lsys_expr_run(ok, 8, &x, out, &rng) == 1 && out[0] == 0 && out[1] == -7);
+  assert(lsys_expr_check(bad, 2, 0) == -1);
+  assert(lsys_expr_check(NULL, 0, 0) == 0);
+  assert(lsys_expr_check(NULL, 1, 0) == -1);
+}
+
 static void test_expr (void) {
   /* (x + 2) * 3 > 10 and not (x == 4) -> condition; then x % -3, 2 ^ x // 1 */
   lsys_ins c[] = {
@@ -214,6 +249,7 @@ static void test_expr (void) {
   c[0].a = 0;
   c[7].a = 3;
   assert(lsys_expr_check(c, n, 1) == -1);                /* backward jump */
+  test_expr_paths();
 }
 
 int main (void) {
