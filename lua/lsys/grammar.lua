@@ -8,8 +8,8 @@
 -- @module lsys.grammar
 local core = require "lsys.core"
 
-local type, tostring, tonumber, pairs, ipairs, error, load, select, mathtype =
-      type, tostring, tonumber, pairs, ipairs, error, load, select, math.type
+local type, tostring, tonumber, pairs, ipairs, error, load, select, mathtype, setmetatable =
+      type, tostring, tonumber, pairs, ipairs, error, load, select, math.type, setmetatable
 local format, concat, insert, table_sort = string.format, table.concat, table.insert, table.sort
 local _ENV = nil
 
@@ -41,8 +41,10 @@ function M.freenames (expr, bound, out)
     elseif c:match("[%a_]") then
       local s, e = expr:find("^[%a_][%w_]*", i)
       local name = expr:sub(s, e)
-      local before = expr:sub(1, s - 1):match("(%S)%s*$")
-      if not KEYWORDS[name] and before ~= "." and before ~= ":" and not bound[name] then
+      -- a field follows one '.' or a ':'; after '..' (concatenation) a name is free
+      local before = expr:sub(1, s - 1):match("(%S%S?)%s*$") or ""
+      local field = before:sub(-1) == ":" or (before:sub(-1) == "." and before ~= "..")
+      if not KEYWORDS[name] and not field and not bound[name] then
         out[name] = true
       end
       i = e + 1
@@ -71,8 +73,9 @@ local function checkexpr (expr)
 end
 
 -- Builds the source of the closure factory: `function(E) local x = E.x ...
--- return function(formals) ... end end`, all on one line so that runtime
--- messages say ':1:'.
+-- return function(formals) ... end end`. Each expression stands on lines of its
+-- own inside parentheses: an expression is checked on its own (checkexpr), and a
+-- line comment at its end cannot swallow the code that follows it.
 local function factorysource (formals, cond, exprs, frees)
   local ups = {}
   for name in pairs(frees) do ups[#ups + 1] = name end
@@ -81,16 +84,31 @@ local function factorysource (formals, cond, exprs, frees)
   for _, name in ipairs(ups) do head[#head + 1] = format("local %s = E[%q];", name, name) end
   local body = {}
   if cond then
-    body[#body + 1] = format("local c_ = (%s); if c_ ~= true then if not c_ or c_ == 0 then " ..
-      "return false end; if type_(c_) ~= 'number' then error_('condition is ' .. type_(c_) .. " ..
-      "', not a boolean or number', 0) end end;", cond)
+    body[#body + 1] = format("local c_ = (\n%s\n); if c_ ~= true then if not c_ or c_ == 0 " ..
+      "then return false end; if type_(c_) ~= 'number' then error_('condition is ' .. " ..
+      "type_(c_) .. ', not a boolean or number', 0) end end;", cond)
   end
   local vals = {}
-  for k, e in ipairs(exprs) do vals[k] = "(" .. e .. ")" end
+  for k, e in ipairs(exprs) do vals[k] = "(\n" .. e .. "\n)" end
   body[#body + 1] = "return true" .. (#vals > 0 and ", " .. concat(vals, ", ") or "")
   return "local E, type_, error_ = ...; " .. concat(head, " ") ..
          " return function(" .. concat(formals, ", ") .. ") " .. concat(body, " ") .. " end"
 end
+
+-- The environment rule code is compiled in: nothing. Every name a rule uses is a
+-- parameter or a local bound from the model's lookup table (parameters, ran/nran,
+-- env, lsys.BUILTIN); a name the scan above missed fails here instead of reaching
+-- a global.
+local SEALED = setmetatable({}, {
+  __index = function (_, k)
+    error(format("unknown name '%s' (not a parameter, not in env)", tostring(k)), 2)
+  end,
+  __newindex = function (_, k)
+    error(format("cannot assign to '%s' in a rule expression", tostring(k)), 2)
+  end,
+  __metatable = false,
+})
+M.SEALED = SEALED
 
 --- Compiles one rule.
 -- `r` is the table from rules:parse; `info` = { label = ..., kind = ...,
@@ -170,7 +188,7 @@ function M.compile (r, info)
   if r.cond then M.freenames(r.cond, seen, frees) end
   for _, e in ipairs(exprs) do M.freenames(e, seen, frees) end
   local src = factorysource(formals, r.cond, exprs, frees)
-  local factory, msg = load(src, "=rule", "t")   -- messages say 'rule:1:'
+  local factory, msg = load(src, "=rule", "t", SEALED)   -- messages say 'rule:N:'
   if not factory then fail("%s", msg) end
   local trees = { formals = seen, exprs = {} }
   if r.cond then trees.cond = M.parseexpr(r.cond); if not trees.cond then trees = nil end end

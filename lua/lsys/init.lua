@@ -334,7 +334,7 @@ function Model:_call (fn, what, ...)
   if idx then
     local info = self._info[idx + 1]
     local label = info and info.label or format("rule %d", idx + 1)
-    msg = msg:gsub("^rule:1: ", "")
+    msg = msg:gsub("^rule:%d+: ", "")
     error(format("%s: %s, module %d: %s", self._where, label, mod, msg), 0)
   end
   error(format("%s: %s", self._where, msg), 0)
