@@ -15,6 +15,7 @@
 #define LSYS_ESYNTAX (-3)   /* malformed text */
 #define LSYS_ERULE   (-4)   /* a rule callback failed or returned bad values */
 #define LSYS_EARG    (-5)   /* bad argument or state */
+#define LSYS_EBUSY   (-6)   /* the object is in use by a running operation (re-entry) */
 
 /* Allocation goes through these so tests can inject failures. */
 #ifndef LSYS_MALLOC

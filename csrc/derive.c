@@ -89,10 +89,17 @@ static lsys_skip *findskip (const lsys_model *m, int sub) {
   return NULL;
 }
 
+/* The error of a change to the rules while the model is busy. */
+static int busyerror (lsys_model *m, lsys_error *e) {
+  return lsys_seterror(e != NULL ? e : &m->err, LSYS_EBUSY, (size_t)-1,
+                       "the model is deriving: its rules cannot change now");
+}
+
 int lsys_model_skiplist (lsys_model *m, int sub, int consider,
                          const uint32_t *syms, size_t n) {
   lsys_skip *k = findskip(m, sub);
   size_t i;
+  if (m->busy) return busyerror(m, NULL);
   if (k == NULL) {
     if (lsys_grow((void **)&m->skips, &m->skipcap, m->nskips + 1, sizeof *m->skips) != LSYS_OK)
       return LSYS_ENOMEM;
@@ -108,6 +115,7 @@ int lsys_model_skiplist (lsys_model *m, int sub, int consider,
 
 int lsys_model_newset (lsys_model *m, int kind, int sub, int group) {
   lsys_ruleset *set;
+  if (m->busy) return busyerror(m, NULL);
   if (findset(m, kind, sub, group) != NULL) return LSYS_OK;
   if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
     return LSYS_ENOMEM;
@@ -122,6 +130,7 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
   lsys_ruleset *set = findset(m, kind, sub, group);
   lsys_rule *r;
   uint32_t k, nargs = 0, lcargs = 0;
+  if (m->busy) return busyerror(m, e);
   if (sp->pred.np > LSYS_MAXPARAMS)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
   if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_STOCH))
@@ -176,6 +185,7 @@ nomem:
 int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
   lsys_rule *r;
   lsys_ins *c = NULL;
+  if (m->busy) return busyerror(m, NULL);
   if (idx >= m->nrules) return LSYS_EARG;
   r = &m->rules[idx];
   if (code != NULL) {
@@ -769,15 +779,24 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   return LSYS_OK;
 }
 
+/* The error of an operation started while the model is busy. */
+static int reentered (lsys_model *m) {
+  return lsys_seterror(&m->err, LSYS_EBUSY, (size_t)-1,
+                       "a rule of this model called derive/step on the same model");
+}
+
 int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   lsys_rng *keep = m->cur;
+  if (m->busy) return reentered(m);
   if (kind != LSYS_HOMO && kind != LSYS_DECOMP)
     return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "bad rule kind");
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
   m->depth_hit = 0;
   if (kind == LSYS_HOMO) m->cur = &m->hrng;
+  m->busy = 1;
   st = expandall(m, kind, src, dst);
+  m->busy = 0;
   m->cur = keep;
   return st;
 }
@@ -786,6 +805,7 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
 int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   lsys_ruleset *set;
   int hasctx = 0;
+  if (m->busy) return reentered(m);
   m->hsrc = NULL;
   m->depth_hit = 0;
   if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
@@ -801,6 +821,7 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   m->hctx = hasctx;
   m->hkeep = m->cur;
   m->cur = &m->hrng;
+  m->busy = 1;                 /* until lsys_homo_end */
   return 1;
 }
 
@@ -827,16 +848,16 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
 }
 
 void lsys_homo_end (lsys_model *m) {
-  if (m->hsrc != NULL) m->cur = m->hkeep;
+  if (m->hsrc != NULL) {
+    m->cur = m->hkeep;
+    m->busy = 0;
+  }
   m->hsrc = NULL;
 }
 
-int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   long sz;
-  if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "derive in place");
-  m->depth_hit = 0;
-  m->cur = &m->rng;
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
   sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
@@ -847,4 +868,16 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
     m->tmp.nck = 0;
   }
   return LSYS_OK;
+}
+
+int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+  int st;
+  if (m->busy) return reentered(m);
+  if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "derive in place");
+  m->depth_hit = 0;
+  m->cur = &m->rng;
+  m->busy = 1;
+  st = derivestep(m, src, dst);
+  m->busy = 0;
+  return st;
 }

@@ -105,6 +105,10 @@ typedef struct lsys_model {
   long cur_rule;               /* index in rules[] being evaluated, or -1 */
   size_t cur_index;            /* module index being rewritten */
   int depth_hit;               /* a depth limit stopped an applicable rule */
+  int busy;                    /* a step, an expansion or a streamed homomorphism runs:
+                               ** the rules and the scratch must not change (a rule
+                               ** callback re-entering the model is refused). A caller
+                               ** whose callback longjmps out of the core resets it. */
   const lsys_lstring *hsrc;    /* streaming homomorphism: the string, its tables */
   int hctx;
   lsys_rng *hkeep;
@@ -138,7 +142,10 @@ long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 ** One parallel derivation step 'src' -> 'dst' (productions, cut, then
 ** decomposition). 'dst' is reset first and must not be 'src'.
 ** Returns LSYS_OK; LSYS_ELIMIT when 'dst' would exceed m->max_modules;
-** LSYS_ERULE (or what the callback returned) with m->err set.
+** LSYS_ERULE (or what the callback returned) with m->err set; LSYS_EBUSY
+** when the model is busy already (a rule callback called it again). The
+** functions that change the rules (lsys_model_add, _setvm, _skiplist,
+** _newset) also return LSYS_EBUSY while the model is busy.
 */
 int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst);
 

@@ -19,7 +19,12 @@
 #define MAXFILE (16u << 20)   /* bytes of a contour file */
 #define MAXSIDES 65536        /* p of c:sample(p) */
 
-#define checkcontour(L, i) ((lsys_contour *)luaL_checkudata(L, (i), CONTOUR_T))
+/* The Contour at 'i'; raises when it was closed (a live one has points). */
+static lsys_contour *checkcontour (lua_State *L, int i) {
+  lsys_contour *c = (lsys_contour *)luaL_checkudata(L, i, CONTOUR_T);
+  if (c->pt == NULL) luaL_error(L, "the contour was closed");
+  return c;
+}
 
 const lsys_contour *lsys_checkcontour (lua_State *L, int idx) {
   return checkcontour(L, idx);
@@ -32,8 +37,8 @@ static lsys_contour *newcontour (lua_State *L) {
   return c;
 }
 
-static int contour_gc (lua_State *L) {
-  lsys_contour_free(checkcontour(L, 1));
+static int contour_gc (lua_State *L) {       /* also __close: idempotent */
+  lsys_contour_free((lsys_contour *)luaL_checkudata(L, 1, CONTOUR_T));
   return 0;
 }
 
@@ -155,7 +160,11 @@ static int contour_dim (lua_State *L) {
 }
 
 static int contour_tostring (lua_State *L) {
-  const lsys_contour *c = checkcontour(L, 1);
+  const lsys_contour *c = (const lsys_contour *)luaL_checkudata(L, 1, CONTOUR_T);
+  if (c->pt == NULL) {
+    lua_pushliteral(L, CONTOUR_T " (closed)");
+    return 1;
+  }
   lua_pushfstring(L, CONTOUR_T "(%I points, %s)", (lua_Integer)c->n,
                   c->closed ? "closed" : "open");
   return 1;

@@ -27,10 +27,15 @@ typedef struct lik {
   void *work;             /* lsys_ik_work_size(n): a solve allocates nothing */
 } lik;
 
-static lik *checkik (lua_State *L, int i) { return (lik *)luaL_checkudata(L, i, IK_T); }
+/* The IK chain at 'i'; raises when it was finalized. */
+static lik *checkik (lua_State *L, int i) {
+  lik *k = (lik *)luaL_checkudata(L, i, IK_T);
+  if (k->c.j == NULL) luaL_error(L, "ik: the chain was closed");
+  return k;
+}
 
 static int ik_gc (lua_State *L) {
-  lik *k = checkik(L, 1);
+  lik *k = (lik *)luaL_checkudata(L, 1, IK_T);
   LSYS_FREE(k->c.j);
   LSYS_FREE(k->work);
   k->c.j = NULL;
@@ -135,7 +140,6 @@ static int ik_solve (lua_State *L) {
   lsys_ik_result r;
   lsys_error e;
   luaL_checktype(L, 2, LUA_TTABLE);
-  if (k->c.n == 0) return luaL_error(L, "ik: the chain was freed");
   memset(&G, 0, sizeof G);
   getvec(L, 2, "p", G.p, NULL, "goal");
   getvec(L, 2, "s", G.s, NULL, "goal");
@@ -210,7 +214,6 @@ static int ik_forward (lua_State *L) {
   lik *k = checkik(L, 1);
   double p[3], s[3], t[3], *pts;
   int i;
-  if (k->c.n == 0) return luaL_error(L, "ik: the chain was freed");
   pts = (double *)lua_newuserdatauv(L, (size_t)k->c.n * 6 * sizeof *pts, 0);
   lsys_ik_forward(&k->c, NULL, p, s, t, NULL, pts);
   pushvec(L, p);
@@ -244,6 +247,8 @@ void lsys_open_ik (lua_State *L) {
   lua_setfield(L, -2, "__index");
   lua_pushcfunction(L, ik_gc);
   lua_setfield(L, -2, "__gc");
+  lua_pushcfunction(L, ik_gc);
+  lua_setfield(L, -2, "__close");
   lua_pushcfunction(L, ik_len);
   lua_setfield(L, -2, "__len");
   lua_pop(L, 1);

@@ -7,10 +7,28 @@
 #include "lua_lsys.h"
 
 lsys_lstring *lsys_newlstring (lua_State *L) {
-  lsys_lstring *s = (lsys_lstring *)lua_newuserdatauv(L, sizeof *s, 1);
-  lsys_lstring_init(s);               /* valid empty state before anything can fail */
+  lsys_lstr *u = (lsys_lstr *)lua_newuserdatauv(L, sizeof *u, 1);
+  lsys_lstring_init(&u->s);           /* valid empty state before anything can fail */
+  u->closed = u->busy = 0;
   luaL_setmetatable(L, LSTRING_T);
-  return s;
+  return &u->s;
+}
+
+lsys_lstring *lsys_checklstring (lua_State *L, int i) {
+  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
+  if (u->closed) luaL_error(L, "the Lstring was closed");
+  return &u->s;
+}
+
+lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what) {
+  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
+  if (u->closed) luaL_error(L, "the Lstring was closed");
+  if (u->busy) luaL_error(L, "%s: the Lstring is in use by a derivation or interpretation", what);
+  return &u->s;
+}
+
+void lsys_lstring_busy (lua_State *L, int i, int delta) {
+  ((lsys_lstr *)luaL_checkudata(L, i, LSTRING_T))->busy += delta;
 }
 
 void lsys_setowner (lua_State *L, int idx, int owner) {
@@ -30,8 +48,14 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e) {
   return luaL_error(L, "%s", e->msg);
 }
 
+/* __gc and __close: idempotent; a string in use by a running operation is not
+** freed (it cannot be collected then, but __close can be called on it). */
 static int lstring_gc (lua_State *L) {
-  lsys_lstring_free(checklstring(L, 1));
+  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, 1, LSTRING_T);
+  if (u->busy) return luaL_error(L, "cannot close an Lstring while a derivation or "
+                                    "interpretation uses it");
+  lsys_lstring_free(&u->s);
+  u->closed = 1;
   return 0;
 }
 
@@ -53,7 +77,12 @@ static void pushtext (lua_State *L, int idx, size_t i, size_t j) {
 }
 
 static int lstring_tostring (lua_State *L) {
-  lsys_lstring *s = checklstring(L, 1);
+  lsys_lstring *s;
+  if (((lsys_lstr *)luaL_checkudata(L, 1, LSTRING_T))->closed) {
+    lua_pushliteral(L, "lsys.Lstring (closed)");
+    return 1;
+  }
+  s = checklstring(L, 1);
   pushtext(L, 1, 0, s->n);
   return 1;
 }

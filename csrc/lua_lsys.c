@@ -12,7 +12,6 @@
 #define RULES_T    "lsys.Rules"
 #define ALPHABET_T "lsys.Alphabet"     /* its metatable */
 #define ALPHABET_KEY "lsys.alphabet"   /* the state's alphabet, in the registry */
-#define checkrules(L, i) ((lrules *)luaL_checkudata(L, (i), RULES_T))
 
 /* uservalue slots of a Rules userdata */
 enum { UV_FNS = 1, UV_TPL = 2, NUV = 2 };
@@ -26,6 +25,20 @@ typedef struct lrules {
   int inited;
 } lrules;
 
+/* The Rules at 'i'; raises when they were closed (finalized). */
+static lrules *checkrules (lua_State *L, int i) {
+  lrules *R = (lrules *)luaL_checkudata(L, i, RULES_T);
+  if (!R->inited) luaL_error(L, "the model's rules were closed");
+  return R;
+}
+
+/* The same for a method that changes them: raises while they derive. */
+static lrules *checkidle (lua_State *L, int i) {
+  lrules *R = checkrules(L, i);
+  if (R->m.busy) luaL_error(L, "the rules of a model cannot change while it derives");
+  return R;
+}
+
 /* ---------------------------------------------------------------------- */
 static int alphabet_gc (lua_State *L) {
   lsys_alphabet_free((lsys_alphabet *)luaL_checkudata(L, 1, ALPHABET_T));
@@ -37,6 +50,7 @@ lsys_alphabet *lsys_getalphabet (lua_State *L) {
   if (lua_getfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY) == LUA_TUSERDATA) {
     a = (lsys_alphabet *)lua_touserdata(L, -1);
     lua_pop(L, 1);
+    if (a->names == NULL) luaL_error(L, "the module names of lsys were finalized");
     return a;
   }
   lua_pop(L, 1);
@@ -63,8 +77,11 @@ const lsys_names *lsys_ownernames (lua_State *L, int idx) {
 }
 
 /* ---------------------------------------------------------------------- */
+/* __gc and __close: idempotent; refused while the rules derive (__close from a
+** rule function: the collector cannot reach rules that are deriving). */
 static int rules_gc (lua_State *L) {
-  lrules *R = checkrules(L, 1);
+  lrules *R = (lrules *)luaL_checkudata(L, 1, RULES_T);
+  if (R->inited && R->m.busy) return luaL_error(L, "cannot close the rules of a model while it derives");
   if (R->inited) {
     lsys_model_free(&R->m);
     lsys_names_free(&R->decl);
@@ -191,7 +208,7 @@ static void readpats (lua_State *L, int t, const char *field, lsys_patmod *out,
 ** All arrays are copied before anything is allocated in the core.
 */
 static int rules_add (lua_State *L) {
-  lrules *R = checkrules(L, 1);
+  lrules *R = checkidle(L, 1);
   int kind = (int)luaL_checkinteger(L, 2);
   int sub = (int)luaL_checkinteger(L, 3);
   int group = (int)luaL_checkinteger(L, 4);
@@ -254,7 +271,7 @@ static int rules_add (lua_State *L) {
 
 /* rules:skiplist(sub, consider, names): ignore or consider list */
 static int rules_skiplist (lua_State *L) {
-  lrules *R = checkrules(L, 1);
+  lrules *R = checkidle(L, 1);
   int sub = (int)luaL_checkinteger(L, 2);
   int consider = lua_toboolean(L, 3);
   size_t len, i = 0, n = 0;
@@ -280,7 +297,7 @@ static int rules_skiplist (lua_State *L) {
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
                                      "depth_homomorphism", "seed", "hseed", NULL};
-  lrules *R = checkrules(L, 1);
+  lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
   switch (key) {
@@ -317,7 +334,7 @@ static int rules_config (lua_State *L) {
 /* rules:setvm(idx, code): code = {op, a, k, ...} (expr.h) or nil to clear.
 ** Returns true, or false when the program does not fit the rule. */
 static int rules_setvm (lua_State *L) {
-  lrules *R = checkrules(L, 1);
+  lrules *R = checkidle(L, 1);
   lua_Integer idx = luaL_checkinteger(L, 2), k, n;
   lsys_ins *code;
   int st;
@@ -356,7 +373,7 @@ static int rules_hasvm (lua_State *L) {
 
 /* rules:newset(kind, sub, group): an empty rule set (a sub-L-system without rules) */
 static int rules_newset (lua_State *L) {
-  lrules *R = checkrules(L, 1);
+  lrules *R = checkidle(L, 1);
   int kind = (int)luaL_checkinteger(L, 2);
   luaL_argcheck(L, kind >= LSYS_PROD && kind <= LSYS_HOMO, 2, "bad rule kind");
   if (lsys_model_newset(&R->m, kind, (int)luaL_checkinteger(L, 3),
@@ -412,59 +429,105 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
   return 1;
 }
 
-/* Runs a core operation with the callback wired to this Lua state. */
-/* What lsys_rules_bind saved. */
-typedef struct lbind { lrules *R; lua_State *L; int fnidx; } lbind;
+/*
+** Running a core operation on a model. The rule functions are callable from C
+** while it runs (rulefn reads them from the closure table on the stack), and
+** lsys.produce / lsys.ran find the model in the registry ("lsys.producing").
+** It runs in protected mode, so that whatever a rule function does (raise,
+** call this model again: refused, close the strings it works on: refused),
+** the marks on the model and the Lstrings are undone before the error goes on.
+*/
+typedef struct runargs {
+  lsys_ruleop op;
+  void *ud;
+  int st;
+} runargs;
 
-lsys_model *lsys_rules_bind (lua_State *L, int idx, void *saved) {
-  lrules *R = checkrules(L, idx);
-  lbind *b = (lbind *)saved;
-  idx = lua_absindex(L, idx);
-  b->R = R; b->L = R->L; b->fnidx = R->fnidx;
-  lua_getiuservalue(L, idx, UV_FNS);
+/* In protected mode: 1 = the rules, 2 = the runargs. */
+static int protectedrun (lua_State *L) {
+  runargs *a = (runargs *)lua_touserdata(L, 2);
+  lrules *R = checkrules(L, 1);
+  lua_getiuservalue(L, 1, UV_FNS);
   R->L = L;
   R->fnidx = lua_gettop(L);
   R->m.fn = rulefn;
   R->m.fnud = R;
   R->m.cur_rule = -1;
+  lua_pushvalue(L, 1);                      /* the rules producing now */
+  lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
+  a->st = a->op(L, &R->m, a->ud);
+  return 0;
+}
+
+int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                    const int *lstr, int n) {
+  lrules *R = checkrules(L, ridx);
+  runargs a;
+  int k, err;
+  ridx = lua_absindex(L, ridx);
+  if (R->m.busy) return luaL_error(L, "a rule of this model called %s on the same model", what);
+  for (k = 0; k < n; k++) checklstring(L, lstr[k]);      /* alive, before any mark */
+  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
+  a.op = op; a.ud = ud; a.st = LSYS_OK;
   lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing");   /* restored after */
-  lua_pushvalue(L, idx);                            /* the rules producing now */
+  lua_pushcfunction(L, protectedrun);
+  lua_pushvalue(L, ridx);
+  lua_pushlightuserdata(L, &a);
+  err = lua_pcall(L, 2, 0, 0);
+  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], -1);
+  R->m.busy = 0;             /* the core sets it while it runs; an error skips the reset */
+  lua_pushvalue(L, err != LUA_OK ? -2 : -1);
   lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
-  return &R->m;
-}
-
-void lsys_rules_unbind (lua_State *L, void *saved) {
-  lbind *b = (lbind *)saved;
-  b->R->L = b->L;
-  b->R->fnidx = b->fnidx;
-  lua_setfield(L, LUA_REGISTRYINDEX, "lsys.producing");
-  lua_pop(L, 1);
-}
-
-static int run (lua_State *L, lrules *R, int what, lsys_lstring *src, lsys_lstring *dst) {
-  int st;
-  lbind b;
-  lsys_rules_bind(L, 1, &b);
-  st = what < 0 ? lsys_derive_step(&R->m, src, dst) : lsys_expand(&R->m, what, src, dst);
-  lsys_rules_unbind(L, &b);
-  if (st != LSYS_OK) {
-    lua_pushfstring(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : R->m.err.msg);
+  if (err != LUA_OK) {
+    lua_remove(L, -2);
     return lua_error(L);
   }
+  lua_pop(L, 1);
+  return a.st;
+}
+
+/* rules:busy() -> whether the model is deriving (a rule function is running) */
+static int rules_busy (lua_State *L) {
+  lua_pushboolean(L, checkrules(L, 1)->m.busy);
+  return 1;
+}
+
+typedef struct stepop { int what; lsys_lstring *src, *dst; } stepop;
+
+static int dostep (lua_State *L, lsys_model *m, void *ud) {
+  stepop *o = (stepop *)ud;
+  (void)L;
+  return o->what < 0 ? lsys_derive_step(m, o->src, o->dst) : lsys_expand(m, o->what, o->src, o->dst);
+}
+
+/* Runs a derivation step (what < 0) or an expansion of the Lstring at 2 into the
+** one at 'dstidx'; raises on failure. */
+static void run (lua_State *L, lrules *R, int what, int dstidx) {
+  stepop o;
+  int idx[2], st;
+  idx[0] = 2; idx[1] = dstidx;
+  o.what = what;
+  o.src = checklstring(L, 2);
+  o.dst = checklstring(L, dstidx);
+  st = lsys_rules_run(L, 1, what < 0 ? "derive/step" : "expand", dostep, &o, idx, 2);
+  if (st != LSYS_OK)
+    luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : R->m.err.msg);
   /* tell the collector about the memory behind the new string */
-  lua_gc(L, LUA_GCSTEP, (int)((dst->n * 2 + dst->npar * 8) >> 10));
-  return 0;
+  lua_gc(L, LUA_GCSTEP, (int)((o.dst->n * 2 + o.dst->npar * 8) >> 10));
 }
 
 /* rules:step(src [, dst]) -> dst: one derivation step */
 static int rules_step (lua_State *L) {
   lrules *R = checkrules(L, 1);
-  lsys_lstring *src = checklstring(L, 2), *dst;
-  if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); dst = lsys_newlstring(L); }
-  else { dst = checklstring(L, 3); lua_settop(L, 3); }
+  checklstring(L, 2);
+  if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); lsys_newlstring(L); }
+  else {
+    luaL_argcheck(L, !lua_rawequal(L, 2, 3), 3, "source and destination are the same string");
+    lsys_checkwritable(L, 3, "step");
+    lua_settop(L, 3);
+  }
   lsys_setowner(L, 3, 1);
-  luaL_argcheck(L, src != dst, 3, "source and destination are the same string");
-  run(L, R, -1, src, dst);
+  run(L, R, -1, 3);
   lua_settop(L, 3);
   return 1;
 }
@@ -472,13 +535,13 @@ static int rules_step (lua_State *L) {
 /* rules:expand(src, kind) -> new Lstring */
 static int rules_expand (lua_State *L) {
   lrules *R = checkrules(L, 1);
-  lsys_lstring *src = checklstring(L, 2), *dst;
   int kind = (int)luaL_optinteger(L, 3, LSYS_HOMO);
+  checklstring(L, 2);
   luaL_argcheck(L, kind == LSYS_HOMO || kind == LSYS_DECOMP, 3, "bad rule kind");
   lua_settop(L, 3);
-  dst = lsys_newlstring(L);
+  lsys_newlstring(L);
   lsys_setowner(L, 4, 1);
-  run(L, R, kind, src, dst);
+  run(L, R, kind, 4);
   lua_settop(L, 4);
   return 1;
 }
@@ -516,14 +579,14 @@ static int rules_lstring (lua_State *L) {
 
 /* rules:ran(): returns the functions ran(x) and nran(mean, sd) bound to this model */
 static int ranfn (lua_State *L) {
-  lrules *R = (lrules *)lua_touserdata(L, lua_upvalueindex(1));
+  lrules *R = checkrules(L, lua_upvalueindex(1));
   lua_Number x = luaL_optnumber(L, 1, 1);
   lua_pushnumber(L, x * lsys_rng_uniform(R->m.cur));
   return 1;
 }
 
 static int nranfn (lua_State *L) {
-  lrules *R = (lrules *)lua_touserdata(L, lua_upvalueindex(1));
+  lrules *R = checkrules(L, lua_upvalueindex(1));
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
   lua_pushnumber(L, lsys_rng_normal(R->m.cur, mu, sd));
   return 1;
@@ -567,8 +630,8 @@ static ltemplate *gettemplate (lua_State *L, lrules *R, int tidx) {
   int st;
   lua_getiuservalue(L, 1, UV_TPL);   /* the cache, keyed by text */
   lua_pushvalue(L, tidx);
-  if (lua_rawget(L, -2) == LUA_TUSERDATA) {
-    t = (ltemplate *)lua_touserdata(L, -1);
+  if (lua_rawget(L, -2) == LUA_TUSERDATA &&
+      (t = (ltemplate *)lua_touserdata(L, -1))->code != NULL) {   /* not finalized */
     lua_pop(L, 2);
     return t;
   }
@@ -634,7 +697,7 @@ static int produce (lua_State *L, int final) {
   uint32_t k, m, p = 0;
   int nargs = lua_gettop(L) - 1;
   if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing") != LUA_TUSERDATA ||
-      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) == NULL || R->m.cur_rule < 0 ||
+      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) == NULL || !R->inited || R->m.cur_rule < 0 ||
       !(R->m.rules[R->m.cur_rule].flags & LSYS_RF_DYN))
     return luaL_error(L, "%s called outside a rule function", final ? "produce" : "nproduce");
   lua_insert(L, 1);                  /* rules at 1, template at 2, args 3.. */
@@ -668,9 +731,9 @@ static int produce (lua_State *L, int final) {
 /* lsys.ran(x) / lsys.nran(m, sd) inside rule functions: the generator of
 ** the model deriving now */
 static lrules *deriving (lua_State *L, const char *what) {
-  lrules *R;
+  lrules *R = NULL;
   if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.producing") != LUA_TUSERDATA ||
-      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) == NULL)
+      (R = (lrules *)luaL_testudata(L, -1, RULES_T)) == NULL || !R->inited)
     luaL_error(L, "%s called outside a derivation (use it in a rule function)", what);
   lua_pop(L, 1);
   return R;
@@ -708,7 +771,8 @@ static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
-  {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm}, {NULL, NULL}
+  {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
+  {"busy", rules_busy}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

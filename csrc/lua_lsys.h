@@ -11,7 +11,27 @@
 #include "mesh.h"
 
 #define LSTRING_T "lsys.Lstring"
-#define checklstring(L, i) ((lsys_lstring *)luaL_checkudata(L, (i), LSTRING_T))
+
+/* An Lstring userdata: the string, whether it was closed (its memory freed by
+** __close or __gc), and how many running operations read or write it (a
+** derivation, an interpretation): while 'busy', it can be neither closed nor
+** rewritten. */
+typedef struct lsys_lstr {
+  lsys_lstring s;
+  int closed;
+  int busy;
+} lsys_lstr;
+
+/* The Lstring at 'i'; raises when it is not one or was closed. */
+lsys_lstring *lsys_checklstring (lua_State *L, int i);
+#define checklstring(L, i) lsys_checklstring(L, (i))
+
+/* The same for an Lstring that is about to be rewritten in place: raises
+** also when an operation is using it. */
+lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what);
+
+/* Marks the Lstring at 'i' used by an operation (+1) or no longer (-1). */
+void lsys_lstring_busy (lua_State *L, int i, int delta);
 
 /* The alphabet shared by all models and Lstrings of a Lua state. */
 lsys_alphabet *lsys_getalphabet (lua_State *L);
@@ -32,14 +52,20 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e);
 /* Reads a list of module names separated by white space into 'd'. */
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 
-/* Makes the rule functions of the Rules userdata at 'idx' callable from C
-** (for the homomorphism while the turtle runs) and returns its model.
-** Pushes two values; lsys_rules_unbind pops them. 'saved' points to at
-** least LSYS_BIND_SIZE bytes. */
-#define LSYS_BIND_SIZE 32
+/*
+** Runs op(L, m, ud) on the model of the Rules at 'ridx' with its rule
+** functions callable from C (for derivation and the streamed homomorphism)
+** and lsys.produce / lsys.ran wired to it, and the Lstrings at the stack
+** indices lstr[0..n) marked busy (they can be neither closed nor rewritten
+** meanwhile). It runs in protected mode: the marks are undone and the error
+** raised again, whatever op or a rule function does. Raises before anything
+** when the model is running already ("a rule of this model called 'what' on
+** the same model"). Returns op's status. 'op' sees a stack of its own.
+*/
 struct lsys_model;
-struct lsys_model *lsys_rules_bind (lua_State *L, int idx, void *saved);
-void lsys_rules_unbind (lua_State *L, void *saved);
+typedef int (*lsys_ruleop) (lua_State *L, struct lsys_model *m, void *ud);
+int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                    const int *lstr, int n);
 
 #define SCENE_T "lsys.Scene"
 

@@ -32,7 +32,12 @@ typedef struct lscene {
   int inited;
 } lscene;
 
-#define checkscene(L, i) ((lscene *)luaL_checkudata(L, (i), SCENE_T))
+/* The Scene at 'i'; raises when it was closed (its memory freed). */
+static lscene *checkscene (lua_State *L, int i) {
+  lscene *S = (lscene *)luaL_checkudata(L, i, SCENE_T);
+  if (!S->inited) luaL_error(L, "the scene was closed");
+  return S;
+}
 #define TURTLE_T "lsys.Turtle"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
@@ -276,7 +281,12 @@ static void readpalette (lua_State *L, int t, lscene *S) {
 /* ---------------------------------------------------------------------- */
 /* running the turtle with the homomorphism streamed from the rules */
 
-typedef struct expander { lsys_model *m; } expander;
+typedef struct expander {
+  lsys_model *m;
+  lsys_turtle *t;
+  lsys_lstring *s;
+  int homo;
+} expander;
 
 static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_error *e) {
   expander *x = (expander *)ud;
@@ -285,25 +295,32 @@ static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_er
   return st;
 }
 
+/* The turtle's run with the model bound (lsys_rules_run). */
+static int doturtle (lua_State *L, lsys_model *m, void *ud) {
+  expander *x = (expander *)ud;
+  int st = x->homo ? lsys_homo_begin(m, x->s) : 0;
+  x->m = m;
+  if (st > 0) { x->t->expand = expandfn; x->t->expandud = x; st = LSYS_OK; }
+  if (st == LSYS_OK) st = lsys_turtle_run(x->t, x->s, lsys_getalphabet(L));
+  else x->t->err = m->err;
+  lsys_homo_end(m);
+  return st;
+}
+
 /* Runs the turtle over the Lstring at 2 with the rules at 1 and options at
 ** 'opt'. Raises on error (after cleaning up). */
 static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int opt) {
-  lsys_lstring *s = checklstring(L, 2);
-  double saved[LSYS_BIND_SIZE / sizeof(double)];
+  static const int lstr[1] = {2};
   expander x;
-  int st, homo;
+  int st;
+  x.s = checklstring(L, 2);
+  x.t = t;
   readopts(L, opt, o);
   lua_getfield(L, opt, "homomorphism");
-  homo = lua_isnil(L, -1) || lua_toboolean(L, -1);
+  x.homo = lua_isnil(L, -1) || lua_toboolean(L, -1);
   lua_pop(L, 1);
   t->o = o;
-  x.m = lsys_rules_bind(L, 1, saved);
-  st = homo ? lsys_homo_begin(x.m, s) : 0;
-  if (st > 0) { t->expand = expandfn; t->expandud = &x; st = LSYS_OK; }
-  if (st == LSYS_OK) st = lsys_turtle_run(t, s, lsys_getalphabet(L));
-  else t->err = x.m->err;
-  lsys_homo_end(x.m);
-  lsys_rules_unbind(L, saved);
+  st = lsys_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
   if (st != LSYS_OK) luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : t->err.msg);
 }
 
@@ -390,7 +407,6 @@ static int l_turtle_state (lua_State *L) {
 const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **pal,
                                   size_t *npal) {
   lscene *S = checkscene(L, idx);
-  if (!S->inited) luaL_error(L, "the scene was freed");
   if (pal) *pal = S->pal;
   if (npal) *npal = S->npal;
   return &S->mesh;
@@ -398,25 +414,26 @@ const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **p
 
 const lsys_trec *lsys_scenerecords (lua_State *L, int idx, size_t *n) {
   lscene *S = checkscene(L, idx);
-  if (!S->inited) luaL_error(L, "the scene was freed");
   *n = S->nrec;
   return S->rec;
 }
 
 void lsys_scenetake (lua_State *L, int idx, lsys_mesh *m) {
   lscene *S = checkscene(L, idx);
-  if (!S->inited) luaL_error(L, "the scene was freed");
   *m = S->mesh;
   lsys_mesh_init(&S->mesh);
 }
 
+/* __gc and __close: idempotent; every method of a closed scene raises. */
 static int scene_gc (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lscene *S = (lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
     lsys_mesh_free(&S->mesh);
     LSYS_FREE(S->pal);
     LSYS_FREE(S->rec);
     LSYS_FREE(S->stiff);
+    S->pal = NULL; S->rec = NULL; S->stiff = NULL;
+    S->npal = S->nrec = 0;
     S->inited = 0;
   }
   return 0;
@@ -447,7 +464,11 @@ static int scene_index (lua_State *L) {
 }
 
 static int scene_tostring (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lscene *S = (lscene *)luaL_checkudata(L, 1, SCENE_T);
+  if (!S->inited) {
+    lua_pushliteral(L, "lsys.Scene (closed)");
+    return 1;
+  }
   lua_pushfstring(L, "lsys.Scene: %d triangles, %d line segments, %d turtle records",
                   (int)S->mesh.nt, (int)S->mesh.nl, (int)S->nrec);
   return 1;
@@ -570,7 +591,6 @@ static int scene_edges (lua_State *L) {
   const lsys_trec *r;
   uint32_t *e;
   size_t n, i;
-  if (!S->inited) return luaL_error(L, "the scene was freed");
   if (k < 1 || (size_t)k > S->nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
   r = &S->rec[k - 1];
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
@@ -589,8 +609,9 @@ static int scene_edges (lua_State *L) {
 
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
+  lua_Integer i;
   checkscene(L, 1);
-  lua_Integer i = luaL_checkinteger(L, 2);
+  i = luaL_checkinteger(L, 2);
   lua_settop(L, 2);
   lua_pushcfunction(L, l_turtle_state);
   lua_getiuservalue(L, 1, SV_RULES);

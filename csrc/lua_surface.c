@@ -23,14 +23,19 @@
 
 #define MAXFILE ((size_t)16 << 20)    /* bytes of a surface file */
 
-#define checksurface(L, i) ((lsys_surface *)luaL_checkudata(L, (i), SURFACE_T))
+/* The Surface at 'i'; raises when it was closed (a live one has patches). */
+static lsys_surface *checksurface (lua_State *L, int i) {
+  lsys_surface *s = (lsys_surface *)luaL_checkudata(L, i, SURFACE_T);
+  if (s->patch == NULL) luaL_error(L, "the surface was closed");
+  return s;
+}
 
 const lsys_surface *lsys_checksurface (lua_State *L, int idx) {
   return checksurface(L, idx);
 }
 
-static int surface_gc (lua_State *L) {
-  lsys_surface_free(checksurface(L, 1));
+static int surface_gc (lua_State *L) {       /* also __close: idempotent */
+  lsys_surface_free((lsys_surface *)luaL_checkudata(L, 1, SURFACE_T));
   return 0;
 }
 
@@ -133,7 +138,11 @@ static int surface_info (lua_State *L) {
 }
 
 static int surface_tostring (lua_State *L) {
-  const lsys_surface *s = checksurface(L, 1);
+  const lsys_surface *s = (const lsys_surface *)luaL_checkudata(L, 1, SURFACE_T);
+  if (s->patch == NULL) {
+    lua_pushliteral(L, "lsys.Surface (closed)");
+    return 1;
+  }
   lua_getiuservalue(L, 1, 1);
   lua_pushfstring(L, "lsys.Surface(%s, %d patch%s)", luaL_optstring(L, -1, "?"),
                   (int)s->npatch, s->npatch == 1 ? "" : "es");

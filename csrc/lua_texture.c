@@ -16,7 +16,12 @@
 #include "lua_geom.h"
 
 #define TEXTURE_T "lsys.Texture"
-#define checktex(L, i) ((lsys_texture *)luaL_checkudata(L, (i), TEXTURE_T))
+/* The Texture at 'i'; raises when it was closed (a live one has pixels). */
+static lsys_texture *checktex (lua_State *L, int i) {
+  lsys_texture *t = (lsys_texture *)luaL_checkudata(L, i, TEXTURE_T);
+  if (t->rgba == NULL) luaL_error(L, "the texture was closed");
+  return t;
+}
 
 const lsys_texture *lsys_checktexture (lua_State *L, int idx) {
   return checktex(L, idx);
@@ -111,8 +116,8 @@ static int l_texture_load (lua_State *L) {
   return 1;
 }
 
-static int texture_gc (lua_State *L) {
-  lsys_texture_free(checktex(L, 1));
+static int texture_gc (lua_State *L) {       /* also __close: idempotent */
+  lsys_texture_free((lsys_texture *)luaL_checkudata(L, 1, TEXTURE_T));
   return 0;
 }
 
@@ -145,7 +150,11 @@ static int texture_info (lua_State *L) {
 }
 
 static int texture_tostring (lua_State *L) {
-  lsys_texture *t = checktex(L, 1);
+  lsys_texture *t = (lsys_texture *)luaL_checkudata(L, 1, TEXTURE_T);
+  if (t->rgba == NULL) {
+    lua_pushliteral(L, "Texture (closed)");
+    return 1;
+  }
   lua_pushfstring(L, "Texture(%s, %dx%d)", t->path ? t->path : "?", t->w, t->h);
   return 1;
 }
@@ -179,6 +188,8 @@ const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *wh
     if (arr[k - 1] == NULL)
       luaL_error(L, "%s: opts.textures[%I] must be a texture (lsys.texture_load), got %s", who,
                  k, luaL_typename(L, -1));
+    if (arr[k - 1]->rgba == NULL)
+      luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
     lua_pop(L, 1);
   }
   lua_remove(L, -2);                        /* the list stays referenced by the table */

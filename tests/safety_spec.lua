@@ -73,3 +73,185 @@ describe("rule expressions", function ()
     assert.equal("A(4)B(3)C(5)D(2)", tostring(m:derive(1)))
   end)
 end)
+
+describe("re-entering a model from its own rules", function ()
+  local REENTER = "a rule of this model called derive/step on the same model"
+
+  it("is refused with a clear error (the audit's use-after-free)", function ()
+    local m
+    m = lsys.lsystem { axiom = "A[B][B]B[B]C", productions = {
+      { "A", function () m:step(string.rep("[B]", 200000)) end },
+      "B < C --> D", "B > [B] --> E" } }
+    assert.error_contains(function () m:derive(1) end, REENTER, "rule 1 'A'")
+    -- the refused step left the model usable
+    assert.is_false(m._rules:busy())
+    assert.equal("E[B]D", tostring(m:step("B[B]C")))
+  end)
+
+  it("leaves the running rule able to produce after it caught the refusal", function ()
+    local m
+    m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+      local ok, err = pcall(m.step, m, "A")
+      assert(not ok and err:find(REENTER, 1, true), err)
+      return lsys.produce("B")
+    end } } }
+    assert.equal("B", tostring(m:derive(1)))
+  end)
+
+  it("is refused also through the core and for expand and interpret", function ()
+    local m, seen
+    m = lsys.lsystem { axiom = "A[B]C", homomorphism = { { "B", function ()
+        seen = select(2, pcall(m.interpret, m, "F"))
+        return lsys.produce("F")
+      end } },
+      productions = { { "A", function ()
+        seen = select(2, pcall(m._rules.step, m._rules, lsys.lstring("B C")))
+        return lsys.produce("Q")
+      end }, "B > C --> D" } }
+    assert.equal("Q[B]C", tostring(m:derive(1)))
+    assert.truthy(seen:find(REENTER, 1, true), seen)
+    m:interpret("A[B]C")
+    assert.truthy(seen:find("called interpret on the same model", 1, true), seen)
+  end)
+
+  it("cannot change the rules or close the strings a step works on", function ()
+    local m, errs = nil, {}
+    local src = lsys.lstring("A B")
+    m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+      errs[1] = select(2, pcall(m._rules.add, m._rules, 0, 0, 0, { pred = { 1, 0 } }))
+      errs[2] = select(2, pcall(m.use_group, m, 1))
+      errs[3] = select(2, pcall(getmetatable(src).__close, src))
+      errs[4] = select(2, pcall(getmetatable(m._rules).__close, m._rules))
+      return lsys.produce("Q")
+    end } } }
+    assert.equal("QB", tostring(m:step(src)))
+    assert.truthy(errs[1]:find("cannot change while it derives", 1, true) or
+                  errs[1]:find("cannot change", 1, true), errs[1])
+    assert.truthy(errs[2]:find("called use_group on the same model", 1, true), errs[2])
+    assert.truthy(errs[3]:find("cannot close an Lstring while", 1, true), errs[3])
+    assert.truthy(errs[4]:find("cannot close the rules", 1, true), errs[4])
+    assert.equal("AB", tostring(src))
+  end)
+
+  it("cannot rewrite the string another model is deriving from", function ()
+    local other = lsys.lsystem { axiom = "X", productions = "X --> Y" }
+    local src = lsys.lstring("A B")
+    local m, err
+    m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+      err = select(2, pcall(other._rules.step, other._rules, lsys.lstring("X"), src))
+      return lsys.produce("Q")
+    end } } }
+    assert.equal("QB", tostring(m:step(src)))
+    assert.truthy(err:find("the Lstring is in use", 1, true), err)
+  end)
+end)
+
+describe("closed objects", function ()
+  local function close (x) getmetatable(x).__close(x) end
+
+  it("a closed scene raises in every method (the audit's use-after-free)", function ()
+    local m = lsys.lsystem { axiom = "F[+F]F", view = { angle = 30 } }
+    local scene = m:interpret()
+    assert.equal(3, scene.nrecords)
+    close(scene)
+    close(scene)                                   -- idempotent
+    assert.equal("lsys.Scene (closed)", tostring(scene))
+    local d = tmpdir()
+    for name, f in pairs {
+      records = function () for _ in scene:records() do end end,
+      record = function () return scene:record(1) end,
+      find = function () return scene:find(1) end,
+      edges = function () return scene:edges(1) end,
+      bounds = function () return scene:bounds() end,
+      area = function () return scene:area() end,
+      turtle = function () return scene:turtle(1) end,
+      save = function () return scene:save(d .. "/x.obj") end,
+      nrecords = function () return scene.nrecords end,
+      ntriangles = function () return scene.ntriangles end,
+      render = function () return lsys.render(scene, { width = 8, height = 8 }) end,
+    } do
+      local err = errof(f)
+      assert.truthy(err:find("the scene was closed", 1, true), name .. ": " .. err)
+    end
+    assert.is_false(exists(d .. "/x.obj"))
+    rmdir(d)
+  end)
+
+  it("a scene's records iterator stops with an error when the scene closes", function ()
+    local scene = lsys.lsystem { axiom = "FFF" }:interpret()
+    assert.error_contains(function ()
+      for k in scene:records() do if k == 1 then close(scene) end end
+    end, "the scene was closed")
+  end)
+
+  it("closed rules raise instead of crashing (the audit's segfault)", function ()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> AB" }
+    close(m._rules)
+    for name, f in pairs {
+      derive = function () return m:derive(1) end,
+      step = function () return m:step("A") end,
+      interpret = function () return m:interpret("F") end,
+      lstring = function () return m:lstring("A") end,
+      expand = function () return m:expand("A") end,
+    } do
+      local err = errof(f)
+      assert.truthy(err:find("the model's rules were closed", 1, true), name .. ": " .. err)
+    end
+  end)
+
+  it("a model resurrected by a finalizer raises instead of crashing", function ()
+    -- the guard is created first, so its finalizer runs after the rules' at exit
+    local path = os.tmpname()
+    local f = assert(io.open(path, "w"))
+    f:write([[
+local lsys = require "lsys"
+local guard = setmetatable({}, { __gc = function (g)
+  local ok, err = pcall(g.m.derive, g.m, 2)
+  io.stdout:write("resurrected: ", tostring(ok), " ", tostring(err), "\n")
+end })
+guard.m = lsys.lsystem { axiom = "A", productions = "A --> AB" }
+_G.keep = guard
+]])
+    f:close()
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    local p = io.popen(BIN .. " " .. path .. " 2>&1; echo \"exit:$?\"")
+    local out = p:read("a")
+    p:close()
+    os.remove(path)
+    assert.truthy(out:find("exit:0", 1, true), out)
+    assert.truthy(out:find("resurrected: false", 1, true), out)
+    assert.truthy(out:find("were closed", 1, true), out)
+  end)
+
+  it("closed Lstrings, contours, surfaces, textures and IK chains raise", function ()
+    local core = require "lsys.core"
+    local s = lsys.lstring("F(1)[+A]")
+    close(s)
+    assert.equal("lsys.Lstring (closed)", tostring(s))
+    for _, f in ipairs {
+      function () return #s end, function () return s:module(1) end,
+      function () return s:sub(1, 2) end, function () return s:count("F") end,
+      function () return s == lsys.lstring("F") end,
+      function () return lsys.lsystem { axiom = "F" }:interpret(s) end,
+    } do
+      assert.truthy(errof(f):find("the Lstring was closed", 1, true))
+    end
+    local c = core.contour({ { 1, 0 }, { 0, 1 }, { -1, 0 } })
+    close(c)
+    assert.equal("lsys.Contour (closed)", tostring(c))
+    assert.truthy(errof(c.sample, c, 4):find("the contour was closed", 1, true))
+    assert.truthy(errof(function ()
+      lsys.lsystem { axiom = "@#(1)F", view = { line_style = "cylinder", contours = { c } } }
+        :interpret()
+    end):find("the contour was closed", 1, true))
+    local sf = core.surface_parse(io.open("tests/data/surfaces/leaf.s"):read("a"), "leaf.s")
+    close(sf)
+    assert.equal("lsys.Surface (closed)", tostring(sf))
+    assert.truthy(errof(sf.info, sf):find("the surface was closed", 1, true))
+    local ik = core.ik_chain { base = { H = { 0, 1, 0 }, U = { 0, 0, 1 }, p = { 0, 0, 0 } },
+      joints = { { p0 = { 0, 0, 0 }, p1 = { 0, 1, 0 }, H = { 0, 1, 0 }, U = { 0, 0, 1 } } } }
+    assert.equal(1, #ik)
+    close(ik)
+    assert.truthy(errof(ik.angles, ik):find("the chain was closed", 1, true))
+  end)
+end)

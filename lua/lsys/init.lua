@@ -226,6 +226,15 @@ function Model:_env ()
   end })
 end
 
+-- Raises when a rule function of this model calls `what` on the model itself: the
+-- running step owns its rules and scratch (binding them again would change the rules
+-- under it).
+function Model:_idle (what)
+  if self._rules:busy() then
+    error(format("%s: a rule of this model called %s on the same model", self._where, what), 0)
+  end
+end
+
 -- Binds every compiled rule to the current env (called before each step).
 function Model:_bind ()
   local E = self:_env()
@@ -351,6 +360,7 @@ end
 -- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
 -- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
 function Model:derive (n, opts)
+  self:_idle("derive/step")
   n = n or self.steps
   checksteps(n, "derive")
   local rules = self._rules
@@ -407,6 +417,7 @@ end
 function Model:step (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not M.islstring(s) then error("step: an Lstring expected", 2) end
+  self:_idle("derive/step")
   self:_bind()
   if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
     self:_query(s)
@@ -418,6 +429,7 @@ end
 function Model:expand (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not M.islstring(s) then error("expand: an Lstring expected", 2) end
+  self:_idle("expand")
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
   return self:_core("expand", s, HOMO)
@@ -452,6 +464,7 @@ function Model:interpret (s, over)
     over = view.merge(over, nil)
     over.records = nil
   end
+  self:_idle("interpret")
   local v = self:_view(over)
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
@@ -540,6 +553,7 @@ function Model:use_group (n)
   if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
     error("use_group: a group number >= 0 expected", 2)
   end
+  self:_idle("use_group")
   self._group = n
   self._rules:config("group", n)
 end

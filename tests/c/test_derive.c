@@ -160,6 +160,55 @@ static void test_limits (void) {
   lsys_model_free(&m);
 }
 
+/* A rule callback that calls the engine on its own model: every entry point
+** refuses with LSYS_EBUSY and leaves the running step intact. */
+static int reenter (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+                    double *vals) {
+  lsys_lstring *other = (lsys_lstring *)ud;
+  lsys_rulespec sp;
+  lsys_error e;
+  (void)r; (void)args;
+  memset(&sp, 0, sizeof sp);
+  assert(lsys_derive_step(m, other, other + 1) == LSYS_EBUSY);
+  assert(strstr(m->err.msg, "called derive/step on the same model") != NULL);
+  assert(lsys_expand(m, LSYS_HOMO, other, other + 1) == LSYS_EBUSY);
+  assert(lsys_homo_begin(m, other) == LSYS_EBUSY);
+  assert(lsys_model_add(m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EBUSY);
+  assert(lsys_model_setvm(m, 0, NULL, 0) == LSYS_EBUSY);
+  assert(lsys_model_newset(m, LSYS_PROD, 5, 0) == LSYS_EBUSY);
+  vals[0] = 7;
+  return 1;
+}
+
+static void test_reentry (void) {
+  lsys_model m;
+  lsys_lstring a, b, other[2];
+  lsys_rulespec sp;
+  lsys_psrc src = {LSYS_PS_VAL, 0, 0};
+  uint16_t succ = LSYS_CODE(LSYS_SYM_LBR, 0);
+  lsys_error e;
+  lsys_model_init(&m, &ab);
+  memset(&sp, 0, sizeof sp);
+  sp.pred.sym = lsys_alphabet_intern(&ab, "A", 1, &e);
+  succ = LSYS_CODE(sp.pred.sym, 1);                /* A --> A(value 0) */
+  sp.succ = &succ; sp.nsucc = 1;
+  sp.src = &src; sp.nsrc = 1;
+  sp.flags = LSYS_RF_CALL; sp.nvals = 1;
+  assert(lsys_model_add(&m, LSYS_PROD, 0, 0, &sp, &e) == 0);
+  lsys_lstring_init(&a); lsys_lstring_init(&b);
+  lsys_lstring_init(&other[0]); lsys_lstring_init(&other[1]);
+  m.fn = reenter;
+  m.fnud = other;
+  setstr(&a, "AA");
+  setstr(&other[0], "A");
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_OK);
+  expect(&b, "A(7)A(7)");
+  assert(m.busy == 0);
+  lsys_lstring_free(&a); lsys_lstring_free(&b);
+  lsys_lstring_free(&other[0]); lsys_lstring_free(&other[1]);
+  lsys_model_free(&m);
+}
+
 static void test_decomposition (void) {
   lsys_model m;
   lsys_lstring a, b;
@@ -258,6 +307,7 @@ int main (void) {
   test_cut();
   test_stochastic();
   test_limits();
+  test_reentry();
   test_decomposition();
   test_expr();
   lsys_alphabet_free(&ab);
