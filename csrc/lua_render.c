@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lua_geom.h"
+#include "outfile.h"
 #include "pngio.h"
 
 #define PIXELS_T "lsys.Pixels"   /* a malloc'd pixel block owned by Lua until copied */
@@ -261,8 +262,26 @@ static int l_png_write (lua_State *L) {
   return 1;
 }
 
+/* core.write_file(path, bytes): writes the string atomically (outfile.h). */
+static int l_write_file (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  size_t len;
+  const char *bytes = luaL_checklstring(L, 2, &len);
+  lsys_outfile out;
+  lsys_error e;
+  int st = lsys_outfile_open(&out, path, &e);
+  if (st == LSYS_OK) {
+    lsys_outfile_write(&out, bytes, len);
+    st = lsys_outfile_commit(&out, &e);
+  }
+  if (st != LSYS_OK) return lsys_raise(L, st, &e);
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
 static const luaL_Reg render_funcs[] = {
-  {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write}, {NULL, NULL}
+  {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write},
+  {"write_file", l_write_file}, {NULL, NULL}
 };
 
 void lsys_open_render (lua_State *L) {

@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "mesh.h"
+#include "outfile.h"
 
 /* ------------------------------------------------------------------ */
 /* Buffers                                                              */
@@ -219,19 +220,16 @@ static const lsys_material defmaterial = {
 
 #define WBUFSIZE ((size_t)1 << 16)
 
+/* A buffered writer on an atomic output file (outfile.h): the target is
+** replaced only when everything was written. */
 typedef struct writer {
-  FILE *f;
-  const char *path;
-  int err;                 /* errno of the first failure; 0 while all is well */
+  lsys_outfile out;
   size_t n;                /* bytes waiting in b */
   unsigned char b[WBUFSIZE];
 } writer;
 
 static void wflush (writer *w) {
-  if (w->n > 0 && w->err == 0) {
-    errno = 0;
-    if (fwrite(w->b, 1, w->n, w->f) != w->n) w->err = errno ? errno : EIO;
-  }
+  lsys_outfile_write(&w->out, w->b, w->n);
   w->n = 0;
 }
 
@@ -262,36 +260,39 @@ static void wstr (writer *w, const char *s) {
 
 static int wopen (writer **wp, const char *path, lsys_error *e) {
   writer *w = (writer *)LSYS_MALLOC(sizeof *w);
+  int st;
   if (w == NULL)
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
-  w->f = fopen(path, "wb");
-  if (w->f == NULL) {
-    int en = errno;
+  if ((st = lsys_outfile_open(&w->out, path, e)) != LSYS_OK) {
     LSYS_FREE(w);
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for writing: %s",
-                         path, strerror(en));
+    return st;
   }
-  w->path = path;
-  w->err = 0;
   w->n = 0;
   *wp = w;
   return LSYS_OK;
 }
 
-/* Flushes and closes: fclose reports what the buffered writes could not. */
-static int wclose (writer *w, lsys_error *e) {
-  int err, st = LSYS_OK;
+/* Flushes and closes the temporary file; the target is replaced by wcommit.
+** On failure the temporary file is gone and e names the target. */
+static int wfinish (writer *w, lsys_error *e) {
   wflush(w);
-  errno = 0;
-  if (fflush(w->f) != 0 && w->err == 0) w->err = errno ? errno : EIO;
-  if (ferror(w->f) && w->err == 0) w->err = EIO;
-  errno = 0;
-  if (fclose(w->f) != 0 && w->err == 0) w->err = errno ? errno : EIO;
-  err = w->err;
-  if (err > 0)
-    st = lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", w->path, strerror(err));
+  return lsys_outfile_finish(&w->out, e);
+}
+
+/* Finishes (when not done yet) and replaces the target; frees the writer. */
+static int wcommit (writer *w, lsys_error *e) {
+  int st;
+  wflush(w);
+  st = lsys_outfile_commit(&w->out, e);
   LSYS_FREE(w);
   return st;
+}
+
+/* Drops what was written; the target stays as it was. Frees the writer. */
+static void wabort (writer *w) {
+  if (w == NULL) return;
+  lsys_outfile_abort(&w->out);
+  LSYS_FREE(w);
 }
 
 /* ------------------------------------------------------------------ */
@@ -634,7 +635,9 @@ static void putmtl (writer *w, const lsys_material *mt, size_t k, const lsys_tex
   }
 }
 
-static int writemtl (const groups *g, const lsys_material *pal, size_t npal,
+/* Writes the material file into *wp, finished but not committed: it
+** replaces its target together with the .obj. */
+static int writemtl (writer **wp, const groups *g, const lsys_material *pal, size_t npal,
                      const char *path, lsys_error *e) {
   writer *w;
   size_t k, r = 0;
@@ -648,7 +651,12 @@ static int writemtl (const groups *g, const lsys_material *pal, size_t npal,
       if (g->runs[r].tex > 0)
         putmtl(w, mt, k, g->tex[g->runs[r].tex - 1], g->runs[r].tex);
   }
-  return wclose(w, e);
+  if ((st = wfinish(w, e)) != LSYS_OK) {
+    wabort(w);
+    return st;
+  }
+  *wp = w;
+  return LSYS_OK;
 }
 
 /* "f a/a/a b/b/b c/c/c" with 1-based numbers. */
@@ -689,7 +697,7 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
                         const lsys_texture *const *tex, int ntex, const char *path,
                         lsys_error *e) {
   groups g;
-  writer *w;
+  writer *w, *mw = NULL;
   const char *mtlname;
   char *mpath, head[160];
   size_t i, k, r;
@@ -707,13 +715,10 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
   if (st == LSYS_OK) {
     st = groupmesh(&g, m, npal, tex, ntex, path, e);
     if (st == LSYS_OK) {
-      st = writemtl(&g, pal, npal, mpath, e);
+      st = writemtl(&mw, &g, pal, npal, mpath, e);
       if (st != LSYS_OK) freegroups(&g);
     }
-    if (st != LSYS_OK) {
-      w->err = -1;                        /* close without a second message */
-      wclose(w, NULL);
-    }
+    if (st != LSYS_OK) wabort(w);
   }
   if (st != LSYS_OK) {
     LSYS_FREE(mpath);
@@ -751,7 +756,17 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
   }
   freegroups(&g);
   LSYS_FREE(mpath);
-  return wclose(w, e);
+  /* both files complete before either replaces its target */
+  if ((st = wfinish(w, e)) != LSYS_OK) {
+    wabort(w);
+    wabort(mw);
+    return st;
+  }
+  if ((st = wcommit(mw, e)) != LSYS_OK) {
+    wabort(w);
+    return st;
+  }
+  return wcommit(w, e);
 }
 
 /* ------------------------------------------------------------------ */
@@ -838,7 +853,7 @@ int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npa
     p = put32(p, (uint32_t)(m->nv + 2 * i + 1));
     wdone(w, p);
   }
-  return wclose(w, e);
+  return wcommit(w, e);
 }
 
 /* ------------------------------------------------------------------ */
@@ -1254,7 +1269,7 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
     wbytes(w, img[i], imglen[i]);
     wbytes(w, zero, (4 - imglen[i] % 4) % 4);
   }
-  st = wclose(w, e);
+  st = wcommit(w, e);
 done:
   for (i = 0; img != NULL && i < nimg; i++) LSYS_FREE(img[i]);
   LSYS_FREE(img); LSYS_FREE(imglen); LSYS_FREE(imgtex);

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "outfile.h"
 #include "pngio.h"
 
 typedef struct pngio {
@@ -46,31 +47,31 @@ static void flushfn (png_structp png) {
   if (fflush(io->f) != 0) png_error(png, strerror(errno));
 }
 
+/* The file is written through an lsys_outfile: a failure leaves whatever was
+** at 'path' untouched and removes only the temporary file (outfile.h). */
 int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
                     lsys_error *e) {
   pngio io = {NULL, ""};
+  lsys_outfile out;
   png_structp png;
   png_infop info;
-  int y, st = LSYS_OK;
+  int y, st;
   if (w <= 0 || h <= 0 || w > LSYS_PNG_MAXSIZE || h > LSYS_PNG_MAXSIZE)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': bad image size %dx%d",
                          path, w, h);
-  if ((io.f = fopen(path, "wb")) == NULL)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for writing: %s", path,
-                         strerror(errno));
+  if ((st = lsys_outfile_open(&out, path, e)) != LSYS_OK) return st;
+  io.f = out.f;
   png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onerror, onwarning);
   info = png ? png_create_info_struct(png) : NULL;
   if (info == NULL) {
     png_destroy_write_struct(&png, NULL);
-    fclose(io.f);
-    remove(path);
+    lsys_outfile_abort(&out);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': not enough memory",
                          path);
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    fclose(io.f);
-    remove(path);
+    lsys_outfile_abort(&out);
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", path, io.msg);
   }
   png_set_write_fn(png, &io, writefn, flushfn);
@@ -82,12 +83,7 @@ int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alp
   for (y = 0; y < h; y++) png_write_row(png, rgba + (size_t)4 * w * y);
   png_write_end(png, NULL);
   png_destroy_write_struct(&png, &info);
-  if (fclose(io.f) != 0) {
-    st = lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", path,
-                       strerror(errno));
-    remove(path);
-  }
-  return st;
+  return lsys_outfile_commit(&out, e);
 }
 
 int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {

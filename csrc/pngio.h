@@ -15,8 +15,9 @@
 /*
 ** Writes the w x h image 'rgba' (4 bytes per pixel, top row first) to
 ** 'path' as an 8-bit PNG: RGBA when 'alpha' is nonzero, else RGB (the
-** alpha bytes are dropped). Returns LSYS_OK, or LSYS_EARG with e->msg
-** naming the file and the reason.
+** alpha bytes are dropped). The file is replaced atomically (outfile.h):
+** a failure leaves what was at 'path' as it was. Returns LSYS_OK, or
+** LSYS_EARG with e->msg naming the file and the reason.
 */
 int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
                     lsys_error *e);

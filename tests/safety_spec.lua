@@ -255,3 +255,122 @@ _G.keep = guard
     assert.truthy(errof(ik.angles, ik):find("the chain was closed", 1, true))
   end)
 end)
+
+describe("outputs", function ()
+  local core = require "lsys.core"
+  local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+  local d
+  before_each(function () d = tmpdir() end)
+  after_each(function () rmdir(d) end)
+
+  local function slurp (path)
+    local f = assert(io.open(path, "rb"))
+    local s = f:read("a")
+    f:close()
+    return s
+  end
+  local function spit (path, s)
+    local f = assert(io.open(path, "wb"))
+    f:write(s)
+    f:close()
+  end
+  local function listing (dir)
+    local p = io.popen("ls -A '" .. dir .. "'")
+    local out = p:read("a")
+    p:close()
+    return out
+  end
+  local function scene ()
+    return lsys.lsystem { axiom = "F[+F]F[-F]F", view = { angle = 30, line_style = "cylinder",
+                                                          line_width = 0.1 } }:interpret()
+  end
+
+  it("a failed write to a device leaves the device alone (the audit's deleted /dev/full)", function ()
+    -- as root, a copy of /dev/full in the temporary folder, so that a regression removes
+    -- only the copy; otherwise /dev/full itself, which a user cannot remove
+    local full = d .. "/full"
+    if not os.execute("mknod -m 666 '" .. full .. "' c 1 7 2>/dev/null") then full = "/dev/full" end
+    local function kind (path, follow)
+      local p = io.popen("stat " .. (follow and "-L " or "") .. "-c %F '" .. path .. "' 2>&1")
+      local k = p:read("a")
+      p:close()
+      return k
+    end
+    local function isdevice (path) return kind(path, true) == "character special file\n" end
+    assert.is_true(isdevice(full))
+    assert.error_contains(function ()
+      lsys.render(scene(), { out = full, width = 32, height = 32 })
+    end, "cannot write '" .. full .. "'", "No space left on device")
+    assert.error_contains(function ()
+      core.png_write(full, string.rep("\0\0\0\255", 4), 2, 2)
+    end, "cannot write '" .. full .. "'")
+    assert.is_true(isdevice(full), full .. " was removed or replaced")
+    -- a link to the device: the link stays too
+    os.execute("ln -s '" .. full .. "' '" .. d .. "/out.png'")
+    assert.error_contains(function ()
+      lsys.render(scene(), { out = d .. "/out.png", width = 32, height = 32 })
+    end, "No space left on device")
+    assert.equal("symbolic link\n", kind(d .. "/out.png"))
+    assert.is_true(isdevice(d .. "/out.png"))
+    assert.is_true(isdevice(full))
+  end)
+
+  -- runs `lsys SCRIPT` with the file size limited to 'kib' KiB, so a write fails
+  -- half-way as on a full disk; returns the output
+  local function limited (script, kib)
+    local path = d .. "/script.lua"
+    spit(path, script)
+    local p = io.popen(("sh -c \"trap '' XFSZ; ulimit -f %d; exec '%s' '%s'\" 2>&1; echo exit:$?")
+                       :format(kib, BIN, path))
+    local out = p:read("a")
+    p:close()
+    os.remove(path)
+    return out
+  end
+
+  it("a failed write keeps the old file and leaves no partial file", function ()
+    for _, name in ipairs { "old.png", "old.obj", "old.ply", "old.glb" } do
+      spit(d .. "/" .. name, "previous content")
+    end
+    spit(d .. "/old.mtl", "previous materials")
+    local out = limited(([[
+local lsys = require "lsys"
+local s = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F", steps = 4,
+                         view = { angle = 25, line_style = "cylinder", line_width = 0.1 } }
+local scene = s:interpret()
+for _, ext in ipairs { "obj", "ply", "glb" } do
+  print(ext, pcall(scene.save, scene, "%s/old." .. ext))
+end
+print("png", pcall(lsys.render, scene, { out = "%s/old.png", width = 600, height = 600 }))
+]]):format(d, d), 8)
+    for _, ext in ipairs { "obj", "ply", "glb", "png" } do
+      assert.truthy(out:find(ext .. "\tfalse\t[^\n]*cannot write '[^']*old%." .. ext .. "': File too large"),
+                    out)
+      assert.equal("previous content", slurp(d .. "/old." .. ext))
+    end
+    assert.equal("previous materials", slurp(d .. "/old.mtl"))
+    assert.equal("old.glb\nold.mtl\nold.obj\nold.ply\nold.png\n", listing(d))
+  end)
+
+  it("a successful write replaces the file, keeps its mode and follows links", function ()
+    spit(d .. "/a.obj", "old")
+    os.execute("chmod 600 '" .. d .. "/a.obj'")
+    os.execute("mkdir '" .. d .. "/real' && ln -s real/b.ply '" .. d .. "/b.ply' && " ..
+               "echo old > '" .. d .. "/real/b.ply'")
+    local sc = scene()
+    assert.is_true(sc:save(d .. "/a.obj"))
+    assert.is_true(sc:save(d .. "/b.ply"))
+    assert.truthy(slurp(d .. "/a.obj"):find("^# lsys: "))
+    assert.truthy(slurp(d .. "/real/b.ply"):find("^ply\n"))
+    local p = io.popen("stat -c '%a %F' '" .. d .. "/a.obj' '" .. d .. "/b.ply'")
+    local modes = p:read("a")
+    p:close()
+    assert.equal("600 regular file\n777 symbolic link\n", modes)
+    assert.equal("a.mtl\na.obj\nb.ply\nreal\n", listing(d))
+    assert.is_true(core.write_file(d .. "/c.txt", "hello"))
+    assert.equal("hello", slurp(d .. "/c.txt"))
+    assert.error_contains(function () core.write_file(d .. "/none/c.txt", "x") end,
+                          "cannot open '" .. d .. "/none/c.txt' for writing")
+    assert.error_contains(function () core.write_file(d, "x") end, "Is a directory")
+  end)
+end)

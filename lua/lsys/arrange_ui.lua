@@ -12,6 +12,7 @@
 -- @module lsys.arrange_ui
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local core = require "lsys.core"
 local require = require
 
 local ipairs, tostring, pcall = ipairs, tostring, pcall
@@ -120,13 +121,9 @@ function M.run (arr, opts)
       end
     elseif k == "s" and ev.ctrl then
       local out = opts.out or "arranged.txt"
-      local f, err = io.open(out, "w")
-      if f == nil then say("arrange: cannot save: " .. tostring(err))
-      else
-        f:write(tostring(arr:lstring()), "\n")
-        f:close()
-        say("saved " .. out)
-      end
+      local ok, err = pcall(core.write_file, out, tostring(arr:lstring()) .. "\n")
+      if not ok then say("arrange: cannot save: " .. tostring(err))
+      else say("saved " .. out) end
     end
   end
 
