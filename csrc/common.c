@@ -1,10 +1,14 @@
 /*
-** Error record, growable arrays and whole-file reading shared by the core.
+** Error record, growable arrays, the memory budget and whole-file reading
+** shared by the core.
 */
+#define _XOPEN_SOURCE 700       /* fileno, fstat, sysconf */
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "common.h"
 
@@ -35,12 +39,112 @@ int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   return LSYS_OK;
 }
 
+int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
+  size_t n = cap ? cap : 16, old = cap * elem, base, maxcap;
+  base = mt->used > old ? mt->used - old : 0;          /* all but this block */
+  maxcap = mt->limit > base ? (mt->limit - base) / elem : 0;
+  if (need > maxcap) {
+    mt->hit = 1;
+    return LSYS_EMEMORY;
+  }
+  while (n < need) {
+    if (n > ((size_t)-1 / 2) / elem) return LSYS_ENOMEM;
+    n *= 2;
+  }
+  if (n > maxcap) n = maxcap;                           /* as much as the budget leaves */
+  mt->used = base + n * elem;
+  *ncap = n;
+  return LSYS_OK;
+}
+
+int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {
+  size_t ncap;
+  void *np;
+  int st;
+  if (need <= *cap) return LSYS_OK;
+  if (mt == NULL) return lsys_grow(p, cap, need, elem);
+  if ((st = lsys_meter_take(mt, *cap, need, elem, &ncap)) != LSYS_OK) return st;
+  np = LSYS_REALLOC(*p, ncap * elem);
+  if (np == NULL) return LSYS_ENOMEM;
+  *p = np;
+  *cap = ncap;
+  return LSYS_OK;
+}
+
+int lsys_meter_fits (const lsys_meter *mt, size_t bytes) {
+  return mt == NULL || (mt->used <= mt->limit && bytes <= mt->limit - mt->used);
+}
+
+static size_t memlimit;       /* set by lsys_set_memory_limit; 0: the default */
+
+/* A cgroup's memory limit (v2, then v1), or 0 when there is none. */
+static size_t cgrouplimit (void) {
+  static const char *const files[] = {"/sys/fs/cgroup/memory.max",
+                                      "/sys/fs/cgroup/memory/memory.limit_in_bytes"};
+  size_t k;
+  for (k = 0; k < 2; k++) {
+    FILE *f = fopen(files[k], "r");
+    unsigned long long v;
+    int n;
+    if (f == NULL) continue;
+    n = fscanf(f, "%llu", &v);
+    fclose(f);
+    if (n == 1 && v > 0 && v < (unsigned long long)((size_t)-1 / 2)) return (size_t)v;
+  }
+  return 0;
+}
+
+size_t lsys_physical_memory (void) {
+  long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  size_t phys = pages > 0 && size > 0 ? (size_t)pages * (size_t)size : 0, cg = cgrouplimit();
+  if (cg > 0 && (phys == 0 || cg < phys)) phys = cg;
+  return phys;
+}
+
+size_t lsys_memory_limit (void) {
+  static size_t def;
+  if (memlimit > 0) return memlimit;
+  if (def == 0) {
+    size_t phys = lsys_physical_memory();
+    def = phys > 0 ? phys / 2 : (size_t)1 << 32;       /* unknown: 4 GiB */
+  }
+  return def;
+}
+
+void lsys_set_memory_limit (size_t bytes) {
+  memlimit = bytes;
+}
+
+const char *lsys_fmtsize (char buf[32], size_t bytes) {
+  double x = (double)bytes;
+  if (bytes == (size_t)-1) snprintf(buf, 32, "no limit");
+  else if (x >= 1024.0 * 1024 * 1024) snprintf(buf, 32, "%.1f GiB", x / (1024.0 * 1024 * 1024));
+  else if (x >= 1024.0 * 1024) snprintf(buf, 32, "%.0f MiB", x / (1024.0 * 1024));
+  else if (x >= 1024.0) snprintf(buf, 32, "%.0f KiB", x / 1024.0);
+  else snprintf(buf, 32, "%zu bytes", bytes);
+  return buf;
+}
+
 char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
   FILE *f = fopen(path, "rb");
   char *buf = NULL, *nb;
   size_t cap = 0, n = 0;
+  struct stat st;
   if (f == NULL) {
     lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s': %s", path, strerror(errno));
+    return NULL;
+  }
+  if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+    fclose(f);
+    lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path,
+                  S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file");
+    return NULL;
+  }
+  if ((size_t)st.st_size > max) {
+    char b[32];
+    fclose(f);
+    lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %s", path,
+                  lsys_fmtsize(b, max));
     return NULL;
   }
   for (;;) {
@@ -53,9 +157,10 @@ char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
       buf = nb;
     }
     n += fread(buf + n, 1, cap - n, f);
-    if (n > max) {
-      lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %lu MiB", path,
-                    (unsigned long)(max >> 20));
+    if (n > max) {            /* it grew while we read it */
+      char b[32];
+      lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %s", path,
+                    lsys_fmtsize(b, max));
       break;
     }
     if (ferror(f)) {

@@ -16,6 +16,7 @@
 #define LSYS_ERULE   (-4)   /* a rule callback failed or returned bad values */
 #define LSYS_EARG    (-5)   /* bad argument or state */
 #define LSYS_EBUSY   (-6)   /* the object is in use by a running operation (re-entry) */
+#define LSYS_EMEMORY (-7)   /* the memory budget (max_memory) would be exceeded */
 
 /* Allocation goes through these so tests can inject failures. */
 #ifndef LSYS_MALLOC
@@ -44,10 +45,51 @@ int lsys_seterror (lsys_error *e, int code, size_t pos, const char *fmt, ...)
 ** LSYS_ENOMEM (the old block stays valid). */
 int lsys_grow (void **p, size_t *cap, size_t need, size_t elem);
 
+/*
+** The memory budget (DESIGN.md §9, max_memory). The buffers that grow with
+** the input of one operation (the strings of a derivation step and its
+** context tables, the mesh and records of an interpretation) are attached to
+** one meter: 'used' counts their bytes, and growing past 'limit' fails with
+** LSYS_EMEMORY before anything is allocated, so a runaway model gets a clear
+** error instead of exhausting the machine.
+*/
+typedef struct lsys_meter {
+  size_t limit;            /* bytes; (size_t)-1 for no limit */
+  size_t used;
+  int hit;                 /* a growth was refused (for the message) */
+} lsys_meter;
+
+/* lsys_grow within the meter 'mt' (NULL: none): the doubled capacity is cut
+** to what the budget leaves; LSYS_EMEMORY when even 'need' items do not
+** fit. 'mt->used' must include the block's present size ('*cap' items). */
+int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt);
+
+/* The budgeting half of lsys_grow_metered, for arrays that grow together:
+** the capacity *ncap (>= need) to give a block of 'cap' items of 'elem'
+** bytes, counted in the meter; LSYS_EMEMORY when 'need' items do not fit.
+** Allocates nothing. */
+int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap);
+
+/* Whether 'bytes' more fit in the meter (NULL: always). */
+int lsys_meter_fits (const lsys_meter *mt, size_t bytes);
+
+/* The process-wide default budget: what lsys_set_memory_limit set, else
+** half of the physical memory (or of a smaller cgroup memory limit). */
+size_t lsys_memory_limit (void);
+void lsys_set_memory_limit (size_t bytes);   /* 0: back to the default */
+
+/* Physical memory in bytes, lowered to the cgroup's memory limit when there
+** is one; 0 when unknown. */
+size_t lsys_physical_memory (void);
+
+/* Writes 'bytes' as a short size for messages ("512 MiB", "12.0 GiB"). */
+const char *lsys_fmtsize (char buf[32], size_t bytes);
+
 /* Reads the whole file 'path' (at most 'max' bytes) into a new block (free
-** it with LSYS_FREE; not NUL-terminated) of *len bytes. On failure returns
-** NULL with e->msg naming the file ("cannot open 'x': ...", "cannot read
-** 'x': larger than N MiB"). */
+** it with LSYS_FREE; not NUL-terminated) of *len bytes. Refuses what is not
+** a regular file (a device such as /dev/zero, a FIFO, a folder). On failure
+** returns NULL with e->msg naming the file ("cannot open 'x': ...", "cannot
+** read 'x': larger than N MiB", "cannot read 'x': not a regular file"). */
 char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e);
 
 #endif

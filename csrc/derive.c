@@ -256,9 +256,12 @@ static int buildtables (lsys_model *m, const lsys_lstring *s) {
     size_t cap = m->matchcap;
     uint32_t *mt = m->match, *po = m->poff;
     size_t cap2 = cap;
-    if (lsys_grow((void **)&mt, &cap, s->n + 1, sizeof *mt) != LSYS_OK) return LSYS_ENOMEM;
+    int st;
+    if ((st = lsys_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt, &m->meter)) != LSYS_OK)
+      return st;
     m->match = mt;
-    if (lsys_grow((void **)&po, &cap2, s->n + 1, sizeof *po) != LSYS_OK) return LSYS_ENOMEM;
+    if ((st = lsys_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po, &m->meter)) != LSYS_OK)
+      return st;
     m->poff = po;
     m->matchcap = cap < cap2 ? cap : cap2;
   }
@@ -388,12 +391,13 @@ static int matchright (const lsys_model *m, const view *v, size_t j, const lsys_
 static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
                  const double *args, const double *vals) {
   uint32_t k;
+  int st;
   if (r->flags & LSYS_RF_DYN) {
     if (out->n + m->dyn.n > m->max_modules) return LSYS_ELIMIT;
     return lsys_lstring_append(out, &m->dyn, 0, m->dyn.n, 0);
   }
   if (out->n + r->nsucc > m->max_modules) return LSYS_ELIMIT;
-  if (lsys_lstring_reserve(out, r->nsucc, r->nsrc) != LSYS_OK) return LSYS_ENOMEM;
+  if ((st = lsys_lstring_reserve(out, r->nsucc, r->nsrc)) != LSYS_OK) return st;
   if (r->nsucc > 0)        /* an empty successor may have no array at all */
     memcpy(out->code + out->n, m->tcode + r->succ, r->nsucc * sizeof *out->code);
   out->n += r->nsucc;
@@ -545,6 +549,12 @@ static int limiterror (lsys_model *m, size_t i) {
 static int fail (lsys_model *m, int st, size_t i) {
   if (st == LSYS_ELIMIT) return limiterror(m, i);
   if (st == LSYS_ENOMEM) return lsys_seterror(&m->err, st, i, "not enough memory");
+  if (st == LSYS_EMEMORY) {
+    char b[32];
+    return lsys_seterror(&m->err, st, i, "the derivation would need more than max_memory (%s) "
+                         "at module %zu (set max_memory in the model, or LSYS_MAX_MEMORY)",
+                         lsys_fmtsize(b, m->meter.limit), i + 1);
+  }
   return st;
 }
 
@@ -567,8 +577,9 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   }
   nsets = prodsets(m, 0, sets);
   /* room for at least a copy of the source */
-  if (lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar) != LSYS_OK)
-    return fail(m, LSYS_ENOMEM, 0);
+  if ((st = lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar))
+      != LSYS_OK)
+    return fail(m, st, 0);
   /* the fast loop's table: copy the module, copy a template (rule index), or the full path */
   nact = 0;
   if (nsets <= 1) {
@@ -643,8 +654,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           }
           else {                           /* condition false: the module stays */
             if (dst->n >= m->max_modules) return limiterror(m, i);
-            if (lsys_lstring_reserve(dst, 1, np) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
-            lsys_lstring_push(dst, sym, spar + p, np);
+            if ((st = lsys_lstring_push(dst, sym, spar + p, np)) != LSYS_OK) return fail(m, st, i);
             p += np;
             lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
             continue;
@@ -676,7 +686,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       }
       if (dst->n >= m->max_modules) return limiterror(m, i);
       if (dst->n == dst->cap || dst->npar + np > dst->parcap) {
-        if (lsys_lstring_reserve(dst, 1, np) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
+        if ((st = lsys_lstring_reserve(dst, 1, np)) != LSYS_OK) return fail(m, st, i);
       }
       dst->code[dst->n++] = c;
       if (np) {
@@ -713,7 +723,11 @@ static int needlevels (lsys_model *m, size_t n) {
     lsys_lstring *lv = (lsys_lstring *)LSYS_REALLOC(m->levels, n * sizeof *lv);
     if (lv == NULL) return LSYS_ENOMEM;
     m->levels = lv;
-    while (m->nlevels < n) lsys_lstring_init(&m->levels[m->nlevels++]);
+    while (m->nlevels < n) {               /* under the running operation's budget */
+      lsys_lstring_init(&m->levels[m->nlevels]);
+      if (m->busy) m->levels[m->nlevels].meter = &m->meter;
+      m->nlevels++;
+    }
   }
   return LSYS_OK;
 }
@@ -761,7 +775,7 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   lsys_lstring_clear(dst);
   if (compileall(m, kind, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if ((sets[0] = findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
-    return lsys_lstring_copy(dst, src) == LSYS_OK ? LSYS_OK : fail(m, LSYS_ENOMEM, 0);
+    return (st = lsys_lstring_copy(dst, src)) == LSYS_OK ? LSYS_OK : fail(m, st, 0);
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
@@ -779,6 +793,33 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   return LSYS_OK;
 }
 
+/*
+** The budget of one operation: everything the model holds for it (the
+** strings it reads and writes, the scratch strings, the context tables) is
+** counted, and the strings that grow are attached to the meter until the
+** operation ends. Returns LSYS_EMEMORY when the budget is spent already.
+*/
+static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+  size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
+                   lsys_lstring_bytes(&m->tmp) + m->matchcap * (sizeof *m->match + sizeof *m->poff);
+  if (dst != NULL) used += lsys_lstring_bytes(dst);
+  for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
+  m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
+  m->meter.used = used;
+  if (used > m->meter.limit) return fail(m, LSYS_EMEMORY, 0);
+  if (dst != NULL) dst->meter = &m->meter;
+  m->tmp.meter = m->dyn.meter = &m->meter;
+  for (k = 0; k < m->nlevels; k++) m->levels[k].meter = &m->meter;
+  return LSYS_OK;
+}
+
+static void unmeter (lsys_model *m, lsys_lstring *dst) {
+  size_t k;
+  if (dst != NULL) dst->meter = NULL;
+  m->tmp.meter = m->dyn.meter = NULL;
+  for (k = 0; k < m->nlevels; k++) m->levels[k].meter = NULL;
+}
+
 /* The error of an operation started while the model is busy. */
 static int reentered (lsys_model *m) {
   return lsys_seterror(&m->err, LSYS_EBUSY, (size_t)-1,
@@ -794,9 +835,11 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
   m->depth_hit = 0;
   if (kind == LSYS_HOMO) m->cur = &m->hrng;
+  if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   m->busy = 1;
   st = expandall(m, kind, src, dst);
   m->busy = 0;
+  unmeter(m, dst);
   m->cur = keep;
   return st;
 }
@@ -805,6 +848,7 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
 int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   lsys_ruleset *set;
   int hasctx = 0;
+  int st;
   if (m->busy) return reentered(m);
   m->hsrc = NULL;
   m->depth_hit = 0;
@@ -813,9 +857,10 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   if (set == NULL || set->nlist == 0 || m->maxdepth[LSYS_HOMO] < 1) return 0;
   if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
-  if (hasctx) {
-    int st = buildtables(m, src);
-    if (st != LSYS_OK) return fail(m, st, 0);
+  if ((st = meter(m, src, NULL)) != LSYS_OK) return st;   /* until lsys_homo_end */
+  if (hasctx && (st = buildtables(m, src)) != LSYS_OK) {
+    unmeter(m, NULL);
+    return fail(m, st, 0);
   }
   m->hsrc = src;
   m->hctx = hasctx;
@@ -851,6 +896,7 @@ void lsys_homo_end (lsys_model *m) {
   if (m->hsrc != NULL) {
     m->cur = m->hkeep;
     m->busy = 0;
+    unmeter(m, NULL);
   }
   m->hsrc = NULL;
 }
@@ -876,8 +922,11 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "derive in place");
   m->depth_hit = 0;
   m->cur = &m->rng;
+  if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   m->busy = 1;
   st = derivestep(m, src, dst);
   m->busy = 0;
+  unmeter(m, dst);
+  unmeter(m, &m->tmp);       /* the swap may have moved the attached buffers */
   return st;
 }

@@ -89,6 +89,8 @@ typedef struct lsys_model {
   /* settings */
   int ring, group;
   size_t max_modules;
+  size_t max_memory;           /* bytes for a step's strings and tables; 0: the
+                               ** process default, lsys_memory_limit() */
   int maxdepth[3];             /* by kind; [LSYS_PROD] unused */
   lsys_rng rng, hrng;          /* derivation; homomorphism */
   lsys_rng *cur;               /* the generator 'ran' uses now */
@@ -112,6 +114,7 @@ typedef struct lsys_model {
   const lsys_lstring *hsrc;    /* streaming homomorphism: the string, its tables */
   int hctx;
   lsys_rng *hkeep;
+  lsys_meter meter;            /* the budget of the running operation */
   lsys_error err;
 } lsys_model;
 
@@ -142,6 +145,8 @@ long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 ** One parallel derivation step 'src' -> 'dst' (productions, cut, then
 ** decomposition). 'dst' is reset first and must not be 'src'.
 ** Returns LSYS_OK; LSYS_ELIMIT when 'dst' would exceed m->max_modules;
+** LSYS_EMEMORY when the source, the new string and the step's tables
+** would need more than m->max_memory bytes (checked before allocating);
 ** LSYS_ERULE (or what the callback returned) with m->err set; LSYS_EBUSY
 ** when the model is busy already (a rule callback called it again). The
 ** functions that change the rules (lsys_model_add, _setvm, _skiplist,

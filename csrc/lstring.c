@@ -20,17 +20,25 @@ void lsys_lstring_free (lsys_lstring *s) {
 }
 
 int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
+  int st;
   if (s->n + nmod > s->cap &&
-      lsys_grow((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code) != LSYS_OK)
-    return LSYS_ENOMEM;
+      (st = lsys_grow_metered((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code,
+                              s->meter)) != LSYS_OK)
+    return st;
   if (s->npar + npar > s->parcap &&
-      lsys_grow((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par) != LSYS_OK)
-    return LSYS_ENOMEM;
+      (st = lsys_grow_metered((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par,
+                              s->meter)) != LSYS_OK)
+    return st;
   return LSYS_OK;
 }
 
+size_t lsys_lstring_bytes (const lsys_lstring *s) {
+  return s->cap * sizeof *s->code + s->parcap * sizeof *s->par + s->ckcap * sizeof *s->ck;
+}
+
 int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np) {
-  if (lsys_lstring_reserve(s, 1, np) != LSYS_OK) return LSYS_ENOMEM;
+  int st;
+  if ((st = lsys_lstring_reserve(s, 1, np)) != LSYS_OK) return st;
   s->code[s->n++] = LSYS_CODE(sym, np);
   if (np > 0) memcpy(s->par + s->npar, p, np * sizeof *p);
   s->npar += np;
@@ -40,8 +48,9 @@ int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t 
 int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
                          size_t i, size_t j, size_t poff) {
   size_t k, np = 0;
+  int st;
   for (k = i; k < j; k++) np += LSYS_CNP(src->code[k]);
-  if (lsys_lstring_reserve(dst, j - i, np) != LSYS_OK) return LSYS_ENOMEM;
+  if ((st = lsys_lstring_reserve(dst, j - i, np)) != LSYS_OK) return st;
   if (j > i) memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
   if (np > 0) memcpy(dst->par + dst->npar, src->par + poff, np * sizeof *src->par);
   dst->n += j - i;

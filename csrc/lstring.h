@@ -28,6 +28,7 @@ typedef struct lsys_lstring {
   size_t npar, parcap;
   size_t *ck;          /* ck[k] = offset of the parameters of module k*LSYS_CKSTEP */
   size_t nck, ckcap;   /* nck checkpoints are valid */
+  lsys_meter *meter;   /* while an operation fills it: its memory budget (or NULL) */
 } lsys_lstring;
 
 /* A growable byte buffer for text output. */
@@ -40,8 +41,13 @@ void lsys_lstring_init (lsys_lstring *s);
 void lsys_lstring_free (lsys_lstring *s);
 static inline void lsys_lstring_clear (lsys_lstring *s) { s->n = s->npar = s->nck = 0; }
 
-/* Makes room for 'nmod' more modules and 'npar' more parameters. */
+/* Makes room for 'nmod' more modules and 'npar' more parameters. Returns
+** LSYS_OK, LSYS_ENOMEM, or LSYS_EMEMORY when s->meter's budget is reached
+** (push, append and copy return the same). */
 int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar);
+
+/* Bytes held by the string's arrays. */
+size_t lsys_lstring_bytes (const lsys_lstring *s);
 
 /* Appends one module. 'np' must be at most LSYS_MAXPARAMS. */
 int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np);

@@ -296,7 +296,8 @@ static int rules_skiplist (lua_State *L) {
 /* rules:config(key, value) */
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
-                                     "depth_homomorphism", "seed", "hseed", NULL};
+                                     "depth_homomorphism", "seed", "hseed", "max_memory",
+                                     NULL};
   lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
@@ -319,6 +320,11 @@ static int rules_config (lua_State *L) {
       R->m.maxdepth[key == 3 ? LSYS_DECOMP : LSYS_HOMO] = (int)d;
       break;
     }
+    case 7:                            /* bytes; 0: the process default */
+      x = luaL_checknumber(L, 3);
+      luaL_argcheck(L, x >= 0 && x < 1.8e19, 3, "max_memory must be a number of bytes >= 0");
+      R->m.max_memory = x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x;
+      break;
     default: {
       lua_Number s = luaL_checknumber(L, 3);
       uint64_t seed;
@@ -752,6 +758,20 @@ static int l_nran (lua_State *L) {
   return 1;
 }
 
+/* core.max_memory([bytes]) -> the process-wide memory budget in bytes (with
+** an argument, sets it first; 0: back to the default, half the physical
+** memory), the physical memory */
+static int l_max_memory (lua_State *L) {
+  if (!lua_isnoneornil(L, 1)) {
+    lua_Number x = luaL_checknumber(L, 1);
+    luaL_argcheck(L, x >= 0 && x < 1.8e19, 1, "a number of bytes >= 0 expected");
+    lsys_set_memory_limit(x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x);
+  }
+  lua_pushnumber(L, (lua_Number)lsys_memory_limit());
+  lua_pushnumber(L, (lua_Number)lsys_physical_memory());
+  return 2;
+}
+
 /* core.producing([v]): the rules deriving now; with an argument, sets it
 ** (the Lua side restores it after a step that raised) */
 static int l_producing (lua_State *L) {
@@ -781,7 +801,8 @@ static const luaL_Reg rules_meta[] = {
 
 static const luaL_Reg core_funcs[] = {
   {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
-  {"ran", l_ran}, {"nran", l_nran}, {"producing", l_producing}, {NULL, NULL}
+  {"ran", l_ran}, {"nran", l_nran}, {"producing", l_producing}, {"max_memory", l_max_memory},
+  {NULL, NULL}
 };
 
 int luaopen_lsys_core (lua_State *L) {

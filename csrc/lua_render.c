@@ -192,6 +192,12 @@ static int l_render (lua_State *L) {
     return luaL_error(L, "lsys.render: %dx%d is larger than OSMesa's limit of %dx%d",
                       o.width, o.height, maxw, maxh);
   n = (size_t)o.width * (size_t)o.height * 4;
+  if ((double)n * 3 > (double)lsys_memory_limit()) {   /* the picture, colour and depth */
+    char b1[32], b2[32];
+    return luaL_error(L, "lsys.render: a %dx%d picture needs %s, more than max_memory (%s)",
+                      o.width, o.height, lsys_fmtsize(b1, n * 3),
+                      lsys_fmtsize(b2, lsys_memory_limit()));
+  }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
   if (lsys_render_offscreen(m, &o, px, &e) != LSYS_OK)
@@ -279,9 +285,29 @@ static int l_write_file (lua_State *L) {
   return 1;
 }
 
+/* core.read_file(path, max) -> the bytes of a regular file of at most 'max'
+** bytes, or nil and a message naming the file (lsys_readfile) */
+static int l_read_file (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  lua_Number max = luaL_checknumber(L, 2);
+  lsys_error e;
+  size_t len;
+  char *text;
+  luaL_argcheck(L, max >= 0 && max < 1e15, 2, "a number of bytes expected");
+  text = lsys_readfile(path, (size_t)max, &len, &e);
+  if (text == NULL) {
+    lua_pushnil(L);
+    lua_pushstring(L, e.msg);
+    return 2;
+  }
+  lua_pushlstring(L, text, len);     /* may raise: a leak only on a memory error */
+  LSYS_FREE(text);
+  return 1;
+}
+
 static const luaL_Reg render_funcs[] = {
   {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write},
-  {"write_file", l_write_file}, {NULL, NULL}
+  {"write_file", l_write_file}, {"read_file", l_read_file}, {NULL, NULL}
 };
 
 void lsys_open_render (lua_State *L) {

@@ -286,6 +286,7 @@ typedef struct expander {
   lsys_turtle *t;
   lsys_lstring *s;
   int homo;
+  lsys_meter meter;     /* the budget of the mesh, records and stack (the model's max_memory) */
 } expander;
 
 static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_error *e) {
@@ -296,14 +297,23 @@ static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_er
 }
 
 /* The turtle's run with the model bound (lsys_rules_run). */
+/* The budget is attached for the run only; when a rule function raises, the
+** turtle and the unfinished scene that point to it are garbage. */
 static int doturtle (lua_State *L, lsys_model *m, void *ud) {
   expander *x = (expander *)ud;
   int st = x->homo ? lsys_homo_begin(m, x->s) : 0;
   x->m = m;
+  x->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
+  x->meter.used = lsys_lstring_bytes(x->s);
+  x->meter.hit = 0;
+  x->t->meter = &x->meter;
+  if (x->t->mesh != NULL) x->t->mesh->meter = &x->meter;
   if (st > 0) { x->t->expand = expandfn; x->t->expandud = x; st = LSYS_OK; }
   if (st == LSYS_OK) st = lsys_turtle_run(x->t, x->s, lsys_getalphabet(L));
   else x->t->err = m->err;
   lsys_homo_end(m);
+  x->t->meter = NULL;
+  if (x->t->mesh != NULL) x->t->mesh->meter = NULL;
   return st;
 }
 

@@ -50,7 +50,8 @@ void lsys_mesh_clear (lsys_mesh *m) {
   m->curtex = 0;
 }
 
-static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need);
+static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need,
+                    lsys_meter *mt);
 
 int lsys_mesh_copy (lsys_mesh *dst, const lsys_mesh *src) {
   lsys_mesh_init(dst);
@@ -72,7 +73,7 @@ int lsys_mesh_copy (lsys_mesh *dst, const lsys_mesh *src) {
     size_t cap = 0;
     void **arr[3] = { (void **)&dst->lpos, (void **)&dst->lwidth, (void **)&dst->lcol };
     const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
-    if (growall(arr, elem, 3, &cap, src->nl) != LSYS_OK) goto fail;
+    if (growall(arr, elem, 3, &cap, src->nl, NULL) != LSYS_OK) goto fail;
     dst->lcap = cap;
     memcpy(dst->lpos, src->lpos, src->nl * 6 * sizeof(float));
     memcpy(dst->lwidth, src->lwidth, src->nl * 2 * sizeof(float));
@@ -91,9 +92,22 @@ fail:
 ** lsys_grow picks the same new one for all; '*cap' changes only when all of
 ** them have grown (an array that grew before a failure is merely larger).
 */
-static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need) {
-  size_t c = *cap;
-  int i;
+static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need,
+                    lsys_meter *mt) {
+  size_t c = *cap, sum = 0;
+  int i, st;
+  if (mt != NULL) {              /* the budget for all of them: one block of 'sum' per item */
+    for (i = 0; i < k; i++) sum += elem[i];
+    if (need <= c) return LSYS_OK;
+    if ((st = lsys_meter_take(mt, *cap, need, sum, &c)) != LSYS_OK) return st;
+    for (i = 0; i < k; i++) {    /* exactly the capacity the budget allowed */
+      void *np = LSYS_REALLOC(*arr[i], c * elem[i]);
+      if (np == NULL) return LSYS_ENOMEM;
+      *arr[i] = np;
+    }
+    *cap = c;
+    return LSYS_OK;
+  }
   for (i = 0; i < k; i++) {
     c = *cap;
     if (lsys_grow(arr[i], &c, need, elem[i]) != LSYS_OK) return LSYS_ENOMEM;
@@ -104,6 +118,7 @@ static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_
 
 /* Vertex indices are uint32_t: at most UINT32_MAX vertices (LSYS_ELIMIT). */
 int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
+  int st;
   if (nv > (size_t)UINT32_MAX - m->nv || nt > ((size_t)-1 / 12) - m->nt)
     return LSYS_ELIMIT;
   if (m->nv + nv > m->vcap) {
@@ -111,11 +126,12 @@ int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
                       (void **)&m->col, (void **)&m->twosided, (void **)&m->tex };
     const size_t elem[6] = { 3 * sizeof(float), 3 * sizeof(float), 2 * sizeof(float),
                              sizeof(uint16_t), sizeof(uint8_t), sizeof(uint16_t) };
-    if (growall(arr, elem, 6, &m->vcap, m->nv + nv) != LSYS_OK) return LSYS_ENOMEM;
+    if ((st = growall(arr, elem, 6, &m->vcap, m->nv + nv, m->meter)) != LSYS_OK) return st;
   }
   if (m->nt + nt > m->tcap &&
-      lsys_grow((void **)&m->tri, &m->tcap, m->nt + nt, 3 * sizeof(uint32_t)) != LSYS_OK)
-    return LSYS_ENOMEM;
+      (st = lsys_grow_metered((void **)&m->tri, &m->tcap, m->nt + nt, 3 * sizeof(uint32_t),
+                              m->meter)) != LSYS_OK)
+    return st;
   return LSYS_OK;
 }
 
@@ -131,7 +147,8 @@ int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
     void **arr[3] = { (void **)&m->lpos, (void **)&m->lwidth, (void **)&m->lcol };
     const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
     if (m->nl >= (size_t)UINT32_MAX) return LSYS_ELIMIT;
-    if (growall(arr, elem, 3, &m->lcap, m->nl + 1) != LSYS_OK) return LSYS_ENOMEM;
+    int st;
+    if ((st = growall(arr, elem, 3, &m->lcap, m->nl + 1, m->meter)) != LSYS_OK) return st;
   }
   p = m->lpos + 6 * m->nl;
   p[0] = tofloat(a[0]); p[1] = tofloat(a[1]); p[2] = tofloat(a[2]);

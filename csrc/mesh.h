@@ -32,6 +32,8 @@ typedef struct lsys_mesh {
   float *lwidth;                  /* 2 per segment: width at each end */
   uint16_t *lcol;
   size_t nl, lcap;
+  lsys_meter *meter;              /* while the turtle fills it: its memory budget (or NULL);
+                                     growing past it fails with LSYS_EMEMORY */
 } lsys_mesh;
 
 /* A material (cpfg material file fields); a plain colour has diffuse set,

@@ -185,8 +185,11 @@ static int render (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1,
                          "image size %dx%d exceeds OSMesa's limit of %dx%d", w, h, S.maxw,
                          S.maxh);
+  /* the supersampled colour and depth buffers (8 bytes a sample) within OSMesa's
+  ** limits, LSYS_RENDER_MAX_SAMPLES and the memory budget */
   while (ss > 1 && ((long long)w * ss > S.maxw || (long long)h * ss > S.maxh ||
-                    (long long)w * h * ss * ss > LSYS_RENDER_MAX_SAMPLES))
+                    (long long)w * h * ss * ss > LSYS_RENDER_MAX_SAMPLES ||
+                    (double)w * h * ss * ss * 8 > (double)lsys_memory_limit()))
     ss--;
   /* without supersampling, draw straight into the caller's buffer */
   buf = ss == 1 ? rgba : (uint8_t *)LSYS_MALLOC((size_t)w * ss * h * ss * 4);

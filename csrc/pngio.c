@@ -7,11 +7,13 @@
 ** and failed writes into messages a user can act on. Anything that must be
 ** freed after such a jump is declared volatile and set before setjmp.
 */
+#define _XOPEN_SOURCE 700       /* fileno, fstat */
 #include <errno.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "outfile.h"
 #include "pngio.h"
@@ -100,6 +102,14 @@ int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error 
   if ((io.f = fopen(path, "rb")) == NULL)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for reading: %s", path,
                          strerror(errno));
+  {
+    struct stat st;
+    if (fstat(fileno(io.f), &st) != 0 || !S_ISREG(st.st_mode)) {
+      fclose(io.f);
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path,
+                           S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file");
+    }
+  }
   if (fread(sig, 1, sizeof sig, io.f) != sizeof sig || png_sig_cmp(sig, 0, sizeof sig)) {
     int err = ferror(io.f) ? errno : 0;
     fclose(io.f);
@@ -131,6 +141,14 @@ int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error 
     code = LSYS_ELIMIT;
     snprintf(io.msg, sizeof io.msg, "%lux%lu pixels is larger than the limit of %d",
              (unsigned long)pw, (unsigned long)ph, LSYS_PNG_MAXSIZE);
+    png_longjmp(png, 1);
+  }
+  if ((double)pw * ph * 4 > (double)lsys_memory_limit()) {    /* before decoding */
+    char b1[32], b2[32];
+    code = LSYS_EMEMORY;
+    snprintf(io.msg, sizeof io.msg, "%lux%lu pixels need %s, more than max_memory (%s)",
+             (unsigned long)pw, (unsigned long)ph, lsys_fmtsize(b1, (size_t)4 * pw * ph),
+             lsys_fmtsize(b2, lsys_memory_limit()));
     png_longjmp(png, 1);
   }
   /* whatever the file holds, deliver 8-bit RGBA */

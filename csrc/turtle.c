@@ -215,7 +215,17 @@ static int fail (run *R, int code, const char *fmt, const char *what) {
   return lsys_seterror(&R->t->err, code, R->mod, "module %zu: %s", R->mod + 1, msg);
 }
 
-static int nomem (run *R) { return fail(R, LSYS_ENOMEM, "%s", "not enough memory"); }
+/* A failed allocation: the memory budget, when it was the budget that refused. */
+static int nomem (run *R) {
+  lsys_meter *mt = R->t->meter;
+  if (mt != NULL && mt->hit) {
+    char b[32], msg[160];
+    snprintf(msg, sizeof msg, "the interpretation would need more than max_memory (%s) (set "
+             "max_memory in the model, or LSYS_MAX_MEMORY)", lsys_fmtsize(b, mt->limit));
+    return fail(R, LSYS_EMEMORY, "%s", msg);
+  }
+  return fail(R, LSYS_ENOMEM, "%s", "not enough memory");
+}
 
 /* The k-th parameter (0-based) of a module with 'np' parameters, or 'def'. */
 static const char *opname (int op) {
@@ -261,7 +271,8 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   int k;
   if (R->o->norecords) return LSYS_OK;
   if (t->nrec == t->reccap &&
-      lsys_grow((void **)&t->rec, &t->reccap, t->nrec + 1, sizeof *t->rec) != LSYS_OK)
+      lsys_grow_metered((void **)&t->rec, &t->reccap, t->nrec + 1, sizeof *t->rec, t->meter)
+      != LSYS_OK)
     return nomem(R);
   if (t->nrec >= LSYS_NOREC) return fail(R, LSYS_ELIMIT, "%s", "too many turtle records");
   r = &t->rec[t->nrec++];
@@ -281,7 +292,8 @@ static int newrec (run *R, int kind, const double *p0, const double *p1, double 
   r->ntri = t->mesh != NULL && t->mesh->nt > R->modtri ? (uint32_t)(t->mesh->nt - R->modtri) : 0;
   r->stiff = LSYS_NOREC;
   if (R->st.hasstiff) {
-    if (lsys_grow((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float)) != LSYS_OK)
+    if (lsys_grow_metered((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float),
+                          t->meter) != LSYS_OK)
       return nomem(R);
     r->stiff = (uint32_t)t->nstiff;
     for (k = 0; k < 3; k++) t->stiff[3 * t->nstiff + k] = (float)R->st.stiff[k];
@@ -1019,7 +1031,8 @@ static int push (run *R) {
   else {
     size_t k = R->depth - NSTACK;
     if (k >= t->stackcap &&
-        lsys_grow((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack) != LSYS_OK)
+        lsys_grow_metered((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack, t->meter)
+        != LSYS_OK)
       return nomem(R);
     to = &t->stack[k];
   }

@@ -134,6 +134,8 @@ typedef struct lsys_turtle {
   lsys_expandfn expand; void *expandud;
   int mode;
   size_t stop;                  /* LSYS_TURTLE_STATE: modules to interpret */
+  lsys_meter *meter;            /* the memory budget of the mesh, the records and the
+                                   branch stack (NULL: none); past it, LSYS_EMEMORY */
   /* outputs */
   lsys_mesh *mesh;
   lsys_trec *rec; size_t nrec, reccap;

@@ -374,3 +374,135 @@ print("png", pcall(lsys.render, scene, { out = "%s/old.png", width = 600, height
     assert.error_contains(function () core.write_file(d, "x") end, "Is a directory")
   end)
 end)
+
+describe("the memory budget", function ()
+  local core = require "lsys.core"
+  local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+  local saved
+  before_each(function () saved = lsys.max_memory() end)
+  after_each(function () lsys.max_memory(saved == math.huge and "unlimited" or saved) end)
+
+  -- runs `lsys SCRIPT` with the environment `env`, under a virtual memory limit of `kib`
+  local function run (script, env, kib)
+    local path = os.tmpname()
+    local f = assert(io.open(path, "w"))
+    f:write(script)
+    f:close()
+    local p = io.popen(("sh -c 'ulimit -v %d; %s exec \"%s\" \"%s\"' 2>&1; echo exit:$?")
+                       :format(kib or 4000000, env or "", BIN, path))
+    local out = p:read("a")
+    p:close()
+    os.remove(path)
+    return out
+  end
+
+  it("reads sizes in bytes and binary units", function ()
+    assert.equal(512 * 2 ^ 20, lsys.parse_size("512M"))
+    assert.equal(2 * 2 ^ 30, lsys.parse_size("2G"))
+    assert.equal(1.5 * 2 ^ 30, lsys.parse_size("1.5GiB"))
+    assert.equal(800 * 2 ^ 20, lsys.parse_size("800 MB"))
+    assert.equal(4096, lsys.parse_size(4096))
+    assert.equal(math.huge, lsys.parse_size("unlimited"))
+    assert.error_contains(function () lsys.parse_size("lots", "max_memory") end,
+                          "max_memory: 'lots' is not a size")
+    assert.error_contains(function () lsys.lsystem { max_memory = 0 } end,
+                          "option 'max_memory' must be at least 1 byte")
+    local limit, phys = lsys.max_memory()
+    assert.is_true(phys > 0 and (saved ~= limit or limit <= phys))
+    assert.equal(2 ^ 30, (lsys.max_memory("1G")))
+  end)
+
+  it("stops a derivation whose parameters outgrow max_memory (31 doubles a module)", function ()
+    local names = {}
+    for i = 1, 31 do names[i] = "p" .. i end
+    local P = table.concat(names, ",")
+    -- each step doubles the string; at 50 M modules it would need 12 GB
+    local out = run(([[
+local lsys = require "lsys"
+local m = lsys.lsystem { axiom = "A(%s)", max_memory = "64M",
+                         productions = "A(%s) --> A(%s) A(%s)" }
+print(pcall(m.derive, m, 26))
+]]):format(string.rep("1,", 30) .. "1", P, P, P), nil, 1000000)
+    assert.truthy(out:find("false\t[^\n]*the derivation would need more than max_memory %(64 MiB%)"),
+                  out)
+    assert.truthy(out:find("exit:0", 1, true), out)
+    -- the process default, from LSYS_MAX_MEMORY
+    out = run(([[
+local lsys = require "lsys"
+print(lsys.max_memory())
+local m = lsys.lsystem { axiom = "A(%s)", productions = "A(%s) --> A(%s) A(%s)" }
+print(pcall(m.derive, m, 26))
+]]):format(string.rep("1,", 30) .. "1", P, P, P), "LSYS_MAX_MEMORY=32M", 1000000)
+    assert.truthy(out:find("^33554432\t"), out)
+    assert.truthy(out:find("max_memory %(32 MiB%)"), out)
+    out = run("require 'lsys'", "LSYS_MAX_MEMORY=3X")
+    assert.truthy(out:find("LSYS_MAX_MEMORY: '3X' is not a size", 1, true), out)
+  end)
+
+  it("stops an interpretation whose mesh outgrows max_memory", function ()
+    local m = lsys.lsystem { axiom = "F", max_memory = "8M", productions = "F --> F[+F]F",
+                             view = { line_style = "cylinder", contour_sides = 16 } }
+    local s = m:derive(9)
+    assert.error_contains(function () m:interpret(s) end,
+                          "the interpretation would need more than max_memory (8 MiB)")
+    m.view.line_style = "line"
+    assert.truthy(m:interpret(m:derive(4)).nlines > 0)  -- smaller ones still draw
+  end)
+
+  -- a PNG whose header declares w x h pixels (CRCs computed), its data a few bytes
+  local function crc32 (s)
+    local c = 0xffffffff
+    for i = 1, #s do
+      c = c ~ s:byte(i)
+      for _ = 1, 8 do c = (c >> 1) ~ (0xedb88320 & -(c & 1)) end
+    end
+    return c ~ 0xffffffff
+  end
+  local function chunk (kind, data)
+    return string.pack(">I4", #data) .. kind .. data .. string.pack(">I4", crc32(kind .. data))
+  end
+  local function bigpng (path, w, h)
+    local f = assert(io.open(path, "wb"))
+    f:write("\137PNG\r\n\26\n", chunk("IHDR", string.pack(">I4I4BBBBB", w, h, 8, 6, 0, 0, 0)),
+            chunk("IDAT", "\120\156\3\0\0\0\0\1"), chunk("IEND", ""))
+    f:close()
+  end
+
+  it("refuses a texture whose pixels outgrow max_memory before decoding it", function ()
+    local path = os.tmpname()
+    bigpng(path, 32768, 32768)                   -- a few bytes declaring 4 GiB of pixels
+    lsys.max_memory("1G")
+    assert.error_contains(function () core.texture_load(path) end,
+      "32768x32768 pixels need 4.0 GiB, more than max_memory (1.0 GiB)")
+    assert.error_contains(function () core.png_read(path) end, "more than max_memory")
+    os.remove(path)
+  end)
+
+  it("refuses a picture whose buffers outgrow max_memory", function ()
+    if not core.has_render then return pending("built without rendering") end
+    local scene = lsys.lsystem { axiom = "F" }:interpret()
+    lsys.max_memory("16M")
+    assert.error_contains(function () lsys.render(scene, { width = 4096, height = 4096 }) end,
+                          "a 4096x4096 picture needs 192 MiB, more than max_memory (16 MiB)")
+    assert.equal(64 * 64 * 4, #lsys.render(scene, { width = 64, height = 64 }))
+  end)
+
+  it("reads only regular files of bounded size (a view naming /dev/zero)", function ()
+    local view = require "lsys.view"
+    for what, f in pairs {
+      contour = function () return core.contour_load("/dev/zero") end,
+      surface = function () return core.surface_load("/dev/zero") end,
+      texture = function () return core.texture_load("/dev/zero") end,
+      viewfile = function () return view.load("/dev/zero") end,
+      colormap = function () return view.load_colormap("/dev/zero") end,
+      materials = function () return view.load_materials("/dev/zero") end,
+      model = function ()
+        return lsys.lsystem { axiom = "F", view = { contours = { "/dev/zero" } } }:interpret()
+      end,
+    } do
+      local err = errof(f)
+      assert.truthy(err:find("cannot read '/dev/zero': not a regular file", 1, true),
+                    what .. ": " .. err)
+    end
+  end)
+end)

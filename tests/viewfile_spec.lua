@@ -395,7 +395,7 @@ describe("view options naming files", function ()
     end, "model: view.textures[1]: cannot open '" .. DATA .. "/x/nope.png': No such file or directory")
     assert_error(function ()
       view.normalize({ dir = DATA, contours = { "sub" } }, "model")
-    end, "model: view.contours[1]: cannot open '" .. DATA .. "/sub': Is a directory")
+    end, "model: view.contours[1]: cannot read '" .. DATA .. "/sub': Is a directory")
   end)
 
   it("default to no files and minimize_twist = true, and pass them to turtle and renderer", function ()

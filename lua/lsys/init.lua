@@ -6,9 +6,9 @@ local grammar = require "lsys.grammar"
 local view = require "lsys.view"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io, next =
+      select, rawget, math, string, table, debug, _G, io, next, os =
       type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io, next
+      select, rawget, math, string, table, debug, _G, io, next, os
 local format, concat = string.format, table.concat
 local function io_warn (msg) io.stderr:write(msg, "\n") end
 local _ENV = nil
@@ -32,6 +32,60 @@ M.ran = core.ran       -- ran(x), nran(m, sd) for rule functions: the deriving m
 M.nran = core.nran
 M.version = "0.1.0"
 M.view = view
+
+-- --------------------------------------------------------------------------
+-- The memory budget (max_memory): the most memory one derivation step or one
+-- interpretation may take for its strings, tables, mesh and records.
+
+local UNITS = { [""] = 1, k = 2 ^ 10, m = 2 ^ 20, g = 2 ^ 30, t = 2 ^ 40 }
+
+--- A memory size in bytes from a number of bytes or a string: "512M", "2G",
+-- "1.5GiB", "800MB" (binary units: K = 1024), "unlimited". Raises naming `what`.
+function M.parse_size (x, what)
+  what = what or "size"
+  if type(x) == "number" then
+    if x ~= x or x < 1 then error(format("%s must be at least 1 byte, got %s", what, x), 2) end
+    return math.floor(x)
+  end
+  if type(x) ~= "string" then
+    error(format("%s must be a number of bytes or a string such as \"2G\", got %s", what,
+                 type(x)), 2)
+  end
+  local s = x:lower():gsub("%s", "")
+  if s == "unlimited" or s == "none" then return math.huge end
+  local num, unit = s:match("^([%d%.]+)([kmgt]?)i?b?$")
+  local n = tonumber(num or "")
+  if not n or n <= 0 then
+    error(format("%s: '%s' is not a size (use a number of bytes, or e.g. \"512M\", \"2G\", " ..
+                 "\"unlimited\")", what, x), 2)
+  end
+  return math.floor(n * UNITS[unit])
+end
+
+--- The process-wide memory budget in bytes (math.huge: none); with an argument (bytes or
+-- a string such as "2G"; nil leaves it), sets it first. The default is half the physical
+-- memory, or LSYS_MAX_MEMORY. A model's own `max_memory` option takes precedence. Also
+-- returns the physical memory.
+function M.max_memory (x)
+  local bytes
+  if x ~= nil then
+    local ok, r = pcall(M.parse_size, x, "lsys.max_memory")
+    if not ok then error(r, 2) end
+    bytes = r
+  end
+  local limit, phys = core.max_memory(bytes)
+  return limit >= 2 ^ 63 and math.huge or math.tointeger(limit) or limit,
+         math.tointeger(phys) or phys
+end
+
+do
+  local env = os.getenv("LSYS_MAX_MEMORY")
+  if env ~= nil and env ~= "" then
+    local ok, r = pcall(M.parse_size, env, "LSYS_MAX_MEMORY")
+    if not ok then error(r, 0) end
+    core.max_memory(r)
+  end
+end
 
 local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
 local LSTRING_MT = getmetatable(core.lstring(""))
@@ -65,6 +119,7 @@ local OPTIONS = {
   homomorphism = "rules", max_depth = "table", ring = "boolean", sub = "table",
   groups = "table", start = "function", start_each = "function", end_each = "function",
   finish = "function", max_modules = "number", view = "table", name = "string",
+  max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
 }
 
@@ -135,6 +190,9 @@ function M.lsystem (opts)
       if type(v) ~= "string" and type(v) ~= "table" then
         fail(format("option '%s' must be a string or a list of rules", k))
       end
+    elseif t == "size" then
+      local ok, r = pcall(M.parse_size, v, "option '" .. k .. "'")
+      if not ok then fail(r) end
     elseif type(v) ~= t then
       fail(format("option '%s' must be a %s (got %s)", k, t, type(v)))
     end
@@ -194,6 +252,10 @@ function M.lsystem (opts)
     local ok, msg = pcall(rules.config, rules, "max_modules", opts.max_modules)
     if not ok then fail("max_modules must be between 1 and 1e12") end
     self.max_modules = opts.max_modules
+  end
+  if opts.max_memory then
+    self.max_memory = M.parse_size(opts.max_memory)
+    rules:config("max_memory", self.max_memory)
   end
   for k, d in pairs(opts.max_depth or {}) do
     if k ~= "decomposition" and k ~= "homomorphism" then

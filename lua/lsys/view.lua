@@ -195,18 +195,14 @@ local function resolve (dir, path)
   return dir .. "/" .. path
 end
 
--- The bytes of a file, or nil and the system's reason (without the path prefix).
-local function readfile (path)
-  local f, err = io.open(path, "rb")
-  local s
-  if f then
-    s, err = f:read("a")
-    f:close()
-    if s then return s end
-  end
-  err = tostring(err or "read error")
-  if err:sub(1, #path + 2) == path .. ": " then err = err:sub(#path + 3) end
-  return nil, err
+-- Largest files read: view files, contours, surfaces and palettes; textures (PNG).
+local MAXFILE, MAXIMAGE = 16 * 2 ^ 20, 256 * 2 ^ 20
+
+-- The bytes of a regular file of at most `max` bytes (default MAXFILE), or nil and a
+-- message naming the file ("cannot open 'x': ...", "cannot read 'x': not a regular
+-- file"): a view can name any path, /dev/zero included.
+local function readfile (path, max)
+  return getcore().read_file(path, max or MAXFILE)
 end
 
 -- The type name of a userdata made by lsys.core ("lsys.Contour", ...), else nil.
@@ -239,8 +235,8 @@ local function fileobj (ctx, name, rel, extra, fn, arg)
   local bytes = ctx.bytes[path]
   if bytes == nil then
     local err
-    bytes, err = readfile(path)
-    if bytes == nil then fail(ctx.where, "%s: cannot open '%s': %s", name, path, err) end
+    bytes, err = readfile(path, fn == "texture_load" and MAXIMAGE or MAXFILE)
+    if bytes == nil then fail(ctx.where, "%s: %s", name, err) end
     ctx.bytes[path] = bytes
   end
   local key = extra and (path .. "\0" .. extra) or path
@@ -572,7 +568,7 @@ end
 function M.load_colormap (path)
   if type(path) ~= "string" then error("load_colormap: a file name expected", 2) end
   local s, err = readfile(path)
-  if s == nil then error(format("cannot open '%s': %s", path, err), 0) end
+  if s == nil then error(err, 0) end
   if #s ~= 768 then
     error(format("%s: a colour map is 768 bytes (256 colours of 3 bytes), not %d", path, #s), 0)
   end
@@ -604,7 +600,7 @@ end
 function M.load_materials (path)
   if type(path) ~= "string" then error("load_materials: a file name expected", 2) end
   local s, err = readfile(path)
-  if s == nil then error(format("cannot open '%s': %s", path, err), 0) end
+  if s == nil then error(err, 0) end
   if #s == 0 or #s % 15 ~= 0 then
     error(format("%s: a material file is a sequence of 15-byte records; %d bytes is not",
                  path, #s), 0)
@@ -1115,7 +1111,7 @@ function M.load (path, opts)
   if type(path) ~= "string" then error("view.load: a file name expected", 2) end
   if opts ~= nil and type(opts) ~= "table" then error("view.load: opts must be a table", 2) end
   local text, err = readfile(path)
-  if text == nil then error(format("view.load: cannot open '%s': %s", path, err), 0) end
+  if text == nil then error("view.load: " .. err, 0) end
   local dir = path:match("^(.*)/[^/]*$")
   if dir == "" then dir = "/" end
   return M.parse(text, path, { dir = dir or ".", quiet = opts and opts.quiet })
