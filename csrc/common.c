@@ -115,6 +115,17 @@ void lsys_set_memory_limit (size_t bytes) {
   memlimit = bytes;
 }
 
+const char *lsys_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n) {
+  size_t i, k = n > LSYS_QUOTE ? LSYS_QUOTE - 4 : n;
+  for (i = 0; i < k; i++) {
+    unsigned char c = (unsigned char)s[i];
+    buf[i] = c >= 0x20 && c < 0x7f ? (char)c : '?';
+  }
+  if (n > k) { memcpy(buf + k, "...", 3); k += 3; }
+  buf[k] = '\0';
+  return buf;
+}
+
 const char *lsys_fmtsize (char buf[32], size_t bytes) {
   double x = (double)bytes;
   if (bytes == (size_t)-1) snprintf(buf, 32, "no limit");

@@ -82,6 +82,13 @@ void lsys_set_memory_limit (size_t bytes);   /* 0: back to the default */
 ** is one; 0 when unknown. */
 size_t lsys_physical_memory (void);
 
+/* A short printable quote of 'n' bytes of a file for messages: at most
+** LSYS_QUOTE characters (a longer word is cut to its first LSYS_QUOTE - 4
+** and "..."), control and non-ASCII bytes as '?'. A file that a view names
+** may be anything (as in cpfg), so a message shows a token, never a line. */
+#define LSYS_QUOTE 16
+const char *lsys_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n);
+
 /* Writes 'bytes' as a short size for messages ("512 MiB", "12.0 GiB"). */
 const char *lsys_fmtsize (char buf[32], size_t bytes);
 

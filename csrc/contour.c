@@ -116,15 +116,9 @@ static size_t nextline (reader *R, token *t) {
   return 0;
 }
 
-/* A printable copy of a token for a message, shortened past 24 bytes. */
+/* A printable copy of a token for a message (lsys_quote: a short token). */
 static const char *show (const token *t, char buf[32]) {
-  size_t i, n = t->len > 24 ? 24 : t->len;
-  for (i = 0; i < n; i++) {
-    unsigned char ch = (unsigned char)t->s[i];
-    buf[i] = ch >= 0x20 && ch < 0x7f ? (char)ch : '?';
-  }
-  strcpy(buf + n, t->len > n ? "..." : "");
-  return buf;
+  return lsys_quote(buf, t->s, t->len);
 }
 
 /* Sets the error "name:line: message" and returns LSYS_ESYNTAX. */

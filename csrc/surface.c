@@ -193,16 +193,14 @@ static int word (reader *r, const char **w, size_t *n) {
   return 1;
 }
 
-/* A printable copy of a word for messages (at most 24 bytes, then "..."). */
+/* A printable copy of a word for messages (lsys_quote: a short token). */
 static const char *quote (char buf[32], const char *w, size_t n) {
-  size_t i, k = n > 24 ? 24 : n;
-  for (i = 0; i < k; i++) {
-    unsigned char c = (unsigned char)w[i];
-    buf[i] = (c >= 32 && c < 127) ? (char)c : '?';
-  }
-  if (n > k) { memcpy(buf + k, "...", 3); k += 3; }
-  buf[k] = '\0';
-  return buf;
+  return lsys_quote(buf, w, n);
+}
+
+/* The same for a patch name read from the file. */
+static const char *qname (char buf[32], const char *name) {
+  return lsys_quote(buf, name, strlen(name));
 }
 
 /* Fails with "name:LINE: message". */
@@ -338,11 +336,11 @@ static int scan (reader *r, const char *what, const char *pat, double *num,
 /* Moves to the next line, which must exist: 'pat' is what was expected
 ** there, 'patch' the patch being read (NULL in the header). */
 static int need (reader *r, const char *pat, const char *patch) {
-  char shown[96];
+  char shown[96], q[32];
   if (nextline(r)) return LSYS_OK;
   showpattern(shown, sizeof shown, pat);
   if (patch != NULL)
-    return fail(r, r->line + 1, "patch '%s' ends early: expected '%s'", patch, shown);
+    return fail(r, r->line + 1, "patch '%s' ends early: expected '%s'", qname(q, patch), shown);
   return fail(r, r->line + 1, "expected '%s', found the end of the file", shown);
 }
 
@@ -425,22 +423,23 @@ static int readpatch (reader *r, lsys_surface *s, nbref *ref) {
   }
   /* control points */
   for (row = 0; row < 4; row++) {
-    char what[32];
+    char what[32], q[32];
     int cnt = 0;
     if (!nextline(r))
       return fail(r, r->line + 1, "patch '%s' ends early: expected row %d of control points",
-                  in->name, row);
+                  qname(q, in->name), row);
     snprintf(what, sizeof what, "control point row %d", row);
     while (word(r, &w, &n)) {
       if (cnt == 12)
-        return fail(r, r->line, "row %d of patch '%s' has more than 12 numbers", row, in->name);
+        return fail(r, r->line, "row %d of patch '%s' has more than 12 numbers", row,
+                    qname(q, in->name));
       if ((st = number(r, w, n, what, &v[cnt])) != LSYS_OK) return st;
       cnt++;
     }
     if (cnt < 12)
       return fail(r, r->line,
                   "row %d of patch '%s' has %d numbers, expected 12 (x y z of 4 points)", row,
-                  in->name, cnt);
+                  qname(q, in->name), cnt);
     memcpy(p->ctrl + 12 * row, v, sizeof v);
   }
   return LSYS_OK;
@@ -460,7 +459,7 @@ static int linkpatches (reader *r, lsys_surface *s, const nbref *ref) {
   size_t size = 16, mask, i, h;
   int32_t *tab;
   int d, st = LSYS_OK;
-  char q[32];
+  char q[32], q2[32];
   while (size < 2 * s->npatch) size *= 2;
   mask = size - 1;
   tab = (int32_t *)LSYS_MALLOC(size * sizeof *tab);
@@ -483,7 +482,7 @@ static int linkpatches (reader *r, lsys_surface *s, const nbref *ref) {
       }
       if (tab[h] < 0)
         st = fail(r, ref[i].line[d], "patch '%s': no patch named '%s' (its %s neighbour)",
-                  s->info[i].name, quote(q, w, n), nbnames[d]);
+                  qname(q2, s->info[i].name), quote(q, w, n), nbnames[d]);
       else s->info[i].nb[d] = tab[h];
     }
   for (i = 0; i < s->npatch && st == LSYS_OK; i++)
@@ -491,12 +490,15 @@ static int linkpatches (reader *r, lsys_surface *s, const nbref *ref) {
       int j = s->info[i].nb[d], back;
       if (j < 0) continue;
       back = s->info[j].nb[7 - d];
-      if (back < 0 || strcmp(s->info[back].name, s->info[i].name) != 0)
+      if (back < 0 || strcmp(s->info[back].name, s->info[i].name) != 0) {
+        char a[32], b[32], c[32];
         st = fail(r, ref[i].line[d],
                   "patch '%s' has '%s' as its %s neighbour, but '%s' has %s%s%s as its %s",
-                  s->info[i].name, s->info[j].name, nbnames[d], s->info[j].name,
-                  back < 0 ? "" : "'", back < 0 ? "none" : s->info[back].name,
+                  qname(a, s->info[i].name), qname(b, s->info[j].name), nbnames[d],
+                  qname(b, s->info[j].name), back < 0 ? "" : "'",
+                  back < 0 ? "none" : qname(c, s->info[back].name),
                   back < 0 ? "" : "'", nbnames[7 - d]);
+      }
     }
   LSYS_FREE(tab);
   return st;

@@ -506,3 +506,45 @@ print(pcall(m.derive, m, 26))
     end
   end)
 end)
+
+describe("parse errors about files a view names", function ()
+  local core = require "lsys.core"
+  local view = require "lsys.view"
+  local SECRET = "Zq8xFvLwT2pKsMnBhJ3k9Qe7rUvYzA1bC5dEfG"     -- say, a token in a private file
+
+  -- the longest run of the secret that the message repeats
+  local function leaked (msg)
+    local best = 0
+    for i = 1, #SECRET do
+      for j = i + best, #SECRET do
+        if not msg:find(SECRET:sub(i, j), 1, true) then break end
+        best = j - i + 1
+      end
+    end
+    return best
+  end
+
+  it("quote at most a short token of the file", function ()
+    local path = os.tmpname()
+    local function file (text)
+      local f = assert(io.open(path, "wb"))
+      f:write(text)
+      f:close()
+    end
+    for what, case in pairs {
+      contour = { SECRET .. " 2 closed\n", function () return core.contour_load(path) end },
+      surface = { SECRET .. "\n", function () return core.surface_load(path) end },
+      viewfile = { SECRET .. " " .. SECRET .. "\n", function () return view.load(path) end },
+      command = { SECRET .. ": 1\n", function () return view.load(path) end },
+      model = { SECRET .. " 2 closed\n", function ()
+        return lsys.lsystem { axiom = "F", view = { contours = { path } } }:interpret()
+      end },
+    } do
+      file(case[1])
+      local err = errof(case[2])
+      assert.truthy(err:find(path, 1, true), what .. ": " .. err)     -- names the file
+      assert.is_true(leaked(err) <= 12, what .. " quotes too much: " .. err)
+    end
+    os.remove(path)
+  end)
+end)

@@ -668,10 +668,12 @@ for _, k in ipairs {
 } do IGNORED[k] = true end
 M.VIEWFILE_IGNORED = IGNORED
 
--- Text of the file shown in a message: control bytes as '?', at most 40 characters.
+-- Text of the file shown in a message: a short token, never a whole line (a model can
+-- name any file as its view file, as in cpfg): at most 16 characters, a longer one cut
+-- to its first 12 and "...", control and non-ASCII bytes as '?'.
 local function show (s)
-  s = s:gsub("%c", "?")
-  if #s > 40 then s = s:sub(1, 37) .. "..." end
+  s = s:gsub("[%c\128-\255]", "?")
+  if #s > 16 then s = s:sub(1, 12) .. "..." end
   return s
 end
 
