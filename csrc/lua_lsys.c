@@ -626,14 +626,87 @@ static int template_gc (lua_State *L) {
   return 0;
 }
 
+static ltemplate *newtemplate (lua_State *L) {
+  ltemplate *t = (ltemplate *)lua_newuserdatauv(L, sizeof *t, 0);
+  memset(t, 0, sizeof *t);
+  if (luaL_newmetatable(L, TEMPLATE_T)) {
+    lua_pushcfunction(L, template_gc);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  return t;
+}
+
+/* A parameter's text as a finite number: a numeral that strtod reads whole
+** ("inf" and "nan" are names here, as in Lua). */
+static int numeral (const char *x, size_t len, double *v) {
+  char buf[64], *end;
+  size_t i = (len > 0 && (x[0] == '+' || x[0] == '-')) ? 1 : 0;
+  if (len == 0 || len >= sizeof buf || i >= len ||
+      !((x[i] >= '0' && x[i] <= '9') || x[i] == '.'))
+    return 0;
+  memcpy(buf, x, len);
+  buf[len] = '\0';
+  *v = strtod(buf, &end);
+  return *end == '\0' && isfinite(*v);
+}
+
+/*
+** Fills 't' from the successor 'r' parsed from 'text': a parameter is a number
+** or a slot. With exprs == 0 a slot is '?' (lsys.produce); otherwise every
+** parameter that is not a number is an expression (the axiom), one slot per
+** distinct text, listed in order in the table at 'exprs' (its keys map the
+** texts to their slots). Returns NULL, or the span of a parameter that is
+** neither (produce). May raise only on a memory error (then 'r' leaks).
+*/
+static const lsys_span *filltemplate (lua_State *L, ltemplate *t, const lsys_prule *r,
+                                      const char *text, int exprs) {
+  size_t k, j, n = r->nmods;
+  t->code = (uint16_t *)LSYS_MALLOC(n * sizeof *t->code + r->nparams * (sizeof *t->val + 1) + 16);
+  if (t->code == NULL) return NULL;      /* the caller checks t->code */
+  t->val = (double *)(void *)((char *)t->code + ((n * sizeof *t->code + 7) & ~(size_t)7));
+  t->slot = (uint8_t *)(t->val + r->nparams);
+  for (k = 0; k < n; k++) {
+    const lsys_pmod *pm = &r->mods[k];
+    t->code[k] = LSYS_CODE(pm->sym, pm->np);
+    for (j = 0; j < pm->np; j++) {
+      const lsys_span *sp = &r->params[pm->first + j];
+      const char *x = text + sp->off;
+      if (numeral(x, sp->len, &t->val[t->npar])) {
+        t->slot[t->npar++] = 0;
+        continue;
+      }
+      if (exprs == 0) {
+        if (sp->len != 1 || x[0] != '?') return sp;
+        t->slot[t->npar] = 1;
+        t->val[t->npar++] = t->nslots++;
+        continue;
+      }
+      lua_pushlstring(L, x, sp->len);     /* the expression's slot, new or seen */
+      if (lua_rawget(L, exprs) == LUA_TNUMBER) t->val[t->npar] = lua_tonumber(L, -1);
+      else {
+        t->val[t->npar] = t->nslots++;
+        lua_pushlstring(L, x, sp->len);
+        lua_rawseti(L, exprs, (lua_Integer)t->nslots);
+        lua_pushlstring(L, x, sp->len);
+        lua_pushinteger(L, (lua_Integer)t->nslots - 1);
+        lua_rawset(L, exprs);
+      }
+      lua_pop(L, 1);
+      t->slot[t->npar++] = 1;
+    }
+  }
+  t->nmod = (uint32_t)n;
+  return NULL;
+}
+
 static ltemplate *gettemplate (lua_State *L, lrules *R, int tidx) {
   size_t len;
   const char *text = luaL_checklstring(L, tidx, &len);
+  const lsys_span *bad;
   ltemplate *t;
   lsys_prule r;
   lsys_error e;
-  size_t k, j, n;
-  int st;
   lua_getiuservalue(L, 1, UV_TPL);   /* the cache, keyed by text */
   lua_pushvalue(L, tidx);
   if (lua_rawget(L, -2) == LUA_TUSERDATA &&
@@ -642,58 +715,89 @@ static ltemplate *gettemplate (lua_State *L, lrules *R, int tidx) {
     return t;
   }
   lua_pop(L, 1);
-  t = (ltemplate *)lua_newuserdatauv(L, sizeof *t, 0);
-  memset(t, 0, sizeof *t);
-  if (luaL_newmetatable(L, TEMPLATE_T)) {
-    lua_pushcfunction(L, template_gc);
-    lua_setfield(L, -2, "__gc");
-  }
-  lua_setmetatable(L, -2);
-  st = lsys_rule_parse(&r, text, len, 3, R->m.ab, &R->decl, &e);
-  if (st != LSYS_OK) {
+  t = newtemplate(L);
+  if (lsys_rule_parse(&r, text, len, 3, R->m.ab, &R->decl, &e) != LSYS_OK) {
     lsys_prule_free(&r);
     return (ltemplate *)(intptr_t)luaL_error(L, "produce: %s at character %d in '%s'",
                                               e.msg, (int)e.pos + 1, text);
   }
-  n = r.nmods;
-  t->code = (uint16_t *)LSYS_MALLOC(n * sizeof *t->code + r.nparams * (sizeof *t->val + 1) + 16);
+  bad = filltemplate(L, t, &r, text, 0);
   if (t->code == NULL) { lsys_prule_free(&r); luaL_error(L, "not enough memory"); }
-  t->val = (double *)(void *)((char *)t->code + ((n * sizeof *t->code + 7) & ~(size_t)7));
-  t->slot = (uint8_t *)(t->val + r.nparams);
-  for (k = 0; k < n; k++) {
-    const lsys_pmod *pm = &r.mods[k];
-    t->code[k] = LSYS_CODE(pm->sym, pm->np);
-    for (j = 0; j < pm->np; j++) {
-      const lsys_span *sp = &r.params[pm->first + j];
-      const char *x = text + sp->off;
-      char buf[64], *end;
-      if (sp->len == 1 && x[0] == '?') {
-        t->slot[t->npar] = 1;
-        t->val[t->npar++] = t->nslots++;
-        continue;
-      }
-      if (sp->len >= sizeof buf) goto bad;
-      memcpy(buf, x, sp->len);
-      buf[sp->len] = '\0';
-      t->val[t->npar] = strtod(buf, &end);
-      if (*end != '\0') goto bad;
-      t->slot[t->npar++] = 0;
-      continue;
-    bad:
-      lua_pushlstring(L, x, sp->len);      /* before the rule (and 'sp') is freed */
-      lsys_prule_free(&r);
-      luaL_error(L, "produce: parameters in a template are numbers or '?' (got '%s' in '%s')",
-                 lua_tostring(L, -1), text);
-    }
+  if (bad != NULL) {
+    lua_pushlstring(L, text + bad->off, bad->len);   /* before the rule is freed */
+    lsys_prule_free(&r);
+    luaL_error(L, "produce: parameters in a template are numbers or '?' (got '%s' in '%s')",
+               lua_tostring(L, -1), text);
   }
-  t->nmod = (uint32_t)n;
   lsys_prule_free(&r);
   lua_pushvalue(L, tidx);
   lua_pushvalue(L, -2);
   lua_rawset(L, -4);
   lua_remove(L, -2);
-  lua_pop(L, 1);
   return t;
+}
+
+/*
+** rules:axiom(text) -> Template, {expressions} | nil, message, position
+** The axiom parsed straight into a template (no table per module): its
+** parameters are numbers or expressions, the distinct expression texts listed
+** in order; rules:fill(template, values) makes the Lstring.
+*/
+static int rules_axiom (lua_State *L) {
+  lrules *R = checkrules(L, 1);
+  size_t len;
+  const char *text = luaL_checklstring(L, 2, &len);
+  lsys_prule r;
+  lsys_error e;
+  ltemplate *t;
+  lua_settop(L, 2);
+  if (lsys_rule_parse(&r, text, len, 2, R->m.ab, &R->decl, &e) != LSYS_OK) {
+    lsys_prule_free(&r);
+    lua_pushnil(L);
+    lua_pushstring(L, e.msg);
+    lua_pushinteger(L, (lua_Integer)e.pos + 1);
+    return 3;
+  }
+  t = newtemplate(L);                 /* 3 */
+  lua_newtable(L);                    /* 4: the expressions */
+  filltemplate(L, t, &r, text, 4);
+  lsys_prule_free(&r);
+  if (t->code == NULL) return luaL_error(L, "not enough memory");
+  return 2;
+}
+
+/* rules:fill(template, values) -> Lstring: the template's slots filled from
+** the list 'values' (finite numbers) */
+static int rules_fill (lua_State *L) {
+  lrules *R = checkrules(L, 1);
+  ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
+  lsys_lstring *s;
+  uint32_t k, m, p = 0;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
+  lua_settop(L, 3);
+  s = lsys_newlstring(L);
+  lsys_setowner(L, 4, 1);
+  if (lsys_lstring_reserve(s, t->nmod, t->npar) != LSYS_OK)
+    return luaL_error(L, "not enough memory");
+  for (k = 0; k < t->nmod; k++) {
+    uint32_t np = LSYS_CNP(t->code[k]);
+    s->code[s->n++] = t->code[k];
+    for (m = 0; m < np; m++, p++) {
+      double x = t->val[p];
+      if (t->slot[p]) {
+        int ok;
+        lua_rawgeti(L, 3, (lua_Integer)x + 1);
+        x = lua_tonumberx(L, -1, &ok);
+        if (!ok || !isfinite(x))
+          return luaL_error(L, "value %d is not a finite number", (int)t->val[p] + 1);
+        lua_pop(L, 1);
+      }
+      s->par[s->npar++] = x;
+    }
+  }
+  (void)R;
+  return 1;
 }
 
 /* lsys.produce(template, ...) and lsys.nproduce(template, ...) */
@@ -792,7 +896,7 @@ static const luaL_Reg rules_methods[] = {
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
   {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
-  {"busy", rules_busy}, {NULL, NULL}
+  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

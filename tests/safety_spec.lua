@@ -548,3 +548,30 @@ describe("parse errors about files a view names", function ()
     os.remove(path)
   end)
 end)
+
+describe("a long axiom", function ()
+  it("is parsed straight into an Lstring, without a Lua table per module", function ()
+    local ax = string.rep("F(1)[+A(2)]", 200000)          -- 1 M modules
+    collectgarbage(); collectgarbage()
+    local before = collectgarbage("count")
+    local m = lsys.lsystem { axiom = ax, productions = "A(x) --> A(x*2)" }
+    local s = m:derive(0)
+    collectgarbage(); collectgarbage()
+    local grown = (collectgarbage("count") - before) / 1024
+    assert.equal(1000000, #s)
+    assert.equal(200000, s:count("A"))
+    assert.is_true(grown < 16, ("the model took %.1f MB of Lua heap"):format(grown))
+    assert.equal("F(1)[+A(4)]", tostring(m:derive(1):sub(1, 5)))
+  end)
+
+  it("keeps its expressions, evaluated in env at each derivation", function ()
+    local m = lsys.lsystem { axiom = "A(k*2) B(k+1) A(k*2) C(-.5,1e1,0x10)", env = { k = 2 } }
+    assert.equal("A(4)B(3)A(4)C(-0.5,10,16)", tostring(m:derive(0)))
+    m.env.k = 5
+    assert.equal("A(10)B(6)A(10)C(-0.5,10,16)", tostring(m:derive(0)))
+    m.axiom = "X(inf)"
+    assert.error_contains(function () m:derive(0) end, "axiom: expression 'inf' is nil")
+    assert.error_contains(function () lsys.lsystem { axiom = string.rep("F", 100) .. "(" } end,
+                          "axiom 'FFFFFFFFFF", "...': ")
+  end)
+end)

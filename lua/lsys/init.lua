@@ -267,10 +267,8 @@ function M.lsystem (opts)
   view.normalize(opts.view, where or "model")     -- a bad view fails at definition
   if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
-  local ax, msg, pos = rules:parse(self.axiom, "successor")
-  if not ax then fail(format("axiom '%s': %s at character %d", self.axiom, msg, pos)) end
-  self._axiom = ax
-  self._axiomsrc = self.axiom
+  local ok, msg = pcall(self._parseaxiom, self)
+  if not ok then fail(msg) end
   rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
   rules:config("hseed", self.homomorphism_seed or self.seed)
   return self
@@ -338,38 +336,42 @@ function Model:_vm (idx, info, E)
   if not (ok and self._rules:setvm(idx, code)) then self._rules:setvm(idx, nil) end
 end
 
+-- The axiom text for messages: a long one shortened.
+local function axiomtext (a)
+  return #a > 60 and a:sub(1, 57) .. "..." or a
+end
+
+-- Parses model.axiom into a template (in C: no table per module, DESIGN.md §5) and the
+-- list of its distinct parameter expressions; raises "axiom '...': ...".
+function Model:_parseaxiom ()
+  local tpl, exprs, pos = self._rules:axiom(self.axiom)
+  if not tpl then
+    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom), exprs, pos), 0)
+  end
+  self._axiom, self._axiomexprs, self._axiomsrc = tpl, exprs, self.axiom
+end
+
 -- The axiom as an Lstring, its expressions evaluated in env.
 function Model:_axiomlstring (E)
   if self.axiom ~= self._axiomsrc then           -- the axiom field was changed
-    local ax, msg, pos = self._rules:parse(self.axiom, "successor")
-    if not ax then error(format("axiom '%s': %s at character %d", self.axiom, msg, pos), 0) end
-    self._axiom, self._axiomsrc = ax, self.axiom
+    local ok, msg = pcall(self._parseaxiom, self)
+    if not ok then error(self._where .. ": " .. msg, 0) end
   end
-  local parts = {}
-  for _, m in ipairs(self._axiom.succ) do
-    if #m.params == 0 then parts[#parts + 1] = m.name
-    else
-      local vals = {}
-      for k, e in ipairs(m.params) do
-        local f, msg = _G.load("return " .. e, "=axiom", "t", E)
-        if not f then
-          error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
-        end
-        local ok, x = pcall(f)
-        if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
-        if type(x) ~= "number" or x ~= x or x == 1 / 0 or x == -1 / 0 then
-          error(format("%s: axiom: expression '%s' is %s, not a finite number",
-                       self._where, e, tostring(x)), 0)
-        end
-        vals[k] = format("%.17g", x)
-      end
-      parts[#parts + 1] = m.name .. "(" .. concat(vals, ",") .. ")"
+  local vals = {}
+  for k, e in ipairs(self._axiomexprs) do
+    local f, msg = _G.load("return " .. e, "=axiom", "t", E)
+    if not f then
+      error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
     end
+    local ok, x = pcall(f)
+    if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
+    if type(x) ~= "number" or x ~= x or x == 1 / 0 or x == -1 / 0 then
+      error(format("%s: axiom: expression '%s' is %s, not a finite number",
+                   self._where, e, tostring(x)), 0)
+    end
+    vals[k] = x
   end
-  if #self._axiom.succ == 0 then return core.lstring("") end
-  local s, msg = self._rules:lstring(concat(parts, " "))
-  if not s then error(self._where .. ": axiom: " .. msg, 0) end
-  return s
+  return self._rules:fill(self._axiom, vals)
 end
 
 --- Parses text with this model's declared module names.
