@@ -310,11 +310,32 @@ static const luaL_Reg render_funcs[] = {
   {"write_file", l_write_file}, {"read_file", l_read_file}, {NULL, NULL}
 };
 
+#ifndef LSYS_NO_RENDER
+/* At lua_close: the offscreen context and its scratch are freed before the C
+** library is unloaded (they would show as leaks). */
+static int renderstate_gc (lua_State *L) {
+  (void)L;
+  lsys_render_shutdown();
+  return 0;
+}
+#endif
+
 void lsys_open_render (lua_State *L) {
   luaL_newmetatable(L, PIXELS_T);
   lua_pushcfunction(L, pixels_gc);
   lua_setfield(L, -2, "__gc");
   lua_pop(L, 1);
+#ifndef LSYS_NO_RENDER
+  if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.renderstate") == LUA_TNIL) {
+    lua_newuserdatauv(L, 0, 0);
+    lua_newtable(L);
+    lua_pushcfunction(L, renderstate_gc);
+    lua_setfield(L, -2, "__gc");
+    lua_setmetatable(L, -2);
+    lua_setfield(L, LUA_REGISTRYINDEX, "lsys.renderstate");
+  }
+  lua_pop(L, 1);
+#endif
   luaL_setfuncs(L, render_funcs, 0);
 #ifdef LSYS_NO_RENDER
   lua_pushboolean(L, 0);

@@ -975,38 +975,22 @@ static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided,
 
 /* Reads the whole file 'name' (a texture) into a new block; LSYS_OK, or an
 ** error naming the .glb being written and the file. Refuses what is not a
-** PNG file (it may have changed since it was loaded). */
+** regular PNG file (it may have changed since it was loaded) or is too large
+** for glTF binary. */
 static int slurpimage (const char *name, unsigned char **data, size_t *len,
                        const char *path, lsys_error *e) {
   static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  FILE *f = fopen(name, "rb");
-  unsigned char *p = NULL;
-  size_t n = 0, cap = 0, k;
+  lsys_error re;
+  size_t n = 0;
+  unsigned char *p = (unsigned char *)lsys_readfile(name, (size_t)UINT32_MAX / 2, &n, &re);
   *data = NULL;
-  if (f == NULL)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': cannot read texture "
-                         "'%s': %s", path, name, strerror(errno));
-  for (;;) {
-    if (n == cap && (cap > (size_t)UINT32_MAX / 2 ||
-                     lsys_grow((void **)&p, &cap, n + 65536, 1) != LSYS_OK)) {
-      LSYS_FREE(p);
-      fclose(f);
-      if (cap > (size_t)UINT32_MAX / 2)
-        return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot write '%s': texture '%s' "
-                             "is too large for glTF binary", path, name);
-      return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
-    }
-    k = fread(p + n, 1, cap - n, f);
-    n += k;
-    if (k == 0) break;
+  if (p == NULL && re.code == LSYS_ENOMEM)
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
+  if (p == NULL) {                   /* re.msg: "cannot open 'name': reason" */
+    const char *why = strstr(re.msg, "': ");
+    return lsys_seterror(e, re.code, (size_t)-1, "cannot write '%s': cannot read texture "
+                         "'%s': %s", path, name, why != NULL ? why + 3 : re.msg);
   }
-  if (ferror(f)) {
-    LSYS_FREE(p);
-    fclose(f);
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': cannot read texture "
-                         "'%s'", path, name);
-  }
-  fclose(f);
   if (n < 8 || memcmp(p, sig, 8) != 0) {
     LSYS_FREE(p);
     return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "cannot write '%s': texture '%s' is no "

@@ -87,11 +87,12 @@ int lsys_outfile_open (lsys_outfile *o, const char *path, lsys_error *e) {
       close(fd);
       unlink(o->tmp);
       release(o);
-      return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot open '%s' for writing: %s", path,
-                           strerror(en));
+      return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory (%s)",
+                           path, strerror(en));
     }
     /* the folder refuses new files but the file itself may be writable */
     en = errno;
+    if (en == ENOMEM) goto nomem;
     if (!(exists && (en == EACCES || en == EPERM) && access(o->target, W_OK) == 0)) {
       release(o);
       return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for writing: %s", path,
@@ -108,8 +109,7 @@ int lsys_outfile_open (lsys_outfile *o, const char *path, lsys_error *e) {
   return LSYS_OK;
 nomem:
   release(o);
-  return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot open '%s' for writing: not enough "
-                       "memory", path);
+  return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
 }
 
 void lsys_outfile_write (lsys_outfile *o, const void *p, size_t n) {
