@@ -172,6 +172,9 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
     if ((ps->kind == LSYS_PS_ARG && ps->idx >= r->nargs) ||
         (ps->kind == LSYS_PS_VAL && ps->idx >= r->nvals) || ps->kind > LSYS_PS_VAL)
       return lsys_seterror(e, LSYS_EARG, (size_t)-1, "bad parameter source");
+    if (ps->kind == LSYS_PS_CONST && !isfinite(ps->value))     /* 1e999 */
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "parameter %u of the successor is %g, "
+                           "not a finite number", (unsigned)k + 1, ps->value);
     m->tsrc[m->ntsrc++] = *ps;
   }
   set->list[set->nlist++] = (uint32_t)m->nrules;
@@ -494,7 +497,8 @@ choose:
   {
     /* the first alternative whose cumulative weight exceeds r * total; the
     ** last one of positive weight when rounding leaves none */
-    double target = nalt > 1 ? lsys_rng_uniform(&m->rng) * total : 0, cum = 0;
+    double target = nalt > 1 ? lsys_rng_uniform(m->cur) * total : 0, cum = 0;   /* the
+                                     homomorphism draws from its own generator */
     size_t at = 0, k, last = 0;
     const lsys_rule *r = NULL;
     for (k = 0; k < nalt; k++) {
@@ -834,8 +838,8 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
     return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "bad rule kind");
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
   m->depth_hit = 0;
-  if (kind == LSYS_HOMO) m->cur = &m->hrng;
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
+  if (kind == LSYS_HOMO) m->cur = &m->hrng;
   m->busy = 1;
   st = expandall(m, kind, src, dst);
   m->busy = 0;

@@ -134,6 +134,14 @@ int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error 
   }
   png_set_read_fn(png, &io, readfn);
   png_set_sig_bytes(png, sizeof sig);
+  /* A chunk may declare any length, and libpng 1.6.39 allocates a text or ICC chunk
+  ** whole before it reads it (a 53-byte file declaring 1.9 GB of tEXt): the
+  ** ancillary chunks lsys has no use for are skipped unread, the others limited. */
+  {
+    static const png_byte skip[] = "tEXt\0zTXt\0iTXt\0iCCP\0sPLT\0eXIf\0";
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, skip, (int)(sizeof skip / 5));
+    png_set_chunk_malloc_max(png, (png_alloc_size_t)8 << 20);
+  }
   png_read_info(png, info);
   pw = png_get_image_width(png, info);
   ph = png_get_image_height(png, info);

@@ -575,3 +575,43 @@ describe("a long axiom", function ()
                           "axiom 'FFFFFFFFFF", "...': ")
   end)
 end)
+
+describe("fuzzing findings", function ()
+  it("a constant parameter that overflows is an error, not an infinite parameter", function ()
+    assert.error_contains(function () lsys.lsystem { axiom = "A", productions = "A --> F(1e999)" } end,
+                          "parameter 1 of 'F' is '1e999', not a finite number")
+  end)
+
+  it("expanding a stochastic homomorphism leaves the derivation generator alone", function ()
+    local function model ()
+      return lsys.lsystem { axiom = "AAAA", seed = 3,
+        productions = "A --> A : 1\nA --> B : 1", homomorphism = "A --> X : 1\nA --> Y : 1" }
+    end
+    local a, b = model(), model()
+    local s = a:lstring("AAAAAAAAAAAAAAAA")
+    b:expand(s)                                  -- draws from the homomorphism's generator
+    assert.equal(tostring(a:step(s)), tostring(b:step(s)))
+  end)
+
+  it("a PNG text chunk declaring 1.9 GB is skipped, not allocated", function ()
+    local core = require "lsys.core"
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    local path = os.tmpname()
+    local f = assert(io.open(path, "wb"))        -- IHDR 1x1 RGB, then tEXt of 0x74455874 bytes
+    f:write("\137PNG\r\n\26\n\0\0\0\13IHDR\0\0\0\1\0\0\0\1\8\2\0\0\0\144\119\83\222" ..
+            "\116\69\88\116tEXtComment\0lsys")
+    f:close()
+    assert.error_contains(function () core.png_read(path) end, "unexpected end of file")
+    -- under a 300 MB address-space limit the 1.9 GB allocation would fail instead
+    local script = os.tmpname()
+    f = assert(io.open(script, "w"))
+    f:write(("print(pcall(require('lsys.core').png_read, %q))"):format(path))
+    f:close()
+    local p = io.popen(("sh -c 'ulimit -v 300000; exec \"%s\" \"%s\"' 2>&1"):format(BIN, script))
+    local out = p:read("a")
+    p:close()
+    os.remove(script)
+    os.remove(path)
+    assert.truthy(out:find("false\t[^\n]*unexpected end of file"), out)
+  end)
+end)

@@ -161,7 +161,11 @@ function M.compile (r, info)
     insert(spec.succ, m.sym); insert(spec.succ, #m.params)
     for pi, e in ipairs(m.params) do
       if isnumber(e) then
-        insert(spec.src, PS_CONST); insert(spec.src, 0); insert(spec.src, tonumber(e))
+        local x = tonumber(e)
+        if x ~= x or x == 1 / 0 or x == -1 / 0 then
+          fail("parameter %d of '%s' is '%s', not a finite number", pi, m.name, e)
+        end
+        insert(spec.src, PS_CONST); insert(spec.src, 0); insert(spec.src, x)
       elseif seen[e] then
         insert(spec.src, PS_ARG); insert(spec.src, seen[e]); insert(spec.src, 0)
       else

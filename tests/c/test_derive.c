@@ -209,6 +209,32 @@ static void test_reentry (void) {
   lsys_model_free(&m);
 }
 
+/* The memory budget: a step whose strings would outgrow max_memory fails with
+** LSYS_EMEMORY before allocating, and a refused expansion leaves the model as
+** it was (its generator included: a fuzzing finding). */
+static void test_budget (void) {
+  lsys_model m;
+  lsys_lstring a, b;
+  char axiom[301];
+  lsys_model_init(&m, &ab);
+  addrule(&m, LSYS_PROD, "F --> FF");
+  addrule(&m, LSYS_HOMO, "F --> G");
+  lsys_lstring_init(&a); lsys_lstring_init(&b);
+  memset(axiom, 'F', 300); axiom[300] = '\0';
+  setstr(&a, axiom);
+  m.max_memory = 2048;                            /* the source alone takes 600+ bytes */
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_EMEMORY);
+  assert(strstr(m.err.msg, "max_memory (2 KiB)") != NULL);
+  assert(b.meter == NULL && m.busy == 0);
+  m.max_memory = 700;
+  assert(lsys_expand(&m, LSYS_HOMO, &a, &b) == LSYS_EMEMORY);
+  assert(m.cur == &m.rng && m.busy == 0);         /* not left on the homomorphism's generator */
+  m.max_memory = 0;                               /* the process default */
+  assert(lsys_derive_step(&m, &a, &b) == LSYS_OK && b.n == 600 && b.meter == NULL);
+  lsys_lstring_free(&a); lsys_lstring_free(&b);
+  lsys_model_free(&m);
+}
+
 static void test_decomposition (void) {
   lsys_model m;
   lsys_lstring a, b;
@@ -308,6 +334,7 @@ int main (void) {
   test_stochastic();
   test_limits();
   test_reentry();
+  test_budget();
   test_decomposition();
   test_expr();
   lsys_alphabet_free(&ab);
