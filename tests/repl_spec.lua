@@ -6,6 +6,8 @@ local D = require "tests.display"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 local PTYRUN = (os.getenv("LSYS_BUILD_DIR") or "build") .. "/tools/ptyrun"
+-- seconds to wait for each reply: longer under valgrind (tools/memcheck-all.sh sets it)
+local TIMEOUT = tonumber(os.getenv("LSYS_TEST_TIMEOUT") or "") or 20
 
 local function exists (path)
   local f = io.open(path)
@@ -19,7 +21,7 @@ local function drive (lines, env)
   local f = assert(io.open(script, "w"))
   f:write(table.concat(lines, "\n"), "\n")
   f:close()
-  local p = io.popen((env or "") .. PTYRUN .. " -t 20 " .. script .. " -- " .. BIN ..
+  local p = io.popen((env or "") .. PTYRUN .. " -t " .. TIMEOUT .. " " .. script .. " -- " .. BIN ..
     " 2>&1; echo \"exit:$?\"")
   local out = p:read("a")
   p:close()
