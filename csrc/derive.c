@@ -142,7 +142,8 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
   if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
       lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
       lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nrc, sizeof *m->pat) != LSYS_OK ||
-      lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc, sizeof *m->tcode) != LSYS_OK ||
+      /* + 1: the code array exists once a rule does (no NULL + 0 for empty successors) */
+      lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc + 1, sizeof *m->tcode) != LSYS_OK ||
       lsys_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc, sizeof *m->tsrc) != LSYS_OK)
     goto nomem;
   r = &m->rules[m->nrules];
@@ -636,7 +637,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       if (a < ACT_COPY) {
         const lsys_rule *r = &m->rules[a];
         if (r->pred_np == np && r->vm == NULL && r->nsrc == 0 && dst->n + r->nsucc <= lim) {
-          const uint16_t *t = r->nsucc > 0 ? m->tcode + r->succ : NULL;
+          const uint16_t *t = m->tcode + r->succ;
           uint16_t *o = dst->code + dst->n;
           uint32_t k;
           for (k = 0; k < r->nsucc; k++) o[k] = t[k];
