@@ -58,5 +58,11 @@ run() {
     ctest --test-dir "$dir" --output-on-failure -E memcheck ${args[@]+"${args[@]}"}
 }
 
-if [ "$cc" = gcc ] || [ "$cc" = both ]; then run gcc "${ASAN_BUILD_DIR:-build-asan}"; fi
-if [ "$cc" = clang ] || [ "$cc" = both ]; then run clang "${ASAN_CLANG_BUILD_DIR:-build-asan-clang}"; fi
+status=0      # both compilers run even when the first one fails
+if [ "$cc" = gcc ] || [ "$cc" = both ]; then
+  run gcc "${ASAN_BUILD_DIR:-build-asan}" || status=1
+fi
+if [ "$cc" = clang ] || [ "$cc" = both ]; then
+  run clang "${ASAN_CLANG_BUILD_DIR:-build-asan-clang}" || status=1
+fi
+exit $status
