@@ -1,0 +1,1 @@
+initial elasticity: 0.5

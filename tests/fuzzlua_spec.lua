@@ -1,0 +1,79 @@
+-- The corpora of the Lua fuzzer (tests/fuzz/lua/fuzz.lua) replayed through their targets:
+-- every saved input must load or fail with the expected error, without a finding (a Lua
+-- runtime error inside lsys, a failed check, a rule expression that reaches a global, a
+-- hang). Fuzzing itself is `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
+require "tests.helper"
+local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
+local have_core = pcall(require, "lsys.core")
+
+-- per input; more under valgrind (tools/memcheck-all.sh sets LSYS_TEST_TIMEOUT)
+local BUDGET = tonumber(os.getenv("LSYS_TEST_TIMEOUT") or "") or 10
+
+local function replay (name)
+  local dir = "tests/fuzz/corpus_" .. name
+  local found, counts = fuzz.replay(fuzz.target(name), dir, { budget = BUDGET })
+  local msgs = {}
+  for _, f in ipairs(found) do msgs[#msgs + 1] = f.file .. ": " .. fuzz.show(f.message, 600) end
+  assert.equal(0, #found, table.concat(msgs, "\n"))
+  assert.equal(0, counts.budget, "inputs over budget in " .. dir)
+  return counts
+end
+
+describe("the Lua fuzzer's corpora", function ()
+  it("load or fail with file and line as view files", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("view")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("load or fail naming the file as colour maps and material files", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("palette")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("derive or fail naming the rule as rule expressions, without reaching globals", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("ruleexpr")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+end)
+
+describe("the Lua fuzzer", function ()
+  it("finds a rule expression that reaches a global", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    -- the tripwire itself, on a model whose rule closure sees _G on purpose
+    local t = fuzz.target("ruleexpr")
+    local F = fuzz.new(t)
+    local run = t.run
+    t.run = function ()
+      return load("return os", "=rule")()   -- code that is not in a file reads `os`
+    end
+    local kind, msg = F.exec("")
+    t.run = run
+    assert.equal("finding", kind)
+    assert.equal("rule expression reached global 'os'", msg)
+    assert.equal("table", type(os))          -- _G is back
+  end)
+
+  it("reports an input that overruns its time budget", function ()
+    local F = fuzz.new({ run = function () while true do end end }, { budget = 0.05 })
+    local kind, msg = F.exec("")
+    assert.equal("finding", kind)
+    assert.truthy(msg:find("over budget (time", 1, true), msg)
+  end)
+
+  it("finds new edges in lsys's Lua files", function ()
+    local view = require "lsys.view"
+    local F = fuzz.new({ run = function (s) view.parse(s, "fuzz.v", { quiet = true }) end,
+                         clean = function () return true end })
+    local _, _, new = F.exec("angle factor: 4\n")
+    assert.is_true(new)
+    assert.is_true(F.nedges > 10)
+    _, _, new = F.exec("angle factor: 5\n")
+    assert.is_false(new)
+    local kind, _, new2 = F.exec("bogus: 1\n")
+    assert.equal("error", kind)
+    assert.is_true(new2)
+  end)
+end)
