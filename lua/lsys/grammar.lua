@@ -247,6 +247,7 @@ local function tokenize (s)
           elseif KEYWORDS[tok] then return nil
           else toks[#toks + 1] = { "name", tok } end
         else
+          if s:match("^%-%-", i) then return nil end   -- a comment: Lua's business
           tok = s:match("^//", i) or s:match("^[<>=~]=", i) or s:match("^[%+%-%*/%%%^<>%(%),%.]", i)
           if not tok or tok == "=" then return nil end
           toks[#toks + 1] = { "op", tok }
@@ -431,7 +432,19 @@ function M.gen (e, out, formals, E, lib)
     elseif kind == "call" then
       local name, args = fnof(n[2]), n[3]
       if not name then return nil end
-      for _, a in ipairs(args) do if not isnum(gen(a)) then return nil end end
+      local types = {}
+      for k, a in ipairs(args) do
+        types[k] = gen(a)
+        if not isnum(types[k]) then return nil end
+      end
+      -- the result's type as Lua has it ("i": may be an integer, so the integer checks
+      -- above keep arithmetic between two of them in Lua): floor and ceil give integers,
+      -- min and max return one of their arguments as it is, abs keeps an integer, and
+      -- fmod of two integers is an integer fmod that raises on 0: not on the machine
+      local anyint, allint = false, #args > 0
+      for _, a in ipairs(types) do
+        if a == "i" then anyint = true else allint = false end
+      end
       if name == "ran" then
         if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
         emit(OP.RAN); return "n"
@@ -440,10 +453,15 @@ function M.gen (e, out, formals, E, lib)
         emit(OP.NRAN); return "n"
       elseif (name == "min" or name == "max") and #args >= 2 then
         for _ = 2, #args do emit(OP.F2, F2[name]) end
-        return "n"
+        return anyint and "i" or "n"
       elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
-      elseif name == "fmod" and #args == 2 then emit(OP.F2, F2.fmod); return "n"
-      elseif F1[name] and #args == 1 then emit(OP.F1, F1[name]); return "n"
+      elseif name == "fmod" and #args == 2 then
+        if allint then return nil end
+        emit(OP.F2, F2.fmod); return "n"
+      elseif F1[name] and #args == 1 then
+        emit(OP.F1, F1[name])
+        if name == "floor" or name == "ceil" or (name == "abs" and anyint) then return "i" end
+        return "n"
       end
       return nil
     end

@@ -100,10 +100,24 @@ function M.here ()
   return src:match("^@(.*)/[^/]*$") or "."
 end
 
+-- A read-only view of the library table `t`: rule text may come from someone else, and
+-- must not change the process's libraries (`math.floor = print`).
+local function readonly (t, name)
+  return setmetatable({}, {
+    __index = t,
+    __newindex = function (_, k)
+      error(format("cannot change %s.%s in a rule expression", name, tostring(k)), 2)
+    end,
+    __pairs = function () return next, t, nil end,
+    __metatable = false,
+  })
+end
+
 -- Names usable in rule expressions besides `env`: Lua's math functions
--- (radians, as in Lua), `pi`, and the standard library tables.
+-- (radians, as in Lua), `pi`, and the standard library tables (read-only).
 local BUILTIN = {
-  math = math, string = string, table = table, pi = math.pi, huge = math.huge,
+  math = readonly(math, "math"), string = readonly(string, "string"),
+  table = readonly(table, "table"), pi = math.pi, huge = math.huge,
   abs = math.abs, floor = math.floor, ceil = math.ceil, sqrt = math.sqrt, exp = math.exp,
   log = math.log, sin = math.sin, cos = math.cos, tan = math.tan, asin = math.asin,
   acos = math.acos, atan = math.atan, min = math.min, max = math.max, fmod = math.fmod,

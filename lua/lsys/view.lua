@@ -792,7 +792,11 @@ local COMMANDS = {}
 COMMANDS["angle factor"] = function (P, rest, cmd)
   local n = P:number1(rest, cmd)
   if n == 0 then P:err("'%s' must not be 0", cmd) end
-  P.v.angle = 360 / n
+  local a = 360 / n
+  if a ~= a or a == math.huge or a == -math.huge then     -- 1e-320: an infinite angle
+    P:err("'%s' %s gives an angle of %s degrees", cmd, show(rest), tostring(a))
+  end
+  P.v.angle = a
 end
 
 COMMANDS["angle increment"] = function (P, rest, cmd)
