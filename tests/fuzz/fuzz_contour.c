@@ -5,6 +5,7 @@
 ** every vertex and normal must be finite, normals of unit length, V_0 on
 ** the +x axis (or at the origin), and V_p = V_0 for a closed contour.
 **
+**   tools/fuzz.sh 600 contour      (or, by hand:)
 **   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF
 **   cmake --build build-fuzz --target fuzz_contour
 **   build-fuzz/fuzz_contour -max_total_time=300 tests/fuzz/corpus_contour

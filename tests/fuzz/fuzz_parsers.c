@@ -7,9 +7,10 @@
 ** or off. Crashes, leaks and sanitizer reports are failures; syntax and
 ** turtle errors are expected results.
 **
-**   clang -g -O1 -fsanitize=fuzzer,address,undefined -Icsrc tests/fuzz/fuzz_parsers.c \
-**         csrc/common.c csrc/alphabet.c csrc/lstring.c csrc/grammar.c -lm -o fuzz_parsers
-**   ./fuzz_parsers -max_total_time=600 tests/fuzz/corpus
+**   tools/fuzz.sh 600 parsers      (or, by hand:)
+**   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF
+**   cmake --build build-fuzz --target fuzz_parsers
+**   build-fuzz/fuzz_parsers -max_total_time=600 tests/fuzz/corpus_parsers
 */
 #include <stdint.h>
 #include <string.h>

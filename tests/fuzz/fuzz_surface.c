@@ -7,6 +7,7 @@
 ** must be finite, normals of unit length, uv in [0,1], triangles within the
 ** vertices, and the counts (ns + 1)(nt + 1) and 2 ns nt per patch.
 **
+**   tools/fuzz.sh 600 surface      (or, by hand:)
 **   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF
 **   cmake --build build-fuzz --target fuzz_surface
 **   build-fuzz/fuzz_surface -max_total_time=300 -dict=tests/fuzz/surface.dict \
