@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets of the core (tests/fuzz/fuzz_<name>.c) and grows their corpora.
+# Runs every fuzz target and grows its corpus: the libFuzzer targets of the core
+# (tests/fuzz/fuzz_<name>.c) and the Lua-side targets (tests/fuzz/lua/targets/<name>.lua).
 #
-#   tools/fuzz.sh [SECONDS] [NAME...] [--lua] [--no-merge]
+#   tools/fuzz.sh [SECONDS] [NAME...] [--c | --lua] [--no-merge]
 #
-# NAME: parsers contour surface derive expr png export (default: all of them). Configures
+# NAME: parsers contour surface derive expr png export (C), view palette ruleexpr (Lua);
+# default: all of them (--c: the C ones, --lua: the Lua ones). For the C targets it configures
 # build-fuzz/ with clang and LSYS_BUILD_FUZZ=ON, builds the targets, then runs each for
 # SECONDS (default 600), at most JOBS (default nproc) at a time, on a scratch copy of its
 # corpus (build-fuzz/work/<name>/), with -max_total_time, -rss_limit_mb, -malloc_limit_mb (a
@@ -16,8 +18,10 @@
 # after, and the findings (crash-*, leak-*, timeout-*, oom-*); the exit status is 1 when
 # there are findings. Logs: build-fuzz/logs/<name>.<k>.log.
 #
-# --lua also runs the Lua-side fuzzers (tests/fuzz/lua/, see run_lua below). --no-merge
-# leaves tests/fuzz/ as it is. Environment: FUZZ_BUILD_DIR (build-fuzz), JOBS, RSS_MB (2048),
+# The Lua targets run in the same pool through tests/fuzz/lua/fuzz.lua against the module
+# in build/ (built first), on a scratch copy of tests/fuzz/corpus_<name>/; new inputs are
+# merged with the Lua fuzzer's --merge (the hand-made seeds and what adds edges stay).
+# --no-merge leaves tests/fuzz/ as it is. Environment: FUZZ_BUILD_DIR (build-fuzz), JOBS, RSS_MB (2048),
 # MALLOC_MB (512), MAX_LEN (4096, the largest input libFuzzer makes), CORPUS_MAX (200 files:
 # a warning above).
 #
@@ -28,24 +32,35 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 ALL="parsers contour surface derive expr png export"
+ALL_LUA=""
+for t in tests/fuzz/lua/targets/*.lua; do [ -f "$t" ] && ALL_LUA="$ALL_LUA $(basename "$t" .lua)"; done
+ALL_LUA=${ALL_LUA# }
 secs=600
 names=()
-lua=0
+luanames=()
+which=both
 merge=1
 for a in "$@"; do
   case $a in
-    --lua) lua=1 ;;
+    --lua) which=lua ;;
+    --c) which=c ;;
     --no-merge) merge=0 ;;
     -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     ''|*[!0-9]*)
       case " $ALL " in
-        *" $a "*) names+=("$a") ;;
-        *) echo "fuzz.sh: unknown target '$a' (targets: $ALL)" >&2; exit 2 ;;
-      esac ;;
+        *" $a "*) names+=("$a"); continue ;;
+      esac
+      case " $ALL_LUA " in
+        *" ${a#lua-} "*) luanames+=("${a#lua-}"); continue ;;
+      esac
+      echo "fuzz.sh: unknown target '$a' (targets: $ALL $ALL_LUA)" >&2; exit 2 ;;
     *) secs=$a ;;
   esac
 done
-[ ${#names[@]} -gt 0 ] || read -r -a names <<< "$ALL"
+if [ ${#names[@]} -eq 0 ] && [ ${#luanames[@]} -eq 0 ]; then
+  [ "$which" = lua ] || read -r -a names <<< "$ALL"
+  [ "$which" = c ] || read -r -a luanames <<< "$ALL_LUA"
+fi
 B=${FUZZ_BUILD_DIR:-build-fuzz}
 JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 RSS_MB=${RSS_MB:-2048}
@@ -53,30 +68,38 @@ MALLOC_MB=${MALLOC_MB:-512}
 MAX_LEN=${MAX_LEN:-4096}
 CORPUS_MAX=${CORPUS_MAX:-200}
 
-# clang with its libFuzzer runtime
-if ! command -v clang >/dev/null 2>&1; then
-  echo "fuzz.sh: clang is missing: apt-get install clang libclang-rt-14-dev" >&2
-  exit 2
-fi
-if [ ! -f "$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)" ] &&
-   [ ! -f "$(clang -print-runtime-dir 2>/dev/null)/libclang_rt.fuzzer.a" ]; then
-  v=$(clang -dumpversion | cut -d. -f1)
-  echo "fuzz.sh: clang's libFuzzer runtime is missing: apt-get install libclang-rt-$v-dev" \
-       "(libclang-common-$v-dev on older systems)" >&2
-  exit 2
-fi
+# clang with its libFuzzer runtime (for the C targets)
+if [ ${#names[@]} -gt 0 ]; then
+  if ! command -v clang >/dev/null 2>&1; then
+    echo "fuzz.sh: clang is missing: apt-get install clang libclang-rt-14-dev" >&2
+    exit 2
+  fi
+  if [ ! -f "$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)" ] &&
+     [ ! -f "$(clang -print-runtime-dir 2>/dev/null)/libclang_rt.fuzzer.a" ]; then
+    v=$(clang -dumpversion | cut -d. -f1)
+    echo "fuzz.sh: clang's libFuzzer runtime is missing: apt-get install libclang-rt-$v-dev" \
+         "(libclang-common-$v-dev on older systems)" >&2
+    exit 2
+  fi
 
-echo "== configuring $B (clang, LSYS_BUILD_FUZZ=ON)"
-cmake -S . -B "$B" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF >"$B.configure.log" 2>&1 \
-  || { cat "$B.configure.log" >&2; exit 1; }
-rm -f "$B.configure.log"
-targets=()
-for n in "${names[@]}"; do targets+=("fuzz_$n"); done
-echo "== building ${targets[*]}"
-cmake --build "$B" -j "$JOBS" --target "${targets[@]}" >"$B/build.log" 2>&1 \
-  || { tail -40 "$B/build.log" >&2; exit 1; }
+  echo "== configuring $B (clang, LSYS_BUILD_FUZZ=ON)"
+  cmake -S . -B "$B" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF >"$B.configure.log" 2>&1 \
+    || { cat "$B.configure.log" >&2; exit 1; }
+  rm -f "$B.configure.log"
+  targets=()
+  for n in "${names[@]}"; do targets+=("fuzz_$n"); done
+  echo "== building ${targets[*]}"
+  cmake --build "$B" -j "$JOBS" --target "${targets[@]}" >"$B/build.log" 2>&1 \
+    || { tail -40 "$B/build.log" >&2; exit 1; }
+fi
 mkdir -p "$B/logs" "$B/work" "$B/findings"
+if [ ${#luanames[@]} -gt 0 ]; then   # the module the Lua targets load
+  echo "== building build/ (lsys.core for the Lua targets)"
+  { [ -f build/CMakeCache.txt ] || cmake -S . -B build; } >"$B/lua-build.log" 2>&1
+  cmake --build build -j "$JOBS" >>"$B/lua-build.log" 2>&1 \
+    || { tail -40 "$B/lua-build.log" >&2; exit 1; }
+fi
 
 # run NAME: one target for $secs seconds on its scratch corpus, restarted after a finding
 run() {
@@ -97,51 +120,42 @@ run() {
   done
 }
 
+# runlua NAME: one Lua target for $secs seconds on its scratch corpus
+runlua() {
+  local n=$1
+  LUA_PATH="$PWD/lua/?.lua;$PWD/lua/?/init.lua;;" LUA_CPATH="$PWD/build/?.so;;" \
+    lua5.4 tests/fuzz/lua/fuzz.lua "$n" --time "$secs" --corpus "$B/work/lua-$n" \
+    --findings "$B/findings/lua-$n" >"$B/logs/lua-$n.1.log" 2>&1 || true
+}
+
+# prepare NAME WORKDIR: an empty scratch copy of tests/fuzz/corpus_NAME
 declare -A before
-echo "== fuzzing ${names[*]} for $secs s each, $JOBS at a time"
-for n in "${names[@]}"; do
-  rm -rf "${B:?}/work/$n" "${B:?}/findings/$n" "$B/logs/$n".*.log
-  mkdir -p "$B/work/$n" "$B/findings/$n"
+prepare() {
+  local n=$1 w=$2
+  rm -rf "${B:?}/work/$w" "${B:?}/findings/$w" "$B/logs/$w".*.log
+  mkdir -p "$B/work/$w" "$B/findings/$w"
   if [ -d "tests/fuzz/corpus_$n" ]; then
-    cp -p "tests/fuzz/corpus_$n"/* "$B/work/$n/" 2>/dev/null || true
-    before[$n]=$(find "tests/fuzz/corpus_$n" -maxdepth 1 -type f | wc -l)
+    cp -p "tests/fuzz/corpus_$n"/* "$B/work/$w/" 2>/dev/null || true
+    before[$w]=$(find "tests/fuzz/corpus_$n" -maxdepth 1 -type f | wc -l)
   else
-    before[$n]=0
+    before[$w]=0
   fi
+}
+
+echo "== fuzzing ${names[*]} ${luanames[*]} for $secs s each, $JOBS at a time"
+for n in "${names[@]}"; do
+  prepare "$n" "$n"
   while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n || true; done
   echo "   $n"
   run "$n" &
 done
+for n in "${luanames[@]}"; do
+  prepare "$n" "lua-$n"
+  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n || true; done
+  echo "   lua-$n"
+  runlua "$n" &
+done
 wait
-
-# --------------------------------------------------------------------------------------------
-# Hook for the Lua-side fuzzers (tests/fuzz/lua/, written separately): with --lua, each
-# target tests/fuzz/lua/targets/NAME.lua runs for $secs seconds through the Lua fuzzer's own
-# command line, on a scratch copy of tests/fuzz/corpus_NAME, findings in
-# build-fuzz/findings/lua-NAME/. New inputs stay in build-fuzz/work/lua-NAME/ (merge them
-# with the Lua fuzzer's --merge). Change this function when that fuzzer's interface changes.
-run_lua() {
-  local t n
-  if [ ! -f tests/fuzz/lua/fuzz.lua ]; then
-    echo "fuzz.sh: --lua: no Lua fuzzer (tests/fuzz/lua/fuzz.lua)"
-    return 0
-  fi
-  for t in tests/fuzz/lua/targets/*.lua; do
-    [ -f "$t" ] || continue
-    n=$(basename "$t" .lua)
-    rm -rf "${B:?}/work/lua-$n" "${B:?}/findings/lua-$n"
-    mkdir -p "$B/work/lua-$n" "$B/findings/lua-$n"
-    [ -d "tests/fuzz/corpus_$n" ] && cp -p "tests/fuzz/corpus_$n"/* "$B/work/lua-$n/" 2>/dev/null
-    echo "   lua-$n"
-    lua5.4 tests/fuzz/lua/fuzz.lua "$n" --time "$secs" --corpus "$B/work/lua-$n" \
-      --findings "$B/findings/lua-$n" >"$B/logs/lua-$n.log" 2>&1 || true
-  done
-}
-if [ "$lua" = 1 ]; then
-  echo "== Lua fuzzers"
-  run_lua
-fi
-# --------------------------------------------------------------------------------------------
 
 # merge what adds coverage into the checked-in corpora
 if [ "$merge" = 1 ]; then
@@ -152,11 +166,19 @@ if [ "$merge" = 1 ]; then
       -timeout=30 "tests/fuzz/corpus_$n" "$B/work/$n" >"$B/logs/$n.merge.log" 2>&1 \
       || echo "fuzz.sh: merging $n failed (see $B/logs/$n.merge.log)" >&2
   done
+  for n in "${luanames[@]}"; do     # new files in, then keep the seeds and what adds edges
+    mkdir -p "tests/fuzz/corpus_$n"
+    cp -n "$B/work/lua-$n"/* "tests/fuzz/corpus_$n/" 2>/dev/null || true
+    LUA_PATH="$PWD/lua/?.lua;$PWD/lua/?/init.lua;;" LUA_CPATH="$PWD/build/?.so;;" \
+      lua5.4 tests/fuzz/lua/fuzz.lua "$n" --merge "tests/fuzz/corpus_$n" \
+      >"$B/logs/lua-$n.merge.log" 2>&1 \
+      || echo "fuzz.sh: merging lua-$n failed (see $B/logs/lua-$n.merge.log)" >&2
+  done
 fi
 
 # the table
 status=0
-printf '\n%-9s %12s %7s %8s %15s  %s\n' target execs cov ft corpus findings
+printf '\n%-13s %12s %7s %8s %15s  %s\n' target execs cov ft corpus findings
 for n in "${names[@]}"; do
   execs=0; cov=-; ft=-
   for log in "$B/logs/$n".[0-9]*.log; do
@@ -172,7 +194,7 @@ for n in "${names[@]}"; do
   list=$(cd "$B/findings/$n" && ls 2>/dev/null | grep -E '^(crash|leak|timeout|oom)-' |
          tr '\n' ' ' || true)
   [ -z "$list" ] || status=1
-  printf '%-9s %12s %7s %8s %6s -> %-5s  %s\n' "$n" "$execs" "$cov" "$ft" "${before[$n]}" \
+  printf '%-13s %12s %7s %8s %6s -> %-5s  %s\n' "$n" "$execs" "$cov" "$ft" "${before[$n]}" \
     "$after" "${list:-none}"
   if [ "$after" -gt "$CORPUS_MAX" ] ||
      [ "$(cat "tests/fuzz/corpus_$n"/* 2>/dev/null | wc -c)" -gt 1048576 ]; then
@@ -180,13 +202,18 @@ for n in "${names[@]}"; do
          "-set_cover_merge=1 into a directory of the hand-made seeds)"
   fi
 done
-if [ "$lua" = 1 ]; then         # the Lua fuzzers' findings (and their messages, *.txt)
-  for d in "$B"/findings/lua-*; do
-    [ -d "$d" ] || continue
-    k=$(find "$d" -type f ! -name '*.txt' | wc -l)
-    printf '%-9s %s\n' "${d##*/}" "$([ "$k" = 0 ] && echo "no findings" || echo "$k finding(s)")"
-    [ "$k" = 0 ] || status=1
-  done
-fi
+for n in "${luanames[@]}"; do     # the Lua targets: cov = edges, ft = features
+  log=$B/logs/lua-$n.1.log
+  line=$(grep -E "^fuzz $n: " "$log" 2>/dev/null | tail -1 || true)
+  execs=$(echo "$line" | sed -n 's/.*: \([0-9]*\) executions.*/\1/p')
+  cov=$(echo "$line" | sed -n 's/.* \([0-9]*\) edges covered.*/\1/p')
+  ft=$(echo "$line" | sed -n 's/.*(\([0-9]*\) features).*/\1/p')
+  after=$(find "tests/fuzz/corpus_$n" -maxdepth 1 -type f 2>/dev/null | wc -l)
+  k=$(find "$B/findings/lua-$n" -maxdepth 1 -type f ! -name '*.txt' ! -name '.*' 2>/dev/null | wc -l)
+  [ "$k" = 0 ] || status=1
+  [ -n "$line" ] || { status=1; k="the run failed (see $log)"; }
+  printf '%-13s %12s %7s %8s %6s -> %-5s  %s\n' "lua-$n" "${execs:-0}" "${cov:--}" "${ft:--}" \
+    "${before[lua-$n]}" "$after" "$([ "$k" = 0 ] && echo none || echo "$k")"
+done
 [ "$status" = 0 ] || echo "findings: $B/findings/<target>/ (logs in $B/logs/)"
 exit $status
