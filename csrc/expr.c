@@ -80,8 +80,9 @@ int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
 static double fn1 (int f, double x) {
   switch (f) {
     case LSYS_F_ABS: return fabs(x);
-    case LSYS_F_FLOOR: return floor(x);
-    case LSYS_F_CEIL: return ceil(x);
+    /* Lua's floor and ceil give an integer when it fits: no -0 (ceil(-0.5) is 0) */
+    case LSYS_F_FLOOR: x = floor(x); return x == 0 ? 0.0 : x;
+    case LSYS_F_CEIL: x = ceil(x); return x == 0 ? 0.0 : x;
     case LSYS_F_SQRT: return sqrt(x);
     case LSYS_F_EXP: return exp(x);
     case LSYS_F_LOG: return log(x);
@@ -121,7 +122,8 @@ int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
         double x = st[sp - 2], m;
         y = st[--sp];
         m = fmod(x, y);
-        if ((m > 0) ? y < 0 : (m < 0 && y != m)) m += y;   /* Lua's luai_nummod */
+        if ((m > 0) ? y < 0 : (m < 0 && y > 0)) m += y;   /* Lua's luai_nummod: a
+                                   remainder of the divisor's sign (-5 % -3 == -2) */
         st[sp - 1] = m;
         break;
       }

@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #undef NDEBUG
 #include <assert.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -288,6 +289,22 @@ static void test_expr_paths (void) {
   x = 0;
   assert(lsys_expr_run(ok, 8, &x, out, &rng) == 1 && out[0] == 0 && out[1] == -7);
   assert(lsys_expr_check(bad, 2, 0) == -1);
+  {   /* x % y with the signs of Lua: -5 % -3 == -2, 5 % -3 == -1, -5 % 3 == 1; ceil gives no -0 */
+    lsys_ins mod[] = {{LSYS_OP_ARG, 0, 0}, {LSYS_OP_ARG, 1, 0}, {LSYS_OP_MOD, 0, 0},
+                      {LSYS_OP_RET, 0, 0}, {LSYS_OP_K, 0, -0.5}, {LSYS_OP_F1, LSYS_F_CEIL, 0},
+                      {LSYS_OP_RET, 0, 0}};
+    double a[2], o[2];
+    assert(lsys_expr_check(mod, 7, 2) == 2);
+    a[0] = -5; a[1] = -3;
+    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -2);
+    assert(o[1] == 0 && !signbit(o[1]));
+    a[0] = 5; a[1] = -3;
+    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -1);
+    a[0] = -5; a[1] = 3;
+    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == 1);
+    a[0] = -1e-320; a[1] = -1;
+    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -1e-320);
+  }
   assert(lsys_expr_check(NULL, 0, 0) == 0);
   assert(lsys_expr_check(NULL, 1, 0) == -1);
 }
