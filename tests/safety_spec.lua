@@ -598,6 +598,22 @@ describe("fuzzing findings", function ()
     assert.equal(tostring(a:step(s)), tostring(b:step(s)))
   end)
 
+  it("the expression machine computes as Lua does (%, ceil, min with nan)", function ()
+    for _, e in ipairs { "x % -3", "-x % -3", "-x % 3", "ceil(-x / 10)", "floor(-x / 10)",
+                         "min(x, asin(x), exp(1))", "max(x, acos(x), 0.5)", "min(x, 0/0, 2)" } do
+      local rule = ("A(x) --> B(%s)"):format(e)
+      local got = {}
+      for k, lx in ipairs { false, true } do
+        local m = lsys.lsystem { axiom = "A(5)A(3)A(0.5)", productions = rule }
+        m.lua_expressions = lx
+        got[k] = tostring(m:derive(1))
+      end
+      assert.equal(got[2], got[1], e)
+    end
+    local m = lsys.lsystem { axiom = "A(5)", productions = "A(x) --> B(-x % -3, ceil(-x / 10))" }
+    assert.equal("B(-2,0)", tostring(m:derive(1)))
+  end)
+
   it("a PNG text chunk declaring 1.9 GB is skipped, not allocated", function ()
     local core = require "lsys.core"
     local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"

@@ -432,10 +432,14 @@ function M.gen (e, out, formals, E, lib)
     elseif kind == "call" then
       local name, args = fnof(n[2]), n[3]
       if not name then return nil end
+      local fold = (name == "min" or name == "max") and #args >= 2
       local types = {}
       for k, a in ipairs(args) do
         types[k] = gen(a)
         if not isnum(types[k]) then return nil end
+        -- min and max fold from the left as Lua's do (it matters with nan: min(3, nan, 2)
+        -- is 2 in Lua, min(3, min(nan, 2)) would be 3)
+        if fold and k >= 2 then emit(OP.F2, F2[name]) end
       end
       -- the result's type as Lua has it ("i": may be an integer, so the integer checks
       -- above keep arithmetic between two of them in Lua): floor and ceil give integers,
@@ -451,8 +455,7 @@ function M.gen (e, out, formals, E, lib)
       elseif name == "nran" then
         if #args ~= 2 then return nil end
         emit(OP.NRAN); return "n"
-      elseif (name == "min" or name == "max") and #args >= 2 then
-        for _ = 2, #args do emit(OP.F2, F2[name]) end
+      elseif fold then
         return anyint and "i" or "n"
       elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
       elseif name == "fmod" and #args == 2 then
