@@ -413,6 +413,20 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
   return LSYS_OK;
 }
 
+/* The values the expression machine computed for rule 'r' at module 'i' must
+** be finite (the Lua callback checks its own). */
+static int checkvals (lsys_model *m, const lsys_rule *r, size_t i, const double *vals) {
+  uint32_t k;
+  for (k = 0; k < r->nvals; k++)
+    if (!isfinite(vals[k])) {
+      m->cur_rule = (long)(r - m->rules);
+      m->cur_index = i;
+      return lsys_seterror(&m->err, LSYS_ERULE, i, "value %u is %s, not a finite number",
+                           (unsigned)k + 1, vals[k] != vals[k] ? "nan" : "infinite");
+    }
+  return LSYS_OK;
+}
+
 static int needscratch (lsys_model *m, size_t nargs) {
   if (m->argscap < nargs &&
       lsys_grow((void **)&m->args, &m->argscap, nargs, sizeof *m->args) != LSYS_OK)
@@ -450,13 +464,7 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
       if (r->vm != NULL) {
         if (!lsys_expr_run(r->vm, r->nvm, args, vals, m->cur)) continue;
-        for (st = 0; st < (int)r->nvals; st++)
-          if (!isfinite(vals[st])) {
-            m->cur_rule = (long)(r - m->rules);
-            m->cur_index = i;
-            return lsys_seterror(&m->err, LSYS_ERULE, i, "value %d is %s, not a finite number",
-                                 st + 1, vals[st] != vals[st] ? "nan" : "infinite");
-          }
+        if ((st = checkvals(m, r, i, vals)) != LSYS_OK) return st;
       }
       else if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
         m->cur_rule = (long)(r - m->rules);
@@ -646,16 +654,14 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           continue;
         }
         if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
-          uint32_t k;
           if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur)) {
-            for (k = 0; k < r->nvals; k++)
-              if (!isfinite(m->args[k])) break;
-            if (k == r->nvals) {
-              if ((st = emit(m, dst, r, spar + p, m->args)) != LSYS_OK) return fail(m, st, i);
-              p += np;
-              lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
-              continue;
-            }
+            /* a bad value is reported here: running the program again in the full
+            ** path would draw its random numbers again */
+            if ((st = checkvals(m, r, i, m->args)) != LSYS_OK) return st;
+            if ((st = emit(m, dst, r, spar + p, m->args)) != LSYS_OK) return fail(m, st, i);
+            p += np;
+            lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
+            continue;
           }
           else {                           /* condition false: the module stays */
             if (dst->n >= m->max_modules) return limiterror(m, i);

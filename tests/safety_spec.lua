@@ -612,6 +612,16 @@ describe("fuzzing findings", function ()
     end
     local m = lsys.lsystem { axiom = "A(5)", productions = "A(x) --> B(-x % -3, ceil(-x / 10))" }
     assert.equal("B(-2,0)", tostring(m:derive(1)))
+    -- a bad value is reported where the condition held, without drawing again
+    local errs = {}
+    for k, lx in ipairs { false, true } do
+      local r = lsys.lsystem { axiom = "A(1)A(1)A(1)A(1)A(1)A(1)", seed = 1,
+                               productions = "A(x) : nran(1, 2^63) > 2 --> B(1/0 + 1)" }
+      r.lua_expressions = lx
+      errs[k] = select(2, pcall(r.derive, r, 1))
+    end
+    assert.truthy(errs[1]:find("module 3: value 1 is infinite", 1, true), errs[1])
+    assert.equal(errs[2], errs[1])
   end)
 
   it("a PNG text chunk declaring 1.9 GB is skipped, not allocated", function ()
