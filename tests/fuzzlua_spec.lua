@@ -63,6 +63,16 @@ describe("the Lua fuzzer", function ()
     assert.truthy(msg:find("over budget (time", 1, true), msg)
   end)
 
+  it("finds nothing in 3000 fixed-seed mutations of view files", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local _, sum = fuzz.fuzz(fuzz.target("view"), { runs = 3000, seed = 7, quiet = true })
+    assert.equal(0, sum.findings)
+    -- both outcomes occur: the mutations neither break every file nor none of them
+    assert.is_true(sum.ok > 0 and sum.errors > 1000, sum.ok .. " loaded, " .. sum.errors ..
+                   " rejected")
+    assert.is_true(sum.edges > 500, sum.edges .. " edges")
+  end)
+
   it("finds new edges in lsys's Lua files", function ()
     local view = require "lsys.view"
     local F = fuzz.new({ run = function (s) view.parse(s, "fuzz.v", { quiet = true }) end,

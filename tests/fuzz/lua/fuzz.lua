@@ -32,7 +32,7 @@
 -- or grows memory past the bound (collectgarbage "count"). Findings are written to
 -- the findings directory: the input as HASH and the message as HASH.txt.
 --
--- The generator is xorshift64* (as tests/fuzz_view.lua), so a run with the same seed,
+-- The generator is xorshift64*, so a run with the same seed,
 -- corpus and --runs is the same on every machine. `dofile` of this file returns the
 -- module (M.new, M.replay, M.fuzz, M.main) without running anything.
 local script = debug.getinfo(1, "S").source

@@ -2,7 +2,7 @@
 --
 -- The bytes are parsed as "fuzz.v". A parsed view must be a table with a list of
 -- warnings "fuzz.v:LINE: ...", and lsys.view.normalize must accept it with the
--- file-based options (contours, surfaces, textures) left out, as tests/fuzz_view.lua
+-- file-based options (contours, surfaces, textures) left out, as the view specs do
 -- does: their files do not exist. The normalised view must give turtle and renderer
 -- options. The same bytes through view.load from a temporary file must give the same
 -- view (but `dir`) or the same error (but the file name). Expected errors: strings
@@ -23,7 +23,7 @@ end
 
 local T = { maxlen = 4096 }
 
--- seeds: the view files of the tests, the texts of tests/fuzz_view.lua, and one line
+-- seeds: the view files of the tests, a few hand-made texts, and one line
 -- of every command
 T.seeds = {}
 for _, name in ipairs { "plant.v", "legacy.v" } do
@@ -48,7 +48,7 @@ for _, s in ipairs {
   T.seeds[#T.seeds + 1] = s
 end
 
--- the labels and values of tests/fuzz_view.lua
+-- labels and values of every command
 local LABELS = {
   "angle factor", "angle increment", "initial color", "initial colour", "color increment",
   "colour increment", "initial line width", "line width increment", "line style",
