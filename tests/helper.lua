@@ -13,6 +13,9 @@
 --   H.modules(s)                       list of { name, p1, p2, ... } for every module of s
 --   H.rep(text, n)                     text repeated n times
 --   H.binomial_tol(n, p, k)            k standard deviations of a binomial(n, p) count
+--   H.tmpdir(), H.rmdir(d), H.read(path), H.write(path, s)     temporary folders and files
+--   H.sh(cmd), H.lsys(script, opts)    a shell command, a script run by the lsys program:
+--                                      output and exit status
 --   H.ref_derive(axiom, rules, n, ignore)  independent reference deriver (see below)
 local assert = require "luassert"
 local say = require "say"
@@ -119,6 +122,59 @@ function H.modules (s)
 end
 
 function H.rep (text, n) return string.rep(text, n) end
+
+-- Files and processes ----------------------------------------------------------------------
+
+--- A new empty temporary folder.
+function H.tmpdir ()
+  local d = os.tmpname()
+  os.remove(d)
+  assert(os.execute("mkdir -p '" .. d .. "'"))
+  return d
+end
+
+--- Removes a folder and everything in it.
+function H.rmdir (d) os.execute("rm -rf '" .. d .. "'") end
+
+--- The bytes of a file, or nil when it cannot be read.
+function H.read (path)
+  local f = io.open(path, "rb")
+  if f == nil then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+--- Writes the bytes `s` to a file.
+function H.write (path, s)
+  local f = assert(io.open(path, "wb"))
+  f:write(s)
+  f:close()
+end
+
+--- Runs a shell command; returns what it printed (stdout and stderr) and its exit status.
+function H.sh (cmd)
+  local p = io.popen(cmd .. " 2>&1; echo \"exit:$?\"")
+  local out = p:read("a")
+  p:close()
+  local code = tonumber(out:match("exit:(%d+)%s*$"))
+  return (out:gsub("exit:%d+%s*$", "")), code
+end
+
+--- The lsys program: LSYS_BIN (ctest sets it) or build/bin/lsys.
+H.BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+
+--- Runs the Lua text `script` with the lsys program. opts: env ("NAME=value ..."),
+-- prefix (shell commands before it, e.g. a ulimit). Returns the output and exit status.
+function H.lsys (script, opts)
+  opts = opts or {}
+  local path = os.tmpname()
+  H.write(path, script)
+  local out, code = H.sh(("sh -c '%s %s exec \"%s\" \"%s\"'"):format(opts.prefix or "",
+                                                                    opts.env or "", H.BIN, path))
+  os.remove(path)
+  return out, code
+end
 
 function H.binomial_tol (n, p, k)
   return (k or 5) * math.sqrt(n * p * (1 - p))

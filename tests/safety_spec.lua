@@ -1,6 +1,6 @@
 -- Memory safety, safe outputs, bounded memory: each finding of the audit (issue 13) with
 -- the test that fails before its fix.
-require "tests.helper"
+local H = require "tests.helper"
 local lsys = require "lsys"
 
 local function errof (f, ...)
@@ -9,24 +9,13 @@ local function errof (f, ...)
   return tostring(err)
 end
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p '" .. d .. "'"))
-  return d
-end
-
-local function rmdir (d) os.execute("rm -rf '" .. d .. "'") end
+local tmpdir, rmdir, slurp, spit = H.tmpdir, H.rmdir, H.read, H.write
 
 -- AddressSanitizer (tools/sanitize.sh) reserves terabytes of address space: a process
 -- under an address-space limit (ulimit -v) cannot start there.
 local SANITIZED = os.getenv("ASAN_OPTIONS") ~= nil
 
-local function exists (path)
-  local f = io.open(path, "rb")
-  if f then f:close() return true end
-  return false
-end
+local function exists (path) return H.read(path) ~= nil end
 
 describe("rule expressions", function ()
   local marker
@@ -205,9 +194,7 @@ describe("closed objects", function ()
 
   it("a model resurrected by a finalizer raises instead of crashing", function ()
     -- the guard is created first, so its finalizer runs after the rules' at exit
-    local path = os.tmpname()
-    local f = assert(io.open(path, "w"))
-    f:write([[
+    local out, code = H.lsys([[
 local lsys = require "lsys"
 local guard = setmetatable({}, { __gc = function (g)
   local ok, err = pcall(g.m.derive, g.m, 2)
@@ -216,13 +203,7 @@ end })
 guard.m = lsys.lsystem { axiom = "A", productions = "A --> AB" }
 _G.keep = guard
 ]])
-    f:close()
-    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
-    local p = io.popen(BIN .. " " .. path .. " 2>&1; echo \"exit:$?\"")
-    local out = p:read("a")
-    p:close()
-    os.remove(path)
-    assert.truthy(out:find("exit:0", 1, true), out)
+    assert.equal(0, code, out)
     assert.truthy(out:find("resurrected: false", 1, true), out)
     assert.truthy(out:find("were closed", 1, true), out)
   end)
@@ -248,7 +229,7 @@ _G.keep = guard
       lsys.lsystem { axiom = "@#(1)F", view = { line_style = "cylinder", contours = { c } } }
         :interpret()
     end):find("the contour was closed", 1, true))
-    local sf = core.surface_parse(io.open("tests/data/surfaces/leaf.s"):read("a"), "leaf.s")
+    local sf = core.surface_parse(H.read("tests/data/surfaces/leaf.s"), "leaf.s")
     close(sf)
     assert.equal("lsys.Surface (closed)", tostring(sf))
     assert.truthy(errof(sf.info, sf):find("the surface was closed", 1, true))
@@ -262,28 +243,11 @@ end)
 
 describe("outputs", function ()
   local core = require "lsys.core"
-  local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
   local d
   before_each(function () d = tmpdir() end)
   after_each(function () rmdir(d) end)
 
-  local function slurp (path)
-    local f = assert(io.open(path, "rb"))
-    local s = f:read("a")
-    f:close()
-    return s
-  end
-  local function spit (path, s)
-    local f = assert(io.open(path, "wb"))
-    f:write(s)
-    f:close()
-  end
-  local function listing (dir)
-    local p = io.popen("ls -A '" .. dir .. "'")
-    local out = p:read("a")
-    p:close()
-    return out
-  end
+  local function listing (dir) return (H.sh("ls -A '" .. dir .. "'")) end
   local function scene ()
     return lsys.lsystem { axiom = "F[+F]F[-F]F", view = { angle = 30, line_style = "cylinder",
                                                           line_width = 0.1 } }:interpret()
@@ -295,10 +259,7 @@ describe("outputs", function ()
     local full = d .. "/full"
     if not os.execute("mknod -m 666 '" .. full .. "' c 1 7 2>/dev/null") then full = "/dev/full" end
     local function kind (path, follow)
-      local p = io.popen("stat " .. (follow and "-L " or "") .. "-c %F '" .. path .. "' 2>&1")
-      local k = p:read("a")
-      p:close()
-      return k
+      return (H.sh("stat " .. (follow and "-L " or "") .. "-c %F '" .. path .. "'"))
     end
     local function isdevice (path) return kind(path, true) == "character special file\n" end
     assert.is_true(isdevice(full))
@@ -322,14 +283,7 @@ describe("outputs", function ()
   -- runs `lsys SCRIPT` with the file size limited to 'kib' KiB, so a write fails
   -- half-way as on a full disk; returns the output
   local function limited (script, kib)
-    local path = d .. "/script.lua"
-    spit(path, script)
-    local p = io.popen(("sh -c \"trap '' XFSZ; ulimit -f %d; exec '%s' '%s'\" 2>&1; echo exit:$?")
-                       :format(kib, BIN, path))
-    local out = p:read("a")
-    p:close()
-    os.remove(path)
-    return out
+    return (H.lsys(script, { prefix = ("trap \"\" XFSZ; ulimit -f %d;"):format(kib) }))
   end
 
   it("a failed write keeps the old file and leaves no partial file", function ()
@@ -366,9 +320,7 @@ print("png", pcall(lsys.render, scene, { out = "%s/old.png", width = 600, height
     assert.is_true(sc:save(d .. "/b.ply"))
     assert.truthy(slurp(d .. "/a.obj"):find("^# lsys: "))
     assert.truthy(slurp(d .. "/real/b.ply"):find("^ply\n"))
-    local p = io.popen("stat -c '%a %F' '" .. d .. "/a.obj' '" .. d .. "/b.ply'")
-    local modes = p:read("a")
-    p:close()
+    local modes = H.sh("stat -c '%a %F' '" .. d .. "/a.obj' '" .. d .. "/b.ply'")
     assert.equal("600 regular file\n777 symbolic link\n", modes)
     assert.equal("a.mtl\na.obj\nb.ply\nreal\n", listing(d))
     assert.is_true(core.write_file(d .. "/c.txt", "hello"))
@@ -381,24 +333,15 @@ end)
 
 describe("the memory budget", function ()
   local core = require "lsys.core"
-  local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
   local saved
   before_each(function () saved = lsys.max_memory() end)
   after_each(function () lsys.max_memory(saved == math.huge and "unlimited" or saved) end)
 
   -- runs `lsys SCRIPT` with the environment `env`, under a virtual memory limit of `kib`
   local function run (script, env, kib)
-    local path = os.tmpname()
-    local f = assert(io.open(path, "w"))
-    f:write(script)
-    f:close()
     local limit = SANITIZED and "" or ("ulimit -v %d;"):format(kib or 4000000)
-    local p = io.popen(("sh -c '%s %s exec \"%s\" \"%s\"' 2>&1; echo exit:$?")
-                       :format(limit, env or "", BIN, path))
-    local out = p:read("a")
-    p:close()
-    os.remove(path)
-    return out
+    local out, code = H.lsys(script, { env = env, prefix = limit })
+    return out .. "exit:" .. tostring(code)
   end
 
   it("reads sizes in bytes and binary units", function ()
@@ -467,10 +410,8 @@ print(pcall(m.derive, m, 26))
     return string.pack(">I4", #data) .. kind .. data .. string.pack(">I4", crc32(kind .. data))
   end
   local function bigpng (path, w, h)
-    local f = assert(io.open(path, "wb"))
-    f:write("\137PNG\r\n\26\n", chunk("IHDR", string.pack(">I4I4BBBBB", w, h, 8, 6, 0, 0, 0)),
-            chunk("IDAT", "\120\156\3\0\0\0\0\1"), chunk("IEND", ""))
-    f:close()
+    spit(path, "\137PNG\r\n\26\n" .. chunk("IHDR", string.pack(">I4I4BBBBB", w, h, 8, 6, 0, 0, 0))
+               .. chunk("IDAT", "\120\156\3\0\0\0\0\1") .. chunk("IEND", ""))
   end
 
   it("refuses a texture whose pixels outgrow max_memory before decoding it", function ()
@@ -531,11 +472,7 @@ describe("parse errors about files a view names", function ()
 
   it("quote at most a short token of the file", function ()
     local path = os.tmpname()
-    local function file (text)
-      local f = assert(io.open(path, "wb"))
-      f:write(text)
-      f:close()
-    end
+    local function file (text) spit(path, text) end
     for what, case in pairs {
       contour = { SECRET .. " 2 closed\n", function () return core.contour_load(path) end },
       surface = { SECRET .. "\n", function () return core.surface_load(path) end },
@@ -626,23 +563,13 @@ describe("fuzzing findings", function ()
 
   it("a PNG text chunk declaring 1.9 GB is skipped, not allocated", function ()
     local core = require "lsys.core"
-    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
-    local path = os.tmpname()
-    local f = assert(io.open(path, "wb"))        -- IHDR 1x1 RGB, then tEXt of 0x74455874 bytes
-    f:write("\137PNG\r\n\26\n\0\0\0\13IHDR\0\0\0\1\0\0\0\1\8\2\0\0\0\144\119\83\222" ..
-            "\116\69\88\116tEXtComment\0lsys")
-    f:close()
+    local path = os.tmpname()                      -- IHDR 1x1 RGB, then tEXt of 0x74455874 bytes
+    spit(path, "\137PNG\r\n\26\n\0\0\0\13IHDR\0\0\0\1\0\0\0\1\8\2\0\0\0\144\119\83\222" ..
+               "\116\69\88\116tEXtComment\0lsys")
     assert.error_contains(function () core.png_read(path) end, "unexpected end of file")
     -- under a 300 MB address-space limit the 1.9 GB allocation would fail instead
-    local script = os.tmpname()
-    f = assert(io.open(script, "w"))
-    f:write(("print(pcall(require('lsys.core').png_read, %q))"):format(path))
-    f:close()
-    local limit = SANITIZED and "" or "ulimit -v 300000;"
-    local p = io.popen(("sh -c '%s exec \"%s\" \"%s\"' 2>&1"):format(limit, BIN, script))
-    local out = p:read("a")
-    p:close()
-    os.remove(script)
+    local out = H.lsys(("print(pcall(require('lsys.core').png_read, %q))"):format(path),
+                       { prefix = SANITIZED and "" or "ulimit -v 300000;" })
     os.remove(path)
     assert.truthy(out:find("false\t[^\n]*unexpected end of file"), out)
   end)
