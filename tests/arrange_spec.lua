@@ -256,13 +256,14 @@ describe("#gl lsys arrange in the window", function()
     f:write([[
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local UI = require "lsys.arrange_ui"
 local m = dofile(arg[1])
 local arr = lsys.arrange(m, m:derive())
 local function x (cmd)
   assert(os.execute("xdotool search --name 'lsys: arrange test' " .. cmd .. " >/dev/null 2>&1"))
-  for _ = 1, 5 do V.poll(0.1) end
-  assert(V.sync(10))
+  for _ = 1, 5 * SLOW do V.poll(0.1) end
+  assert(V.sync(10 * SLOW))
 end
 local function at (module)         -- the window point of a segment's middle
   local sc = arr:interpret()
@@ -271,7 +272,7 @@ local function at (module)         -- the window point of a segment's middle
   return px // 1, py // 1
 end
 V.wait = function ()
-  assert(V.sync(10))
+  assert(V.sync(10 * SLOW))
   x(("mousemove --window %%1 %d %d click 1"):format(at(2)))       -- fixed: the 2nd internode
   local fixed = arr.fixed.module       -- 3: an @J went in before it
   x(("mousemove --window %%1 %d %d click 1"):format(at(fixed + 6)))   -- the lateral's 2nd F
@@ -305,7 +306,7 @@ V.wait = function ()
   print("undone", #arr:lstring() == n0, (tostring(arr:lstring()):find("@X")))
   os.execute("xdotool search --name 'lsys: arrange test' windowfocus --sync %1 key Escape " ..
     ">/dev/null 2>&1")                 -- (xdotool may complain: the window goes)
-  for _ = 1, 10 do V.poll(0.1) end
+  for _ = 1, 10 * SLOW do V.poll(0.1) end
 end
 UI.run(arr, { width = 400, height = 400, title = "arrange test", out = arg[2],
               say = function () end })

@@ -6,8 +6,9 @@ local D = require "tests.display"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 local PTYRUN = (os.getenv("LSYS_BUILD_DIR") or "build") .. "/tools/ptyrun"
--- seconds to wait for each reply: longer under valgrind (tools/memcheck-all.sh sets it)
-local TIMEOUT = tonumber(os.getenv("LSYS_TEST_TIMEOUT") or "") or 20
+-- seconds to wait for each reply: longer under valgrind (tools/memcheck-all.sh sets
+-- LSYS_TEST_SLOW, a factor for every wait of the specs that start the program)
+local TIMEOUT = 20 * (tonumber(os.getenv("LSYS_TEST_SLOW")) or 1)
 
 local function exists (path)
   local f = io.open(path)

@@ -7,6 +7,7 @@ local core = require "lsys.core"
 local D = require "tests.display"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 
 -- Runs a shell command; returns its output (stdout and stderr) and exit status.
 local function run (cmd)
@@ -127,16 +128,17 @@ describe("#gl the viewer window", function()
     write(dir .. "/click.lua", [[
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local m = dofile(arg[1])
 local events = {}
 lsys.show(m, { width = 400, height = 400, title = "click test", status = false,
                on_event = function (ev) events[#events + 1] = ev end })
-assert(V.sync(10), "no picture")
+assert(V.sync(10 * SLOW), "no picture")
 local function click (x, y)
   events = {}
   assert(os.execute(("xdotool search --name 'lsys: click test' mousemove --window %1 " ..
     x // 1 .. " " .. y // 1 .. " click 1 >/dev/null 2>&1")))
-  for _ = 1, 40 do
+  for _ = 1, 40 * SLOW do
     V.poll(0.25)
     for _, ev in ipairs(events) do
       if ev.type == "pick" then return "pick " .. ev.module .. " " .. ev.kind end
@@ -177,28 +179,29 @@ V.close()
     write(dir .. "/mouse.lua", [[
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local m = dofile(arg[1])
 local dir = arg[2]
 lsys.show(m, { width = 300, height = 300, status = false, title = "mouse test",
                view = { projection = "perspective" } })
-assert(V.sync(10))
+assert(V.sync(10 * SLOW))
 local function x (cmd)
   assert(os.execute("xdotool search --name 'lsys: mouse test' " .. cmd .. " >/dev/null 2>&1"))
   V.poll(0.3)
-  assert(V.sync(10))
+  assert(V.sync(10 * SLOW))
 end
 local function shot (name) V.screenshot(dir .. "/" .. name .. ".png") end
 shot("home")
 x("mousemove --window %1 150 150 mousedown 1 mousemove --window %1 230 120 mouseup 1")
 shot("orbit")
-V.key("r") assert(V.sync(10)) shot("reset")
+V.key("r") assert(V.sync(10 * SLOW)) shot("reset")
 x("mousemove --window %1 150 150 mousedown 3 mousemove --window %1 200 150 mouseup 3")
 shot("pan")
-V.key("r") assert(V.sync(10))
+V.key("r") assert(V.sync(10 * SLOW))
 x("mousemove --window %1 150 150 click 5 click 5 click 5")
 shot("zoom")
-V.key("f") assert(V.sync(10)) shot("fit")
-V.key("w") assert(V.sync(10)) shot("wire")
+V.key("f") assert(V.sync(10 * SLOW)) shot("fit")
+V.key("w") assert(V.sync(10 * SLOW)) shot("wire")
 print(V.last_pick == nil and "no pick" or "pick")
 V.close()
 ]])
@@ -234,24 +237,25 @@ V.close()
     write(dir .. "/steps.lua", [[
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local m = dofile(arg[1])
 local dir = arg[2]
 lsys.show(m, { width = 300, height = 300, rate = 20, status = false })
-assert(V.sync(10))
+assert(V.sync(10 * SLOW))
 local st = V.state()
 print("shown", st.frame, st.nframes, st.step)
 V.screenshot(dir .. "/s3.png")
 V.key("left") V.key("left")
-assert(V.sync(10))
+assert(V.sync(10 * SLOW))
 print("back", V.state().step)
 V.screenshot(dir .. "/s1.png")
-V.key("home") assert(V.sync(10)) print("home", V.state().step)
-V.key("right") assert(V.sync(10)) print("right", V.state().step)
+V.key("home") assert(V.sync(10 * SLOW)) print("home", V.state().step)
+V.key("right") assert(V.sync(10 * SLOW)) print("right", V.state().step)
 V.key("space")
 local t0 = os.time()
-repeat V.poll(0.1) until not V.state().playing or os.time() - t0 > 10
+repeat V.poll(0.1) until not V.state().playing or os.time() - t0 > 10 * SLOW
 print("played", V.state().step, V.state().playing)
-lsys.show(m, { step = 2 }) assert(V.sync(10)) print("show step", V.state().step)
+lsys.show(m, { step = 2 }) assert(V.sync(10 * SLOW)) print("show step", V.state().step)
 m.view.background = { 0, 0, 0 }          -- the view is read again at every show
 lsys.show(m, { status = false })
 V.screenshot(dir .. "/black.png")
@@ -276,13 +280,14 @@ V.close()
     write(dir .. "/lines.lua", [[
 local lsys = require "lsys"
 local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local dir = arg[1]
 local m = lsys.lsystem { axiom = "!(0.5)F(2)", view = { line_style = "cylinder" } }
 for _, top in ipairs { false, true } do   -- a red line along the axis, inside the tube
   local sc = m:interpret(m:derive())
   lsys.show(sc, { width = 200, height = 200, status = false, lines = {
     { p0 = { 0, 0, 0 }, p1 = { 0, 2, 0 }, color = { 1, 0, 0 }, width = 4, ontop = top } } })
-  assert(V.sync(10))
+  assert(V.sync(10 * SLOW))
   V.screenshot(dir .. "/" .. tostring(top) .. ".png")
 end
 V.close()
@@ -309,14 +314,14 @@ V.close()
     if not dir then return end
     local bin = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
     write(dir .. "/m.lua", MODEL:format(1, "line"))
-    os.execute("cd " .. dir .. " && (" .. D.env .. "timeout 60 " .. bin ..
+    os.execute("cd " .. dir .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " .. bin ..
       " view m.lua --size 300x300 >out.txt 2>err.txt; echo $? > rc.txt) &")
-    local win = D.env .. "timeout 10 xdotool search --sync --name 'lsys: m.lua' "
+    local win = D.env .. "timeout " .. 10 * SLOW .. " xdotool search --sync --name 'lsys: m.lua' "
     local function key (k)
       return os.execute(win .. "windowfocus --sync %1 key " .. k .. " >/dev/null 2>&1")
     end
     local function wait_for (file, text)
-      for _ = 1, 100 do
+      for _ = 1, 100 * SLOW do
         local s = read(dir .. "/" .. file)
         if s and s:find(text, 1, true) then return s end
         D.sleep(0.1)
@@ -325,7 +330,7 @@ V.close()
     end
     assert.truthy(key("s"))
     wait_for("out.txt", "")
-    for _ = 1, 50 do if read(dir .. "/lsys-001.png") then break end D.sleep(0.1) end
+    for _ = 1, 50 * SLOW do if read(dir .. "/lsys-001.png") then break end D.sleep(0.1) end
     D.sleep(0.3)
     local first = plant(dir .. "/lsys-001.png", 280)   -- above the status line
     assert.equal(300, first.w)
@@ -344,7 +349,7 @@ V.close()
     -- the camera was kept through the reload; F fits the bigger plant
     assert.truthy(key("f"))
     assert.truthy(key("s"))
-    for _ = 1, 50 do if read(dir .. "/lsys-002.png") then break end D.sleep(0.1) end
+    for _ = 1, 50 * SLOW do if read(dir .. "/lsys-002.png") then break end D.sleep(0.1) end
     D.sleep(0.3)
     local second = plant(dir .. "/lsys-002.png", 280)
     assert.is_true(second.n > 2 * first.n, second.n .. " vs " .. first.n)

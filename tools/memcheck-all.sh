@@ -31,7 +31,7 @@ command -v valgrind >/dev/null || { echo "memcheck-all.sh: valgrind is missing (
 B=${MEMCHECK_BUILD_DIR:-build-memcheck}
 cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" >/dev/null
 cmake --build "$B" -j "$JOBS" >/dev/null
-LOGS=$B/memcheck
+LOGS=$PWD/$B/memcheck     # absolute: children may run elsewhere
 rm -rf "$LOGS"
 mkdir -p "$LOGS"
 
@@ -41,9 +41,10 @@ skip='*/Xvfb,*/xdotool,*/xauth,*/xwd,*/node,*/npm,*/ffmpeg,*/ls,*/stat,*/mkdir,*
 skip=$skip',*/chmod,*/mknod,*/cat,*/cp,*/mv,*/sleep,*/kill,*/ps,*/timeout,*/env,*/touch,*/diff'
 skip=$skip',*/cmp,*/grep,*/sed,*/head,*/tail,*/wc,*/sort,*/find,*/xargs,*/git,*/cmake,*/make'
 VG=(valgrind --error-exitcode=9 --leak-check=full --errors-for-leak-kinds=definite
-    --show-leak-kinds=definite --keep-debuginfo=yes --suppressions=tools/valgrind.supp
+    --show-leak-kinds=definite --keep-debuginfo=yes "--suppressions=$PWD/tools/valgrind.supp"
     --trace-children=yes "--trace-children-skip=$skip" "--trace-children-skip-by-arg=*ulimit*")
-export LSYS_BIN=$PWD/$B/bin/lsys LSYS_BUILD_DIR=$PWD/$B LSYS_TEST_TIMEOUT=600
+export LSYS_BIN=$PWD/$B/bin/lsys LSYS_BUILD_DIR=$PWD/$B
+export LSYS_TEST_SLOW=30       # the specs' waits for a window or a reply, times 30
 export LUA_PATH="$PWD/lua/?.lua;$PWD/lua/?/init.lua;;" LUA_CPATH="$PWD/$B/?.so;;"
 
 # the tests: name and command
