@@ -465,7 +465,7 @@ function lsys.isscene(x) end
 
 
 -- ===========================================================================================
--- lsys.Lstring (C: csrc/lua_lstring.c, metatable "lsys.Lstring")
+-- lsys.Lstring (C: csrc/lua/lua_lstring.c, metatable "lsys.Lstring")
 
 --- A module string: symbol codes and a pool of double parameters in C arrays. Made by
 --- derive, step, expand, lsys.lstring and Model:lstring; methods never change it.
@@ -527,7 +527,7 @@ function Lstring:bytes() end
 
 
 -- ===========================================================================================
--- lsys.core: the C module (csrc/lua_lsys.c, csrc/lua_lstring.c). lsys.lsystem is built on
+-- lsys.core: the C module (csrc/lua/lua_lsys.c, csrc/lua/lua_lstring.c). lsys.lsystem is built on
 -- it; use it directly only to write another front end.
 
 ---@class lsys.core
@@ -697,7 +697,7 @@ function Rules:lstring(text) end
 function Rules:ran() end
 
 --- Sets the expression-machine program of rule `idx` (flat `{op, a, k, ...}` triples, see
---- csrc/expr.h), or clears it with nil. Returns false when the program does not fit the rule
+--- csrc/core/expr.h), or clears it with nil. Returns false when the program does not fit the rule
 --- (the rule has no RF_CALL, is a function rule, or the program is malformed or writes the
 --- wrong number of values). Raises `bad rule index`, `program too long` (over 1024
 --- instructions).

@@ -1,5 +1,5 @@
 --- The `lsys` command line.
--- The program (csrc/lua_main.c) calls `main(...)` with its arguments and exits with what it
+-- The program (csrc/prog/lsys.c) calls `main(...)` with its arguments and exits with what it
 -- returns: 0 on success, 1 when something failed, 2 for a usage error. `main` prints its
 -- own messages (`lsys: ...` on stderr) and does not raise, so it can be called from Lua too:
 -- `require("lsys.cli").main("derive", "examples/default.lua", "--stats")`.

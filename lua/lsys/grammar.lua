@@ -206,7 +206,7 @@ function M.compile (r, info)
 end
 
 -- ---------------------------------------------------------------------------
--- Expressions that run in C (csrc/expr.h). An expression is parsed once into
+-- Expressions that run in C (csrc/core/expr.h). An expression is parsed once into
 -- a tree; when a model is bound to its env, the tree becomes stack-machine
 -- code if every name is a parameter, a number in env, a math function or
 -- ran/nran, and every operation means in C what it means in Lua. Otherwise

@@ -105,7 +105,7 @@ local KINDS = {
 }
 M.KINDS = KINDS
 
-local MAXTROPISMS = 16        -- LSYS_MAXTROPISMS (csrc/turtle.h): tropisms and torques
+local MAXTROPISMS = 16        -- LSYS_MAXTROPISMS (csrc/core/turtle.h): tropisms and torques
 
 local core                    -- lsys.core, loaded when a view first names a file
 local function getcore ()

@@ -1,7 +1,7 @@
 --- The viewer window from Lua (DESIGN.md §7): `lsys.show(x)` and what goes with it.
 --
 -- One window per process, opened by the first `show` and reused by the next ones (a
--- closed window is opened again). The window runs on its own thread (csrc/glfw_viewer.c):
+-- closed window is opened again). The window runs on its own thread (csrc/gl/glfw_viewer.c):
 -- `show` hands it a snapshot and returns at once, and Lua goes on while the window draws.
 -- What happens in the window (a click on a module, a screenshot written, the window
 -- closed) comes back as events, which `poll` turns into callbacks on the Lua thread.

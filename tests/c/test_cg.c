@@ -1,5 +1,5 @@
 /*
-** C unit tests for the conjugate-gradient minimiser (csrc/cg.c): Rosenbrock
+** C unit tests for the conjugate-gradient minimiser (csrc/core/cg.c): Rosenbrock
 ** in 2, 10 and 100 dimensions, quadratics with a known minimum (diagonal
 ** and random SPD), the strong Wolfe conditions on every accepted step, each
 ** way of stopping, bad arguments, an objective undefined outside a region,

@@ -1,5 +1,5 @@
 /*
-** C unit tests for contours (csrc/contour.c): the parser on the three
+** C unit tests for contours (csrc/core/contour.c): the parser on the three
 ** files of Appendix B.1, on tolerated layouts and on malformed input (exact
 ** messages); lsys_contour_set; sampling checked against a direct
 ** re-implementation of the definition, equal arc length, the rotation of

@@ -1,5 +1,5 @@
 /*
-** C unit tests for generalized cylinders (csrc/gcyl.c, seed 004 §3): the
+** C unit tests for generalized cylinders (csrc/core/gcyl.c, seed 004 §3): the
 ** Hermite axis, the longitudinal section with and without @Gr tangents and
 ** their adjustment, frame transport, and the strips of a segment: counts,
 ** radii along the section, texture v, twist kept or minimised, frames along

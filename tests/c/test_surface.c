@@ -1,5 +1,5 @@
 /*
-** C unit tests for bicubic surfaces (csrc/surface.c): patch evaluation in
+** C unit tests for bicubic surfaces (csrc/core/surface.c): patch evaluation in
 ** the three bases against hand-computed points and finite differences; the
 ** surface file reader on the files in tests/data/surfaces, on variants of the format
 ** and on malformed files (exact messages); tessellation counts, placement,

@@ -1,5 +1,5 @@
 /*
-** libFuzzer target for the derivation engine (csrc/derive.c): a model is
+** libFuzzer target for the derivation engine (csrc/core/derive.c): a model is
 ** built from the input text, derived for a few steps, then decomposed and
 ** interpreted by the homomorphism, both as a whole (lsys_expand) and one
 ** module at a time (lsys_homo_begin/module/end). Crashes, leaks, sanitizer
@@ -25,7 +25,7 @@
 **                    the checker refuses)
 **   # ...            a comment
 ** Conditions, computed parameters and weight expressions are compiled by a
-** small compiler here to the expression machine (csrc/expr.h); the rule
+** small compiler here to the expression machine (csrc/core/expr.h); the rule
 ** then runs either in C (setvm, mod v) or through a C callback that runs
 ** the same program (LSYS_RF_CALL), as the Lua binding does. The callback
 ** first tries to re-enter the model (a step, an expansion, a streamed

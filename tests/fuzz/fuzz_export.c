@@ -1,5 +1,5 @@
 /*
-** libFuzzer target for the export writers (csrc/mesh.c: OBJ with its MTL,
+** libFuzzer target for the export writers (csrc/core/mesh.c: OBJ with its MTL,
 ** binary PLY, glTF binary). A mesh is built from the input (vertices with
 ** positions, normals, uv, colour and texture indices, triangles, line
 ** segments, a palette of materials, textures with and without files, and
@@ -22,7 +22,7 @@
 **   A mesh with a bad triangle is refused by all three with LSYS_EARG; a
 **   texture whose file is not a PNG (or is missing) fails the GLB only. A
 **   failed write creates no file, and no temporary file is left behind
-**   (outputs are atomic: csrc/outfile.h).
+**   (outputs are atomic: csrc/core/outfile.h).
 ** FUZZ_TRACE=1 in the environment prints the mesh's counts and the sizes.
 **
 **   tools/fuzz.sh 600 export       (or, by hand:)

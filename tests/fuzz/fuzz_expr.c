@@ -1,5 +1,5 @@
 /*
-** libFuzzer target for the expression checker and machine (csrc/expr.c).
+** libFuzzer target for the expression checker and machine (csrc/core/expr.c).
 ** The input is a program: the first byte gives the number of arguments
 ** (0-8), the next bytes their values, then 3 bytes an instruction (opcode,
 ** operand, constant; decoded below so that most jumps and operands are in

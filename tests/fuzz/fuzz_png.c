@@ -1,6 +1,6 @@
 /*
-** libFuzzer target for reading PNG files (csrc/pngio.c lsys_png_read) and
-** textures (csrc/texture.c lsys_texture_load). The input is a PNG file.
+** libFuzzer target for reading PNG files (csrc/core/pngio.c lsys_png_read) and
+** textures (csrc/core/texture.c lsys_texture_load). The input is a PNG file.
 ** Before it is written to a temporary file the harness repairs what would
 ** stop libpng at the door: when the first byte is 0x89 the rest of the
 ** signature is set, an IHDR chunk first gets length 13, and every complete

@@ -1,5 +1,5 @@
 /*
-** libFuzzer target for the surface file reader (csrc/surface.c) and the
+** libFuzzer target for the surface file reader (csrc/core/surface.c) and the
 ** tessellation of what it accepts. Crashes, leaks and sanitizer reports are
 ** failures; syntax errors are expected results. A parsed surface is meshed
 ** at 3 x 3 with per-patch and per-surface texture coordinates, and its first

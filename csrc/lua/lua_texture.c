@@ -1,5 +1,5 @@
 /*
-** Lua binding of csrc/texture.h: the lsys.Texture userdata.
+** Lua binding of csrc/core/texture.h: the lsys.Texture userdata.
 **
 **   core.texture_load(path [, opts]) -> Texture
 **     opts: mag, min = "linear" | "near" (or "l" | "n"; default "near"),

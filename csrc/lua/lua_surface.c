@@ -1,5 +1,5 @@
 /*
-** Lua binding of csrc/surface.h: the lsys.Surface userdata (a cpfg surface
+** Lua binding of csrc/core/surface.h: the lsys.Surface userdata (a cpfg surface
 ** file, seed 004 §4.1) and patch evaluation.
 **
 **   core.surface_load(path) -> Surface        reads a surface file

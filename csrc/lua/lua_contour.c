@@ -1,5 +1,5 @@
 /*
-** Lua binding of csrc/contour.h: the lsys.Contour userdata.
+** Lua binding of csrc/core/contour.h: the lsys.Contour userdata.
 **
 **   core.contour_load(path) -> Contour       reads a contour file (Appendix B.1)
 **   core.contour(points [, closed]) -> Contour

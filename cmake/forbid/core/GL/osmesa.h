@@ -1,0 +1,2 @@
+/* cmake/forbid/core/GL/osmesa.h stands in for <GL/osmesa.h> on the include path of csrc/core: the core (csrc/core) must not include GL headers: GL belongs in csrc/gl */
+#error "the core (csrc/core) must not include GL headers: GL belongs in csrc/gl"

@@ -1,0 +1,2 @@
+/* cmake/forbid/core/lauxlib.h stands in for <lauxlib.h> on the include path of csrc/core: the core (csrc/core) must not include Lua headers: Lua belongs in csrc/lua */
+#error "the core (csrc/core) must not include Lua headers: Lua belongs in csrc/lua"

@@ -1,0 +1,2 @@
+/* cmake/forbid/gl/lua.h stands in for <lua.h> on the include path of csrc/gl: the GL layer (csrc/gl) must not include Lua headers: Lua belongs in csrc/lua */
+#error "the GL layer (csrc/gl) must not include Lua headers: Lua belongs in csrc/lua"

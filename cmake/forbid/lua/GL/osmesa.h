@@ -1,0 +1,2 @@
+/* cmake/forbid/lua/GL/osmesa.h stands in for <GL/osmesa.h> on the include path of csrc/lua: the bindings (csrc/lua) must not include GL headers: use render.h or viewer.h of csrc/gl */
+#error "the bindings (csrc/lua) must not include GL headers: use render.h or viewer.h of csrc/gl"

@@ -1,0 +1,2 @@
+/* cmake/forbid/lua/GLFW/glfw3.h stands in for <GLFW/glfw3.h> on the include path of csrc/lua: the bindings (csrc/lua) must not include GL headers: use render.h or viewer.h of csrc/gl */
+#error "the bindings (csrc/lua) must not include GL headers: use render.h or viewer.h of csrc/gl"
