@@ -1,0 +1,127 @@
+/*
+** The scene: see scene.h.
+*/
+#include <string.h>
+
+#include "scene.h"
+
+void lsys_camera_defaults (lsys_camera *c) {
+  memset(c, 0, sizeof *c);
+  c->up[1] = 1;
+  c->dir[2] = -1;
+  c->projection = LSYS_PERSPECTIVE;
+  c->fov = 30;
+  c->zoom = 1;
+}
+
+void lsys_scene_init (lsys_scene *s) {
+  memset(s, 0, sizeof *s);
+  lsys_mesh_init(&s->mesh);
+  lsys_camera_defaults(&s->cam);
+  s->light[0] = -1; s->light[1] = 1; s->light[2] = 1;
+  s->background[0] = s->background[1] = s->background[2] = 1.0f;
+}
+
+void lsys_scene_free (lsys_scene *s) {
+  lsys_mesh_free(&s->mesh);
+  LSYS_FREE(s->pal);
+  LSYS_FREE(s->rec);
+  LSYS_FREE(s->stiff);
+  LSYS_FREE(s->parts);
+  LSYS_FREE(s->inst);
+  lsys_scene_init(s);
+}
+
+void lsys_scene_clear (lsys_scene *s) {
+  lsys_mesh_clear(&s->mesh);
+  s->nrec = s->nstiff = s->nparts = s->ninst = 0;
+  s->dirty0 = s->dirty1 = 0;
+}
+
+int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n) {
+  lsys_material *p = NULL;
+  if (n > 0) {
+    if (n > SIZE_MAX / sizeof *p) return LSYS_ENOMEM;
+    if ((p = (lsys_material *)LSYS_MALLOC(n * sizeof *p)) == NULL) return LSYS_ENOMEM;
+    memcpy(p, pal, n * sizeof *p);
+  }
+  LSYS_FREE(s->pal);
+  s->pal = p;
+  s->npal = n;
+  return LSYS_OK;
+}
+
+int lsys_scene_reserve_records (lsys_scene *s, size_t n) {
+  if (n > SIZE_MAX - s->nrec) return LSYS_ENOMEM;
+  return lsys_grow_metered((void **)&s->rec, &s->reccap, s->nrec + n, sizeof *s->rec, s->meter);
+}
+
+int lsys_scene_add_stiffness (lsys_scene *s, const double k[3], uint32_t *idx) {
+  int st, j;
+  if (s->nstiff >= LSYS_NOREC) return LSYS_ENOMEM;
+  st = lsys_grow_metered((void **)&s->stiff, &s->stiffcap, 3 * (s->nstiff + 1), sizeof(float),
+                         s->meter);
+  if (st != LSYS_OK) return st;
+  for (j = 0; j < 3; j++) s->stiff[3 * s->nstiff + j] = (float)k[j];
+  *idx = (uint32_t)s->nstiff++;
+  return LSYS_OK;
+}
+
+long lsys_scene_begin_part (lsys_scene *s) {
+  lsys_part *p;
+  if (lsys_grow((void **)&s->parts, &s->partcap, s->nparts + 1, sizeof *s->parts) != LSYS_OK)
+    return -1;
+  p = &s->parts[s->nparts];
+  memset(p, 0, sizeof *p);
+  p->v0 = s->mesh.nv; p->t0 = s->mesh.nt; p->l0 = s->mesh.nl; p->r0 = s->nrec;
+  return (long)s->nparts++;
+}
+
+void lsys_scene_end_part (lsys_scene *s, size_t part) {
+  lsys_part *p;
+  if (part >= s->nparts) return;
+  p = &s->parts[part];
+  p->nv = s->mesh.nv - p->v0;
+  p->nt = s->mesh.nt - p->t0;
+  p->nl = s->mesh.nl - p->l0;
+  p->nr = s->nrec - p->r0;
+}
+
+int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]) {
+  lsys_instance *in;
+  if (part >= s->nparts || part > UINT32_MAX) return LSYS_EARG;
+  if (lsys_grow((void **)&s->inst, &s->instcap, s->ninst + 1, sizeof *s->inst) != LSYS_OK)
+    return LSYS_ENOMEM;
+  in = &s->inst[s->ninst++];
+  in->part = (uint32_t)part;
+  memcpy(in->m, m, sizeof in->m);
+  return LSYS_OK;
+}
+
+void lsys_scene_touch (lsys_scene *s, size_t v0, size_t nv) {
+  size_t v1 = v0 + nv;
+  if (nv == 0) return;
+  if (s->dirty1 == s->dirty0) { s->dirty0 = v0; s->dirty1 = v1; return; }
+  if (v0 < s->dirty0) s->dirty0 = v0;
+  if (v1 > s->dirty1) s->dirty1 = v1;
+}
+
+int lsys_scene_take_dirty (lsys_scene *s, size_t *v0, size_t *v1) {
+  int any = s->dirty1 > s->dirty0;
+  *v0 = s->dirty0; *v1 = s->dirty1;
+  s->dirty0 = s->dirty1 = 0;
+  return any;
+}
+
+long lsys_scene_part_of_record (const lsys_scene *s, size_t r) {
+  size_t lo = 0, hi = s->nparts;
+  if (r >= s->nrec) return -1;
+  if (s->nparts == 0) return 0;     /* no parts: the whole scene is part 0 */
+  while (lo < hi) {                 /* parts are in order: the last one with r0 <= r */
+    size_t mid = lo + (hi - lo) / 2;
+    if (s->parts[mid].r0 <= r) lo = mid + 1; else hi = mid;
+  }
+  if (lo == 0) return -1;
+  lo--;
+  return r < s->parts[lo].r0 + s->parts[lo].nr ? (long)lo : -1;
+}

@@ -1,0 +1,162 @@
+/*
+** The scene (DESIGN.md §1, docs/architecture.md): everything an
+** interpretation produces and everything its consumers need, in one place.
+** The turtle fills it; the export writers, the offscreen renderer and the
+** viewer's snapshots read it.
+**
+**   mesh       triangles and wide lines (mesh.h)
+**   palette    materials, indexed by the mesh's colour indices (owned)
+**   textures   indexed by the mesh's texture indices, tex[k - 1] (borrowed:
+**              whoever owns the scene keeps them alive; in Lua the Scene's
+**              user values do)
+**   records    one per drawing module (lsys_trec), for picking, arranging,
+**              and the Lua API; with the joint stiffnesses of Z
+**   camera, light, background   how to look at it (from the view)
+**   parts      contiguous ranges of vertices, triangles, lines and records:
+**              one plant of a population, one component of a component
+**              graph, one limb's geometry in incremental growth. A scene
+**              without parts is one part: everything.
+**   instances  a part drawn again under a transform (populations of one
+**              plant); none means each part is drawn once, where it is.
+**   dirty      the vertex range changed in place since the consumer last
+**              took the scene (a viewer re-uploads only that range).
+**
+** Parts, instances and the dirty range are the layout the component graphs,
+** incremental growth and populations build on: the turtle of today writes
+** one part and no instances, and the consumers draw the mesh as it is.
+*/
+#ifndef LSYS_SCENE_H
+#define LSYS_SCENE_H
+
+#include "common.h"
+#include "mesh.h"
+#include "texture.h"
+
+#define LSYS_NOREC UINT32_MAX
+
+/* What a turtle record stands for. */
+enum {
+  LSYS_REC_SEGMENT = 1,   /* F or G: p0 -> p1 */
+  LSYS_REC_SPHERE,        /* @O: centre p0 = p1, diameter w0 */
+  LSYS_REC_DISC,          /* @c, @o */
+  LSYS_REC_POLYGON,       /* }: p0 = first vertex, p1 = last */
+  LSYS_REC_LABEL,         /* @L */
+  LSYS_REC_SYSTEM,        /* @S (only when system calls are allowed) */
+  LSYS_REC_GCYL,          /* a generalized-cylinder segment: previous control point ->
+                             p1 (the @Gc or @Ge module) */
+  LSYS_REC_SURFACE        /* ~X (p1: where the turtle ends) or @PD (p1: the turtle) */
+};
+
+/* Everything a record keeps about a drawing module, in 72 bytes: a big
+** plant has millions. L is H x U. A segment starts at p1 - len * H (it runs
+** along H); other records have len = 0. The stiffness of the joint before a
+** segment, when Z set one, is stiff[3 * stiff .. 3 * stiff + 2] of the scene. */
+typedef struct lsys_trec {
+  uint32_t module;        /* index of the module in the string (0-based) */
+  uint32_t parent;        /* record of the segment this one starts from, or LSYS_NOREC */
+  uint8_t kind, pad;
+  uint16_t color;
+  float w0, w1;           /* width at the start and at the end */
+  float len;              /* length of a segment */
+  float p1[3];            /* end point (a sphere's or disc's centre, a polygon's last vertex) */
+  float H[3], U[3];       /* frame at the end */
+  uint32_t stiff;         /* Z(sh, su, sl) in effect for the joint before it, or LSYS_NOREC */
+  uint32_t tri0, ntri;    /* the mesh triangles the module drew up to this record: for a
+                             polygon, surface, disc or sphere the whole shape (highlights) */
+} lsys_trec;
+
+/*
+** How to look at a scene (the view's camera). With a target and an eye the
+** camera looks from the eye at the target; without a target it aims at the
+** centre of the bounding box. Without an eye, it looks along 'dir' and steps
+** back until every vertex and line end is in the image with a margin of 5%
+** of its size on each side (around the target, so the margins may differ).
+** A parallel projection is scaled the same way. Near and far planes always
+** come from the bounding box.
+*/
+enum { LSYS_PERSPECTIVE = 0, LSYS_PARALLEL = 1 };
+
+typedef struct lsys_camera {
+  double eye[3];        /* viewpoint, when has_eye */
+  double target[3];     /* view reference point, when has_target */
+  double up[3];         /* up vector, when has_up; default +y */
+  double dir[3];        /* view direction used when there is no eye; default (0, 0, -1) */
+  int has_eye, has_target, has_up;
+  int projection;       /* LSYS_PERSPECTIVE (default) or LSYS_PARALLEL */
+  double fov;           /* vertical field of view in degrees (perspective); default 30 */
+  double twist;         /* degrees; a positive twist turns the picture counterclockwise */
+  double zoom;          /* magnification about the image centre, after fitting; default 1 */
+  double halfh;         /* parallel: half the image height in world units (before zoom)
+                           when > 0, instead of fitting (the viewer keeps a scale) */
+} lsys_camera;
+
+/* A range of a scene's arrays (see above). */
+typedef struct lsys_part {
+  size_t v0, nv;          /* vertices */
+  size_t t0, nt;          /* triangles */
+  size_t l0, nl;          /* line segments */
+  size_t r0, nr;          /* records */
+} lsys_part;
+
+/* Part 'part' drawn again under the column-major 4 x 4 transform 'm'. */
+typedef struct lsys_instance {
+  uint32_t part;
+  float m[16];
+} lsys_instance;
+
+typedef struct lsys_scene {
+  lsys_mesh mesh;
+  lsys_material *pal; size_t npal;             /* owned; colour c uses pal[c % npal] */
+  const lsys_texture *const *tex; int ntex;    /* borrowed; texture k is tex[k - 1] */
+  lsys_trec *rec; size_t nrec, reccap;
+  float *stiff; size_t nstiff, stiffcap;       /* 3 per Z-stiffened record */
+  lsys_camera cam;
+  double light[3];      /* world-space direction towards the key light */
+  float background[3];  /* RGB in [0, 1] */
+  lsys_part *parts; size_t nparts, partcap;
+  lsys_instance *inst; size_t ninst, instcap;
+  size_t dirty0, dirty1;  /* vertices [dirty0, dirty1) changed in place; empty: equal */
+  lsys_meter *meter;      /* while it is filled: the memory budget of its arrays (or NULL) */
+} lsys_scene;
+
+/* Fills 'c' with the defaults above. */
+void lsys_camera_defaults (lsys_camera *c);
+
+/* An empty scene: no geometry, no palette (a grey default), the default
+** camera, the light from the upper front left (-1, 1, 1), a white background. */
+void lsys_scene_init (lsys_scene *s);
+void lsys_scene_free (lsys_scene *s);
+/* Empties the geometry, records, parts and instances; keeps the capacities,
+** the palette, textures, camera and light. */
+void lsys_scene_clear (lsys_scene *s);
+
+/* Replaces the palette with a copy of pal[0 .. n-1]. LSYS_OK or LSYS_ENOMEM
+** (the old palette stays). */
+int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n);
+
+/* Makes room for 'n' more records (within the meter). LSYS_OK, LSYS_ENOMEM
+** or LSYS_EMEMORY. */
+int lsys_scene_reserve_records (lsys_scene *s, size_t n);
+
+/* Appends the stiffness (sh, su, sl) and sets *idx to its index (for a
+** record's 'stiff'). LSYS_OK, LSYS_ENOMEM or LSYS_EMEMORY. */
+int lsys_scene_add_stiffness (lsys_scene *s, const double k[3], uint32_t *idx);
+
+/* Starts a part at the present ends of the arrays; lsys_scene_end_part
+** closes it at their new ends. Returns its index, or -1 when out of memory. */
+long lsys_scene_begin_part (lsys_scene *s);
+void lsys_scene_end_part (lsys_scene *s, size_t part);
+
+/* Adds an instance of 'part' under 'm' (16 floats, column-major). LSYS_OK,
+** LSYS_EARG (no such part) or LSYS_ENOMEM. */
+int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]);
+
+/* Marks vertices [v0, v0 + nv) changed in place; the dirty range grows to
+** cover them. lsys_scene_take_dirty returns it (0 when empty) and empties it. */
+void lsys_scene_touch (lsys_scene *s, size_t v0, size_t nv);
+int lsys_scene_take_dirty (lsys_scene *s, size_t *v0, size_t *v1);
+
+/* The part that holds record 'r' (its index), or -1 when none does. */
+long lsys_scene_part_of_record (const lsys_scene *s, size_t r);
+
+#endif

@@ -1,0 +1,127 @@
+/*
+** C unit tests for the core scene (scene.h): defaults, palette copies,
+** records and stiffnesses within a memory budget, parts as ranges of the
+** arrays, instances, and the dirty range.
+*/
+#undef NDEBUG
+#include <assert.h>
+#include <string.h>
+
+#include "scene.h"
+
+static void addvertices (lsys_scene *s, int n) {
+  static const double p[3] = {0, 0, 0}, nr[3] = {0, 0, 1};
+  int i;
+  assert(lsys_mesh_reserve(&s->mesh, (size_t)n, 0) == LSYS_OK);
+  for (i = 0; i < n; i++) lsys_mesh_vertex(&s->mesh, p, nr, 0, 0, 1, 0);
+}
+
+static void addrecords (lsys_scene *s, int n) {
+  int i;
+  assert(lsys_scene_reserve_records(s, (size_t)n) == LSYS_OK);
+  for (i = 0; i < n; i++) {
+    memset(&s->rec[s->nrec], 0, sizeof s->rec[0]);
+    s->rec[s->nrec++].module = (uint32_t)i;
+  }
+}
+
+static void defaults (void) {
+  lsys_scene s;
+  lsys_scene_init(&s);
+  assert(s.mesh.nv == 0 && s.nrec == 0 && s.npal == 0 && s.nparts == 0 && s.ninst == 0);
+  assert(s.cam.projection == LSYS_PERSPECTIVE && s.cam.fov == 30 && s.cam.zoom == 1);
+  assert(s.cam.up[1] == 1 && s.cam.dir[2] == -1 && !s.cam.has_eye);
+  assert(s.light[0] == -1 && s.light[1] == 1 && s.light[2] == 1);
+  assert(s.background[0] == 1.0f && s.background[2] == 1.0f);
+  lsys_scene_free(&s);
+}
+
+static void palette (void) {
+  lsys_scene s;
+  lsys_material m[2];
+  lsys_scene_init(&s);
+  lsys_material_color(&m[0], 1, 0, 0);
+  lsys_material_color(&m[1], 0, 1, 0);
+  assert(lsys_scene_set_palette(&s, m, 2) == LSYS_OK);
+  m[0].diffuse[0] = 0.5f;                     /* the scene holds a copy */
+  assert(s.npal == 2 && s.pal[0].diffuse[0] == 1.0f && s.pal[1].diffuse[1] == 1.0f);
+  assert(lsys_scene_set_palette(&s, NULL, 0) == LSYS_OK && s.npal == 0 && s.pal == NULL);
+  lsys_scene_free(&s);
+}
+
+static void records (void) {
+  lsys_scene s;
+  lsys_meter mt = { 10 * sizeof(lsys_trec), 0, 0 };
+  const double k[3] = {1, 2, 3};
+  uint32_t i0, i1;
+  lsys_scene_init(&s);
+  addrecords(&s, 5);
+  assert(s.nrec == 5 && s.rec[4].module == 4);
+  assert(lsys_scene_add_stiffness(&s, k, &i0) == LSYS_OK && i0 == 0);
+  assert(lsys_scene_add_stiffness(&s, k, &i1) == LSYS_OK && i1 == 1);
+  assert(s.nstiff == 2 && s.stiff[3] == 1.0f && s.stiff[5] == 3.0f);
+  lsys_scene_clear(&s);
+  assert(s.nrec == 0 && s.nstiff == 0 && s.reccap >= 5);
+  lsys_scene_free(&s);
+  /* within a budget: 10 records fit, 11 do not */
+  lsys_scene_init(&s);
+  s.meter = &mt;
+  assert(lsys_scene_reserve_records(&s, 10) == LSYS_OK);
+  s.nrec = 10;
+  assert(lsys_scene_reserve_records(&s, 1) == LSYS_EMEMORY);
+  s.meter = NULL;
+  lsys_scene_free(&s);
+}
+
+static void parts (void) {
+  lsys_scene s;
+  long a, b;
+  float m[16] = {0};
+  lsys_scene_init(&s);
+  assert(lsys_scene_part_of_record(&s, 0) == -1);     /* no records */
+  addrecords(&s, 2);
+  assert(lsys_scene_part_of_record(&s, 1) == 0);      /* no parts: one part */
+  a = lsys_scene_begin_part(&s);
+  addvertices(&s, 4);
+  addrecords(&s, 3);
+  lsys_scene_end_part(&s, (size_t)a);
+  b = lsys_scene_begin_part(&s);
+  addvertices(&s, 2);
+  addrecords(&s, 1);
+  lsys_scene_end_part(&s, (size_t)b);
+  assert(a == 0 && b == 1 && s.nparts == 2);
+  assert(s.parts[0].v0 == 0 && s.parts[0].nv == 4 && s.parts[0].r0 == 2 && s.parts[0].nr == 3);
+  assert(s.parts[1].v0 == 4 && s.parts[1].nv == 2 && s.parts[1].r0 == 5 && s.parts[1].nr == 1);
+  assert(lsys_scene_part_of_record(&s, 1) == -1);     /* before the first part */
+  assert(lsys_scene_part_of_record(&s, 2) == 0 && lsys_scene_part_of_record(&s, 4) == 0);
+  assert(lsys_scene_part_of_record(&s, 5) == 1 && lsys_scene_part_of_record(&s, 6) == -1);
+  m[0] = m[5] = m[10] = m[15] = 1; m[12] = 3;
+  assert(lsys_scene_add_instance(&s, 1, m) == LSYS_OK);
+  assert(lsys_scene_add_instance(&s, 2, m) == LSYS_EARG);
+  assert(s.ninst == 1 && s.inst[0].part == 1 && s.inst[0].m[12] == 3);
+  lsys_scene_free(&s);
+}
+
+static void dirty (void) {
+  lsys_scene s;
+  size_t v0, v1;
+  lsys_scene_init(&s);
+  assert(!lsys_scene_take_dirty(&s, &v0, &v1));
+  lsys_scene_touch(&s, 10, 0);                         /* nothing */
+  assert(!lsys_scene_take_dirty(&s, &v0, &v1));
+  lsys_scene_touch(&s, 10, 5);
+  lsys_scene_touch(&s, 3, 2);
+  lsys_scene_touch(&s, 12, 10);
+  assert(lsys_scene_take_dirty(&s, &v0, &v1) && v0 == 3 && v1 == 22);
+  assert(!lsys_scene_take_dirty(&s, &v0, &v1));        /* taken: empty again */
+  lsys_scene_free(&s);
+}
+
+int main (void) {
+  defaults();
+  palette();
+  records();
+  parts();
+  dirty();
+  return 0;
+}
