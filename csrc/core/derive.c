@@ -571,6 +571,73 @@ static int fail (lsys_model *m, int st, size_t i) {
   return st;
 }
 
+/*
+** The fast loop's table for 'productions' (one entry per symbol, when a
+** single rule set applies): ACT_COPY copies the module, a rule index copies
+** that rule's template or runs its expression program, ACT_SLOW takes the
+** full path (contexts, stochastic or several rules, cut, sub-L-systems).
+** Sets *nact to the table's length (0: no table).
+*/
+static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_t *nact) {
+  const lsys_ruleset *s0 = nsets ? sets[0] : NULL;
+  uint32_t k;
+  *nact = 0;
+  if (nsets > 1) return LSYS_OK;
+  if (m->actcap < m->ab->n &&
+      lsys_grow((void **)&m->act, &m->actcap, m->ab->n, sizeof *m->act) != LSYS_OK)
+    return LSYS_ENOMEM;
+  *nact = m->ab->n;
+  for (k = 0; k < *nact; k++) {
+    int hasrules = s0 != NULL && k < s0->nsym && s0->start[k] != s0->start[k + 1];
+    if (k == LSYS_SYM_CUT || k == LSYS_SYM_SUB || k == LSYS_SYM_SUBEND) m->act[k] = ACT_SLOW;
+    else if (!hasrules) m->act[k] = ACT_COPY;
+    else if (s0->plain[k] != NONE)
+      m->act[k] = s0->plain[k];
+    else {       /* the only rule for k, computed by the expression machine */
+      const lsys_rule *r = &m->rules[s0->byp[s0->start[k]]];
+      m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
+                   r->nrc == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
+                  ? s0->byp[s0->start[k]] : ACT_SLOW;
+      if (m->act[k] != ACT_SLOW && needscratch(m, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+    }
+  }
+  return LSYS_OK;
+}
+
+/* A cut % at module i: skips to the unmatched ']' (kept) or the end of
+** 'src', advancing *p over the parameters; returns the index before the ']'
+** (the loop's increment lands on it). */
+static size_t skipcut (const lsys_lstring *src, size_t i, size_t *p) {
+  size_t depth = 0, n = src->n;
+  *p += LSYS_CNP(src->code[i]);
+  for (i++; i < n; i++) {
+    uint32_t s = LSYS_CSYM(src->code[i]);
+    if (s == LSYS_SYM_LBR) depth++;
+    else if (s == LSYS_SYM_RBR && depth-- == 0) break;
+    *p += LSYS_CNP(src->code[i]);
+  }
+  return i - 1;
+}
+
+/* Module i enters a sub-L-system (?(id, scale), 'idd' its first parameter)
+** or leaves one ($): the rule sets and the ignore list switch to it. */
+static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ruleset **sets,
+                      int *nsets, view *v) {
+  int sub;
+  if (sym == LSYS_SYM_SUB) {
+    sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
+    if (sub < 0 || (findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
+      return lsys_seterror(&m->err, LSYS_ERULE, i,
+                           "sub-L-system %g is not defined (module %zu)", idd, i + 1);
+    if (pushsub(m, (uint32_t)sub) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
+  }
+  else
+    sub = --m->nsub > 0 ? (int)m->substack[m->nsub - 1] : 0;
+  *nsets = prodsets(m, sub, sets);
+  v->skip = findskip(m, sub);
+  return LSYS_OK;
+}
+
 static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[2];
   int nsets, hasctx, st;
@@ -593,31 +660,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar))
       != LSYS_OK)
     return fail(m, st, 0);
-  /* the fast loop's table: copy the module, copy a template (rule index), or the full path */
-  nact = 0;
-  if (nsets <= 1) {
-    const lsys_ruleset *s0 = nsets ? sets[0] : NULL;
-    uint32_t k;
-    nact = m->ab->n;
-    if (m->actcap < nact &&
-        lsys_grow((void **)&m->act, &m->actcap, nact, sizeof *m->act) != LSYS_OK)
-      return fail(m, LSYS_ENOMEM, 0);
-    for (k = 0; k < nact; k++) {
-      int hasrules = s0 != NULL && k < s0->nsym && s0->start[k] != s0->start[k + 1];
-      if (k == LSYS_SYM_CUT || k == LSYS_SYM_SUB || k == LSYS_SYM_SUBEND) m->act[k] = ACT_SLOW;
-      else if (!hasrules) m->act[k] = ACT_COPY;
-      else if (s0->plain[k] != NONE)
-        m->act[k] = s0->plain[k];
-      else {       /* the only rule for k, computed by the expression machine */
-        const lsys_rule *r = &m->rules[s0->byp[s0->start[k]]];
-        m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
-                     r->nrc == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
-                    ? s0->byp[s0->start[k]] : ACT_SLOW;
-        if (m->act[k] != ACT_SLOW && needscratch(m, r->nvals + 1) != LSYS_OK)
-          return fail(m, LSYS_ENOMEM, 0);
-      }
-    }
-  }
+  if ((st = fasttable(m, sets, nsets, &nact)) != LSYS_OK) return fail(m, st, 0);
   lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
   for (i = 0; i < n; i++) {
     uint16_t c = src->code[i];
@@ -684,15 +727,8 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       if (done < 0) return fail(m, done, i);
     }
     if (!done) {
-      if (sym == LSYS_SYM_CUT) {       /* cut to the unmatched ']' (kept) or the end */
-        size_t depth = 0;
-        for (i++, p += np; i < n; i++) {
-          uint32_t s = LSYS_CSYM(src->code[i]);
-          if (s == LSYS_SYM_LBR) depth++;
-          else if (s == LSYS_SYM_RBR && depth-- == 0) break;
-          p += LSYS_CNP(src->code[i]);
-        }
-        i--;                           /* the loop increment lands on ']' */
+      if (sym == LSYS_SYM_CUT) {
+        i = skipcut(src, i, &p);
         continue;
       }
       if (dst->n >= m->max_modules) return limiterror(m, i);
@@ -705,20 +741,9 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
         dst->npar += np;
       }
     }
-    if (sym == LSYS_SYM_SUB && np >= 1) {           /* ?(id, scale): enter */
-      double idd = src->par[p];
-      int sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
-      if (sub < 0 || (findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
-        return lsys_seterror(&m->err, LSYS_ERULE, i,
-                             "sub-L-system %g is not defined (module %zu)", idd, i + 1);
-      if (pushsub(m, (uint32_t)sub) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
-      nsets = prodsets(m, sub, sets);
-      v.skip = findskip(m, sub);
-    }
-    else if (sym == LSYS_SYM_SUBEND && m->nsub > 0) {  /* $: leave */
-      int sub = --m->nsub > 0 ? (int)m->substack[m->nsub - 1] : 0;
-      nsets = prodsets(m, sub, sets);
-      v.skip = findskip(m, sub);
+    if ((sym == LSYS_SYM_SUB && np >= 1) || (sym == LSYS_SYM_SUBEND && m->nsub > 0)) {
+      double idd = sym == LSYS_SYM_SUB ? src->par[p] : 0;
+      if ((st = subswitch(m, sym, idd, i, sets, &nsets, &v)) != LSYS_OK) return st;
     }
     p += np;
     lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
