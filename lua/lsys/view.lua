@@ -58,16 +58,24 @@
 -- view tables may be changed between calls.
 --
 -- `load(path)` reads a cpfg view file (.v) into such a table; `parse(text, name)` does
--- the same for text in memory.
+-- the same for text in memory; `load_colormap` and `load_materials` read palettes. They
+-- are lsys.viewfile's, given here under the same names.
 -- @module lsys.view
+local viewfile = require "lsys.viewfile"
+
 local type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall, require,
-      setmetatable, getmetatable, rawget, utf8, io =
+      setmetatable, getmetatable, rawget, utf8 =
       type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall, require,
-      setmetatable, getmetatable, rawget, utf8, io
+      setmetatable, getmetatable, rawget, utf8
 local format = string.format
 local _ENV = nil
 
 local M = {}
+
+-- the cpfg file readers (lsys.viewfile)
+M.load, M.parse = viewfile.load, viewfile.parse
+M.load_colormap, M.load_materials = viewfile.load_colormap, viewfile.load_materials
+M.VIEWFILE_IGNORED = viewfile.VIEWFILE_IGNORED
 
 --- The default palette: bark, foliage, and bright organ colours.
 M.PALETTE = {
@@ -104,8 +112,6 @@ local KINDS = {
   textures = "textures", minimize_twist = "boolean",
 }
 M.KINDS = KINDS
-
-local MAXTROPISMS = 16        -- LSYS_MAXTROPISMS (csrc/core/turtle.h): tropisms and torques
 
 local core                    -- lsys.core, loaded when a view first names a file
 local function getcore ()
@@ -195,15 +201,10 @@ local function resolve (dir, path)
   return dir .. "/" .. path
 end
 
--- Largest files read: view files, contours, surfaces and palettes; textures (PNG).
-local MAXFILE, MAXIMAGE = 16 * 2 ^ 20, 256 * 2 ^ 20
+-- Largest texture (PNG) read; contours and surfaces have readfile's default (16 MiB).
+local MAXIMAGE = 256 * 2 ^ 20
 
--- The bytes of a regular file of at most `max` bytes (default MAXFILE), or nil and a
--- message naming the file ("cannot open 'x': ...", "cannot read 'x': not a regular
--- file"): a view can name any path, /dev/zero included.
-local function readfile (path, max)
-  return getcore().read_file(path, max or MAXFILE)
-end
+local readfile = viewfile.readfile
 
 -- The type name of a userdata made by lsys.core ("lsys.Contour", ...), else nil.
 local function udname (x)
@@ -235,7 +236,7 @@ local function fileobj (ctx, name, rel, extra, fn, arg)
   local bytes = ctx.bytes[path]
   if bytes == nil then
     local err
-    bytes, err = readfile(path, fn == "texture_load" and MAXIMAGE or MAXFILE)
+    bytes, err = readfile(path, fn == "texture_load" and MAXIMAGE or nil)
     if bytes == nil then fail(ctx.where, "%s: %s", name, err) end
     ctx.bytes[path] = bytes
   end
@@ -415,6 +416,39 @@ local function textures (ctx, x, name)
   return out
 end
 
+-- A palette: a list of colours or materials, or the name of a cpfg colour map (.map) or
+-- material file (.mat) read by lsys.viewfile.
+local function palette (ctx, x, name)
+  local where = ctx.where
+  if type(x) == "string" then
+    local path = resolve(ctx.dir, x)
+    local ext = (path:match("%.(%w+)$") or ""):lower()
+    local loader = ext == "map" and viewfile.load_colormap or
+                   ext == "mat" and viewfile.load_materials
+    if not loader then
+      fail(where, "'%s': a palette file must be a colour map (.map) or materials (.mat), "
+           .. "got '%s'", name, x)
+    end
+    local ok, r = pcall(loader, path)
+    if not ok then fail(where, "%s: %s", name, tostring(r)) end
+    x = r
+  end
+  if type(x) ~= "table" then fail(where, "'%s' must be a list of colours", name) end
+  local p = {}
+  for i, c in pairs(x) do
+    if math.type(i) ~= "integer" or i < 0 then
+      fail(where, "'%s': keys must be colour indices >= 0", name)
+    end
+    p[i] = material(c, where, format("%s[%d]", name, i))
+  end
+  local n = 0
+  for i in pairs(p) do if i > n then n = i end end
+  for i = 1, n do
+    if p[i] == nil then fail(where, "'%s': entry %d is missing", name, i) end
+  end
+  return p
+end
+
 --- Checks a view table and returns a complete copy with the defaults filled in and the
 -- files it names loaded. `where` names the model in messages. Raises on any error.
 function M.normalize (v, where)
@@ -471,32 +505,7 @@ function M.normalize (v, where)
     elseif kind == "textures" then
       out[k] = textures(ctx, x, name)
     elseif kind == "palette" then
-      if type(x) == "string" then
-        local path = resolve(ctx.dir, x)
-        local ext = (path:match("%.(%w+)$") or ""):lower()
-        local loader = ext == "map" and M.load_colormap or ext == "mat" and M.load_materials
-        if not loader then
-          fail(where, "'%s': a palette file must be a colour map (.map) or materials (.mat), "
-               .. "got '%s'", name, x)
-        end
-        local ok, r = pcall(loader, path)
-        if not ok then fail(where, "%s: %s", name, tostring(r)) end
-        x = r
-      end
-      if type(x) ~= "table" then fail(where, "'%s' must be a list of colours", name) end
-      local p = {}
-      for i, c in pairs(x) do
-        if math.type(i) ~= "integer" or i < 0 then
-          fail(where, "'%s': keys must be colour indices >= 0", name)
-        end
-        p[i] = material(c, where, format("%s[%d]", name, i))
-      end
-      local n = 0
-      for i in pairs(p) do if i > n then n = i end end
-      for i = 1, n do
-        if p[i] == nil then fail(where, "'%s': entry %d is missing", name, i) end
-      end
-      out[k] = p
+      out[k] = palette(ctx, x, name)
     end
   end
   for k, d in pairs(DEFAULTS) do if out[k] == nil then out[k] = d end end
@@ -555,572 +564,6 @@ function M.merge (v, over)
   for k, x in pairs(v or {}) do out[k] = x end
   for k, x in pairs(over or {}) do out[k] = x end
   return out
-end
-
--- --------------------------------------------------------------------------
--- cpfg colour maps and material files
-
---- Reads a cpfg colour map (.map): 256 colours of 3 bytes each (red, green, blue,
--- 0..255), 768 bytes in all, indices 0..255 in order (vlab cpfg/irisGL.c,
--- load_in_colormaps: the file is read as 256 three-byte entries). Returns a palette
--- { [0] = {r,g,b}, [1] = ..., [255] = ... } with components in 0..1.
--- Raises when the file cannot be read or is not 768 bytes long.
-function M.load_colormap (path)
-  if type(path) ~= "string" then error("load_colormap: a file name expected", 2) end
-  local s, err = readfile(path)
-  if s == nil then error(err, 0) end
-  if #s ~= 768 then
-    error(format("%s: a colour map is 768 bytes (256 colours of 3 bytes), not %d", path, #s), 0)
-  end
-  local p = {}
-  for i = 0, 255 do
-    local r, g, b = s:byte(3 * i + 1, 3 * i + 3)
-    p[i] = { r / 255, g / 255, b / 255 }
-  end
-  return p
-end
-
--- cpfg's material for indices a material file leaves out (irisGL.c: black ambient,
--- white diffuse, no emission or specular light, shininess 0).
-local function default_material ()
-  return { ambient = { 0, 0, 0 }, diffuse = { 1, 1, 1 }, emission = { 0, 0, 0 },
-           specular = { 0, 0, 0 }, shininess = 0 }
-end
-
---- Reads a cpfg material file (.mat, as written by vlab's material editor medit):
--- a sequence of 15-byte records, each the material's index (0..255) followed by
--- 14 bytes: transparency, ambient r g b, diffuse r g b, emission r g b, specular r g b,
--- shininess (vlab cpfg/irisGL.c, load_in_materials; medit/helpformat.html gives the
--- ranges: colours 0..1, shininess 0..128, transparency 0 opaque .. 1 clear). Colour
--- bytes are divided by 255; a transparency t > 0 becomes the alpha 1 - t/255 of all
--- four colours. Indices up to the largest one that the file leaves out get cpfg's
--- default material (white diffuse). Returns a palette { [i] = material }.
--- Raises when the file cannot be read, is empty or not a whole number of records, or
--- a shininess is above 128.
-function M.load_materials (path)
-  if type(path) ~= "string" then error("load_materials: a file name expected", 2) end
-  local s, err = readfile(path)
-  if s == nil then error(err, 0) end
-  if #s == 0 or #s % 15 ~= 0 then
-    error(format("%s: a material file is a sequence of 15-byte records; %d bytes is not",
-                 path, #s), 0)
-  end
-  local p, top = {}, 0
-  for rec = 1, #s // 15 do
-    local o = (rec - 1) * 15
-    local idx, tr = s:byte(o + 1, o + 2)
-    local sh = s:byte(o + 15)
-    if sh > 128 then
-      error(format("%s: record %d (material %d): shininess %d is above 128", path, rec, idx,
-                   sh), 0)
-    end
-    local function rgb (at)
-      local r, g, b = s:byte(o + at, o + at + 2)
-      if tr == 0 then return { r / 255, g / 255, b / 255 } end
-      return { r / 255, g / 255, b / 255, 1 - tr / 255 }
-    end
-    p[idx] = { ambient = rgb(3), diffuse = rgb(6), emission = rgb(9), specular = rgb(12),
-               shininess = sh }
-    if idx > top then top = idx end
-  end
-  for i = 0, top do
-    if p[i] == nil then p[i] = default_material() end
-  end
-  return p
-end
-
--- --------------------------------------------------------------------------
--- cpfg view files (.v)
---
--- Sources: seed 004 Appendix B (contour:, contour sides:, twist of cylinders:,
--- texture: with F H L E S, tropism: and torque: with T A E S); the command list and
--- value syntax of cpfg's view reader (vlab repository AlgorithmicBotany/vlab,
--- cpfg/control.c, ReadViewData); tropism fields from cpfg/movements.c
--- (read_movement), texture fields from cpfg/textures.c (read_texture), light fields
--- from cpfg/irisGL.c (read_light), surface lines from cpfg/control.c and
--- cpfg/patches.c; and the example views of vlab's cpfg manual
--- (oofs/ext/10-manuals/ext/11-CPFG/ext/*/*.v). In short:
---
---   * one command per line, "label: values"; the label is everything before the first
---     colon. /* ... */ comments (across lines) and // comments are removed (cpfg runs
---     view files through the C preprocessor; other preprocessor lines are errors here).
---   * vectors are three numbers "x,y,z" (cpfg reads %f,%f,%f; spaces are accepted too).
---   * angle factor n gives the angle 360/n; twist is in tenths of a degree (control.c
---     turns the picture by 0.1 * twist degrees).
---   * initial line width: w [pixels|polygons]: cpfg switches the line style to
---     polygons, or to pixel lines when a unit starting with 'p' follows; here "pixels"
---     gives "line" and "polygons" (or no unit) "polygon".
---   * polygonization level: n is the older form of contour sides: 2^(n+1), at least 3.
---   * light: V: x y z is a directional light; cpfg lights the model from the first one.
---   * surface: c file scale [s t] [texture]: one number after the scale is a texture,
---     two are the precision s t, three are s t texture (control.c case 21).
-
-local IGNORED = {}
-for _, k in ipairs {
-  "front distance", "back distance", "scale factor", "z buffer", "cue range", "shade mode",
-  "diffuse reflection", "surface ambient", "surface diffuse", "line", "box", "bounding box",
-  "ambient light", "font", "winfont", "blob", "render mode", "tapered lines",
-  "background scene", "interpretation step", "interpretation past %", "tsurface",
-  "rayshade objects", "rayshade scale", "initial scale", "scale multiplier",
-  "environment display", "function", "curve", "antialiasing", "function set", "min zoom",
-  "max zoom", "generate on view change", "generate on view changes", "concave polygons",
-  "shadow map", "ps linecap", "maximum depth", "window size", "window position",
-} do IGNORED[k] = true end
-M.VIEWFILE_IGNORED = IGNORED
-
--- Text of the file shown in a message: a short token, never a whole line (a model can
--- name any file as its view file, as in cpfg): at most 16 characters, a longer one cut
--- to its first 12 and "...", control and non-ASCII bytes as '?'.
-local function show (s)
-  s = s:gsub("[%c\128-\255]", "?")
-  if #s > 16 then s = s:sub(1, 12) .. "..." end
-  return s
-end
-
-local Parser = {}
-Parser.__index = Parser
-
-function Parser:err (fmt, ...)
-  error(format("%s:%d: " .. fmt, self.name, self.line, ...), 0)
-end
-
-function Parser:warn (fmt, ...)
-  self.warnings[#self.warnings + 1] = format("%s:%d: " .. fmt, self.name, self.line, ...)
-end
-
-local function words (s)
-  local w = {}
-  for t in s:gmatch("%S+") do w[#w + 1] = t end
-  return w
-end
-
-function Parser:number (tok, cmd)
-  local x = tonumber(tok)
-  if not isnum(x) then self:err("'%s': '%s' is not a number", cmd, show(tok)) end
-  return x
-end
-
-function Parser:integer (tok, cmd, lo, hi)
-  local x = self:number(tok, cmd)
-  if not isint(x) or x < lo or x > hi then
-    self:err("'%s': '%s' is not a whole number from %d to %d", cmd, show(tok), lo, hi)
-  end
-  return math.tointeger(x)
-end
-
--- Exactly `n` words, or between `n` and `m`.
-function Parser:words (rest, cmd, n, m, what)
-  local w = words(rest)
-  if #w < n or #w > (m or n) then
-    self:err("'%s' expects %s, got '%s'", cmd, what, show(rest))
-  end
-  return w
-end
-
-function Parser:number1 (rest, cmd)
-  return self:number(self:words(rest, cmd, 1, 1, "one number")[1], cmd)
-end
-
-function Parser:vec3 (rest, cmd)
-  local w = {}
-  for t in rest:gmatch("[^%s,]+") do w[#w + 1] = t end
-  if #w ~= 3 then self:err("'%s' expects three numbers x,y,z, got '%s'", cmd, show(rest)) end
-  return { self:number(w[1], cmd), self:number(w[2], cmd), self:number(w[3], cmd) }
-end
-
-function Parser:onoff (rest, cmd)
-  local w = self:words(rest, cmd, 1, 1, "on or off")[1]
-  if w ~= "on" and w ~= "off" then self:err("'%s' expects on or off, got '%s'", cmd, show(w)) end
-  return w == "on"
-end
-
--- Fields "K: values" of texture:, tropism:, torque: and light: lines. `spec[K]` is the
--- number of numbers that follow K, "word" for one word, 0 for a flag. Returns the
--- values by key and the keys in order of appearance.
-function Parser:fields (rest, cmd, spec, known)
-  local toks = {}
-  for t in rest:gmatch("[^%s:,]+") do toks[#toks + 1] = t end
-  local got, order, i = {}, {}, 1
-  while i <= #toks do
-    local k = toks[i]
-    local n = spec[k]
-    if n == nil then self:err("'%s': unknown field '%s' (known: %s)", cmd, show(k), known) end
-    i = i + 1
-    if n == 0 then
-      got[k] = true
-    elseif n == "word" then
-      if toks[i] == nil then self:err("'%s': '%s:' needs a value", cmd, k) end
-      got[k] = toks[i]
-      i = i + 1
-    else
-      local l = {}
-      for j = 1, n do
-        local x = toks[i] and tonumber(toks[i])
-        if not isnum(x) then
-          self:err("'%s': '%s:' needs %d number%s", cmd, k, n, n > 1 and "s" or "")
-        end
-        l[j] = x
-        i = i + 1
-      end
-      got[k] = n == 1 and l[1] or l
-    end
-    order[#order + 1] = k
-  end
-  return got, order
-end
-
-function Parser:nonzero (x, cmd)
-  if x[1] == 0 and x[2] == 0 and x[3] == 0 then self:err("'%s': the vector is zero", cmd) end
-  return x
-end
-
-function Parser:addtropism (t)
-  local l = self.v.tropisms or {}
-  if #l >= MAXTROPISMS then self:err("more than %d tropisms and torques", MAXTROPISMS) end
-  l[#l + 1] = t
-  self.v.tropisms = l
-end
-
-local STYLES = { pixel = "line", polygon = "polygon", cylinder = "cylinder",
-                 ["1"] = "line", ["2"] = "polygon", ["3"] = "cylinder" }
-local UNITS = { pixels = "line", pixel = "line", p = "line", polygons = "polygon",
-                polygon = "polygon" }
-local VFILTERS = { l = "linear", linear = "linear", n = "near", near = "near" }
-
-local COMMANDS = {}
-
-COMMANDS["angle factor"] = function (P, rest, cmd)
-  local n = P:number1(rest, cmd)
-  if n == 0 then P:err("'%s' must not be 0", cmd) end
-  local a = 360 / n
-  if a ~= a or a == math.huge or a == -math.huge then     -- 1e-320: an infinite angle
-    P:err("'%s' %s gives an angle of %s degrees", cmd, show(rest), tostring(a))
-  end
-  P.v.angle = a
-end
-
-COMMANDS["angle increment"] = function (P, rest, cmd)
-  P.v.angle = P:number1(rest, cmd)
-end
-
-COMMANDS["initial color"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 1, 2, "a colour index (and a back colour)")
-  P.v.color = P:integer(w[1], cmd, 0, 65535)
-  if w[2] then
-    P:integer(w[2], cmd, 0, 65535)
-    P:warn("'%s': a second (back) colour is not supported; ignored", cmd)
-  end
-end
-COMMANDS["initial colour"] = COMMANDS["initial color"]
-
-COMMANDS["color increment"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 1, 2, "an increment (and a back increment)")
-  P.v.color_increment = P:integer(w[1], cmd, -65535, 65535)
-  if w[2] then
-    P:integer(w[2], cmd, -65535, 65535)
-    P:warn("'%s': a second (back) increment is not supported; ignored", cmd)
-  end
-end
-COMMANDS["colour increment"] = COMMANDS["color increment"]
-
-COMMANDS["initial line width"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 1, 2, "a width and optionally pixels or polygons")
-  local x = P:number(w[1], cmd)
-  if x < 0 then P:err("'%s' must not be negative", cmd) end
-  local style = "polygon"
-  if w[2] then
-    style = UNITS[w[2]]
-    if style == nil then
-      P:err("'%s': the unit must be pixels or polygons, got '%s'", cmd, show(w[2]))
-    end
-  end
-  P.v.line_width, P.v.line_style = x, style
-end
-
-COMMANDS["line width increment"] = function (P, rest, cmd)
-  P.v.width_increment = P:number1(rest, cmd)
-end
-
-COMMANDS["line style"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 1, 1, "pixel, polygon or cylinder")[1]
-  local s = STYLES[w]
-  if s == nil then P:err("'%s' must be pixel, polygon or cylinder, got '%s'", cmd, show(w)) end
-  P.v.line_style = s
-end
-
-COMMANDS["viewpoint"] = function (P, rest, cmd) P.v.viewpoint = P:vec3(rest, cmd) end
-
-COMMANDS["view reference point"] = function (P, rest, cmd) P.v.target = P:vec3(rest, cmd) end
-
-COMMANDS["twist"] = function (P, rest, cmd) P.v.twist = P:number1(rest, cmd) / 10 end
-
-COMMANDS["projection"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 1, 1, "parallel or perspective")[1]
-  if w ~= "parallel" and w ~= "perspective" then
-    P:err("'%s' must be parallel or perspective, got '%s'", cmd, show(w))
-  end
-  P.v.projection = w
-end
-
-COMMANDS["viewing angle"] = function (P, rest, cmd)
-  local a = P:number1(rest, cmd)
-  if a <= 0 or a >= 180 then P:err("'%s' must be between 0 and 180 degrees", cmd) end
-  P.v.fov = a
-end
-
-COMMANDS["light direction"] = function (P, rest, cmd)
-  P.v.light = P:nonzero(P:vec3(rest, cmd), cmd)
-end
-
-COMMANDS["light"] = function (P, rest, cmd)
-  local f, order = P:fields(rest, cmd, { V = 3, O = 3, A = 3, D = 3, S = 3, P = 5, T = 3 },
-                            "V, O, A, D, S, P, T")
-  P.nlights = P.nlights + 1
-  if P.nlights > 1 then
-    P:warn("'%s': only the first light is used; this one is ignored", cmd)
-    return
-  end
-  for _, k in ipairs(order) do
-    if k ~= "V" then P:warn("'%s': '%s:' is not supported; ignored", cmd, k) end
-  end
-  if f.V then P.v.light = P:nonzero(f.V, cmd)
-  else P:warn("'%s' without a direction V: is ignored", cmd) end
-end
-
-local function background (P, rest, cmd)
-  local c = P:vec3(rest, cmd)
-  for i = 1, 3 do
-    if c[i] < 0 or c[i] > 1 then
-      P:warn("'%s': components outside 0..1 are not supported; ignored", cmd)
-      return
-    end
-  end
-  P.v.background = c
-end
-COMMANDS["background color"] = background
-COMMANDS["background colour"] = background
-
-COMMANDS["contour"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 2, 2, "an id and a file")
-  local id = P:integer(w[1], cmd, 0, 65535)
-  if id == 0 then P:err("'%s': id 0 is the built-in circle; use ids from 1", cmd) end
-  local c = P.v.contours or {}
-  if c[id] ~= nil then P:err("'%s': id %d is already defined", cmd, id) end
-  c[id] = w[2]
-  P.v.contours = c
-end
-
-COMMANDS["contour sides"] = function (P, rest, cmd)
-  P.v.contour_sides = P:integer(P:words(rest, cmd, 1, 1, "one number")[1], cmd, 3, 1024)
-end
-
-COMMANDS["polygonization level"] = function (P, rest, cmd)
-  local n = P:integer(P:words(rest, cmd, 1, 1, "one number")[1], cmd, 0, 9)
-  P.v.contour_sides = math.max(3, 1 << (n + 1))
-end
-
-COMMANDS["twist of cylinders"] = function (P, rest, cmd)
-  P.v.minimize_twist = P:onoff(rest, cmd)
-end
-
-COMMANDS["texture"] = function (P, rest, cmd)
-  local f, order = P:fields(rest, cmd, { F = "word", H = "word", L = "word", E = "word",
-                                         S = 0, R = 1 }, "F, H, L, E, S, R")
-  if f.F == nil then P:err("'%s' needs the image file F:", cmd) end
-  local t = { file = f.F, mag = "near", min = "near", mode = "modulate", per_surface = false }
-  for _, k in ipairs(order) do
-    local x = f[k]
-    if k == "H" then
-      t.mag = VFILTERS[x] or P:err("'%s': H: must be l(inear) or n(ear), got '%s'", cmd, show(x))
-    elseif k == "L" then
-      if x:sub(1, 1) == "m" then
-        P:warn("'%s': mipmaps (L: %s) are not supported; linear used", cmd, show(x))
-        t.min = "linear"
-      else
-        t.min = VFILTERS[x] or
-                P:err("'%s': L: must be l(inear) or n(ear), got '%s'", cmd, show(x))
-      end
-    elseif k == "E" then
-      if x == "m" or x == "modulate" then t.mode = "modulate"
-      elseif x == "d" or x == "decal" then t.mode = "decal"
-      elseif x == "b" or x == "blend" then
-        P:warn("'%s': E: blend is not supported; modulate used", cmd)
-      else
-        P:err("'%s': E: must be m(odulate) or d(ecal), got '%s'", cmd, show(x))
-      end
-    elseif k == "S" then
-      t.per_surface = true
-    elseif k == "R" then
-      P:warn("'%s': R: (the texture's aspect on cylinders) is not supported; ignored", cmd)
-    end
-  end
-  local l = P.v.textures or {}
-  l[#l + 1] = t
-  P.v.textures = l
-end
-
-COMMANDS["tropism"] = function (P, rest, cmd)
-  local f = P:fields(rest, cmd, { T = 3, A = 1, E = 1, S = 1, I = 1 }, "T, A, E, S, I")
-  if f.T == nil then P:err("'%s' needs the vector T: x y z", cmd) end
-  if f.I then P:warn("'%s': the intensity I: is not supported; ignored", cmd) end
-  P:addtropism { vector = P:nonzero(f.T, cmd), angle = f.A or 0, elasticity = f.E or 0,
-                 increment = f.S or 0 }
-end
-
-COMMANDS["torque"] = function (P, rest, cmd)
-  local f = P:fields(rest, cmd, { T = 3, A = 1, E = 1, S = 1, I = 1 }, "T, E, S")
-  if f.T == nil then P:err("'%s' needs the vector T: x y z", cmd) end
-  if f.A then P:warn("'%s': a torque has no angle; A: ignored", cmd) end
-  if f.I then P:warn("'%s': the intensity I: is not supported; ignored", cmd) end
-  P:addtropism { vector = P:nonzero(f.T, cmd), elasticity = f.E or 0, increment = f.S or 0,
-                 torque = true }
-end
-
-COMMANDS["tropism direction"] = function (P, rest, cmd)
-  P.legacy.vector = P:nonzero(P:vec3(rest, cmd), cmd)
-end
-
-COMMANDS["initial elasticity"] = function (P, rest, cmd)
-  P.legacy.elasticity, P.legacy.line = P:number1(rest, cmd), P.legacy.line or P.line
-end
-
-COMMANDS["elasticity increment"] = function (P, rest, cmd)
-  P.legacy.increment, P.legacy.line = P:number1(rest, cmd), P.legacy.line or P.line
-end
-
-COMMANDS["surface"] = function (P, rest, cmd)
-  local w = P:words(rest, cmd, 3, 6, "a name, a file, a scale, [s t] and [a texture]")
-  if utf8.len(w[1]) ~= 1 then
-    P:err("'%s': the name must be one character, got '%s'", cmd, show(w[1]))
-  end
-  local scale = P:number(w[3], cmd)
-  if scale <= 0 then P:err("'%s': the scale must be > 0", cmd) end
-  local s = { file = w[2], scale = scale }
-  local tex
-  if #w == 4 then
-    tex = w[4]
-  elseif #w >= 5 then
-    local ps = P:integer(w[4], cmd, 0, 64)
-    local pt = P:integer(w[5], cmd, 0, 64)
-    if (ps == 0) ~= (pt == 0) then
-      P:err("'%s': the precisions s t must both be 1..64 (or both 0: the file's)", cmd)
-    end
-    if ps > 0 then s.precision = { ps, pt } end
-    tex = w[6]
-  end
-  if tex then
-    local k = P:integer(tex, cmd, -1, 65535)
-    if k >= 0 then s.texture = k end             -- -1: cpfg's "the turtle's texture"
-  end
-  local l = P.v.surfaces or {}
-  if l[w[1]] ~= nil then P:err("'%s': '%s' is already defined", cmd, w[1]) end
-  l[w[1]] = s
-  P.v.surfaces = l
-  P.surfaces[#P.surfaces + 1] = { line = P.line, texture = s.texture }
-end
-
--- One line of a view file, comments removed.
-function Parser:command (s)
-  s = s:match("^%s*(.-)%s*$")
-  if s == "" then return end
-  if s:sub(1, 1) == "#" then
-    self:err("preprocessor line '%s' is not supported (expand the file with cpp first)",
-             show(s))
-  end
-  local label, rest = s:match("^([^:]*):%s*(.-)$")
-  if label == nil then self:err("expected 'command: values', got '%s'", show(s)) end
-  local cmd = label:gsub("%s+", " "):match("^ ?(.-) ?$"):lower()
-  local h = COMMANDS[cmd]
-  if h then
-    h(self, rest, cmd)
-  elseif IGNORED[cmd] then
-    self:warn("'%s' is not supported; ignored", cmd)
-  else
-    self:err("unknown view command '%s'", show(cmd))
-  end
-end
-
---- Reads the text of a cpfg view file into a view table (see `load`). `name` names the
--- file in messages ("view" by default). opts: dir (stored as the view's `dir`), quiet
--- (do not print the warnings). Returns the view and the list of warnings.
-function M.parse (text, name, opts)
-  if type(text) ~= "string" then error("view.parse: the text must be a string", 2) end
-  if name ~= nil and type(name) ~= "string" then
-    error("view.parse: the name must be a string", 2)
-  end
-  if opts ~= nil and type(opts) ~= "table" then error("view.parse: opts must be a table", 2) end
-  opts = opts or {}
-  local P = setmetatable({ name = name or "view", line = 0, v = {}, warnings = {},
-                           nlights = 0, legacy = {}, surfaces = {} }, Parser)
-  local incomment, cline = false, 0
-  for line in (text .. "\n"):gmatch("([^\n]*)\n") do
-    P.line = P.line + 1
-    local out, pos = {}, 1
-    while pos <= #line do
-      if incomment then
-        local e = line:find("*/", pos, true)
-        if e == nil then break end
-        incomment, pos = false, e + 2
-        out[#out + 1] = " "
-      else
-        local c = line:find("/[*/]", pos)
-        if c == nil then out[#out + 1] = line:sub(pos); break end
-        out[#out + 1] = line:sub(pos, c - 1)
-        if line:sub(c + 1, c + 1) == "/" then break end
-        incomment, cline, pos = true, P.line, c + 2
-      end
-    end
-    P:command(table.concat(out))
-  end
-  if incomment then
-    P.line = cline
-    P:err("the comment that starts here is not closed")
-  end
-  local lg = P.legacy
-  if lg.vector then
-    P.line = lg.line or P.line
-    P:addtropism { vector = lg.vector, elasticity = lg.elasticity or 0,
-                   increment = lg.increment or 0 }
-  elseif lg.line then
-    P.line = lg.line
-    P:warn("'initial elasticity' and 'elasticity increment' without 'tropism direction' "
-           .. "are ignored")
-  end
-  local v = P.v
-  local ntex = v.textures and #v.textures or 0
-  for _, s in ipairs(P.surfaces) do
-    if s.texture and s.texture > ntex then
-      P.line = s.line
-      P:err("'surface': texture %d, but the file defines %d texture%s", s.texture, ntex,
-            ntex == 1 and "" or "s")
-    end
-  end
-  if opts.dir ~= nil then v.dir = opts.dir end
-  if not opts.quiet then
-    for _, w in ipairs(P.warnings) do io.stderr:write(w, "\n") end
-  end
-  return v, P.warnings
-end
-
---- Reads a cpfg view file (.v) into a view table that `normalize` accepts; file names
--- in it (contours, surfaces, textures) are relative to the file's directory, which
--- becomes the view's `dir`. Supported commands: angle factor, angle increment,
--- initial color, color increment, initial line width, line width increment, line
--- style, viewpoint, view reference point, twist, projection, viewing angle, light
--- direction, light, background color, contour, contour sides, polygonization level,
--- twist of cylinders, texture, tropism, torque, tropism direction, initial
--- elasticity, elasticity increment, surface. Commands listed in VIEWFILE_IGNORED
--- (front distance, z buffer, render mode, ...) are warnings; any other command and any
--- malformed value raise "file.v:LINE: what is wrong". opts.quiet: do not print the
--- warnings to stderr. Returns the view and the list of warnings.
-function M.load (path, opts)
-  if type(path) ~= "string" then error("view.load: a file name expected", 2) end
-  if opts ~= nil and type(opts) ~= "table" then error("view.load: opts must be a table", 2) end
-  local text, err = readfile(path)
-  if text == nil then error("view.load: " .. err, 0) end
-  local dir = path:match("^(.*)/[^/]*$")
-  if dir == "" then dir = "/" end
-  return M.parse(text, path, { dir = dir or ".", quiet = opts and opts.quiet })
 end
 
 return M
