@@ -1,6 +1,6 @@
 /*
 ** Scene geometry (DESIGN.md §1, §6-7): what the turtle writes and what the
-** renderer and the export writers read.
+** renderer and the export writers (export.h) read.
 **
 ** One triangle mesh (indexed; per-vertex position, normal, uv and colour
 ** index) and one set of wide line segments. Colour indices refer to a
@@ -87,25 +87,8 @@ size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edge
 ** and no specular highlight. */
 void lsys_material_color (lsys_material *mt, double r, double g, double b);
 
-/*
-** Export writers. 'pal' has 'npal' materials (npal may be 0: a grey
-** default); 'tex' has 'ntex' textures (tex may be NULL and ntex 0), texture
-** index k of the mesh being tex[k - 1]. Formats: Wavefront OBJ with a .mtl
-** next to it (same base name), binary little-endian PLY with per-vertex
-** normals and colours, glTF 2.0 binary (.glb) with one primitive per
-** material and texture, lines as LINES primitives. A triangle is textured
-** when its first vertex's texture exists and has a file ('path'): OBJ
-** materials then name the file (map_Kd), GLB files embed it; PLY ignores
-** textures. Return LSYS_OK or an error with e->msg naming the file.
-*/
-int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
-int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
-int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
+/* The export writers (export.h) were declared here: the bindings
+** (lua_scene.c) still find them through this header. */
+#include "export.h"
 
 #endif

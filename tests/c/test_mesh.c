@@ -7,9 +7,9 @@
 ** The files stay in /tmp (lsys_test_mesh.*) for the Lua readers in tests/.
 ** `test_mesh bench` also times each writer on a mesh of 1M triangles.
 **
-** mesh.c is compiled into this test with counting allocators, so that
-** test_nomem can make each allocation fail in turn (the library's own copy
-** of mesh.o is then not linked).
+** mesh.c and the writers (export_*.c) are compiled into this test with
+** counting allocators, so that test_nomem can make each allocation fail in
+** turn (the library's own copies of their objects are then not linked).
 */
 #undef NDEBUG
 #include <assert.h>
@@ -34,6 +34,11 @@ static void *trealloc (void *p, size_t n) {
 #define LSYS_FREE(p)       free(p)
 #include "common.c"
 #include "mesh.c"
+#include "export_write.c"
+#include "export_group.c"
+#include "export_obj.c"
+#include "export_ply.c"
+#include "export_glb.c"
 #include "pngio.h"
 
 #define OUT "/tmp/lsys_test_mesh"
