@@ -10,7 +10,6 @@
 -- to sibling branches. Delete prunes the active branch (leaving @X), U or Ctrl-Z undoes,
 -- Ctrl-S saves the arranged L-string. Plain drags still orbit, scroll zooms.
 -- @module lsys.arrange_ui
-local lsys = require "lsys"
 local V = require "lsys.viewer"
 local core = require "lsys.core"
 local require = require
@@ -67,12 +66,13 @@ function M.run (arr, opts)
   local tool = "spherical"
   local drag
 
+  local handler          -- the window's events, below
   local first = true
   local function redraw ()
     local scene = arr:interpret()
     V.show(scene, { lines = M.highlight(arr, scene), capture = true, keep_camera = not first,
                     width = opts.width, height = opts.height,
-                    title = opts.title or "arrange", on_event = M._handler })
+                    title = opts.title or "arrange", on_event = handler })
     first = false
     if opts.on_change then opts.on_change(arr) end
   end
@@ -168,7 +168,7 @@ function M.run (arr, opts)
     redraw()
   end
 
-  M._handler = function (ev)
+  handler = function (ev)
     if ev.type == "pick" then pick(ev)
     elseif ev.type == "key" then key(ev)
     elseif ev.type == "drag" then dragged(ev) end

@@ -334,10 +334,8 @@ returns a table of named models ('name' picks one; default: the first in sorted 
 local function load_model (path, name)
   local chunk, err = loadfile(path, "t")
   if chunk == nil then error(err, 0) end
-  local lsys = require "lsys"
-  lsys._loading = path            -- names the file when `return lsys.lsystem{...}` is a tail call
-  local ok, v = pcall(chunk)
-  lsys._loading = nil
+  -- runfile names the file when `return lsys.lsystem{...}` is a tail call
+  local ok, v = require("lsys.model").runfile(path, chunk)
   if not ok then          -- name the model file when the message does not
     local msg = tostring(v)
     if msg:find(path, 1, true) == nil then msg = path .. ": " .. msg end
@@ -585,9 +583,9 @@ function commands.view (args)
   if shot ~= nil and not shot:lower():find("%.png$") then
     usage("view", "the screenshot must be a .png file, got '%s'", shot)
   end
-  local lsys = require "lsys"
   local V = require "lsys.viewer"
   local core = require "lsys.core"
+  local print_pick = require("lsys.repl").print_pick
   local path = find_model(pos[1])
   if #pos > 1 then usage("view", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
   local verbose = isatty(2)
@@ -612,6 +610,8 @@ function commands.view (args)
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
         title = path:match("([^/]*)$"), status = not opts["no-status"],
         view = next(views) and views or nil,
+        -- a click prints the module, unless lsys.viewer.on_pick (set by the model) takes it
+        on_pick = V.on_pick == nil and print_pick or nil,
         progress = verbose and function (k, n)
           io.stderr:write(format("\rinterpreting step %d/%d", k, n))
           if k == n then io.stderr:write("\n") end
@@ -644,7 +644,6 @@ function commands.view (args)
     V.open { width = w, height = h, status = not opts["no-status"] }
     io.stderr:write(format("lsys: waiting for %s to change\n", path))
   end
-  if V.on_pick == nil then V.on_pick = require("lsys.repl").print_pick end
 
   -- Watches the file: a change of its time or size, stable for 0.1 s, reloads it.
   local function stamp ()

@@ -1,16 +1,17 @@
 --- lsys: L-systems for plant modelling (DESIGN.md §3).
 -- `local lsys = require "lsys"`
+--
+-- This file gathers the library's functions; they live in lsys.model (models, the memory
+-- budget), lsys.view (view options), lsys.viewer (the window, loaded at first use) and
+-- lsys.arrange. None of those requires this file, so the requires form no cycle.
 -- @module lsys
 local core = require "lsys.core"
-local grammar = require "lsys.grammar"
+local model = require "lsys.model"
 local view = require "lsys.view"
 
-local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io, next, os =
-      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      select, rawget, math, string, table, debug, _G, io, next, os
-local format, concat = string.format, table.concat
-local function io_warn (msg) io.stderr:write(msg, "\n") end
+local type, pairs, error, setmetatable, tostring, pcall, string, debug, next, _G =
+      type, pairs, error, setmetatable, tostring, pcall, string, debug, next, _G
+local format = string.format
 local _ENV = nil
 
 local M = {}
@@ -33,65 +34,14 @@ M.nran = core.nran
 M.version = "0.1.0"
 M.view = view
 
--- --------------------------------------------------------------------------
--- The memory budget (max_memory): the most memory one derivation step or one
--- interpretation may take for its strings, tables, mesh and records.
-
-local UNITS = { [""] = 1, k = 2 ^ 10, m = 2 ^ 20, g = 2 ^ 30, t = 2 ^ 40 }
-
---- A memory size in bytes from a number of bytes or a string: "512M", "2G",
--- "1.5GiB", "800MB" (binary units: K = 1024), "unlimited". Raises naming `what`.
-function M.parse_size (x, what)
-  what = what or "size"
-  if type(x) == "number" then
-    if x ~= x or x < 1 then error(format("%s must be at least 1 byte, got %s", what, x), 2) end
-    return math.floor(x)
-  end
-  if type(x) ~= "string" then
-    error(format("%s must be a number of bytes or a string such as \"2G\", got %s", what,
-                 type(x)), 2)
-  end
-  local s = x:lower():gsub("%s", "")
-  if s == "unlimited" or s == "none" then return math.huge end
-  local num, unit = s:match("^([%d%.]+)([kmgt]?)i?b?$")
-  local n = tonumber(num or "")
-  if not n or n <= 0 then
-    error(format("%s: '%s' is not a size (use a number of bytes, or e.g. \"512M\", \"2G\", " ..
-                 "\"unlimited\")", what, x), 2)
-  end
-  return math.floor(n * UNITS[unit])
-end
-
---- The process-wide memory budget in bytes (math.huge: none); with an argument (bytes or
--- a string such as "2G"; nil leaves it), sets it first. The default is half the physical
--- memory, or LSYS_MAX_MEMORY. A model's own `max_memory` option takes precedence. Also
--- returns the physical memory.
-function M.max_memory (x)
-  local bytes
-  if x ~= nil then
-    local ok, r = pcall(M.parse_size, x, "lsys.max_memory")
-    if not ok then error(r, 2) end
-    bytes = r
-  end
-  local limit, phys = core.max_memory(bytes)
-  return limit >= 2 ^ 63 and math.huge or math.tointeger(limit) or limit,
-         math.tointeger(phys) or phys
-end
-
-do
-  local env = os.getenv("LSYS_MAX_MEMORY")
-  if env ~= nil and env ~= "" then
-    local ok, r = pcall(M.parse_size, env, "LSYS_MAX_MEMORY")
-    if not ok then error(r, 0) end
-    core.max_memory(r)
-  end
-end
-
-local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
-local LSTRING_MT = getmetatable(core.lstring(""))
-
---- True when `x` is an Lstring.
-function M.islstring (x) return getmetatable(x) == LSTRING_MT end
+M.parse_size = model.parse_size        -- the memory budget (max_memory)
+M.max_memory = model.max_memory
+M.islstring = model.islstring
+M.isscene = model.isscene
+M.ismodel = model.ismodel
+M.BUILTIN = model.BUILTIN              -- the names rule expressions see besides env
+M.Model = model.Model
+M.lsystem = model.lsystem
 
 --- The directory of the Lua file that calls this ("." when it is not a file): for a
 -- model's contour, surface and texture files next to it, as `view = { dir = lsys.here() }`.
@@ -100,492 +50,18 @@ function M.here ()
   return src:match("^@(.*)/[^/]*$") or "."
 end
 
--- A read-only view of the library table `t`: rule text may come from someone else, and
--- must not change the process's libraries (`math.floor = print`).
-local function readonly (t, name)
-  return setmetatable({}, {
-    __index = t,
-    __newindex = function (_, k)
-      error(format("cannot change %s.%s in a rule expression", name, tostring(k)), 2)
-    end,
-    __pairs = function () return next, t, nil end,
-    __metatable = false,
-  })
-end
-
--- Names usable in rule expressions besides `env`: Lua's math functions
--- (radians, as in Lua), `pi`, and the standard library tables (read-only).
-local BUILTIN = {
-  math = readonly(math, "math"), string = readonly(string, "string"),
-  table = readonly(table, "table"), pi = math.pi, huge = math.huge,
-  abs = math.abs, floor = math.floor, ceil = math.ceil, sqrt = math.sqrt, exp = math.exp,
-  log = math.log, sin = math.sin, cos = math.cos, tan = math.tan, asin = math.asin,
-  acos = math.acos, atan = math.atan, min = math.min, max = math.max, fmod = math.fmod,
-  deg = math.deg, rad = math.rad,
-  type = _G.type, tostring = _G.tostring, tonumber = _G.tonumber, print = _G.print,
-  select = _G.select, error = _G.error, assert = _G.assert, pairs = _G.pairs, ipairs = _G.ipairs,
-}
-M.BUILTIN = BUILTIN
-
-local OPTIONS = {
-  axiom = "string", steps = "number", seed = "number", env = "table", modules = "string",
-  ignore = "string", consider = "string", productions = "rules", decomposition = "rules",
-  homomorphism = "rules", max_depth = "table", ring = "boolean", sub = "table",
-  groups = "table", start = "function", start_each = "function", end_each = "function",
-  finish = "function", max_modules = "number", view = "table", name = "string",
-  max_memory = "size",
-  homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
-}
-
-local Model = {}
-local rules_models = setmetatable({}, { __mode = "k" })   -- Rules userdata -> its model
-Model.__index = Model
-M.Model = Model
-
--- Splits a rules value (string or list) into entries { text=, fn=, line= }.
-local function entries (rules, what, fail)
-  local out = {}
-  if type(rules) == "string" then
-    local line = 0
-    for l in (rules .. "\n"):gmatch("([^\n]*)\n") do
-      line = line + 1
-      if l:match("%S") then out[#out + 1] = { text = l:match("^%s*(.-)%s*$"), line = line } end
-    end
-  elseif type(rules) == "table" then
-    for i, e in ipairs(rules) do
-      if type(e) == "string" then
-        out[#out + 1] = { text = e:match("^%s*(.-)%s*$"), line = i, item = true }
-      elseif type(e) == "table" and type(e[1]) == "string" and type(e[2]) == "function" then
-        out[#out + 1] = { text = e[1], fn = e[2], line = i, item = true }
-      else
-        fail(format("%s: entry %d must be a rule string or {pattern, function}", what, i))
-      end
-    end
-  else
-    fail(format("%s must be a string or a list of rules", what))
-  end
-  return out
-end
-
--- Compiles a rules value into the set (kind, sub, group).
-function Model:_addrules (rules, what, kind, sub, group, fail)
-  for _, e in ipairs(entries(rules, what, fail)) do
-    local n = #self._info + 1
-    local label = format("rule %d '%s' (%s %d of %s)", n, e.text, e.item and "entry" or "line",
-                         e.line, what)
-    local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
-    if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
-    local ok, spec, factory, frees, trees = pcall(grammar.compile, r,
-      { label = label, fn = e.fn, id = n })
-    if not ok then fail(spec) end
-    local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
-    if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
-    self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
-                            trees = trees }
-    if spec.fn then self._fns[idx + 1] = spec.fn end
-    if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
-  end
-end
-
---- Creates a model from its description (see DESIGN.md §3 and docs).
--- Raises an error naming the rule and its line for malformed rules.
-function M.lsystem (opts)
-  if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
-  -- where the model is defined; unknown when `return lsys.lsystem{...}`
-  -- was a tail call (the caller's frame is gone: the loader names the file)
-  local info = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "Sl")
-  local where = info and info.currentline > 0 and
-                format("%s:%d", info.short_src, info.currentline) or M._loading
-  local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
-  for k, v in pairs(opts) do
-    local t = OPTIONS[k]
-    if t == nil then fail(format("unknown option '%s'", tostring(k))) end
-    if t == "rules" then
-      if type(v) ~= "string" and type(v) ~= "table" then
-        fail(format("option '%s' must be a string or a list of rules", k))
-      end
-    elseif t == "size" then
-      local ok, r = pcall(M.parse_size, v, "option '" .. k .. "'")
-      if not ok then fail(r) end
-    elseif type(v) ~= t then
-      fail(format("option '%s' must be a %s (got %s)", k, t, type(v)))
-    end
-  end
-  if opts.ignore and opts.consider then fail("give either 'ignore' or 'consider', not both") end
-  local rules = core.rules(opts.modules)
-  local self = setmetatable({
-    axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = opts.view or {}, name = opts.name,
-    homomorphism_seed = opts.homomorphism_seed,
-    start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
-    finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
-    system_call = opts.system_call,
-    _rules = rules, _info = {}, _where = where or "model", _group = 0,
-  }, Model)
-  self._fns = debug.getuservalue(rules, 1)
-  rules_models[rules] = self
-  if self.steps < 0 or self.steps ~= math.floor(self.steps) then
-    fail("option 'steps' must be a whole number >= 0")
-  end
-  if opts.productions then self:_addrules(opts.productions, "productions", PROD, 0, 0, fail) end
-  for g, rs in pairs(opts.groups or {}) do
-    if type(g) ~= "number" or g < 1 or g ~= math.floor(g) then
-      fail("groups: keys must be group numbers >= 1")
-    end
-    self:_addrules(rs, format("group %d", g), PROD, 0, g, fail)
-  end
-  for id, s in pairs(opts.sub or {}) do
-    if type(id) ~= "number" or id < 1 or id ~= math.floor(id) then
-      fail("sub: keys must be sub-L-system numbers >= 1")
-    end
-    if type(s) ~= "table" then fail(format("sub[%d] must be a table", id)) end
-    for k in pairs(s) do
-      if k ~= "productions" and k ~= "ignore" and k ~= "consider" then
-        fail(format("sub[%d]: unknown option '%s'", id, tostring(k)))
-      end
-    end
-    self:_addrules(s.productions or "", format("sub-L-system %d", id), PROD, id, 0, fail)
-    rules:newset(PROD, id, 0)
-    if s.ignore or s.consider then
-      rules:skiplist(id, s.consider ~= nil, s.consider or s.ignore)
-    end
-  end
-  if opts.decomposition then
-    self:_addrules(opts.decomposition, "decomposition", DECOMP, 0, 0, fail)
-  end
-  if opts.homomorphism then
-    self:_addrules(opts.homomorphism, "homomorphism", HOMO, 0, 0, fail)
-  end
-  if opts.ignore or opts.consider then
-    local ok, msg = pcall(rules.skiplist, rules, 0, opts.consider ~= nil,
-                          opts.consider or opts.ignore)
-    if not ok then fail(format("%s: %s", opts.consider and "consider" or "ignore", msg)) end
-  end
-  if opts.ring then rules:config("ring", true) end
-  if opts.max_modules then
-    local ok, msg = pcall(rules.config, rules, "max_modules", opts.max_modules)
-    if not ok then fail("max_modules must be between 1 and 1e12") end
-    self.max_modules = opts.max_modules
-  end
-  if opts.max_memory then
-    self.max_memory = M.parse_size(opts.max_memory)
-    rules:config("max_memory", self.max_memory)
-  end
-  for k, d in pairs(opts.max_depth or {}) do
-    if k ~= "decomposition" and k ~= "homomorphism" then
-      fail(format("max_depth: unknown key '%s' (decomposition or homomorphism)", tostring(k)))
-    end
-    local ok = pcall(rules.config, rules, "depth_" .. k, d)
-    if not ok then fail(format("max_depth.%s must be a whole number from 0 to 1024", k)) end
-  end
-  view.normalize(opts.view, where or "model")     -- a bad view fails at definition
-  if self.axiom:find("?[PHUL]") then self._queries = true end
-  -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
-  local ok, msg = pcall(self._parseaxiom, self)
-  if not ok then fail(msg) end
-  rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
-  rules:config("hseed", self.homomorphism_seed or self.seed)
-  return self
-end
-
--- The lookup table rule closures bind their free names from.
-function Model:_env ()
-  local ran, nran = self._rules:ran()
-  local env = self.env
-  return setmetatable({}, { __index = function (_, k)
-    if k == "ran" then return ran elseif k == "nran" then return nran end
-    local v = env[k]
-    if v == nil then v = BUILTIN[k] end
-    return v
-  end })
-end
-
--- Raises when a rule function of this model calls `what` on the model itself: the
--- running step owns its rules and scratch (binding them again would change the rules
--- under it).
-function Model:_idle (what)
-  if self._rules:busy() then
-    error(format("%s: a rule of this model called %s on the same model", self._where, what), 0)
-  end
-end
-
--- Binds every compiled rule to the current env (called before each step).
-function Model:_bind ()
-  local E = self:_env()
-  for i, info in pairs(self._info) do
-    if info.factory then
-      for name in pairs(info.frees) do
-        if E[name] == nil then
-          error(format("%s: %s: unknown name '%s' (not a parameter, not in env)",
-                       self._where, info.label, name), 0)
-        end
-      end
-      self._fns[i] = info.factory(E, type, error)
-      self:_vm(i - 1, info, E)
-    end
-  end
-  return E
-end
-
--- Compiles the rule's expressions for the C machine when they allow it.
-function Model:_vm (idx, info, E)
-  local t = info.trees
-  local code, ok = {}, t ~= nil and not self.lua_expressions
-  if ok then
-    local lib = { math = math, ran = E.ran, nran = E.nran }
-    if t.cond then
-      local ty = grammar.gen(t.cond, code, t.formals, E, lib)
-      if ty == "n" or ty == "i" then
-        code[#code + 1] = grammar.OP.K; code[#code + 1] = 0; code[#code + 1] = 0
-        code[#code + 1] = grammar.OP["~="]; code[#code + 1] = 0; code[#code + 1] = 0
-      elseif ty ~= "b" then ok = false end
-      code[#code + 1] = grammar.OP.COND; code[#code + 1] = 0; code[#code + 1] = 0
-    end
-    for _, e in ipairs(t.exprs) do
-      local ty = ok and grammar.gen(e, code, t.formals, E, lib)
-      if ty ~= "n" and ty ~= "i" then ok = false end
-      code[#code + 1] = grammar.OP.RET; code[#code + 1] = 0; code[#code + 1] = 0
-    end
-  end
-  if not (ok and self._rules:setvm(idx, code)) then self._rules:setvm(idx, nil) end
-end
-
--- The axiom text for messages: a long one shortened.
-local function axiomtext (a)
-  return #a > 60 and a:sub(1, 57) .. "..." or a
-end
-
--- Parses model.axiom into a template (in C: no table per module, DESIGN.md §5) and the
--- list of its distinct parameter expressions; raises "axiom '...': ...".
-function Model:_parseaxiom ()
-  local tpl, exprs, pos = self._rules:axiom(self.axiom)
-  if not tpl then
-    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom), exprs, pos), 0)
-  end
-  self._axiom, self._axiomexprs, self._axiomsrc = tpl, exprs, self.axiom
-end
-
--- The axiom as an Lstring, its expressions evaluated in env.
-function Model:_axiomlstring (E)
-  if self.axiom ~= self._axiomsrc then           -- the axiom field was changed
-    local ok, msg = pcall(self._parseaxiom, self)
-    if not ok then error(self._where .. ": " .. msg, 0) end
-  end
-  local vals = {}
-  for k, e in ipairs(self._axiomexprs) do
-    local f, msg = _G.load("return " .. e, "=axiom", "t", E)
-    if not f then
-      error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
-    end
-    local ok, x = pcall(f)
-    if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
-    if type(x) ~= "number" or x ~= x or x == 1 / 0 or x == -1 / 0 then
-      error(format("%s: axiom: expression '%s' is %s, not a finite number",
-                   self._where, e, tostring(x)), 0)
-    end
-    vals[k] = x
-  end
-  return self._rules:fill(self._axiom, vals)
-end
-
---- Parses text with this model's declared module names.
-function Model:lstring (text)
-  local s, msg, pos = self._rules:lstring(text)
-  if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
-  return s
-end
-
--- Runs a core call; turns a failure into a message naming rule and module.
-function Model:_core (what, ...)
-  return self:_call(self._rules[what], what, self._rules, ...)
-end
-
--- Runs fn(...), which may call rule functions; errors as for _core.
-function Model:_call (fn, what, ...)
-  local rules = self._rules
-  local producing = core.producing()
-  local ok, res = pcall(fn, ...)
-  if not ok then core.producing(producing) end   -- a raising step left it set
-  if ok then
-    local _, _, deep = rules:current()
-    if deep and not self._warned then
-      self._warned = true
-      io_warn(format("lsys: %s: the %s depth limit stopped at modules that have rules " ..
-                     "(raise max_depth if they should apply)", self._where,
-                     what == "step" and "decomposition" or "homomorphism"))
-    end
-    return res
-  end
-  local idx, mod = rules:current()
-  local msg = type(res) == "string" and res or tostring(res)
-  if idx then
-    local info = self._info[idx + 1]
-    local label = info and info.label or format("rule %d", idx + 1)
-    msg = msg:gsub("^rule:%d+: ", "")
-    error(format("%s: %s, module %d: %s", self._where, label, mod, msg), 0)
-  end
-  error(format("%s: %s", self._where, msg), 0)
-end
-
-local function checksteps (n, what)
-  if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
-    error(format("%s: the number of steps must be a whole number >= 0", what), 3)
-  end
-end
-
---- Derives `n` steps (default `model.steps`) from the axiom and returns the
--- Lstring. Reseeds the generator from `model.seed` first, so the result is
--- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
--- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
-function Model:derive (n, opts)
-  self:_idle("derive/step")
-  n = n or self.steps
-  checksteps(n, "derive")
-  local rules = self._rules
-  rules:config("seed", self.seed)
-  rules:config("hseed", self.homomorphism_seed or self.seed)
-  self._warned = false
-  local E = self:_bind()
-  local s = self:_axiomlstring(E)
-  local progress = opts and opts.progress
-  local each = opts and opts.each
-  if self.start then
-    self.start(self)
-    self:_bind()                 -- start may change env
-  end
-  local spare                    -- the buffer two steps back, reused when private
-  if each and n > 0 then each(0, s) end   -- (n = 0: the axiom after finish, below)
-  for k = 1, n do
-    if self.start_each then
-      self.start_each(self, k)
-      self:_bind()
-    end
-    if self._queries then self:_query(s) end
-    local t = self:_core("step", s, spare)
-    spare = nil
-    if self.end_each then
-      local r = self.end_each(self, t, k)
-      if r ~= nil then
-        if not M.islstring(r) then error("end_each must return an Lstring or nil", 0) end
-        t = r
-      end
-      if k < n and not self.start_each then self:_bind() end   -- end_each may change env
-    elseif k > 1 and not each then
-      spare = s                  -- s was produced here and nobody else holds it
-    end
-    if progress then progress(k, n, #t) end
-    if each and k < n then each(k, t) end
-    s = t
-  end
-  if spare then LSTRING_MT.__close(spare) end
-  if self._queries then self:_query(s) end       -- the final string gets its pass too
-  if self.finish then
-    local r = self.finish(self, s)
-    if r ~= nil then
-      if not M.islstring(r) then error("finish must return an Lstring or nil", 0) end
-      s = r
-    end
-  end
-  if each then each(n, s) end
-  return s
-end
-
---- One derivation step from `s` (an Lstring or text); returns a new Lstring.
--- The generator continues from where it was (no reseeding).
-function Model:step (s)
-  if type(s) == "string" then s = self:lstring(s) end
-  if not M.islstring(s) then error("step: an Lstring expected", 2) end
-  self:_idle("derive/step")
-  self:_bind()
-  if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
-    self:_query(s)
-  end
-  return self:_core("step", s)
-end
-
---- Applies the homomorphism to `s` (what the turtle sees); a new Lstring.
-function Model:expand (s)
-  if type(s) == "string" then s = self:lstring(s) end
-  if not M.islstring(s) then error("expand: an Lstring expected", 2) end
-  self:_idle("expand")
-  self:_bind()
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
-  return self:_core("expand", s, HOMO)
-end
-
--- The view of the model with `over` merged in, checked, defaults filled.
-function Model:_view (over)
-  return view.normalize(over and view.merge(self.view, over) or self.view, self._where)
-end
-
--- Fills the query modules ?P ?H ?U ?L of `s` in place from an interpretation
--- (cpfg: productions at step n see the values of string n-1).
-function Model:_query (s)
-  local opts = view.turtle(self:_view(), self.allow_system_calls)
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
-  return self:_call(core.query, "interpret", self._rules, s, opts)
-end
-
-local scene_views = setmetatable({}, { __mode = "k" })   -- scene -> its normalised view
-
---- Interprets `s` (an Lstring or text; default: `self:derive()`) with the turtle and
--- returns an lsys.Scene. `over` replaces fields of the model's view for this call;
--- `over.records = false` leaves out the turtle records (less memory for big exports).
-function Model:interpret (s, over)
-  if s == nil then s = self:derive()
-  elseif type(s) == "string" then s = self:lstring(s) end
-  if not M.islstring(s) then error("interpret: an Lstring expected", 2) end
-  if over ~= nil and type(over) ~= "table" then error("interpret: a view table expected", 2) end
-  local records = true
-  if over ~= nil and over.records ~= nil then
-    records = over.records
-    over = view.merge(over, nil)
-    over.records = nil
-  end
-  self:_idle("interpret")
-  local v = self:_view(over)
-  self:_bind()
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
-  local topts = view.turtle(v, self.allow_system_calls)
-  topts.records = records and true or false
-  local scene = self:_call(core.interpret, "interpret", self._rules, s, topts)
-  scene_views[scene] = v
-  if self.allow_system_calls and self.system_call then
-    for _, r in scene:records() do
-      if r.kind == "system" then self.system_call(r.module, s:module(r.module)) end
-    end
-  end
-  return scene
-end
-
-local SCENE_MT = debug.getregistry()["lsys.Scene"]
-
---- True when `x` is an lsys.Scene.
-function M.isscene (x) return getmetatable(x) == SCENE_MT end
-
---- True when `x` is a model made by lsys.lsystem.
-function M.ismodel (x) return getmetatable(x) == Model end
-
--- The normalised view a scene was interpreted with (nil for scenes made elsewhere).
-function M._sceneview (scene) return scene_views[scene] end
-
--- The model whose rules made the Lstring `s`, or nil.
-function M._owner (s)
-  local ok, r = pcall(debug.getuservalue, s, 1)
-  return ok and r ~= nil and rules_models[r] or nil
-end
-
 --- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
 function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end
 
 --- Starts arranging a plant by inverse kinematics (lsys.arrange, docs/arrange.md).
-function M.arrange (model, s, opts) return _G.require("lsys.arrange")(model, s, opts) end
+function M.arrange (m, s, opts) return _G.require("lsys.arrange")(m, s, opts) end
 
 --- Handles the window's events until it is closed (lsys.viewer.wait): the end of a script
 -- that shows a model.
 function M.wait () return _G.require("lsys.viewer").wait() end
 
--- lsys.viewer: the window's module, loaded at first use (it needs this one loaded).
+-- lsys.viewer: the window's module, loaded at first use (a script that never opens a
+-- window does not load it).
 setmetatable(M, { __index = function (_, k)
   if k == "viewer" then return _G.require("lsys.viewer") end
 end })
@@ -597,13 +73,14 @@ local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom
 --- Renders `x` (a Scene, or a Model: derived and interpreted) to a PNG file.
 -- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
 -- width and height), width, height (800), zoom (1: magnifies about the centre),
--- transparent (a transparent background, RGBA PNG), wireframe, and view fields (camera, background, light,
--- supersample) that replace the scene's view for this picture; `opts.view` may hold them.
+-- transparent (a transparent background, RGBA PNG), wireframe, and view fields (camera,
+-- background, light, supersample) that replace the scene's view for this picture;
+-- `opts.view` may hold them.
 function M.render (x, opts)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", 2) end
-  if getmetatable(x) == Model then x = x:interpret() end
-  if not M.isscene(x) then error("lsys.render: a Scene or a Model expected", 2) end
+  if model.ismodel(x) then x = x:interpret() end
+  if not model.isscene(x) then error("lsys.render: a Scene or a Model expected", 2) end
   local over = {}
   for k, val in pairs(opts.view or {}) do over[k] = val end
   for k, val in pairs(opts) do
@@ -612,7 +89,7 @@ function M.render (x, opts)
       error(format("lsys.render: unknown option '%s'", tostring(k)), 2)
     end
   end
-  local v = scene_views[x] or view.normalize({}, "lsys.render")
+  local v = model.sceneview(x) or view.normalize({}, "lsys.render")
   if next(over) then
     local ok, r = pcall(view.normalize, view.merge(v, over), "lsys.render")
     if not ok then error(r, 2) end
@@ -624,20 +101,6 @@ function M.render (x, opts)
   local ok, a, b, c = pcall(core.render, x, ro)
   if not ok then error(a, 2) end
   return a, b, c
-end
-
---- Selects the rule group `n` (0 = only the productions, always active).
-function Model:use_group (n)
-  if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
-    error("use_group: a group number >= 0 expected", 2)
-  end
-  self:_idle("use_group")
-  self._group = n
-  self._rules:config("group", n)
-end
-
-function Model:__tostring ()
-  return format("lsys.Model(%s)", self.name or self._where)
 end
 
 return M

@@ -15,12 +15,11 @@
 -- again.
 -- @module lsys.viewer
 local core = require "lsys.core"
-local lsys = require "lsys"
+local model = require "lsys.model"
 local view = require "lsys.view"
 
-local type, pairs, ipairs, error, pcall, tostring, select, setmetatable =
-      type, pairs, ipairs, error, pcall, tostring, select, setmetatable
-local io, os, string, math, table = io, os, string, math, table
+local type, pairs, ipairs, error, pcall, tostring = type, pairs, ipairs, error, pcall, tostring
+local os, string, math = os, string, math
 local format = string.format
 local _ENV = nil
 
@@ -69,7 +68,7 @@ end
 
 -- A frame table for the core from a scene.
 local function frame (scene, step, nmodules, take)
-  local v = lsys._sceneview(scene)
+  local v = model.sceneview(scene)
   return {
     scene = scene, step = step, modules = nmodules, take = take, world = world(v),
     render = v and view.render(v) or nil,
@@ -103,12 +102,12 @@ end
 local plain
 local function model_of (s, opts)
   if opts.model ~= nil then
-    if not lsys.ismodel(opts.model) then fail("option 'model' must be a model", 4) end
+    if not model.ismodel(opts.model) then fail("option 'model' must be a model", 4) end
     return opts.model
   end
-  local m = lsys._owner(s) or S.model
+  local m = model.owner(s) or S.model
   if m == nil then
-    plain = plain or lsys.lsystem { axiom = "", name = "plain turtle" }
+    plain = plain or model.lsystem { axiom = "", name = "plain turtle" }
     m = plain
   end
   return m
@@ -159,19 +158,20 @@ end
 -- window's camera instead of fitting), `on_pick(info)` (called by `poll` for a click
 -- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
--- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b}, width =
--- pixels, ontop = boolean}, ... } drawn over it, depth-tested unless `ontop`), `capture` (a tool takes the keys and Ctrl-drags: they
--- come to `on_event` as { type = "key", key = "up", ctrl =, shift = } and
+-- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b},
+-- width = pixels, ontop = boolean}, ... } drawn over it, depth-tested unless `ontop`),
+-- `capture` (a tool takes the keys and Ctrl-drags: they come to `on_event` as
+-- { type = "key", key = "up", ctrl =, shift = } and
 -- { type = "drag", phase = "begin" | "move" | "end", x =, y = }).
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
   S.strings, S.steps = {}, {}
-  if lsys.ismodel(x) then
+  if model.ismodel(x) then
     frames, textures = model_frames(x, opts)
     S.model = x
-    title = x.name or x._where
-  elseif lsys.islstring(x) then
+    title = x.name or model.where(x)
+  elseif model.islstring(x) then
     local m = model_of(x, opts)
     local scene = m:interpret(x, opts.view)
     local f, v = frame(scene, nil, #x, true)
@@ -179,7 +179,7 @@ function M.show (x, opts)
     S.strings[1] = x
     textures = v and v.textures
     title = format("Lstring (%d modules)", #x)
-  elseif lsys.isscene(x) then
+  elseif model.isscene(x) then
     if opts.view ~= nil then fail("option 'view' needs a model or an Lstring", 2) end
     local ls = x.lstring
     local f, v = frame(x, nil, ls and #ls or nil, false)
@@ -191,7 +191,7 @@ function M.show (x, opts)
   elseif type(x) == "table" and #x > 0 then
     frames = {}
     for i, sc in ipairs(x) do
-      if not lsys.isscene(sc) then fail(format("element %d of the list is not a Scene", i), 2) end
+      if not model.isscene(sc) then fail(format("element %d of the list is not a Scene", i), 2) end
       local f, v = frame(sc, i - 1, nil, false)
       frames[i] = f
       S.strings[i], S.steps[i] = sc.lstring, i - 1
