@@ -5,7 +5,7 @@
 -- for lsys.show, and no module requires one that requires it back.
 -- @module lsys.model
 local core = require "lsys.core"
-local grammar = require "lsys.grammar"
+local compile = require "lsys.compile"
 local view = require "lsys.view"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
@@ -72,7 +72,7 @@ do
   end
 end
 
-local PROD, DECOMP, HOMO = grammar.PROD, grammar.DECOMP, grammar.HOMO
+local PROD, DECOMP, HOMO = compile.PROD, compile.DECOMP, compile.HOMO
 local LSTRING_MT = getmetatable(core.lstring(""))
 
 --- True when `x` is an Lstring.
@@ -155,7 +155,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
                          e.line, what)
     local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
     if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
-    local ok, spec, factory, frees, trees = pcall(grammar.compile, r,
+    local ok, spec, factory, frees, trees = pcall(compile.rule, r,
       { label = label, fn = e.fn, id = n })
     if not ok then fail(spec) end
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
@@ -315,33 +315,12 @@ function Model:_bind ()
         end
       end
       self._fns[i] = info.factory(E, type, error)
-      self:_vm(i - 1, info, E)
+      -- the C expression machine when the expressions allow it, else the closure
+      local code = not self.lua_expressions and compile.machine(info.trees, E)
+      if not (code and self._rules:setvm(i - 1, code)) then self._rules:setvm(i - 1, nil) end
     end
   end
   return E
-end
-
--- Compiles the rule's expressions for the C machine when they allow it.
-function Model:_vm (idx, info, E)
-  local t = info.trees
-  local code, ok = {}, t ~= nil and not self.lua_expressions
-  if ok then
-    local lib = { math = math, ran = E.ran, nran = E.nran }
-    if t.cond then
-      local ty = grammar.gen(t.cond, code, t.formals, E, lib)
-      if ty == "n" or ty == "i" then
-        code[#code + 1] = grammar.OP.K; code[#code + 1] = 0; code[#code + 1] = 0
-        code[#code + 1] = grammar.OP["~="]; code[#code + 1] = 0; code[#code + 1] = 0
-      elseif ty ~= "b" then ok = false end
-      code[#code + 1] = grammar.OP.COND; code[#code + 1] = 0; code[#code + 1] = 0
-    end
-    for _, e in ipairs(t.exprs) do
-      local ty = ok and grammar.gen(e, code, t.formals, E, lib)
-      if ty ~= "n" and ty ~= "i" then ok = false end
-      code[#code + 1] = grammar.OP.RET; code[#code + 1] = 0; code[#code + 1] = 0
-    end
-  end
-  if not (ok and self._rules:setvm(idx, code)) then self._rules:setvm(idx, nil) end
 end
 
 -- The axiom text for messages: a long one shortened.

@@ -1,15 +1,17 @@
---- Rule compilation: turns the parts of a parsed rule into a C successor
--- template plus, when needed, one Lua closure (DESIGN.md §3-5).
+--- Rule compilation (DESIGN.md §3-5): turns the parts of a rule parsed by the core
+-- (csrc/core/grammar.c splits the rule text) into a C successor template plus, when
+-- needed, one Lua closure; and its expressions into code for the C expression machine
+-- when they allow it.
 --
 -- The closure returns `true` followed by the computed values (the weight
 -- first when it is an expression, then each distinct parameter
 -- expression), or `false` when the condition fails. Rules without a
 -- condition and without computed values get no closure at all.
--- @module lsys.grammar
+-- @module lsys.compile
 local core = require "lsys.core"
 
-local type, tostring, tonumber, pairs, ipairs, error, load, select, mathtype, setmetatable =
-      type, tostring, tonumber, pairs, ipairs, error, load, select, math.type, setmetatable
+local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setmetatable =
+      type, tostring, tonumber, pairs, ipairs, error, load, math, math.type, setmetatable
 local format, concat, insert, table_sort = string.format, table.concat, table.insert, table.sort
 local _ENV = nil
 
@@ -115,7 +117,7 @@ M.SEALED = SEALED
 -- sub = ..., group = ..., fn = function or nil }.
 -- Returns the spec for rules:add and the factory (or nil): factory(E)
 -- returns the closure bound to the environment lookup E.
-function M.compile (r, info)
+function M.rule (r, info)
   local label = info.label
   local function fail (msg, ...) error(label .. ": " .. format(msg, ...), 0) end
   local formals, seen = {}, {}
@@ -141,7 +143,6 @@ function M.compile (r, info)
     return spec, nil
   end
   local exprs, exprindex = {}, {}
-  local weightexpr
   if r.weight then
     local w = r.weight
     if isnumber(w) then
@@ -151,7 +152,6 @@ function M.compile (r, info)
     else
       local msg = checkexpr(w)
       if msg then fail("bad weight '%s': %s", w, msg) end
-      weightexpr = w
       exprs[1] = w
       spec.flags = spec.flags | core.RF_WEXPR
     end
@@ -471,6 +471,33 @@ function M.gen (e, out, formals, E, lib)
     return nil
   end
   return gen(e)
+end
+
+--- The code of a rule's expressions for the C machine (rules:setvm), or nil when one of
+-- them stays in Lua. `trees` is what `rule` returned (nil: an expression did not parse);
+-- `E` is the lookup table of the model's env (lsys.model), read now: the code is made
+-- again each time the model binds its rules. The condition comes first and ends in COND
+-- (a number is true unless it is 0, as in the closure); each value then ends in RET.
+function M.machine (trees, E)
+  local t = trees
+  local code, ok = {}, t ~= nil
+  if ok then
+    local lib = { math = math, ran = E.ran, nran = E.nran }
+    if t.cond then
+      local ty = M.gen(t.cond, code, t.formals, E, lib)
+      if ty == "n" or ty == "i" then
+        code[#code + 1] = OP.K; code[#code + 1] = 0; code[#code + 1] = 0
+        code[#code + 1] = OP["~="]; code[#code + 1] = 0; code[#code + 1] = 0
+      elseif ty ~= "b" then ok = false end
+      code[#code + 1] = OP.COND; code[#code + 1] = 0; code[#code + 1] = 0
+    end
+    for _, e in ipairs(t.exprs) do
+      local ty = ok and M.gen(e, code, t.formals, E, lib)
+      if ty ~= "n" and ty ~= "i" then ok = false end
+      code[#code + 1] = OP.RET; code[#code + 1] = 0; code[#code + 1] = 0
+    end
+  end
+  return ok and code or nil
 end
 
 return M
