@@ -12,11 +12,13 @@
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
+local host = require("lsys.program").host
+
 local G = _G
 local type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require =
       type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require
 local loadfile, getmetatable, setmetatable, next = loadfile, getmetatable, setmetatable, next
-local io, os, string, table, math, debug, package = io, os, string, table, math, debug, package
+local io, os, string, table, math, debug = io, os, string, table, math, debug
 local format = string.format
 local _ENV = nil
 
@@ -187,11 +189,6 @@ end
 
 local function out (...)
   io.stdout:write(...)
-end
-
-local function host ()
-  local h = package.loaded["lsys.host"]
-  return type(h) == "table" and h or {}
 end
 
 local function isatty (fd)

@@ -2,9 +2,12 @@
 -- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global: a line is first tried as an
 -- expression list (`=expr` works too) and its values are printed, Lstrings abbreviated;
 -- otherwise it is run as a statement, continued on `>> ` lines while Lua reports it
--- incomplete (a multi-line expression prints its values too). Errors print their message and the session goes on. Line editing and
--- history come from lsys.readline when the program was built with readline.
+-- incomplete (a multi-line expression prints its values too). Errors print their message
+-- and the session goes on. Line editing and history come from lsys.readline when the
+-- program was built with readline.
 -- @module lsys.repl
+local host = require("lsys.program").host
+
 local G = _G
 local type, tostring, pcall, xpcall, load, require, getmetatable =
       type, tostring, pcall, xpcall, load, require, getmetatable
@@ -57,11 +60,6 @@ function M.show (v)
   local more = n > WIDTH or #text > WIDTH
   return format("Lstring(%d module%s): %s%s", n, n == 1 and "" or "s",
     text:sub(1, WIDTH), more and "..." or "")
-end
-
-local function host ()
-  local h = package.loaded["lsys.host"]
-  return type(h) == "table" and h or {}
 end
 
 local function msghandler (e)
