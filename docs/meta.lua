@@ -1,13 +1,16 @@
 ---@meta
--- LuaLS definitions for lsys (derivation part): the Lua API of `require "lsys"` and the
--- C-implemented functions of `require "lsys.core"`. Nothing here runs. Point
--- `workspace.library` at this docs/ directory; where the language server does not infer the
--- module type, write `local lsys = require "lsys" ---@type lsys`.
+-- LuaLS definitions for lsys: the Lua API of `require "lsys"` (models, Lstrings, scenes,
+-- views, rendering, the viewer window, the arrangement) and the C-implemented functions of
+-- `require "lsys.core"` that it is built on. Nothing here runs. Point `workspace.library`
+-- at this docs/ directory; where the language server does not infer the module type, write
+-- `local lsys = require "lsys" ---@type lsys`.
 --
 -- Conventions: indices are 1-based unless a name ends in "idx" (0-based rule indices of the
 -- core); angles in module parameters are degrees (for the turtle), angles in expression
--- functions radians (Lua's math); "raises" means a Lua error with the message shown.
--- The user's manual is docs/manual.md.
+-- functions radians (Lua's math); vectors are `{x, y, z}` lists; "raises" means a Lua error
+-- with the message shown. The manuals are docs/manual.md (derivation), docs/drawing.md
+-- (turtle, views, scenes, rendering), docs/viewer.md (the window) and docs/arrange.md (the
+-- arrangement).
 
 
 -- ===========================================================================================
@@ -35,6 +38,8 @@
 ---@field version string The library version, `"0.1.0"`.
 ---@field BUILTIN table<string, any> Names visible in every rule expression after the formal parameters, `ran`/`nran` and `env`: `math string table pi huge abs floor ceil sqrt exp log sin cos tan asin acos atan min max fmod deg rad type tostring tonumber print select error assert pairs ipairs`. Changing this table changes what all models see.
 ---@field Model lsys.Model The model metatable (its methods).
+---@field view lsys.view View options and cpfg view files.
+---@field viewer lsys.viewer The window's module, loaded at first use.
 local lsys = {}
 
 --- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
@@ -72,6 +77,30 @@ function lsys.lstring(text, names) end
 ---@param x any
 ---@return boolean
 function lsys.islstring(x) end
+
+--- True when `x` is a model made by `lsys.lsystem`.
+---@param x any
+---@return boolean
+function lsys.ismodel(x) end
+
+--- A memory size in bytes from a number of bytes or a string: `"512M"`, `"2G"`, `"1.5GiB"`,
+--- `"800MB"` (binary units: K = 1024), `"unlimited"` or `"none"` (math.huge). Raises
+--- `WHAT must be at least 1 byte, got X`, `WHAT must be a number of bytes or a string such
+--- as "2G", got TYPE`, `WHAT: 'X' is not a size (...)`.
+---@param x number|string
+---@param what? string Names the value in messages. Default `"size"`.
+---@return number bytes A whole number, or math.huge.
+function lsys.parse_size(x, what) end
+
+--- The process-wide memory budget: the most one derivation step or one interpretation may
+--- take for its strings, tables, mesh and records (manual §9). With an argument, sets it
+--- first (`nil` leaves it). The default is half the physical memory, or `LSYS_MAX_MEMORY`
+--- from the environment; a model's own `max_memory` option takes precedence. Raises as
+--- `lsys.parse_size`, naming `lsys.max_memory`.
+---@param size? number|string Bytes, or a size string such as `"2G"` or `"unlimited"`.
+---@return number limit Bytes (math.huge: none).
+---@return integer physical The physical memory in bytes.
+function lsys.max_memory(size) end
 
 --- Inside a rule function: appends the modules of `template` to the successor and marks the
 --- rule as applied. `template` is module text whose parameters are numbers or `?`; the `?`
@@ -143,6 +172,8 @@ function lsys.nproduce(template, ...) end
 ---@field name? string Shown by `tostring(model)`. Default: none (the file and line of the `lsys.lsystem` call, or `model`).
 ---@field homomorphism_seed? number Seed of the homomorphism generator, reset by every `m:expand`. Default: `seed`.
 ---@field allow_system_calls? boolean For the turtle: `@S` is refused unless true. Not read by derivation. Default false.
+---@field system_call? fun(i: integer, name: string, ...: number) With `allow_system_calls`, called after `interpret` once per `@S` drawn, with the module's index, name and parameters. Default: none.
+---@field max_memory? number|string The memory budget of this model's steps and interpretations, in bytes or as `"512M"`, `"2G"`, `"unlimited"` (see `lsys.parse_size`). Default: `lsys.max_memory()`.
 
 
 -- ===========================================================================================
@@ -163,6 +194,8 @@ function lsys.nproduce(template, ...) end
 ---@field homomorphism_seed number?
 ---@field allow_system_calls boolean
 ---@field max_modules number? Set only when the option was given (the limit in force is 50 000 000 otherwise).
+---@field max_memory number? In bytes; set only when the option was given.
+---@field system_call (fun(i: integer, name: string, ...: number))?
 ---@field start fun(model: lsys.Model)?
 ---@field start_each fun(model: lsys.Model, step: integer)?
 ---@field end_each (fun(model: lsys.Model, s: lsys.Lstring, step: integer): lsys.Lstring?)?
@@ -265,7 +298,7 @@ function Model:interpret(s, view) end
 ---@field light? number[] Direction the key light comes from.
 ---@field supersample? integer Anti-aliasing factor (3).
 ---@field dir? string Base directory of relative file names below (a .v file's directory after view.load).
----@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in seed 004 Appendix B.1.
+---@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in Appendix B.1 of the cpfg guide (Měch and Prusinkiewicz; docs/manual.md §12).
 ---@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders").
 ---@field textures? (string|{ file: string, mag?: "near"|"linear", min?: "near"|"linear", mode?: "modulate"|"decal", per_surface?: boolean, intensity?: boolean })[] PNG textures; @Tx(k) picks the k-th.
 ---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
@@ -328,6 +361,14 @@ function Scene:records() end
 ---@return integer?
 function Scene:find(i) end
 
+--- The wireframe of what record `k` drew: the distinct edges of its triangles, each
+--- `{{x, y, z}, {x, y, z}}` (a leaf gives its outline and inner edges; a line-style segment
+--- none). The arrangement window highlights leaves and flowers with it. Raises
+--- `scene:edges: no record K`.
+---@param k integer 1-based record index.
+---@return number[][][]
+function Scene:edges(k) end
+
 --- Writes the geometry: `.obj` (and a `.mtl` next to it), `.ply` (binary) or `.glb`
 --- (glTF 2.0 binary). Raises `cannot open 'PATH' for writing: REASON` and
 --- `scene:save: unknown format of 'PATH' (use .obj, .ply or .glb)`.
@@ -338,13 +379,26 @@ function Scene:save(path) end
 --- Renders a Scene (or a Model: derived and interpreted) headless with OSMesa. With
 --- `opts.out` writes a PNG and returns true; otherwise returns the RGBA pixels (top row
 --- first), the width and the height. Other fields of `opts` (or `opts.view`) are view options
---- for this picture: camera, background, light, supersample.
+--- for this picture: camera, background, light, supersample. Raises `lsys.render: an options
+--- table expected`, `lsys.render: a Scene or a Model expected`, `lsys.render: unknown option
+--- 'K'`, a view error, and, in a build without OSMesa, `lsys was built without OSMesa: ...`.
 ---@param x lsys.Scene|lsys.Model
----@param opts? { out?: string, width?: integer, height?: integer, view?: lsys.View }
+---@param opts? lsys.RenderOptions
 ---@return true|string pixels
 ---@return integer? width
 ---@return integer? height
 function lsys.render(x, opts) end
+
+--- Options of `lsys.render` besides view fields (lsys.View: camera, background, light,
+--- supersample), which may also be given here directly.
+---@class lsys.RenderOptions: lsys.View
+---@field out? string The PNG file to write (atomically). Without it the pixels are returned.
+---@field width? integer Pixels (800).
+---@field height? integer Pixels (800).
+---@field zoom? number Magnifies about the centre of the picture (1).
+---@field transparent? boolean A transparent background (an RGBA PNG). Default false.
+---@field wireframe? boolean Triangles drawn as their edges. Default false.
+---@field view? lsys.View View fields for this picture.
 
 --- Shows a Model (every step, the last first), an Lstring, a Scene or a list of Scenes in
 --- the viewer window, opening it if needed, and returns at once (docs/viewer.md). Raises
@@ -372,6 +426,16 @@ function lsys.wait() end
 ---@field on_event? fun(ev: table) Called by `poll` for every window event.
 ---@field progress? fun(k: integer, n: integer) Called before interpreting step k of n.
 ---@field model? lsys.Model The model to interpret an Lstring that has none.
+---@field lines? lsys.Line[] For a Scene: segments drawn over it.
+---@field capture? boolean A tool takes the keys and Ctrl-drags: they come to `on_event` as `{ type = "key", key =, ctrl =, shift = }` and `{ type = "drag", phase = "begin"|"move"|"end", x =, y = }` (the arrows no longer step).
+
+--- An overlay segment of `lsys.show(scene, { lines = ... })`.
+---@class lsys.Line
+---@field p0 number[]
+---@field p1 number[]
+---@field color? number[] {r, g, b[, a]} in 0..1.
+---@field width? number Pixels.
+---@field ontop? boolean Drawn over the model instead of depth-tested.
 
 --- What a click in the window hit.
 ---@class lsys.Pick
@@ -390,6 +454,11 @@ function lsys.wait() end
 ---@field on_pick? fun(info: lsys.Pick) Called for picks of shows without their own on_pick.
 ---@field last_pick? lsys.Pick The last pick.
 lsys.viewer = {}
+
+--- The same as `lsys.show`.
+---@param x lsys.Model|lsys.Lstring|lsys.Scene|lsys.Scene[]
+---@param opts? lsys.ShowOptions
+function lsys.viewer.show(x, opts) end
 
 --- Handles the window's events (callbacks run here), waiting up to `timeout` seconds (0)
 --- for the first. Returns true while the window is open.
@@ -436,9 +505,54 @@ function lsys.viewer.pending() end
 ---@return string
 function lsys.here() end
 
---- View options and cpfg view files (docs/drawing.md §2).
+--- View options and cpfg view files (docs/drawing.md §2). The file readers live in
+--- lsys.viewfile; this module gives them under the same names.
 ---@class lsys.view
+---@field PALETTE table<integer, number[]> The default palette, `[0]` to `[12]`: 1 bark, 2 leaf green, 3 young green, 4 yellow, 5 red, 6 petal pink, 7 purple, 8 dark green, 9 blue, 10 white, 11 light wood, 12 dark grey (`{r, g, b}` in 0..1).
+---@field DEFAULTS lsys.View The defaults `normalize` fills in (angle 90, step 1, line_width 1, line_style "line", contour_sides 8, projection "parallel", fov 30, supersample 3, ...).
+---@field KINDS table<string, string> Every view option and the kind of value it takes ("number", "integer", "vec", "color", "contours", ...): the names `normalize` accepts.
+---@field VIEWFILE_IGNORED table<string, true> View-file commands that lsys reads past with a warning (`front distance`, `z buffer`, `render mode`, ...).
 lsys.view = {}
+
+--- Checks a view table and returns a complete copy: defaults filled in, vectors and
+--- colours normalised, the files it names (contours, surfaces, textures, a palette file)
+--- read and parsed into lsys.Contour, lsys.Surface and lsys.Texture objects. Every
+--- interpretation calls it; parsed files are cached while their bytes are unchanged.
+--- Raises `WHERE: unknown view option 'K' (known: ...)`, `WHERE: 'view.K' must be ...`,
+--- and file errors naming the option and the file.
+---@param v? lsys.View Default `{}`.
+---@param where? string Names the model in messages. Default `"view"`.
+---@return lsys.View
+function lsys.view.normalize(v, where) end
+
+--- A copy of `v` with the fields of `over` replacing its own (both plain view tables;
+--- either may be nil). Nothing is checked.
+---@param v? lsys.View
+---@param over? lsys.View
+---@return lsys.View
+function lsys.view.merge(v, over) end
+
+--- The options table `core.interpret` and `core.query` read, from a normalised view
+--- (tropisms and torques in one list, `width`, `style`, `sides`, ...).
+---@param v lsys.View A result of `normalize`.
+---@param allow_system_calls? boolean Default false.
+---@return table
+function lsys.view.turtle(v, allow_system_calls) end
+
+--- The options table `core.render` reads, from a normalised view: camera, light,
+--- background, supersample and the textures (left out when there are none).
+---@param v lsys.View A result of `normalize`.
+---@return table
+function lsys.view.render(v) end
+
+--- Reads the text of a cpfg view file into a view table, as `load` does for a file.
+--- Raises `NAME:LINE: ...`; `view.parse: the text must be a string`.
+---@param text string
+---@param name? string Names the text in messages. Default `"view"`.
+---@param opts? { dir?: string, quiet?: boolean } `dir` becomes the view's `dir`; `quiet`: do not print the warnings.
+---@return lsys.View view
+---@return string[] warnings
+function lsys.view.parse(text, name, opts) end
 
 --- Reads a cpfg view file (.v) into a view table; relative file names inside are resolved
 --- against its directory. Returns the view and the list of warnings about recognised but
@@ -465,10 +579,162 @@ function lsys.isscene(x) end
 
 
 -- ===========================================================================================
+-- lsys.arrange: arranging a plant by inverse kinematics (docs/arrange.md; Power et al. 1999)
+
+--- Starts arranging `s` (an Lstring of `model`; default `model:derive()`), which is copied:
+--- the arrangement works on its own string. The same as `require("lsys.arrange")(model, s,
+--- opts)`. Raises `lsys.arrange: an options table expected`, `lsys.arrange: unknown option
+--- 'K'`, `lsys.arrange: option 'K' must be a TYPE`, `lsys.arrange: option 'radii' must be
+--- 'width' or 'davinci'`, `lsys.arrange: option 'K' must be > 0`.
+---@param model lsys.Model
+---@param s? lsys.Lstring
+---@param opts? lsys.ArrangeOptions
+---@return lsys.Arrangement
+function lsys.arrange(model, s, opts) end
+
+--- Options of `lsys.arrange`. Section numbers and equations are those of Power et al. 1999.
+---@class lsys.ArrangeOptions
+---@field r0? number Trunk radius for the da Vinci rule (1), > 0.
+---@field s0u? number Flexural stiffness of the trunk (1), > 0: c_f = s0u / r0^4 (eq. 4).
+---@field s0h? number Torsional stiffness of the trunk (1), > 0: c_t = s0h / r0^4 (eq. 5).
+---@field radii? "width"|"davinci" Branch radii from the turtle widths (radius = width / 2) or the da Vinci rule (eq. 6). Default: widths when the model sets them.
+---@field wp? number Weight of the end position in eq. 1 (1000), divided by the squared length of the path's axis.
+---@field wt? number Weight of the end's twist vectors (1).
+---@field we? number Weight of the stiffness energy (1); the stiffness is divided by its mean along the path.
+---@field ws? number Weight of smoothness between neighbouring joints (0.1; 0 when the string has Z stiffness).
+---@field max_iter? integer Iterations of the solver per dragger call (200).
+---@field view? lsys.View View fields used when interpreting the arranged string.
+---@field leaf_length? number Length of the virtual segment of a leaf or flower picked as the end (default: its size).
+
+--- What a dragger returns: the solver's result.
+---@class lsys.SolveResult
+---@field status "gtol"|"ftol"|"maxiter"|"maxeval"|"linesearch" Why it stopped ("gtol" and "ftol": converged).
+---@field iterations integer
+---@field evaluations integer Evaluations of the objective.
+---@field f0 number The objective at the start.
+---@field f number The objective at the end.
+---@field dist number Distance of the path's end from its target.
+
+--- An arrangement: a copy of the string with `@J(h, u, l)` joint modules (degrees) that the
+--- draggers set, and the selected branch path. Module indices are those of the arranged
+--- string (`a:lstring()`); selecting adds missing `@J` modules, which shifts the indices
+--- after them.
+---@class lsys.Arrangement
+---@field model lsys.Model
+---@field scene lsys.Scene The scene of the arranged string as last interpreted.
+local Arrangement = {}
+
+--- Selects the branch path (§3.2): `fixed` is the segment at whose start the path is held,
+--- `moved` the segment, leaf or flower whose end the draggers move (default `fixed`); both
+--- module indices or picks (lsys.Pick). `moved` must be in the active branch of `fixed`.
+--- Adds the missing `@J` modules. Raises `lsys.arrange: select: ...` (e.g. `the fixed point
+--- must be on a segment`, `module I is not in the active branch of module J (above it)`,
+--- `module I (NAME) draws nothing that can be arranged`).
+---@param sel { fixed: integer|lsys.Pick, moved?: integer|lsys.Pick }
+---@return integer joints The number of joints of the path.
+function Arrangement:select(sel) end
+
+--- Moves the fixed point as ilsa's arrow keys do: "up" along its axis towards the branch
+--- end, "down" towards the base, "left" and "right" to the sibling branches. The path
+--- becomes the fixed segment alone. Raises without a selection or for another direction.
+---@param dir "up"|"down"|"left"|"right"
+---@return integer? module The new fixed module, or nil when there is nowhere to go.
+function Arrangement:move_fixed(dir) end
+
+--- The module indices of the selected path's segments, root first.
+---@return integer[]
+function Arrangement:path_modules() end
+
+--- The module indices of every segment from the fixed point up (the active branch), in
+--- order.
+---@return integer[]
+function Arrangement:active_modules() end
+
+--- Spherical dragger: turns the path about its fixed point by `angle` degrees about `axis`
+--- (end and twist vectors turned together), then solves. Raises `lsys.arrange: select a
+--- branch path first`.
+---@param rot { axis: number[], angle: number }
+---@return lsys.SolveResult
+function Arrangement:spherical(rot) end
+
+--- Disc dragger: twists the path by `angle` degrees about its axis; the end stays.
+---@param angle number Degrees.
+---@return lsys.SolveResult
+function Arrangement:disc(angle) end
+
+--- Axis dragger: moves the end by `distance` along the path's axis; the twist stays.
+---@param distance number Model units.
+---@return lsys.SolveResult
+function Arrangement:axis(distance) end
+
+--- 2D-plane dragger: moves the end by `dx`, `dy` in the plane of `view.right` and `view.up`
+--- (world vectors; default the xy plane); the twist stays.
+---@param dx number
+---@param dy number
+---@param view? { right?: number[], up?: number[] }
+---@return lsys.SolveResult
+function Arrangement:plane(dx, dy, view) end
+
+--- Keeps the current arrangement as the start of the next dragger call (a new drag):
+--- draggers set their targets relative to where the last commit or select left the path.
+function Arrangement:commit() end
+
+--- Undoes the last dragger call or prune. Returns false when there is nothing to undo.
+---@return boolean
+function Arrangement:undo_last() end
+
+--- Prunes the branch that starts at module `k` (a segment: it and everything drawn after
+--- it up to the end of its branch), leaving the marker `@X`, which the turtle ignores and
+--- productions may rewrite. Clears the selection.
+---@param k integer|lsys.Pick
+---@return integer removed The number of modules removed.
+function Arrangement:prune(k) end
+
+--- The arranged string: a copy, so arranging on does not change it.
+---@return lsys.Lstring
+function Arrangement:lstring() end
+
+--- The scene of the arranged string, interpreted again when it changed.
+---@return lsys.Scene
+function Arrangement:interpret() end
+
+--- The stiffness `{sh, su, sl}` of the joint before the segment drawn by module `i` (from
+--- `Z`, or computed from the radii, eqs. 4 and 5).
+---@param i integer
+---@return number[]?
+function Arrangement:stiffness(i) end
+
+--- The radius the stiffness of module `i`'s segment was computed with (nil with `Z`).
+---@param i integer
+---@return number?
+function Arrangement:radius(i) end
+
+--- The arrangement window (`lsys arrange MODEL`), `require "lsys.arrange_ui"`.
+---@class lsys.arrange_ui
+---@field RED number[] Colour of the active branch's highlight.
+---@field YELLOW number[] Colour of the branch path's highlight.
+local arrange_ui = {}
+
+--- The highlight of the paper's figure 6 as overlay lines (`lines` of `lsys.show`): the
+--- active branch red, the branch path yellow; segments as thick lines, leaves and flowers
+--- as their wireframe (`Scene:edges`).
+---@param arr lsys.Arrangement
+---@param scene lsys.Scene `arr:interpret()`, before it is shown.
+---@return lsys.Line[]
+function arrange_ui.highlight(arr, scene) end
+
+--- Runs an arrangement session in the viewer window until it is closed (clicks select,
+--- Ctrl-drags drag, arrow keys move the fixed point, Delete prunes, U undoes, Ctrl-S saves).
+---@param arr lsys.Arrangement
+---@param opts? { out?: string, width?: integer, height?: integer, title?: string, say?: fun(msg: string), on_change?: fun() } `out`: where Ctrl-S saves the arranged string; `say` prints messages (default: stdout); `on_change` is called after every change.
+function arrange_ui.run(arr, opts) end
+
+
+-- ===========================================================================================
 -- lsys.Lstring (C: csrc/lua/lua_lstring.c, metatable "lsys.Lstring")
 
 --- A module string: symbol codes and a pool of double parameters in C arrays. Made by
---- derive, step, expand, lsys.lstring and Model:lstring; methods never change it.
+--- derive, step, expand, lsys.lstring and Model:lstring; no method but `set` changes it.
 --- `tostring(s)` gives cpfg text (numbers in the shortest form that reads back to the same
 --- double, integral values without a decimal point, spaces only where names would run
 --- together). `a == b` is true when both have the same modules and bit-identical
@@ -525,10 +791,27 @@ function Lstring:copy() end
 ---@return integer
 function Lstring:bytes() end
 
+--- Replaces the parameters of module `i` in place (negative `i` counts from the end); as
+--- many values as the module has. The arrangement (lsys.arrange) moves its `@J` joints this
+--- way. Raises `bad argument #1 to 'set' (module index out of range)`,
+--- `set: module I has N parameters, got M`, `bad argument #K to 'set' (not a finite number)`.
+---@param i integer
+---@param ... number The new parameters, finite.
+function Lstring:set(i, ...) end
+
+--- A new Lstring with `piece` inserted before each of the module indices in `positions`, in
+--- one pass (`#s + 1` appends). Raises `insert: positions must be ascending module indices
+--- from 1 to N (entry K)`.
+---@param positions integer[] Ascending (repeats allowed: one copy of `piece` each).
+---@param piece lsys.Lstring
+---@return lsys.Lstring
+function Lstring:insert(positions, piece) end
+
 
 -- ===========================================================================================
--- lsys.core: the C module (csrc/lua/lua_lsys.c, csrc/lua/lua_lstring.c). lsys.lsystem is built on
--- it; use it directly only to write another front end.
+-- lsys.core: the C module (csrc/lua/). lsys.lsystem, Model:interpret, lsys.render,
+-- lsys.view and lsys.viewer are built on it; use it directly only to write another front
+-- end.
 
 ---@class lsys.core
 ---@field MAXPARAMS integer Parameters per module at most: 31.
@@ -610,6 +893,7 @@ function core.nproduce(template, ...) end
 ---| "depth_homomorphism"  # integer from 0 to 1024
 ---| "seed"                # number: reseeds the derivation generator
 ---| "hseed"               # number: reseeds the homomorphism generator
+---| "max_memory"          # number of bytes >= 0: this model's memory budget (0: the process-wide one)
 
 --- The compiled rules of one model, their settings and the two generators.
 ---@class lsys.Rules
@@ -710,3 +994,308 @@ function Rules:setvm(idx, code) end
 ---@param idx integer 0-based rule index.
 ---@return boolean
 function Rules:hasvm(idx) end
+
+--- Adds an empty rule set (kind, sub, group): a sub-L-system may exist without rules.
+--- Raises `bad rule kind`, and while the model derives.
+---@param kind lsys.RuleKind
+---@param sub integer
+---@param group? integer Default 0.
+function Rules:newset(kind, sub, group) end
+
+--- Whether the model is deriving now (a rule function of it is running): the Lua side
+--- refuses to derive, step, expand, interpret or change rules from inside its own rules.
+---@return boolean
+function Rules:busy() end
+
+--- Parses an axiom into a template without a Lua table per module: parameters are numbers
+--- or expressions (brackets must balance). Returns the template and the list of its
+--- distinct expression texts, in order, or nil, a message and a 1-based position.
+---@param text string
+---@return lsys.Template? template
+---@return string[]|string expressions The expression texts, or the message.
+---@return integer? position
+function Rules:axiom(text) end
+
+--- Makes the Lstring of a template, its expression slots filled from `values` (the values
+--- of the expressions `Rules:axiom` listed, in order). Raises `value K is not a finite
+--- number`.
+---@param template lsys.Template
+---@param values number[]
+---@return lsys.Lstring
+function Rules:fill(template, values) end
+
+--- A parsed axiom (`Rules:axiom`), metatable "lsys.Template".
+---@class lsys.Template
+
+--- Same as `lsys.ran`.
+---@param x? number
+---@return number
+function core.ran(x) end
+
+--- Same as `lsys.nran`.
+---@param mean number
+---@param sd number
+---@return number
+function core.nran(mean, sd) end
+
+--- The Rules deriving now (nil outside a derivation); with an argument, sets it. The Lua
+--- side restores it after a step that raised.
+---@param v? lsys.Rules|nil
+---@return lsys.Rules?
+function core.producing(v) end
+
+--- The process-wide memory budget in bytes; with an argument, sets it first (0: back to the
+--- default, half the physical memory). Also returns the physical memory.
+---@param bytes? number
+---@return number limit
+---@return number physical
+function core.max_memory(bytes) end
+
+-- ---------------------------------------------------------------------------------------------
+-- The turtle and scenes (csrc/lua/lua_scene.c). `opts` is `lsys.view.turtle(v)` of a
+-- normalised view; the homomorphism of `rules` is applied while drawing.
+
+--- Interprets `s` into a new Scene.
+---@param rules lsys.Rules
+---@param s lsys.Lstring
+---@param opts table
+---@return lsys.Scene
+function core.interpret(rules, s, opts) end
+
+--- Fills the query modules (?P ?H ?U ?L) of `s` in place from an interpretation.
+---@param rules lsys.Rules
+---@param s lsys.Lstring
+---@param opts table
+---@return integer n The number of query modules filled.
+function core.query(rules, s, opts) end
+
+--- The turtle state after module `i` of `s` (0: the start), interpreting again.
+---@param rules lsys.Rules
+---@param s lsys.Lstring
+---@param i integer
+---@param opts table
+---@return number[] pos
+---@return number[] H
+---@return number[] L
+---@return number[] U
+---@return number width
+---@return integer color
+function core.turtle_state(rules, s, i, opts) end
+
+-- ---------------------------------------------------------------------------------------------
+-- Rendering, PNG and files (csrc/lua/lua_render.c)
+
+---@type boolean True when built with OSMesa (offscreen rendering).
+core.has_render = true
+
+--- Draws a Scene offscreen (`lsys.render` gives it its options): `opts` holds
+--- `lsys.view.render(v)` and out, width, height, zoom, transparent, wireframe; `textures`
+--- is the list of lsys.Texture the scene's texture indices refer to. With `out` writes the
+--- PNG and returns true, else the RGBA pixels, width and height. Raises `lsys.render: ...`.
+---@param scene lsys.Scene
+---@param opts? table
+---@return true|string pixels
+---@return integer? width
+---@return integer? height
+function core.render(scene, opts) end
+
+--- Reads a PNG file: its RGBA pixels (a string, top row first), width and height.
+---@param path string
+---@return string pixels
+---@return integer width
+---@return integer height
+function core.png_read(path) end
+
+--- Writes RGBA pixels (top row first) as a PNG, atomically: RGBA when `alpha` is true, RGB
+--- when false, and when absent RGBA only if some pixel is not opaque. Raises
+--- `lsys.png_write: W x H RGBA pixels need N bytes, got M` and for unwritable files.
+---@param path string
+---@param pixels string
+---@param w integer
+---@param h integer
+---@param alpha? boolean
+---@return true
+function core.png_write(path, pixels, w, h, alpha) end
+
+--- Writes `bytes` to `path` atomically (a temporary file renamed onto it).
+---@param path string
+---@param bytes string
+---@return true
+function core.write_file(path, bytes) end
+
+--- The bytes of a regular file of at most `max` bytes, or nil and a message naming the
+--- file.
+---@param path string
+---@param max number
+---@return string? bytes
+---@return string? message
+function core.read_file(path, max) end
+
+-- ---------------------------------------------------------------------------------------------
+-- Contours, surfaces and textures (csrc/lua/lua_contour.c, lua_surface.c, lua_texture.c):
+-- what `lsys.view.normalize` makes of the files a view names. All are immutable once made;
+-- every method of a closed one raises.
+
+--- Reads a contour file (Appendix B.1 of the cpfg guide). Raises `PATH:LINE: ...`.
+---@param path string
+---@return lsys.Contour
+function core.contour_load(path) end
+
+--- A contour from points, all with 2 or all with 3 coordinates; at least 3 points for a
+--- closed contour, 4 for an open one.
+---@param points number[][]
+---@param closed? boolean Default true.
+---@return lsys.Contour
+function core.contour(points, closed) end
+
+--- The cross-section of generalized cylinders (`@#(id)`): a uniform cubic B-spline.
+---@class lsys.Contour
+local Contour = {}
+
+--- `p + 1` vertices and their normals, `{x, y, z}` each, at equal arc length.
+---@param p integer From 3 to 65536.
+---@return number[][] vertices
+---@return number[][] normals
+function Contour:sample(p) end
+---@return integer n The number of control points.
+function Contour:size() end
+---@return boolean
+function Contour:closed() end
+---@return 2|3
+function Contour:dim() end
+
+--- Reads a cpfg surface file (.s; docs/surfaces.md). Raises `PATH:LINE: ...`.
+---@param path string
+---@return lsys.Surface
+function core.surface_load(path) end
+
+--- The same from a string.
+---@param text string
+---@param name? string Starts the messages. Default `"surface"`.
+---@return lsys.Surface
+function core.surface_parse(text, name) end
+
+--- A point of one bicubic patch.
+---@param basis 1|2|3|"bezier"|"bspline"|"cardinal"
+---@param ctrl number[][] 16 `{x, y, z}`, row by row (row r, column c at 4 r + c + 1).
+---@param s number
+---@param t number
+---@return number x
+---@return number y
+---@return number z
+function core.patch_eval(basis, ctrl, s, t) end
+
+--- A predefined surface: bicubic Bézier patches with a contact point and frame.
+---@class lsys.Surface
+local Surface = {}
+
+--- What the file gave: `{ patches =, contact =, heading =, up =, ["end"] =, lo =, hi =,
+--- size =, precision = {s, t}, names = {...} }` (lo, hi: the bounds of the control points).
+---@return table
+function Surface:info() end
+
+--- Reads a PNG texture.
+---@param path string
+---@param opts? { mag?: "near"|"linear"|"n"|"l", min?: "near"|"linear"|"n"|"l", mode?: "modulate"|"decal"|"m"|"d", per_surface?: boolean, intensity?: boolean } Filters default "near", mode "modulate", per_surface false, intensity true for a grey image.
+---@return lsys.Texture
+function core.texture_load(path, opts) end
+
+---@class lsys.Texture
+local Texture = {}
+---@return integer width
+---@return integer height
+function Texture:size() end
+--- `{ path =, width =, height =, mag =, min =, mode =, per_surface =, intensity =, alpha = }`
+--- with the long names of the settings.
+---@return table
+function Texture:info() end
+
+-- ---------------------------------------------------------------------------------------------
+-- The window (csrc/lua/lua_viewer.c); lsys.viewer is the interface to use.
+
+---@type boolean True when built with the viewer (GLFW).
+core.has_viewer = true
+
+--- Opens the window (one per process; its own thread).
+---@param opts? { width?: integer, height?: integer, samples?: integer, visible?: boolean, status?: boolean }
+---@return lsys.Viewer
+function core.viewer_open(opts) end
+
+--- The modification time (seconds, with a fraction) and size of a file, or nil and a
+--- message: `lsys view` reloads a model when they change.
+---@param path string
+---@return number? mtime
+---@return integer|string size
+function core.filestamp(path) end
+
+--- The open window, metatable "lsys.Viewer"; closed when collected.
+---@class lsys.Viewer
+local Viewer = {}
+
+--- Hands the window a snapshot to draw (a deep copy, or with `take` the scene's own mesh):
+--- `frames` is a list of `{ scene =, step =, modules =, render = lsys.render options,
+--- world =, take =, lines = }`.
+---@param frames table[]
+---@param opts? { first?: integer, rate?: number, title?: string, keep_camera?: boolean, capture?: boolean, textures?: lsys.Texture[] }
+function Viewer:post(frames, opts) end
+
+--- The next event, waiting up to `timeout` seconds (0): `{ type = "pick"|"miss"|
+--- "screenshot"|"step"|"closed"|"key"|"drag", frame, step, module, kind, x, y, path, ok,
+--- msg, key, ctrl, shift, phase }` (the fields of its type), or nil.
+---@param timeout? number
+---@return table?
+function Viewer:poll(timeout) end
+---@return integer
+function Viewer:pending() end
+--- Asks for a screenshot of the next frame (as the S key); the "screenshot" event tells.
+---@param path? string
+function Viewer:screenshot(path) end
+--- Presses a key (see lsys.viewer.key); the window has drawn it once `state().serial` has
+--- reached the number returned.
+---@param name string
+---@return integer serial
+function Viewer:key(name) end
+--- `{ open, drawn, serial, width, height, fbwidth, fbheight, frame, nframes, playing,
+--- wireframe }`.
+---@return table
+function Viewer:state() end
+---@param p number[]
+---@return number? x
+---@return number? y
+---@return number? depth
+function Viewer:project(p) end
+function Viewer:close() end
+
+-- ---------------------------------------------------------------------------------------------
+-- Branch-path inverse kinematics (csrc/lua/lua_ik.c), for lsys.arrange.
+
+--- A chain of 3-joints along a branch path. Vectors are `{x, y, z}`, angles degrees;
+--- `alpha` is the joint's `@J` angles as the segment is drawn now, `rest` the rest angles
+--- (0), `stiff` the stiffness (1), `free` a mask of the free axes (7: h, u and l).
+---@param chain { base: { H: number[], U: number[], p: number[] }, joints: { p0: number[], p1: number[], H: number[], U: number[], alpha: number[], rest?: number[], stiff?: number[], free?: integer }[] }
+---@return lsys.IK
+function core.ik_chain(chain) end
+
+--- A branch-path chain, metatable "lsys.IK"; `#ik` is the number of joints.
+---@class lsys.IK
+---@operator len: integer
+local IK = {}
+
+--- Minimises the objective (eq. 1 of Power et al. 1999) for the targets: end `p`, twist
+--- vectors `s` and `t`, with weights wp, wt, we (1) and ws (0). Raises `ik: MESSAGE`.
+---@param goal { p: number[], s: number[], t: number[], wp?: number, wt?: number, we?: number, ws?: number, max_iter?: integer, gtol?: number }
+---@return lsys.SolveResult
+function IK:solve(goal) end
+--- The joint angles, `{ {h, u, l}, ... }` in degrees.
+---@return number[][]
+function IK:angles() end
+--- Sets the joint angles (a list as `angles` returns).
+---@param list number[][]
+function IK:set_angles(list) end
+--- Forward kinematics: the end point, its twist vectors s (U x H) and t (U), and the
+--- joints' segments `{ {start, end}, ... }`.
+---@return number[] p
+---@return number[] s
+---@return number[] t
+---@return number[][][] segments
+function IK:forward() end
