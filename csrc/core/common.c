@@ -24,6 +24,20 @@ int lsys_seterror (lsys_error *e, int code, size_t pos, const char *fmt, ...) {
   return code;
 }
 
+int lsys_vseterror_at (lsys_error *e, int code, size_t pos, const char *where,
+                       const char *fmt, va_list ap) {
+  char msg[200];
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  return lsys_seterror(e, code, pos, "%s: %s", where, msg);
+}
+
+int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, size_t line,
+                         const char *fmt, va_list ap) {
+  char where[sizeof e->msg];    /* a longer place would be cut from the message anyway */
+  snprintf(where, sizeof where, "%s:%zu", name, line);
+  return lsys_vseterror_at(e, code, pos, where, fmt, ap);
+}
+
 int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   size_t ncap = *cap ? *cap : 16;
   void *np;

@@ -5,6 +5,7 @@
 #ifndef LSYS_COMMON_H
 #define LSYS_COMMON_H
 
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -39,6 +40,18 @@ int lsys_seterror (lsys_error *e, int code, size_t pos, const char *fmt, ...)
   __attribute__((format(printf, 4, 5)))
 #endif
   ;
+
+/* Sets the error "where: message" and returns 'code': the one form of the
+** messages that name a place, a module ("module 12 'F'") or a line of a
+** file (lsys_vseterror_line). The message ('fmt' with 'ap') is cut to 199
+** bytes, then the whole to the 255 of e->msg. */
+int lsys_vseterror_at (lsys_error *e, int code, size_t pos, const char *where,
+                       const char *fmt, va_list ap);
+
+/* The same with the place "name:line", as compilers and Lua write it
+** ("leaf.s:3: expected 'CONTACT POINT'"). */
+int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, size_t line,
+                         const char *fmt, va_list ap);
 
 /* Grows '*p' (an array of 'elem'-byte items with capacity '*cap') so that it
 ** holds at least 'need' items; capacity doubles. Returns LSYS_OK or

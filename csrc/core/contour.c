@@ -5,7 +5,6 @@
 */
 #include <math.h>
 #include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -121,19 +120,19 @@ static const char *show (const token *t, char buf[32]) {
   return lsys_quote(buf, t->s, t->len);
 }
 
-/* Sets the error "name:line: message" and returns LSYS_ESYNTAX. */
+/* Sets the error "name:line: message" (common.h) and returns LSYS_ESYNTAX. */
 static int error (reader *R, size_t line, const char *fmt, ...)
 #if defined(__GNUC__)
   __attribute__((format(printf, 3, 4)))
 #endif
   ;
 static int error (reader *R, size_t line, const char *fmt, ...) {
-  char msg[200];
   va_list ap;
+  int code;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  code = lsys_vseterror_line(R->e, LSYS_ESYNTAX, line, R->name, line, fmt, ap);
   va_end(ap);
-  return lsys_seterror(R->e, LSYS_ESYNTAX, line, "%s:%zu: %s", R->name, line, msg);
+  return code;
 }
 
 /* Reads a coordinate: a number that strtod takes whole, at most MAXCOORD

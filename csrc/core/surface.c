@@ -203,15 +203,16 @@ static const char *qname (char buf[32], const char *name) {
   return lsys_quote(buf, name, strlen(name));
 }
 
-/* Fails with "name:LINE: message". */
+/* Fails with "name:LINE: message" (common.h); the error position is the
+** line's byte offset. */
 static int fail (reader *r, size_t line, const char *fmt, ...) {
-  char msg[200];
   va_list ap;
+  int code;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  code = lsys_vseterror_line(r->e, LSYS_ESYNTAX, (size_t)(r->lp - r->text), r->name, line,
+                             fmt, ap);
   va_end(ap);
-  return lsys_seterror(r->e, LSYS_ESYNTAX, (size_t)(r->lp - r->text), "%s:%lu: %s", r->name,
-                       (unsigned long)line, msg);
+  return code;
 }
 
 static int lower (char c) {

@@ -111,6 +111,22 @@ static void test_layout (void) {
   lsys_contour_free(&c);
 }
 
+/* "name:line: message" (common.h): the line is the error's position, and a
+** name longer than the message leaves only the first 255 bytes of it. */
+static void test_where (void) {
+  char name[300];
+  lsys_contour c;
+  lsys_error e;
+  memset(name, 'n', sizeof name - 1);
+  name[sizeof name - 1] = '\0';
+  lsys_contour_init(&c);
+  assert(lsys_contour_parse(&c, "\n\n3 2 closed\n0 0\n1 x\n", 20, "t.con", &e) == LSYS_ESYNTAX);
+  assert(e.pos == 5 && strcmp(e.msg, "t.con:5: bad number 'x'") == 0);
+  assert(lsys_contour_parse(&c, "2 2 open", 8, name, &e) == LSYS_ESYNTAX);
+  assert(strlen(e.msg) == sizeof e.msg - 1 && strncmp(e.msg, name, sizeof e.msg - 1) == 0);
+  lsys_contour_free(&c);
+}
+
 static void test_errors (void) {
   char big[200];
   bad("", "t.con:1: expected \"N dim open|closed\", got an empty file");
@@ -442,6 +458,7 @@ int main (void) {
   test_files();
   test_layout();
   test_errors();
+  test_where();
   test_set();
   test_sample_files();
   test_arclength();
