@@ -119,6 +119,17 @@ static void test_errors (void) {
   parse(&s, &a, "F@#(4e9)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   assert(strstr(t.err.msg, "module 2 '@#': contour 65535 is not defined") != NULL);
+  /* the two forms of a module's message, "module N: ..." and "module N 'symbol': ...",
+  ** with the module's index as the position; a ~X names its own symbol */
+  parse(&s, &a, "F@Dd(0)");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 1);
+  assert(strcmp(t.err.msg, "module 2: @Dd: division of the scale by 0") == 0);
+  parse(&s, &a, "FF@Gr(1,2,3)");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 2);
+  assert(strcmp(t.err.msg, "module 3 '@Gr': takes 1, 2 or 4 parameters, not 3") == 0);
+  parse(&s, &a, "F~Q");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 1);
+  assert(strcmp(t.err.msg, "module 2 '~Q': no such surface in the view (view.surfaces)") == 0);
   parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nrec == 1);
   lsys_turtle_free(&t);

@@ -1,0 +1,205 @@
+/*
+** What the turtle's files share (not part of the API; see turtle.h). The
+** turtle (turtle.c) keeps the state and dispatches the commands; each
+** geometry kind is built in a file of its own (DESIGN.md: a reader finds
+** each geometry kind in one file):
+**   turtle_cyl.c      cylinder segments, their rings and end caps (line style cylinder)
+**   turtle_ribbon.c   flat ribbons (line style polygon)
+**   turtle_disc.c     discs, @c and @o (seed 004 §2)
+**   turtle_sphere.c   spheres, @O (seed 004 §2)
+**   turtle_polygon.c  polygons and the polygon stack, { . } (seed 004 §4.2)
+**   turtle_gcyl.c     generalized cylinders, @Gs @Gc @Ge @Gt @Gr (seed 004 §3)
+**   turtle_surface.c  predefined surfaces ~X and patches @PS @PC @PD (seed 004 §4.1, §4.3)
+** The helpers every module may call (arg, newrec) are static inline here, so
+** the interpretation loop pays no call for them.
+*/
+#ifndef LSYS_TURTLE_IMPL_H
+#define LSYS_TURTLE_IMPL_H
+
+#include <math.h>
+
+#include "turtle.h"
+#include "vec3.h"
+
+#define PI 3.14159265358979323846
+#define RAD(a) ((a) * (PI / 180.0))
+#define NSTACK 64             /* turtle states kept on the C stack */
+
+/* what a symbol does */
+enum {
+  OP_NONE = 0,
+  OP_F, OP_f, OP_G, OP_g,
+  OP_LEFT, OP_RIGHT, OP_DOWN, OP_UP, OP_ROLLL, OP_ROLLR, OP_TURN,
+  OP_VERT, OP_SETFRAME, OP_MOVETO,
+  OP_PUSH, OP_POP,
+  OP_WIDER, OP_THINNER, OP_COLINC, OP_COLDEC, OP_TEXTURE, OP_CONTOUR,
+  OP_DISCZ, OP_DISC, OP_SPHERE,
+  OP_PSTART, OP_PEND, OP_PVERT,
+  OP_QP, OP_QH, OP_QU, OP_QL,
+  OP_SCALE, OP_SCALEMUL, OP_SCALEDIV,
+  OP_LABEL, OP_SYSTEM, OP_STIFF,
+  OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE,
+  OP_SUB, OP_SUBEND,
+  OP_GSTART, OP_GPOINT, OP_GEND, OP_GTAN, OP_GRAD,
+  OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE, OP_JOINT
+};
+
+/* A polygon being collected (§4.2): its vertices, 3 doubles each. */
+struct lsys_polygon {
+  double *v; size_t n, cap;
+  double H[3], L[3];      /* the turtle's heading and left at the first vertex (§5.3) */
+};
+
+/* An open end of a cylinder: its top ring, so that the next segment can
+** continue from it or a cap can close it at the end. */
+struct lsys_cylend {
+  double c[3], H[3], r;
+  uint32_t ring;          /* first vertex of the ring (sides + 1 vertices) */
+  int color, continued;
+};
+
+/* A contour sampled for this run's number of sides (seed 004 §3.2.3). */
+struct lsys_csample {
+  double *v, *n;          /* sides + 1 vertices and normals */
+  uint32_t *cap;          /* end-cap triangles, anticlockwise in the contour's xy */
+  size_t vcap, capcap;
+  int ncap, left, closed, valid;
+};
+
+/* A patch defined by @PS / @PC (§4.3). */
+struct lsys_lpatch {
+  lsys_patch p;
+  int basis, started;
+};
+
+/* One interpretation: the turtle state and what the current module needs. */
+typedef struct run run;
+struct run {
+  lsys_turtle *t;
+  const lsys_turtle_opts *o;
+  lsys_tstate st;
+  lsys_tstate cstack[NSTACK];
+  size_t depth;                 /* states pushed */
+  size_t mod;                   /* the module being interpreted (original index) */
+  size_t modtri;                /* the mesh's triangle count when the module began (after
+                                   the segment before it was emitted) */
+  int draw;                     /* DRAW mode */
+  int op;                       /* the operation being interpreted (messages) */
+  double tdeg, tcos, tsin;      /* the last turn angle and its cosine and sine */
+  size_t stsize;                /* bytes of the state that [ and ] copy */
+  /* a segment whose top width may still change (! or # right after F) */
+  int pending;
+  uint32_t prec;                /* its record */
+  double p0[3], p1[3], w0, len;
+  int pcol, ptex;
+  uint32_t sym;                 /* the symbol being interpreted */
+  const lsys_alphabet *ab;
+};
+
+/* turtle.c: errors about the current module, "module N: <fmt>" and
+** "module N 'op': <fmt>" (code LSYS_EARG), and a failed allocation (the
+** memory budget's message when the budget refused). */
+int lsys_turtle_fail (run *R, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+  __attribute__((format(printf, 3, 4)))
+#endif
+  ;
+int lsys_turtle_failop (run *R, const char *fmt, ...)
+#if defined(__GNUC__)
+  __attribute__((format(printf, 2, 3)))
+#endif
+  ;
+int lsys_turtle_nomem (run *R);
+
+/* The k-th parameter (0-based) of a module with 'np' parameters, or 'def'. */
+static inline int arg (run *R, const double *p, uint32_t np, uint32_t k, double def,
+                       double *out) {
+  if (k >= np) { *out = def; return LSYS_OK; }
+  if (!isfinite(p[k])) {
+    lsys_turtle_failop(R, "parameter %u is not a finite number", k + 1);
+    return LSYS_EARG;
+  }
+  *out = p[k];
+  return LSYS_OK;
+}
+
+/* A record of 'kind' for the current module, from p0 to p1 (a segment's
+** length is their distance), in the turtle's present frame. */
+static inline int newrec (run *R, int kind, const double *p0, const double *p1, double w0,
+                          double w1) {
+  lsys_turtle *t = R->t;
+  lsys_trec *r;
+  int k;
+  if (R->o->norecords) return LSYS_OK;
+  if (t->nrec == t->reccap &&
+      lsys_grow_metered((void **)&t->rec, &t->reccap, t->nrec + 1, sizeof *t->rec, t->meter)
+      != LSYS_OK)
+    return lsys_turtle_nomem(R);
+  if (t->nrec >= LSYS_NOREC) return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
+  r = &t->rec[t->nrec++];
+  r->module = (uint32_t)R->mod;
+  r->parent = R->st.last;
+  r->kind = (uint8_t)kind;
+  r->pad = 0;
+  r->color = (uint16_t)R->st.color;
+  r->w0 = (float)w0; r->w1 = (float)w1;
+  r->len = kind == LSYS_REC_SEGMENT || kind == LSYS_REC_GCYL
+           ? (float)sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                         (p1[2] - p0[2]) * (p1[2] - p0[2]))
+           : 0.0f;
+  for (k = 0; k < 3; k++) {
+    r->p1[k] = (float)p1[k];
+    r->H[k] = (float)R->st.H[k]; r->U[k] = (float)R->st.U[k];
+  }
+  r->tri0 = (uint32_t)R->modtri;
+  r->ntri = t->mesh != NULL && t->mesh->nt > R->modtri ? (uint32_t)(t->mesh->nt - R->modtri) : 0;
+  r->stiff = LSYS_NOREC;
+  if (R->st.hasstiff) {
+    if (lsys_grow_metered((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float),
+                          t->meter) != LSYS_OK)
+      return lsys_turtle_nomem(R);
+    r->stiff = (uint32_t)t->nstiff;
+    for (k = 0; k < 3; k++) t->stiff[3 * t->nstiff + k] = (float)R->st.stiff[k];
+    t->nstiff++;
+  }
+  return LSYS_OK;
+}
+
+/* turtle_cyl.c: a cylinder from p0 (width w0) to p1 (width w1) around the
+** turtle's frame, continuing the open end st.tip when it can; and the caps
+** that close the ends nothing continued (at the end of the run). */
+int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0, double w1,
+                          double len, int col);
+int lsys_turtle_capends (run *R);
+
+/* turtle_ribbon.c: a flat ribbon from p0 to p1 in the plane of H and L. */
+int lsys_turtle_ribbon (run *R, const double *p0, const double *p1, double w0, double w1,
+                        int col);
+
+/* turtle_disc.c: a disc of diameter d around 'c' in the plane of 'a' and 'b',
+** facing 'nrm'. */
+int lsys_turtle_disc (run *R, const double *c, const double *a, const double *b,
+                      const double *nrm, double d, int col);
+
+/* turtle_sphere.c: a sphere of diameter d around 'c', poles on H. */
+int lsys_turtle_sphere (run *R, const double *c, double d, int col);
+
+/* turtle_polygon.c: { starts a polygon, . and moves inside one add the
+** turtle's position, } fills it (§4.2). The work space of the polygon
+** triangulation, made on first use (NULL when out of memory). */
+int lsys_turtle_polystart (run *R);
+int lsys_turtle_polyvertex (run *R);
+int lsys_turtle_polyend (run *R);
+struct lsys_polywork *lsys_turtle_polywork (lsys_turtle *t);
+
+/* turtle_gcyl.c: @Gs, @Gc, @Ge (a control point and the strips from the
+** active one) and @Gt, @Gr (the shape of the next segments), §3. */
+int lsys_turtle_gcmodule (run *R, int op, const double *p, uint32_t np);
+int lsys_turtle_gcshape (run *R, int op, const double *p, uint32_t np);
+
+/* turtle_surface.c: ~X(s), the view's surface at the turtle (§4.1), and
+** @PS @PC @PD, bicubic patches (§4.3). */
+int lsys_turtle_surface (run *R, uint32_t sym, const double *p, uint32_t np);
+int lsys_turtle_patch (run *R, int op, const double *p, uint32_t np);
+
+#endif
