@@ -2,7 +2,8 @@
 --
 --   local a = lsys.arrange(model, lstring [, opts])
 --   a:select { fixed = i, moved = j }     -- module indices (or pick tables with .module)
---   a:spherical { axis = {0, 0, 1}, angle = 30 }   -- or a:disc(angle), a:axis(d), a:plane(dx, dy, view)
+--   a:spherical { axis = {0, 0, 1}, angle = 30 }   -- or a:disc(angle), a:axis(d),
+--                                                  -- a:plane(dx, dy, view)
 --   a:prune(k)                            -- cut the branch that starts at module k
 --   local s = a:lstring()                 -- the arranged string; model:step(s) grows it on
 --
@@ -268,7 +269,6 @@ function Arr:select (sel)
     end
     fm, mm = shift(fm), shift(mm)
     self:_refresh()
-    fixed, moved = self.bymod[fm], self.bymod[mm]
     return self:select { fixed = fm, moved = mm }
   end
   self.fixed, self.moved, self.path, self.leaf = fixed, moved, path, leaf

@@ -57,6 +57,42 @@ function M.highlight (arr, scene)
   return lines
 end
 
+-- The drag that the Ctrl-drag event `ev` begins at the path's end of `arr`: where it
+-- began, the world units per pixel there, and the view's right and up (`st`, the window's
+-- state).
+local function begindrag (arr, ev, st)
+  local b = arr.bar
+  local x0, y0 = V.project(b.p)
+  local x1, y1 = V.project(add(b.p, st.right))
+  local px = x0 and x1 and math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2) or 0
+  return { x = ev.x, y = ev.y, wpp = px > 0 and 1 / px or 1, right = st.right, up = st.up }
+end
+
+-- Moves the path's end of `arr` with `tool` as the mouse went from where `drag` began to
+-- the event `ev`; try(f, ...) calls the arrangement, saying what went wrong.
+local function movedrag (arr, tool, drag, ev, try)
+  local dx, dy = ev.x - drag.x, ev.y - drag.y
+  local b = arr.bar
+  local d = add(scale(drag.right, dx * drag.wpp), scale(drag.up, -dy * drag.wpp))
+  if tool == "spherical" then
+    -- the end follows the mouse on the sphere about r: turn v-bar towards p-bar + d
+    local q = sub(add(b.p, d), b.r)
+    local axis = cross(b.v, q)
+    local s = norm(axis)
+    if s > 1e-12 then
+      local ang = math.deg(math.atan(s, dot(b.v, q)))
+      try(arr.spherical, arr, { axis = axis, angle = ang })
+    end
+  elseif tool == "disc" then
+    try(arr.disc, arr, dx * 0.5)
+  elseif tool == "axis" then
+    local v = scale(b.v, 1 / math.max(norm(b.v), 1e-12))
+    try(arr.axis, arr, dot(d, v))
+  else
+    try(arr.plane, arr, dx * drag.wpp, -dy * drag.wpp, { right = drag.right, up = drag.up })
+  end
+end
+
 --- Runs the session until the window closes. `arr` is an lsys.arrange arrangement;
 -- opts: out (where Ctrl-S saves), width, height, title, say (a function printing
 -- messages; default io.stdout), on_change (called after every change, for tests).
@@ -135,35 +171,11 @@ function M.run (arr, opts)
     local st = V.state()
     if ev.phase == "begin" then
       arr:commit()
-      -- world units per pixel at the path's end
-      local b = arr.bar
-      local x0, y0 = V.project(b.p)
-      local x1, y1 = V.project(add(b.p, st.right))
-      local px = x0 and x1 and math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2) or 0
-      drag = { x = ev.x, y = ev.y, wpp = px > 0 and 1 / px or 1, right = st.right, up = st.up }
+      drag = begindrag(arr, ev, st)
       return
     end
     if drag == nil then return end
-    local dx, dy = ev.x - drag.x, ev.y - drag.y
-    local b = arr.bar
-    local d = add(scale(drag.right, dx * drag.wpp), scale(drag.up, -dy * drag.wpp))
-    if tool == "spherical" then
-      -- the end follows the mouse on the sphere about r: turn v-bar towards p-bar + d
-      local q = sub(add(b.p, d), b.r)
-      local axis = cross(b.v, q)
-      local s = norm(axis)
-      if s > 1e-12 then
-        local ang = math.deg(math.atan(s, dot(b.v, q)))
-        try(arr.spherical, arr, { axis = axis, angle = ang })
-      end
-    elseif tool == "disc" then
-      try(arr.disc, arr, dx * 0.5)
-    elseif tool == "axis" then
-      local v = scale(b.v, 1 / math.max(norm(b.v), 1e-12))
-      try(arr.axis, arr, dot(d, v))
-    else
-      try(arr.plane, arr, dx * drag.wpp, -dy * drag.wpp, { right = drag.right, up = drag.up })
-    end
+    movedrag(arr, tool, drag, ev, try)
     if ev.phase == "end" then drag = nil end
     redraw()
   end

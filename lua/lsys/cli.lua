@@ -559,10 +559,8 @@ local VIEW_OPTS = {
   ["no-status"] = "flag", help = "flag", short = { h = "help" },
 }
 
-function commands.view (args)
-  local opts, pos = parse("view", VIEW_OPTS, args, 2)
-  if opts.help then out(HELP.view) return 0 end
-  local w, h = size_opt("view", opts.size)
+-- --step, --rate and --screenshot of `lsys view`.
+local function view_opts (opts)
   local step, rate
   if opts.step ~= nil then
     step = math.tointeger(tonumber(opts.step))
@@ -580,8 +578,44 @@ function commands.view (args)
   if shot ~= nil and not shot:lower():find("%.png$") then
     usage("view", "the screenshot must be a .png file, got '%s'", shot)
   end
-  local V = require "lsys.viewer"
+  return step, rate, shot
+end
+
+-- Handles the window's events until it is closed (or Ctrl-C); a change of the file 'path'
+-- (its time or size, stable for 0.1 s) calls reload(). Closes the window.
+local function watch (V, path, reload)
   local core = require "lsys.core"
+  local function stamp ()
+    local t, size = core.filestamp(path)
+    return t and format("%.9f/%d", t, size) or "missing"
+  end
+  local last = stamp()
+  local interrupt = host().interrupt or function () end
+  local iok, ierr = pcall(function ()
+    interrupt(true)
+    while V.poll(0.2) do
+      local now = stamp()
+      if now ~= last and now ~= "missing" then
+        V.poll(0.1)
+        if stamp() == now then
+          last = now
+          reload()
+        end
+      end
+    end
+    interrupt(false)
+  end)
+  interrupt(false)
+  V.close()
+  if not iok and not tostring(ierr):find("interrupted!", 1, true) then error(ierr, 0) end
+end
+
+function commands.view (args)
+  local opts, pos = parse("view", VIEW_OPTS, args, 2)
+  if opts.help then out(HELP.view) return 0 end
+  local w, h = size_opt("view", opts.size)
+  local step, rate, shot = view_opts(opts)
+  local V = require "lsys.viewer"
   local print_pick = require("lsys.repl").print_pick
   local path = find_model(pos[1])
   if #pos > 1 then usage("view", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
@@ -642,34 +676,13 @@ function commands.view (args)
     io.stderr:write(format("lsys: waiting for %s to change\n", path))
   end
 
-  -- Watches the file: a change of its time or size, stable for 0.1 s, reloads it.
-  local function stamp ()
-    local t, size = core.filestamp(path)
-    return t and format("%.9f/%d", t, size) or "missing"
-  end
-  local last = stamp()
-  local interrupt = host().interrupt or function () end
-  local iok, ierr = pcall(function ()
-    interrupt(true)
-    while V.poll(0.2) do
-      local now = stamp()
-      if now ~= last and now ~= "missing" then
-        V.poll(0.1)
-        if stamp() == now then
-          last = now
-          local rok, rerr = show(true)
-          if not rok then
-            io.stderr:write("lsys: ", tostring(rerr), "\n",
-              shown and "lsys: (the last good model stays on screen)\n" or "")
-          end
-        end
-      end
+  watch(V, path, function ()
+    local rok, rerr = show(true)
+    if not rok then
+      io.stderr:write("lsys: ", tostring(rerr), "\n",
+        shown and "lsys: (the last good model stays on screen)\n" or "")
     end
-    interrupt(false)
   end)
-  interrupt(false)
-  V.close()
-  if not iok and not tostring(ierr):find("interrupted!", 1, true) then error(ierr, 0) end
   return 0
 end
 

@@ -112,11 +112,58 @@ local SEALED = setmetatable({}, {
 })
 M.SEALED = SEALED
 
+-- The successor's modules into spec.succ, and where each of their parameters comes from
+-- into spec.src: a constant, a formal parameter (an index in `seen`), or a computed value
+-- (an index in `exprs`, where each distinct expression is listed once).
+local function successor (r, spec, seen, exprs, fail)
+  local exprindex = {}
+  for _, m in ipairs(r.succ) do
+    insert(spec.succ, m.sym); insert(spec.succ, #m.params)
+    for pi, e in ipairs(m.params) do
+      if isnumber(e) then
+        local x = tonumber(e)
+        if x ~= x or x == 1 / 0 or x == -1 / 0 then
+          fail("parameter %d of '%s' is '%s', not a finite number", pi, m.name, e)
+        end
+        insert(spec.src, PS_CONST); insert(spec.src, 0); insert(spec.src, x)
+      elseif seen[e] then
+        insert(spec.src, PS_ARG); insert(spec.src, seen[e]); insert(spec.src, 0)
+      else
+        local msg = checkexpr(e)
+        if msg then fail("bad expression '%s' in parameter %d of '%s': %s", e, pi, m.name, msg) end
+        local k = exprindex[e]
+        if not k then
+          exprs[#exprs + 1] = e
+          k = #exprs - 1
+          exprindex[e] = k
+        end
+        insert(spec.src, PS_VAL); insert(spec.src, k); insert(spec.src, 0)
+      end
+    end
+  end
+end
+
+-- The trees of the condition and the values for the C machine (M.machine), or nil when
+-- one of them does not parse (M.parseexpr): the rule then keeps its closure.
+local function parsetrees (cond, exprs, seen)
+  local trees = { formals = seen, exprs = {} }
+  if cond then
+    trees.cond = M.parseexpr(cond)
+    if not trees.cond then return nil end
+  end
+  for k, e in ipairs(exprs) do
+    trees.exprs[k] = M.parseexpr(e)
+    if not trees.exprs[k] then return nil end
+  end
+  return trees
+end
+
 --- Compiles one rule.
 -- `r` is the table from rules:parse; `info` = { label = ..., kind = ...,
 -- sub = ..., group = ..., fn = function or nil }.
 -- Returns the spec for rules:add and the factory (or nil): factory(E)
--- returns the closure bound to the environment lookup E.
+-- returns the closure bound to the environment lookup E; with a factory, also the free
+-- names of its expressions and their trees for `machine` (nil when they do not parse).
 function M.rule (r, info)
   local label = info.label
   local function fail (msg, ...) error(label .. ": " .. format(msg, ...), 0) end
@@ -142,7 +189,7 @@ function M.rule (r, info)
     spec.fn = info.fn
     return spec, nil
   end
-  local exprs, exprindex = {}, {}
+  local exprs = {}
   if r.weight then
     local w = r.weight
     if isnumber(w) then
@@ -157,30 +204,7 @@ function M.rule (r, info)
     end
     spec.flags = spec.flags | core.RF_STOCH
   end
-  for _, m in ipairs(r.succ) do
-    insert(spec.succ, m.sym); insert(spec.succ, #m.params)
-    for pi, e in ipairs(m.params) do
-      if isnumber(e) then
-        local x = tonumber(e)
-        if x ~= x or x == 1 / 0 or x == -1 / 0 then
-          fail("parameter %d of '%s' is '%s', not a finite number", pi, m.name, e)
-        end
-        insert(spec.src, PS_CONST); insert(spec.src, 0); insert(spec.src, x)
-      elseif seen[e] then
-        insert(spec.src, PS_ARG); insert(spec.src, seen[e]); insert(spec.src, 0)
-      else
-        local msg = checkexpr(e)
-        if msg then fail("bad expression '%s' in parameter %d of '%s': %s", e, pi, m.name, msg) end
-        local k = exprindex[e]
-        if not k then
-          exprs[#exprs + 1] = e
-          k = #exprs - 1
-          exprindex[e] = k
-        end
-        insert(spec.src, PS_VAL); insert(spec.src, k); insert(spec.src, 0)
-      end
-    end
-  end
+  successor(r, spec, seen, exprs, fail)
   if r.cond then
     local msg = checkexpr(r.cond)
     if msg then fail("bad condition '%s': %s", r.cond, msg) end
@@ -194,15 +218,7 @@ function M.rule (r, info)
   local src = factorysource(formals, r.cond, exprs, frees)
   local factory, msg = load(src, "=rule", "t", SEALED)   -- messages say 'rule:N:'
   if not factory then fail("%s", msg) end
-  local trees = { formals = seen, exprs = {} }
-  if r.cond then trees.cond = M.parseexpr(r.cond); if not trees.cond then trees = nil end end
-  for k, e in ipairs(exprs) do
-    if trees then
-      trees.exprs[k] = M.parseexpr(e)
-      if not trees.exprs[k] then trees = nil end
-    end
-  end
-  return spec, factory, frees, trees
+  return spec, factory, frees, parsetrees(r.cond, exprs, seen)
 end
 
 -- ---------------------------------------------------------------------------
@@ -344,7 +360,7 @@ local F2 = { min = 12, max = 13, fmod = 14, atan = 15 }
 
 --- Generates machine code for tree `e` into `out` (flat {op, a, k}).
 -- `formals` maps names to argument indices; `E` resolves other names;
--- `mathlib` is Lua's math table; `ran`/`nran` the model's functions.
+-- `lib` holds Lua's math table (math) and the model's functions (ran, nran).
 -- Returns the type ("n" float, "i" integer constant, "b" boolean) or nil when
 -- the expression is not compilable. Lua computes integer op integer in
 -- integers (wrapping, raising on // 0): such expressions stay in Lua, as do
@@ -383,6 +399,71 @@ function M.gen (e, out, formals, E, lib)
     return "n"
   end
   local function isnum (t) return t == "n" or t == "i" end
+  -- and, or (a jump over the right side), ==, ~=, arithmetic and order comparisons
+  local function binary (n)
+    local op = n[2]
+    if op == "and" or op == "or" then
+      if gen(n[3]) ~= "b" then return nil end
+      local j = emit(op == "and" and OP.JF or OP.JT, 0)
+      if gen(n[4]) ~= "b" then return nil end
+      out[3 * j + 2] = #out // 3
+      return "b"
+    end
+    local ta = gen(n[3])
+    local tb = ta and gen(n[4])
+    if not tb then return nil end
+    if op == "==" or op == "~=" then
+      if (ta == "b") ~= (tb == "b") then return nil end
+      emit(OP[op]); return "b"
+    end
+    if not isnum(ta) or not isnum(tb) then return nil end
+    if ta == "i" and tb == "i" and op ~= "/" and op ~= "^" and op ~= "<" and op ~= "<=" and
+       op ~= ">" and op ~= ">=" then
+      return nil                   -- integer arithmetic: Lua's own rules
+    end
+    emit(OP[op])
+    return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
+  end
+  -- a call of ran, nran or a math function that the machine has
+  local function call (n)
+    local name, args = fnof(n[2]), n[3]
+    if not name then return nil end
+    local fold = (name == "min" or name == "max") and #args >= 2
+    local types = {}
+    for k, a in ipairs(args) do
+      types[k] = gen(a)
+      if not isnum(types[k]) then return nil end
+      -- min and max fold from the left as Lua's do (it matters with nan: min(3, nan, 2)
+      -- is 2 in Lua, min(3, min(nan, 2)) would be 3)
+      if fold and k >= 2 then emit(OP.F2, F2[name]) end
+    end
+    -- the result's type as Lua has it ("i": may be an integer, so the integer checks
+    -- above keep arithmetic between two of them in Lua): floor and ceil give integers,
+    -- min and max return one of their arguments as it is, abs keeps an integer, and
+    -- fmod of two integers is an integer fmod that raises on 0: not on the machine
+    local anyint, allint = false, #args > 0
+    for _, a in ipairs(types) do
+      if a == "i" then anyint = true else allint = false end
+    end
+    if name == "ran" then
+      if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
+      emit(OP.RAN); return "n"
+    elseif name == "nran" then
+      if #args ~= 2 then return nil end
+      emit(OP.NRAN); return "n"
+    elseif fold then
+      return anyint and "i" or "n"
+    elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
+    elseif name == "fmod" and #args == 2 then
+      if allint then return nil end
+      emit(OP.F2, F2.fmod); return "n"
+    elseif F1[name] and #args == 1 then
+      emit(OP.F1, F1[name])
+      if name == "floor" or name == "ceil" or (name == "abs" and anyint) then return "i" end
+      return "n"
+    end
+    return nil
+  end
   function gen (n)
     local kind = n[1]
     if kind == "num" then return num(n[2])
@@ -406,67 +487,8 @@ function M.gen (e, out, formals, E, lib)
       if n[2] == "-" and t == "n" then emit(OP.UNM); return "n" end   -- not integers: they wrap
       if n[2] == "not" and t == "b" then emit(OP.NOT); return "b" end
       return nil
-    elseif kind == "bin" then
-      local op = n[2]
-      if op == "and" or op == "or" then
-        if gen(n[3]) ~= "b" then return nil end
-        local j = emit(op == "and" and OP.JF or OP.JT, 0)
-        if gen(n[4]) ~= "b" then return nil end
-        out[3 * j + 2] = #out // 3
-        return "b"
-      end
-      local ta = gen(n[3])
-      local tb = ta and gen(n[4])
-      if not tb then return nil end
-      if op == "==" or op == "~=" then
-        if (ta == "b") ~= (tb == "b") then return nil end
-        emit(OP[op]); return "b"
-      end
-      if not isnum(ta) or not isnum(tb) then return nil end
-      if ta == "i" and tb == "i" and op ~= "/" and op ~= "^" and op ~= "<" and op ~= "<=" and
-         op ~= ">" and op ~= ">=" then
-        return nil                   -- integer arithmetic: Lua's own rules
-      end
-      emit(OP[op])
-      return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
-    elseif kind == "call" then
-      local name, args = fnof(n[2]), n[3]
-      if not name then return nil end
-      local fold = (name == "min" or name == "max") and #args >= 2
-      local types = {}
-      for k, a in ipairs(args) do
-        types[k] = gen(a)
-        if not isnum(types[k]) then return nil end
-        -- min and max fold from the left as Lua's do (it matters with nan: min(3, nan, 2)
-        -- is 2 in Lua, min(3, min(nan, 2)) would be 3)
-        if fold and k >= 2 then emit(OP.F2, F2[name]) end
-      end
-      -- the result's type as Lua has it ("i": may be an integer, so the integer checks
-      -- above keep arithmetic between two of them in Lua): floor and ceil give integers,
-      -- min and max return one of their arguments as it is, abs keeps an integer, and
-      -- fmod of two integers is an integer fmod that raises on 0: not on the machine
-      local anyint, allint = false, #args > 0
-      for _, a in ipairs(types) do
-        if a == "i" then anyint = true else allint = false end
-      end
-      if name == "ran" then
-        if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
-        emit(OP.RAN); return "n"
-      elseif name == "nran" then
-        if #args ~= 2 then return nil end
-        emit(OP.NRAN); return "n"
-      elseif fold then
-        return anyint and "i" or "n"
-      elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
-      elseif name == "fmod" and #args == 2 then
-        if allint then return nil end
-        emit(OP.F2, F2.fmod); return "n"
-      elseif F1[name] and #args == 1 then
-        emit(OP.F1, F1[name])
-        if name == "floor" or name == "ceil" or (name == "abs" and anyint) then return "i" end
-        return "n"
-      end
-      return nil
+    elseif kind == "bin" then return binary(n)
+    elseif kind == "call" then return call(n)
     end
     return nil
   end

@@ -181,16 +181,8 @@ function M.runfile (path, chunk)
   return ok, v
 end
 
---- Creates a model from its description (see DESIGN.md §3 and docs).
--- Raises an error naming the rule and its line for malformed rules.
-function M.lsystem (opts)
-  if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
-  -- where the model is defined; unknown when `return lsys.lsystem{...}`
-  -- was a tail call (the caller's frame is gone: the loader names the file)
-  local info = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "Sl")
-  local where = info and info.currentline > 0 and
-                format("%s:%d", info.short_src, info.currentline) or loading
-  local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+-- Checks the option names and their types; `fail` raises naming the model.
+local function checkoptions (opts, fail)
   for k, v in pairs(opts) do
     local t = OPTIONS[k]
     if t == nil then fail(format("unknown option '%s'", tostring(k))) end
@@ -206,21 +198,12 @@ function M.lsystem (opts)
     end
   end
   if opts.ignore and opts.consider then fail("give either 'ignore' or 'consider', not both") end
-  local rules = core.rules(opts.modules)
-  local self = setmetatable({
-    axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = opts.view or {}, name = opts.name,
-    homomorphism_seed = opts.homomorphism_seed,
-    start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
-    finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
-    system_call = opts.system_call,
-    _rules = rules, _info = {}, _where = where or "model", _group = 0,
-  }, Model)
-  self._fns = debug.getuservalue(rules, 1)
-  rules_models[rules] = self
-  if self.steps < 0 or self.steps ~= math.floor(self.steps) then
-    fail("option 'steps' must be a whole number >= 0")
-  end
+end
+
+-- Compiles the rule sets of the options: productions, groups, sub-L-systems,
+-- decomposition and homomorphism.
+function Model:_addsets (opts, fail)
+  local rules = self._rules
   if opts.productions then self:_addrules(opts.productions, "productions", PROD, 0, 0, fail) end
   for g, rs in pairs(opts.groups or {}) do
     if type(g) ~= "number" or g < 1 or g ~= math.floor(g) then
@@ -250,6 +233,12 @@ function M.lsystem (opts)
   if opts.homomorphism then
     self:_addrules(opts.homomorphism, "homomorphism", HOMO, 0, 0, fail)
   end
+end
+
+-- Gives the core the options that configure the derivation: the symbols context skips,
+-- ring, and the limits (max_modules, max_memory, max_depth).
+function Model:_configure (opts, fail)
+  local rules = self._rules
   if opts.ignore or opts.consider then
     local ok, msg = pcall(rules.skiplist, rules, 0, opts.consider ~= nil,
                           opts.consider or opts.ignore)
@@ -272,6 +261,36 @@ function M.lsystem (opts)
     local ok = pcall(rules.config, rules, "depth_" .. k, d)
     if not ok then fail(format("max_depth.%s must be a whole number from 0 to 1024", k)) end
   end
+end
+
+--- Creates a model from its description (see DESIGN.md §3 and docs).
+-- Raises an error naming the rule and its line for malformed rules.
+function M.lsystem (opts)
+  if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
+  -- where the model is defined; unknown when `return lsys.lsystem{...}`
+  -- was a tail call (the caller's frame is gone: the loader names the file)
+  local info = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "Sl")
+  local where = info and info.currentline > 0 and
+                format("%s:%d", info.short_src, info.currentline) or loading
+  local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+  checkoptions(opts, fail)
+  local rules = core.rules(opts.modules)
+  local self = setmetatable({
+    axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
+    env = opts.env or {}, view = opts.view or {}, name = opts.name,
+    homomorphism_seed = opts.homomorphism_seed,
+    start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
+    finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
+    system_call = opts.system_call,
+    _rules = rules, _info = {}, _where = where or "model", _group = 0,
+  }, Model)
+  self._fns = debug.getuservalue(rules, 1)
+  rules_models[rules] = self
+  if self.steps < 0 or self.steps ~= math.floor(self.steps) then
+    fail("option 'steps' must be a whole number >= 0")
+  end
+  self:_addsets(opts, fail)
+  self:_configure(opts, fail)
   view.normalize(opts.view, where or "model")     -- a bad view fails at definition
   if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation

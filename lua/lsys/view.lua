@@ -123,7 +123,9 @@ local function fail (where, fmt, ...)
   error(format("%s: " .. fmt, where, ...), 0)
 end
 
-local function isnum (x) return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge end
+local function isnum (x)
+  return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge
+end
 
 local function isint (x) return isnum(x) and x == math.floor(x) end
 
@@ -496,7 +498,9 @@ function M.normalize (v, where)
     elseif kind == "list" then
       if type(x) ~= "table" then fail(where, "'%s' must be a list", name) end
       local l = {}
-      for i, t in ipairs(x) do l[i] = tropism(t, where, format("%s[%d]", name, i), k == "torques") end
+      for i, t in ipairs(x) do
+        l[i] = tropism(t, where, format("%s[%d]", name, i), k == "torques")
+      end
       out[k] = l
     elseif kind == "contours" then
       out[k] = contours(ctx, x, name)

@@ -23,7 +23,9 @@ local function getcore ()
   return core
 end
 
-local function isnum (x) return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge end
+local function isnum (x)
+  return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge
+end
 
 local function isint (x) return isnum(x) and x == math.floor(x) end
 
