@@ -60,7 +60,8 @@ local function self_command ()
   local parts = {}
   for i = lo, -1 do parts[#parts + 1] = shell_quote(arg[i]) end
   if #parts == 0 then
-    local p = io.popen("readlink /proc/" .. ((read_file("/proc/self/stat") or ""):match("^%d+") or "self") .. "/exe")
+    local pid = (read_file("/proc/self/stat") or ""):match("^%d+") or "self"
+    local p = io.popen("readlink /proc/" .. pid .. "/exe")
     parts[1] = shell_quote(p and p:read("l") or "lua5.4")
     if p then p:close() end
   end
@@ -179,7 +180,8 @@ local function main ()
     local rate, mem = mrate(r), mib(r.peak_kib)
     print(string.format("%-38s %5d %11d %9.4f %9.1f %-14s %8.1f %-12s",
       m.title, r.steps, r.modules, r.seconds, rate,
-      string.format(">=%d %s", m.rate_target / 1e6, rate * 1e6 >= m.rate_target and "PASS" or "MISS"),
+      string.format(">=%d %s", m.rate_target / 1e6,
+        rate * 1e6 >= m.rate_target and "PASS" or "MISS"),
       mem, string.format("<=%d %s", m.mem_target, mem <= m.mem_target and "PASS" or "MISS")))
   end
 
@@ -209,7 +211,8 @@ local function main ()
     else
       local l = results[name]
       if p.steps ~= m.steps then
-        print(string.format("  note: comparing both at %d steps (lsys measured again at that size)", p.steps))
+        print(string.format("  note: comparing both at %d steps (lsys measured again at that size)",
+          p.steps))
         l = measure_lsys(name, p.steps)
       end
       print(string.format("%-38s %5d %11d %9.4f %9.1f %8.1f %12s %12s",
@@ -217,7 +220,8 @@ local function main ()
         mib(p.peak_kib), string.format("%.1fx", mrate(l) / mrate(p)),
         string.format("%.2fx", l.peak_kib / p.peak_kib)))
       if p.steps ~= m.steps then
-        print(string.format("%-38s %5d %11d %9.4f %9.1f %8.1f", "  lsys " .. m.title:match("^%(%a%)"),
+        print(string.format("%-38s %5d %11d %9.4f %9.1f %8.1f",
+          "  lsys " .. m.title:match("^%(%a%)"),
           l.steps, l.modules, l.seconds, mrate(l), mib(l.peak_kib)))
       end
     end

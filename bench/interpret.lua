@@ -30,7 +30,7 @@ local s = m:derive(10)
 local n = #s
 local t1, sc = best(function () return m:interpret(s) end)
 local nseg = sc.nsegments
-sc = nil
+sc = nil   -- luacheck: ignore 311 (the local would keep the scene alive through the next runs)
 local t1n = best(function () return m:interpret(s, { records = false }) end)
 print(string.format("(1) line style, fig. 1.24a n=10: %d modules, %d segments", n, nseg))
 print(string.format("    with records:    %.3f s  %7.1f M modules/s  (target >= 30)  %s",
@@ -50,7 +50,7 @@ print(string.format("(2) cylinder style, 8 sides, fig. 1.24a n=7: %d modules, %d
   #s7, ntri))
 print(string.format("    %.3f s  %7.1f M triangles/s  (target >= 20)  %s", t2, ntri / t2 / 1e6,
   verdict(ntri / t2 >= 20e6)))
-csc = nil
+csc = nil  -- luacheck: ignore 311 (as sc above)
 collectgarbage()
 
 -- (3) rendering about 1 M triangles
@@ -63,7 +63,9 @@ if not (lsys.core or require "lsys.core").has_render then
   print("(3) rendering: not measured (lsys was built without OSMesa)")
 else
   local out = os.tmpname() .. ".png"
-  local t3 = best(function () return lsys.render(rsc, { out = out, width = 1024, height = 1024 }) end)
+  local t3 = best(function ()
+    return lsys.render(rsc, { out = out, width = 1024, height = 1024 })
+  end)
   local t3s = best(function ()
     return lsys.render(rsc, { out = out, width = 1024, height = 1024, supersample = 1 })
   end)

@@ -42,7 +42,7 @@ describe("lsys.arrange", function()
     a:select { fixed = 2, moved = 8 }
     local r = a:spherical { axis = { 0, 0, 1 }, angle = -30 }
     assert.is_true(r.dist < 0.05 * 4.4, "dist " .. r.dist)
-    local p, s, t = a.ik:forward()
+    local p, _, t = a.ik:forward()
     local sc = a:interpret()
     local rec = sc:record(sc:find(13))   -- the moved segment
     assert.is_true(near3(rec.p1, p, 1e-5))
@@ -62,7 +62,8 @@ describe("lsys.arrange", function()
     a:disc(40)
     local p, s = a.ik:forward()
     assert.is_true(near3(p, b.p, 0.05))           -- the end stays
-    local turned = math.deg(math.acos(math.max(-1, math.min(1, s[1] * b.s[1] + s[2] * b.s[2] + s[3] * b.s[3]))))
+    local cos = s[1] * b.s[1] + s[2] * b.s[2] + s[3] * b.s[3]
+    local turned = math.deg(math.acos(math.max(-1, math.min(1, cos))))
     assert.is_true(turned > 20, "twist " .. turned)
     a:undo_last()
     a:axis(-0.5)                                  -- pulled in along v-bar
@@ -179,7 +180,11 @@ describe("the arrange window's highlight (fig. 6)", function()
   local function colors (lines)
     local red, yellow = 0, 0
     for _, l in ipairs(lines) do
-      if l.color == UI.RED then red = red + 1 elseif l.color == UI.YELLOW then yellow = yellow + 1 end
+      if l.color == UI.RED then
+        red = red + 1
+      elseif l.color == UI.YELLOW then
+        yellow = yellow + 1
+      end
     end
     return red, yellow
   end

@@ -37,7 +37,8 @@ describe("left context", function()
     assert.equal("A[[X]]", derive("A[[C]]", "A < C --> X", 1))
   end)
 
-  it("inside a branch, sees the branch's own earlier modules and skips their sub-branches", function()
+  it("inside a branch, sees the branch's own earlier modules and skips their sub-branches",
+  function()
     assert.equal("A[B[C]X]", derive("A[B[C]D]", "B < D --> X", 1))
     assert.equal("A[B[C]D]", derive("A[B[C]D]", "C < D --> X", 1))
   end)
@@ -55,7 +56,8 @@ describe("left context", function()
     assert.equal("AB[X]", derive("AB[C]", "AB < C --> X", 1))
   end)
 
-  it("uses the string before the step (parallel rewriting: a signal moves one module per step)", function()
+  it("uses the string before the step (parallel rewriting: a signal moves one module per step)",
+  function()
     local m = H.model("BAAAA", "B < A --> B\nB --> A")
     assert.same({ "BAAAA", "ABAAA", "AABAA", "AAABA", "AAAAB" }, H.steps(m, 4))
   end)

@@ -1,6 +1,6 @@
 -- Contours of generalized cylinders (seed 004 §3.2.3, Appendix B.1): core.contour_load,
 -- core.contour and Contour:sample.
-local H = require "tests.helper"
+require "tests.helper"
 local core = require "lsys.core"
 
 local DIR = "tests/data/contours/"
@@ -54,7 +54,8 @@ describe("core.contour_load", function()
     os.remove(path)
     assert.equal("cannot open '" .. path .. "': No such file or directory",
       errmsg(core.contour_load, path))
-    assert.equal("cannot read 'tests/data': Is a directory", errmsg(core.contour_load, "tests/data"))
+    assert.equal("cannot read 'tests/data': Is a directory",
+      errmsg(core.contour_load, "tests/data"))
   end)
 
   it("rejects a file with a NUL byte or a non-finite number", function()
@@ -69,7 +70,8 @@ describe("core.contour_load", function()
 
   it("refuses files larger than 16 MiB", function()
     local path = tmpfile(("#" .. ("x"):rep(1023) .. "\n"):rep(16 * 1024) .. "\n")
-    assert.equal("cannot read '" .. path .. "': larger than 16 MiB", errmsg(core.contour_load, path))
+    assert.equal("cannot read '" .. path .. "': larger than 16 MiB",
+      errmsg(core.contour_load, path))
     os.remove(path)
   end)
 end)

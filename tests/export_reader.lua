@@ -7,7 +7,7 @@
 --   local p = R.ply("tree.ply")   -- p.counts.vertex, p.counts.face, p.first_vertex.x, ...
 --
 -- Malformed files raise an error naming the file and the line or byte.
-local string, table, math = string, table, math
+local string, math = string, math
 local error, tonumber, ipairs, io = error, tonumber, ipairs, io
 local _ENV = nil
 
@@ -180,7 +180,9 @@ function M.ply (path, opts)
         end
       else
         p = { name = w[3], type = PLYTYPE[w[2]] }
-        if not p.type then error(("%s: header line %d: unknown type '%s'"):format(path, ln, w[2]), 2) end
+        if not p.type then
+          error(("%s: header line %d: unknown type '%s'"):format(path, ln, w[2]), 2)
+        end
       end
       el.properties[#el.properties + 1] = p
     else
@@ -196,7 +198,9 @@ function M.ply (path, opts)
     for i = 1, e.count do
       local rec = {}
       for _, p in ipairs(e.properties) do
-        if pos > #data then error(("%s: data end inside element '%s' %d"):format(path, e.name, i), 2) end
+        if pos > #data then
+          error(("%s: data end inside element '%s' %d"):format(path, e.name, i), 2)
+        end
         if p.list then
           local n
           n, pos = string.unpack(bo .. p.count_type, data, pos)

@@ -1,6 +1,6 @@
 -- Scene export round trips: OBJ (+ MTL), binary PLY and glTF binary written by scene:save and
 -- read back by independent readers (tests/export_reader.lua, tests/glb.lua).
-local H = require "tests.helper"
+require "tests.helper"
 local lsys = require "lsys"
 local R = require "tests.export_reader"
 local glb = require "tests.glb"

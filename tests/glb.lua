@@ -1,7 +1,7 @@
 --- A small glTF binary (.glb) reader for the specs, in plain Lua 5.4.
 --
 --   local glb = require "tests.glb"
---   local doc, bin = glb.read("tree.glb")    -- the JSON chunk as a Lua table, the BIN chunk (or nil)
+--   local doc, bin = glb.read("tree.glb")    -- the JSON chunk as a table, the BIN chunk (or nil)
 --   local prims = glb.primitives(doc, bin)   -- per primitive: counts, modes, bounds (see below)
 --   local vals, n = glb.accessor(doc, bin, i) -- the numbers of accessor i (0-based), n per element
 --   local t = glb.json_decode(text)           -- the JSON decoder on its own
@@ -9,7 +9,8 @@
 -- JSON null decodes to glb.null (so arrays keep their length). Every malformed input raises an
 -- error naming what is wrong and where.
 local string, math, table = string, math, table
-local error, tonumber, setmetatable, ipairs, pairs, pcall = error, tonumber, setmetatable, ipairs, pairs, pcall
+local error, tonumber, setmetatable, pcall = error, tonumber, setmetatable, pcall
+local ipairs, pairs = ipairs, pairs
 local io, utf8 = io, utf8
 local _ENV = nil
 

@@ -4,7 +4,7 @@
 --
 -- Registers with luassert:
 --   assert.near(expected, actual, tol)      numbers, or (nested) lists of numbers elementwise
---   assert.error_contains(fn, s1, s2, ...)  fn raises and the message contains every si (plain text)
+--   assert.error_contains(fn, s1, s2, ...)  fn raises; the message contains every si (plain text)
 --
 -- Functions (module table H):
 --   H.model(axiom, productions, opts)  lsys.lsystem with axiom/productions merged into opts

@@ -1,5 +1,5 @@
 -- Homomorphism rules: applied only when interpreting, i.e. by m:expand(s).
-local H = require "tests.helper"
+require "tests.helper"
 local lsys = require "lsys"
 
 describe("homomorphism", function()
@@ -11,7 +11,8 @@ describe("homomorphism", function()
 
   it("derive gives the same string with and without a homomorphism", function()
     local rules = "A --> F[+A]B\nB --> BA"
-    local with = lsys.lsystem { axiom = "A", productions = rules, homomorphism = "A --> FF\nB --> G" }
+    local with = lsys.lsystem { axiom = "A", productions = rules,
+                                homomorphism = "A --> FF\nB --> G" }
     local without = lsys.lsystem { axiom = "A", productions = rules }
     assert.equal(tostring(without:derive(4)), tostring(with:derive(4)))
   end)

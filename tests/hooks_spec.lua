@@ -102,7 +102,8 @@ end)
 
 describe("rule groups", function()
   local function model (extra)
-    local t = { axiom = "AB", productions = "B --> D", groups = { [1] = "A --> C", [2] = "A --> E" } }
+    local t = { axiom = "AB", productions = "B --> D",
+                groups = { [1] = "A --> C", [2] = "A --> E" } }
     for k, v in pairs(extra or {}) do t[k] = v end
     return lsys.lsystem(t)
   end
@@ -134,7 +135,7 @@ describe("rule groups", function()
   it("can be switched between steps from start_each", function()
     local m = lsys.lsystem {
       axiom = "A", productions = "A --> AB", groups = { [1] = "B --> C" },
-      start_each = function(model, step) model:use_group(step == 2 and 1 or 0) end,
+      start_each = function(self, step) self:use_group(step == 2 and 1 or 0) end,
     }
     -- step 1: AB; step 2 (group 1): ABC; step 3 (group 0): ABBC
     assert.equal("ABBC", tostring(m:derive(3)))
@@ -145,7 +146,9 @@ describe("derive's each option", function()
   it("hands over the string of every step, to keep, after end_each and finish", function()
     local m = lsys.lsystem {
       axiom = "A", productions = "A --> AB\nB --> C",
-      end_each = function(_, s, step) if step == 2 then return lsys.lstring("X" .. tostring(s)) end end,
+      end_each = function(_, s, step)
+        if step == 2 then return lsys.lstring("X" .. tostring(s)) end
+      end,
       finish = function(_, s) return lsys.lstring(tostring(s) .. "Z") end,
     }
     local kept = {}

@@ -78,7 +78,8 @@ describe("lsys.lstring text notation", function()
     assert.equal("@Gs+@Gc(4)?P(0,1)~l(2)$?(2,0.5)F$", tostring(s))
   end)
 
-  it("accepts unbalanced brackets (an Lstring is any sequence; only an axiom must balance)", function()
+  it("accepts unbalanced brackets (an Lstring is any sequence; only an axiom must balance)",
+  function()
     local s = lsys.lstring("F[+F")
     assert.equal(4, #s)
     assert.equal("F[+F", tostring(s))

@@ -6,7 +6,8 @@
 -- homomorphism, errors), generalized cylinders with contours, surfaces, patches and
 -- textures (and their file parsers and errors), the export writers and the finalizers at
 -- exit.
--- Rendering is left out: OSMesa's own allocations are not ours to check. It prints "memcheck ok" when every check held.
+-- Rendering is left out: OSMesa's own allocations are not ours to check. It prints
+-- "memcheck ok" when every check held.
 local lsys = require "lsys"
 
 local function check (cond, what) if not cond then error("memcheck: " .. what, 2) end end
@@ -80,7 +81,8 @@ local gv = {
 }
 local gc = lsys.lsystem {
   axiom = "@Tx(1) @#(2) @Gs A(1) @Ge(2) [ @#(3) @Gs f @Ge ]", view = gv,
-  productions = "A(x) : x < 5 --> f @Gc(3) [ +(30) /(90) @#(3) A(x+1) @Ge(2) ] @Gt(1,2) @Gr(20,1) A(x+1)",
+  productions = "A(x) : x < 5 --> f @Gc(3) [ +(30) /(90) @#(3) A(x+1) @Ge(2) ] @Gt(1,2) " ..
+                "@Gr(20,1) A(x+1)",
   homomorphism = "A(x) --> ~L(0.3) @PS(1,2) @PC(1,1,2) @PD(1,3,3)",
 }
 for _, twist in ipairs { true, false } do

@@ -1,6 +1,5 @@
 -- Parametric productions: conditions, parameter expressions, env, ran/nran, number printing.
 local H = require "tests.helper"
-local lsys = require "lsys"
 
 local derive = H.derive
 
@@ -129,7 +128,8 @@ describe("ran and nran", function()
   end)
 
   it("give different numbers for a different seed", function()
-    assert.not_equal(H.derive(axiom, rules, 1, { seed = 7 }), H.derive(axiom, rules, 1, { seed = 8 }))
+    assert.not_equal(H.derive(axiom, rules, 1, { seed = 7 }),
+                     H.derive(axiom, rules, 1, { seed = 8 }))
   end)
 
   it("follow a changed model.seed", function()
@@ -229,7 +229,8 @@ describe("ABOP fig. 2.6 style monopodial tree (constants in env)", function()
 
   it("counts 1, 3 and 7 F segments after 1, 2 and 3 steps", function()
     local m = H.model("A(1,10)", rules, { env = env })
-    assert.same({ 1, 3, 7 }, { m:derive(1):count("F"), m:derive(2):count("F"), m:derive(3):count("F") })
+    assert.same({ 1, 3, 7 },
+                { m:derive(1):count("F"), m:derive(2):count("F"), m:derive(3):count("F") })
   end)
 end)
 

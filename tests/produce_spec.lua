@@ -4,7 +4,9 @@ local lsys = require "lsys"
 
 describe("function rules", function()
   it("produce fills ? marks in order with the given values", function()
-    local rules = { { "A(s)", function(s) return lsys.produce("B(?)C(?,?)", s + 1, s * 2, -s) end } }
+    local rules = { { "A(s)", function(s)
+      return lsys.produce("B(?)C(?,?)", s + 1, s * 2, -s)
+    end } }
     assert.equal("B(3)C(4,-2)", H.derive("A(2)", rules, 1))
   end)
 
@@ -71,7 +73,8 @@ describe("function rules", function()
     assert.equal(12, calls)
   end)
 
-  it("a function that calls nproduce but not produce does not apply; its pieces are dropped", function()
+  it("a function that calls nproduce but not produce does not apply; its pieces are dropped",
+  function()
     local rules = { { "A(x)", function(x)
       lsys.nproduce("N")
       if x > 1 then return lsys.produce("B") end

@@ -404,8 +404,6 @@ describe("rendering #gl", function()
 end)
 
 describe("render-only options #gl", function()
-  local lsys = require "lsys"
-  local core = require "lsys.core"
   it("passes zoom, transparent and wireframe through lsys.render", function()
     if not core.has_render then return pending("lsys was built without OSMesa") end
     local m = lsys.lsystem { view = { line_style = "cylinder", background = { 1, 1, 1 } } }
@@ -414,12 +412,12 @@ describe("render-only options #gl", function()
     assert.equal(0, px:byte(4))                                   -- corner alpha
     local full = lsys.render(sc, { width = 32, height = 32, supersample = 1 })
     local zoomed = lsys.render(sc, { width = 32, height = 32, supersample = 1, zoom = 2 })
-    local function count (p)
+    local function ndark (p)
       local n = 0
       for i = 1, #p, 4 do if p:byte(i) < 200 then n = n + 1 end end
       return n
     end
-    assert.is_true(count(zoomed) > count(full))
+    assert.is_true(ndark(zoomed) > ndark(full))
     assert.has_no.errors(function ()
       lsys.render(sc, { width = 16, height = 16, wireframe = true })
     end)
@@ -427,8 +425,6 @@ describe("render-only options #gl", function()
 end)
 
 describe("textures #gl", function()
-  local lsys = require "lsys"
-  local core = require "lsys.core"
   if not core.has_render then
     pending("lsys was built without OSMesa: texture rendering specs skipped")
     return

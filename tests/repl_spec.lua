@@ -54,7 +54,8 @@ describe("the REPL in a terminal", function()
       'send m = lsys.lsystem { axiom = "F", steps = 3, productions = "F --> F[+F]F[-F]F" }',
       "expect > ",
       "send =m:derive()",
-      "expect Lstring(311 modules): F[+F]F[-F]F[+F[+F]F[-F]F]F[+F]F[-F]F[-F[+F]F[-F]F]F[+F]F[-F]...",
+      "expect Lstring(311 modules): " ..
+        "F[+F]F[-F]F[+F[+F]F[-F]F]F[+F]F[-F]F[-F[+F]F[-F]F]F[+F]F[-F]...",
       "expect > ",
       "send =m:interpret(lsys.lstring('F[+F]F'))",
       "expect Scene(0 triangles, 3 lines, 3 turtle records; x ",

@@ -253,7 +253,8 @@ describe("outputs", function ()
                                                           line_width = 0.1 } }:interpret()
   end
 
-  it("a failed write to a device leaves the device alone (the audit's deleted /dev/full)", function ()
+  it("a failed write to a device leaves the device alone (the audit's deleted /dev/full)",
+  function ()
     -- as root, a copy of /dev/full in the temporary folder, so that a regression removes
     -- only the copy; otherwise /dev/full itself, which a user cannot remove
     local full = d .. "/full"
@@ -302,8 +303,8 @@ end
 print("png", pcall(lsys.render, scene, { out = "%s/old.png", width = 600, height = 600 }))
 ]]):format(d, d), 8)
     for _, ext in ipairs { "obj", "ply", "glb", "png" } do
-      assert.truthy(out:find(ext .. "\tfalse\t[^\n]*cannot write '[^']*old%." .. ext .. "': File too large"),
-                    out)
+      local want = ext .. "\tfalse\t[^\n]*cannot write '[^']*old%." .. ext .. "': File too large"
+      assert.truthy(out:find(want), out)
       assert.equal("previous content", slurp(d .. "/old." .. ext))
     end
     assert.equal("previous materials", slurp(d .. "/old.mtl"))
@@ -371,8 +372,8 @@ local m = lsys.lsystem { axiom = "A(%s)", max_memory = "64M",
                          productions = "A(%s) --> A(%s) A(%s)" }
 print(pcall(m.derive, m, 26))
 ]]):format(string.rep("1,", 30) .. "1", P, P, P), nil, 1000000)
-    assert.truthy(out:find("false\t[^\n]*the derivation would need more than max_memory %(64 MiB%)"),
-                  out)
+    assert.truthy(out:find("false\t[^\n]*the derivation would need more than " ..
+                           "max_memory %(64 MiB%)"), out)
     assert.truthy(out:find("exit:0", 1, true), out)
     -- the process default, from LSYS_MAX_MEMORY
     out = run(([[
@@ -520,8 +521,9 @@ end)
 
 describe("fuzzing findings", function ()
   it("a constant parameter that overflows is an error, not an infinite parameter", function ()
-    assert.error_contains(function () lsys.lsystem { axiom = "A", productions = "A --> F(1e999)" } end,
-                          "parameter 1 of 'F' is '1e999', not a finite number")
+    assert.error_contains(function ()
+      lsys.lsystem { axiom = "A", productions = "A --> F(1e999)" }
+    end, "parameter 1 of 'F' is '1e999', not a finite number")
   end)
 
   it("expanding a stochastic homomorphism leaves the derivation generator alone", function ()

@@ -41,7 +41,8 @@ describe("stochastic choice", function()
 
   it("chooses with three alternatives in proportion to their weights", function()
     local n = 6000
-    local s = H.model(H.rep("A", n), "A --> B : 1\nA --> C : 2\nA --> D : 3", { seed = 5 }):derive(1)
+    local rules = "A --> B : 1\nA --> C : 2\nA --> D : 3"
+    local s = H.model(H.rep("A", n), rules, { seed = 5 }):derive(1)
     assert.near(n / 6, s:count("B"), H.binomial_tol(n, 1 / 6, 5))
     assert.near(n / 3, s:count("C"), H.binomial_tol(n, 1 / 3, 5))
     assert.near(n / 2, s:count("D"), H.binomial_tol(n, 1 / 2, 5))
@@ -91,7 +92,8 @@ describe("stochastic choice", function()
   end)
 
   it("lets the context-free alternative alone decide where the context fails", function()
-    local s = H.model("XA" .. H.rep("A", 20), "X < A --> N : 1\nA --> B : 1", { seed = 1 }):derive(1)
+    local rules = "X < A --> N : 1\nA --> B : 1"
+    local s = H.model("XA" .. H.rep("A", 20), rules, { seed = 1 }):derive(1)
     assert.equal("X", (s:module(1)))
     assert.equal(21, s:count("N") + s:count("B"))
     assert.is_true(s:count("N") <= 1)

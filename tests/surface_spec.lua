@@ -170,7 +170,8 @@ describe("surfaces drawn by the turtle", function()
     assert.equal("surface", sc:record(1).kind)
     sc = scene("~L(2) F")
     assert.near({ 0, 2, 0 }, sc:record(2).p0, 1e-6)
-    sc = scene("~L(2) F", { surfaces = { L = { file = "tests/data/surfaces/leaf.s", scale = 0.25 } } })
+    sc = scene("~L(2) F",
+               { surfaces = { L = { file = "tests/data/surfaces/leaf.s", scale = 0.25 } } })
     assert.near({ 0, 0.5, 0 }, sc:record(2).p0, 1e-6)
   end)
 

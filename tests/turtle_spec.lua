@@ -62,7 +62,8 @@ describe("turtle frame", function ()
   it("keeps the frame orthonormal and right-handed (L = H x U)", function ()
     local _, h, l, u = final(m, H.rep("&(13) /(27) +(41) F ", 200))
     local function dot (a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
-    local cross = { h[2] * u[3] - h[3] * u[2], h[3] * u[1] - h[1] * u[3], h[1] * u[2] - h[2] * u[1] }
+    local cross = { h[2] * u[3] - h[3] * u[2], h[3] * u[1] - h[1] * u[3],
+                    h[1] * u[2] - h[2] * u[1] }
     assert.near(1, dot(h, h), 1e-9); assert.near(1, dot(u, u), 1e-9)
     assert.near(0, dot(h, u), 1e-9)
     assert.near(l, cross, 1e-9)
@@ -402,7 +403,7 @@ describe("turtle errors", function ()
   end)
 
   it("reports a Lua error inside a homomorphism rule with the rule", function ()
-    local m = model { homomorphism = { { "A(x)", function (x) error("boom") end } } }
+    local m = model { homomorphism = { { "A(x)", function () error("boom") end } } }
     assert.error_contains(function () m:interpret("F A(1)") end, "homomorphism", "boom")
   end)
 end)

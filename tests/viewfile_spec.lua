@@ -1,6 +1,7 @@
 -- View options that name files (contours, surfaces, textures, palette files) and cpfg
 -- view files (.v), colour maps (.map) and material files (.mat): seed 004 Appendix B,
--- DESIGN.md §6. The reader is fuzzed by tests/fuzz/lua/fuzz.lua (target view; tests/fuzzlua_spec.lua).
+-- DESIGN.md §6. The reader is fuzzed by tests/fuzz/lua/fuzz.lua (target view;
+-- tests/fuzzlua_spec.lua).
 local H = require "tests.helper"
 local view = require "lsys.view"
 local lsys = require "lsys"
@@ -145,7 +146,9 @@ describe("view files", function ()
       assert.equal(("x.v:1: '%s' is not supported; ignored"):format(k), ws[1])
     end
     local saved, got = io.stderr, {}
-    io.stderr = { write = function (_, ...) for _, s in ipairs { ... } do got[#got + 1] = s end end }
+    io.stderr = { write = function (_, ...)
+      for _, s in ipairs { ... } do got[#got + 1] = s end
+    end }
     local ok, err = pcall(view.parse, "z buffer: on\nangle factor: 4\n", "y.v")
     io.stderr = saved
     assert(ok, err)
@@ -161,13 +164,19 @@ describe("view files", function ()
       { "viewpoint: 1,2,x", "x.v:1: 'viewpoint': 'x' is not a number" },
       { "viewpoint: 1,2,1e999", "x.v:1: 'viewpoint': '1e999' is not a number" },
       { "view reference point: nan,0,0", "x.v:1: 'view reference point': 'nan' is not a number" },
-      { "initial color: 1.5", "x.v:1: 'initial color': '1.5' is not a whole number from 0 to 65535" },
-      { "initial color: 70000", "x.v:1: 'initial color': '70000' is not a whole number from 0 to 65535" },
-      { "color increment: 1 2 3", "x.v:1: 'color increment' expects an increment (and a back increment), got '1 2 3'" },
+      { "initial color: 1.5",
+        "x.v:1: 'initial color': '1.5' is not a whole number from 0 to 65535" },
+      { "initial color: 70000",
+        "x.v:1: 'initial color': '70000' is not a whole number from 0 to 65535" },
+      { "color increment: 1 2 3",
+        "x.v:1: 'color increment' expects an increment (and a back increment), got '1 2 3'" },
       { "initial line width: -1", "x.v:1: 'initial line width' must not be negative" },
-      { "initial line width: 1 inches", "x.v:1: 'initial line width': the unit must be pixels or polygons, got 'inches'" },
-      { "line style: dotted", "x.v:1: 'line style' must be pixel, polygon or cylinder, got 'dotted'" },
-      { "projection: oblique", "x.v:1: 'projection' must be parallel or perspective, got 'oblique'" },
+      { "initial line width: 1 inches",
+        "x.v:1: 'initial line width': the unit must be pixels or polygons, got 'inches'" },
+      { "line style: dotted",
+        "x.v:1: 'line style' must be pixel, polygon or cylinder, got 'dotted'" },
+      { "projection: oblique",
+        "x.v:1: 'projection' must be parallel or perspective, got 'oblique'" },
       { "viewing angle: 180", "x.v:1: 'viewing angle' must be between 0 and 180 degrees" },
       { "light direction: 0,0,0", "x.v:1: 'light direction': the vector is zero" },
       { "light: V: 1 2", "x.v:1: 'light': 'V:' needs 3 numbers" },
@@ -176,7 +185,8 @@ describe("view files", function ()
       { "contour: a.con", "x.v:1: 'contour' expects an id and a file, got 'a.con'" },
       { "contour: 1 a.con\ncontour: 1 b.con", "x.v:2: 'contour': id 1 is already defined" },
       { "contour sides: 2", "x.v:1: 'contour sides': '2' is not a whole number from 3 to 1024" },
-      { "polygonization level: 10", "x.v:1: 'polygonization level': '10' is not a whole number from 0 to 9" },
+      { "polygonization level: 10",
+        "x.v:1: 'polygonization level': '10' is not a whole number from 0 to 9" },
       { "twist of cylinders: maybe", "x.v:1: 'twist of cylinders' expects on or off, got 'maybe'" },
       { "texture: H: l", "x.v:1: 'texture' needs the image file F:" },
       { "texture: F: a.png H: x", "x.v:1: 'texture': H: must be l(inear) or n(ear), got 'x'" },
@@ -188,15 +198,20 @@ describe("view files", function ()
       { "tropism: T: 0 1 0 A: x", "x.v:1: 'tropism': 'A:' needs 1 number" },
       { "torque: T: 0 1 0 Q: 1", "x.v:1: 'torque': unknown field 'Q' (known: T, E, S)" },
       { "surface: PQ p.s 1", "x.v:1: 'surface': the name must be one character, got 'PQ'" },
-      { "surface: P p.s", "x.v:1: 'surface' expects a name, a file, a scale, [s t] and [a texture], got 'P p.s'" },
+      { "surface: P p.s",
+        "x.v:1: 'surface' expects a name, a file, a scale, [s t] and [a texture], got 'P p.s'" },
       { "surface: P p.s 0", "x.v:1: 'surface': the scale must be > 0" },
-      { "surface: P p.s 1 4 0", "x.v:1: 'surface': the precisions s t must both be 1..64 (or both 0: the file's)" },
+      { "surface: P p.s 1 4 0",
+        "x.v:1: 'surface': the precisions s t must both be 1..64 (or both 0: the file's)" },
       { "surface: P p.s 1 65 4", "x.v:1: 'surface': '65' is not a whole number from 0 to 64" },
       { "surface: P p.s 1\nsurface: P q.s 1", "x.v:2: 'surface': 'P' is already defined" },
-      { "texture: F: a.png\nsurface: P p.s 1 2", "x.v:2: 'surface': texture 2, but the file defines 1 texture" },
+      { "texture: F: a.png\nsurface: P p.s 1 2",
+        "x.v:2: 'surface': texture 2, but the file defines 1 texture" },
       { "tropism direction: 0,0,0", "x.v:1: 'tropism direction': the vector is zero" },
       { "no colon here", "x.v:1: expected 'command: values', got 'no colon here'" },
-      { "#define W 2", "x.v:1: preprocessor line '#define W 2' is not supported (expand the file with cpp first)" },
+      { "#define W 2",
+        "x.v:1: preprocessor line '#define W 2' is not supported "
+        .. "(expand the file with cpp first)" },
       { "angle factor: 2\n/* open\n\n", "x.v:2: the comment that starts here is not closed" },
       { ("tropism: T: 0 1 0\n"):rep(17), "x.v:17: more than 16 tropisms and torques" },
     }
@@ -318,10 +333,12 @@ describe("colour maps and material files", function ()
   it("reject a .mat of the wrong size or with shininess above 128", function ()
     write(d .. "/odd.mat", string.rep("\0", 16))
     assert_error(function () view.load_materials(d .. "/odd.mat") end,
-                     d .. "/odd.mat: a material file is a sequence of 15-byte records; 16 bytes is not")
+                     d .. "/odd.mat: a material file is a sequence of 15-byte records; "
+                     .. "16 bytes is not")
     write(d .. "/empty.mat", "")
     assert_error(function () view.load_materials(d .. "/empty.mat") end,
-                     d .. "/empty.mat: a material file is a sequence of 15-byte records; 0 bytes is not")
+                     d .. "/empty.mat: a material file is a sequence of 15-byte records; "
+                     .. "0 bytes is not")
     write(d .. "/shiny.mat", record(0, 0, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 0)
                           .. record(7, 0, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, 200))
     assert_error(function () view.load_materials(d .. "/shiny.mat") end,
@@ -343,35 +360,56 @@ describe("colour maps and material files", function ()
                      "model: 'view.palette': a palette file must be a colour map (.map) or "
                      .. "materials (.mat), got 'p.txt'")
     assert_error(function () view.normalize({ dir = d, palette = "no.map" }, "model") end,
-                     "model: view.palette: cannot open '" .. d .. "/no.map': No such file or directory")
+                     "model: view.palette: cannot open '" .. d .. "/no.map': "
+                     .. "No such file or directory")
   end)
 end)
 
 describe("view options naming files", function ()
   it("check contour ids, surface names, texture lists and their fields", function ()
     local cases = {
-      { { contours = { [0] = "a.con" } }, "m: 'view.contours': contour 0 is the built-in circle; use ids >= 1" },
-      { { contours = { a = "a.con" } }, "m: 'view.contours': keys must be contour ids, integers >= 1" },
-      { { contours = { [-1] = "a.con" } }, "m: 'view.contours': keys must be contour ids, integers >= 1" },
-      { { contours = "a.con" }, "m: 'view.contours' must be a table { [id] = file or { points = ... } }" },
-      { { contours = { 42 } }, "m: view.contours[1] must be a file name or { points = ..., closed = }" },
-      { { contours = { { points = {}, open = true } } }, "m: view.contours[1]: unknown field 'open' (known: points, closed)" },
+      { { contours = { [0] = "a.con" } },
+        "m: 'view.contours': contour 0 is the built-in circle; use ids >= 1" },
+      { { contours = { a = "a.con" } },
+        "m: 'view.contours': keys must be contour ids, integers >= 1" },
+      { { contours = { [-1] = "a.con" } },
+        "m: 'view.contours': keys must be contour ids, integers >= 1" },
+      { { contours = "a.con" },
+        "m: 'view.contours' must be a table { [id] = file or { points = ... } }" },
+      { { contours = { 42 } },
+        "m: view.contours[1] must be a file name or { points = ..., closed = }" },
+      { { contours = { { points = {}, open = true } } },
+        "m: view.contours[1]: unknown field 'open' (known: points, closed)" },
       { { contours = { { closed = true } } }, "m: view.contours[1]: 'points' must be a list" },
-      { { contours = { { points = {}, closed = 1 } } }, "m: view.contours[1]: 'closed' must be a boolean" },
-      { { surfaces = { PQ = "p.s" } }, "m: 'view.surfaces': keys must be single characters (the name after ~), got 'PQ'" },
-      { { surfaces = { [1] = "p.s" } }, "m: 'view.surfaces': keys must be single characters (the name after ~), got '1'" },
-      { { surfaces = { P = 3 } }, "m: view.surfaces.P must be a file name or { file = ..., scale = ... }" },
+      { { contours = { { points = {}, closed = 1 } } },
+        "m: view.contours[1]: 'closed' must be a boolean" },
+      { { surfaces = { PQ = "p.s" } },
+        "m: 'view.surfaces': keys must be single characters (the name after ~), got 'PQ'" },
+      { { surfaces = { [1] = "p.s" } },
+        "m: 'view.surfaces': keys must be single characters (the name after ~), got '1'" },
+      { { surfaces = { P = 3 } },
+        "m: view.surfaces.P must be a file name or { file = ..., scale = ... }" },
       { { surfaces = { P = { scale = 2 } } }, "m: view.surfaces.P: a 'file' is needed" },
-      { { surfaces = { P = { file = "p.s", size = 2 } } }, "m: view.surfaces.P: unknown field 'size' (known: file, scale, texture, precision)" },
-      { { surfaces = { P = { surface = {} } } }, "m: view.surfaces.P: 'surface' must be an lsys.Surface" },
+      { { surfaces = { P = { file = "p.s", size = 2 } } },
+        "m: view.surfaces.P: unknown field 'size' (known: file, scale, texture, precision)" },
+      { { surfaces = { P = { surface = {} } } },
+        "m: view.surfaces.P: 'surface' must be an lsys.Surface" },
       { { textures = "a.png" }, "m: 'view.textures' must be a list" },
-      { { textures = { x = "a.png" } }, "m: 'view.textures' must be a list (indices 1..0), not key 'x'" },
-      { { textures = { 7 } }, "m: view.textures[1] must be a file name or { file = ..., mag = ... }" },
-      { { textures = { { file = "a.png", mag = "cubic" } } }, "m: view.textures[1]: 'mag' must be \"linear\" or \"near\"" },
-      { { textures = { { file = "a.png", min = 1 } } }, "m: view.textures[1]: 'min' must be \"linear\" or \"near\"" },
-      { { textures = { { file = "a.png", mode = "blend" } } }, "m: view.textures[1]: 'mode' must be \"modulate\" or \"decal\"" },
-      { { textures = { { file = "a.png", per_surface = 1 } } }, "m: view.textures[1]: 'per_surface' must be a boolean" },
-      { { textures = { { file = "a.png", wrap = true } } }, "m: view.textures[1]: unknown field 'wrap' (known: file, mag, min, mode, per_surface, intensity)" },
+      { { textures = { x = "a.png" } },
+        "m: 'view.textures' must be a list (indices 1..0), not key 'x'" },
+      { { textures = { 7 } },
+        "m: view.textures[1] must be a file name or { file = ..., mag = ... }" },
+      { { textures = { { file = "a.png", mag = "cubic" } } },
+        "m: view.textures[1]: 'mag' must be \"linear\" or \"near\"" },
+      { { textures = { { file = "a.png", min = 1 } } },
+        "m: view.textures[1]: 'min' must be \"linear\" or \"near\"" },
+      { { textures = { { file = "a.png", mode = "blend" } } },
+        "m: view.textures[1]: 'mode' must be \"modulate\" or \"decal\"" },
+      { { textures = { { file = "a.png", per_surface = 1 } } },
+        "m: view.textures[1]: 'per_surface' must be a boolean" },
+      { { textures = { { file = "a.png", wrap = true } } },
+        "m: view.textures[1]: unknown field 'wrap' "
+        .. "(known: file, mag, min, mode, per_surface, intensity)" },
       { { textures = { { mag = "l" } } }, "m: view.textures[1]: a file name expected, got nil" },
       { { minimize_twist = "yes" }, "m: 'view.minimize_twist' must be true or false" },
       { { dir = 3 }, "m: 'view.dir' must be a string" },
@@ -386,19 +424,22 @@ describe("view options naming files", function ()
   it("name the option and the file when a file is missing", function ()
     assert_error(function ()
       view.normalize({ dir = DATA, contours = { [2] = "nope.con" } }, "model")
-    end, "model: view.contours[2]: cannot open '" .. DATA .. "/nope.con': No such file or directory")
+    end, "model: view.contours[2]: cannot open '" .. DATA .. "/nope.con': "
+         .. "No such file or directory")
     assert_error(function ()
       view.normalize({ surfaces = { P = DATA .. "/nope.s" } }, "model")
     end, "model: view.surfaces.P: cannot open '" .. DATA .. "/nope.s': No such file or directory")
     assert_error(function ()
       view.normalize({ dir = DATA .. "/", textures = { "x/nope.png" } }, "model")
-    end, "model: view.textures[1]: cannot open '" .. DATA .. "/x/nope.png': No such file or directory")
+    end, "model: view.textures[1]: cannot open '" .. DATA .. "/x/nope.png': "
+         .. "No such file or directory")
     assert_error(function ()
       view.normalize({ dir = DATA, contours = { "sub" } }, "model")
     end, "model: view.contours[1]: cannot read '" .. DATA .. "/sub': Is a directory")
   end)
 
-  it("default to no files and minimize_twist = true, and pass them to turtle and renderer", function ()
+  it("default to no files and minimize_twist = true, and pass them to turtle and renderer",
+  function ()
     local v = view.normalize({}, "m")
     assert.same({}, v.contours)
     assert.same({}, v.surfaces)
@@ -487,8 +528,9 @@ describe("view options naming files", function ()
 
   it("check surface texture indices and precision against the view", function ()
     if not (needs "surface_load" and needs "texture_load") then return end
-    local ok, err = pcall(view.normalize, { dir = DATA, textures = { "bark.png" },
-                                           surfaces = { P = { file = "petal.s", texture = 2 } } }, "m")
+    local ok, err = pcall(view.normalize,
+                          { dir = DATA, textures = { "bark.png" },
+                            surfaces = { P = { file = "petal.s", texture = 2 } } }, "m")
     assert.is_false(ok)
     assert.equal("m: 'view.surfaces.P': texture 2, but the view has 1 textures", err)
     ok, err = pcall(view.normalize, { dir = DATA, surfaces = { P = { file = "petal.s",

@@ -1,4 +1,4 @@
--- Context-sensitive plant: 0/1 signals travel along the branches, n = 26, δ = 25.75° (ABOP fig. 1.31c).
+-- Context-sensitive plant: 0/1 signals travel along branches, n = 26, δ = 25.75° (ABOP fig. 1.31c).
 -- After Hogeweg and Hesper. Digits are module names; F, + and - are ignored as context.
 local lsys = require "lsys"
 

@@ -1,4 +1,4 @@
--- Context-sensitive plant: 0/1 signals travel along the branches, n = 24, δ = 25.75° (ABOP fig. 1.31d).
+-- Context-sensitive plant: 0/1 signals travel along branches, n = 24, δ = 25.75° (ABOP fig. 1.31d).
 -- After Hogeweg and Hesper. Digits are module names; F, + and - are ignored as context.
 local lsys = require "lsys"
 

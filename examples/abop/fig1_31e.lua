@@ -1,4 +1,4 @@
--- Context-sensitive plant: 0/1 signals travel along the branches, n = 26, δ = 22.5° (ABOP fig. 1.31e).
+-- Context-sensitive plant: 0/1 signals travel along branches, n = 26, δ = 22.5° (ABOP fig. 1.31e).
 -- After Hogeweg and Hesper. Digits are module names; F, + and - are ignored as context.
 local lsys = require "lsys"
 

@@ -1,4 +1,4 @@
--- "Row of trees": a parametric Koch-like curve whose edges split unevenly, δ = 86° (ABOP section 2.2).
+-- "Row of trees": a parametric Koch-like curve whose edges split unevenly, δ = 86° (ABOP sec. 2.2).
 -- Each F(x) becomes four segments of lengths x·p, x·h, x·h, x·q with q = c - p and h = (p·q)^½;
 -- the row runs along the turtle's initial heading, and the view turns the picture a quarter
 -- clockwise (twist = -90) so that it runs from left to right with the trees standing up.

@@ -388,7 +388,7 @@ end
 -- --------------------------------------------------------------------------
 -- Replay, merge, fuzz
 
-local function outline (F, kind, msg, label)
+local function outline (kind, msg, label)
   return format("%s %s: %s", kind:upper(), label, msg and show(msg, 2000) or "")
 end
 
@@ -407,7 +407,7 @@ function M.replay (target, dir, opts)
       local kind, msg = F.exec(bytes)
       if kind == "finding" then found[#found + 1] = { file = dir .. "/" .. name, message = msg } end
       if opts and opts.verbose and (kind == "finding" or kind == "budget") then
-        stderr:write(outline(F, kind, msg, dir .. "/" .. name), "\n")
+        stderr:write(outline(kind, msg, dir .. "/" .. name), "\n")
       end
     end
   end

@@ -331,7 +331,6 @@ for _, k in ipairs { "open", "popen", "lines", "output", "input" } do wire(io_li
 local real_rep, real_move = string_lib.rep, table_lib.move
 local real_find, real_match, real_gmatch, real_gsub =
       string_lib.find, string_lib.match, string_lib.gmatch, string_lib.gsub
-local real_print = BUILTIN.print
 
 -- what a rule expression may run in C for a long time or with much memory: guarded only
 -- when called from rule code (lsys's own calls are its business). `level` is the stack
