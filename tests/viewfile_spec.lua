@@ -2,7 +2,7 @@
 -- view files (.v), colour maps (.map) and material files (.mat): seed 004 Appendix B,
 -- DESIGN.md §6. The reader is fuzzed by tests/fuzz/lua/fuzz.lua (target view;
 -- tests/fuzzlua_spec.lua).
-local H = require "tests.helper"
+require "tests.helper"
 local view = require "lsys.view"
 local lsys = require "lsys"
 local core = require "lsys.core"
