@@ -21,7 +21,3 @@ files["tests/*_spec.lua"] = { std = "+busted", globals = { "io.stderr" } }
 -- The readers' if-chains read as tables of line kinds: a kind that is skipped has an empty
 -- branch with a comment.
 files["tests/export_reader.lua"] = { ignore = { "542" } }
-
--- Temporary: its unused `local H = require "tests.helper"` becomes `require "tests.helper"`
--- with the module renames (another change owns that spec's require lines); then drop this.
-files["tests/viewfile_spec.lua"] = { ignore = { "211/H" } }
