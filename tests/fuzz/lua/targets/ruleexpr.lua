@@ -1,5 +1,5 @@
---- Fuzz target: rule expressions (lsys.lsystem in lua/lsys/init.lua and
--- lua/lsys/grammar.lua, then m:derive). Its corpus is tests/fuzz/corpus_ruleexpr
+--- Fuzz target: rule expressions (lsys.lsystem in lua/lsys/model.lua and
+-- lua/lsys/compile.lua, then m:derive). Its corpus is tests/fuzz/corpus_ruleexpr
 -- (tests/fuzz/corpus_expr is the C expression machine's, fuzz_expr.c).
 --
 -- An input is a template letter, a mode letter and the rest:
