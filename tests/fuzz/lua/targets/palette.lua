@@ -4,7 +4,7 @@
 -- The bytes are written to a temporary .map file and to a .mat file (removed after
 -- each input), and each is read by its loader and, by name, by view.normalize
 -- { palette = path }. Whether a loader succeeds and what it returns are checked
--- against an independent decoding of the formats as lua/lsys/view.lua documents them:
+-- against an independent decoding of the formats as lua/lsys/viewfile.lua documents them:
 -- a colour map is 768 bytes, 256 colours of 3 bytes (component / 255); a material file
 -- is a non-empty sequence of 15-byte records (index, transparency, ambient, diffuse,
 -- emission, specular rgb, shininess <= 128; alpha 1 - t/255 when t > 0; the last
