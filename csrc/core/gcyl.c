@@ -22,7 +22,6 @@
 #include "gcyl.h"
 #include "vec3.h"
 
-#define PI 3.14159265358979323846
 #define NOREF UINT32_MAX
 #define MAXSLOPE 20.0
 

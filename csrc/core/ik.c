@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "ik.h"
+#include "vec3.h"
 
 /* ---------------------------------------------------------------------- */
 /* 3 x 3 column-major matrices: M[3 * column + row]; columns H, L, U */
@@ -49,26 +50,14 @@ static void rotlocal (double M[9], int k, double a) {
   }
 }
 
-static void cross (double r[3], const double a[3], const double b[3]) {
-  double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2],
-         z = a[0] * b[1] - a[1] * b[0];
-  r[0] = x; r[1] = y; r[2] = z;
-}
-
-static double dot (const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 void lsys_ik_frame (double M[9], const double H[3], const double U[3]) {
   double h[3] = {H[0], H[1], H[2]}, u[3] = {U[0], U[1], U[2]}, l[3], d;
   int i;
-  d = sqrt(dot(h, h));
-  if (d > 0) for (i = 0; i < 3; i++) h[i] /= d;
-  d = dot(u, h);
+  vnormlen(h);
+  d = vdot(u, h);
   for (i = 0; i < 3; i++) u[i] -= d * h[i];
-  d = sqrt(dot(u, u));
-  if (d > 0) for (i = 0; i < 3; i++) u[i] /= d;
-  cross(l, u, h);
+  vnormlen(u);
+  vcross(l, u, h);
   memcpy(M, h, sizeof h);
   memcpy(M + 3, l, sizeof l);
   memcpy(M + 6, u, sizeof u);
@@ -92,9 +81,9 @@ void lsys_ik_setjoint (lsys_ikjoint *j, const double prev[9], const double preve
   rotlocal(j->pre, 0, -j->alpha[0]);
   for (i = 0; i < 3; i++) d[i] = start[i] - prevend[i];
   /* off = prev^T d */
-  for (i = 0; i < 3; i++) j->off[i] = dot(prev + 3 * i, d);
+  for (i = 0; i < 3; i++) j->off[i] = vdot(prev + 3 * i, d);
   for (i = 0; i < 3; i++) d[i] = end[i] - start[i];
-  j->len = sqrt(dot(d, d));
+  j->len = vlen(d);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -163,7 +152,7 @@ static double objective (const lsys_ikchain *c, const lsys_ikgoal *G, const doub
     ds[k] = s[k] - G->s[k];
     dt[k] = t[k] - G->t[k];
   }
-  f = G->wp * dot(dp, dp) + G->wt * (dot(ds, ds) + dot(dt, dt));
+  f = G->wp * vdot(dp, dp) + G->wt * (vdot(ds, ds) + vdot(dt, dt));
   for (i = 0; i < n; i++) {
     const lsys_ikjoint *j = &c->j[i];
     for (k = 0; k < 3; k++) {
@@ -184,11 +173,11 @@ static double objective (const lsys_ikchain *c, const lsys_ikgoal *G, const doub
       const double *w = axes + 9 * i + 3 * k;
       double wv[3], ws_[3], wt_[3], d, gi;
       if (!(j->free & (1u << k))) { g[3 * i + k] = 0; continue; }
-      cross(wv, w, v);                    /* dp/da (8) */
-      cross(ws_, w, s);                   /* ds/da (9) */
-      cross(wt_, w, t);
+      vcross(wv, w, v);                   /* dp/da (8) */
+      vcross(ws_, w, s);                  /* ds/da (9) */
+      vcross(wt_, w, t);
       d = a[3 * i + k] - j->rest[k];
-      gi = 2 * G->wp * dot(dp, wv) + 2 * G->wt * (dot(ds, ws_) + dot(dt, wt_)) +
+      gi = 2 * G->wp * vdot(dp, wv) + 2 * G->wt * (vdot(ds, ws_) + vdot(dt, wt_)) +
            2 * G->we * j->stiff[k] * d;                                  /* (10) */
       if (i > 0) gi += 2 * G->ws * (d - (a[3 * (i - 1) + k] - c->j[i - 1].rest[k]));
       if (i + 1 < n) gi -= 2 * G->ws * (a[3 * (i + 1) + k] - c->j[i + 1].rest[k] - d);
@@ -232,10 +221,10 @@ static void precond (void *ud, const double *x, const double *g, double *z, int 
     for (k = 0; k < 3; k++) {
       const double *ax = w->axes + 9 * i + 3 * k;
       double jp[3], js[3], jt[3], h;
-      cross(jp, ax, v);
-      cross(js, ax, s);
-      cross(jt, ax, t);
-      h = 2 * G->wp * dot(jp, jp) + 2 * G->wt * (dot(js, js) + dot(jt, jt)) +
+      vcross(jp, ax, v);
+      vcross(js, ax, s);
+      vcross(jt, ax, t);
+      h = 2 * G->wp * vdot(jp, jp) + 2 * G->wt * (vdot(js, js) + vdot(jt, jt)) +
           2 * G->we * c->j[i].stiff[k] + 2 * G->ws * ((i > 0) + (i + 1 < c->n));
       z[3 * i + k] = h > 1e-300 ? g[3 * i + k] / h : g[3 * i + k];
     }
@@ -266,16 +255,16 @@ static double curv (void *ud, const double *x, const double *d, int n) {
       v[k] = p[k] - w->piv[3 * i + k];
       om[k] += oi[k];
     }
-    cross(r, oi, v);
+    vcross(r, oi, v);
     for (k = 0; k < 3; k++) {
       jp[k] += r[k];
       e += c->j[i].stiff[k] * di[k] * di[k];
       if (i + 1 < c->n) sm += (di[3 + k] - di[k]) * (di[3 + k] - di[k]);
     }
   }
-  cross(js, om, s);
-  cross(jt, om, t);
-  return 2 * G->wp * dot(jp, jp) + 2 * G->wt * (dot(js, js) + dot(jt, jt)) + 2 * G->we * e +
+  vcross(js, om, s);
+  vcross(jt, om, t);
+  return 2 * G->wp * vdot(jp, jp) + 2 * G->wt * (vdot(js, js) + vdot(jt, jt)) + 2 * G->we * e +
          2 * G->ws * sm;
 }
 
@@ -340,7 +329,7 @@ int lsys_ik_solve (lsys_ikchain *c, const lsys_ikgoal *goal, const lsys_cg_opts 
     res->f = res->cg.f;
     run(c, NULL, p, NULL, NULL, NULL, NULL, NULL, NULL);
     for (k = 0; k < 3; k++) d[k] = p[k] - goal->p[k];
-    res->dist = sqrt(dot(d, d));
+    res->dist = vlen(d);
   }
   if (own) LSYS_FREE(mem);
   return st;

@@ -1,11 +1,14 @@
 /*
-** Small vector helpers on double[3], shared by the turtle and the geometry
-** builders (STYLE.md §2).
+** Small vector helpers on double[3], and PI: the one copy, shared by the
+** turtle, the geometry builders, inverse kinematics, the renderer and the
+** viewer (STYLE.md §2).
 */
 #ifndef LSYS_VEC3_H
 #define LSYS_VEC3_H
 
 #include <math.h>
+
+#define PI 3.14159265358979323846
 
 static inline void vset (double *a, double x, double y, double z) { a[0] = x; a[1] = y; a[2] = z; }
 static inline void vcopy (double *a, const double *b) { a[0] = b[0]; a[1] = b[1]; a[2] = b[2]; }
@@ -25,6 +28,14 @@ static inline int vnorm (double *a) {
   if (!(l > 1e-300)) return 0;
   a[0] /= l; a[1] /= l; a[2] /= l;
   return 1;
+}
+/* Normalises 'a' unless it is exactly zero; returns its length before.
+** Where the caller tests the length itself (the camera frame, IK frames):
+** unlike vnorm, a tiny vector is still scaled up. */
+static inline double vnormlen (double *a) {
+  double l = vlen(a);
+  if (l > 0) { a[0] /= l; a[1] /= l; a[2] /= l; }
+  return l;
 }
 /* r = a*ca + b*cb (r may alias a or b) */
 static inline void vlin (double *r, const double *a, double ca, const double *b, double cb) {
