@@ -1,6 +1,6 @@
 /*
 ** The viewer window (viewer.h): GLFW on its own thread, drawing snapshots
-** with render.c.
+** with render.c and the text and highlights over them with overlay.c.
 **
 ** Threads. The caller's thread (Lua) and the viewer thread share only the
 ** fields under 'mu': the mailbox, the event queue, requests (close, keys,
@@ -19,7 +19,8 @@
 ** (target, direction, up, distance; half height for parallel projection)
 ** which it then changes with the mouse and keeps while stepping through
 ** frames, so a plant grows in place. R returns to the arrival camera; F
-** fits the frame shown, keeping the direction.
+** fits the frame shown, keeping the direction. The camera's arithmetic and
+** picking are in viewcam.c, tested without a window.
 */
 #define _POSIX_C_SOURCE 200809L
 #define GLFW_INCLUDE_NONE
@@ -34,18 +35,17 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "dynlib.h"
 #include "font.h"
+#include "overlay.h"
 #include "pngio.h"
 #include "turtle.h"
-#include "vec3.h"
+#include "viewcam.h"
 #include "viewer.h"
-
-#define PI 3.14159265358979323846
 
 #define MAXEVENTS 1024          /* queued events beyond this are dropped (oldest first) */
 #define CLICK_SLOP 4.0          /* a press and release closer than this (pixels) is a click */
 #define PICK_TOL 6.0            /* pixels around a thin line that still pick it */
-#define ORBIT_SPEED 0.008       /* radians per pixel dragged */
 
 /* ---------------------------------------------------------------------- */
 /* libglfw, opened at the first window */
@@ -99,7 +99,7 @@ static void onerror (int code, const char *msg) {
 
 static int loadglfw (lsys_error *e) {
 #define SYM(f) {&G.f, sizeof G.f, "glfw" #f}
-  const struct { void *fn; size_t size; const char *name; } syms[] = {
+  const lsys_dynsym syms[] = {
     SYM(Init), SYM(Terminate), SYM(SetErrorCallback), SYM(DefaultWindowHints),
     SYM(WindowHint), SYM(CreateWindow), SYM(DestroyWindow), SYM(WindowShouldClose),
     SYM(SetWindowShouldClose), SYM(SetWindowTitle), SYM(MakeContextCurrent),
@@ -110,26 +110,20 @@ static int loadglfw (lsys_error *e) {
     SYM(SetWindowRefreshCallback), SYM(SetFramebufferSizeCallback), SYM(GetTime)
   };
 #undef SYM
-  char first[200] = "";
-  size_t i;
+  char why[200];
+  const char *missing;
   if (G.lib != NULL) return LSYS_OK;
-  for (i = 0; glfwlibs[i] != NULL && G.lib == NULL; i++) {
-    G.lib = dlopen(glfwlibs[i], RTLD_NOW | RTLD_LOCAL);
-    if (G.lib == NULL && i == 0) snprintf(first, sizeof first, "%s", dlerror());
-  }
+  G.lib = lsys_dynlib_open(glfwlibs, why, sizeof why);
   if (G.lib == NULL)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
                          "cannot load libglfw for the viewer window (%s); install libglfw3 "
-                         "(./setup.sh does)", first);
-  for (i = 0; i < sizeof syms / sizeof syms[0]; i++) {
-    void *p = dlsym(G.lib, syms[i].name);
-    if (p == NULL) {
-      dlclose(G.lib);
-      G.lib = NULL;
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "libglfw has no %s (GLFW 3.2 or later "
-                           "is needed)", syms[i].name);
-    }
-    memcpy(syms[i].fn, &p, syms[i].size);
+                         "(./setup.sh does)", why);
+  missing = lsys_dynlib_syms(G.lib, syms, sizeof syms / sizeof syms[0]);
+  if (missing != NULL) {
+    dlclose(G.lib);
+    G.lib = NULL;
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "libglfw has no %s (GLFW 3.2 or later "
+                         "is needed)", missing);
   }
   return LSYS_OK;
 }
@@ -143,105 +137,7 @@ static lsys_glproc getproc (const char *name) {
 }
 
 /* ---------------------------------------------------------------------- */
-/* snapshots */
-
-lsys_vsnap *lsys_vsnap_new (size_t n) {
-  lsys_vsnap *s = (lsys_vsnap *)LSYS_MALLOC(sizeof *s);
-  size_t k;
-  if (s == NULL) return NULL;
-  memset(s, 0, sizeof *s);
-  s->rate = 2;
-  if (n > 0) {
-    s->frames = (lsys_vframe *)LSYS_MALLOC(n * sizeof *s->frames);
-    if (s->frames == NULL) { LSYS_FREE(s); return NULL; }
-    memset(s->frames, 0, n * sizeof *s->frames);
-    for (k = 0; k < n; k++) {
-      lsys_mesh_init(&s->frames[k].mesh);
-      lsys_render_defaults(&s->frames[k].ro);
-      s->frames[k].step = -1;
-    }
-  }
-  s->nframes = n;
-  return s;
-}
-
-void lsys_vsnap_free (lsys_vsnap *s) {
-  size_t k;
-  if (s == NULL) return;
-  for (k = 0; k < s->nframes; k++) {
-    lsys_mesh_free(&s->frames[k].mesh);
-    LSYS_FREE(s->frames[k].pal);
-    LSYS_FREE(s->frames[k].picks);
-    LSYS_FREE(s->frames[k].lines);
-  }
-  LSYS_FREE(s->frames);
-  for (k = 0; k < (size_t)s->ntex; k++) lsys_texture_free(&s->tex[k]);
-  LSYS_FREE(s->tex);
-  LSYS_FREE(s);
-}
-
-/* ---------------------------------------------------------------------- */
-/* picking */
-
-long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol) {
-  /* the camera's right axis, for the projected radius: row 0 of 'view' */
-  double right[3] = {view[0], view[4], view[8]};
-  long best = -1;
-  int bestdirect = 0;
-  double bestd = 0, bestz = 0;
-  size_t k;
-  for (k = 0; k < f->npicks; k++) {
-    const lsys_vpick *p = &f->picks[k];
-    double a[3], b[3], pa[3], pb[3], q[3], qr[3], pq[3], pr[3];
-    double dx, dy, len2, t, d, rpx = 0, z;
-    int i, direct;
-    for (i = 0; i < 3; i++) { a[i] = p->p0[i]; b[i] = p->p1[i]; }
-    if (!lsys_render_project(proj, view, w, h, a, pa) ||
-        !lsys_render_project(proj, view, w, h, b, pb))
-      continue;
-    dx = pb[0] - pa[0];
-    dy = pb[1] - pa[1];
-    len2 = dx * dx + dy * dy;
-    t = len2 > 0 ? ((x - pa[0]) * dx + (y - pa[1]) * dy) / len2 : 0;
-    t = t < 0 ? 0 : t > 1 ? 1 : t;
-    d = hypot(pa[0] + t * dx - x, pa[1] + t * dy - y);
-    z = pa[2] + t * (pb[2] - pa[2]);
-    if (z < 0 || z > 1) continue;          /* clipped by the near or far plane */
-    if (p->radius > 0) {        /* the drawn width, projected where the click is nearest */
-      for (i = 0; i < 3; i++) {
-        q[i] = a[i] + t * (b[i] - a[i]);
-        qr[i] = q[i] + p->radius * right[i];
-      }
-      if (lsys_render_project(proj, view, w, h, q, pq) &&
-          lsys_render_project(proj, view, w, h, qr, pr))
-        rpx = hypot(pr[0] - pq[0], pr[1] - pq[1]);
-    }
-    if (d > (rpx > tol ? rpx : tol)) continue;
-    /* a click inside the drawn width is a direct hit: the nearest to the eye
-    ** wins; otherwise (thin lines, near misses) the nearest on screen */
-    direct = rpx > 0 && d <= rpx;
-    if (best < 0 || (direct && !bestdirect) ||
-        (direct && bestdirect && z < bestz) ||
-        (!direct && !bestdirect && (d < bestd || (d == bestd && z < bestz)))) {
-      best = (long)k;
-      bestdirect = direct;
-      bestd = d;
-      bestz = z;
-    }
-  }
-  return best;
-}
-
-/* ---------------------------------------------------------------------- */
 /* the viewer */
-
-typedef struct vcamera {
-  double target[3], f[3], u[3];   /* looks along f, up u (orthonormal) */
-  double dist;                    /* perspective: eye = target - dist f */
-  double halfh;                   /* parallel: half the image height */
-  int valid;
-} vcamera;
 
 struct lsys_viewer {
   pthread_t thread;
@@ -270,7 +166,7 @@ struct lsys_viewer {
   lsys_vsnap *snap;
   const lsys_texture **texp;      /* pointers to snap->tex, for render opts */
   long cur;                       /* frame shown */
-  vcamera cam, home;              /* current and arrival cameras */
+  lsys_vcam cam, home;            /* current and arrival cameras (viewcam.h) */
   lsys_render_cache cache;
   int winw, winh, fbw, fbh;
   int button;                     /* 0 none, 1 orbiting, 2 panning, 3 a tool's drag */
@@ -283,10 +179,7 @@ struct lsys_viewer {
   int shotseq;
   uint8_t *pixels;                /* screenshot scratch */
   size_t pixcap;
-  float *tv;                      /* text quads */
-  uint8_t *tc;
-  uint32_t *ti;
-  size_t tvcap, tccap, ticap, ntq;
+  lsys_overlay text;              /* the status line and the help */
 };
 
 /* Queues an event (mu held). */
@@ -334,19 +227,7 @@ static void frameopts (const lsys_viewer *v, const lsys_vframe *f, lsys_render_o
   o->wireframe = v->wireframe;
   o->gl = &v->gl;
   o->transparent = 0;
-  if (v->cam.valid) {
-    lsys_camera *c = &o->cam;
-    c->has_eye = c->has_target = c->has_up = 1;
-    c->twist = 0;               /* in u already */
-    vcopy(c->target, v->cam.target);
-    vcopy(c->up, v->cam.u);
-    if (c->projection == LSYS_PARALLEL) {
-      vlin(c->eye, v->cam.target, 1, v->cam.f, -1.0);
-      c->halfh = v->cam.halfh;
-      c->zoom = 1;
-    } else
-      vlin(c->eye, v->cam.target, 1, v->cam.f, -v->cam.dist);
-  }
+  lsys_vcam_apply(&v->cam, &o->cam);
 }
 
 /*
@@ -354,41 +235,7 @@ static void frameopts (const lsys_viewer *v, const lsys_vframe *f, lsys_render_o
 ** keeping the current direction and up) and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
-  lsys_render_opts o = f->ro;
-  double proj[16], view[16], eye[3], lo[3], hi[3];
-  int i;
-  if (!home && v->cam.valid) {
-    o.cam.has_eye = 0;
-    o.cam.has_up = 1;
-    o.cam.twist = 0;
-    vcopy(o.cam.dir, v->cam.f);
-    vcopy(o.cam.up, v->cam.u);
-    o.cam.has_target = 0;
-    o.cam.zoom = 1;
-  }
-  o.cam.halfh = 0;
-  if (lsys_render_camera(&f->mesh, &o, v->winw, v->winh, proj, view) != LSYS_OK) return;
-  /* rows of the view matrix: right, up, -forward; eye = -R^T t */
-  for (i = 0; i < 3; i++) {
-    v->cam.u[i] = view[4 * i + 1];
-    v->cam.f[i] = -view[4 * i + 2];
-    eye[i] = -(view[4 * i] * view[12] + view[4 * i + 1] * view[13] +
-               view[4 * i + 2] * view[14]);
-  }
-  if (o.cam.has_target) vcopy(v->cam.target, o.cam.target);
-  else if (lsys_mesh_bounds(&f->mesh, lo, hi) && isfinite(lo[0] + lo[1] + lo[2] + hi[0] +
-                                                          hi[1] + hi[2]))
-    for (i = 0; i < 3; i++) v->cam.target[i] = 0.5 * (lo[i] + hi[i]);
-  else
-    vlin(v->cam.target, eye, 1, v->cam.f, 1.0);
-  {
-    double d[3];
-    vlin(d, eye, 1, v->cam.target, -1);
-    v->cam.dist = vlen(d);
-  }
-  if (!(v->cam.dist > 0)) v->cam.dist = 1;
-  v->cam.halfh = proj[5] > 0 ? 1 / proj[5] : 1;   /* proj[5] = zoom / halfh (parallel) */
-  v->cam.valid = 1;
+  if (lsys_vcam_fit(&v->cam, &f->mesh, &f->ro, v->winw, v->winh, !home) != LSYS_OK) return;
   if (home) v->home = v->cam;
   v->dirty = 1;
 }
@@ -434,51 +281,7 @@ static void takemail (lsys_viewer *v) {
 }
 
 /* ---------------------------------------------------------------------- */
-/* text: the status line and the help, as quads of font pixels */
-
-static int textquad (lsys_viewer *v, float x, float y, float w, float h, const uint8_t c[4]) {
-  size_t n = v->ntq, i;
-  float *p;
-  if (lsys_grow((void **)&v->tv, &v->tvcap, 8 * (n + 1), sizeof *v->tv) ||
-      lsys_grow((void **)&v->tc, &v->tccap, 16 * (n + 1), 1) ||
-      lsys_grow((void **)&v->ti, &v->ticap, 6 * (n + 1), sizeof *v->ti))
-    return LSYS_ENOMEM;
-  p = v->tv + 8 * n;
-  p[0] = x;     p[1] = y;
-  p[2] = x + w; p[3] = y;
-  p[4] = x + w; p[5] = y + h;
-  p[6] = x;     p[7] = y + h;
-  for (i = 0; i < 4; i++) memcpy(v->tc + 16 * n + 4 * i, c, 4);
-  v->ti[6 * n + 0] = (uint32_t)(4 * n);
-  v->ti[6 * n + 1] = (uint32_t)(4 * n + 1);
-  v->ti[6 * n + 2] = (uint32_t)(4 * n + 2);
-  v->ti[6 * n + 3] = (uint32_t)(4 * n);
-  v->ti[6 * n + 4] = (uint32_t)(4 * n + 2);
-  v->ti[6 * n + 5] = (uint32_t)(4 * n + 3);
-  v->ntq = n + 1;
-  return LSYS_OK;
-}
-
-/* Lays out 's' with its top left corner at (x, y) (framebuffer pixels, y
-** down), each font pixel s x s. */
-static void text (lsys_viewer *v, const char *s, float x, float y, float px,
-                  const uint8_t c[4]) {
-  float x0 = x;
-  for (; *s; s++) {
-    int row, col;
-    if (*s == '\n') { x = x0; y += (LSYS_FONT_H + 3) * px; continue; }
-    /* letters with descenders are drawn within the 7 rows: lowered by 2,
-    ** their bowls sit on the baseline with the other small letters */
-    float dy = strchr("gjpqy", *s) != NULL ? 2 * px : 0;
-    for (row = 0; row < LSYS_FONT_H; row++) {
-      unsigned bits = lsys_font_row((unsigned char)*s, row);
-      for (col = 0; col < LSYS_FONT_W; col++)
-        if (bits & (1u << (LSYS_FONT_W - 1 - col)))
-          textquad(v, x + col * px, y + dy + row * px, px, px, c);
-    }
-    x += (LSYS_FONT_W + 1) * px;
-  }
-}
+/* text: the status line and the help (overlay.h) */
 
 /* Thousands separated by spaces: 1234567 -> "1 234 567". */
 static void count (char *buf, size_t n, size_t x) {
@@ -502,14 +305,12 @@ static const char helptext[] =
 /* Draws the status line (and the help) over the picture. */
 static void overlay (lsys_viewer *v) {
   static const uint8_t fg[4] = {255, 255, 255, 255}, bg[4] = {0, 0, 0, 140};
-  const lsys_gl *gl = &v->gl;
   const lsys_vframe *f = curframe(v);
   char line[256], a[32], b[32], c[32];
   float px = (float)(v->winh > 0 ? 2.0 * v->fbh / v->winh : 2.0);
   float lh = (LSYS_FONT_H + 4) * px;
-  double m[16] = {0};
   size_t n;
-  v->ntq = 0;
+  v->text.n = 0;
   if (f == NULL)
     snprintf(line, sizeof line, "waiting for a scene");
   else {
@@ -531,86 +332,24 @@ static void overlay (lsys_viewer *v) {
     px = px / 2 < 1 ? 1 : px / 2;
     lh = (LSYS_FONT_H + 4) * px;
   }
-  textquad(v, 0, (float)v->fbh - lh, (float)v->fbw, lh, bg);
-  text(v, line, 2 * px, (float)v->fbh - lh + 2 * px, px, fg);
+  lsys_overlay_quad(&v->text, 0, (float)v->fbh - lh, (float)v->fbw, lh, bg);
+  lsys_overlay_text(&v->text, line, 2 * px, (float)v->fbh - lh + 2 * px, px, fg);
   if (v->help) {
     int lines = 1;
     const char *s;
     for (s = helptext; *s; s++) lines += *s == '\n';
-    textquad(v, 0, 0, (float)v->fbw, lines * (LSYS_FONT_H + 3) * px + 4 * px, bg);
-    text(v, helptext, 2 * px, 2 * px, px, fg);
+    lsys_overlay_quad(&v->text, 0, 0, (float)v->fbw, lines * (LSYS_FONT_H + 3) * px + 4 * px,
+                      bg);
+    lsys_overlay_text(&v->text, helptext, 2 * px, 2 * px, px, fg);
   }
   else if (n + 14 < (size_t)(v->fbw / ((LSYS_FONT_W + 1) * px)))
-    text(v, "H: help", (float)v->fbw - 9 * (LSYS_FONT_W + 1) * px,
-         (float)v->fbh - lh + 2 * px, px, fg);
-  if (v->ntq == 0) return;
-  /* pixels, y down: x' = 2x/w - 1, y' = 1 - 2y/h */
-  m[0] = 2.0 / v->fbw;
-  m[5] = -2.0 / v->fbh;
-  m[10] = 1;
-  m[12] = -1;
-  m[13] = 1;
-  m[15] = 1;
-  gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(m);
-  gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadIdentity();
-  gl->Disable(GL_DEPTH_TEST);
-  gl->Disable(GL_LIGHTING);
-  gl->Disable(GL_TEXTURE_2D);
-  gl->PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  gl->Enable(GL_BLEND);
-  gl->BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  gl->EnableClientState(GL_VERTEX_ARRAY);
-  gl->EnableClientState(GL_COLOR_ARRAY);
-  gl->VertexPointer(2, GL_FLOAT, 0, v->tv);
-  gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, v->tc);
-  gl->DrawElements(GL_TRIANGLES, (int)(6 * v->ntq), GL_UNSIGNED_INT, v->ti);
-  gl->DisableClientState(GL_VERTEX_ARRAY);
-  gl->DisableClientState(GL_COLOR_ARRAY);
-  gl->Disable(GL_BLEND);
+    lsys_overlay_text(&v->text, "H: help", (float)v->fbw - 9 * (LSYS_FONT_W + 1) * px,
+                      (float)v->fbh - lh + 2 * px, px, fg);
+  lsys_overlay_draw(&v->text, &v->gl, v->fbw, v->fbh);
 }
 
 /* ---------------------------------------------------------------------- */
 /* drawing and screenshots */
-
-/* The frame's highlight lines, with the scene's camera (render_draw leaves
-** its matrices loaded), unlit: first those depth-tested against the scene,
-** then those drawn on top. */
-static void drawlines (lsys_viewer *v, const lsys_vframe *f) {
-  const lsys_gl *gl = &v->gl;
-  float scale = v->winh > 0 ? (float)v->fbh / (float)v->winh : 1;
-  size_t k;
-  int pass;
-  gl->Disable(GL_LIGHTING);
-  gl->Disable(GL_TEXTURE_2D);
-  gl->DepthFunc(GL_LEQUAL);
-  gl->EnableClientState(GL_VERTEX_ARRAY);
-  gl->EnableClientState(GL_COLOR_ARRAY);
-  for (pass = 0; pass < 2; pass++) {
-    if (pass == 0) gl->Enable(GL_DEPTH_TEST);
-    else gl->Disable(GL_DEPTH_TEST);
-    for (k = 0; k < f->nlines; k++) {     /* few lines: one call each, own width */
-      static const uint32_t idx[2] = {0, 1};
-      const lsys_vline *l = &f->lines[k];
-      float pos[6];
-      uint8_t col[8];
-      if ((l->ontop != 0) != pass) continue;
-      memcpy(pos, l->p0, sizeof l->p0);
-      memcpy(pos + 3, l->p1, sizeof l->p1);
-      memcpy(col, l->rgba, 4);
-      memcpy(col + 4, l->rgba, 4);
-      gl->LineWidth(l->width * scale > 1 ? l->width * scale : 1);
-      gl->VertexPointer(3, GL_FLOAT, 0, pos);
-      gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, col);
-      gl->DrawElements(GL_LINES, 2, GL_UNSIGNED_INT, idx);
-    }
-  }
-  gl->Enable(GL_DEPTH_TEST);
-  gl->DisableClientState(GL_VERTEX_ARRAY);
-  gl->DisableClientState(GL_COLOR_ARRAY);
-  gl->LineWidth(1);
-}
 
 static double now (void) {
   return G.GetTime();
@@ -678,7 +417,9 @@ static void draw (lsys_viewer *v) {
     v->gl.ClearColor(1, 1, 1, 1);
     v->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   }
-  if (f != NULL && f->nlines > 0) drawlines(v, f);
+  if (f != NULL && f->nlines > 0)       /* over the scene, with its camera */
+    lsys_overlay_lines(&v->gl, f->lines, f->nlines,
+                       v->winh > 0 ? (float)v->fbh / (float)v->winh : 1);
   if (v->o.status) overlay(v);
   pthread_mutex_lock(&v->mu);
   wantshot = v->shotreq && (f != NULL || v->mail == NULL);
@@ -713,64 +454,30 @@ static void draw (lsys_viewer *v) {
 /* ---------------------------------------------------------------------- */
 /* input */
 
-static void rotate (double v[3], const double axis[3], double angle) {
-  vrotate(v, axis, angle);
-}
-
+/* The mouse moves the camera (viewcam.h); the arrival camera's up stays up. */
 static void orbit (lsys_viewer *v, double dx, double dy) {
-  double r[3], *up = v->home.valid ? v->home.u : v->cam.u;
-  vcross(r, v->cam.f, v->cam.u);
-  rotate(v->cam.f, up, -dx * ORBIT_SPEED);        /* turntable: about the view's up */
-  rotate(v->cam.u, up, -dx * ORBIT_SPEED);
-  rotate(r, up, -dx * ORBIT_SPEED);
-  rotate(v->cam.f, r, -dy * ORBIT_SPEED);         /* then about the camera's right */
-  rotate(v->cam.u, r, -dy * ORBIT_SPEED);
-  vnorm(v->cam.f);
-  vcross(r, v->cam.f, v->cam.u);                  /* keep the frame orthonormal */
-  vnorm(r);
-  vcross(v->cam.u, r, v->cam.f);
+  lsys_vcam_orbit(&v->cam, v->home.valid ? v->home.u : v->cam.u, dx, dy);
   v->dirty = 1;
 }
 
-/* World units per window pixel at the target. */
-static double pixelsize (const lsys_viewer *v) {
-  const lsys_vframe *f = curframe(v);
-  double h = v->winh > 0 ? v->winh : 1;
-  if (f != NULL && f->ro.cam.projection == LSYS_PARALLEL) return 2 * v->cam.halfh / h;
-  {
-    double fov = f != NULL && f->ro.cam.fov > 0 ? f->ro.cam.fov : 30;
-    double zoom = f != NULL && f->ro.cam.zoom > 0 ? f->ro.cam.zoom : 1;
-    return 2 * v->cam.dist * tan(fov * PI / 360) / zoom / h;
-  }
-}
-
 static void pan (lsys_viewer *v, double dx, double dy) {
-  double r[3], s = pixelsize(v);
-  vcross(r, v->cam.f, v->cam.u);
-  vnorm(r);
-  vlin(v->cam.target, v->cam.target, 1, r, -dx * s);
-  vlin(v->cam.target, v->cam.target, 1, v->cam.u, dy * s);
+  const lsys_vframe *f = curframe(v);
+  lsys_vcam_pan(&v->cam, f != NULL ? &f->ro.cam : NULL, v->winh, dx, dy);
   v->dirty = 1;
 }
 
 static void zoom (lsys_viewer *v, double steps) {
-  double k = pow(0.88, steps);
-  v->cam.dist *= k;
-  v->cam.halfh *= k;
-  if (v->cam.dist < 1e-9) v->cam.dist = 1e-9;
-  if (v->cam.halfh < 1e-9) v->cam.halfh = 1e-9;
+  lsys_vcam_zoom(&v->cam, steps);
   v->dirty = 1;
 }
 
 static void pick (lsys_viewer *v, double x, double y) {
   const lsys_vframe *f = curframe(v);
-  lsys_render_opts o;
   lsys_vevent ev;
   double proj[16], view[16];
   long k = -1;
   if (f == NULL) return;
-  frameopts(v, f, &o);
-  if (lsys_render_camera(&f->mesh, &o, v->winw, v->winh, proj, view) == LSYS_OK)
+  if (lsys_vcam_matrices(&v->cam, &f->mesh, &f->ro, v->winw, v->winh, proj, view) == LSYS_OK)
     k = lsys_vpick_find(f, proj, view, v->winw, v->winh, x, y, PICK_TOL);
   event(v, k >= 0 ? LSYS_VEV_PICK : LSYS_VEV_MISS, &ev);
   ev.x = x;
@@ -1099,9 +806,7 @@ static void freeviewer (lsys_viewer *v) {
   lsys_render_cache_free(&v->cache);
   LSYS_FREE(v->ev);
   LSYS_FREE(v->pixels);
-  LSYS_FREE(v->tv);
-  LSYS_FREE(v->tc);
-  LSYS_FREE(v->ti);
+  lsys_overlay_free(&v->text);
   pthread_cond_destroy(&v->cv);
   pthread_mutex_destroy(&v->mu);
   LSYS_FREE(v);

@@ -18,10 +18,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dynlib.h"
 #include "render.h"
 
-/* Names tried in turn: the library found when lsys was configured, then
-** the usual soname, then the development symlink. */
+/* Names tried in turn (dynlib.h): the library found when lsys was
+** configured, then the usual sonames, then the development symlink. */
 #ifndef LSYS_OSMESA_SONAME
 #define LSYS_OSMESA_SONAME "libOSMesa.so.8"
 #endif
@@ -63,7 +64,7 @@ static lsys_glproc getproc (const char *name) {
 }
 
 static int loadlib (lsys_error *e) {
-  const struct { void *fn; size_t size; const char *name; } syms[] = {
+  const lsys_dynsym syms[] = {
     {&S.create, sizeof S.create, "OSMesaCreateContextExt"},
     {&S.makecurrent, sizeof S.makecurrent, "OSMesaMakeCurrent"},
     {&S.pixelstore, sizeof S.pixelstore, "OSMesaPixelStore"},
@@ -71,25 +72,18 @@ static int loadlib (lsys_error *e) {
     {&S.destroy, sizeof S.destroy, "OSMesaDestroyContext"},
     {&S.getproc, sizeof S.getproc, "OSMesaGetProcAddress"}
   };
-  char first[160] = "";
-  size_t i;
+  char why[200];
+  const char *missing;
   if (S.lib != NULL) return LSYS_OK;
-  for (i = 0; libnames[i] != NULL && S.lib == NULL; i++) {
-    S.lib = dlopen(libnames[i], RTLD_NOW | RTLD_LOCAL);
-    if (S.lib == NULL && i == 0) snprintf(first, sizeof first, "%s", dlerror());
-  }
+  S.lib = lsys_dynlib_open(libnames, why, sizeof why);
   if (S.lib == NULL)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
-                         "cannot load OSMesa (%s): install libosmesa6 (./setup.sh does)", first);
-  for (i = 0; i < sizeof syms / sizeof syms[0]; i++) {
-    void *p = dlsym(S.lib, syms[i].name);     /* stored as in lsys_gl_load */
-    if (p == NULL) {
-      dlclose(S.lib);
-      S.lib = NULL;
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "the OSMesa library lacks %s",
-                           syms[i].name);
-    }
-    memcpy(syms[i].fn, &p, syms[i].size);
+                         "cannot load OSMesa (%s): install libosmesa6 (./setup.sh does)", why);
+  missing = lsys_dynlib_syms(S.lib, syms, sizeof syms / sizeof syms[0]);
+  if (missing != NULL) {
+    dlclose(S.lib);
+    S.lib = NULL;
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "the OSMesa library lacks %s", missing);
   }
   return LSYS_OK;
 }

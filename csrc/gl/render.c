@@ -1,6 +1,7 @@
 /*
-** The one OpenGL drawing path (render.h): camera fitting, projection, and
-** fixed-function drawing of a scene with vertex arrays.
+** The one OpenGL drawing path (render.h): fixed-function drawing of a scene
+** with vertex arrays. The camera it draws with is plain arithmetic, in
+** viewcam.c (lsys_render_camera).
 **
 ** Triangles are grouped by material (a counting sort of the triangle
 ** indices, once per frame, into a cached array) so that each group sets its
@@ -26,35 +27,10 @@
 #include <string.h>
 
 #include "render.h"
-
-#define PI 3.14159265358979323846
-
-/* Fraction of the half-width and half-height that the fitted bounding box
-** may fill: the margin is 5% of the image on each side. */
-#define FIT 0.9
+#include "vec3.h"
 
 /* At most this many indices per glDrawElements call (GLsizei is an int). */
 #define MAXDRAW (3u << 22)
-
-/* ---------------------------------------------------------------------- */
-/* small vector helpers */
-
-static double dot (const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross (double r[3], const double a[3], const double b[3]) {
-  double x = a[1] * b[2] - a[2] * b[1];
-  double y = a[2] * b[0] - a[0] * b[2];
-  double z = a[0] * b[1] - a[1] * b[0];
-  r[0] = x; r[1] = y; r[2] = z;
-}
-
-static double normalize (double v[3]) {
-  double n = sqrt(dot(v, v));
-  if (n > 0) { v[0] /= n; v[1] /= n; v[2] /= n; }
-  return n;
-}
 
 /* ---------------------------------------------------------------------- */
 
@@ -118,191 +94,6 @@ int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error
     memcpy((char *)gl + glfns[i].off, &f, sizeof f);
   }
   return LSYS_OK;
-}
-
-/* ---------------------------------------------------------------------- */
-/* camera */
-
-/* The 8 corners of the scene's bounds; an empty scene (or one with
-** infinite coordinates) is the cube [-1, 1]^3, a single point a cube of
-** size 2 around it. Returns the length of the box's diagonal (> 0). */
-static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, d[3];
-  int i;
-  if (m == NULL || !lsys_mesh_bounds(m, lo, hi) ||
-      !isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2])) {
-    lo[0] = lo[1] = lo[2] = -1;
-    hi[0] = hi[1] = hi[2] = 1;
-  }
-  for (i = 0; i < 3; i++) d[i] = hi[i] - lo[i];
-  if (d[0] <= 0 && d[1] <= 0 && d[2] <= 0) {
-    for (i = 0; i < 3; i++) { lo[i] -= 1; hi[i] += 1; d[i] = 2; }
-  }
-  for (i = 0; i < 8; i++) {
-    c[i][0] = (i & 1) ? hi[0] : lo[0];
-    c[i][1] = (i & 2) ? hi[1] : lo[1];
-    c[i][2] = (i & 4) ? hi[2] : lo[2];
-  }
-  for (i = 0; i < 3; i++) centre[i] = 0.5 * (lo[i] + hi[i]);
-  return sqrt(dot(d, d));
-}
-
-/* What fitting the camera accumulates over the scene's points. */
-typedef struct fitstate {
-  double ext;               /* parallel: half height needed */
-  double D;                 /* perspective: distance from the target needed */
-  int parallel;
-  double aspect, ty, target[3], r[3], u[3], f[3];
-} fitstate;
-
-static void fitpoint (fitstate *fs, const float p[3]) {
-  double q[3], x, y;
-  q[0] = p[0] - fs->target[0];
-  q[1] = p[1] - fs->target[1];
-  q[2] = p[2] - fs->target[2];
-  x = fabs(dot(q, fs->r));
-  y = fabs(dot(q, fs->u));
-  if (!isfinite(x + y)) return;       /* fmax would keep an infinity */
-  if (fs->parallel)
-    fs->ext = fmax(fs->ext, fmax(y, x / fs->aspect));
-  else
-    fs->D = fmax(fs->D, fmax(x / (fs->ty * fs->aspect * FIT), y / (fs->ty * FIT)) - dot(q, fs->f));
-}
-
-int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
-                        double proj[16], double view[16]) {
-  const lsys_camera *cam = &o->cam;
-  double c[8][3], centre[3], target[3], eye[3], f[3], up[3], r[3], u[3];
-  double aspect, diag, t, ct, st, dmin, dmax, pad, nearp, farp;
-  double fov = cam->fov > 0 && cam->fov < 180 ? cam->fov : 30;
-  double ty = tan(fov * PI / 360), halfh = 1;
-  double zoom = cam->zoom > 0 ? cam->zoom : 1;
-  int i, parallel = cam->projection == LSYS_PARALLEL;
-  if (w <= 0 || h <= 0) return LSYS_EARG;
-  aspect = (double)w / h;
-  diag = corners(m, c, centre);
-  memcpy(target, cam->has_target ? cam->target : centre, sizeof target);
-  if (cam->has_eye) {
-    for (i = 0; i < 3; i++) f[i] = target[i] - cam->eye[i];
-  } else
-    memcpy(f, cam->dir, sizeof f);
-  if (normalize(f) == 0) return LSYS_EARG;
-  /* camera frame: right r, up u, forward f; an up along f is replaced */
-  if (cam->has_up) memcpy(up, cam->up, sizeof up);
-  else { up[0] = 0; up[1] = 1; up[2] = 0; }
-  if (normalize(up) == 0) return LSYS_EARG;
-  cross(r, f, up);
-  if (normalize(r) < 1e-6) {
-    up[0] = 0; up[1] = 0; up[2] = f[1] < 0 ? -1 : 1;
-    if (fabs(f[2]) > 0.9) { up[1] = 1; up[2] = 0; }
-    cross(r, f, up);
-    normalize(r);
-  }
-  cross(u, r, f);
-  /* twist: turn the picture counterclockwise, i.e. the frame clockwise */
-  t = cam->twist * PI / 180;
-  ct = cos(t); st = sin(t);
-  for (i = 0; i < 3; i++) {
-    double ri = r[i], ui = u[i];
-    r[i] = ct * ri - st * ui;
-    u[i] = ct * ui + st * ri;
-  }
-  /* fit: in the camera frame around the target, a point is at (x, y, z),
-  ** z along f. Parallel: the half height must cover |y| and |x| / aspect.
-  ** Perspective: the eye at distance D behind the target sees the point
-  ** within the image when |x| <= (D + z) ty aspect and |y| <= (D + z) ty.
-  ** The points are the scene's vertices and line ends (the corners of the
-  ** box, seen in perspective, would leave a wide margin), or the corners
-  ** of the box for an empty scene. */
-  if (parallel || !cam->has_eye) {
-    fitstate fs;
-    size_t k, nv = m ? m->nv : 0, nl = m ? m->nl : 0;
-    memset(&fs, 0, sizeof fs);
-    fs.parallel = parallel;
-    fs.aspect = aspect;
-    fs.ty = ty;
-    memcpy(fs.target, target, sizeof target);
-    memcpy(fs.r, r, sizeof r);
-    memcpy(fs.u, u, sizeof u);
-    memcpy(fs.f, f, sizeof f);
-    for (k = 0; k < nv; k++) fitpoint(&fs, m->pos + 3 * k);
-    for (k = 0; k < 2 * nl; k++) fitpoint(&fs, m->lpos + 3 * k);
-    if (nv + nl == 0 || !(fs.ext > 0 || fs.D > 0))
-      for (i = 0; i < 8; i++) {
-        float p[3] = {(float)c[i][0], (float)c[i][1], (float)c[i][2]};
-        fitpoint(&fs, p);
-      }
-    halfh = cam->halfh > 0 ? cam->halfh : fs.ext > 0 ? fs.ext / FIT : diag / 2;
-    if (!cam->has_eye) {
-      double D = fs.D, back = 0;
-      for (i = 0; i < 8; i++) {
-        double q[3] = {c[i][0] - target[0], c[i][1] - target[1], c[i][2] - target[2]};
-        back = fmax(back, -dot(q, f));
-      }
-      D = fmax(D, back + 0.05 * diag);   /* the eye stays outside the box */
-      for (i = 0; i < 3; i++) eye[i] = target[i] - D * f[i];
-    }
-  }
-  if (cam->has_eye) memcpy(eye, cam->eye, sizeof eye);
-  /* near and far planes: the depths of the corners, padded */
-  dmin = dmax = 0;
-  for (i = 0; i < 8; i++) {
-    double q[3] = {c[i][0] - eye[0], c[i][1] - eye[1], c[i][2] - eye[2]};
-    double d = dot(q, f);
-    if (i == 0 || d < dmin) dmin = d;
-    if (i == 0 || d > dmax) dmax = d;
-  }
-  pad = 0.02 * diag;
-  nearp = dmin - pad;
-  farp = dmax + pad;
-  if (!parallel) {
-    if (farp <= 0) farp = diag;          /* the scene is behind the eye */
-    if (nearp < farp * 1e-3) nearp = farp * 1e-3;
-  }
-  /* view: rows r, u, -f; translation -R eye (column-major) */
-  for (i = 0; i < 3; i++) {
-    view[4 * i + 0] = r[i];
-    view[4 * i + 1] = u[i];
-    view[4 * i + 2] = -f[i];
-    view[4 * i + 3] = 0;
-  }
-  view[12] = -dot(r, eye);
-  view[13] = -dot(u, eye);
-  view[14] = dot(f, eye);
-  view[15] = 1;
-  memset(proj, 0, 16 * sizeof proj[0]);
-  if (parallel) {
-    proj[0] = zoom / (halfh * aspect);
-    proj[5] = zoom / halfh;
-    proj[10] = -2 / (farp - nearp);
-    proj[14] = -(farp + nearp) / (farp - nearp);
-    proj[15] = 1;
-  } else {
-    proj[0] = zoom / (ty * aspect);
-    proj[5] = zoom / ty;
-    proj[10] = (farp + nearp) / (nearp - farp);
-    proj[11] = -1;
-    proj[14] = 2 * farp * nearp / (nearp - farp);
-  }
-  return LSYS_OK;
-}
-
-int lsys_render_project (const double proj[16], const double view[16], int w, int h,
-                         const double p[3], double out[3]) {
-  double v[4], clip[4];
-  int i;
-  for (i = 0; i < 4; i++)
-    v[i] = view[i] * p[0] + view[4 + i] * p[1] + view[8 + i] * p[2] + view[12 + i];
-  for (i = 0; i < 4; i++)
-    clip[i] = proj[i] * v[0] + proj[4 + i] * v[1] + proj[8 + i] * v[2] + proj[12 + i] * v[3];
-  if (!(clip[3] > 0)) {
-    out[0] = out[1] = out[2] = 0;
-    return 0;
-  }
-  out[0] = (clip[0] / clip[3] + 1) * 0.5 * w;
-  out[1] = (1 - clip[1] / clip[3]) * 0.5 * h;
-  out[2] = (clip[2] / clip[3] + 1) * 0.5;
-  return 1;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -884,16 +675,53 @@ static int reserve (frame *F) {
   return LSYS_OK;
 }
 
-int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
-                      lsys_error *e) {
+/* Clears the framebuffer and sets the state every frame starts from: the
+** camera's matrices, depth test, the key light and colour materials. */
+static void startframe (const frame *F, const lsys_render_opts *o) {
   static const GLfloat white[4] = {1, 1, 1, 1};
   static const GLfloat key[4] = {0.75f, 0.75f, 0.75f, 1};
   static const GLfloat black[4] = {0, 0, 0, 1};
+  const lsys_gl *gl = F->gl;
+  GLfloat pos[4];
+  gl->Viewport(0, 0, F->fbw, F->fbh);
+  gl->ClearColor(o->background[0], o->background[1], o->background[2],
+                 o->transparent ? 0.0f : 1.0f);
+  gl->ClearDepth(1);
+  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl->MatrixMode(GL_PROJECTION);
+  gl->LoadMatrixd(F->proj);
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadMatrixd(F->view);
+  gl->Enable(GL_DEPTH_TEST);
+  gl->DepthFunc(GL_LEQUAL);
+  gl->Disable(GL_CULL_FACE);
+  gl->Disable(GL_BLEND);
+  gl->ShadeModel(GL_SMOOTH);
+  gl->Enable(GL_NORMALIZE);
+  /* the key light: a direction (w = 0) in world space, as the modelview
+  ** matrix holds only the view transform here */
+  pos[0] = (GLfloat)o->light[0];
+  pos[1] = (GLfloat)o->light[1];
+  pos[2] = (GLfloat)o->light[2];
+  pos[3] = 0;
+  gl->Lightfv(GL_LIGHT0, GL_POSITION, pos);
+  gl->Lightfv(GL_LIGHT0, GL_AMBIENT, black);
+  gl->Lightfv(GL_LIGHT0, GL_DIFFUSE, key);
+  gl->Lightfv(GL_LIGHT0, GL_SPECULAR, white);
+  gl->Enable(GL_LIGHT0);
+  gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, white);
+  gl->LightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 0);
+  gl->ColorMaterial(GL_FRONT_AND_BACK, GL_DIFFUSE);
+  gl->Enable(GL_COLOR_MATERIAL);
+}
+
+int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
+                      lsys_error *e) {
   static const lsys_mesh none = {0};
   const lsys_gl *gl = o->gl;
   lsys_render_cache local = {0};
   frame F;
-  GLfloat range[2] = {1, 1}, pos[4];
+  GLfloat range[2] = {1, 1};
   GLenum err;
   int i, j, k;
   if (gl == NULL)
@@ -930,36 +758,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
     lsys_render_cache_free(&local);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory to draw the scene");
   }
-  gl->Viewport(0, 0, fbw, fbh);
-  gl->ClearColor(o->background[0], o->background[1], o->background[2],
-               o->transparent ? 0.0f : 1.0f);
-  gl->ClearDepth(1);
-  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(F.proj);
-  gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadMatrixd(F.view);
-  gl->Enable(GL_DEPTH_TEST);
-  gl->DepthFunc(GL_LEQUAL);
-  gl->Disable(GL_CULL_FACE);
-  gl->Disable(GL_BLEND);
-  gl->ShadeModel(GL_SMOOTH);
-  gl->Enable(GL_NORMALIZE);
-  /* the key light: a direction (w = 0) in world space, as the modelview
-  ** matrix holds only the view transform here */
-  pos[0] = (GLfloat)o->light[0];
-  pos[1] = (GLfloat)o->light[1];
-  pos[2] = (GLfloat)o->light[2];
-  pos[3] = 0;
-  gl->Lightfv(GL_LIGHT0, GL_POSITION, pos);
-  gl->Lightfv(GL_LIGHT0, GL_AMBIENT, black);
-  gl->Lightfv(GL_LIGHT0, GL_DIFFUSE, key);
-  gl->Lightfv(GL_LIGHT0, GL_SPECULAR, white);
-  gl->Enable(GL_LIGHT0);
-  gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, white);
-  gl->LightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 0);
-  gl->ColorMaterial(GL_FRONT_AND_BACK, GL_DIFFUSE);
-  gl->Enable(GL_COLOR_MATERIAL);
+  startframe(&F, o);
   if (F.m->nt > 0) {
     size_t v;
     for (v = 0; v < F.m->nv; v++) setrgba(F.c->rgba + 4 * v, &F.pal[F.m->col[v] % F.npal]);

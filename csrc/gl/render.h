@@ -3,7 +3,7 @@
 ** offscreen renderer (osmesa.c) and the viewer window: the caller makes a
 ** GL context current and calls lsys_render_draw with that context's entry
 ** points. Camera fitting and projection are plain arithmetic and need no
-** GL context.
+** GL context (viewcam.c).
 **
 ** Only fixed-function OpenGL 1.x calls are used (vertex arrays and
 ** glDrawElements), so any compatibility context will do. This header does

@@ -72,7 +72,7 @@ typedef struct lsys_vsnap {
 } lsys_vsnap;
 
 /* A new empty snapshot with room for n frames (each frame's mesh
-** initialised, palette empty), or NULL when out of memory. */
+** initialised, palette empty), or NULL when out of memory (vsnap.c). */
 lsys_vsnap *lsys_vsnap_new (size_t n);
 void lsys_vsnap_free (lsys_vsnap *s);
 
@@ -167,8 +167,8 @@ void lsys_viewer_close (lsys_viewer *v);
 ** 'f' seen through proj/view in a w x h window: the pick whose projected
 ** segment passes within max(tol, its projected radius) pixels, nearest to
 ** the eye where several do; points clipped by the near or far plane do not
-** count. Returns its index, or -1. Plain arithmetic:
-** tested without a window.
+** count. Returns its index, or -1. Plain arithmetic (viewcam.c): tested
+** without a window.
 */
 long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
                       int w, int h, double x, double y, double tol);
