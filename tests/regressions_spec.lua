@@ -111,4 +111,11 @@ describe("regressions", function()
     local m = lsys.lsystem { axiom = "A(1)", productions = "A(x) --> B(deg(pi), rad(180))" }
     assert.equal("B(180,3.141592653589793)", tostring(m:derive(1)))
   end)
+
+  it("fills query modules after a view surface (no mesh in a query run)", function()
+    -- ~L set the mesh's texture in query runs too, where there is no mesh: a segfault
+    local m = lsys.lsystem { axiom = "A", productions = "A --> F~L?P(0,0,0)A",
+                             view = { surfaces = { L = "tests/data/surfaces/leaf.s" } } }
+    assert.equal("F~L?P(0,2,0)F~L?P(0,4,0)A", tostring(m:derive(2)))
+  end)
 end)

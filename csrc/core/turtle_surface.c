@@ -21,7 +21,7 @@ static void place (run *R, lsys_place *pl, double scale, int tex) {
   pl->scale = scale;
   pl->color = (unsigned)st->color;
   pl->uv_surface = tex > 0 && tex <= R->o->ntex && R->o->tex[tex - 1]->per_surface;
-  R->t->mesh->curtex = (unsigned)tex;
+  if (R->draw) R->t->mesh->curtex = (unsigned)tex;   /* a query or state run has no mesh */
 }
 
 /* Surface k of the view tessellated in its own frame (contact point at the
