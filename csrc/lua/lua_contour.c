@@ -14,21 +14,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lua_geom.h"
+#include "lua_aux.h"
+#include "lua_lsys.h"
 
 #define MAXFILE (16u << 20)   /* bytes of a contour file */
 #define MAXSIDES 65536        /* p of c:sample(p) */
-
-/* The Contour at 'i'; raises when it was closed (a live one has points). */
-static lsys_contour *checkcontour (lua_State *L, int i) {
-  lsys_contour *c = (lsys_contour *)luaL_checkudata(L, i, CONTOUR_T);
-  if (c->pt == NULL) luaL_error(L, "the contour was closed");
-  return c;
-}
-
-const lsys_contour *lsys_checkcontour (lua_State *L, int idx) {
-  return checkcontour(L, idx);
-}
 
 static lsys_contour *newcontour (lua_State *L) {
   lsys_contour *c = (lsys_contour *)lua_newuserdatauv(L, sizeof *c, 0);
@@ -42,12 +32,6 @@ static int contour_gc (lua_State *L) {       /* also __close: idempotent */
   return 0;
 }
 
-/* Raises 'e' as is: the message already names the file and line. */
-static int fail (lua_State *L, int code, const lsys_error *e) {
-  lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
-  return lua_error(L);
-}
-
 /* core.contour_load(path) */
 static int l_contour_load (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
@@ -56,10 +40,10 @@ static int l_contour_load (lua_State *L) {
   size_t len = 0;
   int st;
   char *text = lsys_readfile(path, MAXFILE, &len, &e);
-  if (text == NULL) return fail(L, LSYS_ESYNTAX, &e);
+  if (text == NULL) return lsys_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
   st = lsys_contour_parse(c, text, len, path, &e);
   LSYS_FREE(text);
-  if (st != LSYS_OK) return fail(L, st, &e);
+  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
@@ -132,7 +116,7 @@ static void pushpoints (lua_State *L, const double *v, int p) {
 
 /* c:sample(p) -> vertices, normals */
 static int contour_sample (lua_State *L) {
-  const lsys_contour *c = checkcontour(L, 1);
+  const lsys_contour *c = lsys_checkcontour(L, 1);
   lua_Integer p = luaL_checkinteger(L, 2);
   double *v;
   luaL_argcheck(L, p >= 3 && p <= MAXSIDES, 2, "must be between 3 and 65536");
@@ -145,17 +129,17 @@ static int contour_sample (lua_State *L) {
 }
 
 static int contour_size (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)checkcontour(L, 1)->n);
+  lua_pushinteger(L, (lua_Integer)lsys_checkcontour(L, 1)->n);
   return 1;
 }
 
 static int contour_closed (lua_State *L) {
-  lua_pushboolean(L, checkcontour(L, 1)->closed);
+  lua_pushboolean(L, lsys_checkcontour(L, 1)->closed);
   return 1;
 }
 
 static int contour_dim (lua_State *L) {
-  lua_pushinteger(L, checkcontour(L, 1)->dim);
+  lua_pushinteger(L, lsys_checkcontour(L, 1)->dim);
   return 1;
 }
 
@@ -186,10 +170,6 @@ static const luaL_Reg contour_funcs[] = {
 };
 
 void lsys_open_contour (lua_State *L) {
-  luaL_newmetatable(L, CONTOUR_T);
-  luaL_setfuncs(L, contour_meta, 0);
-  luaL_newlib(L, contour_methods);
-  lua_setfield(L, -2, "__index");
-  lua_pop(L, 1);
+  lsys_createmeta(L, CONTOUR_T, contour_meta, contour_methods);
   luaL_setfuncs(L, contour_funcs, 0);
 }

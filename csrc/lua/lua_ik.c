@@ -17,9 +17,9 @@
 #include <string.h>
 
 #include "ik.h"
+#include "lua_aux.h"
 #include "lua_lsys.h"
 
-#define IK_T "lsys.IK"
 #define DEG (180.0 / 3.14159265358979323846)
 
 typedef struct lik {
@@ -44,33 +44,39 @@ static int ik_gc (lua_State *L) {
   return 0;
 }
 
-/* Reads t[key] = {x, y, z} (finite) into v; 'def' when absent (NULL: required). */
-static void getvec (lua_State *L, int t, const char *key, double v[3], const double *def,
-                    const char *what) {
+/* The fields of the table at 't', named "ik: <pre><key>" in messages that
+** show nothing more; numbers may be numerals. */
+static lsys_opts ikopts (int t, const char *pre) {
+  lsys_opts o = {0, NULL, "", LSYS_GOT_NONE, 1};
+  o.t = t;
+  o.pre = pre;
+  return o;
+}
+
+/* Reads o[key] = {x, y, z} (finite) into v; 'def' when absent (NULL: required). */
+static void getvec (lua_State *L, const lsys_opts *o, const char *key, double v[3],
+                    const double *def) {
   int i;
-  if (lua_getfield(L, t, key) == LUA_TNIL && def != NULL) {
+  if (!lsys_optfield(L, o, key, LUA_TNONE, NULL)) {
+    if (def == NULL) lsys_opterror(L, o, key, "a table of 3 numbers");
     memcpy(v, def, 3 * sizeof *v);
-    lua_pop(L, 1);
     return;
   }
-  if (!lua_istable(L, -1)) luaL_error(L, "ik: %s.%s must be a table of 3 numbers", what, key);
+  if (!lua_istable(L, -1)) lsys_opterror(L, o, key, "a table of 3 numbers");
   for (i = 0; i < 3; i++) {
     lua_rawgeti(L, -1, i + 1);
     v[i] = lua_tonumber(L, -1);
     if (!lua_isnumber(L, -1) || !isfinite(v[i]))
-      luaL_error(L, "ik: %s.%s must be a table of 3 finite numbers", what, key);
+      lsys_opterror(L, o, key, "a table of 3 finite numbers");
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
 }
 
-static double getnum (lua_State *L, int t, const char *key, double def, const char *what) {
-  double x;
-  if (lua_getfield(L, t, key) == LUA_TNIL) { lua_pop(L, 1); return def; }
-  x = lua_tonumber(L, -1);
-  if (!lua_isnumber(L, -1) || !isfinite(x) || x < 0)
-    luaL_error(L, "ik: %s.%s must be a number >= 0", what, key);
-  lua_pop(L, 1);
+/* A number >= 0 (weights, counts, tolerances). */
+static double getnum (lua_State *L, const lsys_opts *o, const char *key, double def) {
+  double x = lsys_optnum(L, o, key, def, -HUGE_VAL, HUGE_VAL, "a number >= 0");
+  if (x < 0) lsys_opterror(L, o, key, "a number >= 0");
   return x;
 }
 
@@ -78,12 +84,14 @@ static int l_ik_chain (lua_State *L) {
   static const double zero[3] = {0, 0, 0}, one[3] = {1, 1, 1};
   double bH[3], bU[3], base[9], prevend[3], prev[9];
   lua_Integer n, i;
+  lsys_opts o;
   lik *k;
   luaL_checktype(L, 1, LUA_TTABLE);
   if (lua_getfield(L, 1, "base") != LUA_TTABLE) return luaL_error(L, "ik: a base table expected");
-  getvec(L, 2, "H", bH, NULL, "base");
-  getvec(L, 2, "U", bU, NULL, "base");
-  getvec(L, 2, "p", prevend, NULL, "base");
+  o = ikopts(2, "ik: base.");
+  getvec(L, &o, "H", bH, NULL);
+  getvec(L, &o, "U", bU, NULL);
+  getvec(L, &o, "p", prevend, NULL);
   lua_pop(L, 1);
   if (lua_getfield(L, 1, "joints") != LUA_TTABLE) return luaL_error(L, "ik: a joints list expected");
   n = luaL_len(L, 2);
@@ -105,21 +113,22 @@ static int l_ik_chain (lua_State *L) {
     int t, q;
     if (lua_rawgeti(L, 2, i) != LUA_TTABLE) return luaL_error(L, "ik: joint %d is not a table", (int)i);
     t = lua_gettop(L);
+    o = ikopts(t, "ik: joint.");
     memset(j, 0, sizeof *j);
-    getvec(L, t, "p0", p0, NULL, "joint");
-    getvec(L, t, "p1", p1, NULL, "joint");
-    getvec(L, t, "H", H, NULL, "joint");
-    getvec(L, t, "U", U, NULL, "joint");
-    getvec(L, t, "alpha", a, zero, "joint");
-    getvec(L, t, "rest", r, zero, "joint");
-    getvec(L, t, "stiff", s, one, "joint");
+    getvec(L, &o, "p0", p0, NULL);
+    getvec(L, &o, "p1", p1, NULL);
+    getvec(L, &o, "H", H, NULL);
+    getvec(L, &o, "U", U, NULL);
+    getvec(L, &o, "alpha", a, zero);
+    getvec(L, &o, "rest", r, zero);
+    getvec(L, &o, "stiff", s, one);
     for (q = 0; q < 3; q++) {
       if (s[q] < 0) return luaL_error(L, "ik: joint %d: stiffness must be >= 0", (int)i);
       j->alpha[q] = a[q] / DEG;
       j->rest[q] = r[q] / DEG;
       j->stiff[q] = s[q];
     }
-    j->free = (unsigned)getnum(L, t, "free", 7, "joint") & 7u;
+    j->free = (unsigned)getnum(L, &o, "free", 7) & 7u;
     lsys_ik_frame(M, H, U);
     lsys_ik_setjoint(j, prev, prevend, M, p0, p1);
     memcpy(prev, M, sizeof M);
@@ -135,22 +144,23 @@ static const char *const statusname[] = {
 
 static int ik_solve (lua_State *L) {
   lik *k = checkik(L, 1);
+  lsys_opts go = ikopts(2, "ik: goal.");
   lsys_ikgoal G;
   lsys_cg_opts o;
   lsys_ik_result r;
   lsys_error e;
   luaL_checktype(L, 2, LUA_TTABLE);
   memset(&G, 0, sizeof G);
-  getvec(L, 2, "p", G.p, NULL, "goal");
-  getvec(L, 2, "s", G.s, NULL, "goal");
-  getvec(L, 2, "t", G.t, NULL, "goal");
-  G.wp = getnum(L, 2, "wp", 1, "goal");
-  G.wt = getnum(L, 2, "wt", 1, "goal");
-  G.we = getnum(L, 2, "we", 1, "goal");
-  G.ws = getnum(L, 2, "ws", 0, "goal");
+  getvec(L, &go, "p", G.p, NULL);
+  getvec(L, &go, "s", G.s, NULL);
+  getvec(L, &go, "t", G.t, NULL);
+  G.wp = getnum(L, &go, "wp", 1);
+  G.wt = getnum(L, &go, "wt", 1);
+  G.we = getnum(L, &go, "we", 1);
+  G.ws = getnum(L, &go, "ws", 0);
   lsys_cg_defaults(&o);
-  o.max_iter = (int)getnum(L, 2, "max_iter", o.max_iter, "goal");
-  o.gtol = getnum(L, 2, "gtol", o.gtol, "goal");
+  o.max_iter = (int)getnum(L, &go, "max_iter", o.max_iter);
+  o.gtol = getnum(L, &go, "gtol", o.gtol);
   if (o.max_iter < 1) o.max_iter = 1;
   if (lsys_ik_solve(&k->c, &G, &o, k->work, &r, &e) != LSYS_OK)
     return luaL_error(L, "ik: %s", e.msg);
@@ -241,17 +251,13 @@ static const luaL_Reg ik_methods[] = {
   {"forward", ik_forward}, {NULL, NULL}
 };
 
+static const luaL_Reg ik_meta[] = {
+  {"__index", NULL},  /* placeholder: the method table */
+  {"__gc", ik_gc}, {"__close", ik_gc}, {"__len", ik_len}, {NULL, NULL}
+};
+
 void lsys_open_ik (lua_State *L) {
-  luaL_newmetatable(L, IK_T);
-  luaL_newlib(L, ik_methods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, ik_gc);
-  lua_setfield(L, -2, "__gc");
-  lua_pushcfunction(L, ik_gc);
-  lua_setfield(L, -2, "__close");
-  lua_pushcfunction(L, ik_len);
-  lua_setfield(L, -2, "__len");
-  lua_pop(L, 1);
+  lsys_createmeta(L, IK_T, ik_meta, ik_methods);
   lua_pushcfunction(L, l_ik_chain);
   lua_setfield(L, -2, "ik_chain");
 }

@@ -4,49 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "lua_aux.h"
 #include "lua_lsys.h"
-
-lsys_lstring *lsys_newlstring (lua_State *L) {
-  lsys_lstr *u = (lsys_lstr *)lua_newuserdatauv(L, sizeof *u, 1);
-  lsys_lstring_init(&u->s);           /* valid empty state before anything can fail */
-  u->closed = u->busy = 0;
-  luaL_setmetatable(L, LSTRING_T);
-  return &u->s;
-}
-
-lsys_lstring *lsys_checklstring (lua_State *L, int i) {
-  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
-  if (u->closed) luaL_error(L, "the Lstring was closed");
-  return &u->s;
-}
-
-lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what) {
-  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
-  if (u->closed) luaL_error(L, "the Lstring was closed");
-  if (u->busy) luaL_error(L, "%s: the Lstring is in use by a derivation or interpretation", what);
-  return &u->s;
-}
-
-void lsys_lstring_busy (lua_State *L, int i, int delta) {
-  ((lsys_lstr *)luaL_checkudata(L, i, LSTRING_T))->busy += delta;
-}
-
-void lsys_setowner (lua_State *L, int idx, int owner) {
-  idx = lua_absindex(L, idx);
-  lua_pushvalue(L, owner);
-  if (lua_type(L, -1) == LUA_TUSERDATA && lua_getmetatable(L, -1)) {
-    lua_pop(L, 1);
-    if (!luaL_testudata(L, -1, LSTRING_T)) { lua_setiuservalue(L, idx, 1); return; }
-    lua_pop(L, 1);
-    lua_getiuservalue(L, owner, 1);            /* an Lstring: share its owner */
-  }
-  lua_setiuservalue(L, idx, 1);
-}
-
-int lsys_raise (lua_State *L, int code, const lsys_error *e) {
-  if (code == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
-  return luaL_error(L, "%s", e->msg);
-}
 
 /* __gc and __close: idempotent; a string in use by a running operation is not
 ** freed (it cannot be collected then, but __close can be called on it). */
@@ -280,18 +239,6 @@ static int lstring_bytes (lua_State *L) {
   return 1;
 }
 
-int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
-  while (*s) {
-    size_t n = 0;
-    while (*s == ' ' || *s == '\t' || *s == '\n' || *s == ',') s++;
-    while (s[n] && s[n] != ' ' && s[n] != '\t' && s[n] != '\n' && s[n] != ',') n++;
-    if (n > 0 && lsys_names_add(d, s, n) != LSYS_OK) return LSYS_ENOMEM;
-    s += n;
-  }
-  (void)L;
-  return LSYS_OK;
-}
-
 /* lsys.lstring(text [, names]): parses cpfg text notation */
 static int l_lstring (lua_State *L) {
   size_t len;
@@ -325,11 +272,7 @@ static const luaL_Reg lstring_meta[] = {
 };
 
 void lsys_open_lstring (lua_State *L) {
-  luaL_newmetatable(L, LSTRING_T);
-  luaL_setfuncs(L, lstring_meta, 0);
-  luaL_newlib(L, lstring_methods);
-  lua_setfield(L, -2, "__index");
-  lua_pop(L, 1);
+  lsys_createmeta(L, LSTRING_T, lstring_meta, lstring_methods);
   lua_pushcfunction(L, l_lstring);
   lua_setfield(L, -2, "lstring");
 }

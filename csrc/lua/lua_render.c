@@ -5,152 +5,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "lua_geom.h"
+#include "lua_aux.h"
+#include "lua_lsys.h"
 #include "outfile.h"
 #include "pngio.h"
-
-#define PIXELS_T "lsys.Pixels"   /* a malloc'd pixel block owned by Lua until copied */
-
-#ifndef LSYS_NO_RENDER
-
-/* A short description of the value at 'idx' for error messages (may push it). */
-static const char *got (lua_State *L, int idx) {
-  switch (lua_type(L, idx)) {
-    case LUA_TNUMBER:
-      return luaL_tolstring(L, idx, NULL);
-    case LUA_TSTRING:
-      return lua_pushfstring(L, "'%s'", lua_tostring(L, idx));
-    default:
-      return luaL_typename(L, idx);
-  }
-}
-
-/* Pushes opts[key]; returns 0 (and pops it) when it is nil. */
-static int field (lua_State *L, int t, const char *key) {
-  if (t == 0) return 0;
-  if (lua_getfield(L, t, key) == LUA_TNIL) { lua_pop(L, 1); return 0; }
-  return 1;
-}
-
-static int getint (lua_State *L, int t, const char *key, int lo, int hi, int def) {
-  lua_Integer v;
-  int isint;
-  if (!field(L, t, key)) return def;
-  v = lua_tointegerx(L, -1, &isint);
-  if (!isint || v < lo || v > hi) {
-    if (lo == 1)
-      luaL_error(L, "lsys.render: opts.%s must be a positive integer at most %d, got %s",
-                 key, hi, got(L, -1));
-    luaL_error(L, "lsys.render: opts.%s must be an integer in [%d, %d], got %s", key, lo, hi,
-               got(L, -1));
-  }
-  lua_pop(L, 1);
-  return (int)v;
-}
-
-/* A number in (lo, hi) (open interval; infinities for no bound). */
-static double getnum (lua_State *L, int t, const char *key, double lo, double hi,
-                      const char *what, double def) {
-  double x;
-  if (!field(L, t, key)) return def;
-  x = lua_type(L, -1) == LUA_TNUMBER ? lua_tonumber(L, -1) : NAN;
-  if (!isfinite(x) || !(x > lo) || !(x < hi))
-    luaL_error(L, "lsys.render: opts.%s must be %s, got %s", key, what, got(L, -1));
-  lua_pop(L, 1);
-  return x;
-}
-
-static int getbool (lua_State *L, int t, const char *key) {
-  int b;
-  if (!field(L, t, key)) return 0;
-  if (!lua_isboolean(L, -1))
-    luaL_error(L, "lsys.render: opts.%s must be a boolean, got %s", key, got(L, -1));
-  b = lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return b;
-}
-
-/* Reads {x, y, z} (finite numbers; within [0, 1] for a colour). */
-static int getvec3 (lua_State *L, int t, const char *key, int colour, double v[3]) {
-  int i, ok;
-  if (!field(L, t, key)) return 0;
-  ok = lua_type(L, -1) == LUA_TTABLE && luaL_len(L, -1) == 3;
-  for (i = 0; ok && i < 3; i++) {
-    ok = lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER && isfinite(v[i] = lua_tonumber(L, -1)) &&
-         (!colour || (v[i] >= 0 && v[i] <= 1));
-    lua_pop(L, 1);
-  }
-  if (!ok) {
-    if (colour)
-      luaL_error(L, "lsys.render: opts.%s must be {r, g, b} with numbers in [0, 1]", key);
-    luaL_error(L, "lsys.render: opts.%s must be {x, y, z} with 3 finite numbers", key);
-  }
-  lua_pop(L, 1);
-  return 1;
-}
-
-static const char *const optnames[] = {
-  "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
-  "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
-  NULL
-};
-
-/* Fills 'o' from the options table at 't' (0: none), checking every field. */
-void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o) {
-  lsys_camera *cam = &o->cam;
-  double v[3];
-  lsys_render_defaults(o);
-  if (t != 0) {                       /* unknown keys are mistakes */
-    lua_pushnil(L);
-    while (lua_next(L, t)) {
-      int i;
-      lua_pop(L, 1);
-      for (i = 0; optnames[i]; i++)
-        if (lua_type(L, -1) == LUA_TSTRING && strcmp(lua_tostring(L, -1), optnames[i]) == 0)
-          break;
-      if (optnames[i] == NULL)
-        luaL_error(L, "lsys.render: unknown option %s", got(L, -1));
-    }
-  }
-  o->width = getint(L, t, "width", 1, 16384, o->width);
-  o->height = getint(L, t, "height", 1, 16384, o->height);
-  o->supersample = getint(L, t, "supersample", 1, 16, o->supersample);
-  if (getvec3(L, t, "background", 1, v)) {
-    o->background[0] = (float)v[0];
-    o->background[1] = (float)v[1];
-    o->background[2] = (float)v[2];
-  }
-  o->transparent = getbool(L, t, "transparent");
-  if (getvec3(L, t, "light", 0, o->light) && o->light[0] == 0 && o->light[1] == 0 &&
-      o->light[2] == 0)
-    luaL_error(L, "lsys.render: opts.light must not be the zero vector");
-  o->wireframe = getbool(L, t, "wireframe");
-  cam->has_eye = getvec3(L, t, "viewpoint", 0, cam->eye);
-  cam->has_target = getvec3(L, t, "target", 0, cam->target);
-  cam->has_up = getvec3(L, t, "up", 0, cam->up);
-  if (cam->has_up && cam->up[0] == 0 && cam->up[1] == 0 && cam->up[2] == 0)
-    luaL_error(L, "lsys.render: opts.up must not be the zero vector");
-  if (getvec3(L, t, "direction", 0, cam->dir) && cam->dir[0] == 0 && cam->dir[1] == 0 &&
-      cam->dir[2] == 0)
-    luaL_error(L, "lsys.render: opts.direction must not be the zero vector");
-  if (cam->has_eye && cam->has_target && cam->eye[0] == cam->target[0] &&
-      cam->eye[1] == cam->target[1] && cam->eye[2] == cam->target[2])
-    luaL_error(L, "lsys.render: opts.viewpoint and opts.target must differ");
-  if (field(L, t, "projection")) {
-    const char *p = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
-    if (strcmp(p, "perspective") == 0) cam->projection = LSYS_PERSPECTIVE;
-    else if (strcmp(p, "parallel") == 0) cam->projection = LSYS_PARALLEL;
-    else
-      luaL_error(L, "lsys.render: opts.projection must be 'perspective' or 'parallel', got %s",
-                 got(L, -1));
-    lua_pop(L, 1);
-  }
-  cam->fov = getnum(L, t, "fov", 0, 180, "a number of degrees in (0, 180)", cam->fov);
-  cam->twist = getnum(L, t, "twist", -HUGE_VAL, HUGE_VAL, "a number of degrees", 0);
-  cam->zoom = getnum(L, t, "zoom", 0, HUGE_VAL, "a positive number", 1);
-}
-
-#endif
 
 /*
 ** core.render(scene [, opts]): draws the scene offscreen. With opts.out,
@@ -167,25 +25,25 @@ static int l_render (lua_State *L) {
   return luaL_error(L, "lsys was built without OSMesa: install libosmesa6-dev and rebuild "
                        "(./setup.sh does)");
 #else
-  const lsys_material *pal;
-  size_t npal, n;
-  const lsys_mesh *m = lsys_checkscene(L, 1, &pal, &npal);
+  const lsys_lscene *S = lsys_checkscene(L, 1);
   const char *out = NULL;
   lsys_render_opts o;
+  lsys_opts ro = {0, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
   lsys_error e;
   luaL_Buffer b;
   uint8_t *px;
-  int t = lua_isnoneornil(L, 2) ? 0 : 2, maxw, maxh;
-  if (t) luaL_checktype(L, 2, LUA_TTABLE);
-  lsys_readrenderopts(L, t, &o);
-  o.tex = lsys_opttextures(L, t, "lsys.render", &o.ntex);   /* pushes one value */
-  if (field(L, t, "out")) {
-    if (lua_type(L, -1) != LUA_TSTRING)
-      luaL_error(L, "lsys.render: opts.out must be a file name, got %s", got(L, -1));
-    out = lua_tostring(L, -1);        /* stays on the stack */
+  size_t n;
+  int maxw, maxh;
+  if (!lua_isnoneornil(L, 2)) {
+    luaL_checktype(L, 2, LUA_TTABLE);
+    ro.t = 2;
   }
-  o.pal = pal;
-  o.npal = npal;
+  lsys_readrenderopts(L, ro.t, &o);
+  o.tex = lsys_opttextures(L, ro.t, "lsys.render", &o.ntex);   /* pushes one value */
+  if (lsys_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
+    out = lua_tostring(L, -1);        /* stays on the stack */
+  o.pal = S->pal;
+  o.npal = S->npal;
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (o.width > maxw || o.height > maxh)
@@ -200,7 +58,7 @@ static int l_render (lua_State *L) {
   }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
-  if (lsys_render_offscreen(m, &o, px, &e) != LSYS_OK)
+  if (lsys_render_offscreen(&S->mesh, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {
     if (lsys_png_write(out, px, o.width, o.height, o.transparent, &e) != LSYS_OK)
@@ -230,7 +88,7 @@ static int l_png_read (lua_State *L) {
   lsys_error e;
   *box = NULL;
   luaL_setmetatable(L, PIXELS_T);
-  if (lsys_png_read(path, box, &w, &h, &e) != LSYS_OK) return lsys_raise(L, e.code, &e);
+  if (lsys_png_read(path, box, &w, &h, &e) != LSYS_OK) return lsys_raise(L, e.code, &e, 1);
   lua_pushlstring(L, (const char *)*box, (size_t)w * h * 4);
   LSYS_FREE(*box);
   *box = NULL;
@@ -263,7 +121,7 @@ static int l_png_write (lua_State *L) {
     alpha = lua_toboolean(L, 5);
   }
   if (lsys_png_write(path, px, (int)w, (int)h, alpha, &e) != LSYS_OK)
-    return lsys_raise(L, e.code, &e);
+    return lsys_raise(L, e.code, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -280,7 +138,7 @@ static int l_write_file (lua_State *L) {
     lsys_outfile_write(&out, bytes, len);
     st = lsys_outfile_commit(&out, &e);
   }
-  if (st != LSYS_OK) return lsys_raise(L, st, &e);
+  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -305,6 +163,10 @@ static int l_read_file (lua_State *L) {
   return 1;
 }
 
+static const luaL_Reg pixels_meta[] = {
+  {"__gc", pixels_gc}, {NULL, NULL}
+};
+
 static const luaL_Reg render_funcs[] = {
   {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write},
   {"write_file", l_write_file}, {"read_file", l_read_file}, {NULL, NULL}
@@ -321,10 +183,7 @@ static int renderstate_gc (lua_State *L) {
 #endif
 
 void lsys_open_render (lua_State *L) {
-  luaL_newmetatable(L, PIXELS_T);
-  lua_pushcfunction(L, pixels_gc);
-  lua_setfield(L, -2, "__gc");
-  lua_pop(L, 1);
+  lsys_createmeta(L, PIXELS_T, pixels_meta, NULL);
 #ifndef LSYS_NO_RENDER
   if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.renderstate") == LUA_TNIL) {
     lua_newuserdatauv(L, 0, 0);

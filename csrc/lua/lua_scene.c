@@ -15,30 +15,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "lua_geom.h"
+#include "lua_aux.h"
+#include "lua_lsys.h"
 #include "derive.h"
 #include "turtle.h"
-
-/* uservalues of a Scene */
-enum { SV_RULES = 1, SV_LSTRING = 2, SV_OPTS = 3, NSV = 3 };
-
-typedef struct lscene {
-  lsys_mesh mesh;
-  lsys_material *pal;
-  size_t npal;
-  lsys_trec *rec;
-  size_t nrec;
-  float *stiff;
-  int inited;
-} lscene;
-
-/* The Scene at 'i'; raises when it was closed (its memory freed). */
-static lscene *checkscene (lua_State *L, int i) {
-  lscene *S = (lscene *)luaL_checkudata(L, i, SCENE_T);
-  if (!S->inited) luaL_error(L, "the scene was closed");
-  return S;
-}
-#define TURTLE_T "lsys.Turtle"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
 ** error while the homomorphism is streamed leaves it to the collector. */
@@ -51,47 +31,38 @@ static lsys_turtle *newturtle (lua_State *L, int mode) {
   lsys_turtle *t = (lsys_turtle *)lua_newuserdatauv(L, sizeof *t, 0);
   lsys_turtle_init(t);
   t->mode = mode;
-  if (luaL_newmetatable(L, TURTLE_T)) {
-    lua_pushcfunction(L, turtle_gc);
-    lua_setfield(L, -2, "__gc");
-  }
-  lua_setmetatable(L, -2);
+  luaL_setmetatable(L, TURTLE_T);
   return t;
 }
 
 /* ---------------------------------------------------------------------- */
-/* options */
+/* options: the view's fields, numbers also as numerals */
 
-static double optnum (lua_State *L, int t, const char *k, double def) {
-  double x = def;
-  int ty = lua_getfield(L, t, k);
-  if (ty != LUA_TNIL) {
-    int ok;
-    x = lua_tonumberx(L, -1, &ok);
-    if (!ok || !isfinite(x))
-      luaL_error(L, "view option '%s' must be a finite number, got %s", k,
-                 ok ? "a non-finite number" : luaL_typename(L, -1));
-  }
-  lua_pop(L, 1);
-  return x;
+/* The options in the table at 't', named "view option 'k'" in messages. */
+static lsys_opts viewopts (lua_State *L, int t) {
+  lsys_opts o = {0, "view option '", "'", LSYS_GOT_TYPE, 1};
+  o.t = lua_absindex(L, t);
+  return o;
 }
 
-/* An integer option in [lo, hi], checked before the conversion to int. */
-static int optint (lua_State *L, int t, const char *k, int def, int lo, int hi) {
-  double x = optnum(L, t, k, def);
+/* An integer option: a number in [lo, hi], its fraction dropped. Not
+** lsys_optint: its message shows the number, and a fraction is no error. */
+static int optwhole (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
+  double x = lsys_optfinite(L, o, k, def);
   if (!(x >= lo && x <= hi)) {
     char got[32];
     snprintf(got, sizeof got, "%g", x);
-    luaL_error(L, "view option '%s' must be between %d and %d, got %s", k, lo, hi, got);
+    luaL_error(L, "%s%s%s must be between %d and %d, got %s", o->pre, k, o->post, lo, hi, got);
   }
   return (int)x;
 }
 
-static void optvec (lua_State *L, int t, const char *k, double *v, int n, const char *what) {
+/* A tropism's vector {x, y, z}; the messages name the tropism ('what'). */
+static void readvector (lua_State *L, int t, const char *k, double v[3], const char *what) {
   int i;
   if (lua_getfield(L, t, k) != LUA_TTABLE)
-    luaL_error(L, "%s: '%s' must be a list of %d numbers", what, k, n);
-  for (i = 0; i < n; i++) {
+    luaL_error(L, "%s: '%s' must be a list of 3 numbers", what, k);
+  for (i = 0; i < 3; i++) {
     int ok;
     lua_geti(L, -1, i + 1);
     v[i] = lua_tonumberx(L, -1, &ok);
@@ -139,16 +110,18 @@ static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
   u = (lsys_surfuse *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *u, 0);
   lua_pushnil(L);
   while (lua_next(L, -3)) {
+    lsys_opts e;
     if (lua_type(L, -2) != LUA_TSTRING || lua_type(L, -1) != LUA_TTABLE)
       luaL_error(L, "view surfaces: entries must be name = {surface = ..., ...}");
+    e = viewopts(L, -1);
     u[k].name = lua_tostring(L, -2);
     lua_getfield(L, -1, "surface");
     u[k].s = lsys_checksurface(L, -1);
     lua_pop(L, 1);
-    u[k].scale = optnum(L, -1, "scale", 1);
-    u[k].texture = optint(L, -1, "texture", 0, 0, 65535);
-    u[k].ns = optint(L, -1, "s", 4, 1, 256);
-    u[k].nt = optint(L, -1, "t", u[k].ns, 1, 256);
+    u[k].scale = lsys_optfinite(L, &e, "scale", 1);
+    u[k].texture = optwhole(L, &e, "texture", 0, 0, 65535);
+    u[k].ns = optwhole(L, &e, "s", 4, 1, 256);
+    u[k].nt = optwhole(L, &e, "t", u[k].ns, 1, 256);
     k++;
     lua_pop(L, 1);
   }
@@ -157,19 +130,48 @@ static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
   o->nsurfaces = n;
 }
 
+/* opts.tropisms = {{vector=, angle=, elasticity=, increment=, torque=}} */
+static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
+  if (lua_getfield(L, t, "tropisms") == LUA_TTABLE) {
+    int n = (int)luaL_len(L, -1), k, tt = lua_gettop(L);
+    if (n > LSYS_MAXTROPISMS)
+      luaL_error(L, "the view has %d tropisms and torques; at most %d are supported", n,
+                 LSYS_MAXTROPISMS);
+    for (k = 0; k < n; k++) {
+      lsys_tropism *tp = &o->trop[k];
+      lsys_opts e;
+      char what[48];
+      snprintf(what, sizeof what, "view tropism %d", k + 1);
+      if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
+      e = viewopts(L, -1);
+      readvector(L, e.t, "vector", tp->vec, what);
+      tp->angle = lsys_optfinite(L, &e, "angle", 0);
+      tp->elasticity = lsys_optfinite(L, &e, "elasticity", 0);
+      tp->increment = lsys_optfinite(L, &e, "increment", 0);
+      lua_getfield(L, -1, "torque");
+      tp->torque = lua_toboolean(L, -1);
+      lua_pop(L, 2);
+    }
+    o->ntrop = n;
+  }
+  lua_pop(L, 1);
+}
+
 /* Reads the turtle options from the table at 't'. Leaves three values on
 ** the stack that keep the contour, surface and texture arrays alive. */
 static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
+  lsys_opts v;
   const char *style;
   luaL_checktype(L, t, LUA_TTABLE);
+  v = viewopts(L, t);
   lsys_turtle_defaults(o);
-  o->angle = optnum(L, t, "angle", o->angle);
-  o->step = optnum(L, t, "step", o->step);
-  o->width = optnum(L, t, "width", o->width);
-  o->dwidth = optnum(L, t, "width_increment", o->dwidth);
-  o->color = optint(L, t, "color", o->color, 0, 65535);
-  o->dcolor = optint(L, t, "color_increment", o->dcolor, -65535, 65535);
-  o->sides = optint(L, t, "sides", o->sides, 3, 1024);
+  o->angle = lsys_optfinite(L, &v, "angle", o->angle);
+  o->step = lsys_optfinite(L, &v, "step", o->step);
+  o->width = lsys_optfinite(L, &v, "width", o->width);
+  o->dwidth = lsys_optfinite(L, &v, "width_increment", o->dwidth);
+  o->color = optwhole(L, &v, "color", o->color, 0, 65535);
+  o->dcolor = optwhole(L, &v, "color_increment", o->dcolor, -65535, 65535);
+  o->sides = optwhole(L, &v, "sides", o->sides, 3, 1024);
   lua_getfield(L, t, "allow_system_calls");
   o->allow_system = lua_toboolean(L, -1);
   lua_getfield(L, t, "records");
@@ -184,27 +186,7 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   else luaL_error(L, "view option 'line_style' must be \"line\", \"polygon\" or \"cylinder\", "
                   "got \"%s\"", style);
   lua_pop(L, 1);
-  if (lua_getfield(L, t, "tropisms") == LUA_TTABLE) {
-    int n = (int)luaL_len(L, -1), k, tt = lua_gettop(L);
-    if (n > LSYS_MAXTROPISMS)
-      luaL_error(L, "the view has %d tropisms and torques; at most %d are supported", n,
-                 LSYS_MAXTROPISMS);
-    for (k = 0; k < n; k++) {
-      lsys_tropism *tp = &o->trop[k];
-      char what[48];
-      snprintf(what, sizeof what, "view tropism %d", k + 1);
-      if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
-      optvec(L, -1, "vector", tp->vec, 3, what);
-      tp->angle = optnum(L, -1, "angle", 0);
-      tp->elasticity = optnum(L, -1, "elasticity", 0);
-      tp->increment = optnum(L, -1, "increment", 0);
-      lua_getfield(L, -1, "torque");
-      tp->torque = lua_toboolean(L, -1);
-      lua_pop(L, 2);
-    }
-    o->ntrop = n;
-  }
-  lua_pop(L, 1);
+  readtropisms(L, t, o);
   lua_getfield(L, t, "minimize_twist");
   o->minimize_twist = lua_isnil(L, -1) || lua_toboolean(L, -1);
   lua_pop(L, 1);
@@ -236,7 +218,7 @@ static void readcolor (lua_State *L, int t, const char *k, float *c, int require
 }
 
 /* palette = {[0] = m0, m1, m2, ...}: index c uses entry c % n */
-static void readpalette (lua_State *L, int t, lscene *S) {
+static void readpalette (lua_State *L, int t, lsys_lscene *S) {
   lua_Integer n, k;
   if (lua_getfield(L, t, "palette") != LUA_TTABLE) {
     lua_pop(L, 1);
@@ -253,11 +235,13 @@ static void readpalette (lua_State *L, int t, lscene *S) {
   S->npal = (size_t)n;
   for (k = 0; k < n; k++) {
     lsys_material *m = &S->pal[k];
+    lsys_opts e;
     lsys_material_color(m, 0.6, 0.6, 0.6);
     if (lua_geti(L, -1, k) != LUA_TTABLE) {
       if (k == 0) { lua_pop(L, 1); continue; }
       luaL_error(L, "palette entry %d must be a material table", (int)k);
     }
+    e = viewopts(L, -1);
     readcolor(L, -1, "diffuse", m->diffuse, 1);
     m->ambient[0] = 0.3f * m->diffuse[0];
     m->ambient[1] = 0.3f * m->diffuse[1];
@@ -266,7 +250,7 @@ static void readpalette (lua_State *L, int t, lscene *S) {
     readcolor(L, -1, "ambient", m->ambient, 0);
     readcolor(L, -1, "specular", m->specular, 0);
     readcolor(L, -1, "emission", m->emission, 0);
-    m->shininess = (float)optnum(L, -1, "shininess", m->shininess);
+    m->shininess = (float)lsys_optfinite(L, &e, "shininess", m->shininess);
     if (m->shininess < 0 || m->shininess > 128)
       luaL_error(L, "palette entry %d: shininess must be in [0, 128]", (int)k);
     lua_pop(L, 1);
@@ -331,17 +315,17 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   lua_pop(L, 1);
   t->o = o;
   st = lsys_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
-  if (st != LSYS_OK) luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : t->err.msg);
+  if (st != LSYS_OK) lsys_raise(L, st, &t->err, 1);
 }
 
 /* core.interpret(rules, lstring, opts) -> Scene */
 static int l_interpret (lua_State *L) {
   lsys_turtle *t;
   lsys_turtle_opts o;
-  lscene *S;
+  lsys_lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
-  S = (lscene *)lua_newuserdatauv(L, sizeof *S, NSV);      /* 4 */
+  S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);      /* 4 */
   memset(S, 0, sizeof *S);
   luaL_setmetatable(L, SCENE_T);
   lsys_mesh_init(&S->mesh);
@@ -355,9 +339,9 @@ static int l_interpret (lua_State *L) {
   t->rec = NULL; t->reccap = 0;
   t->stiff = NULL; t->stiffcap = 0;
   lsys_turtle_free(t);
-  lua_pushvalue(L, 1); lua_setiuservalue(L, 4, SV_RULES);
-  lua_pushvalue(L, 2); lua_setiuservalue(L, 4, SV_LSTRING);
-  lua_pushvalue(L, 3); lua_setiuservalue(L, 4, SV_OPTS);
+  lua_pushvalue(L, 1); lua_setiuservalue(L, 4, LSYS_SCENE_RULES);
+  lua_pushvalue(L, 2); lua_setiuservalue(L, 4, LSYS_SCENE_LSTRING);
+  lua_pushvalue(L, 3); lua_setiuservalue(L, 4, LSYS_SCENE_OPTS);
   lua_gc(L, LUA_GCSTEP, (int)((S->mesh.nv * 41 + S->mesh.nt * 12 + S->nrec * sizeof *S->rec) >> 10));
   lua_settop(L, 4);
   return 1;
@@ -414,29 +398,9 @@ static int l_turtle_state (lua_State *L) {
 /* ---------------------------------------------------------------------- */
 /* Scene */
 
-const lsys_mesh *lsys_checkscene (lua_State *L, int idx, const lsys_material **pal,
-                                  size_t *npal) {
-  lscene *S = checkscene(L, idx);
-  if (pal) *pal = S->pal;
-  if (npal) *npal = S->npal;
-  return &S->mesh;
-}
-
-const lsys_trec *lsys_scenerecords (lua_State *L, int idx, size_t *n) {
-  lscene *S = checkscene(L, idx);
-  *n = S->nrec;
-  return S->rec;
-}
-
-void lsys_scenetake (lua_State *L, int idx, lsys_mesh *m) {
-  lscene *S = checkscene(L, idx);
-  *m = S->mesh;
-  lsys_mesh_init(&S->mesh);
-}
-
 /* __gc and __close: idempotent; every method of a closed scene raises. */
 static int scene_gc (lua_State *L) {
-  lscene *S = (lscene *)luaL_checkudata(L, 1, SCENE_T);
+  lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
     lsys_mesh_free(&S->mesh);
     LSYS_FREE(S->pal);
@@ -449,14 +413,14 @@ static int scene_gc (lua_State *L) {
   return 0;
 }
 
-static size_t countrec (const lscene *S, int kind) {
+static size_t countrec (const lsys_lscene *S, int kind) {
   size_t k, n = 0;
   for (k = 0; k < S->nrec; k++) n += S->rec[k].kind == kind;
   return n;
 }
 
 static int scene_index (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
   if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nt);
   else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nv);
@@ -464,7 +428,7 @@ static int scene_index (lua_State *L) {
   else if (strcmp(k, "nrecords") == 0) lua_pushinteger(L, (lua_Integer)S->nrec);
   else if (strcmp(k, "nsegments") == 0)
     lua_pushinteger(L, (lua_Integer)countrec(S, LSYS_REC_SEGMENT));
-  else if (strcmp(k, "lstring") == 0) lua_getiuservalue(L, 1, SV_LSTRING);
+  else if (strcmp(k, "lstring") == 0) lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);
   else {
     lua_getmetatable(L, 1);
     lua_getfield(L, -1, "__methods");
@@ -474,7 +438,7 @@ static int scene_index (lua_State *L) {
 }
 
 static int scene_tostring (lua_State *L) {
-  lscene *S = (lscene *)luaL_checkudata(L, 1, SCENE_T);
+  lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (!S->inited) {
     lua_pushliteral(L, "lsys.Scene (closed)");
     return 1;
@@ -486,7 +450,7 @@ static int scene_tostring (lua_State *L) {
 
 /* scene:bounds() -> {xmin, ymin, zmin}, {xmax, ymax, zmax} (nil when empty) */
 static int scene_bounds (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   double lo[3], hi[3];
   if (!lsys_mesh_bounds(&S->mesh, lo, hi)) { lua_pushnil(L); return 1; }
   pushvec(L, lo);
@@ -496,7 +460,7 @@ static int scene_bounds (lua_State *L) {
 
 /* scene:area() -> total area of the triangles */
 static int scene_area (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   const lsys_mesh *m = &S->mesh;
   double a = 0;
   size_t k;
@@ -513,22 +477,13 @@ static int scene_area (lua_State *L) {
   return 1;
 }
 
-static const char *const kindname[] = {
-  "none", "segment", "sphere", "disc", "polygon", "label", "system", "gcyl", "surface"
-};
-#define NKINDS ((int)(sizeof kindname / sizeof kindname[0]))
-
-const char *lsys_recordkind (int kind) {
-  return kindname[kind >= 0 && kind < NKINDS ? kind : 0];
-}
-
-static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
+static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) {
   float l[3];
   l[0] = r->H[1] * r->U[2] - r->H[2] * r->U[1];          /* L = H x U */
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
   lua_createtable(L, 0, 12);
-  lua_pushstring(L, kindname[r->kind < NKINDS ? r->kind : 0]); lua_setfield(L, -2, "kind");
+  lua_pushstring(L, lsys_recordkind(r->kind)); lua_setfield(L, -2, "kind");
   lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
   if (r->parent != LSYS_NOREC) {
     lua_pushinteger(L, (lua_Integer)r->parent + 1);
@@ -556,7 +511,7 @@ static void pushrecord (lua_State *L, const lscene *S, const lsys_trec *r) {
 
 /* scene:record(k) -> table for turtle record k (1-based), or nil */
 static int scene_record (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   if (k < 1 || (size_t)k > S->nrec) { lua_pushnil(L); return 1; }
   pushrecord(L, S, &S->rec[k - 1]);
@@ -564,7 +519,7 @@ static int scene_record (lua_State *L) {
 }
 
 static int records_iter (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
   if (k < 1 || (size_t)k > S->nrec) return 0;
   lua_pushinteger(L, k);
@@ -574,7 +529,7 @@ static int records_iter (lua_State *L) {
 
 /* for k, rec in scene:records() do ... end */
 static int scene_records (lua_State *L) {
-  checkscene(L, 1);
+  lsys_checkscene(L, 1);
   lua_pushcfunction(L, records_iter);
   lua_pushvalue(L, 1);
   lua_pushinteger(L, 0);
@@ -583,7 +538,7 @@ static int scene_records (lua_State *L) {
 
 /* scene:find(module) -> index of the first record of module i (1-based), or nil */
 static int scene_find (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer m = luaL_checkinteger(L, 2);
   size_t k;
   for (k = 0; k < S->nrec; k++)
@@ -596,7 +551,7 @@ static int scene_find (lua_State *L) {
 ** {{x, y, z}, {x, y, z}} of its triangles (empty for lines and records that
 ** drew none; a leaf or flower gives its whole outline and inner edges) */
 static int scene_edges (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   const lsys_trec *r;
   uint32_t *e;
@@ -620,21 +575,21 @@ static int scene_edges (lua_State *L) {
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   lua_Integer i;
-  checkscene(L, 1);
+  lsys_checkscene(L, 1);
   i = luaL_checkinteger(L, 2);
   lua_settop(L, 2);
   lua_pushcfunction(L, l_turtle_state);
-  lua_getiuservalue(L, 1, SV_RULES);
-  lua_getiuservalue(L, 1, SV_LSTRING);
+  lua_getiuservalue(L, 1, LSYS_SCENE_RULES);
+  lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);
   lua_pushinteger(L, i);
-  lua_getiuservalue(L, 1, SV_OPTS);
+  lua_getiuservalue(L, 1, LSYS_SCENE_OPTS);
   lua_call(L, 4, 6);
   return 6;
 }
 
 /* scene:save(path) -> true; .obj (+ .mtl), .ply, .glb */
 static int scene_save (lua_State *L) {
-  lscene *S = checkscene(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 1);
   size_t len;
   const char *path = luaL_checklstring(L, 2, &len), *ext = strrchr(path, '.');
   lsys_error e;
@@ -642,7 +597,7 @@ static int scene_save (lua_State *L) {
   int st, ntex;
   memset(&e, 0, sizeof e);
   lua_settop(L, 2);                   /* the textures of the interpretation's options */
-  tex = lsys_opttextures(L, lua_getiuservalue(L, 1, SV_OPTS) == LUA_TTABLE ? 3 : 0,
+  tex = lsys_opttextures(L, lua_getiuservalue(L, 1, LSYS_SCENE_OPTS) == LUA_TTABLE ? 3 : 0,
                          "scene:save", &ntex);
   if (ext != NULL && strcmp(ext, ".obj") == 0)
     st = lsys_mesh_save_obj(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
@@ -652,8 +607,7 @@ static int scene_save (lua_State *L) {
     st = lsys_mesh_save_glb(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
   else
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
-  if (st != LSYS_OK)
-    return luaL_error(L, "%s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
+  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -685,11 +639,17 @@ static const luaL_Reg scene_funcs[] = {
   {NULL, NULL}
 };
 
+static const luaL_Reg turtle_meta[] = {
+  {"__gc", turtle_gc}, {NULL, NULL}
+};
+
+/* The Scene's __index (scene_index) finds its methods in __methods. */
 void lsys_open_scene (lua_State *L) {
-  luaL_newmetatable(L, SCENE_T);
-  luaL_setfuncs(L, scene_meta, 0);
+  lsys_createmeta(L, SCENE_T, scene_meta, NULL);
+  luaL_getmetatable(L, SCENE_T);
   luaL_newlib(L, scene_methods);
   lua_setfield(L, -2, "__methods");
   lua_pop(L, 1);
+  lsys_createmeta(L, TURTLE_T, turtle_meta, NULL);
   luaL_setfuncs(L, scene_funcs, 0);
 }

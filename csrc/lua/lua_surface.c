@@ -19,20 +19,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "lua_geom.h"
+#include "lua_aux.h"
+#include "lua_lsys.h"
 
 #define MAXFILE ((size_t)16 << 20)    /* bytes of a surface file */
-
-/* The Surface at 'i'; raises when it was closed (a live one has patches). */
-static lsys_surface *checksurface (lua_State *L, int i) {
-  lsys_surface *s = (lsys_surface *)luaL_checkudata(L, i, SURFACE_T);
-  if (s->patch == NULL) luaL_error(L, "the surface was closed");
-  return s;
-}
-
-const lsys_surface *lsys_checksurface (lua_State *L, int idx) {
-  return checksurface(L, idx);
-}
 
 static int surface_gc (lua_State *L) {       /* also __close: idempotent */
   lsys_surface_free((lsys_surface *)luaL_checkudata(L, 1, SURFACE_T));
@@ -49,12 +39,6 @@ static lsys_surface *newsurface (lua_State *L, int name) {
   return s;
 }
 
-/* Raises for a failed parse: the message already names the file and line. */
-static int raise (lua_State *L, int code, const lsys_error *e) {
-  lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
-  return lua_error(L);
-}
-
 /* core.surface_load(path) */
 static int l_surface_load (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
@@ -63,10 +47,10 @@ static int l_surface_load (lua_State *L) {
   size_t len = 0;
   int st;
   char *text = lsys_readfile(path, MAXFILE, &len, &e);
-  if (text == NULL) return raise(L, LSYS_ESYNTAX, &e);
+  if (text == NULL) return lsys_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
   st = lsys_surface_parse(s, text, len, path, &e);
   LSYS_FREE(text);
-  if (st != LSYS_OK) return raise(L, st, &e);
+  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
@@ -85,7 +69,7 @@ static int l_surface_parse (lua_State *L) {
   }
   s = newsurface(L, 2);
   st = lsys_surface_parse(s, text, len, name, &e);
-  if (st != LSYS_OK) return raise(L, st, &e);
+  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
@@ -100,7 +84,7 @@ static void pushvec (lua_State *L, const double *v, int n) {
 
 /* s:info() */
 static int surface_info (lua_State *L) {
-  const lsys_surface *s = checksurface(L, 1);
+  const lsys_surface *s = lsys_checksurface(L, 1);
   double prec[2];
   size_t i;
   lua_createtable(L, 0, 11);
@@ -208,11 +192,6 @@ static const luaL_Reg funcs[] = {
 };
 
 void lsys_open_surface (lua_State *L) {
-  luaL_newmetatable(L, SURFACE_T);
-  luaL_setfuncs(L, surface_meta, 0);
-  luaL_newlibtable(L, surface_methods);
-  luaL_setfuncs(L, surface_methods, 0);
-  lua_setfield(L, -2, "__index");
-  lua_pop(L, 1);
+  lsys_createmeta(L, SURFACE_T, surface_meta, surface_methods);
   luaL_setfuncs(L, funcs, 0);
 }

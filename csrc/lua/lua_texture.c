@@ -13,61 +13,12 @@
 */
 #include <string.h>
 
-#include "lua_geom.h"
-
-#define TEXTURE_T "lsys.Texture"
-/* The Texture at 'i'; raises when it was closed (a live one has pixels). */
-static lsys_texture *checktex (lua_State *L, int i) {
-  lsys_texture *t = (lsys_texture *)luaL_checkudata(L, i, TEXTURE_T);
-  if (t->rgba == NULL) luaL_error(L, "the texture was closed");
-  return t;
-}
-
-const lsys_texture *lsys_checktexture (lua_State *L, int idx) {
-  return checktex(L, idx);
-}
+#include "lua_aux.h"
+#include "lua_lsys.h"
 
 static const char *const optnames[] = {
   "mag", "min", "mode", "per_surface", "intensity", NULL
 };
-
-/* A string option out of 'names' (long and one-letter forms alternate);
-** returns the index of its long form / 2, or 'def' when absent. */
-static int getchoice (lua_State *L, const char *path, const char *key,
-                      const char *const names[], const char *expect, int def) {
-  int i;
-  const char *s;
-  if (lua_getfield(L, 2, key) == LUA_TNIL) {
-    lua_pop(L, 1);
-    return def;
-  }
-  s = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
-  for (i = 0; s != NULL && names[i] != NULL; i++)
-    if (strcmp(s, names[i]) == 0) {
-      lua_pop(L, 1);
-      return i / 2;
-    }
-  if (s != NULL)
-    return luaL_error(L, "lsys.texture_load: '%s': opts.%s must be %s, got '%s'", path, key,
-                      expect, s);
-  return luaL_error(L, "lsys.texture_load: '%s': opts.%s must be %s, got %s", path, key,
-                    expect, luaL_typename(L, -1));
-}
-
-/* A boolean option: 1, 0, or -1 when absent. */
-static int getflag (lua_State *L, const char *path, const char *key) {
-  int b;
-  if (lua_getfield(L, 2, key) == LUA_TNIL) {
-    lua_pop(L, 1);
-    return -1;
-  }
-  if (!lua_isboolean(L, -1))
-    return luaL_error(L, "lsys.texture_load: '%s': opts.%s must be a boolean, got %s", path,
-                      key, luaL_typename(L, -1));
-  b = lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return b;
-}
 
 /* core.texture_load(path [, opts]): every option is checked before the file is read. */
 static int l_texture_load (lua_State *L) {
@@ -78,27 +29,22 @@ static int l_texture_load (lua_State *L) {
   lsys_texture *t;
   lsys_error e;
   int mag = 0, min = 0, mode = LSYS_TEX_MODULATE, per_surface = 0, intensity = -1;
-  if (!lua_isnoneornil(L, 2)) {
+  if (!lua_isnoneornil(L, 2)) {        /* long and one-letter names alternate: index / 2 */
+    lsys_opts o = {2, NULL, "", LSYS_GOT_TYPE, 0};
     luaL_checktype(L, 2, LUA_TTABLE);
-    lua_pushnil(L);
-    while (lua_next(L, 2)) {
-      int i;
-      lua_pop(L, 1);
-      for (i = 0; optnames[i] != NULL; i++)
-        if (lua_type(L, -1) == LUA_TSTRING && strcmp(lua_tostring(L, -1), optnames[i]) == 0)
-          break;
-      if (optnames[i] == NULL) {
-        const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
-                                                        : luaL_typename(L, -1);
-        return luaL_error(L, "lsys.texture_load: '%s': unknown option '%s' (known: mag, min, "
-                          "mode, per_surface, intensity)", path, k);
-      }
+    lua_settop(L, 2);
+    o.pre = lua_pushfstring(L, "lsys.texture_load: '%s': opts.", path);     /* 3 */
+    if (lsys_optunknown(L, &o, optnames)) {
+      const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
+                                                      : luaL_typename(L, -1);
+      return luaL_error(L, "lsys.texture_load: '%s': unknown option '%s' (known: mag, min, "
+                        "mode, per_surface, intensity)", path, k);
     }
-    mag = getchoice(L, path, "mag", filters, fexpect, 0);
-    min = getchoice(L, path, "min", filters, fexpect, 0);
-    mode = getchoice(L, path, "mode", modes, "'modulate', 'decal', 'm' or 'd'", 0);
-    per_surface = getflag(L, path, "per_surface") == 1;
-    intensity = getflag(L, path, "intensity");
+    mag = lsys_optchoice(L, &o, "mag", 0, filters, fexpect) / 2;
+    min = lsys_optchoice(L, &o, "min", 0, filters, fexpect) / 2;
+    mode = lsys_optchoice(L, &o, "mode", 0, modes, "'modulate', 'decal', 'm' or 'd'") / 2;
+    per_surface = lsys_optbool(L, &o, "per_surface", -1) == 1;
+    intensity = lsys_optbool(L, &o, "intensity", -1);
   }
   t = (lsys_texture *)lua_newuserdatauv(L, sizeof *t, 0);
   lsys_texture_init(t);                     /* valid before anything can fail */
@@ -122,7 +68,7 @@ static int texture_gc (lua_State *L) {       /* also __close: idempotent */
 }
 
 static int texture_size (lua_State *L) {
-  lsys_texture *t = checktex(L, 1);
+  const lsys_texture *t = lsys_checktexture(L, 1);
   lua_pushinteger(L, t->w);
   lua_pushinteger(L, t->h);
   return 2;
@@ -131,7 +77,7 @@ static int texture_size (lua_State *L) {
 /* t:info() -> { path =, width =, height =, mag =, min =, mode =, per_surface =,
 ** intensity =, alpha = } with the long names of the settings. */
 static int texture_info (lua_State *L) {
-  lsys_texture *t = checktex(L, 1);
+  const lsys_texture *t = lsys_checktexture(L, 1);
   lua_createtable(L, 0, 9);
   if (t->path != NULL) {
     lua_pushstring(L, t->path);
@@ -159,44 +105,6 @@ static int texture_tostring (lua_State *L) {
   return 1;
 }
 
-/* ---------------------------------------------------------------------- */
-
-const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex) {
-  const lsys_texture **arr;
-  lua_Integer n, k;
-  *ntex = 0;
-  if (t == 0 || lua_getfield(L, t, "textures") == LUA_TNIL) {
-    if (t != 0) lua_pop(L, 1);
-    lua_pushnil(L);
-    return NULL;
-  }
-  if (lua_type(L, -1) != LUA_TTABLE)
-    luaL_error(L, "%s: opts.textures must be a list of textures (lsys.texture_load), got %s",
-               who, luaL_typename(L, -1));
-  n = luaL_len(L, -1);
-  if (n < 0 || n > 65535)
-    luaL_error(L, "%s: opts.textures has %I entries; at most 65535", who, n);
-  if (n == 0) {
-    lua_pop(L, 1);
-    lua_pushnil(L);
-    return NULL;
-  }
-  arr = (const lsys_texture **)lua_newuserdatauv(L, (size_t)n * sizeof *arr, 0);
-  for (k = 1; k <= n; k++) {
-    lua_geti(L, -2, k);
-    arr[k - 1] = (const lsys_texture *)luaL_testudata(L, -1, TEXTURE_T);
-    if (arr[k - 1] == NULL)
-      luaL_error(L, "%s: opts.textures[%I] must be a texture (lsys.texture_load), got %s", who,
-                 k, luaL_typename(L, -1));
-    if (arr[k - 1]->rgba == NULL)
-      luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
-    lua_pop(L, 1);
-  }
-  lua_remove(L, -2);                        /* the list stays referenced by the table */
-  *ntex = (int)n;
-  return arr;
-}
-
 static const luaL_Reg texture_methods[] = {
   {"size", texture_size}, {"info", texture_info}, {NULL, NULL}
 };
@@ -208,11 +116,7 @@ static const luaL_Reg texture_meta[] = {
 };
 
 void lsys_open_texture (lua_State *L) {
-  luaL_newmetatable(L, TEXTURE_T);
-  luaL_setfuncs(L, texture_meta, 0);
-  luaL_newlib(L, texture_methods);
-  lua_setfield(L, -2, "__index");
-  lua_pop(L, 1);
+  lsys_createmeta(L, TEXTURE_T, texture_meta, texture_methods);
   lua_pushcfunction(L, l_texture_load);
   lua_setfield(L, -2, "texture_load");
 }

@@ -35,13 +35,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "lua_geom.h"
-#include "turtle.h"
+#include "lua_aux.h"
+#include "lua_lsys.h"
 
 #ifndef LSYS_NO_VIEWER
 #include "viewer.h"
-
-#define VIEWER_T "lsys.Viewer"
 
 typedef struct lviewer { lsys_viewer *v; } lviewer;
 
@@ -51,33 +49,22 @@ static lsys_viewer *checkviewer (lua_State *L, int idx) {
   return lv->v;
 }
 
-static int optfield (lua_State *L, int t, const char *k, int type, const char *what) {
-  int ty;
-  if (t == 0) return 0;
-  ty = lua_getfield(L, t, k);
-  if (ty == LUA_TNIL) { lua_pop(L, 1); return 0; }
-  if (ty != type) luaL_error(L, "viewer: opts.%s must be %s, got %s", k, what,
-                             luaL_typename(L, -1));
-  return 1;
+/* The options in the table at 't' (0: none): "viewer: opts.k must be ...". */
+static lsys_opts vopts (int t) {
+  lsys_opts o = {0, "viewer: opts.", "", LSYS_GOT_TYPE, 0};
+  o.t = t;
+  return o;
 }
 
-static int optint (lua_State *L, int t, const char *k, int lo, int hi, int def) {
-  lua_Integer x;
-  int isint;
-  if (!optfield(L, t, k, LUA_TNUMBER, "an integer")) return def;
-  x = lua_tointegerx(L, -1, &isint);
-  if (!isint || x < lo || x > hi)
-    luaL_error(L, "viewer: opts.%s must be an integer in [%d, %d]", k, lo, hi);
-  lua_pop(L, 1);
-  return (int)x;
-}
-
-static int optbool (lua_State *L, int t, const char *k, int def) {
-  int b;
-  if (!optfield(L, t, k, LUA_TBOOLEAN, "a boolean")) return def;
-  b = lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return b;
+/* The options of core.viewer_open, from the table at 't' (0: none). */
+static void readopenopts (lua_State *L, int t, lsys_viewer_opts *o) {
+  lsys_opts vo = vopts(t);
+  lsys_viewer_defaults(o);
+  o->width = lsys_optint(L, &vo, "width", o->width, 1, 16384);
+  o->height = lsys_optint(L, &vo, "height", o->height, 1, 16384);
+  o->samples = lsys_optint(L, &vo, "samples", o->samples, 0, 32);
+  o->visible = lsys_optbool(L, &vo, "visible", o->visible);
+  o->status = lsys_optbool(L, &vo, "status", o->status);
 }
 
 static int l_viewer_open (lua_State *L) {
@@ -86,12 +73,7 @@ static int l_viewer_open (lua_State *L) {
   lsys_error e;
   lviewer *lv;
   if (t) luaL_checktype(L, 1, LUA_TTABLE);
-  lsys_viewer_defaults(&o);
-  o.width = optint(L, t, "width", 1, 16384, o.width);
-  o.height = optint(L, t, "height", 1, 16384, o.height);
-  o.samples = optint(L, t, "samples", 0, 32, o.samples);
-  o.visible = optbool(L, t, "visible", o.visible);
-  o.status = optbool(L, t, "status", o.status);
+  readopenopts(L, t, &o);
   lv = (lviewer *)lua_newuserdatauv(L, sizeof *lv, 0);
   lv->v = NULL;
   luaL_setmetatable(L, VIEWER_T);
@@ -100,34 +82,10 @@ static int l_viewer_open (lua_State *L) {
   return 1;
 }
 
-/* Fills frame f from the frame table at 'idx' (the caller's snapshot box
-** frees what is allocated when this raises). */
-static void readframe (lua_State *L, int idx, lsys_vframe *f) {
-  const lsys_material *pal;
-  const lsys_mesh *m;
-  const lsys_trec *rec;
-  size_t npal, nrec, k;
-  int take, world;
-  if (lua_getfield(L, idx, "scene") == LUA_TNIL)
-    luaL_error(L, "viewer:post: a frame without a scene");
-  m = lsys_checkscene(L, -1, &pal, &npal);
-  rec = lsys_scenerecords(L, -1, &nrec);
-  take = optbool(L, idx, "take", 0);
-  world = optbool(L, idx, "world", 0);
-  f->step = optint(L, idx, "step", -1, 1 << 30, -1);
-  if (optfield(L, idx, "modules", LUA_TNUMBER, "an integer")) {
-    f->nmodules = (size_t)lua_tointeger(L, -1);
-    lua_pop(L, 1);
-  }
-  if (optfield(L, idx, "render", LUA_TTABLE, "a table")) {
-    lsys_readrenderopts(L, lua_gettop(L), &f->ro);
-    lua_pop(L, 1);
-  }
-  f->pal = (lsys_material *)LSYS_MALLOC(npal * sizeof *f->pal);
-  f->picks = (lsys_vpick *)LSYS_MALLOC((nrec > 0 ? nrec : 1) * sizeof *f->picks);
-  if (f->pal == NULL || f->picks == NULL) luaL_error(L, "not enough memory for the viewer");
-  memcpy(f->pal, pal, npal * sizeof *pal);
-  f->npal = npal;
+/* The pickable records of a frame (f->picks has room for all): what the
+** turtle drew, as segments; 'world': widths in world units. */
+static void setpicks (lsys_vframe *f, const lsys_trec *rec, size_t nrec, int world) {
+  size_t k;
   for (k = 0; k < nrec; k++) {
     const lsys_trec *r = &rec[k];
     lsys_vpick *p = &f->picks[f->npicks];
@@ -143,44 +101,81 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     p->kind = r->kind;
     f->npicks++;
   }
-  if (optfield(L, idx, "lines", LUA_TTABLE, "a list of lines")) {
-    int t = lua_gettop(L);
-    lua_Integer n = luaL_len(L, t), q;
-    f->lines = (lsys_vline *)LSYS_MALLOC((size_t)(n > 0 ? n : 1) * sizeof *f->lines);
-    if (f->lines == NULL) luaL_error(L, "not enough memory for the viewer");
-    for (q = 1; q <= n; q++) {
-      lsys_vline *ln = &f->lines[f->nlines];
-      double c[4] = {1, 0, 0, 1};
-      int i;
-      if (lua_rawgeti(L, t, q) != LUA_TTABLE) luaL_error(L, "viewer:post: line %d is not a table", (int)q);
-      for (i = 0; i < 3; i++) {
-        lua_getfield(L, -1, "p0");
-        lua_rawgeti(L, -1, i + 1);
-        ln->p0[i] = (float)luaL_checknumber(L, -1);
-        lua_pop(L, 2);
-        lua_getfield(L, -1, "p1");
-        lua_rawgeti(L, -1, i + 1);
-        ln->p1[i] = (float)luaL_checknumber(L, -1);
-        lua_pop(L, 2);
-      }
-      if (lua_getfield(L, -1, "color") == LUA_TTABLE)
-        for (i = 0; i < 4; i++) {
-          if (lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER) c[i] = lua_tonumber(L, -1);
-          lua_pop(L, 1);
-        }
-      lua_pop(L, 1);
-      for (i = 0; i < 4; i++) ln->rgba[i] = (uint8_t)(255 * (c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i]) + 0.5);
-      lua_getfield(L, -1, "width");
-      ln->width = (float)luaL_optnumber(L, -1, 3);
-      lua_getfield(L, -2, "ontop");
-      ln->ontop = lua_toboolean(L, -1);
-      lua_pop(L, 3);
-      f->nlines++;
+}
+
+/* A frame's lines = { { p0 =, p1 =, color =, width =, ontop = }... } from
+** the list at 't'. */
+static void readlines (lua_State *L, int t, lsys_vframe *f) {
+  lua_Integer n = luaL_len(L, t), q;
+  f->lines = (lsys_vline *)LSYS_MALLOC((size_t)(n > 0 ? n : 1) * sizeof *f->lines);
+  if (f->lines == NULL) luaL_error(L, "not enough memory for the viewer");
+  for (q = 1; q <= n; q++) {
+    lsys_vline *ln = &f->lines[f->nlines];
+    double c[4] = {1, 0, 0, 1};
+    int i;
+    if (lua_rawgeti(L, t, q) != LUA_TTABLE) luaL_error(L, "viewer:post: line %d is not a table", (int)q);
+    for (i = 0; i < 3; i++) {
+      lua_getfield(L, -1, "p0");
+      lua_rawgeti(L, -1, i + 1);
+      ln->p0[i] = (float)luaL_checknumber(L, -1);
+      lua_pop(L, 2);
+      lua_getfield(L, -1, "p1");
+      lua_rawgeti(L, -1, i + 1);
+      ln->p1[i] = (float)luaL_checknumber(L, -1);
+      lua_pop(L, 2);
     }
+    if (lua_getfield(L, -1, "color") == LUA_TTABLE)
+      for (i = 0; i < 4; i++) {
+        if (lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER) c[i] = lua_tonumber(L, -1);
+        lua_pop(L, 1);
+      }
+    lua_pop(L, 1);
+    for (i = 0; i < 4; i++) ln->rgba[i] = (uint8_t)(255 * (c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i]) + 0.5);
+    lua_getfield(L, -1, "width");
+    ln->width = (float)luaL_optnumber(L, -1, 3);
+    lua_getfield(L, -2, "ontop");
+    ln->ontop = lua_toboolean(L, -1);
+    lua_pop(L, 3);
+    f->nlines++;
+  }
+}
+
+/* Fills frame f from the frame table at 'idx' (the caller's snapshot box
+** frees what is allocated when this raises). */
+static void readframe (lua_State *L, int idx, lsys_vframe *f) {
+  lsys_opts fo = vopts(idx);
+  const lsys_lscene *S;
+  int take, world;
+  if (lua_getfield(L, idx, "scene") == LUA_TNIL)
+    luaL_error(L, "viewer:post: a frame without a scene");
+  S = lsys_checkscene(L, -1);
+  take = lsys_optbool(L, &fo, "take", 0);
+  world = lsys_optbool(L, &fo, "world", 0);
+  f->step = lsys_optint(L, &fo, "step", -1, -1, 1 << 30);
+  if (lsys_optfield(L, &fo, "modules", LUA_TNUMBER, "an integer")) {
+    f->nmodules = (size_t)lua_tointeger(L, -1);
     lua_pop(L, 1);
   }
-  if (take) lsys_scenetake(L, -1, &f->mesh);
-  else if (lsys_mesh_copy(&f->mesh, m) != LSYS_OK)
+  if (lsys_optfield(L, &fo, "render", LUA_TTABLE, "a table")) {
+    lsys_readrenderopts(L, lua_gettop(L), &f->ro);
+    lua_pop(L, 1);
+  }
+  f->pal = (lsys_material *)LSYS_MALLOC(S->npal * sizeof *f->pal);
+  f->picks = (lsys_vpick *)LSYS_MALLOC((S->nrec > 0 ? S->nrec : 1) * sizeof *f->picks);
+  if (f->pal == NULL || f->picks == NULL) luaL_error(L, "not enough memory for the viewer");
+  memcpy(f->pal, S->pal, S->npal * sizeof *S->pal);
+  f->npal = S->npal;
+  setpicks(f, S->rec, S->nrec, world);
+  if (lsys_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
+    readlines(L, lua_gettop(L), f);
+    lua_pop(L, 1);
+  }
+  if (take) {                /* the scene's own mesh: checked again, options ran Lua code */
+    lsys_lscene *T = lsys_checkscene(L, -1);
+    f->mesh = T->mesh;
+    lsys_mesh_init(&T->mesh);
+  }
+  else if (lsys_mesh_copy(&f->mesh, &S->mesh) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   lua_pop(L, 1);
 }
@@ -193,6 +188,38 @@ static int snapbox_gc (lua_State *L) {
   lsys_vsnap_free(b->s);
   b->s = NULL;
   return 0;
+}
+
+/* The options of v:post for the snapshot 's' of n frames, from the table
+** at 't' (0: none). */
+static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
+  lsys_opts po = vopts(t);
+  const lsys_texture *const *tex;
+  int ntex = 0, i;
+  s->first = (size_t)lsys_optint(L, &po, "first", n, 1, n) - 1;
+  if (lsys_optfield(L, &po, "rate", LUA_TNUMBER, "a number of frames per second")) {
+    double r = lua_tonumber(L, -1);
+    if (!(r > 0 && r <= 1000)) lsys_opterror(L, &po, "rate", "in (0, 1000]");
+    s->rate = r;
+    lua_pop(L, 1);
+  }
+  if (lsys_optfield(L, &po, "title", LUA_TSTRING, "a string")) {
+    snprintf(s->title, sizeof s->title, "%s", lua_tostring(L, -1));
+    lua_pop(L, 1);
+  }
+  s->keep_camera = lsys_optbool(L, &po, "keep_camera", 0);
+  s->capture = lsys_optbool(L, &po, "capture", 0);
+  tex = lsys_opttextures(L, t, "viewer:post", &ntex);
+  if (ntex > 0) {
+    if ((s->tex = (lsys_texture *)LSYS_MALLOC((size_t)ntex * sizeof *s->tex)) == NULL)
+      luaL_error(L, "not enough memory for the viewer");
+    for (i = 0; i < ntex; i++) {
+      if (lsys_texture_copy(&s->tex[i], tex[i]) != LSYS_OK)
+        luaL_error(L, "not enough memory for the viewer");
+      s->ntex = i + 1;
+    }
+  }
+  lua_pop(L, 1);
 }
 
 static int viewer_post (lua_State *L) {
@@ -219,33 +246,7 @@ static int viewer_post (lua_State *L) {
     readframe(L, lua_gettop(L), &s->frames[k - 1]);
     lua_pop(L, 1);
   }
-  s->first = (size_t)optint(L, t, "first", 1, (int)n, (int)n) - 1;
-  if (optfield(L, t, "rate", LUA_TNUMBER, "a number of frames per second")) {
-    double r = lua_tonumber(L, -1);
-    if (!(r > 0 && r <= 1000)) luaL_error(L, "viewer: opts.rate must be in (0, 1000]");
-    s->rate = r;
-    lua_pop(L, 1);
-  }
-  if (optfield(L, t, "title", LUA_TSTRING, "a string")) {
-    snprintf(s->title, sizeof s->title, "%s", lua_tostring(L, -1));
-    lua_pop(L, 1);
-  }
-  s->keep_camera = optbool(L, t, "keep_camera", 0);
-  s->capture = optbool(L, t, "capture", 0);
-  {
-    int ntex = 0, i;
-    const lsys_texture *const *tex = lsys_opttextures(L, t, "viewer:post", &ntex);
-    if (ntex > 0) {
-      if ((s->tex = (lsys_texture *)LSYS_MALLOC((size_t)ntex * sizeof *s->tex)) == NULL)
-        return luaL_error(L, "not enough memory for the viewer");
-      for (i = 0; i < ntex; i++) {
-        if (lsys_texture_copy(&s->tex[i], tex[i]) != LSYS_OK)
-          return luaL_error(L, "not enough memory for the viewer");
-        s->ntex = i + 1;
-      }
-    }
-    lua_pop(L, 1);
-  }
+  readpostopts(L, t, s, (int)n);
   box->s = NULL;
   lsys_viewer_post(v, s);
   return 0;
@@ -443,6 +444,11 @@ static int viewer_close (lua_State *L) {
   return 0;
 }
 
+static const luaL_Reg viewer_meta[] = {
+  {"__index", NULL},  /* placeholder: the method table */
+  {"__gc", viewer_close}, {NULL, NULL}
+};
+
 static const luaL_Reg viewer_methods[] = {
   {"post", viewer_post}, {"poll", viewer_poll}, {"pending", viewer_pending}, {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
@@ -466,12 +472,7 @@ static int l_filestamp (lua_State *L) {
 
 void lsys_open_viewer (lua_State *L) {
 #ifndef LSYS_NO_VIEWER
-  luaL_newmetatable(L, VIEWER_T);
-  luaL_newlib(L, viewer_methods);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, viewer_close);
-  lua_setfield(L, -2, "__gc");
-  lua_pop(L, 1);
+  lsys_createmeta(L, VIEWER_T, viewer_meta, viewer_methods);
   lua_pushcfunction(L, l_viewer_open);
   lua_setfield(L, -2, "viewer_open");
   lua_pushboolean(L, 1);

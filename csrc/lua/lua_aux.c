@@ -1,0 +1,502 @@
+/*
+** The floor of the Lua bindings (lua_aux.h): metatables, the alphabet,
+** errors, the shared userdata, running a model's operations, option readers.
+*/
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "lua_aux.h"
+
+#define ALPHABET_KEY "lsys.alphabet"   /* the state's alphabet, in the registry */
+
+void lsys_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
+                      const luaL_Reg *methods) {
+  luaL_newmetatable(L, tname);
+  luaL_setfuncs(L, meta, 0);
+  if (methods != NULL) {
+    int n = 0;
+    while (methods[n].name != NULL) n++;
+    lua_createtable(L, 0, n);
+    luaL_setfuncs(L, methods, 0);
+    lua_setfield(L, -2, "__index");
+  }
+  lua_pop(L, 1);
+}
+
+static int alphabet_gc (lua_State *L) {
+  lsys_alphabet_free((lsys_alphabet *)luaL_checkudata(L, 1, ALPHABET_T));
+  return 0;
+}
+
+lsys_alphabet *lsys_getalphabet (lua_State *L) {
+  lsys_alphabet *a;
+  if (lua_getfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY) == LUA_TUSERDATA) {
+    a = (lsys_alphabet *)lua_touserdata(L, -1);
+    lua_pop(L, 1);
+    if (a->names == NULL) luaL_error(L, "the module names of lsys were finalized");
+    return a;
+  }
+  lua_pop(L, 1);
+  a = (lsys_alphabet *)lua_newuserdatauv(L, sizeof *a, 0);
+  memset(a, 0, sizeof *a);
+  if (luaL_newmetatable(L, ALPHABET_T)) {
+    lua_pushcfunction(L, alphabet_gc);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  if (lsys_alphabet_init(a) != LSYS_OK) luaL_error(L, "not enough memory");
+  lua_setfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY);
+  return a;
+}
+
+/* The message is built as luaL_error builds its own (position, then text),
+** so level 1 gives the same bytes as luaL_error(L, "%s", msg). */
+int lsys_raise (lua_State *L, int code, const lsys_error *e, int level) {
+  if (level > 0) luaL_where(L, level);
+  else lua_pushliteral(L, "");
+  lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
+  lua_concat(L, 2);
+  return lua_error(L);
+}
+
+int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
+  while (*s) {
+    size_t n = 0;
+    while (*s == ' ' || *s == '\t' || *s == '\n' || *s == ',') s++;
+    while (s[n] && s[n] != ' ' && s[n] != '\t' && s[n] != '\n' && s[n] != ',') n++;
+    if (n > 0 && lsys_names_add(d, s, n) != LSYS_OK) return LSYS_ENOMEM;
+    s += n;
+  }
+  (void)L;
+  return LSYS_OK;
+}
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Lstring */
+
+lsys_lstring *lsys_newlstring (lua_State *L) {
+  lsys_lstr *u = (lsys_lstr *)lua_newuserdatauv(L, sizeof *u, 1);
+  lsys_lstring_init(&u->s);           /* valid empty state before anything can fail */
+  u->closed = u->busy = 0;
+  luaL_setmetatable(L, LSTRING_T);
+  return &u->s;
+}
+
+lsys_lstring *lsys_checklstring (lua_State *L, int i) {
+  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
+  if (u->closed) luaL_error(L, "the Lstring was closed");
+  return &u->s;
+}
+
+lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what) {
+  lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
+  if (u->closed) luaL_error(L, "the Lstring was closed");
+  if (u->busy) luaL_error(L, "%s: the Lstring is in use by a derivation or interpretation", what);
+  return &u->s;
+}
+
+void lsys_lstring_busy (lua_State *L, int i, int delta) {
+  ((lsys_lstr *)luaL_checkudata(L, i, LSTRING_T))->busy += delta;
+}
+
+void lsys_setowner (lua_State *L, int idx, int owner) {
+  idx = lua_absindex(L, idx);
+  lua_pushvalue(L, owner);
+  if (lua_type(L, -1) == LUA_TUSERDATA && lua_getmetatable(L, -1)) {
+    lua_pop(L, 1);
+    if (!luaL_testudata(L, -1, LSTRING_T)) { lua_setiuservalue(L, idx, 1); return; }
+    lua_pop(L, 1);
+    lua_getiuservalue(L, owner, 1);            /* an Lstring: share its owner */
+  }
+  lua_setiuservalue(L, idx, 1);
+}
+
+const lsys_names *lsys_ownernames (lua_State *L, int idx) {
+  lsys_lrules *R;
+  const lsys_names *d = NULL;
+  if (lua_getiuservalue(L, idx, 1) == LUA_TUSERDATA &&
+      (R = (lsys_lrules *)luaL_testudata(L, -1, RULES_T)) != NULL && R->inited)
+    d = &R->decl;
+  lua_pop(L, 1);
+  return d;          /* the owner stays alive: the Lstring refers to it */
+}
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Rules: running a core operation on a model */
+
+lsys_lrules *lsys_checkrules (lua_State *L, int i) {
+  lsys_lrules *R = (lsys_lrules *)luaL_checkudata(L, i, RULES_T);
+  if (!R->inited) luaL_error(L, "the model's rules were closed");
+  return R;
+}
+
+/* The callback the core calls for rules that need Lua. */
+static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+                   double *vals) {
+  lsys_lrules *R = (lsys_lrules *)ud;
+  lua_State *L = R->L;
+  uint32_t k;
+  lua_rawgeti(L, R->fnidx, (lua_Integer)(r - m->rules) + 1);
+  luaL_checkstack(L, (int)(r->nargs + r->nvals) + 4, "too many parameters");
+  for (k = 0; k < r->nargs; k++) lua_pushnumber(L, args[k]);
+  if (r->flags & LSYS_RF_DYN) {
+    int keep = R->produced, res;
+    R->produced = 0;
+    lua_call(L, (int)r->nargs, 1);
+    res = R->produced;               /* no produce: the rule does not apply */
+    R->produced = keep;
+    lua_pop(L, 1);
+    if (res && lsys_lstring_unbalanced(&m->dyn) >= 0)
+      return luaL_error(L, "unbalanced brackets in the produced successor");
+    return res;
+  }
+  lua_call(L, (int)r->nargs, (int)r->nvals + 1);
+  if (!lua_toboolean(L, -(int)r->nvals - 1)) {
+    lua_pop(L, (int)r->nvals + 1);
+    return 0;
+  }
+  for (k = 0; k < r->nvals; k++) {
+    int idx = -(int)r->nvals + (int)k;
+    if (lua_type(L, idx) != LUA_TNUMBER)
+      return luaL_error(L, "value %d is %s, not a number", (int)k + 1, luaL_typename(L, idx));
+    vals[k] = lua_tonumber(L, idx);
+    if (!isfinite(vals[k]))
+      return luaL_error(L, "value %d is %s, not a finite number", (int)k + 1,
+                        vals[k] != vals[k] ? "nan" : "infinite");
+  }
+  lua_pop(L, (int)r->nvals + 1);
+  return 1;
+}
+
+/*
+** The rule functions are callable from C while an operation runs (rulefn
+** reads them from the closure table on the stack), and lsys.produce /
+** lsys.ran find the model in the registry (LSYS_PRODUCING). It runs in
+** protected mode, so that whatever a rule function does (raise, call this
+** model again: refused, close the strings it works on: refused), the marks
+** on the model and the Lstrings are undone before the error goes on.
+*/
+typedef struct runargs {
+  lsys_ruleop op;
+  void *ud;
+  int st;
+} runargs;
+
+/* In protected mode: 1 = the rules, 2 = the runargs. */
+static int protectedrun (lua_State *L) {
+  runargs *a = (runargs *)lua_touserdata(L, 2);
+  lsys_lrules *R = lsys_checkrules(L, 1);
+  lua_getiuservalue(L, 1, LSYS_RULES_FNS);
+  R->L = L;
+  R->fnidx = lua_gettop(L);
+  R->m.fn = rulefn;
+  R->m.fnud = R;
+  R->m.cur_rule = -1;
+  lua_pushvalue(L, 1);                      /* the rules producing now */
+  lua_setfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);
+  a->st = a->op(L, &R->m, a->ud);
+  return 0;
+}
+
+int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                    const int *lstr, int n) {
+  lsys_lrules *R = lsys_checkrules(L, ridx);
+  runargs a;
+  int k, err;
+  ridx = lua_absindex(L, ridx);
+  if (R->m.busy) return luaL_error(L, "a rule of this model called %s on the same model", what);
+  for (k = 0; k < n; k++) checklstring(L, lstr[k]);      /* alive, before any mark */
+  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
+  a.op = op; a.ud = ud; a.st = LSYS_OK;
+  lua_getfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);   /* restored after */
+  lua_pushcfunction(L, protectedrun);
+  lua_pushvalue(L, ridx);
+  lua_pushlightuserdata(L, &a);
+  err = lua_pcall(L, 2, 0, 0);
+  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], -1);
+  R->m.busy = 0;             /* the core sets it while it runs; an error skips the reset */
+  lua_pushvalue(L, err != LUA_OK ? -2 : -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);
+  if (err != LUA_OK) {
+    lua_remove(L, -2);
+    return lua_error(L);
+  }
+  lua_pop(L, 1);
+  return a.st;
+}
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Scene; Contour, Surface, Texture */
+
+lsys_lscene *lsys_checkscene (lua_State *L, int i) {
+  lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, i, SCENE_T);
+  if (!S->inited) luaL_error(L, "the scene was closed");
+  return S;
+}
+
+static const char *const kindname[] = {
+  "none", "segment", "sphere", "disc", "polygon", "label", "system", "gcyl", "surface"
+};
+#define NKINDS ((int)(sizeof kindname / sizeof kindname[0]))
+
+const char *lsys_recordkind (int kind) {
+  return kindname[kind >= 0 && kind < NKINDS ? kind : 0];
+}
+
+/* A live one has points. */
+const lsys_contour *lsys_checkcontour (lua_State *L, int i) {
+  const lsys_contour *c = (const lsys_contour *)luaL_checkudata(L, i, CONTOUR_T);
+  if (c->pt == NULL) luaL_error(L, "the contour was closed");
+  return c;
+}
+
+/* A live one has patches. */
+const lsys_surface *lsys_checksurface (lua_State *L, int i) {
+  const lsys_surface *s = (const lsys_surface *)luaL_checkudata(L, i, SURFACE_T);
+  if (s->patch == NULL) luaL_error(L, "the surface was closed");
+  return s;
+}
+
+/* A live one has pixels. */
+const lsys_texture *lsys_checktexture (lua_State *L, int i) {
+  const lsys_texture *t = (const lsys_texture *)luaL_checkudata(L, i, TEXTURE_T);
+  if (t->rgba == NULL) luaL_error(L, "the texture was closed");
+  return t;
+}
+
+/* ---------------------------------------------------------------------- */
+/* option readers */
+
+/* A short description of the value at 'idx' for error messages (may push it). */
+static const char *got (lua_State *L, int idx) {
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER:
+      return luaL_tolstring(L, idx, NULL);
+    case LUA_TSTRING:
+      return lua_pushfstring(L, "'%s'", lua_tostring(L, idx));
+    default:
+      return luaL_typename(L, idx);
+  }
+}
+
+/* Raises for the bad value of o[k] on top: "<option> must be <expect>", and
+** what o shows of it; 'kind' names a value of the wrong type (NULL: the
+** type is right, the value is not). */
+static int bad (lua_State *L, const lsys_opts *o, const char *k, const char *expect,
+                const char *kind) {
+  if (o->got == LSYS_GOT_VALUE)
+    return luaL_error(L, "%s%s%s must be %s, got %s", o->pre, k, o->post, expect, got(L, -1));
+  if (o->got == LSYS_GOT_TYPE && kind != NULL)
+    return luaL_error(L, "%s%s%s must be %s, got %s", o->pre, k, o->post, expect, kind);
+  return luaL_error(L, "%s%s%s must be %s", o->pre, k, o->post, expect);
+}
+
+int lsys_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect) {
+  return bad(L, o, k, expect, NULL);
+}
+
+int lsys_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
+                   const char *expect) {
+  int ty;
+  if (o->t == 0) return 0;
+  ty = lua_getfield(L, o->t, k);
+  if (ty == LUA_TNIL) { lua_pop(L, 1); return 0; }
+  if (type != LUA_TNONE && ty != type) bad(L, o, k, expect, luaL_typename(L, -1));
+  return 1;
+}
+
+int lsys_optbool (lua_State *L, const lsys_opts *o, const char *k, int def) {
+  int b;
+  if (!lsys_optfield(L, o, k, LUA_TBOOLEAN, "a boolean")) return def;
+  b = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return b;
+}
+
+/* The bounds are checked before the conversion to int. */
+int lsys_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
+  lua_Integer x;
+  int isint;
+  if (!lsys_optfield(L, o, k, o->numerals ? LUA_TNONE : LUA_TNUMBER, "an integer")) return def;
+  x = lua_tointegerx(L, -1, &isint);
+  if (!isint || x < lo || x > hi) {
+    char expect[64];
+    snprintf(expect, sizeof expect, "an integer in [%d, %d]", lo, hi);
+    bad(L, o, k, expect, NULL);
+  }
+  lua_pop(L, 1);
+  return (int)x;
+}
+
+double lsys_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
+                    double hi, const char *expect) {
+  double x = 0;
+  int ok;
+  if (expect == NULL) expect = "a finite number";
+  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  if (o->numerals) x = lua_tonumberx(L, -1, &ok);
+  else if ((ok = lua_type(L, -1) == LUA_TNUMBER)) x = lua_tonumber(L, -1);
+  if (!ok || !isfinite(x)) bad(L, o, k, expect, ok ? "a non-finite number" : luaL_typename(L, -1));
+  if (!(x > lo && x < hi)) bad(L, o, k, expect, NULL);
+  lua_pop(L, 1);
+  return x;
+}
+
+int lsys_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
+                    const char *const names[], const char *expect) {
+  const char *s;
+  int i;
+  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  if (lua_type(L, -1) != LUA_TSTRING) return bad(L, o, k, expect, luaL_typename(L, -1));
+  s = lua_tostring(L, -1);
+  for (i = 0; names[i] != NULL; i++)
+    if (strcmp(s, names[i]) == 0) {
+      lua_pop(L, 1);
+      return i;
+    }
+  return luaL_error(L, "%s%s%s must be %s, got '%s'", o->pre, k, o->post, expect, s);
+}
+
+int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]) {
+  if (o->t == 0) return 0;
+  lua_pushnil(L);
+  while (lua_next(L, o->t)) {
+    int i;
+    lua_pop(L, 1);
+    for (i = 0; names[i] != NULL; i++)
+      if (lua_type(L, -1) == LUA_TSTRING && strcmp(lua_tostring(L, -1), names[i]) == 0)
+        break;
+    if (names[i] == NULL) return 1;
+  }
+  return 0;
+}
+
+const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex) {
+  const lsys_texture **arr;
+  lua_Integer n, k;
+  *ntex = 0;
+  if (t == 0 || lua_getfield(L, t, "textures") == LUA_TNIL) {
+    if (t != 0) lua_pop(L, 1);
+    lua_pushnil(L);
+    return NULL;
+  }
+  if (lua_type(L, -1) != LUA_TTABLE)
+    luaL_error(L, "%s: opts.textures must be a list of textures (lsys.texture_load), got %s",
+               who, luaL_typename(L, -1));
+  n = luaL_len(L, -1);
+  if (n < 0 || n > 65535)
+    luaL_error(L, "%s: opts.textures has %I entries; at most 65535", who, n);
+  if (n == 0) {
+    lua_pop(L, 1);
+    lua_pushnil(L);
+    return NULL;
+  }
+  arr = (const lsys_texture **)lua_newuserdatauv(L, (size_t)n * sizeof *arr, 0);
+  for (k = 1; k <= n; k++) {
+    lua_geti(L, -2, k);
+    arr[k - 1] = (const lsys_texture *)luaL_testudata(L, -1, TEXTURE_T);
+    if (arr[k - 1] == NULL)
+      luaL_error(L, "%s: opts.textures[%I] must be a texture (lsys.texture_load), got %s", who,
+                 k, luaL_typename(L, -1));
+    if (arr[k - 1]->rgba == NULL)
+      luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
+    lua_pop(L, 1);
+  }
+  lua_remove(L, -2);                        /* the list stays referenced by the table */
+  *ntex = (int)n;
+  return arr;
+}
+
+/* ---------------------------------------------------------------------- */
+/* lsys.render options (lua_render.c, and the frames of lua_viewer.c) */
+
+#ifndef LSYS_NO_RENDER
+
+/* A size in pixels or samples: a positive integer at most 'max', also as a
+** numeral ("800": the sizes were always read so). */
+static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, int max) {
+  lua_Integer v;
+  int isint;
+  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  v = lua_tointegerx(L, -1, &isint);
+  if (!isint || v < 1 || v > max) {
+    char expect[64];
+    snprintf(expect, sizeof expect, "a positive integer at most %d", max);
+    bad(L, o, k, expect, NULL);
+  }
+  lua_pop(L, 1);
+  return (int)v;
+}
+
+/* Reads {x, y, z} (finite numbers; within [0, 1] for a colour); its
+** messages never show the value. */
+static int optvec3 (lua_State *L, const lsys_opts *o, const char *k, int colour, double v[3]) {
+  int i, ok;
+  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return 0;
+  ok = lua_type(L, -1) == LUA_TTABLE && luaL_len(L, -1) == 3;
+  for (i = 0; ok && i < 3; i++) {
+    ok = lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER && isfinite(v[i] = lua_tonumber(L, -1)) &&
+         (!colour || (v[i] >= 0 && v[i] <= 1));
+    lua_pop(L, 1);
+  }
+  if (!ok)
+    luaL_error(L, "%s%s%s must be %s", o->pre, k, o->post,
+               colour ? "{r, g, b} with numbers in [0, 1]" : "{x, y, z} with 3 finite numbers");
+  lua_pop(L, 1);
+  return 1;
+}
+
+static int iszero (const double v[3]) {
+  return v[0] == 0 && v[1] == 0 && v[2] == 0;
+}
+
+static const char *const renderopts[] = {
+  "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
+  "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
+  NULL
+};
+
+/* The camera fields of the options: where it is, where it looks, how it projects. */
+static void readcamera (lua_State *L, const lsys_opts *o, lsys_camera *cam) {
+  static const char *const projections[] = {"perspective", "parallel", NULL};
+  int p;
+  cam->has_eye = optvec3(L, o, "viewpoint", 0, cam->eye);
+  cam->has_target = optvec3(L, o, "target", 0, cam->target);
+  cam->has_up = optvec3(L, o, "up", 0, cam->up);
+  if (cam->has_up && iszero(cam->up))
+    luaL_error(L, "lsys.render: opts.up must not be the zero vector");
+  if (optvec3(L, o, "direction", 0, cam->dir) && iszero(cam->dir))
+    luaL_error(L, "lsys.render: opts.direction must not be the zero vector");
+  if (cam->has_eye && cam->has_target && cam->eye[0] == cam->target[0] &&
+      cam->eye[1] == cam->target[1] && cam->eye[2] == cam->target[2])
+    luaL_error(L, "lsys.render: opts.viewpoint and opts.target must differ");
+  p = lsys_optchoice(L, o, "projection", -1, projections, "'perspective' or 'parallel'");
+  if (p >= 0) cam->projection = p == 0 ? LSYS_PERSPECTIVE : LSYS_PARALLEL;
+  cam->fov = lsys_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
+  cam->twist = lsys_optnum(L, o, "twist", 0, -HUGE_VAL, HUGE_VAL, "a number of degrees");
+  cam->zoom = lsys_optnum(L, o, "zoom", 1, 0, HUGE_VAL, "a positive number");
+}
+
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o) {
+  lsys_opts ro = {t, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
+  double v[3];
+  lsys_render_defaults(o);
+  if (lsys_optunknown(L, &ro, renderopts))          /* unknown keys are mistakes */
+    luaL_error(L, "lsys.render: unknown option %s", got(L, -1));
+  o->width = optsize(L, &ro, "width", o->width, 16384);
+  o->height = optsize(L, &ro, "height", o->height, 16384);
+  o->supersample = optsize(L, &ro, "supersample", o->supersample, 16);
+  if (optvec3(L, &ro, "background", 1, v)) {
+    o->background[0] = (float)v[0];
+    o->background[1] = (float)v[1];
+    o->background[2] = (float)v[2];
+  }
+  o->transparent = lsys_optbool(L, &ro, "transparent", 0);
+  if (optvec3(L, &ro, "light", 0, o->light) && iszero(o->light))
+    luaL_error(L, "lsys.render: opts.light must not be the zero vector");
+  o->wireframe = lsys_optbool(L, &ro, "wireframe", 0);
+  readcamera(L, &ro, &o->cam);
+}
+
+#endif

@@ -1,0 +1,248 @@
+/*
+** The floor of the Lua bindings, as lauxlib is Lua's: what the binding files
+** share. A binding file includes this header, the core's headers and, where
+** it binds them, render.h or viewer.h of csrc/gl; never another binding's.
+** lua_lsys.h declares the bindings' registration functions for the entry
+** point (lua_lsys.c), so the files depend on each other only as
+**
+**     lua_aux  <-  lua_lstring, lua_rules, lua_scene, ...  <-  lua_lsys
+**
+** Here: the metatable names and createmeta; the state's alphabet; core
+** status codes as Lua errors; the userdata that more than one binding reads
+** (Lstring, Rules, Scene; like lauxlib's luaL_Stream) and the checks that an
+** object is alive for those and for Contour, Surface and Texture; running
+** a core operation with a model's rule functions bound; option readers, and
+** the option tables read in more than one binding (render options, lists of
+** textures). Only lua_*.c include Lua.
+*/
+#ifndef LSYS_LUA_AUX_H
+#define LSYS_LUA_AUX_H
+
+#include <math.h>
+
+#include <lua.h>
+#include <lauxlib.h>
+
+#include "contour.h"
+#include "derive.h"
+#include "lstring.h"
+#include "mesh.h"
+#include "render.h"
+#include "surface.h"
+#include "texture.h"
+#include "turtle.h"
+
+/* The metatable names of every userdata (shown in errors via __name). */
+#define ALPHABET_T "lsys.Alphabet"   /* the state's alphabet (lua_aux.c) */
+#define LSTRING_T  "lsys.Lstring"    /* lua_lstring.c */
+#define RULES_T    "lsys.Rules"      /* lua_rules.c */
+#define TEMPLATE_T "lsys.Template"   /* lua_rules.c: successor templates */
+#define SCENE_T    "lsys.Scene"      /* lua_scene.c */
+#define TURTLE_T   "lsys.Turtle"     /* lua_scene.c: a turtle for one call */
+#define CONTOUR_T  "lsys.Contour"    /* lua_contour.c */
+#define SURFACE_T  "lsys.Surface"    /* lua_surface.c */
+#define TEXTURE_T  "lsys.Texture"    /* lua_texture.c */
+#define PIXELS_T   "lsys.Pixels"     /* lua_render.c: a pixel block owned by Lua until copied */
+#define VIEWER_T   "lsys.Viewer"     /* lua_viewer.c */
+#define IK_T       "lsys.IK"         /* lua_ik.c */
+
+/* The registry field of the Rules deriving now (lsys.produce, lsys.ran). */
+#define LSYS_PRODUCING "lsys.producing"
+
+/*
+** Registers the metatable 'tname' (liolib's createmeta): the metamethods
+** 'meta', and the methods 'methods' (NULL: none) as its __index, which
+** replaces a placeholder {"__index", NULL} in 'meta'. Leaves the stack as
+** it was.
+*/
+void lsys_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
+                      const luaL_Reg *methods);
+
+/* The alphabet shared by all models and Lstrings of a Lua state (made at
+** the first call); raises once it was finalized. */
+lsys_alphabet *lsys_getalphabet (lua_State *L);
+
+/*
+** Raises the error of a failed core call: "not enough memory" for
+** LSYS_ENOMEM, else the message in 'e'. 'level' is that of Lua's error():
+** 1 puts the position of the Lua code that called the binding first (as
+** luaL_error does), 0 raises the message as it is (one that names a file
+** and line of its own). Never returns.
+*/
+int lsys_raise (lua_State *L, int code, const lsys_error *e, int level);
+
+/* Reads a list of module names separated by white space or commas into 'd'.
+** Returns LSYS_OK or LSYS_ENOMEM. */
+int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Lstring */
+
+/* An Lstring userdata: the string, whether it was closed (its memory freed by
+** __close or __gc), and how many running operations read or write it (a
+** derivation, an interpretation): while 'busy', it can be neither closed nor
+** rewritten. User value 1: its owner, the Rules whose model made it. */
+typedef struct lsys_lstr {
+  lsys_lstring s;
+  int closed;
+  int busy;
+} lsys_lstr;
+
+/* Pushes a new empty Lstring and returns it. */
+lsys_lstring *lsys_newlstring (lua_State *L);
+
+/* The Lstring at 'i'; raises when it is not one or was closed. */
+lsys_lstring *lsys_checklstring (lua_State *L, int i);
+#define checklstring(L, i) lsys_checklstring(L, (i))
+
+/* The same for an Lstring that is about to be rewritten in place: raises
+** also when an operation is using it. */
+lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what);
+
+/* Marks the Lstring at 'i' used by an operation (+1) or no longer (-1). */
+void lsys_lstring_busy (lua_State *L, int i, int delta);
+
+/* Makes the value at 'owner' the owner of the Lstring at 'idx' (an Lstring
+** passes on its own owner). */
+void lsys_setowner (lua_State *L, int idx, int owner);
+
+/* The declared names of the model that made the Lstring at 'idx' (its
+** owner), or NULL. */
+const lsys_names *lsys_ownernames (lua_State *L, int idx);
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Rules: the compiled rules of one model (the C side of lsys.lsystem) */
+
+/* user values of a Rules: the rule functions by rule index + 1, and the
+** successor templates of lsys.produce by text */
+enum { LSYS_RULES_FNS = 1, LSYS_RULES_TPL = 2, LSYS_RULES_NUV = 2 };
+
+typedef struct lsys_lrules {
+  lsys_model m;
+  lsys_names decl;
+  lua_State *L;        /* while a step runs */
+  int fnidx;           /* stack index of the closure table while a step runs */
+  int produced;        /* lsys.produce was called by the running rule function */
+  int inited;          /* 0 once closed (finalized) */
+} lsys_lrules;
+
+/* The Rules at 'i'; raises when they were closed. */
+lsys_lrules *lsys_checkrules (lua_State *L, int i);
+
+/*
+** Runs op(L, m, ud) on the model of the Rules at 'ridx' with its rule
+** functions callable from C (for derivation and the streamed homomorphism)
+** and lsys.produce / lsys.ran wired to it, and the Lstrings at the stack
+** indices lstr[0..n) marked busy (they can be neither closed nor rewritten
+** meanwhile). It runs in protected mode: the marks are undone and the error
+** raised again, whatever op or a rule function does. Raises before anything
+** when the model is running already ("a rule of this model called 'what' on
+** the same model"). Returns op's status. 'op' sees a stack of its own.
+*/
+typedef int (*lsys_ruleop) (lua_State *L, lsys_model *m, void *ud);
+int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                    const int *lstr, int n);
+
+/* ---------------------------------------------------------------------- */
+/* lsys.Scene: what an interpretation drew (DESIGN.md §6) */
+
+/* user values of a Scene: what made it, for scene:turtle() and the
+** textures of scene:save() */
+enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_SCENE_NUV = 3 };
+
+/* The palette has npal >= 1 materials; colour c uses pal[c % npal]. */
+typedef struct lsys_lscene {
+  lsys_mesh mesh;
+  lsys_material *pal;
+  size_t npal;
+  lsys_trec *rec;      /* the turtle records */
+  size_t nrec;
+  float *stiff;        /* the records' stiffness, 3 per record that has one */
+  int inited;          /* 0 once closed */
+} lsys_lscene;
+
+/* The Scene at 'i'; raises when it is not one or was closed. */
+lsys_lscene *lsys_checkscene (lua_State *L, int i);
+
+/* The name of a turtle record kind (LSYS_REC_*): "segment", "sphere", ... */
+const char *lsys_recordkind (int kind);
+
+/* ---------------------------------------------------------------------- */
+/* Contour, Surface, Texture: core objects, immutable once made; each raises
+** when the value at 'i' is not one or was closed. */
+
+const lsys_contour *lsys_checkcontour (lua_State *L, int i);
+const lsys_surface *lsys_checksurface (lua_State *L, int i);
+const lsys_texture *lsys_checktexture (lua_State *L, int i);
+
+/* ---------------------------------------------------------------------- */
+/*
+** Option readers, lauxlib's luaL_opt* for the fields of an options table.
+** An lsys_opts says where the table is and how messages name its fields:
+** option k is pre..k..post ("lsys.render: opts." "width"; "view option '"
+** "angle" "'"). A reader reads o[k]: an absent option (nil, or no table at
+** all) gives the default; a bad one raises "<option> must be <what is
+** expected>", followed by ", got ..." as 'got' says. One argument order:
+** L, the options, the key, the default, the bounds.
+*/
+enum {
+  LSYS_GOT_NONE,       /* the message ends there */
+  LSYS_GOT_TYPE,       /* a value of the wrong type is named by its type (or as "a
+                          non-finite number"); a bad value of the right type is not */
+  LSYS_GOT_VALUE       /* every bad value is shown: a number or 'string' as it is,
+                          anything else by its type */
+};
+
+typedef struct lsys_opts {
+  int t;               /* absolute stack index of the table; 0: none */
+  const char *pre, *post;
+  int got;             /* LSYS_GOT_* */
+  int numerals;        /* numbers may be numerals (strings), as lua_tonumberx reads them */
+} lsys_opts;
+
+/* Pushes o[k] and returns 1, or returns 0 when it is absent. With a 'type'
+** (not LUA_TNONE), a value of another type raises ("must be <expect>"). */
+int lsys_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
+                   const char *expect);
+
+/* Raises "<option k> must be <expect>" for the bad value of o[k] on top of
+** the stack (shown with LSYS_GOT_VALUE). */
+int lsys_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect);
+
+/* A boolean ("must be a boolean"). */
+int lsys_optbool (lua_State *L, const lsys_opts *o, const char *k, int def);
+
+/* An integer in [lo, hi]: a number, or a numeral with o->numerals ("must be
+** an integer"), whose value is an integer in range ("must be an integer in
+** [lo, hi]"). */
+int lsys_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi);
+
+/* A finite number in the open interval (lo, hi) (-HUGE_VAL, HUGE_VAL: no
+** bound); "must be <expect>" (NULL: "a finite number") for anything else. */
+double lsys_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
+                    double hi, const char *expect);
+#define lsys_optfinite(L, o, k, def) lsys_optnum(L, o, k, def, -HUGE_VAL, HUGE_VAL, NULL)
+
+/* A string out of the NULL-terminated list 'names': returns its index.
+** Anything else raises "must be <expect>"; a string is always shown. */
+int lsys_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
+                    const char *const names[], const char *expect);
+
+/* Whether the table has a key that is not a string in the NULL-terminated
+** list 'names' (the caller's message names it): then pushes the first such
+** key in lua_next order and returns 1. */
+int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]);
+
+/*
+** The list opts.textures of the options table at 't' (0: none) as an array
+** of *ntex textures, or NULL when absent or empty. Pushes one value that
+** keeps the array alive (nil when NULL); raises, naming 'who', when the
+** list holds anything but live textures.
+*/
+const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
+
+/* Fills 'o' from the lsys.render options table at 't' (0: none), checking
+** every field (only when built with rendering). */
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o);
+
+#endif
