@@ -12,21 +12,30 @@
 **   material per (colour, texture) pair, PLY ignores textures;
 ** - coordinates that are not finite are written as 0 (a JSON file cannot
 **   hold NaN, and most OBJ readers choke on it);
-** - a failed write leaves the partial file in place: the output may be a
-**   device or a pipe, which must not be removed.
+** - outputs are atomic (outfile.h): a file is written under a temporary
+**   name and renamed on success; a failure removes only the temporary file
+**   (a device or a pipe is written in place and never removed).
 */
 #ifndef LSYS_EXPORT_H
 #define LSYS_EXPORT_H
 
 #include "common.h"
+#include "mesh.h"
+#include "scene.h"
 #include "texture.h"
 
-/* The mesh types (mesh.h), declared here too: mesh.h includes this header
-** for the files that still find the writers through it, and a header
-** cycle is what DESIGN.md §2 rules out. */
-typedef struct lsys_mesh lsys_mesh;
-typedef struct lsys_material lsys_material;
+enum { LSYS_FORMAT_OBJ = 0, LSYS_FORMAT_PLY = 1, LSYS_FORMAT_GLB = 2 };
 
+/* The format a file name's extension names (.obj, .ply, .glb, lower case),
+** or -1. */
+int lsys_export_format (const char *path);
+
+/* Writes a scene's mesh with its palette and textures in 'format'
+** (LSYS_FORMAT_*): what the bindings and the program call. LSYS_OK or an
+** error with e->msg naming the file. */
+int lsys_scene_save (const lsys_scene *s, int format, const char *path, lsys_error *e);
+
+/* The writers themselves, on a mesh with a palette and textures: */
 /*
 ** 'pal' has 'npal' materials (npal may be 0: a grey default); 'tex' has
 ** 'ntex' textures (tex may be NULL and ntex 0), texture index k of the mesh

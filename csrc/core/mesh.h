@@ -87,8 +87,4 @@ size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edge
 ** and no specular highlight. */
 void lsys_material_color (lsys_material *mt, double r, double g, double b);
 
-/* The export writers (export.h) were declared here: the bindings
-** (lua_scene.c) still find them through this header. */
-#include "export.h"
-
 #endif

@@ -79,8 +79,6 @@ void lsys_turtle_free (lsys_turtle *t) {
   size_t k;
   for (k = 0; k < t->polycap; k++) LSYS_FREE(t->polys[k].v);
   LSYS_FREE(t->polys);
-  LSYS_FREE(t->rec);
-  LSYS_FREE(t->stiff);
   LSYS_FREE(t->stack);
   LSYS_FREE(t->ends);
   LSYS_FREE(t->subscale);
@@ -291,7 +289,7 @@ static int flush (run *R) {
   if (!R->pending) return LSYS_OK;
   R->pending = 0;
   R->t->mesh->curtex = (unsigned)R->ptex;
-  if (R->prec != LSYS_NOREC) R->t->rec[R->prec].w1 = (float)w1;
+  if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec].w1 = (float)w1;
   switch (R->o->style) {
     case LSYS_STYLE_LINE:
       if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
@@ -327,7 +325,7 @@ static int move (run *R, int op, const double *p, uint32_t np) {
                   st->width * st->scale)) != LSYS_OK)
     return s;
   st->hasstiff = 0;
-  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->t->nrec - 1);
+  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->t->scene->nrec - 1);
   st->last = R->prec;
   R->pending = 1;
   vcopy(R->p0, p0);
@@ -721,8 +719,8 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   run *R;
   lsys_tstate *st;
   int k;
-  if (o == NULL || (t->mode == LSYS_TURTLE_DRAW && t->mesh == NULL))
-    return lsys_seterror(&t->err, LSYS_EARG, (size_t)-1, "turtle without options or mesh");
+  if (o == NULL || (t->mode == LSYS_TURTLE_DRAW && t->scene == NULL))
+    return lsys_seterror(&t->err, LSYS_EARG, (size_t)-1, "turtle without options or scene");
   if (o->sides < 3 || o->sides > 1024)
     return lsys_seterror(&t->err, LSYS_EARG, (size_t)-1,
                          "contour sides must be between 3 and 1024, got %d", o->sides);
@@ -741,7 +739,11 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   R->draw = t->mode == LSYS_TURTLE_DRAW;
   R->prec = LSYS_NOREC;
   R->stsize = offsetof(lsys_tstate, elast) + (size_t)o->ntrop * sizeof(double);
-  if (R->draw) lsys_mesh_clear(t->mesh);
+  t->mesh = R->draw ? &t->scene->mesh : NULL;
+  if (R->draw) {
+    lsys_mesh_clear(t->mesh);
+    t->scene->nrec = t->scene->nstiff = 0;
+  }
   st = &R->st;
   memset(st, 0, sizeof *st);
   vset(st->H, 0, 1, 0); vset(st->L, -1, 0, 0); vset(st->U, 0, 0, -1);
@@ -765,7 +767,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   size_t i, off = 0;
   int status;
   memset(&t->err, 0, sizeof t->err);
-  t->nrec = 0; t->nstiff = 0; t->npolys = 0; t->nends = 0; t->nsub = 0;
+  t->npolys = 0; t->nends = 0; t->nsub = 0;
   t->nqueries = 0; t->nsyscalls = 0;
   if ((status = start(t, ab)) != LSYS_OK) return status;
   R = (run *)t->runbuf;

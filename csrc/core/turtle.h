@@ -1,6 +1,6 @@
 /*
 ** The turtle (DESIGN.md §6): interprets an Lstring as drawing commands and
-** writes geometry into a scene (mesh.h) and one record per drawing module.
+** writes geometry into a scene (scene.h) and one record per drawing module.
 **
 ** Symbols and their meaning follow seed 004 (Appendix A; §2 discs and
 ** spheres; §4.2 polygons; §6 tropisms and twist), with Z(sh,su,sl) joint
@@ -13,28 +13,15 @@
 
 #include "lstring.h"
 #include "mesh.h"
+#include "scene.h"
 #include "contour.h"
 #include "gcyl.h"
 #include "surface.h"
 #include "texture.h"
 
 #define LSYS_MAXTROPISMS 16
-#define LSYS_NOREC       UINT32_MAX
 
 enum { LSYS_STYLE_LINE = 0, LSYS_STYLE_POLYGON = 1, LSYS_STYLE_CYLINDER = 2 };
-
-/* What a record stands for. */
-enum {
-  LSYS_REC_SEGMENT = 1,   /* F or G: p0 -> p1 */
-  LSYS_REC_SPHERE,        /* @O: centre p0 = p1, diameter w0 */
-  LSYS_REC_DISC,          /* @c, @o */
-  LSYS_REC_POLYGON,       /* }: p0 = first vertex, p1 = last */
-  LSYS_REC_LABEL,         /* @L */
-  LSYS_REC_SYSTEM,        /* @S (only when system calls are allowed) */
-  LSYS_REC_GCYL,          /* a generalized-cylinder segment: previous control point ->
-                             p1 (the @Gc or @Ge module) */
-  LSYS_REC_SURFACE        /* ~X (p1: where the turtle ends) or @PD (p1: the turtle) */
-};
 
 /* A predefined surface of the view: ~name draws it (seed 004 §4.1). */
 typedef struct lsys_surfuse {
@@ -74,24 +61,6 @@ typedef struct lsys_turtle_opts {
 } lsys_turtle_opts;
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
-
-/* Everything a record keeps about a drawing module, in 72 bytes: a big
-** plant has millions. L is H x U. A segment starts at p1 - len * H (it runs
-** along H); other records have len = 0. The stiffness of the joint before a
-** segment, when Z set one, is t->stiff[3 * stiff .. 3 * stiff + 2]. */
-typedef struct lsys_trec {
-  uint32_t module;        /* index of the module in the string (0-based) */
-  uint32_t parent;        /* record of the segment this one starts from, or LSYS_NOREC */
-  uint8_t kind, pad;
-  uint16_t color;
-  float w0, w1;           /* width at the start and at the end */
-  float len;              /* length of a segment */
-  float p1[3];            /* end point (a sphere's or disc's centre, a polygon's last vertex) */
-  float H[3], U[3];       /* frame at the end */
-  uint32_t stiff;         /* Z(sh, su, sl) in effect for the joint before it, or LSYS_NOREC */
-  uint32_t tri0, ntri;    /* the mesh triangles the module drew up to this record: for a
-                             polygon, surface, disc or sphere the whole shape (highlights) */
-} lsys_trec;
 
 /* The turtle state (seed 004 §1), pushed and popped by [ and ]. */
 typedef struct lsys_tstate {
@@ -137,14 +106,13 @@ typedef struct lsys_turtle {
   lsys_meter *meter;            /* the memory budget of the mesh, the records and the
                                    branch stack (NULL: none); past it, LSYS_EMEMORY */
   /* outputs */
-  lsys_mesh *mesh;
-  lsys_trec *rec; size_t nrec, reccap;
-  float *stiff; size_t nstiff, stiffcap;   /* 3 per Z-stiffened record */
+  lsys_scene *scene;            /* DRAW mode: the geometry, records and stiffnesses go here */
   lsys_tstate state;            /* the state when interpretation ended (or stopped) */
   size_t nqueries;              /* query modules filled */
   size_t nsyscalls;             /* @S modules seen (recorded when allowed) */
   lsys_error err;
   /* scratch, reused across calls */
+  lsys_mesh *mesh;              /* &scene->mesh during a DRAW run, else NULL */
   lsys_tstate *stack; size_t nstack, stackcap;
   lsys_polygon *polys; size_t npolys, polycap;
   lsys_cylend *ends; size_t nends, endcap;
@@ -167,9 +135,9 @@ void lsys_turtle_init (lsys_turtle *t);
 void lsys_turtle_free (lsys_turtle *t);
 
 /*
-** Interprets 's' (symbol names from 'ab'). In DRAW mode the geometry is
-** appended to t->mesh (which must be set) and the records to t->rec (both
-** cleared first). In QUERY mode the parameters of the query modules of 's'
+** Interprets 's' (symbol names from 'ab'). In DRAW mode the geometry, the
+** records and the stiffnesses go into t->scene (which must be set; they are
+** cleared first, its palette, textures, camera and light stay). In QUERY mode the parameters of the query modules of 's'
 ** are overwritten with the turtle's position or vectors at that point. In
 ** STATE mode t->state is the state after the first t->stop modules. Returns LSYS_OK
 ** or an error code with t->err set (t->err.pos = the module index).

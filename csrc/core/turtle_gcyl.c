@@ -103,7 +103,7 @@ static int gcpoint (run *R, uint32_t *idx) {
 /* The record of the segment just drawn from 'a' to 'b' runs along the
 ** chord, so that its p0 is 'a'. */
 static void chordframe (run *R, const lsys_gcpoint *a, const lsys_gcpoint *b) {
-  lsys_trec *r = &R->t->rec[R->t->nrec - 1];
+  lsys_trec *r = &R->t->scene->rec[R->t->scene->nrec - 1];
   double c[3], u[3];
   int k;
   vlin(c, b->pos, 1, a->pos, -1);

@@ -128,15 +128,16 @@ static inline int arg (run *R, const double *p, uint32_t np, uint32_t k, double 
 static inline int newrec (run *R, int kind, const double *p0, const double *p1, double w0,
                           double w1) {
   lsys_turtle *t = R->t;
+  lsys_scene *S = t->scene;
   lsys_trec *r;
   int k;
   if (R->o->norecords) return LSYS_OK;
-  if (t->nrec == t->reccap &&
-      lsys_grow_metered((void **)&t->rec, &t->reccap, t->nrec + 1, sizeof *t->rec, t->meter)
+  if (S->nrec == S->reccap &&
+      lsys_grow_metered((void **)&S->rec, &S->reccap, S->nrec + 1, sizeof *S->rec, t->meter)
       != LSYS_OK)
     return lsys_turtle_nomem(R);
-  if (t->nrec >= LSYS_NOREC) return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
-  r = &t->rec[t->nrec++];
+  if (S->nrec >= LSYS_NOREC) return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
+  r = &S->rec[S->nrec++];
   r->module = (uint32_t)R->mod;
   r->parent = R->st.last;
   r->kind = (uint8_t)kind;
@@ -155,12 +156,12 @@ static inline int newrec (run *R, int kind, const double *p0, const double *p1, 
   r->ntri = t->mesh != NULL && t->mesh->nt > R->modtri ? (uint32_t)(t->mesh->nt - R->modtri) : 0;
   r->stiff = LSYS_NOREC;
   if (R->st.hasstiff) {
-    if (lsys_grow_metered((void **)&t->stiff, &t->stiffcap, 3 * (t->nstiff + 1), sizeof(float),
+    if (lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * (S->nstiff + 1), sizeof(float),
                           t->meter) != LSYS_OK)
       return lsys_turtle_nomem(R);
-    r->stiff = (uint32_t)t->nstiff;
-    for (k = 0; k < 3; k++) t->stiff[3 * t->nstiff + k] = (float)R->st.stiff[k];
-    t->nstiff++;
+    r->stiff = (uint32_t)S->nstiff;
+    for (k = 0; k < 3; k++) S->stiff[3 * S->nstiff + k] = (float)R->st.stiff[k];
+    S->nstiff++;
   }
   return LSYS_OK;
 }

@@ -40,11 +40,7 @@ void lsys_render_defaults (lsys_render_opts *o) {
   o->supersample = 3;
   o->background[0] = o->background[1] = o->background[2] = 1.0f;
   o->light[0] = -1; o->light[1] = 1; o->light[2] = 1;
-  o->cam.up[1] = 1;
-  o->cam.dir[2] = -1;
-  o->cam.projection = LSYS_PERSPECTIVE;
-  o->cam.fov = 30;
-  o->cam.zoom = 1;
+  lsys_camera_defaults(&o->cam);
 }
 
 void lsys_render_cache_free (lsys_render_cache *c) {

@@ -14,6 +14,7 @@
 #define LSYS_RENDER_H
 
 #include "mesh.h"
+#include "scene.h"
 #include "texture.h"
 
 /*
@@ -82,30 +83,8 @@ typedef void (*lsys_glproc) (void);
 ** with e->msg naming the first entry point that 'get' did not find. */
 int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e);
 
-#define LSYS_PERSPECTIVE 0
-#define LSYS_PARALLEL    1
-
-/*
-** The camera. Without a target, it aims at the centre of the scene's
-** bounding box. Without an eye, it looks along 'dir' and steps back until
-** every vertex and line end is in the image with a margin of 5% of its
-** size on each side (around the target, so the margins may differ). A
-** parallel projection is scaled the same way. Near and far planes always
-** come from the bounding box.
-*/
-typedef struct lsys_camera {
-  double eye[3];        /* viewpoint, when has_eye */
-  double target[3];     /* view reference point, when has_target */
-  double up[3];         /* up vector, when has_up; default +y */
-  double dir[3];        /* view direction used when there is no eye; default (0, 0, -1) */
-  int has_eye, has_target, has_up;
-  int projection;       /* LSYS_PERSPECTIVE (default) or LSYS_PARALLEL */
-  double fov;           /* vertical field of view in degrees (perspective); default 30 */
-  double twist;         /* degrees; a positive twist turns the picture counterclockwise */
-  double zoom;          /* magnification about the image centre, after fitting; default 1 */
-  double halfh;         /* parallel: half the image height in world units (before zoom)
-                           when > 0, instead of fitting (the viewer keeps a scale) */
-} lsys_camera;
+/* The camera (lsys_camera, LSYS_PERSPECTIVE, LSYS_PARALLEL) is the scene's:
+** scene.h. */
 
 /* Scratch arrays of lsys_render_draw, kept between frames so that
 ** drawing allocates nothing once they are large enough. */

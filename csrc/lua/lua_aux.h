@@ -28,6 +28,7 @@
 #include "lstring.h"
 #include "mesh.h"
 #include "render.h"
+#include "scene.h"
 #include "surface.h"
 #include "texture.h"
 #include "turtle.h"
@@ -152,12 +153,7 @@ enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_S
 
 /* The palette has npal >= 1 materials; colour c uses pal[c % npal]. */
 typedef struct lsys_lscene {
-  lsys_mesh mesh;
-  lsys_material *pal;
-  size_t npal;
-  lsys_trec *rec;      /* the turtle records */
-  size_t nrec;
-  float *stiff;        /* the records' stiffness, 3 per record that has one */
+  lsys_scene sc;       /* mesh, palette, records and stiffnesses (scene.h) */
   int inited;          /* 0 once closed */
 } lsys_lscene;
 

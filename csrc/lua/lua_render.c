@@ -42,8 +42,8 @@ static int l_render (lua_State *L) {
   o.tex = lsys_opttextures(L, ro.t, "lsys.render", &o.ntex);   /* pushes one value */
   if (lsys_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
-  o.pal = S->pal;
-  o.npal = S->npal;
+  o.pal = S->sc.pal;
+  o.npal = S->sc.npal;
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (o.width > maxw || o.height > maxh)
@@ -58,7 +58,7 @@ static int l_render (lua_State *L) {
   }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
-  if (lsys_render_offscreen(&S->mesh, &o, px, &e) != LSYS_OK)
+  if (lsys_render_offscreen(&S->sc.mesh, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {
     if (lsys_png_write(out, px, o.width, o.height, o.transparent, &e) != LSYS_OK)

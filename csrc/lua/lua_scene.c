@@ -17,8 +17,8 @@
 
 #include "lua_aux.h"
 #include "lua_lsys.h"
-#include "derive.h"
-#include "turtle.h"
+#include "export.h"
+#include "interpret.h"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
 ** error while the homomorphism is streamed leaves it to the collector. */
@@ -222,19 +222,19 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
   lua_Integer n, k;
   if (lua_getfield(L, t, "palette") != LUA_TTABLE) {
     lua_pop(L, 1);
-    S->pal = (lsys_material *)LSYS_MALLOC(sizeof *S->pal);
-    if (S->pal == NULL) luaL_error(L, "not enough memory");
-    lsys_material_color(S->pal, 0.6, 0.6, 0.6);
-    S->npal = 1;
+    S->sc.pal = (lsys_material *)LSYS_MALLOC(sizeof *S->sc.pal);
+    if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
+    lsys_material_color(S->sc.pal, 0.6, 0.6, 0.6);
+    S->sc.npal = 1;
     return;
   }
   n = luaL_len(L, -1) + 1;
   if (n > 65536) luaL_error(L, "the palette has more than 65536 entries");
-  S->pal = (lsys_material *)LSYS_MALLOC((size_t)n * sizeof *S->pal);
-  if (S->pal == NULL) luaL_error(L, "not enough memory");
-  S->npal = (size_t)n;
+  S->sc.pal = (lsys_material *)LSYS_MALLOC((size_t)n * sizeof *S->sc.pal);
+  if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
+  S->sc.npal = (size_t)n;
   for (k = 0; k < n; k++) {
-    lsys_material *m = &S->pal[k];
+    lsys_material *m = &S->sc.pal[k];
     lsys_opts e;
     lsys_material_color(m, 0.6, 0.6, 0.6);
     if (lua_geti(L, -1, k) != LUA_TTABLE) {
@@ -256,7 +256,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     lua_pop(L, 1);
   }
   if (n > 1) {                                /* no [0]: it repeats entry 1 */
-    if (lua_geti(L, -1, 0) == LUA_TNIL) S->pal[0] = S->pal[1];
+    if (lua_geti(L, -1, 0) == LUA_TNIL) S->sc.pal[0] = S->sc.pal[1];
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
@@ -265,47 +265,25 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
 /* ---------------------------------------------------------------------- */
 /* running the turtle with the homomorphism streamed from the rules */
 
-typedef struct expander {
-  lsys_model *m;
+/* What the protected run of the turtle needs (lsys_rules_run). */
+typedef struct turtlecall {
   lsys_turtle *t;
   lsys_lstring *s;
   int homo;
-  lsys_meter meter;     /* the budget of the mesh, records and stack (the model's max_memory) */
-} expander;
+} turtlecall;
 
-static int expandfn (void *ud, size_t i, size_t poff, lsys_lstring *out, lsys_error *e) {
-  expander *x = (expander *)ud;
-  int st = lsys_homo_module(x->m, i, poff, out);
-  if (st < 0) *e = x->m->err;
-  return st;
-}
-
-/* The turtle's run with the model bound (lsys_rules_run). */
-/* The budget is attached for the run only; when a rule function raises, the
-** turtle and the unfinished scene that point to it are garbage. */
+/* The turtle's run with the model bound: interpret.h streams the
+** homomorphism and attaches the model's memory budget. */
 static int doturtle (lua_State *L, lsys_model *m, void *ud) {
-  expander *x = (expander *)ud;
-  int st = x->homo ? lsys_homo_begin(m, x->s) : 0;
-  x->m = m;
-  x->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
-  x->meter.used = lsys_lstring_bytes(x->s);
-  x->meter.hit = 0;
-  x->t->meter = &x->meter;
-  if (x->t->mesh != NULL) x->t->mesh->meter = &x->meter;
-  if (st > 0) { x->t->expand = expandfn; x->t->expandud = x; st = LSYS_OK; }
-  if (st == LSYS_OK) st = lsys_turtle_run(x->t, x->s, lsys_getalphabet(L));
-  else x->t->err = m->err;
-  lsys_homo_end(m);
-  x->t->meter = NULL;
-  if (x->t->mesh != NULL) x->t->mesh->meter = NULL;
-  return st;
+  turtlecall *x = (turtlecall *)ud;
+  return lsys_interpret(m, x->t, x->s, lsys_getalphabet(L), x->homo);
 }
 
 /* Runs the turtle over the Lstring at 2 with the rules at 1 and options at
 ** 'opt'. Raises on error (after cleaning up). */
 static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int opt) {
   static const int lstr[1] = {2};
-  expander x;
+  turtlecall x;
   int st;
   x.s = checklstring(L, 2);
   x.t = t;
@@ -328,21 +306,17 @@ static int l_interpret (lua_State *L) {
   S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);      /* 4 */
   memset(S, 0, sizeof *S);
   luaL_setmetatable(L, SCENE_T);
-  lsys_mesh_init(&S->mesh);
+  lsys_scene_init(&S->sc);
   S->inited = 1;
   readpalette(L, 3, S);
   t = newturtle(L, LSYS_TURTLE_DRAW);                        /* 5 */
-  t->mesh = &S->mesh;
+  t->scene = &S->sc;
   turtlerun(L, t, &o, 3);
-  S->rec = t->rec; S->nrec = t->nrec;                   /* the scene keeps the records */
-  S->stiff = t->stiff;
-  t->rec = NULL; t->reccap = 0;
-  t->stiff = NULL; t->stiffcap = 0;
   lsys_turtle_free(t);
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, LSYS_SCENE_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, LSYS_SCENE_LSTRING);
   lua_pushvalue(L, 3); lua_setiuservalue(L, 4, LSYS_SCENE_OPTS);
-  lua_gc(L, LUA_GCSTEP, (int)((S->mesh.nv * 41 + S->mesh.nt * 12 + S->nrec * sizeof *S->rec) >> 10));
+  lua_gc(L, LUA_GCSTEP, (int)((S->sc.mesh.nv * 41 + S->sc.mesh.nt * 12 + S->sc.nrec * sizeof *S->sc.rec) >> 10));
   lua_settop(L, 4);
   return 1;
 }
@@ -402,12 +376,7 @@ static int l_turtle_state (lua_State *L) {
 static int scene_gc (lua_State *L) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
-    lsys_mesh_free(&S->mesh);
-    LSYS_FREE(S->pal);
-    LSYS_FREE(S->rec);
-    LSYS_FREE(S->stiff);
-    S->pal = NULL; S->rec = NULL; S->stiff = NULL;
-    S->npal = S->nrec = 0;
+    lsys_scene_free(&S->sc);
     S->inited = 0;
   }
   return 0;
@@ -415,17 +384,17 @@ static int scene_gc (lua_State *L) {
 
 static size_t countrec (const lsys_lscene *S, int kind) {
   size_t k, n = 0;
-  for (k = 0; k < S->nrec; k++) n += S->rec[k].kind == kind;
+  for (k = 0; k < S->sc.nrec; k++) n += S->sc.rec[k].kind == kind;
   return n;
 }
 
 static int scene_index (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
-  if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nt);
-  else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nv);
-  else if (strcmp(k, "nlines") == 0) lua_pushinteger(L, (lua_Integer)S->mesh.nl);
-  else if (strcmp(k, "nrecords") == 0) lua_pushinteger(L, (lua_Integer)S->nrec);
+  if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nt);
+  else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nv);
+  else if (strcmp(k, "nlines") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nl);
+  else if (strcmp(k, "nrecords") == 0) lua_pushinteger(L, (lua_Integer)S->sc.nrec);
   else if (strcmp(k, "nsegments") == 0)
     lua_pushinteger(L, (lua_Integer)countrec(S, LSYS_REC_SEGMENT));
   else if (strcmp(k, "lstring") == 0) lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);
@@ -444,7 +413,7 @@ static int scene_tostring (lua_State *L) {
     return 1;
   }
   lua_pushfstring(L, "lsys.Scene: %d triangles, %d line segments, %d turtle records",
-                  (int)S->mesh.nt, (int)S->mesh.nl, (int)S->nrec);
+                  (int)S->sc.mesh.nt, (int)S->sc.mesh.nl, (int)S->sc.nrec);
   return 1;
 }
 
@@ -452,7 +421,7 @@ static int scene_tostring (lua_State *L) {
 static int scene_bounds (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   double lo[3], hi[3];
-  if (!lsys_mesh_bounds(&S->mesh, lo, hi)) { lua_pushnil(L); return 1; }
+  if (!lsys_mesh_bounds(&S->sc.mesh, lo, hi)) { lua_pushnil(L); return 1; }
   pushvec(L, lo);
   pushvec(L, hi);
   return 2;
@@ -461,7 +430,7 @@ static int scene_bounds (lua_State *L) {
 /* scene:area() -> total area of the triangles */
 static int scene_area (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
-  const lsys_mesh *m = &S->mesh;
+  const lsys_mesh *m = &S->sc.mesh;
   double a = 0;
   size_t k;
   for (k = 0; k < m->nt; k++) {
@@ -504,7 +473,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
   lua_pushnumber(L, r->w1); lua_setfield(L, -2, "w1");
   lua_pushinteger(L, r->color); lua_setfield(L, -2, "color");
   if (r->stiff != LSYS_NOREC) {
-    pushvecf(L, S->stiff + 3 * r->stiff);
+    pushvecf(L, S->sc.stiff + 3 * r->stiff);
     lua_setfield(L, -2, "stiffness");
   }
 }
@@ -513,17 +482,17 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
 static int scene_record (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
-  if (k < 1 || (size_t)k > S->nrec) { lua_pushnil(L); return 1; }
-  pushrecord(L, S, &S->rec[k - 1]);
+  if (k < 1 || (size_t)k > S->sc.nrec) { lua_pushnil(L); return 1; }
+  pushrecord(L, S, &S->sc.rec[k - 1]);
   return 1;
 }
 
 static int records_iter (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
-  if (k < 1 || (size_t)k > S->nrec) return 0;
+  if (k < 1 || (size_t)k > S->sc.nrec) return 0;
   lua_pushinteger(L, k);
-  pushrecord(L, S, &S->rec[k - 1]);
+  pushrecord(L, S, &S->sc.rec[k - 1]);
   return 2;
 }
 
@@ -541,8 +510,8 @@ static int scene_find (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer m = luaL_checkinteger(L, 2);
   size_t k;
-  for (k = 0; k < S->nrec; k++)
-    if ((lua_Integer)S->rec[k].module + 1 == m) { lua_pushinteger(L, (lua_Integer)k + 1); return 1; }
+  for (k = 0; k < S->sc.nrec; k++)
+    if ((lua_Integer)S->sc.rec[k].module + 1 == m) { lua_pushinteger(L, (lua_Integer)k + 1); return 1; }
   lua_pushnil(L);
   return 1;
 }
@@ -556,16 +525,16 @@ static int scene_edges (lua_State *L) {
   const lsys_trec *r;
   uint32_t *e;
   size_t n, i;
-  if (k < 1 || (size_t)k > S->nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
-  r = &S->rec[k - 1];
+  if (k < 1 || (size_t)k > S->sc.nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
+  r = &S->sc.rec[k - 1];
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
-  n = lsys_mesh_edges(&S->mesh, r->tri0, r->ntri, e);
+  n = lsys_mesh_edges(&S->sc.mesh, r->tri0, r->ntri, e);
   lua_createtable(L, (int)n, 0);
   for (i = 0; i < n; i++) {
     lua_createtable(L, 2, 0);
-    pushvecf(L, S->mesh.pos + 3 * (size_t)e[2 * i]);
+    pushvecf(L, S->sc.mesh.pos + 3 * (size_t)e[2 * i]);
     lua_rawseti(L, -2, 1);
-    pushvecf(L, S->mesh.pos + 3 * (size_t)e[2 * i + 1]);
+    pushvecf(L, S->sc.mesh.pos + 3 * (size_t)e[2 * i + 1]);
     lua_rawseti(L, -2, 2);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
   }
@@ -591,22 +560,19 @@ static int scene_turtle (lua_State *L) {
 static int scene_save (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   size_t len;
-  const char *path = luaL_checklstring(L, 2, &len), *ext = strrchr(path, '.');
+  const char *path = luaL_checklstring(L, 2, &len);
+  int format = lsys_export_format(path);
+  lsys_scene v;
   lsys_error e;
-  const lsys_texture *const *tex;
-  int st, ntex;
+  int st;
   memset(&e, 0, sizeof e);
   lua_settop(L, 2);                   /* the textures of the interpretation's options */
-  tex = lsys_opttextures(L, lua_getiuservalue(L, 1, LSYS_SCENE_OPTS) == LUA_TTABLE ? 3 : 0,
-                         "scene:save", &ntex);
-  if (ext != NULL && strcmp(ext, ".obj") == 0)
-    st = lsys_mesh_save_obj(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
-  else if (ext != NULL && strcmp(ext, ".ply") == 0)
-    st = lsys_mesh_save_ply(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
-  else if (ext != NULL && strcmp(ext, ".glb") == 0)
-    st = lsys_mesh_save_glb(&S->mesh, S->pal, S->npal, tex, ntex, path, &e);
-  else
+  v = S->sc;                          /* the scene with them (borrowed for the call) */
+  v.tex = lsys_opttextures(L, lua_getiuservalue(L, 1, LSYS_SCENE_OPTS) == LUA_TTABLE ? 3 : 0,
+                           "scene:save", &v.ntex);
+  if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
+  st = lsys_scene_save(&v, format, path, &e);
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;

@@ -160,22 +160,22 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     lsys_readrenderopts(L, lua_gettop(L), &f->ro);
     lua_pop(L, 1);
   }
-  f->pal = (lsys_material *)LSYS_MALLOC(S->npal * sizeof *f->pal);
-  f->picks = (lsys_vpick *)LSYS_MALLOC((S->nrec > 0 ? S->nrec : 1) * sizeof *f->picks);
+  f->pal = (lsys_material *)LSYS_MALLOC(S->sc.npal * sizeof *f->pal);
+  f->picks = (lsys_vpick *)LSYS_MALLOC((S->sc.nrec > 0 ? S->sc.nrec : 1) * sizeof *f->picks);
   if (f->pal == NULL || f->picks == NULL) luaL_error(L, "not enough memory for the viewer");
-  memcpy(f->pal, S->pal, S->npal * sizeof *S->pal);
-  f->npal = S->npal;
-  setpicks(f, S->rec, S->nrec, world);
+  memcpy(f->pal, S->sc.pal, S->sc.npal * sizeof *S->sc.pal);
+  f->npal = S->sc.npal;
+  setpicks(f, S->sc.rec, S->sc.nrec, world);
   if (lsys_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
     readlines(L, lua_gettop(L), f);
     lua_pop(L, 1);
   }
   if (take) {                /* the scene's own mesh: checked again, options ran Lua code */
     lsys_lscene *T = lsys_checkscene(L, -1);
-    f->mesh = T->mesh;
-    lsys_mesh_init(&T->mesh);
+    f->mesh = T->sc.mesh;
+    lsys_mesh_init(&T->sc.mesh);
   }
-  else if (lsys_mesh_copy(&f->mesh, &S->mesh) != LSYS_OK)
+  else if (lsys_mesh_copy(&f->mesh, &S->sc.mesh) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   lua_pop(L, 1);
 }

@@ -21,34 +21,34 @@ static int near (double a, double b) { return fabs(a - b) < 1e-9; }
 static void test_draw (void) {
   lsys_alphabet a;
   lsys_lstring s;
-  lsys_mesh m;
+  lsys_scene sc;
   lsys_turtle t;
   lsys_turtle_opts o;
   assert(lsys_alphabet_init(&a) == LSYS_OK);
   lsys_lstring_init(&s);
-  lsys_mesh_init(&m);
+  lsys_scene_init(&sc);
   lsys_turtle_init(&t);
   lsys_turtle_defaults(&o);
   o.style = LSYS_STYLE_CYLINDER;
   o.sides = 4;
   t.o = &o;
-  t.mesh = &m;
+  t.scene = &sc;
   parse(&s, &a, "F(2)[+F]!(0.5)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(t.nrec == 3);
-  assert(t.rec[0].module == 0 && t.rec[1].module == 3 && t.rec[2].module == 6);
-  assert(t.rec[1].parent == 0 && t.rec[2].parent == 0);
-  assert(near(t.rec[2].p1[1] - t.rec[2].len * t.rec[2].H[1], 2) && near(t.rec[2].p1[1], 3));
+  assert(sc.nrec == 3);
+  assert(sc.rec[0].module == 0 && sc.rec[1].module == 3 && sc.rec[2].module == 6);
+  assert(sc.rec[1].parent == 0 && sc.rec[2].parent == 0);
+  assert(near(sc.rec[2].p1[1] - sc.rec[2].len * sc.rec[2].H[1], 2) && near(sc.rec[2].p1[1], 3));
   /* F(2) ends at the bracket: top width 1; the last F starts at width 0.5 */
-  assert(t.rec[0].w1 == 1.0f && t.rec[2].w0 == 0.5f);
+  assert(sc.rec[0].w1 == 1.0f && sc.rec[2].w0 == 0.5f);
   /* three cylinders of 4 sides, none sharing a ring (a width step and a turn), six caps */
-  assert(m.nt == 3 * 8 + 6 * 4);
+  assert(sc.mesh.nt == 3 * 8 + 6 * 4);
   /* a second run reuses the buffers and starts from a cleared mesh */
   parse(&s, &a, "F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(t.nrec == 1 && m.nt == 8 + 2 * 4);
+  assert(sc.nrec == 1 && sc.mesh.nt == 8 + 2 * 4);
   lsys_turtle_free(&t);
-  lsys_mesh_free(&m);
+  lsys_scene_free(&sc);
   lsys_lstring_free(&s);
   lsys_alphabet_free(&a);
 }
@@ -67,7 +67,7 @@ static void test_state_and_query (void) {
   t.mode = LSYS_TURTLE_STATE;
   t.stop = 2;                         /* after F(3) + */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(near(t.state.pos[1], 3) && near(t.state.H[0], -1) && t.nrec == 0);
+  assert(near(t.state.pos[1], 3) && near(t.state.H[0], -1) && t.mesh == NULL);
   t.mode = LSYS_TURTLE_QUERY;
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
   assert(t.nqueries == 2);
@@ -81,7 +81,7 @@ static void test_state_and_query (void) {
 static void test_errors (void) {
   lsys_alphabet a;
   lsys_lstring s;
-  lsys_mesh m;
+  lsys_scene sc;
   lsys_turtle t;
   lsys_turtle_opts o;
   lsys_error e;
@@ -89,11 +89,11 @@ static void test_errors (void) {
   uint32_t F;
   assert(lsys_alphabet_init(&a) == LSYS_OK);
   lsys_lstring_init(&s);
-  lsys_mesh_init(&m);
+  lsys_scene_init(&sc);
   lsys_turtle_init(&t);
   lsys_turtle_defaults(&o);
   t.o = &o;
-  t.mesh = &m;
+  t.scene = &sc;
   parse(&s, &a, "FF");
   F = lsys_alphabet_intern(&a, "F", 1, &e);
   assert(lsys_lstring_push(&s, F, &nan, 1) == LSYS_OK);
@@ -111,7 +111,7 @@ static void test_errors (void) {
   /* found by the fuzzer: huge indices were converted to int unchecked */
   parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(0)@#(-4e9)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(t.rec[0].color == 65535 && t.rec[1].color == 0 && t.state.contour == 0);
+  assert(sc.rec[0].color == 65535 && sc.rec[1].color == 0 && t.state.contour == 0);
   /* textures and contours the view does not define are errors */
   parse(&s, &a, "F@Tx(1e30)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
@@ -131,9 +131,9 @@ static void test_errors (void) {
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 1);
   assert(strcmp(t.err.msg, "module 2 '~Q': no such surface in the view (view.surfaces)") == 0);
   parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
-  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.nrec == 1);
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && sc.nrec == 1);
   lsys_turtle_free(&t);
-  lsys_mesh_free(&m);
+  lsys_scene_free(&sc);
   lsys_lstring_free(&s);
   lsys_alphabet_free(&a);
 }

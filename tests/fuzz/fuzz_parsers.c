@@ -91,7 +91,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
         {   /* the turtle draws any string in every style without a crash */
           lsys_turtle tu;
           lsys_turtle_opts o;
-          lsys_mesh m;
+          lsys_scene sc;
           lsys_contour c[2];
           const lsys_contour *cp[3];
           lsys_surface sf;
@@ -106,10 +106,10 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
           o.trop[0].vec[1] = -1; o.trop[0].elasticity = 0.3; o.trop[0].angle = 40;
           o.trop[1].vec[0] = 1; o.trop[1].elasticity = 0.2; o.trop[1].torque = 1;
           o.sides = 3 + data[0] % 7;
-          lsys_mesh_init(&m);
+          lsys_scene_init(&sc);
           lsys_turtle_init(&tu);
           tu.o = &o;
-          tu.mesh = &m;
+          tu.scene = &sc;
           for (style = 0; style < 3; style++) {
             o.style = style;
             lsys_turtle_run(&tu, &s, &a);
@@ -117,7 +117,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
           tu.mode = LSYS_TURTLE_QUERY;
           lsys_turtle_run(&tu, &s, &a);
           lsys_turtle_free(&tu);
-          lsys_mesh_free(&m);
+          lsys_scene_free(&sc);
           lsys_contour_free(&c[0]); lsys_contour_free(&c[1]);
           lsys_surface_free(&sf);
         }
