@@ -1,0 +1,208 @@
+-- The shape of the source tree (issue 14), checked so that it stays that way:
+--   * layers: csrc/core includes only the core, csrc/gl the core and itself, csrc/lua the
+--     three; a forbidden system header is a compile error (cmake/forbid/);
+--   * no include cycle among the C modules and no require cycle among the Lua modules;
+--   * no file in csrc/ over 1000 lines and no C function over 120 lines, except the
+--     dispatch switches listed in DISPATCH.
+local H = require "tests.helper"
+
+-- Functions allowed past 120 lines: a switch that reads as a table, one case per command.
+local DISPATCH = {
+}
+
+local function lines (path)
+  local n = 0
+  for _ in io.lines(path) do n = n + 1 end
+  return n
+end
+
+local function ls (pattern)
+  local out = {}
+  local p = io.popen("ls " .. pattern .. " 2>/dev/null")
+  for f in p:lines() do out[#out + 1] = f end
+  p:close()
+  table.sort(out)
+  return out
+end
+
+local function layer (path) return path:match("^csrc/(%w+)/") end
+
+-- Comments, strings and character literals blanked out (newlines kept).
+local function strip (src)
+  local out, i, n = {}, 1, #src
+  while i <= n do
+    local c, d = src:sub(i, i), src:sub(i, i + 1)
+    if d == "/*" then
+      local j = src:find("*/", i + 2, true) or n
+      out[#out + 1] = (src:sub(i, j + 1):gsub("[^\n]", " ")); i = j + 2
+    elseif d == "//" then
+      i = src:find("\n", i, true) or n + 1
+    elseif c == '"' or c == "'" then
+      local j = i + 1
+      while j <= n and src:sub(j, j) ~= c do
+        if src:sub(j, j) == "\\" then j = j + 1 end
+        j = j + 1
+      end
+      out[#out + 1] = c .. c; i = j + 1
+    else
+      out[#out + 1] = c; i = i + 1
+    end
+  end
+  return table.concat(out)
+end
+
+-- The functions of a C file longer than 'max' lines: { {name, lines}, ... }.
+local function long_functions (path, max)
+  local src = strip(io.open(path):read("a"))
+  local found, depth, line, head, start, name = {}, 0, 1, {}, nil, nil
+  for i = 1, #src do
+    local c = src:sub(i, i)
+    if c == "\n" then line = line + 1 end
+    if c == "{" then
+      local h = table.concat(head)
+      if depth == 0 and h:find("%)%s*$") and not h:find("=%s*$") then
+        start, name = line, h:match("([%w_]+)%s*%b()%s*$") or "?"
+      end
+      depth, head = depth + 1, {}
+    elseif c == "}" then
+      depth = depth - 1
+      if depth == 0 then
+        if start and line - start + 1 > max then found[#found + 1] = { name, line - start + 1 } end
+        start, head = nil, {}
+      end
+    elseif depth == 0 then
+      if c == ";" then head = {} else head[#head + 1] = c end
+    end
+  end
+  return found
+end
+
+-- A cycle in 'graph' (node -> list of nodes) as "a -> b -> a", or nil.
+local function cycle (graph)
+  local state, stack = {}, {}
+  local function visit (n)
+    state[n] = 1; stack[#stack + 1] = n
+    for _, m in ipairs(graph[n] or {}) do
+      if state[m] == 1 then
+        local i = #stack
+        while stack[i] ~= m do i = i - 1 end
+        local path = { table.unpack(stack, i) }
+        path[#path + 1] = m
+        return table.concat(path, " -> ")
+      elseif state[m] == nil then
+        local c = visit(m)
+        if c then return c end
+      end
+    end
+    state[n] = 2; stack[#stack] = nil
+  end
+  local nodes = {}
+  for n in pairs(graph) do nodes[#nodes + 1] = n end
+  table.sort(nodes)
+  for _, n in ipairs(nodes) do
+    if state[n] == nil then
+      local c = visit(n)
+      if c then return c end
+    end
+  end
+end
+
+local C = ls("csrc/*/*.c csrc/*/*.h")
+local where = {}                       -- file name -> path
+for _, f in ipairs(C) do where[f:match("[^/]+$")] = f end
+
+describe("the C tree", function ()
+  it("has its four layers and nothing else at the top", function ()
+    assert.same({ "csrc/core", "csrc/gl", "csrc/lua", "csrc/prog" }, ls("-d csrc/*"))
+    assert.is_true(#C > 40)
+  end)
+
+  it("has no file over 1000 lines", function ()
+    local over = {}
+    for _, f in ipairs(C) do
+      local n = lines(f)
+      if n > 1000 then over[#over + 1] = f .. " " .. n end
+    end
+    assert.same({}, over)
+  end)
+
+  it("has no function over 120 lines but the dispatch switches", function ()
+    local over = {}
+    for _, f in ipairs(C) do
+      if f:match("%.c$") then
+        for _, fn in ipairs(long_functions(f, 120)) do
+          if not DISPATCH[fn[1]] then over[#over + 1] = f .. ": " .. fn[1] .. " " .. fn[2] end
+        end
+      end
+    end
+    assert.same({}, over)
+  end)
+
+  it("includes only downwards: core <- gl <- lua <- prog", function ()
+    local allowed = {
+      core = { core = true }, gl = { core = true, gl = true },
+      lua = { core = true, gl = true, lua = true }, prog = {},
+    }
+    local bad = {}
+    for _, f in ipairs(C) do
+      for inc in io.open(f):read("a"):gmatch('#%s*include%s*"([^"]+)"') do
+        local to = where[inc]
+        if to and not allowed[layer(f)][layer(to)] then bad[#bad + 1] = f .. " includes " .. to end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("has no include cycle among its modules (x.c with x.h and x_impl.h)", function ()
+    -- x_impl.h is the internal header that the files of module x share
+    local function module (path) return (path:gsub("_impl%.h$", ".h"):gsub("%.[ch]$", "")) end
+    local graph = {}
+    for _, f in ipairs(C) do
+      local from = module(f)
+      graph[from] = graph[from] or {}
+      for inc in io.open(f):read("a"):gmatch('#%s*include%s*"([^"]+)"') do
+        local to = where[inc] and module(where[inc])
+        if to and to ~= from then table.insert(graph[from], to) end
+      end
+    end
+    assert.is_nil(cycle(graph))
+  end)
+
+  it("makes a forbidden header a compile error in the core and the GL layer", function ()
+    local cc = os.getenv("CC") or "cc"
+    local _, have = H.sh("command -v " .. cc)
+    if have ~= 0 then return pending("no C compiler") end
+    local dir = H.tmpdir()
+    local cases = {
+      { "core", "lua.h", "the core (csrc/core) must not include Lua headers" },
+      { "core", "GL/gl.h", "the core (csrc/core) must not include GL headers" },
+      { "gl", "lauxlib.h", "the GL layer (csrc/gl) must not include Lua headers" },
+      { "lua", "GLFW/glfw3.h", "the bindings (csrc/lua) must not include GL headers" },
+    }
+    for _, k in ipairs(cases) do
+      H.write(dir .. "/t.c", "#include <" .. k[2] .. ">\nint x;\n")
+      local out, code = H.sh(("%s -fsyntax-only -Icmake/forbid/%s %s/t.c"):format(cc, k[1], dir))
+      assert.are_not.equal(0, code)
+      assert.truthy(out:find(k[3], 1, true), out)
+    end
+    H.rmdir(dir)
+  end)
+end)
+
+describe("the Lua tree", function ()
+  it("has no require cycle among the lsys modules", function ()
+    local graph = {}
+    for _, f in ipairs(ls("lua/lsys/*.lua")) do
+      local name = "lsys." .. f:match("([%w_]+)%.lua$")
+      if name == "lsys.init" then name = "lsys" end
+      graph[name] = {}
+      local src = io.open(f):read("a"):gsub("%-%-[^\n]*", "")
+      for m in src:gmatch("require%s*%(?%s*[\"']([%w_.]+)[\"']") do
+        if m == "lsys" or m:match("^lsys%.") and m ~= "lsys.core" then
+          table.insert(graph[name], m)
+        end
+      end
+    end
+    assert.is_nil(cycle(graph))
+  end)
+end)
