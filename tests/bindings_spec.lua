@@ -88,6 +88,27 @@ describe("option readers", function ()
     assert.equal(2, interpret({ angle = "45", color = "2" }):record(1).color)
   end)
 
+  it("read the turtle's options under the view schema's names", function ()
+    local R, s = m._rules, m:derive(1)
+    local function interpret (o) return core.interpret(R, s, o) end
+    local v = lsys.view.normalize { line_style = "cylinder", contour_sides = 5, line_width = 3 }
+    local sc = interpret(lsys.view.turtle(v))
+    assert.equal(2 * 2 * 5 + 4 * 5, sc.ntriangles)  -- 2 cylinders of 5 sides, 4 fan caps
+    assert.equal(3, sc:record(1).w0)
+    assert.has_error(function () interpret { line_style = "tube" } end,
+      "view option 'line_style' must be \"line\", \"polygon\" or \"cylinder\", got \"tube\"")
+    assert.has_error(function () interpret { contour_sides = 2 } end,
+                     "view option 'contour_sides' must be between 3 and 1024, got 2")
+    -- tropisms and torques share the turtle's limit, which the schema reads from the core
+    local t = { vector = { 0, -1, 0 }, elasticity = 0.1 }
+    local trop, torq = {}, {}
+    for i = 1, 10 do trop[i] = t; torq[i] = t end
+    assert.equal(16, core.MAXTROPISMS)
+    assert.has_error(function () interpret { tropisms = trop, torques = torq } end,
+                     "the view has 20 tropisms and torques; at most 16 are supported")
+    assert.equal(2, interpret({ tropisms = { t }, torques = { t } }).nrecords)
+  end)
+
   it("name the table of an IK field", function ()
     local v = { 0, 1, 0 }
     local base = { H = v, U = { 0, 0, 1 }, p = { 0, 0, 0 } }

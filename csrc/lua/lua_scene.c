@@ -6,11 +6,14 @@
 **   core.query(rules, lstring, opts)     -> number of query modules filled
 **   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
 **
-** 'opts' is the normalised view (lua/lsys/view.lua): angle, step, width,
-** width_increment, color, color_increment, style, sides, allow_system_calls,
-** homomorphism, tropisms = {{vector=, angle=, elasticity=, increment=,
-** torque=}}, palette = {[0]=material, material, ...} with materials
-** {diffuse={r,g,b[,a]}, ambient=, specular=, emission=, shininess=}.
+** 'opts' is the normalised view under the names of its schema, which owns
+** names, defaults and checks (lua/lsys/view.lua): angle, step, line_width,
+** width_increment, color, color_increment, line_style, contour_sides,
+** tropisms and torques = {{vector=, angle=, elasticity=, increment=,
+** torque=}}, contours, surfaces, textures, minimize_twist, palette = {[0]=material, material, ...} with materials
+** {diffuse={r,g,b[,a]}, ambient=, specular=, emission=, shininess=};
+** and the call's allow_system_calls, records, homomorphism. What C checks
+** again only protects memory (sizes, counts, indices).
 */
 #include <math.h>
 #include <string.h>
@@ -130,18 +133,24 @@ static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
   o->nsurfaces = n;
 }
 
-/* opts.tropisms = {{vector=, angle=, elasticity=, increment=, torque=}} */
+/* The tropisms then the torques of the view, {{vector=, angle=, elasticity=,
+** increment=, torque=}} each, into o->trop. */
 static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
-  if (lua_getfield(L, t, "tropisms") == LUA_TTABLE) {
-    int n = (int)luaL_len(L, -1), k, tt = lua_gettop(L);
-    if (n > LSYS_MAXTROPISMS)
-      luaL_error(L, "the view has %d tropisms and torques; at most %d are supported", n,
-                 LSYS_MAXTROPISMS);
-    for (k = 0; k < n; k++) {
-      lsys_tropism *tp = &o->trop[k];
+  static const char *const lists[2] = {"tropisms", "torques"};
+  int l, n = 0;
+  for (l = 0; l < 2; l++) {
+    int m, k, tt;
+    if (lua_getfield(L, t, lists[l]) != LUA_TTABLE) { lua_pop(L, 1); continue; }
+    m = (int)luaL_len(L, -1);
+    tt = lua_gettop(L);
+    if (m > LSYS_MAXTROPISMS - n)
+      luaL_error(L, "the view has %d tropisms and torques; at most %d are supported",
+                 n + m, LSYS_MAXTROPISMS);
+    for (k = 0; k < m; k++) {
+      lsys_tropism *tp = &o->trop[n];
       lsys_opts e;
       char what[48];
-      snprintf(what, sizeof what, "view tropism %d", k + 1);
+      snprintf(what, sizeof what, "view tropism %d", ++n);
       if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
       e = viewopts(L, -1);
       readvector(L, e.t, "vector", tp->vec, what);
@@ -152,9 +161,9 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
       tp->torque = lua_toboolean(L, -1);
       lua_pop(L, 2);
     }
-    o->ntrop = n;
+    lua_pop(L, 1);
   }
-  lua_pop(L, 1);
+  o->ntrop = n;
 }
 
 /* Reads the turtle options from the table at 't'. Leaves three values on
@@ -167,17 +176,17 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   lsys_turtle_defaults(o);
   o->angle = lsys_optfinite(L, &v, "angle", o->angle);
   o->step = lsys_optfinite(L, &v, "step", o->step);
-  o->width = lsys_optfinite(L, &v, "width", o->width);
+  o->width = lsys_optfinite(L, &v, "line_width", o->width);
   o->dwidth = lsys_optfinite(L, &v, "width_increment", o->dwidth);
   o->color = optwhole(L, &v, "color", o->color, 0, 65535);
   o->dcolor = optwhole(L, &v, "color_increment", o->dcolor, -65535, 65535);
-  o->sides = optwhole(L, &v, "sides", o->sides, 3, 1024);
+  o->sides = optwhole(L, &v, "contour_sides", o->sides, 3, 1024);
   lua_getfield(L, t, "allow_system_calls");
   o->allow_system = lua_toboolean(L, -1);
   lua_getfield(L, t, "records");
   o->norecords = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
   lua_pop(L, 2);
-  lua_getfield(L, t, "style");
+  lua_getfield(L, t, "line_style");
   style = lua_isnil(L, -1) ? "line" : lua_tostring(L, -1);
   if (style == NULL) luaL_error(L, "view option 'line_style' must be a string");
   if (strcmp(style, "line") == 0) o->style = LSYS_STYLE_LINE;

@@ -536,19 +536,17 @@ function M.normalize (v, where)
   return out
 end
 
+-- The view options the turtle reads (core.interpret and friends), under the schema's own
+-- names: this schema owns names, defaults and checks; the C side only reads them.
+local TURTLE = { "angle", "step", "line_width", "width_increment", "color", "color_increment",
+                 "line_style", "contour_sides", "tropisms", "torques", "palette", "contours",
+                 "surfaces", "textures", "minimize_twist" }
+
 --- The options the turtle reads (core.interpret), from a normalised view.
 function M.turtle (v, allow_system_calls)
-  local trop = {}
-  for _, t in ipairs(v.tropisms or {}) do trop[#trop + 1] = t end
-  for _, t in ipairs(v.torques or {}) do trop[#trop + 1] = t end
-  return {
-    angle = v.angle, step = v.step, width = v.line_width, width_increment = v.width_increment,
-    color = v.color, color_increment = v.color_increment, style = v.line_style,
-    sides = v.contour_sides, tropisms = trop, palette = v.palette,
-    contours = v.contours, surfaces = v.surfaces, textures = v.textures,
-    minimize_twist = v.minimize_twist,
-    allow_system_calls = allow_system_calls or false,
-  }
+  local o = { allow_system_calls = allow_system_calls or false }
+  for _, k in ipairs(TURTLE) do o[k] = v[k] end
+  return o
 end
 
 --- The options the renderer reads (core.render), from a normalised view. `textures`

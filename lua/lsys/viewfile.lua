@@ -15,8 +15,6 @@ local _ENV = nil
 
 local M = {}
 
-local MAXTROPISMS = 16        -- LSYS_MAXTROPISMS (csrc/core/turtle.h): tropisms and torques
-
 local core                    -- lsys.core, loaded when a file is first read
 local function getcore ()
   if core == nil then core = require "lsys.core" end
@@ -261,7 +259,8 @@ end
 
 function Parser:addtropism (t)
   local l = self.v.tropisms or {}
-  if #l >= MAXTROPISMS then self:err("more than %d tropisms and torques", MAXTROPISMS) end
+  local max = getcore().MAXTROPISMS       -- the turtle's limit (LSYS_MAXTROPISMS)
+  if #l >= max then self:err("more than %d tropisms and torques", max) end
   l[#l + 1] = t
   self.v.tropisms = l
 end
