@@ -532,8 +532,10 @@ function lsys.view.normalize(v, where) end
 ---@return lsys.View
 function lsys.view.merge(v, over) end
 
---- The options table `core.interpret` and `core.query` read, from a normalised view
---- (tropisms and torques in one list, `width`, `style`, `sides`, ...).
+--- The options table `core.interpret` and `core.query` read, from a normalised view: its
+--- turtle fields under the view's own names (angle, step, line_width, line_style,
+--- contour_sides, tropisms, torques, palette, contours, surfaces, textures, ...) and
+--- `allow_system_calls`.
 ---@param v lsys.View A result of `normalize`.
 ---@param allow_system_calls? boolean Default false.
 ---@return table
@@ -815,6 +817,7 @@ function Lstring:insert(positions, piece) end
 
 ---@class lsys.core
 ---@field MAXPARAMS integer Parameters per module at most: 31.
+---@field MAXTROPISMS integer Tropisms and torques of a view together at most (the turtle's limit).
 ---@field RF_CALL integer Rule flag 1: the rule has a condition or computed values (a callback or machine program).
 ---@field RF_DYN integer Rule flag 2: a Lua function produces the successor.
 ---@field RF_STOCH integer Rule flag 4: the rule has a weight.
