@@ -17,7 +17,8 @@ local host = require("lsys.program").host
 local G = _G
 local type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require =
       type, pairs, ipairs, tostring, tonumber, error, pcall, xpcall, require
-local loadfile, getmetatable, setmetatable, next = loadfile, getmetatable, setmetatable, next
+local loadfile, getmetatable, setmetatable, next, warn =
+      loadfile, getmetatable, setmetatable, next, warn
 local io, os, string, table, math, debug = io, os, string, table, math, debug
 local format = string.format
 local _ENV = nil
@@ -786,6 +787,10 @@ end
 --- Runs the command line `lsys ...` given its arguments (strings).
 -- @return the exit status: 0 success, 1 error, 2 usage error
 function M.main (...)
+  -- The library's warnings (a view file's unsupported commands, a deprecated name) go
+  -- through warn(), which Lua starts with off; the program shows them, as `lua -W` does.
+  -- Called from another Lua, main leaves that to its host.
+  if host().exe ~= nil then warn("@on") end
   local args = table.pack(...)
   local ok, r = xpcall(dispatch, handler, args)
   io.stdout:flush()

@@ -7,13 +7,13 @@
 local core = require "lsys.core"
 local compile = require "lsys.compile"
 local view = require "lsys.view"
+local warning = require "lsys.warning"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      math, string, table, debug, _G, io, next, os =
+      math, string, table, debug, _G, next, os =
       type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      math, string, table, debug, _G, io, next, os
+      math, string, table, debug, _G, next, os
 local format = string.format
-local function io_warn (msg) io.stderr:write(msg, "\n") end
 local _ENV = nil
 
 local M = {}
@@ -25,9 +25,10 @@ local M = {}
 local UNITS = { [""] = 1, k = 2 ^ 10, m = 2 ^ 20, g = 2 ^ 30, t = 2 ^ 40 }
 
 --- A memory size in bytes from a number of bytes or a string: "512M", "2G",
--- "1.5GiB", "800MB" (binary units: K = 1024), "unlimited". Raises naming `what`.
+-- "1.5GiB", "800MB" (binary units: K = 1024), "unlimited". Raises naming `what` (by
+-- default the public name, lsys.parse_size).
 function M.parse_size (x, what)
-  what = what or "size"
+  what = what or "lsys.parse_size"
   if type(x) == "number" then
     if x ~= x or x < 1 then error(format("%s must be at least 1 byte, got %s", what, x), 2) end
     return math.floor(x)
@@ -402,9 +403,9 @@ function Model:_call (fn, what, ...)
     local _, _, deep = rules:current()
     if deep and not self._warned then
       self._warned = true
-      io_warn(format("lsys: %s: the %s depth limit stopped at modules that have rules " ..
-                     "(raise max_depth if they should apply)", self._where,
-                     what == "step" and "decomposition" or "homomorphism"))
+      warning.warn(format("lsys: %s: the %s depth limit stopped at modules that have " ..
+                          "rules (raise max_depth if they should apply)", self._where,
+                          what == "step" and "decomposition" or "homomorphism"))
     end
     return res
   end

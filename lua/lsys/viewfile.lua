@@ -6,10 +6,12 @@
 -- `load(path)` reads a cpfg view file into a view table; `parse(text, name)` does the
 -- same for text in memory. `load_colormap` and `load_materials` read palettes.
 -- @module lsys.viewfile
+local warning = require "lsys.warning"
+
 local type, ipairs, error, tostring, tonumber, math, string, table, require, setmetatable,
-      utf8, io =
+      utf8 =
       type, ipairs, error, tostring, tonumber, math, string, table, require, setmetatable,
-      utf8, io
+      utf8
 local format = string.format
 local _ENV = nil
 
@@ -49,7 +51,7 @@ local readfile = M.readfile
 -- { [0] = {r,g,b}, [1] = ..., [255] = ... } with components in 0..1.
 -- Raises when the file cannot be read or is not 768 bytes long.
 function M.load_colormap (path)
-  if type(path) ~= "string" then error("load_colormap: a file name expected", 2) end
+  if type(path) ~= "string" then error("lsys.view.load_colormap: a file name expected", 2) end
   local s, err = readfile(path)
   if s == nil then error(err, 0) end
   if #s ~= 768 then
@@ -81,7 +83,7 @@ end
 -- Raises when the file cannot be read, is empty or not a whole number of records, or
 -- a shininess is above 128.
 function M.load_materials (path)
-  if type(path) ~= "string" then error("load_materials: a file name expected", 2) end
+  if type(path) ~= "string" then error("lsys.view.load_materials: a file name expected", 2) end
   local s, err = readfile(path)
   if s == nil then error(err, 0) end
   if #s == 0 or #s % 15 ~= 0 then
@@ -575,13 +577,15 @@ end
 
 --- Reads the text of a cpfg view file into a view table (see `load`). `name` names the
 -- file in messages ("view" by default). opts: dir (stored as the view's `dir`), quiet
--- (do not print the warnings). Returns the view and the list of warnings.
+-- (do not send the warnings to warn()). Returns the view and the list of warnings.
 function M.parse (text, name, opts)
-  if type(text) ~= "string" then error("view.parse: the text must be a string", 2) end
+  if type(text) ~= "string" then error("lsys.view.parse: the text must be a string", 2) end
   if name ~= nil and type(name) ~= "string" then
-    error("view.parse: the name must be a string", 2)
+    error("lsys.view.parse: the name must be a string", 2)
   end
-  if opts ~= nil and type(opts) ~= "table" then error("view.parse: opts must be a table", 2) end
+  if opts ~= nil and type(opts) ~= "table" then
+    error("lsys.view.parse: opts must be a table", 2)
+  end
   opts = opts or {}
   local P = setmetatable({ name = name or "view", line = 0, v = {}, warnings = {},
                            nlights = 0, legacy = {}, surfaces = {},
@@ -594,7 +598,7 @@ function M.parse (text, name, opts)
   local v = P.v
   if opts.dir ~= nil then v.dir = opts.dir end
   if not opts.quiet then
-    for _, w in ipairs(P.warnings) do io.stderr:write(w, "\n") end
+    for _, w in ipairs(P.warnings) do warning.warn(w) end
   end
   return v, P.warnings
 end
@@ -608,13 +612,16 @@ end
 -- twist of cylinders, texture, tropism, torque, tropism direction, initial
 -- elasticity, elasticity increment, surface. Commands listed in VIEWFILE_IGNORED
 -- (front distance, z buffer, render mode, ...) are warnings; any other command and any
--- malformed value raise "file.v:LINE: what is wrong". opts.quiet: do not print the
--- warnings to stderr. Returns the view and the list of warnings.
+-- malformed value raise "file.v:LINE: what is wrong". The warnings go to warn() (off in a
+-- plain `lua` unless -W; the lsys program shows them) unless opts.quiet. Returns the view
+-- and the list of warnings.
 function M.load (path, opts)
-  if type(path) ~= "string" then error("view.load: a file name expected", 2) end
-  if opts ~= nil and type(opts) ~= "table" then error("view.load: opts must be a table", 2) end
+  if type(path) ~= "string" then error("lsys.view.load: a file name expected", 2) end
+  if opts ~= nil and type(opts) ~= "table" then
+    error("lsys.view.load: opts must be a table", 2)
+  end
   local text, err = readfile(path)
-  if text == nil then error("view.load: " .. err, 0) end
+  if text == nil then error("lsys.view.load: " .. err, 0) end
   local dir = path:match("^(.*)/[^/]*$")
   if dir == "" then dir = "/" end
   return M.parse(text, path, { dir = dir or ".", quiet = opts and opts.quiet })
