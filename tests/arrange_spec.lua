@@ -26,21 +26,21 @@ describe("lsys.arrange", function()
   it("puts an @J before each segment of the selected path, once", function()
     local m = plant()
     local a = lsys.arrange(m, m:derive(0))
-    assert.equal(5, a:select { fixed = 2, moved = 8 })
+    assert.equal(5, a:select(2, 8))
     assert.equal("F(1)@J(0,0,0)F(1)@J(0,0,0)F(1)@J(0,0,0)F(1)[+(30)@J(0,0,0)F(1)" ..
       "@J(0,0,0)F(1)]F(1)F(1)", tostring(a:lstring()))
     assert.same({ 3, 5, 7, 11, 13 }, a:path_modules())
     assert.same({ 3, 5, 7, 11, 13, 15, 16 }, a:active_modules())
     -- again, on the same path: nothing added
-    assert.equal(5, a:select { fixed = 3, moved = 13 })
+    assert.equal(5, a:select(3, 13))
     assert.equal(5, count(a:lstring(), "@J"))
   end)
 
   it("draws exactly the pose the solver found", function()
     local m = plant()
     local a = lsys.arrange(m, m:derive(0))
-    a:select { fixed = 2, moved = 8 }
-    local r = a:spherical { axis = { 0, 0, 1 }, angle = -30 }
+    a:select(2, 8)
+    local r = a:spherical({ 0, 0, 1 }, -30)
     assert.is_true(r.dist < 0.05 * 4.4, "dist " .. r.dist)
     local p, _, t = a.ik:forward()
     local sc = a:interpret()
@@ -57,7 +57,7 @@ describe("lsys.arrange", function()
   it("twists with the disc, pulls along the axis and moves in a plane", function()
     local m = plant()
     local a = lsys.arrange(m, m:derive(0))
-    a:select { fixed = 2, moved = 8 }
+    a:select(2, 8)
     local b = a.bar
     a:disc(40)
     local p, s = a.ik:forward()
@@ -108,7 +108,7 @@ describe("lsys.arrange", function()
     local dec = lsys.lsystem { axiom = table.concat(parts), view = { angle = 30 } }
     local function centre (m)
       local a = lsys.arrange(m, m:derive(0))
-      a:select { fixed = 2, moved = 22 }
+      a:select(2, 22)
       a:plane(4, -2)
       local num, den = 0, 0
       for i, ang in ipairs(a.ik:angles()) do
@@ -137,7 +137,7 @@ describe("lsys.arrange", function()
                              productions = "A --> F(1)[+(40)F(0.5)]A" }
     local s = m:derive()                      -- F F[+F] F[+F] F[+F] A
     local a = lsys.arrange(m, s)
-    a:select { fixed = 1, moved = #s - 5 }    -- the last internode
+    a:select(1, #s - 5)    -- the last internode
     a:plane(-1.5, -0.5)
     local arranged = a:lstring()
     local before = m:interpret(arranged)
@@ -155,7 +155,7 @@ describe("lsys.arrange", function()
     assert.is_true(near3(newrec.p0, tip.p1, 1e-6))
     -- and a second arrangement updates the same @J modules
     local a2 = lsys.arrange(m, grown)
-    a2:select { fixed = 2, moved = #grown - 5 }
+    a2:select(2, #grown - 5)
     a2:plane(0.5, 0)
     assert.equal(njoints + 1, count(a2:lstring(), "@J"))   -- only the new segment's joint
   end)
@@ -163,10 +163,10 @@ describe("lsys.arrange", function()
   it("reports bad selections and options", function()
     local m = plant()
     local a = lsys.arrange(m, m:derive(0))
-    assert.error_contains(function() a:select { fixed = 8, moved = 2 } end,
-      "lsys.arrange: select: module 2 is not in the active branch of module 8 (above it)")
-    assert.error_contains(function() a:select { fixed = 5, moved = 8 } end,
-      "lsys.arrange: select: fixed: module 5 ([) draws nothing that can be arranged")
+    assert.error_contains(function() a:select(8, 2) end,
+      "select: module 2 is not in the active branch of module 8 (above it)")
+    assert.error_contains(function() a:select(5, 8) end,
+      "select: fixed: module 5 ([) draws nothing that can be arranged")
     assert.error_contains(function() lsys.arrange(m, nil, { r0 = -1 }) end,
       "lsys.arrange: option 'r0' must be > 0")
     assert.error_contains(function() lsys.arrange(m, nil, { colour = 1 }) end,
@@ -201,7 +201,7 @@ describe("the arrange window's highlight (fig. 6)", function()
     assert.equal(0, #sc:edges(1))                       -- a segment drawn as a line
     assert.has_error(function() sc:edges(99) end, "scene:edges: no record 99")
     assert.same({}, UI.highlight(arr, sc))              -- nothing selected
-    arr:select { fixed = 2 }
+    arr:select(2)
     local lines = UI.highlight(arr, arr:interpret())
     -- the active branch: trunk segments 2 and 3, the lateral F and the leaf's 5 edges
     assert.same({ 8, 0 }, { colors(lines) })
@@ -215,7 +215,7 @@ describe("the arrange window's highlight (fig. 6)", function()
     -- the leaf as the manipulated point: its wireframe turns yellow
     local leaf
     for _, r in arr:interpret():records() do if r.kind == "polygon" then leaf = r.module end end
-    arr:select { fixed = arr.fixed.module, moved = leaf }
+    arr:select(arr.fixed.module, leaf)
     assert.is_true(arr.leaf)
     assert.same({ 8, 5 }, { colors(UI.highlight(arr, arr:interpret())) })
   end)
@@ -234,7 +234,7 @@ describe("the arrange window's highlight (fig. 6)", function()
     -- highlights are drawn on top: a centre line inside a tube stays visible
     local m = lsys.lsystem { axiom = "!(0.3)F(1)F(1)@O(0.4)", view = { line_style = "cylinder" } }
     local arr = lsys.arrange(m, m:derive())
-    arr:select { fixed = 3 }
+    arr:select(3)
     local lines = UI.highlight(arr, arr:interpret())
     assert.equal(1 + alone, #lines)                     -- F(1) at module 3 and the sphere
     for _, l in ipairs(lines) do assert.is_true(l.ontop) end

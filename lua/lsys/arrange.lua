@@ -1,11 +1,15 @@
 --- Interactive arrangement of a plant by inverse kinematics (seed 000, ilsa).
 --
---   local a = lsys.arrange(model, lstring [, opts])
---   a:select { fixed = i, moved = j }     -- module indices (or pick tables with .module)
---   a:spherical { axis = {0, 0, 1}, angle = 30 }   -- or a:disc(angle), a:axis(d),
---                                                  -- a:plane(dx, dy, view)
+--   local a = lsys.arrange(model, lstring [, opts])   -- or the string as text
+--   a:select(i, j)                        -- fixed, moved: module indices (or pick tables)
+--   a:spherical({0, 0, 1}, 30)            -- or a:disc(angle), a:axis(d),
+--                                         -- a:plane(dx, dy, view)
 --   a:prune(k)                            -- cut the branch that starts at module k
 --   local s = a:lstring()                 -- the arranged string; model:step(s) grows it on
+--
+-- Arguments are positional, what a call needs first, an optional table of settings last
+-- (opts, the plane's view), as Model methods take them (issue 14 §5). Errors of
+-- lsys.arrange begin "lsys.arrange: ", those of a method its name ("select: ...").
 --
 -- The arrangement lives in the string as joint modules @J(h, u, l) (degrees, turtle.c):
 -- right-handed turns about the turtle's H, then U, then L, placed right before the segment
@@ -22,9 +26,11 @@
 -- s^h = 2 c_t r^4 / (l_{i-1} + l_i), c_f = s0u / r0^4, c_t = s0h / r0^4 (eqs. 4, 5).
 -- @module lsys.arrange
 local core = require "lsys.core"
+local model = require "lsys.model"
+local warning = require "lsys.warning"
 
-local type, pairs, ipairs, error, tostring, setmetatable =
-      type, pairs, ipairs, error, tostring, setmetatable
+local type, pairs, ipairs, error, tostring, setmetatable, pcall =
+      type, pairs, ipairs, error, tostring, setmetatable, pcall
 local math, string, table = math, string, table
 local format = string.format
 local _ENV = nil
@@ -37,7 +43,8 @@ local OPTS = { r0 = "number", s0u = "number", s0h = "number", radii = "string",
                wp = "number", wt = "number", we = "number", ws = "number",
                max_iter = "number", view = "table", leaf_length = "number" }
 
-local function fail (msg, level) error("lsys.arrange: " .. msg, (level or 1) + 1) end
+-- Raises "where: msg", blaming the caller `level` levels up (1: fail's caller).
+local function fail (where, msg, level) error(where .. ": " .. msg, (level or 1) + 1) end
 
 -- vectors
 local function sub (a, b) return { a[1] - b[1], a[2] - b[2], a[3] - b[3] } end
@@ -170,7 +177,8 @@ end
 
 -- }====================================================================
 
---- Starts arranging `s` (an Lstring of `model`; default: model:derive()).
+--- Starts arranging `s` (an Lstring of `model`, or text that model:lstring reads; default:
+-- model:derive()).
 -- opts: r0 (trunk radius, 1), s0u and s0h (trunk flexural and torsional stiffness, 1),
 -- radii ("width" or "davinci"; default: widths when the model sets them), weights wp, wt,
 -- we, ws of eq. (1) (1000, 1, 1, and 0 when the string has Z stiffness, 0.1 otherwise; wp
@@ -179,21 +187,32 @@ end
 -- the path gives),
 -- max_iter (200), view (view fields for interpreting), leaf_length (the virtual segment of
 -- leaves and flowers; default their size).
-local function new (model, s, opts)
+local function new (m, s, opts)
+  local A = "lsys.arrange"
+  if not model.ismodel(m) then fail(A, "a model expected", 3) end
   opts = opts or {}
-  if type(opts) ~= "table" then fail("an options table expected", 3) end
+  if type(opts) ~= "table" then fail(A, "an options table expected", 3) end
   for k, v in pairs(opts) do
-    if OPTS[k] == nil then fail(format("unknown option '%s'", tostring(k)), 3) end
-    if type(v) ~= OPTS[k] then fail(format("option '%s' must be a %s", k, OPTS[k]), 3) end
+    if OPTS[k] == nil then fail(A, format("unknown option '%s'", tostring(k)), 3) end
+    if type(v) ~= OPTS[k] then fail(A, format("option '%s' must be a %s", k, OPTS[k]), 3) end
   end
   if opts.radii ~= nil and opts.radii ~= "width" and opts.radii ~= "davinci" then
-    fail("option 'radii' must be 'width' or 'davinci'", 3)
+    fail(A, "option 'radii' must be 'width' or 'davinci'", 3)
   end
   for _, k in ipairs { "r0", "s0u", "s0h" } do
-    if opts[k] ~= nil and not (opts[k] > 0) then fail(format("option '%s' must be > 0", k), 3) end
+    if opts[k] ~= nil and not (opts[k] > 0) then
+      fail(A, format("option '%s' must be > 0", k), 3)
+    end
   end
-  local self = setmetatable({ model = model, opts = opts, view = opts.view, undo = {} }, Arr)
-  self.s = (s or model:derive()):copy()
+  if type(s) == "string" then
+    local ok, r = pcall(m.lstring, m, s)
+    if not ok then error(A .. ": " .. r, 3) end
+    s = r
+  elseif s ~= nil and not model.islstring(s) then
+    fail(A, "an Lstring or its text expected", 3)
+  end
+  local self = setmetatable({ model = m, opts = opts, view = opts.view, undo = {} }, Arr)
+  self.s = (s or m:derive()):copy()
   self:_refresh()
   return self
 end
@@ -201,10 +220,10 @@ end
 -- A record from a module index, a record or a pick table.
 function Arr:_record (x, what)
   local i = type(x) == "table" and (x.module or x.index and self.recs[x.index].module) or x
-  if type(i) ~= "number" then fail(format("%s: a module index or a pick expected", what), 3) end
+  if type(i) ~= "number" then fail(what, "a module index or a pick expected", 3) end
   local r = self.bymod[i]
   if r == nil then
-    fail(format("%s: module %d (%s) draws nothing that can be arranged", what, i,
+    fail(what, format("module %d (%s) draws nothing that can be arranged", i,
       i >= 1 and i <= #self.s and self.s:module(i) or "out of range"), 3)
   end
   return r
@@ -229,13 +248,18 @@ end
 
 --- Selects the branch path: `fixed` is the segment at whose start the path is held (the
 -- fixed point r), `moved` the segment (or leaf, flower) whose end is moved; both module
--- indices or picks (lsys.viewer). `moved` must be in the active branch: `fixed` or above
--- it. Returns the number of joints of the path.
-function Arr:select (sel)
-  if type(sel) ~= "table" then fail("select: a table { fixed = i, moved = j } expected", 2) end
-  local fixed = self:_record(sel.fixed, "select: fixed")
-  if not SEGMENT[fixed.kind] then fail("select: the fixed point must be on a segment", 2) end
-  local moved = self:_record(sel.moved or sel.fixed, "select: moved")
+-- indices or picks (lsys.viewer). `moved` (default `fixed`) must be in the active branch:
+-- `fixed` or above it. Returns the number of joints of the path.
+function Arr:select (fixed, moved)
+  if type(fixed) == "table" and moved == nil and fixed.module == nil and fixed.index == nil
+     and (fixed.fixed ~= nil or fixed.moved ~= nil) then        -- the table of 0.1.0
+    warning.deprecated("Arrangement:select { fixed =, moved = }",
+                       "Arrangement:select(fixed, moved)")
+    fixed, moved = fixed.fixed, fixed.moved
+  end
+  fixed = self:_record(fixed, "select: fixed")
+  if not SEGMENT[fixed.kind] then fail("select", "the fixed point must be on a segment", 2) end
+  moved = moved == nil and fixed or self:_record(moved, "select: moved")
   -- the path: from moved down to fixed through the parents
   local path, r = {}, moved
   local leaf = not SEGMENT[moved.kind]
@@ -245,7 +269,7 @@ function Arr:select (sel)
     r = r.parent and self.recs[r.parent]
   end
   if r ~= fixed then
-    fail(format("select: module %d is not in the active branch of module %d (above it)",
+    fail("select", format("module %d is not in the active branch of module %d (above it)",
       moved.module, fixed.module), 2)
   end
   path[#path + 1] = fixed
@@ -269,7 +293,7 @@ function Arr:select (sel)
     end
     fm, mm = shift(fm), shift(mm)
     self:_refresh()
-    return self:select { fixed = fm, moved = mm }
+    return self:select(fm, mm)
   end
   self.fixed, self.moved, self.path, self.leaf = fixed, moved, path, leaf
   self:_chain()
@@ -335,7 +359,7 @@ end
 -- when there is nowhere to go.
 function Arr:move_fixed (dir)
   local f = self.fixed
-  if f == nil then fail("move_fixed: select a fixed point first", 2) end
+  if f == nil then fail("move_fixed", "select a fixed point first", 2) end
   local to
   if dir == "up" then
     for _, c in ipairs(f.children) do
@@ -359,10 +383,10 @@ function Arr:move_fixed (dir)
       end
     end
   else
-    fail("move_fixed: 'up', 'down', 'left' or 'right' expected", 2)
+    fail("move_fixed", "'up', 'down', 'left' or 'right' expected", 2)
   end
   if to == nil then return nil end
-  self:select { fixed = to.module }
+  self:select(to.module)
   return self.fixed.module
 end
 
@@ -385,9 +409,9 @@ function Arr:active_modules ()
   return out
 end
 
--- Solves for the targets and writes the angles into the string.
-function Arr:_solve (p, s, t)
-  if self.ik == nil then fail("select a branch path first", 3) end
+-- Solves for the targets and writes the angles into the string; `what` is the dragger.
+function Arr:_solve (what, p, s, t)
+  if self.ik == nil then fail(what, "select a branch path first", 3) end
   local o = self.opts
   local vlen = math.max(norm(self.bar.v), 1e-9)
   local res = self.ik:solve {
@@ -409,41 +433,47 @@ function Arr:_solve (p, s, t)
   return res
 end
 
---- Spherical dragger: turns the path about r by `rot` = { axis = {x, y, z}, angle = deg }:
--- p^ = r + R v-bar, s^ = R s-bar, t^ = R t-bar. Returns the solver's result.
-function Arr:spherical (rot)
-  if type(rot) ~= "table" or type(rot.axis) ~= "table" or type(rot.angle) ~= "number" then
-    fail("spherical: { axis = {x, y, z}, angle = degrees } expected", 2)
+--- Spherical dragger: turns the path about r by `angle` degrees about `axis` ({x, y, z}),
+-- the rotation R: p^ = r + R v-bar, s^ = R s-bar, t^ = R t-bar. Returns the solver's
+-- result.
+function Arr:spherical (axis, angle)
+  if type(axis) == "table" and angle == nil and axis.axis ~= nil then   -- 0.1.0's table
+    warning.deprecated("Arrangement:spherical { axis =, angle = }",
+                       "Arrangement:spherical(axis, angle)")
+    axis, angle = axis.axis, axis.angle
   end
-  local k = unit(rot.axis)
-  local b = self.bar or fail("select a branch path first", 2)
-  return self:_solve(add(b.r, rotate(b.v, k, rot.angle)), rotate(b.s, k, rot.angle),
-                     rotate(b.t, k, rot.angle))
+  if type(axis) ~= "table" or type(angle) ~= "number" then
+    fail("spherical", "an axis {x, y, z} and an angle in degrees expected", 2)
+  end
+  local k = unit(axis)
+  local b = self.bar or fail("spherical", "select a branch path first", 2)
+  return self:_solve("spherical", add(b.r, rotate(b.v, k, angle)), rotate(b.s, k, angle),
+                     rotate(b.t, k, angle))
 end
 
 --- Disc dragger: twists the path by `angle` degrees about its axis v-bar; p^ = p-bar.
 function Arr:disc (angle)
-  if type(angle) ~= "number" then fail("disc: an angle in degrees expected", 2) end
-  local b = self.bar or fail("select a branch path first", 2)
+  if type(angle) ~= "number" then fail("disc", "an angle in degrees expected", 2) end
+  local b = self.bar or fail("disc", "select a branch path first", 2)
   local k = unit(b.v)
-  return self:_solve(b.p, rotate(b.s, k, angle), rotate(b.t, k, angle))
+  return self:_solve("disc", b.p, rotate(b.s, k, angle), rotate(b.t, k, angle))
 end
 
 --- Axis dragger: moves the end along v-bar by `distance`; the twist stays.
 function Arr:axis (distance)
-  if type(distance) ~= "number" then fail("axis: a distance expected", 2) end
-  local b = self.bar or fail("select a branch path first", 2)
-  return self:_solve(add(b.p, scale(unit(b.v), distance)), b.s, b.t)
+  if type(distance) ~= "number" then fail("axis", "a distance expected", 2) end
+  local b = self.bar or fail("axis", "select a branch path first", 2)
+  return self:_solve("axis", add(b.p, scale(unit(b.v), distance)), b.s, b.t)
 end
 
 --- 2D-plane dragger: moves the end by dx, dy in the view plane: `view` = { right = v,
 -- up = v } (world vectors; default the xy plane); the twist stays.
 function Arr:plane (dx, dy, view)
-  if type(dx) ~= "number" or type(dy) ~= "number" then fail("plane: dx, dy expected", 2) end
-  local b = self.bar or fail("select a branch path first", 2)
+  if type(dx) ~= "number" or type(dy) ~= "number" then fail("plane", "dx, dy expected", 2) end
+  local b = self.bar or fail("plane", "select a branch path first", 2)
   local right = unit(view and view.right or { 1, 0, 0 })
   local up = unit(view and view.up or { 0, 1, 0 })
-  return self:_solve(add(b.p, add(scale(right, dx), scale(up, dy))), b.s, b.t)
+  return self:_solve("plane", add(b.p, add(scale(right, dx), scale(up, dy))), b.s, b.t)
 end
 
 --- Keeps the current arrangement as the start of the next tool (a new drag).
@@ -455,7 +485,7 @@ end
 function Arr:_rechain ()
   local fm, mm = self.fixed.module, self.moved.module
   self.fixed, self.moved = self.bymod[fm], self.bymod[mm]
-  self:select { fixed = fm, moved = mm }
+  self:select(fm, mm)
 end
 
 --- Undoes the last dragger step (or prune).

@@ -81,7 +81,7 @@ local function movedrag (arr, tool, drag, ev, try)
     local s = norm(axis)
     if s > 1e-12 then
       local ang = math.deg(math.atan(s, dot(b.v, q)))
-      try(arr.spherical, arr, { axis = axis, angle = ang })
+      try(arr.spherical, arr, axis, ang)
     end
   elseif tool == "disc" then
     try(arr.disc, arr, dx * 0.5)
@@ -115,7 +115,7 @@ function M.run (arr, opts)
 
   local function try (f, ...)
     local ok, err = pcall(f, ...)
-    if not ok then say("arrange: " .. tostring(err):gsub("^lsys.arrange: ", "")) end
+    if not ok then say("arrange: " .. tostring(err)) end       -- "select: ...": the method
     return ok, err
   end
 
@@ -126,11 +126,11 @@ function M.run (arr, opts)
       for _, a in ipairs(arr:active_modules()) do if a == m then inside = true end end
     end
     if inside and m ~= arr.fixed.module then
-      if try(arr.select, arr, { fixed = arr.fixed.module, moved = m }) then
+      if try(arr.select, arr, arr.fixed.module, m) then
         say(format("branch path: %d joints from module %d to module %d", #arr.path,
           arr.fixed.module, arr.moved.module))
       end
-    elseif try(arr.select, arr, { fixed = m }) then
+    elseif try(arr.select, arr, m) then
       say(format("fixed point: module %d; click within the red branch for the end", m))
     end
     redraw()

@@ -8,9 +8,12 @@
 local core = require "lsys.core"
 local model = require "lsys.model"
 local view = require "lsys.view"
+local warning = require "lsys.warning"
 
-local type, pairs, error, setmetatable, tostring, pcall, string, debug, next, _G =
-      type, pairs, error, setmetatable, tostring, pcall, string, debug, next, _G
+local type, pairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string, debug,
+      next, package, _G =
+      type, pairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string, debug,
+      next, package, _G
 local format = string.format
 local _ENV = nil
 
@@ -20,11 +23,11 @@ local M = {}
 function M.lstring (text, names)
   if names == nil or names == "" then
     local ok, s = pcall(core.lstring, text)
-    if not ok then error(s, 2) end
+    if not ok then error((tostring(s):gsub("^lstring: ", "lsys.lstring: ")), 2) end
     return s
   end
   local s, msg, pos = core.rules(names):lstring(text)
-  if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
+  if not s then error(format("lsys.lstring: %s at character %d", msg, pos), 2) end
   return s
 end
 M.produce = core.produce
@@ -36,9 +39,37 @@ M.view = view
 
 M.parse_size = model.parse_size        -- the memory budget (max_memory)
 M.max_memory = model.max_memory
-M.islstring = model.islstring
-M.isscene = model.isscene
-M.ismodel = model.ismodel
+
+-- What lsys.type calls the userdata of lsys.core, by metatable name; the arrangement and
+-- the model are Lua tables, told apart by their metatables.
+local KINDS = {
+  ["lsys.Lstring"] = "lstring", ["lsys.Scene"] = "scene", ["lsys.Contour"] = "contour",
+  ["lsys.Surface"] = "surface", ["lsys.Texture"] = "texture", ["lsys.IK"] = "ik",
+  ["lsys.Viewer"] = "viewer", ["lsys.Rules"] = "rules",
+}
+local REGISTRY = debug.getregistry()
+
+--- The kind of lsys object `x` is: "lstring", "scene", "model", "arrangement", "contour",
+-- "surface", "texture", "ik", "viewer" or "rules"; nil for any other value (as io.type,
+-- math.type and lpeg.type). Closed objects keep their kind.
+function M.type (x)
+  local mt = getmetatable(x)
+  if mt == nil then return nil end
+  if mt == model.Model then return "model" end
+  if type(x) == "userdata" then
+    local name = type(mt) == "table" and rawget(mt, "__name")
+    -- the registry check: another library's userdata may call itself "lsys.Scene" too
+    return name and REGISTRY[name] == mt and KINDS[name] or nil
+  end
+  local arrange = package.loaded["lsys.arrange"]      -- none before it is loaded
+  if type(arrange) == "table" and mt == arrange.Arrangement then return "arrangement" end
+  return nil
+end
+
+-- the type predicates before lsys.type (issue 14 §5): one release more, with a warning
+M.islstring = warning.alias("lsys.islstring", 'lsys.type(x) == "lstring"', model.islstring)
+M.isscene = warning.alias("lsys.isscene", 'lsys.type(x) == "scene"', model.isscene)
+M.ismodel = warning.alias("lsys.ismodel", 'lsys.type(x) == "model"', model.ismodel)
 M.BUILTIN = model.BUILTIN              -- the names rule expressions see besides env
 M.Model = model.Model
 M.lsystem = model.lsystem

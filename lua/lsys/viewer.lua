@@ -13,10 +13,18 @@
 -- is fitted to the step shown first (the last, by default) and kept while stepping, so
 -- the plant grows in place. The model's `view` is read at each show: change it and show
 -- again.
+--
+-- Without a window (none opened yet, closed, or none possible: no display, or lsys built
+-- without the viewer) every function follows one rule. The ones asked to act on a window
+-- raise: `open` and `show` open one, and say why none can be; `key` and `screenshot` say
+-- "no window open" (they never open one). The ones that ask about the window or wait for
+-- it do nothing and answer as for a closed window: `poll` and `sync` false, `pending` 0,
+-- `state` and `project` nil; `wait` and `close` return at once.
 -- @module lsys.viewer
 local core = require "lsys.core"
 local model = require "lsys.model"
 local view = require "lsys.view"
+local warning = require "lsys.warning"
 
 local type, pairs, ipairs, error, pcall, tostring = type, pairs, ipairs, error, pcall, tostring
 local os, string, math = os, string, math
@@ -35,7 +43,8 @@ local S = {             -- the one window and what it shows
 }
 
 --- Called with the pick information when a click hits a module and the show did not
--- give its own `on_pick`; nil by default (the `lsys` REPL and `lsys view` print it).
+-- give its own `on_pick`; nil by default. The `lsys` REPL sets it to print the pick;
+-- `lsys view` prints picks through its show's own `on_pick` unless this is set.
 M.on_pick = nil
 
 --- The last pick (see `show`), or nil.
@@ -48,15 +57,19 @@ local SHOW_OPTS = {
   model = "table", lines = "table", capture = "boolean",
 }
 
-local function fail (msg, level) error("lsys.show: " .. msg, level + 1) end
+-- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
+-- itself.
+local function fail (msg, level, name)
+  error((name or "lsys.show") .. ": " .. msg, level + 1)
+end
 
-local function checkopts (opts)
+local function checkopts (opts, name)
   if opts == nil then return {} end
-  if type(opts) ~= "table" then fail("an options table expected", 3) end
+  if type(opts) ~= "table" then fail("an options table expected", 3, name) end
   for k, v in pairs(opts) do
     local t = SHOW_OPTS[k]
-    if t == nil then fail(format("unknown option '%s'", tostring(k)), 3) end
-    if type(v) ~= t then fail(format("option '%s' must be a %s", k, t), 3) end
+    if t == nil then fail(format("unknown option '%s'", tostring(k)), 3, name) end
+    if type(v) ~= t then fail(format("option '%s' must be a %s", k, t), 3, name) end
   end
   return opts
 end
@@ -113,13 +126,15 @@ local function model_of (s, opts)
   return m
 end
 
-local function open (opts)
+-- The open window, else a new one; `name` (lsys.show, lsys.viewer.open) begins the
+-- messages.
+local function open (opts, name)
   opts = opts or {}
   if S.viewer ~= nil and S.viewer:state().open then return S.viewer end
   if S.viewer ~= nil then S.viewer:close() end
   S.viewer = nil
   if not core.has_viewer then
-    error("lsys.show: lsys was built without the viewer window: install libglfw3-dev and "
+    error(name .. ": lsys was built without the viewer window: install libglfw3-dev and "
       .. "rebuild (./setup.sh does)", 0)
   end
   local ok, v = pcall(core.viewer_open, {
@@ -134,7 +149,7 @@ local function open (opts)
       msg = msg .. " (no display: DISPLAY is not set; `lsys render` draws PNG files "
         .. "without one)"
     end
-    error("lsys.show: " .. msg, 0)
+    error(name .. ": " .. msg, 0)
   end
   S.viewer = v
   return v
@@ -143,7 +158,7 @@ end
 --- Opens the window, empty (it waits for a `show`), unless it is open. `opts`: width,
 -- height, samples, status, as for `show`.
 function M.open (opts)
-  open(checkopts(opts))
+  open(checkopts(opts, "lsys.viewer.open"), "lsys.viewer.open")
 end
 
 --- Shows `x` in the viewer window, opening it if needed, and returns at once.
@@ -213,7 +228,7 @@ function M.show (x, opts)
   if opts.rate ~= nil and not (opts.rate > 0 and opts.rate <= 1000) then
     fail("option 'rate' must be in (0, 1000] steps per second", 2)
   end
-  local v = open(opts)
+  local v = open(opts, "lsys.show")
   v:post(frames, {
     first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
     keep_camera = opts.keep_camera, capture = opts.capture,
@@ -270,10 +285,11 @@ function M.wait ()
   while M.poll(0.25) do end
 end
 
---- True while the window is open.
-function M.isopen ()
+-- True while the window is open: `state()` tells (nil without a window, `open` false
+-- once it was closed); the predicate stays one release more, with a warning (issue 14 §5).
+M.isopen = warning.alias("lsys.viewer.isopen", "lsys.viewer.state()", function ()
   return S.viewer ~= nil and S.viewer:state().open
-end
+end)
 
 --- Closes the window.
 function M.close ()
