@@ -66,19 +66,29 @@ function lsys.lsystem(options) end
 --- Parses cpfg text notation (`"F(1,0.5)[+A]"`) into a new Lstring. White space between
 --- modules and inside parameter lists is ignored; parameters are finite numbers, at most 31
 --- per module; brackets need not balance.
---- Raises `lstring: MESSAGE at character C` for malformed text (`unexpected ':'`,
+--- Raises `lsys.lstring: MESSAGE at character C` for malformed text (`unexpected ':'`,
 --- `unbalanced parentheses after 'F'`, `bad number 'x' in parameters of 'F'`, ...).
 ---@param text string
 ---@param names? string Multi-character module names, as in the `modules` option: `"Apex Leaf"`.
 ---@return lsys.Lstring
 function lsys.lstring(text, names) end
 
---- True when `x` is an Lstring.
+--- The kind of lsys object `x` is, as `io.type` and `math.type` name theirs; nil for any
+--- other value. Closed objects keep their kind.
+---@param x any
+---@return "lstring"|"scene"|"model"|"arrangement"|"contour"|"surface"|"texture"|"ik"|"viewer"|"rules"|nil
+function lsys.type(x) end
+
+--- True when `x` is an Lstring. Deprecated: `lsys.type(x) == "lstring"`; the first call
+--- warns once (manual §9).
+---@deprecated
 ---@param x any
 ---@return boolean
 function lsys.islstring(x) end
 
---- True when `x` is a model made by `lsys.lsystem`.
+--- True when `x` is a model made by `lsys.lsystem`. Deprecated: `lsys.type(x) == "model"`;
+--- the first call warns once.
+---@deprecated
 ---@param x any
 ---@return boolean
 function lsys.ismodel(x) end
@@ -88,7 +98,7 @@ function lsys.ismodel(x) end
 --- `WHAT must be at least 1 byte, got X`, `WHAT must be a number of bytes or a string such
 --- as "2G", got TYPE`, `WHAT: 'X' is not a size (...)`.
 ---@param x number|string
----@param what? string Names the value in messages. Default `"size"`.
+---@param what? string Names the value in messages. Default `"lsys.parse_size"`.
 ---@return number bytes A whole number, or math.huge.
 function lsys.parse_size(x, what) end
 
@@ -449,7 +459,10 @@ function lsys.wait() end
 ---@field x number Window x of the click (pixels from the left).
 ---@field y number Window y of the click (pixels from the top).
 
---- The viewer window (docs/viewer.md).
+--- The viewer window (docs/viewer.md). Without a window (none open, no display, lsys built
+--- without the viewer) `open`, `show`, `key` and `screenshot` raise; `poll`, `sync`,
+--- `pending`, `state`, `project`, `wait` and `close` do nothing and answer as for a closed
+--- window (false, 0, nil).
 ---@class lsys.viewer
 ---@field on_pick? fun(info: lsys.Pick) Called for picks of shows without their own on_pick.
 ---@field last_pick? lsys.Pick The last pick.
@@ -467,9 +480,13 @@ function lsys.viewer.show(x, opts) end
 function lsys.viewer.poll(timeout) end
 --- Polls until the window is closed.
 function lsys.viewer.wait() end
---- Opens an empty window unless one is open.
+--- Opens an empty window unless one is open. Raises `lsys.viewer.open: ...` for bad options
+--- and when no window can be opened.
 ---@param opts? { width?: integer, height?: integer, samples?: integer, status?: boolean }
 function lsys.viewer.open(opts) end
+--- True while the window is open. Deprecated: `lsys.viewer.state()`, nil without a window
+--- and with `open` false once it was closed; the first call warns once.
+---@deprecated
 ---@return boolean
 function lsys.viewer.isopen() end
 function lsys.viewer.close() end
@@ -548,17 +565,18 @@ function lsys.view.turtle(v, allow_system_calls) end
 function lsys.view.render(v) end
 
 --- Reads the text of a cpfg view file into a view table, as `load` does for a file.
---- Raises `NAME:LINE: ...`; `view.parse: the text must be a string`.
+--- Raises `NAME:LINE: ...`; `lsys.view.parse: the text must be a string`.
 ---@param text string
 ---@param name? string Names the text in messages. Default `"view"`.
----@param opts? { dir?: string, quiet?: boolean } `dir` becomes the view's `dir`; `quiet`: do not print the warnings.
+---@param opts? { dir?: string, quiet?: boolean } `dir` becomes the view's `dir`; `quiet`: do not send the warnings to `warn`.
 ---@return lsys.View view
 ---@return string[] warnings
 function lsys.view.parse(text, name, opts) end
 
 --- Reads a cpfg view file (.v) into a view table; relative file names inside are resolved
 --- against its directory. Returns the view and the list of warnings about recognised but
---- unsupported commands (also printed to stderr unless `opts.quiet`). Raises `file:LINE: ...`.
+--- unsupported commands (also sent to Lua's `warn` unless `opts.quiet`: shown by the lsys
+--- program and by `lua -W`). Raises `file:LINE: ...`, `lsys.view.load: cannot open ...`.
 ---@param path string
 ---@param opts? { quiet?: boolean }
 ---@return lsys.View view
@@ -575,7 +593,8 @@ function lsys.view.load_colormap(path) end
 ---@return table palette
 function lsys.view.load_materials(path) end
 
---- Whether `x` is a Scene.
+--- Whether `x` is a Scene. Deprecated: `lsys.type(x) == "scene"`; the first call warns once.
+---@deprecated
 ---@return boolean
 function lsys.isscene(x) end
 
@@ -583,13 +602,15 @@ function lsys.isscene(x) end
 -- ===========================================================================================
 -- lsys.arrange: arranging a plant by inverse kinematics (docs/arrange.md; Power et al. 1999)
 
---- Starts arranging `s` (an Lstring of `model`; default `model:derive()`), which is copied:
---- the arrangement works on its own string. The same as `require("lsys.arrange")(model, s,
---- opts)`. Raises `lsys.arrange: an options table expected`, `lsys.arrange: unknown option
---- 'K'`, `lsys.arrange: option 'K' must be a TYPE`, `lsys.arrange: option 'radii' must be
---- 'width' or 'davinci'`, `lsys.arrange: option 'K' must be > 0`.
+--- Starts arranging `s` (an Lstring of `model`, or its text, read by `model:lstring`;
+--- default `model:derive()`), which is copied: the arrangement works on its own string.
+--- The same as `require("lsys.arrange")(model, s, opts)`. Raises `lsys.arrange: a model
+--- expected`, `lsys.arrange: an Lstring or its text expected`, `lsys.arrange: lstring: ...`
+--- for malformed text, `lsys.arrange: an options table expected`, `lsys.arrange: unknown
+--- option 'K'`, `lsys.arrange: option 'K' must be a TYPE`, `lsys.arrange: option 'radii'
+--- must be 'width' or 'davinci'`, `lsys.arrange: option 'K' must be > 0`.
 ---@param model lsys.Model
----@param s? lsys.Lstring
+---@param s? lsys.Lstring|string
 ---@param opts? lsys.ArrangeOptions
 ---@return lsys.Arrangement
 function lsys.arrange(model, s, opts) end
@@ -620,7 +641,8 @@ function lsys.arrange(model, s, opts) end
 --- An arrangement: a copy of the string with `@J(h, u, l)` joint modules (degrees) that the
 --- draggers set, and the selected branch path. Module indices are those of the arranged
 --- string (`a:lstring()`); selecting adds missing `@J` modules, which shifts the indices
---- after them.
+--- after them. Methods take positional arguments (an optional table of settings last), and
+--- their errors begin with the method's name (`select: ...`).
 ---@class lsys.Arrangement
 ---@field model lsys.Model
 ---@field scene lsys.Scene The scene of the arranged string as last interpreted.
@@ -629,12 +651,14 @@ local Arrangement = {}
 --- Selects the branch path (§3.2): `fixed` is the segment at whose start the path is held,
 --- `moved` the segment, leaf or flower whose end the draggers move (default `fixed`); both
 --- module indices or picks (lsys.Pick). `moved` must be in the active branch of `fixed`.
---- Adds the missing `@J` modules. Raises `lsys.arrange: select: ...` (e.g. `the fixed point
---- must be on a segment`, `module I is not in the active branch of module J (above it)`,
---- `module I (NAME) draws nothing that can be arranged`).
----@param sel { fixed: integer|lsys.Pick, moved?: integer|lsys.Pick }
+--- Adds the missing `@J` modules. Raises `select: ...` (e.g. `the fixed point must be on a
+--- segment`, `module I is not in the active branch of module J (above it)`, `fixed: module I
+--- (NAME) draws nothing that can be arranged`). The table `{ fixed =, moved = }` of 0.1.0
+--- still works for one release and warns once that it is deprecated.
+---@param fixed integer|lsys.Pick
+---@param moved? integer|lsys.Pick
 ---@return integer joints The number of joints of the path.
-function Arrangement:select(sel) end
+function Arrangement:select(fixed, moved) end
 
 --- Moves the fixed point as ilsa's arrow keys do: "up" along its axis towards the branch
 --- end, "down" towards the base, "left" and "right" to the sibling branches. The path
@@ -653,11 +677,13 @@ function Arrangement:path_modules() end
 function Arrangement:active_modules() end
 
 --- Spherical dragger: turns the path about its fixed point by `angle` degrees about `axis`
---- (end and twist vectors turned together), then solves. Raises `lsys.arrange: select a
---- branch path first`.
----@param rot { axis: number[], angle: number }
+--- (end and twist vectors turned together), then solves. Raises `spherical: select a branch
+--- path first`. The table `{ axis =, angle = }` of 0.1.0 still works for one release and
+--- warns once that it is deprecated.
+---@param axis number[] `{x, y, z}`, world space.
+---@param angle number Degrees.
 ---@return lsys.SolveResult
-function Arrangement:spherical(rot) end
+function Arrangement:spherical(axis, angle) end
 
 --- Disc dragger: twists the path by `angle` degrees about its axis; the end stays.
 ---@param angle number Degrees.
@@ -813,7 +839,9 @@ function Lstring:insert(positions, piece) end
 -- ===========================================================================================
 -- lsys.core: the C module (csrc/lua/). lsys.lsystem, Model:interpret, lsys.render,
 -- lsys.view and lsys.viewer are built on it; use it directly only to write another front
--- end.
+-- end. Its names are the raw ones the C side registers, mostly noun first (contour_load,
+-- surface_parse, png_read); the public names of `require "lsys"` are verb first within
+-- their module (lsys.view.load, lsys.view.load_colormap, lsys.parse_size).
 
 ---@class lsys.core
 ---@field MAXPARAMS integer Parameters per module at most: 31.
