@@ -21,7 +21,7 @@ local arr = lsys.arrange(plant, a_)
 -- (b): the last internode pulled aside, from the base of the trunk
 local lastF
 for i = #a_, 1, -1 do if a_:module(i) == "F" and arr.depth[i] == 0 then lastF = i break end end
-arr:select { fixed = 1, moved = lastF }
+arr:select(1, lastF)
 arr:plane(-2.5, -0.5)
 arr:commit()
 -- one lateral pruned (the second one on the trunk)

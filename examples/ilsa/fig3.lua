@@ -29,7 +29,7 @@ for k, v in ipairs(variants) do
   local s = m:derive(0)
   if v[2] then
     local a = lsys.arrange(m, s, { wt = 0 })   -- position only: no twist target
-    a:select { fixed = 2, moved = #s }   -- Z(..)F: the first F is module 2
+    a:select(2, #s)   -- Z(..)F: the first F is module 2
     a:plane(5, -3)                       -- the same pull for each
     s = a:lstring()
   end

@@ -35,7 +35,7 @@ for k, v in ipairs(variants) do
       if name == "[" then depth = depth + 1 elseif name == "]" then depth = depth - 1 end
       if depth == 0 then last = i - 1 break end
     end
-    a:select { fixed = 5, moved = last }
+    a:select(5, last)
     a:plane(-2.5, 1)
     s = a:lstring()
   end
