@@ -23,12 +23,12 @@ int lsys_interpret (lsys_model *m, lsys_turtle *t, lsys_lstring *s, const lsys_a
   meter.used = lsys_lstring_bytes(s);
   meter.hit = 0;
   t->meter = &meter;
-  if (t->scene != NULL) t->scene->mesh.meter = &meter;
+  if (t->scene != NULL) t->scene->meter = t->scene->mesh.meter = &meter;
   if (st > 0) { t->expand = expand; t->expandud = m; st = LSYS_OK; }
   if (st == LSYS_OK) st = lsys_turtle_run(t, s, ab);
   else t->err = m->err;
   lsys_homo_end(m);
   t->meter = NULL;
-  if (t->scene != NULL) t->scene->mesh.meter = NULL;
+  if (t->scene != NULL) t->scene->meter = t->scene->mesh.meter = NULL;
   return st;
 }

@@ -103,8 +103,9 @@ typedef struct lsys_turtle {
   lsys_expandfn expand; void *expandud;
   int mode;
   size_t stop;                  /* LSYS_TURTLE_STATE: modules to interpret */
-  lsys_meter *meter;            /* the memory budget of the mesh, the records and the
-                                   branch stack (NULL: none); past it, LSYS_EMEMORY */
+  lsys_meter *meter;            /* the memory budget of the branch stack (NULL: none); the
+                                   scene's mesh and records have theirs (scene->meter,
+                                   mesh.meter: lsys_interpret sets all three to one) */
   /* outputs */
   lsys_scene *scene;            /* DRAW mode: the geometry, records and stiffnesses go here */
   lsys_tstate state;            /* the state when interpretation ended (or stopped) */

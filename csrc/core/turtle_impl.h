@@ -132,9 +132,7 @@ static inline int newrec (run *R, int kind, const double *p0, const double *p1, 
   lsys_trec *r;
   int k;
   if (R->o->norecords) return LSYS_OK;
-  if (S->nrec == S->reccap &&
-      lsys_grow_metered((void **)&S->rec, &S->reccap, S->nrec + 1, sizeof *S->rec, t->meter)
-      != LSYS_OK)
+  if (S->nrec == S->reccap && lsys_scene_reserve_records(S, 1) != LSYS_OK)
     return lsys_turtle_nomem(R);
   if (S->nrec >= LSYS_NOREC) return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
   r = &S->rec[S->nrec++];
@@ -156,12 +154,8 @@ static inline int newrec (run *R, int kind, const double *p0, const double *p1, 
   r->ntri = t->mesh != NULL && t->mesh->nt > R->modtri ? (uint32_t)(t->mesh->nt - R->modtri) : 0;
   r->stiff = LSYS_NOREC;
   if (R->st.hasstiff) {
-    if (lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * (S->nstiff + 1), sizeof(float),
-                          t->meter) != LSYS_OK)
+    if (lsys_scene_add_stiffness(S, R->st.stiff, &r->stiff) != LSYS_OK)
       return lsys_turtle_nomem(R);
-    r->stiff = (uint32_t)S->nstiff;
-    for (k = 0; k < 3; k++) S->stiff[3 * S->nstiff + k] = (float)R->st.stiff[k];
-    S->nstiff++;
   }
   return LSYS_OK;
 }
