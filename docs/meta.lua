@@ -551,17 +551,25 @@ function lsys.view.merge(v, over) end
 
 --- The options table `core.interpret` and `core.query` read, from a normalised view: its
 --- turtle fields under the view's own names (angle, step, line_width, line_style,
---- contour_sides, tropisms, torques, palette, contours, surfaces, textures, ...) and
---- `allow_system_calls`.
+--- contour_sides, tropisms, torques, palette, contours, surfaces, textures, ...), how the
+--- scene is to be looked at (background, light, viewpoint, target, up, direction,
+--- projection, fov, twist: the scene keeps them) and `allow_system_calls`.
 ---@param v lsys.View A result of `normalize`.
 ---@param allow_system_calls? boolean Default false.
 ---@return table
-function lsys.view.turtle(v, allow_system_calls) end
+function lsys.view.turtle_options(v, allow_system_calls) end
 
---- The options table `core.render` reads, from a normalised view: camera, light,
---- background, supersample and the textures (left out when there are none).
+--- The options with which `core.render` looks at a scene another way, from a normalised
+--- view: camera, light, background, supersample and the textures (left out when there
+--- are none).
 ---@param v lsys.View A result of `normalize`.
 ---@return table
+function lsys.view.render_options(v) end
+
+---@deprecated Use `lsys.view.turtle_options` (the same function; warns once).
+function lsys.view.turtle(v, allow_system_calls) end
+
+---@deprecated Use `lsys.view.render_options` (the same function; warns once).
 function lsys.view.render(v) end
 
 --- Reads the text of a cpfg view file into a view table, as `load` does for a file.
@@ -1083,10 +1091,11 @@ function core.producing(v) end
 function core.max_memory(bytes) end
 
 -- ---------------------------------------------------------------------------------------------
--- The turtle and scenes (csrc/lua/lua_scene.c). `opts` is `lsys.view.turtle(v)` of a
--- normalised view; the homomorphism of `rules` is applied while drawing.
+-- The turtle and scenes (csrc/lua/lua_scene.c). `opts` is `lsys.view.turtle_options(v)`
+-- of a normalised view; the homomorphism of `rules` is applied while drawing.
 
---- Interprets `s` into a new Scene.
+--- Interprets `s` into a new Scene. The scene keeps the look fields of `opts` (camera,
+--- light, background; the view schema's defaults where absent) and its textures.
 ---@param rules lsys.Rules
 ---@param s lsys.Lstring
 ---@param opts table
@@ -1119,10 +1128,13 @@ function core.turtle_state(rules, s, i, opts) end
 ---@type boolean True when built with OSMesa (offscreen rendering).
 core.has_render = true
 
---- Draws a Scene offscreen (`lsys.render` gives it its options): `opts` holds
---- `lsys.view.render(v)` and out, width, height, zoom, transparent, wireframe; `textures`
---- is the list of lsys.Texture the scene's texture indices refer to. With `out` writes the
---- PNG and returns true, else the RGBA pixels, width and height. Raises `lsys.render: ...`.
+--- Draws a Scene offscreen (`lsys.render` gives it its options) as the scene says (its
+--- camera, light, background, palette and textures). `opts`: out, width, height,
+--- supersample, zoom, transparent, wireframe, and the fields of
+--- `lsys.view.render_options(v)`, each of which replaces the scene's own for this picture
+--- (`textures`: the list of lsys.Texture the scene's texture indices refer to). With `out`
+--- writes the PNG and returns true, else the RGBA pixels, width and height. Raises
+--- `lsys.render: ...`.
 ---@param scene lsys.Scene
 ---@param opts? table
 ---@return true|string pixels

@@ -76,6 +76,9 @@ describe("deprecated names", function()
     assert.same(a:path_modules(), b:path_modules())
     assert.equal(a:spherical({ 0, 0, 1 }, 20).f, b:spherical { axis = { 0, 0, 1 }, angle = 20 }.f)
     assert.equal(tostring(a:lstring()), tostring(b:lstring()))
+    local v = lsys.view.normalize { angle = 30, fov = 50 }
+    assert.same(lsys.view.turtle_options(v, true), lsys.view.turtle(v, true))
+    assert.same(lsys.view.render_options(v), lsys.view.render(v))
   end)
 
   it("warn once each, through warn()", function()
@@ -87,6 +90,7 @@ for _ = 1, 2 do
   local a = lsys.arrange(m)
   a:select { fixed = 1, moved = 3 }
   a:spherical { axis = { 0, 0, 1 }, angle = 10 }
+  lsys.view.turtle(lsys.view.normalize {}); lsys.view.render(lsys.view.normalize {})
 end
 print("done")
 ]])
@@ -100,6 +104,8 @@ print("done")
         "Arrangement:select(fixed, moved)",
       "Arrangement:spherical { axis =, angle = } is deprecated; use " ..
         "Arrangement:spherical(axis, angle)",
+      "lsys.view.turtle is deprecated; use lsys.view.turtle_options",
+      "lsys.view.render is deprecated; use lsys.view.render_options",
     }
     local n = 0
     for line in out:gmatch("Lua warning: ([^\n]*)") do

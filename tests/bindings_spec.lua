@@ -92,7 +92,7 @@ describe("option readers", function ()
     local R, s = m._rules, m:derive(1)
     local function interpret (o) return core.interpret(R, s, o) end
     local v = lsys.view.normalize { line_style = "cylinder", contour_sides = 5, line_width = 3 }
-    local sc = interpret(lsys.view.turtle(v))
+    local sc = interpret(lsys.view.turtle_options(v))
     assert.equal(2 * 2 * 5 + 4 * 5, sc.ntriangles)  -- 2 cylinders of 5 sides, 4 fan caps
     assert.equal(3, sc:record(1).w0)
     assert.has_error(function () interpret { line_style = "tube" } end,

@@ -424,6 +424,39 @@ describe("render-only options #gl", function()
   end)
 end)
 
+describe("the scene's look #gl", function()
+  local m = lsys.lsystem { axiom = "F[+F]F[-F]F", view = { angle = 30, line_width = 3 } }
+  local o = { width = 48, height = 48, supersample = 1 }
+
+  it("comes from the view schema's defaults when the options say nothing", function()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    -- one owner of the defaults: a scene made without view fields (the core's own
+    -- defaults, scene.c) looks exactly like one made with the schema's
+    local v = lsys.view.normalize(m.view)
+    local s = m:derive()
+    local bare = core.interpret(m._rules, s, { angle = 30, line_width = 3,
+                                              palette = v.palette })
+    local viewed = core.interpret(m._rules, s, lsys.view.turtle_options(v))
+    assert.equal(core.render(viewed, o), core.render(bare, o))
+    local px = core.render(bare, o)
+    assert.same({ 237, 245, 255 }, { px:byte(1, 3) })           -- the pale sky background
+  end)
+
+  it("is kept by the scene, and lsys.render's view fields replace it for one picture", function()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    local sc = m:interpret(nil, { background = { 0, 0, 0 } })
+    assert.same({ 0, 0, 0 }, { core.render(sc, o):byte(1, 3) })  -- the scene's own
+    assert.same({ 0, 0, 0 }, { lsys.render(sc, o):byte(1, 3) })
+    local red = lsys.render(sc, { width = 48, height = 48, supersample = 1,
+                                  background = { 1, 0, 0 } })
+    assert.same({ 255, 0, 0 }, { red:byte(1, 3) })
+    assert.same({ 0, 0, 0 }, { lsys.render(sc, o):byte(1, 3) })  -- for that picture only
+    -- raw: each look field given replaces the scene's
+    assert.same({ 0, 255, 0 }, { core.render(sc, { width = 8, height = 8,
+                                                   background = { 0, 1, 0 } }):byte(1, 3) })
+  end)
+end)
+
 describe("textures #gl", function()
   if not core.has_render then
     pending("lsys was built without OSMesa: texture rendering specs skipped")
@@ -513,10 +546,11 @@ describe("textures #gl", function()
     local t = core.texture_load(checker, { mode = "d" })
     local px = core.render(sc, { width = 64, height = 64, supersample = 1, textures = { t } })
     assert.same({ 255, 0, 0, 255 }, { pixel(px, 64, 18, 18) })
-    -- without textures the scene's indices draw untextured
-    local plain = core.render(sc, { width = 64, height = 64, supersample = 1 })
-    local r, g, b = pixel(plain, 64, 18, 18)
-    assert.is_true(r == g and g == b)
+    -- without opts.textures the scene's own (its view's: modulate, lit red)
+    local own = core.render(sc, { width = 64, height = 64, supersample = 1 })
+    local r, g, b = pixel(own, 64, 18, 18)
+    assert.is_true(r > 100 and g == 0 and b == 0, r .. " " .. g .. " " .. b)
+    -- (a texture index the scene has no texture for draws untextured: test_render.c)
     assert.has_error(function () core.render(sc, { textures = 5 }) end,
       "lsys.render: opts.textures must be a list of textures (lsys.texture_load), got number")
     assert.has_error(function () core.render(sc, { textures = { t, checker } }) end,

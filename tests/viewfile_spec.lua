@@ -443,15 +443,15 @@ describe("view options naming files", function ()
     assert.same({}, v.surfaces)
     assert.same({}, v.textures)
     assert.is_true(v.minimize_twist)
-    local t = view.turtle(v)
+    local t = view.turtle_options(v)
     assert.equal(v.contours, t.contours)
     assert.equal(v.surfaces, t.surfaces)
     assert.equal(v.textures, t.textures)
     assert.is_true(t.minimize_twist)
-    assert.is_false(view.turtle(view.normalize({ minimize_twist = false })).minimize_twist)
-    assert.is_nil(view.render(v).textures)                        -- none: left out
+    assert.is_false(view.turtle_options(view.normalize({ minimize_twist = false })).minimize_twist)
+    assert.is_nil(view.render_options(v).textures)                        -- none: left out
     local tv = { textures = { "a" } }
-    assert.equal(tv.textures, view.render(tv).textures)
+    assert.equal(tv.textures, view.render_options(tv).textures)
   end)
 
   it("load the contours, surfaces and textures of a view file", function ()

@@ -9,7 +9,7 @@ void lsys_camera_defaults (lsys_camera *c) {
   memset(c, 0, sizeof *c);
   c->up[1] = 1;
   c->dir[2] = -1;
-  c->projection = LSYS_PERSPECTIVE;
+  c->projection = LSYS_PARALLEL;
   c->fov = 30;
   c->zoom = 1;
 }
@@ -18,8 +18,8 @@ void lsys_scene_init (lsys_scene *s) {
   memset(s, 0, sizeof *s);
   lsys_mesh_init(&s->mesh);
   lsys_camera_defaults(&s->cam);
-  s->light[0] = -1; s->light[1] = 1; s->light[2] = 1;
-  s->background[0] = s->background[1] = s->background[2] = 1.0f;
+  s->light[0] = 0.4; s->light[1] = 0.8; s->light[2] = 0.6;
+  s->background[0] = 0.93f; s->background[1] = 0.96f; s->background[2] = 1.0f;
 }
 
 void lsys_scene_free (lsys_scene *s) {

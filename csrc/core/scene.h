@@ -21,6 +21,11 @@
 **   dirty      the vertex range changed in place since the consumer last
 **              took the scene (a viewer re-uploads only that range).
 **
+** A consumer may look at a scene another way for one call through a copy
+** of the struct with other camera, light, background or textures: the copy
+** borrows the arrays, is read only, and is never freed (the viewer's camera,
+** lsys.render's options).
+**
 ** Parts, instances and the dirty range are the layout the component graphs,
 ** incremental growth and populations build on: the turtle of today writes
 ** one part and no instances, and the consumers draw the mesh as it is.
@@ -82,7 +87,7 @@ typedef struct lsys_camera {
   double up[3];         /* up vector, when has_up; default +y */
   double dir[3];        /* view direction used when there is no eye; default (0, 0, -1) */
   int has_eye, has_target, has_up;
-  int projection;       /* LSYS_PERSPECTIVE (default) or LSYS_PARALLEL */
+  int projection;       /* LSYS_PARALLEL (default, as cpfg) or LSYS_PERSPECTIVE */
   double fov;           /* vertical field of view in degrees (perspective); default 30 */
   double twist;         /* degrees; a positive twist turns the picture counterclockwise */
   double zoom;          /* magnification about the image centre, after fitting; default 1 */
@@ -123,7 +128,9 @@ typedef struct lsys_scene {
 void lsys_camera_defaults (lsys_camera *c);
 
 /* An empty scene: no geometry, no palette (a grey default), the default
-** camera, the light from the upper front left (-1, 1, 1), a white background. */
+** camera, the light towards (0.4, 0.8, 0.6), a pale sky-blue background
+** (0.93, 0.96, 1). These are the view schema's defaults (lua/lsys/view.lua
+** owns them; render_spec checks that the two agree). */
 void lsys_scene_init (lsys_scene *s);
 void lsys_scene_free (lsys_scene *s);
 /* Empties the geometry, records, parts and instances; keeps the capacities,

@@ -164,7 +164,6 @@ struct lsys_viewer {
                                  void *px);
   void (LSYS_GLAPI *ReadBuffer) (unsigned mode);
   lsys_vsnap *snap;
-  const lsys_texture **texp;      /* pointers to snap->tex, for render opts */
   long cur;                       /* frame shown */
   lsys_vcam cam, home;            /* current and arrival cameras (viewcam.h) */
   lsys_render_cache cache;
@@ -177,6 +176,7 @@ struct lsys_viewer {
   int wireframe, help, dirty;
   double drawms;                  /* smoothed time to draw a frame */
   int shotseq;
+  char drawerr[256];              /* why the last picture could not be drawn (status line) */
   uint8_t *pixels;                /* screenshot scratch */
   size_t pixcap;
   lsys_overlay text;              /* the status line and the help */
@@ -215,19 +215,19 @@ static const lsys_vframe *curframe (const lsys_viewer *v) {
          ? &v->snap->frames[v->cur] : NULL;
 }
 
-/* The render options of frame f seen through the viewer's camera. */
-static void frameopts (const lsys_viewer *v, const lsys_vframe *f, lsys_render_opts *o) {
-  *o = f->ro;
+/* Frame f seen through the viewer's camera: its scene with the camera
+** replaced (the arrays borrowed, scene.h) and the options of this window. */
+static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
+                       lsys_render_opts *o) {
+  *sc = f->sc;
+  lsys_vcam_apply(&v->cam, &sc->cam);
+  lsys_render_defaults(o);
   o->width = v->winw;
   o->height = v->winh;
-  o->pal = f->pal;
-  o->npal = f->npal;
-  o->tex = v->texp;
-  o->ntex = v->snap->ntex;
   o->wireframe = v->wireframe;
   o->gl = &v->gl;
-  o->transparent = 0;
-  lsys_vcam_apply(&v->cam, &o->cam);
+  o->cache = &v->cache;
+  o->keep_textures = 1;
 }
 
 /*
@@ -235,7 +235,8 @@ static void frameopts (const lsys_viewer *v, const lsys_vframe *f, lsys_render_o
 ** keeping the current direction and up) and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
-  if (lsys_vcam_fit(&v->cam, &f->mesh, &f->ro, v->winw, v->winh, !home) != LSYS_OK) return;
+  if (lsys_vcam_fit(&v->cam, &f->sc.mesh, &f->sc.cam, v->winw, v->winh, !home) != LSYS_OK)
+    return;
   if (home) v->home = v->cam;
   v->dirty = 1;
 }
@@ -256,6 +257,7 @@ static void showframe (lsys_viewer *v, long k) {
 /* Takes a posted snapshot, if any. */
 static void takemail (lsys_viewer *v) {
   lsys_vsnap *s;
+  size_t k;
   pthread_mutex_lock(&v->mu);
   s = v->mail;
   v->mail = NULL;
@@ -263,14 +265,10 @@ static void takemail (lsys_viewer *v) {
   if (s == NULL) return;
   lsys_render_cache_release(&v->cache, &v->gl);    /* textures of the old snapshot */
   if (v->snap != NULL) lsys_vsnap_free(v->snap);
-  LSYS_FREE(v->texp);
-  v->texp = NULL;
   v->snap = s;
-  if (s->ntex > 0) {
-    int k;
-    v->texp = (const lsys_texture **)LSYS_MALLOC((size_t)s->ntex * sizeof *v->texp);
-    if (v->texp == NULL) s->ntex = 0;
-    for (k = 0; k < s->ntex; k++) v->texp[k] = &s->tex[k];
+  for (k = 0; k < s->nframes; k++) {          /* the frames share the snapshot's textures */
+    s->frames[k].sc.tex = s->texp;
+    s->frames[k].sc.ntex = s->texp != NULL ? s->ntex : 0;
   }
   v->rate = s->rate > 0 ? s->rate : 2;
   v->playing = 0;
@@ -313,11 +311,13 @@ static void overlay (lsys_viewer *v) {
   v->text.n = 0;
   if (f == NULL)
     snprintf(line, sizeof line, "waiting for a scene");
+  else if (v->drawerr[0] != '\0')
+    snprintf(line, sizeof line, "cannot draw: %s", v->drawerr);
   else {
     int at = 0;
     count(a, sizeof a, f->nmodules);
-    count(b, sizeof b, f->mesh.nt);
-    count(c, sizeof c, f->mesh.nl);
+    count(b, sizeof b, f->sc.mesh.nt);
+    count(c, sizeof c, f->sc.mesh.nl);
     if (f->step >= 0 && v->snap->nframes > 1)
       at = snprintf(line, sizeof line, "step %d (%ld/%zu)  ", f->step, v->cur + 1,
                     v->snap->nframes);
@@ -395,6 +395,7 @@ static void screenshot (lsys_viewer *v, const char *path) {
 
 static void draw (lsys_viewer *v) {
   const lsys_vframe *f = curframe(v);
+  lsys_scene sc;
   lsys_render_opts o;
   lsys_error e;
   char shot[512];
@@ -404,11 +405,10 @@ static void draw (lsys_viewer *v) {
   G.GetWindowSize(v->win, &v->winw, &v->winh);
   if (v->fbw <= 0 || v->fbh <= 0 || v->winw <= 0 || v->winh <= 0) return;   /* iconified */
   if (f != NULL) {
-    frameopts(v, f, &o);
-    o.cache = &v->cache;
-    o.keep_textures = 1;
-    if (lsys_render_draw(&f->mesh, &o, v->fbw, v->fbh, &e) != LSYS_OK) {
-      fprintf(stderr, "lsys viewer: %s\n", e.msg);
+    frameview(v, f, &sc, &o);
+    v->drawerr[0] = '\0';
+    if (lsys_render_draw(&sc, &o, v->fbw, v->fbh, &e) != LSYS_OK) {
+      snprintf(v->drawerr, sizeof v->drawerr, "%s", e.msg);   /* on the status line */
       v->gl.ClearColor(0.3f, 0, 0, 1);
       v->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     }
@@ -446,7 +446,7 @@ static void draw (lsys_viewer *v) {
   v->st.playing = v->playing;
   v->st.wireframe = v->wireframe;
   v->st.capture = capturing(v);
-  if (f != NULL) lsys_render_camera(&f->mesh, &o, v->winw, v->winh, v->st.proj, v->st.view);
+  if (f != NULL) lsys_render_camera(&sc.mesh, &sc.cam, v->winw, v->winh, v->st.proj, v->st.view);
   pthread_cond_broadcast(&v->cv);
   pthread_mutex_unlock(&v->mu);
 }
@@ -462,7 +462,7 @@ static void orbit (lsys_viewer *v, double dx, double dy) {
 
 static void pan (lsys_viewer *v, double dx, double dy) {
   const lsys_vframe *f = curframe(v);
-  lsys_vcam_pan(&v->cam, f != NULL ? &f->ro.cam : NULL, v->winh, dx, dy);
+  lsys_vcam_pan(&v->cam, f != NULL ? &f->sc.cam : NULL, v->winh, dx, dy);
   v->dirty = 1;
 }
 
@@ -477,7 +477,8 @@ static void pick (lsys_viewer *v, double x, double y) {
   double proj[16], view[16];
   long k = -1;
   if (f == NULL) return;
-  if (lsys_vcam_matrices(&v->cam, &f->mesh, &f->ro, v->winw, v->winh, proj, view) == LSYS_OK)
+  if (lsys_vcam_matrices(&v->cam, &f->sc.mesh, &f->sc.cam, v->winw, v->winh, proj, view) ==
+      LSYS_OK)
     k = lsys_vpick_find(f, proj, view, v->winw, v->winh, x, y, PICK_TOL);
   event(v, k >= 0 ? LSYS_VEV_PICK : LSYS_VEV_MISS, &ev);
   ev.x = x;
@@ -802,7 +803,6 @@ void lsys_viewer_defaults (lsys_viewer_opts *o) {
 static void freeviewer (lsys_viewer *v) {
   lsys_vsnap_free(v->mail);
   lsys_vsnap_free(v->snap);
-  LSYS_FREE(v->texp);
   lsys_render_cache_free(&v->cache);
   LSYS_FREE(v->ev);
   LSYS_FREE(v->pixels);

@@ -169,7 +169,7 @@ static void boxfilter (uint8_t *dst, const uint8_t *src, int w, int h, int ss, i
 }
 
 /* The body of lsys_render_offscreen, with the lock held. */
-static int render (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
+static int render (const lsys_scene *sc, const lsys_render_opts *o, uint8_t *rgba,
                    lsys_error *e) {
   lsys_render_opts oo = *o;
   int w = o->width, h = o->height, ss = o->supersample < 1 ? 1 : o->supersample, st;
@@ -197,7 +197,7 @@ static int render (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
     S.pixelstore(OSMESA_Y_UP, 0);               /* row 0 is the top row */
     if (oo.cache == NULL) oo.cache = &S.cache;
     oo.gl = &S.gl;
-    st = lsys_render_draw(m, &oo, w * ss, h * ss, e);
+    st = lsys_render_draw(sc, &oo, w * ss, h * ss, e);
     S.gl.Finish();
     S.makecurrent(NULL, NULL, 0, 0, 0);         /* the context forgets 'buf' */
     if (st == LSYS_OK && ss > 1) boxfilter(rgba, buf, w, h, ss, o->transparent);
@@ -206,14 +206,14 @@ static int render (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
   return st;
 }
 
-int lsys_render_offscreen (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
+int lsys_render_offscreen (const lsys_scene *sc, const lsys_render_opts *o, uint8_t *rgba,
                            lsys_error *e) {
   int st;
   if (o->width <= 0 || o->height <= 0)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "bad image size %dx%d", o->width,
                          o->height);
   pthread_mutex_lock(&lock);
-  st = render(m, o, rgba, e);
+  st = render(sc, o, rgba, e);
   pthread_mutex_unlock(&lock);
   return st;
 }

@@ -38,9 +38,6 @@ void lsys_render_defaults (lsys_render_opts *o) {
   memset(o, 0, sizeof *o);
   o->width = o->height = 800;
   o->supersample = 3;
-  o->background[0] = o->background[1] = o->background[2] = 1.0f;
-  o->light[0] = -1; o->light[1] = 1; o->light[2] = 1;
-  lsys_camera_defaults(&o->cam);
 }
 
 void lsys_render_cache_free (lsys_render_cache *c) {
@@ -673,14 +670,14 @@ static int reserve (frame *F) {
 
 /* Clears the framebuffer and sets the state every frame starts from: the
 ** camera's matrices, depth test, the key light and colour materials. */
-static void startframe (const frame *F, const lsys_render_opts *o) {
+static void startframe (const frame *F, const lsys_scene *s, const lsys_render_opts *o) {
   static const GLfloat white[4] = {1, 1, 1, 1};
   static const GLfloat key[4] = {0.75f, 0.75f, 0.75f, 1};
   static const GLfloat black[4] = {0, 0, 0, 1};
   const lsys_gl *gl = F->gl;
   GLfloat pos[4];
   gl->Viewport(0, 0, F->fbw, F->fbh);
-  gl->ClearColor(o->background[0], o->background[1], o->background[2],
+  gl->ClearColor(s->background[0], s->background[1], s->background[2],
                  o->transparent ? 0.0f : 1.0f);
   gl->ClearDepth(1);
   gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -696,9 +693,9 @@ static void startframe (const frame *F, const lsys_render_opts *o) {
   gl->Enable(GL_NORMALIZE);
   /* the key light: a direction (w = 0) in world space, as the modelview
   ** matrix holds only the view transform here */
-  pos[0] = (GLfloat)o->light[0];
-  pos[1] = (GLfloat)o->light[1];
-  pos[2] = (GLfloat)o->light[2];
+  pos[0] = (GLfloat)s->light[0];
+  pos[1] = (GLfloat)s->light[1];
+  pos[2] = (GLfloat)s->light[2];
   pos[3] = 0;
   gl->Lightfv(GL_LIGHT0, GL_POSITION, pos);
   gl->Lightfv(GL_LIGHT0, GL_AMBIENT, black);
@@ -711,9 +708,8 @@ static void startframe (const frame *F, const lsys_render_opts *o) {
   gl->Enable(GL_COLOR_MATERIAL);
 }
 
-int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
+int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, int fbh,
                       lsys_error *e) {
-  static const lsys_mesh none = {0};
   const lsys_gl *gl = o->gl;
   lsys_render_cache local = {0};
   frame F;
@@ -725,14 +721,14 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
   for (k = 0; k < 32 && gl->GetError() != GL_NO_ERROR; k++) {}   /* earlier errors are not ours */
   memset(&F, 0, sizeof F);
   F.gl = gl;
-  F.m = m ? m : &none;
+  F.m = &s->mesh;
   F.c = o->cache ? o->cache : &local;
-  F.pal = o->pal;
-  F.npal = o->npal;
+  F.pal = s->pal;
+  F.npal = s->npal;
   F.fbw = fbw;
   F.fbh = fbh;
   F.lscale = o->height > 0 ? (float)fbh / (float)o->height : 1;
-  if (lsys_render_camera(m, o, fbw, fbh, F.proj, F.view) != LSYS_OK)
+  if (lsys_render_camera(F.m, &s->cam, fbw, fbh, F.proj, F.view) != LSYS_OK)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
                          "bad camera: the viewpoint and the target coincide, a zero "
                          "direction or up vector, or an empty viewport");
@@ -743,9 +739,9 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
   if (F.pal == NULL || F.npal == 0) { F.pal = &grey; F.npal = 1; }
   if (F.npal > 65536) F.npal = 65536;   /* colour indices are 16-bit */
   F.keep = o->keep_textures && o->cache != NULL;
-  if (o->tex != NULL && o->ntex > 0 && F.m->tex != NULL && F.m->nt > 0) {
-    F.tex = o->tex;
-    F.ntex = o->ntex < 65535 ? (size_t)o->ntex : 65535;   /* texture indices are 16-bit */
+  if (s->tex != NULL && s->ntex > 0 && F.m->tex != NULL && F.m->nt > 0) {
+    F.tex = s->tex;
+    F.ntex = s->ntex < 65535 ? (size_t)s->ntex : 65535;   /* texture indices are 16-bit */
   }
   gl->GetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);
   F.maxw = range[1] >= 1 ? (int)range[1] : 1;
@@ -754,7 +750,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
     lsys_render_cache_free(&local);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory to draw the scene");
   }
-  startframe(&F, o);
+  startframe(&F, s, o);
   if (F.m->nt > 0) {
     size_t v;
     for (v = 0; v < F.m->nv; v++) setrgba(F.c->rgba + 4 * v, &F.pal[F.m->col[v] % F.npal]);

@@ -116,18 +116,12 @@ typedef struct lsys_render_cache {
   size_t texbufcap;
 } lsys_render_cache;
 
+/* How to draw a scene: what the scene itself does not say (the camera,
+** light, background, palette and textures are the scene's: scene.h). */
 typedef struct lsys_render_opts {
   int width, height;        /* image size in pixels; default 800 x 800 */
   int supersample;          /* offscreen: samples per pixel along each axis; default 3 */
-  float background[3];      /* RGB in [0, 1]; default white */
   int transparent;          /* offscreen: background alpha 0 instead of 1 */
-  double light[3];          /* world-space direction towards the key light;
-                               default (-1, 1, 1): upper front left */
-  lsys_camera cam;
-  const lsys_material *pal; /* colour c uses pal[c % npal]; npal 0: a grey default */
-  size_t npal;
-  const lsys_texture *const *tex;   /* texture index k (mesh 'tex') uses tex[k - 1] */
-  int ntex;                 /* number of textures; 0: everything untextured */
   int wireframe;            /* draw triangle edges only */
   int keep_textures;        /* with a cache: keep uploaded textures in it for the next
                                frames (a window redrawing the same scene); the caller
@@ -137,7 +131,7 @@ typedef struct lsys_render_opts {
                                lsys_render_offscreen uses its own */
 } lsys_render_opts;
 
-/* Fills 'o' with the defaults above (no palette, no cache). */
+/* Fills 'o' with the defaults above (no cache, no GL). */
 void lsys_render_defaults (lsys_render_opts *o);
 
 /* Frees the arrays of 'c' and leaves it empty (reusable). Textures kept
@@ -151,12 +145,13 @@ void lsys_render_cache_free (lsys_render_cache *c);
 void lsys_render_cache_release (lsys_render_cache *c, const lsys_gl *gl);
 
 /*
-** Computes the camera of 'o' for a w x h viewport: 'proj' and 'view' are
+** Computes camera 'cam' looking at mesh 'm' (its bounding box fits the
+** view and gives the near and far planes) for a w x h viewport: 'proj' and 'view' are
 ** OpenGL matrices (column-major, ready for glLoadMatrixd). Returns LSYS_OK,
 ** or LSYS_EARG when w or h is not positive, the eye and the target coincide,
 ** or 'dir' or 'up' is the zero vector.
 */
-int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
+int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                         double proj[16], double view[16]);
 
 /*
@@ -170,8 +165,10 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
                          const double p[3], double out[3]);
 
 /*
-** Draws 'm' into the current GL context's framebuffer of fbw x fbh pixels:
-** clears to the background, lights with the key light plus ambient, lights
+** Draws scene 's' into the current GL context's framebuffer of fbw x fbh
+** pixels, through the scene's camera, with its palette (a grey default
+** when it has none): clears to the scene's background, lights with its key
+** light plus ambient, lights
 ** two-sided vertices on both faces, and draws lines with their widths
 ** scaled by fbh / o->height (the supersampling factor offscreen, the content
 ** scale in a window). Lines narrower than LSYS_RENDER_WIDE pixels are GL
@@ -179,7 +176,7 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 ** width to the other's, with round ends so that polylines join smoothly.
 **
 ** Textures: a triangle whose first vertex has texture index k in
-** 1..o->ntex, with o->tex[k - 1] non-NULL and holding pixels, is textured
+** 1..s->ntex, with s->tex[k - 1] non-NULL and holding pixels, is textured
 ** with it (other indices draw untextured). Each texture in use is uploaded
 ** once per call and deleted before returning, unless o->keep_textures. Modulate multiplies the lit
 ** colour by the texel (by its intensity alone for an 'intensity' texture);
@@ -195,7 +192,7 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 */
 #define LSYS_RENDER_WIDE 3
 
-int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, int fbh,
+int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, int fbh,
                       lsys_error *e);
 
 /* osmesa.c ------------------------------------------------------------- */
@@ -205,7 +202,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
 #define LSYS_RENDER_MAX_SAMPLES (64 * 1024 * 1024)
 
 /*
-** Renders 'm' offscreen into 'rgba' (o->width * o->height * 4 bytes, top
+** Renders scene 's' offscreen into 'rgba' (o->width * o->height * 4 bytes, top
 ** row first, straight alpha). Draws at o->supersample times the size along
 ** each axis, lowered to fit OSMesa's maximum size and
 ** LSYS_RENDER_MAX_SAMPLES, and box-filters down. libOSMesa is loaded at the
@@ -213,7 +210,7 @@ int lsys_render_draw (const lsys_mesh *m, const lsys_render_opts *o, int fbw, in
 ** threads take turns. Returns LSYS_OK or an error with e->msg set (e.g.
 ** libOSMesa missing, an image larger than OSMesa allows).
 */
-int lsys_render_offscreen (const lsys_mesh *m, const lsys_render_opts *o, uint8_t *rgba,
+int lsys_render_offscreen (const lsys_scene *s, const lsys_render_opts *o, uint8_t *rgba,
                            lsys_error *e);
 
 /* The largest image OSMesa can draw, asked once; returns LSYS_OK, or an

@@ -136,9 +136,8 @@ static double fitview (fitstate *fs, const lsys_mesh *m, const lsys_camera *cam,
   return halfh;
 }
 
-int lsys_render_camera (const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
+int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                         double proj[16], double view[16]) {
-  const lsys_camera *cam = &o->cam;
   const double *r, *u, *f;
   double c[8][3], centre[3], eye[3];
   double aspect, diag, dmin, dmax, pad, nearp, farp;
@@ -223,22 +222,22 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 /* ---------------------------------------------------------------------- */
 /* the viewer's camera */
 
-int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_render_opts *o, int w, int h,
+int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                    int keep) {
-  lsys_render_opts ro = *o;
+  lsys_camera rc = *cam;
   double proj[16], view[16], eye[3], lo[3], hi[3], d[3];
   int i;
   if (keep && c->valid) {
-    ro.cam.has_eye = 0;
-    ro.cam.has_up = 1;
-    ro.cam.twist = 0;
-    vcopy(ro.cam.dir, c->f);
-    vcopy(ro.cam.up, c->u);
-    ro.cam.has_target = 0;
-    ro.cam.zoom = 1;
+    rc.has_eye = 0;
+    rc.has_up = 1;
+    rc.twist = 0;
+    vcopy(rc.dir, c->f);
+    vcopy(rc.up, c->u);
+    rc.has_target = 0;
+    rc.zoom = 1;
   }
-  ro.cam.halfh = 0;
-  if (lsys_render_camera(m, &ro, w, h, proj, view) != LSYS_OK) return LSYS_EARG;
+  rc.halfh = 0;
+  if (lsys_render_camera(m, &rc, w, h, proj, view) != LSYS_OK) return LSYS_EARG;
   /* rows of the view matrix: right, up, -forward; eye = -R^T t */
   for (i = 0; i < 3; i++) {
     c->u[i] = view[4 * i + 1];
@@ -246,7 +245,7 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_render_opts *o, 
     eye[i] = -(view[4 * i] * view[12] + view[4 * i + 1] * view[13] +
                view[4 * i + 2] * view[14]);
   }
-  if (ro.cam.has_target) vcopy(c->target, ro.cam.target);
+  if (rc.has_target) vcopy(c->target, rc.target);
   else if (m != NULL && lsys_mesh_bounds(m, lo, hi) &&
            isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2]))
     for (i = 0; i < 3; i++) c->target[i] = 0.5 * (lo[i] + hi[i]);
@@ -274,11 +273,11 @@ void lsys_vcam_apply (const lsys_vcam *c, lsys_camera *cam) {
     vlin(cam->eye, c->target, 1, c->f, -c->dist);
 }
 
-int lsys_vcam_matrices (const lsys_vcam *c, const lsys_mesh *m, const lsys_render_opts *o,
+int lsys_vcam_matrices (const lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam,
                         int w, int h, double proj[16], double view[16]) {
-  lsys_render_opts ro = *o;
-  lsys_vcam_apply(c, &ro.cam);
-  return lsys_render_camera(m, &ro, w, h, proj, view);
+  lsys_camera rc = *cam;
+  lsys_vcam_apply(c, &rc);
+  return lsys_render_camera(m, &rc, w, h, proj, view);
 }
 
 void lsys_vcam_orbit (lsys_vcam *c, const double up[3], double dx, double dy) {

@@ -39,28 +39,28 @@ typedef struct lsys_vline {
   int ontop;                    /* drawn over everything (not depth-tested), after the rest */
 } lsys_vline;
 
-/* One picture: a scene with what drawing and picking it need. */
+/* One picture: a scene with what picking and highlighting it need. */
 typedef struct lsys_vframe {
-  lsys_mesh mesh;               /* owned */
-  lsys_material *pal;           /* owned; npal >= 1 */
-  size_t npal;
+  lsys_scene sc;                /* owned mesh and palette (no records); camera, light and
+                                   background of the view; textures: the snapshot's, set
+                                   when drawn */
   lsys_vpick *picks;            /* owned */
   size_t npicks;
   lsys_vline *lines;            /* owned: drawn over the scene (depth-tested) */
   size_t nlines;
   size_t nmodules;              /* length of the string it was drawn from */
   int step;                     /* derivation step, or -1 when unknown */
-  lsys_render_opts ro;          /* background, light, camera of the view (width,
-                                   height, palette, textures, cache are set when drawn) */
 } lsys_vframe;
 
 /* What is shown: frames 0..nframes-1 (usually steps 0..n), textures shared
-** by all frames (texture index k of a mesh is tex[k - 1]). */
+** by all frames (texture index k of a mesh is tex[k - 1]; texp[k - 1]
+** points at it, the array a frame's scene borrows). */
 typedef struct lsys_vsnap {
   lsys_vframe *frames;
   size_t nframes;
   size_t first;                 /* the frame shown when the snapshot arrives */
   lsys_texture *tex;            /* owned, ntex of them */
+  const lsys_texture **texp;    /* owned: &tex[0] .. &tex[ntex - 1] */
   int ntex;
   double rate;                  /* animation speed in frames per second (> 0) */
   int keep_camera;              /* 1: keep the current camera (a reload), 0: fit anew */
@@ -71,9 +71,13 @@ typedef struct lsys_vsnap {
   char title[200];              /* window title (the model's name) */
 } lsys_vsnap;
 
-/* A new empty snapshot with room for n frames (each frame's mesh
-** initialised, palette empty), or NULL when out of memory (vsnap.c). */
+/* A new empty snapshot with room for n frames (each frame's scene
+** initialised: empty, no palette), or NULL when out of memory (vsnap.c). */
 lsys_vsnap *lsys_vsnap_new (size_t n);
+
+/* Gives 's' room for n textures (tex and texp, zeroed; ntex = n). LSYS_OK
+** or LSYS_ENOMEM. */
+int lsys_vsnap_textures (lsys_vsnap *s, int n);
 void lsys_vsnap_free (lsys_vsnap *s);
 
 typedef struct lsys_viewer_opts {

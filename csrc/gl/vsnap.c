@@ -18,8 +18,7 @@ lsys_vsnap *lsys_vsnap_new (size_t n) {
     if (s->frames == NULL) { LSYS_FREE(s); return NULL; }
     memset(s->frames, 0, n * sizeof *s->frames);
     for (k = 0; k < n; k++) {
-      lsys_mesh_init(&s->frames[k].mesh);
-      lsys_render_defaults(&s->frames[k].ro);
+      lsys_scene_init(&s->frames[k].sc);
       s->frames[k].step = -1;
     }
   }
@@ -31,13 +30,31 @@ void lsys_vsnap_free (lsys_vsnap *s) {
   size_t k;
   if (s == NULL) return;
   for (k = 0; k < s->nframes; k++) {
-    lsys_mesh_free(&s->frames[k].mesh);
-    LSYS_FREE(s->frames[k].pal);
+    lsys_scene_free(&s->frames[k].sc);
     LSYS_FREE(s->frames[k].picks);
     LSYS_FREE(s->frames[k].lines);
   }
   LSYS_FREE(s->frames);
   for (k = 0; k < (size_t)s->ntex; k++) lsys_texture_free(&s->tex[k]);
   LSYS_FREE(s->tex);
+  LSYS_FREE(s->texp);
   LSYS_FREE(s);
+}
+
+int lsys_vsnap_textures (lsys_vsnap *s, int n) {
+  int k;
+  if (n <= 0) return LSYS_OK;
+  s->tex = (lsys_texture *)LSYS_MALLOC((size_t)n * sizeof *s->tex);
+  s->texp = (const lsys_texture **)LSYS_MALLOC((size_t)n * sizeof *s->texp);
+  if (s->tex == NULL || s->texp == NULL) {
+    LSYS_FREE(s->tex);
+    LSYS_FREE(s->texp);
+    s->tex = NULL;
+    s->texp = NULL;
+    return LSYS_ENOMEM;
+  }
+  memset(s->tex, 0, (size_t)n * sizeof *s->tex);
+  for (k = 0; k < n; k++) s->texp[k] = &s->tex[k];
+  s->ntex = n;
+  return LSYS_OK;
 }

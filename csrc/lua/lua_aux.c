@@ -409,25 +409,7 @@ const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *wh
 }
 
 /* ---------------------------------------------------------------------- */
-/* lsys.render options (lua_render.c, and the frames of lua_viewer.c) */
-
-#ifndef LSYS_NO_RENDER
-
-/* A size in pixels or samples: a positive integer at most 'max', also as a
-** numeral ("800": the sizes were always read so). */
-static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, int max) {
-  lua_Integer v;
-  int isint;
-  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
-  v = lua_tointegerx(L, -1, &isint);
-  if (!isint || v < 1 || v > max) {
-    char expect[64];
-    snprintf(expect, sizeof expect, "a positive integer at most %d", max);
-    bad(L, o, k, expect, NULL);
-  }
-  lua_pop(L, 1);
-  return (int)v;
-}
+/* how to look at a scene: core.interpret's view fields, lsys.render's opts */
 
 /* Reads {x, y, z} (finite numbers; within [0, 1] for a colour); its
 ** messages never show the value. */
@@ -451,52 +433,79 @@ static int iszero (const double v[3]) {
   return v[0] == 0 && v[1] == 0 && v[2] == 0;
 }
 
+/* The look fields of the options at o->t (scene.h): each one given
+** replaces the scene's; the messages begin with o->pre. */
+void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
+  static const char *const projections[] = {"perspective", "parallel", NULL};
+  lsys_camera *cam = &sc->cam;
+  double v[3];
+  int p;
+  if (optvec3(L, o, "background", 1, v)) {
+    sc->background[0] = (float)v[0];
+    sc->background[1] = (float)v[1];
+    sc->background[2] = (float)v[2];
+  }
+  if (optvec3(L, o, "light", 0, v)) {
+    if (iszero(v)) luaL_error(L, "%slight%s must not be the zero vector", o->pre, o->post);
+    memcpy(sc->light, v, sizeof v);
+  }
+  if (optvec3(L, o, "viewpoint", 0, cam->eye)) cam->has_eye = 1;
+  if (optvec3(L, o, "target", 0, cam->target)) cam->has_target = 1;
+  if (optvec3(L, o, "up", 0, cam->up)) {
+    cam->has_up = 1;
+    if (iszero(cam->up)) luaL_error(L, "%sup%s must not be the zero vector", o->pre, o->post);
+  }
+  if (optvec3(L, o, "direction", 0, cam->dir) && iszero(cam->dir))
+    luaL_error(L, "%sdirection%s must not be the zero vector", o->pre, o->post);
+  if (cam->has_eye && cam->has_target && cam->eye[0] == cam->target[0] &&
+      cam->eye[1] == cam->target[1] && cam->eye[2] == cam->target[2])
+    luaL_error(L, "%sviewpoint%s and %starget%s must differ", o->pre, o->post, o->pre,
+               o->post);
+  p = lsys_optchoice(L, o, "projection", -1, projections, "'perspective' or 'parallel'");
+  if (p >= 0) cam->projection = p == 0 ? LSYS_PERSPECTIVE : LSYS_PARALLEL;
+  cam->fov = lsys_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
+  cam->twist = lsys_optnum(L, o, "twist", cam->twist, -HUGE_VAL, HUGE_VAL, "a number of degrees");
+  cam->zoom = lsys_optnum(L, o, "zoom", cam->zoom, 0, HUGE_VAL, "a positive number");
+}
+
+/* ---------------------------------------------------------------------- */
+/* lsys.render options (lua_render.c) */
+
+#ifndef LSYS_NO_RENDER
+
+/* A size in pixels or samples: a positive integer at most 'max', also as a
+** numeral ("800": the sizes were always read so). */
+static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, int max) {
+  lua_Integer v;
+  int isint;
+  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  v = lua_tointegerx(L, -1, &isint);
+  if (!isint || v < 1 || v > max) {
+    char expect[64];
+    snprintf(expect, sizeof expect, "a positive integer at most %d", max);
+    bad(L, o, k, expect, NULL);
+  }
+  lua_pop(L, 1);
+  return (int)v;
+}
+
 static const char *const renderopts[] = {
   "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
   "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
   NULL
 };
 
-/* The camera fields of the options: where it is, where it looks, how it projects. */
-static void readcamera (lua_State *L, const lsys_opts *o, lsys_camera *cam) {
-  static const char *const projections[] = {"perspective", "parallel", NULL};
-  int p;
-  cam->has_eye = optvec3(L, o, "viewpoint", 0, cam->eye);
-  cam->has_target = optvec3(L, o, "target", 0, cam->target);
-  cam->has_up = optvec3(L, o, "up", 0, cam->up);
-  if (cam->has_up && iszero(cam->up))
-    luaL_error(L, "lsys.render: opts.up must not be the zero vector");
-  if (optvec3(L, o, "direction", 0, cam->dir) && iszero(cam->dir))
-    luaL_error(L, "lsys.render: opts.direction must not be the zero vector");
-  if (cam->has_eye && cam->has_target && cam->eye[0] == cam->target[0] &&
-      cam->eye[1] == cam->target[1] && cam->eye[2] == cam->target[2])
-    luaL_error(L, "lsys.render: opts.viewpoint and opts.target must differ");
-  p = lsys_optchoice(L, o, "projection", -1, projections, "'perspective' or 'parallel'");
-  if (p >= 0) cam->projection = p == 0 ? LSYS_PERSPECTIVE : LSYS_PARALLEL;
-  cam->fov = lsys_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
-  cam->twist = lsys_optnum(L, o, "twist", 0, -HUGE_VAL, HUGE_VAL, "a number of degrees");
-  cam->zoom = lsys_optnum(L, o, "zoom", 1, 0, HUGE_VAL, "a positive number");
-}
-
-void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o) {
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {
   lsys_opts ro = {t, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
-  double v[3];
   lsys_render_defaults(o);
   if (lsys_optunknown(L, &ro, renderopts))          /* unknown keys are mistakes */
     luaL_error(L, "lsys.render: unknown option %s", got(L, -1));
   o->width = optsize(L, &ro, "width", o->width, 16384);
   o->height = optsize(L, &ro, "height", o->height, 16384);
   o->supersample = optsize(L, &ro, "supersample", o->supersample, 16);
-  if (optvec3(L, &ro, "background", 1, v)) {
-    o->background[0] = (float)v[0];
-    o->background[1] = (float)v[1];
-    o->background[2] = (float)v[2];
-  }
   o->transparent = lsys_optbool(L, &ro, "transparent", 0);
-  if (optvec3(L, &ro, "light", 0, o->light) && iszero(o->light))
-    luaL_error(L, "lsys.render: opts.light must not be the zero vector");
   o->wireframe = lsys_optbool(L, &ro, "wireframe", 0);
-  readcamera(L, &ro, &o->cam);
+  lsys_readlook(L, &ro, sc);
 }
 
 #endif

@@ -149,7 +149,8 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
 
 /* user values of a Scene: what made it, for scene:turtle() and the
 ** textures of scene:save() */
-enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_SCENE_NUV = 3 };
+enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_SCENE_TEX = 4,
+       LSYS_SCENE_NUV = 4 };
 
 /* The palette has npal >= 1 materials; colour c uses pal[c % npal]. */
 typedef struct lsys_lscene {
@@ -237,8 +238,15 @@ int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]
 */
 const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
 
+/* How to look at scene 'sc' (scene.h: camera, light, background) from the
+** fields of the options o->t that are present: background, light,
+** viewpoint, target, up, direction, projection, fov, twist, zoom. Each field
+** given replaces the scene's; the messages begin with o->pre. */
+void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc);
+
 /* Fills 'o' from the lsys.render options table at 't' (0: none), checking
-** every field (only when built with rendering). */
-void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o);
+** every field, and the look fields into 'sc' (a copy of the scene for this
+** picture: lsys_readlook). Only when built with rendering. */
+void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc);
 
 #endif

@@ -14,11 +14,12 @@
 ** core.render(scene [, opts]): draws the scene offscreen. With opts.out,
 ** writes that PNG file (RGB, or RGBA with opts.transparent) and returns
 ** true; otherwise returns the RGBA pixels (a string, top row first), the
-** width and the height. opts.textures is the list of lsys.Texture that the
-** scene's texture indices refer to (index k: the k-th); the options table
-** keeps them alive during the call. The supersampling factor is lowered
-** when the supersampled image would exceed OSMesa's maximum size or
-** LSYS_RENDER_MAX_SAMPLES; width and height themselves must fit OSMesa.
+** width and the height. The scene's camera, light, background and textures
+** are used, except where opts gives them (lsys_readlook; opts.textures: a
+** list of lsys.Texture, kept alive by the options table during the call).
+** The supersampling factor is lowered when the supersampled image would
+** exceed OSMesa's maximum size or LSYS_RENDER_MAX_SAMPLES; width and height
+** themselves must fit OSMesa.
 */
 static int l_render (lua_State *L) {
 #ifdef LSYS_NO_RENDER
@@ -27,23 +28,24 @@ static int l_render (lua_State *L) {
 #else
   const lsys_lscene *S = lsys_checkscene(L, 1);
   const char *out = NULL;
+  const lsys_texture *const *tex;
+  lsys_scene v = S->sc;               /* the scene as this picture sees it (scene.h) */
   lsys_render_opts o;
   lsys_opts ro = {0, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
   lsys_error e;
   luaL_Buffer b;
   uint8_t *px;
   size_t n;
-  int maxw, maxh;
+  int maxw, maxh, ntex;
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
     ro.t = 2;
   }
-  lsys_readrenderopts(L, ro.t, &o);
-  o.tex = lsys_opttextures(L, ro.t, "lsys.render", &o.ntex);   /* pushes one value */
+  lsys_readrenderopts(L, ro.t, &o, &v);
+  tex = lsys_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value */
+  if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
   if (lsys_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
-  o.pal = S->sc.pal;
-  o.npal = S->sc.npal;
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (o.width > maxw || o.height > maxh)
@@ -58,7 +60,7 @@ static int l_render (lua_State *L) {
   }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
-  if (lsys_render_offscreen(&S->sc.mesh, &o, px, &e) != LSYS_OK)
+  if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {
     if (lsys_png_write(out, px, o.width, o.height, o.transparent, &e) != LSYS_OK)

@@ -309,6 +309,7 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
 static int l_interpret (lua_State *L) {
   lsys_turtle *t;
   lsys_turtle_opts o;
+  lsys_opts look;
   lsys_lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
@@ -318,10 +319,15 @@ static int l_interpret (lua_State *L) {
   lsys_scene_init(&S->sc);
   S->inited = 1;
   readpalette(L, 3, S);
+  look = viewopts(L, 3);                   /* how to look at the scene, from the view */
+  lsys_readlook(L, &look, &S->sc);
   t = newturtle(L, LSYS_TURTLE_DRAW);                        /* 5 */
   t->scene = &S->sc;
   turtlerun(L, t, &o, 3);
   lsys_turtle_free(t);
+  S->sc.tex = o.tex;            /* kept: readopts left their array on top */
+  S->sc.ntex = o.tex != NULL ? o.ntex : 0;
+  lua_setiuservalue(L, 4, LSYS_SCENE_TEX);
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, LSYS_SCENE_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, LSYS_SCENE_LSTRING);
   lua_pushvalue(L, 3); lua_setiuservalue(L, 4, LSYS_SCENE_OPTS);
@@ -568,20 +574,14 @@ static int scene_turtle (lua_State *L) {
 /* scene:save(path) -> true; .obj (+ .mtl), .ply, .glb */
 static int scene_save (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
-  size_t len;
-  const char *path = luaL_checklstring(L, 2, &len);
+  const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
-  lsys_scene v;
   lsys_error e;
   int st;
   memset(&e, 0, sizeof e);
-  lua_settop(L, 2);                   /* the textures of the interpretation's options */
-  v = S->sc;                          /* the scene with them (borrowed for the call) */
-  v.tex = lsys_opttextures(L, lua_getiuservalue(L, 1, LSYS_SCENE_OPTS) == LUA_TTABLE ? 3 : 0,
-                           "scene:save", &v.ntex);
   if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
-  st = lsys_scene_save(&v, format, path, &e);
+  st = lsys_scene_save(&S->sc, format, path, &e);
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;

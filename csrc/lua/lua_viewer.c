@@ -156,15 +156,12 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     f->nmodules = (size_t)lua_tointeger(L, -1);
     lua_pop(L, 1);
   }
-  if (lsys_optfield(L, &fo, "render", LUA_TTABLE, "a table")) {
-    lsys_readrenderopts(L, lua_gettop(L), &f->ro);
-    lua_pop(L, 1);
-  }
-  f->pal = (lsys_material *)LSYS_MALLOC(S->sc.npal * sizeof *f->pal);
   f->picks = (lsys_vpick *)LSYS_MALLOC((S->sc.nrec > 0 ? S->sc.nrec : 1) * sizeof *f->picks);
-  if (f->pal == NULL || f->picks == NULL) luaL_error(L, "not enough memory for the viewer");
-  memcpy(f->pal, S->sc.pal, S->sc.npal * sizeof *S->sc.pal);
-  f->npal = S->sc.npal;
+  if (f->picks == NULL || lsys_scene_set_palette(&f->sc, S->sc.pal, S->sc.npal) != LSYS_OK)
+    luaL_error(L, "not enough memory for the viewer");
+  f->sc.cam = S->sc.cam;                  /* how the scene is to be looked at */
+  memcpy(f->sc.light, S->sc.light, sizeof f->sc.light);
+  memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
   if (lsys_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
     readlines(L, lua_gettop(L), f);
@@ -172,10 +169,10 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   }
   if (take) {                /* the scene's own mesh: checked again, options ran Lua code */
     lsys_lscene *T = lsys_checkscene(L, -1);
-    f->mesh = T->sc.mesh;
+    f->sc.mesh = T->sc.mesh;
     lsys_mesh_init(&T->sc.mesh);
   }
-  else if (lsys_mesh_copy(&f->mesh, &S->sc.mesh) != LSYS_OK)
+  else if (lsys_mesh_copy(&f->sc.mesh, &S->sc.mesh) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   lua_pop(L, 1);
 }
@@ -210,15 +207,11 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
   s->keep_camera = lsys_optbool(L, &po, "keep_camera", 0);
   s->capture = lsys_optbool(L, &po, "capture", 0);
   tex = lsys_opttextures(L, t, "viewer:post", &ntex);
-  if (ntex > 0) {
-    if ((s->tex = (lsys_texture *)LSYS_MALLOC((size_t)ntex * sizeof *s->tex)) == NULL)
+  if (lsys_vsnap_textures(s, ntex) != LSYS_OK)
+    luaL_error(L, "not enough memory for the viewer");
+  for (i = 0; i < ntex; i++)
+    if (lsys_texture_copy(&s->tex[i], tex[i]) != LSYS_OK)
       luaL_error(L, "not enough memory for the viewer");
-    for (i = 0; i < ntex; i++) {
-      if (lsys_texture_copy(&s->tex[i], tex[i]) != LSYS_OK)
-        luaL_error(L, "not enough memory for the viewer");
-      s->ntex = i + 1;
-    }
-  }
   lua_pop(L, 1);
 }
 

@@ -120,13 +120,16 @@ function M.render (x, opts)
       error(format("lsys.render: unknown option '%s'", tostring(k)), 2)
     end
   end
-  local v = model.sceneview(x) or view.normalize({}, "lsys.render")
+  -- the scene keeps its camera, light, background and textures; a render that changes
+  -- them passes the whole view they make with the scene's own
+  local v = model.sceneview(x)
+  local ro = { supersample = v and v.supersample }
   if next(over) then
-    local ok, r = pcall(view.normalize, view.merge(v, over), "lsys.render")
+    local ok, r = pcall(view.normalize, view.merge(v or view.normalize({}, "lsys.render"), over),
+                        "lsys.render")
     if not ok then error(r, 2) end
-    v = r
+    ro = view.render_options(r)
   end
-  local ro = view.render(v)
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
   ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
   local ok, a, b, c = pcall(core.render, x, ro)

@@ -514,7 +514,7 @@ end
 -- Fills the query modules ?P ?H ?U ?L of `s` in place from an interpretation
 -- (cpfg: productions at step n see the values of string n-1).
 function Model:_query (s)
-  local opts = view.turtle(self:_view(), self.allow_system_calls)
+  local opts = view.turtle_options(self:_view(), self.allow_system_calls)
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
   return self:_call(core.query, "interpret", self._rules, s, opts)
 end
@@ -539,7 +539,7 @@ function Model:interpret (s, over)
   local v = self:_view(over)
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
-  local topts = view.turtle(v, self.allow_system_calls)
+  local topts = view.turtle_options(v, self.allow_system_calls)
   topts.records = records and true or false
   local scene = self:_call(core.interpret, "interpret", self._rules, s, topts)
   scene_views[scene] = v

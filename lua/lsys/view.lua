@@ -62,6 +62,7 @@
 -- are lsys.viewfile's, given here under the same names.
 -- @module lsys.view
 local viewfile = require "lsys.viewfile"
+local warning = require "lsys.warning"
 
 local type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall, require,
       setmetatable, getmetatable, rawget, utf8 =
@@ -542,23 +543,32 @@ local TURTLE = { "angle", "step", "line_width", "width_increment", "color", "col
                  "line_style", "contour_sides", "tropisms", "torques", "palette", "contours",
                  "surfaces", "textures", "minimize_twist" }
 
---- The options the turtle reads (core.interpret), from a normalised view.
-function M.turtle (v, allow_system_calls)
+-- How to look at a scene: the camera, the light and the background, which the scene keeps
+-- (csrc/core/scene.h) and the renderer and the viewer read from it.
+local LOOK = { "background", "light", "viewpoint", "target", "up", "direction",
+               "projection", "fov", "twist" }
+
+--- The options core.interpret reads, from a normalised view: the turtle's, and how the
+-- scene it makes is to be looked at.
+function M.turtle_options (v, allow_system_calls)
   local o = { allow_system_calls = allow_system_calls or false }
   for _, k in ipairs(TURTLE) do o[k] = v[k] end
+  for _, k in ipairs(LOOK) do o[k] = v[k] end
   return o
 end
 
---- The options the renderer reads (core.render), from a normalised view. `textures`
--- is left out when the view has none (the same to the renderer).
-function M.render (v)
-  return {
-    background = v.background, light = v.light, viewpoint = v.viewpoint, target = v.target,
-    up = v.up, direction = v.direction, projection = v.projection, fov = v.fov,
-    twist = v.twist, supersample = v.supersample,
-    textures = v.textures and #v.textures > 0 and v.textures or nil,
-  }
+--- The options core.render reads to look at a scene another way, from a normalised view:
+-- the look, the supersampling and the textures (left out when the view has none: the same
+-- to the renderer).
+function M.render_options (v)
+  local o = { supersample = v.supersample,
+              textures = v.textures and #v.textures > 0 and v.textures or nil }
+  for _, k in ipairs(LOOK) do o[k] = v[k] end
+  return o
 end
+
+M.turtle = warning.alias("lsys.view.turtle", "lsys.view.turtle_options", M.turtle_options)
+M.render = warning.alias("lsys.view.render", "lsys.view.render_options", M.render_options)
 
 --- A copy of `v` with the fields of `over` (both plain view tables) replacing its own.
 function M.merge (v, over)

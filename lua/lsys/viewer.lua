@@ -23,7 +23,6 @@
 -- @module lsys.viewer
 local core = require "lsys.core"
 local model = require "lsys.model"
-local view = require "lsys.view"
 local warning = require "lsys.warning"
 
 local type, pairs, ipairs, error, pcall, tostring = type, pairs, ipairs, error, pcall, tostring
@@ -79,13 +78,10 @@ local function world (v)
   return v ~= nil and v.line_style ~= nil and v.line_style ~= "line"
 end
 
--- A frame table for the core from a scene.
+-- A frame table for the core from a scene (which keeps how it is to be looked at).
 local function frame (scene, step, nmodules, take)
   local v = model.sceneview(scene)
-  return {
-    scene = scene, step = step, modules = nmodules, take = take, world = world(v),
-    render = v and view.render(v) or nil,
-  }, v
+  return { scene = scene, step = step, modules = nmodules, take = take, world = world(v) }, v
 end
 
 -- A model's steps: derive keeping every string, interpret each.

@@ -53,6 +53,13 @@ static lsys_mesh boxmesh (const double lo[3], const double hi[3]) {
 
 /* ---------------------------------------------------------------------- */
 
+/* The camera these tests were written for: the scene's default, but in
+** perspective. */
+static void testcam (lsys_camera *c) {
+  lsys_camera_defaults(c);
+  c->projection = LSYS_PERSPECTIVE;
+}
+
 static void project (const double proj[16], const double view[16], int w, int h, double x,
                      double y, double z, double out[3]) {
   double p[3] = {x, y, z};
@@ -61,11 +68,11 @@ static void project (const double proj[16], const double view[16], int w, int h,
 
 /* Every corner of the box lies inside the viewport with a margin, the box
 ** fills most of it along one axis, and its centre is in the middle. */
-static void checkfit (const lsys_mesh *m, const lsys_render_opts *o, int w, int h) {
+static void checkfit (const lsys_mesh *m, const lsys_camera *cam, int w, int h) {
   double proj[16], view[16], out[3], lo[3], hi[3], minx = 1e9, maxx = -1e9, miny = 1e9,
          maxy = -1e9;
   int i;
-  assert(lsys_render_camera(m, o, w, h, proj, view) == LSYS_OK);
+  assert(lsys_render_camera(m, cam, w, h, proj, view) == LSYS_OK);
   lsys_mesh_bounds(m, lo, hi);
   for (i = 0; i < 8; i++) {
     project(proj, view, w, h, (i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1],
@@ -86,22 +93,22 @@ static void test_fit (void) {
   static const double lo[3] = {-1, 0, -0.5}, hi[3] = {1, 4, 0.5};
   static const double dirs[4][3] = {{0, 0, -1}, {1, 0, 0}, {-1, -1, -1}, {0, -1, 0}};
   lsys_mesh m = boxmesh(lo, hi), empty = {0};
-  lsys_render_opts o;
+  lsys_camera cam;
   int d, p;
-  lsys_render_defaults(&o);
+  testcam(&cam);
   for (p = 0; p < 2; p++) {
-    o.cam.projection = p ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
+    cam.projection = p ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
     for (d = 0; d < 4; d++) {
-      memcpy(o.cam.dir, dirs[d], sizeof o.cam.dir);
-      checkfit(&m, &o, 800, 600);
-      checkfit(&m, &o, 300, 900);
-      o.cam.twist = 30;
-      checkfit(&m, &o, 500, 500);
-      o.cam.twist = 0;
+      memcpy(cam.dir, dirs[d], sizeof cam.dir);
+      checkfit(&m, &cam, 800, 600);
+      checkfit(&m, &cam, 300, 900);
+      cam.twist = 30;
+      checkfit(&m, &cam, 500, 500);
+      cam.twist = 0;
     }
     /* a given eye, perspective: the target is the box centre, the frame is not fitted */
-    o.cam.dir[0] = 0; o.cam.dir[1] = 0; o.cam.dir[2] = -1;
-    checkfit(&m, &o, 640, 480);
+    cam.dir[0] = 0; cam.dir[1] = 0; cam.dir[2] = -1;
+    checkfit(&m, &cam, 640, 480);
   }
   /* perspective fits the vertices, not the box: a square with points on
   ** the view axis in front of and behind it still fills the image */
@@ -112,8 +119,8 @@ static void test_fit (void) {
     boxpos[2] = 1;                      /* vertex 0 -> (0, 0, 1), vertex 7 -> (0, 0, -10) */
     boxpos[0] = boxpos[1] = 0;
     boxpos[21] = boxpos[22] = 0; boxpos[23] = -10;
-    lsys_render_defaults(&o);
-    assert(lsys_render_camera(&sq, &o, 100, 100, proj, view) == LSYS_OK);
+    testcam(&cam);
+    assert(lsys_render_camera(&sq, &cam, 100, 100, proj, view) == LSYS_OK);
     project(proj, view, 100, 100, 1, -1, 0, out);
     assert(out[0] > 90 && out[0] <= 96 && out[1] > 90 && out[1] <= 96);
     project(proj, view, 100, 100, 0, 0, 1, out);
@@ -124,12 +131,12 @@ static void test_fit (void) {
     static const double flo[3] = {-3, 0, 0}, fhi[3] = {3, 10, 0};
     lsys_mesh f = boxmesh(flo, fhi);
     double proj[16], view[16];
-    lsys_render_defaults(&o);
-    checkfit(&f, &o, 400, 400);
-    o.cam.projection = LSYS_PARALLEL;
-    checkfit(&f, &o, 400, 400);
-    assert(lsys_render_camera(&empty, &o, 10, 10, proj, view) == LSYS_OK);
-    assert(lsys_render_camera(NULL, &o, 10, 10, proj, view) == LSYS_OK);
+    testcam(&cam);
+    checkfit(&f, &cam, 400, 400);
+    cam.projection = LSYS_PARALLEL;
+    checkfit(&f, &cam, 400, 400);
+    assert(lsys_render_camera(&empty, &cam, 10, 10, proj, view) == LSYS_OK);
+    assert(lsys_render_camera(NULL, &cam, 10, 10, proj, view) == LSYS_OK);
   }
 }
 
@@ -137,13 +144,13 @@ static void test_fit (void) {
 static void test_project (void) {
   static const double lo[3] = {-1, -1, 0}, hi[3] = {1, 1, 0};
   lsys_mesh m = boxmesh(lo, hi);
-  lsys_render_opts o;
+  lsys_camera cam;
   double proj[16], view[16], out[3], behind[3] = {0, 0, 20};
-  lsys_render_defaults(&o);
-  o.cam.has_eye = o.cam.has_target = 1;
-  o.cam.eye[2] = 10;                            /* target: the origin */
-  o.cam.fov = 90;                               /* half height = distance */
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  testcam(&cam);
+  cam.has_eye = cam.has_target = 1;
+  cam.eye[2] = 10;                            /* target: the origin */
+  cam.fov = 90;                               /* half height = distance */
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_OK);
   project(proj, view, 100, 100, 0, 0, 0, out);
   assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 50) < 1e-9);
   project(proj, view, 100, 100, 5, 0, 0, out);
@@ -152,37 +159,37 @@ static void test_project (void) {
   assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 25) < 1e-9);
   assert(lsys_render_project(proj, view, 100, 100, behind, out) == 0);
   /* a wide viewport keeps the vertical angle */
-  assert(lsys_render_camera(&m, &o, 200, 100, proj, view) == LSYS_OK);
+  assert(lsys_render_camera(&m, &cam, 200, 100, proj, view) == LSYS_OK);
   project(proj, view, 200, 100, 5, 5, 0, out);
   assert(fabs(out[0] - 125) < 1e-9 && fabs(out[1] - 25) < 1e-9);
   /* twist 90: the picture turns counterclockwise, +x goes up */
-  o.cam.twist = 90;
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  cam.twist = 90;
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_OK);
   project(proj, view, 100, 100, 5, 0, 0, out);
   assert(fabs(out[0] - 50) < 1e-9 && fabs(out[1] - 25) < 1e-9);
-  o.cam.twist = 0;
-  o.cam.zoom = 2;
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  cam.twist = 0;
+  cam.zoom = 2;
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_OK);
   project(proj, view, 100, 100, 5, 0, 0, out);
   assert(fabs(out[0] - 100) < 1e-9);
-  o.cam.zoom = 1;
+  cam.zoom = 1;
   /* parallel: the box's half height 1 fills 90% of the half image */
-  o.cam.projection = LSYS_PARALLEL;
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  cam.projection = LSYS_PARALLEL;
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_OK);
   project(proj, view, 100, 100, 1, -1, 0, out);
   assert(fabs(out[0] - 95) < 1e-9 && fabs(out[1] - 95) < 1e-9);
   /* an up vector along the view axis is replaced, not an error */
-  o.cam.has_up = 1;
-  o.cam.up[0] = 0; o.cam.up[1] = 0; o.cam.up[2] = 1;
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_OK);
+  cam.has_up = 1;
+  cam.up[0] = 0; cam.up[1] = 0; cam.up[2] = 1;
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_OK);
   /* degenerate cameras */
-  o.cam.has_up = 0;
-  assert(lsys_render_camera(&m, &o, 0, 100, proj, view) == LSYS_EARG);
-  memset(o.cam.eye, 0, sizeof o.cam.eye);
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_EARG);
-  o.cam.has_eye = o.cam.has_target = 0;
-  memset(o.cam.dir, 0, sizeof o.cam.dir);
-  assert(lsys_render_camera(&m, &o, 100, 100, proj, view) == LSYS_EARG);
+  cam.has_up = 0;
+  assert(lsys_render_camera(&m, &cam, 0, 100, proj, view) == LSYS_EARG);
+  memset(cam.eye, 0, sizeof cam.eye);
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_EARG);
+  cam.has_eye = cam.has_target = 0;
+  memset(cam.dir, 0, sizeof cam.dir);
+  assert(lsys_render_camera(&m, &cam, 100, 100, proj, view) == LSYS_EARG);
 }
 
 #endif
@@ -449,10 +456,29 @@ static const uint8_t *bluest (const uint8_t *img, double x, double y, int d) {
   return best;
 }
 
+/* The look these tests were written for: the camera of testcam, a white
+** background, the light from the upper front left. The scene's arrays are
+** the caller's (it is never freed). */
+static void testlook (lsys_scene *sc) {
+  lsys_scene_init(sc);
+  testcam(&sc->cam);
+  sc->background[0] = sc->background[1] = sc->background[2] = 1;
+  sc->light[0] = -1; sc->light[1] = 1; sc->light[2] = 1;
+}
+
+/* Renders mesh 'm' seen as 'sc' says (scene.h: a copy borrowing the arrays). */
+static int offscreen (const lsys_mesh *m, const lsys_scene *sc, const lsys_render_opts *o,
+                      uint8_t *img, lsys_error *e) {
+  lsys_scene v = *sc;
+  v.mesh = *m;
+  return lsys_render_offscreen(&v, o, img, e);
+}
+
 static void test_offscreen (void) {
   lsys_material pal[3];
   lsys_mesh m = scene(), empty = {0};
   lsys_render_opts o;
+  lsys_scene sc;
   lsys_error e;
   double proj[16], view[16], q[3];
   double quad[3] = {-1.2, 1.0, 0}, line[3] = {1.2, -1.0, 0}, thin[3] = {-1.25, -1.5, 0};
@@ -464,13 +490,14 @@ static void test_offscreen (void) {
   lsys_material_color(&pal[2], 1, 0, 0);
   pal[2].diffuse[3] = 0.5f;                     /* translucent red */
   lsys_render_defaults(&o);
+  testlook(&sc);
   o.width = IW; o.height = IH;
-  o.pal = pal; o.npal = 3;
-  assert(lsys_render_camera(&m, &o, IW, IH, proj, view) == LSYS_OK);
+  sc.pal = pal; sc.npal = 3;
+  assert(lsys_render_camera(&m, &sc.cam, IW, IH, proj, view) == LSYS_OK);
   for (ss = 1; ss <= 3; ss += 2) {
     o.supersample = ss;
     memset(img, 0x33, sizeof img);
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     dump(img, ss == 1 ? "render1.png" : "render3.png");
     /* corners: the white background */
     for (i = 0; i < 4; i++) {
@@ -518,27 +545,27 @@ static void test_offscreen (void) {
   }
   /* a translucent material blends with what is behind it */
   for (i = 0; i < 4; i++) qcol[i] = 2;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   lsys_render_project(proj, view, IW, IH, quad, q);
   c = pixel(img, q[0], q[1]);
   assert(c[0] > 180 && c[1] > 60 && c[1] < 200 && c[1] == c[2]);
   for (i = 0; i < 4; i++) qcol[i] = 0;
   /* a transparent background */
   o.transparent = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   assert(pixel(img, 0, 0)[3] == 0);
   lsys_render_project(proj, view, IW, IH, quad, q);
   assert(pixel(img, q[0], q[1])[3] == 255);
   o.transparent = 0;
   /* two-sided: seen from behind with the light behind, a two-sided quad is
   ** lit on its back face, a one-sided one only gets ambient light */
-  o.cam.dir[2] = 1;
-  o.light[0] = 0; o.light[1] = 0; o.light[2] = -1;
-  assert(lsys_render_camera(&m, &o, IW, IH, proj, view) == LSYS_OK);
+  sc.cam.dir[2] = 1;
+  sc.light[0] = 0; sc.light[1] = 0; sc.light[2] = -1;
+  assert(lsys_render_camera(&m, &sc.cam, IW, IH, proj, view) == LSYS_OK);
   lsys_render_project(proj, view, IW, IH, quad, q);
   for (i = 0; i < 2; i++) {
     memset(qts, i, sizeof qts);
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     dump(img, i ? "back2.png" : "back1.png");
     back[i] = brightness(pixel(img, q[0], q[1]));
   }
@@ -546,21 +573,22 @@ static void test_offscreen (void) {
   assert(back[1] > back[0] + 100);
   /* wireframe still draws, an empty scene is all background */
   lsys_render_defaults(&o);
+  testlook(&sc);
   o.width = IW; o.height = IH; o.wireframe = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   o.wireframe = 0;
-  assert(lsys_render_offscreen(&empty, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&empty, &sc, &o, img, &e) == LSYS_OK);
   for (i = 0; i < IW * IH * 4; i++) assert(img[i] == 255);
   /* a wide line through the eye is cut at the near plane */
   {
     static float zpos[6] = {0.1f, 0.1f, -3, 0.1f, 0.1f, 3};
     lsys_mesh z = m;
     z.lpos = zpos; z.nl = 1;
-    o.cam.has_eye = o.cam.has_target = 1;
-    o.cam.eye[0] = 0; o.cam.eye[1] = 0; o.cam.eye[2] = 0.5;
-    o.cam.target[0] = 0; o.cam.target[1] = 0; o.cam.target[2] = -1;
-    assert(lsys_render_offscreen(&z, &o, img, &e) == LSYS_OK);
-    o.cam.has_eye = o.cam.has_target = 0;
+    sc.cam.has_eye = sc.cam.has_target = 1;
+    sc.cam.eye[0] = 0; sc.cam.eye[1] = 0; sc.cam.eye[2] = 0.5;
+    sc.cam.target[0] = 0; sc.cam.target[1] = 0; sc.cam.target[2] = -1;
+    assert(offscreen(&z, &sc, &o, img, &e) == LSYS_OK);
+    sc.cam.has_eye = sc.cam.has_target = 0;
   }
   /* coordinates and widths that are not numbers draw nothing useful but
   ** do not crash; the camera falls back to the finite part */
@@ -571,25 +599,26 @@ static void test_offscreen (void) {
     lsys_mesh b = m;
     bpos[9] = NAN; bl[3] = INFINITY; bl[7] = NAN; bw[2] = NAN;
     b.pos = bpos; b.lpos = bl; b.lwidth = bw;
-    assert(lsys_render_offscreen(&b, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&b, &sc, &o, img, &e) == LSYS_OK);
     bl[3] = 1; bl[7] = 1;
-    assert(lsys_render_offscreen(&b, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&b, &sc, &o, img, &e) == LSYS_OK);
   }
   /* a scratch cache kept by the caller */
   {
     lsys_render_cache cache = {0};
     o.cache = &cache;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     lsys_render_cache_free(&cache);
     o.cache = NULL;
   }
   /* errors */
-  assert(lsys_render_draw(&m, &o, IW, IH, &e) == LSYS_EARG);      /* no entry points */
+  sc.mesh = m;
+  assert(lsys_render_draw(&sc, &o, IW, IH, &e) == LSYS_EARG);     /* no entry points */
   o.width = 0;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_EARG);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_EARG);
   o.width = 1 << 20;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_ELIMIT);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_ELIMIT);
   assert(strstr(e.msg, "exceeds OSMesa's limit") != NULL);
 }
 
@@ -626,10 +655,10 @@ static lsys_texture maketex (uint8_t *rgba, int w, int h) {
 }
 
 /* The pixel at world point (x, y, 0). */
-static const uint8_t *at (const uint8_t *img, const lsys_mesh *m, const lsys_render_opts *o,
+static const uint8_t *at (const uint8_t *img, const lsys_mesh *m, const lsys_scene *sc,
                           double x, double y) {
   double proj[16], view[16], p[3] = {x, y, 0}, q[3];
-  assert(lsys_render_camera(m, o, IW, IH, proj, view) == LSYS_OK);
+  assert(lsys_render_camera(m, &sc->cam, IW, IH, proj, view) == LSYS_OK);
   assert(lsys_render_project(proj, view, IW, IH, p, q) == 1);
   return pixel(img, q[0], q[1]);
 }
@@ -654,6 +683,7 @@ static void test_textured (void) {
   const lsys_texture *list[3] = {&tx, NULL, NULL};
   lsys_mesh m = texquad(1);
   lsys_render_opts o;
+  lsys_scene sc;
   lsys_error e;
   uint8_t ref[IW * IH * 4], img[IW * IH * 4], lit[4];
   int i, k;
@@ -661,74 +691,75 @@ static void test_textured (void) {
   lsys_material_color(&pal[1], 1, 1, 1);
   pal[1].diffuse[3] = 0.5f;
   lsys_render_defaults(&o);
+  testlook(&sc);
   o.width = IW; o.height = IH; o.supersample = 1;
-  o.cam.projection = LSYS_PARALLEL;
-  o.pal = pal; o.npal = 2;
+  sc.cam.projection = LSYS_PARALLEL;
+  sc.pal = pal; sc.npal = 2;
   /* without textures: the lit white square, the same with no texture array */
-  assert(lsys_render_offscreen(&m, &o, ref, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, ref, &e) == LSYS_OK);
   dump(ref, "tex_none.png");
-  memcpy(lit, at(ref, &m, &o, 0.5, 0.5), 4);
+  memcpy(lit, at(ref, &m, &sc, 0.5, 0.5), 4);
   assert(lit[0] > 100 && lit[0] < 250 && lit[0] == lit[1] && lit[1] == lit[2]);
-  for (k = 0; k < 4; k++) assert(memcmp(at(ref, &m, &o, qx[k], qy[k]), lit, 4) == 0);
+  for (k = 0; k < 4; k++) assert(memcmp(at(ref, &m, &sc, qx[k], qy[k]), lit, 4) == 0);
   m.tex = NULL;
-  o.tex = list; o.ntex = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  sc.tex = list; sc.ntex = 1;
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   assert(memcmp(img, ref, sizeof img) == 0);
   /* indices 0, past the end, or of a missing or empty texture draw untextured */
-  o.ntex = 2;
+  sc.ntex = 2;
   for (k = 0; k < 4; k++) {
     static const unsigned idx[4] = {0, 3, 2, 2};
     lsys_texture empty;
     lsys_texture_init(&empty);
     list[1] = k == 3 ? &empty : NULL;
     m = texquad(idx[k]);
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     assert(memcmp(img, ref, sizeof img) == 0);
   }
   list[1] = NULL;
   /* modulate, nearest: each quadrant is the lit colour times its texel */
   m = texquad(1);
-  o.ntex = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  sc.ntex = 1;
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   dump(img, "tex_modulate.png");
   for (k = 0; k < 4; k++)
-    assert(modulated(at(img, &m, &o, qx[k], qy[k]), lit, checker + 4 * k, 2));
+    assert(modulated(at(img, &m, &sc, qx[k], qy[k]), lit, checker + 4 * k, 2));
   /* the v axis points up the image: the bottom left quadrant is blue */
-  assert(at(img, &m, &o, -0.5, -0.5)[2] > 100 && at(img, &m, &o, -0.5, -0.5)[0] == 0);
+  assert(at(img, &m, &sc, -0.5, -0.5)[2] > 100 && at(img, &m, &sc, -0.5, -0.5)[0] == 0);
   /* decal: the texels themselves, unlit */
   tx.mode = LSYS_TEX_DECAL;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   dump(img, "tex_decal.png");
-  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &o, qx[k], qy[k]), checker + 4 * k, 3) == 0);
+  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &sc, qx[k], qy[k]), checker + 4 * k, 3) == 0);
   /* intensity in modulate mode: grey levels I = 0.299 R + 0.587 G + 0.114 B */
   tx.mode = LSYS_TEX_MODULATE;
   tx.intensity = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   dump(img, "tex_intensity.png");
   for (k = 0; k < 4; k++) {
-    const uint8_t *px = at(img, &m, &o, qx[k], qy[k]);
+    const uint8_t *px = at(img, &m, &sc, qx[k], qy[k]);
     double want = lit[0] * lsys_texture_intensity(checker + 4 * k) / 255.0;
     assert(near(px[0], want, 2) && px[0] == px[1] && px[1] == px[2]);
   }
   /* intensity is ignored by decal: the colours stay */
   tx.mode = LSYS_TEX_DECAL;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &o, qx[k], qy[k]), checker + 4 * k, 3) == 0);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+  for (k = 0; k < 4; k++) assert(memcmp(at(img, &m, &sc, qx[k], qy[k]), checker + 4 * k, 3) == 0);
   tx.intensity = 0;
   /* linear magnification (decal still): the centre mixes the four texels, a
   ** texel centre stays pure */
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   {
-    const uint8_t *c = at(img, &m, &o, 0, 0);
+    const uint8_t *c = at(img, &m, &sc, 0, 0);
     assert(c[0] < 5 || c[0] > 250 || c[1] < 5 || c[1] > 250 || c[2] < 5 || c[2] > 250);
   }
   tx.mag_linear = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   dump(img, "tex_linear.png");
   {
-    const uint8_t *c = at(img, &m, &o, 0.02, 0.02);
+    const uint8_t *c = at(img, &m, &sc, 0.02, 0.02);
     for (i = 0; i < 3; i++) assert(c[i] > 60 && c[i] < 200);
-    c = at(img, &m, &o, -0.5, 0.5);     /* within a pixel (1/58 of the square) of the centre */
+    c = at(img, &m, &sc, -0.5, 0.5);     /* within a pixel (1/58 of the square) of the centre */
     assert(c[0] > 240 && c[1] < 15 && c[2] < 15);
   }
   tx.mag_linear = 0;
@@ -741,15 +772,15 @@ static void test_textured (void) {
     cut[15] = 200;                              /* white, mostly opaque */
     tx2 = maketex(cut, 2, 2);
     list[0] = &tx2;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     dump(img, "tex_cut.png");
-    assert(memcmp(at(img, &m, &o, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
-    assert(modulated(at(img, &m, &o, -0.5, 0.5), lit, checker, 2));
-    assert(modulated(at(img, &m, &o, 0.5, -0.5), lit, checker + 12, 2));
+    assert(memcmp(at(img, &m, &sc, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
+    assert(modulated(at(img, &m, &sc, -0.5, 0.5), lit, checker, 2));
+    assert(modulated(at(img, &m, &sc, 0.5, -0.5), lit, checker + 12, 2));
     tx2.mode = LSYS_TEX_DECAL;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(memcmp(at(img, &m, &o, 0.5, 0.5), lit, 3) == 0);
-    assert(memcmp(at(img, &m, &o, -0.5, 0.5), checker, 3) == 0);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &sc, 0.5, 0.5), lit, 3) == 0);
+    assert(memcmp(at(img, &m, &sc, -0.5, 0.5), checker, 3) == 0);
     list[0] = &tx;
   }
   /* a size that is not a power of two: 3 x 1, three vertical bands */
@@ -758,11 +789,11 @@ static void test_textured (void) {
     tx2 = maketex(bands, 3, 1);
     tx2.mode = LSYS_TEX_DECAL;
     list[0] = &tx2;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     dump(img, "tex_bands.png");
     for (k = 0; k < 3; k++)
       for (i = 0; i < 3; i++)
-        assert(memcmp(at(img, &m, &o, -2.0 / 3 + k * 2.0 / 3, 0.8 - 0.8 * i), bands + 4 * k,
+        assert(memcmp(at(img, &m, &sc, -2.0 / 3 + k * 2.0 / 3, 0.8 - 0.8 * i), bands + 4 * k,
                       3) == 0);
     list[0] = &tx;
   }
@@ -776,9 +807,9 @@ static void test_textured (void) {
     tx2 = maketex(wide, BIG, 1);
     tx2.mode = LSYS_TEX_DECAL;
     list[0] = &tx2;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(memcmp(at(img, &m, &o, -0.1, 0.5), checker, 3) == 0);
-    assert(memcmp(at(img, &m, &o, 0.1, -0.5), checker + 8, 3) == 0);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &sc, -0.1, 0.5), checker, 3) == 0);
+    assert(memcmp(at(img, &m, &sc, 0.1, -0.5), checker + 8, 3) == 0);
     free(wide);
     list[0] = &tx;
   }
@@ -788,28 +819,28 @@ static void test_textured (void) {
     tx2 = maketex(ga, 2, 2);
     tx2.intensity = 1;
     list[0] = &tx2;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(near(at(img, &m, &o, -0.5, 0.5)[0], lit[0] * 100 / 255.0, 2));
-    assert(near(at(img, &m, &o, -0.5, -0.5)[1], lit[0] * 50 / 255.0, 2));
-    assert(memcmp(at(img, &m, &o, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(near(at(img, &m, &sc, -0.5, 0.5)[0], lit[0] * 100 / 255.0, 2));
+    assert(near(at(img, &m, &sc, -0.5, -0.5)[1], lit[0] * 50 / 255.0, 2));
+    assert(memcmp(at(img, &m, &sc, 0.5, 0.5), "\xff\xff\xff", 3) == 0);
     list[0] = &tx;
   }
   /* uv beyond [0, 1] repeats */
   for (i = 0; i < 8; i++) tuv[i] *= 2;
   tx.mode = LSYS_TEX_DECAL;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-  assert(memcmp(at(img, &m, &o, -0.75, 0.75), checker, 3) == 0);
-  assert(memcmp(at(img, &m, &o, -0.25, 0.75), checker + 4, 3) == 0);
-  assert(memcmp(at(img, &m, &o, 0.25, 0.75), checker, 3) == 0);
-  assert(memcmp(at(img, &m, &o, 0.25, 0.25), checker + 8, 3) == 0);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+  assert(memcmp(at(img, &m, &sc, -0.75, 0.75), checker, 3) == 0);
+  assert(memcmp(at(img, &m, &sc, -0.25, 0.75), checker + 4, 3) == 0);
+  assert(memcmp(at(img, &m, &sc, 0.25, 0.75), checker, 3) == 0);
+  assert(memcmp(at(img, &m, &sc, 0.25, 0.25), checker + 8, 3) == 0);
   for (i = 0; i < 8; i++) tuv[i] /= 2;
   tx.mode = LSYS_TEX_MODULATE;
   /* a translucent material keeps its texture and blends with the background */
   for (i = 0; i < 4; i++) tcol[i] = 1;
-  assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+  assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
   dump(img, "tex_translucent.png");
   {
-    const uint8_t *c = at(img, &m, &o, -0.5, 0.5);    /* red at half: 255 / 2 + lit / 2 */
+    const uint8_t *c = at(img, &m, &sc, -0.5, 0.5);    /* red at half: 255 / 2 + lit / 2 */
     assert(near(c[0], 127.5 + lit[0] / 2.0, 3) && near(c[1], 127.5, 3) && c[1] == c[2]);
   }
   for (i = 0; i < 4; i++) tcol[i] = 0;
@@ -819,32 +850,32 @@ static void test_textured (void) {
     static uint8_t g2[4] = {60, 60, 60, 255};
     lsys_texture t2 = maketex(g2, 1, 1);
     list[1] = &t2;
-    o.ntex = 2;
+    sc.ntex = 2;
     t2.mode = tx.mode = LSYS_TEX_DECAL;
     ttex[0] = 2;                               /* triangle 0 1 2 (lower right) and 0 2 3 */
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     dump(img, "tex_two.png");
-    assert(memcmp(at(img, &m, &o, 0.6, -0.6), g2, 3) == 0);
-    assert(memcmp(at(img, &m, &o, -0.6, 0.6), g2, 3) == 0);   /* both share vertex 0 */
+    assert(memcmp(at(img, &m, &sc, 0.6, -0.6), g2, 3) == 0);
+    assert(memcmp(at(img, &m, &sc, -0.6, 0.6), g2, 3) == 0);   /* both share vertex 0 */
     ttri[3] = 3; ttri[4] = 0; ttri[5] = 2;     /* the upper left triangle starts at vertex 3 */
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(memcmp(at(img, &m, &o, 0.6, -0.6), g2, 3) == 0);
-    assert(memcmp(at(img, &m, &o, -0.5, 0.5), checker, 3) == 0);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(memcmp(at(img, &m, &sc, 0.6, -0.6), g2, 3) == 0);
+    assert(memcmp(at(img, &m, &sc, -0.5, 0.5), checker, 3) == 0);
     ttri[3] = 0; ttri[4] = 2; ttri[5] = 3;
     ttex[0] = 1;
     tx.mode = LSYS_TEX_MODULATE;
     list[1] = NULL;
-    o.ntex = 1;
+    sc.ntex = 1;
   }
   /* wireframe ignores textures; a kept cache works across renders */
   {
     lsys_render_cache cache = {0};
     o.wireframe = 1;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
     o.wireframe = 0;
     o.cache = &cache;
-    assert(lsys_render_offscreen(&m, &o, img, &e) == LSYS_OK);
-    assert(lsys_render_offscreen(&m, &o, ref, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, img, &e) == LSYS_OK);
+    assert(offscreen(&m, &sc, &o, ref, &e) == LSYS_OK);
     assert(memcmp(img, ref, sizeof img) == 0);
     lsys_render_cache_free(&cache);
     o.cache = NULL;

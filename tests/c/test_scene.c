@@ -29,10 +29,11 @@ static void defaults (void) {
   lsys_scene s;
   lsys_scene_init(&s);
   assert(s.mesh.nv == 0 && s.nrec == 0 && s.npal == 0 && s.nparts == 0 && s.ninst == 0);
-  assert(s.cam.projection == LSYS_PERSPECTIVE && s.cam.fov == 30 && s.cam.zoom == 1);
-  assert(s.cam.up[1] == 1 && s.cam.dir[2] == -1 && !s.cam.has_eye);
-  assert(s.light[0] == -1 && s.light[1] == 1 && s.light[2] == 1);
-  assert(s.background[0] == 1.0f && s.background[2] == 1.0f);
+  /* the view schema's defaults (lua/lsys/view.lua) */
+  assert(s.cam.projection == LSYS_PARALLEL && s.cam.fov == 30 && s.cam.zoom == 1);
+  assert(s.cam.up[1] == 1 && s.cam.dir[2] == -1 && !s.cam.has_eye && s.cam.twist == 0);
+  assert(s.light[0] == 0.4 && s.light[1] == 0.8 && s.light[2] == 0.6);
+  assert(s.background[0] == 0.93f && s.background[1] == 0.96f && s.background[2] == 1.0f);
   lsys_scene_free(&s);
 }
 

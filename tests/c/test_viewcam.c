@@ -58,15 +58,16 @@ static void stick (lsys_mesh *m) {
 }
 
 static void test_orbit (void) {
-  lsys_render_opts o;
+  lsys_camera cam;
   lsys_vcam c = front(1, 2, 3, 10);
   double up[3] = {0, 1, 0}, proj[16], view[16], eye[3], out[3], r[3];
-  lsys_render_defaults(&o);
+  lsys_camera_defaults(&cam);
+  cam.projection = LSYS_PERSPECTIVE;
   /* a drag of 90 degrees to the right: the eye goes round to the left (-x) */
   lsys_vcam_orbit(&c, up, (PI / 2) / LSYS_VCAM_ORBIT, 0);
   assert(near3(c.f, 1, 0, 0, 1e-12) && near3(c.u, 0, 1, 0, 1e-12));
   assert(near3(c.target, 1, 2, 3, 0) && c.dist == 10);
-  assert(lsys_vcam_matrices(&c, NULL, &o, W, H, proj, view) == LSYS_OK);
+  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, -9, 2, 3, 1e-9));
   project(proj, view, c.target, out);              /* the target stays in the middle */
@@ -77,7 +78,7 @@ static void test_orbit (void) {
   lsys_vcam_orbit(&c, up, 0, (PI / 4) / LSYS_VCAM_ORBIT);
   assert(near3(c.f, 0, -sqrt(0.5), -sqrt(0.5), 1e-12));
   assert(near3(c.u, 0, sqrt(0.5), -sqrt(0.5), 1e-12));
-  assert(lsys_vcam_matrices(&c, NULL, &o, W, H, proj, view) == LSYS_OK);
+  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, 1, 2 + 10 * sqrt(0.5), 3 + 10 * sqrt(0.5), 1e-9));
   /* a turntable turn after that keeps the horizon: right stays horizontal,
@@ -92,13 +93,14 @@ static void test_orbit (void) {
 }
 
 static void test_zoom (void) {
-  lsys_render_opts o;
+  lsys_camera cam;
   lsys_vcam c = front(0, 0, 0, 10);
   double proj[16], view[16], eye[3];
-  lsys_render_defaults(&o);
+  lsys_camera_defaults(&cam);
+  cam.projection = LSYS_PERSPECTIVE;
   lsys_vcam_zoom(&c, 1);                           /* one step in: 12% closer */
   assert(fabs(c.dist - 8.8) < 1e-12 && fabs(c.halfh - 1.76) < 1e-12);
-  assert(lsys_vcam_matrices(&c, NULL, &o, W, H, proj, view) == LSYS_OK);
+  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, 0, 0, 8.8, 1e-9));
   lsys_vcam_zoom(&c, -2);                          /* two steps out */
@@ -107,63 +109,65 @@ static void test_zoom (void) {
   assert(c.dist == 1e-9 && c.halfh == 1e-9);
   /* parallel: the half height is the scale; the picture shows 2 halfh */
   c = front(0, 0, 0, 10);
-  o.cam.projection = LSYS_PARALLEL;
+  cam.projection = LSYS_PARALLEL;
   lsys_vcam_zoom(&c, 1);
-  assert(lsys_vcam_matrices(&c, NULL, &o, W, H, proj, view) == LSYS_OK);
+  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   assert(fabs(proj[5] - 1 / 1.76) < 1e-12 && fabs(proj[0] - 1 / 1.76) < 1e-12);
   printf("zoom: ok\n");
 }
 
 /* After a pan by (dx, dy) pixels, the old target is seen (dx, dy) away
 ** from the middle: the scene follows the cursor. */
-static void checkpan (lsys_render_opts *o, double dx, double dy) {
+static void checkpan (lsys_camera *cam, double dx, double dy) {
   lsys_vcam c = front(1, 1, 1, 10);
   double proj[16], view[16], old[3] = {1, 1, 1}, out[3];
-  lsys_vcam_pan(&c, &o->cam, H, dx, dy);
-  assert(lsys_vcam_matrices(&c, NULL, o, W, H, proj, view) == LSYS_OK);
+  lsys_vcam_pan(&c, cam, H, dx, dy);
+  assert(lsys_vcam_matrices(&c, NULL, cam, W, H, proj, view) == LSYS_OK);
   project(proj, view, old, out);
   assert(fabs(out[0] - (W / 2 + dx)) < 1e-9 && fabs(out[1] - (H / 2 + dy)) < 1e-9);
 }
 
 static void test_pan (void) {
-  lsys_render_opts o;
+  lsys_camera cam;
   lsys_vcam c = front(0, 0, 0, 10);
-  lsys_render_defaults(&o);
+  lsys_camera_defaults(&cam);
+  cam.projection = LSYS_PERSPECTIVE;
   /* perspective, 30 degrees: 2 dist tan(15 degrees) / h world units a pixel */
-  assert(fabs(lsys_vcam_pixelsize(&c, &o.cam, H) - 20 * tan(PI / 12) / H) < 1e-15);
-  assert(lsys_vcam_pixelsize(&c, NULL, H) == lsys_vcam_pixelsize(&c, &o.cam, H));
-  checkpan(&o, 20, -10);
-  o.cam.fov = 60;
-  checkpan(&o, -35, 5);
-  o.cam.projection = LSYS_PARALLEL;                /* 2 halfh / h */
-  assert(fabs(lsys_vcam_pixelsize(&c, &o.cam, H) - 4.0 / H) < 1e-15);
-  checkpan(&o, 20, -10);
+  assert(fabs(lsys_vcam_pixelsize(&c, &cam, H) - 20 * tan(PI / 12) / H) < 1e-15);
+  assert(lsys_vcam_pixelsize(&c, NULL, H) == lsys_vcam_pixelsize(&c, &cam, H));
+  checkpan(&cam, 20, -10);
+  cam.fov = 60;
+  checkpan(&cam, -35, 5);
+  cam.projection = LSYS_PARALLEL;                /* 2 halfh / h */
+  assert(fabs(lsys_vcam_pixelsize(&c, &cam, H) - 4.0 / H) < 1e-15);
+  checkpan(&cam, 20, -10);
   printf("pan: ok\n");
 }
 
 /* Fitting takes the view's camera over: seen through the result, the
 ** scene is where the view put it. */
 static void test_fit (void) {
-  lsys_render_opts o;
+  lsys_camera cam;
   lsys_mesh m;
   lsys_vcam c;
   double proj[16], view[16], p2[16], v2[16], eye[3], d[3];
   int i, parallel;
   stick(&m);
   for (parallel = 0; parallel < 2; parallel++) {
-    lsys_render_defaults(&o);
-    o.cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
+    lsys_camera_defaults(&cam);
+    cam.projection = LSYS_PERSPECTIVE;
+    cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
     memset(&c, 0, sizeof c);
-    assert(lsys_vcam_fit(&c, &m, &o, W, H, 0) == LSYS_OK && c.valid);
+    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK && c.valid);
     assert(near3(c.target, 0, 1, 0, 1e-12));       /* the middle of the bounds */
     assert(near3(c.f, 0, 0, -1, 1e-12) && near3(c.u, 0, 1, 0, 1e-12));
-    assert(lsys_render_camera(&m, &o, W, H, proj, view) == LSYS_OK);
+    assert(lsys_render_camera(&m, &cam, W, H, proj, view) == LSYS_OK);
     eyeof(view, eye);
     vlin(d, eye, 1, c.target, -1);
     if (!parallel) assert(fabs(c.dist - vlen(d)) < 1e-12);
     else assert(fabs(c.halfh - 1 / proj[5]) < 1e-12);
     /* the same picture (near and far planes, and a parallel eye, may differ) */
-    assert(lsys_vcam_matrices(&c, &m, &o, W, H, p2, v2) == LSYS_OK);
+    assert(lsys_vcam_matrices(&c, &m, &cam, W, H, p2, v2) == LSYS_OK);
     for (i = 0; i < 12; i++) assert(fabs(v2[i] - view[i]) < 1e-12);
     for (i = 0; i < 3; i++) {
       double p[3] = {0.3 * i, 2.0 - i, 0.5 * i - 0.5}, a[3], b[3];
@@ -175,25 +179,26 @@ static void test_fit (void) {
   /* keeping the direction: after an orbit, F fits again looking the same way */
   {
     double up[3] = {0, 1, 0}, f[3];
-    lsys_render_defaults(&o);
-    assert(lsys_vcam_fit(&c, &m, &o, W, H, 0) == LSYS_OK);
+    lsys_camera_defaults(&cam);
+    cam.projection = LSYS_PERSPECTIVE;
+    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK);
     lsys_vcam_orbit(&c, up, 100, 40);
     lsys_vcam_zoom(&c, 5);
     vcopy(f, c.f);
-    assert(lsys_vcam_fit(&c, &m, &o, W, H, 1) == LSYS_OK);
+    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 1) == LSYS_OK);
     assert(near3(c.f, f[0], f[1], f[2], 1e-12) && near3(c.target, 0, 1, 0, 1e-12));
   }
   /* a bad view camera leaves 'c' alone */
-  o.cam.dir[0] = o.cam.dir[1] = o.cam.dir[2] = 0;
-  o.cam.has_eye = 0;
+  cam.dir[0] = cam.dir[1] = cam.dir[2] = 0;
+  cam.has_eye = 0;
   memset(&c, 0, sizeof c);
-  assert(lsys_vcam_fit(&c, &m, &o, W, H, 0) == LSYS_EARG && !c.valid);
+  assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_EARG && !c.valid);
   lsys_mesh_free(&m);
   printf("fit: ok\n");
 }
 
 static void test_ray (void) {
-  lsys_render_opts o;
+  lsys_camera cam;
   lsys_mesh m;
   lsys_vcam c;
   lsys_vframe f;
@@ -208,11 +213,12 @@ static void test_ray (void) {
   f.picks = &pick;
   f.npicks = 1;
   for (parallel = 0; parallel < 2; parallel++) {
-    lsys_render_defaults(&o);
-    o.cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
-    assert(lsys_vcam_fit(&c, &m, &o, W, H, 0) == LSYS_OK);
+    lsys_camera_defaults(&cam);
+    cam.projection = LSYS_PERSPECTIVE;
+    cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
+    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK);
     lsys_vcam_orbit(&c, c.u, 30, -20);             /* not along an axis */
-    assert(lsys_vcam_matrices(&c, &m, &o, W, H, proj, view) == LSYS_OK);
+    assert(lsys_vcam_matrices(&c, &m, &cam, W, H, proj, view) == LSYS_OK);
     /* through the middle of the image: along the view, through the target,
     ** which is on the stick; a click there picks it */
     assert(lsys_vcam_ray(proj, view, W, H, W / 2, H / 2, org, dir) == 1);

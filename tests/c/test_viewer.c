@@ -86,7 +86,8 @@ static void test_snapshot (void) {
   lsys_texture t;
   double a[3] = {0, 0, 0}, b[3] = {1, 2, 3};
   assert(s != NULL && s->nframes == 3 && s->rate == 2);
-  assert(s->frames[0].step == -1 && s->frames[2].ro.width == 800);
+  assert(s->frames[0].step == -1 && s->frames[2].sc.cam.zoom == 1);
+  assert(s->frames[2].sc.npal == 0 && s->frames[2].sc.nrec == 0);   /* an empty scene */
   lsys_mesh_init(&m);
   assert(lsys_mesh_reserve(&m, 3, 1) == LSYS_OK);
   {
@@ -97,14 +98,15 @@ static void test_snapshot (void) {
     lsys_mesh_tri(&m, 0, 1, 2);
   }
   assert(lsys_mesh_line(&m, a, b, 1, 2, 4) == LSYS_OK);
-  assert(lsys_mesh_copy(&s->frames[1].mesh, &m) == LSYS_OK);
-  assert(s->frames[1].mesh.nv == 3 && s->frames[1].mesh.nt == 1 && s->frames[1].mesh.nl == 1);
-  assert(memcmp(s->frames[1].mesh.pos, m.pos, 9 * sizeof(float)) == 0);
-  assert(s->frames[1].mesh.col[2] == 3 && s->frames[1].mesh.lcol[0] == 4);
-  assert(s->frames[1].mesh.lwidth[1] == 2 && s->frames[1].mesh.tri[2] == 2);
+  assert(lsys_mesh_copy(&s->frames[1].sc.mesh, &m) == LSYS_OK);
+  assert(s->frames[1].sc.mesh.nv == 3 && s->frames[1].sc.mesh.nt == 1 &&
+         s->frames[1].sc.mesh.nl == 1);
+  assert(memcmp(s->frames[1].sc.mesh.pos, m.pos, 9 * sizeof(float)) == 0);
+  assert(s->frames[1].sc.mesh.col[2] == 3 && s->frames[1].sc.mesh.lcol[0] == 4);
+  assert(s->frames[1].sc.mesh.lwidth[1] == 2 && s->frames[1].sc.mesh.tri[2] == 2);
   lsys_mesh_free(&m);
-  assert(lsys_mesh_copy(&s->frames[2].mesh, &m) == LSYS_OK);   /* empty */
-  assert(s->frames[2].mesh.nv == 0 && s->frames[2].mesh.pos == NULL);
+  assert(lsys_mesh_copy(&s->frames[2].sc.mesh, &m) == LSYS_OK);   /* empty */
+  assert(s->frames[2].sc.mesh.nv == 0 && s->frames[2].sc.mesh.pos == NULL);
   lsys_texture_init(&t);
   t.w = 2;
   t.h = 1;
@@ -113,9 +115,8 @@ static void test_snapshot (void) {
   memcpy(t.rgba, "\1\2\3\4\5\6\7\10", 8);
   memcpy(t.path, "a.png", 6);
   t.mode = LSYS_TEX_DECAL;
-  s->tex = (lsys_texture *)malloc(sizeof *s->tex);
+  assert(lsys_vsnap_textures(s, 1) == LSYS_OK && s->ntex == 1 && s->texp[0] == &s->tex[0]);
   assert(lsys_texture_copy(&s->tex[0], &t) == LSYS_OK);
-  s->ntex = 1;
   lsys_texture_free(&t);
   assert(s->tex[0].w == 2 && s->tex[0].rgba[7] == 8 && strcmp(s->tex[0].path, "a.png") == 0);
   assert(s->tex[0].mode == LSYS_TEX_DECAL);

@@ -134,8 +134,8 @@ function T.run (bytes)
   if type(r.v) == "table" then
     r.nok, r.n = pcall(view.normalize, strip(r.v), "fuzz")
     if r.nok then
-      r.tok, r.t = pcall(view.turtle, r.n, false)
-      r.rok, r.r = pcall(view.render, r.n)
+      r.tok, r.t = pcall(view.turtle_options, r.n, false)
+      r.rok, r.r = pcall(view.render_options, r.n)
       r.n2ok, r.n2 = pcall(view.normalize, r.n, "fuzz")   -- normalising twice changes nothing
     end
   end
@@ -164,8 +164,8 @@ local function check (r)
   end
   if #r.lw ~= #r.w then return "view.parse and view.load warn differently" end
   if not r.nok then return "normalize rejected the parsed view: " .. tostring(r.n) end
-  if not r.tok then return "view.turtle failed on a normalised view: " .. tostring(r.t) end
-  if not r.rok then return "view.render failed on a normalised view: " .. tostring(r.r) end
+  if not r.tok then return "view.turtle_options failed on a normalised view: " .. tostring(r.t) end
+  if not r.rok then return "view.render_options failed on a normalised view: " .. tostring(r.r) end
   if not r.n2ok then return "normalize rejected its own output: " .. tostring(r.n2) end
   if not same(r.n, r.n2) then return "normalize is not idempotent" end
   return nil
