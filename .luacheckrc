@@ -15,8 +15,8 @@ ignore = {
 -- Installed by npm for the glTF validator and the peer benchmarks; not ours.
 exclude_files = { "tools/node_modules/**", "bench/peers/node_modules/**" }
 
--- The specs run under busted. Some catch warnings by replacing io.stderr, and put it back.
-files["tests/*_spec.lua"] = { std = "+busted", globals = { "io.stderr" } }
+-- The specs run under busted.
+files["tests/*_spec.lua"] = { std = "+busted" }
 
 -- The readers' if-chains read as tables of line kinds: a kind that is skipped has an empty
 -- branch with a comment.

@@ -67,10 +67,7 @@ describe("regressions", function()
     local m = lsys.lsystem { axiom = "X", productions = "X --> A",
       decomposition = { { "A", function () calls = calls + 1; return lsys.produce("D") end },
                         { "D", function () calls = calls + 1; return lsys.produce("E") end } } }
-    local old = io.stderr
-    io.stderr = { write = function () end }     -- the warning itself is expected
-    local s = m:derive(1)
-    io.stderr = old
+    local s = m:derive(1)     -- the warning goes to warn(), off under busted
     assert.equal("D", tostring(s))
     assert.equal(1, calls)
   end)
