@@ -3,12 +3,12 @@
 --   build/bin/lsys bench/gcyl.lua
 --
 -- (1) triangles generated per second for a tree drawn entirely with generalized cylinders
---     (seed 004 §3.4): ABOP fig. 1.24a (F --> F[+F]F[-F]F, n = 6) with every F a control
+--     (cpfg guide §3.4): ABOP fig. 1.24a (F --> F[+F]F[-F]F, n = 6) with every F a control
 --     point in the middle of an invisible step, 4 strips per segment, 8 sides, rotation-
 --     minimising frames. Timed on the expanded string (the homomorphism applied once,
 --     beforehand) and, for reference, with the homomorphism streamed while drawing.
 --     Target >= 10 M triangles/s.
--- (2) a field of 10 000 predefined leaf surfaces (~L, seed 004 §4.1) from
+-- (2) a field of 10 000 predefined leaf surfaces (~L, cpfg guide §4.1) from
 --     tests/data/surfaces/leaf.s, 100 x 100 on a grid with varied orientation: surfaces and
 --     triangles per second.
 -- Times are wall clock (the lsys program's monotonic clock; os.clock CPU time under plain

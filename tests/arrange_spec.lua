@@ -1,6 +1,6 @@
--- Arrangement by inverse kinematics (lsys.arrange, seed 000): branch paths and their @J
--- joints, the four draggers, the turtle drawing what the solver computed, stiffness from
--- Z, widths and the da Vinci rule (eqs. 4-6), pruning, grow-arrange-grow (fig. 10).
+-- Arrangement by inverse kinematics (lsys.arrange; Power et al. 1999): branch paths and their
+-- @J joints, the four draggers, the turtle drawing what the solver computed, stiffness from Z,
+-- widths and the da Vinci rule (eqs. 4-6), pruning, grow-arrange-grow (fig. 10).
 require "tests.helper"
 local lsys = require "lsys"
 

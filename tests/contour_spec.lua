@@ -1,4 +1,4 @@
--- Contours of generalized cylinders (seed 004 §3.2.3, Appendix B.1): core.contour_load,
+-- Contours of generalized cylinders (cpfg guide §3.2.3, Appendix B.1): core.contour_load,
 -- core.contour and Contour:sample.
 require "tests.helper"
 local core = require "lsys.core"

@@ -1,4 +1,4 @@
--- Generalized cylinders through the turtle (seed 004 §3): control points, strips, caps,
+-- Generalized cylinders through the turtle (cpfg guide §3): control points, strips, caps,
 -- radii from the line width, branching from the active control point, contours and their
 -- interpolation, twist of cylinders, records, errors. The geometry of one segment is
 -- checked in tests/c/test_gcyl.c.

@@ -68,7 +68,7 @@ check(not pcall(t.interpret, t, "@S"), "@S refused")
 check(not pcall(t.interpret, t, "@Ts(9,1)"), "bad tropism index")
 local he = lsys.lsystem { homomorphism = { { "A", function () error("boom") end } } }
 check(not pcall(he.interpret, he, "F A"), "error in a homomorphism rule")
--- generalized cylinders, contours, surfaces, patches, textures (seed 004 §3-5)
+-- generalized cylinders, contours, surfaces, patches, textures (cpfg guide §3-5)
 local core = require "lsys.core"
 local png = os.tmpname() .. ".png"
 local px = {}

@@ -1,4 +1,4 @@
--- Bicubic surfaces (seed 004 §4.1, §4.3, Appendix A): core.surface_load, core.surface_parse,
+-- Bicubic surfaces (cpfg guide §4.1, §4.3, Appendix A): core.surface_load, core.surface_parse,
 -- Surface:info and core.patch_eval.
 require "tests.helper"
 local core = require "lsys.core"
@@ -152,7 +152,7 @@ describe("surfaces drawn by the turtle", function()
     return m:interpret(m:lstring(text))
   end
 
-  it("puts ~X's contact point at the turtle, its heading along H (seed 004 §4.1)", function()
+  it("puts ~X's contact point at the turtle, its heading along H (cpfg guide §4.1)", function()
     local sc = scene("~L")
     assert.equal(5 * 8 * 2, sc.ntriangles)          -- PRECISION S: 5 T: 8
     assert.equal(6 * 9, sc.nvertices)

@@ -1,4 +1,4 @@
--- Textures (seed 004 §5, Appendix B.2): core.texture_load, its options and errors, and the
+-- Textures (cpfg guide §5, Appendix B.2): core.texture_load, its options and errors, and the
 -- lsys.Texture methods. The images are written by the spec itself with core.png_write.
 require "tests.helper"
 local core = require "lsys.core"

@@ -1,4 +1,4 @@
--- The turtle (seed 004 Appendix A, §2, §4.2, §6; CPFG-NOTES conventions): positions, frames,
+-- The turtle (cpfg guide, Appendix A, §2, §4.2, §6; CPFG-NOTES conventions): positions, frames,
 -- records, tropisms, polygons, cylinders, query modules, errors.
 local H = require "tests.helper"
 local lsys = require "lsys"

@@ -1,7 +1,7 @@
 /*
 ** Contours of generalized cylinders: the contour file parser and the
 ** placement of p vertices at equal arc length along the B-spline
-** (seed 004 §3.2.3 and Appendix B.1).
+** (cpfg guide §3.2.3 and Appendix B.1).
 */
 #include <math.h>
 #include <stdarg.h>

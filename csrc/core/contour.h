@@ -1,6 +1,7 @@
 /*
-** Cross-sections (contours) of generalized cylinders: seed 004 §3.2.3
-** ("Defining the cross-section", "Open contours") and Appendix B.1.
+** Cross-sections (contours) of generalized cylinders: the cpfg guide
+** (Měch and Prusinkiewicz) §3.2.3 ("Defining the cross-section", "Open
+** contours") and Appendix B.1.
 **
 ** A contour is a uniform cubic B-spline through n control points in the
 ** contour's own space (x, y, z; 2D files give z = 0). Closed: n segments,

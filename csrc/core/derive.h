@@ -3,7 +3,7 @@
 ** with ignore/consider lists, parallel rewriting with stochastic choice,
 ** cut, sub-L-systems, decomposition and homomorphism.
 **
-** Semantics follow cpfg (seed 004 Appendix A, CPFG-NOTES.md). Rules whose
+** Semantics follow cpfg (cpfg guide, Appendix A; CPFG-NOTES.md). Rules whose
 ** successor needs computing (a condition, parameter expressions, a weight
 ** expression, a function producing the successor) call back into the
 ** binding through 'lsys_rulefn'; all other rules are pure template copies.

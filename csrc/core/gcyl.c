@@ -1,5 +1,5 @@
 /*
-** Generalized cylinders: seed 004 §3 (see gcyl.h).
+** Generalized cylinders: cpfg guide §3 (see gcyl.h).
 **
 ** A segment between control points a and b is the Hermite curve (§3.1)
 **   F(u) = h00 P0 + h10 T0 + h01 P1 + h11 T1,  T0 = c0 d H_a,  T1 = c1 d H_b,

@@ -1,10 +1,10 @@
 /*
-** Generalized cylinders (seed 004 §3): an axis of Hermite segments between
-** control points (§3.1), a longitudinal section R(t) (§3.2.2), a contour
-** swept along the axis and interpolated between the ends (§3.2.3), with
-** rotation-minimising frames (§3.3, Bloomenthal) or the turtle's own
-** frames. The turtle keeps the control points (turtle.c); this file turns a
-** pair of them into mesh strips.
+** Generalized cylinders (Měch and Prusinkiewicz, cpfg guide §3): an axis
+** of Hermite segments between control points (§3.1), a longitudinal
+** section R(t) (§3.2.2), a contour swept along the axis and interpolated
+** between the ends (§3.2.3), with rotation-minimising frames (§3.3,
+** Bloomenthal) or the turtle's own frames. The turtle keeps the control
+** points (turtle.c); this file turns a pair of them into mesh strips.
 */
 #ifndef LSYS_GCYL_H
 #define LSYS_GCYL_H

@@ -1,5 +1,6 @@
 /*
-** Inverse kinematics of a branch path (ik.h; seed 000 §3.1 and appendix).
+** Inverse kinematics of a branch path (ik.h; Power et al. 1999, §3.1 and
+** appendix).
 */
 #include <math.h>
 #include <string.h>

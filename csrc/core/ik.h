@@ -1,6 +1,6 @@
 /*
-** Inverse kinematics of a branch path (seed 000, ilsa: §3.1 and the
-** appendix): a chain of rigid segments joined by 3-joints, posed by
+** Inverse kinematics of a branch path (Power et al. 1999, ilsa: §3.1 and
+** the appendix): a chain of rigid segments joined by 3-joints, posed by
 ** minimising equation (1) over the joint angles with the conjugate-gradient
 ** minimiser of cg.h.
 **

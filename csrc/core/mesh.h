@@ -21,7 +21,7 @@ typedef struct lsys_mesh {
   uint8_t *twosided;              /* 1 when the vertex belongs to a surface lit on both
                                      sides (polygons, leaves, discs), 0 for solids */
   uint16_t *tex;                  /* texture index per vertex: 0 none, k the view's k-th
-                                     texture (seed 004 §5); a triangle takes its first
+                                     texture (cpfg guide §5); a triangle takes its first
                                      vertex's texture */
   unsigned curtex;                /* the texture lsys_mesh_vertex gives new vertices */
   size_t nv, vcap;

@@ -1,7 +1,7 @@
 /*
-** Triangulation of the turtle's polygons ('{' ... '}', source document 004
-** §4.2): planar or nearly planar, convex or concave, given as a closed ring
-** of 3D points.
+** Triangulation of the turtle's polygons ('{' ... '}', cpfg guide §4.2):
+** planar or nearly planar, convex or concave, given as a closed ring of 3D
+** points.
 */
 #ifndef LSYS_POLYGON_H
 #define LSYS_POLYGON_H

@@ -1,6 +1,6 @@
 /*
 ** Bicubic surfaces: the cpfg surface file reader, patch evaluation in the
-** three bases of seed 004 Appendix A, and tessellation into the mesh.
+** three bases of the cpfg guide's Appendix A, and tessellation into the mesh.
 **
 ** The surface file (".s", written by the vlab/L-studio surface editors and
 ** read by cpfg for ~X) is line oriented. Words and numbers are separated by

@@ -1,9 +1,10 @@
 /*
-** Bicubic surfaces: seed 004 §4.1 (predefined surfaces ~name read from
-** cpfg surface files), §4.3 (L-system defined patches @PS @PC @PD with the
-** Bézier, B-spline and Cardinal bases of Appendix A) and §5.1 (texture
-** coordinates per patch or per surface). The file format is described at
-** the top of surface.c and in docs/surfaces.md.
+** Bicubic surfaces after the cpfg guide (Měch and Prusinkiewicz): §4.1
+** (predefined surfaces ~name read from cpfg surface files), §4.3 (L-system
+** defined patches @PS @PC @PD with the Bézier, B-spline and Cardinal bases
+** of Appendix A) and §5.1 (texture coordinates per patch or per surface).
+** The file format is described at the top of surface.c and in
+** docs/surfaces.md.
 **
 ** Parameters: a patch is evaluated at (s, t) in [0,1]^2, where s runs
 ** across the columns c = 0..3 of its 4 x 4 control points (along a row)

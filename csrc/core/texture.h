@@ -1,5 +1,5 @@
 /*
-** Textures (seed 004 §5, Appendix B.2): images read with libpng (PNG
+** Textures (cpfg guide §5, Appendix B.2): images read with libpng (PNG
 ** replaces cpfg's rgb/rle/tga), with the filters and environment mode of a
 ** `texture:` view entry.
 **

@@ -1,8 +1,9 @@
 /*
-** The turtle: seed 004 Appendix A (interpreted symbols), §6 (tropisms, eq.
-** 1-2; twist response §6.1; twist minimisation). See turtle.h. This file
-** keeps the state and dispatches the commands, one function each; the
-** geometry is built in turtle_*.c, one kind per file (turtle_impl.h).
+** The turtle: the cpfg guide (Měch and Prusinkiewicz), Appendix A
+** (interpreted symbols), §6 (tropisms, eq. 1-2; twist response §6.1;
+** twist minimisation). See turtle.h. This file keeps the state and
+** dispatches the commands, one function each; the geometry is built in
+** turtle_*.c, one kind per file (turtle_impl.h).
 **
 ** Rotations, with the frame kept right-handed as L = H x U (cpfg's initial
 ** frame H = (0,1,0), L = (-1,0,0), U = (0,0,-1)):
@@ -190,7 +191,7 @@ int lsys_turtle_nomem (run *R) {
   return lsys_turtle_fail(R, LSYS_ENOMEM, "not enough memory");
 }
 
-/* --- tropisms (seed 004 §6) ------------------------------------------- */
+/* --- tropisms (cpfg guide §6) ----------------------------------------- */
 
 /* Carries the reference frame to the current heading by the smallest
 ** rotation, which keeps U free of twist (§3.3), then makes it the
@@ -382,9 +383,10 @@ static int rotate (run *R, int op, const double *p, uint32_t np) {
   return LSYS_OK;
 }
 
-/* @J(h, u, l): an arranged joint (seed 000 §3.1, ik.h): right-handed turns
-** in degrees about H, then the new U, then the new L, where L is taken as
-** U x H; the turtle's own L keeps its orientation to it. */
+/* @J(h, u, l): an arranged joint (Power et al. 1999, §3.1; ik.h):
+** right-handed turns in degrees about H, then the new U, then the new L,
+** where L is taken as U x H; the turtle's own L keeps its orientation to
+** it. */
 static int joint (run *R, const double *p, uint32_t np) {
   lsys_tstate *st = &R->st;
   double a[3], Lr[3], sign;
@@ -568,8 +570,8 @@ static int systemcall (run *R) {
   return mark(R, LSYS_REC_SYSTEM);
 }
 
-/* Z(sh, su, sl): the stiffness of the next joint (seed 000); a missing one
-** repeats the one before it. */
+/* Z(sh, su, sl): the stiffness of the next joint (Power et al. 1999); a
+** missing one repeats the one before it. */
 static int stiffness (run *R, const double *p, uint32_t np) {
   lsys_tstate *st = &R->st;
   int k, s;

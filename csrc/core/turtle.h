@@ -2,11 +2,12 @@
 ** The turtle (DESIGN.md §6): interprets an Lstring as drawing commands and
 ** writes geometry into a scene (scene.h) and one record per drawing module.
 **
-** Symbols and their meaning follow seed 004 (Appendix A; §2 discs and
-** spheres; §4.2 polygons; §6 tropisms and twist), with Z(sh,su,sl) joint
-** stiffness from seed 000 and @R from seed 001. Conventions as cpfg
-** (CPFG-NOTES.md): initial H = (0,1,0), L = (-1,0,0), U = (0,0,-1), so
-** that L = H x U and U = L x H; angles in degrees.
+** Symbols and their meaning follow the cpfg guide of Měch and Prusinkiewicz
+** (Appendix A; §2 discs and spheres; §4.2 polygons; §6 tropisms and twist),
+** with Z(sh,su,sl) joint stiffness from Power et al. 1999 and @R from
+** Anastacio et al. 2009. Conventions as cpfg (CPFG-NOTES.md): initial
+** H = (0,1,0), L = (-1,0,0), U = (0,0,-1), so that L = H x U and
+** U = L x H; angles in degrees.
 */
 #ifndef LSYS_TURTLE_H
 #define LSYS_TURTLE_H
@@ -23,7 +24,7 @@
 
 enum { LSYS_STYLE_LINE = 0, LSYS_STYLE_POLYGON = 1, LSYS_STYLE_CYLINDER = 2 };
 
-/* A predefined surface of the view: ~name draws it (seed 004 §4.1). */
+/* A predefined surface of the view: ~name draws it (cpfg guide §4.1). */
 typedef struct lsys_surfuse {
   const char *name;       /* what follows the ~ (one character) */
   const lsys_surface *s;
@@ -32,7 +33,7 @@ typedef struct lsys_surfuse {
   int ns, nt;             /* lines per patch */
 } lsys_surfuse;
 
-/* A tropism (seed 004 §6, eq. 1-2) or a torque (§6.1) from the view. */
+/* A tropism (cpfg guide §6, eq. 1-2) or a torque (§6.1) from the view. */
 typedef struct lsys_tropism {
   double vec[3];          /* the stimulus direction (normalised when used) */
   double angle;           /* diatropism angle gamma, degrees (tropisms only) */
@@ -62,7 +63,7 @@ typedef struct lsys_turtle_opts {
 
 void lsys_turtle_defaults (lsys_turtle_opts *o);
 
-/* The turtle state (seed 004 §1), pushed and popped by [ and ]. */
+/* The turtle state (cpfg guide §1), pushed and popped by [ and ]. */
 typedef struct lsys_tstate {
   double pos[3], H[3], L[3], U[3];
   double refH[3], refU[3];      /* frame of the last twist minimisation (§3.3, §6) */

@@ -60,7 +60,7 @@ static void cap (lsys_mesh *m, const double *c, const double *nn, uint32_t rng, 
 }
 
 /* Width over height of the current texture (1 without one): v along a
-** stem grows by length x aspect / circumference (seed 004 §5.2). */
+** stem grows by length x aspect / circumference (cpfg guide §5.2). */
 static double texaspect (run *R) {
   int k = R->st.texture;
   const lsys_texture *tx;

@@ -1,5 +1,5 @@
 /*
-** The turtle's discs (seed 004 §2): @c draws one in the plane of the
+** The turtle's discs (cpfg guide §2): @c draws one in the plane of the
 ** turtle's L and U, facing H; @o one in the world's xy plane, facing +z.
 ** A two-sided fan of 'sides' triangles around the centre, uv the unit
 ** square. See turtle_impl.h.

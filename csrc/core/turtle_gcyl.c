@@ -1,5 +1,5 @@
 /*
-** The turtle's generalized cylinders (seed 004 §3): @Gs, @Gc and @Ge place
+** The turtle's generalized cylinders (cpfg guide §3): @Gs, @Gc and @Ge place
 ** control points; each @Gc or @Ge draws the strips from the active point
 ** (gcyl.h does the sweep), a branch continuing from the point that was
 ** active where it began (§3.4). @Gt and @Gr set the shape of the next

@@ -5,11 +5,11 @@
 ** each geometry kind in one file):
 **   turtle_cyl.c      cylinder segments, their rings and end caps (line style cylinder)
 **   turtle_ribbon.c   flat ribbons (line style polygon)
-**   turtle_disc.c     discs, @c and @o (seed 004 §2)
-**   turtle_sphere.c   spheres, @O (seed 004 §2)
-**   turtle_polygon.c  polygons and the polygon stack, { . } (seed 004 §4.2)
-**   turtle_gcyl.c     generalized cylinders, @Gs @Gc @Ge @Gt @Gr (seed 004 §3)
-**   turtle_surface.c  predefined surfaces ~X and patches @PS @PC @PD (seed 004 §4.1, §4.3)
+**   turtle_disc.c     discs, @c and @o (cpfg guide §2)
+**   turtle_sphere.c   spheres, @O (cpfg guide §2)
+**   turtle_polygon.c  polygons and the polygon stack, { . } (cpfg guide §4.2)
+**   turtle_gcyl.c     generalized cylinders, @Gs @Gc @Ge @Gt @Gr (cpfg guide §3)
+**   turtle_surface.c  predefined surfaces ~X and patches @PS @PC @PD (cpfg guide §4.1, §4.3)
 ** The helpers every module may call (arg, newrec) are static inline here, so
 ** the interpretation loop pays no call for them.
 */
@@ -58,7 +58,7 @@ struct lsys_cylend {
   int color, continued;
 };
 
-/* A contour sampled for this run's number of sides (seed 004 §3.2.3). */
+/* A contour sampled for this run's number of sides (cpfg guide §3.2.3). */
 struct lsys_csample {
   double *v, *n;          /* sides + 1 vertices and normals */
   uint32_t *cap;          /* end-cap triangles, anticlockwise in the contour's xy */

@@ -1,5 +1,5 @@
 /*
-** The turtle's polygons (seed 004 §4.2): { starts one, '.', F and f inside
+** The turtle's polygons (cpfg guide §4.2): { starts one, '.', F and f inside
 ** it add the turtle's position as a vertex (F draws no segment there), }
 ** fills it. Polygons nest (a stack: a { inside one starts another); a stray
 ** } is ignored, as cpfg does. Filled by ear clipping (polygon.h), uv from
@@ -46,7 +46,7 @@ int lsys_turtle_polystart (run *R) {
 
 /* The vertices of 'p', facing 'nrm', with uv the coordinates along the
 ** right (-L) and heading axes from the first vertex, scaled to 0..1 over
-** the polygon (seed 004 §5.3). */
+** the polygon (cpfg guide §5.3). */
 static void polyvertices (run *R, const lsys_polygon *p, const double *nrm) {
   double lo[2] = {0, 0}, hi[2] = {0, 0}, d[3], c[2];
   size_t k;

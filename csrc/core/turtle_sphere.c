@@ -1,5 +1,5 @@
 /*
-** The turtle's spheres (seed 004 §2, @O): a uv sphere of 'sides' meridians
+** The turtle's spheres (cpfg guide §2, @O): a uv sphere of 'sides' meridians
 ** and sides/2 + 1 parallels (at least 3), its poles on the turtle's H axis;
 ** one-sided, as it is closed. See turtle_impl.h.
 */

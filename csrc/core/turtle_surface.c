@@ -1,6 +1,6 @@
 /*
 ** The turtle's surfaces: ~X(s) places the view's predefined surface X
-** (seed 004 §4.1), which is tessellated once per run in its own frame and
+** (cpfg guide §4.1), which is tessellated once per run in its own frame and
 ** then turned and scaled to the turtle; @PS, @PC and @PD define and draw
 ** bicubic patches from the turtle's positions (§4.3, Appendix A). The
 ** tessellation itself is surface.c's. See turtle_impl.h.

@@ -1,5 +1,5 @@
 /*
-** Lua binding of the branch-path IK (ik.h, seed 000) for lsys.arrange.
+** Lua binding of the branch-path IK (ik.h; Power et al. 1999) for lsys.arrange.
 **
 **   core.ik_chain{ base = { H = v, U = v, p = v },
 **                  joints = { { p0 = v, p1 = v, H = v, U = v, alpha = {h, u, l},

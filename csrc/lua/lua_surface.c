@@ -1,6 +1,6 @@
 /*
 ** Lua binding of csrc/core/surface.h: the lsys.Surface userdata (a cpfg surface
-** file, seed 004 §4.1) and patch evaluation.
+** file, cpfg guide §4.1) and patch evaluation.
 **
 **   core.surface_load(path) -> Surface        reads a surface file
 **   core.surface_parse(text [, name]) -> Surface

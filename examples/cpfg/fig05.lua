@@ -1,4 +1,4 @@
--- A simple generalized cylinder (cpfg guide, seed 004 §3.1, fig. 5): `@Gs f -(45) f @Ge(6)`,
+-- A simple generalized cylinder (cpfg guide §3.1, fig. 5): `@Gs f -(45) f @Ge(6)`,
 -- one Hermite segment between two control points, swept by a disc of radius 0.2 in 6 strips.
 -- Model `a` is the construction (fig. 5a): the turtle path in grey, the control points as
 -- spheres and the Hermite curve itself as a very thin cylinder. Model `b` is the cylinder

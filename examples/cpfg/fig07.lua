@@ -1,4 +1,4 @@
--- The snake kolam curve (cpfg guide, seed 004 §3.1, fig. 7), n = 2, δ = 90°.
+-- The snake kolam curve (cpfg guide §3.1, fig. 7), n = 2, δ = 90°.
 -- `a`: drawn with lines, axiom F X + F + F X + F.
 -- `b`: drawn as one closed generalized cylinder: the homomorphism puts one control point in
 -- the middle of every segment (F -> f @Gc(4) f), G starts the cylinder, and the extra `+ F`

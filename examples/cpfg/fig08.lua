@@ -1,4 +1,4 @@
--- Tangent coefficients of the axis curve (cpfg guide, seed 004 §3.2.1, fig. 8):
+-- Tangent coefficients of the axis curve (cpfg guide §3.2.1, fig. 8):
 -- `@Gs -(45) f -(45) @Gt(s,e) @Ge(20)` for (s,e) = a) the default 1.2,1.2; b) 2,2;
 -- c) 0.5,0.5; d) 4,1; e) 3,-2, left to right. The two control points are 1 apart; the
 -- tangents have length s and e times that distance. As in the guide, the tangent vectors

@@ -1,4 +1,4 @@
--- Radius interpolation along a straight generalized cylinder (cpfg guide, seed 004 §3.2.2,
+-- Radius interpolation along a straight generalized cylinder (cpfg guide §3.2.2,
 -- fig. 9). `a`: the longitudinal section R(t), the Hermite curve from (0, 0.2) to (1, 0.1)
 -- with tangents of 30°, length 4.5 and 0°, length 3.5, drawn with lines over the u axis
 -- (computed here in Lua, only for the picture). `bcd`, left to right:

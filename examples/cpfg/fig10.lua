@@ -1,4 +1,4 @@
--- Curved generalized cylinders (cpfg guide, seed 004 §3.2.2, fig. 10).
+-- Curved generalized cylinders (cpfg guide §3.2.2, fig. 10).
 -- `a`: `!(0.4) @Gs -(45) f -(45) !(0.2) @Gr(30,4.5,0,3.5) @Ge(20)`: the longitudinal
 -- section of fig. 9 mapped onto a bent axis; the bulge follows the curve.
 -- `b`: a thicker bent cylinder, drawn as a wireframe in the gallery: the cross-sections are

@@ -1,4 +1,4 @@
--- Shells on a helico-spiral (cpfg guide, seed 004 §3.2.2, fig. 11).
+-- Shells on a helico-spiral (cpfg guide §3.2.2, fig. 11).
 -- `a`: 117 steps of A(s) -> +(Ang1) /(Ang2) F(s) A(s*R) with R = 1.03, Ang1 = 20°,
 -- Ang2 = 2.1°, Wid = 5. The homomorphism turns each F(s) into an invisible f(s) ending in a
 -- control point of width s*Wid, turned by half a step so the heading there follows the

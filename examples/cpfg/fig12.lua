@@ -1,4 +1,4 @@
--- A two-dimensional closed contour (cpfg guide, seed 004 §3.2.3, fig. 12), contour sides 32.
+-- A two-dimensional closed contour (cpfg guide §3.2.3, fig. 12), contour sides 32.
 -- `a`: the contour file contours/fig12a.con (Appendix B.1): its 12 control points (the
 -- first one bigger), the closed B-spline through them and the unit circle, the default
 -- contour, for comparison.

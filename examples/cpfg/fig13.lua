@@ -1,4 +1,4 @@
--- A three-dimensional closed contour (cpfg guide, seed 004 §3.2.3, fig. 13), contour sides
+-- A three-dimensional closed contour (cpfg guide §3.2.3, fig. 13), contour sides
 -- 32. contours/fig13a.con is the contour of fig. 12 with a third coordinate: 1 at the first
 -- control point, 0 elsewhere. The third coordinate runs along the turtle heading, so near
 -- that point the cross-section bends up the axis: a pointed tongue.

@@ -1,4 +1,4 @@
--- The cactus Lemaireocereus chende (cpfg guide, seed 004 §3.2.3, fig. 14): stems drawn as
+-- The cactus Lemaireocereus chende (cpfg guide §3.2.3, fig. 14): stems drawn as
 -- generalized cylinders with an 8-ribbed star-shaped contour (contours/cactus.con, designed
 -- here: 16 control points alternating radius 1.1 and 0.62; the guide's contour is not
 -- printed). The L-system is the one printed in the guide:

@@ -1,4 +1,4 @@
--- Aloe variegata (cpfg guide, seed 004 §3.2.3, fig. 15). The guide describes this model in
+-- Aloe variegata (cpfg guide §3.2.3, fig. 15). The guide describes this model in
 -- prose only; this L-system is a reconstruction. The axiom lays out the plant: a whorl of
 -- thick leaves at the bottom (A), a tapered flower stalk (S F ... E) and a phyllotactic
 -- raceme of flowers at its top (P).

@@ -1,4 +1,4 @@
--- A long leaf blade with an open contour (cpfg guide, seed 004 §3.2.3, fig. 16).
+-- A long leaf blade with an open contour (cpfg guide §3.2.3, fig. 16).
 -- `a`: the open contour contours/fig16a.con (Appendix B.1): 15 control points, the first
 -- and last repeated three times so the B-spline starts and ends on them; the unit circle
 -- for comparison.

@@ -1,5 +1,5 @@
--- Shells made by sweeping an open contour along a helico-spiral (cpfg guide, seed 004
--- §3.2.3, fig. 17). The L-system of fig. 11a with a roll around the heading that orients
+-- Shells made by sweeping an open contour along a helico-spiral (cpfg guide §3.2.3,
+-- fig. 17). The L-system of fig. 11a with a roll around the heading that orients
 -- the contour (Ang3), as printed in the guide:
 --   ω: #(5) @Gt(1.0) @#(2) \(Ang3) @Gs /(Ang3) A(1)
 --   p1: A(s) -> +(Ang1) /(Ang2) F(s) A(s*R)

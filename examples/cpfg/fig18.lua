@@ -1,4 +1,4 @@
--- The pelican's foot shell, Aporrhais pespelecani (cpfg guide, seed 004 §3.2.3, fig. 18):
+-- The pelican's foot shell, Aporrhais pespelecani (cpfg guide §3.2.3, fig. 18):
 -- the two alternating contours of fig. 17c and a third contour (4) for the opening, a flat
 -- lip with three long fingers. The guide adds one homomorphism production that draws the
 -- last segment (n = Steps - 1) twice as long and ends it with contour 4, so the whorl

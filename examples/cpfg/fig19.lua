@@ -1,4 +1,4 @@
--- Twist of generalized cylinders (cpfg guide, seed 004 §3.3, fig. 19).
+-- Twist of generalized cylinders (cpfg guide §3.3, fig. 19).
 -- `a`: `@Gs f -(30) f /(180) @Ge(10)` with the twist minimisation switched off
 -- (`minimize_twist = false`, cpfg's "twist of cylinders: off"): the contour follows the
 -- turtle's up vector, which the roll /(180) turns half around before the last point, so the

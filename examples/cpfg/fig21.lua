@@ -1,4 +1,4 @@
--- A branch fork drawn with generalized cylinders (cpfg guide, seed 004 §3.4, fig. 21).
+-- A branch fork drawn with generalized cylinders (cpfg guide §3.4, fig. 21).
 -- The string (not printed in the guide; rebuilt from its description) is
 --   B F [ +(40) ! F E ] [ -(25) ! F E ]
 -- one segment supporting two branches, 40° to the left and 25° to the right, each

@@ -1,4 +1,4 @@
--- An apple blossom with predefined surfaces (cpfg guide, seed 004 §4.1, fig. 22), 2 steps,
+-- An apple blossom with predefined surfaces (cpfg guide §4.1, fig. 22), 2 steps,
 -- angle increment 18°:
 --   ω: F F F F F B
 --   p1: B -> [ S //// S //// S //// S //// S ]      five segments 72° apart

@@ -1,4 +1,4 @@
--- A fern frond with polygonal leaflets (cpfg guide, seed 004 §4.2, fig. 23).
+-- A fern frond with polygonal leaflets (cpfg guide §4.2, fig. 23).
 -- A leaflet is the closed polygon traced by the turtle, as printed in the guide:
 --   p1: L -> { - F X + X - F X - | - F X + X + F X }
 --   p2: X -> F X

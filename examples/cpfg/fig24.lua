@@ -1,5 +1,5 @@
--- A surface specified with a branching structure as a framework (cpfg guide, seed 004
--- §4.2, fig. 24). The guide shows only the picture; this L-system is a reconstruction.
+-- A surface specified with a branching structure as a framework (cpfg guide §4.2,
+-- fig. 24). The guide shows only the picture; this L-system is a reconstruction.
 -- A leaf blade is one polygon whose vertices are turtle positions marked with `.`; the
 -- framework is walked with G, which draws a line but adds no vertex. To list the vertices
 -- in order around the outline, each node keeps the rest of the midrib in a branch between

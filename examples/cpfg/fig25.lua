@@ -1,4 +1,4 @@
--- Stacked polygons (cpfg guide, seed 004 §4.2, fig. 25): one curved blade made of three
+-- Stacked polygons (cpfg guide §4.2, fig. 25): one curved blade made of three
 -- planar polygons whose vertices are listed in the order 1..11 by two branches of one
 -- string: {1,2,11} at the base, {3,4,9,10} in the middle and {5,6,7,8} at the tip. `{`
 -- pushes a new polygon onto the polygon stack and `}` pops and fills the top one,

@@ -1,4 +1,4 @@
--- A family of petals from one bicubic patch (cpfg guide, seed 004 §4.3, figs. 26 and 27):
+-- A family of petals from one bicubic patch (cpfg guide §4.3, figs. 26 and 27):
 -- L-system 1 of the guide. The turtle walks a framework and puts the 16 control points of
 -- Bézier patch 0 with @PC(0, row, column) (fig. 26: rows from the base, 0, to the tip, 3);
 -- @PS(0) starts the patch and @PD(0, s, t) draws it.

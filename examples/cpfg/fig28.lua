@@ -1,4 +1,4 @@
--- The development of a petal (cpfg guide, seed 004 §4.3, fig. 28): L-system 2 of the guide,
+-- The development of a petal (cpfg guide §4.3, fig. 28): L-system 2 of the guide,
 -- which interpolates the petal of L-system 1 (fig27.lua) from shape e toward shape c over
 -- N = 10 steps (the guide says c, but its final values are close to shape b). Modules
 -- whose values change carry three parameters (v, V, i): the current value, the final value

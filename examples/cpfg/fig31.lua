@@ -1,4 +1,4 @@
--- A chessboard texture on a predefined surface (cpfg guide, seed 004 §5.1, fig. 31).
+-- A chessboard texture on a predefined surface (cpfg guide §5.1, fig. 31).
 -- The surface surfaces/leaf.s (written by surfaces/make.lua) is a leaf blade of two Bézier
 -- patches, base and tip. The texture textures/chessboard.png (8x8 squares, written by
 -- textures/make.lua) is given to the surface in the view (`texture = 1`), so every

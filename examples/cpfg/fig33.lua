@@ -1,4 +1,4 @@
--- Textures on cylinders and generalized cylinders (cpfg guide, seed 004 §5.2, fig. 33).
+-- Textures on cylinders and generalized cylinders (cpfg guide §5.2, fig. 33).
 -- @Tx(1) selects the first texture of the view, textures/bark.png (written by
 -- textures/make.lua; it tiles in both directions). Around a segment u runs once around the
 -- circumference; v runs along it so that the texture's pixels stay square, and continues

@@ -1,4 +1,4 @@
--- A texture on a polygon (cpfg guide, seed 004 §5.3, fig. 34). @Tx(k) before the polygon
+-- A texture on a polygon (cpfg guide §5.3, fig. 34). @Tx(k) before the polygon
 -- selects the texture; texture coordinates come from the polygon's vertices measured along
 -- the heading h and the right vector r of the turtle at the first vertex, scaled to [0, 1]
 -- over the polygon, so the image is stretched over the polygon's bounding rectangle.

@@ -22,7 +22,7 @@ function M.polyline (pts)
   return table.concat(out, " ")
 end
 
--- The control points of a contour file (seed 004, Appendix B.1) and whether it is closed.
+-- The control points of a contour file (cpfg guide, Appendix B.1) and whether it is closed.
 function M.read_contour (path)
   local f = assert(io.open(path, "r"))
   local n, dim, kind = f:read("n", "n", "l")

@@ -77,7 +77,7 @@ local PICTURES = {
     "Dragon curve by edge rewriting with left and right edges, n = 10." },
   { "abop/fig1_11a.lua", nil, "ABOP 1.11a",
     "Hexagonal Gosper curve (flowsnake) by edge rewriting, n = 4, δ = 60°." },
-  -- the cpfg guide (seed 004): generalized cylinders, surfaces, textures; examples/cpfg
+  -- the cpfg guide: generalized cylinders, surfaces, textures; examples/cpfg
   { "cpfg/fig05.lua", "a", "Fig. 5a",
     "`@Gs f -(45) f @Ge(6)`: the turtle path (grey), the two control points and the Hermite "
     .. "curve between them; the curve leaves along the first heading and arrives along the "

@@ -1,7 +1,7 @@
--- Seed 000 (ilsa), figure 10 / section 4 "regrowth": grow, arrange, grow again. A plant is
--- derived 4 steps (a), its upper lateral branch is bent down and its trunk top pulled
--- aside with the arrangement (b), and the arranged string is derived 3 more steps (c):
--- the @J joint modules stay before the segments they bend, so the bends survive and the
+-- Power et al. 1999 (ilsa), figure 10 / section 4 "regrowth": grow, arrange, grow again. A
+-- plant is derived 4 steps (a), its upper lateral branch is bent down and its trunk top
+-- pulled aside with the arrangement (b), and the arranged string is derived 3 more steps
+-- (c): the @J joint modules stay before the segments they bend, so the bends survive and the
 -- new growth (internodes, laterals, a pruned branch's regrowth from @X) attaches to them.
 -- Run: build/bin/lsys examples/ilsa/fig10.lua [OUT.png]  (default examples/gallery/ilsa/fig10.png)
 local lsys = require "lsys"

@@ -1,5 +1,5 @@
--- Seed 000 (ilsa), figure 3: one branch of 11 segments pulled sideways by the same drag,
--- with (b) constant, (c) increasing and (d) decreasing joint stiffness, Z(sh, su, sl)
+-- Power et al. 1999 (ilsa), figure 3: one branch of 11 segments pulled sideways by the same
+-- drag, with (b) constant, (c) increasing and (d) decreasing joint stiffness, Z(sh, su, sl)
 -- before each segment. Stiff tips keep the bend low on the branch, soft tips take it up.
 -- Run: build/bin/lsys examples/ilsa/fig3.lua [OUT.png]  (default examples/gallery/ilsa/fig3.png)
 local lsys = require "lsys"

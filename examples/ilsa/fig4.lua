@@ -1,7 +1,7 @@
--- Seed 000 (ilsa), figure 4: one manipulation of a plant's lower branch (pulled up and
--- out with the plane dragger) (a) before, (b) with no stiffness and no smoothness, (c) with
--- no stiffness and smoothness, (d) with stiffness from the branch radii (da Vinci rule,
--- eqs. 4-6). The branch path runs from the branch's base to its tip; its side shoots
+-- Power et al. 1999 (ilsa), figure 4: one manipulation of a plant's lower branch (pulled up
+-- and out with the plane dragger) (a) before, (b) with no stiffness and no smoothness, (c)
+-- with no stiffness and smoothness, (d) with stiffness from the branch radii (da Vinci
+-- rule, eqs. 4-6). The branch path runs from the branch's base to its tip; its side shoots
 -- (the rest of the active branch) follow rigidly.
 -- Run: build/bin/lsys examples/ilsa/fig4.lua [OUT.png]  (default examples/gallery/ilsa/fig4.png)
 local lsys = require "lsys"

@@ -1,4 +1,4 @@
---- Interactive arrangement of a plant by inverse kinematics (seed 000, ilsa).
+--- Interactive arrangement of a plant by inverse kinematics (Power et al. 1999, ilsa).
 --
 --   local a = lsys.arrange(model, lstring [, opts])   -- or the string as text
 --   a:select(i, j)                        -- fixed, moved: module indices (or pick tables)
@@ -15,9 +15,9 @@
 -- right-handed turns about the turtle's H, then U, then L, placed right before the segment
 -- they bend. Selecting a branch path puts an @J before each of its segments that has none;
 -- a second arrangement finds them there and changes their values, so arranging, growing
--- and arranging again (seed 000, fig. 10) never piles joints up. Pruning replaces the branch
--- by the marker module @X, which productions can rewrite to regrow (`@X --> [+F A]`);
--- the turtle ignores it.
+-- and arranging again (Power et al. 1999, fig. 10) never piles joints up. Pruning replaces
+-- the branch by the marker module @X, which productions can rewrite to regrow
+-- (`@X --> [+F A]`); the turtle ignores it.
 --
 -- Joint stiffness (§3.3) comes from Z(sh, su, sl) where the string has it, else from the
 -- branch radii: the turtle widths (radius = width / 2) when the model sets widths, else

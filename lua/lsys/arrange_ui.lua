@@ -1,4 +1,4 @@
---- `lsys arrange MODEL`: arranging a plant in the viewer window (seed 000 §3.2).
+--- `lsys arrange MODEL`: arranging a plant in the viewer window (Power et al. 1999, §3.2).
 --
 -- Click a segment: it becomes the fixed point, and the active branch (everything from it
 -- up) turns red. Click again within the active branch: the manipulated point; the branch

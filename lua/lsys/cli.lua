@@ -137,7 +137,7 @@ usage: lsys arrange [MODEL] [-o OUT.txt] [--string FILE] [--size WxH] [--r0 R] [
                     [--name NAME]
 
 Opens MODEL (default: the default example) derived in the viewer window for arranging by
-inverse kinematics (seed 000, ilsa; docs/arrange.md):
+inverse kinematics as in ilsa (Power et al. 1999; docs/arrange.md):
 
   click           a segment: the fixed point; the active branch above it turns red
   click again     within the red branch: the end of the branch path, which turns yellow

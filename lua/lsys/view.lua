@@ -1,4 +1,4 @@
---- View options (DESIGN.md §6; seed 004 Appendix B): how a model is drawn.
+--- View options (DESIGN.md §6; cpfg guide, Appendix B): how a model is drawn.
 -- A view is a plain Lua table; every field is optional:
 --
 --   angle            angle increment of + - & ^ / \ without a parameter, degrees (90)
@@ -9,7 +9,7 @@
 --   line_style       "line", "polygon" (flat ribbons) or "cylinder" ("line")
 --   contour_sides    sides of cylinders, discs and spheres (8)
 --   tropisms         list of { vector = {x,y,z}, angle = 0, elasticity = 0, increment = 0 }
---                    (seed 004 §6; `angle` is the diatropism angle); an entry with
+--                    (cpfg guide §6; `angle` is the diatropism angle); an entry with
 --                    `torque = true` is a twist response (§6.1)
 --   torques          list of { vector = {x,y,z}, elasticity = 0, increment = 0 }, numbered
 --                    after the tropisms by @Ts @Ti @Td
@@ -30,7 +30,7 @@
 --                    (default: the current directory); `load` sets it to the .v file's
 --   contours         { [id] = "file.con" | { points = {{x,y[,z]}, ...}, closed = true } }:
 --                    cross-sections of generalized cylinders, selected by @#(id)
---                    (seed 004 §3.2.3, Appendix B.1); ids are integers >= 1 (0 is the
+--                    (cpfg guide §3.2.3, Appendix B.1); ids are integers >= 1 (0 is the
 --                    built-in circle). Normalised to { [id] = lsys.Contour }
 --   surfaces         { P = "petal.s" | { file = "petal.s", scale = 1, texture = 0,
 --                    precision = {s, t} } }: predefined surfaces drawn by ~P (§4.1). The

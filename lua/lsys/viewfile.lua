@@ -1,4 +1,4 @@
---- cpfg's files for views (DESIGN.md §6; seed 004 Appendix B): view files (.v), colour
+--- cpfg's files for views (DESIGN.md §6; cpfg guide, Appendix B): view files (.v), colour
 -- maps (.map) and material files (.mat), read into the plain tables that lsys.view
 -- checks. lsys.view gives these functions under the same names (`lsys.view.load`, ...);
 -- this module reads files and never checks a whole view (`lsys.view.normalize` does).
@@ -117,12 +117,12 @@ end
 -- --------------------------------------------------------------------------
 -- cpfg view files (.v)
 --
--- Sources: seed 004 Appendix B (contour:, contour sides:, twist of cylinders:,
--- texture: with F H L E S, tropism: and torque: with T A E S); the command list and
--- value syntax of cpfg's view reader (vlab repository AlgorithmicBotany/vlab,
--- cpfg/control.c, ReadViewData); tropism fields from cpfg/movements.c
--- (read_movement), texture fields from cpfg/textures.c (read_texture), light fields
--- from cpfg/irisGL.c (read_light), surface lines from cpfg/control.c and
+-- Sources: the cpfg guide (Měch and Prusinkiewicz), Appendix B (contour:, contour sides:,
+-- twist of cylinders:, texture: with F H L E S, tropism: and torque: with T A E S); the
+-- command list and value syntax of cpfg's view reader (vlab repository
+-- AlgorithmicBotany/vlab, cpfg/control.c, ReadViewData); tropism fields from
+-- cpfg/movements.c (read_movement), texture fields from cpfg/textures.c (read_texture),
+-- light fields from cpfg/irisGL.c (read_light), surface lines from cpfg/control.c and
 -- cpfg/patches.c; and the example views of vlab's cpfg manual
 -- (oofs/ext/10-manuals/ext/11-CPFG/ext/*/*.v). In short:
 --

@@ -1,9 +1,9 @@
 /*
-** C unit tests for generalized cylinders (csrc/core/gcyl.c, seed 004 §3): the
-** Hermite axis, the longitudinal section with and without @Gr tangents and
-** their adjustment, frame transport, and the strips of a segment: counts,
-** radii along the section, texture v, twist kept or minimised, frames along
-** a helix without flips.
+** C unit tests for generalized cylinders (csrc/core/gcyl.c; cpfg guide §3):
+** the Hermite axis, the longitudinal section with and without @Gr tangents
+** and their adjustment, frame transport, and the strips of a segment:
+** counts, radii along the section, texture v, twist kept or minimised,
+** frames along a helix without flips.
 */
 #undef NDEBUG
 #include <assert.h>

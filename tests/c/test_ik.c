@@ -1,8 +1,9 @@
 /*
-** C unit tests of the branch-path IK (ik.h, seed 000): the analytic gradient
-** of objective (1) against central differences on random chains, chains set
-** up from drawn frames, convergence of a planar chain to a reachable
-** target, and the qualitative results of figures 3 and 4 as numbers.
+** C unit tests of the branch-path IK (ik.h; Power et al. 1999): the
+** analytic gradient of objective (1) against central differences on random
+** chains, chains set up from drawn frames, convergence of a planar chain to
+** a reachable target, and the qualitative results of figures 3 and 4 as
+** numbers.
 */
 #undef NDEBUG
 #include <assert.h>
