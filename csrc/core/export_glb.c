@@ -213,8 +213,8 @@ static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided,
                        const lsys_texture *tx, unsigned t, uint32_t gtex, int first) {
   float c[4], em[3], s = fin(mt->shininess), r;
   int i, decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
-  for (i = 0; i < 4; i++) c[i] = clamp01(mt->diffuse[i]);
-  for (i = 0; i < 3; i++) em[i] = clamp01(mt->emission[i]);
+  for (i = 0; i < 4; i++) c[i] = lsys_unit(mt->diffuse[i]);
+  for (i = 0; i < 3; i++) em[i] = lsys_unit(mt->emission[i]);
   if (decal) c[0] = c[1] = c[2] = 1;
   if (s < 0) s = 0;
   r = (float)pow(2.0 / (s + 2.0), 0.25);

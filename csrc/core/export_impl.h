@@ -85,11 +85,6 @@ static inline float fin (float x) {
   return isfinite(x) ? x : 0.0f;
 }
 
-/* x clamped to [0, 1] as lsys_material_color clamps colours; NaN gives 0. */
-static inline float clamp01 (double x) {
-  return x > 0 ? (x < 1 ? (float)x : 1.0f) : 0.0f;
-}
-
 static inline unsigned char *put32 (unsigned char *p, uint32_t x) {
   p[0] = (unsigned char)x; p[1] = (unsigned char)(x >> 8);
   p[2] = (unsigned char)(x >> 16); p[3] = (unsigned char)(x >> 24);

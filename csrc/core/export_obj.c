@@ -30,7 +30,7 @@ static char *mtlpath (const char *path, const char **name) {
 static void putrgb (lsys_writer *w, const char *tag, const float *c) {
   float v[3];
   int k;
-  for (k = 0; k < 3; k++) v[k] = clamp01(c[k]);
+  for (k = 0; k < 3; k++) v[k] = lsys_unit(c[k]);
   lsys_putvec(w, tag, v, 3);
 }
 
@@ -61,7 +61,7 @@ static void putmtl (lsys_writer *w, const lsys_material *mt, size_t k, const lsy
   static const float white[3] = {1, 1, 1};
   int spec = mt->specular[0] > 0 || mt->specular[1] > 0 || mt->specular[2] > 0;
   int decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
-  float d = clamp01(mt->diffuse[3]);
+  float d = lsys_unit(mt->diffuse[3]);
   lsys_wstr(w, "\n");
   putmtlname(w, "newmtl", k, t);
   putrgb(w, "Ka", mt->ambient);

@@ -6,7 +6,7 @@
 #include "export_impl.h"
 
 static unsigned char tobyte (float c) {
-  return (unsigned char)(clamp01(c) * 255.0f + 0.5f);
+  return (unsigned char)(lsys_unit(c) * 255.0f + 0.5f);
 }
 
 static unsigned char *plyvertex (unsigned char *p, const float *pos, const float *nrm,

@@ -185,14 +185,10 @@ int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]) {
   return ok;
 }
 
-static float unit (double x) {
-  return x > 0 ? (x < 1 ? (float)x : 1.0f) : 0.0f;   /* NaN gives 0 */
-}
-
 void lsys_material_color (lsys_material *mt, double r, double g, double b) {
   float c[3];
   int k;
-  c[0] = unit(r); c[1] = unit(g); c[2] = unit(b);
+  c[0] = lsys_unit(r); c[1] = lsys_unit(g); c[2] = lsys_unit(b);
   *mt = (lsys_material){0};
   for (k = 0; k < 3; k++) {
     mt->diffuse[k] = c[k];

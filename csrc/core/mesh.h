@@ -87,4 +87,9 @@ size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edge
 ** and no specular highlight. */
 void lsys_material_color (lsys_material *mt, double r, double g, double b);
 
+/* x clamped to [0, 1], as colours are (NaN gives 0). */
+static inline float lsys_unit (double x) {
+  return x > 0 ? (x < 1 ? (float)x : 1.0f) : 0.0f;
+}
+
 #endif

@@ -312,7 +312,7 @@ static void overlay (lsys_viewer *v) {
   if (f == NULL)
     snprintf(line, sizeof line, "waiting for a scene");
   else if (v->drawerr[0] != '\0')
-    snprintf(line, sizeof line, "cannot draw: %s", v->drawerr);
+    snprintf(line, sizeof line, "cannot draw: %.240s", v->drawerr);
   else {
     int at = 0;
     count(a, sizeof a, f->nmodules);
