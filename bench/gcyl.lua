@@ -12,9 +12,13 @@
 --     tests/data/surfaces/leaf.s, 100 x 100 on a grid with varied orientation: surfaces and
 --     triangles per second.
 -- Times are wall clock (the lsys program's monotonic clock; os.clock CPU time under plain
--- Lua), best of 3; records off, as for exports and big renders. Peak memory is VmHWM.
+-- Lua), best of 9; records off, as for exports and big renders. Peak memory is VmHWM.
+-- Best of 9, not 3: each run takes 10-30 ms, and the first runs mostly pay for the page
+-- faults of fresh allocations, which depend on what the allocator kept from earlier work
+-- (section 1 before section 2, even the Lua library's own allocations). Three runs gave
+-- figures that moved by 20% with unrelated changes; nine reach the steady state.
 
-local RUNS = 3
+local RUNS = 9
 local B = dofile(((arg and arg[0] or "bench/gcyl.lua"):match("^(.*)/[^/]*$") or ".")
                  .. "/common.lua")
 local lsys = B.load_lsys()
