@@ -8,6 +8,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(
   lua5.4 liblua5.4-dev lua-busted          # Lua, its headers, the test runner
+  lua-cjson lua-expat                      # sketch files: JSON and SVG (lsys.sketch)
   lua-check                                # the luacheck test (.luacheckrc)
   cmake gcc libc6-dev make pkg-config      # the build
   libpng-dev libosmesa6-dev libglfw3-dev   # PNG output, offscreen GL, the viewer window
