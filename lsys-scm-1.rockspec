@@ -19,6 +19,8 @@ module `lsys` (Lua files and lsys/core.so) and the `lsys` program (REPL, script 
 }
 dependencies = {
   "lua >= 5.4",
+  "lua-cjson",     -- sketch files (lsys.sketch): JSON
+  "luaexpat",      -- sketch files: SVG
 }
 build_dependencies = {}
 test_dependencies = {

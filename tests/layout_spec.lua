@@ -192,9 +192,11 @@ end)
 describe("the Lua tree", function ()
   it("has no require cycle among the lsys modules", function ()
     local graph = {}
-    for _, f in ipairs(ls("lua/lsys/*.lua")) do
-      local name = "lsys." .. f:match("([%w_]+)%.lua$")
-      if name == "lsys.init" then name = "lsys" end
+    local files = ls("lua/lsys/*.lua")
+    for _, f in ipairs(ls("lua/lsys/*/*.lua")) do files[#files + 1] = f end
+    for _, f in ipairs(files) do
+      -- lua/lsys/a/b.lua is lsys.a.b, lua/lsys/a/init.lua is lsys.a
+      local name = f:gsub("^lua/", ""):gsub("%.lua$", ""):gsub("/init$", ""):gsub("/", ".")
       graph[name] = {}
       local src = io.open(f):read("a"):gsub("%-%-[^\n]*", "")
       for m in src:gmatch("require%s*%(?%s*[\"']([%w_.]+)[\"']") do
