@@ -4,7 +4,7 @@
 #include <GL/gl.h>
 #include <string.h>
 
-#include "font.h"
+#include "font.h"              /* csrc/core/font.h */
 #include "overlay.h"
 
 int lsys_overlay_quad (lsys_overlay *t, float x, float y, float w, float h, const uint8_t c[4]) {

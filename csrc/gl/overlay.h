@@ -1,6 +1,6 @@
 /*
 ** What the viewer window draws over the scene (glfw_viewer.c): text in the
-** built-in font (font.h), laid out as one quad per lit font pixel and drawn
+** built-in font (core/font.h), laid out as one quad per lit font pixel and drawn
 ** in one call, and the highlight lines of a frame (viewer.h).
 */
 #ifndef LSYS_OVERLAY_H

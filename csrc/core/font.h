@@ -1,7 +1,7 @@
 /*
-** A 5x7 bitmap font for the viewer's on-screen status line: the 95
-** printable ASCII characters, space (32) through tilde (126). The viewer
-** draws each set bit as a small quad.
+** A 5x7 bitmap font: the 95 printable ASCII characters, space (32) through
+** tilde (126). The viewer's status line (csrc/gl/overlay.c) draws each set
+** bit as a small quad, the canvas (canvas.c) as a block of pixels.
 **
 ** lsys_font[c - LSYS_FONT_FIRST][row] holds one glyph row, row 0 at the
 ** top; bit 4 (0x10) is the leftmost column and bit 0 the rightmost.
