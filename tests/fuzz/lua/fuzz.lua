@@ -22,8 +22,8 @@
 -- budget.
 --
 -- Coverage is edge coverage of lsys's Lua files (a line hook; an edge is a pair of
--- consecutive, different lines executed in files lsys/NAME.lua), with AFL's hit-count
--- buckets.
+-- consecutive, different lines executed in files lsys/NAME.lua or lsys/DIR/NAME.lua, as
+-- lsys/sketch/read.lua), with AFL's hit-count buckets.
 -- An input that reaches a new edge or bucket goes into the corpus directory under the
 -- FNV-1a hash of its bytes. An input is a FINDING when it raises a non-string error, an
 -- error without the expected form, a Lua runtime error inside lsys code
@@ -147,7 +147,7 @@ local BUDGET = "fuzz: budget exceeded"
 
 -- a Lua runtime error raised inside lsys code, as Lua formats it
 local function lsys_runtime (msg)
-  return msg:match("lsys/[%w_]+%.lua:%d+: .*")
+  return msg:match("lsys/[%w_/]+%.lua:%d+: .*")
 end
 M.lsys_runtime = lsys_runtime
 
@@ -185,7 +185,7 @@ function M.new (target, opts)
     local src = info.source
     if src == script then return 0 end
     if info.what == "C" then return false end
-    local name = src:sub(1, 1) == "@" and src:match("lsys/[%w_]+%.lua$")
+    local name = src:sub(1, 1) == "@" and src:match("lsys/[%w_/]+%.lua$")
     if not name then return false end
     for i = 1, nfiles do if files[i] == name then return i end end
     nfiles = nfiles + 1
@@ -491,7 +491,7 @@ function M.fuzz (target, opts)
       return
     end
     -- the same problem at the same place counts once
-    local sig = (msg:match("lsys/[%w_]+%.lua:%d+") or msg:gsub("%d+", "N"):sub(1, 120))
+    local sig = (msg:match("lsys/[%w_/]+%.lua:%d+") or msg:gsub("%d+", "N"):sub(1, 120))
     findings = findings + 1
     if sigs[sig] then return end
     sigs[sig] = true
