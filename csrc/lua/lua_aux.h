@@ -23,6 +23,7 @@
 #include <lua.h>
 #include <lauxlib.h>
 
+#include "canvas.h"
 #include "contour.h"
 #include "derive.h"
 #include "lstring.h"
@@ -46,6 +47,7 @@
 #define PIXELS_T   "lsys.Pixels"     /* lua_render.c: a pixel block owned by Lua until copied */
 #define VIEWER_T   "lsys.Viewer"     /* lua_viewer.c */
 #define IK_T       "lsys.IK"         /* lua_ik.c */
+#define CANVAS_T   "lsys.Canvas"     /* lua_canvas.c */
 
 /* The registry field of the Rules deriving now (lsys.produce, lsys.ran). */
 #define LSYS_PRODUCING "lsys.producing"
@@ -171,6 +173,10 @@ const char *lsys_recordkind (int kind);
 const lsys_contour *lsys_checkcontour (lua_State *L, int i);
 const lsys_surface *lsys_checksurface (lua_State *L, int i);
 const lsys_texture *lsys_checktexture (lua_State *L, int i);
+
+/* The Canvas at 'i' (lua_canvas.c), for a binding that draws into one or
+** shows its pixels; raises when it is not one or was closed. */
+lsys_canvas *lsys_checkcanvas (lua_State *L, int i);
 
 /* ---------------------------------------------------------------------- */
 /*

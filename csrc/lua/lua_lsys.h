@@ -18,6 +18,7 @@ void lsys_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */
 void lsys_open_texture (lua_State *L);  /* lua_texture.c: Texture */
 void lsys_open_viewer (lua_State *L);   /* lua_viewer.c: Viewer, filestamp */
 void lsys_open_ik (lua_State *L);       /* lua_ik.c: IK chains (lsys.arrange) */
+void lsys_open_canvas (lua_State *L);   /* lua_canvas.c: Canvas, canvas */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);
