@@ -4,7 +4,7 @@
 #
 #   tools/fuzz.sh [SECONDS] [NAME...] [--c | --lua] [--no-merge]
 #
-# NAME: parsers contour surface derive expr png export (C), view palette ruleexpr (Lua);
+# NAME: parsers contour surface derive expr png export func (C), view palette ruleexpr (Lua);
 # default: all of them (--c: the C ones, --lua: the Lua ones). For the C targets it configures
 # build-fuzz/ with clang and LSYS_BUILD_FUZZ=ON, builds the targets, then runs each for
 # SECONDS (default 600), at most JOBS (default nproc) at a time, on a scratch copy of its
@@ -31,7 +31,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ALL="parsers contour surface derive expr png export"
+ALL="parsers contour surface derive expr png export func"
 ALL_LUA=""
 for t in tests/fuzz/lua/targets/*.lua; do [ -f "$t" ] && ALL_LUA="$ALL_LUA $(basename "$t" .lua)"; done
 ALL_LUA=${ALL_LUA# }
