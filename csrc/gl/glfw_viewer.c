@@ -23,10 +23,7 @@
 ** picking are in viewcam.c, tested without a window.
 */
 #define _POSIX_C_SOURCE 200809L
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 #include <GL/gl.h>
-#include <dlfcn.h>
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -35,106 +32,25 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "dynlib.h"
 #include "font.h"
+#include "glfwdl.h"
 #include "overlay.h"
 #include "pngio.h"
 #include "turtle.h"
 #include "viewcam.h"
 #include "viewer.h"
+#include "vpanes.h"
 
 #define MAXEVENTS 1024          /* queued events beyond this are dropped (oldest first) */
 #define CLICK_SLOP 4.0          /* a press and release closer than this (pixels) is a click */
 #define PICK_TOL 6.0            /* pixels around a thin line that still pick it */
+#define G lsys_glfw
 
 /* ---------------------------------------------------------------------- */
-/* libglfw, opened at the first window */
-
-#ifndef LSYS_GLFW_SONAME
-#define LSYS_GLFW_SONAME "libglfw.so.3"
-#endif
-
-static const char *const glfwlibs[] = { LSYS_GLFW_SONAME, "libglfw.so.3", "libglfw.so", NULL };
-
-static struct {
-  void *lib;
-  int (*Init) (void);
-  void (*Terminate) (void);
-  GLFWerrorfun (*SetErrorCallback) (GLFWerrorfun cb);
-  void (*DefaultWindowHints) (void);
-  void (*WindowHint) (int hint, int value);
-  GLFWwindow *(*CreateWindow) (int w, int h, const char *title, GLFWmonitor *m,
-                               GLFWwindow *share);
-  void (*DestroyWindow) (GLFWwindow *w);
-  int (*WindowShouldClose) (GLFWwindow *w);
-  void (*SetWindowShouldClose) (GLFWwindow *w, int value);
-  void (*SetWindowTitle) (GLFWwindow *w, const char *title);
-  void (*MakeContextCurrent) (GLFWwindow *w);
-  GLFWglproc (*GetProcAddress) (const char *name);
-  void (*SwapBuffers) (GLFWwindow *w);
-  void (*SwapInterval) (int interval);
-  void (*WaitEventsTimeout) (double timeout);
-  void (*PostEmptyEvent) (void);
-  void (*GetFramebufferSize) (GLFWwindow *w, int *width, int *height);
-  void (*GetWindowSize) (GLFWwindow *w, int *width, int *height);
-  void (*SetWindowUserPointer) (GLFWwindow *w, void *p);
-  void *(*GetWindowUserPointer) (GLFWwindow *w);
-  GLFWkeyfun (*SetKeyCallback) (GLFWwindow *w, GLFWkeyfun cb);
-  GLFWmousebuttonfun (*SetMouseButtonCallback) (GLFWwindow *w, GLFWmousebuttonfun cb);
-  GLFWcursorposfun (*SetCursorPosCallback) (GLFWwindow *w, GLFWcursorposfun cb);
-  GLFWscrollfun (*SetScrollCallback) (GLFWwindow *w, GLFWscrollfun cb);
-  GLFWwindowrefreshfun (*SetWindowRefreshCallback) (GLFWwindow *w, GLFWwindowrefreshfun cb);
-  GLFWframebuffersizefun (*SetFramebufferSizeCallback) (GLFWwindow *w,
-                                                        GLFWframebuffersizefun cb);
-  double (*GetTime) (void);
-} G;
+/* one window per process (GLFW is process-wide); libglfw is glfwdl.c's */
 
 static pthread_mutex_t glfwlock = PTHREAD_MUTEX_INITIALIZER;   /* loading; one window */
 static int glfwbusy;            /* a viewer is open (GLFW is process-wide) */
-static char glfwerr[192];       /* the last GLFW error, written on the viewer thread */
-
-static void onerror (int code, const char *msg) {
-  snprintf(glfwerr, sizeof glfwerr, "%s (GLFW error 0x%x)", msg ? msg : "?", (unsigned)code);
-}
-
-static int loadglfw (lsys_error *e) {
-#define SYM(f) {&G.f, sizeof G.f, "glfw" #f}
-  const lsys_dynsym syms[] = {
-    SYM(Init), SYM(Terminate), SYM(SetErrorCallback), SYM(DefaultWindowHints),
-    SYM(WindowHint), SYM(CreateWindow), SYM(DestroyWindow), SYM(WindowShouldClose),
-    SYM(SetWindowShouldClose), SYM(SetWindowTitle), SYM(MakeContextCurrent),
-    SYM(GetProcAddress), SYM(SwapBuffers), SYM(SwapInterval), SYM(WaitEventsTimeout),
-    SYM(PostEmptyEvent), SYM(GetFramebufferSize), SYM(GetWindowSize),
-    SYM(SetWindowUserPointer), SYM(GetWindowUserPointer), SYM(SetKeyCallback),
-    SYM(SetMouseButtonCallback), SYM(SetCursorPosCallback), SYM(SetScrollCallback),
-    SYM(SetWindowRefreshCallback), SYM(SetFramebufferSizeCallback), SYM(GetTime)
-  };
-#undef SYM
-  char why[200];
-  const char *missing;
-  if (G.lib != NULL) return LSYS_OK;
-  G.lib = lsys_dynlib_open(glfwlibs, why, sizeof why);
-  if (G.lib == NULL)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1,
-                         "cannot load libglfw for the viewer window (%s); install libglfw3 "
-                         "(./setup.sh does)", why);
-  missing = lsys_dynlib_syms(G.lib, syms, sizeof syms / sizeof syms[0]);
-  if (missing != NULL) {
-    dlclose(G.lib);
-    G.lib = NULL;
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "libglfw has no %s (GLFW 3.2 or later "
-                         "is needed)", missing);
-  }
-  return LSYS_OK;
-}
-
-/* glfwGetProcAddress, in the form lsys_gl_load wants. */
-static lsys_glproc getproc (const char *name) {
-  GLFWglproc f = G.GetProcAddress(name);
-  lsys_glproc g;
-  memcpy(&g, &f, sizeof g);
-  return g;
-}
 
 /* ---------------------------------------------------------------------- */
 /* the viewer */
@@ -180,6 +96,9 @@ struct lsys_viewer {
   uint8_t *pixels;                /* screenshot scratch */
   size_t pixcap;
   lsys_overlay text;              /* the status line and the help */
+  lsys_vpanes panes;              /* image panes beside the scene (vpanes.h) */
+  int sr[4];                      /* the scene's rectangle in the window (x, y, w, h) */
+  int pane, pbutton;              /* the pane pressed (button 4) and the GLFW button */
 };
 
 /* Queues an event (mu held). */
@@ -207,7 +126,7 @@ static void event (lsys_viewer *v, int type, lsys_vevent *e) {
 }
 
 static int capturing (const lsys_viewer *v) {
-  return v->snap != NULL && v->snap->capture;
+  return (v->snap != NULL && v->snap->capture) || v->panes.lay.on;
 }
 
 static const lsys_vframe *curframe (const lsys_viewer *v) {
@@ -222,8 +141,8 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
   *sc = f->sc;
   lsys_vcam_apply(&v->cam, &sc->cam);
   lsys_render_defaults(o);
-  o->width = v->winw;
-  o->height = v->winh;
+  o->width = v->sr[2];
+  o->height = v->sr[3];
   o->wireframe = v->wireframe;
   o->gl = &v->gl;
   o->cache = &v->cache;
@@ -235,7 +154,7 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
 ** keeping the current direction and up) and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
-  if (lsys_vcam_fit(&v->cam, &f->sc.mesh, &f->sc.cam, v->winw, v->winh, !home) != LSYS_OK)
+  if (lsys_vcam_fit(&v->cam, &f->sc.mesh, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
     return;
   if (home) v->home = v->cam;
   v->dirty = 1;
@@ -309,7 +228,9 @@ static void overlay (lsys_viewer *v) {
   float lh = (LSYS_FONT_H + 4) * px;
   size_t n;
   v->text.n = 0;
-  if (f == NULL)
+  if (v->panes.msg[0] != '\0')
+    snprintf(line, sizeof line, "%s", v->panes.msg);
+  else if (f == NULL)
     snprintf(line, sizeof line, "waiting for a scene");
   else if (v->drawerr[0] != '\0')
     snprintf(line, sizeof line, "cannot draw: %.240s", v->drawerr);
@@ -335,12 +256,12 @@ static void overlay (lsys_viewer *v) {
   lsys_overlay_quad(&v->text, 0, (float)v->fbh - lh, (float)v->fbw, lh, bg);
   lsys_overlay_text(&v->text, line, 2 * px, (float)v->fbh - lh + 2 * px, px, fg);
   if (v->help) {
+    const char *help = v->panes.help[0] != '\0' ? v->panes.help : helptext, *s;
     int lines = 1;
-    const char *s;
-    for (s = helptext; *s; s++) lines += *s == '\n';
+    for (s = help; *s; s++) lines += *s == '\n';
     lsys_overlay_quad(&v->text, 0, 0, (float)v->fbw, lines * (LSYS_FONT_H + 3) * px + 4 * px,
                       bg);
-    lsys_overlay_text(&v->text, helptext, 2 * px, 2 * px, px, fg);
+    lsys_overlay_text(&v->text, help, 2 * px, 2 * px, px, fg);
   }
   else if (n + 14 < (size_t)(v->fbw / ((LSYS_FONT_W + 1) * px)))
     lsys_overlay_text(&v->text, "H: help", (float)v->fbw - 9 * (LSYS_FONT_W + 1) * px,
@@ -404,10 +325,15 @@ static void draw (lsys_viewer *v) {
   G.GetFramebufferSize(v->win, &v->fbw, &v->fbh);
   G.GetWindowSize(v->win, &v->winw, &v->winh);
   if (v->fbw <= 0 || v->fbh <= 0 || v->winw <= 0 || v->winh <= 0) return;   /* iconified */
+  lsys_vpanes_scene(&v->panes, v->winw, v->winh, v->sr);
   if (f != NULL) {
+    double k = (double)v->fbh / v->winh;      /* framebuffer pixels per window pixel */
     frameview(v, f, &sc, &o);
+    o.x = (int)lround(v->sr[0] * k);
+    o.y = (int)lround((v->winh - v->sr[1] - v->sr[3]) * k);    /* GL rows go up */
     v->drawerr[0] = '\0';
-    if (lsys_render_draw(&sc, &o, v->fbw, v->fbh, &e) != LSYS_OK) {
+    if (lsys_render_draw(&sc, &o, (int)lround(v->sr[2] * k), (int)lround(v->sr[3] * k), &e)
+        != LSYS_OK) {
       snprintf(v->drawerr, sizeof v->drawerr, "%s", e.msg);   /* on the status line */
       v->gl.ClearColor(0.3f, 0, 0, 1);
       v->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -420,6 +346,7 @@ static void draw (lsys_viewer *v) {
   if (f != NULL && f->nlines > 0)       /* over the scene, with its camera */
     lsys_overlay_lines(&v->gl, f->lines, f->nlines,
                        v->winh > 0 ? (float)v->fbh / (float)v->winh : 1);
+  lsys_vpanes_draw(&v->panes, &v->gl, v->winw, v->winh, v->fbw, v->fbh);
   if (v->o.status) overlay(v);
   pthread_mutex_lock(&v->mu);
   wantshot = v->shotreq && (f != NULL || v->mail == NULL);
@@ -446,7 +373,8 @@ static void draw (lsys_viewer *v) {
   v->st.playing = v->playing;
   v->st.wireframe = v->wireframe;
   v->st.capture = capturing(v);
-  if (f != NULL) lsys_render_camera(&sc.mesh, &sc.cam, v->winw, v->winh, v->st.proj, v->st.view);
+  memcpy(v->st.scene, v->sr, sizeof v->sr);
+  if (f != NULL) lsys_render_camera(&sc.mesh, &sc.cam, v->sr[2], v->sr[3], v->st.proj, v->st.view);
   pthread_cond_broadcast(&v->cv);
   pthread_mutex_unlock(&v->mu);
 }
@@ -462,7 +390,7 @@ static void orbit (lsys_viewer *v, double dx, double dy) {
 
 static void pan (lsys_viewer *v, double dx, double dy) {
   const lsys_vframe *f = curframe(v);
-  lsys_vcam_pan(&v->cam, f != NULL ? &f->sc.cam : NULL, v->winh, dx, dy);
+  lsys_vcam_pan(&v->cam, f != NULL ? &f->sc.cam : NULL, v->sr[3], dx, dy);
   v->dirty = 1;
 }
 
@@ -477,9 +405,9 @@ static void pick (lsys_viewer *v, double x, double y) {
   double proj[16], view[16];
   long k = -1;
   if (f == NULL) return;
-  if (lsys_vcam_matrices(&v->cam, &f->sc.mesh, &f->sc.cam, v->winw, v->winh, proj, view) ==
+  if (lsys_vcam_matrices(&v->cam, &f->sc.mesh, &f->sc.cam, v->sr[2], v->sr[3], proj, view) ==
       LSYS_OK)
-    k = lsys_vpick_find(f, proj, view, v->winw, v->winh, x, y, PICK_TOL);
+    k = lsys_vpick_find(f, proj, view, v->sr[2], v->sr[3], x - v->sr[0], y - v->sr[1], PICK_TOL);
   event(v, k >= 0 ? LSYS_VEV_PICK : LSYS_VEV_MISS, &ev);
   ev.x = x;
   ev.y = y;
@@ -596,16 +524,49 @@ static void dragevent (lsys_viewer *v, int phase, double x, double y) {
   pushevent(v, &ev);
 }
 
+/* A pointer (type POINTER) or wheel (SCROLL) event of pane k at window point
+** (x, y), reported in the pixels of the pane's image. */
+static void paneevent (lsys_viewer *v, int type, int k, int phase, int mods, double x, double y,
+                       double scroll) {
+  lsys_vevent ev;
+  event(v, type, &ev);
+  ev.pane = k;
+  ev.phase = phase;
+  ev.button = v->pbutton;
+  ev.mods = mods;
+  ev.scroll = scroll;
+  lsys_vpanes_map(&v->panes, k, v->winw, v->winh, x, y, &ev.x, &ev.y);
+  pushevent(v, &ev);
+}
+
+/* What the window point (x, y) is over: a pane (>= 0), the scene or nothing. */
+static int over (const lsys_viewer *v, double x, double y) {
+  double px, py;
+  return lsys_vpanes_hit(&v->panes, v->winw, v->winh, x, y, &px, &py);
+}
+
 static void onbutton (GLFWwindow *w, int button, int action, int mods) {
   lsys_viewer *v = self(w);
   if (action == GLFW_PRESS) {
-    if (v->button != 0) return;
+    int k = over(v, v->lastx, v->lasty);
+    if (v->button != 0 || k == LSYS_VPANE_NONE) return;
+    if (k >= 0) {                 /* a pane: the caller draws with it */
+      v->button = 4;
+      v->pane = k;
+      v->pbutton = button;
+      paneevent(v, LSYS_VEV_POINTER, k, 0, mods, v->lastx, v->lasty, 0);
+      return;
+    }
     v->button = (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ||
                  (mods & GLFW_MOD_SHIFT)) ? 2 : 1;
     if (v->button == 1 && (mods & GLFW_MOD_CONTROL) && capturing(v)) v->button = 3;
     v->px = v->lastx;
     v->py = v->lasty;
     v->moved = 0;
+  } else if (action == GLFW_RELEASE && v->button == 4) {
+    if (button != v->pbutton) return;
+    paneevent(v, LSYS_VEV_POINTER, v->pane, 2, mods, v->lastx, v->lasty, 0);
+    v->button = 0;
   } else if (action == GLFW_RELEASE && v->button != 0) {
     if (v->button == 3 && v->moved) dragevent(v, 2, v->lastx, v->lasty);
     else if (!v->moved && button == GLFW_MOUSE_BUTTON_LEFT) pick(v, v->lastx, v->lasty);
@@ -619,6 +580,10 @@ static void oncursor (GLFWwindow *w, double x, double y) {
   v->lastx = x;
   v->lasty = y;
   if (v->button == 0) return;
+  if (v->button == 4) {
+    paneevent(v, LSYS_VEV_POINTER, v->pane, 1, 0, x, y, 0);
+    return;
+  }
   if (!v->moved && hypot(x - v->px, y - v->py) < CLICK_SLOP) return;
   if (!v->moved) {
     dx = x - v->px;
@@ -632,8 +597,11 @@ static void oncursor (GLFWwindow *w, double x, double y) {
 }
 
 static void onscroll (GLFWwindow *w, double dx, double dy) {
+  lsys_viewer *v = self(w);
+  int k = over(v, v->lastx, v->lasty);
   (void)dx;
-  zoom(self(w), dy);
+  if (k >= 0) paneevent(v, LSYS_VEV_SCROLL, k, 0, 0, v->lastx, v->lasty, dy);
+  else if (k == LSYS_VPANE_SCENE) zoom(v, dy);
 }
 
 static void onrefresh (GLFWwindow *w) {
@@ -674,11 +642,11 @@ static int mkwindow (lsys_viewer *v, int samples, char *err, size_t nerr) {
   v->win = G.CreateWindow(v->o.width, v->o.height, "lsys", NULL, NULL);
   if (v->win == NULL) {
     snprintf(err, nerr, "cannot open a window with an OpenGL context: %s",
-             glfwerr[0] ? glfwerr : "unknown error");
+             lsys_glfwerr[0] ? lsys_glfwerr : "unknown error");
     return 0;
   }
   G.MakeContextCurrent(v->win);
-  if (lsys_gl_load(&v->gl, getproc, &e) != LSYS_OK) {
+  if (lsys_gl_load(&v->gl, lsys_glfw_getproc, &e) != LSYS_OK) {
     snprintf(err, nerr, "%s", e.msg);
     G.MakeContextCurrent(NULL);
     G.DestroyWindow(v->win);
@@ -689,10 +657,11 @@ static int mkwindow (lsys_viewer *v, int samples, char *err, size_t nerr) {
 }
 
 static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
-  glfwerr[0] = '\0';
-  G.SetErrorCallback(onerror);
+  lsys_glfwerr[0] = '\0';
+  G.SetErrorCallback(lsys_glfw_onerror);
   if (!G.Init()) {
-    snprintf(err, nerr, "cannot start GLFW: %s", glfwerr[0] ? glfwerr : "unknown error");
+    snprintf(err, nerr, "cannot start GLFW: %s",
+             lsys_glfwerr[0] ? lsys_glfwerr : "unknown error");
     return 0;
   }
   G.DefaultWindowHints();
@@ -716,7 +685,7 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   }
   G.SwapInterval(1);
   {
-    lsys_glproc rp = getproc("glReadPixels"), rb = getproc("glReadBuffer");
+    lsys_glproc rp = lsys_glfw_getproc("glReadPixels"), rb = lsys_glfw_getproc("glReadBuffer");
     if (rp == NULL || rb == NULL) {
       snprintf(err, nerr, "the OpenGL context has no glReadPixels");
       G.DestroyWindow(v->win);
@@ -760,6 +729,9 @@ static void *run (void *arg) {
     if (v->shotreq) v->dirty = 1;
     pthread_mutex_unlock(&v->mu);
     if (quit || G.WindowShouldClose(v->win)) break;
+    if (lsys_vpanes_take(&v->panes)) v->dirty = 1;
+    G.GetWindowSize(v->win, &v->winw, &v->winh);
+    lsys_vpanes_scene(&v->panes, v->winw, v->winh, v->sr);   /* before a fit */
     takemail(v);
     for (i = 0; i < nkeys; i++) key(v, keys[i], 0);
     if (v->playing) {
@@ -783,6 +755,7 @@ static void *run (void *arg) {
   pushevent_locked(v, &ev);
   pthread_mutex_unlock(&v->mu);
   lsys_render_cache_release(&v->cache, &v->gl);
+  lsys_vpanes_release(&v->panes, &v->gl);
   G.DestroyWindow(v->win);
   G.Terminate();
   v->win = NULL;
@@ -807,6 +780,7 @@ static void freeviewer (lsys_viewer *v) {
   LSYS_FREE(v->ev);
   LSYS_FREE(v->pixels);
   lsys_overlay_free(&v->text);
+  lsys_vpanes_free(&v->panes);
   pthread_cond_destroy(&v->cv);
   pthread_mutex_destroy(&v->mu);
   LSYS_FREE(v);
@@ -821,7 +795,7 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e) {
     lsys_seterror(e, LSYS_EARG, (size_t)-1, "a viewer window is already open");
     return NULL;
   }
-  if (loadglfw(e) != LSYS_OK) {
+  if (lsys_glfw_load(e) != LSYS_OK) {
     pthread_mutex_unlock(&glfwlock);
     return NULL;
   }
@@ -834,6 +808,7 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e) {
   if (v->ev == NULL) { LSYS_FREE(v); goto nomem; }
   pthread_mutex_init(&v->mu, NULL);
   pthread_cond_init(&v->cv, NULL);
+  lsys_vpanes_init(&v->panes);
   v->o = *o;
   if (v->o.width <= 0) v->o.width = 800;
   if (v->o.height <= 0) v->o.height = 800;
@@ -930,6 +905,31 @@ int lsys_viewer_screenshot (lsys_viewer *v, const char *path) {
   }
   pthread_mutex_unlock(&v->mu);
   return ok ? LSYS_OK : LSYS_EARG;
+}
+
+/* Counts a request and wakes the viewer: drawn when state().serial reaches it. */
+static int request (lsys_viewer *v) {
+  int serial;
+  pthread_mutex_lock(&v->mu);
+  serial = ++v->serial;
+  wake_locked(v);
+  pthread_mutex_unlock(&v->mu);
+  return serial;
+}
+
+int lsys_viewer_layout (lsys_viewer *v, const lsys_vlayout *lay) {
+  lsys_vpanes_set_layout(&v->panes, lay);
+  return request(v);
+}
+
+int lsys_viewer_image (lsys_viewer *v, int pane, const uint8_t *rgba, int w, int h) {
+  int r = lsys_vpanes_set_image(&v->panes, pane, rgba, w, h);
+  return r == LSYS_OK ? request(v) : r;
+}
+
+int lsys_viewer_text (lsys_viewer *v, const char *status, const char *help) {
+  lsys_vpanes_set_text(&v->panes, status, help);
+  return request(v);
 }
 
 int lsys_viewer_key (lsys_viewer *v, int k) {

@@ -676,7 +676,7 @@ static void startframe (const frame *F, const lsys_scene *s, const lsys_render_o
   static const GLfloat black[4] = {0, 0, 0, 1};
   const lsys_gl *gl = F->gl;
   GLfloat pos[4];
-  gl->Viewport(0, 0, F->fbw, F->fbh);
+  gl->Viewport(o->x, o->y, F->fbw, F->fbh);
   gl->ClearColor(s->background[0], s->background[1], s->background[2],
                  o->transparent ? 0.0f : 1.0f);
   gl->ClearDepth(1);

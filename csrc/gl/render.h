@@ -120,6 +120,9 @@ typedef struct lsys_render_cache {
 ** light, background, palette and textures are the scene's: scene.h). */
 typedef struct lsys_render_opts {
   int width, height;        /* image size in pixels; default 800 x 800 */
+  int x, y;                 /* lsys_render_draw: the viewport's lower left corner in the
+                               framebuffer (a pane of a window; default 0, 0); the clear
+                               still covers the whole framebuffer */
   int supersample;          /* offscreen: samples per pixel along each axis; default 3 */
   int transparent;          /* offscreen: background alpha 0 instead of 1 */
   int wireframe;            /* draw triangle edges only */

@@ -21,6 +21,7 @@
 #define LSYS_VIEWER_H
 
 #include "render.h"
+#include "vpanes.h"
 
 /* Something that can be picked: a segment from p0 to p1 (p0 = p1 for a
 ** sphere, disc, polygon or surface), with the module that drew it. */
@@ -97,7 +98,11 @@ enum {
   LSYS_VEV_STEP,                /* the frame shown changed (frame) */
   LSYS_VEV_CLOSED,              /* the window was closed (by the user or an error: msg) */
   LSYS_VEV_KEY,                 /* capture: a key pressed (key: GLFW key code, mods) */
-  LSYS_VEV_DRAG                 /* capture: a Ctrl-drag (phase 0 begin, 1 move, 2 end; x, y) */
+  LSYS_VEV_DRAG,                /* capture: a Ctrl-drag (phase 0 begin, 1 move, 2 end; x, y) */
+  LSYS_VEV_POINTER,             /* panes: a button pressed (phase 0), the pointer moved with
+                                   it held (1), released (2) over 'pane'; x, y in the pixels
+                                   of the pane's image; button (GLFW's), mods */
+  LSYS_VEV_SCROLL               /* panes: the wheel over 'pane' (scroll: notches, up > 0) */
 };
 
 typedef struct lsys_vevent {
@@ -108,7 +113,9 @@ typedef struct lsys_vevent {
   uint32_t module;              /* PICK: the module */
   int kind;                     /* PICK: the record's kind */
   double x, y;                  /* PICK, MISS, DRAG: window coordinates */
-  int key, mods, phase;         /* KEY, DRAG */
+  int key, mods, phase;         /* KEY, DRAG, POINTER */
+  int pane, button;             /* POINTER, SCROLL */
+  double scroll;                /* SCROLL */
   char path[512];               /* SCREENSHOT: the file */
   char msg[256];                /* SCREENSHOT failure, CLOSED by an error */
 } lsys_vevent;
@@ -159,9 +166,26 @@ typedef struct lsys_vstate {
   int wireframe;
   double proj[16], view[16];    /* the camera of the last picture drawn */
   int capture;                  /* the snapshot shown captures keys and drags */
+  int scene[4];                 /* the scene's rectangle in the window (x, y, w, h): the
+                                   whole window unless a layout gives panes */
 } lsys_vstate;
 
 void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st);
+
+/*
+** Panes (vpanes.h): splits the window into the scene and image panes
+** (lay->on 0: the scene fills the window again); posts an RGBA image
+** (w * h * 4 bytes, top row first, copied) for pane k; sets the status line
+** ('status', "" for the usual one) and the help text ('help', "" for the
+** usual; NULL leaves either as it is). While a layout is on, every key
+** press comes back as a KEY event (as with capture) and the mouse over a
+** pane as POINTER and SCROLL events. Each returns the request's serial
+** number (lsys_viewer_key); the image LSYS_EARG or LSYS_ENOMEM (< 0) when
+** it cannot be taken.
+*/
+int lsys_viewer_layout (lsys_viewer *v, const lsys_vlayout *lay);
+int lsys_viewer_image (lsys_viewer *v, int pane, const uint8_t *rgba, int w, int h);
+int lsys_viewer_text (lsys_viewer *v, const char *status, const char *help);
 
 /* Closes the window (if open), ends the thread and frees 'v'. */
 void lsys_viewer_close (lsys_viewer *v);

@@ -15,7 +15,10 @@
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
 **                                        "step" | "closed" | "key" | "drag", frame
 **                                        (1-based), step, module (1-based), kind, x, y,
-**                                        path, ok, msg, key, ctrl, shift, phase }
+**                                        path, ok, msg, key, ctrl, shift, phase };
+**                                        with a layout also "pointer" (pane, phase "down" |
+**                                        "move" | "up", button, x, y in the image's pixels,
+**                                        ctrl, shift) and "scroll" (pane, x, y, dy)
 **   v:pending() -> n                     events waiting to be polled
 **   v:screenshot([path])                 S key's screenshot of the next frame
 **   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
@@ -23,6 +26,13 @@
 **   v:state() -> table                   open, drawn, serial, width, height, fbwidth,
 **                                        fbheight, frame, nframes, playing, wireframe
 **   v:project({x, y, z}) -> x, y, depth  window coordinates with the last camera drawn
+**   v:layout(lay) -> serial              panes beside the scene (vpanes.h): lay = { scene =
+**                                        {x0, y0, x1, y1}, panes = { {x0, y0, x1, y1, bg =
+**                                        {r, g, b}}... } } in fractions of the window, y
+**                                        down; nil: the scene fills the window again
+**   v:image(k, pixels, w, h) -> serial   an RGBA image (w * h * 4 bytes, top row first)
+**                                        shown in pane k (1-based), copied
+**   v:text(status [, help]) -> serial    the status line ("" the usual) and help text
 **   v:close()                            (also when collected)
 **   core.filestamp(path) -> mtime, size  or nil, message
 **
@@ -246,8 +256,38 @@ static int viewer_post (lua_State *L) {
 }
 
 static const char *const evnames[] = {
-  "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag"
+  "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag", "pointer", "scroll"
 };
+
+static void setnum (lua_State *L, const char *k, double x) {
+  lua_pushnumber(L, x);
+  lua_setfield(L, -2, k);
+}
+
+static void setbool (lua_State *L, const char *k, int b) {
+  lua_pushboolean(L, b);
+  lua_setfield(L, -2, k);
+}
+
+/* The fields of a POINTER or SCROLL event (panes). */
+static void paneevent (lua_State *L, const lsys_vevent *ev) {
+  static const char *const phases[] = {"down", "move", "up"};
+  static const char *const buttons[] = {"left", "right", "middle"};
+  lua_pushinteger(L, ev->pane + 1);
+  lua_setfield(L, -2, "pane");
+  setnum(L, "x", ev->x);
+  setnum(L, "y", ev->y);
+  if (ev->type == LSYS_VEV_SCROLL) {
+    setnum(L, "dy", ev->scroll);
+    return;
+  }
+  lua_pushstring(L, phases[ev->phase >= 0 && ev->phase <= 2 ? ev->phase : 1]);
+  lua_setfield(L, -2, "phase");
+  lua_pushstring(L, ev->button >= 0 && ev->button <= 2 ? buttons[ev->button] : "other");
+  lua_setfield(L, -2, "button");
+  setbool(L, "ctrl", (ev->mods & 0x2) != 0);
+  setbool(L, "shift", (ev->mods & 0x1) != 0);
+}
 
 /* A name for a GLFW key code: "a".."z", "0".."9", punctuation, or a word. */
 static const char *keyname (int k, char buf[2]) {
@@ -313,6 +353,9 @@ static int viewer_poll (lua_State *L) {
       lua_setfield(L, -2, "x");
       lua_pushnumber(L, ev.y);
       lua_setfield(L, -2, "y");
+      break;
+    case LSYS_VEV_POINTER: case LSYS_VEV_SCROLL:
+      paneevent(L, &ev);
       break;
     case LSYS_VEV_SCREENSHOT:
       lua_pushstring(L, ev.path);
@@ -396,6 +439,12 @@ static int viewer_state (lua_State *L) {
   lua_setfield(L, -2, "playing");
   lua_pushboolean(L, st.wireframe);
   lua_setfield(L, -2, "wireframe");
+  lua_createtable(L, 4, 0);             /* the scene's rectangle: x, y, w, h */
+  for (int i = 0; i < 4; i++) {
+    lua_pushinteger(L, st.scene[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_setfield(L, -2, "scene");
   if (st.drawn > 0 && st.frame >= 0) {   /* the camera's axes in the world, rows of 'view' */
     double r[3] = {st.view[0], st.view[4], st.view[8]}, u[3] = {st.view[1], st.view[5], st.view[9]},
            f[3] = {-st.view[2], -st.view[6], -st.view[10]};
@@ -422,12 +471,96 @@ static int viewer_project (lua_State *L) {
   }
   lsys_viewer_state(v, &st);
   if (st.drawn == 0 || st.frame < 0 ||
-      !lsys_render_project(st.proj, st.view, st.width, st.height, p, out))
+      !lsys_render_project(st.proj, st.view, st.scene[2], st.scene[3], p, out))
     return 0;
-  lua_pushnumber(L, out[0]);
-  lua_pushnumber(L, out[1]);
+  lua_pushnumber(L, out[0] + st.scene[0]);    /* window coordinates, panes or not */
+  lua_pushnumber(L, out[1] + st.scene[1]);
   lua_pushnumber(L, out[2]);
   return 3;
+}
+
+/* Four fractions of the window from the list at 't' ("viewer:layout: <what> ..."). */
+static void readrect (lua_State *L, int t, const char *what, float r[4]) {
+  int i;
+  if (!lua_istable(L, t))
+    luaL_error(L, "viewer:layout: %s must be a table {x0, y0, x1, y1}", what);
+  for (i = 0; i < 4; i++) {
+    double x;
+    lua_rawgeti(L, t, i + 1);
+    x = lua_tonumber(L, -1);
+    if (!lua_isnumber(L, -1) || !(x >= 0 && x <= 1))
+      luaL_error(L, "viewer:layout: %s[%d] must be a number in [0, 1]", what, i + 1);
+    r[i] = (float)x;
+    lua_pop(L, 1);
+  }
+  if (!(r[0] < r[2] && r[1] < r[3]))
+    luaL_error(L, "viewer:layout: %s must have x0 < x1 and y0 < y1", what);
+}
+
+static int viewer_layout (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  lsys_vlayout lay;
+  memset(&lay, 0, sizeof lay);
+  if (!lua_isnoneornil(L, 2)) {
+    lua_Integer n, k;
+    char what[32];
+    luaL_checktype(L, 2, LUA_TTABLE);
+    lay.on = 1;
+    lua_getfield(L, 2, "scene");
+    readrect(L, lua_gettop(L), "scene", lay.scene);
+    lua_pop(L, 1);
+    if (lua_getfield(L, 2, "panes") != LUA_TTABLE)
+      luaL_error(L, "viewer:layout: panes must be a list");
+    n = luaL_len(L, -1);
+    luaL_argcheck(L, n <= LSYS_VPANES_MAX, 2, "too many panes (limit is 4)");
+    for (k = 1; k <= n; k++) {
+      int i;
+      lua_rawgeti(L, -1, k);
+      snprintf(what, sizeof what, "pane %d", (int)k);
+      readrect(L, lua_gettop(L), what, lay.pane[k - 1]);
+      lay.bg[k - 1][3] = 255;
+      for (i = 0; i < 3; i++) lay.bg[k - 1][i] = 255;
+      if (lua_getfield(L, -1, "bg") == LUA_TTABLE)
+        for (i = 0; i < 3; i++) {
+          double c;
+          lua_rawgeti(L, -1, i + 1);
+          c = luaL_optnumber(L, -1, 1);
+          lay.bg[k - 1][i] = (uint8_t)(255 * (c < 0 ? 0 : c > 1 ? 1 : c) + 0.5);
+          lua_pop(L, 1);
+        }
+      lua_pop(L, 2);
+    }
+    lay.npanes = (int)n;
+    lua_pop(L, 1);
+  }
+  lua_pushinteger(L, lsys_viewer_layout(v, &lay));
+  return 1;
+}
+
+static int viewer_image (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2), w = luaL_checkinteger(L, 4),
+              h = luaL_checkinteger(L, 5);
+  size_t len;
+  const char *px = luaL_checklstring(L, 3, &len);
+  int r;
+  luaL_argcheck(L, k >= 1 && k <= LSYS_VPANES_MAX, 2, "a pane from 1 to 4 expected");
+  luaL_argcheck(L, w >= 1 && w <= 16384, 4, "a width from 1 to 16384 expected");
+  luaL_argcheck(L, h >= 1 && h <= 16384, 5, "a height from 1 to 16384 expected");
+  if ((lua_Integer)len != w * h * 4)
+    return luaL_error(L, "viewer:image: %d bytes of pixels for %dx%d (%d expected)", (int)len,
+                      (int)w, (int)h, (int)(w * h * 4));
+  r = lsys_viewer_image(v, (int)k - 1, (const uint8_t *)px, (int)w, (int)h);
+  if (r < 0) return luaL_error(L, "not enough memory for the viewer");
+  lua_pushinteger(L, r);
+  return 1;
+}
+
+static int viewer_text (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  const char *status = luaL_optstring(L, 2, NULL), *help = luaL_optstring(L, 3, NULL);
+  lua_pushinteger(L, lsys_viewer_text(v, status, help));
+  return 1;
 }
 
 static int viewer_close (lua_State *L) {
@@ -443,8 +576,10 @@ static const luaL_Reg viewer_meta[] = {
 };
 
 static const luaL_Reg viewer_methods[] = {
-  {"post", viewer_post}, {"poll", viewer_poll}, {"pending", viewer_pending}, {"screenshot", viewer_screenshot},
+  {"post", viewer_post}, {"poll", viewer_poll}, {"pending", viewer_pending},
+  {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
+  {"layout", viewer_layout}, {"image", viewer_image}, {"text", viewer_text},
   {"close", viewer_close}, {NULL, NULL}
 };
 #endif
