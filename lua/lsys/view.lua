@@ -38,7 +38,9 @@
 --                    an index into `textures` (1 = first; 0 none) applied to every
 --                    instance; precision is the lines per patch in s and t (1..64; the
 --                    file's own, at most 64, else 4). Normalised to
---                    { P = { surface = lsys.Surface, scale =, texture =, s =, t = } }
+--                    { P = { surface = lsys.Surface, scale =, texture =, s =, t = } }.
+--                    An entry may also be an lsys.Surface or an Organ (lsys.sketch.organ),
+--                    alone or as the table's `surface`
 --   textures         list of "image.png" | { file =, mag = "near", min = "near",
 --                    mode = "modulate", per_surface = false, intensity = (from the
 --                    image) }: textures selected by @Tx(k) (§5, Appendix B.2); filters
@@ -309,6 +311,15 @@ local function precision (ctx, nm, p)
   return math.tointeger(p[1]), math.tointeger(p[2])
 end
 
+-- The lsys.Surface that `x` is or makes: an lsys.Surface, or an Organ (lsys.sketch.organ,
+-- a table whose metatable is named "lsys.Organ") through its surface(); else nil.
+local function surfobj (x)
+  if udname(x) == "lsys.Surface" then return x end
+  local mt = type(x) == "table" and getmetatable(x)
+  if type(mt) == "table" and rawget(mt, "__name") == "lsys.Organ" then return x:surface() end
+  return nil
+end
+
 local function surfaces (ctx, x, name)
   if type(x) ~= "table" then fail(ctx.where, "'%s' must be a table { name = file }", name) end
   local out = {}
@@ -319,6 +330,7 @@ local function surfaces (ctx, x, name)
     end
     local nm = format("%s.%s", name, k)
     if type(sp) == "string" then sp = { file = sp }
+    elseif surfobj(sp) ~= nil then sp = { surface = sp }
     elseif type(sp) ~= "table" then
       fail(ctx.where, "%s must be a file name or { file = ..., scale = ... }", nm)
     end
@@ -330,10 +342,10 @@ local function surfaces (ctx, x, name)
     end
     local surf
     if sp.surface ~= nil then
-      if udname(sp.surface) ~= "lsys.Surface" then
+      surf = surfobj(sp.surface)
+      if surf == nil then
         fail(ctx.where, "%s: 'surface' must be an lsys.Surface", nm)
       end
-      surf = sp.surface
     elseif sp.file ~= nil then
       surf = fileobj(ctx, nm, sp.file, nil, "surface_load")
     else
