@@ -50,6 +50,7 @@ void lsys_model_free (lsys_model *m) {
     LSYS_FREE(m->sets[i].plain);
   }
   for (i = 0; i < m->nrules; i++) LSYS_FREE(m->rules[i].vm);
+  LSYS_FREE(m->funcs);
   for (i = 0; i < m->nlevels; i++) lsys_lstring_free(&m->levels[i]);
   LSYS_FREE(m->levels);
   LSYS_FREE(m->sets);
@@ -194,7 +195,7 @@ int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
   r = &m->rules[idx];
   if (code != NULL) {
     if (!(r->flags & LSYS_RF_CALL) || (r->flags & LSYS_RF_DYN) ||
-        lsys_expr_check(code, n, (int)r->nargs) != (int)r->nvals)
+        lsys_expr_check(code, n, (int)r->nargs, (int)m->nfuncs) != (int)r->nvals)
       return LSYS_EARG;
     c = (lsys_ins *)LSYS_MALLOC((size_t)n * sizeof *c + 1);
     if (c == NULL) return LSYS_ENOMEM;
@@ -203,6 +204,27 @@ int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
   LSYS_FREE(r->vm);
   r->vm = c;
   r->nvm = c ? n : 0;
+  return LSYS_OK;
+}
+
+int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n) {
+  const lsys_func **t = NULL;
+  size_t i;
+  if (m->busy) return busyerror(m, NULL);
+  if (n > 0) {
+    if (n > (size_t)LSYS_EXPR_MAXCODE * 64) return LSYS_EARG;   /* fits an int */
+    t = (const lsys_func **)LSYS_MALLOC(n * sizeof *t);
+    if (t == NULL) return LSYS_ENOMEM;
+    memcpy(t, funcs, n * sizeof *t);
+  }
+  for (i = 0; i < m->nrules; i++) {
+    LSYS_FREE(m->rules[i].vm);
+    m->rules[i].vm = NULL;
+    m->rules[i].nvm = 0;
+  }
+  LSYS_FREE(m->funcs);
+  m->funcs = t;
+  m->nfuncs = n;
   return LSYS_OK;
 }
 
@@ -463,7 +485,7 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
       if (r->vm != NULL) {
-        if (!lsys_expr_run(r->vm, r->nvm, args, vals, m->cur)) continue;
+        if (!lsys_expr_run(r->vm, r->nvm, args, vals, m->cur, m->funcs)) continue;
         if ((st = checkvals(m, r, i, vals)) != LSYS_OK) return st;
       }
       else if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
@@ -697,7 +719,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           continue;
         }
         if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
-          if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur)) {
+          if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur, m->funcs)) {
             /* a bad value is reported here: running the program again in the full
             ** path would draw its random numbers again */
             if ((st = checkvals(m, r, i, m->args)) != LSYS_OK) return st;

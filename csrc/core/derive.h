@@ -95,6 +95,9 @@ typedef struct lsys_model {
   lsys_rng rng, hrng;          /* derivation; homomorphism */
   lsys_rng *cur;               /* the generator 'ran' uses now */
   lsys_rulefn fn; void *fnud;
+  const lsys_func **funcs;     /* positional functions of LSYS_OP_FN (the table is
+                               ** owned, the functions not: lsys_model_setfuncs) */
+  size_t nfuncs;
   /* scratch, reused */
   double *args; size_t argscap;
   double *alt; size_t altcap;  /* stochastic alternatives: weight, rule, args, vals */
@@ -129,6 +132,13 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
 /* Sets (code != NULL) or clears the expression program of rule 'idx'; it
 ** must write exactly the rule's nvals values. Returns LSYS_OK or LSYS_EARG. */
 int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n);
+
+/* Sets the table of positional functions the rules' expression programs
+** call (LSYS_OP_FN indices); the pointers are copied, the functions are the
+** caller's and must stay alive while the model uses them. Clears every
+** rule's program first (their indices referred to the old table). Returns
+** LSYS_OK, LSYS_ENOMEM or LSYS_EBUSY. */
+int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n);
 
 /* Sets the ignore (consider = 0) or consider list of sub-L-system 'sub'. */
 int lsys_model_skiplist (lsys_model *m, int sub, int consider,

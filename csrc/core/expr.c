@@ -10,7 +10,8 @@
 static int effect (int op) {       /* stack change */
   switch (op) {
     case LSYS_OP_K: case LSYS_OP_ARG: return 1;
-    case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_F1: case LSYS_OP_RAN: return 0;
+    case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_F1: case LSYS_OP_RAN: case LSYS_OP_FN:
+      return 0;
     case LSYS_OP_JF: case LSYS_OP_JT: return -1;   /* on the fall-through path */
     default: return -1;
   }
@@ -30,7 +31,7 @@ static int samestate (const pstate *a, const pstate *b) {
   return a->depth == b->depth && a->outs == b->outs && a->conds == b->conds;
 }
 
-int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
+int lsys_expr_check (const lsys_ins *code, int n, int nargs, int nfuncs) {
   pstate at[LSYS_EXPR_MAXCODE + 1], cur = {0, 0, 0};
   unsigned char seen[LSYS_EXPR_MAXCODE + 1];
   int pc;
@@ -45,6 +46,7 @@ int lsys_expr_check (const lsys_ins *code, int n, int nargs) {
       case LSYS_OP_ARG: if (i->a < 0 || i->a >= nargs) return -1; need = 0; break;
       case LSYS_OP_F1: if (i->a < LSYS_F_ABS || i->a > LSYS_F_ATAN) return -1; need = 1; break;
       case LSYS_OP_F2: if (i->a < LSYS_F_MIN || i->a >= LSYS_F_NFUNCS) return -1; need = 2; break;
+      case LSYS_OP_FN: if (i->a < 0 || i->a >= nfuncs) return -1; need = 1; break;
       case LSYS_OP_UNM: case LSYS_OP_NOT: case LSYS_OP_RAN: need = 1; break;
       case LSYS_OP_JF: case LSYS_OP_JT:
         if (i->a <= pc + 1 || i->a > n || cur.depth < 1) return -1;
@@ -105,7 +107,7 @@ static double fn2 (int f, double x, double y) {
 }
 
 int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
-                   lsys_rng *rng) {
+                   lsys_rng *rng, const lsys_func *const *funcs) {
   double st[LSYS_EXPR_STACK];
   int sp = 0, pc;
   for (pc = 0; pc < n; pc++) {
@@ -143,6 +145,7 @@ int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
       case LSYS_OP_F2: y = st[--sp]; st[sp - 1] = fn2(i->a, st[sp - 1], y); break;
       case LSYS_OP_RAN: st[sp - 1] *= lsys_rng_uniform(rng); break;
       case LSYS_OP_NRAN: y = st[--sp]; st[sp - 1] = lsys_rng_normal(rng, st[sp - 1], y); break;
+      case LSYS_OP_FN: st[sp - 1] = lsys_func_eval(funcs[i->a], st[sp - 1]); break;
       case LSYS_OP_RET: *out++ = st[--sp]; break;
       case LSYS_OP_COND: if (st[--sp] == 0) return 0; break;
       default: return 0;

@@ -9,6 +9,7 @@
 #ifndef LSYS_EXPR_H
 #define LSYS_EXPR_H
 
+#include "func.h"
 #include "rng.h"
 
 enum {
@@ -25,6 +26,7 @@ enum {
   LSYS_OP_NRAN,   /* top = normal(below, top) */
   LSYS_OP_RET,    /* end of one expression: pop into the next output */
   LSYS_OP_COND,   /* end of the condition: pop; stop with 0 when false */
+  LSYS_OP_FN,     /* top = funcs[a](top): a positional function (func.h) */
   LSYS_OP_NOPS
 };
 
@@ -38,17 +40,18 @@ typedef struct lsys_ins { int32_t op, a; double k; } lsys_ins;
 #define LSYS_EXPR_MAXCODE 1024
 
 /*
-** Checks a program: opcodes, argument indices below 'nargs', jumps
-** forward and inside, the stack within LSYS_EXPR_STACK, and that every path
+** Checks a program: opcodes, argument indices below 'nargs', function
+** indices below 'nfuncs', jumps forward and inside, the stack within LSYS_EXPR_STACK, and that every path
 ** through it (whichever way each jump goes) writes the same number of
 ** outputs and passes the same conditions. Returns that number of outputs,
 ** or -1 when it is malformed.
 */
-int lsys_expr_check (const lsys_ins *code, int n, int nargs);
+int lsys_expr_check (const lsys_ins *code, int n, int nargs, int nfuncs);
 
-/* Runs a checked program. Returns 1 and fills 'out', or 0 when the
-** condition is false. */
+/* Runs a checked program; 'funcs' is the table of positional functions its
+** LSYS_OP_FN indices refer to (as many as the check was given). Returns 1
+** and fills 'out', or 0 when the condition is false. */
 int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
-                   lsys_rng *rng);
+                   lsys_rng *rng, const lsys_func *const *funcs);
 
 #endif

@@ -179,7 +179,8 @@ int lsys_func_set (lsys_func *f, const double *pt, size_t n, const char *name, i
     lsys_func_free(&g);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
   }
-  memcpy(g.pt, pt, 2 * n * sizeof *g.pt);
+  for (i = 0; i < 2 * n; i++) g.pt[i] = pt[i] == 0 ? 0.0 : pt[i];   /* no -0: "-0 0 1"
+                                   ** and "0 0 1" would be one point written twice */
   strcpy(g.name, name);
   spans(&g);
   if (samples > 2) {

@@ -282,31 +282,31 @@ static void test_expr_paths (void) {
   lsys_rng rng;
   double x = 2, out[3] = {-7, -7, -7};
   lsys_rng_seed(&rng, 1);
-  assert(lsys_expr_check(over, 6, 0) == -1);
-  assert(lsys_expr_check(cond, 6, 0) == -1);
-  assert(lsys_expr_check(ok, 8, 1) == 1);
-  assert(lsys_expr_run(ok, 8, &x, out, &rng) == 1 && out[0] == 1 && out[1] == -7);
+  assert(lsys_expr_check(over, 6, 0, 0) == -1);
+  assert(lsys_expr_check(cond, 6, 0, 0) == -1);
+  assert(lsys_expr_check(ok, 8, 1, 0) == 1);
+  assert(lsys_expr_run(ok, 8, &x, out, &rng, NULL) == 1 && out[0] == 1 && out[1] == -7);
   x = 0;
-  assert(lsys_expr_run(ok, 8, &x, out, &rng) == 1 && out[0] == 0 && out[1] == -7);
-  assert(lsys_expr_check(bad, 2, 0) == -1);
+  assert(lsys_expr_run(ok, 8, &x, out, &rng, NULL) == 1 && out[0] == 0 && out[1] == -7);
+  assert(lsys_expr_check(bad, 2, 0, 0) == -1);
   {   /* x % y with the signs of Lua: -5 % -3 == -2, 5 % -3 == -1, -5 % 3 == 1; ceil gives no -0 */
     lsys_ins mod[] = {{LSYS_OP_ARG, 0, 0}, {LSYS_OP_ARG, 1, 0}, {LSYS_OP_MOD, 0, 0},
                       {LSYS_OP_RET, 0, 0}, {LSYS_OP_K, 0, -0.5}, {LSYS_OP_F1, LSYS_F_CEIL, 0},
                       {LSYS_OP_RET, 0, 0}};
     double a[2], o[2];
-    assert(lsys_expr_check(mod, 7, 2) == 2);
+    assert(lsys_expr_check(mod, 7, 2, 0) == 2);
     a[0] = -5; a[1] = -3;
-    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -2);
+    assert(lsys_expr_run(mod, 7, a, o, &rng, NULL) == 1 && o[0] == -2);
     assert(o[1] == 0 && !signbit(o[1]));
     a[0] = 5; a[1] = -3;
-    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -1);
+    assert(lsys_expr_run(mod, 7, a, o, &rng, NULL) == 1 && o[0] == -1);
     a[0] = -5; a[1] = 3;
-    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == 1);
+    assert(lsys_expr_run(mod, 7, a, o, &rng, NULL) == 1 && o[0] == 1);
     a[0] = -1e-320; a[1] = -1;
-    assert(lsys_expr_run(mod, 7, a, o, &rng) == 1 && o[0] == -1e-320);
+    assert(lsys_expr_run(mod, 7, a, o, &rng, NULL) == 1 && o[0] == -1e-320);
   }
-  assert(lsys_expr_check(NULL, 0, 0) == 0);
-  assert(lsys_expr_check(NULL, 1, 0) == -1);
+  assert(lsys_expr_check(NULL, 0, 0, 0) == 0);
+  assert(lsys_expr_check(NULL, 1, 0, 0) == -1);
 }
 
 static void test_expr (void) {
@@ -328,19 +328,19 @@ static void test_expr (void) {
   memmove(&c[12], &c[13], (size_t)(n - 13) * sizeof c[0]);
   n--;
   c[7].a = 12;
-  assert(lsys_expr_check(c, n, 1) == 2);
+  assert(lsys_expr_check(c, n, 1, 0) == 2);
   x = 5;
-  assert(lsys_expr_run(c, n, &x, out, &rng) == 1);
+  assert(lsys_expr_run(c, n, &x, out, &rng, NULL) == 1);
   assert(out[0] == -1 && out[1] == 32);                  /* Lua: 5 % -3 == -1 */
   x = 4;
-  assert(lsys_expr_run(c, n, &x, out, &rng) == 0);
+  assert(lsys_expr_run(c, n, &x, out, &rng, NULL) == 0);
   x = 1;
-  assert(lsys_expr_run(c, n, &x, out, &rng) == 0);
+  assert(lsys_expr_run(c, n, &x, out, &rng, NULL) == 0);
   c[0].a = 1;
-  assert(lsys_expr_check(c, n, 1) == -1);                /* argument out of range */
+  assert(lsys_expr_check(c, n, 1, 0) == -1);                /* argument out of range */
   c[0].a = 0;
   c[7].a = 3;
-  assert(lsys_expr_check(c, n, 1) == -1);                /* backward jump */
+  assert(lsys_expr_check(c, n, 1, 0) == -1);                /* backward jump */
   test_expr_paths();
 }
 

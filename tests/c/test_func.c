@@ -20,6 +20,7 @@
 #include "talloc.h"
 #include "common.c"
 #include "func.c"
+#include "expr.c"
 
 static void set (lsys_func *f, const double *pt, size_t n, int samples) {
   lsys_error e;
@@ -319,6 +320,34 @@ static void test_nomem (void) {
   assert(k > 3);
 }
 
+/* LSYS_OP_FN on the expression machine: the index is checked against the
+** table's size, and the value is lsys_func_eval's. */
+static void test_machine (void) {
+  static const double pt[] = { 0, 0, 1.0 / 3, 1, 2.0 / 3, 1, 1, 0 };
+  const lsys_ins prog[] = { {LSYS_OP_ARG, 0, 0}, {LSYS_OP_FN, 1, 0}, {LSYS_OP_K, 0, 2},
+                            {LSYS_OP_MUL, 0, 0}, {LSYS_OP_RET, 0, 0} };
+  lsys_ins bad[5];
+  lsys_func f[2];
+  const lsys_func *t[2];
+  double x = 0.25, out[1];
+  lsys_rng rng;
+  lsys_rng_seed(&rng, 1);
+  lsys_func_init(&f[0]); lsys_func_init(&f[1]);
+  set(&f[0], pt, 4, 0);
+  set(&f[1], pt, 4, 5);
+  t[0] = &f[0]; t[1] = &f[1];
+  assert(lsys_expr_check(prog, 5, 1, 2) == 1);
+  assert(lsys_expr_check(prog, 5, 1, 1) == -1);   /* index 1 of a table of 1 */
+  memcpy(bad, prog, sizeof bad);
+  bad[1].a = -1;
+  assert(lsys_expr_check(bad, 5, 1, 2) == -1);
+  bad[0].op = LSYS_OP_FN; bad[0].a = 0;           /* nothing on the stack */
+  assert(lsys_expr_check(bad, 5, 1, 2) == -1);
+  assert(lsys_expr_run(prog, 5, &x, out, &rng, t) == 1);
+  assert(out[0] == 2 * lsys_func_eval(&f[1], 0.25) && fabs(out[0] - 1.125) < 1e-15);
+  lsys_func_free(&f[0]); lsys_func_free(&f[1]);
+}
+
 int main (void) {
   test_four();
   test_six();
@@ -329,6 +358,7 @@ int main (void) {
   test_parse_errors();
   test_format();
   test_nomem();
+  test_machine();
   assert(nlive == 0);
   printf("test_func: ok\n");
   return 0;

@@ -305,7 +305,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
   if (h->n > 0) {
     if (h->nout != (int)r->nvals)
       return lsys_seterror(&m->err, LSYS_ERULE, m->cur_index, "rule %d: bad program", r->id);
-    if (!lsys_expr_run(h->code, h->n, args, out, m->cur)) return 0;
+    if (!lsys_expr_run(h->code, h->n, args, out, m->cur, m->funcs)) return 0;
     for (k = 0; k < r->nvals; k++) {
       if (!isfinite(out[k]))
         return lsys_seterror(&m->err, LSYS_ERULE, m->cur_index,
@@ -473,7 +473,7 @@ static void addrule (harness *H, int kind, const char *mb, const char *me, const
   }
   if (nonfinite) __builtin_trap();                   /* a constant inf was accepted */
   /* the program reads the rule's formal parameters: lc, predecessor, rc */
-  h->nout = h->n > 0 ? lsys_expr_check(h->code, h->n, (int)H->m.rules[idx].nargs) : 0;
+  h->nout = h->n > 0 ? lsys_expr_check(h->code, h->n, (int)H->m.rules[idx].nargs, 0) : 0;
   if (h->n > 0 && h->nout != (int)H->m.rules[idx].nvals) __builtin_trap();
   if (vm == 1 && h->n > 0 &&
       lsys_model_setvm(&H->m, (size_t)idx, h->code, h->n) != LSYS_OK)
@@ -495,7 +495,7 @@ static void rawvm (harness *H, const uint8_t *p, size_t n) {
                 p[1] < 0xf0 ? p[1] % 20 : (int8_t)p[1];
     code[k].k = ks[p[2] % 8] * (1 + (p[2] >> 3));
   }
-  nout = lsys_expr_check(code, k, (int)r->nargs);
+  nout = lsys_expr_check(code, k, (int)r->nargs, (int)H->m.nfuncs);
   st = lsys_model_setvm(&H->m, (size_t)H->last, code, k);
   if (tracing) fprintf(stderr, "raw program: %d instructions, %d outputs, setvm %d\n", k, nout, st);
   if (st == LSYS_OK && (nout != (int)r->nvals || !(r->flags & LSYS_RF_CALL) ||

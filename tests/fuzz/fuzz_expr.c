@@ -6,7 +6,7 @@
 ** range). Crashes and sanitizer reports are failures, and so is a run that
 ** breaks the checker's promise:
 **
-**   n = lsys_expr_check(code, len, nargs) >= 0 means every run writes
+**   n = lsys_expr_check(code, len, nargs, 2) >= 0 means every run writes
 **   exactly n outputs when it returns 1, and none when it returns 0 (a
 **   false condition); the stack stays within LSYS_EXPR_STACK.
 **
@@ -55,6 +55,22 @@ static double konst (const uint8_t *p, size_t n, size_t *used) {
 
 static int tracing = -1;
 
+/* The positional functions LSYS_OP_FN calls: two, made at the first input. */
+static const lsys_func *const *functions (void) {
+  static lsys_func f[2];
+  static const lsys_func *t[2];
+  static const double p0[] = { 0, 0, 1.0 / 3, 1, 2.0 / 3, 1, 1, 0 };
+  static const double p1[] = { 0, -2, 0.5, -2, 0.5, 3, 0.5, 3, 0.75, 1e6, 1, 0 };
+  lsys_error e;
+  if (t[0] == NULL) {
+    if (lsys_func_set(&f[0], p0, 4, "bump", 0, &e) != LSYS_OK ||
+        lsys_func_set(&f[1], p1, 6, "steep", 7, &e) != LSYS_OK)
+      __builtin_trap();
+    t[0] = &f[0]; t[1] = &f[1];
+  }
+  return t;
+}
+
 static int canary (const double *d) {
   uint64_t u;
   memcpy(&u, d, sizeof u);
@@ -87,13 +103,14 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       case LSYS_OP_F1: case LSYS_OP_F2:
         i->a = raw ? (int8_t)data[1] : data[1] % (LSYS_F_NFUNCS + 1);
         break;
+      case LSYS_OP_FN: i->a = raw ? (int8_t)data[1] : data[1] % 3; break;   /* 2: out of range */
       default: i->a = (int8_t)data[1]; break;
     }
     used = 0;
     i->k = konst(data + 2, 1, &used);
   }
   if (tracing < 0) tracing = getenv("FUZZ_TRACE") != NULL;
-  nout = lsys_expr_check(code, n, nargs);
+  nout = lsys_expr_check(code, n, nargs, 2);
   if (tracing) fprintf(stderr, "%d arguments, %d instructions: check %d\n", nargs, n, nout);
   if (nout > NOUT - 1) __builtin_trap();
   if (nout < 0) return 0;
@@ -103,7 +120,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
     memcpy(&out2[k], &u, sizeof u);
   }
   lsys_rng_seed(&rng, 7);
-  st = lsys_expr_run(code, n, args, out, &rng);
+  st = lsys_expr_run(code, n, args, out, &rng, functions());
   if (tracing) {
     fprintf(stderr, "run %d:", st);
     for (k = 0; st == 1 && k < nout && k < 16; k++) fprintf(stderr, " %.17g", out[k]);
@@ -114,9 +131,11 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
     if (canary(&out[k]) != (st == 0 || k >= nout)) __builtin_trap();
   /* deterministic: the same seed gives the same bits */
   lsys_rng_seed(&rng, 7);
-  st2 = lsys_expr_run(code, n, args, out2, &rng);
+  st2 = lsys_expr_run(code, n, args, out2, &rng, functions());
   if (st2 != st || memcmp(out, out2, sizeof out) != 0) __builtin_trap();
   /* more arguments never make a program invalid */
-  if (nargs < 8 && lsys_expr_check(code, n, 8) != nout) __builtin_trap();
+  if (nargs < 8 && lsys_expr_check(code, n, 8, 2) != nout) __builtin_trap();
+  /* more functions neither; fewer only when the program calls one beyond them */
+  if (lsys_expr_check(code, n, nargs, 9) != nout) __builtin_trap();
   return 0;
 }
