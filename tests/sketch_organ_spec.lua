@@ -82,7 +82,7 @@ describe("lsys.sketch.organ", function ()
       local phi = math.pi / 2 * i / 200
       side[#side + 1] = { 50 + R - R * math.cos(phi), 400 - R * math.sin(phi) }
     end
-    local org = rect { side = side }
+    local org = rect { side = side, capture = false }
     local r = 2 / math.pi
     local sc = scene(org, "~L")
     local worst = 0
@@ -103,7 +103,7 @@ describe("lsys.sketch.organ", function ()
   it("gives a V cross-section its dihedral", function ()
     -- half chord 50 px, depth 20 px: flanks at atan(0.4) below the chord, so the dihedral
     -- is 180 - 2 atan(0.4) degrees and the crease 0.1 below the edges (width 0.5)
-    local org = rect { front = { { 0, 0 }, { 50, 20 }, { 100, 0 } } }
+    local org = rect { front = { { 0, 0 }, { 50, 20 }, { 100, 0 } }, capture = false }
     for _, p in ipairs(vertices(scene(org, "~L"))) do
       assert.near(-0.1 + 0.4 * math.abs(p[1]), p[3], 1e-5)
     end
@@ -146,7 +146,7 @@ describe("lsys.sketch.organ", function ()
 
   it("mirrors a single boundary about its chord, whichever end was drawn first", function ()
     local half = { { 150, 300 }, { 110, 250 }, { 105, 180 }, { 150, 100 } }
-    local org = organ.build { top = { left = half } }
+    local org = organ.build { top = { left = half }, capture = false }
     for _, st in ipairs { { 0.2, 0.3 }, { 0.4, 0.8 }, { 0, 0.5 } } do
       local x1, y1, z1 = org:blend(st[1], st[2])
       local x2, y2, z2 = org:blend(1 - st[1], st[2])
@@ -158,10 +158,10 @@ describe("lsys.sketch.organ", function ()
     assert.near({ -0.225, 0.6, 0 }, { org:blend(0, (d1 + d2) / (d1 + d2 + d3)) }, 1e-9)
     local rev = {}
     for i = #half, 1, -1 do rev[#rev + 1] = half[i] end
-    assert.equal(org:text(), organ.build { top = { left = rev } }:text())
+    assert.equal(org:text(), organ.build { top = { left = rev }, capture = false }:text())
     local mirrored = {}
     for i, p in ipairs(half) do mirrored[i] = { 300 - p[1], p[2] } end
-    assert.equal(org:text(), organ.build { top = { right = mirrored } }:text())
+    assert.equal(org:text(), organ.build { top = { right = mirrored }, capture = false }:text())
   end)
 
   it("turns strokes drawn at a slant so that base to tip is the heading", function ()
@@ -234,11 +234,12 @@ describe("lsys.sketch.organ", function ()
   it("round-trips through its JSON table and file", function ()
     local cjson = require "cjson"
     local org = rect { front = { { 0, 0 }, { 50, 20 }, { 100, 0 } }, name = "v",
-                       resolution = { 2, 2 }, width_scale = 0.5 }
+                       resolution = { 2, 2 }, width_scale = 0.5, capture = false }
     local t = org:to_table()
     assert.same({ { 100, 300 }, { 100, 100 } }, t.organ.top.left)
     assert.same({ 2, 2 }, t.organ.resolution)
     assert.equal(0.5, t.organ.width_scale)
+    assert.is_false(t.organ.capture)
     local dir = H.tmpdir()
     H.write(dir .. "/v.json", cjson.encode(t))
     assert.equal(org:text(), organ.load(dir .. "/v.json"):text())
@@ -277,7 +278,8 @@ describe("lsys.sketch.organ", function ()
       { 42, B .. "a table { top = ..., side = ..., front = ... } expected, got number" },
       { { top = { left = ok }, stem = {} },
         B .. "unknown field 'stem' (known: top, side, front, resolution, precision, name, " ..
-        "width_scale)" },
+        "width_scale, capture)" },
+      { { top = { left = ok }, capture = 1 }, B .. "'capture' must be true or false" },
       { { side = ok }, B .. "'top' must be { left = points, right = points }" },
       { { top = {} }, B .. "top view: a left or a right boundary stroke is needed" },
       { { top = { middle = ok } }, B .. "top: unknown field 'middle' (known: left, right)" },
@@ -330,6 +332,27 @@ describe("lsys.sketch.organ", function ()
                  errmsg(organ.build, { top = { left = big } }))
     assert.equal(B .. "side stroke: fewer than two points",
                  errmsg(organ, { top = { left = ok }, side = {} }))
+  end)
+
+  it("smooths hand-drawn strokes with the stroke capture of §3.1", function ()
+    if core.stroke_curve == nil or core.bspline == nil then
+      return pending("this build has no core.stroke_curve")
+    end
+    -- a straight boundary drawn with a 2 px tremor: captured, it wavers far less
+    local shaky = {}
+    for i = 0, 200 do shaky[#shaky + 1] = { 100 + (i % 2 == 0 and 2 or -2), 300 - i } end
+    local function wobble (org)            -- the spread of the left edge's x
+      local lo, hi = math.huge, -math.huge
+      for i = 50, 950 do
+        local x = org:blend(0, i / 1000)
+        lo, hi = math.min(lo, x), math.max(hi, x)
+      end
+      return hi - lo
+    end
+    local raw = organ.build { top = { left = shaky, right = RIGHT }, capture = false }
+    local cap = organ.build { top = { left = shaky, right = RIGHT } }
+    assert.is_true(wobble(raw) > 0.015, "raw wobble " .. wobble(raw))   -- 4 px of 200
+    assert.is_true(wobble(cap) < 0.004, "captured wobble " .. wobble(cap))
   end)
 
   it("makes common leaf shapes", function ()

@@ -93,19 +93,33 @@ local function reverse (s)
   return { xs = xs, ys = ys }
 end
 
--- Stroke capture (Anastacio et al. 2009, §3.1) when the core has it: the stroke smoothed
--- into a quadratic B-spline, sampled again densely; else the stroke as drawn.
+-- Stroke capture (Anastacio et al. 2009, §3.1), when this build's core has it: the points
+-- resampled one per pixel, three steps of Chaikin reverse subdivision, the result the
+-- control points of a clamped quadratic B-spline, sampled again at equal arc length. A
+-- stroke too short for that is taken as drawn.
 local function smooth (s)
-  local f = core.stroke_curve
-  if f == nil then return s end
+  local capture, bspline = core.stroke_curve, core.bspline
+  if capture == nil or bspline == nil then return s end
   local pts = {}
   for i = 1, #s.xs do pts[i] = { s.xs[i], s.ys[i] } end
-  local ok, c = pcall(f, pts)
-  if not ok or c == nil or c.sample == nil then return s end
-  local ok2, q = pcall(c.sample, c, 256)
-  if not ok2 or type(q) ~= "table" or #q < 2 then return s end
+  local ok, ctrl = pcall(capture, pts, { spacing = 1, steps = 3, degree = 2 })
+  if not ok or type(ctrl) ~= "table" then return s end
+  if type(ctrl[1]) ~= "table" then                    -- a flat list x1, y1, x2, y2, ...
+    local q = {}
+    for i = 1, #ctrl // 2 do q[i] = { ctrl[2 * i - 1], ctrl[2 * i] } end
+    ctrl = q
+  end
+  local ok2, c = pcall(bspline, ctrl, { degree = 2, clamped = true })
+  if not ok2 or c == nil then return s end
+  local ok3, q = pcall(c.sample_length, c, max(64, min(2048, 4 * #ctrl)))
+  if not ok3 or type(q) ~= "table" then return s end
   local xs, ys = {}, {}
-  for i = 1, #q do xs[i], ys[i] = q[i][1], q[i][2] end
+  if type(q[1]) == "table" then
+    for i = 1, #q do xs[i], ys[i] = q[i][1], q[i][2] end
+  else
+    for i = 1, #q // 2 do xs[i], ys[i] = q[2 * i - 1], q[2 * i] end
+  end
+  if #xs < 2 then return s end
   return { xs = xs, ys = ys }
 end
 
@@ -361,8 +375,8 @@ end
 -- Building
 
 local KNOWN = { top = true, side = true, front = true, resolution = true, precision = true,
-                name = true, width_scale = true }
-local KNOWNLIST = "top, side, front, resolution, precision, name, width_scale"
+                name = true, width_scale = true, capture = true }
+local KNOWNLIST = "top, side, front, resolution, precision, name, width_scale, capture"
 
 -- A pair of whole numbers from 1 to `hi`, or nil when not given.
 local function pair (who, what, p, hi)
@@ -412,10 +426,14 @@ local function build (t, who)
   end
   local res = pair(who, "resolution", t.resolution, MAXPATCH)
   local prec = pair(who, "precision", t.precision, 256)
-  local left = top.left ~= nil and smooth(stroke(who, "top left", top.left)) or nil
-  local right = top.right ~= nil and smooth(stroke(who, "top right", top.right)) or nil
-  local side = t.side ~= nil and smooth(stroke(who, "side", t.side)) or nil
-  local front = t.front ~= nil and smooth(stroke(who, "front", t.front)) or nil
+  if t.capture ~= nil and type(t.capture) ~= "boolean" then
+    error(format("%s: 'capture' must be true or false", who), 0)
+  end
+  local cap = t.capture ~= false and smooth or function (x) return x end
+  local left = top.left ~= nil and cap(stroke(who, "top left", top.left)) or nil
+  local right = top.right ~= nil and cap(stroke(who, "top right", top.right)) or nil
+  local side = t.side ~= nil and cap(stroke(who, "side", t.side)) or nil
+  local front = t.front ~= nil and cap(stroke(who, "front", t.front)) or nil
   local L, R = topview(who, left, right, ws)
   local org = setmetatable({
     name = name, width_scale = ws,
@@ -432,7 +450,7 @@ local function build (t, who)
     ns, nt = min(2 * ns, FIT_CAP[1]), min(2 * nt, FIT_CAP[2])
   end
   org.precision = prec or { max(1, -(-LINES[1] // ns)), max(1, -(-LINES[2] // nt)) }
-  org._given = { resolution = res, precision = prec }
+  org._given = { resolution = res, precision = prec, capture = t.capture }
   return org
 end
 
@@ -553,6 +571,7 @@ function Organ:to_table ()
   }
   if self._given.resolution then o.resolution = { table.unpack(self._given.resolution) } end
   if self._given.precision then o.precision = { table.unpack(self._given.precision) } end
+  o.capture = self._given.capture
   return { organ = o }
 end
 
@@ -598,20 +617,23 @@ end
 -- --------------------------------------------------------------------------
 -- Leaf shapes
 
--- Half-widths w(y) (y from 0 at the base to 1 at the tip, w relative to the width) of the
--- shapes organ.leaf knows.
+-- Leaf outlines as half-widths w(y), y from 0 at the base to 1 at the tip: y^a (1 - y)^b
+-- scaled to 1/2 at its widest (y = a / (a + b)), and each shape's usual width (of the
+-- length). The cordate outline is drawn apart: its basal lobes reach below the base.
 local SHAPES = {
-  ovate = function (y) return 0.5 * 1.3 * math.sin(math.pi * y ^ 0.8) * (1 - 0.35 * y) end,
-  lanceolate = function (y) return 0.5 * math.sin(math.pi * y) ^ 0.9 * (1 - 0.5 * y) * 1.5 end,
-  elliptic = function (y) return 0.5 * math.sin(math.pi * y) end,
-  obovate = function (y) return 0.5 * 1.3 * math.sin(math.pi * (1 - (1 - y) ^ 0.8))
-                                * (0.65 + 0.35 * y) end,
-  linear = function (y) return 0.5 * (1 - (2 * y - 1) ^ 6) end,
+  ovate = { 0.5, 0.9, 0.6 }, obovate = { 0.9, 0.5, 0.6 }, elliptic = { 0.7, 0.7, 0.5 },
+  lanceolate = { 0.45, 1.3, 0.25 }, linear = { 0.15, 0.25, 0.1 }, cordate = { 0, 0, 0.8 },
 }
+local function halfwidth (shape, y)
+  local a, b = SHAPES[shape][1], SHAPES[shape][2]
+  local m = a / (a + b)
+  return 0.5 * (y ^ a * (1 - y) ^ b) / (m ^ a * (1 - m) ^ b)
+end
 local SECTIONS = { flat = true, v = true, cup = true }
 
 --- Strokes for a common leaf shape, built into an Organ: { length = 100 (pixels),
--- width = 0.5 (of the length), shape = "ovate" | "lanceolate" | "elliptic" | "obovate" |
+-- width = (of the length: ovate and obovate 0.6, elliptic 0.5, lanceolate 0.25, linear 0.1,
+-- cordate 0.8), shape = "ovate" | "lanceolate" | "elliptic" | "obovate" |
 -- "linear" | "cordate", curl = 0 (how far the tip droops, of the length; < 0 lifts),
 -- section = "flat" | "v" | "cup", depth = 0.15 (of the width, for "v" and "cup"),
 -- name =, resolution =, precision = }.
@@ -623,8 +645,8 @@ function M.leaf (o)
   for k in pairs(o) do
     if not known[k] then error(format("%s: unknown option '%s'", who, tostring(k)), 2) end
   end
-  local len, wid = o.length or 100, o.width or 0.5
   local shape, sect = o.shape or "ovate", o.section or "flat"
+  local len, wid = o.length or 100, o.width or (SHAPES[shape] or SHAPES.ovate)[3]
   local curl, depth = o.curl or 0, o.depth or 0.15
   if not isnum(len) or len <= 0 or len > 1e5 then
     error(who .. ": 'length' must be a number of pixels > 0 (at most 1e5)", 2)
@@ -634,7 +656,7 @@ function M.leaf (o)
       error(format("%s: '%s' must be a number%s", who, k, k == "width" and " > 0" or ""), 2)
     end
   end
-  if not (SHAPES[shape] or shape == "cordate") then
+  if SHAPES[shape] == nil then
     error(format("%s: unknown shape '%s' (known: ovate, lanceolate, elliptic, obovate, " ..
                  "linear, cordate)", who, tostring(shape)), 2)
   end
@@ -652,10 +674,9 @@ function M.leaf (o)
       left[i + 1] = { x0 - len * wid * w, y0 - len * y }
     end
   else
-    local f = SHAPES[shape]
     for i = 0, N do
-      local y = i / N
-      left[i + 1] = { x0 - len * wid * f(y), y0 - len * y }
+      local y = 0.5 - 0.5 * math.cos(math.pi * i / N)   -- denser at the base and the tip
+      left[i + 1] = { x0 - len * wid * halfwidth(shape, y), y0 - len * y }
     end
   end
   local side = {}
@@ -674,8 +695,8 @@ function M.leaf (o)
     end
   end
   return build({ top = { left = left }, side = curl ~= 0 and side or nil, front = front,
-                 name = o.name or shape, resolution = o.resolution, precision = o.precision },
-               who)
+                 name = o.name or shape, resolution = o.resolution, precision = o.precision,
+                 capture = false }, who)
 end
 
 setmetatable(M, { __call = function (_, t) return build(t, "lsys.sketch.organ") end })
