@@ -67,8 +67,20 @@ local function isarray (t)
   return c == n
 end
 
+-- The shortest text of x that reads back as x.
+local function num (x)
+  local i = tointeger(x)
+  if i and (i < 2 ^ 53 and i > -2 ^ 53) then return format("%d", i) end
+  for _, f in ipairs({ "%.15g", "%.16g", "%.17g" }) do
+    local s = format(f, x)
+    if s + 0 == x then return s end
+  end
+  return format("%.17g", x)
+end
+
 local function show (v)
   if type(v) == "string" then return "'" .. v .. "'" end
+  if finite(v) then return num(v) end
   return tostring(v)
 end
 
@@ -116,12 +128,12 @@ local function check_point (c, k, label, j, pt)
     end
   end
   if not (x >= -M.MAX_COORD and x <= M.MAX_COORD and y >= -M.MAX_COORD and y <= M.MAX_COORD) then
-    fail(c, format("%s: point %d: (%s, %s) is beyond %.0f pixels", label, j, tostring(x),
-                   tostring(y), M.MAX_COORD), k)
+    fail(c, format("%s: point %d: (%s, %s) is beyond %s pixels", label, j, show(x), show(y),
+                   show(M.MAX_COORD)), k)
   end
   if p == nil then p = 0.5
   elseif not (p >= 0 and p <= 1) then
-    fail(c, format("%s: point %d: pressure %s outside [0, 1]", label, j, tostring(p)), k)
+    fail(c, format("%s: point %d: pressure %s outside [0, 1]", label, j, show(p)), k)
   end
   return { x, y, p }
 end
@@ -267,6 +279,8 @@ end
 -- --------------------------------------------------------------------------
 -- JSON
 
+local BOM = "\239\187\191"             -- a UTF-8 byte order mark, which some editors write
+
 local decoder = cjson_safe.new()
 decoder.decode_invalid_numbers(false)     -- NaN, Infinity, hex: malformed, as JSON says
 decoder.decode_max_depth(32)
@@ -275,6 +289,7 @@ decoder.decode_max_depth(32)
 function M.json (text, name)
   if type(text) ~= "string" then error("lsys.sketch.read.json: a string expected", 2) end
   name = name or "<json>"
+  if sub(text, 1, 3) == BOM then text = sub(text, 4) end
   local t, err = decoder.decode(text)
   if t == nil and err ~= nil then
     error(format("%s: malformed JSON: %s", name, err), 0)
@@ -439,8 +454,7 @@ local function add_shape (st, kind, attrs, m, line, role, id)
     end
     for i, p in ipairs(pressure) do
       if not (p >= 0 and p <= 1) then
-        error(format("%s: data-pressure value %d (%s) outside [0, 1]", where, i,
-                     tostring(p)), 0)
+        error(format("%s: data-pressure value %d (%s) outside [0, 1]", where, i, show(p)), 0)
       end
     end
   end
@@ -495,7 +509,7 @@ local function root (st, attrs, line)
   end
   if not (finite(t.width) and t.width > 0 and finite(t.height) and t.height > 0) then
     failat(c, line, format("the sketch's width and height must be > 0 (%s, %s)",
-                   tostring(t.width), tostring(t.height)))
+                           show(t.width), show(t.height)))
   end
   local n = attrs["data-nodes-per-layer"]
   if n then
@@ -582,7 +596,7 @@ function M.svg (text, name)
   }, SEP)
   local ok, r1, msg, line = pcall(parser.parse, parser, text)
   if ok and r1 then ok, r1, msg, line = pcall(parser.parse, parser) end
-  parser:close()
+  pcall(parser.close, parser)             -- raises after a failed parse: nothing to add
   if not ok then error(r1, 0) end
   if not r1 then error(format("%s:%s: malformed SVG: %s", name, tostring(line), msg), 0) end
   if not st.rooted then error(name .. ": malformed SVG: no root element", 0) end
@@ -612,7 +626,7 @@ function M.file (path)
   local ext = lower(match(path, "%.(%w+)$") or "")
   if ext == "json" then return M.json(text, path) end
   if ext == "svg" then return M.svg(text, path) end
-  local first = match(text, "^\239\187\191?%s*(.)")
+  local first = match(text, "^%s*(.)", sub(text, 1, 3) == BOM and 4 or 1)
   if first == "{" then return M.json(text, path) end
   if first == "<" then return M.svg(text, path) end
   error(path .. ": not a sketch file (JSON or SVG)", 0)
@@ -620,17 +634,6 @@ end
 
 -- --------------------------------------------------------------------------
 -- Writing
-
--- The shortest text of x that reads back as x.
-local function num (x)
-  local i = tointeger(x)
-  if i and (i < 2 ^ 53 and i > -2 ^ 53) then return format("%d", i) end
-  for _, f in ipairs({ "%.15g", "%.16g", "%.17g" }) do
-    local s = format(f, x)
-    if s + 0 == x then return s end
-  end
-  return format("%.17g", x)
-end
 
 local ESC = { ['"'] = '\\"', ["\\"] = "\\\\", ["\n"] = "\\n", ["\r"] = "\\r", ["\t"] = "\\t" }
 local function str (s)

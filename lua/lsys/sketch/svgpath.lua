@@ -204,15 +204,17 @@ local function arcto (o, x1, y1, rx, ry, phi, large, sweep, x2, y2, pos)
   local cp, sp = cos(phi * pi / 180), sin(phi * pi / 180)
   local hx, hy = (x1 - x2) / 2, (y1 - y2) / 2
   local xp, yp = cp * hx + sp * hy, -sp * hx + cp * hy
-  local lambda = (xp * xp) / (rx * rx) + (yp * yp) / (ry * ry)
+  -- (written with the ratios xp / rx, yp / ry, which do not overflow for huge radii)
+  local lambda = (xp / rx) ^ 2 + (yp / ry) ^ 2
   if lambda > 1 then
     local r = sqrt(lambda)
     rx, ry = rx * r, ry * r
+    lambda = 1
+  elseif not large and lambda < 1e-20 then
+    -- the chord is nothing to the radii: the small arc is its chord within rounding
+    return lineto(o, x2, y2, pos)
   end
-  local rx2, ry2 = rx * rx, ry * ry
-  local num = rx2 * ry2 - rx2 * yp * yp - ry2 * xp * xp
-  local den = rx2 * yp * yp + ry2 * xp * xp
-  local coef = sqrt(max(0, num / den))
+  local coef = sqrt(max(0, (1 - lambda) / lambda))
   if large == sweep then coef = -coef end
   local cxp, cyp = coef * rx * yp / ry, -coef * ry * xp / rx
   local cx = cp * cxp - sp * cyp + (x1 + x2) / 2
