@@ -265,6 +265,13 @@ const lsys_texture *lsys_checktexture (lua_State *L, int i) {
   return t;
 }
 
+/* A live one has points. */
+const lsys_func *lsys_checkfunc (lua_State *L, int i) {
+  const lsys_func *f = (const lsys_func *)luaL_checkudata(L, i, FUNC_T);
+  if (f->pt == NULL) luaL_error(L, "the function was closed");
+  return f;
+}
+
 /* ---------------------------------------------------------------------- */
 /* option readers */
 

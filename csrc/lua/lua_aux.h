@@ -26,6 +26,7 @@
 #include "canvas.h"
 #include "contour.h"
 #include "derive.h"
+#include "func.h"
 #include "lstring.h"
 #include "mesh.h"
 #include "render.h"
@@ -47,6 +48,7 @@
 #define PIXELS_T   "lsys.Pixels"     /* lua_render.c: a pixel block owned by Lua until copied */
 #define VIEWER_T   "lsys.Viewer"     /* lua_viewer.c */
 #define IK_T       "lsys.IK"         /* lua_ik.c */
+#define FUNC_T     "lsys.Func"       /* lua_func.c: positional functions */
 #define CANVAS_T   "lsys.Canvas"     /* lua_canvas.c */
 
 /* The registry field of the Rules deriving now (lsys.produce, lsys.ran). */
@@ -116,9 +118,10 @@ const lsys_names *lsys_ownernames (lua_State *L, int idx);
 /* ---------------------------------------------------------------------- */
 /* lsys.Rules: the compiled rules of one model (the C side of lsys.lsystem) */
 
-/* user values of a Rules: the rule functions by rule index + 1, and the
-** successor templates of lsys.produce by text */
-enum { LSYS_RULES_FNS = 1, LSYS_RULES_TPL = 2, LSYS_RULES_NUV = 2 };
+/* user values of a Rules: the rule functions by rule index + 1, the
+** successor templates of lsys.produce by text, and the list of positional
+** functions (Funcs) the expression machine calls (rules:setfuncs) */
+enum { LSYS_RULES_FNS = 1, LSYS_RULES_TPL = 2, LSYS_RULES_FUNCS = 3, LSYS_RULES_NUV = 3 };
 
 typedef struct lsys_lrules {
   lsys_model m;
@@ -173,6 +176,7 @@ const char *lsys_recordkind (int kind);
 const lsys_contour *lsys_checkcontour (lua_State *L, int i);
 const lsys_surface *lsys_checksurface (lua_State *L, int i);
 const lsys_texture *lsys_checktexture (lua_State *L, int i);
+const lsys_func *lsys_checkfunc (lua_State *L, int i);
 
 /* The Canvas at 'i' (lua_canvas.c), for a binding that draws into one or
 ** shows its pixels; raises when it is not one or was closed. */

@@ -18,6 +18,8 @@ int luaopen_lsys_core (lua_State *L) {
   lsys_open_texture(L);
   lsys_open_viewer(L);
   lsys_open_ik(L);
+  lsys_open_bspline(L);
+  lsys_open_func(L);
   lsys_open_canvas(L);
   lua_pushinteger(L, LSYS_MAXTROPISMS);   /* the view schema's limit comes from the turtle */
   lua_setfield(L, -2, "MAXTROPISMS");

@@ -18,6 +18,8 @@ void lsys_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */
 void lsys_open_texture (lua_State *L);  /* lua_texture.c: Texture */
 void lsys_open_viewer (lua_State *L);   /* lua_viewer.c: Viewer, filestamp */
 void lsys_open_ik (lua_State *L);       /* lua_ik.c: IK chains (lsys.arrange) */
+void lsys_open_bspline (lua_State *L); /* lua_bspline.c: BSpline, chaikin, stroke_curve */
+void lsys_open_func (lua_State *L);     /* lua_func.c: Func, func, func_parse */
 void lsys_open_canvas (lua_State *L);   /* lua_canvas.c: Canvas, canvas */
 
 /* require "lsys.core" */

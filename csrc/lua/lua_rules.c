@@ -313,6 +313,34 @@ static int rules_setvm (lua_State *L) {
   return 1;
 }
 
+/* rules:setfuncs(list): the positional functions (Funcs) that LSYS_OP_FN
+** indices 0..#list-1 call; the list is kept as a user value, so the Funcs
+** live as long as the rules. Clears every rule's program (setvm again). */
+static int rules_setfuncs (lua_State *L) {
+  lsys_lrules *R = checkidle(L, 1);
+  lua_Integer n, k;
+  const lsys_func **t;
+  int st;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  n = luaL_len(L, 2);
+  luaL_argcheck(L, n >= 0 && n <= 65536, 2, "too many functions (limit is 65536)");
+  t = (const lsys_func **)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *t, 0);   /* scratch */
+  for (k = 0; k < n; k++) {
+    lua_geti(L, 2, k + 1);
+    t[k] = lsys_checkfunc(L, -1);
+    lua_pop(L, 1);
+  }
+  lua_createtable(L, (int)n, 0);           /* a copy: the caller may change its list */
+  for (k = 1; k <= n; k++) {
+    lua_geti(L, 2, k);
+    lua_rawseti(L, -2, k);
+  }
+  st = lsys_model_setfuncs(&R->m, t, (size_t)n);
+  if (st != LSYS_OK) return luaL_error(L, "not enough memory");
+  lua_setiuservalue(L, 1, LSYS_RULES_FUNCS);
+  return 0;
+}
+
 /* rules:hasvm(idx): whether rule idx runs on the expression machine */
 static int rules_hasvm (lua_State *L) {
   lsys_lrules *R = lsys_checkrules(L, 1);
@@ -738,6 +766,7 @@ static const luaL_Reg rules_methods[] = {
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
   {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
+  {"setfuncs", rules_setfuncs},
   {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
 };
 

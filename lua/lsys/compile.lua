@@ -10,12 +10,17 @@
 -- @module lsys.compile
 local core = require "lsys.core"
 
-local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setmetatable =
-      type, tostring, tonumber, pairs, ipairs, error, load, math, math.type, setmetatable
+local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setmetatable,
+      getmetatable, debug_registry =
+      type, tostring, tonumber, pairs, ipairs, error, load, math, math.type, setmetatable,
+      getmetatable, debug.getregistry()
 local format, concat, insert, table_sort = string.format, table.concat, table.insert, table.sort
 local _ENV = nil
 
 local M = {}
+
+local FUNC_MT = debug_registry["lsys.Func"]
+local function isfunc (x) return getmetatable(x) == FUNC_MT and FUNC_MT ~= nil end
 
 local KEYWORDS = {}
 for w in ("and break do else elseif end false for function goto if in local nil not " ..
@@ -231,7 +236,7 @@ end
 local OP = { K = 0, ARG = 1, ["+"] = 2, ["-"] = 3, ["*"] = 4, ["/"] = 5, ["%"] = 6, ["^"] = 7,
              ["//"] = 8, UNM = 9, ["<"] = 10, ["<="] = 11, [">"] = 12, [">="] = 13,
              ["=="] = 14, ["~="] = 15, NOT = 16, JF = 17, JT = 18, F1 = 19, F2 = 20,
-             RAN = 21, NRAN = 22, RET = 23, COND = 24 }
+             RAN = 21, NRAN = 22, RET = 23, COND = 24, FN = 25 }
 M.OP = OP
 
 -- lparser.c priorities: {left, right}
@@ -251,10 +256,14 @@ local function tokenize (s)
       tok = s:match("^0[xX][%x%.pP]+", i) or s:match("^%d*%.?%d+[eE][%+%-]?%d+", i) or
             s:match("^%d+%.?%d*[eE][%+%-]?%d+", i) or s:match("^%d+%.?%d*", i) or
             s:match("^%.%d+", i)
+      local str = not tok and (s:match("^\"[^\"\\\n]*\"", i) or s:match("^'[^'\\\n]*'", i))
       if tok then
         local v = tonumber(tok)
         if not v then return nil end
         toks[#toks + 1] = { "num", v }
+      elseif str then             -- a string without escapes: only func's first argument
+        tok = str
+        toks[#toks + 1] = { "str", str:sub(2, -2) }
       else
         tok = s:match("^[%a_][%w_]*", i)
         if tok then
@@ -307,7 +316,13 @@ function M.parseexpr (s)
       if isop(peek(), "(") then
         pos = pos + 1
         local args = {}
-        if isop(peek(), ")") then pos = pos + 1
+        local first = toks[pos]      -- func("name", x): a string, and only there
+        if node[1] == "name" and node[2] == "func" and first and first[1] == "str" and
+           isop(toks[pos + 1], ",") then
+          args[1] = { "str", first[2] }
+          pos = pos + 2
+        end
+        if #args == 0 and isop(peek(), ")") then pos = pos + 1
         else
           while true do
             local a = subexpr(0)
@@ -384,6 +399,8 @@ function M.gen (e, out, formals, E, lib)
     end
     if f == nil then return nil end
     if f == lib.ran then return "ran" elseif f == lib.nran then return "nran" end
+    if lib.func ~= nil and f == lib.func then return "func" end
+    if lib.isfunc ~= nil and lib.isfunc(f) then return "fn", f end
     for name, v in pairs(lib.math) do
       if v == f and (F1[name] or F2[name]) then return name end
     end
@@ -424,10 +441,33 @@ function M.gen (e, out, formals, E, lib)
     emit(OP[op])
     return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
   end
-  -- a call of ran, nran or a math function that the machine has
+  -- a positional function (an lsys.Func) applied to the value of tree `a`
+  local function applyfn (f, a)
+    if f == nil or not isnum(gen(a)) then return nil end
+    emit(OP.FN, lib.index(f))
+    return "n"
+  end
+  -- func(ID, x) and func("name", x): ID a number in the text or in env
+  local function funcall (args)
+    if #args ~= 2 then return nil end
+    local id, f = args[1], nil
+    if id[1] == "str" then f = lib.byname[id[2]]
+    else
+      local v = id[1] == "num" and id[2] or id[1] == "name" and not formals[id[2]] and E[id[2]]
+      if type(v) == "number" then f = lib.list[v] end
+    end
+    return applyfn(f, args[2])
+  end
+  -- a call of ran, nran, a math function that the machine has, or a positional function
   local function call (n)
-    local name, args = fnof(n[2]), n[3]
+    local name, fobj = fnof(n[2])
+    local args = n[3]
     if not name then return nil end
+    if name == "func" then return funcall(args) end
+    if name == "fn" then
+      if #args ~= 1 then return nil end
+      return applyfn(fobj, args[1])
+    end
     local fold = (name == "min" or name == "max") and #args >= 2
     local types = {}
     for k, a in ipairs(args) do
@@ -495,16 +535,48 @@ function M.gen (e, out, formals, E, lib)
   return gen(e)
 end
 
+--- What `gen` calls by identity, for one binding of a model's rules: Lua's math table,
+-- the model's ran and nran and its func (from `E`), and its positional functions: `list`
+-- (func(ID, x)) and `byname` (func("name", x)). lib.fns collects the Funcs the code
+-- calls, in the order of their LSYS_OP_FN indices (rules:setfuncs).
+function M.library (E, list, byname)
+  local lib = { math = math, ran = E.ran, nran = E.nran, func = E.func, isfunc = isfunc,
+                list = list, byname = byname, fns = {}, fnidx = {} }
+  function lib.index (f)
+    local k = lib.fnidx[f]
+    if k == nil then
+      k = #lib.fns
+      lib.fns[k + 1] = f
+      lib.fnidx[f] = k
+    end
+    return k
+  end
+  return lib
+end
+
+--- The functions a rule's text calls with a constant first argument, for the check when
+-- derivation starts: { {"name", "internode"}, {"id", 2}, ... }.
+function M.funcrefs (text)
+  local refs = {}
+  for q, name in text:gmatch("%f[%w_]func%s*%(%s*([\"'])(.-)%1") do
+    if q then refs[#refs + 1] = { "name", name } end
+  end
+  for id in text:gmatch("%f[%w_]func%s*%(%s*(%d+%.?%d*)%s*,") do
+    refs[#refs + 1] = { "id", tonumber(id) }
+  end
+  return refs
+end
+
 --- The code of a rule's expressions for the C machine (rules:setvm), or nil when one of
 -- them stays in Lua. `trees` is what `rule` returned (nil: an expression did not parse);
 -- `E` is the lookup table of the model's env (lsys.model), read now: the code is made
 -- again each time the model binds its rules. The condition comes first and ends in COND
 -- (a number is true unless it is 0, as in the closure); each value then ends in RET.
-function M.machine (trees, E)
+function M.machine (trees, E, lib)
   local t = trees
   local code, ok = {}, t ~= nil
   if ok then
-    local lib = { math = math, ran = E.ran, nran = E.nran }
+    lib = lib or M.library(E, {}, {})
     if t.cond then
       local ty = M.gen(t.cond, code, t.formals, E, lib)
       if ty == "n" or ty == "i" then

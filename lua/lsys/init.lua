@@ -7,6 +7,7 @@
 -- @module lsys
 local core = require "lsys.core"
 local model = require "lsys.model"
+local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
 
@@ -39,13 +40,14 @@ M.view = view
 
 M.parse_size = model.parse_size        -- the memory budget (max_memory)
 M.max_memory = model.max_memory
+M.func = func                          -- positional functions (cpfg .func files)
 
 -- What lsys.type calls the userdata of lsys.core, by metatable name; the arrangement and
 -- the model are Lua tables, told apart by their metatables.
 local KINDS = {
   ["lsys.Lstring"] = "lstring", ["lsys.Scene"] = "scene", ["lsys.Contour"] = "contour",
   ["lsys.Surface"] = "surface", ["lsys.Texture"] = "texture", ["lsys.IK"] = "ik",
-  ["lsys.Viewer"] = "viewer", ["lsys.Rules"] = "rules",
+  ["lsys.Viewer"] = "viewer", ["lsys.Rules"] = "rules", ["lsys.Func"] = "func",
 }
 local REGISTRY = debug.getregistry()
 

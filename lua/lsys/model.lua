@@ -6,6 +6,7 @@
 -- @module lsys.model
 local core = require "lsys.core"
 local compile = require "lsys.compile"
+local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
 
@@ -116,6 +117,7 @@ local OPTIONS = {
   finish = "function", max_modules = "number", view = "table", name = "string",
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
+  functions = "table",
 }
 
 local Model = {}
@@ -162,7 +164,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
-                            trees = trees }
+                            trees = trees, funcrefs = factory and compile.funcrefs(e.text) }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
   end
@@ -292,7 +294,8 @@ function M.lsystem (opts)
   end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
-  view.normalize(opts.view, where or "model")     -- a bad view fails at definition
+  local nv = view.normalize(opts.view, where or "model")   -- a bad view fails at definition
+  self:_functions(opts.functions or nv.functions, nv.dir, fail)
   if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
@@ -302,12 +305,47 @@ function M.lsystem (opts)
   return self
 end
 
+-- The positional functions of the model (option `functions`, else its view's): the list
+-- that func(ID, x) indexes, the table by name of func("name", x), and `func` itself.
+function Model:_functions (spec, dir, fail)
+  local list, byname = {}, {}
+  if spec ~= nil then
+    local ok, l, b = pcall(func.collect, spec, dir, "option 'functions'")
+    if not ok then fail(l) end
+    list, byname = l, b
+  end
+  self._funclist, self._funcnames = list, byname
+  self._func = function (id, x)
+    local f = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
+    if not f then
+      error(format("unknown function %s (functions: %s)",
+                   type(id) == "string" and "'" .. id .. "'" or tostring(id),
+                   func.names(byname)), 2)
+    end
+    return f(x)
+  end
+end
+
+-- Raises when a rule calls func(ID, x) or func("name", x) with a function the model
+-- does not have (when derivation starts, as for unknown names).
+function Model:_checkfuncs (info)
+  for _, r in ipairs(info.funcrefs) do
+    local ok = r[1] == "name" and self._funcnames[r[2]] or r[1] == "id" and self._funclist[r[2]]
+    if not ok then
+      error(format("%s: %s: unknown function %s (functions: %s)", self._where, info.label,
+                   r[1] == "name" and "'" .. r[2] .. "'" or tostring(math.tointeger(r[2]) or r[2]),
+                   func.names(self._funcnames)), 0)
+    end
+  end
+end
+
 -- The lookup table rule closures bind their free names from.
 function Model:_env ()
   local ran, nran = self._rules:ran()
-  local env = self.env
+  local env, fn = self.env, self._func
   return setmetatable({}, { __index = function (_, k)
-    if k == "ran" then return ran elseif k == "nran" then return nran end
+    if k == "ran" then return ran elseif k == "nran" then return nran
+    elseif k == "func" then return fn end
     local v = env[k]
     if v == nil then v = BUILTIN[k] end
     return v
@@ -326,6 +364,8 @@ end
 -- Binds every compiled rule to the current env (called before each step).
 function Model:_bind ()
   local E = self:_env()
+  local lib = compile.library(E, self._funclist, self._funcnames)
+  local codes = {}
   for i, info in pairs(self._info) do
     if info.factory then
       for name in pairs(info.frees) do
@@ -334,11 +374,16 @@ function Model:_bind ()
                        self._where, info.label, name), 0)
         end
       end
+      self:_checkfuncs(info)
       self._fns[i] = info.factory(E, type, error)
       -- the C expression machine when the expressions allow it, else the closure
-      local code = not self.lua_expressions and compile.machine(info.trees, E)
-      if not (code and self._rules:setvm(i - 1, code)) then self._rules:setvm(i - 1, nil) end
+      codes[i] = not self.lua_expressions and compile.machine(info.trees, E, lib) or false
     end
+  end
+  -- the functions the code calls, then the code (setfuncs cleared every program)
+  self._rules:setfuncs(lib.fns)
+  for i, code in pairs(codes) do
+    if code and not self._rules:setvm(i - 1, code) then self._rules:setvm(i - 1, nil) end
   end
   return E
 end

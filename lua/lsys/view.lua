@@ -49,6 +49,10 @@
 --   minimize_twist   true: generalized cylinders use the twist-minimising frame (cpfg
 --                    "twist of cylinders: on", the default, §3.3); false: the turtle's
 --                    own twist is kept
+--   functions        list of lsys.Func | "file.func" | "set.fset" | { file =, samples = }:
+--                    the positional functions of cpfg's "function:" / "functions:" lines;
+--                    a model without its own `functions` option takes these (kept as
+--                    given; lsys.model reads the files, relative to `dir`)
 --
 -- Files named by contours, surfaces, textures and palette are read by `normalize`,
 -- which every interpretation calls. Each file is read again each time (a few bytes
@@ -112,7 +116,7 @@ local KINDS = {
   background = "color", viewpoint = "vec", target = "vec", up = "vec", direction = "vec",
   projection = "projection", fov = "number", twist = "number", light = "vec",
   supersample = "integer", dir = "string", contours = "contours", surfaces = "surfaces",
-  textures = "textures", minimize_twist = "boolean",
+  textures = "textures", minimize_twist = "boolean", functions = "functions",
 }
 M.KINDS = KINDS
 
@@ -523,6 +527,9 @@ function M.normalize (v, where)
       out[k] = textures(ctx, x, name)
     elseif kind == "palette" then
       out[k] = palette(ctx, x, name)
+    elseif kind == "functions" then           -- read by the model (lsys.func.collect)
+      if type(x) ~= "table" then fail(where, "'%s' must be a list", name) end
+      out[k] = x
     end
   end
   for k, d in pairs(DEFAULTS) do if out[k] == nil then out[k] = d end end
