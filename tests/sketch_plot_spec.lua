@@ -96,6 +96,23 @@ describe("lsys.sketch.plot.functions", function ()
                         px(c2, math.floor(p.x + 0.5 * p.w), math.floor(Y)))
   end)
 
+  it("plots Funcs (core.func) with their control points", function ()
+    local core = require "lsys.core"
+    -- collinear control points: the clamped cubic B-spline is the line y = x
+    local line = core.func({ { 0, 0 }, { 1 / 3, 1 / 3 }, { 2 / 3, 2 / 3 }, { 1, 1 } },
+                           { name = "size_left" })
+    local c, panels = plot.functions(funcs { size_left = line })
+    local p = find(panels, "size_left")
+    assert.near({ -0.08, 1.08 }, { p.ymin, p.ymax }, 1e-9)
+    local function at (x, y)
+      return px(c, math.floor(p.x + x * p.w), math.floor(p.y + p.h - (y - p.ymin) /
+                (p.ymax - p.ymin) * p.h))
+    end
+    assert.same({ 0xd8, 0x62, 0x2a }, at(1 / 3, 1 / 3))        -- a control point's dot
+    assert.same({ 0xd8, 0x62, 0x2a }, at(2 / 3, 2 / 3))
+    assert.are_not.same({ 0xd8, 0x62, 0x2a }, at(0.5, 0.5))   -- the curve between them
+  end)
+
   it("draws into a region of a given canvas", function ()
     local core = require "lsys.core"
     local c = core.canvas(1000, 700, "#000000")
