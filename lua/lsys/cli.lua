@@ -10,6 +10,7 @@
 --   lsys render [MODEL] ...   derive, interpret and render a model to PNG (headless, OSMesa)
 --   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
+--   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local host = require("lsys.program").host
@@ -35,6 +36,8 @@ usage: lsys [COMMAND] [ARGS]
   lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
   lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
   lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
+  lsys sketch [FILE] [OPTS]   draw a plant's construction lines; the plant follows (a window)
+  lsys sketch plot|model|render FILE -o OUT   a sketch's functions, model or picture
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -158,6 +161,44 @@ Options:
 
 The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
 `model:step(lsys.lstring(text))`, or arrange it again with --string.
+]]
+
+HELP.sketch = [[
+usage: lsys sketch [FILE] [--size WxH] [--nodes N] [--phyllotaxis P]
+       lsys sketch plot FILE [-o functions.png] [--size WxH]
+       lsys sketch model FILE [-o plant.lua] [--nodes N] [--phyllotaxis P]
+       lsys sketch render FILE [-o plant.png] [--size WxH] [--nodes N] [--phyllotaxis P]
+
+Sketch-based parameterization of L-systems (Anastacio et al. 2009; docs/sketch.md): the
+construction lines of a plant -- a stem, left and right boundaries, inclination lines --
+become positional functions that parameterize a phyllotaxis template.
+
+`lsys sketch [FILE]` opens the sketch window: the sketch on the left, the plant it makes
+on the right, updated while you draw, the functions plotted under it. FILE (a .json or
+.svg sketch) is read when it exists and is where Ctrl+S saves (default sketch.json; a
+.svg is saved as .json next to it). In the window: left drag draws a stroke; 1 2 3 4 or
+the toolbar pick its role (stem, left boundary, right boundary, inclination line); a new
+stem or boundary replaces the old one; right drag (or shift drag) moves the nearest
+stroke; Delete or Backspace deletes the selected (else the last) stroke; Ctrl+Z undoes;
++ and - change the nodes per layer, P the phyllotaxis; the wheel over the sketch (or [
+and ]) sets the pressure of the points drawn next (darker nearer, lighter farther); Tab
+hides the plots; Ctrl+E exports the plant (FILE.glb, FILE.png) and the model (FILE.lua).
+Over the plant: drag orbits, right drag pans, the wheel zooms. H lists the keys.
+
+  plot     draws the positional functions (six panels, seven with pitch) to a PNG
+  model    writes the generated model as an editable Lua file
+  render   renders the plant headless to a PNG
+
+Options:
+  -o, --output OUT    the file written (default: FILE's name with -functions.png, .lua,
+                      .png, in the current directory)
+  --size WxH          the window's size (default 1200x800), or the picture's (plot:
+                      900x600, render: 800x800); a new sketch is 600x600 pixels
+  --nodes N           nodes per layer (default: the sketch's)
+  --phyllotaxis P     distichous, decussate or fibonacci (default: the sketch's)
+  -h, --help          show this help
+
+The window needs a display; a tablet's pen pressure is not read yet (the wheel stands in).
 ]]
 
 HELP.repl = [[
@@ -725,6 +766,92 @@ function commands.arrange (args)
   local outpath = opts.output or ((path:match("([^/]-)%.?[^./]*$") or "model") .. "-arranged.txt")
   require("lsys.arrange_ui").run(arr, { out = outpath, width = w, height = h,
                                         title = "arrange " .. path:match("([^/]*)$") })
+  return 0
+end
+
+local SKETCH_OPTS = {
+  size = "value", nodes = "value", phyllotaxis = "value", output = "value", help = "flag",
+  short = { h = "help", o = "output" },
+}
+
+-- --nodes and --phyllotaxis of `lsys sketch` as lsys.sketch.load options.
+local function sketch_load_opts (opts)
+  local lo = {}
+  if opts.nodes ~= nil then
+    lo.nodes_per_layer = math.tointeger(tonumber(opts.nodes))
+    if lo.nodes_per_layer == nil or lo.nodes_per_layer < 1 or lo.nodes_per_layer > 10000 then
+      usage("sketch", "--nodes expects a whole number from 1 to 10000, got '%s'", opts.nodes)
+    end
+  end
+  if opts.phyllotaxis ~= nil then
+    local p = opts.phyllotaxis
+    if p ~= "distichous" and p ~= "decussate" and p ~= "fibonacci" then
+      usage("sketch", "--phyllotaxis expects distichous, decussate or fibonacci, got '%s'", p)
+    end
+    lo.phyllotaxis = p
+  end
+  return lo
+end
+
+local sketch_file_write
+
+-- `lsys sketch plot|model|render FILE -o OUT`.
+local function sketch_file_command (sub, opts, pos)
+  if #pos < 2 then usage("sketch", "%s: a sketch FILE is required", sub) end
+  if #pos > 2 then usage("sketch", "unexpected argument '%s'", pos[3]) end
+  local file = pos[2]
+  local ext = sub == "model" and ".lua" or ".png"
+  local outpath = opts.output or ((file:match("([^/]-)%.?[^./]*$") or "sketch") ..
+                                  (sub == "plot" and "-functions" or "") .. ext)
+  if not outpath:lower():find("%" .. ext .. "$") then
+    usage("sketch", "%s: the output must be a %s file, got '%s'", sub, ext, outpath)
+  end
+  local lo = sketch_load_opts(opts)
+  local w, h = size_opt("sketch", opts.size)
+  if sub == "model" and w then usage("sketch", "model: --size applies to plot and render") end
+  local sketch = require "lsys.sketch"
+  local ok, err = pcall(function ()
+    local sk = sketch.load(file, lo)
+    sketch_file_write(sub, sk, outpath, w, h)
+  end)
+  -- the pipeline's messages name the file and the stroke; where in lsys they were raised
+  -- is no news to the user
+  if not ok then error((tostring(err):gsub("^[^:\n]*%.lua:%d+: ", "")), 0) end
+  return 0
+end
+
+-- Writes what `lsys sketch plot|model|render` makes of the Sketch sk.
+function sketch_file_write (sub, sk, outpath, w, h)
+  if sub == "plot" then
+    require("lsys.sketch.plot").png(sk, outpath, { width = w or 900, height = h or 600 })
+    out(format("wrote %s\n", outpath))
+  elseif sub == "model" then
+    sk:save_model(outpath)
+    out(format("wrote %s\n", outpath))
+  else
+    local m = sk:model {}
+    local scene = m:interpret(m:derive())
+    require("lsys").render(scene, { out = outpath, width = w or 800, height = h or 800 })
+    out(format("wrote %s (%dx%d, %d triangles, %d lines)\n", outpath, w or 800, h or 800,
+      scene.ntriangles, scene.nlines))
+  end
+end
+
+function commands.sketch (args)
+  local sub = args[2]
+  local opts, pos = parse("sketch", SKETCH_OPTS, args, 2)
+  if opts.help then out(HELP.sketch) return 0 end
+  if sub == "plot" or sub == "model" or sub == "render" then
+    return sketch_file_command(sub, opts, pos)
+  end
+  if #pos > 1 then usage("sketch", "unexpected argument '%s' (one FILE at most)", pos[2]) end
+  local w, h = size_opt("sketch", opts.size)
+  local lo = sketch_load_opts(opts)
+  if opts.output ~= nil then usage("sketch", "-o applies to plot, model and render") end
+  require("lsys.sketch.window").run {
+    file = pos[1], nodes = lo.nodes_per_layer, phyllotaxis = lo.phyllotaxis,
+    window = w and { w, h } or nil, out = out,
+  }
   return 0
 end
 

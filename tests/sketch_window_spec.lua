@@ -1,0 +1,350 @@
+-- The sketch window (issue 15): the state machine of lsys.sketch.window fed events as the
+-- window sends them (strokes drawn, moved, deleted, undone; the wheel's pressure; keys;
+-- the toolbar; saving), the session's handling of a sketch that makes no plant yet, and
+-- (#gl) the real window under a private Xvfb, drawn with xdotool, saved and read back.
+local core = require "lsys.core"
+local W = require "lsys.sketch.window"
+local read = require "lsys.sketch.read"
+local D = require "tests.display"
+
+local function tmpdir ()
+  local d = os.tmpname()
+  os.remove(d)
+  assert(os.execute("mkdir -p " .. d))
+  return d
+end
+
+-- Drags from (x0, y0) to (x1, y1) in n straight steps of the pointer.
+local function drag (st, x0, y0, x1, y1, n, button)
+  button = button or "left"
+  st:pointer("down", x0, y0, button)
+  for i = 1, n do
+    st:pointer("move", x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n, button)
+  end
+  st:pointer("up", x1, y1, button)
+end
+
+-- A sketch a plant can be made of: stem, boundaries and three inclination lines.
+local function plant_sketch (st)
+  st:key("1") drag(st, 300, 550, 300, 50, 10)
+  st:key("2") drag(st, 200, 550, 200, 50, 10)
+  st:key("3") drag(st, 400, 550, 400, 50, 10)
+  st:key("4")
+  for _, y in ipairs { 450, 300, 150 } do drag(st, 150, y, 450, y, 6) end
+end
+
+describe("the sketch window's state machine", function()
+  it("draws a stroke of the current role from pointer events, in sketch pixels", function()
+    local st = W.new { width = 400, height = 300 }
+    assert.equal("stem", st.role)
+    drag(st, 100, 250, 100, 50, 4)
+    local sk = st:sketch()
+    assert.equal(400, sk.width)
+    assert.equal(300, sk.height)
+    assert.equal(1, #sk.strokes)
+    assert.equal("stem", sk.strokes[1].role)
+    -- the press and the four moves; the release at the last point adds none
+    assert.same({ {100, 250, 0.5}, {100, 200, 0.5}, {100, 150, 0.5}, {100, 100, 0.5},
+                  {100, 50, 0.5} }, sk.strokes[1].points)
+    assert.equal(1, st.selected)
+  end)
+
+  it("shows the stroke being drawn in the sketch once it has two points", function()
+    local st = W.new {}
+    st:pointer("down", 10, 10, "left")
+    assert.equal(0, #st:sketch().strokes)
+    st:pointer("move", 10.5, 10.5, "left")      -- under a pixel away: no new point
+    assert.equal(0, #st:sketch().strokes)
+    assert.is_true(st:pointer("move", 10, 20, "left"))
+    assert.same({ {10, 10, 0.5}, {10, 20, 0.5} }, st:sketch().strokes[1].points)
+    assert.equal(0, #st.strokes)                  -- not kept before the release
+  end)
+
+  it("picks roles with 1-4 and the toolbar; a new stem or boundary replaces the old", function()
+    local st = W.new {}
+    drag(st, 10, 100, 10, 0, 2)
+    drag(st, 20, 100, 20, 0, 2)                   -- a second stem replaces the first
+    assert.equal(1, #st.strokes)
+    assert.equal(20, st.strokes[1].points[1][1])
+    st:key("2") drag(st, 0, 100, 0, 0, 2)
+    st:key("4") drag(st, 0, 50, 30, 50, 2)
+    drag(st, 0, 60, 30, 60, 2)                    -- inclination lines add up
+    assert.equal("inclination", st.role)
+    local roles = {}
+    for i, s in ipairs(st.strokes) do roles[i] = s.role end
+    assert.same({ "stem", "boundary_left", "inclination", "inclination" }, roles)
+    assert.is_true(st:toolbar(3 * W.BUTTON_W + 5))   -- the fourth button... is inclination
+    assert.is_true(st:toolbar(2 * W.BUTTON_W + 5))
+    assert.equal("boundary_right", st.role)
+    assert.equal(1, W.toolbar_hit(0))
+    assert.equal("nodes-", W.toolbar_hit(4 * W.BUTTON_W + 10))
+    assert.equal("nodes+", W.toolbar_hit(4 * W.BUTTON_W + 60))
+    assert.equal("phyllotaxis", W.toolbar_hit(4 * W.BUTTON_W + 200))
+  end)
+
+  it("sets the pressure of the points drawn next with the wheel and [ ]", function()
+    local st = W.new {}
+    st:pointer("down", 0, 0, "left")
+    st:pointer("move", 0, 10, "left")
+    assert.equal(0.6, st:scroll(2))               -- two notches up: 0.5 + 2 * 0.05, nearer
+    st:pointer("move", 0, 20, "left")
+    st:scroll(-5)                                 -- 0.35: farther than the drawing plane
+    st:pointer("move", 0, 30, "left")
+    st:pointer("up", 0, 30, "left")
+    local p = {}
+    for i, q in ipairs(st.strokes[1].points) do p[i] = q[3] end
+    assert.same({ 0.5, 0.5, 0.6, 0.35 }, p)
+    st:key("]")
+    assert.equal(0.45, st.pressure)
+    for _ = 1, 20 do st:key("[") end
+    assert.equal(0, st.pressure)                  -- clamped to [0, 1]
+    assert.truthy(st.status:find("farther", 1, true))
+  end)
+
+  it("colours the stem by pressure: nearer darker, farther lighter (§7.3)", function()
+    assert.same({ 0.75, 0.9, 0.75 }, W.stem_rgb(0))
+    assert.near({ 0.05, 0.25, 0.05 }, W.stem_rgb(1), 1e-12)
+    assert.near({ 0.4, 0.575, 0.4 }, W.stem_rgb(0.5), 1e-12)
+  end)
+
+  it("moves the nearest stroke with a right drag, and undoes it", function()
+    local st = W.new {}
+    plant_sketch(st)
+    local before = st.strokes[2].points[1][1]
+    -- press 5 pixels right of the left boundary (x = 200), drag by (+10, -5)
+    drag(st, 205, 380, 215, 375, 2, "right")
+    assert.equal(2, st.selected)
+    assert.same({ before + 10, 545, 0.5 }, st.strokes[2].points[1])
+    assert.equal(300, st.strokes[1].points[1][1])   -- the stem did not move
+    assert.is_true(st:key("z", true) == nil)
+    assert.same({ before, 550, 0.5 }, st.strokes[2].points[1])
+    -- nothing within reach: no move
+    st:pointer("down", 590, 590, "right")
+    assert.is_nil(st.moving)
+    assert.truthy(st.status:find("no stroke near", 1, true))
+  end)
+
+  it("deletes the selected stroke, else the last, and undoes strokes and settings", function()
+    local st = W.new {}
+    plant_sketch(st)
+    assert.equal(6, #st.strokes)
+    st.selected = 2
+    st:key("delete")
+    assert.equal(5, #st.strokes)
+    assert.equal("boundary_right", st.strokes[2].role)
+    st:key("backspace")                           -- nothing selected now: the last
+    assert.equal(4, #st.strokes)
+    st:key("=") st:key("=") st:key("-")
+    assert.equal(6, st.nodes)
+    st:key("p")
+    assert.equal("decussate", st.phyllotaxis)
+    st:key("z", true)
+    assert.equal("distichous", st.phyllotaxis)
+    st:key("z", true) st:key("z", true) st:key("z", true)
+    assert.equal(5, st.nodes)
+    st:key("z", true) st:key("z", true)
+    assert.equal(6, #st.strokes)
+    assert.equal("boundary_left", st.strokes[2].role)
+  end)
+
+  it("keeps the nodes per layer at 1 or more", function()
+    local st = W.new { nodes = 1 }
+    st:key("-")
+    assert.equal(1, st.nodes)
+  end)
+
+  it("saves the sketch and reads it back equal", function()
+    local dir = tmpdir()
+    local st = W.new { file = dir .. "/x.json", nodes = 4, phyllotaxis = "fibonacci" }
+    plant_sketch(st)
+    st:scroll(3)
+    drag(st, 160, 100, 440, 100, 3)
+    assert.equal("save", st:key("s", true))
+    assert.equal(dir .. "/x.json", st:save())
+    local back = read.file(dir .. "/x.json")
+    assert.equal(600, back.width)
+    assert.equal(4, back.nodes_per_layer)
+    assert.equal("fibonacci", back.phyllotaxis)
+    assert.equal(#st.strokes, #back.strokes)
+    for i, s in ipairs(st.strokes) do
+      assert.equal(s.role, back.strokes[i].role)
+      assert.same(s.points, back.strokes[i].points)
+    end
+    assert.same({ 160, 100, 0.65 }, back.strokes[7].points[1])
+    -- a new session on the file has the same sketch
+    local st2 = W.new { sketch = back, file = dir .. "/x.json" }
+    assert.same(st:sketch().strokes, st2:sketch().strokes)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("saves a sketch without a stem yet as it is, and a .svg file's as .json", function()
+    local dir = tmpdir()
+    local st = W.new { file = dir .. "/y.svg" }
+    st:key("2") drag(st, 0, 100, 0, 0, 2)
+    assert.equal(dir .. "/y.json", st:save())
+    local t = require("cjson").decode((assert(core.read_file(dir .. "/y.json", 1e6))))
+    assert.equal("boundary_left", t.strokes[1].role)
+    assert.same({ 0, 50, 0.5 }, t.strokes[1].points[2])
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("maps sketch pixels to the window as the panes place the sketch", function()
+    local st = W.new { width = 600, height = 600 }
+    -- 1200 x 800: the sketch pane is x 0..600, y 40..800 (600 x 760); scale 1, centred
+    local x, y = W.to_window(st, 1200, 800, 300, 300)
+    assert.equal(300, x)
+    assert.equal(420, y)
+    -- 800 x 600: the pane is 400 x 570 from y 30: scale 2/3, the image 400 x 400 from y 115
+    x, y = W.to_window(st, 800, 600, 600, 0)
+    assert.near(400, x, 1e-9)
+    assert.near(115, y, 1e-9)
+  end)
+end)
+
+-- A stand-in for the core Viewer: records what the session sends.
+local function fake_viewer ()
+  local v = { posts = {}, images = {}, texts = {} }
+  function v:layout (lay) self.lay = lay end
+  function v:post (frames, opts) self.posts[#self.posts + 1] = { frames = frames, opts = opts } end
+  function v:image (k, px, w, h) self.images[k] = { w = w, h = h, n = #px } end
+  function v:text (s) self.texts[#self.texts + 1] = s end
+  return v
+end
+
+describe("the sketch window's session", function()
+  it("shows the pipeline's error on the status line instead of the plant", function()
+    local v = fake_viewer()
+    local st = W.new {}
+    local s = W.session(v, st, {})
+    assert.equal(1, #v.posts)
+    assert.equal(0, v.posts[1].frames[1].scene.ntriangles)       -- an empty scene
+    assert.truthy(v.texts[#v.texts]:find("no stem stroke", 1, true), v.texts[#v.texts])
+    assert.same({ w = 600, h = 600, n = 600 * 600 * 4 }, v.images[2])
+    assert.same({ w = W.TOOLBAR_W, h = W.TOOLBAR_H, n = W.TOOLBAR_W * W.TOOLBAR_H * 4 },
+                v.images[1])
+    assert.equal(3, #v.lay.panes)
+    -- Tab hides the plots: the scene takes the right half
+    s:event { type = "key", key = "tab" }
+    assert.equal(2, #v.lay.panes)
+    assert.same({ 0.5, 0, 1, 1 }, v.lay.scene)
+  end)
+
+  it("posts the plant of the pipeline, keeping the camera after the first", function()
+    local v = fake_viewer()
+    local lsys = require "lsys"
+    local m = lsys.lsystem { axiom = "F", view = { line_style = "cylinder", line_width = 0.1 } }
+    local calls = {}
+    local function pipeline (t)
+      calls[#calls + 1] = #t.strokes
+      if #t.strokes < 1 then error("x.json: no stem stroke", 0) end
+      local s = m:derive()
+      return { lstring = s, scene = m:interpret(s), sketch = {} }
+    end
+    local st = W.new {}
+    local s = W.session(v, st, { pipeline = pipeline })
+    s:event { type = "pointer", pane = 2, phase = "down", x = 5, y = 90, button = "left" }
+    s:event { type = "pointer", pane = 2, phase = "move", x = 5, y = 50, button = "left" }
+    assert.is_true(st.changed)
+    s:compute(false)                              -- while drawing: the stroke so far
+    assert.same({ 0, 1 }, calls)
+    assert.is_true(v.posts[2].frames[1].scene.ntriangles > 0)
+    assert.is_nil(v.posts[2].opts.keep_camera)   -- the first plant is fitted
+    s:event { type = "pointer", pane = 2, phase = "up", x = 5, y = 10, button = "left" }
+    s:compute(true)
+    assert.is_true(v.posts[3].opts.keep_camera)
+    assert.truthy(s:status():find("1 modules", 1, true), s:status())
+    -- the wheel over the sketch pane sets the pressure
+    s:event { type = "scroll", pane = 2, dy = 1, x = 0, y = 0 }
+    assert.equal(0.55, st.pressure)
+    -- a click on the toolbar picks a role
+    s:event { type = "pointer", pane = 1, phase = "down", x = W.BUTTON_W + 3, y = 5 }
+    assert.equal("boundary_left", st.role)
+  end)
+end)
+
+describe("#gl the sketch window under Xvfb", function()
+  teardown(function() D.stop() end)
+
+  it("draws a sketch with the mouse, shows the plant, saves it and reads it back", function()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    if BIN:sub(1, 1) ~= "/" then BIN = os.getenv("PWD") .. "/" .. BIN end
+    local dir = tmpdir()
+    local outf = dir .. "/out.txt"
+    os.execute(("cd %s && %s%s sketch %s/x.json --size 1200x800 --nodes 3 >%s 2>&1 &"):format(
+      dir, D.env, BIN, dir, outf))
+    local xd = D.env .. "xdotool "
+    local p = io.popen(D.env .. "timeout 20 xdotool search --sync --name 'lsys sketch' 2>/dev/null")
+    local wid = p:read("l")
+    p:close()
+    assert.truthy(wid, "the window did not open: " .. tostring(io.open(outf):read("a")))
+    D.sleep(1)
+    local st = W.new { width = 600, height = 600 }
+    local function at (x, y)
+      local wx, wy = W.to_window(st, 1200, 800, x, y)
+      return ("mousemove --window %s %d %d"):format(wid, math.floor(wx + 0.5), math.floor(wy + 0.5))
+    end
+    local function stroke (key, pts)
+      local cmd = { "key --window " .. wid .. " " .. key, at(pts[1][1], pts[1][2]), "mousedown 1" }
+      for i = 2, #pts do
+        local a, b = pts[i - 1], pts[i]
+        for k = 1, 4 do
+          cmd[#cmd + 1] = at(a[1] + (b[1] - a[1]) * k / 4, a[2] + (b[2] - a[2]) * k / 4)
+        end
+      end
+      cmd[#cmd + 1] = "mouseup 1"
+      assert(os.execute(xd .. table.concat(cmd, " ") .. " >/dev/null 2>&1"))
+      D.sleep(0.3)
+    end
+    stroke("1", { {300, 560}, {300, 300}, {310, 60} })
+    stroke("2", { {250, 560}, {150, 300}, {260, 60} })
+    stroke("3", { {350, 560}, {450, 300}, {360, 60} })
+    stroke("4", { {100, 480}, {300, 440}, {500, 480} })
+    stroke("4", { {100, 320}, {300, 280}, {500, 320} })
+    stroke("4", { {100, 160}, {300, 120}, {500, 160} })
+    D.sleep(2)
+    os.execute(xd .. "key --window " .. wid .. " s >/dev/null 2>&1")     -- a screenshot
+    os.execute(xd .. "key --window " .. wid .. " ctrl+s >/dev/null 2>&1")
+    D.sleep(2)
+    os.execute(xd .. "key --window " .. wid .. " Escape >/dev/null 2>&1")
+    D.sleep(1)
+    local out = io.open(outf):read("a")
+    assert.truthy(out:find("saved " .. dir .. "/x.json", 1, true), out)
+    local back = read.file(dir .. "/x.json")
+    local roles = {}
+    for i, s in ipairs(back.strokes) do roles[i] = s.role end
+    assert.same({ "stem", "boundary_left", "boundary_right", "inclination", "inclination",
+                  "inclination" }, roles)
+    assert.equal(3, back.nodes_per_layer)
+    -- the points are where the mouse went, within a pixel of the window's rounding
+    local stem = back.strokes[1].points
+    assert.near({ 300, 560 }, { stem[1][1], stem[1][2] }, 1.01)
+    assert.near({ 310, 60 }, { stem[#stem][1], stem[#stem][2] }, 1.01)
+    assert.is_true(#stem >= 8, "stem points: " .. #stem)
+    -- the screenshot: the sketch drawn on the left; the plant on the right, when the
+    -- pipeline's curves are built (lsys.core's stroke_curve)
+    assert.truthy(out:find("wrote lsys%-001%.png"), out)
+    local px, w, h = core.png_read(dir .. "/lsys-001.png")
+    assert.equal(1200, w)
+    assert.equal(800, h)
+    local function count (x0, y0, x1, y1)
+      local br, bg, bb = px:byte(4 * (y0 * w + x0) + 1, 4 * (y0 * w + x0) + 3)
+      local n = 0
+      for y = y0, y1 - 1 do
+        for x = x0, x1 - 1 do
+          local i = 4 * (y * w + x)
+          local r, g, b = px:byte(i + 1, i + 3)
+          if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 60 then n = n + 1 end
+        end
+      end
+      return n
+    end
+    assert.is_true(count(10, 130, 590, 700) > 2000, "the sketch pane is empty")
+    if core.stroke_curve then
+      assert.is_true(count(610, 10, 1190, 530) > 500, "the plant pane is empty: " .. out)
+    end
+    os.execute("rm -rf " .. dir)
+  end)
+end)
