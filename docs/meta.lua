@@ -1207,6 +1207,97 @@ function Contour:closed() end
 ---@return 2|3
 function Contour:dim() end
 
+-- ---------------------------------------------------------------------------------------------
+-- B-spline curves and stroke capture (csrc/lua/lua_bspline.c; docs/sketch.md, Curves).
+-- Messages begin with the function or method name ("bspline: ...", "ray: ...").
+
+--- A uniform B-spline curve of at least degree + 1 control points (copied).
+---@param points number[][] `{x, y}` or `{x, y, z}`, all of one dimension.
+---@param opts? {degree?: 2|3, clamped?: boolean} Defaults: degree 3, uniform (not clamped).
+---@return lsys.BSpline
+function core.bspline(points, opts) end
+
+--- The polyline at equal spacing along it (`L / round(L / spacing)`), both ends kept.
+---@param points number[][]
+---@param spacing number > 0
+---@return number[][]
+function core.bspline_resample(points, spacing) end
+
+--- Chaikin's corner cutting, ends kept: n points give 2n per step.
+---@param points number[][]
+---@param steps? integer 0 to 30, default 1.
+---@return number[][]
+function core.chaikin(points, steps) end
+
+--- Chaikin reverse subdivision (filter -1/4, 3/4, 3/4, -1/4), ends kept: n points give
+--- (n + 1) // 2 per step; stops at 2 points. Undoes core.chaikin exactly.
+---@param points number[][]
+---@param steps? integer 0 to 30, default 1.
+---@return number[][]
+function core.chaikin_reverse(points, steps) end
+
+--- Stroke capture (Anastacio et al. 2009, §3.1): resample, reverse-subdivide, and return the
+--- control points of a curve of `degree` (use them with `clamped = true`).
+---@param points number[][]
+---@param opts? {spacing?: number, steps?: integer, degree?: 2|3} Defaults 1, 3, 2.
+---@return number[][]
+function core.stroke_curve(points, opts) end
+
+--- A B-spline curve; `t` is in [0, 1] over the whole curve (clamped into it). `#c` is the
+--- number of control points.
+---@class lsys.BSpline
+local BSpline = {}
+
+---@param t number
+---@return number x
+---@return number y
+---@return number? z
+function BSpline:eval(t) end
+--- The first or second derivative with respect to t.
+---@param t number
+---@param k? 1|2 Default 1.
+---@return number dx
+---@return number dy
+---@return number? dz
+function BSpline:deriv(t, k) end
+--- Arc length of the curve, or from t0 to t1.
+---@param t0? number
+---@param t1? number
+---@return number
+function BSpline:length(t0, t1) end
+--- The t at arc length s from the start.
+---@param s number
+---@return number t
+function BSpline:at_length(s) end
+--- n points at equal steps of t.
+---@param n integer >= 2
+---@return number[][]
+function BSpline:sample(n) end
+--- n points at equal arc length, each `{x, y [, z], t = t}`.
+---@param n integer >= 2
+---@return table[]
+function BSpline:sample_length(n) end
+--- The crossings with the ray o + s d (s >= 0), `{ {t =, s =, x =, y =}, ... }` sorted by s.
+--- 2D curves only.
+---@return table[]
+function BSpline:ray(ox, oy, dx, dy) end
+--- The crossings with another 2D curve, `{ {t =, u =, x =, y =}, ... }` sorted by t.
+---@param other lsys.BSpline
+---@return table[]
+function BSpline:intersect(other) end
+--- The closest point of the curve: its t and distance.
+---@return number t
+---@return number distance
+function BSpline:closest(x, y, z) end
+---@return number[][]
+function BSpline:points() end
+---@return 2|3
+function BSpline:dim() end
+---@return 2|3
+function BSpline:degree() end
+---@return boolean
+function BSpline:clamped() end
+
 --- Reads a cpfg surface file (.s; docs/surfaces.md). Raises `PATH:LINE: ...`.
 ---@param path string
 ---@return lsys.Surface
