@@ -147,7 +147,7 @@ for _, k in ipairs {
   "ambient light", "font", "winfont", "blob", "render mode", "tapered lines",
   "background scene", "interpretation step", "interpretation past %", "tsurface",
   "rayshade objects", "rayshade scale", "initial scale", "scale multiplier",
-  "environment display", "function", "curve", "antialiasing", "function set", "min zoom",
+  "environment display", "curve", "antialiasing", "min zoom",
   "max zoom", "generate on view change", "generate on view changes", "concave polygons",
   "shadow map", "ps linecap", "maximum depth", "window size", "window position",
 } do IGNORED[k] = true end
@@ -396,6 +396,23 @@ COMMANDS["contour"] = function (P, rest, cmd)
   P.v.contours = c
 end
 
+-- function: NAME.func [SAMPLES] adds a positional function (func(ID, x): ID counts these
+-- lines from 1); without SAMPLES, exact values (cpfg: -1). SAMPLES applies to the old
+-- "range:" form of the file; an fver 1 1 file has its own (cpfg/splinefun.cpp).
+COMMANDS["function"] = function (P, rest, cmd)
+  local w = P:words(rest, cmd, 1, 2, "a file and optionally a number of samples")
+  local l = P.v.functions or {}
+  l[#l + 1] = { file = w[1], samples = w[2] and P:integer(w[2], cmd, -1, 1000000) or 0 }
+  P.v.functions = l
+end
+
+-- function set: NAME.fset replaces the functions with those of the set (as cpfg does);
+-- "functions:" is read the same way.
+COMMANDS["function set"] = function (P, rest, cmd)
+  P.v.functions = { { file = P:words(rest, cmd, 1, 1, "a file")[1], samples = 0 } }
+end
+COMMANDS["functions"] = COMMANDS["function set"]
+
 COMMANDS["contour sides"] = function (P, rest, cmd)
   P.v.contour_sides = P:integer(P:words(rest, cmd, 1, 1, "one number")[1], cmd, 3, 1024)
 end
@@ -610,8 +627,9 @@ end
 -- style, viewpoint, view reference point, twist, projection, viewing angle, light
 -- direction, light, background color, contour, contour sides, polygonization level,
 -- twist of cylinders, texture, tropism, torque, tropism direction, initial
--- elasticity, elasticity increment, surface. Commands listed in VIEWFILE_IGNORED
--- (front distance, z buffer, render mode, ...) are warnings; any other command and any
+-- elasticity, elasticity increment, surface, function, function set (or functions).
+-- Commands listed in VIEWFILE_IGNORED (front distance, z buffer, render mode, ...) are
+-- warnings; any other command and any
 -- malformed value raise "file.v:LINE: what is wrong". The warnings go to warn() (off in a
 -- plain `lua` unless -W; the lsys program shows them) unless opts.quiet. Returns the view
 -- and the list of warnings.
