@@ -35,10 +35,11 @@ end
 
 describe("the sketch window's state machine", function()
   it("draws a stroke of the current role from pointer events, in sketch pixels", function()
-    local st = W.new { width = 400, height = 300 }
+    local st = W.new { width = 400, height = 300, file = "a.json" }
     assert.equal("stem", st.role)
     drag(st, 100, 250, 100, 50, 4)
     local sk = st:sketch()
+    assert.equal("a.json", sk.file)                -- the pipeline's messages name it
     assert.equal(400, sk.width)
     assert.equal(300, sk.height)
     assert.equal(1, #sk.strokes)
@@ -63,7 +64,13 @@ describe("the sketch window's state machine", function()
   it("picks roles with 1-4 and the toolbar; a new stem or boundary replaces the old", function()
     local st = W.new {}
     drag(st, 10, 100, 10, 0, 2)
-    drag(st, 20, 100, 20, 0, 2)                   -- a second stem replaces the first
+    st:pointer("down", 20, 100, "left")
+    st:pointer("move", 20, 50, "left")            -- while drawn, it stands for the old one
+    local sk = st:sketch()
+    assert.equal(1, #sk.strokes)
+    assert.same({ {20, 100, 0.5}, {20, 50, 0.5} }, sk.strokes[1].points)
+    st:pointer("move", 20, 0, "left")
+    st:pointer("up", 20, 0, "left")               -- a second stem replaces the first
     assert.equal(1, #st.strokes)
     assert.equal(20, st.strokes[1].points[1][1])
     st:key("2") drag(st, 0, 100, 0, 0, 2)

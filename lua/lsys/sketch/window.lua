@@ -81,13 +81,17 @@ end
 --- The sketch as lsys.sketch.read takes it (JSON shape), with the stroke being drawn when
 -- it has two points or more.
 function State:sketch ()
-  local strokes = copy_strokes(self.strokes)
   local d = self.drawing
-  if d and #d.points >= 2 then
-    strokes[#strokes + 1] = { role = d.role, points = copy_points(d.points) }
+  local drawn = d and #d.points >= 2
+  local strokes = {}
+  for _, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
+    if not (drawn and ONCE[d.role] and s.role == d.role) then
+      strokes[#strokes + 1] = { role = s.role, points = copy_points(s.points) }
+    end
   end
+  if drawn then strokes[#strokes + 1] = { role = d.role, points = copy_points(d.points) } end
   return {
-    width = self.width, height = self.height, nodes_per_layer = self.nodes,
+    file = self.file, width = self.width, height = self.height, nodes_per_layer = self.nodes,
     phyllotaxis = self.phyllotaxis, depth = self.depth, strokes = strokes,
   }
 end
@@ -260,6 +264,7 @@ function State:save (path)
   if not ok then
     if not tostring(err):find("no stem stroke", 1, true) then error(err, 0) end
     local cjson = require "cjson"
+    t.file = nil
     core.write_file(path, cjson.encode(t) .. "\n")
   end
   self.status = "saved " .. path
@@ -421,7 +426,7 @@ local function now ()
 end
 
 local function first_line (msg)
-  msg = tostring(msg):gsub("^lsys: ", "")
+  msg = tostring(msg):gsub("^lsys: ", ""):gsub("^[^:\n]*%.lua:%d+: ", "")
   return (msg:match("^[^\n]*"))
 end
 
