@@ -1,0 +1,102 @@
+-- `lsys sketch` on the command line (issue 15): usage errors (exit 2, the command's
+-- message), the help, and the plot, model and render subcommands on an example sketch.
+local core = require "lsys.core"
+
+local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+local SKETCH = "examples/sketch/fig8_herb.json"
+
+local function run (cmd)
+  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
+  local out = p:read("a")
+  p:close()
+  local code = tonumber(out:match("exit:(%d+)%s*$"))
+  return (out:gsub("exit:%d+%s*$", "")), code
+end
+
+local function tmpdir ()
+  local d = os.tmpname()
+  os.remove(d)
+  assert(os.execute("mkdir -p " .. d))
+  return d
+end
+
+describe("lsys sketch", function()
+  it("explains itself with --help and lsys help sketch", function()
+    local out, code = run(BIN .. " help sketch")
+    assert.equal(0, code)
+    assert.truthy(out:find("usage: lsys sketch [FILE] [--size WxH] [--nodes N] [--phyllotaxis P]",
+                           1, true), out)
+    local out2 = run(BIN .. " sketch --help")
+    assert.equal(out, out2)
+    local list = run(BIN .. " --help")
+    assert.truthy(list:find("lsys sketch [FILE] [OPTS]", 1, true), list)
+  end)
+
+  it("reports usage errors with exit status 2", function()
+    local cases = {
+      { "sketch plot", "lsys: sketch: plot: a sketch FILE is required" },
+      { "sketch model a.json b.json", "lsys: sketch: unexpected argument 'b.json'" },
+      { "sketch plot a.json -o a.txt", "lsys: sketch: plot: the output must be a .png file, got 'a.txt'" },
+      { "sketch model a.json -o a.png", "lsys: sketch: model: the output must be a .lua file, got 'a.png'" },
+      { "sketch render a.json --nodes 0", "lsys: sketch: --nodes expects a whole number from 1 to 10000, got '0'" },
+      { "sketch render a.json --phyllotaxis spiral", "lsys: sketch: --phyllotaxis expects distichous, decussate or fibonacci, got 'spiral'" },
+      { "sketch render a.json --size 10", "lsys: sketch: --size expects WxH (1 to 16384 each), got '10'" },
+      { "sketch x.json -o y.png", "lsys: sketch: -o applies to plot, model and render" },
+      { "sketch a.json b.json", "lsys: sketch: unexpected argument 'b.json' (one FILE at most)" },
+      { "sketch --bogus", "lsys: sketch: unknown option '--bogus'" },
+    }
+    for _, c in ipairs(cases) do
+      local out, code = run(BIN .. " " .. c[1])
+      assert.equal(2, code, c[1] .. ": " .. out)
+      assert.equal(c[2] .. "\nRun 'lsys sketch --help' for its options.\n", out)
+    end
+  end)
+
+  it("names the file of a sketch that cannot be read (exit 1)", function()
+    local out, code = run(BIN .. " sketch render nosuch.json -o /tmp/never.png")
+    assert.equal(1, code)
+    assert.equal("lsys: cannot open 'nosuch.json': No such file or directory\n", out)
+    local dir = tmpdir()
+    local f = io.open(dir .. "/bad.json", "w")
+    f:write('{"width": 100, "height": 100, "strokes": [{"role": "boundary_left", ' ..
+            '"points": [[0, 0], [0, 50]]}]}')
+    f:close()
+    out, code = run(BIN .. " sketch model " .. dir .. "/bad.json -o " .. dir .. "/m.lua")
+    assert.equal(1, code)
+    assert.equal("lsys: " .. dir .. "/bad.json: no stem stroke\n", out)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("writes the model, the plots and the picture of a sketch", function()
+    local dir = tmpdir()
+    local out, code = run(BIN .. " sketch model " .. SKETCH .. " -o " .. dir .. "/herb.lua " ..
+                          "--phyllotaxis fibonacci --nodes 2")
+    assert.equal(0, code, out)
+    assert.equal("wrote " .. dir .. "/herb.lua\n", out)
+    local text = assert(io.open(dir .. "/herb.lua")):read("a")
+    assert.truthy(text:find("fibonacci", 1, true))
+    assert.truthy(text:find("2 nodes per layer", 1, true), text:sub(1, 600))
+    -- the model file runs and makes a plant
+    local m = dofile(dir .. "/herb.lua")
+    assert.is_true(#m:derive() > 10)
+    out, code = run(BIN .. " sketch render " .. SKETCH .. " -o " .. dir .. "/herb.png --size 300x200")
+    assert.equal(0, code, out)
+    assert.truthy(out:find("^wrote " .. dir .. "/herb%.png %(300x200, %d+ triangles, 0 lines%)\n$"),
+                  out)
+    local _, w, h = core.png_read(dir .. "/herb.png")
+    assert.equal(300, w)
+    assert.equal(200, h)
+    out, code = run(BIN .. " sketch plot " .. SKETCH .. " -o " .. dir .. "/f.png --size 600x400")
+    assert.equal(0, code, out)
+    assert.equal("wrote " .. dir .. "/f.png\n", out)
+    local _, pw, ph = core.png_read(dir .. "/f.png")
+    assert.equal(600, pw)
+    assert.equal(400, ph)
+    -- default names: in the current directory, after the sketch
+    out, code = run("cd " .. dir .. " && " .. (BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") ..
+                    "/" .. BIN) .. " sketch model " .. os.getenv("PWD") .. "/" .. SKETCH)
+    assert.equal(0, code, out)
+    assert.equal("wrote fig8_herb.lua\n", out)
+    os.execute("rm -rf " .. dir)
+  end)
+end)
