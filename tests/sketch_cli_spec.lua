@@ -33,17 +33,21 @@ describe("lsys sketch", function()
   end)
 
   it("reports usage errors with exit status 2", function()
+    local P = "lsys: sketch: "
     local cases = {
-      { "sketch plot", "lsys: sketch: plot: a sketch FILE is required" },
-      { "sketch model a.json b.json", "lsys: sketch: unexpected argument 'b.json'" },
-      { "sketch plot a.json -o a.txt", "lsys: sketch: plot: the output must be a .png file, got 'a.txt'" },
-      { "sketch model a.json -o a.png", "lsys: sketch: model: the output must be a .lua file, got 'a.png'" },
-      { "sketch render a.json --nodes 0", "lsys: sketch: --nodes expects a whole number from 1 to 10000, got '0'" },
-      { "sketch render a.json --phyllotaxis spiral", "lsys: sketch: --phyllotaxis expects distichous, decussate or fibonacci, got 'spiral'" },
-      { "sketch render a.json --size 10", "lsys: sketch: --size expects WxH (1 to 16384 each), got '10'" },
-      { "sketch x.json -o y.png", "lsys: sketch: -o applies to plot, model and render" },
-      { "sketch a.json b.json", "lsys: sketch: unexpected argument 'b.json' (one FILE at most)" },
-      { "sketch --bogus", "lsys: sketch: unknown option '--bogus'" },
+      { "sketch plot", P .. "plot: a sketch FILE is required" },
+      { "sketch model a.json b.json", P .. "unexpected argument 'b.json'" },
+      { "sketch plot a.json -o a.txt", P .. "plot: the output must be a .png file, got 'a.txt'" },
+      { "sketch model a.json -o a.png",
+        P .. "model: the output must be a .lua file, got 'a.png'" },
+      { "sketch render a.json --nodes 0",
+        P .. "--nodes expects a whole number from 1 to 10000, got '0'" },
+      { "sketch render a.json --phyllotaxis spiral",
+        P .. "--phyllotaxis expects distichous, decussate or fibonacci, got 'spiral'" },
+      { "sketch render a.json --size 10", P .. "--size expects WxH (1 to 16384 each), got '10'" },
+      { "sketch x.json -o y.png", P .. "-o applies to plot, model and render" },
+      { "sketch a.json b.json", P .. "unexpected argument 'b.json' (one FILE at most)" },
+      { "sketch --bogus", P .. "unknown option '--bogus'" },
     }
     for _, c in ipairs(cases) do
       local out, code = run(BIN .. " " .. c[1])
@@ -79,7 +83,8 @@ describe("lsys sketch", function()
     -- the model file runs and makes a plant
     local m = dofile(dir .. "/herb.lua")
     assert.is_true(#m:derive() > 10)
-    out, code = run(BIN .. " sketch render " .. SKETCH .. " -o " .. dir .. "/herb.png --size 300x200")
+    out, code = run(BIN .. " sketch render " .. SKETCH .. " -o " .. dir ..
+                    "/herb.png --size 300x200")
     assert.equal(0, code, out)
     assert.truthy(out:find("^wrote " .. dir .. "/herb%.png %(300x200, %d+ triangles, 0 lines%)\n$"),
                   out)
