@@ -251,8 +251,9 @@ local function ray (b, L, ox, oy, tx, ty, ang, side)
     return s / L, hx, hy, false
   end
   local t, dist = b.curve:closest(ox, oy)
-  local p = b.curve:eval(t)
-  return dist / L, p[1] or p.x, p[2] or p.y, true
+  local px, py = b.curve:eval(t)
+  if type(px) == "table" then px, py = px[1], px[2] end
+  return dist / L, px, py, true
 end
 
 --- The whole analysis of §3: see docs/sketch.md, "The pipeline", for the table it returns.

@@ -1,0 +1,253 @@
+-- lsys.sketch: the pipeline of Anastacio et al. 2009 (§3-§5) on synthetic sketches whose
+-- answers are computed by hand, the templates' organs read back from the turtle, the
+-- geometric errors, save_model.
+local H = require "tests.helper"
+local sketch = require "lsys.sketch"
+
+local function line (x0, y0, x1, y1, n, p)
+  local t = {}
+  for i = 0, n do
+    local f = i / n
+    t[#t + 1] = { x0 + f * (x1 - x0), y0 + f * (y1 - y0), p }
+  end
+  return t
+end
+
+-- A vertical stem from (200, 500) up to (200, 100): L = 400 px; boundaries at x = 150 and
+-- 250 (d = 50 px = 0.125 stem lengths); horizontal inclination lines at y = 400, 300, 200
+-- (x = 0.25, 0.5, 0.75 along the stem). `right` replaces the right boundary.
+local function synthetic (over)
+  over = over or {}
+  local strokes = {
+    { role = "stem", points = over.stem or line(200, 500, 200, 100, 80) },
+    { role = "boundary_left", points = line(150, 520, 150, 80, 40) },
+    { role = "boundary_right", points = over.right or line(250, 520, 250, 80, 40) },
+    { role = "inclination", points = line(120, 400, 280, 400, 20) },
+    { role = "inclination", points = line(120, 300, 330, 300, 20) },
+    { role = "inclination", points = line(120, 200, 330, 200, 20) },
+  }
+  for _, s in ipairs(over.extra or {}) do strokes[#strokes + 1] = s end
+  if over.strokes then strokes = over.strokes(strokes) end
+  return { width = 400, height = 600, nodes_per_layer = 2, strokes = strokes }
+end
+
+local function load (over, opts)
+  opts = opts or {}
+  opts.name = "syn"
+  return sketch.load(synthetic(over), opts)
+end
+
+-- every module of the derived string: { name, p1, ... }
+local function organs (m)
+  local s = m:derive()
+  local out = {}
+  for i, mod in ipairs(H.modules(s)) do
+    if mod[1] == "Organ" then out[#out + 1] = { index = i, size = mod[2] } end
+  end
+  return s, out
+end
+
+describe("the synthetic sketch (parallel boundaries, horizontal inclination lines)", function ()
+  local sk = load()
+
+  it("puts N nodes per layer from the lower inclination line, and P_n on the top one", function ()
+    local an = sk:analysis()
+    local xs = {}
+    for i, nd in ipairs(an.nodes) do xs[i] = nd.x end
+    assert.near({ 0.25, 0.375, 0.5, 0.625, 0.75 }, xs, 1e-9)
+    assert.equal(2, #an.layers)
+    assert.near(0.25, an.layers[1].length, 1e-9)
+  end)
+
+  it("gives inclination 90 on both sides and organ size d / L", function ()
+    for _, nd in ipairs(sk:analysis().nodes) do
+      assert.near(90, nd.alpha, 1e-7)
+      assert.near(90, nd.beta, 1e-7)
+      assert.near(0.125, nd.size_left, 1e-9)
+      assert.near(0.125, nd.size_right, 1e-9)
+    end
+  end)
+
+  it("makes the positional functions of §4 exact at the nodes", function ()
+    local f = sk:functions()
+    assert.near(0.25, f.internode(0), 1e-9)              -- d1
+    for _, x in ipairs { 0.25, 0.375, 0.5, 0.625 } do
+      assert.near(0.125, f.internode(x), 1e-9)           -- layer length / N
+      assert.near(90, f.angle_left(x), 1e-7)
+      assert.near(0.125, f.size_right(x), 1e-9)
+    end
+    assert.near(0.25, f.internode(0.75), 1e-9)           -- d2 at P_n
+    assert.near(0, f.stem_shape(0), 1e-9)
+    assert.near(0, f.stem_shape(0.5), 1e-9)
+    assert.is_nil(f.yaw)
+  end)
+
+  it("draws a tilted boundary's sizes as the geometry predicts", function ()
+    -- right boundary px = 250 + (500 - py) / 8: at height y (stem lengths) it is at
+    -- x = 0.125 + 0.125 y, and a horizontal ray from the node (0, y) meets it there
+    local tilted = load { right = line(247.5, 520, 302.5, 80, 40) }
+    for _, nd in ipairs(tilted:analysis().nodes) do
+      assert.near(0.125 * (1 + nd.x), nd.size_right, 1e-9)
+      assert.near(0.125, nd.size_left, 1e-9)
+    end
+    local f = tilted:functions()
+    assert.near(0.125 * 1.375, f.size_right(0.375), 1e-9)
+    assert.near(0.125 * 1.25, f.size_right(0.1), 1e-9)   -- constant below the first node
+  end)
+
+  it("reads a stroke drawn from the top as the same stem", function ()
+    local down = load { stem = line(200, 100, 200, 500, 80) }
+    assert.near(0.375, down:analysis().nodes[2].x, 1e-9)
+    assert.near({ 0, 0.375, 0 }, down:analysis().nodes[2].pos, 1e-9)
+  end)
+end)
+
+describe("a 3D stem from the pressure (§3.5, §4.2.2)", function ()
+  it("gives yaw and pitch of a helix", function ()
+    -- one turn: px = 200 + 60 sin(2 pi t), py = 500 - 400 t, pressure 0.5 + 0.5 cos(2 pi t)
+    -- (depth z = 0.3 L2 cos(2 pi t) with L2 the drawn length)
+    local pts = {}
+    for i = 0, 400 do
+      local t = i / 400
+      pts[#pts + 1] = { 200 + 60 * math.sin(2 * math.pi * t), 500 - 400 * t,
+                        0.5 + 0.5 * math.cos(2 * math.pi * t) }
+    end
+    local sk = load { stem = pts, strokes = function (s)
+      s[2].points = line(100, 520, 100, 80, 40); s[3].points = line(300, 520, 300, 80, 40)
+      for k = 4, 6 do s[k].points[1][1], s[k].points[#s[k].points][1] = 60, 340 end
+      return s end }
+    local an = sk:analysis()
+    assert.is_true(an.threed)
+    local f = sk:functions()
+    assert.is_nil(f.stem_shape)
+    local L2 = an.stem.length2d
+    -- the helix's tangent at t: (120 pi cos, 400, -0.6 pi L2 sin) px, x right, y up, z near
+    local function expected (t)
+      local sx, sy = 120 * math.pi * math.cos(2 * math.pi * t), 400
+      local sz = -0.6 * math.pi * L2 * math.sin(2 * math.pi * t)
+      return math.deg(math.atan(-sx, sy)), math.deg(math.atan(-sz, math.sqrt(sx * sx + sy * sy)))
+    end
+    local st = an.stem
+    for _, q in ipairs { 0.15, 0.35, 0.5, 0.7, 0.85 } do      -- stem sample k: its t from py
+      local k = math.floor(q * st.m)
+      local t = (500 - st.py[k]) / 400
+      local ey, ep = expected(t)
+      assert.near(ey, f.yaw(st.s[k]), 1.5)
+      assert.near(ep, f.pitch(st.s[k]), 1.5)
+    end
+  end)
+end)
+
+describe("templates (§5)", function ()
+  local sk = load { right = line(247.5, 520, 302.5, 80, 40) }
+
+  it("puts two organs per node (distichous), on the nodes, turned by the angles", function ()
+    local m = sk:model { phyllotaxis = "distichous" }
+    local s, org = organs(m)
+    assert.equal(10, #org)
+    local sc = m:interpret(s)
+    local xs = { 0.25, 0.375, 0.5, 0.625, 0.75 }
+    for k, o in ipairs(org) do
+      local node = (k + 1) // 2
+      local p, h = sc:turtle(o.index - 1)        -- the turtle after the organ's turn
+      assert.near({ 0, xs[node], 0 }, p, 1e-9)
+      assert.near(k % 2 == 1 and { -1, 0, 0 } or { 1, 0, 0 }, h, 1e-9)
+      assert.near(k % 2 == 1 and 0.125 or 0.125 * (1 + xs[node]), o.size, 1e-9)
+    end
+  end)
+
+  it("turns every other pair by 90 degrees (decussate) with the averaged values", function ()
+    local m = sk:model { phyllotaxis = "decussate" }
+    local s, org = organs(m)
+    assert.equal(10, #org)
+    local sc = m:interpret(s)
+    local xs = { 0.25, 0.375, 0.5, 0.625, 0.75 }
+    for k, o in ipairs(org) do
+      local node = (k + 1) // 2
+      local _, h = sc:turtle(o.index - 1)
+      if node % 2 == 1 then
+        assert.near(0, h[3], 1e-9)
+        assert.near(1, math.abs(h[1]), 1e-9)
+      else
+        assert.near(0, h[1], 1e-9)
+        assert.near(1, math.abs(h[3]), 1e-9)
+        assert.near((0.125 + 0.125 * (1 + xs[node])) / 2, o.size, 1e-9)
+      end
+    end
+  end)
+
+  it("puts one organ per node at 137.5 degrees with the (a, b) weights (Fibonacci)", function ()
+    local m = sk:model { phyllotaxis = "fibonacci" }
+    local s, org = organs(m)
+    assert.equal(5, #org)
+    local xs = { 0.25, 0.375, 0.5, 0.625, 0.75 }
+    local mods = H.modules(s)
+    for k, o in ipairs(org) do
+      local th = ((k - 1) * 137.5) % 360
+      -- [ /(θ) +(φ) Organ(h) ]
+      assert.equal("/", mods[o.index - 2][1])
+      assert.near(th, mods[o.index - 2][2], 1e-9)
+      local a, b
+      if th <= 180 then a, b = 1 - th / 180, th / 180 else a, b = th / 180 - 1, 2 - th / 180 end
+      assert.near(a * 0.125 + b * 0.125 * (1 + xs[k]), o.size, 1e-9)
+    end
+  end)
+
+  it("gives the template's rules as text", function ()
+    local t = sketch.template("distichous")
+    assert.truthy(t:find("B(x) --> L(x) R(x)", 1, true))
+    assert.truthy(t:find("R(x) --> [/(180) +(angle_right(x)) Organ(size_right(x))]", 1, true))
+  end)
+end)
+
+describe("geometric errors", function ()
+  it("names a boundary on the wrong side", function ()
+    assert.has_error(function ()
+      load { strokes = function (s)
+        s[2].points, s[3].points = s[3].points, s[2].points
+        return s end }:analysis()
+    end, "syn: stroke 2 (boundary_left): lies right of the stem")
+  end)
+
+  it("names an inclination line that misses the stem or a boundary", function ()
+    assert.has_error(function ()
+      load { extra = { { role = "inclination", points = line(120, 350, 220, 350, 10) } } }
+        :analysis()
+    end, "syn: stroke 7 (inclination): does not cross the right boundary")
+    assert.has_error(function ()
+      load { extra = { { role = "inclination", points = line(120, 350, 180, 350, 10) } } }
+        :analysis()
+    end, "syn: stroke 7 (inclination): does not cross the stem")
+    assert.has_error(function ()
+      load { extra = { { role = "inclination", points = line(170, 350, 280, 350, 10) } } }
+        :analysis()
+    end, "syn: stroke 7 (inclination): does not cross the left boundary")
+  end)
+
+  it("needs two inclination lines", function ()
+    assert.has_error(function ()
+      load { strokes = function (s) return { s[1], s[2], s[3], s[4] } end }:analysis()
+    end, "syn: a sketch needs at least two inclination lines, it has 1")
+  end)
+end)
+
+describe("models from sketches", function ()
+  it("saves a model file that builds the same plant", function ()
+    local sk = load()
+    local d = H.tmpdir()
+    local path = d .. "/plant.lua"
+    sk:save_model(path, { phyllotaxis = "decussate" })
+    local m2 = dofile(path)
+    local m1 = sk:model { phyllotaxis = "decussate" }
+    assert.equal(tostring(m1:derive()), tostring(m2:derive()))
+    H.rmdir(d)
+  end)
+
+  it("composes a sketch as the organ of another (§7.2)", function ()
+    local outer, inner = load(), load()
+    local m = outer:model { organ = inner }
+    local s = m:derive()
+    -- 10 organs of the outer plant, each a plant with 10 organs
+    assert.equal(100, s:count("Organ"))
+  end)
+end)
