@@ -25,8 +25,10 @@ local function stroke (role, f)
 end
 local strokes = {
   stroke("stem", function (t) return 400 + 30 * math.sin(3 * t), 950 - 880 * t end),
-  stroke("boundary_left", function (t) return 380 - 250 * math.sin(math.pi * t), 970 - 920 * t end),
-  stroke("boundary_right", function (t) return 420 + 250 * math.sin(math.pi * t), 970 - 920 * t end),
+  stroke("boundary_left",
+         function (t) return 380 - 250 * math.sin(math.pi * t), 970 - 920 * t end),
+  stroke("boundary_right",
+         function (t) return 420 + 250 * math.sin(math.pi * t), 970 - 920 * t end),
 }
 for k = 0, LAYERS do
   local y = 900 - 780 * k / LAYERS
