@@ -1390,9 +1390,30 @@ function Viewer:screenshot(path) end
 ---@return integer serial
 function Viewer:key(name) end
 --- `{ open, drawn, serial, width, height, fbwidth, fbheight, frame, nframes, playing,
---- wireframe }`.
+--- wireframe, scene }` (scene: the scene's rectangle in the window, `{x, y, w, h}`).
 ---@return table
 function Viewer:state() end
+--- Splits the window into the scene and image panes (csrc/gl/vpanes.c), rectangles in
+--- fractions of the window, y down; nil: the scene fills it again. While a layout is on,
+--- every key comes back as a "key" event, and the mouse over a pane as "pointer" (`pane`,
+--- `phase` "down"|"move"|"up", `button`, `x`, `y` in the image's pixels, `ctrl`, `shift`)
+--- and "scroll" (`pane`, `x`, `y`, `dy`) events. Returns the request's serial (as `key`).
+---@param lay? { scene: number[], panes: { [1]: number, [2]: number, [3]: number, [4]: number, bg?: number[] }[] }
+---@return integer serial
+function Viewer:layout(lay) end
+--- Shows an RGBA image (w * h * 4 bytes, top row first; copied) in pane k (1 to 4), as
+--- large as fits with its aspect kept.
+---@param k integer
+---@param pixels string
+---@param w integer
+---@param h integer
+---@return integer serial
+function Viewer:image(k, pixels, w, h) end
+--- Replaces the status line (`""`: the usual one) and the help text (nil: unchanged).
+---@param status? string
+---@param help? string
+---@return integer serial
+function Viewer:text(status, help) end
 ---@param p number[]
 ---@return number? x
 ---@return number? y
