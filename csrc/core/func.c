@@ -7,8 +7,9 @@
 ** The curve's basis is evaluated here: each span is turned once into its
 ** four Bezier points by blossoming (de Boor's algorithm with the span's
 ** ends as arguments), and evaluated in Bernstein form, which gives the end
-** points exactly. (csrc/core/bspline.h, the uniform B-splines of the sketch
-** pipeline, does not cover clamped knots.)
+** points exactly. (csrc/core/bspline.h, which landed later, evaluates
+** clamped curves too; the inversion here needs each span's polynomial, so
+** the span form stays. Moving the basis there is left for a later change.)
 */
 #include <ctype.h>
 #include <math.h>
