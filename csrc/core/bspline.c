@@ -296,7 +296,7 @@ double lsys_bspline_length_between (const lsys_bspline *c, double t0, double t1)
 
 double lsys_bspline_at_length (const lsys_bspline *c, double s) {
   size_t spans = lsys_bspline_spans(c), lo = 0, hi = spans, sp;
-  double L = c->cum[spans], a, b, u, seg;
+  double L = c->cum[spans], a, b, u, seg, acc;
   int it;
   if (!(s > 0) || !(L > 0)) return 0.0;
   if (s >= L) return 1.0;
@@ -310,16 +310,18 @@ double lsys_bspline_at_length (const lsys_bspline *c, double s) {
   seg = c->cum[lo + 1] - c->cum[lo];
   s -= c->cum[lo];
   u = seg > 0 ? a + (b - a) * (s / seg) : a;
+  acc = spanlength(c, sp, c->knot[sp], u);    /* then updated by the steps' lengths */
   for (it = 0; it < 100; it++) {
-    double g = spanlength(c, sp, c->knot[sp], u) - s, v = speed(c, sp, u), nu;
+    double g = acc - s, v = speed(c, sp, u), nu;
     if (g == 0) break;
     if (g < 0) a = u; else b = u;
     nu = v > 0 ? u - g / v : 0.5 * (a + b);
-    if (!(nu > a && nu < b)) nu = 0.5 * (a + b);
-    if (fabs(nu - u) <= 1e-15 * (1.0 + fabs(u))) {
-      u = nu;
+    if (fabs(nu - u) <= 1e-14 * (1.0 + fabs(u))) {   /* converged (u is on the bracket) */
+      if (nu >= a && nu <= b) u = nu;
       break;
     }
+    if (!(nu > a && nu < b)) nu = 0.5 * (a + b);
+    acc += nu > u ? spanlength(c, sp, u, nu) : -spanlength(c, sp, nu, u);
     u = nu;
   }
   return tot(c, u);
@@ -392,6 +394,13 @@ void lsys_bspline_closest (const lsys_bspline *c, const double *q, double *t, do
   size_t s;
   lsys_bspline_eval_span(c, (size_t)c->degree, bu, 0, p);
   best = dist2(p, q, c->dim);
+  for (s = (size_t)c->degree; s < c->n; s++) {    /* a first bound: the spans' middles */
+    lsys_bspline_eval_span(c, s, c->knot[s] + 0.5, 0, p);
+    if (dist2(p, q, c->dim) < best) {
+      best = dist2(p, q, c->dim);
+      bu = c->knot[s] + 0.5;
+    }
+  }
   for (s = (size_t)c->degree; s < c->n; s++) {
     double a = c->knot[s], b = c->knot[s + 1], su = b, sd, u;
     int i;
