@@ -277,7 +277,7 @@ describe("#gl the sketch window under Xvfb", function()
     if not ok then pending(why) return end
     if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
     local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
-    if BIN:sub(1, 1) ~= "/" then BIN = os.getenv("PWD") .. "/" .. BIN end
+    if BIN:sub(1, 1) ~= "/" then BIN = io.popen("pwd"):read("l") .. "/" .. BIN end
     local dir = tmpdir()
     local outf = dir .. "/out.txt"
     os.execute(("cd %s && %s%s sketch %s/x.json --size 1200x800 --nodes 3 >%s 2>&1 &"):format(
