@@ -30,6 +30,14 @@ describe("turtle frame", function ()
     assert.same({ 0, 0, -1 }, u)
   end)
 
+  it("keeps its frame on a first turn of 0 (the turn cache once started at cos 0)", function ()
+    for _, text in ipairs { "+(0)F", "-(0)F", "&(0)F", "^(0)F", "/(0)F", "\\(0)F" } do
+      local p, h = final(m, text)
+      assert.near({ 0, 1, 0 }, p, 1e-12)
+      assert.near({ 0, 1, 0 }, h, 1e-12)
+    end
+  end)
+
   it("turns left with + (anticlockwise seen from +z)", function ()
     local p, h = final(m, "+F")
     assert.near({ -1, 0, 0 }, p, 1e-12)

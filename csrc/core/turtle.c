@@ -737,6 +737,7 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
     return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
   R = (run *)t->runbuf;
   memset(R, 0, sizeof *R);
+  R->tcos = 1;     /* the turn cache starts at angle 0: cos 1, sin 0 (a first +(0) is no turn) */
   R->t = t; R->o = o;
   R->draw = t->mode == LSYS_TURTLE_DRAW;
   R->prec = LSYS_NOREC;
