@@ -92,11 +92,6 @@ function M.rules (o)
   end
   local start = counted and "A(0, 0)" or "A(0)"
   if o.first then start = counted and "B(0, 0) A(0, 1)" or "B(0) A(0)" end
-  -- Workaround: the turtle caches the cosine and sine of the last turn and starts with an
-  -- empty cache that claims the angle 0, so a turn by exactly 0 before any other turn
-  -- (a straight stem's first piece) zeroes the heading (csrc/core/turtle.c, turn()). A
-  -- turn there and back fills the cache; remove when the turtle is fixed.
-  if not o.prefix or o.prefix == "" then start = "+(90) -(90) " .. start end
   local names = { I, XT, XE, D, AL, AR, SL, SR }
   if o.threed then names[#names + 1] = n "yaw"; names[#names + 1] = n "pitch"
   else names[#names + 1] = n "stem_shape" end
