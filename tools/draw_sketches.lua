@@ -242,7 +242,7 @@ SKETCHES.fig7_flower = function ()
                  { 100, 250 }, { 150, 230 }, { 196, 224 } }
   local sk = { width = 400, height = 500, nodes_per_layer = 13, phyllotaxis = "fibonacci",
     strokes = {
-      { role = "stem", guide = { { 203, 488 }, { 200, 420 }, { 198, 330 }, { 200, 246 } } },
+      { role = "stem", guide = { { 203, 488 }, { 200, 420 }, { 198, 330 }, { 200, 259 } } },
       { role = "boundary_left", guide = left },
       { role = "boundary_right", guide = mirror(left, 200, { { 0, 0 }, { -3, 2 },
         { 2, -2 }, { 4, 1 }, { 0, 3 }, { -2, 0 }, { 2, -1 }, { 0, 0 } }) },
@@ -352,15 +352,17 @@ end
 -- Figs. 11 and 12: a bromeliad from two sketches. The leaves: a short stem, a wide vase of a
 -- silhouette, long leaves that arch out level at the bottom of the rosette and stand up in
 -- its middle. The inflorescence: a stalk from the centre of the rosette with short bracts
--- in its upper third. `pressure` draws both stems with the tablet (fig. 12): the rosette
--- leans towards the viewer and the stalk away.
+-- in its upper third. Both are drawn on one stem, the stalk, as the foxglove's are.
+-- `pressure` draws the stem with the tablet (fig. 12): the stalk leans away from the viewer.
+local BROMELIAD_STEM = { { 250, 492 }, { 251, 400 }, { 249, 260 }, { 250, 150 }, { 251, 70 } }
+local BROMELIAD_PRESSURE = { { 0, 0.5 }, { 0.4, 0.45 }, { 1, 0.2 } }
 local function bromeliad_leaves (pressure)
   local left = { { 246, 496 }, { 160, 494 }, { 70, 470 }, { 28, 380 }, { 26, 240 },
                  { 66, 110 }, { 110, 30 } }
   local sk = { width = 500, height = 500, nodes_per_layer = 8, phyllotaxis = "fibonacci",
     strokes = {
-      { role = "stem", guide = { { 250, 492 }, { 249, 430 }, { 251, 370 }, { 250, 320 } },
-        pressure = pressure and { { 0, 0.5 }, { 0.5, 0.6 }, { 1, 0.75 } } },
+      { role = "stem", guide = BROMELIAD_STEM, pressure = pressure and BROMELIAD_PRESSURE,
+        seed = pressure and "bromeliad 3D" or "bromeliad" },
       { role = "boundary_left", guide = left },
       { role = "boundary_right", guide = mirror(left, 250, { { 0, 0 }, { 3, -2 }, { -4, 3 },
         { 3, 2 }, { -2, -3 }, { 4, 0 }, { 0, 0 } }) },
@@ -381,9 +383,8 @@ local function bromeliad_spike (pressure)
                  { 249, 66 } }
   local sk = { width = 500, height = 500, nodes_per_layer = 6, phyllotaxis = "fibonacci",
     strokes = {
-      { role = "stem", guide = { { 250, 492 }, { 251, 400 }, { 249, 260 }, { 250, 150 },
-                                 { 251, 70 } },
-        pressure = pressure and { { 0, 0.5 }, { 0.4, 0.45 }, { 1, 0.2 } } },
+      { role = "stem", guide = BROMELIAD_STEM, pressure = pressure and BROMELIAD_PRESSURE,
+        seed = pressure and "bromeliad 3D" or "bromeliad" },
       { role = "boundary_left", guide = left },
       { role = "boundary_right", guide = mirror(left, 250, { { 0, 0 }, { 2, 3 }, { -3, 0 },
         { 2, -2 }, { 0, 3 }, { 0, 0 } }) },
@@ -467,6 +468,132 @@ SKETCHES.fig13_leaves = function () return foxglove_leaves(false) end
 SKETCHES.fig14_flowers = function () return foxglove_flowers(true) end
 SKETCHES.fig14_leaves = function () return foxglove_leaves(true) end
 
+-- --------------------------------------------------------------------------
+-- Organs: the 3-view strokes of §6 (lsys.sketch.organ's conventions, docs/sketch.md
+-- "Organs"). Top view: the base at the bottom, the tip up; side view: the base at the
+-- bottom, the upper side of the organ to the right; front view: the cross-section from the
+-- left boundary to the right one, up is the upper side. Each view is drawn on its own
+-- 200 x 320 pixel pad with the base of the organ at (100, 300).
+local ORGANS = {}
+
+-- resolution: Bézier patches {across, along} of the fitted surface; precision: lines per
+-- patch {across, along} -- kept low, since a plant draws its organ hundreds of times.
+local function organ (left, right_wob, side, front, resolution, precision)
+  return { top = { left = left, right = mirror(left, 100, right_wob) }, side = side,
+           front = front, resolution = resolution or { 2, 4 }, precision = precision or { 2, 2 } }
+end
+
+-- A pine-cone scale: a narrow claw widening into a broad, rounded, thick end that turns
+-- outward (the apophysis); its back is convex.
+ORGANS.scale = function ()
+  return organ({ { 97, 300 }, { 88, 262 }, { 70, 200 }, { 50, 140 }, { 44, 100 },
+                 { 56, 70 }, { 80, 56 }, { 100, 54 } },
+               { { 0, 0 }, { -2, 0 }, { 3, 2 }, { -2, -1 }, { 2, 3 }, { 0, 2 }, { -2, 0 },
+                 { 0, 0 } },
+               { { 100, 300 }, { 101, 230 }, { 100, 160 }, { 104, 110 }, { 114, 76 },
+                 { 126, 56 } },
+               { { 20, 200 }, { 60, 186 }, { 100, 180 }, { 140, 186 }, { 180, 200 } },
+               { 2, 3 }, { 2, 2 })
+end
+
+-- A petal: long and narrow at the base, broad and rounded at the tip, cupped, its tip
+-- turning up.
+ORGANS.petal = function ()
+  return organ({ { 98, 300 }, { 90, 260 }, { 74, 190 }, { 66, 120 }, { 72, 72 },
+                 { 86, 48 }, { 99, 42 } },
+               { { 0, 0 }, { 1, 2 }, { -3, 0 }, { 2, -2 }, { -1, 1 }, { 2, 0 }, { 0, 0 } },
+               { { 100, 300 }, { 100, 220 }, { 104, 150 }, { 114, 90 }, { 128, 48 } },
+               { { 20, 180 }, { 60, 196 }, { 100, 200 }, { 140, 195 }, { 180, 180 } },
+               { 2, 3 }, { 2, 2 })
+end
+
+-- An ovate leaf with a drawn-out tip, folded a little along the midrib (a V), arching.
+ORGANS.leaf = function ()
+  return organ({ { 98, 300 }, { 78, 280 }, { 54, 230 }, { 46, 170 }, { 58, 110 },
+                 { 80, 64 }, { 100, 30 } },
+               { { 0, 0 }, { 2, 1 }, { -2, -2 }, { 3, 0 }, { 0, 3 }, { -2, 0 }, { 0, 0 } },
+               { { 100, 300 }, { 108, 230 }, { 110, 160 }, { 104, 100 }, { 92, 40 } },
+               { { 20, 180 }, { 60, 190 }, { 100, 202 }, { 140, 189 }, { 180, 180 } },
+               { 2, 4 }, { 2, 2 })
+end
+
+-- A leaflet of the compound leaf: elliptic, flat but for a shallow V.
+ORGANS.leaflet = function ()
+  return organ({ { 98, 300 }, { 84, 270 }, { 72, 210 }, { 72, 140 }, { 82, 80 },
+                 { 100, 40 } },
+               { { 0, 0 }, { -1, 2 }, { 2, 0 }, { -2, 1 }, { 0, -2 }, { 0, 0 } },
+               nil,
+               { { 20, 180 }, { 100, 192 }, { 180, 180 } },
+               { 2, 3 }, { 1, 2 })
+end
+
+-- A bromeliad leaf: a long strap of even width ending in a point, channelled (a deep U),
+-- rising and then arching over (its midrib bends towards its lower side).
+ORGANS.strap = function ()
+  return organ({ { 94, 300 }, { 86, 270 }, { 84, 200 }, { 85, 130 }, { 88, 70 },
+                 { 100, 20 } },
+               { { 0, 0 }, { 1, 1 }, { -1, 0 }, { 1, -1 }, { -1, 0 }, { 0, 0 } },
+               { { 100, 300 }, { 98, 240 }, { 90, 180 }, { 72, 130 }, { 44, 100 },
+                 { 12, 96 } },
+               { { 20, 170 }, { 50, 200 }, { 100, 212 }, { 150, 200 }, { 180, 170 } },
+               { 2, 6 }, { 2, 2 })
+end
+
+-- A bract of the bromeliad's inflorescence: short, broad at the base, pointed, cupped.
+ORGANS.bract = function ()
+  return organ({ { 96, 300 }, { 70, 270 }, { 60, 210 }, { 70, 140 }, { 86, 90 },
+                 { 100, 60 } },
+               { { 0, 0 }, { 2, -2 }, { -2, 1 }, { 2, 0 }, { -1, 1 }, { 0, 0 } },
+               { { 100, 300 }, { 104, 220 }, { 112, 150 }, { 124, 70 } },
+               { { 20, 170 }, { 60, 205 }, { 100, 215 }, { 140, 204 }, { 180, 170 } },
+               { 2, 3 }, { 2, 2 })
+end
+
+-- A foxglove flower: a tube widening from the stalk to a wide mouth (the cross-section an
+-- almost closed ring), its end bending down a little.
+ORGANS.bell = function ()
+  return organ({ { 96, 300 }, { 92, 270 }, { 84, 200 }, { 74, 130 }, { 62, 84 },
+                 { 56, 62 } },
+               { { 0, 0 }, { 1, 0 }, { -2, 1 }, { 1, -1 }, { 0, 1 }, { -2, 2 } },
+               { { 100, 300 }, { 101, 230 }, { 98, 160 }, { 90, 110 }, { 80, 70 } },
+               { { 40, 150 }, { 24, 190 }, { 40, 236 }, { 100, 260 }, { 160, 236 },
+                 { 176, 190 }, { 160, 150 } },
+               { 6, 3 }, { 2, 2 })
+end
+
+-- A foxglove leaf: long, ovate-lanceolate, folded along the midrib, arching over.
+ORGANS.foxleaf = function ()
+  return organ({ { 98, 300 }, { 80, 272 }, { 64, 210 }, { 62, 140 }, { 74, 80 },
+                 { 100, 20 } },
+               { { 0, 0 }, { 2, 0 }, { -2, 1 }, { 2, -2 }, { -1, 0 }, { 0, 0 } },
+               { { 100, 300 }, { 106, 220 }, { 104, 150 }, { 92, 90 }, { 74, 40 } },
+               { { 20, 180 }, { 60, 190 }, { 100, 200 }, { 140, 190 }, { 180, 180 } },
+               { 2, 4 }, { 2, 2 })
+end
+
+local function organ_json (o)
+  local out = { '{"organ": {\n  "name": "', o.name, '",\n',
+                string.format('  "resolution": [%d, %d], "precision": [%d, %d],\n',
+                              o.resolution[1], o.resolution[2], o.precision[1],
+                              o.precision[2]),
+                '  "top": {\n    "left": ',
+                points_json(o.top.left, "      "), ',\n    "right": ',
+                points_json(o.top.right, "      "), "\n  }" }
+  for _, view in ipairs { "side", "front" } do
+    if o[view] then
+      out[#out + 1] = ',\n  "' .. view .. '": ' .. points_json(o[view], "    ")
+    end
+  end
+  out[#out + 1] = "\n}}\n"
+  return table.concat(out)
+end
+
+local function seeded (key)
+  local seed = 0
+  for k = 1, #key do seed = (seed * 31 + key:byte(k)) % 2147483647 end
+  math.randomseed(seed)
+end
+
 local function write_all ()
   local names = {}
   for name in pairs(SKETCHES) do names[#names + 1] = name end
@@ -477,13 +604,23 @@ local function write_all ()
       -- a seed from the sketch's name and the stroke's place, so that adding a sketch or a
       -- stroke changes no other; a stroke shared by two sketches (the foxglove's stem)
       -- names its own seed and is the same in both
-      local key, seed = st.seed or (name .. "/" .. i), 0
-      for k = 1, #key do seed = (seed * 31 + key:byte(k)) % 2147483647 end
-      math.randomseed(seed)
+      seeded(st.seed or (name .. "/" .. i))
       st.points = stroke(st.guide, st)
     end
     check(name, sk)
     write_json(dir .. "/" .. name .. ".json", sketch_json(sk))
+  end
+  names = {}
+  for name in pairs(ORGANS) do names[#names + 1] = name end
+  table.sort(names)
+  for _, name in ipairs(names) do
+    local o = ORGANS[name]()
+    seeded("organ " .. name)
+    o.name = name
+    o.top.left, o.top.right = stroke(o.top.left, {}), stroke(o.top.right, {})
+    if o.side then o.side = stroke(o.side, {}) end
+    o.front = stroke(o.front, {})
+    write_json(dir .. "/organ_" .. name .. ".json", organ_json(o))
   end
 end
 
