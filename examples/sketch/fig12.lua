@@ -1,6 +1,7 @@
 -- Anastacio et al. 2009, figs. 11 and 12 (§7.2): a bromeliad, its stem drawn with pen
--- pressure (fig. 12): the stalk leans away from the viewer. Two sketches, one grammar: the rosette of long arching, channelled leaves (fig12_leaves.json, Fibonacci,
--- 8 nodes per layer, organ_strap.json) and the flower stalk from its centre with red bracts
+-- pressure (fig. 12): the stalk leans away from the viewer. Two sketches, one grammar:
+-- the rosette of long arching, channelled leaves (fig12_leaves.json, Fibonacci, 8 nodes
+-- per layer, organ_strap.json) and the flower stalk from its centre with red bracts
 -- in its upper third (fig12_spike.json, organ_bract.json), drawn on one stem; the
 -- stalk's rules are renamed, its stem moves without drawing and its apex starts with the
 -- rosette's (common.compose).
