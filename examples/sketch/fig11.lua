@@ -1,9 +1,9 @@
 -- Anastacio et al. 2009, figs. 11 and 12 (§7.2): a bromeliad, its stem drawn without pen
 -- pressure (fig. 11). Two sketches, one grammar: the rosette of long arching, channelled
 -- leaves (fig11_leaves.json, Fibonacci, 8 nodes per layer, organ_strap.json) and the
--- flower stalk from its centre with red bracts in its upper third (fig11_spike.json, organ_bract.json), drawn on one stem; the
--- stalk's rules are renamed, its stem moves without drawing and its apex starts with the
--- rosette's (common.compose).
+-- flower stalk from its centre with red bracts in its upper third (fig11_spike.json,
+-- organ_bract.json), drawn on one stem; the stalk's rules are renamed, its stem moves
+-- without drawing and its apex starts with the rosette's (common.compose).
 local lsys = require "lsys"
 local common = dofile(lsys.here() .. "/common.lua")
 
