@@ -235,3 +235,84 @@ describe("examples/cpfg data files", function ()
     os.remove(tmp)
   end)
 end)
+
+-- The figures of Anastacio et al. 2009 (examples/sketch): each model file draws the plant
+-- its picture in examples/gallery/sketch showed when it was looked at. The counts depend on
+-- the sketch pipeline (lsys.sketch) and the organs' patches: a change there that changes
+-- one of them needs a new look at that picture before the number is updated here.
+describe("examples/sketch", function ()
+  local SDIR = "examples/sketch"
+  local SCOUNTS = {
+    fig7 = { cone = { 3101, 35504, 0 }, flower = { 435, 3920, 0 } },
+    fig8 = { decussate = { 268, 2736, 0 }, distichous = { 228, 2736, 0 },
+             fibonacci = { 164, 1712, 0 } },
+    fig9 = { double = { 2742, 16896, 0 }, single = { 215, 1376, 0 } },
+    fig10 = { diagonal = { 318, 2256, 0 }, flat = { 222, 2192, 0 }, front = { 318, 2256, 0 },
+              side = { 318, 2256, 0 } },
+    fig11 = { { 582, 5728, 0 } },
+    fig12 = { { 842, 5808, 0 } },
+    fig13 = { { 548, 8400, 0 } },
+    fig14 = { { 774, 8560, 0 } },
+  }
+
+  it("has a count for every model file and a model file for every count", function ()
+    local out = {}
+    local p = assert(io.popen("ls " .. SDIR .. "/fig*.lua"))
+    for f in p:lines() do out[#out + 1] = f:match("([^/]*)%.lua$") end
+    p:close()
+    table.sort(out)
+    assert.same(sorted_keys(SCOUNTS), out)
+  end)
+
+  for _, file in ipairs(sorted_keys(SCOUNTS)) do
+    local expect = SCOUNTS[file]
+    it(file .. " draws each model with the expected geometry", function ()
+      local t = dofile(SDIR .. "/" .. file .. ".lua")
+      if expect[1] then assert.is_function(t.derive) else assert.is_nil(t.derive) end
+      for _, name in ipairs(sorted_keys(expect)) do
+        local m = name == 1 and t or t[name]
+        local s = m:derive()
+        local sc = m:interpret(s)
+        assert.same(expect[name], { #s, sc.ntriangles, sc.nlines }, file .. " " .. tostring(name))
+      end
+    end)
+  end
+
+  it("fig8: the patterns put 2, 2 and 1 leaves on each node of the same sketch", function ()
+    local t = dofile(SDIR .. "/fig8.lua")
+    local n = t.fibonacci:derive():count("Organ")
+    assert.is_true(n > 10)
+    assert.equal(2 * n, t.decussate:derive():count("Organ"))
+    assert.equal(2 * n, t.distichous:derive():count("Organ"))
+  end)
+
+  it("fig13: the composed foxglove has the organs of both sketches and one drawn stem",
+  function ()
+    local lsys_sketch = require "lsys.sketch"
+    local leaves = lsys_sketch.load(SDIR .. "/fig13_leaves.json"):model {}
+    local flowers = lsys_sketch.load(SDIR .. "/fig13_flowers.json"):model {}
+    local s = dofile(SDIR .. "/fig13.lua"):derive()
+    local sl, sf = leaves:derive(), flowers:derive()
+    assert.equal(sl:count("Organ"), s:count("Organ"))
+    assert.equal(sf:count("Organ"), s:count("Organ2"))
+    assert.equal(sl:count("F"), s:count("F"))           -- the leaves' stem, drawn
+    assert.equal(sf:count("F"), s:count("f"))           -- the flowers', moved along
+  end)
+
+  it("the sketch files load and the organ files build", function ()
+    local lsys_sketch, organ = require "lsys.sketch", require "lsys.sketch.organ"
+    local p = assert(io.popen("ls " .. SDIR .. "/*.json"))
+    local ns, no = 0, 0
+    for f in p:lines() do
+      if f:match("/organ_[^/]*$") then
+        assert.truthy(organ.load(f):surface(), f)
+        no = no + 1
+      else
+        assert.truthy(#lsys_sketch.load(f):analysis().nodes > 0, f)
+        ns = ns + 1
+      end
+    end
+    p:close()
+    assert.same({ 14, 8 }, { ns, no })
+  end)
+end)
