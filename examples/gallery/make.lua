@@ -226,6 +226,63 @@ local PICTURES = {
     .. "where two cylinders overlap.", width = 320, height = 320 },
   { "cpfg/fig34.lua", "b", "Fig. 34b",
     "A textured polygon: a venation image on a leaf blade.", width = 320, height = 320 },
+  -- the figures of Anastacio et al. 2009, examples/sketch; plot = a sketch whose functions
+  -- are plotted (lsys.sketch.plot) instead of a model drawn
+  { "sketch/fig7.lua", "cone", "Fig. 7, pine cone",
+    "A pine cone: Fibonacci phyllotaxis, 55 nodes per layer in an ovoid of eight thin "
+    .. "layers; sketched woody scales point down at the base and up at the tip.",
+    png = "sketch/fig7_cone.png", width = 320, height = 320 },
+  { "sketch/fig7.lua", "flower", "Fig. 7, flower",
+    "A flower head on a stalk: 13 nodes per layer in five close layers; long petals spread "
+    .. "at the rim, shorter upright ones inside.", png = "sketch/fig7_flower.png",
+    width = 320, height = 320 },
+  { "sketch/fig8.lua", "decussate", "Fig. 8, decussate",
+    "One sketch, three nodes per layer: pairs of leaves, each pair turned 90° from the last.",
+    png = "sketch/fig8_decussate.png", width = 320, height = 320 },
+  { "sketch/fig8.lua", "distichous", "Fig. 8, distichous",
+    "The same sketch: pairs of leaves in one plane.", png = "sketch/fig8_distichous.png",
+    width = 320, height = 320 },
+  { "sketch/fig8.lua", "fibonacci", "Fig. 8, Fibonacci",
+    "The same sketch: one leaf per node, 137.5° apart.", png = "sketch/fig8_fibonacci.png",
+    width = 320, height = 320 },
+  { "sketch/fig9.lua", "single", "Fig. 9, single compound leaf",
+    "A pinnate leaf: distichous leaflets, two pairs per layer, shorter towards the tip.",
+    png = "sketch/fig9_single.png", width = 320, height = 320 },
+  { "sketch/fig9.lua", "double", "Fig. 9, double compound leaf",
+    "The single leaf as the organ of a second, distichous sketch (composition, §7.2).",
+    png = "sketch/fig9_double.png", width = 320, height = 320 },
+  { "sketch/fig10.lua", "front", "Fig. 10, front",
+    "A stem drawn with pen pressure, seen as it was drawn.", png = "sketch/fig10_front.png",
+    width = 320, height = 320 },
+  { "sketch/fig10.lua", "diagonal", "Fig. 10, diagonal",
+    "The same plant from the diagonal: the stem leaves the drawing plane.",
+    png = "sketch/fig10_diagonal.png", width = 320, height = 320 },
+  { "sketch/fig10.lua", "side", "Fig. 10, side",
+    "From the side: towards the viewer in its lower half, away at the top.",
+    png = "sketch/fig10_side.png", width = 320, height = 320 },
+  { "fig10_depth", nil, "Fig. 5, functions",
+    "The functions of the pressure-drawn stem: internode, yaw, inclinations, sizes and "
+    .. "pitch (panel 7).", png = "sketch/fig10_functions.png", plot = true,
+    width = 320, height = 320 },
+  { "sketch/fig11.lua", nil, "Fig. 11, bromeliad",
+    "A bromeliad from two sketches on one stem, composed into one grammar: a rosette of "
+    .. "long arching leaves and a stalk with red bracts.", png = "sketch/fig11.png",
+    width = 320, height = 320 },
+  { "fig11_leaves", nil, "Fig. 11, leaf functions",
+    "The functions of the rosette's sketch.", png = "sketch/fig11_functions.png",
+    plot = true, width = 320, height = 320 },
+  { "sketch/fig12.lua", nil, "Fig. 12, bromeliad in 3D",
+    "The same sketches with the stem drawn with pen pressure: the stalk leans away.",
+    png = "sketch/fig12.png", width = 320, height = 320 },
+  { "fig12_leaves", nil, "Fig. 12, leaf functions",
+    "The functions of the pressure-drawn rosette: yaw in panel 2, pitch in panel 7.",
+    png = "sketch/fig12_functions.png", plot = true, width = 320, height = 320 },
+  { "sketch/fig13.lua", nil, "Fig. 13, foxglove",
+    "A foxglove from a flower sketch and a leaf sketch on one stem: a raceme of hanging "
+    .. "bells above a rosette of leaves.", png = "sketch/fig13.png", width = 320, height = 320 },
+  { "sketch/fig14.lua", nil, "Fig. 14, foxglove in 3D",
+    "The same with the stem drawn with pen pressure.", png = "sketch/fig14.png",
+    width = 320, height = 320 },
 }
 
 local function load (file, name)
@@ -248,7 +305,13 @@ for i, p in ipairs(PICTURES) do
   local file, name, title, caption, over = p[1], p[2], p[3], p[4], p[5]
   local png = p.png or
     file:gsub("^abop/", ""):gsub("%.lua$", "") .. (name and "_" .. name or "") .. ".png"
-  if wanted(png) then
+  if wanted(png) and p.plot then
+    -- a sketch's positional functions (Anastacio et al. 2009, §4), as lsys sketch plot
+    local sk = require("lsys.sketch").load(examples .. "/sketch/" .. file .. ".json")
+    require("lsys.sketch.plot").png(sk, dir .. "/" .. png, { width = 640 })
+    rows[#rows + 1] = { png = png, title = title, caption = caption,
+                        file = "sketch/" .. file .. ".json", plot = true }
+  elseif wanted(png) then
     local m = load(file, name)
     local t0 = os.clock()
     local s = m:derive()
@@ -290,6 +353,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Surfaces (§4, figs. 22–25)", "cpfg/fig22.png", 2 },
   { "Bicubic petals (§4.3, figs. 27, 28)", "cpfg/fig27_all.png", 1 },
   { "Textures (§5, figs. 31, 33, 34)", "cpfg/fig31_a.png", 3 },
+  { "Sketches (Anastacio et al. 2009, figs. 5, 7-14)", "sketch/fig7_cone.png", 3 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
@@ -308,8 +372,9 @@ local function section (f, list, cols)
       local r = list[j]
       if r then
         cells[#cells + 1] = string.format("![%s](%s)", r.title, r.png)
-        caps[#caps + 1] = string.format("**%s.** %s<br>`%s`%s, %d modules, %s", r.title,
-          r.caption, r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
+        caps[#caps + 1] = r.plot and string.format("**%s.** %s<br>`%s`", r.title,
+          r.caption, r.file) or string.format("**%s.** %s<br>`%s`%s, %d modules, %s",
+          r.title, r.caption, r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
           r.tris > 0 and (r.tris .. " triangles") or (r.lines .. " lines"))
       else
         cells[#cells + 1], caps[#caps + 1] = "", ""
