@@ -11,10 +11,10 @@ local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
 
-local type, pairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string, debug,
-      next, package, _G =
-      type, pairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string, debug,
-      next, package, _G
+local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string,
+      debug, next, package, _G =
+      type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string,
+      debug, next, package, _G
 local format = string.format
 local _ENV = nil
 
@@ -48,12 +48,18 @@ local KINDS = {
   ["lsys.Lstring"] = "lstring", ["lsys.Scene"] = "scene", ["lsys.Contour"] = "contour",
   ["lsys.Surface"] = "surface", ["lsys.Texture"] = "texture", ["lsys.IK"] = "ik",
   ["lsys.Viewer"] = "viewer", ["lsys.Rules"] = "rules", ["lsys.Func"] = "func",
+  ["lsys.Canvas"] = "canvas", ["lsys.BSpline"] = "bspline",
 }
+-- Lua objects of modules loaded on demand: { module, its metatable's field, kind }
+local TABLE_KINDS = { { "lsys.arrange", "Arrangement", "arrangement" },
+                      { "lsys.sketch", "Sketch", "sketch" },
+                      { "lsys.sketch.organ", "Organ", "organ" } }
 local REGISTRY = debug.getregistry()
 
 --- The kind of lsys object `x` is: "lstring", "scene", "model", "arrangement", "contour",
--- "surface", "texture", "ik", "viewer" or "rules"; nil for any other value (as io.type,
--- math.type and lpeg.type). Closed objects keep their kind.
+-- "surface", "texture", "ik", "viewer", "rules", "func", "canvas", "bspline", "sketch" or
+-- "organ"; nil for any other value (as io.type, math.type and lpeg.type). Closed objects
+-- keep their kind.
 function M.type (x)
   local mt = getmetatable(x)
   if mt == nil then return nil end
@@ -63,8 +69,10 @@ function M.type (x)
     -- the registry check: another library's userdata may call itself "lsys.Scene" too
     return name and REGISTRY[name] == mt and KINDS[name] or nil
   end
-  local arrange = package.loaded["lsys.arrange"]      -- none before it is loaded
-  if type(arrange) == "table" and mt == arrange.Arrangement then return "arrangement" end
+  for _, k in ipairs(TABLE_KINDS) do                 -- none before its module is loaded
+    local mod = package.loaded[k[1]]
+    if type(mod) == "table" and mt == rawget(mod, k[2]) then return k[3] end
+  end
   return nil
 end
 
@@ -95,8 +103,11 @@ function M.wait () return _G.require("lsys.viewer").wait() end
 
 -- lsys.viewer: the window's module, loaded at first use (a script that never opens a
 -- window does not load it).
+-- lsys.sketch likewise (docs/sketch.md): its readers need cjson and lxp only when a sketch
+-- is read, so `require "lsys"` works without them.
 setmetatable(M, { __index = function (_, k)
   if k == "viewer" then return _G.require("lsys.viewer") end
+  if k == "sketch" then return _G.require("lsys.sketch") end
 end })
 
 -- options of lsys.render that are not view options
