@@ -37,6 +37,16 @@ describe("the Lua fuzzer's corpora", function ()
     local counts = replay("ruleexpr")
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
+
+  it("read or fail naming the file as JSON sketch files, and write back equal", function ()
+    local counts = replay("sketch")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("read or fail naming the file and line as SVG sketch files", function ()
+    local counts = replay("svg")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
 end)
 
 describe("the Lua fuzzer", function ()

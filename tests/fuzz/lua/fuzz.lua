@@ -1,6 +1,6 @@
 --- A coverage-guided fuzzer for the parts of lsys written in Lua (issue 13), which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
--- and rule expressions.
+-- rule expressions, and sketch files in JSON and SVG (issue 15).
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]
 --          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
@@ -131,7 +131,7 @@ M.show = show
 --- Loads tests/fuzz/lua/targets/NAME.lua.
 function M.target (name)
   if type(name) ~= "string" or not name:match("^[%w_]+$") then
-    error("fuzz: a target name expected (view, palette, ruleexpr)", 0)
+    error("fuzz: a target name expected (view, palette, ruleexpr, sketch, svg)", 0)
   end
   local path = HERE .. "targets/" .. name .. ".lua"
   if readfile(path) == nil then error("fuzz: no target '" .. name .. "' (" .. path .. ")", 0) end
@@ -582,7 +582,7 @@ usage: lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed
          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --replay DIR
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --merge DIR
-targets: view, palette, ruleexpr (tests/fuzz/lua/targets/)]]
+targets: view, palette, ruleexpr, sketch, svg (tests/fuzz/lua/targets/)]]
 
 function M.main (args)
   local name = args[1]
