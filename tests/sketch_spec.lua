@@ -251,3 +251,123 @@ describe("models from sketches", function ()
     assert.equal(100, s:count("Organ"))
   end)
 end)
+
+-- Every rule of model m that has expressions runs on the C expression machine (the issue:
+-- "no Lua call per module"); returns the labels of those that do not.
+local function offmachine (m)
+  m:derive(1)                       -- binds the rules to env
+  local off = {}
+  for i, info in pairs(m._info) do
+    if info.factory and not m._rules:hasvm(i - 1) then off[#off + 1] = info.label end
+  end
+  table.sort(off)
+  return off
+end
+
+-- A rectangle organ 100 px wide and 200 px long: 0.5 wide and 1 long, 2 x 4 patches of
+-- 6 x 6 lines, so 12 x 24 x 2 = 576 triangles (tests/sketch_organ_spec.lua).
+local function rectorgan ()
+  return require("lsys.sketch.organ").build {
+    top = { left = { { 100, 300 }, { 100, 100 } }, right = { { 200, 300 }, { 200, 100 } } } }
+end
+local RECT_TRIANGLES = 576
+
+describe("the templates on the expression machine", function ()
+  local flat, deep = load(), load { stem = line(200, 500, 200, 100, 80, 0.7) }
+
+  for _, ph in ipairs { "distichous", "decussate", "fibonacci" } do
+    it("runs every rule of " .. ph .. " in C, 2D and 3D, alone and composed", function ()
+      for _, sk in ipairs { flat, deep } do
+        for _, org in ipairs { false, "sketch", "surface" } do
+          local o = org == "sketch" and load() or org == "surface" and rectorgan() or nil
+          local m = sk:model { phyllotaxis = ph, organ = o }
+          assert.equal(sk == deep, m.sketch.description.threed)
+          local n = 0
+          for _, info in pairs(m._info) do if info.factory then n = n + 1 end end
+          assert.is_true(n >= 6)
+          assert.same({}, offmachine(m))
+          -- the Lua closures give the same plant
+          local s = tostring(m:derive())
+          m.lua_expressions = true
+          assert.equal(s, tostring(m:derive()))
+          assert.is_true(#offmachine(m) >= 6)
+        end
+      end
+    end)
+  end
+
+  it("runs the rules of a saved model file in C too", function ()
+    local d = H.tmpdir()
+    for _, ph in ipairs { "distichous", "decussate", "fibonacci" } do
+      deep:save_model(d .. "/plant.lua", { phyllotaxis = ph, organ = flat })
+      assert.same({}, offmachine(dofile(d .. "/plant.lua")))
+    end
+    H.rmdir(d)
+  end)
+end)
+
+-- The text of lstring s with the stem moved over (F -> f) and only the k-th organ kept.
+local function oneorgan (s, k)
+  local n = 0
+  local text = tostring(s):gsub("F%(", "f("):gsub("Organ(%b())", function (args)
+    n = n + 1
+    if n ~= k then return "" end
+  end)
+  return text
+end
+
+describe("organ surfaces in sketch models", function ()
+  -- x of the nodes; sizes: left 0.125, right 0.125 (1 + x) (the tilted right boundary)
+  local sk = load { right = line(247.5, 520, 302.5, 80, 40) }
+  local xs = { 0.25, 0.375, 0.5, 0.625, 0.75 }
+
+  for _, kind in ipairs { "Organ", "lsys.Surface" } do
+    it("draws an " .. kind .. " at each node, as long as its size", function ()
+      local org = rectorgan()
+      local m = sk:model { organ = kind == "Organ" and org or org:surface(),
+                           view = { line_style = "line" } }
+      local s, org_ = organs(m)
+      assert.equal(10, #org_)
+      local sc = m:interpret(s)
+      assert.equal(10 * RECT_TRIANGLES, sc.ntriangles)
+      for k, o in ipairs(org_) do
+        local x = xs[(k + 1) // 2]
+        local h = k % 2 == 1 and 0.125 or 0.125 * (1 + x)
+        assert.near(h, o.size, 1e-12)
+        local one = m:interpret(m:lstring(oneorgan(s, k)))
+        assert.equal(RECT_TRIANGLES, one.ntriangles)
+        local lo, hi = one:bounds()
+        -- left organs point along -x, right ones along +x, 0.5 h wide about the node
+        if k % 2 == 1 then
+          assert.near({ -h, x - 0.25 * h, 0 }, lo, 1e-6)
+          assert.near({ 0, x + 0.25 * h, 0 }, hi, 1e-6)
+        else
+          assert.near({ 0, x - 0.25 * h, 0 }, lo, 1e-6)
+          assert.near({ h, x + 0.25 * h, 0 }, hi, 1e-6)
+        end
+      end
+    end)
+  end
+
+  it("saves the organ beside the model file, which reloads to the same plant", function ()
+    local org = rectorgan()
+    local d = H.tmpdir()
+    sk:save_model(d .. "/plant.lua", { organ = org, phyllotaxis = "fibonacci" })
+    assert.equal(org:text(), H.read(d .. "/plant.organ.s"))
+    local m1 = sk:model { organ = org, phyllotaxis = "fibonacci" }
+    -- the model file finds its organ next to itself, not in the current folder
+    local m2 = dofile(d .. "/plant.lua")
+    local s1, s2 = m1:derive(), m2:derive()
+    assert.equal(tostring(s1), tostring(s2))
+    local t1, t2 = m1:interpret(s1).ntriangles, m2:interpret(s2).ntriangles
+    assert.equal(t1, t2)
+    assert.is_true(t1 > 5 * RECT_TRIANGLES)
+    assert.has_error(function () sk:save_model(d .. "/p2.lua", { organ = org:surface() }) end,
+      "save_model: an lsys.Surface organ cannot be written (it keeps no source); give an " ..
+      "organ of lsys.sketch.organ")
+    assert.has_error(function () sk:model { organ = {} } end,
+      "model: organ must be nil, '~X', an organ (lsys.sketch.organ), an lsys.Surface, a " ..
+      "Sketch or a Model made from a sketch")
+    H.rmdir(d)
+  end)
+end)

@@ -16,10 +16,10 @@ local functions = require "lsys.sketch.functions"
 local templates = require "lsys.sketch.templates"
 local model = require "lsys.model"
 
-local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, tostring, tonumber, require,
-      string, table, math, io, os =
-      type, pairs, ipairs, error, pcall, setmetatable, getmetatable, tostring, tonumber, require,
-      string, table, math, io, os
+local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring, tonumber,
+      require, string, table, math, io, os =
+      type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring, tonumber,
+      require, string, table, math, io, os
 local format, concat = string.format, table.concat
 local _ENV = nil
 
@@ -49,10 +49,35 @@ local function checkp (p, what)
   end
 end
 
+-- The Debian packages of the Lua libraries the sketch modules load (lsys.sketch.read:
+-- cjson for JSON, lxp for SVG; lsys.sketch.organ: cjson for its JSON files).
+local PACKAGES = { cjson = "lua-cjson", ["cjson.safe"] = "lua-cjson", lxp = "lua-expat" }
+
+-- `require(name)` for `who`, raising a message that names the missing Debian package.
+local function need (name, who, level)
+  local ok, mod = pcall(require, name)
+  if ok then return mod end
+  local msg = tostring(mod)
+  local missing = msg:match("module '([^']+)' not found")
+  if missing and PACKAGES[missing] then
+    msg = format("the Lua library '%s' is missing (install the Debian package %s)", missing,
+                 PACKAGES[missing])
+  end
+  error(format("%s: %s: %s", who, name, msg), level + 1)
+end
+
+-- lsys.sketch.read, .organ and .plot as fields, loaded at first use: `require "lsys"` and
+-- `require "lsys.sketch"` work without cjson and lxp, and the error comes with the first
+-- sketch read.
+local LAZY = { read = "lsys.sketch.read", organ = "lsys.sketch.organ",
+               plot = "lsys.sketch.plot" }
+setmetatable(M, { __index = function (_, k)
+  if LAZY[k] then return need(LAZY[k], "lsys.sketch." .. k, 2) end
+end })
+
 -- The normalized sketch of a path or a table (lsys.sketch.read).
 local function read (src, name)
-  local ok, rd = pcall(require, "lsys.sketch.read")
-  if not ok then error("lsys.sketch.load: lsys.sketch.read is not available", 3) end
+  local rd = need("lsys.sketch.read", "lsys.sketch.load", 3)
   local ok2, sk
   if type(src) == "string" then ok2, sk = pcall(rd.file, src)
   else ok2, sk = pcall(rd.table, src, name) end
@@ -219,6 +244,15 @@ function Sketch:model (opts)
   return m
 end
 
+-- "organ" for an Organ of lsys.sketch.organ, "surface" for an lsys.Surface, else nil.
+local function surfacekind (o)
+  local mt = getmetatable(o)
+  local name = type(mt) == "table" and rawget(mt, "__name")
+  if name == "lsys.Organ" and type(o) == "table" then return "organ" end
+  if name == "lsys.Surface" and type(o) == "userdata" then return "surface" end
+  return nil
+end
+
 -- The organ's homomorphism line, and for a composed organ its sub-L-system spec.
 local function organ (opts)
   local o, color = opts.organ, opts.organ_color or 2
@@ -231,10 +265,9 @@ local function organ (opts)
   local inner = isSketch(o) and o or
                 (type(o) == "table" and type(o.sketch) == "table" and o.sketch.sketch)
   if isSketch(inner) then return nil, inner end
-  if type(o) == "userdata" or type(o) == "table" then
-    return nil, nil, o
-  end
-  error("model: organ must be nil, '~X', a surface, a Sketch or a Model made from a sketch", 0)
+  if surfacekind(o) then return nil, nil, o end
+  error("model: organ must be nil, '~X', an organ (lsys.sketch.organ), an lsys.Surface, " ..
+        "a Sketch or a Model made from a sketch", 0)
 end
 
 -- Everything lsys.lsystem needs, and the parts save_model writes.
@@ -295,12 +328,24 @@ local function quote (s) return format("%q", s) end
 
 --- Writes a Lua model file that builds the same Model (docs/sketch.md, "Models from
 -- sketches"): the functions inline as control points, the rules as text. opts as
--- sk:model (a composed or surface organ is not written: a leaf is).
+-- sk:model; an organ of lsys.sketch.organ is written beside it as a cpfg surface file
+-- (plant.lua: plant.organ.s), which the model file reads from its own folder.
 function Sketch:save_model (path, opts)
   opts = opts or {}
   if type(path) ~= "string" then error("save_model: a file name expected", 2) end
   local ok, d = pcall(self._describe, self, opts)
   if not ok then error(d, 2) end
+  local surfile
+  if d.surface then
+    if surfacekind(d.surface) ~= "organ" then
+      error("save_model: an lsys.Surface organ cannot be written (it keeps no source); " ..
+            "give an organ of lsys.sketch.organ", 2)
+    end
+    local dir, base = path:match("^(.-)([^/]*)$")
+    surfile = base:gsub("%.lua$", "") .. ".organ.s"
+    local oks, err = pcall(d.surface.save, d.surface, dir .. surfile)
+    if not oks then error("save_model: organ: " .. tostring(err):gsub("^save: ", ""), 2) end
+  end
   local L = {}
   local function w (...) L[#L + 1] = format(...) end
   w("-- A plant from the sketch %s (lsys.sketch, after Anastacio, Prusinkiewicz and Sousa",
@@ -358,8 +403,13 @@ function Sketch:save_model (path, opts)
   end
   w("  -- the organ drawn at each node")
   w("  homomorphism = { %s },", quote(d.homomorphism[1]))
-  w("  view = { line_style = %s, line_width = %s, color = %s },", quote(d.view.line_style),
+  w("  view = { line_style = %s, line_width = %s, color = %s,", quote(d.view.line_style),
     num(d.view.line_width), num(d.view.color))
+  if surfile then
+    w("    -- the organ (lsys.sketch.organ), a cpfg surface file beside this one")
+    w("    dir = lsys.here(), surfaces = { P = %s },", quote(surfile))
+  end
+  w("  },")
   w("}")
   local text = concat(L, "\n") .. "\n"
   local tmp = path .. ".tmp"
@@ -374,7 +424,7 @@ end
 
 --- Writes the sketch to a file (lsys.sketch.read's save: JSON).
 function Sketch:save (path)
-  local rd = require "lsys.sketch.read"
+  local rd = need("lsys.sketch.read", "save", 2)
   local ok, err = pcall(rd.save, self.data, path)
   if not ok then error(err, 2) end
   return path
