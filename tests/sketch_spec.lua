@@ -309,7 +309,7 @@ end)
 -- The text of lstring s with the stem moved over (F -> f) and only the k-th organ kept.
 local function oneorgan (s, k)
   local n = 0
-  local text = tostring(s):gsub("F%(", "f("):gsub("Organ(%b())", function (args)
+  local text = tostring(s):gsub("F%(", "f("):gsub("Organ%b()", function ()
     n = n + 1
     if n ~= k then return "" end
   end)
