@@ -371,3 +371,118 @@ describe("organ surfaces in sketch models", function ()
     H.rmdir(d)
   end)
 end)
+
+describe("require \"lsys\" and the sketch modules", function ()
+  local lsys = require "lsys"
+  local core = require "lsys.core"
+
+  it("reaches lsys.sketch and its modules, and names their objects", function ()
+    assert.equal(sketch, lsys.sketch)
+    assert.equal(require "lsys.sketch.organ", lsys.sketch.organ)
+    assert.equal(require "lsys.sketch.plot", lsys.sketch.plot)
+    assert.equal(require "lsys.sketch.read", lsys.sketch.read)
+    assert.equal(require "lsys.func", lsys.func)
+    assert.is_nil(rawget(sketch, "window"))
+    assert.equal("sketch", lsys.type(load()))
+    assert.equal("organ", lsys.type(rectorgan()))
+    assert.equal("surface", lsys.type(rectorgan():surface()))
+    assert.equal("canvas", lsys.type(core.canvas(2, 2)))
+    assert.equal("bspline", lsys.type(core.bspline { { 0, 0 }, { 1, 1 }, { 2, 0 }, { 3, 1 } }))
+    assert.equal("func", lsys.type(load():functions().internode))
+    assert.equal("model", lsys.type(load():model()))
+    assert.is_nil(lsys.type(setmetatable({}, { __name = "lsys.Organ" })))
+    assert.is_nil(lsys.type(setmetatable({}, {})))
+  end)
+
+  it("loads without cjson and lxp, and names the Debian package when a sketch is read",
+     function ()
+    -- a fresh look at the modules with cjson and lxp hidden from require
+    local hidden = { cjson = true, ["cjson.safe"] = true, lxp = true }
+    local saved, searchers = {}, package.searchers
+    for _, k in ipairs { "cjson", "cjson.safe", "lxp", "lsys", "lsys.sketch",
+                         "lsys.sketch.read" } do
+      saved[k], package.loaded[k] = package.loaded[k], nil
+    end
+    package.searchers = { function (name)
+      if hidden[name] then return "\n\tno module '" .. name .. "' (hidden by the test)" end
+      for _, s in ipairs(searchers) do
+        local f, extra = s(name)
+        if type(f) == "function" then return f, extra end
+      end
+      return "\n\tnot found"
+    end }
+    local ok, err = pcall(function ()
+      local l = require "lsys"
+      assert.equal("table", type(l.sketch))
+      assert.has_error(function () l.sketch.load(synthetic()) end,
+        "lsys.sketch.load: lsys.sketch.read: the Lua library 'cjson.safe' is missing " ..
+        "(install the Debian package lua-cjson)")
+    end)
+    package.searchers = searchers
+    for k, v in pairs(saved) do package.loaded[k] = v end
+    package.loaded["lsys.sketch.read"] = saved["lsys.sketch.read"]
+    assert(ok, err)
+  end)
+end)
+
+describe("orientation (the plant as drawn, not mirrored)", function ()
+  -- a stem curving to the right as it rises (pixel x grows upwards), the left boundary 60
+  -- px left of it and the right one 120 px right: the left organs are the shorter ones
+  local function curve (dx, t0, t1, n)
+    local c = {}
+    for i = 0, n do
+      local t = t0 + (t1 - t0) * i / n
+      c[#c + 1] = { 200 + 150 * t * t + dx, 500 - 400 * t }
+    end
+    return c
+  end
+  local sk = sketch.load({ width = 500, height = 600, nodes_per_layer = 2, strokes = {
+    { role = "stem", points = curve(0, 0, 1, 100) },
+    { role = "boundary_left", points = curve(-60, -0.05, 1.05, 50) },
+    { role = "boundary_right", points = curve(120, -0.05, 1.05, 50) },
+    { role = "inclination", points = line(80, 430, 420, 430, 20) },
+    { role = "inclination", points = line(80, 300, 460, 300, 20) },
+    { role = "inclination", points = line(80, 180, 500, 180, 20) } } }, { name = "right" })
+
+  it("leans right with the left organs on the left", function ()
+    local m = sk:model()
+    local s, org = organs(m)
+    local sc = m:interpret(s)
+    assert.equal(10, #org)
+    local lastx = 0
+    for k, o in ipairs(org) do
+      local p, h = sc:turtle(o.index - 1)
+      if k % 2 == 1 then
+        assert.is_true(p[1] > lastx)                -- each node further right than the last
+        lastx = p[1]
+        assert.is_true(h[1] < -0.5)                 -- the left organ points left
+      else
+        assert.is_true(h[1] > 0.5)                  -- and the right one right
+        assert.is_true(o.size > 1.5 * org[k - 1].size)
+      end
+      assert.near(0, p[3], 1e-12)
+    end
+    -- the node on the top line: where the stroke is, x = 150 t^2 / L at y = 320 / L
+    local an = sk:analysis()
+    local top = an.nodes[#an.nodes]
+    assert.near(150 * 0.8 ^ 2 / an.length, top.pos[1], 1e-3)
+    assert.near(320 / an.length, top.pos[2], 1e-3)
+  end)
+
+  it("puts the parts drawn with more pressure nearer the viewer (+z)", function ()
+    local pts = {}
+    for i = 0, 100 do pts[i + 1] = { 200, 500 - 4 * i, 0.5 + 0.5 * (i / 100) ^ 2 } end
+    local deep = load { stem = pts }
+    local m = deep:model()
+    local s, org = organs(m)
+    local sc = m:interpret(s)
+    local lastz = 0
+    for k = 1, #org, 2 do
+      local p = sc:turtle(org[k].index - 1)
+      assert.is_true(p[3] > lastz)
+      lastz = p[3]
+    end
+    local lo, hi = sc:bounds()
+    assert.is_true(hi[3] > 0.25 and lo[3] > -0.01)   -- the tip at pressure 1: z = near
+  end)
+end)
