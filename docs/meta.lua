@@ -40,6 +40,8 @@
 ---@field Model lsys.Model The model metatable (its methods).
 ---@field view lsys.view View options and cpfg view files.
 ---@field viewer lsys.viewer The window's module, loaded at first use.
+---@field func lsys.func Positional functions (cpfg .func files).
+---@field sketch lsys.sketch Sketch-based models (docs/sketch.md), loaded at first use.
 local lsys = {}
 
 --- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
@@ -76,7 +78,7 @@ function lsys.lstring(text, names) end
 --- The kind of lsys object `x` is, as `io.type` and `math.type` name theirs; nil for any
 --- other value. Closed objects keep their kind.
 ---@param x any
----@return "lstring"|"scene"|"model"|"arrangement"|"contour"|"surface"|"texture"|"ik"|"viewer"|"rules"|nil
+---@return "lstring"|"scene"|"model"|"arrangement"|"contour"|"surface"|"texture"|"ik"|"viewer"|"rules"|"func"|"canvas"|"bspline"|"sketch"|"organ"|nil
 function lsys.type(x) end
 
 --- True when `x` is an Lstring. Deprecated: `lsys.type(x) == "lstring"`; the first call
@@ -767,6 +769,286 @@ function arrange_ui.run(arr, opts) end
 
 
 -- ===========================================================================================
+-- lsys.func: positional functions (lua/lsys/func.lua, csrc/lua/lua_func.c; manual §5,
+-- "Positional functions")
+
+--- cpfg's B-spline functions y = f(x) of a relative position x in [0, 1].
+---@class lsys.func
+lsys.func = {}
+
+--- A function from its control points: at least 4, x nondecreasing from 0 to 1 (within
+--- 1e-6). `samples` 0 gives exact values; N > 2 cpfg's table of N values, interpolated.
+--- Raises `lsys.func.new: point 3: x is 0.4, less than the x of point 2 (0.5)`, ...
+---@param opts {points: number[][], name?: string, samples?: integer}
+---@return lsys.Func
+function lsys.func.new(opts) end
+
+--- A `.func` file as an lsys.Func; a `.fset` file as a list of Funcs that is also a table
+--- by name. Raises `lsys.func.load: FILE:LINE: ...`.
+---@param path string
+---@return lsys.Func|table<string|integer, lsys.Func>
+function lsys.func.load(path) end
+
+--- Writes `f` as a cpfg `fver 1 1` file, atomically.
+---@param f lsys.Func
+---@param path string
+function lsys.func.save(f, path) end
+
+--- A positional function (metatable "lsys.Func"): `f(x)` evaluates it, x clamped into
+--- [0, 1]. Rules call it on the expression machine: by name in `env`, or `func(ID, x)`.
+---@class lsys.Func
+---@overload fun(x: number): number
+local Func = {}
+
+---@param x number
+---@return number
+function Func:eval(x) end
+--- The control points, `{ {x, y}, ... }`.
+---@return number[][]
+function Func:points() end
+---@return string
+function Func:name() end
+--- 0 for exact values, else the number of table samples.
+---@return integer
+function Func:samples() end
+--- The `.func` file's text.
+---@return string
+function Func:format() end
+
+
+-- ===========================================================================================
+-- lsys.sketch: sketch-based parameterization (Anastacio et al. 2009; docs/sketch.md).
+-- `require "lsys.sketch"`, or `lsys.sketch` (loaded at first use). Its `read`, `organ` and
+-- `plot` fields load those modules at first use; reading a sketch needs lua-cjson (JSON)
+-- and lua-expat (SVG), and raises naming the Debian package when one is missing.
+
+---@class lsys.sketch
+---@field read lsys.sketch.read Sketch files: JSON, SVG, tables.
+---@field organ lsys.sketch.organ Organs from three views (§6).
+---@field plot lsys.sketch.plot Plots of the functions and drawings of sketches.
+---@field geometry table The analysis steps (§3), for the tests and the window.
+---@field functions table The positional functions' construction (§4).
+---@field templates table The phyllotaxis templates (§5).
+---@field Sketch lsys.Sketch The Sketch metatable.
+lsys.sketch = {}
+
+---@class lsys.SketchLoadOptions
+---@field nodes_per_layer? integer Overrides the file's (default 3).
+---@field phyllotaxis? "distichous"|"decussate"|"fibonacci" Overrides the file's.
+---@field depth? boolean true: a 3D stem from the pressure; false: 2D; nil: 3D when the stem's pressure is not 0.5 everywhere.
+---@field near? number Depth of pressure 1 in stem lengths (0.3).
+---@field far? number Depth of pressure 0 (-0.3).
+---@field resolution? number The longest straight piece of the drawn stem, in stem lengths (1/32).
+---@field name? string Names a table sketch in messages.
+
+--- Loads a sketch (a `.json` or `.svg` file, or a table as the JSON file). Raises naming
+--- the file and the stroke (`plant.json: stroke 4 (boundary_left): lies right of the stem`
+--- comes later, from the analysis).
+---@param src string|table
+---@param opts? lsys.SketchLoadOptions
+---@return lsys.Sketch
+function lsys.sketch.load(src, opts) end
+
+--- The rules of a template as text (2D unless `threed`).
+---@param name "distichous"|"decussate"|"fibonacci"
+---@param threed? boolean
+---@return string
+function lsys.sketch.template(name, threed) end
+
+--- True when `x` is a Sketch (also `lsys.type(x) == "sketch"`).
+---@return boolean
+function lsys.sketch.issketch(x) end
+
+---@class lsys.SketchModelOptions
+---@field phyllotaxis? "distichous"|"decussate"|"fibonacci"
+---@field nodes_per_layer? integer
+---@field organ? string|lsys.Organ|lsys.Surface|lsys.Sketch|lsys.Model nil: a flat leaf; "~X": the view's surface X; an organ or surface, drawn as ~P; a Sketch or a Model of sk:model: composition (§7.2).
+---@field steps? integer Default: enough to finish the plant.
+---@field depth? boolean Force a 3D or 2D stem.
+---@field width? number Stem diameter in stem lengths (0.01).
+---@field color? integer Stem colour index (1).
+---@field organ_color? integer (2)
+---@field name? string
+---@field view? lsys.View More view options.
+
+--- A loaded sketch (lua/lsys/sketch/init.lua). Lengths are in stem lengths, x the relative
+--- position along the stem.
+---@class lsys.Sketch
+---@field file string? The file it was read from.
+---@field nodes_per_layer integer
+---@field phyllotaxis string
+local Sketch = {}
+
+--- The positional functions of §4: `internode`, `stem_shape` (2D) or `yaw` and `pitch`
+--- (3D), `angle_left`, `angle_right`, `size_left`, `size_right`.
+---@param opts? {depth?: boolean, nodes_per_layer?: integer}
+---@return table<string, lsys.Func>
+function Sketch:functions(opts) end
+--- The functions' polylines, `{ name = { {x, y}, ... } }`.
+---@param opts? {depth?: boolean, nodes_per_layer?: integer}
+---@return table<string, number[][]>
+function Sketch:function_points(opts) end
+--- The geometry of §3 (docs/sketch.md, The pipeline): threed, length, base, stem, left,
+--- right, lines, layers, nodes.
+---@param opts? {depth?: boolean, nodes_per_layer?: integer}
+---@return table
+function Sketch:analysis(opts) end
+--- An lsys Model of the sketch: the template of the phyllotaxis with its functions, on
+--- the expression machine. Raises `model: unknown option 'K'`, geometric errors naming
+--- the file and stroke.
+---@param opts? lsys.SketchModelOptions
+---@return lsys.Model
+function Sketch:model(opts) end
+--- Writes a Lua model file that `dofile` makes into the same Model; an organ of
+--- lsys.sketch.organ is written beside it (plant.lua: plant.organ.s). Returns `path`.
+---@param path string
+---@param opts? lsys.SketchModelOptions
+---@return string
+function Sketch:save_model(path, opts) end
+--- Writes the sketch as JSON (lsys.sketch.read's save). Returns `path`.
+---@param path string
+---@return string
+function Sketch:save(path) end
+---@param n integer
+function Sketch:set_nodes_per_layer(n) end
+---@param p "distichous"|"decussate"|"fibonacci"
+function Sketch:set_phyllotaxis(p) end
+
+--- Sketch files (lua/lsys/sketch/read.lua; docs/sketch.md, Sketch files). Each returns the
+--- normalized sketch table `{ file, width, height, nodes_per_layer, phyllotaxis, depth,
+--- strokes = { {role, index, id, points}, ... }, warnings }`.
+---@class lsys.sketch.read
+local read = {}
+---@param path string A `.json` or `.svg` file.
+---@return table
+function read.file(path) end
+---@param text string
+---@param name? string
+---@return table
+function read.json(text, name) end
+---@param text string
+---@param name? string
+---@return table
+function read.svg(text, name) end
+---@param t table
+---@param name? string
+---@return table
+function read.table(t, name) end
+---@param sk table
+---@return string
+function read.to_json(sk) end
+---@param sk table
+---@param path string
+function read.save(sk, path) end
+
+--- Organs drawn in three views (Anastacio et al. 2009, §6; lua/lsys/sketch/organ.lua).
+--- Strokes are `{ {x, y}, ... }` in pixels, y down. `organ(t)` is `organ.build(t)`.
+---@class lsys.sketch.organ
+---@overload fun(t: lsys.OrganStrokes): lsys.Organ
+---@field Organ lsys.Organ The metatable.
+local organ = {}
+
+---@class lsys.OrganStrokes
+---@field top {left?: number[][], right?: number[][]} The boundaries in the top view (one is mirrored when the other is missing).
+---@field side? number[][] The midrib seen from the left.
+---@field front? number[][] The cross-section seen from the base.
+---@field resolution? integer[] `{across, along}` patches (default: fitted, 2 x 4 up to 16 x 32).
+---@field precision? integer[] `{s, t}` lines of the surface file.
+---@field name? string Default "organ".
+---@field width_scale? number Multiplies the width (1).
+---@field capture? boolean Stroke capture of §3.1 (true).
+
+--- An Organ from its strokes. Raises `lsys.sketch.organ: top left stroke: ...`.
+---@param t lsys.OrganStrokes
+---@return lsys.Organ
+function organ.build(t) end
+--- An Organ from a JSON file `{"organ": {...}}` or such a table.
+---@param x string|table
+---@return lsys.Organ
+function organ.load(x) end
+--- The strokes of a common leaf, built.
+---@param o? {shape?: "ovate"|"lanceolate"|"elliptic"|"obovate"|"linear"|"cordate", width?: number, curl?: number, section?: "flat"|"v"|"cup", depth?: number, length?: number, name?: string, resolution?: integer[], precision?: integer[]}
+---@return lsys.Organ
+function organ.leaf(o) end
+
+--- An organ surface: 1 long from its base (the contact point) along +y, x across, z up;
+--- `~P(h)` draws it h long. A view's `surfaces` take it as a file name.
+---@class lsys.Organ
+---@field name string
+---@field size number
+---@field resolution integer[] `{across, along}` patches.
+---@field precision integer[]
+---@field fit_error number The patches' distance from the blended surface over `size`.
+local Organ = {}
+--- The lsys.Surface (made once).
+---@return lsys.Surface
+function Organ:surface() end
+--- The cpfg surface file's text.
+---@return string
+function Organ:text() end
+--- Writes the surface file, atomically. Raises `save: ...`.
+---@param path string
+---@return lsys.Organ
+function Organ:save(path) end
+--- Writes the strokes as JSON (needs lua-cjson).
+---@param path string
+function Organ:save_json(path) end
+--- Writes the organ alone as `.obj`, `.ply` or `.glb`.
+---@param path string
+---@param view? lsys.View
+function Organ:save_mesh(path, view) end
+--- `{ organ = { ... } }`: the strokes and options, for JSON.
+---@return table
+function Organ:to_table() end
+--- The blended surface at (s, t), in the organ's frame.
+---@return number x
+---@return number y
+---@return number z
+function Organ:blend(s, t) end
+--- The fitted patches at (s, t).
+---@return number x
+---@return number y
+---@return number z
+function Organ:point(s, t) end
+
+--- Plots of a sketch's functions and drawings of sketches (§7; lua/lsys/sketch/plot.lua).
+---@class lsys.sketch.plot
+---@field PANELS table[] The panels, in order.
+---@field COLORS table<string, string> Colours of the function plots.
+---@field SKETCH_COLORS table<string, string> Colours of the sketch drawing.
+local plot = {}
+--- Draws the functions' panels. Returns the canvas and the panels
+--- `{ key, title, x, y, w, h, ymin, ymax, min, max }`.
+---@param funcs table<string, lsys.Func|function|table> `sk:functions()`.
+---@param opts? {width?: integer, height?: integer, background?: string, colors?: table, points?: boolean, marker?: number, scale?: integer, line_width?: number, canvas?: lsys.Canvas, region?: number[]}
+---@return lsys.Canvas
+---@return table[] panels
+function plot.functions(funcs, opts) end
+--- The same, written to a PNG (atomically).
+---@param what lsys.Sketch|table
+---@param path string
+---@param opts? table As `functions`.
+---@return lsys.Canvas
+---@return table[] panels
+function plot.png(what, path, opts) end
+--- Draws a normalized sketch into `c` (opts: region, margin, analysis, background, colors).
+--- Returns where a sketch point (u, v) lands: `(x + u * scale, y + v * scale)`.
+---@param sk table
+---@param c lsys.Canvas
+---@param opts? table
+---@return {x: number, y: number, scale: number}
+function plot.sketch(sk, c, opts) end
+--- The stem colour of pen pressure p (§3.5, §7.3).
+---@param p number
+---@param colors? table
+---@return number[]
+function plot.depth_color(p, colors) end
+--- The y range shown for sampled values lo..hi.
+---@return number ymin
+---@return number ymax
+function plot.yrange(lo, hi) end
+
+-- ===========================================================================================
 -- lsys.Lstring (C: csrc/lua/lua_lstring.c, metatable "lsys.Lstring")
 
 --- A module string: symbol codes and a pool of double parameters in C arrays. Made by
@@ -1297,6 +1579,64 @@ function BSpline:dim() end
 function BSpline:degree() end
 ---@return boolean
 function BSpline:clamped() end
+
+-- ---------------------------------------------------------------------------------------------
+-- A 2D RGBA8 canvas (csrc/core/canvas.c, csrc/lua/lua_canvas.c; docs/sketch.md, Canvas).
+-- Coordinates are pixels, x right, y down. Colours are `{r, g, b [, a]}` in [0, 1] or
+-- "#rrggbb" / "#rrggbbaa". A closed canvas raises `the canvas was closed`.
+
+--- A canvas of w x h pixels (1..16384), filled with `colour` (transparent black).
+---@param w integer
+---@param h integer
+---@param colour? number[]|string
+---@return lsys.Canvas
+function core.canvas(w, h, colour) end
+
+---@class lsys.Canvas
+local Canvas = {}
+--- Sets every pixel, ignoring the clip.
+---@param colour? number[]|string
+function Canvas:clear(colour) end
+--- An anti-aliased line with round caps.
+---@param width? number Default 1.
+---@param colour? number[]|string
+function Canvas:line(x0, y0, x1, y1, width, colour) end
+--- Lines through `{ {x, y}, ... }` or `{ x1, y1, x2, y2, ... }`.
+---@param points number[][]|number[]
+---@param width? number
+---@param colour? number[]|string
+function Canvas:polyline(points, width, colour) end
+--- A filled rectangle, or a 1-pixel outline inside its edges.
+---@param colour? number[]|string
+---@param fill? boolean
+function Canvas:rect(x, y, w, h, colour, fill) end
+--- A filled anti-aliased disc.
+---@param colour? number[]|string
+function Canvas:circle(x, y, r, colour) end
+--- Text in the 5x7 font, its top left at (x, y). Returns its width in pixels.
+---@param s string
+---@param scale? integer 1..64, default 1.
+---@param colour? number[]|string
+---@return integer
+function Canvas:text(x, y, s, scale, colour) end
+--- `6 * scale` per character less the last gap.
+---@param s string
+---@param scale? integer
+---@return integer
+function Canvas:text_width(s, scale) end
+--- Draws only on pixels whose centres are inside the rectangle; without arguments,
+--- anywhere.
+function Canvas:clip(x, y, w, h) end
+--- Writes a PNG, atomically. Raises `save: ...`.
+---@param path string
+function Canvas:save(path) end
+--- The pixels: w * h * 4 bytes, RGBA, top row first.
+---@return string
+function Canvas:pixels() end
+---@return integer w
+---@return integer h
+function Canvas:size() end
+
 
 --- Reads a cpfg surface file (.s; docs/surfaces.md). Raises `PATH:LINE: ...`.
 ---@param path string
