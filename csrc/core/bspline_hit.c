@@ -113,7 +113,8 @@ static int finish (hitbuf *hb, lsys_bspline_hit *hits, size_t cap, size_t *count
                    lsys_error *e) {
   int err = hb->err;
   if (err == LSYS_OK) {
-    memcpy(hits, hb->h, (hb->n < cap ? hb->n : cap) * sizeof *hits);
+    size_t n = hb->n < cap ? hb->n : cap;
+    if (n > 0) memcpy(hits, hb->h, n * sizeof *hits);   /* no hits: h may be NULL */
     *count = hb->n;
   }
   LSYS_FREE(hb->h);
