@@ -81,6 +81,22 @@ describe("lsys.sketch.plot.functions", function ()
     end
   end)
 
+  it("puts the x grid at fifths when their labels fit, at halves in narrow panels", function ()
+    local function hex (c, i, j)
+      return string.format("#%02x%02x%02x", table.unpack(px(c, i, j)))
+    end
+    local grid = plot.COLORS.grid
+    for _, case in ipairs { { 900, 5 }, { 250, 2 } } do
+      local c, panels = plot.functions(funcs(), { width = case[1] })
+      local p = find(panels, "internode")
+      local row = p.y + 3                       -- above the curve (it lies in the middle)
+      for k = 1, 4 do
+        assert.equal(case[2] == 5, hex(c, math.floor(p.x + k / 5 * p.w), row) == grid, k)
+      end
+      assert.equal(case[2] == 2, hex(c, math.floor(p.x + 0.5 * p.w), row) == grid)
+    end
+  end)
+
   it("draws control points and a marker when asked", function ()
     local f = funcs { angle_left = { eval = function (x) return 40 + 30 * x end,
                                      points = { { 0, 40 }, { 0.5, 55 }, { 1, 70 } } } }

@@ -192,10 +192,12 @@ local function panel (c, spec, cell, s, col, opts)
     local t = label(v, step)
     c:text(px - 6 - c:text_width(t, s), gy - 3.5 * s, t, s, col.label)
   end
-  for k = 0, 5 do
-    local v = k / 5
+  -- x in fifths when their labels fit side by side, else in halves
+  local nx = pw / 5 >= c:text_width("0.8", s) + 4 * s and 5 or 2
+  for k = 0, nx do
+    local v = k / nx
     local gx = floor(X(v)) + 0.5
-    if k > 0 and k < 5 then c:line(gx, py, gx, py + ph, 1, col.grid) end
+    if k > 0 and k < nx then c:line(gx, py, gx, py + ph, 1, col.grid) end
     local t = format("%g", v)
     c:text(gx - c:text_width(t, s) / 2, py + ph + 6, t, s, col.label)
   end
