@@ -269,6 +269,25 @@ describe("the sketch window's session", function()
   end)
 end)
 
+describe("the sketch window's export", function()
+  it("writes the plant as .glb, .obj and .png and the model as .lua beside the sketch", function()
+    local dir = tmpdir()
+    local v = fake_viewer()
+    local st = W.new { file = dir .. "/herb.json" }
+    plant_sketch(st)
+    local s = W.session(v, st, {})
+    s:compute(true)
+    assert.is_nil(s.error, s.error)
+    s:export()
+    for _, ext in ipairs { ".glb", ".obj", ".mtl", ".png", ".lua" } do
+      assert.truthy(io.open(dir .. "/herb" .. ext), ext)
+    end
+    assert.truthy(st.status:find("herb.obj", 1, true), st.status)
+    local m = dofile(dir .. "/herb.lua")                -- the model file is a model
+    assert.equal(tostring(s.result.lstring), tostring(m:derive()))
+  end)
+end)
+
 describe("#gl the sketch window under Xvfb", function()
   teardown(function() D.stop() end)
 

@@ -182,7 +182,7 @@ stem or boundary replaces the old one; right drag (or shift drag) moves the near
 stroke; Delete or Backspace deletes the selected (else the last) stroke; Ctrl+Z undoes;
 + and - change the nodes per layer, P the phyllotaxis; the wheel over the sketch (or [
 and ]) sets the pressure of the points drawn next (darker nearer, lighter farther); Tab
-hides the plots; Ctrl+E exports the plant (FILE.glb, FILE.png) and the model (FILE.lua).
+hides the plots; Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua).
 Over the plant: drag orbits, right drag pans, the wheel zooms. H lists the keys.
 
   plot     draws the positional functions (six panels, seven with pitch) to a PNG

@@ -415,7 +415,7 @@ left drag: draw a stroke   1 2 3 4 (or the toolbar): stem, left, right boundary,
 right drag / shift drag: move the nearest stroke   Delete / Backspace: delete it
 wheel over the sketch, [ ]: pressure of the points drawn next (nearer darker, farther lighter)
 + -: nodes per layer   P: phyllotaxis   Tab: function plots   Ctrl+Z: undo
-Ctrl+S: save the sketch   Ctrl+E: export the plant (.glb, .png) and the model (.lua)
+Ctrl+S: save the sketch   Ctrl+E: export the plant (.glb, .obj, .png) and the model (.lua)
 over the plant: drag orbit, right drag pan, wheel zoom   R: reset view   F: fit
 S: screenshot   H: this help   Esc / Q: quit]]
 
@@ -498,14 +498,15 @@ function Session:export ()
     self.st.status = "nothing to export: " .. (self.error or "no plant")
     return
   end
-  local base = self.st:save_path():gsub("%.json$", "")
+  local base = self.st:save_path():gsub("%.[^./]*$", "")
   local lsys = require "lsys"
   r.scene:save(base .. ".glb")
+  r.scene:save(base .. ".obj")                       -- and its .mtl
   lsys.render(r.scene, { out = base .. ".png", width = 800, height = 800 })
-  local files = { base .. ".glb", base .. ".png" }
+  local files = { base .. ".glb", base .. ".obj", base .. ".png" }
   if r.sketch.save_model then
     r.sketch:save_model(base .. ".lua")
-    files[3] = base .. ".lua"
+    files[#files + 1] = base .. ".lua"
   end
   self.st.status = "exported " .. table.concat(files, ", ")
   self.out(self.st.status .. "\n")
