@@ -125,7 +125,8 @@ describe("a 3D stem from the pressure (§3.5, §4.2.2)", function ()
     local function expected (t)
       local sx, sy = 120 * math.pi * math.cos(2 * math.pi * t), 400
       local sz = -0.6 * math.pi * L2 * math.sin(2 * math.pi * t)
-      return math.deg(math.atan(-sx, sy)), math.deg(math.atan(-sz, math.sqrt(sx * sx + sy * sy)))
+      -- yaw: + turns left (towards L = -x); pitch: & turns towards the viewer (-U = +z)
+      return math.deg(math.atan(-sx, sy)), math.deg(math.atan(sz, math.sqrt(sx * sx + sy * sy)))
     end
     local st = an.stem
     for _, q in ipairs { 0.15, 0.35, 0.5, 0.7, 0.85 } do      -- stem sample k: its t from py
@@ -444,30 +445,35 @@ describe("orientation (the plant as drawn, not mirrored)", function ()
     { role = "inclination", points = line(80, 300, 460, 300, 20) },
     { role = "inclination", points = line(80, 180, 500, 180, 20) } } }, { name = "right" })
 
-  it("leans right with the left organs on the left", function ()
-    local m = sk:model()
-    local s, org = organs(m)
-    local sc = m:interpret(s)
-    assert.equal(10, #org)
-    local lastx = 0
-    for k, o in ipairs(org) do
-      local p, h = sc:turtle(o.index - 1)
-      if k % 2 == 1 then
-        assert.is_true(p[1] > lastx)                -- each node further right than the last
-        lastx = p[1]
-        assert.is_true(h[1] < -0.5)                 -- the left organ points left
-      else
-        assert.is_true(h[1] > 0.5)                  -- and the right one right
-        assert.is_true(o.size > 1.5 * org[k - 1].size)
+  -- in 3D too (depth = true: yaw and pitch after @R instead of the 2D turns; a 3D stem once
+  -- leaned left, its left and right organs swapped, under the paper's @R(0,1,0,0,0,1))
+  for _, depth in ipairs { false, true } do
+    it("leans right with the left organs on the left" .. (depth and ", 3D" or ""), function ()
+      local m = sk:model { depth = depth }
+      local s, org = organs(m)
+      local sc = m:interpret(s)
+      assert.equal(10, #org)
+      assert.equal(depth, s:text():find("@R", 1, true) ~= nil)
+      local lastx = 0
+      for k, o in ipairs(org) do
+        local p, h = sc:turtle(o.index - 1)
+        if k % 2 == 1 then
+          assert.is_true(p[1] > lastx)                -- each node further right than the last
+          lastx = p[1]
+          assert.is_true(h[1] < -0.5)                 -- the left organ points left
+        else
+          assert.is_true(h[1] > 0.5)                  -- and the right one right
+          assert.is_true(o.size > 1.5 * org[k - 1].size)
+        end
+        assert.near(0, p[3], 1e-12)
       end
-      assert.near(0, p[3], 1e-12)
-    end
-    -- the node on the top line: where the stroke is, x = 150 t^2 / L at y = 320 / L
-    local an = sk:analysis()
-    local top = an.nodes[#an.nodes]
-    assert.near(150 * 0.8 ^ 2 / an.length, top.pos[1], 1e-3)
-    assert.near(320 / an.length, top.pos[2], 1e-3)
-  end)
+      -- the node on the top line: where the stroke is, x = 150 t^2 / L at y = 320 / L
+      local an = sk:analysis()
+      local top = an.nodes[#an.nodes]
+      assert.near(150 * 0.8 ^ 2 / an.length, top.pos[1], 1e-3)
+      assert.near(320 / an.length, top.pos[2], 1e-3)
+    end)
+  end
 
   it("puts the parts drawn with more pressure nearer the viewer (+z)", function ()
     local pts = {}

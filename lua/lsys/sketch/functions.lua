@@ -147,10 +147,11 @@ function M.stem_shape (geometry, an, xs, ds)
 end
 
 --- Yaw and pitch, 3D (§4.2.2), at the middle of each piece: the Euler angles, in the global
--- frame, of the piece's chord s. The paper's yaw = atan(sx/sy) and pitch = atan(sz/|sxy|)
--- are measured to the right and towards -z; the turtle here turns left with + and pitches
--- away from the viewer (-z) with &, so yaw = atan2(-sx, sy) and pitch = atan2(-sz, |sxy|):
--- after @R(0,1,0,0,0,1) (H = +y, U = +z, L = -x), +(yaw) &(pitch) heads the turtle along s.
+-- frame, of the piece's chord s (x to the viewer's right, y up, z towards the viewer).
+-- After the template's @R(0,1,0,0,0,-1) (H = +y, L = -x, U = -z), + turns towards L, to
+-- the viewer's left, and & pitches towards -U, towards the viewer, so the paper's
+-- yaw = atan(sx/sy) and pitch = atan(sz/|sxy|) become yaw = atan2(-sx, sy) (sx counted
+-- along L) and pitch = atan2(sz, |sxy|): +(yaw) &(pitch) then heads the turtle along s.
 -- Yaw is unwrapped (continuous) along the stem.
 function M.yaw_pitch (geometry, an, xs, ds)
   local st, py, pp = an.stem, {}, {}
@@ -162,7 +163,7 @@ function M.yaw_pitch (geometry, an, xs, ds)
     prev = y
     local m = x + ds[i] / 2
     py[i] = { m, y }
-    pp[i] = { m, deg(atan(-sz, sqrt(sx * sx + sy * sy))) }
+    pp[i] = { m, deg(atan(sz, sqrt(sx * sx + sy * sy))) }
   end
   local function ends (p)
     if p[1][1] > 0 then table.insert(p, 1, { 0, p[1][2] }) end

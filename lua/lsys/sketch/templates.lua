@@ -15,6 +15,10 @@
 --    yaw and pitch are read at the middle of each piece, the 2D turn at its start.
 --  * A stops: no node past the top inclination line (x < XT, XT half an internode below
 --    P_n), then the last piece of stem up to the tip (x < XE).
+--  * 3D: S realigns with @R(0,1,0,0,0,-1), the turtle's initial frame (H = +y, L = -x,
+--    U = -z), where the paper writes @R(0,1,0,0,0,1): with U = +z the left vector is +x, so
+--    + would turn to the viewer's right and the L and R organs of a 3D stem would swap sides
+--    against those of the 2D template, which keeps the initial frame.
 --  * Fibonacci: the organ is rolled by θ about the stem (/(θ)) before it turns out; the
 --    paper's production leaves that out. θ and the (a, b) weights are computed by a
 --    module C(x, θ) that B makes, so the rules stay one expression per parameter.
@@ -59,7 +63,7 @@ function M.rules (o)
     format("S(x, d) : d > %s --> S(x, d/2) S(x + d/2, d/2)", D),
   }
   if o.threed then
-    r[#r + 1] = format("S(x, d) --> @R(0, 1, 0, 0, 0, 1) +(%s(x + d/2)) &(%s(x + d/2)) F(d)",
+    r[#r + 1] = format("S(x, d) --> @R(0, 1, 0, 0, 0, -1) +(%s(x + d/2)) &(%s(x + d/2)) F(d)",
                        n "yaw", n "pitch")
   else
     r[#r + 1] = format("S(x, d) --> +(%s(x)) F(d)", n "stem_shape")
