@@ -273,6 +273,22 @@ local function rectorgan ()
 end
 local RECT_TRIANGLES = 576
 
+describe("a composed plant (§7.2)", function ()
+  it("draws the inner Model's organs as that Model does (its organ surface)", function ()
+    local outer, inner = load(), load()
+    local m = outer:model { organ = inner:model { organ = rectorgan() } }
+    local s = m:derive()
+    assert.equal(100, s:count("Organ"))
+    local function tris (model) return model:interpret(model:derive()).ntriangles end
+    -- one rectangle organ in place of one default leaf adds d triangles (outer alone: 10)
+    local d = (tris(outer:model { organ = rectorgan() }) - tris(outer:model())) / 10
+    assert.is_true(d > 0)
+    -- composed: 100 inner organs, each the rectangle, against the composition with a Sketch
+    -- (the default leaf)
+    assert.equal(100 * d, tris(m) - tris(outer:model { organ = inner }))
+  end)
+end)
+
 describe("the templates on the expression machine", function ()
   local flat, deep = load(), load { stem = line(200, 500, 200, 100, 80, 0.7) }
 

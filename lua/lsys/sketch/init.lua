@@ -290,7 +290,12 @@ function Sketch:_describe (opts)
     for k, v in pairs(io_.funcs) do d.funcs[k] = v end
     sub = { [1] = { productions = io_.productions } }
     steps = steps + io_.steps
-    homo = templates.leaf(opts.organ_color or 2)
+    -- the inner plant's organs as that Model draws them (its leaf, its "~X" -- the view
+    -- must then have X -- or its organ surface); a Sketch's: the default leaf
+    local idesc = type(opts.organ) == "table" and type(opts.organ.sketch) == "table"
+                  and opts.organ.sketch.description
+    homo = idesc and idesc.homomorphism[1] or templates.leaf(opts.organ_color or 2)
+    if idesc and idesc.surface then surface = idesc.surface; d.surface = surface end
     d.inner = io_
   elseif surface then
     homo = "Organ(h) --> ;(" .. (opts.organ_color or 2) .. ") ~P(h)"
