@@ -246,7 +246,7 @@ describe("examples/sketch", function ()
     fig7 = { cone = { 3101, 28352, 0 }, flower = { 435, 3920, 0 } },
     fig8 = { decussate = { 268, 2736, 0 }, distichous = { 228, 2736, 0 },
              fibonacci = { 164, 1712, 0 } },
-    fig9 = { double = { 2742, 9376, 0 }, single = { 215, 1376, 0 } },
+    fig9 = { double = { 2742, 17296, 0 }, single = { 215, 1376, 0 } },
     fig10 = { diagonal = { 318, 2256, 0 }, flat = { 222, 2192, 0 }, front = { 318, 2256, 0 },
               side = { 318, 2256, 0 } },
     fig11 = { { 582, 5728, 0 } },

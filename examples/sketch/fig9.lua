@@ -15,7 +15,7 @@ local single = common.sketch("fig9_leaf"):model {
 
 local double = common.sketch("fig9_axis"):model {
   organ = single, organ_color = common.LEAF, width = 0.006,
-  view = common.view({ 0, -0.9, -1 }, { surfaces = { P = leaflet } }),
+  view = common.view({ 0, -0.9, -1 }),
 }
 
 return { single = single, double = double }
