@@ -5,6 +5,7 @@
 -- expressions (lsys.model, option `functions`) on the C expression machine.
 -- @module lsys.func
 local core = require "lsys.core"
+local view = require "lsys.view"
 
 local type, pairs, ipairs, error, tostring, pcall, getmetatable, math, string, table, next =
       type, pairs, ipairs, error, tostring, pcall, getmetatable, math, string, table, next
@@ -71,13 +72,6 @@ function M.save (f, path)
   if not ok then error("lsys.func.save: " .. tostring(err), 0) end
 end
 
--- `path` relative to `dir` (nil or "": as given), as the view's files are read.
-local function resolve (dir, path)
-  if dir == nil or dir == "" or path:sub(1, 1) == "/" then return path end
-  if dir:sub(-1) == "/" then return dir .. path end
-  return dir .. "/" .. path
-end
-
 -- The Funcs one entry of a functions list stands for: a Func, a file name (a .fset gives
 -- all of its functions) or { file = NAME, samples = N }.
 local function entry (x, dir, what)
@@ -97,7 +91,8 @@ local function entry (x, dir, what)
   if type(file) ~= "string" or file == "" then
     error(format("%s: an lsys.Func or a file name expected, got %s", what, type(x)), 0)
   end
-  local ok, fs = pcall(readall, resolve(dir, file), math.tointeger(samples))
+  -- relative to `dir` as the view's files are read
+  local ok, fs = pcall(readall, view.resolve(dir, file), math.tointeger(samples))
   if not ok then error(format("%s: %s", what, tostring(fs)), 0) end
   return fs
 end

@@ -203,12 +203,14 @@ end
 -- --------------------------------------------------------------------------
 -- Files
 
--- `path` read relative to `dir` (nil or "": as given). Absolute paths stay.
+--- `path` read relative to `dir` (nil or "": as given). Absolute paths stay. (lsys.func
+-- reads the view's function files the same way.)
 local function resolve (dir, path)
   if dir == nil or dir == "" or path:sub(1, 1) == "/" then return path end
   if dir:sub(-1) == "/" then return dir .. path end
   return dir .. "/" .. path
 end
+M.resolve = resolve
 
 -- Largest texture (PNG) read; contours and surfaces have readfile's default (16 MiB).
 local MAXIMAGE = 256 * 2 ^ 20
