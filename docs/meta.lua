@@ -1038,6 +1038,14 @@ function plot.png(what, path, opts) end
 ---@param opts? table
 ---@return {x: number, y: number, scale: number}
 function plot.sketch(sk, c, opts) end
+--- Draws a sketch's analysis (its nodes and the rays of §3.4) into `c`, a sketch point
+--- (u, v) at `(map.x + u * map.scale, map.y + v * map.scale)`.
+---@param c lsys.Canvas
+---@param an table `sk:analysis()`
+---@param map {x: number, y: number, scale: number}
+---@param opts? {colors?: table, line_width?: number}
+---@return lsys.Canvas
+function plot.analysis(c, an, map, opts) end
 --- The stem colour of pen pressure p (§3.5, §7.3).
 ---@param p number
 ---@param colors? table

@@ -114,6 +114,90 @@ describe("the sketch window's state machine", function()
     assert.near({ 0.4, 0.575, 0.4 }, W.stem_rgb(0.5), 1e-12)
   end)
 
+  it("takes a tablet pen's pressure for the point and the points after it", function()
+    local st = W.new {}
+    st:pointer("down", 10, 100, "left", false, 0.8)
+    st:pointer("move", 10, 80, "left", false, 0.9)
+    st:pointer("move", 10, 60, "left", false, nil)         -- no reading: the last one
+    st:pointer("move", 10, 40, "left", false, 1.7)         -- clamped
+    st:pointer("up", 10, 40, "left")
+    local pts = st.strokes[1].points
+    assert.same({ 0.8, 0.9, 0.9, 1 }, { pts[1][3], pts[2][3], pts[3][3], pts[4][3] })
+    assert.equal(1, st.pressure)                           -- shown on the toolbar
+    st:scroll(-4)                                          -- the wheel still works
+    assert.equal(0.8, st.pressure)
+    st:pointer("move", 50, 50, "left", false, 0.1)         -- not drawing: ignored
+    assert.equal(0.8, st.pressure)
+  end)
+
+  it("redraws a stroke in place with Ctrl + drag: the selected one, else the nearest", function()
+    local st = W.new {}
+    plant_sketch(st)
+    assert.equal(6, #st.strokes)
+    assert.equal(6, st.selected)                           -- the last inclination line
+    st:pointer("down", 150, 200, "left", false, nil, true)
+    st:pointer("move", 300, 210, "left")
+    -- while drawn, it stands in the old one's place
+    local sk = st:sketch()
+    assert.equal(6, #sk.strokes)
+    assert.same({ 150, 200, 0.5 }, sk.strokes[6].points[1])
+    st:pointer("up", 450, 200, "left")
+    assert.equal(6, #st.strokes)
+    assert.equal("inclination", st.strokes[6].role)
+    assert.same({ {150, 200, 0.5}, {300, 210, 0.5}, {450, 200, 0.5} }, st.strokes[6].points)
+    assert.equal("redrew stroke 6 (inclination, 3 points)", st.status)
+    -- nothing selected: the nearest stroke, whatever the current role (here the stem)
+    st.selected = nil
+    st:key("4")
+    drag(st, 0, 0, 0, 0, 0)                                -- a click: no stroke, no change
+    st:pointer("down", 305, 400, "left", false, nil, true)
+    st:pointer("move", 310, 300, "left")
+    st:pointer("up", 310, 100, "left")
+    assert.equal(6, #st.strokes)
+    assert.equal("stem", st.strokes[1].role)
+    assert.same({ 305, 400, 0.5 }, st.strokes[1].points[1])
+    assert.equal(1, st.selected)
+    assert.is_true(st:undo_last())                         -- undone like any change
+    assert.same({ 300, 550, 0.5 }, st.strokes[1].points[1])
+    -- nothing near and nothing selected
+    local e = W.new {}
+    e:pointer("down", 5, 5, "left", false, nil, true)
+    assert.is_nil(e.drawing)
+    assert.equal("no stroke to redraw: select one (right click) first", e.status)
+  end)
+
+  it("draws the analysis' nodes and rays over the sketch, A hides them", function()
+    local st = W.new {}
+    plant_sketch(st)
+    local r = W.pipeline(st:sketch())
+    local an = r.sketch:analysis()
+    local c = core.canvas(st.width, st.height)
+    local function reds ()
+      local px, n = c:pixels(), 0
+      for i = 0, #px - 4, 4 do
+        local rr, g, b = px:byte(i + 1, i + 3)
+        if rr > 150 and g < 80 and b < 100 then n = n + 1 end
+      end
+      return n
+    end
+    W.draw_sketch(st, c)
+    assert.equal(0, reds())                                -- no analysis given
+    W.draw_sketch(st, c, an)
+    local n = #an.nodes
+    assert.is_true(n >= 9)
+    -- each node a dot of radius 2.5: about 20 pixels of the node colour each
+    assert.is_true(reds() >= 10 * n, reds() .. " red pixels for " .. n .. " nodes")
+    -- the first node's dot is where the analysis puts it
+    local px = c:pixels()
+    local x, y = math.floor(an.nodes[1].px[1] + 0.5), math.floor(an.nodes[1].px[2] + 0.5)
+    local i = 4 * (y * st.width + x)
+    assert.same({ 0xc0, 0x20, 0x3a }, { px:byte(i + 1, i + 3) })
+    st:key("a")
+    assert.is_false(st.overlay)
+    W.draw_sketch(st, c, an)
+    assert.equal(0, reds())
+  end)
+
   it("moves the nearest stroke with a right drag, and undoes it", function()
     local st = W.new {}
     plant_sketch(st)
@@ -330,6 +414,9 @@ describe("#gl the sketch window under Xvfb", function()
     stroke("4", { {100, 480}, {300, 440}, {500, 480} })
     stroke("4", { {100, 320}, {300, 280}, {500, 320} })
     stroke("4", { {100, 160}, {300, 120}, {500, 160} })
+    -- Ctrl + drag redraws the selected stroke (the last inclination) in place
+    stroke("ctrl+a ctrl+a keydown ctrl", { {100, 200}, {300, 200}, {500, 200} })
+    os.execute(xd .. "keyup ctrl >/dev/null 2>&1")
     D.sleep(2)
     os.execute(xd .. "key --window " .. wid .. " s >/dev/null 2>&1")     -- a screenshot
     os.execute(xd .. "key --window " .. wid .. " ctrl+s >/dev/null 2>&1")
@@ -344,6 +431,12 @@ describe("#gl the sketch window under Xvfb", function()
     assert.same({ "stem", "boundary_left", "boundary_right", "inclination", "inclination",
                   "inclination" }, roles)
     assert.equal(3, back.nodes_per_layer)
+    local last = back.strokes[6].points                    -- redrawn in place
+    assert.near(200, last[1][2], 1.01)
+    assert.near(200, last[#last][2], 1.01)
+    -- Xvfb's pointers report no pressure: the window says so and the wheel stays in charge
+    assert.truthy(out:find("no tablet pressure (none of the", 1, true), out)
+    assert.equal(0.5, back.strokes[1].points[1][3])
     -- the points are where the mouse went, within a pixel of the window's rounding
     local stem = back.strokes[1].points
     assert.near({ 300, 560 }, { stem[1][1], stem[1][2] }, 1.01)
@@ -368,9 +461,46 @@ describe("#gl the sketch window under Xvfb", function()
       return n
     end
     assert.is_true(count(10, 130, 590, 700) > 2000, "the sketch pane is empty")
+    local red = 0                          -- the nodes of the analysis (plot's node colour)
+    for y = 60, 790 do
+      for x = 0, 599 do
+        local i = 4 * (y * w + x)
+        local r, g, b = px:byte(i + 1, i + 3)
+        if r > 150 and g < 80 and b < 100 then red = red + 1 end
+      end
+    end
+    if core.stroke_curve then assert.is_true(red > 20, "no nodes drawn: " .. red) end
     if core.stroke_curve then
       assert.is_true(count(610, 10, 1190, 530) > 500, "the plant pane is empty: " .. out)
     end
     os.execute("rm -rf " .. dir)
+  end)
+
+  it("lists the X input devices and which report pressure (core.pen_devices)", function()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not core.pen_devices then pending("built without the viewer") return end
+    local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+    local f = os.tmpname()
+    local h = io.open(f, "w")
+    h:write([[
+      local d, why = require("lsys.core").pen_devices()
+      if not d then print("ERR " .. why) return end
+      for _, x in ipairs(d) do print(x.id, x.name, x.pressure and "pressure" or "none") end]])
+    h:close()
+    local p = io.popen(D.env .. BIN .. " " .. f .. " 2>&1")
+    local out = p:read("a")
+    p:close()
+    os.remove(f)
+    -- Xvfb has its mouse and XTEST's pointer, neither with a pressure valuator
+    assert.truthy(out:find("Xvfb mouse\tnone", 1, true), out)
+    assert.truthy(out:find("XTEST pointer\tnone", 1, true), out)
+    assert.falsy(out:find("\tpressure", 1, true), out)
+    -- without a display: nil and why
+    p = io.popen("echo 'print(require(\"lsys.core\").pen_devices())' | DISPLAY= " .. BIN ..
+                 " - 2>&1")
+    out = p:read("a")
+    p:close()
+    assert.truthy(out:find("nil\tcannot open the X display (DISPLAY is not set)", 1, true), out)
   end)
 end)

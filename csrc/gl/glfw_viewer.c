@@ -40,6 +40,7 @@
 #include "viewcam.h"
 #include "viewer.h"
 #include "vpanes.h"
+#include "xpen.h"
 
 #define MAXEVENTS 1024          /* queued events beyond this are dropped (oldest first) */
 #define CLICK_SLOP 4.0          /* a press and release closer than this (pixels) is a click */
@@ -99,6 +100,7 @@ struct lsys_viewer {
   lsys_vpanes panes;              /* image panes beside the scene (vpanes.h) */
   int sr[4];                      /* the scene's rectangle in the window (x, y, w, h) */
   int pane, pbutton;              /* the pane pressed (button 4) and the GLFW button */
+  lsys_xpen *pen;                 /* pressure devices, opened at the first press on a pane */
 };
 
 /* Queues an event (mu held). */
@@ -524,6 +526,18 @@ static void dragevent (lsys_viewer *v, int phase, double x, double y) {
   pushevent(v, &ev);
 }
 
+/* Looks for pressure devices (a tablet) once, at the first press on a pane:
+** a window without panes never opens a second X connection. */
+static void openpen (lsys_viewer *v) {
+  char why[256];
+  lsys_xpen *p = lsys_xpen_open(why, sizeof why);
+  pthread_mutex_lock(&v->mu);
+  v->pen = p;
+  v->st.pen = p != NULL;
+  snprintf(v->st.pendesc, sizeof v->st.pendesc, "%s", p ? lsys_xpen_names(p) : why);
+  pthread_mutex_unlock(&v->mu);
+}
+
 /* A pointer (type POINTER) or wheel (SCROLL) event of pane k at window point
 ** (x, y), reported in the pixels of the pane's image. */
 static void paneevent (lsys_viewer *v, int type, int k, int phase, int mods, double x, double y,
@@ -535,6 +549,11 @@ static void paneevent (lsys_viewer *v, int type, int k, int phase, int mods, dou
   ev.button = v->pbutton;
   ev.mods = mods;
   ev.scroll = scroll;
+  ev.pressure = -1;
+  if (type == LSYS_VEV_POINTER && phase != 2) {
+    if (v->st.pen < 0) openpen(v);
+    ev.pressure = lsys_xpen_pressure(v->pen);
+  }
   lsys_vpanes_map(&v->panes, k, v->winw, v->winh, x, y, &ev.x, &ev.y);
   pushevent(v, &ev);
 }
@@ -756,6 +775,8 @@ static void *run (void *arg) {
   pthread_mutex_unlock(&v->mu);
   lsys_render_cache_release(&v->cache, &v->gl);
   lsys_vpanes_release(&v->panes, &v->gl);
+  lsys_xpen_close(v->pen);
+  v->pen = NULL;
   G.DestroyWindow(v->win);
   G.Terminate();
   v->win = NULL;
@@ -816,6 +837,7 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e) {
   v->cur = -1;
   v->rate = 2;
   v->st.frame = -1;
+  v->st.pen = -1;
   if (pthread_create(&v->thread, NULL, run, v) != 0) {
     freeviewer(v);
     pthread_mutex_lock(&glfwlock);

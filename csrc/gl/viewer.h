@@ -116,6 +116,7 @@ typedef struct lsys_vevent {
   int key, mods, phase;         /* KEY, DRAG, POINTER */
   int pane, button;             /* POINTER, SCROLL */
   double scroll;                /* SCROLL */
+  double pressure;              /* POINTER: the pen's pressure in [0, 1] (xpen.h), -1 none */
   char path[512];               /* SCREENSHOT: the file */
   char msg[256];                /* SCREENSHOT failure, CLOSED by an error */
 } lsys_vevent;
@@ -168,6 +169,9 @@ typedef struct lsys_vstate {
   int capture;                  /* the snapshot shown captures keys and drags */
   int scene[4];                 /* the scene's rectangle in the window (x, y, w, h): the
                                    whole window unless a layout gives panes */
+  int pen;                      /* 1: a pressure device is read (after the first press
+                                   on a pane), 0: none, -1: not looked for yet */
+  char pendesc[256];            /* its names, or why there is none */
 } lsys_vstate;
 
 void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st);

@@ -18,13 +18,17 @@
 **                                        path, ok, msg, key, ctrl, shift, phase };
 **                                        with a layout also "pointer" (pane, phase "down" |
 **                                        "move" | "up", button, x, y in the image's pixels,
-**                                        ctrl, shift) and "scroll" (pane, x, y, dy)
+**                                        ctrl, shift, pressure: a tablet pen's, in [0, 1],
+**                                        when one is pressed) and "scroll" (pane, x, y, dy)
 **   v:pending() -> n                     events waiting to be polled
 **   v:screenshot([path])                 S key's screenshot of the next frame
 **   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
 **                                        "redraw"; drawn when state().serial >= serial
 **   v:state() -> table                   open, drawn, serial, width, height, fbwidth,
-**                                        fbheight, frame, nframes, playing, wireframe
+**                                        fbheight, frame, nframes, playing, wireframe;
+**                                        after the first press on a pane pen (a pressure
+**                                        device is read) and pen_devices (its names or
+**                                        why there is none)
 **   v:project({x, y, z}) -> x, y, depth  window coordinates with the last camera drawn
 **   v:layout(lay) -> serial              panes beside the scene (vpanes.h): lay = { scene =
 **                                        {x0, y0, x1, y1}, panes = { {x0, y0, x1, y1, bg =
@@ -34,6 +38,8 @@
 **                                        shown in pane k (1-based), copied
 **   v:text(status [, help]) -> serial    the status line ("" the usual) and help text
 **   v:close()                            (also when collected)
+**   core.pen_devices() -> list           the X input devices: { id, name, pressure =
+**                                        { min, max, value } for a tablet }; or nil, why
 **   core.filestamp(path) -> mtime, size  or nil, message
 **
 ** A posted snapshot is a deep copy (or, with take, the scene's own mesh):
@@ -50,6 +56,7 @@
 
 #ifndef LSYS_NO_VIEWER
 #include "viewer.h"
+#include "xpen.h"
 
 typedef struct lviewer { lsys_viewer *v; } lviewer;
 
@@ -287,6 +294,7 @@ static void paneevent (lua_State *L, const lsys_vevent *ev) {
   lua_setfield(L, -2, "button");
   setbool(L, "ctrl", (ev->mods & 0x2) != 0);
   setbool(L, "shift", (ev->mods & 0x1) != 0);
+  if (ev->pressure >= 0) setnum(L, "pressure", ev->pressure);
 }
 
 /* A name for a GLFW key code: "a".."z", "0".."9", punctuation, or a word. */
@@ -445,6 +453,12 @@ static int viewer_state (lua_State *L) {
     lua_rawseti(L, -2, i + 1);
   }
   lua_setfield(L, -2, "scene");
+  if (st.pen >= 0) {                    /* looked for at the first press on a pane */
+    lua_pushboolean(L, st.pen);
+    lua_setfield(L, -2, "pen");
+    lua_pushstring(L, st.pendesc);
+    lua_setfield(L, -2, "pen_devices");
+  }
   if (st.drawn > 0 && st.frame >= 0) {   /* the camera's axes in the world, rows of 'view' */
     double r[3] = {st.view[0], st.view[4], st.view[8]}, u[3] = {st.view[1], st.view[5], st.view[9]},
            f[3] = {-st.view[2], -st.view[6], -st.view[10]};
@@ -598,8 +612,41 @@ static int l_filestamp (lua_State *L) {
   return 2;
 }
 
+#ifndef LSYS_NO_VIEWER
+/* core.pen_devices() -> { { id, name, pressure = { min, max, value } or nil }... }
+** the X input devices and which report pressure (xpen.h); or nil, why. */
+static int l_pen_devices (lua_State *L) {
+  lsys_xpendev dev[LSYS_XPEN_MAXDEV];
+  char why[256];
+  int i, n = lsys_xpen_list(dev, LSYS_XPEN_MAXDEV, why, sizeof why);
+  if (n < 0) {
+    lua_pushnil(L);
+    lua_pushstring(L, why);
+    return 2;
+  }
+  lua_createtable(L, n, 0);
+  for (i = 0; i < n; i++) {
+    lua_createtable(L, 0, 3);
+    setint(L, "id", dev[i].id);
+    lua_pushstring(L, dev[i].name);
+    lua_setfield(L, -2, "name");
+    if (dev[i].valuator >= 0) {
+      lua_createtable(L, 0, 3);
+      setnum(L, "min", dev[i].min);
+      setnum(L, "max", dev[i].max);
+      setnum(L, "value", dev[i].value);
+      lua_setfield(L, -2, "pressure");
+    }
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+#endif
+
 void lsys_open_viewer (lua_State *L) {
 #ifndef LSYS_NO_VIEWER
+  lua_pushcfunction(L, l_pen_devices);
+  lua_setfield(L, -2, "pen_devices");
   lsys_createmeta(L, VIEWER_T, viewer_meta, viewer_methods);
   lua_pushcfunction(L, l_viewer_open);
   lua_setfield(L, -2, "viewer_open");

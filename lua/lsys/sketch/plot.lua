@@ -379,27 +379,40 @@ function M.sketch (sk, c, opts)
   for i, st in ipairs(sk.strokes) do              -- the stem last, over the others
     if st.role == "stem" then stroke(i, st) end
   end
-  local an = opts.analysis
-  if an ~= nil then
-    if type(an) ~= "table" or type(an.nodes) ~= "table" then
-      fail("sketch", "opts.analysis must be a sketch's analysis (a table with nodes)")
-    end
-    for _, nd in ipairs(an.nodes) do
-      local p = nd.px
-      if type(p) == "table" then
-        local x, y = ox + p[1] * scale, oy + p[2] * scale
-        for _, side in ipairs { "left", "right" } do
-          local hit = nd["hit_" .. side]
-          if type(hit) == "table" and not nd["miss_" .. side] and hit[1] then
-            c:line(x, y, ox + hit[1] * scale, oy + hit[2] * scale, 1, col.ray)
-          end
-        end
-        c:circle(x, y, lw + 1, col.node)
-      end
-    end
+  if opts.analysis ~= nil then
+    M.analysis(c, opts.analysis, { x = ox, y = oy, scale = scale }, { colors = col,
+               line_width = lw })
   end
   c:clip()
   return { x = ox, y = oy, scale = scale }
+end
+
+--- Draws a sketch's analysis `an` (docs/sketch.md "The pipeline") into canvas `c`: its
+-- nodes as dots and the rays of §3.4 as thin lines to their boundary hits, a sketch point
+-- (u, v) at (map.x + u * map.scale, map.y + v * map.scale). opts: `colors` (node, ray),
+-- `line_width` (2). Used by M.sketch and by the sketch window's pane.
+function M.analysis (c, an, map, opts)
+  opts = opts or {}
+  if type(an) ~= "table" or type(an.nodes) ~= "table" then
+    fail("analysis", "the analysis must be a sketch's analysis (a table with nodes)")
+  end
+  local col = palette("analysis", M.SKETCH_COLORS, opts.colors, nil)
+  local lw = opts.line_width or 2
+  local ox, oy, scale = map.x, map.y, map.scale
+  for _, nd in ipairs(an.nodes) do
+    local p = nd.px
+    if type(p) == "table" then
+      local x, y = ox + p[1] * scale, oy + p[2] * scale
+      for _, side in ipairs { "left", "right" } do
+        local hit = nd["hit_" .. side]
+        if type(hit) == "table" and not nd["miss_" .. side] and hit[1] then
+          c:line(x, y, ox + hit[1] * scale, oy + hit[2] * scale, 1, col.ray)
+        end
+      end
+      c:circle(x, y, lw + 1, col.node)
+    end
+  end
+  return c
 end
 
 --- Writes the functions plot of a Sketch (anything with a :functions() method) or of a

@@ -74,6 +74,7 @@ function M.new (opts)
     undo = {},
     changed = true,          -- the sketch changed since the plant was last computed
     status = nil,
+    overlay = true,          -- draw the nodes and rays of the analysis over the sketch
   }, State)
   return st
 end
@@ -84,12 +85,16 @@ function State:sketch ()
   local d = self.drawing
   local drawn = d and #d.points >= 2
   local strokes = {}
-  for _, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
-    if not (drawn and ONCE[d.role] and s.role == d.role) then
+  for i, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
+    if not (drawn and (d.replace == i or not d.replace and ONCE[d.role] and s.role == d.role))
+    then
       strokes[#strokes + 1] = { role = s.role, points = copy_points(s.points) }
     end
   end
-  if drawn then strokes[#strokes + 1] = { role = d.role, points = copy_points(d.points) } end
+  if drawn then
+    local at = d.replace and d.replace <= #strokes + 1 and d.replace or #strokes + 1
+    table.insert(strokes, at, { role = d.role, points = copy_points(d.points) })
+  end
   return {
     file = self.file, width = self.width, height = self.height, nodes_per_layer = self.nodes,
     phyllotaxis = self.phyllotaxis, depth = self.depth, strokes = strokes,
@@ -119,6 +124,8 @@ function State:undo_last ()
   return true
 end
 
+local function clamp01 (p) return p < 0 and 0 or p > 1 and 1 or p end
+
 -- The stroke nearest (x, y) within M.PICK_RADIUS pixels (distance to its segments).
 function State:nearest (x, y)
   local best, bd = nil, M.PICK_RADIUS
@@ -137,12 +144,16 @@ function State:nearest (x, y)
   return best
 end
 
-local function clamp01 (p) return p < 0 and 0 or p > 1 and 1 or p end
-
 --- Feeds a pointer event in sketch pixels: phase "down" | "move" | "up"; button "left"
 -- (draws a stroke of the current role) or "right" (moves the nearest stroke; also left
--- with shift). Returns true when the sketch changed.
-function State:pointer (phase, x, y, button, shift)
+-- with shift). A left press with `ctrl` redraws a stroke in place: the selected one, else
+-- the nearest, keeps its place and role and takes the points drawn. `pressure`, when a
+-- number, is a tablet pen's (§3.5): it becomes the pressure of this point and of the points
+-- drawn next. Returns true when the sketch changed.
+function State:pointer (phase, x, y, button, shift, pressure, ctrl)
+  if type(pressure) == "number" and phase ~= "up" and (self.drawing or phase == "down") then
+    self.pressure = floor(clamp01(pressure) * 1000 + 0.5) / 1000
+  end
   if phase == "down" then
     if button == "right" or button == "middle" or shift then
       local k = self:nearest(x, y)
@@ -154,6 +165,16 @@ function State:pointer (phase, x, y, button, shift)
     end
     if button ~= "left" then return false end
     self.drawing = { role = self.role, points = { { x, y, self.pressure } } }
+    if ctrl then
+      local k = self.strokes[self.selected or 0] and self.selected or self:nearest(x, y)
+      if k == nil then
+        self.drawing = nil
+        self.status = "no stroke to redraw: select one (right click) first"
+        return false
+      end
+      self.drawing.role, self.drawing.replace = self.strokes[k].role, k
+      self.status = format("redrawing stroke %d (%s)", k, self.strokes[k].role)
+    end
     return false
   elseif phase == "move" then
     local m = self.moving
@@ -187,6 +208,13 @@ function State:pointer (phase, x, y, button, shift)
       return false
     end
     self:push_undo()
+    if d.replace then                -- redrawn in place
+      local k = d.replace
+      self.strokes[k] = { role = d.role, points = d.points }
+      self.selected = k
+      self:touch(format("redrew stroke %d (%s, %d points)", k, d.role, #d.points))
+      return true
+    end
     if ONCE[d.role] then             -- a new stem (or boundary) replaces the old one
       for i = #self.strokes, 1, -1 do
         if self.strokes[i].role == d.role then remove(self.strokes, i) end
@@ -288,6 +316,9 @@ function State:key (name, ctrl)
   elseif name == "[" then self:scroll(-2)
   elseif name == "]" then self:scroll(2)
   elseif name == "delete" or name == "backspace" then self:delete()
+  elseif name == "a" then
+    self.overlay = not self.overlay
+    self.status = self.overlay and "nodes and rays shown" or "nodes and rays hidden"
   elseif name == "tab" then return "plots" end
   return nil
 end
@@ -342,11 +373,21 @@ local function draw_stroke (c, s, width)
 end
 
 --- Draws the sketch of `st` into canvas `c` (its size): the strokes by role, the stem by
--- pressure, the selected stroke wider, the stroke being drawn.
-function M.draw_sketch (st, c)
+-- pressure, the selected stroke wider, the stroke being drawn (a stroke redrawn in place
+-- hides the old one), and, when given and st.overlay is on, the sketch's analysis `an`
+-- (the nodes and the rays of §3.4 to the boundaries, lsys.sketch.plot.analysis).
+function M.draw_sketch (st, c, an)
   c:clear({ 1, 1, 1, 1 })
-  for i, s in ipairs(st.strokes) do draw_stroke(c, s, i == st.selected and 4 or 2.5) end
-  if st.drawing and #st.drawing.points >= 2 then draw_stroke(c, st.drawing, 2.5) end
+  local d = st.drawing
+  local drawn = d and #d.points >= 2
+  for i, s in ipairs(st.strokes) do
+    if not (drawn and d.replace == i) then draw_stroke(c, s, i == st.selected and 4 or 2.5) end
+  end
+  if drawn then draw_stroke(c, d, 2.5) end
+  if an and st.overlay then
+    require("lsys.sketch.plot").analysis(c, an, { x = 0, y = 0, scale = 1 },
+                                         { line_width = 1.5 })
+  end
   return c
 end
 
@@ -412,8 +453,10 @@ end
 
 M.HELP = [[
 left drag: draw a stroke   1 2 3 4 (or the toolbar): stem, left, right boundary, inclination
-right drag / shift drag: move the nearest stroke   Delete / Backspace: delete it
-wheel over the sketch, [ ]: pressure of the points drawn next (nearer darker, farther lighter)
+right drag / shift drag: move the nearest stroke   Ctrl+left drag: redraw it in place
+Delete / Backspace: delete the selected stroke   A: nodes and rays over the sketch
+wheel over the sketch, [ ]: pressure of the points drawn next (nearer darker, farther lighter);
+a tablet pen's own pressure when X reports one
 + -: nodes per layer   P: phyllotaxis   Tab: function plots   Ctrl+Z: undo
 Ctrl+S: save the sketch   Ctrl+E: export the plant (.glb, .obj, .png) and the model (.lua)
 over the plant: drag orbit, right drag pan, wheel zoom   R: reset view   F: fit
@@ -449,7 +492,12 @@ end
 
 function Session:show_sketch ()
   local st, v = self.st, self.v
-  M.draw_sketch(st, self.canvas)
+  local an
+  if st.overlay and self.result and self.result.sketch.analysis then
+    local ok, a = pcall(self.result.sketch.analysis, self.result.sketch)
+    if ok then an = a end
+  end
+  M.draw_sketch(st, self.canvas, an)
   v:image(2, self.canvas:pixels(), st.width, st.height)
   M.draw_toolbar(st, self.toolbar)
   v:image(1, self.toolbar:pixels(), M.TOOLBAR_W, M.TOOLBAR_H)
@@ -492,6 +540,17 @@ function Session:compute (final)
   if final then self:show_plots() end
 end
 
+-- Says once, at the first press on the sketch, whether a tablet's pressure is read.
+function Session:tell_pen ()
+  local ok, vs = pcall(self.v.state, self.v)
+  if not ok or type(vs) ~= "table" or vs.pen == nil then return end
+  self.pen_told = true
+  local msg = vs.pen and "tablet pressure from " .. vs.pen_devices
+    or "no tablet pressure (" .. tostring(vs.pen_devices) .. "): the wheel and [ ] set it"
+  self.st.status = self.st.status and self.st.status .. "  |  " .. msg or msg
+  self.out(msg .. "\n")
+end
+
 function Session:export ()
   local r = self.result
   if r == nil then
@@ -519,7 +578,8 @@ function Session:event (ev)
     if ev.pane == 1 then
       return ev.phase == "down" and st:toolbar(ev.x) or ev.phase == "down"
     elseif ev.pane == 2 then
-      st:pointer(ev.phase, ev.x, ev.y, ev.button, ev.shift)
+      st:pointer(ev.phase, ev.x, ev.y, ev.button, ev.shift, ev.pressure, ev.ctrl)
+      if ev.phase == "down" and not self.pen_told then self:tell_pen() end
       return true
     end
   elseif ev.type == "scroll" and ev.pane == 2 then
