@@ -247,12 +247,12 @@ describe("examples/sketch", function ()
     fig8 = { decussate = { 268, 2736, 0 }, distichous = { 228, 2736, 0 },
              fibonacci = { 164, 1712, 0 } },
     fig9 = { double = { 2742, 17296, 0 }, single = { 215, 1376, 0 } },
-    fig10 = { diagonal = { 318, 2256, 0 }, flat = { 222, 2192, 0 }, front = { 318, 2256, 0 },
-              side = { 318, 2256, 0 } },
+    fig10 = { diagonal = { 318, 2192, 0 }, flat = { 222, 2192, 0 }, front = { 318, 2192, 0 },
+              side = { 318, 2192, 0 } },
     fig11 = { { 582, 5728, 0 } },
-    fig12 = { { 842, 5808, 0 } },
+    fig12 = { { 842, 5728, 0 } },
     fig13 = { { 548, 8400, 0 } },
-    fig14 = { { 774, 8560, 0 } },
+    fig14 = { { 774, 8400, 0 } },
   }
 
   it("has a count for every model file and a model file for every count", function ()

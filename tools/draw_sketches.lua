@@ -55,23 +55,32 @@ local function at (pts, s, d)
          pts[i - 1][2] + t * (pts[i][2] - pts[i - 1][2])
 end
 
--- Piecewise linear profile { {u, value}, ... } at u in [0, 1], smoothed by a cosine ease.
+-- A profile { {u, value}, ... } at u in [0, 1]: a smooth curve through the values (a
+-- Catmull-Rom spline in u, its tangents from the neighbours), flat before the first and
+-- after the last. A hand's pressure changes smoothly and does not pause at each key.
 local function profile (prof, u)
+  local n = #prof
   if u <= prof[1][1] then return prof[1][2] end
-  for i = 2, #prof do
-    if u <= prof[i][1] then
-      local a, b = prof[i - 1], prof[i]
-      local t = (u - a[1]) / (b[1] - a[1])
-      t = (1 - math.cos(t * math.pi)) / 2
-      return a[2] + t * (b[2] - a[2])
-    end
+  if u >= prof[n][1] then return prof[n][2] end
+  local i = 2
+  while prof[i][1] < u do i = i + 1 end
+  local a, b = prof[i - 1], prof[i]
+  local function slope (k)
+    local p, q = prof[math.max(k - 1, 1)], prof[math.min(k + 1, n)]
+    return (q[2] - p[2]) / (q[1] - p[1])
   end
-  return prof[#prof][2]
+  local h = b[1] - a[1]
+  local t = (u - a[1]) / h
+  local m0, m1 = slope(i - 1) * h, slope(i) * h
+  local t2, t3 = t * t, t * t * t
+  return (2 * t3 - 3 * t2 + 1) * a[2] + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * b[2]
+    + (t3 - t2) * m1
 end
 
 -- The points a pointing device reports along the guide curve: steps of 2-6 pixels (shorter
 -- near the ends, where the hand is slow), a slow sideways wobble of about half a pixel and
--- rounding to whole pixels (a mouse) or tenths (a tablet, which also reports pressure).
+-- rounding to whole pixels (a mouse) or tenths (a tablet, which also reports pressure,
+-- smoothly: 1024 levels, a slow swell and little noise).
 local function stroke (guide, opts)
   local curve = smooth(guide)
   local s = cumlen(curve)
@@ -90,10 +99,13 @@ local function stroke (guide, opts)
     x, y = x + w * nx, y + w * ny
     local p
     if opts.pressure then
-      p = profile(opts.pressure, u) + (math.random() - 0.5) * 0.02
+      -- a pen's pressure: the profile, a slow swell of the hand and a little sensor noise,
+      -- read at 1024 levels (a cheap tablet's; better ones have 2048 to 8192)
+      p = profile(opts.pressure, u) + 0.008 * math.sin(phase + 0.5 * freq * u * total)
+        + (math.random() - 0.5) * 0.003
       p = math.max(0, math.min(1, p))
       pts[#pts + 1] = { floor(x * 10 + 0.5) / 10, floor(y * 10 + 0.5) / 10,
-                        floor(p * 100 + 0.5) / 100 }
+                        floor(p * 1024 + 0.5) / 1024 }
     else
       pts[#pts + 1] = { floor(x + 0.5), floor(y + 0.5) }
     end
