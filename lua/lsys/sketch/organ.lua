@@ -277,6 +277,18 @@ function Organ:blend (s, t)
   local dx, dy = rx - lx, ry - ly
   local x, y = lx + cu * dx, ly + cu * dy
   local z0 = cw * sqrt(dx * dx + dy * dy)
+  local ym = (ly + ry) / 2
+  if ym < 0 then
+    -- a row whose middle lies below the base (the boundaries go down round basal lobes, a
+    -- cordate or sagittate outline) is bent up through the base on the midline, so the
+    -- lobes fan out from the attachment point and the notch between them stays open
+    local nx = (lx + rx) / 2
+    if cu <= 0.5 then
+      x, y = lx + 2 * cu * (nx - lx), ly + 2 * cu * (0 - ly)
+    else
+      x, y = nx + (2 * cu - 1) * (rx - nx), (2 * cu - 1) * ry
+    end
+  end
   local my, mz, ny, nz = midrib(g.side, y)
   return x, my + z0 * ny, mz + z0 * nz
 end
@@ -666,12 +678,14 @@ function M.leaf (o)
   local left, N = {}, 48
   local x0, y0 = 200, 200 + len              -- the base, on the screen
   if shape == "cordate" then
-    -- from the notch down round a basal lobe, out to the widest part and up to the tip
+    -- from the notch down round a basal lobe, out to the widest part and up to the tip:
+    -- the classic heart curve (x = sin^3, y from four cosines), its lobes made half as deep
     for i = 0, N do
-      local a = i / N
-      local y = a - 0.6 * math.sin(math.pi * a) * (1 - a) ^ 3
-      local w = 0.7 * math.sin(math.pi * a ^ 0.6) * (1 - 0.45 * a)
-      left[i + 1] = { x0 - len * wid * w, y0 - len * y }
+      local th = math.pi * i / N
+      local y = (5 - 13 * math.cos(th) + 5 * math.cos(2 * th) + 2 * math.cos(3 * th)
+                 + math.cos(4 * th)) / 22
+      if y < 0 then y = y / 2 end
+      left[i + 1] = { x0 - len * wid * 0.6 * math.sin(th) ^ 3, y0 - len * y }
     end
   else
     for i = 0, N do
