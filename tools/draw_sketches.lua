@@ -233,13 +233,13 @@ SKETCHES.fig7_cone = function ()
   local sk = { width = 400, height = 600, nodes_per_layer = 55, phyllotaxis = "fibonacci",
     strokes = {
       { role = "stem", guide = { { 200, 575 }, { 199, 470 }, { 201, 330 }, { 199, 190 },
-                                 { 200, 60 } } },
+                                 { 200, 68 } } },
       { role = "boundary_left", guide = left },
       { role = "boundary_right", guide = mirror(left, 200, { { 0, 0 }, { 2, -3 },
         { -3, 2 }, { 2, 0 }, { 4, 4 }, { -2, 3 }, { 0, -2 }, { 3, 2 }, { 0, 0 } }) },
     } }
   local lines = { { 535, 34 }, { 478, 22 }, { 420, 8 }, { 362, -6 }, { 305, -20 },
-                  { 250, -34 }, { 196, -48 }, { 145, -60 }, { 100, -70 } }
+                  { 250, -34 }, { 196, -48 }, { 145, -60 }, { 82, -72 } }
   for _, l in ipairs(lines) do
     table.insert(sk.strokes, { role = "inclination",
       guide = chevron(200, l[1], 70, l[2], 330, l[2] + 2) })
