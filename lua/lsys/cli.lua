@@ -11,6 +11,7 @@
 --   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
 --   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
+--   lsys components graph MODEL -o OUT   a component graph's p-graph (.png .svg .pdf .dot)
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local host = require("lsys.program").host
@@ -38,6 +39,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
   lsys sketch [FILE] [OPTS]   draw a plant's construction lines; the plant follows (a window)
   lsys sketch plot|model|render FILE -o OUT   a sketch's functions, model or picture
+  lsys components graph MODEL -o OUT   draw a component graph's p-graph (Graphviz)
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -199,6 +201,24 @@ Options:
   -h, --help          show this help
 
 The window needs a display; a tablet's pen pressure is not read yet (the wheel stands in).
+]]
+
+HELP.components = [[
+usage: lsys components graph MODEL [-o OUT] [--params]
+
+Component graphs (Lintermann and Deussen 1999; docs/components.md). MODEL is a Lua file
+that returns the root prototype of a component graph (`return plant`).
+
+  graph    draws the p-graph: a camera box at the root, child links as thin lines, branch
+           links bold, leaf links dashed, the links of a recursion doubled, ending at a
+           dashed copy of the component the recursion returns to; flag lists on the links
+
+Options:
+  -o, --output OUT    the file written: .png, .svg or .pdf (through Graphviz's dot, Debian
+                      package graphviz) or .dot/.gv, the DOT text (default: MODEL's name
+                      with -graph.png, in the current directory)
+  --params            show the components' parameters in the nodes
+  -h, --help          show this help
 ]]
 
 HELP.repl = [[
@@ -852,6 +872,49 @@ function commands.sketch (args)
     file = pos[1], nodes = lo.nodes_per_layer, phyllotaxis = lo.phyllotaxis,
     window = w and { w, h } or nil, out = out,
   }
+  return 0
+end
+
+local COMPONENTS_OPTS = { output = "value", params = "flag", help = "flag",
+                          short = { h = "help", o = "output" } }
+
+-- `lsys components graph MODEL -o OUT`: the model file returns a component graph's root.
+function commands.components (args)
+  local sub = args[2]
+  local opts, pos = parse("components", COMPONENTS_OPTS, args, 2)
+  if opts.help then out(HELP.components) return 0 end
+  if sub ~= "graph" then
+    usage("components", sub == nil and "a subcommand is required (graph)" or
+      "unknown subcommand '%s' (known: graph)", sub)
+  end
+  if #pos < 2 then usage("components", "graph: a MODEL is required") end
+  if #pos > 2 then usage("components", "unexpected argument '%s'", pos[3]) end
+  local path = find_model(pos[2])
+  local outpath = opts.output or ((path:match("([^/]-)%.?[^./]*$") or "model") .. "-graph.png")
+  local ext = (outpath:match("%.([^./]+)$") or ""):lower()
+  if ext ~= "png" and ext ~= "svg" and ext ~= "pdf" and ext ~= "dot" and ext ~= "gv" then
+    usage("components", "graph: the output must be a .png, .svg, .pdf or .dot file, got '%s'",
+      outpath)
+  end
+  local chunk, err = loadfile(path, "t")
+  if chunk == nil then error(err, 0) end
+  local ok, root = require("lsys.model").runfile(path, chunk)
+  if not ok then
+    local msg = tostring(root)
+    error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
+  end
+  local okp, kind, links = pcall(function () return root.kind, root.links end)
+  if not okp or type(kind) ~= "string" or type(links) ~= "table" then
+    error(format("%s returned %s, not a component graph (end the file with `return` and the "
+      .. "root prototype, e.g. `return plant`)", path, type(root)), 0)
+  end
+  local graph = require "lsys.components.graph"
+  local rok, rerr = pcall(graph.render, root, outpath, { params = opts.params or nil })
+  if not rok then     -- the message names the item; graph.lua's line is no news to the user
+    rerr = tostring(rerr):gsub("^[^:\n]*%.lua:%d+: ", ""):gsub("^graph%.render: ", "")
+    error(format("%s: %s", path, rerr), 0)
+  end
+  out(format("wrote %s\n", outpath))
   return 0
 end
 
