@@ -1,0 +1,226 @@
+-- Component graphs (issue 16; Lintermann and Deussen 1999): prototypes, their parameters and
+-- links, and the expansion of the p-graph into the i-tree (recursion, multipliers, ranges
+-- and functions per instance, flag lists, leaf links, errors).
+local C = require "lsys.components"
+
+local function errmsg (fn, ...)
+  local ok, msg = pcall(fn, ...)
+  assert.is_false(ok)
+  return tostring(msg)
+end
+
+-- The article's fig. 2: A the root, B a stem, C a multiplier of three, D a twig part with
+-- recursion depth 3.
+local function fig2 ()
+  local D = C.horn { name = "D", length = 0.5, recursion = 3, rotate = { 20, 0, 0 },
+                     scale = 0.8 }
+  D:child(D)
+  local Cm = C.hydra { name = "C", n = 3, angle = 45 }
+  Cm:child(D)
+  local B = C.horn { name = "B", length = 2 }
+  B:child(Cm)
+  local A = C.simple { name = "A", primitive = "none" }
+  A:child(B)
+  return A, D
+end
+
+describe("lsys.components prototypes", function ()
+  it("make each kind with defaults and check parameters", function ()
+    for _, k in ipairs(C.ORDER) do
+      local p = C[k] {}
+      assert.equal(k, p.kind)
+      assert.is_true(C.isproto(p))
+    end
+    local t = C.tree { n = 12, angle = { 60, 30 } }
+    assert.equal(12, t:param("n"))
+    assert.same({ 60, 30 }, t:param("angle"))
+    assert.equal(137.50776405003785, t:param("divergence"))
+    assert.equal("lsys.components.tree(0 links)", tostring(t))
+  end)
+
+  it("reject unknown parameters, listing the known ones", function ()
+    local msg = errmsg(C.wreath, { radius = 1, radious = 2 })
+    assert.equal("lsys.components: wreath: unknown parameter 'radious' (known: close, color, " ..
+                 "n, name, open, primitive, radius, recursion, rotate, scale, size, texture, " ..
+                 "translate)", msg)
+    assert.equal("lsys.components: leaf 'l': 'length' must be a number, a range {v0, v1} or " ..
+                 "a function, got NaN", errmsg(C.leaf, { name = "l", length = 0 / 0 }))
+    assert.equal("lsys.components: tree: 'n' must be a whole number, got 2.5",
+                 errmsg(C.tree, { n = 2.5 }))
+    assert.equal("lsys.components: simple: 'primitive' must be one of none, cube, sphere, " ..
+                 "cylinder, cone, disc, area, tube, got ball",
+                 errmsg(C.simple, { primitive = "ball" }))
+    assert.equal("lsys.components: horn: 'recursion' must be a whole number from 1 to " ..
+                 "1000, got 0", errmsg(C.horn, { recursion = 0 }))
+    assert.equal("lsys.components: hydra: child link: a component prototype expected, got " ..
+                 "a table", errmsg(function () C.hydra {}:child({}) end))
+    assert.equal("lsys.components: hydra: a link's flags: unknown field 'without' (known: " ..
+                 "only, except)",
+                 errmsg(function () C.hydra {}:child(C.leaf {}, { without = {} }) end))
+  end)
+end)
+
+describe("lsys.components.expand", function ()
+  it("expands fig. 2 into nine instances of D with the right parents", function ()
+    local A = fig2()
+    local t = C.expand(A)
+    assert.equal(1, t:count("A"))
+    assert.equal(1, t:count("B"))
+    assert.equal(1, t:count("C"))
+    assert.equal(9, t:count("D"))
+    assert.equal(12, t:count())
+    local list = t:instances()
+    assert.equal("A#1", list[1].path)
+    assert.equal("A#1/B#1/C#1/D#1/D#2/D#3", list[6].path)
+    -- each chain of D hangs from C, three deep, with the recursion depth 1, 2, 3
+    local c = t:find("A#1/B#1/C#1")
+    assert.equal(3, #c.children)
+    for k, ci in ipairs(c.children) do
+      local d1 = list[ci]
+      assert.equal("D", d1.name)
+      assert.equal(k, d1.i)
+      assert.equal(3, d1.n)
+      assert.equal(1, d1.depth)
+      local d2 = list[d1.children[1]]
+      local d3 = list[d2.children[1]]
+      assert.same({ 2, 3, 0 }, { d2.depth, d3.depth, #d3.children })
+      assert.equal(d1.index, d2.parent)
+    end
+  end)
+
+  it("places children at the parent's tip and multiplied children around its axis", function ()
+    local t = C.expand((fig2()))
+    local c = t:find("A#1/B#1/C#1")
+    -- B is 2 long, straight up: C sits at (0, 2, 0)
+    assert.near({ 0, 2, 0 }, c.frame.p, 1e-12)
+    -- the hydra's three children tilt 45 degrees from the axis (and D's own rotate of 20
+    -- degrees more), 120 degrees apart around it
+    local az = {}
+    for k, ci in ipairs(c.children) do
+      local d = t:instances()[ci]
+      assert.near(65, math.deg(math.acos(d.frame.H[2])), 1e-9)
+      az[k] = math.deg(math.atan(d.frame.H[3], d.frame.H[1]))
+    end
+    local function gap (a, b) local d = (b - a) % 360 return math.min(d, 360 - d) end
+    assert.near(120, gap(az[1], az[2]), 1e-9)
+    assert.near(120, gap(az[2], az[3]), 1e-9)
+    -- D's scale 0.8 compounds down the chain: 0.8, 0.64, 0.512
+    local d3 = t:find("A#1/B#1/C#1/D#1/D#2/D#3")
+    assert.near(0.512, d3.frame.s, 1e-12)
+  end)
+
+  it("interpolates ranges over the iteration and applies the user's function", function ()
+    local seen = {}
+    local leaf = C.leaf { name = "L", length = { 1, 2, f = function (v, ctx)
+      seen[#seen + 1] = { v, ctx.i, ctx.n, ctx.depth }
+      return v * 10
+    end } }
+    local w = C.wreath { n = 5 }
+    w:child(leaf)
+    local t = C.expand(w)
+    assert.equal(5, t:count("L"))
+    assert.same({ { 1, 1, 5, 1 }, { 1.25, 2, 5, 1 }, { 1.5, 3, 5, 1 }, { 1.75, 4, 5, 1 },
+                  { 2, 5, 5, 1 } }, seen)
+    -- the length sets the tip: the leaf's children would sit 10, 12.5, ... along it
+    local l3 = t:instances()[4]
+    assert.equal(3, l3.i)
+    assert.near(15, math.sqrt(
+      (l3.tip.p[1] - l3.frame.p[1]) ^ 2 + (l3.tip.p[2] - l3.frame.p[2]) ^ 2 +
+      (l3.tip.p[3] - l3.frame.p[3]) ^ 2), 1e-9)
+  end)
+
+  it("creates the iterations a flag list allows", function ()
+    local tw = C.tree { name = "twig", n = 15 }
+    local small = C.horn { name = "small" }
+    local lf = C.leaf { name = "leaf" }
+    tw:branch(small, { only = { 2, 13 } })
+    tw:branch(lf, { except = { 2, 13 } })
+    local t = C.expand(tw)
+    assert.equal(2, t:count("small"))
+    assert.equal(13, t:count("leaf"))
+    local is = {}
+    for _, inst in ipairs(t:instances()) do
+      if inst.name == "small" then is[#is + 1] = inst.i end
+    end
+    assert.same({ 2, 13 }, is)
+    local bad = C.tree { n = 5 }
+    bad:branch(C.leaf {}, { only = { 7 } })
+    assert.equal("lsys.components: tree (at tree#1): the flags of its branch link to leaf " ..
+                 "name iteration 7, but it makes 5", errmsg(C.expand, bad))
+  end)
+
+  it("makes a leaf link's target once, where the recursion ends", function ()
+    local D = C.horn { name = "D", recursion = 4 }
+    D:child(D)
+    D:leaf(C.leaf { name = "end" })
+    local t = C.expand(D)
+    assert.equal(4, t:count("D"))
+    assert.equal(1, t:count("end"))
+    assert.equal("D#1/D#2/D#3/D#4/end#1", t:instances()[5].path)
+    -- without recursion a leaf link is a child link
+    local h = C.horn {}
+    h:leaf(C.leaf { name = "x" })
+    assert.equal(1, C.expand(h):count("x"))
+  end)
+
+  it("stops a cycle without a recursion depth, and a graph that grows too big", function ()
+    local a, b = C.horn { name = "a" }, C.horn { name = "b" }
+    a:child(b)
+    b:child(a)
+    assert.equal("lsys.components: horn 'a': a cycle (a -> b -> a) but horn 'a' has no " ..
+                 "recursion depth (give it recursion = n)", errmsg(C.expand, a))
+    local w = C.wreath { n = 100 }
+    local v = C.wreath { n = 100 }
+    w:child(v)
+    v:child(C.leaf {})
+    assert.equal("lsys.components: the graph makes more than 5000 instances (at " ..
+                 "wreath#1/wreath#51/leaf); raise max_instances or lower a count",
+                 errmsg(C.expand, w, { max_instances = 5000 }))
+    assert.equal(10101, C.expand(w):count())
+  end)
+
+  it("names the instance and parameter when a function gives no number", function ()
+    local w = C.wreath { n = 3 }
+    w:child(C.leaf { name = "bad", width = function (ctx) return ctx.i == 2 and "x" or 1 end,
+                     length = function () return 1 end })
+    local t = C.expand(w)       -- width is read by the geometry, not here
+    assert.equal(3, t:count("bad"))
+    local w2 = C.wreath { n = 3 }
+    w2:child(C.leaf { name = "bad", length = function (ctx) return ctx.i == 2 and "x" or 1 end })
+    assert.equal("lsys.components: leaf 'bad' (at wreath#1/bad#2): 'length': gave x, not a " ..
+                 "finite number", errmsg(C.expand, w2))
+  end)
+
+  it("is reproducible: the same graph and seed give the same frames", function ()
+    local function build ()
+      local tw = C.tree { n = 8, gnarl = 15, length = 2 }
+      tw:branch(C.leaf {})
+      return tw
+    end
+    local a, b = C.expand(build(), { seed = 7 }), C.expand(build(), { seed = 7 })
+    local c = C.expand(build(), { seed = 8 })
+    local function tipx (t) return t:instances()[1].tip.p[1] end
+    assert.equal(tipx(a), tipx(b))
+    assert.are_not.equal(tipx(a), tipx(c))
+    -- the generator is splitmix64: its first draws for seed 1 are fixed
+    local g = require("lsys.components.expand").generator(1)
+    local x = g()
+    assert.is_true(x >= 0 and x < 1)
+    assert.equal(x, require("lsys.components.expand").generator(1)())
+  end)
+
+  it("bends a stem by its curvature and turns it towards gravity", function ()
+    local h = C.horn { length = 1, segments = 10, curvature = 90 }
+    local t = C.expand(h)
+    local H = t:instances()[1].tip.H
+    -- a quarter turn about the right axis: heading from +y to -z ... or +z
+    assert.near(0, H[2], 1e-12)
+    assert.near(1, math.abs(H[3]), 1e-12)
+    local w = C.world { gravity = { 0, -1, 0 } }
+    local tr = C.tree { n = 0, length = 1, segments = 20, gravitropism = 0.3,
+                        rotate = { 60, 0, 0 } }
+    w:child(tr)
+    local st = C.expand(w):instances()[2]
+    assert.is_true(st.tip.H[2] < st.frame.H[2] - 0.1)   -- it droops
+  end)
+end)
