@@ -31,6 +31,7 @@ describe("lsys.components prototypes", function ()
       assert.equal(k, p.kind)
       assert.is_true(C.isproto(p))
     end
+    assert.equal(C, require("lsys").components)
     local t = C.tree { n = 12, angle = { 60, 30 } }
     assert.equal(12, t:param("n"))
     assert.same({ 60, 30 }, t:param("angle"))
