@@ -889,13 +889,13 @@ function commands.components (args)
   end
   if #pos < 2 then usage("components", "graph: a MODEL is required") end
   if #pos > 2 then usage("components", "unexpected argument '%s'", pos[3]) end
-  local path = find_model(pos[2])
-  local outpath = opts.output or ((path:match("([^/]-)%.?[^./]*$") or "model") .. "-graph.png")
+  local outpath = opts.output or ((pos[2]:match("([^/]-)%.?[^./]*$") or "model") .. "-graph.png")
   local ext = (outpath:match("%.([^./]+)$") or ""):lower()
   if ext ~= "png" and ext ~= "svg" and ext ~= "pdf" and ext ~= "dot" and ext ~= "gv" then
     usage("components", "graph: the output must be a .png, .svg, .pdf or .dot file, got '%s'",
       outpath)
   end
+  local path = find_model(pos[2])
   local chunk, err = loadfile(path, "t")
   if chunk == nil then error(err, 0) end
   local ok, root = require("lsys.model").runfile(path, chunk)
