@@ -94,7 +94,7 @@ describe("graph.dot", function()
     -- the rhododendron twig (fig. 5c): tiny twigs at iterations 2 and 13, leaves elsewhere,
     -- and a blossom leaf once after the twig's recursion
     local twig, tiny, leaf, blossom = proto("tree", "twig"), proto("tree", "tiny"),
-                                     proto("leaf"), proto("leaf")
+                                     proto("leaf"), proto("leaf", "leaf")
     link(twig, "branch", tiny, { only = { 2, 13 } })
     link(twig, "branch", leaf, { except = { 2, 13 } })
     link(twig, "leaf", blossom)
@@ -102,7 +102,7 @@ describe("graph.dot", function()
   n1 [label="twig\ntree"];
   n2 [label="tiny\ntree"];
   n3 [label="leaf#1"];
-  n4 [label="leaf#2"];
+  n4 [label="leaf"];
   camera -> n1;
   n1 -> n2 [penwidth=3, label="only 2, 13"];
   n1 -> n3 [penwidth=3, label="except 2, 13"];

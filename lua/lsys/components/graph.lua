@@ -277,12 +277,12 @@ local function components (nodes)
   end
 end
 
--- The label lines of a node: its title, its kind when it has a name, the recursion depth
--- when > 1, and parameters as opts.params asks.
+-- The label lines of a node: its title, its kind when it has a name (other than the kind),
+-- the recursion depth when > 1, and parameters as opts.params asks.
 local function label_lines (n, opts)
   local p = n.p
   local lines = { n.title }
-  if p.name ~= nil then lines[#lines + 1] = clean(p.kind, MAX_LABEL) end
+  if p.name ~= nil and p.name ~= p.kind then lines[#lines + 1] = clean(p.kind, MAX_LABEL) end
   if p.recursion ~= nil and p.recursion > 1 then
     lines[#lines + 1] = "recursion " .. num(p.recursion)
   end
