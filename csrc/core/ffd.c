@@ -304,14 +304,13 @@ int lsys_scene_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size
   t0 = s->rec[r0].tri0;
   t1 = r1 < s->nrec ? s->rec[r1].tri0 : m->nt;
   if (t1 > m->nt) t1 = m->nt;
-  if (t0 < t1) {
-    uint32_t lo = UINT32_MAX, hi = 0;
-    for (t = 3 * t0; t < 3 * t1; t++) {
-      if (m->tri[t] < lo) lo = m->tri[t];
-      if (m->tri[t] > hi) hi = m->tri[t];
-    }
-    *v0 = lo;
-    *v1 = (size_t)hi + 1;
+  if (t0 < t1) {                           /* vertices: see ffd.h */
+    size_t before = 0, last = 0;
+    for (t = 0; t < 3 * t0; t++)
+      if (m->tri[t] + (size_t)1 > before) before = m->tri[t] + (size_t)1;
+    for (t = 3 * t0; t < 3 * t1; t++)
+      if (m->tri[t] + (size_t)1 > last) last = m->tri[t] + (size_t)1;
+    if (last > before) { *v0 = before; *v1 = last; }
   }
   for (k = 0; k < s->nrec; k++) nseg += s->rec[k].kind == LSYS_REC_SEGMENT;
   if (nseg == m->nl && nseg > 0) {          /* the line style: one line per segment record */

@@ -102,7 +102,12 @@ int lsys_deform_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l
 ** come from the records: the triangles from the first record of a module
 ** >= m0 to the first record of a module >= m1 (a segment's cylinder is
 ** written when the next module begins, before that module's records, so it
-** counts with its F), and the vertices those triangles use. Lines: each
+** counts with its F), and the vertices those triangles made: from one past
+** the last vertex that earlier triangles use to the last one they use. A
+** vertex shared with earlier geometry (the ring where a cylinder continues
+** the segment before it, a branch's base) is not in the range, so a
+** deformed subtree stays attached to what it grows from. Costs one pass
+** over the triangles before the range. Lines: each
 ** segment record draws one line in the line style, so when the scene holds
 ** as many lines as segment records, segment record n drew line n; otherwise
 ** (cylinders, ribbons) the line range is empty. Returns 1, or 0 with empty

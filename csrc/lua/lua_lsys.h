@@ -21,6 +21,7 @@ void lsys_open_ik (lua_State *L);       /* lua_ik.c: IK chains (lsys.arrange) */
 void lsys_open_bspline (lua_State *L); /* lua_bspline.c: BSpline, chaikin, stroke_curve */
 void lsys_open_func (lua_State *L);     /* lua_func.c: Func, func, func_parse */
 void lsys_open_canvas (lua_State *L);   /* lua_canvas.c: Canvas, canvas */
+void lsys_open_ffd (lua_State *L);      /* lua_ffd.c: Hyperpatch, hyperpatch; scene:deform, ... */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);

@@ -320,7 +320,8 @@ static void ranges (void) {
 }
 
 /* Records of modules 0, 2, 2, 5 with triangles [0, 2), [2, 3), none, [3, 5)
-** over vertices 0..9; the scene's lines are one per segment record. */
+** over vertices 0..9, triangle 2 sharing vertex 3 with triangle 1; then
+** the scene's lines, one per segment record. */
 static void modules (void) {
   static const double p[3] = {0, 0, 0}, n[3] = {0, 0, 1};
   static const uint32_t tri[15] = {0, 1, 2, 2, 3, 1, 4, 5, 3, 6, 7, 8, 9, 8, 6};
@@ -344,11 +345,12 @@ static void modules (void) {
   assert(lsys_scene_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
   assert(v0 == 0 && v1 == 4 && l0 == 0 && l1 == 0);     /* no lines: not the line style */
   assert(lsys_scene_module_range(&s, 1, 3, &v0, &v1, &l0, &l1) == 1);
-  assert(v0 == 3 && v1 == 6);                            /* triangle 2: 4 5 3 */
+  /* triangle 2 (4 5 3) made vertices 4 and 5; vertex 3 belongs to earlier triangles */
+  assert(v0 == 4 && v1 == 6);
   assert(lsys_scene_module_range(&s, 3, 5, &v0, &v1, &l0, &l1) == 0);   /* drew nothing */
   assert(v0 == 0 && v1 == 0);
   assert(lsys_scene_module_range(&s, 2, 9, &v0, &v1, &l0, &l1) == 1);
-  assert(v0 == 3 && v1 == 10);
+  assert(v0 == 4 && v1 == 10);
   assert(lsys_scene_module_range(&s, 6, 9, &v0, &v1, &l0, &l1) == 0);
   /* the line style: two lines for the two segment records */
   {
