@@ -388,6 +388,39 @@ function Scene:edges(k) end
 ---@return true
 function Scene:save(path) end
 
+--- Deforms the scene in place (docs/components.md, "Deformations: FFD and Hyperpatch"): by a
+--- Hyperpatch, or by a function `f(x, y, z) -> x, y, z` whose normals come from central
+--- differences. Normals go through the inverse transpose of the map's Jacobian. Without
+--- `opts`, every vertex and line; `opts.modules = {m0, m1}` (1-based, inclusive, as records
+--- number modules): what those modules drew, without vertices shared with earlier geometry;
+--- `opts.vertices = {v0, v1}` (1-based, inclusive). A function's error or bad result raises
+--- `scene:deform: the function failed at vertex N: MSG` or `... at vertex N its x is a
+--- string`, and leaves the scene as it was.
+---@param map lsys.Hyperpatch|fun(x: number, y: number, z: number): number, number, number
+---@param opts? {modules?: integer[], vertices?: integer[]}
+---@return integer moved The number of vertices in the range.
+function Scene:deform(map, opts) end
+
+--- The affine map `m` (rows `{{a, b, c, d}, {e, f, g, h}, {i, j, k, l}}`, optionally a fourth
+--- row `{0, 0, 0, 1}`) applied as `scene:deform` applies a map, with the same `opts`.
+---@param m number[][]
+---@param opts? {modules?: integer[], vertices?: integer[]}
+---@return integer moved
+function Scene:transform(m, opts) end
+
+--- The vertices modules `m0` to `m1` (default `m0`; 1-based, inclusive) drew, as 1-based
+--- inclusive indices, or nil when they drew no triangles.
+---@param m0 integer
+---@param m1? integer
+---@return integer? v0
+---@return integer? v1
+function Scene:module_range(m0, m1) end
+
+--- Vertex `i` (1-based): its position and normal. Raises `scene:vertex: no vertex I`.
+---@param i integer
+---@return number x, number y, number z, number nx, number ny, number nz
+function Scene:vertex(i) end
+
 --- Renders a Scene (or a Model: derived and interpreted) headless with OSMesa. With
 --- `opts.out` writes a PNG and returns true; otherwise returns the RGBA pixels (top row
 --- first), the width and the height. Other fields of `opts` (or `opts.view`) are view options
@@ -1411,6 +1444,40 @@ function core.query(rules, s, opts) end
 ---@return number width
 ---@return integer color
 function core.turtle_state(rules, s, i, opts) end
+
+-- ---------------------------------------------------------------------------------------------
+-- Free-form deformation (csrc/lua/lua_ffd.c; docs/components.md)
+
+--- A Hyperpatch: a trivariate Bezier volume of degrees 1 to 4 over the box `origin` +
+--- [0, 1]^3 of its edge vectors (`size`: the axis-aligned box; `axes`: any three that are not
+--- in one plane), its control points on the regular lattice (the identity map). Defaults:
+--- degree 3, origin {0, 0, 0}, size {1, 1, 1}. Raises `core.hyperpatch: 'degree' is 5:
+--- degrees are 1 (linear) to 4 (quartic)`, `... axes are degenerate ...`, `... unknown option`.
+---@param opts? {degree?: integer|integer[], origin?: number[], size?: number[], axes?: number[][]}
+---@return lsys.Hyperpatch
+function core.hyperpatch(opts) end
+
+---@class lsys.Hyperpatch
+local Hyperpatch = {}
+
+--- Control point (i, j, k), 0-based lattice indices. Raises `hyperpatch:point: no control
+--- point (I, J, K): indices are 0..DL, 0..DM, 0..DN`.
+---@return number x, number y, number z
+function Hyperpatch:point(i, j, k) end
+
+--- Moves control point (i, j, k) to (x, y, z).
+function Hyperpatch:set(i, j, k, x, y, z) end
+
+--- The image of a point (outside the box: the same polynomial, extrapolated).
+---@return number x, number y, number z
+function Hyperpatch:map(x, y, z) end
+
+---@return integer dl, integer dm, integer dn
+function Hyperpatch:degree() end
+
+--- The number of control points, (dl + 1)(dm + 1)(dn + 1).
+---@return integer
+function Hyperpatch:count() end
 
 -- ---------------------------------------------------------------------------------------------
 -- Rendering, PNG and files (csrc/lua/lua_render.c)
