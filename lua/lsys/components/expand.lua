@@ -6,7 +6,7 @@
 -- once, where the recursion of its source ends. Each instance gets its world frame and its
 -- parameters evaluated for its iteration number (ranges, functions, the seeded generator).
 -- @module lsys.components.expand
-local C = require "lsys.components"
+local C = require "lsys.components.proto"
 
 local type, pairs, ipairs, error, setmetatable, tostring, pcall, require, math, string, table =
       type, pairs, ipairs, error, setmetatable, tostring, pcall, require, math, string, table
@@ -432,11 +432,10 @@ function Expander:multiply (inst, l)
       sizes[i] = value(inst, p, "child_size", { i = i, n = n, depth = ctx.depth,
                                                random = ctx.random })
     end
-    local infl = value(inst, p, "influence", ctx)
-    if infl > 0 then
-      spec.sizes, spec.influence = {}, infl
-      for i = 1, n do spec.sizes[i] = sizes[i] * sizes[i] end
-    end
+    -- the children's areas size the sphere; `influence` blends their spacing from equal
+    -- (0) to by area (1)
+    spec.sizes, spec.influence = {}, value(inst, p, "influence", ctx)
+    for i = 1, n do spec.sizes[i] = sizes[i] * sizes[i] end
   end
   if n == 0 then return end
   local ok, kids = pcall(place[inst.kind], spec)

@@ -1,0 +1,292 @@
+--- The prototypes of a component graph (issue 16; Lintermann and Deussen 1999): the nodes
+-- of the p-graph, their kinds, their parameters with defaults and checks, and the links
+-- between them. lsys.components gathers this module with the expansion
+-- (lsys.components.expand) and the placements (lsys.components.place).
+-- @module lsys.components.proto
+local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, math, string, table =
+      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, math, string, table
+local format, concat, sort = string.format, table.concat, table.sort
+local floor, huge = math.floor, math.huge
+local _ENV = nil
+
+local M = {}
+
+-- {=========================================================================================
+-- Parameters
+
+-- The kinds of parameter values (a schema entry's first field):
+--   number   a finite number, or a range {v0, v1} over the instance's iteration (see
+--            docs/components.md, "Ranges, functions and flag lists"), or a function
+--   vec3     {x, y, z}, or a range of two such, or a function
+--   integer  a whole number (not varied per instance)
+--   enum     one of the listed strings
+--   points   a list of {x, y} or {x, y, z} points (outlines, profiles)
+--   boolean
+--   any      a number, vector or function the component reads itself (fields)
+local BASIC = {
+  translate = { "vec3", { 0, 0, 0 } },    -- in the parent's frame: x right, y along, z front
+  rotate = { "vec3", { 0, 0, 0 } },       -- degrees about the local x, then y, then z axes
+  scale = { "number", 1 },                 -- uniform, for the component and all below it
+  primitive = { "enum", "none", { "none", "cube", "sphere", "cylinder", "cone", "disc",
+                                  "area", "tube" } },
+  size = { "vec3", { 1, 1, 1 } },          -- of the primitive: width, height, depth
+  color = { "integer", nil },              -- a palette index (the view's colours)
+  texture = { "integer", 0 },              -- a view texture index (0: none)
+}
+
+-- Each kind's own parameters (and a different default for a basic one).
+local KINDS = {
+  simple = { primitive = { "enum", "sphere", BASIC.primitive[3] } },
+  revo = {
+    profile = { "points", { { 0.3, 0 }, { 0.5, 0.3 }, { 0.35, 0.7 }, { 0.15, 1 } } },
+    sides = { "integer", 16 },
+  },
+  horn = {
+    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
+    segments = { "integer", 8 }, curvature = { "number", 0 }, twist = { "number", 0 },
+    primitive = { "enum", "tube", BASIC.primitive[3] },
+  },
+  leaf = {
+    length = { "number", 1 }, width = { "number", 0.5 },
+    shape = { "enum", "ovate", { "ovate", "lanceolate", "elliptic", "obovate", "linear",
+                                 "cordate" } },
+    outline = { "points", nil }, lateral = { "number", 0 }, longitudinal = { "number", 0 },
+    phototropism = { "number", 0 },
+  },
+  tree = {
+    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
+    segments = { "integer", 16 }, n = { "integer", 10 },
+    first = { "number", 0.25 }, last = { "number", 1 }, density = { "number", 1 },
+    angle = { "number", 60 }, divergence = { "number", 137.50776405003785 },
+    deviation = { "number", 0 }, gnarl = { "number", 0 }, curvature = { "number", 0 },
+    phototropism = { "number", 0 }, gravitropism = { "number", 0 },
+    branch_scale = { "number", 1 },
+    primitive = { "enum", "tube", BASIC.primitive[3] },
+  },
+  hydra = {
+    n = { "integer", 5 }, radius = { "number", 0 }, open = { "number", 0 },
+    close = { "number", 360 }, angle = { "number", 90 },
+  },
+  wreath = {
+    n = { "integer", 8 }, radius = { "number", 1 }, open = { "number", 0 },
+    close = { "number", 360 },
+  },
+  phiball = {
+    n = { "integer", 21 }, radius = { "number", nil }, open = { "number", 0 },
+    close = { "number", 90 }, child_size = { "number", 1 }, influence = { "number", 0 },
+  },
+  ffd = {
+    fx = { "any", nil }, fy = { "any", nil }, fz = { "any", nil },
+    mode = { "enum", "all", { "all", "skeleton" } }, isolate = { "boolean", false },
+  },
+  hyperpatch = {
+    degree = { "any", { 2, 2, 2 } }, moves = { "any", {} }, box = { "any", nil },
+    mode = { "enum", "all", { "all", "skeleton" } }, isolate = { "boolean", false },
+  },
+  world = {
+    gravity = { "any", { 0, -1, 0 } }, light = { "any", { 0, 1, 0 } },
+    cylinder = { "any", nil }, wind = { "any", nil },
+  },
+}
+M.KINDS = KINDS
+M.BASIC = BASIC
+
+-- The kinds in the order the article lists them (sidebar "Component Types of the Modeler").
+M.ORDER = { "simple", "revo", "horn", "leaf", "tree", "hydra", "wreath", "phiball", "ffd",
+            "hyperpatch", "world" }
+M.MULTIPLIERS = { hydra = true, wreath = true, phiball = true }
+
+local function schema (kind, key)
+  local k = KINDS[kind][key]
+  if k ~= nil then return k end
+  return BASIC[key]
+end
+M.schema = schema
+
+local function known (kind)
+  local out = {}
+  for k in pairs(BASIC) do out[#out + 1] = k end
+  for k in pairs(KINDS[kind]) do if BASIC[k] == nil then out[#out + 1] = k end end
+  out[#out + 1] = "name"
+  out[#out + 1] = "recursion"
+  sort(out)
+  return out
+end
+M.known = known
+
+local function isnum (x) return type(x) == "number" and x == x and x > -huge and x < huge end
+M.isnum = isnum
+
+local function who (p)
+  return p.name and format("%s '%s'", p.kind, p.name) or p.kind
+end
+M.who = who
+
+local function fail (p, fmt, ...)
+  error(format("lsys.components: %s: " .. fmt, who(p), ...), 0)
+end
+
+local function isvec (v)
+  return type(v) == "table" and #v == 3 and isnum(v[1]) and isnum(v[2]) and isnum(v[3])
+end
+
+-- Checks the value of parameter `key` of prototype `p` against its schema.
+local function check (p, key, v)
+  local sch = schema(p.kind, key)
+  local t = sch[1]
+  if t == "any" or type(v) == "function" and (t == "number" or t == "vec3") then return v end
+  if t == "number" then
+    if isnum(v) then return v end
+    if type(v) == "table" and isnum(v[1]) and isnum(v[2]) and #v == 2 then
+      if v.f ~= nil and type(v.f) ~= "function" then
+        fail(p, "'%s': the range's f must be a function, got %s", key, type(v.f))
+      end
+      return v
+    end
+    fail(p, "'%s' must be a number, a range {v0, v1} or a function, got %s", key,
+         v ~= v and "NaN" or type(v) == "number" and tostring(v) or type(v))
+  elseif t == "vec3" then
+    if isvec(v) then return v end
+    if type(v) == "table" and #v == 2 and isvec(v[1]) and isvec(v[2]) then return v end
+    fail(p, "'%s' must be a vector {x, y, z}, a range of two vectors or a function", key)
+  elseif t == "integer" then
+    if isnum(v) and v == floor(v) then return v end
+    fail(p, "'%s' must be a whole number, got %s", key, tostring(v))
+  elseif t == "enum" then
+    for _, e in ipairs(sch[3]) do if v == e then return v end end
+    fail(p, "'%s' must be one of %s, got %s", key, concat(sch[3], ", "), tostring(v))
+  elseif t == "points" then
+    if type(v) ~= "table" or #v < 2 then
+      fail(p, "'%s' must be a list of two points or more", key)
+    end
+    for i, q in ipairs(v) do
+      if type(q) ~= "table" or not isnum(q[1]) or not isnum(q[2]) or
+         (q[3] ~= nil and not isnum(q[3])) then
+        fail(p, "'%s': point %d must be {x, y} or {x, y, z} of finite numbers", key, i)
+      end
+    end
+    return v
+  elseif t == "boolean" then
+    if type(v) == "boolean" then return v end
+    fail(p, "'%s' must be true or false, got %s", key, tostring(v))
+  end
+  return v
+end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- Prototypes
+
+local Proto = {}
+Proto.__index = Proto
+M.Proto = Proto
+
+--- True when `x` is a component prototype.
+function M.isproto (x) return getmetatable(x) == Proto end
+
+local MAX_N = 10000000
+
+-- A new prototype of `kind` from the table of parameters `t`.
+local function new (kind, t)
+  if t ~= nil and type(t) ~= "table" then
+    error(format("lsys.components.%s: a table of parameters expected, got %s", kind, type(t)),
+          3)
+  end
+  t = t or {}
+  local p = setmetatable({ kind = kind, links = {}, params = {}, recursion = 1 }, Proto)
+  if t.name ~= nil then
+    if type(t.name) ~= "string" or t.name == "" then
+      error(format("lsys.components.%s: 'name' must be a non-empty string", kind), 3)
+    end
+    p.name = t.name
+  end
+  for k, v in pairs(t) do
+    if k ~= "name" then
+      if type(k) ~= "string" or (schema(kind, k) == nil and k ~= "recursion") then
+        fail(p, "unknown parameter '%s' (known: %s)", tostring(k), concat(known(kind), ", "))
+      end
+      if k == "recursion" then
+        if not isnum(v) or v ~= floor(v) or v < 1 or v > 1000 then
+          fail(p, "'recursion' must be a whole number from 1 to 1000, got %s", tostring(v))
+        end
+        p.recursion = v
+        p.recursive = true
+      else
+        p.params[k] = check(p, k, v)
+      end
+    end
+  end
+  local n = p.params.n
+  if n ~= nil and (n < 0 or n > MAX_N) then
+    fail(p, "'n' must be from 0 to %d, got %s", MAX_N, tostring(n))
+  end
+  return p
+end
+
+--- The value of parameter `key` as given (a number, range, function...) or its default.
+function Proto:param (key)
+  local v = self.params[key]
+  if v ~= nil then return v end
+  local sch = schema(self.kind, key)
+  if sch == nil then fail(self, "unknown parameter '%s'", tostring(key)) end
+  return sch[2]
+end
+
+-- Checks the flags of a link: { only = {i...} } or { except = {i...} }.
+local function checkflags (p, flags)
+  if flags == nil then return nil end
+  if type(flags) ~= "table" then fail(p, "a link's flags must be a table, got %s", type(flags)) end
+  local list, mode
+  for k, v in pairs(flags) do
+    if k ~= "only" and k ~= "except" then
+      fail(p, "a link's flags: unknown field '%s' (known: only, except)", tostring(k))
+    end
+    if list ~= nil then fail(p, "a link's flags take 'only' or 'except', not both") end
+    list, mode = v, k
+  end
+  if type(list) ~= "table" then fail(p, "a link's flags: '%s' must be a list of iteration numbers",
+                                     tostring(mode)) end
+  local set = {}
+  for i, x in ipairs(list) do
+    if not isnum(x) or x ~= floor(x) or x < 1 then
+      fail(p, "a link's flags: entry %d must be an iteration number (1, 2, ...), got %s", i,
+           tostring(x))
+    end
+    set[x] = true
+  end
+  return { mode = mode, list = list, set = set }
+end
+
+local function link (self, kind, target, flags)
+  if getmetatable(self) ~= Proto then
+    error(format("lsys.components: %s: call it as proto:%s(other)", kind, kind), 3)
+  end
+  if getmetatable(target) ~= Proto then
+    fail(self, "%s link: a component prototype expected, got %s", kind,
+         type(target) == "table" and "a table" or type(target))
+  end
+  self.links[#self.links + 1] = { type = kind, to = target, flags = checkflags(self, flags) }
+  return self
+end
+
+--- Links `b` as a child (placed relative to this component's geometry); returns self.
+-- flags: { only = {i...} } or { except = {i...} } (iteration numbers of a multiplier).
+function Proto:child (b, flags) return link(self, "child", b, flags) end
+--- Links `b` as a branch: multiplied along the stem when this is a Tree, else a child.
+function Proto:branch (b, flags) return link(self, "branch", b, flags) end
+--- Links `b` as a leaf: made once, where this component's recursion ends.
+function Proto:leaf (b, flags) return link(self, "leaf", b, flags) end
+
+function Proto:__tostring ()
+  return format("lsys.components.%s(%s%d links)", self.kind,
+                self.name and "'" .. self.name .. "', " or "", #self.links)
+end
+
+for _, kind in ipairs(M.ORDER) do
+  M[kind] = function (t) return new(kind, t) end
+end
+
+-- }=========================================================================================
+
+return M
