@@ -6,6 +6,7 @@ local core = require "lsys.core"
 local W = require "lsys.sketch.window"
 local read = require "lsys.sketch.read"
 local D = require "tests.display"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 
 local function tmpdir ()
   local d = os.tmpname()
@@ -390,7 +391,7 @@ describe("#gl the sketch window under Xvfb", function()
     local wid = p:read("l")
     p:close()
     assert.truthy(wid, "the window did not open: " .. tostring(io.open(outf):read("a")))
-    D.sleep(1)
+    D.sleep(1 * SLOW)          -- its panes laid out before the first stroke
     local st = W.new { width = 600, height = 600 }
     local function at (x, y)
       local wx, wy = W.to_window(st, 1200, 800, x, y)
@@ -406,7 +407,7 @@ describe("#gl the sketch window under Xvfb", function()
       end
       cmd[#cmd + 1] = "mouseup 1"
       assert(os.execute(xd .. table.concat(cmd, " ") .. " >/dev/null 2>&1"))
-      D.sleep(0.3)
+      D.sleep(0.3 * SLOW)
     end
     stroke("1", { {300, 560}, {300, 300}, {310, 60} })
     stroke("2", { {250, 560}, {150, 300}, {260, 60} })
@@ -417,12 +418,12 @@ describe("#gl the sketch window under Xvfb", function()
     -- Ctrl + drag redraws the selected stroke (the last inclination) in place
     stroke("ctrl+a ctrl+a keydown ctrl", { {100, 200}, {300, 200}, {500, 200} })
     os.execute(xd .. "keyup ctrl >/dev/null 2>&1")
-    D.sleep(2)
+    D.sleep(2 * SLOW)
     os.execute(xd .. "key --window " .. wid .. " s >/dev/null 2>&1")     -- a screenshot
     os.execute(xd .. "key --window " .. wid .. " ctrl+s >/dev/null 2>&1")
-    D.sleep(2)
+    D.sleep(2 * SLOW)
     os.execute(xd .. "key --window " .. wid .. " Escape >/dev/null 2>&1")
-    D.sleep(1)
+    D.sleep(1 * SLOW)
     local out = io.open(outf):read("a")
     assert.truthy(out:find("saved " .. dir .. "/x.json", 1, true), out)
     local back = read.file(dir .. "/x.json")
