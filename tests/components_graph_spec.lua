@@ -111,6 +111,25 @@ describe("graph.dot", function()
 ]], graph.dot(twig))
   end)
 
+  it("reads flags in the form lsys.components keeps them, and draws its prototypes", function()
+    local twig, tiny = proto("tree", "twig"), proto("tree", "tiny")
+    local set = { [3] = true, [4] = true }
+    twig.links[1] = { type = "branch", to = tiny,
+                      flags = { mode = "except", list = { 3, 4 }, set = set } }
+    assert.truthy(graph.dot(twig):find('  n1 -> n2 [penwidth=3, label="except 3, 4"];\n', 1, true))
+    -- fig. 2 made with lsys.components gives the same text as the plain tables
+    local C = require "lsys.components"
+    local D = C.horn { name = "D", recursion = 3 }
+    D:child(D)
+    local A = C.simple { name = "A" }:child(C.horn { name = "B" }:child(
+      C.hydra { name = "C", n = 3 }:child(D)))
+    assert.equal(FIG2, graph.dot(A))
+    local t = C.tree { name = "t", n = 20 }:branch(C.leaf {}, { only = { 2, 13 } })
+    assert.truthy(graph.dot(t, { params = true }):find(
+      '  n1 [label="t\\ntree\\nn = 20"];\n  n2 [label="leaf#1"];\n  camera -> n1;\n'
+      .. '  n1 -> n2 [penwidth=3, label="only 2, 13"];\n', 1, true))
+  end)
+
   it("doubles every link of a recursion and ends it at a dashed copy", function()
     -- P -> Q -> R -> Q (a recursion of two components), R -> S (leaf), P -> S (shared):
     -- P -> Q is outside the cycle, Q -> R and the back link R -> Q are inside it

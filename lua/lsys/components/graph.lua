@@ -140,10 +140,15 @@ local function not_proto (p)
   return nil
 end
 
--- The edge label of a link's flags ("only 2, 13" / "except 2, 13"), or nil, msg.
+-- The edge label of a link's flags ("only 2, 13" / "except 2, 13"), or nil, msg. Flags are
+-- { only = {...} } or { except = {...} }, or as lsys.components.proto keeps them once
+-- checked, { mode = "only" | "except", list = {...}, set = {...} }.
 local function flags_text (flags)
   if flags == nil then return nil end
   if type(flags) ~= "table" then return nil, format("is a %s, not a table", type(flags)) end
+  if (flags.mode == "only" or flags.mode == "except") and type(flags.list) == "table" then
+    flags = { [flags.mode] = flags.list }
+  end
   local parts = {}
   for _, key in ipairs { "only", "except" } do
     local list = flags[key]
