@@ -32,6 +32,10 @@ describe("lsys.components prototypes", function ()
       assert.is_true(C.isproto(p))
     end
     assert.equal(C, require("lsys").components)
+    -- the p-graph as DOT (lsys.components.graph): the camera, then the prototypes
+    local dot = C.graph(C.tree { name = "t" }:branch(C.leaf { name = "l" }))
+    assert.truthy(dot:find('n2 [label="l\\nleaf"];', 1, true), dot)
+    assert.truthy(dot:find("n1 -> n2 [penwidth=3];", 1, true), dot)     -- a branch link
     local t = C.tree { n = 12, angle = { 60, 30 } }
     assert.equal(12, t:param("n"))
     assert.same({ 60, 30 }, t:param("angle"))

@@ -14,7 +14,7 @@
 local proto = require "lsys.components.proto"
 local expand = require "lsys.components.expand"
 
-local pairs = pairs
+local pairs, require = pairs, require
 local _ENV = nil
 
 local M = {}
@@ -22,6 +22,14 @@ for k, v in pairs(proto) do M[k] = v end
 
 --- Expands the p-graph at `root` into the i-tree (lsys.components.expand).
 M.expand = expand.expand
+
+--- The p-graph at `root` as Graphviz DOT text (lsys.components.graph.dot; opts as there).
+function M.graph (root, opts) return require("lsys.components.graph").dot(root, opts) end
+
+--- Draws the p-graph to `path` (.dot, or .png/.svg/.pdf with Graphviz's dot).
+function M.graph_render (root, path, opts)
+  return require("lsys.components.graph").render(root, path, opts)
+end
 
 --- The i-tree of this prototype: lsys.components.expand(self, opts).
 function proto.Proto:expand (opts) return expand.expand(self, opts) end
