@@ -272,10 +272,9 @@ int lsys_deform_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
   f.h = 1e-4 * rangediag(&s->mesh, v0, v1, l0, l1);
   if (!(f.h > 0) || !isfinite(f.h)) f.h = 1e-4;
   st = apply(s, v0, v1, l0, l1, fnmap, &f, &at);
-  if (st != LSYS_OK && e != NULL) {
-    e->code = st;
-    e->pos = at;
-  }
+  if (st != LSYS_OK)
+    lsys_seterror(e, st, at, "the deformation function failed at %s %zu",
+                  at < s->mesh.nv ? "vertex" : "line end", at < s->mesh.nv ? at : at - s->mesh.nv);
   return st;
 }
 

@@ -306,6 +306,7 @@ static void ranges (void) {
   memset(&e, 0, sizeof e);
   assert(lsys_deform_func(&s, 1, 8, 0, 2, failing, &c, &e) == LSYS_ERULE);
   assert(e.code == LSYS_ERULE && e.pos == 3);
+  assert(strcmp(e.msg, "the deformation function failed at vertex 3") == 0);
   for (v = 0; v < 10; v++)
     assert(s.mesh.pos[3 * v] == orig.mesh.pos[3 * v] + (v >= 1 && v < 3 ? 1.0f : 0.0f));
   assert(memcmp(s.mesh.lpos, orig.mesh.lpos, 12 * sizeof(float)) == 0);
@@ -314,7 +315,7 @@ static void ranges (void) {
   c.calls = 0;
   c.fail = 7 * 10 + 3;                        /* all 10 vertices, then the 4th line end */
   assert(lsys_deform_func(&s, 0, 10, 0, 2, failing, &c, &e) == LSYS_ERULE);
-  assert(e.pos == 10 + 3);
+  assert(e.pos == 10 + 3 && strcmp(e.msg, "the deformation function failed at line end 3") == 0);
   lsys_scene_free(&s);
   lsys_scene_free(&orig);
 }
