@@ -170,6 +170,12 @@ describe("scene:deform", function ()
     lo, hi = sc:bounds()
     assert.near({ -5, 0, 0 }, lo, 1e-6)
     assert.near({ 0, 3, 0 }, hi, 1e-6)
+    assert.error_contains(function ()
+      sc:deform(function (x, y, z) if x > -1 then error("late") end return x, y, z end)
+    end, "the function failed at line 2 end 1", "late")
+    lo, hi = sc:bounds()                                             -- as it was
+    assert.near({ -5, 0, 0 }, lo, 1e-6)
+    assert.near({ 0, 3, 0 }, hi, 1e-6)
   end)
 
   it("takes normals of a function from central differences", function ()
