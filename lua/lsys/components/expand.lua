@@ -208,6 +208,7 @@ local function stem (ex, inst, f, len, segs, branches)
   local dev = p.kind == "tree" and value(inst, p, "deviation", ctx) or 0
   local twist = p.kind == "horn" and value(inst, p, "twist", ctx) or 0
   local w = inst.world
+  local tropisms = { { w.gravity, grav }, { w.light, photo } }
   local out = { copyframe(f) }
   out[1].u = 0
   local g = copyframe(f)
@@ -224,7 +225,7 @@ local function stem (ex, inst, f, len, segs, branches)
       local ax = rotate(right(g), g.H, ex.random() * 360)
       g.H, g.U = rotate(g.H, ax, a), rotate(g.U, ax, a)
     end
-    for _, tr in ipairs { { w.gravity, grav }, { w.light, photo } } do
+    for _, tr in ipairs(tropisms) do
       local T, e = tr[1], tr[2]
       if e ~= 0 then
         if type(T) == "function" then T = { T(g.p[1], g.p[2], g.p[3]) } end
