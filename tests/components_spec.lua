@@ -46,7 +46,7 @@ describe("lsys.components prototypes", function ()
   it("reject unknown parameters, listing the known ones", function ()
     local msg = errmsg(C.wreath, { radius = 1, radious = 2 })
     assert.equal("lsys.components: wreath: unknown parameter 'radious' (known: close, color, " ..
-                 "n, name, open, primitive, radius, recursion, rotate, scale, size, texture, " ..
+                 "geometry, n, name, open, primitive, radius, recursion, rotate, scale, size, texture, " ..
                  "translate)", msg)
     assert.equal("lsys.components: leaf 'l': 'length' must be a number, a range {v0, v1} or " ..
                  "a function, got NaN", errmsg(C.leaf, { name = "l", length = 0 / 0 }))

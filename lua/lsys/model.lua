@@ -117,7 +117,7 @@ local OPTIONS = {
   finish = "function", max_modules = "number", view = "table", name = "string",
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
-  functions = "table",
+  functions = "table", after_interpret = "function",
 }
 
 local Model = {}
@@ -284,7 +284,7 @@ function M.lsystem (opts)
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
-    system_call = opts.system_call,
+    system_call = opts.system_call, after_interpret = opts.after_interpret,
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
@@ -593,6 +593,7 @@ function Model:interpret (s, over)
       if r.kind == "system" then self.system_call(r.module, s:module(r.module)) end
     end
   end
+  if self.after_interpret then self.after_interpret(self, scene, s) end
   return scene
 end
 

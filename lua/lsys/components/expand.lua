@@ -309,6 +309,7 @@ function Expander:add (proto, frame, ctx, parent, ltype)
                  path = (parent and parent.path .. "/" or "") .. label .. "#" ..
                         self.seq[label] }
   inst.ctx = { i = inst.i, n = inst.n, depth = depth, random = self.random }
+  inst.u = ctx.u                     -- a tree's branch: where along the parent's stem
   inst.world = parent and parent.world or self.world
   list[#list + 1] = inst
   self.bypath[inst.path] = inst
@@ -368,6 +369,10 @@ function Expander:build (inst, frame)
     local len = value(inst, p, "length", ctx)
     tip = copyframe(f)
     tip.p = add(f.p, f.H, len * f.s)
+  elseif kind == "revo" then
+    local prof = p:param("profile")
+    tip = copyframe(f)
+    tip.p = add(f.p, f.H, (prof[#prof][2] - prof[1][2]) * params.size[2] * f.s)
   elseif p.params.primitive ~= nil or kind == "simple" then
     local prim = p:param("primitive")
     if prim ~= "none" then

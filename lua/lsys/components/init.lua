@@ -31,6 +31,12 @@ function M.graph_render (root, path, opts)
   return require("lsys.components.graph").render(root, path, opts)
 end
 
+--- The component graph at `root` as an lsys model (lsys.components.model).
+function M.model (root, opts) return require("lsys.components.model").model(root, opts) end
+
+--- The scene of the component graph at `root`: M.model(root, opts):interpret().
+function M.scene (root, opts) return M.model(root, opts):interpret() end
+
 --- The i-tree of this prototype: lsys.components.expand(self, opts).
 function proto.Proto:expand (opts) return expand.expand(self, opts) end
 

@@ -32,6 +32,7 @@ local BASIC = {
   size = { "vec3", { 1, 1, 1 } },          -- of the primitive: width, height, depth
   color = { "integer", nil },              -- a palette index (the view's colours)
   texture = { "integer", 0 },              -- a view texture index (0: none)
+  geometry = { "any", nil },               -- an L-system model or Lstring drawn on the frame
 }
 
 -- Each kind's own parameters (and a different default for a basic one).
@@ -39,11 +40,11 @@ local KINDS = {
   simple = { primitive = { "enum", "sphere", BASIC.primitive[3] } },
   revo = {
     profile = { "points", { { 0.3, 0 }, { 0.5, 0.3 }, { 0.35, 0.7 }, { 0.15, 1 } } },
-    sides = { "integer", 16 },
   },
   horn = {
     length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
     segments = { "integer", 8 }, curvature = { "number", 0 }, twist = { "number", 0 },
+    thickness = { "points", nil },
     primitive = { "enum", "tube", BASIC.primitive[3] },
   },
   leaf = {
@@ -55,7 +56,7 @@ local KINDS = {
   },
   tree = {
     length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
-    segments = { "integer", 16 }, n = { "integer", 10 },
+    segments = { "integer", 16 }, n = { "integer", 10 }, thickness = { "points", nil },
     first = { "number", 0.25 }, last = { "number", 1 }, density = { "number", 1 },
     angle = { "number", 60 }, divergence = { "number", 137.50776405003785 },
     deviation = { "number", 0 }, gnarl = { "number", 0 }, curvature = { "number", 0 },

@@ -648,12 +648,15 @@ local SECTIONS = { flat = true, v = true, cup = true }
 -- cordate 0.8), shape = "ovate" | "lanceolate" | "elliptic" | "obovate" |
 -- "linear" | "cordate", curl = 0 (how far the tip droops, of the length; < 0 lifts),
 -- section = "flat" | "v" | "cup", depth = 0.15 (of the width, for "v" and "cup"),
--- name =, resolution =, precision = }.
+-- outline = (instead of a shape: points {x, y} of one half from the base, y = 0, to the tip,
+-- y = 1, x the half-width as a fraction of the length; mirrored), name =, resolution =,
+-- precision = }.
 function M.leaf (o)
   o = o or {}
   local who = "lsys.sketch.organ.leaf"
   local known = { length = true, width = true, shape = true, curl = true, section = true,
-                  depth = true, name = true, resolution = true, precision = true }
+                  depth = true, name = true, resolution = true, precision = true,
+                  outline = true }
   for k in pairs(o) do
     if not known[k] then error(format("%s: unknown option '%s'", who, tostring(k)), 2) end
   end
@@ -677,7 +680,20 @@ function M.leaf (o)
   end
   local left, N = {}, 48
   local x0, y0 = 200, 200 + len              -- the base, on the screen
-  if shape == "cordate" then
+  if o.outline ~= nil then
+    local ol = o.outline
+    if type(ol) ~= "table" or #ol < 2 or #ol > 10000 then
+      error(who .. ": 'outline' must be a list of 2 to 10000 points {x, y}", 2)
+    end
+    for i, q in ipairs(ol) do
+      if type(q) ~= "table" or not isnum(q[1]) or not isnum(q[2]) or abs(q[1]) > 10 or
+         abs(q[2]) > 10 then
+        error(format("%s: 'outline[%d]' must be a point {x, y} of finite numbers (at most " ..
+                     "10 in size)", who, i), 2)
+      end
+      left[i] = { x0 - len * abs(q[1]), y0 - len * q[2] }
+    end
+  elseif shape == "cordate" then
     -- from the notch down round a basal lobe, out to the widest part and up to the tip:
     -- the classic heart curve (x = sin^3, y from four cosines), its lobes made half as deep
     for i = 0, N do
