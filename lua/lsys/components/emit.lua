@@ -250,9 +250,10 @@ local PRIMDRAW   -- kind -> function (w, T, inst, wd, h, d)
 -- is not what the turtle's primitive draws is made by a scale afterwards (w.post).
 local function primitive (w, T, inst, prim, wd, h, d)
   local m0 = w.nc + 1
+  local base = { p = T.p, H = T.H, U = T.U, s = 1 }
   local uniform = PRIMDRAW[prim](w, T, inst, wd, h, d)
   if not uniform then
-    w.post[#w.post + 1] = { m0 = m0, m1 = w.nc, frame = { p = T.p, H = T.H, U = T.U },
+    w.post[#w.post + 1] = { m0 = m0, m1 = w.nc, frame = base,
                             sx = 1, sy = uniform == false and h / wd or 1, sz = d / wd,
                             prim = prim }
   end
@@ -260,9 +261,8 @@ end
 
 PRIMDRAW = {
   sphere = function (w, T, _, wd, h, d)
-    forward(w, T, h / 2, false)
+    forward(w, T, wd / 2, false)            -- drawn wd round, then scaled to h and d
     w:op("@O", wd)
-    forward(w, T, h / 2, false)
     return wd == h and wd == d or false
   end,
   cylinder = function (w, T, _, wd, h, d)
@@ -417,8 +417,9 @@ local function geometry (w, g)
     s = w.derived[g]
     if s == nil then s = g:derive() w.derived[g] = s end
   end
-  for _, name, params in s:modules() do
-    w:op(name, table.unpack(params))
+  for i = 1, #s do
+    local t = { s:module(i) }
+    w:op(t[1], table.unpack(t, 2))
   end
 end
 

@@ -1,0 +1,198 @@
+-- The geometry of component graphs (issue 16): the i-tree emitted as relative turtle
+-- modules into an ordinary lsys model (lsys.components.emit, lsys.components.model). The
+-- turtle must stand exactly on every instance's frame, stems must be generalized cylinders
+-- through the stem frames, primitives must have the sizes asked for, and every module must
+-- know the instance that drew it.
+local C = require "lsys.components"
+local lsys = require "lsys"
+
+local function dist (a, b)
+  return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2 + (a[3] - b[3]) ^ 2)
+end
+
+-- Every instance's frame against the turtle's state after its moves.
+local function check_frames (m, scene)
+  local n = 0
+  for _, inst in ipairs(m.components.tree:instances()) do
+    local p, H, _, U = scene:turtle(inst.at)
+    local f = inst.frame
+    assert.is_true(dist(p, f.p) < 1e-9, inst.path .. " position")
+    assert.is_true(dist(H, f.H) < 1e-9, inst.path .. " heading")
+    assert.is_true(dist(U, f.U) < 1e-9, inst.path .. " up")
+    n = n + 1
+  end
+  return n
+end
+
+describe("lsys.components geometry", function ()
+  it("puts the turtle exactly on every instance's frame", function ()
+    -- a graph with every way of placing: tree branches (divergence, angles, deviation,
+    -- curvature, gnarl), a phiball, a hydra, a wreath, translate/rotate/scale, recursion
+    local leaf = C.leaf { length = 0.2, rotate = { 10, 20, 30 } }
+    local tw = C.tree { name = "twig", length = 1, n = 5, angle = { 60, 30 }, gnarl = 10,
+                        curvature = 30, deviation = 5, segments = 7 }
+    tw:branch(leaf)
+    local ball = C.phiball { n = 13, close = 120 }
+    ball:child(C.simple { name = "seed", primitive = "sphere", size = { 0.1, 0.1, 0.1 } })
+    local star = C.hydra { n = 4, radius = 0.3, angle = 70, translate = { 0.1, 0.2, 0.3 } }
+    star:child(tw)
+    local wr = C.wreath { n = 6, radius = 0.5 }
+    local D = C.horn { name = "D", length = 0.4, recursion = 3, rotate = { 25, 40, 0 },
+                       scale = 0.7 }
+    D:child(D)
+    wr:child(D)
+    local trunk = C.tree { length = 5, n = 8, first = 0.2, angle = 50, scale = 1.3,
+                           gravitropism = 0.1 }
+    trunk:branch(tw)
+    trunk:child(ball)
+    trunk:child(star)
+    trunk:child(wr)
+    local m = C.model(trunk, { seed = 7 })
+    local scene = m:interpret()
+    local n = check_frames(m, scene)
+    assert.equal(m.components.tree:count(), n)
+    assert.equal(1 + 8 + 8 * 5 + 1 + 13 + 1 + 4 + 4 * 5 + 1 + 6 * 3, n)
+    -- the same with the whole plant started from a tilted frame
+    local it = C.expand(trunk, { seed = 7 })
+    assert.equal(n, it:count())
+  end)
+
+  it("draws stems as generalized cylinders through the stem frames, tapered", function ()
+    local h = C.horn { length = 2, radius = 0.1, tip = 0.5, segments = 4, curvature = 40 }
+    local m = C.model(h)
+    local scene = m:interpret()
+    local st = m.components.tree:instances()[1].stem
+    local recs = {}
+    for _, r in scene:records() do
+      if r.kind == "gcyl" then recs[#recs + 1] = r end
+    end
+    assert.equal(4, #recs)
+    for k, r in ipairs(recs) do
+      assert.is_true(dist(r.p0, st[k].p) < 1e-6)       -- records keep floats
+      assert.is_true(dist(r.p1, st[k + 1].p) < 1e-6)
+    end
+    -- widths: 2 r (1 + (tip - 1) u) at both ends
+    assert.near(0.2, recs[1].w0, 1e-7)
+    assert.near(0.2 * (1 - 0.5 * 0.25), recs[1].w1, 1e-7)
+    assert.near(0.1, recs[4].w1, 1e-7)
+    -- a thickness outline instead of the linear taper
+    local h2 = C.horn { length = 2, radius = 0.1, segments = 2,
+                        thickness = { { 0, 1 }, { 0.5, 2 }, { 1, 0.5 } } }
+    local s2 = C.model(h2):interpret()
+    local w = {}
+    for _, r in s2:records() do if r.kind == "gcyl" then w[#w + 1] = r.w1 end end
+    assert.near(0.4, w[1], 1e-7)
+    assert.near(0.1, w[2], 1e-7)
+  end)
+
+  it("emits a tree's branches where they grow along its stem", function ()
+    local leaf = C.leaf { length = 0.1 }
+    local t = C.tree { length = 3, n = 6, first = 0.1, last = 0.9, segments = 5 }
+    t:branch(leaf)
+    local m = C.model(t)
+    local s = m.components.lstring
+    local text = tostring(s)
+    -- the stem's control points and the leaves interleave: the first leaf comes before
+    -- the second control point
+    local first_leaf = text:find("~", 1, true)
+    local second_gc = select(2, text:find("@Gc.-@Gc"))
+    assert.is_true(first_leaf < second_gc, text)
+    check_frames(m, m:interpret())
+  end)
+
+  it("gives primitives the size asked for, non-uniform sizes included", function ()
+    local function bounds (prim, size)
+      local m = C.model(C.simple { primitive = prim, size = size })
+      local lo, hi = m:interpret():bounds()
+      return lo, hi
+    end
+    -- the turtle's first frame: right = +x, heading = +y, front = +z
+    local lo, hi = bounds("cube", { 2, 1, 0.5 })
+    assert.near(-1, lo[1], 1e-6) assert.near(1, hi[1], 1e-6)
+    assert.near(0, lo[2], 1e-6) assert.near(1, hi[2], 1e-6)
+    assert.near(-0.25, lo[3], 1e-6) assert.near(0.25, hi[3], 1e-6)
+    lo, hi = bounds("sphere", { 1, 2, 1 })
+    assert.near(0, lo[2], 0.02) assert.near(2, hi[2], 0.02)
+    assert.near(-0.5, lo[1], 0.02) assert.near(0.5, hi[1], 0.02)
+    lo, hi = bounds("cylinder", { 0.4, 3, 0.4 })
+    assert.near(0, lo[2], 1e-6) assert.near(3, hi[2], 1e-6)
+    assert.near(0.2, hi[1], 1e-6)
+    lo, hi = bounds("disc", { 1, 1, 1 })
+    assert.near(0, lo[2], 1e-6) assert.near(0, hi[2], 1e-6)        -- facing the heading
+    assert.near(0.5, hi[1], 1e-6)
+    lo, hi = bounds("cone", { 1, 2, 1 })
+    assert.near(2, hi[2], 1e-6) assert.near(0.5, hi[1], 1e-6)
+  end)
+
+  it("continues point-set primitives into the following instances (Tube)", function ()
+    local D = C.simple { name = "ring", primitive = "tube", size = { 0.2, 1, 0.2 },
+                         translate = { 0, 1, 0 }, rotate = { 15, 0, 0 }, recursion = 5 }
+    D:child(D)
+    local root = C.simple { primitive = "tube", size = { 0.2, 1, 0.2 } }
+    root:child(D)
+    local m = C.model(root)
+    local scene = m:interpret()
+    local n = 0
+    for _, r in scene:records() do if r.kind == "gcyl" then n = n + 1 end end
+    assert.equal(5, n)              -- six rings, five segments between them
+    assert.is_true(scene.ntriangles > 0)
+  end)
+
+  it("shares one leaf surface among leaves of the same shape", function ()
+    local ball = C.phiball { n = 30 }
+    ball:child(C.leaf { length = 0.3, width = 0.1 })
+    ball:child(C.leaf { length = 0.6, width = 0.2, shape = "lanceolate" })
+    local m = C.model(ball)
+    local keys = {}
+    for k in pairs(m.view.surfaces) do keys[#keys + 1] = k end
+    assert.equal(2, #keys)
+    assert.equal(60, m.components.lstring:count("~" .. keys[1]) +
+                     m.components.lstring:count("~" .. keys[2]))
+  end)
+
+  it("knows the instance that drew each module", function ()
+    local leaf = C.leaf { name = "leaf", length = 0.2 }
+    local t = C.tree { name = "twig", length = 1, n = 4 }
+    t:branch(leaf)
+    local root = C.tree { name = "tree", length = 4, n = 3 }
+    root:branch(t)
+    local m = C.model(root)
+    local scene = m:interpret()
+    local seen = 0
+    for _, r in scene:records() do
+      if r.kind == "surface" then
+        local inst = m.components.instance(r.module)
+        assert.equal("leaf", inst.kind)
+        assert.truthy(inst.path:match("^tree#1/twig#%d+/leaf#%d+$"), inst.path)
+        seen = seen + 1
+      end
+    end
+    assert.equal(12, seen)
+    assert.equal("tree#1", m.components.instance(1).path)
+  end)
+
+  it("draws an L-system's string as a component's geometry", function ()
+    local ls = lsys.lsystem { axiom = "F(1)+(90)F(2)" }
+    local s = C.simple { primitive = "none", translate = { 1, 0, 0 }, geometry = ls }
+    local m = C.model(s, { view = { line_style = "line" } })
+    local scene = m:interpret()
+    local lo, hi = scene:bounds()
+    -- from (1, 0, 0) up 1, then left (the turtle's + turns H towards L = -x) 2
+    assert.near(-1, lo[1], 1e-6) assert.near(1, hi[1], 1e-6)
+    assert.near(0, lo[2], 1e-6) assert.near(1, hi[2], 1e-6)
+  end)
+
+  it("builds Lstrings from codes (rules:symbol, rules:build) and refuses bad codes", function ()
+    local m = lsys.lsystem { axiom = "" }
+    local R = m._rules
+    local F, plus = R:symbol("F"), R:symbol("+")
+    local s = R:build({ F * 32 + 1, plus * 32, F * 32 + 2 }, { 1.5, 2, 3 })
+    assert.equal("F(1.5)+F(2,3)", tostring(s))
+    assert.error_contains(function () R:build({ 5 }, {}) end, "code 1 is not a module code")
+    assert.error_contains(function () R:build({ F * 32 + 1 }, { 0 / 0 }) end,
+                          "value 1 is not a finite number")
+    assert.error_contains(function () R:build({ F * 32 + 1 }, {}) end,
+                          "fewer values than parameters")
+    assert.error_contains(function () R:symbol("F(") end, "not a module name")
+  end)
+end)
