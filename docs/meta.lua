@@ -42,6 +42,7 @@
 ---@field viewer lsys.viewer The window's module, loaded at first use.
 ---@field func lsys.func Positional functions (cpfg .func files).
 ---@field sketch lsys.sketch Sketch-based models (docs/sketch.md), loaded at first use.
+---@field components lsys.components Component graphs (docs/components.md), loaded at first use.
 local lsys = {}
 
 --- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
@@ -1869,3 +1870,84 @@ function IK:set_angles(list) end
 ---@return number[] t
 ---@return number[][][] segments
 function IK:forward() end
+
+-- ------------------------------------------------------------------------------------------
+-- lsys.components: component graphs (Lintermann and Deussen 1999; docs/components.md).
+-- `require "lsys.components"`, or `lsys.components` (loaded at first use).
+
+---@class lsys.components
+---@field KINDS table<string, table> Each kind's own parameters: name -> { type, default }.
+---@field BASIC table<string, table> The basic parameters of every kind.
+---@field ORDER string[] The eleven kinds in the article's order.
+---@field MULTIPLIERS table<string, boolean> hydra, wreath, phiball.
+lsys.components = {}
+
+--- A prototype of kind `simple`, `revo`, `horn`, `leaf`, `tree`, `hydra`, `wreath`,
+--- `phiball`, `ffd`, `hyperpatch` or `world`: `C.tree { length = 2, n = 12 }`. Every kind takes
+--- `name`, `recursion` and the basic parameters; numbers may be ranges `{v0, v1[, f = fn]}` or
+--- functions of `ctx`. Raises `lsys.components: KIND 'name': ...` for an unknown parameter
+--- (listing the known ones) or a bad value.
+---@param params table
+---@return lsys.components.Proto
+function lsys.components.tree(params) end
+
+--- True when `x` is a component prototype.
+---@return boolean
+function lsys.components.isproto(x) end
+
+--- The i-tree of the p-graph at `root`. opts: seed (1), max_instances (2e6), frame.
+---@param root lsys.components.Proto
+---@param opts? { seed?: integer, max_instances?: integer, frame?: table }
+---@return lsys.components.Tree
+function lsys.components.expand(root, opts) end
+
+--- The plant as an ordinary lsys model (derives its Lstring in 0 steps); `m.components`
+--- holds `tree`, `lstring`, `owner` and `instance(i)` (the instance that drew module i).
+---@param root lsys.components.Proto
+---@param opts? { seed?: integer, max_instances?: integer, view?: table, name?: string }
+---@return lsys.Model
+function lsys.components.model(root, opts) end
+
+--- `C.model(root, opts):interpret()`.
+---@return lsys.Scene
+function lsys.components.scene(root, opts) end
+
+--- The p-graph as Graphviz DOT text. opts: params (true or a list of names), max_params.
+---@return string
+function lsys.components.graph(root, opts) end
+
+--- Writes the p-graph to `path` (.dot/.gv as text; .png/.svg/.pdf through Graphviz's dot).
+function lsys.components.graph_render(root, path, opts) end
+
+---@class lsys.components.Proto
+---@field kind string
+---@field name string|nil
+---@field params table The parameters as given.
+---@field links { type: "child"|"branch"|"leaf", to: lsys.components.Proto, flags?: table }[]
+local Proto = {}
+--- Links `b` as a child (placed on this component's geometry); returns self.
+---@param flags? { only?: integer[], except?: integer[] }
+---@return lsys.components.Proto
+function Proto:child(b, flags) end
+--- Links `b` as a branch (multiplied along a Tree's stem; a child elsewhere); returns self.
+---@return lsys.components.Proto
+function Proto:branch(b, flags) end
+--- Links `b` as a leaf link (made once where this component's recursion ends); returns self.
+---@return lsys.components.Proto
+function Proto:leaf(b, flags) end
+--- The value of parameter `key` as given, or its default.
+function Proto:param(key) end
+
+---@class lsys.components.Tree
+local CTree = {}
+--- The instances in depth-first order: { index, proto, kind, name, path, parent, children,
+--- i, n, depth, link, frame = {p, H, U, s}, tip, stem, params, modules, at }.
+---@return table[]
+function CTree:instances() end
+--- How many instances have this name or kind (nil: all).
+---@param what? string
+---@return integer
+function CTree:count(what) end
+--- The instance at `path` ("tree#1/twig#3/leaf#17"), or nil.
+---@return table|nil
+function CTree:find(path) end
