@@ -63,6 +63,29 @@ describe("lsys.components prototypes", function ()
                  "only, except)",
                  errmsg(function () C.hydra {}:child(C.leaf {}, { without = {} }) end))
   end)
+  it("check the parameters each kind reads itself, and unknown kinds", function ()
+    assert.equal("lsys.components: unknown component kind or function 'bush' (kinds: " ..
+                 "simple, revo, horn, leaf, tree, hydra, wreath, phiball, ffd, hyperpatch, " ..
+                 "world)", errmsg(function () return C.bush {} end):gsub("^[^:]*:%d+: ", ""))
+    assert.equal("lsys.components: hyperpatch: 'degree' must be a whole number from 1 to 4, " ..
+                 "or three of them, got 5", errmsg(C.hyperpatch, { degree = 5 }))
+    assert.equal("lsys.components: hyperpatch: 'degree' must be a whole number from 1 to 4, " ..
+                 "or three of them, got {1, 0, 2}", errmsg(C.hyperpatch, { degree = { 1, 0, 2 } }))
+    assert.equal("lsys.components: hyperpatch: 'moves[1]' must be {i, j, k, dx, dy, dz}: " ..
+                 "three whole lattice indices and a move of finite numbers",
+                 errmsg(C.hyperpatch, { moves = { { 0, 0, 0, 1, 0 / 0, 0 } } }))
+    assert.equal("lsys.components: ffd: 'fx' must be a function (x, y, z) -> number, got " ..
+                 "number", errmsg(C.ffd, { fx = 3 }))
+    assert.equal("lsys.components: world: 'cylinder': unknown field 'radus' (known: axis, " ..
+                 "pitch, point, radius, strength)",
+                 errmsg(C.world, { cylinder = { radus = 1 } }))
+    assert.equal("lsys.components: world: 'gravity' must be a non-zero vector {x, y, z} or " ..
+                 "a function (x, y, z) -> x, y, z", errmsg(C.world, { gravity = { 0, 0, 0 } }))
+    assert.equal("lsys.components: simple: 'geometry' must be an L-system model or an " ..
+                 "Lstring, got number", errmsg(C.simple, { geometry = 3 }))
+    assert.is_true(C.isproto(C.hyperpatch { degree = { 1, 4, 2 },
+                                            moves = { { 0, 1, 0, 0.5, 0, 0 } } }))
+  end)
 end)
 
 describe("lsys.components.expand", function ()

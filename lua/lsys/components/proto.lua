@@ -131,11 +131,89 @@ local function isvec (v)
   return type(v) == "table" and #v == 3 and isnum(v[1]) and isnum(v[2]) and isnum(v[3])
 end
 
+-- The parameters of type "any": each checked by its own function (raises via fail).
+local function isdegree (d) return isnum(d) and d == floor(d) and d >= 1 and d <= 4 end
+local function fields (p, key, v, spec)
+  if type(v) ~= "table" then fail(p, "'%s' must be a table", key) end
+  local names = {}
+  for k in pairs(spec) do names[#names + 1] = k end
+  table.sort(names)
+  for k, x in pairs(v) do
+    local t = spec[k]
+    if t == nil then
+      fail(p, "'%s': unknown field '%s' (known: %s)", key, tostring(k), concat(names, ", "))
+    end
+    if t == "vec3" and not isvec(x) or t == "number" and not isnum(x) then
+      fail(p, "'%s.%s' must be a %s of finite numbers", key, k,
+           t == "vec3" and "vector {x, y, z}" or "number")
+    end
+  end
+end
+local ANY = {
+  ["hyperpatch.degree"] = function (p, key, v)
+    if isdegree(v) then return end
+    if type(v) == "table" and #v == 3 and isdegree(v[1]) and isdegree(v[2]) and
+       isdegree(v[3]) then return end
+    fail(p, "'%s' must be a whole number from 1 to 4, or three of them, got %s", key,
+         type(v) == "table" and "{" .. concat({ tostring(v[1]), tostring(v[2]),
+                                                tostring(v[3]) }, ", ") .. "}" or tostring(v))
+  end,
+  ["hyperpatch.moves"] = function (p, key, v)
+    if type(v) ~= "table" then fail(p, "'%s' must be a list of {i, j, k, dx, dy, dz}", key) end
+    for i, m in ipairs(v) do
+      local ok = type(m) == "table" and #m == 6
+      for k = 1, 6 do ok = ok and isnum(m[k]) and (k > 3 or m[k] == floor(m[k])) end
+      if not ok then
+        fail(p, "'%s[%d]' must be {i, j, k, dx, dy, dz}: three whole lattice indices and " ..
+                "a move of finite numbers", key, i)
+      end
+    end
+  end,
+  ["hyperpatch.box"] = function (p, key, v)
+    fields(p, key, v, { origin = "vec3", size = "vec3" })
+    if not v.origin or not v.size then fail(p, "'%s' needs an origin and a size", key) end
+  end,
+  ["world.cylinder"] = function (p, key, v)
+    fields(p, key, v, { axis = "vec3", point = "vec3", radius = "number", pitch = "number",
+                        strength = "number" })
+  end,
+  ["world.wind"] = function (p, key, v)
+    fields(p, key, v, { direction = "vec3", strength = "number" })
+  end,
+}
+for _, k in ipairs { "ffd.fx", "ffd.fy", "ffd.fz" } do
+  ANY[k] = function (p, key, v)
+    if type(v) ~= "function" then
+      fail(p, "'%s' must be a function (x, y, z) -> number, got %s", key, type(v))
+    end
+  end
+end
+for _, k in ipairs { "world.gravity", "world.light" } do
+  ANY[k] = function (p, key, v)
+    if type(v) == "function" then return end
+    if not isvec(v) or v[1] == 0 and v[2] == 0 and v[3] == 0 then
+      fail(p, "'%s' must be a non-zero vector {x, y, z} or a function (x, y, z) -> x, y, z",
+           key)
+    end
+  end
+end
+ANY["*.geometry"] = function (p, key, v)
+  local mt = getmetatable(v)
+  local ok = type(v) == "userdata" and mt ~= nil and mt.__name == "lsys.Lstring" or
+             type(v) == "table" and type(v.derive) == "function"
+  if not ok then fail(p, "'%s' must be an L-system model or an Lstring, got %s", key, type(v)) end
+end
+
 -- Checks the value of parameter `key` of prototype `p` against its schema.
 local function check (p, key, v)
   local sch = schema(p.kind, key)
   local t = sch[1]
-  if t == "any" or type(v) == "function" and (t == "number" or t == "vec3") then return v end
+  if t == "any" then
+    local f = ANY[p.kind .. "." .. key] or ANY["*." .. key]
+    if f then f(p, key, v) end
+    return v
+  end
+  if type(v) == "function" and (t == "number" or t == "vec3") then return v end
   if t == "number" then
     if isnum(v) then return v end
     if type(v) == "table" and isnum(v[1]) and isnum(v[2]) and #v == 2 then
