@@ -46,8 +46,8 @@ describe("lsys.components prototypes", function ()
   it("reject unknown parameters, listing the known ones", function ()
     local msg = errmsg(C.wreath, { radius = 1, radious = 2 })
     assert.equal("lsys.components: wreath: unknown parameter 'radious' (known: close, color, " ..
-                 "geometry, n, name, open, primitive, radius, recursion, rotate, scale, size, texture, " ..
-                 "translate)", msg)
+                 "geometry, n, name, open, primitive, radius, recursion, rotate, scale, size, " ..
+                 "texture, translate)", msg)
     assert.equal("lsys.components: leaf 'l': 'length' must be a number, a range {v0, v1} or " ..
                  "a function, got NaN", errmsg(C.leaf, { name = "l", length = 0 / 0 }))
     assert.equal("lsys.components: tree: 'n' must be a whole number, got 2.5",

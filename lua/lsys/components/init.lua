@@ -36,13 +36,7 @@ end
 function M.model (root, opts) return require("lsys.components.model").model(root, opts) end
 
 --- The scene of the component graph at `root`: M.model(root, opts):interpret().
-function M.scene (root, opts) -- C.bush{...}: an unknown kind is an error naming the known ones, not "attempt to call nil".
-setmetatable(M, { __index = function (_, k)
-  error("lsys.components: unknown component kind or function '" .. tostring(k) ..
-        "' (kinds: " .. concat(proto.ORDER, ", ") .. ")", 2)
-end })
-
-return M.model(root, opts):interpret() end
+function M.scene (root, opts) return M.model(root, opts):interpret() end
 
 --- The i-tree of this prototype: lsys.components.expand(self, opts).
 function proto.Proto:expand (opts) return expand.expand(self, opts) end
