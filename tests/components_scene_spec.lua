@@ -182,6 +182,47 @@ describe("lsys.components geometry", function ()
     assert.near(0, lo[2], 1e-6) assert.near(1, hi[2], 1e-6)
   end)
 
+  it("takes the arrangement: bending the trunk moves what grows on it", function ()
+    local leaf = C.leaf { name = "leaf", length = 0.3 }
+    local twig = C.tree { name = "twig", length = 1, n = 6, angle = 50, segments = 4 }
+    twig:branch(leaf)
+    local plant = C.tree { length = 5, n = 6, angle = 60, segments = 8 }
+    plant:branch(twig)
+    local m = C.model(plant)
+    local s = m:derive()
+    local scene = m:interpret(s)
+    -- generalized cylinder segments chain: each one's parent is the one before it
+    local first, last, prev
+    for k, r in scene:records() do
+      if r.kind == "gcyl" then
+        local inst = m.components.instance(r.module)
+        if inst.path == "tree#1" then
+          if prev then assert.equal(prev, r.parent) end
+          prev = k
+          first = first or r.module
+        end
+        if inst.path == "tree#1/twig#6" then last = r.module end
+      end
+    end
+    local a = lsys.arrange(m, s)
+    a:select(first, last)
+    a:spherical({ 0, 0, 1 }, 30)
+    a:commit()
+    local s2 = a:lstring()
+    assert.is_true(s2:count("@J") > 0)
+    local after = m:interpret(s2)
+    local moved, kept = 0, 0
+    for k, r in scene:records() do
+      local r2 = after:record(k)
+      if r.kind == "surface" and dist(r.p0 or r.p1, r2.p0 or r2.p1) > 0.1 then moved = moved + 1 end
+      if k == 1 or r.kind == "gcyl" and r.module == first then
+        kept = kept + (dist(r.p0, after:record(k).p0) < 1e-6 and 1 or 0)
+      end
+    end
+    assert.is_true(moved >= 30, "leaves moved: " .. moved)
+    assert.is_true(kept >= 1)
+  end)
+
   it("builds Lstrings from codes (rules:symbol, rules:build) and refuses bad codes", function ()
     local m = lsys.lsystem { axiom = "" }
     local R = m._rules

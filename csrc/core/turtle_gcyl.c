@@ -159,7 +159,10 @@ int lsys_turtle_gcmodule (run *R, int op, const double *p, uint32_t np) {
   if (lsys_gcyl_segment(t->mesh, a, b, &sh, &ca, &cb, R->o->sides) != LSYS_OK)
     return lsys_turtle_nomem(R);
   if ((s = newrec(R, LSYS_REC_GCYL, a->pos, b->pos, 2 * a->r, 2 * b->r)) != LSYS_OK) return s;
-  if (!R->o->norecords) chordframe(R, a, b);
+  if (!R->o->norecords) {
+    chordframe(R, a, b);
+    st->last = (uint32_t)(R->t->scene->nrec - 1);   /* the next segment's parent */
+  }
   st->gc = op == OP_GEND ? LSYS_NOREC : ib;
   return LSYS_OK;
 }
