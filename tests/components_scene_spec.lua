@@ -121,7 +121,7 @@ describe("lsys.components geometry", function ()
     assert.near(0, lo[2], 1e-6) assert.near(0, hi[2], 1e-6)        -- facing the heading
     assert.near(0.5, hi[1], 1e-6)
     lo, hi = bounds("cone", { 1, 2, 1 })
-    assert.near(2, hi[2], 1e-6) assert.near(0.5, hi[1], 1e-6)
+    assert.near(0, lo[2], 1e-6) assert.near(2, hi[2], 1e-6) assert.near(0.5, hi[1], 1e-6)
   end)
 
   it("continues point-set primitives into the following instances (Tube)", function ()
