@@ -283,6 +283,19 @@ local PICTURES = {
   { "sketch/fig14.lua", nil, "Fig. 14, foxglove in 3D",
     "The same with the stem drawn with pen pressure.", png = "sketch/fig14.png",
     width = 320, height = 320 },
+  -- component graphs after Lintermann and Deussen 1999, examples/components
+  { "components/fig2_abcd.lua", nil, "Fig. 2, A-B-C-D",
+    "A stem (B) and a Hydra (C) of three twigs, each a Horn (D) linked to itself with "
+    .. "recursion depth 3: nine instances of D, a bud on each.", width = 320, height = 320 },
+  { "components/sunflower.lua", nil, "Fig. 4, sunflower",
+    "Leaves on stalks as the branches of a Tree; at its top a Phiball of bracts, one of 34 "
+    .. "petals and one of 500 seeds packed by the golden section.", width = 320, height = 320 },
+  { "components/rhododendron.lua", nil, "Fig. 5, rhododendron",
+    "20 twigs on a Phiball; each twig a Tree with flag lists: small twigs at 2 and 13, leaves "
+    .. "elsewhere; trusses of flowers at the tips.", width = 320, height = 320 },
+  { "components/agave.lua", nil, "Fig. 8, agave",
+    "34 leaves on a Phiball whose length and bend are ranges over i plus a seeded random "
+    .. "offset: the upright leaves are shorter and less bent.", width = 320, height = 320 },
 }
 
 local function load (file, name)
@@ -354,6 +367,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Bicubic petals (§4.3, figs. 27, 28)", "cpfg/fig27_all.png", 1 },
   { "Textures (§5, figs. 31, 33, 34)", "cpfg/fig31_a.png", 3 },
   { "Sketches (Anastacio et al. 2009, figs. 5, 7-14)", "sketch/fig7_cone.png", 3 },
+  { "Component graphs (Lintermann and Deussen 1999)", "components/fig2_abcd.png", 2 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
