@@ -56,8 +56,9 @@ HELP.derive = [[
 usage: lsys derive [MODEL] [--steps N] [--seed S] [--set NAME=VALUE]... [--name NAME]
                    [--stats] [--progress]
 
-Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a table of named
-models), derives it and prints the resulting L-string in cpfg notation. Without MODEL,
+Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a component
+graph's root prototype, see `lsys help components`, or a table of named models), derives
+it and prints the resulting L-string in cpfg notation. Without MODEL,
 derives the default example (examples/default.lua). A MODEL that is not a file is looked up
 in the examples directory, with or without .lua: `lsys derive abop/fig1_24a`.
 
@@ -207,7 +208,10 @@ HELP.components = [[
 usage: lsys components graph MODEL [-o OUT] [--params]
 
 Component graphs (Lintermann and Deussen 1999; docs/components.md). MODEL is a Lua file
-that returns the root prototype of a component graph (`return plant`).
+that returns the root prototype of a component graph (`return plant`). Every command that
+takes a MODEL (derive, render, export, view, arrange) takes such a file too: the graph is
+expanded (--seed seeds it) and drawn as an ordinary model; a click in `lsys view` prints
+the instance's path and parameters.
 
   graph    draws the p-graph: a camera box at the root, child links as thin lines, branch
            links bold, leaf links dashed, the links of a recursion doubled, ending at a
@@ -386,11 +390,30 @@ local function is_model (v)
   return ok and type(derive) == "function"
 end
 
+-- True when 'v' is a component graph's prototype (lsys.components, issue 16).
+local function is_proto (v)
+  return type(v) == "table" and require("lsys.components.proto").isproto(v)
+end
+
+-- A model file's value as a model: a component graph's root prototype becomes
+-- lsys.components.model(v) (expanded with 'seed'), anything else stays as it is.
+local function as_model (v, path, seed)
+  if not is_proto(v) then return v end
+  local ok, m = pcall(require("lsys.components").model, v, { seed = seed })
+  if not ok then
+    local msg = tostring(m):gsub("^[^:\n]*%.lua:%d+: ", "")
+    error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
+  end
+  return m
+end
+
 --[[
 Runs the model file 'path' and returns the model it returns, and its name when the file
 returns a table of named models ('name' picks one; default: the first in sorted order).
+A component graph (the root prototype, or one in the table) is made a model here, the one
+place every command loads its model through, with 'seed' for its expansion.
 ]]
-local function load_model (path, name)
+local function load_model (path, name, seed)
   local chunk, err = loadfile(path, "t")
   if chunk == nil then error(err, 0) end
   -- runfile names the file when `return lsys.lsystem{...}` is a tail call
@@ -400,27 +423,29 @@ local function load_model (path, name)
     if msg:find(path, 1, true) == nil then msg = path .. ": " .. msg end
     error(msg, 0)
   end
-  if is_model(v) then
+  if is_model(v) or is_proto(v) then
     if name ~= nil then
       error(format("%s returns a single model; --name applies to a table of models", path), 0)
     end
-    return v
+    return as_model(v, path, seed)
   end
   if type(v) == "table" then
     local names = {}
     for k, x in pairs(v) do
-      if type(k) == "string" and is_model(x) then names[#names + 1] = k end
+      if type(k) == "string" and (is_model(x) or is_proto(x)) then names[#names + 1] = k end
     end
     table.sort(names)
     if #names > 0 then
-      if name == nil then return v[names[1]], names[1] end
-      if is_model(v[name]) then return v[name], name end
+      if name == nil then return as_model(v[names[1]], path, seed), names[1] end
+      if is_model(v[name]) or is_proto(v[name]) then
+        return as_model(v[name], path, seed), name
+      end
       error(format("%s has no model named '%s' (models: %s)", path, name,
         table.concat(names, ", ")), 0)
     end
   end
   error(format("%s returned %s, not a model (end the file with `return lsys.lsystem { ... }`,"
-    .. " or return a table of models)", path, type(v)), 0)
+    .. " a component graph's root prototype, or a table of models)", path, type(v)), 0)
 end
 
 -- }===========================================================================================
@@ -502,7 +527,12 @@ local function prepare (cmd, opts, pos)
   end
 
   local path = find_model(pos[1])
-  local model = load_model(path, opts.name)
+  local model = load_model(path, opts.name, seed)
+  if model.components ~= nil and model.components.tree ~= nil and
+     (steps ~= nil or #sets > 0) then
+    usage(cmd, "%s is a component graph: it has no derivation steps (--steps) nor "
+      .. "variables (--set)", path)
+  end
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end
   if #sets > 0 then

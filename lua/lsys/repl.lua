@@ -9,9 +9,9 @@
 local host = require("lsys.program").host
 
 local G = _G
-local type, tostring, pcall, xpcall, load, require, getmetatable =
-      type, tostring, pcall, xpcall, load, require, getmetatable
-local io, os, string, table, package, debug = io, os, string, table, package, debug
+local type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error =
+      type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error
+local io, os, string, table, package, debug, math = io, os, string, table, package, debug, math
 local format = string.format
 local _ENV = nil
 
@@ -113,12 +113,83 @@ local function loadchunk (read)
   end
 end
 
---- What the REPL prints for a click on a module in the viewer window (lsys.show).
+-- A parameter value in a line: numbers with 4 digits, vectors in braces, point lists
+-- and other tables by their size.
+local function brief (v)
+  if math.type(v) == "integer" then return tostring(v) end
+  if type(v) == "number" then return num(v) end
+  if type(v) == "string" then return format("%q", v) end
+  if type(v) ~= "table" then return is_lstring(v) and M.show(v) or tostring(v) end
+  local allnum = #v > 0 and #v <= 4
+  for k = 1, #v do allnum = allnum and type(v[k]) == "number" end
+  if allnum then
+    local t = {}
+    for k = 1, #v do t[k] = brief(v[k]) end
+    return "{" .. table.concat(t, ", ") .. "}"
+  end
+  if #v == 2 and type(v[1]) == "table" and type(v[2]) == "table" then
+    return "{" .. brief(v[1]) .. ", " .. brief(v[2]) .. "}" .. (v.f and " and a function" or "")
+  end
+  if #v > 0 then return format("{%d %s}", #v, type(v[1]) == "table" and "points" or "values") end
+  return "a table"
+end
+
+-- The value of parameter 'key' for the instance: a range or a function evaluated for it
+-- (lsys.components.expand.value), or nil when it cannot be computed again (a function
+-- that draws random numbers would draw other ones now).
+local function evaluated (inst, key)
+  local X = require "lsys.components.expand"
+  local ctx = {}
+  for k, v in pairs(inst.ctx or {}) do ctx[k] = v end
+  ctx.random = function () error("random", 0) end
+  local ok, v = pcall(X.value, inst, inst.proto, key, ctx)
+  return ok and v or nil
+end
+
+-- Parameters whose ranges run over the children a component makes, not over its own
+-- iteration (lsys.components.expand evaluates them per branch or per child).
+local OVER_CHILDREN = { tree = { angle = "branches", branch_scale = "branches" },
+                        phiball = { child_size = "children" } }
+
+--- The lines that describe a component instance (lsys.components) picked in the viewer:
+-- its path (`where`, else inst.path), kind, name, iteration i of n and recursion depth,
+-- then each parameter its prototype gives, with the value for this instance where a
+-- range or a function makes it vary (`length = {0.3, 0.5} -> 0.4`; a Tree's angle and
+-- branch_scale and a Phiball's child_size vary over its branches or children instead).
+function M.instance_lines (inst, where)
+  local lines = { format("  instance %s: %s%s, iteration %d of %d, depth %d",
+    where or inst.path, inst.kind, inst.name and inst.name ~= inst.kind and
+    format(" '%s'", inst.name) or "", inst.i or 1, inst.n or 1, inst.depth or 0) }
+  local params = inst.proto and inst.proto.params or {}
+  local keys = {}
+  for k in pairs(params) do keys[#keys + 1] = k end
+  table.sort(keys)
+  for _, k in ipairs(keys) do
+    local v = params[k]
+    local text = type(v) == "function" and "a function" or brief(v)
+    local over = OVER_CHILDREN[inst.kind] and OVER_CHILDREN[inst.kind][k]
+    if over and (type(v) == "function" or type(v) == "table") then
+      text = text .. " over its " .. over
+    elseif type(v) == "function" or (type(v) == "table" and #v == 2) then
+      local e = evaluated(inst, k)
+      if e ~= nil and e ~= v then text = text .. " -> " .. brief(e)
+      elseif type(v) == "function" then text = text .. " (of the random generator)" end
+    end
+    lines[#lines + 1] = format("    %s = %s", k, text)
+  end
+  return lines
+end
+
+--- What the REPL prints for a click on a module in the viewer window (lsys.show): the
+-- module, and for a component plant the instance that drew it with its parameters.
 function M.print_pick (info)
   local what = info.text or "?"
   if #what > WIDTH then what = what:sub(1, WIDTH) .. "..." end
   io.stdout:write(format("picked module %d: %s (%s%s)\n", info.module, what,
     info.kind or "?", info.step and format(", step %d", info.step) or ""))
+  if info.instance ~= nil then
+    io.stdout:write(table.concat(M.instance_lines(info.instance, info.path), "\n"), "\n")
+  end
   io.stdout:flush()
 end
 

@@ -25,7 +25,8 @@ local core = require "lsys.core"
 local model = require "lsys.model"
 local warning = require "lsys.warning"
 
-local type, pairs, ipairs, error, pcall, tostring = type, pairs, ipairs, error, pcall, tostring
+local type, pairs, ipairs, error, pcall, tostring, require =
+      type, pairs, ipairs, error, pcall, tostring, require
 local os, string, math = os, string, math
 local format = string.format
 local _ENV = nil
@@ -158,7 +159,8 @@ function M.open (opts)
 end
 
 --- Shows `x` in the viewer window, opening it if needed, and returns at once.
--- `x` is a Model (derived; every step is kept and can be stepped through), an Lstring
+-- `x` is a Model (derived; every step is kept and can be stepped through; a component
+-- graph's root prototype is made one by lsys.components.model), an Lstring
 -- (interpreted with the model that made it, else `opts.model`, else the last model
 -- shown, else a plain turtle), a Scene, or a list of Scenes (frames to step through).
 -- opts: `step` (the step shown first; default the last), `steps = false` (a model's
@@ -167,7 +169,8 @@ end
 -- `samples` (multisampling of a new window), `status` (the status line, default true),
 -- `view` (view fields replacing the model's for this show), `keep_camera` (keep the
 -- window's camera instead of fitting), `on_pick(info)` (called by `poll` for a click
--- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }),
+-- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }, plus
+-- `instance` and `path` when a component instance drew it: see lsys.components),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
 -- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b},
 -- width = pixels, ontop = boolean}, ... } drawn over it, depth-tested unless `ontop`),
@@ -177,6 +180,9 @@ end
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
+  if type(x) == "table" and require("lsys.components.proto").isproto(x) then
+    x = require("lsys.components").model(x)    -- a component graph's root prototype
+  end
   S.strings, S.steps = {}, {}
   if model.ismodel(x) then
     frames, textures = model_frames(x, opts)
@@ -233,6 +239,21 @@ function M.show (x, opts)
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
 end
 
+--- The component instance (lsys.components) that drew module `i` of the Lstring `s`, and
+-- its path, or nil: what a pick reports. `m` is the model that made `s` (default: the
+-- model that owns it, else the last one shown); its `m.components.instance(i, s)` (a
+-- component graph's model, lsys.components.model, or an L-system placing plants,
+-- lsys.components.mix, which also gives the placing module's path, "P#2") says.
+function M.instance (s, i, m)
+  m = m or model.owner(s) or S.model
+  local c = m ~= nil and m.components
+  if type(c) ~= "table" or type(c.instance) ~= "function" then return nil end
+  if c.lstring ~= nil and #c.lstring ~= #s then return nil end   -- not the plant's string
+  local ok, inst, where = pcall(c.instance, i, s)
+  if not ok or type(inst) ~= "table" or inst.path == nil then return nil end
+  return inst, where and (where .. "/" .. inst.path) or inst.path
+end
+
 -- What a click hit, for the callbacks.
 local function pickinfo (ev)
   local s = S.strings[ev.frame]
@@ -243,6 +264,7 @@ local function pickinfo (ev)
   if s ~= nil and ev.module <= #s then
     info.name = s:module(ev.module)
     info.text = tostring(s:sub(ev.module, ev.module))
+    info.instance, info.path = M.instance(s, ev.module)
   end
   return info
 end
