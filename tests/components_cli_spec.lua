@@ -9,7 +9,6 @@ local V = require "lsys.viewer"
 
 local BIN = H.BIN
 local ABS = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
-local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
 
 local PLANT = [[
 local C = require "lsys".components
@@ -135,7 +134,6 @@ describe("#gl the viewer on a component graph", function()
 local lsys = require "lsys"
 local V = require "lsys.viewer"
 local R = require "lsys.repl"
-local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
 local plant = dofile(arg[1])
 local picked
 lsys.show(plant, { width = 300, height = 300, title = "pick plant", status = false,
