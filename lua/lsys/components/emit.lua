@@ -19,12 +19,12 @@
 local X = require "lsys.components.expand"
 local core = require "lsys.core"
 
-local ipairs, setmetatable, tostring, require, math, string, table, utf8, select =
-      ipairs, setmetatable, tostring, require, math, string, table, utf8, select
+local ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8, select =
+      ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8, select
 local format, concat, sort = string.format, table.concat, table.sort
 local sqrt, atan, deg, cos, sin, abs, floor, max =
       math.sqrt, math.atan, math.deg, math.cos, math.sin, math.abs, math.floor, math.max
-local cross, dot = X.cross, X.dot
+local cross = X.cross
 local _ENV = nil
 
 local M = {}
@@ -33,17 +33,22 @@ local M = {}
 -- orientation (AH, AU) onto (BH, BU); with BU nil only the first two (aim H at BH). The
 -- turtle's conventions (measured): `/` turns L towards U, `&` turns H towards -U, L = H x U.
 local function angles (AH, AU, BH, BU)
-  local AL = cross(AH, AU)
-  local h, l, u = dot(BH, AH), dot(BH, AL), dot(BH, AU)
+  local h1, h2, h3, u1, u2, u3 = AH[1], AH[2], AH[3], AU[1], AU[2], AU[3]
+  local l1, l2, l3 = h2 * u3 - h3 * u2, h3 * u1 - h1 * u3, h1 * u2 - h2 * u1   -- L = H x U
+  local b1, b2, b3 = BH[1], BH[2], BH[3]
+  local h, l, u = b1 * h1 + b2 * h2 + b3 * h3, b1 * l1 + b2 * l2 + b3 * l3,
+                  b1 * u1 + b2 * u2 + b3 * u3
   local sb = sqrt(l * l + u * u)
   local a = sb > 1e-12 and atan(l, -u) or 0
   local b = atan(sb, h)
   if BU == nil then return deg(a), deg(b) end
   local ca, sa, cb, s2 = cos(a), sin(a), cos(b), sin(b)
-  local L1 = { AL[1] * ca + AU[1] * sa, AL[2] * ca + AU[2] * sa, AL[3] * ca + AU[3] * sa }
-  local U1 = { AU[1] * ca - AL[1] * sa, AU[2] * ca - AL[2] * sa, AU[3] * ca - AL[3] * sa }
-  local U2 = { U1[1] * cb + AH[1] * s2, U1[2] * cb + AH[2] * s2, U1[3] * cb + AH[3] * s2 }
-  return deg(a), deg(b), deg(atan(-dot(BU, L1), dot(BU, U2)))
+  -- L1 = L ca + U sa, U1 = U ca - L sa, U2 = U1 cb + H s2
+  local x1, x2, x3 = BU[1], BU[2], BU[3]
+  local bl = x1 * (l1 * ca + u1 * sa) + x2 * (l2 * ca + u2 * sa) + x3 * (l3 * ca + u3 * sa)
+  local bu = x1 * ((u1 * ca - l1 * sa) * cb + h1 * s2) + x2 * ((u2 * ca - l2 * sa) * cb + h2 * s2)
+             + x3 * ((u3 * ca - l3 * sa) * cb + h3 * s2)
+  return deg(a), deg(b), deg(atan(-bl, bu))
 end
 M.angles = angles
 
@@ -140,8 +145,8 @@ W.__index = W
 
 local function newwriter (rules)
   local w = setmetatable({ rules = rules, codes = {}, vals = {}, owner = {}, nc = 0, nv = 0,
-                           cur = 0, sym = {}, surf = {}, nsurf = 0, spans = {},
-                           post = {}, deformers = {} }, W)
+                           cur = 0, sym = {}, c0 = {}, c1 = {}, surf = {}, leaves = {},
+                           nsurf = 0, spans = {}, post = {}, deformers = {} }, W)
   return w
 end
 
@@ -165,10 +170,33 @@ function W:op (name, ...)
   self.nv = nv + np
 end
 
--- A rotation op unless it is a no-op.
-function W:turn (name, a)
-  if abs(a) > 1e-9 then self:op(name, a) end
+-- The hot writers: a module without parameters, and one with one (codes cached by name).
+local function op0 (w, name)
+  local c = w.c0[name]
+  if c == nil then c = w:code(name, 0) w.c0[name] = c end
+  local nc = w.nc + 1
+  w.nc = nc
+  w.codes[nc] = c
+  w.owner[nc] = w.cur
 end
+
+local function op1 (w, name, a)
+  local c = w.c1[name]
+  if c == nil then c = w:code(name, 1) w.c1[name] = c end
+  local nc = w.nc + 1
+  w.nc = nc
+  w.codes[nc] = c
+  w.owner[nc] = w.cur
+  local nv = w.nv + 1
+  w.nv = nv
+  w.vals[nv] = a
+end
+
+-- A rotation op unless it is a no-op.
+local function turn (w, name, a)
+  if a > 1e-9 or a < -1e-9 then op1(w, name, a) end
+end
+function W:turn (name, a) turn(self, name, a) end
 
 -- The surface character of a `~` surface (keys from U+0100 up, clear of the user's).
 function W:surface (key, s, entry)
@@ -191,23 +219,23 @@ end
 -- Turns the turtle from orientation T to (H, U).
 local function orient (w, T, H, U)
   local a, b, g = angles(T.H, T.U, H, U)
-  w:turn("/", a)
-  w:turn("&", b)
-  w:turn("/", g)
+  turn(w, "/", a)
+  turn(w, "&", b)
+  turn(w, "/", g)
   T.H, T.U = H, U
 end
 
 -- Moves the turtle from T to frame f (position and orientation).
 local function moveto (w, T, f)
-  local d = { f.p[1] - T.p[1], f.p[2] - T.p[2], f.p[3] - T.p[3] }
-  local len = sqrt(dot(d, d))
-  if len > 1e-12 * max(1, abs(f.p[1]) + abs(f.p[2]) + abs(f.p[3])) then
-    local dn = { d[1] / len, d[2] / len, d[3] / len }
-    local a, b = angles(T.H, T.U, dn)
-    w:turn("/", a)
-    w:turn("&", b)
+  local fp, tp = f.p, T.p
+  local d1, d2, d3 = fp[1] - tp[1], fp[2] - tp[2], fp[3] - tp[3]
+  local len = sqrt(d1 * d1 + d2 * d2 + d3 * d3)
+  if len > 1e-12 * max(1, abs(fp[1]) + abs(fp[2]) + abs(fp[3])) then
+    local a, b = angles(T.H, T.U, { d1 / len, d2 / len, d3 / len })
+    turn(w, "/", a)
+    turn(w, "&", b)
     T.H, T.U = rollpitch(T.H, T.U, a, b)
-    w:op("f", len)
+    op1(w, "f", len)
   end
   T.p = f.p
   orient(w, T, f.H, f.U)
@@ -215,8 +243,9 @@ end
 
 local function forward (w, T, d, draw)
   if d <= 1e-15 then return end
-  w:op(draw and "F" or "f", d)
-  T.p = { T.p[1] + d * T.H[1], T.p[2] + d * T.H[2], T.p[3] + d * T.H[3] }
+  op1(w, draw and "F" or "f", d)
+  local p, H = T.p, T.H
+  T.p = { p[1] + d * H[1], p[2] + d * H[2], p[3] + d * H[3] }
 end
 
 -- }=========================================================================================
@@ -230,9 +259,9 @@ local emit      -- emit(w, tree, inst, T)
 -- a linear taper from 1 to `tip`.
 local function radius (inst, u)
   local p = inst.proto
-  local r = X.value(inst, p, "radius", inst.ctx)
+  local r = X.get(inst, "radius")
   local th = p:param("thickness")
-  if th == nil then return r * (1 + (X.value(inst, p, "tip", inst.ctx) - 1) * u) end
+  if th == nil then return r * (1 + (X.get(inst, "tip") - 1) * u) end
   if u <= th[1][1] then return r * th[1][2] end
   for k = 2, #th do
     if u <= th[k][1] then
@@ -315,7 +344,7 @@ end
 -- Children of a Tree along its stem, in the order of u.
 local function branchkids (tree, inst)
   local along, tip = {}, {}
-  for _, ci in ipairs(inst.children) do
+  for _, ci in ipairs(rawget(inst, "children") or along) do
     local c = tree.list[ci]
     if c.link == "branch" and c.u ~= nil then along[#along + 1] = c else tip[#tip + 1] = c end
   end
@@ -348,7 +377,7 @@ local function stem (w, tree, inst, T)
     local seg = sqrt((b.p[1] - a.p[1]) ^ 2 + (b.p[2] - a.p[2]) ^ 2 + (b.p[3] - a.p[3]) ^ 2)
     local done = 0
     local drawn = prim == "cylinder"
-    if drawn then w:op("#", 2 * s * radius(inst, (a.u + b.u) / 2)) end
+    if drawn then op1(w, "#", 2 * s * radius(inst, (a.u + b.u) / 2)) end
     while along[k] and (along[k].u <= b.u + 1e-12 or j == segs) do
       local c = along[k]
       local x = (c.u - a.u) / (b.u - a.u) * seg
@@ -356,17 +385,17 @@ local function stem (w, tree, inst, T)
       if x > seg then x = seg end
       forward(w, T, x - done, drawn)
       done = x
-      local saved = { p = T.p, H = T.H, U = T.U }
+      local sp, sH, sU = T.p, T.H, T.U
       emit(w, tree, c, T)
-      T.p, T.H, T.U = saved.p, saved.H, saved.U
+      T.p, T.H, T.U = sp, sH, sU
       w.cur = inst.index
       k = k + 1
     end
     forward(w, T, seg - done, drawn)
     T.p = b.p
     if tube then
-      w:op("#", 2 * s * radius(inst, b.u))
-      w:op(j == segs and "@Ge" or "@Gc", 4)
+      op1(w, "#", 2 * s * radius(inst, b.u))
+      op1(w, j == segs and "@Ge" or "@Gc", 4)
     elseif prim ~= "none" and not drawn then
       local r = 2 * s * radius(inst, b.u)
       primitive(w, T, inst, prim, r, r, r)
@@ -390,21 +419,43 @@ local function revo (w, inst, T)
   end
 end
 
-local function leaf (w, inst)
-  local p, ctx = inst.proto, inst.ctx
-  local len = X.value(inst, p, "length", ctx)
-  local wid = X.value(inst, p, "width", ctx)
-  local surf, key = leafsurface(p, wid, len, X.value(inst, p, "lateral", ctx),
-                                X.value(inst, p, "longitudinal", ctx))
+local LEAFPARAMS = { "length", "width", "lateral", "longitudinal" }
+
+-- The module name ("~" and the surface character) of a leaf instance's surface.
+local function leafname (w, inst)
+  local p = inst.proto
+  local len = inst.length or X.get(inst, "length")
+  local surf, key = leafsurface(p, X.get(inst, "width"), len, X.get(inst, "lateral"),
+                                X.get(inst, "longitudinal"))
   local tex = p:param("texture")
   local entry = {}
   if tex and tex ~= 0 then
     entry.texture = tex
     key = key .. "|t" .. tex
   end
-  local c = w:surface(key, surf, entry)
-  w:op(";", p:param("color") or 2)
-  w:op("~" .. c, len * inst.frame.s)
+  return "~" .. w:surface(key, surf, entry)
+end
+
+-- Leaves whose shape parameters are constants or ranges (no function) share the name by
+-- prototype and iteration (i of n).
+local function leaf (w, inst)
+  local p = inst.proto
+  local byp = w.leaves[p]
+  if byp == nil then
+    byp = {}
+    for _, k in ipairs(LEAFPARAMS) do if X.calls(p, k) then byp = false end end
+    w.leaves[p] = byp
+  end
+  local name
+  if byp then
+    local k = inst.n * 16777216 + inst.i
+    name = byp[k]
+    if name == nil then name = leafname(w, inst) byp[k] = name end
+  else
+    name = leafname(w, inst)
+  end
+  op1(w, ";", p:param("color") or 2)
+  op1(w, name, (inst.length or X.get(inst, "length")) * inst.frame.s)
 end
 
 -- A component given as an L-system's geometry (`geometry` = a model or an Lstring): its
@@ -426,7 +477,7 @@ end
 emit = function (w, tree, inst, T)
   w.cur = inst.index
   local m0 = w.nc + 1
-  w:op("[")
+  op0(w, "[")
   local f = inst.frame
   moveto(w, T, f)
   inst.at = w.nc          -- the turtle stands on the instance's frame after this module
@@ -448,17 +499,22 @@ emit = function (w, tree, inst, T)
       local s = f.s
       primitive(w, T, inst, prim, size[1] * s, size[2] * s, size[3] * s)
     end
-    kids = {}
-    for _, ci in ipairs(inst.children) do kids[#kids + 1] = tree.list[ci] end
+    local ch = rawget(inst, "children")
+    if ch ~= nil then
+      kids = {}
+      for k, ci in ipairs(ch) do kids[k] = tree.list[ci] end
+    end
   end
-  for _, c in ipairs(kids) do
-    local saved = { p = T.p, H = T.H, U = T.U }
-    emit(w, tree, c, T)
-    T.p, T.H, T.U = saved.p, saved.H, saved.U
-    w.cur = inst.index
+  if kids ~= nil then
+    for _, c in ipairs(kids) do
+      local sp, sH, sU = T.p, T.H, T.U
+      emit(w, tree, c, T)
+      T.p, T.H, T.U = sp, sH, sU
+      w.cur = inst.index
+    end
   end
-  w:op("]")
-  inst.modules = { m0, w.nc }
+  op0(w, "]")
+  inst.m0, inst.m1 = m0, w.nc             -- inst.modules = { m0, m1 } (made when read)
   if kind == "ffd" or kind == "hyperpatch" then w.deformers[#w.deformers + 1] = inst end
 end
 

@@ -7,9 +7,11 @@
 -- parameters evaluated for its iteration number (ranges, functions, the seeded generator).
 -- @module lsys.components.expand
 local C = require "lsys.components.proto"
+local W = require "lsys.components.world"
 
-local type, pairs, ipairs, error, setmetatable, tostring, pcall, require, math, string, table =
-      type, pairs, ipairs, error, setmetatable, tostring, pcall, require, math, string, table
+local type, pairs, ipairs, error, setmetatable, rawget, rawset, tostring, pcall, require =
+      type, pairs, ipairs, error, setmetatable, rawget, rawset, tostring, pcall, require
+local math, string, table = math, string, table
 local format, concat = string.format, table.concat
 local sqrt, sin, cos, rad, floor = math.sqrt, math.sin, math.cos, math.rad, math.floor
 local isnum, who = C.isnum, C.who
@@ -148,6 +150,71 @@ local function value (inst, p, key, ctx)
 end
 M.value = value
 
+-- Per prototype, what each parameter is: most are plain constants, read once; a range
+-- without a function depends only on (i, n); the rest (functions) go through `value` with
+-- the instance's ctx. cache[p][key] = CONST, RANGE or CALL in .how, the constant in .v.
+local CONST, RANGE, CALL = 1, 2, 3
+local NIL = {}
+
+local function howof (p, key)
+  local v = p:param(key)
+  local t = C.schema(p.kind, key)[1]
+  if t ~= "number" and t ~= "vec3" then return CONST, v end
+  if type(v) == "function" then return CALL end
+  if type(v) == "table" and #v == 2 then
+    if v.f ~= nil or t == "vec3" then return CALL end
+    return RANGE, v
+  end
+  return CONST, v
+end
+
+-- The per-prototype cache of parameter kinds (weak: prototypes can be collected).
+local cachemeta = { __mode = "k" }
+local protocache = setmetatable({}, cachemeta)
+
+local function pcache (p)
+  local pc = protocache[p]
+  if pc == nil then
+    pc = { how = {}, v = {} }
+    protocache[p] = pc
+  end
+  return pc
+end
+
+--- The value of parameter `key` for instance inst at iteration i of n (ctx made only for a
+-- function); the fast path of `value`.
+local function get (inst, p, key, i, n)
+  local pc = pcache(p)
+  local how = pc.how[key]
+  if how == nil then
+    local h, v = howof(p, key)
+    pc.how[key] = h
+    if v == nil then v = NIL end
+    pc.v[key] = v
+    how = h
+  end
+  if how == CONST then
+    local v = pc.v[key]
+    if v == NIL then return nil end
+    return v
+  elseif how == RANGE then
+    local v = pc.v[key]
+    local u = n > 1 and (i - 1) / (n - 1) or 0
+    return v[1] + u * (v[2] - v[1])
+  end
+  return value(inst, p, key, inst.ctx)
+end
+M.get = function (inst, key) return get(inst, inst.proto, key, inst.i, inst.n) end
+
+--- Whether parameter `key` of prototype p is a function (its value may differ for
+-- instances of the same iteration).
+function M.calls (p, key)
+  local pc = pcache(p)
+  local how = pc.how[key]
+  if how == nil then how = howof(p, key) end
+  return how == CALL
+end
+
 -- }=========================================================================================
 
 -- {=========================================================================================
@@ -173,11 +240,59 @@ end
 
 --- The instance at `path` ("tree#1/leaf#3"), or nil.
 function Tree:find (path)
-  return self.bypath[path]
+  local by = self.bypath
+  if by == nil then
+    by = {}
+    for _, inst in ipairs(self.list) do by[inst.path] = inst end
+    self.bypath = by
+  end
+  return by[path]
 end
 
 function Tree:__tostring ()
   return format("lsys.components.Tree(%d instances)", #self.list)
+end
+
+-- The tip frame of an instance (where its children start): the stem's end, a leaf's or a
+-- primitive's far end along the heading, else its frame.
+local function tipof (inst)
+  local f, p, kind = inst.frame, inst.proto, inst.kind
+  local d
+  if kind == "horn" or kind == "tree" then return inst.stem[#inst.stem]
+  elseif kind == "leaf" then d = inst.length
+  elseif kind == "revo" then
+    local prof = p:param("profile")
+    d = (prof[#prof][2] - prof[1][2]) * inst.params.size[2]
+  elseif (p.params.primitive ~= nil or kind == "simple") and p:param("primitive") ~= "none" then
+    d = inst.params.size[2]
+  else
+    return f
+  end
+  local tip = copyframe(f)
+  tip.p = add(f.p, f.H, d * f.s)
+  return tip
+end
+
+-- Instances keep what is rarely read lazily: the path (from the parent chain), the ctx of
+-- parameter functions, an empty list of children, the tip of a childless instance.
+local function instmeta (ex)
+  return {
+    __index = function (inst, k)
+      local v
+      if k == "path" then
+        local par = inst.parent
+        v = (par and ex.list[par].path .. "/" or "") .. inst.label .. "#" .. inst.seq
+      elseif k == "children" then v = {}
+      elseif k == "ctx" then v = { i = inst.i, n = inst.n, depth = inst.depth, random = ex.random }
+      elseif k == "tip" then v = tipof(inst)
+      elseif k == "modules" then
+        if inst.m0 == nil then return nil end
+        v = { inst.m0, inst.m1 }
+      else return nil end
+      rawset(inst, k, v)
+      return v
+    end,
+  }
 end
 
 -- The flags of a link allow iteration i (of n)?
@@ -195,20 +310,49 @@ local function allowed (inst, l, i, n)
   return f.set[i] ~= true
 end
 
+-- H turned towards the unit direction T by the angle e |H x T| (cpfg's tropism, ABOP
+-- section 2.3), U with it. g is changed in place.
+local function tropism (g, T, e)
+  local H = g.H
+  local ax = { H[2] * T[3] - H[3] * T[2], H[3] * T[1] - H[1] * T[3], H[1] * T[2] - H[2] * T[1] }
+  local m = sqrt(ax[1] * ax[1] + ax[2] * ax[2] + ax[3] * ax[3])
+  if m > 1e-12 then
+    ax[1], ax[2], ax[3] = ax[1] / m, ax[2] / m, ax[3] / m
+    local a = math.deg(e * m)
+    g.H, g.U = rotate(H, ax, a), rotate(g.U, ax, a)
+  end
+end
+
+-- The tropisms acting on a stem: { direction (a vector or a function of position), its
+-- strength } for the Tree's gravi- and phototropism and the World's cylinder and wind.
+local function tropisms (inst, grav, photo)
+  local w = inst.world
+  local out = {}
+  if grav ~= 0 then out[#out + 1] = { w.gravity, grav } end
+  if photo ~= 0 then out[#out + 1] = { w.light, photo } end
+  if w.cylinder and w.cylinder.strength ~= 0 then
+    out[#out + 1] = { W.cylinderfield(w.cylinder), w.cylinder.strength }
+  end
+  if w.wind and w.wind.dir and w.wind.strength ~= 0 then
+    out[#out + 1] = { w.wind.dir, w.wind.strength }
+  end
+  return out
+end
+
 -- The stem of a Horn or Tree: frames at the ends of `segments` equal pieces, bent by the
 -- curvature, the gnarl (random), the tropisms of the world and, for a Tree, deviated at its
 -- branches. Returns the list of frames (1 = the base) with radius r and the arc length u.
 local function stem (ex, inst, f, len, segs, branches)
   local p = inst.proto
-  local ctx = inst.ctx
-  local curv = value(inst, p, "curvature", ctx)
-  local gnarl = p.kind == "tree" and value(inst, p, "gnarl", ctx) or 0
-  local grav = p.kind == "tree" and value(inst, p, "gravitropism", ctx) or 0
-  local photo = p.kind == "tree" and value(inst, p, "phototropism", ctx) or 0
-  local dev = p.kind == "tree" and value(inst, p, "deviation", ctx) or 0
-  local twist = p.kind == "horn" and value(inst, p, "twist", ctx) or 0
-  local w = inst.world
-  local tropisms = { { w.gravity, grav }, { w.light, photo } }
+  local i, n = inst.i, inst.n
+  local istree = p.kind == "tree"
+  local curv = get(inst, p, "curvature", i, n)
+  local gnarl = istree and get(inst, p, "gnarl", i, n) or 0
+  local grav = istree and get(inst, p, "gravitropism", i, n) or 0
+  local photo = istree and get(inst, p, "phototropism", i, n) or 0
+  local dev = istree and get(inst, p, "deviation", i, n) or 0
+  local twist = p.kind == "horn" and get(inst, p, "twist", i, n) or 0
+  local trop = tropisms(inst, grav, photo)
   local out = { copyframe(f) }
   out[1].u = 0
   local g = copyframe(f)
@@ -225,19 +369,10 @@ local function stem (ex, inst, f, len, segs, branches)
       local ax = rotate(right(g), g.H, ex.random() * 360)
       g.H, g.U = rotate(g.H, ax, a), rotate(g.U, ax, a)
     end
-    for _, tr in ipairs(tropisms) do
-      local T, e = tr[1], tr[2]
-      if e ~= 0 then
-        if type(T) == "function" then T = { T(g.p[1], g.p[2], g.p[3]) } end
-        -- cpfg's tropism (ABOP §2.3): H turns towards T by e |H x T|
-        local ax = cross(g.H, T)
-        local m = sqrt(dot(ax, ax))
-        if m > 1e-12 then
-          ax = scale(ax, 1 / m)
-          local a = math.deg(e * m)
-          g.H, g.U = rotate(g.H, ax, a), rotate(g.U, ax, a)
-        end
-      end
+    for t = 1, #trop do
+      local T = trop[t][1]
+      if type(T) == "function" then T = { T(g.p[1], g.p[2], g.p[3]) } end
+      if T[1] then tropism(g, T, trop[t][2]) end
     end
     -- deviation: the stem turns away from each branch it passes
     while branches and branches[nextb] and branches[nextb].u <= k / segs do
@@ -248,43 +383,39 @@ local function stem (ex, inst, f, len, segs, branches)
       end
       nextb = nextb + 1
     end
-    g.p = add(g.p, g.H, step * g.s)
+    local s = step * g.s
+    local gp, gH = g.p, g.H
+    g.p = { gp[1] + s * gH[1], gp[2] + s * gH[2], gp[3] + s * gH[3] }
     local h = copyframe(g)
     h.u = k / segs
-    out[#out + 1] = h
+    out[k + 1] = h
   end
   return out
 end
 
--- The frame of the stem at arc-length fraction u (between its frames).
-local function stemframe (st, u)
-  local n = #st - 1
-  local x = u * n
-  local k = floor(x)
-  if k >= n then k = n - 1 end
-  if k < 0 then k = 0 end
-  local a, b, t = st[k + 1], st[k + 2], x - k
-  local f = copyframe(a)
-  f.p = add(a.p, add(b.p, a.p, -1), t)
-  return f
-end
-
 -- The branches of a Tree: where along the stem, their frames before the stem bends.
 local function branchplan (inst, nb)
-  local p, ctx = inst.proto, inst.ctx
-  local first, last = value(inst, p, "first", ctx), value(inst, p, "last", ctx)
-  local dens = value(inst, p, "density", ctx)
-  local div = value(inst, p, "divergence", ctx)
+  local p, i, n = inst.proto, inst.i, inst.n
+  local first, last = get(inst, p, "first", i, n), get(inst, p, "last", i, n)
+  local dens = get(inst, p, "density", i, n)
+  local div = get(inst, p, "divergence", i, n)
+  local pc = pcache(p)
+  get(inst, p, "angle", 1, nb)
+  get(inst, p, "branch_scale", 1, nb)
+  local callang, callsc = pc.how.angle == CALL, pc.how.branch_scale == CALL
   local out = {}
   for b = 1, nb do
     local t = nb > 1 and (b - 1) / (nb - 1) or 0
     if dens ~= 1 then t = t ^ dens end
-    local bctx = { i = b, n = nb, depth = ctx.depth, random = ctx.random, u = nil }
     local u = first + (last - first) * t
-    bctx.u = u
-    out[b] = { u = u, roll = div * (b - 1), ctx = bctx,
-               angle = value(inst, p, "angle", bctx),
-               scale = value(inst, p, "branch_scale", bctx) }
+    local br = { u = u, roll = div * (b - 1), i = b, n = nb }
+    if callang or callsc then
+      br.ctx = { i = b, n = nb, depth = inst.depth, random = inst.ctx.random, u = u }
+    end
+    br.angle = callang and value(inst, p, "angle", br.ctx) or get(inst, p, "angle", b, nb)
+    br.scale = callsc and value(inst, p, "branch_scale", br.ctx) or
+               get(inst, p, "branch_scale", b, nb)
+    out[b] = br
   end
   return out
 end
@@ -292,9 +423,12 @@ end
 local Expander = {}
 Expander.__index = Expander
 
-function Expander:add (proto, frame, ctx, parent, ltype)
+-- A new instance of proto at `frame` (its parent's; `fresh`: a table made for it alone,
+-- which the instance may keep), iteration i of n, u along a Tree's stem.
+function Expander:add (proto, frame, fresh, i, n, u, parent, ltype)
   local list = self.list
-  if #list >= self.max then
+  local index = #list + 1
+  if index > self.max then
     error(format("lsys.components: the graph makes more than %d instances (at %s/%s); " ..
                  "raise max_instances or lower a count", self.max,
                  parent and parent.path or "", proto.name or proto.kind), 0)
@@ -302,20 +436,21 @@ function Expander:add (proto, frame, ctx, parent, ltype)
   local on = self.onpath
   local depth = (on[proto] or 0) + 1
   local label = proto.name or proto.kind
-  self.seq[label] = (self.seq[label] or 0) + 1
-  local inst = { index = #list + 1, proto = proto, kind = proto.kind, name = proto.name,
-                 parent = parent and parent.index, children = {}, link = ltype,
-                 i = ctx.i or 1, n = ctx.n or 1, depth = depth,
-                 path = (parent and parent.path .. "/" or "") .. label .. "#" ..
-                        self.seq[label] }
-  inst.ctx = { i = inst.i, n = inst.n, depth = depth, random = self.random }
-  inst.u = ctx.u                     -- a tree's branch: where along the parent's stem
-  inst.world = parent and parent.world or self.world
-  list[#list + 1] = inst
-  self.bypath[inst.path] = inst
-  if parent then parent.children[#parent.children + 1] = inst.index end
+  local seq = (self.seq[label] or 0) + 1
+  self.seq[label] = seq
+  local inst = setmetatable({ index = index, proto = proto, kind = proto.kind,
+                              name = proto.name, parent = parent and parent.index,
+                              link = ltype, i = i, n = n, depth = depth, label = label,
+                              seq = seq, u = u, world = parent and parent.world or self.world },
+                            self.meta)
+  list[index] = inst
+  if parent then
+    local ch = rawget(parent, "children")
+    if ch == nil then ch = {} parent.children = ch end
+    ch[#ch + 1] = index
+  end
   on[proto] = depth
-  self:build(inst, frame)
+  self:build(inst, frame, fresh)
   on[proto] = depth > 1 and depth - 1 or nil
   return inst
 end
@@ -326,29 +461,59 @@ local function hasbranches (p)
   return false
 end
 
--- The instance's own frame, its geometry's skeleton, and its children.
-function Expander:build (inst, frame)
-  local p, ctx = inst.proto, inst.ctx
-  local params = {}
-  for _, k in ipairs { "translate", "rotate", "scale", "size" } do
-    params[k] = value(inst, p, k, ctx)
+local BASICS = { "translate", "rotate", "scale", "size" }
+
+-- The basic parameters of an instance; one shared table when all four are constants.
+local function basics (inst, p)
+  local pc = pcache(p)
+  local shared = pc.params
+  if shared ~= nil then return shared end
+  local params, const = {}, true
+  for _, k in ipairs(BASICS) do
+    params[k] = get(inst, p, k, inst.i, inst.n)
+    if pc.how[k] ~= CONST then const = false end
   end
+  if const then
+    local t, r = params.translate, params.rotate
+    pc.identity = t[1] == 0 and t[2] == 0 and t[3] == 0 and r[1] == 0 and r[2] == 0 and
+                  r[3] == 0 and params.scale == 1
+    pc.params = params
+  end
+  return params
+end
+
+-- The World's settings over its parent's.
+local function worldof (inst, p)
+  local w = {}
+  for k, v in pairs(inst.world) do w[k] = v end
+  for _, k in ipairs { "gravity", "light", "cylinder", "wind" } do
+    if p.params[k] ~= nil then w[k] = W.check(inst, k, p.params[k]) end
+  end
+  return w
+end
+
+-- The instance's own frame, its geometry's skeleton, and its children.
+function Expander:build (inst, frame, fresh)
+  local p = inst.proto
+  local params = basics(inst, p)
   inst.params = params
-  local f = transform(frame, params.translate, params.rotate, params.scale)
+  local f
+  if pcache(p).identity then
+    f = fresh and frame or copyframe(frame)
+  else
+    f = transform(frame, params.translate, params.rotate, params.scale)
+  end
   inst.frame = f
   local kind = p.kind
-  if kind == "world" then
-    local w = {}
-    for k, v in pairs(inst.world) do w[k] = v end
-    for _, k in ipairs { "gravity", "light", "cylinder", "wind" } do
-      if p.params[k] ~= nil then w[k] = p.params[k] end
-    end
-    inst.world = w
+  if kind == "world" then inst.world = worldof(inst, p)
+  elseif kind == "leaf" then
+    inst.length = get(inst, p, "length", inst.i, inst.n)        -- sets the tip
+    local e = get(inst, p, "phototropism", inst.i, inst.n)
+    if e ~= 0 then W.leafturn(f, inst.world.light, e) end
   end
-  local tip = f
   local branches
   if kind == "horn" or kind == "tree" then
-    local len = value(inst, p, "length", ctx)
+    local len = get(inst, p, "length", inst.i, inst.n)
     local segs = p:param("segments")
     if segs < 1 or segs > 100000 then
       efail(inst, "segments", "must be from 1 to 100000, got %s", tostring(segs))
@@ -357,32 +522,20 @@ function Expander:build (inst, frame)
     local plan
     if nb > 0 and hasbranches(p) then
       plan = branchplan(inst, nb)
+      local R = right(f)
       for _, b in ipairs(plan) do
-        b.dir = rotate(right(f), f.H, b.roll)     -- roughly where it will point
+        b.dir = rotate(R, f.H, b.roll)     -- roughly where it will point
       end
     end
     inst.stem = stem(self, inst, f, len, segs, plan)
     inst.length = len
-    tip = inst.stem[#inst.stem]
     branches = plan
-  elseif kind == "leaf" then
-    local len = value(inst, p, "length", ctx)
-    tip = copyframe(f)
-    tip.p = add(f.p, f.H, len * f.s)
-  elseif kind == "revo" then
-    local prof = p:param("profile")
-    tip = copyframe(f)
-    tip.p = add(f.p, f.H, (prof[#prof][2] - prof[1][2]) * params.size[2] * f.s)
-  elseif p.params.primitive ~= nil or kind == "simple" then
-    local prim = p:param("primitive")
-    if prim ~= "none" then
-      tip = copyframe(f)
-      tip.p = add(f.p, f.H, params.size[2] * f.s)
-    end
   end
-  inst.tip = tip
+  local links = p.links
+  if #links == 0 then return end
+  local tip = inst.tip
   local ends = not self:recurses(inst)
-  for _, l in ipairs(p.links) do
+  for _, l in ipairs(links) do
     self:follow(inst, l, tip, branches, ends)
   end
 end
@@ -395,6 +548,40 @@ function Expander:recurses (inst)
   return (self.onpath[p] or 0) < p.recursion
 end
 
+-- A Tree's branches on link l: the stem frame at u (position between the stem frames,
+-- orientation of the one below), rolled by the divergence about H and pitched down by the
+-- branching angle about the right axis (H' = H cos a + U' sin a, U'' = U' cos a - H sin a).
+function Expander:branches (inst, l, branches)
+  local st = inst.stem
+  local ns = #st - 1
+  local nb = #branches
+  local target = l.to
+  for b = 1, nb do
+    local br = branches[b]
+    if allowed(inst, l, b, nb) then
+      local x = br.u * ns
+      local k = floor(x)
+      if k >= ns then k = ns - 1 end
+      if k < 0 then k = 0 end
+      local A, B, t = st[k + 1], st[k + 2], x - k
+      local ap, bp, H, U = A.p, B.p, A.H, A.U
+      local L1, L2, L3 = H[2] * U[3] - H[3] * U[2], H[3] * U[1] - H[1] * U[3],
+                         H[1] * U[2] - H[2] * U[1]
+      local r = rad(br.roll)
+      local c, s = cos(r), sin(r)
+      local U1, U2, U3 = U[1] * c + L1 * s, U[2] * c + L2 * s, U[3] * c + L3 * s
+      local a = rad(br.angle)
+      c, s = cos(a), sin(a)
+      local f = { p = { ap[1] + t * (bp[1] - ap[1]), ap[2] + t * (bp[2] - ap[2]),
+                        ap[3] + t * (bp[3] - ap[3]) },
+                  H = { H[1] * c + U1 * s, H[2] * c + U2 * s, H[3] * c + U3 * s },
+                  U = { U1 * c - H[1] * s, U2 * c - H[2] * s, U3 * c - H[3] * s },
+                  s = A.s * br.scale }
+      self:add(target, f, true, b, nb, br.u, inst, "branch")
+    end
+  end
+end
+
 function Expander:follow (inst, l, tip, branches, ends)
   local target = l.to
   local on = self.onpath[target]
@@ -404,19 +591,9 @@ function Expander:follow (inst, l, tip, branches, ends)
   if C.MULTIPLIERS[kind] and l.type ~= "leaf" then
     self:multiply(inst, l)
   elseif kind == "tree" and l.type == "branch" then
-    local nb = #(branches or {})
-    for b, br in ipairs(branches or {}) do
-      if allowed(inst, l, b, nb) then
-        local f = stemframe(inst.stem, br.u)
-        f.U = rotate(f.U, f.H, br.roll)
-        local ax = right(f)
-        f.H, f.U = rotate(f.H, ax, -br.angle), rotate(f.U, ax, -br.angle)
-        f.s = f.s * br.scale
-        self:add(target, f, br.ctx, inst, "branch")
-      end
-    end
+    if branches then self:branches(inst, l, branches) end
   else
-    self:add(target, tip, { i = inst.i, n = inst.n }, inst, l.type)
+    self:add(target, tip, false, inst.i, inst.n, nil, inst, l.type)
   end
 end
 
@@ -456,7 +633,7 @@ function Expander:multiply (inst, l)
     if allowed(inst, l, i, n) then
       local g = { p = add(f.p, world(k.pos), f.s), H = world(k.H), U = world(k.U),
                   s = f.s * (sizes and sizes[i] or 1) }
-      self:add(l.to, g, { i = i, n = n }, inst, l.type)
+      self:add(l.to, g, true, i, n, nil, inst, l.type)
     end
   end
 end
@@ -505,13 +682,16 @@ function M.expand (root, opts)
   end
   checkcycles(root)
   local ex = setmetatable({
-    list = {}, bypath = {}, onpath = {}, seq = {}, max = max,
+    list = {}, onpath = {}, seq = {}, max = max,
     random = generator(opts.seed or 1),
     world = { gravity = { 0, -1, 0 }, light = { 0, 1, 0 } },
   }, Expander)
+  ex.meta = instmeta(ex)
   local f = opts.frame or { p = { 0, 0, 0 }, H = { 0, 1, 0 }, U = { 0, 0, -1 }, s = 1 }
-  ex:add(root, copyframe(f), { i = 1, n = 1 }, nil, "root")
-  return setmetatable({ list = ex.list, bypath = ex.bypath, root = root }, Tree)
+  ex:add(root, copyframe(f), true, 1, 1, nil, nil, "root")
+  local tree = setmetatable({ list = ex.list, root = root }, Tree)
+  W.skeleton(tree)
+  return tree
 end
 
 return M
