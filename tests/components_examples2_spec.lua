@@ -169,8 +169,8 @@ describe("the philodendron (fig. 9b)", function()
   local M = dofile(DIR .. "philodendron.lua")
   local t = M.components.tree
 
-  it("is a World over a pot, a stick and a stem with 16 cordate leaves", function()
-    assert.same({ world = 1, pot = 1, soil = 1, stick = 1, stem = 1, petiole = 16, leaf = 16 },
+  it("is a World over a pot, a stick and a stem with 20 cordate leaves", function()
+    assert.same({ world = 1, pot = 1, soil = 1, stick = 1, stem = 1, petiole = 20, leaf = 20 },
                 counts(t, { "world", "pot", "soil", "stick", "stem", "petiole", "leaf" }))
     local w = t:find("world#1")
     local cyl = w.world.cylinder

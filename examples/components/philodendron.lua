@@ -5,7 +5,7 @@
 -- with strength 0.3. Under the World: a pot (a Revo), the stick (a Simple cylinder) and the
 -- climbing stem, a Tree whose branches are petioles (Horns) carrying heart-shaped leaves.
 --
---   1 world, 1 pot, 1 stick, 1 stem, 16 petioles, 16 leaves.
+--   1 world, 1 pot, 1 stick, 1 stem, 20 petioles, 20 leaves.
 local lsys = require "lsys"
 local C = lsys.components
 
@@ -35,8 +35,8 @@ local function philodendron (opts)
   local petiole = C.horn { name = "petiole", length = 0.45, radius = 0.015, tip = 0.7,
                            segments = 4, curvature = -40, color = 3 }
   petiole:child(leaf)
-  local stem = C.tree { name = "stem", length = 5.6, radius = 0.035, tip = 0.6,
-                        segments = 64, n = opts.leaves or 16, first = 0.12, last = 0.97,
+  local stem = C.tree { name = "stem", length = 8.5, radius = 0.035, tip = 0.6,
+                        segments = 96, n = opts.leaves or 20, first = 0.12, last = 0.97,
                         angle = { 55, 40 }, divergence = 180, translate = { 0.3, POT - 0.05, 0 },
                         color = 3 }
   stem:branch(petiole)
