@@ -296,6 +296,19 @@ local PICTURES = {
   { "components/agave.lua", nil, "Fig. 8, agave",
     "34 leaves on a Phiball whose length and bend are ranges over i plus a seeded random "
     .. "offset: the upright leaves are shorter and less bent.", width = 320, height = 320 },
+  { "components/chestnut.lua", nil, "Fig. 6, chestnut",
+    "A cascade of four Trees (trunk, branches, sub-branches, twigs) carrying 7,488 palmate "
+    .. "leaves of 7 textured leaflets (52,416 Leaf instances); bark-textured stems.",
+    width = 320, height = 320 },
+  { "components/willow.lua", nil, "Fig. 9a, weeping willow",
+    "336 long, thin twigs that a strong gravitropism turns straight down, with 8,064 narrow "
+    .. "leaves.", width = 320, height = 320 },
+  { "components/philodendron.lua", nil, "Fig. 9b, philodendron",
+    "A World's cylindrical tropism winds the stem around a stick (radius 0.3, pitch 30°); "
+    .. "heart-shaped leaves on petioles, a Revo pot.", width = 320, height = 320 },
+  { "components/pine.lua", nil, "Fig. 10b, pine",
+    "A Hyperpatch bends the trunk and twigs; an isolating FFD above each needle pair keeps "
+    .. "the needles undeformed.", width = 320, height = 320 },
 }
 
 local function load (file, name)
