@@ -134,6 +134,7 @@ describe("#gl the viewer on a component graph", function()
 local lsys = require "lsys"
 local V = require "lsys.viewer"
 local R = require "lsys.repl"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 local plant = dofile(arg[1])
 local picked
 lsys.show(plant, { width = 300, height = 300, title = "pick plant", status = false,
