@@ -329,9 +329,15 @@ describe("rendering #gl", function()
         "lsys.render: cannot open '" .. path .. "' for writing")
     end)
 
-    it("wants a Scene or a Model", function()
+    it("wants a Scene, a Model or a component prototype", function()
       assert.has_error(function() lsys.render("F", {}) end,
-        "lsys.render: a Scene or a Model expected")
+        "lsys.render: a Scene, a Model or a component prototype expected")
+      -- a component graph's root is drawn as C.model(root) draws it
+      local C = lsys.components
+      local root = C.simple { primitive = "sphere" }
+      local a = lsys.render(root, { width = 16, height = 16 })
+      local b = lsys.render(C.model(root), { width = 16, height = 16 })
+      assert.equal(b, a)
     end)
   end)
 

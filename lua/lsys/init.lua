@@ -125,8 +125,13 @@ local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom
 function M.render (x, opts)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", 2) end
+  if type(x) == "table" and x.links ~= nil and M.components.isproto(x) then
+    x = M.components.model(x)                     -- a component graph's root
+  end
   if model.ismodel(x) then x = x:interpret() end
-  if not model.isscene(x) then error("lsys.render: a Scene or a Model expected", 2) end
+  if not model.isscene(x) then
+    error("lsys.render: a Scene, a Model or a component prototype expected", 2)
+  end
   local over = {}
   for k, val in pairs(opts.view or {}) do over[k] = val end
   for k, val in pairs(opts) do

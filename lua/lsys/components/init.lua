@@ -38,6 +38,12 @@ function M.model (root, opts) return require("lsys.components.model").model(root
 --- The scene of the component graph at `root`: M.model(root, opts):interpret().
 function M.scene (root, opts) return M.model(root, opts):interpret() end
 
+--- Puts component plants into an L-system: each module `P(s)` of `model`'s derived string
+-- becomes the plant `plants.P` scaled by s (lsys.components.mix.place).
+function M.place (model, plants, opts)
+  return require("lsys.components.mix").place(model, plants, opts)
+end
+
 --- The i-tree of this prototype: lsys.components.expand(self, opts).
 function proto.Proto:expand (opts) return expand.expand(self, opts) end
 
