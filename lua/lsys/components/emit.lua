@@ -110,18 +110,19 @@ end
 local function q2 (x) return floor(x * 50 + 0.5) / 50 end     -- 0.02 steps
 
 -- The organ surface of a leaf instance's shape (cached by the quantized parameters).
-local function leafsurface (p, width, len, lateral, longitudinal)
+local function leafsurface (p, width, len, lateral, longitudinal, detail)
   local outline = p:param("outline")
   local ratio = q2(width / len)
   if ratio <= 0 then ratio = 0.02 end
-  local key = format("%s|%s|%g|%g|%g", outline and tostring(outline) or p:param("shape"),
-                     "", ratio, q2(lateral), q2(longitudinal))
+  local key = format("%s|%d|%g|%g|%g", outline and tostring(outline) or p:param("shape"),
+                     detail, ratio, q2(lateral), q2(longitudinal))
   local s = leafcache[key]
   if s then return s, key end
   local organ = require "lsys.sketch.organ"
   local o = {
     shape = outline == nil and p:param("shape") or nil, outline = outline,
-    curl = q2(longitudinal), name = "leaf", resolution = { 2, 2 }, precision = { 3, 3 },
+    curl = q2(longitudinal), name = "leaf", resolution = { 2, 2 },
+    precision = { detail, detail + 1 },
     section = lateral ~= 0 and "cup" or nil, depth = lateral ~= 0 and q2(lateral) or nil,
   }
   if outline == nil then
@@ -355,6 +356,17 @@ local function branchkids (tree, inst)
   return along, tip
 end
 
+-- The strips of a generalized cylinder's segment from stem frame a to b: one where the
+-- stem runs straight, one more for each 15 / detail degrees it turns (at most 4 x detail).
+local function strips (w, a, b)
+  local c = a.H[1] * b.H[1] + a.H[2] * b.H[2] + a.H[3] * b.H[3]
+  if c > 0.99996 then return 1 end                     -- within about half a degree
+  if c < -1 then c = -1 end
+  local d = w.detail
+  local n = math.ceil(deg(math.acos(c)) * d / 15)
+  return n < 1 and 1 or n > 4 * d and 4 * d or n
+end
+
 -- A Horn's or Tree's stem: the primitive along the stem frames, branches where they grow.
 local function stem (w, tree, inst, T)
   local st = inst.stem
@@ -395,7 +407,7 @@ local function stem (w, tree, inst, T)
     T.p = b.p
     if tube then
       op1(w, "#", 2 * s * radius(inst, b.u))
-      op1(w, j == segs and "@Ge" or "@Gc", 4)
+      op1(w, j == segs and "@Ge" or "@Gc", strips(w, a, b))
     elseif prim ~= "none" and not drawn then
       local r = 2 * s * radius(inst, b.u)
       primitive(w, T, inst, prim, r, r, r)
@@ -426,7 +438,7 @@ local function leafname (w, inst)
   local p = inst.proto
   local len = inst.length or X.get(inst, "length")
   local surf, key = leafsurface(p, X.get(inst, "width"), len, X.get(inst, "lateral"),
-                                X.get(inst, "longitudinal"))
+                                X.get(inst, "longitudinal"), w.detail)
   local tex = p:param("texture")
   local entry = {}
   if tex and tex ~= 0 then
@@ -520,11 +532,17 @@ end
 
 -- }=========================================================================================
 
---- Emits the i-tree `tree` (lsys.components.expand) with `rules` (a model's lsys.Rules):
+-- How finely leaves are drawn by default: each leaf is 2 x 2 bicubic patches of
+-- `detail` x (`detail` + 1) quads, 16 triangles at 1 (the model option `detail`).
+M.DETAIL = 1
+
+--- Emits the i-tree `tree` (lsys.components.expand) with `rules` (a model's lsys.Rules) and
+-- the leaves' `detail` (M.DETAIL):
 -- returns { lstring =, owner = (module index -> instance index), surfaces = (view
 -- surfaces), post = (scales of primitives), deformers = (FFD and Hyperpatch instances) }.
-function M.emit (tree, rules)
+function M.emit (tree, rules, detail)
   local w = newwriter(rules)
+  w.detail = detail or M.DETAIL
   local T = { p = { 0, 0, 0 }, H = { 0, 1, 0 }, U = { 0, 0, -1 } }
   emit(w, tree, tree.list[1], T)
   local s = rules:build(w.codes, w.vals, w.nc)

@@ -178,11 +178,13 @@ local function finish (out, scene)
   end
 end
 
-local OPTS = { seed = true, max_instances = true, view = true, name = true }
+local OPTS = { seed = true, max_instances = true, view = true, name = true, detail = true }
 
 --- The component graph at `root` as an lsys model. opts: `seed`, `max_instances` (as
 -- expand), `view` (fields over the component view: a cylinder line style, 12-sided
--- tubes), `name`. The model derives the plant's Lstring in 0 steps; `m.components` holds
+-- tubes), `name`, `detail` (how finely leaves are drawn: 1, the default, 16 triangles a
+-- leaf; n: 2 x 2 patches of n x (n + 1) quads). The model derives the plant's Lstring in
+-- 0 steps; `m.components` holds
 -- { tree = the i-tree, owner = module index -> instance index, instance(i) = the
 -- instance that drew module i }.
 function M.model (root, opts)
@@ -200,6 +202,12 @@ function M.model (root, opts)
                    concat(known, ", ")), 2)
     end
   end
+  local detail = opts.detail
+  if detail ~= nil and (not C.isnum(detail) or detail ~= math.floor(detail) or detail < 1 or
+                        detail > 16) then
+    error(format("lsys.components.model: 'detail' must be a whole number from 1 to 16, got %s",
+                 tostring(detail)), 2)
+  end
   local tree = X.expand(root, { seed = opts.seed, max_instances = opts.max_instances })
   local out
   local m = lmodel.lsystem {
@@ -210,7 +218,7 @@ function M.model (root, opts)
       if #s == #out.lstring then finish(out, scene) end
     end,
   }
-  out = E.emit(tree, m._rules)
+  out = E.emit(tree, m._rules, detail)
   local v = m.view
   v.surfaces = v.surfaces or {}
   for c, entry in pairs(out.surfaces) do v.surfaces[c] = entry end
