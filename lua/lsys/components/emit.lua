@@ -356,17 +356,6 @@ local function branchkids (tree, inst)
   return along, tip
 end
 
--- The strips of a generalized cylinder's segment from stem frame a to b: one where the
--- stem runs straight, one more for each 15 / detail degrees it turns (at most 4 x detail).
-local function strips (w, a, b)
-  local c = a.H[1] * b.H[1] + a.H[2] * b.H[2] + a.H[3] * b.H[3]
-  if c > 0.99996 then return 1 end                     -- within about half a degree
-  if c < -1 then c = -1 end
-  local d = w.detail
-  local n = math.ceil(deg(math.acos(c)) * d / 15)
-  return n < 1 and 1 or n > 4 * d and 4 * d or n
-end
-
 -- A Horn's or Tree's stem: the primitive along the stem frames, branches where they grow.
 local function stem (w, tree, inst, T)
   local st = inst.stem
@@ -407,7 +396,7 @@ local function stem (w, tree, inst, T)
     T.p = b.p
     if tube then
       op1(w, "#", 2 * s * radius(inst, b.u))
-      op1(w, j == segs and "@Ge" or "@Gc", strips(w, a, b))
+      op1(w, j == segs and "@Ge" or "@Gc", 4)
     elseif prim ~= "none" and not drawn then
       local r = 2 * s * radius(inst, b.u)
       primitive(w, T, inst, prim, r, r, r)
