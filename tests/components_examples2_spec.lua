@@ -266,7 +266,9 @@ describe("the pine with a partial FFD (fig. 10)", function()
     end
     assert.is_true(moved > 0.2, "the twigs moved by " .. moved)
     -- needles: the same shape as undeformed (every distance from a needle's first vertex
-    -- kept to 1e-9), under the isolating FFD; without it ("all") the bend changes them
+    -- kept to 1e-5: the scene keeps vertices as floats, and the needles are moved rigidly
+    -- with their bent twigs), under the isolating FFD; without it ("all") the bend changes
+    -- them
     local nb, nf, na = byname(bent, "needle"), byname(flat, "needle"), byname(all, "needle")
     assert.equal(4 * 2 * 3 * 2, #nb)
     local worst_kept, worst_all = 0, 0
@@ -280,7 +282,7 @@ describe("the pine with a partial FFD (fig. 10)", function()
         worst_all = math.max(worst_all, math.abs(dist(c[j], c[1]) - d0))
       end
     end
-    assert.is_true(worst_kept < 1e-9, "an isolated needle changed shape by " .. worst_kept)
+    assert.is_true(worst_kept < 1e-5, "an isolated needle changed shape by " .. worst_kept)
     assert.is_true(worst_all > 1e-4, "the bend of the whole tree changes the needles")
   end)
 

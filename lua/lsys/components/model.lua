@@ -9,13 +9,13 @@
 local C = require "lsys.components.proto"
 local X = require "lsys.components.expand"
 local E = require "lsys.components.emit"
+local W = require "lsys.components.world"
 local lmodel = require "lsys.model"
-local core = require "lsys.core"
 
 local type, pairs, ipairs, error, tostring, pcall, math, string, table =
       type, pairs, ipairs, error, tostring, pcall, math, string, table
 local format, concat = string.format, table.concat
-local huge = math.huge
+local huge, sqrt = math.huge, math.sqrt
 local right, front, dot = X.right, X.front, X.dot
 local _ENV = nil
 
@@ -52,24 +52,27 @@ local function scaling (f, sx, sy, sz)
   return m
 end
 
--- The module ranges of a deformer's subtree, less those of deformers below it that
--- switch off the deformations above them (`isolate`).
-local function pieces (inst, deformers)
-  local out = { { inst.modules[1], inst.modules[2] } }
-  for _, d in ipairs(deformers) do
-    if d ~= inst and d.proto:param("isolate") and d.modules[1] > inst.modules[1] and
-       d.modules[2] <= inst.modules[2] then
-      local nxt = {}
-      for _, r in ipairs(out) do
-        if d.modules[2] < r[1] or d.modules[1] > r[2] then nxt[#nxt + 1] = r
-        else
-          if d.modules[1] > r[1] then nxt[#nxt + 1] = { r[1], d.modules[1] - 1 } end
-          if d.modules[2] < r[2] then nxt[#nxt + 1] = { d.modules[2] + 1, r[2] } end
-        end
-      end
-      out = nxt
+-- The isolated deformers (`isolate = true`) outermost in the subtree of `inst`: the
+-- subtrees its deformation leaves out; `iso` is every isolated deformer sorted by m0.
+local function isolated (inst, iso)
+  local out, last = {}, -1
+  for _, d in ipairs(iso) do
+    if d.m0 > inst.m0 and d.m1 <= inst.m1 and d.m0 > last then
+      out[#out + 1] = d
+      last = d.m1
     end
   end
+  return out
+end
+
+-- The module ranges of inst's subtree less the isolated subtrees (sorted, disjoint).
+local function pieces (inst, holes)
+  local out, at = {}, inst.m0
+  for _, d in ipairs(holes) do
+    if d.m0 > at then out[#out + 1] = { at, d.m0 - 1 } end
+    at = d.m1 + 1
+  end
+  if at <= inst.m1 then out[#out + 1] = { at, inst.m1 } end
   return out
 end
 
@@ -80,79 +83,45 @@ local function tolocal (f, x, y, z)
   return dot(d, R) / f.s, dot(d, f.H) / f.s, dot(d, F) / f.s
 end
 
-local function dfail (inst, fmt, ...)
-  error(format("lsys.components: %s (at %s): " .. fmt, C.who(inst.proto), inst.path, ...), 0)
+local function unit (a)
+  local l = sqrt(dot(a, a))
+  return { a[1] / l, a[2] / l, a[3] / l }
 end
 
--- The Hyperpatch of a deformer instance, in world coordinates: its `box` ({origin =,
--- size =} in its local coordinates) or the box around what its subtree drew.
-local function hyperpatch (inst, scene, ranges)
-  local p, f = inst.proto, inst.frame
-  local box = p:param("box")
-  local o, sz
-  if box ~= nil then
-    if type(box) ~= "table" or type(box.origin) ~= "table" or type(box.size) ~= "table" then
-      dfail(inst, "'box' must be { origin = {x, y, z}, size = {x, y, z} }")
-    end
-    o, sz = box.origin, box.size
-  else
-    local lo, hi = { huge, huge, huge }, { -huge, -huge, -huge }
-    for _, r in ipairs(ranges) do
-      local v0, v1 = scene:module_range(r[1], r[2])
-      for i = v0 or 1, v0 and v1 or 0 do
-        local q = { tolocal(f, scene:vertex(i)) }
-        for k = 1, 3 do
-          if q[k] < lo[k] then lo[k] = q[k] end
-          if q[k] > hi[k] then hi[k] = q[k] end
-        end
-      end
-    end
-    if lo[1] == huge then return nil end
-    o, sz = lo, {}
-    for k = 1, 3 do
-      sz[k] = hi[k] - lo[k]
-      if sz[k] < 1e-9 then sz[k] = 1e-3 o[k] = o[k] - 5e-4 end
-    end
+-- The rigid motion that carries frame f along the map (its position mapped, its axes turned
+-- as the map turns the heading and up there): 3 x 4 rows for scene:transform. The article's
+-- isolated subtree (the pine's needles) follows the deformed skeleton undeformed.
+local function follow (map, f)
+  local e = 1e-4 * (f.s > 0 and f.s or 1)
+  local function mp (v, k)
+    local x, y, z = map(f.p[1] + k * v[1], f.p[2] + k * v[2], f.p[3] + k * v[3])
+    return { x, y, z }
   end
-  local R, F = right(f), front(f)
-  local s = f.s
-  local function w (v, k) return { v[1] * k * s, v[2] * k * s, v[3] * k * s } end
-  local origin = X.topoint(f, o[1], o[2], o[3])
-  local deg = p:param("degree")
-  if type(deg) == "number" then deg = { deg, deg, deg } end
-  local ok, hp = pcall(core.hyperpatch, { degree = deg, origin = origin,
-                                          axes = { w(R, sz[1]), w(f.H, sz[2]),
-                                                   w(F, sz[3]) } })
-  if not ok then dfail(inst, "%s", tostring(hp):gsub("^[^:]*: ", "")) end
-  for k, mv in ipairs(p:param("moves")) do
-    if type(mv) ~= "table" or #mv ~= 6 then
-      dfail(inst, "'moves[%d]' must be {i, j, k, dx, dy, dz}", k)
+  local o = mp(f.H, 0)
+  local h1, h0, u1, u0 = mp(f.H, e), mp(f.H, -e), mp(f.U, e), mp(f.U, -e)
+  local H = unit { h1[1] - h0[1], h1[2] - h0[2], h1[3] - h0[3] }
+  local U = { u1[1] - u0[1], u1[2] - u0[2], u1[3] - u0[3] }
+  local k = dot(U, H)
+  U = unit { U[1] - k * H[1], U[2] - k * H[2], U[3] - k * H[3] }
+  local g = { p = o, H = H, U = U, s = 1 }
+  local B, B2 = { right(f), f.H, front(f) }, { right(g), H, front(g) }
+  local m = {}
+  for i = 1, 3 do
+    m[i] = {}
+    for j = 1, 3 do
+      m[i][j] = B2[1][i] * B[1][j] + B2[2][i] * B[2][j] + B2[3][i] * B[3][j]
     end
-    local ok2, x, y, z = pcall(hp.point, hp, mv[1], mv[2], mv[3])
-    if not ok2 then dfail(inst, "'moves[%d]': %s", k, tostring(x)) end
-    local d = X.topoint({ p = { 0, 0, 0 }, H = f.H, U = f.U, s = s }, mv[4], mv[5], mv[6])
-    hp:set(mv[1], mv[2], mv[3], x + d[1], y + d[2], z + d[3])
+    m[i][4] = o[i] - (m[i][1] * f.p[1] + m[i][2] * f.p[2] + m[i][3] * f.p[3])
   end
-  return hp
+  return m
 end
 
--- The FFD of a deformer instance by its functions fx, fy, fz of the local coordinates.
-local function ffdfunction (inst)
-  local p, f = inst.proto, inst.frame
-  local fx, fy, fz = p:param("fx"), p:param("fy"), p:param("fz")
-  for k, fn in pairs { fx = fx, fy = fy, fz = fz } do
-    if fn ~= nil and type(fn) ~= "function" then
-      dfail(inst, "'%s' must be a function (x, y, z) -> number", k)
-    end
-  end
-  return function (x, y, z)
-    local a, b, c = tolocal(f, x, y, z)
-    local a2 = fx and fx(a, b, c) or a
-    local b2 = fy and fy(a, b, c) or b
-    local c2 = fz and fz(a, b, c) or c
-    local q = X.topoint(f, a2, b2, c2)
-    return q[1], q[2], q[3]
-  end
+-- Does the deformer change anything? (An FFD without functions only isolates.)
+local function active (inst)
+  local p = inst.proto
+  if p:param("mode") ~= "all" then return false end
+  return inst.kind == "hyperpatch" or p:param("fx") ~= nil or p:param("fy") ~= nil or
+         p:param("fz") ~= nil
 end
 
 -- Finishes the scene the turtle drew from the emitted string.
@@ -161,17 +130,39 @@ local function finish (out, scene)
     local m = scaling(t.frame, t.sx, t.sy, t.sz)
     scene:transform(m, { modules = { t.m0, t.m1 } })
   end
-  local ds = out.deformers
-  for k = #ds, 1, -1 do                        -- the deepest first
-    local inst = ds[k]
-    if inst.proto:param("mode") == "all" then
-      local ranges = pieces(inst, ds)
-      local map = inst.kind == "hyperpatch" and hyperpatch(inst, scene, ranges) or
-                  ffdfunction(inst)
+  local ds, iso = out.deformers, {}
+  for _, d in ipairs(ds) do if d.proto:param("isolate") then iso[#iso + 1] = d end end
+  table.sort(iso, function (a, b) return a.m0 < b.m0 end)
+  for _, inst in ipairs(ds) do                 -- the emitter lists them deepest first
+    if active(inst) then
+      local holes = isolated(inst, iso)
+      local ranges = pieces(inst, holes)
+      local map = W.map(inst, function ()
+        local lo, hi = { huge, huge, huge }, { -huge, -huge, -huge }
+        for _, r in ipairs(ranges) do
+          local v0, v1 = scene:module_range(r[1], r[2])
+          for i = v0 or 1, v0 and v1 or 0 do
+            local q = { tolocal(inst.frame, scene:vertex(i)) }
+            for k = 1, 3 do
+              if q[k] < lo[k] then lo[k] = q[k] end
+              if q[k] > hi[k] then hi[k] = q[k] end
+            end
+          end
+        end
+        if lo[1] == huge then return nil end
+        return lo, hi
+      end)
       if map ~= nil then
+        local fn = map
+        if type(map) ~= "function" then fn = function (x, y, z) return map:map(x, y, z) end end
         for _, r in ipairs(ranges) do
           local ok, msg = pcall(scene.deform, scene, map, { modules = r })
-          if not ok then dfail(inst, "%s", tostring(msg)) end
+          if not ok then W.dfail(inst, "%s", tostring(msg)) end
+        end
+        for _, d in ipairs(holes) do
+          local ok, m = pcall(follow, fn, d.frame)
+          if not ok then W.dfail(inst, "%s", tostring(m)) end
+          scene:transform(m, { modules = { d.m0, d.m1 } })
         end
       end
     end
