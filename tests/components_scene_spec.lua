@@ -223,6 +223,50 @@ describe("lsys.components geometry", function ()
     assert.is_true(kept >= 1)
   end)
 
+  it("moves an isolated subtree rigidly with the deformation above it", function ()
+    local function plant (shear)
+      local leaf = C.leaf { name = "leaf", length = 0.5 }
+      local keep = C.ffd { name = "keep", isolate = true }
+      keep:child(leaf)
+      local stem = C.horn { length = 2, segments = 4 }
+      stem:child(keep)
+      local ffd = C.ffd { fx = function (x, y) return x + shear * y end }
+      ffd:child(stem)
+      local m = C.model(ffd)
+      return m, m:interpret()
+    end
+    local function verts (m, scene)
+      local k = m.components.tree:find("ffd#1/horn#1/keep#1")
+      local v0, v1 = scene:module_range(k.m0, k.m1)
+      local out = {}
+      for i = v0, v1 do out[#out + 1] = { scene:vertex(i) } end
+      return out
+    end
+    local m0, s0 = plant(0)
+    local m1, s1 = plant(0.5)
+    local a, b = verts(m0, s0), verts(m1, s1)
+    assert.equal(#a, #b)
+    assert.is_true(#a > 4)
+    -- the leaf's base, on the stem's tip (0, 2, 0), goes where the shear takes it: (1, 2, 0)
+    local function nearest (vs, q)
+      local d = math.huge
+      for _, v in ipairs(vs) do d = math.min(d, dist(v, q)) end
+      return d
+    end
+    assert.is_true(nearest(a, { 0, 2, 0 }) < 1e-6)
+    assert.is_true(nearest(b, { 1, 2, 0 }) < 1e-6)
+    -- and keeps its shape: every distance between its vertices
+    local worst = 0
+    for j = 2, #a do
+      worst = math.max(worst, math.abs(dist(a[j], a[1]) - dist(b[j], b[1])))
+    end
+    assert.is_true(worst < 1e-5, worst)
+    -- the stem itself was sheared: its top ring moved by about 1
+    local lo, hi = s1:bounds()
+    assert.is_true(hi[1] > 0.9, hi[1])
+    assert.is_true(lo[2] > -1e-6)
+  end)
+
   it("builds Lstrings from codes (rules:symbol, rules:build) and refuses bad codes", function ()
     local m = lsys.lsystem { axiom = "" }
     local R = m._rules
