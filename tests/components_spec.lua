@@ -79,6 +79,10 @@ describe("lsys.components prototypes", function ()
     assert.equal("lsys.components: world: 'cylinder': unknown field 'radus' (known: axis, " ..
                  "pitch, point, radius, strength)",
                  errmsg(C.world, { cylinder = { radus = 1 } }))
+    assert.equal("lsys.components: world: 'cylinder.radius' must be a finite number",
+                 errmsg(C.world, { cylinder = { radius = "x" } }))
+    assert.equal("lsys.components: world: 'wind.direction' must be a vector {x, y, z} of " ..
+                 "finite numbers", errmsg(C.world, { wind = { direction = { 1, 0 } } }))
     assert.equal("lsys.components: world: 'gravity' must be a non-zero vector {x, y, z} or " ..
                  "a function (x, y, z) -> x, y, z", errmsg(C.world, { gravity = { 0, 0, 0 } }))
     assert.equal("lsys.components: simple: 'geometry' must be an L-system model or an " ..

@@ -144,8 +144,8 @@ local function fields (p, key, v, spec)
       fail(p, "'%s': unknown field '%s' (known: %s)", key, tostring(k), concat(names, ", "))
     end
     if t == "vec3" and not isvec(x) or t == "number" and not isnum(x) then
-      fail(p, "'%s.%s' must be a %s of finite numbers", key, k,
-           t == "vec3" and "vector {x, y, z}" or "number")
+      fail(p, "'%s.%s' must be %s", key, k,
+           t == "vec3" and "a vector {x, y, z} of finite numbers" or "a finite number")
     end
   end
 end
