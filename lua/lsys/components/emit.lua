@@ -41,6 +41,10 @@ local function angles (AH, AU, BH, BU)
   local sb = sqrt(l * l + u * u)
   local a = sb > 1e-12 and atan(l, -u) or 0
   local b = atan(sb, h)
+  -- a roll past a quarter turn is the opposite roll and a pitch the other way: the same
+  -- heading with smaller angles (and a pure pitch up is `&(-b)`, not `/(180)&(b)/(180)`)
+  if a > 0.5 * math.pi then a, b = a - math.pi, -b
+  elseif a <= -0.5 * math.pi then a, b = a + math.pi, -b end
   if BU == nil then return deg(a), deg(b) end
   local ca, sa, cb, s2 = cos(a), sin(a), cos(b), sin(b)
   -- L1 = L ca + U sa, U1 = U ca - L sa, U2 = U1 cb + H s2
