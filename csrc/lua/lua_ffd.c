@@ -301,17 +301,21 @@ static int callfn (void *ud, const double p[3], double out[3]) {
 static float *saverange (lua_State *L, const lsys_mesh *m, const range *g) {
   size_t nv = g->v1 - g->v0, nl = g->l1 - g->l0;
   float *b = (float *)lua_newuserdatauv(L, (6 * nv + 6 * nl) * sizeof *b + 1, 0);
-  memcpy(b, m->pos + 3 * g->v0, 3 * nv * sizeof *b);
-  memcpy(b + 3 * nv, m->nrm + 3 * g->v0, 3 * nv * sizeof *b);
-  memcpy(b + 6 * nv, m->lpos + 6 * g->l0, 6 * nl * sizeof *b);
+  if (nv > 0) {              /* a mesh without vertices (or lines) has NULL arrays */
+    memcpy(b, m->pos + 3 * g->v0, 3 * nv * sizeof *b);
+    memcpy(b + 3 * nv, m->nrm + 3 * g->v0, 3 * nv * sizeof *b);
+  }
+  if (nl > 0) memcpy(b + 6 * nv, m->lpos + 6 * g->l0, 6 * nl * sizeof *b);
   return b;
 }
 
 static void restorerange (lsys_mesh *m, const range *g, const float *b) {
   size_t nv = g->v1 - g->v0, nl = g->l1 - g->l0;
-  memcpy(m->pos + 3 * g->v0, b, 3 * nv * sizeof *b);
-  memcpy(m->nrm + 3 * g->v0, b + 3 * nv, 3 * nv * sizeof *b);
-  memcpy(m->lpos + 6 * g->l0, b + 6 * nv, 6 * nl * sizeof *b);
+  if (nv > 0) {
+    memcpy(m->pos + 3 * g->v0, b, 3 * nv * sizeof *b);
+    memcpy(m->nrm + 3 * g->v0, b + 3 * nv, 3 * nv * sizeof *b);
+  }
+  if (nl > 0) memcpy(m->lpos + 6 * g->l0, b + 6 * nv, 6 * nl * sizeof *b);
 }
 
 /* What failed at e->pos (a vertex, or nv + a line end), as "vertex 12" or
