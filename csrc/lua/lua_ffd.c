@@ -342,13 +342,20 @@ static int deform_fn (lua_State *L, lsys_lscene *S, const range *g) {
   restorerange(&S->sc.mesh, g, save);
   if (st != LSYS_ERULE || lua_gettop(L) == top)
     return luaL_error(L, "scene:deform: %s", e.msg);
-  if (f.bad == 0)
-    return luaL_error(L, "scene:deform: the function failed at %s: %s",
-                      where(L, &S->sc.mesh, e.pos), luaL_tolstring(L, top + 1, NULL));
-  return luaL_error(L, "scene:deform: the function must return 3 finite numbers; at %s its %s "
-                    "is %s", where(L, &S->sc.mesh, e.pos), xyz[f.bad - 1],
-                    lua_type(L, -1) == LUA_TNUMBER ? "not finite"
-                    : lua_isnil(L, -1) ? "nil" : lua_pushfstring(L, "a %s", luaL_typename(L, -1)));
+  {
+    /* each piece is made before the next is pushed: the order in which C evaluates a
+    ** call's arguments is unspecified, and these read the stack's top */
+    int bad = lua_gettop(L);
+    const char *what = f.bad == 0 ? luaL_tolstring(L, top + 1, NULL)
+                       : lua_type(L, bad) == LUA_TNUMBER ? "not finite"
+                       : lua_isnil(L, bad) ? "nil"
+                       : lua_pushfstring(L, "a %s", luaL_typename(L, bad));
+    const char *at = where(L, &S->sc.mesh, e.pos);
+    if (f.bad == 0)
+      return luaL_error(L, "scene:deform: the function failed at %s: %s", at, what);
+    return luaL_error(L, "scene:deform: the function must return 3 finite numbers; at %s its "
+                      "%s is %s", at, xyz[f.bad - 1], what);
+  }
 }
 
 /* scene:deform(hp | f, opts) -> vertices moved */
