@@ -7,51 +7,13 @@
 --                      both directions (the stems of chestnut.lua, willow.lua, pine.lua)
 -- Run with the lsys module on the path: `build/bin/lsys examples/components/textures.lua`;
 -- an argument names another directory to write to.
-local core = require "lsys.core"
-
-local dir = ... or (arg and arg[0] or ""):match("^(.*)/[^/]*$") or "."
-local char, floor, max, min, abs = string.char, math.floor, math.max, math.min, math.abs
-
-local function byte (x) return char(max(0, min(255, floor(x * 255 + 0.5)))) end
-
--- an image from f(x, y) -> r, g, b in 0..1, x and y in [0, 1)
-local function write (name, w, h, f)
-  local px = {}
-  for j = 0, h - 1 do
-    for i = 0, w - 1 do
-      local r, g, b = f((i + 0.5) / w, (j + 0.5) / h)
-      px[#px + 1] = byte(r) .. byte(g) .. byte(b) .. "\255"
-    end
-  end
-  core.png_write(dir .. "/" .. name, table.concat(px), w, h, false)
-end
-
--- a small linear congruential generator: the same numbers on every machine
-local seed = 20240601
-local function rand ()
-  seed = (seed * 1103515245 + 12345) % 2147483648
-  return seed / 2147483648
-end
-
--- periodic value noise: a grid of nx by ny random values, smoothly interpolated, wrapped
-local function noise (nx, ny)
-  local g = {}
-  for j = 0, ny - 1 do
-    g[j] = {}
-    for i = 0, nx - 1 do g[j][i] = rand() end
-  end
-  return function (x, y)
-    local fx, fy = x * nx, y * ny
-    local i0, j0 = floor(fx), floor(fy)
-    local tx, ty = fx - i0, fy - j0
-    tx, ty = tx * tx * (3 - 2 * tx), ty * ty * (3 - 2 * ty)
-    local i1, j1 = (i0 + 1) % nx, (j0 + 1) % ny
-    i0, j0 = i0 % nx, j0 % ny
-    local a = g[j0][i0] + (g[j0][i1] - g[j0][i0]) * tx
-    local b = g[j1][i0] + (g[j1][i1] - g[j1][i0]) * tx
-    return a + (b - a) * ty
-  end
-end
+local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."  -- this file's folder
+local dir = ... or here
+local T = dofile(here .. "/../texture.lua")
+local floor, max, min, abs = math.floor, math.max, math.min, math.abs
+local rand = T.generator(20240601)
+local function write (name, w, h, f) T.write(dir .. "/" .. name, w, h, f, true) end
+local function noise (nx, ny) return T.noise(rand, nx, ny) end
 
 -- The leaflet: x across (the midrib at x = 0.5), y along from the base. Horse-chestnut
 -- leaflets are pinnately veined with many straight, parallel side veins that leave the

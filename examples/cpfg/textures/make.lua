@@ -8,51 +8,13 @@
 -- Run with the lsys module on the path, e.g. `build/bin/lsys examples/cpfg/textures/make.lua`;
 -- an argument names another directory to write to (tests/examples_spec.lua does that).
 -- Everything is computed from a fixed seed, so the files come out the same each time.
-local core = require "lsys.core"
-
-local dir = ... or (arg and arg[0] or ""):match("^(.*)/[^/]*$") or "."
-local char, floor, max, min = string.char, math.floor, math.max, math.min
-
-local function byte (x) return char(max(0, min(255, floor(x * 255 + 0.5)))) end
-
--- an image from f(x, y) -> r, g, b in 0..1, x and y in [0, 1)
-local function write (name, w, h, f)
-  local px = {}
-  for j = 0, h - 1 do
-    for i = 0, w - 1 do
-      local r, g, b = f(i / w, j / h)
-      px[#px + 1] = byte(r) .. byte(g) .. byte(b) .. "\255"
-    end
-  end
-  core.png_write(dir .. "/" .. name, table.concat(px), w, h, false)
-end
-
--- a small linear congruential generator: the same numbers on every machine
-local seed = 12345
-local function rand ()
-  seed = (seed * 1103515245 + 12345) % 2147483648
-  return seed / 2147483648
-end
-
--- periodic value noise: a random grid of nx by ny values, smoothly interpolated and wrapped
-local function noise (nx, ny)
-  local g = {}
-  for j = 0, ny - 1 do
-    g[j] = {}
-    for i = 0, nx - 1 do g[j][i] = rand() end
-  end
-  return function (x, y)
-    local fx, fy = x * nx, y * ny
-    local i0, j0 = floor(fx), floor(fy)
-    local tx, ty = fx - i0, fy - j0
-    tx, ty = tx * tx * (3 - 2 * tx), ty * ty * (3 - 2 * ty)
-    local i1, j1 = (i0 + 1) % nx, (j0 + 1) % ny
-    i0, j0 = i0 % nx, j0 % ny
-    local a = g[j0][i0] + (g[j0][i1] - g[j0][i0]) * tx
-    local b = g[j1][i0] + (g[j1][i1] - g[j1][i0]) * tx
-    return a + (b - a) * ty
-  end
-end
+local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."  -- this file's folder
+local dir = ... or here
+local T = dofile(here .. "/../../texture.lua")
+local floor = math.floor
+local rand = T.generator(12345)
+local function write (name, w, h, f) T.write(dir .. "/" .. name, w, h, f, false) end
+local function noise (nx, ny) return T.noise(rand, nx, ny) end
 
 write("chessboard.png", 128, 128, function (x, y)
   if (floor(x * 8) + floor(y * 8)) % 2 == 0 then return 0.85, 0.12, 0.10 end
