@@ -20,12 +20,12 @@ local C = require "lsys.components.proto"
 local X = require "lsys.components.expand"
 local E = require "lsys.components.emit"
 local lmodel = require "lsys.model"
+local scaling = require("lsys.components.model").scaling
 
 local type, pairs, ipairs, error, tostring, pcall, setmetatable, next, math, string, table,
       utf8 = type, pairs, ipairs, error, tostring, pcall, setmetatable, next, math, string,
       table, utf8
 local format, sort = string.format, table.sort
-local right, front = X.right, X.front
 local _ENV = nil
 
 local M = {}
@@ -173,24 +173,6 @@ end
 
 -- {=========================================================================================
 -- After the interpretation: non-uniform primitives, in the frame of the turtle at P
-
--- The 3 x 4 matrix of a scale by (sx, sy, sz) along a frame's right, heading and front
--- axes, about its position (as lsys.components.model scales the primitives of a plant).
-local function scaling (f, sx, sy, sz)
-  local B = { right(f), f.H, front(f) }
-  local s = { sx, sy, sz }
-  local mt = {}
-  for i = 1, 3 do
-    mt[i] = {}
-    for j = 1, 3 do
-      local x = 0
-      for k = 1, 3 do x = x + B[k][i] * s[k] * B[k][j] end
-      mt[i][j] = x
-    end
-    mt[i][4] = f.p[i] - (mt[i][1] * f.p[1] + mt[i][2] * f.p[2] + mt[i][3] * f.p[3])
-  end
-  return mt
-end
 
 -- The world frame of a plant's frame f when the plant starts at the turtle (P, H, L, U)
 -- with scale s. A plant is emitted from the turtle's first frame, H0 = +y, U0 = -z,

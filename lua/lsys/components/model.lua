@@ -34,23 +34,29 @@ local function baseview (user)
   return v
 end
 
--- The 3 x 4 matrix of a scale by (sx, sy, sz) along a frame's right, heading and front
--- axes, about its position.
-local function scaling (f, sx, sy, sz)
-  local B = { right(f), f.H, front(f) }
-  local s = { sx, sy, sz }
+-- The 3 x 4 matrix (rows for scene:transform) of the affine map that takes the point
+-- p + x B[1] + y B[2] + z B[3] to q + s1 x B2[1] + s2 y B2[2] + s3 z B2[3] (B, B2 orthonormal
+-- bases: a frame's right, heading and front).
+local function framemap (B, p, B2, q, s)
   local m = {}
   for i = 1, 3 do
     m[i] = {}
     for j = 1, 3 do
-      local x = 0
-      for k = 1, 3 do x = x + B[k][i] * s[k] * B[k][j] end
-      m[i][j] = x
+      m[i][j] = B2[1][i] * s[1] * B[1][j] + B2[2][i] * s[2] * B[2][j] +
+                B2[3][i] * s[3] * B[3][j]
     end
-    m[i][4] = f.p[i] - (m[i][1] * f.p[1] + m[i][2] * f.p[2] + m[i][3] * f.p[3])
+    m[i][4] = q[i] - (m[i][1] * p[1] + m[i][2] * p[2] + m[i][3] * p[3])
   end
   return m
 end
+
+--- The 3 x 4 matrix of a scale by (sx, sy, sz) along frame f's right, heading and front
+-- axes, about its position (primitives of non-uniform size; lsys.components.mix too).
+function M.scaling (f, sx, sy, sz)
+  local B = { right(f), f.H, front(f) }
+  return framemap(B, f.p, B, f.p, { sx, sy, sz })
+end
+local scaling = M.scaling
 
 -- The isolated deformers (`isolate = true`) outermost in the subtree of `inst`: the
 -- subtrees its deformation leaves out; `iso` is every isolated deformer sorted by m0.
@@ -104,16 +110,7 @@ local function follow (map, f)
   local k = dot(U, H)
   U = unit { U[1] - k * H[1], U[2] - k * H[2], U[3] - k * H[3] }
   local g = { p = o, H = H, U = U, s = 1 }
-  local B, B2 = { right(f), f.H, front(f) }, { right(g), H, front(g) }
-  local m = {}
-  for i = 1, 3 do
-    m[i] = {}
-    for j = 1, 3 do
-      m[i][j] = B2[1][i] * B[1][j] + B2[2][i] * B[2][j] + B2[3][i] * B[3][j]
-    end
-    m[i][4] = o[i] - (m[i][1] * f.p[1] + m[i][2] * f.p[2] + m[i][3] * f.p[3])
-  end
-  return m
+  return framemap({ right(f), f.H, front(f) }, f.p, { right(g), H, front(g) }, o, { 1, 1, 1 })
 end
 
 -- Does the deformer change anything? (An FFD without functions only isolates.)
