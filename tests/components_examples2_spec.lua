@@ -9,62 +9,17 @@
 -- The chestnut is big (52,416 leaflets): its counts come from the model the file returns
 -- (expanded once), its golden image from a smaller tree of the same graph (M.graph{...}).
 -- Likewise the pine's deformation test and golden image use a smaller pine.
-require "tests.helper"
+local H = require "tests.helper"
 local lsys = require "lsys"
 local core = require "lsys.core"
 local C = lsys.components
 
-local GOLDEN_DIR = "tests/golden"
-local UPDATE = os.getenv("LSYS_UPDATE_GOLDEN") == "1"
-local MEAN_TOL, PIXEL_TOL, PIXEL_FRACTION = 2, 40, 0.01
 local DIR = "examples/components/"
 
--- As tests/render_spec.lua: the mean absolute difference of every channel below MEAN_TOL
--- and fewer than PIXEL_FRACTION of the pixels off by more than PIXEL_TOL.
-local function compare (a, b, w, h)
-  if #a ~= w * h * 4 or #b ~= w * h * 4 then return false, "sizes differ" end
-  local sum, bad = { 0, 0, 0, 0 }, 0
-  for o = 1, #a, 4 do
-    local worst = 0
-    for c = 0, 3 do
-      local d = math.abs(a:byte(o + c) - b:byte(o + c))
-      sum[c + 1] = sum[c + 1] + d
-      if d > worst then worst = d end
-    end
-    if worst > PIXEL_TOL then bad = bad + 1 end
-  end
-  local n = w * h
-  for c = 1, 4 do
-    if sum[c] / n >= MEAN_TOL then
-      return false, string.format("channel %d: mean absolute difference %.2f", c, sum[c] / n)
-    end
-  end
-  if bad >= PIXEL_FRACTION * n then
-    return false, string.format("%.2f%% of the pixels differ by more than %d", 100 * bad / n,
-                                PIXEL_TOL)
-  end
-  return true
-end
-
+-- A 160 x 160 render of the scene against tests/golden/components_NAME.png.
 local function golden (name, scene)
   if not core.has_render then return pending("lsys was built without OSMesa") end
-  local path = GOLDEN_DIR .. "/components_" .. name .. ".png"
-  local px, w, h = lsys.render(scene, { width = 160, height = 160 })
-  if UPDATE then core.png_write(path, px, w, h, false) end
-  local f = io.open(path, "rb")
-  assert.truthy(f, path .. " is missing: write it with LSYS_UPDATE_GOLDEN=1")
-  f:close()
-  local gpx, gw, gh = core.png_read(path)
-  assert.equal(w, gw)
-  assert.equal(h, gh)
-  local ok, why = compare(px, gpx, w, h)
-  if not ok then
-    local actual = (os.getenv("TMPDIR") or "/tmp") .. "/lsys-components_" .. name ..
-                   ".actual.png"
-    core.png_write(actual, px, w, h, false)
-    why = string.format("%s: %s; this render is %s", path, why, actual)
-  end
-  assert.is_true(ok, why)
+  H.golden("components_" .. name, lsys.render(scene, { width = 160, height = 160 }))
 end
 
 local function counts (tree, names)

@@ -270,4 +270,67 @@ function H.rule_text (r)
   return table.concat(t)
 end
 
+-- {====================================================================
+-- Images: two renders compared with a tolerance, and golden images in tests/golden/.
+-- A render matches when the mean absolute difference of every channel is below
+-- H.MEAN_TOL and fewer than H.PIXEL_FRACTION of the pixels differ by more than
+-- H.PIXEL_TOL in some channel (tests/render_spec.lua says why these values).
+H.MEAN_TOL, H.PIXEL_TOL, H.PIXEL_FRACTION = 2, 40, 0.01
+H.GOLDEN_DIR = "tests/golden"
+
+--- Compares two RGBA images of w x h pixels: true, or false and what differs.
+function H.compare_images (a, b, w, h)
+  if #a ~= w * h * 4 or #b ~= w * h * 4 then
+    return false, string.format("sizes differ: %d and %d bytes for %dx%d", #a, #b, w, h)
+  end
+  local sum, bad = { 0, 0, 0, 0 }, 0
+  for o = 1, #a, 4 do
+    local worst = 0
+    for c = 0, 3 do
+      local d = math.abs(a:byte(o + c) - b:byte(o + c))
+      sum[c + 1] = sum[c + 1] + d
+      if d > worst then worst = d end
+    end
+    if worst > H.PIXEL_TOL then bad = bad + 1 end
+  end
+  local n, ok = w * h, true
+  local means = {}
+  for c = 1, 4 do
+    means[c] = sum[c] / n
+    if means[c] >= H.MEAN_TOL then ok = false end
+  end
+  if bad >= H.PIXEL_FRACTION * n then ok = false end
+  if ok then return true end
+  return false, string.format("mean absolute difference R %.2f G %.2f B %.2f A %.2f (limit %g); "
+    .. "%.2f%% of the pixels differ by more than %d (limit %g%%)", means[1], means[2], means[3],
+    means[4], H.MEAN_TOL, 100 * bad / n, H.PIXEL_TOL, 100 * H.PIXEL_FRACTION)
+end
+
+--- Asserts that the render px (w x h) matches the golden image tests/golden/NAME.png.
+-- LSYS_UPDATE_GOLDEN=1 writes it instead; on a mismatch the render is kept in $TMPDIR.
+function H.golden (name, px, w, h)
+  local core = require "lsys.core"
+  local path = H.GOLDEN_DIR .. "/" .. name .. ".png"
+  if os.getenv("LSYS_UPDATE_GOLDEN") == "1" then
+    core.png_write(path, px, w, h, false)
+    print("wrote " .. path)
+  end
+  local f = io.open(path, "rb")
+  assert.truthy(f, path .. " is missing: write it with LSYS_UPDATE_GOLDEN=1 (see the top "
+    .. "of tests/render_spec.lua)")
+  f:close()
+  local gpx, gw, gh = core.png_read(path)
+  assert.equal(gw, w, "golden width")
+  assert.equal(gh, h, "golden height")
+  local ok, why = H.compare_images(px, gpx, w, h)
+  if not ok then
+    local actual = (os.getenv("TMPDIR") or "/tmp") .. "/lsys-" .. name .. ".actual.png"
+    core.png_write(actual, px, w, h, false)
+    why = ("%s: %s; this render is %s (if the change is intended, look at it and "
+      .. "regenerate with LSYS_UPDATE_GOLDEN=1)"):format(path, why, actual)
+  end
+  assert.is_true(ok, why)
+end
+-- }====================================================================
+
 return H

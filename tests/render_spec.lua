@@ -12,13 +12,11 @@
 -- A render matches its golden image when the mean absolute difference of every channel is
 -- below 2 (of 255) and fewer than 1% of the pixels differ by more than 40 in some channel,
 -- which absorbs rasteriser rounding but not a moved, mirrored or recoloured plant.
-require "tests.helper"
+local H = require "tests.helper"
 local lsys = require "lsys"
 local core = require "lsys.core"
 
-local GOLDEN_DIR = "tests/golden"
-local UPDATE = os.getenv("LSYS_UPDATE_GOLDEN") == "1"
-local MEAN_TOL, PIXEL_TOL, PIXEL_FRACTION = 2, 40, 0.01
+local GOLDEN_DIR = H.GOLDEN_DIR       -- the comparison: H.compare_images (tests/helper.lua)
 
 -- Pixel access on RGBA strings (top row first), x and y from 0.
 local function pixel (px, w, x, y)
@@ -80,35 +78,7 @@ local function mirror (px, w, h)
   return table.concat(rows)
 end
 
--- Compares two RGBA images of w x h pixels. Returns true, or false and a message with the
--- mean absolute difference of each channel and the share of pixels that differ by more than
--- PIXEL_TOL in some channel.
-local function compare (a, b, w, h)
-  if #a ~= w * h * 4 or #b ~= w * h * 4 then
-    return false, string.format("sizes differ: %d and %d bytes for %dx%d", #a, #b, w, h)
-  end
-  local sum, bad = { 0, 0, 0, 0 }, 0
-  for o = 1, #a, 4 do
-    local worst = 0
-    for c = 0, 3 do
-      local d = math.abs(a:byte(o + c) - b:byte(o + c))
-      sum[c + 1] = sum[c + 1] + d
-      if d > worst then worst = d end
-    end
-    if worst > PIXEL_TOL then bad = bad + 1 end
-  end
-  local n, ok = w * h, true
-  local means = {}
-  for c = 1, 4 do
-    means[c] = sum[c] / n
-    if means[c] >= MEAN_TOL then ok = false end
-  end
-  if bad >= PIXEL_FRACTION * n then ok = false end
-  if ok then return true end
-  return false, string.format("mean absolute difference R %.2f G %.2f B %.2f A %.2f (limit %g); "
-    .. "%.2f%% of the pixels differ by more than %d (limit %g%%)", means[1], means[2], means[3],
-    means[4], MEAN_TOL, 100 * bad / n, PIXEL_TOL, 100 * PIXEL_FRACTION)
-end
+local compare = H.compare_images
 
 -- Renders model source pieces to pixels (w x h, default 64 x 64) with render options 'opts'.
 local function draw (axiom, view, opts, productions)
@@ -380,25 +350,7 @@ describe("rendering #gl", function()
       local path = GOLDEN_DIR .. "/" .. g.name .. ".png"
       it("matches " .. path, function()
         local px, w, h = lsys.render(g.scene(), { width = g.w, height = g.h })
-        if UPDATE then
-          core.png_write(path, px, w, h, false)
-          print("wrote " .. path)
-        end
-        local f = io.open(path, "rb")
-        assert.truthy(f, path .. " is missing: write it with LSYS_UPDATE_GOLDEN=1 (see the top "
-          .. "of tests/render_spec.lua)")
-        f:close()
-        local gpx, gw, gh = core.png_read(path)
-        assert.equal(gw, w, "golden width")
-        assert.equal(gh, h, "golden height")
-        local ok, why = compare(px, gpx, w, h)
-        if not ok then      -- keep the render for a look; dir is removed at the end
-          local actual = (os.getenv("TMPDIR") or "/tmp") .. "/lsys-" .. g.name .. ".actual.png"
-          core.png_write(actual, px, w, h, false)
-          why = ("%s: %s; this render is %s (if the change is intended, look at it and "
-            .. "regenerate with LSYS_UPDATE_GOLDEN=1)"):format(path, why, actual)
-        end
-        assert.is_true(ok, why)
+        H.golden(g.name, px, w, h)
       end)
 
       it("tells " .. g.name .. " from its mirror image", function()
