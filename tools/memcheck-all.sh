@@ -40,7 +40,7 @@ mkdir -p "$LOGS"
 skip='*/Xvfb,*/xdotool,*/xauth,*/xwd,*/node,*/npm,*/ffmpeg,*/ls,*/stat,*/mkdir,*/rm,*/ln'
 skip=$skip',*/chmod,*/mknod,*/cat,*/cp,*/mv,*/sleep,*/kill,*/ps,*/timeout,*/env,*/touch,*/diff'
 skip=$skip',*/cmp,*/grep,*/sed,*/head,*/tail,*/wc,*/sort,*/find,*/xargs,*/git,*/cmake,*/make'
-skip=$skip',*/cc,*/gcc,*/gcc-*,*/clang,*/clang-*,*/luacheck'   # layout_spec compiles test files
+skip=$skip',*/cc,*/gcc,*/gcc-*,*/clang,*/clang-*,*/luacheck,*/dot'   # layout_spec compiles; dot: Graphviz
 VG=(valgrind --error-exitcode=9 --leak-check=full --errors-for-leak-kinds=definite
     --show-leak-kinds=definite --keep-debuginfo=yes "--suppressions=$PWD/tools/valgrind.supp"
     --trace-children=yes "--trace-children-skip=$skip" "--trace-children-skip-by-arg=*ulimit*")
