@@ -22,8 +22,8 @@ local core = require "lsys.core"
 local ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8, select =
       ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8, select
 local format, concat, sort = string.format, table.concat, table.sort
-local sqrt, atan, deg, cos, sin, abs, floor, max =
-      math.sqrt, math.atan, math.deg, math.cos, math.sin, math.abs, math.floor, math.max
+local sqrt, atan, deg, cos, sin, abs, floor, max, pi =
+      math.sqrt, math.atan, math.deg, math.cos, math.sin, math.abs, math.floor, math.max, math.pi
 local cross = X.cross
 local _ENV = nil
 
@@ -41,18 +41,27 @@ local function angles (AH, AU, BH, BU)
   local sb = sqrt(l * l + u * u)
   local a = sb > 1e-12 and atan(l, -u) or 0
   local b = atan(sb, h)
-  -- a roll past a quarter turn is the opposite roll and a pitch the other way: the same
-  -- heading with smaller angles (and a pure pitch up is `&(-b)`, not `/(180)&(b)/(180)`)
-  if a > 0.5 * math.pi then a, b = a - math.pi, -b
-  elseif a <= -0.5 * math.pi then a, b = a + math.pi, -b end
-  if BU == nil then return deg(a), deg(b) end
+  if BU == nil then
+    -- aiming only: a roll past a quarter turn is the opposite roll and a pitch the other way
+    if a > 0.5 * pi then a, b = a - pi, -b elseif a <= -0.5 * pi then a, b = a + pi, -b end
+    return deg(a), deg(b)
+  end
   local ca, sa, cb, s2 = cos(a), sin(a), cos(b), sin(b)
   -- L1 = L ca + U sa, U1 = U ca - L sa, U2 = U1 cb + H s2
   local x1, x2, x3 = BU[1], BU[2], BU[3]
   local bl = x1 * (l1 * ca + u1 * sa) + x2 * (l2 * ca + u2 * sa) + x3 * (l3 * ca + u3 * sa)
   local bu = x1 * ((u1 * ca - l1 * sa) * cb + h1 * s2) + x2 * ((u2 * ca - l2 * sa) * cb + h2 * s2)
              + x3 * ((u3 * ca - l3 * sa) * cb + h3 * s2)
-  return deg(a), deg(b), deg(atan(-bl, bu))
+  local g = atan(-bl, bu)
+  -- (a -+ 180, -b, g + 180) turns the same way; take it when it needs fewer modules: a
+  -- pure pitch up is then `&(-b)`, not `/(180)&(b)/(-180)`
+  if abs(a) > 1e-11 then
+    local a2, g2 = a > 0 and a - pi or a + pi, g > 0 and g - pi or g + pi
+    local n1 = (abs(a) > 1e-11 and 1 or 0) + (abs(g) > 1e-11 and 1 or 0)
+    local n2 = (abs(a2) > 1e-11 and 1 or 0) + (abs(g2) > 1e-11 and 1 or 0)
+    if n2 < n1 or n2 == n1 and abs(a2) + abs(g2) < abs(a) + abs(g) then a, b, g = a2, -b, g2 end
+  end
+  return deg(a), deg(b), deg(g)
 end
 M.angles = angles
 
