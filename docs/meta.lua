@@ -1941,7 +1941,8 @@ function Proto:param(key) end
 ---@class lsys.components.Tree
 local CTree = {}
 --- The instances in depth-first order: { index, proto, kind, name, path, parent, children,
---- i, n, depth, link, frame = {p, H, U, s}, tip, stem, params, modules, at }.
+--- i, n, depth, link, frame = {p, H, U, s}, tip, stem, params, modules, at }; frame, tip
+--- and stem are new read-only copies of the C frame arena at each read.
 ---@return table[]
 function CTree:instances() end
 --- How many instances have this name or kind (nil: all).

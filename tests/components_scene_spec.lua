@@ -272,17 +272,4 @@ describe("lsys.components geometry", function ()
     assert.is_true(lo[2] > -1e-6)
   end)
 
-  it("builds Lstrings from codes (rules:symbol, rules:build) and refuses bad codes", function ()
-    local m = lsys.lsystem { axiom = "" }
-    local R = m._rules
-    local F, plus = R:symbol("F"), R:symbol("+")
-    local s = R:build({ F * 32 + 1, plus * 32, F * 32 + 2 }, { 1.5, 2, 3 })
-    assert.equal("F(1.5)+F(2,3)", tostring(s))
-    assert.error_contains(function () R:build({ 5 }, {}) end, "code 1 is not a module code")
-    assert.error_contains(function () R:build({ F * 32 + 1 }, { 0 / 0 }) end,
-                          "value 1 is not a finite number")
-    assert.error_contains(function () R:build({ F * 32 + 1 }, {}) end,
-                          "fewer values than parameters")
-    assert.error_contains(function () R:symbol("F(") end, "not a module name")
-  end)
 end)

@@ -60,6 +60,15 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e, int level) {
   return lua_error(L);
 }
 
+void lsys_pushnums (lua_State *L, const double *v, int n) {
+  int k;
+  lua_createtable(L, n, 0);
+  for (k = 0; k < n; k++) {
+    lua_pushnumber(L, (lua_Number)v[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
+}
+
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
   while (*s) {
     size_t n = 0;

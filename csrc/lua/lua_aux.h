@@ -76,6 +76,9 @@ lsys_alphabet *lsys_getalphabet (lua_State *L);
 */
 int lsys_raise (lua_State *L, int code, const lsys_error *e, int level);
 
+/* Pushes a new list of the n numbers v[0..n-1]. */
+void lsys_pushnums (lua_State *L, const double *v, int n);
+
 /* Reads a list of module names separated by white space or commas into 'd'.
 ** Returns LSYS_OK or LSYS_ENOMEM. */
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d);

@@ -180,14 +180,7 @@ static int ik_solve (lua_State *L) {
   return 1;
 }
 
-static void pushvec (lua_State *L, const double v[3]) {
-  int i;
-  lua_createtable(L, 3, 0);
-  for (i = 0; i < 3; i++) {
-    lua_pushnumber(L, v[i]);
-    lua_rawseti(L, -2, i + 1);
-  }
-}
+#define pushvec(L, v) lsys_pushnums((L), (v), 3)
 
 static int ik_angles (lua_State *L) {
   lik *k = checkik(L, 1);

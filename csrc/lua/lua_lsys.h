@@ -22,6 +22,7 @@ void lsys_open_bspline (lua_State *L); /* lua_bspline.c: BSpline, chaikin, strok
 void lsys_open_func (lua_State *L);     /* lua_func.c: Func, func, func_parse */
 void lsys_open_canvas (lua_State *L);   /* lua_canvas.c: Canvas, canvas */
 void lsys_open_ffd (lua_State *L);      /* lua_ffd.c: Hyperpatch, hyperpatch; scene:deform, ... */
+void lsys_open_compgeo (lua_State *L); /* lua_compgeo.c: Frames, Cwriter (lsys.components) */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);

@@ -760,84 +760,13 @@ static int l_producing (lua_State *L) {
 static int l_produce (lua_State *L) { return produce(L, 1); }
 static int l_nproduce (lua_State *L) { return produce(L, 0); }
 
-/* ---------------------------------------------------------------------- */
-/*
-** rules:symbol(name) -> code: the symbol id of a module name (interned), for
-** rules:build. A name the text notation could not read back is an error.
-*/
-static int rules_symbol (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
-  size_t len;
-  const char *name = luaL_checklstring(L, 2, &len);
-  lsys_error e;
-  uint32_t id;
-  luaL_argcheck(L, len > 0 && lsys_scan_name(name, len, &R->decl) == len, 2,
-                "not a module name");
-  id = lsys_alphabet_intern(R->m.ab, name, len, &e);
-  if (id == 0) return luaL_error(L, "%s", e.msg);
-  lua_pushinteger(L, (lua_Integer)id);
-  return 1;
-}
-
-/*
-** rules:build(codes, values [, n]) -> Lstring: modules from two flat lists
-** (front ends that compute geometry, such as lsys.components): codes[k] is
-** symbol * 32 + the module's parameter count, and the parameters of all
-** modules follow each other in 'values' (finite numbers). n: how many codes
-** (default #codes).
-*/
-static int rules_build (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
-  lua_Integer n, k, np = 0, p = 0;
-  lsys_lstring *s;
-  luaL_checktype(L, 2, LUA_TTABLE);
-  luaL_checktype(L, 3, LUA_TTABLE);
-  n = luaL_opt(L, luaL_checkinteger, 4, (lua_Integer)lua_rawlen(L, 2));
-  luaL_argcheck(L, n >= 0 && (lua_Unsigned)n <= lua_rawlen(L, 2), 4, "out of range");
-  for (k = 1; k <= n; k++) {                         /* check, and count parameters */
-    lua_Integer c;
-    int ok;
-    lua_rawgeti(L, 2, k);
-    c = lua_tointegerx(L, -1, &ok);
-    lua_pop(L, 1);
-    if (!ok || c < 32 || (uint32_t)(c >> LSYS_NPBITS) >= R->m.ab->n || c > 0xFFFF)
-      return luaL_error(L, "build: code %d is not a module code", (int)k);
-    np += c & LSYS_MAXPARAMS;
-  }
-  luaL_argcheck(L, (lua_Unsigned)np <= lua_rawlen(L, 3), 3, "fewer values than parameters");
-  lua_settop(L, 3);
-  s = lsys_newlstring(L);
-  lsys_setowner(L, 4, 1);
-  if (lsys_lstring_reserve(s, (size_t)n, (size_t)np) != LSYS_OK)
-    return luaL_error(L, "not enough memory");
-  for (k = 1; k <= n; k++) {
-    lua_Integer c, m;
-    lua_rawgeti(L, 2, k);
-    c = lua_tointeger(L, -1);
-    lua_pop(L, 1);
-    s->code[s->n++] = (uint16_t)c;
-    for (m = 0; m < (c & LSYS_MAXPARAMS); m++) {
-      int ok;
-      double x;
-      lua_rawgeti(L, 3, ++p);
-      x = lua_tonumberx(L, -1, &ok);
-      lua_pop(L, 1);
-      if (!ok || !isfinite(x))
-        return luaL_error(L, "build: value %d is not a finite number", (int)p);
-      s->par[s->npar++] = x;
-    }
-  }
-  return 1;
-}
-
 static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
   {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
-  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill},
-  {"symbol", rules_symbol}, {"build", rules_build}, {NULL, NULL}
+  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

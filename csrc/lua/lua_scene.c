@@ -351,11 +351,7 @@ static int l_query (lua_State *L) {
   return 1;
 }
 
-static void pushvec (lua_State *L, const double *v) {
-  int k;
-  lua_createtable(L, 3, 0);
-  for (k = 0; k < 3; k++) { lua_pushnumber(L, v[k]); lua_rawseti(L, -2, k + 1); }
-}
+#define pushvec(L, v) lsys_pushnums((L), (v), 3)
 
 static void pushvecf (lua_State *L, const float *v) {
   double d[3] = {v[0], v[1], v[2]};

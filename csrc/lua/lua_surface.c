@@ -73,14 +73,7 @@ static int l_surface_parse (lua_State *L) {
   return 1;
 }
 
-static void pushvec (lua_State *L, const double *v, int n) {
-  int k;
-  lua_createtable(L, n, 0);
-  for (k = 0; k < n; k++) {
-    lua_pushnumber(L, (lua_Number)v[k]);
-    lua_rawseti(L, -2, k + 1);
-  }
-}
+#define pushvec lsys_pushnums
 
 /* s:info() */
 static int surface_info (lua_State *L) {

@@ -8,12 +8,13 @@
 -- @module lsys.components.expand
 local C = require "lsys.components.proto"
 local W = require "lsys.components.world"
+local core = require "lsys.core"
 
 local type, pairs, ipairs, error, setmetatable, rawget, rawset, tostring, pcall, require =
       type, pairs, ipairs, error, setmetatable, rawget, rawset, tostring, pcall, require
 local math, string, table = math, string, table
 local format, concat = string.format, table.concat
-local sqrt, sin, cos, rad, floor = math.sqrt, math.sin, math.cos, math.rad, math.floor
+local floor = math.floor
 local isnum, who = C.isnum, C.who
 local _ENV = nil
 
@@ -30,74 +31,23 @@ local function cross (a, b)
   return { a[2] * b[3] - a[3] * b[2], a[3] * b[1] - a[1] * b[3], a[1] * b[2] - a[2] * b[1] }
 end
 local function dot (a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
-local function add (a, b, k)
-  k = k or 1
-  return { a[1] + k * b[1], a[2] + k * b[2], a[3] + k * b[3] }
-end
 local function scale (a, k) return { a[1] * k, a[2] * k, a[3] * k } end
-local function norm (a)
-  local l = sqrt(dot(a, a))
-  if l < 1e-300 then return nil end
-  return { a[1] / l, a[2] / l, a[3] / l }
-end
-M.cross, M.dot, M.norm = cross, dot, norm
-
--- v rotated by `deg` degrees about the unit axis k (Rodrigues).
-local function rotate (v, k, deg)
-  local a = rad(deg)
-  local c, s = cos(a), sin(a)
-  local kv = cross(k, v)
-  local kd = dot(k, v) * (1 - c)
-  return { v[1] * c + kv[1] * s + k[1] * kd, v[2] * c + kv[2] * s + k[2] * kd,
-           v[3] * c + kv[3] * s + k[3] * kd }
-end
-M.rotate = rotate
+M.cross, M.dot = cross, dot
 
 local function right (f) return scale(cross(f.H, f.U), -1) end     -- R = -L
 local function front (f) return scale(f.U, -1) end                 -- F = -U
 M.right, M.front = right, front
 
-local function copyframe (f)
-  return { p = { f.p[1], f.p[2], f.p[3] }, H = { f.H[1], f.H[2], f.H[3] },
-           U = { f.U[1], f.U[2], f.U[3] }, s = f.s }
-end
-
---- The world position of the local point (x, y, z) of frame f.
-function M.topoint (f, x, y, z)
-  local R, F = right(f), front(f)
-  return { f.p[1] + f.s * (x * R[1] + y * f.H[1] + z * F[1]),
-           f.p[2] + f.s * (x * R[2] + y * f.H[2] + z * F[2]),
-           f.p[3] + f.s * (x * R[3] + y * f.H[3] + z * F[3]) }
-end
-
--- The frame turned by the basic parameters: translate (local), rotate (degrees about the
--- local x, then y, then z axes), scale.
-local function transform (f, t, r, s)
-  local g = copyframe(f)
-  g.p = M.topoint(f, t[1], t[2], t[3])
-  if r[1] ~= 0 then local ax = right(g) g.H, g.U = rotate(g.H, ax, r[1]), rotate(g.U, ax, r[1]) end
-  if r[2] ~= 0 then g.U = rotate(g.U, g.H, r[2]) end
-  if r[3] ~= 0 then local az = front(g) g.H = rotate(g.H, az, r[3]) end
-  g.s = g.s * s
-  return g
-end
-M.transform = transform
-
 -- }=========================================================================================
 
 -- {=========================================================================================
--- The seeded generator: splitmix64 on Lua's 64-bit integers, the same on every machine.
+-- The seeded generator: splitmix64, the same on every machine. The expansion draws from the
+-- frame arena's (compgeo.c): parameter functions (ctx.random) and the stems' gnarl in turn.
 
+-- A generator function of the seed, for a caller that wants the sequence alone.
 local function generator (seed)
-  local state = floor(seed or 1)
-  return function ()
-    state = state + 0x9E3779B97F4A7C15
-    local z = state
-    z = (z ~ (z >> 30)) * 0xBF58476D1CE4E5B9
-    z = (z ~ (z >> 27)) * 0x94D049BB133111EB
-    z = z ~ (z >> 31)
-    return (z >> 11) * (1.0 / 9007199254740992.0)
-  end
+  local a = core.frames(floor(seed or 1))
+  return function () return a:random() end
 end
 M.generator = generator
 
@@ -253,12 +203,12 @@ function Tree:__tostring ()
   return format("lsys.components.Tree(%d instances)", #self.list)
 end
 
--- The tip frame of an instance (where its children start): the stem's end, a leaf's or a
--- primitive's far end along the heading, else its frame.
-local function tipof (inst)
-  local f, p, kind = inst.frame, inst.proto, inst.kind
+-- The arena index of the tip frame of an instance (where its children start): the stem's
+-- end, a leaf's or a primitive's far end along the heading, else its own frame.
+local function tipindex (tree, inst)
+  local p, kind = inst.proto, inst.kind
   local d
-  if kind == "horn" or kind == "tree" then return inst.stem[#inst.stem]
+  if kind == "horn" or kind == "tree" then return inst.st + inst.ns - 1
   elseif kind == "leaf" then d = inst.length
   elseif kind == "revo" then
     local prof = p:param("profile")
@@ -266,28 +216,44 @@ local function tipof (inst)
   elseif (p.params.primitive ~= nil or kind == "simple") and p:param("primitive") ~= "none" then
     d = inst.params.size[2]
   else
-    return f
+    return inst.fi
   end
-  local tip = copyframe(f)
-  tip.p = add(f.p, f.H, d * f.s)
-  return tip
+  return tree.frames:ahead(inst.fi, d)
 end
 
--- Instances keep what is rarely read lazily: the path (from the parent chain), the ctx of
--- parameter functions, an empty list of children, the tip of a childless instance.
-local function instmeta (ex)
+-- Instances keep what is rarely read lazily: the name and label (from the prototype), the
+-- path (from the parent chain), the ctx of parameter functions, an empty list of children;
+-- the frames are in the tree's arena (`fi`, a stem's `st` and `ns`), and `frame`, `stem`
+-- and `tip` are new tables made from it at each read; the module range of the last
+-- emission (`modules`, `m0`, `m1`, `at`) is the writer's.
+local function instmeta (tree)
+  local frames = tree.frames
   return {
     __index = function (inst, k)
       local v
-      if k == "path" then
+      if k == "name" then return inst.proto.name
+      elseif k == "label" then local p = inst.proto return p.name or p.kind
+      elseif k == "frame" then return frames:get(inst.fi)
+      elseif k == "stem" then
+        local st = rawget(inst, "st")
+        if st == nil then return nil end
+        v = {}
+        for j = 1, inst.ns do v[j] = frames:get(st + j - 1, true) end
+        return v
+      elseif k == "tip" then return frames:get(tipindex(tree, inst))
+      elseif k == "m0" or k == "m1" or k == "at" or k == "modules" then
+        local wr = tree.writer
+        if wr == nil then return nil end
+        local m0, m1, at = wr:range(inst.index)
+        if m0 == nil then return nil end
+        if k == "modules" then return { m0, m1 } end
+        return k == "m0" and m0 or k == "m1" and m1 or at
+      elseif k == "path" then
         local par = inst.parent
-        v = (par and ex.list[par].path .. "/" or "") .. inst.label .. "#" .. inst.seq
+        v = (par and tree.list[par].path .. "/" or "") .. inst.label .. "#" .. inst.seq
       elseif k == "children" then v = {}
-      elseif k == "ctx" then v = { i = inst.i, n = inst.n, depth = inst.depth, random = ex.random }
-      elseif k == "tip" then v = tipof(inst)
-      elseif k == "modules" then
-        if inst.m0 == nil then return nil end
-        v = { inst.m0, inst.m1 }
+      elseif k == "ctx" then
+        v = { i = inst.i, n = inst.n, depth = inst.depth, random = tree.random }
       else return nil end
       rawset(inst, k, v)
       return v
@@ -310,19 +276,6 @@ local function allowed (inst, l, i, n)
   return f.set[i] ~= true
 end
 
--- H turned towards the unit direction T by the angle e |H x T| (cpfg's tropism, ABOP
--- section 2.3), U with it. g is changed in place.
-local function tropism (g, T, e)
-  local H = g.H
-  local ax = { H[2] * T[3] - H[3] * T[2], H[3] * T[1] - H[1] * T[3], H[1] * T[2] - H[2] * T[1] }
-  local m = sqrt(ax[1] * ax[1] + ax[2] * ax[2] + ax[3] * ax[3])
-  if m > 1e-12 then
-    ax[1], ax[2], ax[3] = ax[1] / m, ax[2] / m, ax[3] / m
-    local a = math.deg(e * m)
-    g.H, g.U = rotate(H, ax, a), rotate(g.U, ax, a)
-  end
-end
-
 -- The tropisms acting on a stem: { direction (a vector or a function of position), its
 -- strength } for the Tree's gravi- and phototropism and the World's cylinder and wind.
 local function tropisms (inst, grav, photo)
@@ -339,10 +292,14 @@ local function tropisms (inst, grav, photo)
   return out
 end
 
--- The stem of a Horn or Tree: frames at the ends of `segments` equal pieces, bent by the
--- curvature, the gnarl (random), the tropisms of the world and, for a Tree, deviated at its
--- branches. Returns the list of frames (1 = the base) with radius r and the arc length u.
-local function stem (ex, inst, f, len, segs, branches)
+local NOTROPISM = {}
+
+-- The stem of a Horn or Tree (compgeo.c, lsys_cframes_stem): frames at the ends of
+-- `segments` equal pieces from frame fi, bent by the curvature, the gnarl (random), the
+-- tropisms of the world (each turning H towards its direction by the angle e |H x T|, as
+-- cpfg's tropism, ABOP section 2.3) and, for a Tree, deviated at its branches (plan). Returns
+-- the arena index of the first of segs + 1 frames (the base, u = 0, to the tip, u = 1).
+local function stem (ex, inst, fi, len, segs, plan)
   local p = inst.proto
   local i, n = inst.i, inst.n
   local istree = p.kind == "tree"
@@ -352,48 +309,16 @@ local function stem (ex, inst, f, len, segs, branches)
   local photo = istree and get(inst, p, "phototropism", i, n) or 0
   local dev = istree and get(inst, p, "deviation", i, n) or 0
   local twist = p.kind == "horn" and get(inst, p, "twist", i, n) or 0
-  local trop = tropisms(inst, grav, photo)
-  local out = { copyframe(f) }
-  out[1].u = 0
-  local g = copyframe(f)
-  local step = len / segs
-  local nextb = 1
-  for k = 1, segs do
-    if curv ~= 0 then
-      local ax = right(g)
-      g.H, g.U = rotate(g.H, ax, curv / segs), rotate(g.U, ax, curv / segs)
-    end
-    if twist ~= 0 then g.U = rotate(g.U, g.H, twist / segs) end
-    if gnarl ~= 0 then
-      local a = (ex.random() * 2 - 1) * gnarl
-      local ax = rotate(right(g), g.H, ex.random() * 360)
-      g.H, g.U = rotate(g.H, ax, a), rotate(g.U, ax, a)
-    end
-    for t = 1, #trop do
-      local T = trop[t][1]
-      if type(T) == "function" then T = { T(g.p[1], g.p[2], g.p[3]) } end
-      if T[1] then tropism(g, T, trop[t][2]) end
-    end
-    -- deviation: the stem turns away from each branch it passes
-    while branches and branches[nextb] and branches[nextb].u <= k / segs do
-      if dev ~= 0 then
-        local b = branches[nextb]
-        local ax = norm(cross(g.H, b.dir))
-        if ax then g.H, g.U = rotate(g.H, ax, -dev), rotate(g.U, ax, -dev) end
-      end
-      nextb = nextb + 1
-    end
-    local s = step * g.s
-    local gp, gH = g.p, g.H
-    g.p = { gp[1] + s * gH[1], gp[2] + s * gH[2], gp[3] + s * gH[3] }
-    local h = copyframe(g)
-    h.u = k / segs
-    out[k + 1] = h
-  end
-  return out
+  local w = inst.world
+  local trop = NOTROPISM
+  if grav ~= 0 or photo ~= 0 or w.cylinder or w.wind then trop = tropisms(inst, grav, photo) end
+  local bu, broll
+  if plan and dev ~= 0 then bu, broll = plan.u, plan.roll end
+  return ex.frames:stem(fi, len, segs, curv, twist, gnarl, trop, dev, bu, broll)
 end
 
--- The branches of a Tree: where along the stem, their frames before the stem bends.
+-- The branches of a Tree: where along the stem, their roll, branching angle and scale, as
+-- lists by branch number.
 local function branchplan (inst, nb)
   local p, i, n = inst.proto, inst.i, inst.n
   local first, last = get(inst, p, "first", i, n), get(inst, p, "last", i, n)
@@ -403,29 +328,29 @@ local function branchplan (inst, nb)
   get(inst, p, "angle", 1, nb)
   get(inst, p, "branch_scale", 1, nb)
   local callang, callsc = pc.how.angle == CALL, pc.how.branch_scale == CALL
-  local out = {}
+  local us, rolls, angles, scales = {}, {}, {}, {}
   for b = 1, nb do
     local t = nb > 1 and (b - 1) / (nb - 1) or 0
     if dens ~= 1 then t = t ^ dens end
     local u = first + (last - first) * t
-    local br = { u = u, roll = div * (b - 1), i = b, n = nb }
+    us[b], rolls[b] = u, div * (b - 1)
+    local ctx
     if callang or callsc then
-      br.ctx = { i = b, n = nb, depth = inst.depth, random = inst.ctx.random, u = u }
+      ctx = { i = b, n = nb, depth = inst.depth, random = inst.ctx.random, u = u }
     end
-    br.angle = callang and value(inst, p, "angle", br.ctx) or get(inst, p, "angle", b, nb)
-    br.scale = callsc and value(inst, p, "branch_scale", br.ctx) or
-               get(inst, p, "branch_scale", b, nb)
-    out[b] = br
+    angles[b] = callang and value(inst, p, "angle", ctx) or get(inst, p, "angle", b, nb)
+    scales[b] = callsc and value(inst, p, "branch_scale", ctx) or
+                get(inst, p, "branch_scale", b, nb)
   end
-  return out
+  return { u = us, roll = rolls, angle = angles, scale = scales, n = nb }
 end
 
 local Expander = {}
 Expander.__index = Expander
 
--- A new instance of proto at `frame` (its parent's; `fresh`: a table made for it alone,
--- which the instance may keep), iteration i of n, u along a Tree's stem.
-function Expander:add (proto, frame, fresh, i, n, u, parent, ltype)
+-- A new instance of proto at arena frame fi (its parent's; `fresh`: a frame made for it
+-- alone, which the instance may keep), iteration i of n, u along a Tree's stem.
+function Expander:add (proto, fi, fresh, i, n, u, parent, ltype)
   local list = self.list
   local index = #list + 1
   if index > self.max then
@@ -438,11 +363,13 @@ function Expander:add (proto, frame, fresh, i, n, u, parent, ltype)
   local label = proto.name or proto.kind
   local seq = (self.seq[label] or 0) + 1
   self.seq[label] = seq
+  -- every field the expansion sets is in the constructor, so the table is made at its size
   local inst = setmetatable({ index = index, proto = proto, kind = proto.kind,
-                              name = proto.name, parent = parent and parent.index,
-                              link = ltype, i = i, n = n, depth = depth, label = label,
-                              seq = seq, u = u, world = parent and parent.world or self.world },
-                            self.meta)
+                              parent = parent and parent.index, link = ltype, i = i, n = n,
+                              depth = depth, seq = seq, u = u,
+                              world = parent and parent.world or self.world,
+                              fi = false, params = false, length = nil, st = nil,
+                              ns = nil }, self.meta)
   list[index] = inst
   if parent then
     local ch = rawget(parent, "children")
@@ -450,7 +377,7 @@ function Expander:add (proto, frame, fresh, i, n, u, parent, ltype)
     ch[#ch + 1] = index
   end
   on[proto] = depth
-  self:build(inst, frame, fresh)
+  self:build(inst, fi, fresh)
   on[proto] = depth > 1 and depth - 1 or nil
   return inst
 end
@@ -493,25 +420,30 @@ local function worldof (inst, p)
 end
 
 -- The instance's own frame, its geometry's skeleton, and its children.
-function Expander:build (inst, frame, fresh)
+function Expander:build (inst, fi, fresh)
   local p = inst.proto
   local params = basics(inst, p)
   inst.params = params
-  local f
+  local frames = self.frames
   if pcache(p).identity then
-    f = fresh and frame or copyframe(frame)
+    if not fresh then fi = frames:copy(fi) end
   else
-    f = transform(frame, params.translate, params.rotate, params.scale)
+    local t, r = params.translate, params.rotate
+    fi = frames:transform(fi, t[1], t[2], t[3], r[1], r[2], r[3], params.scale)
   end
-  inst.frame = f
+  inst.fi = fi
   local kind = p.kind
   if kind == "world" then inst.world = worldof(inst, p)
   elseif kind == "leaf" then
     inst.length = get(inst, p, "length", inst.i, inst.n)        -- sets the tip
     local e = get(inst, p, "phototropism", inst.i, inst.n)
-    if e ~= 0 then W.leafturn(f, inst.world.light, e) end
+    if e ~= 0 then
+      local f = frames:get(fi)
+      W.leafturn(f, inst.world.light, e)
+      frames:set(fi, f)
+    end
   end
-  local branches
+  local plan
   if kind == "horn" or kind == "tree" then
     local len = get(inst, p, "length", inst.i, inst.n)
     local segs = p:param("segments")
@@ -519,24 +451,17 @@ function Expander:build (inst, frame, fresh)
       efail(inst, "segments", "must be from 1 to 100000, got %s", tostring(segs))
     end
     local nb = kind == "tree" and p:param("n") or 0
-    local plan
-    if nb > 0 and hasbranches(p) then
-      plan = branchplan(inst, nb)
-      local R = right(f)
-      for _, b in ipairs(plan) do
-        b.dir = rotate(R, f.H, b.roll)     -- roughly where it will point
-      end
-    end
-    inst.stem = stem(self, inst, f, len, segs, plan)
+    if nb > 0 and hasbranches(p) then plan = branchplan(inst, nb) end
+    inst.st = stem(self, inst, fi, len, segs, plan)
+    inst.ns = segs + 1
     inst.length = len
-    branches = plan
   end
   local links = p.links
   if #links == 0 then return end
-  local tip = inst.tip
+  local tip = tipindex(self.tree, inst)
   local ends = not self:recurses(inst)
   for _, l in ipairs(links) do
-    self:follow(inst, l, tip, branches, ends)
+    self:follow(inst, l, tip, plan, ends)
   end
 end
 
@@ -550,39 +475,22 @@ end
 
 -- A Tree's branches on link l: the stem frame at u (position between the stem frames,
 -- orientation of the one below), rolled by the divergence about H and pitched down by the
--- branching angle about the right axis (H' = H cos a + U' sin a, U'' = U' cos a - H sin a).
-function Expander:branches (inst, l, branches)
-  local st = inst.stem
-  local ns = #st - 1
-  local nb = #branches
+-- branching angle about the right axis (compgeo.c, lsys_cframe_branch).
+function Expander:branches (inst, l, plan)
+  local frames, st, ns = self.frames, inst.st, inst.ns
+  local nb = plan.n
+  local us, rolls, angles, scales = plan.u, plan.roll, plan.angle, plan.scale
   local target = l.to
   for b = 1, nb do
-    local br = branches[b]
     if allowed(inst, l, b, nb) then
-      local x = br.u * ns
-      local k = floor(x)
-      if k >= ns then k = ns - 1 end
-      if k < 0 then k = 0 end
-      local A, B, t = st[k + 1], st[k + 2], x - k
-      local ap, bp, H, U = A.p, B.p, A.H, A.U
-      local L1, L2, L3 = H[2] * U[3] - H[3] * U[2], H[3] * U[1] - H[1] * U[3],
-                         H[1] * U[2] - H[2] * U[1]
-      local r = rad(br.roll)
-      local c, s = cos(r), sin(r)
-      local U1, U2, U3 = U[1] * c + L1 * s, U[2] * c + L2 * s, U[3] * c + L3 * s
-      local a = rad(br.angle)
-      c, s = cos(a), sin(a)
-      local f = { p = { ap[1] + t * (bp[1] - ap[1]), ap[2] + t * (bp[2] - ap[2]),
-                        ap[3] + t * (bp[3] - ap[3]) },
-                  H = { H[1] * c + U1 * s, H[2] * c + U2 * s, H[3] * c + U3 * s },
-                  U = { U1 * c - H[1] * s, U2 * c - H[2] * s, U3 * c - H[3] * s },
-                  s = A.s * br.scale }
-      self:add(target, f, true, b, nb, br.u, inst, "branch")
+      local u = us[b]
+      local fi = frames:branch(st, ns, u, rolls[b], angles[b], scales[b])
+      self:add(target, fi, true, b, nb, u, inst, "branch")
     end
   end
 end
 
-function Expander:follow (inst, l, tip, branches, ends)
+function Expander:follow (inst, l, tip, plan, ends)
   local target = l.to
   local on = self.onpath[target]
   if on ~= nil and on >= target.recursion then return end    -- the recursion ends here
@@ -591,18 +499,24 @@ function Expander:follow (inst, l, tip, branches, ends)
   if C.MULTIPLIERS[kind] and l.type ~= "leaf" then
     self:multiply(inst, l)
   elseif kind == "tree" and l.type == "branch" then
-    if branches then self:branches(inst, l, branches) end
+    if plan then self:branches(inst, l, plan) end
   else
     self:add(target, tip, false, inst.i, inst.n, nil, inst, l.type)
   end
 end
 
--- The children of a Hydra, Wreath or Phiball on link l.
-function Expander:multiply (inst, l)
+local MULTKEYS = { hydra = { "radius", "open", "close", "angle" },
+                   wreath = { "radius", "open", "close" },
+                   phiball = { "radius", "open", "close", "child_size", "influence" } }
+
+-- The children of a multiplier as place.lua gives them (local frames, sizes); the same for
+-- every instance of a prototype whose parameters are all constants (kept per prototype).
+local function placekids (inst, p)
+  local pc = pcache(p)
+  if pc.kids ~= nil then return pc.kids, pc.sizes end
   local place = require "lsys.components.place"
-  local p, ctx = inst.proto, inst.ctx
+  local ctx = inst.ctx
   local n = p:param("n")
-  local f = inst.frame
   local spec = { n = n }
   for _, k in ipairs { "radius", "open", "close" } do
     if p:param(k) ~= nil then spec[k] = value(inst, p, k, ctx) end
@@ -620,19 +534,32 @@ function Expander:multiply (inst, l)
     spec.sizes, spec.influence = {}, value(inst, p, "influence", ctx)
     for i = 1, n do spec.sizes[i] = sizes[i] * sizes[i] end
   end
-  if n == 0 then return end
+  if n == 0 then return {}, sizes end
   local ok, kids = pcall(place[inst.kind], spec)
   if not ok then
     error(format("lsys.components: %s (at %s): %s", who(p), inst.path,
                  tostring(kids):gsub("^[^:]*: ", "")), 0)
   end
-  -- local axes: X = the multiplier's up, Y = its left, Z = its heading (place.lua)
-  local X, Y, Z = f.U, cross(f.H, f.U), f.H
-  local function world (v) return add(add(scale(X, v[1]), Y, v[2]), Z, v[3]) end
+  local const = true
+  for _, k in ipairs(MULTKEYS[inst.kind]) do
+    if howof(p, k) ~= CONST then const = false end
+  end
+  if const then pc.kids, pc.sizes = kids, sizes end
+  return kids, sizes
+end
+
+-- The children of a Hydra, Wreath or Phiball on link l: place.lua's local frames (X = the
+-- multiplier's up, Y = its left, Z = its heading) in the multiplier's frame.
+function Expander:multiply (inst, l)
+  local p = inst.proto
+  local kids, sizes = placekids(inst, p)
+  local n = p:param("n")
+  local frames, fi = self.frames, inst.fi
   for i, k in ipairs(kids) do
     if allowed(inst, l, i, n) then
-      local g = { p = add(f.p, world(k.pos), f.s), H = world(k.H), U = world(k.U),
-                  s = f.s * (sizes and sizes[i] or 1) }
+      local q, H, U = k.pos, k.H, k.U
+      local g = frames:place(fi, q[1], q[2], q[3], H[1], H[2], H[3], U[1], U[2], U[3],
+                             sizes and sizes[i] or 1)
       self:add(l.to, g, true, i, n, nil, inst, l.type)
     end
   end
@@ -681,15 +608,19 @@ function M.expand (root, opts)
     error("lsys.components.expand: max_instances must be a positive number", 2)
   end
   checkcycles(root)
+  local seed = opts.seed or 1
+  if not isnum(seed) then error("lsys.components.expand: seed must be a number", 2) end
+  local frames = core.frames(floor(seed))
+  local random = function () return frames:random() end
+  local tree = setmetatable({ list = {}, root = root, frames = frames, random = random }, Tree)
   local ex = setmetatable({
-    list = {}, onpath = {}, seq = {}, max = max,
-    random = generator(opts.seed or 1),
+    list = tree.list, onpath = {}, seq = {}, max = max, tree = tree, frames = frames,
+    random = random, meta = instmeta(tree),
     world = { gravity = { 0, -1, 0 }, light = { 0, 1, 0 } },
   }, Expander)
-  ex.meta = instmeta(ex)
-  local f = opts.frame or { p = { 0, 0, 0 }, H = { 0, 1, 0 }, U = { 0, 0, -1 }, s = 1 }
-  ex:add(root, copyframe(f), true, 1, 1, nil, nil, "root")
-  local tree = setmetatable({ list = ex.list, root = root }, Tree)
+  local fi = frames:add(opts.frame or { p = { 0, 0, 0 }, H = { 0, 1, 0 }, U = { 0, 0, -1 },
+                                        s = 1 })
+  ex:add(root, fi, true, 1, 1, nil, nil, "root")
   W.skeleton(tree)
   return tree
 end

@@ -49,19 +49,13 @@ local function freshchar (st, surfaces)
   return utf8.char(k)
 end
 
--- The host's rules seen by the emitter: `~c` surface modules renamed to fresh characters.
-local function renaming (rules, rename)
-  return setmetatable({
-    symbol = function (_, name)
-      local c = name:match("^~(.+)$")
-      if c ~= nil and rename[c] ~= nil then name = "~" .. rename[c] end
-      return rules:symbol(name)
-    end,
-  }, { __index = function (_, k)
-    local f = rules[k]
-    if type(f) ~= "function" then return f end
-    return function (_, ...) return f(rules, ...) end
-  end })
+-- The emitter's renaming of module names: `~c` surface modules get fresh characters.
+local function renaming (rename)
+  return function (name)
+    local c = name:match("^~(.+)$")
+    if c ~= nil and rename[c] ~= nil then return "~" .. rename[c] end
+    return name
+  end
 end
 
 -- The open line contour of the Area primitive (as lsys.components.model gives its plants).
@@ -89,7 +83,7 @@ local function emitted (st, m, name, seed)
     t[c] = nc
     return nc
   end })
-  local out = E.emit(tree, renaming(m._rules, rename))
+  local out = E.emit(tree, m._rules, nil, renaming(rename))
   for c, entry in pairs(out.surfaces) do view.surfaces[rename[c] or c] = entry end
   if out.area then
     view.contours = view.contours or {}

@@ -266,17 +266,17 @@ local function subtree (list, d)
   return out
 end
 
--- The frames of these instances: their own, their stems', a stored tip (each table once).
+-- The arena indices of the frames of these instances: their own and their stems' (each
+-- once; a tip is made from the frame it is ahead of when it is read).
 local function frames (insts)
   local out, seen = {}, {}
-  local function put (f)
-    if f and not seen[f] then seen[f] = true out[#out + 1] = f end
+  local function put (i)
+    if not seen[i] then seen[i] = true out[#out + 1] = i end
   end
   for _, inst in ipairs(insts) do
-    put(inst.frame)
-    local st = inst.stem
-    if st then for _, f in ipairs(st) do put(f) end end
-    put(rawget(inst, "tip"))
+    put(inst.fi)
+    local st = rawget(inst, "st")
+    if st then for j = 0, inst.ns - 1 do put(st + j) end end
   end
   return out
 end
@@ -334,10 +334,13 @@ function M.skeleton (tree)
   for k = #ds, 1, -1 do
     local d = ds[k]
     local insts = subtree(list, d)
-    local fs = frames(insts)
+    local arena = tree.frames
+    local fs = {}
+    for k2, i in ipairs(frames(insts)) do fs[k2] = arena:get(i, true) end
+    local df = d.frame
     local lo, hi = { huge, huge, huge }, { -huge, -huge, -huge }
     for _, f in ipairs(fs) do
-      local q = { tolocal(d.frame, f.p[1], f.p[2], f.p[3]) }
+      local q = { tolocal(df, f.p[1], f.p[2], f.p[3]) }
       for j = 1, 3 do
         if q[j] < lo[j] then lo[j] = q[j] end
         if q[j] > hi[j] then hi[j] = q[j] end
@@ -349,7 +352,7 @@ function M.skeleton (tree)
       if type(map) ~= "function" then g = function (x, y, z) return map:map(x, y, z) end end
       local diag = 0
       for j = 1, 3 do diag = diag + (hi[j] - lo[j]) ^ 2 end
-      local h = 1e-4 * (sqrt(diag) * d.frame.s + 1e-3)
+      local h = 1e-4 * (sqrt(diag) * df.s + 1e-3)
       for _, f in ipairs(fs) do
         local ok, msg = pcall(moveframe, g, f, h)
         if not ok then dfail(d, "its map failed: %s", tostring(msg)) end
@@ -357,8 +360,14 @@ function M.skeleton (tree)
           dfail(d, "its map gave a point that is not three finite numbers")
         end
       end
+      for k2, i in ipairs(frames(insts)) do arena:set(i, fs[k2]) end
       for _, inst in ipairs(insts) do
-        if inst.stem then restem(inst.stem) end
+        local st = rawget(inst, "st")
+        if st then
+          local sf = inst.stem
+          restem(sf)
+          for j, f in ipairs(sf) do arena:set(st + j - 1, f) end
+        end
       end
     end
   end
