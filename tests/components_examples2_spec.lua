@@ -167,10 +167,10 @@ describe("the pine with a partial FFD (fig. 10)", function()
   local P = dofile(DIR .. "pine.lua")
   local SMALL = { branches = 4, twigs = 2, pairs = 3 }
 
-  it("has 1,792 needle pairs, each under an isolating FFD", function()
+  it("has 4,480 needle pairs, each under an isolating FFD", function()
     local t = P.components.tree
-    assert.same({ bend = 1, trunk = 1, branch = 14, twig = 112, keep = 1792, pair = 1792,
-                  needle = 3584 },
+    assert.same({ bend = 1, trunk = 1, branch = 14, twig = 112, keep = 4480, pair = 4480,
+                  needle = 8960 },
                 counts(t, { "bend", "trunk", "branch", "twig", "keep", "pair", "needle" }))
     assert.is_true(t:find("bend#1/trunk#1/branch#1/twig#1/keep#1").proto:param("isolate"))
   end)

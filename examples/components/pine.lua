@@ -11,10 +11,10 @@
 -- "all" }` leaves "keep" out, so the needles bend too (fig. 10c), and `deform = "none"`
 -- leaves the bend out (fig. 10a).
 --
---   1 bend, 1 trunk, 14 branches, 112 twigs, 1,792 keeps, 1,792 pairs, 3,584 needles.
+--   1 bend, 1 trunk, 14 branches, 112 twigs, 4,480 keeps, 4,480 pairs, 8,960 needles.
 --
--- Note: the needles of an isolated subtree stay where the undeformed twig had them, so they
--- drift off the twigs where the bend is strong; the bend here is kept moderate.
+-- An isolated subtree follows the deformations above it rigidly (moved and turned with its
+-- frame), so the needles stay on the bent twigs with their shape.
 local lsys = require "lsys"
 local C = lsys.components
 
@@ -37,7 +37,7 @@ local function pine (opts)
   local pair = C.hydra { name = "pair", n = 2, angle = 35, rotate = { 90, 0, 0 } }
   pair:child(needle)
   local twig = C.tree { name = "twig", length = 1.1, radius = 0.02, tip = 0.5, segments = 6,
-                        n = opts.pairs or 16, first = 0.05, angle = 50, curvature = -15,
+                        n = opts.pairs or 40, first = 0.05, angle = 50, curvature = -15,
                         phototropism = 0.1, color = 3 }
   if deform == "twigs" then
     local keep = C.ffd { name = "keep", isolate = true }
