@@ -185,6 +185,11 @@ describe("lsys.components geometry", function ()
     -- from (1, 0, 0) up 1, then left (the turtle's + turns H towards L = -x) 2
     assert.near(-1, lo[1], 1e-6) assert.near(1, hi[1], 1e-6)
     assert.near(0, lo[2], 1e-6) assert.near(1, hi[2], 1e-6)
+    -- what follows the geometry starts from the instance's frame, not where the string
+    -- left the turtle
+    s:child(C.simple { name = "ball", primitive = "sphere", size = { 0.2, 0.2, 0.2 } })
+    local m2 = C.model(s)
+    assert.equal(2, check_frames(m2, m2:interpret()))
   end)
 
   it("takes the arrangement: bending the trunk moves what grows on it", function ()

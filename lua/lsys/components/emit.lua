@@ -354,7 +354,8 @@ local function leaf (w, inst)
 end
 
 -- A component given as an L-system's geometry (`geometry` = a model or an Lstring): its
--- modules, as they are, on the instance's frame.
+-- modules, as they are, on the instance's frame, in a branch of their own so that what
+-- follows (a primitive, the children) starts from the frame again.
 local function geometry (w, g)
   local s = g
   local model = require "lsys.model"
@@ -363,10 +364,12 @@ local function geometry (w, g)
     s = w.derived[g]
     if s == nil then s = g:derive() w.derived[g] = s end
   end
+  w:op("[")
   for i = 1, #s do
     local t = { s:module(i) }
     w:op(t[1], table.unpack(t, 2))
   end
+  w:op("]")
 end
 
 emit = function (w, tree, inst)
