@@ -47,7 +47,17 @@ int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n) {
   }
   LSYS_FREE(s->pal);
   s->pal = p;
-  s->npal = n;
+  s->npal = s->palcap = n;
+  return LSYS_OK;
+}
+
+int lsys_scene_add_material (lsys_scene *s, const lsys_material *m, size_t *idx) {
+  lsys_material copy = *m;             /* m may point into the palette */
+  if (s->npal >= 65536) return LSYS_ELIMIT;
+  if (lsys_grow((void **)&s->pal, &s->palcap, s->npal + 1, sizeof *s->pal) != LSYS_OK)
+    return LSYS_ENOMEM;
+  s->pal[s->npal] = copy;
+  *idx = s->npal++;
   return LSYS_OK;
 }
 

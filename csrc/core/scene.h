@@ -112,6 +112,7 @@ typedef struct lsys_instance {
 typedef struct lsys_scene {
   lsys_mesh mesh;
   lsys_material *pal; size_t npal;             /* owned; colour c uses pal[c % npal] */
+  size_t palcap;                               /* room in pal (lsys_scene_add_material) */
   const lsys_texture *const *tex; int ntex;    /* borrowed; texture k is tex[k - 1] */
   lsys_trec *rec; size_t nrec, reccap;
   float *stiff; size_t nstiff, stiffcap;       /* 3 per Z-stiffened record */
@@ -140,6 +141,11 @@ void lsys_scene_clear (lsys_scene *s);
 /* Replaces the palette with a copy of pal[0 .. n-1]. LSYS_OK or LSYS_ENOMEM
 ** (the old palette stays). */
 int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n);
+
+/* Appends a material to the palette and sets *idx to its index; the palette
+** grows geometrically. LSYS_OK, LSYS_ELIMIT (65,536 entries: colour indices
+** are 16-bit) or LSYS_ENOMEM. */
+int lsys_scene_add_material (lsys_scene *s, const lsys_material *m, size_t *idx);
 
 /* Makes room for 'n' more records (within the meter). LSYS_OK, LSYS_ENOMEM
 ** or LSYS_EMEMORY. */

@@ -234,14 +234,14 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     S->sc.pal = (lsys_material *)LSYS_MALLOC(sizeof *S->sc.pal);
     if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
     lsys_material_color(S->sc.pal, 0.6, 0.6, 0.6);
-    S->sc.npal = 1;
+    S->sc.npal = S->sc.palcap = 1;
     return;
   }
   n = luaL_len(L, -1) + 1;
   if (n > 65536) luaL_error(L, "the palette has more than 65536 entries");
   S->sc.pal = (lsys_material *)LSYS_MALLOC((size_t)n * sizeof *S->sc.pal);
   if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
-  S->sc.npal = (size_t)n;
+  S->sc.npal = S->sc.palcap = (size_t)n;
   for (k = 0; k < n; k++) {
     lsys_material *m = &S->sc.pal[k];
     lsys_opts e;

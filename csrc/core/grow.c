@@ -1,0 +1,611 @@
+/*
+** Incremental growth: the limb table and its geometry updated in place
+** (grow.h; Davison, seed 002).
+*/
+#include <math.h>
+#include <string.h>
+
+#include "grow.h"
+#include "vec3.h"
+
+#define RAD (PI / 180.0)
+
+enum { OP_LEAVES = 1, OP_DROP, OP_REMOVE };
+
+/* chg bits: what changed since the last update */
+enum { C_NEW = 1, C_LEN = 2, C_RAD = 4, C_ROT = 8, C_COL = 16, C_LEAF = 32, C_XF = 64 };
+
+#define LEAF_TILT 50.0                   /* degrees between a leaf and its limb's heading */
+#define GOLDEN 137.50776405003785        /* degrees between successive leaves around it */
+
+void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
+  memset(g, 0, sizeof *g);
+  g->sc = sc;
+  g->sides = sides < 3 ? 3 : sides > LSYS_LIMBS_MAXSIDES ? LSYS_LIMBS_MAXSIDES : sides;
+  g->lf_free = -1;
+}
+
+void lsys_limbs_free (lsys_limbs *g) {
+  void *arrs[] = {
+    g->parent, g->plant, g->first, g->next, g->level, g->age, g->flag, g->chg, g->len,
+    g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
+    g->t0, g->col, g->leaf, g->nleaves, g->lf_limb, g->lf_next, g->lf_k, g->lf_v0, g->lf_t0,
+    g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount, g->pcount0,
+    g->pending, g->qmap
+  };
+  size_t k;
+  for (k = 0; k < sizeof arrs / sizeof arrs[0]; k++) LSYS_FREE(arrs[k]);
+  lsys_limbs_init(g, g->sc, g->sides);
+}
+
+/* {======================================================================
+** Storage
+** ======================================================================= */
+
+/* Grows every per-limb array to hold 'need' limbs. */
+static int reserve_limbs (lsys_limbs *g, size_t need) {
+  struct { void **p; size_t size; } a[] = {
+    {(void **)&g->parent, 4}, {(void **)&g->plant, 4}, {(void **)&g->first, 4},
+    {(void **)&g->next, 4}, {(void **)&g->level, 2}, {(void **)&g->age, 4},
+    {(void **)&g->flag, 1}, {(void **)&g->chg, 1}, {(void **)&g->len, 8},
+    {(void **)&g->rad, 8}, {(void **)&g->nlen, 8}, {(void **)&g->nrad, 8},
+    {(void **)&g->rgb, 12}, {(void **)&g->nrgb, 12}, {(void **)&g->loc, 72},
+    {(void **)&g->nloc, 72}, {(void **)&g->at, 8}, {(void **)&g->wp, 24},
+    {(void **)&g->wm, 72}, {(void **)&g->v0, 4}, {(void **)&g->t0, 4}, {(void **)&g->col, 2},
+    {(void **)&g->leaf, 4}, {(void **)&g->nleaves, 4}
+  };
+  size_t ncap = g->cap ? g->cap : 64, k;
+  if (need <= g->cap) return LSYS_OK;
+  while (ncap < need) {
+    if (ncap > ((size_t)-1 / 2) / 72) return LSYS_ENOMEM;
+    ncap *= 2;
+  }
+  for (k = 0; k < sizeof a / sizeof a[0]; k++) {
+    void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
+    if (q == NULL) return LSYS_ENOMEM;   /* the arrays grown so far keep their data */
+    *a[k].p = q;
+  }
+  g->cap = ncap;
+  return LSYS_OK;
+}
+
+static int reserve_leaves (lsys_limbs *g, size_t need) {
+  struct { void **p; size_t size; } a[] = {
+    {(void **)&g->lf_limb, 4}, {(void **)&g->lf_next, 4}, {(void **)&g->lf_k, 4},
+    {(void **)&g->lf_v0, 4}, {(void **)&g->lf_t0, 4}, {(void **)&g->lf_size, 4},
+    {(void **)&g->lf_col, 2}
+  };
+  size_t ncap = g->lcap ? g->lcap : 64, k;
+  if (need <= g->lcap) return LSYS_OK;
+  while (ncap < need) {
+    if (ncap > ((size_t)-1 / 2) / 8) return LSYS_ENOMEM;
+    ncap *= 2;
+  }
+  for (k = 0; k < sizeof a / sizeof a[0]; k++) {
+    void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
+    if (q == NULL) return LSYS_ENOMEM;
+    *a[k].p = q;
+  }
+  g->lcap = ncap;
+  return LSYS_OK;
+}
+
+int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
+  size_t c = g->pcap;
+  if (g->np >= INT32_MAX) return LSYS_ELIMIT;
+  if (lsys_grow((void **)&g->ppos, &c, g->np + 1, 3 * sizeof *g->ppos) != LSYS_OK) return LSYS_ENOMEM;
+  c = g->pcap;
+  if (lsys_grow((void **)&g->pcount, &c, g->np + 1, sizeof *g->pcount) != LSYS_OK) return LSYS_ENOMEM;
+  c = g->pcap;
+  if (lsys_grow((void **)&g->pcount0, &c, g->np + 1, sizeof *g->pcount0) != LSYS_OK)
+    return LSYS_ENOMEM;
+  g->pcap = c;
+  vcopy(g->ppos + 3 * g->np, pos);
+  g->pcount[g->np] = g->pcount0[g->np] = 0;
+  *id = (int32_t)g->np++;
+  return LSYS_OK;
+}
+
+int lsys_limbs_alive (const lsys_limbs *g, int32_t i) {
+  return i >= 0 && (size_t)i < g->n && (g->flag[i] & LSYS_LIMB_ALIVE);
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Frames
+** ======================================================================= */
+
+/* v rotated about the unit axis k by 'deg' degrees (right hand). */
+static void rot (double v[3], const double k[3], double deg) { vrotate(v, k, deg * RAD); }
+
+/* The rotation (columns R, H, F, in the parent's frame) of a roll about y,
+** then 'angle' about 'axis' rolled with it. */
+static int localrot (const double axis[3], double angle, double roll, double m[9]) {
+  static const double Y[3] = {0, 1, 0};
+  double ax[3];
+  int k;
+  vcopy(ax, axis);
+  if (!vnorm(ax)) return LSYS_EARG;
+  memset(m, 0, 9 * sizeof *m);
+  m[0] = m[4] = m[8] = 1;
+  rot(ax, Y, roll);
+  for (k = 0; k < 3; k++) {
+    rot(m + 3 * k, Y, roll);
+    rot(m + 3 * k, ax, angle);
+  }
+  return LSYS_OK;
+}
+
+/* out = A * B (3 x 3, columns) */
+static void matmul (const double A[9], const double B[9], double out[9]) {
+  int c, r;
+  for (c = 0; c < 3; c++)
+    for (r = 0; r < 3; r++)
+      out[3 * c + r] = A[r] * B[3 * c] + A[3 + r] * B[3 * c + 1] + A[6 + r] * B[3 * c + 2];
+}
+
+/* The world frame of limb i from its parent's (or its plant's position). */
+static void worldframe (lsys_limbs *g, int32_t i) {
+  int32_t p = g->parent[i];
+  if (p < 0) {
+    vcopy(g->wp + 3 * i, g->ppos + 3 * g->plant[i]);
+    memcpy(g->wm + 9 * i, g->loc + 9 * i, 9 * sizeof(double));
+  } else {
+    const double *H = g->wm + 9 * p + 3;
+    double d = g->len[p] * g->at[i];
+    vlin(g->wp + 3 * i, g->wp + 3 * p, 1, H, d);
+    matmul(g->wm + 9 * p, g->loc + 9 * i, g->wm + 9 * i);
+  }
+}
+
+void lsys_limbs_tip (const lsys_limbs *g, int32_t i, double tip[3]) {
+  vlin(tip, g->wp + 3 * i, 1, g->wm + 9 * i + 3, g->len[i]);
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Colours
+** ======================================================================= */
+
+static double clamp01 (double x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
+
+/* The palette index of rgb quantized to 5 bits a channel (interned). */
+static int colorindex (lsys_limbs *g, const float rgb[3], uint16_t *idx) {
+  int q[3], k, key;
+  if (g->qmap == NULL) {
+    g->qmap = (uint16_t *)LSYS_MALLOC(32768 * sizeof *g->qmap);
+    if (g->qmap == NULL) return LSYS_ENOMEM;
+    memset(g->qmap, 0, 32768 * sizeof *g->qmap);
+  }
+  for (k = 0; k < 3; k++) q[k] = (int)floor(clamp01(rgb[k]) * 31 + 0.5);
+  key = (q[0] << 10) | (q[1] << 5) | q[2];
+  if (g->qmap[key] == 0) {
+    lsys_material m;
+    size_t at;
+    int r;
+    lsys_material_color(&m, q[0] / 31.0, q[1] / 31.0, q[2] / 31.0);
+    if ((r = lsys_scene_add_material(g->sc, &m, &at)) != LSYS_OK) return r;
+    if (at >= 65535) return LSYS_ELIMIT;
+    g->qmap[key] = (uint16_t)(at + 1);
+  }
+  *idx = (uint16_t)(g->qmap[key] - 1);
+  return LSYS_OK;
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Limbs and their state
+** ======================================================================= */
+
+static int isfin (double x) { return isfinite(x); }
+
+int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
+  int32_t i, p = s->parent;
+  double m[9];
+  int k;
+  if (p >= 0 ? !lsys_limbs_alive(g, p) : (s->plant < 0 || (size_t)s->plant >= g->np))
+    return LSYS_EARG;
+  if (!(isfin(s->length) && s->length >= 0 && isfin(s->radius) && s->radius >= 0 &&
+        isfin(s->at) && s->at >= 0 && s->at <= 1 && isfin(s->angle) && isfin(s->roll)))
+    return LSYS_EARG;
+  for (k = 0; k < 3; k++)
+    if (!isfin(s->axis[k]) || !isfinite(s->rgb[k])) return LSYS_EARG;
+  if (localrot(s->axis, s->angle, s->roll, m) != LSYS_OK) return LSYS_EARG;
+  if (g->maxlimbs > 0 && g->nalive >= g->maxlimbs) return LSYS_ELIMIT;
+  if (g->n >= INT32_MAX - 1) return LSYS_ELIMIT;
+  if (reserve_limbs(g, g->n + 1) != LSYS_OK) return LSYS_ENOMEM;
+  i = (int32_t)g->n++;
+  g->parent[i] = p;
+  g->plant[i] = p >= 0 ? g->plant[p] : s->plant;
+  g->first[i] = g->next[i] = -1;
+  if (p >= 0) {                      /* appended last among its siblings */
+    int32_t *c = &g->first[p];
+    while (*c >= 0) c = &g->next[*c];
+    *c = i;
+  }
+  g->level[i] = (uint16_t)(p >= 0 ? (g->level[p] < 65535 ? g->level[p] + 1 : 65535) : 1);
+  g->age[i] = 0;
+  g->flag[i] = LSYS_LIMB_ALIVE;
+  g->chg[i] = C_NEW;
+  g->len[i] = g->nlen[i] = s->length;
+  g->rad[i] = g->nrad[i] = s->radius;
+  for (k = 0; k < 3; k++) g->rgb[3 * i + k] = g->nrgb[3 * i + k] = (float)clamp01(s->rgb[k]);
+  memcpy(g->loc + 9 * i, m, sizeof m);
+  memcpy(g->nloc + 9 * i, m, sizeof m);
+  g->at[i] = s->at;
+  g->v0[i] = g->t0[i] = UINT32_MAX;     /* no range yet: lsys_limbs_update gives one */
+  g->leaf[i] = -1;
+  g->nleaves[i] = 0;
+  g->nalive++;
+  g->pcount[g->plant[i]]++;
+  g->dirty = 1;
+  *id = i;
+  return LSYS_OK;
+}
+
+/* Whether limb i can be changed (it lives). */
+static int settable (lsys_limbs *g, int32_t i) { return lsys_limbs_alive(g, i); }
+
+int lsys_limbs_set_length (lsys_limbs *g, int32_t i, double len) {
+  if (!settable(g, i) || !isfin(len) || len < 0) return LSYS_EARG;
+  g->nlen[i] = len;
+  if (!g->intick) g->len[i] = len;
+  g->chg[i] |= C_LEN;
+  g->dirty = 1;
+  return LSYS_OK;
+}
+
+int lsys_limbs_set_radius (lsys_limbs *g, int32_t i, double r) {
+  if (!settable(g, i) || !isfin(r) || r < 0) return LSYS_EARG;
+  g->nrad[i] = r;
+  if (!g->intick) g->rad[i] = r;
+  g->chg[i] |= C_RAD;
+  g->dirty = 1;
+  return LSYS_OK;
+}
+
+int lsys_limbs_set_color (lsys_limbs *g, int32_t i, const float rgb[3]) {
+  int k;
+  if (!settable(g, i)) return LSYS_EARG;
+  for (k = 0; k < 3; k++) if (!isfinite(rgb[k])) return LSYS_EARG;
+  for (k = 0; k < 3; k++) {
+    g->nrgb[3 * i + k] = (float)clamp01(rgb[k]);
+    if (!g->intick) g->rgb[3 * i + k] = g->nrgb[3 * i + k];
+  }
+  g->chg[i] |= C_COL;
+  g->dirty = 1;
+  return LSYS_OK;
+}
+
+int lsys_limbs_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
+                        double roll) {
+  double m[9];
+  if (!settable(g, i) || !isfin(angle) || !isfin(roll) || !isfin(axis[0]) ||
+      !isfin(axis[1]) || !isfin(axis[2]) || localrot(axis, angle, roll, m) != LSYS_OK)
+    return LSYS_EARG;
+  memcpy(g->nloc + 9 * i, m, sizeof m);
+  if (!g->intick) memcpy(g->loc + 9 * i, m, sizeof m);
+  g->chg[i] |= C_ROT;
+  g->dirty = 1;
+  return LSYS_OK;
+}
+
+static int defer (lsys_limbs *g, int op, int32_t i, int n, double size, const float *rgb) {
+  lsys_limbop *o;
+  if (lsys_grow((void **)&g->pending, &g->cappend, g->npend + 1, sizeof *g->pending) != LSYS_OK)
+    return LSYS_ENOMEM;
+  o = &g->pending[g->npend++];
+  o->op = op; o->limb = i; o->n = n; o->size = size;
+  o->rgb[0] = rgb ? rgb[0] : 0; o->rgb[1] = rgb ? rgb[1] : 0; o->rgb[2] = rgb ? rgb[2] : 0;
+  g->dirty = 1;
+  return LSYS_OK;
+}
+
+int lsys_limbs_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]) {
+  if (!settable(g, i) || n < 0 || n > 1000 || !isfin(size) || size < 0 ||
+      !isfinite(rgb[0]) || !isfinite(rgb[1]) || !isfinite(rgb[2]))
+    return LSYS_EARG;
+  return n == 0 ? LSYS_OK : defer(g, OP_LEAVES, i, n, size, rgb);
+}
+
+int lsys_limbs_drop_leaves (lsys_limbs *g, int32_t i) {
+  if (!settable(g, i)) return LSYS_EARG;
+  return defer(g, OP_DROP, i, 0, 0, NULL);
+}
+
+int lsys_limbs_remove (lsys_limbs *g, int32_t i) {
+  if (!settable(g, i)) return LSYS_EARG;
+  return defer(g, OP_REMOVE, i, 0, 0, NULL);
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Geometry
+** ======================================================================= */
+
+/* Collapses vertices [v0, v0 + nv) onto their first: their triangles vanish. */
+static void degenerate (lsys_limbs *g, uint32_t v0, uint32_t nv) {
+  float *P = g->sc->mesh.pos + 3 * (size_t)v0;
+  uint32_t k;
+  for (k = 1; k < nv; k++) memcpy(P + 3 * k, P, 3 * sizeof *P);
+  lsys_scene_touch(g->sc, v0, nv);
+}
+
+static int pushrange (uint32_t **a, size_t *n, size_t *cap, uint32_t v0, uint32_t t0) {
+  if (lsys_grow((void **)a, cap, *n + 1, 2 * sizeof **a) != LSYS_OK) return LSYS_ENOMEM;
+  (*a)[2 * *n] = v0;
+  (*a)[2 * *n + 1] = t0;
+  (*n)++;
+  return LSYS_OK;
+}
+
+/* A range of nv vertices and nt triangles for a new limb or leaf: a freed one,
+** or appended with its triangles (the vertex pattern of 'kind' below). */
+static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
+  lsys_mesh *m = &g->sc->mesh;
+  uint32_t nv = leaf ? 4 : 2 * (uint32_t)g->sides, nt = leaf ? 2 : 2 * (uint32_t)g->sides, k;
+  uint32_t *fl = leaf ? g->freeleaf : g->freelimb;
+  size_t *nf = leaf ? &g->nfreeleaf : &g->nfreelimb;
+  int r;
+  if (*nf > 0) {
+    (*nf)--;
+    *v0 = fl[2 * *nf];
+    *t0 = fl[2 * *nf + 1];
+    return LSYS_OK;
+  }
+  if ((r = lsys_mesh_reserve(m, nv, nt)) != LSYS_OK) return r;
+  *v0 = (uint32_t)m->nv;
+  *t0 = (uint32_t)m->nt;
+  memset(m->pos + 3 * m->nv, 0, 3 * nv * sizeof *m->pos);
+  memset(m->nrm + 3 * m->nv, 0, 3 * nv * sizeof *m->nrm);
+  memset(m->uv + 2 * m->nv, 0, 2 * nv * sizeof *m->uv);
+  memset(m->col + m->nv, 0, nv * sizeof *m->col);
+  memset(m->twosided + m->nv, leaf ? 1 : 0, nv);
+  memset(m->tex + m->nv, 0, nv * sizeof *m->tex);
+  m->nv += nv;
+  if (leaf) {
+    lsys_mesh_tri(m, *v0, *v0 + 1, *v0 + 2);
+    lsys_mesh_tri(m, *v0, *v0 + 2, *v0 + 3);
+  } else {
+    uint32_t S = (uint32_t)g->sides;
+    for (k = 0; k < S; k++) {           /* ring 0 at the base, ring 1 at the tip */
+      uint32_t a = *v0 + k, b = *v0 + (k + 1) % S;
+      lsys_mesh_tri(m, a, b, b + S);
+      lsys_mesh_tri(m, a, b + S, a + S);
+    }
+  }
+  return LSYS_OK;
+}
+
+static void setvertex (lsys_mesh *m, uint32_t v, const double p[3], const double n[3],
+                       double s, double t, uint16_t col) {
+  float *P = m->pos + 3 * (size_t)v, *N = m->nrm + 3 * (size_t)v;
+  P[0] = (float)p[0]; P[1] = (float)p[1]; P[2] = (float)p[2];
+  N[0] = (float)n[0]; N[1] = (float)n[1]; N[2] = (float)n[2];
+  m->uv[2 * (size_t)v] = (float)s;
+  m->uv[2 * (size_t)v + 1] = (float)t;
+  m->col[v] = col;
+}
+
+/* The cylinder of limb i from its base to its tip. */
+static void writelimb (lsys_limbs *g, int32_t i) {
+  lsys_mesh *m = &g->sc->mesh;
+  const double *R = g->wm + 9 * i, *F = R + 6, *b = g->wp + 3 * i;
+  double r = g->rad[i], tip[3];
+  uint32_t S = (uint32_t)g->sides, k, v0 = g->v0[i];
+  lsys_limbs_tip(g, i, tip);
+  for (k = 0; k < S; k++) {
+    double a = 2 * PI * k / S, n[3], p[3];
+    vlin(n, R, cos(a), F, sin(a));
+    vlin(p, b, 1, n, r);
+    setvertex(m, v0 + k, p, n, (double)k / S, 0, g->col[i]);
+    vlin(p, tip, 1, n, r);
+    setvertex(m, v0 + S + k, p, n, (double)k / S, 1, g->col[i]);
+  }
+  lsys_scene_touch(g->sc, v0, 2 * S);
+}
+
+/* Leaf l: a quad from the tip of its limb, its k-th leaf turned by the golden
+** angle about the heading and tilted LEAF_TILT degrees from it. */
+static void writeleaf (lsys_limbs *g, int32_t l) {
+  lsys_mesh *m = &g->sc->mesh;
+  int32_t i = g->lf_limb[l];
+  const double *R = g->wm + 9 * i, *H = R + 3, *F = R + 6;
+  double phi = GOLDEN * g->lf_k[l] * RAD, tilt = LEAF_TILT * RAD, s = g->lf_size[l];
+  double tip[3], radial[3], d[3], w[3], n[3], p[3];
+  uint32_t v0 = g->lf_v0[l];
+  uint16_t c = g->lf_col[l];
+  lsys_limbs_tip(g, i, tip);
+  vlin(radial, R, cos(phi), F, sin(phi));
+  vlin(d, H, cos(tilt), radial, sin(tilt));
+  vlin(w, R, -sin(phi), F, cos(phi));
+  vcross(n, d, w);
+  vnorm(n);
+  setvertex(m, v0, tip, n, 0.5, 0, c);
+  vlin(p, tip, 1, d, 0.5 * s); vlin(p, p, 1, w, 0.25 * s);
+  setvertex(m, v0 + 1, p, n, 1, 0.5, c);
+  vlin(p, tip, 1, d, s);
+  setvertex(m, v0 + 2, p, n, 0.5, 1, c);
+  vlin(p, tip, 1, d, 0.5 * s); vlin(p, p, 1, w, -0.25 * s);
+  setvertex(m, v0 + 3, p, n, 0, 0.5, c);
+  lsys_scene_touch(g->sc, v0, 4);
+}
+
+static void recolor (lsys_limbs *g, int32_t i) {
+  lsys_mesh *m = &g->sc->mesh;
+  uint32_t k, nv = 2 * (uint32_t)g->sides;
+  for (k = 0; k < nv; k++) m->col[g->v0[i] + k] = g->col[i];
+  lsys_scene_touch(g->sc, g->v0[i], nv);
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Leaves, removal, the tick
+** ======================================================================= */
+
+static int addleaves (lsys_limbs *g, const lsys_limbop *o) {
+  int k, r;
+  uint16_t c;
+  if (!lsys_limbs_alive(g, o->limb)) return LSYS_OK;
+  if ((r = colorindex(g, o->rgb, &c)) != LSYS_OK) return r;
+  for (k = 0; k < o->n; k++) {
+    int32_t l;
+    if (g->lf_free >= 0) { l = g->lf_free; g->lf_free = g->lf_next[l]; }
+    else {
+      if (g->nl >= INT32_MAX - 1 || reserve_leaves(g, g->nl + 1) != LSYS_OK) return LSYS_ENOMEM;
+      l = (int32_t)g->nl++;
+    }
+    if ((r = newrange(g, 1, &g->lf_v0[l], &g->lf_t0[l])) != LSYS_OK) {
+      g->lf_limb[l] = -1; g->lf_next[l] = g->lf_free; g->lf_free = l;
+      return r;
+    }
+    g->lf_limb[l] = o->limb;
+    g->lf_k[l] = g->nleaves[o->limb]++;
+    g->lf_size[l] = (float)o->size;
+    g->lf_col[l] = c;
+    g->lf_next[l] = g->leaf[o->limb];
+    g->leaf[o->limb] = l;
+    g->chg[o->limb] |= C_LEAF;
+  }
+  return LSYS_OK;
+}
+
+static int dropleaves (lsys_limbs *g, int32_t i) {
+  int32_t l = g->leaf[i];
+  while (l >= 0) {
+    int32_t nx = g->lf_next[l];
+    degenerate(g, g->lf_v0[l], 4);
+    if (pushrange(&g->freeleaf, &g->nfreeleaf, &g->capfreeleaf, g->lf_v0[l], g->lf_t0[l])
+        != LSYS_OK) return LSYS_ENOMEM;
+    g->lf_limb[l] = -1;
+    g->lf_next[l] = g->lf_free;
+    g->lf_free = l;
+    l = nx;
+  }
+  g->leaf[i] = -1;
+  g->nleaves[i] = 0;
+  return LSYS_OK;
+}
+
+/* Frees the geometry of one limb of a subtree being removed and marks it dead. */
+static int killone (lsys_limbs *g, int32_t c) {
+  int r;
+  if ((r = dropleaves(g, c)) != LSYS_OK) return r;
+  if (g->v0[c] != UINT32_MAX) {
+    degenerate(g, g->v0[c], 2 * (uint32_t)g->sides);
+    if (pushrange(&g->freelimb, &g->nfreelimb, &g->capfreelimb, g->v0[c], g->t0[c]) != LSYS_OK)
+      return LSYS_ENOMEM;
+    g->v0[c] = g->t0[c] = UINT32_MAX;
+  }
+  g->flag[c] &= (uint8_t)~LSYS_LIMB_ALIVE;
+  g->nalive--;
+  g->pcount[g->plant[c]]--;
+  return LSYS_OK;
+}
+
+/* Removes limb i and its subtree (walked in preorder without recursion: a
+** plant may be a chain of any depth); ids stay, ranges are freed for reuse. */
+static int removelimb (lsys_limbs *g, int32_t i) {
+  int32_t c = i, p = g->parent[i];
+  int r;
+  if (!lsys_limbs_alive(g, i)) return LSYS_OK;
+  for (;;) {
+    if ((r = killone(g, c)) != LSYS_OK) return r;
+    if (g->first[c] >= 0) { c = g->first[c]; continue; }
+    while (c != i && g->next[c] < 0) c = g->parent[c];
+    if (c == i) break;
+    c = g->next[c];
+  }
+  if (p >= 0) {                      /* unlinked from its parent's children */
+    int32_t *q = &g->first[p];
+    while (*q >= 0 && *q != i) q = &g->next[*q];
+    if (*q == i) *q = g->next[i];
+  }
+  return LSYS_OK;
+}
+
+int lsys_limbs_begin (lsys_limbs *g) {
+  if (g->intick) return LSYS_EBUSY;
+  g->intick = 1;
+  g->n0 = g->n;
+  memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
+  return LSYS_OK;
+}
+
+int lsys_limbs_end (lsys_limbs *g) {
+  size_t i, k;
+  int r = LSYS_OK;
+  if (!g->intick) return LSYS_EBUSY;
+  g->intick = 0;
+  for (i = 0; i < g->n; i++) {       /* the next state becomes the state */
+    uint8_t c = g->chg[i];
+    if (!(g->flag[i] & LSYS_LIMB_ALIVE)) continue;
+    if (c & C_LEN) g->len[i] = g->nlen[i];
+    if (c & C_RAD) g->rad[i] = g->nrad[i];
+    if (c & C_COL) memcpy(g->rgb + 3 * i, g->nrgb + 3 * i, 3 * sizeof *g->rgb);
+    if (c & C_ROT) memcpy(g->loc + 9 * i, g->nloc + 9 * i, 9 * sizeof *g->loc);
+    if (i < g->n0) g->age[i]++;
+  }
+  for (k = 0; k < g->npend && r == LSYS_OK; k++) {
+    const lsys_limbop *o = &g->pending[k];
+    if (o->op == OP_LEAVES) r = addleaves(g, o);
+    else if (o->op == OP_DROP) r = lsys_limbs_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK;
+    else r = removelimb(g, o->limb);
+  }
+  g->npend = 0;
+  if (r != LSYS_OK) return r;
+  return lsys_limbs_update(g);
+}
+
+int lsys_limbs_update (lsys_limbs *g) {
+  size_t i;
+  int r;
+  if (!g->intick && g->npend > 0) {  /* deferred calls made outside a tick */
+    size_t k;
+    for (k = 0; k < g->npend; k++) {
+      const lsys_limbop *o = &g->pending[k];
+      r = o->op == OP_LEAVES ? addleaves(g, o)
+          : o->op == OP_DROP ? (lsys_limbs_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK)
+          : removelimb(g, o->limb);
+      if (r != LSYS_OK) { memmove(g->pending, g->pending + k, (g->npend - k) * sizeof *o);
+                          g->npend -= k; return r; }
+    }
+    g->npend = 0;
+  }
+  if (!g->dirty) return LSYS_OK;
+  for (i = 0; i < g->n; i++) {
+    int32_t p = g->parent[i];
+    uint8_t c = g->chg[i];
+    int xf, shape;
+    if (!(g->flag[i] & LSYS_LIMB_ALIVE)) continue;
+    xf = (c & (C_NEW | C_ROT)) || (p >= 0 && (g->chg[p] & (C_XF | C_LEN)));
+    if (xf) { worldframe(g, (int32_t)i); c |= C_XF; }
+    if (c & (C_NEW | C_COL)) {
+      uint16_t col;
+      if ((r = colorindex(g, g->rgb + 3 * i, &col)) != LSYS_OK) return r;
+      g->col[i] = col;
+    }
+    if (g->v0[i] == UINT32_MAX) {
+      if ((r = newrange(g, 0, &g->v0[i], &g->t0[i])) != LSYS_OK) return r;
+      c |= C_XF;
+    }
+    shape = (c & (C_XF | C_LEN | C_RAD)) != 0;
+    if (shape) writelimb(g, (int32_t)i);
+    else if (c & C_COL) recolor(g, (int32_t)i);
+    if (shape || (c & C_LEAF)) {
+      int32_t l;
+      for (l = g->leaf[i]; l >= 0; l = g->lf_next[l]) writeleaf(g, l);
+    }
+    g->chg[i] = c;                   /* its children read C_XF and C_LEN */
+  }
+  for (i = 0; i < g->n; i++) g->chg[i] = 0;
+  g->dirty = 0;
+  return LSYS_OK;
+}
+
+/* }====================================================================== */

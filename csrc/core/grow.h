@@ -1,0 +1,158 @@
+/*
+** Incremental growth (Davison, "Incremental rules for growing plants",
+** ../shared/seeds/002: section "Incremental rules"): a plant is a set of
+** persistent limbs whose state changes a little at each tick, and new limbs
+** are attached to existing ones, instead of a string derived and drawn anew.
+**
+** The limbs are a table of arrays (struct of arrays) indexed by limb id: the
+** parent, the plant, the level (1 for a limb growing from the ground), the age
+** in ticks, the length, radius and colour, the rotation relative to the
+** parent's frame where it is attached, and the cached world frame. Ids are
+** given in creation order and never reused, so a parent's id is below its
+** children's and one pass in id order updates every world frame.
+**
+** Ticks are parallel steps as in an L-system: between lsys_limbs_begin and
+** lsys_limbs_end, setters write the next state while getters (the arrays
+** len, rad, rgb, ...) keep the state of the start of the tick; limbs added
+** during a tick exist at once but first run at the next tick; removals and
+** leaves take effect at the end of the tick.
+**
+** Geometry lives in a scene (scene.h) the caller owns: each limb owns a fixed
+** range of vertices and triangles (a cylinder of 'sides' sides: 2 sides
+** vertices, 2 sides triangles), each leaf another (a quad: 4 vertices, 2
+** triangles, lit on both sides); lsys_limbs_update rewrites in place the
+** ranges of limbs that changed or moved, marks them dirty in the scene
+** (lsys_scene_touch), and appends ranges for new limbs. A removed limb's or
+** leaf's range is made degenerate and reused by the next one made. Once the
+** arrays have grown to their size, a tick allocates nothing. Colours are
+** quantized to 5 bits a channel and interned in the scene's palette.
+**
+** Frames: a world frame is a base point and three unit columns R (right), H
+** (heading: the limb's axis) and F (front), as lsys.components' frames (R = -L,
+** F = -U of the turtle). A root limb starts at its plant's position with
+** R = +x, H = +y, F = +z. Angles are in degrees.
+*/
+#ifndef LSYS_LIMBS_H
+#define LSYS_LIMBS_H
+
+#include "common.h"
+#include "scene.h"
+
+#define LSYS_LIMBS_MAXSIDES 64
+
+/* What a new limb is. */
+typedef struct lsys_limbspec {
+  int32_t parent;         /* its parent's id, or -1 for a root */
+  int32_t plant;          /* a root's plant (lsys_limbs_plant); a child takes its parent's */
+  double at;              /* where along the parent it grows, 0 to 1 (1: the tip) */
+  double axis[3];         /* the rotation from the parent's frame: roll about the parent's
+                             heading first, then 'angle' about 'axis' (in the parent's
+                             local x, y, z) rolled with it */
+  double angle, roll;
+  double length, radius;  /* > 0 and >= 0 */
+  float rgb[3];           /* 0 to 1 */
+} lsys_limbspec;
+
+/* What is deferred to the end of a tick. */
+typedef struct lsys_limbop {
+  int op;                 /* LEAVES, DROP or REMOVE (grow.c) */
+  int32_t limb;
+  int n;
+  double size;
+  float rgb[3];
+} lsys_limbop;
+
+/* Flags of lsys_grow.flag */
+#define LSYS_LIMB_ALIVE 0x01
+
+typedef struct lsys_limbs {
+  lsys_scene *sc;         /* the geometry's scene (borrowed) */
+  int sides;
+  size_t maxlimbs;        /* 0: no cap; else lsys_limbs_add fails with LSYS_ELIMIT past it */
+  size_t n, cap;          /* limb ids 0 .. n - 1, dead ones included */
+  size_t nalive;
+  /* per limb */
+  int32_t *parent, *plant, *first, *next;   /* tree: first child, next sibling */
+  uint16_t *level;
+  uint32_t *age;
+  uint8_t *flag, *chg;    /* LSYS_LIMB_*; what changed since the last update */
+  double *len, *rad;      /* the state (at the start of the tick within one) */
+  double *nlen, *nrad;    /* the next state (during a tick) */
+  float *rgb, *nrgb;      /* 3 each */
+  double *loc, *nloc;     /* rotation from the parent's frame: 9 each (columns R, H, F) */
+  double *at;
+  double *wp, *wm;        /* world base point (3) and frame columns R, H, F (9) */
+  uint32_t *v0, *t0;      /* its vertex and triangle range */
+  uint16_t *col;          /* palette index of its colour */
+  int32_t *leaf;          /* its first leaf, or -1 */
+  uint32_t *nleaves;
+  /* leaves */
+  size_t nl, lcap;
+  int32_t *lf_limb, *lf_next;   /* lf_limb -1: free (lf_next links free leaves) */
+  uint32_t *lf_k, *lf_v0, *lf_t0;
+  float *lf_size;
+  uint16_t *lf_col;
+  int32_t lf_free;
+  /* reusable geometry ranges of removed limbs and leaves: v0, t0 pairs */
+  uint32_t *freelimb, *freeleaf;
+  size_t nfreelimb, capfreelimb, nfreeleaf, capfreeleaf;
+  /* plants */
+  size_t np, pcap;
+  double *ppos;           /* 3 each */
+  uint32_t *pcount, *pcount0;   /* living limbs now, and at the start of the tick */
+  /* a tick */
+  int intick;
+  size_t n0;              /* limbs at its start: the ones that age at its end */
+  lsys_limbop *pending;   /* deferred to the end of the tick */
+  size_t npend, cappend;
+  int dirty;              /* something waits for lsys_limbs_update */
+  uint16_t *qmap;         /* quantized colour -> palette index + 1 (32768 entries) */
+} lsys_limbs;
+
+/* A grower writing into 'sc' with cylinders of 'sides' sides (3 to
+** LSYS_LIMBS_MAXSIDES). */
+void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides);
+void lsys_limbs_free (lsys_limbs *g);
+
+/* A new plant at 'pos'; its index in *id. LSYS_OK or LSYS_ENOMEM. */
+int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id);
+
+/* A new limb; its id in *id. LSYS_OK, LSYS_EARG (no such parent or plant, a
+** dead parent, bad numbers), LSYS_ELIMIT (maxlimbs reached) or LSYS_ENOMEM. */
+int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id);
+
+/* Setters (of the next state within a tick). LSYS_OK or LSYS_EARG (a dead or
+** unknown limb, a negative or non-finite value). */
+int lsys_limbs_set_length (lsys_limbs *g, int32_t i, double len);
+int lsys_limbs_set_radius (lsys_limbs *g, int32_t i, double r);
+int lsys_limbs_set_color (lsys_limbs *g, int32_t i, const float rgb[3]);
+int lsys_limbs_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
+                        double roll);
+
+/* n leaves of 'size' and colour rgb at the tip of limb i; all its leaves
+** dropped; the limb and its subtree removed. Deferred to the end of a tick.
+** LSYS_OK, LSYS_EARG or LSYS_ENOMEM. */
+int lsys_limbs_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]);
+int lsys_limbs_drop_leaves (lsys_limbs *g, int32_t i);
+int lsys_limbs_remove (lsys_limbs *g, int32_t i);
+
+/* A tick: lsys_limbs_begin, the rules' reads and writes, lsys_limbs_end (which
+** commits the next state, applies what was deferred, ages the limbs that
+** existed at the start, and updates the geometry). LSYS_EBUSY when a tick is
+** already running (begin) or none is (end). */
+int lsys_limbs_begin (lsys_limbs *g);
+int lsys_limbs_end (lsys_limbs *g);
+
+/* Writes what changed into the scene (world frames down the changed
+** subtrees, vertex ranges in place, new ranges appended). LSYS_OK or
+** LSYS_ENOMEM (then the scene may lack the newest limbs; a later update
+** retries). */
+int lsys_limbs_update (lsys_limbs *g);
+
+/* Whether limb i exists and is alive. */
+int lsys_limbs_alive (const lsys_limbs *g, int32_t i);
+
+/* The limb's world tip: its base + H * length (after lsys_limbs_update). */
+void lsys_limbs_tip (const lsys_limbs *g, int32_t i, double tip[3]);
+
+#endif

@@ -1,0 +1,248 @@
+/*
+** C unit tests for the limb table of incremental growth (grow.h): cylinder
+** vertices where the frames put them; a child's frame from its parent's tip
+** and its rotation; the parallel tick (reads see the start of the tick, limbs
+** made in it neither run nor age, removals and leaves wait for its end);
+** colours interned once; removed limbs' and leaves' ranges reused; a tick
+** allocates nothing once the arrays have grown; a chain of 200,000 limbs
+** removed without recursion; every allocation failure reported without a
+** leak.
+*/
+#undef NDEBUG
+#include <assert.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "talloc.h"
+#include "common.c"
+#include "mesh.c"
+#include "scene.c"
+#include "grow.c"
+
+static int near (double a, double b, double tol) { return fabs(a - b) <= tol; }
+
+static const float GREEN[3] = {0.2f, 0.6f, 0.1f}, BROWN[3] = {0.4f, 0.25f, 0.1f};
+
+/* A limb spec: a child of p (or a root of plant 0), 'angle' about z. */
+static lsys_limbspec spec (int32_t p, double angle, double len, double r) {
+  lsys_limbspec s;
+  memset(&s, 0, sizeof s);
+  s.parent = p; s.plant = 0; s.at = 1;
+  s.axis[2] = 1; s.angle = angle;
+  s.length = len; s.radius = r;
+  memcpy(s.rgb, GREEN, sizeof s.rgb);
+  return s;
+}
+
+static void vertex (const lsys_scene *sc, uint32_t v, double p[3]) {
+  int k;
+  for (k = 0; k < 3; k++) p[k] = sc->mesh.pos[3 * v + k];
+}
+
+static void geometry (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  const double origin[3] = {1, 0, 2};
+  int32_t pl, a, b;
+  lsys_limbspec s;
+  uint32_t k;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK && pl == 0);
+  s = spec(-1, 0, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &a) == LSYS_OK && a == 0);
+  s = spec(a, 90, 0.5, 0.05);                      /* about z (front): H = +y turns to -x */
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_OK && b == 1);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(sc.mesh.nv == 2 * 16 && sc.mesh.nt == 2 * 16);
+  for (k = 0; k < 8; k++) {                        /* rings at y = 0 and 1, radius 0.1 */
+    double p[3], q[3];
+    vertex(&sc, g.v0[a] + k, p);
+    vertex(&sc, g.v0[a] + 8 + k, q);
+    assert(near(p[1], 0, 1e-7) && near(q[1], 1, 1e-6));
+    assert(near(hypot(p[0] - 1, p[2] - 2), 0.1, 1e-6));
+  }
+  assert(near(g.wp[3 * b + 0], 1, 1e-12) && near(g.wp[3 * b + 1], 1, 1e-12));
+  assert(near(g.wm[9 * b + 3], -1, 1e-12) && near(g.wm[9 * b + 4], 0, 1e-12));
+  {
+    double tip[3];
+    lsys_limbs_tip(&g, b, tip);
+    assert(near(tip[0], 0.5, 1e-12) && near(tip[1], 1, 1e-12) && near(tip[2], 2, 1e-12));
+  }
+  assert(g.level[a] == 1 && g.level[b] == 2 && g.first[a] == b && g.parent[b] == a);
+  /* one colour, one palette entry */
+  assert(sc.npal == 1 && g.col[a] == g.col[b]);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
+static void ticks (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  const double origin[3] = {0, 0, 0};
+  int32_t pl, a, b, c;
+  lsys_limbspec s;
+  size_t nv;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 6);
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+  s = spec(-1, 0, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &a) == LSYS_OK);
+  s = spec(a, 30, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(lsys_limbs_begin(&g) == LSYS_OK);
+  assert(lsys_limbs_begin(&g) == LSYS_EBUSY);
+  assert(lsys_limbs_set_length(&g, a, 2) == LSYS_OK);
+  assert(g.len[a] == 1 && g.nlen[a] == 2);         /* the tick still reads the old state */
+  assert(lsys_limbs_set_color(&g, b, BROWN) == LSYS_OK);
+  s = spec(b, -20, 0.5, 0.05);
+  assert(lsys_limbs_add(&g, &s, &c) == LSYS_OK);   /* exists now, first runs next tick */
+  assert(lsys_limbs_add_leaves(&g, b, 3, 0.2, GREEN) == LSYS_OK);
+  assert(g.nleaves[b] == 0);
+  assert(lsys_limbs_end(&g) == LSYS_OK);
+  assert(lsys_limbs_end(&g) == LSYS_EBUSY);
+  assert(g.len[a] == 2 && g.age[a] == 1 && g.age[b] == 1 && g.age[c] == 0);
+  assert(g.nleaves[b] == 3);
+  assert(near(g.wp[3 * b + 1], 2, 1e-12));         /* the child moved with its parent's tip */
+  assert(sc.npal == 2 && g.col[b] != g.col[a]);
+  {
+    double p[3];                                   /* its cylinder was rewritten there */
+    vertex(&sc, g.v0[b], p);
+    assert(near(p[1], 2, 0.11));
+  }
+  /* removing b takes c and the leaves; the next limb and leaves reuse their ranges */
+  nv = sc.mesh.nv;
+  assert(lsys_limbs_remove(&g, b) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(!lsys_limbs_alive(&g, b) && !lsys_limbs_alive(&g, c) && g.nalive == 1);
+  assert(g.first[a] == -1 && g.pcount[0] == 1);
+  {
+    double p[3], q[3];                             /* degenerate: all on its first vertex */
+    uint32_t k;
+    vertex(&sc, g.lf_v0[g.nl - 1], p);
+    for (k = 1; k < 4; k++) {
+      vertex(&sc, g.lf_v0[g.nl - 1] + k, q);
+      assert(p[0] == q[0] && p[1] == q[1] && p[2] == q[2]);
+    }
+  }
+  s = spec(a, 10, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_OK && b == 3);    /* ids are not reused */
+  assert(lsys_limbs_add_leaves(&g, b, 3, 0.2, GREEN) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(sc.mesh.nv == nv);                        /* ... but their vertices are */
+  assert(lsys_limbs_set_length(&g, b, -1) == LSYS_EARG);
+  assert(lsys_limbs_set_radius(&g, b, NAN) == LSYS_EARG);
+  assert(lsys_limbs_set_length(&g, c, 1) == LSYS_EARG);      /* dead */
+  assert(lsys_limbs_set_length(&g, 99, 1) == LSYS_EARG);
+  s = spec(c, 10, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_EARG);            /* a dead parent */
+  s = spec(a, 10, 1, 0.1);
+  s.axis[0] = s.axis[1] = s.axis[2] = 0;
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_EARG);            /* no axis */
+  s = spec(-1, 0, 1, 0.1);
+  s.plant = 7;
+  assert(lsys_limbs_add(&g, &s, &b) == LSYS_EARG);            /* no such plant */
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
+/* Once the arrays have grown, a tick that changes every limb allocates nothing. */
+static void noalloc (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  const double origin[3] = {0, 0, 0};
+  int32_t pl, id, k;
+  long before;
+  lsys_limbspec s;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+  s = spec(-1, 0, 1, 0.1);
+  assert(lsys_limbs_add(&g, &s, &id) == LSYS_OK);
+  for (k = 1; k < 4000; k++) {
+    s = spec((k - 1) / 2, k % 2 ? 25 : -25, 0.5, 0.02);
+    assert(lsys_limbs_add(&g, &s, &id) == LSYS_OK);
+  }
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  for (k = 0; k < 3; k++) {
+    int32_t i;
+    if (k == 2) before = nalloc;
+    assert(lsys_limbs_begin(&g) == LSYS_OK);
+    for (i = 0; i < 4000; i++) {
+      float c[3] = {0.2f + 0.01f * (float)k, 0.5f, 0.1f};
+      assert(lsys_limbs_set_length(&g, i, g.len[i] * 1.1) == LSYS_OK);
+      assert(lsys_limbs_set_radius(&g, i, g.rad[i] * 1.05) == LSYS_OK);
+      assert(lsys_limbs_set_color(&g, i, c) == LSYS_OK);
+    }
+    assert(lsys_limbs_end(&g) == LSYS_OK);
+  }
+  assert(nalloc == before);
+  assert(sc.dirty1 - sc.dirty0 == sc.mesh.nv);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
+/* A chain of 200,000 limbs: its removal walks it without recursion. */
+static void chain (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  const double origin[3] = {0, 0, 0};
+  int32_t pl, id = -1, k;
+  lsys_limbspec s;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 3);
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+  for (k = 0; k < 200000; k++) {
+    s = spec(id, 1, 0.01, 0.001);
+    assert(lsys_limbs_add(&g, &s, &id) == LSYS_OK);
+  }
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(g.level[id] == 65535);                    /* levels saturate */
+  assert(lsys_limbs_remove(&g, 0) == LSYS_OK && lsys_limbs_update(&g) == LSYS_OK);
+  assert(g.nalive == 0 && g.nfreelimb == 200000);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
+static void failures (void) {
+  long k;
+  for (k = 0; k < 40; k++) {
+    lsys_scene sc;
+    lsys_limbs g;
+    const double origin[3] = {0, 0, 0};
+    int32_t pl, id = -1, j;
+    int r;
+    lsys_limbspec s;
+    lsys_scene_init(&sc);
+    lsys_limbs_init(&g, &sc, 5);
+    failat = nalloc + k;
+    r = lsys_limbs_plant(&g, origin, &pl);
+    for (j = 0; j < 150 && r == LSYS_OK; j++) {
+      s = spec(j == 0 ? -1 : (j - 1) / 2, 20, 1, 0.1);
+      s.rgb[0] = (float)j / 150;
+      r = lsys_limbs_add(&g, &s, &id);
+      if (r == LSYS_OK && j % 3 == 0) r = lsys_limbs_add_leaves(&g, id, 2, 0.1, GREEN);
+    }
+    if (r == LSYS_OK) r = lsys_limbs_update(&g);
+    if (r == LSYS_OK) r = lsys_limbs_remove(&g, 1);
+    if (r == LSYS_OK) r = lsys_limbs_update(&g);
+    failat = -1;
+    assert(r == LSYS_OK || r == LSYS_ENOMEM);
+    lsys_limbs_free(&g);
+    lsys_scene_free(&sc);
+    assert(nlive == 0);
+  }
+}
+
+int main (void) {
+  geometry();
+  ticks();
+  noalloc();
+  chain();
+  failures();
+  assert(nlive == 0);
+  printf("test_grow: ok\n");
+  return 0;
+}
