@@ -105,11 +105,12 @@ function M.wait () return _G.require("lsys.viewer").wait() end
 -- window does not load it).
 -- lsys.sketch likewise (docs/sketch.md): its readers need cjson and lxp only when a sketch
 -- is read, so `require "lsys"` works without them. lsys.components (docs/components.md),
--- the component graphs of issue 16, likewise.
+-- the component graphs of issue 16, and lsys.grow (incremental growth, issue 17) likewise.
 setmetatable(M, { __index = function (_, k)
   if k == "viewer" then return _G.require("lsys.viewer") end
   if k == "sketch" then return _G.require("lsys.sketch") end
   if k == "components" then return _G.require("lsys.components") end
+  if k == "grow" then return _G.require("lsys.grow") end
 end })
 
 -- options of lsys.render that are not view options

@@ -166,6 +166,8 @@ local function color (c, where, name)
   return out
 end
 
+M.color = color     -- (c, where, name) -> {r, g, b[, a]}: the checked colour (lsys.grow too)
+
 local function material (m, where, name)
   if type(m) == "table" and m.diffuse ~= nil then
     local out = { diffuse = color(m.diffuse, where, name .. ".diffuse") }

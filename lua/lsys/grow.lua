@@ -1,0 +1,415 @@
+--- Incremental growth (issue 17; Davison, "Incremental rules for growing plants",
+-- ../shared/seeds/002, section "Incremental rules"): a plant is a set of persistent limbs
+-- whose state changes a little at each tick, and new limbs are attached to existing ones;
+-- nothing is derived or drawn anew. The limbs' state lives in a C table (csrc/core/grow.c,
+-- `core.limbs`) that rewrites each limb's cylinder in its scene in place; Lua holds one light
+-- handle per limb.
+--
+--   local grow = require "lsys.grow"
+--   local Shoot = grow.kind("shoot")
+--   Shoot:rule("length", function (limb)               -- the paper's 'length' rule
+--     if limb:length() < 1.0 and not limb:has_leaves() then limb:scale_length(1.1) end
+--   end)
+--   local w = grow.world { seed = 1 }
+--   w:plant { kind = Shoot, position = { 0, 0, 0 } }
+--   w:tick(40)
+--   lsys.render(w:scene(), { out = "tree.png" })
+--
+-- Ticks are parallel steps as in an L-system: every rule of a tick reads the state of the
+-- start of the tick (its writes go to the next state; two scales in one tick compound),
+-- limbs spawned in a tick first run at the next one, and removals and leaves take effect at
+-- its end. Within a tick, limbs run in the order they were made and each limb's rules in
+-- the order they were declared (a kind's base kind's first). Randomness comes from each
+-- plant's seeded generator (`limb:random`), so a run is reproducible.
+-- @module lsys.grow
+local core = require "lsys.core"
+local view = require "lsys.view"
+
+local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall =
+      type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall
+local math, string = math, string
+local format = string.format
+local floor = math.floor
+local _ENV = nil
+
+local M = {}
+
+local function fail (fmt, ...) error("lsys.grow: " .. format(fmt, ...), 3) end
+
+local function isnum (x)
+  return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge
+end
+
+-- {=========================================================================================
+-- Kinds: classes of limbs with their own data, methods and rules
+
+local Limb = {}            -- the methods every limb has
+Limb.__index = Limb
+Limb._name = "limb"
+Limb._rules = {}
+
+local function iskind (k) return type(k) == "table" and rawget(k, "_rules") ~= nil end
+M.iskind = iskind
+
+--- A new kind of limb named `name`, extending `base` (a kind; default the plain limb):
+-- it inherits its base's data and methods, and the rules its base has when it is made
+-- (replacing one by name here leaves the base's alone). Fields set on the kind are defaults for
+-- its limbs (`Shoot.max_length = 1`; a limb's own `limb.max_length = 2` overrides), and
+-- functions set on it are methods (`function Shoot:bloom() ... end`).
+function M.kind (name, base)
+  if type(name) ~= "string" or name == "" then
+    fail("kind: a name expected, got %s", tostring(name))
+  end
+  base = base or Limb
+  if not iskind(base) then
+    fail("kind '%s': the base must be a kind, got %s", name, tostring(base))
+  end
+  local rules = {}
+  for k, r in ipairs(base._rules) do rules[k] = { r[1], r[2] } end
+  local K = setmetatable({ _name = name, _rules = rules, _base = base }, { __index = base })
+  K.__index = K
+  K.__tostring = Limb.__tostring
+  return K
+end
+M.Limb = Limb
+
+--- Adds rule `name` (fn(limb, world)) to the kind, after its others; a rule of the same
+-- name (from the base kind) is replaced where it was.
+function Limb.rule (K, name, fn)
+  if not iskind(K) then fail("rule: call it on a kind (Kind:rule(name, fn))") end
+  if type(name) ~= "string" then fail("rule: a name expected, got %s", tostring(name)) end
+  if type(fn) ~= "function" then
+    fail("rule '%s' of kind '%s': a function (limb, world) expected, got %s", name, K._name,
+         tostring(fn))
+  end
+  if K == Limb then fail("rule '%s': rules belong to a kind made by lsys.grow.kind", name) end
+  for _, r in ipairs(K._rules) do
+    if r[1] == name then r[2] = fn return K end
+  end
+  K._rules[#K._rules + 1] = { name, fn }
+  return K
+end
+
+--- The rules of a kind in the order a tick runs them: { {name, fn}, ... }.
+function Limb.rules (K) return K._rules end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- Limbs: handles { _id, _w (the world), _p (the plant number) } over the C table
+
+function Limb:__tostring ()
+  return format("lsys.grow.Limb(%s #%d)", self._name, self._id)
+end
+
+function Limb:id () return self._id end
+function Limb:kind () return self._name end
+function Limb:length () return self._w._T:length(self._id) end
+function Limb:radius () return self._w._T:radius(self._id) end
+function Limb:color () return { self._w._T:color(self._id) } end
+function Limb:age () return self._w._T:age(self._id) end
+function Limb:level () return self._w._T:level(self._id) end
+function Limb:leaves () return self._w._T:leaves(self._id) end
+function Limb:has_leaves () return self._w._T:leaves(self._id) > 0 end
+function Limb:is_root () return self._w._T:parent(self._id) == nil end
+function Limb:alive () return self._w._T:alive(self._id) end
+--- The number of living limbs of its plant at the start of the tick (now, outside one).
+function Limb:count () return self._w._T:living0(self._p) end
+function Limb:base () return self._w._T:base(self._id) end
+function Limb:tip () return self._w._T:tip(self._id) end
+
+function Limb:parent ()
+  local p = self._w._T:parent(self._id)
+  return p and self._w._limbs[p] or nil
+end
+
+function Limb:children ()
+  local out, limbs = self._w._T:children(self._id), self._w._limbs
+  for k, c in ipairs(out) do out[k] = limbs[c] end
+  return out
+end
+
+--- The other children of its parent (none for a root).
+function Limb:siblings ()
+  local p = self:parent()
+  if p == nil then return {} end
+  local out = {}
+  for _, c in ipairs(p:children()) do if c ~= self then out[#out + 1] = c end end
+  return out
+end
+
+local function factor (f, what)
+  if not isnum(f) or f < 0 then fail("%s: a factor >= 0 expected, got %s", what, tostring(f)) end
+  return f
+end
+
+function Limb:scale_length (f) self._w._T:scale_length(self._id, factor(f, "scale_length")) end
+function Limb:scale_radius (f) self._w._T:scale_radius(self._id, factor(f, "scale_radius")) end
+function Limb:set_length (x) self._w._T:set_length(self._id, factor(x, "set_length")) end
+function Limb:set_radius (x) self._w._T:set_radius(self._id, factor(x, "set_radius")) end
+
+local function rgb (c, what)
+  local ok, v = pcall(view.color, c, "lsys.grow", what)
+  if not ok then error(v, 3) end
+  return v[1], v[2], v[3]
+end
+
+--- Sets the colour ({r, g, b} in 0..1 or "#rrggbb").
+function Limb:set_color (c)
+  local r, g, b = rgb(c, "set_color")
+  self._w._T:set_color(self._id, r, g, b)
+end
+
+--- Moves the colour from the start of the tick towards c by the fraction t (0..1).
+function Limb:blend_color (c, t)
+  local r, g, b = rgb(c, "blend_color")
+  if not isnum(t) or t < 0 or t > 1 then
+    fail("blend_color: a fraction 0..1 expected, got %s", tostring(t))
+  end
+  self._w._T:blend_color(self._id, r, g, b, t)
+end
+
+--- n leaves at its tip (at the end of the tick): opts { size = 0.3, color = leaf green }.
+function Limb:add_leaves (n, opts)
+  if type(n) ~= "number" or n ~= floor(n) or n < 0 or n > 1000 then
+    fail("add_leaves: a count 0..1000 expected, got %s", tostring(n))
+  end
+  opts = opts or {}
+  local size = opts.size or 0.3
+  if not isnum(size) or size < 0 then
+    fail("add_leaves: 'size' must be >= 0, got %s", tostring(size))
+  end
+  local r, g, b = rgb(opts.color or self._w.leaf_color, "add_leaves")
+  self._w._T:add_leaves(self._id, n, size, r, g, b)
+end
+
+function Limb:drop_leaves () self._w._T:drop_leaves(self._id) end
+
+--- Removes the limb and everything that grows on it (at the end of the tick).
+function Limb:remove ()
+  self._w._T:remove(self._id)
+  self._w._removed = true
+end
+
+--- A number from its plant's generator: [0, 1), or [a, b) with two arguments.
+function Limb:random (a, b)
+  local x = self._w._gen[self._p]:random()
+  if a == nil then return x end
+  return a + (b - a) * x
+end
+
+local AXES = { x = { 1, 0, 0 }, y = { 0, 1, 0 }, z = { 0, 0, 1 } }
+
+local function axisof (a, what)
+  if a == nil then return 0, 0, 1 end
+  if type(a) == "string" then
+    local v = AXES[a]
+    if v == nil then fail("%s: axis '%s' is not \"x\", \"y\", \"z\" or {x, y, z}", what, a) end
+    return v[1], v[2], v[3]
+  end
+  if type(a) ~= "table" or not (isnum(a[1]) and isnum(a[2]) and isnum(a[3])) or
+     a[1] == 0 and a[2] == 0 and a[3] == 0 then
+    fail("%s: 'axis' must be \"x\", \"y\", \"z\" or a non-zero {x, y, z}", what)
+  end
+  return a[1], a[2], a[3]
+end
+
+local function num (t, k, default, what, lo)
+  local v = t[k]
+  if v == nil then return default end
+  if not isnum(v) or (lo ~= nil and v < lo) then
+    fail("%s: '%s' must be a finite number%s, got %s", what, k,
+         lo ~= nil and format(" >= %g", lo) or "", tostring(v))
+  end
+  return v
+end
+
+local SPAWN = { angle = true, axis = true, roll = true, at = true, length = true, radius = true,
+                color = true, kind = true }
+
+--- A child at the limb's tip (or at the fraction `at` along it), without transforms: opts
+-- { angle (degrees, 0), axis ("x", "y", "z" or {x, y, z} in the limb's own axes: x right,
+-- y along it, z front; "z"), roll (degrees about the limb first, 0), length (0.5), radius
+-- (0.05), color (the kind's `shoot_color`, else the world's), kind (this limb's) }.
+-- Returns the child, or nil when the world's limb cap is reached.
+function Limb:spawn (opts)
+  opts = opts or {}
+  if type(opts) ~= "table" then fail("spawn: an options table expected") end
+  for k in pairs(opts) do
+    if not SPAWN[k] then fail("spawn: unknown option '%s'", tostring(k)) end
+  end
+  local w = self._w
+  local K = opts.kind or getmetatable(self)
+  if not iskind(K) then fail("spawn: 'kind' must be a kind, got %s", tostring(K)) end
+  local ax, ay, az = axisof(opts.axis, "spawn")
+  local r, g, b = rgb(opts.color or K.shoot_color or w.shoot_color, "spawn")
+  local at = num(opts, "at", 1, "spawn", 0)
+  if at > 1 then fail("spawn: 'at' must be from 0 to 1, got %s", tostring(at)) end
+  local id = w._T:add(self._id, 0, at, ax, ay, az, num(opts, "angle", 0, "spawn"),
+                      num(opts, "roll", 0, "spawn"), num(opts, "length", 0.5, "spawn", 0),
+                      num(opts, "radius", 0.05, "spawn", 0), r, g, b)
+  if id == nil then w.capped = true return nil end
+  local h = setmetatable({ _id = id, _w = w, _p = self._p }, K)
+  w._limbs[id] = h
+  return h
+end
+
+--- Turns the limb from its parent: opts as spawn's angle, axis and roll.
+function Limb:turn (opts)
+  opts = opts or {}
+  local ax, ay, az = axisof(opts.axis, "turn")
+  self._w._T:set_turn(self._id, ax, ay, az, num(opts, "angle", 0, "turn"),
+                      num(opts, "roll", 0, "turn"))
+end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- Worlds
+
+local World = {}
+World.__index = World
+
+-- The tick's loop, made once per world: every limb that existed at the start of the tick
+-- runs its kind's rules; where() tells the rule and limb running when one failed.
+local function runner (w)
+  local limbs = w._limbs
+  local rule, limb
+  local function run (n0)
+    for i = 1, n0 do
+      limb = limbs[i]
+      if limb then
+        local rules = limb._rules
+        for r = 1, #rules do
+          rule = rules[r]
+          rule[2](limb, w)
+        end
+      end
+    end
+  end
+  return run, function () return rule, limb end
+end
+
+local WORLD = { seed = true, max_limbs = true, sides = true, shoot_color = true,
+                leaf_color = true }
+
+--- A world of plants. opts: `seed` (1: plant k's generator is seeded seed + k - 1 unless
+-- its plant call gives one), `max_limbs` (100,000 living limbs in all: spawn returns nil
+-- past it), `sides` (8: the limbs' cylinders), `shoot_color` (new limbs; "#5a9e32"),
+-- `leaf_color` ("#3f8f2a").
+function M.world (opts)
+  opts = opts or {}
+  if type(opts) ~= "table" then fail("world: an options table expected") end
+  for k in pairs(opts) do
+    if not WORLD[k] then fail("world: unknown option '%s'", tostring(k)) end
+  end
+  local seed = num(opts, "seed", 1, "world")
+  local max = num(opts, "max_limbs", 100000, "world", 1)
+  local sides = num(opts, "sides", 8, "world", 3)
+  if sides > 64 or sides ~= floor(sides) then
+    fail("world: 'sides' must be a whole number 3..64")
+  end
+  local w = setmetatable({
+    _T = core.limbs { sides = sides, max_limbs = floor(max) }, _limbs = {}, _gen = {},
+    _seed = floor(seed), ticks = 0, capped = false,
+    shoot_color = opts.shoot_color or "#5a9e32", leaf_color = opts.leaf_color or "#3f8f2a",
+  }, World)
+  rgb(w.shoot_color, "shoot_color")
+  rgb(w.leaf_color, "leaf_color")
+  w._run, w._where = runner(w)
+  return w
+end
+
+local PLANT = { kind = true, position = true, seed = true, length = true, radius = true,
+                color = true }
+
+--- A new plant: its root limb growing up (+y) from `position` ({0, 0, 0}). opts: `kind`
+-- (a kind; the plain limb), `seed`, `length` (0.5), `radius` (0.05), `color`.
+function World:plant (opts)
+  opts = opts or {}
+  for k in pairs(opts) do
+    if not PLANT[k] then fail("plant: unknown option '%s'", tostring(k)) end
+  end
+  local K = opts.kind or Limb
+  if not iskind(K) then fail("plant: 'kind' must be a kind, got %s", tostring(K)) end
+  local pos = opts.position or { 0, 0, 0 }
+  if type(pos) ~= "table" or not (isnum(pos[1]) and isnum(pos[2]) and isnum(pos[3])) then
+    fail("plant: 'position' must be {x, y, z}")
+  end
+  local T = self._T
+  local p = T:plant(pos[1], pos[2], pos[3])
+  self._gen[p] = core.frames(floor(num(opts, "seed", self._seed + p - 1, "plant")))
+  local r, g, b = rgb(opts.color or K.shoot_color or self.shoot_color, "plant")
+  local id = T:add(0, p, 1, 0, 0, 1, 0, 0, num(opts, "length", 0.5, "plant", 0),
+                   num(opts, "radius", 0.05, "plant", 0), r, g, b)
+  if id == nil then self.capped = true return nil end
+  local h = setmetatable({ _id = id, _w = self, _p = p }, K)
+  self._limbs[id] = h
+  return h
+end
+
+--- Advances time by n ticks (1).
+function World:tick (n)
+  n = n or 1
+  if not isnum(n) or n < 0 or n ~= floor(n) then fail("tick: a whole number of ticks expected") end
+  for _ = 1, n do self:_step() end
+  return self
+end
+
+-- One tick.
+function World:_step ()
+  local T, limbs = self._T, self._limbs
+  T:begin()
+  local ok, msg = pcall(self._run, T:started())
+  T:finish()
+  self.ticks = self.ticks + 1
+  if self._removed then
+    self._removed = false
+    for i, h in pairs(limbs) do if h and not T:alive(i) then limbs[i] = false end end
+  end
+  if not ok then
+    local rule, limb = self._where()
+    error(format("lsys.grow: rule '%s' of kind '%s' failed on limb %d (tick %d): %s", rule[1],
+                 limb._name, limb._id, self.ticks, tostring(msg)), 0)
+  end
+end
+
+--- The living limbs, in the order they were made.
+function World:limbs ()
+  local out = {}
+  for i = 1, self._T:count() do
+    local h = self._limbs[i]
+    if h then out[#out + 1] = h end
+  end
+  return out
+end
+
+--- The limb with id i (nil once removed).
+function World:limb (i) return self._limbs[i] or nil end
+
+--- The number of living limbs (of plant p).
+function World:count (p) return self._T:living(p) end
+
+--- The scene the limbs are drawn in, up to date (render it, save it, show it).
+function World:scene ()
+  self._T:update()
+  return self._T:scene()
+end
+
+--- A number from the world's own generator (seeded by `seed`): [0, 1) or [a, b).
+function World:random (a, b)
+  self._wgen = self._wgen or core.frames(self._seed)
+  local x = self._wgen:random()
+  if a == nil then return x end
+  return a + (b - a) * x
+end
+
+function World:__tostring ()
+  return format("lsys.grow.World(%d limbs, %d ticks)", self._T:living(), self.ticks)
+end
+
+M.World = World
+
+-- }=========================================================================================
+
+return M

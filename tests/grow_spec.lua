@@ -1,0 +1,235 @@
+-- Incremental growth (issue 17; Davison, seed 002): persistent limbs, if-then rules in
+-- parallel ticks, kinds and subclassing, geometry rewritten in place (lsys.grow over
+-- csrc/core/grow.c).
+local grow = require "lsys.grow"
+
+local function errof (f, ...)
+  local ok, msg = pcall(f, ...)
+  assert.is_false(ok)
+  return tostring(msg)
+end
+
+local function near (a, b, tol) return math.abs(a - b) <= (tol or 1e-9) end
+
+-- The paper's three rules ('length', 'thickness', 'child limbs spawning'), for a kind.
+local function davison (K, cap)
+  K:rule("length", function (l)
+    if l:length() < 1.0 and not l:has_leaves() then l:scale_length(1.1) end
+  end)
+  K:rule("thickness", function (l)
+    if l:radius() <= -0.05 * l:level() + 0.25 and not l:has_leaves() then l:scale_radius(1.05) end
+  end)
+  K:rule("spawn", function (l)
+    if l:age() == 5 and l:count() <= (cap or 256) and not l:has_leaves() and l:level() < 10 then
+      if l:random() < 0.85 then
+        l:spawn { angle = l:random(10, 30), axis = l:random() < 0.5 and "z" or "x" }
+      end
+      if l:random() < 0.85 then
+        l:spawn { angle = l:random(-30, -10), axis = l:random() < 0.5 and "z" or "x" }
+      end
+    end
+  end)
+  return K
+end
+
+describe("lsys.grow ticks", function ()
+  it("runs rules in parallel: reads see the start of the tick, new limbs wait", function ()
+    local K = grow.kind("k")
+    local seen = {}
+    K:rule("grow", function (l)
+      l:scale_length(2)
+      l:scale_length(1.5)                            -- writes compound
+      seen[#seen + 1] = { l:id(), l:length() }      -- ... reads do not see them
+      if l:is_root() and l:age() == 0 then l:spawn { angle = 30 } end
+    end)
+    local w = grow.world()
+    local root = w:plant { kind = K, length = 1 }
+    w:tick()
+    assert.same({ { 1, 1 } }, seen)                 -- the child did not run in tick 1
+    assert.near(3, root:length(), 1e-12)
+    local child = root:children()[1]
+    assert.equal(0.5, child:length())
+    assert.equal(1, root:age())
+    assert.equal(0, child:age())
+    w:tick()
+    assert.same({ { 1, 1 }, { 1, 3 }, { 2, 0.5 } }, seen)
+    assert.near(1.5, child:length(), 1e-12)
+    assert.equal(2, root:age())
+    assert.equal(1, child:age())
+    assert.equal(2, w.ticks)
+  end)
+
+  it("keeps levels, parents, children and siblings", function ()
+    local w = grow.world()
+    local a = w:plant()
+    local b, c = a:spawn { angle = 20 }, a:spawn { angle = -20 }
+    local d = b:spawn { axis = "x", angle = 30 }
+    assert.equal(1, a:level())
+    assert.equal(2, b:level())
+    assert.equal(3, d:level())
+    assert.is_true(a:is_root())
+    assert.is_false(d:is_root())
+    assert.equal(a, b:parent())
+    assert.is_nil(a:parent())
+    assert.same({ b, c }, a:children())
+    assert.same({ c }, b:siblings())
+    assert.same({}, a:siblings())
+    assert.equal(4, w:count())
+    assert.equal(4, a:count())
+    assert.equal("limb", d:kind())
+  end)
+
+  it("puts children at the tip, turned about the limb's own axes", function ()
+    local w = grow.world()
+    local a = w:plant { position = { 1, 0, 2 }, length = 2 }
+    local b = a:spawn { angle = 90, axis = "z", length = 1 }
+    local c = a:spawn { angle = 90, axis = "x", length = 1, at = 0.5 }
+    local x, y, z = b:base()
+    assert.is_true(near(x, 1) and near(y, 2) and near(z, 2))
+    x, y, z = b:tip()                                -- +90 about z turns +y to -x
+    assert.is_true(near(x, 0) and near(y, 2) and near(z, 2))
+    x, y, z = c:tip()                                -- +90 about x turns +y to +z
+    assert.is_true(near(x, 1) and near(y, 1) and near(z, 3))
+    -- the parent grows: its children move with its tip
+    a:set_length(3)
+    x, y = b:base()
+    assert.is_true(near(x, 1) and near(y, 3))
+    x, y = c:base()
+    assert.is_true(near(x, 1) and near(y, 1.5))
+  end)
+
+  it("grows the paper's trees the same for the same seed, and stops at the cap", function ()
+    local function run (seed, max)
+      local w = grow.world { seed = seed, max_limbs = max }
+      local K = davison(grow.kind("tree"))
+      for k = 0, 4 do w:plant { kind = K, position = { k * 5, 0, 0 } } end
+      w:tick(40)
+      local lens = {}
+      for _, l in ipairs(w:limbs()) do lens[#lens + 1] = l:length() end
+      return w:count(), lens, w
+    end
+    local n1, l1 = run(1)
+    local n2, l2 = run(1)
+    local n3 = run(2)
+    assert.equal(n1, n2)
+    assert.same(l1, l2)
+    assert.are_not.equal(n1, n3)
+    assert.is_true(n1 > 200, n1)
+    local n4, _, w4 = run(1, 100)
+    assert.equal(100, n4)
+    assert.is_true(w4.capped)
+  end)
+
+  it("lets kinds extend kinds: rules inherited, replaced by name, added", function ()
+    local log = {}
+    local Base = grow.kind("base")
+    Base:rule("a", function (l) log[#log + 1] = l:kind() .. ".a" end)
+    Base:rule("b", function (l) log[#log + 1] = l:kind() .. ".b" end)
+    Base.max_length = 1
+    function Base:twice () return 2 * self:length() end
+    local Sub = grow.kind("sub", Base)
+    Sub:rule("a", function (l) log[#log + 1] = l:kind() .. ".A" end)
+    Sub:rule("c", function (l) log[#log + 1] = l:kind() .. ".c" end)
+    local w = grow.world()
+    w:plant { kind = Base }
+    local s = w:plant { kind = Sub, length = 2 }
+    w:tick()
+    assert.same({ "base.a", "base.b", "sub.A", "sub.b", "sub.c" }, log)
+    assert.equal(4, s:twice())
+    assert.equal(1, s.max_length)
+    s.max_length = 3                                 -- a limb's own field
+    assert.equal(3, s.max_length)
+    assert.equal(1, Sub.max_length)
+    local names = {}
+    for _, r in ipairs(Sub:rules()) do names[#names + 1] = r[1] end
+    assert.same({ "a", "b", "c" }, names)
+  end)
+
+  it("adds leaves and removes subtrees at the end of the tick, reusing their geometry", function ()
+    local K = grow.kind("k")
+    K:rule("leaf", function (l)
+      if l:age() == 1 and l:is_root() then
+        l:add_leaves(3, { size = 0.2 })
+        assert.is_false(l:has_leaves())              -- not yet
+      end
+    end)
+    K:rule("prune", function (l)
+      if l:age() == 2 and not l:is_root() then l:remove() end
+    end)
+    local w = grow.world()
+    local a = w:plant { kind = K }
+    local b = a:spawn {}
+    b:spawn {}
+    w:tick(2)
+    assert.equal(3, a:leaves())
+    assert.is_true(a:has_leaves())
+    w:tick()
+    assert.equal(1, w:count())
+    assert.is_false(b:alive())
+    assert.truthy(errof(b.length, b):find("the limb was removed", 1, true))
+    assert.same({}, a:children())
+    -- a new limb takes a freed range: the scene does not grow
+    local before = w:scene().nvertices
+    a:spawn {}
+    assert.equal(before, w:scene().nvertices)
+    a:spawn {}                                       -- only two ranges were freed
+    a:spawn {}
+    assert.is_true(w:scene().nvertices > before)
+  end)
+end)
+
+describe("lsys.grow errors", function ()
+  it("names the rule, the kind and the limb when a rule fails", function ()
+    local K = grow.kind("shoot")
+    K:rule("bad", function (l) if l:id() == 2 then error("boom") end end)
+    local w = grow.world()
+    w:plant { kind = K }:spawn {}
+    local msg = errof(w.tick, w)
+    assert.truthy(msg:find("rule 'bad' of kind 'shoot' failed on limb 2 (tick 1)", 1, true), msg)
+    assert.truthy(msg:find("boom", 1, true))
+    w:tick(0)                                        -- the world still works
+  end)
+
+  it("refuses bad spawns, factors, colours and options", function ()
+    local w = grow.world()
+    local a = w:plant()
+    assert.truthy(errof(a.spawn, a, { angle = 0 / 0 })
+                  :find("'angle' must be a finite number", 1, true))
+    assert.truthy(errof(a.spawn, a, { axis = "w" }):find("axis 'w' is not", 1, true))
+    assert.truthy(errof(a.spawn, a, { axis = { 0, 0, 0 } }):find("non-zero", 1, true))
+    assert.truthy(errof(a.spawn, a, { lenght = 1 }):find("unknown option 'lenght'", 1, true))
+    assert.truthy(errof(a.spawn, a, { at = 2 }):find("'at' must be from 0 to 1", 1, true))
+    assert.truthy(errof(a.spawn, a, { kind = {} }):find("'kind' must be a kind", 1, true))
+    assert.truthy(errof(a.scale_length, a, -1):find("a factor >= 0", 1, true))
+    assert.truthy(errof(a.set_color, a, "#12"):find("not #rrggbb", 1, true))
+    assert.truthy(errof(a.blend_color, a, "#123456", 2):find("fraction 0..1", 1, true))
+    assert.truthy(errof(a.add_leaves, a, 1.5):find("a count 0..1000", 1, true))
+    assert.truthy(errof(grow.world, { sides = 2 }):find("'sides' must be", 1, true))
+    assert.truthy(errof(grow.world, { colour = 1 }):find("unknown option 'colour'", 1, true))
+    assert.truthy(errof(grow.kind, ""):find("a name expected", 1, true))
+    assert.truthy(errof(grow.kind("k").rule, grow.kind("k"), "r", 5)
+                  :find("a function (limb, world) expected", 1, true))
+    assert.truthy(errof(w.plant, w, { position = { 1, 2 } }):find("'position' must be", 1, true))
+    assert.truthy(errof(w.tick, w, 1.5):find("a whole number of ticks", 1, true))
+  end)
+
+  it("checks the C table's arguments and that it and its scene are alive", function ()
+    local core = require "lsys.core"
+    local T = core.limbs { sides = 5 }
+    local p = T:plant(0, 0, 0)
+    local a = T:add(0, p, 1, 0, 0, 1, 0, 0, 1, 0.1, 0.2, 0.5, 0.1)
+    assert.truthy(errof(T.length, T, 9):find("no such limb", 1, true))
+    assert.truthy(errof(T.add, T, 0, 7, 1, 0, 0, 1, 0, 0, 1, 0.1, 0, 0, 0)
+                  :find("no such plant", 1, true))
+    assert.truthy(errof(T.set_length, T, a, -1):find("a length is >= 0", 1, true))
+    assert.truthy(errof(T.set_turn, T, a, 0, 0, 0, 10, 0):find("the axis is zero", 1, true))
+    assert.truthy(errof(T.finish, T):find("finish", 1, true))
+    assert.truthy(errof(core.limbs, { sides = 99 }):find("sides must be 3 to 64", 1, true))
+    assert.equal(require("lsys").grow, grow)
+    do local _ <close> = T:scene() end             -- the user closed its scene
+    assert.truthy(errof(T.length, T, a):find("closed", 1, true))
+    local T2 = core.limbs()
+    T2:close()
+    assert.truthy(errof(T2.count, T2):find("the limbs were closed", 1, true))
+  end)
+end)
