@@ -31,6 +31,7 @@
 
 typedef struct llimbs {
   lsys_limbs g;
+  lsys_lscene *S;      /* its scene, kept alive by user value 1 */
   int closed;
 } llimbs;
 
@@ -38,9 +39,7 @@ typedef struct llimbs {
 static lsys_limbs *checklimbs (lua_State *L) {
   llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
   if (t->closed) luaL_error(L, "the limbs were closed");
-  lua_getiuservalue(L, 1, 1);
-  if (!lsys_checkscene(L, -1)) luaL_error(L, "the limbs' scene was closed");
-  lua_pop(L, 1);
+  if (!t->S->inited) luaL_error(L, "the limbs' scene was closed");
   return &t->g;
 }
 
@@ -100,6 +99,7 @@ static int l_limbs (lua_State *L) {
   lsys_material_color(&grey, 0.6, 0.6, 0.6);               /* colour 0: a Scene has one */
   if (lsys_scene_set_palette(&S->sc, &grey, 1) != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_setiuservalue(L, 2, 1);
+  t->S = S;
   lsys_limbs_init(&t->g, &S->sc, (int)sides);
   t->g.maxlimbs = (size_t)max;
   t->closed = 0;

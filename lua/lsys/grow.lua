@@ -96,7 +96,7 @@ function Limb.rules (K) return K._rules end
 -- }=========================================================================================
 
 -- {=========================================================================================
--- Limbs: handles { _id, _w (the world), _p (the plant number) } over the C table
+-- Limbs: handles { _id, _w (the world), _p (the plant number), _T (its C table) }
 
 function Limb:__tostring ()
   return format("lsys.grow.Limb(%s #%d)", self._name, self._id)
@@ -104,27 +104,27 @@ end
 
 function Limb:id () return self._id end
 function Limb:kind () return self._name end
-function Limb:length () return self._w._T:length(self._id) end
-function Limb:radius () return self._w._T:radius(self._id) end
-function Limb:color () return { self._w._T:color(self._id) } end
-function Limb:age () return self._w._T:age(self._id) end
-function Limb:level () return self._w._T:level(self._id) end
-function Limb:leaves () return self._w._T:leaves(self._id) end
-function Limb:has_leaves () return self._w._T:leaves(self._id) > 0 end
-function Limb:is_root () return self._w._T:parent(self._id) == nil end
-function Limb:alive () return self._w._T:alive(self._id) end
+function Limb:length () return self._T:length(self._id) end
+function Limb:radius () return self._T:radius(self._id) end
+function Limb:color () return { self._T:color(self._id) } end
+function Limb:age () return self._T:age(self._id) end
+function Limb:level () return self._T:level(self._id) end
+function Limb:leaves () return self._T:leaves(self._id) end
+function Limb:has_leaves () return self._T:leaves(self._id) > 0 end
+function Limb:is_root () return self._T:parent(self._id) == nil end
+function Limb:alive () return self._T:alive(self._id) end
 --- The number of living limbs of its plant at the start of the tick (now, outside one).
-function Limb:count () return self._w._T:living0(self._p) end
-function Limb:base () return self._w._T:base(self._id) end
-function Limb:tip () return self._w._T:tip(self._id) end
+function Limb:count () return self._T:living0(self._p) end
+function Limb:base () return self._T:base(self._id) end
+function Limb:tip () return self._T:tip(self._id) end
 
 function Limb:parent ()
-  local p = self._w._T:parent(self._id)
+  local p = self._T:parent(self._id)
   return p and self._w._limbs[p] or nil
 end
 
 function Limb:children ()
-  local out, limbs = self._w._T:children(self._id), self._w._limbs
+  local out, limbs = self._T:children(self._id), self._w._limbs
   for k, c in ipairs(out) do out[k] = limbs[c] end
   return out
 end
@@ -143,10 +143,10 @@ local function factor (f, what)
   return f
 end
 
-function Limb:scale_length (f) self._w._T:scale_length(self._id, factor(f, "scale_length")) end
-function Limb:scale_radius (f) self._w._T:scale_radius(self._id, factor(f, "scale_radius")) end
-function Limb:set_length (x) self._w._T:set_length(self._id, factor(x, "set_length")) end
-function Limb:set_radius (x) self._w._T:set_radius(self._id, factor(x, "set_radius")) end
+function Limb:scale_length (f) self._T:scale_length(self._id, factor(f, "scale_length")) end
+function Limb:scale_radius (f) self._T:scale_radius(self._id, factor(f, "scale_radius")) end
+function Limb:set_length (x) self._T:set_length(self._id, factor(x, "set_length")) end
+function Limb:set_radius (x) self._T:set_radius(self._id, factor(x, "set_radius")) end
 
 local function rgb (c, what)
   local ok, v = pcall(view.color, c, "lsys.grow", what)
@@ -157,7 +157,7 @@ end
 --- Sets the colour ({r, g, b} in 0..1 or "#rrggbb").
 function Limb:set_color (c)
   local r, g, b = rgb(c, "set_color")
-  self._w._T:set_color(self._id, r, g, b)
+  self._T:set_color(self._id, r, g, b)
 end
 
 --- Moves the colour from the start of the tick towards c by the fraction t (0..1).
@@ -166,7 +166,7 @@ function Limb:blend_color (c, t)
   if not isnum(t) or t < 0 or t > 1 then
     fail("blend_color: a fraction 0..1 expected, got %s", tostring(t))
   end
-  self._w._T:blend_color(self._id, r, g, b, t)
+  self._T:blend_color(self._id, r, g, b, t)
 end
 
 --- n leaves at its tip (at the end of the tick): opts { size = 0.3, color = leaf green }.
@@ -180,14 +180,14 @@ function Limb:add_leaves (n, opts)
     fail("add_leaves: 'size' must be >= 0, got %s", tostring(size))
   end
   local r, g, b = rgb(opts.color or self._w.leaf_color, "add_leaves")
-  self._w._T:add_leaves(self._id, n, size, r, g, b)
+  self._T:add_leaves(self._id, n, size, r, g, b)
 end
 
-function Limb:drop_leaves () self._w._T:drop_leaves(self._id) end
+function Limb:drop_leaves () self._T:drop_leaves(self._id) end
 
 --- Removes the limb and everything that grows on it (at the end of the tick).
 function Limb:remove ()
-  self._w._T:remove(self._id)
+  self._T:remove(self._id)
   self._w._removed = true
 end
 
@@ -249,7 +249,7 @@ function Limb:spawn (opts)
                       num(opts, "roll", 0, "spawn"), num(opts, "length", 0.5, "spawn", 0),
                       num(opts, "radius", 0.05, "spawn", 0), r, g, b)
   if id == nil then w.capped = true return nil end
-  local h = setmetatable({ _id = id, _w = w, _p = self._p }, K)
+  local h = setmetatable({ _id = id, _w = w, _p = self._p, _T = w._T }, K)
   w._limbs[id] = h
   return h
 end
@@ -258,7 +258,7 @@ end
 function Limb:turn (opts)
   opts = opts or {}
   local ax, ay, az = axisof(opts.axis, "turn")
-  self._w._T:set_turn(self._id, ax, ay, az, num(opts, "angle", 0, "turn"),
+  self._T:set_turn(self._id, ax, ay, az, num(opts, "angle", 0, "turn"),
                       num(opts, "roll", 0, "turn"))
 end
 
@@ -343,7 +343,7 @@ function World:plant (opts)
   local id = T:add(0, p, 1, 0, 0, 1, 0, 0, num(opts, "length", 0.5, "plant", 0),
                    num(opts, "radius", 0.05, "plant", 0), r, g, b)
   if id == nil then self.capped = true return nil end
-  local h = setmetatable({ _id = id, _w = self, _p = p }, K)
+  local h = setmetatable({ _id = id, _w = self, _p = p, _T = T }, K)
   self._limbs[id] = h
   return h
 end
