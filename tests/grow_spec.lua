@@ -178,6 +178,90 @@ describe("lsys.grow ticks", function ()
   end)
 end)
 
+describe("lsys.grow rules run in C", function ()
+  -- The paper's rules with their conditions in C: the same plants as the Lua functions.
+  local function cdavison (K, cap)
+    K:rule("length", { when = "length < 1.0 and leaves == 0", scale_length = 1.1 })
+    K:rule("thickness", { when = "radius <= -0.05 * level + 0.25 and leaves == 0",
+                          scale_radius = 1.05 })
+    K:rule("spawn", {
+      when = "age == 5 and count <= " .. (cap or 256) .. " and leaves == 0 and level < 10",
+      fn = function (l)
+        if l:random() < 0.85 then
+          l:spawn { angle = l:random(10, 30), axis = l:random() < 0.5 and "z" or "x" }
+        end
+        if l:random() < 0.85 then
+          l:spawn { angle = l:random(-30, -10), axis = l:random() < 0.5 and "z" or "x" }
+        end
+      end,
+    })
+    return K
+  end
+
+  local function grown (make, ticks)
+    local w = grow.world { seed = 4 }
+    local K = make(grow.kind("tree"))
+    for k = 0, 2 do w:plant { kind = K, position = { k * 5, 0, 0 } } end
+    w:tick(ticks)
+    local out = {}
+    for _, l in ipairs(w:limbs()) do
+      local x, y, z = l:tip()
+      out[#out + 1] = { l:length(), l:radius(), l:level(), x, y, z }
+    end
+    return out, w
+  end
+
+  it("grows the same plants as the same rules written as functions", function ()
+    local a = grown(davison, 45)
+    local b = grown(cdavison, 45)
+    assert.is_true(#a > 100, #a)
+    assert.same(a, b)
+  end)
+
+  it("applies colours and blends, and calls fn only where the condition holds", function ()
+    local calls = 0
+    local K = grow.kind("k")
+    K:rule("old", { when = "age >= 2", blend = { "#000000", 0.5 } })
+    K:rule("young", { when = "age < 1 and root == 1", color = "#ff0000" })
+    K:rule("count", { when = "age == 3", fn = function () calls = calls + 1 end })
+    local w = grow.world()
+    local a = w:plant { kind = K, color = "#808080" }
+    w:tick()
+    assert.same({ 1, 0, 0 }, a:color())
+    w:tick(2)                                        -- ages 1, 2: one blend at age 2
+    local c = a:color()
+    assert.near(0.5, c[1], 1e-6)
+    assert.equal(0, calls)
+    w:tick()
+    assert.equal(1, calls)
+  end)
+
+  it("names the rule, kind and limb of a failing fn, and refuses bad rules", function ()
+    local K = grow.kind("shoot")
+    K:rule("ok", { scale_length = 1.01 })
+    K:rule("bad", { when = "level == 2", fn = function () error("snap") end })
+    local w = grow.world()
+    w:plant { kind = K }:spawn {}
+    local msg = errof(w.tick, w)
+    assert.truthy(msg:find("rule 'bad' of kind 'shoot' failed on limb 2 (tick 1)", 1, true), msg)
+    assert.truthy(msg:find("snap", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { when = "length <" })
+                  :find("the condition 'length <' must be", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { when = "foo > 1", scale_length = 2 })
+                  :find("functions of length, radius, age", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { when = "age > 1" }):find("nothing to do", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { scale = 2 }):find("unknown field 'scale'", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { scale_length = -1 }):find("a factor >= 0", 1, true))
+    assert.truthy(errof(K.rule, K, "r", { blend = { "#ffffff", 3 } })
+                  :find("'blend' must be {colour, fraction 0..1}", 1, true))
+    local core = require "lsys.core"
+    local T = core.limbs()
+    assert.truthy(errof(T.set_rules, T, 0, { { code = { 99, 0, 0 } } })
+                  :find("malformed", 1, true))
+    assert.truthy(errof(T.run, T, {}, {}, {}):find("no tick is running", 1, true))
+  end)
+end)
+
 describe("lsys.grow errors", function ()
   it("names the rule, the kind and the limb when a rule fails", function ()
     local K = grow.kind("shoot")

@@ -27,7 +27,7 @@ void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
 
 void lsys_limbs_free (lsys_limbs *g) {
   void *arrs[] = {
-    g->parent, g->plant, g->first, g->next, g->level, g->age, g->flag, g->chg, g->len,
+    g->parent, g->plant, g->first, g->next, g->level, g->tag, g->age, g->flag, g->chg, g->len,
     g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
     g->t0, g->col, g->leaf, g->nleaves, g->lf_limb, g->lf_next, g->lf_k, g->lf_v0, g->lf_t0,
     g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount, g->pcount0,
@@ -46,7 +46,8 @@ void lsys_limbs_free (lsys_limbs *g) {
 static int reserve_limbs (lsys_limbs *g, size_t need) {
   struct { void **p; size_t size; } a[] = {
     {(void **)&g->parent, 4}, {(void **)&g->plant, 4}, {(void **)&g->first, 4},
-    {(void **)&g->next, 4}, {(void **)&g->level, 2}, {(void **)&g->age, 4},
+    {(void **)&g->next, 4}, {(void **)&g->level, 2}, {(void **)&g->tag, 2},
+    {(void **)&g->age, 4},
     {(void **)&g->flag, 1}, {(void **)&g->chg, 1}, {(void **)&g->len, 8},
     {(void **)&g->rad, 8}, {(void **)&g->nlen, 8}, {(void **)&g->nrad, 8},
     {(void **)&g->rgb, 12}, {(void **)&g->nrgb, 12}, {(void **)&g->loc, 72},
@@ -228,6 +229,7 @@ int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
   }
   g->level[i] = (uint16_t)(p >= 0 ? (g->level[p] < 65535 ? g->level[p] + 1 : 65535) : 1);
   g->age[i] = 0;
+  g->tag[i] = s->tag;
   g->flag[i] = LSYS_LIMB_ALIVE;
   g->chg[i] = C_NEW;
   g->len[i] = g->nlen[i] = s->length;

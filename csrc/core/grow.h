@@ -51,6 +51,7 @@ typedef struct lsys_limbspec {
   double angle, roll;
   double length, radius;  /* > 0 and >= 0 */
   float rgb[3];           /* 0 to 1 */
+  uint16_t tag;           /* the caller's (lsys.grow: the limb's kind) */
 } lsys_limbspec;
 
 /* What is deferred to the end of a tick. */
@@ -73,7 +74,7 @@ typedef struct lsys_limbs {
   size_t nalive;
   /* per limb */
   int32_t *parent, *plant, *first, *next;   /* tree: first child, next sibling */
-  uint16_t *level;
+  uint16_t *level, *tag;
   uint32_t *age;
   uint8_t *flag, *chg;    /* LSYS_LIMB_*; what changed since the last update */
   double *len, *rad;      /* the state (at the start of the tick within one) */

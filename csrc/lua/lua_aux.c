@@ -60,6 +60,27 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e, int level) {
   return lua_error(L);
 }
 
+lsys_ins *lsys_readcode (lua_State *L, int t, int *n) {
+  lua_Integer k, len;
+  lsys_ins *code;
+  t = lua_absindex(L, t);
+  luaL_checktype(L, t, LUA_TTABLE);
+  len = luaL_len(L, t) / 3;
+  if (len > LSYS_EXPR_MAXCODE) luaL_error(L, "program too long");
+  code = (lsys_ins *)lua_newuserdatauv(L, (size_t)(len + 1) * sizeof *code, 0);
+  for (k = 0; k < len; k++) {
+    lua_rawgeti(L, t, 3 * k + 1);
+    lua_rawgeti(L, t, 3 * k + 2);
+    lua_rawgeti(L, t, 3 * k + 3);
+    code[k].op = (int32_t)luaL_checkinteger(L, -3);
+    code[k].a = (int32_t)luaL_checkinteger(L, -2);
+    code[k].k = luaL_checknumber(L, -1);
+    lua_pop(L, 3);
+  }
+  *n = (int)len;
+  return code;
+}
+
 void lsys_pushnums (lua_State *L, const double *v, int n) {
   int k;
   lua_createtable(L, n, 0);

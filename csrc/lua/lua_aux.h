@@ -76,6 +76,12 @@ lsys_alphabet *lsys_getalphabet (lua_State *L);
 */
 int lsys_raise (lua_State *L, int code, const lsys_error *e, int level);
 
+/* The program {op, a, k, ...} (expr.h) of the table at 't', copied into a
+** new userdata pushed on the stack; *n its length. Raises when an entry is
+** not a number or it is longer than LSYS_EXPR_MAXCODE (unchecked otherwise:
+** the caller runs lsys_expr_check). */
+lsys_ins *lsys_readcode (lua_State *L, int t, int *n);
+
 /* Pushes a new list of the n numbers v[0..n-1]. */
 void lsys_pushnums (lua_State *L, const double *v, int n);
 

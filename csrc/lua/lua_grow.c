@@ -29,11 +29,41 @@
 
 #define LIMBS_T "lsys.Limbs"
 
+/* A rule compiled for the tick loop: a condition for the expression machine
+** over the limb's variables (GUARD_VARS) and what to do where it holds. */
+typedef struct crule {
+  lsys_ins *code;       /* NULL: always */
+  int ncode;
+  double slen, srad;    /* scale factors (1: none) */
+  int blend, setcol;
+  float brgb[3], crgb[3];
+  double bt;
+  int fn;               /* index in the tick's function list (0: none) */
+} crule;
+
+typedef struct ckind { crule *r; int n; } ckind;
+
+/* The variables a condition reads, in this order (lsys.grow's VARS). */
+enum { V_LENGTH, V_RADIUS, V_AGE, V_LEVEL, V_LEAVES, V_COUNT, V_ROOT, NVARS };
+
 typedef struct llimbs {
   lsys_limbs g;
   lsys_lscene *S;      /* its scene, kept alive by user value 1 */
+  ckind *kinds;        /* by the limbs' tags */
+  int nkinds;
+  lsys_rng rng;        /* for conditions (they cannot draw today; the machine wants one) */
+  int cur_rule;        /* while run runs: the rule (1-based in its kind) and limb */
+  int32_t cur_limb;
   int closed;
 } llimbs;
+
+static void freekind (ckind *k) {
+  int j;
+  for (j = 0; j < k->n; j++) LSYS_FREE(k->r[j].code);
+  LSYS_FREE(k->r);
+  k->r = NULL;
+  k->n = 0;
+}
 
 /* The table at 1, alive, with its scene alive. */
 static lsys_limbs *checklimbs (lua_State *L) {
@@ -45,7 +75,14 @@ static lsys_limbs *checklimbs (lua_State *L) {
 
 static int limbs_gc (lua_State *L) {
   llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
-  if (!t->closed) lsys_limbs_free(&t->g);
+  if (!t->closed) {
+    int k;
+    lsys_limbs_free(&t->g);
+    for (k = 0; k < t->nkinds; k++) freekind(&t->kinds[k]);
+    LSYS_FREE(t->kinds);
+    t->kinds = NULL;
+    t->nkinds = 0;
+  }
   t->closed = 1;
   return 0;
 }
@@ -100,6 +137,11 @@ static int l_limbs (lua_State *L) {
   if (lsys_scene_set_palette(&S->sc, &grey, 1) != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_setiuservalue(L, 2, 1);
   t->S = S;
+  t->kinds = NULL;
+  t->nkinds = 0;
+  t->cur_rule = 0;
+  t->cur_limb = 0;
+  lsys_rng_seed(&t->rng, 1);
   lsys_limbs_init(&t->g, &S->sc, (int)sides);
   t->g.maxlimbs = (size_t)max;
   t->closed = 0;
@@ -143,6 +185,11 @@ static int limbs_add (lua_State *L) {
   s.length = numarg(L, 10);
   s.radius = numarg(L, 11);
   for (k = 0; k < 3; k++) s.rgb[k] = (float)numarg(L, 12 + k);
+  {
+    lua_Integer tag = luaL_optinteger(L, 15, 0);
+    luaL_argcheck(L, tag >= 0 && tag <= 65535, 15, "a tag is 0 to 65535");
+    s.tag = (uint16_t)tag;
+  }
   r = lsys_limbs_add(g, &s, &id);
   if (r == LSYS_ELIMIT) {
     lua_pushnil(L);
@@ -369,6 +416,190 @@ static int limbs_remove (lua_State *L) {
 
 /* }====================================================================== */
 
+/* {======================================================================
+** Rules in the tick loop
+** ======================================================================= */
+
+/* A number field of the table at t, or 'dflt'. */
+static double optfield (lua_State *L, int t, const char *k, double dflt) {
+  double x;
+  if (lua_getfield(L, t, k) == LUA_TNIL) { lua_pop(L, 1); return dflt; }
+  x = lua_tonumber(L, -1);
+  if (!lua_isnumber(L, -1) || !isfinite(x)) luaL_error(L, "set_rules: '%s' must be a number", k);
+  lua_pop(L, 1);
+  return x;
+}
+
+/* Field k of the table at t: a list of n finite numbers into v; 0 when absent. */
+static int optlist (lua_State *L, int t, const char *k, double *v, int n) {
+  int j;
+  if (lua_getfield(L, t, k) == LUA_TNIL) { lua_pop(L, 1); return 0; }
+  if (!lua_istable(L, -1)) luaL_error(L, "set_rules: '%s' must be a list of %d numbers", k, n);
+  for (j = 0; j < n; j++) {
+    lua_rawgeti(L, -1, j + 1);
+    v[j] = lua_tonumber(L, -1);
+    if (!lua_isnumber(L, -1) || !isfinite(v[j]))
+      luaL_error(L, "set_rules: '%s'[%d] must be a number", k, j + 1);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return 1;
+}
+
+/* Reads rule table at 'idx' (rule number j) into r. With alloc 0 it only
+** checks (and may raise); with alloc 1 (after a check) it copies the
+** condition's code into C memory and returns 0 when that fails. */
+static int readrule (lua_State *L, int idx, int j, crule *r, int alloc) {
+  double v[4];
+  idx = lua_absindex(L, idx);
+  memset(r, 0, sizeof *r);
+  if (!lua_istable(L, idx)) luaL_error(L, "set_rules: rule %d is not a table", j);
+  if (lua_getfield(L, idx, "code") != LUA_TNIL) {
+    int nc;
+    lsys_ins *c = lsys_readcode(L, -1, &nc);
+    if (!alloc && lsys_expr_check(c, nc, NVARS, 0) != 0)
+      luaL_error(L, "set_rules: rule %d: the condition's code is malformed", j);
+    if (alloc) {
+      if ((r->code = (lsys_ins *)LSYS_MALLOC((size_t)nc * sizeof *c + 1)) == NULL) return 0;
+      memcpy(r->code, c, (size_t)nc * sizeof *c);
+      r->ncode = nc;
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  r->slen = optfield(L, idx, "scale_length", 1);
+  r->srad = optfield(L, idx, "scale_radius", 1);
+  if (r->slen < 0 || r->srad < 0) luaL_error(L, "set_rules: rule %d: a scale factor is >= 0", j);
+  if ((r->blend = optlist(L, idx, "blend", v, 4)) != 0) {
+    r->brgb[0] = (float)v[0]; r->brgb[1] = (float)v[1]; r->brgb[2] = (float)v[2]; r->bt = v[3];
+  }
+  if ((r->setcol = optlist(L, idx, "color", v, 3)) != 0) {
+    r->crgb[0] = (float)v[0]; r->crgb[1] = (float)v[1]; r->crgb[2] = (float)v[2];
+  }
+  v[0] = optfield(L, idx, "fn", 0);
+  if (v[0] < 0 || v[0] > 1e9 || v[0] != floor(v[0]))
+    luaL_error(L, "set_rules: rule %d: 'fn' must be an index", j);
+  r->fn = (int)v[0];
+  return 1;
+}
+
+/* T:set_rules(kind, {rule, ...}): what the limbs tagged 'kind' run at each
+** tick, in order; a rule is {code = {op, a, k, ...} (a condition over length,
+** radius, age, level, leaves, count, root), scale_length =, scale_radius =,
+** blend = {r, g, b, t}, color = {r, g, b}, fn = index in run's list}. */
+static int limbs_set_rules (lua_State *L) {
+  llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
+  lua_Integer kind = luaL_checkinteger(L, 2), n, j;
+  ckind nk = {NULL, 0};
+  crule tmp;
+  checklimbs(L);
+  luaL_argcheck(L, kind >= 0 && kind <= 65535, 2, "a kind is 0 to 65535");
+  luaL_checktype(L, 3, LUA_TTABLE);
+  lua_settop(L, 3);
+  if (t->g.intick) return luaL_error(L, "set_rules: not during a tick");
+  n = luaL_len(L, 3);
+  luaL_argcheck(L, n >= 0 && n <= 10000, 3, "at most 10,000 rules");
+  for (j = 1; j <= n; j++) {          /* check everything first: nothing to free on error */
+    lua_rawgeti(L, 3, j);
+    readrule(L, -1, (int)j, &tmp, 0);
+    lua_pop(L, 1);
+  }
+  if (kind >= t->nkinds) {
+    ckind *k2 = (ckind *)LSYS_REALLOC(t->kinds, (size_t)(kind + 1) * sizeof *k2);
+    if (k2 == NULL) return luaL_error(L, "not enough memory");
+    memset(k2 + t->nkinds, 0, (size_t)(kind + 1 - t->nkinds) * sizeof *k2);
+    t->kinds = k2;
+    t->nkinds = (int)kind + 1;
+  }
+  if (n > 0 && (nk.r = (crule *)LSYS_MALLOC((size_t)n * sizeof *nk.r)) == NULL)
+    return luaL_error(L, "not enough memory");
+  for (j = 1; j <= n; j++) {
+    int ok;
+    lua_rawgeti(L, 3, j);
+    ok = readrule(L, -1, (int)j, &nk.r[nk.n], 1);
+    lua_pop(L, 1);
+    if (!ok) { freekind(&nk); return luaL_error(L, "not enough memory"); }
+    nk.n++;
+  }
+  freekind(&t->kinds[kind]);
+  t->kinds[kind] = nk;
+  return 0;
+}
+
+/* Applies the declarative part of rule r to limb i. */
+static int apply (lsys_limbs *g, const crule *r, int32_t i) {
+  int st = LSYS_OK, k;
+  if (r->slen != 1) st = lsys_limbs_set_length(g, i, g->nlen[i] * r->slen);
+  if (st == LSYS_OK && r->srad != 1) st = lsys_limbs_set_radius(g, i, g->nrad[i] * r->srad);
+  if (st == LSYS_OK && r->blend) {
+    float c[3];
+    for (k = 0; k < 3; k++)
+      c[k] = (float)(g->rgb[3 * i + k] + (r->brgb[k] - g->rgb[3 * i + k]) * r->bt);
+    st = lsys_limbs_set_color(g, i, c);
+  }
+  if (st == LSYS_OK && r->setcol) st = lsys_limbs_set_color(g, i, r->crgb);
+  return st;
+}
+
+/* T:run(limbs, world, fns): the body of a tick (between begin and finish):
+** every limb that existed at its start runs the rules of its tag in order;
+** a rule's condition runs here, its declared changes too, and its function
+** fns[fn](limbs[id], world) only where the condition holds. */
+static int limbs_run (lua_State *L) {
+  llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
+  lsys_limbs *g = checklimbs(L);
+  size_t i, n0 = g->n0;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  luaL_checktype(L, 4, LUA_TTABLE);
+  lua_settop(L, 4);
+  if (!g->intick) return luaL_error(L, "run: no tick is running");
+  for (i = 0; i < n0; i++) {
+    const ckind *k;
+    double args[NVARS], out[1];
+    int j;
+    if (!(g->flag[i] & LSYS_LIMB_ALIVE) || g->tag[i] >= t->nkinds) continue;
+    k = &t->kinds[g->tag[i]];
+    args[V_LENGTH] = g->len[i]; args[V_RADIUS] = g->rad[i]; args[V_AGE] = g->age[i];
+    args[V_LEVEL] = g->level[i]; args[V_LEAVES] = g->nleaves[i];
+    args[V_COUNT] = g->pcount0[g->plant[i]]; args[V_ROOT] = g->parent[i] < 0;
+    for (j = 0; j < k->n; j++) {
+      const crule *r = &k->r[j];
+      t->cur_rule = j + 1;
+      t->cur_limb = (int32_t)i + 1;
+      if (r->code != NULL && !lsys_expr_run(r->code, r->ncode, args, out, &t->rng, NULL))
+        continue;
+      status(L, apply(g, r, (int32_t)i), "run");
+      if (r->fn > 0) {
+        lua_rawgeti(L, 4, r->fn);
+        lua_rawgeti(L, 2, (lua_Integer)i + 1);
+        lua_pushvalue(L, 3);
+        lua_call(L, 2, 0);
+        /* the function may have changed anything: the table, its kinds, the tick */
+        if (t->closed || !t->S->inited) return luaL_error(L, "a rule closed the limbs");
+        if (!g->intick) return luaL_error(L, "a rule ended the tick");
+        if (g->tag[i] >= t->nkinds) break;
+        k = &t->kinds[g->tag[i]];
+        if (j + 1 >= k->n) break;
+      }
+    }
+  }
+  t->cur_rule = 0;
+  t->cur_limb = 0;
+  return 0;
+}
+
+/* T:where() -> rule, limb: what run was running (after an error), or nothing. */
+static int limbs_where (lua_State *L) {
+  llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
+  checklimbs(L);
+  if (t->cur_limb == 0) return 0;
+  lua_pushinteger(L, t->cur_rule);
+  lua_pushinteger(L, t->cur_limb);
+  return 2;
+}
+
+/* }====================================================================== */
+
 static const luaL_Reg limbs_methods[] = {
   {"scene", limbs_scene}, {"update", limbs_update}, {"plant", limbs_plant}, {"add", limbs_add},
   {"begin", limbs_begin}, {"finish", limbs_finish}, {"ticking", limbs_ticking},
@@ -382,7 +613,8 @@ static const luaL_Reg limbs_methods[] = {
   {"scale_radius", limbs_scale_radius}, {"set_color", limbs_set_color},
   {"blend_color", limbs_blend_color}, {"set_turn", limbs_set_turn},
   {"add_leaves", limbs_add_leaves}, {"drop_leaves", limbs_drop_leaves},
-  {"remove", limbs_remove}, {"close", limbs_gc}, {NULL, NULL}
+  {"remove", limbs_remove}, {"set_rules", limbs_set_rules}, {"run", limbs_run},
+  {"where", limbs_where}, {"close", limbs_gc}, {NULL, NULL}
 };
 
 static const luaL_Reg limbs_meta[] = {

@@ -285,29 +285,17 @@ static int rules_config (lua_State *L) {
 ** Returns true, or false when the program does not fit the rule. */
 static int rules_setvm (lua_State *L) {
   lsys_lrules *R = checkidle(L, 1);
-  lua_Integer idx = luaL_checkinteger(L, 2), k, n;
+  lua_Integer idx = luaL_checkinteger(L, 2);
   lsys_ins *code;
-  int st;
+  int st, n;
   luaL_argcheck(L, idx >= 0 && (size_t)idx < R->m.nrules, 2, "bad rule index");
   if (lua_isnoneornil(L, 3)) {
     lsys_model_setvm(&R->m, (size_t)idx, NULL, 0);
     lua_pushboolean(L, 1);
     return 1;
   }
-  luaL_checktype(L, 3, LUA_TTABLE);
-  n = luaL_len(L, 3) / 3;
-  luaL_argcheck(L, n <= LSYS_EXPR_MAXCODE, 3, "program too long");
-  code = (lsys_ins *)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *code, 0);
-  for (k = 0; k < n; k++) {
-    lua_rawgeti(L, 3, 3 * k + 1);
-    lua_rawgeti(L, 3, 3 * k + 2);
-    lua_rawgeti(L, 3, 3 * k + 3);
-    code[k].op = (int32_t)luaL_checkinteger(L, -3);
-    code[k].a = (int32_t)luaL_checkinteger(L, -2);
-    code[k].k = luaL_checknumber(L, -1);
-    lua_pop(L, 3);
-  }
-  st = lsys_model_setvm(&R->m, (size_t)idx, code, (int)n);
+  code = lsys_readcode(L, 3, &n);
+  st = lsys_model_setvm(&R->m, (size_t)idx, code, n);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   lua_pushboolean(L, st == LSYS_OK);
   return 1;

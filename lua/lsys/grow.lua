@@ -24,11 +24,12 @@
 -- @module lsys.grow
 local core = require "lsys.core"
 local view = require "lsys.view"
+local compile = require "lsys.compile"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall =
       type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall
 local math, string = math, string
-local format = string.format
+local format, table = string.format, table
 local floor = math.floor
 local _ENV = nil
 
@@ -73,20 +74,86 @@ function M.kind (name, base)
 end
 M.Limb = Limb
 
---- Adds rule `name` (fn(limb, world)) to the kind, after its others; a rule of the same
--- name (from the base kind) is replaced where it was.
-function Limb.rule (K, name, fn)
+-- A colour ({r, g, b} or "#rrggbb") as three numbers; `what` names it in errors.
+local function rgb (c, what)
+  local ok, v = pcall(view.color, c, "lsys.grow", what)
+  if not ok then error(v, 3) end
+  return v[1], v[2], v[3]
+end
+
+-- What a condition (`when`) may read: the limb's state at the start of the tick.
+local VARS = { "length", "radius", "age", "level", "leaves", "count", "root" }
+local FORMALS = {}
+for k, v in ipairs(VARS) do FORMALS[v] = k - 1 end
+local CONDENV = { math = math }
+
+local RULE = { when = true, scale_length = true, scale_radius = true, blend = true,
+               color = true, fn = true }
+
+-- The rule entry { name, fn, code =, scale_length =, ... } of a rule given as a table.
+local function tablerule (K, name, spec)
+  local where = format("rule '%s' of kind '%s'", name, K._name)
+  for k in pairs(spec) do
+    if not RULE[k] then fail("%s: unknown field '%s'", where, tostring(k)) end
+  end
+  local r = { name, spec.fn }
+  if spec.fn ~= nil and type(spec.fn) ~= "function" then
+    fail("%s: 'fn' must be a function (limb, world)", where)
+  end
+  if spec.when ~= nil then
+    if type(spec.when) ~= "string" then fail("%s: 'when' must be an expression string", where) end
+    local tree = compile.parseexpr(spec.when)
+    local code = tree and compile.machine({ cond = tree, exprs = {}, formals = FORMALS }, CONDENV)
+    if code == nil then
+      fail("%s: the condition '%s' must be arithmetic, comparisons, and/or/not and math " ..
+           "functions of %s", where, spec.when, table.concat(VARS, ", "))
+    end
+    r.code, r.when = code, spec.when
+  end
+  for _, k in ipairs { "scale_length", "scale_radius" } do
+    if spec[k] ~= nil then
+      if not isnum(spec[k]) or spec[k] < 0 then fail("%s: '%s' must be a factor >= 0", where, k) end
+      r[k] = spec[k]
+    end
+  end
+  if spec.color ~= nil then r.color = { rgb(spec.color, where .. " color") } end
+  if spec.blend ~= nil then
+    local b = spec.blend
+    if type(b) ~= "table" or not isnum(b[2]) or b[2] < 0 or b[2] > 1 then
+      fail("%s: 'blend' must be {colour, fraction 0..1}", where)
+    end
+    local cr, cg, cb = rgb(b[1], where .. " blend")
+    r.blend = { cr, cg, cb, b[2] }
+  end
+  if r[2] == nil and r.scale_length == nil and r.scale_radius == nil and r.color == nil and
+     r.blend == nil then
+    fail("%s: nothing to do (give fn, scale_length, scale_radius, color or blend)", where)
+  end
+  return r
+end
+
+--- Adds rule `name` to the kind, after its others; a rule of the same name (from the base
+-- kind) is replaced where it was. The rule is a function (limb, world) run for every limb
+-- of the kind at every tick, or a table run in C: { when = "length < 1 and leaves == 0"
+-- (a condition over length, radius, age, level, leaves, count, root; none: always),
+-- scale_length =, scale_radius =, color =, blend = {colour, fraction}, fn = function (limb,
+-- world) called only where the condition holds }.
+function Limb.rule (K, name, spec)
   if not iskind(K) then fail("rule: call it on a kind (Kind:rule(name, fn))") end
   if type(name) ~= "string" then fail("rule: a name expected, got %s", tostring(name)) end
-  if type(fn) ~= "function" then
-    fail("rule '%s' of kind '%s': a function (limb, world) expected, got %s", name, K._name,
-         tostring(fn))
-  end
   if K == Limb then fail("rule '%s': rules belong to a kind made by lsys.grow.kind", name) end
-  for _, r in ipairs(K._rules) do
-    if r[1] == name then r[2] = fn return K end
+  local r
+  if type(spec) == "function" then r = { name, spec }
+  elseif type(spec) == "table" then r = tablerule(K, name, spec)
+  else
+    fail("rule '%s' of kind '%s': a function (limb, world) expected, got %s", name, K._name,
+         tostring(spec))
   end
-  K._rules[#K._rules + 1] = { name, fn }
+  K._version = (K._version or 0) + 1
+  for k, old in ipairs(K._rules) do
+    if old[1] == name then K._rules[k] = r return K end
+  end
+  K._rules[#K._rules + 1] = r
   return K
 end
 
@@ -147,12 +214,6 @@ function Limb:scale_length (f) self._T:scale_length(self._id, factor(f, "scale_l
 function Limb:scale_radius (f) self._T:scale_radius(self._id, factor(f, "scale_radius")) end
 function Limb:set_length (x) self._T:set_length(self._id, factor(x, "set_length")) end
 function Limb:set_radius (x) self._T:set_radius(self._id, factor(x, "set_radius")) end
-
-local function rgb (c, what)
-  local ok, v = pcall(view.color, c, "lsys.grow", what)
-  if not ok then error(v, 3) end
-  return v[1], v[2], v[3]
-end
 
 --- Sets the colour ({r, g, b} in 0..1 or "#rrggbb").
 function Limb:set_color (c)
@@ -247,7 +308,7 @@ function Limb:spawn (opts)
   if at > 1 then fail("spawn: 'at' must be from 0 to 1, got %s", tostring(at)) end
   local id = w._T:add(self._id, 0, at, ax, ay, az, num(opts, "angle", 0, "spawn"),
                       num(opts, "roll", 0, "spawn"), num(opts, "length", 0.5, "spawn", 0),
-                      num(opts, "radius", 0.05, "spawn", 0), r, g, b)
+                      num(opts, "radius", 0.05, "spawn", 0), r, g, b, w:_kind(K))
   if id == nil then w.capped = true return nil end
   local h = setmetatable({ _id = id, _w = w, _p = self._p, _T = w._T }, K)
   w._limbs[id] = h
@@ -270,26 +331,6 @@ end
 local World = {}
 World.__index = World
 
--- The tick's loop, made once per world: every limb that existed at the start of the tick
--- runs its kind's rules; where() tells the rule and limb running when one failed.
-local function runner (w)
-  local limbs = w._limbs
-  local rule, limb
-  local function run (n0)
-    for i = 1, n0 do
-      limb = limbs[i]
-      if limb then
-        local rules = limb._rules
-        for r = 1, #rules do
-          rule = rules[r]
-          rule[2](limb, w)
-        end
-      end
-    end
-  end
-  return run, function () return rule, limb end
-end
-
 local WORLD = { seed = true, max_limbs = true, sides = true, shoot_color = true,
                 leaf_color = true }
 
@@ -311,12 +352,12 @@ function M.world (opts)
   end
   local w = setmetatable({
     _T = core.limbs { sides = sides, max_limbs = floor(max) }, _limbs = {}, _gen = {},
+    _kinds = {}, _kindlist = {}, _kver = {}, _names = {}, _fns = {}, _fnidx = {},
     _seed = floor(seed), ticks = 0, capped = false,
     shoot_color = opts.shoot_color or "#5a9e32", leaf_color = opts.leaf_color or "#3f8f2a",
   }, World)
   rgb(w.shoot_color, "shoot_color")
   rgb(w.leaf_color, "leaf_color")
-  w._run, w._where = runner(w)
   return w
 end
 
@@ -341,7 +382,7 @@ function World:plant (opts)
   self._gen[p] = core.frames(floor(num(opts, "seed", self._seed + p - 1, "plant")))
   local r, g, b = rgb(opts.color or K.shoot_color or self.shoot_color, "plant")
   local id = T:add(0, p, 1, 0, 0, 1, 0, 0, num(opts, "length", 0.5, "plant", 0),
-                   num(opts, "radius", 0.05, "plant", 0), r, g, b)
+                   num(opts, "radius", 0.05, "plant", 0), r, g, b, self:_kind(K))
   if id == nil then self.capped = true return nil end
   local h = setmetatable({ _id = id, _w = self, _p = p, _T = T }, K)
   self._limbs[id] = h
@@ -356,11 +397,52 @@ function World:tick (n)
   return self
 end
 
--- One tick.
+-- The number the C table knows kind K by (given at first use).
+function World:_kind (K)
+  local id = self._kinds[K]
+  if id == nil then
+    id = #self._kindlist
+    if id > 65535 then fail("a world takes at most 65,536 kinds") end
+    self._kindlist[id + 1] = K
+    self._kinds[K] = id
+  end
+  return id
+end
+
+-- Gives the C table the rules of every kind whose rules changed since the last tick: a
+-- function rule is {fn = its index in self._fns}; a table rule its condition's code and
+-- declared changes.
+function World:_sync ()
+  local fns, fnidx = self._fns, self._fnidx
+  for id0, K in ipairs(self._kindlist) do
+    local v = K._version or 0
+    if self._kver[K] ~= v then
+      local list, names = {}, {}
+      for k, r in ipairs(K._rules) do
+        local fi
+        if r[2] ~= nil then
+          fi = fnidx[r[2]]
+          if fi == nil then fi = #fns + 1 fns[fi] = r[2] fnidx[r[2]] = fi end
+        end
+        list[k] = { code = r.code, scale_length = r.scale_length,
+                    scale_radius = r.scale_radius, blend = r.blend, color = r.color, fn = fi }
+        names[k] = r[1]
+      end
+      self._T:set_rules(id0 - 1, list)
+      self._names[id0 - 1] = names
+      self._kver[K] = v
+    end
+  end
+end
+
+-- One tick: the C table runs every limb's rules (conditions and declared changes in C,
+-- functions where their conditions hold).
 function World:_step ()
   local T, limbs = self._T, self._limbs
+  self:_sync()
   T:begin()
-  local ok, msg = pcall(self._run, T:started())
+  local ok, msg = pcall(T.run, T, limbs, self, self._fns)
+  local ri, li = T:where()
   T:finish()
   self.ticks = self.ticks + 1
   if self._removed then
@@ -368,9 +450,12 @@ function World:_step ()
     for i, h in pairs(limbs) do if h and not T:alive(i) then limbs[i] = false end end
   end
   if not ok then
-    local rule, limb = self._where()
-    error(format("lsys.grow: rule '%s' of kind '%s' failed on limb %d (tick %d): %s", rule[1],
-                 limb._name, limb._id, self.ticks, tostring(msg)), 0)
+    local limb = limbs[li]
+    local kind = limb and limb._name or "?"
+    local names = limb and self._names[self._kinds[getmetatable(limb)]]
+    error(format("lsys.grow: rule '%s' of kind '%s' failed on limb %d (tick %d): %s",
+                 names and names[ri] or tostring(ri), kind, li or 0, self.ticks,
+                 tostring(msg)), 0)
   end
 end
 
