@@ -262,6 +262,37 @@ describe("lsys.grow rules run in C", function ()
   end)
 end)
 
+describe("lsys.grow bridges", function ()
+  it("gives an Lstring whose turtle geometry is the grown plant's", function ()
+    local lsys = require "lsys"
+    local w = grow.world { seed = 2 }
+    local K = davison(grow.kind("tree"))
+    K:rule("side", function (l)                    -- and a child halfway along, rolled
+      if l:age() == 3 and l:level() == 2 then l:spawn { at = 0.5, angle = 60, roll = 45 } end
+    end)
+    w:plant { kind = K, position = { 2, 0, -1 } }
+    w:plant { kind = K, position = { -3, 0, 4 } }
+    w:tick(30)
+    local m = lsys.lsystem { axiom = "", steps = 0, view = { line_style = "cylinder" } }
+    local s, owner = w:lstring(m)
+    local scene = m:interpret(s)
+    local n = 0
+    for _, r in scene:records() do
+      if r.kind == "segment" then
+        local l = owner(r.module)
+        local x, y, z = l:tip()
+        assert.is_true(math.abs(r.p1[1] - x) < 1e-5 and math.abs(r.p1[2] - y) < 1e-5 and
+                       math.abs(r.p1[3] - z) < 1e-5, tostring(l))
+        assert.near(2 * l:radius(), r.w0, 1e-6)
+        n = n + 1
+      end
+    end
+    assert.equal(w:count(), n)
+    assert.is_true(n > 50, n)
+    assert.equal("[", (s:module(1)))
+  end)
+end)
+
 describe("lsys.grow errors", function ()
   it("names the rule, the kind and the limb when a rule fails", function ()
     local K = grow.kind("shoot")

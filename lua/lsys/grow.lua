@@ -25,6 +25,7 @@
 local core = require "lsys.core"
 local view = require "lsys.view"
 local compile = require "lsys.compile"
+local lmodel = require "lsys.model"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall =
       type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall
@@ -479,6 +480,49 @@ function World:count (p) return self._T:living(p) end
 function World:scene ()
   self._T:update()
   return self._T:scene()
+end
+
+--- The plants as one bracketed Lstring of turtle modules for `model` (an lsys model whose
+-- rules intern the names; default a plain one): each limb is a branch `[` that moves the
+-- turtle from where its parent left it to the limb's base and orientation (relative rolls,
+-- pitches and `f`, as lsys.components writes), `#(2 radius) F(length)`, then its children;
+-- so export, the arrangement, tests and the L-system tools take a grown plant. Returns the
+-- Lstring and owner(k): the limb that wrote module k.
+function World:lstring (model)
+  model = model or lmodel.lsystem { axiom = "", steps = 0, name = "grown" }
+  if not lmodel.ismodel(model) then fail("lstring: a model expected, got %s", tostring(model)) end
+  local T = self._T
+  T:update()
+  local F = core.frames(1)
+  local W = core.cwriter(model._rules, F)
+  local width = W:symbol("#")
+  local function open (id)
+    local p = { T:base(id) }
+    local _, H, Fr = T:frame(id)
+    W:open(id, F:add { p = p, H = H, U = { -Fr[1], -Fr[2], -Fr[3] } })
+    W:op(width, 2 * T:radius(id))
+    W:forward(T:length(id), true)     -- F, and the writer's turtle moves with it
+  end
+  for id = 1, T:count() do
+    if T:alive(id) and T:parent(id) == nil then
+      open(id)
+      local stack = { { T:children(id), 0 } }      -- without recursion: any depth
+      while #stack > 0 do
+        local top = stack[#stack]
+        top[2] = top[2] + 1
+        local c = top[1][top[2]]
+        if c then
+          open(c)
+          stack[#stack + 1] = { T:children(c), 0 }
+        else
+          W:close()
+          stack[#stack] = nil
+        end
+      end
+    end
+  end
+  local limbs = self._limbs
+  return W:lstring(), function (k) local id = W:owner(k) return id and limbs[id] or nil end
 end
 
 --- A number from the world's own generator (seeded by `seed`): [0, 1) or [a, b).
