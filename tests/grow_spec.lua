@@ -293,6 +293,58 @@ describe("lsys.grow bridges", function ()
   end)
 end)
 
+describe("lsys.grow from an L-system", function ()
+  it("takes a derived plant's segments as limbs, and grows it on", function ()
+    local lsys = require "lsys"
+    local m = lsys.lsystem {
+      axiom = "#(0.2)A(1)",
+      productions = "A(s) --> F(s)[+(25)/(70)#(0.1)A(s*0.7)][-(40)&(20)A(s*0.6)]f(0.1)F(s*0.5)",
+      steps = 3, view = { line_style = "cylinder" },
+    }
+    local s = m:derive()
+    local scene = m:interpret(s)
+    local K = grow.kind("from")
+    K:rule("longer", { scale_length = 1.5 })
+    local w, limbs = grow.from_lstring(s, { model = m, kind = K })
+    local segs = {}
+    for _, r in scene:records() do if r.kind == "segment" then segs[#segs + 1] = r end end
+    assert.equal(#segs, #limbs)
+    assert.equal(#segs, w:count())
+    local roots = 0
+    for k, l in ipairs(limbs) do
+      local x, y, z = l:tip()
+      local p = segs[k].p1
+      assert.is_true(math.abs(p[1] - x) < 1e-5 and math.abs(p[2] - y) < 1e-5 and
+                     math.abs(p[3] - z) < 1e-5, tostring(l))
+      assert.near(segs[k].w0 / 2, l:radius(), 1e-6)
+      if l:is_root() then roots = roots + 1 end
+    end
+    assert.is_true(roots > 1)                          -- after each f, a plant of its own
+    assert.is_true(limbs[2]:level() > 1)
+    w:tick()                                           -- it grows on: every limb 1.5 long
+    for k, l in ipairs(limbs) do assert.near(1.5 * segs[k].length, l:length(), 1e-5) end
+  end)
+
+  it("turns any orientation into an axis and an angle (half turns too)", function ()
+    local lsys = require "lsys"
+    local m = lsys.lsystem { axiom = "F(1)&(180)F(1)/(180)F(1)+(179.99)F(1)^(90)/(33)F(1)",
+                             steps = 0 }
+    local s = m:derive()
+    local w, limbs = grow.from_lstring(s, { model = m })
+    local k = 0
+    for _, r in m:interpret(s):records() do
+      if r.kind == "segment" then
+        k = k + 1
+        local x, y, z = limbs[k]:tip()
+        assert.is_true(math.abs(r.p1[1] - x) < 1e-5 and math.abs(r.p1[2] - y) < 1e-5 and
+                       math.abs(r.p1[3] - z) < 1e-5, k)
+      end
+    end
+    assert.equal(5, k)
+    assert.equal(5, w:count())
+  end)
+end)
+
 describe("lsys.grow errors", function ()
   it("names the rule, the kind and the limb when a rule fails", function ()
     local K = grow.kind("shoot")

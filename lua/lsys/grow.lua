@@ -539,6 +539,108 @@ end
 
 M.World = World
 
+-- {=========================================================================================
+-- From an L-system's plant
+
+local function dot (a, b) return a[1] * b[1] + a[2] * b[2] + a[3] * b[3] end
+
+-- The axis and angle (degrees) of the rotation whose matrix has columns X, Y, Z (right-hand
+-- Rodrigues, as the C table turns limbs). Below a quarter turn the axis comes from the
+-- skew-symmetric part; above it from the diagonal (m_ii = c + k_i^2 (1 - c)), which stays
+-- accurate up to a half turn where sin a vanishes.
+local function axisangle (X, Y, Z)
+  local m = { { X[1], Y[1], Z[1] }, { X[2], Y[2], Z[2] }, { X[3], Y[3], Z[3] } }
+  local c = (m[1][1] + m[2][2] + m[3][3] - 1) / 2
+  if c > 1 then c = 1 elseif c < -1 then c = -1 end
+  local skew = { m[3][2] - m[2][3], m[1][3] - m[3][1], m[2][1] - m[1][2] }
+  -- the angle from its sine and cosine both: acos alone loses it near a half turn
+  local a = math.atan(math.sqrt(skew[1] ^ 2 + skew[2] ^ 2 + skew[3] ^ 2) / 2, c)
+  if a < 1e-9 then return 0, 0, 1, 0 end
+  if a < math.pi / 2 then
+    local s2 = 2 * math.sin(a)
+    return skew[1] / s2, skew[2] / s2, skew[3] / s2, math.deg(a)
+  end
+  local k, big = {}, 1
+  for i = 1, 3 do
+    k[i] = math.sqrt(math.max(0, (m[i][i] - c) / (1 - c)))
+    if k[i] > k[big] then big = i end
+  end
+  if skew[big] < 0 then k[big] = -k[big] end
+  for j = 1, 3 do
+    if j ~= big then k[j] = (m[big][j] + m[j][big]) / (2 * (1 - c) * k[big]) end
+  end
+  return k[1], k[2], k[3], math.deg(a)
+end
+
+local FROM = { model = true, view = true, kind = true, seed = true, max_limbs = true,
+               sides = true, color = true }
+
+--- Starts incremental growth from a derived L-system plant: every segment the turtle draws
+-- for Lstring `s` becomes a limb (its parent the segment it starts from, its length, radius
+-- and orientation the segment's; a segment that does not start at the end of its parent
+-- becomes a plant of its own). opts: `model` (the model that derived s: it interprets it;
+-- default a plain model of s's text with `view`), `kind` (the limbs' kind), `color` (their
+-- colour: default the view palette's), `seed`, `max_limbs`, `sides` (as grow.world).
+-- Returns the world and the list of limbs by segment record.
+function M.from_lstring (s, opts)
+  opts = opts or {}
+  for k in pairs(opts) do
+    if not FROM[k] then fail("from_lstring: unknown option '%s'", tostring(k)) end
+  end
+  local m = opts.model
+  local scene
+  if m ~= nil then
+    if not lmodel.ismodel(m) then fail("from_lstring: 'model' must be a model") end
+    scene = m:interpret(s)
+  else
+    m = lmodel.lsystem { axiom = tostring(s), steps = 0, view = opts.view }
+    scene = m:interpret()
+  end
+  local w = M.world { seed = opts.seed, max_limbs = opts.max_limbs, sides = opts.sides }
+  local K = opts.kind or Limb
+  if not iskind(K) then fail("from_lstring: 'kind' must be a kind") end
+  local palette = m.view and m.view.palette or {}
+  local T = w._T
+  local bylimb, byrec = {}, {}
+  for k, r in scene:records() do
+    if r.kind == "segment" then
+      local H, U = r.H, r.U
+      local L = { H[2] * U[3] - H[3] * U[2], H[3] * U[1] - H[1] * U[3], H[1] * U[2] - H[2] * U[1] }
+      local X, Z = { -L[1], -L[2], -L[3] }, { -U[1], -U[2], -U[3] }
+      local col = opts.color or palette[r.color]
+      if type(col) == "table" and col.diffuse then col = col.diffuse end
+      local cr, cg, cb = rgb(col or w.shoot_color, "from_lstring")
+      local p = r.parent and byrec[r.parent]
+      local id
+      if p then
+        local px, py, pz = T:tip(p)
+        local d = (px - r.p0[1]) ^ 2 + (py - r.p0[2]) ^ 2 + (pz - r.p0[3]) ^ 2
+        if d > 1e-10 * (1 + r.length * r.length) then p = nil end
+      end
+      if p then                              -- its rotation in the parent's axes
+        local PX, PY, PZ = T:frame(p)
+        local ax, ay, az, ang = axisangle({ dot(PX, X), dot(PY, X), dot(PZ, X) },
+                                          { dot(PX, H), dot(PY, H), dot(PZ, H) },
+                                          { dot(PX, Z), dot(PY, Z), dot(PZ, Z) })
+        id = T:add(p, 0, 1, ax, ay, az, ang, 0, r.length, r.w0 / 2, cr, cg, cb, w:_kind(K))
+      else
+        local pl = T:plant(r.p0[1], r.p0[2], r.p0[3])
+        w._gen[pl] = core.frames(floor(w._seed + pl - 1))
+        local ax, ay, az, ang = axisangle(X, H, Z)
+        id = T:add(0, pl, 1, ax, ay, az, ang, 0, r.length, r.w0 / 2, cr, cg, cb, w:_kind(K))
+      end
+      if id == nil then w.capped = true break end
+      local h = setmetatable({ _id = id, _w = w, _p = T:plant_of(id), _T = T }, K)
+      w._limbs[id] = h
+      byrec[k] = id
+      bylimb[#bylimb + 1] = h
+    end
+  end
+  return w, bylimb
+end
+
+-- }=========================================================================================
+
 -- }=========================================================================================
 
 return M
