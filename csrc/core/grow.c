@@ -19,9 +19,14 @@ enum { C_NEW = 1, C_LEN = 2, C_RAD = 4, C_ROT = 8, C_COL = 16, C_LEAF = 32, C_XF
 #define GOLDEN 137.50776405003785        /* degrees between successive leaves around it */
 
 void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
+  int k;
   memset(g, 0, sizeof *g);
   g->sc = sc;
   g->sides = sides < 3 ? 3 : sides > LSYS_LIMBS_MAXSIDES ? LSYS_LIMBS_MAXSIDES : sides;
+  for (k = 0; k < g->sides; k++) {
+    g->ring[2 * k] = cos(2 * PI * k / g->sides);
+    g->ring[2 * k + 1] = sin(2 * PI * k / g->sides);
+  }
   g->lf_free = -1;
 }
 
@@ -374,6 +379,10 @@ static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
     lsys_mesh_tri(m, *v0, *v0 + 2, *v0 + 3);
   } else {
     uint32_t S = (uint32_t)g->sides;
+    for (k = 0; k < S; k++) {           /* around, and 0 at the base, 1 at the tip */
+      m->uv[2 * (*v0 + k)] = m->uv[2 * (*v0 + S + k)] = (float)k / (float)S;
+      m->uv[2 * (*v0 + S + k) + 1] = 1;
+    }
     for (k = 0; k < S; k++) {           /* ring 0 at the base, ring 1 at the tip */
       uint32_t a = *v0 + k, b = *v0 + (k + 1) % S;
       lsys_mesh_tri(m, a, b, b + S);
@@ -393,20 +402,27 @@ static void setvertex (lsys_mesh *m, uint32_t v, const double p[3], const double
   m->col[v] = col;
 }
 
-/* The cylinder of limb i from its base to its tip. */
+/* The cylinder of limb i from its base to its tip: positions, normals and
+** colours (its texture coordinates were written with its range). */
 static void writelimb (lsys_limbs *g, int32_t i) {
   lsys_mesh *m = &g->sc->mesh;
   const double *R = g->wm + 9 * i, *F = R + 6, *b = g->wp + 3 * i;
   double r = g->rad[i], tip[3];
   uint32_t S = (uint32_t)g->sides, k, v0 = g->v0[i];
+  uint16_t col = g->col[i];
   lsys_limbs_tip(g, i, tip);
   for (k = 0; k < S; k++) {
-    double a = 2 * PI * k / S, n[3], p[3];
-    vlin(n, R, cos(a), F, sin(a));
-    vlin(p, b, 1, n, r);
-    setvertex(m, v0 + k, p, n, (double)k / S, 0, g->col[i]);
-    vlin(p, tip, 1, n, r);
-    setvertex(m, v0 + S + k, p, n, (double)k / S, 1, g->col[i]);
+    double c = g->ring[2 * k], s = g->ring[2 * k + 1];
+    float *P0 = m->pos + 3 * (size_t)(v0 + k), *P1 = m->pos + 3 * (size_t)(v0 + S + k);
+    float *N0 = m->nrm + 3 * (size_t)(v0 + k), *N1 = m->nrm + 3 * (size_t)(v0 + S + k);
+    int j;
+    for (j = 0; j < 3; j++) {
+      double n = R[j] * c + F[j] * s;
+      P0[j] = (float)(b[j] + n * r);
+      P1[j] = (float)(tip[j] + n * r);
+      N0[j] = N1[j] = (float)n;
+    }
+    m->col[v0 + k] = m->col[v0 + S + k] = col;
   }
   lsys_scene_touch(g->sc, v0, 2 * S);
 }

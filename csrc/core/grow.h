@@ -69,6 +69,7 @@ typedef struct lsys_limbop {
 typedef struct lsys_limbs {
   lsys_scene *sc;         /* the geometry's scene (borrowed) */
   int sides;
+  double ring[2 * LSYS_LIMBS_MAXSIDES];   /* cos, sin of the sides' angles */
   size_t maxlimbs;        /* 0: no cap; else lsys_limbs_add fails with LSYS_ELIMIT past it */
   size_t n, cap;          /* limb ids 0 .. n - 1, dead ones included */
   size_t nalive;
