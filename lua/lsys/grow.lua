@@ -76,9 +76,16 @@ end
 M.Limb = Limb
 
 -- A colour ({r, g, b} or "#rrggbb") as three numbers; `what` names it in errors.
+local parsed = setmetatable({}, { __mode = "k" })    -- "#rrggbb" -> {r, g, b}, parsed once
+
 local function rgb (c, what)
-  local ok, v = pcall(view.color, c, "lsys.grow", what)
-  if not ok then error(v, 3) end
+  local v = type(c) == "string" and parsed[c]
+  if not v then
+    local ok
+    ok, v = pcall(view.color, c, "lsys.grow", what)
+    if not ok then error(v, 3) end
+    if type(c) == "string" then parsed[c] = v end
+  end
   return v[1], v[2], v[3]
 end
 
@@ -303,6 +310,7 @@ function Limb:spawn (opts)
   local w = self._w
   local K = opts.kind or getmetatable(self)
   if not iskind(K) then fail("spawn: 'kind' must be a kind, got %s", tostring(K)) end
+  if w.capped and w._T:living() >= w._max then return nil end   -- full: nothing to make
   local ax, ay, az = axisof(opts.axis, "spawn")
   local r, g, b = rgb(opts.color or K.shoot_color or w.shoot_color, "spawn")
   local at = num(opts, "at", 1, "spawn", 0)
@@ -354,7 +362,7 @@ function M.world (opts)
   local w = setmetatable({
     _T = core.limbs { sides = sides, max_limbs = floor(max) }, _limbs = {}, _gen = {},
     _kinds = {}, _kindlist = {}, _kver = {}, _names = {}, _fns = {}, _fnidx = {},
-    _seed = floor(seed), ticks = 0, capped = false,
+    _seed = floor(seed), _max = floor(max), ticks = 0, capped = false,
     shoot_color = opts.shoot_color or "#5a9e32", leaf_color = opts.leaf_color or "#3f8f2a",
   }, World)
   rgb(w.shoot_color, "shoot_color")
