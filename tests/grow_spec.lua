@@ -218,6 +218,36 @@ describe("lsys.grow rules run in C", function ()
     assert.same(a, b)
   end)
 
+  it("decides every condition as Lua does, fast path or expression machine", function ()
+    local conds = {
+      { "length <= 0.75", function (l) return l:length() <= 0.75 end },
+      { "length >= 0.5 and level > 1",
+        function (l) return l:length() >= 0.5 and l:level() > 1 end },
+      { "radius < 0.01 * level + 0.04",
+        function (l) return l:radius() < 0.01 * l:level() + 0.04 end },
+      { "age ~= 2 and count >= 3", function (l) return l:age() ~= 2 and l:count() >= 3 end },
+      { "level == 1 * age + 1", function (l) return l:level() == 1 * l:age() + 1 end },
+      { "root == 1 or leaves > 0", function (l) return l:is_root() or l:leaves() > 0 end },
+      { "math.abs(length - 0.7) < 0.2", function (l) return math.abs(l:length() - 0.7) < 0.2 end },
+      { "not (level == 2)", function (l) return not (l:level() == 2) end },
+    }
+    for _, c in ipairs(conds) do
+      local seen = { C = {}, L = {} }
+      local K = grow.kind("k")
+      K:rule("grow", function (l)
+        if l:age() < 3 then l:spawn { angle = 20 * l:level(), length = 0.3 + 0.2 * l:age() } end
+        l:scale_radius(1.0 + 0.1 * l:level())
+      end)
+      K:rule("c", { when = c[1], fn = function (l) seen.C[#seen.C + 1] = l:id() end })
+      K:rule("lua", function (l) if c[2](l) then seen.L[#seen.L + 1] = l:id() end end)
+      local w = grow.world()
+      w:plant { kind = K, radius = 0.02 }
+      w:tick(5)
+      assert.is_true(#seen.L > 0 and #seen.L < 200, c[1] .. ": " .. #seen.L)
+      assert.same(seen.L, seen.C, c[1])
+    end
+  end)
+
   it("applies colours and blends, and calls fn only where the condition holds", function ()
     local calls = 0
     local K = grow.kind("k")

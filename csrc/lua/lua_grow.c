@@ -31,9 +31,17 @@
 
 /* A rule compiled for the tick loop: a condition for the expression machine
 ** over the limb's variables (GUARD_VARS) and what to do where it holds. */
+#define MAXCLAUSES 8
+
+/* A condition "v1 op e1 and v2 op e2 and ...", each e a constant k or m * v + k:
+** checked without the machine. */
+typedef struct clause { int a, op, b; double k, m; } clause;
+
 typedef struct crule {
   lsys_ins *code;       /* NULL: always */
   int ncode;
+  int ncl;              /* > 0: the condition is these clauses (code kept for reference) */
+  clause cl[MAXCLAUSES];
   double slen, srad;    /* scale factors (1: none) */
   int blend, setcol;
   float brgb[3], crgb[3];
@@ -446,6 +454,63 @@ static int optlist (lua_State *L, int t, const char *k, double *v, int n) {
   return 1;
 }
 
+/* Whether the program is a conjunction of comparisons of a variable with a
+** constant or an affine function of a variable, as lsys.compile writes it:
+** clauses ARG K CMP or ARG K ARG MUL K ADD CMP, each followed by JF to the end
+** but the last, then COND; then its clauses go to r. */
+static void simplify (const lsys_ins *c, int n, crule *r) {
+  int k = 0, m = 0;
+  if (n < 4 || c[n - 1].op != LSYS_OP_COND) return;
+  while (k < n - 1) {
+    clause *q = &r->cl[m];
+    if (m == MAXCLAUSES || c[k].op != LSYS_OP_ARG || c[k].a < 0 || c[k].a >= NVARS) return;
+    q->a = c[k].a;
+    q->b = -1;
+    q->m = 0;
+    if (k + 2 < n && c[k + 1].op == LSYS_OP_K && c[k + 2].op >= LSYS_OP_LT &&
+        c[k + 2].op <= LSYS_OP_NE) {
+      q->k = c[k + 1].k;
+      q->op = c[k + 2].op;
+      k += 3;
+    } else if (k + 6 < n && c[k + 1].op == LSYS_OP_K && c[k + 2].op == LSYS_OP_ARG &&
+               c[k + 2].a >= 0 && c[k + 2].a < NVARS && c[k + 3].op == LSYS_OP_MUL &&
+               c[k + 4].op == LSYS_OP_K && c[k + 5].op == LSYS_OP_ADD &&
+               c[k + 6].op >= LSYS_OP_LT && c[k + 6].op <= LSYS_OP_NE) {
+      q->m = c[k + 1].k;
+      q->b = c[k + 2].a;
+      q->k = c[k + 4].k;
+      q->op = c[k + 6].op;
+      k += 7;
+    } else return;
+    m++;
+    if (k == n - 1) break;                           /* the COND */
+    if (c[k].op != LSYS_OP_JF || c[k].a != n - 1) return;
+    k++;
+  }
+  if (k != n - 1) return;
+  r->ncl = m;
+}
+
+/* The clauses of r on args (all must hold). */
+static int clauses (const crule *r, const double *args) {
+  int k;
+  for (k = 0; k < r->ncl; k++) {
+    const clause *q = &r->cl[k];
+    double x = args[q->a], y = q->b >= 0 ? q->m * args[q->b] + q->k : q->k;
+    int ok;
+    switch (q->op) {
+      case LSYS_OP_LT: ok = x < y; break;
+      case LSYS_OP_LE: ok = x <= y; break;
+      case LSYS_OP_GT: ok = x > y; break;
+      case LSYS_OP_GE: ok = x >= y; break;
+      case LSYS_OP_EQ: ok = x == y; break;
+      default: ok = x != y; break;
+    }
+    if (!ok) return 0;
+  }
+  return 1;
+}
+
 /* Reads rule table at 'idx' (rule number j) into r. With alloc 0 it only
 ** checks (and may raise); with alloc 1 (after a check) it copies the
 ** condition's code into C memory and returns 0 when that fails. */
@@ -463,6 +528,7 @@ static int readrule (lua_State *L, int idx, int j, crule *r, int alloc) {
       if ((r->code = (lsys_ins *)LSYS_MALLOC((size_t)nc * sizeof *c + 1)) == NULL) return 0;
       memcpy(r->code, c, (size_t)nc * sizeof *c);
       r->ncode = nc;
+      simplify(c, nc, r);
     }
     lua_pop(L, 1);
   }
@@ -566,7 +632,8 @@ static int limbs_run (lua_State *L) {
       const crule *r = &k->r[j];
       t->cur_rule = j + 1;
       t->cur_limb = (int32_t)i + 1;
-      if (r->code != NULL && !lsys_expr_run(r->code, r->ncode, args, out, &t->rng, NULL))
+      if (r->ncl > 0 ? !clauses(r, args)
+          : r->code != NULL && !lsys_expr_run(r->code, r->ncode, args, out, &t->rng, NULL))
         continue;
       status(L, apply(g, r, (int32_t)i), "run");
       if (r->fn > 0) {
