@@ -11,6 +11,16 @@ end
 
 local function near (a, b, tol) return math.abs(a - b) <= (tol or 1e-9) end
 
+-- The paper's 'child limbs spawning' action: two children, each with probability 0.85.
+local function two (l)
+  if l:random() < 0.85 then
+    l:spawn { angle = l:random(10, 30), axis = l:random() < 0.5 and "z" or "x" }
+  end
+  if l:random() < 0.85 then
+    l:spawn { angle = l:random(-30, -10), axis = l:random() < 0.5 and "z" or "x" }
+  end
+end
+
 -- The paper's three rules ('length', 'thickness', 'child limbs spawning'), for a kind.
 local function davison (K, cap)
   K:rule("length", function (l)
@@ -21,12 +31,7 @@ local function davison (K, cap)
   end)
   K:rule("spawn", function (l)
     if l:age() == 5 and l:count() <= (cap or 256) and not l:has_leaves() and l:level() < 10 then
-      if l:random() < 0.85 then
-        l:spawn { angle = l:random(10, 30), axis = l:random() < 0.5 and "z" or "x" }
-      end
-      if l:random() < 0.85 then
-        l:spawn { angle = l:random(-30, -10), axis = l:random() < 0.5 and "z" or "x" }
-      end
+      two(l)
     end
   end)
   return K
@@ -186,14 +191,7 @@ describe("lsys.grow rules run in C", function ()
                           scale_radius = 1.05 })
     K:rule("spawn", {
       when = "age == 5 and count <= " .. (cap or 256) .. " and leaves == 0 and level < 10",
-      fn = function (l)
-        if l:random() < 0.85 then
-          l:spawn { angle = l:random(10, 30), axis = l:random() < 0.5 and "z" or "x" }
-        end
-        if l:random() < 0.85 then
-          l:spawn { angle = l:random(-30, -10), axis = l:random() < 0.5 and "z" or "x" }
-        end
-      end,
+      fn = two,
     })
     return K
   end

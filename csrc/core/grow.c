@@ -47,9 +47,30 @@ void lsys_limbs_free (lsys_limbs *g) {
 ** Storage
 ** ======================================================================= */
 
+/* Arrays that grow together: each to 'need' elements of its size, from *cap
+** (doubling from 64). The arrays grown before a failure keep their data. */
+typedef struct soa { void **p; size_t size; } soa;
+
+static int growsoa (const soa *a, size_t n, size_t *cap, size_t need) {
+  size_t ncap = *cap ? *cap : 64, k, big = 0;
+  if (need <= *cap) return LSYS_OK;
+  for (k = 0; k < n; k++) if (a[k].size > big) big = a[k].size;
+  while (ncap < need) {
+    if (ncap > ((size_t)-1 / 2) / big) return LSYS_ENOMEM;
+    ncap *= 2;
+  }
+  for (k = 0; k < n; k++) {
+    void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
+    if (q == NULL) return LSYS_ENOMEM;
+    *a[k].p = q;
+  }
+  *cap = ncap;
+  return LSYS_OK;
+}
+
 /* Grows every per-limb array to hold 'need' limbs. */
 static int reserve_limbs (lsys_limbs *g, size_t need) {
-  struct { void **p; size_t size; } a[] = {
+  const soa a[] = {
     {(void **)&g->parent, 4}, {(void **)&g->plant, 4}, {(void **)&g->first, 4},
     {(void **)&g->next, 4}, {(void **)&g->level, 2}, {(void **)&g->tag, 2},
     {(void **)&g->age, 4},
@@ -60,40 +81,16 @@ static int reserve_limbs (lsys_limbs *g, size_t need) {
     {(void **)&g->wm, 72}, {(void **)&g->v0, 4}, {(void **)&g->t0, 4}, {(void **)&g->col, 2},
     {(void **)&g->leaf, 4}, {(void **)&g->nleaves, 4}
   };
-  size_t ncap = g->cap ? g->cap : 64, k;
-  if (need <= g->cap) return LSYS_OK;
-  while (ncap < need) {
-    if (ncap > ((size_t)-1 / 2) / 72) return LSYS_ENOMEM;
-    ncap *= 2;
-  }
-  for (k = 0; k < sizeof a / sizeof a[0]; k++) {
-    void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
-    if (q == NULL) return LSYS_ENOMEM;   /* the arrays grown so far keep their data */
-    *a[k].p = q;
-  }
-  g->cap = ncap;
-  return LSYS_OK;
+  return growsoa(a, sizeof a / sizeof a[0], &g->cap, need);
 }
 
 static int reserve_leaves (lsys_limbs *g, size_t need) {
-  struct { void **p; size_t size; } a[] = {
+  const soa a[] = {
     {(void **)&g->lf_limb, 4}, {(void **)&g->lf_next, 4}, {(void **)&g->lf_k, 4},
     {(void **)&g->lf_v0, 4}, {(void **)&g->lf_t0, 4}, {(void **)&g->lf_size, 4},
     {(void **)&g->lf_col, 2}
   };
-  size_t ncap = g->lcap ? g->lcap : 64, k;
-  if (need <= g->lcap) return LSYS_OK;
-  while (ncap < need) {
-    if (ncap > ((size_t)-1 / 2) / 8) return LSYS_ENOMEM;
-    ncap *= 2;
-  }
-  for (k = 0; k < sizeof a / sizeof a[0]; k++) {
-    void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
-    if (q == NULL) return LSYS_ENOMEM;
-    *a[k].p = q;
-  }
-  g->lcap = ncap;
-  return LSYS_OK;
+  return growsoa(a, sizeof a / sizeof a[0], &g->lcap, need);
 }
 
 int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {

@@ -331,38 +331,23 @@ static int limbs_frame (lua_State *L) {
 ** Setters
 ** ======================================================================= */
 
-static int limbs_set_length (lua_State *L) {
+/* The setters of length and radius: set_x(i, v), or scale_x(i, f) (the next
+** value times f, so scales in one tick compound). */
+static int setsize (lua_State *L, int radius, int scale, const char *what) {
   lsys_limbs *g = checklimbs(L);
   int32_t i = limbarg(L, g, 2);
   double x = numarg(L, 3);
-  luaL_argcheck(L, x >= 0, 3, "a length is >= 0");
-  return status(L, lsys_limbs_set_length(g, i, x), "set_length");
+  luaL_argcheck(L, x >= 0, 3, scale ? "a scale factor is >= 0"
+                               : radius ? "a radius is >= 0" : "a length is >= 0");
+  if (scale) x *= radius ? g->nrad[i] : g->nlen[i];
+  return status(L, radius ? lsys_limbs_set_radius(g, i, x) : lsys_limbs_set_length(g, i, x),
+                what);
 }
 
-static int limbs_set_radius (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
-  int32_t i = limbarg(L, g, 2);
-  double x = numarg(L, 3);
-  luaL_argcheck(L, x >= 0, 3, "a radius is >= 0");
-  return status(L, lsys_limbs_set_radius(g, i, x), "set_radius");
-}
-
-/* scale_length(i, f): the next length times f (so scales in one tick compound) */
-static int limbs_scale_length (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
-  int32_t i = limbarg(L, g, 2);
-  double f = numarg(L, 3);
-  luaL_argcheck(L, f >= 0, 3, "a scale factor is >= 0");
-  return status(L, lsys_limbs_set_length(g, i, g->nlen[i] * f), "scale_length");
-}
-
-static int limbs_scale_radius (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
-  int32_t i = limbarg(L, g, 2);
-  double f = numarg(L, 3);
-  luaL_argcheck(L, f >= 0, 3, "a scale factor is >= 0");
-  return status(L, lsys_limbs_set_radius(g, i, g->nrad[i] * f), "scale_radius");
-}
+static int limbs_set_length (lua_State *L) { return setsize(L, 0, 0, "set_length"); }
+static int limbs_set_radius (lua_State *L) { return setsize(L, 1, 0, "set_radius"); }
+static int limbs_scale_length (lua_State *L) { return setsize(L, 0, 1, "scale_length"); }
+static int limbs_scale_radius (lua_State *L) { return setsize(L, 1, 1, "scale_radius"); }
 
 static void rgbarg (lua_State *L, int k, float c[3]) {
   int j;
