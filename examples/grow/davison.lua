@@ -1,0 +1,71 @@
+-- Davison's growing trees ("Incremental rules for growing plants", ../shared/seeds/002,
+-- section "Incremental rules" and fig. 1): five trees grow from saplings in one world, with
+-- the paper's three rules --
+--   length     a limb without leaves grows by 10 % a tick up to a length of about 1
+--   thickness  and by 5 % in radius while it is thinner than -0.05 level + 0.25
+--   spawning   at age 5, in a tree of at most 256 limbs, below level 10: two children, each
+--              with probability 0.85, at 10..30 and -30..-10 degrees about a random axis
+-- -- and the figure's young green shoots turning brown with age, and leaves sprouting at the
+-- ends of the twigs that stop branching.
+--
+--   build/bin/lsys examples/grow/davison.lua [out.png]      renders it after 60 ticks
+--
+-- As a module (the tests, the gallery): M.world{ ticks =, trees =, seed = } -> a grown world.
+local lsys = require "lsys"
+local grow = lsys.grow
+
+local M = {}
+
+local BARK, LEAF = "#6b4a2b", "#3f8f2a"
+
+--- The kind of the paper's trees; its conditions run in C, spawning in Lua.
+function M.kind ()
+  local Tree = grow.kind("tree")
+  Tree:rule("length", { when = "length < 1.0 and leaves == 0", scale_length = 1.1 })
+  Tree:rule("thickness", { when = "radius <= -0.05 * level + 0.25 and leaves == 0",
+                           scale_radius = 1.05 })
+  Tree:rule("spawn", {
+    when = "age == 5 and count <= 256 and leaves == 0 and level < 10",
+    fn = function (limb)
+      if limb:random() < 0.85 then
+        limb:spawn { angle = limb:random(10, 30), axis = limb:random() < 0.5 and "z" or "x" }
+      end
+      if limb:random() < 0.85 then
+        limb:spawn { angle = limb:random(-30, -10), axis = limb:random() < 0.5 and "z" or "x" }
+      end
+    end,
+  })
+  -- young shoots are green and turn brown from age 3
+  Tree:rule("bark", { when = "age > 3", blend = { BARK, 0.15 } })
+  -- the twigs of the upper levels leaf out a tick after they branch (and, having leaves,
+  -- grow no more: the rules above all ask for none)
+  Tree:rule("leaves", {
+    when = "age == 6 and leaves == 0 and level >= 6",
+    fn = function (limb) limb:add_leaves(4, { size = 0.5, color = LEAF }) end,
+  })
+  return Tree
+end
+
+--- A world of `trees` (5) trees 6 apart, grown `ticks` (60) ticks from `seed` (3).
+function M.world (opts)
+  opts = opts or {}
+  local w = grow.world { seed = opts.seed or 3 }
+  local Tree = M.kind()
+  local n = opts.trees or 5
+  for k = 1, n do
+    w:plant { kind = Tree, position = { (k - (n + 1) / 2) * 6, 0, 0 }, radius = 0.05 }
+  end
+  w:tick(opts.ticks or 60)
+  return w
+end
+
+M.VIEW = { background = { 0.93, 0.96, 1 } }
+
+if arg and arg[0] and arg[0]:match("davison%.lua$") then
+  local w = M.world()
+  lsys.render(w:scene(), { out = arg[1] or "davison.png", width = 1000, height = 560 })
+  print(string.format("%d limbs after %d ticks -> %s", w:count(), w.ticks,
+                      arg[1] or "davison.png"))
+end
+
+return M

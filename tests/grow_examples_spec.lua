@@ -1,0 +1,69 @@
+-- The incremental growth examples (issue 17): examples/grow/davison.lua (the paper's five
+-- trees) and examples/grow/side_by_side.lua (one plant as an L-system and as limbs).
+local lsys = require "lsys"
+local core = require "lsys.core"
+local H = require "tests.helper"
+
+local DIR = "examples/grow/"
+
+describe("examples/grow/davison.lua", function ()
+  local D = dofile(DIR .. "davison.lua")
+
+  it("grows five trees of the paper's rules: capped, brown with age, leafy at the top", function ()
+    local w = D.world { ticks = 60 }
+    assert.equal(1100, w:count())                 -- seed 3
+    local per, leafy, brown = {}, 0, 0
+    for _, l in ipairs(w:limbs()) do
+      local root = l
+      while root:parent() do root = root:parent() end
+      per[root:id()] = (per[root:id()] or 0) + 1
+      if l:has_leaves() then
+        leafy = leafy + 1
+        assert.is_true(l:level() >= 6)
+      end
+      local c = l:color()
+      if l:age() > 20 then
+        assert.is_true(c[1] > c[2], "old limbs are brown")
+        brown = brown + 1
+      end
+      assert.is_true(l:level() <= 10)
+      assert.is_true(l:length() < 1.1)
+    end
+    local trees = 0
+    for _, n in pairs(per) do
+      trees = trees + 1
+      assert.is_true(n <= 256 + 2 * 128, n)       -- the count is read at the tick's start
+    end
+    assert.equal(5, trees)
+    assert.is_true(leafy > 100, leafy)
+    assert.is_true(brown > 100, brown)
+    -- while they grow, the new shoots are green
+    local young, green = D.world { ticks = 12 }, 0
+    for _, l in ipairs(young:limbs()) do
+      if l:age() <= 1 then
+        local c = l:color()
+        assert.is_true(c[2] > c[1], "new shoots are green")
+        green = green + 1
+      end
+    end
+    assert.is_true(green > 0)
+  end)
+
+  it("draws three young trees like its golden image", function ()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    local w = D.world { trees = 3, ticks = 40 }
+    H.golden("grow_davison", lsys.render(w:scene(), { width = 200, height = 120 }))
+  end)
+end)
+
+describe("examples/grow/side_by_side.lua", function ()
+  local S = dofile(DIR .. "side_by_side.lua")
+
+  it("gives the same plant both ways at every step", function ()
+    for steps = 0, 12 do
+      local a, b = S.lsystem_tips(S.lsystem(steps)), S.world_tips(S.world(steps))
+      assert.same(a, b, "step " .. steps)
+    end
+    assert.equal(31, #S.world_tips(S.world(12)))
+  end)
+end)
