@@ -463,12 +463,14 @@ static void recolor (lsys_limbs *g, int32_t i) {
 ** Leaves, removal, the tick
 ** ======================================================================= */
 
-static int addleaves (lsys_limbs *g, const lsys_limbop *o) {
-  int k, r;
+/* The leaves of op o; each one made is taken off o->n, so that a retry after a
+** failure makes only the rest. */
+static int addleaves (lsys_limbs *g, lsys_limbop *o) {
+  int r;
   uint16_t c;
   if (!lsys_limbs_alive(g, o->limb)) return LSYS_OK;
   if ((r = colorindex(g, o->rgb, &c)) != LSYS_OK) return r;
-  for (k = 0; k < o->n; k++) {
+  while (o->n > 0) {
     int32_t l;
     if (g->lf_free >= 0) { l = g->lf_free; g->lf_free = g->lf_next[l]; }
     else {
@@ -486,6 +488,7 @@ static int addleaves (lsys_limbs *g, const lsys_limbop *o) {
     g->lf_next[l] = g->leaf[o->limb];
     g->leaf[o->limb] = l;
     g->chg[o->limb] |= C_LEAF;
+    o->n--;
   }
   return LSYS_OK;
 }
@@ -553,8 +556,7 @@ int lsys_limbs_begin (lsys_limbs *g) {
 }
 
 int lsys_limbs_end (lsys_limbs *g) {
-  size_t i, k;
-  int r = LSYS_OK;
+  size_t i;
   if (!g->intick) return LSYS_EBUSY;
   g->intick = 0;
   for (i = 0; i < g->n; i++) {       /* the next state becomes the state */
@@ -566,24 +568,17 @@ int lsys_limbs_end (lsys_limbs *g) {
     if (c & C_ROT) memcpy(g->loc + 9 * i, g->nloc + 9 * i, 9 * sizeof *g->loc);
     if (i < g->n0) g->age[i]++;
   }
-  for (k = 0; k < g->npend && r == LSYS_OK; k++) {
-    const lsys_limbop *o = &g->pending[k];
-    if (o->op == OP_LEAVES) r = addleaves(g, o);
-    else if (o->op == OP_DROP) r = lsys_limbs_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK;
-    else r = removelimb(g, o->limb);
-  }
-  g->npend = 0;
-  if (r != LSYS_OK) return r;
-  return lsys_limbs_update(g);
+  return lsys_limbs_update(g);       /* applies what was deferred, then the geometry */
 }
 
 int lsys_limbs_update (lsys_limbs *g) {
   size_t i;
   int r;
-  if (!g->intick && g->npend > 0) {  /* deferred calls made outside a tick */
+  if (!g->intick && g->npend > 0) {  /* what a tick (or a call outside one) deferred; on
+                                        a failure the ops not yet done stay for a retry */
     size_t k;
     for (k = 0; k < g->npend; k++) {
-      const lsys_limbop *o = &g->pending[k];
+      lsys_limbop *o = &g->pending[k];
       r = o->op == OP_LEAVES ? addleaves(g, o)
           : o->op == OP_DROP ? (lsys_limbs_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK)
           : removelimb(g, o->limb);

@@ -387,8 +387,7 @@ function World:plant (opts)
     fail("plant: 'position' must be {x, y, z}")
   end
   local T = self._T
-  local p = T:plant(pos[1], pos[2], pos[3])
-  self._gen[p] = core.frames(floor(num(opts, "seed", self._seed + p - 1, "plant")))
+  local p = self:_newplant(pos[1], pos[2], pos[3], num(opts, "seed", nil, "plant"))
   local r, g, b = rgb(opts.color or K.shoot_color or self.shoot_color, "plant")
   local id = T:add(0, p, 1, 0, 0, 1, 0, 0, num(opts, "length", 0.5, "plant", 0),
                    num(opts, "radius", 0.05, "plant", 0), r, g, b, self:_kind(K))
@@ -404,6 +403,14 @@ function World:tick (n)
   if not isnum(n) or n < 0 or n ~= floor(n) then fail("tick: a whole number of ticks expected") end
   for _ = 1, n do self:_step() end
   return self
+end
+
+-- A new plant at (x, y, z) with its generator (seeded `seed`, default the world's seed +
+-- its number - 1); its number.
+function World:_newplant (x, y, z, seed)
+  local p = self._T:plant(x, y, z)
+  self._gen[p] = core.frames(floor(seed or self._seed + p - 1))
+  return p
 end
 
 -- The number the C table knows kind K by (given at first use).
@@ -632,8 +639,7 @@ function M.from_lstring (s, opts)
                                           { dot(PX, Z), dot(PY, Z), dot(PZ, Z) })
         id = T:add(p, 0, 1, ax, ay, az, ang, 0, r.length, r.w0 / 2, cr, cg, cb, w:_kind(K))
       else
-        local pl = T:plant(r.p0[1], r.p0[2], r.p0[3])
-        w._gen[pl] = core.frames(floor(w._seed + pl - 1))
+        local pl = w:_newplant(r.p0[1], r.p0[2], r.p0[3])
         local ax, ay, az, ang = axisangle(X, H, Z)
         id = T:add(0, pl, 1, ax, ay, az, ang, 0, r.length, r.w0 / 2, cr, cg, cb, w:_kind(K))
       end

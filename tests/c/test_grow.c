@@ -236,12 +236,39 @@ static void failures (void) {
   }
 }
 
+/* A failed update keeps what it did not do: the retry makes exactly the leaves asked. */
+static void retry (void) {
+  long k;
+  for (k = 0; k < 12; k++) {
+    lsys_scene sc;
+    lsys_limbs g;
+    const double origin[3] = {0, 0, 0};
+    int32_t pl, a;
+    lsys_limbspec s = spec(-1, 0, 1, 0.1);
+    lsys_scene_init(&sc);
+    lsys_limbs_init(&g, &sc, 4);
+    assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+    assert(lsys_limbs_add(&g, &s, &a) == LSYS_OK);
+    assert(lsys_limbs_update(&g) == LSYS_OK);
+    assert(lsys_limbs_add_leaves(&g, a, 70, 0.1, BROWN) == LSYS_OK);
+    failat = nalloc + k;
+    (void)lsys_limbs_update(&g);
+    failat = -1;
+    assert(lsys_limbs_update(&g) == LSYS_OK);
+    assert(g.nleaves[a] == 70 && g.npend == 0);
+    lsys_limbs_free(&g);
+    lsys_scene_free(&sc);
+    assert(nlive == 0);
+  }
+}
+
 int main (void) {
   geometry();
   ticks();
   noalloc();
   chain();
   failures();
+  retry();
   assert(nlive == 0);
   printf("test_grow: ok\n");
   return 0;
