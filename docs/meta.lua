@@ -43,6 +43,7 @@
 ---@field func lsys.func Positional functions (cpfg .func files).
 ---@field sketch lsys.sketch Sketch-based models (docs/sketch.md), loaded at first use.
 ---@field components lsys.components Component graphs (docs/components.md), loaded at first use.
+---@field grow lsys.grow Incremental growth (docs/grow.md), loaded at first use.
 local lsys = {}
 
 --- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
@@ -342,6 +343,12 @@ function Model:interpret(s, view) end
 ---@field lstring lsys.Lstring The string the scene was made from.
 local Scene = {}
 
+--- Changes how the scene is looked at: the look fields of a view (background, light,
+--- viewpoint, target, up, direction, projection, fov, twist, zoom) and `fit`, a box the
+--- camera frames instead of the scene.
+---@param opts table
+function Scene:look(opts) end
+
 --- Axis-aligned bounds, or nil for an empty scene.
 ---@return number[]? lo
 ---@return number[]? hi
@@ -444,6 +451,7 @@ function lsys.render(x, opts) end
 ---@field zoom? number Magnifies about the centre of the picture (1).
 ---@field transparent? boolean A transparent background (an RGBA PNG). Default false.
 ---@field wireframe? boolean Triangles drawn as their edges. Default false.
+---@field fit? number[] A box {x0, y0, z0, x1, y1, z1} the camera frames instead of the scene.
 ---@field view? lsys.View View fields for this picture.
 
 --- Shows a Model (every step, the last first), an Lstring, a Scene or a list of Scenes in
@@ -1952,3 +1960,139 @@ function CTree:count(what) end
 --- The instance at `path` ("tree#1/twig#3/leaf#17"), or nil.
 ---@return table|nil
 function CTree:find(path) end
+
+-- {===========================================================================================
+-- lsys.grow (docs/grow.md)
+
+--- Incremental growth: kinds of limbs with if-then rules, worlds of plants grown by ticks.
+---@class lsys.grow
+---@field Limb lsys.grow.Limb The plain kind every kind extends.
+---@field World table The world metatable.
+local grow = {}
+
+--- A new kind of limb named `name`, extending `base` (its rules copied at creation).
+---@param name string
+---@param base? lsys.grow.Limb
+---@return lsys.grow.Limb
+function grow.kind(name, base) end
+
+--- A world of plants: seed (1), max_limbs (100,000), sides (8), shoot_color, leaf_color,
+--- ticks (its length), view (how it is looked at).
+---@param opts? {seed?: integer, max_limbs?: integer, sides?: integer, shoot_color?: string|number[], leaf_color?: string|number[], ticks?: integer, view?: table}
+---@return lsys.grow.World
+function grow.world(opts) end
+
+--- Limbs from the segments an Lstring draws, in a new world.
+---@param s lsys.Lstring
+---@param opts? table model, kind, color, seed, max_limbs, sides
+---@return lsys.grow.World
+function grow.from_lstring(s, opts) end
+
+--- A limb (a kind is a class of them): its state and the paper's five groups of methods.
+---@class lsys.grow.Limb
+local Limb = {}
+--- Declares a rule: a function (limb, world), or { when = "condition", scale_length,
+--- scale_radius, color, blend = {colour, t}, fn }. Replaces one of the same name.
+---@param name string
+---@param spec function|table
+function Limb:rule(name, spec) end
+---@return number
+function Limb:length() end
+---@return number
+function Limb:radius() end
+---@return number[]
+function Limb:color() end
+---@return integer
+function Limb:age() end
+---@return integer
+function Limb:level() end
+---@return integer
+function Limb:leaves() end
+---@return boolean
+function Limb:has_leaves() end
+---@return boolean
+function Limb:is_root() end
+---@return boolean
+function Limb:alive() end
+---@return integer The living limbs of its plant at the start of the tick.
+function Limb:count() end
+---@return number[]
+function Limb:base() end
+---@return number[]
+function Limb:tip() end
+---@return lsys.grow.Limb?
+function Limb:parent() end
+---@return lsys.grow.Limb[]
+function Limb:children() end
+---@return lsys.grow.Limb[]
+function Limb:siblings() end
+---@param f number
+function Limb:scale_length(f) end
+---@param f number
+function Limb:scale_radius(f) end
+---@param x number
+function Limb:set_length(x) end
+---@param x number
+function Limb:set_radius(x) end
+---@param c string|number[]
+function Limb:set_color(c) end
+---@param c string|number[]
+---@param t number
+function Limb:blend_color(c, t) end
+---@param n integer
+---@param opts? {size?: number, color?: string|number[]}
+function Limb:add_leaves(n, opts) end
+function Limb:drop_leaves() end
+--- Removes the limb and its subtree at the end of the tick.
+function Limb:remove() end
+---@param a? number
+---@param b? number
+---@return number
+function Limb:random(a, b) end
+--- A child at the tip (or `at` along the limb): angle, axis ("x", "y", "z" or {x, y, z}),
+--- roll, length, radius, color, kind. Nil when the world's limb cap is reached.
+---@param opts table
+---@return lsys.grow.Limb?
+function Limb:spawn(opts) end
+---@param opts table angle, axis, roll
+function Limb:turn(opts) end
+---@return integer
+function Limb:id() end
+---@return string
+function Limb:kind() end
+
+---@class lsys.grow.World
+---@field ticks integer Ticks grown so far.
+---@field length? integer How long it grows (world{ticks = N}).
+---@field capped boolean The limb cap was reached.
+local World = {}
+---@param opts? {kind?: lsys.grow.Limb, position?: number[], seed?: integer, length?: number, radius?: number, color?: string|number[]}
+---@return lsys.grow.Limb?
+function World:plant(opts) end
+---@param n? integer
+---@return lsys.grow.World
+function World:tick(n) end
+--- Ticks to the world's length (else `n`).
+---@param n? integer
+---@return lsys.grow.World
+function World:grow(n) end
+---@return lsys.grow.Limb[]
+function World:limbs() end
+---@param id integer
+---@return lsys.grow.Limb?
+function World:limb(id) end
+---@param plant? integer
+---@return integer
+function World:count(plant) end
+---@return lsys.Scene
+function World:scene() end
+---@param model? lsys.Model
+---@return lsys.Lstring
+---@return fun(k: integer): lsys.grow.Limb?
+function World:lstring(model) end
+---@param a? number
+---@param b? number
+---@return number
+function World:random(a, b) end
+
+-- }===========================================================================================

@@ -10,7 +10,7 @@ describe("examples/grow/davison.lua", function ()
   local D = dofile(DIR .. "davison.lua")
 
   it("grows five trees of the paper's rules: capped, brown with age, leafy at the top", function ()
-    local w = D.world { ticks = 60 }
+    local w = D.world { ticks = 60 }:grow()
     assert.equal(1100, w:count())                 -- seed 3
     local per, leafy, brown = {}, 0, 0
     for _, l in ipairs(w:limbs()) do
@@ -38,7 +38,7 @@ describe("examples/grow/davison.lua", function ()
     assert.is_true(leafy > 100, leafy)
     assert.is_true(brown > 100, brown)
     -- while they grow, the new shoots are green
-    local young, green = D.world { ticks = 12 }, 0
+    local young, green = D.world { ticks = 12 }:grow(), 0
     for _, l in ipairs(young:limbs()) do
       if l:age() <= 1 then
         local c = l:color()
@@ -51,7 +51,7 @@ describe("examples/grow/davison.lua", function ()
 
   it("draws three young trees like its golden image", function ()
     if not core.has_render then return pending("lsys was built without OSMesa") end
-    local w = D.world { trees = 3, ticks = 40 }
+    local w = D.world { trees = 3, ticks = 40 }:grow()
     H.golden("grow_davison", lsys.render(w:scene(), { width = 200, height = 120 }))
   end)
 end)

@@ -22,6 +22,7 @@ void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
   int k;
   memset(g, 0, sizeof *g);
   g->sc = sc;
+  sc->cull = 1;                 /* closed tubes, wound counterclockwise: back faces hide */
   g->sides = sides < 3 ? 3 : sides > LSYS_LIMBS_MAXSIDES ? LSYS_LIMBS_MAXSIDES : sides;
   for (k = 0; k < g->sides; k++) {
     g->ring[2 * k] = cos(2 * PI * k / g->sides);
@@ -382,8 +383,8 @@ static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
     }
     for (k = 0; k < S; k++) {           /* ring 0 at the base, ring 1 at the tip */
       uint32_t a = *v0 + k, b = *v0 + (k + 1) % S;
-      lsys_mesh_tri(m, a, b, b + S);
-      lsys_mesh_tri(m, a, b + S, a + S);
+      lsys_mesh_tri(m, a, b + S, b);        /* counterclockwise seen from outside */
+      lsys_mesh_tri(m, a, a + S, b + S);
     }
   }
   return LSYS_OK;

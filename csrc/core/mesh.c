@@ -91,6 +91,50 @@ static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_
   return LSYS_OK;
 }
 
+/* Vertices [a, b) of s into d (which has room for them). */
+static void copyverts (lsys_mesh *d, const lsys_mesh *s, size_t a, size_t b) {
+  size_t n = b - a;
+  memcpy(d->pos + 3 * a, s->pos + 3 * a, 3 * n * sizeof(float));
+  memcpy(d->nrm + 3 * a, s->nrm + 3 * a, 3 * n * sizeof(float));
+  memcpy(d->uv + 2 * a, s->uv + 2 * a, 2 * n * sizeof(float));
+  memcpy(d->col + a, s->col + a, n * sizeof(uint16_t));
+  memcpy(d->twosided + a, s->twosided + a, n);
+  memcpy(d->tex + a, s->tex + a, n * sizeof(uint16_t));
+}
+
+int lsys_mesh_sync (lsys_mesh *dst, const lsys_mesh *src, const size_t *r, size_t n) {
+  size_t nv0 = dst->nv, k;
+  int st;
+  if (src->nv < dst->nv || src->nt < dst->nt || src->nl < dst->nl) return LSYS_EARG;
+  if ((st = lsys_mesh_reserve(dst, src->nv - dst->nv, src->nt - dst->nt)) != LSYS_OK)
+    return st;
+  if (src->nl > dst->lcap) {
+    void **arr[3] = { (void **)&dst->lpos, (void **)&dst->lwidth, (void **)&dst->lcol };
+    const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
+    if (growall(arr, elem, 3, &dst->lcap, src->nl, NULL) != LSYS_OK) return LSYS_ENOMEM;
+  }
+  for (k = 0; k < n; k++) {             /* changed in place: the ones dst has */
+    size_t b = r[2 * k + 1] < nv0 ? r[2 * k + 1] : nv0;
+    if (r[2 * k] < b) copyverts(dst, src, r[2 * k], b);
+  }
+  if (src->nv > nv0) copyverts(dst, src, nv0, src->nv);
+  if (src->nt > dst->nt)
+    memcpy(dst->tri + 3 * dst->nt, src->tri + 3 * dst->nt,
+           3 * (src->nt - dst->nt) * sizeof(uint32_t));
+  if (src->nl > dst->nl) {
+    memcpy(dst->lpos + 6 * dst->nl, src->lpos + 6 * dst->nl,
+           6 * (src->nl - dst->nl) * sizeof(float));
+    memcpy(dst->lwidth + 2 * dst->nl, src->lwidth + 2 * dst->nl,
+           2 * (src->nl - dst->nl) * sizeof(float));
+    memcpy(dst->lcol + dst->nl, src->lcol + dst->nl, (src->nl - dst->nl) * sizeof(uint16_t));
+  }
+  dst->nv = src->nv;
+  dst->nt = src->nt;
+  dst->nl = src->nl;
+  dst->curtex = src->curtex;
+  return LSYS_OK;
+}
+
 /* Vertex indices are uint32_t: at most UINT32_MAX vertices (LSYS_ELIMIT). */
 int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
   int st;

@@ -50,6 +50,17 @@ void lsys_mesh_clear (lsys_mesh *m);
 ** sizes. Returns LSYS_OK, or LSYS_ENOMEM leaving 'dst' empty. */
 int lsys_mesh_copy (lsys_mesh *dst, const lsys_mesh *src);
 
+/*
+** Brings 'dst', an earlier copy of 'src', up to date: src has changed since
+** only in the vertex ranges r[0 .. 2n) ([r[2k], r[2k+1]), as
+** lsys_scene_take_ranges gives them) and by appending vertices, triangles and
+** lines (a grown plant: lsys_limbs). Copies just those ranges and what was
+** appended; allocates only when dst must grow. Returns LSYS_OK, LSYS_EARG
+** when src has fewer vertices, triangles or lines than dst (it is not a later
+** state of it: copy it whole), or LSYS_ENOMEM (dst unchanged in size).
+*/
+int lsys_mesh_sync (lsys_mesh *dst, const lsys_mesh *src, const size_t *r, size_t n);
+
 /* Makes room for 'nv' more vertices and 'nt' more triangles. */
 int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt);
 /* Appends a vertex (room must have been reserved); returns its index. */

@@ -35,7 +35,7 @@ void lsys_scene_free (lsys_scene *s) {
 void lsys_scene_clear (lsys_scene *s) {
   lsys_mesh_clear(&s->mesh);
   s->nrec = s->nstiff = s->nparts = s->ninst = 0;
-  s->dirty0 = s->dirty1 = 0;
+  s->ndirty = 0;
 }
 
 int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n) {
@@ -108,19 +108,48 @@ int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]) {
   return LSYS_OK;
 }
 
+void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b) {
+  size_t i = 0, j, k, best = 0;
+  if (b <= a) return;
+  if (*n > 0 && a >= r[2 * *n - 2]) i = *n - 1;       /* usually at or after the last */
+  while (i < *n && r[2 * i + 1] < a) i++;              /* the first that ends at or after a */
+  for (j = i; j < *n && r[2 * j] <= b; j++) {}         /* [i, j): overlap or touch [a, b) */
+  if (j > i) {                                         /* merge them into range i */
+    if (r[2 * i] < a) a = r[2 * i];
+    if (r[2 * j - 1] > b) b = r[2 * j - 1];
+    memmove(r + 2 * i + 2, r + 2 * j, 2 * (*n - j) * sizeof *r);
+    *n -= j - i - 1;
+  } else {                                             /* insert before range i */
+    memmove(r + 2 * i + 2, r + 2 * i, 2 * (*n - i) * sizeof *r);
+    (*n)++;
+  }
+  r[2 * i] = a;
+  r[2 * i + 1] = b;
+  if (*n <= max || *n < 2) return;
+  for (k = 1; k + 1 < *n; k++)                         /* the smallest gap: after range best */
+    if (r[2 * k + 2] - r[2 * k + 1] < r[2 * best + 2] - r[2 * best + 1]) best = k;
+  r[2 * best + 1] = r[2 * best + 3];
+  memmove(r + 2 * best + 2, r + 2 * best + 4, 2 * (*n - best - 2) * sizeof *r);
+  (*n)--;
+}
+
 void lsys_scene_touch (lsys_scene *s, size_t v0, size_t nv) {
-  size_t v1 = v0 + nv;
-  if (nv == 0) return;
-  if (s->dirty1 == s->dirty0) { s->dirty0 = v0; s->dirty1 = v1; return; }
-  if (v0 < s->dirty0) s->dirty0 = v0;
-  if (v1 > s->dirty1) s->dirty1 = v1;
+  lsys_ranges_add(s->dirty, &s->ndirty, LSYS_SCENE_NDIRTY, v0, v0 + nv);
 }
 
 int lsys_scene_take_dirty (lsys_scene *s, size_t *v0, size_t *v1) {
-  int any = s->dirty1 > s->dirty0;
-  *v0 = s->dirty0; *v1 = s->dirty1;
-  s->dirty0 = s->dirty1 = 0;
+  int any = s->ndirty > 0;
+  *v0 = any ? s->dirty[0] : 0;
+  *v1 = any ? s->dirty[2 * s->ndirty - 1] : 0;
+  s->ndirty = 0;
   return any;
+}
+
+size_t lsys_scene_take_ranges (lsys_scene *s, size_t *r) {
+  size_t n = s->ndirty;
+  memcpy(r, s->dirty, 2 * n * sizeof *r);
+  s->ndirty = 0;
+  return n;
 }
 
 long lsys_scene_part_of_record (const lsys_scene *s, size_t r) {

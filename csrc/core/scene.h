@@ -18,8 +18,8 @@
 **              without parts is one part: everything.
 **   instances  a part drawn again under a transform (populations of one
 **              plant); none means each part is drawn once, where it is.
-**   dirty      the vertex range changed in place since the consumer last
-**              took the scene (a viewer re-uploads only that range).
+**   dirty      the vertex ranges changed in place since the consumer last
+**              took them (a viewer copies only those: lsys_viewer_patch).
 **
 ** A consumer may look at a scene another way for one call through a copy
 ** of the struct with other camera, light, background or textures: the copy
@@ -38,6 +38,7 @@
 #include "texture.h"
 
 #define LSYS_NOREC UINT32_MAX
+#define LSYS_SCENE_NDIRTY 32    /* dirty ranges kept; past that the nearest two merge */
 
 /* What a turtle record stands for. */
 enum {
@@ -93,6 +94,13 @@ typedef struct lsys_camera {
   double zoom;          /* magnification about the image centre, after fitting; default 1 */
   double halfh;         /* parallel: half the image height in world units (before zoom)
                            when > 0, instead of fitting (the viewer keeps a scale) */
+  int has_box;          /* fit the box (box[0..2] the low corner, box[3..5] the high one)
+                           instead of the scene: one camera for every picture of a
+                           growing plant (its final size); near and far planes cover both */
+  double box[6];
+  int has_bounds;       /* bounds[] holds the scene's bounds (lsys_mesh_bounds: lo, hi) as
+                           the caller knows them: the camera needs no pass over the scene */
+  double bounds[6];
 } lsys_camera;
 
 /* A range of a scene's arrays (see above). */
@@ -121,8 +129,13 @@ typedef struct lsys_scene {
   float background[3];  /* RGB in [0, 1] */
   lsys_part *parts; size_t nparts, partcap;
   lsys_instance *inst; size_t ninst, instcap;
-  size_t dirty0, dirty1;  /* vertices [dirty0, dirty1) changed in place; empty: equal */
+  size_t dirty[2 * (LSYS_SCENE_NDIRTY + 1)];  /* vertex ranges changed in place: [dirty[2k],
+                                                 dirty[2k+1]), sorted, apart (lsys_ranges_add) */
+  size_t ndirty;
   lsys_meter *meter;      /* while it is filled: the memory budget of its arrays (or NULL) */
+  int cull;               /* 1: its solid (not two-sided) triangles are wound counterclockwise
+                             seen from outside and enclose what they bound (a grown plant's
+                             limbs): a renderer may cull their back faces */
 } lsys_scene;
 
 /* Fills 'c' with the defaults above. */
@@ -164,10 +177,21 @@ void lsys_scene_end_part (lsys_scene *s, size_t part);
 ** LSYS_EARG (no such part) or LSYS_ENOMEM. */
 int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]);
 
-/* Marks vertices [v0, v0 + nv) changed in place; the dirty range grows to
-** cover them. lsys_scene_take_dirty returns it (0 when empty) and empties it. */
+/* Marks vertices [v0, v0 + nv) changed in place (lsys_ranges_add into the
+** dirty ranges). lsys_scene_take_dirty returns the range covering them all (0
+** when there is none) and empties the list; lsys_scene_take_ranges copies the
+** list into r (room for 2 * LSYS_SCENE_NDIRTY), returns its length and empties
+** it. Allocates nothing. */
 void lsys_scene_touch (lsys_scene *s, size_t v0, size_t nv);
 int lsys_scene_take_dirty (lsys_scene *s, size_t *v0, size_t *v1);
+size_t lsys_scene_take_ranges (lsys_scene *s, size_t *r);
+
+/* Adds [a, b) to the list r[0 .. 2 * *n) of sorted ranges that neither overlap
+** nor touch, merging it with those it overlaps or touches; when that makes
+** more than 'max' ranges, the two with the smallest gap between them merge
+** (r has room for max + 1 ranges). The list then covers every range added,
+** and a little more once it is full. */
+void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b);
 
 /* The part that holds record 'r' (its index), or -1 when none does. */
 long lsys_scene_part_of_record (const lsys_scene *s, size_t r);

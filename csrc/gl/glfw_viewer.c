@@ -74,6 +74,7 @@ struct lsys_viewer {
   int taken;                      /* (viewer thread) requests taken before drawing */
   lsys_vstate st;
   lsys_viewer_opts o;
+  lsys_vlive live;                /* live frames: the stage of lsys_viewer_patch */
   /* the viewer thread's own */
   GLFWwindow *win;
   lsys_gl gl;
@@ -100,6 +101,7 @@ struct lsys_viewer {
   lsys_vpanes panes;              /* image panes beside the scene (vpanes.h) */
   int sr[4];                      /* the scene's rectangle in the window (x, y, w, h) */
   int pane, pbutton;              /* the pane pressed (button 4) and the GLFW button */
+  char note[64];                  /* the live frame's note on the status line */
   lsys_xpen *pen;                 /* pressure devices, opened at the first press on a pane */
 };
 
@@ -142,6 +144,9 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
                        lsys_render_opts *o) {
   *sc = f->sc;
   lsys_vcam_apply(&v->cam, &sc->cam);
+  sc->cam.has_box = 0;            /* near and far: from what is drawn */
+  lsys_vframe_bounds((lsys_vframe *)f, sc->cam.bounds);   /* the viewer thread's frame */
+  sc->cam.has_bounds = 1;
   lsys_render_defaults(o);
   o->width = v->sr[2];
   o->height = v->sr[3];
@@ -152,8 +157,9 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
 }
 
 /*
-** Fits frame f with its view's camera (home: as the view says; otherwise
-** keeping the current direction and up) and sets v->cam from the result.
+** Fits frame f with its view's camera (home: as the view says, its box if it
+** has one; otherwise keeping the current direction and up, to what is shown)
+** and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
   if (lsys_vcam_fit(&v->cam, &f->sc.mesh, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
@@ -175,18 +181,26 @@ static void showframe (lsys_viewer *v, long k) {
   pushevent(v, &e);
 }
 
-/* Takes a posted snapshot, if any. */
+/* Takes a posted snapshot, if any, and brings a live one up to date. */
 static void takemail (lsys_viewer *v) {
-  lsys_vsnap *s;
+  lsys_vsnap *s, *old = NULL;
   size_t k;
   pthread_mutex_lock(&v->mu);
   s = v->mail;
   v->mail = NULL;
+  if (s != NULL) {
+    lsys_render_cache_release(&v->cache, &v->gl);    /* textures of the old snapshot */
+    old = v->snap;
+    v->snap = s;
+    v->note[0] = '\0';
+  }
+  if (v->snap != NULL && v->snap->live && lsys_vlive_take(&v->live, &v->snap->frames[0], v->note)) {
+    v->snap->frames[0].hasbounds = 0;
+    v->dirty = 1;
+  }
   pthread_mutex_unlock(&v->mu);
   if (s == NULL) return;
-  lsys_render_cache_release(&v->cache, &v->gl);    /* textures of the old snapshot */
-  if (v->snap != NULL) lsys_vsnap_free(v->snap);
-  v->snap = s;
+  lsys_vsnap_free(old);
   for (k = 0; k < s->nframes; k++) {          /* the frames share the snapshot's textures */
     s->frames[k].sc.tex = s->texp;
     s->frames[k].sc.ntex = s->texp != NULL ? s->ntex : 0;
@@ -195,23 +209,13 @@ static void takemail (lsys_viewer *v) {
   v->playing = 0;
   v->cur = s->nframes > 0 ? (long)(s->first < s->nframes ? s->first : s->nframes - 1) : -1;
   if (s->title[0] != '\0') G.SetWindowTitle(v->win, s->title);
-  if (v->cur >= 0 && (!s->keep_camera || !v->cam.valid)) fit(v, &s->frames[v->cur], 1);
+  if (v->cur >= 0 && (!s->keep_camera || !v->cam.valid))
+    fit(v, &s->frames[v->cur], 1);
   v->dirty = 1;
 }
 
 /* ---------------------------------------------------------------------- */
 /* text: the status line and the help (overlay.h) */
-
-/* Thousands separated by spaces: 1234567 -> "1 234 567". */
-static void count (char *buf, size_t n, size_t x) {
-  char tmp[32];
-  int len = snprintf(tmp, sizeof tmp, "%zu", x), i, j = 0;
-  for (i = 0; i < len && (size_t)j + 2 < n; i++) {
-    if (i > 0 && (len - i) % 3 == 0) buf[j++] = ' ';
-    buf[j++] = tmp[i];
-  }
-  buf[j] = '\0';
-}
 
 static const char helptext[] =
   "drag: orbit   right-drag / shift-drag: pan   scroll: zoom\n"
@@ -225,7 +229,7 @@ static const char helptext[] =
 static void overlay (lsys_viewer *v) {
   static const uint8_t fg[4] = {255, 255, 255, 255}, bg[4] = {0, 0, 0, 140};
   const lsys_vframe *f = curframe(v);
-  char line[256], a[32], b[32], c[32];
+  char line[256];
   float px = (float)(v->winh > 0 ? 2.0 * v->fbh / v->winh : 2.0);
   float lh = (LSYS_FONT_H + 4) * px;
   size_t n;
@@ -236,20 +240,9 @@ static void overlay (lsys_viewer *v) {
     snprintf(line, sizeof line, "waiting for a scene");
   else if (v->drawerr[0] != '\0')
     snprintf(line, sizeof line, "cannot draw: %.240s", v->drawerr);
-  else {
-    int at = 0;
-    count(a, sizeof a, f->nmodules);
-    count(b, sizeof b, f->sc.mesh.nt);
-    count(c, sizeof c, f->sc.mesh.nl);
-    if (f->step >= 0 && v->snap->nframes > 1)
-      at = snprintf(line, sizeof line, "step %d (%ld/%zu)  ", f->step, v->cur + 1,
-                    v->snap->nframes);
-    else if (f->step >= 0)
-      at = snprintf(line, sizeof line, "step %d  ", f->step);
-    snprintf(line + at, sizeof line - (size_t)at, "%s modules  %s triangles  %s lines  "
-             "%.0f fps%s%s", a, b, c, v->drawms > 0 ? 1000 / v->drawms : 0.0,
-             v->playing ? "  playing" : "", v->wireframe ? "  wireframe" : "");
-  }
+  else
+    lsys_vsnap_status(v->snap, v->cur, v->drawms > 0 ? 1000 / v->drawms : 0.0, v->playing,
+                      v->wireframe, v->note, line, sizeof line);
   n = strlen(line);
   if (v->fbw < (float)(n + 12) * (LSYS_FONT_W + 1) * px && px > 1) {   /* smaller to fit */
     px = px / 2 < 1 ? 1 : px / 2;
@@ -365,6 +358,7 @@ static void draw (lsys_viewer *v) {
   /* publish what was drawn */
   pthread_mutex_lock(&v->mu);
   v->st.drawn++;
+  v->st.drawms = v->drawms;
   v->st.serial = v->taken;
   v->st.width = v->winw;
   v->st.height = v->winh;
@@ -795,6 +789,7 @@ void lsys_viewer_defaults (lsys_viewer_opts *o) {
 }
 
 static void freeviewer (lsys_viewer *v) {
+  lsys_vlive_free(&v->live);
   lsys_vsnap_free(v->mail);
   lsys_vsnap_free(v->snap);
   lsys_render_cache_free(&v->cache);
@@ -830,6 +825,7 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e) {
   pthread_mutex_init(&v->mu, NULL);
   pthread_cond_init(&v->cv, NULL);
   lsys_vpanes_init(&v->panes);
+  lsys_vlive_init(&v->live);
   v->o = *o;
   if (v->o.width <= 0) v->o.width = 800;
   if (v->o.height <= 0) v->o.height = 800;
@@ -875,13 +871,30 @@ static void wake_locked (lsys_viewer *v) {
 
 void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s) {
   lsys_vsnap *old;
+  if (s->live && s->nframes > 0) {    /* the patches fill the one frame from empty */
+    lsys_mesh_free(&s->frames[0].sc.mesh);
+    lsys_mesh_init(&s->frames[0].sc.mesh);
+  }
   pthread_mutex_lock(&v->mu);
+  lsys_vlive_reset(&v->live, s->live && s->nframes == 1);
   old = v->mail;
   v->mail = s;
   v->serial++;
   wake_locked(v);
   pthread_mutex_unlock(&v->mu);
   lsys_vsnap_free(old);          /* never taken: replaced by a newer one */
+}
+
+int lsys_viewer_patch (lsys_viewer *v, const lsys_scene *s, const size_t *r, size_t n,
+                       int step, size_t count, const char *note) {
+  int rc;
+  pthread_mutex_lock(&v->mu);
+  if ((rc = lsys_vlive_patch(&v->live, s, r, n, step, count, note)) == LSYS_OK) {
+    rc = ++v->serial;
+    wake_locked(v);
+  }
+  pthread_mutex_unlock(&v->mu);
+  return rc;
 }
 
 int lsys_viewer_poll (lsys_viewer *v, lsys_vevent *ev, double timeout) {

@@ -138,6 +138,7 @@ typedef struct frame {
   double proj[16], view[16], mvp[16];
   int fbw, fbh, maxw;
   int keep;                 /* keep uploaded textures in the cache (keep_textures) */
+  int cull;                 /* the scene's solids may lose their back faces (scene.h) */
   float lscale;             /* framebuffer pixels per image pixel */
   size_t nwv, nwi;          /* wide lines: vertices and indices written */
 } frame;
@@ -424,9 +425,12 @@ static void drawtriangles (const frame *F, int translucent, int wireframe) {
     size_t n = F->c->start[g + 1] - F->c->start[g];
     if (n == 0 || (mt->diffuse[3] < 1) != translucent) continue;
     gl->LightModeli(GL_LIGHT_MODEL_TWO_SIDE, g >= npal);
+    if (F->cull && g < npal && !wireframe) gl->Enable(GL_CULL_FACE);
+    else gl->Disable(GL_CULL_FACE);
     setmaterial(gl, mt);
     drawelements(gl, GL_TRIANGLES, F->c->idx + F->c->start[g], n);
   }
+  gl->Disable(GL_CULL_FACE);
   if (F->ntex > 0) drawtextured(F, translucent, wireframe);
   gl->DepthMask(GL_TRUE);
   gl->Disable(GL_BLEND);
@@ -725,6 +729,7 @@ int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, i
   F.c = o->cache ? o->cache : &local;
   F.pal = s->pal;
   F.npal = s->npal;
+  F.cull = s->cull;
   F.fbw = fbw;
   F.fbh = fbh;
   F.lscale = o->height > 0 ? (float)fbh / (float)o->height : 1;

@@ -20,14 +20,19 @@
 /* ---------------------------------------------------------------------- */
 /* the camera of a view (render.h) */
 
-/* The 8 corners of the scene's bounds; an empty scene (or one with
+/* The 8 corners of the scene's bounds (corners); an empty scene (or one with
 ** infinite coordinates) is the cube [-1, 1]^3, a single point a cube of
 ** size 2 around it. Returns the length of the box's diagonal (> 0). */
-static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
+/* The same for the bounds b (lo, hi; NULL: m's, computed). */
+static double cornersof (const lsys_mesh *m, const double *b, double c[8][3], double centre[3]) {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, d[3];
-  int i;
-  if (m == NULL || !lsys_mesh_bounds(m, lo, hi) ||
-      !isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2])) {
+  int i, ok;
+  if (b != NULL) {
+    for (i = 0; i < 3; i++) { lo[i] = b[i]; hi[i] = b[3 + i]; }
+    ok = lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
+  } else
+    ok = m != NULL && lsys_mesh_bounds(m, lo, hi);
+  if (!ok || !isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2])) {
     lo[0] = lo[1] = lo[2] = -1;
     hi[0] = hi[1] = hi[2] = 1;
   }
@@ -42,6 +47,10 @@ static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
   }
   for (i = 0; i < 3; i++) centre[i] = 0.5 * (lo[i] + hi[i]);
   return vlen(d);
+}
+
+static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
+  return cornersof(m, NULL, c, centre);
 }
 
 /* The camera frame and what fitting it accumulates over the scene's points. */
@@ -136,8 +145,25 @@ static double fitview (fitstate *fs, const lsys_mesh *m, const lsys_camera *cam,
   return halfh;
 }
 
+/* The 8 corners of a camera's box (has_box) as a mesh of 8 vertices in p[24]. */
+static const lsys_mesh *boxmesh (const double box[6], float p[24], lsys_mesh *bm) {
+  int i;
+  lsys_mesh_init(bm);
+  for (i = 0; i < 8; i++) {
+    p[3 * i] = (float)box[i & 1 ? 3 : 0];
+    p[3 * i + 1] = (float)box[i & 2 ? 4 : 1];
+    p[3 * i + 2] = (float)box[i & 4 ? 5 : 2];
+  }
+  bm->pos = p;
+  bm->nv = 8;
+  return bm;
+}
+
 int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                         double proj[16], double view[16]) {
+  float bp[24];
+  lsys_mesh bm;
+  double c2[8][3], centre2[3];
   const double *r, *u, *f;
   double c[8][3], centre[3], eye[3];
   double aspect, diag, dmin, dmax, pad, nearp, farp;
@@ -148,7 +174,22 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h
   int i, parallel = cam->projection == LSYS_PARALLEL;
   if (w <= 0 || h <= 0) return LSYS_EARG;
   aspect = (double)w / h;
-  diag = corners(m, c, centre);
+  if (cam->has_box) {         /* fit the box; the near and far planes cover the scene too */
+    const lsys_mesh *scene = m;
+    m = boxmesh(cam->box, bp, &bm);
+    diag = corners(m, c, centre);
+    if (scene != NULL && scene->nv + scene->nl > 0) {
+      cornersof(scene, cam->has_bounds ? cam->bounds : NULL, c2, centre2);
+      for (i = 0; i < 8; i++) {
+        int k;
+        for (k = 0; k < 3; k++) {
+          double lo = fmin(c[0][k], c2[0][k]), hi = fmax(c[7][k], c2[7][k]);
+          c[i][k] = (i >> k) & 1 ? hi : lo;
+        }
+      }
+    }
+  } else
+    diag = cornersof(m, cam->has_bounds ? cam->bounds : NULL, c, centre);
   memset(&fs, 0, sizeof fs);
   vcopy(fs.target, cam->has_target ? cam->target : centre);
   if (camframe(&fs, cam) != LSYS_OK) return LSYS_EARG;
@@ -156,7 +197,8 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h
   fs.parallel = parallel;
   fs.aspect = aspect;
   fs.ty = ty;
-  if (parallel || !cam->has_eye) halfh = fitview(&fs, m, cam, c, diag, eye);
+  if (parallel && cam->has_eye && cam->halfh > 0) halfh = cam->halfh;   /* nothing to fit */
+  else if (parallel || !cam->has_eye) halfh = fitview(&fs, m, cam, c, diag, eye);
   if (cam->has_eye) vcopy(eye, cam->eye);
   /* near and far planes: the depths of the corners, padded */
   dmin = dmax = 0;
@@ -234,6 +276,7 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int
     vcopy(rc.dir, c->f);
     vcopy(rc.up, c->u);
     rc.has_target = 0;
+    rc.has_box = 0;             /* F fits what is shown */
     rc.zoom = 1;
   }
   rc.halfh = 0;
@@ -246,6 +289,8 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int
                view[4 * i + 2] * view[14]);
   }
   if (rc.has_target) vcopy(c->target, rc.target);
+  else if (rc.has_box)
+    for (i = 0; i < 3; i++) c->target[i] = 0.5 * (rc.box[i] + rc.box[3 + i]);
   else if (m != NULL && lsys_mesh_bounds(m, lo, hi) &&
            isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2]))
     for (i = 0; i < 3; i++) c->target[i] = 0.5 * (lo[i] + hi[i]);

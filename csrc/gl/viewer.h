@@ -51,6 +51,8 @@ typedef struct lsys_vframe {
   size_t nlines;
   size_t nmodules;              /* length of the string it was drawn from */
   int step;                     /* derivation step, or -1 when unknown */
+  int hasbounds;                /* the viewer's: bounds[] holds the mesh's (0: to find) */
+  double bounds[6];
 } lsys_vframe;
 
 /* What is shown: frames 0..nframes-1 (usually steps 0..n), textures shared
@@ -70,6 +72,8 @@ typedef struct lsys_vsnap {
                                    no longer step, and a left drag begun with Ctrl held
                                    comes back as DRAG events instead of orbiting */
   char title[200];              /* window title (the model's name) */
+  int live;                     /* 1: one frame, grown in place by lsys_viewer_patch (its
+                                   mesh as posted is ignored: the patches fill it) */
 } lsys_vsnap;
 
 /* A new empty snapshot with room for n frames (each frame's scene
@@ -80,6 +84,16 @@ lsys_vsnap *lsys_vsnap_new (size_t n);
 ** or LSYS_ENOMEM. */
 int lsys_vsnap_textures (lsys_vsnap *s, int n);
 void lsys_vsnap_free (lsys_vsnap *s);
+
+/* The bounds of frame f's mesh (lo, hi) into b, found once for each state of
+** the mesh: whoever changes it clears f->hasbounds. */
+void lsys_vframe_bounds (lsys_vframe *f, double b[6]);
+
+/* The status line under frame 'cur' of 's' (which must exist) into line[n]:
+** "step 3 (4/6)  1 234 modules  ...", or for a live snapshot "tick 12  300
+** limbs  3 600 triangles  60 fps  <note>". */
+void lsys_vsnap_status (const lsys_vsnap *s, long cur, double fps, int playing, int wireframe,
+                        const char *note, char *line, size_t n);
 
 typedef struct lsys_viewer_opts {
   int width, height;            /* window size in screen coordinates (default 800 x 800) */
@@ -131,6 +145,48 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e);
 /* Hands 's' over to the viewer (which frees it); never blocks on drawing. */
 void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s);
 
+/*
+** Live frames (incremental growth, grow.h): after posting a snapshot with
+** 'live' set, the caller sends the state of its scene 's' at each tick: the
+** vertex ranges r[0 .. 2n) changed in place since the last patch
+** (lsys_scene_take_ranges), while new vertices, triangles and lines are found
+** by comparing sizes (they are only ever appended). The viewer copies those
+** into a stage of its own at once and from there into the frame it draws,
+** never the whole mesh; the palette is copied when it changed. 'step' and
+** 'count' (limbs) and 'note' (or NULL) go on the status line. The first patch
+** after a live post copies everything. Returns the request's serial number
+** (lsys_viewer_key), LSYS_EARG (< 0) when no live snapshot was posted or the
+** mesh shrank, LSYS_ENOMEM.
+*/
+int lsys_viewer_patch (lsys_viewer *v, const lsys_scene *s, const size_t *r, size_t n,
+                       int step, size_t count, const char *note);
+
+/*
+** The stage of live frames (vlive.c): what lsys_viewer_patch copies from the
+** caller's scene and the viewer takes into its frame, under the viewer's
+** lock. lsys_vlive_reset starts over (on: a live snapshot was posted, so that
+** the next take fills the frame from empty); lsys_vlive_patch returns LSYS_OK,
+** LSYS_EARG (not on, or the mesh shrank) or LSYS_ENOMEM; lsys_vlive_take
+** brings frame f (empty or taken from this stage) up to date, copies the note,
+** and returns 1 when it changed f (0: nothing new, or out of memory: the
+** next take tries again).
+*/
+typedef struct lsys_vlive {
+  lsys_scene stage;             /* the caller's scene as last patched (mesh, palette) */
+  size_t pend[2 * (LSYS_SCENE_NDIRTY + 1)], npend;   /* ranges the frame lacks */
+  int on, chg, palchg;          /* live; changed since taken; its palette too */
+  int step;                     /* the status line's tick, count and note */
+  size_t count;
+  char note[64];
+} lsys_vlive;
+
+void lsys_vlive_init (lsys_vlive *l);
+void lsys_vlive_free (lsys_vlive *l);
+void lsys_vlive_reset (lsys_vlive *l, int on);
+int lsys_vlive_patch (lsys_vlive *l, const lsys_scene *s, const size_t *r, size_t n,
+                      int step, size_t count, const char *note);
+int lsys_vlive_take (lsys_vlive *l, lsys_vframe *f, char note[64]);
+
 /* Takes the next event into 'ev'. Waits up to 'timeout' seconds (0: do not
 ** wait) for one; returns 1 with an event, 0 without. */
 int lsys_viewer_poll (lsys_viewer *v, lsys_vevent *ev, double timeout);
@@ -159,6 +215,7 @@ int lsys_viewer_key (lsys_viewer *v, int key);
 typedef struct lsys_vstate {
   int open;                     /* 0 once closed */
   int drawn;                    /* frames drawn so far */
+  double drawms;                /* the time to draw one, smoothed (ms, swap included) */
   int serial;                   /* requests (posts, keys) handled before the last picture */
   int width, height;            /* window size in screen coordinates */
   int fbwidth, fbheight;        /* framebuffer size in pixels */

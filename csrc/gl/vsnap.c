@@ -3,6 +3,7 @@
 ** window, which frees it. Plain memory, no window: tested on their own
 ** (tests/c/test_viewer.c).
 */
+#include <stdio.h>
 #include <string.h>
 
 #include "viewer.h"
@@ -57,4 +58,48 @@ int lsys_vsnap_textures (lsys_vsnap *s, int n) {
   for (k = 0; k < n; k++) s->texp[k] = &s->tex[k];
   s->ntex = n;
   return LSYS_OK;
+}
+
+/* Thousands separated by spaces: 1234567 -> "1 234 567". */
+static void count (char *buf, size_t n, size_t x) {
+  char tmp[32];
+  int len = snprintf(tmp, sizeof tmp, "%zu", x), i, j = 0;
+  for (i = 0; i < len && (size_t)j + 2 < n; i++) {
+    if (i > 0 && (len - i) % 3 == 0) buf[j++] = ' ';
+    buf[j++] = tmp[i];
+  }
+  buf[j] = '\0';
+}
+
+void lsys_vsnap_status (const lsys_vsnap *s, long cur, double fps, int playing, int wireframe,
+                        const char *note, char *line, size_t n) {
+  const lsys_vframe *f = &s->frames[cur];
+  char a[32], b[32], c[32];
+  int at = 0;
+  count(a, sizeof a, f->nmodules);
+  count(b, sizeof b, f->sc.mesh.nt);
+  count(c, sizeof c, f->sc.mesh.nl);
+  if (s->live) {
+    snprintf(line, n, "tick %d  %s limbs  %s triangles  %.0f fps%s%s%s", f->step, a, b, fps,
+             note[0] ? "  " : "", note, wireframe ? "  wireframe" : "");
+    return;
+  }
+  if (f->step >= 0 && s->nframes > 1)
+    at = snprintf(line, n, "step %d (%ld/%zu)  ", f->step, cur + 1, s->nframes);
+  else if (f->step >= 0)
+    at = snprintf(line, n, "step %d  ", f->step);
+  if (at < 0 || (size_t)at >= n) return;
+  snprintf(line + at, n - (size_t)at, "%s modules  %s triangles  %s lines  %.0f fps%s%s", a, b,
+           c, fps, playing ? "  playing" : "", wireframe ? "  wireframe" : "");
+}
+
+void lsys_vframe_bounds (lsys_vframe *f, double b[6]) {
+  if (!f->hasbounds) {
+    double lo[3], hi[3];
+    int i;
+    lsys_mesh_bounds(&f->sc.mesh, lo, hi);
+    for (i = 0; i < 3; i++) { f->bounds[i] = lo[i]; f->bounds[3 + i] = hi[i]; }
+    f->hasbounds = 1;
+  }
+  memcpy(b, f->bounds, sizeof f->bounds);
 }

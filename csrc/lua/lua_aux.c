@@ -470,6 +470,19 @@ static int iszero (const double v[3]) {
   return v[0] == 0 && v[1] == 0 && v[2] == 0;
 }
 
+void lsys_readbox (lua_State *L, int t, const char *what, double box[6]) {
+  int i;
+  for (i = 0; i < 6; i++) {
+    lua_rawgeti(L, t, i + 1);
+    if (!lua_isnumber(L, -1) || !isfinite(lua_tonumber(L, -1)))
+      luaL_error(L, "%s must be a box {x0, y0, z0, x1, y1, z1} of finite numbers", what);
+    box[i] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+  for (i = 0; i < 3; i++)
+    if (box[i] > box[i + 3]) luaL_error(L, "%s: its low corner is above its high one", what);
+}
+
 /* The look fields of the options at o->t (scene.h): each one given
 ** replaces the scene's; the messages begin with o->pre. */
 void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
@@ -503,6 +516,13 @@ void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
   cam->fov = lsys_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
   cam->twist = lsys_optnum(L, o, "twist", cam->twist, -HUGE_VAL, HUGE_VAL, "a number of degrees");
   cam->zoom = lsys_optnum(L, o, "zoom", cam->zoom, 0, HUGE_VAL, "a positive number");
+  if (lsys_optfield(L, o, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
+    char what[96];
+    snprintf(what, sizeof what, "%sfit%s", o->pre, o->post);
+    lsys_readbox(L, lua_gettop(L), what, cam->box);
+    cam->has_box = 1;
+    lua_pop(L, 1);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -529,7 +549,7 @@ static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, in
 static const char *const renderopts[] = {
   "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
   "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
-  NULL
+  "fit", NULL
 };
 
 void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {

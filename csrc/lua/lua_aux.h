@@ -257,6 +257,10 @@ int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]
 */
 const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
 
+/* A box {x0, y0, z0, x1, y1, z1} of finite numbers (low corner first) from the
+** table at t, or an error naming 'what'. */
+void lsys_readbox (lua_State *L, int t, const char *what, double box[6]);
+
 /* How to look at scene 'sc' (scene.h: camera, light, background) from the
 ** fields of the options o->t that are present: background, light,
 ** viewpoint, target, up, direction, projection, fov, twist, zoom. Each field

@@ -583,8 +583,31 @@ static int scene_save (lua_State *L) {
   return 1;
 }
 
+/* scene:look(opts): how the scene is looked at from now on (its camera,
+** light and background: the look fields of a view, lsys_readlook). */
+static int scene_look (lua_State *L) {
+  static const char *const keys[] = {
+    "background", "light", "viewpoint", "target", "up", "direction", "projection", "fov",
+    "twist", "zoom", "fit", NULL
+  };
+  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_opts o = {2, "scene:look: opts.", "", LSYS_GOT_TYPE, 0};
+  lsys_scene sc;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  if (lsys_optunknown(L, &o, keys))
+    return luaL_error(L, "scene:look: unknown option '%s'", luaL_tolstring(L, -1, NULL));
+  sc = S->sc;                   /* read into a copy: an error leaves the scene as it was */
+  lsys_readlook(L, &o, &sc);
+  S = lsys_checkscene(L, 1);
+  S->sc.cam = sc.cam;
+  memcpy(S->sc.light, sc.light, sizeof sc.light);
+  memcpy(S->sc.background, sc.background, sizeof sc.background);
+  return 0;
+}
+
 static const luaL_Reg scene_methods[] = {
   {"bounds", scene_bounds},
+  {"look", scene_look},
   {"area", scene_area},
   {"record", scene_record},
   {"records", scene_records},

@@ -9,9 +9,14 @@
 **                                        world = widths in world units, take = move
 **                                        the mesh out of the scene instead of copying };
 **                                        opts: first (1-based), rate, title,
-**                                        keep_camera, capture, textures = { Texture... };
+**                                        keep_camera, capture, textures = { Texture... },
+**                                        live, fit = {x0, y0, z0, x1, y1, z1};
 **                                        a frame's lines = { { p0 =, p1 =, color = {r, g, b
 **                                        [, a]}, width = px }... } are drawn over it
+**   v:patch(scene [, opts]) -> serial    a live frame (post{..., live = true}) brought to
+**                                        the scene's state: the vertex ranges it marked
+**                                        since the last patch and what it appended;
+**                                        opts: step, count, note (the status line)
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
 **                                        "step" | "closed" | "key" | "drag", frame
 **                                        (1-based), step, module (1-based), kind, x, y,
@@ -25,7 +30,8 @@
 **   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
 **                                        "redraw"; drawn when state().serial >= serial
 **   v:state() -> table                   open, drawn, serial, width, height, fbwidth,
-**                                        fbheight, frame, nframes, playing, wireframe;
+**                                        fbheight, frame, nframes, playing, wireframe,
+**                                        drawms (the time to draw a picture, smoothed);
 **                                        after the first press on a pane pen (a pressure
 **                                        device is read) and pen_devices (its names or
 **                                        why there is none)
@@ -48,6 +54,7 @@
 */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <limits.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -177,6 +184,7 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   if (f->picks == NULL || lsys_scene_set_palette(&f->sc, S->sc.pal, S->sc.npal) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   f->sc.cam = S->sc.cam;                  /* how the scene is to be looked at */
+  f->sc.cull = S->sc.cull;
   memcpy(f->sc.light, S->sc.light, sizeof f->sc.light);
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
@@ -223,6 +231,18 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
   }
   s->keep_camera = lsys_optbool(L, &po, "keep_camera", 0);
   s->capture = lsys_optbool(L, &po, "capture", 0);
+  s->live = lsys_optbool(L, &po, "live", 0);
+  if (s->live && n != 1) lsys_opterror(L, &po, "live", "for one frame");
+  if (lsys_optfield(L, &po, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
+    double box[6];
+    size_t k;
+    lsys_readbox(L, lua_gettop(L), "viewer: opts.fit", box);
+    for (k = 0; k < s->nframes; k++) {
+      s->frames[k].sc.cam.has_box = 1;
+      memcpy(s->frames[k].sc.cam.box, box, sizeof box);
+    }
+    lua_pop(L, 1);
+  }
   tex = lsys_opttextures(L, t, "viewer:post", &ntex);
   if (lsys_vsnap_textures(s, ntex) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
@@ -260,6 +280,37 @@ static int viewer_post (lua_State *L) {
   box->s = NULL;
   lsys_viewer_post(v, s);
   return 0;
+}
+
+/* v:patch(scene, {step =, count =, note =}): a live frame's changes (viewer.h);
+** returns the request's serial number. */
+static int viewer_patch (lua_State *L) {
+  lsys_viewer *v = checkviewer(L, 1);
+  lsys_lscene *S = lsys_checkscene(L, 2);
+  int t = lua_isnoneornil(L, 3) ? 0 : 3, step, rc;
+  lsys_opts po = vopts(t);
+  size_t r[2 * LSYS_SCENE_NDIRTY], n, count;
+  const char *note = NULL;
+  if (t) luaL_checktype(L, 3, LUA_TTABLE);
+  step = lsys_optint(L, &po, "step", 0, 0, INT_MAX);
+  count = (size_t)lsys_optint(L, &po, "count", 0, 0, INT_MAX);
+  if (lsys_optfield(L, &po, "note", LUA_TSTRING, "a string")) {
+    note = lua_tostring(L, -1);
+    lua_pop(L, 1);          /* the table at 3 keeps it */
+  }
+  S = lsys_checkscene(L, 2);                /* again: the options ran Lua code */
+  n = lsys_scene_take_ranges(&S->sc, r);
+  rc = lsys_viewer_patch(v, &S->sc, r, n, step, count, note);
+  if (rc < 0) {                             /* the ranges stay to be sent */
+    size_t k;
+    for (k = 0; k < n; k++) lsys_scene_touch(&S->sc, r[2 * k], r[2 * k + 1] - r[2 * k]);
+  }
+  if (rc == LSYS_ENOMEM) return luaL_error(L, "not enough memory for the viewer");
+  if (rc < 0)
+    return luaL_error(L, "viewer:patch: no live frame to patch (post one with live = true) "
+                      "or its scene shrank");
+  lua_pushinteger(L, rc);
+  return 1;
 }
 
 static const char *const evnames[] = {
@@ -436,6 +487,7 @@ static int viewer_state (lua_State *L) {
   lua_pushboolean(L, st.open);
   lua_setfield(L, -2, "open");
   setint(L, "drawn", st.drawn);
+  setnum(L, "drawms", st.drawms);
   setint(L, "serial", st.serial);
   setint(L, "width", st.width);
   setint(L, "height", st.height);
@@ -590,7 +642,7 @@ static const luaL_Reg viewer_meta[] = {
 };
 
 static const luaL_Reg viewer_methods[] = {
-  {"post", viewer_post}, {"poll", viewer_poll}, {"pending", viewer_pending},
+  {"post", viewer_post}, {"patch", viewer_patch}, {"poll", viewer_poll}, {"pending", viewer_pending},
   {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
   {"layout", viewer_layout}, {"image", viewer_image}, {"text", viewer_text},
@@ -643,6 +695,21 @@ static int l_pen_devices (lua_State *L) {
 }
 #endif
 
+/* core.mkdir(path) -> true (made, or a directory already); or nil, msg */
+static int l_mkdir (lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  struct stat sb;
+  if (mkdir(path, 0777) != 0 && !(errno == EEXIST && stat(path, &sb) == 0 &&
+                                   S_ISDIR(sb.st_mode))) {
+    lua_pushnil(L);
+    lua_pushfstring(L, "cannot make the directory %s: %s", path,
+                    errno == EEXIST ? "a file is in the way" : strerror(errno));
+    return 2;
+  }
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
 void lsys_open_viewer (lua_State *L) {
 #ifndef LSYS_NO_VIEWER
   lua_pushcfunction(L, l_pen_devices);
@@ -657,4 +724,6 @@ void lsys_open_viewer (lua_State *L) {
   lua_setfield(L, -2, "has_viewer");
   lua_pushcfunction(L, l_filestamp);
   lua_setfield(L, -2, "filestamp");
+  lua_pushcfunction(L, l_mkdir);
+  lua_setfield(L, -2, "mkdir");
 }

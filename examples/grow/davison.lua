@@ -10,7 +10,10 @@
 --
 --   build/bin/lsys examples/grow/davison.lua [out.png]      renders it after 60 ticks
 --
--- As a module (the tests, the gallery): M.world{ ticks =, trees =, seed = } -> a grown world.
+--   build/bin/lsys grow examples/grow/davison.lua           grows them in the window
+--
+-- As a module (the tests, the gallery): M.world{ ticks =, trees =, seed = } -> a planted
+-- world; its :grow() grows it.
 local lsys = require "lsys"
 local grow = lsys.grow
 
@@ -46,23 +49,23 @@ function M.kind ()
   return Tree
 end
 
---- A world of `trees` (5) trees 6 apart, grown `ticks` (60) ticks from `seed` (3).
+--- A world of `trees` (5) trees 6 apart, planted, to grow `ticks` (60) ticks from `seed`
+-- (3): `M.world():grow()`; `lsys grow examples/grow/davison.lua` grows it in the window.
 function M.world (opts)
   opts = opts or {}
-  local w = grow.world { seed = opts.seed or 3 }
+  local w = grow.world { seed = opts.seed or 3, ticks = opts.ticks or 60 }
   local Tree = M.kind()
   local n = opts.trees or 5
   for k = 1, n do
     w:plant { kind = Tree, position = { (k - (n + 1) / 2) * 6, 0, 0 }, radius = 0.05 }
   end
-  w:tick(opts.ticks or 60)
   return w
 end
 
 M.VIEW = { background = { 0.93, 0.96, 1 } }
 
 if arg and arg[0] and arg[0]:match("davison%.lua$") then
-  local w = M.world()
+  local w = M.world():grow()
   lsys.render(w:scene(), { out = arg[1] or "davison.png", width = 1000, height = 560 })
   print(string.format("%d limbs after %d ticks -> %s", w:count(), w.ticks,
                       arg[1] or "davison.png"))

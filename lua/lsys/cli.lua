@@ -12,6 +12,7 @@
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
 --   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
 --   lsys components graph MODEL -o OUT   a component graph's p-graph (.png .svg .pdf .dot)
+--   lsys grow FILE ...        a growing world (lsys.grow) live in the window, or --frames DIR
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local host = require("lsys.program").host
@@ -40,6 +41,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys sketch [FILE] [OPTS]   draw a plant's construction lines; the plant follows (a window)
   lsys sketch plot|model|render FILE -o OUT   a sketch's functions, model or picture
   lsys components graph MODEL -o OUT   draw a component graph's p-graph (Graphviz)
+  lsys grow FILE [OPTS]       grow plants tick by tick in the window (lsys.grow), or to PNGs
   lsys help [COMMAND]         this help, or a command's help
 
 Options:
@@ -223,6 +225,35 @@ Options:
                       with -graph.png, in the current directory)
   --params            show the components' parameters in the nodes
   -h, --help          show this help
+]]
+
+HELP.grow = [[
+usage: lsys grow FILE [--ticks N] [--seed S] [--rate R] [--size WxH] [--screenshot OUT.png]
+       lsys grow FILE --frames DIR [--every K] [--ticks N] [--seed S] [--size WxH]
+
+Incremental growth (Davison 2006; docs/grow.md). FILE is a Lua file that returns a world of
+lsys.grow, planted (`return w` after w:plant{...}; `lsys.grow.world{ticks = N}` says how
+long it grows), or a table with a world(opts) function that makes one (as
+examples/grow/davison.lua). The plants grow tick by tick in the window: each tick changes
+the limbs in place and the window receives only what changed. The camera frames the plants'
+final size (the world is grown once headless first), so they grow in place.
+
+In the window: space pauses and resumes (at the end, grows on), right grows one tick, + and
+- change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace
+starts again; drag orbits, right-drag pans, scroll zooms, R resets the view, F fits, W
+wireframe, S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
+the triangles and the frames drawn a second.
+
+Options:
+  --ticks N            how long to grow (default: the world's length, else 100)
+  --seed S             the seed given to world(opts) (a file returning a World seeds it)
+  --rate R             ticks a second (default: as fast as the window draws them)
+  --size WxH           window or picture size (default 1000x600)
+  --screenshot OUT.png grow to the end in the window, save its picture, exit; prints the
+                       window's drawing rate while growing
+  --frames DIR         no window: one PNG per tick into DIR (tick-0000.png, ...), one camera
+  --every K            with --frames: every K-th tick (and the last)
+  -h, --help           show this help
 ]]
 
 HELP.repl = [[
@@ -945,6 +976,84 @@ function commands.components (args)
     error(format("%s: %s", path, rerr), 0)
   end
   out(format("wrote %s\n", outpath))
+  return 0
+end
+
+local GROW_OPTS = {
+  ticks = "value", seed = "value", rate = "value", size = "value", screenshot = "value",
+  frames = "value", every = "value", help = "flag", short = { h = "help" },
+}
+
+-- A whole number option of `lsys grow` (at least 'lo').
+local function grow_int (name, v, lo)
+  if v == nil then return nil end
+  local n = math.tointeger(tonumber(v))
+  if n == nil or n < lo then
+    usage("grow", "--%s expects a whole number >= %d, got '%s'", name, lo, v)
+  end
+  return n
+end
+
+-- `lsys grow FILE`: the world live in the window, or --frames DIR.
+function commands.grow (args)
+  local opts, pos = parse("grow", GROW_OPTS, args, 2)
+  if opts.help then out(HELP.grow) return 0 end
+  if #pos == 0 then usage("grow", "a FILE is required (try examples/grow/forest.lua)") end
+  if #pos > 1 then usage("grow", "unexpected argument '%s' (one FILE)", pos[2]) end
+  local w, h = size_opt("grow", opts.size)
+  w, h = w or 1000, h or 600
+  local ticks, seed = grow_int("ticks", opts.ticks, 0), grow_int("seed", opts.seed, 0)
+  local every = grow_int("every", opts.every, 1)
+  local rate = opts.rate and tonumber(opts.rate)
+  if opts.rate ~= nil and not (rate and rate > 0 and rate <= 1000) then
+    usage("grow", "--rate expects ticks a second in (0, 1000], got '%s'", opts.rate)
+  end
+  if opts.screenshot and not opts.screenshot:lower():find("%.png$") then
+    usage("grow", "the screenshot must be a .png file, got '%s'", opts.screenshot)
+  end
+  if opts.frames and (opts.screenshot or opts.rate) then
+    usage("grow", "--frames draws no window: --screenshot and --rate do not apply")
+  end
+  if every and not opts.frames then usage("grow", "--every applies to --frames") end
+  local path = find_model(pos[1])
+  local function load ()
+    local chunk, err = loadfile(path, "t")
+    if chunk == nil then error(err, 0) end
+    local ok, v = require("lsys.model").runfile(path, chunk)
+    if not ok then
+      local msg = tostring(v)
+      error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
+    end
+    return v
+  end
+  local GV = require "lsys.growview"
+  local make = GV.maker(load(), path, { seed = seed }, load)
+  local t0 = clock()
+  if opts.frames then
+    local verbose = isatty(2)
+    local n, last = GV.frames(make, opts.frames, {
+      ticks = ticks, every = every, width = w, height = h,
+      progress = verbose and function (k, total)
+        io.stderr:write(format("\rtick %d/%d", k, total))
+        if k == total then io.stderr:write("\n") end
+      end or nil,
+    })
+    out(format("wrote %d pictures to %s (the last: %s) in %.1f s\n", n, opts.frames, last,
+      clock() - t0))
+    return 0
+  end
+  local r = GV.live(make, { ticks = ticks, rate = rate, width = w, height = h,
+                            screenshot = opts.screenshot, title = pos[1] })
+  if r.screenshot then
+    out(format("wrote %s: %d limbs after %d ticks; the window drew %d frames in %.2f s "
+      .. "(%.1f frames a second) while growing\n", r.screenshot, r.limbs, r.ticks, r.drawn,
+      r.seconds, r.fps))
+    if r.full then
+      out(format("at %d limbs (the last %d ticks): %d frames in %.2f s, %.1f frames a second; "
+        .. "a frame drawn in %.1f ms\n", r.full.limbs, r.full.ticks, r.full.drawn,
+        r.full.seconds, r.full.fps, r.drawms))
+    end
+  end
   return 0
 end
 

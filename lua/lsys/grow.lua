@@ -341,12 +341,14 @@ local World = {}
 World.__index = World
 
 local WORLD = { seed = true, max_limbs = true, sides = true, shoot_color = true,
-                leaf_color = true }
+                leaf_color = true, ticks = true, view = true }
 
 --- A world of plants. opts: `seed` (1: plant k's generator is seeded seed + k - 1 unless
 -- its plant call gives one), `max_limbs` (100,000 living limbs in all: spawn returns nil
 -- past it), `sides` (8: the limbs' cylinders), `shoot_color` (new limbs; "#5a9e32"),
--- `leaf_color` ("#3f8f2a").
+-- `leaf_color` ("#3f8f2a"), `ticks` (how long it grows: `world:grow()`, `lsys grow`; the
+-- field `length`), `view` (how to look at it: background, light, projection, direction,
+-- up, viewpoint, target, fov, twist, zoom, as in a model's view).
 function M.world (opts)
   opts = opts or {}
   if type(opts) ~= "table" then fail("world: an options table expected") end
@@ -367,6 +369,15 @@ function M.world (opts)
   }, World)
   rgb(w.shoot_color, "shoot_color")
   rgb(w.leaf_color, "leaf_color")
+  if opts.ticks ~= nil then
+    w.length = num(opts, "ticks", nil, "world", 0)
+    if w.length ~= floor(w.length) then fail("world: 'ticks' must be a whole number") end
+  end
+  if opts.view ~= nil then
+    if type(opts.view) ~= "table" then fail("world: 'view' must be a table") end
+    local ok, err = pcall(w._T:scene().look, w._T:scene(), opts.view)
+    if not ok then fail("world: %s", (tostring(err):gsub("^scene:look: opts%.", "view."))) end
+  end
   return w
 end
 
@@ -403,6 +414,14 @@ function World:tick (n)
   if not isnum(n) or n < 0 or n ~= floor(n) then fail("tick: a whole number of ticks expected") end
   for _ = 1, n do self:_step() end
   return self
+end
+
+--- Grows the world to its length (the `ticks` it was made with, else `n`): the ticks it
+-- has not had yet.
+function World:grow (n)
+  local length = self.length or n
+  if length == nil then fail("grow: the world has no length (world{ticks = N}): give one") end
+  return self:tick(math.max(0, length - self.ticks))
 end
 
 -- A new plant at (x, y, z) with its generator (seeded `seed`, default the world's seed +

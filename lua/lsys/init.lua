@@ -115,12 +115,14 @@ end })
 
 -- options of lsys.render that are not view options
 local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,
-                      transparent = true, wireframe = true }
+                      transparent = true, wireframe = true, fit = true }
 
 --- Renders `x` (a Scene, or a Model: derived and interpreted) to a PNG file.
 -- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
 -- width and height), width, height (800), zoom (1: magnifies about the centre),
--- transparent (a transparent background, RGBA PNG), wireframe, and view fields (camera,
+-- transparent (a transparent background, RGBA PNG), wireframe, fit (a box {x0, y0, z0, x1,
+-- y1, z1} the camera frames instead of the scene: one camera for a series of pictures of a
+-- growing plant), and view fields (camera,
 -- background, light, supersample) that replace the scene's view for this picture;
 -- `opts.view` may hold them.
 function M.render (x, opts)
@@ -153,6 +155,7 @@ function M.render (x, opts)
   end
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
   ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
+  ro.fit = opts.fit
   local ok, a, b, c = pcall(core.render, x, ro)
   if not ok then error(a, 2) end
   return a, b, c

@@ -236,7 +236,35 @@ function M.show (x, opts)
     keep_camera = opts.keep_camera, capture = opts.capture,
     textures = textures and #textures > 0 and textures or nil,
   })
+  v:text(nil, "")
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
+end
+
+--- Shows a scene that changes in place (a growing world's, lsys.grow) and returns at
+-- once; `patch` then sends the window only what changed. opts: `title`, `width`, `height`,
+-- `samples`, `status` (of a new window), `fit` (a box {x0, y0, z0, x1, y1, z1} the camera
+-- frames: the plants' final size), `help` (the help text the H key shows), `on_event`
+-- (every event; the window's keys come back as { type = "key", key = ... }, as with
+-- `capture`).
+function M.live (scene, opts)
+  opts = opts or {}
+  if not model.isscene(scene) then fail("a Scene expected", 2, "lsys.viewer.live") end
+  local v = open(opts, "lsys.viewer.live")
+  S.strings, S.steps, S.model = {}, {}, nil
+  local f = frame(scene, 0, 0, false)
+  v:post({ f }, { live = true, fit = opts.fit, capture = true,
+                  title = "lsys: " .. (opts.title or "growing") })
+  v:text(nil, opts.help or "")
+  S.on_pick, S.on_event = nil, opts.on_event
+end
+
+--- Sends the window what changed in the scene shown by `live` since the last patch (the
+-- vertex ranges the scene marked, and what it appended), with the status line's `tick`,
+-- `count` (limbs) and `note`. Returns the request's serial number: the window has drawn
+-- it once `state().serial` reaches it.
+function M.patch (scene, tick, count, note)
+  if S.viewer == nil then error("lsys.viewer.patch: no window open", 2) end
+  return S.viewer:patch(scene, { step = tick, count = count, note = note })
 end
 
 --- The component instance (lsys.components) that drew module `i` of the Lstring `s`, and

@@ -179,7 +179,7 @@ static void noalloc (void) {
     assert(lsys_limbs_end(&g) == LSYS_OK);
   }
   assert(nalloc == before);
-  assert(sc.dirty1 - sc.dirty0 == sc.mesh.nv);
+  assert(sc.ndirty == 1 && sc.dirty[0] == 0 && sc.dirty[1] == sc.mesh.nv);
   lsys_limbs_free(&g);
   lsys_scene_free(&sc);
 }

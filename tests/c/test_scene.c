@@ -115,7 +115,52 @@ static void dirty (void) {
   lsys_scene_touch(&s, 12, 10);
   assert(lsys_scene_take_dirty(&s, &v0, &v1) && v0 == 3 && v1 == 22);
   assert(!lsys_scene_take_dirty(&s, &v0, &v1));        /* taken: empty again */
+  lsys_scene_touch(&s, 10, 5);
+  lsys_scene_touch(&s, 30, 5);
+  lsys_scene_touch(&s, 15, 2);                         /* touches [10, 15): one range */
+  {
+    size_t r[2 * LSYS_SCENE_NDIRTY];
+    assert(lsys_scene_take_ranges(&s, r) == 2);
+    assert(r[0] == 10 && r[1] == 17 && r[2] == 30 && r[3] == 35);
+    assert(lsys_scene_take_ranges(&s, r) == 0);
+  }
   lsys_scene_free(&s);
+}
+
+/* Random ranges against a bitmap: every vertex touched stays covered, the
+** list stays sorted and apart, within its size, and exact while it fits. */
+static void ranges (void) {
+  enum { NV = 2000, MAX = 8 };
+  static unsigned char bit[NV];
+  size_t r[2 * (MAX + 1)], n = 0, k, v;
+  unsigned x = 12345;
+  int t;
+  for (t = 0; t < 3000; t++) {
+    size_t a, len;
+    if (t % 100 == 0) { n = 0; memset(bit, 0, sizeof bit); }
+    x = x * 1103515245u + 12345u; a = (x >> 8) % (NV - 50);
+    x = x * 1103515245u + 12345u; len = (x >> 8) % 40;
+    lsys_ranges_add(r, &n, MAX, a, a + len);
+    for (v = a; v < a + len; v++) bit[v] = 1;
+    assert(n <= MAX);
+    for (k = 0; k < n; k++) {
+      assert(r[2 * k] < r[2 * k + 1]);
+      if (k > 0) assert(r[2 * k] > r[2 * k - 1]);      /* apart: a gap between */
+    }
+    for (v = 0, k = 0; v < NV; v++) {
+      int in;
+      while (k < n && r[2 * k + 1] <= v) k++;
+      in = k < n && r[2 * k] <= v;
+      if (bit[v]) assert(in);
+    }
+  }
+  n = 0;                                               /* MAX apart ranges: exact */
+  for (k = 0; k < MAX; k++) lsys_ranges_add(r, &n, MAX, 100 * (MAX - k), 100 * (MAX - k) + 10);
+  assert(n == MAX && r[0] == 100 && r[1] == 110 && r[2 * MAX - 1] == 100 * MAX + 10);
+  lsys_ranges_add(r, &n, MAX, 5, 6);                   /* one more: the nearest two merge */
+  assert(n == MAX && r[0] == 5 && r[1] == 6 && r[2] == 100 && r[3] == 210);
+  lsys_ranges_add(r, &n, MAX, 0, 10000);               /* covers all: one */
+  assert(n == 1 && r[0] == 0 && r[1] == 10000);
 }
 
 int main (void) {
@@ -124,5 +169,6 @@ int main (void) {
   records();
   parts();
   dirty();
+  ranges();
   return 0;
 }

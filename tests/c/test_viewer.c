@@ -1,7 +1,8 @@
 /*
 ** C unit tests of the viewer's window-free parts: picking (lsys_vpick_find)
 ** through a known camera, snapshots (lsys_vsnap_new/free, with meshes and
-** textures copied), and lsys_mesh_copy / lsys_texture_copy. The window
+** textures copied), lsys_mesh_copy / lsys_texture_copy, the status line,
+** and live frames (a grown scene patched into a frame, lsys_vlive). The window
 ** itself is tested from Lua under Xvfb (tests/viewer_spec.lua).
 */
 #undef NDEBUG
@@ -11,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "mesh.h"
 #include "texture.h"
 #include "turtle.h"
@@ -124,6 +126,111 @@ static void test_snapshot (void) {
   lsys_vsnap_free(NULL);
   printf("snapshot: ok\n");
 }
+
+/* Frame f holds what scene sc holds: every vertex attribute, triangle, line
+** and the palette. */
+static void same (const lsys_vframe *f, const lsys_scene *sc) {
+  const lsys_mesh *a = &f->sc.mesh, *b = &sc->mesh;
+  assert(a->nv == b->nv && a->nt == b->nt && a->nl == b->nl);
+  assert(b->nv > 0 && memcmp(a->pos, b->pos, 3 * b->nv * sizeof(float)) == 0);
+  assert(memcmp(a->nrm, b->nrm, 3 * b->nv * sizeof(float)) == 0);
+  assert(memcmp(a->uv, b->uv, 2 * b->nv * sizeof(float)) == 0);
+  assert(memcmp(a->col, b->col, b->nv * sizeof(uint16_t)) == 0);
+  assert(memcmp(a->twosided, b->twosided, b->nv) == 0);
+  assert(memcmp(a->tex, b->tex, b->nv * sizeof(uint16_t)) == 0);
+  assert(memcmp(a->tri, b->tri, 3 * b->nt * sizeof(uint32_t)) == 0);
+  assert(f->sc.npal == sc->npal && memcmp(f->sc.pal, sc->pal, sc->npal * sizeof *sc->pal) == 0);
+}
+
+/* A plant grown tick by tick (lsys_limbs): each tick's changed ranges patched
+** into the stage, taken into a frame every tick or every third; the frame
+** always ends equal to the scene, and the status line tells the tick. */
+static void test_live (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  lsys_vlive l;
+  lsys_vsnap *s = lsys_vsnap_new(1);
+  lsys_vframe *f = &s->frames[0];
+  size_t r[2 * LSYS_SCENE_NDIRTY], n, moved = 0;
+  double pos[3] = {0, 0, 0};
+  char note[64], line[256];
+  int32_t p, id;
+  int t, every;
+  lsys_limbspec spec;
+  for (every = 1; every <= 3; every += 2) {
+    lsys_scene_init(&sc);
+    lsys_limbs_init(&g, &sc, 6);
+    lsys_vlive_init(&l);
+    assert(lsys_vlive_patch(&l, &sc, NULL, 0, 0, 0, NULL) == LSYS_EARG);   /* not on */
+    lsys_vlive_reset(&l, 1);
+    lsys_mesh_free(&f->sc.mesh);
+    lsys_mesh_init(&f->sc.mesh);
+    assert(lsys_limbs_plant(&g, pos, &p) == LSYS_OK);
+    memset(&spec, 0, sizeof spec);
+    spec.parent = -1; spec.plant = p; spec.at = 1; spec.axis[2] = 1;
+    spec.length = 1; spec.radius = 0.1;
+    spec.rgb[1] = 0.5f;
+    assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
+    assert(lsys_limbs_update(&g) == LSYS_OK);
+    for (t = 1; t <= 12; t++) {
+      size_t i, n0 = g.n;
+      assert(lsys_limbs_begin(&g) == LSYS_OK);
+      for (i = 0; i < n0; i++) {
+        if (!lsys_limbs_alive(&g, (int32_t)i)) continue;
+        if (g.len[i] < 2) assert(lsys_limbs_set_length(&g, (int32_t)i, g.len[i] * 1.1) == 0);
+        if (g.age[i] == 2 && g.first[i] < 0 && g.n < 300) {   /* two children */
+          spec.parent = (int32_t)i; spec.angle = 30; spec.length = 0.5;
+          assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
+          spec.angle = -30;
+          assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
+        }
+        if (t == 8 && g.level[i] == 3) {
+          float c[3] = {0.5f, 0.3f, 0.1f};
+          assert(lsys_limbs_set_color(&g, (int32_t)i, c) == LSYS_OK);
+        }
+      }
+      if (t == 10) assert(lsys_limbs_add_leaves(&g, 3, 4, 0.3, spec.rgb) == LSYS_OK);
+      if (t == 11) assert(lsys_limbs_remove(&g, 2) == LSYS_OK);
+      assert(lsys_limbs_end(&g) == LSYS_OK);
+      n = lsys_scene_take_ranges(&sc, r);
+      for (i = 0; i < n; i++) moved += r[2 * i + 1] - r[2 * i];
+      assert(lsys_vlive_patch(&l, &sc, r, n, t, g.nalive, t % 2 ? "growing" : NULL) == LSYS_OK);
+      if (t % every == 0) {
+        assert(lsys_vlive_take(&l, f, note) == 1);
+        same(f, &sc);
+        assert(lsys_vlive_take(&l, f, note) == 0);          /* nothing new */
+        assert(f->step == t && f->nmodules == g.nalive);
+        assert(strcmp(note, t % 2 ? "growing" : "") == 0);
+      }
+    }
+    same(f, &sc);
+    assert(g.nalive >= 10 && g.nl == 4 && moved > sc.mesh.nv);
+    s->live = 1;
+    lsys_vsnap_status(s, 0, 59.6, 0, 1, "paused", line, sizeof line);
+    assert(strncmp(line, "tick 12  ", 9) == 0 && strstr(line, "limbs  ") != NULL);
+    assert(strstr(line, "60 fps  paused  wireframe") != NULL);
+    sc.mesh.nv--;                                           /* shrank: not a later state */
+    assert(lsys_vlive_patch(&l, &sc, NULL, 0, 13, 0, NULL) == LSYS_EARG);
+    sc.mesh.nv++;
+    lsys_vlive_reset(&l, 1);                                /* a new post: all again */
+    lsys_mesh_free(&f->sc.mesh);
+    lsys_mesh_init(&f->sc.mesh);
+    assert(lsys_vlive_patch(&l, &sc, NULL, 0, 13, 1, NULL) == LSYS_OK);
+    assert(lsys_vlive_take(&l, f, note) == 1);
+    same(f, &sc);
+    lsys_vlive_free(&l);
+    lsys_limbs_free(&g);
+    lsys_scene_free(&sc);
+  }
+  s->live = 0;
+  lsys_mesh_clear(&f->sc.mesh);
+  s->frames[0].step = 4;
+  s->frames[0].nmodules = 1234567;
+  lsys_vsnap_status(s, 0, 30, 1, 0, "", line, sizeof line);
+  assert(strcmp(line, "step 4  1 234 567 modules  0 triangles  0 lines  30 fps  playing") == 0);
+  lsys_vsnap_free(s);
+  printf("live: ok\n");
+}
 #endif
 
 int main (void) {
@@ -132,6 +239,7 @@ int main (void) {
 #else
   test_pick();
   test_snapshot();
+  test_live();
 #endif
   return 0;
 }

@@ -1,0 +1,212 @@
+-- A growing world shown and drawn (issue 17): `lsys grow FILE --frames DIR` (one camera for
+-- every tick), the live window (#gl, on a private Xvfb: the patches of csrc/gl/vlive.c draw
+-- the same plants as the offscreen renderer), the world's length and view, lsys.render's
+-- `fit` box and scene:look.
+local lsys = require "lsys"
+local core = require "lsys.core"
+local grow = require "lsys.grow"
+local D = require "tests.display"
+
+local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+
+local function run (cmd)
+  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
+  local out = p:read("a")
+  p:close()
+  local code = tonumber(out:match("exit:(%d+)%s*$"))
+  return (out:gsub("exit:%d+%s*$", "")), code
+end
+
+local function tmpdir ()
+  local d = os.tmpname()
+  os.remove(d)
+  assert(os.execute("mkdir -p " .. d))
+  return d
+end
+
+local function write (path, text)
+  local f = assert(io.open(path, "w"))
+  f:write(text)
+  f:close()
+end
+
+-- The pixels of a PNG unlike its top left corner: their count and box {x0, y0, x1, y1}.
+local function plant (path, rows)
+  local px, w, h = core.png_read(path)
+  local br, bg, bb = px:byte(1, 3)
+  local n, x0, y0, x1, y1 = 0, w, h, -1, -1
+  for y = 0, (rows or h) - 1 do
+    for x = 0, w - 1 do
+      local i = 4 * (y * w + x)
+      local r, g, b = px:byte(i + 1, i + 3)
+      if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
+        n = n + 1
+        if x < x0 then x0 = x end
+        if x > x1 then x1 = x end
+        if y < y0 then y0 = y end
+        if y > y1 then y1 = y end
+      end
+    end
+  end
+  return { n = n, box = { x0, y0, x1, y1 }, w = w, h = h }
+end
+
+local DAVISON = "examples/grow/davison.lua"
+
+describe("a world's length and view", function ()
+  it("grows to its length, and says when it has none", function ()
+    local w = grow.world { ticks = 7 }
+    w:plant {}
+    assert.equal(w, w:grow())
+    assert.equal(7, w.ticks)
+    w:grow()
+    assert.equal(7, w.ticks)                        -- grown: nothing more
+    local u = grow.world {}
+    u:plant {}
+    assert.error_matches(function () u:grow() end, "grow: the world has no length")
+    assert.equal(3, u:grow(3).ticks)
+    assert.error_matches(function () grow.world { ticks = 2.5 } end, "'ticks' must be a whole")
+    assert.error_matches(function () grow.world { ticks = -1 } end, "'ticks' must be a finite")
+  end)
+
+  it("takes the look of a view; a bad one is named", function ()
+    local w = grow.world { view = { background = { 1, 1, 1 }, projection = "perspective" } }
+    w:plant {}
+    w:tick(2)
+    local px = lsys.render(w:scene(), { width = 16, height = 16 })
+    assert.equal("\255\255\255\255", px:sub(1, 4))  -- the corner: the world's background
+    assert.error_matches(function () grow.world { view = { colour = 1 } } end,
+      "lsys.grow: world: .*unknown option 'colour'")
+    assert.error_matches(function () grow.world { view = { projection = "fisheye" } } end,
+      "lsys.grow: world: view.projection")
+    assert.error_matches(function () grow.world { view = 3 } end, "'view' must be a table")
+  end)
+end)
+
+describe("lsys.render's fit box", function ()
+  local m = lsys.lsystem { axiom = "F", productions = { F = "F[+F]F" }, steps = 3,
+                           view = { angle = 30 } }
+
+  it("frames the box instead of the scene", function ()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    local sc = m:interpret()
+    local lo, hi = sc:bounds()
+    local a = lsys.render(sc, { width = 120, height = 120 })
+    local b = lsys.render(sc, { width = 120, height = 120,
+                                fit = { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] } })
+    assert.equal(a, b)                              -- its own box: the same picture
+    local dir = tmpdir()
+    lsys.render(sc, { out = dir .. "/big.png", width = 120, height = 120, background = "#ffffff",
+                      fit = { lo[1] - 10, lo[2], lo[3], hi[1] + 10, hi[2] + 20, hi[3] } })
+    lsys.render(sc, { out = dir .. "/own.png", width = 120, height = 120,
+                      background = "#ffffff" })
+    local big, own = plant(dir .. "/big.png"), plant(dir .. "/own.png")
+    assert.is_true(big.n > 0 and big.n < own.n / 4, big.n .. " " .. own.n)
+    assert.is_true(big.box[4] - big.box[2] < (own.box[4] - own.box[2]) / 3)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("checks the box", function ()
+    local sc = m:interpret()
+    assert.error_matches(function () lsys.render(sc, { fit = { 1, 2 } }) end,
+      "opts.fit must be a box {x0, y0, z0, x1, y1, z1} of finite numbers")
+    assert.error_matches(function () lsys.render(sc, { fit = { 0, 0, 0, 1, 0 / 0, 1 } }) end,
+      "of finite numbers")
+    assert.error_matches(function () lsys.render(sc, { fit = { 1, 0, 0, 0, 1, 1 } }) end,
+      "its low corner is above its high one")
+    assert.error_matches(function () sc:look { fit = "x" } end, "scene:look: opts.fit")
+    assert.error_matches(function () sc:look { bogus = 1 } end, "unknown option 'bogus'")
+  end)
+end)
+
+describe("lsys grow --frames", function ()
+  it("writes a picture a tick through one camera: the plants grow in place", function ()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    local dir = tmpdir()
+    local out, code = run(BIN .. " grow " .. DAVISON .. " --frames " .. dir .. "/f --every 10"
+      .. " --ticks 40 --size 240x140")
+    assert.equal(0, code, out)
+    assert.matches("wrote 5 pictures to " .. dir .. "/f", out, 1, true)
+    local boxes = {}
+    for t = 0, 40, 10 do
+      local p = plant(string.format("%s/f/tick-%04d.png", dir, t))
+      assert.equal(240, p.w)
+      boxes[#boxes + 1] = p
+    end
+    for k = 2, #boxes do      -- one camera: the ground stays put while the trees grow
+      assert.is_true(math.abs(boxes[k].box[4] - boxes[1].box[4]) <= 2, k)
+      assert.is_true(boxes[k].n > boxes[k - 1].n, k)
+    end
+    -- the last picture is the grown world drawn through its own box
+    local D5 = dofile(DAVISON)
+    local w = D5.world { ticks = 40 }:grow()
+    local lo, hi = w:scene():bounds()
+    lsys.render(w:scene(), { out = dir .. "/same.png", width = 240, height = 140,
+                             fit = { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] } })
+    local a, b = io.open(dir .. "/same.png", "rb"), io.open(dir .. "/f/tick-0040.png", "rb")
+    assert.is_true(a:read("a") == b:read("a"))
+    a:close() b:close()
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("says what is wrong with its arguments", function ()
+    local out, code = run(BIN .. " grow")
+    assert.equal(2, code)
+    assert.matches("a FILE is required", out, 1, true)
+    out, code = run(BIN .. " grow " .. DAVISON .. " --every 3")
+    assert.equal(2, code)
+    assert.matches("--every applies to --frames", out, 1, true)
+    out, code = run(BIN .. " grow " .. DAVISON .. " --ticks -2 --frames /tmp/x")
+    assert.equal(2, code)
+    assert.matches("--ticks expects a whole number >= 0, got '-2'", out, 1, true)
+    out, code = run(BIN .. " grow " .. DAVISON .. " --frames /tmp/x --rate 3")
+    assert.equal(2, code)
+    assert.matches("--frames draws no window", out, 1, true)
+    local dir = tmpdir()
+    write(dir .. "/nothing.lua", "return 42")
+    out, code = run(BIN .. " grow " .. dir .. "/nothing.lua --frames " .. dir .. "/f")
+    assert.equal(1, code)
+    assert.matches("nothing.lua returned number: a grow file returns a World", out, 1, true)
+    write(dir .. "/bad.lua", [[
+      local grow = require "lsys.grow"
+      local K = grow.kind("k")
+      K:rule("boom", function (limb) if limb:age() == 2 then error("no sap") end end)
+      local w = grow.world { ticks = 5 }
+      w:plant { kind = K }
+      return w]])
+    out, code = run(BIN .. " grow " .. dir .. "/bad.lua --frames " .. dir .. "/g")
+    assert.equal(1, code)
+    assert.matches("rule 'boom' of kind 'k' failed on limb 1 (tick 3): ", out, 1, true)
+    assert.matches("no sap", out, 1, true)
+    write(dir .. "/file", "")
+    out, code = run(BIN .. " grow " .. DAVISON .. " --frames " .. dir .. "/file")
+    assert.equal(1, code)
+    assert.matches("cannot make the directory " .. dir .. "/file: a file is in the way", out,
+      1, true)
+    os.execute("rm -rf " .. dir)
+  end)
+end)
+
+describe("#gl lsys grow in the window", function ()
+  it("grows the plants live and draws them as the offscreen renderer does", function ()
+    local ok, why = D.start()
+    if not ok then return pending(why) end
+    local dir = tmpdir()
+    local out, code = run(D.env .. BIN .. " grow " .. DAVISON .. " --ticks 30 --size 300x180"
+      .. " --screenshot " .. dir .. "/live.png")
+    assert.equal(0, code, out)
+    assert.matches("limbs after 30 ticks; the window drew %d+ frames", out)
+    run(BIN .. " grow " .. DAVISON .. " --ticks 30 --size 300x180 --frames " .. dir .. "/f"
+      .. " --every 30")
+    local live = plant(dir .. "/live.png", 180 - 16)    -- above the status line
+    local off = plant(dir .. "/f/tick-0030.png")
+    assert.is_true(live.n > 200, live.n)
+    for i = 1, 4 do                                     -- one camera: the same box of trees
+      assert.is_true(math.abs(live.box[i] - off.box[i]) <= 3,
+        string.format("corner %d: %d vs %d", i, live.box[i], off.box[i]))
+    end
+    -- the window does not antialias here (Xvfb): its twigs are thinner
+    assert.is_true(live.n > 0.5 * off.n and live.n < 1.5 * off.n, live.n .. " " .. off.n)
+    os.execute("rm -rf " .. dir)
+  end)
+end)
