@@ -408,6 +408,32 @@ describe("lsys.grow errors", function ()
     assert.truthy(errof(w.tick, w, 1.5):find("a whole number of ticks", 1, true))
   end)
 
+  it("keeps a limb's parent fixed (no cycle can be made) and its methods its kind's", function ()
+    local K = grow.kind("k")
+    function K.bloom () return "bloom" end
+    local w = grow.world()
+    local a = w:plant { kind = K }
+    w:tick()
+    local b = a:spawn { angle = 10 }
+    w:tick()
+    local function set (h, k, v) h[k] = v end
+    assert.truthy(errof(set, a, "parent", b)
+      :find("limb 1: 'parent' cannot be assigned: a limb's parent is fixed", 1, true))
+    assert.truthy(errof(set, b, "children", { a }):find("'children' cannot be assigned", 1, true))
+    assert.truthy(errof(set, a, "spawn", 1)
+      :find("limb 1: 'spawn' is a method of kind 'k' and cannot be set", 1, true))
+    assert.truthy(errof(set, a, "bloom", 1):find("'bloom' is a method of kind 'k'", 1, true))
+    assert.truthy(errof(set, a, "_mine", 9):find("'_mine' is internal", 1, true))
+    assert.equal(a, b:parent())                     -- unchanged
+    assert.equal(b, a:children()[1])
+    a.flowering = true                              -- its own data: fine
+    assert.is_true(a.flowering)
+    a.flowering = false
+    assert.is_false(a.flowering)
+    w:tick()
+    assert.equal("bloom", a:bloom())
+  end)
+
   it("checks the C table's arguments and that it and its scene are alive", function ()
     local core = require "lsys.core"
     local T = core.limbs { sides = 5 }

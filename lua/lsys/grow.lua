@@ -27,8 +27,8 @@ local view = require "lsys.view"
 local compile = require "lsys.compile"
 local lmodel = require "lsys.model"
 
-local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall =
-      type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall
+local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall =
+      type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall
 local math, string = math, string
 local format, table = string.format, table
 local floor = math.floor
@@ -71,6 +71,7 @@ function M.kind (name, base)
   local K = setmetatable({ _name = name, _rules = rules, _base = base }, { __index = base })
   K.__index = K
   K.__tostring = Limb.__tostring
+  K.__newindex = Limb.__newindex
   return K
 end
 M.Limb = Limb
@@ -175,6 +176,21 @@ function Limb.rules (K) return K._rules end
 
 function Limb:__tostring ()
   return format("lsys.grow.Limb(%s #%d)", self._name, self._id)
+end
+
+-- A field set on a limb: its own data, except the tree and the kind's methods. A limb's parent
+-- is fixed when it is spawned: assigning one (which could make a cycle) is an error.
+function Limb.__newindex (h, k, v)
+  if k == "parent" or k == "children" or k == "siblings" then
+    fail("limb %d: '%s' cannot be assigned: a limb's parent is fixed when it is spawned "
+      .. "(a new parent could make a cycle); remove the limb and spawn it anew", h._id, k)
+  end
+  local K = getmetatable(h)
+  if type(k) == "string" and (k:sub(1, 1) == "_" or type(K[k]) == "function") then
+    fail("limb %d: '%s' is %s of kind '%s' and cannot be set on a limb", h._id, k,
+      k:sub(1, 1) == "_" and "internal" or "a method", K._name)
+  end
+  rawset(h, k, v)
 end
 
 function Limb:id () return self._id end
