@@ -309,6 +309,15 @@ local PICTURES = {
   { "components/pine.lua", nil, "Fig. 10b, pine",
     "A Hyperpatch bends the trunk and twigs; an isolating FFD above each needle pair keeps "
     .. "the needles undeformed.", width = 320, height = 320 },
+  -- incremental growth after Davison, examples/grow: a world grown to its length
+  { "grow/davison.lua", nil, "Davison's five trees",
+    "The paper's length, thickness and spawning rules (at most 256 limbs a tree, level < 10), "
+    .. "young shoots browning with age, leaves on the upper twigs; 60 ticks.",
+    grow = true, png = "grow/davison.png", width = 480, height = 270 },
+  { "grow/forest.lua", nil, "A forest of 20,000 limbs",
+    "Five trees, a leader and a side branch at each fork rolled by the golden angle, grown "
+    .. "80 ticks; `lsys grow examples/grow/forest.lua` grows it live in the window.",
+    grow = true, png = "grow/forest.png", width = 480, height = 270 },
 }
 
 local function load (file, name)
@@ -337,6 +346,19 @@ for i, p in ipairs(PICTURES) do
     require("lsys.sketch.plot").png(sk, dir .. "/" .. png, { width = 640 })
     rows[#rows + 1] = { png = png, title = title, caption = caption,
                         file = "sketch/" .. file .. ".json", plot = true }
+  elseif wanted(png) and p.grow then
+    -- a grow file's world (lsys.grow), grown to its length
+    local t0 = os.clock()
+    local w = dofile(examples .. "/" .. file).world():grow()
+    local sc = w:scene()
+    assert(require("lsys.core").mkdir(dir .. "/grow"))
+    lsys.render(sc, { out = dir .. "/" .. png, width = math.floor(p.width * size / 480),
+                      height = math.floor(p.height * size / 480) })
+    drawn = drawn + 1
+    io.stderr:write(string.format("[%2d/%d] %-20s %8d limbs %8d triangles  %.2f s\n", i,
+      #PICTURES, png, w:count(), sc.ntriangles, os.clock() - t0))
+    rows[#rows + 1] = { png = png, title = title, caption = caption, file = file,
+                        limbs = w:count(), tris = sc.ntriangles, lines = 0 }
   elseif wanted(png) then
     local m = load(file, name)
     local t0 = os.clock()
@@ -381,6 +403,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Textures (§5, figs. 31, 33, 34)", "cpfg/fig31_a.png", 3 },
   { "Sketches (Anastacio et al. 2009, figs. 5, 7-14)", "sketch/fig7_cone.png", 3 },
   { "Component graphs (Lintermann and Deussen 1999)", "components/fig2_abcd.png", 2 },
+  { "Incremental growth (Davison)", "grow/davison.png", 2 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
@@ -400,7 +423,8 @@ local function section (f, list, cols)
       if r then
         cells[#cells + 1] = string.format("![%s](%s)", r.title, r.png)
         caps[#caps + 1] = r.plot and string.format("**%s.** %s<br>`%s`", r.title,
-          r.caption, r.file) or string.format("**%s.** %s<br>`%s`%s, %d modules, %s",
+          r.caption, r.file) or r.limbs and string.format("**%s.** %s<br>`%s`, %d limbs, "
+          .. "%d triangles", r.title, r.caption, r.file, r.limbs, r.tris) or string.format("**%s.** %s<br>`%s`%s, %d modules, %s",
           r.title, r.caption, r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
           r.tris > 0 and (r.tris .. " triangles") or (r.lines .. " lines"))
       else
