@@ -424,8 +424,9 @@ local function section (f, list, cols)
         cells[#cells + 1] = string.format("![%s](%s)", r.title, r.png)
         caps[#caps + 1] = r.plot and string.format("**%s.** %s<br>`%s`", r.title,
           r.caption, r.file) or r.limbs and string.format("**%s.** %s<br>`%s`, %d limbs, "
-          .. "%d triangles", r.title, r.caption, r.file, r.limbs, r.tris) or string.format("**%s.** %s<br>`%s`%s, %d modules, %s",
-          r.title, r.caption, r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
+          .. "%d triangles", r.title, r.caption, r.file, r.limbs, r.tris)
+          or string.format("**%s.** %s<br>`%s`%s, %d modules, %s", r.title, r.caption,
+          r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
           r.tris > 0 and (r.tris .. " triangles") or (r.lines .. " lines"))
       else
         cells[#cells + 1], caps[#caps + 1] = "", ""
