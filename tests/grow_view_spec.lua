@@ -7,28 +7,9 @@ local core = require "lsys.core"
 local grow = require "lsys.grow"
 local D = require "tests.display"
 
-local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
+local H = require "tests.helper"
 
-local function run (cmd)
-  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
-  local out = p:read("a")
-  p:close()
-  local code = tonumber(out:match("exit:(%d+)%s*$"))
-  return (out:gsub("exit:%d+%s*$", "")), code
-end
-
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p " .. d))
-  return d
-end
-
-local function write (path, text)
-  local f = assert(io.open(path, "w"))
-  f:write(text)
-  f:close()
-end
+local BIN, run, tmpdir, write = H.BIN, H.sh, H.tmpdir, H.write
 
 -- The pixels of a PNG unlike its top left corner: their count and box {x0, y0, x1, y1}.
 local function plant (path, rows)
@@ -103,7 +84,7 @@ describe("lsys.render's fit box", function ()
     local big, own = plant(dir .. "/big.png"), plant(dir .. "/own.png")
     assert.is_true(big.n > 0 and big.n < own.n / 4, big.n .. " " .. own.n)
     assert.is_true(big.box[4] - big.box[2] < (own.box[4] - own.box[2]) / 3)
-    os.execute("rm -rf " .. dir)
+    H.rmdir(dir)
   end)
 
   it("checks the box", function ()
@@ -143,10 +124,8 @@ describe("lsys grow --frames", function ()
     local lo, hi = w:scene():bounds()
     lsys.render(w:scene(), { out = dir .. "/same.png", width = 240, height = 140,
                              fit = { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] } })
-    local a, b = io.open(dir .. "/same.png", "rb"), io.open(dir .. "/f/tick-0040.png", "rb")
-    assert.is_true(a:read("a") == b:read("a"))
-    a:close() b:close()
-    os.execute("rm -rf " .. dir)
+    assert.is_true(H.read(dir .. "/same.png") == H.read(dir .. "/f/tick-0040.png"))
+    H.rmdir(dir)
   end)
 
   it("says what is wrong with its arguments", function ()
@@ -183,7 +162,7 @@ describe("lsys grow --frames", function ()
     assert.equal(1, code)
     assert.matches("cannot make the directory " .. dir .. "/file: a file is in the way", out,
       1, true)
-    os.execute("rm -rf " .. dir)
+    H.rmdir(dir)
   end)
 end)
 
@@ -207,6 +186,6 @@ describe("#gl lsys grow in the window", function ()
     end
     -- the window does not antialias here (Xvfb): its twigs are thinner
     assert.is_true(live.n > 0.5 * off.n and live.n < 1.5 * off.n, live.n .. " " .. off.n)
-    os.execute("rm -rf " .. dir)
+    H.rmdir(dir)
   end)
 end)
