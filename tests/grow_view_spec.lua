@@ -11,26 +11,7 @@ local H = require "tests.helper"
 
 local BIN, run, tmpdir, write = H.BIN, H.sh, H.tmpdir, H.write
 
--- The pixels of a PNG unlike its top left corner: their count and box {x0, y0, x1, y1}.
-local function plant (path, rows)
-  local px, w, h = core.png_read(path)
-  local br, bg, bb = px:byte(1, 3)
-  local n, x0, y0, x1, y1 = 0, w, h, -1, -1
-  for y = 0, (rows or h) - 1 do
-    for x = 0, w - 1 do
-      local i = 4 * (y * w + x)
-      local r, g, b = px:byte(i + 1, i + 3)
-      if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
-        n = n + 1
-        if x < x0 then x0 = x end
-        if x > x1 then x1 = x end
-        if y < y0 then y0 = y end
-        if y > y1 then y1 = y end
-      end
-    end
-  end
-  return { n = n, box = { x0, y0, x1, y1 }, w = w, h = h }
-end
+local plant = H.ink
 
 local DAVISON = "examples/grow/davison.lua"
 

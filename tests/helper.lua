@@ -306,6 +306,31 @@ function H.compare_images (a, b, w, h)
     means[4], H.MEAN_TOL, 100 * bad / n, H.PIXEL_TOL, 100 * H.PIXEL_FRACTION)
 end
 
+--- The pixels of a PNG that differ from its top left corner (the background) by more than 40
+-- in the sum of R, G and B, over its first `rows` rows (all): { mask (mask[y * w + x + 1] =
+-- true), n (their count), box = { x0, y0, x1, y1 } around them, w, h }.
+function H.ink (path, rows)
+  local px, w, h = require("lsys.core").png_read(path)
+  local br, bg, bb = px:byte(1, 3)
+  local mask, n = {}, 0
+  local x0, y0, x1, y1 = w, h, -1, -1
+  for y = 0, (rows or h) - 1 do
+    for x = 0, w - 1 do
+      local i = 4 * (y * w + x)
+      local r, g, b = px:byte(i + 1, i + 3)
+      if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
+        mask[y * w + x + 1] = true
+        n = n + 1
+        if x < x0 then x0 = x end
+        if x > x1 then x1 = x end
+        if y < y0 then y0 = y end
+        if y > y1 then y1 = y end
+      end
+    end
+  end
+  return { mask = mask, n = n, w = w, h = h, box = { x0, y0, x1, y1 } }
+end
+
 --- Asserts that the render px (w x h) matches the golden image tests/golden/NAME.png.
 -- LSYS_UPDATE_GOLDEN=1 writes it instead; on a mismatch the render is kept in $TMPDIR.
 function H.golden (name, px, w, h)

@@ -5,6 +5,7 @@
 -- the reason.
 local core = require "lsys.core"
 local D = require "tests.display"
+local H = require "tests.helper"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
@@ -18,50 +19,7 @@ local function run (cmd)
   return (out:gsub("exit:%d+%s*$", "")), code
 end
 
-local function write (path, text)
-  local f = assert(io.open(path, "w"))
-  f:write(text)
-  f:close()
-end
-
-local function read (path)
-  local f = io.open(path)
-  if f == nil then return nil end
-  local s = f:read("a")
-  f:close()
-  return s
-end
-
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p " .. d))
-  return d
-end
-
--- Pixels of a PNG that differ from its top left corner (the background): a mask
--- (mask[y * w + x + 1] = true), their count, and the box around them.
-local function plant (path, rows)
-  local px, w, h = core.png_read(path)
-  local br, bg, bb = px:byte(1, 3)
-  local mask, n = {}, 0
-  local x0, y0, x1, y1 = w, h, -1, -1
-  for y = 0, (rows or h) - 1 do
-    for x = 0, w - 1 do
-      local i = 4 * (y * w + x)
-      local r, g, b = px:byte(i + 1, i + 3)
-      if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
-        mask[y * w + x + 1] = true
-        n = n + 1
-        if x < x0 then x0 = x end
-        if x > x1 then x1 = x end
-        if y < y0 then y0 = y end
-        if y > y1 then y1 = y end
-      end
-    end
-  end
-  return { mask = mask, n = n, w = w, h = h, box = { x0, y0, x1, y1 } }
-end
+local plant, read, write, tmpdir = H.ink, H.read, H.write, H.tmpdir
 
 -- The model file most specs show: F[+F][-F]F with 45 degree branches, as cylinders.
 local MODEL = [[

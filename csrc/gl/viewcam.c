@@ -20,10 +20,9 @@
 /* ---------------------------------------------------------------------- */
 /* the camera of a view (render.h) */
 
-/* The 8 corners of the scene's bounds (corners); an empty scene (or one with
-** infinite coordinates) is the cube [-1, 1]^3, a single point a cube of
-** size 2 around it. Returns the length of the box's diagonal (> 0). */
-/* The same for the bounds b (lo, hi; NULL: m's, computed). */
+/* The 8 corners of the bounds b (lo, hi), or of m's when b is NULL; empty
+** bounds (or infinite coordinates) are the cube [-1, 1]^3, a single point a
+** cube of size 2 around it. Returns the length of the box's diagonal (> 0). */
 static double cornersof (const lsys_mesh *m, const double *b, double c[8][3], double centre[3]) {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, d[3];
   int i, ok;

@@ -642,7 +642,8 @@ static const luaL_Reg viewer_meta[] = {
 };
 
 static const luaL_Reg viewer_methods[] = {
-  {"post", viewer_post}, {"patch", viewer_patch}, {"poll", viewer_poll}, {"pending", viewer_pending},
+  {"post", viewer_post}, {"patch", viewer_patch}, {"poll", viewer_poll},
+  {"pending", viewer_pending},
   {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
   {"layout", viewer_layout}, {"image", viewer_image}, {"text", viewer_text},
@@ -699,11 +700,11 @@ static int l_pen_devices (lua_State *L) {
 static int l_mkdir (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
   struct stat sb;
-  if (mkdir(path, 0777) != 0 && !(errno == EEXIST && stat(path, &sb) == 0 &&
-                                   S_ISDIR(sb.st_mode))) {
+  int err = mkdir(path, 0777) == 0 ? 0 : errno;
+  if (err != 0 && !(err == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))) {
     lua_pushnil(L);
     lua_pushfstring(L, "cannot make the directory %s: %s", path,
-                    errno == EEXIST ? "a file is in the way" : strerror(errno));
+                    err == EEXIST ? "a file is in the way" : strerror(err));
     return 2;
   }
   lua_pushboolean(L, 1);

@@ -231,12 +231,13 @@ HELP.grow = [[
 usage: lsys grow FILE [--ticks N] [--seed S] [--rate R] [--size WxH] [--screenshot OUT.png]
        lsys grow FILE --frames DIR [--every K] [--ticks N] [--seed S] [--size WxH]
 
-Incremental growth (Davison 2006; docs/grow.md). FILE is a Lua file that returns a world of
-lsys.grow, planted (`return w` after w:plant{...}; `lsys.grow.world{ticks = N}` says how
-long it grows), or a table with a world(opts) function that makes one (as
-examples/grow/davison.lua). The plants grow tick by tick in the window: each tick changes
-the limbs in place and the window receives only what changed. The camera frames the plants'
-final size (the world is grown once headless first), so they grow in place.
+Incremental growth (Davison, "Incremental rules for growing plants"; docs/grow.md). FILE is a
+Lua file that returns a world of lsys.grow, planted (`return w` after w:plant{...};
+`lsys.grow.world{ticks = N}` says how long it grows), or a table with a world(opts) function
+that makes one (as examples/grow/davison.lua). The plants grow tick by tick in the window:
+each tick changes the limbs in place and the window receives only what changed. The camera
+frames the plants' final size (the world is grown once headless first), so they grow in
+place.
 
 In the window: space pauses and resumes (at the end, grows on), right grows one tick, + and
 - change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace

@@ -15,8 +15,8 @@ local grow = require "lsys.grow"
 local core = require "lsys.core"
 local host = require("lsys.program").host
 
-local type, pcall, tostring, error, require =
-      type, pcall, tostring, error, require
+local type, pcall, tostring, error, require, getmetatable =
+      type, pcall, tostring, error, require, getmetatable
 local math, string, os, table = math, string, os, table
 local table_remove = table.remove
 local format = string.format
@@ -31,8 +31,7 @@ local function clock ()
   return f ~= nil and f() or os.clock()
 end
 
-local function isworld (x) return type(x) == "table" and grow.World.tick ~= nil and
-  type(x._T) == "userdata" and x.tick == grow.World.tick end
+local function isworld (x) return getmetatable(x) == grow.World end
 
 --- From what a grow file returned (`x`; `where` names the file in errors): a function that
 -- makes a fresh world at each call. A World returned as such is the first one made; the
@@ -120,9 +119,12 @@ local RATES = { 1, 2, 5, 10, 20, 30, 60, math.huge }   -- ticks a second; huge: 
 function M.live (make, opts)
   opts = opts or {}
   local viewer = require "lsys.viewer"
-  local box, grown
-  if opts.fit ~= false then box, grown = M.final(make, opts.ticks) end
-  local full = grown and grown:count()     -- the limbs at the end: the rate at full size
+  local box, full          -- the final size, and the limbs then: the rate at full size
+  if opts.fit ~= false then
+    local grown
+    box, grown = M.final(make, opts.ticks)
+    full = grown:count()
+  end
   local w = make()
   local n = length(w, opts.ticks)
   local ri = #RATES
