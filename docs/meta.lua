@@ -1977,8 +1977,11 @@ local grow = {}
 function grow.kind(name, base) end
 
 --- A world of plants: seed (1), max_limbs (100,000), sides (8), shoot_color, leaf_color,
---- ticks (its length), view (how it is looked at).
----@param opts? {seed?: integer, max_limbs?: integer, sides?: integer, shoot_color?: string|number[], leaf_color?: string|number[], ticks?: integer, view?: table}
+--- ticks (its length), view (how it is looked at), leaf (every leaf's shape: "quad", a
+--- surface file's name, an lsys.Surface, an organ, an lsys.Scene, or { surface | file,
+--- precision = {s, t} }), dir (where file names are looked up; default the calling file's
+--- folder).
+---@param opts? {seed?: integer, max_limbs?: integer, sides?: integer, shoot_color?: string|number[], leaf_color?: string|number[], ticks?: integer, view?: table, leaf?: string|lsys.Surface|lsys.Organ|lsys.Scene|table, dir?: string}
 ---@return lsys.grow.World
 function grow.world(opts) end
 

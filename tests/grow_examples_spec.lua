@@ -1,5 +1,6 @@
 -- The incremental growth examples (issue 17): examples/grow/davison.lua (the paper's five
--- trees) and examples/grow/side_by_side.lua (one plant as an L-system and as limbs).
+-- trees), examples/grow/leafy.lua (leaves as a surface) and examples/grow/side_by_side.lua
+-- (one plant as an L-system and as limbs).
 local lsys = require "lsys"
 local core = require "lsys.core"
 local H = require "tests.helper"
@@ -53,6 +54,28 @@ describe("examples/grow/davison.lua", function ()
     if not core.has_render then return pending("lsys was built without OSMesa") end
     local w = D.world { trees = 3, ticks = 40 }:grow()
     H.golden("grow_davison", lsys.render(w:scene(), { width = 200, height = 120 }))
+  end)
+end)
+
+describe("examples/grow/leafy.lua", function ()
+  local D = dofile(DIR .. "leafy.lua")
+
+  it("gives one tree the cpfg leaf surface, 162 vertices a leaf", function ()
+    local w = D.world { ticks = 60 }:grow()
+    local leaves, limbs = 0, w:count()
+    for _, l in ipairs(w:limbs()) do leaves = leaves + l:leaves() end
+    assert.equal(209, limbs)                      -- seed 3, one tree
+    assert.equal(4 * 108, leaves)
+    assert.equal(limbs * 16 + leaves * 162, w:scene().nvertices)
+    assert.equal(limbs * 16 + leaves * 256, w:scene().ntriangles)
+    w = D.world { ticks = 60, precision = { 2, 2 } }:grow()
+    assert.equal(limbs * 16 + leaves * 2 * 9, w:scene().nvertices)
+  end)
+
+  it("draws it like its golden image", function ()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    local w = D.world { ticks = 40 }:grow()
+    H.golden("grow_leafy", lsys.render(w:scene(), { width = 160, height = 160 }))
   end)
 end)
 

@@ -183,6 +183,127 @@ describe("lsys.grow ticks", function ()
   end)
 end)
 
+-- A flat unit square in x, y (one Bezier patch) as a cpfg surface file's text.
+local function square ()
+  local rows = {}
+  for r = 0, 3 do
+    local pts = {}
+    for c = 0, 3 do pts[#pts + 1] = string.format("%g %g 0", c / 3, r / 3) end
+    rows[#rows + 1] = table.concat(pts, " ")
+  end
+  return "0 1 0 1 0 0\nPRECISION S: 1 T: 1\nCONTACT POINT X: 0 Y: 0 Z: 0\n"
+    .. "END POINT X: 0 Y: 0 Z: 0\nHEADING X: 0 Y: 1 Z: 0\nUP X: 0 Y: 0 Z: 1\nSIZE: 1\n"
+    .. "sq\nTOP COLOR: 0 DIFFUSE: 0 BOTTOM COLOR: 0 DIFFUSE: 0\n"
+    .. "AL: ~ A: ~ AR: ~\nL: ~ R: ~\nBL: ~ B: ~ BR: ~\n" .. table.concat(rows, "\n") .. "\n"
+end
+
+-- A world of one limb 1 long and thin as a line, with one leaf of size 2 at its tip.
+local function oneleaf (leaf)
+  local K = grow.kind("k")
+  K:rule("leaf", function (l) if l:age() == 0 then l:add_leaves(1, { size = 2 }) end end)
+  local w = grow.world { leaf = leaf }
+  w:plant { kind = K, length = 1, radius = 0 }
+  w:tick(1)
+  return w
+end
+
+describe("lsys.grow leaf shapes", function ()
+  local core = require "lsys.core"
+  local S50, C50 = math.sin(math.rad(50)), math.cos(math.rad(50))
+
+  it("places a surface leaf: contact at the tip, heading 50 degrees off the limb", function ()
+    local w = oneleaf(core.surface_parse(square(), "square"))
+    local sc = w:scene()
+    assert.equal(16 + 4, sc.nvertices)            -- an 8-sided tube, a 1 x 1 patch grid
+    assert.equal(16 + 2, sc.ntriangles)
+    -- leaf x -> -z, y -> (sin 50, cos 50, 0): the square's corners are the tip, the tip
+    -- - 2 z, the tip + 2 (sin 50, cos 50, 0) and the sum of both
+    local lo, hi = sc:bounds()
+    local want = { { 0, 0, -2 }, { 2 * S50, 1 + 2 * C50, 0 } }
+    for k = 1, 3 do
+      assert.is_true(near(lo[k], want[1][k], 1e-6), "lo " .. k)
+      assert.is_true(near(hi[k], want[2][k], 1e-6), "hi " .. k)
+    end
+    -- the quad for comparison: 4 vertices a leaf, its far point 2 along the leaf's y
+    local q = oneleaf(nil):scene()
+    assert.equal(16 + 4, q.nvertices)
+    local _, qhi = q:bounds()
+    assert.is_true(near(qhi[2], 1 + 2 * C50, 1e-6))
+  end)
+
+  it("reads a surface file next to the file making the world, at its precision", function ()
+    local base = oneleaf(nil):scene().nvertices - 4
+    -- examples/cpfg/surfaces/leaf.s: 2 patches at 8 x 8 lines a patch = 2 x 81 vertices
+    local w = oneleaf("../examples/cpfg/surfaces/leaf.s")
+    assert.equal(base + 162, w:scene().nvertices)
+    assert.equal(16 + 256, w:scene().ntriangles)
+    w = oneleaf { file = "../examples/cpfg/surfaces/leaf.s", precision = { 2, 3 } }
+    assert.equal(base + 2 * 12, w:scene().nvertices)
+    assert.equal(16 + 2 * 12, w:scene().ntriangles)
+    -- a file's leaves drop and grow again in the same ranges
+    local l = w:limb(1)
+    w._T:begin() l:drop_leaves() w._T:finish()
+    assert.equal(0, l:leaves())
+    w._T:begin() l:add_leaves(1, { size = 1 }) w._T:finish()
+    assert.equal(base + 2 * 12, w:scene().nvertices)
+  end)
+
+  it("takes a sketched organ and a Scene as the shape", function ()
+    local organ = require("lsys.sketch.organ").build {
+      top = { left = { { 100, 300 }, { 100, 100 } }, right = { { 200, 300 }, { 200, 100 } } } }
+    local w = oneleaf(organ)
+    local n = organ:surface():info().patches
+    assert.is_true(w:scene().ntriangles > 16 + 2 * n)
+    -- a Scene: a triangle drawn by the turtle in its plane (y up, x across)
+    local m = require("lsys").lsystem { axiom = "{.f(1)+(90)f(0.5).}" }
+    local tri = m:interpret(m:derive())
+    assert.equal(1, tri.ntriangles)
+    local sc = oneleaf(tri):scene()
+    assert.equal(16 + tri.nvertices, sc.nvertices)
+    assert.equal(16 + 1, sc.ntriangles)
+    local tlo, thi = tri:bounds()
+    local lo, hi = sc:bounds()
+    -- shape x -> world -z, shape y -> (sin 50, cos 50, 0), scaled by 2 from the tip
+    assert.is_true(near(lo[3], math.min(0, -2 * thi[1]), 1e-6))
+    assert.is_true(near(hi[3], math.max(0, -2 * tlo[1]), 1e-6))
+    assert.is_true(near(hi[2], 1 + 2 * C50 * thi[2], 1e-6))
+  end)
+
+  it("names what is wrong with a leaf shape", function ()
+    local msg = errof(function () local w = grow.world { leaf = "no-such.s" } return w end)
+    assert.truthy(msg:find("world: leaf: cannot open 'tests/no-such.s'", 1, true), msg)
+    assert.truthy(msg:find("looked up in 'tests', the folder of the file making the world",
+                           1, true), msg)
+    -- through a tail call (or pcall) the caller cannot be seen: the current folder, and how
+    msg = errof(function () return grow.world { leaf = "no-such.s" } end)
+    assert.truthy(msg:find("cannot open 'no-such.s'", 1, true), msg)
+    assert.truthy(msg:find("the current folder (give the world dir = lsys.here()", 1, true), msg)
+    msg = errof(grow.world, { leaf = "no-such.s", dir = "/nowhere" })
+    assert.truthy(msg:find("cannot open '/nowhere/no-such.s'", 1, true), msg)
+    assert.truthy(msg:find("looked up in '/nowhere', the world's dir", 1, true), msg)
+    assert.truthy(errof(grow.world, { dir = 1 }):find("'dir' must be a folder's name", 1, true))
+    msg = errof(grow.world, { leaf = 3 })
+    assert.truthy(msg:find("an lsys.Surface, an organ, an lsys.Scene or a file name expected, "
+                           .. "got number", 1, true), msg)
+    local sq = core.surface_parse(square())
+    msg = errof(grow.world, { leaf = { surface = sq, size = 1 } })
+    assert.truthy(msg:find("world: leaf: unknown option 'size'", 1, true), msg)
+    msg = errof(grow.world, { leaf = { surface = sq, precision = { 0, 4 } } })
+    assert.truthy(msg:find("'precision' must be whole numbers 1..256", 1, true), msg)
+    msg = errof(grow.world, { leaf = { precision = { 2, 2 } } })
+    assert.truthy(msg:find('"quad", a surface file name', 1, true), msg)
+    msg = errof(grow.world, { leaf = { surface = sq, precision = { 256, 256 } } })
+    assert.truthy(msg:find("more than 65536 vertices (256 x 256 lines a patch)", 1, true), msg)
+    -- the shape is set before any leaf: the C table refuses it after
+    local w = oneleaf(nil)
+    msg = errof(w._T.set_leaf, w._T, nil)
+    assert.truthy(msg:find("leaves are made already", 1, true), msg)
+    local empty = require("lsys").lsystem { axiom = "F" }
+    msg = errof(grow.world, { leaf = empty:interpret(empty:derive()) })
+    assert.truthy(msg:find("world: leaf: the scene has no triangles", 1, true), msg)
+  end)
+end)
+
 describe("lsys.grow rules run in C", function ()
   -- The paper's rules with their conditions in C: the same plants as the Lua functions.
   local function cdavison (K, cap)

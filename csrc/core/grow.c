@@ -18,6 +18,22 @@ enum { C_NEW = 1, C_LEN = 2, C_RAD = 4, C_ROT = 8, C_COL = 16, C_LEAF = 32, C_XF
 #define LEAF_TILT 50.0                   /* degrees between a leaf and its limb's heading */
 #define GOLDEN 137.50776405003785        /* degrees between successive leaves around it */
 
+/* The built-in leaf shape (lsys_limbs_set_leaf): a rhombus 1 long, 0.5 wide. */
+static const float QUAD_POS[12] = {0, 0, 0, -0.25f, 0.5f, 0, 0, 1, 0, 0.25f, 0.5f, 0};
+static const float QUAD_NRM[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+static const float QUAD_UV[8] = {0.5f, 0, 1, 0.5f, 0.5f, 1, 0, 0.5f};
+static const uint32_t QUAD_TRI[6] = {0, 1, 2, 0, 2, 3};
+
+static void quadleaf (lsys_limbs *g) {
+  g->sh_pos = QUAD_POS;
+  g->sh_nrm = QUAD_NRM;
+  g->sh_uv = QUAD_UV;
+  g->sh_tri = QUAD_TRI;
+  g->sh_nv = 4;
+  g->sh_nt = 2;
+  g->sh_mem = NULL;
+}
+
 void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
   int k;
   memset(g, 0, sizeof *g);
@@ -29,6 +45,7 @@ void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
     g->ring[2 * k + 1] = sin(2 * PI * k / g->sides);
   }
   g->lf_free = -1;
+  quadleaf(g);
 }
 
 void lsys_limbs_free (lsys_limbs *g) {
@@ -37,7 +54,7 @@ void lsys_limbs_free (lsys_limbs *g) {
     g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
     g->t0, g->col, g->leaf, g->nleaves, g->lf_limb, g->lf_next, g->lf_k, g->lf_v0, g->lf_t0,
     g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount, g->pcount0,
-    g->pending, g->qmap
+    g->pending, g->qmap, g->sh_mem
   };
   size_t k;
   for (k = 0; k < sizeof arrs / sizeof arrs[0]; k++) LSYS_FREE(arrs[k]);
@@ -107,6 +124,41 @@ int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
   vcopy(g->ppos + 3 * g->np, pos);
   g->pcount[g->np] = g->pcount0[g->np] = 0;
   *id = (int32_t)g->np++;
+  return LSYS_OK;
+}
+
+int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape) {
+  size_t k, nv, nt;
+  float *f;
+  uint32_t *t;
+  if (g->nl > 0) return LSYS_EBUSY;
+  if (shape == NULL) {
+    LSYS_FREE(g->sh_mem);
+    quadleaf(g);
+    return LSYS_OK;
+  }
+  nv = shape->nv;
+  nt = shape->nt;
+  if (nt == 0 || nv > LSYS_LIMBS_MAXLEAFV || nt > 4 * (size_t)LSYS_LIMBS_MAXLEAFV)
+    return LSYS_EARG;
+  for (k = 0; k < 3 * nt; k++) if (shape->tri[k] >= nv) return LSYS_EARG;
+  for (k = 0; k < 3 * nv; k++)
+    if (!isfinite(shape->pos[k]) || !isfinite(shape->nrm[k])) return LSYS_EARG;
+  f = (float *)LSYS_MALLOC(8 * nv * sizeof *f + 3 * nt * sizeof *t);
+  if (f == NULL) return LSYS_ENOMEM;
+  t = (uint32_t *)(f + 8 * nv);
+  memcpy(f, shape->pos, 3 * nv * sizeof *f);
+  memcpy(f + 3 * nv, shape->nrm, 3 * nv * sizeof *f);
+  memcpy(f + 6 * nv, shape->uv, 2 * nv * sizeof *f);
+  memcpy(t, shape->tri, 3 * nt * sizeof *t);
+  LSYS_FREE(g->sh_mem);
+  g->sh_mem = f;
+  g->sh_pos = f;
+  g->sh_nrm = f + 3 * nv;
+  g->sh_uv = f + 6 * nv;
+  g->sh_tri = t;
+  g->sh_nv = (uint32_t)nv;
+  g->sh_nt = (uint32_t)nt;
   return LSYS_OK;
 }
 
@@ -348,11 +400,11 @@ static int pushrange (uint32_t **a, size_t *n, size_t *cap, uint32_t v0, uint32_
   return LSYS_OK;
 }
 
-/* A range of nv vertices and nt triangles for a new limb or leaf: a freed one,
-** or appended with its triangles (the vertex pattern of 'kind' below). */
+/* A range of vertices and triangles for a new limb or leaf: a freed one, or
+** appended with its triangles (a cylinder's, or the leaf shape's). */
 static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
   lsys_mesh *m = &g->sc->mesh;
-  uint32_t nv = leaf ? 4 : 2 * (uint32_t)g->sides, nt = leaf ? 2 : 2 * (uint32_t)g->sides, k;
+  uint32_t nv = leaf ? g->sh_nv : 2 * (uint32_t)g->sides, nt = leaf ? g->sh_nt : nv, k;
   uint32_t *fl = leaf ? g->freeleaf : g->freelimb;
   size_t *nf = leaf ? &g->nfreeleaf : &g->nfreelimb;
   int r;
@@ -373,8 +425,11 @@ static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
   memset(m->tex + m->nv, 0, nv * sizeof *m->tex);
   m->nv += nv;
   if (leaf) {
-    lsys_mesh_tri(m, *v0, *v0 + 1, *v0 + 2);
-    lsys_mesh_tri(m, *v0, *v0 + 2, *v0 + 3);
+    memcpy(m->uv + 2 * (size_t)*v0, g->sh_uv, 2 * nv * sizeof *m->uv);
+    for (k = 0; k < nt; k++) {
+      const uint32_t *t = g->sh_tri + 3 * k;
+      lsys_mesh_tri(m, *v0 + t[0], *v0 + t[1], *v0 + t[2]);
+    }
   } else {
     uint32_t S = (uint32_t)g->sides;
     for (k = 0; k < S; k++) {           /* around, and 0 at the base, 1 at the tip */
@@ -388,16 +443,6 @@ static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
     }
   }
   return LSYS_OK;
-}
-
-static void setvertex (lsys_mesh *m, uint32_t v, const double p[3], const double n[3],
-                       double s, double t, uint16_t col) {
-  float *P = m->pos + 3 * (size_t)v, *N = m->nrm + 3 * (size_t)v;
-  P[0] = (float)p[0]; P[1] = (float)p[1]; P[2] = (float)p[2];
-  N[0] = (float)n[0]; N[1] = (float)n[1]; N[2] = (float)n[2];
-  m->uv[2 * (size_t)v] = (float)s;
-  m->uv[2 * (size_t)v + 1] = (float)t;
-  m->col[v] = col;
 }
 
 /* The cylinder of limb i from its base to its tip: positions, normals and
@@ -425,30 +470,36 @@ static void writelimb (lsys_limbs *g, int32_t i) {
   lsys_scene_touch(g->sc, v0, 2 * S);
 }
 
-/* Leaf l: a quad from the tip of its limb, its k-th leaf turned by the golden
-** angle about the heading and tilted LEAF_TILT degrees from it. */
+/* Leaf l: the leaf shape at the tip of its limb, scaled by its size, its y
+** tilted LEAF_TILT degrees from the limb's heading towards the k-th leaf's
+** direction (the golden angle apart about the heading), its z the leaf's
+** normal. */
 static void writeleaf (lsys_limbs *g, int32_t l) {
   lsys_mesh *m = &g->sc->mesh;
   int32_t i = g->lf_limb[l];
   const double *R = g->wm + 9 * i, *H = R + 3, *F = R + 6;
   double phi = GOLDEN * g->lf_k[l] * RAD, tilt = LEAF_TILT * RAD, s = g->lf_size[l];
-  double tip[3], radial[3], d[3], w[3], n[3], p[3];
-  uint32_t v0 = g->lf_v0[l];
+  double tip[3], radial[3], y[3], w[3], x[3], z[3];
+  uint32_t v0 = g->lf_v0[l], k, nv = g->sh_nv;
   uint16_t c = g->lf_col[l];
   lsys_limbs_tip(g, i, tip);
   vlin(radial, R, cos(phi), F, sin(phi));
-  vlin(d, H, cos(tilt), radial, sin(tilt));
+  vlin(y, H, cos(tilt), radial, sin(tilt));
   vlin(w, R, -sin(phi), F, cos(phi));
-  vcross(n, d, w);
-  vnorm(n);
-  setvertex(m, v0, tip, n, 0.5, 0, c);
-  vlin(p, tip, 1, d, 0.5 * s); vlin(p, p, 1, w, 0.25 * s);
-  setvertex(m, v0 + 1, p, n, 1, 0.5, c);
-  vlin(p, tip, 1, d, s);
-  setvertex(m, v0 + 2, p, n, 0.5, 1, c);
-  vlin(p, tip, 1, d, 0.5 * s); vlin(p, p, 1, w, -0.25 * s);
-  setvertex(m, v0 + 3, p, n, 0, 0.5, c);
-  lsys_scene_touch(g->sc, v0, 4);
+  vcross(z, y, w);
+  vnorm(z);
+  vcross(x, y, z);
+  for (k = 0; k < nv; k++) {
+    const float *a = g->sh_pos + 3 * k, *b = g->sh_nrm + 3 * k;
+    float *P = m->pos + 3 * (size_t)(v0 + k), *N = m->nrm + 3 * (size_t)(v0 + k);
+    int j;
+    for (j = 0; j < 3; j++) {
+      P[j] = (float)(tip[j] + s * (a[0] * x[j] + a[1] * y[j] + a[2] * z[j]));
+      N[j] = (float)(b[0] * x[j] + b[1] * y[j] + b[2] * z[j]);
+    }
+    m->col[v0 + k] = c;
+  }
+  lsys_scene_touch(g->sc, v0, nv);
 }
 
 static void recolor (lsys_limbs *g, int32_t i) {
@@ -498,7 +549,7 @@ static int dropleaves (lsys_limbs *g, int32_t i) {
   int32_t l = g->leaf[i];
   while (l >= 0) {
     int32_t nx = g->lf_next[l];
-    degenerate(g, g->lf_v0[l], 4);
+    degenerate(g, g->lf_v0[l], g->sh_nv);
     if (pushrange(&g->freeleaf, &g->nfreeleaf, &g->capfreeleaf, g->lf_v0[l], g->lf_t0[l])
         != LSYS_OK) return LSYS_ENOMEM;
     g->lf_limb[l] = -1;

@@ -19,8 +19,9 @@
 **
 ** Geometry lives in a scene (scene.h) the caller owns: each limb owns a fixed
 ** range of vertices and triangles (a cylinder of 'sides' sides: 2 sides
-** vertices, 2 sides triangles), each leaf another (a quad: 4 vertices, 2
-** triangles, lit on both sides); lsys_limbs_update rewrites in place the
+** vertices, 2 sides triangles), each leaf another (the world's leaf shape,
+** lsys_limbs_set_leaf: by default a quad of 4 vertices and 2 triangles; lit
+** on both sides); lsys_limbs_update rewrites in place the
 ** ranges of limbs that changed or moved, marks them dirty in the scene
 ** (lsys_scene_touch), and appends ranges for new limbs. A removed limb's or
 ** leaf's range is made degenerate and reused by the next one made. Once the
@@ -39,6 +40,7 @@
 #include "scene.h"
 
 #define LSYS_LIMBS_MAXSIDES 64
+#define LSYS_LIMBS_MAXLEAFV 65536     /* vertices of a leaf shape */
 
 /* What a new limb is. */
 typedef struct lsys_limbspec {
@@ -95,6 +97,11 @@ typedef struct lsys_limbs {
   float *lf_size;
   uint16_t *lf_col;
   int32_t lf_free;
+  /* the leaf shape, in the leaf's frame (lsys_limbs_set_leaf) */
+  const float *sh_pos, *sh_nrm, *sh_uv;
+  const uint32_t *sh_tri;
+  uint32_t sh_nv, sh_nt;
+  void *sh_mem;           /* what they point into when not the built-in quad */
   /* reusable geometry ranges of removed limbs and leaves: v0, t0 pairs */
   uint32_t *freelimb, *freeleaf;
   size_t nfreelimb, capfreelimb, nfreeleaf, capfreeleaf;
@@ -115,6 +122,19 @@ typedef struct lsys_limbs {
 ** LSYS_LIMBS_MAXSIDES). */
 void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides);
 void lsys_limbs_free (lsys_limbs *g);
+
+/*
+** The shape of every leaf: the triangles of 'shape' (positions, normals and
+** uv; its colours and textures are not used), in the leaf's own frame: y
+** along the leaf from where it is attached, z its normal, x = y cross z
+** across it; a leaf of size s is the shape scaled by s. Copied. Only before
+** the first leaf is made (LSYS_EBUSY after), so that every leaf's vertex
+** range has one size; NULL restores the quad (x in [-0.25, 0.25], y in
+** [0, 1], z = 0). LSYS_EARG when 'shape' has no triangles, more than
+** LSYS_LIMBS_MAXLEAFV vertices, an index out of range or a coordinate that
+** is not finite; LSYS_ENOMEM.
+*/
+int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape);
 
 /* A new plant at 'pos'; its index in *id. LSYS_OK or LSYS_ENOMEM. */
 int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id);

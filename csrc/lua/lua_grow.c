@@ -6,6 +6,10 @@
 **   core.limbs{sides = 8, max_limbs = 0} -> Limbs      (with a Scene of its own)
 **   T:scene() -> Scene                  T:update()     writes what changed into it
 **   T:plant(x, y, z) -> p
+**   T:set_leaf(shape [, ns, nt])      every leaf's shape (before the first leaf):
+**       nil (the quad), a Surface (tessellated ns x nt a patch, default its
+**       precision; its heading along the leaf, its up the leaf's normal, SIZE
+**       one leaf size) or a Scene (its triangles; y along the leaf, z normal)
 **   T:add(parent | 0, plant, at, ax, ay, az, angle, roll, length, radius, r, g, b)
 **       -> id, or nil and "cap" when max_limbs limbs live
 **   T:begin()  T:finish()               a tick; T:ticking() -> boolean; T:started() -> n0
@@ -164,6 +168,43 @@ static int limbs_scene (lua_State *L) {
 
 static int limbs_update (lua_State *L) {
   return status(L, lsys_limbs_update(checklimbs(L)), "update");
+}
+
+static int limbs_set_leaf (lua_State *L) {
+  lsys_limbs *g = checklimbs(L);
+  const lsys_surface *sf = (const lsys_surface *)luaL_testudata(L, 2, SURFACE_T);
+  lsys_mesh m;
+  int r;
+  if (g->nl > 0) return luaL_error(L, "leaf shape: leaves are made already (set it first)");
+  if (lua_isnoneornil(L, 2)) return status(L, lsys_limbs_set_leaf(g, NULL), "leaf shape");
+  if (sf == NULL) {
+    const lsys_lscene *S = (const lsys_lscene *)luaL_testudata(L, 2, SCENE_T);
+    if (S == NULL || !S->inited) return luaL_typeerror(L, 2, "lsys.Surface or open lsys.Scene");
+    if (S->sc.mesh.nt == 0) return luaL_error(L, "leaf shape: the scene has no triangles");
+    r = lsys_limbs_set_leaf(g, &S->sc.mesh);
+    if (r == LSYS_EARG)
+      return luaL_error(L, "leaf shape: the scene has more than %d vertices or a point that is "
+                        "not finite", LSYS_LIMBS_MAXLEAFV);
+    return status(L, r, "leaf shape");
+  } else {
+    lua_Integer ns = luaL_optinteger(L, 3, sf->precision_s);
+    lua_Integer nt = luaL_optinteger(L, 4, sf->precision_t);
+    lsys_place pl;
+    luaL_argcheck(L, ns >= 1 && ns <= LSYS_SURFACE_MAXDIV, 3, "1 to 256 lines a patch");
+    luaL_argcheck(L, nt >= 1 && nt <= LSYS_SURFACE_MAXDIV, 4, "1 to 256 lines a patch");
+    memset(&pl, 0, sizeof pl);
+    pl.H[1] = 1; pl.U[2] = 1; pl.L[0] = 1;       /* L = H x U: the leaf's x */
+    pl.scale = 1;
+    pl.uv_surface = 1;
+    lsys_mesh_init(&m);
+    r = lsys_surface_mesh(&m, sf, &pl, (int)ns, (int)nt);
+    if (r == LSYS_OK) r = lsys_limbs_set_leaf(g, &m);
+    lsys_mesh_free(&m);
+    if (r == LSYS_EARG || r == LSYS_ELIMIT)
+      return luaL_error(L, "leaf shape: the surface makes more than %d vertices (%d x %d lines "
+                        "a patch); give fewer lines", LSYS_LIMBS_MAXLEAFV, (int)ns, (int)nt);
+    return status(L, r, "leaf shape");
+  }
 }
 
 static int limbs_plant (lua_State *L) {
@@ -653,7 +694,8 @@ static int limbs_where (lua_State *L) {
 /* }====================================================================== */
 
 static const luaL_Reg limbs_methods[] = {
-  {"scene", limbs_scene}, {"update", limbs_update}, {"plant", limbs_plant}, {"add", limbs_add},
+  {"scene", limbs_scene}, {"update", limbs_update}, {"plant", limbs_plant},
+  {"set_leaf", limbs_set_leaf}, {"add", limbs_add},
   {"begin", limbs_begin}, {"finish", limbs_finish}, {"ticking", limbs_ticking},
   {"started", limbs_started}, {"length", limbs_length}, {"radius", limbs_radius},
   {"age", limbs_age}, {"level", limbs_level}, {"plant_of", limbs_plant_of},

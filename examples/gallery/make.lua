@@ -318,6 +318,10 @@ local PICTURES = {
     "Five trees, a leader and a side branch at each fork rolled by the golden angle, grown "
     .. "80 ticks; `lsys grow examples/grow/forest.lua` grows it live in the window.",
     grow = true, png = "grow/forest.png", width = 480, height = 270 },
+  { "grow/leafy.lua", nil, "Leaves as a surface",
+    "One of Davison's trees whose leaves are the cpfg leaf surface (examples/cpfg/surfaces/"
+    .. "leaf.s, 162 vertices a leaf) instead of quads, rewritten in place as they grow.",
+    grow = true, png = "grow/leafy.png", width = 320, height = 320 },
 }
 
 local function load (file, name)
@@ -403,7 +407,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Textures (§5, figs. 31, 33, 34)", "cpfg/fig31_a.png", 3 },
   { "Sketches (Anastacio et al. 2009, figs. 5, 7-14)", "sketch/fig7_cone.png", 3 },
   { "Component graphs (Lintermann and Deussen 1999)", "components/fig2_abcd.png", 2 },
-  { "Incremental growth (Davison)", "grow/davison.png", 2 },
+  { "Incremental growth (Davison)", "grow/davison.png", 3 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath

@@ -12,8 +12,8 @@
 --
 --   build/bin/lsys grow examples/grow/davison.lua           grows them in the window
 --
--- As a module (the tests, the gallery): M.world{ ticks =, trees =, seed = } -> a planted
--- world; its :grow() grows it.
+-- As a module (the tests, the gallery, examples/grow/leafy.lua): M.world{ ticks =, trees =,
+-- seed =, leaf = } -> a planted world; its :grow() grows it.
 local lsys = require "lsys"
 local grow = lsys.grow
 
@@ -50,10 +50,12 @@ function M.kind ()
 end
 
 --- A world of `trees` (5) trees 6 apart, planted, to grow `ticks` (60) ticks from `seed`
--- (3): `M.world():grow()`; `lsys grow examples/grow/davison.lua` grows it in the window.
+-- (3), its leaves of shape `leaf` (quads; see lsys.grow.world): `M.world():grow()`;
+-- `lsys grow examples/grow/davison.lua` grows it in the window.
 function M.world (opts)
   opts = opts or {}
-  local w = grow.world { seed = opts.seed or 3, ticks = opts.ticks or 60 }
+  local w = grow.world { seed = opts.seed or 3, ticks = opts.ticks or 60, leaf = opts.leaf,
+                         view = opts.view }
   local Tree = M.kind()
   local n = opts.trees or 5
   for k = 1, n do

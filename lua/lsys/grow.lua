@@ -29,7 +29,7 @@ local lmodel = require "lsys.model"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall =
       type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall
-local math, string = math, string
+local math, string, debug = math, string, debug
 local format, table = string.format, table
 local floor = math.floor
 local _ENV = nil
@@ -357,14 +357,71 @@ local World = {}
 World.__index = World
 
 local WORLD = { seed = true, max_limbs = true, sides = true, shoot_color = true,
-                leaf_color = true, ticks = true, view = true }
+                leaf_color = true, ticks = true, view = true, leaf = true, dir = true }
+
+local function typename (x)
+  local mt = getmetatable(x)
+  return type(mt) == "table" and rawget(mt, "__name") or type(x)
+end
+
+-- The world's leaf shape from its `leaf` option (see M.world); a surface file's name is
+-- looked up in `dir` (nil: the current folder), which `whence` describes.
+local function leafshape (T, leaf, dir, whence)
+  if leaf == nil or leaf == "quad" then return end
+  local spec = leaf
+  if type(leaf) ~= "table" or typename(leaf) ~= "table" then spec = { surface = leaf } end
+  for k in pairs(spec) do
+    if k ~= "surface" and k ~= "file" and k ~= "precision" then
+      fail("world: leaf: unknown option '%s'", tostring(k))
+    end
+  end
+  local shape = spec.surface
+  if type(shape) == "string" then spec.file, shape = shape, nil end
+  if shape == nil then
+    if type(spec.file) ~= "string" then
+      fail("world: leaf: \"quad\", a surface file name, an lsys.Surface, an organ or an "
+           .. "lsys.Scene expected")
+    end
+    local path = view.resolve(dir, spec.file)
+    local ok, s = pcall(core.surface_load, path)
+    if not ok then
+      fail("world: leaf: %s (looked up in %s)", (tostring(s):gsub("^lsys%.[%w_]+: ", "")),
+           whence)
+    end
+    shape = s
+  elseif typename(shape) == "lsys.Organ" then
+    shape = shape:surface()
+  elseif typename(shape) ~= "lsys.Surface" and typename(shape) ~= "lsys.Scene" then
+    fail("world: leaf: an lsys.Surface, an organ, an lsys.Scene or a file name expected, "
+         .. "got %s", typename(shape))
+  end
+  local ns, nt
+  if spec.precision ~= nil then
+    local p = spec.precision
+    if type(p) ~= "table" or not (isnum(p[1]) and isnum(p[2])) then
+      fail("world: leaf: 'precision' must be {s, t} (lines a patch)")
+    end
+    ns, nt = p[1], p[2]
+    if ns ~= floor(ns) or nt ~= floor(nt) or ns < 1 or nt < 1 or ns > 256 or nt > 256 then
+      fail("world: leaf: 'precision' must be whole numbers 1..256")
+    end
+  end
+  local ok, err = pcall(T.set_leaf, T, shape, ns, nt)
+  if not ok then fail("world: %s", (tostring(err):gsub("^leaf shape", "leaf"))) end
+end
 
 --- A world of plants. opts: `seed` (1: plant k's generator is seeded seed + k - 1 unless
 -- its plant call gives one), `max_limbs` (100,000 living limbs in all: spawn returns nil
 -- past it), `sides` (8: the limbs' cylinders), `shoot_color` (new limbs; "#5a9e32"),
 -- `leaf_color` ("#3f8f2a"), `ticks` (how long it grows: `world:grow()`, `lsys grow`; the
 -- field `length`), `view` (how to look at it: background, light, projection, direction,
--- up, viewpoint, target, fov, twist, zoom, as in a model's view).
+-- up, viewpoint, target, fov, twist, zoom, as in a model's view), `leaf` (every leaf's
+-- shape: "quad" (the default rhombus), a cpfg surface file's name (looked up from the folder
+-- of the file that makes the world), an lsys.Surface, a sketched organ, an lsys.Scene (its
+-- triangles, y along the leaf, z its normal), or { surface | file, precision = {s, t} }),
+-- `dir` (where file names are looked up: default the folder of the Lua file calling
+-- grow.world, or the current folder when that cannot be seen, as through `return
+-- grow.world{...}`).
 function M.world (opts)
   opts = opts or {}
   if type(opts) ~= "table" then fail("world: an options table expected") end
@@ -394,6 +451,18 @@ function M.world (opts)
     local ok, err = pcall(w._T:scene().look, w._T:scene(), opts.view)
     if not ok then fail("world: %s", (tostring(err):gsub("^scene:look: opts%.", "view."))) end
   end
+  local dir, whence = opts.dir
+  if dir ~= nil then
+    if type(dir) ~= "string" then fail("world: 'dir' must be a folder's name") end
+    whence = format("'%s', the world's dir", dir)
+  else
+    -- the folder of the Lua file calling grow.world (unknown through a tail call)
+    local src = not debug.getinfo(1, "t").istailcall and debug.getinfo(2, "S").source or ""
+    dir = src:match("^@(.*)/[^/]*$") or (src:match("^@") and ".")
+    whence = dir and format("'%s', the folder of the file making the world", dir)
+      or "the current folder (give the world dir = lsys.here() to look next to your file)"
+  end
+  leafshape(w._T, opts.leaf, dir, whence)
   return w
 end
 

@@ -6,7 +6,7 @@
 ** colours interned once; removed limbs' and leaves' ranges reused; a tick
 ** allocates nothing once the arrays have grown; a chain of 200,000 limbs
 ** removed without recursion; every allocation failure reported without a
-** leak.
+** leak; a leaf shape of the caller's placed, scaled and reused.
 */
 #undef NDEBUG
 #include <assert.h>
@@ -262,8 +262,108 @@ static void retry (void) {
   }
 }
 
+/* A leaf shape: a pentagon 'roof' of 5 vertices and 3 triangles, one
+** vertex off the leaf's plane (z). */
+static void pentagon (lsys_mesh *m) {
+  static const float P[15] = {0, 0, 0, 0.4f, 0.5f, 0, 0.2f, 1, 0.1f, -0.2f, 1, 0, -0.4f, 0.5f, 0};
+  const double up[3] = {0, 0, 1};
+  uint32_t k;
+  lsys_mesh_init(m);
+  assert(lsys_mesh_reserve(m, 5, 3) == LSYS_OK);
+  for (k = 0; k < 5; k++) {
+    const double p[3] = {P[3 * k], P[3 * k + 1], P[3 * k + 2]};
+    lsys_mesh_vertex(m, p, up, k, 0, 0, 0);
+  }
+  for (k = 0; k < 3; k++) lsys_mesh_tri(m, 0, k + 1, k + 2);
+}
+
+static double vdist (const double a[3], const double b[3]) {
+  return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])
+              + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static void leafshape (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  lsys_mesh m;
+  const double origin[3] = {0, 0, 0};
+  int32_t pl, a;
+  lsys_limbspec s = spec(-1, 0, 1, 0.1);
+  uint32_t k, v0, nv;
+  long f;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  pentagon(&m);
+  /* bad shapes are refused and leave the quad */
+  m.tri[4] = 5;
+  assert(lsys_limbs_set_leaf(&g, &m) == LSYS_EARG);
+  m.tri[4] = 2;
+  m.pos[7] = NAN;
+  assert(lsys_limbs_set_leaf(&g, &m) == LSYS_EARG);
+  m.pos[7] = 1;
+  m.nt = 0;
+  assert(lsys_limbs_set_leaf(&g, &m) == LSYS_EARG && g.sh_nv == 4);
+  m.nt = 3;
+  for (f = 0; f < 3; f++) {                        /* out of memory: nothing changes */
+    failat = nalloc + f;
+    if (lsys_limbs_set_leaf(&g, &m) == LSYS_OK) break;
+    assert(g.sh_nv == 4 && g.sh_mem == NULL);
+  }
+  failat = -1;
+  assert(g.sh_nv == 5 && g.sh_nt == 3);
+  assert(lsys_limbs_set_leaf(&g, NULL) == LSYS_OK && g.sh_nv == 4);   /* the quad again */
+  assert(lsys_limbs_set_leaf(&g, &m) == LSYS_OK && g.sh_nv == 5);
+  m.pos[0] = 9;                                    /* the shape was copied */
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+  assert(lsys_limbs_add(&g, &s, &a) == LSYS_OK);
+  assert(lsys_limbs_add_leaves(&g, a, 2, 0.5, GREEN) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(sc.mesh.nv == 16 + 2 * 5 && sc.mesh.nt == 16 + 2 * 3);
+  assert(lsys_limbs_set_leaf(&g, NULL) == LSYS_EBUSY);          /* leaves exist */
+  for (k = 0; k < 2; k++) {
+    double tip[3] = {0, 1, 0}, p[5][3], e1[3], e3[3], nrm[3];
+    uint32_t j, t0 = g.lf_t0[k];
+    v0 = g.lf_v0[k];
+    for (j = 0; j < 5; j++) vertex(&sc, v0 + j, p[j]);
+    assert(near(p[0][0], 0, 1e-7) && near(p[0][1], 1, 1e-7) && near(p[0][2], 0, 1e-7));
+    /* sizes scale the shape: |P - tip| = 0.5 |shape point| */
+    assert(near(vdist(p[1], tip), 0.5 * sqrt(0.16 + 0.25), 1e-6));
+    assert(near(vdist(p[2], tip), 0.5 * sqrt(0.04 + 1 + 0.01), 1e-6));
+    /* the leaf's y (the midpoint of vertices 2 and 3 minus z) is 50 degrees off +y */
+    vlin(e1, p[1], 0.5, p[4], 0.5);
+    vlin(e1, e1, 1, tip, -1);
+    assert(near(acos(e1[1] / vlen(e1)) * 180 / PI, LEAF_TILT, 1e-4));
+    /* z is the normal: vertex 3 lies in the leaf's plane, vertex 2 0.05 off it */
+    vlin(e1, p[1], 1, tip, -1);
+    vlin(e3, p[3], 1, tip, -1);
+    vcross(nrm, e1, e3);
+    vnorm(nrm);
+    for (j = 0; j < 3; j++) assert(near(sc.mesh.nrm[3 * (v0 + 2) + j], nrm[j], 1e-5));
+    vlin(e1, p[2], 1, tip, -1);
+    assert(near(vdot(e1, nrm), 0.05, 1e-6));
+    for (j = 0; j < 5; j++)
+      assert(sc.mesh.uv[2 * (v0 + j)] == (float)j && sc.mesh.twosided[v0 + j]);
+    for (j = 0; j < 3; j++) {                      /* the shape's triangles, in its range */
+      const uint32_t *t = sc.mesh.tri + 3 * (t0 + j);
+      assert(t[0] == v0 && t[1] == v0 + j + 1 && t[2] == v0 + j + 2);
+    }
+  }
+  /* dropped leaves collapse all 5 vertices; new ones take their ranges */
+  nv = (uint32_t)sc.mesh.nv;
+  v0 = g.lf_v0[0];
+  assert(lsys_limbs_begin(&g) == LSYS_OK && lsys_limbs_drop_leaves(&g, a) == LSYS_OK);
+  assert(lsys_limbs_end(&g) == LSYS_OK);
+  for (k = 1; k < 5; k++) assert(!memcmp(sc.mesh.pos + 3 * v0, sc.mesh.pos + 3 * (v0 + k), 12));
+  assert(lsys_limbs_add_leaves(&g, a, 2, 0.5, GREEN) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK && sc.mesh.nv == nv && g.nleaves[a] == 2);
+  lsys_mesh_free(&m);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
 int main (void) {
   geometry();
+  leafshape();
   ticks();
   noalloc();
   chain();
