@@ -1,7 +1,7 @@
 -- A growing world shown and drawn (issue 17): `lsys grow FILE --frames DIR` (one camera for
 -- every tick), the live window (#gl, on a private Xvfb: the patches of csrc/gl/vlive.c draw
--- the same plants as the offscreen renderer), the world's length and view, lsys.render's
--- `fit` box and scene:look.
+-- the same plants as the offscreen renderer; its growth keys pressed through xdotool), the
+-- world's length and view, lsys.render's `fit` box and scene:look.
 local lsys = require "lsys"
 local core = require "lsys.core"
 local grow = require "lsys.grow"
@@ -167,6 +167,83 @@ describe("#gl lsys grow in the window", function ()
     end
     -- the window does not antialias here (Xvfb): its twigs are thinner
     assert.is_true(live.n > 0.5 * off.n and live.n < 1.5 * off.n, live.n .. " " .. off.n)
+    H.rmdir(dir)
+  end)
+end)
+
+describe("#gl the growth keys", function ()
+  local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
+  -- a script growing one tree 5 ticks a second and logging each key's effect
+  local SCRIPT = [[
+local gv = require "lsys.growview"
+local D = dofile("examples/grow/davison.lua")
+local log = assert(io.open(arg[1], "w"))
+gv.live(function () return D.world { trees = 1, ticks = 400 } end, {
+  rate = 5, fit = false, width = 240, height = 160, title = "lsys: growth keys",
+  on_key = function (k, s)
+    log:write(string.format("%s %d %s %s\n", k, s.ticks, tostring(s.playing), s.rate))
+    log:flush()
+  end,
+})
+log:write("closed\n")
+log:close()
+]]
+
+  it("pause, step, faster, slower and start again, through real key presses", function ()
+    local ok, why = D.start()
+    if not ok then return pending(why) end
+    if not D.have("xdotool") then return pending("xdotool is not installed (./setup.sh does)") end
+    local dir = tmpdir()
+    write(dir .. "/keys.lua", SCRIPT)
+    local log = dir .. "/keys.txt"
+    os.execute(D.env .. "timeout " .. 60 * SLOW .. " " .. BIN .. " " .. dir .. "/keys.lua "
+      .. log .. " >" .. dir .. "/out.txt 2>&1 &")
+    local win = D.env .. "timeout " .. 10 * SLOW
+      .. " xdotool search --sync --name 'lsys: growth keys' "
+    local lines = {}
+    -- presses a key and waits for its line in the log
+    local function key (k)
+      assert.truthy(os.execute(win .. "windowfocus --sync %1 key " .. k .. " >/dev/null 2>&1"))
+      for _ = 1, 50 * SLOW do
+        local all = {}
+        for line in (H.read(log) or ""):gmatch("[^\n]+") do all[#all + 1] = line end
+        if #all > #lines then
+          lines = all
+          local name, t, playing, rate = all[#all]:match("^(%S+) (%d+) (%S+) (%S+)$")
+          return { key = name, ticks = tonumber(t), playing = playing == "true",
+                   rate = tonumber(rate) }
+        end
+        D.sleep(0.1)
+      end
+      error("no line in the log for key " .. k)
+    end
+    D.sleep(1)                                        -- a few ticks grow
+    local paused = key("space")
+    assert.equal("space", paused.key)
+    assert.is_false(paused.playing)
+    D.sleep(0.6)                                      -- 3 ticks' time: paused, none grows
+    local one = key("Right")
+    assert.same({ key = "right", ticks = paused.ticks + 1, playing = false, rate = 5 }, one)
+    assert.equal(paused.ticks + 2, key("Right").ticks)
+    assert.equal(10, key("KP_Add").rate)              -- 5 -> 10 ticks a second
+    assert.equal(20, key("equal").rate)               -- = is + unshifted
+    local slower = key("minus")
+    assert.equal(10, slower.rate)
+    assert.equal(paused.ticks + 2, slower.ticks)      -- still paused
+    local going = key("space")
+    assert.is_true(going.playing)
+    D.sleep(0.5)                                      -- 10 a second: about 5 ticks
+    local again = key("BackSpace")
+    assert.same({ key = "backspace", ticks = 0, playing = true, rate = 10 }, again)
+    local resumed = key("space")                      -- pause the new world
+    assert.is_false(resumed.playing)
+    assert.is_true(resumed.ticks < paused.ticks + 2 + 5, resumed.ticks)
+    os.execute(win .. "windowfocus --sync %1 key Escape >/dev/null 2>&1")
+    for _ = 1, 50 * SLOW do
+      if (H.read(log) or ""):find("closed", 1, true) then break end
+      D.sleep(0.1)
+    end
+    assert.truthy((H.read(log) or ""):find("closed\n", 1, true), H.read(dir .. "/out.txt"))
     H.rmdir(dir)
   end)
 end)

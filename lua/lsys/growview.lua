@@ -110,8 +110,9 @@ local RATES = { 1, 2, 5, 10, 20, 30, 60, math.huge }   -- ticks a second; huge: 
 --- Grows the world in the window, live, until the window is closed. opts: `ticks`, `rate`
 -- (ticks a second; default: as fast as the window draws each one), `width`, `height`,
 -- `title`, `screenshot` (a PNG path: grow to the end, save the window's picture, close),
--- `on_tick(world)`, `fit` (false: frame the plants as they are, without growing them once
--- first). Returns { ticks, limbs, drawn, fps, seconds, full, drawms, screenshot }: the
+-- `on_tick(world)`, `on_key(key, state)` (after a growth key was handled: state { ticks,
+-- limbs, playing, rate }), `fit` (false: frame the plants as they are, without growing them
+-- once first). Returns { ticks, limbs, drawn, fps, seconds, full, drawms, screenshot }: the
 -- ticks grown, the limbs then; while growing to the end, the pictures the window drew, their
 -- rate and the time taken; `full` the same from the tick the world first had its final
 -- number of limbs to the end ({ ticks, drawn, seconds, fps, limbs }); `drawms` the window's
@@ -170,9 +171,11 @@ function M.live (make, opts)
     elseif k == "backspace" then
       w, playing, onward, run = make(), true, false, {}
       show()
-      return
     else return end
-    send()
+    if k ~= "backspace" then send() end
+    if opts.on_key then
+      opts.on_key(k, { ticks = w.ticks, limbs = w:count(), playing = playing, rate = rate })
+    end
   end
   show()
   while true do
