@@ -104,18 +104,22 @@ describe("right context", function()
     assert.equal("A[D]C", derive("A[D]C", "A > [B]C --> X", 1))
   end)
 
-  it("leaves a named branch at ] even when the branch goes on (S > G[H]M, ABOP p. 32)", function()
-    assert.equal("ABC[DE][XG[HI[JK]L]MNO]",
+  it("matches ] literally: ABOP p. 32's S > G[H]M needs = in cpfg (S > G[H=]M)", function()
+    -- ABOP fig. 1.24 reads G[H]M as matching the branch [HI[JK]L]; cpfg (and lsys) compare
+    -- the pattern's ] with the I that follows H, and write the rest of the branch as =
+    assert.equal("ABC[DE][SG[HI[JK]L]MNO]",
       derive("ABC[DE][SG[HI[JK]L]MNO]", "BC < S > G[H]M --> X", 1))
+    assert.equal("ABC[DE][XG[HI[JK]L]MNO]",
+      derive("ABC[DE][SG[HI[JK]L]MNO]", "BC < S > G[H=]M --> X", 1))
   end)
 
   it("leaves the current branch through an explicit ] in the pattern (C > ]D in A[BC]D)", function()
     assert.equal("A[BX]D", derive("A[BC]D", "C > ]D --> X", 1))
   end)
 
-  it("skips the rest of the branch at an explicit ] (B > C]D in A[BC]D)", function()
+  it("does not skip the rest of the branch at an explicit ] (B > C]D in A[BCE]D)", function()
     assert.equal("A[XC]D", derive("A[BC]D", "B > C]D --> X", 1))
-    assert.equal("A[XCE]D", derive("A[BCE]D", "B > C]D --> X", 1))
+    assert.equal("A[BCE]D", derive("A[BCE]D", "B > C]D --> X", 1))
   end)
 
   it("matches a multi-module right context", function()
@@ -125,6 +129,64 @@ describe("right context", function()
 
   it("matches a right context module with parameters and binds its formals", function()
     assert.equal("A(5)B(3)", derive("A(2)B(3)", "A(x) > B(y) --> A(x+y)", 1))
+  end)
+end)
+
+-- Every case below was run through cpfg (vlab 9bf820d, built by ../shared/tools/cpfg-build.sh)
+-- and lsys gives cpfg's string: the right context is one linear scan (cpfg's RconDiff).
+describe("right context as cpfg matches it", function()
+  local CASES = {
+    -- a [ in the pattern matches only the next branch: no search among siblings
+    { "A[B][C]D", "A > [C]D", "A[B][C]D" },
+    { "A[D][B]C", "A > [B]C", "A[D][B]C" },
+    { "A[B][E][C]D", "A > [B][C]D", "A[B][E][C]D" },
+    { "AB[E][C]D", "A > B[C]D", "AB[E][C]D" },
+    { "A[D][B]C", "A > [B][D]C", "A[D][B]C" },
+    -- unnamed branches before the next named module are still skipped
+    { "A[B][D]C", "A > [B]C", "X[B][D]C" },
+    { "A[B][D]C", "A > [B][D]C", "X[B][D]C" },
+    -- a ] matches a literal ]: it does not skip the rest of a branch
+    { "A[BCE]D", "B > C]D", "A[BCE]D" },
+    { "A[BE]C", "A > [B]C", "A[BE]C" },
+    { "A[B[C]D]E", "C > ]]E", "A[B[C]D]E" },
+    { "A[BC[E]]D", "C > ]D", "A[BX[E]]D" },       -- the unnamed [E] is skipped
+    -- = moves to the ] that ends the current branch
+    { "A[BCE]D", "B > =]D", "A[XCE]D" },
+    { "A[BCE]D", "B > C=]D", "A[XCE]D" },
+    { "F[+D][-D]", "F > [=][-D=]", "X[+D][-D]" },
+    { "A[B][C]D", "A > [=][C]D", "X[B][C]D" },
+    { "A[B]C", "A > [B=]C", "X[B]C" },
+    { "A[B]C", "A > [B=]=C", "A[B]C" },          -- the second = goes to the string's end
+    { "ABC", "A > B=C", "ABC" },
+    -- an unfinished pattern branch
+    { "A[B]", "A > [B", "X[B]" },
+    { "A[B]C", "A > [B]", "X[B]C" },
+  }
+  for _, c in ipairs(CASES) do
+    it(c[2] .. " on " .. c[1], function()
+      assert.equal(c[3], derive(c[1], c[2] .. " --> X", 1))
+    end)
+  end
+
+  it("skips ignored modules, never brackets (ignore: +)", function()
+    local IGN = {
+      { "A+[+B]C", "A > [B]C", "X+[+B]C" },
+      { "A+[+B]+C", "A > [B]C", "X+[+B]+C" },
+      { "A[B]+C", "A > [B]C", "X[B]+C" },
+      { "A+B[C]D", "A > B[C]D", "X+B[C]D" },
+      { "A[B+]C", "A > [B]C", "X[B+]C" },
+      { "A[B+]C", "B > ]C", "A[X+]C" },
+      { "A[+B][C]D", "A > [C]D", "A[+B][C]D" },
+    }
+    for _, c in ipairs(IGN) do
+      local m = lsys.lsystem { axiom = c[1], productions = c[2] .. " --> X", ignore = "+" }
+      assert.equal(c[3], tostring(m:derive(1)), c[2] .. " on " .. c[1])
+    end
+  end)
+
+  it("takes = with parameters as a module like any other", function()
+    assert.equal("X=(1)B", derive("A=(1)B", "A > =(x)B --> X", 1))
+    assert.equal("AB=(1)", derive("AB=(1)", "A > =(x) --> X", 1))    -- not a skip
   end)
 end)
 

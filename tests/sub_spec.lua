@@ -60,3 +60,39 @@ describe("sub-L-systems", function()
     assert.equal("A(3)?(2,1)A(100)$", tostring(m:derive(2)))
   end)
 end)
+
+-- Checked against cpfg (vlab 9bf820d): a cut stops at the $ closing its sub-L-system, and an
+-- L-system already active is not entered again ("Recursive call to Sub-L-system").
+describe("sub-L-systems and cut, as cpfg", function()
+  local function sub (axiom, rules, n)
+    return tostring(lsys.lsystem { axiom = axiom, sub = { [2] = { productions = rules } } }
+      :derive(n))
+  end
+
+  it("stop a cut inside a sub-L-system at its $, which stays", function()
+    assert.equal("B?(2,1)C$E", sub("B?(2,1)CAD$E", "A --> %", 2))
+    -- a nested ?( ... $ inside the cut part is cut whole; the next $ stops it
+    assert.equal("B$F", tostring(lsys.lsystem { axiom = "B%C?(2,1)A$E$F",
+      sub = { [2] = { productions = "A --> H" } } }:derive(1)))
+    -- a ] that comes first stops it as before
+    assert.equal("B[?(2,1)C]$E", sub("B[?(2,1)CA]$E", "A --> %", 2))
+  end)
+
+  it("stop a cut at a $ even outside any sub-L-system, as cpfg does", function()
+    assert.equal("B$E", tostring(lsys.lsystem { axiom = "B%CA$E" }:derive(2)))
+  end)
+
+  it("refuse to enter an L-system that is active already", function()
+    local ok, err = pcall(sub, "B?(2,1)CAD$E", "A --> ?(0,1)F$", 2)
+    assert.is_false(ok)
+    assert.truthy(tostring(err):find("recursive call to sub-L-system 0 (module 4): it is "
+      .. "active already (0 is the main L-system)", 1, true), tostring(err))
+    ok, err = pcall(sub, "B?(2,1)CA?(2,1)D$$E", "A --> B", 1)
+    assert.is_false(ok)
+    assert.truthy(tostring(err):find("recursive call to sub-L-system 2 (module 5): it is "
+      .. "active already", 1, true), tostring(err))
+    -- the same id again after its $ is not recursion
+    assert.equal("B?(2,1)CB$?(2,1)B$", sub("B?(2,1)CA$?(2,1)A$", "A --> B", 1))
+  end)
+end)
+

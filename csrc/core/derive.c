@@ -14,9 +14,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "derive.h"
-
-#define NONE UINT32_MAX
+#include "derive_impl.h"
 
 /* Parameters of strings that have none: a string without parameters may have
 ** no pool at all, and even 'NULL + 0' is undefined behaviour. */
@@ -262,157 +260,6 @@ static int compileset (lsys_model *m, lsys_ruleset *s) {
   return LSYS_OK;
 }
 
-/* ---------------------------------------------------------------------- */
-/* A view of the string being matched: codes, parameters, and for contexts
-** the bracket matches and per-module parameter offsets. */
-typedef struct view {
-  const uint16_t *code;
-  const double *par;
-  size_t n;
-  const uint32_t *match;   /* NULL when no context tables were built */
-  const uint32_t *poff;
-  const lsys_skip *skip;
-  int ring;
-} view;
-
-static int buildtables (lsys_model *m, const lsys_lstring *s) {
-  size_t i, off = 0;
-  if (s->n >= NONE) return LSYS_ELIMIT;
-  if (m->matchcap < s->n + 1) {
-    size_t cap = m->matchcap;
-    uint32_t *mt = m->match, *po = m->poff;
-    size_t cap2 = cap;
-    int st;
-    if ((st = lsys_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt, &m->meter)) != LSYS_OK)
-      return st;
-    m->match = mt;
-    if ((st = lsys_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po, &m->meter)) != LSYS_OK)
-      return st;
-    m->poff = po;
-    m->matchcap = cap < cap2 ? cap : cap2;
-  }
-  /* the open brackets are pushed on the match array itself: match[k] of an
-  ** open '[' temporarily links to the previous open one */
-  {
-    uint32_t top = NONE;
-    for (i = 0; i < s->n; i++) {
-      uint32_t sym = LSYS_CSYM(s->code[i]);
-      if (off > NONE) return LSYS_ELIMIT;
-      m->poff[i] = (uint32_t)off;
-      off += LSYS_CNP(s->code[i]);
-      m->match[i] = NONE;
-      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; }
-      else if (sym == LSYS_SYM_RBR && top != NONE) {
-        uint32_t prev = m->match[top];
-        m->match[top] = (uint32_t)i;
-        m->match[i] = top;
-        top = prev;
-      }
-    }
-    while (top != NONE) { uint32_t prev = m->match[top]; m->match[top] = NONE; top = prev; }
-    m->poff[s->n] = (uint32_t)off;
-  }
-  return LSYS_OK;
-}
-
-static inline int skipped (const view *v, uint32_t sym) {
-  int in;
-  if (v->skip == NULL || sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) return 0;
-  in = (v->skip->bits[sym >> 3] >> (sym & 7)) & 1;
-  return v->skip->consider ? !in : in;
-}
-
-/* Left context: scans left from 'i', skipping whole branches to the left
-** and climbing out of the current one; fills the lc parameters of 'args'. */
-static int matchleft (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
-                      double *args) {
-  long long j = (long long)i - 1;
-  size_t steps = 0;
-  double *a = args + r->lcargs;
-  uint32_t k;
-  for (k = r->nlc; k-- > 0;) {
-    const lsys_patmod *pm = &m->pat[r->lc + k];
-    for (;;) {
-      uint32_t sym;
-      if (j < 0) {
-        if (!v->ring || v->n == 0) return 0;
-        j = (long long)v->n - 1;
-      }
-      if (++steps > v->n) return 0;
-      sym = LSYS_CSYM(v->code[j]);
-      if (sym == LSYS_SYM_RBR) {
-        if (v->match[j] == NONE) return 0;
-        j = (long long)v->match[j] - 1;
-      }
-      else if (sym == LSYS_SYM_LBR || skipped(v, sym)) j--;
-      else break;
-    }
-    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
-    a -= pm->np;
-    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
-    j--;
-  }
-  return 1;
-}
-
-/* Right context from pattern module 'k' at string position 'j'; 'a' is where
-** the parameters of pattern module 'k' go. A '[' in the pattern tries the
-** sibling branches at that point in turn; a ']' skips the rest of the
-** current branch. */
-static int matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
-                       uint32_t k, double *a, size_t *steps) {
-  while (k < r->nrc) {
-    const lsys_patmod *pm = &m->pat[r->rc + k];
-    if (pm->sym == LSYS_SYM_LBR) {
-      for (;;) {
-        while (j < v->n && !(LSYS_CSYM(v->code[j]) == LSYS_SYM_LBR) &&
-               LSYS_CSYM(v->code[j]) != LSYS_SYM_RBR && skipped(v, LSYS_CSYM(v->code[j])))
-          j++;
-        if (j >= v->n || LSYS_CSYM(v->code[j]) != LSYS_SYM_LBR) return 0;
-        if (++(*steps) > 4 * v->n + 64) return 0;
-        if (matchright(m, v, j + 1, r, k + 1, a, steps)) return 1;
-        if (v->match[j] == NONE) return 0;
-        j = v->match[j] + 1;
-      }
-    }
-    if (pm->sym == LSYS_SYM_RBR) {
-      while (j < v->n) {
-        uint32_t sym = LSYS_CSYM(v->code[j]);
-        if (sym == LSYS_SYM_RBR) break;
-        if (sym == LSYS_SYM_LBR) {
-          if (v->match[j] == NONE) return 0;
-          j = v->match[j] + 1;
-        }
-        else j++;
-      }
-      if (j >= v->n) return 0;
-      j++; k++;
-      continue;
-    }
-    for (;;) {
-      uint32_t sym;
-      if (j >= v->n) {
-        if (!v->ring || v->n == 0) return 0;
-        j = 0;
-      }
-      if (++(*steps) > 4 * v->n + 64) return 0;
-      sym = LSYS_CSYM(v->code[j]);
-      if (sym == LSYS_SYM_LBR) {
-        if (v->match[j] == NONE) return 0;
-        j = v->match[j] + 1;
-      }
-      else if (sym == LSYS_SYM_RBR) return 0;
-      else if (skipped(v, sym)) j++;
-      else break;
-    }
-    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
-    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
-    a += pm->np;
-    j++; k++;
-  }
-  return 1;
-}
-
 /* Writes the successor of 'r' into 'out'. */
 static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
                  const double *args, const double *vals) {
@@ -474,14 +321,13 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
     for (b = s->start[sym], e = s->start[sym + 1]; b < e; b++) {
       const lsys_rule *r = &m->rules[s->byp[b]];
       double *args, *vals, w;
-      size_t steps = 0;
       if (r->pred_np != np) continue;
       if (needscratch(m, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
       args = m->args;
       vals = args + r->nargs;
-      if (r->nlc && (v->match == NULL || !matchleft(m, v, i, r, args))) continue;
+      if (r->nlc && (v->match == NULL || !lsys_matchleft(m, v, i, r, args))) continue;
       if (r->nrc && (v->match == NULL ||
-                     !matchright(m, v, i + 1, r, 0, args + r->lcargs + np, &steps)))
+                     !lsys_matchright(m, v, i + 1, r, args + r->lcargs + np)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
       if (r->vm != NULL) {
@@ -626,16 +472,20 @@ static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_
   return LSYS_OK;
 }
 
-/* A cut % at module i: skips to the unmatched ']' (kept) or the end of
-** 'src', advancing *p over the parameters; returns the index before the ']'
-** (the loop's increment lands on it). */
+/* A cut % at module i: skips to the unmatched ']' or the '$' that closes
+** the sub-L-system the cut is in (either kept; as cpfg, a '$' with no
+** '?(...)' after the cut ends it even outside a sub-L-system), or the end of
+** 'src', advancing *p over the parameters; returns the index before the
+** stop (the loop's increment lands on it). */
 static size_t skipcut (const lsys_lstring *src, size_t i, size_t *p) {
-  size_t depth = 0, n = src->n;
+  size_t depth = 0, subs = 0, n = src->n;
   *p += LSYS_CNP(src->code[i]);
   for (i++; i < n; i++) {
     uint32_t s = LSYS_CSYM(src->code[i]);
     if (s == LSYS_SYM_LBR) depth++;
     else if (s == LSYS_SYM_RBR && depth-- == 0) break;
+    else if (s == LSYS_SYM_SUB && LSYS_CNP(src->code[i]) > 0) subs++;
+    else if (s == LSYS_SYM_SUBEND && subs-- == 0) break;
     *p += LSYS_CNP(src->code[i]);
   }
   return i - 1;
@@ -646,11 +496,17 @@ static size_t skipcut (const lsys_lstring *src, size_t i, size_t *p) {
 static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ruleset **sets,
                       int *nsets, view *v) {
   int sub;
+  size_t k;
   if (sym == LSYS_SYM_SUB) {
     sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
     if (sub < 0 || (findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
       return lsys_seterror(&m->err, LSYS_ERULE, i,
                            "sub-L-system %g is not defined (module %zu)", idd, i + 1);
+    for (k = 0; k < m->nsub && (uint32_t)sub != m->substack[k]; k++) {}
+    if (sub == 0 || k < m->nsub)      /* as cpfg: an active L-system is not entered again */
+      return lsys_seterror(&m->err, LSYS_ERULE, i, "recursive call to sub-L-system %d "
+                           "(module %zu): it is active already%s", sub, i + 1,
+                           sub == 0 ? " (0 is the main L-system)" : "");
     if (pushsub(m, (uint32_t)sub) != LSYS_OK) return fail(m, LSYS_ENOMEM, i);
   }
   else
@@ -671,9 +527,10 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = n; v.ring = m->ring;
+  v.eq = lsys_eqsym(m);
   v.skip = findskip(m, 0);
   if (hasctx) {
-    if ((st = buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
+    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
     v.match = m->match;
     v.poff = m->poff;
   }
@@ -837,9 +694,10 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
+  v.eq = lsys_eqsym(m);
   v.skip = findskip(m, 0);
   if (hasctx) {
-    if ((st = buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
+    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
     v.match = m->match;
     v.poff = m->poff;
   }
@@ -916,7 +774,7 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
   if ((st = meter(m, src, NULL)) != LSYS_OK) return st;   /* until lsys_homo_end */
-  if (hasctx && (st = buildtables(m, src)) != LSYS_OK) {
+  if (hasctx && (st = lsys_buildtables(m, src)) != LSYS_OK) {
     unmeter(m, NULL);
     return fail(m, st, 0);
   }
@@ -942,6 +800,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   if (sym >= sets[0]->nsym || sets[0]->start[sym] == sets[0]->start[sym + 1]) return 0;
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
+  v.eq = lsys_eqsym(m);
   v.skip = findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);

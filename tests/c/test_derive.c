@@ -109,7 +109,10 @@ static void test_context (void) {
   step("B > C --> X", NULL, "A[B]C", "A[B]C");          /* fails at the end of its branch */
   step("A > B --> X", NULL, "A[C]B", "X[C]B");          /* skips branches it does not name */
   step("A > [B]C --> X", NULL, "A[B]C", "X[B]C");       /* names a branch */
-  step("A > [B]C --> X", NULL, "A[D][B]C", "X[D][B]C"); /* tries the sibling branches */
+  step("A > [B]C --> X", NULL, "A[D][B]C", "A[D][B]C"); /* only the next branch (cpfg) */
+  step("A > [B]C --> X", NULL, "A[B][D]C", "X[B][D]C"); /* unnamed [D] skipped */
+  step("B > C]D --> X", NULL, "A[BCE]D", "A[BCE]D");    /* ] is literal */
+  step("B > C=]D --> X", NULL, "A[BCE]D", "A[XCE]D");   /* = to the branch's end */
   step("S > G[H]M --> X", NULL, "SG[H]M", "XG[H]M");
   step("S > G[H]M --> X", NULL, "SG[H]N", "SG[H]N");
   step("A < B > C --> X", "+", "A+B+C", "A+X+C");       /* ignore list */
@@ -121,6 +124,8 @@ static void test_context (void) {
 static void test_cut (void) {
   step("A --> A", NULL, "A[B%CD]E", "A[B]E");
   step("A --> A", NULL, "AB%C[D]E", "AB");
+  step("A --> A", NULL, "AB%C$E", "AB$E");               /* a $ stops it, as in cpfg */
+  step("A --> A", NULL, "AB%C?(2,1)D$E$F", "AB$F");      /* a ? ... $ pair is cut whole */
   step("% --> F", NULL, "A[B%CD]E", "A[BFCD]E");         /* a rule on % prevents the cut */
 }
 

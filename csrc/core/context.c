@@ -1,0 +1,153 @@
+/*
+** Context matching for the derivation engine (derive_impl.h): the
+** bracket-match tables of a string, and left and right contexts as cpfg
+** matches them (cpfg guide, Appendix A; CPFG-NOTES.md; the manual's 6.3).
+*/
+#include <string.h>
+
+#include "derive_impl.h"
+
+int lsys_buildtables (lsys_model *m, const lsys_lstring *s) {
+  size_t i, off = 0;
+  if (s->n >= NONE) return LSYS_ELIMIT;
+  if (m->matchcap < s->n + 1) {
+    size_t cap = m->matchcap;
+    uint32_t *mt = m->match, *po = m->poff;
+    size_t cap2 = cap;
+    int st;
+    if ((st = lsys_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt, &m->meter)) != LSYS_OK)
+      return st;
+    m->match = mt;
+    if ((st = lsys_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po, &m->meter)) != LSYS_OK)
+      return st;
+    m->poff = po;
+    m->matchcap = cap < cap2 ? cap : cap2;
+  }
+  /* the open brackets are pushed on the match array itself: match[k] of an
+  ** open '[' temporarily links to the previous open one */
+  {
+    uint32_t top = NONE;
+    for (i = 0; i < s->n; i++) {
+      uint32_t sym = LSYS_CSYM(s->code[i]);
+      if (off > NONE) return LSYS_ELIMIT;
+      m->poff[i] = (uint32_t)off;
+      off += LSYS_CNP(s->code[i]);
+      m->match[i] = NONE;
+      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; }
+      else if (sym == LSYS_SYM_RBR && top != NONE) {
+        uint32_t prev = m->match[top];
+        m->match[top] = (uint32_t)i;
+        m->match[i] = top;
+        top = prev;
+      }
+    }
+    while (top != NONE) { uint32_t prev = m->match[top]; m->match[top] = NONE; top = prev; }
+    m->poff[s->n] = (uint32_t)off;
+  }
+  return LSYS_OK;
+}
+
+uint32_t lsys_eqsym (const lsys_model *m) {
+  uint32_t e = lsys_alphabet_find(m->ab, "=", 1);
+  return e ? e : NONE;
+}
+
+static inline int skipped (const view *v, uint32_t sym) {
+  int in;
+  if (v->skip == NULL || sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) return 0;
+  in = (v->skip->bits[sym >> 3] >> (sym & 7)) & 1;
+  return v->skip->consider ? !in : in;
+}
+
+/* Left context: scans left from 'i', skipping whole branches to the left
+** and climbing out of the current one; fills the lc parameters of 'args'. */
+int lsys_matchleft (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
+                    double *args) {
+  long long j = (long long)i - 1;
+  size_t steps = 0;
+  double *a = args + r->lcargs;
+  uint32_t k;
+  for (k = r->nlc; k-- > 0;) {
+    const lsys_patmod *pm = &m->pat[r->lc + k];
+    for (;;) {
+      uint32_t sym;
+      if (j < 0) {
+        if (!v->ring || v->n == 0) return 0;
+        j = (long long)v->n - 1;
+      }
+      if (++steps > v->n) return 0;
+      sym = LSYS_CSYM(v->code[j]);
+      if (sym == LSYS_SYM_RBR) {
+        if (v->match[j] == NONE) return 0;
+        j = (long long)v->match[j] - 1;
+      }
+      else if (sym == LSYS_SYM_LBR || skipped(v, sym)) j--;
+      else break;
+    }
+    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    a -= pm->np;
+    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    j--;
+  }
+  return 1;
+}
+
+/* The index of the ']' that ends the branch containing position 'j' (or
+** v->n when there is none): cpfg's '=' in a right context. */
+static size_t branchend (const view *v, size_t j) {
+  while (j < v->n) {
+    uint32_t sym = LSYS_CSYM(v->code[j]);
+    if (sym == LSYS_SYM_RBR) return j;
+    if (sym == LSYS_SYM_LBR) {
+      if (v->match[j] == NONE) return v->n;
+      j = v->match[j];
+    }
+    j++;
+  }
+  return v->n;
+}
+
+/*
+** Right context from string position 'j', as cpfg's one linear scan
+** (RconDiff in its generate.c; CPFG-NOTES.md): each pattern module is
+** compared with the next module that is not skipped, and a branch is
+** skipped whole when the pattern module is not a '['. So a '[' in the
+** pattern matches only the next branch there (no search among siblings), a
+** ']' matches a literal ']' (it does not skip the rest of a branch), and a
+** pattern module never matches past the ']' that ends the predecessor's
+** branch. '=' (without parameters) moves to the ']' ending the current
+** branch. Ignored modules are skipped; brackets never are. 'a' receives
+** the pattern's parameters.
+*/
+int lsys_matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
+                     double *a) {
+  size_t steps = 0;
+  uint32_t k;
+  for (k = 0; k < r->nrc; k++) {
+    const lsys_patmod *pm = &m->pat[r->rc + k];
+    if (pm->sym == v->eq && pm->np == 0) {
+      j = branchend(v, j);
+      continue;
+    }
+    for (;;) {
+      uint32_t sym;
+      if (j >= v->n) {
+        if (!v->ring || v->n == 0) return 0;
+        j = 0;                            /* a ring: on from the start */
+      }
+      if (++steps > 2 * v->n + 2) return 0;
+      sym = LSYS_CSYM(v->code[j]);
+      if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
+        if (v->match[j] == NONE) return 0;
+        j = v->match[j] + 1;
+      }
+      else if (skipped(v, sym)) j++;
+      else break;
+    }
+    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    a += pm->np;
+    j++;
+  }
+  return 1;
+}
