@@ -111,6 +111,7 @@ setmetatable(M, { __index = function (_, k)
   if k == "sketch" then return _G.require("lsys.sketch") end
   if k == "components" then return _G.require("lsys.components") end
   if k == "grow" then return _G.require("lsys.grow") end
+  if k == "cpfg" then return _G.require("lsys.cpfg") end
 end })
 
 -- options of lsys.render that are not view options

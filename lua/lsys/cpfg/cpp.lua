@@ -1,0 +1,361 @@
+--- The C preprocessor pass that cpfg runs over an L-system file: the system `cpp` when
+-- present (as cpfg runs vlabcpp), else a built-in one for the common directives.
+-- Both give a list of lines { file =, line =, text = }, each naming where it came from.
+-- @module lsys.cpfg.cpp
+local ipairs, pairs, tonumber, tostring, error, pcall, load = ipairs, pairs,
+  tonumber, tostring, error, pcall, load
+local concat, insert, remove, sort = table.concat, table.insert, table.remove, table.sort
+local format = string.format
+local io, os = io, os
+local _ENV = nil
+
+local M = {}
+
+local function readfile (path)
+  local f, err = io.open(path, "rb")
+  if not f then return nil, err end
+  local s = f:read("a")
+  f:close()
+  if s == nil then return nil, path .. ": cannot be read" end
+  return s
+end
+M.readfile = readfile
+
+local function dirof (path)
+  local d = path:match("^(.*)/[^/]*$")
+  if d == nil then return "." end
+  if d == "" then return "/" end
+  return d
+end
+M.dirof = dirof
+
+-- One shell word: the text in single quotes, a quote inside as '\''; nothing in it is
+-- interpreted by the shell.
+local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
+
+local have_cpp
+local function system_cpp ()
+  if have_cpp == nil then
+    local ok = os.execute("command -v cpp >/dev/null 2>&1")
+    have_cpp = ok == true
+  end
+  return have_cpp
+end
+
+-- Splits cpp's output at its line markers (# N "file" flags) into located lines.
+local function marked (out, main)
+  local lines, file, n = {}, main, 1
+  for text in (out .. "\n"):gmatch("([^\n]*)\n") do
+    local ln, f = text:match('^#%s*(%d+)%s+"(.-)"')
+    if ln then
+      n, file = tonumber(ln), f
+      if file:sub(1, 1) == "<" then file = main end
+    else
+      lines[#lines + 1] = { file = file, line = n, text = text }
+      n = n + 1
+    end
+  end
+  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  return lines
+end
+
+--- Runs the system C preprocessor on `path` with `defines` ({ NAME = value }); returns
+-- the located lines, or nil and cpp's first message.
+function M.system (path, defines)
+  local args = { "cpp", "-x", "c", "-undef", "-nostdinc", "-w" }
+  local names = {}
+  for k in pairs(defines or {}) do names[#names + 1] = k end
+  sort(names)
+  for _, k in ipairs(names) do args[#args + 1] = shq("-D" .. k .. "=" .. tostring(defines[k])) end
+  args[#args + 1] = shq(path)
+  local errf = os.tmpname()
+  local p = io.popen(concat(args, " ") .. " 2>" .. shq(errf), "r")
+  local out = p and p:read("a") or ""
+  local ok = p and p:close()
+  local msg = readfile(errf) or ""
+  os.remove(errf)
+  if not ok then
+    local first = msg:match("[^\n]*error:[^\n]*") or msg:match("[^\n]+") or "cpp failed"
+    first = first:gsub("^([^:]+:%d+):%d+:", "%1:"):gsub(" fatal error:", ""):gsub(" error:", "")
+    return nil, first
+  end
+  -- cpp turns a leading tab into a space; cpfg reads a line starting with a tab as the
+  -- continuation of the one before, so the tabs come back from the source lines
+  local lines, sources = marked(out, path), {}
+  for _, l in ipairs(lines) do
+    local src = sources[l.file]
+    if src == nil then
+      src = {}
+      for s in ((readfile(l.file) or "") .. "\n"):gmatch("([^\n]*)\n") do src[#src + 1] = s end
+      sources[l.file] = src
+    end
+    local orig = src[l.line]
+    if orig and orig:sub(1, 1) == "\t" and l.text:find("^%s") then
+      l.text = "\t" .. l.text:gsub("^%s+", "")
+    end
+  end
+  return lines
+end
+
+-- The built-in preprocessor ----------------------------------------------------------
+
+local function fail (file, line, fmt, ...)
+  error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
+end
+
+-- Removes /* */ comments (kept state across lines) and // comments, outside strings.
+local function decomment (text, st)
+  local out, i, n = {}, 1, #text
+  while i <= n do
+    if st.incomment then
+      local e = text:find("*/", i, true)
+      if not e then return concat(out) end
+      st.incomment, i = false, e + 2
+      out[#out + 1] = " "
+    else
+      local c = text:sub(i, i)
+      if c == "/" and text:sub(i + 1, i + 1) == "*" then
+        st.incomment, i = true, i + 2
+      elseif c == "/" and text:sub(i + 1, i + 1) == "/" then
+        break
+      elseif c == '"' then
+        local e = text:find('"', i + 1, true) or n
+        out[#out + 1] = text:sub(i, e)
+        i = e + 1
+      else
+        out[#out + 1] = c
+        i = i + 1
+      end
+    end
+  end
+  return concat(out)
+end
+
+-- Splits text into identifier tokens and everything else.
+local function tokens (s)
+  local t, i = {}, 1
+  while i <= #s do
+    local a, b = s:find("^[%a_][%w_]*", i)
+    if a then
+      t[#t + 1] = { id = true, s = s:sub(a, b) }
+      i = b + 1
+    else
+      local a2, b2 = s:find("^%d[%w%.]*", i)
+      if a2 then
+        t[#t + 1] = { s = s:sub(a2, b2) }
+        i = b2 + 1
+      else
+        t[#t + 1] = { s = s:sub(i, i) }
+        i = i + 1
+      end
+    end
+  end
+  return t
+end
+
+local expand
+
+-- Reads a function-like macro's arguments from token list t after position i (the '(');
+-- returns the argument texts and the index after ')', or nil when the call is not closed.
+local function macroargs (t, i)
+  local args, cur, depth = {}, {}, 0
+  local j = i + 1
+  while j <= #t do
+    local s = t[j].s
+    if s == "(" then depth = depth + 1
+    elseif s == ")" then
+      if depth == 0 then
+        args[#args + 1] = concat(cur)
+        return args, j + 1
+      end
+      depth = depth - 1
+    elseif s == "," and depth == 0 then
+      args[#args + 1] = concat(cur)
+      cur = {}
+      goto continue
+    end
+    cur[#cur + 1] = s
+    ::continue::
+    j = j + 1
+  end
+  return nil
+end
+
+expand = function (s, macros, busy, depth)
+  if depth > 64 then return s end
+  local t = tokens(s)
+  local out, i = {}, 1
+  while i <= #t do
+    local tk = t[i]
+    local m = tk.id and macros[tk.s]
+    if m and not busy[tk.s] then
+      if m.params then
+        local j = i + 1
+        while t[j] and t[j].s:match("^%s$") do j = j + 1 end
+        local args, nexti
+        if t[j] and t[j].s == "(" then args, nexti = macroargs(t, j) end
+        if args then
+          local bind = {}
+          for k, p in ipairs(m.params) do
+            bind[p] = expand(args[k] or "", macros, busy, depth + 1)
+          end
+          local body = {}
+          for _, bt in ipairs(tokens(m.body)) do
+            body[#body + 1] = bt.id and bind[bt.s] or bt.s
+          end
+          busy[tk.s] = true
+          out[#out + 1] = expand(concat(body), macros, busy, depth + 1)
+          busy[tk.s] = nil
+          i = nexti
+        else
+          out[#out + 1] = tk.s
+          i = i + 1
+        end
+      else
+        busy[tk.s] = true
+        out[#out + 1] = expand(m.body, macros, busy, depth + 1)
+        busy[tk.s] = nil
+        i = i + 1
+      end
+    else
+      out[#out + 1] = tk.s
+      i = i + 1
+    end
+  end
+  return concat(out)
+end
+
+-- Evaluates the expression of #if / #elif: C integer arithmetic on the macro-expanded
+-- text, translated to Lua and run with no environment.
+local function evalif (expr, macros, file, line)
+  expr = expr:gsub("defined%s*%(%s*([%a_][%w_]*)%s*%)", function (n)
+    return macros[n] and " 1 " or " 0 " end)
+  expr = expr:gsub("defined%s+([%a_][%w_]*)", function (n) return macros[n] and " 1 " or " 0 " end)
+  expr = expand(expr, macros, {}, 0)
+  expr = expr:gsub("[%a_][%w_]*", " 0 ")
+  if expr:find("[^%d%s%+%-%*/%%%(%)<>=!&|%?:%.]") then
+    fail(file, line, "#if: cannot evaluate '%s'", expr)
+  end
+  local lua = expr:gsub("&&", " and "):gsub("||", " or "):gsub("!=", "~="):gsub("!", " not ")
+  lua = lua:gsub("~ =", "~=")
+  local fn = load("local b = function (x) if x == true then return 1 elseif x == false or x == 0 "
+    .. "then return 0 else return x end end return (" .. lua .. ")", "=#if", "t", {})
+  local ok, v = false, nil
+  if fn then ok, v = pcall(fn) end
+  if not ok then fail(file, line, "#if: cannot evaluate '%s'", expr) end
+  return v ~= false and v ~= nil and v ~= 0
+end
+
+--- The built-in preprocessor: #define (objects and function-like macros), #undef,
+-- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
+-- #endif, comments. Returns the located lines; raises { cpfg = true, msg = } on errors.
+function M.builtin (path, defines)
+  local macros = {}
+  for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
+  local lines = {}
+  local seen = 0
+  local function run (file, text, level)
+    if level > 32 then fail(file, 1, "#include nested too deeply") end
+    local st = { incomment = false }
+    local cond = {}   -- stack of { active =, done =, parent = }
+    local function active () return #cond == 0 or cond[#cond].active end
+    local n, pending = 0, nil
+    for raw in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+      n = n + 1
+      seen = seen + 1
+      if seen > 1e6 then fail(file, n, "too many lines") end
+      local s = decomment(raw, st)
+      if pending then s, pending = pending .. s, nil end
+      if s:sub(-1) == "\\" then
+        pending = s:sub(1, -2)
+        lines[#lines + 1] = { file = file, line = n, text = "" }
+        goto next
+      end
+      do
+        local dir, rest = s:match("^%s*#%s*(%a*)(.*)$")
+        if dir then
+          rest = rest:match("^%s*(.-)%s*$")
+          if dir == "ifdef" or dir == "ifndef" then
+            local name = rest:match("^[%a_][%w_]*")
+            if not name then fail(file, n, "#%s without a name", dir) end
+            local v = (macros[name] ~= nil) == (dir == "ifdef")
+            local a = active()
+            insert(cond, { active = a and v, done = v, parent = a })
+          elseif dir == "if" then
+            local a = active()
+            local v = a and evalif(rest, macros, file, n)
+            insert(cond, { active = v, done = v, parent = a })
+          elseif dir == "elif" then
+            local c = cond[#cond]
+            if not c then fail(file, n, "#elif without #if") end
+            if c.done or not c.parent then c.active = false
+            else
+              c.active = evalif(rest, macros, file, n)
+              c.done = c.active
+            end
+          elseif dir == "else" then
+            local c = cond[#cond]
+            if not c then fail(file, n, "#else without #if") end
+            c.active = c.parent and not c.done
+            c.done = true
+          elseif dir == "endif" then
+            if not remove(cond) then fail(file, n, "#endif without #if") end
+          elseif active() and dir == "define" then
+            local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
+            if name then
+              local ps = {}
+              for p in params:gmatch("[^,%s]+") do ps[#ps + 1] = p end
+              macros[name] = { params = ps, body = body }
+            else
+              name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
+              if not name then fail(file, n, "#define without a name") end
+              macros[name] = { body = body }
+            end
+          elseif not active() then
+            dir = nil   -- a directive in a skipped part
+          elseif dir == "undef" then
+            macros[rest:match("^[%a_][%w_]*") or ""] = nil
+          elseif dir == "include" then
+            local inc = rest:match('^"(.-)"')
+            if not inc then fail(file, n, "#include needs a \"file\" name") end
+            local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
+            local t = readfile(p)
+            if not t then fail(file, n, "%s: No such file or directory", inc) end
+            run(p, t, level + 1)
+          elseif dir == "error" then
+            fail(file, n, "#error %s", rest)
+          elseif dir ~= "" and dir ~= "pragma" and dir ~= "line" then   -- those: ignored
+            fail(file, n, "invalid preprocessing directive #%s", dir)
+          end
+          lines[#lines + 1] = { file = file, line = n, text = "" }
+        elseif active() then
+          lines[#lines + 1] = { file = file, line = n, text = expand(s, macros, {}, 0) }
+        else
+          lines[#lines + 1] = { file = file, line = n, text = "" }
+        end
+      end
+      ::next::
+    end
+    if #cond > 0 then fail(file, n, "unterminated #if") end
+  end
+  local text, err = readfile(path)
+  if not text then error({ cpfg = true, msg = err }, 0) end
+  run(path, text, 0)
+  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  return lines
+end
+
+--- Preprocesses `path`: with `how` "system" (cpp, an error when missing), "builtin", or
+-- nil (cpp when present). Returns the located lines; raises { cpfg = true, msg = }.
+function M.run (path, defines, how)
+  if how == "system" or (how == nil and system_cpp()) then
+    local lines, err = M.system(path, defines)
+    if not lines then error({ cpfg = true, msg = err }, 0) end
+    return lines
+  elseif how == nil or how == "builtin" then
+    return M.builtin(path, defines)
+  end
+  error("lsys.cpfg: cpp must be \"system\" or \"builtin\"", 3)
+end
+
+return M
