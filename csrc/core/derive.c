@@ -266,8 +266,11 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
   uint32_t k;
   int st;
   if (r->flags & LSYS_RF_DYN) {
+    size_t p0 = out->npar;
     if (out->n + m->dyn.n > m->max_modules) return LSYS_ELIMIT;
-    return lsys_lstring_append(out, &m->dyn, 0, m->dyn.n, 0);
+    if ((st = lsys_lstring_append(out, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK) return st;
+    if (m->f32) for (; p0 < out->npar; p0++) out->par[p0] = lsys_round32(out->par[p0]);
+    return LSYS_OK;
   }
   if (out->n + r->nsucc > m->max_modules) return LSYS_ELIMIT;
   if ((st = lsys_lstring_reserve(out, r->nsucc, r->nsrc)) != LSYS_OK) return st;
@@ -279,6 +282,11 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
     out->par[out->npar++] = ps->kind == LSYS_PS_CONST ? ps->value :
                             ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
   }
+  if (m->f32)               /* cpfg's float32 storage (one test a successor otherwise) */
+    for (k = 0; k < r->nsrc; k++) {
+      double *q = out->par + out->npar - r->nsrc + k;
+      *q = lsys_round32(*q);
+    }
   return LSYS_OK;
 }
 

@@ -88,6 +88,8 @@ typedef struct lsys_model {
   lsys_skip *skips; size_t nskips, skipcap;
   /* settings */
   int ring, group;
+  int f32;                     /* parameters are stored rounded to float32, as cpfg
+                               ** stores them (lsys_round32) */
   size_t max_modules;
   size_t max_memory;           /* bytes for a step's strings and tables; 0: the
                                ** process default, lsys_memory_limit() */
@@ -120,6 +122,13 @@ typedef struct lsys_model {
   lsys_meter meter;            /* the budget of the running operation */
   lsys_error err;
 } lsys_model;
+
+/* x rounded to the nearest float32, as a double; beyond float32's range,
+** +-FLT_MAX (so a finite value stays finite). */
+static inline double lsys_round32 (double x) {
+  return x > 3.4028234663852886e38 ? 3.4028234663852886e38
+       : x < -3.4028234663852886e38 ? -3.4028234663852886e38 : (double)(float)x;
+}
 
 int lsys_model_init (lsys_model *m, lsys_alphabet *ab);
 void lsys_model_free (lsys_model *m);

@@ -241,12 +241,13 @@ static int rules_skiplist (lua_State *L) {
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
                                      "depth_homomorphism", "seed", "hseed", "max_memory",
-                                     NULL};
+                                     "float32", NULL};
   lsys_lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
   switch (key) {
     case 0: R->m.ring = lua_toboolean(L, 3); break;
+    case 8: R->m.f32 = lua_toboolean(L, 3); break;
     case 1:
       x = luaL_checknumber(L, 3);
       luaL_argcheck(L, x >= 1 && x <= 1e12, 3, "max_modules must be between 1 and 1e12");
@@ -651,10 +652,9 @@ static int rules_fill (lua_State *L) {
           return luaL_error(L, "value %d is not a finite number", (int)t->val[p] + 1);
         lua_pop(L, 1);
       }
-      s->par[s->npar++] = x;
+      s->par[s->npar++] = R->m.f32 ? lsys_round32(x) : x;
     }
   }
-  (void)R;
   return 1;
 }
 

@@ -117,7 +117,7 @@ local OPTIONS = {
   finish = "function", max_modules = "number", view = "table", name = "string",
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
-  functions = "table", after_interpret = "function",
+  functions = "table", after_interpret = "function", numbers = "string",
 }
 
 local Model = {}
@@ -248,6 +248,14 @@ function Model:_configure (opts, fail)
     if not ok then fail(format("%s: %s", opts.consider and "consider" or "ignore", msg)) end
   end
   if opts.ring then rules:config("ring", true) end
+  if opts.numbers ~= nil and opts.numbers ~= "double" then
+    if opts.numbers ~= "float32" then
+      fail(format("option 'numbers' must be \"double\" or \"float32\", got \"%s\"",
+                  opts.numbers))
+    end
+    rules:config("float32", true)      -- parameters stored as cpfg stores them
+  end
+  self.numbers = opts.numbers or "double"
   if opts.max_modules then
     local ok = pcall(rules.config, rules, "max_modules", opts.max_modules)
     if not ok then fail("max_modules must be between 1 and 1e12") end
