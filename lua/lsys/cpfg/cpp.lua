@@ -2,8 +2,9 @@
 -- present (as cpfg runs vlabcpp), else a built-in one for the common directives.
 -- Both give a list of lines { file =, line =, text = }, each naming where it came from.
 -- @module lsys.cpfg.cpp
-local ipairs, pairs, tonumber, tostring, error, pcall, load = ipairs, pairs,
-  tonumber, tostring, error, pcall, load
+local ipairs, pairs, tonumber, tostring, error, pcall, require = ipairs, pairs,
+  tonumber, tostring, error, pcall, require
+local math = math
 local concat, insert, remove, sort = table.concat, table.insert, table.remove, table.sort
 local format = string.format
 local io, os = io, os
@@ -225,25 +226,50 @@ expand = function (s, macros, busy, depth)
   return concat(out)
 end
 
--- Evaluates the expression of #if / #elif: C integer arithmetic on the macro-expanded
--- text, translated to Lua and run with no environment.
+-- Evaluates a parsed #if expression with C's integer-ish semantics (comparisons give 0/1).
+local function ceval (e)
+  local k = e.k
+  if k == "num" then return e.v end
+  if k == "name" then return 0 end
+  if k == "un" then
+    local a = ceval(e.a)
+    if e.op == "-" then return -a end
+    return a == 0 and 1 or 0
+  end
+  if k == "cond" then return ceval(e.c) ~= 0 and ceval(e.a) or ceval(e.b) end
+  if k ~= "bin" then error("unsupported") end
+  local op, a = e.op, ceval(e.a)
+  if op == "&&" then return (a ~= 0 and ceval(e.b) ~= 0) and 1 or 0 end
+  if op == "||" then return (a ~= 0 or ceval(e.b) ~= 0) and 1 or 0 end
+  local b = ceval(e.b)
+  if op == "+" then return a + b elseif op == "-" then return a - b
+  elseif op == "*" then return a * b
+  elseif op == "/" or op == "%" then
+    if b == 0 then error("division by zero") end
+    if op == "/" then return a // b end
+    return math.fmod(a, b)
+  elseif op == "==" then return a == b and 1 or 0 elseif op == "!=" then return a ~= b and 1 or 0
+  elseif op == "<" then return a < b and 1 or 0 elseif op == "<=" then return a <= b and 1 or 0
+  elseif op == ">" then return a > b and 1 or 0 elseif op == ">=" then return a >= b and 1 or 0
+  end
+  error("unsupported")
+end
+
+-- Evaluates the expression of #if / #elif on the macro-expanded text.
 local function evalif (expr, macros, file, line)
   expr = expr:gsub("defined%s*%(%s*([%a_][%w_]*)%s*%)", function (n)
     return macros[n] and " 1 " or " 0 " end)
   expr = expr:gsub("defined%s+([%a_][%w_]*)", function (n) return macros[n] and " 1 " or " 0 " end)
   expr = expand(expr, macros, {}, 0)
-  expr = expr:gsub("[%a_][%w_]*", " 0 ")
-  if expr:find("[^%d%s%+%-%*/%%%(%)<>=!&|%?:%.]") then
-    fail(file, line, "#if: cannot evaluate '%s'", expr)
-  end
-  local lua = expr:gsub("&&", " and "):gsub("||", " or "):gsub("!=", "~="):gsub("!", " not ")
-  lua = lua:gsub("~ =", "~=")
-  local fn = load("local b = function (x) if x == true then return 1 elseif x == false or x == 0 "
-    .. "then return 0 else return x end end return (" .. lua .. ")", "=#if", "t", {})
-  local ok, v = false, nil
-  if fn then ok, v = pcall(fn) end
-  if not ok then fail(file, line, "#if: cannot evaluate '%s'", expr) end
-  return v ~= false and v ~= nil and v ~= 0
+  local parse = require("lsys.cpfg.parse")
+  local ok, v = pcall(function ()
+    local P = parse.new({ { file = file, line = line, text = expr } })
+    local e = P:expr()
+    if not P:ateol() then error("trailing text") end
+    return ceval(e)
+  end)
+  if not ok then fail(file, line, "#if: cannot evaluate '%s'", expr:match("^%s*(.-)%s*$")) end
+  return v ~= 0
 end
 
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
@@ -311,20 +337,18 @@ function M.builtin (path, defines)
               if not name then fail(file, n, "#define without a name") end
               macros[name] = { body = body }
             end
-          elseif not active() then
-            dir = nil   -- a directive in a skipped part
-          elseif dir == "undef" then
+          elseif dir == "undef" and active() then
             macros[rest:match("^[%a_][%w_]*") or ""] = nil
-          elseif dir == "include" then
+          elseif dir == "include" and active() then
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
             local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
             local t = readfile(p)
             if not t then fail(file, n, "%s: No such file or directory", inc) end
             run(p, t, level + 1)
-          elseif dir == "error" then
+          elseif dir == "error" and active() then
             fail(file, n, "#error %s", rest)
-          elseif dir ~= "" and dir ~= "pragma" and dir ~= "line" then   -- those: ignored
+          elseif active() and dir ~= "" and dir ~= "pragma" and dir ~= "line" then
             fail(file, n, "invalid preprocessing directive #%s", dir)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }

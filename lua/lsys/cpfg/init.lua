@@ -158,7 +158,7 @@ local function var (T, ctx, name, write)
   end
 end
 
-local ARGS = { sin = 1, cos = 1, tan = 1, asin = 1, acos = 1, atan = 1, atan2 = 2, exp = 1,
+local ARGS = { sin = 1, cos = 1, tan = 1, asin = 1, acos = 1, atan = 1, exp = 1,
                log = 1, floor = 1, ceil = 1, sqrt = 1, fabs = 1, trunc = 1, sign = 1, ran = 1,
                nran = 2, bran = 2, biran = 2, func = 2, stop = 1 }
 
@@ -169,6 +169,9 @@ local function call (T, ctx, e)
     local parts = { format("%q", a[1].v) }
     for i = 2, #a do parts[i] = N(T, ctx, a[i]) end
     return fn(ctx, "_printf") .. "(" .. concat(parts, ", ") .. ")", "n"
+  end
+  if f == "atan2" then   -- reserved by cpfg's lexer but missing from its grammar
+    fail(T, e.pos, "atan2 is not a function in cpfg (a syntax error there); use atan(y/x)")
   end
   if f == "srand" then
     fail(T, e.pos, "srand is not supported (lsys seeds with the model's seed: option)")
@@ -185,8 +188,6 @@ local function call (T, ctx, e)
     return fn(ctx, f) .. "(" .. x .. " * " .. p .. " / 180.0)", "n"
   elseif f == "asin" or f == "acos" or f == "atan" then
     return "(" .. fn(ctx, f) .. "(" .. x .. ") * 180.0 / " .. p .. ")", "n"
-  elseif f == "atan2" then   -- cpfg's atan2(a, b) is C's atan2(b, a), in degrees
-    return "(" .. fn(ctx, "atan") .. "(" .. y .. ", " .. x .. ") * 180.0 / " .. p .. ")", "n"
   elseif f == "fabs" then return fn(ctx, "abs") .. "(" .. x .. ")", "n"
   elseif f == "trunc" then return fn(ctx, "floor") .. "(" .. x .. " + 0.5)", "n"
   elseif f == "sign" then return fn(ctx, "_sign") .. "(" .. x .. ")", "n"

@@ -478,7 +478,9 @@ function P:production ()
     self:fail(nil, "'-o>' (object productions) is not supported")
   end
   if self.src:sub(self.pos, self.pos + 2) ~= "-->" then
-    self:fail(nil, "'-->' expected in a production, found '%s'", self:rest())
+    local r = self:rest()
+    self:fail(nil, "'-->' expected in a production, found %s",
+              r == "" and "the end of the line" or "'" .. r .. "'")
   end
   self.pos = self.pos + 3
   self:sp()

@@ -1,0 +1,128 @@
+-- lsys.cpfg.load: cpfg's L-system files (tests/data/cpfg/*.l, one per construct) derive
+-- the strings cpfg derives. Expected strings marked "cpfg" are cpfg's -str output
+-- (/work/cpfg-oracle/bin/cpfg -g -m x.map -str out.str FILE.l view.v); the others are
+-- written out by hand.
+require "tests.helper"
+local lsys = require "lsys"
+
+local D = "tests/data/cpfg/"
+local function derive (file, n, opts)
+  local m = lsys.cpfg.load(D .. file, nil, opts)
+  return tostring(m:derive(n)), m
+end
+
+describe("lsys.cpfg.load", function ()
+  it("derives a plain L-system for its derivation length", function ()
+    local s, m = derive("koch.l")
+    assert.equal(2, m.steps)
+    assert.equal(2211, #m:derive())
+    -- cpfg: the first 60 characters of its string
+    assert.equal("F+FF-FF-F-F+F+FF-F-FF+F+FF+F-F+F+FF-FF-F-F+F+FF-F-FF+F+FF+F-", s:sub(1, 60))
+  end)
+
+  it("preprocesses macros, #if, #ifdef and #include (sub-L-systems) with the system cpp",
+     function ()
+    assert.equal("A(4)?(2,1)B$?(2,1)CC$", derive("macros.l", nil, { cpp = "system" }))  -- cpfg
+  end)
+
+  it("preprocesses the same with the built-in preprocessor", function ()
+    assert.equal("A(4)?(2,1)B$?(2,1)CC$", derive("macros.l", nil, { cpp = "builtin" }))
+  end)
+
+  it("evaluates C expressions as cpfg: precedence, ?:, integer %, ^, trig in degrees",
+     function ()
+    -- cpfg
+    assert.equal("B(1,9,0.75,10,1,64)C(0.5,0.5,1,45,30,60)D(-2,2,3,2,-1,4,1,0,1,1,5)",
+                 derive("exprs.l"))
+  end)
+
+  it("runs statement blocks, globals set by Start/StartEach/EndEach, locals and arrays",
+     function ()
+    local s, m = derive("blocks.l")
+    assert.equal("A(3)B(0,3,3)C(0)C(122)X(3)", s)   -- cpfg
+    assert.equal(s, tostring(m:derive()))            -- derive starts afresh
+  end)
+
+  it("applies decomposition with its maximum depth", function ()
+    local s, m = derive("decomp.l")
+    assert.equal("D(6)[C(4)]", s)                    -- cpfg
+    assert.equal("F(6)[C(4)]", tostring(m:expand(s)))
+  end)
+
+  it("reads * as no context and skips ignored modules in contexts", function ()
+    assert.equal("B(6)+A(4)-C(3)", derive("context.l"))   -- cpfg
+  end)
+
+  it("reads a predecessor of several letters as one module", function ()
+    assert.equal("FFFFFFFFFFFFFFX", derive("multi.l"))    -- cpfg
+  end)
+
+  it("wraps contexts around the string in a ring L-system", function ()
+    assert.equal("XBY", derive("ring.l"))                 -- cpfg
+  end)
+
+  it("gives every production of a stochastic L-system a weight (1 by default)", function ()
+    local s = lsys.cpfg.load(D .. "stochastic.l"):derive()
+    local b, c = s:count("B"), s:count("C")
+    assert.equal(100, b + c)
+    assert.is_true(b > 55 and b < 95, "B: " .. b)
+  end)
+
+  it("loads a vlab object folder through its specifications", function ()
+    local m = lsys.cpfg.load_object(D .. "object")
+    assert.equal("FFFFFFFFFFFFFFX", tostring(m:derive()))
+    assert.equal(45, m.view.angle)
+  end)
+end)
+
+describe("lsys.cpfg.load errors", function ()
+  local function err (file)
+    local ok, msg = pcall(lsys.cpfg.load, D .. file)
+    assert.is_false(ok)
+    return msg
+  end
+
+  it("names the file and line of a syntax error", function ()
+    assert.equal(D .. "errors_syntax.l:5: '-->' expected in a production, found the end of "
+                 .. "the line", err("errors_syntax.l"))
+  end)
+
+  it("names a missing #include", function ()
+    assert.equal(D .. "errors_include.l:6: missing.l: No such file or directory",
+                 err("errors_include.l"))
+  end)
+
+  it("refuses srand", function ()
+    assert.equal(D .. "errors_srand.l:3: srand is not supported (lsys seeds with the "
+                 .. "model's seed: option)", err("errors_srand.l"))
+  end)
+
+  it("refuses a predecessor of several modules that is not a name", function ()
+    assert.equal(D .. "errors_multi.l:4: a strict predecessor of several modules ('AB') is "
+                 .. "supported only as letters and digits with parameters on the last one",
+                 err("errors_multi.l"))
+  end)
+
+  it("refuses statement blocks in a stochastic production", function ()
+    assert.equal(D .. "errors_stoch.l:5: a production with statement blocks or variables set "
+                 .. "by other productions cannot be stochastic in lsys", err("errors_stoch.l"))
+  end)
+
+  it("keeps rule code away from globals", function ()
+    local o = lsys.cpfg.options(D .. "blocks.l")
+    local nfn = 0
+    for _, r in ipairs(o.productions) do
+      if type(r) == "table" then
+        nfn = nfn + 1
+        local i = 1
+        while true do
+          local name, v = debug.getupvalue(r[2], i)
+          if not name then break end
+          assert.is_not.equal(_G, v)
+          i = i + 1
+        end
+      end
+    end
+    assert.equal(1, nfn)   -- the A rule (a while loop) is a function rule
+  end)
+end)
