@@ -87,6 +87,21 @@ describe("lsys.cpfg.load errors", function ()
                  .. "the line", err("errors_syntax.l"))
   end)
 
+  it("never hands cpp a file name that reads as an option", function ()
+    local H = require "tests.helper"
+    local dir = H.tmpdir()
+    H.write(dir .. "/-o", H.read(D .. "koch.l"))
+    H.write(dir .. "/run.lua", 'print(#require("lsys").cpfg.load("-o"):derive())\n')
+    local bin = H.BIN:sub(1, 1) == "/" and H.BIN or os.getenv("PWD") .. "/" .. H.BIN
+    -- loaded as "-o" from its folder: cpp reads ./-o and writes nothing
+    local out, code = H.sh("cd '" .. dir .. "' && " .. bin .. " run.lua")
+    assert.equal(0, code, out)
+    assert.equal(tostring(#lsys.cpfg.load(D .. "koch.l"):derive()) .. "\n", out)
+    local ls = H.sh("ls -A '" .. dir .. "'")
+    assert.equal("-o\nrun.lua\n", ls)
+    H.rmdir(dir)
+  end)
+
   it("names a missing #include", function ()
     assert.equal(D .. "errors_include.l:6: missing.l: No such file or directory",
                  err("errors_include.l"))

@@ -68,7 +68,9 @@ function M.system (path, defines)
   for k in pairs(defines or {}) do names[#names + 1] = k end
   sort(names)
   for _, k in ipairs(names) do args[#args + 1] = shq("-D" .. k .. "=" .. tostring(defines[k])) end
-  args[#args + 1] = shq(path)
+  -- a name that starts with '-' (a vlab specifications file can say anything) must not
+  -- reach cpp as an option such as -o FILE
+  args[#args + 1] = shq(path:sub(1, 1) == "-" and "./" .. path or path)
   local errf = os.tmpname()
   local p = io.popen(concat(args, " ") .. " 2>" .. shq(errf), "r")
   local out = p and p:read("a") or ""
