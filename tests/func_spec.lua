@@ -1,15 +1,11 @@
 -- Positional functions (lsys.func, csrc/core/func.c): the Lua API, .func files, and
 -- functions called from rule expressions on the expression machine and on the closure.
+local H = require "tests.helper"
 local lsys = require "lsys"
 
 local BUMP = { { 0, 0 }, { 1 / 3, 1 }, { 2 / 3, 1 }, { 1, 0 } }   -- x(t) = t: f(x) = 3x(1-x)
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p '" .. d .. "'"))
-  return d
-end
+local tmpdir = H.tmpdir
 
 local function write (path, text)
   local f = assert(io.open(path, "wb"))

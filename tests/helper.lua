@@ -154,7 +154,7 @@ end
 
 --- Runs a shell command; returns what it printed (stdout and stderr) and its exit status.
 function H.sh (cmd)
-  local p = io.popen(cmd .. " 2>&1; echo \"exit:$?\"")
+  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
   local out = p:read("a")
   p:close()
   local code = tonumber(out:match("exit:(%d+)%s*$"))

@@ -88,12 +88,7 @@ local function draw (axiom, view, opts, productions)
   return lsys.render(m, o)
 end
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p '" .. d .. "'"))
-  return d
-end
+local tmpdir = H.tmpdir
 
 describe("rendering #gl", function()
   if not core.has_render then

@@ -1,24 +1,14 @@
 -- `lsys sketch` on the command line (issue 15): usage errors (exit 2, the command's
 -- message), the help, and the plot, model and render subcommands on an example sketch.
+local H = require "tests.helper"
 local core = require "lsys.core"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 local SKETCH = "examples/sketch/fig8_herb.json"
 
-local function run (cmd)
-  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
-  local out = p:read("a")
-  p:close()
-  local code = tonumber(out:match("exit:(%d+)%s*$"))
-  return (out:gsub("exit:%d+%s*$", "")), code
-end
+local run = H.sh
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p " .. d))
-  return d
-end
+local tmpdir = H.tmpdir
 
 describe("lsys sketch", function()
   it("explains itself with --help and lsys help sketch", function()

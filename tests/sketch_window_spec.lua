@@ -2,18 +2,14 @@
 -- window sends them (strokes drawn, moved, deleted, undone; the wheel's pressure; keys;
 -- the toolbar; saving), the session's handling of a sketch that makes no plant yet, and
 -- (#gl) the real window under a private Xvfb, drawn with xdotool, saved and read back.
+local H = require "tests.helper"
 local core = require "lsys.core"
 local W = require "lsys.sketch.window"
 local read = require "lsys.sketch.read"
 local D = require "tests.display"
 local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p " .. d))
-  return d
-end
+local tmpdir = H.tmpdir
 
 -- Drags from (x0, y0) to (x1, y1) in n straight steps of the pointer.
 local function drag (st, x0, y0, x1, y1, n, button)

@@ -10,14 +10,7 @@ local H = require "tests.helper"
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
 
--- Runs a shell command; returns its output (stdout and stderr) and exit status.
-local function run (cmd)
-  local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
-  local out = p:read("a")
-  p:close()
-  local code = tonumber(out:match("exit:(%d+)%s*$"))
-  return (out:gsub("exit:%d+%s*$", "")), code
-end
+local run = H.sh
 
 local plant, read, write, tmpdir = H.ink, H.read, H.write, H.tmpdir
 
