@@ -53,8 +53,12 @@ describe("lsys.cpfg.load", function ()
     assert.equal("B(6)+A(4)-C(3)", derive("context.l"))   -- cpfg
   end)
 
-  it("reads a predecessor of several letters as one module", function ()
+  it("rewrites a predecessor of several modules as cpfg does", function ()
     assert.equal("FFFFFFFFFFFFFFX", derive("multi.l"))    -- cpfg
+    local m = lsys.cpfg.load(D .. "strict.l")             -- cpfg, step by step
+    assert.equal("S(0)C(1),,,@o(1);;;KB[,,@o(1)]", tostring(m:derive(1)))
+    assert.equal("S(0)C(2)[,,@o(1)]B[,,@o(1)]", tostring(m:derive(2)))
+    assert.equal("S(0)C(3)[,,@o(1)]B[,,@o(1)]", tostring(m:derive()))
   end)
 
   it("wraps contexts around the string in a ring L-system", function ()
@@ -112,10 +116,11 @@ describe("lsys.cpfg.load errors", function ()
                  .. "model's seed: option)", err("errors_srand.l"))
   end)
 
-  it("refuses a predecessor of several modules that is not a name", function ()
-    assert.equal(D .. "errors_multi.l:4: a strict predecessor of several modules ('AB') is "
-                 .. "supported only as letters and digits with parameters on the last one",
-                 err("errors_multi.l"))
+  it("refuses a predecessor of several modules in a homomorphism unless it is a name",
+     function ()
+    assert.equal(D .. "errors_multi.l:6: a strict predecessor of several modules ('AB') in a "
+                 .. "decomposition or homomorphism is supported only as letters and digits "
+                 .. "with parameters on the last one", err("errors_multi.l"))
   end)
 
   it("refuses statement blocks in a stochastic production", function ()

@@ -165,8 +165,9 @@ describe("malformed rules", function()
     assert.error_contains(build("[ --> X"), "[ --> X", "line 1")
   end)
 
-  it("a predecessor of more than one module names the rule", function()
-    assert.error_contains(build("AB --> C"), "AB --> C", "line 1")
+  it("a bracket inside a predecessor of several modules names the rule", function()
+    assert.error_contains(build("A[B --> C"), "A[B --> C", "line 1",
+                          "a bracket cannot be in a predecessor")
   end)
 
   it("names the rule in a list of strings", function()

@@ -124,6 +124,26 @@ int lsys_model_newset (lsys_model *m, int kind, int sub, int group) {
   return LSYS_OK;
 }
 
+/* The modules after the first of a strict predecessor: no brackets, cuts or
+** sub-L-system modules (they would change the rules in force mid-match). */
+static int predmodules (const lsys_rulespec *sp, lsys_error *e) {
+  uint32_t k;
+  for (k = 0; k < sp->nmore; k++) {
+    uint32_t s = sp->more[k].sym;
+    if (sp->more[k].np > LSYS_MAXPARAMS)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
+    if (s == LSYS_SYM_LBR || s == LSYS_SYM_RBR || s == LSYS_SYM_CUT || s == LSYS_SYM_SUB ||
+        s == LSYS_SYM_SUBEND)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "module %u of the predecessor cannot "
+                           "be a bracket, a cut or a sub-L-system module", (unsigned)k + 2);
+  }
+  if (sp->pred.sym == LSYS_SYM_CUT || sp->pred.sym == LSYS_SYM_SUB ||
+      sp->pred.sym == LSYS_SYM_SUBEND)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a predecessor of several modules cannot "
+                         "start with a cut or a sub-L-system module");
+  return LSYS_OK;
+}
+
 long lsys_model_add (lsys_model *m, int kind, int sub, int group,
                      const lsys_rulespec *sp, lsys_error *e) {
   lsys_ruleset *set = findset(m, kind, sub, group);
@@ -134,13 +154,22 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
   if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_STOCH))
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a rule with a function cannot have a weight");
+  if (sp->nmore > 0) {       /* cpfg's strict predecessor of several modules */
+    const char *what = kind == LSYS_DECOMP ? "decomposition" : "homomorphism";
+    if (kind != LSYS_PROD)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a predecessor of several modules is "
+                           "for productions only, not for the %s", what);
+    int st = predmodules(sp, e);
+    if (st != LSYS_OK) return st;
+  }
   if (set == NULL) {
     if (lsys_model_newset(m, kind, sub, group) != LSYS_OK) goto nomem;
     set = findset(m, kind, sub, group);
   }
   if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
       lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
-      lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nrc, sizeof *m->pat) != LSYS_OK ||
+      lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nmore + sp->nrc,
+                sizeof *m->pat) != LSYS_OK ||
       /* + 1: the code array exists once a rule does (no NULL + 0 for empty successors) */
       lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc + 1, sizeof *m->tcode) != LSYS_OK ||
       lsys_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc, sizeof *m->tsrc) != LSYS_OK)
@@ -156,11 +185,17 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
   r->lc = (uint32_t)m->npat;
   r->nlc = sp->nlc;
   for (k = 0; k < sp->nlc; k++) { m->pat[m->npat++] = sp->lc[k]; lcargs += sp->lc[k].np; }
+  r->more = (uint32_t)m->npat;
+  r->nmore = sp->nmore;
+  for (k = 0; k < sp->nmore; k++) {
+    m->pat[m->npat++] = sp->more[k];
+    r->moreargs += sp->more[k].np;
+  }
   r->rc = (uint32_t)m->npat;
   r->nrc = sp->nrc;
   for (k = 0; k < sp->nrc; k++) { m->pat[m->npat++] = sp->rc[k]; nargs += sp->rc[k].np; }
   r->lcargs = lcargs;
-  r->nargs = lcargs + sp->pred.np + nargs;
+  r->nargs = lcargs + sp->pred.np + r->moreargs + nargs;
   r->succ = (uint32_t)m->ntcode;
   r->nsucc = sp->nsucc;
   if (sp->nsucc) memcpy(m->tcode + m->ntcode, sp->succ, sp->nsucc * sizeof *sp->succ);
@@ -251,7 +286,7 @@ static int compileset (lsys_model *m, lsys_ruleset *s) {
   }
   for (i = 0; i < nsym; i++) {         /* rules that always apply when np matches */
     const lsys_rule *r = s->start[i] < s->start[i + 1] ? &m->rules[s->byp[s->start[i]]] : NULL;
-    s->plain[i] = (r != NULL && r->nlc == 0 && r->nrc == 0 &&
+    s->plain[i] = (r != NULL && r->nlc == 0 && r->nrc == 0 && r->nmore == 0 &&
                    !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN | LSYS_RF_STOCH)))
                   ? s->byp[s->start[i]] : NONE;
   }
@@ -311,10 +346,26 @@ static int needscratch (lsys_model *m, size_t nargs) {
   return LSYS_OK;
 }
 
+/* Do the modules after i match the rest of r's predecessor (symbol and
+** parameter count, one after the other, as cpfg's PredDiff)? Copies their
+** parameters (following 'par', the module's own np of them) into 'args'. */
+static int matchmore (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
+                      const double *par, double *args) {
+  uint32_t k, np = LSYS_CNP(v->code[i]);
+  if (i + r->nmore >= v->n) return 0;
+  for (k = 0; k < r->nmore; k++) {
+    const lsys_patmod *pm = &m->pat[r->more + k];
+    if (v->code[i + 1 + k] != LSYS_CODE(pm->sym, pm->np)) return 0;
+  }
+  if (r->moreargs) memcpy(args, par + np, r->moreargs * sizeof *args);
+  return 1;
+}
+
 /*
 ** Tries the rules of 'sets' for the module 'code' with parameters 'par'
-** whose context is position 'i' of 'v'. Returns 1 (successor written to
-** 'out'), 0 (no rule applies), or an error code.
+** whose context is position 'i' of 'v'. Returns the number of modules the
+** rule rewrote (1, or more for a predecessor of several modules; successor
+** written to 'out'), 0 (no rule applies), or an error code.
 */
 static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const view *v,
                     size_t i, uint16_t code, const double *par, lsys_lstring *out) {
@@ -333,9 +384,10 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
       if (needscratch(m, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
       args = m->args;
       vals = args + r->nargs;
+      if (r->nmore && !matchmore(m, v, i, r, par, args + r->lcargs + np)) continue;
       if (r->nlc && (v->match == NULL || !lsys_matchleft(m, v, i, r, args))) continue;
-      if (r->nrc && (v->match == NULL ||
-                     !lsys_matchright(m, v, i + 1, r, args + r->lcargs + np)))
+      if (r->nrc && (v->match == NULL || !lsys_matchright(m, v, i + 1 + r->nmore, r,
+                                                            args + r->lcargs + np + r->moreargs)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
       if (r->vm != NULL) {
@@ -354,7 +406,7 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
       if (!(r->flags & LSYS_RF_STOCH)) {
         if (nalt > 0) goto choose;            /* weighted alternatives came first */
         st = emit(m, out, r, args, vals);
-        return st == LSYS_OK ? 1 : st;
+        return st == LSYS_OK ? 1 + (int)r->nmore : st;
       }
       w = (r->flags & LSYS_RF_WEXPR) ? vals[0] : r->weight;
       if (!(w >= 0) || isinf(w)) {
@@ -400,7 +452,7 @@ choose:
       r = &m->rules[(size_t)m->alt[at]];
     }
     st = emit(m, out, r, m->alt + at + 2, m->alt + at + 2 + r->nargs);
-    return st == LSYS_OK ? 1 : st;
+    return st == LSYS_OK ? 1 + (int)r->nmore : st;
   }
 }
 
@@ -472,7 +524,7 @@ static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_
     else {       /* the only rule for k, computed by the expression machine */
       const lsys_rule *r = &m->rules[s0->byp[s0->start[k]]];
       m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
-                   r->nrc == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
+                   r->nrc == 0 && r->nmore == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
                   ? s0->byp[s0->start[k]] : ACT_SLOW;
       if (m->act[k] != ACT_SLOW && needscratch(m, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
     }
@@ -612,6 +664,11 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
     if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
       done = rewrite(m, sets, nsets, &v, i, c, spar + p, dst);
       if (done < 0) return fail(m, done, i);
+      for (; done > 1; done--) {      /* the predecessor's other modules are rewritten too */
+        p += np;
+        c = src->code[++i];
+        np = LSYS_CNP(c);
+      }
     }
     if (!done) {
       if (sym == LSYS_SYM_CUT) {
@@ -665,7 +722,7 @@ static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int ns
     lsys_lstring_clear(lv);
     st = rewrite(m, sets, nsets, v, i, code, par, lv);
     if (st < 0) return st;
-    if (st == 1) {
+    if (st >= 1) {
       size_t k, p = 0;
       for (k = 0; k < lv->n; k++) {
         st = expandone(m, kind, sets, nsets, v, i, lv->code[k], parof(lv, p), depth + 1, out);

@@ -33,6 +33,8 @@ typedef struct lsys_rule {
   uint32_t pred, pred_np;
   uint32_t flags;
   uint32_t lc, nlc, lcargs;     /* pattern modules in m->pat; lcargs = params in lc */
+  uint32_t more, nmore, moreargs;  /* predecessor modules after the first (cpfg's strict
+                                ** predecessor of several modules) and their params */
   uint32_t rc, nrc;
   uint32_t succ, nsucc;         /* codes in m->tcode */
   uint32_t src, nsrc;           /* parameter sources in m->tsrc */
@@ -45,6 +47,7 @@ typedef struct lsys_rule {
 typedef struct lsys_rulespec {
   const lsys_patmod *lc; uint32_t nlc;
   lsys_patmod pred;
+  const lsys_patmod *more; uint32_t nmore;  /* more predecessor modules (productions) */
   const lsys_patmod *rc; uint32_t nrc;
   const uint16_t *succ; uint32_t nsucc;   /* successor codes (sym, np) */
   const lsys_psrc *src; uint32_t nsrc;    /* one per successor parameter */
@@ -70,7 +73,7 @@ typedef struct lsys_skip {
 struct lsys_model;
 /*
 ** Evaluates rule 'r' for the matched module: 'args' holds the formal
-** parameters (left context, predecessor, right context, in order). Writes
+** parameters (left context, predecessor modules, right context, in order). Writes
 ** r->nvals values into 'vals' (RF_CALL) or the successor into m->dyn
 ** (RF_DYN). Returns 1 when the rule applies, 0 when its condition fails,
 ** or a negative LSYS_E* code with m->err set.

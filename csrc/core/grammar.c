@@ -208,15 +208,19 @@ static int parsepattern (lsys_prule *r, const char *t, size_t b, size_t e,
   }
   if (gt != (size_t)-1) pe = gt;
   if ((st = parsemods(r, t, pb, pe, 1, a, decl, &n, err)) != LSYS_OK) return st;
-  if (n != 1) {
+  if (n == 0) {
     size_t at = pb;
     while (at < pe && isspacec((unsigned char)t[at])) at++;
-    return lsys_seterror(err, LSYS_ESYNTAX, at, n == 0 ? "missing predecessor" :
-                         "the predecessor must be one module (use '<' and '>' for contexts)");
+    return lsys_seterror(err, LSYS_ESYNTAX, at, "missing predecessor");
   }
-  if (r->mods[r->nmods - 1].sym == LSYS_SYM_LBR || r->mods[r->nmods - 1].sym == LSYS_SYM_RBR)
-    return lsys_seterror(err, LSYS_ESYNTAX, r->mods[r->nmods - 1].pos,
-                         "a bracket cannot be a predecessor");
+  {       /* several modules: a strict predecessor as cpfg's (CPFG-NOTES.md) */
+    size_t k;
+    for (k = r->nmods - n; k < r->nmods; k++)
+      if (r->mods[k].sym == LSYS_SYM_LBR || r->mods[k].sym == LSYS_SYM_RBR)
+        return lsys_seterror(err, LSYS_ESYNTAX, r->mods[k].pos,
+                             "a bracket cannot be in a predecessor");
+  }
+  r->npred = n;
   if (gt != (size_t)-1) {
     if ((st = parsemods(r, t, gt + 1, e, 1, a, decl, &n, err)) != LSYS_OK) return st;
     if (n == 0) return lsys_seterror(err, LSYS_ESYNTAX, gt, "empty right context after '>'");

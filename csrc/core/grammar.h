@@ -20,11 +20,12 @@ typedef struct lsys_pmod {
 } lsys_pmod;
 
 typedef struct lsys_prule {
-  lsys_pmod *mods;     /* left context, predecessor, right context, successor */
+  lsys_pmod *mods;     /* left context, predecessor (npred modules), right context,
+                       ** successor */
   size_t nmods, modcap;
   lsys_span *params;   /* formal names (patterns) or expressions (successor) */
   size_t nparams, parcap;
-  uint32_t nlc, nrc, nsucc;
+  uint32_t nlc, npred, nrc, nsucc;   /* npred >= 1 modules: cpfg's strict predecessor */
   lsys_span cond, weight;   /* len 0 when absent */
   int empty;                /* the successor is '*' */
 } lsys_prule;

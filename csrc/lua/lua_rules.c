@@ -100,13 +100,13 @@ static int rules_parse (lua_State *L) {
   lua_createtable(L, 0, 8);          /* may raise: r leaks only on memory errors */
   pushpmods(L, text, &r, 0, r.nlc);
   lua_setfield(L, -2, "lc");
-  if (mode != 2) {
-    pushpmods(L, text, &r, r.nlc, 1);
+  if (mode != 2) {                  /* pred: the first module; preds: all of them */
+    pushpmods(L, text, &r, r.nlc, r.npred);
     lua_rawgeti(L, -1, 1);
     lua_setfield(L, -3, "pred");
-    lua_pop(L, 1);
+    lua_setfield(L, -2, "preds");
   }
-  pushpmods(L, text, &r, mode == 2 ? 0 : r.nlc + 1, r.nrc);
+  pushpmods(L, text, &r, mode == 2 ? 0 : r.nlc + r.npred, r.nrc);
   lua_setfield(L, -2, "rc");
   pushpmods(L, text, &r, r.nmods - r.nsucc, r.nsucc);
   lua_setfield(L, -2, "succ");
@@ -146,7 +146,7 @@ static void readpats (lua_State *L, int t, const char *field, lsys_patmod *out,
 
 /*
 ** rules:add(kind, sub, group, spec) -> rule index (0-based)
-** spec = { lc = {sym, np, ...}, pred = {sym, np}, rc = {...},
+** spec = { lc = {sym, np, ...}, pred = {sym, np, ...}, rc = {...},
 **          succ = {sym, np, ...}, src = {kind, idx, value, ...},
 **          flags = n, nvals = n, weight = w, id = n, fn = function }
 ** All arrays are copied before anything is allocated in the core.
@@ -156,7 +156,7 @@ static int rules_add (lua_State *L) {
   int kind = (int)luaL_checkinteger(L, 2);
   int sub = (int)luaL_checkinteger(L, 3);
   int group = (int)luaL_checkinteger(L, 4);
-  lsys_patmod lc[MAXPAT], rc[MAXPAT], pred[1];
+  lsys_patmod lc[MAXPAT], rc[MAXPAT], pred[MAXPAT];
   lsys_rulespec sp;
   lsys_error e;
   uint32_t npred;
@@ -169,9 +169,10 @@ static int rules_add (lua_State *L) {
   memset(&sp, 0, sizeof sp);
   readpats(L, 5, "lc", lc, MAXPAT, &sp.nlc);
   readpats(L, 5, "rc", rc, MAXPAT, &sp.nrc);
-  readpats(L, 5, "pred", pred, 1, &npred);
-  if (npred != 1) return luaL_error(L, "rule without predecessor");
+  readpats(L, 5, "pred", pred, MAXPAT, &npred);
+  if (npred < 1) return luaL_error(L, "rule without predecessor");
   sp.lc = lc; sp.rc = rc; sp.pred = pred[0];
+  sp.more = pred + 1; sp.nmore = npred - 1;
   lua_getfield(L, 5, "succ");
   n = lua_istable(L, -1) ? luaL_len(L, -1) / 2 : 0;
   succ = (uint16_t *)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *succ, 0);  /* scratch */

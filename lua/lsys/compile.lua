@@ -183,9 +183,11 @@ function M.rule (r, info)
       end
     end
   end
-  addformals(r.lc); addformals({r.pred}); addformals(r.rc)
-  local spec = { lc = {}, rc = {}, pred = { r.pred.sym, #r.pred.params }, succ = {}, src = {},
+  local preds = r.preds or { r.pred }     -- several modules: cpfg's strict predecessor
+  addformals(r.lc); addformals(preds); addformals(r.rc)
+  local spec = { lc = {}, rc = {}, pred = {}, succ = {}, src = {},
                  flags = 0, nvals = 0, id = info.id }
+  for _, m in ipairs(preds) do insert(spec.pred, m.sym); insert(spec.pred, #m.params) end
   for _, m in ipairs(r.lc) do insert(spec.lc, m.sym); insert(spec.lc, #m.params) end
   for _, m in ipairs(r.rc) do insert(spec.rc, m.sym); insert(spec.rc, #m.params) end
   if info.fn then

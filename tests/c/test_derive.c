@@ -20,7 +20,7 @@ static lsys_alphabet ab;
 static void addrule (lsys_model *m, int kind, const char *text) {
   lsys_prule r;
   lsys_error e;
-  lsys_patmod lc[16], rc[16];
+  lsys_patmod lc[16], rc[16], more[16];
   uint16_t succ[64];
   lsys_psrc src[64];
   lsys_rulespec sp;
@@ -29,12 +29,13 @@ static void addrule (lsys_model *m, int kind, const char *text) {
   int st = lsys_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e);
   if (st != LSYS_OK) { fprintf(stderr, "%s: %s\n", text, e.msg); abort(); }
   memset(&sp, 0, sizeof sp);
-  for (k = 0; k < r.nlc + 1 + r.nrc; k++) {        /* formal names in order */
+  for (k = 0; k < r.nlc + r.npred + r.nrc; k++) {  /* formal names in order */
     const lsys_pmod *pm = &r.mods[k];
     lsys_patmod p = {pm->sym, pm->np};
     if (k < r.nlc) lc[k] = p;
     else if (k == r.nlc) sp.pred = p;
-    else rc[k - r.nlc - 1] = p;
+    else if (k < r.nlc + r.npred) more[k - r.nlc - 1] = p;
+    else rc[k - r.nlc - r.npred] = p;
     for (j = 0; j < pm->np; j++) {
       const lsys_span *s = &r.params[pm->first + j];
       snprintf(names[nf++], sizeof names[0], "%.*s", (int)s->len, text + s->off);
@@ -56,6 +57,7 @@ static void addrule (lsys_model *m, int kind, const char *text) {
     }
   }
   sp.lc = lc; sp.nlc = r.nlc; sp.rc = rc; sp.nrc = r.nrc;
+  sp.more = more; sp.nmore = r.npred - 1;
   sp.succ = succ; sp.src = src; sp.nsrc = ns;
   if (r.weight.len) { sp.flags |= LSYS_RF_STOCH; sp.weight = atof(text + r.weight.off); }
   assert(lsys_model_add(m, kind, 0, 0, &sp, &e) >= 0);
@@ -119,6 +121,40 @@ static void test_context (void) {
   step("A < B > C --> X", NULL, "A+B+C", "A+B+C");
   step("A(x) < B(y) --> B(x)", NULL, "A(3)B(1)", "A(3)B(3)");
   step("A B < C --> X", NULL, "AB[Q]C", "AB[Q]X");      /* multi-module left context */
+}
+
+/* a strict predecessor of several modules (cpfg's PredDiff): consecutive
+** modules, symbol and parameter count, no skipping; the rule rewrites them all */
+static void test_predecessor (void) {
+  step("A B --> X", NULL, "ABAB CAB", "XXCX");
+  step("A(x)B(y) --> X(y,x)", NULL, "A(1)B(2)A(3)C", "X(2,1)A(3)C");
+  step("A < BC > D --> X", NULL, "ABCDBCD", "AXDBCD");   /* contexts around the whole */
+  step("BC --> X\nB --> Y", NULL, "BCBD", "XYD");
+  step("AB --> X", "+", "A+B", "A+B");                   /* ignored modules not skipped */
+  step("AB --> X", NULL, "AB(1)", "AB(1)");              /* parameter counts must match */
+  step("AB --> X\nBC --> Y", NULL, "ABC", "XC");         /* left to right, no overlap */
+  step("A --> Q\nAB --> X", NULL, "ABC", "QBC");         /* the first rule that applies */
+  step("ABB --> X\nB --> Y", NULL, "ABBB", "XY");
+  step("X < AB > Y --> Z", NULL, "XABY", "XZY");
+  step("AB --> X", NULL, "A", "A");                      /* the string ends first */
+  {                                   /* decomposition and homomorphism: one module */
+    lsys_model m;
+    lsys_rulespec sp;
+    lsys_patmod more[1];
+    lsys_error e;
+    lsys_model_init(&m, &ab);
+    memset(&sp, 0, sizeof sp);
+    sp.pred.sym = lsys_alphabet_intern(&ab, "A", 1, NULL);
+    more[0].sym = lsys_alphabet_intern(&ab, "B", 1, NULL);
+    more[0].np = 0;
+    sp.more = more; sp.nmore = 1;
+    assert(lsys_model_add(&m, LSYS_DECOMP, 0, 0, &sp, &e) == LSYS_EARG);
+    assert(strstr(e.msg, "productions only") != NULL);
+    more[0].sym = LSYS_SYM_LBR;
+    assert(lsys_model_add(&m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EARG);
+    assert(strstr(e.msg, "module 2 of the predecessor") != NULL);
+    lsys_model_free(&m);
+  }
 }
 
 static void test_cut (void) {
@@ -352,6 +388,7 @@ static void test_expr (void) {
 int main (void) {
   assert(lsys_alphabet_init(&ab) == LSYS_OK);
   test_context();
+  test_predecessor();
   test_cut();
   test_stochastic();
   test_limits();

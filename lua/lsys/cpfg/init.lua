@@ -609,14 +609,15 @@ local function rules (T, ls, list, section, stochastic)
   return out
 end
 
--- Multi-module strict predecessors (`leaf(a)` is l, e, a, f(a) in cpfg) become declared
--- lsys module names when they are letters with parameters on the last one only.
+-- A strict predecessor of several modules (`leaf(a)` is l, e, a, f(a) in cpfg) is one in
+-- productions, as in cpfg. In a decomposition or homomorphism (lsys rewrites one module
+-- there) it becomes a declared lsys module name when it is letters with parameters on the
+-- last one only; every string then reads it as one module.
 local function declare (T, lsystems)
   local names, list = {}, {}
   for _, ls in ipairs(lsystems) do
-    for _, sect in ipairs({ ls.productions, ls.decomposition and ls.decomposition.productions,
-                            ls.homomorphism and ls.homomorphism.productions }) do
-      for _, p in ipairs(sect or {}) do
+    for _, part in ipairs({ ls.decomposition or false, ls.homomorphism or false }) do
+      for _, p in ipairs(part and part.productions or {}) do
         if count(T, p.pred) ~= 1 then
           local text, ok = {}, true
           for i, m in ipairs(p.pred) do
@@ -624,8 +625,9 @@ local function declare (T, lsystems)
             text[#text + 1] = m.sym
           end
           if not ok or not text[1]:find("^%a") then
-            fail(T, p.pos, "a strict predecessor of several modules ('%s') is supported only as "
-                 .. "letters and digits with parameters on the last one", concat(text))
+            fail(T, p.pos, "a strict predecessor of several modules ('%s') in a decomposition or "
+                 .. "homomorphism is supported only as letters and digits with parameters on "
+                 .. "the last one", concat(text))
           end
           local name = concat(text)
           if not names[name] then names[name] = true; list[#list + 1] = name end
