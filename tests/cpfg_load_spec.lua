@@ -53,6 +53,20 @@ describe("lsys.cpfg.load", function ()
     assert.equal("B(6)+A(4)-C(3)", derive("context.l"))   -- cpfg
   end)
 
+  it("reseeds the generator with srand, in Start: and in a production mid-step", function ()
+    local m = lsys.cpfg.load(D .. "srand.l")
+    local s1 = tostring(m:derive(1))
+    local b1, b2 = s1:match("^EB%(([%d.]+)%)B%(([%d.]+)%)$")
+    assert.truthy(b1 and b2 and b1 ~= b2, s1)
+    -- E reseeds with 7 before the Bs draw: each C draws what its B drew a step earlier
+    assert.equal(("EB(%s)C(%s)B(%s)C(%s)"):format(b1, b1, b2, b2), tostring(m:derive(2)))
+    assert.equal(tostring(m:derive(2)), tostring(m:derive(2)))
+    -- Start: {srand(5);} then E's srand(7): the first step draws from seed 7
+    local plain = lsys.lsystem { axiom = "A A", productions = { "A --> B(ran(1000))" },
+                                 seed = 7, numbers = "float32" }
+    assert.equal(("B(%s)B(%s)"):format(b1, b2), tostring(plain:derive(1)))
+  end)
+
   it("rewrites a predecessor of several modules as cpfg does", function ()
     assert.equal("FFFFFFFFFFFFFFX", derive("multi.l"))    -- cpfg
     local m = lsys.cpfg.load(D .. "strict.l")             -- cpfg, step by step
@@ -109,11 +123,6 @@ describe("lsys.cpfg.load errors", function ()
   it("names a missing #include", function ()
     assert.equal(D .. "errors_include.l:6: missing.l: No such file or directory",
                  err("errors_include.l"))
-  end)
-
-  it("refuses srand", function ()
-    assert.equal(D .. "errors_srand.l:3: srand is not supported (lsys seeds with the "
-                 .. "model's seed: option)", err("errors_srand.l"))
   end)
 
   it("refuses a predecessor of several modules in a homomorphism unless it is a name",

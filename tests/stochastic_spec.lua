@@ -113,4 +113,22 @@ describe("stochastic choice", function()
     local via_steps = H.steps(m, 6)
     assert.equal(tostring(m:derive(6)), via_steps[7])
   end)
+
+  it("reseeds with srand: from a start hook, from a rule function, not elsewhere", function()
+    local lsys = require "lsys"
+    local axiom = H.rep("A", 64)
+    local want = H.derive(axiom, AB, 1, { seed = 9 })
+    local m = H.model(axiom, AB, { seed = 1 })
+    m.start = function (self) self:srand(9) end       -- the derivation follows seed 9
+    assert.equal(want, tostring(m:derive(1)))
+    assert.equal(want, tostring(m:derive(1)))
+    -- a rule function reseeds mid-step: both Rs then draw the same first number
+    local r = lsys.lsystem { axiom = "S R S R", productions = {
+      { "S", function () lsys.srand(3); return lsys.produce("S") end },
+      "R --> R(ran(1))" } }
+    local x, y = tostring(r:derive(1)):match("^SR%(([%d.e-]+)%)SR%(([%d.e-]+)%)$")
+    assert.truthy(x and x == y)
+    assert.error_matches(function () lsys.srand(1) end, "srand called outside a derivation")
+    assert.error_matches(function () m:srand("x") end, "srand: a number expected, got string")
+  end)
 end)

@@ -238,6 +238,16 @@ static int rules_skiplist (lua_State *L) {
   return 0;
 }
 
+/* The generator seed of the number at 'idx': an integer as itself; a
+** fractional, huge or nan number by its bits. */
+static uint64_t seedof (lua_State *L, int idx) {
+  lua_Number s = luaL_checknumber(L, idx);
+  uint64_t seed;
+  if (s >= -9.2e18 && s <= 9.2e18 && s == (double)(int64_t)s) seed = (uint64_t)(int64_t)s;
+  else memcpy(&seed, &s, sizeof seed);
+  return seed;
+}
+
 /* rules:config(key, value) */
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
@@ -271,14 +281,9 @@ static int rules_config (lua_State *L) {
       luaL_argcheck(L, x >= 0 && x < 1.8e19, 3, "max_memory must be a number of bytes >= 0");
       R->m.max_memory = x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x;
       break;
-    default: {
-      lua_Number s = luaL_checknumber(L, 3);
-      uint64_t seed;
-      if (s >= -9.2e18 && s <= 9.2e18 && s == (double)(int64_t)s) seed = (uint64_t)(int64_t)s;
-      else memcpy(&seed, &s, sizeof seed);      /* fractional, huge or nan: its bits */
-      lsys_rng_seed(key == 5 ? &R->m.rng : &R->m.hrng, seed);
+    default:
+      lsys_rng_seed(key == 5 ? &R->m.rng : &R->m.hrng, seedof(L, 3));
       break;
-    }
   }
   return 0;
 }
@@ -462,6 +467,14 @@ static int nranfn (lua_State *L) {
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
   lua_pushnumber(L, lsys_rng_normal(R->m.cur, mu, sd));
   return 1;
+}
+
+/* rules:srand(seed): reseeds the generator in use (the derivation's, or the
+** homomorphism's while it runs), as cpfg's srand; allowed during a step */
+static int rules_srand (lua_State *L) {
+  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_rng_seed(R->m.cur, seedof(L, 2));
+  return 0;
 }
 
 static int rules_ran (lua_State *L) {
@@ -714,6 +727,12 @@ static int l_ran (lua_State *L) {
   return 1;
 }
 
+static int l_srand (lua_State *L) {
+  lsys_lrules *R = deriving(L, "srand");
+  lsys_rng_seed(R->m.cur, seedof(L, 1));
+  return 0;
+}
+
 static int l_nran (lua_State *L) {
   lsys_lrules *R = deriving(L, "nran");
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
@@ -753,7 +772,8 @@ static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
-  {"ran", rules_ran}, {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
+  {"ran", rules_ran}, {"srand", rules_srand},
+  {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
   {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
 };
@@ -764,7 +784,8 @@ static const luaL_Reg rules_meta[] = {
 
 static const luaL_Reg core_funcs[] = {
   {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
-  {"ran", l_ran}, {"nran", l_nran}, {"producing", l_producing}, {"max_memory", l_max_memory},
+  {"ran", l_ran}, {"nran", l_nran}, {"srand", l_srand},
+  {"producing", l_producing}, {"max_memory", l_max_memory},
   {NULL, NULL}
 };
 

@@ -35,6 +35,7 @@ M.produce = core.produce
 M.nproduce = core.nproduce
 M.ran = core.ran       -- ran(x), nran(m, sd) for rule functions: the deriving model's generator
 M.nran = core.nran
+M.srand = core.srand   -- srand(seed) in rule functions: reseeds that generator (cpfg's srand)
 M.version = "0.1.0"
 M.view = view
 

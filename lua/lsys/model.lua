@@ -549,6 +549,16 @@ function Model:step (s)
   return self:_core("step", s)
 end
 
+--- Reseeds the generator of the derivation now, as cpfg's srand: called from a `start`
+-- hook, the derivation follows `seed` instead of `model.seed`; from `start_each` or
+-- `end_each`, the steps after. (`lsys.srand(seed)` does it from inside a rule function.)
+function Model:srand (seed)
+  if type(seed) ~= "number" then
+    error(format("srand: a number expected, got %s", type(seed)), 2)
+  end
+  self._rules:srand(seed)
+end
+
 --- Applies the homomorphism to `s` (what the turtle sees); a new Lstring.
 function Model:expand (s)
   if type(s) == "string" then s = self:lstring(s) end

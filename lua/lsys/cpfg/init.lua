@@ -173,8 +173,10 @@ local function call (T, ctx, e)
   if f == "atan2" then   -- reserved by cpfg's lexer but missing from its grammar
     fail(T, e.pos, "atan2 is not a function in cpfg (a syntax error there); use atan(y/x)")
   end
-  if f == "srand" then
-    fail(T, e.pos, "srand is not supported (lsys seeds with the model's seed: option)")
+  if f == "srand" then         -- a statement: only in the function form
+    nostring(ctx)
+    if #a ~= 1 then fail(T, e.pos, "srand takes 1 argument, not %d", #a) end
+    return "H._srand(" .. N(T, ctx, a[1]) .. ")", "n"
   end
   local n = ARGS[f]
   if not n then fail(T, e.pos, "the function %s is not supported", f) end
@@ -753,7 +755,16 @@ local function translate (P, lsystems, opts)
     for _, f in ipairs(inits) do f() end
   end
   reset()
-  o.start = function () reset(); for _, f in ipairs(starts) do f() end end
+  -- srand reseeds the generator of the model deriving: from a rule, the one producing now
+  T.H._srand = function (x)
+    if core.producing() then core.srand(x) else T.model:srand(x) end
+    return 0.0
+  end
+  o.start = function (m)
+    T.model = m
+    reset()
+    for _, f in ipairs(starts) do f() end
+  end
   if #each > 0 then o.start_each = function () for _, f in ipairs(each) do f() end end end
   if #ends > 0 then o.end_each = function () for _, f in ipairs(ends) do f() end end end
   if #finish > 0 then o.finish = function () for _, f in ipairs(finish) do f() end end end
