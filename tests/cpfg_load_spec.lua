@@ -67,6 +67,21 @@ describe("lsys.cpfg.load", function ()
     assert.equal(("B(%s)B(%s)"):format(b1, b2), tostring(plain:derive(1)))
   end)
 
+  it("computes positional functions as cpfg approximates them", function ()
+    -- cpfg (func.l with func.v): its numbers printed with %g
+    local cpfg = "+(53.1232)F(2.02046)+(51.092)F(4.73308)+(48.7088)F(4.84078)"
+      .. "+(46.2087)F(4.09045)+(43.803)F(3.86003)+(41.708)F(4.99415)"
+    local function g (s) return (s:gsub("[-%d.e]+", function (x) return ("%g"):format(x) end)) end
+    local m = lsys.cpfg.load(D .. "func.l", D .. "func.v")
+    assert.equal(cpfg, g(tostring(m:derive())))
+    assert.equal("cpfg", m._funclist[1]:approx())
+    assert.near(0.531232, m:func(1, 0), 1e-6)
+    assert.near(0.2020465, m:func("exact", 0), 1e-6)
+    -- lsys's exact values on request: the first point's y at x = 0
+    local e = lsys.cpfg.load(D .. "func.l", D .. "func.v", { functions = "exact" })
+    assert.equal("+(53.1316)F(2)", g(tostring(e:derive())):sub(1, 14))
+  end)
+
   it("rewrites a predecessor of several modules as cpfg does", function ()
     assert.equal("FFFFFFFFFFFFFFX", derive("multi.l"))    -- cpfg
     local m = lsys.cpfg.load(D .. "strict.l")             -- cpfg, step by step

@@ -41,6 +41,24 @@ describe("lsys.func", function ()
     assert.equal("lsys.Func(f: 4 points, 5 samples)", tostring(f))
   end)
 
+  it("approximates as cpfg with approx = \"cpfg\" (float32 points, bisection to 0.001)",
+     function ()
+    local pts = { { 0, 0.531316 }, { 0.32381, 0.502745 }, { 0.647619, 0.450364 },
+                  { 1, 0.417031 } }
+    local exact = lsys.func.new { points = pts, samples = 10 }
+    local c = lsys.func.new { points = pts, samples = 10, approx = "cpfg" }
+    assert.equal("exact", exact:approx())
+    assert.equal("cpfg", c:approx())
+    assert.equal(0.531316, exact(0))
+    assert.near(0.531232, c(0), 5e-7)              -- cpfg's Lilac: +(53.1232)
+    assert.near(0.417080, c(1), 5e-7)
+    local c0 = lsys.func.new { points = pts, approx = "cpfg" }   -- no table: bisection
+    assert.near(0.531232, c0(0), 5e-7)
+    assert.is_true(math.abs(c0(0.5) - exact(0.5)) < 1e-3)
+    assert.error_matches(function () lsys.func.new { points = pts, approx = "x" } end,
+                         'lsys.func.new: approx must be "exact" or "cpfg"')
+  end)
+
   it("raises on bad points, naming the point", function ()
     assert.has_error(function () lsys.func.new { points = { { 0, 0 }, { 1, 1 } } } end,
       "lsys.func.new: a function needs at least 4 points, got 2")

@@ -110,6 +110,25 @@ static double exact (const lsys_func *f, double x) {
   return bern(f->bez + 8 * lo + 4, solve(f->bez + 8 * lo, x));
 }
 
+/* cpfg's value (GetValue/_Value of cpfg/splinefun.cpp): bisection on the
+** curve parameter d in [0, 1] until |x(d) - x| <= 0.001; the y there. */
+static double approx (const lsys_func *f, double x) {
+  size_t ns = f->n - 3;
+  double lo = 0, hi = 1, px, py = 0;
+  int it;
+  for (it = 0; it < 64; it++) {
+    double d = (lo + hi) / 2, t = d * (double)ns, u;
+    size_t j = (size_t)t;
+    if (j >= ns) j = ns - 1;
+    u = t - (double)j;
+    px = bern(f->bez + 8 * j, u);
+    py = bern(f->bez + 8 * j + 4, u);
+    if (px > x) hi = d; else lo = d;
+    if (fabs(px - x) <= 0.001) break;
+  }
+  return py;
+}
+
 double lsys_func_eval (const lsys_func *f, double x) {
   if (x != x) return x;
   if (x < 0) x = 0;
@@ -121,7 +140,17 @@ double lsys_func_eval (const lsys_func *f, double x) {
     if (i >= f->samples - 1) return f->vals[f->samples - 1];
     return w1 * f->vals[i] + w2 * f->vals[i + 1];
   }
-  return exact(f, x);
+  return f->cpfg ? approx(f, x) : exact(f, x);
+}
+
+void lsys_func_cpfg (lsys_func *f) {
+  size_t i;
+  if (f->n < 4 || f->cpfg) return;
+  for (i = 0; i < 2 * f->n; i++) f->pt[i] = (double)(float)f->pt[i];
+  spans(f);
+  f->cpfg = 1;
+  for (i = 0; i < (size_t)(f->samples > 2 ? f->samples : 0); i++)
+    f->vals[i] = approx(f, (double)i / (f->samples - 1));
 }
 
 static int validname (const char *s) {

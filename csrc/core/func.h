@@ -44,6 +44,7 @@ typedef struct lsys_func {
   int samples;        /* 0: exact; > 2: the table 'vals' is used */
   double *vals;       /* 'samples' values at i / (samples - 1), or NULL */
   double *bez;        /* per span (n - 3 of them): the Bezier points x0..x3, y0..y3 */
+  int cpfg;           /* 1: cpfg's approximation (lsys_func_cpfg) */
 } lsys_func;
 
 void lsys_func_init (lsys_func *f);
@@ -64,6 +65,17 @@ int lsys_func_set (lsys_func *f, const double *pt, size_t n, const char *name, i
 
 /* f(x) for a set function: see above. */
 double lsys_func_eval (const lsys_func *f, double x);
+
+/*
+** Switches 'f' to cpfg's approximation (vlab: cpfg/splinefun.cpp), for
+** models that must give cpfg's numbers: the control points are rounded to
+** float32 (cpfg reads them as floats) and a value is the y of the curve
+** point found by bisecting the curve parameter until its x is within 0.001
+** of the argument (at most 64 halvings); with samples > 2 the table holds
+** such values. cpfg's Lilac gives a branching angle of 53.1232 where the
+** exact value is 53.1316. Allocates nothing.
+*/
+void lsys_func_cpfg (lsys_func *f);
 
 /*
 ** Parses the text of a .func or .fset file into a new array of *nout

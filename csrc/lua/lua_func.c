@@ -4,12 +4,14 @@
 **
 **   core.func(points [, opts]) -> Func
 **       points = { {x, y}, ... } (at least 4, x nondecreasing from 0 to 1);
-**       opts.name (default "f"), opts.samples (default 0: exact)
+**       opts.name (default "f"), opts.samples (default 0: exact),
+**       opts.approx ("exact", the default, or "cpfg": lsys_func_cpfg)
 **   core.func_parse(text, filename [, samples]) -> { Func, ... }
 **       a .func (one function) or .fset text; samples applies to the old
 **       "range:" form, as a cpfg view file's "function:" line gives it
 **   f(x), f:eval(x) -> number      f:points() -> { {x, y}, ... }
 **   f:name() -> string    f:samples() -> integer    f:format() -> fver 1 1 text
+**   f:approx() -> "exact" | "cpfg"
 **
 ** A Func is immutable once made; rules call it from C (lsys_checkfunc).
 */
@@ -47,7 +49,7 @@ static int optsamples (lua_State *L, int t) {
 static int l_func (lua_State *L) {
   lua_Integer n, i;
   const char *name = "f";
-  int samples = 0, st;
+  int samples = 0, st, cpfg = 0;
   double *pt;
   lsys_func *f;
   lsys_error e;
@@ -60,6 +62,13 @@ static int l_func (lua_State *L) {
     }
     lua_pop(L, 1);
     samples = optsamples(L, 2);
+    if (lua_getfield(L, 2, "approx") != LUA_TNIL) {
+      const char *a = lua_tostring(L, -1);
+      if (lua_type(L, -1) != LUA_TSTRING || (strcmp(a, "exact") != 0 && strcmp(a, "cpfg") != 0))
+        luaL_error(L, "core.func: opts.approx must be \"exact\" or \"cpfg\"");
+      cpfg = strcmp(a, "cpfg") == 0;
+    }
+    lua_pop(L, 1);
   }
   n = luaL_len(L, 1);
   if (n < 4 || n > LSYS_FUNC_MAXPOINTS)
@@ -88,6 +97,7 @@ static int l_func (lua_State *L) {
     if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
     return luaL_argerror(L, 1, e.msg);
   }
+  if (cpfg) lsys_func_cpfg(f);
   return 1;
 }
 
@@ -147,6 +157,11 @@ static int func_samples (lua_State *L) {
   return 1;
 }
 
+static int func_approx (lua_State *L) {
+  lua_pushstring(L, lsys_checkfunc(L, 1)->cpfg ? "cpfg" : "exact");
+  return 1;
+}
+
 static int func_format (lua_State *L) {
   const lsys_func *f = lsys_checkfunc(L, 1);
   size_t len = lsys_func_format(f, NULL, 0);
@@ -167,7 +182,8 @@ static int func_tostring (lua_State *L) {
 
 static const luaL_Reg func_methods[] = {
   {"eval", func_eval}, {"points", func_points}, {"name", func_name},
-  {"samples", func_samples}, {"format", func_format}, {NULL, NULL}
+  {"samples", func_samples}, {"approx", func_approx}, {"format", func_format},
+  {NULL, NULL}
 };
 
 static const luaL_Reg func_meta[] = {

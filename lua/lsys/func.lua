@@ -1,7 +1,7 @@
 --- Positional functions (Anastacio et al. 2009, §4; Prusinkiewicz et al. 2001): functions
 -- y = f(x) of the relative position x in [0, 1], cpfg's B-spline functions and their
 -- .func / .fset files. A function is an lsys.Func (csrc/lua/lua_func.c): `f(x)`,
--- `f:points()`, `f:name()`, `f:samples()`, `f:format()`. Models call them from rule
+-- `f:points()`, `f:name()`, `f:samples()`, `f:approx()`, `f:format()`. Models call them from rule
 -- expressions (lsys.model, option `functions`) on the C expression machine.
 -- @module lsys.func
 local core = require "lsys.core"
@@ -22,17 +22,20 @@ function M.isfunc (x) return getmetatable(x) == FUNC_MT end
 local isfunc = M.isfunc
 
 --- A function from its control points: opts = { points = { {x, y}, ... }, name = "f",
--- samples = 0 }. At least 4 points, x nondecreasing from 0 to 1 (within 1e-6); samples 0
--- (exact values) or > 2 (cpfg's table of that many values, interpolated linearly).
+-- samples = 0, approx = "exact" }. At least 4 points, x nondecreasing from 0 to 1 (within
+-- 1e-6); samples 0 (exact values) or > 2 (cpfg's table of that many values, interpolated
+-- linearly); approx "cpfg" computes values as cpfg approximates them (float32 points,
+-- bisection to 0.001 in x), for models that must give cpfg's numbers.
 function M.new (opts)
   if type(opts) ~= "table" then error("lsys.func.new: a table of options expected", 2) end
   for k in pairs(opts) do
-    if k ~= "points" and k ~= "name" and k ~= "samples" then
+    if k ~= "points" and k ~= "name" and k ~= "samples" and k ~= "approx" then
       error(format("lsys.func.new: unknown option '%s'", tostring(k)), 2)
     end
   end
   if type(opts.points) ~= "table" then error("lsys.func.new: 'points' must be a list", 2) end
-  local ok, f = pcall(core.func, opts.points, { name = opts.name, samples = opts.samples })
+  local ok, f = pcall(core.func, opts.points, { name = opts.name, samples = opts.samples,
+                                                approx = opts.approx })
   if not ok then
     local msg = tostring(f):gsub("^bad argument #1 to '.-'%s*%((.*)%)$", "%1")
     error("lsys.func.new: " .. msg:gsub("^core%.func: opts%.", ""), 2)

@@ -334,6 +334,15 @@ function Model:_functions (spec, dir, fail)
   end
 end
 
+--- The value of the model's positional function `id` (its position from 1, or its name)
+-- at `x`: what func(id, x) gives in a rule.
+function Model:func (id, x)
+  if type(x) ~= "number" then
+    error(format("func: x must be a number, got %s", type(x)), 2)
+  end
+  return self._func(id, x)
+end
+
 -- Raises when a rule calls func(ID, x) or func("name", x) with a function the model
 -- does not have (when derivation starts, as for unknown names).
 function Model:_checkfuncs (info)

@@ -137,6 +137,31 @@ static void test_samples (void) {
   lsys_func_free(&f); lsys_func_free(&g);
 }
 
+/* cpfg's approximation: y(0) of 3 x = 3t(1-t) by bisection stops where
+** |x(d)| <= 0.001 and is not 0; cpfg's Lilac table value at 0 is 0.531232. */
+static void test_cpfg (void) {
+  static const double pt[] = { 0, 0, 1.0 / 3, 1, 2.0 / 3, 1, 1, 0 };
+  static const double lilac[] = { 0, 0.531316, 0.32381, 0.502745, 0.647619, 0.450364,
+                                  1, 0.417031 };
+  lsys_func f;
+  double y;
+  lsys_func_init(&f);
+  set(&f, pt, 4, 0);
+  lsys_func_cpfg(&f);
+  assert(f.cpfg == 1);
+  y = lsys_func_eval(&f, 0.5);                 /* x(d) = 0.5 at d = 0.5: found at once */
+  assert(fabs(y - 0.75) < 1e-15);
+  y = lsys_func_eval(&f, 0);                   /* 10 halvings: d = 2^-10, y = 3d(1-d) */
+  assert(y > 0 && fabs(y - 3 * 0x1p-10 * (1 - 0x1p-10)) < 1e-12);
+  lsys_func_cpfg(&f);                          /* a second call changes nothing */
+  assert(lsys_func_eval(&f, 0) == y);
+  set(&f, lilac, 4, 10);
+  assert(f.cpfg == 0 && f.vals[0] == 0.531316);
+  lsys_func_cpfg(&f);
+  assert(fabs(f.vals[0] - 0.531232) < 5e-7 && fabs(lsys_func_eval(&f, 0) - f.vals[0]) < 1e-15);
+  lsys_func_free(&f);
+}
+
 static void seterr (const double *pt, size_t n, const char *name, int samples, const char *msg) {
   lsys_func f;
   lsys_error e;
@@ -349,6 +374,7 @@ static void test_machine (void) {
 }
 
 int main (void) {
+  test_cpfg();
   test_four();
   test_six();
   test_vertical();

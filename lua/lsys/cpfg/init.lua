@@ -802,11 +802,28 @@ local function checkopts (opts, fname)
   if opts == nil then return {} end
   if type(opts) ~= "table" then error(fname .. ": opts must be a table", 3) end
   for k in pairs(opts) do
-    if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" then
+    if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" and
+       k ~= "functions" then
       error(format("%s: unknown option '%s'", fname, tostring(k)), 3)
     end
   end
+  if opts.functions ~= nil and opts.functions ~= "cpfg" and opts.functions ~= "exact" then
+    error(format("%s: option 'functions' must be \"cpfg\" or \"exact\"", fname), 3)
+  end
   return opts
+end
+
+-- The view's positional functions as cpfg computes them (lsys.func approx "cpfg"), or
+-- nil when the view has none.
+local function cpfgfuncs (v)
+  if not (v and type(v.functions) == "table") then return nil end
+  local list = func.collect(v.functions, v.dir, "view functions")
+  local out = {}
+  for i, f in ipairs(list) do
+    out[i] = func.new { points = f:points(), name = f:name(), samples = f:samples(),
+                        approx = "cpfg" }
+  end
+  return out
 end
 
 --- The lsys.lsystem options of a cpfg L-system file, and the translation's details.
@@ -831,7 +848,9 @@ end
 --- Loads a cpfg model: the L-system file `lfile` and optionally its view file `vfile`
 -- (read with lsys.view.load; contours, surfaces and functions are relative to its
 -- folder). opts: colormap or materials (a .map or .mat file, the palette), cpp and
--- defines as for `options`. Returns an lsys Model; raises "file:line: message".
+-- defines as for `options`, functions ("cpfg", the default: the view's functions
+-- approximated as cpfg does; "exact": lsys's exact values). Returns an lsys Model; raises
+-- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
   if vfile ~= nil and type(vfile) ~= "string" then
@@ -856,6 +875,7 @@ function M.load (lfile, vfile, opts)
   end)
   if not ok then error(cpfgerror(err), 0) end
   o.view = v
+  if opts.functions ~= "exact" then o.functions = cpfgfuncs(v) end
   local ok2, m = pcall(model.lsystem, o)
   if not ok2 then
     -- name the cpfg line of a rule lsys refused
@@ -868,7 +888,7 @@ function M.load (lfile, vfile, opts)
     end
     error(msg, 0)
   end
-  if T.usesfunc then T.H.func = function (id, x) return m._func(id, x) end end
+  if T.usesfunc then T.H.func = function (id, x) return m:func(id, x) end end
   return m
 end
 

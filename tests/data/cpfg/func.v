@@ -1,0 +1,2 @@
+function: br.func
+function: exact.func
