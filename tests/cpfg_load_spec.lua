@@ -82,6 +82,22 @@ describe("lsys.cpfg.load", function ()
     assert.equal("+(53.1316)F(2)", g(tostring(e:derive())):sub(1, 14))
   end)
 
+  it("keeps quiet at the depth limit after 'no warnings', as cpfg", function ()
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local ok, err = pcall(function ()
+      assert.equal("B", derive("nowarn.l"))                       -- cpfg, without a warning
+      local m = lsys.lsystem { axiom = "X", productions = "X --> A",
+                               decomposition = "A --> B\nB --> C" }
+      assert.equal("B", tostring(m:derive(1)))
+    end)
+    warning.warn = saved
+    assert(ok, err)
+    assert.equal(1, #got)                          -- the plain model warns, as cpfg does
+    assert.matches("the decomposition depth limit stopped", got[1])
+  end)
+
   it("rewrites a predecessor of several modules as cpfg does", function ()
     assert.equal("FFFFFFFFFFFFFFX", derive("multi.l"))    -- cpfg
     local m = lsys.cpfg.load(D .. "strict.l")             -- cpfg, step by step

@@ -81,4 +81,25 @@ describe("decomposition", function()
     assert.equal("B", tostring(m:derive(1)))
     assert.equal("B", tostring(m:derive(2)))
   end)
+
+  it("warns once at the depth limit unless depth_warnings says no", function()
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local ok, err = pcall(function ()
+      for _, dw in ipairs { true, false, { decomposition = false }, { homomorphism = false } } do
+        local m = model { decomposition = "A --> B\nB --> C", depth_warnings = dw }
+        assert.equal("B", tostring(m:derive(1)))
+        assert.equal("B", tostring(m:derive(1)))
+      end
+    end)
+    warning.warn = saved
+    assert(ok, err)
+    assert.equal(4, #got)          -- once per derive of the first and the last model
+    assert.matches("the decomposition depth limit stopped at modules that have rules", got[1])
+    assert.error_matches(function () model { depth_warnings = 1 } end,
+      "option 'depth_warnings' must be a boolean or a table %(decomposition, homomorphism%)")
+    assert.error_matches(function () model { depth_warnings = { decomp = false } } end,
+      "depth_warnings: bad entry 'decomp' %(decomposition = or homomorphism = true or false%)")
+  end)
 end)

@@ -118,6 +118,7 @@ local OPTIONS = {
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
+  depth_warnings = "any",
 }
 
 local Model = {}
@@ -196,7 +197,7 @@ local function checkoptions (opts, fail)
     elseif t == "size" then
       local ok, r = pcall(M.parse_size, v, "option '" .. k .. "'")
       if not ok then fail(r) end
-    elseif type(v) ~= t then
+    elseif t ~= "any" and type(v) ~= t then
       fail(format("option '%s' must be a %s (got %s)", k, t, type(v)))
     end
   end
@@ -264,6 +265,19 @@ function Model:_configure (opts, fail)
   if opts.max_memory then
     self.max_memory = M.parse_size(opts.max_memory)
     rules:config("max_memory", self.max_memory)
+  end
+  local dw = opts.depth_warnings     -- false, or { decomposition = b, homomorphism = b }
+  self._depthwarn = { decomposition = dw ~= false, homomorphism = dw ~= false }
+  if type(dw) == "table" then
+    for k, b in pairs(dw) do
+      if (k ~= "decomposition" and k ~= "homomorphism") or type(b) ~= "boolean" then
+        fail(format("depth_warnings: bad entry '%s' (decomposition = or homomorphism = "
+                    .. "true or false)", tostring(k)))
+      end
+      self._depthwarn[k] = b
+    end
+  elseif dw ~= nil and type(dw) ~= "boolean" then
+    fail("option 'depth_warnings' must be a boolean or a table (decomposition, homomorphism)")
   end
   for k, d in pairs(opts.max_depth or {}) do
     if k ~= "decomposition" and k ~= "homomorphism" then
@@ -463,11 +477,11 @@ function Model:_call (fn, what, ...)
   if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
-    if deep and not self._warned then
+    local kind = what == "step" and "decomposition" or "homomorphism"
+    if deep and not self._warned and self._depthwarn[kind] then
       self._warned = true
       warning.warn(format("lsys: %s: the %s depth limit stopped at modules that have " ..
-                          "rules (raise max_depth if they should apply)", self._where,
-                          what == "step" and "decomposition" or "homomorphism"))
+                          "rules (raise max_depth if they should apply)", self._where, kind))
     end
     return res
   end

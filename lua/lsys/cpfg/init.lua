@@ -709,6 +709,10 @@ local function translate (P, lsystems, opts)
         depth[s] = floor(d)
       end
       if sect.seed then o.homomorphism_seed = floor(consteval(T, sect.seed, 1, "the seed")) end
+      if sect.warnings == false then          -- `no warnings`: no depth-limit warning
+        o.depth_warnings = o.depth_warnings or {}
+        o.depth_warnings[s] = false
+      end
     end
   end
   if next(depth) ~= nil then o.max_depth = depth end
