@@ -131,4 +131,29 @@ describe("stochastic choice", function()
     assert.error_matches(function () lsys.srand(1) end, "srand called outside a derivation")
     assert.error_matches(function () m:srand("x") end, "srand: a number expected, got string")
   end)
+
+  it("chooses among weighted function rules and rule strings by weight", function()
+    local lsys = require "lsys"
+    local calls = 0
+    local m = lsys.lsystem { axiom = H.rep("A", 2000), seed = 5, productions = {
+      { "A", function () calls = calls + 1; return lsys.produce("B(1)") end, weight = 1 },
+      { "A", function () return lsys.produce("C") end, weight = 3 },
+      "A --> D : 0" } }
+    local s = m:derive(1)
+    assert.equal(2000, s:count("B") + s:count("C"))
+    assert.equal(0, s:count("D"))
+    assert.is_true(math.abs(s:count("B") - 500) < 80, tostring(s:count("B")))   -- 1 : 3
+    assert.equal(2000, calls)            -- every applicable function runs before the choice
+    assert.equal(tostring(s), tostring(m:derive(1)))
+    -- a function that does not produce is not an alternative
+    local n = lsys.lsystem { axiom = H.rep("A", 50), seed = 2, productions = {
+      { "A", function () end, weight = 100 }, "A --> C : 1" } }
+    assert.equal(H.rep("C", 50), tostring(n:derive(1)))
+    assert.error_matches(function ()
+      lsys.lsystem { productions = { { "A", function () end, weight = -1 } } }
+    end, "productions: entry 1: weight must be a number >= 0")
+    assert.error_matches(function ()
+      lsys.lsystem { productions = { { "A", function () end, wieght = 1 } } }
+    end, "productions: entry 1: unknown key 'wieght' in {pattern, function, weight = w}")
+  end)
 end)

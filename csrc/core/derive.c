@@ -24,6 +24,7 @@ static inline const double *parof (const lsys_lstring *s, size_t p) {
   return s->par != NULL ? s->par + p : nopar;
 }
 #define ACT_SLOW NONE
+#define ALTHEAD 5     /* an alternative's record in m->alt before its args and vals */
 #define ACT_COPY (NONE - 1)
 
 int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
@@ -65,6 +66,7 @@ void lsys_model_free (lsys_model *m) {
   LSYS_FREE(m->act);
   lsys_lstring_free(&m->dyn);
   lsys_lstring_free(&m->tmp);
+  lsys_lstring_free(&m->altdyn);
   memset(m, 0, sizeof *m);
 }
 
@@ -152,8 +154,9 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
   if (m->busy) return busyerror(m, e);
   if (sp->pred.np > LSYS_MAXPARAMS)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
-  if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_STOCH))
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a rule with a function cannot have a weight");
+  if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_WEXPR))
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1,
+                         "a rule with a function has a number as its weight");
   if (sp->nmore > 0) {       /* cpfg's strict predecessor of several modules */
     const char *what = kind == LSYS_DECOMP ? "decomposition" : "homomorphism";
     if (kind != LSYS_PROD)
@@ -295,18 +298,24 @@ static int compileset (lsys_model *m, lsys_ruleset *s) {
   return LSYS_OK;
 }
 
+/* Appends modules [i, j) of 'src' (parameters from 'poff'): a successor a
+** function produced. */
+static int emitdyn (lsys_model *m, lsys_lstring *out, const lsys_lstring *src, size_t i,
+                    size_t j, size_t poff) {
+  size_t p0 = out->npar;
+  int st;
+  if (out->n + (j - i) > m->max_modules) return LSYS_ELIMIT;
+  if ((st = lsys_lstring_append(out, src, i, j, poff)) != LSYS_OK) return st;
+  if (m->f32) for (; p0 < out->npar; p0++) out->par[p0] = lsys_round32(out->par[p0]);
+  return LSYS_OK;
+}
+
 /* Writes the successor of 'r' into 'out'. */
 static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
                  const double *args, const double *vals) {
   uint32_t k;
   int st;
-  if (r->flags & LSYS_RF_DYN) {
-    size_t p0 = out->npar;
-    if (out->n + m->dyn.n > m->max_modules) return LSYS_ELIMIT;
-    if ((st = lsys_lstring_append(out, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK) return st;
-    if (m->f32) for (; p0 < out->npar; p0++) out->par[p0] = lsys_round32(out->par[p0]);
-    return LSYS_OK;
-  }
+  if (r->flags & LSYS_RF_DYN) return emitdyn(m, out, &m->dyn, 0, m->dyn.n, 0);
   if (out->n + r->nsucc > m->max_modules) return LSYS_ELIMIT;
   if ((st = lsys_lstring_reserve(out, r->nsucc, r->nsrc)) != LSYS_OK) return st;
   if (r->nsucc > 0)        /* an empty successor may have no array at all */
@@ -373,6 +382,7 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
   size_t nalt = 0, altn = 0;   /* alternatives and doubles used in m->alt */
   double total = 0;
   int si, st;
+  lsys_lstring_clear(&m->altdyn);
   for (si = 0; si < nsets; si++) {
     const lsys_ruleset *s = sets[si];
     uint32_t b, e;
@@ -414,14 +424,23 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
         m->cur_rule = (long)(r - m->rules);
         return lsys_seterror(&m->err, LSYS_ERULE, i, "weight is %g, not a finite number >= 0", w);
       }
-      {       /* keep the alternative: rule, weight, args, vals */
-        size_t need = altn + 2 + r->nargs + r->nvals;
+      {       /* keep the alternative: rule, weight, where its produced successor is in
+              ** m->altdyn (modules [b, e), parameters from p), args, vals */
+        size_t need = altn + ALTHEAD + r->nargs + r->nvals;
+        double *a;
         if (m->altcap < need &&
             lsys_grow((void **)&m->alt, &m->altcap, need, sizeof *m->alt) != LSYS_OK)
           return LSYS_ENOMEM;
-        m->alt[altn] = (double)(r - m->rules);
-        m->alt[altn + 1] = w;
-        memcpy(m->alt + altn + 2, args, (r->nargs + r->nvals) * sizeof *args);
+        a = m->alt + altn;
+        a[0] = (double)(r - m->rules);
+        a[1] = w;
+        a[2] = (double)m->altdyn.n;
+        a[4] = (double)m->altdyn.npar;
+        if ((r->flags & LSYS_RF_DYN) &&      /* the function ran: keep what it produced */
+            (st = lsys_lstring_append(&m->altdyn, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK)
+          return st;
+        a[3] = (double)m->altdyn.n;
+        memcpy(a + ALTHEAD, args, (r->nargs + r->nvals) * sizeof *args);
         altn = need;
         nalt++;
         total += w;
@@ -445,13 +464,17 @@ choose:
         cum += m->alt[at + 1];
         if (cum > target) break;
       }
-      at += 2 + r->nargs + r->nvals;
+      at += ALTHEAD + r->nargs + r->nvals;
     }
     if (k == nalt) {
       at = last;
       r = &m->rules[(size_t)m->alt[at]];
     }
-    st = emit(m, out, r, m->alt + at + 2, m->alt + at + 2 + r->nargs);
+    if (r->flags & LSYS_RF_DYN)
+      st = emitdyn(m, out, &m->altdyn, (size_t)m->alt[at + 2], (size_t)m->alt[at + 3],
+                   (size_t)m->alt[at + 4]);
+    else
+      st = emit(m, out, r, m->alt + at + ALTHEAD, m->alt + at + ALTHEAD + r->nargs);
     return st == LSYS_OK ? 1 + (int)r->nmore : st;
   }
 }
@@ -782,14 +805,15 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
 */
 static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
-                   lsys_lstring_bytes(&m->tmp) + m->matchcap * (sizeof *m->match + sizeof *m->poff);
+                   lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
+                   m->matchcap * (sizeof *m->match + sizeof *m->poff);
   if (dst != NULL) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
   m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
   m->meter.used = used;
   if (used > m->meter.limit) return fail(m, LSYS_EMEMORY, 0);
   if (dst != NULL) dst->meter = &m->meter;
-  m->tmp.meter = m->dyn.meter = &m->meter;
+  m->tmp.meter = m->dyn.meter = m->altdyn.meter = &m->meter;
   for (k = 0; k < m->nlevels; k++) m->levels[k].meter = &m->meter;
   return LSYS_OK;
 }
@@ -797,7 +821,7 @@ static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
 static void unmeter (lsys_model *m, lsys_lstring *dst) {
   size_t k;
   if (dst != NULL) dst->meter = NULL;
-  m->tmp.meter = m->dyn.meter = NULL;
+  m->tmp.meter = m->dyn.meter = m->altdyn.meter = NULL;
   for (k = 0; k < m->nlevels; k++) m->levels[k].meter = NULL;
 }
 

@@ -107,6 +107,7 @@ typedef struct lsys_model {
   double *args; size_t argscap;
   double *alt; size_t altcap;  /* stochastic alternatives: weight, rule, args, vals */
   lsys_lstring dyn, tmp;
+  lsys_lstring altdyn;         /* the successors weighted function rules produced */
   lsys_lstring *levels; size_t nlevels;
   uint32_t *match, *poff; size_t matchcap;
   uint32_t *substack; size_t nsub, subcap;

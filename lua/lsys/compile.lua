@@ -194,6 +194,10 @@ function M.rule (r, info)
     if r.cond then fail("a rule with a function has no condition (test it in the function)") end
     spec.flags = core.RF_DYN
     spec.fn = info.fn
+    if info.weight then         -- weighted: among the applicable rules, chosen by weight
+      spec.flags = spec.flags | core.RF_STOCH
+      spec.weight = info.weight
+    end
     return spec, nil
   end
   local exprs = {}

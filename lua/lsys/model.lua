@@ -140,7 +140,17 @@ local function entries (rules, what, fail)
       if type(e) == "string" then
         out[#out + 1] = { text = e:match("^%s*(.-)%s*$"), line = i, item = true }
       elseif type(e) == "table" and type(e[1]) == "string" and type(e[2]) == "function" then
-        out[#out + 1] = { text = e[1], fn = e[2], line = i, item = true }
+        local w = e.weight
+        for k in pairs(e) do
+          if k ~= 1 and k ~= 2 and k ~= "weight" then
+            fail(format("%s: entry %d: unknown key '%s' in {pattern, function, weight = w}",
+                        what, i, tostring(k)))
+          end
+        end
+        if w ~= nil and (type(w) ~= "number" or not (w >= 0) or w == math.huge) then
+          fail(format("%s: entry %d: weight must be a number >= 0", what, i))
+        end
+        out[#out + 1] = { text = e[1], fn = e[2], weight = w, line = i, item = true }
       else
         fail(format("%s: entry %d must be a rule string or {pattern, function}", what, i))
       end
@@ -160,7 +170,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
     if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
     local ok, spec, factory, frees, trees = pcall(compile.rule, r,
-      { label = label, fn = e.fn, id = n })
+      { label = label, fn = e.fn, weight = e.weight, id = n })
     if not ok then fail(spec) end
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end

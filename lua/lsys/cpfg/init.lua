@@ -158,6 +158,31 @@ local function var (T, ctx, name, write)
   end
 end
 
+-- C's escape sequences in a string literal (printf's format): \n \t \\ \" and the others.
+local CESC = { n = "\n", t = "\t", r = "\r", a = "\a", b = "\b", f = "\f", v = "\v",
+               ["\\"] = "\\", ['"'] = '"', ["'"] = "'", ["?"] = "?" }
+local function cescapes (s)
+  local out, i = {}, 1
+  while i <= #s do
+    local c = s:sub(i, i)
+    if c == "\\" and i < #s then
+      local o = s:match("^[0-7][0-7]?[0-7]?", i + 1)
+      if o then
+        out[#out + 1] = string.char(tonumber(o, 8) % 256)
+        i = i + 1 + #o
+      else
+        local e = s:sub(i + 1, i + 1)
+        out[#out + 1] = CESC[e] or "\\" .. e
+        i = i + 2
+      end
+    else
+      out[#out + 1] = c
+      i = i + 1
+    end
+  end
+  return concat(out)
+end
+
 local ARGS = { sin = 1, cos = 1, tan = 1, asin = 1, acos = 1, atan = 1, exp = 1,
                log = 1, floor = 1, ceil = 1, sqrt = 1, fabs = 1, trunc = 1, sign = 1, ran = 1,
                nran = 2, bran = 2, biran = 2, func = 2, stop = 1 }
@@ -166,7 +191,7 @@ local function call (T, ctx, e)
   local f, a = e.f, e.args
   if f == "printf" then
     if #a == 0 or a[1].k ~= "str" then fail(T, e.pos, "printf needs a format string first") end
-    local parts = { format("%q", a[1].v) }
+    local parts = { format("%q", cescapes(a[1].v)) }
     for i = 2, #a do parts[i] = N(T, ctx, a[i]) end
     return fn(ctx, "_printf") .. "(" .. concat(parts, ", ") .. ")", "n"
   end
@@ -318,6 +343,34 @@ local function walknames (list, assigned, read)
   return expr
 end
 
+-- The first statement of 'list' that acts beyond the production's own variables (an
+-- assignment to a global or an array, a call of printf or srand): its position and what
+-- it does, or nil.
+local function sideeffect (list, own)
+  local found
+  local function expr (e)
+    if e == nil or found then return end
+    if e.k == "call" and (e.f == "printf" or e.f == "srand") then
+      found = { e.pos, "calls " .. e.f }
+    end
+    for _, f in ipairs({ "a", "b", "c" }) do expr(e[f]) end
+    for _, x in ipairs(e.args or e.idx or {}) do expr(x) end
+  end
+  local function stmts (l)
+    for _, st in ipairs(l or {}) do
+      if found then return end
+      if st.k == "assign" and not (st.lhs.k == "name" and own[st.lhs.n]) then
+        found = { st.pos, "assigns " .. st.lhs.n }
+        return
+      end
+      expr(st.e); expr(st.c)
+      stmts(st.body); stmts(st.other)
+    end
+  end
+  stmts(list)
+  return found
+end
+
 local function compile (T, src, pos)
   local file, line = T.P:where(pos)
   local chunk, err = load(src, "=" .. file .. ":" .. line, "t", {})
@@ -391,6 +444,8 @@ end
 
 -- Productions ------------------------------------------------------------------------------
 
+local consteval     -- the value of a constant expression (below)
+
 -- Translates one production to a rule string or a { pattern, function } rule.
 local function production (T, ls, p, section, stochastic)
   local params = {}
@@ -442,9 +497,20 @@ local function production (T, ls, p, section, stochastic)
   end)
   if ok then return rule end
   if rule ~= NOSTRING then error(rule, 0) end
-  if weighted then
-    fail(T, p.pos, "a production with statement blocks or variables set by other "
-         .. "productions cannot be stochastic in lsys")
+  local weight
+  if weighted then         -- a weighted function rule: every one that applies runs
+    local own = {}
+    for n in pairs(locals) do own[n] = true end
+    for n in pairs(params) do own[n] = true end
+    local se = sideeffect(p.post, own)
+    if se then
+      fail(T, se[1], "in a stochastic L-system, a post-condition block that %s is not "
+           .. "supported (lsys runs the blocks of every production that applies, cpfg only "
+           .. "the chosen one's)", se[2])
+    end
+    weight = p.prob and consteval(T, p.prob, ls.scope,
+                                  "the probability of a production with statement blocks") or 1
+    if weight < 0 then fail(T, p.prob.pos, "the probability is %g, not >= 0", weight) end
   end
   -- the function form
   local ctx = { mode = "f", scope = ls.scope, params = params, locals = locals }
@@ -471,12 +537,12 @@ local function production (T, ls, p, section, stochastic)
   local L = {}
   T.localtables[#T.localtables + 1] = L
   local f = compile(T, concat(out, "\n"), p.pos)(T.env, T.H, L)
-  return { pat, f }
+  return { pat, f, weight = weight }
 end
 
 -- The translation ----------------------------------------------------------------------------
 
-local function consteval (T, e, scope, what)
+consteval = function (T, e, scope, what)
   local ctx = { mode = "s", scope = scope }
   local ok, code = pcall(N, T, ctx, e)
   if not ok then
