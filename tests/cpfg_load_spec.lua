@@ -114,6 +114,11 @@ describe("lsys.cpfg.load", function ()
     assert.is_true(math.abs(total / 5 - 128) < 20, tostring(total / 5))   -- weights 1 : 3
   end)
 
+  it("reads atan2(y, x) as C's, in degrees, and a local read before it is set as 0",
+     function ()
+    assert.equal("B(45,135,-90)C(180)", derive("atan2.l"))
+  end)
+
   it("writes printf's C escapes as C does", function ()
     local H = require "tests.helper"
     local dir = H.tmpdir()

@@ -147,8 +147,8 @@ local function var (T, ctx, name, write)
   if ctx.subst and ctx.subst[name] and not write then return ctx.subst[name] end
   if ctx.params and ctx.params[name] then return ctx.params[name] end
   if ctx.locals and ctx.locals[name] then
-    nostring(ctx)
-    return "L." .. ctx.locals[name]
+    nostring(ctx)              -- read before it is ever set: 0, as cpfg's variables start
+    return write and "L." .. ctx.locals[name] or "(L." .. ctx.locals[name] .. " or 0.0)"
   end
   local key = T.vars[ctx.scope][name] or T.glob[name]
   if key then
@@ -185,7 +185,7 @@ end
 
 local ARGS = { sin = 1, cos = 1, tan = 1, asin = 1, acos = 1, atan = 1, exp = 1,
                log = 1, floor = 1, ceil = 1, sqrt = 1, fabs = 1, trunc = 1, sign = 1, ran = 1,
-               nran = 2, bran = 2, biran = 2, func = 2, stop = 1 }
+               nran = 2, bran = 2, biran = 2, func = 2, stop = 1, atan2 = 2 }
 
 local function call (T, ctx, e)
   local f, a = e.f, e.args
@@ -194,9 +194,6 @@ local function call (T, ctx, e)
     local parts = { format("%q", cescapes(a[1].v)) }
     for i = 2, #a do parts[i] = N(T, ctx, a[i]) end
     return fn(ctx, "_printf") .. "(" .. concat(parts, ", ") .. ")", "n"
-  end
-  if f == "atan2" then   -- reserved by cpfg's lexer but missing from its grammar
-    fail(T, e.pos, "atan2 is not a function in cpfg (a syntax error there); use atan(y/x)")
   end
   if f == "srand" then         -- a statement: only in the function form
     nostring(ctx)
@@ -215,6 +212,8 @@ local function call (T, ctx, e)
     return fn(ctx, f) .. "(" .. x .. " * " .. p .. " / 180.0)", "n"
   elseif f == "asin" or f == "acos" or f == "atan" then
     return "(" .. fn(ctx, f) .. "(" .. x .. ") * 180.0 / " .. p .. ")", "n"
+  elseif f == "atan2" then     -- C's atan2(y, x), in degrees (cpfg's grammar rejects it)
+    return "(" .. fn(ctx, "atan") .. "(" .. x .. ", " .. y .. ") * 180.0 / " .. p .. ")", "n"
   elseif f == "fabs" then return fn(ctx, "abs") .. "(" .. x .. ")", "n"
   elseif f == "trunc" then return fn(ctx, "floor") .. "(" .. x .. " + 0.5)", "n"
   elseif f == "sign" then return fn(ctx, "_sign") .. "(" .. x .. ")", "n"
