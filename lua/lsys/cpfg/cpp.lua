@@ -56,7 +56,9 @@ local function marked (out, main)
       n = n + 1
     end
   end
-  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  while #lines > 1 and lines[#lines].text == "" do remove(lines) end
+  -- an empty file is one empty line, so that a message about it names the file
+  if #lines == 0 then lines[1] = { file = main, line = 1, text = "" } end
   return lines
 end
 
@@ -116,25 +118,31 @@ local function decomment (text, st)
       st.incomment, i = false, e + 2
       out[#out + 1] = " "
     else
-      local c = text:sub(i, i)
-      if c == "/" and text:sub(i + 1, i + 1) == "*" then
-        st.incomment, i = true, i + 2
-      elseif c == "/" and text:sub(i + 1, i + 1) == "/" then
+      local a = text:find('[/"]', i)
+      if not a then
+        out[#out + 1] = text:sub(i)
         break
-      elseif c == '"' then
-        local e = text:find('"', i + 1, true) or n
-        out[#out + 1] = text:sub(i, e)
+      end
+      out[#out + 1] = text:sub(i, a - 1)
+      local c2 = text:sub(a + 1, a + 1)
+      if text:sub(a, a) == '"' then
+        local e = text:find('"', a + 1, true) or n
+        out[#out + 1] = text:sub(a, e)
         i = e + 1
+      elseif c2 == "*" then
+        st.incomment, i = true, a + 2
+      elseif c2 == "/" then
+        break
       else
-        out[#out + 1] = c
-        i = i + 1
+        out[#out + 1] = "/"
+        i = a + 1
       end
     end
   end
   return concat(out)
 end
 
--- Splits text into identifier tokens and everything else.
+-- Splits text into identifier tokens, numbers, strings and single characters.
 local function tokens (s)
   local t, i = {}, 1
   while i <= #s do
@@ -144,6 +152,9 @@ local function tokens (s)
       i = b + 1
     else
       local a2, b2 = s:find("^%d[%w%.]*", i)
+      if not a2 and s:sub(i, i) == '"' then     -- a string: no macros inside, as in C
+        a2, b2 = i, s:find('"', i + 1, true) or #s
+      end
       if a2 then
         t[#t + 1] = { s = s:sub(a2, b2) }
         i = b2 + 1
@@ -184,13 +195,20 @@ local function macroargs (t, i)
   return nil
 end
 
-expand = function (s, macros, busy, depth)
+-- The longest text that the macros of one line may expand to.
+local MAXEXPAND = 1000000
+
+-- Expands the macros in `s`. `st` is { file =, line =, left = } for the line: `left`
+-- counts down the characters the expansion may still produce (a macro that doubles its
+-- text at each of 30 levels must fail, not take the memory).
+expand = function (s, macros, busy, depth, st)
   if depth > 64 then return s end
   local t = tokens(s)
   local out, i = {}, 1
   while i <= #t do
     local tk = t[i]
     local m = tk.id and macros[tk.s]
+    local x
     if m and not busy[tk.s] then
       if m.params then
         local j = i + 1
@@ -200,32 +218,47 @@ expand = function (s, macros, busy, depth)
         if args then
           local bind = {}
           for k, p in ipairs(m.params) do
-            bind[p] = expand(args[k] or "", macros, busy, depth + 1)
+            bind[p] = expand(args[k] or "", macros, busy, depth + 1, st)
           end
           local body = {}
           for _, bt in ipairs(tokens(m.body)) do
             body[#body + 1] = bt.id and bind[bt.s] or bt.s
           end
           busy[tk.s] = true
-          out[#out + 1] = expand(concat(body), macros, busy, depth + 1)
+          x = expand(concat(body), macros, busy, depth + 1, st)
           busy[tk.s] = nil
           i = nexti
-        else
-          out[#out + 1] = tk.s
-          i = i + 1
         end
       else
         busy[tk.s] = true
-        out[#out + 1] = expand(m.body, macros, busy, depth + 1)
+        x = expand(m.body, macros, busy, depth + 1, st)
         busy[tk.s] = nil
         i = i + 1
       end
-    else
-      out[#out + 1] = tk.s
+      if x then
+        st.left = st.left - #x
+        if st.left < 0 then
+          fail(st.file, st.line, "macro expansion longer than %d characters", MAXEXPAND)
+        end
+      end
+    end
+    if not x then
+      x = tk.s
       i = i + 1
     end
+    out[#out + 1] = x
   end
   return concat(out)
+end
+
+-- Expands the macros of one line (`file`, `line`); a line without a macro name is as is.
+local function expandline (s, macros, file, line)
+  for id in s:gmatch("[%a_][%w_]*") do
+    if macros[id] then
+      return expand(s, macros, {}, 0, { file = file, line = line, left = MAXEXPAND })
+    end
+  end
+  return s
 end
 
 -- Evaluates a parsed #if expression with C's integer-ish semantics (comparisons give 0/1).
@@ -262,7 +295,7 @@ local function evalif (expr, macros, file, line)
   expr = expr:gsub("defined%s*%(%s*([%a_][%w_]*)%s*%)", function (n)
     return macros[n] and " 1 " or " 0 " end)
   expr = expr:gsub("defined%s+([%a_][%w_]*)", function (n) return macros[n] and " 1 " or " 0 " end)
-  expr = expand(expr, macros, {}, 0)
+  expr = expandline(expr, macros, file, line)
   local parse = require("lsys.cpfg.parse")
   local ok, v = pcall(function ()
     local P = parse.new({ { file = file, line = line, text = expr } })
@@ -274,6 +307,10 @@ local function evalif (expr, macros, file, line)
   return v ~= 0
 end
 
+-- The most lines the built-in preprocessor reads, counting each #include of a file anew
+-- (files that include each other twice would otherwise run for hours).
+local MAXLINES = 100000
+
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
 -- #endif, comments. Returns the located lines; raises { cpfg = true, msg = } on errors.
@@ -282,6 +319,7 @@ function M.builtin (path, defines)
   for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
   local lines = {}
   local seen = 0
+  local texts = {}      -- path -> text: a file included many times is read once
   local function run (file, text, level)
     if level > 32 then fail(file, 1, "#include nested too deeply") end
     local st = { incomment = false }
@@ -291,7 +329,9 @@ function M.builtin (path, defines)
     for raw in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
       n = n + 1
       seen = seen + 1
-      if seen > 1e6 then fail(file, n, "too many lines") end
+      if seen > MAXLINES then
+        fail(file, n, "more than %d lines with the #include files", MAXLINES)
+      end
       local s = decomment(raw, st)
       if pending then s, pending = pending .. s, nil end
       if s:sub(-1) == "\\" then
@@ -345,8 +385,9 @@ function M.builtin (path, defines)
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
             local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
-            local t = readfile(p)
+            local t = texts[p] or readfile(p)
             if not t then fail(file, n, "%s: No such file or directory", inc) end
+            texts[p] = t
             run(p, t, level + 1)
           elseif dir == "error" and active() then
             fail(file, n, "#error %s", rest)
@@ -355,7 +396,7 @@ function M.builtin (path, defines)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then
-          lines[#lines + 1] = { file = file, line = n, text = expand(s, macros, {}, 0) }
+          lines[#lines + 1] = { file = file, line = n, text = expandline(s, macros, file, n) }
         else
           lines[#lines + 1] = { file = file, line = n, text = "" }
         end
@@ -367,7 +408,7 @@ function M.builtin (path, defines)
   local text, err = readfile(path)
   if not text then error({ cpfg = true, msg = err }, 0) end
   run(path, text, 0)
-  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  while #lines > 1 and lines[#lines].text == "" do remove(lines) end
   return lines
 end
 

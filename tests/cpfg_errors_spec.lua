@@ -1,0 +1,161 @@
+-- lsys.cpfg.load on hostile and broken L-system files: what the cpfg fuzz target
+-- (tests/fuzz/lua/targets/cpfg.lua) found in the preprocessor and the parser. Each file
+-- fails with a message naming its file and line, in well under a second, or loads.
+require "tests.helper"
+local H = require "tests.helper"
+local lsys = require "lsys"
+local parse = require "lsys.cpfg.parse"
+
+local dir
+
+-- Writes the files { name = text } into the scratch folder; loads the first name given.
+local function load (main, files, opts)
+  for name, text in pairs(files or {}) do H.write(dir .. "/" .. name, text) end
+  return lsys.cpfg.load(dir .. "/" .. main, nil, opts or { cpp = "builtin" })
+end
+
+-- The message of loading `text` as main.l.
+local function err (text, files, opts)
+  files = files or {}
+  files["main.l"] = text
+  local ok, msg = pcall(load, "main.l", files, opts)
+  assert.is_false(ok, "loaded")
+  return (msg:gsub(dir:gsub("%p", "%%%0") .. "/", ""))
+end
+
+local function lsystem (axiom, productions, header)
+  return "Lsystem: 1\nderivation length: 1\n" .. (header or "") .. "Axiom: " .. axiom .. "\n"
+         .. (productions or "") .. "endlsystem\n"
+end
+
+before_each(function () dir = H.tmpdir() end)
+after_each(function () H.rmdir(dir) end)
+
+describe("lsys.cpfg.load of an empty file", function ()
+  it("names the file and line 1", function ()
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err(""))
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err("/* only a comment */\n\n\n"))
+  end)
+
+  it("names the file with the system cpp too", function ()
+    if not os.execute("command -v cpp >/dev/null 2>&1") then return pending("no cpp") end
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err("", nil, { cpp = "system" }))
+  end)
+end)
+
+describe("lsys.cpfg.load of module names", function ()
+  it("refuses a control character as a module name", function ()
+    assert.equal("main.l:3: module names are printable ASCII characters in cpfg, found byte "
+                 .. "0x01", err(lsystem("AB\1C")))
+    assert.equal("main.l:4: module names are printable ASCII characters in cpfg, found byte "
+                 .. "0x1f", err(lsystem("A", "A --> B\31\n")))
+  end)
+
+  it("refuses an axiom whose branches do not close", function ()
+    assert.equal("main.l:3: '[' without ']' in the axiom", err(lsystem("A[B[C]")))
+    assert.equal("main.l:3: ']' without '[' in the axiom", err(lsystem("A]B[C")))
+  end)
+end)
+
+describe("lsys.cpfg.load of deep nesting", function ()
+  local MAX = parse.MAXHEIGHT
+
+  it("takes expressions of the highest tree, in rules, conditions and blocks", function ()
+    local forms = {
+      ("-"):rep(MAX - 1) .. "x", "x" .. (" + 1"):rep(MAX - 1), "x" .. (" ^ 1"):rep(MAX - 1),
+      ("1 ? "):rep(MAX - 1) .. "x" .. (" : 0"):rep(MAX - 1),
+      ("sin("):rep(MAX - 1) .. "x" .. (")"):rep(MAX - 1),
+    }
+    for _, e in ipairs(forms) do
+      local nest = ("if (1) { "):rep(parse.MAXBLOCKS - 1) .. "y = " .. e .. ";"
+                   .. (" }"):rep(parse.MAXBLOCKS - 1)
+      local m = load("main.l", { ["main.l"] = lsystem("A(1)",
+        "A(x) --> B(" .. e .. ")\nB(x) : { " .. nest .. " } * --> C(y)\n" ..
+        "C(x) : " .. e .. " --> D\n", "Start: { x = 1; " .. nest .. " }\n") })
+      assert.truthy(tostring(m:derive(3)):find("^[CD]"))   -- C(y) when the condition fails
+    end
+  end)
+
+  it("refuses an expression one level higher, naming its line", function ()
+    local msg = "main.l:4: expression nested too deeply (more than " .. MAX .. " levels of "
+                .. "operators and calls)"
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(" .. ("-"):rep(MAX) .. "x)\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(x" .. (" + 1"):rep(MAX) .. ")\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(" .. ("1 ? "):rep(MAX) .. "x"
+                                  .. (" : 0"):rep(MAX) .. ")\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) : x" .. (" && 1"):rep(MAX) .. " --> B\n")))
+    -- a sum of macros (vlab models write them) grows as fast as the text
+    local defs = "#define A0 x\n"
+    for i = 1, 7 do defs = defs .. ("#define A%d A%d+A%d\n"):format(i, i - 1, i - 1) end
+    assert.equal("main.l:11: expression nested too deeply (more than " .. MAX .. " levels of "
+                 .. "operators and calls)", err(defs .. lsystem("X(A7)")))
+  end)
+
+  it("refuses parentheses nested hundreds deep", function ()
+    assert.equal("main.l:3: expression nested too deeply (parentheses)",
+                 err(lsystem("X(" .. ("("):rep(400) .. "1" .. (")"):rep(400) .. ")")))
+    local m = load("main.l", { ["main.l"] = lsystem("X(" .. ("("):rep(300) .. "1"
+                                                    .. (")"):rep(300) .. ")") })
+    assert.equal("X(1)", tostring(m:derive(0)))
+  end)
+
+  it("refuses statement blocks nested too deeply", function ()
+    local nest = ("if (1) { "):rep(parse.MAXBLOCKS) .. "y = 1;" .. (" }"):rep(parse.MAXBLOCKS)
+    assert.equal("main.l:4: statement blocks nested too deeply (more than "
+                 .. parse.MAXBLOCKS .. ")", err(lsystem("A", "A : { " .. nest .. " } * --> B\n")))
+  end)
+end)
+
+describe("lsys.cpfg.load's built-in preprocessor", function ()
+  it("stops a macro that doubles its text at every level", function ()
+    local defs = "#define A0 x\n"
+    for i = 1, 30 do defs = defs .. ("#define A%d A%d A%d\n"):format(i, i - 1, i - 1) end
+    local t = os.clock()
+    assert.equal("main.l:34: macro expansion longer than 1000000 characters",
+                 err(defs .. lsystem("X(A30)")))
+    assert.is_true(os.clock() - t < 2)
+  end)
+
+  it("leaves self-referential macros as C does", function ()
+    local m = load("main.l", { ["main.l"] = "#define R R + 1\n#define A B\n#define B A\n"
+      .. "#define sqrt(x) sqrt(x + 1)\n#define floor(x) ceil(x)\n#define ceil(x) floor(x)\n"
+      .. lsystem("X(R)", "X(x) --> X(A) X(sqrt(8)) X(floor(1.5)) X(x)\n") })
+    assert.equal("X(0)X(3)X(1)X(1)", tostring(m:derive(1)))
+  end)
+
+  it("expands no macro inside a string", function ()
+    local out = dir .. "/out.txt"
+    local m = load("main.l", { ["main.l"] = "#define N 3\n"
+      .. lsystem("A", 'A : { printf("N is %d\\n", N); } * --> B\n') })
+    local old = io.output()
+    io.output(out)
+    local ok, e = pcall(m.derive, m, 1)
+    io.output():close()
+    io.output(old)
+    assert(ok, e)
+    assert.equal("N is 3\n", H.read(out))
+  end)
+
+  it("stops a file that includes itself", function ()
+    assert.equal("self.l:1: #include nested too deeply",
+                 err('#include "self.l"\n' .. lsystem("A"), { ["self.l"] = '#include "self.l"\n' }))
+  end)
+
+  it("stops files that include each other twice, in well under a second", function ()
+    local files = {}
+    for i = 1, 22 do
+      files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
+    end
+    files["f23.l"] = "\n"
+    local t = os.clock()
+    assert.equal("f23.l:1: more than 100000 lines with the #include files",
+                 err('#include "f1.l"\n' .. lsystem("A"), files))
+    assert.is_true(os.clock() - t < 1)
+  end)
+
+  it("takes a header included many times", function ()
+    local m = load("main.l", { ["k.h"] = "#define K 2\n",
+                               ["main.l"] = ('#include "k.h"\n'):rep(50) .. lsystem("A(K)") })
+    assert.equal("A(2)", tostring(m:derive(0)))
+  end)
+end)
