@@ -116,6 +116,29 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
     assert.is_true(os.clock() - t < 2)
   end)
 
+  it("refuses a #define whose parameters are not names", function ()
+    assert.equal("main.l:1: #define F: '' is not a parameter name",
+                 err("#define F(a,,b) a\n" .. lsystem("A")))
+    assert.equal("main.l:2: #define sqrt: 'sqrt(sqrt(sqrt(sqrt(sqrt(sqrt(...' is not a "
+                 .. "parameter name", err("#define G() 1\n#define sqrt(" .. ("sqrt("):rep(9)
+                                          .. "x) 1\n" .. lsystem("A")))
+  end)
+
+  it("refuses macro calls nested more than 64 deep", function ()
+    local m = load("main.l", { ["main.l"] = "#define f(x) x\n"
+      .. lsystem("A(" .. ("f("):rep(64) .. "1" .. (")"):rep(64) .. ")") })
+    assert.equal("A(1)", tostring(m:derive(0)))
+    assert.equal("main.l:4: macros nested more than 64 deep", err("#define f(x) x\n"
+      .. lsystem("A(" .. ("f("):rep(65) .. "1" .. (")"):rep(65) .. ")")))
+  end)
+
+  it("reads a long line of unclosed macro calls in linear time", function ()
+    local t = os.clock()
+    assert.equal("main.l:4: ')' expected to close the parameters of A, found '('",
+                 err("#define G(x) x\n" .. lsystem("A(" .. ("G(x "):rep(20000))))
+    assert.is_true(os.clock() - t < 1, os.clock() - t)
+  end)
+
   it("leaves self-referential macros as C does", function ()
     local m = load("main.l", { ["main.l"] = "#define R R + 1\n#define A B\n#define B A\n"
       .. "#define sqrt(x) sqrt(x + 1)\n#define floor(x) ceil(x)\n#define ceil(x) floor(x)\n"

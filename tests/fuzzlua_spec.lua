@@ -1,7 +1,8 @@
 -- The corpora of the Lua fuzzer (tests/fuzz/lua/fuzz.lua) replayed through their targets:
 -- every saved input must load or fail with the expected error, without a finding (a Lua
--- runtime error inside lsys, a failed check, a rule expression that reaches a global, a
--- hang). Fuzzing itself is `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
+-- runtime error inside lsys, a failed check, a rule expression or translated cpfg code that
+-- reaches a global, a hang). Fuzzing itself is
+-- `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
 require "tests.helper"
 local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
 local have_core = pcall(require, "lsys.core")
@@ -45,6 +46,13 @@ describe("the Lua fuzzer's corpora", function ()
 
   it("read or fail naming the file and line as SVG sketch files", function ()
     local counts = replay("svg")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("load and derive or fail with file and line as cpfg L-system files, without reaching "
+     .. "globals", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("cpfg")
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 end)

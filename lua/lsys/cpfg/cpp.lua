@@ -169,30 +169,37 @@ end
 
 local expand
 
--- Reads a function-like macro's arguments from token list t after position i (the '(');
--- returns the argument texts and the index after ')', or nil when the call is not closed.
-local function macroargs (t, i)
+-- The index of the ')' that closes each '(' of token list t (none for an unclosed one):
+-- one pass, so that a line of many unclosed calls is not scanned once per call.
+local function matching (t)
+  local close, stack = {}, {}
+  for j, tk in ipairs(t) do
+    if tk.s == "(" then stack[#stack + 1] = j
+    elseif tk.s == ")" and #stack > 0 then close[remove(stack)] = j end
+  end
+  return close
+end
+
+-- Reads a function-like macro's arguments from token list t after position i (the '(',
+-- closed at close[i]); returns the argument texts and the index after ')', or nil when
+-- the call is not closed.
+local function macroargs (t, i, close)
+  local e = close[i]
+  if not e then return nil end
   local args, cur, depth = {}, {}, 0
-  local j = i + 1
-  while j <= #t do
+  for j = i + 1, e - 1 do
     local s = t[j].s
     if s == "(" then depth = depth + 1
-    elseif s == ")" then
-      if depth == 0 then
-        args[#args + 1] = concat(cur)
-        return args, j + 1
-      end
-      depth = depth - 1
-    elseif s == "," and depth == 0 then
+    elseif s == ")" then depth = depth - 1 end
+    if s == "," and depth == 0 then
       args[#args + 1] = concat(cur)
       cur = {}
-      goto continue
+    else
+      cur[#cur + 1] = s
     end
-    cur[#cur + 1] = s
-    ::continue::
-    j = j + 1
   end
-  return nil
+  args[#args + 1] = concat(cur)
+  return args, e + 1
 end
 
 -- The longest text that the macros of one line may expand to.
@@ -202,9 +209,9 @@ local MAXEXPAND = 1000000
 -- counts down the characters the expansion may still produce (a macro that doubles its
 -- text at each of 30 levels must fail, not take the memory).
 expand = function (s, macros, busy, depth, st)
-  if depth > 64 then return s end
+  if depth > 64 then fail(st.file, st.line, "macros nested more than 64 deep") end
   local t = tokens(s)
-  local out, i = {}, 1
+  local out, i, close = {}, 1, nil
   while i <= #t do
     local tk = t[i]
     local m = tk.id and macros[tk.s]
@@ -214,7 +221,10 @@ expand = function (s, macros, busy, depth, st)
         local j = i + 1
         while t[j] and t[j].s:match("^%s$") do j = j + 1 end
         local args, nexti
-        if t[j] and t[j].s == "(" then args, nexti = macroargs(t, j) end
+        if t[j] and t[j].s == "(" then
+          close = close or matching(t)
+          args, nexti = macroargs(t, j, close)
+        end
         if args then
           local bind = {}
           for k, p in ipairs(m.params) do
@@ -307,6 +317,30 @@ local function evalif (expr, macros, file, line)
   return v ~= 0
 end
 
+-- #define: `rest` is the text after the directive, on `line` of `file`.
+local function define (rest, macros, file, line)
+  local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
+  if name then
+    local ps = {}
+    if params:find("%S") then
+      for p in (params .. ","):gmatch("([^,]*),") do
+        local q = p:match("^%s*([%a_][%w_]*)%s*$")
+        if not q then
+          p = p:match("^%s*(.-)%s*$")
+          fail(file, line, "#define %s: '%s' is not a parameter name", name,
+               #p > 30 and p:sub(1, 30) .. "..." or p)
+        end
+        ps[#ps + 1] = q
+      end
+    end
+    macros[name] = { params = ps, body = body }
+  else
+    name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
+    if not name then fail(file, line, "#define without a name") end
+    macros[name] = { body = body }
+  end
+end
+
 -- The most lines the built-in preprocessor reads, counting each #include of a file anew
 -- (files that include each other twice would otherwise run for hours).
 local MAXLINES = 100000
@@ -369,16 +403,7 @@ function M.builtin (path, defines)
           elseif dir == "endif" then
             if not remove(cond) then fail(file, n, "#endif without #if") end
           elseif active() and dir == "define" then
-            local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
-            if name then
-              local ps = {}
-              for p in params:gmatch("[^,%s]+") do ps[#ps + 1] = p end
-              macros[name] = { params = ps, body = body }
-            else
-              name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
-              if not name then fail(file, n, "#define without a name") end
-              macros[name] = { body = body }
-            end
+            define(rest, macros, file, n)
           elseif dir == "undef" and active() then
             macros[rest:match("^[%a_][%w_]*") or ""] = nil
           elseif dir == "include" and active() then

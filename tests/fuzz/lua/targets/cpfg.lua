@@ -39,7 +39,7 @@ local BUILTIN = lsys.BUILTIN
 local STRMETA = getmetatable("")
 local cpfg = lsys.cpfg
 
-local T = { maxlen = 16384, budget = 1 }
+local T = { maxlen = 16384, budget = 2 }
 
 -- --------------------------------------------------------------------------
 -- The scratch folder
