@@ -182,3 +182,38 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
     assert.equal("A(2)", tostring(m:derive(0)))
   end)
 end)
+
+describe("lsys.cpfg.load's translated statements", function ()
+  local function derive (body)
+    local m = load("main.l", { ["main.l"] = lsystem("A(1)", "A(x) : { " .. body
+                                                    .. " } * --> B(y)\n",
+                                                    "define: { array a[3]; }\n") })
+    local ok, msg = pcall(m.derive, m, 1)
+    return ok and tostring(msg) or msg
+  end
+
+  it("print with conversions Lua's format refuses, as C's without them", function ()
+    local out = dir .. "/out.txt"
+    local old = io.output()
+    io.output(out)
+    local ok, s = pcall(derive, 'printf("%100d|%#d|%.2c|%+x|%5.300f|%c\\n", 1, 2, 65, 255, '
+                                .. "1.5, 66); y = 1;")
+    io.output():close()
+    io.output(old)
+    assert(ok, s)
+    assert.equal("B(1)", s)
+    assert.equal("1|2|A|ff|1.500000|B\n", H.read(out))
+  end)
+
+  it("refuse an array index that is not a number in range, NaN and infinity too", function ()
+    assert.equal("index", derive("a[0/0] = 1;"):match("cpfg: (index) %S+ out of range 0..2 "
+                                                      .. "of array a$"))
+    assert.equal("index", derive("y = a[0/0];"):match("cpfg: (index) %S+ out of range 0..2 "
+                                                      .. "of array a$"))
+    assert.truthy(derive("y = a[1/0];"):find("cpfg: index inf out of range 0..2 of array a",
+                                             1, true))
+    assert.truthy(derive("y = a[3];"):find("cpfg: index 3 out of range 0..2 of array a", 1,
+                                           true))
+    assert.equal("B(0)", derive("y = a[-0.5];"))
+  end)
+end)

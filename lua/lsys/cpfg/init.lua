@@ -93,8 +93,8 @@ local function aindex (a, ...)
   local k = 0
   for d = 1, n do
     local i = trunc((select(d, ...)))
-    if i < 0 or i >= a.dims[d] then
-      error(format("cpfg: index %d out of range 0..%d of array %s", i, a.dims[d] - 1, a.name), 0)
+    if not (i >= 0 and i < a.dims[d]) then      -- a NaN index too
+      error(format("cpfg: index %g out of range 0..%d of array %s", i, a.dims[d] - 1, a.name), 0)
     end
     k = k * a.dims[d] + i
   end
@@ -103,6 +103,13 @@ end
 function H._aget (a, ...) return a.v[aindex(a, ...)] end
 function H._aset (a, x, ...) a.v[aindex(a, ...)] = x end
 function H._stop () return 0.0 end
+-- One conversion of printf; without its flags, width and precision when Lua's format
+-- refuses them (a width over 99, '#' with %d: C's printf takes them).
+local function cformat (spec, c, x)
+  local ok, s = pcall(format, "%" .. spec .. c, x)
+  if ok then return s end
+  return format("%" .. c, x)
+end
 -- printf: C's format on numbers; %d and the other integer conversions take the integer part
 function H._printf (fmt, ...)
   local args, i = { ... }, 0
@@ -113,10 +120,10 @@ function H._printf (fmt, ...)
     if c:find("[diouxXc]") then
       x = trunc(x)
       if c == "i" or c == "u" then c = "d" end
-      return format("%" .. flags .. c, math.tointeger(x) or 0)
+      return cformat(flags, c, math.tointeger(x) or 0)
     end
     if c == "s" then return "" end
-    return format("%" .. flags .. c, x)
+    return cformat(flags, c, x)
   end)
   io_write(out)
   return 0.0
