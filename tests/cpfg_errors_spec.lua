@@ -159,6 +159,13 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
     assert.equal("N is 3\n", H.read(out))
   end)
 
+  it("refuses to include an endless file or a folder", function ()
+    assert.equal("main.l:1: /dev/zero: larger than 16 MiB",
+                 err('#include "/dev/zero"\n' .. lsystem("A")))
+    os.execute("mkdir '" .. dir .. "/sub'")
+    assert.equal("main.l:2: sub: cannot be read", err('\n#include "sub"\n' .. lsystem("A")))
+  end)
+
   it("stops a file that includes itself", function ()
     assert.equal("self.l:1: #include nested too deeply",
                  err('#include "self.l"\n' .. lsystem("A"), { ["self.l"] = '#include "self.l"\n' }))

@@ -12,13 +12,29 @@ local _ENV = nil
 
 local M = {}
 
+-- The most bytes of one file: an L-system file is text of a few kilobytes, and an
+-- #include of /dev/zero must not take the memory.
+local MAXBYTES = 16 * 1024 * 1024
+
+-- The text of a file, or nil and "PATH: why".
 local function readfile (path)
   local f, err = io.open(path, "rb")
   if not f then return nil, err end
-  local s = f:read("a")
-  f:close()
-  if s == nil then return nil, path .. ": cannot be read" end
-  return s
+  local parts, size = {}, 0
+  while true do
+    local s, rerr = f:read(65536)
+    if s == nil then
+      f:close()
+      if rerr then return nil, path .. ": cannot be read" end
+      return concat(parts)
+    end
+    size = size + #s
+    if size > MAXBYTES then
+      f:close()
+      return nil, format("%s: larger than %d MiB", path, MAXBYTES // (1024 * 1024))
+    end
+    parts[#parts + 1] = s
+  end
 end
 M.readfile = readfile
 
@@ -410,8 +426,9 @@ function M.builtin (path, defines)
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
             local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
-            local t = texts[p] or readfile(p)
-            if not t then fail(file, n, "%s: No such file or directory", inc) end
+            local t, why = texts[p], nil
+            if not t then t, why = readfile(p) end
+            if not t then fail(file, n, "%s: %s", inc, why:match("^.*: (.-)$") or why) end
             texts[p] = t
             run(p, t, level + 1)
           elseif dir == "error" and active() then
