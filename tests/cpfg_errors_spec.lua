@@ -183,6 +183,19 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
     assert.is_true(os.clock() - t < 1)
   end)
 
+  it("stops files that include each other twice and expand long lines, in a second or so",
+     function ()
+    local files = {}
+    for i = 1, 12 do
+      files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
+    end
+    files["f13.l"] = "#define X x\n" .. ("X + "):rep(500) .. "\n"
+    local t = os.clock()
+    assert.equal("f13.l:2: more than 4 MiB of text with the #include files and macros",
+                 err('#include "f1.l"\n' .. lsystem("A"), files))
+    assert.is_true(os.clock() - t < 3, os.clock() - t)
+  end)
+
   it("takes a header included many times", function ()
     local m = load("main.l", { ["k.h"] = "#define K 2\n",
                                ["main.l"] = ('#include "k.h"\n'):rep(50) .. lsystem("A(K)") })

@@ -358,8 +358,9 @@ local function define (rest, macros, file, line)
 end
 
 -- The most lines the built-in preprocessor reads, counting each #include of a file anew
--- (files that include each other twice would otherwise run for hours).
-local MAXLINES = 100000
+-- (files that include each other twice would otherwise run for hours), and the most text,
+-- as read and as the macros expand it.
+local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
 
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
@@ -368,7 +369,7 @@ function M.builtin (path, defines)
   local macros = {}
   for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
   local lines = {}
-  local seen = 0
+  local seen, size = 0, 0
   local texts = {}      -- path -> text: a file included many times is read once
   local function run (file, text, level)
     if level > 32 then fail(file, 1, "#include nested too deeply") end
@@ -378,7 +379,7 @@ function M.builtin (path, defines)
     local n, pending = 0, nil
     for raw in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
       n = n + 1
-      seen = seen + 1
+      seen, size = seen + 1, size + #raw
       if seen > MAXLINES then
         fail(file, n, "more than %d lines with the #include files", MAXLINES)
       end
@@ -438,7 +439,13 @@ function M.builtin (path, defines)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then
-          lines[#lines + 1] = { file = file, line = n, text = expandline(s, macros, file, n) }
+          local x = expandline(s, macros, file, n)
+          size = size + #x
+          if size > MAXTEXT then
+            fail(file, n, "more than %d MiB of text with the #include files and macros",
+                 MAXTEXT // (1024 * 1024))
+          end
+          lines[#lines + 1] = { file = file, line = n, text = x }
         else
           lines[#lines + 1] = { file = file, line = n, text = "" }
         end
