@@ -15,7 +15,8 @@
 -- absolute #include, LINE >= 1); the derivation fails with lsys's message naming the rule
 -- or with the translation's own "cpfg: ..." message. A FINDING is any other error: a Lua
 -- runtime error inside lsys (the fuzzer's rule) or in the translated code ("attempt to",
--- "bad argument", "stack overflow" anywhere in the message), a load error without file and
+-- "bad argument", "stack overflow" anywhere in the message), a translated rule that gives
+-- a parameter no value ("is nil, not a number"), a load error without file and
 -- line, a load that runs over the time budget (a derivation that does is the model's own
 -- loop: clean, but counted), or translated code that reaches a global: while an input runs
 -- _G is emptied behind a metatable, and os.execute, os.remove, os.rename, os.exit,
@@ -238,8 +239,10 @@ function T.run ()
   phase = "done"
 end
 
+-- Lua's runtime errors, and a translated rule that gives a parameter no value
 local RUNTIME = { "attempt to ", "bad argument", "stack overflow", "index is NaN",
-                  "index is nil", "C stack", "error in error handling", "number has no integer" }
+                  "index is nil", "C stack", "error in error handling", "number has no integer",
+                  "is nil, not a number" }
 
 function T.clean (err)
   for _, r in ipairs(RUNTIME) do
