@@ -51,6 +51,19 @@ describe("lsys.cpfg.load of module names", function ()
                  .. "0x1f", err(lsystem("A", "A --> B\31\n")))
   end)
 
+  it("refuses a formal parameter named as an array of its L-system", function ()
+    assert.equal("main.l:6: the formal parameter b has the name of array b",
+                 err(lsystem("A(0)", "A(i) --> B(i, 1)\nB(x, b) : { k = b[x]; } * --> C(k)\n",
+                             "define: { array b[3]; }\n")))
+  end)
+
+  it("names the line of a sub-L-system's rule that lsys refuses", function ()
+    assert.equal("main.l:8: rule 1 'B --> [C' (entry 1 of sub-L-system 2): unbalanced "
+                 .. "brackets in successor: '[' without ']' at character 7",
+                 err(lsystem("A?(2,1)B$") .. lsystem("B", "B --> [C\n"):gsub("Lsystem: 1",
+                                                                            "Lsystem: 2")))
+  end)
+
   it("refuses an axiom whose branches do not close", function ()
     assert.equal("main.l:3: '[' without ']' in the axiom", err(lsystem("A[B[C]")))
     assert.equal("main.l:3: ']' without '[' in the axiom", err(lsystem("A]B[C")))

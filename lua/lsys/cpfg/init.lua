@@ -803,9 +803,11 @@ local function translate (P, lsystems, opts)
              .. "L-system's)", s)
       end
     end
-    local rs = {}
+    local rs, origin = {}, {}
+    T.origin["sub-L-system " .. id] = origin    -- as lsys names it in its messages
     for _, p in ipairs(ls.productions) do
       rs[#rs + 1] = production(T, ls, p, "sub", ls.seed ~= nil)
+      origin[#rs] = p.pos
     end
     if #rs > 0 then sub[id] = { productions = rs, ignore = ls.ignore, consider = ls.consider } end
   end
@@ -956,7 +958,7 @@ function M.load (lfile, vfile, opts)
   if not ok2 then
     -- name the cpfg line of a rule lsys refused
     local msg = tostring(m)
-    local n, sect = msg:match("entry (%d+) of (%a+)")
+    local n, sect = msg:match("entry (%d+) of ([^)]+)%)")
     local pos = sect and T.origin[sect] and T.origin[sect][tonumber(n)]
     if pos then
       local file, line = T.P:where(pos)

@@ -3,7 +3,7 @@
 -- that `where` turns into the file and line it came from. The grammar follows cpfg's
 -- lsys_input.y and lsys_input.l (read as documentation).
 -- @module lsys.cpfg.parse
-local error, tonumber, setmetatable, ipairs = error, tonumber, setmetatable, ipairs
+local error, tonumber, setmetatable, ipairs, next = error, tonumber, setmetatable, ipairs, next
 local concat = table.concat
 local format = string.format
 local _ENV = nil
@@ -650,7 +650,30 @@ function P:lsystem ()
   if k ~= "endlsystem" then self:fail(nil, "'endlsystem' expected") end
   self:take("endlsystem")
   self:eol("endlsystem")
+  self:formals(ls)
   return ls
+end
+
+-- A formal parameter may not take the name of an array of its L-system: `b[i]` in the
+-- production would index the number.
+function P:formals (ls)
+  local arrays = {}
+  for _, a in ipairs(ls.arrays or {}) do arrays[a.name] = true end
+  if next(arrays) == nil then return end
+  for _, list in ipairs({ ls.productions, ls.decomposition and ls.decomposition.productions,
+                          ls.homomorphism and ls.homomorphism.productions }) do
+    for _, p in ipairs(list or {}) do
+      for _, part in ipairs({ p.lc or {}, p.pred, p.rc or {} }) do
+        for _, m in ipairs(part) do
+          for _, n in ipairs(m.params or {}) do
+            if arrays[n] then
+              self:fail(m.pos, "the formal parameter %s has the name of array %s", n, n)
+            end
+          end
+        end
+      end
+    end
+  end
 end
 
 --- Parses the whole file: a list of L-systems.
