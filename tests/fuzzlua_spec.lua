@@ -74,6 +74,22 @@ describe("the Lua fuzzer", function ()
     assert.equal("table", type(os))          -- _G is back
   end)
 
+  it("finds translated cpfg code that reaches a global", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local t = fuzz.target("cpfg")
+    local F = fuzz.new(t)
+    local run = t.run
+    t.run = function ()
+      return load("return io", "=main.l:1")()   -- as the translation compiles rule code
+    end
+    local kind, msg = F.exec("")
+    t.run = run
+    t.finish()
+    assert.equal("finding", kind)
+    assert.equal("translated code reached global 'io'", msg)
+    assert.equal("table", type(io))          -- _G is back
+  end)
+
   it("reports an input that overruns its time budget", function ()
     local F = fuzz.new({ run = function () while true do end end }, { budget = 0.05 })
     local kind, msg = F.exec("")

@@ -219,11 +219,11 @@ local function macroargs (t, i, close)
 end
 
 -- The longest text that the macros of one line may expand to.
-local MAXEXPAND = 1000000
+local MAXEXPAND = 100000
 
 -- Expands the macros in `s`. `st` is { file =, line =, left = } for the line: `left`
--- counts down the characters the expansion may still produce (a macro that doubles its
--- text at each of 30 levels must fail, not take the memory).
+-- counts down the characters the expansion may still produce, as they are produced (a
+-- macro that doubles its text at each of 30 levels must fail, not take the memory).
 expand = function (s, macros, busy, depth, st)
   if depth > 64 then fail(st.file, st.line, "macros nested more than 64 deep") end
   local t = tokens(s)
@@ -261,16 +261,14 @@ expand = function (s, macros, busy, depth, st)
         busy[tk.s] = nil
         i = i + 1
       end
-      if x then
-        st.left = st.left - #x
-        if st.left < 0 then
-          fail(st.file, st.line, "macro expansion longer than %d characters", MAXEXPAND)
-        end
-      end
     end
-    if not x then
+    if not x then          -- a token of the final text (arguments: once per expansion)
       x = tk.s
       i = i + 1
+      st.left = st.left - #x
+      if st.left < 0 then
+        fail(st.file, st.line, "macro expansion longer than %d characters", MAXEXPAND)
+      end
     end
     out[#out + 1] = x
   end
