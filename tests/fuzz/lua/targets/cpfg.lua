@@ -12,18 +12,18 @@
 -- 64M, then its homomorphism is applied (m:expand).
 --
 -- Expected errors: loading fails with "FILE:LINE: ..." (FILE a path in the folder or an
--- absolute #include, LINE >= 1); the derivation fails with lsys's message naming the rule
--- or with the translation's own "cpfg: ..." message. A FINDING is any other error: a Lua
--- runtime error inside lsys (the fuzzer's rule) or in the translated code ("attempt to",
--- "bad argument", "stack overflow" anywhere in the message), a translated rule that gives
--- a parameter no value ("is nil, not a number"), a load error without file and
--- line, a load that runs over the time budget (a derivation that does is the model's own
--- loop: clean, but counted), or translated code that reaches a global: while an input runs
--- _G is emptied behind a metatable, and os.execute, os.remove, os.rename, os.exit,
--- os.getenv, os.tmpname, io.open, io.popen, io.lines, io.input, io.output, load, loadfile,
--- dofile and require fail when code that is not in a file (code compiled by `load`) is on
--- the stack; the string metatable and lsys.BUILTIN must be unchanged afterwards. printf
--- output goes to /dev/null.
+-- absolute #include: a path from the root; LINE >= 1); the derivation fails with lsys's
+-- message naming the rule or with the translation's own "cpfg: ..." message. A FINDING is
+-- any other error: a Lua runtime error inside lsys (the fuzzer's rule) or in the
+-- translated code ("attempt to", "bad argument", "stack overflow" anywhere in the
+-- message), a translated rule that gives a parameter no value ("is nil, not a number"), a
+-- load error without file and line, a load that runs over the time budget (a derivation
+-- that does is the model's own loop: clean, but counted), or translated code that reaches
+-- a global: while an input runs _G is emptied behind a metatable, and os.execute,
+-- os.remove, os.rename, os.exit, os.getenv, os.tmpname, io.open, io.popen, io.lines,
+-- io.input, io.output, load, loadfile, dofile and require fail when code that is not in a
+-- file (code compiled by `load`) is on the stack; the string metatable and lsys.BUILTIN
+-- must be unchanged afterwards. printf output goes to /dev/null.
 local lsys = require "lsys"
 
 local G = _G
@@ -40,8 +40,8 @@ local BUILTIN = lsys.BUILTIN
 local STRMETA = getmetatable("")
 local cpfg = lsys.cpfg
 
--- 3 s: the line hook slows the preprocessor 30 times; an input that stops on it is a finding
--- when it is slow without the hook too (tests/fuzz/lua/fuzz.lua TARGET --replay FILE)
+-- 3 s: the fuzzer's line hook slows the preprocessor about 30 times, so a load it stops
+-- is a finding to time without the hook
 local T = { maxlen = 16384, budget = 3 }
 
 -- --------------------------------------------------------------------------
@@ -249,9 +249,9 @@ function T.clean (err)
     if err:find(r, 1, true) then return false end
   end
   if phase == "load" then
-    local file, line = err:match("^([^\n]-):(%d+): ")
-    if not file or tonumber(line) < 1 then return false end
-    return sub(file, 1, #DIR + 1) == DIR .. "/" or sub(file, 1, 1) == "/"
+    -- a file of the scratch folder or an absolute #include: a path from the root
+    local file, line = err:match("^(/[^\n]-):(%d+): ")
+    return file ~= nil and tonumber(line) >= 1
   end
   return phase == "derive"
 end
