@@ -225,6 +225,21 @@ describe("lsys.cpfg.load's translated statements", function ()
     return ok and tostring(msg) or msg
   end
 
+  it("keep parameters named as the translation's own names apart from them", function ()
+    local function run (prod)
+      local m = load("main.l", { ["main.l"] = lsystem("A(2)", prod .. "\n",
+                                                      "Start: { glob = 1; }\n") })
+      return tostring(m:derive(1))
+    end
+    -- the function form: E, H and L are its tables
+    assert.equal("B(3)", run("A(E) : { y = 0; while (y < 1) { y = y + E + glob; } } * --> B(y)"))
+    assert.equal("B(2)", run("A(H) : { y = 0; while (y < 1) { y = y + H; } } * --> B(y)"))
+    assert.equal("B(2)", run("A(L) : { y = 0; while (y < 1) { y = y + L; } } * --> B(y)"))
+    -- rule strings: sin(x) is sin(x * pi / 180), fabs is abs
+    assert.equal("B(1,2)", run("A(pi) --> B(sin(90), pi)"))
+    assert.equal("B(2,2)", run("A(abs) --> B(fabs(-2), abs)"))
+  end)
+
   it("print with conversions Lua's format refuses, as C's without them", function ()
     local out = dir .. "/out.txt"
     local old = io.output()

@@ -389,7 +389,14 @@ end
 
 -- Modules --------------------------------------------------------------------------------
 
-local function mangle (name) return LUA_KEYWORDS[name] and "_p_" .. name or name end
+-- A parameter's Lua name: with a prefix when it is a Lua keyword, a name the translation
+-- calls in rule strings (pi, abs: TAKEN) or a table of the function form (E, H, L).
+local function mangle (name)
+  if LUA_KEYWORDS[name] or TAKEN[name] or name == "E" or name == "H" or name == "L" then
+    return "_p_" .. name
+  end
+  return name
+end
 
 -- The lsys text of a pattern (formal parameters) and the parameters it binds.
 local function pattern (mods, params)

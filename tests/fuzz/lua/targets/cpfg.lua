@@ -309,7 +309,8 @@ local WORDS = {
   "#include \"a/up.l\"\n", "#include \"missing.l\"\n", "#include \"a/\"\n", "#include <x>\n",
   "#include \"inc.l\"\n", "//@ inc.l\n", "//@ a/inc.l\n", "\\\n", "N", "GROW(2)", "SPIKE",
   "X", "R", "Z", "Q", "_x", "os", "io", "_G", "_ENV", "E", "H", "L", "_n", "end", "nil",
-  "function", "local", "return", "and", "or", "not", "pi", "math", "string", "require",
+  "function", "local", "return", "and", "or", "not", "pi", "abs", "math", "string",
+  "require", "A(E)", "A(H)", "A(L)", "A(pi)",
 }
 T.dict = WORDS
 local DIRECTIVES = {}
