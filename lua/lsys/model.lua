@@ -165,10 +165,13 @@ end
 function Model:_addrules (rules, what, kind, sub, group, fail)
   for _, e in ipairs(entries(rules, what, fail)) do
     local n = #self._info + 1
-    local label = format("rule %d '%s' (%s %d of %s)", n, e.text, e.item and "entry" or "line",
-                         e.line, what)
+    local function labelled (pos)
+      return format("rule %d '%s' (%s %d of %s)", n, warning.quote(e.text, pos),
+                    e.item and "entry" or "line", e.line, what)
+    end
+    local label = labelled()
     local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
-    if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
+    if not r then fail(format("%s: %s at character %d", labelled(pos), msg, pos)) end
     local ok, spec, factory, frees, trees = pcall(compile.rule, r,
       { label = label, fn = e.fn, weight = e.weight, id = n })
     if not ok then fail(spec) end
@@ -324,6 +327,9 @@ function M.lsystem (opts)
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
     fail("option 'steps' must be a whole number >= 0")
   end
+  if self.steps > M.MAX_STEPS then
+    fail(format("option 'steps' is %.14g, more than the limit of %d", self.steps, M.MAX_STEPS))
+  end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
   local nv = view.normalize(opts.view, where or "model")   -- a bad view fails at definition
@@ -430,8 +436,8 @@ function Model:_bind ()
 end
 
 -- The axiom text for messages: a long one shortened.
-local function axiomtext (a)
-  return #a > 60 and a:sub(1, 57) .. "..." or a
+local function axiomtext (a, pos)
+  return warning.quote(a, pos)
 end
 
 -- Parses model.axiom into a template (in C: no table per module, DESIGN.md §5) and the
@@ -439,7 +445,7 @@ end
 function Model:_parseaxiom ()
   local tpl, exprs, pos = self._rules:axiom(self.axiom)
   if not tpl then
-    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom), exprs, pos), 0)
+    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom, pos), exprs, pos), 0)
   end
   self._axiom, self._axiomexprs, self._axiomsrc = tpl, exprs, self.axiom
 end
@@ -454,7 +460,7 @@ function Model:_axiomlstring (E)
   for k, e in ipairs(self._axiomexprs) do
     local f, msg = _G.load("return " .. e, "=axiom", "t", E)
     if not f then
-      error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
+      error(format("%s: axiom: bad expression '%s': %s", self._where, warning.quote(e), msg), 0)
     end
     local ok, x = pcall(f)
     if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
@@ -506,9 +512,17 @@ function Model:_call (fn, what, ...)
   error(format("%s: %s", self._where, msg), 0)
 end
 
+-- The most steps one derivation may take (a guard against math.huge and typos: a step
+-- costs at least a few microseconds, so this is hours of work at the least).
+M.MAX_STEPS = 10000000
+
 local function checksteps (n, what)
   if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
     error(format("%s: the number of steps must be a whole number >= 0", what), 3)
+  end
+  if n > M.MAX_STEPS then
+    error(format("%s: %s steps is more than the limit of %d", what,
+                 n == math.huge and "infinitely many" or format("%.14g", n), M.MAX_STEPS), 3)
   end
 end
 
