@@ -65,3 +65,24 @@ describe("issue 19 §9: long quoted text is elided in messages", function ()
     assert.is_true(#shown < 240)
   end)
 end)
+
+describe("issue 19 §12: a model that fails leaves no module names behind", function ()
+  it("lets later models use names after one failed with too many", function ()
+    local names = {}
+    for i = 1, 2100 do names[#names + 1] = "m" .. i end
+    local list = table.concat(names, " ")
+    for _ = 1, 3 do       -- each attempt fails the same way; none poisons the state
+      local e = errof(lsys.lsystem, { modules = list, axiom = list })
+      assert.matches("too many module names (limit is 2047)", e, 1, true)
+      local m = lsys.lsystem { axiom = "Q", productions = "Q --> R[S]T" }
+      assert.equal("R[S]T", tostring(m:derive(1)))
+    end
+    -- names of a model that was made stay: its strings still read them
+    local ok = lsys.lsystem { modules = "leaf stem", axiom = "leaf stem" }
+    local s = ok:derive(0)
+    errof(lsys.lsystem, { modules = list, axiom = list })
+    assert.equal("leaf", (s:module(1)))
+    assert.equal("stem", (s:module(2)))
+    assert.equal(2, #ok:derive(0))
+  end)
+end)

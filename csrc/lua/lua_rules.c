@@ -733,6 +733,21 @@ static int l_srand (lua_State *L) {
   return 0;
 }
 
+/* core.names_mark() -> the number of module names in the state's alphabet;
+** core.names_truncate(n): forgets the names interned since (lsys.lsystem, when
+** the model it was making failed: no object refers to them) */
+static int l_names_mark (lua_State *L) {
+  lua_pushinteger(L, (lua_Integer)lsys_getalphabet(L)->n);
+  return 1;
+}
+
+static int l_names_truncate (lua_State *L) {
+  lua_Integer n = luaL_checkinteger(L, 1);
+  luaL_argcheck(L, n >= LSYS_SYM_FIRSTFREE && n <= LSYS_MAXSYM + 1, 1, "bad mark");
+  lsys_alphabet_truncate(lsys_getalphabet(L), (uint32_t)n);
+  return 0;
+}
+
 static int l_nran (lua_State *L) {
   lsys_lrules *R = deriving(L, "nran");
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
@@ -786,6 +801,7 @@ static const luaL_Reg core_funcs[] = {
   {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
   {"ran", l_ran}, {"nran", l_nran}, {"srand", l_srand},
   {"producing", l_producing}, {"max_memory", l_max_memory},
+  {"names_mark", l_names_mark}, {"names_truncate", l_names_truncate},
   {NULL, NULL}
 };
 

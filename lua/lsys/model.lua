@@ -301,6 +301,8 @@ function Model:_configure (opts, fail)
   end
 end
 
+local make
+
 --- Creates a model from its description (see DESIGN.md §3 and docs).
 -- Raises an error naming the rule and its line for malformed rules.
 function M.lsystem (opts)
@@ -311,6 +313,19 @@ function M.lsystem (opts)
   local where = info and info.currentline > 0 and
                 format("%s:%d", info.short_src, info.currentline) or loading
   local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+  -- a model that fails leaves no module names behind (they count against the state's
+  -- 2047, and nothing refers to them)
+  local mark = core.names_mark()
+  local ok, m = pcall(make, opts, where, fail)
+  if not ok then
+    core.names_truncate(mark)
+    error(m, 0)
+  end
+  return m
+end
+
+-- The model of M.lsystem (which undoes its module names when this raises).
+make = function (opts, where, fail)
   checkoptions(opts, fail)
   local rules = core.rules(opts.modules)
   local self = setmetatable({
