@@ -86,3 +86,34 @@ describe("issue 19 §12: a model that fails leaves no module names behind", func
     assert.equal(2, #ok:derive(0))
   end)
 end)
+
+describe("issue 19 §13: a rule that derives its own model", function ()
+  it("gets one clear message for its own model", function ()
+    local m
+    m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+      m:derive(1)
+      return lsys.produce("B")
+    end } } }
+    local e = errof(m.derive, m, 1)
+    assert.matches("rule 1 'A' %(entry 1 of productions%), module 1: .*a rule called derive on "
+                   .. "the model it belongs to$", e)
+    assert.equal(1, select(2, e:gsub("rule 1 'A'", "")))
+  end)
+
+  it("gets one clear message, not a C stack overflow, for fresh copies of itself", function ()
+    local function make ()
+      local m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+        make():derive(1)
+        return lsys.produce("B")
+      end } } }
+      return m
+    end
+    local e = errof(function () return make():derive(1) end)
+    assert.matches("derivations nested 32 deep: a rule function derives a model whose rules "
+                   .. "derive again", e, 1, true)
+    assert.is_nil(e:find("rule 1 'A'", 1, true))      -- said once, not 32 times
+    assert.is_nil(e:find("stack overflow", 1, true))
+    -- and the state is fine afterwards
+    assert.equal("B", tostring(lsys.lsystem { axiom = "A", productions = "A --> B" }:derive(1)))
+  end)
+end)

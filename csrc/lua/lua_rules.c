@@ -387,7 +387,7 @@ static void run (lua_State *L, lsys_lrules *R, int what, int dstidx) {
   o.what = what;
   o.src = checklstring(L, 2);
   o.dst = checklstring(L, dstidx);
-  st = lsys_rules_run(L, 1, what < 0 ? "derive/step" : "expand", dostep, &o, idx, 2);
+  st = lsys_rules_run(L, 1, what < 0 ? "step" : "expand", dostep, &o, idx, 2);
   if (st != LSYS_OK) lsys_raise(L, st, &R->m.err, 1);
   /* tell the collector about the memory behind the new string */
   lua_gc(L, LUA_GCSTEP, (int)((o.dst->n * 2 + o.dst->npar * 8) >> 10));

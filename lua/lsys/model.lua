@@ -419,7 +419,7 @@ end
 -- under it).
 function Model:_idle (what)
   if self._rules:busy() then
-    error(format("%s: a rule of this model called %s on the same model", self._where, what), 0)
+    error(format("a rule called %s on the model it belongs to", what), 0)
   end
 end
 
@@ -500,11 +500,24 @@ function Model:_core (what, ...)
   return self:_call(self._rules[what], what, self._rules, ...)
 end
 
+-- How deep derivations may nest (a rule function that derives a model, whose rules
+-- derive another, ...): far below the C stack's limit, so a rule that derives a fresh copy
+-- of its own model gets one clear message instead of a C stack overflow.
+local MAXNEST, nesting = 32, 0
+local NESTED = "derivations nested"
+
 -- Runs fn(...), which may call rule functions; errors as for _core.
 function Model:_call (fn, what, ...)
   local rules = self._rules
   local producing = core.producing()
+  if nesting >= MAXNEST then
+    error(format("%s: %s %d deep: a rule function derives a model whose rules derive again "
+                 .. "(does a rule make and derive its own model?)", self._where, NESTED,
+                 MAXNEST), 0)
+  end
+  nesting = nesting + 1
   local ok, res = pcall(fn, ...)
+  nesting = nesting - 1
   if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
@@ -518,6 +531,7 @@ function Model:_call (fn, what, ...)
   end
   local idx, mod = rules:current()
   local msg = type(res) == "string" and res or tostring(res)
+  if msg:find(NESTED, 1, true) then error(msg, 0) end      -- said once, at the innermost
   if idx then
     local info = self._info[idx + 1]
     local label = info and info.label or format("rule %d", idx + 1)
@@ -546,7 +560,7 @@ end
 -- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
 -- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
 function Model:derive (n, opts)
-  self:_idle("derive/step")
+  self:_idle("derive")
   n = n or self.steps
   checksteps(n, "derive")
   local rules = self._rules
@@ -603,7 +617,7 @@ end
 function Model:step (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not islstring(s) then error("step: an Lstring expected", 2) end
-  self:_idle("derive/step")
+  self:_idle("step")
   self:_bind()
   if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
     self:_query(s)
