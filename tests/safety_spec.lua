@@ -120,7 +120,8 @@ describe("re-entering a model from its own rules", function ()
     assert.equal("QB", tostring(m:step(src)))
     assert.truthy(errs[1]:find("cannot change while it derives", 1, true) or
                   errs[1]:find("cannot change", 1, true), errs[1])
-    assert.truthy(errs[2]:find("a rule called use_group on the model it belongs to", 1, true), errs[2])
+    assert.truthy(errs[2]:find("a rule called use_group on the model it belongs to", 1, true),
+                  errs[2])
     assert.truthy(errs[3]:find("cannot close an Lstring while", 1, true), errs[3])
     assert.truthy(errs[4]:find("cannot close the rules", 1, true), errs[4])
     assert.equal("AB", tostring(src))
