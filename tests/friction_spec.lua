@@ -117,3 +117,87 @@ describe("issue 19 §13: a rule that derives its own model", function ()
     assert.equal("B", tostring(lsys.lsystem { axiom = "A", productions = "A --> B" }:derive(1)))
   end)
 end)
+
+describe("issue 19 §11: mistakes that used to pass in silence", function ()
+  local function warnings (f)
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local ok, err = pcall(f)
+    warning.warn = saved
+    assert(ok, err)
+    return got
+  end
+
+  it("warns about a rule whose parameter count no module has", function ()
+    local got = warnings(function ()
+      lsys.lsystem { axiom = "A(1)B", productions = "A(x) --> A(x+1)B\nB(x,y) --> C\n"
+                     .. "A(x) < B(y) --> D\nB --> E" }
+    end)
+    assert.equal(2, #got)
+    assert.matches("rule 2 'B(x,y) --> C' (line 2 of productions): no 'B' with 2 parameters in "
+                   .. "the axiom or a successor (every 'B' there has 0): the rule never applies",
+                   got[1], 1, true)
+    assert.matches("rule 3 'A(x) < B(y) --> D'", got[2], 1, true)
+    -- a rule function may produce anything: nothing is said
+    assert.equal(0, #warnings(function ()
+      lsys.lsystem { axiom = "A", productions = { "B(x) --> C",
+                     { "A", function () return lsys.produce("B(1)") end } } }
+    end))
+  end)
+
+  it("refuses use_group for a group the model does not have", function ()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> B",
+                             groups = { [1] = "A --> C", [3] = "A --> D" } }
+    assert.matches("use_group: the model has no group 7 (groups: 1, 3)", errof(m.use_group, m, 7),
+                   1, true)
+    m:use_group(3)
+    assert.equal("D", tostring(m:derive(1)))
+  end)
+
+  it("refuses a negative line width and a tropism without a direction", function ()
+    assert.matches("'view.line_width' must be >= 0, got -3",
+                   errof(lsys.lsystem, { axiom = "F", view = { line_width = -3 } }), 1, true)
+    local m = lsys.lsystem { axiom = "F" }
+    assert.matches("lsys.render: 'view.line_width' must be >= 0, got -3",
+                   errof(lsys.render, m, { line_width = -3 }), 1, true)
+    assert.matches("'view.tropisms[1].vector' is {0, 0, 0}: a tropism needs a direction",
+                   errof(lsys.lsystem, { axiom = "F", view = { tropisms = {
+                     { vector = { 0, 0, 0 }, elasticity = 0.2 } } } }), 1, true)
+  end)
+
+  it("refuses a negative contour or texture number", function ()
+    local m = lsys.lsystem { axiom = "F@#(-1)F" }
+    assert.matches("module 2 '@#': contour -1 is not defined", errof(m.interpret, m), 1, true)
+    m = lsys.lsystem { axiom = "F@Tx(-2)F" }
+    assert.matches("module 2 '@Tx': texture -2 is not defined", errof(m.interpret, m), 1, true)
+  end)
+
+  it("refuses positions that overflow instead of drawing nothing", function ()
+    local m = lsys.lsystem { axiom = "F(1e308)F(1e308)" }
+    assert.matches("module 2 'F': the position is no longer finite after a move of 1e+308",
+                   errof(m.interpret, m), 1, true)
+  end)
+
+  it("writes PNG only under a PNG name", function ()
+    local dir = H.tmpdir()
+    local m = lsys.lsystem { axiom = "F" }
+    assert.matches("lsys.render: '" .. dir .. "/x.jpg': lsys writes PNG images; name the file "
+                   .. ".png", errof(lsys.render, m, { out = dir .. "/x.jpg" }), 1, true)
+    assert.is_nil(io.open(dir .. "/x.jpg"))
+    lsys.render(m, { out = dir .. "/x.PNG", width = 16, height = 16 })
+    assert.truthy(io.open(dir .. "/x.PNG"))
+    H.rmdir(dir)
+  end)
+
+  it("warns about a polygon that is never closed", function ()
+    local dir = H.tmpdir()
+    H.write(dir .. "/open.lua", 'local lsys = require "lsys"\n'
+      .. 'lsys.lsystem { axiom = "F{.f.+f.F" }:interpret()\n')
+    local out, code = H.sh(H.BIN .. " " .. dir .. "/open.lua")
+    H.rmdir(dir)
+    assert.equal(0, code, out)
+    assert.matches("lsys: the polygon '{' of module 2 is never closed with '}': it is not drawn",
+                   out, 1, true)
+  end)
+end)

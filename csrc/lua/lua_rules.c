@@ -639,6 +639,35 @@ static int rules_axiom (lua_State *L) {
   return 2;
 }
 
+/* rules:kinds(template) -> { name = { np = true, ... }, ... }: the distinct
+** module names of the template and their parameter counts */
+static int rules_kinds (lua_State *L) {
+  lsys_lrules *R = lsys_checkrules(L, 1);
+  ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
+  uint8_t *seen = (uint8_t *)lua_newuserdatauv(L, 1u << 13, 0);   /* a bit per code */
+  uint32_t k;
+  luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
+  memset(seen, 0, 1u << 13);
+  lua_newtable(L);
+  for (k = 0; k < t->nmod; k++) {
+    uint16_t c = t->code[k];
+    if (seen[c >> 3] & (1u << (c & 7))) continue;
+    seen[c >> 3] |= (uint8_t)(1u << (c & 7));
+    lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+    if (lua_rawget(L, -2) != LUA_TTABLE) {
+      lua_pop(L, 1);
+      lua_newtable(L);
+      lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+      lua_pushvalue(L, -2);
+      lua_rawset(L, -4);
+    }
+    lua_pushboolean(L, 1);
+    lua_rawseti(L, -2, LSYS_CNP(c));
+    lua_pop(L, 1);
+  }
+  return 1;
+}
+
 /* rules:fill(template, values) -> Lstring: the template's slots filled from
 ** the list 'values' (finite numbers) */
 static int rules_fill (lua_State *L) {
@@ -790,7 +819,8 @@ static const luaL_Reg rules_methods[] = {
   {"ran", rules_ran}, {"srand", rules_srand},
   {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
-  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
+  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill},
+  {"kinds", rules_kinds}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

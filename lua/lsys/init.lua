@@ -130,6 +130,10 @@ local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom
 function M.render (x, opts)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", 2) end
+  local ext = type(opts.out) == "string" and opts.out:match("%.([%w]+)$")
+  if ext and ext:lower() ~= "png" then      -- not PNG data under another format's name
+    error(format("lsys.render: '%s': lsys writes PNG images; name the file .png", opts.out), 2)
+  end
   if type(x) == "table" and x.links ~= nil and M.components.isproto(x) then
     x = M.components.model(x)                     -- a component graph's root
   end

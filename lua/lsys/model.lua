@@ -178,9 +178,46 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
-                            trees = trees, funcrefs = factory and compile.funcrefs(e.text) }
+                            trees = trees, funcrefs = factory and compile.funcrefs(e.text),
+                            pattern = { r.lc, r.preds or { r.pred }, r.rc }, succ = r.succ }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
+  end
+end
+
+local SPECIAL = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] = true }
+
+-- Warns about each rule whose pattern names a module with a parameter count that no
+-- module of that name has in the axioms and successors (which do name it): the rule can
+-- never apply (`B(x,y) --> ...` where every B is `B(1)`). Rule functions may produce
+-- anything: with one, nothing is said.
+function Model:_checkcounts ()
+  local made = self._rules:kinds(self._axiom)      -- the axiom's, counted in C
+  local function add (mods)
+    for _, m in ipairs(mods or {}) do
+      made[m.name] = made[m.name] or {}
+      made[m.name][#m.params] = true
+    end
+  end
+  for _, info in pairs(self._info) do
+    if not info.succ then return end           -- a rule function
+    add(info.succ)
+  end
+  for _, info in pairs(self._info) do
+    for _, part in ipairs(info.pattern) do
+      for _, m in ipairs(part) do
+        local counts, np = made[m.name], #m.params
+        if counts and not counts[np] and not SPECIAL[m.name] then
+          local have = {}
+          for k in pairs(counts) do have[#have + 1] = k end
+          table.sort(have)
+          warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
+            .. "successor (every '%s' there has %s): the rule never applies", self._where,
+            info.label, m.name, np, np == 1 and "" or "s", m.name, table.concat(have, " or ")))
+          break
+        end
+      end
+    end
   end
 end
 
@@ -227,6 +264,8 @@ function Model:_addsets (opts, fail)
       fail("groups: keys must be group numbers >= 1")
     end
     self:_addrules(rs, format("group %d", g), PROD, 0, g, fail)
+    self._groups = self._groups or {}
+    self._groups[g] = true
   end
   for id, s in pairs(opts.sub or {}) do
     if type(id) ~= "number" or id < 1 or id ~= math.floor(id) then
@@ -353,6 +392,7 @@ make = function (opts, where, fail)
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
+  self:_checkcounts()
   rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
   rules:config("hseed", self.homomorphism_seed or self.seed)
   return self
@@ -719,6 +759,13 @@ function Model:use_group (n)
     error("use_group: a group number >= 0 expected", 2)
   end
   self:_idle("use_group")
+  if n ~= 0 and not (self._groups and self._groups[n]) then
+    local have = {}
+    for g in pairs(self._groups or {}) do have[#have + 1] = g end
+    table.sort(have)
+    error(format("use_group: the model has no group %d (groups: %s)", n,
+                 #have > 0 and table.concat(have, ", ") or "none"), 2)
+  end
   self._group = n
   self._rules:config("group", n)
 end

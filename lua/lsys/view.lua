@@ -188,6 +188,10 @@ end
 local function tropism (t, where, name, torque)
   if type(t) ~= "table" then fail(where, "'%s' must be a table", name) end
   local out = { vector = vec(t.vector, where, name .. ".vector"), torque = torque or t.torque }
+  if out.vector[1] == 0 and out.vector[2] == 0 and out.vector[3] == 0 then
+    fail(where, "'%s.vector' is {0, 0, 0}: a %s needs a direction", name,
+         (torque or t.torque) and "torque" or "tropism")
+  end
   for _, k in ipairs { "angle", "elasticity", "increment" } do
     local x = t[k]
     if x ~= nil and not isnum(x) then fail(where, "'%s.%s' must be a number", name, k) end
@@ -542,6 +546,9 @@ function M.normalize (v, where)
   out.textures = out.textures or {}
   if out.contour_sides < 3 or out.contour_sides > 1024 then
     fail(where, "'view.contour_sides' must be from 3 to 1024")
+  end
+  if out.line_width < 0 then
+    fail(where, "'view.line_width' must be >= 0, got %g", out.line_width)
   end
   if out.supersample < 1 or out.supersample > 8 then
     fail(where, "'view.supersample' must be from 1 to 8")
