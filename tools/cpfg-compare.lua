@@ -1,13 +1,14 @@
 -- Runs vlab's example models through cpfg and through lsys.cpfg and compares the derived
 -- strings module by module (parameters within cpfg's printed precision).
--- Usage: lua5.4 tools/cpfg-compare.lua VLAB_EXT CPFG [--timeout S] [MODEL_DIR ...]
---                                                   [--all FOLDER ...]
+-- Usage: lua5.4 tools/cpfg-compare.lua VLAB_EXT CPFG [--timeout S] [--homo]
+--                                       [MODEL_DIR ...] [--all FOLDER ...]
 --   VLAB_EXT: vlab's oofs/ext folder (git archive HEAD oofs/ext of the vlab repository);
 --   CPFG: the cpfg program (see ../shared/tools/cpfg-build.sh);
 --   MODEL_DIR: object folders under VLAB_EXT (default: the fidelity list of issue 18);
 --   --all FOLDER: every object folder under VLAB_EXT/FOLDER (nested ext/ folders too) whose
 --     specifications run cpfg; each cpfg command there is one model;
---   --timeout S: seconds each program may take per model (default 300).
+--   --timeout S: seconds each program may take per model (default 300);
+--   --homo: compare the strings after the homomorphism (cpfg -homo, lsys m:expand).
 -- Prints one line per model: identical, differs at module k (both modules shown), lsys
 -- refuses (its message), cpfg fails (its message); "stochastic:" before a difference
 -- when lsys's own string changes with the seed (cpfg's drand48 cannot be matched string
@@ -74,7 +75,7 @@ end
 -- The lsys side, run in a child process (so a crash or a runaway derivation costs one
 -- model): loads L, V, the palette, derives, compares with cpfg's string in REF and
 -- returns the verdict. A model whose string changes with the seed is "stochastic".
-local function child (l, v, pal, ref)
+local function child (l, v, pal, ref, homo)
   local lsys = require "lsys"
   local opts = {}
   if pal ~= "" then
@@ -83,10 +84,28 @@ local function child (l, v, pal, ref)
   local ok, m = pcall(lsys.cpfg.load, l, v ~= "" and v or nil, opts)
   local note = ""
   if not ok and v ~= "" then
-    -- a view lsys refuses: compare the strings without it
-    local ok2, m2 = pcall(lsys.cpfg.load, l, nil, opts)
+    -- a view lsys refuses: compare the strings with a copy of it without the lines that
+    -- name files (in a folder of links to the model's files), else without it
+    local tmp = io.popen("mktemp -d"):read("l")
+    local dir, name = v:match("^(.*)/([^/]*)$")
+    os.execute("ln -s " .. q(dir) .. "/* " .. q(tmp) .. "/ && rm " .. q(tmp .. "/" .. name))
+    local keep = {}
+    for line in ((read(v) or "") .. "\n"):gmatch("([^\n]*)\n") do
+      if not line:find("^%s*t?surface%s*:") and not line:find("^%s*contour%s*:") and
+         not line:find("^%s*texture%s*:") and not line:find("^%s*line style%s*:") then
+        keep[#keep + 1] = line
+      end
+    end
+    write(tmp .. "/" .. name, table.concat(keep, "\n"))
+    local ok2, m2 = pcall(lsys.cpfg.load, l, tmp .. "/" .. name, opts)
+    local how = "its contour, surface, texture and line style lines removed"
+    if not ok2 then
+      ok2, m2 = pcall(lsys.cpfg.load, l, nil, opts)
+      how = "no view"
+    end
+    os.execute("rm -r " .. q(tmp))
     if ok2 then
-      note = " [lsys refuses the view: " .. tostring(m) .. "; compared without it]"
+      note = " [lsys refuses the view: " .. tostring(m) .. "; compared with " .. how .. "]"
       ok, m = true, m2
     end
   end
@@ -94,6 +113,10 @@ local function child (l, v, pal, ref)
   local t0 = os.clock()
   local ok2, s = pcall(m.derive, m)
   if not ok2 then return "lsys fails to derive: " .. tostring(s) .. note end
+  if homo == "homo" then
+    ok2, s = pcall(m.expand, m, s)
+    if not ok2 then return "lsys fails to apply the homomorphism: " .. tostring(s) .. note end
+  end
   local dt = os.clock() - t0
   local text = (read(ref) or ""):gsub("\n", "")
   local ok3, r = pcall(lsys.lstring, text, m.modules)
@@ -106,13 +129,14 @@ local function child (l, v, pal, ref)
   end
   m.seed = (m.seed or 0) + 7919
   local ok4, s2 = pcall(m.derive, m)
+  if ok4 and homo == "homo" then ok4, s2 = pcall(m.expand, m, s2) end
   if ok4 and diff(a, modules(s2)) then d = "stochastic: " .. d end
   return d .. note
 end
 
 if arg[1] == "--child" then
   io.output("/dev/null")          -- the model's printf output
-  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5])
+  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5], arg[6])
   io.stdout:write((ok and r or "error: " .. tostring(r)), "\n")
   os.exit(0)
 end
@@ -190,11 +214,12 @@ local function random (path)
   return s:find("%f[%w_][nb]?i?ran%s*%(") ~= nil or s:find("%f[%w_]srand%s*%(") ~= nil
 end
 
-local timeout = 300
+local timeout, homo = 300, false
 
 local function compare (dir, c)
   local out, empty, err, ref = os.tmpname(), os.tmpname(), os.tmpname(), os.tmpname()
-  local cmd = "cd " .. q(dir) .. " && timeout " .. timeout .. " " .. q(cpfg) .. " -g -m " ..
+  local cmd = "cd " .. q(dir) .. " && timeout " .. timeout .. " " .. q(cpfg) ..
+              (homo and " -homo" or "") .. " -g -m " ..
               q(empty) .. " -str " .. q(out) .. " " .. q(c.l) .. (c.v and " " .. q(c.v) or "")
               .. " </dev/null >/dev/null 2>" .. q(err)
   local _, _, code = os.execute(cmd)
@@ -210,7 +235,8 @@ local function compare (dir, c)
   write(ref, text)
   local p = io.popen("timeout " .. timeout .. " lua5.4 " .. q(arg[0]) .. " --child " ..
                      q(dir .. "/" .. c.l) .. " " .. q(c.v and dir .. "/" .. c.v or "") .. " " ..
-                     q(c.pal and dir .. "/" .. c.pal or "") .. " " .. q(ref) .. " 2>&1")
+                     q(c.pal and dir .. "/" .. c.pal or "") .. " " .. q(ref) ..
+                     (homo and " homo" or "") .. " 2>&1")
   local r = p:read("a")
   local ok, _, code2 = p:close()
   os.remove(ref)
@@ -243,6 +269,9 @@ while i <= #arg do
     table.sort(found)
     for _, d in ipairs(found) do list[#list + 1] = d:sub(#root + 2) end
     i = i + 2
+  elseif arg[i] == "--homo" then
+    homo = true
+    i = i + 1
   elseif arg[i] == "--timeout" then
     timeout = tonumber(arg[i + 1]) or timeout
     i = i + 2
