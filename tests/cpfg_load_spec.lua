@@ -219,3 +219,72 @@ describe("lsys.cpfg.load errors", function ()
     assert.equal(1, nfn)   -- the A rule (a while loop) is a function rule
   end)
 end)
+
+-- Constructs met in vlab's models (tools/cpfg-compare.lua --all); every string from cpfg.
+describe("lsys.cpfg.load on vlab's constructs", function ()
+  -- numbers as cpfg prints them (6 digits): lsys keeps float32 values, 0.9 is 0.89999998
+  local function g (s) return (s:gsub("[-%d.]+", function (x) return ("%g"):format(x) end)) end
+  -- the warnings `fn` gives, and its results
+  local function warnings (fn)
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local r = table.pack(pcall(fn))
+    warning.warn = saved
+    assert(r[1], r[2])
+    return got, table.unpack(r, 2, r.n)
+  end
+
+  it("skips a character cpfg's expression lexer skips, with a warning", function ()
+    local got, s = warnings(function () return derive("stray.l") end)
+    assert.equal("B(2)B(4)A(3)", s)                                     -- cpfg
+    assert.same({ D .. "stray.l:8: stray '\\' in an expression ignored (as cpfg does)",
+                  D .. "stray.l:8: stray '\\' in an expression ignored (as cpfg does)" }, got)
+  end)
+
+  it("gives a string its number among the file's strings; printf reads \\t, \\n, %lf",
+     function ()
+    local H = require "tests.helper"
+    local dir = H.tmpdir()
+    local saved = io.output()
+    io.output(dir .. "/out")
+    local ok, s = pcall(derive, "strings.l")
+    io.output():close()
+    io.output(saved)
+    assert(ok, s)
+    assert.equal("@L(2,1)C(4,1)@L(3,1)@L(1)", s)                        -- cpfg
+    assert.equal("start\t1.500000  2.25\n", H.read(dir .. "/out"))     -- cpfg's printf
+    H.rmdir(dir)
+  end)
+
+  it("runs Start: before it computes the axiom", function ()
+    local m = lsys.cpfg.load(D .. "startaxiom.l")
+    assert.equal("C(0.9,1)B(1.8,1)", g(tostring(m:derive())))          -- cpfg
+    assert.equal("C(0.9,1)B(1.8,1)", g(tostring(m:derive())))          -- and every time
+  end)
+
+  it("reads a line starting with the module # as text, with either preprocessor", function ()
+    for _, how in ipairs { "system", "builtin" } do
+      assert.equal("F(1)#(0.5)F(2)#(0.25)F(3)", derive("hashline.l", nil, { cpp = how }))
+    end                                                                 -- cpfg
+  end)
+
+  it("takes a maximum depth above 1024 as 1024, with a warning", function ()
+    local got, m = warnings(function () return lsys.cpfg.load(D .. "depth.l") end)
+    assert.same({ D .. "depth.l:7: maximum depth 3000 taken as 1024, lsys's limit" }, got)
+    -- cpfg -homo
+    assert.equal(("F"):rep(49) .. "A(50)", tostring(m:expand(m:derive())))
+  end)
+
+  it("keeps cpfg's default for a view value left as '?' (angle increment 45)", function ()
+    local got, m = warnings(function ()
+      return lsys.cpfg.load(D .. "exercise.l", D .. "exercise.v")
+    end)
+    assert.equal(45, m.view.angle)
+    assert.equal(2, m.view.color)
+    assert.same({ D .. "exercise.v:1: 'angle increment': '?' is not a value; the line is "
+                  .. "ignored" }, got)
+    -- cpfg: the positions after + and F at 45 degrees
+    assert.equal("+F?P(-0.707107,0.707107)!F?P(-1.41421,1.41421)", g(tostring(m:derive())))
+  end)
+end)
