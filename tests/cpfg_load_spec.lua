@@ -153,6 +153,13 @@ describe("lsys.cpfg.load", function ()
     assert.equal("FFFFFFFFFFFFFFX", tostring(m:derive()))
     assert.equal(45, m.view.angle)
   end)
+
+  it("takes only -m, -m1, -M and -M1 as the palette of an object", function ()
+    -- vlab's Sedge: cpfg -m2 sedge.map2 female.l ... (colour map 2, not the palette)
+    local m = lsys.cpfg.load_object(D .. "object2")
+    assert.is_nil(m.view.palette)
+    assert.equal("FFFFFFFFFFFFFFX", tostring(m:derive()))
+  end)
 end)
 
 describe("lsys.cpfg.load errors", function ()

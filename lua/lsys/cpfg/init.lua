@@ -1010,8 +1010,10 @@ function M.load_object (dir, opts)
       local i = 1
       while i <= #words do
         local w = words[i]
-        if w:match("^%-m%d*$") or w == "-M" then
+        if w:match("^%-[mM]1?$") then          -- -m2, -M2: colour map 2, not the palette
           pal = pal or words[i + 1]
+          i = i + 1
+        elseif w:match("^%-[mM]%d+$") then
           i = i + 1
         elseif w:match("%.l$") then l = l or w
         elseif w:match("%.v$") then v = v or w end
