@@ -8,7 +8,8 @@
 --   --all FOLDER: every object folder under VLAB_EXT/FOLDER (nested ext/ folders too) whose
 --     specifications run cpfg; each cpfg command there is one model;
 --   --timeout S: seconds each program may take per model (default 300);
---   --homo: compare the strings after the homomorphism (cpfg -homo, lsys m:expand).
+--   --homo: compare the strings after the homomorphism (cpfg -homo, lsys m:expand; cpfg
+--     stops writing that string at its first query module ?E ?P ..., shown as "?").
 -- Prints one line per model: identical, differs at module k (both modules shown), lsys
 -- refuses (its message), cpfg fails (its message); "stochastic:" before a difference
 -- when lsys's own string changes with the seed (cpfg's drand48 cannot be matched string
