@@ -295,3 +295,49 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
     assert.equal("+F?P(-0.707107,0.707107)!F?P(-1.41421,1.41421)", g(tostring(m:derive())))
   end)
 end)
+
+describe("lsys.cpfg.load on a stochastic model", function ()
+  -- cpfg's statistics of stoch_stats.l over 300 runs, each with its own seed written into
+  -- a copy of the file (seed: for the productions, Start: {srand(k);} for ran and nran):
+  --   lua5.4 tools/cpfg-stats.lua CPFG -n 300 --seed 7 tests/data/cpfg/stoch_stats.l V.v
+  -- (V.v an empty view). Mean and standard deviation per run of the count of X, Y, Z and
+  -- of the means of I's and X's parameter. Expected: 40 choices with weights 1 : 2 : 0.5,
+  -- ran(2) (mean 1) and nran(5, 1).
+  local CPFG, RUNS = {
+    X = { 11.41, 2.864 }, Y = { 22.883, 2.976 }, Z = { 5.7067, 2.247 },
+    ["I.1"] = { 1.0057, 0.09366 }, ["X.1"] = { 4.996, 0.3153 },
+  }, 300
+
+  it("matches cpfg's counts and parameter means within 4 standard errors", function ()
+    local m = lsys.cpfg.load(D .. "stoch_stats.l")
+    local K, got = 200, {}
+    for k in pairs(CPFG) do got[k] = {} end
+    for seed = 1, K do
+      m.seed = seed
+      local s = m:derive()
+      local count, sum = {}, {}
+      local f, st, c = s:modules()
+      while true do
+        local i, name, x = f(st, c)
+        if i == nil then break end
+        c = i
+        count[name] = (count[name] or 0) + 1
+        if x then sum[name] = (sum[name] or 0) + x end
+      end
+      for _, n in ipairs { "X", "Y", "Z" } do table.insert(got[n], count[n] or 0) end
+      table.insert(got["I.1"], sum.I / count.I)
+      if count.X then table.insert(got["X.1"], sum.X / count.X) end
+    end
+    for k, ref in pairs(CPFG) do
+      local xs, mean, ss = got[k], 0, 0
+      for _, x in ipairs(xs) do mean = mean + x / #xs end
+      for _, x in ipairs(xs) do ss = ss + (x - mean) ^ 2 end
+      local sd = math.sqrt(ss / (#xs - 1))
+      local tol = 4 * math.sqrt(ref[2] ^ 2 / RUNS + sd ^ 2 / #xs)
+      assert(math.abs(mean - ref[1]) <= tol,
+             ("%s: lsys %.4g, cpfg %.4g (tolerance %.3g)"):format(k, mean, ref[1], tol))
+      assert(sd > ref[2] / 2 and sd < ref[2] * 2,
+             ("%s: lsys's spread %.3g, cpfg's %.3g"):format(k, sd, ref[2]))
+    end
+  end)
+end)
