@@ -18,6 +18,7 @@ local parse = require "lsys.cpfg.parse"
 local model = require "lsys.model"
 local func = require "lsys.func"
 local viewmod = require "lsys.view"
+local viewfile = require "lsys.viewfile"
 local warning = require "lsys.warning"
 local core = require "lsys.core"
 local _ENV = nil
@@ -103,10 +104,12 @@ end
 function H._aget (a, ...) return a.v[aindex(a, ...)] end
 function H._aset (a, x, ...) a.v[aindex(a, ...)] = x end
 function H._stop () return 0.0 end
--- printf: C's format on numbers; %d and the other integer conversions take the integer part
+-- printf: C's format on numbers; %d and the other integer conversions take the integer
+-- part; length modifiers (%lf, %ld) are accepted and mean nothing, as for C's printf of
+-- a double
 function H._printf (fmt, ...)
   local args, i = { ... }, 0
-  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)([diouxXcfFeEgGs%%])", function (flags, c)
+  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)[hlLqjzt]*([diouxXcfFeEgGs%%])", function (flags, c)
     if c == "%" then return "%" end
     i = i + 1
     local x = args[i] or 0
@@ -245,8 +248,8 @@ emit = function (T, ctx, e)
     local parts = { ctx.mode == "f" and "E." .. key or key }
     for i, x in ipairs(e.idx) do parts[i + 1] = N(T, ctx, x) end
     return fn(ctx, "_aget") .. "(" .. concat(parts, ", ") .. ")", "n"
-  elseif k == "str" then
-    fail(T, e.pos, "a string is allowed only as the format of printf")
+  elseif k == "str" then   -- its number among the file's strings, as cpfg (@L("%.f", x))
+    return numlit(e.index), "n"
   elseif k == "call" then return call(T, ctx, e)
   elseif k == "un" then
     if e.op == "-" then return "(-" .. N(T, ctx, e.a) .. ")", "n" end
@@ -402,14 +405,19 @@ local function pattern (mods, params)
   return concat(t)
 end
 
-local function successor (T, ctx, mods)
+-- The lsys text of a successor; `first`, when given, wraps the code of its first
+-- parameter (the axiom's runs the Start: blocks first).
+local function successor (T, ctx, mods, first)
   if #mods == 0 then return "*" end
   local t = {}
   for _, m in ipairs(mods) do
     local s = m.sym
     if m.params then
       local ps = {}
-      for i, x in ipairs(m.params) do ps[i] = N(T, ctx, x) end
+      for i, x in ipairs(m.params) do
+        ps[i] = N(T, ctx, x)
+        if first then ps[i], first = first(ps[i]), nil end
+      end
       s = s .. "(" .. concat(ps, ", ") .. ")"
     end
     t[#t + 1] = s
@@ -753,7 +761,13 @@ local function translate (P, lsystems, opts)
   o.ring = main.ring or nil
   o.ignore, o.consider = main.ignore, main.consider
   local actx = { mode = "s", scope = 1 }
-  local ok, ax = pcall(successor, T, actx, main.axiom)
+  -- cpfg runs the Start: blocks before it computes the axiom, lsys computes the axiom
+  -- first: an axiom that reads names calls the start hook from its first parameter
+  local read = {}
+  local walk = walknames({}, {}, read)
+  for _, m in ipairs(main.axiom) do for _, x in ipairs(m.params or {}) do walk(x) end end
+  local early = next(read) ~= nil and function (code) return "(_axstart() and " .. code .. ")" end
+  local ok, ax = pcall(successor, T, actx, main.axiom, early)
   if not ok then
     if ax == NOSTRING then fail(T, main.axiompos, "the axiom reads a variable set by a "
                                 .. "production") end
@@ -768,8 +782,12 @@ local function translate (P, lsystems, opts)
       o[s] = rules(T, main, sect.productions, s, false)
       if sect.depth then
         local d = consteval(T, sect.depth, 1, "the maximum depth")
-        if d < 0 or d > 1024 then
-          fail(T, sect.depth.pos, "the maximum depth is %g, not 0 to 1024", d)
+        if d < 0 then fail(T, sect.depth.pos, "the maximum depth is %g, not 0 or more", d) end
+        if d > 1024 then     -- cpfg takes any depth; lsys's limit is 1024
+          local file, line = T.P:where(sect.depth.pos)
+          warning.warn(format("%s:%d: maximum depth %g taken as 1024, lsys's limit", file, line,
+                              d))
+          d = 1024
         end
         depth[s] = floor(d)
       end
@@ -829,8 +847,16 @@ local function translate (P, lsystems, opts)
     if core.producing() then core.srand(x) else T.model:srand(x) end
     return 0.0
   end
+  local started = false     -- by the axiom, in this derivation
+  T.env._axstart = function ()
+    started = true
+    reset()
+    for _, f in ipairs(starts) do f() end
+    return true
+  end
   o.start = function (m)
     T.model = m
+    if started then started = false; return end
     reset()
     for _, f in ipairs(starts) do f() end
   end
@@ -926,8 +952,11 @@ function M.load (lfile, vfile, opts)
     error("lsys.cpfg.load: the view file must be a file name", 2)
   end
   opts = checkopts(opts, "lsys.cpfg.load")
-  local v
-  if vfile then v = viewmod.load(vfile) end
+  local v = vfile and viewmod.load(vfile) or { dir = cpp.dirof(lfile) }
+  -- what the view leaves unset (or sets to '?') is cpfg's default, not lsys.view's
+  for k, x in pairs(viewfile.CPFG_DEFAULTS) do
+    if v[k] == nil then v[k] = x end
+  end
   local pal = opts.colormap or opts.materials
   if pal then
     local ldir = cpp.dirof(lfile)
@@ -957,6 +986,7 @@ function M.load (lfile, vfile, opts)
     end
     error(msg, 0)
   end
+  T.model = m         -- (srand in Start: blocks run by the axiom, before the start hook)
   if T.usesfunc then T.H.func = function (id, x) return m:func(id, x) end end
   return m
 end
@@ -980,8 +1010,10 @@ function M.load_object (dir, opts)
       local i = 1
       while i <= #words do
         local w = words[i]
-        if w:match("^%-m%d*$") or w == "-M" then
+        if w:match("^%-[mM]1?$") then          -- -m2, -M2: colour map 2, not the palette
           pal = pal or words[i + 1]
+          i = i + 1
+        elseif w:match("^%-[mM]%d+$") then
           i = i + 1
         elseif w:match("%.l$") then l = l or w
         elseif w:match("%.v$") then v = v or w end
