@@ -119,6 +119,10 @@ describe("lsys.cpfg.load", function ()
     assert.equal("B(45,135,-90)C(180)", derive("atan2.l"))
   end)
 
+  it("rewrites the letter of an @ module as cpfg's character string does", function ()
+    assert.equal("A@o(1.25)o(2)@X", derive("atsphere.l"))                 -- cpfg
+  end)
+
   it("writes printf's C escapes as C does", function ()
     local H = require "tests.helper"
     local dir = H.tmpdir()

@@ -715,6 +715,46 @@ local function declare (T, lsystems)
   return list
 end
 
+-- cpfg's string is characters: its sphere `@o(0.2)` is '@' then 'o(0.2)', so a production
+-- for `o` also rewrites the o of every @o (vlab's mycelis: `o(r) --> o(r+0.03)` grows the
+-- spheres). lsys reads @o as one module: such a production gets a twin for @X placed right
+-- after it, when the L-system has @X modules, the successor starts with a letter Y (cpfg's
+-- string then reads @Y, as lsys's does) and no left context would see the '@' (or '@' is
+-- ignored).
+local function atrules (T, lsystems)
+  for _, ls in ipairs(lsystems) do
+    local used = {}
+    local function scan (mods)          -- cpfg's characters: '@' then the letter
+      for i, m in ipairs(mods or {}) do
+        local nx = mods[i + 1]
+        if m.sym == "@" and not m.params and nx and nx.sym:find("^%a$") then
+          used["@" .. nx.sym] = true
+        end
+      end
+    end
+    scan(ls.axiom)
+    for _, p in ipairs(ls.productions) do scan(p.succ) end
+    local ignored = ls.ignore and ls.ignore:find("@", 1, true)
+    local out = {}
+    for _, p in ipairs(ls.productions) do
+      out[#out + 1] = p
+      local x = #p.pred == 1 and p.pred[1].sym
+      local at = { sym = "@", pos = p.pred[1].pos }
+      local first = p.succ[1] and p.succ[1].sym
+      if x and x:find("^%a$") and used["@" .. x] and first and first:find("^%a$") and
+         (not p.lc or #p.lc == 0 or ignored) and count(T, { at, p.pred[1] }) == 1 then
+        local twin = {}
+        for k, v in pairs(p) do twin[k] = v end
+        twin.pred = { at, p.pred[1] }          -- the text @X(...): one lsys module
+        twin.succ = { at }
+        for i = 1, #p.succ do twin.succ[i + 1] = p.succ[i] end
+        out[#out + 1] = twin
+      end
+    end
+    ls.productions = out
+  end
+end
+
 local function float32 ()
   return pcall(model.lsystem, { numbers = "float32" })
 end
@@ -752,6 +792,7 @@ local function translate (P, lsystems, opts)
     T.env.Z = steps + 0.0
   end
   dynamic(T, lsystems)
+  atrules(T, lsystems)
   local declared = declare(T, lsystems)
   T.modnames = #declared > 0 and concat(declared, " ") or nil
   local o = { steps = steps, env = T.env, name = opts.name, modules = T.modnames }
