@@ -159,7 +159,7 @@ describe("issue 19 §11: mistakes that used to pass in silence", function ()
     assert.matches("'view.line_width' must be >= 0, got -3",
                    errof(lsys.lsystem, { axiom = "F", view = { line_width = -3 } }), 1, true)
     local m = lsys.lsystem { axiom = "F" }
-    assert.matches("lsys.render: 'view.line_width' must be >= 0, got -3",
+    assert.matches("'view.line_width' must be >= 0, got -3",
                    errof(lsys.render, m, { line_width = -3 }), 1, true)
     assert.matches("'view.tropisms[1].vector' is {0, 0, 0}: a tropism needs a direction",
                    errof(lsys.lsystem, { axiom = "F", view = { tropisms = {
@@ -199,5 +199,46 @@ describe("issue 19 §11: mistakes that used to pass in silence", function ()
     assert.equal(0, code, out)
     assert.matches("lsys: the polygon '{' of module 2 is never closed with '}': it is not drawn",
                    out, 1, true)
+  end)
+end)
+
+describe("issue 19 §1: changing a colour", function ()
+  local m = lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5 } }
+  local function px (x, o)
+    o = o or {}
+    o.width, o.height = 32, 32
+    return lsys.render(x, o)
+  end
+
+  it("renders with the palette given to lsys.render", function ()
+    local plain, blue = px(m), px(m, { palette = { [2] = "#3050ff" } })
+    assert.not_equal(plain, blue)
+    assert.equal(blue, px(m, { view = { palette = { [2] = "#3050ff" } } }))
+    assert.equal(blue, px(m:interpret(nil, { palette = { [2] = "#3050ff" } })))
+    local m2 = lsys.lsystem { axiom = ";(1)F;(2)F",
+                              view = { line_width = 5, palette = { [2] = "#3050ff" } } }
+    assert.equal(blue, px(m2))
+    assert.equal(plain, px(m))                         -- the model's own view is unchanged
+  end)
+
+  it("changes only the entries a partial palette names", function ()
+    local full = {}
+    for i = 0, #require("lsys.view").PALETTE do full[i] = require("lsys.view").PALETTE[i] end
+    full[2] = "#3050ff"
+    assert.equal(px(m, { palette = full }), px(m, { palette = { [2] = "#3050ff" } }))
+    -- over a model's own palette: its entries stay, the named one changes
+    local own = lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5,
+                               palette = { [1] = "#ff0000", [2] = "#00ff00" } } }
+    assert.equal(px(own, { palette = { [2] = "#3050ff" } }),
+                 px(lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5,
+                    palette = { [1] = "#ff0000", [2] = "#3050ff" } } }))
+  end)
+
+  it("says why a palette cannot change a scene already drawn", function ()
+    assert.matches("lsys.render: 'palette' changes how the turtle draws: render the model, or "
+                   .. "interpret it with the option", errof(lsys.render, m:interpret(),
+                   { palette = { [2] = "#ff0000" } }), 1, true)
+    assert.matches("'view.palette': entry 13 is missing (the default palette has 0 to 12)",
+                   errof(lsys.render, m, { palette = { [20] = "#ff0000" } }), 1, true)
   end)
 end)
