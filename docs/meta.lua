@@ -312,7 +312,7 @@ function Model:interpret(s, view) end
 ---@field light? number[] Direction the key light comes from.
 ---@field supersample? integer Anti-aliasing factor (3).
 ---@field dir? string Base directory of relative file names below (a .v file's directory after view.load).
----@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in Appendix B.1 of the cpfg guide (Měch and Prusinkiewicz; docs/manual.md §12).
+---@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in Appendix B.1 of the cpfg guide (Měch and Prusinkiewicz; docs/manual.md §12) or vlab's versioned `cver` files (docs/drawing.md §3a).
 ---@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders").
 ---@field textures? (string|{ file: string, mag?: "near"|"linear", min?: "near"|"linear", mode?: "modulate"|"decal", per_surface?: boolean, intensity?: boolean })[] PNG textures; @Tx(k) picks the k-th.
 ---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
@@ -1545,7 +1545,8 @@ function core.read_file(path, max) end
 -- what `lsys.view.normalize` makes of the files a view names. All are immutable once made;
 -- every method of a closed one raises.
 
---- Reads a contour file (Appendix B.1 of the cpfg guide). Raises `PATH:LINE: ...`.
+--- Reads a contour file: cpfg's (Appendix B.1 of the cpfg guide) or vlab's versioned one
+--- (`cver 1 1`, `1 2`, `1 3`; docs/drawing.md §3a). Raises `PATH:LINE: ...`.
 ---@param path string
 ---@return lsys.Contour
 function core.contour_load(path) end

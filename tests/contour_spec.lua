@@ -1,5 +1,5 @@
--- Contours of generalized cylinders (cpfg guide §3.2.3, Appendix B.1): core.contour_load,
--- core.contour and Contour:sample.
+-- Contours of generalized cylinders (cpfg guide §3.2.3, Appendix B.1): core.contour_load
+-- (cpfg's files and vlab's versioned "cver" files), core.contour and Contour:sample.
 require "tests.helper"
 local core = require "lsys.core"
 
@@ -71,6 +71,66 @@ describe("core.contour_load", function()
   it("refuses files larger than 16 MiB", function()
     local path = tmpfile(("#" .. ("x"):rep(1023) .. "\n"):rep(16 * 1024) .. "\n")
     assert.equal("cannot read '" .. path .. "': larger than 16 MiB",
+      errmsg(core.contour_load, path))
+    os.remove(path)
+  end)
+end)
+
+describe("core.contour_load on vlab's versioned files", function()
+  -- a leaf blade in "cver 1 3": 4 point lines, the ends tripled, 8 control points
+  local BLADE = "cver 1 3\nname: blade\npoints: 4 8\ntype: or\nsamples: 8\n" ..
+    "-2 0 0 3\n-1 0.5 0 1\n1 0.5 0 1\n2 0 0 3\n"
+
+  it("reads cver 1 3, repeating each point as often as its multiplicity says", function()
+    local path = tmpfile(BLADE)
+    local c = core.contour_load(path)
+    os.remove(path)
+    assert.equal("lsys.Contour(8 points, open)", tostring(c))
+    assert.equal(3, c:dim())
+    local v = c:sample(10)
+    assert.equal(11, #v)
+    assert.near({ 2, 0, 0 }, v[1], 1e-12)      -- the tripled end points are the curve's ends
+    assert.near(2, len2(v[11]), 1e-12)
+  end)
+
+  it("reads the closed types of cver 1 1 and 1 2", function()
+    local path = tmpfile("cver 1 1\nname: square\npoints: 4 4\ntype: closed\n" ..
+                         "1 -1 0 1\n1 1 0 1\n-1 1 0 1\n-1 -1 0 1\n")
+    local a = core.contour_load(path)
+    local f = assert(io.open(path, "wb"))
+    f:write("cver 1 2\nname: square\npoints: 4 4\ntype: cr\n" ..
+            "1 -1 0 1\n1 1 0 1\n-1 1 0 1\n-1 -1 0 1\n")
+    f:close()
+    local b = core.contour_load(path)
+    os.remove(path)
+    assert.equal("lsys.Contour(4 points, closed)", tostring(a))
+    assert.same(a:sample(8), b:sample(8))
+  end)
+
+  it("sweeps a cver contour named in the view into a generalized cylinder", function()
+    local lsys = require "lsys"
+    local path = tmpfile(BLADE)
+    local m = lsys.lsystem { axiom = "", view = { contour_sides = 10, contours = { [1] = path } } }
+    local open = m:interpret(m:lstring("@#(1) @Gs f(2) @Ge(5)"))
+    local f = assert(io.open(path, "wb"))
+    f:write("cver 1 2\nname: square\npoints: 4 4\ntype: cr\n" ..
+            "1 -1 0 1\n1 1 0 1\n-1 1 0 1\n-1 -1 0 1\n")
+    f:close()
+    m = lsys.lsystem { axiom = "", view = { contour_sides = 10, contours = { [1] = path } } }
+    local closed = m:interpret(m:lstring("@#(1) @Gs f(2) @Ge(5)"))
+    os.remove(path)
+    assert.equal(5 * 20, open.ntriangles)       -- 5 strips of 10 quads, uncapped
+    assert.equal(5 * 20 + 2 * 8, closed.ntriangles)   -- and two caps of 8 triangles
+  end)
+
+  it("raises errors that name the file and the line", function()
+    local path = tmpfile("cver 1 4\nname: x\n")
+    assert.equal(path .. ":1: unknown contour format 'cver 1 4' (lsys reads cver 1 1, 1 2 and 1 3)",
+      errmsg(core.contour_load, path))
+    local f = assert(io.open(path, "wb"))
+    f:write((BLADE:gsub("2 0 0 3\n$", "2 0 0 4\n")))
+    f:close()
+    assert.equal(path .. ":9: the multiplicities add up to more than the 8 points of line 3",
       errmsg(core.contour_load, path))
     os.remove(path)
   end)

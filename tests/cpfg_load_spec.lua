@@ -119,6 +119,10 @@ describe("lsys.cpfg.load", function ()
     assert.equal("B(45,135,-90)C(180)", derive("atan2.l"))
   end)
 
+  it("rewrites the letter of an @ module as cpfg's character string does", function ()
+    assert.equal("A@o(1.25)o(2)@X", derive("atsphere.l"))                 -- cpfg
+  end)
+
   it("writes printf's C escapes as C does", function ()
     local H = require "tests.helper"
     local dir = H.tmpdir()
@@ -152,6 +156,13 @@ describe("lsys.cpfg.load", function ()
     local m = lsys.cpfg.load_object(D .. "object")
     assert.equal("FFFFFFFFFFFFFFX", tostring(m:derive()))
     assert.equal(45, m.view.angle)
+  end)
+
+  it("takes only -m, -m1, -M and -M1 as the palette of an object", function ()
+    -- vlab's Sedge: cpfg -m2 sedge.map2 female.l ... (colour map 2, not the palette)
+    local m = lsys.cpfg.load_object(D .. "object2")
+    assert.is_nil(m.view.palette)
+    assert.equal("FFFFFFFFFFFFFFX", tostring(m:derive()))
   end)
 end)
 
@@ -217,5 +228,120 @@ describe("lsys.cpfg.load errors", function ()
       end
     end
     assert.equal(1, nfn)   -- the A rule (a while loop) is a function rule
+  end)
+end)
+
+-- Constructs met in vlab's models (tools/cpfg-compare.lua --all); every string from cpfg.
+describe("lsys.cpfg.load on vlab's constructs", function ()
+  -- numbers as cpfg prints them (6 digits): lsys keeps float32 values, 0.9 is 0.89999998
+  local function g (s) return (s:gsub("[-%d.]+", function (x) return ("%g"):format(x) end)) end
+  -- the warnings `fn` gives, and its results
+  local function warnings (fn)
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local r = table.pack(pcall(fn))
+    warning.warn = saved
+    assert(r[1], r[2])
+    return got, table.unpack(r, 2, r.n)
+  end
+
+  it("skips a character cpfg's expression lexer skips, with a warning", function ()
+    local got, s = warnings(function () return derive("stray.l") end)
+    assert.equal("B(2)B(4)A(3)", s)                                     -- cpfg
+    assert.same({ D .. "stray.l:8: stray '\\' in an expression ignored (as cpfg does)",
+                  D .. "stray.l:8: stray '\\' in an expression ignored (as cpfg does)" }, got)
+  end)
+
+  it("gives a string its number among the file's strings; printf reads \\t, \\n, %lf",
+     function ()
+    local H = require "tests.helper"
+    local dir = H.tmpdir()
+    local saved = io.output()
+    io.output(dir .. "/out")
+    local ok, s = pcall(derive, "strings.l")
+    io.output():close()
+    io.output(saved)
+    assert(ok, s)
+    assert.equal("@L(2,1)C(4,1)@L(3,1)@L(1)", s)                        -- cpfg
+    assert.equal("start\t1.500000  2.25\n", H.read(dir .. "/out"))     -- cpfg's printf
+    H.rmdir(dir)
+  end)
+
+  it("runs Start: before it computes the axiom", function ()
+    local m = lsys.cpfg.load(D .. "startaxiom.l")
+    assert.equal("C(0.9,1)B(1.8,1)", g(tostring(m:derive())))          -- cpfg
+    assert.equal("C(0.9,1)B(1.8,1)", g(tostring(m:derive())))          -- and every time
+  end)
+
+  it("reads a line starting with the module # as text, with either preprocessor", function ()
+    for _, how in ipairs { "system", "builtin" } do
+      assert.equal("F(1)#(0.5)F(2)#(0.25)F(3)", derive("hashline.l", nil, { cpp = how }))
+    end                                                                 -- cpfg
+  end)
+
+  it("takes a maximum depth above 1024 as 1024, with a warning", function ()
+    local got, m = warnings(function () return lsys.cpfg.load(D .. "depth.l") end)
+    assert.same({ D .. "depth.l:7: maximum depth 3000 taken as 1024, lsys's limit" }, got)
+    -- cpfg -homo
+    assert.equal(("F"):rep(49) .. "A(50)", tostring(m:expand(m:derive())))
+  end)
+
+  it("keeps cpfg's default for a view value left as '?' (angle increment 45)", function ()
+    local got, m = warnings(function ()
+      return lsys.cpfg.load(D .. "exercise.l", D .. "exercise.v")
+    end)
+    assert.equal(45, m.view.angle)
+    assert.equal(2, m.view.color)
+    assert.same({ D .. "exercise.v:1: 'angle increment': '?' is not a value; the line is "
+                  .. "ignored" }, got)
+    -- cpfg: the positions after + and F at 45 degrees
+    assert.equal("+F?P(-0.707107,0.707107)!F?P(-1.41421,1.41421)", g(tostring(m:derive())))
+  end)
+end)
+
+describe("lsys.cpfg.load on a stochastic model", function ()
+  -- cpfg's statistics of stoch_stats.l over 300 runs, each with its own seed written into
+  -- a copy of the file (seed: for the productions, Start: {srand(k);} for ran and nran):
+  --   lua5.4 tools/cpfg-stats.lua CPFG -n 300 --seed 7 tests/data/cpfg/stoch_stats.l V.v
+  -- (V.v an empty view). Mean and standard deviation per run of the count of X, Y, Z and
+  -- of the means of I's and X's parameter. Expected: 40 choices with weights 1 : 2 : 0.5,
+  -- ran(2) (mean 1) and nran(5, 1).
+  local CPFG, RUNS = {
+    X = { 11.41, 2.864 }, Y = { 22.883, 2.976 }, Z = { 5.7067, 2.247 },
+    ["I.1"] = { 1.0057, 0.09366 }, ["X.1"] = { 4.996, 0.3153 },
+  }, 300
+
+  it("matches cpfg's counts and parameter means within 4 standard errors", function ()
+    local m = lsys.cpfg.load(D .. "stoch_stats.l")
+    local K, got = 200, {}
+    for k in pairs(CPFG) do got[k] = {} end
+    for seed = 1, K do
+      m.seed = seed
+      local s = m:derive()
+      local count, sum = {}, {}
+      local f, st, c = s:modules()
+      while true do
+        local i, name, x = f(st, c)
+        if i == nil then break end
+        c = i
+        count[name] = (count[name] or 0) + 1
+        if x then sum[name] = (sum[name] or 0) + x end
+      end
+      for _, n in ipairs { "X", "Y", "Z" } do table.insert(got[n], count[n] or 0) end
+      table.insert(got["I.1"], sum.I / count.I)
+      if count.X then table.insert(got["X.1"], sum.X / count.X) end
+    end
+    for k, ref in pairs(CPFG) do
+      local xs, mean, ss = got[k], 0, 0
+      for _, x in ipairs(xs) do mean = mean + x / #xs end
+      for _, x in ipairs(xs) do ss = ss + (x - mean) ^ 2 end
+      local sd = math.sqrt(ss / (#xs - 1))
+      local tol = 4 * math.sqrt(ref[2] ^ 2 / RUNS + sd ^ 2 / #xs)
+      assert(math.abs(mean - ref[1]) <= tol,
+             ("%s: lsys %.4g, cpfg %.4g (tolerance %.3g)"):format(k, mean, ref[1], tol))
+      assert(sd > ref[2] / 2 and sd < ref[2] * 2,
+             ("%s: lsys's spread %.3g, cpfg's %.3g"):format(k, sd, ref[2]))
+    end
   end)
 end)

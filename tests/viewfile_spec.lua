@@ -153,6 +153,19 @@ describe("view files", function ()
     assert.equal("Lua warning: y.v:1: 'z buffer' is not supported; ignored\n", out)
   end)
 
+  it("ignore what cpfg ignores: an unknown line style, a '?' left for a value", function ()
+    -- cpfg keeps the line style it had ("wireframe" in vlab's 07-Open models) and says
+    -- "Invalid parameters for angle increment:" for vlab's exercise "angle increment: ?"
+    local v, w = parse("line style: cylinder\nline style: wireframe\nangle increment: ?\n" ..
+                       "viewpoint: 0,?,1\ninitial color: 3\n")
+    assert.same({ line_style = "cylinder", color = 3 }, v)
+    assert.same({
+      "x.v:2: 'line style' must be pixel, polygon or cylinder, got 'wireframe'; ignored",
+      "x.v:3: 'angle increment': '?' is not a value; the line is ignored",
+      "x.v:4: 'viewpoint': '?' is not a value; the line is ignored",
+    }, w)
+  end)
+
   it("reject malformed values with file and line", function ()
     local cases = {
       { "angle factor: abc", "x.v:1: 'angle factor': 'abc' is not a number" },
@@ -171,8 +184,6 @@ describe("view files", function ()
       { "initial line width: -1", "x.v:1: 'initial line width' must not be negative" },
       { "initial line width: 1 inches",
         "x.v:1: 'initial line width': the unit must be pixels or polygons, got 'inches'" },
-      { "line style: dotted",
-        "x.v:1: 'line style' must be pixel, polygon or cylinder, got 'dotted'" },
       { "projection: oblique",
         "x.v:1: 'projection' must be parallel or perspective, got 'oblique'" },
       { "viewing angle: 180", "x.v:1: 'viewing angle' must be between 0 and 180 degrees" },

@@ -52,6 +52,19 @@ void lsys_alphabet_free (lsys_alphabet *a) {
   memset(a, 0, sizeof *a);
 }
 
+void lsys_alphabet_truncate (lsys_alphabet *a, uint32_t n) {
+  uint32_t id;
+  if (n < LSYS_SYM_FIRSTFREE || n >= a->n) return;
+  for (id = n; id < a->n; id++) LSYS_FREE(a->names[id]);
+  a->n = n;
+  memset(a->slots, 0, a->nslots * sizeof *a->slots);     /* the same table, refilled */
+  for (id = 1; id < a->n; id++) {
+    uint32_t h = hashname(a->names[id], strlen(a->names[id])) & (a->nslots - 1);
+    while (a->slots[h] != 0) h = (h + 1) & (a->nslots - 1);
+    a->slots[h] = id;
+  }
+}
+
 uint32_t lsys_alphabet_find (const lsys_alphabet *a, const char *name, size_t len) {
   uint32_t h;
   if (a->nslots == 0) return 0;

@@ -46,6 +46,11 @@ void lsys_alphabet_free (lsys_alphabet *a);
 uint32_t lsys_alphabet_intern (lsys_alphabet *a, const char *name, size_t len,
                                lsys_error *e);
 
+/* Forgets the names of ids >= n (n >= LSYS_SYM_FIRSTFREE; a larger n than in
+** use does nothing): for a caller that knows nothing refers to them any more
+** (a model whose creation failed). Allocates nothing. */
+void lsys_alphabet_truncate (lsys_alphabet *a, uint32_t n);
+
 /* Returns the id of 'name' or 0 when it was never interned. */
 uint32_t lsys_alphabet_find (const lsys_alphabet *a, const char *name, size_t len);
 

@@ -1,6 +1,7 @@
 /*
-** Contours of generalized cylinders: the contour file parser and the
-** placement of p vertices at equal arc length along the B-spline
+** Contours of generalized cylinders: the contour file parser (cpfg's
+** format of Appendix B.1 and vlab's versioned "cver 1 1" .. "cver 1 3")
+** and the placement of p vertices at equal arc length along the B-spline
 ** (cpfg guide §3.2.3 and Appendix B.1).
 */
 #include <math.h>
@@ -82,7 +83,7 @@ typedef struct reader {
 
 typedef struct token { const char *s; size_t len; } token;
 
-#define MAXTOK 3        /* tokens kept per line; the others are only counted */
+#define MAXTOK 4        /* tokens kept per line; the others are only counted */
 
 static int isblankc (int ch) {
   return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f';
@@ -154,31 +155,51 @@ static int number (reader *R, const token *t, double *x) {
   return error(R, R->at, "bad number '%s'", show(t, b));
 }
 
-/* Reads the header "N dim open|closed" into 'n', 'dim' and 'closed'. */
-static int header (reader *R, size_t *n, int *dim, int *closed) {
-  token t[MAXTOK];
+/* 1 when the token is the word 'w'. */
+static int tokis (const token *t, const char *w) {
+  size_t n = strlen(w);
+  return t->len == n && memcmp(t->s, w, n) == 0;
+}
+
+/* Reads a whole number (decimal digits only) into 'v'; values above
+** LSYS_CONTOUR_MAXPOINTS all read as LSYS_CONTOUR_MAXPOINTS + 1. Returns 0
+** when 't' is not such a number. */
+static int whole (const token *t, size_t *v) {
+  size_t i;
+  *v = 0;
+  for (i = 0; i < t->len; i++) {
+    if (t->s[i] < '0' || t->s[i] > '9') return 0;
+    if (*v <= LSYS_CONTOUR_MAXPOINTS) *v = *v * 10 + (size_t)(t->s[i] - '0');
+  }
+  if (*v > LSYS_CONTOUR_MAXPOINTS) *v = LSYS_CONTOUR_MAXPOINTS + 1;
+  return t->len > 0;
+}
+
+/* checkcount's message, on line 'line'. */
+static int counterr (reader *R, size_t line, size_t n, int closed) {
+  if (checkcount(R->e, LSYS_ESYNTAX, n, closed) != LSYS_OK) {
+    char msg[sizeof R->e->msg];
+    memcpy(msg, R->e->msg, sizeof msg);
+    return error(R, line, "%s", msg);
+  }
+  return LSYS_OK;
+}
+
+/* Reads the header "N dim open|closed" (the first line's 'nt' tokens are
+** in 't') into 'n', 'dim' and 'closed'. */
+static int header (reader *R, const token *t, size_t nt, size_t *n, int *dim, int *closed) {
   char b[32];
-  size_t i, nt = nextline(R, t);
   if (nt != 3)
     return error(R, nt ? R->at : R->line, "expected \"N dim open|closed\"%s",
                  nt ? "" : ", got an empty file");
-  for (*n = 0, i = 0; i < t[0].len; i++) {
-    if (t[0].s[i] < '0' || t[0].s[i] > '9')
-      return error(R, R->at, "bad point count '%s'", show(&t[0], b));
-    if (*n <= LSYS_CONTOUR_MAXPOINTS) *n = *n * 10 + (size_t)(t[0].s[i] - '0');
-  }
+  if (!whole(&t[0], n)) return error(R, R->at, "bad point count '%s'", show(&t[0], b));
   if (t[1].len != 1 || (t[1].s[0] != '2' && t[1].s[0] != '3'))
     return error(R, R->at, "dimension must be 2 or 3, got '%s'", show(&t[1], b));
   *dim = t[1].s[0] - '0';
-  if (t[2].len == 6 && memcmp(t[2].s, "closed", 6) == 0) *closed = 1;
-  else if (t[2].len == 4 && memcmp(t[2].s, "open", 4) == 0) *closed = 0;
+  if (tokis(&t[2], "closed")) *closed = 1;
+  else if (tokis(&t[2], "open")) *closed = 0;
   else return error(R, R->at, "expected 'open' or 'closed', got '%s'", show(&t[2], b));
-  if (checkcount(R->e, LSYS_ESYNTAX, *n, *closed) != LSYS_OK) {
-    char msg[sizeof R->e->msg];
-    memcpy(msg, R->e->msg, sizeof msg);
-    return error(R, R->at, "%s", msg);
-  }
-  return LSYS_OK;
+  return counterr(R, R->at, *n, *closed);
 }
 
 /* Reads the n point lines and checks that nothing follows them. */
@@ -201,15 +222,166 @@ static int points (reader *R, double *pt, size_t n, int dim) {
   return LSYS_OK;
 }
 
+/* ---------------------------------------------------------------------- */
+/* vlab's versioned files (what cpfg's process_contour_file reads after a
+** first line "cver 1 1", "cver 1 2" or "cver 1 3"; the contour editors
+** write them):
+**
+**   cver 1 3
+**   name: NAME                  ignored
+**   points: LINES TOTAL         LINES point lines giving TOTAL points
+**   type: or                    1.1: open|closed; 1.2, 1.3: o|c then r|e
+**   samples: K                  1.3 only; read and ignored
+**   x y z m                     LINES times: the point repeated m times
+**
+** 1.3 may have, before the points, "background: FILE" and "backgroundXY:
+** X Y" (the editor's background image) and "markers: K" followed by K
+** lines; they are skipped. */
+
+/* Reads the next line, which must begin with the word 'key' and have 'nv'
+** more tokens (any number when nv < 0); 'usage' is the expected line. */
+static int keyline (reader *R, token *t, const char *key, int nv, const char *usage) {
+  size_t nt = nextline(R, t);
+  if (nt == 0) return error(R, R->line, "expected \"%s\", got the end of the file", usage);
+  if (!tokis(&t[0], key) || (nv >= 0 && nt != (size_t)nv + 1))
+    return error(R, R->at, "expected \"%s\"", usage);
+  return LSYS_OK;
+}
+
+/* The first line "cver MAJOR MINOR" (its 'nt' tokens in 't'): 1.1, 1.2 or
+** 1.3; sets 'minor'. */
+static int version (reader *R, const token *t, size_t nt, int *minor) {
+  char a[32], b[32];
+  size_t maj, min;
+  if (nt != 3 || !whole(&t[1], &maj) || !whole(&t[2], &min))
+    return error(R, R->at, "expected \"cver MAJOR MINOR\"");
+  if (maj != 1 || min < 1 || min > 3)
+    return error(R, R->at, "unknown contour format 'cver %s %s' (lsys reads cver 1 1, 1 2 "
+                 "and 1 3)", show(&t[1], a), show(&t[2], b));
+  *minor = (int)min;
+  return LSYS_OK;
+}
+
+/* "type:": in 1.1 'open' or 'closed'; in 1.2 and 1.3 two letters, o|c
+** (open, closed) then r|e (regular, end-point interpolation). cpfg draws
+** 'e' as 'r' (it says so); so does lsys. */
+static int cvertype (reader *R, int minor, int *closed) {
+  token t[MAXTOK];
+  char b[32];
+  int st = keyline(R, t, "type:", 1, minor == 1 ? "type: open|closed" : "type: o|c r|e");
+  if (st != LSYS_OK) return st;
+  if (minor == 1) {
+    if (tokis(&t[1], "closed")) *closed = 1;
+    else if (tokis(&t[1], "open")) *closed = 0;
+    else return error(R, R->at, "expected 'open' or 'closed', got '%s'", show(&t[1], b));
+  } else if (t[1].len == 2 && (t[1].s[0] == 'o' || t[1].s[0] == 'c') &&
+             (t[1].s[1] == 'r' || t[1].s[1] == 'e')) {
+    *closed = t[1].s[0] == 'c';
+  } else {
+    return error(R, R->at, "type must be 'or', 'oe', 'cr' or 'ce', got '%s'", show(&t[1], b));
+  }
+  return LSYS_OK;
+}
+
+/* 1.3: "samples: K", then the optional background and marker lines. */
+static int cver13 (reader *R) {
+  token t[MAXTOK];
+  char b[32];
+  reader save;
+  size_t k, i, nt;
+  int st = keyline(R, t, "samples:", 1, "samples: K");
+  if (st != LSYS_OK) return st;
+  if (!whole(&t[1], &k)) return error(R, R->at, "bad sample count '%s'", show(&t[1], b));
+  save = *R;
+  if (nextline(R, t) > 0 && tokis(&t[0], "background:")) {
+    if ((st = keyline(R, t, "backgroundXY:", 2, "backgroundXY: X Y")) != LSYS_OK) return st;
+  } else {
+    *R = save;
+  }
+  save = *R;
+  if ((nt = nextline(R, t)) > 0 && tokis(&t[0], "markers:")) {
+    if (nt != 2 || !whole(&t[1], &k)) return error(R, R->at, "expected \"markers: K\"");
+    for (i = 0; i < k; i++)
+      if (nextline(R, t) == 0)
+        return error(R, R->line, "file ends after %zu of %zu markers", i, k);
+  } else {
+    *R = save;
+  }
+  return LSYS_OK;
+}
+
+/* Reads the n1 point lines "x y z m" into 'pt' (n points in all, the
+** TOTAL of the "points:" line 'where') and checks that nothing follows. */
+static int cverpoints (reader *R, double *pt, size_t n1, size_t n, size_t where) {
+  token t[MAXTOK];
+  char b[32];
+  double x[3];
+  size_t i, j, k = 0, m, nt;
+  int q, st;
+  for (i = 0; i < n1; i++) {
+    if ((nt = nextline(R, t)) == 0)
+      return error(R, R->line, "file ends after %zu of %zu point lines", i, n1);
+    if (nt != 4) return error(R, R->at, "expected 4 numbers (x y z multiplicity), got %zu", nt);
+    for (q = 0; q < 3; q++)
+      if ((st = number(R, &t[q], &x[q])) != LSYS_OK) return st;
+    if (!whole(&t[3], &m) || m == 0)
+      return error(R, R->at, "multiplicity must be a whole number >= 1, got '%s'",
+                   show(&t[3], b));
+    if (m > n - k)
+      return error(R, R->at, "the multiplicities add up to more than the %zu points of line %zu",
+                   n, where);
+    for (j = 0; j < m; j++, k++) memcpy(pt + 3 * k, x, sizeof x);
+  }
+  if (k < n)
+    return error(R, where, "the multiplicities add up to %zu points, not %zu", k, n);
+  if (nextline(R, t) != 0)
+    return error(R, R->at, "unexpected '%s' after the %zu point lines", show(&t[0], b), n1);
+  return LSYS_OK;
+}
+
+/* A versioned file, the first line's 'nt' tokens in 't'; dimension 3. */
+static int cver (reader *R, const token *t, size_t nt, lsys_contour *c) {
+  token u[MAXTOK];
+  char b[32];
+  size_t n1, n, where;
+  int minor = 0, closed = 0, st;
+  double *pt;
+  if ((st = version(R, t, nt, &minor)) != LSYS_OK) return st;
+  if ((st = keyline(R, u, "name:", -1, "name: NAME")) != LSYS_OK) return st;
+  if ((st = keyline(R, u, "points:", 2, "points: LINES TOTAL")) != LSYS_OK) return st;
+  where = R->at;
+  if (!whole(&u[1], &n1)) return error(R, where, "bad point line count '%s'", show(&u[1], b));
+  if (!whole(&u[2], &n)) return error(R, where, "bad point count '%s'", show(&u[2], b));
+  if ((st = cvertype(R, minor, &closed)) != LSYS_OK) return st;
+  if ((st = counterr(R, where, n, closed)) != LSYS_OK) return st;
+  if (n1 == 0 || n1 > n)
+    return error(R, where, "%zu point lines cannot give %zu points", n1, n);
+  if (minor == 3 && (st = cver13(R)) != LSYS_OK) return st;
+  pt = (double *)LSYS_MALLOC(3 * n * sizeof *pt);
+  if (pt == NULL) return lsys_seterror(R->e, LSYS_ENOMEM, 0, "not enough memory");
+  if ((st = cverpoints(R, pt, n1, n, where)) != LSYS_OK) {
+    LSYS_FREE(pt);
+    return st;
+  }
+  c->pt = pt;
+  c->n = n;
+  c->closed = closed;
+  c->dim = 3;
+  return LSYS_OK;
+}
+
 int lsys_contour_parse (lsys_contour *c, const char *text, size_t len, const char *name,
                         lsys_error *e) {
   reader R;
-  size_t n = 0;
+  token t[MAXTOK];
+  size_t n = 0, nt;
   int dim = 0, closed = 0, st;
   double *pt;
   R.s = text; R.len = text ? len : 0; R.pos = 0; R.line = 1; R.at = 1; R.name = name; R.e = e;
   lsys_contour_free(c);
-  if ((st = header(&R, &n, &dim, &closed)) != LSYS_OK) return st;
+  nt = nextline(&R, t);
+  if (nt > 0 && tokis(&t[0], "cver")) return cver(&R, t, nt, c);
+  if ((st = header(&R, t, nt, &n, &dim, &closed)) != LSYS_OK) return st;
   pt = (double *)LSYS_MALLOC(3 * n * sizeof *pt);
   if (pt == NULL) return lsys_seterror(e, LSYS_ENOMEM, 0, "not enough memory");
   if ((st = points(&R, pt, n, dim)) != LSYS_OK) {

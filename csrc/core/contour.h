@@ -27,12 +27,21 @@ void lsys_contour_init (lsys_contour *c);
 void lsys_contour_free (lsys_contour *c);
 
 /*
-** Parses the text of a contour file (Appendix B.1): a first line
-** "N dim open|closed" (dim 2 or 3), then N lines of dim numbers each.
-** Numbers are separated by blanks (spaces, tabs; CR of CRLF files too),
+** Parses the text of a contour file, in one of two formats:
+**  - cpfg's (Appendix B.1): a first line "N dim open|closed" (dim 2 or 3),
+**    then N lines of dim numbers each;
+**  - vlab's versioned one, first line "cver 1 1", "cver 1 2" or "cver 1 3"
+**    (others are errors), then "name: NAME" (ignored), "points: LINES
+**    TOTAL", "type: T" (1.1: open or closed; 1.2 and 1.3: o or c, then r
+**    or e, end-point interpolation, drawn as r as cpfg does), in 1.3
+**    "samples: K" (ignored: contour sides come from the view) and
+**    optionally "background: FILE", "backgroundXY: X Y", "markers: K" and
+**    K lines (skipped); then LINES lines "x y z m", the point repeated m
+**    times (m >= 1; the m add up to TOTAL). The dimension is 3.
+** Tokens are separated by blanks (spaces, tabs; CR of CRLF files too),
 ** blank lines are skipped and '#' starts a comment that runs to the end of
 ** the line. Coordinates must be finite and at most 1e9 in magnitude;
-** nothing but comments may follow the N points. 'text' need not be
+** nothing but comments may follow the points. 'text' need not be
 ** NUL-terminated: only its 'len' bytes are read. 'name' (the file name)
 ** starts every message: "name:LINE: what is wrong", e.g.
 ** "leaf.con:3: expected 2 numbers, got 1". 'c' must have been initialised;

@@ -828,7 +828,7 @@ static void unmeter (lsys_model *m, lsys_lstring *dst) {
 /* The error of an operation started while the model is busy. */
 static int reentered (lsys_model *m) {
   return lsys_seterror(&m->err, LSYS_EBUSY, (size_t)-1,
-                       "a rule of this model called derive/step on the same model");
+                       "a rule called derive or step on the model it belongs to");
 }
 
 int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {

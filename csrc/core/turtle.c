@@ -315,6 +315,8 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   d *= st->scale;
   vcopy(p0, st->pos);
   vlin(st->pos, st->pos, 1, st->H, d);
+  if (!isfinite(st->pos[0] + st->pos[1] + st->pos[2]))   /* nothing could draw it */
+    return lsys_turtle_failop(R, "the position is no longer finite after a move of %g", d);
   if (op == OP_f || op == OP_g) {
     st->tip = LSYS_NOREC;
     return op == OP_f && R->t->npolys > 0 ? lsys_turtle_polyvertex(R) : LSYS_OK;
@@ -491,9 +493,9 @@ static int texture (run *R, const double *p, uint32_t np) {
   int k, s;
   if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
   k = toindex(x);
-  if (k > R->o->ntex)
-    return lsys_turtle_failop(R, "texture %d is not defined (the view has %d; view.textures)",
-                              k, R->o->ntex);
+  if (x < 0 || k > R->o->ntex)
+    return lsys_turtle_failop(R, "texture %g is not defined (the view has %d; view.textures)",
+                              x < 0 ? x : (double)k, R->o->ntex);
   R->st.texture = k;
   return LSYS_OK;
 }
@@ -505,8 +507,9 @@ static int contour (run *R, const double *p, uint32_t np) {
   int k, s;
   if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
   k = toindex(x);
-  if (k != 0 && (k >= o->ncontours || o->contours[k] == NULL))
-    return lsys_turtle_failop(R, "contour %d is not defined (view.contours; 0 is the circle)", k);
+  if (x < 0 || (k != 0 && (k >= o->ncontours || o->contours[k] == NULL)))
+    return lsys_turtle_failop(R, "contour %g is not defined (view.contours; 0 is the circle)",
+                              x < 0 ? x : (double)k);
   R->st.contour = k;
   return LSYS_OK;
 }
@@ -770,6 +773,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   size_t i, off = 0;
   int status;
   memset(&t->err, 0, sizeof t->err);
+  memset(&t->warn, 0, sizeof t->warn);
   t->npolys = 0; t->nends = 0; t->nsub = 0;
   t->nqueries = 0; t->nsyscalls = 0;
   if ((status = start(t, ab)) != LSYS_OK) return status;
@@ -805,6 +809,9 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   }
   if (status == LSYS_OK) status = flush(R);
   if (status == LSYS_OK && R->draw) status = lsys_turtle_capends(R);   /* close the open ends */
+  if (status == LSYS_OK && t->npolys > 0)
+    lsys_seterror(&t->warn, LSYS_EARG, t->polyfrom, "the polygon '{' of module %zu is never "
+                  "closed with '}': it is not drawn", t->polyfrom + 1);
   t->state = R->st;
   return status;
 }

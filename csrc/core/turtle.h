@@ -113,10 +113,13 @@ typedef struct lsys_turtle {
   size_t nqueries;              /* query modules filled */
   size_t nsyscalls;             /* @S modules seen (recorded when allowed) */
   lsys_error err;
+  lsys_error warn;              /* a warning the run ended with (code 0: none), for the
+                                   caller to pass on: a polygon never closed */
   /* scratch, reused across calls */
   lsys_mesh *mesh;              /* &scene->mesh during a DRAW run, else NULL */
   lsys_tstate *stack; size_t nstack, stackcap;
   lsys_polygon *polys; size_t npolys, polycap;
+  size_t polyfrom;              /* the module of the outermost open '{' */
   lsys_cylend *ends; size_t nends, endcap;
   double *subscale; size_t nsub, subcap;
   lsys_lstring hbuf;

@@ -33,6 +33,7 @@ int lsys_turtle_polyvertex (run *R) {
 
 int lsys_turtle_polystart (run *R) {
   lsys_turtle *t = R->t;
+  if (t->npolys == 0) t->polyfrom = R->mod;
   if (!R->draw) { t->npolys++; return LSYS_OK; }
   if (t->npolys == t->polycap) {
     size_t old = t->polycap;

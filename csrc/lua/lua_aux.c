@@ -235,7 +235,7 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
   runargs a;
   int k, err;
   ridx = lua_absindex(L, ridx);
-  if (R->m.busy) return luaL_error(L, "a rule of this model called %s on the same model", what);
+  if (R->m.busy) return luaL_error(L, "a rule called %s on the model it belongs to", what);
   for (k = 0; k < n; k++) checklstring(L, lstr[k]);      /* alive, before any mark */
   for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
   a.op = op; a.ud = ud; a.st = LSYS_OK;

@@ -1,7 +1,7 @@
 /*
 ** Lua binding of csrc/core/contour.h: the lsys.Contour userdata.
 **
-**   core.contour_load(path) -> Contour       reads a contour file (Appendix B.1)
+**   core.contour_load(path) -> Contour       reads a contour file (Appendix B.1 or cver)
 **   core.contour(points [, closed]) -> Contour
 **       points = { {x, y [, z]}, ... } (all 2 or all 3 numbers); closed
 **       defaults to true

@@ -387,7 +387,7 @@ static void run (lua_State *L, lsys_lrules *R, int what, int dstidx) {
   o.what = what;
   o.src = checklstring(L, 2);
   o.dst = checklstring(L, dstidx);
-  st = lsys_rules_run(L, 1, what < 0 ? "derive/step" : "expand", dostep, &o, idx, 2);
+  st = lsys_rules_run(L, 1, what < 0 ? "step" : "expand", dostep, &o, idx, 2);
   if (st != LSYS_OK) lsys_raise(L, st, &R->m.err, 1);
   /* tell the collector about the memory behind the new string */
   lua_gc(L, LUA_GCSTEP, (int)((o.dst->n * 2 + o.dst->npar * 8) >> 10));
@@ -639,6 +639,35 @@ static int rules_axiom (lua_State *L) {
   return 2;
 }
 
+/* rules:kinds(template) -> { name = { np = true, ... }, ... }: the distinct
+** module names of the template and their parameter counts */
+static int rules_kinds (lua_State *L) {
+  lsys_lrules *R = lsys_checkrules(L, 1);
+  ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
+  uint8_t *seen = (uint8_t *)lua_newuserdatauv(L, 1u << 13, 0);   /* a bit per code */
+  uint32_t k;
+  luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
+  memset(seen, 0, 1u << 13);
+  lua_newtable(L);
+  for (k = 0; k < t->nmod; k++) {
+    uint16_t c = t->code[k];
+    if (seen[c >> 3] & (1u << (c & 7))) continue;
+    seen[c >> 3] |= (uint8_t)(1u << (c & 7));
+    lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+    if (lua_rawget(L, -2) != LUA_TTABLE) {
+      lua_pop(L, 1);
+      lua_newtable(L);
+      lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+      lua_pushvalue(L, -2);
+      lua_rawset(L, -4);
+    }
+    lua_pushboolean(L, 1);
+    lua_rawseti(L, -2, LSYS_CNP(c));
+    lua_pop(L, 1);
+  }
+  return 1;
+}
+
 /* rules:fill(template, values) -> Lstring: the template's slots filled from
 ** the list 'values' (finite numbers) */
 static int rules_fill (lua_State *L) {
@@ -733,6 +762,21 @@ static int l_srand (lua_State *L) {
   return 0;
 }
 
+/* core.names_mark() -> the number of module names in the state's alphabet;
+** core.names_truncate(n): forgets the names interned since (lsys.lsystem, when
+** the model it was making failed: no object refers to them) */
+static int l_names_mark (lua_State *L) {
+  lua_pushinteger(L, (lua_Integer)lsys_getalphabet(L)->n);
+  return 1;
+}
+
+static int l_names_truncate (lua_State *L) {
+  lua_Integer n = luaL_checkinteger(L, 1);
+  luaL_argcheck(L, n >= LSYS_SYM_FIRSTFREE && n <= LSYS_MAXSYM + 1, 1, "bad mark");
+  lsys_alphabet_truncate(lsys_getalphabet(L), (uint32_t)n);
+  return 0;
+}
+
 static int l_nran (lua_State *L) {
   lsys_lrules *R = deriving(L, "nran");
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
@@ -775,7 +819,8 @@ static const luaL_Reg rules_methods[] = {
   {"ran", rules_ran}, {"srand", rules_srand},
   {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
-  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill}, {NULL, NULL}
+  {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill},
+  {"kinds", rules_kinds}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {
@@ -786,6 +831,7 @@ static const luaL_Reg core_funcs[] = {
   {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
   {"ran", l_ran}, {"nran", l_nran}, {"srand", l_srand},
   {"producing", l_producing}, {"max_memory", l_max_memory},
+  {"names_mark", l_names_mark}, {"names_truncate", l_names_truncate},
   {NULL, NULL}
 };
 

@@ -303,6 +303,10 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   t->o = o;
   st = lsys_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
   if (st != LSYS_OK) lsys_raise(L, st, &t->err, 1);
+  if (t->warn.code != 0) {             /* through warn(), as the library's warnings go */
+    lua_warning(L, "lsys: ", 1);
+    lua_warning(L, t->warn.msg, 0);
+  }
 }
 
 /* core.interpret(rules, lstring, opts) -> Scene */

@@ -9,6 +9,7 @@
 -- condition and without computed values get no closure at all.
 -- @module lsys.compile
 local core = require "lsys.core"
+local quote = require("lsys.warning").quote
 
 local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setmetatable,
       getmetatable, debug_registry =
@@ -128,14 +129,16 @@ local function successor (r, spec, seen, exprs, fail)
       if isnumber(e) then
         local x = tonumber(e)
         if x ~= x or x == 1 / 0 or x == -1 / 0 then
-          fail("parameter %d of '%s' is '%s', not a finite number", pi, m.name, e)
+          fail("parameter %d of '%s' is '%s', not a finite number", pi, m.name, quote(e))
         end
         insert(spec.src, PS_CONST); insert(spec.src, 0); insert(spec.src, x)
       elseif seen[e] then
         insert(spec.src, PS_ARG); insert(spec.src, seen[e]); insert(spec.src, 0)
       else
         local msg = checkexpr(e)
-        if msg then fail("bad expression '%s' in parameter %d of '%s': %s", e, pi, m.name, msg) end
+        if msg then
+          fail("bad expression '%s' in parameter %d of '%s': %s", quote(e), pi, m.name, msg)
+        end
         local k = exprindex[e]
         if not k then
           exprs[#exprs + 1] = e
@@ -209,7 +212,7 @@ function M.rule (r, info)
       spec.weight = x
     else
       local msg = checkexpr(w)
-      if msg then fail("bad weight '%s': %s", w, msg) end
+      if msg then fail("bad weight '%s': %s", quote(w), msg) end
       exprs[1] = w
       spec.flags = spec.flags | core.RF_WEXPR
     end
@@ -218,7 +221,7 @@ function M.rule (r, info)
   successor(r, spec, seen, exprs, fail)
   if r.cond then
     local msg = checkexpr(r.cond)
-    if msg then fail("bad condition '%s': %s", r.cond, msg) end
+    if msg then fail("bad condition '%s': %s", quote(r.cond), msg) end
   end
   if not r.cond and #exprs == 0 then return spec, nil end
   spec.flags = spec.flags | core.RF_CALL

@@ -130,20 +130,35 @@ local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom
 function M.render (x, opts)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", 2) end
+  local ext = type(opts.out) == "string" and opts.out:match("%.([%w]+)$")
+  if ext and ext:lower() ~= "png" then      -- not PNG data under another format's name
+    error(format("lsys.render: '%s': lsys writes PNG images; name the file .png", opts.out), 2)
+  end
   if type(x) == "table" and x.links ~= nil and M.components.isproto(x) then
     x = M.components.model(x)                     -- a component graph's root
   end
-  if model.ismodel(x) then x = x:interpret() end
-  if not model.isscene(x) then
-    error("lsys.render: a Scene, a Model or a component prototype expected", 2)
-  end
-  local over = {}
+  local over, drawn = {}, {}
   for k, val in pairs(opts.view or {}) do over[k] = val end
   for k, val in pairs(opts) do
     if view.KINDS[k] then over[k] = val
     elseif not RENDER_ONLY[k] then
       error(format("lsys.render: unknown option '%s'", tostring(k)), 2)
     end
+  end
+  for k, val in pairs(over) do        -- what changes the drawing goes to the turtle
+    if view.TURTLE[k] then drawn[k] = val; over[k] = nil end
+  end
+  if model.ismodel(x) then
+    local ok, sc = pcall(x.interpret, x, nil, next(drawn) and drawn or nil)
+    if not ok then error(sc, 2) end
+    x = sc
+  elseif next(drawn) and model.isscene(x) then
+    error(format("lsys.render: '%s' changes how the turtle draws: render the model, or "
+                 .. "interpret it with the option (m:interpret(s, { %s = ... }))",
+                 next(drawn), next(drawn)), 2)
+  end
+  if not model.isscene(x) then
+    error("lsys.render: a Scene, a Model or a component prototype expected", 2)
   end
   -- the scene keeps its camera, light, background and textures; a render that changes
   -- them passes the whole view they make with the scene's own

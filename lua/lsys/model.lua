@@ -165,19 +165,59 @@ end
 function Model:_addrules (rules, what, kind, sub, group, fail)
   for _, e in ipairs(entries(rules, what, fail)) do
     local n = #self._info + 1
-    local label = format("rule %d '%s' (%s %d of %s)", n, e.text, e.item and "entry" or "line",
-                         e.line, what)
+    local function labelled (pos)
+      return format("rule %d '%s' (%s %d of %s)", n, warning.quote(e.text, pos),
+                    e.item and "entry" or "line", e.line, what)
+    end
+    local label = labelled()
     local r, msg, pos = self._rules:parse(e.text, e.fn and "pattern" or "rule")
-    if not r then fail(format("%s: %s at character %d", label, msg, pos)) end
+    if not r then fail(format("%s: %s at character %d", labelled(pos), msg, pos)) end
     local ok, spec, factory, frees, trees = pcall(compile.rule, r,
       { label = label, fn = e.fn, weight = e.weight, id = n })
     if not ok then fail(spec) end
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
-                            trees = trees, funcrefs = factory and compile.funcrefs(e.text) }
+                            trees = trees, funcrefs = factory and compile.funcrefs(e.text),
+                            pattern = { r.lc, r.preds or { r.pred }, r.rc }, succ = r.succ }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
+  end
+end
+
+local SPECIAL = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] = true }
+
+-- Warns about each rule whose pattern names a module with a parameter count that no
+-- module of that name has in the axioms and successors (which do name it): the rule can
+-- never apply (`B(x,y) --> ...` where every B is `B(1)`). Rule functions may produce
+-- anything: with one, nothing is said.
+function Model:_checkcounts ()
+  local made = self._rules:kinds(self._axiom)      -- the axiom's, counted in C
+  local function add (mods)
+    for _, m in ipairs(mods or {}) do
+      made[m.name] = made[m.name] or {}
+      made[m.name][#m.params] = true
+    end
+  end
+  for _, info in pairs(self._info) do
+    if not info.succ then return end           -- a rule function
+    add(info.succ)
+  end
+  for _, info in pairs(self._info) do
+    for _, part in ipairs(info.pattern) do
+      for _, m in ipairs(part) do
+        local counts, np = made[m.name], #m.params
+        if counts and not counts[np] and not SPECIAL[m.name] then
+          local have = {}
+          for k in pairs(counts) do have[#have + 1] = k end
+          table.sort(have)
+          warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
+            .. "successor (every '%s' there has %s): the rule never applies", self._where,
+            info.label, m.name, np, np == 1 and "" or "s", m.name, table.concat(have, " or ")))
+          break
+        end
+      end
+    end
   end
 end
 
@@ -224,6 +264,8 @@ function Model:_addsets (opts, fail)
       fail("groups: keys must be group numbers >= 1")
     end
     self:_addrules(rs, format("group %d", g), PROD, 0, g, fail)
+    self._groups = self._groups or {}
+    self._groups[g] = true
   end
   for id, s in pairs(opts.sub or {}) do
     if type(id) ~= "number" or id < 1 or id ~= math.floor(id) then
@@ -298,6 +340,8 @@ function Model:_configure (opts, fail)
   end
 end
 
+local make
+
 --- Creates a model from its description (see DESIGN.md §3 and docs).
 -- Raises an error naming the rule and its line for malformed rules.
 function M.lsystem (opts)
@@ -308,6 +352,19 @@ function M.lsystem (opts)
   local where = info and info.currentline > 0 and
                 format("%s:%d", info.short_src, info.currentline) or loading
   local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+  -- a model that fails leaves no module names behind (they count against the state's
+  -- 2047, and nothing refers to them)
+  local mark = core.names_mark()
+  local ok, m = pcall(make, opts, where, fail)
+  if not ok then
+    core.names_truncate(mark)
+    error(m, 0)
+  end
+  return m
+end
+
+-- The model of M.lsystem (which undoes its module names when this raises).
+make = function (opts, where, fail)
   checkoptions(opts, fail)
   local rules = core.rules(opts.modules)
   local self = setmetatable({
@@ -324,6 +381,9 @@ function M.lsystem (opts)
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
     fail("option 'steps' must be a whole number >= 0")
   end
+  if self.steps > M.MAX_STEPS then
+    fail(format("option 'steps' is %.14g, more than the limit of %d", self.steps, M.MAX_STEPS))
+  end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
   local nv = view.normalize(opts.view, where or "model")   -- a bad view fails at definition
@@ -332,6 +392,7 @@ function M.lsystem (opts)
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
+  self:_checkcounts()
   rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
   rules:config("hseed", self.homomorphism_seed or self.seed)
   return self
@@ -398,7 +459,7 @@ end
 -- under it).
 function Model:_idle (what)
   if self._rules:busy() then
-    error(format("%s: a rule of this model called %s on the same model", self._where, what), 0)
+    error(format("a rule called %s on the model it belongs to", what), 0)
   end
 end
 
@@ -430,8 +491,8 @@ function Model:_bind ()
 end
 
 -- The axiom text for messages: a long one shortened.
-local function axiomtext (a)
-  return #a > 60 and a:sub(1, 57) .. "..." or a
+local function axiomtext (a, pos)
+  return warning.quote(a, pos)
 end
 
 -- Parses model.axiom into a template (in C: no table per module, DESIGN.md §5) and the
@@ -439,7 +500,7 @@ end
 function Model:_parseaxiom ()
   local tpl, exprs, pos = self._rules:axiom(self.axiom)
   if not tpl then
-    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom), exprs, pos), 0)
+    error(format("axiom '%s': %s at character %d", axiomtext(self.axiom, pos), exprs, pos), 0)
   end
   self._axiom, self._axiomexprs, self._axiomsrc = tpl, exprs, self.axiom
 end
@@ -454,7 +515,7 @@ function Model:_axiomlstring (E)
   for k, e in ipairs(self._axiomexprs) do
     local f, msg = _G.load("return " .. e, "=axiom", "t", E)
     if not f then
-      error(format("%s: axiom: bad expression '%s': %s", self._where, e, msg), 0)
+      error(format("%s: axiom: bad expression '%s': %s", self._where, warning.quote(e), msg), 0)
     end
     local ok, x = pcall(f)
     if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
@@ -479,11 +540,24 @@ function Model:_core (what, ...)
   return self:_call(self._rules[what], what, self._rules, ...)
 end
 
+-- How deep derivations may nest (a rule function that derives a model, whose rules
+-- derive another, ...): far below the C stack's limit, so a rule that derives a fresh copy
+-- of its own model gets one clear message instead of a C stack overflow.
+local MAXNEST, nesting = 32, 0
+local NESTED = "derivations nested"
+
 -- Runs fn(...), which may call rule functions; errors as for _core.
 function Model:_call (fn, what, ...)
   local rules = self._rules
   local producing = core.producing()
+  if nesting >= MAXNEST then
+    error(format("%s: %s %d deep: a rule function derives a model whose rules derive again "
+                 .. "(does a rule make and derive its own model?)", self._where, NESTED,
+                 MAXNEST), 0)
+  end
+  nesting = nesting + 1
   local ok, res = pcall(fn, ...)
+  nesting = nesting - 1
   if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
@@ -497,6 +571,7 @@ function Model:_call (fn, what, ...)
   end
   local idx, mod = rules:current()
   local msg = type(res) == "string" and res or tostring(res)
+  if msg:find(NESTED, 1, true) then error(msg, 0) end      -- said once, at the innermost
   if idx then
     local info = self._info[idx + 1]
     local label = info and info.label or format("rule %d", idx + 1)
@@ -506,9 +581,17 @@ function Model:_call (fn, what, ...)
   error(format("%s: %s", self._where, msg), 0)
 end
 
+-- The most steps one derivation may take (a guard against math.huge and typos: a step
+-- costs at least a few microseconds, so this is hours of work at the least).
+M.MAX_STEPS = 10000000
+
 local function checksteps (n, what)
   if type(n) ~= "number" or n < 0 or n ~= math.floor(n) then
     error(format("%s: the number of steps must be a whole number >= 0", what), 3)
+  end
+  if n > M.MAX_STEPS then
+    error(format("%s: %s steps is more than the limit of %d", what,
+                 n == math.huge and "infinitely many" or format("%.14g", n), M.MAX_STEPS), 3)
   end
 end
 
@@ -517,7 +600,7 @@ end
 -- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
 -- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
 function Model:derive (n, opts)
-  self:_idle("derive/step")
+  self:_idle("derive")
   n = n or self.steps
   checksteps(n, "derive")
   local rules = self._rules
@@ -574,7 +657,7 @@ end
 function Model:step (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not islstring(s) then error("step: an Lstring expected", 2) end
-  self:_idle("derive/step")
+  self:_idle("step")
   self:_bind()
   if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
     self:_query(s)
@@ -676,6 +759,13 @@ function Model:use_group (n)
     error("use_group: a group number >= 0 expected", 2)
   end
   self:_idle("use_group")
+  if n ~= 0 and not (self._groups and self._groups[n]) then
+    local have = {}
+    for g in pairs(self._groups or {}) do have[#have + 1] = g end
+    table.sort(have)
+    error(format("use_group: the model has no group %d (groups: %s)", n,
+                 #have > 0 and table.concat(have, ", ") or "none"), 2)
+  end
   self._group = n
   self._rules:config("group", n)
 end

@@ -85,6 +85,8 @@ M.load_colormap, M.load_materials = viewfile.load_colormap, viewfile.load_materi
 M.VIEWFILE_IGNORED = viewfile.VIEWFILE_IGNORED
 
 --- The default palette: bark, foliage, and bright organ colours.
+local OVERLAY = {}      -- the metatable of merge's palette overlays
+
 M.PALETTE = {
   [0] = { 0.12, 0.12, 0.12 },
   { 0.42, 0.29, 0.18 },   -- 1 bark
@@ -188,6 +190,10 @@ end
 local function tropism (t, where, name, torque)
   if type(t) ~= "table" then fail(where, "'%s' must be a table", name) end
   local out = { vector = vec(t.vector, where, name .. ".vector"), torque = torque or t.torque }
+  if out.vector[1] == 0 and out.vector[2] == 0 and out.vector[3] == 0 then
+    fail(where, "'%s.vector' is {0, 0, 0}: a %s needs a direction", name,
+         (torque or t.torque) and "torque" or "tropism")
+  end
   for _, k in ipairs { "angle", "elasticity", "increment" } do
     local x = t[k]
     if x ~= nil and not isnum(x) then fail(where, "'%s.%s' must be a number", name, k) end
@@ -443,31 +449,47 @@ end
 -- material file (.mat) read by lsys.viewfile.
 local function palette (ctx, x, name)
   local where = ctx.where
-  if type(x) == "string" then
-    local path = resolve(ctx.dir, x)
-    local ext = (path:match("%.(%w+)$") or ""):lower()
-    local loader = ext == "map" and viewfile.load_colormap or
-                   ext == "mat" and viewfile.load_materials
-    if not loader then
-      fail(where, "'%s': a palette file must be a colour map (.map) or materials (.mat), "
-           .. "got '%s'", name, x)
+  local function entries (t)
+    if type(t) ~= "table" then fail(where, "'%s' must be a list of colours", name) end
+    local p = {}
+    for i, c in pairs(t) do
+      if math.type(i) ~= "integer" or i < 0 then
+        fail(where, "'%s': keys must be colour indices >= 0", name)
+      end
+      p[i] = material(c, where, format("%s[%d]", name, i))
     end
-    local ok, r = pcall(loader, path)
-    if not ok then fail(where, "%s: %s", name, tostring(r)) end
-    x = r
+    return p
   end
-  if type(x) ~= "table" then fail(where, "'%s' must be a list of colours", name) end
-  local p = {}
-  for i, c in pairs(x) do
-    if math.type(i) ~= "integer" or i < 0 then
-      fail(where, "'%s': keys must be colour indices >= 0", name)
+  local p
+  if type(x) == "table" and getmetatable(x) == OVERLAY then   -- merge's: entries on a base
+    p = x.base ~= nil and palette(ctx, x.base, name) or {}
+    for i, c in pairs(entries(x.entries)) do p[i] = c end
+  else
+    if type(x) == "string" then
+      local path = resolve(ctx.dir, x)
+      local ext = (path:match("%.(%w+)$") or ""):lower()
+      local loader = ext == "map" and viewfile.load_colormap or
+                     ext == "mat" and viewfile.load_materials
+      if not loader then
+        fail(where, "'%s': a palette file must be a colour map (.map) or materials (.mat), "
+             .. "got '%s'", name, x)
+      end
+      local ok, r = pcall(loader, path)
+      if not ok then fail(where, "%s: %s", name, tostring(r)) end
+      x = r
     end
-    p[i] = material(c, where, format("%s[%d]", name, i))
+    p = entries(x)
   end
-  local n = 0
+  local n = 0          -- entries not given are the default palette's
   for i in pairs(p) do if i > n then n = i end end
-  for i = 1, n do
-    if p[i] == nil then fail(where, "'%s': entry %d is missing", name, i) end
+  for i = 0, n do
+    if p[i] == nil then
+      if M.PALETTE[i] == nil then
+        fail(where, "'%s': entry %d is missing (the default palette has 0 to %d)", name, i,
+             #M.PALETTE)
+      end
+      p[i] = { diffuse = M.PALETTE[i] }
+    end
   end
   return p
 end
@@ -543,6 +565,9 @@ function M.normalize (v, where)
   if out.contour_sides < 3 or out.contour_sides > 1024 then
     fail(where, "'view.contour_sides' must be from 3 to 1024")
   end
+  if out.line_width < 0 then
+    fail(where, "'view.line_width' must be >= 0, got %g", out.line_width)
+  end
   if out.supersample < 1 or out.supersample > 8 then
     fail(where, "'view.supersample' must be from 1 to 8")
   end
@@ -565,6 +590,8 @@ end
 local TURTLE = { "angle", "step", "line_width", "width_increment", "color", "color_increment",
                  "line_style", "contour_sides", "tropisms", "torques", "palette", "contours",
                  "surfaces", "textures", "minimize_twist" }
+M.TURTLE = {}                   -- by name: the options that change how the turtle draws
+for _, k in ipairs(TURTLE) do M.TURTLE[k] = true end
 
 -- How to look at a scene: the camera, the light and the background, which the scene keeps
 -- (csrc/core/scene.h) and the renderer and the viewer read from it.
@@ -598,6 +625,10 @@ function M.merge (v, over)
   local out = {}
   for k, x in pairs(v or {}) do out[k] = x end
   for k, x in pairs(over or {}) do out[k] = x end
+  -- a palette table over another palette changes only the entries it names
+  if v and v.palette ~= nil and over and type(over.palette) == "table" then
+    out.palette = setmetatable({ base = v.palette, entries = over.palette }, OVERLAY)
+  end
   return out
 end
 

@@ -153,6 +153,11 @@ for _, k in ipairs {
 } do IGNORED[k] = true end
 M.VIEWFILE_IGNORED = IGNORED
 
+-- cpfg's values for what a view file does not set, where they differ from lsys.view's
+-- defaults (interpret.c, InitializeParameters: angle increment 45, line width increment
+-- 0). lsys.cpfg.load fills them in; `load` and `parse` give only what the file says.
+M.CPFG_DEFAULTS = { angle = 45, width_increment = 0 }
+
 -- Text of the file shown in a message: a short token, never a whole line (a model can
 -- name any file as its view file, as in cpfg): at most 16 characters, a longer one cut
 -- to its first 12 and "...", control and non-ASCII bytes as '?'.
@@ -330,7 +335,10 @@ end
 COMMANDS["line style"] = function (P, rest, cmd)
   local w = P:words(rest, cmd, 1, 1, "pixel, polygon or cylinder")[1]
   local s = STYLES[w]
-  if s == nil then P:err("'%s' must be pixel, polygon or cylinder, got '%s'", cmd, show(w)) end
+  if s == nil then           -- cpfg keeps the style it had (vlab's models say "wireframe")
+    P:warn("'%s' must be pixel, polygon or cylinder, got '%s'; ignored", cmd, show(w))
+    return
+  end
   P.v.line_style = s
 end
 
@@ -534,7 +542,11 @@ function Parser:command (s)
   if label == nil then self:err("expected 'command: values', got '%s'", show(s)) end
   local cmd = label:gsub("%s+", " "):match("^ ?(.-) ?$"):lower()
   local h = COMMANDS[cmd]
-  if h then
+  if h and (" " .. rest .. " "):find("[%s,:]%?[%s,]") then
+    -- a value left as '?' (vlab's exercise templates: "angle increment: ?"): cpfg says
+    -- "Invalid parameters" and keeps the value it had (its default)
+    self:warn("'%s': '?' is not a value; the line is ignored", cmd)
+  elseif h then
     h(self, rest, cmd)
   elseif IGNORED[cmd] then
     self:warn("'%s' is not supported; ignored", cmd)

@@ -5,10 +5,24 @@
 -- Also the deprecated names: an old name works for one release, and its first use warns
 -- once ("lsys: X is deprecated; use Y").
 -- @module lsys.warning
-local warn = warn
+local warn, math = warn, math
 local _ENV = nil
 
 local M = {}
+
+--- Text quoted in a message (a rule, an axiom, an expression): whole when it is short;
+-- else its start, the part around `pos` (the 1-based character a message points at, when
+-- there is one) and its end, with "..." where characters are left out, so a generated
+-- 5 MB axiom gives a message of a few hundred characters that still shows what is wrong.
+function M.quote (text, pos)
+  if #text <= 240 then return text end
+  if pos and pos > 100 then
+    local a, b = math.max(pos - 90, 61), math.min(pos + 50, #text)
+    local tail = #text - b <= 20 and text:sub(b + 1) or "..." .. text:sub(-20)
+    return text:sub(1, 60) .. (a > 61 and "..." or "") .. text:sub(a, b) .. tail
+  end
+  return text:sub(1, 180) .. "..." .. text:sub(-40)
+end
 
 --- Sends the warning `msg` to warn(). In two pieces: a message of one piece that begins
 -- with '@' would be taken as a control message ("@on"), and a view file's name begins

@@ -1,7 +1,8 @@
 /*
 ** C unit tests for contours (csrc/core/contour.c): the parser on the three
 ** files of Appendix B.1, on tolerated layouts and on malformed input (exact
-** messages); lsys_contour_set; sampling checked against a direct
+** messages); vlab's versioned files ("cver 1 1" .. "cver 1 3": multiplicities,
+** open and closed, skipped lines, errors); lsys_contour_set; sampling checked against a direct
 ** re-implementation of the definition, equal arc length, the rotation of
 ** V_0 onto +x, outward and left normals, open end points; the circle.
 **
@@ -427,6 +428,162 @@ static void test_circle (void) {
   assert(fabs(v[3] + 0.5) < 1e-15 && fabs(v[4] - sqrt(3) / 2) < 1e-15 && v[9] == 1);
 }
 
+/* ---------------------------------------------------------------------- */
+/* vlab's versioned files ("cver 1 1" .. "cver 1 3"). */
+
+static const char blade13[] =
+  "cver 1 3\n"
+  "name: test blade\n"
+  "points: 4 8\n"
+  "type: or\n"
+  "samples: 8\n"
+  "-2 0 0 3\n"
+  "-1 1.5 0 1\n"
+  "1 1.25 0.5 1\n"
+  "2 0 0 3\n";
+
+/* Asserts that point i of 'c' is (x, y, z). */
+static void at (const lsys_contour *c, size_t i, double x, double y, double z) {
+  assert(i < c->n);
+  assert(c->pt[3 * i] == x && c->pt[3 * i + 1] == y && c->pt[3 * i + 2] == z);
+}
+
+static void test_cver (void) {
+  double v[3 * 17], n[3 * 17];
+  lsys_contour c;
+  size_t i;
+  lsys_contour_init(&c);
+  parse(&c, blade13);                     /* each line's point repeated m times */
+  assert(c.n == 8 && c.dim == 3 && c.closed == 0);
+  for (i = 0; i < 3; i++) at(&c, i, -2, 0, 0);
+  at(&c, 3, -1, 1.5, 0);
+  at(&c, 4, 1, 1.25, 0.5);
+  for (i = 5; i < 8; i++) at(&c, i, 2, 0, 0);
+  check(&c, 16, v, n);                    /* sampled like any open contour */
+  assert(fabs(v[0] - 2) < 1e-12 && fabs(hypot(v[48], v[49]) - 2) < 1e-12);
+  parse(&c, "cver 1 1\nname: sq\npoints: 4 4\ntype: closed\n"
+            "1 -1 0 1\n1 1 0 1\n-1 1 0 1\n-1 -1 0 1\n");
+  assert(c.n == 4 && c.dim == 3 && c.closed == 1);
+  at(&c, 0, 1, -1, 0);
+  at(&c, 3, -1, -1, 0);
+  parse(&c, "cver 1 1\nname: x\npoints: 2 4\ntype: open\n0 0 0 2\n1 0 0 2\n");
+  assert(c.n == 4 && c.closed == 0);
+  at(&c, 1, 0, 0, 0);
+  at(&c, 2, 1, 0, 0);
+  /* 1.2: o|c then r|e; end-point interpolation is drawn as regular */
+  parse(&c, "cver 1 2\nname: t\npoints: 3 3\ntype: cr\n0 0 0 1\n1 0 0 1\n0 1 0 1\n");
+  assert(c.n == 3 && c.closed == 1);
+  parse(&c, "cver 1 2\nname: t\npoints: 3 3\ntype: ce\n0 0 0 1\n1 0 0 1\n0 1 0 1\n");
+  assert(c.n == 3 && c.closed == 1);
+  parse(&c, "cver 1 2\nname: t\npoints: 2 4\ntype: oe\n0 0 0 2\n1 0 0 2\n");
+  assert(c.n == 4 && c.closed == 0);
+  /* 1.3: the editor's background image and markers are skipped; CRLF,
+  ** comments, blank lines, an empty name and a last line without '\n' */
+  parse(&c, "cver 1 3\r\nname:\r\n\r\npoints: 3 5 # lines, points\r\ntype: cr\r\nsamples: 12\r\n"
+            "background: leaf scan.png\r\nbackgroundXY: 0.5 -2\r\nmarkers: 2\r\nm1 0 0\r\n"
+            "m2 1 1\r\n0 0 0 1\r\n# the tip\r\n1 0 0 3\r\n0 1 0 1");
+  assert(c.n == 5 && c.closed == 1);
+  at(&c, 0, 0, 0, 0);
+  at(&c, 1, 1, 0, 0);
+  at(&c, 3, 1, 0, 0);
+  at(&c, 4, 0, 1, 0);
+  parse(&c, "cver 1 3\nname: n\npoints: 3 3\ntype: cr\nsamples: 8\nmarkers: 0\n"
+            "0 0 0 1\n1 0 0 1\n0 1 0 1\n");
+  assert(c.n == 3);
+  parse(&c, "cver 01 003\nname: n\npoints: 3 3\ntype: cr\nsamples: 8\n"
+            "0 0 0 1\n1 0 0 1\n0 1 0 1\n");
+  assert(c.n == 3 && nlive == 1);
+  lsys_contour_free(&c);
+  assert(nlive == 0);
+}
+
+/* A 1.3 header for 'pts', then 'rest'. */
+static const char *h13 (char *buf, size_t size, const char *pts, const char *type,
+                        const char *rest) {
+  snprintf(buf, size, "cver 1 3\nname: t\npoints: %s\ntype: %s\nsamples: 8\n%s", pts, type,
+           rest);
+  return buf;
+}
+
+static void test_cver_errors (void) {
+  static const char four[] = "0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n";
+  char b[512];
+  bad("cver 2 0\n",
+      "t.con:1: unknown contour format 'cver 2 0' (lsys reads cver 1 1, 1 2 and 1 3)");
+  bad("cver 1 4\n",
+      "t.con:1: unknown contour format 'cver 1 4' (lsys reads cver 1 1, 1 2 and 1 3)");
+  bad("cver 1 0\n",
+      "t.con:1: unknown contour format 'cver 1 0' (lsys reads cver 1 1, 1 2 and 1 3)");
+  bad("cver 1\n", "t.con:1: expected \"cver MAJOR MINOR\"");
+  bad("cver 1 3 x\n", "t.con:1: expected \"cver MAJOR MINOR\"");
+  bad("cver 1 three\n", "t.con:1: expected \"cver MAJOR MINOR\"");
+  bad("cver -1 3\n", "t.con:1: expected \"cver MAJOR MINOR\"");
+  bad("cver 1 3\n", "t.con:2: expected \"name: NAME\", got the end of the file");
+  bad("cver 1 3\npoints: 4 4\n", "t.con:2: expected \"name: NAME\"");
+  bad("cver 1 3\nname: t\n\n",
+      "t.con:4: expected \"points: LINES TOTAL\", got the end of the file");
+  bad("cver 1 3\nname: t\npoints: 4\n", "t.con:3: expected \"points: LINES TOTAL\"");
+  bad("cver 1 3\nname: t\npoints:4 4\n", "t.con:3: expected \"points: LINES TOTAL\"");
+  bad(h13(b, sizeof b, "x 4", "cr", four), "t.con:3: bad point line count 'x'");
+  bad(h13(b, sizeof b, "4 -4", "cr", four), "t.con:3: bad point count '-4'");
+  bad(h13(b, sizeof b, "4 4.0", "cr", four), "t.con:3: bad point count '4.0'");
+  bad("cver 1 3\nname: t\npoints: 4 4\ntype:\n", "t.con:4: expected \"type: o|c r|e\"");
+  bad("cver 1 1\nname: t\npoints: 4 4\n",
+      "t.con:4: expected \"type: open|closed\", got the end of the file");
+  bad(h13(b, sizeof b, "4 4", "open", four),
+      "t.con:4: type must be 'or', 'oe', 'cr' or 'ce', got 'open'");
+  bad(h13(b, sizeof b, "4 4", "orx", four),
+      "t.con:4: type must be 'or', 'oe', 'cr' or 'ce', got 'orx'");
+  bad(h13(b, sizeof b, "4 4", "cx", four),
+      "t.con:4: type must be 'or', 'oe', 'cr' or 'ce', got 'cx'");
+  bad("cver 1 1\nname: t\npoints: 4 4\ntype: or\n",
+      "t.con:4: expected 'open' or 'closed', got 'or'");
+  bad("cver 1 1\nname: t\npoints: 4 4\ntype: Closed\n",
+      "t.con:4: expected 'open' or 'closed', got 'Closed'");
+  bad("cver 1 3\nname: t\npoints: 4 4\ntype: cr\n0 0 0 1\n", "t.con:5: expected \"samples: K\"");
+  bad("cver 1 3\nname: t\npoints: 4 4\ntype: cr\nsamples: eight\n",
+      "t.con:5: bad sample count 'eight'");
+  bad(h13(b, sizeof b, "2 2", "cr", four),
+      "t.con:3: a closed contour needs at least 3 points, got 2");
+  bad(h13(b, sizeof b, "3 3", "or", four),
+      "t.con:3: an open contour needs at least 4 points, got 3");
+  bad(h13(b, sizeof b, "1 65537", "cr", four), "t.con:3: too many points (limit is 65536)");
+  bad(h13(b, sizeof b, "1 99999999999999999999999", "cr", four),
+      "t.con:3: too many points (limit is 65536)");
+  bad(h13(b, sizeof b, "0 4", "cr", four), "t.con:3: 0 point lines cannot give 4 points");
+  bad(h13(b, sizeof b, "5 4", "cr", four), "t.con:3: 5 point lines cannot give 4 points");
+  bad(h13(b, sizeof b, "4 4", "cr", "background: a.png\n0 0 0 1\n"),
+      "t.con:7: expected \"backgroundXY: X Y\"");
+  bad(h13(b, sizeof b, "4 4", "cr", "markers: two\n"), "t.con:6: expected \"markers: K\"");
+  bad(h13(b, sizeof b, "4 4", "cr", "markers: 3\nm1 0 0\n"),
+      "t.con:8: file ends after 1 of 3 markers");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 0 0\n"),
+      "t.con:7: multiplicity must be a whole number >= 1, got '0'");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 0 1.5\n"),
+      "t.con:7: multiplicity must be a whole number >= 1, got '1.5'");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 -1\n"),
+      "t.con:6: multiplicity must be a whole number >= 1, got '-1'");
+  bad(h13(b, sizeof b, "4 5", "cr", "0 0 0 1\n1 0 0 3\n1 1 0 1\n0 1 0 1\n"),
+      "t.con:9: the multiplicities add up to more than the 5 points of line 3");
+  bad(h13(b, sizeof b, "2 5", "cr", "0 0 0 1\n1 0 0 99999999999999999999\n"),
+      "t.con:7: the multiplicities add up to more than the 5 points of line 3");
+  bad(h13(b, sizeof b, "4 6", "cr", four), "t.con:3: the multiplicities add up to 4 points, not 6");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 1\n"),
+      "t.con:7: expected 4 numbers (x y z multiplicity), got 3");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 0 1 1\n"),
+      "t.con:7: expected 4 numbers (x y z multiplicity), got 5");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 x 0 1\n"), "t.con:7: bad number 'x'");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 nan 1\n"),
+      "t.con:7: 'nan' is not a finite number");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 2e9 1\n"),
+      "t.con:7: 2e9 is out of range (limit is 1e9)");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 0 1\n"),
+      "t.con:8: file ends after 2 of 4 point lines");
+  bad(h13(b, sizeof b, "4 4", "cr", "0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n7\n"),
+      "t.con:10: unexpected '7' after the 4 point lines");
+  assert(nlive == 0);
+}
+
 /* Each allocation fails in turn: LSYS_ENOMEM, 'c' emptied by the parser,
 ** unchanged by lsys_contour_set; nothing leaked. */
 static void test_nomem (void) {
@@ -449,6 +606,10 @@ static void test_nomem (void) {
   failat = nalloc;
   assert(lsys_contour_parse(&c, fig12a, strlen(fig12a), "t.con", &e) == LSYS_ENOMEM);
   assert(c.pt == NULL && c.n == 0 && nlive == 0);
+  assert(lsys_contour_set(&c, sq, 3, 1, 2, &e) == LSYS_OK);
+  failat = nalloc;                                 /* a versioned file: one allocation too */
+  assert(lsys_contour_parse(&c, blade13, strlen(blade13), "t.con", &e) == LSYS_ENOMEM);
+  assert(strcmp(e.msg, "not enough memory") == 0 && c.pt == NULL && c.n == 0 && nlive == 0);
   failat = -1;
   lsys_contour_free(&c);
   assert(nlive == 0);
@@ -459,6 +620,8 @@ int main (void) {
   test_layout();
   test_errors();
   test_where();
+  test_cver();
+  test_cver_errors();
   test_set();
   test_sample_files();
   test_arclength();

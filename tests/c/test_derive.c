@@ -212,7 +212,7 @@ static int reenter (void *ud, lsys_model *m, const lsys_rule *r, const double *a
   (void)r; (void)args;
   memset(&sp, 0, sizeof sp);
   assert(lsys_derive_step(m, other, other + 1) == LSYS_EBUSY);
-  assert(strstr(m->err.msg, "called derive/step on the same model") != NULL);
+  assert(strstr(m->err.msg, "called derive or step on the model it belongs to") != NULL);
   assert(lsys_expand(m, LSYS_HOMO, other, other + 1) == LSYS_EBUSY);
   assert(lsys_homo_begin(m, other) == LSYS_EBUSY);
   assert(lsys_model_add(m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EBUSY);

@@ -89,6 +89,12 @@ static void test_alphabet (void) {
   assert(lsys_alphabet_intern(&a, "onemore", 7, &e) == 0);
   assert(e.code == LSYS_ELIMIT && strstr(e.msg, "limit is 2047") != NULL);
   assert(lsys_alphabet_find(&a, "N5", 2) != 0);
+  lsys_alphabet_truncate(&a, first + 1);          /* only Apex is left of the free ids */
+  assert(a.n == first + 1 && lsys_alphabet_find(&a, "N5", 2) == 0);
+  assert(lsys_alphabet_find(&a, "Apex", 4) == first && lsys_alphabet_find(&a, "$", 1) != 0);
+  assert(lsys_alphabet_intern(&a, "onemore", 7, &e) == first + 1);
+  lsys_alphabet_truncate(&a, 1);                  /* below the fixed ids: nothing */
+  assert(lsys_alphabet_find(&a, "onemore", 7) == first + 1);
   lsys_alphabet_free(&a);
 }
 

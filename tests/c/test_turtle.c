@@ -109,9 +109,20 @@ static void test_errors (void) {
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   o.sides = 8;
   /* found by the fuzzer: huge indices were converted to int unchecked */
-  parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(0)@#(-4e9)F");
+  parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(0)@#(0)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
   assert(sc.rec[0].color == 65535 && sc.rec[1].color == 0 && t.state.contour == 0);
+  parse(&s, &a, "F@#(-4e9)F");                   /* a negative number names no contour */
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(strstr(t.err.msg, "module 2 '@#': contour -4e+09 is not defined") != NULL);
+  parse(&s, &a, "F(1e308)F(1e308)");             /* nothing could draw an infinite position */
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
+  assert(strstr(t.err.msg, "module 2 'F': the position is no longer finite") != NULL);
+  parse(&s, &a, "F{.f.+f.");                     /* never closed: a warning, not an error */
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.warn.code != 0);
+  assert(strstr(t.warn.msg, "polygon '{' of module 2 is never closed") != NULL);
+  parse(&s, &a, "F");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.warn.code == 0);
   /* textures and contours the view does not define are errors */
   parse(&s, &a, "F@Tx(1e30)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);

@@ -50,6 +50,26 @@ M.dirof = dirof
 -- interpreted by the shell.
 local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
+-- The directives of the preprocessor. A line whose first non-blank character is '#'
+-- followed by anything else (a width module `#(0.06)` starting a continued successor,
+-- `#x`) is text for vlab's preprocessor, which warns and keeps it; cpfg then reads it.
+local DIRECTIVES = {}
+for d in ("define undef include if ifdef ifndef elif else endif error pragma line warning"
+          .. " ident"):gmatch("%a+") do
+  DIRECTIVES[d] = true
+end
+
+local function isdirective (text)
+  local rest = text:match("^%s*#%s*(.*)$")
+  if rest == nil then return false end
+  if rest == "" or rest:find("^%d") or rest:find("^/[*/]") then return true end  -- # N "f"
+  local name = rest:match("^[%a_][%w_]*")
+  return name ~= nil and DIRECTIVES[name] == true
+end
+
+-- A name no model uses: it stands for the '#' of a text line while the system cpp runs.
+local HASH = "__lsys_cpp_hash__"
+
 local have_cpp
 local function system_cpp ()
   if have_cpp == nil then
@@ -60,13 +80,15 @@ local function system_cpp ()
 end
 
 -- Splits cpp's output at its line markers (# N "file" flags) into located lines.
-local function marked (out, main)
+-- `base`: the folder cpp ran in, for the relative names of included files.
+local function marked (out, main, base)
   local lines, file, n = {}, main, 1
   for text in (out .. "\n"):gmatch("([^\n]*)\n") do
     local ln, f = text:match('^#%s*(%d+)%s+"(.-)"')
     if ln then
       n, file = tonumber(ln), f
-      if file:sub(1, 1) == "<" then file = main end
+      if file:sub(1, 1) == "<" then file = main
+      elseif base and file:sub(1, 1) ~= "/" then file = base .. "/" .. file end
     else
       lines[#lines + 1] = { file = file, line = n, text = text }
       n = n + 1
@@ -88,13 +110,46 @@ function M.system (path, defines)
   for _, k in ipairs(names) do args[#args + 1] = shq("-D" .. k .. "=" .. tostring(defines[k])) end
   -- a name that starts with '-' (a vlab specifications file can say anything) must not
   -- reach cpp as an option such as -o FILE
-  args[#args + 1] = shq(path:sub(1, 1) == "-" and "./" .. path or path)
+  -- text lines starting with '#' (see DIRECTIVES) would be errors for cpp: the file
+  -- goes through stdin with a name in their '#', cpp running in the file's folder so
+  -- that #include "x" finds the same files
+  local text = readfile(path)
+  local protect = false
+  if text then
+    for line in text:gmatch("[^\n]+") do
+      if line:find("^%s*#") and not isdirective(line) then protect = true; break end
+    end
+  end
+  local cmd, tmp
+  if protect then
+    tmp = os.tmpname()
+    local f = io.open(tmp, "wb")
+    local lines = {}
+    for line in (text .. "\n"):gmatch("([^\n]*)\n") do
+      if line:find("^%s*#") and not isdirective(line) then
+        line = line:gsub("#", HASH, 1)
+      end
+      lines[#lines + 1] = line
+    end
+    f:write(concat(lines, "\n"))
+    f:close()
+    args[#args + 1] = "-"
+    cmd = "cd " .. shq(dirof(path)) .. " && " .. concat(args, " ") .. " <" .. shq(tmp)
+  else
+    args[#args + 1] = shq(path:sub(1, 1) == "-" and "./" .. path or path)
+    cmd = concat(args, " ")
+  end
   local errf = os.tmpname()
-  local p = io.popen(concat(args, " ") .. " 2>" .. shq(errf), "r")
+  local p = io.popen(cmd .. " 2>" .. shq(errf), "r")
   local out = p and p:read("a") or ""
   local ok = p and p:close()
   local msg = readfile(errf) or ""
   os.remove(errf)
+  if tmp then
+    os.remove(tmp)
+    out = out:gsub(HASH, "#")
+    msg = msg:gsub("<stdin>", function () return path end)
+  end
   if not ok then
     local first = msg:match("[^\n]*error:[^\n]*") or msg:match("[^\n]+") or "cpp failed"
     first = first:gsub("^([^:]+:%d+):%d+:", "%1:"):gsub(" fatal error:", ""):gsub(" error:", "")
@@ -102,7 +157,7 @@ function M.system (path, defines)
   end
   -- cpp turns a leading tab into a space; cpfg reads a line starting with a tab as the
   -- continuation of the one before, so the tabs come back from the source lines
-  local lines, sources = marked(out, path), {}
+  local lines, sources = marked(out, path, tmp and dirof(path)), {}
   for _, l in ipairs(lines) do
     local src = sources[l.file]
     if src == nil then
@@ -323,6 +378,7 @@ local function evalif (expr, macros, file, line)
   local parse = require("lsys.cpfg.parse")
   local ok, v = pcall(function ()
     local P = parse.new({ { file = file, line = line, text = expr } })
+    P.strict = true
     local e = P:expr()
     if not P:ateol() then error("trailing text") end
     return ceval(e)
@@ -390,6 +446,7 @@ function M.builtin (path, defines)
       end
       do
         local dir, rest = s:match("^%s*#%s*(%a*)(.*)$")
+        if dir and not isdirective(s) then dir = nil end    -- a text line
         if dir then
           rest = rest:match("^%s*(.-)%s*$")
           if dir == "ifdef" or dir == "ifndef" then
@@ -432,8 +489,6 @@ function M.builtin (path, defines)
             run(p, t, level + 1)
           elseif dir == "error" and active() then
             fail(file, n, "#error %s", rest)
-          elseif active() and dir ~= "" and dir ~= "pragma" and dir ~= "line" then
-            fail(file, n, "invalid preprocessing directive #%s", dir)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then

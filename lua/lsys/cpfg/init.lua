@@ -18,6 +18,7 @@ local parse = require "lsys.cpfg.parse"
 local model = require "lsys.model"
 local func = require "lsys.func"
 local viewmod = require "lsys.view"
+local viewfile = require "lsys.viewfile"
 local warning = require "lsys.warning"
 local core = require "lsys.core"
 local _ENV = nil
@@ -110,10 +111,12 @@ local function cformat (spec, c, x)
   if ok then return s end
   return format("%" .. c, x)
 end
--- printf: C's format on numbers; %d and the other integer conversions take the integer part
+-- printf: C's format on numbers; %d and the other integer conversions take the integer
+-- part; length modifiers (%lf, %ld) are accepted and mean nothing, as for C's printf of
+-- a double
 function H._printf (fmt, ...)
   local args, i = { ... }, 0
-  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)([diouxXcfFeEgGs%%])", function (flags, c)
+  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)[hlLqjzt]*([diouxXcfFeEgGs%%])", function (flags, c)
     if c == "%" then return "%" end
     i = i + 1
     local x = args[i] or 0
@@ -252,8 +255,8 @@ emit = function (T, ctx, e)
     local parts = { ctx.mode == "f" and "E." .. key or key }
     for i, x in ipairs(e.idx) do parts[i + 1] = N(T, ctx, x) end
     return fn(ctx, "_aget") .. "(" .. concat(parts, ", ") .. ")", "n"
-  elseif k == "str" then
-    fail(T, e.pos, "a string is allowed only as the format of printf")
+  elseif k == "str" then   -- its number among the file's strings, as cpfg (@L("%.f", x))
+    return numlit(e.index), "n"
   elseif k == "call" then return call(T, ctx, e)
   elseif k == "un" then
     if e.op == "-" then return "(-" .. N(T, ctx, e.a) .. ")", "n" end
@@ -416,14 +419,19 @@ local function pattern (mods, params)
   return concat(t)
 end
 
-local function successor (T, ctx, mods)
+-- The lsys text of a successor; `first`, when given, wraps the code of its first
+-- parameter (the axiom's runs the Start: blocks first).
+local function successor (T, ctx, mods, first)
   if #mods == 0 then return "*" end
   local t = {}
   for _, m in ipairs(mods) do
     local s = m.sym
     if m.params then
       local ps = {}
-      for i, x in ipairs(m.params) do ps[i] = N(T, ctx, x) end
+      for i, x in ipairs(m.params) do
+        ps[i] = N(T, ctx, x)
+        if first then ps[i], first = first(ps[i]), nil end
+      end
       s = s .. "(" .. concat(ps, ", ") .. ")"
     end
     t[#t + 1] = s
@@ -721,6 +729,46 @@ local function declare (T, lsystems)
   return list
 end
 
+-- cpfg's string is characters: its sphere `@o(0.2)` is '@' then 'o(0.2)', so a production
+-- for `o` also rewrites the o of every @o (vlab's mycelis: `o(r) --> o(r+0.03)` grows the
+-- spheres). lsys reads @o as one module: such a production gets a twin for @X placed right
+-- after it, when the L-system has @X modules, the successor starts with a letter Y (cpfg's
+-- string then reads @Y, as lsys's does) and no left context would see the '@' (or '@' is
+-- ignored).
+local function atrules (T, lsystems)
+  for _, ls in ipairs(lsystems) do
+    local used = {}
+    local function scan (mods)          -- cpfg's characters: '@' then the letter
+      for i, m in ipairs(mods or {}) do
+        local nx = mods[i + 1]
+        if m.sym == "@" and not m.params and nx and nx.sym:find("^%a$") then
+          used["@" .. nx.sym] = true
+        end
+      end
+    end
+    scan(ls.axiom)
+    for _, p in ipairs(ls.productions) do scan(p.succ) end
+    local ignored = ls.ignore and ls.ignore:find("@", 1, true)
+    local out = {}
+    for _, p in ipairs(ls.productions) do
+      out[#out + 1] = p
+      local x = #p.pred == 1 and p.pred[1].sym
+      local at = { sym = "@", pos = p.pred[1].pos }
+      local first = p.succ[1] and p.succ[1].sym
+      if x and x:find("^%a$") and used["@" .. x] and first and first:find("^%a$") and
+         (not p.lc or #p.lc == 0 or ignored) and count(T, { at, p.pred[1] }) == 1 then
+        local twin = {}
+        for k, v in pairs(p) do twin[k] = v end
+        twin.pred = { at, p.pred[1] }          -- the text @X(...): one lsys module
+        twin.succ = { at }
+        for i = 1, #p.succ do twin.succ[i + 1] = p.succ[i] end
+        out[#out + 1] = twin
+      end
+    end
+    ls.productions = out
+  end
+end
+
 local function float32 ()
   return pcall(model.lsystem, { numbers = "float32" })
 end
@@ -758,6 +806,7 @@ local function translate (P, lsystems, opts)
     T.env.Z = steps + 0.0
   end
   dynamic(T, lsystems)
+  atrules(T, lsystems)
   local declared = declare(T, lsystems)
   T.modnames = #declared > 0 and concat(declared, " ") or nil
   local o = { steps = steps, env = T.env, name = opts.name, modules = T.modnames }
@@ -767,7 +816,13 @@ local function translate (P, lsystems, opts)
   o.ring = main.ring or nil
   o.ignore, o.consider = main.ignore, main.consider
   local actx = { mode = "s", scope = 1 }
-  local ok, ax = pcall(successor, T, actx, main.axiom)
+  -- cpfg runs the Start: blocks before it computes the axiom, lsys computes the axiom
+  -- first: an axiom that reads names calls the start hook from its first parameter
+  local read = {}
+  local walk = walknames({}, {}, read)
+  for _, m in ipairs(main.axiom) do for _, x in ipairs(m.params or {}) do walk(x) end end
+  local early = next(read) ~= nil and function (code) return "(_axstart() and " .. code .. ")" end
+  local ok, ax = pcall(successor, T, actx, main.axiom, early)
   if not ok then
     if ax == NOSTRING then fail(T, main.axiompos, "the axiom reads a variable set by a "
                                 .. "production") end
@@ -782,8 +837,12 @@ local function translate (P, lsystems, opts)
       o[s] = rules(T, main, sect.productions, s, false)
       if sect.depth then
         local d = consteval(T, sect.depth, 1, "the maximum depth")
-        if d < 0 or d > 1024 then
-          fail(T, sect.depth.pos, "the maximum depth is %g, not 0 to 1024", d)
+        if d < 0 then fail(T, sect.depth.pos, "the maximum depth is %g, not 0 or more", d) end
+        if d > 1024 then     -- cpfg takes any depth; lsys's limit is 1024
+          local file, line = T.P:where(sect.depth.pos)
+          warning.warn(format("%s:%d: maximum depth %g taken as 1024, lsys's limit", file, line,
+                              d))
+          d = 1024
         end
         depth[s] = floor(d)
       end
@@ -845,8 +904,16 @@ local function translate (P, lsystems, opts)
     if core.producing() then core.srand(x) else T.model:srand(x) end
     return 0.0
   end
+  local started = false     -- by the axiom, in this derivation
+  T.env._axstart = function ()
+    started = true
+    reset()
+    for _, f in ipairs(starts) do f() end
+    return true
+  end
   o.start = function (m)
     T.model = m
+    if started then started = false; return end
     reset()
     for _, f in ipairs(starts) do f() end
   end
@@ -942,8 +1009,11 @@ function M.load (lfile, vfile, opts)
     error("lsys.cpfg.load: the view file must be a file name", 2)
   end
   opts = checkopts(opts, "lsys.cpfg.load")
-  local v
-  if vfile then v = viewmod.load(vfile) end
+  local v = vfile and viewmod.load(vfile) or { dir = cpp.dirof(lfile) }
+  -- what the view leaves unset (or sets to '?') is cpfg's default, not lsys.view's
+  for k, x in pairs(viewfile.CPFG_DEFAULTS) do
+    if v[k] == nil then v[k] = x end
+  end
   local pal = opts.colormap or opts.materials
   if pal then
     local ldir = cpp.dirof(lfile)
@@ -973,6 +1043,7 @@ function M.load (lfile, vfile, opts)
     end
     error(msg, 0)
   end
+  T.model = m         -- (srand in Start: blocks run by the axiom, before the start hook)
   if T.usesfunc then T.H.func = function (id, x) return m:func(id, x) end end
   return m
 end
@@ -996,8 +1067,10 @@ function M.load_object (dir, opts)
       local i = 1
       while i <= #words do
         local w = words[i]
-        if w:match("^%-m%d*$") or w == "-M" then
+        if w:match("^%-[mM]1?$") then          -- -m2, -M2: colour map 2, not the palette
           pal = pal or words[i + 1]
+          i = i + 1
+        elseif w:match("^%-[mM]%d+$") then
           i = i + 1
         elseif w:match("%.l$") then l = l or w
         elseif w:match("%.v$") then v = v or w end

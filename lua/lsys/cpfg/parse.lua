@@ -3,10 +3,13 @@
 -- that `where` turns into the file and line it came from. The grammar follows cpfg's
 -- lsys_input.y and lsys_input.l (read as documentation).
 -- @module lsys.cpfg.parse
-local error, tonumber, setmetatable, ipairs, next = error, tonumber, setmetatable, ipairs, next
+local error, tonumber, setmetatable, ipairs, next, require = error, tonumber, setmetatable,
+  ipairs, next, require
 local concat = table.concat
 local format = string.format
 local _ENV = nil
+
+local warning = require "lsys.warning"
 
 local M = {}
 
@@ -23,7 +26,7 @@ function M.new (lines)
     pos = pos + #l.text + 1
   end
   return setmetatable({ src = concat(parts, "\n") .. "\n", starts = starts, locs = locs,
-                        pos = 1, blocks = 0 }, P)
+                        pos = 1, blocks = 0, nstrings = 0, stray = {} }, P)
 end
 
 --- The file and line of source position `pos`.
@@ -133,29 +136,56 @@ local OPS = { "-->", "-o>", "<>", "!=", "==", "<=", ">=", "&&", "||",
               "=", "&", "+", "-", "*", "/", "%", "^", ";", ",", "?", ":", "(", ")", "[",
               "]", "<", ">", "!", "{", "}" }
 
+-- The text of a string literal as cpfg's lexer makes it (lsys_input.l ProcessString):
+-- \n, \t and \r are control characters, a backslash before any other character is
+-- dropped.
+local ESCAPES = { n = "\n", t = "\t", r = "\r" }
+local function unescape (s)
+  return (s:gsub("\\(.?)", function (c) return ESCAPES[c] or c end))
+end
+
+-- A character that no rule of cpfg's expression lexer matches: flex's default rule
+-- echoes it and goes on, so it is skipped here too, with a warning (vlab's fern-leaf
+-- model has `dx = \ (0.33 * ...)`, a macro continued with "\\"). A parser made with
+-- `strict` (the #if of the built-in preprocessor) fails instead.
+function P:skipstray (i)
+  local c = self.src:sub(i, i)
+  if self.strict then self:fail(i, "unexpected character '%s' in an expression", c) end
+  if not self.stray[i] then
+    self.stray[i] = true
+    local file, line = self:where(i)
+    local shown = c:find("^[%g ]$") and c or format("\\%d", c:byte())
+    warning.warn(format("%s:%d: stray '%s' in an expression ignored (as cpfg does)", file,
+                        line, shown))
+  end
+  self.pos = i + 1
+end
+
 -- The next token of an expression: kind ("num", "name", "str", "op", "eol"), value, and
--- its start and end positions.
+-- its start and end positions. A string's value is its text.
 function P:etok ()
-  self:sp()
-  local src, i = self.src, self.pos
-  if i > #src or src:sub(i, i) == "\n" then return "eol", nil, i, i end
-  local a, e = src:find("^%d+%.%d*[eE][-+]?%d+", i)
-  if not a then a, e = src:find("^%d*%.%d+[eE][-+]?%d+", i) end
-  if not a then a, e = src:find("^%d+%.%d*", i) end
-  if not a then a, e = src:find("^%d*%.%d+", i) end
-  if not a then a, e = src:find("^%d+", i) end
-  if a then return "num", tonumber(src:sub(a, e)), i, e + 1 end
-  a, e = src:find("^%a[%w_]*", i)
-  if a then return "name", src:sub(a, e), i, e + 1 end
-  if src:sub(i, i) == '"' then
-    local q = src:find('["\n]', i + 1)
-    if not q or src:sub(q, q) ~= '"' then self:fail(i, "unterminated string") end
-    return "str", src:sub(i + 1, q - 1), i, q + 1
+  while true do
+    self:sp()
+    local src, i = self.src, self.pos
+    if i > #src or src:sub(i, i) == "\n" then return "eol", nil, i, i end
+    local a, e = src:find("^%d+%.%d*[eE][-+]?%d+", i)
+    if not a then a, e = src:find("^%d*%.%d+[eE][-+]?%d+", i) end
+    if not a then a, e = src:find("^%d+%.%d*", i) end
+    if not a then a, e = src:find("^%d*%.%d+", i) end
+    if not a then a, e = src:find("^%d+", i) end
+    if a then return "num", tonumber(src:sub(a, e)), i, e + 1 end
+    a, e = src:find("^%a[%w_]*", i)
+    if a then return "name", src:sub(a, e), i, e + 1 end
+    if src:sub(i, i) == '"' then
+      local q = src:find('["\n]', i + 1)
+      if not q or src:sub(q, q) ~= '"' then self:fail(i, "unterminated string") end
+      return "str", unescape(src:sub(i + 1, q - 1)), i, q + 1
+    end
+    for _, op in ipairs(OPS) do
+      if src:sub(i, i + #op - 1) == op then return "op", op, i, i + #op end
+    end
+    self:skipstray(i)
   end
-  for _, op in ipairs(OPS) do
-    if src:sub(i, i + #op - 1) == op then return "op", op, i, i + #op end
-  end
-  self:fail(i, "unexpected character '%s' in an expression", src:sub(i, i))
 end
 
 function P:isop (op)
@@ -224,8 +254,11 @@ function P:primary (d)
     self.pos = e
     return { k = "num", v = v, pos = s, h = 1 }
   elseif k == "str" then
+    -- cpfg numbers the strings of the file in order (GlobalStringIndex): a string used
+    -- as a value is its number
     self.pos = e
-    return { k = "str", v = v, pos = s, h = 1 }
+    self.nstrings = self.nstrings + 1
+    return { k = "str", v = v, index = self.nstrings - 1, pos = s, h = 1 }
   elseif k == "name" then
     self.pos = e
     if RESERVED[v] then

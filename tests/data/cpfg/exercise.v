@@ -1,0 +1,2 @@
+angle increment: ?
+initial color: 2

@@ -1,0 +1,244 @@
+-- What a new user trips over (issue 19): each item of the issue that is a behaviour of the
+-- library has its spec here, under the item's number.
+local H = require "tests.helper"
+local lsys = require "lsys"
+
+local function errof (f, ...)
+  local ok, msg = pcall(f, ...)
+  assert.is_false(ok, "expected an error")
+  return tostring(msg)
+end
+
+describe("issue 19 §8: the number of steps is bounded", function ()
+  local m = lsys.lsystem { axiom = "A", productions = "A --> B" }
+
+  it("refuses math.huge and 1e300 steps with a clear error, at once", function ()
+    assert.matches("derive: infinitely many steps is more than the limit of 10000000",
+                   errof(m.derive, m, math.huge), 1, true)
+    assert.matches("derive: 1e+300 steps is more than the limit of 10000000",
+                   errof(m.derive, m, 1e300), 1, true)
+    assert.matches("option 'steps' is inf, more than the limit of 10000000",
+                   errof(lsys.lsystem, { axiom = "A", steps = math.huge }), 1, true)
+    m.steps = 1e8
+    assert.matches("derive: 100000000 steps is more than the limit of 10000000",
+                   errof(m.derive, m), 1, true)
+    m.steps = 1
+    assert.equal("B", tostring(m:derive()))
+  end)
+
+  it("says so on the command line", function ()
+    local out, code = H.sh(H.BIN .. " derive --steps 100000000 examples/default.lua")
+    assert.equal(1, code)
+    assert.matches("100000000 steps is more than the limit of 10000000", out, 1, true)
+  end)
+end)
+
+describe("issue 19 §9: long quoted text is elided in messages", function ()
+  local big = H.rep("F(1)", 200000)
+
+  it("keeps a message about a 800 kB axiom short and shows where it is wrong", function ()
+    local e = errof(lsys.lsystem, { axiom = big .. "F(" .. H.rep("F(1)", 100) })
+    assert.is_true(#e < 400, #e .. " characters")
+    assert.matches("^axiom 'F%(1%)F%(1%)", e)
+    assert.matches("F%(F%(1%)", e)                          -- the unclosed F( is shown
+    assert.matches("unbalanced parentheses after 'F' at character 800001", e, 1, true)
+  end)
+
+  it("keeps a message about a long rule short, at definition and in a step", function ()
+    local e = errof(lsys.lsystem, { axiom = "A", productions = "A --> " .. big .. "F(" })
+    assert.is_true(#e < 400, #e .. " characters")
+    assert.matches("F%(1%)F%(' %(line 1 of productions%): unbalanced parentheses: '%(' "
+                   .. "without '%)' at character 800008", e)
+    local m = lsys.lsystem { axiom = "A", productions = "A --> " .. big .. "F(x)" }
+    e = errof(m.derive, m, 1)
+    assert.is_true(#e < 500, #e .. " characters")
+    assert.matches("unknown name 'x'", e, 1, true)
+  end)
+
+  it("quotes short text whole", function ()
+    local q = require("lsys.warning").quote
+    assert.equal("A --> B", q("A --> B", 3))
+    local s = H.rep("a", 1000) .. "X" .. H.rep("b", 1000)
+    local shown = q(s, 1001)
+    assert.truthy(shown:find("aaaXbbb", 1, true), shown)
+    assert.matches("^a+%.%.%.a+Xb+%.%.%.b+$", shown)
+    assert.is_true(#shown < 240)
+  end)
+end)
+
+describe("issue 19 §12: a model that fails leaves no module names behind", function ()
+  it("lets later models use names after one failed with too many", function ()
+    local names = {}
+    for i = 1, 2100 do names[#names + 1] = "m" .. i end
+    local list = table.concat(names, " ")
+    for _ = 1, 3 do       -- each attempt fails the same way; none poisons the state
+      local e = errof(lsys.lsystem, { modules = list, axiom = list })
+      assert.matches("too many module names (limit is 2047)", e, 1, true)
+      local m = lsys.lsystem { axiom = "Q", productions = "Q --> R[S]T" }
+      assert.equal("R[S]T", tostring(m:derive(1)))
+    end
+    -- names of a model that was made stay: its strings still read them
+    local ok = lsys.lsystem { modules = "leaf stem", axiom = "leaf stem" }
+    local s = ok:derive(0)
+    errof(lsys.lsystem, { modules = list, axiom = list })
+    assert.equal("leaf", (s:module(1)))
+    assert.equal("stem", (s:module(2)))
+    assert.equal(2, #ok:derive(0))
+  end)
+end)
+
+describe("issue 19 §13: a rule that derives its own model", function ()
+  it("gets one clear message for its own model", function ()
+    local m
+    m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+      m:derive(1)
+      return lsys.produce("B")
+    end } } }
+    local e = errof(m.derive, m, 1)
+    assert.matches("rule 1 'A' %(entry 1 of productions%), module 1: .*a rule called derive on "
+                   .. "the model it belongs to$", e)
+    assert.equal(1, select(2, e:gsub("rule 1 'A'", "")))
+  end)
+
+  it("gets one clear message, not a C stack overflow, for fresh copies of itself", function ()
+    local function make ()
+      local m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
+        make():derive(1)
+        return lsys.produce("B")
+      end } } }
+      return m
+    end
+    local e = errof(function () return make():derive(1) end)
+    assert.matches("derivations nested 32 deep: a rule function derives a model whose rules "
+                   .. "derive again", e, 1, true)
+    assert.is_nil(e:find("rule 1 'A'", 1, true))      -- said once, not 32 times
+    assert.is_nil(e:find("stack overflow", 1, true))
+    -- and the state is fine afterwards
+    assert.equal("B", tostring(lsys.lsystem { axiom = "A", productions = "A --> B" }:derive(1)))
+  end)
+end)
+
+describe("issue 19 §11: mistakes that used to pass in silence", function ()
+  local function warnings (f)
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg) got[#got + 1] = msg end
+    local ok, err = pcall(f)
+    warning.warn = saved
+    assert(ok, err)
+    return got
+  end
+
+  it("warns about a rule whose parameter count no module has", function ()
+    local got = warnings(function ()
+      lsys.lsystem { axiom = "A(1)B", productions = "A(x) --> A(x+1)B\nB(x,y) --> C\n"
+                     .. "A(x) < B(y) --> D\nB --> E" }
+    end)
+    assert.equal(2, #got)
+    assert.matches("rule 2 'B(x,y) --> C' (line 2 of productions): no 'B' with 2 parameters in "
+                   .. "the axiom or a successor (every 'B' there has 0): the rule never applies",
+                   got[1], 1, true)
+    assert.matches("rule 3 'A(x) < B(y) --> D'", got[2], 1, true)
+    -- a rule function may produce anything: nothing is said
+    assert.equal(0, #warnings(function ()
+      lsys.lsystem { axiom = "A", productions = { "B(x) --> C",
+                     { "A", function () return lsys.produce("B(1)") end } } }
+    end))
+  end)
+
+  it("refuses use_group for a group the model does not have", function ()
+    local m = lsys.lsystem { axiom = "A", productions = "A --> B",
+                             groups = { [1] = "A --> C", [3] = "A --> D" } }
+    assert.matches("use_group: the model has no group 7 (groups: 1, 3)", errof(m.use_group, m, 7),
+                   1, true)
+    m:use_group(3)
+    assert.equal("D", tostring(m:derive(1)))
+  end)
+
+  it("refuses a negative line width and a tropism without a direction", function ()
+    assert.matches("'view.line_width' must be >= 0, got -3",
+                   errof(lsys.lsystem, { axiom = "F", view = { line_width = -3 } }), 1, true)
+    local m = lsys.lsystem { axiom = "F" }
+    assert.matches("'view.line_width' must be >= 0, got -3",
+                   errof(lsys.render, m, { line_width = -3 }), 1, true)
+    assert.matches("'view.tropisms[1].vector' is {0, 0, 0}: a tropism needs a direction",
+                   errof(lsys.lsystem, { axiom = "F", view = { tropisms = {
+                     { vector = { 0, 0, 0 }, elasticity = 0.2 } } } }), 1, true)
+  end)
+
+  it("refuses a negative contour or texture number", function ()
+    local m = lsys.lsystem { axiom = "F@#(-1)F" }
+    assert.matches("module 2 '@#': contour -1 is not defined", errof(m.interpret, m), 1, true)
+    m = lsys.lsystem { axiom = "F@Tx(-2)F" }
+    assert.matches("module 2 '@Tx': texture -2 is not defined", errof(m.interpret, m), 1, true)
+  end)
+
+  it("refuses positions that overflow instead of drawing nothing", function ()
+    local m = lsys.lsystem { axiom = "F(1e308)F(1e308)" }
+    assert.matches("module 2 'F': the position is no longer finite after a move of 1e+308",
+                   errof(m.interpret, m), 1, true)
+  end)
+
+  it("writes PNG only under a PNG name", function ()
+    local dir = H.tmpdir()
+    local m = lsys.lsystem { axiom = "F" }
+    assert.matches("lsys.render: '" .. dir .. "/x.jpg': lsys writes PNG images; name the file "
+                   .. ".png", errof(lsys.render, m, { out = dir .. "/x.jpg" }), 1, true)
+    assert.is_nil(io.open(dir .. "/x.jpg"))
+    lsys.render(m, { out = dir .. "/x.PNG", width = 16, height = 16 })
+    assert.truthy(io.open(dir .. "/x.PNG"))
+    H.rmdir(dir)
+  end)
+
+  it("warns about a polygon that is never closed", function ()
+    local dir = H.tmpdir()
+    H.write(dir .. "/open.lua", 'local lsys = require "lsys"\n'
+      .. 'lsys.lsystem { axiom = "F{.f.+f.F" }:interpret()\n')
+    local out, code = H.sh(H.BIN .. " " .. dir .. "/open.lua")
+    H.rmdir(dir)
+    assert.equal(0, code, out)
+    assert.matches("lsys: the polygon '{' of module 2 is never closed with '}': it is not drawn",
+                   out, 1, true)
+  end)
+end)
+
+describe("issue 19 §1: changing a colour", function ()
+  local m = lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5 } }
+  local function px (x, o)
+    o = o or {}
+    o.width, o.height = 32, 32
+    return lsys.render(x, o)
+  end
+
+  it("renders with the palette given to lsys.render", function ()
+    local plain, blue = px(m), px(m, { palette = { [2] = "#3050ff" } })
+    assert.not_equal(plain, blue)
+    assert.equal(blue, px(m, { view = { palette = { [2] = "#3050ff" } } }))
+    assert.equal(blue, px(m:interpret(nil, { palette = { [2] = "#3050ff" } })))
+    local m2 = lsys.lsystem { axiom = ";(1)F;(2)F",
+                              view = { line_width = 5, palette = { [2] = "#3050ff" } } }
+    assert.equal(blue, px(m2))
+    assert.equal(plain, px(m))                         -- the model's own view is unchanged
+  end)
+
+  it("changes only the entries a partial palette names", function ()
+    local full = {}
+    for i = 0, #require("lsys.view").PALETTE do full[i] = require("lsys.view").PALETTE[i] end
+    full[2] = "#3050ff"
+    assert.equal(px(m, { palette = full }), px(m, { palette = { [2] = "#3050ff" } }))
+    -- over a model's own palette: its entries stay, the named one changes
+    local own = lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5,
+                               palette = { [1] = "#ff0000", [2] = "#00ff00" } } }
+    assert.equal(px(own, { palette = { [2] = "#3050ff" } }),
+                 px(lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5,
+                    palette = { [1] = "#ff0000", [2] = "#3050ff" } } }))
+  end)
+
+  it("says why a palette cannot change a scene already drawn", function ()
+    assert.matches("lsys.render: 'palette' changes how the turtle draws: render the model, or "
+                   .. "interpret it with the option", errof(lsys.render, m:interpret(),
+                   { palette = { [2] = "#ff0000" } }), 1, true)
+    assert.matches("'view.palette': entry 13 is missing (the default palette has 0 to 12)",
+                   errof(lsys.render, m, { palette = { [20] = "#ff0000" } }), 1, true)
+  end)
+end)
