@@ -489,8 +489,8 @@ function P:modules (formal)
   end
 end
 
--- Branches in a list of modules must close: lsys refuses a string that does not balance
--- them, with a message that could not name the line.
+-- Branches in the axiom (`mods`, at `pos`) must close: lsys refuses an axiom that does not
+-- balance them, with a message that could not name the line.
 function P:brackets (mods, pos)
   local open = 0
   for _, m in ipairs(mods) do
