@@ -253,6 +253,14 @@ describe("lsys.cpfg.load's translated statements", function ()
     assert.equal("1|2|A|ff|1.500000|B\n", H.read(out))
   end)
 
+  it("refuse arrays of more than 1e7 elements in all", function ()
+    assert.equal("main.l:4: array c: the arrays have more than 1e7 elements in all",
+                 err(lsystem("A", nil, "define: { array a[1000][5000], b[1000][5000]; }\n"
+                             .. "define: { array c[2]; }\n")))
+    assert.equal("main.l:3: array a has more than 1e7 elements",
+                 err(lsystem("A", nil, "define: { array a[10000][1001]; }\n")))
+  end)
+
   it("refuse an array index that is not a number in range, NaN and infinity too", function ()
     assert.equal("index", derive("a[0/0] = 1;"):match("cpfg: (index) %S+ out of range 0..2 "
                                                       .. "of array a$"))

@@ -665,6 +665,10 @@ local function arrayinit (T, ls)
       size = size * dims[d]
     end
     if size > 1e7 then fail(T, a.pos, "array %s has more than 1e7 elements", a.name) end
+    T.arraysize = (T.arraysize or 0) + size     -- 1e7 numbers are 160 MB
+    if T.arraysize > 1e7 then
+      fail(T, a.pos, "array %s: the arrays have more than 1e7 elements in all", a.name)
+    end
     if a.init and #a.init > size then
       fail(T, a.pos, "array %s: %d values for %d elements", a.name, #a.init, size)
     end
