@@ -253,6 +253,11 @@ describe("lsys.cpfg.load's translated statements", function ()
     assert.equal("1|2|A|ff|1.500000|B\n", H.read(out))
   end)
 
+  it("refuse a derivation length over lsys's limit, naming its line", function ()
+    assert.equal("main.l:3: the derivation length is 4.29497e+08, not 0 to 10000000",
+                 err("#define N 429496720.5\n" .. lsystem("A"):gsub("length: 1", "length: N")))
+  end)
+
   it("refuse arrays of more than 1e7 elements in all", function ()
     assert.equal("main.l:4: array c: the arrays have more than 1e7 elements in all",
                  err(lsystem("A", nil, "define: { array a[1000][5000], b[1000][5000]; }\n"

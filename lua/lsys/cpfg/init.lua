@@ -803,8 +803,9 @@ local function translate (P, lsystems, opts)
   local steps = 1
   if main.dlength then
     steps = consteval(T, main.dlength, 1, "the derivation length")
-    if steps < 0 or steps > 1e9 then
-      fail(T, main.dlengthpos, "the derivation length is %g, not 0 to 1e9", steps)
+    if steps < 0 or steps > model.MAX_STEPS then         -- lsys's limit
+      fail(T, main.dlengthpos, "the derivation length is %g, not 0 to %d", steps,
+           model.MAX_STEPS)
     end
     steps = floor(steps)
     T.env.Z = steps + 0.0
