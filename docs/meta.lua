@@ -561,8 +561,9 @@ function lsys.viewer.key(name) end
 ---@return integer
 function lsys.viewer.pending() end
 
---- The directory of the Lua file that calls this ("." when not a file), for files next to a
---- model: `view = { dir = lsys.here(), contours = { [2] = "leaf.con" } }`.
+--- The directory of the Lua file that calls this ("." when not a file). A model's view
+--- reads its relative file names from the folder of the file that made the model already;
+--- `lsys.here()` gives that folder to other code (a file written next to the script).
 ---@return string
 function lsys.here() end
 

@@ -242,3 +242,27 @@ describe("issue 19 §1: changing a colour", function ()
                    errof(lsys.render, m, { palette = { [20] = "#ff0000" } }), 1, true)
   end)
 end)
+
+describe("issue 19 §2: files next to the model", function ()
+  it("are found from the model file's folder, from anywhere", function ()
+    local dir = H.tmpdir()
+    os.execute("mkdir -p '" .. dir .. "/plants' '" .. dir .. "/elsewhere'")
+    H.write(dir .. "/plants/leaf.con", "4 2 closed\n0 0\n1 0\n1 1\n0 1\n")
+    H.write(dir .. "/plants/leafy.lua", 'local lsys = require "lsys"\n'
+      .. 'return lsys.lsystem { axiom = "@#(1)F", view = { line_style = "cylinder",\n'
+      .. '  contours = { [1] = "leaf.con" } } }\n')
+    local bin = H.BIN:sub(1, 1) == "/" and H.BIN or os.getenv("PWD") .. "/" .. H.BIN
+    local out, code = H.sh("cd '" .. dir .. "/elsewhere' && " .. bin
+                           .. " render ../plants/leafy.lua -o leafy.png --size 32x32")
+    assert.equal(0, code, out)
+    assert.truthy(io.open(dir .. "/elsewhere/leafy.png"))
+    os.remove(dir .. "/plants/leaf.con")
+    out, code = H.sh("cd '" .. dir .. "/elsewhere' && " .. bin
+                     .. " derive ../plants/leafy.lua")
+    assert.equal(1, code)
+    assert.matches("view.contours[1]: cannot open '../plants/leaf.con': No such file or "
+                   .. "directory (looked for in '../plants' (view.dir: the model's folder unless "
+                   .. "set), then in the current folder)", out, 1, true)
+    H.rmdir(dir)
+  end)
+end)

@@ -95,7 +95,12 @@ local function entry (x, dir, what)
     error(format("%s: an lsys.Func or a file name expected, got %s", what, type(x)), 0)
   end
   -- relative to `dir` as the view's files are read
-  local ok, fs = pcall(readall, view.resolve(dir, file), math.tointeger(samples))
+  local path = view.resolve(dir, file)
+  local ok, fs = pcall(readall, path, math.tointeger(samples))
+  if not ok and path ~= file and file:sub(1, 1) ~= "/" then   -- then the current folder
+    local ok2, fs2 = pcall(readall, file, math.tointeger(samples))
+    if ok2 then ok, fs = ok2, fs2 end
+  end
   if not ok then error(format("%s: %s", what, tostring(fs)), 0) end
   return fs
 end

@@ -352,10 +352,13 @@ function M.lsystem (opts)
   local where = info and info.currentline > 0 and
                 format("%s:%d", info.short_src, info.currentline) or loading
   local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+  -- the folder of the file that makes the model: its view's files are read from there
+  local file = info and info.source:match("^@(.*)$") or loading
+  local dir = file and (file:match("^(.*)/[^/]*$") or ".")
   -- a model that fails leaves no module names behind (they count against the state's
   -- 2047, and nothing refers to them)
   local mark = core.names_mark()
-  local ok, m = pcall(make, opts, where, fail)
+  local ok, m = pcall(make, opts, where, fail, dir)
   if not ok then
     core.names_truncate(mark)
     error(m, 0)
@@ -364,12 +367,14 @@ function M.lsystem (opts)
 end
 
 -- The model of M.lsystem (which undoes its module names when this raises).
-make = function (opts, where, fail)
+make = function (opts, where, fail, dir)
   checkoptions(opts, fail)
   local rules = core.rules(opts.modules)
+  local v = opts.view or {}
+  if dir and type(v) == "table" and v.dir == nil then v = view.merge(v, { dir = dir }) end
   local self = setmetatable({
     axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = opts.view or {}, name = opts.name,
+    env = opts.env or {}, view = v, name = opts.name,
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
@@ -386,7 +391,7 @@ make = function (opts, where, fail)
   end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
-  local nv = view.normalize(opts.view, where or "model")   -- a bad view fails at definition
+  local nv = view.normalize(v, where or "model")   -- a bad view fails at definition
   self:_functions(opts.functions or nv.functions, nv.dir, fail)
   if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
