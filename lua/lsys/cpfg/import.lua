@@ -179,7 +179,14 @@ local function describe (o, keep, sub)
   local function rules (what, list)
     for i, r in ipairs(list or {}) do
       if type(r) == "string" then add(what, tostring(i), r)
-      else add(what, tostring(i), r[1], keep.rules[r[2]].src) end
+      else
+        local more = {}
+        for k, x in pairs(r) do
+          if k ~= 1 and k ~= 2 then more[#more + 1] = tostring(k) .. "=" .. tostring(x) end
+        end
+        sort(more)
+        add(what, tostring(i), r[1], keep.rules[r[2]].src, concat(more, " "))
+      end
     end
   end
   rules("productions", o.productions)
@@ -332,24 +339,6 @@ end
 
 local function quote (s) return format("%q", s) end
 
--- A list of rules: rule strings and { pattern, function } pairs; `head` is what comes
--- before the table ("productions ="), `close` what ends it ("},").
-local function rulelist (C, W, head, list, ind, close)
-  W("%s%s {", ind, head)
-  for _, r in ipairs(list) do
-    if type(r) == "string" then
-      W("%s  %s,", ind, quote(tidy(r)))
-    else
-      local k = C.keep.rules[r[2]]
-      local args, lines = body(C, k.src, ind .. "    ", k.L)
-      W("%s  { %s, function (%s)", ind, quote(r[1]), args)
-      for _, l in ipairs(lines) do W("%s", l) end
-      W("%s  end },", ind)
-    end
-  end
-  W("%s%s", ind, close or "},")
-end
-
 -- A value of the view as Lua text on one line, or nil when it is long or nested deeply.
 local function inline (x, depth)
   local t = type(x)
@@ -383,6 +372,33 @@ end
 local function viewkey (k)
   if type(k) == "string" and k:find("^[%a_][%w_]*$") and not KEYWORDS[k] then return k end
   return "[" .. (type(k) == "string" and quote(k) or tostring(k)) .. "]"
+end
+
+-- A list of rules: rule strings and { pattern, function } pairs; `head` is what comes
+-- before the table ("productions ="), `close` what ends it ("},").
+local function rulelist (C, W, head, list, ind, close)
+  W("%s%s {", ind, head)
+  for _, r in ipairs(list) do
+    if type(r) == "string" then
+      W("%s  %s,", ind, quote(tidy(r)))
+    else
+      local kept = C.keep.rules[r[2]]
+      local args, lines = body(C, kept.src, ind .. "    ", kept.L)
+      W("%s  { %s, function (%s)", ind, quote(r[1]), args)
+      for _, l in ipairs(lines) do W("%s", l) end
+      local more = {}          -- other fields of the rule (none yet), as they are
+      for k, x in pairs(r) do
+        if k ~= 1 and k ~= 2 then
+          local v = inline(x, 0)
+          if not v then error(format("cannot import: a rule's field %s", tostring(k)), 0) end
+          more[#more + 1] = format("%s = %s", viewkey(k), v)
+        end
+      end
+      sort(more)
+      W("%s  end%s },", ind, #more > 0 and ", " .. concat(more, ", ") or "")
+    end
+  end
+  W("%s%s", ind, close or "},")
 end
 
 -- One entry of the view table (multi-line when it does not fit on one).
@@ -676,6 +692,12 @@ local function subtable (C, W)
   W("  },")
 end
 
+-- The options modeltable writes by name (`name` is the .l file's: left out).
+local WRITTEN = {}
+for k in ([[axiom steps seed numbers ring ignore consider modules env name start start_each
+  end_each finish productions decomposition homomorphism max_depth homomorphism_seed sub
+  view]]):gmatch("%S+") do WRITTEN[k] = true end
+
 -- The lsys.lsystem { ... } call.
 local function modeltable (C, W, reset)
   local o = C.o
@@ -721,6 +743,16 @@ local function modeltable (C, W, reset)
   if o.homomorphism_seed then W("  homomorphism_seed = %d,", o.homomorphism_seed) end
   subtable(C, W)
   viewtable(C, W)
+  local more = {}              -- other options of the translation (none yet), as they are
+  for k, x in pairs(o) do
+    if not WRITTEN[k] then
+      local v = inline(x, 0)
+      if not v then error(format("cannot import: the option %s", tostring(k)), 0) end
+      more[#more + 1] = format("  %s = %s,", viewkey(k), v)
+    end
+  end
+  sort(more)
+  for _, l in ipairs(more) do W("%s", l) end
   W("}")
   if C.usesfunc then W("return m") end
 end
