@@ -196,6 +196,20 @@ describe("lsys import", function ()
     end
   end)
 
+  it("calls the view's positional functions from a statement block through the model",
+     function ()
+    local l, v = D .. "cli/func/bump.l", D .. "cli/func/bump.v"
+    local want, code = lsys("derive " .. l .. " " .. v)
+    assert.equal(0, code, want)
+    local out = dir .. "/bump.lua"
+    local msg, icode = lsys("import " .. l .. " " .. v .. " -o " .. out)
+    assert.equal(0, icode, msg)
+    assert.equal(want, (lsys("derive " .. out)))
+    local text = H.read(out)
+    assert.truthy(text:find("local function func (id, x) return m._func(id, x) end", 1, true))
+    assert.truthy(text:find("      L1.y = func(1.0, x)\n", 1, true), text)
+  end)
+
   it("imports a vlab object folder", function ()
     local out = dir .. "/object.lua"
     local msg, code = lsys("import " .. D .. "object -o " .. out)

@@ -788,6 +788,8 @@ function M.source (lfile, vfile, opts)
   -- rule calls one (`?(`)
   for _, s in pairs(o.sub or {}) do if s.productions ~= o.productions then C.subs = true end end
   for _, t in ipairs(C.texts) do if t:find("?(", 1, true) then C.subs = true end end
+  -- func(id, x) in a statement block calls the model's functions: `m` is the model
+  for _, t in ipairs(C.texts) do if t:find("%f[%w_]H%.func%(") then C.usesfunc = true end end
   lnames(C)
   C.nfuncs = 0
   for _, t in pairs(keep.rules) do if t then C.nfuncs = C.nfuncs + 1 end end
