@@ -227,8 +227,10 @@ local function translations (lfile, v, lopts)
                                                    cpp = lopts.cpp, keep = true })
   local ok, o2, keep2 = pcall(quietly, cpfg.options, lfile,
                               { view = v, defines = lopts.defines, keep = true, names = true })
-  if not ok then
-    return o, keep, false, "the built-in preprocessor reads the file otherwise"
+  if not ok then        -- (no reason to give when there is no #define to keep)
+    local text = cpp.readfile(lfile) or ""
+    return o, keep, false, text:find("#%s*[di][en][fc]") and
+                           "the built-in preprocessor reads the file otherwise" or nil
   end
   local d = keep2.defines
   if not next(d.values) then return o, keep, false end
@@ -792,7 +794,7 @@ function M.source (lfile, vfile, opts)
   for _, t in ipairs(C.texts) do if t:find("%f[%w_]H%.func%(") then C.usesfunc = true end end
   lnames(C)
   C.nfuncs = 0
-  for _, t in pairs(keep.rules) do if t then C.nfuncs = C.nfuncs + 1 end end
+  for _, t in ipairs(C.texts) do if t:find("^local E, H, L = ") then C.nfuncs = C.nfuncs + 1 end end
   for _, h in ipairs(keep.hooks) do if h.src:find("E%.Q%s*=[^=]") then C.resetQ = true end end
   for _, t in ipairs(C.texts) do if t:find("E%.Q%s*=[^=]") then C.resetQ = true end end
   -- the body first (it finds what the head must declare), then the head

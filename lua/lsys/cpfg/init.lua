@@ -34,6 +34,16 @@ for k in pairs(model.BUILTIN) do TAKEN[k] = true end
 
 local NOSTRING = {}   -- raised to give up the rule-string form of a rule
 
+-- Names a #define kept as a name may not have (lsys.cpfg.import): lsys's own, cpfg's
+-- reserved words, Lua's keywords, the derivation length's Q and Z.
+local function untakable ()
+  local t = { Q = true, Z = true }
+  for k in pairs(TAKEN) do t[k] = true end
+  for k in pairs(LUA_KEYWORDS) do t[k] = true end
+  for k in pairs(parse.RESERVED) do t[k] = true end
+  return t
+end
+
 local function fail (T, pos, fmt, ...)
   local file, line = T.P:where(pos)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
@@ -323,6 +333,13 @@ local function compile (T, src, pos)
     error({ cpfg = true, msg = format("%s:%d: internal error compiling the translation: %s",
                                       file, line, err) }, 0)
   end
+  if T.keep then        -- the function it makes, by its source and its locals L (import)
+    return function (...)
+      local f = chunk(...)
+      T.keep.rules[f] = { src = src, L = (select(3, ...)) }
+      return f
+    end
+  end
   return chunk
 end
 
@@ -468,9 +485,7 @@ local function production (T, ls, p, section, stochastic)
   out[#out + 1] = "end"
   local L = {}
   T.localtables[#T.localtables + 1] = L
-  local src = concat(out, "\n")
-  local f = compile(T, src, p.pos)(T.env, T.H, L)
-  if T.keep then T.keep.rules[f] = { src = src, L = L } end
+  local f = compile(T, concat(out, "\n"), p.pos)(T.env, T.H, L)
   return { pat, f }
 end
 
@@ -806,16 +821,6 @@ local function checkopts (opts, fname)
     end
   end
   return opts
-end
-
--- Names a #define kept as a name may not have (lsys.cpfg.import): lsys's own, cpfg's
--- reserved words, Lua's keywords, the derivation length's Q and Z.
-local function untakable ()
-  local t = { Q = true, Z = true }
-  for k in pairs(TAKEN) do t[k] = true end
-  for k in pairs(LUA_KEYWORDS) do t[k] = true end
-  for k in pairs(parse.RESERVED) do t[k] = true end
-  return t
 end
 
 --- The lsys.lsystem options of a cpfg L-system file, and the translation's details.
