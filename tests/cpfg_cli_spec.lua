@@ -160,14 +160,14 @@ describe("lsys import", function ()
     local text = H.read(out)
     for _, s in ipairs {
       '    { "F(l)", function (l)\n',
-      "      while L1.n < 2.0 do\n",
-      "      L1.s = l + L1.n\n",
-      '      return lsys.produce("F(?)", L1.s)\n',
+      "      L1.n = 0.0\n",
+      '      return lsys.produce("F(?)", L1.s',
       "  end_each = function ()\n    env.total = env.total + 1.0\n  end,\n",
       '  env.w = array("w", { 3 }, { 1.0, 2.0, 3.0 })\n',
     } do
       assert.truthy(text:find(s, 1, true), s)
     end
+    assert.truthy(text:find("\n      while %(?L1%.n[^\n]* < 2%.0 do\n"), text)
   end)
 
   it("writes the view, its files found from where the model file is", function ()
@@ -215,7 +215,8 @@ describe("lsys import", function ()
     local msg, code = lsys("import " .. D .. "object -o " .. out)
     assert.equal(0, code, msg)
     assert.equal("FFFFFFFFFFFFFFX\n", (lsys("derive " .. out)))
-    assert.truthy(H.read(out):find('  modules = "leaf",', 1, true))
+    assert.truthy(H.read(out):find('    "leaf(n) : n > 0.0 --> Fleaf(n - 1.0)",', 1, true),
+                  H.read(out))
   end)
 
   it("writes only the file -o names, whole", function ()

@@ -319,6 +319,12 @@ end
 -- The parameters and the body lines of a translated function's source (lsys.cpfg.options
 -- keep), indented by `ind`.
 local function body (C, src, ind, L)
+  -- a newline in a string (%q writes it as \ and a newline) as \n: one statement a line
+  local t = {}
+  for i, seg in ipairs(segments(src)) do
+    t[i] = seg.code and seg[1] or seg[1]:gsub("\\\n", "\\n")
+  end
+  src = concat(t)
   local lines = {}
   for l in (src .. "\n"):gmatch("([^\n]*)\n") do lines[#lines + 1] = l end
   local args = lines[2]:match("^return function %((.*)%)$")
@@ -825,6 +831,16 @@ function M.source (lfile, vfile, opts)
   if not chunk then error("cannot import: the written file does not compile: " .. err, 0) end
   local ok, r = pcall(chunk)
   if not ok then error("cannot import: the written file does not load: " .. tostring(r), 0) end
+  -- the positional functions the file's view gives must be the loaded model's
+  for i = 1, #(m._funclist or {}) do
+    for k = 0, 20 do
+      local a, b = m._func(i, k / 20), r._func(i, k / 20)
+      if a ~= b then
+        error(format("cannot import: the written file's positional function %d gives %.17g "
+                     .. "at %g, the loaded model's %.17g", i, b, k / 20, a), 0)
+      end
+    end
+  end
   return text
 end
 
