@@ -152,7 +152,7 @@ local function tidy (s, lua)
   return concat(out)
 end
 
-M.tidy = tidy
+M.tidy = tidy     -- (s [, lua]): what the writer makes of a rule string or a line of Lua
 
 -- The translations ------------------------------------------------------------------------
 
@@ -592,11 +592,9 @@ local function resetfn (C, W)
   W("-- every derivation starts afresh: variables at 0, arrays at their first values")
   W("local function reset ()")
   if #vars > 0 then
-    W("  for _, k in ipairs { %s } do env[k] = 0.0 end", concat((function ()
-      local q = {}
-      for i, k in ipairs(vars) do q[i] = quote(k) end
-      return q
-    end)(), ", "))
+    local q = {}
+    for i, k in ipairs(vars) do q[i] = quote(k) end
+    W("  for _, k in ipairs { %s } do env[k] = 0.0 end", concat(q, ", "))
   end
   if C.resetQ then W("  env.Q = 0.0") end
   if #tables > 0 then
