@@ -161,6 +161,10 @@ local function fail (file, line, fmt, ...)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
 end
 
+-- cpfg's number literals (lsys.cpfg.parse's etok)
+local NUMBER = { "^%d+%.%d*[eE][-+]?%d+$", "^%d*%.%d+[eE][-+]?%d+$", "^%d+%.%d*$", "^%d*%.%d+$",
+                 "^%d+$" }
+
 -- Removes /* */ comments (kept state across lines) and // comments, outside strings.
 local function decomment (text, st)
   local out, i, n = {}, 1, #text
@@ -330,12 +334,44 @@ local function evalif (expr, macros, file, line)
   return v ~= 0
 end
 
+-- A number as cpfg's lexer reads one (lsys.cpfg.parse's etok), the whole of `s`, or nil.
+local function number (s)
+  for _, p in ipairs(NUMBER) do
+    if s:find(p) then return tonumber(s) end
+  end
+  return nil
+end
+
+-- Records `#define name body` in `keep` (see M.builtin) when body is a plain number and
+-- the name may be kept; true when the name is kept from here on.
+local function keepdefine (keep, name, body, raw, file, line)
+  local v = number(body)
+  local was = keep.values[name]
+  if was ~= nil and v ~= was then keep.conflict = keep.conflict or name end
+  if v == nil or keep.taken[name] or not name:find("^%a") then return false end
+  if was == nil then
+    keep.values[name] = v + 0.0
+    keep.order[#keep.order + 1] = name
+    keep.where[name] = { file = file, line = line }
+    keep.notes[name] = raw:match("/%*%s*(.-)%s*%*/") or raw:match("//%s*(.-)%s*$")
+  end
+  return true
+end
+
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
 -- #endif, comments. Returns the located lines; raises { cpfg = true, msg = } on errors.
-function M.builtin (path, defines)
+-- With `keep` ({ taken = set of names }, for lsys.cpfg.import), a #define of a plain
+-- number (`#define RATE 1.5`, a name not in keep.taken) is not expanded in the text, only
+-- in #if: keep.values[name] is its value, keep.order the names in file order,
+-- keep.where[name] its file and line, keep.notes[name] the comment on its line;
+-- keep.conflict names one defined again with another value or undefined (the text is then
+-- not what cpp would give).
+function M.builtin (path, defines, keep)
   local macros = {}
   for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
+  if keep then keep.values, keep.order, keep.where, keep.notes = {}, {}, {}, {} end
+  local kept = {}    -- the names kept now: never expanded in the text (busy in `expand`)
   local lines = {}
   local seen = 0
   local function run (file, text, level)
@@ -391,13 +427,17 @@ function M.builtin (path, defines)
               local ps = {}
               for p in params:gmatch("[^,%s]+") do ps[#ps + 1] = p end
               macros[name] = { params = ps, body = body }
+              if kept[name] then keep.conflict, kept[name] = keep.conflict or name, nil end
             else
               name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
               if not name then fail(file, n, "#define without a name") end
               macros[name] = { body = body }
+              kept[name] = keep and keepdefine(keep, name, body, raw, file, n) or nil
             end
           elseif dir == "undef" and active() then
-            macros[rest:match("^[%a_][%w_]*") or ""] = nil
+            local name = rest:match("^[%a_][%w_]*") or ""
+            if kept[name] then keep.conflict = keep.conflict or name end
+            macros[name], kept[name] = nil, nil
           elseif dir == "include" and active() then
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
@@ -410,7 +450,7 @@ function M.builtin (path, defines)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then
-          lines[#lines + 1] = { file = file, line = n, text = expand(s, macros, {}, 0) }
+          lines[#lines + 1] = { file = file, line = n, text = expand(s, macros, kept, 0) }
         else
           lines[#lines + 1] = { file = file, line = n, text = "" }
         end
