@@ -251,7 +251,7 @@ describe("issue 19 §2: files next to the model", function ()
     H.write(dir .. "/plants/leafy.lua", 'local lsys = require "lsys"\n'
       .. 'return lsys.lsystem { axiom = "@#(1)F", view = { line_style = "cylinder",\n'
       .. '  contours = { [1] = "leaf.con" } } }\n')
-    local bin = H.BIN:sub(1, 1) == "/" and H.BIN or os.getenv("PWD") .. "/" .. H.BIN
+    local bin = H.ABSBIN
     local out, code = H.sh("cd '" .. dir .. "/elsewhere' && " .. bin
                            .. " render ../plants/leafy.lua -o leafy.png --size 32x32")
     assert.equal(0, code, out)

@@ -292,7 +292,7 @@ local function base (p) return p:match("([^/]*)$") end
 -- Writing ---------------------------------------------------------------------------------
 
 local LIB = { produce = "lsys.produce", nproduce = "lsys.nproduce", ran = "lsys.ran",
-              nran = "lsys.nran", func = "func" }
+              nran = "lsys.nran", func = "func", _srand = "lsys.srand" }
 
 -- A line of a translated function with the written file's names: env for E, cpfg for
 -- the helpers H, lsys.produce, math.floor, ..., the rule's own table for L.
@@ -457,6 +457,9 @@ local function viewtable (C, W)
   for _, k in ipairs(keys) do
     local x = v[k]
     if k == "palette" and C.palette then x = C.palette end
+    if k == "functions" and type(x) == "table" and not C.exactfuncs then
+      x = cpfg.cpfg_functions(x)      -- as the loaded model computes them
+    end
     viewentry(W, "    ", k, x)
   end
   W("  },")
@@ -776,7 +779,7 @@ function M.source (lfile, vfile, opts)
   local m = cpfg.load(lfile, vfile, lopts)           -- its errors, its warnings (once)
   local pal = opts.colormap or opts.materials
   local out = opts.out or (lfile:gsub("%.l$", "") .. ".lua")
-  local v = (vfile or pal) and m.view or nil
+  local v = m.view            -- the view file's, or cpfg's defaults the loader fills in
   local o, keep, named, why = translations(lfile, v, lopts)
   local C = { lfile = lfile, vfile = vfile, out = out, outdir = cpp.dirof(out), o = o,
               keep = keep, named = named, why = why, view = v, lname = {},

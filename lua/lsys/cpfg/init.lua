@@ -422,9 +422,8 @@ local function pattern (mods, params)
   return concat(t)
 end
 
--- The lsys text of a successor; `first`, when given, wraps the code of its first
--- parameter (the axiom's runs the Start: blocks first).
-local function successor (T, ctx, mods, first)
+-- The lsys text of a successor.
+local function successor (T, ctx, mods)
   if #mods == 0 then return "*" end
   local t = {}
   for _, m in ipairs(mods) do
@@ -433,7 +432,6 @@ local function successor (T, ctx, mods, first)
       local ps = {}
       for i, x in ipairs(m.params) do
         ps[i] = N(T, ctx, x)
-        if first then ps[i], first = first(ps[i]), nil end
       end
       s = s .. "(" .. concat(ps, ", ") .. ")"
     end
@@ -828,13 +826,8 @@ local function translate (P, lsystems, opts)
   o.ring = main.ring or nil
   o.ignore, o.consider = main.ignore, main.consider
   local actx = { mode = "s", scope = 1 }
-  -- cpfg runs the Start: blocks before it computes the axiom, lsys computes the axiom
-  -- first: an axiom that reads names calls the start hook from its first parameter
-  local read = {}
-  local walk = walknames({}, {}, read)
-  for _, m in ipairs(main.axiom) do for _, x in ipairs(m.params or {}) do walk(x) end end
-  local early = next(read) ~= nil and function (code) return "(_axstart() and " .. code .. ")" end
-  local ok, ax = pcall(successor, T, actx, main.axiom, early)
+  -- the axiom is evaluated after the start hook (the Start: blocks), as in cpfg
+  local ok, ax = pcall(successor, T, actx, main.axiom)
   if not ok then
     if ax == NOSTRING then fail(T, main.axiompos, "the axiom reads a variable set by a "
                                 .. "production") end
@@ -915,16 +908,8 @@ local function translate (P, lsystems, opts)
     if core.producing() then core.srand(x) else T.model:srand(x) end
     return 0.0
   end
-  local started = false     -- by the axiom, in this derivation
-  T.env._axstart = function ()
-    started = true
-    reset()
-    for _, f in ipairs(starts) do f() end
-    return true
-  end
   o.start = function (m)
     T.model = m
-    if started then started = false; return end
     reset()
     for _, f in ipairs(starts) do f() end
   end
@@ -983,8 +968,25 @@ local function cpfgfuncs (v)
   local list = func.collect(v.functions, v.dir, "view functions")
   local out = {}
   for i, f in ipairs(list) do
-    out[i] = func.new { points = f:points(), name = f:name(), samples = f:samples(),
+    out[i] = f:approx() == "cpfg" and f or
+             func.new { points = f:points(), name = f:name(), samples = f:samples(),
                         approx = "cpfg" }
+  end
+  return out
+end
+
+--- A view's `functions` entries marked to be computed as cpfg approximates them
+-- ({ file = NAME, samples = N, approx = "cpfg" }), as `lsys import` writes them.
+function M.cpfg_functions (list)
+  local out = {}
+  for i, x in ipairs(list) do
+    if type(x) == "table" and x.file then
+      out[i] = { file = x.file, samples = x.samples, approx = "cpfg" }
+    elseif type(x) == "string" then
+      out[i] = { file = x, approx = "cpfg" }
+    else
+      out[i] = x
+    end
   end
   return out
 end
