@@ -390,11 +390,19 @@ function Scene:find(i) end
 function Scene:edges(k) end
 
 --- Writes the geometry: `.obj` (and a `.mtl` next to it), `.ply` (binary) or `.glb`
---- (glTF 2.0 binary). Raises `cannot open 'PATH' for writing: REASON` and
---- `scene:save: unknown format of 'PATH' (use .obj, .ply or .glb)`.
+--- (glTF 2.0 binary), replacing the file atomically. Colours are written linear in GLB and
+--- MTL (the palette's sRGB through the sRGB transfer function), as 8-bit sRGB in PLY.
+--- Line-style segments are lines unless `opts.lines = "tubes"`: then closed tubes of
+--- `opts.sides` sides (3 to 1024; default the view's `contour_sides`, else 8) whose diameter
+--- is the line width (pixels) times `opts.pixel_size` scene units (> 0; default the scene's
+--- largest extent / 720: as thick as in an 800 x 800 render). docs/drawing.md, section 5.
+--- Raises `cannot open 'PATH' for writing: REASON`, `scene:save: unknown format of 'PATH'
+--- (use .obj, .ply or .glb)`, `scene:save: unknown option 'K' (use lines, sides,
+--- pixel_size)` and `scene:save: opts.K must be ...` for a bad option.
 ---@param path string
+---@param opts? { lines?: "lines"|"tubes", sides?: integer, pixel_size?: number }
 ---@return true
-function Scene:save(path) end
+function Scene:save(path, opts) end
 
 --- Deforms the scene in place (docs/components.md, "Deformations: FFD and Hyperpatch"): by a
 --- Hyperpatch, or by a function `f(x, y, z) -> x, y, z` whose normals come from central
