@@ -266,3 +266,34 @@ describe("issue 19 §2: files next to the model", function ()
     H.rmdir(dir)
   end)
 end)
+
+describe("issue 19 §15: lsys export --lines tubes", function ()
+  it("writes line-style segments as tubes, no GL lines", function ()
+    local glb = require "tests.glb"
+    local dir = H.tmpdir()
+    local function counts (extra)
+      local out, code = H.sh(H.BIN .. " export examples/abop/fig1_24c.lua --steps 3 -o "
+                             .. dir .. "/x.glb" .. extra)
+      assert.equal(0, code, out)
+      local doc, bin = glb.read(dir .. "/x.glb")
+      local tris, lines = 0, 0
+      for _, pr in ipairs(glb.primitives(doc, bin)) do
+        if pr.mode == 4 then tris = tris + pr.triangles
+        elseif pr.mode == 1 then lines = lines + pr.segments end
+      end
+      return tris, lines, out
+    end
+    local t0, l0 = counts("")
+    assert.equal(0, t0)
+    assert.equal(512, l0)
+    local t1, l1, out = counts(" --lines tubes")
+    assert.equal(0, l1)
+    assert.is_true(t1 >= 512 * 2 * 8, tostring(t1))      -- at least a band of 8 sides each
+    assert.matches("512 lines as tubes", out, 1, true)
+    local msg, code = H.sh(H.BIN .. " export examples/abop/fig1_24c.lua -o " .. dir
+                           .. "/x.glb --lines pipes")
+    assert.equal(2, code)
+    assert.matches("--lines expects 'lines' or 'tubes', got 'pipes'", msg, 1, true)
+    H.rmdir(dir)
+  end)
+end)

@@ -116,8 +116,8 @@ Options:
 ]=]
 
 HELP.export = [[
-usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--steps N] [--seed S]
-                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps N]
+                   [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
                    [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
 
 Derives and interprets MODEL (as for `lsys render`: a cpfg MODEL.l takes its VIEW.v after
@@ -125,6 +125,9 @@ it) and writes its geometry: Wavefront OBJ (with a .mtl file next
 to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT.
 
 Options: as for `lsys render`; -o is required.
+  --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800
+                  render) instead of lines, which most viewers draw one pixel wide
+                  (default: --lines lines)
 ]]
 
 HELP.view = [=[
@@ -655,6 +658,7 @@ local RENDER_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   output = "value", size = "value", progress = "flag", help = "flag",
   short = { h = "help", o = "output" }, map = "value", mat = "value", define = "list",
+  lines = "value",
 }
 
 -- The number of each module name in 's', as a sorted list of { name, count }.
@@ -802,6 +806,7 @@ end
 function commands.render (args)
   local opts, pos = parse("render", RENDER_OPTS, args, 2)
   if opts.help then out(HELP.render) return 0 end
+  if opts.lines ~= nil then usage("render", "--lines applies to export only") end
   local w, h = size_opt("render", opts.size)
   w, h = w or 800, h or 800
   local outpath = opts.output
@@ -839,10 +844,13 @@ function commands.export (args)
   if ext ~= "obj" and ext ~= "ply" and ext ~= "glb" then
     usage("export", "the output must end in .obj, .ply or .glb, got '%s'", outpath)
   end
+  if opts.lines ~= nil and opts.lines ~= "lines" and opts.lines ~= "tubes" then
+    usage("export", "--lines expects 'lines' or 'tubes', got '%s'", opts.lines)
+  end
   local scene = scene_of("export", opts, pos)
-  scene:save(outpath)
-  out(format("wrote %s (%d vertices, %d triangles, %d lines)\n", outpath, scene.nvertices,
-    scene.ntriangles, scene.nlines))
+  scene:save(outpath, { lines = opts.lines })
+  out(format("wrote %s (%d vertices, %d triangles, %d lines%s)\n", outpath, scene.nvertices,
+    scene.ntriangles, scene.nlines, opts.lines == "tubes" and " as tubes" or ""))
   return 0
 end
 
