@@ -1124,10 +1124,14 @@ local Lstring = {}
 function Lstring:sub(i, j) end
 
 --- The text of modules `i` to `j`, like `tostring(s:sub(i, j))` without making an Lstring.
+--- With `digits`, parameters are rounded to that many significant digits (`F(0.49)` for
+--- 0.48999999999999994 with 15; whole numbers below 1e15 stay whole): what the REPL shows.
+--- Raises `bad argument #4 to 'text' (digits must be from 1 to 17)`.
 ---@param i? integer Default 1.
 ---@param j? integer Default -1.
+---@param digits? integer 1 to 17. Default: exact (the shortest text that reads back as the same double).
 ---@return string
-function Lstring:text(i, j) end
+function Lstring:text(i, j, digits) end
 
 --- The name and the parameters (floats) of module `i`; negative `i` counts from the end.
 --- Raises `bad argument #1 to 'module' (module index out of range)`.
