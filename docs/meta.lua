@@ -566,6 +566,19 @@ function lsys.viewer.pending() end
 ---@return string
 function lsys.here() end
 
+--- The REPL (`lsys` with no arguments; docs/viewer.md#the-repl) sets `lsys.repl` to its
+--- module, `require "lsys.repl"`.
+lsys.repl = {}
+
+--- How many significant digits the REPL shows of the floats in Lstrings and tables: 1 to
+--- 17 (17 shows every value exactly: the shortest text that reads back as the same
+--- number); nothing restores the defaults, 15 in Lstrings (`F(0.49)`) and 6 in tables.
+--- Numbers on their own print as in `lua` whatever the setting; `tostring` and `print`
+--- always give every digit. Raises `digits: give a whole number from 1 to 17, or nothing
+--- for the defaults`.
+---@param n? integer
+function lsys.repl.digits(n) end
+
 --- View options and cpfg view files (docs/drawing.md §2). The file readers live in
 --- lsys.viewfile; this module gives them under the same names.
 ---@class lsys.view

@@ -416,8 +416,11 @@ describe("what the REPL prints", function()
       "| `s:count%(name%)` |[^\n]*\n\n%(the whole section: help \"Lstrings\"%)\n$", out)
     out = pipe { 'help "lsys.show"' }
     assert.matches("^## lsys%.show\n", out)
-    out = pipe { 'help "nosuch"', "help(42)", "help(print)" }
+    out = pipe { "help(lsys.repl.digits)" }   -- from the declarations of docs/meta.lua
+    assert.matches("^function lsys%.repl%.digits%(n%)\nHow many significant digits", out)
+    out = pipe { 'help "nosuch"', "help(42)", "help({})", "help(print)" }
     assert.equal("no help for nosuch; try help()\nno help for 42; try help()\n" ..
+      "no help for this table; try help()\n" ..
       "print is Lua's: see https://www.lua.org/manual/5.4/manual.html#pdf-print\n", out)
   end)
 

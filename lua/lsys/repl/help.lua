@@ -399,8 +399,10 @@ function M.new (opts)
     if name ~= nil then return show(name) end
     local kind = type(lsys) == "table" and type(lsys.type) == "function" and lsys.type(x)
     if kind and KIND_TOPIC[kind] then return show(KIND_TOPIC[kind]) end
-    out(format("no help for %s; try help()\n",
-      type(x) == "function" and "this function" or tostring(x)))
+    local mt = getmetatable(x)
+    local label = (type(x) == "function" or type(x) == "table" and
+      not (type(mt) == "table" and mt.__tostring)) and "this " .. type(x) or tostring(x)
+    out(format("no help for %s; try help()\n", label))
   end
 end
 
