@@ -575,6 +575,19 @@ function lsys.viewer.pending() end
 ---@return string
 function lsys.here() end
 
+--- The REPL (`lsys` with no arguments; docs/viewer.md#the-repl) sets `lsys.repl` to its
+--- module, `require "lsys.repl"`.
+lsys.repl = {}
+
+--- How many significant digits the REPL shows of the floats in Lstrings and tables: 1 to
+--- 17 (17 shows every value exactly: the shortest text that reads back as the same
+--- number); nothing restores the defaults, 15 in Lstrings (`F(0.49)`) and 6 in tables.
+--- Numbers on their own print as in `lua` whatever the setting; `tostring` and `print`
+--- always give every digit. Raises `digits: give a whole number from 1 to 17, or nothing
+--- for the defaults`.
+---@param n? integer
+function lsys.repl.digits(n) end
+
 --- View options and cpfg view files (docs/drawing.md §2). The file readers live in
 --- lsys.viewfile; this module gives them under the same names.
 ---@class lsys.view
@@ -1133,10 +1146,14 @@ local Lstring = {}
 function Lstring:sub(i, j) end
 
 --- The text of modules `i` to `j`, like `tostring(s:sub(i, j))` without making an Lstring.
+--- With `digits`, parameters are rounded to that many significant digits (`F(0.49)` for
+--- 0.48999999999999994 with 15; whole numbers below 1e15 stay whole): what the REPL shows.
+--- Raises `bad argument #4 to 'text' (digits must be from 1 to 17)`.
 ---@param i? integer Default 1.
 ---@param j? integer Default -1.
+---@param digits? integer 1 to 17. Default: exact (the shortest text that reads back as the same double).
 ---@return string
-function Lstring:text(i, j) end
+function Lstring:text(i, j, digits) end
 
 --- The name and the parameters (floats) of module `i`; negative `i` counts from the end.
 --- Raises `bad argument #1 to 'module' (module index out of range)`.

@@ -307,8 +307,11 @@ HELP.repl = [[
 usage: lsys [repl]
 
 The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
-prints its values; Lstrings print abbreviated, scenes as a summary. Incomplete statements
-continue on `>>` lines. Ctrl-C interrupts a running evaluation; Ctrl-D quits.
+prints its values; Lstrings print abbreviated, scenes as a summary, tables one level deep.
+Incomplete statements continue on `>>` lines; a `local` stays defined for the lines after
+it. help() gives an overview, help "derive" or help(lsys.render) the manual's section.
+With readline: Tab completes names, and the history is kept in ~/.lsys_history. Ctrl-C
+clears the line at the prompt and interrupts a running evaluation; Ctrl-D quits.
 
 lsys.show(x) opens the viewer window on a model, an Lstring or a scene (or updates it) and
 returns at once; clicks on modules in the window are printed at the prompt (set
