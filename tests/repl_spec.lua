@@ -486,7 +486,7 @@ describe("lsys.repl's parts", function()
     local all = table.concat(complete(env, "m:"), " ")
     assert.matches("m:derive", all)
     assert.not_matches("m:_", all)
-    assert.same({ "m:_call", "m:_checkfuncs", "m:_configure", "m:_core" },
+    assert.same({ "m:_call", "m:_checkcounts", "m:_checkfuncs", "m:_configure", "m:_core" },
                 complete(env, "m:_c"))
     -- in a string: nil, for readline's file names
     assert.is_nil(C.complete(env, 'dofile("exa', 8, 11))
