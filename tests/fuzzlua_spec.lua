@@ -1,7 +1,8 @@
 -- The corpora of the Lua fuzzer (tests/fuzz/lua/fuzz.lua) replayed through their targets:
 -- every saved input must load or fail with the expected error, without a finding (a Lua
--- runtime error inside lsys, a failed check, a rule expression that reaches a global, a
--- hang). Fuzzing itself is `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
+-- runtime error inside lsys, a failed check, a rule expression or translated cpfg code that
+-- reaches a global, a hang). Fuzzing itself is
+-- `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
 require "tests.helper"
 local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
 local have_core = pcall(require, "lsys.core")
@@ -47,6 +48,13 @@ describe("the Lua fuzzer's corpora", function ()
     local counts = replay("svg")
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
+
+  it("load and derive or fail with file and line as cpfg L-system files, without reaching "
+     .. "globals", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("cpfg")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
 end)
 
 describe("the Lua fuzzer", function ()
@@ -64,6 +72,22 @@ describe("the Lua fuzzer", function ()
     assert.equal("finding", kind)
     assert.equal("rule expression reached global 'os'", msg)
     assert.equal("table", type(os))          -- _G is back
+  end)
+
+  it("finds translated cpfg code that reaches a global", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local t = fuzz.target("cpfg")
+    local F = fuzz.new(t)
+    local run = t.run
+    t.run = function ()
+      return load("return io", "=main.l:1")()   -- as the translation compiles rule code
+    end
+    local kind, msg = F.exec("")
+    t.run = run
+    t.finish()
+    assert.equal("finding", kind)
+    assert.equal("translated code reached global 'io'", msg)
+    assert.equal("table", type(io))          -- _G is back
   end)
 
   it("reports an input that overruns its time budget", function ()

@@ -4,9 +4,10 @@
 #
 #   tools/fuzz.sh [SECONDS] [NAME...] [--c | --lua] [--no-merge]
 #
-# NAME: parsers contour surface derive expr png export func (C), view palette ruleexpr (Lua);
-# default: all of them (--c: the C ones, --lua: the Lua ones). For the C targets it configures
-# build-fuzz/ with clang and LSYS_BUILD_FUZZ=ON, builds the targets, then runs each for
+# NAME: parsers contour surface derive expr png export func (C), view palette ruleexpr sketch
+# svg cpfg (Lua); default: all of them (--c: the C ones, --lua: the Lua ones). For the C
+# targets it configures build-fuzz/ with clang and LSYS_BUILD_FUZZ=ON, builds the targets,
+# then runs each for
 # SECONDS (default 600), at most JOBS (default nproc) at a time, on a scratch copy of its
 # corpus (build-fuzz/work/<name>/), with -max_total_time, -rss_limit_mb, -malloc_limit_mb (a
 # larger single allocation is a finding: a PNG chunk once asked for 1.9 GB), its dictionary

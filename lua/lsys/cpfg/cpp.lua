@@ -12,13 +12,29 @@ local _ENV = nil
 
 local M = {}
 
+-- The most bytes of one file: an L-system file is text of a few kilobytes, and an
+-- #include of /dev/zero must not take the memory.
+local MAXBYTES = 16 * 1024 * 1024
+
+-- The text of a file, or nil and "PATH: why".
 local function readfile (path)
   local f, err = io.open(path, "rb")
   if not f then return nil, err end
-  local s = f:read("a")
-  f:close()
-  if s == nil then return nil, path .. ": cannot be read" end
-  return s
+  local parts, size = {}, 0
+  while true do
+    local s, rerr = f:read(65536)
+    if s == nil then
+      f:close()
+      if rerr then return nil, path .. ": cannot be read" end
+      return concat(parts)
+    end
+    size = size + #s
+    if size > MAXBYTES then
+      f:close()
+      return nil, format("%s: larger than %d MiB", path, MAXBYTES // (1024 * 1024))
+    end
+    parts[#parts + 1] = s
+  end
 end
 M.readfile = readfile
 
@@ -78,7 +94,9 @@ local function marked (out, main, base)
       n = n + 1
     end
   end
-  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  while #lines > 1 and lines[#lines].text == "" do remove(lines) end
+  -- an empty file is one empty line, so that a message about it names the file
+  if #lines == 0 then lines[1] = { file = main, line = 1, text = "" } end
   return lines
 end
 
@@ -175,25 +193,31 @@ local function decomment (text, st)
       st.incomment, i = false, e + 2
       out[#out + 1] = " "
     else
-      local c = text:sub(i, i)
-      if c == "/" and text:sub(i + 1, i + 1) == "*" then
-        st.incomment, i = true, i + 2
-      elseif c == "/" and text:sub(i + 1, i + 1) == "/" then
+      local a = text:find('[/"]', i)
+      if not a then
+        out[#out + 1] = text:sub(i)
         break
-      elseif c == '"' then
-        local e = text:find('"', i + 1, true) or n
-        out[#out + 1] = text:sub(i, e)
+      end
+      out[#out + 1] = text:sub(i, a - 1)
+      local c2 = text:sub(a + 1, a + 1)
+      if text:sub(a, a) == '"' then
+        local e = text:find('"', a + 1, true) or n
+        out[#out + 1] = text:sub(a, e)
         i = e + 1
+      elseif c2 == "*" then
+        st.incomment, i = true, a + 2
+      elseif c2 == "/" then
+        break
       else
-        out[#out + 1] = c
-        i = i + 1
+        out[#out + 1] = "/"
+        i = a + 1
       end
     end
   end
   return concat(out)
 end
 
--- Splits text into identifier tokens and everything else.
+-- Splits text into identifier tokens, numbers, strings and single characters.
 local function tokens (s)
   local t, i = {}, 1
   while i <= #s do
@@ -203,6 +227,9 @@ local function tokens (s)
       i = b + 1
     else
       local a2, b2 = s:find("^%d[%w%.]*", i)
+      if not a2 and s:sub(i, i) == '"' then     -- a string: no macros inside, as in C
+        a2, b2 = i, s:find('"', i + 1, true) or #s
+      end
       if a2 then
         t[#t + 1] = { s = s:sub(a2, b2) }
         i = b2 + 1
@@ -217,74 +244,104 @@ end
 
 local expand
 
--- Reads a function-like macro's arguments from token list t after position i (the '(');
--- returns the argument texts and the index after ')', or nil when the call is not closed.
-local function macroargs (t, i)
-  local args, cur, depth = {}, {}, 0
-  local j = i + 1
-  while j <= #t do
-    local s = t[j].s
-    if s == "(" then depth = depth + 1
-    elseif s == ")" then
-      if depth == 0 then
-        args[#args + 1] = concat(cur)
-        return args, j + 1
-      end
-      depth = depth - 1
-    elseif s == "," and depth == 0 then
-      args[#args + 1] = concat(cur)
-      cur = {}
-      goto continue
-    end
-    cur[#cur + 1] = s
-    ::continue::
-    j = j + 1
+-- The index of the ')' that closes each '(' of token list t (none for an unclosed one):
+-- one pass, so that a line of many unclosed calls is not scanned once per call.
+local function matching (t)
+  local close, stack = {}, {}
+  for j, tk in ipairs(t) do
+    if tk.s == "(" then stack[#stack + 1] = j
+    elseif tk.s == ")" and #stack > 0 then close[remove(stack)] = j end
   end
-  return nil
+  return close
 end
 
-expand = function (s, macros, busy, depth)
-  if depth > 64 then return s end
+-- Reads a function-like macro's arguments from token list t after position i (the '(',
+-- closed at close[i]); returns the argument texts and the index after ')', or nil when
+-- the call is not closed.
+local function macroargs (t, i, close)
+  local e = close[i]
+  if not e then return nil end
+  local args, cur, depth = {}, {}, 0
+  for j = i + 1, e - 1 do
+    local s = t[j].s
+    if s == "(" then depth = depth + 1
+    elseif s == ")" then depth = depth - 1 end
+    if s == "," and depth == 0 then
+      args[#args + 1] = concat(cur)
+      cur = {}
+    else
+      cur[#cur + 1] = s
+    end
+  end
+  args[#args + 1] = concat(cur)
+  return args, e + 1
+end
+
+-- The longest text that the macros of one line may expand to.
+local MAXEXPAND = 100000
+
+-- Expands the macros in `s`. `st` is { file =, line =, left = } for the line: `left`
+-- counts down the characters the expansion may still produce, as they are produced (a
+-- macro that doubles its text at each of 30 levels must fail, not take the memory).
+expand = function (s, macros, busy, depth, st)
+  if depth > 64 then fail(st.file, st.line, "macros nested more than 64 deep") end
   local t = tokens(s)
-  local out, i = {}, 1
+  local out, i, close = {}, 1, nil
   while i <= #t do
     local tk = t[i]
     local m = tk.id and macros[tk.s]
+    local x
     if m and not busy[tk.s] then
       if m.params then
         local j = i + 1
         while t[j] and t[j].s:match("^%s$") do j = j + 1 end
         local args, nexti
-        if t[j] and t[j].s == "(" then args, nexti = macroargs(t, j) end
+        if t[j] and t[j].s == "(" then
+          close = close or matching(t)
+          args, nexti = macroargs(t, j, close)
+        end
         if args then
           local bind = {}
           for k, p in ipairs(m.params) do
-            bind[p] = expand(args[k] or "", macros, busy, depth + 1)
+            bind[p] = expand(args[k] or "", macros, busy, depth + 1, st)
           end
           local body = {}
           for _, bt in ipairs(tokens(m.body)) do
             body[#body + 1] = bt.id and bind[bt.s] or bt.s
           end
           busy[tk.s] = true
-          out[#out + 1] = expand(concat(body), macros, busy, depth + 1)
+          x = expand(concat(body), macros, busy, depth + 1, st)
           busy[tk.s] = nil
           i = nexti
-        else
-          out[#out + 1] = tk.s
-          i = i + 1
         end
       else
         busy[tk.s] = true
-        out[#out + 1] = expand(m.body, macros, busy, depth + 1)
+        x = expand(m.body, macros, busy, depth + 1, st)
         busy[tk.s] = nil
         i = i + 1
       end
-    else
-      out[#out + 1] = tk.s
-      i = i + 1
     end
+    if not x then          -- a token of the final text (arguments: once per expansion)
+      x = tk.s
+      i = i + 1
+      st.left = st.left - #x
+      if st.left < 0 then
+        fail(st.file, st.line, "macro expansion longer than %d characters", MAXEXPAND)
+      end
+    end
+    out[#out + 1] = x
   end
   return concat(out)
+end
+
+-- Expands the macros of one line (`file`, `line`); a line without a macro name is as is.
+local function expandline (s, macros, file, line, kept)
+  for id in s:gmatch("[%a_][%w_]*") do
+    if macros[id] and not (kept and kept[id]) then
+      return expand(s, macros, kept or {}, 0, { file = file, line = line, left = MAXEXPAND })
+    end
+  end
+  return s
 end
 
 -- Evaluates a parsed #if expression with C's integer-ish semantics (comparisons give 0/1).
@@ -321,7 +378,7 @@ local function evalif (expr, macros, file, line)
   expr = expr:gsub("defined%s*%(%s*([%a_][%w_]*)%s*%)", function (n)
     return macros[n] and " 1 " or " 0 " end)
   expr = expr:gsub("defined%s+([%a_][%w_]*)", function (n) return macros[n] and " 1 " or " 0 " end)
-  expr = expand(expr, macros, {}, 0)
+  expr = expandline(expr, macros, file, line)
   local parse = require("lsys.cpfg.parse")
   local ok, v = pcall(function ()
     local P = parse.new({ { file = file, line = line, text = expr } })
@@ -358,6 +415,36 @@ local function keepdefine (keep, name, body, raw, file, line)
   return true
 end
 
+-- #define: `rest` is the text after the directive, on `line` of `file`; returns the name.
+local function define (rest, macros, file, line)
+  local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
+  if name then
+    local ps = {}
+    if params:find("%S") then
+      for p in (params .. ","):gmatch("([^,]*),") do
+        local q = p:match("^%s*([%a_][%w_]*)%s*$")
+        if not q then
+          p = p:match("^%s*(.-)%s*$")
+          fail(file, line, "#define %s: '%s' is not a parameter name", name,
+               #p > 30 and p:sub(1, 30) .. "..." or p)
+        end
+        ps[#ps + 1] = q
+      end
+    end
+    macros[name] = { params = ps, body = body }
+  else
+    name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
+    if not name then fail(file, line, "#define without a name") end
+    macros[name] = { body = body }
+  end
+  return name
+end
+
+-- The most lines the built-in preprocessor reads, counting each #include of a file anew
+-- (files that include each other twice would otherwise run for hours), and the most text,
+-- as read and as the macros expand it.
+local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
+
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
 -- #endif, comments. Returns the located lines; raises { cpfg = true, msg = } on errors.
@@ -373,7 +460,8 @@ function M.builtin (path, defines, keep)
   if keep then keep.values, keep.order, keep.where, keep.notes = {}, {}, {}, {} end
   local kept = {}    -- the names kept now: never expanded in the text (busy in `expand`)
   local lines = {}
-  local seen = 0
+  local seen, size = 0, 0
+  local texts = {}      -- path -> text: a file included many times is read once
   local function run (file, text, level)
     if level > 32 then fail(file, 1, "#include nested too deeply") end
     local st = { incomment = false }
@@ -382,8 +470,10 @@ function M.builtin (path, defines, keep)
     local n, pending = 0, nil
     for raw in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
       n = n + 1
-      seen = seen + 1
-      if seen > 1e6 then fail(file, n, "too many lines") end
+      seen, size = seen + 1, size + #raw
+      if seen > MAXLINES then
+        fail(file, n, "more than %d lines with the #include files", MAXLINES)
+      end
       local s = decomment(raw, st)
       if pending then s, pending = pending .. s, nil end
       if s:sub(-1) == "\\" then
@@ -422,17 +512,12 @@ function M.builtin (path, defines, keep)
           elseif dir == "endif" then
             if not remove(cond) then fail(file, n, "#endif without #if") end
           elseif active() and dir == "define" then
-            local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
-            if name then
-              local ps = {}
-              for p in params:gmatch("[^,%s]+") do ps[#ps + 1] = p end
-              macros[name] = { params = ps, body = body }
+            local name = define(rest, macros, file, n)
+            local m = macros[name]
+            if m.params then
               if kept[name] then keep.conflict, kept[name] = keep.conflict or name, nil end
             else
-              name, body = rest:match("^([%a_][%w_]*)%s*(.*)$")
-              if not name then fail(file, n, "#define without a name") end
-              macros[name] = { body = body }
-              kept[name] = keep and keepdefine(keep, name, body, raw, file, n) or nil
+              kept[name] = keep and keepdefine(keep, name, m.body, raw, file, n) or nil
             end
           elseif dir == "undef" and active() then
             local name = rest:match("^[%a_][%w_]*") or ""
@@ -442,15 +527,23 @@ function M.builtin (path, defines, keep)
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
             local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
-            local t = readfile(p)
-            if not t then fail(file, n, "%s: No such file or directory", inc) end
+            local t, why = texts[p], nil
+            if not t then t, why = readfile(p) end
+            if not t then fail(file, n, "%s: %s", inc, why:match("^.*: (.-)$") or why) end
+            texts[p] = t
             run(p, t, level + 1)
           elseif dir == "error" and active() then
             fail(file, n, "#error %s", rest)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then
-          lines[#lines + 1] = { file = file, line = n, text = expand(s, macros, kept, 0) }
+          local x = expandline(s, macros, file, n, kept)
+          size = size + #x
+          if size > MAXTEXT then
+            fail(file, n, "more than %d MiB of text with the #include files and macros",
+                 MAXTEXT // (1024 * 1024))
+          end
+          lines[#lines + 1] = { file = file, line = n, text = x }
         else
           lines[#lines + 1] = { file = file, line = n, text = "" }
         end
@@ -462,7 +555,7 @@ function M.builtin (path, defines, keep)
   local text, err = readfile(path)
   if not text then error({ cpfg = true, msg = err }, 0) end
   run(path, text, 0)
-  while #lines > 0 and lines[#lines].text == "" do remove(lines) end
+  while #lines > 1 and lines[#lines].text == "" do remove(lines) end
   return lines
 end
 

@@ -104,8 +104,8 @@ local function aindex (a, ...)
   local k = 0
   for d = 1, n do
     local i = trunc((select(d, ...)))
-    if i < 0 or i >= a.dims[d] then
-      error(format("cpfg: index %d out of range 0..%d of array %s", i, a.dims[d] - 1, a.name), 0)
+    if not (i >= 0 and i < a.dims[d]) then      -- a NaN index too
+      error(format("cpfg: index %g out of range 0..%d of array %s", i, a.dims[d] - 1, a.name), 0)
     end
     k = k * a.dims[d] + i
   end
@@ -114,6 +114,13 @@ end
 function H._aget (a, ...) return a.v[aindex(a, ...)] end
 function H._aset (a, x, ...) a.v[aindex(a, ...)] = x end
 function H._stop () return 0.0 end
+-- One conversion of printf; without its flags, width and precision when Lua's format
+-- refuses them (a width over 99, '#' with %d: C's printf takes them).
+local function cformat (spec, c, x)
+  local ok, s = pcall(format, "%" .. spec .. c, x)
+  if ok then return s end
+  return format("%" .. c, x)
+end
 -- printf: C's format on numbers; %d and the other integer conversions take the integer
 -- part; length modifiers (%lf, %ld) are accepted and mean nothing, as for C's printf of
 -- a double
@@ -126,10 +133,10 @@ function H._printf (fmt, ...)
     if c:find("[diouxXc]") then
       x = trunc(x)
       if c == "i" or c == "u" then c = "d" end
-      return format("%" .. flags .. c, math.tointeger(x) or 0)
+      return cformat(flags, c, math.tointeger(x) or 0)
     end
     if c == "s" then return "" end
-    return format("%" .. flags .. c, x)
+    return cformat(flags, c, x)
   end)
   io_write(out)
   return 0.0
@@ -402,7 +409,14 @@ end
 
 -- Modules --------------------------------------------------------------------------------
 
-local function mangle (name) return LUA_KEYWORDS[name] and "_p_" .. name or name end
+-- A parameter's Lua name: with a prefix when it is a Lua keyword, a name the translation
+-- calls in rule strings (pi, abs: TAKEN) or a table of the function form (E, H, L).
+local function mangle (name)
+  if LUA_KEYWORDS[name] or TAKEN[name] or name == "E" or name == "H" or name == "L" then
+    return "_p_" .. name
+  end
+  return name
+end
 
 -- The lsys text of a pattern (formal parameters) and the parameters it binds.
 local function pattern (mods, params)
@@ -667,6 +681,10 @@ local function arrayinit (T, ls)
       size = size * dims[d]
     end
     if size > 1e7 then fail(T, a.pos, "array %s has more than 1e7 elements", a.name) end
+    T.arraysize = (T.arraysize or 0) + size     -- 1e7 numbers are 160 MB
+    if T.arraysize > 1e7 then
+      fail(T, a.pos, "array %s: the arrays have more than 1e7 elements in all", a.name)
+    end
     if a.init and #a.init > size then
       fail(T, a.pos, "array %s: %d values for %d elements", a.name, #a.init, size)
     end
@@ -809,8 +827,9 @@ local function translate (P, lsystems, opts)
   local steps = 1
   if main.dlength then
     steps = consteval(T, main.dlength, 1, "the derivation length")
-    if steps < 0 or steps > 1e9 then
-      fail(T, main.dlengthpos, "the derivation length is %g, not 0 to 1e9", steps)
+    if steps < 0 or steps > model.MAX_STEPS then         -- lsys's limit
+      fail(T, main.dlengthpos, "the derivation length is %g, not 0 to %d", steps,
+           model.MAX_STEPS)
     end
     steps = floor(steps)
     T.env.Z = steps + 0.0
@@ -874,9 +893,11 @@ local function translate (P, lsystems, opts)
              .. "L-system's)", s)
       end
     end
-    local rs = {}
+    local rs, origin = {}, {}
+    T.origin["sub-L-system " .. id] = origin    -- as lsys names it in its messages
     for _, p in ipairs(ls.productions) do
       rs[#rs + 1] = production(T, ls, p, "sub", ls.seed ~= nil)
+      origin[#rs] = p.pos
     end
     if #rs > 0 then sub[id] = { productions = rs, ignore = ls.ignore, consider = ls.consider } end
   end
@@ -1055,7 +1076,7 @@ function M.load (lfile, vfile, opts)
   if not ok2 then
     -- name the cpfg line of a rule lsys refused
     local msg = tostring(m)
-    local n, sect = msg:match("entry (%d+) of (%a+)")
+    local n, sect = msg:match("entry (%d+) of ([^)]+)%)")
     local pos = sect and T.origin[sect] and T.origin[sect][tonumber(n)]
     if pos then
       local file, line = T.P:where(pos)

@@ -3,8 +3,8 @@
 -- that `where` turns into the file and line it came from. The grammar follows cpfg's
 -- lsys_input.y and lsys_input.l (read as documentation).
 -- @module lsys.cpfg.parse
-local error, tonumber, setmetatable, ipairs, require = error, tonumber, setmetatable, ipairs,
-  require
+local error, tonumber, setmetatable, ipairs, next, require = error, tonumber, setmetatable,
+  ipairs, next, require
 local concat = table.concat
 local format = string.format
 local _ENV = nil
@@ -223,8 +223,28 @@ local BINARY = {
   ["+"] = 5, ["-"] = 5, ["*"] = 6, ["/"] = 6, ["%"] = 6, ["^"] = 7,
 }
 
+-- The recursion of the parser: parentheses, which leave no node, nest up to about 300
+-- levels (MAXHEIGHT below limits the rest).
 function P:depth (d)
-  if d > 200 then self:fail(nil, "expression nested too deeply") end
+  if d > 1000 then self:fail(nil, "expression nested too deeply (parentheses)") end
+end
+
+-- The highest expression tree and the deepest nest of statement blocks the parser takes:
+-- the Lua source and the lsys rule strings they become nest as deeply, and Lua's parser
+-- and lsys's expression compiler stop at about 200 levels (a C stack overflow).
+local MAXHEIGHT, MAXBLOCKS = 64, 16
+M.MAXHEIGHT, M.MAXBLOCKS = MAXHEIGHT, MAXBLOCKS
+
+-- Node `n` over the expressions `kids`: one level higher than the highest of them.
+function P:node (n, kids)
+  local h = 0
+  for _, x in ipairs(kids) do if x.h > h then h = x.h end end
+  n.h = h + 1
+  if n.h > MAXHEIGHT then
+    self:fail(n.pos, "expression nested too deeply (more than %d levels of operators and "
+              .. "calls)", MAXHEIGHT)
+  end
+  return n
 end
 
 function P:primary (d)
@@ -232,13 +252,13 @@ function P:primary (d)
   local k, v, s, e = self:etok()
   if k == "num" then
     self.pos = e
-    return { k = "num", v = v, pos = s }
+    return { k = "num", v = v, pos = s, h = 1 }
   elseif k == "str" then
     -- cpfg numbers the strings of the file in order (GlobalStringIndex): a string used
     -- as a value is its number
     self.pos = e
     self.nstrings = self.nstrings + 1
-    return { k = "str", v = v, index = self.nstrings - 1, pos = s }
+    return { k = "str", v = v, index = self.nstrings - 1, pos = s, h = 1 }
   elseif k == "name" then
     self.pos = e
     if RESERVED[v] then
@@ -251,16 +271,16 @@ function P:primary (d)
         repeat args[#args + 1] = self:expr(d + 1) until not self:accept(",")
       end
       self:expect(")", "after the arguments of " .. v)
-      return { k = "call", f = v, args = args, pos = s }
+      return self:node({ k = "call", f = v, args = args, pos = s }, args)
     end
-    local node = { k = "name", n = v, pos = s }
+    local node = { k = "name", n = v, pos = s, h = 1 }
     if self:isop("[") then
       local idx = {}
       while self:accept("[") do
         idx[#idx + 1] = self:expr(d + 1)
         self:expect("]", "after an array index")
       end
-      node = { k = "index", n = v, idx = idx, pos = s }
+      node = self:node({ k = "index", n = v, idx = idx, pos = s }, idx)
     end
     return node
   elseif k == "op" and v == "(" then
@@ -270,7 +290,8 @@ function P:primary (d)
     return x
   elseif k == "op" and (v == "-" or v == "!") then
     self.pos = e
-    return { k = "un", op = v, a = self:primary(d + 1), pos = s }
+    local a = self:primary(d + 1)
+    return self:node({ k = "un", op = v, a = a, pos = s }, { a })
   elseif k == "op" and v == "&" then
     self:fail(s, "'&' (the address of a variable, for fscanf) is not supported")
   end
@@ -287,7 +308,8 @@ function P:binary (minp, d)
     if not p or p < minp then return left end
     self.pos = e
     local right = self:binary(p + 1, d + 1)
-    left = { k = "bin", op = v == "<>" and "!=" or v, a = left, b = right, pos = s }
+    left = self:node({ k = "bin", op = v == "<>" and "!=" or v, a = left, b = right, pos = s },
+                     { left, right })
   end
 end
 
@@ -302,7 +324,7 @@ function P:expr (d)
     local a = self:expr(d + 1)
     self:expect(":", "in '? :'")
     local b = self:expr(d + 1)
-    return { k = "cond", c = c, a = a, b = b, pos = s }
+    return self:node({ k = "cond", c = c, a = a, b = b, pos = s }, { c, a, b })
   end
   return c
 end
@@ -316,6 +338,9 @@ function P:block (d)
   local s = self.pos
   self:expect("{", "to start a block")
   self.blocks = self.blocks + 1
+  if self.blocks > MAXBLOCKS then
+    self:fail(s, "statement blocks nested too deeply (more than %d)", MAXBLOCKS)
+  end
   local list = {}
   while not self:accept("}") do
     if self:eof() then self:fail(s, "block not closed with '}'") end
@@ -422,8 +447,8 @@ function P:symbol ()
   local c = self.src:sub(self.pos, self.pos)
   if c == "" or c:find("^[<>:%*%s%(%)]") then return nil end
   local b = self.src:byte(self.pos)
-  if b >= 0x80 then
-    self:fail(nil, "module names are ASCII characters in cpfg, found byte 0x%02x", b)
+  if b >= 0x7f or b < 0x20 then
+    self:fail(nil, "module names are printable ASCII characters in cpfg, found byte 0x%02x", b)
   end
   self.pos = self.pos + 1
   return c
@@ -462,6 +487,20 @@ function P:modules (formal)
     end
     list[#list + 1] = m
   end
+end
+
+-- Branches in the axiom (`mods`, at `pos`) must close: lsys refuses an axiom that does not
+-- balance them, with a message that could not name the line.
+function P:brackets (mods, pos)
+  local open = 0
+  for _, m in ipairs(mods) do
+    if m.sym == "[" then open = open + 1
+    elseif m.sym == "]" then
+      open = open - 1
+      if open < 0 then self:fail(m.pos, "']' without '[' in the axiom") end
+    end
+  end
+  if open > 0 then self:fail(pos, "'[' without ']' in the axiom") end
 end
 
 -- L-system files ---------------------------------------------------------------------
@@ -601,6 +640,7 @@ function P:lsystem ()
       end
       ls.axiompos = s
       self:eol("the axiom")
+      self:brackets(ls.axiom, s)
       break
     elseif k == "mdepth" then
       self:fail(s, "'maximum depth:' belongs in a decomposition or homomorphism section")
@@ -643,7 +683,30 @@ function P:lsystem ()
   if k ~= "endlsystem" then self:fail(nil, "'endlsystem' expected") end
   self:take("endlsystem")
   self:eol("endlsystem")
+  self:formals(ls)
   return ls
+end
+
+-- A formal parameter may not take the name of an array of its L-system: `b[i]` in the
+-- production would index the number.
+function P:formals (ls)
+  local arrays = {}
+  for _, a in ipairs(ls.arrays or {}) do arrays[a.name] = true end
+  if next(arrays) == nil then return end
+  for _, list in ipairs({ ls.productions, ls.decomposition and ls.decomposition.productions,
+                          ls.homomorphism and ls.homomorphism.productions }) do
+    for _, p in ipairs(list or {}) do
+      for _, part in ipairs({ p.lc or {}, p.pred, p.rc or {} }) do
+        for _, m in ipairs(part) do
+          for _, n in ipairs(m.params or {}) do
+            if arrays[n] then
+              self:fail(m.pos, "the formal parameter %s has the name of array %s", n, n)
+            end
+          end
+        end
+      end
+    end
+  end
 end
 
 --- Parses the whole file: a list of L-systems.

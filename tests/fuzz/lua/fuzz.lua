@@ -1,6 +1,7 @@
 --- A coverage-guided fuzzer for the parts of lsys written in Lua (issue 13), which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
--- rule expressions, and sketch files in JSON and SVG (issue 15).
+-- rule expressions, sketch files in JSON and SVG (issue 15), and cpfg's L-system files
+-- (issue 18).
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]
 --          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
@@ -14,7 +15,8 @@
 --     clean = function (err) -> true when err is an expected error,
 --     before = fn(bytes), after = fn(tripped) -> nil | finding message (both outside the
 --     hooks: checks that need not be covered belong in `after`),
---     budget_clean = true when a stopped runaway input is the input's own fault,
+--     budget_clean = true when a stopped runaway input is the input's own fault (or a
+--       function, called after `after`, saying so for the input that just ran),
 --     mutators = { fn(rnd, s) -> s }, describe = fn(bytes) -> text, maxlen = N,
 --     finish = fn() }
 -- `budget` is the target's default time per input (seconds). `run` returns or raises;
@@ -131,7 +133,7 @@ M.show = show
 --- Loads tests/fuzz/lua/targets/NAME.lua.
 function M.target (name)
   if type(name) ~= "string" or not name:match("^[%w_]+$") then
-    error("fuzz: a target name expected (view, palette, ruleexpr, sketch, svg)", 0)
+    error("fuzz: a target name expected (view, palette, ruleexpr, sketch, svg, cpfg)", 0)
   end
   local path = HERE .. "targets/" .. name .. ".lua"
   if readfile(path) == nil then error("fuzz: no target '" .. name .. "' (" .. path .. ")", 0) end
@@ -256,7 +258,9 @@ function M.new (target, opts)
     if after or fmsg then
       kind, msg = "finding", after or fmsg
     elseif tripped then
-      kind = target.budget_clean and "budget" or "finding"
+      local bc = target.budget_clean
+      if type(bc) == "function" then bc = bc(tripped) end
+      kind = bc and "budget" or "finding"
       msg = format("over budget (%s%s: %.2f s, %.0f MB growth)", tripped,
                    tripwhy and ", " .. tripwhy or "", elapsed,
                    (collectgarbage("count") - mem0) / 1024)
@@ -582,7 +586,7 @@ usage: lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed
          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --replay DIR
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --merge DIR
-targets: view, palette, ruleexpr, sketch, svg (tests/fuzz/lua/targets/)]]
+targets: view, palette, ruleexpr, sketch, svg, cpfg (tests/fuzz/lua/targets/)]]
 
 function M.main (args)
   local name = args[1]

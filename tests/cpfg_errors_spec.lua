@@ -1,0 +1,280 @@
+-- lsys.cpfg.load on hostile and broken L-system files: what the cpfg fuzz target
+-- (tests/fuzz/lua/targets/cpfg.lua) found in the preprocessor and the parser. Each file
+-- fails with a message naming its file and line, in well under a second, or loads.
+require "tests.helper"
+local H = require "tests.helper"
+local lsys = require "lsys"
+local parse = require "lsys.cpfg.parse"
+
+local dir
+
+-- Writes the files { name = text } into the scratch folder; loads the first name given.
+local function load (main, files, opts)
+  for name, text in pairs(files or {}) do H.write(dir .. "/" .. name, text) end
+  return lsys.cpfg.load(dir .. "/" .. main, nil, opts or { cpp = "builtin" })
+end
+
+-- The message of loading `text` as main.l.
+local function err (text, files, opts)
+  files = files or {}
+  files["main.l"] = text
+  local ok, msg = pcall(load, "main.l", files, opts)
+  assert.is_false(ok, "loaded")
+  return (msg:gsub(dir:gsub("%p", "%%%0") .. "/", ""))
+end
+
+local function lsystem (axiom, productions, header)
+  return "Lsystem: 1\nderivation length: 1\n" .. (header or "") .. "Axiom: " .. axiom .. "\n"
+         .. (productions or "") .. "endlsystem\n"
+end
+
+before_each(function () dir = H.tmpdir() end)
+after_each(function () H.rmdir(dir) end)
+
+describe("lsys.cpfg.load of an empty file", function ()
+  it("names the file and line 1", function ()
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err(""))
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err("/* only a comment */\n\n\n"))
+  end)
+
+  it("names the file with the system cpp too", function ()
+    if not os.execute("command -v cpp >/dev/null 2>&1") then return pending("no cpp") end
+    assert.equal("main.l:1: no 'Lsystem:' in the file", err("", nil, { cpp = "system" }))
+  end)
+end)
+
+describe("lsys.cpfg.load of module names", function ()
+  it("refuses a control character as a module name", function ()
+    assert.equal("main.l:3: module names are printable ASCII characters in cpfg, found byte "
+                 .. "0x01", err(lsystem("AB\1C")))
+    assert.equal("main.l:4: module names are printable ASCII characters in cpfg, found byte "
+                 .. "0x1f", err(lsystem("A", "A --> B\31\n")))
+  end)
+
+  it("refuses a formal parameter named as an array of its L-system", function ()
+    assert.equal("main.l:6: the formal parameter b has the name of array b",
+                 err(lsystem("A(0)", "A(i) --> B(i, 1)\nB(x, b) : { k = b[x]; } * --> C(k)\n",
+                             "define: { array b[3]; }\n")))
+  end)
+
+  it("names the line of a sub-L-system's rule that lsys refuses", function ()
+    assert.equal("main.l:8: rule 1 'B --> [C' (entry 1 of sub-L-system 2): unbalanced "
+                 .. "brackets in successor: '[' without ']' at character 7",
+                 err(lsystem("A?(2,1)B$") .. lsystem("B", "B --> [C\n"):gsub("Lsystem: 1",
+                                                                            "Lsystem: 2")))
+  end)
+
+  it("refuses an axiom whose branches do not close", function ()
+    assert.equal("main.l:3: '[' without ']' in the axiom", err(lsystem("A[B[C]")))
+    assert.equal("main.l:3: ']' without '[' in the axiom", err(lsystem("A]B[C")))
+  end)
+end)
+
+describe("lsys.cpfg.load of deep nesting", function ()
+  local MAX = parse.MAXHEIGHT
+
+  it("takes expressions of the highest tree, in rules, conditions and blocks", function ()
+    local forms = {
+      ("-"):rep(MAX - 1) .. "x", "x" .. (" + 1"):rep(MAX - 1), "x" .. (" ^ 1"):rep(MAX - 1),
+      ("1 ? "):rep(MAX - 1) .. "x" .. (" : 0"):rep(MAX - 1),
+      ("sin("):rep(MAX - 1) .. "x" .. (")"):rep(MAX - 1),
+    }
+    for _, e in ipairs(forms) do
+      local nest = ("if (1) { "):rep(parse.MAXBLOCKS - 1) .. "y = " .. e .. ";"
+                   .. (" }"):rep(parse.MAXBLOCKS - 1)
+      local m = load("main.l", { ["main.l"] = lsystem("A(1)",
+        "A(x) --> B(" .. e .. ")\nB(x) : { " .. nest .. " } * --> C(y)\n" ..
+        "C(x) : " .. e .. " --> D\n", "Start: { x = 1; " .. nest .. " }\n") })
+      assert.truthy(tostring(m:derive(3)):find("^[CD]"))   -- C(y) when the condition fails
+    end
+  end)
+
+  it("refuses an expression one level higher, naming its line", function ()
+    local msg = "main.l:4: expression nested too deeply (more than " .. MAX .. " levels of "
+                .. "operators and calls)"
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(" .. ("-"):rep(MAX) .. "x)\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(x" .. (" + 1"):rep(MAX) .. ")\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) --> B(" .. ("1 ? "):rep(MAX) .. "x"
+                                  .. (" : 0"):rep(MAX) .. ")\n")))
+    assert.equal(msg, err(lsystem("A(1)", "A(x) : x" .. (" && 1"):rep(MAX) .. " --> B\n")))
+    -- a sum of macros (vlab models write them) grows as fast as the text
+    local defs = "#define A0 x\n"
+    for i = 1, 7 do defs = defs .. ("#define A%d A%d+A%d\n"):format(i, i - 1, i - 1) end
+    assert.equal("main.l:11: expression nested too deeply (more than " .. MAX .. " levels of "
+                 .. "operators and calls)", err(defs .. lsystem("X(A7)")))
+  end)
+
+  it("refuses parentheses nested hundreds deep", function ()
+    assert.equal("main.l:3: expression nested too deeply (parentheses)",
+                 err(lsystem("X(" .. ("("):rep(400) .. "1" .. (")"):rep(400) .. ")")))
+    local m = load("main.l", { ["main.l"] = lsystem("X(" .. ("("):rep(300) .. "1"
+                                                    .. (")"):rep(300) .. ")") })
+    assert.equal("X(1)", tostring(m:derive(0)))
+  end)
+
+  it("refuses statement blocks nested too deeply", function ()
+    local nest = ("if (1) { "):rep(parse.MAXBLOCKS) .. "y = 1;" .. (" }"):rep(parse.MAXBLOCKS)
+    assert.equal("main.l:4: statement blocks nested too deeply (more than "
+                 .. parse.MAXBLOCKS .. ")", err(lsystem("A", "A : { " .. nest .. " } * --> B\n")))
+  end)
+end)
+
+describe("lsys.cpfg.load's built-in preprocessor", function ()
+  it("stops a macro that doubles its text at every level", function ()
+    local defs = "#define A0 x\n"
+    for i = 1, 30 do defs = defs .. ("#define A%d A%d A%d\n"):format(i, i - 1, i - 1) end
+    local t = os.clock()
+    assert.equal("main.l:34: macro expansion longer than 100000 characters",
+                 err(defs .. lsystem("X(A30)")))
+    assert.is_true(os.clock() - t < 2)
+  end)
+
+  it("refuses a #define whose parameters are not names", function ()
+    assert.equal("main.l:1: #define F: '' is not a parameter name",
+                 err("#define F(a,,b) a\n" .. lsystem("A")))
+    assert.equal("main.l:2: #define sqrt: 'sqrt(sqrt(sqrt(sqrt(sqrt(sqrt(...' is not a "
+                 .. "parameter name", err("#define G() 1\n#define sqrt(" .. ("sqrt("):rep(9)
+                                          .. "x) 1\n" .. lsystem("A")))
+  end)
+
+  it("refuses macro calls nested more than 64 deep", function ()
+    local m = load("main.l", { ["main.l"] = "#define f(x) x\n"
+      .. lsystem("A(" .. ("f("):rep(64) .. "1" .. (")"):rep(64) .. ")") })
+    assert.equal("A(1)", tostring(m:derive(0)))
+    assert.equal("main.l:4: macros nested more than 64 deep", err("#define f(x) x\n"
+      .. lsystem("A(" .. ("f("):rep(65) .. "1" .. (")"):rep(65) .. ")")))
+  end)
+
+  it("reads a long line of unclosed macro calls in linear time", function ()
+    local t = os.clock()
+    assert.equal("main.l:4: ')' expected to close the parameters of A, found '('",
+                 err("#define G(x) x\n" .. lsystem("A(" .. ("G(x "):rep(20000))))
+    assert.is_true(os.clock() - t < 1, os.clock() - t)
+  end)
+
+  it("leaves self-referential macros as C does", function ()
+    local m = load("main.l", { ["main.l"] = "#define R R + 1\n#define A B\n#define B A\n"
+      .. "#define sqrt(x) sqrt(x + 1)\n#define floor(x) ceil(x)\n#define ceil(x) floor(x)\n"
+      .. lsystem("X(R)", "X(x) --> X(A) X(sqrt(8)) X(floor(1.5)) X(x)\n") })
+    assert.equal("X(0)X(3)X(1)X(1)", tostring(m:derive(1)))
+  end)
+
+  it("expands no macro inside a string", function ()
+    local out = dir .. "/out.txt"
+    local m = load("main.l", { ["main.l"] = "#define N 3\n"
+      .. lsystem("A", 'A : { printf("N is %d\\n", N); } * --> B\n') })
+    local old = io.output()
+    io.output(out)
+    local ok, e = pcall(m.derive, m, 1)
+    io.output():close()
+    io.output(old)
+    assert(ok, e)
+    assert.equal("N is 3\n", H.read(out))
+  end)
+
+  it("refuses to include an endless file or a folder", function ()
+    assert.equal("main.l:1: /dev/zero: larger than 16 MiB",
+                 err('#include "/dev/zero"\n' .. lsystem("A")))
+    os.execute("mkdir '" .. dir .. "/sub'")
+    assert.equal("main.l:2: sub: cannot be read", err('\n#include "sub"\n' .. lsystem("A")))
+  end)
+
+  it("stops a file that includes itself", function ()
+    assert.equal("self.l:1: #include nested too deeply",
+                 err('#include "self.l"\n' .. lsystem("A"), { ["self.l"] = '#include "self.l"\n' }))
+  end)
+
+  it("stops files that include each other twice, in well under a second", function ()
+    local files = {}
+    for i = 1, 22 do
+      files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
+    end
+    files["f23.l"] = "\n"
+    local t = os.clock()
+    assert.equal("f23.l:1: more than 100000 lines with the #include files",
+                 err('#include "f1.l"\n' .. lsystem("A"), files))
+    assert.is_true(os.clock() - t < 1)
+  end)
+
+  it("stops files that include each other twice and expand long lines, in a second or so",
+     function ()
+    local files = {}
+    for i = 1, 12 do
+      files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
+    end
+    files["f13.l"] = "#define X x\n" .. ("X + "):rep(500) .. "\n"
+    local t = os.clock()
+    assert.equal("f13.l:2: more than 4 MiB of text with the #include files and macros",
+                 err('#include "f1.l"\n' .. lsystem("A"), files))
+    assert.is_true(os.clock() - t < 3, os.clock() - t)
+  end)
+
+  it("takes a header included many times", function ()
+    local m = load("main.l", { ["k.h"] = "#define K 2\n",
+                               ["main.l"] = ('#include "k.h"\n'):rep(50) .. lsystem("A(K)") })
+    assert.equal("A(2)", tostring(m:derive(0)))
+  end)
+end)
+
+describe("lsys.cpfg.load's translated statements", function ()
+  local function derive (body)
+    local m = load("main.l", { ["main.l"] = lsystem("A(1)", "A(x) : { " .. body
+                                                    .. " } * --> B(y)\n",
+                                                    "define: { array a[3]; }\n") })
+    local ok, msg = pcall(m.derive, m, 1)
+    return ok and tostring(msg) or msg
+  end
+
+  it("keep parameters named as the translation's own names apart from them", function ()
+    local function run (prod)
+      local m = load("main.l", { ["main.l"] = lsystem("A(2)", prod .. "\n",
+                                                      "Start: { glob = 1; }\n") })
+      return tostring(m:derive(1))
+    end
+    -- the function form: E, H and L are its tables
+    assert.equal("B(3)", run("A(E) : { y = 0; while (y < 1) { y = y + E + glob; } } * --> B(y)"))
+    assert.equal("B(2)", run("A(H) : { y = 0; while (y < 1) { y = y + H; } } * --> B(y)"))
+    assert.equal("B(2)", run("A(L) : { y = 0; while (y < 1) { y = y + L; } } * --> B(y)"))
+    -- rule strings: sin(x) is sin(x * pi / 180), fabs is abs
+    assert.equal("B(1,2)", run("A(pi) --> B(sin(90), pi)"))
+    assert.equal("B(2,2)", run("A(abs) --> B(fabs(-2), abs)"))
+  end)
+
+  it("print with conversions Lua's format refuses, as C's without them", function ()
+    local out = dir .. "/out.txt"
+    local old = io.output()
+    io.output(out)
+    local ok, s = pcall(derive, 'printf("%100d|%#d|%.2c|%+x|%5.300f|%c\\n", 1, 2, 65, 255, '
+                                .. "1.5, 66); y = 1;")
+    io.output():close()
+    io.output(old)
+    assert(ok, s)
+    assert.equal("B(1)", s)
+    assert.equal("1|2|A|ff|1.500000|B\n", H.read(out))
+  end)
+
+  it("refuse a derivation length over lsys's limit, naming its line", function ()
+    assert.equal("main.l:3: the derivation length is 4.29497e+08, not 0 to 10000000",
+                 err("#define N 429496720.5\n" .. lsystem("A"):gsub("length: 1", "length: N")))
+  end)
+
+  it("refuse arrays of more than 1e7 elements in all", function ()
+    assert.equal("main.l:4: array c: the arrays have more than 1e7 elements in all",
+                 err(lsystem("A", nil, "define: { array a[1000][5000], b[1000][5000]; }\n"
+                             .. "define: { array c[2]; }\n")))
+    assert.equal("main.l:3: array a has more than 1e7 elements",
+                 err(lsystem("A", nil, "define: { array a[10000][1001]; }\n")))
+  end)
+
+  it("refuse an array index that is not a number in range, NaN and infinity too", function ()
+    assert.equal("index", derive("a[0/0] = 1;"):match("cpfg: (index) %S+ out of range 0..2 "
+                                                      .. "of array a$"))
+    assert.equal("index", derive("y = a[0/0];"):match("cpfg: (index) %S+ out of range 0..2 "
+                                                      .. "of array a$"))
+    assert.truthy(derive("y = a[1/0];"):find("cpfg: index inf out of range 0..2 of array a",
+                                             1, true))
+    assert.truthy(derive("y = a[3];"):find("cpfg: index 3 out of range 0..2 of array a", 1,
+                                           true))
+    assert.equal("B(0)", derive("y = a[-0.5];"))
+  end)
+end)
