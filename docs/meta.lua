@@ -390,11 +390,19 @@ function Scene:find(i) end
 function Scene:edges(k) end
 
 --- Writes the geometry: `.obj` (and a `.mtl` next to it), `.ply` (binary) or `.glb`
---- (glTF 2.0 binary). Raises `cannot open 'PATH' for writing: REASON` and
---- `scene:save: unknown format of 'PATH' (use .obj, .ply or .glb)`.
+--- (glTF 2.0 binary), replacing the file atomically. Colours are written linear in GLB and
+--- MTL (the palette's sRGB through the sRGB transfer function), as 8-bit sRGB in PLY.
+--- Line-style segments are lines unless `opts.lines = "tubes"`: then closed tubes of
+--- `opts.sides` sides (3 to 1024; default the view's `contour_sides`, else 8) whose diameter
+--- is the line width (pixels) times `opts.pixel_size` scene units (> 0; default the scene's
+--- largest extent / 720: as thick as in an 800 x 800 render). docs/drawing.md, section 5.
+--- Raises `cannot open 'PATH' for writing: REASON`, `scene:save: unknown format of 'PATH'
+--- (use .obj, .ply or .glb)`, `scene:save: unknown option 'K' (use lines, sides,
+--- pixel_size)` and `scene:save: opts.K must be ...` for a bad option.
 ---@param path string
+---@param opts? { lines?: "lines"|"tubes", sides?: integer, pixel_size?: number }
 ---@return true
-function Scene:save(path) end
+function Scene:save(path, opts) end
 
 --- Deforms the scene in place (docs/components.md, "Deformations: FFD and Hyperpatch"): by a
 --- Hyperpatch, or by a function `f(x, y, z) -> x, y, z` whose normals come from central
@@ -561,10 +569,24 @@ function lsys.viewer.key(name) end
 ---@return integer
 function lsys.viewer.pending() end
 
---- The directory of the Lua file that calls this ("." when not a file), for files next to a
---- model: `view = { dir = lsys.here(), contours = { [2] = "leaf.con" } }`.
+--- The directory of the Lua file that calls this ("." when not a file). A model's view
+--- reads its relative file names from the folder of the file that made the model already;
+--- `lsys.here()` gives that folder to other code (a file written next to the script).
 ---@return string
 function lsys.here() end
+
+--- The REPL (`lsys` with no arguments; docs/viewer.md#the-repl) sets `lsys.repl` to its
+--- module, `require "lsys.repl"`.
+lsys.repl = {}
+
+--- How many significant digits the REPL shows of the floats in Lstrings and tables: 1 to
+--- 17 (17 shows every value exactly: the shortest text that reads back as the same
+--- number); nothing restores the defaults, 15 in Lstrings (`F(0.49)`) and 6 in tables.
+--- Numbers on their own print as in `lua` whatever the setting; `tostring` and `print`
+--- always give every digit. Raises `digits: give a whole number from 1 to 17, or nothing
+--- for the defaults`.
+---@param n? integer
+function lsys.repl.digits(n) end
 
 --- View options and cpfg view files (docs/drawing.md §2). The file readers live in
 --- lsys.viewfile; this module gives them under the same names.
@@ -1124,10 +1146,14 @@ local Lstring = {}
 function Lstring:sub(i, j) end
 
 --- The text of modules `i` to `j`, like `tostring(s:sub(i, j))` without making an Lstring.
+--- With `digits`, parameters are rounded to that many significant digits (`F(0.49)` for
+--- 0.48999999999999994 with 15; whole numbers below 1e15 stay whole): what the REPL shows.
+--- Raises `bad argument #4 to 'text' (digits must be from 1 to 17)`.
 ---@param i? integer Default 1.
 ---@param j? integer Default -1.
+---@param digits? integer 1 to 17. Default: exact (the shortest text that reads back as the same double).
 ---@return string
-function Lstring:text(i, j) end
+function Lstring:text(i, j, digits) end
 
 --- The name and the parameters (floats) of module `i`; negative `i` counts from the end.
 --- Raises `bad argument #1 to 'module' (module index out of range)`.

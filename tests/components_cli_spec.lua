@@ -8,7 +8,7 @@ local R = require "lsys.repl"
 local V = require "lsys.viewer"
 
 local BIN = H.BIN
-local ABS = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
+local ABS = H.ABSBIN
 
 local PLANT = [[
 local C = require "lsys".components

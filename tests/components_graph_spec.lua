@@ -314,7 +314,7 @@ return A
     if not has_dot() then pending("Graphviz's dot is not installed") return end
     -- the default output: the model's name with -graph.png, in the current directory
     out, code = H.sh(("cd '%s' && '%s' components graph fig2.lua"):format(dir,
-      H.BIN:sub(1, 1) == "/" and H.BIN or os.getenv("PWD") .. "/" .. H.BIN))
+      H.ABSBIN))
     assert.equal(0, code, out)
     assert.equal("wrote fig2-graph.png\n", out)
     assert.equal("\137PNG\r\n\26\n", H.read(dir .. "/fig2-graph.png"):sub(1, 8))

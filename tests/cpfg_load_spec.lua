@@ -183,7 +183,7 @@ describe("lsys.cpfg.load errors", function ()
     local dir = H.tmpdir()
     H.write(dir .. "/-o", H.read(D .. "koch.l"))
     H.write(dir .. "/run.lua", 'print(#require("lsys").cpfg.load("-o"):derive())\n')
-    local bin = H.BIN:sub(1, 1) == "/" and H.BIN or os.getenv("PWD") .. "/" .. H.BIN
+    local bin = H.ABSBIN
     -- loaded as "-o" from its folder: cpp reads ./-o and writes nothing
     local out, code = H.sh("cd '" .. dir .. "' && " .. bin .. " run.lua")
     assert.equal(0, code, out)

@@ -24,6 +24,17 @@ local function cleanup ()
   for _, e in ipairs { ".obj", ".mtl", ".ply", ".glb" } do os.remove(path(e)) end
 end
 
+-- the sRGB transfer function: glTF's colour factors are linear, the palette's are display
+-- values (Blender reads MTL colours as linear too)
+local function linear (c)
+  if type(c) == "table" then
+    local t = {}
+    for i = 1, 3 do t[i] = linear(c[i]) end
+    return t
+  end
+  return c <= 0.04045 and c / 12.92 or ((c + 0.055) / 1.055) ^ 2.4
+end
+
 -- cylinders in two colours, a leaf polygon (two-sided) and a line set from a second scene
 local plant = lsys.lsystem {
   axiom = ";(1) F [ +F ;(2) { . -f . +f . +f . } ] F",
@@ -56,7 +67,7 @@ describe("export", function ()
     assert.equal(2, o.faces_by_material.m2)
     local mt = R.mtl(path(".mtl"))
     assert.same({ "m1", "m2" }, mt.names)
-    assert.near(lsys.view.PALETTE[2], mt.m2.Kd, 1e-6)
+    assert.near(linear(lsys.view.PALETTE[2]), mt.m2.Kd, 1e-6)
   end)
 
   it("writes binary PLY", function ()
@@ -113,6 +124,110 @@ describe("export", function ()
   end)
 end)
 
+describe("export colours", function ()
+  -- palette entry 1: sRGB (0.5, 0.25, 1) at half opacity, glowing red at 0.5
+  local sc
+  setup(function ()
+    sc = lsys.lsystem {
+      axiom = "F", view = { line_style = "cylinder", contour_sides = 4, palette = {
+        { diffuse = { 0.5, 0.25, 1, 0.5 }, emission = { 0.5, 0, 0 } } } },
+    }:interpret()
+  end)
+  teardown(cleanup)
+
+  it("writes glTF colour factors linear, alpha as it is", function ()
+    sc:save(path(".glb"))
+    local m = glb.read(path(".glb")).materials[1]
+    local f = m.pbrMetallicRoughness.baseColorFactor
+    assert.near({ 0.21404114, 0.050876088, 1, 0.5 }, f, 1e-8)
+    assert.near(linear { 0.5, 0.25, 1 }, { f[1], f[2], f[3] }, 1e-7)
+    assert.near({ 0.21404114, 0, 0 }, m.emissiveFactor, 1e-8)
+    assert.equal("BLEND", m.alphaMode)
+  end)
+
+  it("writes MTL colours linear (as Blender reads them)", function ()
+    sc:save(path(".obj"))
+    local mt = R.mtl(path(".mtl"))
+    assert.near({ 0.21404114, 0.050876088, 1 }, mt.m1.Kd, 1e-8)
+    assert.near({ 0.21404114, 0, 0 }, mt.m1.Ke, 1e-8)
+  end)
+
+  it("keeps PLY vertex colours as 8-bit sRGB", function ()
+    sc:save(path(".ply"))
+    local v = R.ply(path(".ply")).first_vertex
+    assert.same({ 128, 64, 255 }, { v.red, v.green, v.blue })
+  end)
+end)
+
+describe("export lines as tubes", function ()
+  -- F+F in line style: two segments meeting at a right angle, 10 units of extent
+  local lines = lsys.lsystem { axiom = "F(10) + F(10)", view = { angle = 90 } }
+  local sc
+  setup(function () sc = lines:interpret() end)
+  teardown(cleanup)
+
+  it("keeps lines as lines by default", function ()
+    sc:save(path(".glb"))
+    assert.same({ 0, 2 }, { glb_counts(path(".glb")) })
+  end)
+
+  it("writes each segment as a closed tube in every format", function ()
+    -- two runs (the bend is over 30 degrees): 2 rings and 2 caps each, 4 n triangles
+    sc:save(path(".glb"), { lines = "tubes", sides = 6 })
+    assert.same({ 48, 0 }, { glb_counts(path(".glb")) })
+    sc:save(path(".obj"), { lines = "tubes", sides = 6 })
+    local o = R.obj(path(".obj"))
+    assert.same({ 48, 0, 56 }, { o.f, o.l, o.v })
+    sc:save(path(".ply"), { lines = "tubes", sides = 6 })
+    local p = R.ply(path(".ply"))
+    assert.same({ 48, 56 }, { p.counts.face, p.counts.vertex })
+    assert.is_nil(p.counts.edge)
+  end)
+
+  it("shares the rings of a straight run", function ()
+    local run = lsys.lsystem { axiom = "F F F" }:interpret()
+    run:save(path(".glb"), { lines = "tubes", sides = 6 })
+    assert.same({ 4 * 6 + 2 * 2 * 6, 0 }, { glb_counts(path(".glb")) })
+  end)
+
+  it("takes the view's contour_sides by default", function ()
+    lsys.lsystem { axiom = "F", view = { contour_sides = 5 } }:interpret()
+      :save(path(".glb"), { lines = "tubes" })
+    assert.equal(20, (glb_counts(path(".glb"))))
+    sc:save(path(".glb"), { lines = "tubes" })
+    assert.equal(2 * 4 * 8, (glb_counts(path(".glb"))))
+  end)
+
+  it("sizes a pixel of line width as one of an 800-pixel render", function ()
+    -- the plant spans 10 units, fitted into 720 pixels: a 1-pixel line is 10/720 thick
+    local lo, hi = sc:bounds()
+    sc:save(path(".glb"), { lines = "tubes", sides = 4 })
+    local doc, bin = glb.read(path(".glb"))
+    local pr = glb.primitives(doc, bin)[1]
+    local r = 0.5 * 10 / 720
+    -- rings about the y axis (x in [-r, r]) and about the line y = 10
+    assert.near({ lo[1], lo[2], -r }, pr.min, 1e-6)
+    assert.near({ hi[1] + r, hi[2] + r, r }, pr.max, 1e-6)
+    -- !(4): four pixels wide; pixel_size sets the scale
+    lsys.lsystem { axiom = "!(4) F(10) + F(10)", view = { angle = 90 } }:interpret()
+      :save(path(".glb"), { lines = "tubes", sides = 4, pixel_size = 0.5 })
+    doc, bin = glb.read(path(".glb"))
+    assert.near({ hi[1] + 1, hi[2] + 1, 1 }, glb.primitives(doc, bin)[1].max, 1e-6)
+  end)
+
+  it("checks its options", function ()
+    assert.error_contains(function () sc:save(path(".glb"), { lines = "tube" }) end,
+                          "opts.lines must be 'lines' or 'tubes', got 'tube'")
+    assert.error_contains(function () sc:save(path(".glb"), { line = "tubes" }) end,
+                          "unknown option 'line'")
+    assert.error_contains(function () sc:save(path(".glb"), { lines = "tubes", sides = 2 }) end,
+                          "opts.sides must be an integer in [3, 1024], got 2")
+    assert.error_contains(function () sc:save(path(".glb"), { pixel_size = -1 }) end,
+                          "opts.pixel_size must be a positive number, got -1")
+    assert.error_contains(function () sc:save(path(".glb"), "tubes") end, "table expected")
+  end)
+end)
+
 describe("glTF validator", function ()
   local validator = "tools/node_modules/gltf-validator"
   local f = io.open(validator .. "/package.json")
@@ -122,6 +237,17 @@ describe("glTF validator", function ()
     local m = dofile("examples/default.lua")
     m:interpret(m:derive(3), { line_style = "cylinder" }):save(path(".glb"))
     local p = io.popen("node tools/validate_glb.js " .. path(".glb") .. " 2>&1; echo rc=$?")
+    local out = p:read("a")
+    p:close()
+    assert.matches("rc=0", out)
+  end)
+  it_("accepts lines as tubes and translucent, glowing materials", function ()
+    lsys.lsystem {
+      axiom = "F(10) + ;(2) F(10) [ ;(1) - F(5) ] F(5)", view = { angle = 90, palette = {
+        { diffuse = { 0.5, 0.25, 1, 0.5 }, emission = { 0.5, 0, 0 } }, "#3050ff" } },
+    }:interpret():save(path(".glb"), { lines = "tubes" })
+    local p = io.popen("node tools/validate_glb.js --strict " .. path(".glb") ..
+                       " 2>&1; echo rc=$?")
     local out = p:read("a")
     p:close()
     assert.matches("rc=0", out)

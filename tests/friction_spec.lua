@@ -242,3 +242,58 @@ describe("issue 19 §1: changing a colour", function ()
                    errof(lsys.render, m, { palette = { [20] = "#ff0000" } }), 1, true)
   end)
 end)
+
+describe("issue 19 §2: files next to the model", function ()
+  it("are found from the model file's folder, from anywhere", function ()
+    local dir = H.tmpdir()
+    os.execute("mkdir -p '" .. dir .. "/plants' '" .. dir .. "/elsewhere'")
+    H.write(dir .. "/plants/leaf.con", "4 2 closed\n0 0\n1 0\n1 1\n0 1\n")
+    H.write(dir .. "/plants/leafy.lua", 'local lsys = require "lsys"\n'
+      .. 'return lsys.lsystem { axiom = "@#(1)F", view = { line_style = "cylinder",\n'
+      .. '  contours = { [1] = "leaf.con" } } }\n')
+    local bin = H.ABSBIN
+    local out, code = H.sh("cd '" .. dir .. "/elsewhere' && " .. bin
+                           .. " render ../plants/leafy.lua -o leafy.png --size 32x32")
+    assert.equal(0, code, out)
+    assert.truthy(io.open(dir .. "/elsewhere/leafy.png"))
+    os.remove(dir .. "/plants/leaf.con")
+    out, code = H.sh("cd '" .. dir .. "/elsewhere' && " .. bin
+                     .. " derive ../plants/leafy.lua")
+    assert.equal(1, code)
+    assert.matches("view.contours[1]: cannot open '../plants/leaf.con': No such file or "
+                   .. "directory (looked for in '../plants' (view.dir: the model's folder unless "
+                   .. "set), then in the current folder)", out, 1, true)
+    H.rmdir(dir)
+  end)
+end)
+
+describe("issue 19 §15: lsys export --lines tubes", function ()
+  it("writes line-style segments as tubes, no GL lines", function ()
+    local glb = require "tests.glb"
+    local dir = H.tmpdir()
+    local function counts (extra)
+      local out, code = H.sh(H.BIN .. " export examples/abop/fig1_24c.lua --steps 3 -o "
+                             .. dir .. "/x.glb" .. extra)
+      assert.equal(0, code, out)
+      local doc, bin = glb.read(dir .. "/x.glb")
+      local tris, lines = 0, 0
+      for _, pr in ipairs(glb.primitives(doc, bin)) do
+        if pr.mode == 4 then tris = tris + pr.triangles
+        elseif pr.mode == 1 then lines = lines + pr.segments end
+      end
+      return tris, lines, out
+    end
+    local t0, l0 = counts("")
+    assert.equal(0, t0)
+    assert.equal(512, l0)
+    local t1, l1, out = counts(" --lines tubes")
+    assert.equal(0, l1)
+    assert.is_true(t1 >= 512 * 2 * 8, tostring(t1))      -- at least a band of 8 sides each
+    assert.matches("512 lines as tubes", out, 1, true)
+    local msg, code = H.sh(H.BIN .. " export examples/abop/fig1_24c.lua -o " .. dir
+                           .. "/x.glb --lines pipes")
+    assert.equal(2, code)
+    assert.matches("--lines expects 'lines' or 'tubes', got 'pipes'", msg, 1, true)
+    H.rmdir(dir)
+  end)
+end)

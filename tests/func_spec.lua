@@ -203,7 +203,7 @@ describe("functions in rule expressions", function ()
   it("rejects a bad functions option", function ()
     assert.equal("option 'functions'[1]: an lsys.Func or a file name expected, got number",
       message(function () lsys.lsystem { axiom = "A", functions = { 42 } } end))
-    assert.matches("^option 'functions'%[1%]: cannot open 'no/such.func'",
+    assert.matches("^option 'functions'%[1%]: cannot open 'tests/no/such.func'",
       message(function () lsys.lsystem { axiom = "A", functions = { "no/such.func" } } end))
     assert.equal("option 'functions' must be a table (got string)",
       message(function () lsys.lsystem { axiom = "A", functions = "x.func" } end))

@@ -164,6 +164,17 @@ end
 --- The lsys program: LSYS_BIN (ctest sets it) or build/bin/lsys.
 H.BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 
+-- The program as an absolute path, for commands run from another folder (the current
+-- folder asked of the system: $PWD is the shell's that started busted, ctest's or ours).
+function H.absolute (path)
+  if path:sub(1, 1) == "/" then return path end
+  local p = io.popen("pwd")
+  local cwd = p:read("l")
+  p:close()
+  return cwd .. "/" .. path
+end
+H.ABSBIN = H.absolute(H.BIN)
+
 --- Runs the Lua text `script` with the lsys program. opts: env ("NAME=value ..."),
 -- prefix (shell commands before it, e.g. a ulimit). Returns the output and exit status.
 function H.lsys (script, opts)

@@ -21,6 +21,16 @@ describe("lsys.lstring text notation", function()
     assert.equal("F(0.30000000000000004)", roundtrip("F(0.30000000000000004)"))
   end)
 
+  it("rounds parameters to the digits asked for with s:text(i, j, digits)", function()
+    local s = lsys.lstring("F(0.48999999999999994,2,-0.30000000000000004)G(1e300)")
+    assert.equal("F(0.49,2,-0.3)G(1e+300)", s:text(1, -1, 15))
+    assert.equal("F(0.5,2,-0.3)", s:text(1, 1, 1))
+    assert.equal(s, lsys.lstring(s:text(1, -1, 17)))   -- 17 digits always read back
+    assert.equal(tostring(s), s:text())
+    assert.error_contains(function () s:text(1, -1, 0) end, "digits must be from 1 to 17")
+    assert.error_contains(function () s:text(1, -1, 18) end, "digits must be from 1 to 17")
+  end)
+
   it("prints 1e300 in exponent notation", function()
     assert.equal("F(1e+300)", roundtrip("F(1e300)"))
   end)

@@ -1,11 +1,16 @@
 -- The REPL (`lsys` with no arguments) driven like a user at a terminal: through a
 -- pseudo-terminal with tools/ptyrun (built with the tests), which sends lines and waits
 -- for what the REPL prints. With a display (#gl), a click in the viewer window opened
--- from the REPL is printed at the prompt.
+-- from the REPL is printed at the prompt. What it prints (tables, numbers, Lstrings, help)
+-- is checked with stdin a file, where it prints no prompts; lsys.repl.show,
+-- lsys.repl.help and lsys.repl.complete are also checked in this Lua state. Completion and
+-- history need readline: without it (cmake -DLSYS_WITH_READLINE=OFF) those are pending.
+local H = require "tests.helper"
 local D = require "tests.display"
 
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
-local PTYRUN = (os.getenv("LSYS_BUILD_DIR") or "build") .. "/tools/ptyrun"
+local BUILD = os.getenv("LSYS_BUILD_DIR") or "build"
+local PTYRUN = BUILD .. "/tools/ptyrun"
 -- seconds to wait for each reply: longer under valgrind (tools/memcheck-all.sh sets
 -- LSYS_TEST_SLOW, a factor for every wait of the specs that start the program)
 local TIMEOUT = 20 * (tonumber(os.getenv("LSYS_TEST_SLOW")) or 1)
@@ -16,19 +21,42 @@ local function exists (path)
   return f ~= nil
 end
 
+-- A HOME for the sessions of one test, so that ~/.lsys_history is its own.
+local homes = {}
+local function tmphome ()
+  local d = H.tmpdir()
+  homes[#homes + 1] = d
+  return d
+end
+
 -- Runs the ptyrun script 'lines' against the REPL; returns the transcript, exit status.
+-- 'env' is put before the command ("NAME=value ..."); HOME is a fresh folder unless given.
 local function drive (lines, env)
   local script = os.tmpname()
   local f = assert(io.open(script, "w"))
   f:write(table.concat(lines, "\n"), "\n")
   f:close()
-  local p = io.popen((env or "") .. PTYRUN .. " -t " .. TIMEOUT .. " " .. script .. " -- " .. BIN ..
+  env = env or ""
+  if not env:find("HOME=") then env = env .. " HOME=" .. tmphome() .. " " end
+  local p = io.popen(env .. PTYRUN .. " -t " .. TIMEOUT .. " " .. script .. " -- " .. BIN ..
     " 2>&1; echo \"exit:$?\"")
   local out = p:read("a")
   p:close()
   os.remove(script)
   local code = tonumber(out:match("exit:(%d+)%s*$"))
   return (out:gsub("exit:%d+%s*$", "")), code
+end
+
+-- Runs the REPL with 'lines' as its input (a file: no prompts, no line editing); returns
+-- what it printed (stdout and stderr) and its exit status.
+local function pipe (lines, cwd)
+  local script = os.tmpname()
+  H.write(script, table.concat(lines, "\n") .. "\n")
+  local bin = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
+  local out, code = H.sh(("cd '%s' && HOME='%s' '%s' < '%s'"):format(cwd or ".", tmphome(),
+    bin, script))
+  os.remove(script)
+  return out, code
 end
 
 local function ptyrun ()
@@ -39,8 +67,23 @@ local function ptyrun ()
   return true
 end
 
+-- Whether the program was built with readline (completion and history need it).
+local has_readline
+local function readline ()
+  if has_readline == nil then
+    has_readline = pipe { "print((require 'lsys.program').host().readline)" } == "true\n"
+  end
+  if not has_readline then
+    pending("the lsys program was built without readline (cmake says 'without readline')")
+  end
+  return has_readline
+end
+
 describe("the REPL in a terminal", function()
-  teardown(function() D.stop() end)
+  teardown(function()
+    D.stop()
+    for _, d in ipairs(homes) do H.rmdir(d) end
+  end)
 
   it("prints values, abbreviates Lstrings, summarises scenes, continues statements " ..
      "and survives errors", function()
@@ -73,12 +116,152 @@ describe("the REPL in a terminal", function()
       "send lsys.lsystem { productions = 'F -> G' }",
       "expect unknown operator '->'",
       "expect > ",
-      -- the session goes on: m is still there; the up arrow recalls the last line
+      -- the session goes on: m is still there
+      "send #m:derive(2)",
+      "expect 61",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }
+    assert.equal(0, code, out)
+  end)
+
+  it("recalls the last line with the up arrow", function()
+    if not ptyrun() or not readline() then return end
+    local out, code = drive {
+      "expect > ",
+      'send m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F" }',
+      "expect > ",
       "send #m:derive(2)",
       "expect 61",
       "expect > ",
       "sendraw \\x1b[A\\r",
       "expect 61",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }
+    assert.equal(0, code, out)
+  end)
+
+  it("completes globals, fields, methods and nested fields with Tab", function()
+    if not ptyrun() or not readline() then return end
+    local out, code = drive {
+      "expect > ",
+      'send m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F" }',
+      "expect > ",
+      -- a method after ':' (without completion, m:de(1) is an error)
+      "sendraw x = m:de\\t",
+      "expect m:derive",
+      "sendraw (1)\\r",
+      "expect > ",
+      "send =x",
+      "expect Lstring(6 modules): F[+F]F",
+      "expect > ",
+      -- a key after '.', a nested field, a global
+      "sendraw =m.en\\t",
+      "expect m.env",
+      "sendraw \\r",
+      "expect {}",
+      "expect > ",
+      "sendraw =type(lsys.view.load_c\\t",
+      "expect lsys.view.load_colormap",
+      "sendraw )\\r",
+      "expect function",
+      "expect > ",
+      "sendraw =tostr\\t",
+      "expect tostring",
+      "sendraw (1.5)\\r",
+      "expect 1.5",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }
+    assert.equal(0, code, out)
+  end)
+
+  it("keeps the history in ~/.lsys_history: the up arrow recalls a line of the last " ..
+     "session", function()
+    if not ptyrun() or not readline() then return end
+    local home = tmphome()
+    local env = "HOME=" .. home .. " "
+    local out, code = drive({
+      "expect > ",
+      "send 6 * 7",
+      "expect 42",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }, env)
+    assert.equal(0, code, out)
+    assert.equal("6 * 7\n", H.read(home .. "/.lsys_history"))
+    out, code = drive({
+      "expect > ",
+      "sendraw \\x1b[A\\r",
+      "expect 6 * 7",
+      "expect 42",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }, env)
+    assert.equal(0, code, out)
+    -- a HOME that cannot be written to: the session goes on, silently
+    out, code = drive({
+      "expect > ",
+      "send 6 * 7",
+      "expect 42",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }, "HOME=" .. home .. "/none ")
+    assert.equal(0, code, out)
+    assert.not_matches("history", out)
+  end)
+
+  it("clears the line at Ctrl-C and goes on; Ctrl-C still interrupts an evaluation",
+     function()
+    if not ptyrun() then return end
+    local out, code = drive {
+      "expect > ",
+      "sendraw abc def",
+      "sleep 0.2",
+      "sendraw \\x03",
+      "expect > ",
+      "send 1 + 41",
+      "expect 42",
+      "expect > ",
+      -- in a statement continued on '>>' lines: back to '>'
+      "send for i = 1, 2 do",
+      "expect >> ",
+      "sleep 0.2",
+      "sendraw \\x03",
+      "expect > ",
+      "send 'still here'",
+      "expect still here",
+      "expect > ",
+      "send while true do end",
+      "sleep 0.3",
+      "sendraw \\x03",
+      "expect interrupted!",
+      "expect > ",
+      "send 2 + 2",
+      "expect 4",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }
+    assert.equal(0, code, out)
+    assert.not_matches("near 'def'", out)   -- the abandoned line is not run
+  end)
+
+  it("says help() in its greeting and prints a section of the manual for help", function()
+    if not ptyrun() then return end
+    local out, code = drive {
+      "expect help() for help",
+      "expect > ",
+      'send help "derive"',
+      "expect ### m:derive([n [, opts]])",
+      "expect more lines in ",
       "expect > ",
       "sendraw \\x04",
       "wait",
@@ -120,5 +303,259 @@ describe("the REPL in a terminal", function()
       "wait",
     }, D.env)
     assert.equal(0, code, out)
+  end)
+end)
+
+describe("what the REPL prints", function()
+  teardown(function() for _, d in ipairs(homes) do H.rmdir(d) end end)
+
+  it("prints numbers as lua5.4 does", function()
+    local out = pipe { "0.1 + 0.2", "1.0", "2^53", "1/3", "7 // 2", "-0.0" }
+    assert.equal(table.concat({ tostring(0.1 + 0.2), tostring(1.0), tostring(2^53),
+      tostring(1/3), tostring(7 // 2), tostring(-0.0) }, "\n") .. "\n", out)
+  end)
+
+  it("prints a table one level deep, short vectors of numbers in full", function()
+    local out = pipe {
+      '{ 1, 2.5, a = "x\\ny", t = { 1, 2 }, u = { a = 1 }, [10] = true, f = print }',
+      "{}",
+      "t = {} for i = 1, 100 do t[i] = i end",
+      "t",
+      "setmetatable({}, { __tostring = function () return 'custom' end })",
+    }
+    assert.equal('{ 1, 2.5, [10] = true, a = "x\\ny", f = function, t = { 1, 2 }, ' ..
+      "u = {...} }\n{}\n" ..
+      "{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, " ..
+      "... (80 more) }\ncustom\n", out)
+  end)
+
+  it("shows the numbers of sc:bounds(), sc:turtle(i) and sc:record(k)", function()
+    local out = pipe {
+      'sc = lsys.lsystem { axiom = "F(2)[+F(1)]" }:interpret()',
+      "sc:bounds()",
+      "sc:turtle(2)",
+      "sc:record(1).p1, sc:record(1).length",
+    }
+    assert.equal("{ -1.0, 0.0, 0.0 }\t{ 0.0, 2.0, 0.0 }\n" ..
+      "{ 0.0, 2.0, 0.0 }\t{ 0.0, 1.0, 0.0 }\t{ -1.0, 0.0, 0.0 }\t{ 0.0, 0.0, -1.0 }\t1.0\t1\n" ..
+      "{ 0.0, 2.0, 0.0 }\t2.0\n", out)
+  end)
+
+  it("rounds the numbers of an Lstring to 15 digits; lsys.repl.digits(17) shows them all",
+     function()
+    local out = pipe {
+      's = lsys.lstring("F(0.48999999999999994,2)G(1e300)")',
+      "s",
+      "print(s)",
+      "lsys.repl.digits(17)",
+      "s",
+      "lsys.repl.digits(3)",
+      "s, { 2 / 3 }",
+      "lsys.repl.digits()",
+      "s, { 2 / 3 }",
+      "lsys.repl.digits(0)",
+    }
+    assert.equal("Lstring(2 modules): F(0.49,2)G(1e+300)\n" ..
+      "F(0.48999999999999994,2)G(1e+300)\n" ..
+      "Lstring(2 modules): F(0.48999999999999994,2)G(1e+300)\n" ..
+      "Lstring(2 modules): F(0.49,2)G(1e+300)\t{ 0.667 }\n" ..
+      "Lstring(2 modules): F(0.49,2)G(1e+300)\t{ 0.666667 }\n" ..
+      "stdin:1: digits: give a whole number from 1 to 17, or nothing for the defaults\n", out)
+  end)
+
+  it("prints nothing for several results that are all nil but a leading true", function()
+    local out = pipe {
+      "(function () return true, nil, nil end)()",
+      "(function () return nil, nil end)()",
+      "(function () end)()",
+      "true",
+      "nil",
+      "(function () return true, 1 end)()",
+      "(function () return false, nil end)()",
+    }
+    assert.equal("nil\tnil\ntrue\nnil\ntrue\t1\nfalse\tnil\n", out)
+  end)
+
+  it("keeps a `local` of one line for the lines after it, without making a global",
+     function()
+    local out = pipe {
+      "local x = 41",
+      "x + 1",
+      "local function sq (a) return a * a end",
+      "sq(x)",
+      "rawget(_G, 'x'), rawget(_G, 'sq')",
+      "function getx () return x end",
+      "x = 7",
+      "getx(), rawget(_G, 'x')",
+      "local string = 5",
+      "string, type(_G.string), ('ab'):upper()",
+      "do local y = 1 end",
+      "y",
+      "local a, b = 1",
+      "a, b",
+      "for i = 1, 2 do local z = i end return 'last'",
+    }
+    assert.equal("42\n1681\nnil\tnil\n7\tnil\n5\ttable\tAB\nnil\n1\tnil\nlast\n", out)
+  end)
+
+  it("prints the manual's section on a function, a method, a value or a topic", function()
+    local out = pipe { 'help "derive"' }
+    assert.matches("^### m:derive%(%[n %[, opts%]%]%)\n", out)
+    assert.matches("\n%-%- %d+ more lines in [^\n]*/docs/manual.md line %d+ %-%-\n$", out)
+    local _, lines = out:gsub("\n", "")
+    assert.is_true(lines <= 24, out)
+    out = pipe { "help(lsys.lsystem)" }
+    assert.matches("^## 2%. Model options\n", out)
+    out = pipe { 'm = lsys.lsystem { axiom = "F" }', "help(m)", "help(m.derive)" }
+    assert.matches("^## 3%. Model methods and module functions\n", out)
+    assert.matches("\n### m:derive", out)
+    out = pipe { 'help(lsys.lstring("F"))' }
+    assert.matches("^## 8%. Lstrings\n", out)
+    out = pipe { "help(lsys.lstring('F').count)" }
+    assert.matches("^## 8%. Lstrings\n\n| operation | result |\n|%-%-%-|%-%-%-|\n" ..
+      "| `s:count%(name%)` |[^\n]*\n\n%(the whole section: help \"Lstrings\"%)\n$", out)
+    out = pipe { 'help "lsys.show"' }
+    assert.matches("^## lsys%.show\n", out)
+    out = pipe { "help(lsys.repl.digits)" }   -- from the declarations of docs/meta.lua
+    assert.matches("^function lsys%.repl%.digits%(n%)\nHow many significant digits", out)
+    out = pipe { 'help "nosuch"', "help(42)", "help({})", "help(print)" }
+    assert.equal("no help for nosuch; try help()\nno help for 42; try help()\n" ..
+      "no help for this table; try help()\n" ..
+      "print is Lua's: see https://www.lua.org/manual/5.4/manual.html#pdf-print\n", out)
+  end)
+
+  it("gives an overview for help(), from any folder", function()
+    local out = pipe({ "help()" }, "/")
+    assert.matches("^lsys: L%-systems for plant modelling", out)
+    assert.matches('help "derive"', out)
+    assert.not_matches("not found", out)
+  end)
+
+  it("finds the docs in an install (cmake --install)", function()
+    if not H.sh("command -v cmake"):find("cmake") then
+      pending("cmake is not installed") return
+    end
+    local prefix = H.tmpdir()
+    local out, code = H.sh(("cmake --install '%s' --prefix '%s'"):format(BUILD, prefix))
+    assert.equal(0, code, out)
+    local home = tmphome()
+    local function run (line)
+      return H.sh(("cd / && echo '%s' | HOME='%s' '%s/bin/lsys'"):format(line, home, prefix))
+    end
+    out = run('help "derive"')
+    assert.matches("^### m:derive", out)
+    assert.matches(prefix .. "/share/lsys/docs/manual.md line", out, 1, true)
+    H.rmdir(prefix .. "/share/lsys/docs")
+    out = run('help "derive"')
+    H.rmdir(prefix)
+    assert.matches("^help: the lsys manual %(manual.md%) was not found in [^\n]*\n$", out)
+  end)
+end)
+
+describe("lsys.repl's parts", function()
+  local lsys = require "lsys"
+  local C = require "lsys.repl.complete"
+  local Help = require "lsys.repl.help"
+  local S = require "lsys.repl.show"
+
+  -- The completions of the word before the end of 'line' in 'env'.
+  local function complete (env, line)
+    local start = line:find("[%w_.:]*$") - 1
+    return C.complete(env, line, start, #line)
+  end
+
+  it("completes globals, keys after '.', methods after ':' and nested fields", function()
+    local m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F" }
+    local env = setmetatable({ m = m, s = m:derive(1), sc = m:interpret(), str = "ab",
+                               lsys = lsys },
+                             { __index = _G })
+    assert.same({ "m:derive" }, complete(env, "x = m:de"))
+    assert.same({ "m.env" }, complete(env, "m.en"))
+    assert.same({ "lsys.view.load_colormap" }, complete(env, "lsys.view.load_c"))
+    assert.same({ "lsys.view", "lsys.viewer" }, complete(env, "lsys.vi"))
+    assert.same({ "s:copy", "s:count", "s:counts" }, complete(env, "print(s:co"))
+    assert.same({ "sc:bounds" }, complete(env, "sc:bo"))
+    assert.same({ "sc.nlines", "sc.nrecords", "sc.nsegments", "sc.ntriangles",
+                  "sc.nvertices" }, complete(env, "sc.n"))
+    assert.same({ "str:upper" }, complete(env, "str:up"))
+    assert.same({ "function" }, complete(env, "fun"))
+    assert.same({ "tostring" }, complete(env, "tostr"))
+    assert.same({}, complete(env, "nosuch.x"))
+    assert.same({}, complete(env, "m:nosuch"))
+    -- names starting with '_' only when '_' is typed
+    local all = table.concat(complete(env, "m:"), " ")
+    assert.matches("m:derive", all)
+    assert.not_matches("m:_", all)
+    assert.same({ "m:_call", "m:_checkcounts", "m:_checkfuncs", "m:_configure", "m:_core" },
+                complete(env, "m:_c"))
+    -- in a string: nil, for readline's file names
+    assert.is_nil(C.complete(env, 'dofile("exa', 8, 11))
+  end)
+
+  it("finds a section by heading, paragraph, table row, title or declaration", function()
+    local dir = H.tmpdir()
+    H.write(dir .. "/manual.md", table.concat({
+      "# The manual", "", "## 1. Things", "",
+      "`lsys.thing(x)` makes a thing.", "",
+      "| method | does |", "|---|---|", "| `t:poke(n)` | pokes n times |",
+      "| `t:prod()` | prods |", "",
+      "```lua", "## not a heading: code", "```", "",
+      "### t:spin([turns])", "", "Spins.", "",
+      "## 2. Other things", "", "Other.", "" }, "\n"))
+    H.write(dir .. "/meta.lua", table.concat({
+      "local lsys = {}", "--- Waits for the thing.", "---@param secs number Seconds.",
+      "function lsys.wait_thing(secs) end", "" }, "\n"))
+    local out = {}
+    local help = Help.new { dirs = { dir }, size = function () return 24, 80 end,
+                            out = function (x) out[#out + 1] = x end }
+    local function run (...)
+      out = {}
+      help(...)
+      return table.concat(out)
+    end
+    assert.equal("### t:spin([turns])\n\nSpins.\n", run("spin"))
+    assert.equal(run("spin"), run("t:spin"))
+    assert.matches("^## 1%. Things\n\n`lsys.thing%(x%)` makes", run("lsys.thing"))
+    assert.matches("^## 1%. Things\n\n`lsys.thing", run("thing"))
+    assert.matches("    ## not a heading: code\n", run("things"))
+    assert.equal("## 1. Things\n\n| method | does |\n|---|---|\n| `t:poke(n)` | pokes n " ..
+      "times |\n\n(the whole section: help \"Things\")\n", run("poke"))
+    assert.equal("## 2. Other things\n\nOther.\n", run("Other things"))
+    assert.equal("function lsys.wait_thing(secs)\nWaits for the thing.\n" ..
+      "  secs number Seconds.\n", run("lsys.wait_thing"))
+    assert.equal("no help for nosuch; try help()\n", run("nosuch"))
+    H.rmdir(dir)
+  end)
+
+  it("says in one line that the manual is missing", function()
+    local out = {}
+    local help = Help.new { dirs = { "/nonexistent/docs" },
+                            out = function (s) out[#out + 1] = s end }
+    help("derive")
+    assert.equal("help: the lsys manual (manual.md) was not found in /nonexistent/docs\n",
+                 table.concat(out))
+  end)
+
+  it("shows a screenful of a long section and where the rest is", function()
+    for _, size in ipairs({ { 24, 80 }, { 40, 100 }, { 10, 40 } }) do
+      local out = {}
+      local help = Help.new { size = function () return size[1], size[2] end,
+                              out = function (s) out[#out + 1] = s end }
+      help("Model options")
+      local text = table.concat(out)
+      local rows = 0
+      for l in text:gmatch("([^\n]*)\n") do
+        rows = rows + math.max(1, math.ceil(#l / size[2]))
+      end
+      assert.is_true(rows <= size[1], text)
+      assert.matches("^## 2%. Model options\n", text)
+      assert.matches("%-%- %d+ more lines in .*manual.md line %d+ %-%-\n$", text)
+    end
+  end)
+
+  it("shows floats in tables with 6 digits and integers in full", function()
+    assert.equal("{ 0.333333, 1.0, 100000000000, 1.23457e+20, inf }",
+                 S.show({ 1 / 3, 1.0, 100000000000, 1.23456789e20, math.huge }))
+    assert.equal("Lstring(1 module): F(0.1)", S.show(lsys.lstring("F(0.1)")))
   end)
 end)

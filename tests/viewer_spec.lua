@@ -114,7 +114,7 @@ print("last", V.last_pick and V.last_pick.text)
 V.close()
 ]])
     local out, code = run("cd " .. dir .. " && " .. D.env .. " " ..
-      (BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN) ..
+      H.absolute(BIN) ..
       " click.lua picks.lua")
     assert.equal(0, code, out)
     -- F[+F][-F]F: the four F are modules 1, 4, 8 and 10
@@ -263,7 +263,7 @@ V.close()
      "and the S key saves what the window shows", function()
     local dir = clicks()
     if not dir then return end
-    local bin = BIN:sub(1, 1) == "/" and BIN or os.getenv("PWD") .. "/" .. BIN
+    local bin = H.absolute(BIN)
     write(dir .. "/m.lua", MODEL:format(1, "line"))
     os.execute("cd " .. dir .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " .. bin ..
       " view m.lua --size 300x300 >out.txt 2>err.txt; echo $? > rc.txt) &")

@@ -434,14 +434,17 @@ describe("view options naming files", function ()
     assert_error(function ()
       view.normalize({ dir = DATA, contours = { [2] = "nope.con" } }, "model")
     end, "model: view.contours[2]: cannot open '" .. DATA .. "/nope.con': "
-         .. "No such file or directory")
+         .. "No such file or directory (looked for in '" .. DATA .. "' (view.dir: the model's "
+         .. "folder unless set), then in the current folder)")
     assert_error(function ()
       view.normalize({ surfaces = { P = DATA .. "/nope.s" } }, "model")
-    end, "model: view.surfaces.P: cannot open '" .. DATA .. "/nope.s': No such file or directory")
+    end, "model: view.surfaces.P: cannot open '" .. DATA .. "/nope.s': No such file or directory"
+         .. " (looked for in the current folder; view.dir names another)")
     assert_error(function ()
       view.normalize({ dir = DATA .. "/", textures = { "x/nope.png" } }, "model")
     end, "model: view.textures[1]: cannot open '" .. DATA .. "/x/nope.png': "
-         .. "No such file or directory")
+         .. "No such file or directory (looked for in '" .. DATA .. "/' (view.dir: the model's "
+         .. "folder unless set), then in the current folder)")
     assert_error(function ()
       view.normalize({ dir = DATA, contours = { "sub" } }, "model")
     end, "model: view.contours[1]: cannot read '" .. DATA .. "/sub': Is a directory")

@@ -12,6 +12,13 @@
 **   material per (colour, texture) pair, PLY ignores textures;
 ** - coordinates that are not finite are written as 0 (a JSON file cannot
 **   hold NaN, and most OBJ readers choke on it);
+** - colours: the palette holds display (sRGB) values, as the renderer
+**   shows them. glTF's colour factors are linear (glTF 2.0, 3.9.2), so GLB
+**   converts them with the sRGB transfer function (export_impl.h); so
+**   does MTL, for Blender's importer reads Kd as linear (export_obj.c);
+**   PLY vertex colours stay 8-bit sRGB, as PLY readers take them; textures
+**   are embedded or named as they are (glTF reads base colour images as
+**   sRGB);
 ** - outputs are atomic (outfile.h): a file is written under a temporary
 **   name and renamed on success; a failure removes only the temporary file
 **   (a device or a pipe is written in place and never removed).
@@ -30,10 +37,35 @@ enum { LSYS_FORMAT_OBJ = 0, LSYS_FORMAT_PLY = 1, LSYS_FORMAT_GLB = 2 };
 ** or -1. */
 int lsys_export_format (const char *path);
 
+/*
+** How a scene is written. Line segments (line style) are GL lines by
+** default: glTF LINES primitives, OBJ 'l' elements, a PLY 'edge' element,
+** none of which keeps a width, so most viewers draw them one pixel wide.
+** With 'tubes' they become closed tubes of 'sides' sides instead
+** (lsys_mesh_tubes), whose diameter is the line width (in line style,
+** pixels of the rendered picture) times 'pixel' scene units; 'pixel' 0
+** means lsys_export_pixel's. The triangles of a scene are written as they
+** are either way.
+*/
+typedef struct lsys_export_opts {
+  int tubes;               /* 1: line segments as tubes; 0: as lines */
+  int sides;               /* sides of a tube, 3 .. 1024 */
+  double pixel;            /* scene units per unit of line width; 0: the default */
+} lsys_export_opts;
+
+/* The default size of a pixel of line width, in scene units: the largest
+** side of the mesh's bounds over 720, so that a tube is as thick, next to
+** the plant, as the line in an 800 x 800 picture of `lsys render`, which
+** fits the plant into 90% of the picture (a flat plant seen face on: the
+** view's default). 1 for a mesh without extent. */
+double lsys_export_pixel (const lsys_mesh *m);
+
 /* Writes a scene's mesh with its palette and textures in 'format'
-** (LSYS_FORMAT_*): what the bindings and the program call. LSYS_OK or an
-** error with e->msg naming the file. */
-int lsys_scene_save (const lsys_scene *s, int format, const char *path, lsys_error *e);
+** (LSYS_FORMAT_*), as 'o' says (NULL: lines as lines): what the bindings
+** call. LSYS_OK or an error with e->msg naming the file (LSYS_EARG for bad
+** options). With tubes, the mesh is copied once with its tubes added. */
+int lsys_scene_save (const lsys_scene *s, int format, const char *path,
+                     const lsys_export_opts *o, lsys_error *e);
 
 /* The writers themselves, on a mesh with a palette and textures: */
 /*

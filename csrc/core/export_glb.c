@@ -12,7 +12,8 @@
 ** vertex accessors with its own index accessor; per material used by
 ** segments, a LINES primitive with its own POSITION accessor over its run
 ** of end points (no indices, no normals; line widths have no glTF
-** equivalent). An empty mesh gives a scene without nodes.
+** equivalent: export.h's tubes replace the lines by triangles before this
+** writer sees them). An empty mesh gives a scene without nodes.
 **
 ** Textures: each one used gets an image (the PNG file's bytes, embedded), a
 ** sampler (its filters, REPEAT wrapping) and a texture; each (slot,
@@ -201,7 +202,11 @@ static int glbimages (glb *G, lsys_error *e) {
 
 /*
 ** Material mapping. The base colour is the diffuse colour with its alpha
-** (alphaMode BLEND below 1); the emission becomes emissiveFactor. A Phong
+** (alphaMode BLEND below 1); the emission becomes emissiveFactor. Both are
+** linear in glTF and display (sRGB) values in the palette: the RGB goes
+** through the sRGB transfer function (tolinear), alpha as it is. A texture
+** image is embedded as it is: glTF decodes baseColorTexture as sRGB, as the
+** renderer shows it. A Phong
 ** exponent s corresponds to a microfacet distribution of width
 ** alpha = sqrt(2 / (s + 2)) (the usual Blinn-Phong/Beckmann match), and
 ** glTF's roughness is sqrt(alpha): roughness = (2 / (s + 2))^(1/4). That
@@ -213,8 +218,9 @@ static void jmaterial (jbuf *j, const lsys_material *mt, size_t k, int twosided,
                        const lsys_texture *tx, unsigned t, uint32_t gtex, int first) {
   float c[4], em[3], s = fin(mt->shininess), r;
   int i, decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
-  for (i = 0; i < 4; i++) c[i] = lsys_unit(mt->diffuse[i]);
-  for (i = 0; i < 3; i++) em[i] = lsys_unit(mt->emission[i]);
+  for (i = 0; i < 3; i++) c[i] = tolinear(mt->diffuse[i]);     /* glTF factors are linear */
+  c[3] = lsys_unit(mt->diffuse[3]);                             /* alpha is not encoded */
+  for (i = 0; i < 3; i++) em[i] = tolinear(mt->emission[i]);
   if (decal) c[0] = c[1] = c[2] = 1;
   if (s < 0) s = 0;
   r = (float)pow(2.0 / (s + 2.0), 0.25);

@@ -85,6 +85,15 @@ static inline float fin (float x) {
   return isfinite(x) ? x : 0.0f;
 }
 
+/* The linear value of the display (sRGB) colour component 'c', clamped to
+** [0, 1] first: the exact sRGB transfer function of IEC 61966-2-1, as
+** glTF 2.0 (3.9.2) and KHR_materials take colour factors. 0.5 gives
+** 0.21404114. */
+static inline float tolinear (double c) {
+  double x = lsys_unit(c);
+  return (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
+}
+
 static inline unsigned char *put32 (unsigned char *p, uint32_t x) {
   p[0] = (unsigned char)x; p[1] = (unsigned char)(x >> 8);
   p[2] = (unsigned char)(x >> 16); p[3] = (unsigned char)(x >> 24);

@@ -27,10 +27,21 @@ static char *mtlpath (const char *path, const char **name) {
   return s;
 }
 
+/*
+** An MTL colour, linear. The MTL format predates colour management and
+** readers disagree: Blender's importer (io/wavefront_obj, obj_import_mtl.cc)
+** copies Kd into the Principled BSDF's Base Color and Ke into Emission,
+** which hold scene-linear values, and its exporter writes them back as they
+** are; three.js's MTLLoader decodes Kd as sRGB. Blender is where exported
+** plants are mostly taken, so Ka, Kd, Ks and Ke are all written linear (one
+** convention for the whole file), as GLB's factors: a plant looks in Blender
+** as in `lsys render`, and darker in a reader that takes MTL as sRGB (use
+** .glb there). 'd' (opacity) and Ns are not colours and stay as they are.
+*/
 static void putrgb (lsys_writer *w, const char *tag, const float *c) {
   float v[3];
   int k;
-  for (k = 0; k < 3; k++) v[k] = lsys_unit(c[k]);
+  for (k = 0; k < 3; k++) v[k] = tolinear(c[k]);
   lsys_putvec(w, tag, v, 3);
 }
 

@@ -5,6 +5,9 @@
 
 #include "export_impl.h"
 
+/* A vertex colour byte: the display (sRGB) value as it is, which is how PLY
+** readers take 8-bit colours (MeshLab; Blender's importer decodes them as
+** sRGB by default), unlike glTF's and MTL's linear factors. */
 static unsigned char tobyte (float c) {
   return (unsigned char)(lsys_unit(c) * 255.0f + 0.5f);
 }

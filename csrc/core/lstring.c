@@ -166,15 +166,20 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
   return LSYS_OK;
 }
 
-int lsys_fmtnum (char *buf, size_t size, double x) {
+int lsys_fmtnum_digits (char *buf, size_t size, double x, int digits) {
   int prec;
   if (x == 0) return snprintf(buf, size, signbit(x) ? "-0" : "0");
   if (x == trunc(x) && fabs(x) < 1e15) return snprintf(buf, size, "%.0f", x);
+  if (digits > 0) return snprintf(buf, size, "%.*g", digits < 17 ? digits : 17, x);
   for (prec = 15; prec <= 17; prec++) {
     snprintf(buf, size, "%.*g", prec, x);
     if (strtod(buf, NULL) == x) break;
   }
   return (int)strlen(buf);
+}
+
+int lsys_fmtnum (char *buf, size_t size, double x) {
+  return lsys_fmtnum_digits(buf, size, x, 0);
 }
 
 int lsys_buf_add (lsys_buf *b, const char *s, size_t len) {
@@ -192,6 +197,11 @@ void lsys_buf_free (lsys_buf *b) {
 
 int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
                          const lsys_names *decl, size_t i, size_t j) {
+  return lsys_lstring_format_digits(b, s, a, decl, i, j, 0);
+}
+
+int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
+                                const lsys_names *decl, size_t i, size_t j, int digits) {
   /* the starts and lengths of the latest parameterless names: a new name
   ** must not make any of them read back longer */
   size_t rs[16], rl[16], nr = 0, k, off = lsys_lstring_poff(s, i), window = 4, q;
@@ -224,7 +234,7 @@ int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
     if (np == 0) continue;
     for (m = 0; m < np; m++) {
       char num[40];
-      int n = lsys_fmtnum(num, sizeof num, s->par[off + m]);
+      int n = lsys_fmtnum_digits(num, sizeof num, s->par[off + m], digits);
       if (lsys_buf_add(b, m == 0 ? "(" : ",", 1) != LSYS_OK ||
           lsys_buf_add(b, num, (size_t)n) != LSYS_OK)
         return LSYS_ENOMEM;

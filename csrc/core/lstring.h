@@ -77,12 +77,21 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
 int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
                          const lsys_names *decl, size_t i, size_t j);
 
+/* Like lsys_lstring_format, with the parameters rounded to 'digits' significant digits
+** (1 to 17; 0 for the shortest text that reads back as the same double; whole numbers
+** below 1e15 are always written in full). */
+int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
+                                const lsys_names *decl, size_t i, size_t j, int digits);
+
 /* Checks bracket balance; returns -1 when balanced, else the index of the
 ** first module that is unbalanced (a ']' with no '[' or an unclosed '['). */
 long long lsys_lstring_unbalanced (const lsys_lstring *s);
 
 /* Writes the shortest of %.15g/%.16g/%.17g that reads back as 'x'. */
 int lsys_fmtnum (char *buf, size_t size, double x);
+
+/* Writes 'x' with 'digits' significant digits (%.*g; 0: as lsys_fmtnum). */
+int lsys_fmtnum_digits (char *buf, size_t size, double x, int digits);
 
 int lsys_buf_add (lsys_buf *b, const char *s, size_t len);
 void lsys_buf_free (lsys_buf *b);

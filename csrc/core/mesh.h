@@ -94,6 +94,58 @@ int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]);
 ** beyond the mesh are ignored). Returns the number of edges. */
 size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edges);
 
+/* ---- Tubes (mesh_tube.c): the turtle's cylinders and exported lines ---- */
+
+/* The cos/sin table of a ring of 'n' sides: cs[2k], cs[2k + 1] for k in
+** 0 .. n (the last repeats the first exactly), 2 n + 2 values. */
+void lsys_mesh_ringtable (double *cs, int n);
+
+/* How rings are laid out: in the plane of L and U (L = H x U, so that the
+** bands lsys_mesh_band makes face outwards), by the table 'cs' of 'n'
+** sides, in colour 'col'. */
+typedef struct lsys_tubeframe {
+  const double *H, *L, *U;
+  const double *cs;
+  int n;
+  unsigned col;
+} lsys_tubeframe;
+
+/*
+** Appends a ring of n + 1 vertices (the last repeats the first, for u = 1)
+** of radius 'r' around 'c', with u = k / n and 'v'; normals point outwards,
+** tilted along H by 'slope' (a taper's (r0 - r1) / length). Room must have
+** been reserved. Returns its first vertex.
+*/
+uint32_t lsys_mesh_ring (lsys_mesh *m, const lsys_tubeframe *f, const double c[3], double r,
+                         double slope, double v);
+
+/* Appends a flat cap on the ring at 'ring' (n sides): a fan of n triangles
+** around a new centre vertex at 'c', all with normal 'nn'; 'flip' winds it
+** for a top cap (rings turn anticlockwise about -H). n + 1 vertices. */
+void lsys_mesh_cap (lsys_mesh *m, const double c[3], const double nn[3], uint32_t ring, int n,
+                    unsigned col, int flip);
+
+/* Appends the 2 n triangles between the rings at 'base' and 'top'. */
+void lsys_mesh_band (lsys_mesh *m, uint32_t base, uint32_t top, int n);
+
+/*
+** Makes 'dst' (empty or freed) the vertices and triangles of 'src' followed
+** by its line segments as tubes of 'n' sides (3 .. 1024), with no line
+** segments left. A segment's widths w0, w1 (line style: pixels) become the
+** diameters w0 * unit and w1 * unit of its ends; widths below 1 or not
+** numbers count as 1, the thinnest line the renderer draws, and widths
+** above 16384 as 16384, as the renderer caps them. A tube that starts where
+** the segment before it ended, as wide, of the same colour and bent by less
+** than 30 degrees shares that segment's top ring (no crack, no inner caps, as
+** the turtle's cylinders); other ends are closed with flat caps. A segment
+** of zero length or with an end that is not finite is left out. Tube
+** vertices are one-sided, untextured; u goes round, v along the tube.
+** Allocates once. Returns LSYS_OK; LSYS_EARG for a bad 'n' or a 'unit' that
+** is not a positive finite number; LSYS_ELIMIT when the result would have
+** more than UINT32_MAX vertices; LSYS_ENOMEM. On failure 'dst' is empty.
+*/
+int lsys_mesh_tubes (lsys_mesh *dst, const lsys_mesh *src, int n, double unit);
+
 /* Fills a material from an RGB colour (diffuse), with the default ambient
 ** and no specular highlight. */
 void lsys_material_color (lsys_material *mt, double r, double g, double b);

@@ -268,15 +268,11 @@ static void tropisms (run *R) {
 /* The cos/sin table of the run's sides, for cylinders, discs and spheres. */
 static int setring (run *R) {
   lsys_turtle *t = R->t;
-  int n = R->o->sides, k;
+  int n = R->o->sides;
   if (t->nring == n && t->ring) return LSYS_OK;
   if (lsys_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2, sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
-  for (k = 0; k <= n; k++) {
-    double a = 2 * PI * k / n;
-    t->ringbuf[2 * k] = k == n ? 1 : cos(a);
-    t->ringbuf[2 * k + 1] = k == n ? 0 : sin(a);
-  }
+  lsys_mesh_ringtable(t->ringbuf, n);
   t->ring = t->ringbuf;
   t->nring = n;
   return LSYS_OK;

@@ -3,27 +3,17 @@
 ** each end and the band between them. A segment that starts where the last
 ** one ended, as wide, about as straight and of the same colour, shares that
 ** segment's top ring, so a stem has no cracks and no inner caps; the ends
-** nothing continued are closed with flat caps when the run ends. See
-** turtle_impl.h.
+** nothing continued are closed with flat caps when the run ends. The rings,
+** caps and bands themselves are mesh_tube.c's (mesh.h), which the export of
+** lines as tubes shares. See turtle_impl.h.
 */
 #include "turtle_impl.h"
 
 /* A ring of sides + 1 vertices (the last repeats the first, for uv) around
 ** 'c' in the plane of L and U; normals tilted by 'slope' along H (tapers). */
 static uint32_t ring (run *R, const double *c, double r, double slope, double v, int col) {
-  lsys_mesh *m = R->t->mesh;
-  const double *cs = R->t->ring;
-  int n = R->o->sides, k;
-  uint32_t first = (uint32_t)m->nv;
-  for (k = 0; k <= n; k++) {
-    double d[3], p[3], nn[3];
-    vlin(d, R->st.L, cs[2 * k], R->st.U, cs[2 * k + 1]);
-    vlin(p, c, 1, d, r);
-    vlin(nn, d, 1, R->st.H, slope);
-    if (slope != 0) vnorm(nn);
-    lsys_mesh_vertex(m, p, nn, (double)k / n, v, (unsigned)col, 0);
-  }
-  return first;
+  lsys_tubeframe f = { R->st.H, R->st.L, R->st.U, R->t->ring, R->o->sides, (unsigned)col };
+  return lsys_mesh_ring(R->t->mesh, &f, c, r, slope, v);
 }
 
 static int cylend (run *R, const double *c, double r, uint32_t rng, int col) {
@@ -42,23 +32,6 @@ static int cylend (run *R, const double *c, double r, uint32_t rng, int col) {
   return LSYS_OK;
 }
 
-/* A flat cap: a fan around 'c' with normal 'nn', from a ring's positions.
-** Rings turn anticlockwise about -H: 'flip' winds the fan for a top cap. */
-static void cap (lsys_mesh *m, const double *c, const double *nn, uint32_t rng, int n,
-                 int col, int flip) {
-  uint32_t first = (uint32_t)m->nv, k;
-  lsys_mesh_vertex(m, c, nn, 0.5, 0.5, (unsigned)col, 0);
-  for (k = 0; k < (uint32_t)n; k++) {
-    double p[3] = {m->pos[3 * (rng + k)], m->pos[3 * (rng + k) + 1], m->pos[3 * (rng + k) + 2]};
-    lsys_mesh_vertex(m, p, nn, m->uv[2 * (rng + k)], 0.5, (unsigned)col, 0);
-  }
-  for (k = 0; k < (uint32_t)n; k++) {
-    uint32_t a = first + 1 + k, b = first + 1 + (k + 1) % n;
-    if (flip) lsys_mesh_tri(m, first, b, a);
-    else lsys_mesh_tri(m, first, a, b);
-  }
-}
-
 /* Width over height of the current texture (1 without one): v along a
 ** stem grows by length x aspect / circumference (cpfg guide §5.2). */
 static double texaspect (run *R) {
@@ -74,7 +47,7 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
   lsys_mesh *m = t->mesh;
   int n = R->o->sides;
   double r0 = w0 / 2, r1 = w1 / 2, slope = len > 0 ? (r0 - r1) / len : 0, v0 = 0;
-  uint32_t base = LSYS_NOREC, top, k;
+  uint32_t base = LSYS_NOREC, top;
   lsys_cylend *e = R->st.tip != LSYS_NOREC ? &t->ends[R->st.tip] : NULL;
   if (lsys_mesh_reserve(m, 3 * ((size_t)n + 2), 4 * (size_t)n) != LSYS_OK)
     return lsys_turtle_nomem(R);
@@ -92,15 +65,12 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
     double back[3];
     base = ring(R, p0, r0, slope, 0, col);
     vlin(back, R->st.H, -1, R->st.H, 0);
-    cap(m, p0, back, base, n, col, 0);
+    lsys_mesh_cap(m, p0, back, base, n, (unsigned)col, 0);
   }
   /* v runs along the stem so that texture pixels keep their aspect (§5.2) */
   top = ring(R, p1, r1, slope, v0 + (r0 + r1 > 0 ? len * texaspect(R) / (PI * (r0 + r1)) : 0),
              col);
-  for (k = 0; k < (uint32_t)n; k++) {     /* outward facing */
-    lsys_mesh_tri(m, base + k, top + k + 1, base + k + 1);
-    lsys_mesh_tri(m, base + k, top + k, top + k + 1);
-  }
+  lsys_mesh_band(m, base, top, n);
   if (cylend(R, p1, r1, top, col) != LSYS_OK) return LSYS_ENOMEM;
   R->st.tip = (uint32_t)(t->nends - 1);
   return LSYS_OK;
@@ -115,7 +85,7 @@ int lsys_turtle_capends (run *R) {
     lsys_cylend *ce = &t->ends[e];
     if (ce->continued) continue;
     if (lsys_mesh_reserve(m, (size_t)n + 1, (size_t)n) != LSYS_OK) return lsys_turtle_nomem(R);
-    cap(m, ce->c, ce->H, ce->ring, n, ce->color, 1);
+    lsys_mesh_cap(m, ce->c, ce->H, ce->ring, n, (unsigned)ce->color, 1);
   }
   return LSYS_OK;
 }

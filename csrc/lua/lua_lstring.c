@@ -23,11 +23,13 @@ static int lstring_len (lua_State *L) {
   return 1;
 }
 
-/* Pushes the text of modules [i, j) of 's'. */
-static void pushtext (lua_State *L, int idx, size_t i, size_t j) {
+/* Pushes the text of modules [i, j) of 's', parameters with 'digits' significant digits
+** (0: exact). */
+static void pushtext (lua_State *L, int idx, size_t i, size_t j, int digits) {
   lsys_lstring *s = checklstring(L, idx);
   lsys_buf b = {0};
-  if (lsys_lstring_format(&b, s, lsys_getalphabet(L), lsys_ownernames(L, idx), i, j) != LSYS_OK) {
+  if (lsys_lstring_format_digits(&b, s, lsys_getalphabet(L), lsys_ownernames(L, idx), i, j,
+                                 digits) != LSYS_OK) {
     lsys_buf_free(&b);
     luaL_error(L, "not enough memory");
   }
@@ -42,7 +44,7 @@ static int lstring_tostring (lua_State *L) {
     return 1;
   }
   s = checklstring(L, 1);
-  pushtext(L, 1, 0, s->n);
+  pushtext(L, 1, 0, s->n, 0);
   return 1;
 }
 
@@ -67,14 +69,19 @@ static int lstring_sub (lua_State *L) {
   return 1;
 }
 
-static int lstring_text (lua_State *L) {   /* s:text(i, j): text of a range */
+/* s:text([i [, j [, digits]]]): the text of a range, parameters rounded to 'digits'
+** significant digits (1 to 17; default: exact) */
+static int lstring_text (lua_State *L) {
   lsys_lstring *s = checklstring(L, 1);
   size_t i = posrelat(luaL_optinteger(L, 2, 1), s->n);
   lua_Integer je = luaL_optinteger(L, 3, -1);
+  lua_Integer digits = luaL_optinteger(L, 4, 0);
   size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
+  luaL_argcheck(L, lua_isnoneornil(L, 4) || (1 <= digits && digits <= 17), 4,
+                "digits must be from 1 to 17");
   if (j > s->n) j = s->n;
   if (i > j) lua_pushliteral(L, "");
-  else pushtext(L, 1, i - 1, j);
+  else pushtext(L, 1, i - 1, j, (int)digits);
   return 1;
 }
 

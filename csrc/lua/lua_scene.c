@@ -571,17 +571,50 @@ static int scene_turtle (lua_State *L) {
   return 6;
 }
 
-/* scene:save(path) -> true; .obj (+ .mtl), .ply, .glb */
+/* The sides of exported tubes by default: the view's contour_sides when
+** the scene was interpreted with one (its turtle options, a user value),
+** else the turtle's default. */
+static int tubesides (lua_State *L) {
+  lsys_turtle_opts d;
+  int sides;
+  lsys_turtle_defaults(&d);
+  sides = d.sides;
+  if (lua_getiuservalue(L, 1, LSYS_SCENE_OPTS) == LUA_TTABLE &&
+      lua_getfield(L, -1, "contour_sides") == LUA_TNUMBER) {
+    double k = lua_tonumber(L, -1);               /* as the turtle read it (optwhole) */
+    if (k >= 3 && k <= 1024) sides = (int)k;
+  }
+  lua_settop(L, 3);
+  return sides;
+}
+
+/* scene:save(path [, opts]) -> true; .obj (+ .mtl), .ply, .glb; opts.lines
+** "lines" (default) or "tubes", with opts.sides and opts.pixel_size */
 static int scene_save (lua_State *L) {
+  static const char *const keys[] = {"lines", "sides", "pixel_size", NULL};
+  static const char *const lines[] = {"lines", "tubes", NULL};
   lsys_lscene *S = lsys_checkscene(L, 1);
   const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
+  lsys_export_opts xo = {0, 0, 0};
   lsys_error e;
   int st;
   memset(&e, 0, sizeof e);
+  if (!lua_isnoneornil(L, 3)) {
+    lsys_opts o = {3, "scene:save: opts.", "", LSYS_GOT_VALUE, 0};
+    luaL_checktype(L, 3, LUA_TTABLE);
+    if (lsys_optunknown(L, &o, keys))
+      return luaL_error(L, "scene:save: unknown option '%s' (use lines, sides, pixel_size)",
+                        luaL_tolstring(L, -1, NULL));
+    xo.tubes = lsys_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
+    xo.sides = lsys_optint(L, &o, "sides", 0, 3, 1024);
+    xo.pixel = lsys_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
+  }
+  lua_settop(L, 3);
+  if (xo.sides == 0) xo.sides = tubesides(L);
   if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
-  st = lsys_scene_save(&S->sc, format, path, &e);
+  st = lsys_scene_save(&S->sc, format, path, &xo, &e);
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;

@@ -12,13 +12,16 @@
 ** Errors reaching this file print "lsys: message" (with a traceback when LSYS_DEBUG is set)
 ** and exit 1; the exit status is otherwise what lsys.cli's main returns.
 */
-#define _XOPEN_SOURCE 700  /* readlink, realpath, isatty, clock_gettime */
+#define _XOPEN_SOURCE 700  /* readlink, realpath, isatty, clock_gettime, sigaction */
+#define _DEFAULT_SOURCE    /* struct winsize, TIOCGWINSZ */
 
+#include <errno.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -48,6 +51,7 @@
 int luaopen_lsys_core (lua_State *L);
 
 static lua_State *globalL = NULL;  /* for the SIGINT handler, as in lua.c */
+static volatile sig_atomic_t interrupted = 0;  /* Ctrl-C at the prompt */
 
 
 /* {====================================================================
@@ -60,6 +64,18 @@ static int host_isatty (lua_State *L) {
   luaL_argcheck(L, 0 <= fd && fd <= INT_MAX, 1, "bad file descriptor");
   lua_pushboolean(L, isatty((int)fd));
   return 1;
+}
+
+/* termsize(): the rows and columns of the terminal on stdout, or nil when it is not one. */
+static int host_termsize (lua_State *L) {
+  struct winsize ws;
+  if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) != 0 || ws.ws_row == 0 || ws.ws_col == 0) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_pushinteger(L, ws.ws_row);
+  lua_pushinteger(L, ws.ws_col);
+  return 2;
 }
 
 /* clock(): seconds of a monotonic wall clock, for timing derivations. */
@@ -85,16 +101,44 @@ static void laction (int i) {
 }
 
 /*
-** interrupt(on): while on, Ctrl-C raises "interrupted!" in the running Lua code instead of
-** killing the process (the REPL turns it on around each evaluation). C loops that do not
-** call back into Lua finish first.
+** The SIGINT handler at the prompt: notes the Ctrl-C and, inside readline, ends the line
+** being edited (readline calls it after restoring the terminal; l_readline then discards
+** the line). Without readline it interrupts the read, which returns with EINTR.
+*/
+static void promptaction (int i) {
+  (void)i;
+  interrupted = 1;
+#ifdef LSYS_WITH_READLINE
+  rl_done = 1;
+#endif
+}
+
+/*
+** interrupt(mode): true while the REPL evaluates: Ctrl-C raises "interrupted!" in the
+** running Lua code instead of killing the process (C loops that do not call back into Lua
+** finish first). "prompt" while it waits for a line: Ctrl-C abandons the line (see
+** interrupted()). false or nil: Ctrl-C ends the process again.
 */
 static int host_interrupt (lua_State *L) {
+  static const char *const modes[] = {"prompt", NULL};
+  struct sigaction sa;
   int on = lua_toboolean(L, 1);
+  int prompt = lua_type(L, 1) == LUA_TSTRING && luaL_checkoption(L, 1, NULL, modes) == 0;
   globalL = L;
-  signal(SIGINT, on ? laction : SIG_DFL);
-  if (!on) lua_sethook(L, NULL, 0, 0);
+  memset(&sa, 0, sizeof sa);
+  sigemptyset(&sa.sa_mask);
+  sa.sa_handler = prompt ? promptaction : on ? laction : SIG_DFL;
+  sa.sa_flags = prompt ? 0 : SA_RESTART;  /* a read at the prompt returns on Ctrl-C */
+  sigaction(SIGINT, &sa, NULL);
+  if (!on || prompt) lua_sethook(L, NULL, 0, 0);
   return 0;
+}
+
+/* interrupted(): whether Ctrl-C was pressed at the prompt since the last call. */
+static int host_interrupted (lua_State *L) {
+  lua_pushboolean(L, interrupted);
+  interrupted = 0;
+  return 1;
 }
 
 /* host.set_idle(f): the function the REPL's line editor calls while it waits (nil: none). */
@@ -115,8 +159,10 @@ static const luaL_Reg host_funcs[] = {
   {"clear_line", host_clear_line},
 #endif
   {"isatty", host_isatty},
+  {"termsize", host_termsize},
   {"clock", host_clock},
   {"interrupt", host_interrupt},
+  {"interrupted", host_interrupted},
   {NULL, NULL}
 };
 
@@ -128,30 +174,71 @@ static const luaL_Reg host_funcs[] = {
 ** lsys.readline
 ** ===================================================================== */
 
-static lua_State *idleL = NULL;   /* the state inside l_readline, for the idle hook */
+static lua_State *idleL = NULL;   /* the state inside l_readline, for the hooks */
+static char *histfile = NULL;     /* where lines are appended, or NULL */
+static lua_Integer candidate = 0; /* the next completion candidate to hand to readline */
 
 static int pushline (lua_State *L) {
   lua_pushstring(L, (const char *)lua_touserdata(L, 1));
   return 1;
 }
 
+/* Adds 'line' to the history unless it is empty or repeats the last entry, and appends it
+** to the history file. append_history does not create the file: write_history does.
+** Failures to write are silent. */
+static void remember (const char *line) {
+  HIST_ENTRY *last = history_length > 0 ? history_get(history_base + history_length - 1)
+                                        : NULL;
+  if (line[0] == '\0' || (last != NULL && strcmp(last->line, line) == 0)) return;
+  add_history(line);
+  if (histfile != NULL && append_history(1, histfile) != 0) write_history(histfile);
+}
+
+#if RL_READLINE_VERSION >= 0x0800
+/*
+** Reads a key for readline (its rl_getc_function): as rl_getc, except that after a Ctrl-C
+** at the prompt it returns EOF at once instead of waiting for another key, so that
+** readline ends the line (l_readline then discards it). The Ctrl-C may arrive while
+** readline waits in select (it then ends the line itself, promptaction having set
+** rl_done) or here in read.
+*/
+static int getkey (FILE *f) {
+  unsigned char c;
+  for (;;) {
+    ssize_t n;
+    if (interrupted) return EOF;
+    n = read(fileno(f), &c, 1);
+    if (n == 1) return c;
+    if (n == 0 || errno != EINTR) return EOF;
+    rl_check_signals();  /* readline's handler: the terminal, then promptaction */
+  }
+}
+#endif
+
 /*
 ** readline([prompt]): reads a line with editing and history; returns it without the
-** newline, or nil at end of input. Non-empty lines are added to the history.
+** newline, nil at end of input, or false when Ctrl-C abandoned it (with host.interrupt
+** "prompt" on). Lines are added to the history unless empty or a repetition.
 */
 static int l_readline (lua_State *L) {
   const char *prompt = luaL_optstring(L, 1, "");
   char *line;
   int status;
   idleL = L;
+  interrupted = 0;
   line = readline(prompt);
   idleL = NULL;
+  if (interrupted) {
+    interrupted = 0;
+    free(line);
+    lua_pushboolean(L, 0);
+    return 1;
+  }
   if (line == NULL) {
     lua_pushnil(L);
     return 1;
   }
-  if (line[0] != '\0')
-    add_history(line);
+  remember(line);
   /* push in protected mode: 'line' must be freed even on a memory error */
   lua_pushcfunction(L, pushline);
   lua_pushlightuserdata(L, line);
@@ -160,6 +247,89 @@ static int l_readline (lua_State *L) {
   if (status != LUA_OK)
     return lua_error(L);
   return 1;
+}
+
+/*
+** history(path [, max]): keeps at most 'max' lines of history (default 1000), reads them
+** from the file 'path', cuts the file to 'max' lines and appends each new line to it.
+** Returns whether the file could be read; a missing file is made at the first line.
+*/
+static int l_history (lua_State *L) {
+  size_t len;
+  const char *path = luaL_checklstring(L, 1, &len);
+  lua_Integer max = luaL_optinteger(L, 2, 1000);
+  char *copy;
+  luaL_argcheck(L, 0 < max && max <= 1000000, 2, "out of range (1 to 1000000)");
+  copy = (char *)malloc(len + 1);
+  if (copy == NULL) return luaL_error(L, "not enough memory");
+  memcpy(copy, path, len + 1);
+  free(histfile);
+  histfile = copy;
+  stifle_history((int)max);
+  lua_pushboolean(L, read_history(path) == 0);
+  history_truncate_file(path, (int)max);
+  return 1;
+}
+
+/*
+** The generator of rl_completion_matches: the next string of the list that complete()
+** left in the registry, as a malloc'ed copy (readline frees it), or NULL after the last.
+*/
+static char *nextcandidate (const char *text, int state) {
+  lua_State *L = idleL;
+  char *r = NULL;
+  int top;
+  (void)text;
+  if (state == 0) candidate = 0;
+  if (L == NULL) return NULL;
+  top = lua_gettop(L);
+  if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.candidates") == LUA_TTABLE &&
+      lua_rawgeti(L, -1, ++candidate) == LUA_TSTRING) {
+    size_t n;
+    const char *s = lua_tolstring(L, -1, &n);
+    r = (char *)malloc(n + 1);
+    if (r != NULL) memcpy(r, s, n + 1);
+  }
+  lua_settop(L, top);
+  return r;
+}
+
+/*
+** readline's completion hook: calls the function set with set_complete as f(line, start,
+** stop), the word being line:sub(start + 1, stop). A list of strings are the words that
+** may replace it; nil lets readline complete a file name (in a quoted string). Nothing
+** is appended after a completed word.
+*/
+static char **complete (const char *text, int start, int end) {
+  lua_State *L = idleL;
+  int top;
+  rl_attempted_completion_over = 1;  /* no file names unless the function says so */
+  rl_completion_append_character = '\0';
+  if (L == NULL) return NULL;
+  top = lua_gettop(L);
+  if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.complete") != LUA_TFUNCTION) {
+    lua_settop(L, top);
+    return NULL;
+  }
+  lua_pushstring(L, rl_line_buffer);
+  lua_pushinteger(L, start);
+  lua_pushinteger(L, end);
+  if (lua_pcall(L, 3, 1, 0) == LUA_OK && lua_isnil(L, -1)) {
+    rl_attempted_completion_over = 0;
+    lua_settop(L, top);
+    return NULL;
+  }
+  lua_setfield(L, LUA_REGISTRYINDEX, "lsys.candidates");  /* an error message: no list */
+  lua_settop(L, top);
+  return rl_completion_matches(text, nextcandidate);
+}
+
+/* set_complete(f): the Lua function that completes words at the Tab key (nil: none). */
+static int l_set_complete (lua_State *L) {
+  if (!lua_isnoneornil(L, 1)) luaL_checktype(L, 1, LUA_TFUNCTION);
+  lua_settop(L, 1);
+  lua_setfield(L, LUA_REGISTRYINDEX, "lsys.complete");
+  return 0;
 }
 
 /*
@@ -199,10 +369,29 @@ static int host_clear_line (lua_State *L) {
   return 0;
 }
 
+static const luaL_Reg readline_funcs[] = {
+  {"readline", l_readline},
+  {"history", l_history},
+  {"set_complete", l_set_complete},
+  {NULL, NULL}
+};
+
+/*
+** require "lsys.readline" -> { readline, history, set_complete }. A word to complete
+** runs back to a blank, a quote or an operator: "lsys.view.l" and "m:de" are one word.
+*/
 static int luaopen_lsys_readline (lua_State *L) {
+  static char breaks[] = " \t\n\"'`@$><=;|&{([,+-*/%^#~)}]";
+  static char quotes[] = "\"'";
   rl_readline_name = "lsys";  /* for $if lsys in ~/.inputrc */
   rl_event_hook = idlehook;
-  lua_pushcfunction(L, l_readline);
+#if RL_READLINE_VERSION >= 0x0800
+  rl_getc_function = getkey;
+#endif
+  rl_attempted_completion_function = complete;
+  rl_completer_word_break_characters = breaks;
+  rl_completer_quote_characters = quotes;
+  luaL_newlib(L, readline_funcs);
   return 1;
 }
 

@@ -13,6 +13,7 @@
 --   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
 --   lsys components graph MODEL -o OUT   a component graph's p-graph (.png .svg .pdf .dot)
 --   lsys grow FILE ...        a growing world (lsys.grow) live in the window, or --frames DIR
+--   lsys import MODEL.l -o OUT.lua   a cpfg model as a readable lsys model file
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local host = require("lsys.program").host
@@ -42,7 +43,11 @@ usage: lsys [COMMAND] [ARGS]
   lsys sketch plot|model|render FILE -o OUT   a sketch's functions, model or picture
   lsys components graph MODEL -o OUT   draw a component graph's p-graph (Graphviz)
   lsys grow FILE [OPTS]       grow plants tick by tick in the window (lsys.grow), or to PNGs
+  lsys import MODEL.l [VIEW.v] -o OUT.lua   write a cpfg model as an lsys model file
   lsys help [COMMAND]         this help, or a command's help
+
+MODEL is a Lua file that returns a model, an example's name, a cpfg L-system file (.l,
+with its view file VIEW.v after it: `lsys render plant.l plant.v`) or a vlab object folder.
 
 Options:
   -h, --help      show this help
@@ -54,8 +59,9 @@ work as in `lua`. Exit status: 0 success, 1 error, 2 usage error.
 
 local HELP = {}
 
-HELP.derive = [[
-usage: lsys derive [MODEL] [--steps N] [--seed S] [--set NAME=VALUE]... [--name NAME]
+HELP.derive = [=[
+usage: lsys derive [MODEL [VIEW.v]] [--steps N] [--seed S] [--set NAME=VALUE]...
+                   [--name NAME] [--map FILE | --mat FILE] [--define NAME=VALUE]...
                    [--stats] [--progress]
 
 Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a component
@@ -64,57 +70,77 @@ it and prints the resulting L-string in cpfg notation. Without MODEL,
 derives the default example (examples/default.lua). A MODEL that is not a file is looked up
 in the examples directory, with or without .lua: `lsys derive abop/fig1_24a`.
 
+A MODEL ending in .l is a cpfg L-system file, loaded as lsys.cpfg.load does (docs/cpfg.md),
+with VIEW.v, when given, as its view file: `lsys derive plant.l plant.v`. A folder with a
+`specifications` file is a vlab object: the specifications name its .l, .v and palette.
+
 Options:
   --steps N          number of derivation steps (sets model.steps)
   --seed S           random seed (sets model.seed)
   --set NAME=VALUE   sets model.env[NAME] to VALUE, a number if it reads as one, else a
-                     string; may be repeated
+                     string; may be repeated (a cpfg model's env holds the variables of
+                     its Start and End blocks; a #define is not one: see `lsys import`)
   --name NAME        the model to derive when MODEL returns a table of models (default:
                      the first name in sorted order)
+  --map FILE         a cpfg model's colour map (.map), relative to the .l file's folder
+  --mat FILE         a cpfg model's material file (.mat), likewise
+  --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
+                     #define in the file wins); may be repeated
   --stats            print statistics instead of the string: steps, modules, the count of
                      each module name, and the derivation time
   --progress         print "step k/N: M modules" on stderr after each step (the default
                      when stderr is a terminal)
   -h, --help         show this help
-]]
+]=]
 
-HELP.render = [[
-usage: lsys render [MODEL] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
-                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME] [--progress]
+HELP.render = [=[
+usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
+                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
 
-Derives MODEL (a Lua file returning a model, or an example name as for `lsys derive`),
-interprets it with the turtle and renders it headless (OSMesa) to a PNG file. Without MODEL,
-renders the default example (examples/default.lua) to tree.png.
+Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
+VIEW.v, or a vlab object folder, as for `lsys derive`), interprets it with the turtle and
+renders it headless (OSMesa) to a PNG file. Without MODEL, renders the default example
+(examples/default.lua) to tree.png.
 
 Options:
   -o, --output OUT   the PNG file (default: tree.png for the default model, else the
                      model's file name with .png, in the current directory)
   --size WxH         picture size in pixels (default 800x800)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
+  --map FILE, --mat FILE, --define NAME=VALUE   a cpfg model's, as for `lsys derive`
   --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
                      such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
                      viewpoint=0,10,40, background=1,1,1, supersample=2, ...
   -h, --help         show this help
-]]
+]=]
 
 HELP.export = [[
-usage: lsys export MODEL -o OUT.{obj,ply,glb} [--steps N] [--seed S] [--set NAME=VALUE]...
-                   [--view NAME=VALUE]... [--name NAME] [--progress]
+usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps N]
+                   [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
 
-Derives and interprets MODEL and writes its geometry: Wavefront OBJ (with a .mtl file next
+Derives and interprets MODEL (as for `lsys render`: a cpfg MODEL.l takes its VIEW.v after
+it) and writes its geometry: Wavefront OBJ (with a .mtl file next
 to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT.
 
 Options: as for `lsys render`; -o is required.
+  --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800
+                  render) instead of lines, which most viewers draw one pixel wide
+                  (default: --lines lines)
 ]]
 
-HELP.view = [[
-usage: lsys view [MODEL] [--size WxH] [--step K] [--rate R] [--no-status]
+HELP.view = [=[
+usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--step K] [--rate R] [--no-status]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
-                 [--view NAME=VALUE]... [--name NAME]
+                 [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
+                 [--define NAME=VALUE]...
 
-Opens the viewer window on MODEL (a Lua file returning a model, or an example name as for
-`lsys derive`; default: the default example) with every derivation step, the last one
-shown. When the model file changes on disk it is loaded again and the window updates,
+Opens the viewer window on MODEL (a Lua file returning a model, an example name, a cpfg
+.l file with its VIEW.v, or a vlab object folder, as for `lsys derive`; default: the
+default example) with every derivation step, the last one shown. When the model file
+changes on disk (for a cpfg model: the .l file, the files it #includes, the view file or
+the palette) it is loaded again and the window updates,
 keeping its camera; an error (a syntax error, a bad rule) is printed here and the last
 good model stays on screen. A click on a module prints its index and text. The window
 closes with Esc or Q, and Ctrl-C here closes it too.
@@ -131,13 +157,13 @@ Options:
   --no-status          no status line at the bottom of the window
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
-  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME
-                       as for `lsys render`
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE   as for `lsys render`
   -h, --help           show this help
 
 The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
 without one.
-]]
+]=]
 
 HELP.arrange = [[
 usage: lsys arrange [MODEL] [-o OUT.txt] [--string FILE] [--size WxH] [--r0 R] [--s0u S]
@@ -162,7 +188,8 @@ Options:
   --size WxH         window size (default 800x800)
   --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
                      the automatic joint stiffness (default 1 each)
-  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME   as for render
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE   as for render
 
 The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
 `model:step(lsys.lstring(text))`, or arrange it again with --string.
@@ -257,12 +284,34 @@ Options:
   -h, --help           show this help
 ]]
 
+HELP.import = [[
+usage: lsys import MODEL.l [VIEW.v] -o OUT.lua [--map FILE | --mat FILE]
+                   [--define NAME=VALUE]...
+       lsys import FOLDER -o OUT.lua
+
+Writes the cpfg model MODEL.l (with its view file VIEW.v and colour map or material file),
+or the vlab object FOLDER, as an lsys model file to edit from there on: a Lua file that
+returns lsys.lsystem{...}, with the rules in lsys's notation, the #defines of plain numbers
+as env entries that the rules read by name (`--set NAME=VALUE` changes one), the view
+settings, and the productions with statement blocks as Lua functions. `lsys derive OUT.lua`
+gives the string `lsys derive MODEL.l` gives. The view's files (contours, surfaces,
+functions, the palette) stay where they are; OUT.lua finds them from its own folder.
+
+Options:
+  -o, --output OUT.lua  the file to write (required); it appears whole or not at all
+  --map FILE, --mat FILE, --define NAME=VALUE   as for `lsys derive`
+  -h, --help            show this help
+]]
+
 HELP.repl = [[
 usage: lsys [repl]
 
 The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
-prints its values; Lstrings print abbreviated, scenes as a summary. Incomplete statements
-continue on `>>` lines. Ctrl-C interrupts a running evaluation; Ctrl-D quits.
+prints its values; Lstrings print abbreviated, scenes as a summary, tables one level deep.
+Incomplete statements continue on `>>` lines; a `local` stays defined for the lines after
+it. help() gives an overview, help "derive" or help(lsys.render) the manual's section.
+With readline: Tab completes names, and the history is kept in ~/.lsys_history. Ctrl-C
+clears the line at the prompt and interrupts a running evaluation; Ctrl-D quits.
 
 lsys.show(x) opens the viewer window on a model, an Lstring or a scene (or updates it) and
 returns at once; clicks on modules in the window are printed at the prompt (set
@@ -305,6 +354,14 @@ local function isfile (path)
   local ok, err = f:read(0)  -- nil, msg for a directory (it opens but cannot be read)
   f:close()
   return ok ~= nil or err == nil
+end
+
+local function isdir (path)
+  local f = io.open(path, "r")
+  if f == nil then return false end
+  local ok, _, code = f:read(0)
+  f:close()
+  return ok == nil and code == 21     -- EISDIR
 end
 
 -- }===========================================================================================
@@ -480,6 +537,112 @@ local function load_model (path, name, seed)
     .. " a component graph's root prototype, or a table of models)", path, type(v)), 0)
 end
 
+-- The cpfg options of a command line (--map, --mat, --define) as lsys.cpfg.load options,
+-- or nil when none is given.
+local function cpfg_opts (cmd, opts)
+  if opts.map == nil and opts.mat == nil and opts.define == nil then return nil end
+  if opts.map ~= nil and opts.mat ~= nil then usage(cmd, "give --map or --mat, not both") end
+  local defines
+  for _, d in ipairs(opts.define or {}) do
+    local k, v = d:match("^([%a_][%w_]*)=(.*)$")
+    if k == nil and d:find("^[%a_][%w_]*$") then k, v = d, "1" end
+    if k == nil then usage(cmd, "--define expects NAME=VALUE, got '%s'", d) end
+    defines = defines or {}
+    defines[k] = v
+  end
+  return { colormap = opts.map, materials = opts.mat, defines = defines }
+end
+
+--[[
+The model the positional arguments name: { path =, kind =, vfile =, lopts = }. A MODEL
+ending in .l is a cpfg L-system file ("l"), and a second argument ending in .v its view
+file; a folder with a `specifications` file is a vlab object ("object"); anything else is
+a Lua model file or an example ("lua", find_model). lopts: the lsys.cpfg.load options of
+--map, --mat and --define. Raises usage errors for arguments that do not go together.
+]]
+local function model_source (cmd, opts, pos)
+  local arg, kind = pos[1], "lua"
+  if arg ~= nil and arg:find("%.l$") then
+    kind = "l"
+  elseif arg ~= nil and isdir(arg) then
+    if not isfile(arg .. "/specifications") then
+      error(format("%s is a folder without a specifications file (a vlab object has one)",
+                   arg), 0)
+    end
+    kind = "object"
+  end
+  local view = pos[2]
+  if view ~= nil and kind == "lua" and view:find("%.v$") then
+    usage(cmd, "a view file (%s) goes with a cpfg MODEL (.l), not with a Lua model", view)
+  elseif view ~= nil and kind == "object" then
+    usage(cmd, "unexpected argument '%s' (a vlab object names its view file in its "
+          .. "specifications)", view)
+  elseif view ~= nil and kind == "l" and not view:find("%.v$") then
+    usage(cmd, "unexpected argument '%s' (after MODEL.l comes its view file, VIEW.v)", view)
+  end
+  if #pos > (kind == "l" and 2 or 1) then
+    usage(cmd, "unexpected argument '%s' (%s)", pos[kind == "l" and 3 or 2],
+          kind == "l" and "MODEL.l and VIEW.v at most" or "one MODEL at most")
+  end
+  local lopts = cpfg_opts(cmd, opts)
+  if kind == "lua" then
+    if lopts ~= nil then
+      usage(cmd, "--map, --mat and --define apply to a cpfg MODEL (a .l file or a vlab "
+            .. "object folder)")
+    end
+    return { path = find_model(arg), kind = kind }
+  end
+  if opts.name ~= nil then usage(cmd, "--name applies to a Lua file that returns models") end
+  if kind == "l" then
+    local f, err = io.open(arg, "r")
+    if f == nil then error(err, 0) end
+    f:close()
+  end
+  return { path = arg, kind = kind, vfile = view, lopts = lopts or {} }
+end
+
+-- Loads the model of model_source's `src` (`name` and `seed` as for load_model).
+local function load_source (src, name, seed)
+  if src.kind == "lua" then return load_model(src.path, name, seed) end
+  local cpfg = require "lsys.cpfg"
+  local ok, m
+  if src.kind == "object" then ok, m = pcall(cpfg.load_object, src.path, src.lopts)
+  else ok, m = pcall(cpfg.load, src.path, src.vfile, src.lopts) end
+  if not ok then      -- the loader names the file and line; its own name is no news
+    error((tostring(m):gsub("^lsys%.view%.load: ", ""):gsub("^lsys%.cpfg%.%a+: ", "")), 0)
+  end
+  return m
+end
+
+-- The files a model comes from, for `lsys view` to watch: the Lua file; or the .l file,
+-- the files it includes, the view file and the palette.
+local function source_files (src)
+  if src.kind == "lua" then return { src.path } end
+  local cpfg, cpp = require "lsys.cpfg", require "lsys.cpfg.cpp"
+  local files, seen = {}, {}
+  local function add (f) if f and not seen[f] then seen[f] = true; files[#files + 1] = f end end
+  local l, v, pal = src.path, src.vfile, src.lopts.colormap or src.lopts.materials
+  if src.kind == "object" then
+    add(src.path .. "/specifications")
+    local ok, l2, v2, p2 = pcall(cpfg.object_files, src.path)
+    if not ok then return files end
+    l, v, pal = l2, v2, pal or p2
+  end
+  -- the files it #includes, in every branch of #if (a missing one is no obstacle)
+  local function scan (file, depth)
+    if seen[file] or depth > 32 then return end
+    add(file)
+    local text = cpp.readfile(file)
+    for inc in (text or ""):gmatch('#%s*include%s*"([^"\n]+)"') do
+      scan(inc:sub(1, 1) == "/" and inc or cpp.dirof(file) .. "/" .. inc, depth + 1)
+    end
+  end
+  scan(l, 0)
+  add(v)
+  if pal then add(pal:sub(1, 1) == "/" and pal or cpp.dirof(l) .. "/" .. pal) end
+  return files
+end
+
 -- }===========================================================================================
 
 
@@ -491,12 +654,14 @@ local commands = {}
 local DERIVE_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value",
   stats = "flag", progress = "flag", help = "flag", short = { h = "help" },
+  map = "value", mat = "value", define = "list",
 }
 
 local RENDER_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   output = "value", size = "value", progress = "flag", help = "flag",
-  short = { h = "help", o = "output" },
+  short = { h = "help", o = "output" }, map = "value", mat = "value", define = "list",
+  lines = "value",
 }
 
 -- The number of each module name in 's', as a sorted list of { name, count }.
@@ -532,7 +697,7 @@ end
 
 -- Loads the model named by the positional arguments and applies --steps --seed --set.
 local function prepare (cmd, opts, pos)
-  if #pos > 1 then usage(cmd, "unexpected argument '%s' (one MODEL at most)", pos[2]) end
+  local src = model_source(cmd, opts, pos)
   local steps, seed
   if opts.steps ~= nil then
     steps = math.tointeger(tonumber(opts.steps))
@@ -558,8 +723,8 @@ local function prepare (cmd, opts, pos)
     views[k] = value(v)
   end
 
-  local path = find_model(pos[1])
-  local model = load_model(path, opts.name, seed)
+  local path = src.path
+  local model = load_source(src, opts.name, seed)
   if model.components ~= nil and model.components.tree ~= nil and
      (steps ~= nil or #sets > 0) then
     usage(cmd, "%s is a component graph: it has no derivation steps (--steps) nor "
@@ -569,9 +734,16 @@ local function prepare (cmd, opts, pos)
   if seed ~= nil then model.seed = seed end
   if #sets > 0 then
     if model.env == nil then model.env = {} end
-    for _, kv in ipairs(sets) do model.env[kv[1]] = kv[2] end
+    for _, kv in ipairs(sets) do
+      if src.kind ~= "lua" and model.env[kv[1]] == nil then
+        require("lsys.warning").warn(format("lsys: --set %s: the model has no variable %s (the "
+          .. "preprocessor replaces a #define's name by its value; `lsys import` writes a model "
+          .. "file whose #defines of numbers are variables)", kv[1], kv[1]))
+      end
+      model.env[kv[1]] = kv[2]
+    end
   end
-  return model, path, views
+  return model, path, views, src
 end
 
 -- Derives the model, with progress on stderr when asked or when stderr is a terminal.
@@ -637,11 +809,16 @@ end
 function commands.render (args)
   local opts, pos = parse("render", RENDER_OPTS, args, 2)
   if opts.help then out(HELP.render) return 0 end
+  if opts.lines ~= nil then usage("render", "--lines applies to export only") end
   local w, h = size_opt("render", opts.size)
   w, h = w or 800, h or 800
   local outpath = opts.output
   if outpath == nil then
-    outpath = pos[1] == nil and "tree.png" or (pos[1]:match("([^/]-)%.?[^./]*$") .. ".png")
+    local name = pos[1] and pos[1]:gsub("/+$", "")
+    -- a folder (a vlab object) by its name, a file without its extension
+    outpath = name == nil and "tree.png" or
+              (isdir(name) and name:match("([^/]*)$") or name:match("([^/]-)%.?[^./]*$"))
+              .. ".png"
     if outpath == ".png" then outpath = "model.png" end
   end
   if not outpath:lower():find("%.png$") then
@@ -670,10 +847,13 @@ function commands.export (args)
   if ext ~= "obj" and ext ~= "ply" and ext ~= "glb" then
     usage("export", "the output must end in .obj, .ply or .glb, got '%s'", outpath)
   end
+  if opts.lines ~= nil and opts.lines ~= "lines" and opts.lines ~= "tubes" then
+    usage("export", "--lines expects 'lines' or 'tubes', got '%s'", opts.lines)
+  end
   local scene = scene_of("export", opts, pos)
-  scene:save(outpath)
-  out(format("wrote %s (%d vertices, %d triangles, %d lines)\n", outpath, scene.nvertices,
-    scene.ntriangles, scene.nlines))
+  scene:save(outpath, { lines = opts.lines })
+  out(format("wrote %s (%d vertices, %d triangles, %d lines%s)\n", outpath, scene.nvertices,
+    scene.ntriangles, scene.nlines, opts.lines == "tubes" and " as tubes" or ""))
   return 0
 end
 
@@ -681,6 +861,7 @@ local VIEW_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   size = "value", step = "value", rate = "value", screenshot = "value",
   ["no-status"] = "flag", help = "flag", short = { h = "help" },
+  map = "value", mat = "value", define = "list",
 }
 
 -- --step, --rate and --screenshot of `lsys view`.
@@ -705,13 +886,20 @@ local function view_opts (opts)
   return step, rate, shot
 end
 
--- Handles the window's events until it is closed (or Ctrl-C); a change of the file 'path'
--- (its time or size, stable for 0.1 s) calls reload(). Closes the window.
-local function watch (V, path, reload)
+-- Handles the window's events until it is closed (or Ctrl-C); a change of one of the
+-- files files() lists (its time or size, stable for 0.1 s) calls reload(), after which
+-- the list is asked again. Closes the window.
+local function watch (V, files, reload)
   local core = require "lsys.core"
-  local function stamp ()
-    local t, size = core.filestamp(path)
-    return t and format("%.9f/%d", t, size) or "missing"
+  local list = files()
+  local function stamp ()     -- "missing" while the model file is (being rewritten)
+    local t = {}
+    for i, path in ipairs(list) do
+      local tm, size = core.filestamp(path)
+      if not tm and i == 1 then return "missing" end
+      t[i] = tm and format("%.9f/%d", tm, size) or "-"
+    end
+    return table.concat(t, " ")
   end
   local last = stamp()
   local interrupt = host().interrupt or function () end
@@ -724,6 +912,11 @@ local function watch (V, path, reload)
         if stamp() == now then
           last = now
           reload()
+          local new = files()      -- an #include added or removed
+          if table.concat(new, "\n") ~= table.concat(list, "\n") then
+            list = new
+            last = stamp()
+          end
         end
       end
     end
@@ -741,8 +934,8 @@ function commands.view (args)
   local step, rate, shot = view_opts(opts)
   local V = require "lsys.viewer"
   local print_pick = require("lsys.repl").print_pick
-  local path = find_model(pos[1])
-  if #pos > 1 then usage("view", "unexpected argument '%s' (one MODEL at most)", pos[2]) end
+  local src = model_source("view", opts, pos)
+  local path = src.path:gsub("/+$", "")
   local verbose = isatty(2)
 
   -- Loads and shows the model; returns true, or false and the message.
@@ -800,7 +993,7 @@ function commands.view (args)
     io.stderr:write(format("lsys: waiting for %s to change\n", path))
   end
 
-  watch(V, path, function ()
+  watch(V, function () return source_files(src) end, function ()
     local rok, rerr = show(true)
     if not rok then
       io.stderr:write("lsys: ", tostring(rerr), "\n",
@@ -814,6 +1007,7 @@ local ARRANGE_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   size = "value", output = "value", string = "value", r0 = "value", s0u = "value",
   s0h = "value", help = "flag", short = { h = "help", o = "output" },
+  map = "value", mat = "value", define = "list",
 }
 
 function commands.arrange (args)
@@ -1055,6 +1249,47 @@ function commands.grow (args)
         r.full.seconds, r.full.fps, r.drawms))
     end
   end
+  return 0
+end
+
+local IMPORT_OPTS = {
+  output = "value", map = "value", mat = "value", define = "list", help = "flag",
+  short = { h = "help", o = "output" },
+}
+
+-- `lsys import MODEL.l [VIEW.v] -o OUT.lua`: the cpfg model as an lsys model file.
+function commands.import (args)
+  local opts, pos = parse("import", IMPORT_OPTS, args, 2)
+  if opts.help then out(HELP.import) return 0 end
+  local arg = pos[1]
+  if arg == nil then
+    usage("import", "a cpfg MODEL (a .l file or a vlab object folder) is required")
+  end
+  if not arg:find("%.l$") and not isdir(arg) then
+    usage("import", "'%s' is not a cpfg model: MODEL is a .l file or a vlab object folder", arg)
+  end
+  local outpath = opts.output
+  if outpath == nil then usage("import", "-o OUT.lua is required: the lsys model file to write") end
+  if not outpath:find("%.lua$") then
+    usage("import", "the output must be a .lua file, got '%s'", outpath)
+  end
+  local src = model_source("import", opts, pos)
+  local cpfg = require "lsys.cpfg"
+  local l, v, lopts = src.path, src.vfile, src.lopts
+  local ok, err = pcall(function ()
+    if src.kind == "object" then
+      local pal
+      l, v, pal = cpfg.object_files(src.path)
+      if pal and not lopts.colormap and not lopts.materials then
+        if pal:match("%.mat$") then lopts.materials = pal else lopts.colormap = pal end
+      end
+    end
+    require("lsys.cpfg.import").write(l, v, outpath, lopts)
+  end)
+  if not ok then
+    error((tostring(err):gsub("^lsys%.view%.load: ", ""):gsub("^lsys%.cpfg%.%a+: ", "")), 0)
+  end
+  out(format("wrote %s\n", outpath))
   return 0
 end
 

@@ -76,27 +76,41 @@ function M.save (f, path)
 end
 
 -- The Funcs one entry of a functions list stands for: a Func, a file name (a .fset gives
--- all of its functions) or { file = NAME, samples = N }.
+-- all of its functions) or { file = NAME, samples = N, approx = "exact" | "cpfg" }.
 local function entry (x, dir, what)
   if isfunc(x) then return { x } end
-  local file, samples = x, 0
+  local file, samples, approx = x, 0, nil
   if type(x) == "table" then
     for k in pairs(x) do
-      if k ~= "file" and k ~= "samples" then
-        error(format("%s: unknown key '%s' (file, samples)", what, tostring(k)), 0)
+      if k ~= "file" and k ~= "samples" and k ~= "approx" then
+        error(format("%s: unknown key '%s' (file, samples, approx)", what, tostring(k)), 0)
       end
     end
-    file, samples = x.file, x.samples or 0
+    file, samples, approx = x.file, x.samples or 0, x.approx
     if math.type(samples) == nil or samples ~= math.floor(samples) or samples < -1 then
       error(format("%s: 'samples' must be a whole number", what), 0)
+    end
+    if approx ~= nil and approx ~= "exact" and approx ~= "cpfg" then
+      error(format("%s: 'approx' must be \"exact\" or \"cpfg\"", what), 0)
     end
   end
   if type(file) ~= "string" or file == "" then
     error(format("%s: an lsys.Func or a file name expected, got %s", what, type(x)), 0)
   end
   -- relative to `dir` as the view's files are read
-  local ok, fs = pcall(readall, view.resolve(dir, file), math.tointeger(samples))
+  local path = view.resolve(dir, file)
+  local ok, fs = pcall(readall, path, math.tointeger(samples))
+  if not ok and path ~= file and file:sub(1, 1) ~= "/" then   -- then the current folder
+    local ok2, fs2 = pcall(readall, file, math.tointeger(samples))
+    if ok2 then ok, fs = ok2, fs2 end
+  end
   if not ok then error(format("%s: %s", what, tostring(fs)), 0) end
+  if approx == "cpfg" then       -- computed as cpfg approximates them
+    for i, f in ipairs(fs) do
+      fs[i] = M.new { points = f:points(), name = f:name(), samples = f:samples(),
+                      approx = "cpfg" }
+    end
+  end
   return fs
 end
 

@@ -35,7 +35,13 @@ M.produce = core.produce
 M.nproduce = core.nproduce
 M.ran = core.ran       -- ran(x), nran(m, sd) for rule functions: the deriving model's generator
 M.nran = core.nran
-M.srand = core.srand   -- srand(seed) in rule functions: reseeds that generator (cpfg's srand)
+--- srand(seed), cpfg's: in a rule function, reseeds the generator of the model deriving;
+-- in a model's hook (start, start_each, end_each, finish), that model's (m:srand).
+function M.srand (seed)
+  local m = not core.producing() and model.hooked()
+  if m then return m:srand(seed) end
+  return core.srand(seed)
+end
 M.version = "0.1.0"
 M.view = view
 

@@ -352,10 +352,13 @@ function M.lsystem (opts)
   local where = info and info.currentline > 0 and
                 format("%s:%d", info.short_src, info.currentline) or loading
   local function fail (msg) error(where and where .. ": " .. msg or msg, 0) end
+  -- the folder of the file that makes the model: its view's files are read from there
+  local file = info and info.source:match("^@(.*)$") or loading
+  local dir = file and (file:match("^(.*)/[^/]*$") or ".")
   -- a model that fails leaves no module names behind (they count against the state's
   -- 2047, and nothing refers to them)
   local mark = core.names_mark()
-  local ok, m = pcall(make, opts, where, fail)
+  local ok, m = pcall(make, opts, where, fail, dir)
   if not ok then
     core.names_truncate(mark)
     error(m, 0)
@@ -364,12 +367,14 @@ function M.lsystem (opts)
 end
 
 -- The model of M.lsystem (which undoes its module names when this raises).
-make = function (opts, where, fail)
+make = function (opts, where, fail, dir)
   checkoptions(opts, fail)
   local rules = core.rules(opts.modules)
+  local v = opts.view or {}
+  if dir and type(v) == "table" and v.dir == nil then v = view.merge(v, { dir = dir }) end
   local self = setmetatable({
     axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = opts.view or {}, name = opts.name,
+    env = opts.env or {}, view = v, name = opts.name,
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
@@ -386,7 +391,7 @@ make = function (opts, where, fail)
   end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
-  local nv = view.normalize(opts.view, where or "model")   -- a bad view fails at definition
+  local nv = view.normalize(v, where or "model")   -- a bad view fails at definition
   self:_functions(opts.functions or nv.functions, nv.dir, fail)
   if self.axiom:find("?[PHUL]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
@@ -595,6 +600,23 @@ local function checksteps (n, what)
   end
 end
 
+-- The model whose hook (start, start_each, end_each, finish) runs now: lsys.srand there
+-- reseeds it.
+local hooked
+
+--- The model whose hook runs now, or nil.
+function M.hooked () return hooked end
+
+-- Runs the hook `f` of model `m` (f(m, ...)) with `hooked` set to m for its duration.
+local function runhook (m, f, ...)
+  local prev = hooked
+  hooked = m
+  local ok, r = pcall(f, m, ...)
+  hooked = prev
+  if not ok then error(r, 0) end
+  return r
+end
+
 --- Derives `n` steps (default `model.steps`) from the axiom and returns the
 -- Lstring. Reseeds the generator from `model.seed` first, so the result is
 -- reproducible. `opts.progress(step, n, nmodules)` is called after each step;
@@ -608,25 +630,25 @@ function Model:derive (n, opts)
   rules:config("hseed", self.homomorphism_seed or self.seed)
   self._warned = false
   local E = self:_bind()
+  if self.start then             -- first: the axiom may read what start sets (as in cpfg)
+    runhook(self, self.start)
+    E = self:_bind()
+  end
   local s = self:_axiomlstring(E)
   local progress = opts and opts.progress
   local each = opts and opts.each
-  if self.start then
-    self.start(self)
-    self:_bind()                 -- start may change env
-  end
   local spare                    -- the buffer two steps back, reused when private
   if each and n > 0 then each(0, s) end   -- (n = 0: the axiom after finish, below)
   for k = 1, n do
     if self.start_each then
-      self.start_each(self, k)
+      runhook(self, self.start_each, k)
       self:_bind()
     end
     if self._queries then self:_query(s) end
     local t = self:_core("step", s, spare)
     spare = nil
     if self.end_each then
-      local r = self.end_each(self, t, k)
+      local r = runhook(self, self.end_each, t, k)
       if r ~= nil then
         if not islstring(r) then error("end_each must return an Lstring or nil", 0) end
         t = r
@@ -642,7 +664,7 @@ function Model:derive (n, opts)
   if spare then LSTRING_MT.__close(spare) end
   if self._queries then self:_query(s) end       -- the final string gets its pass too
   if self.finish then
-    local r = self.finish(self, s)
+    local r = runhook(self, self.finish, s)
     if r ~= nil then
       if not islstring(r) then error("finish must return an Lstring or nil", 0) end
       s = r

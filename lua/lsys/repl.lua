@@ -1,23 +1,34 @@
 --- The interactive REPL of the `lsys` program (`lsys` with no arguments).
--- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global: a line is first tried as an
--- expression list (`=expr` works too) and its values are printed, Lstrings abbreviated;
--- otherwise it is run as a statement, continued on `>> ` lines while Lua reports it
--- incomplete (a multi-line expression prints its values too). Errors print their message
--- and the session goes on. Line editing and history come from lsys.readline when the
--- program was built with readline.
+-- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global and `help` (lsys.repl.help):
+-- a line is first tried as an expression list (`=expr` works too) and its values are
+-- printed (lsys.repl.show: Lstrings abbreviated, tables one level deep); otherwise it is run
+-- as a statement, continued on `>> ` lines while Lua reports it incomplete. A `local` at
+-- the top of a line stays visible to the lines after it. Errors print their message and
+-- the session goes on. With readline (lsys.readline): line editing, Tab completion
+-- (lsys.repl.complete) and a history kept in ~/.lsys_history; Ctrl-C at the prompt
+-- abandons the line being typed.
 -- @module lsys.repl
 local host = require("lsys.program").host
+local S = require "lsys.repl.show"
+local C = require "lsys.repl.complete"
+local Help = require "lsys.repl.help"
 
 local G = _G
-local type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error =
-      type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error
+local type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error,
+      setmetatable, rawset =
+      type, tostring, pcall, xpcall, load, require, getmetatable, pairs, ipairs, error,
+      setmetatable, rawset
 local io, os, string, table, package, debug, math = io, os, string, table, package, debug, math
 local format = string.format
 local _ENV = nil
 
 local M = {}
 
-local WIDTH = 60  -- characters of an Lstring shown
+local WIDTH = 60       -- characters of a picked module shown
+local HISTORY = 1000   -- lines kept in ~/.lsys_history
+
+M.show = S.show        -- how the REPL shows a value
+M.digits = S.digits    -- lsys.repl.digits(n): digits of the floats in Lstrings and tables
 
 local function is_lstring (v)
   if type(v) ~= "userdata" then return false end
@@ -25,42 +36,7 @@ local function is_lstring (v)
   return type(mt) == "table" and mt.__name == "lsys.Lstring"
 end
 
-local function is_scene (v)
-  if type(v) ~= "userdata" then return false end
-  local mt = getmetatable(v)
-  return type(mt) == "table" and mt.__name == "lsys.Scene"
-end
-
 local function num (x) return format("%.4g", x) end
-
--- A scene: its counts and extent.
-local function scene_summary (v)
-  local ok, s = pcall(function ()
-    local lo, hi = v:bounds()
-    local ext = lo and format("; x %s..%s, y %s..%s, z %s..%s", num(lo[1]), num(hi[1]),
-      num(lo[2]), num(hi[2]), num(lo[3]), num(hi[3])) or "; empty"
-    return format("Scene(%d triangles, %d lines, %d turtle records%s)", v.ntriangles,
-      v.nlines, v.nrecords, ext)
-  end)
-  return ok and s or tostring(v)
-end
-
---- How the REPL shows a value: tostring, except Lstrings, which are abbreviated as
--- `Lstring(1234 modules): F[+F]F...` (the first 60 characters of their text), and
--- scenes, summarised as `Scene(120 triangles, 40 lines, 55 turtle records; x -1..1, ...)`.
-function M.show (v)
-  if is_scene(v) then return scene_summary(v) end
-  if not is_lstring(v) then return tostring(v) end
-  local n = #v
-  local ok, text = pcall(function ()
-    -- convert only a prefix: a million-module string need not become text
-    return tostring(n > WIDTH and v:sub(1, WIDTH) or v)
-  end)
-  if not ok then text = "?" end
-  local more = n > WIDTH or #text > WIDTH
-  return format("Lstring(%d module%s): %s%s", n, n == 1 and "" or "s",
-    text:sub(1, WIDTH), more and "..." or "")
-end
 
 local function msghandler (e)
   local msg = e
@@ -79,38 +55,93 @@ local function incomplete (msg)
 end
 
 --[[
+The environment of the lines typed at the prompt: the `local`s kept from earlier lines,
+then the globals. An assignment to a name that is not a kept local sets the global.
+]]
+local function new_env ()
+  return setmetatable({}, { __index = G, __newindex = G })
+end
+
+--[[
+The function a statement calls last (it gets it as its first vararg): keeps the locals of
+the chunk still in scope at its end, the `local`s at its top level, in 'env'. So
+`local x = 1` on one line and `x` on the next work as in one chunk; a global of the same
+name is shadowed for the lines typed at the prompt only.
+]]
+local function keeper (env)
+  return function ()
+    for i = 1, 255 do
+      local name, v = debug.getlocal(2, i)
+      if name == nil then break end
+      if name:sub(1, 1) ~= "(" then rawset(env, name, v) end
+    end
+  end
+end
+
+--[[
 Compiles 'src' as an expression list, or returns nil. The values go through select() so
 that the last call is not a tail call: an error(msg, 2) raised by a function called from the
 REPL then names "stdin:1" instead of "[C]:-1". The ")" goes on its own line so that a
 trailing comment cannot swallow it.
 ]]
-local function asexpr (src)
+local function asexpr (src, env)
   local e = src:gsub("[%s;]+$", "")
   if e == "" then return nil end
-  return (load("return select(1, " .. e .. "\n)", "=stdin", "t", G))
+  return (load("return select(1, " .. e .. "\n)", "=stdin", "t", env))
 end
 
 --[[
 Reads one chunk: lines tried as an expression list (whose values are printed), else as a
-statement, continued on ">> " lines while Lua reports it incomplete. Returns the compiled
-function; nil, message for a syntax error; nil at the end of the input.
+statement, continued on ">> " lines while Lua reports it incomplete. A statement ends with
+a call of the keeper it is given (unless it ends with `return`). Returns the compiled
+function; nil, message for a syntax error; false when Ctrl-C abandoned the input; nil at
+the end of the input.
 ]]
-local function loadchunk (read)
+local function loadchunk (read, env)
   local line = read(tostring(G._PROMPT or "> "))
-  if line == nil then return nil end
+  if not line then return line end
   if line:sub(1, 1) == "=" then line = line:sub(2) end  -- `=expr`, as in Lua 5.1
   local buf = line
   while true do
-    local f = asexpr(buf)
+    local f = asexpr(buf, env)
     if f ~= nil then return f end
     local err
-    f, err = load(buf, "=stdin", "t", G)
-    if f ~= nil then return f end
+    f, err = load(buf, "=stdin", "t", env)
+    if f ~= nil then
+      return load(buf .. "\n;(...)()", "=stdin", "t", env) or f
+    end
     if not incomplete(err) then return nil, err end
     local more = read(tostring(G._PROMPT2 or ">> "))
+    if more == false then return false end
     if more == nil then return nil, err end  -- end of input inside a statement
     buf = buf .. "\n" .. more
   end
+end
+
+--[[
+Whether the values of an evaluation are left unprinted: none; or several, all nil but a
+leading `true`, a status that says nothing (lsys.render(m, { out = ... }) returns true,
+nil, nil). A single value prints whatever it is, nil and true included, as in `lua`, and
+so do several nils.
+]]
+local function quiet (r)
+  if r.n <= 2 then return r.n == 1 end   -- r[1] is xpcall's status
+  for i = 3, r.n do
+    if r[i] ~= nil then return false end
+  end
+  return r[2] == true
+end
+
+-- Prints the values of an evaluation (r: xpcall's status and results, packed).
+local function print_results (r)
+  if quiet(r) then return end
+  local shown = {}
+  for i = 2, r.n do
+    local ok, s = pcall(S.show, r[i])
+    shown[i - 1] = ok and s or format("(%s)", tostring(s))
+  end
+  local pok, perr = pcall(G.print, table.unpack(shown, 1, r.n - 1))
+  if not pok then io.stderr:write("error calling 'print' (", tostring(perr), ")\n") end
 end
 
 -- A parameter value in a line: numbers with 4 digits, vectors in braces, point lists
@@ -204,65 +235,87 @@ local function idle (h)
   return true
 end
 
+-- The line reader: readline's, or io.read with a prompt when stdin is a terminal. Returns
+-- the reader and lsys.readline's table (nil without it).
+local function reader (h, interactive)
+  local rl
+  if interactive then
+    local ok, mod = pcall(require, "lsys.readline")
+    if ok and type(mod) == "table" then rl = mod end
+  end
+  local interrupted = h.interrupted or function () return false end
+  return function (prompt)
+    if rl ~= nil then return rl.readline(prompt) end   -- false on Ctrl-C
+    interrupted()   -- forget a Ctrl-C typed before the prompt
+    if interactive then
+      io.stdout:write(prompt)
+      io.stdout:flush()
+    end
+    -- a Ctrl-C ends the read (no SA_RESTART); one just before it is seen here
+    local line = false
+    if not interrupted() then line = io.stdin:read("l") end
+    if line == nil and interrupted() then line = false end
+    if line == false then io.stdout:write("\n") end
+    return line
+  end, rl
+end
+
+-- Sets up history and completion of lsys.readline 'rl' for the environment 'env'.
+local function setup_readline (rl, env)
+  local home = os.getenv("HOME")
+  if home ~= nil and home ~= "" then
+    pcall(rl.history, home .. "/.lsys_history", HISTORY)
+  end
+  rl.set_complete(function (line, start, stop)
+    return C.complete(env, line, start, stop)
+  end)
+end
+
 --- Runs the REPL on stdin until its end (Ctrl-D) or os.exit.
 -- @return the exit status, 0
 function M.run ()
   local h = host()
   local interactive = h.isatty == nil or h.isatty(0)
-  local readline
-  if interactive then
-    local ok, rl = pcall(require, "lsys.readline")
-    if ok and type(rl) == "function" then readline = rl end
-  end
-  local function read (prompt)
-    if readline ~= nil then return readline(prompt) end
-    if interactive then
-      io.stdout:write(prompt)
-      io.stdout:flush()
-    end
-    return io.stdin:read("l")
-  end
+  local env = new_env()
+  local read, rl = reader(h, interactive)
+  if rl ~= nil then setup_readline(rl, env) end
   local interrupt = h.interrupt or function () end
+  local idle_mode = interactive and "prompt" or false   -- Ctrl-C at the prompt
 
   local ok, lsys = pcall(require, "lsys")
   if ok then
     G.lsys = lsys
+    if type(lsys) == "table" then lsys.repl = M end
     local vok, V = pcall(require, "lsys.viewer")
     if vok and V.on_pick == nil then V.on_pick = M.print_pick end
     if h.set_idle then h.set_idle(function () return idle(h) end) end
   else
     io.stderr:write("lsys: warning: cannot load lsys: ", tostring(lsys), "\n")
   end
+  G.help = Help.new()
   if interactive then
-    io.stdout:write(format("lsys %s (%s); `lsys` is loaded; =expr prints; Ctrl-D quits\n",
+    io.stdout:write(format("lsys %s (%s); `lsys` is loaded; help() for help; Ctrl-D quits\n",
       h.version or "scm", G._VERSION))
   end
 
+  interrupt(idle_mode)
   while true do
-    local f, err = loadchunk(read)
+    local f, err = loadchunk(read, env)
     if f == nil and err == nil then break end  -- end of input
-    if f ~= nil then
+    if f then
       interrupt(true)
-      local r = table.pack(xpcall(f, msghandler))
-      interrupt(false)
-      if r[1] then
-        if r.n > 1 then
-          local shown = {}
-          for i = 2, r.n do shown[i - 1] = M.show(r[i]) end
-          local pok, perr = pcall(G.print, table.unpack(shown, 1, r.n - 1))
-          if not pok then io.stderr:write("error calling 'print' (", tostring(perr), ")\n") end
-        end
-      else
-        err = r[2]
-      end
+      local r = table.pack(xpcall(f, msghandler, keeper(env)))
+      interrupt(idle_mode)
+      if r[1] then print_results(r) else err = r[2] end
     end
     if err ~= nil then
       io.stderr:write(tostring(err), "\n")
       io.stderr:flush()
     end
-    if readline == nil then idle(h) end   -- no line editor to call it while waiting
+    if rl == nil then idle(h) end   -- no line editor to call it while waiting
     io.stdout:flush()
   end
+  interrupt(false)
   if h.set_idle then h.set_idle(nil) end
   if interactive then io.stdout:write("\n") end
   return 0

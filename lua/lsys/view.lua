@@ -254,9 +254,21 @@ local function fileobj (ctx, name, rel, extra, fn, arg)
   local path = resolve(ctx.dir, rel)
   local bytes = ctx.bytes[path]
   if bytes == nil then
+    local max = fn == "texture_load" and MAXIMAGE or nil
     local err
-    bytes, err = readfile(path, fn == "texture_load" and MAXIMAGE or nil)
-    if bytes == nil then fail(ctx.where, "%s: %s", name, err) end
+    bytes, err = readfile(path, max)
+    if bytes == nil and path ~= rel and rel:sub(1, 1) ~= "/" then
+      local b2 = readfile(rel, max)  -- not in the model's folder: the current folder's
+      if b2 ~= nil then path, bytes = rel, b2 end
+    end
+    if bytes == nil and not tostring(err):find("No such file", 1, true) then
+      fail(ctx.where, "%s: %s", name, err)
+    elseif bytes == nil then
+      fail(ctx.where, "%s: %s (%s)", name, err, path == rel and
+           "looked for in the current folder; view.dir names another"
+           or format("looked for in '%s' (view.dir: the model's folder unless set), then in "
+                     .. "the current folder", ctx.dir))
+    end
     ctx.bytes[path] = bytes
   end
   local key = extra and (path .. "\0" .. extra) or path

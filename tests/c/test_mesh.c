@@ -203,15 +203,19 @@ static void test_obj (void) {
   free(s);
   s = slurp(OUT ".mtl", &len);
   assert(countlines(s, "newmtl ") == 2);
-  assert(strstr(s, "newmtl m0\nKa 0.060000002 0.18 0.030000001\n"
-                   "Kd 0.2 0.6 0.1\nKs 0 0 0\nKe 0 0 0\nNs 0\nd 1\nillum 1\n") != NULL);
-  assert(strstr(s, "newmtl m1\nKa 0.3 0.15 0\nKd 1 0.5 0\nKs 0.5 0.5 0.5\n"
-                   "Ke 0 0 0\nNs 32\nd 1\nillum 2\n") != NULL);
+  /* colours linear (Blender's reading of MTL): sRGB 0.2 0.6 0.1, 0.5 */
+  assert(strstr(s, "newmtl m0\nKa 0.00489631 0.027211783 0.0023219816\n"
+                   "Kd 0.033104766 0.3185468 0.010022826\nKs 0 0 0\nKe 0 0 0\nNs 0\nd 1\n"
+                   "illum 1\n") != NULL);
+  assert(strstr(s, "newmtl m1\nKa 0.07323896 0.01960665 0\nKd 1 0.21404114 0\n"
+                   "Ks 0.21404114 0.21404114 0.21404114\nKe 0 0 0\nNs 32\nd 1\nillum 2\n")
+         != NULL);
   free(s);
   /* no palette: one grey default */
   assert(lsys_mesh_save_obj(&m, NULL, 0, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
   s = slurp(OUT "_grey.mtl", &len);
-  assert(countlines(s, "newmtl ") == 1 && strstr(s, "newmtl m0\n") && strstr(s, "Kd 0.8 0.8 0.8\n"));
+  assert(countlines(s, "newmtl ") == 1 && strstr(s, "newmtl m0\n"));
+  assert(strstr(s, "Kd 0.60382736 0.60382736 0.60382736\n") != NULL);     /* sRGB 0.8 */
   free(s);
   s = slurp(OUT "_grey.obj", &len);
   assert(countlines(s, "usemtl ") == 1 && countlines(s, "f ") == 4 && countlines(s, "l ") == 3);
@@ -403,7 +407,9 @@ static void test_glb (void) {
   assert(c[0] == 12 && c[1] == 12 && c[2] == 12 && c[3] == 6 && c[4] == 6 && c[5] == 4 && c[6] == 2);
   assert(strstr(json, "\"mode\":4") && strstr(json, "\"mode\":1"));
   assert(strstr(json, "\"min\":[-3,-1,0],\"max\":[3,3,0.5]") != NULL);
-  assert(strstr(json, "\"name\":\"m1\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0,1],"
+  /* linear factors: sRGB 0.5 is 0.21404114 */
+  assert(strstr(json, "\"name\":\"m1\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+                      "[1,0.21404114,0,1],"
                       "\"metallicFactor\":0,\"roughnessFactor\":0.49247906}") != NULL);
   assert(strstr(json, "\"roughnessFactor\":0.8}") != NULL);   /* (2 / 34)^(1/4) and the cap */
   {                                             /* only material 1 is double-sided */
@@ -584,7 +590,7 @@ static void test_textures (void) {
   assert(strstr(s, "newmtl m1_t1\n") < strstr(s, "newmtl m1_t2\n"));
   assert(countlines(s, "map_Kd ") == 3);
   assert(strstr(s, "illum 1\nmap_Kd " OUT "_tex1.png\n") != NULL);    /* after m0_t1 */
-  assert(strstr(s, "newmtl m1_t2\nKa 0.3 0.15 0\nKd 1 1 1\n") != NULL);   /* decal: white */
+  assert(strstr(s, "newmtl m1_t2\nKa 0.07323896 0.01960665 0\nKd 1 1 1\n") != NULL);   /* decal: white */
   assert(strstr(s, "illum 0\nmap_Kd " OUT "_tex 2.png\n") != NULL);
   assert(countlines(s, "illum 0") == 1);
   free(s);
@@ -603,7 +609,8 @@ static void test_textures (void) {
   assert(count(json, "\"name\":\"m") == 5);
   assert(strstr(json, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") != NULL);
   assert(strstr(json, "\"name\":\"m0_t1\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
-                      "[0.2,0.6,0.1,1],\"baseColorTexture\":{\"index\":0},") != NULL);
+                      "[0.033104766,0.3185468,0.010022826,1],"
+                      "\"baseColorTexture\":{\"index\":0},") != NULL);
   assert(strstr(json, "\"name\":\"m1_t2\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
                       "[1,1,1,1],\"baseColorTexture\":{\"index\":1},") != NULL);
   assert(count(json, "\"alphaMode\":\"MASK\"") == 2);          /* m0_t1, m1_t1 */

@@ -179,6 +179,10 @@ local function fail (file, line, fmt, ...)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
 end
 
+-- cpfg's number literals (lsys.cpfg.parse's etok)
+local NUMBER = { "^%d+%.%d*[eE][-+]?%d+$", "^%d*%.%d+[eE][-+]?%d+$", "^%d+%.%d*$", "^%d*%.%d+$",
+                 "^%d+$" }
+
 -- Removes /* */ comments (kept state across lines) and // comments, outside strings.
 local function decomment (text, st)
   local out, i, n = {}, 1, #text
@@ -331,10 +335,10 @@ expand = function (s, macros, busy, depth, st)
 end
 
 -- Expands the macros of one line (`file`, `line`); a line without a macro name is as is.
-local function expandline (s, macros, file, line)
+local function expandline (s, macros, file, line, kept)
   for id in s:gmatch("[%a_][%w_]*") do
-    if macros[id] then
-      return expand(s, macros, {}, 0, { file = file, line = line, left = MAXEXPAND })
+    if macros[id] and not (kept and kept[id]) then
+      return expand(s, macros, kept or {}, 0, { file = file, line = line, left = MAXEXPAND })
     end
   end
   return s
@@ -387,7 +391,31 @@ local function evalif (expr, macros, file, line)
   return v ~= 0
 end
 
--- #define: `rest` is the text after the directive, on `line` of `file`.
+-- A number as cpfg's lexer reads one (lsys.cpfg.parse's etok), the whole of `s`, or nil.
+local function number (s)
+  for _, p in ipairs(NUMBER) do
+    if s:find(p) then return tonumber(s) end
+  end
+  return nil
+end
+
+-- Records `#define name body` in `keep` (see M.builtin) when body is a plain number and
+-- the name may be kept; true when the name is kept from here on.
+local function keepdefine (keep, name, body, raw, file, line)
+  local v = number(body)
+  local was = keep.values[name]
+  if was ~= nil and v ~= was then keep.conflict = keep.conflict or name end
+  if v == nil or keep.taken[name] or not name:find("^%a") then return false end
+  if was == nil then
+    keep.values[name] = v + 0.0
+    keep.order[#keep.order + 1] = name
+    keep.where[name] = { file = file, line = line }
+    keep.notes[name] = raw:match("/%*%s*(.-)%s*%*/") or raw:match("//%s*(.-)%s*$")
+  end
+  return true
+end
+
+-- #define: `rest` is the text after the directive, on `line` of `file`; returns the name.
 local function define (rest, macros, file, line)
   local name, params, body = rest:match("^([%a_][%w_]*)%(([^)]*)%)%s*(.*)$")
   if name then
@@ -409,6 +437,7 @@ local function define (rest, macros, file, line)
     if not name then fail(file, line, "#define without a name") end
     macros[name] = { body = body }
   end
+  return name
 end
 
 -- The most lines the built-in preprocessor reads, counting each #include of a file anew
@@ -419,9 +448,17 @@ local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
 -- #endif, comments. Returns the located lines; raises { cpfg = true, msg = } on errors.
-function M.builtin (path, defines)
+-- With `keep` ({ taken = set of names }, for lsys.cpfg.import), a #define of a plain
+-- number (`#define RATE 1.5`, a name not in keep.taken) is not expanded in the text, only
+-- in #if: keep.values[name] is its value, keep.order the names in file order,
+-- keep.where[name] its file and line, keep.notes[name] the comment on its line;
+-- keep.conflict names one defined again with another value or undefined (the text is then
+-- not what cpp would give).
+function M.builtin (path, defines, keep)
   local macros = {}
   for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
+  if keep then keep.values, keep.order, keep.where, keep.notes = {}, {}, {}, {} end
+  local kept = {}    -- the names kept now: never expanded in the text (busy in `expand`)
   local lines = {}
   local seen, size = 0, 0
   local texts = {}      -- path -> text: a file included many times is read once
@@ -475,9 +512,17 @@ function M.builtin (path, defines)
           elseif dir == "endif" then
             if not remove(cond) then fail(file, n, "#endif without #if") end
           elseif active() and dir == "define" then
-            define(rest, macros, file, n)
+            local name = define(rest, macros, file, n)
+            local m = macros[name]
+            if m.params then
+              if kept[name] then keep.conflict, kept[name] = keep.conflict or name, nil end
+            else
+              kept[name] = keep and keepdefine(keep, name, m.body, raw, file, n) or nil
+            end
           elseif dir == "undef" and active() then
-            macros[rest:match("^[%a_][%w_]*") or ""] = nil
+            local name = rest:match("^[%a_][%w_]*") or ""
+            if kept[name] then keep.conflict = keep.conflict or name end
+            macros[name], kept[name] = nil, nil
           elseif dir == "include" and active() then
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
@@ -492,7 +537,7 @@ function M.builtin (path, defines)
           end
           lines[#lines + 1] = { file = file, line = n, text = "" }
         elseif active() then
-          local x = expandline(s, macros, file, n)
+          local x = expandline(s, macros, file, n, kept)
           size = size + #x
           if size > MAXTEXT then
             fail(file, n, "more than %d MiB of text with the #include files and macros",

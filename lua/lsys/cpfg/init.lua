@@ -35,6 +35,16 @@ for k in pairs(model.BUILTIN) do TAKEN[k] = true end
 
 local NOSTRING = {}   -- raised to give up the rule-string form of a rule
 
+-- Names a #define kept as a name may not have (lsys.cpfg.import): lsys's own, cpfg's
+-- reserved words, Lua's keywords, the derivation length's Q and Z.
+local function untakable ()
+  local t = { Q = true, Z = true }
+  for k in pairs(TAKEN) do t[k] = true end
+  for k in pairs(LUA_KEYWORDS) do t[k] = true end
+  for k in pairs(parse.RESERVED) do t[k] = true end
+  return t
+end
+
 local function fail (T, pos, fmt, ...)
   local file, line = T.P:where(pos)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
@@ -387,6 +397,13 @@ local function compile (T, src, pos)
     error({ cpfg = true, msg = format("%s:%d: internal error compiling the translation: %s",
                                       file, line, err) }, 0)
   end
+  if T.keep then        -- the function it makes, by its source and its locals L (import)
+    return function (...)
+      local f = chunk(...)
+      T.keep.rules[f] = { src = src, L = (select(3, ...)) }
+      return f
+    end
+  end
   return chunk
 end
 
@@ -419,9 +436,8 @@ local function pattern (mods, params)
   return concat(t)
 end
 
--- The lsys text of a successor; `first`, when given, wraps the code of its first
--- parameter (the axiom's runs the Start: blocks first).
-local function successor (T, ctx, mods, first)
+-- The lsys text of a successor.
+local function successor (T, ctx, mods)
   if #mods == 0 then return "*" end
   local t = {}
   for _, m in ipairs(mods) do
@@ -430,7 +446,6 @@ local function successor (T, ctx, mods, first)
       local ps = {}
       for i, x in ipairs(m.params) do
         ps[i] = N(T, ctx, x)
-        if first then ps[i], first = first(ps[i]), nil end
       end
       s = s .. "(" .. concat(ps, ", ") .. ")"
     end
@@ -646,8 +661,9 @@ local function hook (T, lsystems, kind)
       local out = { "local E, H = ...", "return function ()", "  local _n = 0" }
       statements(T, ctx, ls[kind], out, "  ")
       out[#out + 1] = "end"
-      fns[#fns + 1] = compile(T, concat(out, "\n"), ls[kind][1] and ls[kind][1].pos or ls.pos)(
-        T.env, T.H)
+      local src = concat(out, "\n")
+      fns[#fns + 1] = compile(T, src, ls[kind][1] and ls[kind][1].pos or ls.pos)(T.env, T.H)
+      if T.keep then T.keep.hooks[#T.keep.hooks + 1] = { kind = kind, src = src } end
     end
   end
   return fns
@@ -672,13 +688,17 @@ local function arrayinit (T, ls)
     if a.init and #a.init > size then
       fail(T, a.pos, "array %s: %d values for %d elements", a.name, #a.init, size)
     end
-    local vals
+    local vals, parts
     if a.init then
       local ctx = { mode = "f", scope = ls.scope, locals = {} }
-      local parts = {}
+      parts = {}
       for i, x in ipairs(a.init) do parts[i] = N(T, ctx, x) end
       vals = compile(T, "local E, H = ... return function () return " .. concat(parts, ", ")
                      .. " end", a.pos)(T.env, T.H)
+    end
+    if T.keep then
+      T.keep.arrays[#T.keep.arrays + 1] = { key = T.arrays[ls.scope][a.name], name = a.name,
+                                            dims = dims, values = parts }
     end
     inits[#inits + 1] = function ()
       local t = { name = a.name, dims = dims, v = {} }
@@ -794,6 +814,10 @@ local function translate (P, lsystems, opts)
     end
   end
   for k, v in pairs(H) do if k:sub(1, 1) == "_" then T.env[k] = v end end
+  -- opts.keep: the Lua source of function rules, hooks and arrays, for lsys.cpfg.import;
+  -- opts.globals: numbers by name (#defines kept as names), read as the model's variables
+  if opts.keep then T.keep = { rules = {}, hooks = {}, arrays = {} } end
+  for k, v in pairs(opts.globals or {}) do T.glob[k], T.env[k] = k, v end
   local main = lsystems[1]
   if main.dlength then
     T.glob.Q, T.glob.Z = "Q", "Z"
@@ -821,13 +845,8 @@ local function translate (P, lsystems, opts)
   o.ring = main.ring or nil
   o.ignore, o.consider = main.ignore, main.consider
   local actx = { mode = "s", scope = 1 }
-  -- cpfg runs the Start: blocks before it computes the axiom, lsys computes the axiom
-  -- first: an axiom that reads names calls the start hook from its first parameter
-  local read = {}
-  local walk = walknames({}, {}, read)
-  for _, m in ipairs(main.axiom) do for _, x in ipairs(m.params or {}) do walk(x) end end
-  local early = next(read) ~= nil and function (code) return "(_axstart() and " .. code .. ")" end
-  local ok, ax = pcall(successor, T, actx, main.axiom, early)
+  -- the axiom is evaluated after the start hook (the Start: blocks), as in cpfg
+  local ok, ax = pcall(successor, T, actx, main.axiom)
   if not ok then
     if ax == NOSTRING then fail(T, main.axiompos, "the axiom reads a variable set by a "
                                 .. "production") end
@@ -897,6 +916,7 @@ local function translate (P, lsystems, opts)
   for _, ls in ipairs(lsystems) do
     for _, k in pairs(T.vars[ls.scope]) do vars[#vars + 1] = k end
   end
+  if T.keep then T.keep.vars, T.keep.locals = vars, locals end
   local function reset ()
     for _, k in ipairs(vars) do env[k] = 0.0 end
     if env.Q then env.Q = 0.0 end
@@ -909,16 +929,8 @@ local function translate (P, lsystems, opts)
     if core.producing() then core.srand(x) else T.model:srand(x) end
     return 0.0
   end
-  local started = false     -- by the axiom, in this derivation
-  T.env._axstart = function ()
-    started = true
-    reset()
-    for _, f in ipairs(starts) do f() end
-    return true
-  end
   o.start = function (m)
     T.model = m
-    if started then started = false; return end
     reset()
     for _, f in ipairs(starts) do f() end
   end
@@ -977,8 +989,25 @@ local function cpfgfuncs (v)
   local list = func.collect(v.functions, v.dir, "view functions")
   local out = {}
   for i, f in ipairs(list) do
-    out[i] = func.new { points = f:points(), name = f:name(), samples = f:samples(),
+    out[i] = f:approx() == "cpfg" and f or
+             func.new { points = f:points(), name = f:name(), samples = f:samples(),
                         approx = "cpfg" }
+  end
+  return out
+end
+
+--- A view's `functions` entries marked to be computed as cpfg approximates them
+-- ({ file = NAME, samples = N, approx = "cpfg" }), as `lsys import` writes them.
+function M.cpfg_functions (list)
+  local out = {}
+  for i, x in ipairs(list) do
+    if type(x) == "table" and x.file then
+      out[i] = { file = x.file, samples = x.samples, approx = "cpfg" }
+    elseif type(x) == "string" then
+      out[i] = { file = x, approx = "cpfg" }
+    else
+      out[i] = x
+    end
   end
   return out
 end
@@ -986,20 +1015,27 @@ end
 --- The lsys.lsystem options of a cpfg L-system file, and the translation's details.
 -- opts: cpp ("system", "builtin"; default the system cpp when present), defines
 -- ({ NAME = value } for the preprocessor), view (a view table: its function set
--- defines the functions' names, as in cpfg).
+-- defines the functions' names, as in cpfg). For lsys.cpfg.import: keep (true: a second
+-- result with the Lua source of the function rules, hooks and arrays), names (true: the
+-- built-in preprocessor keeps the #defines of plain numbers as names, which the rules
+-- read from env; the second result's `defines` lists them, see cpp.builtin).
 function M.options (lfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.options: a file name expected", 2) end
   opts = opts or {}
-  local ok, o = pcall(function ()
+  local ok, o, keep = pcall(function ()
     local defs = funcdefines(opts.view)
     for k, v in pairs(opts.defines or {}) do defs[k] = v end
-    local lines = cpp.run(lfile, defs, opts.cpp)
+    local kept = opts.names and { taken = untakable() } or nil
+    local lines = kept and cpp.builtin(lfile, defs, kept) or cpp.run(lfile, defs, opts.cpp)
     local P = parse.new(lines)
     local lsystems = P:file()
-    return (translate(P, lsystems, { name = lfile }))
+    local o, T = translate(P, lsystems, { name = lfile, keep = opts.keep,
+                                          globals = kept and kept.values })
+    if T.keep then T.keep.defines = kept end
+    return o, T.keep
   end)
   if not ok then error(cpfgerror(o), 0) end
-  return o
+  return o, keep
 end
 
 --- Loads a cpfg model: the L-system file `lfile` and optionally its view file `vfile`
@@ -1053,13 +1089,11 @@ function M.load (lfile, vfile, opts)
   return m
 end
 
---- Loads a vlab object folder: its `specifications` file names the files; the first
--- `cpfg` command in it (as in `generate: cpfg -m leaf.map leaf.l leaf.v`) picks the
--- L-system, view and colour map or material file, else the first .l, .v, .map or .mat
--- listed. Returns the Model.
-function M.load_object (dir, opts)
-  if type(dir) ~= "string" then error("lsys.cpfg.load_object: a folder name expected", 2) end
-  opts = checkopts(opts, "lsys.cpfg.load_object")
+--- The files of a vlab object folder, as `load_object` picks them: the L-system file, the
+-- view file (or nil) and the palette (a .map or .mat file relative to the folder, or nil),
+-- each but the palette with the folder's path in front.
+function M.object_files (dir)
+  if type(dir) ~= "string" then error("lsys.cpfg.object_files: a folder name expected", 2) end
   local spec = dir .. "/specifications"
   local text, err = cpp.readfile(spec)
   if not text then error("lsys.cpfg.load_object: " .. tostring(err), 0) end
@@ -1094,12 +1128,27 @@ function M.load_object (dir, opts)
     if not pal and (f:match("%.map$") or f:match("%.mat$")) then pal = f end
   end
   if not l then error(format("%s: no L-system file (.l) named", spec), 0) end
+  return dir .. "/" .. l, v and dir .. "/" .. v or nil, pal
+end
+
+--- Loads a vlab object folder: its `specifications` file names the files; the first
+-- `cpfg` command in it (as in `generate: cpfg -m leaf.map leaf.l leaf.v`) picks the
+-- L-system, view and colour map or material file, else the first .l, .v, .map or .mat
+-- listed. Returns the Model.
+function M.load_object (dir, opts)
+  if type(dir) ~= "string" then error("lsys.cpfg.load_object: a folder name expected", 2) end
+  opts = checkopts(opts, "lsys.cpfg.load_object")
+  local l, v, pal = M.object_files(dir)
   local o2 = {}
   for k, x in pairs(opts) do o2[k] = x end
   if pal and not o2.colormap and not o2.materials then
     if pal:match("%.mat$") then o2.materials = pal else o2.colormap = pal end
   end
-  return M.load(dir .. "/" .. l, v and dir .. "/" .. v or nil, o2)
+  return M.load(l, v, o2)
 end
+
+--- cpfg's helper functions as the translated rules call them (H in their Lua source):
+-- lsys.cpfg.import's model files use them.
+M.helpers = H
 
 return M
