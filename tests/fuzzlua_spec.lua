@@ -90,6 +90,16 @@ describe("the Lua fuzzer", function ()
     assert.equal("table", type(io))          -- _G is back
   end)
 
+  it("counts a cpfg load that is slow only under its line hook as a budget stop", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    if (tonumber(os.getenv("LSYS_TEST_SLOW")) or 1) > 1 then return pending("valgrind") end
+    local t = fuzz.target("cpfg")
+    local F = fuzz.new(t, { budget = 0.05 })
+    local kind = F.exec(fuzz.readfile("tests/fuzz/corpus_cpfg/finding-include-chain.l"))
+    t.finish()
+    assert.equal("budget", kind)
+  end)
+
   it("reports an input that overruns its time budget", function ()
     local F = fuzz.new({ run = function () while true do end end }, { budget = 0.05 })
     local kind, msg = F.exec("")

@@ -17,8 +17,9 @@
 -- any other error: a Lua runtime error inside lsys (the fuzzer's rule) or in the
 -- translated code ("attempt to", "bad argument", "stack overflow" anywhere in the
 -- message), a translated rule that gives a parameter no value ("is nil, not a number"), a
--- load error without file and line, a load that runs over the time budget (a derivation
--- that does is the model's own loop: clean, but counted), or translated code that reaches
+-- load error without file and line, a load that runs over the time budget and over 1 s
+-- without the fuzzer's line hook too (a derivation that runs over it is the model's own
+-- loop: clean, but counted, as a slow load is), or translated code that reaches
 -- a global: while an input runs _G is emptied behind a metatable, and os.execute,
 -- os.remove, os.rename, os.exit, os.getenv, os.tmpname, io.open, io.popen, io.lines,
 -- io.input, io.output, load, loadfile, dofile and require fail when code that is not in a
@@ -29,19 +30,18 @@ local lsys = require "lsys"
 local G = _G
 local pairs, next, error, tostring, tonumber, setmetatable, getmetatable, rawset, ipairs =
       pairs, next, error, tostring, tonumber, setmetatable, getmetatable, rawset, ipairs
-local getinfo = debug.getinfo
+local getinfo, gethook, sethook = debug.getinfo, debug.gethook, debug.sethook
 local format, sub, srep = string.format, string.sub, string.rep
 local concat, insert = table.concat, table.insert
 local tmpname, os_remove, execute, open = os.tmpname, os.remove, os.execute, io.open
 local io_output, io_stdout = io.output, io.stdout
-local min = math.min
+local min, clock, math_huge = math.min, os.clock, math.huge
 local os_lib, io_lib = os, io
 local BUILTIN = lsys.BUILTIN
 local STRMETA = getmetatable("")
 local cpfg = lsys.cpfg
 
--- 3 s: the fuzzer's line hook slows the preprocessor about 30 times, so a load it stops
--- is a finding to time without the hook
+-- 3 s: the fuzzer's line hook slows the preprocessor about 30 times (see budget_clean)
 local T = { maxlen = 16384, budget = 3 }
 
 -- --------------------------------------------------------------------------
@@ -211,9 +211,10 @@ end
 -- The target
 
 local phase          -- "load" or "derive": where the input is
+local lastbytes
 
 function T.before (bytes)
-  hits, phase = {}, nil
+  hits, phase, lastbytes = {}, nil, bytes
   writeinput(bytes)
   io_output(NULL)
   for _, w in ipairs(WIRES) do w[1][w[2]] = w[3] end
@@ -256,9 +257,31 @@ function T.clean (err)
   return phase == "derive"
 end
 
--- a derivation stopped by the budget is the model's own loop (while (1) {}); a load
--- stopped by it is lsys's
-function T.budget_clean () return phase == "derive" end
+-- The seconds the load of the last input takes without the fuzzer's line hook (a count
+-- hook stops it after 10 s), with the tripwires set as for a run.
+local BARE = 1
+local function bare ()
+  local tripped = false
+  T.before(lastbytes)
+  local t0 = clock()
+  local oh, om, oc = gethook()
+  sethook(function ()
+    if clock() - t0 > 10 then tripped = true; error("fuzz: over 10 s", 0) end
+  end, "", 100000)
+  local _ = pcall(cpfg.load, MAIN, nil, { cpp = "builtin" })
+  sethook(oh, om, oc)
+  local el = clock() - t0
+  restore()
+  return (tripped or #hits > 0) and math_huge or el
+end
+
+-- A derivation stopped by the budget is the model's own loop (while (1) {}): clean. A load
+-- stopped by it is lsys's: a finding when it takes more than BARE seconds without the
+-- line hook too (else it is counted, and saved under FINDINGS/budget for a look).
+function T.budget_clean (tripped)
+  if phase == "derive" then return true end
+  return tripped == "time" and bare() <= BARE
+end
 
 function T.after ()
   restore()
