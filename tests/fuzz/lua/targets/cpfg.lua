@@ -27,16 +27,14 @@
 -- must be unchanged afterwards. printf output goes to /dev/null.
 local lsys = require "lsys"
 
-local G = _G
-local pairs, next, error, tostring, tonumber, setmetatable, getmetatable, rawset, ipairs =
-      pairs, next, error, tostring, tonumber, setmetatable, getmetatable, rawset, ipairs
-local getinfo, gethook, sethook = debug.getinfo, debug.gethook, debug.sethook
-local format, sub, srep = string.format, string.sub, string.rep
+local pairs, error, tostring, tonumber, getmetatable, ipairs =
+      pairs, error, tostring, tonumber, getmetatable, ipairs
+local gethook, sethook = debug.gethook, debug.sethook
+local format, srep = string.format, string.rep
 local concat, insert = table.concat, table.insert
 local tmpname, os_remove, execute, open = os.tmpname, os.remove, os.execute, io.open
 local io_output, io_stdout = io.output, io.stdout
 local min, clock, math_huge = math.min, os.clock, math.huge
-local os_lib, io_lib = os, io
 local BUILTIN = lsys.BUILTIN
 local STRMETA = getmetatable("")
 local cpfg = lsys.cpfg
@@ -110,57 +108,10 @@ local function cleaninput ()
 end
 
 -- --------------------------------------------------------------------------
--- Tripwires (as in ruleexpr.lua): code compiled from strings must not reach _G
+-- Tripwires (tests/fuzz/lua/tripwire.lua): code compiled from strings must not reach _G
 
-local hits = {}
-
-local function rulecode (info)
-  return info and info.what ~= "C" and sub(info.source, 1, 1) ~= "@"
-end
-
-local function hit (msg)
-  hits[#hits + 1] = msg
-  error("fuzz tripwire: " .. msg, 0)
-end
-
-local shadow, oldmeta, sealed = {}, nil, false
-local TRAP = {
-  __index = function (_, k)
-    if rulecode(getinfo(2, "S")) then
-      hit("translated code reached global '" .. tostring(k) .. "'")
-    end
-    return shadow[k]
-  end,
-  __newindex = function (_, k, v)
-    if rulecode(getinfo(2, "S")) then
-      hit("translated code wrote global '" .. tostring(k) .. "'")
-    end
-    shadow[k] = v
-  end,
-}
-
-local function tripwire (name, real)
-  return function (...)
-    for level = 2, 200 do
-      local info = getinfo(level, "Sf")
-      if info == nil or info.func == T.run then break end
-      if rulecode(info) then hit("translated code called " .. name) end
-    end
-    return real(...)
-  end
-end
-
-local WIRES = {}     -- { table, key, wrapper, real }
-local function wire (tbl, tname, key)
-  local real = tbl[key]
-  WIRES[#WIRES + 1] = { tbl, key, tripwire(tname .. key, real), real }
-end
-for _, k in ipairs { "execute", "remove", "rename", "exit", "getenv", "tmpname" } do
-  wire(os_lib, "os.", k)
-end
-for _, k in ipairs { "open", "popen", "lines", "output", "input" } do wire(io_lib, "io.", k) end
-
-local GWIRED, greal = { "load", "loadfile", "dofile", "require" }, {}
+local wires = require("tests.fuzz.lua.tripwire").new("translated code",
+                                                     function () return T.run end)
 
 local function snapshot (t)
   local s = {}
@@ -187,26 +138,6 @@ end
 
 local NULL = open("/dev/null", "w")
 
-local function seal ()
-  for k, v in next, G do shadow[k] = v end
-  for k in next, shadow do rawset(G, k, nil) end
-  oldmeta = getmetatable(G)
-  setmetatable(G, TRAP)
-  sealed = true
-  for _, name in ipairs(GWIRED) do
-    greal[name] = shadow[name]
-    shadow[name] = tripwire(name, greal[name])
-  end
-end
-
-local function unseal ()
-  if not sealed then return end
-  for _, name in ipairs(GWIRED) do shadow[name] = greal[name] end
-  setmetatable(G, oldmeta)
-  for k, v in next, shadow do rawset(G, k, v); shadow[k] = nil end
-  sealed = false
-end
-
 -- --------------------------------------------------------------------------
 -- The target
 
@@ -214,16 +145,14 @@ local phase          -- "load" or "derive": where the input is
 local lastbytes
 
 function T.before (bytes)
-  hits, phase, lastbytes = {}, nil, bytes
+  phase, lastbytes = nil, bytes
   writeinput(bytes)
   io_output(NULL)
-  for _, w in ipairs(WIRES) do w[1][w[2]] = w[3] end
-  seal()
+  wires.arm()
 end
 
 local function restore ()
-  unseal()
-  for _, w in ipairs(WIRES) do w[1][w[2]] = w[4] end
+  wires.disarm()
   io_output(io_stdout)
   cleaninput()
 end
@@ -272,7 +201,7 @@ local function bare ()
   sethook(oh, om, oc)
   local el = clock() - t0
   restore()
-  return (tripped or #hits > 0) and math_huge or el
+  return (tripped or #wires.hits > 0) and math_huge or el
 end
 
 -- A derivation stopped by the budget is the model's own loop (while (1) {}): clean. A load
@@ -285,7 +214,7 @@ end
 
 function T.after ()
   restore()
-  if #hits > 0 then return hits[1] end
+  if #wires.hits > 0 then return wires.hits[1] end
   local changed = libchanges()
   if changed then return "translated code changed " .. changed end
   return nil

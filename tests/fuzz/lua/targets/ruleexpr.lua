@@ -32,12 +32,10 @@
 -- expression's own runaway code: clean, but counted. Expected errors: strings that start
 -- with the model's location (the file and line of the lsys.lsystem call here).
 local lsys = require "lsys"
+local tw = require "tests.fuzz.lua.tripwire"
 
-local G = _G
-local type, pairs, next, pcall, error, tostring, tonumber, setmetatable, getmetatable,
-      rawset, rawget, ipairs =
-      type, pairs, next, pcall, error, tostring, tonumber, setmetatable, getmetatable,
-      rawset, rawget, ipairs
+local type, pairs, pcall, error, tostring, tonumber, getmetatable, rawget, ipairs =
+      type, pairs, pcall, error, tostring, tonumber, getmetatable, rawget, ipairs
 local getinfo = debug.getinfo
 local format, byte, char, sub, gsub =
       string.format, string.byte, string.char, string.sub, string.gsub
@@ -46,7 +44,7 @@ local tmpname, os_remove, open = os.tmpname, os.remove, io.open
 local randomseed = math.randomseed
 local LIBS = { string = string, math = math, table = table, BUILTIN = lsys.BUILTIN,
                stringmeta = getmetatable("") }
-local os_lib, io_lib, string_lib, table_lib = os, io, string, table
+local string_lib, table_lib = string, table
 local BUILTIN = lsys.BUILTIN
 local _ENV = nil
 
@@ -278,55 +276,9 @@ end
 -- --------------------------------------------------------------------------
 -- Tripwires
 
-local hits = {}
 local CTX
-
-local function rulecode (info)
-  return info and info.what ~= "C" and sub(info.source, 1, 1) ~= "@"
-end
-
-local function hit (msg)
-  hits[#hits + 1] = msg
-  error("fuzz tripwire: " .. msg, 0)
-end
-
-local shadow, oldmeta, sealed = {}, nil, false
-local TRAP = {
-  __index = function (_, k)
-    if rulecode(getinfo(2, "S")) then
-      hit("rule expression reached global '" .. tostring(k) .. "'")
-    end
-    return shadow[k]
-  end,
-  __newindex = function (_, k, v)
-    if rulecode(getinfo(2, "S")) then
-      hit("rule expression wrote global '" .. tostring(k) .. "'")
-    end
-    shadow[k] = v
-  end,
-}
-
--- a function that fails when rule code is on the stack (below T.run), else calls `real`
-local function tripwire (name, real)
-  return function (...)
-    for level = 2, 200 do
-      local info = getinfo(level, "Sf")
-      if info == nil or info.func == T.run then break end
-      if rulecode(info) then hit("rule expression called " .. name) end
-    end
-    return real(...)
-  end
-end
-
-local WIRES = {}     -- { table, key, wrapper, real }
-local function wire (tbl, tname, key)
-  local real = tbl[key]
-  WIRES[#WIRES + 1] = { tbl, key, tripwire(tname .. key, real), real }
-end
-for _, k in ipairs { "execute", "remove", "rename", "exit", "getenv", "tmpname" } do
-  wire(os_lib, "os.", k)
-end
-for _, k in ipairs { "open", "popen", "lines", "output", "input" } do wire(io_lib, "io.", k) end
+local wires = tw.new("rule expression", function () return T.run end)
+local rulecode = tw.rulecode
 
 local real_rep, real_move = string_lib.rep, table_lib.move
 local real_find, real_match, real_gmatch, real_gsub =
@@ -415,38 +367,13 @@ local function libchanges ()
   return msg
 end
 
-local GWIRED, greal = { "load", "loadfile", "dofile", "require" }, {}
-
-local function seal ()
-  for k, v in next, G do shadow[k] = v end
-  for k in next, shadow do rawset(G, k, nil) end
-  oldmeta = getmetatable(G)
-  setmetatable(G, TRAP)
-  sealed = true
-  for _, name in ipairs(GWIRED) do
-    greal[name] = shadow[name]
-    shadow[name] = tripwire(name, greal[name])
-  end
-end
-
-local function unseal ()
-  if not sealed then return end
-  for _, name in ipairs(GWIRED) do shadow[name] = greal[name] end
-  setmetatable(G, oldmeta)
-  for k, v in next, shadow do rawset(G, k, v); shadow[k] = nil end
-  sealed = false
-end
-
 function T.before ()
-  hits = {}
-  for _, w in ipairs(WIRES) do w[1][w[2]] = w[3] end
   for _, l in ipairs(LIMITED) do l[1][l[2]] = l[3] end
-  seal()
+  wires.arm()
 end
 
 local function restore ()
-  unseal()
-  for _, w in ipairs(WIRES) do w[1][w[2]] = w[4] end
+  wires.disarm()
   for i, l in ipairs(LIMITED) do l[1][l[2]] = REALS[i] end
 end
 
@@ -500,7 +427,7 @@ function T.after (tripped)
     os_remove(MARKER)
     return "a rule expression created the marker file"
   end
-  if #hits > 0 then return hits[1] end
+  if #wires.hits > 0 then return wires.hits[1] end
   local changed = libchanges()
   if changed then return changed end
   if tripped or r == nil then return nil end
