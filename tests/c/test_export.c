@@ -27,64 +27,19 @@
 #include "export_glb.c"
 #include "export.c"
 
+#include "testfile.h"
+
 #define OUT "/tmp/lsys_test_export"
 
 /* ---- helpers ---- */
 
-static char *slurp (const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  char *s;
-  long n;
-  assert(f != NULL);
-  assert(fseek(f, 0, SEEK_END) == 0);
-  n = ftell(f);
-  assert(n >= 0);
-  rewind(f);
-  s = malloc((size_t)n + 1);
-  assert(s != NULL);
-  assert(fread(s, 1, (size_t)n, f) == (size_t)n);
-  s[n] = '\0';
-  fclose(f);
-  *len = (size_t)n;
-  return s;
-}
-
-static uint32_t rd32 (const unsigned char *p) {
-  return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 /* The JSON chunk of a .glb as a new string. */
-static char *glbjson (const char *path) {
-  size_t len, jlen;
-  unsigned char *s = (unsigned char *)slurp(path, &len);
-  char *json;
-  assert(len >= 20 && rd32(s) == 0x46546C67u && rd32(s + 8) == len);
-  jlen = rd32(s + 12);
-  json = malloc(jlen + 1);
-  assert(json != NULL);
-  memcpy(json, s + 20, jlen);
-  json[jlen] = '\0';
-  free(s);
+static char *json_of (const char *path) {
+  unsigned char *file, *bin;
+  size_t len, blen;
+  char *json = glbjson(path, &file, &len, &bin, &blen);
+  free(file);
   return json;
-}
-
-static int count (const char *s, const char *needle) {
-  int n = 0;
-  while ((s = strstr(s, needle)) != NULL) { n++; s++; }
-  return n;
-}
-
-/* Number of lines of 's' that start with 'prefix'. */
-static int countlines (const char *s, const char *prefix) {
-  size_t k = strlen(prefix);
-  int n = 0;
-  while (*s) {
-    if (strncmp(s, prefix, k) == 0) n++;
-    s = strchr(s, '\n');
-    if (s == NULL) break;
-    s++;
-  }
-  return n;
 }
 
 static void line (lsys_mesh *m, double x0, double y0, double z0, double x1, double y1, double z1,
@@ -172,7 +127,7 @@ static void test_factors (void) {
   pal[0].diffuse[3] = 0.5f;
   pal[0].emission[0] = 0.5f;
   assert(lsys_mesh_save_glb(&m, pal, 1, NULL, 0, OUT ".glb", &e) == LSYS_OK);
-  s = glbjson(OUT ".glb");
+  s = json_of(OUT ".glb");
   assert(strstr(s, "\"baseColorFactor\":[0.21404114,1,0.0030959751,0.5]") != NULL);
   assert(strstr(s, "\"emissiveFactor\":[0.21404114,0,0]") != NULL);
   assert(strstr(s, "\"alphaMode\":\"BLEND\"") != NULL);
@@ -342,7 +297,7 @@ static void test_scene (void) {
   line(&s.mesh, 0, 7.2, 0, 7.2, 7.2, 0, 1, 1, 1);
   assert(fabs(lsys_export_pixel(&s.mesh) - 0.01) < 1e-9);
   assert(lsys_scene_save(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = glbjson(OUT "_s.glb");
+  j = json_of(OUT "_s.glb");
   assert(count(j, "\"mode\":4") == 2 && count(j, "\"mode\":1") == 0);
   assert(strstr(j, "\"count\":59,") != NULL);                  /* 3 + 2 * 4 * 7 vertices */
   assert(strstr(j, "\"count\":3,") != NULL && strstr(j, "\"count\":144,") != NULL);
@@ -360,12 +315,12 @@ static void test_scene (void) {
   free(j);
   o.pixel = 0.5;                               /* radius 0.25: thicker */
   assert(lsys_scene_save(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = glbjson(OUT "_s.glb");
+  j = json_of(OUT "_s.glb");
   assert(strstr(j, "\"min\":[-0.21650635,0,-0.25],\"max\":[7.2,7.4165063,0.25]") != NULL);
   free(j);
   o.tubes = 0;                                  /* lines as lines */
   assert(lsys_scene_save(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = glbjson(OUT "_s.glb");
+  j = json_of(OUT "_s.glb");
   assert(count(j, "\"mode\":1") == 1);
   free(j);
   assert(lsys_scene_save(&s, LSYS_FORMAT_GLB, OUT "_s.glb", NULL, &e) == LSYS_OK);

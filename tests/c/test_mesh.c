@@ -41,44 +41,11 @@ static void *trealloc (void *p, size_t n) {
 #include "export_glb.c"
 #include "pngio.h"
 
+#include "testfile.h"
+
 #define OUT "/tmp/lsys_test_mesh"
 
 /* ---- helpers ---- */
-
-static char *slurp (const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  char *s;
-  long n;
-  assert(f != NULL);
-  assert(fseek(f, 0, SEEK_END) == 0);
-  n = ftell(f);
-  assert(n >= 0);
-  rewind(f);
-  s = malloc((size_t)n + 1);
-  assert(s != NULL);
-  assert(fread(s, 1, (size_t)n, f) == (size_t)n);
-  s[n] = '\0';
-  fclose(f);
-  *len = (size_t)n;
-  return s;
-}
-
-/* Number of lines of 's' that start with 'prefix'. */
-static int countlines (const char *s, const char *prefix) {
-  size_t k = strlen(prefix);
-  int n = 0;
-  while (*s) {
-    if (strncmp(s, prefix, k) == 0) n++;
-    s = strchr(s, '\n');
-    if (s == NULL) break;
-    s++;
-  }
-  return n;
-}
-
-static uint32_t rd32 (const unsigned char *p) {
-  return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
 
 static float rdf32 (const unsigned char *p) {
   uint32_t u = rd32(p);
@@ -518,28 +485,6 @@ static void test_errors (void) {
 }
 
 /* ---- textures ---- */
-
-/* The JSON chunk of a .glb as a string (free it), and the BIN chunk. */
-static char *glbjson (const char *path, unsigned char **file, size_t *len, unsigned char **bin,
-                      size_t *blen) {
-  unsigned char *s = (unsigned char *)slurp(path, len);
-  size_t jlen = rd32(s + 12);
-  char *json = malloc(jlen + 1);
-  assert(json != NULL && rd32(s + 8) == *len);
-  memcpy(json, s + 20, jlen);
-  json[jlen] = '\0';
-  *blen = rd32(s + 20 + jlen);
-  *bin = s + 28 + jlen;
-  assert(28 + jlen + *blen == *len && *blen % 4 == 0);
-  *file = s;
-  return json;
-}
-
-static int count (const char *s, const char *needle) {
-  int n = 0;
-  while ((s = strstr(s, needle)) != NULL) { n++; s++; }
-  return n;
-}
 
 /* The test mesh with textures by triangle: 0 -> 1, 1 -> none, 2 -> 2 (the
 ** two-sided one), 3 -> 1; material slot 0 then has runs (none: triangle 1)
