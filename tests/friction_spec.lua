@@ -2,6 +2,7 @@
 -- library has its spec here, under the item's number.
 local H = require "tests.helper"
 local lsys = require "lsys"
+local format = string.format
 
 local function errof (f, ...)
   local ok, msg = pcall(f, ...)
@@ -26,10 +27,11 @@ describe("issue 19 §8: the number of steps is bounded", function ()
     assert.equal("B", tostring(m:derive()))
   end)
 
-  it("says so on the command line", function ()
-    local out, code = H.sh(H.BIN .. " derive --steps 100000000 examples/default.lua")
-    assert.equal(1, code)
-    assert.matches("100000000 steps is more than the limit of 10000000", out, 1, true)
+  it("says so on the command line, naming --steps", function ()
+    local out, code = H.sh(H.BIN .. " derive --steps 1e8 examples/default.lua")
+    assert.equal(2, code)
+    assert.matches("lsys: derive: --steps 1e8 is more than the limit of 10000000 steps", out, 1,
+                   true)
   end)
 end)
 
@@ -294,6 +296,138 @@ describe("issue 19 §15: lsys export --lines tubes", function ()
                            .. "/x.glb --lines pipes")
     assert.equal(2, code)
     assert.matches("--lines expects 'lines' or 'tubes', got 'pipes'", msg, 1, true)
+    H.rmdir(dir)
+  end)
+end)
+
+describe("issue 19 §7: --set and --view say what is wrong with them", function ()
+  it("warns about a --set name the model has no variable of, listing the model's", function ()
+    local out, code = H.sh(H.BIN .. " derive --steps 1 --stats --set Q=3 examples/default.lua")
+    assert.equal(0, code)
+    assert.matches("lsys: --set Q: the model has no variable Q (the model's variables: a, d1, "
+                   .. "d2, lr, vr)", out, 1, true)
+    out, code = H.sh(H.BIN .. " derive --steps 1 --stats --set a=30 examples/default.lua")
+    assert.equal(0, code)
+    assert.not_matches("no variable", out, 1, true)
+  end)
+
+  it("refuses a --set value that is not a finite number, naming --set", function ()
+    for _, v in ipairs { "abc", "nan", "inf", "-inf", "" } do
+      local out, code = H.sh(H.BIN .. " derive --set a=" .. v .. " examples/default.lua")
+      assert.equal(2, code)
+      assert.matches("lsys: derive: --set a: the value must be a finite number, got '" .. v
+                     .. "'", out, 1, true)
+    end
+  end)
+
+  it("blames a wrong --view on the option, not on the model file", function ()
+    local cases = {
+      { "zoom=3", "--view zoom=3: unknown view option 'zoom' (known: angle, " },
+      { "line_width=abc", "--view line_width=abc: 'line_width' must be a finite number" },
+      { "line_width=-3", "--view line_width=-3: 'line_width' must be >= 0, got -3" },
+      { "line_style=tube", "--view line_style=tube: 'line_style' must be \"line\", " },
+    }
+    for _, c in ipairs(cases) do
+      local out, code = H.sh(H.BIN .. " render -o " .. os.tmpname() .. ".png --view " .. c[1]
+                             .. " examples/default.lua")
+      assert.equal(2, code)
+      assert.matches("lsys: render: " .. c[2], out, 1, true)
+      assert.not_matches("default.lua", out, 1, true)
+    end
+  end)
+end)
+
+describe("issue 19 §10: messages name the user's file or the public function", function ()
+  -- what must never show in a message: lsys's own sources, its core's names, Lua's own
+  -- complaints about lsys's variables, or a function Lua cannot name
+  local INTERNAL = { "lua/lsys/", "lsys%.core", "'%?'", "%.c:%d", "attempt to", "for iterator" }
+  local function internal (msg, user_code)
+    for i = 1, user_code and 4 or #INTERNAL do    -- a user's code may attempt to index nil
+      if msg:find(INTERNAL[i]) then return INTERNAL[i] end
+    end
+  end
+
+  it("holds for every public function and method given bad arguments", function ()
+    local function new ()
+      local m = lsys.lsystem { axiom = "F(1)+F(2)", steps = 1, productions = "F(x) --> F(x+1)" }
+      local s = m:derive()
+      return m, s, m:interpret(s)
+    end
+    local m, s, sc = new()
+    local targets = {}
+    local function add (name, call, k)
+      targets[#targets + 1] = { name, load("local new, lsys = ... return function (...) "
+                                .. call .. k .. "(...) end", "=" .. name, "t")(new, lsys) }
+    end
+    -- not here: the window (show, wait, arrange), the global memory budget, deprecated names
+    local skip = { show = true, wait = true, arrange = true, max_memory = true,
+                   islstring = true, ismodel = true, isscene = true }
+    for k, v in pairs(lsys) do
+      if type(v) == "function" and not skip[k] then add("lsys." .. k, "return lsys.", k) end
+    end
+    for k in pairs(getmetatable(m).__index) do
+      if not k:find("^_") then add("model:" .. k, "local o = new() return o:", k) end
+    end
+    for k in pairs(getmetatable(s).__index) do
+      add("lstring:" .. k, "local _, o = new() return o:", k)
+    end
+    for k in pairs(getmetatable(sc).__methods) do
+      add("scene:" .. k, "local _, _, o = new() return o:", k)
+    end
+    table.sort(targets, function (a, b) return a[1] < b[1] end)
+    local BAD = { true, 5, -1, 0.5, 1e300, math.huge, 0 / 0, "x", {}, { 1, 2 }, { x = 1 } }
+    local bad, calls = {}, 0
+    for _, t in ipairs(targets) do
+      for pos = 1, 3 do
+        for i = 0, #BAD do
+          local args = {}
+          for j = 1, pos - 1 do args[j] = 1 end
+          args[pos] = BAD[i]                       -- i = 0: nil
+          local ok, e = pcall(t[2], table.unpack(args, 1, pos))
+          calls = calls + 1
+          local p = not ok and internal(tostring(e))
+          if p then bad[#bad + 1] = format("%s #%d %s: %s", t[1], pos, tostring(BAD[i]), e) end
+        end
+      end
+    end
+    assert.is_true(#targets > 40 and calls > 1000)
+    assert.same({}, bad)
+  end)
+
+  it("names the public method for a module index out of range", function ()
+    local sc = lsys.lsystem { axiom = "F+F" }:interpret()
+    assert.matches("scene:turtle: no module 5 (the scene's Lstring has 3; 0 is the start)",
+                   errof(sc.turtle, sc, 5), 1, true)
+    assert.matches("derive: the options must be a table", errof(function ()
+      lsys.lsystem { axiom = "F" }:derive(1, true) end), 1, true)
+  end)
+
+  it("holds for the command line, with the traceback kept for LSYS_DEBUG=1", function ()
+    local dir = H.tmpdir()
+    H.write(dir .. "/bad.lua", "local lsys = require 'lsys'\nreturn lsys.lsystem { axiom = "
+            .. "'A', productions = { { 'A', function () return 1 + nil end } } }\n")
+    H.write(dir .. "/none.lua", "return 42\n")
+    H.write(dir .. "/syntax.lua", "return lsys.lsystem {\n")
+    local runs = {
+      { "derive --steps 1e8", "--steps 1e8 is more than" },
+      { "render -o x.jpg", "the output must be a .png file" },
+      { "derive no/such/model.lua", "no/such/model.lua" },
+      { "render --size 0x0", "--size expects WxH" },
+      { "derive --steps 1 " .. dir .. "/bad.lua", "bad.lua:2:" },
+      { "derive " .. dir .. "/none.lua", "none.lua" },
+      { "derive " .. dir .. "/syntax.lua", "syntax.lua:2:" },
+      { "export " .. dir .. "/bad.lua", "-o OUT.obj" },
+    }
+    for _, r in ipairs(runs) do
+      local out, code = H.sh("cd " .. dir .. " && " .. H.ABSBIN .. " " .. r[1])
+      assert.is_true(code == 1 or code == 2, r[1])
+      assert.matches(r[2], out, 1, true)
+      assert.is_nil(internal(out, true), r[1] .. ": " .. out)
+      assert.not_matches("traceback", out, 1, true)
+    end
+    local out = H.sh("cd " .. dir .. " && LSYS_DEBUG=1 " .. H.ABSBIN .. " derive --steps 1 "
+                     .. dir .. "/bad.lua")
+    assert.matches("stack traceback:", out, 1, true)
     H.rmdir(dir)
   end)
 end)

@@ -128,7 +128,7 @@ describe("stochastic choice", function()
       "R --> R(ran(1))" } }
     local x, y = tostring(r:derive(1)):match("^SR%(([%d.e-]+)%)SR%(([%d.e-]+)%)$")
     assert.truthy(x and x == y)
-    assert.error_matches(function () lsys.srand(1) end, "srand called outside a derivation")
+    assert.error_matches(function () lsys.srand(1) end, "lsys.srand called outside a derivation")
     assert.error_matches(function () m:srand("x") end, "srand: a number expected, got string")
   end)
 

@@ -562,6 +562,14 @@ static int scene_turtle (lua_State *L) {
   lsys_checkscene(L, 1);
   i = luaL_checkinteger(L, 2);
   lua_settop(L, 2);
+  lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);
+  {
+    lsys_lstring *s = checklstring(L, -1);
+    if (i < 0 || (size_t)i > s->n)
+      return luaL_error(L, "scene:turtle: no module %I (the scene's Lstring has %I; 0 is the "
+                        "start)", (LUAI_UACINT)i, (LUAI_UACINT)s->n);
+  }
+  lua_pop(L, 1);
   lua_pushcfunction(L, l_turtle_state);
   lua_getiuservalue(L, 1, LSYS_SCENE_RULES);
   lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);

@@ -695,6 +695,45 @@ local function value (v)
   return v
 end
 
+-- Applies --set NAME=VALUE to the model's env, warning about a name the model has no variable
+-- of (a misspelt name would otherwise change nothing without a word).
+local function set_env (model, sets, src)
+  if model.env == nil then model.env = {} end
+  local names = {}
+  for k in pairs(model.env) do
+    if type(k) == "string" then names[#names + 1] = k end
+  end
+  table.sort(names)
+  for _, kv in ipairs(sets) do
+    if model.env[kv[1]] == nil then
+      local have = #names == 0 and "the model has no variables (its env is empty)"
+        or "the model's variables: " .. table.concat(names, ", ")
+      if src.kind ~= "lua" then
+        have = have .. "; the preprocessor replaces a #define's name by its value, and "
+          .. "`lsys import` writes a model file whose #defines of numbers are variables"
+      end
+      require("lsys.warning").warn(format("lsys: --set %s: the model has no variable %s (%s)",
+        kv[1], kv[1], have))
+    end
+    model.env[kv[1]] = kv[2]
+  end
+end
+
+-- Checks each --view NAME=VALUE as the model's view will, so that a wrong one is blamed on
+-- the option rather than on the model file.
+local function check_views (cmd, model, vlist)
+  local view = require "lsys.view"
+  local dir = type(model.view) == "table" and model.view.dir or nil
+  for _, e in ipairs(vlist) do
+    local k, s = e[1], e[2]
+    local ok, err = pcall(view.normalize, { [k] = value(s:match("=(.*)$")), dir = dir }, "")
+    if not ok then
+      err = tostring(err):gsub("^: ", ""):gsub("'view%.", "'")
+      usage(cmd, "--view %s: %s", s, err)
+    end
+  end
+end
+
 -- Loads the model named by the positional arguments and applies --steps --seed --set.
 local function prepare (cmd, opts, pos)
   local src = model_source(cmd, opts, pos)
@@ -703,6 +742,10 @@ local function prepare (cmd, opts, pos)
     steps = math.tointeger(tonumber(opts.steps))
     if steps == nil or steps < 0 then
       usage(cmd, "--steps expects a non-negative integer, got '%s'", opts.steps)
+    end
+    local limit = require("lsys.model").MAX_STEPS
+    if steps > limit then
+      usage(cmd, "--steps %s is more than the limit of %d steps", opts.steps, limit)
     end
   end
   if opts.seed ~= nil then
@@ -714,13 +757,18 @@ local function prepare (cmd, opts, pos)
   for _, s in ipairs(opts.set or {}) do
     local k, v = s:match("^([%a_][%w_]*)=(.*)$")
     if k == nil then usage(cmd, "--set expects NAME=VALUE, got '%s'", s) end
-    sets[#sets + 1] = { k, value(v) }
+    local n = tonumber(v)
+    if n == nil or n ~= n or n == math.huge or n == -math.huge then
+      usage(cmd, "--set %s: the value must be a finite number, got '%s'", k, v)
+    end
+    sets[#sets + 1] = { k, math.tointeger(n) or n }
   end
-  local views = {}
+  local views, vlist = {}, {}
   for _, s in ipairs(opts.view or {}) do
     local k, v = s:match("^([%a_][%w_]*)=(.*)$")
     if k == nil then usage(cmd, "--view expects NAME=VALUE, got '%s'", s) end
     views[k] = value(v)
+    vlist[#vlist + 1] = { k, s }
   end
 
   local path = src.path
@@ -732,17 +780,8 @@ local function prepare (cmd, opts, pos)
   end
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end
-  if #sets > 0 then
-    if model.env == nil then model.env = {} end
-    for _, kv in ipairs(sets) do
-      if src.kind ~= "lua" and model.env[kv[1]] == nil then
-        require("lsys.warning").warn(format("lsys: --set %s: the model has no variable %s (the "
-          .. "preprocessor replaces a #define's name by its value; `lsys import` writes a model "
-          .. "file whose #defines of numbers are variables)", kv[1], kv[1]))
-      end
-      model.env[kv[1]] = kv[2]
-    end
-  end
+  if #sets > 0 then set_env(model, sets, src) end
+  check_views(cmd, model, vlist)
   return model, path, views, src
 end
 
@@ -1337,6 +1376,19 @@ local function dispatch (args)
   usage(nil, "unknown command '%s'", a)
 end
 
+-- The folder holding lsys's own Lua modules (the one above this file's lsys/), as it
+-- appears in error positions.
+local SRCDIR = (debug.getinfo(1, "S").source:match("^@(.*)lsys[/\\]cli%.lua$"))
+
+--- 'msg' without the positions in lsys's own sources that Lua put in it ("/usr/share/lsys/
+-- lua/lsys/model.lua:123: "): a user's error names the user's file or the public function,
+-- not where inside lsys it was raised (LSYS_DEBUG=1 keeps them, with a traceback).
+function M.strip_internal (msg)
+  if SRCDIR == nil or SRCDIR == "" then return msg end
+  local dir = SRCDIR:gsub("%p", "%%%0")
+  return (msg:gsub(dir .. "lsys[/\\][%w_/\\]*%.lua:%d+: ", ""))
+end
+
 local function handler (e)
   if getmetatable(e) == USAGE_ERROR then return e end
   local msg = e
@@ -1345,8 +1397,8 @@ local function handler (e)
     msg = (mt ~= nil and mt.__tostring ~= nil) and tostring(e)
       or format("(error object is a %s value)", type(e))
   end
-  if os.getenv("LSYS_DEBUG") ~= nil then msg = debug.traceback(msg, 2) end
-  return msg
+  if os.getenv("LSYS_DEBUG") ~= nil then return debug.traceback(msg, 2) end
+  return M.strip_internal(msg)
 end
 
 --- Runs the command line `lsys ...` given its arguments (strings).

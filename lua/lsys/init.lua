@@ -22,10 +22,20 @@ local M = {}
 --- Parses cpfg text notation into an Lstring; `names` declares
 -- multi-character module names ("Apex Leaf").
 function M.lstring (text, names)
+  if (names == nil or names == "") and type(text) ~= "string" then
+    error(format("lsys.lstring: the text must be a string, got %s", type(text)), 2)
+  end
   if names == nil or names == "" then
     local ok, s = pcall(core.lstring, text)
     if not ok then error((tostring(s):gsub("^lstring: ", "lsys.lstring: ")), 2) end
     return s
+  end
+  if type(text) ~= "string" then
+    error(format("lsys.lstring: the text must be a string, got %s", type(text)), 2)
+  end
+  if type(names) ~= "string" then
+    error(format("lsys.lstring: the names must be a string (\"Apex Leaf\"), got %s",
+                 type(names)), 2)
   end
   local s, msg, pos = core.rules(names):lstring(text)
   if not s then error(format("lsys.lstring: %s at character %d", msg, pos), 2) end
@@ -40,7 +50,8 @@ M.nran = core.nran
 function M.srand (seed)
   local m = not core.producing() and model.hooked()
   if m then return m:srand(seed) end
-  return core.srand(seed)
+  local ok, err = pcall(core.srand, seed)
+  if not ok then error("lsys." .. tostring(err):gsub("^[^:]*:%d+: ", ""), 2) end
 end
 M.version = "0.1.0"
 M.view = view

@@ -535,6 +535,9 @@ end
 
 --- Parses text with this model's declared module names.
 function Model:lstring (text)
+  if type(text) ~= "string" then
+    error(format("lstring: the text must be a string, got %s", type(text)), 2)
+  end
   local s, msg, pos = self._rules:lstring(text)
   if not s then error(format("lstring: %s at character %d", msg, pos), 2) end
   return s
@@ -623,6 +626,10 @@ end
 -- `opts.each(k, s)` receives the string of every step k = 0..n (it may keep them).
 function Model:derive (n, opts)
   self:_idle("derive")
+  if opts ~= nil and type(opts) ~= "table" then
+    error(format("derive: the options must be a table ({progress = f, each = f}), got %s",
+                 type(opts)), 2)
+  end
   n = n or self.steps
   checksteps(n, "derive")
   local rules = self._rules
@@ -785,7 +792,7 @@ function Model:use_group (n)
     local have = {}
     for g in pairs(self._groups or {}) do have[#have + 1] = g end
     table.sort(have)
-    error(format("use_group: the model has no group %d (groups: %s)", n,
+    error(format("use_group: the model has no group %.14g (groups: %s)", n,
                  #have > 0 and table.concat(have, ", ") or "none"), 2)
   end
   self._group = n
