@@ -365,6 +365,16 @@ describe("issue 19 §10: messages name the user's file or the public function", 
     for k, v in pairs(lsys) do
       if type(v) == "function" and not skip[k] then add("lsys." .. k, "return lsys.", k) end
     end
+    -- and every function of the modules that the reference (docs/meta.lua) documents, but
+    -- the window's (lsys.viewer, lsys.repl) and the deprecated names
+    for line in io.lines("docs/meta.lua") do
+      local mod, k = line:match("^function (lsys%.[%w_.]+)%.([%w_]+)%(")
+      if mod and not mod:find("^lsys%.viewer") and not mod:find("^lsys%.repl")
+         and k ~= "turtle" and k ~= "render" then
+        add(mod .. "." .. k, "return " .. mod .. ".", k)
+      end
+    end
+    add("lsys.grow.from_lstring", "return require('lsys.grow').", "from_lstring")
     for k in pairs(getmetatable(m).__index) do
       if not k:find("^_") then add("model:" .. k, "local o = new() return o:", k) end
     end

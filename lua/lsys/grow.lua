@@ -29,6 +29,7 @@ local lmodel = require "lsys.model"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall =
       type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall
+local require = require
 local math, string, debug = math, string, debug
 local format, table = string.format, table
 local floor = math.floor
@@ -702,6 +703,12 @@ local FROM = { model = true, view = true, kind = true, seed = true, max_limbs = 
 -- colour: default the view palette's), `seed`, `max_limbs`, `sides` (as grow.world).
 -- Returns the world and the list of limbs by segment record.
 function M.from_lstring (s, opts)
+  if type(s) ~= "string" and require("lsys").type(s) ~= "lstring" then
+    fail("from_lstring: an Lstring or its text expected, got %s", type(s))
+  end
+  if opts ~= nil and type(opts) ~= "table" then
+    fail("from_lstring: the options must be a table, got %s", type(opts))
+  end
   opts = opts or {}
   for k in pairs(opts) do
     if not FROM[k] then fail("from_lstring: unknown option '%s'", tostring(k)) end

@@ -613,6 +613,10 @@ local LOOK = { "background", "light", "viewpoint", "target", "up", "direction",
 --- The options core.interpret reads, from a normalised view: the turtle's, and how the
 -- scene it makes is to be looked at.
 function M.turtle_options (v, allow_system_calls)
+  if type(v) ~= "table" then
+    error("lsys.view.turtle_options: a view table expected (lsys.view.normalize's), got "
+          .. type(v), 2)
+  end
   local o = { allow_system_calls = allow_system_calls or false }
   for _, k in ipairs(TURTLE) do o[k] = v[k] end
   for _, k in ipairs(LOOK) do o[k] = v[k] end
@@ -623,6 +627,10 @@ end
 -- the look, the supersampling and the textures (left out when the view has none: the same
 -- to the renderer).
 function M.render_options (v)
+  if type(v) ~= "table" then
+    error("lsys.view.render_options: a view table expected (lsys.view.normalize's), got "
+          .. type(v), 2)
+  end
   local o = { supersample = v.supersample,
               textures = v.textures and #v.textures > 0 and v.textures or nil }
   for _, k in ipairs(LOOK) do o[k] = v[k] end
@@ -634,6 +642,12 @@ M.render = warning.alias("lsys.view.render", "lsys.view.render_options", M.rende
 
 --- A copy of `v` with the fields of `over` (both plain view tables) replacing its own.
 function M.merge (v, over)
+  for i, x in ipairs { v, over } do
+    if x ~= nil and type(x) ~= "table" then
+      error(format("lsys.view.merge: argument %d must be a view table or nil, got %s", i,
+                   type(x)), 2)
+    end
+  end
   local out = {}
   for k, x in pairs(v or {}) do out[k] = x end
   for k, x in pairs(over or {}) do out[k] = x end

@@ -14,8 +14,8 @@
 local proto = require "lsys.components.proto"
 local expand = require "lsys.components.expand"
 
-local pairs, require, setmetatable, error, tostring, concat =
-      pairs, require, setmetatable, error, tostring, table.concat
+local pairs, require, setmetatable, error, tostring, pcall, concat =
+      pairs, require, setmetatable, error, tostring, pcall, table.concat
 local _ENV = nil
 
 local M = {}
@@ -36,7 +36,14 @@ end
 function M.model (root, opts) return require("lsys.components.model").model(root, opts) end
 
 --- The scene of the component graph at `root`: M.model(root, opts):interpret().
-function M.scene (root, opts) return M.model(root, opts):interpret() end
+function M.scene (root, opts)
+  local ok, m = pcall(M.model, root, opts)
+  if not ok then
+    error((tostring(m):gsub("^[^\n]-:%d+: ", ""):gsub("^lsys%.components%.model:",
+          "lsys.components.scene:")), 2)
+  end
+  return m:interpret()
+end
 
 --- Puts component plants into an L-system: each module `P(s)` of `model`'s derived string
 -- becomes the plant `plants.P` scaled by s (lsys.components.mix.place).
