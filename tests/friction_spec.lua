@@ -441,3 +441,50 @@ describe("issue 19 §10: messages name the user's file or the public function", 
     H.rmdir(dir)
   end)
 end)
+
+describe("issue 19 §14: memory a user did not ask for", function ()
+  it("holds a long axiom once, as its text, until it derives", function ()
+    -- 400 000 modules, 2 MB of text: the model keeps the text and the C template, no table
+    -- a module (the expressions are kept once each: 'x' and 'x*x+1')
+    local text = string.rep("F(x)G(x*x+1)+", 100000) .. "A"
+    collectgarbage()
+    local before = collectgarbage("count")
+    local m = lsys.lsystem { axiom = text, env = { x = 2 }, productions = "A --> B" }
+    collectgarbage()
+    local kept = collectgarbage("count") - before
+    assert.is_true(kept < 64, kept .. " kB")
+    local s = m:derive(1)
+    assert.equal(300001, #s)
+    assert.equal("F(2)G(5)+B", tostring(s:sub(299998, 300001)))
+  end)
+
+  it("keeps no copy of a long successor's modules once the model is made", function ()
+    collectgarbage()
+    local before = collectgarbage("count")
+    local m = lsys.lsystem { axiom = "A", productions = "A --> " .. string.rep("F+", 50000) }
+    collectgarbage()
+    local kept = collectgarbage("count") - before
+    assert.equal(100000, #m:derive(1))
+    assert.is_true(kept < 2 * 1024, kept .. " kB")      -- was 11 MB: a table a module
+  end)
+
+  it("lsys view takes --last and --history, and checks them before opening a window", function ()
+    local out, code = H.sh(H.BIN .. " view --history lots examples/default.lua")
+    assert.equal(2, code)
+    assert.matches("lsys: view: --history: 'lots' is not a size", out, 1, true)
+    out, code = H.sh(H.BIN .. " view --last --step 2 examples/default.lua")
+    assert.equal(2, code)
+    assert.matches("--last and --step exclude each other", out, 1, true)
+    out = H.sh(H.BIN .. " view --help")
+    assert.matches("--history SIZE       the memory the kept steps may take (default 256M",
+                   out, 1, true)
+  end)
+
+  it("refuses a picture larger than the memory budget before drawing it", function ()
+    local out, code = H.sh("LSYS_MAX_MEMORY=100M " .. H.BIN .. " render --size 16384x16384 -o "
+                           .. os.tmpname() .. ".png examples/abop/fig1_24a.lua")
+    assert.equal(1, code)
+    assert.matches("lsys: lsys.render: a 16384x16384 picture needs 3.0 GiB, more than max_memory "
+                   .. "(100 MiB)", out, 1, true)
+  end)
+end)

@@ -225,6 +225,52 @@ V.close()
     os.execute("rm -rf " .. dir)
   end)
 
+  it("keeps the history within its budget: every 2nd, 4th, ... step and the last", function()
+    if not display() then return end
+    local dir = tmpdir()
+    write(dir .. "/m.lua", MODEL:format(7, "line"))
+    write(dir .. "/hist.lua", [[
+local lsys = require "lsys"
+local V = require "lsys.viewer"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
+local m = dofile(arg[1])
+local function steps ()
+  assert(V.sync(10 * SLOW))
+  V.key("home") assert(V.sync(10 * SLOW))
+  local l = { V.state().step }
+  for _ = 2, V.state().nframes do
+    V.key("right") assert(V.sync(10 * SLOW))
+    l[#l + 1] = V.state().step
+  end
+  return table.concat(l, " ")
+end
+warn("@on")
+lsys.show(m, { width = 200, height = 200, status = false })
+print("all", steps())
+lsys.show(m, { history = 1300000 })
+print("thinned", steps())
+lsys.show(m, { history = 1000000 })
+print("thinned more", steps())
+lsys.show(m, { history = 1 })
+print("least", steps())
+lsys.show(m, { steps = false })
+print("last", steps())
+V.close()
+]])
+    local out, code = run(D.env .. BIN .. " " .. dir .. "/hist.lua " .. dir .. "/m.lua")
+    assert.equal(0, code, out)
+    assert.matches("all\t0 1 2 3 4 5 6 7\n", out, 1, true)
+    -- step k of F --> F[+F]F has 4 * 3^k segments: about 0.4, 1.3, 3.9, 12, 34, 105, 308 and
+    -- 940 kB of history (lsys/viewer.lua frame_bytes), 1.41 MB in all
+    assert.matches("thinned\t0 2 4 6 7\n", out, 1, true)           -- 1.29 MB
+    assert.matches("thinned more\t0 4 7\n", out, 1, true)          -- 0.98 MB
+    assert.matches("least\t0 7\nlast\t7\n", out, 1, true)
+    assert.matches("lsys.show: the 8 steps would take more memory than the history allows "
+                   .. "(1.2 MiB): the window keeps every 2nd step and the last", out, 1, true)
+    assert.matches("(1000 kB): the window keeps every 4th step", out, 1, true)
+    os.execute("rm -rf " .. dir)
+  end)
+
   it("draws overlay lines depth-tested, or on top when asked", function()
     if not display() then return end
     local dir = tmpdir()

@@ -132,6 +132,7 @@ Options: as for `lsys render`; -o is required.
 
 HELP.view = [=[
 usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--step K] [--rate R] [--no-status]
+                 [--last | --history SIZE]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
                  [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
                  [--define NAME=VALUE]...
@@ -155,6 +156,9 @@ Options:
   --step K             the step shown first (default: the last)
   --rate R             animation speed in steps per second (default 2)
   --no-status          no status line at the bottom of the window
+  --last               keep the last step only (no stepping: the least memory)
+  --history SIZE       the memory the kept steps may take (default 256M; e.g. 1G): beyond
+                       it the window keeps every 2nd, 4th, ... step and the last
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
@@ -900,7 +904,7 @@ local VIEW_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   size = "value", step = "value", rate = "value", screenshot = "value",
   ["no-status"] = "flag", help = "flag", short = { h = "help" },
-  map = "value", mat = "value", define = "list",
+  map = "value", mat = "value", define = "list", last = "flag", history = "value",
 }
 
 -- --step, --rate and --screenshot of `lsys view`.
@@ -922,7 +926,15 @@ local function view_opts (opts)
   if shot ~= nil and not shot:lower():find("%.png$") then
     usage("view", "the screenshot must be a .png file, got '%s'", shot)
   end
-  return step, rate, shot
+  local history
+  if opts.history ~= nil then
+    if opts.last then usage("view", "--last and --history exclude each other") end
+    local ok, r = pcall(require("lsys.model").parse_size, opts.history, "--history")
+    if not ok then usage("view", "%s", (tostring(r):gsub("^[^\n]-:%d+: ", ""))) end
+    history = r
+  end
+  if opts.last and opts.step ~= nil then usage("view", "--last and --step exclude each other") end
+  return step, rate, shot, history
 end
 
 -- Handles the window's events until it is closed (or Ctrl-C); a change of one of the
@@ -970,7 +982,7 @@ function commands.view (args)
   local opts, pos = parse("view", VIEW_OPTS, args, 2)
   if opts.help then out(HELP.view) return 0 end
   local w, h = size_opt("view", opts.size)
-  local step, rate, shot = view_opts(opts)
+  local step, rate, shot, history = view_opts(opts)
   local V = require "lsys.viewer"
   local print_pick = require("lsys.repl").print_pick
   local src = model_source("view", opts, pos)
@@ -995,6 +1007,7 @@ function commands.view (args)
       end
       V.show(model, {
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
+        steps = not opts.last, history = history,
         title = path:match("([^/]*)$"), status = not opts["no-status"],
         view = next(views) and views or nil,
         -- a click prints the module, unless lsys.viewer.on_pick (set by the model) takes it

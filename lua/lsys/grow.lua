@@ -29,7 +29,6 @@ local lmodel = require "lsys.model"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall =
       type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, tostring, pcall
-local require = require
 local math, string, debug = math, string, debug
 local format, table = string.format, table
 local floor = math.floor
@@ -703,7 +702,7 @@ local FROM = { model = true, view = true, kind = true, seed = true, max_limbs = 
 -- colour: default the view palette's), `seed`, `max_limbs`, `sides` (as grow.world).
 -- Returns the world and the list of limbs by segment record.
 function M.from_lstring (s, opts)
-  if type(s) ~= "string" and require("lsys").type(s) ~= "lstring" then
+  if type(s) ~= "string" and not lmodel.islstring(s) then
     fail("from_lstring: an Lstring or its text expected, got %s", type(s))
   end
   if opts ~= nil and type(opts) ~= "table" then

@@ -126,6 +126,18 @@ local rules_models = setmetatable({}, { __mode = "k" })   -- Rules userdata -> i
 Model.__index = Model
 M.Model = Model
 
+-- The parameter counts each module name has in a parsed successor: { name = { [n] = true } }
+-- (kept instead of the successor's modules, which a generated successor has millions of).
+local function kinds (mods)
+  local made = {}
+  for _, m in ipairs(mods or {}) do
+    local k = made[m.name]
+    if k == nil then k = {}; made[m.name] = k end
+    k[#m.params] = true
+  end
+  return made
+end
+
 -- Splits a rules value (string or list) into entries { text=, fn=, line= }.
 local function entries (rules, what, fail)
   local out = {}
@@ -179,7 +191,8 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
                             trees = trees, funcrefs = factory and compile.funcrefs(e.text),
-                            pattern = { r.lc, r.preds or { r.pred }, r.rc }, succ = r.succ }
+                            pattern = { r.lc, r.preds or { r.pred }, r.rc },
+                            made = not e.fn and kinds(r.succ) or nil }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
   end
@@ -193,15 +206,12 @@ local SPECIAL = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] 
 -- anything: with one, nothing is said.
 function Model:_checkcounts ()
   local made = self._rules:kinds(self._axiom)      -- the axiom's, counted in C
-  local function add (mods)
-    for _, m in ipairs(mods or {}) do
-      made[m.name] = made[m.name] or {}
-      made[m.name][#m.params] = true
-    end
-  end
   for _, info in pairs(self._info) do
-    if not info.succ then return end           -- a rule function
-    add(info.succ)
+    if not info.made then return end           -- a rule function
+    for name, counts in pairs(info.made) do
+      made[name] = made[name] or {}
+      for n in pairs(counts) do made[name][n] = true end
+    end
   end
   for _, info in pairs(self._info) do
     for _, part in ipairs(info.pattern) do

@@ -25,8 +25,8 @@ local core = require "lsys.core"
 local model = require "lsys.model"
 local warning = require "lsys.warning"
 
-local type, pairs, ipairs, error, pcall, tostring, require =
-      type, pairs, ipairs, error, pcall, tostring, require
+local type, pairs, ipairs, error, pcall, tostring, require, getmetatable =
+      type, pairs, ipairs, error, pcall, tostring, require, getmetatable
 local os, string, math = os, string, math
 local format = string.format
 local _ENV = nil
@@ -54,7 +54,7 @@ local SHOW_OPTS = {
   step = "number", steps = "boolean", rate = "number", title = "string", width = "number",
   height = "number", on_pick = "function", on_event = "function", view = "table",
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
-  model = "table", lines = "table", capture = "boolean",
+  model = "table", lines = "table", capture = "boolean", history = "number",
 }
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
@@ -85,23 +85,80 @@ local function frame (scene, step, nmodules, take)
   return { scene = scene, step = step, modules = nmodules, take = take, world = world(v) }, v
 end
 
--- A model's steps: derive keeping every string, interpret each.
+-- The memory a frame of the history holds, in bytes: its mesh (in the window and again on
+-- the GPU side, which software GL keeps in the process), what clicks are picked from, and
+-- the Lstring kept to name what was clicked (csrc/core/mesh.h, csrc/gl/viewer.h).
+local function frame_bytes (scene, s)
+  local mesh = scene.nvertices * 37 + scene.ntriangles * 12 + scene.nlines * 34
+  return 2 * mesh + scene.nrecords * 32 + s:bytes()
+end
+
+--- The memory the steps a shown model keeps may take, in bytes, unless the show says
+-- (`history`); beyond it the window keeps every 2nd, 4th, ... step and the last.
+M.HISTORY = 256 * 1024 * 1024
+
+-- A model's steps: derive, interpret each step as it comes, keep the frames. When the
+-- history would need more than opts.history bytes, the steps in between are thinned out
+-- (every 2nd kept, then every 4th, ...: the spacing stays even) and the last step is
+-- always kept; the frames dropped and their strings are freed as the derivation goes on.
 local function model_frames (m, opts)
   local n = m.steps
-  local strings, frames = {}, {}
-  if opts.steps == false then
-    strings[n] = m:derive(n)
-  else
-    m:derive(n, { each = function (k, s) strings[k] = s end })
+  local budget = opts.history or M.HISTORY
+  local kept, total, stride = {}, 0, 1
+  -- a frame dropped frees its scene and string now: the collector does not see their size
+  -- (the derivation is past its string: each(k) comes after step k read string k - 1)
+  -- (a string from a hook, end_each's or finish's, may be held elsewhere: left to the GC)
+  local own = m.end_each == nil and m.finish == nil
+  local function drop (e)
+    getmetatable(e.scene).__close(e.scene)
+    if own then getmetatable(e.s).__close(e.s) end
   end
-  local first, last = opts.steps == false and n or 0, n
-  local textures
-  for k = first, last do
-    if opts.progress then opts.progress(k, last) end
-    local scene = m:interpret(strings[k], opts.view)
-    local f, v = frame(scene, k, #strings[k], true)
-    frames[#frames + 1] = f
-    S.strings[#frames], S.steps[#frames] = strings[k], k
+  local function keep (k, s)
+    local tail = kept[#kept]
+    if tail ~= nil and tail.k % stride ~= 0 and tail.k ~= 0 then   -- was kept as the last
+      kept[#kept] = nil
+      total = total - tail.bytes
+      drop(tail)
+    end
+    if opts.progress then opts.progress(k, n) end
+    local scene = m:interpret(s, opts.view)
+    local e = { k = k, s = s, scene = scene, bytes = frame_bytes(scene, s) }
+    kept[#kept + 1] = e
+    total = total + e.bytes
+    while total > budget and #kept > 2 and stride <= n do   -- thin out the steps between
+      stride = stride * 2
+      local out = {}
+      total = 0
+      for i, f in ipairs(kept) do
+        if i == 1 or i == #kept or f.k % stride == 0 then
+          out[#out + 1] = f
+          total = total + f.bytes
+        else
+          drop(f)
+        end
+      end
+      kept = out
+    end
+  end
+  if opts.steps == false then
+    keep(n, m:derive(n))
+  else
+    m:derive(n, { each = keep })
+  end
+  if stride > 1 then
+    local size = budget >= 2 ^ 30 and format("%.1f GiB", budget / 2 ^ 30)
+      or budget >= 2 ^ 20 and format("%.1f MiB", budget / 2 ^ 20)
+      or format("%.0f kB", budget / 1000)
+    warning.warn(format("lsys.show: the %d steps would take more memory than the history "
+      .. "allows (%s): the window keeps every %d%s step and the last (show option "
+      .. "'history', `lsys view --history SIZE`; `steps = false` or `--last` for the last "
+      .. "step alone)", n + 1, size, stride, stride == 2 and "nd" or "th"))
+  end
+  local frames, textures = {}, nil
+  for i, e in ipairs(kept) do
+    local f, v = frame(e.scene, e.k, #e.s, true)
+    frames[i] = f
+    S.strings[i], S.steps[i] = e.s, e.k
     if v and v.textures and #v.textures > 0 then textures = v.textures end
   end
   return frames, textures
@@ -172,8 +229,10 @@ end
 -- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }, plus
 -- `instance` and `path` when a component instance drew it: see lsys.components),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
--- `model` (for an Lstring), `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b},
--- width = pixels, ontop = boolean}, ... } drawn over it, depth-tested unless `ontop`),
+-- `history` (the bytes a model's kept steps may take, default lsys.viewer.HISTORY = 256 MiB;
+-- beyond it every 2nd, 4th, ... step is kept, and the last), `model` (for an Lstring),
+-- `lines` (for a Scene: { {p0 =, p1 =, color = {r, g, b}, width = pixels, ontop = boolean},
+-- ... } drawn over it, depth-tested unless `ontop`),
 -- `capture` (a tool takes the keys and Ctrl-drags: they come to `on_event` as
 -- { type = "key", key = "up", ctrl =, shift = } and
 -- { type = "drag", phase = "begin" | "move" | "end", x =, y = }).
