@@ -12,18 +12,28 @@
 -- cpfg figures the targets are derived from.
 -- Plain Lua works too: LUA_PATH='./lua/?.lua;./lua/?/init.lua;;' LUA_CPATH='./build/?.so;;'
 -- lua5.4 bench/derive.lua
+--
+-- With cpfg (`--cpfg PATH`, or the environment variable CPFG: a cpfg built by
+-- ../shared/tools/cpfg-build.sh, which honours CPFG_SKIP_VV), both programs are also timed
+-- the same way (issue 20): whole process, wall clock, best of 5, minus the same process on
+-- the model with 0 steps (start-up); cpfg runs `-g` with CPFG_SKIP_VV=1 (no view-volume
+-- pass) writing its string in binary (-strb: no number formatting) to /dev/null, lsys
+-- derives in a fresh process. Peak memory is each process's maximum resident size (GNU
+-- time's %M). Targets: D0L >= 5x cpfg, parametric >= 3x, peak memory at most cpfg's.
 
 local MODELS = {
   a = {
     title = "(a) F --> F[+F]F[-F]F", steps = 10,
     rate_target = 300e6, mem_target = 90,      -- 2 x cpfg (45 MiB)
     spec = { axiom = "F", productions = "F --> F[+F]F[-F]F" },
+    cpfg = "Axiom: F\nF --> F[+F]F[-F]F\n", cpfg_ratio = 5,
   },
   b = {
     title = "(b) A(s) --> F(s)[+A(s/R)][-A(s/R)]", steps = 21,
     rate_target = 100e6, mem_target = 154,     -- 2 x cpfg (77 MiB)
     spec = { axiom = "A(1)", env = { R = 1.456 },
              productions = "A(s) --> F(s)[+A(s/R)][-A(s/R)]" },
+    cpfg = "#define R 1.456\nAxiom: A(1)\nA(s) --> F(s)[+A(s/R)][-A(s/R)]\n", cpfg_ratio = 3,
   },
 }
 local RUNS = 3
@@ -107,6 +117,16 @@ local function run_child (name, steps)
     name, steps, modules, length, best, hwm or -1))
 end
 
+-- child "whole": derive once and exit, for the whole-process timing beside cpfg
+local function run_whole (name, steps)
+  local lsys = load_lsys()
+  local spec = {}
+  for k, v in pairs(MODELS[name].spec) do spec[k] = v end
+  spec.steps = steps
+  local s = lsys.lsystem(spec):derive()
+  io.write(#s, "\n")
+end
+
 ------------------------------------------------------------------------------------------
 -- parent: launch the children and the peer, print the table
 
@@ -163,9 +183,92 @@ local function measure_peer (node, name, steps)
 end
 
 local function mib (kib) return kib / 1024 end
+
+-- Whole-process timing (issue 20): the best of 'runs' wall-clock times of `cmd` and the
+-- largest resident size (KiB) GNU time reports, or nil when /usr/bin/time is missing.
+local TIME = io.open("/usr/bin/time", "r") and (io.close(io.open("/usr/bin/time")) and
+  "/usr/bin/time") or nil
+local function whole (cmd, runs)
+  local best, peak = math.huge, nil
+  local tmp = os.tmpname()
+  for _ = 1, runs do
+    local t0 = clock()
+    local ok = os.execute((TIME and (TIME .. " -f %M -o " .. tmp .. " ") or "") .. cmd
+                          .. " >/dev/null 2>&1 </dev/null")
+    local t = clock() - t0
+    if not ok then os.remove(tmp) error("failed: " .. cmd, 0) end
+    best = math.min(best, t)
+    local kib = TIME and tonumber((read_file(tmp) or ""):match("(%d+)%s*$"))
+    if kib then peak = math.max(peak or 0, kib) end
+  end
+  os.remove(tmp)
+  return best, peak
+end
+
+-- lsys and cpfg on one model, timed as `whole` does, start-up subtracted.
+local function versus_cpfg (cpfg, dir, name, modules)
+  local m = MODELS[name]
+  local function lfile (steps)
+    local path = string.format("%s/%s%d.l", dir, name, steps)
+    local f = assert(io.open(path, "w"))
+    f:write(string.format("lsystem: 1\nderivation length: %d\n%sendlsystem\n", steps,
+      m.cpfg:gsub("(#define[^\n]*\n)", "") ))
+    f:close()
+    local defs = m.cpfg:match("(#define[^\n]*\n)")
+    if defs then                                   -- cpp lines go first
+      local text = read_file(path)
+      f = assert(io.open(path, "w")) f:write(defs, text) f:close()
+    end
+    return path
+  end
+  local function cpfg_cmd (steps)
+    return string.format("env CPFG_SKIP_VV=1 %s -g -m %s/e.map -strb /dev/null %s %s/e.v",
+      shell_quote(cpfg), dir, shell_quote(lfile(steps)), dir)
+  end
+  local lsys_cmd = function (steps) return self_command() .. " whole " .. name .. " " .. steps end
+  local R = 5
+  local c0 = whole(cpfg_cmd(0), R)
+  local c1, cpeak = whole(cpfg_cmd(m.steps), R)
+  local l0 = whole(lsys_cmd(0), R)
+  local l1, lpeak = whole(lsys_cmd(m.steps), R)
+  return { cpfg = modules / math.max(c1 - c0, 1e-9), lsys = modules / math.max(l1 - l0, 1e-9),
+           cpeak = cpeak, lpeak = lpeak, cstart = c0, lstart = l0 }
+end
+
+local function cpfg_table (cpfg, results)
+  local dir = os.tmpname()
+  os.remove(dir)
+  assert(os.execute("mkdir -p " .. shell_quote(dir)))
+  for _, f in ipairs { "e.map", "e.v" } do io.close(assert(io.open(dir .. "/" .. f, "w"))) end
+  print()
+  print("cpfg: " .. cpfg .. " (-g -strb, CPFG_SKIP_VV=1); whole process, wall clock, best of 5, "
+        .. "start-up subtracted" .. (TIME and "" or "; no /usr/bin/time: no peak memory"))
+  print(string.format("%-38s %10s %10s %7s %-12s %9s %9s %7s %-10s", "model", "lsys M/s",
+    "cpfg M/s", "ratio", "target", "lsys MiB", "cpfg MiB", "ratio", "target"))
+  for _, name in ipairs { "a", "b" } do
+    local m = MODELS[name]
+    local ok, r = pcall(versus_cpfg, cpfg, dir, name, results[name].modules)
+    if not ok then
+      print(string.format("%-38s cpfg run failed: %s", m.title, tostring(r)))
+    else
+      local ratio = r.lsys / r.cpfg
+      local mratio = r.lpeak and r.cpeak and r.lpeak / r.cpeak
+      print(string.format("%-38s %10.1f %10.1f %6.2fx %-12s %9s %9s %7s %-10s", m.title,
+        r.lsys / 1e6, r.cpfg / 1e6, ratio,
+        string.format(">=%dx %s", m.cpfg_ratio, ratio >= m.cpfg_ratio and "PASS" or "MISS"),
+        r.lpeak and string.format("%.1f", mib(r.lpeak)) or "?",
+        r.cpeak and string.format("%.1f", mib(r.cpeak)) or "?",
+        mratio and string.format("%.2fx", mratio) or "?",
+        mratio and ("<=1x " .. (mratio <= 1 and "PASS" or "MISS")) or ""))
+      print(string.format("  (start-up: lsys %.1f ms, cpfg %.1f ms)", r.lstart * 1e3,
+        r.cstart * 1e3))
+    end
+  end
+  os.execute("rm -rf " .. shell_quote(dir))
+end
 local function mrate (r) return r.modules / r.seconds / 1e6 end
 
-local function main ()
+local function main (cpfg)
   local lsys = load_lsys()
   print(string.format("lsys %s derivation benchmark (%s; best of %d, %s)",
     lsys.version or "?", _VERSION, RUNS, clock_name))
@@ -183,6 +286,14 @@ local function main ()
       string.format(">=%d %s", m.rate_target / 1e6,
         rate * 1e6 >= m.rate_target and "PASS" or "MISS"),
       mem, string.format("<=%d %s", m.mem_target, mem <= m.mem_target and "PASS" or "MISS")))
+  end
+
+  if cpfg then
+    cpfg_table(cpfg, results)
+  else
+    print()
+    print("cpfg: not given (--cpfg PATH or CPFG=PATH; ../shared/tools/cpfg-build.sh builds "
+          .. "it): lsys alone")
   end
 
   print()
@@ -231,9 +342,16 @@ end
 local mode = arg and arg[1]
 if MODELS[mode] then
   run_child(mode, tonumber(arg[2]) or MODELS[mode].steps)
-elseif mode == nil then
-  main()
+elseif mode == "whole" and MODELS[arg[2]] then
+  run_whole(arg[2], tonumber(arg[3]) or MODELS[arg[2]].steps)
+elseif mode == nil or mode == "--cpfg" then
+  local cpfg = mode == "--cpfg" and arg[2] or os.getenv("CPFG")
+  if mode == "--cpfg" and not cpfg then
+    io.stderr:write("derive.lua: --cpfg needs the path of a cpfg program\n")
+    os.exit(2)
+  end
+  main(cpfg ~= "" and cpfg or nil)
 else
-  io.stderr:write("usage: derive.lua [a|b [STEPS]]\n")
+  io.stderr:write("usage: derive.lua [--cpfg PATH] | [a|b [STEPS]]\n")
   os.exit(2)
 end
