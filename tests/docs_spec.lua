@@ -1,0 +1,237 @@
+-- The documentation against the repository: every relative link of the Markdown pages
+-- points at a file that exists (and at a heading that exists, for `page.md#anchor`), no
+-- page points outside the repository (the project's working notes and source texts are
+-- not part of it: the pages cite the published works, manual.md §12), every `lsys
+-- COMMAND` a page shows is a command of the program, and the examples index names every
+-- folder of examples/.
+require "tests.helper"
+
+-- The pages checked: every Markdown file of the repository but the changelog, which
+-- records history (old names and links stay as they were).
+local PAGES = {
+  "README.md", "CONTRIBUTING.md", "bench/README.md", "examples/README.md",
+  "examples/cpfg/README.md", "examples/gallery/README.md",
+  "tests/fuzz/findings/README.md", "tests/fuzz/lua/findings/README.md",
+}
+do
+  local p = io.popen("ls docs/*.md")
+  for f in p:lines() do PAGES[#PAGES + 1] = f end
+  p:close()
+end
+
+local function read (path)
+  local f = io.open(path, "rb")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+local function exists (path)
+  local f = io.open(path, "rb")
+  if f then f:close() return true end
+  return false
+end
+
+local function dirname (path)
+  return path:match("^(.*)/[^/]*$") or "."
+end
+
+-- a/b/../c -> a/c; nil when the path climbs above the repository
+local function normalize (path)
+  local out = {}
+  for part in path:gmatch("[^/]+") do
+    if part == ".." then
+      if #out == 0 then return nil end
+      out[#out] = nil
+    elseif part ~= "." then
+      out[#out + 1] = part
+    end
+  end
+  return table.concat(out, "/")
+end
+
+-- The page without its fenced code blocks and inline code spans (links there are code).
+local function prose (text)
+  local lines, fence = {}, nil
+  for line in (text .. "\n"):gmatch("(.-)\n") do
+    local f = line:match("^%s*(```+)") or line:match("^%s*(~~~+)")
+    if fence then
+      if f and f:sub(1, 1) == fence:sub(1, 1) and #f >= #fence then fence = nil end
+      lines[#lines + 1] = ""
+    elseif f then
+      fence = f
+      lines[#lines + 1] = ""
+    else
+      lines[#lines + 1] = (line:gsub("(`+).-%1", ""))
+    end
+  end
+  return table.concat(lines, "\n")
+end
+
+-- The code of the page: fenced blocks and inline spans.
+local function code (text)
+  local out, fence = {}, nil
+  for line in (text .. "\n"):gmatch("(.-)\n") do
+    local f = line:match("^%s*(```+)") or line:match("^%s*(~~~+)")
+    if fence then
+      if f and f:sub(1, 1) == fence:sub(1, 1) and #f >= #fence then fence = nil
+      else out[#out + 1] = line end
+    elseif f then
+      fence = f
+    else
+      for span in line:gmatch("`+(.-)`+") do out[#out + 1] = span end
+    end
+  end
+  return out
+end
+
+-- Non-ASCII punctuation that GitHub drops from heading anchors (letters stay).
+local DROP = {}
+for _, c in ipairs { "§", "—", "–", "×", "→", "←", "…", "·", "’", "‘", "“", "”", "≥", "≤",
+                     "−", "°", "²", "³", "±", "✓" } do
+  DROP[c] = true
+end
+
+-- GitHub's anchor for a heading: lower case, links reduced to their text, punctuation
+-- dropped, spaces to hyphens.
+local function slug (heading)
+  local h = heading:gsub("%[(.-)%]%b()", "%1"):gsub("`", ""):lower()
+  local out = {}
+  for _, c in utf8.codes(h) do
+    local ch = utf8.char(c)
+    if c < 128 then
+      if ch:match("[%w_%-]") then out[#out + 1] = ch
+      elseif ch == " " then out[#out + 1] = "-" end
+    elseif not DROP[ch] then
+      out[#out + 1] = ch
+    end
+  end
+  return table.concat(out)
+end
+
+local anchors_of = {}
+local function anchors (path)
+  if anchors_of[path] then return anchors_of[path] end
+  local set, seen = {}, {}
+  local text = read(path) or ""
+  local fence = nil
+  for line in (text .. "\n"):gmatch("(.-)\n") do
+    local f = line:match("^%s*(```+)")
+    if fence then
+      if f then fence = nil end
+    elseif f then
+      fence = f
+    else
+      local h = line:match("^#+%s+(.-)%s*#*%s*$")
+      if h then
+        local s = slug(h)
+        if seen[s] then
+          seen[s] = seen[s] + 1
+          s = s .. "-" .. seen[s]
+        else
+          seen[s] = 0
+        end
+        set[s] = true
+      end
+    end
+  end
+  anchors_of[path] = set
+  return set
+end
+
+local function links (text)
+  local out = {}
+  for target in prose(text):gmatch("%]%(([^)%s]+)[^)]*%)") do
+    out[#out + 1] = target
+  end
+  return out
+end
+
+describe("the documentation", function ()
+  it("has relative links that resolve to files and headings of the repository", function ()
+    local bad = {}
+    for _, page in ipairs(PAGES) do
+      local text = assert(read(page), page)
+      for _, target in ipairs(links(text)) do
+        if not target:match("^%a[%w+.-]*:") then          -- not http:, https:, mailto:
+          local file, anchor = target:match("^([^#]*)#?(.*)$")
+          local path = file == "" and page or normalize(dirname(page) .. "/" .. file)
+          if path == nil then
+            bad[#bad + 1] = page .. ": " .. target .. " (outside the repository)"
+          elseif not exists(path) then
+            bad[#bad + 1] = page .. ": " .. target .. " (no such file)"
+          elseif anchor ~= "" and path:match("%.md$") and not anchors(path)[anchor] then
+            bad[#bad + 1] = page .. ": " .. target .. " (no such heading)"
+          end
+        end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("cites published works, not paths outside the repository", function ()
+    local bad = {}
+    for _, page in ipairs(PAGES) do
+      local text = read(page)
+      for _, pat in ipairs { "%.%./shared", "/work/", "CPFG%-NOTES", "seeds/",
+                             "source document", "seed 00%d", "document 00%d" } do
+        local ln = 0
+        for line in (text .. "\n"):gmatch("(.-)\n") do
+          ln = ln + 1
+          if line:find(pat) then bad[#bad + 1] = ("%s:%d: %s"):format(page, ln, line) end
+        end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("shows only commands that the lsys program has", function ()
+    local commands = require("lsys.cli").help
+    assert.is_string(commands.derive)
+    local bad = {}
+    for _, page in ipairs(PAGES) do
+      for _, c in ipairs(code(read(page))) do
+        -- a command line: `lsys CMD ...`, `build/bin/lsys CMD`, `$ lsys CMD`, `X=1 lsys CMD`
+        local line = c:gsub("^%s*%$%s+", ""):gsub("^%s+", "")
+        repeat local n; line, n = line:gsub("^[%u_][%u%d_]*=%S*%s+", "") until n == 0
+        local prefix, cmd, rest = line:match("^([%w._/-]*)lsys (%l[%l_-]*)(.*)$")
+        if cmd and (prefix == "" or prefix:sub(-1) == "/") and not rest:match("^[%w./:]") then
+          if commands[cmd] == nil then
+            bad[#bad + 1] = page .. ": lsys " .. cmd
+          elseif cmd == "components" and not rest:match("^%s+graph%f[%W]") then
+            bad[#bad + 1] = page .. ": lsys components" .. rest
+          end
+        end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("indexes every folder and file of examples/ in examples/README.md", function ()
+    local index = read("examples/README.md")
+    local missing = {}
+    local p = io.popen("ls examples")
+    for name in p:lines() do
+      if name ~= "README.md" and not index:find(name, 1, true) then
+        missing[#missing + 1] = name
+      end
+    end
+    p:close()
+    assert.same({}, missing)
+  end)
+
+  it("names every example folder in the README", function ()
+    local readme = read("README.md")
+    local missing = {}
+    local p = io.popen("ls -d examples/*/")
+    for dir in p:lines() do
+      local name = dir:match("examples/([^/]+)/")
+      if name ~= "gallery" and not readme:find("examples/" .. name, 1, true) then
+        missing[#missing + 1] = name
+      end
+    end
+    p:close()
+    assert.same({}, missing)
+  end)
+end)
