@@ -1,5 +1,5 @@
---- Incremental growth (issue 17; Davison, "Incremental rules for growing plants",
--- ../shared/seeds/002, section "Incremental rules"): a plant is a set of persistent limbs
+--- Incremental growth (issue 17; Davison, "Incremental rules for growing plants", section
+-- "Incremental rules"; docs/manual.md §12): a plant is a set of persistent limbs
 -- whose state changes a little at each tick, and new limbs are attached to existing ones;
 -- nothing is derived or drawn anew. The limbs' state lives in a C table (csrc/core/grow.c,
 -- `core.limbs`) that rewrites each limb's cylinder in its scene in place; Lua holds one light
@@ -415,10 +415,11 @@ end
 -- past it), `sides` (8: the limbs' cylinders), `shoot_color` (new limbs; "#5a9e32"),
 -- `leaf_color` ("#3f8f2a"), `ticks` (how long it grows: `world:grow()`, `lsys grow`; the
 -- field `length`), `view` (how to look at it: background, light, projection, direction,
--- up, viewpoint, target, fov, twist, zoom, as in a model's view), `leaf` (every leaf's
--- shape: "quad" (the default rhombus), a cpfg surface file's name (looked up from the folder
--- of the file that makes the world), an lsys.Surface, a sketched organ, an lsys.Scene (its
--- triangles, y along the leaf, z its normal), or { surface | file, precision = {s, t} }),
+-- up, viewpoint, target, fov, twist, as in a model's view, and zoom: scene:look's fields),
+-- `leaf` (every leaf's shape: "quad" (the default rhombus), a cpfg surface file's name
+-- (looked up from the folder of the file that makes the world), an lsys.Surface, a
+-- sketched organ, an lsys.Scene (its triangles, y along the leaf, z its normal), or
+-- { surface | file, precision = {s, t} }),
 -- `dir` (where file names are looked up: default the folder of the Lua file calling
 -- grow.world, or the current folder when that cannot be seen, as through `return
 -- grow.world{...}`).
