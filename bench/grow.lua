@@ -1,5 +1,6 @@
--- Incremental growth benchmark (issue 17): Davison's growth model (../shared/seeds/002,
--- section "Incremental rules") run both ways for the same seed:
+-- Incremental growth benchmark (issue 17): Davison's growth model ("Incremental rules for
+-- growing plants", section "Incremental rules"; docs/manual.md §12) run both ways for the
+-- same seed:
 --
 --   incremental  lsys.grow: five trees whose limbs persist; a tick runs the rules (their
 --                conditions and changes in C, spawning in Lua), updates the world frames of

@@ -1,4 +1,4 @@
--- Context-sensitive matching (ABOP ch. 1, section 1.8; cpfg behaviour in CPFG-NOTES.md).
+-- Context-sensitive matching (ABOP ch. 1, section 1.8; cpfg's behaviour, docs/manual.md §6.3).
 local H = require "tests.helper"
 local lsys = require "lsys"
 
@@ -132,7 +132,7 @@ describe("right context", function()
   end)
 end)
 
--- Every case below was run through cpfg (vlab 9bf820d, built by ../shared/tools/cpfg-build.sh)
+-- Every case below was run through cpfg (vlab 9bf820d, built as docs/cpfg.md describes)
 -- and lsys gives cpfg's string: the right context is one linear scan (cpfg's RconDiff).
 describe("right context as cpfg matches it", function()
   local CASES = {

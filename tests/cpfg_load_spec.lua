@@ -1,7 +1,7 @@
 -- lsys.cpfg.load: cpfg's L-system files (tests/data/cpfg/*.l, one per construct) derive
 -- the strings cpfg derives. Expected strings marked "cpfg" are cpfg's -str output
--- (/work/cpfg-oracle/bin/cpfg -g -m x.map -str out.str FILE.l view.v); the others are
--- written out by hand.
+-- (cpfg -g -m x.map -str out.str FILE.l view.v; docs/cpfg.md, "cpfg as a reference"); the
+-- others are written out by hand.
 require "tests.helper"
 local lsys = require "lsys"
 

@@ -1,4 +1,4 @@
--- The cut symbol % (document 004, Appendix A; CPFG-NOTES "Cut").
+-- The cut symbol % (the cpfg guide, Appendix A; docs/manual.md §6.6).
 local H = require "tests.helper"
 local lsys = require "lsys"
 

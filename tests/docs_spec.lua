@@ -1,9 +1,10 @@
--- The documentation against the repository: every relative link of the Markdown pages
--- points at a file that exists (and at a heading that exists, for `page.md#anchor`), no
--- page points outside the repository (the project's working notes and source texts are
--- not part of it: the pages cite the published works, manual.md §12), every `lsys
--- COMMAND` a page shows is a command of the program, and the examples index names every
--- folder of examples/.
+-- The documentation against the repository (issue 19, item 16): every relative link of
+-- the Markdown pages points at a file that exists (and at a heading that exists, for
+-- `page.md#anchor`); no page, and no comment in the sources, points outside the repository
+-- (the project's working notes and source texts are not part of it: the pages cite the
+-- published works, docs/manual.md §12); every `lsys COMMAND` a page shows is a command of
+-- the program; the examples index names every file and folder of examples/, and the README
+-- every example folder.
 require "tests.helper"
 
 -- The pages checked: every Markdown file of the repository but the changelog, which
@@ -180,6 +181,34 @@ describe("the documentation", function ()
         for line in (text .. "\n"):gmatch("(.-)\n") do
           ln = ln + 1
           if line:find(pat) then bad[#bad + 1] = ("%s:%d: %s"):format(page, ln, line) end
+        end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("leaves no source file pointing at notes outside the repository", function ()
+    local files = {}
+    local p = io.popen("find lua csrc docs examples tests tools bench cmake -type f "
+      .. "\\( -name '*.lua' -o -name '*.c' -o -name '*.h' -o -name '*.md' -o -name '*.sh' "
+      .. "-o -name '*.cmake' \\) -not -path '*/node_modules/*' -not -path 'tests/fuzz/corpus_*'")
+    for f in p:lines() do files[#files + 1] = f end
+    p:close()
+    for _, f in ipairs { "README.md", "CONTRIBUTING.md", "CMakeLists.txt", "setup.sh", "test.sh",
+                         ".luacheckrc", ".busted" } do
+      files[#files + 1] = f
+    end
+    assert.is_true(#files > 100)
+    local bad = {}
+    for _, f in ipairs(files) do
+      if f ~= "tests/docs_spec.lua" then
+        local ln = 0
+        for line in ((read(f) or "") .. "\n"):gmatch("(.-)\n") do
+          ln = ln + 1
+          for _, pat in ipairs { "%.%./shared", "[%s\"'`(]/work/", "CPFG%-NOTES", "DESIGN%.md",
+                                 "STYLE%.md", "seeds/" } do
+            if line:find(pat) then bad[#bad + 1] = ("%s:%d: %s"):format(f, ln, line) end
+          end
         end
       end
     end

@@ -1,6 +1,6 @@
--- Incremental growth (issue 17; Davison, seed 002): persistent limbs, if-then rules in
--- parallel ticks, kinds and subclassing, geometry rewritten in place (lsys.grow over
--- csrc/core/grow.c).
+-- Incremental growth (issue 17; Davison, "Incremental rules for growing plants"): persistent
+-- limbs, if-then rules in parallel ticks, kinds and subclassing, geometry rewritten in place
+-- (lsys.grow over csrc/core/grow.c).
 local grow = require "lsys.grow"
 
 local function errof (f, ...)

@@ -2,7 +2,7 @@
 -- mesotonic model): the modules must follow one another exactly (symbol and parameter
 -- count, nothing skipped, not even ignored modules), the rule rewrites them all, and the
 -- contexts stand around the whole. The expected strings are cpfg's (one step, `ignore: +`,
--- run with /work/cpfg-oracle/bin/cpfg -g -str; see ../shared/tools/cpfg-build.sh).
+-- run with cpfg -g -str; docs/cpfg.md, "cpfg as a reference").
 require "tests.helper"
 local lsys = require "lsys"
 

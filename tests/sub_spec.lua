@@ -1,4 +1,4 @@
--- Sub-L-systems: ?(id, scale) ... $ switch the production set (document 004, Appendix A).
+-- Sub-L-systems: ?(id, scale) ... $ switch the production set (the cpfg guide, Appendix A).
 local lsys = require "lsys"
 
 local function model (axiom, extra)

@@ -1,5 +1,5 @@
--- The turtle (cpfg guide, Appendix A, §2, §4.2, §6; CPFG-NOTES conventions): positions, frames,
--- records, tropisms, polygons, cylinders, query modules, errors.
+-- The turtle (cpfg guide, Appendix A, §2, §4.2, §6; cpfg's conventions, docs/drawing.md §1):
+-- positions, frames, records, tropisms, polygons, cylinders, query modules, errors.
 local H = require "tests.helper"
 local lsys = require "lsys"
 

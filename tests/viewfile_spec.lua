@@ -1,6 +1,6 @@
 -- View options that name files (contours, surfaces, textures, palette files) and cpfg
 -- view files (.v), colour maps (.map) and material files (.mat): cpfg guide, Appendix B,
--- DESIGN.md §6. The reader is fuzzed by tests/fuzz/lua/fuzz.lua (target view;
+-- docs/drawing.md §2. The reader is fuzzed by tests/fuzz/lua/fuzz.lua (target view;
 -- tests/fuzzlua_spec.lua).
 local H = require "tests.helper"
 local view = require "lsys.view"

@@ -1,6 +1,6 @@
 /*
 ** Module names <-> symbol ids, and the scanner that splits text into
-** module names (DESIGN.md §4).
+** module names (docs/manual.md §4.1).
 **
 ** Ids are small integers (at most LSYS_MAXSYM) because the Lstring packs a
 ** symbol id and a parameter count into 16 bits. A few ids are fixed.

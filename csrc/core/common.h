@@ -1,6 +1,6 @@
 /*
 ** Shared definitions of the lsys core: status codes, the error record,
-** allocation hooks. The core never includes Lua headers (STYLE.md §1).
+** allocation hooks. The core never includes Lua headers (CONTRIBUTING.md).
 */
 #ifndef LSYS_COMMON_H
 #define LSYS_COMMON_H
@@ -59,7 +59,7 @@ int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, 
 int lsys_grow (void **p, size_t *cap, size_t need, size_t elem);
 
 /*
-** The memory budget (DESIGN.md §9, max_memory). The buffers that grow with
+** The memory budget (docs/manual.md §9, max_memory). The buffers that grow with
 ** the input of one operation (the strings of a derivation step and its
 ** context tables, the mesh and records of an interpretation) are attached to
 ** one meter: 'used' counts their bytes, and growing past 'limit' fails with

@@ -1,7 +1,7 @@
 /*
 ** Context matching for the derivation engine (derive_impl.h): the
 ** bracket-match tables of a string, and left and right contexts as cpfg
-** matches them (cpfg guide, Appendix A; CPFG-NOTES.md; the manual's 6.3).
+** matches them (cpfg guide, Appendix A; the manual's 6.3, docs/manual.md).
 */
 #include <string.h>
 
@@ -109,7 +109,7 @@ static size_t branchend (const view *v, size_t j) {
 
 /*
 ** Right context from string position 'j', as cpfg's one linear scan
-** (RconDiff in its generate.c; CPFG-NOTES.md): each pattern module is
+** (RconDiff in its generate.c; docs/manual.md §6.3): each pattern module is
 ** compared with the next module that is not skipped, and a branch is
 ** skipped whole when the pattern module is not a '['. So a '[' in the
 ** pattern matches only the next branch there (no search among siblings), a

@@ -1,9 +1,9 @@
 /*
-** The derivation engine (DESIGN.md §4-5): rule storage, context matching
+** The derivation engine (docs/manual.md §6): rule storage, context matching
 ** with ignore/consider lists, parallel rewriting with stochastic choice,
 ** cut, sub-L-systems, decomposition and homomorphism.
 **
-** Semantics follow cpfg (cpfg guide, Appendix A; CPFG-NOTES.md). Rules whose
+** Semantics follow cpfg (cpfg guide, Appendix A; docs/manual.md §6). Rules whose
 ** successor needs computing (a condition, parameter expressions, a weight
 ** expression, a function producing the successor) call back into the
 ** binding through 'lsys_rulefn'; all other rules are pure template copies.

@@ -1,5 +1,5 @@
 /*
-** Export writers (DESIGN.md §7): the scene geometry (mesh.h) as Wavefront
+** Export writers (docs/drawing.md §5): the scene geometry (mesh.h) as Wavefront
 ** OBJ with its MTL file (export_obj.c), binary little-endian PLY
 ** (export_ply.c) and glTF 2.0 binary (export_glb.c).
 **

@@ -1,9 +1,9 @@
 /*
 ** A small stack machine for rule expressions, so that conditions and
 ** parameter expressions made of arithmetic, comparisons, logic, the usual
-** math functions and ran/nran run without entering Lua (DESIGN.md §5:
-** "stay out of Lua where possible"). The Lua side compiles an expression
-** to this code only when its meaning is exactly Lua's (lua/lsys/grammar.lua);
+** math functions and ran/nran run without entering Lua (docs/manual.md §5,
+** "The expression machine"). The Lua side compiles an expression to this
+** code only when its meaning is exactly Lua's (lua/lsys/compile.lua);
 ** anything else stays a Lua closure.
 */
 #ifndef LSYS_EXPR_H

@@ -1,5 +1,5 @@
 /*
-** The rule language: splitting a rule into its parts (DESIGN.md §4).
+** The rule language: splitting a rule into its parts (docs/manual.md §4).
 */
 #include <string.h>
 
@@ -213,7 +213,7 @@ static int parsepattern (lsys_prule *r, const char *t, size_t b, size_t e,
     while (at < pe && isspacec((unsigned char)t[at])) at++;
     return lsys_seterror(err, LSYS_ESYNTAX, at, "missing predecessor");
   }
-  {       /* several modules: a strict predecessor as cpfg's (CPFG-NOTES.md) */
+  {       /* several modules: a strict predecessor as cpfg's (manual §4.2) */
     size_t k;
     for (k = r->nmods - n; k < r->nmods; k++)
       if (r->mods[k].sym == LSYS_SYM_LBR || r->mods[k].sym == LSYS_SYM_RBR)

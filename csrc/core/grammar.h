@@ -1,5 +1,5 @@
 /*
-** The rule language (DESIGN.md §4): splits a rule
+** The rule language (docs/manual.md §4): splits a rule
 **     lc < pred > rc : cond --> successor : weight
 ** into modules, formal parameter names, and the text of the condition, the
 ** successor's parameter expressions and the weight. Expressions stay text:

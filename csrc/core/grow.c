@@ -1,6 +1,6 @@
 /*
 ** Incremental growth: the limb table and its geometry updated in place
-** (grow.h; Davison, seed 002).
+** (grow.h; Davison, "Incremental rules for growing plants").
 */
 #include <math.h>
 #include <string.h>

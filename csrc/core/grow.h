@@ -1,6 +1,6 @@
 /*
 ** Incremental growth (Davison, "Incremental rules for growing plants",
-** ../shared/seeds/002: section "Incremental rules"): a plant is a set of
+** section "Incremental rules"; docs/manual.md §12): a plant is a set of
 ** persistent limbs whose state changes a little at each tick, and new limbs
 ** are attached to existing ones, instead of a string derived and drawn anew.
 **

@@ -1,5 +1,5 @@
 /*
-** Interpretation with a model (DESIGN.md §6): the turtle over a string of
+** Interpretation with a model (docs/drawing.md): the turtle over a string of
 ** the model, with the model's homomorphism streamed into it module by module
 ** (never expanded whole) and the model's memory budget on what the turtle
 ** grows (the scene's mesh and records, the branch stack).

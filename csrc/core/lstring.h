@@ -1,5 +1,5 @@
 /*
-** The module string (DESIGN.md §5): a struct of arrays.
+** The module string (docs/manual.md §8): a struct of arrays.
 **
 ** Every module is one 16-bit code, its symbol id (LSYS_SYMBITS bits) and its
 ** parameter count (LSYS_NPBITS bits); the parameters of all modules follow

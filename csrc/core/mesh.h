@@ -1,5 +1,5 @@
 /*
-** Scene geometry (DESIGN.md §1, §6-7): what the turtle writes and what the
+** Scene geometry (docs/architecture.md): what the turtle writes and what the
 ** renderer and the export writers (export.h) read.
 **
 ** One triangle mesh (indexed; per-vertex position, normal, uv and colour

@@ -1,5 +1,5 @@
 /*
-** Output files written atomically (DESIGN.md §9): the bytes go to a new
+** Output files written atomically (docs/manual.md §9): the bytes go to a new
 ** temporary file in the target's folder, which replaces the target by
 ** rename(2) only when everything was written. A failure (a full disk, an
 ** error while rendering, an interrupt) leaves the target as it was and

@@ -1,5 +1,5 @@
 /*
-** The scene (DESIGN.md §1, docs/architecture.md): everything an
+** The scene (docs/architecture.md): everything an
 ** interpretation produces and everything its consumers need, in one place.
 ** The turtle fills it; the export writers, the offscreen renderer and the
 ** viewer's snapshots read it.

@@ -1,11 +1,11 @@
 /*
-** The turtle (DESIGN.md §6): interprets an Lstring as drawing commands and
+** The turtle (docs/drawing.md): interprets an Lstring as drawing commands and
 ** writes geometry into a scene (scene.h) and one record per drawing module.
 **
 ** Symbols and their meaning follow the cpfg guide of Měch and Prusinkiewicz
 ** (Appendix A; §2 discs and spheres; §4.2 polygons; §6 tropisms and twist),
 ** with Z(sh,su,sl) joint stiffness from Power et al. 1999 and @R from
-** Anastacio et al. 2009. Conventions as cpfg (CPFG-NOTES.md): initial
+** Anastacio et al. 2009. Conventions as cpfg (docs/drawing.md §1): initial
 ** H = (0,1,0), L = (-1,0,0), U = (0,0,-1), so that L = H x U and
 ** U = L x H; angles in degrees.
 */

@@ -1,8 +1,8 @@
 /*
 ** What the turtle's files share (not part of the API; see turtle.h). The
 ** turtle (turtle.c) keeps the state and dispatches the commands; each
-** geometry kind is built in a file of its own (DESIGN.md: a reader finds
-** each geometry kind in one file):
+** geometry kind is built in a file of its own (a reader finds each
+** geometry kind in one file; docs/architecture.md):
 **   turtle_cyl.c      cylinder segments, their rings and end caps (line style cylinder)
 **   turtle_ribbon.c   flat ribbons (line style polygon)
 **   turtle_disc.c     discs, @c and @o (cpfg guide §2)

@@ -1,7 +1,7 @@
 /*
 ** Small vector helpers on double[3], and PI: the one copy, shared by the
 ** turtle, the geometry builders, inverse kinematics, the renderer and the
-** viewer (STYLE.md §2).
+** viewer.
 */
 #ifndef LSYS_VEC3_H
 #define LSYS_VEC3_H

@@ -1,5 +1,5 @@
 /*
-** Drawing a scene with OpenGL (DESIGN.md §7). One drawing path serves the
+** Drawing a scene with OpenGL (docs/drawing.md §6). One drawing path serves the
 ** offscreen renderer (osmesa.c) and the viewer window: the caller makes a
 ** GL context current and calls lsys_render_draw with that context's entry
 ** points. Camera fitting and projection are plain arithmetic and need no

@@ -1,5 +1,5 @@
 /*
-** The viewer's camera and picking as plain arithmetic (DESIGN.md §7): no
+** The viewer's camera and picking as plain arithmetic (docs/viewer.md): no
 ** window, no GL context, unit-tested on their own (tests/c/test_viewcam.c).
 ** The window (glfw_viewer.c) turns mouse drags and keys into these calls.
 **

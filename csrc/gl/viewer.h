@@ -1,5 +1,5 @@
 /*
-** The interactive viewer window (DESIGN.md §7): a GLFW window with its own
+** The interactive viewer window (docs/viewer.md): a GLFW window with its own
 ** thread and GL context, drawing with render.c what the caller hands over.
 **
 ** The caller (the Lua binding) builds a snapshot -- the frames to show, one

@@ -159,7 +159,7 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
                     const int *lstr, int n);
 
 /* ---------------------------------------------------------------------- */
-/* lsys.Scene: what an interpretation drew (DESIGN.md §6) */
+/* lsys.Scene: what an interpretation drew (docs/drawing.md §5) */
 
 /* user values of a Scene: what made it, for scene:turtle() and the
 ** textures of scene:save() */

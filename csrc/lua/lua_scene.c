@@ -1,5 +1,5 @@
 /*
-** Binding of the turtle and of lsys.Scene (DESIGN.md §1, §6): interpret an
+** Binding of the turtle and of lsys.Scene (docs/architecture.md, docs/drawing.md): interpret an
 ** Lstring into a scene, fill query modules, read turtle states back.
 **
 **   core.interpret(rules, lstring, opts) -> Scene

@@ -1,5 +1,5 @@
--- Davison's growing trees ("Incremental rules for growing plants", ../shared/seeds/002,
--- section "Incremental rules" and fig. 1): five trees grow from saplings in one world, with
+-- Davison's growing trees ("Incremental rules for growing plants", section "Incremental
+-- rules" and fig. 1; docs/manual.md §12): five trees grow from saplings in one world, with
 -- the paper's three rules --
 --   length     a limb without leaves grows by 10 % a tick up to a length of about 1
 --   thickness  and by 5 % in radius while it is thinner than -0.05 level + 0.25

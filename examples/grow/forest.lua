@@ -1,6 +1,6 @@
 -- A forest of five trees growing to 20,000 limbs (issue 17): the interactive-rate example of
 -- incremental growth. Davison's rules ("Incremental rules for growing plants",
--- ../shared/seeds/002, section "Incremental rules") with a larger cap: a limb without
+-- section "Incremental rules"; docs/manual.md §12) with a larger cap: a limb without
 -- leaves lengthens by 8 % a tick up to a length that shrinks with its level, thickens while
 -- it is thinner than a level's limit, and at age 4 spawns up to two children (each with
 -- probability 0.9): a leader nearly straight on and a side branch at 25 to 45 degrees, rolled

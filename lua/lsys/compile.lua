@@ -1,4 +1,4 @@
---- Rule compilation (DESIGN.md §3-5): turns the parts of a rule parsed by the core
+--- Rule compilation (docs/manual.md §5): turns the parts of a rule parsed by the core
 -- (csrc/core/grammar.c splits the rule text) into a C successor template plus, when
 -- needed, one Lua closure; and its expressions into code for the C expression machine
 -- when they allow it.

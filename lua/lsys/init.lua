@@ -1,4 +1,4 @@
---- lsys: L-systems for plant modelling (DESIGN.md §3).
+--- lsys: L-systems for plant modelling (docs/manual.md).
 -- `local lsys = require "lsys"`
 --
 -- This file gathers the library's functions; they live in lsys.model (models, the memory

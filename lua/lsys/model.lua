@@ -1,4 +1,4 @@
---- Models (DESIGN.md §3-5): lsys.lsystem and the methods of the models it makes; rules
+--- Models (docs/manual.md §2-6): lsys.lsystem and the methods of the models it makes; rules
 -- compiled into the core's rule set, derivation, the homomorphism, interpretation; and
 -- the memory budget. `require "lsys"` gives all of this (init.lua). The modules that work
 -- on models (lsys.viewer, lsys.cli) require this one, not "lsys": init.lua loads lsys.viewer
@@ -352,7 +352,7 @@ end
 
 local make
 
---- Creates a model from its description (see DESIGN.md §3 and docs).
+--- Creates a model from its description (docs/manual.md §2).
 -- Raises an error naming the rule and its line for malformed rules.
 function M.lsystem (opts)
   if type(opts) ~= "table" then error("lsys.lsystem: a table of options expected", 2) end
@@ -510,7 +510,7 @@ local function axiomtext (a, pos)
   return warning.quote(a, pos)
 end
 
--- Parses model.axiom into a template (in C: no table per module, DESIGN.md §5) and the
+-- Parses model.axiom into a template (in C: no table per module, docs/architecture.md) and the
 -- list of its distinct parameter expressions; raises "axiom '...': ...".
 function Model:_parseaxiom ()
   local tpl, exprs, pos = self._rules:axiom(self.axiom)

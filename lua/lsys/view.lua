@@ -1,4 +1,4 @@
---- View options (DESIGN.md §6; cpfg guide, Appendix B): how a model is drawn.
+--- View options (docs/drawing.md §2; cpfg guide, Appendix B): how a model is drawn.
 -- A view is a plain Lua table; every field is optional:
 --
 --   angle            angle increment of + - & ^ / \ without a parameter, degrees (90)

@@ -1,4 +1,4 @@
---- The viewer window from Lua (DESIGN.md §7): `lsys.show(x)` and what goes with it.
+--- The viewer window from Lua (docs/viewer.md): `lsys.show(x)` and what goes with it.
 --
 -- One window per process, opened by the first `show` and reused by the next ones (a
 -- closed window is opened again). The window runs on its own thread (csrc/gl/glfw_viewer.c):

@@ -1,4 +1,4 @@
---- cpfg's files for views (DESIGN.md §6; cpfg guide, Appendix B): view files (.v), colour
+--- cpfg's files for views (docs/drawing.md §2; cpfg guide, Appendix B): view files (.v), colour
 -- maps (.map) and material files (.mat), read into the plain tables that lsys.view
 -- checks. lsys.view gives these functions under the same names (`lsys.view.load`, ...);
 -- this module reads files and never checks a whole view (`lsys.view.normalize` does).
