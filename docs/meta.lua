@@ -44,6 +44,7 @@
 ---@field sketch lsys.sketch Sketch-based models (docs/sketch.md), loaded at first use.
 ---@field components lsys.components Component graphs (docs/components.md), loaded at first use.
 ---@field grow lsys.grow Incremental growth (docs/grow.md), loaded at first use.
+---@field cpfg table cpfg model files: `load`, `load_object`, `options`, `object_files` (docs/cpfg.md), loaded at first use.
 local lsys = {}
 
 --- Makes a model: checks the options, parses and compiles every rule, parses the axiom.
@@ -147,6 +148,12 @@ function lsys.ran(x) end
 ---@return number
 function lsys.nran(mean, sd) end
 
+--- cpfg's `srand`: in a rule function, reseeds the generator of the model deriving now (the
+--- modules rewritten after it in the step, and the steps after, draw from `seed`); in a
+--- hook, the hooked model's (as `Model:srand`).
+---@param seed number
+function lsys.srand(seed) end
+
 --- Inside a rule function: appends the modules of `template` to the successor without marking
 --- the rule as applied; the pieces are dropped if the function never calls `lsys.produce`.
 --- Pieces may leave brackets open for later pieces to close. Raises as `lsys.produce`
@@ -188,6 +195,10 @@ function lsys.nproduce(template, ...) end
 ---@field allow_system_calls? boolean For the turtle: `@S` is refused unless true. Not read by derivation. Default false.
 ---@field system_call? fun(i: integer, name: string, ...: number) With `allow_system_calls`, called after `interpret` once per `@S` drawn, with the module's index, name and parameters. Default: none.
 ---@field max_memory? number|string The memory budget of this model's steps and interpretations, in bytes or as `"512M"`, `"2G"`, `"unlimited"` (see `lsys.parse_size`). Default: `lsys.max_memory()`.
+---@field depth_warnings? boolean|{ decomposition?: boolean, homomorphism?: boolean } Whether a derivation warns (once) when the depth limit stops a rule that would apply; false for neither. Default true.
+---@field functions? table Positional functions for `func(ID, x)` and `func("name", x)`: `lsys.Func`s and file names (.func, .fset), a list and/or a table by name. Fixed when the model is made. Default: the view's `functions`.
+---@field numbers? "double"|"float32" How parameters are stored; "float32" rounds every parameter a step produces to the nearest 32-bit float, as cpfg stores them. Default "double".
+---@field after_interpret? fun(model: lsys.Model, scene: lsys.Scene, s: lsys.Lstring) Called by `interpret` with the scene it made, before returning it. Default: none.
 
 
 -- ===========================================================================================
@@ -263,6 +274,11 @@ function Model:step(s) end
 ---@return lsys.Lstring
 function Model:expand(s) end
 
+--- Reseeds the derivation's generator now, as cpfg's `srand`: from a `start` hook the whole
+--- derivation follows `seed`; from `start_each` or `end_each`, the steps after it.
+---@param seed number
+function Model:srand(seed) end
+
 --- Makes rule group `n` active beside group 0 (`0`: group 0 alone). Takes effect from the
 --- next step and stays until changed. An `n` without rules is allowed (only group 0 then
 --- applies). Raises `use_group: a group number >= 0 expected`.
@@ -316,8 +332,10 @@ function Model:interpret(s, view) end
 ---@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders").
 ---@field textures? (string|{ file: string, mag?: "near"|"linear", min?: "near"|"linear", mode?: "modulate"|"decal", per_surface?: boolean, intensity?: boolean })[] PNG textures; @Tx(k) picks the k-th.
 ---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
+---@field functions? (string|lsys.Func|{ file: string, samples?: integer })[] Positional functions for the model's rules (not read by the turtle), as a view file's `function:` lines give them; a model without its own `functions` option takes these.
 
---- A turtle record (docs/drawing.md §5).
+--- A turtle record (docs/drawing.md §5). Its numbers are stored as 32-bit floats (72 bytes
+--- a record), so points and widths carry about seven significant digits.
 ---@class lsys.Record
 ---@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"|"gcyl"|"surface"
 ---@field module integer 1-based index of the module in the string.
@@ -333,7 +351,8 @@ function Model:interpret(s, view) end
 ---@field color integer
 ---@field stiffness? number[] {sh, su, sl} from Z.
 
---- The geometry and turtle records of an interpretation.
+--- The geometry and turtle records of an interpretation; vertices, normals, texture
+--- coordinates, line ends and widths are 32-bit floats (docs/drawing.md §5, Precision).
 ---@class lsys.Scene
 ---@field ntriangles integer
 ---@field nvertices integer
@@ -552,7 +571,7 @@ function lsys.viewer.screenshot(path, timeout) end
 ---@return boolean
 function lsys.viewer.sync(timeout) end
 --- The window's state, nil before the first window.
----@return { open: boolean, drawn: integer, width: integer, height: integer, fbwidth: integer, fbheight: integer, frame: integer, nframes: integer, step?: integer, playing: boolean, wireframe: boolean }?
+---@return { open: boolean, drawn: integer, drawms: number, serial: integer, width: integer, height: integer, fbwidth: integer, fbheight: integer, frame: integer, nframes: integer, step?: integer, playing: boolean, wireframe: boolean, scene: integer[] }?
 function lsys.viewer.state() end
 --- Window coordinates (pixels from the top left) and depth of a world point, with the
 --- camera last drawn; nil when it is behind the eye or nothing was drawn.
@@ -562,12 +581,34 @@ function lsys.viewer.state() end
 ---@return number? depth
 function lsys.viewer.project(p) end
 --- Presses a key of the window: "right" "left" "home" "end" "space" "r" "f" "w" "s" "h"
---- "q" "+" "-" "redraw".
+--- "q" "escape" "+" "-" "redraw".
 ---@param name string
 function lsys.viewer.key(name) end
 --- Events waiting for `poll`.
 ---@return integer
 function lsys.viewer.pending() end
+--- Shows a scene that changes in place (a growing world's) and returns at once; `patch`
+--- then sends only what changed (docs/grow.md).
+---@param scene lsys.Scene
+---@param opts? { title?: string, width?: integer, height?: integer, samples?: integer, status?: boolean, fit?: number[], help?: string, on_event?: fun(ev: table) }
+function lsys.viewer.live(scene, opts) end
+--- Sends the window what changed in the scene shown by `live` since the last patch, with
+--- the status line's tick, count and note; returns the request's serial number, which
+--- `state().serial` reaches once it is drawn.
+---@param scene lsys.Scene
+---@param tick? integer
+---@param count? integer
+---@param note? string
+---@return integer
+function lsys.viewer.patch(scene, tick, count, note) end
+--- The component instance that drew module `i` of `s`, and its path, or nil (what a pick
+--- reports; `m`: the model that made `s`, default its owner or the last model shown).
+---@param s lsys.Lstring
+---@param i integer
+---@param m? lsys.Model
+---@return table? instance
+---@return string? path
+function lsys.viewer.instance(s, i, m) end
 
 --- The directory of the Lua file that calls this ("." when not a file). A model's view
 --- reads its relative file names from the folder of the file that made the model already;
@@ -1210,6 +1251,8 @@ function Lstring:insert(positions, piece) end
 -- their module (lsys.view.load, lsys.view.load_colormap, lsys.parse_size).
 
 ---@class lsys.core
+---@field has_render boolean Whether this build renders (OSMesa); false with `LSYS_WITH_OSMESA=OFF`.
+---@field has_viewer boolean Whether this build has the window (GLFW); false with `LSYS_WITH_VIEWER=OFF`.
 ---@field MAXPARAMS integer Parameters per module at most: 31.
 ---@field MAXTROPISMS integer Tropisms and torques of a view together at most (the turtle's limit).
 ---@field RF_CALL integer Rule flag 1: the rule has a condition or computed values (a callback or machine program).
@@ -1806,6 +1849,12 @@ core.has_viewer = true
 ---@return lsys.Viewer
 function core.viewer_open(opts) end
 
+--- The X input devices and the pressure range of those that report one (a drawing tablet's
+--- pen; docs/sketch.md), or nil and why. Only in a build with the viewer.
+---@return { id: integer, name: string, pressure?: { min: number, max: number, value: number } }[]?
+---@return string? why
+function core.pen_devices() end
+
 --- The modification time (seconds, with a fraction) and size of a file, or nil and a
 --- message: `lsys view` reloads a model when they change.
 ---@param path string
@@ -1939,7 +1988,7 @@ function lsys.components.expand(root, opts) end
 --- The plant as an ordinary lsys model (derives its Lstring in 0 steps); `m.components`
 --- holds `tree`, `lstring`, `owner` and `instance(i)` (the instance that drew module i).
 ---@param root lsys.components.Proto
----@param opts? { seed?: integer, max_instances?: integer, view?: table, name?: string }
+---@param opts? { seed?: integer, max_instances?: integer, view?: table, name?: string, detail?: integer }
 ---@return lsys.Model
 function lsys.components.model(root, opts) end
 
@@ -1953,6 +2002,13 @@ function lsys.components.graph(root, opts) end
 
 --- Writes the p-graph to `path` (.dot/.gv as text; .png/.svg/.pdf through Graphviz's dot).
 function lsys.components.graph_render(root, path, opts) end
+
+--- Puts component plants into an L-system: each module `P(s)` or `P(s, seed)` of `model`'s
+--- derived string is followed by the plant `plants.P` scaled by s (lsys.components.mix.place).
+---@param model lsys.Model
+---@param plants table<string, lsys.components.Proto>
+---@param opts? { seed?: integer, max_instances?: integer }
+function lsys.components.place(model, plants, opts) end
 
 ---@class lsys.components.Proto
 ---@field kind string
