@@ -13,13 +13,14 @@
 -- Plain Lua works too: LUA_PATH='./lua/?.lua;./lua/?/init.lua;;' LUA_CPATH='./build/?.so;;'
 -- lua5.4 bench/derive.lua
 --
--- With cpfg (`--cpfg PATH`, or the environment variable CPFG: a cpfg built by
--- ../shared/tools/cpfg-build.sh, which honours CPFG_SKIP_VV), both programs are also timed
--- the same way (issue 20): whole process, wall clock, best of 5, minus the same process on
--- the model with 0 steps (start-up); cpfg runs `-g` with CPFG_SKIP_VV=1 (no view-volume
--- pass) writing its string in binary (-strb: no number formatting) to /dev/null, lsys
--- derives in a fresh process. Peak memory is each process's maximum resident size (GNU
--- time's %M). Targets: D0L >= 5x cpfg, parametric >= 3x, peak memory at most cpfg's.
+-- With cpfg (`--cpfg PATH`, or the environment variable CPFG: a cpfg built for batch use as
+-- docs/cpfg.md, "cpfg as a reference", describes, which honours CPFG_SKIP_VV), both programs
+-- are also timed the same way (issue 20): whole process, wall clock, best of 5, minus the
+-- same process on the model with 0 steps (start-up); cpfg runs `-g` with CPFG_SKIP_VV=1
+-- (no view-volume pass) writing its string in binary (-strb: no number formatting) to
+-- /dev/null, lsys derives in a fresh process. Peak memory is each process's maximum
+-- resident size (GNU time's %M). Targets: D0L >= 5x cpfg, parametric >= 3x, peak memory at
+-- most cpfg's.
 
 local MODELS = {
   a = {
@@ -292,8 +293,8 @@ local function main (cpfg)
     cpfg_table(cpfg, results)
   else
     print()
-    print("cpfg: not given (--cpfg PATH or CPFG=PATH; ../shared/tools/cpfg-build.sh builds "
-          .. "it): lsys alone")
+    print("cpfg: not given (--cpfg PATH or CPFG=PATH; docs/cpfg.md says how to build it): "
+          .. "lsys alone")
   end
 
   print()
