@@ -506,6 +506,7 @@ function lsys.wait() end
 ---@field on_pick? fun(info: lsys.Pick) Called by `poll` for a click on a module.
 ---@field on_event? fun(ev: table) Called by `poll` for every window event.
 ---@field progress? fun(k: integer, n: integer) Called before interpreting step k of n.
+---@field history? number The bytes a model's kept steps may take (default `lsys.viewer.HISTORY`, 256 MiB); beyond it the window keeps every 2nd, 4th, ... step and the last, with a warning.
 ---@field model? lsys.Model The model to interpret an Lstring that has none.
 ---@field lines? lsys.Line[] For a Scene: segments drawn over it.
 ---@field capture? boolean A tool takes the keys and Ctrl-drags: they come to `on_event` as `{ type = "key", key =, ctrl =, shift = }` and `{ type = "drag", phase = "begin"|"move"|"end", x =, y = }` (the arrows no longer step).
@@ -537,6 +538,7 @@ function lsys.wait() end
 ---@class lsys.viewer
 ---@field on_pick? fun(info: lsys.Pick) Called for picks of shows without their own on_pick.
 ---@field last_pick? lsys.Pick The last pick.
+---@field HISTORY number The default of the show option `history`: 256 MiB.
 lsys.viewer = {}
 
 --- The same as `lsys.show`.
