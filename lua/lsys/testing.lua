@@ -72,10 +72,15 @@ local function number_test (tol)
                .. "digits (an integer from 1 to 17)", tostring(tol)), 0)
 end
 
--- A parameter as the L-string's text shows it: 2, not 2.0.
+-- A parameter as the L-string's text shows it: 2, not 2.0; the shortest form that reads
+-- back as the same number.
 local function num (x)
   if x == math.floor(x) and abs(x) < 2^53 then return format("%d", x) end
-  return tostring(x)
+  for digits = 15, 16 do
+    local s = format("%." .. digits .. "g", x)
+    if tonumber(s) == x then return s end
+  end
+  return format("%.17g", x)
 end
 
 -- Lines showing the modules of s around module i (#s + 1: its end), carets under module i;
