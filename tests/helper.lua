@@ -13,6 +13,7 @@
 --   H.steps(model, n)                  list of tostring for steps 0..n (via model:step)
 --   H.modules(s)                       list of { name, p1, p2, ... } for every module of s
 --   H.rep(text, n)                     text repeated n times
+--   H.errof(f, ...)                    the message of the error f(...) raises (fails without)
 --   H.binomial_tol(n, p, k)            k standard deviations of a binomial(n, p) count
 --   H.tmpdir(), H.rmdir(d), H.read(path), H.write(path, s)     temporary folders and files
 --   H.sh(cmd), H.lsys(script, opts)    a shell command, a script run by the lsys program:
@@ -69,6 +70,13 @@ function H.modules (s)
 end
 
 function H.rep (text, n) return string.rep(text, n) end
+
+--- The message of the error f(...) raises, as a string; fails the test when it raises none.
+function H.errof (f, ...)
+  local ok, msg = pcall(f, ...)
+  assert.is_false(ok, "expected an error")
+  return tostring(msg)
+end
 
 -- Files and processes ----------------------------------------------------------------------
 

@@ -5,12 +5,7 @@ local lsys = require "lsys"
 local core = require "lsys.core"
 local testing = require "lsys.testing"
 
--- The message of the assertion f(...) failing (it must fail).
-local function failure (f, ...)
-  local ok, err = pcall(f, ...)
-  assert.is_false(ok, "the assertion passed")
-  return tostring(err)
-end
+local failure = H.errof      -- the message of the assertion f(...) failing (it must fail)
 
 -- Asserts that `text` contains each of the strings that follow (plain text).
 local function has (text, ...)
@@ -341,6 +336,33 @@ end)
     local out, code = lsys_test("-o plainTerminal", "PATH='" .. bin .. ":'\"$PATH\"")
     assert.equal(0, code, out)
     has(out, "2 successes / 0 failures")
+  end)
+
+  it("passes the example of docs/testing.md, and fails it as the page shows", function()
+    local doc = H.read("docs/testing.md")
+    local model = doc:match("```lua\n(%-%- plant%.lua:.-)```")
+    local spec = doc:match("```lua\n(%-%- spec/plant_spec%.lua:.-)```")
+    assert.truthy(model and spec, "the page's plant.lua and spec/plant_spec.lua")
+    os.execute("mkdir -p '" .. dir .. "/spec'")
+    H.write(dir .. "/plant.lua", model)
+    H.write(dir .. "/spec/plant_spec.lua", spec)
+    local out, code = lsys_test("-o plainTerminal")
+    if testing.can_render() then               -- the golden image is written, once
+      assert.equal(1, code, out)
+      has(out, "5 successes / 1 failure / 0 errors / 0 pending", "spec/golden/plant.png did "
+          .. "not exist: this picture (200x200) is there now")
+      out, code = lsys_test("-o plainTerminal")
+    end
+    assert.equal(0, code, out)
+    has(out, "0 failures / 0 errors")
+    -- section 3: R = 1.5 instead of 1.456; the page's messages, but the picture's numbers
+    H.write(dir .. "/plant.lua", (model:gsub("R = 1%.456", "R = 1.5")))
+    out, code = lsys_test("-o plainTerminal")
+    assert.equal(1, code, out)
+    local shown = doc:match("Say `R` in `plant.lua` becomes 1.5.-```\n(.-)```")
+    for line in shown:gmatch("[^\n]+") do
+      if not line:find("mean absolute difference", 1, true) then has(out, line) end
+    end
   end)
 
   it("explains itself, and says how to get busted when it is missing", function()
