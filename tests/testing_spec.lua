@@ -83,6 +83,8 @@ describe("assert.lstring_equal", function()
         .. "significant digits (an integer from 1 to 17)")
     has(failure(assert.lstring_equal, "F", {}),
         "the actual L-string must be an Lstring or a string, not a table")
+    has(failure(assert.lstring_equal, "F", "F", { digit = 3 }),
+        "assert.lstring_equal: unknown option 'digit' (tol, digits, names)")
   end)
 end)
 
@@ -120,6 +122,8 @@ describe("assert.error_contains", function()
         "the error message\n  bad rule 'A'\ndoes not contain\n  rule 'B'")
     has(failure(assert.error_contains, function () end, "x"),
         "expected an error, but the call succeeded")
+    has(failure(assert.error_contains, function () error("x") end, "x", 3),
+        "assert.error_contains: the texts to look for must be strings (argument 3 is a number)")
   end)
 end)
 

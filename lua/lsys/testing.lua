@@ -105,6 +105,11 @@ end
 function M.compare_lstrings (expected, actual, tol)
   local names
   if type(tol) == "table" then
+    for k in pairs(tol) do
+      if k ~= "tol" and k ~= "digits" and k ~= "names" then
+        error(format("unknown option '%s' (tol, digits, names)", tostring(k)), 0)
+      end
+    end
     names = tol.names
     tol = tol.digits or tol.tol
   end
@@ -207,6 +212,15 @@ end
 --- Calls fn; true when it raises an error whose message contains each of the texts (plain
 -- text, not patterns), else false and the message it raised.
 function M.error_contains (fn, ...)
+  if type(fn) ~= "function" and type(fn) ~= "table" then
+    error(format("a function to call expected, got %s", type(fn)), 0)
+  end
+  for k = 1, select("#", ...) do
+    if type((select(k, ...))) ~= "string" then
+      error(format("the texts to look for must be strings (argument %d is a %s)", k + 1,
+                   type((select(k, ...)))), 0)
+    end
+  end
   local ok, err = pcall(fn)
   if ok then return false, "expected an error, but the call succeeded" end
   err = tostring(err)
