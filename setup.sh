@@ -16,6 +16,7 @@ PACKAGES=(
   libgl1-mesa-dri libglx-mesa0             # OpenGL in the window (and software GL on Xvfb)
   xvfb xauth xdotool                       # a virtual display and clicks for viewer tests
   valgrind                                 # the memcheck test (ctest -R memcheck)
+  luarocks                                 # the rock test (ctest -R rock)
   graphviz                                 # `lsys components graph` pictures (dot)
 )
 BUILD_DIR=${BUILD_DIR:-build}

@@ -2184,3 +2184,93 @@ function World:lstring(model) end
 function World:random(a, b) end
 
 -- }===========================================================================================
+
+-- {===========================================================================================
+-- lsys.testing (docs/testing.md)
+
+--- Assertions for specs of models, registered with luassert (busted's `assert`) when the
+--- module is required: `assert.lstring_equal(expected, actual [, tol])`, `assert.near(expected,
+--- actual, tol)`, `assert.error_contains(fn, text, ...)`, `assert.scene_stats(x, expected [,
+--- tol])`, `assert.image_matches(x, golden [, opts])`. The functions below are what they call:
+--- each returns true, or false and a message; misuse raises.
+---@class lsys.testing
+---@field TOLERANCE {mean: number, pixel: integer, fraction: number} Image comparison defaults: mean absolute difference per channel below 2 (of 255), fewer than 1% of the pixels off by more than 40.
+local testing = {}
+
+--- Whether this lsys can render (built with OSMesa).
+---@return boolean
+function testing.can_render() end
+
+--- Two L-strings module by module: names and parameter counts exactly, parameters within
+--- `tol` (nil: 1e-9 relative; an integer 1 to 17: significant digits; another number:
+--- absolute; or { digits, tol, names }).
+---@param expected lsys.Lstring|string
+---@param actual lsys.Lstring|string
+---@param tol? number|{digits?: integer, tol?: number, names?: string}
+---@return boolean ok
+---@return string? message the first module that differs, its index and neighbours
+function testing.compare_lstrings(expected, actual, tol) end
+
+--- |expected - actual| <= tol for numbers, or elementwise for (nested, keyed) tables.
+---@param expected number|table
+---@param actual number|table
+---@param tol number
+---@return boolean ok
+---@return string? message
+function testing.near(expected, actual, tol) end
+
+--- Whether fn() raises an error whose message contains every text (plain text).
+---@param fn function
+---@param ... string
+---@return boolean ok
+---@return string? message
+function testing.error_contains(fn, ...) end
+
+---@class lsys.testing.Stats
+---@field modules integer
+---@field triangles integer
+---@field vertices integer
+---@field lines integer
+---@field segments integer
+---@field records integer
+---@field area number
+---@field bounds? number[][] {{xmin, ymin, zmin}, {xmax, ymax, zmax}}; nil when nothing was drawn
+---@field size number[] {dx, dy, dz}
+
+--- Statistics of a scene (a Model is derived and interpreted first).
+---@param x lsys.Scene|lsys.Model
+---@return lsys.testing.Stats
+function testing.stats(x) end
+
+--- Compares some statistics with stats(x): |actual - expected| <= tol * max(1, |expected|)
+--- (tol default 1e-6; a table: one per statistic). Raises for an unknown statistic.
+---@param x lsys.Scene|lsys.Model
+---@param expected table
+---@param tol? number|table<string, number>
+---@return boolean ok
+---@return string? message
+function testing.compare_stats(x, expected, tol) end
+
+--- Compares two RGBA pictures of w x h pixels (tol: nil, the fraction of pixels that may
+--- differ, or some fields of TOLERANCE).
+---@param a string
+---@param b string
+---@param w integer
+---@param h integer
+---@param tol? number|table
+---@return boolean ok
+---@return string? message
+function testing.compare_images(a, b, w, h, tol) end
+
+--- Compares the picture of x (a Scene or Model rendered at opts.size, a PNG file, or
+--- { pixels, w, h }) with the PNG file `golden`: a missing golden is written (and fails
+--- once), LSYS_UPDATE_GOLDEN=1 writes it (and passes), a mismatch is written to opts.actual
+--- (default NAME.actual.png next to the golden).
+---@param x lsys.Scene|lsys.Model|string|table
+---@param golden string
+---@param opts? {size?: string|integer|integer[], tolerance?: number|table, render?: table, actual?: string}
+---@return boolean ok
+---@return string? message
+function testing.match_golden(x, golden, opts) end
+
+-- }===========================================================================================

@@ -2,16 +2,12 @@
 -- shares, core errors raised with or without the caller's position, and the checks that an
 -- object is alive. Messages are API: these are the ones the restructuring of issue 14 had
 -- to keep byte for byte.
-require "tests.helper"
+local H = require "tests.helper"
 local lsys = require "lsys"
 local core = require "lsys.core"
 
 -- The message of the error f raises, as raised (with the position, if any).
-local function errof (f, ...)
-  local ok, msg = pcall(f, ...)
-  assert.is_false(ok, "no error")
-  return msg
-end
+local errof = H.errof
 
 local function close (x) getmetatable(x).__close(x) end
 

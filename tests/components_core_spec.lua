@@ -5,11 +5,7 @@ local lsys = require "lsys"
 local core = require "lsys.core"
 local C = lsys.components
 
-local function errof (f, ...)
-  local ok, msg = pcall(f, ...)
-  assert.is_false(ok)
-  return tostring(msg)
-end
+local errof = require("tests.helper").errof
 
 local START = { p = { 0, 0, 0 }, H = { 0, 1, 0 }, U = { 0, 0, -1 }, s = 1 }
 

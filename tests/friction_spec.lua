@@ -4,11 +4,7 @@ local H = require "tests.helper"
 local lsys = require "lsys"
 local format = string.format
 
-local function errof (f, ...)
-  local ok, msg = pcall(f, ...)
-  assert.is_false(ok, "expected an error")
-  return tostring(msg)
-end
+local errof = H.errof
 
 describe("issue 19 §8: the number of steps is bounded", function ()
   local m = lsys.lsystem { axiom = "A", productions = "A --> B" }

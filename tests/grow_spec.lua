@@ -3,11 +3,7 @@
 -- (lsys.grow over csrc/core/grow.c).
 local grow = require "lsys.grow"
 
-local function errof (f, ...)
-  local ok, msg = pcall(f, ...)
-  assert.is_false(ok)
-  return tostring(msg)
-end
+local errof = require("tests.helper").errof
 
 local function near (a, b, tol) return math.abs(a - b) <= (tol or 1e-9) end
 

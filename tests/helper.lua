@@ -2,9 +2,10 @@
 -- Loaded by busted as the `helper` (see .busted) and also `require "tests.helper"`-able
 -- from a spec, so a spec runs on its own too: `busted tests/context_spec.lua`.
 --
--- Registers with luassert:
---   assert.near(expected, actual, tol)      numbers, or (nested) lists of numbers elementwise
+-- Registers with luassert, through lsys.testing (docs/testing.md):
+--   assert.near(expected, actual, tol)      numbers, or (nested) tables of numbers elementwise
 --   assert.error_contains(fn, s1, s2, ...)  fn raises; the message contains every si (plain text)
+--   assert.lstring_equal, assert.scene_stats, assert.image_matches
 --
 -- Functions (module table H):
 --   H.model(axiom, productions, opts)  lsys.lsystem with axiom/productions merged into opts
@@ -12,13 +13,13 @@
 --   H.steps(model, n)                  list of tostring for steps 0..n (via model:step)
 --   H.modules(s)                       list of { name, p1, p2, ... } for every module of s
 --   H.rep(text, n)                     text repeated n times
+--   H.errof(f, ...)                    the message of the error f(...) raises (fails without)
 --   H.binomial_tol(n, p, k)            k standard deviations of a binomial(n, p) count
 --   H.tmpdir(), H.rmdir(d), H.read(path), H.write(path, s)     temporary folders and files
 --   H.sh(cmd), H.lsys(script, opts)    a shell command, a script run by the lsys program:
 --                                      output and exit status
 --   H.ref_derive(axiom, rules, n, ignore)  independent reference deriver (see below)
 local assert = require "luassert"
-local say = require "say"
 
 local H = package.loaded["tests.helper"]
 if H then return H end
@@ -33,63 +34,10 @@ if not package.cpath:find("./build/?.so", 1, true) then
   package.cpath = package.cpath .. ";./build/?.so"
 end
 
-local function flatten (x, out, path)
-  if type(x) == "table" then
-    for i = 1, #x do flatten(x[i], out, path .. "[" .. i .. "]") end
-  else
-    out[#out + 1] = { path = path, v = x }
-  end
-  return out
-end
-
--- assert.near(expected, actual, tol): |expected - actual| <= tol, elementwise for lists.
-local function near (state, args)
-  local expected, actual, tol = args[1], args[2], args[3]
-  if type(tol) ~= "number" then
-    state.failure_message = "assert.near: tolerance (argument 3) must be a number"
-    return false
-  end
-  local e, a = flatten(expected, {}, ""), flatten(actual, {}, "")
-  if #e ~= #a then
-    state.failure_message = ("assert.near: expected %d numbers, got %d"):format(#e, #a)
-    return false
-  end
-  for i = 1, #e do
-    local x, y = e[i].v, a[i].v
-    if type(x) ~= "number" or type(y) ~= "number" or not (math.abs(x - y) <= tol) then
-      state.failure_message = ("assert.near: at %s expected %s, got %s (tolerance %s)")
-        :format(e[i].path ~= "" and e[i].path or "value", tostring(x), tostring(y), tostring(tol))
-      return false
-    end
-  end
-  return true
-end
-say:set("assertion.lsys_near.positive", "Expected values to be near.")
-say:set("assertion.lsys_near.negative", "Expected values not to be near.")
-assert:register("assertion", "near", near, "assertion.lsys_near.positive",
-  "assertion.lsys_near.negative")
-
--- assert.error_contains(fn, "text", ...): fn raises and its message contains each text.
-local function error_contains (state, args)
-  local fn = args[1]
-  local ok, err = pcall(fn)
-  if ok then
-    state.failure_message = "expected an error, but the call succeeded"
-    return false
-  end
-  err = tostring(err)
-  for i = 2, args.n do
-    if not err:find(args[i], 1, true) then
-      state.failure_message = ("error message %q does not contain %q"):format(err, args[i])
-      return false
-    end
-  end
-  return true
-end
-say:set("assertion.error_contains.positive", "Expected an error containing the given texts.")
-say:set("assertion.error_contains.negative", "Expected no error containing the given texts.")
-assert:register("assertion", "error_contains", error_contains,
-  "assertion.error_contains.positive", "assertion.error_contains.negative")
+-- The assertions of lsys.testing (lstring_equal, near, error_contains, scene_stats,
+-- image_matches), registered with luassert. It requires lsys only when an assertion runs, so
+-- each spec file still loads its own lsys (busted restores package.loaded after a file).
+local testing = require "lsys.testing"
 
 local function lsys () return require "lsys" end
 
@@ -122,6 +70,13 @@ function H.modules (s)
 end
 
 function H.rep (text, n) return string.rep(text, n) end
+
+--- The message of the error f(...) raises, as a string; fails the test when it raises none.
+function H.errof (f, ...)
+  local ok, msg = pcall(f, ...)
+  assert.is_false(ok, "expected an error")
+  return tostring(msg)
+end
 
 -- Files and processes ----------------------------------------------------------------------
 
@@ -282,40 +237,14 @@ function H.rule_text (r)
 end
 
 -- {====================================================================
--- Images: two renders compared with a tolerance, and golden images in tests/golden/.
--- A render matches when the mean absolute difference of every channel is below
--- H.MEAN_TOL and fewer than H.PIXEL_FRACTION of the pixels differ by more than
--- H.PIXEL_TOL in some channel (tests/render_spec.lua says why these values).
-H.MEAN_TOL, H.PIXEL_TOL, H.PIXEL_FRACTION = 2, 40, 0.01
+-- Images: two renders compared with a tolerance, and golden images in tests/golden/, with
+-- lsys.testing's comparison: the mean absolute difference of every channel below 2 and
+-- fewer than 1% of the pixels differing by more than 40 in some channel (testing.TOLERANCE;
+-- tests/render_spec.lua says why these values).
 H.GOLDEN_DIR = "tests/golden"
 
 --- Compares two RGBA images of w x h pixels: true, or false and what differs.
-function H.compare_images (a, b, w, h)
-  if #a ~= w * h * 4 or #b ~= w * h * 4 then
-    return false, string.format("sizes differ: %d and %d bytes for %dx%d", #a, #b, w, h)
-  end
-  local sum, bad = { 0, 0, 0, 0 }, 0
-  for o = 1, #a, 4 do
-    local worst = 0
-    for c = 0, 3 do
-      local d = math.abs(a:byte(o + c) - b:byte(o + c))
-      sum[c + 1] = sum[c + 1] + d
-      if d > worst then worst = d end
-    end
-    if worst > H.PIXEL_TOL then bad = bad + 1 end
-  end
-  local n, ok = w * h, true
-  local means = {}
-  for c = 1, 4 do
-    means[c] = sum[c] / n
-    if means[c] >= H.MEAN_TOL then ok = false end
-  end
-  if bad >= H.PIXEL_FRACTION * n then ok = false end
-  if ok then return true end
-  return false, string.format("mean absolute difference R %.2f G %.2f B %.2f A %.2f (limit %g); "
-    .. "%.2f%% of the pixels differ by more than %d (limit %g%%)", means[1], means[2], means[3],
-    means[4], H.MEAN_TOL, 100 * bad / n, H.PIXEL_TOL, 100 * H.PIXEL_FRACTION)
-end
+function H.compare_images (a, b, w, h) return testing.compare_images(a, b, w, h) end
 
 --- The pixels of a PNG that differ from its top left corner (the background) by more than 40
 -- in the sum of R, G and B, over its first `rows` rows (all): { mask (mask[y * w + x + 1] =
@@ -343,29 +272,11 @@ function H.ink (path, rows)
 end
 
 --- Asserts that the render px (w x h) matches the golden image tests/golden/NAME.png.
--- LSYS_UPDATE_GOLDEN=1 writes it instead; on a mismatch the render is kept in $TMPDIR.
+-- LSYS_UPDATE_GOLDEN=1 writes it instead, and a missing one is written and fails once; on a
+-- mismatch the render is kept in $TMPDIR.
 function H.golden (name, px, w, h)
-  local core = require "lsys.core"
-  local path = H.GOLDEN_DIR .. "/" .. name .. ".png"
-  if os.getenv("LSYS_UPDATE_GOLDEN") == "1" then
-    core.png_write(path, px, w, h, false)
-    print("wrote " .. path)
-  end
-  local f = io.open(path, "rb")
-  assert.truthy(f, path .. " is missing: write it with LSYS_UPDATE_GOLDEN=1 (see the top "
-    .. "of tests/render_spec.lua)")
-  f:close()
-  local gpx, gw, gh = core.png_read(path)
-  assert.equal(gw, w, "golden width")
-  assert.equal(gh, h, "golden height")
-  local ok, why = H.compare_images(px, gpx, w, h)
-  if not ok then
-    local actual = (os.getenv("TMPDIR") or "/tmp") .. "/lsys-" .. name .. ".actual.png"
-    core.png_write(actual, px, w, h, false)
-    why = ("%s: %s; this render is %s (if the change is intended, look at it and "
-      .. "regenerate with LSYS_UPDATE_GOLDEN=1)"):format(path, why, actual)
-  end
-  assert.is_true(ok, why)
+  local actual = (os.getenv("TMPDIR") or "/tmp") .. "/lsys-" .. name .. ".actual.png"
+  assert.image_matches({ px, w, h }, H.GOLDEN_DIR .. "/" .. name .. ".png", { actual = actual })
 end
 -- }====================================================================
 

@@ -2,11 +2,7 @@
 -- would have caught it.
 local lsys = require "lsys"
 
-local function errof (f, ...)
-  local ok, err = pcall(f, ...)
-  assert.is_false(ok)
-  return tostring(err)
-end
+local errof = require("tests.helper").errof
 
 describe("regressions", function()
   it("names the bad parameter of a produce template", function()

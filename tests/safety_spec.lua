@@ -3,11 +3,7 @@
 local H = require "tests.helper"
 local lsys = require "lsys"
 
-local function errof (f, ...)
-  local ok, err = pcall(f, ...)
-  assert.is_false(ok, "expected an error")
-  return tostring(err)
-end
+local errof = H.errof
 
 local tmpdir, rmdir, slurp, spit = H.tmpdir, H.rmdir, H.read, H.write
 

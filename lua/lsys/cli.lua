@@ -14,6 +14,7 @@
 --   lsys components graph MODEL -o OUT   a component graph's p-graph (.png .svg .pdf .dot)
 --   lsys grow FILE ...        a growing world (lsys.grow) live in the window, or --frames DIR
 --   lsys import MODEL.l -o OUT.lua   a cpfg model as a readable lsys model file
+--   lsys test [PATH...]       busted on a user's specs, with lsys and lsys.testing
 --   lsys help [COMMAND]       help
 -- @module lsys.cli
 local host = require("lsys.program").host
@@ -44,6 +45,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys components graph MODEL -o OUT   draw a component graph's p-graph (Graphviz)
   lsys grow FILE [OPTS]       grow plants tick by tick in the window (lsys.grow), or to PNGs
   lsys import MODEL.l [VIEW.v] -o OUT.lua   write a cpfg model as an lsys model file
+  lsys test [PATH...] [OPTS]  run busted specs of models with lsys and lsys.testing
   lsys help [COMMAND]         this help, or a command's help
 
 MODEL is a Lua file that returns a model, an example's name, a cpfg L-system file (.l,
@@ -305,6 +307,34 @@ Options:
   -o, --output OUT.lua  the file to write (required); it appears whole or not at all
   --map FILE, --mat FILE, --define NAME=VALUE   as for `lsys derive`
   -h, --help            show this help
+]]
+
+HELP.test = [[
+usage: lsys test [PATH...] [BUSTED OPTIONS]
+
+Runs busted specs (files or folders of *_spec.lua files) with this lsys, in this program:
+`require "lsys"` and `require "lsys.testing"` work in any folder, with no --lpath or
+LUA_PATH, and whatever `lua` or `busted` the system names. Without PATH: what a .busted
+file in the current folder says, else the folder spec/ when there is one, else every
+*_spec.lua file in and below the current folder.
+
+lsys.testing adds assertions for models (docs/testing.md):
+  assert.lstring_equal(expected, actual [, tol])   L-strings, module by module
+  assert.near(expected, actual, tol)               numbers and tables of numbers
+  assert.error_contains(fn, text, ...)             an error message holding each text
+  assert.scene_stats(scene, { triangles = N, ... } [, tol])   scene statistics
+  assert.image_matches(scene, "golden.png" [, opts])   a picture against a golden image;
+                     LSYS_UPDATE_GOLDEN=1 writes the golden images instead
+
+The other options are busted's (busted --help lists them), for example:
+  -t, --tags=TAGS, --exclude-tags=TAGS   run only, or leave out, tests tagged #TAG
+  --filter=PATTERN   only tests whose names match the Lua pattern
+  -o, --output=NAME  busted's output: utfTerminal, plainTerminal, TAP, json, junit
+  -v, --verbose      more output, with tracebacks
+  -h, --help         show this help
+
+The exit status is busted's: 0 when every test passed, 1 otherwise. busted itself comes
+from the Debian package lua-busted, or `luarocks --lua-version 5.4 install busted`.
 ]]
 
 HELP.repl = [[
@@ -1342,6 +1372,59 @@ function commands.import (args)
     error((tostring(err):gsub("^lsys%.view%.load: ", ""):gsub("^lsys%.cpfg%.%a+: ", "")), 0)
   end
   out(format("wrote %s\n", outpath))
+  return 0
+end
+
+-- busted's options that take a value, so that `lsys test -t fast` does not read "fast" as a
+-- path; and those that choose the specs themselves (a folder, a .busted file, a run in it).
+local BUSTED_VALUE, BUSTED_ROOT = {}, {}
+for o in ("o output C directory f config-file coverage-config-file t tags exclude-tags "
+          .. "filter filter-out m lpath cpath r run repeat seed lang loaders helper lua p "
+          .. "pattern exclude-pattern e Xoutput Xhelper"):gmatch("%S+") do
+  BUSTED_VALUE[o] = true
+end
+for o in ("C directory f config-file r run"):gmatch("%S+") do BUSTED_ROOT[o] = true end
+
+function commands.test (args)
+  local bargs = { [0] = G.arg ~= nil and G.arg[0] or "lsys", "--ignore-lua" }
+  local paths, chosen = 0, false
+  local i = 2
+  while i <= args.n do
+    local a = args[i]
+    bargs[#bargs + 1] = a
+    local name, val = a:match("^%-%-?([^=]+)(=?)")
+    if a == "-h" or a == "--help" then out(HELP.test) return 0 end
+    if a == "--" then
+      for j = i + 1, args.n do bargs[#bargs + 1] = args[j] end
+      paths = paths + args.n - i
+      break
+    elseif name == nil or a == "-" then
+      paths = paths + 1
+    else
+      chosen = chosen or BUSTED_ROOT[name] ~= nil
+      if val == "" and BUSTED_VALUE[name] and i < args.n then      -- `-t fast`
+        i = i + 1
+        bargs[#bargs + 1] = args[i]
+      end
+    end
+    i = i + 1
+  end
+  if paths == 0 and not chosen and not isfile(".busted") and not isdir("spec") then
+    bargs[#bargs + 1] = "."
+  end
+  local ok, runner = pcall(require, "busted.runner")
+  if not ok then
+    if tostring(runner):find("module 'busted.runner' not found", 1, true) then
+      error("busted is not installed for Lua 5.4: apt-get install lua-busted (Debian, "
+            .. "Ubuntu), or luarocks --lua-version 5.4 install busted", 0)
+    end
+    error("cannot load busted: " .. tostring(runner), 0)
+  end
+  -- busted reads the global `arg`, and names itself after the file of the function that
+  -- calls its runner: a chunk called "lsys test". It exits the program itself (os.exit)
+  -- when a test fails, and returns when all passed.
+  G.arg = bargs
+  G.load("(...)({ standalone = false })", "@lsys test")(runner)
   return 0
 end
 
