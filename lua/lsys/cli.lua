@@ -236,7 +236,8 @@ Options:
   --phyllotaxis P     distichous, decussate or fibonacci (default: the sketch's)
   -h, --help          show this help
 
-The window needs a display; a tablet's pen pressure is not read yet (the wheel stands in).
+The window needs a display; a drawing tablet's pen pressure is read when X reports one (XInput2),
+else the wheel sets it (docs/sketch.md, "Pressure and tablets").
 ]]
 
 HELP.components = [[
