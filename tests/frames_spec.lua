@@ -322,3 +322,50 @@ describe("growth animations #gl", function()
     assert.same({ "bush.lua" }, ls(dir))
   end)
 end)
+
+describe("#gl the viewer's S key while animating", function()
+  local D = require "tests.display"
+  local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
+  teardown(function() D.stop() end)
+
+  it("saves every step through the window's camera to MODEL-frames/", function()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    local dir = H.tmpdir()
+    H.write(dir .. "/bush.lua", (MODEL:gsub("steps = 5", "steps = 3")))
+    os.execute("cd " .. q(dir) .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " .. ABSBIN
+      .. " view bush.lua --size 300x240 --rate 1 >out.txt 2>err.txt; echo $? > rc.txt) &")
+    local win = D.env .. "timeout " .. 10 * SLOW ..
+      " xdotool search --sync --name 'lsys: bush.lua' windowfocus --sync %1 key "
+    local function wait_for (file, text)
+      for _ = 1, 100 * SLOW do
+        local s = H.read(dir .. "/" .. file)
+        if s and s:find(text, 1, true) then return s end
+        D.sleep(0.1)
+      end
+      return H.read(dir .. "/" .. file) or ""
+    end
+    -- space: animate from step 0 (one step a second); S then saves the steps, not one picture
+    assert.truthy(os.execute(win .. "space s >/dev/null 2>&1"))
+    local err = wait_for("err.txt", "saved")
+    assert.truthy(err:find("lsys: saved 4 pictures of steps 0 to 3 to bush-frames/ (one " ..
+      "camera)\n", 1, true), err)
+    assert.same({ "step-0000.png", "step-0001.png", "step-0002.png", "step-0003.png" },
+                ls(dir .. "/bush-frames"))
+    assert.is_nil(H.read(dir .. "/lsys-001.png"))       -- no screenshot
+    local ink = {}
+    for i, f in ipairs(ls(dir .. "/bush-frames")) do
+      ink[i] = H.ink(dir .. "/bush-frames/" .. f)
+      assert.same({ 300, 240 }, { ink[i].w, ink[i].h })   -- the scene, no status line
+    end
+    -- one camera, fitted to the last step (shown first): the plant grows in place
+    for i = 2, 4 do assert.is_true(ink[i].n > ink[i - 1].n, ink[i].n .. " " .. ink[i - 1].n) end
+    assert.is_true(ink[2].n < ink[4].n / 4, ink[2].n .. " vs " .. ink[4].n)
+    assert.is_true(math.abs(ink[2].box[4] - ink[4].box[4]) <= 1)
+    assert.is_true(ink[4].box[4] - ink[4].box[2] > 150)
+    os.execute(win .. "Escape >/dev/null 2>&1")   -- (xdotool may complain: the window goes)
+    assert.equal("0\n", wait_for("rc.txt", "\n"))
+    H.rmdir(dir)
+  end)
+end)

@@ -29,6 +29,7 @@
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -94,6 +95,7 @@ struct lsys_viewer {
   int wireframe, help, dirty;
   double drawms;                  /* smoothed time to draw a frame */
   int shotseq;
+  int seqreq;                     /* 1: the S key while animating: save every frame */
   char drawerr[256];              /* why the last picture could not be drawn (status line) */
   uint8_t *pixels;                /* screenshot scratch */
   size_t pixcap;
@@ -223,6 +225,7 @@ static const char helptext[] =
   "left / right: step back / forward   home / end: first / last\n"
   "space: animate   + / -: faster / slower\n"
   "R: reset view   F: fit   W: wireframe   S: screenshot\n"
+  "S while animating: save every step (this camera) to a folder\n"
   "H: this help   Esc / Q: quit";
 
 /* Draws the status line (and the help) over the picture. */
@@ -281,31 +284,98 @@ static void autoname (lsys_viewer *v, char *buf, size_t n) {
   v->shotseq = (v->shotseq + k + 1) % 1000;
 }
 
-/* Reads the back buffer (just drawn) and writes it to the requested file. */
-static void screenshot (lsys_viewer *v, const char *path) {
-  lsys_vevent ev;
-  lsys_error e;
-  size_t row = 4 * (size_t)v->fbw, y;
-  event(v, LSYS_VEV_SCREENSHOT, &ev);
-  if (path[0] == '\0') autoname(v, ev.path, sizeof ev.path);
-  else snprintf(ev.path, sizeof ev.path, "%s", path);
-  if (lsys_grow((void **)&v->pixels, &v->pixcap, row * (size_t)v->fbh + row, 1) != LSYS_OK) {
-    snprintf(ev.msg, sizeof ev.msg, "not enough memory for a %dx%d screenshot", v->fbw, v->fbh);
-    pushevent(v, &ev);
-    return;
+/* Writes the rectangle (x, y, w, h) of the back buffer (just drawn; y up from
+** the bottom, as GL has it) to the PNG file 'path'. */
+static int savepixels (lsys_viewer *v, int x, int y, int w, int h, const char *path,
+                       lsys_error *e) {
+  size_t row = 4 * (size_t)w, r;
+  if (lsys_grow((void **)&v->pixels, &v->pixcap, row * (size_t)h + row, 1) != LSYS_OK) {
+    snprintf(e->msg, sizeof e->msg, "not enough memory for a %dx%d picture", w, h);
+    return LSYS_ENOMEM;
   }
   v->ReadBuffer(GL_BACK);
   v->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  v->ReadPixels(0, 0, v->fbw, v->fbh, GL_RGBA, GL_UNSIGNED_BYTE, v->pixels);
-  for (y = 0; y < (size_t)v->fbh / 2; y++) {          /* GL rows go up; PNG rows go down */
-    uint8_t *a = v->pixels + y * row, *b = v->pixels + ((size_t)v->fbh - 1 - y) * row;
-    uint8_t *t = v->pixels + (size_t)v->fbh * row;
+  v->ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, v->pixels);
+  for (r = 0; r < (size_t)h / 2; r++) {               /* GL rows go up; PNG rows go down */
+    uint8_t *a = v->pixels + r * row, *b = v->pixels + ((size_t)h - 1 - r) * row;
+    uint8_t *t = v->pixels + (size_t)h * row;
     memcpy(t, a, row);
     memcpy(a, b, row);
     memcpy(b, t, row);
   }
-  if (lsys_png_write(ev.path, v->pixels, v->fbw, v->fbh, 0, &e) == LSYS_OK) ev.ok = 1;
+  return lsys_png_write(path, v->pixels, w, h, 0, e);
+}
+
+/* Reads the back buffer (just drawn) and writes it to the requested file. */
+static void screenshot (lsys_viewer *v, const char *path) {
+  lsys_vevent ev;
+  lsys_error e;
+  event(v, LSYS_VEV_SCREENSHOT, &ev);
+  if (path[0] == '\0') autoname(v, ev.path, sizeof ev.path);
+  else snprintf(ev.path, sizeof ev.path, "%s", path);
+  if (savepixels(v, 0, 0, v->fbw, v->fbh, ev.path, &e) == LSYS_OK) ev.ok = 1;
   else snprintf(ev.msg, sizeof ev.msg, "%s", e.msg);
+  pushevent(v, &ev);
+}
+
+/*
+** The S key while animating: draws every frame of the snapshot through the
+** current camera, without the status line, into the back buffer (not shown:
+** the usual picture is drawn over it next) and writes each to the snapshot's
+** folder (made if missing) as step-NNNN.png, the frame's step (its index
+** when it has none). The FRAMES event tells the outcome.
+*/
+static void savesequence (lsys_viewer *v) {
+  const lsys_vsnap *s = v->snap;
+  lsys_vevent ev;
+  lsys_error e;
+  struct stat st;
+  double k;
+  int x, y, w, h;
+  size_t i;
+  event(v, LSYS_VEV_FRAMES, &ev);
+  snprintf(ev.path, sizeof ev.path, "%s", s->framesdir[0] != '\0' ? s->framesdir
+                                                                    : "lsys-frames");
+  G.GetFramebufferSize(v->win, &v->fbw, &v->fbh);
+  G.GetWindowSize(v->win, &v->winw, &v->winh);
+  if (v->fbw <= 0 || v->fbh <= 0 || v->winw <= 0 || v->winh <= 0) {
+    snprintf(ev.msg, sizeof ev.msg, "the window is iconified");
+    pushevent(v, &ev);
+    return;
+  }
+  if (mkdir(ev.path, 0777) != 0 && !(errno == EEXIST && stat(ev.path, &st) == 0 &&
+                                     S_ISDIR(st.st_mode))) {
+    snprintf(ev.msg, sizeof ev.msg, "cannot make the directory %.200s: %s", ev.path,
+             errno == EEXIST ? "a file is in the way" : strerror(errno));
+    pushevent(v, &ev);
+    return;
+  }
+  k = (double)v->fbh / v->winh;
+  x = (int)lround(v->sr[0] * k);
+  y = (int)lround((v->winh - v->sr[1] - v->sr[3]) * k);       /* GL rows go up */
+  w = (int)lround(v->sr[2] * k);
+  h = (int)lround(v->sr[3] * k);
+  for (i = 0; i < s->nframes; i++) {
+    const lsys_vframe *f = &s->frames[i];
+    lsys_scene sc;
+    lsys_render_opts o;
+    char path[600];
+    long step = f->step >= 0 ? f->step : (long)i;
+    frameview(v, f, &sc, &o);
+    o.x = x;
+    o.y = y;
+    snprintf(path, sizeof path, "%s/step-%04ld.png", ev.path, step);
+    if (lsys_render_draw(&sc, &o, w, h, &e) != LSYS_OK ||
+        savepixels(v, x, y, w, h, path, &e) != LSYS_OK) {
+      snprintf(ev.msg, sizeof ev.msg, "%s", e.msg);
+      break;
+    }
+    if (ev.count == 0) ev.first = step;
+    ev.count++;
+    ev.step = step;
+  }
+  ev.ok = i == s->nframes;
+  v->dirty = 1;
   pushevent(v, &ev);
 }
 
@@ -317,6 +387,10 @@ static void draw (lsys_viewer *v) {
   char shot[512];
   int wantshot;
   double t0 = now(), ms;
+  if (v->seqreq) {
+    v->seqreq = 0;
+    if (v->snap != NULL && v->snap->nframes > 0) savesequence(v);
+  }
   G.GetFramebufferSize(v->win, &v->fbw, &v->fbh);
   G.GetWindowSize(v->win, &v->winw, &v->winh);
   if (v->fbw <= 0 || v->fbh <= 0 || v->winw <= 0 || v->winh <= 0) return;   /* iconified */
@@ -446,6 +520,11 @@ static void key (lsys_viewer *v, int k, int mods) {
       v->dirty = 1;
       break;
     case GLFW_KEY_S:
+      if (v->playing && v->snap != NULL && v->snap->nframes > 1 && !v->snap->live) {
+        v->seqreq = 1;            /* every frame, through this camera (savesequence) */
+        v->dirty = 1;
+        break;
+      }
       pthread_mutex_lock(&v->mu);
       v->shotreq = 1;
       v->shotpath[0] = '\0';
