@@ -17,6 +17,7 @@ PACKAGES=(
   xvfb xauth xdotool                       # a virtual display and clicks for viewer tests
   valgrind                                 # the memcheck test (ctest -R memcheck)
   graphviz                                 # `lsys components graph` pictures (dot)
+  ffmpeg                                   # `lsys animate` videos and GIFs
 )
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}
