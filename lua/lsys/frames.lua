@@ -319,10 +319,16 @@ function M.animate (m, opts)
   local fopts = {}
   for k, v in pairs(opts) do if COMMON[k] then fopts[k] = v end end
   fopts.width, fopts.height = w, h
-  local dir = tmpfolder(who)
-  local drawn = {}                     -- removed afterwards, even when one fails
   tmpcount = tmpcount + 1
   local part = format("%s.lsys-%d-%d.part", out, os.time(), tmpcount)
+  local pf, perr = io.open(part, "wb")   -- a folder that is missing: said before any drawing
+  if pf == nil then
+    error(format("lsys.animate: cannot write '%s': %s", out,
+      tostring(perr):match(": ([^:]*)$") or tostring(perr)), 2)
+  end
+  pf:close()
+  local dir = tmpfolder(who)
+  local drawn = {}                     -- removed afterwards, even when one fails
   local ok, err = pcall(function ()
     series(who, m, fopts, function (i)
       drawn[i] = format("%s/frame-%06d.png", dir, i)
