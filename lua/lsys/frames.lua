@@ -146,13 +146,16 @@ local function series (who, m, opts, name)
   local ropts = { fit = box, width = opts.width or 800, height = opts.height or 800,
                   zoom = opts.zoom, wireframe = opts.wireframe,
                   transparent = opts.transparent }
-  local lsys = require "lsys"
   local files = {}
   if progress then progress("frame", 0, #kept) end
   for i, k in ipairs(kept) do
     local path = name(i, k)
-    ropts.out = path
-    local rok, rerr = pcall(lsys.render, k == n and last or scene(k), ropts)
+    local sc = k == n and last or scene(k)
+    -- as lsys.render(sc, ropts) (which `require "lsys"` would bring in a cycle): the scene
+    -- keeps its view; the supersampling is the view's
+    local v = model.sceneview(sc)
+    ropts.out, ropts.supersample = path, v and v.supersample
+    local rok, rerr = pcall(core.render, sc, ropts)
     if not rok then error(blame(who, rerr), 0) end
     files[i] = path
     if progress then progress("frame", i, #kept, path, k) end
