@@ -117,7 +117,7 @@ Options:
   -o, --output OUT   the PNG file (default: tree.png for the default model, else the
                      model's file name with .png, in the current directory)
   --frames DIR       one picture per step into DIR (not with -o); a progress bar on a
-                     terminal, plain lines with --progress
+                     terminal, else a line per frame with --progress
   --every K          with --frames: steps 0, K, 2K, ... and always the last
   --size WxH         picture size in pixels (default 800x800)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
@@ -150,8 +150,8 @@ Options:
   --hold S           the last frame stays S seconds longer (default 0)
   --size WxH         frame size in pixels (default 800x800; an .mp4's are rounded up to
                      even numbers, as H.264 needs)
-  --progress         a line per step and frame on stderr (on a terminal: a progress bar,
-                     always)
+  --progress         a line per step and frame on stderr (on a terminal a progress bar
+                     is shown without it)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
   --mat FILE, --define NAME=VALUE   as for `lsys render`
   -h, --help         show this help
@@ -995,9 +995,9 @@ function commands.animate (args)
     view = next(views) and views or nil, progress = frames_progress(opts),
   })
   if not ok then error(frames_error(r), 0) end
-  out(format("wrote %s (%d frames, %dx%d, %g a second%s) in %.1f s\n", r, n, fw, fh,
-    fps or require("lsys.frames").FPS, hold and hold > 0 and format(", the last held %g s", hold)
-    or "", clock() - t0))
+  local held = hold and hold > 0 and format(", the last held %g s", hold) or ""
+  out(format("wrote %s (%d frame%s, %dx%d, %g a second%s) in %.1f s\n", r, n,
+    n == 1 and "" or "s", fw, fh, fps or require("lsys.frames").FPS, held, clock() - t0))
   return 0
 end
 
