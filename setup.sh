@@ -18,6 +18,7 @@ PACKAGES=(
   valgrind                                 # the memcheck test (ctest -R memcheck)
   luarocks                                 # the rock test (ctest -R rock)
   graphviz                                 # `lsys components graph` pictures (dot)
+  ffmpeg                                   # `lsys animate` videos and GIFs
 )
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}

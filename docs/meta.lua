@@ -481,6 +481,50 @@ function lsys.render(x, opts) end
 ---@field fit? number[] A box {x0, y0, z0, x1, y1, z1} the camera frames instead of the scene.
 ---@field view? lsys.View View fields for this picture.
 
+--- Writes one PNG picture per derivation step of `m` (a Model or a component graph's root)
+--- into `opts.dir`, all through one camera fitted to the last step, so the plant grows in
+--- place (docs/drawing.md, section 6). Returns the paths written and the steps they show.
+--- Raises `lsys.frames: option 'K' ...` for a bad option, and naming the folder or file
+--- that cannot be written.
+---@param m lsys.Model
+---@param opts lsys.FramesOptions
+---@return string[] files
+---@return integer[] steps
+function lsys.frames(m, opts) end
+
+--- Writes an animation of `m` growing (one frame per step, one camera) to `opts.out`, an
+--- .mp4 (H.264, yuv420p) or a .gif, through ffmpeg. Returns `out`, the number of frames,
+--- the width and the height. Raises when ffmpeg is not installed (saying how to install it),
+--- when it fails (with the last lines it printed), and for bad options.
+---@param m lsys.Model
+---@param opts lsys.AnimateOptions
+---@return string out
+---@return integer frames
+---@return integer width
+---@return integer height
+function lsys.animate(m, opts) end
+
+---@class lsys.SeriesOptions
+---@field every? integer Steps 0, K, 2K, ... and always the last (1).
+---@field steps? integer The steps derived (`m.steps`).
+---@field width? integer Pixels (800).
+---@field height? integer Pixels (800).
+---@field view? lsys.View View fields for the interpretation.
+---@field zoom? number As lsys.render.
+---@field wireframe? boolean As lsys.render.
+---@field progress? fun(phase: "derive"|"frame"|"encode", k: integer, n: integer, detail: any, step: integer?) "derive": step k of n derived (detail: modules); "frame": picture k of n written (detail: its path; k = 0 before the first); "encode": before ffmpeg runs.
+
+---@class lsys.FramesOptions: lsys.SeriesOptions
+---@field dir string The folder (made when missing).
+---@field pattern? string The file names, %d the step ("step-%04d.png").
+---@field transparent? boolean As lsys.render.
+
+---@class lsys.AnimateOptions: lsys.SeriesOptions
+---@field out string The .mp4 or .gif file (written whole or not at all).
+---@field fps? number Frames a second (4).
+---@field hold? number Seconds the last frame stays (0).
+---@field ffmpeg? string The program ("ffmpeg", on PATH).
+
 --- Shows a Model (every step, the last first), an Lstring, a Scene or a list of Scenes in
 --- the viewer window, opening it if needed, and returns at once (docs/viewer.md). Raises
 --- `lsys.show: ...` for bad options, and when no window can be opened (no display, lsys
@@ -510,6 +554,7 @@ function lsys.wait() end
 ---@field model? lsys.Model The model to interpret an Lstring that has none.
 ---@field lines? lsys.Line[] For a Scene: segments drawn over it.
 ---@field capture? boolean A tool takes the keys and Ctrl-drags: they come to `on_event` as `{ type = "key", key =, ctrl =, shift = }` and `{ type = "drag", phase = "begin"|"move"|"end", x =, y = }` (the arrows no longer step).
+---@field frames_dir? string Where S, pressed while animating, saves every step ("NAME-frames").
 
 --- An overlay segment of `lsys.show(scene, { lines = ... })`.
 ---@class lsys.Line

@@ -70,4 +70,16 @@ end
 D.have = have
 D.sleep = sleep
 
+--- Waits up to `seconds` (10) for the file `path` to hold `text` (plain); returns what it
+-- holds then ("" when it cannot be read): what a program running in the background wrote.
+function D.wait_for (path, text, seconds)
+  local read = require("tests.helper").read
+  for _ = 1, 10 * (seconds or 10) do
+    local s = read(path)
+    if s and s:find(text, 1, true) then return s end
+    sleep(0.1)
+  end
+  return read(path) or ""
+end
+
 return D

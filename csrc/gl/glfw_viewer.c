@@ -40,6 +40,7 @@
 #include "viewcam.h"
 #include "viewer.h"
 #include "vpanes.h"
+#include "vshot.h"
 #include "xpen.h"
 
 #define MAXEVENTS 1024          /* queued events beyond this are dropped (oldest first) */
@@ -78,9 +79,7 @@ struct lsys_viewer {
   /* the viewer thread's own */
   GLFWwindow *win;
   lsys_gl gl;
-  void (LSYS_GLAPI *ReadPixels) (int x, int y, int w, int h, unsigned fmt, unsigned type,
-                                 void *px);
-  void (LSYS_GLAPI *ReadBuffer) (unsigned mode);
+  lsys_vshot shot;                /* pictures read back (vshot.h) */
   lsys_vsnap *snap;
   long cur;                       /* frame shown */
   lsys_vcam cam, home;            /* current and arrival cameras (viewcam.h) */
@@ -93,10 +92,8 @@ struct lsys_viewer {
   double rate, nextt;
   int wireframe, help, dirty;
   double drawms;                  /* smoothed time to draw a frame */
-  int shotseq;
+  int seqreq;                     /* 1: the S key while animating: save every frame */
   char drawerr[256];              /* why the last picture could not be drawn (status line) */
-  uint8_t *pixels;                /* screenshot scratch */
-  size_t pixcap;
   lsys_overlay text;              /* the status line and the help */
   lsys_vpanes panes;              /* image panes beside the scene (vpanes.h) */
   int sr[4];                      /* the scene's rectangle in the window (x, y, w, h) */
@@ -223,6 +220,7 @@ static const char helptext[] =
   "left / right: step back / forward   home / end: first / last\n"
   "space: animate   + / -: faster / slower\n"
   "R: reset view   F: fit   W: wireframe   S: screenshot\n"
+  "S while animating: save every step (this camera) to a folder\n"
   "H: this help   Esc / Q: quit";
 
 /* Draws the status line (and the help) over the picture. */
@@ -271,64 +269,64 @@ static double now (void) {
   return G.GetTime();
 }
 
-/* A file name lsys-NNN.png that does not exist yet in the current directory. */
-static void autoname (lsys_viewer *v, char *buf, size_t n) {
-  int k;
-  for (k = 0; k < 1000; k++) {
-    snprintf(buf, n, "lsys-%03d.png", (v->shotseq + k) % 1000 + 1);
-    if (access(buf, F_OK) != 0) break;
-  }
-  v->shotseq = (v->shotseq + k + 1) % 1000;
-}
-
 /* Reads the back buffer (just drawn) and writes it to the requested file. */
 static void screenshot (lsys_viewer *v, const char *path) {
   lsys_vevent ev;
-  lsys_error e;
-  size_t row = 4 * (size_t)v->fbw, y;
   event(v, LSYS_VEV_SCREENSHOT, &ev);
-  if (path[0] == '\0') autoname(v, ev.path, sizeof ev.path);
-  else snprintf(ev.path, sizeof ev.path, "%s", path);
-  if (lsys_grow((void **)&v->pixels, &v->pixcap, row * (size_t)v->fbh + row, 1) != LSYS_OK) {
-    snprintf(ev.msg, sizeof ev.msg, "not enough memory for a %dx%d screenshot", v->fbw, v->fbh);
-    pushevent(v, &ev);
-    return;
-  }
-  v->ReadBuffer(GL_BACK);
-  v->gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  v->ReadPixels(0, 0, v->fbw, v->fbh, GL_RGBA, GL_UNSIGNED_BYTE, v->pixels);
-  for (y = 0; y < (size_t)v->fbh / 2; y++) {          /* GL rows go up; PNG rows go down */
-    uint8_t *a = v->pixels + y * row, *b = v->pixels + ((size_t)v->fbh - 1 - y) * row;
-    uint8_t *t = v->pixels + (size_t)v->fbh * row;
-    memcpy(t, a, row);
-    memcpy(a, b, row);
-    memcpy(b, t, row);
-  }
-  if (lsys_png_write(ev.path, v->pixels, v->fbw, v->fbh, 0, &e) == LSYS_OK) ev.ok = 1;
-  else snprintf(ev.msg, sizeof ev.msg, "%s", e.msg);
+  lsys_vshot_screenshot(&v->shot, path, v->fbw, v->fbh, &ev);
   pushevent(v, &ev);
+}
+
+/* The scene's rectangle in framebuffer pixels: x, y (GL rows go up), w, h. */
+static void fbrect (const lsys_viewer *v, int r[4]) {
+  double k = (double)v->fbh / v->winh;      /* framebuffer pixels per window pixel */
+  r[0] = (int)lround(v->sr[0] * k);
+  r[1] = (int)lround((v->winh - v->sr[1] - v->sr[3]) * k);
+  r[2] = (int)lround(v->sr[2] * k);
+  r[3] = (int)lround(v->sr[3] * k);
+}
+
+/* Draws frame f through the current camera into the rectangle r (fbrect);
+** 'sc' is the scene as drawn. */
+static int drawscene (lsys_viewer *v, const lsys_vframe *f, const int r[4], lsys_scene *sc,
+                      lsys_error *e) {
+  lsys_render_opts o;
+  frameview(v, f, sc, &o);
+  o.x = r[0];
+  o.y = r[1];
+  return lsys_render_draw(sc, &o, r[2], r[3], e);
+}
+
+/* Frame k of the S key's series, without the status line (lsys_vshot_series). */
+static int drawframe (void *ctx, size_t k, const int r[4], lsys_error *e) {
+  lsys_viewer *v = (lsys_viewer *)ctx;
+  lsys_scene sc;
+  return drawscene(v, &v->snap->frames[k], r, &sc, e);
 }
 
 static void draw (lsys_viewer *v) {
   const lsys_vframe *f = curframe(v);
   lsys_scene sc;
-  lsys_render_opts o;
   lsys_error e;
   char shot[512];
-  int wantshot;
+  int wantshot, r[4];
   double t0 = now(), ms;
   G.GetFramebufferSize(v->win, &v->fbw, &v->fbh);
   G.GetWindowSize(v->win, &v->winw, &v->winh);
   if (v->fbw <= 0 || v->fbh <= 0 || v->winw <= 0 || v->winh <= 0) return;   /* iconified */
   lsys_vpanes_scene(&v->panes, v->winw, v->winh, v->sr);
+  if (v->seqreq && v->snap != NULL) {   /* the S key while animating; drawn over next */
+    lsys_vevent ev;
+    fbrect(v, r);
+    event(v, LSYS_VEV_FRAMES, &ev);
+    lsys_vshot_series(&v->shot, v->snap, r, drawframe, v, &ev);
+    pushevent(v, &ev);
+  }
+  v->seqreq = 0;
   if (f != NULL) {
-    double k = (double)v->fbh / v->winh;      /* framebuffer pixels per window pixel */
-    frameview(v, f, &sc, &o);
-    o.x = (int)lround(v->sr[0] * k);
-    o.y = (int)lround((v->winh - v->sr[1] - v->sr[3]) * k);    /* GL rows go up */
+    fbrect(v, r);
     v->drawerr[0] = '\0';
-    if (lsys_render_draw(&sc, &o, (int)lround(v->sr[2] * k), (int)lround(v->sr[3] * k), &e)
-        != LSYS_OK) {
+    if (drawscene(v, f, r, &sc, &e) != LSYS_OK) {
       snprintf(v->drawerr, sizeof v->drawerr, "%s", e.msg);   /* on the status line */
       v->gl.ClearColor(0.3f, 0, 0, 1);
       v->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -445,10 +443,10 @@ static void key (lsys_viewer *v, int k, int mods) {
       v->help = !v->help;
       v->dirty = 1;
       break;
-    case GLFW_KEY_S:
+    case GLFW_KEY_S:              /* while animating: every frame, drawn by draw */
+      v->seqreq = v->playing;     /* (play: 2 frames or more, never live) */
       pthread_mutex_lock(&v->mu);
-      v->shotreq = 1;
-      v->shotpath[0] = '\0';
+      if (!v->seqreq) { v->shotreq = 1; v->shotpath[0] = '\0'; }
       pthread_mutex_unlock(&v->mu);
       v->dirty = 1;
       break;
@@ -705,8 +703,9 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
       G.Terminate();
       return 0;
     }
-    memcpy(&v->ReadPixels, &rp, sizeof rp);
-    memcpy(&v->ReadBuffer, &rb, sizeof rb);
+    memcpy(&v->shot.ReadPixels, &rp, sizeof rp);
+    memcpy(&v->shot.ReadBuffer, &rb, sizeof rb);
+    v->shot.PixelStorei = v->gl.PixelStorei;
   }
   G.SetWindowUserPointer(v->win, v);
   G.SetKeyCallback(v->win, onkey);
@@ -794,7 +793,7 @@ static void freeviewer (lsys_viewer *v) {
   lsys_vsnap_free(v->snap);
   lsys_render_cache_free(&v->cache);
   LSYS_FREE(v->ev);
-  LSYS_FREE(v->pixels);
+  lsys_vshot_free(&v->shot);
   lsys_overlay_free(&v->text);
   lsys_vpanes_free(&v->panes);
   pthread_cond_destroy(&v->cv);

@@ -72,6 +72,8 @@ typedef struct lsys_vsnap {
                                    no longer step, and a left drag begun with Ctrl held
                                    comes back as DRAG events instead of orbiting */
   char title[200];              /* window title (the model's name) */
+  char framesdir[512];          /* where the S key saves every frame while animating
+                                   ("": lsys-frames in the current directory) */
   int live;                     /* 1: one frame, grown in place by lsys_viewer_patch (its
                                    mesh as posted is ignored: the patches fill it) */
 } lsys_vsnap;
@@ -116,7 +118,10 @@ enum {
   LSYS_VEV_POINTER,             /* panes: a button pressed (phase 0), the pointer moved with
                                    it held (1), released (2) over 'pane'; x, y in the pixels
                                    of the pane's image; button (GLFW's), mods */
-  LSYS_VEV_SCROLL               /* panes: the wheel over 'pane' (scroll: notches, up > 0) */
+  LSYS_VEV_SCROLL,              /* panes: the wheel over 'pane' (scroll: notches, up > 0) */
+  LSYS_VEV_FRAMES               /* the S key while animating: every frame saved through the
+                                   current camera into the folder 'path' ('count' pictures,
+                                   of steps 'first' to 'step') or not (msg says why) */
 };
 
 typedef struct lsys_vevent {
@@ -131,8 +136,9 @@ typedef struct lsys_vevent {
   int pane, button;             /* POINTER, SCROLL */
   double scroll;                /* SCROLL */
   double pressure;              /* POINTER: the pen's pressure in [0, 1] (xpen.h), -1 none */
-  char path[512];               /* SCREENSHOT: the file */
-  char msg[256];                /* SCREENSHOT failure, CLOSED by an error */
+  long count, first;            /* FRAMES: the pictures written, the first one's step */
+  char path[512];               /* SCREENSHOT: the file; FRAMES: the folder */
+  char msg[256];                /* SCREENSHOT, FRAMES failure, CLOSED by an error */
 } lsys_vevent;
 
 typedef struct lsys_viewer lsys_viewer;
@@ -196,7 +202,8 @@ int lsys_viewer_pending (lsys_viewer *v);
 
 /* Asks for a screenshot of the next frame drawn, written to 'path' as a PNG
 ** (the S key's path; NULL: lsys-NNN.png in the current directory); the
-** SCREENSHOT event tells the outcome. Returns LSYS_OK, or LSYS_EARG when
+** SCREENSHOT event tells the outcome. (The S key pressed while animating
+** saves every frame instead: FRAMES.) Returns LSYS_OK, or LSYS_EARG when
 ** the window is closed. */
 int lsys_viewer_screenshot (lsys_viewer *v, const char *path);
 

@@ -10,7 +10,8 @@
 **                                        the mesh out of the scene instead of copying };
 **                                        opts: first (1-based), rate, title,
 **                                        keep_camera, capture, textures = { Texture... },
-**                                        live, fit = {x0, y0, z0, x1, y1, z1};
+**                                        live, fit = {x0, y0, z0, x1, y1, z1}, frames_dir
+**                                        (where S saves every frame while animating);
 **                                        a frame's lines = { { p0 =, p1 =, color = {r, g, b
 **                                        [, a]}, width = px }... } are drawn over it
 **   v:patch(scene [, opts]) -> serial    a live frame (post{..., live = true}) brought to
@@ -18,9 +19,10 @@
 **                                        since the last patch and what it appended;
 **                                        opts: step, count, note (the status line)
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
-**                                        "step" | "closed" | "key" | "drag", frame
-**                                        (1-based), step, module (1-based), kind, x, y,
-**                                        path, ok, msg, key, ctrl, shift, phase };
+**                                        "step" | "closed" | "key" | "drag" | "frames",
+**                                        frame (1-based), step, module (1-based), kind, x,
+**                                        y, path, ok, msg, key, ctrl, shift, phase; frames:
+**                                        count, first, last (steps) };
 **                                        with a layout also "pointer" (pane, phase "down" |
 **                                        "move" | "up", button, x, y in the image's pixels,
 **                                        ctrl, shift, pressure: a tablet pen's, in [0, 1],
@@ -229,6 +231,14 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
     snprintf(s->title, sizeof s->title, "%s", lua_tostring(L, -1));
     lua_pop(L, 1);
   }
+  if (lsys_optfield(L, &po, "frames_dir", LUA_TSTRING, "a folder's path")) {
+    size_t len;
+    const char *d = lua_tolstring(L, -1, &len);
+    if (len == 0 || len >= sizeof s->framesdir) lsys_opterror(L, &po, "frames_dir",
+                                                              "a path of 1 to 511 bytes");
+    memcpy(s->framesdir, d, len + 1);
+    lua_pop(L, 1);
+  }
   s->keep_camera = lsys_optbool(L, &po, "keep_camera", 0);
   s->capture = lsys_optbool(L, &po, "capture", 0);
   s->live = lsys_optbool(L, &po, "live", 0);
@@ -314,7 +324,8 @@ static int viewer_patch (lua_State *L) {
 }
 
 static const char *const evnames[] = {
-  "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag", "pointer", "scroll"
+  "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag", "pointer", "scroll",
+  "frames"
 };
 
 static void setnum (lua_State *L, const char *k, double x) {
@@ -416,6 +427,16 @@ static int viewer_poll (lua_State *L) {
     case LSYS_VEV_POINTER: case LSYS_VEV_SCROLL:
       paneevent(L, &ev);
       break;
+    case LSYS_VEV_FRAMES:
+      lua_pushinteger(L, ev.count);
+      lua_setfield(L, -2, "count");
+      if (ev.count > 0) {
+        lua_pushinteger(L, ev.first);
+        lua_setfield(L, -2, "first");
+        lua_pushinteger(L, ev.step);
+        lua_setfield(L, -2, "last");
+      }
+      /* fall through */
     case LSYS_VEV_SCREENSHOT:
       lua_pushstring(L, ev.path);
       lua_setfield(L, -2, "path");

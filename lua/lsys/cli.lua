@@ -8,6 +8,8 @@
 --   lsys FILE.lua [ARGS]      run a Lua script, like `lua FILE.lua ARGS`
 --   lsys derive [MODEL] ...   derive a model; print the L-string or its statistics
 --   lsys render [MODEL] ...   derive, interpret and render a model to PNG (headless, OSMesa)
+--   lsys render MODEL --frames DIR   one PNG per derivation step, through one camera
+--   lsys animate MODEL -o OUT  the model growing, as .mp4 or .gif (ffmpeg)
 --   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
 --   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
@@ -36,7 +38,9 @@ usage: lsys [COMMAND] [ARGS]
   lsys                        start the REPL, with `lsys` loaded
   lsys FILE.lua [ARGS]        run a Lua script (`-` reads it from stdin), like `lua FILE.lua`
   lsys derive [MODEL] [OPTS]  derive a model; print the L-string or its statistics
-  lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png)
+  lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png),
+                              or --frames DIR: one picture per step, one camera
+  lsys animate [MODEL] -o OUT.mp4|OUT.gif   an animation of the model growing (ffmpeg)
   lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
   lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
   lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
@@ -99,21 +103,59 @@ HELP.render = [=[
 usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
                    [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
                    [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
+       lsys render [MODEL [VIEW.v]] --frames DIR [--every K] [OPTIONS as above]
 
 Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
 VIEW.v, or a vlab object folder, as for `lsys derive`), interprets it with the turtle and
 renders it headless (OSMesa) to a PNG file. Without MODEL, renders the default example
 (examples/default.lua) to tree.png.
 
+With --frames DIR, writes one picture per derivation step into DIR instead (made when
+missing): step-0000.png, step-0001.png, ... All look through one camera, fitted to the last
+step, so the plant grows in place from picture to picture. `lsys animate` makes a video
+of them.
+
 Options:
   -o, --output OUT   the PNG file (default: tree.png for the default model, else the
                      model's file name with .png, in the current directory)
+  --frames DIR       one picture per step into DIR (not with -o); a progress bar on a
+                     terminal, else a line per frame with --progress
+  --every K          with --frames: steps 0, K, 2K, ... and always the last
   --size WxH         picture size in pixels (default 800x800)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
   --map FILE, --mat FILE, --define NAME=VALUE   a cpfg model's, as for `lsys derive`
   --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
                      such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
                      viewpoint=0,10,40, background=1,1,1, supersample=2, ...
+  -h, --help         show this help
+]=]
+
+HELP.animate = [=[
+usage: lsys animate [MODEL [VIEW.v]] [-o OUT.mp4|OUT.gif] [--fps N] [--every K]
+                    [--hold S] [--size WxH] [--steps N] [--seed S] [--set NAME=VALUE]...
+                    [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
+                    [--define NAME=VALUE]... [--progress]
+
+Derives MODEL (as for `lsys render`) and writes an animation of it growing: one frame per
+derivation step, all through one camera fitted to the last step, so the plant grows in
+place. An .mp4 is an H.264 video (yuv420p, plays everywhere); a .gif an animated GIF that
+loops, its colours from one palette made for the whole animation. The frames are drawn
+headless into a temporary folder and encoded by ffmpeg (Debian package ffmpeg: apt-get
+install ffmpeg); without it, `lsys render MODEL --frames DIR` writes the pictures.
+
+Options:
+  -o, --output OUT   the .mp4 or .gif file (default: the model's name with .mp4, or
+                     tree.mp4 for the default model, in the current directory); it
+                     appears whole or not at all
+  --fps N            frames a second (default 4)
+  --every K          steps 0, K, 2K, ... and always the last (default: every step)
+  --hold S           the last frame stays S seconds longer (default 0)
+  --size WxH         frame size in pixels (default 800x800; an .mp4's are rounded up to
+                     even numbers, as H.264 needs)
+  --progress         a line per step and frame on stderr (on a terminal a progress bar
+                     is shown without it)
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE   as for `lsys render`
   -h, --help         show this help
 ]=]
 
@@ -150,8 +192,9 @@ closes with Esc or Q, and Ctrl-C here closes it too.
 
 In the window: drag to orbit, right-drag or shift-drag to pan, scroll to zoom; left and
 right arrows step through the derivation, space animates, + and - change the speed;
-R resets the view, F fits, W toggles wireframe, S saves a screenshot (lsys-NNN.png),
-H shows this list.
+R resets the view, F fits, W toggles wireframe, S saves a screenshot (lsys-NNN.png) --
+while animating, every step through the window's camera into MODEL-frames/ --, H shows
+this list.
 
 Options:
   --size WxH           window size (default 800x800)
@@ -696,7 +739,7 @@ local RENDER_OPTS = {
   steps = "value", seed = "value", set = "list", name = "value", view = "list",
   output = "value", size = "value", progress = "flag", help = "flag",
   short = { h = "help", o = "output" }, map = "value", mat = "value", define = "list",
-  lines = "value",
+  lines = "value", frames = "value", every = "value",
 }
 
 -- The number of each module name in 's', as a sorted list of { name, count }.
@@ -880,21 +923,103 @@ local function size_opt (cmd, s)
   return w, h
 end
 
+-- The file a command writes without -o: the model's name (a folder's, a file's without its
+-- extension) with `ext`, in the current directory; `default` without MODEL.
+local function default_output (pos, ext, default)
+  local name = pos[1] and pos[1]:gsub("/+$", "")
+  if name == nil then return default end
+  local base = name:match("([^/]*)$")
+  if not isdir(name) then base = base:match("^(.+)%.[^.]*$") or base end
+  return (base ~= "" and base or "model") .. ext
+end
+
+-- A whole number option (at least 'lo'; nil when absent).
+local function int_opt (cmd, name, v, lo)
+  if v == nil then return nil end
+  local n = math.tointeger(tonumber(v))
+  if n == nil or n < lo then
+    usage(cmd, "--%s expects a whole number >= %d, got '%s'", name, lo, v)
+  end
+  return n
+end
+
+-- Minutes and seconds.
+local function mmss (t)
+  t = math.max(0, math.floor(t + 0.5))
+  return format("%d:%02d", t // 60, t % 60)
+end
+
+--[[
+The progress(phase, k, n, detail) of lsys.frames and lsys.animate for a command line: on a
+terminal a line redrawn in place (the step derived; then the frame, a bar, the time taken
+and the time left); elsewhere, with --progress, a plain line for each; else nil.
+]]
+local function frames_progress (opts)
+  local tty = isatty(2)
+  if not tty and not opts.progress then return nil end
+  local err, t0 = io.stderr, clock()
+  return function (phase, k, n, detail, step)
+    if phase == "derive" then
+      err:write(format(tty and "\rderiving: step %d/%d, %d modules\27[K" or
+                       "step %d/%d: %d modules\n", k, n, detail))
+    elseif phase == "frame" and k == 0 then
+      t0 = clock()
+      if tty then err:write(format("\rframe 0/%d\27[K", n)) end
+    elseif phase == "frame" then
+      local spent = clock() - t0
+      if tty then
+        local fill = math.floor(24 * k / n)
+        err:write(format("\rframe %d/%d [%s%s] %s, %s left\27[K%s", k, n, ("#"):rep(fill),
+          ("."):rep(24 - fill), mmss(spent), mmss(spent / k * (n - k)), k == n and "\n" or ""))
+      else
+        err:write(format("frame %d/%d: step %d (%.1f s)\n", k, n, step, spent))
+      end
+    elseif phase == "encode" then
+      err:write(format("encoding %s with ffmpeg\n", detail))
+    end
+    err:flush()
+  end
+end
+
+-- A message of lsys.frames or lsys.animate for the command line: without where in lsys it
+-- was raised and the function's name.
+local function frames_error (err)
+  return (tostring(err):gsub("^[^:\n]*%.lua:%d+: ", ""):gsub("^lsys%.%a+: ", ""))
+end
+
+-- `lsys render MODEL --frames DIR`: one picture per step through one camera.
+local function render_frames (opts, pos, w, h)
+  local every = int_opt("render", "every", opts.every, 1)
+  local model, _, views = prepare("render", opts, pos)
+  local t0 = clock()
+  local ok, files, steps = pcall(require("lsys").frames, model, {
+    dir = opts.frames, every = every, width = w, height = h,
+    view = next(views) and views or nil, progress = frames_progress(opts),
+  })
+  if not ok then error(frames_error(files), 0) end
+  local function base (f) return f:match("([^/]*)$") end
+  out(format("wrote %d picture%s of steps %d to %d to %s (%s%s, %dx%d, one camera) in %.1f s\n",
+    #files, #files == 1 and "" or "s", steps[1], steps[#steps], opts.frames, base(files[1]),
+    #files > 1 and " to " .. base(files[#files]) or "", w, h, clock() - t0))
+  return 0
+end
+
 function commands.render (args)
   local opts, pos = parse("render", RENDER_OPTS, args, 2)
   if opts.help then out(HELP.render) return 0 end
   if opts.lines ~= nil then usage("render", "--lines applies to export only") end
   local w, h = size_opt("render", opts.size)
   w, h = w or 800, h or 800
-  local outpath = opts.output
-  if outpath == nil then
-    local name = pos[1] and pos[1]:gsub("/+$", "")
-    -- a folder (a vlab object) by its name, a file without its extension
-    outpath = name == nil and "tree.png" or
-              (isdir(name) and name:match("([^/]*)$") or name:match("([^/]-)%.?[^./]*$"))
-              .. ".png"
-    if outpath == ".png" then outpath = "model.png" end
+  if opts.frames ~= nil then
+    if opts.output ~= nil then
+      usage("render", "--frames DIR writes one picture per step and -o one picture: "
+        .. "give one of them")
+    end
+    if opts.frames == "" then usage("render", "--frames expects a folder, got ''") end
+    return render_frames(opts, pos, w, h)
   end
+  if opts.every ~= nil then usage("render", "--every applies to --frames") end
+  local outpath = opts.output or default_output(pos, ".png", "tree.png")
   if not outpath:lower():find("%.png$") then
     usage("render", "the output must be a .png file, got '%s'", outpath)
   end
@@ -910,10 +1035,53 @@ function commands.render (args)
   return 0
 end
 
+local ANIMATE_OPTS = {
+  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+  output = "value", size = "value", fps = "value", every = "value", hold = "value",
+  progress = "flag", help = "flag", short = { h = "help", o = "output" },
+  map = "value", mat = "value", define = "list",
+}
+
+-- `lsys animate MODEL -o OUT.mp4|OUT.gif`: the model growing, through ffmpeg.
+function commands.animate (args)
+  local opts, pos = parse("animate", ANIMATE_OPTS, args, 2)
+  if opts.help then out(HELP.animate) return 0 end
+  local w, h = size_opt("animate", opts.size)
+  local outpath = opts.output or default_output(pos, ".mp4", "tree.mp4")
+  local ext = (outpath:match("%.(%w+)$") or ""):lower()
+  if ext ~= "mp4" and ext ~= "gif" then
+    usage("animate", "the output must be an .mp4 video or a .gif animation, got '%s' (for "
+      .. "PNG pictures: lsys render MODEL --frames DIR)", outpath)
+  end
+  local every = int_opt("animate", "every", opts.every, 1)
+  local fps = opts.fps and tonumber(opts.fps)
+  if opts.fps ~= nil and not (fps and fps > 0 and fps <= 1000) then
+    usage("animate", "--fps expects frames a second in (0, 1000], got '%s'", opts.fps)
+  end
+  local hold = opts.hold and tonumber(opts.hold)
+  if opts.hold ~= nil and not (hold and hold >= 0 and hold <= 3600) then
+    usage("animate", "--hold expects seconds from 0 to 3600, got '%s'", opts.hold)
+  end
+  local model, _, views = prepare("animate", opts, pos)
+  local t0 = clock()
+  local ok, r, n, fw, fh = pcall(require("lsys").animate, model, {
+    out = outpath, fps = fps, hold = hold, every = every, width = w, height = h,
+    view = next(views) and views or nil, progress = frames_progress(opts),
+  })
+  if not ok then error(frames_error(r), 0) end
+  local held = hold and hold > 0 and format(", the last held %g s", hold) or ""
+  out(format("wrote %s (%d frame%s, %dx%d, %g a second%s) in %.1f s\n", r, n,
+    n == 1 and "" or "s", fw, fh, fps or require("lsys.frames").FPS, held, clock() - t0))
+  return 0
+end
+
 function commands.export (args)
   local opts, pos = parse("export", RENDER_OPTS, args, 2)
   if opts.help then out(HELP.export) return 0 end
   if opts.size ~= nil then usage("export", "--size applies to render only") end
+  if opts.frames ~= nil or opts.every ~= nil then
+    usage("export", "--frames and --every apply to render only")
+  end
   if #pos == 0 then usage("export", "a MODEL is required") end
   local outpath = opts.output
   if outpath == nil then usage("export", "-o OUT.obj, OUT.ply or OUT.glb is required") end
@@ -1262,16 +1430,6 @@ local GROW_OPTS = {
   frames = "value", every = "value", help = "flag", short = { h = "help" },
 }
 
--- A whole number option of `lsys grow` (at least 'lo').
-local function grow_int (name, v, lo)
-  if v == nil then return nil end
-  local n = math.tointeger(tonumber(v))
-  if n == nil or n < lo then
-    usage("grow", "--%s expects a whole number >= %d, got '%s'", name, lo, v)
-  end
-  return n
-end
-
 -- `lsys grow FILE`: the world live in the window, or --frames DIR.
 function commands.grow (args)
   local opts, pos = parse("grow", GROW_OPTS, args, 2)
@@ -1280,8 +1438,9 @@ function commands.grow (args)
   if #pos > 1 then usage("grow", "unexpected argument '%s' (one FILE)", pos[2]) end
   local w, h = size_opt("grow", opts.size)
   w, h = w or 1000, h or 600
-  local ticks, seed = grow_int("ticks", opts.ticks, 0), grow_int("seed", opts.seed, 0)
-  local every = grow_int("every", opts.every, 1)
+  local ticks = int_opt("grow", "ticks", opts.ticks, 0)
+  local seed = int_opt("grow", "seed", opts.seed, 0)
+  local every = int_opt("grow", "every", opts.every, 1)
   local rate = opts.rate and tonumber(opts.rate)
   if opts.rate ~= nil and not (rate and rate > 0 and rate <= 1000) then
     usage("grow", "--rate expects ticks a second in (0, 1000], got '%s'", opts.rate)

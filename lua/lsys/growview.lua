@@ -13,6 +13,7 @@
 -- @module lsys.growview
 local grow = require "lsys.grow"
 local core = require "lsys.core"
+local series = require "lsys.frames"
 local host = require("lsys.program").host
 
 local type, pcall, tostring, error, require, getmetatable =
@@ -70,9 +71,7 @@ local function length (w, ticks) return ticks or w.length or M.DEFAULT_TICKS end
 function M.final (make, ticks)
   local w = make()
   w:tick(math.max(0, length(w, ticks) - w.ticks))
-  local lo, hi = w:scene():bounds()
-  if lo == nil then lo, hi = { -1, -1, -1 }, { 1, 1, 1 } end
-  return { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] }, w
+  return series.box(w:scene()), w
 end
 
 --- Writes one PNG per tick (every `every`-th, and the last) into `dir`: tick-0000.png, ...
@@ -89,7 +88,7 @@ function M.frames (make, dir, opts)
   local count, path = 0, nil
   for t = w.ticks, n do
     if t > w.ticks then w:tick() end
-    if t % every == 0 or t == n then
+    if series.keep(t, n, every) then
       path = format("%s/tick-%04d.png", dir, t)
       lsys.render(w:scene(), { out = path, fit = box, width = opts.width or 800,
                                height = opts.height or 800 })

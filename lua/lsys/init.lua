@@ -115,6 +115,14 @@ function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end
 --- Starts arranging a plant by inverse kinematics (lsys.arrange, docs/arrange.md).
 function M.arrange (m, s, opts) return _G.require("lsys.arrange")(m, s, opts) end
 
+--- Writes one PNG picture per derivation step of `m` into `opts.dir`, all through one
+-- camera fitted to the last step, so the plant grows in place (lsys.frames.frames).
+function M.frames (m, opts) return _G.require("lsys.frames").frames(m, opts) end
+
+--- Writes an animation of `m` growing, step by step through one camera, to `opts.out`
+-- (.mp4 or .gif) through ffmpeg (lsys.frames.animate).
+function M.animate (m, opts) return _G.require("lsys.frames").animate(m, opts) end
+
 --- Handles the window's events until it is closed (lsys.viewer.wait): the end of a script
 -- that shows a model.
 function M.wait () return _G.require("lsys.viewer").wait() end

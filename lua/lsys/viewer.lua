@@ -12,7 +12,8 @@
 -- lets the window step through them (left/right arrows, space animates); the camera
 -- is fitted to the step shown first (the last, by default) and kept while stepping, so
 -- the plant grows in place. The model's `view` is read at each show: change it and show
--- again.
+-- again. The S key pressed while animating saves every step through that camera to a
+-- folder (`frames_dir`), a picture series as lsys.frames writes.
 --
 -- Without a window (none opened yet, closed, or none possible: no display, or lsys built
 -- without the viewer) every function follows one rule. The ones asked to act on a window
@@ -27,7 +28,7 @@ local warning = require "lsys.warning"
 
 local type, pairs, ipairs, error, pcall, tostring, require, getmetatable =
       type, pairs, ipairs, error, pcall, tostring, require, getmetatable
-local os, string, math = os, string, math
+local io, os, string, math = io, os, string, math
 local format = string.format
 local _ENV = nil
 
@@ -50,11 +51,26 @@ M.on_pick = nil
 --- The last pick (see `show`), or nil.
 M.last_pick = nil
 
+--- Called by `poll` when the S key, pressed while animating, saved every step through the
+-- window's camera (or failed): with the event { path = the folder, ok, count = pictures
+-- written, first, last = their steps, msg = why not }. By default it prints where the
+-- pictures went on stderr; set it to nil to print nothing.
+function M.on_frames (ev)
+  if ev.ok then
+    io.stderr:write(format("lsys: saved %d pictures of steps %d to %d to %s/ (one camera)\n",
+      ev.count, ev.first, ev.last, ev.path))
+  else
+    io.stderr:write(format("lsys: could not save the steps to %s/: %s%s\n", ev.path, ev.msg,
+      ev.count > 0 and format(" (%d saved)", ev.count) or ""))
+  end
+end
+
 local SHOW_OPTS = {
   step = "number", steps = "boolean", rate = "number", title = "string", width = "number",
   height = "number", on_pick = "function", on_event = "function", view = "table",
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
   model = "table", lines = "table", capture = "boolean", history = "number",
+  frames_dir = "string",
 }
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
@@ -164,6 +180,15 @@ local function model_frames (m, opts)
   return frames, textures
 end
 
+-- The folder the S key saves every step to while animating, from the name of what is
+-- shown (a title, a model's name, its file): "<name>-frames", "lsys-frames" without one.
+local function frames_dir (name)
+  local stem = name and name:match("([^/]*)$"):gsub(":%d+$", "")
+  stem = stem and (stem:match("^(.+)%.[^.]*$") or stem):gsub("[^%w_.-]+", "-")
+  if stem == nil or stem == "" or stem == "model" or stem:find("^%.") then stem = "lsys" end
+  return stem .. "-frames"
+end
+
 -- The model to interpret an Lstring with: its own, the one given, the last shown, or a
 -- plain turtle.
 local plain
@@ -235,7 +260,10 @@ end
 -- ... } drawn over it, depth-tested unless `ontop`),
 -- `capture` (a tool takes the keys and Ctrl-drags: they come to `on_event` as
 -- { type = "key", key = "up", ctrl =, shift = } and
--- { type = "drag", phase = "begin" | "move" | "end", x =, y = }).
+-- { type = "drag", phase = "begin" | "move" | "end", x =, y = }), `frames_dir` (where
+-- the S key, pressed while animating, saves every step through the window's camera as
+-- step-NNNN.png: default "<name>-frames" in the current directory, the name of the model's
+-- file or the title; see `on_frames`).
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
@@ -289,9 +317,12 @@ function M.show (x, opts)
   if opts.rate ~= nil and not (opts.rate > 0 and opts.rate <= 1000) then
     fail("option 'rate' must be in (0, 1000] steps per second", 2)
   end
+  if opts.frames_dir == "" then fail("option 'frames_dir' must not be empty", 2) end
   local v = open(opts, "lsys.show")
   v:post(frames, {
     first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
+    frames_dir = opts.frames_dir or frames_dir(opts.title or model.ismodel(x) and
+                                               (x.name or model.where(x)) or nil),
     keep_camera = opts.keep_camera, capture = opts.capture,
     textures = textures and #textures > 0 and textures or nil,
   })
@@ -370,6 +401,8 @@ function M.poll (timeout)
       M.last_pick = info
       local f = S.on_pick or M.on_pick
       if f then f(info) end
+    elseif ev.type == "frames" then
+      if M.on_frames then M.on_frames(ev) end
     elseif ev.type == "closed" then
       v:close()
       S.viewer = nil
@@ -424,6 +457,8 @@ function M.screenshot (path, timeout)
         M.last_pick = pickinfo(ev)
         local f = S.on_pick or M.on_pick
         if f then f(M.last_pick) end
+      elseif ev.type == "frames" and M.on_frames then
+        M.on_frames(ev)
       end
       ev = v:poll(0)
     end

@@ -1,0 +1,361 @@
+--- Picture series and growth animations (issue 19): a model's derivation steps as PNG
+-- pictures through one camera (`lsys.frames`), and those pictures as a video or an animated
+-- GIF through ffmpeg (`lsys.animate`): what `lsys render MODEL --frames DIR` and
+-- `lsys animate MODEL -o OUT` run.
+--
+-- Every picture of a series looks through the camera fitted to the last step's scene (the
+-- `fit` box of lsys.render), so the plant grows in place instead of being fitted anew at
+-- each step. lsys.growview does the same for a growing world (M.box, M.keep).
+--
+-- The strings of the steps kept are kept (not their scenes): each is interpreted, drawn
+-- and let go in turn, the last one first, for the camera.
+-- @module lsys.frames
+local core = require "lsys.core"
+local model = require "lsys.model"
+
+local type, pairs, ipairs, error, pcall, tostring, require =
+      type, pairs, ipairs, error, pcall, tostring, require
+local io, os, math, string, table = io, os, math, string, table
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+M.PATTERN = "step-%04d.png"      -- the pictures' names: the step's number in %d
+M.FPS = 4                        -- frames a second of an animation
+
+--- The box a camera frames for a series of pictures ending with `scene` (the last step,
+-- the grown world): {x0, y0, z0, x1, y1, z1}, its bounds (a unit box when it is empty).
+function M.box (scene)
+  local lo, hi = scene:bounds()
+  if lo == nil then lo, hi = { -1, -1, -1 }, { 1, 1, 1 } end
+  return { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] }
+end
+
+--- Whether step (or tick) `k` of `n` is drawn when drawing every `every`-th: the multiples
+-- of `every`, and the last.
+function M.keep (k, n, every)
+  return k % every == 0 or k == n
+end
+
+-- {===========================================================================================
+-- Options
+
+local COMMON = {
+  every = "integer", steps = "integer", width = "integer", height = "integer",
+  view = "table", zoom = "number", wireframe = "boolean", progress = "function",
+}
+local FRAMES_OPTS = { dir = "string", pattern = "string", transparent = "boolean" }
+local ANIMATE_OPTS = { out = "string", fps = "number", hold = "number", ffmpeg = "string" }
+for k, t in pairs(COMMON) do FRAMES_OPTS[k], ANIMATE_OPTS[k] = t, t end
+
+-- The options table `opts` of function `who`, checked against `spec` (error level 3: the
+-- caller of lsys.frames or lsys.animate).
+local function checkopts (who, opts, spec)
+  if opts == nil then opts = {} end
+  if type(opts) ~= "table" then error(format("%s: an options table expected", who), 3) end
+  for k, v in pairs(opts) do
+    local t = spec[k]
+    if t == nil then error(format("%s: unknown option '%s'", who, tostring(k)), 3) end
+    local ok = t == "integer" and math.type(v) == "integer" or
+               t == "integer" and type(v) == "number" and v == math.floor(v) or type(v) == t
+    if not ok then
+      error(format("%s: option '%s' must be a %s, got %s", who, k,
+        t == "integer" and "whole number" or t, type(v) == "string" and "'" .. v .. "'"
+        or tostring(v)), 3)
+    end
+  end
+  local function atleast (k, lo, hi)
+    local v = opts[k]
+    if v ~= nil and (v < lo or (hi and v > hi)) then
+      error(format("%s: option '%s' must be %s, got %s", who, k, hi and
+        format("from %d to %d", lo, hi) or format(">= %d", lo), tostring(v)), 4)
+    end
+  end
+  atleast("every", 1)
+  atleast("steps", 0, model.MAX_STEPS)
+  atleast("width", 1, 16384)
+  atleast("height", 1, 16384)
+  return opts
+end
+
+-- The model of lsys.frames and lsys.animate: a Model, or a component graph's root
+-- prototype (made one, as lsys.render does).
+local function checkmodel (who, m)
+  if type(m) == "table" and m.links ~= nil and require("lsys.components.proto").isproto(m) then
+    return require("lsys.components").model(m)
+  end
+  if not model.ismodel(m) then
+    error(format("%s: a Model (lsys.lsystem{...}) or a component prototype expected, got %s",
+      who, type(m)), 3)
+  end
+  return m
+end
+
+-- 'msg' without the name of the lsys function that raised it ("lsys.render: ", "derive: ")
+-- and with `who` in front.
+local function blame (who, msg)
+  msg = tostring(msg):gsub("^lsys%.render: ", ""):gsub("^render: ", "")
+  return who .. ": " .. msg
+end
+
+-- Makes the folder `dir` and the ones above it that are missing. Raises naming it.
+local function mkdirs (who, dir)
+  local path = dir:sub(1, 1) == "/" and "/" or ""
+  for seg in dir:gmatch("[^/]+") do
+    path = path .. seg
+    local ok, err = core.mkdir(path)
+    if not ok then error(format("%s: %s", who, err), 0) end
+    path = path .. "/"
+  end
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- The series
+
+--[[
+Derives model `m` (opts.steps, default m.steps) and writes one picture for every kept step
+(M.keep with opts.every) through one camera, the last step's: the file `name(i, step)` for
+the i-th picture. opts.progress(phase, k, n, detail): "derive" after step k of n (detail:
+the modules), "frame" before the first picture (k = 0) and after picture k of n (detail:
+its path; then the step it shows). Returns the paths and the steps.
+]]
+local function series (who, m, opts, name)
+  local n = opts.steps or m.steps or 0
+  local every = opts.every or 1
+  local progress = opts.progress
+  local kept, strings = {}, {}
+  local ok, err = pcall(m.derive, m, n, {
+    each = function (k, s)
+      if M.keep(k, n, every) then kept[#kept + 1], strings[k] = k, s end
+    end,
+    progress = progress and function (k, nn, nmod) progress("derive", k, nn, nmod) end,
+  })
+  if not ok then error(blame(who, err), 0) end
+  local function scene (k)
+    local sok, sc = pcall(m.interpret, m, strings[k], opts.view)
+    if not sok then error(blame(who, sc), 0) end
+    strings[k] = nil                   -- the string is done with once drawn
+    return sc
+  end
+  local last = scene(n)
+  local box = M.box(last)
+  local ropts = { fit = box, width = opts.width or 800, height = opts.height or 800,
+                  zoom = opts.zoom, wireframe = opts.wireframe,
+                  transparent = opts.transparent }
+  local files = {}
+  if progress then progress("frame", 0, #kept) end
+  for i, k in ipairs(kept) do
+    local path = name(i, k)
+    local sc = k == n and last or scene(k)
+    -- as lsys.render(sc, ropts) (which `require "lsys"` would bring in a cycle): the scene
+    -- keeps its view; the supersampling is the view's
+    local v = model.sceneview(sc)
+    ropts.out, ropts.supersample = path, v and v.supersample
+    local rok, rerr = pcall(core.render, sc, ropts)
+    if not rok then error(blame(who, rerr), 0) end
+    files[i] = path
+    if progress then progress("frame", i, #kept, path, k) end
+  end
+  return files, kept
+end
+
+-- A picture name pattern: a .png name with one %d (%4d, %04d) for the step, no folder.
+local function checkpattern (who, p)
+  local _, npct = p:gsub("%%", "")
+  if npct ~= 1 or not p:find("%%0?%d?d") or p:find("/") or not p:lower():find("%.png$") then
+    error(format("%s: option 'pattern' must be a .png file name with one %%d for the step "
+      .. "(as 'step-%%04d.png'), got '%s'", who, p), 3)
+  end
+end
+
+--- Writes one PNG picture per derivation step of model `m` into a folder, all through one
+-- camera fitted to the last step, so the plant grows in place. opts: `dir` (the folder,
+-- made with the ones above it when missing; required), `every` (K: steps 0, K, 2K, ...
+-- and always the last; default 1), `steps` (default m.steps), `width`, `height` (800),
+-- `view` (view fields for the interpretation: camera, background, line_style, ...),
+-- `zoom`, `wireframe`, `transparent` (as lsys.render), `pattern` (the file names, with
+-- %d for the step: default "step-%04d.png"), `progress(phase, k, n, detail, step)`
+-- ("derive": step k of n derived, detail the modules; "frame": picture k of n written,
+-- detail its path, `step` the step it shows; k = 0 before the first). Each picture is
+-- written whole or not at all (written aside, then renamed); files of the same names are
+-- replaced. Returns the list of paths written and the list of the steps they show. Raises
+-- naming the option or the file.
+function M.frames (m, opts)
+  local who = "lsys.frames"
+  opts = checkopts(who, opts, FRAMES_OPTS)
+  m = checkmodel(who, m)
+  if opts.dir == nil then error("lsys.frames: option 'dir' (the folder) is required", 2) end
+  if opts.dir == "" then error("lsys.frames: option 'dir' must not be empty", 2) end
+  local pattern = opts.pattern or M.PATTERN
+  checkpattern(who, pattern)
+  mkdirs(who, opts.dir)
+  local dir = opts.dir:gsub("/+$", "")
+  if dir == "" then dir = "/" end
+  return series(who, m, opts, function (_, k)
+    return (dir == "/" and "" or dir) .. "/" .. format(pattern, k)
+  end)
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- Animations through ffmpeg
+
+-- One word for a POSIX shell: single quotes, a quote inside as '\''.
+local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
+
+-- The path of the program `prog` (a name looked up on PATH, or a path), or nil.
+local function which (prog)
+  local function isfile (p)
+    local f = io.open(p, "r")
+    if f == nil then return false end
+    local ok, err = f:read(0)
+    f:close()
+    return ok ~= nil or err == nil
+  end
+  if prog:find("/") then return isfile(prog) and prog or nil end
+  for d in (os.getenv("PATH") or ""):gmatch("[^:]+") do
+    if isfile(d .. "/" .. prog) then return d .. "/" .. prog end
+  end
+  return nil
+end
+
+local FORMATS = { mp4 = "mp4", gif = "gif" }
+
+-- The ffmpeg arguments that turn the pictures `input` (an image2 pattern) at `fps` into
+-- the file `part` of format `fmt`, the last picture held `hold` seconds longer.
+local function ffmpeg_args (fmt, input, fps, hold, part)
+  local args = { "-hide_banner", "-loglevel", "error", "-nostdin", "-y",
+                 "-framerate", format("%.17g", fps), "-i", input }
+  local pad = hold > 0 and format("tpad=stop_mode=clone:stop_duration=%.17g", hold) or nil
+  if fmt == "mp4" then
+    if pad then args[#args + 1] = "-vf" args[#args + 1] = pad end
+    for _, a in ipairs { "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18",
+                         "-movflags", "+faststart" } do
+      args[#args + 1] = a
+    end
+  else          -- one palette made for the whole animation: good colours, no dithering noise
+    args[#args + 1] = "-filter_complex"
+    args[#args + 1] = (pad and "[0:v]" .. pad .. "[v];[v]" or "[0:v]")
+      .. "split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse"
+    args[#args + 1] = "-loop"
+    args[#args + 1] = "0"
+  end
+  args[#args + 1] = "-f"
+  args[#args + 1] = fmt
+  args[#args + 1] = "file:" .. part     -- file: a name is never taken for a protocol
+  return args
+end
+
+-- Runs `prog args...`; returns true, or false and the last lines it printed and how it
+-- ended.
+local function run (prog, args)
+  local words = { shq(prog) }
+  for i, a in ipairs(args) do words[i + 1] = shq(a) end
+  local p = io.popen(table.concat(words, " ") .. " 2>&1", "r")
+  local text = p:read("a")
+  local ok, how, code = p:close()
+  if ok then return true end
+  local lines = {}
+  for l in text:gmatch("[^\n]+") do lines[#lines + 1] = l end
+  local tail = table.concat(lines, "\n", math.max(1, #lines - 4))
+  return false, tail, how == "signal" and "signal " .. tostring(code) or "exit " ..
+    tostring(code)
+end
+
+local tmpcount = 0
+
+-- A new empty folder for the pictures of an animation.
+local function tmpfolder (who)
+  local name = os.tmpname()
+  os.remove(name)
+  local ok, err = core.mkdir(name)
+  if not ok then error(format("%s: %s", who, err), 0) end
+  return name
+end
+
+--- Writes an animation of model `m` growing: one frame per derivation step (or every K-th
+-- and the last), all through one camera fitted to the last step, encoded by ffmpeg as an
+-- H.264 video (.mp4) or an animated GIF (.gif, one palette made for the whole). opts:
+-- `out` (the file; required), `fps` (frames a second, default 4), `hold` (seconds the last
+-- frame stays, default 0), `every`, `steps`, `width`, `height` (800; an .mp4's are rounded
+-- up to even numbers, as H.264 needs), `view`, `zoom`, `wireframe`, `progress(phase, k, n,
+-- detail)` (as lsys.frames, and "encode" before ffmpeg runs: k = 0, n = 1, detail the
+-- output), `ffmpeg` (the program, default "ffmpeg" on PATH). The pictures are drawn in a
+-- temporary folder, removed afterwards; `out` is written whole or not at all. Returns
+-- `out`, the number of frames and the width and height. Raises when ffmpeg is missing
+-- (saying how to install it) or fails (with the last lines it printed).
+function M.animate (m, opts)
+  local who = "lsys.animate"
+  opts = checkopts(who, opts, ANIMATE_OPTS)
+  m = checkmodel(who, m)
+  local out = opts.out
+  if out == nil then error("lsys.animate: option 'out' (an .mp4 or .gif file) is required", 2) end
+  local fmt = FORMATS[(out:match("%.(%w+)$") or ""):lower()]
+  if fmt == nil then
+    error(format("lsys.animate: '%s': the output must be an .mp4 video or a .gif "
+      .. "animation (for PNG pictures use lsys.frames)", out), 2)
+  end
+  if out:find("%c") then error(format("lsys.animate: refusing the file name %q", out), 2) end
+  local fps, hold = opts.fps or M.FPS, opts.hold or 0
+  if not (fps > 0 and fps <= 1000) then
+    error(format("lsys.animate: option 'fps' must be in (0, 1000], got %s", tostring(fps)), 2)
+  end
+  if not (hold >= 0 and hold <= 3600) then
+    error(format("lsys.animate: option 'hold' must be 0 to 3600 seconds, got %s",
+      tostring(hold)), 2)
+  end
+  local prog = opts.ffmpeg or "ffmpeg"
+  if which(prog) == nil then
+    error(format("lsys.animate: %s is needed to write %s and %s: install it (Debian, "
+      .. "Ubuntu: apt-get install ffmpeg), or write the pictures with lsys.frames "
+      .. "(`lsys render MODEL --frames DIR`), which needs no ffmpeg", prog, out,
+      prog:find("/") and "there is no " .. prog or "was not found on PATH"), 2)
+  end
+  local w, h = opts.width or 800, opts.height or 800
+  if fmt == "mp4" then w, h = w + w % 2, h + h % 2 end
+  local fopts = {}
+  for k, v in pairs(opts) do if COMMON[k] then fopts[k] = v end end
+  fopts.width, fopts.height = w, h
+  tmpcount = tmpcount + 1
+  local part = format("%s.lsys-%d-%d.part", out, os.time(), tmpcount)
+  local pf, perr = io.open(part, "wb")   -- a folder that is missing: said before any drawing
+  if pf == nil then
+    error(format("lsys.animate: cannot write '%s': %s", out,
+      tostring(perr):match(": ([^:]*)$") or tostring(perr)), 2)
+  end
+  pf:close()
+  local dir = tmpfolder(who)
+  local drawn = {}                     -- removed afterwards, even when one fails
+  local ok, err = pcall(function ()
+    series(who, m, fopts, function (i)
+      drawn[i] = format("%s/frame-%06d.png", dir, i)
+      return drawn[i]
+    end)
+    if opts.progress then opts.progress("encode", 0, 1, out) end
+    local rok, tail, how = run(prog, ffmpeg_args(fmt, dir .. "/frame-%06d.png", fps, hold,
+                                                 part))
+    if not rok then
+      error(format("%s: %s failed (%s) writing '%s'%s", who, prog, how, out,
+        tail ~= "" and ":\n" .. tail or ""), 0)
+    end
+    local mok, merr = os.rename(part, out)
+    if not mok then error(format("%s: cannot write '%s': %s", who, out, tostring(merr)), 0) end
+  end)
+  for _, f in ipairs(drawn) do os.remove(f) end
+  os.remove(dir)
+  if not ok then
+    os.remove(part)
+    error(err, 0)
+  end
+  return out, #drawn, w, h
+end
+
+-- }===========================================================================================
+
+return M
