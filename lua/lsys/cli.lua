@@ -12,6 +12,7 @@
 --   lsys animate MODEL -o OUT  the model growing, as .mp4 or .gif (ffmpeg)
 --   lsys export MODEL -o OUT  derive, interpret and write the geometry (.obj .ply .glb)
 --   lsys view [MODEL] ...     the viewer window on a model, reloaded when its file changes
+--   lsys arrange [MODEL] ...  bend, twist and prune a derived model in the window (IK)
 --   lsys sketch [FILE] ...    the sketch window; sketch plot|model|render FILE -o OUT
 --   lsys components graph MODEL -o OUT   a component graph's p-graph (.png .svg .pdf .dot)
 --   lsys grow FILE ...        a growing world (lsys.grow) live in the window, or --frames DIR
