@@ -52,39 +52,26 @@ local function normalize (path)
   return table.concat(out, "/")
 end
 
--- The page without its fenced code blocks and inline code spans (links there are code).
-local function prose (text)
-  local lines, fence = {}, nil
-  for line in (text .. "\n"):gmatch("(.-)\n") do
-    local f = line:match("^%s*(```+)") or line:match("^%s*(~~~+)")
-    if fence then
-      if f and f:sub(1, 1) == fence:sub(1, 1) and #f >= #fence then fence = nil end
-      lines[#lines + 1] = ""
-    elseif f then
-      fence = f
-      lines[#lines + 1] = ""
-    else
-      lines[#lines + 1] = (line:gsub("(`+).-%1", ""))
-    end
-  end
-  return table.concat(lines, "\n")
-end
-
--- The code of the page: fenced blocks and inline spans.
-local function code (text)
-  local out, fence = {}, nil
+-- A page split into its prose (without fenced code blocks and inline code spans: links
+-- there are code, the blocks' lines left empty) and its code (the lines of fenced blocks
+-- and the inline spans, as a list).
+local function split (text)
+  local lines, code, fence = {}, {}, nil
   for line in (text .. "\n"):gmatch("(.-)\n") do
     local f = line:match("^%s*(```+)") or line:match("^%s*(~~~+)")
     if fence then
       if f and f:sub(1, 1) == fence:sub(1, 1) and #f >= #fence then fence = nil
-      else out[#out + 1] = line end
+      else code[#code + 1] = line end
+      lines[#lines + 1] = ""
     elseif f then
       fence = f
+      lines[#lines + 1] = ""
     else
-      for span in line:gmatch("`+(.-)`+") do out[#out + 1] = span end
+      for span in line:gmatch("`+(.-)`+") do code[#code + 1] = span end
+      lines[#lines + 1] = (line:gsub("(`+).-%1", ""))
     end
   end
-  return out
+  return table.concat(lines, "\n"), code
 end
 
 -- Non-ASCII punctuation that GitHub drops from heading anchors (letters stay).
@@ -143,7 +130,7 @@ end
 
 local function links (text)
   local out = {}
-  for target in prose(text):gmatch("%]%(([^)%s]+)[^)]*%)") do
+  for target in (split(text)):gmatch("%]%(([^)%s]+)[^)]*%)") do
     out[#out + 1] = target
   end
   return out
@@ -220,7 +207,7 @@ describe("the documentation", function ()
     assert.is_string(commands.derive)
     local bad = {}
     for _, page in ipairs(PAGES) do
-      for _, c in ipairs(code(read(page))) do
+      for _, c in ipairs(select(2, split(read(page)))) do
         -- a command line: `lsys CMD ...`, `build/bin/lsys CMD`, `$ lsys CMD`, `X=1 lsys CMD`
         local line = c:gsub("^%s*%$%s+", ""):gsub("^%s+", "")
         repeat local n; line, n = line:gsub("^[%u_][%u%d_]*=%S*%s+", "") until n == 0
