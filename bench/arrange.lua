@@ -21,21 +21,12 @@ local B = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
 local verdict = B.verdict
 local TARGET_MS, TARGET_N = 1, 100           -- the issue's target: < 1 ms for 100 joints
 
-local function shell_quote (s)
-  return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
-end
+local shell_quote, capture = B.shell_quote, B.capture
 
 local function exists (path)
   local f = io.open(path, "r")
   if f then f:close() end
   return f ~= nil
-end
-
-local function capture (cmd)
-  local p = io.popen(cmd .. " 2>&1")
-  local out = p:read("a")
-  local ok = p:close()
-  return out, ok
 end
 
 -- the build directory: LSYS_BUILD_DIR, the running program's (<build>/bin/lsys), ./build

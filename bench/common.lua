@@ -43,4 +43,34 @@ end
 
 function B.verdict (ok) return ok and "PASS" or "MISS" end
 
+--- 's' quoted for the shell
+function B.shell_quote (s)
+  return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
+end
+
+--- the contents of a file, or nil
+function B.read_file (path)
+  local f = io.open(path, "r")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+--- runs a shell command: its output (stdout and stderr) and io.popen's close results
+function B.capture (cmd)
+  local p = io.popen(cmd .. " 2>&1")
+  local out = p:read("a")
+  local ok, how, code = p:close()
+  return out, ok, how, code
+end
+
+--- the path of node, or nil
+function B.node_path ()
+  local p = io.popen("command -v node 2>/dev/null")
+  local path = p:read("l")
+  p:close()
+  return path
+end
+
 return B
