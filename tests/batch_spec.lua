@@ -256,8 +256,10 @@ describe("batch specs", function()
       assert.equal(dir .. "/specs/n.lua returned number, not a spec (end the file with "
         .. "`return { model = ..., vary = { ... }, outputs = { ... } }` or a list of jobs)",
         jobs_error(dir .. "/specs/n.lua"))
-      assert.equal("'x.txt': a spec is a CSV file (.csv) or a Lua file (.lua)",
+      assert.equal("lsys.batch.jobs: 'x.txt': a spec is a CSV file (.csv) or a Lua file (.lua)",
         jobs_error("x.txt"))
+      assert.equal("lsys.batch.jobs: a spec (a file name or a table) expected, got number",
+        jobs_error(5))
     end)
   end)
 

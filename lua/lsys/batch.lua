@@ -111,8 +111,9 @@ local function keyless (a, b)
   return a < b
 end
 
---- `v` (nil, booleans, numbers, strings, tables: arrays marked by M.array, else objects with
--- string keys) as JSON text on one line, the same bytes for the same value in every process.
+-- `v` (nil, booleans, numbers, strings, tables: sequences and those marked by `array` as
+-- arrays, others objects with string keys) as JSON text on one line, the same bytes for the
+-- same value in every process.
 local function json (v)
   local t = type(v)
   if v == nil then return "null"
@@ -120,18 +121,24 @@ local function json (v)
   elseif t == "number" then return jsonnum(v)
   elseif t == "string" then return jsonstr(v)
   elseif t ~= "table" then error(format("json: cannot write a %s", t), 2) end
-  local parts = {}
-  if getmetatable(v) == ARRAY then
-    for i = 1, #v do parts[i] = json(v[i]) end
+  local parts, keys, n = {}, {}, #v
+  for k in pairs(v) do
+    if type(k) == "string" then
+      keys[#keys + 1] = k
+    elseif not (math.type(k) == "integer" and k >= 1 and k <= n) then
+      error("json: an object's keys must be strings", 2)
+    end
+  end
+  if getmetatable(v) == ARRAY or (n > 0 and #keys == 0) then
+    if #keys > 0 then error("json: an array with other keys", 2) end
+    for i = 1, n do parts[i] = json(v[i]) end
     return "[" .. table.concat(parts, ",") .. "]"
   end
-  local keys = {}
-  for k in pairs(v) do keys[#keys + 1] = k end
+  if n > 0 then error("json: a table both a list and an object", 2) end
   table.sort(keys, keyless)
   for i, k in ipairs(keys) do parts[i] = jsonstr(k) .. ":" .. json(v[k]) end
   return "{" .. table.concat(parts, ",") .. "}"
 end
-M.json, M.array = json, array
 
 -- }===========================================================================================
 
@@ -144,6 +151,10 @@ M.json, M.array = json, array
 -- bits -- mix(base + n * 0x9E3779B97F4A7C15) >> 33 in 64-bit arithmetic, a whole number
 -- from 0 to 2^31 - 1. It depends on the spec only, not on the shard or the host.
 function M.seed (base, n)
+  base, n = math.tointeger(base), math.tointeger(n)
+  if base == nil or n == nil then
+    error("lsys.batch.seed: the spec's seed and the job's number must be whole numbers", 2)
+  end
   local z = base + n * 0x9E3779B97F4A7C15
   z = (z ~ (z >> 30)) * 0xBF58476D1CE4E5B9
   z = (z ~ (z >> 27)) * 0x94D049BB133111EB
@@ -154,6 +165,11 @@ end
 -- shard 1, job 2 to shard 2, ...), so that every shard gets its share of a sweep whose
 -- jobs grow heavier along the way.
 function M.shard_of (n, count)
+  n, count = math.tointeger(n), math.tointeger(count)
+  if n == nil or count == nil or n < 1 or count < 1 then
+    error("lsys.batch.shard_of: the job's number and the count of shards must be whole "
+      .. "numbers >= 1", 2)
+  end
   return (n - 1) % count + 1
 end
 
@@ -167,6 +183,13 @@ end
 -- from the job array's SLURM_ARRAY_TASK_ID, _MIN, _STEP and _COUNT, read by `getenv`,
 -- default os.getenv). Returns nil and a message when `s` names none.
 function M.parse_shard (s, getenv)
+  if type(s) ~= "string" then
+    error(format("lsys.batch.parse_shard: a string expected (\"K/N\" or \"slurm\"), got %s",
+      type(s)), 2)
+  end
+  if getenv ~= nil and type(getenv) ~= "function" then
+    error("lsys.batch.parse_shard: getenv must be a function (as os.getenv)", 2)
+  end
   getenv = getenv or os.getenv
   if s == "slurm" then
     local id, idtext = envint(getenv, "SLURM_ARRAY_TASK_ID")
@@ -192,11 +215,10 @@ function M.parse_shard (s, getenv)
     end
     return k, count
   end
-  local k, n = tostring(s):match("^%s*(%d+)%s*/%s*(%d+)%s*$")
+  local k, n = s:match("^%s*(%d+)%s*/%s*(%d+)%s*$")
   k, n = math.tointeger(tonumber(k)), math.tointeger(tonumber(n))
   if k == nil or n == nil or n < 1 or k < 1 or k > n then
-    return nil, format("expects K/N (shard K of N, 1 <= K <= N) or slurm, got '%s'",
-      tostring(s))
+    return nil, format("expects K/N (shard K of N, 1 <= K <= N) or slurm, got '%s'", s)
   end
   return k, n
 end
@@ -216,6 +238,9 @@ line it begins on. Raises "name:line: ..." for a quote left open (the line it op
 after a closing quote, and a quote inside an unquoted field.
 ]]
 function M.csv (text, name)
+  if type(text) ~= "string" or type(name) ~= "string" then
+    error("lsys.batch.csv: the text and the file's name must be strings", 2)
+  end
   local rows = {}
   local i, len, line = 1, #text, 1
   if text:sub(1, 3) == "\239\187\191" then i = 4 end
@@ -744,14 +769,8 @@ local function lua_jobs (spec, who)
   return jobs
 end
 
---- The jobs of a spec: the path of a CSV file (.csv) or a Lua file (.lua) that returns a
--- spec table, or a spec table (model paths relative to its `dir`, default the current
--- folder). Returns the list of jobs, each { n (its number), id, where (the spec's file and
--- line, "plants.csv:7", or the Lua field), model (as the spec names it), path (the file
--- opened), name, seed, steps, width, height, params (variable = value), outputs (a list of
--- { format, path }, paths relative to the output folder), rep }, and { file, dir, total }.
--- Raises naming the spec's file, line and column (or field) of what is wrong.
-function M.jobs (spec)
+-- The jobs of `spec` (as for M.jobs); `who` is the public function named in messages.
+local function load_jobs (who, spec)
   local jobs, file, dir, base
   if type(spec) == "string" then
     file, dir = spec, dirname(spec)
@@ -772,14 +791,14 @@ function M.jobs (spec)
       jobs = lua_jobs(t, spec)
       base = t.seed
     else
-      error(format("'%s': a spec is a CSV file (.csv) or a Lua file (.lua)", spec), 0)
+      error(format("%s: '%s': a spec is a CSV file (.csv) or a Lua file (.lua)", who, spec), 0)
     end
   elseif type(spec) == "table" then
     dir = spec.dir or "."
     if type(dir) ~= "string" then error("spec: dir: a folder name expected", 0) end
     jobs, base = lua_jobs(spec, "spec"), spec.seed
   else
-    error(format("a spec (a file name or a table) expected, got %s", type(spec)), 0)
+    error(format("%s: a spec (a file name or a table) expected, got %s", who, type(spec)), 0)
   end
   if base ~= nil then
     local b, why = conv_whole(base, math.mininteger)
@@ -789,6 +808,15 @@ function M.jobs (spec)
   complete(jobs, base or 0, dir)
   return jobs, { file = file, dir = dir, total = #jobs }
 end
+
+--- The jobs of a spec: the path of a CSV file (.csv) or a Lua file (.lua) that returns a
+-- spec table, or a spec table (model paths relative to its `dir`, default the current
+-- folder). Returns the list of jobs, each { n (its number), id, where (the spec's file and
+-- line, "plants.csv:7", or the Lua field), model (as the spec names it), path (the file
+-- opened), name, seed, steps, width, height, params (variable = value), outputs (a list of
+-- { format, path }, paths relative to the output folder), rep }, and { file, dir, total }.
+-- Raises naming the spec's file, line and column (or field) of what is wrong.
+function M.jobs (spec) return load_jobs("lsys.batch.jobs", spec) end
 
 -- }===========================================================================================
 
@@ -800,7 +828,6 @@ end
 local function manifest_name (k, n)
   return n == 1 and "manifest.jsonl" or format("manifest-%d-of-%d.jsonl", k, n)
 end
-M.manifest_name = manifest_name
 
 -- One word for a POSIX shell.
 local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
@@ -1104,21 +1131,21 @@ end
 local function shard_opt (who, s)
   if s == nil then return 1, 1 end
   if type(s) == "table" then s = format("%s/%s", tostring(s[1]), tostring(s[2])) end
+  if type(s) ~= "string" then
+    error(format("%s: option 'shard' must be \"K/N\", \"slurm\" or { K, N }, got %s", who,
+      type(s)), 0)
+  end
   local k, n = M.parse_shard(s)
-  if k == nil then error(format("%s: option 'shard' %s", who, n), 3) end
+  if k == nil then error(format("%s: option 'shard' %s", who, n), 0) end
   return k, n
 end
 
---- What a run of `spec` with `opts` would do, without running anything: { jobs (this
--- shard's, each with `status`: "done", "failed" or "todo"), total (the spec's jobs), k, n
--- (shard k of n), dir (the output folder), manifest (this shard's manifest), file (the
--- spec's file) }. opts as for M.run.
-function M.plan (spec, opts)
-  opts = checkopts("lsys.batch.plan", opts)
-  local k, n = shard_opt("lsys.batch.plan", opts.shard)
-  local all, info = M.jobs(spec)
+-- M.plan, for the public function `who`.
+local function plan (who, spec, opts)
+  local k, n = shard_opt(who, opts.shard)
+  local all, info = load_jobs(who, spec)
   local dir = opts.out or "."
-  if dir == "" then error("lsys.batch.plan: option 'out' must not be empty", 2) end
+  if dir == "" then error(format("%s: option 'out' must not be empty", who), 0) end
   local records = read_manifests(dir)
   local jobs = {}
   for _, job in ipairs(all) do
@@ -1130,6 +1157,14 @@ function M.plan (spec, opts)
   end
   return { jobs = jobs, total = #all, k = k, n = n, dir = dir, file = info.file,
            manifest = join(dir, manifest_name(k, n)) }
+end
+
+--- What a run of `spec` with `opts` would do, without running anything: { jobs (this
+-- shard's, each with `status`: "done", "failed" or "todo"), total (the spec's jobs), k, n
+-- (shard k of n), dir (the output folder), manifest (this shard's manifest), file (the
+-- spec's file) }. opts as for M.run.
+function M.plan (spec, opts)
+  return plan("lsys.batch.plan", spec, checkopts("lsys.batch.plan", opts))
 end
 
 --- Runs the jobs of `spec` (as for M.jobs) in this process, those of one shard when asked.
@@ -1147,8 +1182,8 @@ end
 -- and line) or bad options.
 function M.run (spec, opts)
   opts = checkopts("lsys.batch.run", opts)
-  local k, n = shard_opt("lsys.batch.run", opts.shard)
-  local p = M.plan(spec, { out = opts.out, shard = { k, n } })
+  local p = plan("lsys.batch.run", spec, opts)
+  local k, n = p.k, p.n
   local dir, progress = p.dir, opts.progress
   local made = {}
   local todo = {}

@@ -1641,6 +1641,7 @@ local function batch_list (batch, spec, opts, shard)
     for k, v in pairs(j.params) do vars[#vars + 1] = format("%s=%s", k, tostring(v)) end
     table.sort(vars)
     if j.steps then table.insert(vars, 1, "steps=" .. j.steps) end
+    if j.rep then vars[#vars + 1] = "rep=" .. j.rep end
     local outs = {}
     for i, o in ipairs(j.outputs) do outs[i] = o.path end
     out(format("%s  %-6s  seed %-10d  %s%s%s  -> %s\n", j.id, STATUS[j.status], j.seed,
@@ -1669,9 +1670,17 @@ function commands.batch (args)
     if k == nil then usage("batch", "--shard %s", n) end
     shard = { k, n }
   end
-  if opts.list then return batch_list(batch, pos[1], opts, shard) end
-  local r = batch.run(pos[1], { out = opts.out, shard = shard, force = opts.force or nil,
-                                progress = batch_progress(opts) })
+  -- the messages name the spec's file and line; the function's name is no news here
+  local function unnamed (err) return (tostring(err):gsub("^lsys%.batch%.%a+: ", "")) end
+  if opts.list then
+    local ok, r = pcall(batch_list, batch, pos[1], opts, shard)
+    if not ok then error(unnamed(r), 0) end
+    return r
+  end
+  local ok, r = pcall(batch.run, pos[1], { out = opts.out, shard = shard,
+                                           force = opts.force or nil,
+                                           progress = batch_progress(opts) })
+  if not ok then error(unnamed(r), 0) end
   local what = format("%s: %d job%s%s", pos[1], r.jobs, r.jobs == 1 and "" or "s",
     r.n > 1 and format(" (shard %d/%d of %d)", r.k, r.n, r.total) or "")
   local ran = r.ok + r.failed
@@ -1680,8 +1689,8 @@ function commands.batch (args)
       "all done before (--force runs them again)"))
     return 0
   end
-  out(format("%s: %d ok, %d failed, %d done before; %d ran in %.1f s (%.1f jobs/s); "
-    .. "manifest %s\n", what, r.ok, r.failed, r.skipped, ran, r.seconds,
+  out(format("%s: %d ok, %d failed, %d done before; %d ran in %." .. (r.seconds < 10 and 2 or 1)
+    .. "f s (%.1f jobs/s); manifest %s\n", what, r.ok, r.failed, r.skipped, ran, r.seconds,
     ran / math.max(r.seconds, 1e-9), r.manifest))
   return r.failed > 0 and 1 or 0
 end
