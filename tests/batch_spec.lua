@@ -482,6 +482,10 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
     assert.truthy(out:find("sweep.lua: 6 jobs: all done before", 1, true), out)
     out = run("sweep.lua -o one --shard 2/2 --list")
     assert.truthy(out:find("3 jobs (shard 2/2 of 6): 3 done, 0 failed, 0 to do", 1, true), out)
+    -- a copy of the folder (its files' times new) keeps its jobs done
+    assert.equal(0, select(2, sh("cp -r " .. q(dir .. "/two") .. " " .. q(dir .. "/copy"))))
+    out = run("sweep.lua -o copy")
+    assert.truthy(out:find("sweep.lua: 6 jobs: all done before", 1, true), out)
   end)
 
   it("takes its shard from Slurm's variables, says what is wrong with the command line",

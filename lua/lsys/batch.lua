@@ -879,8 +879,8 @@ local function read_manifests (dir)
 end
 
 -- "done" when a manifest line says the job `job` ran ok with its present definition and its
--- files are there, as that run left them (size and modification time); "failed" when its
--- last such line says it failed; else "todo".
+-- files are there with the sizes that run wrote (not the times: folders merged by cp or
+-- rsync keep their jobs done); "failed" when a line says it failed; else "todo".
 local function status (job, records)
   local key, st = jobkey(job), "todo"
   for _, r in ipairs(records or {}) do
@@ -889,7 +889,7 @@ local function status (job, records)
         local same = true
         for _, o in ipairs(r.outputs) do
           local mtime, size = core.filestamp(join(job.dir, o.path))
-          if mtime == nil or mtime ~= o.mtime or size ~= o.bytes then same = false end
+          if mtime == nil or size ~= o.bytes then same = false end
         end
         if same then return "done" end
         st = "todo"
@@ -1174,12 +1174,12 @@ end
 -- (called with an event table: { phase = "start" | "job" | "end", jobs, todo, done, ok,
 -- failed, skipped, seconds, job, record } at the start, after each job and at the end).
 -- A job is skipped when a manifest line of the folder says it ran ok with the same
--- definition and its files are as that run left them. Each job that runs is recorded in
--- the shard's manifest (`DIR/manifest.jsonl`, or `DIR/manifest-K-of-N.jsonl`): job, seed,
--- params, outputs (path, bytes, mtime), seconds, status "ok" or "failed", error. A job that
--- fails does not stop the others. Returns { jobs, ok, failed, skipped, seconds, manifest,
--- failures = { { id, where, error } }, k, n, total }. Raises for a bad spec (naming its file
--- and line) or bad options.
+-- definition and its files are there with the sizes that run wrote. Each job that runs is
+-- recorded in the shard's manifest (`DIR/manifest.jsonl`, or `DIR/manifest-K-of-N.jsonl`):
+-- job, seed, params, outputs (path, bytes, mtime), seconds, status "ok" or "failed", error.
+-- A job that fails does not stop the others. Returns { jobs, ok, failed, skipped, seconds,
+-- manifest, failures = { { id, where, error } }, k, n, total }. Raises for a bad spec
+-- (naming its file and line) or bad options.
 function M.run (spec, opts)
   opts = checkopts("lsys.batch.run", opts)
   local p = plan("lsys.batch.run", spec, opts)

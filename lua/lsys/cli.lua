@@ -379,8 +379,8 @@ height, default 800x800), .glb .obj .ply (meshes), .txt (the L-string), .json (m
 counts by name, triangles, area, bounds).
 
 Every file appears whole or not at all. A job is skipped when the manifest says it ran
-with the same values and its files are as it left them: a run that was killed, or had
-failures, goes on where it stopped. A job that fails is recorded with its message and the
+with the same values and its files are there: a run that was killed, or had failures,
+goes on where it stopped. A job that fails is recorded with its message and the
 others go on; the exit status is then 1.
 
 Options:
