@@ -356,6 +356,11 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
       m.seed, m.env.K, m.env.R = st.seed, st.params.K, st.params.R
       local s = m:derive()
       assert.equal(tostring(s) .. "\n", text)       -- the job's seed and variables
+      if i == 1 then                                -- the picture lsys.render makes
+        require("lsys").render(m:interpret(s), { out = dir .. "/x.png", width = 64,
+                                                 height = 64 })
+        assert.equal(H.read(dir .. "/x.png"), H.read(dir .. "/out/png/0001.png"))
+      end
       assert.equal(#s, st.modules)
       assert.equal(s:count("F"), st.counts.F)
       assert.equal(batch.seed(11, i), st.seed)

@@ -19,8 +19,8 @@ local type, pairs, ipairs, next, error, pcall, tostring, tonumber, require, load
       setmetatable, getmetatable =
       type, pairs, ipairs, next, error, pcall, tostring, tonumber, require, loadfile, select,
       setmetatable, getmetatable
-local io, os, math, string, table, debug, collectgarbage =
-      io, os, math, string, table, debug, collectgarbage
+local io, os, math, string, table, debug, collectgarbage, package =
+      io, os, math, string, table, debug, collectgarbage, package
 local format = string.format
 local _ENV = nil
 
@@ -902,6 +902,13 @@ local function status (job, records)
   return st
 end
 
+-- The version of lsys (for the manifest): the library's when it is loaded (lsys.batch is
+-- reached through it), else the program's, else nil.
+local function version ()
+  local lib = package.loaded.lsys
+  return type(lib) == "table" and lib.version or host().version
+end
+
 -- This host's name (for the manifest), or nil.
 local function hostname ()
   local f = io.open("/proc/sys/kernel/hostname", "r")
@@ -1080,8 +1087,11 @@ local function run_job (job, dir, ctx)
       local path = join(dir, o.path)
       mkdirs(dirname(path), ctx.made)
       if o.format == "png" then
-        require("lsys").render(sc, { out = path, width = job.width or M.SIZE,
-                                     height = job.height or M.SIZE })
+        -- lsys.render(sc, ...) (which `require "lsys"` would bring in a cycle): the
+        -- scene's view, and its supersampling
+        local v = model.sceneview(sc)
+        core.render(sc, { out = path, width = job.width or M.SIZE,
+                          height = job.height or M.SIZE, supersample = v and v.supersample })
       elseif o.format == "lstring" then
         core.write_file(path, tostring(s) .. "\n")
       elseif o.format == "stats" then
@@ -1206,7 +1216,7 @@ function M.run (spec, opts)
   local t0 = clock()
   append(f, { run = "start", spec = p.file, shard = ctx.shard, jobs = #p.jobs,
               todo = #todo, at = os.date("!%Y-%m-%dT%H:%M:%SZ"), host = ctx.host,
-              lsys = require("lsys").version })
+              lsys = version() })
   -- A job's model is garbage once it ran, its compiled rules with it (C memory Lua does not
   -- count); the generational collector (the lsys program's) may leave old garbage for a
   -- long time: a full collection whenever the heap has grown by half keeps a run of
