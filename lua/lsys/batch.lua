@@ -501,12 +501,13 @@ local function complete (jobs, base, dir)
           .. "files, with {id} for instance", path, other.id, other.where))
       end
       mine[path], paths[path] = true, job
-      outs[#outs + 1] = { format = t.format, path = path }
+      outs[#outs + 1] = { format = t.format, path = path, i = #outs + 1 }
     end
     table.sort(outs, function (a, b)       -- a job writes its formats in one order
       if a.format ~= b.format then return FORMAT_RANK[a.format] < FORMAT_RANK[b.format] end
-      return false
+      return a.i < b.i
     end)
+    for _, o in ipairs(outs) do o.i = nil end
     job.outputs, job.templates, job.col = outs, nil, nil
   end
   return jobs
