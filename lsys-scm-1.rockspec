@@ -19,7 +19,7 @@ module `lsys` (Lua files and lsys/core.so) and the `lsys` program (REPL, script 
 }
 dependencies = {
   "lua >= 5.4",
-  "lua-cjson",     -- sketch files (lsys.sketch): JSON
+  "lua-cjson",     -- sketch files (lsys.sketch) and batch manifests (lsys.batch): JSON
   "luaexpat",      -- sketch files: SVG
 }
 build_dependencies = {}

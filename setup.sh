@@ -19,6 +19,7 @@ PACKAGES=(
   luarocks                                 # the rock test (ctest -R rock)
   graphviz                                 # `lsys components graph` pictures (dot)
   ffmpeg                                   # `lsys animate` videos and GIFs
+  parallel                                 # GNU parallel: `lsys batch --shard` tests, bench
 )
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}

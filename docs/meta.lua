@@ -44,6 +44,7 @@
 ---@field sketch lsys.sketch Sketch-based models (docs/sketch.md), loaded at first use.
 ---@field components lsys.components Component graphs (docs/components.md), loaded at first use.
 ---@field grow lsys.grow Incremental growth (docs/grow.md), loaded at first use.
+---@field batch lsys.batch Batch runs of many jobs, sharded (docs/batch.md), loaded at first use.
 ---@field cpfg table cpfg model files: `load`, `load_object`, `options`, `object_files` (docs/cpfg.md), loaded at first use.
 local lsys = {}
 
@@ -2317,5 +2318,95 @@ function testing.compare_images(a, b, w, h, tol) end
 ---@return boolean ok
 ---@return string? message
 function testing.match_golden(x, golden, opts) end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- lsys.batch (docs/batch.md)
+
+--- Batch runs: the jobs of a spec (a CSV file, a Lua file or a table) run in this process,
+--- all or one shard of them, with a manifest; what `lsys batch SPEC` runs. Loaded at first
+--- use (`lsys.batch`, or `require "lsys.batch"`).
+---@class lsys.batch
+---@field SIZE integer A picture's width and height when the spec gives none (800).
+---@field MAX_SIZE integer The largest picture width and height (16384).
+lsys.batch = {}
+
+--- A job of a spec, as `lsys.batch.jobs` returns it.
+---@class lsys.batch.Job
+---@field n integer Its number in the spec (1, 2, ...): a CSV record's, or the sweep's.
+---@field id string Its id: given (a CSV column or field `id`), or `n` padded with zeros to 4 digits (more from 10,000 jobs).
+---@field where string Where the spec gives it: "plants.csv:7", "sweep.lua: vary R=1.4 seed=2", "spec: jobs[3]".
+---@field model string The model file as the spec names it (relative to the spec's folder).
+---@field path string The model file opened.
+---@field name? string The model picked from a file that returns a table of models.
+---@field seed integer Given, or `lsys.batch.seed(spec seed, n)`.
+---@field steps? integer Derivation steps (nil: the model's).
+---@field width? integer Picture width (nil: 800).
+---@field height? integer Picture height (nil: 800).
+---@field params table<string, number> The model variables it sets (`model.env`).
+---@field outputs { format: "png"|"glb"|"obj"|"ply"|"lstring"|"stats", path: string }[] Relative to the output folder.
+---@field rep? integer The replicate of a sweep with `replicates`.
+---@field status? "done"|"failed"|"todo" From `lsys.batch.plan`.
+
+--- The jobs of `spec`: a CSV file (.csv), a Lua file (.lua) returning a spec table, or a
+--- spec table (`dir`: the folder its model paths are relative to, default "."). Returns
+--- them and { file, dir, total }. Raises naming the spec's file and line (`plants.csv:7:
+--- column 'R': 'abc' is not a number`) or field (`sweep.lua: vary.R[2]: ...`).
+---@param spec string|table
+---@return lsys.batch.Job[] jobs
+---@return { file?: string, dir: string, total: integer } info
+function lsys.batch.jobs(spec) end
+
+--- What `lsys.batch.run(spec, opts)` would do, running nothing: this shard's jobs, each
+--- with its `status`, and `total`, `k`, `n`, `dir`, `manifest`, `file`.
+---@param spec string|table
+---@param opts? lsys.batch.RunOptions
+---@return { jobs: lsys.batch.Job[], total: integer, k: integer, n: integer, dir: string, manifest: string, file?: string }
+function lsys.batch.plan(spec, opts) end
+
+---@class lsys.batch.RunOptions
+---@field out? string The output folder (made when missing; default "."), with the manifest.
+---@field shard? string|integer[] "K/N", "slurm" or { K, N }: the jobs n with (n - 1) % N == K - 1.
+---@field force? boolean Run the jobs that are done as well.
+---@field progress? fun(ev: { phase: "start"|"job"|"end", jobs: integer, todo: integer, done: integer, ok: integer, failed: integer, skipped: integer, seconds: number, job?: lsys.batch.Job, record?: table })
+
+--- Runs the jobs of `spec` (all, or one shard's), skipping those done, and appends a JSON
+--- line per job to the shard's manifest (DIR/manifest.jsonl or DIR/manifest-K-of-N.jsonl).
+--- A failing job is recorded and the others run. Returns { jobs, ok, failed, skipped,
+--- seconds, manifest, failures = { { id, where, error } }, k, n, total }.
+---@param spec string|table
+---@param opts? lsys.batch.RunOptions
+---@return table result
+function lsys.batch.run(spec, opts) end
+
+--- The seed of job number `n` of a spec whose seed is `base`: mix(base + n * 0x9E3779B97F4A7C15)
+--- >> 33, splitmix64's n-th number from `base`, its top 31 bits.
+---@param base integer
+---@param n integer
+---@return integer
+function lsys.batch.seed(base, n) end
+
+--- The shard, 1 to `count`, of job number `n`: (n - 1) % count + 1.
+---@param n integer
+---@param count integer
+---@return integer
+function lsys.batch.shard_of(n, count) end
+
+--- K, N of "K/N" or "slurm" (Slurm's SLURM_ARRAY_TASK_ID, _MIN, _STEP, _COUNT through
+--- `getenv`, default os.getenv); nil and a message when there is none.
+---@param s string
+---@param getenv? fun(name: string): string?
+---@return integer? k
+---@return integer|string n
+function lsys.batch.parse_shard(s, getenv) end
+
+--- The records of CSV text (RFC 4180), each a list of fields with `line`; raises
+--- "name:line: ..." for broken quoting.
+---@param text string
+---@param name string
+---@return table[]
+function lsys.batch.csv(text, name) end
 
 -- }===========================================================================================

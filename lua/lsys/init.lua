@@ -131,12 +131,14 @@ function M.wait () return _G.require("lsys.viewer").wait() end
 -- window does not load it).
 -- lsys.sketch likewise (docs/sketch.md): its readers need cjson and lxp only when a sketch
 -- is read, so `require "lsys"` works without them. lsys.components (docs/components.md),
--- the component graphs of issue 16, and lsys.grow (incremental growth, issue 17) likewise.
+-- the component graphs of issue 16, lsys.grow (incremental growth, issue 17) and lsys.batch
+-- (batch runs, issue 20) likewise.
 setmetatable(M, { __index = function (_, k)
   if k == "viewer" then return _G.require("lsys.viewer") end
   if k == "sketch" then return _G.require("lsys.sketch") end
   if k == "components" then return _G.require("lsys.components") end
   if k == "grow" then return _G.require("lsys.grow") end
+  if k == "batch" then return _G.require("lsys.batch") end
   if k == "cpfg" then return _G.require("lsys.cpfg") end
 end })
 
