@@ -44,17 +44,8 @@ local script = arg and arg[0] or "bench/derive.lua"
 local B = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
 local root, load_lsys = B.root, B.load_lsys
 
-local function shell_quote (s)
-  return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
-end
-
-local function read_file (path)
-  local f = io.open(path, "r")
-  if not f then return nil end
-  local s = f:read("a")
-  f:close()
-  return s
-end
+local shell_quote, read_file, capture, node_path =
+  B.shell_quote, B.read_file, B.capture, B.node_path
 
 local clock = B.clock
 local clock_name = B.clock_name
@@ -139,25 +130,11 @@ local function parse_result (out)
   return r
 end
 
-local function capture (cmd)
-  local p = io.popen(cmd .. " 2>&1")
-  local out = p:read("a")
-  local ok, how, code = p:close()
-  return out, ok, how, code
-end
-
 local function measure_lsys (name, steps)
   local out = capture(self_command() .. " " .. name .. " " .. steps)
   local r = parse_result(out)
   if not r then error("lsys run of model " .. name .. " failed:\n" .. out, 0) end
   return r
-end
-
-local function node_path ()
-  local p = io.popen("command -v node 2>/dev/null")
-  local path = p:read("l")
-  p:close()
-  return path
 end
 
 -- lindenmayer at `steps`; on failure (out of memory, time out) retries with fewer steps.
