@@ -659,6 +659,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           continue;
         }
         if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
+          lsys_rng_at(m->cur, i);
           if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur, m->funcs)) {
             /* a bad value is reported here: running the program again in the full
             ** path would draw its random numbers again */
@@ -685,6 +686,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       }
     }
     if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
+      lsys_rng_at(m->cur, i);
       done = rewrite(m, sets, nsets, &v, i, c, spar + p, dst);
       if (done < 0) return fail(m, done, i);
       for (; done > 1; done--) {      /* the predecessor's other modules are rewritten too */
@@ -790,6 +792,7 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
     v.poff = m->poff;
   }
   for (i = 0; i < src->n; i++) {
+    lsys_rng_at(m->cur, i);      /* one stream of draws for a module and what it becomes */
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
     p += LSYS_CNP(src->code[i]);
@@ -893,6 +896,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   v.skip = findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);
+  lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);
   if (st < 0) return fail(m, st, i);
   return 1;
@@ -910,10 +914,12 @@ void lsys_homo_end (lsys_model *m) {
 static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   long sz;
+  lsys_rng_stream(&m->rng, m->rng.step + 1, LSYS_RNG_PROD);
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
   sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
     lsys_lstring t;
+    lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_DECOMP);
     if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
     t = *dst; *dst = m->tmp; m->tmp = t;    /* swap buffers */
     dst->nck = 0;
@@ -931,6 +937,7 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   m->busy = 1;
   st = derivestep(m, src, dst);
+  lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_BETWEEN);
   m->busy = 0;
   unmeter(m, dst);
   unmeter(m, &m->tmp);       /* the swap may have moved the attached buffers */

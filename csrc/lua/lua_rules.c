@@ -473,7 +473,7 @@ static int nranfn (lua_State *L) {
 ** homomorphism's while it runs), as cpfg's srand; allowed during a step */
 static int rules_srand (lua_State *L) {
   lsys_lrules *R = lsys_checkrules(L, 1);
-  lsys_rng_seed(R->m.cur, seedof(L, 2));
+  lsys_rng_reseed(R->m.cur, seedof(L, 2));
   return 0;
 }
 
@@ -758,7 +758,7 @@ static int l_ran (lua_State *L) {
 
 static int l_srand (lua_State *L) {
   lsys_lrules *R = deriving(L, "srand");
-  lsys_rng_seed(R->m.cur, seedof(L, 1));
+  lsys_rng_reseed(R->m.cur, seedof(L, 1));
   return 0;
 }
 
