@@ -198,6 +198,7 @@ function lsys.nproduce(template, ...) end
 ---@field max_memory? number|string The memory budget of this model's steps and interpretations, in bytes or as `"512M"`, `"2G"`, `"unlimited"` (see `lsys.parse_size`). Default: `lsys.max_memory()`.
 ---@field depth_warnings? boolean|{ decomposition?: boolean, homomorphism?: boolean } Whether a derivation warns (once) when the depth limit stops a rule that would apply; false for neither. Default true.
 ---@field functions? table Positional functions for `func(ID, x)` and `func("name", x)`: `lsys.Func`s and file names (.func, .fset), a list and/or a table by name. Fixed when the model is made. Default: the view's `functions`.
+---@field threads? integer Threads a derivation step may use, from 1 to 64; the string is the same for every number. Read by every `derive` and `step`. Default: `LSYS_THREADS` from the environment, else the number of processors.
 ---@field numbers? "double"|"float32" How parameters are stored; "float32" rounds every parameter a step produces to the nearest 32-bit float, as cpfg stores them. Default "double".
 ---@field after_interpret? fun(model: lsys.Model, scene: lsys.Scene, s: lsys.Lstring) Called by `interpret` with the scene it made, before returning it. Default: none.
 
@@ -221,6 +222,7 @@ function lsys.nproduce(template, ...) end
 ---@field allow_system_calls boolean
 ---@field max_modules number? Set only when the option was given (the limit in force is 50 000 000 otherwise).
 ---@field max_memory number? In bytes; set only when the option was given.
+---@field threads integer? Threads of a derivation step (read by every derive and step); nil: the default (`LSYS_THREADS`, else the number of processors).
 ---@field system_call (fun(i: integer, name: string, ...: number))?
 ---@field start fun(model: lsys.Model)?
 ---@field start_each fun(model: lsys.Model, step: integer)?

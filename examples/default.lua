@@ -2,7 +2,7 @@
 -- Ternary branching after ABOP fig. 2.8a with random branching and divergence angles and
 -- occasional forks; trunk and branches elongate (F) and thicken (!) every step; leaves L(t)
 -- live for three steps and the homomorphism draws each as a whorl of three polygons.
--- About 38 500 modules after 8 steps. Colour index 1 is bark, 2 is foliage.
+-- About 43 000 modules after 8 steps. Colour index 1 is bark, 2 is foliage.
 local lsys = require "lsys"
 
 -- a lateral shoot: pitched down from the parent axis, one internode, a leaf whorl, an apex

@@ -35,6 +35,7 @@ int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
   m->maxdepth[LSYS_HOMO] = 1;
   m->cur = &m->rng;
   m->cur_rule = -1;
+  m->parmin = LSYS_PARMIN;
   lsys_rng_seed(&m->rng, 0);
   lsys_rng_seed(&m->hrng, 0);
   return LSYS_OK;
@@ -58,8 +59,9 @@ void lsys_model_free (lsys_model *m) {
   LSYS_FREE(m->pat);
   LSYS_FREE(m->tcode);
   LSYS_FREE(m->tsrc);
-  LSYS_FREE(m->args);
-  LSYS_FREE(m->alt);
+  LSYS_FREE(m->sc.args);
+  LSYS_FREE(m->sc.alt);
+  lsys_par_free(m);
   LSYS_FREE(m->match);
   LSYS_FREE(m->poff);
   LSYS_FREE(m->substack);
@@ -335,11 +337,13 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
 }
 
 /* The values the expression machine computed for rule 'r' at module 'i' must
-** be finite (the Lua callback checks its own). */
-static int checkvals (lsys_model *m, const lsys_rule *r, size_t i, const double *vals) {
+** be finite (the Lua callback checks its own). A worker only reports. */
+int lsys_checkvals (lsys_model *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
+                    const double *vals) {
   uint32_t k;
   for (k = 0; k < r->nvals; k++)
     if (!isfinite(vals[k])) {
+      if (w->worker) return LSYS_ERULE;
       m->cur_rule = (long)(r - m->rules);
       m->cur_index = i;
       return lsys_seterror(&m->err, LSYS_ERULE, i, "value %u is %s, not a finite number",
@@ -348,9 +352,9 @@ static int checkvals (lsys_model *m, const lsys_rule *r, size_t i, const double 
   return LSYS_OK;
 }
 
-static int needscratch (lsys_model *m, size_t nargs) {
-  if (m->argscap < nargs &&
-      lsys_grow((void **)&m->args, &m->argscap, nargs, sizeof *m->args) != LSYS_OK)
+int lsys_needscratch (lsys_scratch *w, size_t nargs) {
+  if (w->argscap < nargs &&
+      lsys_grow((void **)&w->args, &w->argscap, nargs, sizeof *w->args) != LSYS_OK)
     return LSYS_ENOMEM;
   return LSYS_OK;
 }
@@ -370,29 +374,105 @@ static int matchmore (const lsys_model *m, const view *v, size_t i, const lsys_r
   return 1;
 }
 
+/* Keeps a stochastic alternative in w->alt: rule, weight, where its produced
+** successor is in m->altdyn (modules [b, e), parameters from p), args, vals. */
+static int keepalt (lsys_model *m, lsys_scratch *w, const lsys_rule *r, double wt,
+                    const double *args, size_t *altn) {
+  size_t need = *altn + ALTHEAD + r->nargs + r->nvals;
+  double *a;
+  int st;
+  if (w->altcap < need && lsys_grow((void **)&w->alt, &w->altcap, need, sizeof *w->alt) != LSYS_OK)
+    return LSYS_ENOMEM;
+  a = w->alt + *altn;
+  a[0] = (double)(r - m->rules);
+  a[1] = wt;
+  a[2] = (double)m->altdyn.n;
+  a[4] = (double)m->altdyn.npar;
+  if ((r->flags & LSYS_RF_DYN) &&      /* the function ran: keep what it produced */
+      (st = lsys_lstring_append(&m->altdyn, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK)
+    return st;
+  a[3] = (double)m->altdyn.n;
+  memcpy(a + ALTHEAD, args, (r->nargs + r->nvals) * sizeof *args);
+  *altn = need;
+  return LSYS_OK;
+}
+
+/* The first alternative in w->alt whose cumulative weight exceeds u * total
+** (u drawn when there are several); the last one of positive weight when
+** rounding leaves none. */
+static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, lsys_pick *pk) {
+  double target = nalt > 1 ? lsys_rng_uniform(w->rng) * total : 0, cum = 0;
+  size_t at = 0, k, last = 0;
+  const lsys_rule *r = NULL;
+  for (k = 0; k < nalt; k++) {
+    r = &m->rules[(size_t)w->alt[at]];
+    if (w->alt[at + 1] > 0) {
+      last = at;
+      cum += w->alt[at + 1];
+      if (cum > target) break;
+    }
+    at += ALTHEAD + r->nargs + r->nvals;
+  }
+  if (k == nalt) {
+    at = last;
+    r = &m->rules[(size_t)w->alt[at]];
+  }
+  pk->r = r;
+  pk->args = w->alt + at + ALTHEAD;
+  pk->vals = pk->args + r->nargs;
+  if (r->flags & LSYS_RF_DYN) {
+    pk->dyn = &m->altdyn;
+    pk->d0 = (size_t)w->alt[at + 2];
+    pk->d1 = (size_t)w->alt[at + 3];
+    pk->dp = (size_t)w->alt[at + 4];
+  }
+}
+
+/* Runs rule r's condition and values: the expression machine, or the
+** callback (never on a worker). 1 applies, 0 does not, or an error. */
+static int evalrule (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+                     const double *args, double *vals) {
+  int st;
+  if (r->vm != NULL) {
+    if (!lsys_expr_run(r->vm, r->nvm, args, vals, w->rng, m->funcs)) return 0;
+    return (st = lsys_checkvals(m, w, r, i, vals)) != LSYS_OK ? st : 1;
+  }
+  if (!(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN))) return 1;
+  if (w->worker) return LSYS_ERULE;
+  m->cur_rule = (long)(r - m->rules);
+  m->cur_index = i;
+  if (r->flags & LSYS_RF_DYN) lsys_lstring_clear(&m->dyn);
+  st = m->fn(m->fnud, m, r, args, vals);
+  m->cur_rule = -1;
+  return st;
+}
+
 /*
-** Tries the rules of 'sets' for the module 'code' with parameters 'par'
-** whose context is position 'i' of 'v'. Returns the number of modules the
-** rule rewrote (1, or more for a predecessor of several modules; successor
-** written to 'out'), 0 (no rule applies), or an error code.
+** Chooses the rule of 'sets' for the module 'code' with parameters 'par'
+** whose context is position 'i' of 'v', drawing from w->rng. Returns the
+** number of modules the rule rewrites (1, or more for a predecessor of
+** several modules) with the rule, its arguments and values in *pk (valid
+** until the next call; the successor a function produced in pk->dyn), 0
+** when no rule applies, or an error code.
 */
-static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const view *v,
-                    size_t i, uint16_t code, const double *par, lsys_lstring *out) {
+int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
+                 const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk) {
   uint32_t sym = LSYS_CSYM(code), np = LSYS_CNP(code);
-  size_t nalt = 0, altn = 0;   /* alternatives and doubles used in m->alt */
+  size_t nalt = 0, altn = 0;   /* alternatives and doubles used in w->alt */
   double total = 0;
   int si, st;
-  lsys_lstring_clear(&m->altdyn);
+  pk->dyn = NULL;
+  if (!w->worker) lsys_lstring_clear(&m->altdyn);
   for (si = 0; si < nsets; si++) {
     const lsys_ruleset *s = sets[si];
     uint32_t b, e;
     if (s == NULL || sym >= s->nsym) continue;
     for (b = s->start[sym], e = s->start[sym + 1]; b < e; b++) {
       const lsys_rule *r = &m->rules[s->byp[b]];
-      double *args, *vals, w;
+      double *args, *vals, wt;
       if (r->pred_np != np) continue;
-      if (needscratch(m, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
-      args = m->args;
+      if (lsys_needscratch(w, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+      args = w->args;
       vals = args + r->nargs;
       if (r->nmore && !matchmore(m, v, i, r, par, args + r->lcargs + np)) continue;
       if (r->nlc && (v->match == NULL || !lsys_matchleft(m, v, i, r, args))) continue;
@@ -400,83 +480,47 @@ static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const v
                                                             args + r->lcargs + np + r->moreargs)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
-      if (r->vm != NULL) {
-        if (!lsys_expr_run(r->vm, r->nvm, args, vals, m->cur, m->funcs)) continue;
-        if ((st = checkvals(m, r, i, vals)) != LSYS_OK) return st;
-      }
-      else if (r->flags & (LSYS_RF_CALL | LSYS_RF_DYN)) {
-        m->cur_rule = (long)(r - m->rules);
-        m->cur_index = i;
-        if (r->flags & LSYS_RF_DYN) lsys_lstring_clear(&m->dyn);
-        st = m->fn(m->fnud, m, r, args, vals);
-        m->cur_rule = -1;
+      if ((st = evalrule(m, w, r, i, args, vals)) <= 0) {
         if (st < 0) return st;
-        if (st == 0) continue;
+        continue;
       }
       if (!(r->flags & LSYS_RF_STOCH)) {
-        if (nalt > 0) goto choose;            /* weighted alternatives came first */
-        st = emit(m, out, r, args, vals);
-        return st == LSYS_OK ? 1 + (int)r->nmore : st;
+        if (nalt > 0) break;                  /* weighted alternatives came first */
+        pk->r = r;
+        pk->args = args;
+        pk->vals = vals;
+        if (r->flags & LSYS_RF_DYN) { pk->dyn = &m->dyn; pk->d0 = 0; pk->d1 = m->dyn.n; pk->dp = 0; }
+        return 1 + (int)r->nmore;
       }
-      w = (r->flags & LSYS_RF_WEXPR) ? vals[0] : r->weight;
-      if (!(w >= 0) || isinf(w)) {
+      wt = (r->flags & LSYS_RF_WEXPR) ? vals[0] : r->weight;
+      if (!(wt >= 0) || isinf(wt)) {
+        if (w->worker) return LSYS_ERULE;
         m->cur_index = i;
         m->cur_rule = (long)(r - m->rules);
-        return lsys_seterror(&m->err, LSYS_ERULE, i, "weight is %g, not a finite number >= 0", w);
+        return lsys_seterror(&m->err, LSYS_ERULE, i, "weight is %g, not a finite number >= 0", wt);
       }
-      {       /* keep the alternative: rule, weight, where its produced successor is in
-              ** m->altdyn (modules [b, e), parameters from p), args, vals */
-        size_t need = altn + ALTHEAD + r->nargs + r->nvals;
-        double *a;
-        if (m->altcap < need &&
-            lsys_grow((void **)&m->alt, &m->altcap, need, sizeof *m->alt) != LSYS_OK)
-          return LSYS_ENOMEM;
-        a = m->alt + altn;
-        a[0] = (double)(r - m->rules);
-        a[1] = w;
-        a[2] = (double)m->altdyn.n;
-        a[4] = (double)m->altdyn.npar;
-        if ((r->flags & LSYS_RF_DYN) &&      /* the function ran: keep what it produced */
-            (st = lsys_lstring_append(&m->altdyn, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK)
-          return st;
-        a[3] = (double)m->altdyn.n;
-        memcpy(a + ALTHEAD, args, (r->nargs + r->nvals) * sizeof *args);
-        altn = need;
-        nalt++;
-        total += w;
-      }
+      if ((st = keepalt(m, w, r, wt, args, &altn)) != LSYS_OK) return st;
+      nalt++;
+      total += wt;
     }
+    if (b < e) break;
   }
-  if (nalt == 0) return 0;
-choose:
-  if (!(total > 0)) return 0;          /* only weight 0 applies: nothing is chosen */
-  {
-    /* the first alternative whose cumulative weight exceeds r * total; the
-    ** last one of positive weight when rounding leaves none */
-    double target = nalt > 1 ? lsys_rng_uniform(m->cur) * total : 0, cum = 0;   /* the
-                                     homomorphism draws from its own generator */
-    size_t at = 0, k, last = 0;
-    const lsys_rule *r = NULL;
-    for (k = 0; k < nalt; k++) {
-      r = &m->rules[(size_t)m->alt[at]];
-      if (m->alt[at + 1] > 0) {
-        last = at;
-        cum += m->alt[at + 1];
-        if (cum > target) break;
-      }
-      at += ALTHEAD + r->nargs + r->nvals;
-    }
-    if (k == nalt) {
-      at = last;
-      r = &m->rules[(size_t)m->alt[at]];
-    }
-    if (r->flags & LSYS_RF_DYN)
-      st = emitdyn(m, out, &m->altdyn, (size_t)m->alt[at + 2], (size_t)m->alt[at + 3],
-                   (size_t)m->alt[at + 4]);
-    else
-      st = emit(m, out, r, m->alt + at + ALTHEAD, m->alt + at + ALTHEAD + r->nargs);
-    return st == LSYS_OK ? 1 + (int)r->nmore : st;
-  }
+  if (nalt == 0 || !(total > 0)) return 0;   /* only weight 0 applies: nothing is chosen */
+  pickalt(m, w, nalt, total, pk);
+  return 1 + (int)pk->r->nmore;
+}
+
+/* Rewrites the module (see lsys_choose) into 'out' on the calling thread. */
+static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const view *v,
+                    size_t i, uint16_t code, const double *par, lsys_lstring *out) {
+  lsys_pick pk;
+  int st;
+  m->sc.rng = m->cur;
+  st = lsys_choose(m, &m->sc, sets, nsets, v, i, code, par, &pk);
+  if (st <= 0) return st;
+  st = pk.dyn != NULL ? emitdyn(m, out, pk.dyn, pk.d0, pk.d1, pk.dp)
+                      : emit(m, out, pk.r, pk.args, pk.vals);
+  return st == LSYS_OK ? (int)(1 + pk.r->nmore) : st;
 }
 
 static int pushsub (lsys_model *m, uint32_t id) {
@@ -549,7 +593,8 @@ static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_
       m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
                    r->nrc == 0 && r->nmore == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
                   ? s0->byp[s0->start[k]] : ACT_SLOW;
-      if (m->act[k] != ACT_SLOW && needscratch(m, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+      if (m->act[k] != ACT_SLOW && lsys_needscratch(&m->sc, r->nvals + 1) != LSYS_OK)
+        return LSYS_ENOMEM;
     }
   }
   return LSYS_OK;
@@ -599,25 +644,13 @@ static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ru
   return LSYS_OK;
 }
 
-static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
-  lsys_ruleset *sets[2];
-  int nsets, hasctx, st;
+/* The productions of one step on the calling thread: the module loop. */
+static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *vp,
+                    lsys_ruleset **sets, int nsets) {
+  int st;
   size_t i, p = 0, n = src->n, lim, nact;
   const double *spar = parof(src, 0);
-  view v;
-  lsys_lstring_clear(dst);
-  m->nsub = 0;
-  if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  memset(&v, 0, sizeof v);
-  v.code = src->code; v.par = src->par; v.n = n; v.ring = m->ring;
-  v.eq = lsys_eqsym(m);
-  v.skip = findskip(m, 0);
-  if (hasctx) {
-    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
-    v.match = m->match;
-    v.poff = m->poff;
-  }
-  nsets = prodsets(m, 0, sets);
+  view v = *vp;
   /* room for at least a copy of the source */
   if ((st = lsys_lstring_reserve(dst, n < m->max_modules ? n : m->max_modules, src->npar))
       != LSYS_OK)
@@ -659,11 +692,12 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
           continue;
         }
         if (r->pred_np == np && r->vm != NULL) {   /* the only rule: no need to look further */
-          if (lsys_expr_run(r->vm, r->nvm, spar + p, m->args, m->cur, m->funcs)) {
+          lsys_rng_at(m->cur, i);
+          if (lsys_expr_run(r->vm, r->nvm, spar + p, m->sc.args, m->cur, m->funcs)) {
             /* a bad value is reported here: running the program again in the full
             ** path would draw its random numbers again */
-            if ((st = checkvals(m, r, i, m->args)) != LSYS_OK) return st;
-            if ((st = emit(m, dst, r, spar + p, m->args)) != LSYS_OK) return fail(m, st, i);
+            if ((st = lsys_checkvals(m, &m->sc, r, i, m->sc.args)) != LSYS_OK) return st;
+            if ((st = emit(m, dst, r, spar + p, m->sc.args)) != LSYS_OK) return fail(m, st, i);
             p += np;
             lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
             continue;
@@ -685,6 +719,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
       }
     }
     if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
+      lsys_rng_at(m->cur, i);
       done = rewrite(m, sets, nsets, &v, i, c, spar + p, dst);
       if (done < 0) return fail(m, done, i);
       for (; done > 1; done--) {      /* the predecessor's other modules are rewritten too */
@@ -716,6 +751,27 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
     lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
   }
   return LSYS_OK;
+}
+
+static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+  lsys_ruleset *sets[2];
+  int nsets, hasctx, st;
+  view v;
+  lsys_lstring_clear(dst);
+  m->nsub = 0;
+  if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  memset(&v, 0, sizeof v);
+  v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
+  v.eq = lsys_eqsym(m);
+  v.skip = findskip(m, 0);
+  if (hasctx) {
+    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
+    v.match = m->match;
+    v.poff = m->poff;
+  }
+  nsets = prodsets(m, 0, sets);
+  if ((st = lsys_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
+  return seqloop(m, src, dst, &v, sets, nsets);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -790,6 +846,7 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
     v.poff = m->poff;
   }
   for (i = 0; i < src->n; i++) {
+    lsys_rng_at(m->cur, i);      /* one stream of draws for a module and what it becomes */
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
     p += LSYS_CNP(src->code[i]);
@@ -893,6 +950,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   v.skip = findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);
+  lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);
   if (st < 0) return fail(m, st, i);
   return 1;
@@ -910,10 +968,12 @@ void lsys_homo_end (lsys_model *m) {
 static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   long sz;
+  lsys_rng_stream(&m->rng, m->rng.step + 1, LSYS_RNG_PROD);
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
   sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
     lsys_lstring t;
+    lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_DECOMP);
     if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
     t = *dst; *dst = m->tmp; m->tmp = t;    /* swap buffers */
     dst->nck = 0;
@@ -931,6 +991,7 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   m->busy = 1;
   st = derivestep(m, src, dst);
+  lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_BETWEEN);
   m->busy = 0;
   unmeter(m, dst);
   unmeter(m, &m->tmp);       /* the swap may have moved the attached buffers */

@@ -17,6 +17,8 @@
 
 enum { LSYS_PROD = 0, LSYS_DECOMP = 1, LSYS_HOMO = 2 };
 
+#define LSYS_MAXTHREADS 64    /* threads of one derivation step */
+
 /* rule flags */
 #define LSYS_RF_CALL   1   /* call back: condition and/or computed values */
 #define LSYS_RF_DYN    2   /* the callback produces the successor into m->dyn */
@@ -70,7 +72,17 @@ typedef struct lsys_skip {
   uint8_t bits[(LSYS_MAXSYM + 8) / 8];
 } lsys_skip;
 
+/* The scratch of one thread rewriting modules: formal parameters and
+** values, the stochastic alternatives, the generator the rules draw from. */
+typedef struct lsys_scratch {
+  double *args; size_t argscap;
+  double *alt; size_t altcap;  /* stochastic alternatives: weight, rule, args, vals */
+  lsys_rng *rng;
+  int worker;                  /* a worker thread: no callbacks, nothing written to the model */
+} lsys_scratch;
+
 struct lsys_model;
+struct lsys_par;
 /*
 ** Evaluates rule 'r' for the matched module: 'args' holds the formal
 ** parameters (left context, predecessor modules, right context, in order). Writes
@@ -103,9 +115,11 @@ typedef struct lsys_model {
   const lsys_func **funcs;     /* positional functions of LSYS_OP_FN (the table is
                                ** owned, the functions not: lsys_model_setfuncs) */
   size_t nfuncs;
+  int threads;                 /* for a step; 0: lsys_default_threads() */
+  size_t parmin;               /* strings shorter than this are rewritten on one thread */
   /* scratch, reused */
-  double *args; size_t argscap;
-  double *alt; size_t altcap;  /* stochastic alternatives: weight, rule, args, vals */
+  lsys_scratch sc;             /* the calling thread's */
+  struct lsys_par *par;        /* the worker threads' (derive_par.c) */
   lsys_lstring dyn, tmp;
   lsys_lstring altdyn;         /* the successors weighted function rules produced */
   lsys_lstring *levels; size_t nlevels;
@@ -133,6 +147,12 @@ static inline double lsys_round32 (double x) {
   return x > 3.4028234663852886e38 ? 3.4028234663852886e38
        : x < -3.4028234663852886e38 ? -3.4028234663852886e38 : (double)(float)x;
 }
+
+/* The threads a step uses when the model does not say (m->threads == 0):
+** LSYS_THREADS from the environment when it is a whole number from 1 (more
+** than LSYS_MAXTHREADS counts as that), else the processors this process may
+** run on. Read once. */
+int lsys_default_threads (void);
 
 int lsys_model_init (lsys_model *m, lsys_alphabet *ab);
 void lsys_model_free (lsys_model *m);
@@ -166,7 +186,10 @@ long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 
 /*
 ** One parallel derivation step 'src' -> 'dst' (productions, cut, then
-** decomposition). 'dst' is reset first and must not be 'src'.
+** decomposition). 'dst' is reset first and must not be 'src'. The
+** productions of a long string run on m->threads threads when every rule
+** they may apply runs on the expression machine or is a template
+** (derive_par.c); the string is the same for every number of threads.
 ** Returns LSYS_OK; LSYS_ELIMIT when 'dst' would exceed m->max_modules;
 ** LSYS_EMEMORY when the source, the new string and the step's tables
 ** would need more than m->max_memory bytes (checked before allocating);

@@ -22,6 +22,40 @@ typedef struct view {
   uint32_t eq;             /* the symbol of '=' (right contexts), or NONE */
 } view;
 
+/* The rule chosen for a module: its arguments and values; for a rule
+** function, the successor it produced (modules [d0, d1) of 'dyn', their
+** parameters from 'dp'). */
+typedef struct lsys_pick {
+  const lsys_rule *r;
+  const double *args, *vals;
+  const lsys_lstring *dyn;     /* NULL: the rule's template */
+  size_t d0, d1, dp;
+} lsys_pick;
+
+/* Strings shorter than this are rewritten on one thread (threads cost more). */
+#define LSYS_PARMIN 8192
+
+int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
+                 const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk);
+int lsys_checkvals (lsys_model *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
+                    const double *vals);
+int lsys_needscratch (lsys_scratch *w, size_t nargs);
+
+/*
+** The productions of a step on several threads (derive_par.c): 'v' is the
+** view of 'src' (its context tables built when a rule has a context), 'sets'
+** the production sets of the main L-system. Returns LSYS_OK with 'dst'
+** written, or LSYS_PAR_SEQ when the step must run on the calling thread
+** instead ('dst' then holds nothing of value): a rule that needs the
+** callback, a cut, a sub-L-system, a predecessor of several modules, a
+** limit or budget that may be reached, an error (whose message the
+** sequential step gives, at the module where it gives it).
+*/
+#define LSYS_PAR_SEQ 1
+int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
+                          lsys_ruleset *const *sets, int nsets);
+void lsys_par_free (lsys_model *m);
+
 /* Builds the bracket-match and parameter-offset tables of 's' in m->match
 ** and m->poff (within the model's memory budget). LSYS_OK, LSYS_ELIMIT,
 ** LSYS_ENOMEM or LSYS_EMEMORY. */

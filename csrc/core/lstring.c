@@ -32,6 +32,40 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
   return LSYS_OK;
 }
 
+/* Replaces the array '*p' of '*cap' items by one of exactly 'need' items,
+** within meter 'mt' (whose count includes the old array). */
+static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {
+  size_t old = *cap * elem, base = 0;
+  void *np;
+  if (need <= *cap) return LSYS_OK;
+  if (need > ((size_t)-1 - 16) / elem) return LSYS_ENOMEM;
+  if (mt != NULL) {
+    base = mt->used > old ? mt->used - old : 0;
+    if (base > mt->limit || need * elem > mt->limit - base) {
+      mt->hit = 1;
+      return LSYS_EMEMORY;
+    }
+  }
+  LSYS_FREE(*p);
+  *p = NULL;
+  *cap = 0;
+  if (mt != NULL) mt->used = base;
+  np = LSYS_MALLOC(need * elem);
+  if (np == NULL) return LSYS_ENOMEM;
+  *p = np;
+  *cap = need;
+  if (mt != NULL) mt->used = base + need * elem;
+  return LSYS_OK;
+}
+
+int lsys_lstring_prepare (lsys_lstring *s, size_t nmod, size_t npar) {
+  int st;
+  lsys_lstring_clear(s);
+  if ((st = exact((void **)&s->code, &s->cap, nmod, sizeof *s->code, s->meter)) != LSYS_OK)
+    return st;
+  return exact((void **)&s->par, &s->parcap, npar, sizeof *s->par, s->meter);
+}
+
 size_t lsys_lstring_bytes (const lsys_lstring *s) {
   return s->cap * sizeof *s->code + s->parcap * sizeof *s->par + s->ckcap * sizeof *s->ck;
 }

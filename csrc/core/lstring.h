@@ -46,6 +46,12 @@ static inline void lsys_lstring_clear (lsys_lstring *s) { s->n = s->npar = s->nc
 ** (push, append and copy return the same). */
 int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar);
 
+/* Empties 's' and makes room for 'nmod' modules and 'npar' parameters: a
+** smaller array is replaced by one of exactly that size (its contents are
+** dropped, not copied). Returns LSYS_OK, LSYS_ENOMEM or LSYS_EMEMORY (as
+** reserve); 's' stays valid and empty on failure. */
+int lsys_lstring_prepare (lsys_lstring *s, size_t nmod, size_t npar);
+
 /* Bytes held by the string's arrays. */
 size_t lsys_lstring_bytes (const lsys_lstring *s);
 

@@ -1,6 +1,18 @@
 /*
-** The model's random generator: xoshiro256** seeded through splitmix64, so
-** the same seed gives the same numbers on every machine (unlike drand48).
+** The model's random generator: counter-based, so that a number depends only
+** on where it is drawn, never on what was drawn before it elsewhere in the
+** string (docs/manual.md §10). That makes a derivation step give the same
+** string whatever the number of threads that rewrite it, and in whatever
+** order its modules are rewritten.
+**
+** A draw is a function of four things: the key (from the seed), the stream
+** (the derivation step and its phase: productions, decomposition, or
+** between steps), the position (the module being rewritten) and the number
+** of draws made for that module so far. Each module's draws are a SplitMix64
+** sequence (Steele, Lea and Flood 2014) started at a hash of (key, stream,
+** position); the hash is SplitMix64's own mixer. Only 64-bit integer
+** operations: the same seed gives the same numbers on every machine (unlike
+** drand48).
 */
 #ifndef LSYS_RNG_H
 #define LSYS_RNG_H
@@ -8,27 +20,89 @@
 #include <math.h>
 #include <stdint.h>
 
-typedef struct lsys_rng { uint64_t s[4]; } lsys_rng;
+#define LSYS_RNG_GAMMA 0x9E3779B97F4A7C15ull
+#define LSYS_RNG_FREE  UINT64_MAX    /* position of draws made outside any module */
 
-static inline uint64_t lsys_splitmix64 (uint64_t *x) {
-  uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
+/* phases of a stream (derivation step s has streams 4s + phase) */
+enum { LSYS_RNG_PROD = 0, LSYS_RNG_DECOMP = 1, LSYS_RNG_BETWEEN = 2 };
+
+typedef struct lsys_rng {
+  uint64_t key;        /* from the seed */
+  uint64_t step;       /* the derivation step (counts from 0 at every seeding) */
+  uint64_t base;       /* key and stream mixed */
+  uint64_t pos;        /* the module the next draws are for */
+  uint64_t origin;     /* positions count from here (a reseed in the middle of a step) */
+  uint64_t z;          /* SplitMix64 state of the draws at 'pos' */
+  unsigned phase;
+  int fresh;           /* z is to be derived from (base, pos) at the next draw */
+} lsys_rng;
+
+/* SplitMix64's output function (a bijection of 64-bit words). */
+static inline uint64_t lsys_mix64 (uint64_t z) {
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   return z ^ (z >> 31);
 }
 
+static inline uint64_t lsys_splitmix64 (uint64_t *x) {
+  return lsys_mix64(*x += LSYS_RNG_GAMMA);
+}
+
+/* The stream of the generator's step and phase; draws restart at 'pos'. */
+static inline void lsys_rng_setbase (lsys_rng *r) {
+  r->base = lsys_mix64(r->key ^ lsys_mix64((r->step * 4 + r->phase) ^ 0x5851F42D4C957F2Dull));
+  r->fresh = 1;
+}
+
+/* Moves to step 'step', phase 'phase'; the draws that follow are outside any
+** module until lsys_rng_at. */
+static inline void lsys_rng_stream (lsys_rng *r, uint64_t step, unsigned phase) {
+  r->step = step;
+  r->phase = phase;
+  r->pos = LSYS_RNG_FREE;
+  r->origin = 0;
+  r->z = 0;
+  lsys_rng_setbase(r);
+}
+
+/* Seeds the generator: key from 'seed', step 0, between steps. */
 static inline void lsys_rng_seed (lsys_rng *r, uint64_t seed) {
-  int i;
-  for (i = 0; i < 4; i++) r->s[i] = lsys_splitmix64(&seed);
+  r->key = lsys_splitmix64(&seed);
+  lsys_rng_stream(r, 0, LSYS_RNG_BETWEEN);
+}
+
+/*
+** cpfg's srand: the draws that follow are those of a derivation seeded with
+** 'seed'. Between steps, the next step draws as the first step after seeding
+** would; in the middle of a step (a rule function), the modules after the
+** current one draw as the modules of a first step would from the start of
+** the string, and the current module's own later draws as outside any module.
+*/
+static inline void lsys_rng_reseed (lsys_rng *r, uint64_t seed) {
+  r->key = lsys_splitmix64(&seed);
+  if (r->pos == LSYS_RNG_FREE) {
+    r->step = 0;
+    r->origin = 0;
+  }
+  else {
+    r->step = r->phase == LSYS_RNG_BETWEEN ? 0 : 1;
+    r->origin = r->pos + 1;
+  }
+  lsys_rng_setbase(r);
+}
+
+/* The draws that follow are those of module 'pos' of the stream. */
+static inline void lsys_rng_at (lsys_rng *r, uint64_t pos) {
+  r->pos = pos;
+  r->fresh = 1;
 }
 
 static inline uint64_t lsys_rng_next (lsys_rng *r) {
-  uint64_t *s = r->s;
-  uint64_t x = s[1] * 5, t = s[1] << 17, res = ((x << 7) | (x >> 57)) * 9;
-  s[2] ^= s[0]; s[3] ^= s[1]; s[1] ^= s[2]; s[0] ^= s[3];
-  s[2] ^= t;
-  s[3] = (s[3] << 45) | (s[3] >> 19);
-  return res;
+  if (r->fresh) {
+    r->z = lsys_mix64(r->base + (r->pos - r->origin + 1) * LSYS_RNG_GAMMA);
+    r->fresh = 0;
+  }
+  return lsys_mix64(r->z += LSYS_RNG_GAMMA);
 }
 
 /* Uniform in [0, 1). */

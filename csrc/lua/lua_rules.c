@@ -252,13 +252,19 @@ static uint64_t seedof (lua_State *L, int idx) {
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
                                      "depth_homomorphism", "seed", "hseed", "max_memory",
-                                     "float32", NULL};
+                                     "float32", "threads", NULL};
   lsys_lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
   switch (key) {
     case 0: R->m.ring = lua_toboolean(L, 3); break;
     case 8: R->m.f32 = lua_toboolean(L, 3); break;
+    case 9: {                          /* 0: the default (lsys_default_threads) */
+      lua_Integer t = luaL_checkinteger(L, 3);
+      luaL_argcheck(L, t >= 0 && t <= LSYS_MAXTHREADS, 3, "bad number of threads");
+      R->m.threads = (int)t;
+      break;
+    }
     case 1:
       x = luaL_checknumber(L, 3);
       luaL_argcheck(L, x >= 1 && x <= 1e12, 3, "max_modules must be between 1 and 1e12");
@@ -473,7 +479,7 @@ static int nranfn (lua_State *L) {
 ** homomorphism's while it runs), as cpfg's srand; allowed during a step */
 static int rules_srand (lua_State *L) {
   lsys_lrules *R = lsys_checkrules(L, 1);
-  lsys_rng_seed(R->m.cur, seedof(L, 2));
+  lsys_rng_reseed(R->m.cur, seedof(L, 2));
   return 0;
 }
 
@@ -758,7 +764,7 @@ static int l_ran (lua_State *L) {
 
 static int l_srand (lua_State *L) {
   lsys_lrules *R = deriving(L, "srand");
-  lsys_rng_seed(R->m.cur, seedof(L, 1));
+  lsys_rng_reseed(R->m.cur, seedof(L, 1));
   return 0;
 }
 
@@ -843,6 +849,8 @@ static const luaL_Reg template_meta[] = {
 static void setconstants (lua_State *L) {
   lua_pushinteger(L, LSYS_MAXPARAMS);
   lua_setfield(L, -2, "MAXPARAMS");
+  lua_pushinteger(L, LSYS_MAXTHREADS);
+  lua_setfield(L, -2, "MAXTHREADS");
   lua_pushinteger(L, LSYS_RF_CALL); lua_setfield(L, -2, "RF_CALL");
   lua_pushinteger(L, LSYS_RF_DYN); lua_setfield(L, -2, "RF_DYN");
   lua_pushinteger(L, LSYS_RF_STOCH); lua_setfield(L, -2, "RF_STOCH");

@@ -118,7 +118,7 @@ local OPTIONS = {
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
-  depth_warnings = "any",
+  depth_warnings = "any", threads = "number",
 }
 
 local Model = {}
@@ -389,6 +389,7 @@ make = function (opts, where, fail, dir)
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
     system_call = opts.system_call, after_interpret = opts.after_interpret,
+    threads = opts.threads,
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
@@ -398,6 +399,9 @@ make = function (opts, where, fail, dir)
   end
   if self.steps > M.MAX_STEPS then
     fail(format("option 'steps' is %.14g, more than the limit of %d", self.steps, M.MAX_STEPS))
+  end
+  if not M.checkthreads(self.threads) then
+    fail(format("option 'threads' must be a whole number from 1 to %d", M.MAX_THREADS))
   end
   self:_addsets(opts, fail)
   self:_configure(opts, fail)
@@ -553,6 +557,23 @@ function Model:lstring (text)
   return s
 end
 
+--- The most threads a derivation step may use (`threads`).
+M.MAX_THREADS = core.MAXTHREADS
+
+-- Whether `n` is a valid `threads` (nil: the default).
+function M.checkthreads (n)
+  return n == nil or type(n) == "number" and n >= 1 and n <= M.MAX_THREADS and n == math.floor(n)
+end
+
+-- Gives the core the threads of the next steps (model.threads, read by every derive and step).
+function Model:_threads (what)
+  if not M.checkthreads(self.threads) then
+    error(format("%s: threads must be a whole number from 1 to %d (got %s)", what,
+                 M.MAX_THREADS, tostring(self.threads)), 3)
+  end
+  self._rules:config("threads", self.threads or 0)
+end
+
 -- Runs a core call; turns a failure into a message naming rule and module.
 function Model:_core (what, ...)
   return self:_call(self._rules[what], what, self._rules, ...)
@@ -643,6 +664,7 @@ function Model:derive (n, opts)
   n = n or self.steps
   checksteps(n, "derive")
   local rules = self._rules
+  self:_threads("derive")
   rules:config("seed", self.seed)
   rules:config("hseed", self.homomorphism_seed or self.seed)
   self._warned = false
@@ -697,6 +719,7 @@ function Model:step (s)
   if type(s) == "string" then s = self:lstring(s) end
   if not islstring(s) then error("step: an Lstring expected", 2) end
   self:_idle("step")
+  self:_threads("step")
   self:_bind()
   if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
     self:_query(s)

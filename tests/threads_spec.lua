@@ -1,0 +1,152 @@
+-- The derivation step on several threads (issue 20): the option `threads`, LSYS_THREADS, and
+-- the same string for every number of threads (docs/manual.md §10).
+local H = require "tests.helper"
+local lsys = require "lsys"
+
+local THREADS = { 1, 2, 3, 8 }
+local MAXT = 64             -- the most threads a step may use
+
+-- tostring of model `opts` derived `n` steps with each number of threads in THREADS; the
+-- strings are long enough (over 8192 modules) for the steps to run on the worker threads.
+local function derived (opts, n)
+  local out = {}
+  for _, t in ipairs(THREADS) do
+    local o = {}
+    for k, v in pairs(opts) do o[k] = v end
+    o.threads = t
+    out[#out + 1] = tostring(lsys.lsystem(o):derive(n))
+  end
+  return out
+end
+
+local function same_for_all (opts, n, min)
+  local out = derived(opts, n)
+  assert.is_true(#out[1] >= (min or 1), "a short string: " .. #out[1])
+  for k = 2, #out do
+    assert.is_true(out[k] == out[1], ("threads = %d differs from threads = 1"):format(THREADS[k]))
+  end
+  return out[1]
+end
+
+describe("threads", function()
+  it("give the same D0L string for 1, 2, 3 and 8 threads", function()
+    same_for_all({ axiom = "F", productions = "F --> F[+F]F[-F]F" }, 7, 100000)
+  end)
+
+  it("give the same parametric string (the expression machine)", function()
+    same_for_all({ axiom = "A(1)", env = { R = 1.456 },
+                   productions = "A(s) --> F(s)[+A(s/R)][-A(s/R)]\nF(x) : x > 0.1 --> F(x*1.01)" },
+                 14, 50000)
+  end)
+
+  it("give the same stochastic string", function()
+    same_for_all({ axiom = "F", seed = 7, productions = "F --> F[+F]F : 1\nF --> F[-F]F : 2\n"
+                   .. "F --> FF : 1" }, 9, 20000)
+  end)
+
+  it("give the same numbers from ran and nran, in conditions, values and weights", function()
+    local s = same_for_all({ axiom = H.rep("A(1)", 3000), seed = 11, productions = {
+      "A(x) : ran(1) < 0.5 --> B(ran(x), nran(x, 2)) A(x + ran(1)) C",
+      "A(x) --> A(x + 1) : ran(2)",
+      "A(x) --> D(nran(0, 1)) : 1",
+      "B(x, y) --> B(x + ran(1), y)",
+    } }, 4, 8000)
+    assert.is_truthy(s:find("B(", 1, true) and s:find("D(", 1, true))
+  end)
+
+  it("give the same context-sensitive string", function()
+    local s = same_for_all({ axiom = "b" .. H.rep("a", 12000),
+                             productions = "b < a --> b\nb --> a" }, 300, 12000)
+    assert.is_true(s == H.rep("a", 300) .. "b" .. H.rep("a", 11700), "the signal is not at 301")
+    same_for_all({ axiom = H.rep("A(1)B(2)[C(3)]", 3000), ignore = "+", productions = {
+      "A(a) < B(b) > [C(c)] --> B(a + b + c)", "B(b) > [C(c)] --> B(b * c) +",
+      "C(c) --> C(c + 1)" } }, 3, 12000)
+  end)
+
+  it("give the same string with groups, cuts, sub-L-systems and decomposition", function()
+    same_for_all({ axiom = H.rep("A", 10000), productions = "A --> AB", seed = 3,
+                   groups = { [1] = "B --> C(ran(1))" },
+                   start_each = function (m, k) m:use_group(k % 2) end }, 3, 10000)
+    same_for_all({ axiom = H.rep("F[AFF]F", 3000), productions = "A --> %\nF --> FF" }, 2, 10000)
+    same_for_all({ axiom = H.rep("A?(2,1)A$", 3000), productions = "A --> AC",
+                   sub = { [2] = { productions = "A --> B" } } }, 2, 10000)
+    same_for_all({ axiom = H.rep("X", 10000), seed = 5, productions = "X --> A(1)",
+                   decomposition = "A(x) --> B(x + ran(1)) C" }, 1, 10000)
+  end)
+
+  it("give the same string with rule functions (run on the calling thread)", function()
+    same_for_all({ axiom = H.rep("A", 10000), seed = 9, productions = {
+      { "A", function () return lsys.produce("B(?)A", lsys.ran(1)) end },
+      "B(x) --> B(x + ran(1))" } }, 2, 20000)
+  end)
+
+  it("give the same errors, at the same module", function ()
+    local function err (opts)
+      local msgs = {}
+      for _, t in ipairs(THREADS) do
+        local o = { threads = t }
+        for k, v in pairs(opts) do o[k] = v end
+        msgs[#msgs + 1] = H.errof(function () lsys.lsystem(o):derive(1) end)
+      end
+      for k = 2, #msgs do assert.equal(msgs[1], msgs[k]) end
+      return msgs[1]
+    end
+    local m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 9000),
+                    productions = "A(x) --> A(1/x)" }
+    assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
+    m = err { axiom = H.rep("A", 20000), productions = "A --> AA", max_modules = 30000 }
+    assert.truthy(m:find("the string would exceed max_modules (30000 modules)", 1, true), m)
+    m = err { axiom = H.rep("A", 20000), productions = "A --> AAAA", max_memory = 200000 }
+    assert.truthy(m:find("would need more than max_memory", 1, true), m)
+    -- many steps, each on the workers but the last: the buffers they leave are the same
+    local msgs = {}
+    for _, t in ipairs(THREADS) do
+      local model = lsys.lsystem { axiom = "A(1,2,3)", max_memory = "64M", threads = t,
+                                   productions = "A(x,y,z) --> A(x,y,z) A(x,y,z)" }
+      msgs[#msgs + 1] = H.errof(function () model:derive(30) end)
+      assert.equal(msgs[1], msgs[#msgs])
+    end
+    assert.truthy(msgs[1]:find("would need more than max_memory (64 MiB) at module", 1, true))
+  end)
+
+  it("give the same string derived in steps and derived at once", function()
+    local m = lsys.lsystem { axiom = "A(1)", seed = 2, threads = 2,
+                             productions = "A(s) --> F(s)[+A(s*ran(1))][-A(s/2)] : 1\n"
+                               .. "A(s) --> F(s)A(s) : 1" }
+    local s = m:derive(0)
+    m.threads = 1
+    for _ = 1, 16 do s = m:step(s) end
+    m.threads = 3
+    assert.equal(tostring(s), tostring(m:derive(16)))
+  end)
+
+  it("must be a whole number from 1 to " .. MAXT, function()
+    for _, bad in ipairs { 0, -1, 1.5, MAXT + 1, 0 / 0 } do
+      assert.error_contains(function () lsys.lsystem { threads = bad } end,
+        "option 'threads' must be a whole number from 1 to " .. MAXT)
+    end
+    assert.error_contains(function () lsys.lsystem { threads = "2" } end,
+      "option 'threads' must be a number (got string)")
+    local m = lsys.lsystem { axiom = "F", threads = 4 }
+    assert.equal(4, m.threads)
+    m.threads = 0
+    assert.error_contains(function () m:derive(1) end,
+      "derive: threads must be a whole number from 1 to " .. MAXT .. " (got 0)")
+  end)
+
+  it("default to LSYS_THREADS when it is set", function()
+    local script = [[
+      local lsys = require "lsys"
+      local s = lsys.lsystem { axiom = "F", seed = 1,
+                               productions = "F --> F[+F]F : 1\nF --> F[-F] : 1" }:derive(9)
+      io.write(#s, " ", s:count("+"), "\n")
+    ]]
+    local outs = {}
+    for _, t in ipairs { "1", "2", "5", "junk" } do
+      local out, code = H.lsys(script, { env = "LSYS_THREADS=" .. t })
+      assert.equal(0, code, out)
+      outs[#outs + 1] = out
+    end
+    for k = 2, #outs do assert.equal(outs[1], outs[k]) end
+  end)
+end)
