@@ -277,7 +277,7 @@ static void test_leftout (void) {
 static void test_scene (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 6, 0};
+  lsys_export_opts o = {1, 6, 0, 0, 0};
   lsys_material pal[2];
   double p[3] = {0, 0, 0}, nn[3] = {0, 0, 1};
   size_t len;
@@ -347,7 +347,7 @@ static void test_scene (void) {
 static void test_nomem (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 5, 0};
+  lsys_export_opts o = {1, 5, 0, 0, 0};
   long k, live;
   int f, done = 0;
   memset(&s, 0, sizeof s);
