@@ -10,8 +10,8 @@ local core = require "lsys.core"
 local model = require "lsys.model"
 local view = require "lsys.view"
 
-local type, pairs, ipairs, error, pcall, tostring, setmetatable, getmetatable =
-      type, pairs, ipairs, error, pcall, tostring, setmetatable, getmetatable
+local type, pairs, ipairs, error, pcall, tostring, setmetatable, getmetatable, rawequal =
+      type, pairs, ipairs, error, pcall, tostring, setmetatable, getmetatable, rawequal
 local math, string, table = math, string, table
 local format = string.format
 local _ENV = nil
@@ -48,7 +48,8 @@ end
 local function vec3 (v, where, field)
   if type(v) ~= "table" or #v ~= 3 or not (isnum(v[1]) and isnum(v[2]) and isnum(v[3])) then
     fail("%s: '%s' must be a list of 3 finite numbers {x, y, z}, got %s", where, field,
-         type(v) == "table" and format("a table of %d", #v) or show(v))
+         type(v) ~= "table" and show(v) or #v ~= 3 and format("%d numbers", #v) or
+         format("{%s, %s, %s}", show(v[1]), show(v[2]), show(v[3])))
   end
   return v[1], v[2], v[3]
 end
@@ -360,7 +361,8 @@ local function build (spec, opts)
     transform(e, where, xf, 12 * (i - 1))
   end
   -- 2: each prototype derived, interpreted and added
-  local v = view.normalize(o.view or {}, "lsys.population")
+  local vok, v = pcall(view.normalize, o.view or {}, "lsys.population")
+  if not vok then fail("%s", (tostring(v):gsub("^lsys%.population: ", ""))) end
   local state = view.render_options(v)     -- the look, and what the scene keeps
   state.view, state.textures, state.prototypes = v, {}, {}
   local pop = core.population(state)
@@ -374,7 +376,7 @@ local function build (spec, opts)
       env = e.env, view = e.view, lstring = records and s or nil, plant = proto.first,
     }
     state.contour_sides = state.contour_sides or (model.sceneview(sc) or {}).contour_sides
-    if sc ~= e.model then getmetatable(sc).__close(sc) end
+    if not rawequal(sc, e.model) then getmetatable(sc).__close(sc) end
     if progress then progress("prototype", p, #protos) end
   end
   -- 3: the plants placed
