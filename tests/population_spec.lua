@@ -483,3 +483,28 @@ V.close()
                  "plant 3 prototype 1 module 2 G\n", out)
   end)
 end)
+
+describe("#gl examples/population/field.lua", function ()
+  it("is 10,000 plants of 20 kinds on a ground tile, drawn headless from 21 meshes", function ()
+    local meadow = dofile "examples/population/field.lua"
+    assert.equal(10001, meadow.ninstances)
+    assert.equal(21, meadow.nprototypes)
+    local grass = 0
+    for i = 1, 10000 do
+      if meadow:prototype(meadow:instance(i).prototype).model.name == "grass" then
+        grass = grass + 1
+      end
+    end
+    assert.is_true(grass > 5000 and grass < 9500, grass)
+    assert.is_true(meadow.bytes < 4 * 1024 * 1024, meadow.bytes)
+    local px, w, h = lsys.render(meadow, { width = 160, height = 160, supersample = 1 })
+    local sky, green = 0, 0
+    for o = 1, w * h * 4, 4 do
+      local r, g, b = px:byte(o, o + 2)
+      if r == 199 and g == 222 and b == 247 then sky = sky + 1 end
+      if g > r and g > b then green = green + 1 end
+    end
+    assert.is_true(sky > w * h / 20 and sky < w * h / 3, sky)   -- a strip of sky
+    assert.is_true(green > w * h / 5, green)                     -- over a meadow
+  end)
+end)

@@ -438,8 +438,9 @@ static int scene_tostring (lua_State *L) {
   if (S->sc.ninst > 0) {
     size_t nv, nt, nl;
     lsys_population_size(&S->sc, &nv, &nt, &nl);
-    lua_pushfstring(L, "lsys.Scene: a population of %d plants of %d prototypes, %d triangles, "
-                    "%d line segments", (int)S->sc.ninst, (int)S->sc.nparts, (int)nt, (int)nl);
+    lua_pushfstring(L, "lsys.Scene: a population of %d plant%s of %d prototype%s, %d "
+                    "triangles, %d line segments", (int)S->sc.ninst, S->sc.ninst == 1 ? "" : "s",
+                    (int)S->sc.nparts, S->sc.nparts == 1 ? "" : "s", (int)nt, (int)nl);
     return 1;
   }
   lua_pushfstring(L, "lsys.Scene: %d triangles, %d line segments, %d turtle records",
