@@ -66,11 +66,13 @@ static int reserveall (lsys_scene *dst, const lsys_scene *src, int records) {
   return st;
 }
 
-/* Appends src's records and stiffnesses, moved to where dst has them. */
+/* Appends src's records and stiffnesses, moved to where dst has them. (An
+** empty array may be NULL: nothing is copied from or to one.) */
 static void addrecords (lsys_scene *dst, const lsys_scene *src) {
   uint32_t r0 = (uint32_t)dst->nrec, s0 = (uint32_t)dst->nstiff;
   uint32_t t0 = (uint32_t)(dst->mesh.nt - src->mesh.nt);
   size_t k;
+  if (src->nrec == 0) return;
   memcpy(dst->rec + dst->nrec, src->rec, src->nrec * sizeof *src->rec);
   for (k = 0; k < src->nrec; k++) {
     lsys_trec *r = &dst->rec[dst->nrec + k];
@@ -89,18 +91,22 @@ static void addrecords (lsys_scene *dst, const lsys_scene *src) {
 static void addgeometry (lsys_mesh *d, const lsys_mesh *s, size_t off, size_t npal,
                          const uint16_t *texmap, int ntex) {
   size_t v0 = d->nv, k;
-  memcpy(d->pos + 3 * v0, s->pos, 3 * s->nv * sizeof(float));
-  memcpy(d->nrm + 3 * v0, s->nrm, 3 * s->nv * sizeof(float));
-  memcpy(d->uv + 2 * v0, s->uv, 2 * s->nv * sizeof(float));
-  memcpy(d->twosided + v0, s->twosided, s->nv);
+  if (s->nv > 0) {
+    memcpy(d->pos + 3 * v0, s->pos, 3 * s->nv * sizeof(float));
+    memcpy(d->nrm + 3 * v0, s->nrm, 3 * s->nv * sizeof(float));
+    memcpy(d->uv + 2 * v0, s->uv, 2 * s->nv * sizeof(float));
+    memcpy(d->twosided + v0, s->twosided, s->nv);
+  }
   for (k = 0; k < s->nv; k++) {
     unsigned t = s->tex[k];
     d->col[v0 + k] = (uint16_t)(off + s->col[k] % npal);
     d->tex[v0 + k] = texmap == NULL ? (uint16_t)t : t >= 1 && (int)t <= ntex ? texmap[t] : 0;
   }
   for (k = 0; k < 3 * s->nt; k++) d->tri[3 * d->nt + k] = s->tri[k] + (uint32_t)v0;
-  memcpy(d->lpos + 6 * d->nl, s->lpos, 6 * s->nl * sizeof(float));
-  memcpy(d->lwidth + 2 * d->nl, s->lwidth, 2 * s->nl * sizeof(float));
+  if (s->nl > 0) {
+    memcpy(d->lpos + 6 * d->nl, s->lpos, 6 * s->nl * sizeof(float));
+    memcpy(d->lwidth + 2 * d->nl, s->lwidth, 2 * s->nl * sizeof(float));
+  }
   for (k = 0; k < s->nl; k++) d->lcol[d->nl + k] = (uint16_t)(off + s->lcol[k] % npal);
   d->nv += s->nv;
   d->nt += s->nt;
@@ -222,10 +228,12 @@ static void flatpart (lsys_mesh *d, const lsys_scene *s, const lsys_part *p,
     len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
     for (c = 0; c < 3; c++) R[c] = (float)(len > 0 ? r[c] / len : r[c]);
   }
-  memcpy(d->uv + 2 * v0, m->uv + 2 * p->v0, 2 * p->nv * sizeof(float));
-  memcpy(d->col + v0, m->col + p->v0, p->nv * sizeof(uint16_t));
-  memcpy(d->twosided + v0, m->twosided + p->v0, p->nv);
-  memcpy(d->tex + v0, m->tex + p->v0, p->nv * sizeof(uint16_t));
+  if (p->nv > 0) {
+    memcpy(d->uv + 2 * v0, m->uv + 2 * p->v0, 2 * p->nv * sizeof(float));
+    memcpy(d->col + v0, m->col + p->v0, p->nv * sizeof(uint16_t));
+    memcpy(d->twosided + v0, m->twosided + p->v0, p->nv);
+    memcpy(d->tex + v0, m->tex + p->v0, p->nv * sizeof(uint16_t));
+  }
   for (k = 0; k < 3 * p->nt; k++)
     d->tri[3 * d->nt + k] = m->tri[3 * p->t0 + k] - (uint32_t)p->v0 + (uint32_t)v0;
   for (k = 0; k < 2 * p->nl; k++) {
@@ -234,8 +242,10 @@ static void flatpart (lsys_mesh *d, const lsys_scene *s, const lsys_part *p,
     lsys_xform(in->m, m->lpos + 3 * (2 * p->l0 + k), q);
     for (c = 0; c < 3; c++) d->lpos[3 * (2 * d->nl + k) + c] = (float)q[c];
   }
-  memcpy(d->lwidth + 2 * d->nl, m->lwidth + 2 * p->l0, 2 * p->nl * sizeof(float));
-  memcpy(d->lcol + d->nl, m->lcol + p->l0, p->nl * sizeof(uint16_t));
+  if (p->nl > 0) {
+    memcpy(d->lwidth + 2 * d->nl, m->lwidth + 2 * p->l0, 2 * p->nl * sizeof(float));
+    memcpy(d->lcol + d->nl, m->lcol + p->l0, p->nl * sizeof(uint16_t));
+  }
   d->nv += p->nv;
   d->nt += p->nt;
   d->nl += p->nl;
