@@ -430,6 +430,24 @@ describe("#gl population pictures", function ()
     same(pop, { width = 200, height = 200, wireframe = true, direction = { 1, -1, -1 } })
   end)
 
+  it("keeps each prototype's textures", function ()
+    local leaf = dofile("examples/cpfg/fig31.lua")
+    local stem = lsys.lsystem { axiom = "@Tx(1) #(3) F(10)", view = {
+      line_style = "cylinder", textures = { "examples/cpfg/textures/bark.png" } } }
+    local pop = lsys.population {
+      { model = leaf.a }, { model = stem, at = { 15, 0, 0 } },
+      { model = leaf.b, at = { 30, 0, 0 }, rotate = 30 }, { model = stem, at = { -10, 0, 0 } },
+    }
+    assert.equal(3, #require("lsys.model").sceneview(pop).textures)
+    same(pop, { width = 150, height = 100, direction = { 0, 0, 1 }, up = { 0, 1, 0 } })
+    local path = tmp(".glb")
+    pop:save(path)
+    local doc = glb.read(path)
+    assert.equal(3, #doc.images)
+    assert.equal(3, #doc.meshes)
+    os.remove(path)
+  end)
+
   it("keeps its look: the view given, and lsys.render's fields over it", function ()
     local pop = field(bush(), 10, 2, { view = { background = { 1, 0, 0 } } })
     local px = lsys.render(pop, { width = 20, height = 20 })
