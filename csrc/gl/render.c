@@ -31,6 +31,10 @@
 ** GL transforms normals by the inverse transpose of the modelview, so a
 ** non-uniform scale keeps them right (GL_NORMALIZE makes them unit again).
 ** Wide lines are expanded per instance, with view * M in the clip matrix.
+** Instanced arrays (glDrawElementsInstanced with a per-instance attribute)
+** would need shaders (OpenGL 3.3 or ARB_instanced_arrays with vertex
+** programs), which this OpenGL 1.x path does without: a call per instance
+** and group, its vertices read in place from the prototype's arrays.
 */
 #include <GL/gl.h>
 #include <math.h>
