@@ -356,13 +356,18 @@ function Model:interpret(s, view) end
 
 --- The geometry and turtle records of an interpretation; vertices, normals, texture
 --- coordinates, line ends and widths are 32-bit floats (docs/drawing.md §5, Precision).
+--- A population (lsys.population, docs/population.md) is a Scene too: its sizes, bounds and
+--- area are those of every plant drawn.
 ---@class lsys.Scene
 ---@field ntriangles integer
 ---@field nvertices integer
 ---@field nlines integer Line segments (line style).
 ---@field nsegments integer Segment records (F and G drawn in any style).
 ---@field nrecords integer
----@field lstring lsys.Lstring The string the scene was made from.
+---@field lstring lsys.Lstring The string the scene was made from (nil for a population).
+---@field ninstances integer A population's plants; 0 for other scenes.
+---@field nprototypes integer A population's prototypes (meshes shared by its plants); 0 else.
+---@field bytes integer The memory the scene's arrays hold (mesh, records, transforms).
 local Scene = {}
 
 --- Changes how the scene is looked at: the look fields of a view (background, light,
@@ -418,13 +423,39 @@ function Scene:edges(k) end
 --- `opts.sides` sides (3 to 1024; default the view's `contour_sides`, else 8) whose diameter
 --- is the line width (pixels) times `opts.pixel_size` scene units (> 0; default the scene's
 --- largest extent / 720: as thick as in an 800 x 800 render). docs/drawing.md, section 5.
+--- A population is written as `.glb` with EXT_mesh_gpu_instancing (one mesh per prototype)
+--- unless `opts.instancing = false`; as `.obj` and `.ply` with every plant written out, which
+--- must fit `opts.max_memory` bytes (default the process's budget: `cannot write 'PATH': the
+--- population written out needs N, more than max_memory (M)`). docs/population.md.
 --- Raises `cannot open 'PATH' for writing: REASON`, `scene:save: unknown format of 'PATH'
 --- (use .obj, .ply or .glb)`, `scene:save: unknown option 'K' (use lines, sides,
---- pixel_size)` and `scene:save: opts.K must be ...` for a bad option.
+--- pixel_size, instancing, max_memory)` and `scene:save: opts.K must be ...` for a bad option.
 ---@param path string
----@param opts? { lines?: "lines"|"tubes", sides?: integer, pixel_size?: number }
+---@param opts? { lines?: "lines"|"tubes", sides?: integer, pixel_size?: number, instancing?: boolean, max_memory?: integer }
 ---@return true
 function Scene:save(path, opts) end
+
+--- Plant `i` of a population (1-based): its prototype, its transform M = T R S as 16
+--- numbers (column-major), and T, R (a unit quaternion x, y, z, w) and S; nil past the end.
+---@param i integer
+---@return { prototype: integer, matrix: number[], at: number[], rotation: number[], scale: number[] }?
+function Scene:instance(i) end
+
+--- Prototype `k` of a population (1-based): its sizes (`vertices`, `triangles`, `lines`,
+--- `records`), its number of `instances`, and what made it: `model`, `seed`, `steps`,
+--- `env`, `view`, `lstring` (unless made with `records = false`), `plant` (its first
+--- plant). nil past the end.
+---@param k integer
+---@return table?
+function Scene:prototype(k) end
+
+--- A new Scene with every plant of the population written out under its transform (no
+--- records; a scene that is no population is copied). Raises `scene:flatten: the flattened
+--- scene needs N, more than max_memory (M)` beyond `opts.max_memory` bytes (default the
+--- process's budget).
+---@param opts? { max_memory?: integer }
+---@return lsys.Scene
+function Scene:flatten(opts) end
 
 --- Deforms the scene in place (docs/components.md, "Deformations: FFD and Hyperpatch"): by a
 --- Hyperpatch, or by a function `f(x, y, z) -> x, y, z` whose normals come from central
@@ -458,6 +489,36 @@ function Scene:module_range(m0, m1) end
 ---@param i integer
 ---@return number x, number y, number z, number nx, number ny, number nz
 function Scene:vertex(i) end
+
+--- A plant of lsys.population: a model placed by M = T R S (docs/population.md).
+---@class lsys.Plant
+---@field model lsys.Model|lsys.Scene|lsys.Lstring Derived and interpreted (a Model), used as it is (a Scene), or interpreted by the model that made it (an Lstring).
+---@field at? number[] Where the plant's origin goes. Default {0, 0, 0}.
+---@field rotate? number|{axis: number[], angle: number}|number[][] Degrees about +y (right-handed), an axis and an angle in degrees, or a 3 x 3 rotation matrix by rows.
+---@field scale? number|number[] Positive, or {sx, sy, sz} along the plant's own axes. Default 1.
+---@field seed? integer Default: the model's.
+---@field steps? integer Default: the model's.
+---@field env? table Names over the model's env.
+---@field lstring? lsys.Lstring|string Drawn instead of deriving.
+---@field view? table View fields for drawing this plant.
+
+---@class lsys.PopulationOptions
+---@field view? table How the scene is looked at: viewpoint, target, up, direction, projection, fov, twist, background, light, supersample.
+---@field records? boolean false: no turtle records nor Lstrings of the prototypes. Default true.
+---@field progress? fun(phase: "prototype"|"place", k: integer, n: integer)
+---@field count? integer With `place`: the number of plants.
+---@field place? fun(i: integer): lsys.Plant With `count`: plant i.
+
+--- Many plants in one scene (docs/population.md): `plants` is a list of lsys.Plant, or
+--- `{ count = N, place = function (i) return plant end }` (the options may be keys of it
+--- too). Plants with the same model, lstring, seed, steps, env and view share a prototype,
+--- derived and interpreted once; each plant is an instance of it. The same list gives the
+--- same scene. Raises `lsys.population: plant I: 'FIELD' must be ...` (or `place(I): ...`,
+--- `plant I (prototype K): ...` when its model fails).
+---@param plants lsys.Plant[]|lsys.PopulationOptions
+---@param opts? lsys.PopulationOptions
+---@return lsys.Scene
+function lsys.population(plants, opts) end
 
 --- Renders a Scene (or a Model: derived and interpreted) headless with OSMesa. With
 --- `opts.out` writes a PNG and returns true; otherwise returns the RGBA pixels (top row

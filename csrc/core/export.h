@@ -51,6 +51,9 @@ typedef struct lsys_export_opts {
   int tubes;               /* 1: line segments as tubes; 0: as lines */
   int sides;               /* sides of a tube, 3 .. 1024 */
   double pixel;            /* scene units per unit of line width; 0: the default */
+  int flatten;             /* a population: 1 writes every instance out in every format;
+                              0 keeps glb's instancing (OBJ and PLY are always flattened) */
+  size_t max_memory;       /* the bytes a flattened copy may take; 0: lsys_memory_limit() */
 } lsys_export_opts;
 
 /* The default size of a pixel of line width, in scene units: the largest
@@ -63,7 +66,12 @@ double lsys_export_pixel (const lsys_mesh *m);
 /* Writes a scene's mesh with its palette and textures in 'format'
 ** (LSYS_FORMAT_*), as 'o' says (NULL: lines as lines): what the bindings
 ** call. LSYS_OK or an error with e->msg naming the file (LSYS_EARG for bad
-** options). With tubes, the mesh is copied once with its tubes added. */
+** options). With tubes, the mesh is copied once with its tubes added.
+** A population (a scene with instances, population.h) is written as GLB
+** with instancing (lsys_scene_save_glb_instanced; with tubes, each
+** prototype gets its own) unless o->flatten; otherwise, and always as OBJ
+** or PLY, a flattened copy (lsys_population_flatten) is made first,
+** LSYS_EMEMORY when it would take more than o->max_memory. */
 int lsys_scene_save (const lsys_scene *s, int format, const char *path,
                      const lsys_export_opts *o, lsys_error *e);
 
@@ -88,5 +96,17 @@ int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npa
 int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
                         const lsys_texture *const *tex, int ntex, const char *path,
                         lsys_error *e);
+
+/*
+** A population (a scene with parts and instances: population.h) as glTF
+** binary with EXT_mesh_gpu_instancing: one mesh per part that has
+** instances and draws something, one node per such mesh whose extension
+** gives its instances' translations, rotations and scales (the extension
+** is listed in extensionsUsed and extensionsRequired). Materials and
+** textures as lsys_mesh_save_glb. LSYS_EARG (naming the instance) when an
+** instance is not a translation, rotation and positive scale
+** (lsys_population_trs): such a population must be flattened.
+*/
+int lsys_scene_save_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e);
 
 #endif

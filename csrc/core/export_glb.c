@@ -15,6 +15,17 @@
 ** equivalent: export.h's tubes replace the lines by triangles before this
 ** writer sees them). An empty mesh gives a scene without nodes.
 **
+** Instancing (a population, lsys_scene_save_glb_instanced): the meshes are
+** the scene's parts (its prototypes) that have instances, each with its own
+** vertex accessors over its range of the shared vertex view and its own
+** index and line accessors over its part of each run (the sorts are
+** stable, so a part's triangles are one stretch of each run), indices
+** counted from the part's first vertex; one node per such mesh carries
+** EXT_mesh_gpu_instancing, whose TRANSLATION, ROTATION and SCALE accessors
+** read a view of the instances' T R S after the segments (40 bytes an
+** instance, by part). The extension is in extensionsUsed and, as it
+** recommends (the file has no fallback), in extensionsRequired.
+**
 ** Textures: each one used gets an image (the PNG file's bytes, embedded), a
 ** sampler (its filters, REPEAT wrapping) and a texture; each (slot,
 ** texture) pair gets a material whose baseColorTexture is it: modulate
@@ -29,6 +40,7 @@
 #include <string.h>
 
 #include "export_impl.h"
+#include "population.h"
 
 #define GLB_MAGIC  0x46546C67u     /* "glTF" */
 #define GLB_JSON   0x4E4F534Au     /* "JSON" */
@@ -54,7 +66,62 @@ typedef struct glb {
   uint16_t *imgtex;               /* per glTF texture: the texture index */
   size_t nimg;
   int unlit;                      /* some material is unlit (a decal texture) */
+  /* the meshes: the scene's parts with instancing, else one, 'whole' */
+  const lsys_part *parts;
+  size_t nparts;
+  lsys_part whole;
+  const lsys_instance *inst;      /* instancing: the instances (NULL: one plain node) */
+  size_t ninst;
+  size_t *ifirst;                 /* nparts + 1 offsets into iord: the instances by part */
+  uint32_t *iord;
+  size_t nbytes;                  /* the BIN chunk's instance data */
 } glb;
+
+/* Whether part p is written (a mesh and a node): it draws something and,
+** with instancing, has instances. */
+static int partused (const glb *G, size_t p) {
+  const lsys_part *q = &G->parts[p];
+  if (q->nt == 0 && q->nl == 0) return 0;
+  return G->inst == NULL || G->ifirst[p + 1] > G->ifirst[p];
+}
+
+/* The first i in [lo, hi) with a[i] >= x (a ascending there), or hi. */
+static size_t lower (const uint32_t *a, size_t lo, size_t hi, size_t x) {
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (a[mid] < x) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+
+/* The stretch [*a, *b) of tord of run r that is part p's triangles. */
+static void runpart (const glb *G, size_t r, const lsys_part *p, size_t *a, size_t *b) {
+  const lsys_run *u = &G->g.runs[r];
+  *a = lower(G->g.tord, u->first, u->end, p->t0);
+  *b = lower(G->g.tord, *a, u->end, p->t0 + p->nt);
+}
+
+/* The stretch [*a, *b) of lord of slot k that is part p's segments. */
+static void slotpart (const glb *G, size_t k, const lsys_part *p, size_t *a, size_t *b) {
+  *a = lower(G->g.lord, G->g.lfirst[k], G->g.lfirst[k + 1], p->l0);
+  *b = lower(G->g.lord, *a, G->g.lfirst[k + 1], p->l0 + p->nl);
+}
+
+/* The number of accessors of part p: its vertices (when it has triangles),
+** one per stretch of a run and of a slot's segments, and T, R, S. */
+static size_t naccessors (const glb *G, size_t p) {
+  const lsys_part *q = &G->parts[p];
+  size_t n = q->nt > 0 ? 3 : 0, r, k, a, b;
+  for (r = 0; r < G->g.nruns; r++) {
+    runpart(G, r, q, &a, &b);
+    n += b > a;
+  }
+  for (k = 0; k < G->g.nmat; k++) {
+    slotpart(G, k, q, &a, &b);
+    n += b > a;
+  }
+  return n + (G->inst != NULL ? 3 : 0);
+}
 
 static int nomem (const glb *G, lsys_error *e) {
   return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory",
@@ -268,7 +335,7 @@ static void jmaterials (jbuf *j, const glb *G) {
 /* The textures, their samplers and their images (the buffer views after
 ** those of the geometry). */
 static void jtextures (jbuf *j, const glb *G) {
-  size_t i, view0 = (G->ntri ? 2 : 0) + (G->nl ? 1 : 0);
+  size_t i, view0 = (G->ntri ? 2 : 0) + (G->nl ? 1 : 0) + (G->nbytes ? 1 : 0);
   if (G->nimg == 0) return;
   jadd(j, "\"textures\":[");
   for (i = 0; i < G->nimg; i++)
@@ -289,34 +356,70 @@ static void jtextures (jbuf *j, const glb *G) {
 /* The JSON chunk                                                       */
 /* ------------------------------------------------------------------ */
 
-/* The mesh: per run a TRIANGLES primitive, per slot with segments a LINES
-** primitive. Accessors 0-2 are the vertex attributes, then one per
-** primitive (jaccessors). */
-static void jmesh (jbuf *j, const glb *G) {
+/* The primitives of part p: per stretch of a run a TRIANGLES primitive,
+** per stretch of a slot's segments a LINES primitive. Its accessors are
+** numbered from *nacc on, in jpartaccessors' order; *nacc ends past them. */
+static void jprimitives (jbuf *j, const glb *G, size_t p, size_t *nacc) {
   const lsys_groups *g = &G->g;
-  size_t k, r, nacc = G->ntri ? 3 : 0;
+  const lsys_part *q = &G->parts[p];
+  size_t k, r, a, b, v = *nacc;
   int first = 1;
-  jadd(j, "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"name\":\"lsys\"}],");
-  jadd(j, "\"meshes\":[{\"primitives\":[");
+  if (q->nt > 0) *nacc += 3;
   for (r = 0; r < g->nruns; r++) {
-    jadd(j, "%s{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TEXCOORD_0\":2},"
-         "\"indices\":%zu,\"material\":%lu,\"mode\":4}", first ? "" : ",", nacc++,
-         (unsigned long)G->rmat[r]);
+    runpart(G, r, q, &a, &b);
+    if (b == a) continue;
+    jadd(j, "%s{\"attributes\":{\"POSITION\":%zu,\"NORMAL\":%zu,\"TEXCOORD_0\":%zu},"
+         "\"indices\":%zu,\"material\":%lu,\"mode\":4}", first ? "" : ",", v, v + 1, v + 2,
+         (*nacc)++, (unsigned long)G->rmat[r]);
     first = 0;
   }
-  for (k = 0; k < g->nmat; k++)
-    if (g->lfirst[k + 1] > g->lfirst[k]) {
-      jadd(j, "%s{\"attributes\":{\"POSITION\":%zu},\"material\":%lu,\"mode\":1}",
-           first ? "" : ",", nacc++, (unsigned long)G->pmat[k]);
-      first = 0;
+  for (k = 0; k < g->nmat; k++) {
+    slotpart(G, k, q, &a, &b);
+    if (b == a) continue;
+    jadd(j, "%s{\"attributes\":{\"POSITION\":%zu},\"material\":%lu,\"mode\":1}",
+         first ? "" : ",", (*nacc)++, (unsigned long)G->pmat[k]);
+    first = 0;
+  }
+  if (G->inst != NULL) *nacc += 3;
+}
+
+/* The scene, its nodes and meshes: one plain node and mesh, or with
+** instancing a node and a mesh per part used, the node placing the mesh's
+** instances (its last three accessors). */
+static void jmesh (jbuf *j, const glb *G) {
+  size_t p, n = 0, nacc = 0;
+  jadd(j, "\"scenes\":[{\"nodes\":[");
+  for (p = 0; p < G->nparts; p++)
+    if (partused(G, p)) {
+      jadd(j, "%s%zu", n ? "," : "", n);
+      n++;
     }
-  jadd(j, "]}],");
+  jadd(j, "]}],\"nodes\":[");
+  if (G->inst == NULL) jadd(j, "{\"mesh\":0,\"name\":\"lsys\"}");
+  for (p = 0, n = 0; G->inst != NULL && p < G->nparts; p++) {
+    if (!partused(G, p)) continue;
+    nacc += naccessors(G, p);
+    jadd(j, "%s{\"mesh\":%zu,\"name\":\"prototype %zu\",\"extensions\":"
+         "{\"EXT_mesh_gpu_instancing\":{\"attributes\":{\"TRANSLATION\":%zu,"
+         "\"ROTATION\":%zu,\"SCALE\":%zu}}}}", n ? "," : "", n, p + 1, nacc - 3, nacc - 2,
+         nacc - 1);
+    n++;
+  }
+  jadd(j, "],\"meshes\":[");
+  for (p = 0, n = 0, nacc = 0; p < G->nparts; p++) {
+    if (!partused(G, p)) continue;
+    jadd(j, "%s{\"primitives\":[", n++ ? "," : "");
+    jprimitives(j, G, p, &nacc);
+    jadd(j, "]}");
+  }
+  jadd(j, "],");
 }
 
 /* The buffer and its views: vertices and indices (when there are
-** triangles), segment end points (when there are segments), images. */
+** triangles), segment end points (when there are segments), instances,
+** images. */
 static void jviews (jbuf *j, const glb *G) {
-  size_t i, off = G->vbytes + G->ibytes + G->lbytes;
+  size_t i, off = G->vbytes + G->ibytes + G->lbytes + G->nbytes;
   jadd(j, "\"buffers\":[{\"byteLength\":%zu}],\"bufferViews\":[", G->binlen);
   if (G->ntri) {
     jadd(j, "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%zu,\"byteStride\":32,"
@@ -327,6 +430,9 @@ static void jviews (jbuf *j, const glb *G) {
   if (G->nl)
     jadd(j, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":12,"
          "\"target\":34962}", G->ntri ? "," : "", G->vbytes + G->ibytes, G->lbytes);
+  if (G->nbytes)
+    jadd(j, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}",
+         G->ntri || G->nl ? "," : "", G->vbytes + G->ibytes + G->lbytes, G->nbytes);
   for (i = 0; i < G->nimg; i++) {
     jadd(j, ",{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", off, G->imglen[i]);
     off += (G->imglen[i] + 3) & ~(size_t)3;
@@ -347,66 +453,100 @@ static void minmax (const float *p, size_t n, size_t stride, float lo[3], float 
     }
 }
 
-/* The accessors of the triangles: the three vertex attributes, then the
-** indices of each run. */
-static void jtriaccessors (jbuf *j, const glb *G) {
-  const lsys_groups *g = &G->g;
-  float lo[3], hi[3];
-  size_t r, nv = G->nv;
-  minmax(G->m->pos, nv, 3, lo, hi);
-  jadd(j, "{\"bufferView\":0,\"byteOffset\":0,\"componentType\":5126,\"count\":%zu,"
-       "\"type\":\"VEC3\"", nv);
-  jvec(j, ",\"min\":", lo, 3);
-  jvec(j, ",\"max\":", hi, 3);
-  jadd(j, "},{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5126,\"count\":%zu,"
-       "\"type\":\"VEC3\"},{\"bufferView\":0,\"byteOffset\":24,\"componentType\":5126,"
-       "\"count\":%zu,\"type\":\"VEC2\"}", nv, nv);
-  for (r = 0; r < g->nruns; r++)
-    jadd(j, ",{\"bufferView\":1,\"byteOffset\":%zu,\"componentType\":5125,"
-         "\"count\":%zu,\"type\":\"SCALAR\"}", 12 * g->runs[r].first,
-         3 * (g->runs[r].end - g->runs[r].first));
+/* Bounds of the end points of segments lord[a .. b). */
+static void lineminmax (const glb *G, size_t a, size_t b, float lo[3], float hi[3]) {
+  size_t i;
+  int c;
+  lo[0] = lo[1] = lo[2] = HUGE_VALF;
+  hi[0] = hi[1] = hi[2] = -HUGE_VALF;
+  for (i = a; i < b; i++) {
+    float l2[3], h2[3];
+    minmax(G->m->lpos + 6 * (size_t)G->g.lord[i], 2, 3, l2, h2);
+    for (c = 0; c < 3; c++) {
+      if (l2[c] < lo[c]) lo[c] = l2[c];
+      if (h2[c] > hi[c]) hi[c] = h2[c];
+    }
+  }
 }
 
-/* The accessors: those of the triangles, then one per slot with segments,
-** over its run of end points. */
-static void jaccessors (jbuf *j, const glb *G) {
+/* The three vertex attributes of part p: its range of the vertex view. */
+static void jvertexaccessors (jbuf *j, const glb *G, const lsys_part *q, const char *sep) {
+  float lo[3], hi[3];
+  size_t off = 32 * q->v0;
+  minmax(G->m->pos + 3 * q->v0, q->nv, 3, lo, hi);
+  jadd(j, "%s{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":%zu,"
+       "\"type\":\"VEC3\"", sep, off, q->nv);
+  jvec(j, ",\"min\":", lo, 3);
+  jvec(j, ",\"max\":", hi, 3);
+  jadd(j, "},{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":%zu,"
+       "\"type\":\"VEC3\"},{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,"
+       "\"count\":%zu,\"type\":\"VEC2\"}", off + 12, q->nv, off + 24, q->nv);
+}
+
+/* The accessors of part p, in the order jprimitives numbers them: its
+** vertex attributes (when it has triangles), the indices of each stretch of
+** a run, the end points of each stretch of a slot's segments, and with
+** instancing the TRANSLATION, ROTATION and SCALE of its instances (their
+** stretch of the instance view: n translations, n rotations, n scales). */
+static void jpartaccessors (jbuf *j, const glb *G, size_t p, int *first) {
   const lsys_groups *g = &G->g;
-  size_t k, i, lview = G->ntri ? 2 : 0;
-  int first = 1;
-  jadd(j, "\"accessors\":[");
-  if (G->ntri) {
-    jtriaccessors(j, G);
-    first = 0;
+  const lsys_part *q = &G->parts[p];
+  size_t r, k, a, b, lview = G->ntri ? 2 : 0;
+  if (q->nt > 0) {
+    jvertexaccessors(j, G, q, *first ? "" : ",");
+    *first = 0;
+  }
+  for (r = 0; r < g->nruns; r++) {
+    runpart(G, r, q, &a, &b);
+    if (b == a) continue;
+    jadd(j, "%s{\"bufferView\":1,\"byteOffset\":%zu,\"componentType\":5125,"
+         "\"count\":%zu,\"type\":\"SCALAR\"}", *first ? "" : ",", 12 * a, 3 * (b - a));
+    *first = 0;
   }
   for (k = 0; k < g->nmat; k++) {
-    size_t a = g->lfirst[k], b = g->lfirst[k + 1];
     float lo[3], hi[3];
+    slotpart(G, k, q, &a, &b);
     if (b == a) continue;
-    lo[0] = lo[1] = lo[2] = HUGE_VALF;
-    hi[0] = hi[1] = hi[2] = -HUGE_VALF;
-    for (i = a; i < b; i++) {
-      float l2[3], h2[3];
-      int c;
-      minmax(G->m->lpos + 6 * (size_t)g->lord[i], 2, 3, l2, h2);
-      for (c = 0; c < 3; c++) {
-        if (l2[c] < lo[c]) lo[c] = l2[c];
-        if (h2[c] > hi[c]) hi[c] = h2[c];
-      }
-    }
+    lineminmax(G, a, b, lo, hi);
     jadd(j, "%s{\"bufferView\":%zu,\"byteOffset\":%zu,\"componentType\":5126,"
-         "\"count\":%zu,\"type\":\"VEC3\"", first ? "" : ",", lview, 24 * a, 2 * (b - a));
+         "\"count\":%zu,\"type\":\"VEC3\"", *first ? "" : ",", lview, 24 * a, 2 * (b - a));
     jvec(j, ",\"min\":", lo, 3);
     jvec(j, ",\"max\":", hi, 3);
     jadd(j, "}");
-    first = 0;
+    *first = 0;
   }
+  if (G->inst != NULL) {
+    size_t n = G->ifirst[p + 1] - G->ifirst[p], off = 40 * G->ifirst[p];
+    size_t iview = lview + (G->nl ? 1 : 0);
+    jadd(j, "%s{\"bufferView\":%zu,\"byteOffset\":%zu,\"componentType\":5126,"
+         "\"count\":%zu,\"type\":\"VEC3\"},{\"bufferView\":%zu,\"byteOffset\":%zu,"
+         "\"componentType\":5126,\"count\":%zu,\"type\":\"VEC4\"},{\"bufferView\":%zu,"
+         "\"byteOffset\":%zu,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"}",
+         *first ? "" : ",", iview, off, n, iview, off + 12 * n, n, iview, off + 28 * n, n);
+    *first = 0;
+  }
+}
+
+/* The accessors, part by part. */
+static void jaccessors (jbuf *j, const glb *G) {
+  size_t p;
+  int first = 1;
+  jadd(j, "\"accessors\":[");
+  for (p = 0; p < G->nparts; p++)
+    if (partused(G, p)) jpartaccessors(j, G, p, &first);
   jadd(j, "]");
 }
 
 /* The whole JSON chunk into 'j', padded with spaces to 4 bytes. */
 static void jchunk (jbuf *j, const glb *G) {
   jadd(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"lsys\"},");
-  if (G->unlit) jadd(j, "\"extensionsUsed\":[\"KHR_materials_unlit\"],");
+  if (G->unlit || G->inst != NULL) {
+    jadd(j, "\"extensionsUsed\":[");
+    if (G->unlit) jadd(j, "\"KHR_materials_unlit\"");
+    if (G->inst != NULL) jadd(j, "%s\"EXT_mesh_gpu_instancing\"", G->unlit ? "," : "");
+    jadd(j, "],");
+  }
+  if (G->inst != NULL) jadd(j, "\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"],");
   jadd(j, "\"scene\":0,");
   if (G->ntri == 0 && G->nl == 0) jadd(j, "\"scenes\":[{}]}");
   else {
@@ -448,16 +588,48 @@ static void binvertices (lsys_writer *w, const lsys_mesh *m, size_t nv) {
   }
 }
 
-/* The BIN chunk after its vertices: the indices in the order of the runs,
-** the segment end points in material order, the images. */
+/* The first vertex of the part that holds triangle t (0 without instancing:
+** indices are the mesh's). */
+static uint32_t vbase (const glb *G, size_t t) {
+  size_t lo = 0, hi = G->nparts;
+  if (G->inst == NULL) return 0;
+  while (lo < hi) {               /* the last part with t0 <= t */
+    size_t mid = lo + (hi - lo) / 2;
+    if (G->parts[mid].t0 <= t) lo = mid + 1; else hi = mid;
+  }
+  return lo > 0 && t < G->parts[lo - 1].t0 + G->parts[lo - 1].nt
+         ? (uint32_t)G->parts[lo - 1].v0 : 0;
+}
+
+/* The instances' T R S, part by part: per part its translations, then its
+** rotations, then its scales (jpartaccessors). They were checked. */
+static void bininstances (lsys_writer *w, const glb *G) {
+  size_t p, i;
+  int pass, c;
+  for (p = 0; p < G->nparts; p++)
+    for (pass = 0; pass < 3; pass++)
+      for (i = G->ifirst[p]; i < G->ifirst[p + 1]; i++) {
+        float t[3], q[4], sc[3];
+        const float *v = pass == 0 ? t : pass == 1 ? q : sc;
+        unsigned char *b = wroom(w, 16);
+        lsys_population_trs(G->inst[G->iord[i]].m, t, q, sc);
+        for (c = 0; c < (pass == 1 ? 4 : 3); c++) b = putf32(b, fin(v[c]));
+        wdone(w, b);
+      }
+}
+
+/* The BIN chunk after its vertices: the indices in the order of the runs
+** (each counted from its part's first vertex), the segment end points in
+** material order, the instances, the images. */
 static void binrest (lsys_writer *w, const glb *G) {
   static const unsigned char zero[4] = {0, 0, 0, 0};
   const lsys_mesh *m = G->m;
   size_t i;
   for (i = 0; i < G->ntri; i++) {
     const uint32_t *t = m->tri + 3 * (size_t)G->g.tord[i];
+    uint32_t v0 = vbase(G, G->g.tord[i]);
     unsigned char *p = wroom(w, 12);
-    p = put32(p, t[0]); p = put32(p, t[1]); p = put32(p, t[2]);
+    p = put32(p, t[0] - v0); p = put32(p, t[1] - v0); p = put32(p, t[2] - v0);
     wdone(w, p);
   }
   for (i = 0; i < G->nl; i++) {
@@ -467,6 +639,7 @@ static void binrest (lsys_writer *w, const glb *G) {
     for (c = 0; c < 6; c++) p = putf32(p, fin(q[c]));
     wdone(w, p);
   }
+  if (G->inst != NULL) bininstances(w, G);
   for (i = 0; i < G->nimg; i++) {
     lsys_wbytes(w, G->img[i], G->imglen[i]);
     lsys_wbytes(w, zero, (4 - G->imglen[i] % 4) % 4);
@@ -508,32 +681,97 @@ static void glbfree (glb *G) {
   for (i = 0; G->img != NULL && i < G->nimg; i++) LSYS_FREE(G->img[i]);
   LSYS_FREE(G->img); LSYS_FREE(G->imglen); LSYS_FREE(G->imgtex);
   LSYS_FREE(G->pmat); LSYS_FREE(G->rmat); LSYS_FREE(G->gtex);
+  LSYS_FREE(G->ifirst); LSYS_FREE(G->iord);
   lsys_freegroups(&G->g);
+}
+
+/* Writes the file of G (its mesh, palette, path and parts set); frees G. */
+static int glbsave (glb *G, const lsys_texture *const *tex, int ntex, lsys_error *e) {
+  const lsys_mesh *m = G->m;
+  jbuf j = {0};
+  int st;
+  G->ntri = m->nt; G->nl = m->nl; G->nv = G->ntri ? m->nv : 0;
+  G->vbytes = 32 * G->nv; G->ibytes = 12 * G->ntri; G->lbytes = 24 * G->nl;
+  if (G->nv > UINT32_MAX / 32 || G->ntri > UINT32_MAX / 12 || G->nl > UINT32_MAX / 24 ||
+      G->ninst > UINT32_MAX / 40 ||
+      (uint64_t)G->vbytes + G->ibytes + G->lbytes + G->nbytes > UINT32_MAX - 1024) {
+    glbfree(G);
+    return toolarge(G, e);
+  }
+  G->binlen = G->vbytes + G->ibytes + G->lbytes + G->nbytes;
+  st = lsys_groupmesh(&G->g, m, G->npal, tex, ntex, G->path, e);
+  if (st != LSYS_OK) memset(&G->g, 0, sizeof G->g);     /* it freed its arrays */
+  if (st == LSYS_OK) st = glbmaterials(G, e);
+  if (st == LSYS_OK) st = glbimages(G, e);
+  if (st == LSYS_OK) {
+    jchunk(&j, G);
+    st = j.err ? nomem(G, e) : glbwrite(G, j.p, j.n, e);
+  }
+  LSYS_FREE(j.p);
+  glbfree(G);
+  return st;
 }
 
 int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
                         const lsys_texture *const *tex, int ntex, const char *path,
                         lsys_error *e) {
   glb G = {0};
-  jbuf j = {0};
   int st = lsys_checkmesh(m, path, e);
   if (st != LSYS_OK) return st;
   G.m = m; G.pal = pal; G.npal = npal; G.path = path;
-  G.ntri = m->nt; G.nl = m->nl; G.nv = G.ntri ? m->nv : 0;
-  G.vbytes = 32 * G.nv; G.ibytes = 12 * G.ntri; G.lbytes = 24 * G.nl;
-  if (G.nv > UINT32_MAX / 32 || G.ntri > UINT32_MAX / 12 || G.nl > UINT32_MAX / 24 ||
-      (uint64_t)G.vbytes + G.ibytes + G.lbytes > UINT32_MAX - 1024)
-    return toolarge(&G, e);
-  G.binlen = G.vbytes + G.ibytes + G.lbytes;
-  st = lsys_groupmesh(&G.g, m, npal, tex, ntex, path, e);
-  if (st != LSYS_OK) return st;
-  st = glbmaterials(&G, e);
-  if (st == LSYS_OK) st = glbimages(&G, e);
-  if (st == LSYS_OK) {
-    jchunk(&j, &G);
-    st = j.err ? nomem(&G, e) : glbwrite(&G, j.p, j.n, e);
+  G.whole.nv = m->nv; G.whole.nt = m->nt; G.whole.nl = m->nl;
+  G.parts = &G.whole;
+  G.nparts = 1;
+  return glbsave(&G, tex, ntex, e);
+}
+
+/* The instances of s by part into G (a counting sort), each checked to be
+** a translation, rotation and positive scale; whether some part is used. */
+static int byparts (glb *G, const lsys_scene *s, int *used, lsys_error *e) {
+  size_t i, p;
+  G->ifirst = (size_t *)LSYS_MALLOC((s->nparts + 1) * sizeof *G->ifirst);
+  G->iord = (uint32_t *)LSYS_MALLOC(s->ninst * sizeof *G->iord);
+  if (G->ifirst == NULL || G->iord == NULL) return nomem(G, e);
+  memset(G->ifirst, 0, (s->nparts + 1) * sizeof *G->ifirst);
+  for (i = 0; i < s->ninst; i++) {
+    float t[3], q[4], sc[3];
+    if (s->inst[i].part >= s->nparts)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': instance %zu has no "
+                           "prototype", G->path, i + 1);
+    if (!lsys_population_trs(s->inst[i].m, t, q, sc))
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s' with instancing: "
+                           "instance %zu is not a translation, rotation and positive scale "
+                           "(save with instancing = false)", G->path, i + 1);
+    G->ifirst[s->inst[i].part + 1]++;
   }
-  LSYS_FREE(j.p);
-  glbfree(&G);
-  return st;
+  for (p = 0; p < s->nparts; p++) G->ifirst[p + 1] += G->ifirst[p];
+  for (i = 0; i < s->ninst; i++) G->iord[G->ifirst[s->inst[i].part]++] = (uint32_t)i;
+  for (p = s->nparts; p > 0; p--) G->ifirst[p] = G->ifirst[p - 1];
+  G->ifirst[0] = 0;
+  for (p = 0, *used = 0; p < s->nparts; p++) *used |= partused(G, p);
+  return LSYS_OK;
+}
+
+int lsys_scene_save_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e) {
+  glb G = {0};
+  size_t p;
+  int st = lsys_checkmesh(&s->mesh, path, e), used = 0;
+  if (st != LSYS_OK) return st;
+  for (p = 0; p < s->nparts; p++) {
+    const lsys_part *q = &s->parts[p];
+    if (q->v0 + q->nv > s->mesh.nv || q->t0 + q->nt > s->mesh.nt || q->l0 + q->nl > s->mesh.nl)
+      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': prototype %zu is "
+                           "out of the mesh", path, p + 1);
+  }
+  G.m = &s->mesh; G.pal = s->pal; G.npal = s->npal; G.path = path;
+  G.parts = s->parts; G.nparts = s->nparts;
+  G.inst = s->inst; G.ninst = s->ninst; G.nbytes = 40 * s->ninst;
+  if ((st = byparts(&G, s, &used, e)) != LSYS_OK || !used) {
+    lsys_mesh empty;
+    glbfree(&G);
+    if (st != LSYS_OK) return st;
+    lsys_mesh_init(&empty);
+    return lsys_mesh_save_glb(&empty, s->pal, s->npal, NULL, 0, path, e);
+  }
+  return glbsave(&G, s->tex, s->ntex, e);
 }

@@ -159,15 +159,20 @@ static float tofloat (double x) {
   return x > FLT_MAX ? FLT_MAX : x < -FLT_MAX ? -FLT_MAX : (float)x;
 }
 
+int lsys_mesh_reserve_lines (lsys_mesh *m, size_t nl) {
+  void **arr[3] = { (void **)&m->lpos, (void **)&m->lwidth, (void **)&m->lcol };
+  const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
+  if (nl > (size_t)UINT32_MAX - m->nl) return LSYS_ELIMIT;
+  if (m->nl + nl <= m->lcap) return LSYS_OK;
+  return growall(arr, elem, 3, &m->lcap, m->nl + nl, m->meter);
+}
+
 int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
                     double w0, double w1, unsigned col) {
   float *p;
   if (m->nl == m->lcap) {
-    void **arr[3] = { (void **)&m->lpos, (void **)&m->lwidth, (void **)&m->lcol };
-    const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
-    if (m->nl >= (size_t)UINT32_MAX) return LSYS_ELIMIT;
-    int st;
-    if ((st = growall(arr, elem, 3, &m->lcap, m->nl + 1, m->meter)) != LSYS_OK) return st;
+    int st = lsys_mesh_reserve_lines(m, 1);
+    if (st != LSYS_OK) return st;
   }
   p = m->lpos + 6 * m->nl;
   p[0] = tofloat(a[0]); p[1] = tofloat(a[1]); p[2] = tofloat(a[2]);

@@ -63,6 +63,9 @@ int lsys_mesh_sync (lsys_mesh *dst, const lsys_mesh *src, const size_t *r, size_
 
 /* Makes room for 'nv' more vertices and 'nt' more triangles. */
 int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt);
+/* Makes room for 'nl' more line segments (within the meter). LSYS_OK,
+** LSYS_ELIMIT (more than UINT32_MAX segments), LSYS_ENOMEM or LSYS_EMEMORY. */
+int lsys_mesh_reserve_lines (lsys_mesh *m, size_t nl);
 /* Appends a vertex (room must have been reserved); returns its index. */
 static inline uint32_t lsys_mesh_vertex (lsys_mesh *m, const double p[3], const double n[3],
                                          double u, double v, unsigned col, int twosided) {

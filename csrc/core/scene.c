@@ -1,6 +1,7 @@
 /*
 ** The scene: see scene.h.
 */
+#include <math.h>
 #include <string.h>
 
 #include "scene.h"
@@ -163,4 +164,51 @@ long lsys_scene_part_of_record (const lsys_scene *s, size_t r) {
   if (lo == 0) return -1;
   lo--;
   return r < s->parts[lo].r0 + s->parts[lo].nr ? (long)lo : -1;
+}
+
+/* Adds the 'n' points of 'p' (3 floats each) under 'm' to the bounds. NaN
+** coordinates take no part, as in lsys_mesh_bounds. */
+static void addxformed (const float m[16], const float *p, size_t n, double lo[3],
+                        double hi[3]) {
+  size_t i;
+  int k;
+  for (i = 0; i < n; i++, p += 3) {
+    double q[3];
+    lsys_xform(m, p, q);
+    for (k = 0; k < 3; k++) {
+      if (q[k] < lo[k]) lo[k] = q[k];
+      if (q[k] > hi[k]) hi[k] = q[k];
+    }
+  }
+}
+
+int lsys_scene_bounds (const lsys_scene *s, double lo[3], double hi[3]) {
+  const lsys_mesh *m = &s->mesh;
+  size_t i;
+  int k, ok = 1;
+  if (s->ninst == 0) return lsys_mesh_bounds(m, lo, hi);
+  for (k = 0; k < 3; k++) { lo[k] = HUGE_VAL; hi[k] = -HUGE_VAL; }
+  for (i = 0; i < s->ninst; i++) {
+    const lsys_instance *in = &s->inst[i];
+    const lsys_part *p;
+    if (in->part >= s->nparts) continue;
+    p = &s->parts[in->part];
+    addxformed(in->m, m->pos + 3 * p->v0, p->nv, lo, hi);
+    addxformed(in->m, m->lpos + 6 * p->l0, 2 * p->nl, lo, hi);
+  }
+  for (k = 0; k < 3; k++)
+    if (!(lo[k] <= hi[k])) ok = 0;
+  if (!ok)
+    for (k = 0; k < 3; k++) lo[k] = hi[k] = 0;
+  return ok;
+}
+
+size_t lsys_scene_bytes (const lsys_scene *s) {
+  const lsys_mesh *m = &s->mesh;
+  return m->vcap * (8 * sizeof(float) + 2 * sizeof(uint16_t) + 1) +
+         m->tcap * 3 * sizeof(uint32_t) +
+         m->lcap * (8 * sizeof(float) + sizeof(uint16_t)) +
+         s->palcap * sizeof *s->pal + s->reccap * sizeof *s->rec +
+         s->stiffcap * sizeof *s->stiff + s->partcap * sizeof *s->parts +
+         s->instcap * sizeof *s->inst;
 }

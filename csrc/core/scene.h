@@ -16,8 +16,11 @@
 **              one plant of a population, one component of a component
 **              graph, one limb's geometry in incremental growth. A scene
 **              without parts is one part: everything.
-**   instances  a part drawn again under a transform (populations of one
-**              plant); none means each part is drawn once, where it is.
+**   instances  a part drawn under a transform (populations: population.h).
+**              A scene without instances is drawn as its mesh is; a scene
+**              with instances is drawn as its instances only, each its
+**              part's geometry under its transform, so that its parts are
+**              prototypes shared by every instance of them.
 **   dirty      the vertex ranges changed in place since the consumer last
 **              took them (a viewer copies only those: lsys_viewer_patch).
 **
@@ -27,8 +30,10 @@
 ** lsys.render's options).
 **
 ** Parts, instances and the dirty range are the layout the component graphs,
-** incremental growth and populations build on: the turtle of today writes
-** one part and no instances, and the consumers draw the mesh as it is.
+** incremental growth and populations build on: the turtle writes one part
+** and no instances; lsys.population (population.h) writes a part per
+** prototype and an instance per plant, and the renderer, the viewer and
+** the export writers draw or write each instance.
 */
 #ifndef LSYS_SCENE_H
 #define LSYS_SCENE_H
@@ -111,7 +116,8 @@ typedef struct lsys_part {
   size_t r0, nr;          /* records */
 } lsys_part;
 
-/* Part 'part' drawn again under the column-major 4 x 4 transform 'm'. */
+/* Part 'part' drawn under the column-major 4 x 4 transform 'm' (affine:
+** m[3] = m[7] = m[11] = 0, m[15] = 1). */
 typedef struct lsys_instance {
   uint32_t part;
   float m[16];
@@ -195,5 +201,25 @@ void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b);
 
 /* The part that holds record 'r' (its index), or -1 when none does. */
 long lsys_scene_part_of_record (const lsys_scene *s, size_t r);
+
+/* The point 'p' under the affine column-major transform 'm', in doubles. */
+static inline void lsys_xform (const float m[16], const float p[3], double out[3]) {
+  int i;
+  for (i = 0; i < 3; i++)
+    out[i] = (double)m[i] * p[0] + (double)m[4 + i] * p[1] + (double)m[8 + i] * p[2] +
+             (double)m[12 + i];
+}
+
+/* Axis-aligned bounds (lo[3], hi[3]) of the scene as drawn: its mesh's
+** (lsys_mesh_bounds) without instances; with instances, of every vertex
+** and line end of each instance's part under its transform (what a
+** flattened copy's mesh bounds would be, in doubles). Returns 0 (and lo =
+** hi = 0) when nothing is drawn, else 1. Allocates nothing. */
+int lsys_scene_bounds (const lsys_scene *s, double lo[3], double hi[3]);
+
+/* The bytes of memory the scene's arrays hold (their capacities): mesh,
+** palette, records, stiffnesses, parts and instances; not the textures it
+** borrows. */
+size_t lsys_scene_bytes (const lsys_scene *s);
 
 #endif

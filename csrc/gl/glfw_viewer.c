@@ -159,7 +159,7 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
 ** and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
-  if (lsys_vcam_fit(&v->cam, &f->sc.mesh, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
+  if (lsys_vcam_fit(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
     return;
   if (home) v->home = v->cam;
   v->dirty = 1;
@@ -368,7 +368,8 @@ static void draw (lsys_viewer *v) {
   v->st.wireframe = v->wireframe;
   v->st.capture = capturing(v);
   memcpy(v->st.scene, v->sr, sizeof v->sr);
-  if (f != NULL) lsys_render_camera(&sc.mesh, &sc.cam, v->sr[2], v->sr[3], v->st.proj, v->st.view);
+  if (f != NULL)
+    lsys_render_camera_scene(&sc, &sc.cam, v->sr[2], v->sr[3], v->st.proj, v->st.view);
   pthread_cond_broadcast(&v->cv);
   pthread_mutex_unlock(&v->mu);
 }
@@ -397,18 +398,15 @@ static void pick (lsys_viewer *v, double x, double y) {
   const lsys_vframe *f = curframe(v);
   lsys_vevent ev;
   double proj[16], view[16];
-  long k = -1;
   if (f == NULL) return;
-  if (lsys_vcam_matrices(&v->cam, &f->sc.mesh, &f->sc.cam, v->sr[2], v->sr[3], proj, view) ==
-      LSYS_OK)
-    k = lsys_vpick_find(f, proj, view, v->sr[2], v->sr[3], x - v->sr[0], y - v->sr[1], PICK_TOL);
-  event(v, k >= 0 ? LSYS_VEV_PICK : LSYS_VEV_MISS, &ev);
+  event(v, LSYS_VEV_MISS, &ev);
+  if (lsys_vcam_matrices(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], proj, view) ==
+      LSYS_OK &&
+      lsys_vpick_event(f, proj, view, v->sr[2], v->sr[3], x - v->sr[0], y - v->sr[1], PICK_TOL,
+                       &ev))
+    ev.type = LSYS_VEV_PICK;
   ev.x = x;
   ev.y = y;
-  if (k >= 0) {
-    ev.module = f->picks[k].module;
-    ev.kind = f->picks[k].kind;
-  }
   pushevent(v, &ev);
 }
 

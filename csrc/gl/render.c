@@ -20,6 +20,21 @@
 ** per draw call). Wide ones are expanded on the CPU into bands in clip
 ** coordinates: GL lines cannot taper, have no round ends, and stop at
 ** 255 pixels in Mesa, which supersampling reaches quickly.
+**
+** A scene with instances (a population, scene.h) is sorted and coloured as
+** above once per frame, over its prototypes' mesh; then each draw call of a
+** group becomes one per instance whose part has triangles (or lines) in it
+** -- the group's stretch of that part, under the modelview view * M -- so
+** that no vertex is copied per instance. The stretches are found by binary
+** search: the sorts are stable and parts are consecutive ranges, so each
+** group holds a part's elements together, parts in order. Fixed-function
+** GL transforms normals by the inverse transpose of the modelview, so a
+** non-uniform scale keeps them right (GL_NORMALIZE makes them unit again).
+** Wide lines are expanded per instance, with view * M in the clip matrix.
+** Instanced arrays (glDrawElementsInstanced with a per-instance attribute)
+** would need shaders (OpenGL 3.3 or ARB_instanced_arrays with vertex
+** programs), which this OpenGL 1.x path does without: a call per instance
+** and group, its vertices read in place from the prototype's arrays.
 */
 #include <GL/gl.h>
 #include <math.h>
@@ -141,7 +156,59 @@ typedef struct frame {
   int cull;                 /* the scene's solids may lose their back faces (scene.h) */
   float lscale;             /* framebuffer pixels per image pixel */
   size_t nwv, nwi;          /* wide lines: vertices and indices written */
+  const lsys_scene *s;      /* its instances and parts (none: the mesh as it is) */
+  double cur[16];           /* wide lines: proj * view, times the instance's M */
 } frame;
+
+/* The first element k in [lo, hi) (of 'per' indices each) whose first index
+** is at least x. */
+static size_t firstat (const uint32_t *idx, int per, size_t lo, size_t hi, size_t x) {
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (idx[per * mid] < x) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
+
+/* a * b, column-major 4 x 4 (b's last row 0 0 0 1, as instances' are). */
+static void mulaffine (double out[16], const double a[16], const float b[16]) {
+  int i, j;
+  for (j = 0; j < 4; j++)
+    for (i = 0; i < 4; i++)
+      out[4 * j + i] = a[i] * b[4 * j] + a[4 + i] * b[4 * j + 1] + a[8 + i] * b[4 * j + 2] +
+                       (j == 3 ? a[12 + i] : 0);
+}
+
+/*
+** Draws 'n' indices of 'idx' (elements of 'per' indices: 3 for triangles, 2
+** for lines): as they are, or once per instance, the stretch of its part
+** (vertices [v0, v0 + nv) for triangles, line ends [2 l0, 2 (l0 + nl)) for
+** lines) under view * M. The modelview is the view again afterwards.
+*/
+static void drawinst (const frame *F, GLenum mode, const uint32_t *idx, size_t n, int per) {
+  const lsys_scene *s = F->s;
+  size_t i, ne = n / (size_t)per;
+  if (s->ninst == 0) {
+    drawelements(F->gl, mode, idx, n);
+    return;
+  }
+  for (i = 0; i < s->ninst; i++) {
+    const lsys_part *p;
+    size_t lo, hi, a, b;
+    double mv[16];
+    if (s->inst[i].part >= s->nparts) continue;
+    p = &s->parts[s->inst[i].part];
+    lo = per == 3 ? p->v0 : 2 * p->l0;
+    hi = per == 3 ? p->v0 + p->nv : 2 * (p->l0 + p->nl);
+    a = firstat(idx, per, 0, ne, lo);
+    b = firstat(idx, per, a, ne, hi);
+    if (b == a) continue;
+    mulaffine(mv, F->view, s->inst[i].m);
+    F->gl->LoadMatrixd(mv);
+    drawelements(F->gl, mode, idx + (size_t)per * a, (size_t)per * (b - a));
+  }
+  F->gl->LoadMatrixd(F->view);
+}
 
 /* ---------------------------------------------------------------------- */
 /* triangles */
@@ -369,7 +436,7 @@ static void drawbucket (const frame *F, size_t k, int translucent, int plain) {
     if ((mt->diffuse[3] < 1) == translucent) {
       gl->LightModeli(GL_LIGHT_MODEL_TWO_SIDE, g >= npal);
       setmaterial(gl, mt);
-      drawelements(gl, GL_TRIANGLES, idx + i, j - i);
+      drawinst(F, GL_TRIANGLES, idx + i, j - i, 3);
     }
     i = j;
   }
@@ -428,7 +495,7 @@ static void drawtriangles (const frame *F, int translucent, int wireframe) {
     if (F->cull && g < npal && !wireframe) gl->Enable(GL_CULL_FACE);
     else gl->Disable(GL_CULL_FACE);
     setmaterial(gl, mt);
-    drawelements(gl, GL_TRIANGLES, F->c->idx + F->c->start[g], n);
+    drawinst(F, GL_TRIANGLES, F->c->idx + F->c->start[g], n, 3);
   }
   gl->Disable(GL_CULL_FACE);
   if (F->ntex > 0) drawtextured(F, translucent, wireframe);
@@ -536,8 +603,8 @@ static void wideline (frame *F, size_t s, const uint8_t rgba[4]) {
   double d0, d1, x0, y0, x1, y1, ux, uy, len;
   int cut0 = 0, cut1 = 0, i;
   uint32_t a0, b0, a1, b1;
-  transform(F->mvp, m->lpos + 6 * s, c0);
-  transform(F->mvp, m->lpos + 6 * s + 3, c1);
+  transform(F->cur, m->lpos + 6 * s, c0);
+  transform(F->cur, m->lpos + 6 * s + 3, c1);
   d0 = c0[2] + c0[3];
   d1 = c1[2] + c1[3];
   if (!(d0 >= 0 || d1 >= 0)) return;          /* wholly behind the near plane (or NaN) */
@@ -563,6 +630,39 @@ static void wideline (frame *F, size_t s, const uint8_t rgba[4]) {
   wtri(F, a0, b1, a1);
   if (!cut1) cap(F, c1, r1, ux, uy, a1, b1, rgba);
   if (!cut0) cap(F, c0, r0, -ux, -uy, b0, a0, rgba);
+}
+
+/*
+** The bands of the wide lines, in clip coordinates (identity matrices):
+** those wideline made, or with instances each instance's, made and drawn in
+** turn (the scratch, sized for the whole mesh, then holds one part's).
+*/
+static void drawwide (frame *F, const uint8_t *rgba) {
+  const lsys_gl *gl = F->gl;
+  const lsys_scene *sc = F->s;
+  lsys_render_cache *c = F->c;
+  size_t i, k;
+  gl->MatrixMode(GL_PROJECTION);
+  gl->LoadIdentity();
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadIdentity();
+  gl->VertexPointer(4, GL_FLOAT, 0, c->wpos);
+  gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, c->wrgba);
+  if (sc->ninst == 0) drawelements(gl, GL_TRIANGLES, c->widx, F->nwi);
+  for (i = 0; i < sc->ninst; i++) {
+    const lsys_part *p;
+    if (sc->inst[i].part >= sc->nparts) continue;
+    p = &sc->parts[sc->inst[i].part];
+    mulaffine(F->cur, F->mvp, sc->inst[i].m);
+    F->nwv = F->nwi = 0;
+    for (k = p->l0; k < p->l0 + p->nl && k < F->m->nl; k++)
+      if (iswide(F, k)) wideline(F, k, rgba + 8 * k);
+    if (F->nwi > 0) drawelements(gl, GL_TRIANGLES, c->widx, F->nwi);
+  }
+  gl->MatrixMode(GL_PROJECTION);
+  gl->LoadMatrixd(F->proj);
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadMatrixd(F->view);
 }
 
 /*
@@ -596,7 +696,7 @@ static void drawlines (frame *F) {
     long kw = lroundf(segwidth(F, s));
     size_t *p;
     if (iswide(F, s)) {
-      wideline(F, s, rgba + 8 * s);
+      if (F->s->ninst == 0) wideline(F, s, rgba + 8 * s);
       continue;
     }
     p = &start[kw < 1 ? 1 : (size_t)kw > maxw ? maxw : (size_t)kw];
@@ -614,21 +714,9 @@ static void drawlines (frame *F) {
     size_t n = start[k + 1] - start[k];
     if (n == 0) continue;
     gl->LineWidth((GLfloat)k);
-    drawelements(gl, GL_LINES, c->lidx + start[k], n);
+    drawinst(F, GL_LINES, c->lidx + start[k], n, 2);
   }
-  if (F->nwi > 0) {
-    gl->MatrixMode(GL_PROJECTION);
-    gl->LoadIdentity();
-    gl->MatrixMode(GL_MODELVIEW);
-    gl->LoadIdentity();
-    gl->VertexPointer(4, GL_FLOAT, 0, c->wpos);
-    gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, c->wrgba);
-    drawelements(gl, GL_TRIANGLES, c->widx, F->nwi);
-    gl->MatrixMode(GL_PROJECTION);
-    gl->LoadMatrixd(F->proj);
-    gl->MatrixMode(GL_MODELVIEW);
-    gl->LoadMatrixd(F->view);
-  }
+  if (F->nwi > 0 || F->s->ninst > 0) drawwide(F, rgba);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -732,8 +820,9 @@ int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, i
   F.cull = s->cull;
   F.fbw = fbw;
   F.fbh = fbh;
+  F.s = s;
   F.lscale = o->height > 0 ? (float)fbh / (float)o->height : 1;
-  if (lsys_render_camera(F.m, &s->cam, fbw, fbh, F.proj, F.view) != LSYS_OK)
+  if (lsys_render_camera_scene(s, &s->cam, fbw, fbh, F.proj, F.view) != LSYS_OK)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
                          "bad camera: the viewpoint and the target coincide, a zero "
                          "direction or up vector, or an empty viewport");
@@ -741,6 +830,7 @@ int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, i
     for (j = 0; j < 4; j++)
       F.mvp[4 * j + i] = F.proj[i] * F.view[4 * j] + F.proj[4 + i] * F.view[4 * j + 1] +
                          F.proj[8 + i] * F.view[4 * j + 2] + F.proj[12 + i] * F.view[4 * j + 3];
+  memcpy(F.cur, F.mvp, sizeof F.cur);
   if (F.pal == NULL || F.npal == 0) { F.pal = &grey; F.npal = 1; }
   if (F.npal > 65536) F.npal = 65536;   /* colour indices are 16-bit */
   F.keep = o->keep_textures && o->cache != NULL;

@@ -157,6 +157,11 @@ void lsys_render_cache_release (lsys_render_cache *c, const lsys_gl *gl);
 int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                         double proj[16], double view[16]);
 
+/* lsys_render_camera for what scene 's' draws (NULL: nothing): its mesh,
+** or with instances every instance's part under its transform. */
+int lsys_render_camera_scene (const lsys_scene *s, const lsys_camera *cam, int w, int h,
+                              double proj[16], double view[16]);
+
 /*
 ** Projects the world point 'p' into a w x h window: out[0] is x in pixels
 ** from the left edge, out[1] is y in pixels from the TOP edge (image rows,

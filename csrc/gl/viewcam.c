@@ -9,6 +9,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "population.h"
 #include "vec3.h"
 #include "viewcam.h"
 #include "viewer.h"
@@ -20,17 +21,35 @@
 /* ---------------------------------------------------------------------- */
 /* the camera of a view (render.h) */
 
-/* The 8 corners of the bounds b (lo, hi), or of m's when b is NULL; empty
+/* A mesh as a scene that draws it (the arrays borrowed), for the camera
+** functions, which all take scenes: a population's points are its
+** instances' (lsys_scene_bounds). NULL is an empty scene. */
+static const lsys_scene *asscene (const lsys_mesh *m, lsys_scene *tmp) {
+  memset(tmp, 0, sizeof *tmp);
+  if (m != NULL) tmp->mesh = *m;
+  return tmp;
+}
+
+/* Whether scene s draws a vertex or a line end. */
+static int drawsany (const lsys_scene *s) {
+  size_t nv, nt, nl;
+  if (s == NULL) return 0;
+  lsys_population_size(s, &nv, &nt, &nl);
+  return nv + nl > 0;
+}
+
+/* The 8 corners of the bounds b (lo, hi), or of s's when b is NULL; empty
 ** bounds (or infinite coordinates) are the cube [-1, 1]^3, a single point a
 ** cube of size 2 around it. Returns the length of the box's diagonal (> 0). */
-static double cornersof (const lsys_mesh *m, const double *b, double c[8][3], double centre[3]) {
+static double cornersof (const lsys_scene *s, const double *b, double c[8][3],
+                         double centre[3]) {
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, d[3];
   int i, ok;
   if (b != NULL) {
     for (i = 0; i < 3; i++) { lo[i] = b[i]; hi[i] = b[3 + i]; }
     ok = lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2];
   } else
-    ok = m != NULL && lsys_mesh_bounds(m, lo, hi);
+    ok = s != NULL && lsys_scene_bounds(s, lo, hi);
   if (!ok || !isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2])) {
     lo[0] = lo[1] = lo[2] = -1;
     hi[0] = hi[1] = hi[2] = 1;
@@ -48,8 +67,8 @@ static double cornersof (const lsys_mesh *m, const double *b, double c[8][3], do
   return vlen(d);
 }
 
-static double corners (const lsys_mesh *m, double c[8][3], double centre[3]) {
-  return cornersof(m, NULL, c, centre);
+static double corners (const lsys_scene *s, double c[8][3], double centre[3]) {
+  return cornersof(s, NULL, c, centre);
 }
 
 /* The camera frame and what fitting it accumulates over the scene's points. */
@@ -60,7 +79,7 @@ typedef struct fitstate {
   double aspect, ty, target[3], r[3], u[3], f[3];
 } fitstate;
 
-static void fitpoint (fitstate *fs, const float p[3]) {
+static void fitpointd (fitstate *fs, const double p[3]) {
   double q[3], x, y;
   q[0] = p[0] - fs->target[0];
   q[1] = p[1] - fs->target[1];
@@ -73,6 +92,37 @@ static void fitpoint (fitstate *fs, const float p[3]) {
   else
     fs->D = fmax(fs->D, fmax(x / (fs->ty * fs->aspect * FIT), y / (fs->ty * FIT)) -
                         vdot(q, fs->f));
+}
+
+static void fitpoint (fitstate *fs, const float p[3]) {
+  double d[3] = {p[0], p[1], p[2]};
+  fitpointd(fs, d);
+}
+
+/* Fits every vertex and line end scene s draws: its mesh's, or each
+** instance's part under its transform. */
+static void fitscene (fitstate *fs, const lsys_scene *s) {
+  const lsys_mesh *m = &s->mesh;
+  size_t k, i;
+  if (s->ninst == 0) {
+    for (k = 0; k < m->nv; k++) fitpoint(fs, m->pos + 3 * k);
+    for (k = 0; k < 2 * m->nl; k++) fitpoint(fs, m->lpos + 3 * k);
+    return;
+  }
+  for (i = 0; i < s->ninst; i++) {
+    const lsys_part *p;
+    double q[3];
+    if (s->inst[i].part >= s->nparts) continue;
+    p = &s->parts[s->inst[i].part];
+    for (k = 0; k < p->nv; k++) {
+      lsys_xform(s->inst[i].m, m->pos + 3 * (p->v0 + k), q);
+      fitpointd(fs, q);
+    }
+    for (k = 0; k < 2 * p->nl; k++) {
+      lsys_xform(s->inst[i].m, m->lpos + 3 * (2 * p->l0 + k), q);
+      fitpointd(fs, q);
+    }
+  }
 }
 
 /* The frame of 'cam' aimed at fs->target: forward f, right r, up u (an up
@@ -119,14 +169,12 @@ static int camframe (fitstate *fs, const lsys_camera *cam) {
 ** for an empty scene. Returns the half height; sets 'eye' when the camera
 ** has none.
 */
-static double fitview (fitstate *fs, const lsys_mesh *m, const lsys_camera *cam,
+static double fitview (fitstate *fs, const lsys_scene *s, const lsys_camera *cam,
                        double c[8][3], double diag, double eye[3]) {
-  size_t k, nv = m ? m->nv : 0, nl = m ? m->nl : 0;
   double halfh;
-  int i;
-  for (k = 0; k < nv; k++) fitpoint(fs, m->pos + 3 * k);
-  for (k = 0; k < 2 * nl; k++) fitpoint(fs, m->lpos + 3 * k);
-  if (nv + nl == 0 || !(fs->ext > 0 || fs->D > 0))
+  int i, any = drawsany(s);
+  if (any) fitscene(fs, s);
+  if (!any || !(fs->ext > 0 || fs->D > 0))
     for (i = 0; i < 8; i++) {
       float p[3] = {(float)c[i][0], (float)c[i][1], (float)c[i][2]};
       fitpoint(fs, p);
@@ -160,8 +208,15 @@ static const lsys_mesh *boxmesh (const double box[6], float p[24], lsys_mesh *bm
 
 int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h,
                         double proj[16], double view[16]) {
+  lsys_scene tmp;
+  return lsys_render_camera_scene(asscene(m, &tmp), cam, w, h, proj, view);
+}
+
+int lsys_render_camera_scene (const lsys_scene *s, const lsys_camera *cam, int w, int h,
+                              double proj[16], double view[16]) {
   float bp[24];
   lsys_mesh bm;
+  lsys_scene bs;
   double c2[8][3], centre2[3];
   const double *r, *u, *f;
   double c[8][3], centre[3], eye[3];
@@ -174,10 +229,10 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h
   if (w <= 0 || h <= 0) return LSYS_EARG;
   aspect = (double)w / h;
   if (cam->has_box) {         /* fit the box; the near and far planes cover the scene too */
-    const lsys_mesh *scene = m;
-    m = boxmesh(cam->box, bp, &bm);
-    diag = corners(m, c, centre);
-    if (scene != NULL && scene->nv + scene->nl > 0) {
+    const lsys_scene *scene = s;
+    s = asscene(boxmesh(cam->box, bp, &bm), &bs);
+    diag = corners(s, c, centre);
+    if (drawsany(scene)) {
       cornersof(scene, cam->has_bounds ? cam->bounds : NULL, c2, centre2);
       for (i = 0; i < 8; i++) {
         int k;
@@ -188,7 +243,7 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h
       }
     }
   } else
-    diag = cornersof(m, cam->has_bounds ? cam->bounds : NULL, c, centre);
+    diag = cornersof(s, cam->has_bounds ? cam->bounds : NULL, c, centre);
   memset(&fs, 0, sizeof fs);
   vcopy(fs.target, cam->has_target ? cam->target : centre);
   if (camframe(&fs, cam) != LSYS_OK) return LSYS_EARG;
@@ -197,7 +252,7 @@ int lsys_render_camera (const lsys_mesh *m, const lsys_camera *cam, int w, int h
   fs.aspect = aspect;
   fs.ty = ty;
   if (parallel && cam->has_eye && cam->halfh > 0) halfh = cam->halfh;   /* nothing to fit */
-  else if (parallel || !cam->has_eye) halfh = fitview(&fs, m, cam, c, diag, eye);
+  else if (parallel || !cam->has_eye) halfh = fitview(&fs, s, cam, c, diag, eye);
   if (cam->has_eye) vcopy(eye, cam->eye);
   /* near and far planes: the depths of the corners, padded */
   dmin = dmax = 0;
@@ -263,7 +318,7 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 /* ---------------------------------------------------------------------- */
 /* the viewer's camera */
 
-int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int w, int h,
+int lsys_vcam_fit (lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam, int w, int h,
                    int keep) {
   lsys_camera rc = *cam;
   double proj[16], view[16], eye[3], lo[3], hi[3], d[3];
@@ -279,7 +334,7 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int
     rc.zoom = 1;
   }
   rc.halfh = 0;
-  if (lsys_render_camera(m, &rc, w, h, proj, view) != LSYS_OK) return LSYS_EARG;
+  if (lsys_render_camera_scene(s, &rc, w, h, proj, view) != LSYS_OK) return LSYS_EARG;
   /* rows of the view matrix: right, up, -forward; eye = -R^T t */
   for (i = 0; i < 3; i++) {
     c->u[i] = view[4 * i + 1];
@@ -290,7 +345,7 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int
   if (rc.has_target) vcopy(c->target, rc.target);
   else if (rc.has_box)
     for (i = 0; i < 3; i++) c->target[i] = 0.5 * (rc.box[i] + rc.box[3 + i]);
-  else if (m != NULL && lsys_mesh_bounds(m, lo, hi) &&
+  else if (s != NULL && lsys_scene_bounds(s, lo, hi) &&
            isfinite(lo[0] + lo[1] + lo[2] + hi[0] + hi[1] + hi[2]))
     for (i = 0; i < 3; i++) c->target[i] = 0.5 * (lo[i] + hi[i]);
   else
@@ -317,11 +372,11 @@ void lsys_vcam_apply (const lsys_vcam *c, lsys_camera *cam) {
     vlin(cam->eye, c->target, 1, c->f, -c->dist);
 }
 
-int lsys_vcam_matrices (const lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam,
+int lsys_vcam_matrices (const lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam,
                         int w, int h, double proj[16], double view[16]) {
   lsys_camera rc = *cam;
   lsys_vcam_apply(c, &rc);
-  return lsys_render_camera(m, &rc, w, h, proj, view);
+  return lsys_render_camera_scene(s, &rc, w, h, proj, view);
 }
 
 void lsys_vcam_orbit (lsys_vcam *c, const double up[3], double dx, double dy) {
@@ -462,30 +517,82 @@ static int pickhit (const lsys_vpick *p, const double proj[16], const double vie
   return 1;
 }
 
+/* The best pick so far: a click inside the drawn width is a direct hit,
+** the nearest to the eye winning; otherwise (thin lines, near misses) the
+** nearest on screen. */
+typedef struct pickbest {
+  long k, plant;
+  int direct;
+  double d, z;
+} pickbest;
+
+static void tryhit (pickbest *b, const lsys_vpick *p, long k, long plant, const double proj[16],
+                    const double view[16], int w, int h, const double right[3], double x,
+                    double y, double tol) {
+  double d, z, rpx;
+  int direct;
+  if (!pickhit(p, proj, view, w, h, right, x, y, &d, &z, &rpx)) return;
+  if (d > (rpx > tol ? rpx : tol)) return;
+  direct = rpx > 0 && d <= rpx;
+  if (b->k < 0 || (direct && !b->direct) || (direct && b->direct && z < b->z) ||
+      (!direct && !b->direct && (d < b->d || (d == b->d && z < b->z)))) {
+    b->k = k;
+    b->plant = plant;
+    b->direct = direct;
+    b->d = d;
+    b->z = z;
+  }
+}
+
+/* Pick p under the instance transform m: its ends moved, its width (in
+** world units) scaled by the largest of m's scales. */
+static void xpick (const lsys_vpick *p, const float m[16], lsys_vpick *q) {
+  double a[3], b[3], s = 0;
+  int i, j;
+  lsys_xform(m, p->p0, a);
+  lsys_xform(m, p->p1, b);
+  for (i = 0; i < 3; i++) {
+    q->p0[i] = (float)a[i];
+    q->p1[i] = (float)b[i];
+  }
+  for (j = 0; j < 3; j++)
+    s = fmax(s, sqrt((double)m[4 * j] * m[4 * j] + (double)m[4 * j + 1] * m[4 * j + 1] +
+                     (double)m[4 * j + 2] * m[4 * j + 2]));
+  q->radius = (float)(p->radius * s);
+  q->module = p->module;
+  q->kind = p->kind;
+}
+
 long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol) {
+                      int w, int h, double x, double y, double tol, long *plant) {
   /* the camera's right axis, for the projected radius: row 0 of 'view' */
   double right[3] = {view[0], view[4], view[8]};
-  long best = -1;
-  int bestdirect = 0;
-  double bestd = 0, bestz = 0;
-  size_t k;
-  for (k = 0; k < f->npicks; k++) {
-    double d, z, rpx;
-    int direct;
-    if (!pickhit(&f->picks[k], proj, view, w, h, right, x, y, &d, &z, &rpx)) continue;
-    if (d > (rpx > tol ? rpx : tol)) continue;
-    /* a click inside the drawn width is a direct hit: the nearest to the eye
-    ** wins; otherwise (thin lines, near misses) the nearest on screen */
-    direct = rpx > 0 && d <= rpx;
-    if (best < 0 || (direct && !bestdirect) ||
-        (direct && bestdirect && z < bestz) ||
-        (!direct && !bestdirect && (d < bestd || (d == bestd && z < bestz)))) {
-      best = (long)k;
-      bestdirect = direct;
-      bestd = d;
-      bestz = z;
+  const lsys_scene *s = &f->sc;
+  pickbest b = {-1, -1, 0, 0, 0};
+  size_t k, i;
+  if (s->ninst == 0 || f->partpicks == NULL)
+    for (k = 0; k < f->npicks; k++)
+      tryhit(&b, &f->picks[k], (long)k, -1, proj, view, w, h, right, x, y, tol);
+  else
+    for (i = 0; i < s->ninst; i++) {
+      size_t p = s->inst[i].part;
+      if (p >= s->nparts) continue;
+      for (k = f->partpicks[p]; k < f->partpicks[p + 1] && k < f->npicks; k++) {
+        lsys_vpick q;
+        xpick(&f->picks[k], s->inst[i].m, &q);
+        tryhit(&b, &q, (long)k, (long)i, proj, view, w, h, right, x, y, tol);
+      }
     }
-  }
-  return best;
+  if (plant != NULL) *plant = b.plant;
+  return b.k;
+}
+
+int lsys_vpick_event (const lsys_vframe *f, const double proj[16], const double view[16],
+                      int w, int h, double x, double y, double tol, lsys_vevent *ev) {
+  long plant, k = lsys_vpick_find(f, proj, view, w, h, x, y, tol, &plant);
+  if (k < 0) return 0;
+  ev->module = f->picks[k].module;
+  ev->kind = f->picks[k].kind;
+  ev->plant = plant + 1;
+  return 1;
 }

@@ -29,14 +29,14 @@ typedef struct lsys_vcam {
 #define LSYS_VCAM_ORBIT 0.008
 
 /*
-** Sets 'c' from camera 'cam' (a view's) fitted to 'm' in a w x h window
-** (lsys_render_camera, with a fitted rather than a kept parallel scale):
-** as the view says, or with 'keep' (and a valid 'c') looking along c's
-** direction and up at the fitted target. The target is the view's, else
-** the centre of m's bounds. Returns LSYS_OK, or LSYS_EARG (and 'c' is left
-** alone) when the view's camera is bad.
+** Sets 'c' from camera 'cam' (a view's) fitted to scene 's' (NULL: empty)
+** in a w x h window (lsys_render_camera_scene, with a fitted rather than a
+** kept parallel scale): as the view says, or with 'keep' (and a valid 'c')
+** looking along c's direction and up at the fitted target. The target is
+** the view's, else the centre of s's bounds. Returns LSYS_OK, or LSYS_EARG
+** (and 'c' is left alone) when the view's camera is bad.
 */
-int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int w, int h,
+int lsys_vcam_fit (lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam, int w, int h,
                    int keep);
 
 /* Writes 'c' into the view camera 'cam' as an explicit eye, target and up
@@ -44,9 +44,9 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam, int
 ** 'cam' alone when 'c' is not valid. */
 void lsys_vcam_apply (const lsys_vcam *c, lsys_camera *cam);
 
-/* The matrices of lsys_render_camera for camera 'cam' of 'm' as 'c' moved
-** it (lsys_vcam_apply) in a w x h window; same returns. */
-int lsys_vcam_matrices (const lsys_vcam *c, const lsys_mesh *m, const lsys_camera *cam,
+/* The matrices of lsys_render_camera_scene for camera 'cam' of 's' as 'c'
+** moved it (lsys_vcam_apply) in a w x h window; same returns. */
+int lsys_vcam_matrices (const lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam,
                         int w, int h, double proj[16], double view[16]);
 
 /*

@@ -44,9 +44,11 @@ typedef struct lsys_vline {
 typedef struct lsys_vframe {
   lsys_scene sc;                /* owned mesh and palette (no records); camera, light and
                                    background of the view; textures: the snapshot's, set
-                                   when drawn */
-  lsys_vpick *picks;            /* owned */
+                                   when drawn; a population's parts and instances (owned) */
+  lsys_vpick *picks;            /* owned; a population's in its prototypes' coordinates */
   size_t npicks;
+  size_t *partpicks;            /* owned, a population's: the picks of part p are
+                                   partpicks[p] .. partpicks[p + 1] - 1 (NULL otherwise) */
   lsys_vline *lines;            /* owned: drawn over the scene (depth-tested) */
   size_t nlines;
   size_t nmodules;              /* length of the string it was drawn from */
@@ -87,8 +89,9 @@ lsys_vsnap *lsys_vsnap_new (size_t n);
 int lsys_vsnap_textures (lsys_vsnap *s, int n);
 void lsys_vsnap_free (lsys_vsnap *s);
 
-/* The bounds of frame f's mesh (lo, hi) into b, found once for each state of
-** the mesh: whoever changes it clears f->hasbounds. */
+/* The bounds of what frame f's scene draws (lo, hi; lsys_scene_bounds) into
+** b, found once for each state of the mesh: whoever changes it clears
+** f->hasbounds. */
 void lsys_vframe_bounds (lsys_vframe *f, double b[6]);
 
 /* The status line under frame 'cur' of 's' (which must exist) into line[n]:
@@ -131,6 +134,7 @@ typedef struct lsys_vevent {
   long step;                    /* that frame's step */
   uint32_t module;              /* PICK: the module */
   int kind;                     /* PICK: the record's kind */
+  long plant;                   /* PICK in a population: the instance (1-based), else 0 */
   double x, y;                  /* PICK, MISS, DRAG: window coordinates */
   int key, mods, phase;         /* KEY, DRAG, POINTER */
   int pane, button;             /* POINTER, SCROLL */
@@ -263,10 +267,17 @@ void lsys_viewer_close (lsys_viewer *v);
 ** 'f' seen through proj/view in a w x h window: the pick whose projected
 ** segment passes within max(tol, its projected radius) pixels, nearest to
 ** the eye where several do; points clipped by the near or far plane do not
-** count. Returns its index, or -1. Plain arithmetic (viewcam.c): tested
-** without a window.
+** count. Returns its index, or -1. In a population (f->partpicks) each
+** instance's picks are tried under its transform, and *plant (when not
+** NULL) is set to the instance hit (0-based; -1 otherwise). Plain
+** arithmetic (viewcam.c): tested without a window.
 */
 long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol);
+                      int w, int h, double x, double y, double tol, long *plant);
+
+/* lsys_vpick_find into event 'ev': its module, kind and plant when
+** something is hit (then returns 1; 0 leaves ev alone). */
+int lsys_vpick_event (const lsys_vframe *f, const double proj[16], const double view[16],
+                      int w, int h, double x, double y, double tol, lsys_vevent *ev);
 
 #endif

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "population.h"
 #include "viewer.h"
 
 lsys_vsnap *lsys_vsnap_new (size_t n) {
@@ -33,6 +34,7 @@ void lsys_vsnap_free (lsys_vsnap *s) {
   for (k = 0; k < s->nframes; k++) {
     lsys_scene_free(&s->frames[k].sc);
     LSYS_FREE(s->frames[k].picks);
+    LSYS_FREE(s->frames[k].partpicks);
     LSYS_FREE(s->frames[k].lines);
   }
   LSYS_FREE(s->frames);
@@ -75,13 +77,21 @@ void lsys_vsnap_status (const lsys_vsnap *s, long cur, double fps, int playing, 
                         const char *note, char *line, size_t n) {
   const lsys_vframe *f = &s->frames[cur];
   char a[32], b[32], c[32];
+  size_t nv, nt, nl;
   int at = 0;
+  lsys_population_size(&f->sc, &nv, &nt, &nl);     /* as drawn: a population's instances */
   count(a, sizeof a, f->nmodules);
-  count(b, sizeof b, f->sc.mesh.nt);
-  count(c, sizeof c, f->sc.mesh.nl);
+  count(b, sizeof b, nt);
+  count(c, sizeof c, nl);
   if (s->live) {
     snprintf(line, n, "tick %d  %s limbs  %s triangles  %.0f fps%s%s%s", f->step, a, b, fps,
              note[0] ? "  " : "", note, wireframe ? "  wireframe" : "");
+    return;
+  }
+  if (f->sc.ninst > 0) {
+    count(a, sizeof a, f->sc.ninst);
+    snprintf(line, n, "%s plants  %s triangles  %s lines  %.0f fps%s", a, b, c, fps,
+             wireframe ? "  wireframe" : "");
     return;
   }
   if (f->step >= 0 && s->nframes > 1)
@@ -97,7 +107,7 @@ void lsys_vframe_bounds (lsys_vframe *f, double b[6]) {
   if (!f->hasbounds) {
     double lo[3], hi[3];
     int i;
-    lsys_mesh_bounds(&f->sc.mesh, lo, hi);
+    lsys_scene_bounds(&f->sc, lo, hi);
     for (i = 0; i < 3; i++) { f->bounds[i] = lo[i]; f->bounds[3 + i] = hi[i]; }
     f->hasbounds = 1;
   }

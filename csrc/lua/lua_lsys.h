@@ -24,6 +24,7 @@ void lsys_open_canvas (lua_State *L);   /* lua_canvas.c: Canvas, canvas */
 void lsys_open_ffd (lua_State *L);      /* lua_ffd.c: Hyperpatch, hyperpatch; scene:deform, ... */
 void lsys_open_compgeo (lua_State *L); /* lua_compgeo.c: Frames, Cwriter (lsys.components) */
 void lsys_open_grow (lua_State *L);     /* lua_grow.c: Limbs, limbs (lsys.grow) */
+void lsys_open_population (lua_State *L); /* lua_population.c: population; scene:instance */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);

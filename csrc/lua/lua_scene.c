@@ -22,6 +22,7 @@
 #include "lua_lsys.h"
 #include "export.h"
 #include "interpret.h"
+#include "population.h"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
 ** error while the homomorphism is streamed leaves it to the collector. */
@@ -403,12 +404,19 @@ static size_t countrec (const lsys_lscene *S, int kind) {
   return n;
 }
 
+/* The sizes of a scene as drawn: a population's instances written out. */
 static int scene_index (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
-  if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nt);
-  else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nv);
-  else if (strcmp(k, "nlines") == 0) lua_pushinteger(L, (lua_Integer)S->sc.mesh.nl);
+  size_t nv, nt, nl;
+  lsys_population_size(&S->sc, &nv, &nt, &nl);
+  if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)nt);
+  else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)nv);
+  else if (strcmp(k, "nlines") == 0) lua_pushinteger(L, (lua_Integer)nl);
+  else if (strcmp(k, "ninstances") == 0) lua_pushinteger(L, (lua_Integer)S->sc.ninst);
+  else if (strcmp(k, "nprototypes") == 0)
+    lua_pushinteger(L, (lua_Integer)(S->sc.ninst > 0 ? S->sc.nparts : 0));
+  else if (strcmp(k, "bytes") == 0) lua_pushinteger(L, (lua_Integer)lsys_scene_bytes(&S->sc));
   else if (strcmp(k, "nrecords") == 0) lua_pushinteger(L, (lua_Integer)S->sc.nrec);
   else if (strcmp(k, "nsegments") == 0)
     lua_pushinteger(L, (lua_Integer)countrec(S, LSYS_REC_SEGMENT));
@@ -427,6 +435,14 @@ static int scene_tostring (lua_State *L) {
     lua_pushliteral(L, "lsys.Scene (closed)");
     return 1;
   }
+  if (S->sc.ninst > 0) {
+    size_t nv, nt, nl;
+    lsys_population_size(&S->sc, &nv, &nt, &nl);
+    lua_pushfstring(L, "lsys.Scene: a population of %d plant%s of %d prototype%s, %d "
+                    "triangles, %d line segments", (int)S->sc.ninst, S->sc.ninst == 1 ? "" : "s",
+                    (int)S->sc.nparts, S->sc.nparts == 1 ? "" : "s", (int)nt, (int)nl);
+    return 1;
+  }
   lua_pushfstring(L, "lsys.Scene: %d triangles, %d line segments, %d turtle records",
                   (int)S->sc.mesh.nt, (int)S->sc.mesh.nl, (int)S->sc.nrec);
   return 1;
@@ -436,28 +452,16 @@ static int scene_tostring (lua_State *L) {
 static int scene_bounds (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   double lo[3], hi[3];
-  if (!lsys_mesh_bounds(&S->sc.mesh, lo, hi)) { lua_pushnil(L); return 1; }
+  if (!lsys_scene_bounds(&S->sc, lo, hi)) { lua_pushnil(L); return 1; }
   pushvec(L, lo);
   pushvec(L, hi);
   return 2;
 }
 
-/* scene:area() -> total area of the triangles */
+/* scene:area() -> total area of the triangles (as drawn: a population's instances) */
 static int scene_area (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
-  const lsys_mesh *m = &S->sc.mesh;
-  double a = 0;
-  size_t k;
-  for (k = 0; k < m->nt; k++) {
-    const float *p = m->pos + 3 * m->tri[3 * k], *q = m->pos + 3 * m->tri[3 * k + 1],
-                *r = m->pos + 3 * m->tri[3 * k + 2];
-    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-    double v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                   u[0] * v[1] - u[1] * v[0]};
-    a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-  }
-  lua_pushnumber(L, a);
+  lua_pushnumber(L, lsys_population_area(&S->sc));
   return 1;
 }
 
@@ -559,7 +563,9 @@ static int scene_edges (lua_State *L) {
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   lua_Integer i;
-  lsys_checkscene(L, 1);
+  if (lsys_checkscene(L, 1)->sc.ninst > 0)
+    return luaL_error(L, "scene:turtle: a population has no Lstring of its own (its prototypes' "
+                      "are in scene:prototype(k).lstring)");
   i = luaL_checkinteger(L, 2);
   lua_settop(L, 2);
   lua_getiuservalue(L, 1, LSYS_SCENE_LSTRING);
@@ -597,14 +603,17 @@ static int tubesides (lua_State *L) {
 }
 
 /* scene:save(path [, opts]) -> true; .obj (+ .mtl), .ply, .glb; opts.lines
-** "lines" (default) or "tubes", with opts.sides and opts.pixel_size */
+** "lines" (default) or "tubes", with opts.sides and opts.pixel_size; for a
+** population, opts.instancing (glb; default true) and opts.max_memory (the
+** bytes its flattened copy may take) */
 static int scene_save (lua_State *L) {
-  static const char *const keys[] = {"lines", "sides", "pixel_size", NULL};
+  static const char *const keys[] = {"lines", "sides", "pixel_size", "instancing",
+                                     "max_memory", NULL};
   static const char *const lines[] = {"lines", "tubes", NULL};
   lsys_lscene *S = lsys_checkscene(L, 1);
   const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
-  lsys_export_opts xo = {0, 0, 0};
+  lsys_export_opts xo = {0, 0, 0, 0, 0};
   lsys_error e;
   int st;
   memset(&e, 0, sizeof e);
@@ -612,11 +621,14 @@ static int scene_save (lua_State *L) {
     lsys_opts o = {3, "scene:save: opts.", "", LSYS_GOT_VALUE, 0};
     luaL_checktype(L, 3, LUA_TTABLE);
     if (lsys_optunknown(L, &o, keys))
-      return luaL_error(L, "scene:save: unknown option '%s' (use lines, sides, pixel_size)",
-                        luaL_tolstring(L, -1, NULL));
+      return luaL_error(L, "scene:save: unknown option '%s' (use lines, sides, pixel_size, "
+                        "instancing, max_memory)", luaL_tolstring(L, -1, NULL));
     xo.tubes = lsys_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
     xo.sides = lsys_optint(L, &o, "sides", 0, 3, 1024);
     xo.pixel = lsys_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
+    xo.flatten = !lsys_optbool(L, &o, "instancing", 1);
+    xo.max_memory = (size_t)lsys_optnum(L, &o, "max_memory", 0, 0, 1.8e19,
+                                        "a positive number of bytes");
   }
   lua_settop(L, 3);
   if (xo.sides == 0) xo.sides = tubesides(L);

@@ -166,6 +166,27 @@ static void readlines (lua_State *L, int t, lsys_vframe *f) {
   }
 }
 
+/* A population's parts and instances into frame f, with the range of picks
+** of each part (setpicks skips labels and system calls). */
+static void setinstances (lua_State *L, lsys_vframe *f, const lsys_scene *s) {
+  size_t np = s->nparts, p, r, k = 0;
+  f->sc.parts = (lsys_part *)LSYS_MALLOC(np * sizeof *f->sc.parts);
+  f->sc.inst = (lsys_instance *)LSYS_MALLOC(s->ninst * sizeof *f->sc.inst);
+  f->partpicks = (size_t *)LSYS_MALLOC((np + 1) * sizeof *f->partpicks);
+  if (f->sc.parts == NULL || f->sc.inst == NULL || f->partpicks == NULL)
+    luaL_error(L, "not enough memory for the viewer");
+  memcpy(f->sc.parts, s->parts, np * sizeof *f->sc.parts);
+  memcpy(f->sc.inst, s->inst, s->ninst * sizeof *f->sc.inst);
+  f->sc.nparts = f->sc.partcap = np;
+  f->sc.ninst = f->sc.instcap = s->ninst;
+  for (p = 0, r = 0; p < np; p++) {
+    for (; r < s->parts[p].r0 && r < s->nrec; r++)
+      k += s->rec[r].kind != LSYS_REC_LABEL && s->rec[r].kind != LSYS_REC_SYSTEM;
+    f->partpicks[p] = k;
+  }
+  f->partpicks[np] = f->npicks;
+}
+
 /* Fills frame f from the frame table at 'idx' (the caller's snapshot box
 ** frees what is allocated when this raises). */
 static void readframe (lua_State *L, int idx, lsys_vframe *f) {
@@ -190,6 +211,7 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   memcpy(f->sc.light, S->sc.light, sizeof f->sc.light);
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
+  if (S->sc.ninst > 0) setinstances(L, f, &S->sc);
   if (lsys_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
     readlines(L, lua_gettop(L), f);
     lua_pop(L, 1);
@@ -399,6 +421,10 @@ static int viewer_poll (lua_State *L) {
       lua_setfield(L, -2, "module");
       lua_pushstring(L, lsys_recordkind(ev.kind));
       lua_setfield(L, -2, "kind");
+      if (ev.plant > 0) {
+        lua_pushinteger(L, ev.plant);
+        lua_setfield(L, -2, "plant");
+      }
       /* fall through */
     case LSYS_VEV_MISS:
       lua_pushnumber(L, ev.x);

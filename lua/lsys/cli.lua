@@ -111,7 +111,8 @@ usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--see
 Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
 VIEW.v, or a vlab object folder, as for `lsys derive`), interprets it with the turtle and
 renders it headless (OSMesa) to a PNG file. Without MODEL, renders the default example
-(examples/default.lua) to tree.png.
+(examples/default.lua) to tree.png. A Lua file may also return a Scene, such as a field of
+plants made by lsys.population (examples/population/field.lua): it is rendered as it is.
 
 With --frames DIR, writes one picture per derivation step into DIR instead (made when
 missing): step-0000.png, step-0001.png, ... All look through one camera, fitted to the last
@@ -169,7 +170,9 @@ usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps 
 
 Derives and interprets MODEL (as for `lsys render`: a cpfg MODEL.l takes its VIEW.v after
 it) and writes its geometry: Wavefront OBJ (with a .mtl file next
-to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT.
+to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT. A file
+returning a population (lsys.population) is written as it is: .glb with one mesh per
+prototype placed by EXT_mesh_gpu_instancing, .obj and .ply with every plant written out.
 
 Options: as for `lsys render`; -o is required.
   --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800
@@ -642,6 +645,7 @@ local function load_model (path, name, seed)
     end
     return as_model(v, path, seed)
   end
+  if require("lsys.model").isscene(v) then return v end   -- a population: prepare checks
   if type(v) == "table" then
     local names = {}
     for k, x in pairs(v) do
@@ -897,6 +901,17 @@ local function prepare (cmd, opts, pos)
 
   local path = src.path
   local model = load_source(src, opts.name, seed)
+  if require("lsys.model").isscene(model) then     -- a file returning a population
+    if cmd ~= "render" and cmd ~= "export" or opts.frames ~= nil then
+      error(format("%s returns a Scene (a population, lsys.population): `lsys render` and "
+        .. "`lsys export` take it", path), 0)
+    end
+    if steps ~= nil or seed ~= nil or #sets > 0 or #vlist > 0 then
+      usage(cmd, "%s returns a Scene (a population): --steps, --seed, --set and --view "
+        .. "apply to a model", path)
+    end
+    return model, path, views, src
+  end
   if model.components ~= nil and model.components.tree ~= nil and
      (steps ~= nil or #sets > 0) then
     usage(cmd, "%s is a component graph: it has no derivation steps (--steps) nor "
@@ -948,6 +963,7 @@ end
 local function scene_of (cmd, opts, pos)
   local model, path, views = prepare(cmd, opts, pos)
   local verbose = opts.progress or isatty(2)
+  if require("lsys.model").isscene(model) then return model, path, views, verbose end
   local s = derive(model, opts)
   local t0 = clock()
   local scene = model:interpret(s, views)

@@ -10,6 +10,7 @@ local model = require "lsys.model"
 local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
+local population = require "lsys.population"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, tostring, pcall, string,
       debug, next, package, _G =
@@ -108,6 +109,11 @@ function M.here ()
   local src = debug.getinfo(2, "S").source
   return src:match("^@(.*)/[^/]*$") or "."
 end
+
+--- Many plants in one scene, plants alike sharing their geometry (lsys.population,
+-- docs/population.md): `plants` is a list of { model =, at =, rotate =, scale =, seed =,
+-- steps =, env = } or { count = N, place = function (i) ... end }. Returns a Scene.
+M.population = population.population
 
 --- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
 function M.show (x, opts) return _G.require("lsys.viewer").show(x, opts) end

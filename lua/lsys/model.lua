@@ -802,8 +802,16 @@ function M.isscene (x) return getmetatable(x) == SCENE_MT end
 function M.ismodel (x) return getmetatable(x) == Model end
 
 --- The normalised view a scene was interpreted with (nil for scenes made elsewhere): for
--- the renderer's options (lsys.render, lsys.viewer).
-function M.sceneview (scene) return scene_views[scene] end
+-- the renderer's options (lsys.render, lsys.viewer). A population (lsys.population) and its
+-- flattened copies keep theirs with their options.
+function M.sceneview (scene)
+  local v = scene_views[scene]
+  if v == nil and getmetatable(scene) == SCENE_MT then
+    local o = debug.getuservalue(scene, 3)
+    if type(o) == "table" and o.population then v = o.view end
+  end
+  return v
+end
 
 --- Where model `m` was defined, for messages and titles: "file:line", the model file
 -- lsys.cli ran, or "model".

@@ -37,6 +37,7 @@ local M = {}
 local S = {             -- the one window and what it shows
   viewer = nil,         -- core Viewer, nil before the first show or after close
   strings = {},         -- frame index -> the Lstring it was drawn from
+  populations = {},     -- frame index -> the population it shows (lsys.population)
   steps = {},           -- frame index -> derivation step (or nil)
   model = nil,          -- the model shown, if any
   on_pick = nil,        -- callback of the last show (or M.on_pick)
@@ -252,7 +253,9 @@ end
 -- `view` (view fields replacing the model's for this show), `keep_camera` (keep the
 -- window's camera instead of fitting), `on_pick(info)` (called by `poll` for a click
 -- on a module: info = { module, step, frame, kind, name, text, lstring, x, y }, plus
--- `instance` and `path` when a component instance drew it: see lsys.components),
+-- `instance` and `path` when a component instance drew it: see lsys.components; in a
+-- population, `plant` (its index in the population) and `prototype`, whose Lstring
+-- `lstring` is),
 -- `on_event(ev)` (every event), `progress(k, n)` (before interpreting step k of n),
 -- `history` (the bytes a model's kept steps may take, default lsys.viewer.HISTORY = 256 MiB;
 -- beyond it every 2nd, 4th, ... step is kept, and the last), `model` (for an Lstring),
@@ -270,7 +273,7 @@ function M.show (x, opts)
   if type(x) == "table" and require("lsys.components.proto").isproto(x) then
     x = require("lsys.components").model(x)    -- a component graph's root prototype
   end
-  S.strings, S.steps = {}, {}
+  S.strings, S.steps, S.populations = {}, {}, {}
   if model.ismodel(x) then
     frames, textures = model_frames(x, opts)
     S.model = x
@@ -290,6 +293,7 @@ function M.show (x, opts)
     f.lines = opts.lines
     frames = { f }
     S.strings[1] = x.lstring
+    if x.ninstances > 0 then S.populations[1] = x end
     textures = v and v.textures
     title = "scene"
   elseif type(x) == "table" and #x > 0 then
@@ -299,6 +303,7 @@ function M.show (x, opts)
       local f, v = frame(sc, i - 1, nil, false)
       frames[i] = f
       S.strings[i], S.steps[i] = sc.lstring, i - 1
+      if sc.ninstances > 0 then S.populations[i] = sc end
       textures = textures or (v and v.textures)
     end
     title = format("%d scenes", #x)
@@ -340,7 +345,7 @@ function M.live (scene, opts)
   opts = opts or {}
   if not model.isscene(scene) then fail("a Scene expected", 2, "lsys.viewer.live") end
   local v = open(opts, "lsys.viewer.live")
-  S.strings, S.steps, S.model = {}, {}, nil
+  S.strings, S.steps, S.populations, S.model = {}, {}, {}, nil
   local f = frame(scene, 0, 0, false)
   v:post({ f }, { live = true, fit = opts.fit, capture = true,
                   title = "lsys: " .. (opts.title or "growing") })
@@ -372,13 +377,20 @@ function M.instance (s, i, m)
   return inst, where and (where .. "/" .. inst.path) or inst.path
 end
 
--- What a click hit, for the callbacks.
+-- What a click hit, for the callbacks: in a population, the plant (its index in the
+-- population) and its prototype, whose Lstring names the module.
 local function pickinfo (ev)
   local s = S.strings[ev.frame]
+  local pop = S.populations[ev.frame]
   local info = {
     module = ev.module, step = ev.step, frame = ev.frame, kind = ev.kind, x = ev.x, y = ev.y,
-    lstring = s,
   }
+  if pop ~= nil and ev.plant ~= nil then
+    local inst = pop:instance(ev.plant)
+    info.plant, info.prototype = ev.plant, inst and inst.prototype
+    s = inst and pop:prototype(inst.prototype).lstring
+  end
+  info.lstring = s
   if s ~= nil and ev.module <= #s then
     info.name = s:module(ev.module)
     info.text = tostring(s:sub(ev.module, ev.module))

@@ -4,7 +4,9 @@
 ** values, PLY colours left as they are; line segments exported as tubes
 ** (lsys_mesh_tubes, mesh_tube.c): exact vertex and triangle counts, bounds,
 ** outward winding, closed volumes, shared rings, what is left out; and
-** lsys_scene_save with tubes in the three formats.
+** lsys_scene_save with tubes in the three formats; a population (a scene
+** with instances) as glb with EXT_mesh_gpu_instancing, written out for OBJ
+** and PLY, within max_memory.
 **
 ** The core files are compiled in with talloc.h's allocators, so that
 ** test_nomem makes each allocation fail in turn (run it under valgrind).
@@ -26,6 +28,8 @@
 #include "export_ply.c"
 #include "export_glb.c"
 #include "export.c"
+#include "scene.c"
+#include "population.c"
 
 #include "testfile.h"
 
@@ -277,7 +281,7 @@ static void test_leftout (void) {
 static void test_scene (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 6, 0};
+  lsys_export_opts o = {1, 6, 0, 0, 0};
   lsys_material pal[2];
   double p[3] = {0, 0, 0}, nn[3] = {0, 0, 1};
   size_t len;
@@ -340,6 +344,121 @@ static void test_scene (void) {
   remove(OUT "_s.glb"); remove(OUT "_s.obj"); remove(OUT "_s.mtl"); remove(OUT "_s.ply");
 }
 
+/* ---- populations ---- */
+
+/* Two prototypes -- a triangle, and a triangle with a line -- and three
+** instances (T R S), in 'pop' (its palette: pal). */
+static void population (lsys_scene *pop, const lsys_material *pal) {
+  lsys_scene a;
+  double p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, nn[3] = {0, 0, 1};
+  float m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  size_t k;
+  int i, j;
+  lsys_scene_init(pop);
+  for (j = 0; j < 2; j++) {
+    lsys_scene_init(&a);
+    a.pal = (lsys_material *)pal;           /* read, not freed: npal set back below */
+    a.npal = 2;
+    assert(lsys_mesh_reserve(&a.mesh, 3, 1) == LSYS_OK);
+    for (i = 0; i < 3; i++) lsys_mesh_vertex(&a.mesh, p[i], nn, 0, 0, (unsigned)j, j);
+    lsys_mesh_tri(&a.mesh, 0, 1, 2);
+    if (j == 1) line(&a.mesh, 0, 0, 0, 0, 2, 0, 1, 1, 1);
+    assert(lsys_population_add(pop, &a, NULL, 1, &k) == LSYS_OK && k == (size_t)j);
+    a.pal = NULL;
+    a.npal = 0;
+    lsys_scene_free(&a);
+  }
+  m[12] = 5;
+  assert(lsys_scene_add_instance(pop, 0, m) == LSYS_OK);
+  m[0] = 0; m[2] = -2; m[8] = 1; m[10] = 0;          /* turned 90 degrees about y, x scaled 2 */
+  assert(lsys_scene_add_instance(pop, 1, m) == LSYS_OK);
+  m[12] = -5;
+  assert(lsys_scene_add_instance(pop, 0, m) == LSYS_OK);
+}
+
+static void test_population (void) {
+  lsys_scene pop;
+  lsys_material pal[2];
+  lsys_export_opts o = {0, 0, 0, 0, 0};
+  lsys_error e;
+  size_t len;
+  char *j;
+  lsys_material_color(&pal[0], 0.2, 0.6, 0.1);
+  lsys_material_color(&pal[1], 0.5, 0.5, 0.5);
+  population(&pop, pal);
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", NULL, &e) == LSYS_OK);
+  j = json_of(OUT "_p.glb");
+  assert(strstr(j, "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],"
+                   "\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"]") != NULL);
+  assert(count(j, "\"primitives\"") == 2 && count(j, "\"EXT_mesh_gpu_instancing\":{") == 2);
+  assert(strstr(j, "\"name\":\"prototype 1\"") && strstr(j, "\"name\":\"prototype 2\""));
+  assert(count(j, "\"mode\":4") == 2 && count(j, "\"mode\":1") == 1);
+  /* prototype 1 has two instances, its vertices counted from 0 in its own accessors */
+  assert(strstr(j, "\"count\":2,\"type\":\"VEC4\"") != NULL);
+  assert(strstr(j, "\"byteOffset\":96,\"componentType\":5126,\"count\":3,") != NULL);
+  free(j);
+  /* written out: every instance */
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_OBJ, OUT "_p.obj", NULL, &e) == LSYS_OK);
+  j = slurp(OUT "_p.obj", &len);
+  assert(countlines(j, "f ") == 3 && countlines(j, "l ") == 1);
+  assert(countlines(j, "v ") == 11 && strstr(j, "\nv -5 0 -2\n") != NULL);   /* + 2 line ends */
+  free(j);
+  o.flatten = 1;
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
+  j = json_of(OUT "_p.glb");
+  assert(strstr(j, "EXT_mesh_gpu_instancing") == NULL && count(j, "\"primitives\"") == 1);
+  free(j);
+  o.max_memory = 100;                                 /* too little to write it out */
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_PLY, OUT "_p.ply", &o, &e) == LSYS_EMEMORY);
+  assert(strstr(e.msg, "the population written out needs") && strstr(e.msg, "max_memory"));
+  /* tubes: made per prototype, the instances kept */
+  o.flatten = 0; o.max_memory = 0; o.tubes = 1; o.sides = 4;
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
+  j = json_of(OUT "_p.glb");
+  assert(count(j, "\"mode\":1") == 0 && count(j, "\"EXT_mesh_gpu_instancing\":{") == 2);
+  free(j);
+  o.tubes = 0;
+  pop.inst[1].m[4] = 0.5f;                            /* a shear: no T R S */
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", NULL, &e) == LSYS_EARG);
+  assert(strstr(e.msg, "instance 2 is not a translation, rotation and positive scale"));
+  o.flatten = 1;
+  assert(lsys_scene_save(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
+  lsys_scene_free(&pop);
+  remove(OUT "_p.glb"); remove(OUT "_p.obj"); remove(OUT "_p.mtl"); remove(OUT "_p.ply");
+}
+
+/* Every allocation of saving a population fails in turn, as test_nomem. */
+static void test_population_nomem (void) {
+  lsys_scene pop;
+  lsys_material pal[2];
+  lsys_export_opts o = {1, 4, 0, 0, 0};
+  lsys_error e;
+  long k, live;
+  int f, done = 0;
+  lsys_material_color(&pal[0], 0.2, 0.6, 0.1);
+  lsys_material_color(&pal[1], 0.5, 0.5, 0.5);
+  population(&pop, pal);
+  live = nlive;
+  for (k = 0; !done; k++) {
+    int st = LSYS_OK;
+    nalloc = 0;
+    failat = k;
+    for (f = 0; f < 4 && st == LSYS_OK; f++) {
+      o.tubes = f == 3;
+      st = lsys_scene_save(&pop, f < 3 ? f : LSYS_FORMAT_GLB,
+                           f == 0 ? OUT "_pn.obj" : f == 1 ? OUT "_pn.ply" : OUT "_pn.glb", &o,
+                           &e);
+      assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, OUT "_pn.")));
+    }
+    assert(nlive == live);
+    done = nalloc <= k;
+  }
+  failat = -1;
+  assert(k > 10);
+  lsys_scene_free(&pop);
+  remove(OUT "_pn.obj"); remove(OUT "_pn.mtl"); remove(OUT "_pn.ply"); remove(OUT "_pn.glb");
+}
+
 /* ---- allocation failures ---- */
 
 /* Every allocation of a save with tubes fails in turn: LSYS_OK or
@@ -347,7 +466,7 @@ static void test_scene (void) {
 static void test_nomem (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 5, 0};
+  lsys_export_opts o = {1, 5, 0, 0, 0};
   long k, live;
   int f, done = 0;
   memset(&s, 0, sizeof s);
@@ -383,6 +502,8 @@ int main (void) {
   test_leftout();
   test_scene();
   test_nomem();
+  test_population();
+  test_population_nomem();
   printf("test_export: ok\n");
   return 0;
 }

@@ -146,6 +146,14 @@ static void test_pan (void) {
 
 /* Fitting takes the view's camera over: seen through the result, the
 ** scene is where the view put it. */
+/* A scene that draws mesh m (its arrays borrowed), for the camera functions. */
+static const lsys_scene *sceneof (const lsys_mesh *m) {
+  static lsys_scene s;
+  memset(&s, 0, sizeof s);
+  s.mesh = *m;
+  return &s;
+}
+
 static void test_fit (void) {
   lsys_camera cam;
   lsys_mesh m;
@@ -158,7 +166,7 @@ static void test_fit (void) {
     cam.projection = LSYS_PERSPECTIVE;
     cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
     memset(&c, 0, sizeof c);
-    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK && c.valid);
+    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK && c.valid);
     assert(near3(c.target, 0, 1, 0, 1e-12));       /* the middle of the bounds */
     assert(near3(c.f, 0, 0, -1, 1e-12) && near3(c.u, 0, 1, 0, 1e-12));
     assert(lsys_render_camera(&m, &cam, W, H, proj, view) == LSYS_OK);
@@ -167,7 +175,7 @@ static void test_fit (void) {
     if (!parallel) assert(fabs(c.dist - vlen(d)) < 1e-12);
     else assert(fabs(c.halfh - 1 / proj[5]) < 1e-12);
     /* the same picture (near and far planes, and a parallel eye, may differ) */
-    assert(lsys_vcam_matrices(&c, &m, &cam, W, H, p2, v2) == LSYS_OK);
+    assert(lsys_vcam_matrices(&c, sceneof(&m), &cam, W, H, p2, v2) == LSYS_OK);
     for (i = 0; i < 12; i++) assert(fabs(v2[i] - view[i]) < 1e-12);
     for (i = 0; i < 3; i++) {
       double p[3] = {0.3 * i, 2.0 - i, 0.5 * i - 0.5}, a[3], b[3];
@@ -181,18 +189,18 @@ static void test_fit (void) {
     double up[3] = {0, 1, 0}, f[3];
     lsys_camera_defaults(&cam);
     cam.projection = LSYS_PERSPECTIVE;
-    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK);
+    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
     lsys_vcam_orbit(&c, up, 100, 40);
     lsys_vcam_zoom(&c, 5);
     vcopy(f, c.f);
-    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 1) == LSYS_OK);
+    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 1) == LSYS_OK);
     assert(near3(c.f, f[0], f[1], f[2], 1e-12) && near3(c.target, 0, 1, 0, 1e-12));
   }
   /* a bad view camera leaves 'c' alone */
   cam.dir[0] = cam.dir[1] = cam.dir[2] = 0;
   cam.has_eye = 0;
   memset(&c, 0, sizeof c);
-  assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_EARG && !c.valid);
+  assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_EARG && !c.valid);
   lsys_mesh_free(&m);
   printf("fit: ok\n");
 }
@@ -216,9 +224,9 @@ static void test_ray (void) {
     lsys_camera_defaults(&cam);
     cam.projection = LSYS_PERSPECTIVE;
     cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
-    assert(lsys_vcam_fit(&c, &m, &cam, W, H, 0) == LSYS_OK);
+    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
     lsys_vcam_orbit(&c, c.u, 30, -20);             /* not along an axis */
-    assert(lsys_vcam_matrices(&c, &m, &cam, W, H, proj, view) == LSYS_OK);
+    assert(lsys_vcam_matrices(&c, sceneof(&m), &cam, W, H, proj, view) == LSYS_OK);
     /* through the middle of the image: along the view, through the target,
     ** which is on the stick; a click there picks it */
     assert(lsys_vcam_ray(proj, view, W, H, W / 2, H / 2, org, dir) == 1);
@@ -228,8 +236,8 @@ static void test_ray (void) {
     assert(t > 0);
     vlin(p, org, 1, dir, t);
     assert(near3(p, 0, 1, 0, 1e-9));
-    assert(lsys_vpick_find(&f, proj, view, W, H, W / 2, H / 2, 6) == 0);
-    assert(lsys_vpick_find(&f, proj, view, W, H, 5, 5, 6) == -1);
+    assert(lsys_vpick_find(&f, proj, view, W, H, W / 2, H / 2, 6, NULL) == 0);
+    assert(lsys_vpick_find(&f, proj, view, W, H, 5, 5, 6, NULL) == -1);
     /* elsewhere: every point of the ray projects back to the pixel */
     assert(lsys_vcam_ray(proj, view, W, H, 30, 170, org, dir) == 1);
     assert(fabs(vlen(dir) - 1) < 1e-12);

@@ -55,31 +55,78 @@ static void test_pick (void) {
   setpick(&picks[2], -0.5f, 0.5f, 1, 0.5f, 0.5f, 1, 0.1f, 12);   /* thick, in front */
   setpick(&picks[3], -0.5f, 0.5f, -1, 0.5f, 0.5f, -1, 0.1f, 13); /* same, behind */
   /* on the vertical line at y = -0.5: pixel (100, 150) */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6) == 0);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == 0);
   /* 5 pixels off it: still within the tolerance; 8 off: nothing */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 105, 150, 6) == 0);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 108, 150, 6) == -1);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 105, 150, 6, NULL) == 0);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 108, 150, 6, NULL) == -1);
   /* on the diagonal at (0.3, 0.3): pixel (130, 70); the vertical line is 30 px away */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 130, 70, 6) == 1);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 130, 70, 6, NULL) == 1);
   /* near the origin both thin lines are close: the nearest on screen wins */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 99, 103, 6) == 0);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 99, 103, 6, NULL) == 0);
   /* the two thick bars overlap on screen at y = 0.5 (pixel row 50), 10 px wide
   ** each side: the one nearer the eye (z = 1) is hit, inside its width and
   ** beyond the thin-line tolerance */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 58, 6) == 2);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 62, 6) == -1);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 58, 6, NULL) == 2);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 62, 6, NULL) == -1);
   /* the diagonal reaches (0.5, 0.5) = pixel (150, 50), where the bars are: a
   ** direct hit on a thick bar beats a thin line passing through */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 150, 50, 6) == 2);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 150, 50, 6, NULL) == 2);
   /* beyond the near plane (clipped, not drawn): ignored */
   setpick(&picks[0], 0, -1, 10, 0, 0, 10, 0, 10);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6) == -1);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == -1);
   /* a point (sphere) pick: p0 = p1 */
   setpick(&picks[0], -0.5f, -0.5f, 0, -0.5f, -0.5f, 0, 0.05f, 20);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 52, 152, 6) == 0);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 52, 152, 6, NULL) == 0);
   f.npicks = 0;
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 100, 6) == -1);
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 100, 6, NULL) == -1);
   printf("pick: ok\n");
+}
+
+/* A population: two parts (picks 0-1 and 2), three instances; each pick is
+** tried under its instance's transform and the instance comes back. */
+static void test_pick_population (void) {
+  lsys_vpick picks[3];
+  lsys_part parts[2];
+  lsys_instance inst[3];
+  size_t partpicks[3] = {0, 2, 3};
+  lsys_vframe f;
+  lsys_vevent ev;
+  double proj[16], view[16];
+  long plant;
+  int i;
+  memset(&f, 0, sizeof f);
+  memset(parts, 0, sizeof parts);
+  memset(inst, 0, sizeof inst);
+  f.picks = picks;
+  f.npicks = 3;
+  f.partpicks = partpicks;
+  f.sc.parts = parts;
+  f.sc.nparts = 2;
+  f.sc.inst = inst;
+  f.sc.ninst = 3;
+  camera(proj, view);
+  setpick(&picks[0], 0, 0, 0, 0, 0.2f, 0, 0, 1);        /* part 0: a short vertical stick */
+  setpick(&picks[1], 0, 0, 0, 0.2f, 0, 0, 0, 2);        /* and a horizontal one */
+  setpick(&picks[2], 0, 0, 0, 0, 0.2f, 0, 0.01f, 3);   /* part 1: a thick stick */
+  for (i = 0; i < 3; i++) inst[i].m[0] = inst[i].m[5] = inst[i].m[10] = inst[i].m[15] = 1;
+  inst[0].part = 0; inst[0].m[12] = -0.5f;              /* at x = -0.5 */
+  inst[1].part = 0; inst[1].m[12] = 0.5f;               /* at x = 0.5, scaled 2 */
+  inst[1].m[0] = inst[1].m[5] = inst[1].m[10] = 2;
+  inst[2].part = 1; inst[2].m[13] = -0.5f;              /* at y = -0.5 */
+  /* instance 0's vertical stick: x = -0.5, y 0..0.2 -> pixel (50, 90) */
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 50, 90, 3, &plant) == 0 && plant == 0);
+  /* instance 1's vertical stick, twice as long: x = 0.5, y 0..0.4 -> (150, 65) */
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 150, 65, 3, &plant) == 0 && plant == 1);
+  /* its horizontal one: y = 0, x 0.5..0.9 -> (180, 100) */
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 180, 100, 3, &plant) == 1 && plant == 1);
+  /* instance 2 (part 1): x = 0, y -0.5..-0.3 -> (100, 140) */
+  memset(&ev, 0, sizeof ev);
+  assert(lsys_vpick_event(&f, proj, view, 200, 200, 100, 140, 3, &ev) == 1);
+  assert(ev.module == 3 && ev.plant == 3 && ev.kind == LSYS_REC_SEGMENT);
+  /* nothing there: the prototypes themselves (at the origin) are not drawn */
+  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 90, 3, &plant) == -1 && plant == -1);
+  assert(lsys_vpick_event(&f, proj, view, 200, 200, 100, 90, 3, &ev) == 0);
+  printf("pick in a population: ok\n");
 }
 
 static void test_snapshot (void) {
@@ -238,6 +285,7 @@ int main (void) {
   printf("built without the viewer: nothing to test\n");
 #else
   test_pick();
+  test_pick_population();
   test_snapshot();
   test_live();
 #endif
