@@ -1,6 +1,12 @@
 /*
 ** The module string: storage, text notation in and out.
 */
+#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
+#define _DEFAULT_SOURCE         /* madvise */
+#endif
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -36,6 +42,20 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
 
 /* Reallocates '*p' from 'old' to 'new' bytes, keeping its contents, within
 ** meter 'mt' (whose count includes the old block). */
+/* Bytes [from, to) of the block at p, not yet touched, are to be backed by
+** huge pages where the system gives them (Linux's transparent huge pages on
+** request): a big string's first touch then costs a fault every 2 MiB, not
+** every 4 KiB. */
+static void hugepages (void *p, size_t from, size_t to) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const uintptr_t huge = (uintptr_t)2 << 20;
+  uintptr_t a = ((uintptr_t)p + from + huge - 1) & ~(huge - 1), b = ((uintptr_t)p + to) & ~(huge - 1);
+  if (to - from >= 4 * huge && b > a) madvise((void *)a, b - a, MADV_HUGEPAGE);
+#else
+  (void)p; (void)from; (void)to;
+#endif
+}
+
 static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   size_t base = 0;
   void *np;
@@ -49,6 +69,7 @@ static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   np = LSYS_REALLOC(*p, new > 0 ? new : 1);
   if (np == NULL) return LSYS_ENOMEM;
   *p = np;
+  if (new > old) hugepages(np, old, new);
   if (mt != NULL) mt->used = base + new;
   return LSYS_OK;
 }
@@ -109,6 +130,7 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
   if (mt != NULL) mt->used = base;
   np = LSYS_MALLOC(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
+  hugepages(np, 0, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;
