@@ -414,12 +414,12 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
 static void put (const lsys_model *m, const lsys_rule *r, const double *args,
                  const double *vals, uint16_t *oc, double *op) {
   const uint16_t *t = m->tcode + r->succ;
-  const lsys_psrc *ps = m->tsrc + r->src;
   uint32_t k;
   for (k = 0; k < r->nsucc; k++) oc[k] = t[k];
-  for (k = 0; k < r->nsrc; k++) {
-    double x = ps[k].kind == LSYS_PS_CONST ? ps[k].value :
-               ps[k].kind == LSYS_PS_ARG ? args[ps[k].idx] : vals[ps[k].idx];
+  for (k = 0; k < r->nsrc; k++) {   /* (no parameter sources at all: m->tsrc is NULL) */
+    const lsys_psrc *ps = &m->tsrc[r->src + k];
+    double x = ps->kind == LSYS_PS_CONST ? ps->value :
+               ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
     op[k] = m->f32 ? lsys_round32(x) : x;
   }
 }
