@@ -42,17 +42,20 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
 
 /* Reallocates '*p' from 'old' to 'new' bytes, keeping its contents, within
 ** meter 'mt' (whose count includes the old block). */
-/* Bytes [from, to) of the block at p, not yet touched, are to be backed by
-** huge pages where the system gives them (Linux's transparent huge pages on
-** request): a big string's first touch then costs a fault every 2 MiB, not
-** every 4 KiB. */
-static void hugepages (void *p, size_t from, size_t to) {
+/* The block of n bytes at p is to be backed by huge pages where the system
+** gives them (Linux's transparent huge pages, on request): a big string's
+** first touch then costs a fault every 2 MiB, not every 4 KiB. The whole
+** block is marked, its pages included where it starts and ends, so that the
+** mapping stays one piece (realloc can then move it with mremap, which does
+** not span mappings of different kinds); what it grows into later stays
+** marked. Blocks under 8 MiB are left alone. */
+static void hugepages (void *p, size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const uintptr_t huge = (uintptr_t)2 << 20;
-  uintptr_t a = ((uintptr_t)p + from + huge - 1) & ~(huge - 1), b = ((uintptr_t)p + to) & ~(huge - 1);
-  if (to - from >= 4 * huge && b > a) madvise((void *)a, b - a, MADV_HUGEPAGE);
+  const uintptr_t page = 4096;
+  uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
+  if (n >= ((size_t)8 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
 #else
-  (void)p; (void)from; (void)to;
+  (void)p; (void)n;
 #endif
 }
 
@@ -69,7 +72,7 @@ static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   np = LSYS_REALLOC(*p, new > 0 ? new : 1);
   if (np == NULL) return LSYS_ENOMEM;
   *p = np;
-  if (new > old) hugepages(np, old, new);
+  if (new > old) hugepages(np, new);
   if (mt != NULL) mt->used = base + new;
   return LSYS_OK;
 }
@@ -130,7 +133,7 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
   if (mt != NULL) mt->used = base;
   np = LSYS_MALLOC(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  hugepages(np, 0, need * elem);
+  hugepages(np, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;
