@@ -299,11 +299,11 @@ static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **
                  const double **vals, const lsys_rule **rule) {
   lsys_model *m = j->m;
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
-  const lsys_rule *r = &m->rules[e->rule];
   lsys_pick pk;
   int st;
   *rule = NULL;
-  if (e->cls == PC_VM || e->cls == PC_VMC) {
+  if (e->cls == PC_VM || e->cls == PC_VMC) {   /* (e->rule is NONE for the other classes) */
+    const lsys_rule *r = &m->rules[e->rule];
     if (r->pred_np != LSYS_CNP(cd)) return 0;
     lsys_rng_at(w->rng, i);
     if (!lsys_expr_run(r->vm, r->nvm, *args, w->args, w->rng, m->funcs)) return 0;
@@ -716,8 +716,8 @@ static int firsterror (job *j) {
     for (i = ch->a; i < ch->lo; i++) {
       uint16_t cd = srccode(j, i);
       const pent *e = &j->P->pe[LSYS_CSYM(cd)];
-      const lsys_rule *r = &m->rules[e->rule];
       if (e->cls == PC_VM && e->pnp == LSYS_CNP(cd)) {
+        const lsys_rule *r = &m->rules[e->rule];
         lsys_rng_at(&rng, i);
         if (lsys_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
         if (lsys_expr_run(r->vm, r->nvm, j->spar + sp, m->sc.args, &rng, m->funcs) &&
