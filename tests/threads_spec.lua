@@ -120,6 +120,33 @@ describe("threads", function()
     assert.equal(tostring(s), tostring(m:derive(16)))
   end)
 
+  it("keep a derived string without parameters at a byte a module until it is read", function()
+    local s = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F" }:derive(7)
+    assert.equal(195311, #s)
+    assert.is_true(s:bytes() < #s + 64, "bytes: " .. s:bytes())
+    assert.equal(78125, s:count("F"))             -- reading it makes it two bytes a module
+    assert.is_true(s:bytes() >= 2 * #s, "bytes: " .. s:bytes())
+  end)
+
+  it("leave the strings each and end_each receive as they were", function()
+    for _, t in ipairs(THREADS) do
+      local kept, ended = {}, {}
+      local m = lsys.lsystem { axiom = H.rep("A(1)", 9000), threads = t,
+                               productions = "A(x) --> A(x + 1)" }
+      local s = m:derive(4, { each = function (k, x) kept[k] = x end })
+      m.end_each = function (_, x, k) ended[k] = x end
+      m:derive(4)
+      for k = 0, 4 do
+        local x = kept[k]
+        assert.equal(9000, #x)
+        assert.same({ "A", k + 1 }, { x:module(1) })
+        assert.same({ "A", k + 1 }, { x:module(9000) })
+        if k > 0 then assert.same({ "A", k + 1 }, { ended[k]:module(4500) }) end
+      end
+      assert.equal(kept[4], s)
+    end
+  end)
+
   it("must be a whole number from 1 to " .. MAXT, function()
     for _, bad in ipairs { 0, -1, 1.5, MAXT + 1, 0 / 0 } do
       assert.error_contains(function () lsys.lsystem { threads = bad } end,

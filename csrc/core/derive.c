@@ -24,281 +24,7 @@ static inline const double *parof (const lsys_lstring *s, size_t p) {
   return s->par != NULL ? s->par + p : nopar;
 }
 #define ACT_SLOW NONE
-#define ALTHEAD 5     /* an alternative's record in m->alt before its args and vals */
 #define ACT_COPY (NONE - 1)
-
-int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
-  memset(m, 0, sizeof *m);
-  m->ab = ab;
-  m->max_modules = 50000000;
-  m->maxdepth[LSYS_DECOMP] = 1;
-  m->maxdepth[LSYS_HOMO] = 1;
-  m->cur = &m->rng;
-  m->cur_rule = -1;
-  m->parmin = LSYS_PARMIN;
-  lsys_rng_seed(&m->rng, 0);
-  lsys_rng_seed(&m->hrng, 0);
-  return LSYS_OK;
-}
-
-void lsys_model_free (lsys_model *m) {
-  size_t i;
-  for (i = 0; i < m->nsets; i++) {
-    LSYS_FREE(m->sets[i].list);
-    LSYS_FREE(m->sets[i].byp);
-    LSYS_FREE(m->sets[i].start);
-    LSYS_FREE(m->sets[i].plain);
-  }
-  for (i = 0; i < m->nrules; i++) LSYS_FREE(m->rules[i].vm);
-  LSYS_FREE(m->funcs);
-  for (i = 0; i < m->nlevels; i++) lsys_lstring_free(&m->levels[i]);
-  LSYS_FREE(m->levels);
-  LSYS_FREE(m->sets);
-  LSYS_FREE(m->skips);
-  LSYS_FREE(m->rules);
-  LSYS_FREE(m->pat);
-  LSYS_FREE(m->tcode);
-  LSYS_FREE(m->tsrc);
-  LSYS_FREE(m->sc.args);
-  LSYS_FREE(m->sc.alt);
-  lsys_par_free(m);
-  LSYS_FREE(m->match);
-  LSYS_FREE(m->poff);
-  LSYS_FREE(m->substack);
-  LSYS_FREE(m->act);
-  lsys_lstring_free(&m->dyn);
-  lsys_lstring_free(&m->tmp);
-  lsys_lstring_free(&m->altdyn);
-  memset(m, 0, sizeof *m);
-}
-
-static lsys_ruleset *findset (const lsys_model *m, int kind, int sub, int group) {
-  size_t i;
-  for (i = 0; i < m->nsets; i++)
-    if (m->sets[i].kind == kind && m->sets[i].sub == sub && m->sets[i].group == group)
-      return &m->sets[i];
-  return NULL;
-}
-
-long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group) {
-  lsys_ruleset *s = findset(m, kind, sub, group);
-  return s ? (long)s->nlist : -1;
-}
-
-static lsys_skip *findskip (const lsys_model *m, int sub) {
-  size_t i;
-  for (i = 0; i < m->nskips; i++)
-    if (m->skips[i].sub == sub) return &m->skips[i];
-  return NULL;
-}
-
-/* The error of a change to the rules while the model is busy. */
-static int busyerror (lsys_model *m, lsys_error *e) {
-  return lsys_seterror(e != NULL ? e : &m->err, LSYS_EBUSY, (size_t)-1,
-                       "the model is deriving: its rules cannot change now");
-}
-
-int lsys_model_skiplist (lsys_model *m, int sub, int consider,
-                         const uint32_t *syms, size_t n) {
-  lsys_skip *k = findskip(m, sub);
-  size_t i;
-  if (m->busy) return busyerror(m, NULL);
-  if (k == NULL) {
-    if (lsys_grow((void **)&m->skips, &m->skipcap, m->nskips + 1, sizeof *m->skips) != LSYS_OK)
-      return LSYS_ENOMEM;
-    k = &m->skips[m->nskips++];
-  }
-  memset(k, 0, sizeof *k);
-  k->sub = sub;
-  k->consider = consider;
-  for (i = 0; i < n; i++)
-    if (syms[i] <= LSYS_MAXSYM) k->bits[syms[i] >> 3] |= (uint8_t)(1u << (syms[i] & 7));
-  return LSYS_OK;
-}
-
-int lsys_model_newset (lsys_model *m, int kind, int sub, int group) {
-  lsys_ruleset *set;
-  if (m->busy) return busyerror(m, NULL);
-  if (findset(m, kind, sub, group) != NULL) return LSYS_OK;
-  if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
-    return LSYS_ENOMEM;
-  set = &m->sets[m->nsets++];
-  memset(set, 0, sizeof *set);
-  set->kind = kind; set->sub = sub; set->group = group;
-  return LSYS_OK;
-}
-
-/* The modules after the first of a strict predecessor: no brackets, cuts or
-** sub-L-system modules (they would change the rules in force mid-match). */
-static int predmodules (const lsys_rulespec *sp, lsys_error *e) {
-  uint32_t k;
-  for (k = 0; k < sp->nmore; k++) {
-    uint32_t s = sp->more[k].sym;
-    if (sp->more[k].np > LSYS_MAXPARAMS)
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
-    if (s == LSYS_SYM_LBR || s == LSYS_SYM_RBR || s == LSYS_SYM_CUT || s == LSYS_SYM_SUB ||
-        s == LSYS_SYM_SUBEND)
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "module %u of the predecessor cannot "
-                           "be a bracket, a cut or a sub-L-system module", (unsigned)k + 2);
-  }
-  if (sp->pred.sym == LSYS_SYM_CUT || sp->pred.sym == LSYS_SYM_SUB ||
-      sp->pred.sym == LSYS_SYM_SUBEND)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a predecessor of several modules cannot "
-                         "start with a cut or a sub-L-system module");
-  return LSYS_OK;
-}
-
-long lsys_model_add (lsys_model *m, int kind, int sub, int group,
-                     const lsys_rulespec *sp, lsys_error *e) {
-  lsys_ruleset *set = findset(m, kind, sub, group);
-  lsys_rule *r;
-  uint32_t k, nargs = 0, lcargs = 0;
-  if (m->busy) return busyerror(m, e);
-  if (sp->pred.np > LSYS_MAXPARAMS)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "too many parameters");
-  if ((sp->flags & LSYS_RF_DYN) && (sp->flags & LSYS_RF_WEXPR))
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1,
-                         "a rule with a function has a number as its weight");
-  if (sp->nmore > 0) {       /* cpfg's strict predecessor of several modules */
-    const char *what = kind == LSYS_DECOMP ? "decomposition" : "homomorphism";
-    if (kind != LSYS_PROD)
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a predecessor of several modules is "
-                           "for productions only, not for the %s", what);
-    int st = predmodules(sp, e);
-    if (st != LSYS_OK) return st;
-  }
-  if (set == NULL) {
-    if (lsys_model_newset(m, kind, sub, group) != LSYS_OK) goto nomem;
-    set = findset(m, kind, sub, group);
-  }
-  if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
-      lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
-      lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nmore + sp->nrc,
-                sizeof *m->pat) != LSYS_OK ||
-      /* + 1: the code array exists once a rule does (no NULL + 0 for empty successors) */
-      lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc + 1, sizeof *m->tcode) != LSYS_OK ||
-      lsys_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc, sizeof *m->tsrc) != LSYS_OK)
-    goto nomem;
-  r = &m->rules[m->nrules];
-  memset(r, 0, sizeof *r);
-  r->pred = sp->pred.sym;
-  r->pred_np = sp->pred.np;
-  r->flags = sp->flags;
-  r->weight = sp->weight;
-  r->id = sp->id;
-  r->nvals = sp->nvals;
-  r->lc = (uint32_t)m->npat;
-  r->nlc = sp->nlc;
-  for (k = 0; k < sp->nlc; k++) { m->pat[m->npat++] = sp->lc[k]; lcargs += sp->lc[k].np; }
-  r->more = (uint32_t)m->npat;
-  r->nmore = sp->nmore;
-  for (k = 0; k < sp->nmore; k++) {
-    m->pat[m->npat++] = sp->more[k];
-    r->moreargs += sp->more[k].np;
-  }
-  r->rc = (uint32_t)m->npat;
-  r->nrc = sp->nrc;
-  for (k = 0; k < sp->nrc; k++) { m->pat[m->npat++] = sp->rc[k]; nargs += sp->rc[k].np; }
-  r->lcargs = lcargs;
-  r->nargs = lcargs + sp->pred.np + r->moreargs + nargs;
-  r->succ = (uint32_t)m->ntcode;
-  r->nsucc = sp->nsucc;
-  if (sp->nsucc) memcpy(m->tcode + m->ntcode, sp->succ, sp->nsucc * sizeof *sp->succ);
-  m->ntcode += sp->nsucc;
-  r->src = (uint32_t)m->ntsrc;
-  r->nsrc = sp->nsrc;
-  for (k = 0; k < sp->nsrc; k++) {
-    const lsys_psrc *ps = &sp->src[k];
-    if ((ps->kind == LSYS_PS_ARG && ps->idx >= r->nargs) ||
-        (ps->kind == LSYS_PS_VAL && ps->idx >= r->nvals) || ps->kind > LSYS_PS_VAL)
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "bad parameter source");
-    if (ps->kind == LSYS_PS_CONST && !isfinite(ps->value))     /* 1e999 */
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "parameter %u of the successor is %g, "
-                           "not a finite number", (unsigned)k + 1, ps->value);
-    m->tsrc[m->ntsrc++] = *ps;
-  }
-  set->list[set->nlist++] = (uint32_t)m->nrules;
-  set->compiled = 0;
-  if (r->nlc || r->nrc) set->hasctx = 1;
-  return (long)m->nrules++;
-nomem:
-  return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
-}
-
-int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
-  lsys_rule *r;
-  lsys_ins *c = NULL;
-  if (m->busy) return busyerror(m, NULL);
-  if (idx >= m->nrules) return LSYS_EARG;
-  r = &m->rules[idx];
-  if (code != NULL) {
-    if (!(r->flags & LSYS_RF_CALL) || (r->flags & LSYS_RF_DYN) ||
-        lsys_expr_check(code, n, (int)r->nargs, (int)m->nfuncs) != (int)r->nvals)
-      return LSYS_EARG;
-    c = (lsys_ins *)LSYS_MALLOC((size_t)n * sizeof *c + 1);
-    if (c == NULL) return LSYS_ENOMEM;
-    memcpy(c, code, (size_t)n * sizeof *c);
-  }
-  LSYS_FREE(r->vm);
-  r->vm = c;
-  r->nvm = c ? n : 0;
-  return LSYS_OK;
-}
-
-int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n) {
-  const lsys_func **t = NULL;
-  size_t i;
-  if (m->busy) return busyerror(m, NULL);
-  if (n > 0) {
-    if (n > (size_t)LSYS_EXPR_MAXCODE * 64) return LSYS_EARG;   /* fits an int */
-    t = (const lsys_func **)LSYS_MALLOC(n * sizeof *t);
-    if (t == NULL) return LSYS_ENOMEM;
-    memcpy(t, funcs, n * sizeof *t);
-  }
-  for (i = 0; i < m->nrules; i++) {
-    LSYS_FREE(m->rules[i].vm);
-    m->rules[i].vm = NULL;
-    m->rules[i].nvm = 0;
-  }
-  LSYS_FREE(m->funcs);
-  m->funcs = t;
-  m->nfuncs = n;
-  return LSYS_OK;
-}
-
-/* Groups the set's rules by predecessor (count, prefix sum, fill). */
-static int compileset (lsys_model *m, lsys_ruleset *s) {
-  uint32_t nsym = m->ab->n, i;
-  size_t k;
-  if (s->compiled && s->nsym == nsym) return LSYS_OK;
-  LSYS_FREE(s->start);
-  LSYS_FREE(s->byp);
-  LSYS_FREE(s->plain);
-  s->start = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *s->start);
-  s->byp = (uint32_t *)LSYS_MALLOC((s->nlist + 1) * sizeof *s->byp);
-  s->plain = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *s->plain);
-  if (s->start == NULL || s->byp == NULL || s->plain == NULL) return LSYS_ENOMEM;
-  memset(s->start, 0, (nsym + 1) * sizeof *s->start);
-  for (k = 0; k < s->nlist; k++) s->start[m->rules[s->list[k]].pred + 1]++;
-  for (i = 0; i < nsym; i++) s->start[i + 1] += s->start[i];
-  /* stable fill in declaration order */
-  {
-    uint32_t *next = (uint32_t *)LSYS_MALLOC((nsym + 1) * sizeof *next);
-    if (next == NULL) return LSYS_ENOMEM;
-    memcpy(next, s->start, (nsym + 1) * sizeof *next);
-    for (k = 0; k < s->nlist; k++) s->byp[next[m->rules[s->list[k]].pred]++] = s->list[k];
-    LSYS_FREE(next);
-  }
-  for (i = 0; i < nsym; i++) {         /* rules that always apply when np matches */
-    const lsys_rule *r = s->start[i] < s->start[i + 1] ? &m->rules[s->byp[s->start[i]]] : NULL;
-    s->plain[i] = (r != NULL && r->nlc == 0 && r->nrc == 0 && r->nmore == 0 &&
-                   !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN | LSYS_RF_STOCH)))
-                  ? s->byp[s->start[i]] : NONE;
-  }
-  s->nsym = nsym;
-  s->compiled = 1;
-  return LSYS_OK;
-}
 
 /* Appends modules [i, j) of 'src' (parameters from 'poff'): a successor a
 ** function produced. */
@@ -533,8 +259,8 @@ static int pushsub (lsys_model *m, uint32_t id) {
 /* The production sets for sub-L-system 'sub': the active group, then 0. */
 static int prodsets (lsys_model *m, int sub, lsys_ruleset **sets) {
   int n = 0;
-  if (m->group != 0 && (sets[n] = findset(m, LSYS_PROD, sub, m->group)) != NULL) n++;
-  if ((sets[n] = findset(m, LSYS_PROD, sub, 0)) != NULL) n++;
+  if (m->group != 0 && (sets[n] = lsys_findset(m, LSYS_PROD, sub, m->group)) != NULL) n++;
+  if ((sets[n] = lsys_findset(m, LSYS_PROD, sub, 0)) != NULL) n++;
   return n;
 }
 
@@ -543,7 +269,7 @@ static int compileall (lsys_model *m, int kind, int *hasctx) {
   *hasctx = 0;
   for (k = 0; k < m->nsets; k++)
     if (m->sets[k].kind == kind) {
-      if (compileset(m, &m->sets[k]) != LSYS_OK) return LSYS_ENOMEM;
+      if (lsys_compileset(m, &m->sets[k]) != LSYS_OK) return LSYS_ENOMEM;
       if (m->sets[k].hasctx) *hasctx = 1;
     }
   return LSYS_OK;
@@ -627,7 +353,7 @@ static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ru
   size_t k;
   if (sym == LSYS_SYM_SUB) {
     sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
-    if (sub < 0 || (findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
+    if (sub < 0 || (lsys_findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
       return lsys_seterror(&m->err, LSYS_ERULE, i,
                            "sub-L-system %g is not defined (module %zu)", idd, i + 1);
     for (k = 0; k < m->nsub && (uint32_t)sub != m->substack[k]; k++) {}
@@ -640,7 +366,7 @@ static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ru
   else
     sub = --m->nsub > 0 ? (int)m->substack[m->nsub - 1] : 0;
   *nsets = prodsets(m, sub, sets);
-  v->skip = findskip(m, sub);
+  v->skip = lsys_findskip(m, sub);
   return LSYS_OK;
 }
 
@@ -753,17 +479,42 @@ static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *v
   return LSYS_OK;
 }
 
+/* Makes 's' wide within the step's budget (a narrow string, lstring.h). */
+int lsys_widen (lsys_model *m, lsys_lstring *s) {
+  lsys_meter *keep = s->meter;
+  int st;
+  if (s->sym8 == NULL) return LSYS_OK;
+  s->meter = &m->meter;
+  st = lsys_lstring_widen(s);
+  s->meter = keep;
+  return st;
+}
+
+/* Exchanges the contents of two strings (each keeps its meter). */
+void lsys_swapstr (lsys_lstring *a, lsys_lstring *b) {
+  lsys_lstring t = *a;
+  lsys_meter *ma = a->meter, *mb = b->meter;
+  *a = *b;
+  *b = t;
+  a->meter = ma;
+  b->meter = mb;
+  a->nck = b->nck = 0;
+}
+
+/* The productions of a step; 'dst' may be 'src' (rewritten in place, or
+** into m->tmp and exchanged). */
 static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[2];
   int nsets, hasctx, st;
+  lsys_lstring *out = dst == src ? &m->tmp : dst;
   view v;
-  lsys_lstring_clear(dst);
   m->nsub = 0;
   if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
+  if (hasctx && (st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_eqsym(m);
-  v.skip = findskip(m, 0);
+  v.skip = lsys_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
     v.match = m->match;
@@ -771,7 +522,12 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   }
   nsets = prodsets(m, 0, sets);
   if ((st = lsys_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
-  return seqloop(m, src, dst, &v, sets, nsets);
+  if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
+  v.code = src->code;
+  lsys_lstring_clear(out);
+  if ((st = seqloop(m, src, out, &v, sets, nsets)) != LSYS_OK) return st;
+  if (out != dst) lsys_swapstr(src, out);
+  return LSYS_OK;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -832,14 +588,15 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   size_t i, p = 0;
   view v;
   lsys_lstring_clear(dst);
+  if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   if (compileall(m, kind, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  if ((sets[0] = findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
+  if ((sets[0] = lsys_findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
     return (st = lsys_lstring_copy(dst, src)) == LSYS_OK ? LSYS_OK : fail(m, st, 0);
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_eqsym(m);
-  v.skip = findskip(m, 0);
+  v.skip = lsys_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
     v.match = m->match;
@@ -864,7 +621,7 @@ static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
                    m->matchcap * (sizeof *m->match + sizeof *m->poff);
-  if (dst != NULL) used += lsys_lstring_bytes(dst);
+  if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
   m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
   m->meter.used = used;
@@ -912,10 +669,11 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   int hasctx = 0;
   int st;
   if (m->busy) return reentered(m);
+  if (lsys_lstring_widen(src) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   m->hsrc = NULL;
   m->depth_hit = 0;
   if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  set = findset(m, LSYS_HOMO, 0, 0);
+  set = lsys_findset(m, LSYS_HOMO, 0, 0);
   if (set == NULL || set->nlist == 0 || m->maxdepth[LSYS_HOMO] < 1) return 0;
   if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
@@ -942,12 +700,12 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   if (src == NULL || i >= src->n) return 0;
   code = src->code[i];
   sym = LSYS_CSYM(code);
-  sets[0] = findset(m, LSYS_HOMO, 0, 0);
+  sets[0] = lsys_findset(m, LSYS_HOMO, 0, 0);
   if (sym >= sets[0]->nsym || sets[0]->start[sym] == sets[0]->start[sym + 1]) return 0;
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_eqsym(m);
-  v.skip = findskip(m, 0);
+  v.skip = lsys_findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);
   lsys_rng_at(m->cur, i);
@@ -972,12 +730,9 @@ static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
   sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
-    lsys_lstring t;
     lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_DECOMP);
     if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
-    t = *dst; *dst = m->tmp; m->tmp = t;    /* swap buffers */
-    dst->nck = 0;
-    m->tmp.nck = 0;
+    lsys_swapstr(dst, &m->tmp);
   }
   return LSYS_OK;
 }
@@ -985,7 +740,6 @@ static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
 int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   if (m->busy) return reentered(m);
-  if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "derive in place");
   m->depth_hit = 0;
   m->cur = &m->rng;
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
@@ -994,6 +748,9 @@ int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_BETWEEN);
   m->busy = 0;
   unmeter(m, dst);
-  unmeter(m, &m->tmp);       /* the swap may have moved the attached buffers */
+  if (src == dst) {          /* the string before the step is not kept */
+    lsys_lstring_free(&m->tmp);
+    if (st != LSYS_OK) lsys_lstring_clear(src);
+  }
   return st;
 }

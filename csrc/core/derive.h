@@ -186,10 +186,12 @@ long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 
 /*
 ** One parallel derivation step 'src' -> 'dst' (productions, cut, then
-** decomposition). 'dst' is reset first and must not be 'src'. The
-** productions of a long string run on m->threads threads when every rule
-** they may apply runs on the expression machine or is a template
-** (derive_par.c); the string is the same for every number of threads.
+** decomposition). 'dst' is reset first; it may be 'src', which is then
+** rewritten in place (its old contents are lost; on failure it is left
+** empty). The productions of a long string run on m->threads threads when
+** every rule they may apply runs on the expression machine or is a template
+** (derive_par.c); the string is the same for every number of threads. The
+** result may be narrow (lstring.h).
 ** Returns LSYS_OK; LSYS_ELIMIT when 'dst' would exceed m->max_modules;
 ** LSYS_EMEMORY when the source, the new string and the step's tables
 ** would need more than m->max_memory bytes (checked before allocating);

@@ -8,6 +8,7 @@
 #include "derive.h"
 
 #define NONE UINT32_MAX
+#define ALTHEAD 5     /* a stochastic alternative's record in w->alt before its args, vals */
 
 /* A view of the string being matched: codes, parameters, and for contexts
 ** the bracket matches and per-module parameter offsets. */
@@ -55,6 +56,18 @@ int lsys_needscratch (lsys_scratch *w, size_t nargs);
 int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
                           lsys_ruleset *const *sets, int nsets);
 void lsys_par_free (lsys_model *m);
+
+/* Makes 's' wide within the running step's budget; exchanges two strings'
+** contents (each keeps its meter). */
+int lsys_widen (lsys_model *m, lsys_lstring *s);
+void lsys_swapstr (lsys_lstring *a, lsys_lstring *b);
+
+/* The set (kind, sub, group) or NULL; the ignore/consider list of
+** sub-L-system 'sub' or NULL; groups the set's rules by predecessor
+** (LSYS_OK or LSYS_ENOMEM). derive_rules.c. */
+lsys_ruleset *lsys_findset (const lsys_model *m, int kind, int sub, int group);
+lsys_skip *lsys_findskip (const lsys_model *m, int sub);
+int lsys_compileset (lsys_model *m, lsys_ruleset *s);
 
 /* Builds the bracket-match and parameter-offset tables of 's' in m->match
 ** and m->poff (within the model's memory budget). LSYS_OK, LSYS_ELIMIT,

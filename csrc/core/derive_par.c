@@ -6,20 +6,29 @@
 ** module boundaries; worker threads take chunks in turn and count the
 ** modules and parameters of their successors; a prefix sum over the chunks
 ** gives each chunk its place in the new string, which is allocated once at
-** its exact size; the workers then fill their chunks in place. A module is
-** rewritten the same way on every thread: the rule chosen, the expression
-** machine's values and the generator's numbers depend only on the module and
-** its position (rng.h), so the string is the same for every number of
-** threads, and the same as the sequential step's (derive.c), which runs
-** instead whenever the step needs what only the calling thread may do: a
-** rule that calls back into Lua, a cut or a sub-L-system (they change how
+** its exact size; the workers then fill their chunks, each from its end. A
+** module is rewritten the same way on every thread: the rule chosen, the
+** expression machine's values and the generator's numbers depend only on the
+** module and its position (rng.h), so the string is the same for every
+** number of threads, and the same as the sequential step's (derive.c), which
+** runs instead whenever the step needs what only the calling thread may do:
+** a rule that calls back into Lua, a cut or a sub-L-system (they change how
 ** the modules after them are rewritten), a predecessor of several modules,
 ** or an error message (the sequential step finds the module it names).
+**
+** Memory. The new string is narrow (lstring.h: a byte a module) when no
+** module of it has parameters. When the caller rewrites a string in place
+** (derive's own strings) and no successor is shorter than its module (in
+** modules and in parameters), the string grows to its new size and every
+** chunk is filled from its end: a module's successor then starts at or after
+** the module, so a chunk overwrites only modules already rewritten, its own
+** or those of the chunks after it, which it waits for.
 */
 #ifdef __linux__
 #define _GNU_SOURCE             /* sched_getaffinity, CPU_COUNT */
 #include <sched.h>
 #endif
+#include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -43,19 +52,39 @@ enum {
 
 /* What a symbol's modules become: the rule (when one) whose successor has
 ** 'nsucc' modules and 'nsrc' parameters for modules of 'pnp' parameters
-** (NOPNP: none); modules of other counts are copied. */
+** (NOPNP: none of PC_PLAIN or PC_VM); modules of other counts are copied. */
 typedef struct pent {
-  uint8_t cls, pnp;
+  uint8_t cls, pnp, nar;      /* nar: the rule's successor fits a narrow string */
+  uint8_t fl;                 /* what the rule's successor asks of the string (FL_*) */
   uint32_t nsucc, nsrc, rule;
   const uint16_t *t;
+  const uint8_t *t8;          /* the template as symbols (when nar) */
 } pent;
 
 #define NOPNP 0xFF
 
+/* What a module's successor asks of the new string (chunk flags). */
+enum { FL_WIDE = 1, FL_GEN = 2, FL_SHRINK = 4 };
+
+#define CW_SLOW ((uint64_t)1 << 63)
+#define CW(n, np, fl) ((uint64_t)(n) | (uint64_t)(np) << 24 | (uint64_t)(fl) << 48)
+
+/* The modules of a narrow string, by symbol: copied (NK_COPY), replaced by
+** a template of at most NTPL symbols that fits a narrow string (NK_TPL), or
+** the general path (NK_SLOW). */
+enum { NK_COPY, NK_TPL, NK_SLOW };
+#define NTPL 32
+
 /* The workers' scratch, kept by the model between steps. */
 typedef struct lsys_par {
   lsys_scratch ws[LSYS_MAXTHREADS];
-  pent *pe; size_t npe;        /* per symbol */
+  pent *pe; size_t npe;       /* per symbol */
+  uint8_t *t8; size_t nt8;    /* m->tcode as symbols */
+  uint8_t *rnar; size_t nrnar;  /* per rule: its successor fits a narrow string */
+  uint8_t nkind[256], nlen[256];
+  uint64_t wcount[256 << LSYS_NPBITS];  /* codes of symbols below 256: CW_SLOW, or the
+                              ** successor's modules, parameters << 24 and FL_* << 48 */
+  uint8_t ntpl[256][NTPL];    /* NK_TPL: the template at the end (filling goes backwards) */
 } lsys_par;
 
 typedef struct chunk {
@@ -63,22 +92,28 @@ typedef struct chunk {
   size_t sp, nsp;             /* its first parameter, its parameters */
   size_t cnt, pcnt;           /* modules and parameters of its successors */
   size_t o, po;               /* where they go in the new string */
-  int bad;
+  size_t lo;                  /* filling: modules [lo, b) are written */
+  size_t fail;                /* filling: the module whose values failed, or SIZE_MAX */
+  int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_choose ran; a
+                              ** successor shorter than its module */
 } chunk;
 
 enum { PH_NP, PH_COUNT, PH_FILL };
 
 typedef struct job {
   lsys_model *m;
-  const lsys_lstring *src;
-  lsys_lstring *dst;
+  const uint16_t *code;       /* the source: wide, */
+  const uint8_t *code8;       /* or narrow */
   const double *spar;
+  lsys_lstring *out;
   const view *v;
   lsys_ruleset *const *sets;
-  int nsets, phase, withnp;
-  const pent *pe;
+  int nsets, phase, withnp, narrow, inplace;
+  const lsys_par *P;
   lsys_rng rng;               /* each worker draws from a copy */
   chunk ch[MAXCHUNKS];
+  atomic_int done[MAXCHUNKS]; /* filling in place: chunk written */
+  atomic_int stop;
   size_t nch;
   atomic_size_t next;
 } job;
@@ -95,6 +130,8 @@ void lsys_par_free (lsys_model *m) {
     LSYS_FREE(m->par->ws[k].alt);
   }
   LSYS_FREE(m->par->pe);
+  LSYS_FREE(m->par->t8);
+  LSYS_FREE(m->par->rnar);
   LSYS_FREE(m->par);
   m->par = NULL;
 }
@@ -125,6 +162,10 @@ int lsys_default_threads (void) {
   return n;
 }
 
+static inline uint16_t srccode (const job *j, size_t i) {
+  return j->code8 != NULL ? (uint16_t)LSYS_CODE(j->code8[i], 0) : j->code[i];
+}
+
 /* Whether rule r runs without the callback, as one module. */
 static int cruns (const lsys_rule *r) {
   return r->nmore == 0 && !(r->flags & LSYS_RF_DYN) && (r->vm != NULL || !(r->flags & LSYS_RF_CALL));
@@ -137,15 +178,56 @@ static int hascond (const lsys_rule *r) {
   return 0;
 }
 
+/* Grows an array of bytes to at least n. */
+static int bytes (uint8_t **p, size_t *cap, size_t n) {
+  if (*cap >= n) return 1;
+  LSYS_FREE(*p);
+  *cap = 0;
+  if ((*p = (uint8_t *)LSYS_MALLOC(n)) == NULL) return 0;
+  *cap = n;
+  return 1;
+}
+
+/* The templates as symbols, whether each rule's successor fits a narrow
+** string, and the workers' scratch, large enough that filling never
+** allocates (lsys_choose included). */
+static int prepare (lsys_model *m, lsys_par *P, int nt) {
+  size_t k, nargs = 1, nalt = 1;
+  uint32_t q;
+  if (!bytes(&P->t8, &P->nt8, m->ntcode + 1) || !bytes(&P->rnar, &P->nrnar, m->nrules + 1))
+    return 0;
+  for (k = 0; k < m->ntcode; k++) P->t8[k] = (uint8_t)LSYS_CSYM(m->tcode[k]);
+  for (k = 0; k < m->nrules; k++) {
+    const lsys_rule *r = &m->rules[k];
+    int nar = r->nsrc == 0;
+    for (q = 0; q < r->nsucc && nar; q++) {
+      uint16_t c = m->tcode[r->succ + q];
+      nar = LSYS_CNP(c) == 0 && LSYS_CSYM(c) < 256;
+    }
+    P->rnar[k] = (uint8_t)nar;
+    if (r->nargs + r->nvals + 1 > nargs) nargs = r->nargs + r->nvals + 1;
+    nalt += ALTHEAD + r->nargs + r->nvals;
+  }
+  for (k = 0; k < (size_t)nt; k++) {
+    lsys_scratch *w = &P->ws[k];
+    w->worker = 1;
+    if (lsys_needscratch(w, nargs) != LSYS_OK ||
+        (w->altcap < nalt && lsys_grow((void **)&w->alt, &w->altcap, nalt, sizeof *w->alt)
+                             != LSYS_OK))
+      return 0;
+  }
+  return 1;
+}
+
 /*
 ** The class of every symbol (as the sequential step's fast loop, derive.c's
 ** fasttable, with rules on the expression machine and contexts besides).
 ** Returns 0 when a rule of the sets needs the calling thread, else 1 with
-** *needsp set when counting reads parameters; grows the workers' scratch.
+** *needsp set when counting reads parameters.
 */
 static int classify (lsys_model *m, lsys_ruleset *const *sets, int nsets, int *needsp) {
   lsys_par *P = m->par;
-  uint32_t k, n = m->ab->n, nvals = 1;
+  uint32_t k, n = m->ab->n;
   int si;
   *needsp = 0;
   if (P->npe < n) {
@@ -161,9 +243,7 @@ static int classify (lsys_model *m, lsys_ruleset *const *sets, int nsets, int *n
       const lsys_ruleset *s = sets[si];
       if (s == NULL || k >= s->nsym) continue;
       for (b = s->start[k]; b < s->start[k + 1]; b++) {
-        const lsys_rule *r = &m->rules[s->byp[b]];
-        if (!cruns(r)) return 0;
-        if (r->nvals + 1 > nvals) nvals = r->nvals + 1;
+        if (!cruns(&m->rules[s->byp[b]])) return 0;
         if (first == NONE) first = s->byp[b];
         nr++;
       }
@@ -184,29 +264,46 @@ static int classify (lsys_model *m, lsys_ruleset *const *sets, int nsets, int *n
         e->nsucc = r->nsucc;
         e->nsrc = r->nsrc;
         e->t = m->tcode + r->succ;
+        e->t8 = P->t8 + r->succ;
+        e->nar = P->rnar[first];
+        e->fl = (uint8_t)((e->nar ? 0 : FL_WIDE) |
+                          (r->nsucc == 0 || r->nsrc < r->pred_np ? FL_SHRINK : 0));
       }
     }
     if (e->cls == PC_VMC || e->cls == PC_GEN) *needsp = 1;
-  }
-  for (k = 0; k < LSYS_MAXTHREADS; k++) {
-    P->ws[k].worker = 1;
-    if (lsys_needscratch(&P->ws[k], nvals) != LSYS_OK) return 0;
+    if (k < 256) {               /* narrow modules; wide ones, counted */
+      uint32_t q;
+      for (q = 0; q <= LSYS_MAXPARAMS; q++)
+        P->wcount[k << LSYS_NPBITS | q] =
+          e->pnp == q ? (e->nsucc < (1u << 24) && e->nsrc < (1u << 24) ?
+                           CW(e->nsucc, e->nsrc, e->fl) : CW_SLOW)
+          : e->cls == PC_COPY || e->cls == PC_PLAIN || e->cls == PC_VM ?
+              CW(1, q, q > 0 ? FL_WIDE : 0)
+          : CW_SLOW;
+      P->nkind[k] = e->cls == PC_COPY || (e->cls == PC_PLAIN && e->pnp != 0) ? NK_COPY
+                  : e->cls == PC_PLAIN && e->nar && e->nsucc > 0 && e->nsucc <= NTPL ? NK_TPL
+                  : NK_SLOW;
+      P->nlen[k] = (uint8_t)(P->nkind[k] == NK_TPL ? e->nsucc : 1);
+      if (P->nkind[k] == NK_TPL)
+        memcpy(P->ntpl[k] + NTPL - e->nsucc, e->t8, e->nsucc);
+    }
   }
   return 1;
 }
 
-/* The rule that rewrites module i ('cd', parameters *args), or NULL when it
-** is copied (classes PC_VM, PC_VMC, PC_GEN); *vals gets its values and *args
-** its arguments. Returns -1 when the step must run sequentially. */
+/* The rule that rewrites module i ('cd', parameters *args; classes PC_VM,
+** PC_VMC and PC_GEN), or NULL when the module is copied; *vals gets its
+** values and *args its arguments. Returns -1 when the step must run
+** sequentially (a value that is not finite, an error of lsys_choose). */
 static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **args,
                  const double **vals, const lsys_rule **rule) {
   lsys_model *m = j->m;
-  const pent *e = &j->pe[LSYS_CSYM(cd)];
-  const lsys_rule *r = &m->rules[e->rule];
+  const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   lsys_pick pk;
   int st;
   *rule = NULL;
-  if (e->cls == PC_VM || e->cls == PC_VMC) {
+  if (e->cls == PC_VM || e->cls == PC_VMC) {   /* (e->rule is NONE for the other classes) */
+    const lsys_rule *r = &m->rules[e->rule];
     if (r->pred_np != LSYS_CNP(cd)) return 0;
     lsys_rng_at(w->rng, i);
     if (!lsys_expr_run(r->vm, r->nvm, *args, w->args, w->rng, m->funcs)) return 0;
@@ -225,35 +322,91 @@ static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **
 
 /* Sums the parameters of the chunk's modules. */
 static void npchunk (job *j, chunk *c) {
-  const uint16_t *code = j->src->code;
   size_t i, nsp = 0;
-  for (i = c->a; i < c->b; i++) nsp += LSYS_CNP(code[i]);
+  for (i = c->a; i < c->b; i++) nsp += LSYS_CNP(j->code[i]);
   c->nsp = nsp;
 }
 
+/* Counts module i (parameters from 'sp') the general way: adds to *cnt,
+** *pcnt and *fl. Returns 0 when the step must run sequentially. */
+static int countslow (job *j, lsys_scratch *w, size_t i, uint16_t cd, size_t sp, size_t *cnt,
+                      size_t *pcnt, int *fl) {
+  uint32_t np = LSYS_CNP(cd);
+  const pent *e = &j->P->pe[LSYS_CSYM(cd)];
+  const double *args = j->spar + sp, *vals = NULL;
+  const lsys_rule *r;
+  if (e->cls <= PC_VM && e->pnp != np) r = NULL;        /* a copy */
+  else if (pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
+  if (e->cls == PC_GEN) *fl |= FL_GEN;
+  if (r != NULL) {
+    *cnt += r->nsucc;
+    *pcnt += r->nsrc;
+    if (!j->P->rnar[r - j->m->rules]) *fl |= FL_WIDE;
+    if (r->nsucc == 0 || r->nsrc < np) *fl |= FL_SHRINK;
+  }
+  else {
+    *cnt += 1;
+    *pcnt += np;
+    if (np > 0 || LSYS_CSYM(cd) > 255) *fl |= FL_WIDE;
+  }
+  return 1;
+}
+
 /* Counts the modules and parameters of the chunk's successors (and its
-** parameters, when the job says so). */
+** parameters, when the job says so), and what the string they make needs. */
 static void countchunk (job *j, lsys_scratch *w, chunk *c) {
-  const uint16_t *code = j->src->code;
-  const pent *pe = j->pe;
+  const pent *pe = j->P->pe;
   size_t i, sp = c->sp, cnt = 0, pcnt = 0;
-  for (i = c->a; i < c->b; i++) {
-    uint16_t cd = code[i];
-    uint32_t np = LSYS_CNP(cd);
-    const pent *e = &pe[LSYS_CSYM(cd)];
-    if (e->pnp == np) { cnt += e->nsucc; pcnt += e->nsrc; }
-    else if (e->cls <= PC_VM) { cnt++; pcnt += np; }
-    else {
-      const double *args = j->spar + sp, *vals = NULL;
-      const lsys_rule *r;
-      if (pick(j, w, i, cd, &args, &vals, &r) < 0) { c->bad = 1; return; }
-      if (r != NULL) { cnt += r->nsucc; pcnt += r->nsrc; }
-      else { cnt++; pcnt += np; }
+  int fl = 0;
+  if (j->code8 != NULL) {                 /* narrow: no parameters */
+    const uint8_t *code8 = j->code8, *nkind = j->P->nkind, *nlen = j->P->nlen;
+    for (i = c->a; i < c->b; i++) {
+      uint8_t b = code8[i];
+      if (nkind[b] != NK_SLOW) cnt += nlen[b];
+      else if (!countslow(j, w, i, (uint16_t)LSYS_CODE(b, 0), 0, &cnt, &pcnt, &fl)) {
+        c->bad = 1;
+        return;
+      }
     }
-    sp += np;
+  }
+  else {
+    const uint16_t *code = j->code;
+    const uint64_t *wcount = j->P->wcount;
+    for (i = c->a; i < c->b; i++) {
+      uint16_t cd = code[i];
+      uint32_t np = LSYS_CNP(cd);
+      const pent *e;
+      if (cd < (256 << LSYS_NPBITS) && !(wcount[cd] & CW_SLOW)) {    /* the usual case */
+        uint64_t x = wcount[cd];
+        cnt += x & 0xFFFFFF;
+        pcnt += (x >> 24) & 0xFFFFFF;
+        fl |= (int)(x >> 48);
+        sp += np;
+        continue;
+      }
+      e = &pe[LSYS_CSYM(cd)];
+      if (e->pnp == np) {                 /* a rule that always applies */
+        cnt += e->nsucc;
+        pcnt += e->nsrc;
+        fl |= e->fl;
+      }
+      else if (e->cls == PC_COPY) {
+        cnt++;
+        pcnt += np;
+        fl |= np > 0 || LSYS_CSYM(cd) > 255;
+      }
+      else if (!countslow(j, w, i, cd, sp, &cnt, &pcnt, &fl)) {
+        c->bad = 1;
+        return;
+      }
+      sp += np;
+    }
   }
   c->cnt = cnt;
   c->pcnt = pcnt;
+  c->wide = fl & FL_WIDE;
+  c->gen = (fl & FL_GEN) != 0;
+  c->shrink = (fl & FL_SHRINK) != 0;
   if (j->withnp) c->nsp = sp - c->sp;
 }
 
@@ -261,72 +414,212 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
 static void put (const lsys_model *m, const lsys_rule *r, const double *args,
                  const double *vals, uint16_t *oc, double *op) {
   const uint16_t *t = m->tcode + r->succ;
-  const lsys_psrc *ps = m->tsrc + r->src;
   uint32_t k;
   for (k = 0; k < r->nsucc; k++) oc[k] = t[k];
-  for (k = 0; k < r->nsrc; k++) {
-    double x = ps[k].kind == LSYS_PS_CONST ? ps[k].value :
-               ps[k].kind == LSYS_PS_ARG ? args[ps[k].idx] : vals[ps[k].idx];
+  for (k = 0; k < r->nsrc; k++) {   /* (no parameter sources at all: m->tsrc is NULL) */
+    const lsys_psrc *ps = &m->tsrc[r->src + k];
+    double x = ps->kind == LSYS_PS_CONST ? ps->value :
+               ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
     op[k] = m->f32 ? lsys_round32(x) : x;
   }
 }
 
-/* Writes the chunk's successors at their place in the new string. */
-static void fillchunk (job *j, lsys_scratch *w, chunk *c) {
+/* A module's values failed (or the chunk went wrong, 'bad'): every worker
+** stops; modules [i + 1, b) of the chunk are written. */
+static void halt (job *j, chunk *c, size_t i, int bad) {
+  if (bad) c->bad = 1;
+  else c->fail = i;
+  c->lo = i + 1;
+  atomic_store(&j->stop, 1);
+}
+
+/* The output of a chunk being filled, from its end: codes down to o0,
+** parameters down to p0. */
+typedef struct wout { uint16_t *o0, *oc; double *p0, *op; } wout;
+
+/* Writes the successor of module i (parameters at 'args') the general way.
+** Returns 1, 0 when its values failed, -1 when it does not fit (a bug). */
+static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
+                     const double *args) {
   const lsys_model *m = j->m;
-  const uint16_t *code = j->src->code;
-  const pent *pe = j->pe;
+  uint32_t np = LSYS_CNP(cd), k;
+  const pent *e = &j->P->pe[LSYS_CSYM(cd)];
+  const lsys_rule *r = NULL;
+  const double *vals = NULL;
+  double a[LSYS_MAXPARAMS];
+  if (e->pnp == np && e->cls == PC_PLAIN) r = &m->rules[e->rule];
+  else if (e->cls > PC_PLAIN && pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
+  if (r == NULL) {                                               /* a copy */
+    if (o->oc == o->o0 || (size_t)(o->op - o->p0) < np) return -1;
+    *--o->oc = cd;
+    o->op -= np;
+    for (k = np; k-- > 0;) o->op[k] = args[k];      /* from the end: op >= args */
+    return 1;
+  }
+  if ((size_t)(o->oc - o->o0) < r->nsucc || (size_t)(o->op - o->p0) < r->nsrc) return -1;
+  if (j->inplace && np > 0 && e->cls != PC_GEN) {  /* the module's own parameters may be */
+    memcpy(a, args, np * sizeof *a);              /* where its successor's go */
+    args = a;
+  }
+  o->oc -= r->nsucc;
+  o->op -= r->nsrc;
+  put(m, r, args, vals, o->oc, o->op);
+  return 1;
+}
+
+/* Writes the chunk's successors into a wide string, from its end. */
+static void fillwide (job *j, lsys_scratch *w, chunk *c) {
+  const pent *pe = j->P->pe;
   const double *spar = j->spar;
-  uint16_t *oc = j->dst->code + c->o, *oe = oc + c->cnt;
-  double *op = j->dst->par + c->po, *ope = op + c->pcnt;
-  size_t i, sp = c->sp;
-  uint32_t k;
-  for (i = c->a; i < c->b; i++) {
-    uint16_t cd = code[i];
-    uint32_t np = LSYS_CNP(cd);
+  wout o;
+  size_t i, sp = c->sp + c->nsp;
+  int st;
+  o.o0 = j->out->code + c->o;
+  o.oc = o.o0 + c->cnt;
+  o.p0 = j->out->par + c->po;
+  o.op = o.p0 + c->pcnt;
+  for (i = c->b; i-- > c->a;) {
+    uint16_t cd = srccode(j, i);
+    uint32_t np = LSYS_CNP(cd), k;
     const pent *e = &pe[LSYS_CSYM(cd)];
-    const lsys_rule *r = NULL;
-    const double *args = spar + sp, *vals = NULL;
-    if (e->pnp == np && e->cls == PC_PLAIN && e->nsrc == 0) {     /* a template */
-      if ((size_t)(oe - oc) < e->nsucc) { c->bad = 1; return; }
-      for (k = 0; k < e->nsucc; k++) oc[k] = e->t[k];
-      oc += e->nsucc;
-      sp += np;
+    sp -= np;
+    if (e->cls == PC_COPY && o.oc > o.o0 && (size_t)(o.op - o.p0) >= np) {   /* a copy */
+      const double *q = spar + sp;
+      *--o.oc = cd;
+      o.op -= np;
+      for (k = np; k-- > 0;) o.op[k] = q[k];        /* from the end: op >= q */
       continue;
     }
-    if (e->pnp == np && e->cls == PC_PLAIN) r = &m->rules[e->rule];
-    else if (e->cls > PC_PLAIN && pick(j, w, i, cd, &args, &vals, &r) < 0) {
-      c->bad = 1;
+    if (e->pnp == np && e->cls == PC_PLAIN && e->nsrc == 0 &&
+        (size_t)(o.oc - o.o0) >= e->nsucc) {                       /* a template */
+      const uint16_t *t = e->t;
+      uint32_t n = e->nsucc;
+      o.oc -= n;
+      for (k = 0; k < n; k++) o.oc[k] = t[k];
+      continue;
+    }
+    if (e->pnp == np && e->cls == PC_VM && (size_t)(o.oc - o.o0) >= e->nsucc &&
+        (size_t)(o.op - o.p0) >= e->nsrc) {           /* the expression machine, no condition */
+      const lsys_rule *r = &j->m->rules[e->rule];
+      const double *args = spar + sp;
+      double a[LSYS_MAXPARAMS];
+      uint32_t v;
+      if (j->inplace && np > 0) {         /* its own parameters may be where its successor's go */
+        memcpy(a, args, np * sizeof *a);
+        args = a;
+      }
+      lsys_rng_at(w->rng, i);
+      lsys_expr_run(r->vm, r->nvm, args, w->args, w->rng, j->m->funcs);
+      for (v = 0; v < r->nvals && isfinite(w->args[v]); v++) {}
+      if (v < r->nvals) { halt(j, c, i, 0); return; }
+      o.oc -= e->nsucc;
+      o.op -= e->nsrc;
+      put(j->m, r, args, w->args, o.oc, o.op);
+      continue;
+    }
+    if ((i & 1023) == 0 && atomic_load_explicit(&j->stop, memory_order_relaxed)) {
+      c->lo = i + 1;
       return;
     }
-    if (r == NULL) {                                               /* a copy */
-      if (oc == oe || (size_t)(ope - op) < np) { c->bad = 1; return; }
-      *oc++ = cd;
-      for (k = 0; k < np; k++) op[k] = args[k];
-      op += np;
+    if ((st = fillslow(j, w, &o, i, cd, spar + sp)) <= 0) {
+      halt(j, c, i, st < 0);
+      return;
     }
-    else {
-      if ((size_t)(oe - oc) < r->nsucc || (size_t)(ope - op) < r->nsrc) { c->bad = 1; return; }
-      put(m, r, args, vals, oc, op);
-      oc += r->nsucc;
-      op += r->nsrc;
-    }
-    sp += np;
   }
-  if (oc != oe || op != ope) c->bad = 1;
+  if (o.oc != o.o0 || o.op != o.p0) { halt(j, c, c->a, 1); return; }
+  c->lo = c->a;
+}
+
+/* Writes the chunk's successors into a narrow string, from its end. */
+static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
+  const lsys_par *P = j->P;
+  const pent *pe = P->pe;
+  const uint8_t *code8 = j->code8;
+  uint8_t *base = j->out->sym8, *o0 = base + c->o, *oc = o0 + c->cnt;
+  size_t i, sp = c->sp + c->nsp;
+  for (i = c->b; i-- > c->a;) {
+    uint16_t cd;
+    if (code8 != NULL) {                  /* narrow to narrow: the usual case */
+      uint8_t b = code8[i], kind = P->nkind[b];
+      if (kind == NK_COPY && oc > o0) {
+        *--oc = b;
+        continue;
+      }
+      if (kind == NK_TPL && (size_t)(oc - o0) >= NTPL && (size_t)(oc - base) >= i + NTPL) {
+        memcpy(oc - NTPL, P->ntpl[b], NTPL);   /* what comes before the template is
+                             ** written again by the modules before this one */
+        oc -= P->nlen[b];
+        continue;
+      }
+    }
+    cd = srccode(j, i);
+    uint32_t np = LSYS_CNP(cd), k;
+    const pent *e = &pe[LSYS_CSYM(cd)];
+    const lsys_rule *r = NULL;
+    const double *args, *vals = NULL;
+    sp -= np;
+    if (e->pnp == np && e->cls == PC_PLAIN) {                      /* a template */
+      if ((size_t)(oc - o0) < e->nsucc) { halt(j, c, i, 1); return; }
+      oc -= e->nsucc;
+      for (k = 0; k < e->nsucc; k++) oc[k] = e->t8[k];
+      continue;
+    }
+    if (e->cls == PC_COPY || e->cls == PC_PLAIN) {                 /* a copy */
+      if (oc == o0) { halt(j, c, i, 1); return; }
+      *--oc = (uint8_t)LSYS_CSYM(cd);
+      continue;
+    }
+    args = j->spar + sp;
+    if ((i & 1023) == 0 && atomic_load_explicit(&j->stop, memory_order_relaxed)) {
+      c->lo = i + 1;
+      return;
+    }
+    if (pick(j, w, i, cd, &args, &vals, &r) < 0) { halt(j, c, i, 0); return; }
+    if (r == NULL) {
+      if (oc == o0) { halt(j, c, i, 1); return; }
+      *--oc = (uint8_t)LSYS_CSYM(cd);
+      continue;
+    }
+    if ((size_t)(oc - o0) < r->nsucc) { halt(j, c, i, 1); return; }
+    oc -= r->nsucc;
+    for (k = 0; k < r->nsucc; k++) oc[k] = j->P->t8[r->succ + k];
+  }
+  if (oc != o0) { halt(j, c, c->a, 1); return; }
+  c->lo = c->a;
+}
+
+/* Filling in place: waits until the chunks whose modules chunk c overwrites
+** are written. Returns 0 when the workers stop. */
+static int await (job *j, size_t c) {
+  const chunk *ch = j->ch;
+  size_t lim = ch[c].o + ch[c].cnt, plim = ch[c].po + ch[c].pcnt, d;
+  for (d = c + 1; d < j->nch && (ch[d].a < lim || ch[d].sp < plim); d++) {
+    if (ch[d].b <= ch[c].o && ch[d].sp + ch[d].nsp <= ch[c].po) continue;   /* below it */
+    while (!atomic_load_explicit(&j->done[d], memory_order_acquire)) {
+      if (atomic_load(&j->stop)) return 0;
+      sched_yield();
+    }
+  }
+  return 1;
 }
 
 static void *work (void *arg) {
   worker *wk = (worker *)arg;
   job *j = wk->j;
-  size_t c;
+  size_t k;
   wk->w->rng = &wk->rng;
-  while ((c = atomic_fetch_add(&j->next, 1)) < j->nch) {
-    chunk *ch = &j->ch[c];
+  while ((k = atomic_fetch_add(&j->next, 1)) < j->nch) {
+    chunk *ch;
     wk->rng = j->rng;
-    if (j->phase == PH_NP) npchunk(j, ch);
-    else if (j->phase == PH_COUNT) countchunk(j, wk->w, ch);
-    else fillchunk(j, wk->w, ch);
+    if (j->phase == PH_NP) npchunk(j, &j->ch[k]);
+    else if (j->phase == PH_COUNT) countchunk(j, wk->w, &j->ch[k]);
+    else {                                 /* the last chunk first */
+      ch = &j->ch[j->nch - 1 - k];
+      if (atomic_load(&j->stop) || (j->inplace && !await(j, j->nch - 1 - k))) continue;
+      if (j->narrow) fillnarrow(j, wk->w, ch);
+      else fillwide(j, wk->w, ch);
+      if (ch->lo == ch->a) atomic_store_explicit(&j->done[j->nch - 1 - k], 1, memory_order_release);
+    }
   }
   return NULL;
 }
@@ -349,22 +642,6 @@ static void runphase (job *j, int phase, int nt) {
   for (k = 1; k < started; k++) pthread_join(wk[k].t, NULL);
 }
 
-/* Totals of the chunks, and their places: source parameters (PH_NP) or
-** successors (PH_COUNT). Returns 0 when a chunk failed. */
-static int prefix (job *j, int phase, size_t *n, size_t *np) {
-  size_t c, o = 0, po = 0;
-  for (c = 0; c < j->nch; c++) {
-    chunk *ch = &j->ch[c];
-    if (ch->bad) return 0;
-    if (phase == PH_NP) { ch->sp = o; o += ch->nsp; continue; }
-    ch->o = o; ch->po = po;
-    o += ch->cnt; po += ch->pcnt;
-  }
-  *n = o;
-  *np = po;
-  return 1;
-}
-
 /* Cuts [0, n) into chunks for 'nt' threads. */
 static void cut (job *j, size_t n, int nt) {
   size_t nch = (size_t)nt * 8, c;
@@ -373,75 +650,165 @@ static void cut (job *j, size_t n, int nt) {
   if (nch < (size_t)nt) nch = (size_t)nt;
   if (nch > n) nch = n > 0 ? n : 1;
   for (c = 0; c < nch; c++) {
-    memset(&j->ch[c], 0, sizeof j->ch[c]);
-    j->ch[c].a = n / nch * c + (c < n % nch ? c : n % nch);
-    j->ch[c].b = j->ch[c].a + n / nch + (c < n % nch);
+    chunk *ch = &j->ch[c];
+    memset(ch, 0, sizeof *ch);
+    ch->a = n / nch * c + (c < n % nch ? c : n % nch);
+    ch->b = ch->a + n / nch + (c < n % nch);
+    ch->lo = ch->b;
+    ch->fail = (size_t)-1;
+    atomic_init(&j->done[c], 0);
   }
   j->nch = nch;
 }
 
+/* The totals of the counts and the places of the chunks; *flags gets what
+** the chunks need (bit 0 wide, 1 lsys_choose ran, 2 shorter successors).
+** Returns 0 when a chunk failed. */
+static int prefix (job *j, size_t *n, size_t *np, int *flags) {
+  size_t c, o = 0, po = 0;
+  *flags = 0;
+  for (c = 0; c < j->nch; c++) {
+    chunk *ch = &j->ch[c];
+    if (ch->bad) return 0;
+    ch->o = o; ch->po = po;
+    o += ch->cnt; po += ch->pcnt;
+    *flags |= ch->wide | ch->gen << 1 | ch->shrink << 2;
+  }
+  *n = o;
+  *np = po;
+  return 1;
+}
+
+/* The chunks' first parameters, from their counts (PH_NP or counted). */
+static void paroffsets (job *j) {
+  size_t c, sp = 0;
+  for (c = 0; c < j->nch; c++) { j->ch[c].sp = sp; sp += j->ch[c].nsp; }
+}
+
 /* Whether the sequential step could certainly hold a string of n modules
-** and np parameters within the budget (it grows its arrays by doubling):
-** only then may this step succeed where it would not fail. */
-static int roomy (lsys_model *m, lsys_lstring *dst, size_t n, size_t np) {
-  size_t dbytes = lsys_lstring_bytes(dst), base, need;
+** and np parameters within the budget (it grows its arrays by doubling,
+** into 'out', and a narrow source is made wide first): only then may this
+** step succeed where that one would fail. */
+static int roomy (lsys_model *m, const lsys_lstring *src, lsys_lstring *out, size_t n,
+                  size_t np) {
+  size_t obytes = lsys_lstring_bytes(out), base, need;
   if (n > m->max_modules) return 0;
-  base = m->meter.used > dbytes ? m->meter.used - dbytes : 0;
-  if (n > ((size_t)-1 / 8) || np > ((size_t)-1 / 32)) return 0;
-  need = 2 * (n * sizeof *dst->code + np * sizeof *dst->par);
+  if (src->n > n) n = src->n < m->max_modules ? src->n : m->max_modules;
+  if (src->npar > np) np = src->npar;
+  base = m->meter.used > obytes ? m->meter.used - obytes : 0;
+  if (n > ((size_t)-1 / 16) || np > ((size_t)-1 / 32)) return 0;
+  need = 2 * (n * sizeof(uint16_t) + np * sizeof(double)) +
+         (src->sym8 != NULL ? src->n * sizeof(uint16_t) : 0);
   return base <= m->meter.limit && need <= m->meter.limit - base;
+}
+
+/* Filling in place failed at a module whose values are not finite: its
+** message is that of the first such module in the string (the modules
+** rewritten so far had none; the others are as they were). */
+static int firsterror (job *j) {
+  lsys_model *m = j->m;
+  lsys_rng rng = j->rng;
+  size_t c, i;
+  m->sc.rng = &rng;
+  for (c = 0; c < j->nch; c++) {
+    const chunk *ch = &j->ch[c];
+    size_t sp = ch->sp;
+    for (i = ch->a; i < ch->lo; i++) {
+      uint16_t cd = srccode(j, i);
+      const pent *e = &j->P->pe[LSYS_CSYM(cd)];
+      if (e->cls == PC_VM && e->pnp == LSYS_CNP(cd)) {
+        const lsys_rule *r = &m->rules[e->rule];
+        lsys_rng_at(&rng, i);
+        if (lsys_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+        if (lsys_expr_run(r->vm, r->nvm, j->spar + sp, m->sc.args, &rng, m->funcs) &&
+            lsys_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK)
+          return LSYS_ERULE;
+      }
+      sp += LSYS_CNP(cd);
+    }
+  }
+  return lsys_seterror(&m->err, LSYS_ERULE, (size_t)-1, "a step on several threads failed");
+}
+
+/* Counts: the chunks' parameters when counting reads them, then the
+** successors. Returns 0 when the step must run sequentially. */
+static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
+  size_t c;
+  if (needsp && src->npar > 0) {        /* counting reads parameters: find them first */
+    if (j->v->poff != NULL)            /* the context tables have them */
+      for (c = 0; c < j->nch; c++) {
+        j->ch[c].sp = j->v->poff[j->ch[c].a];
+        j->ch[c].nsp = j->v->poff[j->ch[c].b] - j->ch[c].sp;
+      }
+    else {
+      runphase(j, PH_NP, nt);
+      paroffsets(j);
+    }
+  }
+  else j->withnp = src->npar > 0 && src->sym8 == NULL;
+  runphase(j, PH_COUNT, nt);
+  for (c = 0; c < j->nch; c++)
+    if (j->ch[c].bad) return 0;
+  if (j->withnp) paroffsets(j);
+  return 1;
+}
+
+/* Makes room for the new string: 'src' grown in place, or 'out' made anew. */
+static int room (job *j, lsys_lstring *src, lsys_lstring *out, size_t tot, size_t ptot) {
+  if (out == src)                                                         /* no NULL + 0 */
+    return lsys_lstring_grow(src, tot, j->narrow ? 0 : ptot > 0 ? ptot : 1) == LSYS_OK;
+  if (j->narrow) return lsys_lstring_prepare8(out, tot) == LSYS_OK;
+  return lsys_lstring_prepare(out, tot, ptot > 0 ? ptot : 1) == LSYS_OK;  /* no NULL + 0 */
 }
 
 int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
                           lsys_ruleset *const *sets, int nsets) {
-  int nt = m->threads > 0 ? m->threads : lsys_default_threads(), needsp;
-  size_t n = src->n, tot, ptot;
+  int nt = m->threads > 0 ? m->threads : lsys_default_threads(), needsp, flags, st = LSYS_OK;
+  size_t n = src->n, tot, ptot, c;
+  lsys_lstring *seqout = dst == src ? &m->tmp : dst, *out;
   job *j;
   if (n < m->parmin || n < 2) return LSYS_PAR_SEQ;      /* never on the thread count: the
                                     ** strings it makes are kept in other buffers */
   if (m->par == NULL) {
-    m->par = (lsys_par *)LSYS_MALLOC(sizeof *m->par);
-    if (m->par == NULL) return LSYS_PAR_SEQ;
+    if ((m->par = (lsys_par *)LSYS_MALLOC(sizeof *m->par)) == NULL) return LSYS_PAR_SEQ;
     memset(m->par, 0, sizeof *m->par);
   }
-  if (!classify(m, sets, nsets, &needsp)) return LSYS_PAR_SEQ;
-  j = (job *)LSYS_MALLOC(sizeof *j);
-  if (j == NULL) return LSYS_PAR_SEQ;
+  if (!prepare(m, m->par, nt) || !classify(m, sets, nsets, &needsp)) return LSYS_PAR_SEQ;
+  if ((j = (job *)LSYS_MALLOC(sizeof *j)) == NULL) return LSYS_PAR_SEQ;
   memset(j, 0, sizeof *j);
-  j->m = m; j->src = src; j->dst = dst; j->v = v;
+  j->m = m; j->v = v; j->P = m->par;
+  j->code = src->code; j->code8 = src->sym8;
   j->spar = src->par != NULL ? src->par : nopar;
   j->sets = sets; j->nsets = nsets;
-  j->pe = m->par->pe;
   j->rng = *m->cur;
+  atomic_init(&j->stop, 0);
   cut(j, n, nt);
-  if (needsp && src->npar > 0) {        /* counting reads parameters: find them first */
-    if (v->poff != NULL) {
-      size_t c;
-      for (c = 0; c < j->nch; c++) j->ch[c].sp = v->poff[j->ch[c].a];
-    }
-    else {
-      runphase(j, PH_NP, nt);
-      prefix(j, PH_NP, &tot, &ptot);
-    }
+  if (!count(j, src, needsp, nt) || !prefix(j, &tot, &ptot, &flags)) goto seq;
+  j->narrow = !(flags & 1) && lsys_model_setsize(m, LSYS_DECOMP, 0, 0) <= 0;
+  j->inplace = dst == src && v->match == NULL && !(flags & 4) &&
+               j->narrow == (src->sym8 != NULL);
+  out = j->inplace ? src : seqout;
+  if (tot == 0 || !roomy(m, src, seqout, tot, ptot) || !room(j, src, out, tot, ptot)) goto seq;
+  if (j->inplace) {                       /* the arrays may have moved */
+    j->code = src->code; j->code8 = src->sym8;
+    j->spar = src->par != NULL ? src->par : nopar;
   }
-  else j->withnp = src->npar > 0;
-  runphase(j, PH_COUNT, nt);
-  if (!prefix(j, PH_COUNT, &tot, &ptot)) goto seq;
-  if (j->withnp) {
-    size_t c, sp = 0;
-    for (c = 0; c < j->nch; c++) { j->ch[c].sp = sp; sp += j->ch[c].nsp; }
-  }
-  if (tot == 0 || !roomy(m, dst, tot, ptot) ||
-      lsys_lstring_prepare(dst, tot, ptot > 0 ? ptot : 1) != LSYS_OK)  /* no NULL + 0 */
-    goto seq;
+  j->out = out;
   runphase(j, PH_FILL, nt);
-  if (!prefix(j, PH_COUNT, &tot, &ptot)) goto seq;
-  dst->n = tot;
-  dst->npar = ptot;
+  for (c = 0; c < j->nch && st == LSYS_OK; c++)
+    if (j->ch[c].bad || j->ch[c].fail != (size_t)-1) st = LSYS_ERULE;
+  if (st != LSYS_OK && !j->inplace) goto seq;
+  if (st != LSYS_OK) st = firsterror(j);     /* the string is lost (derive's own) */
+  else {
+    out->n = tot;
+    out->npar = j->narrow ? 0 : ptot;
+    out->nck = 0;
+    if (out != dst) lsys_swapstr(src, out);
+  }
   LSYS_FREE(j);
-  return LSYS_OK;
+  return st;
 seq:
+  if (seqout != src) lsys_lstring_clear(seqout);
   LSYS_FREE(j);
-  lsys_lstring_clear(dst);
   return LSYS_PAR_SEQ;
 }

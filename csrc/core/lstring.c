@@ -1,6 +1,12 @@
 /*
 ** The module string: storage, text notation in and out.
 */
+#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
+#define _DEFAULT_SOURCE         /* madvise */
+#endif
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,6 +20,7 @@ void lsys_lstring_init (lsys_lstring *s) {
 
 void lsys_lstring_free (lsys_lstring *s) {
   LSYS_FREE(s->code);
+  LSYS_FREE(s->sym8);
   LSYS_FREE(s->par);
   LSYS_FREE(s->ck);
   memset(s, 0, sizeof *s);
@@ -21,6 +28,7 @@ void lsys_lstring_free (lsys_lstring *s) {
 
 int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
   int st;
+  if (s->sym8 != NULL && (st = lsys_lstring_widen(s)) != LSYS_OK) return st;
   if (s->n + nmod > s->cap &&
       (st = lsys_grow_metered((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code,
                               s->meter)) != LSYS_OK)
@@ -29,6 +37,79 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
       (st = lsys_grow_metered((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par,
                               s->meter)) != LSYS_OK)
     return st;
+  return LSYS_OK;
+}
+
+/* Reallocates '*p' from 'old' to 'new' bytes, keeping its contents, within
+** meter 'mt' (whose count includes the old block). */
+/* The block of n bytes at p is to be backed by huge pages where the system
+** gives them (Linux's transparent huge pages, on request): a big string's
+** first touch then costs a fault every 2 MiB, not every 4 KiB. The whole
+** block is marked, its pages included where it starts and ends, so that the
+** mapping stays one piece (realloc can then move it with mremap, which does
+** not span mappings of different kinds); what it grows into later stays
+** marked. Blocks under 8 MiB are left alone. */
+static void hugepages (void *p, size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const uintptr_t page = 4096;
+  uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
+  if (n >= ((size_t)8 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
+#else
+  (void)p; (void)n;
+#endif
+}
+
+static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
+  size_t base = 0;
+  void *np;
+  if (mt != NULL) {
+    base = mt->used > old ? mt->used - old : 0;
+    if (base > mt->limit || new > mt->limit - base) {
+      mt->hit = 1;
+      return LSYS_EMEMORY;
+    }
+  }
+  np = LSYS_REALLOC(*p, new > 0 ? new : 1);
+  if (np == NULL) return LSYS_ENOMEM;
+  *p = np;
+  if (new > old) hugepages(np, new);
+  if (mt != NULL) mt->used = base + new;
+  return LSYS_OK;
+}
+
+int lsys_lstring_widen (lsys_lstring *s) {
+  size_t i, cap = s->n > 0 ? s->n : 1;
+  uint16_t *w;
+  int st;
+  if (s->sym8 == NULL) return LSYS_OK;
+  if (cap > ((size_t)-1) / 2) return LSYS_ENOMEM;
+  if ((st = regrow((void **)&s->sym8, s->cap, cap * 2, s->meter)) != LSYS_OK) return st;
+  w = (uint16_t *)(void *)s->sym8;
+  for (i = s->n; i-- > 0;) w[i] = (uint16_t)LSYS_CODE(s->sym8[i], 0);   /* from the end */
+  LSYS_FREE(s->code);        /* no array (a narrow string has none) */
+  s->code = w;
+  s->sym8 = NULL;
+  s->cap = cap;
+  s->nck = 0;
+  return LSYS_OK;
+}
+
+int lsys_lstring_grow (lsys_lstring *s, size_t nmod, size_t npar) {
+  int st;
+  if (nmod > s->cap) {
+    size_t elem = s->sym8 != NULL ? 1 : sizeof *s->code;
+    void **p = s->sym8 != NULL ? (void **)&s->sym8 : (void **)&s->code;
+    if (nmod > ((size_t)-1 - 16) / elem) return LSYS_ENOMEM;
+    if ((st = regrow(p, s->cap * elem, nmod * elem, s->meter)) != LSYS_OK) return st;
+    s->cap = nmod;
+  }
+  if (npar > s->parcap) {
+    if (npar > ((size_t)-1 - 16) / sizeof *s->par) return LSYS_ENOMEM;
+    if ((st = regrow((void **)&s->par, s->parcap * sizeof *s->par, npar * sizeof *s->par,
+                     s->meter)) != LSYS_OK)
+      return st;
+    s->parcap = npar;
+  }
   return LSYS_OK;
 }
 
@@ -52,22 +133,44 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
   if (mt != NULL) mt->used = base;
   np = LSYS_MALLOC(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
+  hugepages(np, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;
   return LSYS_OK;
 }
 
+/* Drops the array of the other representation ('narrow': the wide one). */
+static void dropother (lsys_lstring *s, int narrow) {
+  void **p = narrow ? (void **)&s->code : (void **)&s->sym8;
+  if (*p == NULL) return;
+  if (s->meter != NULL) {
+    size_t b = s->cap * (narrow ? sizeof *s->code : 1);
+    s->meter->used = s->meter->used > b ? s->meter->used - b : 0;
+  }
+  LSYS_FREE(*p);
+  *p = NULL;
+  s->cap = 0;
+}
+
 int lsys_lstring_prepare (lsys_lstring *s, size_t nmod, size_t npar) {
   int st;
   lsys_lstring_clear(s);
+  dropother(s, 0);
   if ((st = exact((void **)&s->code, &s->cap, nmod, sizeof *s->code, s->meter)) != LSYS_OK)
     return st;
   return exact((void **)&s->par, &s->parcap, npar, sizeof *s->par, s->meter);
 }
 
+int lsys_lstring_prepare8 (lsys_lstring *s, size_t nmod) {
+  lsys_lstring_clear(s);
+  dropother(s, 1);
+  return exact((void **)&s->sym8, &s->cap, nmod > 0 ? nmod : 1, 1, s->meter);
+}
+
 size_t lsys_lstring_bytes (const lsys_lstring *s) {
-  return s->cap * sizeof *s->code + s->parcap * sizeof *s->par + s->ckcap * sizeof *s->ck;
+  return s->cap * (s->sym8 != NULL ? 1 : sizeof *s->code) + s->parcap * sizeof *s->par +
+         s->ckcap * sizeof *s->ck;
 }
 
 int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np) {
@@ -83,9 +186,12 @@ int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
                          size_t i, size_t j, size_t poff) {
   size_t k, np = 0;
   int st;
-  for (k = i; k < j; k++) np += LSYS_CNP(src->code[k]);
+  if (src->sym8 == NULL)
+    for (k = i; k < j; k++) np += LSYS_CNP(src->code[k]);
   if ((st = lsys_lstring_reserve(dst, j - i, np)) != LSYS_OK) return st;
-  if (j > i) memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
+  if (src->sym8 != NULL)
+    for (k = i; k < j; k++) dst->code[dst->n + k - i] = (uint16_t)LSYS_CODE(src->sym8[k], 0);
+  else if (j > i) memcpy(dst->code + dst->n, src->code + i, (j - i) * sizeof *src->code);
   if (np > 0) memcpy(dst->par + dst->npar, src->par + poff, np * sizeof *src->par);
   dst->n += j - i;
   dst->npar += np;
@@ -99,6 +205,7 @@ int lsys_lstring_copy (lsys_lstring *dst, const lsys_lstring *src) {
 
 size_t lsys_lstring_poff (lsys_lstring *s, size_t i) {
   size_t k = i / LSYS_CKSTEP, m, off;
+  if (s->sym8 != NULL || s->npar == 0) return 0;      /* no parameters */
   if (k >= s->nck) {            /* extend the checkpoint table up to k */
     size_t need = s->n / LSYS_CKSTEP + 1;
     if (s->ckcap < need &&
@@ -122,7 +229,7 @@ size_t lsys_lstring_poff (lsys_lstring *s, size_t i) {
 long long lsys_lstring_unbalanced (const lsys_lstring *s) {
   size_t i, depth = 0, first = 0;
   for (i = 0; i < s->n; i++) {
-    uint32_t sym = LSYS_CSYM(s->code[i]);
+    uint32_t sym = LSYS_CSYM(lsys_lstring_code(s, i));
     if (sym == LSYS_SYM_LBR) { if (depth++ == 0) first = i; }
     else if (sym == LSYS_SYM_RBR) {
       if (depth == 0) return (long long)i;
@@ -244,7 +351,7 @@ int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabe
       if (strlen(decl->v[q]) + 1 > window) window = strlen(decl->v[q]) + 1;
   if (window > 16) window = 16;
   for (k = i; k < j; k++) {
-    uint32_t c = s->code[k], np = LSYS_CNP(c), m;
+    uint32_t c = lsys_lstring_code(s, k), np = LSYS_CNP(c), m;
     const char *name = lsys_alphabet_name(a, LSYS_CSYM(c));
     size_t len = strlen(name), start = b->n;
     if (lsys_buf_add(b, name, len) != LSYS_OK) return LSYS_ENOMEM;

@@ -7,6 +7,13 @@
 ** module: a scan carries them along, and random access goes through a
 ** checkpoint table (one offset every LSYS_CKSTEP modules) built on demand.
 ** That keeps a parameterless module at 2 bytes (cpfg spends about 1-2).
+**
+** A string whose modules have no parameters and whose symbols are all below
+** 256 may be narrow: one byte per module, its symbol ('sym8'; 'code' is NULL).
+** Only a derivation step makes narrow strings (derive_par.c); whatever else
+** reads a string widens it first (lsys_lstring_widen; the bindings do it when
+** they take a string), and the functions below that add modules widen it
+** themselves.
 */
 #ifndef LSYS_LSTRING_H
 #define LSYS_LSTRING_H
@@ -22,8 +29,9 @@
 #define LSYS_CNP(c)        ((uint32_t)(c) & LSYS_MAXPARAMS)
 
 typedef struct lsys_lstring {
-  uint16_t *code;      /* module codes */
-  size_t n, cap;
+  uint16_t *code;      /* module codes (NULL while narrow) */
+  uint8_t *sym8;       /* narrow: the modules' symbols (NULL while wide) */
+  size_t n, cap;       /* modules; capacity of 'code' or 'sym8' */
   double *par;         /* parameter pool */
   size_t npar, parcap;
   size_t *ck;          /* ck[k] = offset of the parameters of module k*LSYS_CKSTEP */
@@ -41,10 +49,28 @@ void lsys_lstring_init (lsys_lstring *s);
 void lsys_lstring_free (lsys_lstring *s);
 static inline void lsys_lstring_clear (lsys_lstring *s) { s->n = s->npar = s->nck = 0; }
 
-/* Makes room for 'nmod' more modules and 'npar' more parameters. Returns
+/* Makes room for 'nmod' more modules and 'npar' more parameters (a narrow
+** string is made wide first). Returns
 ** LSYS_OK, LSYS_ENOMEM, or LSYS_EMEMORY when s->meter's budget is reached
 ** (push, append and copy return the same). */
 int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar);
+
+/* The code of module i (either representation). */
+static inline uint16_t lsys_lstring_code (const lsys_lstring *s, size_t i) {
+  return s->sym8 != NULL ? (uint16_t)LSYS_CODE(s->sym8[i], 0) : s->code[i];
+}
+
+/* Makes a narrow string wide (two bytes a module, in place: the array is
+** reallocated, within s->meter). LSYS_OK (also for a wide string),
+** LSYS_ENOMEM or LSYS_EMEMORY (the string is unchanged then). */
+int lsys_lstring_widen (lsys_lstring *s);
+
+/* Grows the arrays of 's' (either representation) to exactly 'nmod' modules
+** and 'npar' parameters, keeping what they hold (realloc, within s->meter). */
+int lsys_lstring_grow (lsys_lstring *s, size_t nmod, size_t npar);
+
+/* As lsys_lstring_prepare, for a narrow string of 'nmod' modules. */
+int lsys_lstring_prepare8 (lsys_lstring *s, size_t nmod);
 
 /* Empties 's' and makes room for 'nmod' modules and 'npar' parameters: a
 ** smaller array is replaced by one of exactly that size (its contents are
@@ -58,7 +84,8 @@ size_t lsys_lstring_bytes (const lsys_lstring *s);
 /* Appends one module. 'np' must be at most LSYS_MAXPARAMS. */
 int lsys_lstring_push (lsys_lstring *s, uint32_t sym, const double *p, uint32_t np);
 
-/* Appends modules [i, j) of 'src' (0-based) whose parameters start at 'poff'. */
+/* Appends modules [i, j) of 'src' (0-based, either representation) whose
+** parameters start at 'poff'. */
 int lsys_lstring_append (lsys_lstring *dst, const lsys_lstring *src,
                          size_t i, size_t j, size_t poff);
 
@@ -77,7 +104,7 @@ size_t lsys_lstring_poff (lsys_lstring *s, size_t i);
 int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
                         lsys_alphabet *a, const lsys_names *decl, lsys_error *e);
 
-/* Appends the text notation of modules [i, j) to 'b'. A space separates
+/* Appends the text notation of modules [i, j) to 'b' (either representation). A space separates
 ** two modules whose names would otherwise read back as one (with the
 ** declared names 'decl', which may be NULL). */
 int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,

@@ -113,17 +113,27 @@ lsys_lstring *lsys_newlstring (lua_State *L) {
   return &u->s;
 }
 
-lsys_lstring *lsys_checklstring (lua_State *L, int i) {
+lsys_lstring *lsys_checklstring_any (lua_State *L, int i) {
   lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
   if (u->closed) luaL_error(L, "the Lstring was closed");
   return &u->s;
+}
+
+/* A narrow string (lstring.h) is made wide for everything but a derivation step. */
+static lsys_lstring *wide (lua_State *L, lsys_lstring *s) {
+  if (s->sym8 != NULL && lsys_lstring_widen(s) != LSYS_OK) luaL_error(L, "not enough memory");
+  return s;
+}
+
+lsys_lstring *lsys_checklstring (lua_State *L, int i) {
+  return wide(L, lsys_checklstring_any(L, i));
 }
 
 lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what) {
   lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
   if (u->closed) luaL_error(L, "the Lstring was closed");
   if (u->busy) luaL_error(L, "%s: the Lstring is in use by a derivation or interpretation", what);
-  return &u->s;
+  return wide(L, &u->s);
 }
 
 void lsys_lstring_busy (lua_State *L, int i, int delta) {
@@ -236,7 +246,7 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
   int k, err;
   ridx = lua_absindex(L, ridx);
   if (R->m.busy) return luaL_error(L, "a rule called %s on the model it belongs to", what);
-  for (k = 0; k < n; k++) checklstring(L, lstr[k]);      /* alive, before any mark */
+  for (k = 0; k < n; k++) lsys_checklstring_any(L, lstr[k]);   /* alive, before any mark */
   for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
   a.op = op; a.ud = ud; a.st = LSYS_OK;
   lua_getfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);   /* restored after */

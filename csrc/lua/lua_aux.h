@@ -106,7 +106,8 @@ typedef struct lsys_lstr {
 lsys_lstring *lsys_newlstring (lua_State *L);
 
 /* The Lstring at 'i'; raises when it is not one or was closed. */
-lsys_lstring *lsys_checklstring (lua_State *L, int i);
+lsys_lstring *lsys_checklstring (lua_State *L, int i);       /* made wide (lstring.h) */
+lsys_lstring *lsys_checklstring_any (lua_State *L, int i);   /* as it is: narrow or wide */
 #define checklstring(L, i) lsys_checklstring(L, (i))
 
 /* The same for an Lstring that is about to be rewritten in place: raises

@@ -19,7 +19,7 @@ static int lstring_gc (lua_State *L) {
 }
 
 static int lstring_len (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)checklstring(L, 1)->n);
+  lua_pushinteger(L, (lua_Integer)lsys_checklstring_any(L, 1)->n);
   return 1;
 }
 
@@ -241,8 +241,7 @@ static int lstring_copy (lua_State *L) {
 
 /* s:bytes(): memory held by the string (codes, parameters), in bytes */
 static int lstring_bytes (lua_State *L) {
-  lsys_lstring *s = checklstring(L, 1);
-  lua_pushinteger(L, (lua_Integer)(s->cap * sizeof *s->code + s->parcap * sizeof *s->par));
+  lua_pushinteger(L, (lua_Integer)lsys_lstring_bytes(lsys_checklstring_any(L, 1)));
   return 1;
 }
 

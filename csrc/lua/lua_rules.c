@@ -391,8 +391,8 @@ static void run (lua_State *L, lsys_lrules *R, int what, int dstidx) {
   int idx[2], st;
   idx[0] = 2; idx[1] = dstidx;
   o.what = what;
-  o.src = checklstring(L, 2);
-  o.dst = checklstring(L, dstidx);
+  o.src = what < 0 ? lsys_checklstring_any(L, 2) : checklstring(L, 2);   /* a step reads */
+  o.dst = lsys_checklstring_any(L, dstidx);               /* narrow strings (lstring.h) */
   st = lsys_rules_run(L, 1, what < 0 ? "step" : "expand", dostep, &o, idx, 2);
   if (st != LSYS_OK) lsys_raise(L, st, &R->m.err, 1);
   /* tell the collector about the memory behind the new string */
@@ -402,7 +402,7 @@ static void run (lua_State *L, lsys_lrules *R, int what, int dstidx) {
 /* rules:step(src [, dst]) -> dst: one derivation step */
 static int rules_step (lua_State *L) {
   lsys_lrules *R = lsys_checkrules(L, 1);
-  checklstring(L, 2);
+  lsys_checklstring_any(L, 2);
   if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); lsys_newlstring(L); }
   else {
     luaL_argcheck(L, !lua_rawequal(L, 2, 3), 3, "source and destination are the same string");
@@ -412,6 +412,22 @@ static int rules_step (lua_State *L) {
   lsys_setowner(L, 3, 1);
   run(L, R, -1, 3);
   lua_settop(L, 3);
+  return 1;
+}
+
+/* rules:advance(s) -> s: one derivation step that rewrites 's' in place (the
+** caller's own string, which nothing else holds: derive's). Its memory is
+** reused; on an error its contents are lost (it is left empty). */
+static int rules_advance (lua_State *L) {
+  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lstring *s = lsys_checklstring_any(L, 2);
+  luaL_argcheck(L, !((lsys_lstr *)lua_touserdata(L, 2))->busy, 2,
+                "the Lstring is in use by a derivation or interpretation");
+  lua_settop(L, 2);
+  lsys_setowner(L, 2, 1);
+  (void)s;
+  run(L, R, -1, 2);
+  lua_settop(L, 2);
   return 1;
 }
 
@@ -821,6 +837,7 @@ static int l_nproduce (lua_State *L) { return produce(L, 0); }
 static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
+  {"advance", rules_advance},
   {"expand", rules_expand}, {"current", rules_current}, {"lstring", rules_lstring},
   {"ran", rules_ran}, {"srand", rules_srand},
   {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},

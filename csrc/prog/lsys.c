@@ -17,6 +17,9 @@
 
 #include <errno.h>
 #include <limits.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -605,8 +608,16 @@ static int pmain (lua_State *L) {
 }
 
 int main (int argc, char **argv) {
-  lua_State *L = luaL_newstate();
+  lua_State *L;
   int status, code;
+#if defined(__GLIBC__) && defined(M_MMAP_THRESHOLD)
+  /* Blocks of 1 MiB and more are mapped, always (glibc otherwise raises the threshold
+  ** up to 32 MiB as such blocks are freed): a derivation grows its string in place
+  ** (derive_par.c), and realloc then moves the pages instead of copying them, and
+  ** memory freed goes back to the system at once. */
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
+  L = luaL_newstate();
   if (L == NULL) {
     fputs("lsys: cannot create the Lua state: not enough memory\n", stderr);
     return EXIT_FAILURE;

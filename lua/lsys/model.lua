@@ -600,7 +600,7 @@ function Model:_call (fn, what, ...)
   if not ok then core.producing(producing) end   -- a raising step left it set
   if ok then
     local _, _, deep = rules:current()
-    local kind = what == "step" and "decomposition" or "homomorphism"
+    local kind = (what == "step" or what == "advance") and "decomposition" or "homomorphism"
     if deep and not self._warned and self._depthwarn[kind] then
       self._warned = true
       warning.warn(format("lsys: %s: the %s depth limit stopped at modules that have " ..
@@ -676,7 +676,10 @@ function Model:derive (n, opts)
   local s = self:_axiomlstring(E)
   local progress = opts and opts.progress
   local each = opts and opts.each
-  local spare                    -- the buffer two steps back, reused when private
+  -- the strings of the steps are the derivation's own unless `each` or end_each may keep
+  -- them: then each step rewrites its string in place (its memory is reused, the string
+  -- before the step is not kept)
+  local own = not each and not self.end_each
   if each and n > 0 then each(0, s) end   -- (n = 0: the axiom after finish, below)
   for k = 1, n do
     if self.start_each then
@@ -684,8 +687,8 @@ function Model:derive (n, opts)
       self:_bind()
     end
     if self._queries then self:_query(s) end
-    local t = self:_core("step", s, spare)
-    spare = nil
+    local t
+    if own then t = self:_core("advance", s) else t = self:_core("step", s) end
     if self.end_each then
       local r = runhook(self, self.end_each, t, k)
       if r ~= nil then
@@ -693,14 +696,11 @@ function Model:derive (n, opts)
         t = r
       end
       if k < n and not self.start_each then self:_bind() end   -- end_each may change env
-    elseif k > 1 and not each then
-      spare = s                  -- s was produced here and nobody else holds it
     end
     if progress then progress(k, n, #t) end
     if each and k < n then each(k, t) end
     s = t
   end
-  if spare then LSTRING_MT.__close(spare) end
   if self._queries then self:_query(s) end       -- the final string gets its pass too
   if self.finish then
     local r = runhook(self, self.finish, s)

@@ -95,17 +95,18 @@ static void rules (lsys_model *m) {
 }
 
 /* 'steps' steps from 'axiom' on 'threads' threads into 'out' (parmin 1, so
-** that every step runs on the workers when it can). Returns the status. */
+** that every step runs on the workers when it can; threads 0: the sequential
+** step only), in place when 'inplace'. Returns the status. */
 static int derive (const char *axiom, int steps, int threads, int group, lsys_lstring *out,
-                   char *msg) {
+                   char *msg, int inplace) {
   lsys_model m;
   lsys_lstring a, b, *s = &a, *d = &b, *t;
   lsys_error e;
   int k, st = LSYS_OK;
   lsys_model_init(&m, &ab);
   rules(&m);
-  m.threads = threads;
-  m.parmin = 1;
+  m.threads = threads > 0 ? threads : 1;
+  m.parmin = threads > 0 ? 1 : (size_t)-1;
   m.group = group;
   m.max_modules = 200000;
   lsys_rng_seed(&m.rng, 42);
@@ -113,11 +114,11 @@ static int derive (const char *axiom, int steps, int threads, int group, lsys_ls
   lsys_lstring_init(&b);
   assert(lsys_lstring_parse(&a, axiom, strlen(axiom), &ab, NULL, &e) == LSYS_OK);
   for (k = 0; k < steps && st == LSYS_OK; k++) {
-    st = lsys_derive_step(&m, s, d);
-    t = s; s = d; d = t;
+    st = lsys_derive_step(&m, s, inplace ? s : d);
+    if (!inplace) { t = s; s = d; d = t; }
   }
   if (st != LSYS_OK) strcpy(msg, m.err.msg);
-  else assert(lsys_lstring_copy(out, s) == LSYS_OK);
+  else assert(lsys_lstring_copy(out, s) == LSYS_OK);        /* wide */
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
   lsys_model_free(&m);
@@ -131,7 +132,7 @@ static int same (const lsys_lstring *a, const lsys_lstring *b) {
 }
 
 static void test_same_string (void) {
-  static const int threads[] = {2, 3, 8};
+  static const int threads[] = {1, 2, 3, 8};
   static const char *const axioms[] = {"A(1)", "A(1)HHHHH[A(2)]HKH", "F(0)A(1)GHHGK"};
   size_t x, k;
   int group;
@@ -141,15 +142,58 @@ static void test_same_string (void) {
       char msg[256];
       lsys_lstring_init(&one);
       lsys_lstring_init(&many);
-      assert(derive(axioms[x], 9, 1, group, &one, msg) == LSYS_OK);
+      assert(derive(axioms[x], 9, 0, group, &one, msg, 0) == LSYS_OK);
       assert(one.n > 1000);
-      for (k = 0; k < 3; k++) {
-        assert(derive(axioms[x], 9, threads[k], group, &many, msg) == LSYS_OK);
+      for (k = 0; k < 8; k++) {
+        assert(derive(axioms[x], 9, threads[k / 2], group, &many, msg, k % 2) == LSYS_OK);
         assert(same(&one, &many));
       }
       lsys_lstring_free(&one);
       lsys_lstring_free(&many);
     }
+}
+
+/* Strings without parameters are narrow (a byte a module), also in place, and
+** the same as the sequential step's: templates, weights, a condition. */
+static void test_narrow (void) {
+  static const lsys_ins g[] = {I(K, 0, 1), I(RAN, 0, 0), I(K, 0, 0.5), I(LT, 0, 0),
+                               I(COND, 0, 0)};
+  lsys_lstring ref, s, t;
+  lsys_error e;
+  int threads, inplace, k;
+  lsys_lstring_init(&ref);
+  lsys_lstring_init(&s);
+  lsys_lstring_init(&t);
+  for (threads = 0; threads <= 8; threads += threads < 2 ? 1 : 6)
+    for (inplace = 0; inplace < 2; inplace++) {
+      lsys_model m;
+      lsys_lstring *a = &s, *b = inplace ? &s : &t, *x;
+      lsys_model_init(&m, &ab);
+      addrule(&m, 0, "F --> F[+F]F[-F]F", NULL, 0, 0);
+      addrule(&m, 0, "X --> F[-X][+X]FX : 1", NULL, 0, 0);
+      addrule(&m, 0, "X --> FX : 2", NULL, 0, 0);
+      addrule(&m, 0, "G --> GG", g, 5, 0);
+      m.threads = threads > 0 ? threads : 1;
+      m.parmin = threads > 0 ? 64 : (size_t)-1;
+      lsys_rng_seed(&m.rng, 3);
+      lsys_lstring_clear(&s);
+      assert(lsys_lstring_parse(&s, "XGF", 3, &ab, NULL, &e) == LSYS_OK);
+      for (k = 0; k < 6; k++) {
+        assert(lsys_derive_step(&m, a, b) == LSYS_OK);
+        if (!inplace) { x = a; a = b; b = x; }
+      }
+      assert(threads == 0 || a->sym8 != NULL);
+      assert(a->n > 10000 && a->npar == 0);
+      if (threads == 0) assert(lsys_lstring_copy(&ref, a) == LSYS_OK);
+      else {
+        assert(lsys_lstring_widen(a) == LSYS_OK);
+        assert(a->sym8 == NULL && same(&ref, a));
+      }
+      lsys_model_free(&m);
+    }
+  lsys_lstring_free(&ref);
+  lsys_lstring_free(&s);
+  lsys_lstring_free(&t);
 }
 
 /* The errors of a step on several threads are the sequential step's, at
@@ -163,7 +207,7 @@ static void test_same_errors (void) {
   /* A(s) --> A(1 / (s - 3)) ... at the module A(3) */
   static const lsys_ins inv[] = {I(K, 0, 1), I(ARG, 0, 0), I(K, 0, 3), I(SUB, 0, 0),
                                  I(DIV, 0, 0), I(RET, 0, 0)};
-  const char *axiom = "A(1)A(2)A(1)A(3)A(1)A(3)";
+  const char *axiom = "A(1)A(2)A(1)A(3)A(1)A(3)A(3)A(1)A(1)A(1)A(1)A(1)A(1)A(1)";
   int k;
   lsys_lstring_init(&s);
   for (k = 1; k <= 8; k *= 2) {
@@ -174,8 +218,9 @@ static void test_same_errors (void) {
     lsys_lstring_init(&a);
     lsys_lstring_init(&b);
     assert(lsys_lstring_parse(&a, axiom, strlen(axiom), &ab, NULL, &e) == LSYS_OK);
-    assert(lsys_derive_step(&m, &a, &b) == LSYS_ERULE);
+    assert(lsys_derive_step(&m, &a, k > 2 ? &a : &b) == LSYS_ERULE);  /* also in place */
     assert(m.err.pos == 3 && m.cur_rule == 0 && m.cur_index == 3);
+    assert(k <= 2 || a.n == 0);
     strcpy(k == 1 ? one : many, m.err.msg);
     if (k > 1) assert(strcmp(one, many) == 0);
     lsys_lstring_free(&a);
@@ -183,7 +228,7 @@ static void test_same_errors (void) {
     lsys_model_free(&m);
   }
   for (k = 1; k <= 8; k *= 2) {               /* max_modules: 200000 */
-    assert(derive("A(1)", 20, k, 0, &s, k == 1 ? one : many) == LSYS_ELIMIT);
+    assert(derive("A(1)", 20, k, 0, &s, k == 1 ? one : many, k > 2) == LSYS_ELIMIT);
     if (k > 1) assert(strcmp(one, many) == 0);
   }
   lsys_lstring_free(&s);
@@ -237,6 +282,7 @@ int main (void) {
   assert(lsys_alphabet_init(&ab) == LSYS_OK);
   assert(lsys_default_threads() >= 1 && lsys_default_threads() <= LSYS_MAXTHREADS);
   test_same_string();
+  test_narrow();
   test_same_errors();
   test_sequential();
   lsys_alphabet_free(&ab);

@@ -546,6 +546,9 @@ static void checkstring (harness *H, lsys_lstring *s) {
   lsys_error e;
   size_t i, np = 0;
   if (s->n > H->m.max_modules) __builtin_trap();
+  if (s->sym8 != NULL) {             /* narrow: parameterless, and so once wide */
+    if (s->npar != 0 || lsys_lstring_widen(s) != LSYS_OK || s->sym8 != NULL) __builtin_trap();
+  }
   for (i = 0; i < s->n; i++) {
     if (LSYS_CSYM(s->code[i]) == 0 || LSYS_CSYM(s->code[i]) >= H->ab.n) __builtin_trap();
     np += LSYS_CNP(s->code[i]);
@@ -659,7 +662,25 @@ static void run (harness *H) {
   }
   streaming(H, src, dst, st == LSYS_OK);
   if (lsys_expand(&H->m, LSYS_PROD, src, dst) != LSYS_EARG) __builtin_trap();
-  if (lsys_derive_step(&H->m, src, src) != LSYS_EARG) __builtin_trap();
+  {                         /* a step in place gives what a step into another string gives */
+    lsys_rng keep;
+    int s1, s2;
+    char msg[sizeof H->m.err.msg];
+    lsys_rng_seed(&H->m.rng, H->seed);
+    keep = H->m.rng;
+    if (lsys_lstring_copy(&H->w, src) != LSYS_OK) __builtin_trap();
+    s1 = lsys_derive_step(&H->m, src, &H->t);
+    memcpy(msg, H->m.err.msg, sizeof msg);
+    H->m.rng = keep;
+    s2 = lsys_derive_step(&H->m, &H->w, &H->w);
+    checkcur(H);
+    if (lsys_lstring_widen(&H->t) != LSYS_OK || lsys_lstring_widen(&H->w) != LSYS_OK)
+      __builtin_trap();
+    if (s1 != LSYS_EMEMORY && s2 != LSYS_EMEMORY &&   /* the strings' capacities differ */
+        (s1 != s2 || (s1 == LSYS_OK && !same(&H->t, &H->w)) ||
+         (s1 != LSYS_OK && (strcmp(msg, H->m.err.msg) != 0 || H->w.n != 0))))
+      __builtin_trap();
+  }
 }
 
 int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
@@ -674,6 +695,8 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   lsys_names_add(&H->decl, "Leaf", 4);
   lsys_model_init(&H->m, &H->ab);
   H->m.max_modules = 2000;
+  H->m.parmin = 16;             /* the workers' step (derive_par.c) from 16 modules, */
+  H->m.threads = 3;             /* narrow strings and steps in place included */
   H->m.fn = rulefn;
   H->m.fnud = H;
   H->steps = 3;
