@@ -241,6 +241,23 @@ describe("issue 19 §1: changing a colour", function ()
   end)
 end)
 
+describe("issue 19 §1: a palette of one colour", function ()
+  it("draws every colour index in it, entry 0 included (regression: fig27's petals)", function ()
+    local m = lsys.lsystem { axiom = ";(100) F ;(0) F ;(3) F",
+      view = { palette = { "#e08cb2" }, line_style = "cylinder", line_width = 0.3,
+               background = { 1, 1, 1 } } }
+    local px, w, h = lsys.render(m, { width = 64, height = 64, supersample = 1 })
+    local pink, black = 0, 0          -- pink even in shade (red > 60); entry 0 was near black
+    for i = 0, w * h - 1 do
+      local r, g, b = px:byte(4 * i + 1, 4 * i + 3)
+      if r > 60 and r > g + 15 and b > g then pink = pink + 1 end
+      if r < 50 and g < 50 and b < 50 then black = black + 1 end
+    end
+    assert.is_true(pink > 50, pink .. " pink pixels")
+    assert.equal(0, black)
+  end)
+end)
+
 describe("issue 19 §2: files next to the model", function ()
   it("are found from the model file's folder, from anywhere", function ()
     local dir = H.tmpdir()

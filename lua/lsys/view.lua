@@ -492,8 +492,12 @@ local function palette (ctx, x, name)
     end
     p = entries(x)
   end
-  local n = 0          -- entries not given are the default palette's
+  -- Entries not given are the default palette's, except entry 0 of a palette that gives
+  -- entry 1: it repeats entry 1, as it always has, so a list of one colour draws every
+  -- colour index (they wrap around) in that colour.
+  local n = 0
   for i in pairs(p) do if i > n then n = i end end
+  if p[0] == nil and p[1] ~= nil then p[0] = p[1] end
   for i = 0, n do
     if p[i] == nil then
       if M.PALETTE[i] == nil then
