@@ -193,8 +193,9 @@ int lsys_scene_bounds (const lsys_scene *s, double lo[3], double hi[3]) {
     const lsys_part *p;
     if (in->part >= s->nparts) continue;
     p = &s->parts[in->part];
-    addxformed(in->m, m->pos + 3 * p->v0, p->nv, lo, hi);
-    addxformed(in->m, m->lpos + 6 * p->l0, 2 * p->nl, lo, hi);
+    /* (an empty mesh's arrays are NULL: no pointer arithmetic on them) */
+    if (p->nv > 0) addxformed(in->m, m->pos + 3 * p->v0, p->nv, lo, hi);
+    if (p->nl > 0) addxformed(in->m, m->lpos + 6 * p->l0, 2 * p->nl, lo, hi);
   }
   for (k = 0; k < 3; k++)
     if (!(lo[k] <= hi[k])) ok = 0;
