@@ -292,6 +292,21 @@ static int fail (lsys_model *m, int st, size_t i) {
   return st;
 }
 
+/* The view of 'src' a step reads, with the context tables when its rules have contexts. */
+static int setview (lsys_model *m, const lsys_lstring *src, int hasctx, view *v) {
+  int st;
+  memset(v, 0, sizeof *v);
+  v->code = src->code; v->par = src->par; v->n = src->n; v->ring = m->ring;
+  v->eq = lsys_eqsym(m);
+  v->skip = lsys_findskip(m, 0);
+  if (hasctx) {
+    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return st;
+    v->match = m->match;
+    v->poff = m->poff;
+  }
+  return LSYS_OK;
+}
+
 /*
 ** The fast loop's table for 'productions' (one entry per symbol, when a
 ** single rule set applies): ACT_COPY copies the module, a rule index copies
@@ -511,15 +526,7 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   m->nsub = 0;
   if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if (hasctx && (st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
-  memset(&v, 0, sizeof v);
-  v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
-  v.eq = lsys_eqsym(m);
-  v.skip = lsys_findskip(m, 0);
-  if (hasctx) {
-    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
-    v.match = m->match;
-    v.poff = m->poff;
-  }
+  if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
   nsets = prodsets(m, 0, sets);
   if ((st = lsys_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
   if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
@@ -593,15 +600,7 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
   if ((sets[0] = lsys_findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
     return (st = lsys_lstring_copy(dst, src)) == LSYS_OK ? LSYS_OK : fail(m, st, 0);
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  memset(&v, 0, sizeof v);
-  v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
-  v.eq = lsys_eqsym(m);
-  v.skip = lsys_findskip(m, 0);
-  if (hasctx) {
-    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return fail(m, st, 0);
-    v.match = m->match;
-    v.poff = m->poff;
-  }
+  if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
   for (i = 0; i < src->n; i++) {
     lsys_rng_at(m->cur, i);      /* one stream of draws for a module and what it becomes */
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
