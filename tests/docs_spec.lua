@@ -52,6 +52,14 @@ local function normalize (path)
   return table.concat(out, "/")
 end
 
+-- The lines a shell command prints.
+local function output_lines (cmd)
+  local p, l = io.popen(cmd), {}
+  for line in p:lines() do l[#l + 1] = line end
+  p:close()
+  return l
+end
+
 -- A page split into its prose (without fenced code blocks and inline code spans: links
 -- there are code, the blocks' lines left empty) and its code (the lines of fenced blocks
 -- and the inline spans, as a list).
@@ -227,27 +235,23 @@ describe("the documentation", function ()
   it("indexes every folder and file of examples/ in examples/README.md", function ()
     local index = read("examples/README.md")
     local missing = {}
-    local p = io.popen("ls examples")
-    for name in p:lines() do
+    for _, name in ipairs(output_lines("ls examples")) do
       if name ~= "README.md" and not index:find(name, 1, true) then
         missing[#missing + 1] = name
       end
     end
-    p:close()
     assert.same({}, missing)
   end)
 
   it("names every example folder in the README", function ()
     local readme = read("README.md")
     local missing = {}
-    local p = io.popen("ls -d examples/*/")
-    for dir in p:lines() do
+    for _, dir in ipairs(output_lines("ls -d examples/*/")) do
       local name = dir:match("examples/([^/]+)/")
       if name ~= "gallery" and not readme:find("examples/" .. name, 1, true) then
         missing[#missing + 1] = name
       end
     end
-    p:close()
     assert.same({}, missing)
   end)
 end)
