@@ -24,19 +24,13 @@ local host = package.loaded["lsys.host"]
 local BIN = os.getenv("LSYS_BIN") or (type(host) == "table" and host.exe)
             or B.root .. "/build/bin/lsys"
 
-local function q (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
+local q, write = B.shell_quote, B.write_file
 
 local function sh (cmd)
   local p = io.popen("(" .. cmd .. ") 2>&1; echo \"exit:$?\"")
   local out = p:read("a")
   p:close()
   return (out:gsub("exit:%d+%s*$", "")), tonumber(out:match("exit:(%d+)%s*$"))
-end
-
-local function write (path, text)
-  local f = assert(io.open(path, "w"))
-  f:write(text)
-  f:close()
 end
 
 local dir = os.tmpname()

@@ -57,6 +57,13 @@ function B.read_file (path)
   return s
 end
 
+--- writes 'text' to a file
+function B.write_file (path, text)
+  local f = assert(io.open(path, "w"))
+  f:write(text)
+  f:close()
+end
+
 --- runs a shell command: its output (stdout and stderr) and io.popen's close results
 function B.capture (cmd)
   local p = io.popen(cmd .. " 2>&1")

@@ -5,7 +5,7 @@
 -- published works, docs/manual.md §12); every `lsys COMMAND` a page shows is a command of
 -- the program; the examples index names every file and folder of examples/, and the README
 -- every example folder.
-require "tests.helper"
+local H = require "tests.helper"
 
 -- The pages checked: every Markdown file of the repository but the changelog, which
 -- records history (old names and links stay as they were).
@@ -20,13 +20,7 @@ do
   p:close()
 end
 
-local function read (path)
-  local f = io.open(path, "rb")
-  if not f then return nil end
-  local s = f:read("a")
-  f:close()
-  return s
-end
+local read = H.read
 
 local function exists (path)
   local f = io.open(path, "rb")

@@ -19,21 +19,8 @@
 package.path = "./lua/?.lua;./lua/?/init.lua;" .. package.path
 package.cpath = "./build/?.so;" .. package.cpath
 
-local function q (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
-
-local function read (path)
-  local f = io.open(path, "rb")
-  if not f then return nil end
-  local s = f:read("a")
-  f:close()
-  return s
-end
-
-local function write (path, s)
-  local f = assert(io.open(path, "wb"))
-  f:write(s)
-  f:close()
-end
+local T = dofile(((arg and arg[0] or "tools/x.lua"):match("^(.*)/[^/]*$") or ".") .. "/common.lua")
+local q, read, write = T.q, T.read, T.write
 
 local function modules (s)
   local t = {}

@@ -25,21 +25,8 @@ local lsys = require "lsys"
 
 local LIMIT = 4          -- |t| above this is flagged
 
-local function q (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
-
-local function read (path)
-  local f = io.open(path, "rb")
-  if not f then return nil end
-  local s = f:read("a")
-  f:close()
-  return s
-end
-
-local function write (path, s)
-  local f = assert(io.open(path, "wb"))
-  f:write(s)
-  f:close()
-end
+local T = dofile(((arg and arg[0] or "tools/x.lua"):match("^(.*)/[^/]*$") or ".") .. "/common.lua")
+local q, read, write = T.q, T.read, T.write
 
 -- The files of a model: an object folder's first cpfg command, or FILE.l [FILE.v].
 local function files (arg1, arg2)

@@ -269,6 +269,16 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
 /* ---------------------------------------------------------------------- */
 /* lsys.Scene; Contour, Surface, Texture */
 
+/* Pushes a new, empty Scene (no palette yet, nothing to look at) and returns it. */
+lsys_lscene *lsys_newscene (lua_State *L) {
+  lsys_lscene *S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);
+  memset(S, 0, sizeof *S);
+  luaL_setmetatable(L, SCENE_T);
+  lsys_scene_init(&S->sc);
+  S->inited = 1;
+  return S;
+}
+
 lsys_lscene *lsys_checkscene (lua_State *L, int i) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, i, SCENE_T);
   if (!S->inited) luaL_error(L, "the scene was closed");

@@ -173,6 +173,8 @@ typedef struct lsys_lscene {
   int inited;          /* 0 once closed */
 } lsys_lscene;
 
+/* Pushes a new, empty Scene. */
+lsys_lscene *lsys_newscene (lua_State *L);
 /* The Scene at 'i'; raises when it is not one or was closed. */
 lsys_lscene *lsys_checkscene (lua_State *L, int i);
 

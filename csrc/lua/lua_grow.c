@@ -140,11 +140,7 @@ static int l_limbs (lua_State *L) {
   t = (llimbs *)lua_newuserdatauv(L, sizeof *t, 1);          /* 2 */
   t->closed = 1;
   luaL_setmetatable(L, LIMBS_T);
-  S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);     /* 3 */
-  memset(S, 0, sizeof *S);
-  luaL_setmetatable(L, SCENE_T);
-  lsys_scene_init(&S->sc);
-  S->inited = 1;
+  S = lsys_newscene(L);     /* 3 */
   lsys_material_color(&grey, 0.6, 0.6, 0.6);               /* colour 0: a Scene has one */
   if (lsys_scene_set_palette(&S->sc, &grey, 1) != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_setiuservalue(L, 2, 1);

@@ -39,11 +39,7 @@ static int l_population (lua_State *L) {
   lsys_lscene *S;
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_settop(L, 1);
-  S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);
-  memset(S, 0, sizeof *S);
-  luaL_setmetatable(L, SCENE_T);
-  lsys_scene_init(&S->sc);
-  S->inited = 1;
+  S = lsys_newscene(L);
   lsys_readlook(L, &look, &S->sc);
   lua_pushboolean(L, 1);
   lua_setfield(L, 1, "population");
@@ -244,11 +240,7 @@ static int scene_flatten (lua_State *L) {
                                    "a positive number of bytes");
   }
   lua_settop(L, 1);
-  F = (lsys_lscene *)lua_newuserdatauv(L, sizeof *F, LSYS_SCENE_NUV);
-  memset(F, 0, sizeof *F);
-  luaL_setmetatable(L, SCENE_T);
-  lsys_scene_init(&F->sc);
-  F->inited = 1;
+  F = lsys_newscene(L);
   S = lsys_checkscene(L, 1);
   st = lsys_population_flatten(&F->sc, &S->sc, &mt);
   if (st == LSYS_EMEMORY) {

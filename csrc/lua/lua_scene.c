@@ -318,11 +318,7 @@ static int l_interpret (lua_State *L) {
   lsys_lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
-  S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);      /* 4 */
-  memset(S, 0, sizeof *S);
-  luaL_setmetatable(L, SCENE_T);
-  lsys_scene_init(&S->sc);
-  S->inited = 1;
+  S = lsys_newscene(L);      /* 4 */
   readpalette(L, 3, S);
   look = viewopts(L, 3);                   /* how to look at the scene, from the view */
   lsys_readlook(L, &look, &S->sc);

@@ -12,6 +12,7 @@
 -- recorded with its message and the others go on.
 -- @module lsys.batch
 local core = require "lsys.core"
+local shortest = require("lsys.text").number
 local model = require "lsys.model"
 local host = require("lsys.program").host
 
@@ -75,12 +76,7 @@ end
 local function jsonnum (x)
   if math.type(x) == "integer" then return format("%d", x) end
   if x ~= x or x == math.huge or x == -math.huge then return "null" end
-  if x == math.floor(x) and math.abs(x) < 2^53 then return format("%d", math.tointeger(x)) end
-  for digits = 15, 16 do
-    local s = format("%." .. digits .. "g", x)
-    if tonumber(s) == x then return s end
-  end
-  return format("%.17g", x)
+  return shortest(x)
 end
 
 local JSON_ESC = { ['"'] = '\\"', ["\\"] = "\\\\", ["\n"] = "\\n", ["\r"] = "\\r",

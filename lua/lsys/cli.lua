@@ -554,17 +554,7 @@ end
 -- {===========================================================================================
 -- Models and examples
 
--- 'path' without "." segments and with "dir/.." removed (for messages).
-local function normalize (path)
-  local segs = {}
-  for seg in path:gmatch("[^/]+") do
-    if seg == ".." and #segs > 0 and segs[#segs] ~= ".." then segs[#segs] = nil
-    elseif seg ~= "." then segs[#segs + 1] = seg end
-  end
-  local r = table.concat(segs, "/")
-  if path:sub(1, 1) == "/" then return "/" .. r end
-  return r ~= "" and r or "."
-end
+local normalize = require("lsys.text").normpath
 
 -- Directories that may hold the examples, most specific first.
 local function example_dirs ()
@@ -779,17 +769,22 @@ end
 
 local commands = {}
 
-local DERIVE_OPTS = {
-  steps = "value", seed = "value", set = "list", name = "value",
-  stats = "flag", progress = "flag", help = "flag", short = { h = "help" },
-  map = "value", mat = "value", define = "list",
-}
+-- The options of the commands that load a model (model_source, prepare) and then the
+-- command's own: `extra` (false: an option the command does not take), with -h for --help
+-- and, when it has --output, -o for it.
+local function model_opts (extra)
+  local o = { steps = "value", seed = "value", set = "list", name = "value", view = "list",
+              map = "value", mat = "value", define = "list", help = "flag",
+              short = { h = "help", o = extra.output and "output" or nil } }
+  for k, v in pairs(extra) do o[k] = v or nil end
+  return o
+end
 
-local RENDER_OPTS = {
-  steps = "value", seed = "value", set = "list", name = "value", view = "list",
-  output = "value", size = "value", progress = "flag", help = "flag",
-  short = { h = "help", o = "output" }, map = "value", mat = "value", define = "list",
-  lines = "value", frames = "value", every = "value",
+local DERIVE_OPTS = model_opts { stats = "flag", progress = "flag", view = false }
+
+local RENDER_OPTS = model_opts {
+  output = "value", size = "value", progress = "flag", lines = "value", frames = "value",
+  every = "value",
 }
 
 -- The number of each module name in 's', as a sorted list of { name, count }.
@@ -1097,11 +1092,9 @@ function commands.render (args)
   return 0
 end
 
-local ANIMATE_OPTS = {
-  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+local ANIMATE_OPTS = model_opts {
   output = "value", size = "value", fps = "value", every = "value", hold = "value",
-  progress = "flag", help = "flag", short = { h = "help", o = "output" },
-  map = "value", mat = "value", define = "list",
+  progress = "flag",
 }
 
 -- `lsys animate MODEL -o OUT.mp4|OUT.gif`: the model growing, through ffmpeg.
@@ -1161,11 +1154,9 @@ function commands.export (args)
   return 0
 end
 
-local VIEW_OPTS = {
-  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+local VIEW_OPTS = model_opts {
   size = "value", step = "value", rate = "value", screenshot = "value",
-  ["no-status"] = "flag", help = "flag", short = { h = "help" },
-  map = "value", mat = "value", define = "list", last = "flag", history = "value",
+  ["no-status"] = "flag", last = "flag", history = "value",
 }
 
 -- --step, --rate and --screenshot of `lsys view`.
@@ -1316,11 +1307,9 @@ function commands.view (args)
   return 0
 end
 
-local ARRANGE_OPTS = {
-  steps = "value", seed = "value", set = "list", name = "value", view = "list",
+local ARRANGE_OPTS = model_opts {
   size = "value", output = "value", string = "value", r0 = "value", s0u = "value",
-  s0h = "value", help = "flag", short = { h = "help", o = "output" },
-  map = "value", mat = "value", define = "list",
+  s0h = "value",
 }
 
 function commands.arrange (args)

@@ -74,14 +74,7 @@ end
 
 -- A parameter as the L-string's text shows it: 2, not 2.0; the shortest form that reads
 -- back as the same number.
-local function num (x)
-  if x == math.floor(x) and abs(x) < 2^53 then return format("%d", x) end
-  for digits = 15, 16 do
-    local s = format("%." .. digits .. "g", x)
-    if tonumber(s) == x then return s end
-  end
-  return format("%.17g", x)
-end
+local num = require("lsys.text").number
 
 -- Lines showing the modules of s around module i (#s + 1: its end), carets under module i;
 -- head is "expected: " or "actual:   ".

@@ -18,9 +18,7 @@ local _ENV = nil
 
 local M = {}
 
-local KEYWORDS = {}
-for w in ([[and break do else elseif end false for function goto if in local nil not or
-  repeat return then true until while]]):gmatch("%S+") do KEYWORDS[w] = true end
+local KEYWORDS = cpfg.LUA_KEYWORDS
 
 -- Numbers ---------------------------------------------------------------------------------
 
@@ -38,14 +36,8 @@ local function float (v)
   return s
 end
 
--- A number as lsys.cpfg writes it in the rules it translates (numlit there).
-local function numlit (v)
-  if v ~= v then return "(0.0/0.0)" end
-  if v == math.huge then return "math.huge" end
-  local s = format("%.17g", v)
-  if not s:find("[%.eEn]") then s = s .. ".0" end
-  return s
-end
+-- A number as lsys.cpfg writes it in the rules it translates.
+local numlit = cpfg.numlit
 
 -- Code text -------------------------------------------------------------------------------
 

@@ -1151,4 +1151,9 @@ end
 -- lsys.cpfg.import's model files use them.
 M.helpers = H
 
+-- For lsys.cpfg.import, which writes the same Lua: a number literal as the translated rules
+-- hold it, and Lua's reserved words (no variable may take one as its name).
+M.numlit = numlit
+M.LUA_KEYWORDS = LUA_KEYWORDS
+
 return M

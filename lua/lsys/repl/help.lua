@@ -9,6 +9,7 @@
 -- directories (an install: share/lsys/docs, where `cmake --install` puts them).
 -- @module lsys.repl.help
 local host = require("lsys.program").host
+local normalize = require("lsys.text").normpath
 
 local G = _G
 local type, tostring, pairs, ipairs, select, pcall, getmetatable, rawget =
@@ -52,15 +53,6 @@ earlier sessions, Ctrl-C clears the line, `local` names stay for the next lines.
 -- {===========================================================================================
 -- Finding and reading the docs
 
--- 'path' with "dir/.." removed (for messages).
-local function normalize (path)
-  local segs = {}
-  for seg in path:gmatch("[^/]+") do
-    if seg == ".." and #segs > 0 and segs[#segs] ~= ".." then segs[#segs] = nil
-    elseif seg ~= "." then segs[#segs + 1] = seg end
-  end
-  return (path:sub(1, 1) == "/" and "/" or "") .. table.concat(segs, "/")
-end
 
 local function isfile (path)
   local f = io.open(path, "r")

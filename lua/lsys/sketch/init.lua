@@ -16,9 +16,9 @@ local functions = require "lsys.sketch.functions"
 local templates = require "lsys.sketch.templates"
 local model = require "lsys.model"
 
-local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring, tonumber,
+local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
       require, string, table, math, io, os =
-      type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring, tonumber,
+      type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
       require, string, table, math, io, os
 local format, concat = string.format, table.concat
 local _ENV = nil
@@ -322,12 +322,7 @@ function M.template (name, threed)
 end
 
 -- Lua source of a number that reads back to the same double.
-local function num (x)
-  if x == math.floor(x) and math.abs(x) < 2 ^ 53 then return format("%d", x) end
-  local s = format("%.15g", x)
-  if tonumber(s) ~= x then s = format("%.17g", x) end
-  return s
-end
+local num = require("lsys.text").number
 
 local function quote (s) return format("%q", s) end
 

@@ -68,15 +68,7 @@ local function isarray (t)
 end
 
 -- The shortest text of x that reads back as x.
-local function num (x)
-  local i = tointeger(x)
-  if i and (i < 2 ^ 53 and i > -2 ^ 53) then return format("%d", i) end
-  for _, f in ipairs({ "%.15g", "%.16g", "%.17g" }) do
-    local s = format(f, x)
-    if s + 0 == x then return s end
-  end
-  return format("%.17g", x)
-end
+local num = require("lsys.text").number
 
 local function show (v)
   if type(v) == "string" then return "'" .. v .. "'" end

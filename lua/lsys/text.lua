@@ -1,0 +1,34 @@
+--- Small text helpers shared by lsys's modules (no dependencies, so anything may require it).
+-- @module lsys.text
+local math, string, table = math, string, table
+local format = string.format
+local tonumber = tonumber
+local _ENV = nil
+
+local M = {}
+
+--- The shortest text of the finite number x that reads back as the same double: whole
+-- numbers below 2^53 without a decimal point (2, not 2.0), else 15, 16 or 17 digits.
+function M.number (x)
+  if x == math.floor(x) and math.abs(x) < 2 ^ 53 then return format("%d", x) end
+  for digits = 15, 16 do
+    local s = format("%." .. digits .. "g", x)
+    if tonumber(s) == x then return s end
+  end
+  return format("%.17g", x)
+end
+
+--- 'path' without "." segments and with "dir/.." removed ("." when nothing is left), for
+-- messages and search lists.
+function M.normpath (path)
+  local segs = {}
+  for seg in path:gmatch("[^/]+") do
+    if seg == ".." and #segs > 0 and segs[#segs] ~= ".." then segs[#segs] = nil
+    elseif seg ~= "." then segs[#segs + 1] = seg end
+  end
+  local r = table.concat(segs, "/")
+  if path:sub(1, 1) == "/" then return "/" .. r end
+  return r ~= "" and r or "."
+end
+
+return M
