@@ -49,6 +49,11 @@ describe("the Lua fuzzer's corpora", function ()
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 
+  it("read or fail with file and line as batch specs in CSV, and write back equal", function ()
+    local counts = replay("batch")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
   it("load and derive or fail with file and line as cpfg L-system files, without reaching "
      .. "globals", function ()
     if not have_core then return pending("lsys.core is not built") end
@@ -58,6 +63,26 @@ describe("the Lua fuzzer's corpora", function ()
 end)
 
 describe("the Lua fuzzer", function ()
+  it("finds a CSV parser that keeps a quote written twice", function ()
+    local batch = require "lsys.batch"
+    local t = fuzz.target("batch")
+    local F = fuzz.new(t)
+    local csv = batch.csv
+    batch.csv = function (text, name)                -- "" stays two quotes
+      local rows = csv(text, name)
+      for _, row in ipairs(rows) do
+        for k, c in ipairs(row) do row[k] = c:gsub('"', '""') end
+      end
+      return rows
+    end
+    local ok, kind, msg = pcall(F.exec, 'model,out\nm.lua,"a""b.png"\n')
+    batch.csv = csv
+    t.finish()
+    assert.is_true(ok, kind)
+    assert.equal("finding", kind)
+    assert.equal("the records written back parse to other fields", msg)
+  end)
+
   it("finds a rule expression that reaches a global", function ()
     if not have_core then return pending("lsys.core is not built") end
     -- the tripwire itself, on a model whose rule closure sees _G on purpose

@@ -1,7 +1,7 @@
 --- A coverage-guided fuzzer for the parts of lsys written in Lua (issue 13), which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
--- rule expressions, sketch files in JSON and SVG (issue 15), and cpfg's L-system files
--- (issue 18).
+-- rule expressions, sketch files in JSON and SVG (issue 15), cpfg's L-system files
+-- (issue 18), and batch specs in CSV (issue 20).
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]
 --          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
