@@ -4,6 +4,7 @@
 */
 #define _XOPEN_SOURCE 700       /* fileno, fstat, sysconf */
 #include <errno.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -53,7 +54,7 @@ int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   return LSYS_OK;
 }
 
-int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
+static int take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
   size_t n = cap ? cap : 16, old = cap * elem, base, maxcap;
   base = mt->used > old ? mt->used - old : 0;          /* all but this block */
   maxcap = mt->limit > base ? (mt->limit - base) / elem : 0;
@@ -69,6 +70,15 @@ int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_
   mt->used = base + n * elem;
   *ncap = n;
   return LSYS_OK;
+}
+
+int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
+  int st;
+  if (mt->lock == NULL) return take(mt, cap, need, elem, ncap);
+  pthread_mutex_lock((pthread_mutex_t *)mt->lock);
+  st = take(mt, cap, need, elem, ncap);
+  pthread_mutex_unlock((pthread_mutex_t *)mt->lock);
+  return st;
 }
 
 int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {

@@ -70,6 +70,8 @@ typedef struct lsys_meter {
   size_t limit;            /* bytes; (size_t)-1 for no limit */
   size_t used;
   int hit;                 /* a growth was refused (for the message) */
+  void *lock;              /* NULL, or a pthread_mutex_t held around each growth when
+                              several threads grow within the meter (turtle_par.c) */
 } lsys_meter;
 
 /* lsys_grow within the meter 'mt' (NULL: none): the doubled capacity is cut

@@ -668,12 +668,12 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   int hasctx = 0;
   int st;
   if (m->busy) return reentered(m);
-  if (lsys_lstring_widen(src) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   m->hsrc = NULL;
   m->depth_hit = 0;
   if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   set = lsys_findset(m, LSYS_HOMO, 0, 0);
   if (set == NULL || set->nlist == 0 || m->maxdepth[LSYS_HOMO] < 1) return 0;
+  if (lsys_lstring_widen(src) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
   if ((st = meter(m, src, NULL)) != LSYS_OK) return st;   /* until lsys_homo_end */

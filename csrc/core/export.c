@@ -107,7 +107,7 @@ static int tubedparts (lsys_scene *dst, const lsys_scene *s, const lsys_export_o
 static int savepopulation (const lsys_scene *s, int format, const char *path,
                            const lsys_export_opts *o, lsys_error *e) {
   int tubes = o != NULL && o->tubes, st;
-  lsys_meter mt = {0, 0, 0};
+  lsys_meter mt = {0, 0, 0, NULL};
   lsys_scene f;
   if (tubes && (st = checktubes(o, path, e)) != LSYS_OK) return st;
   if (format == LSYS_FORMAT_GLB && (o == NULL || !o->flatten)) {

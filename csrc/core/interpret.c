@@ -22,9 +22,11 @@ int lsys_interpret (lsys_model *m, lsys_turtle *t, lsys_lstring *s, const lsys_a
   meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
   meter.used = lsys_lstring_bytes(s);
   meter.hit = 0;
+  meter.lock = NULL;
   t->meter = &meter;
   if (t->scene != NULL) t->scene->meter = t->scene->mesh.meter = &meter;
   if (st > 0) { t->expand = expand; t->expandud = m; st = LSYS_OK; }
+  if (t->threads == 0) t->threads = m->threads > 0 ? m->threads : lsys_default_threads();
   if (st == LSYS_OK) st = lsys_turtle_run(t, s, ab);
   else t->err = m->err;
   lsys_homo_end(m);

@@ -286,9 +286,11 @@ static int flush (run *R) {
   if (!R->pending) return LSYS_OK;
   R->pending = 0;
   R->t->mesh->curtex = (unsigned)R->ptex;
-  if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec].w1 = (float)w1;
+  if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
   switch (R->o->style) {
     case LSYS_STYLE_LINE:
+      if (R->fixed && R->t->mesh->nl == R->t->mesh->lcap)
+        return lsys_turtle_fail(R, LSYS_ELIMIT, "internal error: lines miscounted");
       if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
         s = lsys_turtle_nomem(R);
       break;
@@ -324,7 +326,7 @@ static int move (run *R, int op, const double *p, uint32_t np) {
                   st->width * st->scale)) != LSYS_OK)
     return s;
   st->hasstiff = 0;
-  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->t->scene->nrec - 1);
+  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->recbase + R->t->scene->nrec - 1);
   st->last = R->prec;
   R->pending = 1;
   vcopy(R->p0, p0);
@@ -764,50 +766,96 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   return LSYS_OK;
 }
 
-int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
-  run *R;
-  size_t i, off = 0;
-  int status;
-  memset(&t->err, 0, sizeof t->err);
-  memset(&t->warn, 0, sizeof t->warn);
-  t->npolys = 0; t->nends = 0; t->nsub = 0;
-  t->nqueries = 0; t->nsyscalls = 0;
-  if ((status = start(t, ab)) != LSYS_OK) return status;
-  R = (run *)t->runbuf;
-  for (i = 0; i < s->n && status == LSYS_OK; i++) {
-    uint16_t c = s->code[i];
+/* Interprets modules [a, b) of 's', whose parameters start at 'off'. */
+static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t b,
+                 size_t off) {
+  const uint8_t *s8 = s->sym8, *op = t->op;
+  size_t i, nop = t->nop;
+  int status = LSYS_OK;
+  for (i = a; i < b && status == LSYS_OK; i++) {
+    uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
     double *p = s->par != NULL ? s->par + off : NULL;
-    if (t->mode == LSYS_TURTLE_STATE && i >= t->stop) break;
     R->mod = i;
     off += np;
     if (t->expand != NULL) {
       int e = t->expand(t->expandud, i, off - np, &t->hbuf, &t->err);
-      if (e < 0) { status = e; break; }
+      if (e < 0) return e;
       if (e > 0) {                      /* interpret the expansion in place of the module */
         size_t j, hoff = 0;
         for (j = 0; j < t->hbuf.n && status == LSYS_OK; j++) {
           uint16_t hc = t->hbuf.code[j];
           uint32_t hs = LSYS_CSYM(hc), hn = LSYS_CNP(hc);
-          if (hs < t->nop && t->op[hs]) {
+          if (hs < nop && op[hs]) {
             R->sym = hs;
-            status = module(R, t->op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
+            status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
           }
           hoff += hn;
         }
         continue;
       }
     }
-    if (sym < t->nop && t->op[sym]) {
+    if (sym < nop && op[sym]) {
       R->sym = sym;
-      status = module(R, t->op[sym], p, np, 1);
+      status = module(R, op[sym], p, np, 1);
     }
   }
-  if (status == LSYS_OK) status = flush(R);
-  if (status == LSYS_OK && R->draw) status = lsys_turtle_capends(R);   /* close the open ends */
+  return status;
+}
+
+int lsys_turtle_finish (lsys_turtle *t) {
+  run *R = (run *)t->runbuf;
+  int status = lsys_turtle_capends(R);               /* close the open ends */
   if (status == LSYS_OK && t->npolys > 0)
     lsys_seterror(&t->warn, LSYS_EARG, t->polyfrom, "the polygon '{' of module %zu is never "
                   "closed with '}': it is not drawn", t->polyfrom + 1);
+  return status;
+}
+
+int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
+  run *R;
+  size_t n = s->n;
+  int status;
+  memset(&t->err, 0, sizeof t->err);
+  memset(&t->warn, 0, sizeof t->warn);
+  t->npolys = 0; t->nends = 0; t->nsub = 0;
+  t->nqueries = 0; t->nsyscalls = 0; t->npieces = 0;
+  if ((status = start(t, ab)) != LSYS_OK) return status;
+  R = (run *)t->runbuf;
+  if (R->draw && t->expand == NULL && (status = lsys_turtle_par(t, s, ab)) != 1)
+    return status;
+  if (t->mode == LSYS_TURTLE_STATE && t->stop < n) n = t->stop;
+  status = loop(t, R, s, 0, n, 0);
+  if (status == LSYS_OK) status = flush(R);
+  if (status == LSYS_OK && R->draw) status = lsys_turtle_finish(t);
+  t->state = R->st;
+  return status;
+}
+
+int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet *ab,
+                          size_t a, size_t b, size_t poff, const lsys_tstate *start,
+                          size_t recbase) {
+  run *R;
+  int status;
+  memset(&t->err, 0, sizeof t->err);
+  if (t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL)
+    return lsys_seterror(&t->err, LSYS_ENOMEM, a, "not enough memory");
+  R = (run *)t->runbuf;
+  memset(R, 0, offsetof(run, cstack));
+  memset(&R->depth, 0, sizeof *R - offsetof(run, depth));
+  R->tcos = 1;
+  R->t = t; R->o = t->o; R->ab = ab;
+  R->draw = 1;
+  R->fixed = 1;
+  R->recbase = recbase;
+  R->prec = LSYS_NOREC;
+  R->stsize = offsetof(lsys_tstate, elast) + (size_t)t->o->ntrop * sizeof(double);
+  R->st = *start;
+  t->mode = LSYS_TURTLE_DRAW;
+  t->mesh = &t->scene->mesh;
+  t->npolys = 0; t->nsub = 0;
+  status = loop(t, R, s, a, b, poff);
+  if (status == LSYS_OK) status = flush(R);
   t->state = R->st;
   return status;
 }

@@ -107,11 +107,17 @@ typedef struct lsys_turtle {
   lsys_meter *meter;            /* the memory budget of the branch stack (NULL: none); the
                                    scene's mesh and records have theirs (scene->meter,
                                    mesh.meter: lsys_interpret sets all three to one) */
+  int threads;                  /* DRAW mode: threads for a long string (turtle_par.c; 0 or 1:
+                                   the caller's alone) */
+  size_t piecemin;              /* the smallest branch given a thread of its own (0: the
+                                   default; tests set it small to split short strings) */
   /* outputs */
   lsys_scene *scene;            /* DRAW mode: the geometry, records and stiffnesses go here */
   lsys_tstate state;            /* the state when interpretation ended (or stopped) */
   size_t nqueries;              /* query modules filled */
   size_t nsyscalls;             /* @S modules seen (recorded when allowed) */
+  int npieces;                  /* DRAW mode: the pieces the string was cut into (0: run
+                                   whole, on the caller's thread) */
   lsys_error err;
   lsys_error warn;              /* a warning the run ended with (code 0: none), for the
                                    caller to pass on: a polygon never closed */
@@ -140,12 +146,15 @@ void lsys_turtle_init (lsys_turtle *t);
 void lsys_turtle_free (lsys_turtle *t);
 
 /*
-** Interprets 's' (symbol names from 'ab'). In DRAW mode the geometry, the
+** Interprets 's' (symbol names from 'ab'; a narrow string is read as it is). In DRAW mode
+** the geometry, the
 ** records and the stiffnesses go into t->scene (which must be set; they are
 ** cleared first, its palette, textures, camera and light stay). In QUERY mode the parameters of the query modules of 's'
 ** are overwritten with the turtle's position or vectors at that point. In
 ** STATE mode t->state is the state after the first t->stop modules. Returns LSYS_OK
-** or an error code with t->err set (t->err.pos = the module index).
+** or an error code with t->err set (t->err.pos = the module index). A long string
+** in DRAW mode without a homomorphism runs on t->threads threads, split at its
+** big branches (turtle_par.c); the scene is the same for every number of threads.
 */
 int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab);
 

@@ -16,7 +16,7 @@ static uint32_t ring (run *R, const double *c, double r, double slope, double v,
   return lsys_mesh_ring(R->t->mesh, &f, c, r, slope, v);
 }
 
-static int cylend (run *R, const double *c, double r, uint32_t rng, int col) {
+static int cylend (run *R, const double *c, double r, uint32_t rng, double v, int col) {
   lsys_turtle *t = R->t;
   lsys_cylend *e;
   if (t->nends == t->endcap &&
@@ -27,6 +27,7 @@ static int cylend (run *R, const double *c, double r, uint32_t rng, int col) {
   vcopy(e->H, R->st.H);
   e->r = r;
   e->ring = rng;
+  e->v = (float)v;
   e->color = col;
   e->continued = 0;
   return LSYS_OK;
@@ -58,7 +59,7 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
         vdot(e->H, R->st.H) > 0.866 && e->color == col) {
       base = e->ring;                    /* share the ring: no crack, no cap */
       e->continued = 1;
-      v0 = m->uv[2 * base + 1];
+      v0 = e->v;
     }
   }
   if (base == LSYS_NOREC) {
@@ -68,10 +69,10 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
     lsys_mesh_cap(m, p0, back, base, n, (unsigned)col, 0);
   }
   /* v runs along the stem so that texture pixels keep their aspect (§5.2) */
-  top = ring(R, p1, r1, slope, v0 + (r0 + r1 > 0 ? len * texaspect(R) / (PI * (r0 + r1)) : 0),
-             col);
+  v0 += r0 + r1 > 0 ? len * texaspect(R) / (PI * (r0 + r1)) : 0;
+  top = ring(R, p1, r1, slope, v0, col);
   lsys_mesh_band(m, base, top, n);
-  if (cylend(R, p1, r1, top, col) != LSYS_OK) return LSYS_ENOMEM;
+  if (cylend(R, p1, r1, top, v0, col) != LSYS_OK) return LSYS_ENOMEM;
   R->st.tip = (uint32_t)(t->nends - 1);
   return LSYS_OK;
 }

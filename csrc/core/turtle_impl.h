@@ -54,6 +54,7 @@ struct lsys_polygon {
 ** continue from it or a cap can close it at the end. */
 struct lsys_cylend {
   double c[3], H[3], r;
+  double v;               /* the ring's texture coordinate v (as its vertices keep it) */
   uint32_t ring;          /* first vertex of the ring (sides + 1 vertices) */
   int color, continued;
 };
@@ -94,6 +95,9 @@ struct run {
   int pcol, ptex;
   uint32_t sym;                 /* the symbol being interpreted */
   const lsys_alphabet *ab;
+  size_t recbase;               /* the scene's index of the first record this run writes */
+  int fixed;                    /* a piece of a parallel run (turtle_par.c): the records and
+                                   lines go to places counted beforehand and cannot grow */
 };
 
 /* turtle.c: errors about the current module, "module N: <fmt>" and
@@ -132,9 +136,12 @@ static inline int newrec (run *R, int kind, const double *p0, const double *p1, 
   lsys_trec *r;
   int k;
   if (R->o->norecords) return LSYS_OK;
-  if (S->nrec == S->reccap && lsys_scene_reserve_records(S, 1) != LSYS_OK)
-    return lsys_turtle_nomem(R);
-  if (S->nrec >= LSYS_NOREC) return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
+  if (S->nrec == S->reccap) {
+    if (R->fixed) return lsys_turtle_fail(R, LSYS_ELIMIT, "internal error: records miscounted");
+    if (lsys_scene_reserve_records(S, 1) != LSYS_OK) return lsys_turtle_nomem(R);
+  }
+  if (R->recbase + S->nrec >= LSYS_NOREC)
+    return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
   r = &S->rec[S->nrec++];
   r->module = (uint32_t)R->mod;
   r->parent = R->st.last;
@@ -159,6 +166,25 @@ static inline int newrec (run *R, int kind, const double *p0, const double *p1, 
   }
   return LSYS_OK;
 }
+
+/* turtle.c: runs modules [a, b) of 's' (parameters from 'poff') from the state
+** 'start' into t->scene, whose records and lines have exactly the room this piece
+** needs; its first record is the scene's 'recbase'-th. t->op, t->ring and t->o are
+** set (borrowed from the turtle that split the run); t->ends may hold the open end
+** the start state continues. The pending segment is emitted at the end; t->state
+** is the state there. LSYS_OK or an error with t->err set. */
+int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet *ab,
+                          size_t a, size_t b, size_t poff, const lsys_tstate *start,
+                          size_t recbase);
+
+/* turtle_par.c: lsys_turtle_run's DRAW mode on t->threads threads, after start()
+** readied t->runbuf. Returns 1 when the string is not for it (too short, or a
+** module whose effect crosses branches: polygons, generalized cylinders, patches,
+** surfaces, sub-L-systems, @S), else LSYS_OK or an error with t->err set. */
+int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet *ab);
+
+/* turtle.c: closes the ends nothing continued (the end of lsys_turtle_run). */
+int lsys_turtle_finish (lsys_turtle *t);
 
 /* turtle_cyl.c: a cylinder from p0 (width w0) to p1 (width w1) around the
 ** turtle's frame, continuing the open end st.tip when it can; and the caps

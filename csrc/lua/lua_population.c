@@ -121,6 +121,7 @@ static int l_population_add (lua_State *L) {
   mt.limit = lsys_memory_limit();
   mt.used = lsys_scene_bytes(&P->sc);
   mt.hit = 0;
+  mt.lock = NULL;
   P->sc.meter = P->sc.mesh.meter = &mt;
   st = lsys_population_add(&P->sc, &S->sc, map, records, &part);
   P->sc.meter = P->sc.mesh.meter = NULL;
@@ -227,7 +228,7 @@ static int scene_prototype (lua_State *L) {
 static int scene_flatten (lua_State *L) {
   static const char *const keys[] = {"max_memory", NULL};
   lsys_lscene *S = lsys_checkscene(L, 1), *F;
-  lsys_meter mt = {0, 0, 0};
+  lsys_meter mt = {0, 0, 0, NULL};
   int st;
   mt.limit = lsys_memory_limit();
   if (!lua_isnoneornil(L, 2)) {

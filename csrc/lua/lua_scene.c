@@ -295,7 +295,7 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   static const int lstr[1] = {2};
   turtlecall x;
   int st;
-  x.s = checklstring(L, 2);
+  x.s = t->mode == LSYS_TURTLE_DRAW ? lsys_checklstring_any(L, 2) : checklstring(L, 2);
   x.t = t;
   readopts(L, opt, o);
   lua_getfield(L, opt, "homomorphism");

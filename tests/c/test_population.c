@@ -156,7 +156,7 @@ static void instances (void) {
   lsys_scene_free(&flat);
   /* the budget, checked before anything is allocated */
   {
-    lsys_meter mt = {100, 0, 0};
+    lsys_meter mt = {100, 0, 0, NULL};
     long before = nlive;
     lsys_scene_init(&flat);
     assert(lsys_population_flatten(&flat, &pop, &mt) == LSYS_EMEMORY);

@@ -52,7 +52,7 @@ static void palette (void) {
 
 static void records (void) {
   lsys_scene s;
-  lsys_meter mt = { 10 * sizeof(lsys_trec), 0, 0 };
+  lsys_meter mt = { 10 * sizeof(lsys_trec), 0, 0, NULL };
   const double k[3] = {1, 2, 3};
   uint32_t i0, i1;
   lsys_scene_init(&s);
