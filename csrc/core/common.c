@@ -3,11 +3,15 @@
 ** shared by the core.
 */
 #define _XOPEN_SOURCE 700       /* fileno, fstat, sysconf */
+#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
+#define _DEFAULT_SOURCE         /* madvise */
+#endif
 #include <errno.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -39,6 +43,22 @@ int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, 
   return lsys_vseterror_at(e, code, pos, where, fmt, ap);
 }
 
+/* (common.h) Linux's transparent huge pages, on request: a big block's
+** first touch then costs a fault every 2 MiB, not every 4 KiB. The whole
+** block is marked, its pages included where it starts and ends, so that the
+** mapping stays one piece (realloc can then move it with mremap, which does
+** not span mappings of different kinds); what it grows into later stays
+** marked. Blocks under 8 MiB are left alone. */
+void lsys_hugepages (void *p, size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const uintptr_t page = 4096;
+  uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
+  if (n >= ((size_t)8 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
+#else
+  (void)p; (void)n;
+#endif
+}
+
 int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   size_t ncap = *cap ? *cap : 16;
   void *np;
@@ -49,6 +69,7 @@ int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   }
   np = LSYS_REALLOC(*p, ncap * elem);
   if (np == NULL) return LSYS_ENOMEM;
+  lsys_hugepages(np, ncap * elem);
   *p = np;
   *cap = ncap;
   return LSYS_OK;
@@ -90,6 +111,7 @@ int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_met
   if ((st = lsys_meter_take(mt, *cap, need, elem, &ncap)) != LSYS_OK) return st;
   np = LSYS_REALLOC(*p, ncap * elem);
   if (np == NULL) return LSYS_ENOMEM;
+  lsys_hugepages(np, ncap * elem);
   *p = np;
   *cap = ncap;
   return LSYS_OK;

@@ -74,6 +74,11 @@ typedef struct lsys_meter {
                               several threads grow within the meter (turtle_par.c) */
 } lsys_meter;
 
+/* Asks for huge pages behind the block of n bytes at p when it is big (8 MiB
+** or more) and the system gives them on request (Linux): its first touch then
+** faults every 2 MiB, not every 4 KiB. lsys_grow and the meter's growth call it. */
+void lsys_hugepages (void *p, size_t n);
+
 /* lsys_grow within the meter 'mt' (NULL: none): the doubled capacity is cut
 ** to what the budget leaves; LSYS_EMEMORY when even 'need' items do not
 ** fit. 'mt->used' must include the block's present size ('*cap' items). */

@@ -42,23 +42,6 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
 
 /* Reallocates '*p' from 'old' to 'new' bytes, keeping its contents, within
 ** meter 'mt' (whose count includes the old block). */
-/* The block of n bytes at p is to be backed by huge pages where the system
-** gives them (Linux's transparent huge pages, on request): a big string's
-** first touch then costs a fault every 2 MiB, not every 4 KiB. The whole
-** block is marked, its pages included where it starts and ends, so that the
-** mapping stays one piece (realloc can then move it with mremap, which does
-** not span mappings of different kinds); what it grows into later stays
-** marked. Blocks under 8 MiB are left alone. */
-static void hugepages (void *p, size_t n) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const uintptr_t page = 4096;
-  uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
-  if (n >= ((size_t)8 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
-#else
-  (void)p; (void)n;
-#endif
-}
-
 static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   size_t base = 0;
   void *np;
@@ -72,7 +55,7 @@ static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   np = LSYS_REALLOC(*p, new > 0 ? new : 1);
   if (np == NULL) return LSYS_ENOMEM;
   *p = np;
-  if (new > old) hugepages(np, new);
+  if (new > old) lsys_hugepages(np, new);
   if (mt != NULL) mt->used = base + new;
   return LSYS_OK;
 }
@@ -133,7 +116,7 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
   if (mt != NULL) mt->used = base;
   np = LSYS_MALLOC(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  hugepages(np, need * elem);
+  lsys_hugepages(np, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;

@@ -78,6 +78,7 @@ static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_
     for (i = 0; i < k; i++) {    /* exactly the capacity the budget allowed */
       void *np = LSYS_REALLOC(*arr[i], c * elem[i]);
       if (np == NULL) return LSYS_ENOMEM;
+      lsys_hugepages(np, c * elem[i]);
       *arr[i] = np;
     }
     *cap = c;
@@ -140,6 +141,7 @@ int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
   int st;
   if (nv > (size_t)UINT32_MAX - m->nv || nt > ((size_t)-1 / 12) - m->nt)
     return LSYS_ELIMIT;
+  if (m->fixed && (m->nv + nv > m->vcap || m->nt + nt > m->tcap)) return LSYS_ELIMIT;
   if (m->nv + nv > m->vcap) {
     void **arr[6] = { (void **)&m->pos, (void **)&m->nrm, (void **)&m->uv,
                       (void **)&m->col, (void **)&m->twosided, (void **)&m->tex };
@@ -164,6 +166,7 @@ int lsys_mesh_reserve_lines (lsys_mesh *m, size_t nl) {
   const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
   if (nl > (size_t)UINT32_MAX - m->nl) return LSYS_ELIMIT;
   if (m->nl + nl <= m->lcap) return LSYS_OK;
+  if (m->fixed) return LSYS_ELIMIT;
   return growall(arr, elem, 3, &m->lcap, m->nl + nl, m->meter);
 }
 

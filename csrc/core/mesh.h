@@ -34,6 +34,9 @@ typedef struct lsys_mesh {
   size_t nl, lcap;
   lsys_meter *meter;              /* while the turtle fills it: its memory budget (or NULL);
                                      growing past it fails with LSYS_EMEMORY */
+  int fixed;                      /* 1: the arrays are places in another mesh's (the
+                                     turtle's pieces, turtle_par.c): growing fails with
+                                     LSYS_ELIMIT */
 } lsys_mesh;
 
 /* A material (cpfg material file fields); a plain colour has diffuse set,

@@ -289,8 +289,6 @@ static int flush (run *R) {
   if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
   switch (R->o->style) {
     case LSYS_STYLE_LINE:
-      if (R->fixed && R->t->mesh->nl == R->t->mesh->lcap)
-        return lsys_turtle_fail(R, LSYS_ELIMIT, "internal error: lines miscounted");
       if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
         s = lsys_turtle_nomem(R);
       break;

@@ -43,8 +43,9 @@
 
 enum { K_OPEN = 1, K_CLOSE = 2, K_CROSS = 4 };
 
-/* Places in the scene's records and lines, and in the parameter pool. */
-typedef struct at { size_t rec, line, par; } at;
+/* Places in the scene's records and lines, and in the parameter pool; the
+** modules that draw triangles. */
+typedef struct at { size_t rec, line, par, shape; } at;
 
 typedef struct branch { size_t i, j; at ai, aj; } branch;   /* modules [i, j) */
 
@@ -57,7 +58,9 @@ typedef struct piece {
   lsys_cylend *ends; size_t nends, endcap;
   int foreign;                 /* ends[0] is the open end of piece src, srcend, continued */
   int src; size_t srcend;
-  size_t v0, t0, s0;           /* where its vertices, triangles, stiffnesses go */
+  size_t nv, nt;               /* its vertices and triangles */
+  size_t v0, t0, s0;           /* where they and its stiffnesses go */
+  unsigned curtex;             /* the mesh's texture when it ended (UINT32_MAX: drew nothing) */
   lsys_tstate end;             /* the state after b */
   int kid[2], nkid;            /* the pieces that start from its end state */
   lsys_error err;
@@ -70,7 +73,9 @@ typedef struct par {
   const lsys_alphabet *ab;
   const lsys_tstate *first;
   piece *p; int np;
-  int phase;                   /* 0: run the pieces, 1: copy their geometry */
+  int phase;                   /* 0: run the pieces, 1: put their geometry in place */
+  int dry;                     /* 1: pieces draw triangles: phase 0 counts them (drawn to
+                                  scratch), phase 1 draws them again, to their places */
   atomic_int next;             /* phase 1: the next piece to copy */
   pthread_mutex_t mx;          /* phase 0: the pieces ready to run, and the meter */
   pthread_cond_t cv;
@@ -81,17 +86,21 @@ typedef struct par {
 /* the cut */
 
 /* What each symbol is to the cut: bracket, crossing, records and lines. */
-static void classify (const lsys_turtle *t, uint8_t *cls, uint8_t *nrec, uint8_t *nline) {
+static void classify (const lsys_turtle *t, uint8_t *cls, uint8_t *nrec, uint8_t *nline,
+                      uint8_t *nshape) {
   size_t k;
   int rec = !t->o->norecords, line = t->o->style == LSYS_STYLE_LINE;
   for (k = 0; k < t->nop; k++) {
     int op = t->op[k];
-    cls[k] = nrec[k] = nline[k] = 0;
+    cls[k] = nrec[k] = nline[k] = nshape[k] = 0;
     switch (op) {
       case OP_PUSH: cls[k] = K_OPEN; break;
       case OP_POP: cls[k] = K_CLOSE; break;
-      case OP_F: case OP_G: nrec[k] = (uint8_t)rec; nline[k] = (uint8_t)line; break;
-      case OP_DISCZ: case OP_DISC: case OP_SPHERE: case OP_LABEL: nrec[k] = (uint8_t)rec; break;
+      case OP_F: case OP_G:
+        nrec[k] = (uint8_t)rec; nline[k] = (uint8_t)line; nshape[k] = (uint8_t)!line;
+        break;
+      case OP_DISCZ: case OP_DISC: case OP_SPHERE: nrec[k] = (uint8_t)rec; nshape[k] = 1; break;
+      case OP_LABEL: nrec[k] = (uint8_t)rec; break;
       case OP_PSTART: case OP_PEND: case OP_PVERT: case OP_SUB: case OP_SUBEND:
       case OP_GSTART: case OP_GPOINT: case OP_GEND: case OP_GTAN: case OP_GRAD:
       case OP_PSTARTP: case OP_PCTRL: case OP_PDRAW: case OP_SURFACE: case OP_NOSURFACE:
@@ -110,15 +119,16 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
   typedef struct opened { size_t i; at a; } opened;
   size_t i, depth = 0, opencap = 0, nop = t->nop, ntab = nop > 256 ? nop : 256;
   const uint8_t *s8 = s->sym8;
-  uint8_t *cls, *nrec, *nline;
+  uint8_t *cls, *nrec, *nline, *nshape;
   opened *open = NULL;
-  at cur = {0, 0, 0};
+  at cur = {0, 0, 0, 0};
   int n = 0, st = LSYS_OK;
-  if ((cls = (uint8_t *)LSYS_MALLOC(3 * ntab)) == NULL) return LSYS_ENOMEM;
+  if ((cls = (uint8_t *)LSYS_MALLOC(4 * ntab)) == NULL) return LSYS_ENOMEM;
   nrec = cls + ntab;
   nline = nrec + ntab;
-  memset(cls, 0, 3 * ntab);
-  classify(t, cls, nrec, nline);
+  nshape = nline + ntab;
+  memset(cls, 0, 4 * ntab);
+  classify(t, cls, nrec, nline, nshape);
   for (i = 0; i < s->n; i++) {
     uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
     uint32_t sym = LSYS_CSYM(c);
@@ -152,6 +162,7 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
     }
     cur.rec += nrec[sym];
     cur.line += nline[sym];
+    cur.shape += nshape[sym];
     cur.par += LSYS_CNP(c);
   }
   LSYS_FREE(open);
@@ -188,7 +199,7 @@ static void endpiece (piece *p, size_t b, at x) {
 ** enclose a cut one are cut too: a piece never closes a bracket that another
 ** piece opened, except the ']' that ends its branch. */
 static void cut (par *P, branch *br, int nb, at total) {
-  static const at zero = {0, 0, 0};
+  static const at zero = {0, 0, 0, 0};
   int dep[MAXPIECES / 2], nopen = 0, cur = 0, k;
   size_t close[MAXPIECES / 2];
   at closeat[MAXPIECES / 2];
@@ -217,72 +228,122 @@ static void cut (par *P, branch *br, int nb, at total) {
 /* ---------------------------------------------------------------------- */
 /* the pieces on the threads */
 
-typedef struct worker { par *P; lsys_turtle wt; pthread_t th; } worker;
+typedef struct worker {
+  par *P;
+  lsys_turtle wt;
+  lsys_mesh scratch;           /* phase 0: the geometry of a piece that draws triangles */
+  float *stiff; size_t stiffcap;    /* phase 1: the stiffnesses drawn again */
+  pthread_t th;
+} worker;
 
-/* The piece's output: the scene's records and lines from its places on, its
-** own vertices, triangles and stiffnesses; and its start state, continuing an
-** open end of an earlier piece through a copy (ends[0]) that names it. */
-static int runone (par *P, lsys_turtle *wt, piece *p) {
-  lsys_scene *S = P->t->scene, *sc = &p->sc;
-  lsys_tstate st = p->dep < 0 ? *P->first : P->p[p->dep].end;
-  lsys_mesh_init(&sc->mesh);
+/* The start state of a piece; an open end of an earlier piece that it may
+** continue is copied to wt->ends[0], naming its piece and end. */
+static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
+  *st = p->dep < 0 ? *P->first : P->p[p->dep].end;
+  wt->nends = 0;
+  if (st->tip == LSYS_NOREC) return LSYS_OK;
+  {
+    const piece *d = &P->p[p->dep];
+    if (d->foreign && st->tip == 0) { p->src = d->src; p->srcend = d->srcend; }
+    else { p->src = p->dep; p->srcend = st->tip; }
+  }
+  if (lsys_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
+    return lsys_seterror(&wt->err, LSYS_ENOMEM, p->a, "not enough memory");
+  wt->ends[0] = P->p[p->src].ends[p->srcend];
+  wt->ends[0].ring = FOREIGN;
+  wt->ends[0].continued = 0;
+  wt->nends = 1;
+  p->foreign = 1;
+  st->tip = 0;
+  return LSYS_OK;
+}
+
+/* Runs piece p into the scene shell 'sc': records and lines go to their
+** places in the scene (written again, the same, in phase 1), the rest to the
+** arrays sc holds. */
+static int runin (par *P, worker *w, piece *p, lsys_scene *sc) {
+  lsys_turtle *wt = &w->wt;
+  lsys_scene *S = P->t->scene;
+  lsys_tstate st;
+  int status;
   sc->rec = S->rec + p->at.rec;
   sc->reccap = p->nrec;
+  sc->nrec = 0;
   sc->mesh.lpos = S->mesh.lpos + 6 * p->at.line;
   sc->mesh.lwidth = S->mesh.lwidth + 2 * p->at.line;
   sc->mesh.lcol = S->mesh.lcol + p->at.line;
   sc->mesh.lcap = p->nline;
-  sc->mesh.curtex = UINT32_MAX;             /* "drew nothing" until it draws */
+  sc->mesh.nl = 0;
   sc->meter = S->meter;
   sc->mesh.meter = S->mesh.meter;
-  wt->ends = NULL; wt->nends = wt->endcap = 0;
-  if (st.tip != LSYS_NOREC) {
-    const piece *d = &P->p[p->dep];
-    if (d->foreign && st.tip == 0) { p->src = d->src; p->srcend = d->srcend; }
-    else { p->src = p->dep; p->srcend = st.tip; }
-    if (lsys_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
-      return p->status = lsys_seterror(&p->err, LSYS_ENOMEM, p->a, "not enough memory");
-    wt->ends[0] = P->p[p->src].ends[p->srcend];
-    wt->ends[0].ring = FOREIGN;
-    wt->ends[0].continued = 0;
-    wt->nends = 1;
-    p->foreign = 1;
-    st.tip = 0;
-  }
   wt->scene = sc;
-  p->status = lsys_turtle_runpiece(wt, P->s, P->ab, p->a, p->b, p->at.par, &st, p->at.rec);
+  if ((status = startof(P, wt, p, &st)) != LSYS_OK) return status;
+  status = lsys_turtle_runpiece(wt, P->s, P->ab, p->a, p->b, p->at.par, &st, p->at.rec);
+  if (status == LSYS_OK && (sc->nrec != p->nrec || sc->mesh.nl != p->nline))
+    status = lsys_seterror(&wt->err, LSYS_ELIMIT, p->a, "internal error: module %zu: the "
+                           "records or lines of a piece were miscounted", p->a + 1);
+  return status;
+}
+
+/* Phase 0: the piece's records and lines, its end state, open ends and
+** stiffnesses; its vertices and triangles counted (drawn to scratch). */
+static void runone (par *P, worker *w, piece *p) {
+  lsys_turtle *wt = &w->wt;
+  lsys_scene sc;
+  memset(&sc, 0, sizeof sc);
+  sc.mesh = w->scratch;
+  sc.mesh.nv = sc.mesh.nt = 0;
+  sc.mesh.curtex = UINT32_MAX;               /* "drew nothing" until it draws */
+  wt->ends = NULL; wt->endcap = 0;
+  p->status = runin(P, w, p, &sc);
   p->err = wt->err;
   p->end = wt->state;
   p->ends = wt->ends; p->nends = wt->nends; p->endcap = wt->endcap;
   wt->ends = NULL; wt->nends = wt->endcap = 0;
-  if (p->status == LSYS_OK && (sc->nrec != p->nrec || sc->mesh.nl != p->nline))
-    p->status = lsys_seterror(&p->err, LSYS_ELIMIT, p->a, "internal error: module %zu: the "
-                              "records or lines of a piece were miscounted", p->a + 1);
-  if (p->status == LSYS_OK && sc->mesh.nv >= FOREIGN)
+  p->nv = sc.mesh.nv; p->nt = sc.mesh.nt;
+  p->curtex = sc.mesh.curtex;
+  p->sc.stiff = sc.stiff; p->sc.nstiff = sc.nstiff; p->sc.stiffcap = sc.stiffcap;
+  sc.mesh.lpos = NULL; sc.mesh.lwidth = NULL; sc.mesh.lcol = NULL; sc.mesh.lcap = 0;
+  w->scratch = sc.mesh;                      /* what grew stays for the next piece */
+  if (p->status == LSYS_OK && !P->dry && p->nv + p->nt > 0)
+    p->status = lsys_seterror(&p->err, LSYS_ELIMIT, p->a, "internal error: module %zu: "
+                              "a piece drew triangles unannounced", p->a + 1);
+  if (p->status == LSYS_OK && p->nv >= FOREIGN)
     p->status = lsys_seterror(&p->err, LSYS_ELIMIT, p->a, "module %zu: more than %u vertices",
                               p->a + 1, (unsigned)FOREIGN);
-  return p->status;
 }
 
-/* Copies a piece's vertices, triangles and stiffnesses to their places in the
-** scene, moving the indices, and frees them. */
-static void copyone (par *P, piece *p) {
-  lsys_scene *S = P->t->scene;
-  lsys_mesh *m = &S->mesh, *pm = &p->sc.mesh;
-  uint32_t v0 = (uint32_t)p->v0, fr = 0;
-  size_t k, nv = pm->nv;
-  if (p->foreign) fr = (uint32_t)(P->p[p->src].v0 + P->p[p->src].ends[p->srcend].ring);
-  if (nv > 0) {
-    memcpy(m->pos + 3 * p->v0, pm->pos, 3 * nv * sizeof(float));
-    memcpy(m->nrm + 3 * p->v0, pm->nrm, 3 * nv * sizeof(float));
-    memcpy(m->uv + 2 * p->v0, pm->uv, 2 * nv * sizeof(float));
-    memcpy(m->col + p->v0, pm->col, nv * sizeof(uint16_t));
-    memcpy(m->twosided + p->v0, pm->twosided, nv);
-    memcpy(m->tex + p->v0, pm->tex, nv * sizeof(uint16_t));
-  }
-  for (k = 0; k < 3 * pm->nt; k++) {
-    uint32_t x = pm->tri[k];
-    m->tri[3 * p->t0 + k] = x >= FOREIGN ? fr + (x - FOREIGN) : x + v0;
+/* Phase 1: draws the piece's vertices and triangles again, to their places
+** in the scene, and moves its indices: a triangle's vertices, a record's
+** triangles and stiffness; copies its stiffnesses. */
+static int placeone (par *P, worker *w, piece *p) {
+  lsys_scene *S = P->t->scene, sc;
+  lsys_mesh *m = &S->mesh;
+  size_t k;
+  if (P->dry) {
+    lsys_turtle *wt = &w->wt;
+    lsys_mesh *pm = &sc.mesh;
+    uint32_t v0 = (uint32_t)p->v0, fr = 0;
+    int status;
+    memset(&sc, 0, sizeof sc);
+    pm->pos = m->pos + 3 * p->v0; pm->nrm = m->nrm + 3 * p->v0; pm->uv = m->uv + 2 * p->v0;
+    pm->col = m->col + p->v0; pm->twosided = m->twosided + p->v0; pm->tex = m->tex + p->v0;
+    pm->vcap = m->vcap - p->v0;               /* up to the scene's end (slack) */
+    pm->tri = m->tri + 3 * p->t0;
+    pm->tcap = m->tcap - p->t0;
+    pm->fixed = 1;
+    sc.stiff = w->stiff; sc.stiffcap = w->stiffcap;
+    status = runin(P, w, p, &sc);
+    w->stiff = sc.stiff; w->stiffcap = sc.stiffcap;
+    if (status == LSYS_OK && (pm->nv != p->nv || pm->nt != p->nt))
+      status = lsys_seterror(&wt->err, LSYS_ELIMIT, p->a, "internal error: module %zu: a "
+                             "piece drew other triangles the second time", p->a + 1);
+    if (status != LSYS_OK) { p->err = wt->err; return p->status = status; }
+    if (p->foreign) fr = (uint32_t)(P->p[p->src].v0 + P->p[p->src].ends[p->srcend].ring);
+    for (k = 0; k < 3 * p->nt; k++) {
+      uint32_t x = pm->tri[k];
+      pm->tri[k] = x >= FOREIGN ? fr + (x - FOREIGN) : x + v0;
+    }
   }
   if (p->t0 > 0 || p->s0 > 0) {
     lsys_trec *r = S->rec + p->at.rec;
@@ -293,10 +354,7 @@ static void copyone (par *P, piece *p) {
   }
   if (p->sc.nstiff > 0)
     memcpy(S->stiff + 3 * p->s0, p->sc.stiff, 3 * p->sc.nstiff * sizeof(float));
-  pm->lpos = NULL; pm->lwidth = NULL; pm->lcol = NULL;    /* the scene's */
-  lsys_mesh_free(pm);
-  LSYS_FREE(p->sc.stiff);
-  p->sc.stiff = NULL;
+  return LSYS_OK;
 }
 
 /* Phase 0: runs the pieces as their start states become known. A worker goes
@@ -307,7 +365,7 @@ static void *work (void *arg) {
   par *P = w->P;
   int k = -1;
   if (P->phase == 1) {
-    while ((k = atomic_fetch_add(&P->next, 1)) < P->np) copyone(P, &P->p[k]);
+    while ((k = atomic_fetch_add(&P->next, 1)) < P->np) placeone(P, w, &P->p[k]);
     return NULL;
   }
   for (;;) {
@@ -321,7 +379,7 @@ static void *work (void *arg) {
     }
     p = &P->p[k];
     if (p->dep >= 0 && P->p[p->dep].status != LSYS_OK) p->status = 1;
-    else runone(P, &w->wt, p);
+    else runone(P, w, p);
     pthread_mutex_lock(&P->mx);
     P->finished++;
     if (p->nkid > 1) P->ready[P->nready++] = p->kid[0];
@@ -346,6 +404,15 @@ static void phase (par *P, worker *w, int nt, int ph) {
 /* ---------------------------------------------------------------------- */
 /* the run */
 
+/* The most vertices (what = 0) or triangles (1) one module of a piece asks
+** room for at once (a cylinder's, a sphere's): the scene has that much room
+** past its pieces' places, so that a piece drawing to its places asks for
+** room that is there (it uses exactly what it counted). */
+static size_t slack (const lsys_turtle *t, int what) {
+  size_t n = (size_t)t->o->sides, rows = n / 2 < 2 ? 2 : n / 2;
+  return what == 0 ? 3 * (n + 2) + (rows + 1) * (n + 1) : 4 * n + 2 * rows * n;
+}
+
 /* After the pieces: the places of their vertices, triangles and
 ** stiffnesses, room for them in the scene, the open ends in string order. */
 static int places (par *P) {
@@ -356,15 +423,17 @@ static int places (par *P) {
   for (k = 0; k < P->np; k++) {
     piece *p = &P->p[k];
     p->v0 = nv; p->t0 = ntri; p->s0 = ns;
-    nv += p->sc.mesh.nv; ntri += p->sc.mesh.nt; ns += p->sc.nstiff;
+    nv += p->nv; ntri += p->nt; ns += p->sc.nstiff;
     ne += p->nends - (size_t)p->foreign;
     if (p->foreign && p->ends[0].continued) P->p[p->src].ends[p->srcend].continued = 1;
-    if (p->sc.mesh.curtex != UINT32_MAX) S->mesh.curtex = p->sc.mesh.curtex;
+    if (p->curtex != UINT32_MAX) S->mesh.curtex = p->curtex;
   }
   if (nv > UINT32_MAX || ns >= LSYS_NOREC)
     return lsys_seterror(&t->err, LSYS_ELIMIT, (size_t)-1, "more than %u vertices",
                          (unsigned)UINT32_MAX);
-  if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv, ntri) != LSYS_OK) goto nomem;
+  if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(t, 0), ntri + slack(t, 1))
+                               != LSYS_OK)
+    goto nomem;
   if (ns > 0 && lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
                                   S->meter) != LSYS_OK)
     goto nomem;
@@ -418,6 +487,8 @@ static int runall (par *P, int nt) {
   for (k = 0; k < nt; k++) {
     lsys_turtle *wt = &w[k].wt;
     w[k].P = P;
+    lsys_mesh_init(&w[k].scratch);
+    w[k].stiff = NULL; w[k].stiffcap = 0;
     lsys_turtle_init(wt);
     wt->o = t->o; wt->op = t->op; wt->nop = t->nop; wt->ring = t->ring; wt->nring = t->nring;
     wt->meter = t->meter;
@@ -430,7 +501,11 @@ static int runall (par *P, int nt) {
   phase(P, w, nt, 0);
   for (k = 0; k < P->np && st == LSYS_OK; k++)
     if (P->p[k].status != LSYS_OK) { t->err = P->p[k].err; st = P->p[k].status; }
-  if (st == LSYS_OK && (st = places(P)) == LSYS_OK) phase(P, w, nt, 1);
+  if (st == LSYS_OK && (st = places(P)) == LSYS_OK) {
+    phase(P, w, nt, 1);
+    for (k = 0; k < P->np && st == LSYS_OK; k++)
+      if (P->p[k].status != LSYS_OK) { t->err = P->p[k].err; st = P->p[k].status; }
+  }
   lock(t, NULL);
   pthread_cond_destroy(&P->cv);
   pthread_mutex_destroy(&P->mx);
@@ -438,6 +513,8 @@ static int runall (par *P, int nt) {
   for (k = 0; k < nt; k++) {
     w[k].wt.op = NULL; w[k].wt.nop = 0; w[k].wt.ring = NULL;
     lsys_turtle_free(&w[k].wt);
+    lsys_mesh_free(&w[k].scratch);
+    LSYS_FREE(w[k].stiff);
   }
   return st;
 }
@@ -466,6 +543,7 @@ int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet 
   memset(&P, 0, sizeof P);
   P.t = t; P.s = s; P.ab = ab;
   P.first = &((run *)t->runbuf)->st;
+  P.dry = total.shape > 0;
   if ((P.p = (piece *)LSYS_MALLOC((size_t)(2 * nb + 1) * sizeof *P.p)) == NULL) {
     LSYS_FREE(br);
     return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
@@ -480,12 +558,9 @@ int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet 
     t->state = P.p[P.np - 1].end;
     st = lsys_turtle_finish(t);
   }
-  for (k = 0; k < P.np; k++) {              /* what a failed run left */
-    piece *p = &P.p[k];
-    p->sc.mesh.lpos = NULL; p->sc.mesh.lwidth = NULL; p->sc.mesh.lcol = NULL;
-    lsys_mesh_free(&p->sc.mesh);
-    LSYS_FREE(p->sc.stiff);
-    LSYS_FREE(p->ends);
+  for (k = 0; k < P.np; k++) {
+    LSYS_FREE(P.p[k].sc.stiff);
+    LSYS_FREE(P.p[k].ends);
   }
   LSYS_FREE(P.p);
   if (st != LSYS_OK && S != NULL) {          /* no half scene */
