@@ -177,3 +177,83 @@ describe("threads", function()
     for k = 2, #outs do assert.equal(outs[1], outs[k]) end
   end)
 end)
+
+-- The scene of `opts` derived `n` steps and interpreted with `threads`: its glb bytes
+-- (vertices, normals, triangles, lines) and its records as text.
+local function drawn (opts, n, threads, dir)
+  local m = lsys.lsystem(opts)
+  local s = m:derive(n)
+  m.threads = threads
+  local sc = m:interpret(s)
+  local path = dir .. "/t" .. threads .. ".glb"
+  sc:save(path)
+  local recs = {}
+  for i, r in sc:records() do
+    if i % 7 == 1 or r.stiffness then
+      recs[#recs + 1] = table.concat({ i, r.kind, r.module, tostring(r.parent), r.color,
+        r.p1[1], r.p1[2], r.p1[3], r.H[1], r.H[2], r.U[3], r.w0, r.w1, r.length,
+        r.stiffness and table.concat(r.stiffness, ",") or "-" }, " ")
+    end
+  end
+  return H.read(path), table.concat(recs, "\n"), sc.ntriangles, #s
+end
+
+describe("interpretation on threads", function()
+  local dir
+  before_each(function () dir = H.tmpdir() end)
+  after_each(function () H.rmdir(dir) end)
+
+  local function same_scene (opts, n)
+    local glb1, rec1, ntri, len = drawn(opts, n, 1, dir)
+    assert.is_true(len > 65536, "a short string: " .. len)    -- long enough to be cut
+    for _, t in ipairs { 2, 3 } do
+      local glb, rec = drawn(opts, n, t, dir)
+      assert.is_true(glb == glb1, ("threads = %d: other geometry"):format(t))
+      assert.is_true(rec == rec1, ("threads = %d: other records"):format(t))
+    end
+    return ntri, #rec1
+  end
+
+  it("give the same lines and records for 1, 2 and 3 threads", function()
+    local _, nrec = same_scene({ axiom = "F", productions = "F --> F[+F]F[-F]F",
+                                 view = { angle = 25.7 } }, 7)
+    assert.is_true(nrec > 10000)
+  end)
+
+  it("give the same cylinders, discs, spheres and stiffnesses", function()
+    local ntri = same_scene({ axiom = "F", productions = "F --> FZ(1,2,3)[+F@O(0.2)]F[-!F@c(0.3)]F",
+                              view = { angle = 25.7, line_style = "cylinder",
+                                       contour_sides = 4, line_width = 0.2,
+                                       tropisms = { { vector = {0, -1, 0},
+                                                      elasticity = 0.05 } } } }, 7)
+    assert.is_true(ntri > 100000)
+  end)
+
+  it("give the same ribbons, with a parametric string", function()
+    same_scene({ axiom = "A(1)", productions = "A(s) --> F(s)[+A(s/1.456)][-A(s/1.456)]",
+                 view = { angle = 30, line_style = "polygon" } }, 16)
+  end)
+
+  it("name the module one thread names when two pieces fail", function()
+    local m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F" }
+    local text, k = tostring(m:derive(7)), 0
+    text = text:gsub("F", function ()             -- the 90,000th and 30,000th F: no texture
+      k = k + 1
+      if k == 30000 or k == 90000 then return "@Tx(3)" end
+    end)
+    local s = m:lstring(text)
+    local msgs = {}
+    for _, t in ipairs { 1, 2, 3 } do
+      m.threads = t
+      local ok, err = pcall(m.interpret, m, s)
+      assert.is_false(ok)
+      msgs[t] = tostring(err)
+    end
+    assert.equal(msgs[1], msgs[2])
+    assert.equal(msgs[1], msgs[3])
+    assert.matches("texture 3 is not defined", msgs[1])
+    local first = text:find("@Tx", 1, true)
+    local before = text:sub(1, first - 1):gsub("%(.-%)", "")   -- one character a module
+    assert.matches("module " .. (#before + 1) .. "[^%d]", msgs[1])
+  end)
+end)

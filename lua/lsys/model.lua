@@ -777,6 +777,7 @@ function Model:interpret (s, over)
     over.records = nil
   end
   self:_idle("interpret")
+  self:_threads("interpret")
   local v = self:_view(over)
   self:_bind()
   self._rules:config("hseed", self.homomorphism_seed or self.seed)
