@@ -237,15 +237,17 @@ typedef struct worker {
 } worker;
 
 /* The start state of a piece; an open end of an earlier piece that it may
-** continue is copied to wt->ends[0], naming its piece and end. */
+** continue is copied to wt->ends[0]. Phase 0 finds that end's piece and index
+** (p->src, p->srcend; the earlier piece's own copy names it); phase 1 reads them. */
 static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
   *st = p->dep < 0 ? *P->first : P->p[p->dep].end;
   wt->nends = 0;
   if (st->tip == LSYS_NOREC) return LSYS_OK;
-  {
+  if (P->phase == 0) {
     const piece *d = &P->p[p->dep];
     if (d->foreign && st->tip == 0) { p->src = d->src; p->srcend = d->srcend; }
     else { p->src = p->dep; p->srcend = st->tip; }
+    p->foreign = 1;
   }
   if (lsys_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
     return lsys_seterror(&wt->err, LSYS_ENOMEM, p->a, "not enough memory");
@@ -253,7 +255,6 @@ static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
   wt->ends[0].ring = FOREIGN;
   wt->ends[0].continued = 0;
   wt->nends = 1;
-  p->foreign = 1;
   st->tip = 0;
   return LSYS_OK;
 }
