@@ -43,6 +43,9 @@
 
 enum { K_OPEN = 1, K_CLOSE = 2, K_CROSS = 4 };
 
+/* The k-th item of array a, which may be NULL (then empty: no pointer arithmetic on it). */
+#define AT(a, k) ((a) != NULL ? (a) + (k) : NULL)
+
 /* Places in the scene's records and lines, and in the parameter pool; the
 ** modules that draw triangles. */
 typedef struct at { size_t rec, line, par, shape; } at;
@@ -267,12 +270,12 @@ static int runin (par *P, worker *w, piece *p, lsys_scene *sc) {
   lsys_scene *S = P->t->scene;
   lsys_tstate st;
   int status;
-  sc->rec = S->rec + p->at.rec;
+  sc->rec = AT(S->rec, p->at.rec);
   sc->reccap = p->nrec;
   sc->nrec = 0;
-  sc->mesh.lpos = S->mesh.lpos + 6 * p->at.line;
-  sc->mesh.lwidth = S->mesh.lwidth + 2 * p->at.line;
-  sc->mesh.lcol = S->mesh.lcol + p->at.line;
+  sc->mesh.lpos = AT(S->mesh.lpos, 6 * p->at.line);
+  sc->mesh.lwidth = AT(S->mesh.lwidth, 2 * p->at.line);
+  sc->mesh.lcol = AT(S->mesh.lcol, p->at.line);
   sc->mesh.lcap = p->nline;
   sc->mesh.nl = 0;
   sc->meter = S->meter;
@@ -327,10 +330,11 @@ static int placeone (par *P, worker *w, piece *p) {
     uint32_t v0 = (uint32_t)p->v0, fr = 0;
     int status;
     memset(&sc, 0, sizeof sc);
-    pm->pos = m->pos + 3 * p->v0; pm->nrm = m->nrm + 3 * p->v0; pm->uv = m->uv + 2 * p->v0;
-    pm->col = m->col + p->v0; pm->twosided = m->twosided + p->v0; pm->tex = m->tex + p->v0;
+    pm->pos = AT(m->pos, 3 * p->v0); pm->nrm = AT(m->nrm, 3 * p->v0);
+    pm->uv = AT(m->uv, 2 * p->v0); pm->col = AT(m->col, p->v0);
+    pm->twosided = AT(m->twosided, p->v0); pm->tex = AT(m->tex, p->v0);
     pm->vcap = m->vcap - p->v0;               /* up to the scene's end (slack) */
-    pm->tri = m->tri + 3 * p->t0;
+    pm->tri = AT(m->tri, 3 * p->t0);
     pm->tcap = m->tcap - p->t0;
     pm->fixed = 1;
     sc.stiff = w->stiff; sc.stiffcap = w->stiffcap;
@@ -346,7 +350,7 @@ static int placeone (par *P, worker *w, piece *p) {
       pm->tri[k] = x >= FOREIGN ? fr + (x - FOREIGN) : x + v0;
     }
   }
-  if (p->t0 > 0 || p->s0 > 0) {
+  if ((p->t0 > 0 || p->s0 > 0) && p->nrec > 0) {
     lsys_trec *r = S->rec + p->at.rec;
     for (k = 0; k < p->nrec; k++) {
       r[k].tri0 += (uint32_t)p->t0;
