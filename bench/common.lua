@@ -46,7 +46,8 @@ function B.verdict (ok) return ok and "PASS" or "MISS" end
 
 --- 's' quoted for the shell
 function B.shell_quote (s)
-  return "'" .. tostring(s):gsub("'", "'\\''") .. "'"
+  B.load_lsys()              -- lsys's modules on the path
+  return require("lsys.text").shq(tostring(s))
 end
 
 --- the contents of a file, or nil

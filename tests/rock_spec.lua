@@ -10,7 +10,7 @@
 local H = require "tests.helper"
 local core = require "lsys.core"
 
-local function quote (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
+local quote = require("lsys.text").shq
 
 describe("the rock #rock #slow", function()
   local _, missing = H.sh("command -v luarocks")

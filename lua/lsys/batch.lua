@@ -12,7 +12,7 @@
 -- recorded with its message and the others go on.
 -- @module lsys.batch
 local core = require "lsys.core"
-local shortest = require("lsys.text").number
+local shortest, shq = require("lsys.text").number, require("lsys.text").shq
 local model = require "lsys.model"
 local host = require("lsys.program").host
 
@@ -828,7 +828,6 @@ local function manifest_name (k, n)
 end
 
 -- One word for a POSIX shell.
-local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
 -- The manifests in the folder `dir` (every run's, whatever its sharding).
 local function manifests (dir)

@@ -12,6 +12,7 @@
 -- @module lsys.frames
 local core = require "lsys.core"
 local model = require "lsys.model"
+local shq = require("lsys.text").shq
 
 local type, pairs, ipairs, error, pcall, tostring, require =
       type, pairs, ipairs, error, pcall, tostring, require
@@ -207,7 +208,6 @@ end
 -- Animations through ffmpeg
 
 -- One word for a POSIX shell: single quotes, a quote inside as '\''.
-local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
 -- The path of the program `prog` (a name looked up on PATH, or a path), or nil.
 local function which (prog)

@@ -14,6 +14,7 @@
 local type, pairs, ipairs, tostring, tonumber, pcall, error, select, require =
       type, pairs, ipairs, tostring, tonumber, pcall, error, select, require
 local io, os, string, table, math = io, os, string, table, math
+local shq = require("lsys.text").shq
 local format, abs, max, min = string.format, math.abs, math.max, math.min
 local _ENV = nil
 
@@ -422,7 +423,7 @@ end
 
 local function mkdir_for (path)
   local dir = path:match("^(.*)/[^/]*$")
-  if dir and dir ~= "" then os.execute("mkdir -p '" .. dir:gsub("'", "'\\''") .. "'") end
+  if dir and dir ~= "" then os.execute("mkdir -p " .. shq(dir)) end
 end
 
 local function write_png (path, px, w, h)

@@ -31,4 +31,7 @@ function M.normpath (path)
   return r ~= "" and r or "."
 end
 
+--- s single-quoted for a POSIX shell (a quote inside becomes '\'').
+function M.shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
+
 return M

@@ -14,6 +14,7 @@
 --   graph.render(root, path [, opts]) -> path     .dot/.gv as text; .png/.svg/.pdf via `dot`
 --   graph.quote(s) -> s quoted for a POSIX shell
 -- @module lsys.components.graph
+local shq = require("lsys.text").shq
 local type, pairs, ipairs, error, tostring = type, pairs, ipairs, error, tostring
 local io, os, math, string, table, utf8 = io, os, math, string, table, utf8
 local format, byte, concat, sort = string.format, string.byte, table.concat, table.sort
@@ -403,7 +404,7 @@ function M.quote (s)
   if type(s) ~= "string" or s:find("%c") then
     error(format("graph: refusing the path %q (control characters)", tostring(s)), 2)
   end
-  return "'" .. s:gsub("'", "'\\''") .. "'"
+  return shq(s)
 end
 
 local FORMATS = { dot = "dot", gv = "dot", png = "png", svg = "svg", pdf = "pdf" }

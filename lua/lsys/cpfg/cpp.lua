@@ -8,6 +8,7 @@ local math = math
 local concat, insert, remove, sort = table.concat, table.insert, table.remove, table.sort
 local format = string.format
 local io, os = io, os
+local shq = require("lsys.text").shq
 local _ENV = nil
 
 local M = {}
@@ -48,7 +49,6 @@ M.dirof = dirof
 
 -- One shell word: the text in single quotes, a quote inside as '\''; nothing in it is
 -- interpreted by the shell.
-local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
 -- The directives of the preprocessor. A line whose first non-blank character is '#'
 -- followed by anything else (a width module `#(0.06)` starting a continued successor,

@@ -10,6 +10,7 @@
 -- @module lsys.repl.help
 local host = require("lsys.program").host
 local normalize = require("lsys.text").normpath
+local shq = require("lsys.text").shq
 
 local G = _G
 local type, tostring, pairs, ipairs, select, pcall, getmetatable, rawget =
@@ -80,7 +81,7 @@ local function docfiles (dir)
   for _, n in ipairs(ORDER) do
     if isfile(dir .. "/" .. n) then names[#names + 1] = n; seen[n] = true end
   end
-  local ok, p = pcall(io.popen, "ls -1 '" .. dir:gsub("'", "'\\''") .. "' 2>/dev/null")
+  local ok, p = pcall(io.popen, "ls -1 " .. shq(dir) .. " 2>/dev/null")
   if ok and p ~= nil then
     local found = {}
     for n in p:lines() do

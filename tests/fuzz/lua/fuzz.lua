@@ -58,6 +58,7 @@ local format, byte, char = string.format, string.byte, string.char
 local concat, sort, insert, table_remove = table.concat, table.sort, table.insert, table.remove
 local math_min, math_max = math.min, math.max
 local ARG = arg
+local shq = require("lsys.text").shq
 local _ENV = nil   -- no globals below: a target may seal _G while an input runs
 
 local M = {}
@@ -98,7 +99,6 @@ local function writefile (path, s)
   f:close()
 end
 
-local function shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
 local function mkdir (d) execute("mkdir -p " .. shq(d)) end
 
