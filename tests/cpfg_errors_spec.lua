@@ -1,14 +1,13 @@
 -- lsys.cpfg.load on hostile and broken L-system files: what the cpfg fuzz target
 -- (tests/fuzz/lua/targets/cpfg.lua) found in the preprocessor and the parser. Each file
--- fails with a message naming its file and line, in well under a second, or loads.
+-- fails with a message naming its file and line, or loads. How long the hostile inputs take
+-- is measured by bench/cpp.lua, never here (a loaded machine must not fail the suite).
 require "tests.helper"
 local H = require "tests.helper"
 local lsys = require "lsys"
 local parse = require "lsys.cpfg.parse"
 
 local dir
--- time limits of the specs that must not hang, times LSYS_TEST_SLOW under valgrind
-local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
 
 -- Writes the files { name = text } into the scratch folder; loads the first name given.
 local function load (main, files, opts)
@@ -125,10 +124,8 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
   it("stops a macro that doubles its text at every level", function ()
     local defs = "#define A0 x\n"
     for i = 1, 30 do defs = defs .. ("#define A%d A%d A%d\n"):format(i, i - 1, i - 1) end
-    local t = os.clock()
     assert.equal("main.l:34: macro expansion longer than 100000 characters",
                  err(defs .. lsystem("X(A30)")))
-    assert.is_true(os.clock() - t < 2 * SLOW)
   end)
 
   it("refuses a #define whose parameters are not names", function ()
@@ -147,11 +144,9 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
       .. lsystem("A(" .. ("f("):rep(65) .. "1" .. (")"):rep(65) .. ")")))
   end)
 
-  it("reads a long line of unclosed macro calls in linear time", function ()
-    local t = os.clock()
+  it("reads a long line of unclosed macro calls", function ()
     assert.equal("main.l:4: ')' expected to close the parameters of A, found '('",
                  err("#define G(x) x\n" .. lsystem("A(" .. ("G(x "):rep(20000))))
-    assert.is_true(os.clock() - t < 1 * SLOW, os.clock() - t)
   end)
 
   it("leaves self-referential macros as C does", function ()
@@ -186,29 +181,25 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
                  err('#include "self.l"\n' .. lsystem("A"), { ["self.l"] = '#include "self.l"\n' }))
   end)
 
-  it("stops files that include each other twice, in well under a second", function ()
+  it("stops files that include each other twice", function ()
     local files = {}
     for i = 1, 22 do
       files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
     end
     files["f23.l"] = "\n"
-    local t = os.clock()
     assert.equal("f23.l:1: more than 100000 lines with the #include files",
                  err('#include "f1.l"\n' .. lsystem("A"), files))
-    assert.is_true(os.clock() - t < 1 * SLOW)
   end)
 
-  it("stops files that include each other twice and expand long lines, in a second or so",
+  it("stops files that include each other twice and expand long lines",
      function ()
     local files = {}
     for i = 1, 12 do
       files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
     end
     files["f13.l"] = "#define X x\n" .. ("X + "):rep(500) .. "\n"
-    local t = os.clock()
     assert.equal("f13.l:2: more than 4 MiB of text with the #include files and macros",
                  err('#include "f1.l"\n' .. lsystem("A"), files))
-    assert.is_true(os.clock() - t < 3 * SLOW, os.clock() - t)
   end)
 
   it("takes a header included many times", function ()
