@@ -196,6 +196,7 @@ function lsys.nproduce(template, ...) end
 ---@field allow_system_calls? boolean For the turtle: `@S` is refused unless true. Not read by derivation. Default false.
 ---@field system_call? fun(i: integer, name: string, ...: number) With `allow_system_calls`, called after `interpret` once per `@S` drawn, with the module's index, name and parameters. Default: none.
 ---@field max_memory? number|string The memory budget of this model's steps and interpretations, in bytes or as `"512M"`, `"2G"`, `"unlimited"` (see `lsys.parse_size`). Default: `lsys.max_memory()`.
+---@field max_instructions? number Most Lua instructions one call of rule code may run (rule expressions, rule functions, the axiom's expressions, a cpfg file's blocks), at least 1000; `math.huge` for none. Default 100 000 000.
 ---@field depth_warnings? boolean|{ decomposition?: boolean, homomorphism?: boolean } Whether a derivation warns (once) when the depth limit stops a rule that would apply; false for neither. Default true.
 ---@field functions? table Positional functions for `func(ID, x)` and `func("name", x)`: `lsys.Func`s and file names (.func, .fset), a list and/or a table by name. Fixed when the model is made. Default: the view's `functions`.
 ---@field threads? integer Threads a derivation step may use, from 1 to 64; the string is the same for every number. Read by every `derive` and `step`. Default: `LSYS_THREADS` from the environment, else the number of processors.
@@ -222,6 +223,7 @@ function lsys.nproduce(template, ...) end
 ---@field allow_system_calls boolean
 ---@field max_modules number? Set only when the option was given (the limit in force is 50 000 000 otherwise).
 ---@field max_memory number? In bytes; set only when the option was given.
+---@field max_instructions number? Set only when the option was given.
 ---@field threads integer? Threads of a derivation step (read by every derive and step); nil: the default (`LSYS_THREADS`, else the number of processors).
 ---@field system_call (fun(i: integer, name: string, ...: number))?
 ---@field start fun(model: lsys.Model)?

@@ -179,6 +179,11 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
   uint32_t k;
   lua_rawgeti(L, R->fnidx, (lua_Integer)(r - m->rules) + 1);
   luaL_checkstack(L, (int)(r->nargs + r->nvals) + 4, "too many parameters");
+  if (R->sb != NULL) {                         /* max_instructions is per call */
+    lsys_sandbox_collect(L, R->sb);
+    R->sb->ran = 0;
+    R->sb->strict = !(r->flags & LSYS_RF_DYN);
+  }
   for (k = 0; k < r->nargs; k++) lua_pushnumber(L, args[k]);
   if (r->flags & LSYS_RF_DYN) {
     int keep = R->produced, res;
@@ -243,17 +248,22 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
                     const int *lstr, int n) {
   lsys_lrules *R = lsys_checkrules(L, ridx);
   runargs a;
+  lsys_sandbox sb;
   int k, err;
   ridx = lua_absindex(L, ridx);
   if (R->m.busy) return luaL_error(L, "a rule called %s on the model it belongs to", what);
   for (k = 0; k < n; k++) lsys_checklstring_any(L, lstr[k]);   /* alive, before any mark */
+  lsys_sandbox_enter(L, &sb, R);                        /* its value stays below */
   for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
   a.op = op; a.ud = ud; a.st = LSYS_OK;
   lua_getfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);   /* restored after */
   lua_pushcfunction(L, protectedrun);
   lua_pushvalue(L, ridx);
   lua_pushlightuserdata(L, &a);
+  R->sb = &sb;
   err = lua_pcall(L, 2, 0, 0);
+  R->sb = NULL;
+  lsys_sandbox_leave(L, &sb, err);
   for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], -1);
   R->m.busy = 0;             /* the core sets it while it runs; an error skips the reset */
   lua_pushvalue(L, err != LUA_OK ? -2 : -1);

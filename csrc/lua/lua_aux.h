@@ -133,6 +133,26 @@ const lsys_names *lsys_ownernames (lua_State *L, int idx);
 ** functions (Funcs) the expression machine calls (rules:setfuncs) */
 enum { LSYS_RULES_FNS = 1, LSYS_RULES_TPL = 2, LSYS_RULES_FUNCS = 3, LSYS_RULES_NUV = 3 };
 
+/*
+** The bounds of rule code while a model's rules run (lua_sandbox.c): the
+** Lua instructions of one call (a count hook), the memory Lua may grow by
+** (a wrapped allocator), and strings' methods (the sandbox's string
+** library). Filled by lsys_sandbox_enter, which pushes one value that
+** lsys_sandbox_leave removes (at 'stridx').
+*/
+#define LSYS_MAX_INSTRUCTIONS 1e8    /* one call's default (max_instructions) */
+typedef struct lsys_sandbox {
+  lua_Alloc alloc; void *aud;        /* the allocator it wraps */
+  lua_Hook hook; int hmask, hcount;  /* the hook it replaced */
+  long long limit, net;              /* bytes Lua may grow by; grown since entry */
+  long long gcat;                    /* grown this much: collect (lsys_sandbox_collect) */
+  double budget, ran;                /* instructions of one call: the most, so far */
+  int memhit, timehit;               /* a growth refused; the budget ran out */
+  int strict;                        /* rule text runs (not a rule written as a function):
+                                        strings' methods check their work */
+  int stridx, swapped, entered;
+} lsys_sandbox;
+
 typedef struct lsys_lrules {
   lsys_model m;
   lsys_names decl;
@@ -140,6 +160,8 @@ typedef struct lsys_lrules {
   int fnidx;           /* stack index of the closure table while a step runs */
   int produced;        /* lsys.produce was called by the running rule function */
   int inited;          /* 0 once closed (finalized) */
+  lsys_sandbox *sb;    /* while a step runs: its bounds (the budget restarts per call) */
+  double max_instructions;   /* per call of rule code; 0: LSYS_MAX_INSTRUCTIONS */
 } lsys_lrules;
 
 /* The Rules at 'i'; raises when they were closed. */
@@ -158,6 +180,16 @@ lsys_lrules *lsys_checkrules (lua_State *L, int i);
 typedef int (*lsys_ruleop) (lua_State *L, lsys_model *m, void *ud);
 int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
                     const int *lstr, int n);
+
+/* Enters the bounds of the Rules R (pushes one value); leaves them (removes
+** it), rewording the error object on top when 'err' is a memory error the
+** bound caused. Runs nest. */
+void lsys_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R);
+void lsys_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err);
+/* At a safe point of the run (between calls of rule code, in the count hook):
+** collects garbage when Lua has grown halfway to the bound, so that garbage is not
+** what reaches it. */
+void lsys_sandbox_collect (lua_State *L, lsys_sandbox *sb);
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Scene: what an interpretation drew (docs/drawing.md §5) */

@@ -25,6 +25,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsys_open_compgeo(L);
   lsys_open_grow(L);
   lsys_open_population(L);             /* after lsys_open_scene: adds Scene methods */
+  lsys_open_sandbox(L);                /* after lsys_open_rules: adds a Rules method */
   lua_pushinteger(L, LSYS_MAXTROPISMS);   /* the view schema's limit comes from the turtle */
   lua_setfield(L, -2, "MAXTROPISMS");
   return 1;

@@ -252,7 +252,7 @@ static uint64_t seedof (lua_State *L, int idx) {
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
                                      "depth_homomorphism", "seed", "hseed", "max_memory",
-                                     "float32", "threads", NULL};
+                                     "float32", "threads", "max_instructions", NULL};
   lsys_lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
@@ -286,6 +286,11 @@ static int rules_config (lua_State *L) {
       x = luaL_checknumber(L, 3);
       luaL_argcheck(L, x >= 0 && x < 1.8e19, 3, "max_memory must be a number of bytes >= 0");
       R->m.max_memory = x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x;
+      break;
+    case 10:                           /* per call of rule code; math.huge: none */
+      x = luaL_checknumber(L, 3);
+      luaL_argcheck(L, x >= 1000, 3, "max_instructions must be a number >= 1000");
+      R->max_instructions = x;
       break;
     default:
       lsys_rng_seed(key == 5 ? &R->m.rng : &R->m.hrng, seedof(L, 3));

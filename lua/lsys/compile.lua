@@ -9,6 +9,7 @@
 -- condition and without computed values get no closure at all.
 -- @module lsys.compile
 local core = require "lsys.core"
+local codegen = require "lsys.codegen"
 local quote = require("lsys.warning").quote
 
 local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setmetatable,
@@ -89,7 +90,9 @@ local function factorysource (formals, cond, exprs, frees)
   for name in pairs(frees) do ups[#ups + 1] = name end
   table_sort(ups)
   local head = {}
-  for _, name in ipairs(ups) do head[#head + 1] = format("local %s = E[%q];", name, name) end
+  for _, name in ipairs(ups) do
+    head[#head + 1] = format("local %s = E[%s];", name, codegen.string(name))
+  end
   local body = {}
   if cond then
     body[#body + 1] = format("local c_ = (\n%s\n); if c_ ~= true then if not c_ or c_ == 0 " ..

@@ -9,11 +9,12 @@ local compile = require "lsys.compile"
 local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
+local sandbox = require "lsys.sandbox"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      math, string, table, debug, _G, next, os =
+      math, string, table, debug, _G, os =
       type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
-      math, string, table, debug, _G, next, os
+      math, string, table, debug, _G, os
 local format = string.format
 local _ENV = nil
 
@@ -82,31 +83,9 @@ local function islstring (x) return getmetatable(x) == LSTRING_MT end
 M.islstring = islstring
 
 
--- A read-only view of the library table `t`: rule text may come from someone else, and
--- must not change the process's libraries (`math.floor = print`).
-local function readonly (t, name)
-  return setmetatable({}, {
-    __index = t,
-    __newindex = function (_, k)
-      error(format("cannot change %s.%s in a rule expression", name, tostring(k)), 2)
-    end,
-    __pairs = function () return next, t, nil end,
-    __metatable = false,
-  })
-end
-
--- Names usable in rule expressions besides `env`: Lua's math functions
--- (radians, as in Lua), `pi`, and the standard library tables (read-only).
-local BUILTIN = {
-  math = readonly(math, "math"), string = readonly(string, "string"),
-  table = readonly(table, "table"), pi = math.pi, huge = math.huge,
-  abs = math.abs, floor = math.floor, ceil = math.ceil, sqrt = math.sqrt, exp = math.exp,
-  log = math.log, sin = math.sin, cos = math.cos, tan = math.tan, asin = math.asin,
-  acos = math.acos, atan = math.atan, min = math.min, max = math.max, fmod = math.fmod,
-  deg = math.deg, rad = math.rad,
-  type = _G.type, tostring = _G.tostring, tonumber = _G.tonumber, print = _G.print,
-  select = _G.select, error = _G.error, assert = _G.assert, pairs = _G.pairs, ipairs = _G.ipairs,
-}
+-- Names usable in rule expressions besides `env` (lsys.sandbox: no library table of the
+-- process is among them).
+local BUILTIN = sandbox.BUILTIN
 M.BUILTIN = BUILTIN
 
 local OPTIONS = {
@@ -118,7 +97,7 @@ local OPTIONS = {
   max_memory = "size",
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
-  depth_warnings = "any", threads = "number",
+  depth_warnings = "any", threads = "number", max_instructions = "number",
 }
 
 local Model = {}
@@ -328,6 +307,12 @@ function Model:_configure (opts, fail)
     self.max_memory = M.parse_size(opts.max_memory)
     rules:config("max_memory", self.max_memory)
   end
+  if opts.max_instructions then
+    local n = opts.max_instructions
+    if not (n >= 1000) then fail("max_instructions must be a number >= 1000 (or math.huge)") end
+    rules:config("max_instructions", n)
+    self.max_instructions = n
+  end
   local dw = opts.depth_warnings     -- false, or { decomposition = b, homomorphism = b }
   self._depthwarn = { decomposition = dw ~= false, homomorphism = dw ~= false }
   if type(dw) == "table" then
@@ -536,8 +521,11 @@ function Model:_axiomlstring (E)
     if not f then
       error(format("%s: axiom: bad expression '%s': %s", self._where, warning.quote(e), msg), 0)
     end
-    local ok, x = pcall(f)
-    if not ok then error(format("%s: axiom: expression '%s': %s", self._where, e, x), 0) end
+    local ok, x = pcall(self._rules.sandboxed, self._rules, f)    -- axiom text is rule text
+    if not ok then
+      error(format("%s: axiom: expression '%s': %s", self._where, e,
+                   tostring(x):gsub("^axiom:%d+: ", "")), 0)
+    end
     if type(x) ~= "number" or x ~= x or x == 1 / 0 or x == -1 / 0 then
       error(format("%s: axiom: expression '%s' is %s, not a finite number",
                    self._where, e, tostring(x)), 0)

@@ -21,6 +21,7 @@ local viewmod = require "lsys.view"
 local viewfile = require "lsys.viewfile"
 local warning = require "lsys.warning"
 local core = require "lsys.core"
+local codegen = require "lsys.codegen"
 local _ENV = nil
 
 local M = {}
@@ -211,7 +212,7 @@ local function call (T, ctx, e)
   local f, a = e.f, e.args
   if f == "printf" then
     if #a == 0 or a[1].k ~= "str" then fail(T, e.pos, "printf needs a format string first") end
-    local parts = { format("%q", cescapes(a[1].v)) }
+    local parts = { codegen.string(cescapes(a[1].v)) }
     for i = 2, #a do parts[i] = N(T, ctx, a[i]) end
     return fn(ctx, "_printf") .. "(" .. concat(parts, ", ") .. ")", "n"
   end
@@ -568,7 +569,7 @@ local function production (T, ls, p, section, stochastic)
   statements(T, ctx, p.post, out, "  ")
   local tmpl, vals = template(T, ctx, p.succ)
   local v = #vals > 0 and ", " .. concat(vals, ", ") or ""
-  out[#out + 1] = "  return H.produce(" .. format("%q", tmpl) .. v .. ")"
+  out[#out + 1] = "  return H.produce(" .. codegen.string(tmpl) .. v .. ")"
   out[#out + 1] = "end"
   local L = {}
   T.localtables[#T.localtables + 1] = L
@@ -662,7 +663,9 @@ local function hook (T, lsystems, kind)
       statements(T, ctx, ls[kind], out, "  ")
       out[#out + 1] = "end"
       local src = concat(out, "\n")
-      fns[#fns + 1] = compile(T, src, ls[kind][1] and ls[kind][1].pos or ls.pos)(T.env, T.H)
+      local pos = ls[kind][1] and ls[kind][1].pos or ls.pos
+      fns[#fns + 1] = compile(T, src, pos)(T.env, T.H)
+      fns.where = fns.where or format("%s:%d: block", T.P:where(pos))
       if T.keep then T.keep.hooks[#T.keep.hooks + 1] = { kind = kind, src = src } end
     end
   end
@@ -929,14 +932,28 @@ local function translate (P, lsystems, opts)
     if core.producing() then core.srand(x) else T.model:srand(x) end
     return 0.0
   end
+  -- the blocks are the file's code: they run within the model's bounds, as its rules do
+  -- (max_instructions for each block, max_memory; docs/manual.md §4)
+  local function bounded (fs, name)
+    local function run () for _, f in ipairs(fs) do f() end end
+    return function (m)
+      local done, e = pcall(m._rules.sandboxed, m._rules, run)
+      if done then return end
+      if type(e) == "string" and (e:find("^ran more than") or e:find("^needs more than")) then
+        e = format("%s: %s", (fs.where or "?"):gsub("block$", name .. " block"), e)
+      end
+      error(e, 0)
+    end
+  end
+  local startblocks = bounded(starts, "Start")
   o.start = function (m)
     T.model = m
     reset()
-    for _, f in ipairs(starts) do f() end
+    startblocks(m)
   end
-  if #each > 0 then o.start_each = function () for _, f in ipairs(each) do f() end end end
-  if #ends > 0 then o.end_each = function () for _, f in ipairs(ends) do f() end end end
-  if #finish > 0 then o.finish = function () for _, f in ipairs(finish) do f() end end end
+  if #each > 0 then o.start_each = bounded(each, "StartEach") end
+  if #ends > 0 then o.end_each = bounded(ends, "EndEach") end
+  if #finish > 0 then o.finish = bounded(finish, "End") end
   return o, T
 end
 
