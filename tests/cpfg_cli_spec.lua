@@ -233,6 +233,28 @@ describe("lsys import", function ()
     assert.equal("p.lua\n", (H.sh("ls -A " .. dir)))
   end)
 
+  it("runs no text of the .l file (issue 34 §2: a carriage return ended its comment)",
+     function ()
+    local marker = dir .. "/P"
+    local l = dir .. "/evil\ros.exit(3) --\r.l"
+    H.write(l, "/* x\ros.execute(\"touch " .. marker .. "\") --\r */\n#define N 2 /* n\r"
+            .. "os.exit(3) */\nLsystem: 1\nderivation length: 1\nAxiom: A(N)\n"
+            .. "A(x) --> B(x)\nendlsystem\n")
+    local out = dir .. "/evil.lua"
+    local msg, code = lsys("import " .. require("lsys.text").shq(l) .. " -o " .. out)
+    assert.equal(0, code, msg)
+    assert.is_nil(H.read(marker))
+    local text = H.read(out)
+    assert.truthy(text:find("\n-- x\\13os.execute(\"touch " .. marker .. "\") --\n", 1, true),
+                  text)
+    assert.truthy(text:find("the cpfg model evil\\13os.exit(3) --\\13.l,", 1, true), text)
+    assert.is_nil(text:find("\r", 1, true))
+    local got, dcode = lsys("derive " .. out)
+    assert.equal(0, dcode, got)
+    assert.equal("B(2)\n", got)
+    assert.is_nil(H.read(marker))
+  end)
+
   it("names the file and line of an error, and refuses what is not a cpfg model", function ()
     local out, code = lsys("import " .. D .. "errors_syntax.l -o " .. dir .. "/e.lua")
     assert.equal(1, code)

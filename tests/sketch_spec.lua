@@ -244,6 +244,37 @@ describe("models from sketches", function ()
     H.rmdir(d)
   end)
 
+  it("keeps the sketch's file name a comment (issue 34 §2: a carriage return ended it)",
+     function ()
+    local d = H.tmpdir()
+    local marker = d .. "/P"
+    local sk = load()
+    sk.file = "plant\rio.open('" .. marker .. "', 'w') --\r.json"
+    sk:save_model(d .. "/plant.lua", { phyllotaxis = "decussate" })
+    local m = dofile(d .. "/plant.lua")
+    assert.is_nil(H.read(marker))
+    assert.equal(tostring(sk:model { phyllotaxis = "decussate" }:derive()),
+                 tostring(m:derive()))
+    local first = H.read(d .. "/plant.lua"):match("^[^\n]*")
+    assert.equal("-- A plant from the sketch plant\\13io.open('" .. marker .. "', 'w') " ..
+                 "--\\13.json (lsys.sketch, after Anastacio, Prusinkiewicz and Sousa", first)
+    H.rmdir(d)
+  end)
+
+  it("writes the model file whole or not at all (issue 34 §6: ulimit -f truncated it)",
+     function ()
+    local d = H.tmpdir()
+    H.write(d .. "/plant.lua", "-- the good model\n")
+    load():save(d .. "/sk.json")
+    H.write(d .. "/save.lua", "local sk = require('lsys.sketch').load('" .. d .. "/sk.json')\n" ..
+            "print(pcall(sk.save_model, sk, '" .. d .. "/plant.lua'))\n")
+    local out = H.sh("trap '' XFSZ; ulimit -f 4; " .. H.BIN .. " " .. d .. "/save.lua")
+    assert.equal("false\tsave_model: ", out:match("^false\tsave_model: "), out)
+    assert.equal("-- the good model\n", H.read(d .. "/plant.lua"))
+    assert.equal("plant.lua\nsave.lua\nsk.json\n", (H.sh("ls -A " .. d)))
+    H.rmdir(d)
+  end)
+
   it("composes a sketch as the organ of another (§7.2)", function ()
     local outer, inner = load(), load()
     local m = outer:model { organ = inner }

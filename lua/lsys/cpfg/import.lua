@@ -14,11 +14,11 @@ local cpp = require "lsys.cpfg.cpp"
 local model = require "lsys.model"
 local warning = require "lsys.warning"
 local core = require "lsys.core"
+local codegen = require "lsys.codegen"
+local sandbox = require "lsys.sandbox"
 local _ENV = nil
 
 local M = {}
-
-local KEYWORDS = cpfg.LUA_KEYWORDS
 
 -- Numbers ---------------------------------------------------------------------------------
 
@@ -337,7 +337,7 @@ local function body (C, src, ind, L)
   return args, out
 end
 
-local function quote (s) return format("%q", s) end
+local quote = codegen.string      -- every string of the written file, on one line
 
 -- A value of the view as Lua text on one line, or nil when it is long or nested deeply.
 local function inline (x, depth)
@@ -360,19 +360,14 @@ local function inline (x, depth)
     for i, k in ipairs(keys) do
       local v = inline(x[k], depth + 1)
       if not v then return nil end
-      local key = (type(k) == "string" and k:find("^[%a_][%w_]*$") and not KEYWORDS[k]) and k
-                  or "[" .. (type(k) == "string" and quote(k) or tostring(k)) .. "]"
-      parts[i] = key .. " = " .. v
+      parts[i] = codegen.key(k) .. " = " .. v
     end
   end
   local s = "{ " .. concat(parts, ", ") .. " }"
   return #s <= 80 and s or nil
 end
 
-local function viewkey (k)
-  if type(k) == "string" and k:find("^[%a_][%w_]*$") and not KEYWORDS[k] then return k end
-  return "[" .. (type(k) == "string" and quote(k) or tostring(k)) .. "]"
-end
+local viewkey = codegen.key
 
 -- A list of rules: rule strings and { pattern, function } pairs; `head` is what comes
 -- before the table ("productions ="), `close` what ends it ("},").
@@ -488,15 +483,18 @@ local function header (C, W)
     from[#from + 1] = (C.palfile:match("%.mat$") and "materials " or "colour map ")
                       .. base(C.palfile)
   end
-  local what = format("-- %s: the cpfg model %s%s,", base(C.out), base(C.lfile),
+  -- file names and the .l file's comment are text from elsewhere: codegen.comment keeps
+  -- each on its line (a carriage return in one would end the comment and start code)
+  local what = format("%s: the cpfg model %s%s,", base(C.out), base(C.lfile),
                       #from > 0 and " (" .. concat(from, ", ") .. ")" or "")
-  if #what > 72 then
-    W("%s", what:match("^(.-) %(") or what)
-    what = what:match("^.- (%(.*)$") and "-- " .. what:match("^.- (%(.*)$") or "--"
+  if #what > 69 then
+    W("%s", codegen.comment(what:match("^(.-) %(") or what))
+    what = what:match("^.- (%(.*)$") or ""
   end
-  W("%s imported by `lsys import`.", what)
-  W("-- `lsys derive %s` gives the string `lsys derive %s` gives.", base(C.out), base(C.lfile))
-  for _, l in ipairs(C.comment) do W("--%s", l ~= "" and " " .. l or "") end
+  W("%s", codegen.comment((what ~= "" and what .. " " or "") .. "imported by `lsys import`."))
+  W("%s", codegen.comment(format("`lsys derive %s` gives the string `lsys derive %s` gives.",
+                                 base(C.out), base(C.lfile))))
+  for _, l in ipairs(C.comment) do W("%s", codegen.comment(l)) end
   if C.named and C.defines > 0 then
     W("-- The #defines of numbers are env entries, read by name (--set NAME=VALUE changes one).")
   elseif C.why then
@@ -524,7 +522,8 @@ local function envtable (C, W)
       local note = d.notes[n]
       if used(C.texts, n) then
         C.defines = C.defines + 1
-        E("  %s = %s,%s", n, float(d.values[n]), note and note ~= "" and "  -- " .. note or "")
+        E("  %s = %s,%s", codegen.key(n), float(d.values[n]),
+          note and note ~= "" and "  " .. codegen.comment(note) or "")
       end
     end
   end
@@ -763,6 +762,16 @@ end
 -- text will be written to: the view's files are found from there; default lfile with
 -- .lua). Raises the loader's "file:line: message" errors, and "cannot import: ..." for
 -- what the writer does not handle.
+-- What a written file may reach when it loads (codegen.check): lsys.lsystem and
+-- lsys.here, the helpers' table, and the base functions of its top-level code.
+local CHECK = {
+  modules = { lsys = true, ["lsys.cpfg"] = true },
+  calls = { ["lsys.lsystem"] = true, ["lsys.here"] = true },
+  globals = { ipairs = ipairs, pairs = pairs, type = type, tostring = tostring,
+              tonumber = tonumber, error = error, math = sandbox.BUILTIN.math,
+              string = sandbox.BUILTIN.string, table = sandbox.BUILTIN.table },
+}
+
 function M.source (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.import: a file name expected", 2) end
   opts = opts or {}
@@ -819,7 +828,10 @@ function M.source (lfile, vfile, opts)
   for _, l in ipairs(top) do head[#head + 1] = l end
   for _, l in ipairs(lines) do head[#head + 1] = l end
   local text = concat(head, "\n") .. "\n"
-  -- the file must load: a model made from it, here
+  -- the file reaches only what it was written to reach (no text of the .l file became
+  -- code), then it must load: a model made from it, here
+  local ok0, cerr = pcall(codegen.check, text, base(out), CHECK)
+  if not ok0 then error("cannot import: " .. cerr, 0) end
   local chunk, err = load(text, "@" .. out, "t")
   if not chunk then error("cannot import: the written file does not compile: " .. err, 0) end
   local ok, r = pcall(chunk)

@@ -17,9 +17,9 @@ local templates = require "lsys.sketch.templates"
 local model = require "lsys.model"
 
 local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
-      require, string, table, math, io, os =
+      require, string, table, math =
       type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
-      require, string, table, math, io, os
+      require, string, table, math
 local format, concat = string.format, table.concat
 local _ENV = nil
 
@@ -324,7 +324,13 @@ end
 -- Lua source of a number that reads back to the same double.
 local num = require("lsys.text").number
 
-local function quote (s) return format("%q", s) end
+local codegen = require "lsys.codegen"
+local quote = codegen.string
+
+-- What a written model file may reach when it loads (codegen.check).
+local CHECK = { modules = { lsys = true, ["lsys.func"] = true }, globals = { pairs = pairs },
+                calls = { ["lsys.lsystem"] = true, ["lsys.here"] = true,
+                          ["lsys.func.new"] = true } }
 
 --- Writes a Lua model file that builds the same Model (docs/sketch.md, "Models from
 -- sketches"): the functions inline as control points, the rules as text. opts as
@@ -348,10 +354,11 @@ function Sketch:save_model (path, opts)
   end
   local L = {}
   local function w (...) L[#L + 1] = format(...) end
-  w("-- A plant from the sketch %s (lsys.sketch, after Anastacio, Prusinkiewicz and Sousa",
-    self.file or "(a table)")
-  w("-- 2009): the positional functions of §4 and the %s template of §5. Edit freely:",
-    d.phyllotaxis)
+  -- the sketch's file name and names are text from elsewhere: through lsys.codegen
+  w("%s", codegen.comment(format("A plant from the sketch %s (lsys.sketch, after Anastacio, " ..
+                                 "Prusinkiewicz and Sousa", self.file or "(a table)")))
+  w("%s", codegen.comment(format("2009): the positional functions of §4 and the %s template " ..
+                                 "of §5. Edit freely:", d.phyllotaxis)))
   w("-- the functions are clamped cubic B-splines of x in [0, 1] (cpfg's .func form).")
   w("local lsys = require \"lsys\"")
   w("local func = require \"lsys.func\"")
@@ -368,7 +375,8 @@ function Sketch:save_model (path, opts)
     for _, p in ipairs(functions.controls(d.funcs[k])) do
       pts[#pts + 1] = format("{ %s, %s }", num(p[1]), num(p[2]))
     end
-    w("F.%s = func.new { name = %s, points = {", k, quote(k:gsub("^o1_", "")))
+    w("%s = func.new { name = %s, points = {", codegen.index("F", k),
+      quote((k:gsub("^o1_", ""))))
     for i = 1, #pts, 4 do
       w("  %s,", concat(pts, ", ", i, math.min(i + 3, #pts)))
     end
@@ -381,7 +389,7 @@ function Sketch:save_model (path, opts)
   local ks = {}
   for k, v in pairs(d.env) do if type(v) == "number" then ks[#ks + 1] = k end end
   table.sort(ks)
-  for _, k in ipairs(ks) do w("  %s = %s,", k, num(d.env[k])) end
+  for _, k in ipairs(ks) do w("  %s = %s,", codegen.key(k), num(d.env[k])) end
   w("}")
   w("for k, f in pairs(F) do env[k] = f end")
   w("")
@@ -391,7 +399,8 @@ function Sketch:save_model (path, opts)
   w("  axiom = %s,", quote(d.axiom))
   w("  steps = %d,", d.steps)
   w("  env = env,")
-  w("  -- the %s template (Anastacio et al. 2009, §5; lsys.sketch.templates)", d.phyllotaxis)
+  w("  %s", codegen.comment(format("the %s template (Anastacio et al. 2009, §5; " ..
+                                   "lsys.sketch.templates)", d.phyllotaxis)))
   w("  productions = {")
   for _, l in ipairs(d.productions) do w("    %s,", quote(l)) end
   w("  },")
@@ -412,13 +421,11 @@ function Sketch:save_model (path, opts)
   w("  },")
   w("}")
   local text = concat(L, "\n") .. "\n"
-  local tmp = path .. ".tmp"
-  local f, msg = io.open(tmp, "w")
-  if not f then error("save_model: " .. msg, 2) end
-  f:write(text)
-  f:close()
-  local okr, err = os.rename(tmp, path)
-  if not okr then os.remove(tmp); error("save_model: " .. err, 2) end
+  local okc, cerr = pcall(codegen.check, text, path:match("[^/]*$"), CHECK)
+  if not okc then error("save_model: " .. cerr, 2) end
+  -- the C writer: an exclusive temporary beside `path`, checked writes, then the rename
+  local okw, err = pcall(require("lsys.core").write_file, path, text)
+  if not okw then error("save_model: " .. tostring(err), 2) end
   return path
 end
 
