@@ -1723,6 +1723,54 @@ function core.write_file(path, bytes) end
 function core.read_file(path, max) end
 
 -- ---------------------------------------------------------------------------------------------
+-- The writers (csrc/lua/lua_outfile.c): every file the Lua side writes goes through them
+-- (manual §9, "Output files"), whole or absent.
+
+--- A new output for `path` (manual §9): a temporary file made new (O_EXCL) in its folder,
+--- which replaces `path` at `commit` and is removed at `abort`, at an error through a
+--- to-be-closed variable, at collection and at Ctrl-C. Raises `cannot open 'PATH' for
+--- writing: REASON`.
+---@param path string
+---@return lsys.Outfile
+function core.outfile(path) end
+
+---@class lsys.Outfile
+local Outfile = {}
+--- Writes strings or numbers; a failed write removes the temporary file and raises
+--- `cannot write 'PATH': REASON`.
+---@param ... string|number
+---@return lsys.Outfile self
+function Outfile:write(...) end
+--- The file another program (dot, ffmpeg) writes instead of this object: the temporary
+--- file (or the target itself when that is a device). No `write` after it.
+---@return string
+function Outfile:name() end
+--- Flushes, closes and renames the temporary file onto the target; raises `cannot write
+--- 'PATH': REASON` (the target then stays as it was).
+---@return true
+function Outfile:commit() end
+--- Removes the temporary file; the target stays as it was. Idempotent (also `__close`).
+function Outfile:abort() end
+
+--- A new private folder `PARENT/PREFIX-XXXXXX` (mode 0700, a name never used before) for
+--- files that are not outputs. PARENT: `parent`, else `$TMPDIR`, else `/tmp`. Removed with
+--- the files in it by `remove`, `__close`, collection and Ctrl-C. Raises `cannot make a
+--- temporary folder in 'PARENT' (TMPDIR): REASON`.
+---@param parent? string
+---@param prefix? string Default "lsys"; no '/'.
+---@return lsys.Tempdir
+function core.tempdir(parent, prefix) end
+
+---@class lsys.Tempdir
+local Tempdir = {}
+---@return string
+function Tempdir:path() end
+--- Removes the folder and the files and links in it (a link is removed, never followed);
+--- raises `cannot remove the temporary folder 'PATH': REASON`.
+---@return true
+function Tempdir:remove() end
+
+-- ---------------------------------------------------------------------------------------------
 -- Contours, surfaces and textures (csrc/lua/lua_contour.c, lua_surface.c, lua_texture.c):
 -- what `lsys.view.normalize` makes of the files a view names. All are immutable once made;
 -- every method of a closed one raises.

@@ -2,7 +2,8 @@
 ** Atomic output files (outfile.h): a temporary file next to the target,
 ** renamed onto it when complete.
 */
-#define _XOPEN_SOURCE 700       /* realpath, lstat, fchmod, fdopen */
+#define _XOPEN_SOURCE 700       /* realpath, lstat, fchmod, fdopen, mkdtemp, unlinkat */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -149,4 +150,67 @@ void lsys_outfile_abort (lsys_outfile *o) {
   if (o->f != NULL) fclose(o->f);
   if (o->tmp != NULL) unlink(o->tmp);
   release(o);
+}
+
+const char *lsys_outfile_name (const lsys_outfile *o) {
+  if (o->tmp != NULL) return o->tmp;
+  return o->target != NULL ? o->target : o->path;
+}
+
+char *lsys_tempdir_make (const char *parent, const char *prefix, lsys_error *e) {
+  const char *what = "", *sep;
+  size_t n;
+  char *d;
+  if (parent == NULL) {
+    parent = getenv("TMPDIR");
+    what = " (TMPDIR)";
+    if (parent == NULL || parent[0] == '\0') parent = "/tmp", what = "";
+  }
+  if (prefix == NULL || prefix[0] == '\0') prefix = "lsys";
+  if (strchr(prefix, '/') != NULL) {
+    lsys_seterror(e, LSYS_EARG, (size_t)-1, "a temporary folder's prefix must not hold '/', "
+                  "got '%s'", prefix);
+    return NULL;
+  }
+  if (parent[0] == '\0') parent = ".";
+  n = strlen(parent);
+  sep = parent[n - 1] == '/' ? "" : "/";
+  n += strlen(prefix) + 9;
+  if ((d = (char *)LSYS_MALLOC(n)) == NULL) {
+    lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot make a temporary folder: out of memory");
+    return NULL;
+  }
+  snprintf(d, n, "%s%s%s-XXXXXX", parent, sep, prefix);
+  if (mkdtemp(d) == NULL) {
+    int en = errno;
+    LSYS_FREE(d);
+    lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot make a temporary folder in '%s'%s: %s",
+                  parent, what, strerror(en));
+    return NULL;
+  }
+  return d;
+}
+
+int lsys_tempdir_remove (const char *dir) {
+  int err = 0;
+  DIR *d = opendir(dir);
+  if (d != NULL) {
+    int fd = dirfd(d);
+    struct dirent *de;
+    errno = 0;
+    while ((de = readdir(d)) != NULL) {
+      const char *nm = de->d_name;
+      if (strcmp(nm, ".") == 0 || strcmp(nm, "..") == 0) continue;
+      if (unlinkat(fd, nm, 0) != 0) {
+        int en = errno;
+        if ((en == EISDIR || en == EPERM) && unlinkat(fd, nm, AT_REMOVEDIR) == 0) en = 0;
+        if (err == 0) err = en;
+      }
+      errno = 0;
+    }
+    if (errno != 0 && err == 0) err = errno;
+    closedir(d);
+  }
+  if (rmdir(dir) != 0 && err == 0) err = errno;
+  return err;
 }

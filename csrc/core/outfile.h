@@ -48,4 +48,30 @@ int lsys_outfile_commit (lsys_outfile *o, lsys_error *e);
 ** Idempotent; frees what 'o' holds. */
 void lsys_outfile_abort (lsys_outfile *o);
 
+/* The file the bytes go to while 'o' is open: the temporary file, or the
+** target itself when it is written in place. For an output another program
+** writes (Graphviz, ffmpeg): finish 'o' (no bytes of its own), let the
+** program write this file, then commit or abort. The temporary file was
+** made new with O_EXCL in the target's folder, so that name is the
+** program's alone. */
+const char *lsys_outfile_name (const lsys_outfile *o);
+
+/*
+** Temporary folders: made new (mkdtemp: a fresh name, mode 0700, never an
+** existing folder or a planted link) for files that are not outputs (the
+** pictures of an animation, the input of a program).
+*/
+
+/* Makes the folder "PARENT/PREFIX-XXXXXX", PARENT being 'parent' or, when
+** it is NULL, $TMPDIR (/tmp when TMPDIR is unset or empty). Returns its
+** path (LSYS_MALLOC'd, the caller frees it), or NULL with e->msg ("cannot
+** make a temporary folder in '/x' (TMPDIR): No such file or directory"). */
+char *lsys_tempdir_make (const char *parent, const char *prefix, lsys_error *e);
+
+/* Removes the folder 'dir' and the entries in it (files and links, which
+** are removed, never followed; empty folders); nothing below one level.
+** Returns 0, or the errno of the first entry or of the folder that could
+** not be removed (ENOTEMPTY for a folder left with something in it). */
+int lsys_tempdir_remove (const char *dir);
+
 #endif

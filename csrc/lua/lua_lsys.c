@@ -13,6 +13,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsys_open_lstring(L);
   lsys_open_scene(L);
   lsys_open_render(L);
+  lsys_open_outfile(L);
   lsys_open_contour(L);
   lsys_open_surface(L);
   lsys_open_texture(L);

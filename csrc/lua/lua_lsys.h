@@ -26,6 +26,7 @@ void lsys_open_compgeo (lua_State *L); /* lua_compgeo.c: Frames, Cwriter (lsys.c
 void lsys_open_grow (lua_State *L);     /* lua_grow.c: Limbs, limbs (lsys.grow) */
 void lsys_open_population (lua_State *L); /* lua_population.c: population; scene:instance */
 void lsys_open_sandbox (lua_State *L);  /* lua_sandbox.c: sandbox_strings; rules:sandboxed */
+void lsys_open_outfile (lua_State *L);  /* lua_outfile.c: Outfile, Tempdir (atomic writers) */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);

@@ -10,7 +10,9 @@
 ** (BINDIR/../share/lua/5.4 by default), else in the compiled-in install LUADIR.
 **
 ** Errors reaching this file print "lsys: message" (with a traceback when LSYS_DEBUG is set)
-** and exit 1; the exit status is otherwise what lsys.cli's main returns.
+** and exit 1; the exit status is otherwise what lsys.cli's main returns. SIGINT and SIGTERM
+** unwind the Lua code (its writers remove their temporary files), then print "lsys:
+** interrupted" or "lsys: terminated" and end the process by the signal (stopaction).
 */
 #define _XOPEN_SOURCE 700  /* readlink, realpath, isatty, clock_gettime, sigaction */
 #define _DEFAULT_SOURCE    /* struct winsize, TIOCGWINSZ */
@@ -55,6 +57,8 @@ int luaopen_lsys_core (lua_State *L);
 
 static lua_State *globalL = NULL;  /* for the SIGINT handler, as in lua.c */
 static volatile sig_atomic_t interrupted = 0;  /* Ctrl-C at the prompt */
+static volatile sig_atomic_t stopsignal = 0;   /* the SIGINT or SIGTERM ending the program */
+static int ignored[2];                         /* SIGINT, SIGTERM ignored when we started */
 
 
 /* {====================================================================
@@ -104,6 +108,45 @@ static void laction (int i) {
 }
 
 /*
+** Ending the program at SIGINT or SIGTERM (issue 34 §12): the handler sets a hook that
+** raises at every Lua instruction from then on, so no pcall can swallow the interrupt
+** and the program unwinds to main. What it opened is closed on the way (to-be-closed
+** variables, then the finalizers at lua_close): the temporary files of an animation, a
+** graph, an export or a render go, and an output being written keeps its old content.
+** Only instructions count: the __close and __gc methods written in C (those of the
+** writers) run whole. main then ends the process by the same signal (status 130 or 143
+** as a shell shows it). A C loop that does not come back to Lua (a long step) finishes
+** first; a second signal ends the process at once.
+*/
+static void stophook (lua_State *L, lua_Debug *ar) {
+  (void)ar;
+  lua_pushstring(L, stopsignal == SIGTERM ? "terminated" : "interrupted");
+  lua_error(L);
+}
+
+static void stopaction (int sig) {
+  stopsignal = sig;
+  signal(sig, SIG_DFL);
+  lua_sethook(globalL, stophook, LUA_MASKCOUNT, 1);
+}
+
+/* Installs stopaction for SIGINT and SIGTERM, except for a signal that was ignored when
+** the program started (a background job's SIGINT, nohup): that one stays ignored. */
+static void setstop (int which) {
+  static const int sigs[2] = {SIGINT, SIGTERM};
+  int k;
+  for (k = 0; k < 2; k++) {
+    struct sigaction sa;
+    if (which != 0 && sigs[k] != which) continue;
+    memset(&sa, 0, sizeof sa);
+    sigemptyset(&sa.sa_mask);
+    sa.sa_handler = ignored[k] ? SIG_IGN : stopaction;
+    sa.sa_flags = SA_RESTART;
+    sigaction(sigs[k], &sa, NULL);
+  }
+}
+
+/*
 ** The SIGINT handler at the prompt: notes the Ctrl-C and, inside readline, ends the line
 ** being edited (readline calls it after restoring the terminal; l_readline then discards
 ** the line). Without readline it interrupts the read, which returns with EINTR.
@@ -116,24 +159,49 @@ static void promptaction (int i) {
 #endif
 }
 
+/* SIGTERM at the prompt: the program ends (stopaction), and the line being read is
+** abandoned as at Ctrl-C, so that the REPL comes back to Lua, where the hook raises. */
+static void stopprompt (int i) {
+  stopaction(i);
+  promptaction(i);
+}
+
+/* Removes the REPL's hook, unless the program is ending (a signal may come meanwhile). */
+static void clearhook (lua_State *L) {
+  lua_sethook(L, NULL, 0, 0);
+  if (stopsignal) lua_sethook(L, stophook, LUA_MASKCOUNT, 1);
+}
+
 /*
 ** interrupt(mode): true while the REPL evaluates: Ctrl-C raises "interrupted!" in the
-** running Lua code instead of killing the process (C loops that do not call back into Lua
+** running Lua code instead of ending the program (C loops that do not call back into Lua
 ** finish first). "prompt" while it waits for a line: Ctrl-C abandons the line (see
-** interrupted()). false or nil: Ctrl-C ends the process again.
+** interrupted()), SIGTERM ends the program without waiting for the line. false or nil:
+** Ctrl-C ends the program again (stopaction). Nothing changes once the program is ending.
 */
 static int host_interrupt (lua_State *L) {
   static const char *const modes[] = {"prompt", NULL};
   struct sigaction sa;
   int on = lua_toboolean(L, 1);
   int prompt = lua_type(L, 1) == LUA_TSTRING && luaL_checkoption(L, 1, NULL, modes) == 0;
+  if (stopsignal) return 0;
   globalL = L;
+  if (!on) {
+    setstop(0);
+    clearhook(L);
+    return 0;
+  }
   memset(&sa, 0, sizeof sa);
   sigemptyset(&sa.sa_mask);
-  sa.sa_handler = prompt ? promptaction : on ? laction : SIG_DFL;
+  sa.sa_handler = prompt ? promptaction : laction;
   sa.sa_flags = prompt ? 0 : SA_RESTART;  /* a read at the prompt returns on Ctrl-C */
   sigaction(SIGINT, &sa, NULL);
-  if (!on || prompt) lua_sethook(L, NULL, 0, 0);
+  if (prompt && !ignored[1]) {
+    sa.sa_handler = stopprompt;
+    sigaction(SIGTERM, &sa, NULL);
+  }
+  else setstop(SIGTERM);
+  if (prompt) clearhook(L);
   return 0;
 }
 
@@ -346,7 +414,7 @@ static int l_set_complete (lua_State *L) {
 static int idlehook (void) {
   lua_State *L = idleL;
   int redraw = 0;
-  if (L == NULL) return 0;
+  if (L == NULL || stopsignal) return 0;   /* ending: the line is being abandoned */
   if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.idle") != LUA_TFUNCTION) {
     lua_pop(L, 1);
     return 0;
@@ -607,6 +675,21 @@ static int pmain (lua_State *L) {
   return 1;
 }
 
+/* The end of a program stopped by SIGINT or SIGTERM: the finalizers run (with no hook:
+** they are cleaning up), the message is printed, then the process ends by the signal,
+** as a shell expects of a program that was interrupted. */
+static int stopped (lua_State *L) {
+  int sig = stopsignal;
+  lua_sethook(L, NULL, 0, 0);
+  lua_close(L);
+  fflush(stdout);
+  fprintf(stderr, "lsys: %s\n", sig == SIGTERM ? "terminated" : "interrupted");
+  fflush(stderr);
+  signal(sig, SIG_DFL);
+  raise(sig);
+  return 128 + sig;
+}
+
 int main (int argc, char **argv) {
   lua_State *L;
   int status, code;
@@ -622,11 +705,19 @@ int main (int argc, char **argv) {
     fputs("lsys: cannot create the Lua state: not enough memory\n", stderr);
     return EXIT_FAILURE;
   }
+  globalL = L;
+  {
+    struct sigaction old;
+    ignored[0] = sigaction(SIGINT, NULL, &old) == 0 && old.sa_handler == SIG_IGN;
+    ignored[1] = sigaction(SIGTERM, NULL, &old) == 0 && old.sa_handler == SIG_IGN;
+  }
+  setstop(0);
   lua_gc(L, LUA_GCSTOP);  /* stop the collector while building the state */
   lua_pushcfunction(L, pmain);
   lua_pushinteger(L, argc);
   lua_pushlightuserdata(L, argv);
   status = lua_pcall(L, 2, 1, 0);
+  if (stopsignal) return stopped(L);
   if (status == LUA_OK) {
     code = (int)lua_tointeger(L, -1);
   }

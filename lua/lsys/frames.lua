@@ -252,31 +252,46 @@ local function ffmpeg_args (fmt, input, fps, hold, part)
   return args
 end
 
+-- f(...), raising its error with `who` in front (`level`: error's level as the function
+-- calling this one would give it).
+local function checked (who, level, f, ...)
+  local ok, r = pcall(f, ...)
+  if not ok then error(format("%s: %s", who, tostring(r)), level > 0 and level + 1 or 0) end
+  return r
+end
+
+-- A new output for the file `out` (core.outfile), or an error blaming the caller of the
+-- caller: "who: cannot write 'out': why".
+local function outfile (who, out)
+  local ok, o = pcall(core.outfile, out)
+  if not ok then
+    error(format("%s: cannot write '%s': %s", who, out, tostring(o):match(": ([^:]*)$")
+      or tostring(o)), 3)
+  end
+  return o
+end
+
+-- `p` as a program's argument that is a file: never an option (-x) nor a protocol (x:).
+local function filearg (p)
+  return p:sub(1, 1) == "/" and p or "./" .. p
+end
+
 -- Runs `prog args...`; returns true, or false and the last lines it printed and how it
 -- ended.
 local function run (prog, args)
   local words = { shq(prog) }
   for i, a in ipairs(args) do words[i + 1] = shq(a) end
-  local p = io.popen(table.concat(words, " ") .. " 2>&1", "r")
-  local text = p:read("a")
+  local p, perr = io.popen(table.concat(words, " ") .. " 2>&1", "r")
+  if p == nil then return false, "", "not started: " .. tostring(perr) end
+  local text, rerr = p:read("a")
   local ok, how, code = p:close()
-  if ok then return true end
+  if ok and text ~= nil then return true end
+  if text == nil then return false, "", "its output unread: " .. tostring(rerr) end
   local lines = {}
   for l in text:gmatch("[^\n]+") do lines[#lines + 1] = l end
   local tail = table.concat(lines, "\n", math.max(1, #lines - 4))
   return false, tail, how == "signal" and "signal " .. tostring(code) or "exit " ..
     tostring(code)
-end
-
-local tmpcount = 0
-
--- A new empty folder for the pictures of an animation.
-local function tmpfolder (who)
-  local name = os.tmpname()
-  os.remove(name)
-  local ok, err = core.mkdir(name)
-  if not ok then error(format("%s: %s", who, err), 0) end
-  return name
 end
 
 --- Writes an animation of model `m` growing: one frame per derivation step (or every K-th
@@ -322,38 +337,23 @@ function M.animate (m, opts)
   local fopts = {}
   for k, v in pairs(opts) do if COMMON[k] then fopts[k] = v end end
   fopts.width, fopts.height = w, h
-  tmpcount = tmpcount + 1
-  local part = format("%s.lsys-%d-%d.part", out, os.time(), tmpcount)
-  local pf, perr = io.open(part, "wb")   -- a folder that is missing: said before any drawing
-  if pf == nil then
-    error(format("lsys.animate: cannot write '%s': %s", out,
-      tostring(perr):match(": ([^:]*)$") or tostring(perr)), 2)
+  -- the video: a new file beside `out` (core.outfile: made with O_EXCL, so never a planted
+  -- link), which ffmpeg writes and which replaces `out` once it succeeded; the pictures: a
+  -- new private folder under TMPDIR. Both go at an error or an interrupt (their __close).
+  local video <close> = outfile(who, out)   -- a missing folder: said before any drawing
+  local dir <close> = checked(who, 2, core.tempdir, nil, "lsys-frames")
+  local pictures = filearg(dir:path()) .. "/frame-%06d.png"
+  local files = series(who, m, fopts, function (i) return format(pictures, i) end)
+  if opts.progress then opts.progress("encode", 0, 1, out) end
+  local rok, tail, how = run(prog, ffmpeg_args(fmt, pictures, fps, hold,
+                                               checked(who, 0, video.name, video)))
+  if not rok then
+    error(format("%s: %s failed (%s) writing '%s'%s", who, prog, how, out,
+      tail ~= "" and ":\n" .. tail or ""), 0)
   end
-  pf:close()
-  local dir = tmpfolder(who)
-  local drawn = {}                     -- removed afterwards, even when one fails
-  local ok, err = pcall(function ()
-    series(who, m, fopts, function (i)
-      drawn[i] = format("%s/frame-%06d.png", dir, i)
-      return drawn[i]
-    end)
-    if opts.progress then opts.progress("encode", 0, 1, out) end
-    local rok, tail, how = run(prog, ffmpeg_args(fmt, dir .. "/frame-%06d.png", fps, hold,
-                                                 part))
-    if not rok then
-      error(format("%s: %s failed (%s) writing '%s'%s", who, prog, how, out,
-        tail ~= "" and ":\n" .. tail or ""), 0)
-    end
-    local mok, merr = os.rename(part, out)
-    if not mok then error(format("%s: cannot write '%s': %s", who, out, tostring(merr)), 0) end
-  end)
-  for _, f in ipairs(drawn) do os.remove(f) end
-  os.remove(dir)
-  if not ok then
-    os.remove(part)
-    error(err, 0)
-  end
-  return out, #drawn, w, h
+  checked(who, 0, video.commit, video)
+  checked(who, 0, dir.remove, dir)
+  return out, #files, w, h
 end
 
 -- }===========================================================================================

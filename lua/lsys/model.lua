@@ -754,6 +754,7 @@ local scene_views = setmetatable({}, { __mode = "k" })   -- scene -> its normali
 -- returns an lsys.Scene. `over` replaces fields of the model's view for this call;
 -- `over.records = false` leaves out the turtle records (less memory for big exports).
 function Model:interpret (s, over)
+  self:_idle("interpret")          -- before deriving: the message names what was called
   if s == nil then s = self:derive()
   elseif type(s) == "string" then s = self:lstring(s) end
   if not islstring(s) then error("interpret: an Lstring expected", 2) end
@@ -764,7 +765,6 @@ function Model:interpret (s, over)
     over = view.merge(over, nil)
     over.records = nil
   end
-  self:_idle("interpret")
   self:_threads("interpret")
   local v = self:_view(over)
   self:_bind()

@@ -14,7 +14,6 @@
 local type, pairs, ipairs, tostring, tonumber, pcall, error, select, require =
       type, pairs, ipairs, tostring, tonumber, pcall, error, select, require
 local io, os, string, table, math = io, os, string, table, math
-local shq = require("lsys.text").shq
 local format, abs, max, min = string.format, math.abs, math.max, math.min
 local _ENV = nil
 
@@ -421,9 +420,18 @@ local function picture (x, opts)
   return px, pw, ph
 end
 
+-- Makes the folder of `path` and the ones above it that are missing; raises naming the one
+-- that cannot be made.
 local function mkdir_for (path)
   local dir = path:match("^(.*)/[^/]*$")
-  if dir and dir ~= "" then os.execute("mkdir -p " .. shq(dir)) end
+  if dir == nil or dir == "" then return end
+  local sofar = dir:sub(1, 1) == "/" and "/" or ""
+  for seg in dir:gmatch("[^/]+") do
+    sofar = sofar .. seg
+    local ok, err = core().mkdir(sofar)
+    if not ok then error(err, 0) end
+    sofar = sofar .. "/"
+  end
 end
 
 local function write_png (path, px, w, h)

@@ -14,9 +14,10 @@
 --   graph.render(root, path [, opts]) -> path     .dot/.gv as text; .png/.svg/.pdf via `dot`
 --   graph.quote(s) -> s quoted for a POSIX shell
 -- @module lsys.components.graph
+local core = require "lsys.core"
 local shq = require("lsys.text").shq
-local type, pairs, ipairs, error, tostring = type, pairs, ipairs, error, tostring
-local io, os, math, string, table, utf8 = io, os, math, string, table, utf8
+local type, pairs, ipairs, error, tostring, pcall = type, pairs, ipairs, error, tostring, pcall
+local io, math, string, table, utf8 = io, math, string, table, utf8
 local format, byte, concat, sort = string.format, string.byte, table.concat, table.sort
 local _ENV = nil
 
@@ -409,32 +410,36 @@ end
 
 local FORMATS = { dot = "dot", gv = "dot", png = "png", svg = "svg", pdf = "pdf" }
 
-local function write_file (path, text)
-  local f, err = io.open(path, "wb")
-  if f == nil then return nil, err end
-  local ok, werr = f:write(text)
-  local cok, cerr = f:close()
-  if not ok or not cok then
-    os.remove(path)
-    return nil, format("cannot write '%s': %s", path, tostring(werr or cerr))
-  end
-  return true
+-- A path given to a program as a file: never read as an option (-x).
+local function filearg (p)
+  return p:sub(1, 1) == "/" and p or "./" .. p
 end
 
-local tmp_count = 0
-
--- The text dot printed and its exit code for `dot -T<fmt> -o out in` ('prog' the program).
+-- The text dot printed and whether it succeeded ("exit", code as io.popen's close) for
+-- `dot -T<fmt> -o out in` ('prog' the program).
 local function run_dot (prog, fmt, outp, inp)
-  local cmd = format("%s -T%s -o %s %s 2>&1", M.quote(prog), fmt, M.quote(outp), M.quote(inp))
-  local p = io.popen(cmd, "r")
-  local msg = p:read("a")
-  local _, _, code = p:close()
-  return msg, code
+  local cmd = format("%s -T%s -o %s %s 2>&1", M.quote(prog), fmt, M.quote(filearg(outp)),
+                     M.quote(filearg(inp)))
+  local p, perr = io.popen(cmd, "r")
+  if p == nil then return "cannot start it: " .. tostring(perr), "exit", -1 end
+  local msg, rerr = p:read("a")
+  local _, how, code = p:close()
+  if msg == nil then return "cannot read what it printed: " .. tostring(rerr), how, code end
+  return msg, how, code
+end
+
+-- f(...), raising its error as graph.render's (level 3: the caller of render).
+local function checked (f, ...)
+  local ok, r = pcall(f, ...)
+  if not ok then error("graph.render: " .. tostring(r), 3) end
+  return r
 end
 
 --- Writes the p-graph from `root` to `path`: the DOT text for .dot or .gv, a picture for
 -- .png, .svg or .pdf through Graphviz's `dot` (opts.dot: the program, default "dot"). The
--- file appears whole or not at all (written aside, then renamed). Returns path.
+-- file appears whole or not at all (lsys.core's writer: written aside, then renamed; dot
+-- writes a new file beside `path`, its input is in a private folder under TMPDIR).
+-- Returns path.
 function M.render (root, path, opts)
   opts = check_opts(opts, "render")
   if type(path) ~= "string" then
@@ -450,37 +455,30 @@ function M.render (root, path, opts)
   for k, v in pairs(opts) do if k ~= "dot" then dopts[k] = v end end
   local text, err = build(root, dopts)
   if text == nil then error("graph.render: " .. err, 2) end
-  tmp_count = tmp_count + 1
-  local part = format("%s.%d-%d.part", path, os.time(), tmp_count)
   if fmt == "dot" then
-    local ok, werr = write_file(part, text)
-    if not ok then error(format("graph.render: %s", werr), 2) end
-  else
-    local prog = opts.dot or "dot"
-    if type(prog) ~= "string" or prog == "" then
-      error("graph.render: option 'dot' must be the name or path of the dot program", 2)
-    end
-    M.quote(path)           -- raises on a path the shell should not see
-    local src = os.tmpname()
-    local ok, werr = write_file(src, text)
-    if not ok then os.remove(src) error(format("graph.render: %s", werr), 2) end
-    local msg, code = run_dot(prog, fmt, part, src)
-    os.remove(src)
-    if code ~= 0 then
-      os.remove(part)
-      if code == 127 or code == 126 then
-        error("graph.render: Graphviz's dot is not installed (Debian: apt-get install "
-          .. "graphviz); write .dot instead", 2)
-      end
-      error(format("graph.render: dot failed (exit %s) writing '%s': %s", tostring(code), path,
-        (msg:gsub("%s+$", ""))), 2)
-    end
+    checked(core.write_file, path, text)
+    return path
   end
-  local ok, rerr = os.rename(part, path)
-  if not ok then
-    os.remove(part)
-    error(format("graph.render: cannot write '%s': %s", path, tostring(rerr)), 2)
+  local prog = opts.dot or "dot"
+  if type(prog) ~= "string" or prog == "" then
+    error("graph.render: option 'dot' must be the name or path of the dot program", 2)
   end
+  M.quote(path)           -- raises on a path the shell should not see
+  local out <close> = checked(core.outfile, path)
+  local dir <close> = checked(core.tempdir, nil, "lsys-graph")
+  local src = dir:path() .. "/graph.dot"
+  checked(core.write_file, src, text)
+  local msg, how, code = run_dot(prog, fmt, checked(out.name, out), src)
+  if how ~= "exit" or code ~= 0 then
+    if how == "exit" and (code == 127 or code == 126) then
+      error("graph.render: Graphviz's dot is not installed (Debian: apt-get install "
+        .. "graphviz); write .dot instead", 2)
+    end
+    error(format("graph.render: dot failed (%s %s) writing '%s': %s", tostring(how),
+      tostring(code), path, (msg:gsub("%s+$", ""))), 2)
+  end
+  checked(out.commit, out)
+  checked(dir.remove, dir)
   return path
 end
 
