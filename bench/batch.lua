@@ -2,7 +2,8 @@
 -- rendered to 256x256 PNG pictures, in one process and as 2 shards under GNU parallel
 -- (`parallel -j2 lsys batch SPEC --shard {}/2 ::: 1 2`), and whether both give the same bytes.
 --
---   build/bin/lsys bench/batch.lua [JOBS]
+--   build/bin/lsys bench/batch.lua [JOBS]     # both parts
+--   build/bin/lsys bench/batch.lua stream     # the second part only
 --
 -- The plant: a stochastic bracketed plant of about 1,000 modules (8 steps) drawn as
 -- 6-sided cylinders, swept over 10 values of its branching angle with JOBS / 10 seeded
@@ -13,10 +14,20 @@
 --   batch 2 shards (GNU parallel -j2): 1000 jobs in 5.30 s, 188.7 jobs/s
 --   batch ratio 2 shards / 1 process: 1.85; the same bytes: yes
 -- Without GNU parallel (Debian package parallel) it says so and times one process only.
+--
+-- Then a sweep of 10^6 jobs (issue 34 §9: expanded in memory, its `--list` took 2.26 GB and
+-- 115 s): the CPU time, wall-clock time and peak memory (VmHWM) of a fresh `lsys batch`
+-- process for `--list` of every job (printed to /dev/null), `--list` of shard 1/100, a run
+-- of shard 1/20 (50,000 jobs that derive a 1-module plant and write its L-string, into a
+-- fresh folder), the same again and its `--list` (every job done: the manifest read back,
+-- each job's line and file checked), and `--list` of shard 1000/1000 of a sweep whose
+-- template has no {id} (every job's path checked when the spec is read). Prints lines for scripts:
+--   batch stream --list 1000000 jobs: 12.2 s CPU, 38.8 s wall, peak 4.9 MiB
 
 local B = dofile(((arg and arg[0] or "bench/batch.lua"):match("^(.*)/[^/]*$") or ".")
                  .. "/common.lua")
 B.load_lsys()
+local STREAM_ONLY = arg and arg[1] == "stream"
 local JOBS = math.tointeger(tonumber(arg and arg[1])) or 1000
 local RUNS = 2
 
@@ -72,25 +83,76 @@ local function best (name, cmd)
   return t
 end
 
-print(("batch: %d jobs (%d-module plants, 256x256 PNG), %s, best of %d"):format(njobs,
-  (function ()
-    local m = dofile(dir .. "/plant.lua")
-    return #m:derive()
-  end)(), B.clock_name, RUNS))
-local one = best("one", q(BIN) .. " batch spec.lua -o OUT")
-print(("batch 1 process: %d jobs in %.2f s, %.1f jobs/s"):format(njobs, one, njobs / one))
-if (sh("command -v parallel")) == "" then
-  print("batch 2 shards: GNU parallel is not installed (Debian: apt-get install parallel); "
-    .. "one process only")
-else
-  local two = best("two", "parallel -j2 " .. q(BIN) .. " batch spec.lua -o OUT --shard {}/2 "
-    .. "::: 1 2")
-  print(("batch 2 shards (GNU parallel -j2): %d jobs in %.2f s, %.1f jobs/s"):format(njobs,
-    two, njobs / two))
-  local diff = sh("cd " .. q(dir) .. " && diff -r -q -x 'manifest*' one-1 two-1")
-  print(("batch ratio 2 shards / 1 process: %.2f; the same bytes: %s"):format(one / two,
-    diff == "" and "yes" or "NO\n" .. diff))
+if not STREAM_ONLY then
+  print(("batch: %d jobs (%d-module plants, 256x256 PNG), %s, best of %d"):format(njobs,
+    (function ()
+      local m = dofile(dir .. "/plant.lua")
+      return #m:derive()
+    end)(), B.clock_name, RUNS))
+  local one = best("one", q(BIN) .. " batch spec.lua -o OUT")
+  print(("batch 1 process: %d jobs in %.2f s, %.1f jobs/s"):format(njobs, one, njobs / one))
+  if (sh("command -v parallel")) == "" then
+    print("batch 2 shards: GNU parallel is not installed (Debian: apt-get install parallel); "
+      .. "one process only")
+  else
+    local two = best("two", "parallel -j2 " .. q(BIN) .. " batch spec.lua -o OUT --shard {}/2 "
+      .. "::: 1 2")
+    print(("batch 2 shards (GNU parallel -j2): %d jobs in %.2f s, %.1f jobs/s"):format(njobs,
+      two, njobs / two))
+    local diff = sh("cd " .. q(dir) .. " && diff -r -q -x 'manifest*' one-1 two-1")
+    print(("batch ratio 2 shards / 1 process: %.2f; the same bytes: %s"):format(one / two,
+      diff == "" and "yes" or "NO\n" .. diff))
+  end
 end
+
+-- {===== a sweep of 10^6 jobs, streamed
+
+write(dir .. "/one.lua", [[
+return require("lsys").lsystem { axiom = "A", steps = 1, env = { a = 1, b = 1, c = 1 },
+                                 productions = "A --> F" }
+]])
+local SWEEP = [[
+local v, w = {}, {}
+for i = 1, 100 do v[i], w[i] = i, i / 4 end
+return { model = "one.lua", seed = 9, vary = { a = v, b = v, c = w }, outputs = { %s } }
+]]
+write(dir .. "/big.lua", SWEEP:format('"s/{a}/{id}.txt"'))
+write(dir .. "/noid.lua", SWEEP:format('"s/{a}/{b}/{c}.txt"'))
+-- `lsys batch ARGS` run by the program in a fresh process that reports its times and peak
+write(dir .. "/measure.lua", [[
+local clock = require("lsys.program").host().clock
+local t0, c0 = clock(), os.clock()
+local code = require("lsys.cli").main(table.unpack(arg))
+local f = io.open("/proc/self/status", "r")
+local peak = f and f:read("a"):match("VmHWM:%s*(%d+)")
+if f then f:close() end
+io.stderr:write(("MEASURE exit=%d cpu=%.3f wall=%.3f peak_kib=%s\n"):format(code,
+  os.clock() - c0, clock() - t0, peak or "-1"))
+]])
+local function measure (what, args)
+  local text, code = sh("cd " .. q(dir) .. " && " .. q(BIN) .. " measure.lua batch " .. args
+    .. " >/dev/null")
+  local cpu, wall, peak = text:match("MEASURE exit=0 cpu=(%S+) wall=(%S+) peak_kib=(%S+)")
+  if code ~= 0 or not cpu then
+    io.stderr:write(text)
+    error(("batch stream %s failed (exit %s)"):format(what, tostring(code)))
+  end
+  print(("batch stream %s: %.2f s CPU, %.2f s wall, peak %s"):format(what, tonumber(cpu),
+    tonumber(wall), tonumber(peak) >= 0 and ("%.1f MiB"):format(tonumber(peak) / 1024)
+    or "unknown (no /proc/self/status)"))
+end
+print("batch stream: a sweep of 1000000 jobs (100 x 100 x 100), a fresh process each")
+measure("--list 1000000 jobs", "big.lua -o out --list")
+measure("--list --shard 1/100 (10000 jobs)", "big.lua -o out --list --shard 1/100")
+measure("run --shard 1/20 (50000 jobs)", "big.lua -o out --shard 1/20")
+measure("run --shard 1/20 again (all done: 50000 manifest lines)", "big.lua -o out --shard 1/20")
+measure("--list --shard 1/20 (all done)", "big.lua -o out --list --shard 1/20")
+measure("--list --shard 1000/1000, no {id} (every path checked)",
+  "noid.lua -o out --list --shard 1000/1000")
+print("(before issue 34 §9: --list of 1000000 jobs took 2.26 GB and 115 s)")
+
+-- }=====
+
 local cores = sh("nproc"):match("%d+")
 print(("(%s cores; each process derives and renders one job at a time)"):format(cores or "?"))
 os.execute("rm -rf " .. q(dir))

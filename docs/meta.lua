@@ -2444,6 +2444,7 @@ function testing.match_golden(x, golden, opts) end
 ---@class lsys.batch
 ---@field SIZE integer A picture's width and height when the spec gives none (800).
 ---@field MAX_SIZE integer The largest picture width and height (16384).
+---@field MAX_JOBS integer The most jobs a spec may make (10^9); more is an error that gives the count.
 lsys.batch = {}
 
 --- A job of a spec, as `lsys.batch.jobs` returns it.
@@ -2459,21 +2460,25 @@ lsys.batch = {}
 ---@field width? integer Picture width (nil: 800).
 ---@field height? integer Picture height (nil: 800).
 ---@field params table<string, number> The model variables it sets (`model.env`).
----@field outputs { format: "png"|"glb"|"obj"|"ply"|"lstring"|"stats", path: string }[] Relative to the output folder.
+---@field outputs { format: "png"|"glb"|"obj"|"ply"|"lstring"|"stats", path: string }[] Inside the output folder, relative to it, normalized (no ".", ".." or empty segment).
 ---@field rep? integer The replicate of a sweep with `replicates`.
 ---@field status? "done"|"failed"|"todo" From `lsys.batch.plan`.
 
 --- The jobs of `spec`: a CSV file (.csv), a Lua file (.lua) returning a spec table, or a
 --- spec table (`dir`: the folder its model paths are relative to, default "."). Returns
---- them and { file, dir, total }. Raises naming the spec's file and line (`plants.csv:7:
---- column 'R': 'abc' is not a number`) or field (`sweep.lua: vary.R[2]: ...`).
+--- them and { file, dir, total }: a list that makes job n when it is read (`jobs[n]`,
+--- `#jobs`, `ipairs`), a new table each time, and holds none. Raises naming the spec's file
+--- and line (`plants.csv:7: column 'R': 'abc' is not a number`) or field (`sweep.lua:
+--- vary.R[2]: ...`): a bad value, an output that leaves the output folder, two jobs that
+--- write one file, more jobs than `lsys.batch.MAX_JOBS`.
 ---@param spec string|table
 ---@return lsys.batch.Job[] jobs
 ---@return { file?: string, dir: string, total: integer } info
 function lsys.batch.jobs(spec) end
 
 --- What `lsys.batch.run(spec, opts)` would do, running nothing: this shard's jobs, each
---- with its `status`, and `total`, `k`, `n`, `dir`, `manifest`, `file`.
+--- with its `status` (made when read, as those of `lsys.batch.jobs`), and `total`, `k`, `n`,
+--- `dir`, `manifest`, `file`.
 ---@param spec string|table
 ---@param opts? lsys.batch.RunOptions
 ---@return { jobs: lsys.batch.Job[], total: integer, k: integer, n: integer, dir: string, manifest: string, file?: string }
@@ -2483,12 +2488,15 @@ function lsys.batch.plan(spec, opts) end
 ---@field out? string The output folder (made when missing; default "."), with the manifest.
 ---@field shard? string|integer[] "K/N", "slurm" or { K, N }: the jobs n with (n - 1) % N == K - 1.
 ---@field force? boolean Run the jobs that are done as well.
----@field progress? fun(ev: { phase: "start"|"job"|"end", jobs: integer, todo: integer, done: integer, ok: integer, failed: integer, skipped: integer, seconds: number, job?: lsys.batch.Job, record?: table })
+---@field progress? fun(ev: { phase: "start"|"job"|"end", jobs: integer, todo: integer, done: integer, ok: integer, failed: integer, skipped: integer, removed: integer, seconds: number, job?: lsys.batch.Job, record?: table })
 
 --- Runs the jobs of `spec` (all, or one shard's), skipping those done, and appends a JSON
 --- line per job to the shard's manifest (DIR/manifest.jsonl or DIR/manifest-K-of-N.jsonl).
---- A failing job is recorded and the others run. Returns { jobs, ok, failed, skipped,
---- seconds, manifest, failures = { { id, where, error } }, k, n, total }.
+--- A failing job is recorded and the others run; a job that would write through a symbolic
+--- link of the output folder fails. The temporaries dead runs left of the shard's files are
+--- removed first (`removed`). Returns { jobs, ok, failed, skipped, removed, seconds,
+--- manifest, failures = { { id, where, error } }, k, n, total }. Raises when the manifest
+--- cannot be written.
 ---@param spec string|table
 ---@param opts? lsys.batch.RunOptions
 ---@return table result

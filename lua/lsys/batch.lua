@@ -10,6 +10,12 @@
 -- records each job that ran; a job whose files and manifest line say it was done is skipped
 -- on the next run, so a run that was killed goes on where it stopped. A job that fails is
 -- recorded with its message and the others go on.
+--
+-- Nothing holds every job (issue 34 §9): a spec is a source whose job n is made from n when
+-- it is needed, so a listing, a shard and a resumed run take memory that does not grow with
+-- the spec's jobs and time in proportion to the jobs they touch. Outputs are paths inside
+-- the output folder, normalized before they are compared, written through no symbolic link
+-- of the folder (§17); a run removes the temporaries dead runs left of its files (§12).
 -- @module lsys.batch
 local core = require "lsys.core"
 local shortest, shq = require("lsys.text").number, require("lsys.text").shq
@@ -98,7 +104,7 @@ for i, k in ipairs { "run", "job", "status", "line", "model", "name", "seed", "s
                      "params", "width", "height", "outputs", "format", "path", "bytes",
                      "mtime", "modules", "counts", "triangles", "vertices", "lines", "area",
                      "bounds", "min", "max", "seconds", "phases", "error", "shard", "jobs",
-                     "todo", "ok", "failed", "skipped", "spec", "at", "host", "lsys" } do
+                     "todo", "removed", "ok", "failed", "skipped", "spec", "at", "host", "lsys" } do
   KEY_ORDER[k] = i
 end
 local function keyless (a, b)
@@ -226,21 +232,11 @@ end
 -- {===========================================================================================
 -- CSV (RFC 4180)
 
---[[
-Parses the CSV text `text` of the file `name`: fields separated by commas, records by CRLF
-or LF; a field in double quotes may hold commas, line breaks and quotes written twice ("").
-Spaces around an unquoted field are dropped; a UTF-8 byte order mark at the start is
-skipped; empty lines are skipped. Returns the records, each a list of fields with `line`, the
-line it begins on. Raises "name:line: ..." for a quote left open (the line it opens on), text
-after a closing quote, and a quote inside an unquoted field.
-]]
-function M.csv (text, name)
-  if type(text) ~= "string" or type(name) ~= "string" then
-    error("lsys.batch.csv: the text and the file's name must be strings", 2)
-  end
-  local rows = {}
-  local i, len, line = 1, #text, 1
-  if text:sub(1, 3) == "\239\187\191" then i = 4 end
+-- The next record of the CSV text `text` of the file `name` from byte `i`, on line `line`
+-- (blank lines skipped): the record (a list of fields with `line`), and the byte and line
+-- after it; nil when the text ends. Raises as M.csv.
+local function csv_record (text, i, line, name)
+  local len = #text
   local function fail (l, msg) error(format("%s:%d: %s", name, l, msg), 0) end
   while i <= len do
     local row, blank = { line = line }, true
@@ -296,9 +292,35 @@ function M.csv (text, name)
         break
       end
     end
-    if not blank then rows[#rows + 1] = row end
+    if not blank then return row, i, line end
   end
-  return rows
+  return nil, i, line
+end
+
+-- Where the records of CSV text begin: byte 4 after a UTF-8 byte order mark, else 1.
+local function csv_start (text)
+  return text:sub(1, 3) == "\239\187\191" and 4 or 1
+end
+
+--[[
+Parses the CSV text `text` of the file `name`: fields separated by commas, records by CRLF
+or LF; a field in double quotes may hold commas, line breaks and quotes written twice ("").
+Spaces around an unquoted field are dropped; a UTF-8 byte order mark at the start is
+skipped; empty lines are skipped. Returns the records, each a list of fields with `line`, the
+line it begins on. Raises "name:line: ..." for a quote left open (the line it opens on), text
+after a closing quote, and a quote inside an unquoted field.
+]]
+function M.csv (text, name)
+  if type(text) ~= "string" or type(name) ~= "string" then
+    error("lsys.batch.csv: the text and the file's name must be strings", 2)
+  end
+  local rows, i, line = {}, csv_start(text), 1
+  while true do
+    local row
+    row, i, line = csv_record(text, i, line, name)
+    if row == nil then return rows end
+    rows[#rows + 1] = row
+  end
 end
 
 -- }===========================================================================================
@@ -389,6 +411,14 @@ end
 
 -- {===========================================================================================
 -- Specs: CSV files, Lua files and tables
+--
+-- A spec is read as a source of jobs: its number of jobs, and job n made from n alone when
+-- it is asked for (a sweep's from n's digits in the mixed radix of its lists, a CSV
+-- record's from the record, a list's from its entry), so that nothing holds every job: a
+-- shard, a listing and a resumed run make only the jobs they touch. What is wrong with a
+-- spec is said before any job runs (M.check_source below).
+
+M.MAX_JOBS = 1000000000             -- the most jobs a spec may make
 
 local function readfile (path)
   local f, err = io.open(path, "rb")
@@ -438,7 +468,35 @@ local function placeholder (job, k)
   return tostring(v)
 end
 
--- The job's template `tpl` with its placeholders replaced; or nil and why.
+-- The path `path` (a template's expansion) as the file it names in the output folder:
+-- empty and "." segments dropped, ".." taking away the segment before it -- the path lsys
+-- writes, compares and records. Returns it, or nil and why: an absolute path, a path that
+-- leaves the output folder.
+local function normalize (path)
+  if not path:find("//", 1, true) and not path:find("%.%.?/") and not path:find("/%.%.?$")
+     and path:sub(1, 1) ~= "/" then
+    return path                              -- nothing to normalize (the usual path)
+  end
+  if path:sub(1, 1) == "/" then
+    return nil, format("'%s' is an absolute path: an output is a file in the output folder, "
+      .. "named relative to it", path)
+  end
+  local segs = {}
+  for seg in path:gmatch("[^/]+") do
+    if seg == ".." then
+      if #segs == 0 then
+        return nil, format("'%s' leaves the output folder: an output is a file in it", path)
+      end
+      segs[#segs] = nil
+    elseif seg ~= "." then
+      segs[#segs + 1] = seg
+    end
+  end
+  if #segs == 0 then return nil, format("'%s' is not a file name", path) end
+  return table.concat(segs, "/")
+end
+
+-- The job's template `tpl` with its placeholders replaced, normalized; or nil and why.
 local function expand (job, tpl)
   local why
   local path = tpl:gsub("{([^{}]*)}", function (k)
@@ -448,79 +506,123 @@ local function expand (job, tpl)
   end)
   if why then return nil, why end
   if path:find("[{}]") then return nil, format("'%s': an unmatched { or }", tpl) end
-  if path:find("%c") or path:find("/$") then
+  local last = path:match("[^/]*$")
+  if path:find("%c") or last == "" or last == "." or last == ".." then
     return nil, format("'%s' is not a file name", path)
   end
-  return path
+  return normalize(path)
+end
+
+-- The material file an .obj output writes beside it: the file name's extension becomes
+-- .mtl, as export_obj.c's mtlpath does (".obj" alone stays whole).
+local function companion (path)
+  if path:match("[^/]*$"):find("^%.[^.]*$") then return path .. ".mtl" end
+  return (path:gsub("%.[^./]*$", ".mtl"))
+end
+
+-- The number of jobs `count` (a float: a sweep's may be past 2^63) as an integer, checked
+-- against M.MAX_JOBS; `where` and `what` say where they come from.
+local function check_count (where, what, count)
+  if count > M.MAX_JOBS then
+    error(format("%s: %s %s jobs, more than the limit of %d (lsys.batch.MAX_JOBS)", where, what,
+      count < 2^53 and format("%d", math.tointeger(count)) or format("%.3e", count),
+      M.MAX_JOBS), 0)
+  end
+  return math.tointeger(count)
+end
+
+local function outputs_order (a, b)
+  if a.format ~= b.format then return FORMAT_RANK[a.format] < FORMAT_RANK[b.format] end
+  return a.i < b.i
 end
 
 --[[
-The jobs of a spec as lists of raw fields, made complete: ids (given, or the job's number
-padded with zeros to 4 digits, more when there are 10,000 jobs or more), seeds (given, or
-M.seed(base, n)), the outputs' paths (templates expanded), each checked; raises naming
-where the job comes from (`job.where`, "plants.csv:7") and the field (`job.col[field]`).
+Makes the job `job` (a table of raw fields: where, col, params, templates, and what the spec
+gives of id, seed, model, name, steps, width, height, rep) complete as job number `n` of
+the source `src`: its id (given, or n padded with zeros to src.width digits), seed (given,
+or M.seed(src.base, n)), model file (found from src.dir, checked once per file), outputs
+(templates expanded and normalized, sorted by format). Raises naming where the job comes
+from (`job.where`, "plants.csv:7") and the field (`job.col(field)`). Returns the job and
+its claims: every file it writes, { path, field, of } (`of`: the .obj whose material file
+it is).
 ]]
-local function complete (jobs, base, dir)
-  local width = math.max(4, #tostring(#jobs))
-  local ids, paths, models = {}, {}, {}
-  for n, job in ipairs(jobs) do
-    local function fail (field, msg)
-      local col = field and job.col(field) or ""
-      error(format("%s: %s%s", job.where, col, msg), 0)
-    end
-    job.n = n
-    job.id = job.id or format("%0" .. width .. "d", n)
-    if ids[job.id] then
-      fail("id", format("job id '%s' is also the id of the job at %s", job.id,
-        ids[job.id].where))
-    end
-    ids[job.id] = job
-    if job.seed == nil then job.seed = M.seed(base, n) end
-    if job.model == nil then fail("model", "no model file given") end
-    job.path = join(dir, job.model)
-    if models[job.path] == nil then models[job.path] = isfile(job.path) end
-    if not models[job.path] then
-      fail("model", format("cannot open '%s'%s", job.path, dir ~= "." and
-        " (a model's path is relative to the spec's folder)" or ""))
-    end
-    if #job.templates == 0 then
-      fail(nil, "no outputs: give file name templates such as png/{id}.png")
-    end
-    local outs, mine = {}, {}
-    for _, t in ipairs(job.templates) do
-      local path, why = expand(job, t.template)
-      if path == nil then fail(t.field, why) end
-      if mine[path] then fail(t.field, format("'%s' is written twice by this job", path)) end
-      local other = paths[path]
-      if other then
-        fail(t.field, format("'%s' is also written by job %s (%s): give each job its own "
-          .. "files, with {id} for instance", path, other.id, other.where))
-      end
-      mine[path], paths[path] = true, job
-      outs[#outs + 1] = { format = t.format, path = path, i = #outs + 1 }
-    end
-    table.sort(outs, function (a, b)       -- a job writes its formats in one order
-      if a.format ~= b.format then return FORMAT_RANK[a.format] < FORMAT_RANK[b.format] end
-      return a.i < b.i
-    end)
-    for _, o in ipairs(outs) do o.i = nil end
-    job.outputs, job.templates, job.col = outs, nil, nil
+local function complete (src, job, n)
+  local function fail (field, msg)
+    local col = field and job.col(field) or ""
+    error(format("%s: %s%s", job.where, col, msg), 0)
   end
-  return jobs
+  job.n = n
+  job.id = job.id or format(src.idformat, n)
+  if job.seed == nil then job.seed = M.seed(src.base, n) end
+  if job.model == nil then fail("model", "no model file given") end
+  job.path = join(src.dir, job.model)
+  local found = src.models[job.path]
+  if found == nil then
+    found = isfile(job.path)
+    src.models[job.path] = found
+  end
+  if not found then
+    fail("model", format("cannot open '%s'%s", job.path, src.dir ~= "." and
+      " (a model's path is relative to the spec's folder)" or ""))
+  end
+  if #job.templates == 0 then
+    fail(nil, "no outputs: give file name templates such as png/{id}.png")
+  end
+  local outs, claims, mine = {}, {}, {}
+  local function claim (path, field, of)
+    local prev = mine[path]
+    if prev ~= nil then
+      local obj = of or (prev ~= true and prev)
+      fail(field, format("'%s' is written twice by this job%s", path,
+        obj and format(" (the material file of '%s')", obj) or ""))
+    end
+    mine[path] = of or true
+    claims[#claims + 1] = { path = path, field = field, of = of }
+  end
+  for _, t in ipairs(job.templates) do
+    local path, why = expand(job, t.template)
+    if path == nil then fail(t.field, why) end
+    claim(path, t.field)
+    if t.format == "obj" then claim(companion(path), t.field, path) end
+    outs[#outs + 1] = { format = t.format, path = path, i = #outs + 1 }
+  end
+  if #outs > 1 then table.sort(outs, outputs_order) end    -- a job writes its formats in one order
+  for _, o in ipairs(outs) do o.i = nil end
+  job.outputs, job.templates, job.col = outs, nil, nil
+  return job, claims
 end
 
--- The jobs of the CSV file `path` (text `text`): one job per record after the header.
-local function csv_jobs (path, text)
-  local rows = M.csv(text, path)
-  local head = rows[1]
+-- A new raw job: `base`'s fields, its params a copy (the templates are never changed).
+local function clone (base, where)
+  local job = {}
+  for k, v in pairs(base) do job[k] = v end
+  local params = {}
+  for k, v in pairs(base.params) do params[k] = v end
+  job.params, job.where = params, where
+  return job
+end
+
+-- The jobs of the CSV file `path` (text `text`): one job per record after the header. The
+-- records are parsed once, to find them and their syntax errors; a job's record is parsed
+-- again when the job is made.
+local function csv_source (path, text)
+  local head, i, line = csv_record(text, csv_start(text), 1, path)
   if head == nil then error(format("%s: no header line and no jobs", path), 0) end
+  -- where each record's text begins; its syntax checked, before what the header says
+  local at, lines = {}, {}
+  while true do
+    local row, j, l = csv_record(text, i, line, path)
+    if row == nil then break end
+    at[#at + 1], lines[#lines + 1] = i, line
+    i, line = j, l
+  end
   local cols, seen = {}, {}
   local has_out = false
-  for i, name in ipairs(head) do
-    local function fail (msg) error(format("%s:%d: column %d: %s", path, head.line, i, msg), 0) end
+  for c, name in ipairs(head) do
+    local function fail (msg) error(format("%s:%d: column %d: %s", path, head.line, c, msg), 0) end
     if name == "" then fail("a column without a name") end
     if seen[name] then fail(format("'%s' is also column %d", name, seen[name])) end
-    seen[name] = i
+    seen[name] = c
     if name == "outputs" or name == "params" or name == "rep" then
       fail(format("'%s' is a field of Lua specs; a CSV spec gives its outputs in the columns "
         .. "out, png, glb, obj, ply, lstring and stats, and a model variable per column", name))
@@ -531,7 +633,7 @@ local function csv_jobs (path, text)
         .. "glb, obj, ply, lstring, stats", name))
     end
     if name == "out" or FORMAT_RANK[name] then has_out = true end
-    cols[i] = name
+    cols[c] = name
   end
   if not seen.model then
     error(format("%s:%d: no column 'model' (the model file of each job)", path, head.line), 0)
@@ -541,9 +643,10 @@ local function csv_jobs (path, text)
       .. "png/{id}.png, separated by ;) or png, glb, obj, ply, lstring, stats", path,
       head.line), 0)
   end
-  local jobs = {}
-  for r = 2, #rows do
-    local row = rows[r]
+  local src = { count = check_count(path, "the file makes", #at + 0.0),
+                col = function (name) return format("column '%s': ", name) end }
+  function src.raw (n)
+    local row = csv_record(text, at[n], lines[n], path)
     local where = format("%s:%d", path, row.line)
     if #row ~= #head then
       error(format("%s: %d field%s, the header (line %d) has %d", where, #row,
@@ -551,8 +654,8 @@ local function csv_jobs (path, text)
     end
     local job = { where = where, params = {}, templates = {},
                   col = function (name) return format("column '%s': ", name) end }
-    for i, name in ipairs(cols) do
-      local v = row[i]
+    for c, name in ipairs(cols) do
+      local v = row[c]
       local function fail (msg) error(format("%s: column '%s': %s", where, name, msg), 0) end
       if v == "" then                         -- an empty cell: the default
         goto next_cell
@@ -577,9 +680,9 @@ local function csv_jobs (path, text)
       end
       ::next_cell::
     end
-    jobs[#jobs + 1] = job
+    return job
   end
-  return jobs
+  return src
 end
 
 -- The fields a Lua spec may have, besides a list of jobs in its array part.
@@ -642,10 +745,9 @@ local function setfield (job, k, v, field, fail)
   end
 end
 
--- A new job with the spec's defaults.
-local function newjob (spec, who, where)
-  local job = { where = where, params = {}, templates = {},
-                col = function (name) return name .. ": " end }
+-- A raw job with the spec's defaults, from which every job of the spec is cloned.
+local function newjob (spec, who)
+  local job = { params = {}, templates = {}, col = function (name) return name .. ": " end }
   local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
   for _, k in ipairs { "model", "name", "steps", "width", "height", "outputs", "params" } do
     if spec[k] ~= nil then setfield(job, k, spec[k], k, fail) end
@@ -691,8 +793,87 @@ local function vary_list (vary, fail)
   return list
 end
 
--- The jobs of a Lua spec (a table) `spec`, named `who` in messages.
-local function lua_jobs (spec, who)
+-- The source of the jobs of a list (`list`, the spec's array part or its field jobs).
+local function list_source (spec, who, list, base)
+  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  if type(list) ~= "table" then fail("jobs", "a list of jobs expected") end
+  local src = { count = check_count(who, "the list makes", #list + 0.0),
+                col = function (name) return name .. ": " end }
+  function src.raw (i)
+    local field = list == spec and format("[%d]", i) or format("jobs[%d]", i)
+    local job = clone(base, format("%s: %s", who, field))
+    local t = list[i]
+    if type(t) ~= "table" then fail(field, "a job (a table) expected") end
+    for k, v in pairs(t) do setfield(job, k, v, field .. "." .. tostring(k), fail) end
+    return job
+  end
+  return src
+end
+
+-- The source of the jobs of a sweep: the product of the lists of `vary`, the first
+-- slowest, the last fastest, then the replicates. Job n is made from the digits of n - 1
+-- in the mixed radix of the lists' lengths (the replicates the last digit).
+local function sweep_source (spec, who, reps, base)
+  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  local vary = spec.vary and vary_list(spec.vary, fail) or {}
+  local seeded, varied = false, {}
+  local count, dims = reps + 0.0, {}
+  for _, e in ipairs(vary) do
+    -- each value checked and converted once, before the product; its words in `where`
+    local conv, words, param = {}, {}, CONV[e[1]] == nil
+    for i, v in ipairs(e[2]) do
+      local job = { params = {} }
+      setfield(job, e[1], v, format("vary.%s[%d]", e[1], i), fail)
+      conv[i], words[i] = param and job.params[e[1]] or job[e[1]], format("%s=%s", e[1],
+        tostring(v))
+    end
+    e.conv, e.words, e.param = conv, words, param
+    seeded = seeded or e[1] == "seed"
+    varied[e[1]] = true
+    count = count * #e[2]
+    dims[#dims + 1] = format("%d values of %s", #e[2], e[1])
+  end
+  if seeded and reps > 1 then
+    fail("replicates", "with vary.seed every replicate would have the same seed: vary the "
+      .. "seed or give replicates, not both")
+  end
+  if reps > 1 then dims[#dims + 1], varied.rep = format("%d replicates", reps), true end
+  local src = { count = check_count(who .. ": vary", format("the sweep (%s) makes",
+                  table.concat(dims, " x ")), count),
+                vary = vary, reps = reps, varied = varied,
+                col = function (name) return name .. ": " end }
+  function src.raw (n)
+    local r = n - 1
+    local rep = r % reps + 1
+    r = r // reps
+    local idx = {}
+    for i = #vary, 1, -1 do
+      local len = #vary[i][2]
+      idx[i], r = r % len + 1, r // len
+    end
+    local parts = {}
+    for i, e in ipairs(vary) do parts[i] = e.words[idx[i]] end
+    if reps > 1 then parts[#parts + 1] = format("rep=%d", rep) end
+    local job = clone(base, #parts > 0 and who .. ": vary " .. table.concat(parts, " ") or who)
+    for i, e in ipairs(vary) do
+      if e.param then job.params[e[1]] = e.conv[idx[i]] else job[e[1]] = e.conv[idx[i]] end
+    end
+    if reps > 1 then job.rep = rep end
+    return job
+  end
+  -- the first job with the i-th value of the variable `k` (its digit i, the others 1)
+  function src.first_with (k, i)
+    local stride = reps
+    for d = #vary, 1, -1 do
+      if vary[d][1] == k then return 1 + (i - 1) * stride end
+      stride = stride * #vary[d][2]
+    end
+  end
+  return src
+end
+
+-- The source of the jobs of a Lua spec (a table) `spec`, named `who` in messages.
+local function lua_source (spec, who)
   local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
   if type(spec) ~= "table" then
     error(format("%s: a spec is a table (a list of jobs, or { model = ..., vary = ..., "
@@ -715,66 +896,241 @@ local function lua_jobs (spec, who)
     reps = r
     if list ~= nil then fail("replicates", "applies to a sweep (vary), not to a list of jobs") end
   end
-  local jobs = {}
-  if list ~= nil then
-    if type(list) ~= "table" then fail("jobs", "a list of jobs expected") end
-    for i, t in ipairs(list) do
-      local field = list == spec and format("[%d]", i) or format("jobs[%d]", i)
-      local job = newjob(spec, who, format("%s: %s", who, field))
-      if type(t) ~= "table" then fail(field, "a job (a table) expected") end
-      for k, v in pairs(t) do setfield(job, k, v, field .. "." .. tostring(k), fail) end
-      jobs[i] = job
-    end
-    return jobs
-  end
-  local vary = spec.vary and vary_list(spec.vary, fail) or {}
-  local seeded = false
-  for _, e in ipairs(vary) do
-    for i, v in ipairs(e[2]) do          -- each value checked once, before the product
-      setfield({ params = {} }, e[1], v, format("vary.%s[%d]", e[1], i), fail)
-    end
-    seeded = seeded or e[1] == "seed"
-  end
-  if seeded and reps > 1 then
-    fail("replicates", "with vary.seed every replicate would have the same seed: vary the "
-      .. "seed or give replicates, not both")
-  end
-  -- the product: the first variable slowest, the last fastest, then the replicates
-  local idx = {}
-  for i = 1, #vary do idx[i] = 1 end
-  while true do
-    for rep = 1, reps do
-      local parts = {}
-      for i, e in ipairs(vary) do
-        parts[i] = format("%s=%s", e[1], tostring(e[2][idx[i]]))
-      end
-      if reps > 1 then parts[#parts + 1] = format("rep=%d", rep) end
-      local job = newjob(spec, who, #parts > 0 and format("%s: vary %s", who,
-        table.concat(parts, " ")) or who)
-      for i, e in ipairs(vary) do setfield(job, e[1], e[2][idx[i]], "vary." .. e[1], fail) end
-      if reps > 1 then job.rep = rep end
-      jobs[#jobs + 1] = job
-    end
-    local i = #vary
-    while i >= 1 do
-      idx[i] = idx[i] + 1
-      if idx[i] <= #vary[i][2] then break end
-      idx[i] = 1
-      i = i - 1
-    end
-    if i < 1 then break end
-  end
-  return jobs
+  local base = newjob(spec, who)
+  if list ~= nil then return list_source(spec, who, list, base) end
+  return sweep_source(spec, who, reps, base)
 end
 
--- The jobs of `spec` (as for M.jobs); `who` is the public function named in messages.
-local function load_jobs (who, spec)
-  local jobs, file, dir, base
+-- {======================== no two jobs write the same file
+
+--[[
+The shape of the template `tpl` of the sweep `src`, whose first job is `job1`: the path it
+gives every job, as a list of pieces -- literal text, or a token for a value that changes
+from job to job ("id", "n", or "num" for any other number: the seed, a varied variable,
+steps, width, height, rep) -- normalized as `normalize` does the paths, and its last
+segment (the file's name) as a list of pieces. nil when a varied text (model, name) is in
+the template: its values could hold "/" or be "..".
+
+A number's text ("12", "-0.5", "1e+20") never holds "/", is never empty, "." or "..": a
+segment with a token in it is a file or folder name for every job, and the shape's
+normalization is that of every job's path.
+]]
+local function shape (src, job1, tpl)
+  local pieces = {}
+  local function lit (s)
+    if type(pieces[#pieces]) == "string" then pieces[#pieces] = pieces[#pieces] .. s
+    elseif s ~= "" then pieces[#pieces + 1] = s end
+  end
+  local pos = 1
+  for a, k, b in tpl:gmatch("(){([^{}]*)}()") do
+    lit(tpl:sub(pos, a - 1))
+    pos = b
+    if k == "id" or k == "n" then pieces[#pieces + 1] = { k }
+    elseif k == "seed" or src.varied[k] then
+      if k == "model" or k == "name" then return nil end
+      pieces[#pieces + 1] = { "num" }
+    else
+      lit(placeholder(job1, k))           -- the same for every job (job 1 is checked)
+    end
+  end
+  lit(tpl:sub(pos))
+  -- the segments between the slashes of the literal text, normalized
+  local segs, seg = {}, {}
+  local function endseg ()
+    local only = #seg == 0 and "" or (#seg == 1 and type(seg[1]) == "string" and seg[1])
+    if only == ".." then segs[#segs] = nil
+    elseif only ~= "" and only ~= "." then segs[#segs + 1] = seg end
+    seg = {}
+  end
+  for _, p in ipairs(pieces) do
+    if type(p) == "table" then
+      seg[#seg + 1] = p
+    else
+      local from = 1
+      while true do
+        local s = p:find("/", from, true)
+        local text = p:sub(from, (s or 0) - 1)
+        if text ~= "" then
+          if type(seg[#seg]) == "string" then seg[#seg] = seg[#seg] .. text
+          else seg[#seg + 1] = text end
+        end
+        if s == nil then break end
+        endseg()
+        from = s + 1
+      end
+    end
+  end
+  endseg()
+  local flat = {}
+  for i, sg in ipairs(segs) do
+    if i > 1 then flat[#flat + 1] = "/" end
+    for _, p in ipairs(sg) do flat[#flat + 1] = p end
+  end
+  local first, last = nil, nil
+  for i, p in ipairs(flat) do
+    if type(p) == "table" then first, last = first or i, i end
+  end
+  local function text (from, to)
+    local t = {}
+    for i = from, to do t[#t + 1] = flat[i] end
+    return table.concat(t)
+  end
+  if first == nil then return { prefix = text(1, #flat), suffix = "", name = segs[#segs] } end
+  return { prefix = text(1, first - 1), suffix = text(last + 1, #flat), name = segs[#segs] }
+end
+
+-- Whether the file name `name` (a shape's last segment) gives back the job it was made for:
+-- an {id} (all of one width in a sweep) with nothing but literal text on one side of it in
+-- the name, or an {n} so placed whose other side is the name's end or text that does not
+-- begin (end) with a digit.
+local function names_job (name)
+  local function literal (from, to)
+    for i = from, to do if type(name[i]) == "table" then return false end end
+    return true
+  end
+  local function nondigit (p, at)
+    return type(p) == "string" and not p:sub(at, at):find("%d")
+  end
+  for j, p in ipairs(name) do
+    if type(p) == "table" and (p[1] == "id" or p[1] == "n") then
+      local before, after = literal(1, j - 1), literal(j + 1, #name)
+      if p[1] == "id" and (before or after) then return true end
+      if p[1] == "n" and ((before and (j == #name or nondigit(name[j + 1], 1))) or
+                          (after and (j == 1 or nondigit(name[j - 1], -1)))) then
+        return true
+      end
+    end
+  end
+  return false
+end
+
+local function starts (s, p) return s:sub(1, #p) == p end
+local function ends (s, p) return p == "" or s:sub(-#p) == p end
+
+-- Whether the paths of two shapes always differ: when neither literal beginning is a
+-- beginning of the other, or neither literal end an end of the other (two equal paths
+-- would begin, and end, with both).
+local function apart (a, b)
+  return (not starts(a.prefix, b.prefix) and not starts(b.prefix, a.prefix)) or
+         (not ends(a.suffix, b.suffix) and not ends(b.suffix, a.suffix))
+end
+
+--[[
+Whether the templates of the sweep `src` show, by themselves, that no two of its jobs write
+the same file and no job writes a file twice: every template's file name gives back its
+job (names_job), so that two jobs' paths of one template differ; and any two templates (an
+.obj's material file among them) are `apart`. `job1` is the sweep's first job, checked.
+]]
+local function proven (src, job1)
+  if src.count == 1 then return true end
+  local shapes = {}
+  for _, t in ipairs(job1.templates) do
+    local s = shape(src, job1, t.template)
+    if s == nil or not names_job(s.name) then return false end
+    shapes[#shapes + 1] = s
+    if t.format == "obj" then          -- its material file: the same, .obj -> .mtl
+      shapes[#shapes + 1] = { prefix = s.prefix, suffix = s.suffix:sub(1, -5) .. ".mtl",
+                              name = s.name }
+    end
+  end
+  for i = 1, #shapes do
+    for j = i + 1, #shapes do
+      if not apart(shapes[i], shapes[j]) then return false end
+    end
+  end
+  return true
+end
+
+-- A hash of the text `s` (64 bits, 8 bytes at a time): the check of every job's paths
+-- keeps a hash per file, and compares the files themselves when two hashes meet.
+local function hash (s)
+  local h, n = 0x2545F4914F6CDD1D ~ #s, #s
+  s = s .. "\0\0\0\0\0\0\0"
+  for i = 1, n, 8 do
+    h = (h ~ string.unpack("<i8", s, i)) * 0x100000001B3
+    h = h ~ (h >> 29)
+  end
+  return h
+end
+
+--[[
+Checks every job of `src` (a list's, a CSV file's, or a sweep the templates of which prove
+nothing): each job made and checked, ids unique (src.ids: id -> n), and no file written by
+two jobs: `seen` keeps a hash of each file's path and the job that writes it (one integer
+pair per file); when the hash of a path is met again, the jobs that wrote a path of that
+hash are made again and their paths compared, so the check is exact.
+]]
+local function check_all (src)
+  local seen, ids = {}, not src.vary and {} or nil    -- a sweep's ids are its numbers
+  for n = 1, src.count do
+    local job, claims = src.get(n)
+    local prev = ids and ids[job.id]
+    if prev then
+      error(format("%s: %sjob id '%s' is also the id of the job at %s", job.where,
+        src.col("id"), job.id, src.get(prev).where), 0)
+    end
+    if ids then ids[job.id] = n end
+    for _, c in ipairs(claims) do
+      local h = hash(c.path)
+      local others = seen[h]
+      if others ~= nil then
+        for _, m in ipairs(type(others) == "table" and others or { others }) do
+          if m ~= n then
+            local other, oclaims = src.get(m)
+            for _, oc in ipairs(oclaims) do
+              if oc.path == c.path then
+                error(format("%s: %s'%s' is also written by job %s (%s): give each job its "
+                  .. "own files, with {id} for instance", job.where, src.col(c.field), c.path,
+                  other.id, other.where), 0)
+              end
+            end
+          end
+        end
+        if type(others) == "table" then others[#others + 1] = n
+        elseif others ~= n then seen[h] = { others, n } end
+      else
+        seen[h] = n
+      end
+    end
+  end
+  src.ids = ids
+end
+
+-- }========================
+
+-- Checks what is wrong with the spec of `src` before any job runs. A sweep whose templates
+-- are `proven` is checked through job 1 and, for each model file it varies, the first job
+-- with it (a job's paths can fail only through the text of a varied model or name, which
+-- such templates do not hold); any other spec job by job (check_all).
+local function check_source (src)
+  if src.count == 0 then return end
+  if src.vary then
+    local job1 = src.raw(1)
+    local templates = job1.templates
+    complete(src, job1, 1)
+    job1.templates = templates
+    if proven(src, job1) then
+      for _, e in ipairs(src.vary) do
+        if e[1] == "model" then
+          for i = 2, #e[2] do src.get(src.first_with("model", i)) end
+        end
+      end
+      return
+    end
+  end
+  check_all(src)
+end
+
+-- The source of the jobs of `spec` (as for M.jobs), checked; `who` is the public function
+-- named in messages. src.count jobs; src.get(n) makes job n (and its claims, as complete);
+-- src.id_to_n(id) is the number of the job of that id, or nil.
+local function load_source (who, spec)
+  local src, file, dir, base
   if type(spec) == "string" then
     file, dir = spec, dirname(spec)
     local ext = (spec:match("%.(%w+)$") or ""):lower()
     if ext == "csv" then
-      jobs, base = csv_jobs(spec, readfile(spec)), 0
+      src, base = csv_source(spec, readfile(spec)), 0
     elseif ext == "lua" then
       readfile(spec)                                  -- "cannot open" before loadfile's
       local chunk, err = loadfile(spec, "t")
@@ -786,15 +1142,14 @@ local function load_jobs (who, spec)
           .. "vary = { ... }, outputs = { ... } }` or a list of jobs)", spec, type(t)), 0)
       end
       if t.dir ~= nil then error(format("%s: dir: a spec file's folder is its own", spec), 0) end
-      jobs = lua_jobs(t, spec)
-      base = t.seed
+      src, base = lua_source(t, spec), t.seed
     else
       error(format("%s: '%s': a spec is a CSV file (.csv) or a Lua file (.lua)", who, spec), 0)
     end
   elseif type(spec) == "table" then
     dir = spec.dir or "."
     if type(dir) ~= "string" then error("spec: dir: a folder name expected", 0) end
-    jobs, base = lua_jobs(spec, "spec"), spec.seed
+    src, base = lua_source(spec, "spec"), spec.seed
   else
     error(format("%s: a spec (a file name or a table) expected, got %s", who, type(spec)), 0)
   end
@@ -803,18 +1158,50 @@ local function load_jobs (who, spec)
     if b == nil then error(format("%s: seed: %s", file or "spec", why), 0) end
     base = b
   end
-  complete(jobs, base or 0, dir)
-  return jobs, { file = file, dir = dir, total = #jobs }
+  src.file, src.dir, src.base, src.models = file, dir, base or 0, {}
+  src.width = math.max(4, #tostring(src.count))
+  src.idformat = "%0" .. src.width .. "d"
+  function src.get (n) return complete(src, src.raw(n), n) end
+  check_source(src)
+  function src.id_to_n (id)
+    if src.ids then return src.ids[id] end
+    local n = #id == src.width and id:find("^%d+$") and math.tointeger(tonumber(id))
+    return n and n >= 1 and n <= src.count and n or nil
+  end
+  return src
+end
+
+-- A list of `count` entries made when read: t[i] is get(i), a new table each time.
+local function lazy_list (count, get)
+  return setmetatable({}, {
+    __len = function () return count end,
+    __index = function (_, i)
+      i = math.tointeger(i)
+      if i and i >= 1 and i <= count then return (get(i)) end
+      return nil
+    end,
+    __pairs = function (t)
+      return function (_, i)
+        i = i + 1
+        if i <= count then return i, t[i] end
+        return nil
+      end, t, 0
+    end,
+  })
 end
 
 --- The jobs of a spec: the path of a CSV file (.csv) or a Lua file (.lua) that returns a
 -- spec table, or a spec table (model paths relative to its `dir`, default the current
--- folder). Returns the list of jobs, each { n (its number), id, where (the spec's file and
--- line, "plants.csv:7", or the Lua field), model (as the spec names it), path (the file
--- opened), name, seed, steps, width, height, params (variable = value), outputs (a list of
--- { format, path }, paths relative to the output folder), rep }, and { file, dir, total }.
+-- folder). Returns the list of jobs -- each made when it is read (jobs[n], ipairs, #jobs),
+-- a new table each time -- each { n (its number), id, where (the spec's file and line,
+-- "plants.csv:7", or the Lua field), model (as the spec names it), path (the file opened),
+-- name, seed, steps, width, height, params (variable = value), outputs (a list of { format,
+-- path }, paths normalized, relative to the output folder), rep }, and { file, dir, total }.
 -- Raises naming the spec's file, line and column (or field) of what is wrong.
-function M.jobs (spec) return load_jobs("lsys.batch.jobs", spec) end
+function M.jobs (spec)
+  local src = load_source("lsys.batch.jobs", spec)
+  return lazy_list(src.count, src.get), { file = src.file, dir = src.dir, total = src.count }
+end
 
 -- }===========================================================================================
 
@@ -826,8 +1213,6 @@ function M.jobs (spec) return load_jobs("lsys.batch.jobs", spec) end
 local function manifest_name (k, n)
   return n == 1 and "manifest.jsonl" or format("manifest-%d-of-%d.jsonl", k, n)
 end
-
--- One word for a POSIX shell.
 
 -- The manifests in the folder `dir` (every run's, whatever its sharding).
 local function manifests (dir)
@@ -850,29 +1235,47 @@ local function jobkey (j)
                 params = j.params or {}, width = j.width, height = j.height, outputs = outs }
 end
 
--- The job lines of the manifests in `dir`: job id -> list of records (decoded). A line cut
--- short by a killed run, or not JSON, is passed over.
-local function read_manifests (dir)
+local OFFSET_BITS = 44                -- a record's place: file << 44 | byte offset
+
+--[[
+Where the manifests of the folder `dir` hold lines of the jobs of shard k of N of `src`:
+{ files, at }, at[i] the place of the line of the shard's i-th job (file << OFFSET_BITS |
+the line's byte offset), or a list of places for a job of several lines. Nothing but the
+places is kept; a job's lines are read again when its status is asked for. A line of lsys
+begins with its job's id ({"job":"0001",...); another line (edited, cut short by a killed
+run) is decoded to find it, and passed over when it is not JSON.
+]]
+local function index_manifests (dir, src, k, N)
   local ok, cjson = pcall(require, "cjson.safe")
   if not ok then
     error("lsys.batch: lua-cjson is needed to read the manifests (Debian: apt-get install "
       .. "lua-cjson)", 0)
   end
-  local byjob = {}
-  for _, path in ipairs(manifests(dir)) do
+  local files, at = manifests(dir), {}
+  for fi, path in ipairs(files) do
     local f = io.open(path, "rb")
     if f then
+      local off = 0
       for l in f:lines() do
-        local r = cjson.decode(l)
-        if type(r) == "table" and type(r.job) == "string" then
-          local t = byjob[r.job] or {}
-          byjob[r.job], t[#t + 1] = t, r
+        local id = l:match('^{"job":"([%w_.%-]+)"')
+        if id == nil and not l:find('^{"run":') then
+          local r = cjson.decode(l)
+          id = type(r) == "table" and type(r.job) == "string" and r.job or nil
         end
+        local n = id and src.id_to_n(id)
+        if n and (n - 1) % N == k - 1 then
+          local i, place = (n - 1) // N + 1, fi << OFFSET_BITS | off
+          local e = at[i]
+          if e == nil then at[i] = place
+          elseif type(e) == "table" then e[#e + 1] = place
+          else at[i] = { e, place } end
+        end
+        off = off + #l + 1
       end
       f:close()
     end
   end
-  return byjob
+  return { files = files, at = at, open = {}, cjson = cjson }
 end
 
 -- "done" when a manifest line says the job `job` ran ok with its present definition and its
@@ -880,12 +1283,15 @@ end
 -- rsync keep their jobs done); "failed" when a line says it failed; else "todo".
 local function status (job, records)
   local key, st = jobkey(job), "todo"
-  for _, r in ipairs(records or {}) do
+  for _, r in ipairs(records) do
     if type(r.outputs) == "table" and jobkey(r) == key then
       if r.status == "ok" then
         local same = true
         for _, o in ipairs(r.outputs) do
-          local mtime, size = core.filestamp(join(job.dir, o.path))
+          local mtime, size
+          if type(o) == "table" and type(o.path) == "string" then
+            mtime, size = core.filestamp(join(job.dir, o.path))
+          end
           if mtime == nil or size ~= o.bytes then same = false end
         end
         if same then return "done" end
@@ -896,6 +1302,38 @@ local function status (job, records)
     end
   end
   return st
+end
+
+-- The status of the shard's i-th job `job`, from the lines `man` (index_manifests) places;
+-- kept in place of them, so that a job's lines are read once.
+local function job_status (man, i, job)
+  local e = man.at[i]
+  if e == nil then return "todo" end
+  if type(e) == "string" then return e end
+  local records = {}
+  for _, place in ipairs(type(e) == "table" and e or { e }) do
+    local fi = place >> OFFSET_BITS
+    local f = man.open[fi]
+    if f == nil then
+      f = io.open(man.files[fi], "rb")
+      man.open[fi] = f or false
+    end
+    if f then
+      f:seek("set", place & ((1 << OFFSET_BITS) - 1))
+      local r = man.cjson.decode(f:read("l") or "")
+      if type(r) == "table" then records[#records + 1] = r end
+    end
+  end
+  local st = status(job, records)
+  man.at[i] = st
+  return st
+end
+
+local function close_manifests (man)
+  for fi, f in pairs(man.open) do
+    if f then f:close() end
+    man.open[fi] = nil
+  end
 end
 
 -- The version of lsys (for the manifest): the library's when it is loaded (lsys.batch is
@@ -913,8 +1351,16 @@ local function hostname ()
   return name or os.getenv("HOSTNAME")
 end
 
--- Opens the manifest `path` for appending lines; a line a killed run left unfinished is
--- ended first.
+local function manifest_error (path, err)
+  return format("cannot write the manifest '%s': %s", path, tostring(err))
+end
+
+--[[
+Opens the manifest `path` for appending lines; a line a killed run left unfinished is ended
+first. The manifest is the one file batch appends to rather than replaces (a shard's lines
+accumulate over its runs), so it is not written through core.write_file: every write and
+flush is checked (append), and the close (close_manifest); a failure raises.
+]]
 local function open_manifest (path)
   local last
   local r = io.open(path, "rb")
@@ -925,18 +1371,122 @@ local function open_manifest (path)
     end
     r:close()
   end
-  local f, err = io.open(path, "ab")
-  if f == nil then error(format("cannot write the manifest '%s': %s", path, tostring(err)), 0) end
+  local f, err = io.open(path, "ab")   -- the manifest: appended, every write checked (append)
+  if f == nil then error(manifest_error(path, err), 0) end
   f:setvbuf("full", 1 << 16)
-  if last and last ~= "\n" then f:write("\n") end
-  return f
+  return { f = f, path = path, cut = last ~= nil and last ~= "\n" }
 end
 
 -- Appends the record `r` as a line, written out at once (one write: a shard's lines never
--- mix, and a killed run loses at most the line being written).
-local function append (f, r)
-  f:write(json(r), "\n")
-  f:flush()
+-- mix, and a killed run loses at most the line being written). Raises when the system
+-- refuses the bytes (a full disk, a file size limit).
+local function append (m, r)
+  local text = json(r) .. "\n"
+  if m.cut then text, m.cut = "\n" .. text, false end
+  local ok, err = m.f:write(text)
+  if ok then ok, err = m.f:flush() end
+  if not ok then
+    m.f:close()
+    error(manifest_error(m.path, err), 0)
+  end
+end
+
+local function close_manifest (m)
+  local ok, err = m.f:close()
+  if not ok then error(manifest_error(m.path, err), 0) end
+end
+
+-- }===========================================================================================
+
+
+-- {===========================================================================================
+-- The output folder: links and temporaries
+
+--[[
+What the output folder `dir` holds that a run must know of, found once at its start (find
+-H, which follows `dir` itself when it is a link, and nothing below it): `links`, the
+symbolic links below it, by their paths relative to it (no job writes through one: core's
+writer would replace the link's target); `temps`, the temporaries lsys's writer names
+`.NAME.lsys-PID-N.tmp`, by the path of the file NAME they were for: { path, pid } each.
+]]
+local function scan_folder (dir)
+  local root = dir:gsub("/+$", "")
+  if root == "" then root = "/" end
+  local prefix = root == "/" and "/" or root .. "/"
+  local p = io.popen("find -H " .. shq(root) .. " -type l -print0 2>/dev/null; printf '\\0'; "
+    .. "find -H " .. shq(root) .. " -type f -name '.*.lsys-*-*.tmp' -print0 2>/dev/null")
+  local out = p and p:read("a") or ""
+  if p then p:close() end
+  local links, temps, second = {}, {}, false
+  for path in out:gmatch("([^%z]*)%z") do
+    if path == "" then
+      second = true
+    elseif path:sub(1, #prefix) == prefix then
+      local rel = path:sub(#prefix + 1)
+      if not second then
+        links[rel] = true
+      else
+        local folder, name, pid = rel:match("^(.-)/?%.([^/]+)%.lsys%-(%d+)%-%d+%.tmp$")
+        if name then
+          local target = folder == "" and name or folder .. "/" .. name
+          local list = temps[target] or {}
+          temps[target], list[#list + 1] = list, { path = rel, pid = pid }
+        end
+      end
+    end
+  end
+  return { links = links, nlinks = next(links) ~= nil, temps = temps }
+end
+
+-- Whether the process `pid` lives on this host (/proc; else `kill -0`, which a process of
+-- another user also passes). When it cannot tell, it says yes.
+local PROC = nil
+local function alive (pid)
+  if PROC == nil then
+    local f = io.open("/proc/self/stat", "rb")
+    PROC = f ~= nil
+    if f then f:close() end
+  end
+  if PROC then
+    local f = io.open("/proc/" .. pid .. "/stat", "rb")
+    if f then f:close() end
+    return f ~= nil
+  end
+  local p = io.popen("kill -0 " .. pid .. " 2>&1")
+  local said = p and p:read("a") or ""
+  local ok = p and p:close()
+  return ok or not said:lower():find("no such process", 1, true)
+end
+
+-- Removes the temporaries `scan` found of the files `claims` (a job's, as complete gives
+-- them) that dead processes left. Returns how many it removed.
+local function clean_temps (scan, dir, claims)
+  local removed = 0
+  for _, c in ipairs(claims) do
+    local list = scan.temps[c.path]
+    if list then
+      for _, t in ipairs(list) do
+        if not t.gone and not alive(t.pid) and os.remove(join(dir, t.path)) then
+          removed, t.gone = removed + 1, true
+        end
+      end
+    end
+  end
+  return removed
+end
+
+-- The first of the folders and file of the path `path` (relative to the output folder)
+-- that is a symbolic link `scan` found, or nil.
+local function link_on (scan, path)
+  if not scan.nlinks then return nil end
+  local from = 1
+  while true do
+    local s = path:find("/", from, true)
+    local sub = path:sub(1, (s or 0) - 1)
+    if scan.links[sub] then return sub end
+    if s == nil then return nil end
+    from = s + 1
+  end
 end
 
 -- }===========================================================================================
@@ -1055,9 +1605,10 @@ end
 Runs job `job`, writing its outputs under the folder `dir`; returns the record of the
 manifest (status "ok" or "failed", with the error; the outputs with the size and time of
 each file written). Each file is written whole or not at all; a job that fails leaves the
-files it finished before the failure (each complete).
+files it finished before the failure (each complete). A job that would write through a
+symbolic link of the folder (`claims`, its files; ctx.scan, the folder's links) fails.
 ]]
-local function run_job (job, dir, ctx)
+local function run_job (job, claims, dir, ctx)
   local rec = { job = job.id, line = job.where, model = job.model, name = job.name,
                 seed = job.seed, steps = job.steps, params = job.params, width = job.width,
                 height = job.height, outputs = array {}, shard = ctx.shard, host = ctx.host }
@@ -1065,6 +1616,13 @@ local function run_job (job, dir, ctx)
   local phases = {}
   local t0 = clock()
   local ok, err = pcall(function ()
+    for _, c in ipairs(claims) do
+      local link = link_on(ctx.scan, c.path)
+      if link then
+        error(format("cannot write '%s': '%s' is a symbolic link (lsys batch writes no file "
+          .. "through a link)", join(dir, c.path), join(dir, link)), 0)
+      end
+    end
     local t = clock()
     local m = job_model(job, ctx.chunks)
     phases.load = clock() - t
@@ -1116,6 +1674,7 @@ end
 -- }===========================================================================================
 
 
+
 -- {===========================================================================================
 -- Runs
 
@@ -1147,101 +1706,126 @@ local function shard_opt (who, s)
   return k, n
 end
 
--- M.plan, for the public function `who`.
+-- M.plan, for the public function `who`; p.job(i) makes the shard's i-th job (with its
+-- status, and its claims), i from 1 to p.size.
 local function plan (who, spec, opts)
   local k, n = shard_opt(who, opts.shard)
-  local all, info = load_jobs(who, spec)
+  local src = load_source(who, spec)
   local dir = opts.out or "."
   if dir == "" then error(format("%s: option 'out' must not be empty", who), 0) end
-  local records = read_manifests(dir)
-  local jobs = {}
-  for _, job in ipairs(all) do
-    if M.shard_of(job.n, n) == k then
-      job.dir = dir
-      job.status = status(job, records[job.id])
-      jobs[#jobs + 1] = job
-    end
+  local man = index_manifests(dir, src, k, n)
+  local size = src.count >= k and (src.count - k) // n + 1 or 0
+  local p = { total = src.count, k = k, n = n, dir = dir, file = src.file, size = size,
+              manifest = join(dir, manifest_name(k, n)), man = man }
+  function p.job (i)
+    local job, claims = src.get(k + (i - 1) * n)
+    job.dir = dir
+    job.status = job_status(man, i, job)
+    return job, claims
   end
-  return { jobs = jobs, total = #all, k = k, n = n, dir = dir, file = info.file,
-           manifest = join(dir, manifest_name(k, n)) }
+  p.jobs = lazy_list(size, p.job)
+  return p
 end
 
 --- What a run of `spec` with `opts` would do, without running anything: { jobs (this
--- shard's, each with `status`: "done", "failed" or "todo"), total (the spec's jobs), k, n
--- (shard k of n), dir (the output folder), manifest (this shard's manifest), file (the
--- spec's file) }. opts as for M.run.
+-- shard's, each with `status`: "done", "failed" or "todo"; made when read, as M.jobs
+-- makes them), total (the spec's jobs), k, n (shard k of n), dir (the output folder),
+-- manifest (this shard's manifest), file (the spec's file) }. opts as for M.run.
 function M.plan (spec, opts)
-  return plan("lsys.batch.plan", spec, checkopts("lsys.batch.plan", opts))
+  local p = plan("lsys.batch.plan", spec, checkopts("lsys.batch.plan", opts))
+  return { jobs = p.jobs, total = p.total, k = p.k, n = p.n, dir = p.dir,
+           manifest = p.manifest, file = p.file }
 end
+
+local function now () return os.date("!%Y-%m-%dT%H:%M:%SZ") end
 
 --- Runs the jobs of `spec` (as for M.jobs) in this process, those of one shard when asked.
 -- opts: `out` (the folder the outputs' paths are relative to, made when missing; default
 -- the current folder), `shard` ("K/N", "slurm" or { K, N }: the jobs whose number n has
 -- (n - 1) % N == K - 1; default all), `force` (run jobs that are done too), `progress`
 -- (called with an event table: { phase = "start" | "job" | "end", jobs, todo, done, ok,
--- failed, skipped, seconds, job, record } at the start, after each job and at the end).
--- A job is skipped when a manifest line of the folder says it ran ok with the same
--- definition and its files are there with the sizes that run wrote. Each job that runs is
--- recorded in the shard's manifest (`DIR/manifest.jsonl`, or `DIR/manifest-K-of-N.jsonl`):
--- job, seed, params, outputs (path, bytes, mtime), seconds, status "ok" or "failed", error.
--- A job that fails does not stop the others. Returns { jobs, ok, failed, skipped, seconds,
--- manifest, failures = { { id, where, error } }, k, n, total }. Raises for a bad spec
--- (naming its file and line) or bad options.
+-- failed, skipped, removed, seconds, job, record } at the start, after each job and at the
+-- end). A job is skipped when a manifest line of the folder says it ran ok with the same
+-- definition and its files are there with the sizes that run wrote. Temporaries that killed
+-- runs left of the shard's files are removed first (`removed`: how many). Each job that
+-- runs is recorded in the shard's manifest (`DIR/manifest.jsonl`, or
+-- `DIR/manifest-K-of-N.jsonl`): job, seed, params, outputs (path, bytes, mtime), seconds,
+-- status "ok" or "failed", error. A job that fails does not stop the others. Returns
+-- { jobs, ok, failed, skipped, removed, seconds, manifest, failures = { { id, where, error }
+-- }, k, n, total }. Raises for a bad spec (naming its file and line), bad options, or a
+-- manifest it cannot write.
 function M.run (spec, opts)
   opts = checkopts("lsys.batch.run", opts)
   local p = plan("lsys.batch.run", spec, opts)
   local k, n = p.k, p.n
   local dir, progress = p.dir, opts.progress
-  local made = {}
-  local todo = {}
-  for _, job in ipairs(p.jobs) do
-    if opts.force or job.status ~= "done" then todo[#todo + 1] = job end
+  local scan = scan_folder(dir)
+  -- the first pass: what there is to do, and the temporaries of dead runs
+  local todo, removed = 0, 0
+  for i = 1, p.size do
+    local job, claims = p.job(i)
+    if opts.force or job.status ~= "done" then todo = todo + 1 end
+    removed = removed + clean_temps(scan, dir, claims)
   end
-  local r = { jobs = #p.jobs, ok = 0, failed = 0, skipped = #p.jobs - #todo, seconds = 0,
-              manifest = p.manifest, failures = {}, k = k, n = n, total = p.total }
-  local ev = { phase = "start", jobs = #p.jobs, todo = #todo, done = 0, ok = 0, failed = 0,
-               skipped = r.skipped, seconds = 0 }
+  local r = { jobs = p.size, ok = 0, failed = 0, skipped = p.size - todo, removed = removed,
+              seconds = 0, manifest = p.manifest, failures = {}, k = k, n = n,
+              total = p.total }
+  local ev = { phase = "start", jobs = p.size, todo = todo, done = 0, ok = 0, failed = 0,
+               skipped = r.skipped, removed = removed, seconds = 0 }
   if progress then progress(ev) end
-  if #todo == 0 then
+  if todo == 0 then
+    close_manifests(p.man)
     if progress then ev.phase = "end" progress(ev) end
     return r
   end
+  local made = {}
   mkdirs(dir, made)
-  local ctx = { chunks = {}, made = made, shard = format("%d/%d", k, n), host = hostname() }
-  local f = open_manifest(p.manifest)
+  local mname = manifest_name(k, n)
+  if link_on(scan, mname) then
+    error(manifest_error(p.manifest, "it is a symbolic link (lsys batch writes no file "
+      .. "through a link)"), 0)
+  end
+  local ctx = { chunks = {}, made = made, shard = format("%d/%d", k, n), host = hostname(),
+                scan = scan }
+  local m = open_manifest(p.manifest)
   local t0 = clock()
-  append(f, { run = "start", spec = p.file, shard = ctx.shard, jobs = #p.jobs,
-              todo = #todo, at = os.date("!%Y-%m-%dT%H:%M:%SZ"), host = ctx.host,
-              lsys = version() })
+  append(m, { run = "start", spec = p.file, shard = ctx.shard, jobs = p.size, todo = todo,
+              removed = removed, at = now(), host = ctx.host, lsys = version() })
   -- A job's model is garbage once it ran, its compiled rules with it (C memory Lua does not
   -- count); the generational collector (the lsys program's) may leave old garbage for a
   -- long time: a full collection whenever the heap has grown by half keeps a run of
   -- 100,000 jobs as small as one of 100.
   local heap = collectgarbage("count")
-  for i, job in ipairs(todo) do
-    local rec = run_job(job, dir, ctx)
-    if collectgarbage("count") > 1.5 * heap + 1024 then
-      collectgarbage()
-      heap = collectgarbage("count")
-    end
-    append(f, rec)
-    if rec.status == "ok" then
-      r.ok = r.ok + 1
-    else
-      r.failed = r.failed + 1
-      r.failures[#r.failures + 1] = { id = job.id, where = job.where, error = rec.error }
-    end
-    if progress then
-      ev.phase, ev.done, ev.ok, ev.failed, ev.seconds, ev.job, ev.record =
-        "job", i, r.ok, r.failed, clock() - t0, job, rec
-      progress(ev)
+  local done = 0
+  for i = 1, p.size do
+    local job, claims = p.job(i)
+    if opts.force or job.status ~= "done" then
+      local rec = run_job(job, claims, dir, ctx)
+      if collectgarbage("count") > 1.5 * heap + 1024 then
+        collectgarbage()
+        heap = collectgarbage("count")
+      end
+      append(m, rec)
+      done = done + 1
+      if rec.status == "ok" then
+        r.ok = r.ok + 1
+      else
+        r.failed = r.failed + 1
+        r.failures[#r.failures + 1] = { id = job.id, where = job.where, error = rec.error }
+      end
+      if progress then
+        ev.phase, ev.done, ev.ok, ev.failed, ev.seconds, ev.job, ev.record =
+          "job", done, r.ok, r.failed, clock() - t0, job, rec
+        progress(ev)
+      end
     end
   end
+  close_manifests(p.man)
   r.seconds = clock() - t0
-  append(f, { run = "end", shard = ctx.shard, ok = r.ok, failed = r.failed,
+  append(m, { run = "end", shard = ctx.shard, ok = r.ok, failed = r.failed,
               skipped = r.skipped, seconds = math.floor(r.seconds * 1e3 + 0.5) / 1e3,
-              at = os.date("!%Y-%m-%dT%H:%M:%SZ") })
-  f:close()
+              at = now() })
+  close_manifest(m)
   if progress then
     ev.phase, ev.job, ev.record, ev.seconds = "end", nil, nil, r.seconds
     progress(ev)

@@ -9,7 +9,8 @@
 -- records, written back as CSV with every field quoted, parse to the same fields; the
 -- parser and the jobs agree (the jobs fail only after the parser succeeded, or both fail
 -- on the same line); every job has an id, a whole seed, its `where` naming the file and a
--- line, and at least one output whose path has no control character.
+-- line, and at least one output whose path has no control character and is normalized
+-- inside the output folder (not absolute, no empty, "." or ".." segment).
 local batch = require "lsys.batch"
 
 local type, pairs, ipairs, pcall, error, tostring, os_remove, open, mathtype, execute =
@@ -145,6 +146,10 @@ local function check (r)
     for _, o in pairs(job.outputs) do
       if type(o.path) ~= "string" or o.path:find("%c") then
         return "job " .. job.id .. ": output path " .. tostring(o.path)
+      end
+      local p = "/" .. o.path .. "/"        -- inside the output folder, normalized
+      if p:find("//", 1, true) or p:find("/%.%.?/") then
+        return "job " .. job.id .. ": output path not normalized: " .. o.path
       end
     end
   end
