@@ -345,6 +345,37 @@ return lsys.lsystem { axiom = "F", steps = 3, productions = "F --> F[+F]F",
     end
   end)
 
+  it("ends a derivation at Ctrl-C while rule code runs, within its bounds or none", function ()
+    -- the rule runs under the sandbox's count hook (max_instructions) or without it: the
+    -- interrupt's hook takes over either way and is not taken off when the step unwinds,
+    -- so the pcall around the derivation cannot swallow the interrupt
+    for _, budget in ipairs { "1e15", "math.huge" } do
+      H.write(dir .. "/s.lua", ([[
+local lsys = require "lsys"
+local m = lsys.lsystem { axiom = "A(1)", steps = 1, max_instructions = %s,
+  start = function () io.open(%q, "w"):close() end,
+  productions = "A(x) --> A((function (x) while x > 0 do end return x end)(x))" }
+while true do pcall(m.derive, m) end
+]]):format(budget, dir .. "/marker"))
+      os.remove(dir .. "/marker")
+      local out, code = interrupt(("cd %s && exec %s s.lua"):format(q(dir), q(ABSBIN)),
+                                  dir .. "/marker", "INT")
+      assert.equal("lsys: interrupted\n", out)
+      assert.equal(130, code)
+    end
+  end)
+
+  it("reports a write beyond ulimit -f instead of dying of SIGXFSZ, the old file kept",
+     function ()
+    H.write(dir .. "/a.obj", "an older mesh")
+    local out, code = sh(("cd %s && ulimit -f 2 && exec %s export %s -o a.obj"):format(q(dir),
+      q(ABSBIN), q(H.absolute("examples/default.lua"))))
+    assert.equal(1, code, out)
+    assert.truthy(out:find("File too large", 1, true), out)
+    assert.equal("an older mesh", H.read(dir .. "/a.obj"))
+    assert.same({ "a.obj", "tmp" }, ls(dir))
+  end)
+
   it("ends a script at Ctrl-C with exit status 130", function ()
     H.write(dir .. "/s.lua", ("io.open(%q, 'w'):close()\nwhile true do end\n")
       :format(dir .. "/marker"))

@@ -67,9 +67,12 @@ void lsys_sandbox_collect (lua_State *L, lsys_sandbox *sb) {
 static void counthook (lua_State *L, lua_Debug *ar) {
   void *ud;
   lsys_sandbox *sb;
-  (void)ar;
   if (lua_getallocf(L, &ud) != boundedalloc) return;
   sb = (lsys_sandbox *)ud;
+  /* a count hook it replaced still runs, at this one's pace (the program's interrupt:
+  ** Ctrl-C before a long step still stops it within HOOKSTEP instructions) */
+  if (sb->hook != NULL && sb->hook != counthook && (sb->hmask & LUA_MASKCOUNT))
+    sb->hook(L, ar);
   lsys_sandbox_collect(L, sb);
   sb->ran += HOOKSTEP;
   if (sb->ran > sb->budget) {

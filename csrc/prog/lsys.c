@@ -712,6 +712,11 @@ int main (int argc, char **argv) {
     ignored[1] = sigaction(SIGTERM, NULL, &old) == 0 && old.sa_handler == SIG_IGN;
   }
   setstop(0);
+#ifdef SIGXFSZ
+  /* a write beyond `ulimit -f` fails (EFBIG) instead of killing the program: the writers
+  ** report it and remove their temporary, and the old file stays (issue 34 §6) */
+  signal(SIGXFSZ, SIG_IGN);
+#endif
   lua_gc(L, LUA_GCSTOP);  /* stop the collector while building the state */
   lua_pushcfunction(L, pmain);
   lua_pushinteger(L, argc);
