@@ -638,16 +638,16 @@ static void unmeter (lsys_model *m, lsys_lstring *dst) {
   for (k = 0; k < m->nlevels; k++) m->levels[k].meter = NULL;
 }
 
-/* The error of an operation started while the model is busy. */
-static int reentered (lsys_model *m) {
+/* The error of the operation 'what' started while the model is busy. */
+static int reentered (lsys_model *m, const char *what) {
   return lsys_seterror(&m->err, LSYS_EBUSY, (size_t)-1,
-                       "a rule called derive or step on the model it belongs to");
+                       "a rule called %s on the model it belongs to", what);
 }
 
 int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   lsys_rng *keep = m->cur;
-  if (m->busy) return reentered(m);
+  if (m->busy) return reentered(m, "expand");
   if (kind != LSYS_HOMO && kind != LSYS_DECOMP)
     return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "bad rule kind");
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
@@ -667,7 +667,7 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   lsys_ruleset *set;
   int hasctx = 0;
   int st;
-  if (m->busy) return reentered(m);
+  if (m->busy) return reentered(m, "interpret");
   m->hsrc = NULL;
   m->depth_hit = 0;
   if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
@@ -738,7 +738,7 @@ static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
 
 int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
-  if (m->busy) return reentered(m);
+  if (m->busy) return reentered(m, "step");
   m->depth_hit = 0;
   m->cur = &m->rng;
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;

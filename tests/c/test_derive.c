@@ -212,9 +212,11 @@ static int reenter (void *ud, lsys_model *m, const lsys_rule *r, const double *a
   (void)r; (void)args;
   memset(&sp, 0, sizeof sp);
   assert(lsys_derive_step(m, other, other + 1) == LSYS_EBUSY);
-  assert(strstr(m->err.msg, "called derive or step on the model it belongs to") != NULL);
+  assert(strcmp(m->err.msg, "a rule called step on the model it belongs to") == 0);
   assert(lsys_expand(m, LSYS_HOMO, other, other + 1) == LSYS_EBUSY);
+  assert(strcmp(m->err.msg, "a rule called expand on the model it belongs to") == 0);
   assert(lsys_homo_begin(m, other) == LSYS_EBUSY);
+  assert(strcmp(m->err.msg, "a rule called interpret on the model it belongs to") == 0);
   assert(lsys_model_add(m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EBUSY);
   assert(lsys_model_setvm(m, 0, NULL, 0) == LSYS_EBUSY);
   assert(lsys_model_newset(m, LSYS_PROD, 5, 0) == LSYS_EBUSY);

@@ -81,7 +81,7 @@ local function docfiles (dir)
   for _, n in ipairs(ORDER) do
     if isfile(dir .. "/" .. n) then names[#names + 1] = n; seen[n] = true end
   end
-  local ok, p = pcall(io.popen, "ls -1 " .. shq(dir) .. " 2>/dev/null")
+  local ok, p = pcall(io.popen, "ls -1 -- " .. shq(dir) .. " 2>/dev/null")   -- never an option
   if ok and p ~= nil then
     local found = {}
     for n in p:lines() do
