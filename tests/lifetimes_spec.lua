@@ -111,16 +111,28 @@ describe("a Scene held by one of its methods", function ()
     assert.same(before, { sc:vertex(2) })
   end)
 
+  it("cannot be closed by a finalizer during scene:edges", function ()
+    local function make () return lsys.lsystem { axiom = "F@O(1)" }:interpret() end
+    local function edges (sc) return #sc:edges(2) end
+    check_held(under_finalizers(make, edges), edges(make()))
+  end)
+
+  -- record and records copy the record before they make its tables: a finalizer may close
+  -- the scene meanwhile, the table is the record's (under tools/sanitize.sh the code before
+  -- read the freed records)
   for _, case in ipairs {
     { "record", function (sc) return sc:record(3).module end },
     { "records", function (sc) local n = 0; for _ in sc:records() do n = n + 1 end; return n end },
-    { "edges", function (sc) return #sc:edges(2) end,
-      function () return lsys.lsystem { axiom = "F@O(1)" }:interpret() end },
   } do
-    it("cannot be closed by a finalizer during scene:" .. case[1], function ()
-      local make = case[3] or plant
-      local want = case[2](make())
-      check_held(under_finalizers(make, case[2]), want)
+    it("reads its record before a finalizer can close the scene: scene:" .. case[1], function ()
+      local want = case[2](plant())
+      local inside = under_finalizers(plant, case[2])
+      assert.is_true(#inside > 0)
+      for _, r in ipairs(inside) do
+        assert.is_true(r[3])
+        if not r[1] then assert.equal("the scene was closed", (r[2]:gsub("^.-: ", "")))
+        else assert.equal(want, r[2]) end
+      end
     end)
   end
 

@@ -481,8 +481,13 @@ static int scene_area (lua_State *L) {
   return 1;
 }
 
-static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) {
-  float l[3];
+/* Pushes the table of record k (0-based) of S: the record (and its
+** stiffness) is copied first, the tables are made from the copy (an
+** allocation may run a finalizer that closes S). */
+static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
+  const lsys_trec rec = S->sc.rec[k], *r = &rec;
+  float l[3], st[3];
+  if (r->stiff != LSYS_NOREC) memcpy(st, S->sc.stiff + 3 * r->stiff, sizeof st);
   l[0] = r->H[1] * r->U[2] - r->H[2] * r->U[1];          /* L = H x U */
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
@@ -495,8 +500,8 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
   }
   {
     float p0[3];
-    int k;
-    for (k = 0; k < 3; k++) p0[k] = r->p1[k] - r->len * r->H[k];
+    int j;
+    for (j = 0; j < 3; j++) p0[j] = r->p1[j] - r->len * r->H[j];
     pushvecf(L, p0); lua_setfield(L, -2, "p0");
   }
   lua_pushnumber(L, r->len); lua_setfield(L, -2, "length");
@@ -508,7 +513,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
   lua_pushnumber(L, r->w1); lua_setfield(L, -2, "w1");
   lua_pushinteger(L, r->color); lua_setfield(L, -2, "color");
   if (r->stiff != LSYS_NOREC) {
-    pushvecf(L, S->sc.stiff + 3 * r->stiff);
+    pushvecf(L, st);
     lua_setfield(L, -2, "stiffness");
   }
 }
@@ -517,19 +522,17 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
 static int scene_record (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
-  S = lsys_holdscene(L, 1);                 /* pushrecord allocates as it reads */
   if (k < 1 || (size_t)k > S->sc.nrec) { lua_pushnil(L); return 1; }
-  pushrecord(L, S, &S->sc.rec[k - 1]);
+  pushrecord(L, S, (size_t)k - 1);
   return 1;
 }
 
 static int records_iter (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
-  S = lsys_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec) return 0;
   lua_pushinteger(L, k);
-  pushrecord(L, S, &S->sc.rec[k - 1]);
+  pushrecord(L, S, (size_t)k - 1);
   return 2;
 }
 
