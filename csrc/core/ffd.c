@@ -166,24 +166,27 @@ static int checkrange (const lsys_scene *s, size_t v0, size_t v1, size_t l0, siz
 }
 
 /* Applies 'map' to vertices [v0, v1) (positions and normals) and line ends
-** [2 l0, 2 l1); on a failure returns its status and sets *at (ffd.h). */
+** [2 l0, 2 l1); on a failure returns its status and sets *at (ffd.h). A
+** point's place is found again after its map ran: a callback map runs code
+** of the caller's, which must leave the mesh's size alone (ffd.h) but may
+** have moved its arrays. */
 static int apply (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1, mapfn map,
                   void *ctx, size_t *at) {
   lsys_mesh *m = &s->mesh;
   size_t v, e;
   int st = LSYS_OK, r;
   for (v = v0; v < v1; v++) {
-    float *P = m->pos + 3 * v;
+    const float *P = m->pos + 3 * v;
     double p[3] = {P[0], P[1], P[2]}, q[3], J[3][3];
     if ((st = map(ctx, p, q, J)) != LSYS_OK) { *at = v; break; }
-    for (r = 0; r < 3; r++) P[r] = (float)q[r];
+    for (r = 0; r < 3; r++) m->pos[3 * v + r] = (float)q[r];
     transform_normal(m->nrm + 3 * v, J);
   }
   for (e = 2 * l0; st == LSYS_OK && e < 2 * l1; e++) {
-    float *P = m->lpos + 3 * e;
+    const float *P = m->lpos + 3 * e;
     double p[3] = {P[0], P[1], P[2]}, q[3];
     if ((st = map(ctx, p, q, NULL)) != LSYS_OK) { *at = m->nv + e; break; }
-    for (r = 0; r < 3; r++) P[r] = (float)q[r];
+    for (r = 0; r < 3; r++) m->lpos[3 * e + r] = (float)q[r];
   }
   if (v > v0) lsys_scene_touch(s, v0, v - v0);
   return st;

@@ -86,7 +86,8 @@ typedef int (*lsys_deform_fn) (void *ud, const double p[3], double out[3]);
 ** deformation stops: the vertices before it (and, when it failed on a line
 ** end, all vertices and the lines before it) are moved, the rest are not;
 ** its status is returned with e->pos the vertex index (a line end: nv +
-** 2 * segment + end). */
+** 2 * segment + end). fn must not change the number of the scene's vertices
+** or lines (its arrays may move: each point is found again after fn). */
 int lsys_deform_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
                       lsys_deform_fn fn, void *ud, lsys_error *e);
 

@@ -3,6 +3,7 @@
 ** errors, the shared userdata, running a model's operations, option readers.
 */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -81,11 +82,16 @@ lsys_ins *lsys_readcode (lua_State *L, int t, int *n) {
   return code;
 }
 
+/* v is copied before the list is made: it may point into an object that a
+** finalizer run by the allocation closes. */
 void lsys_pushnums (lua_State *L, const double *v, int n) {
+  double d[LSYS_PUSHNUMS_MAX];
   int k;
+  if (n > LSYS_PUSHNUMS_MAX) n = LSYS_PUSHNUMS_MAX;
+  memcpy(d, v, (size_t)(n > 0 ? n : 0) * sizeof *d);
   lua_createtable(L, n, 0);
   for (k = 0; k < n; k++) {
-    lua_pushnumber(L, (lua_Number)v[k]);
+    lua_pushnumber(L, (lua_Number)d[k]);
     lua_rawseti(L, -2, k + 1);
   }
 }
@@ -100,6 +106,61 @@ int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
   }
   (void)L;
   return LSYS_OK;
+}
+
+/* ---------------------------------------------------------------------- */
+/* objects in use */
+
+/* A hold: the count it incremented (NULL once released); user value 1: the
+** userdata, so that it outlives the hold. */
+typedef struct hold { int *busy; } hold;
+
+/* __close and __gc: the collector finalizes a hold that a dead coroutine
+** never closed before the userdata it holds (it was made after it). */
+static int hold_release (lua_State *L) {
+  hold *h = (hold *)luaL_checkudata(L, 1, HOLD_T);
+  if (h->busy != NULL) (*h->busy)--;
+  h->busy = NULL;
+  return 0;
+}
+
+void lsys_hold (lua_State *L, int idx, int *busy) {
+  hold *h;
+  idx = lua_absindex(L, idx);
+  h = (hold *)lua_newuserdatauv(L, sizeof *h, 1);
+  h->busy = NULL;
+  if (luaL_newmetatable(L, HOLD_T)) {
+    lua_pushcfunction(L, hold_release);
+    lua_setfield(L, -2, "__close");
+    lua_pushcfunction(L, hold_release);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  lua_pushvalue(L, idx);
+  lua_setiuservalue(L, -2, 1);
+  h->busy = busy;                       /* nothing below can fail */
+  (*busy)++;
+  lua_toclose(L, -1);
+}
+
+void lsys_checkidle (lua_State *L, int busy, const char *msg) {
+  if (busy) luaL_error(L, "%s", msg);
+}
+
+/* The collector calls a finalizer with the call marked so, which the debug
+** interface names the metamethod "__gc"; Lua code calling a __gc by hand is
+** named as its call site says (a field, a method, a local; a metamethod
+** other than a finalizer is named without its underscores). */
+int lsys_finalizing (lua_State *L) {
+  lua_Debug ar;
+  if (!lua_getstack(L, 0, &ar) || !lua_getinfo(L, "n", &ar)) return 0;
+  return ar.namewhat != NULL && strcmp(ar.namewhat, "metamethod") == 0 && ar.name != NULL &&
+         strcmp(ar.name, "__gc") == 0;
+}
+
+int lsys_life_end (lua_State *L, lsys_life *life) {
+  life->closed = 1;
+  return !life->kept || lsys_finalizing(L);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -295,6 +356,16 @@ lsys_lscene *lsys_checkscene (lua_State *L, int i) {
   return S;
 }
 
+lsys_lscene *lsys_holdscene (lua_State *L, int i) {
+  i = lua_absindex(L, i);
+  lsys_hold(L, i, &lsys_checkscene(L, i)->busy);
+  return lsys_checkscene(L, i);             /* again: the hold allocated */
+}
+
+void lsys_changescene (lua_State *L, const lsys_lscene *S) {
+  lsys_checkidle(L, S->busy, "cannot change a Scene while it is in use");
+}
+
 static const char *const kindname[] = {
   "none", "segment", "sphere", "disc", "polygon", "label", "system", "gcyl", "surface"
 };
@@ -304,32 +375,49 @@ const char *lsys_recordkind (int kind) {
   return kindname[kind >= 0 && kind < NKINDS ? kind : 0];
 }
 
-/* A live one has points. */
+/* The immutable object at i of type 'tname', alive; its life is at 'off'. */
+static void *checkimm (lua_State *L, int i, const char *tname, size_t off, const char *what,
+                       int keep) {
+  char *u = (char *)luaL_checkudata(L, i, tname);
+  lsys_life *life = (lsys_life *)(void *)(u + off);
+  if (life->closed) luaL_error(L, "the %s was closed", what);
+  if (keep) life->kept = 1;
+  return u;
+}
+
+#define CHECKIMM(T, tname, what, keep) \
+  ((T *)checkimm(L, i, tname, offsetof(T, life), what, keep))
+
 const lsys_contour *lsys_checkcontour (lua_State *L, int i) {
-  const lsys_contour *c = (const lsys_contour *)luaL_checkudata(L, i, CONTOUR_T);
-  if (c->pt == NULL) luaL_error(L, "the contour was closed");
-  return c;
+  return &CHECKIMM(lsys_lcontour, CONTOUR_T, "contour", 0)->c;
 }
 
-/* A live one has patches. */
 const lsys_surface *lsys_checksurface (lua_State *L, int i) {
-  const lsys_surface *s = (const lsys_surface *)luaL_checkudata(L, i, SURFACE_T);
-  if (s->patch == NULL) luaL_error(L, "the surface was closed");
-  return s;
+  return &CHECKIMM(lsys_lsurface, SURFACE_T, "surface", 0)->s;
 }
 
-/* A live one has pixels. */
 const lsys_texture *lsys_checktexture (lua_State *L, int i) {
-  const lsys_texture *t = (const lsys_texture *)luaL_checkudata(L, i, TEXTURE_T);
-  if (t->rgba == NULL) luaL_error(L, "the texture was closed");
-  return t;
+  return &CHECKIMM(lsys_ltexture, TEXTURE_T, "texture", 0)->t;
 }
 
-/* A live one has points. */
 const lsys_func *lsys_checkfunc (lua_State *L, int i) {
-  const lsys_func *f = (const lsys_func *)luaL_checkudata(L, i, FUNC_T);
-  if (f->pt == NULL) luaL_error(L, "the function was closed");
-  return f;
+  return &CHECKIMM(lsys_lfunc, FUNC_T, "function", 0)->f;
+}
+
+const lsys_contour *lsys_keepcontour (lua_State *L, int i) {
+  return &CHECKIMM(lsys_lcontour, CONTOUR_T, "contour", 1)->c;
+}
+
+const lsys_surface *lsys_keepsurface (lua_State *L, int i) {
+  return &CHECKIMM(lsys_lsurface, SURFACE_T, "surface", 1)->s;
+}
+
+const lsys_texture *lsys_keeptexture (lua_State *L, int i) {
+  return &CHECKIMM(lsys_ltexture, TEXTURE_T, "texture", 1)->t;
+}
+
+const lsys_func *lsys_keepfunc (lua_State *L, int i) {
+  return &CHECKIMM(lsys_lfunc, FUNC_T, "function", 1)->f;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -439,6 +527,9 @@ int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]
   return 0;
 }
 
+/* The list is copied with lua_geti (its metamethods run once per entry),
+** then checked from the copy, after the array is made: nothing runs Lua code
+** between the checks and the return. The array's user value is the copy. */
 const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex) {
   const lsys_texture **arr;
   lua_Integer n, k;
@@ -459,18 +550,26 @@ const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *wh
     lua_pushnil(L);
     return NULL;
   }
-  arr = (const lsys_texture **)lua_newuserdatauv(L, (size_t)n * sizeof *arr, 0);
+  lua_createtable(L, (int)n, 0);
   for (k = 1; k <= n; k++) {
     lua_geti(L, -2, k);
-    arr[k - 1] = (const lsys_texture *)luaL_testudata(L, -1, TEXTURE_T);
-    if (arr[k - 1] == NULL)
+    lua_rawseti(L, -2, k);
+  }
+  arr = (const lsys_texture **)lua_newuserdatauv(L, (size_t)n * sizeof *arr, 1);
+  for (k = 1; k <= n; k++) {
+    const lsys_ltexture *u;
+    lua_rawgeti(L, -2, k);
+    u = (const lsys_ltexture *)luaL_testudata(L, -1, TEXTURE_T);
+    if (u == NULL)
       luaL_error(L, "%s: opts.textures[%I] must be a texture (lsys.texture_load), got %s", who,
                  k, luaL_typename(L, -1));
-    if (arr[k - 1]->rgba == NULL)
-      luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
+    if (u->life.closed) luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
+    arr[k - 1] = lsys_keeptexture(L, -1);
     lua_pop(L, 1);
   }
-  lua_remove(L, -2);                        /* the list stays referenced by the table */
+  lua_insert(L, -2);
+  lua_setiuservalue(L, -2, 1);              /* the copy: the textures live with the array */
+  lua_remove(L, -2);
   *ntex = (int)n;
   return arr;
 }

@@ -8,9 +8,10 @@
 **     lua_aux  <-  lua_lstring, lua_rules, lua_scene, ...  <-  lua_lsys
 **
 ** Here: the metatable names and createmeta; the state's alphabet; core
-** status codes as Lua errors; the userdata that more than one binding reads
+** status codes as Lua errors; objects in use (holding and keeping them
+** while Lua code runs); the userdata that more than one binding reads
 ** (Lstring, Rules, Scene; like lauxlib's luaL_Stream) and the checks that an
-** object is alive for those and for Contour, Surface and Texture; running
+** object is alive for those and for Contour, Surface, Texture and Func; running
 ** a core operation with a model's rule functions bound; option readers, and
 ** the option tables read in more than one binding (render options, lists of
 ** textures). Only lua_*.c include Lua.
@@ -50,6 +51,7 @@
 #define IK_T       "lsys.IK"         /* lua_ik.c */
 #define FUNC_T     "lsys.Func"       /* lua_func.c: positional functions */
 #define CANVAS_T   "lsys.Canvas"     /* lua_canvas.c */
+#define HOLD_T     "lsys.Hold"       /* lua_aux.c: an object held by a running binding */
 
 /* The registry field of the Rules deriving now (lsys.produce, lsys.ran). */
 #define LSYS_PRODUCING "lsys.producing"
@@ -82,12 +84,68 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e, int level);
 ** the caller runs lsys_expr_check). */
 lsys_ins *lsys_readcode (lua_State *L, int t, int *n);
 
-/* Pushes a new list of the n numbers v[0..n-1]. */
+/* Pushes a new list of the n <= LSYS_PUSHNUMS_MAX numbers v[0..n-1] (read
+** before anything is allocated). */
+#define LSYS_PUSHNUMS_MAX 16
 void lsys_pushnums (lua_State *L, const double *v, int n);
 
 /* Reads a list of module names separated by white space or commas into 'd'.
 ** Returns LSYS_OK or LSYS_ENOMEM. */
 int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
+
+/* ---------------------------------------------------------------------- */
+/*
+** Objects in use (issue 34). Lua code can run in the middle of a binding: a
+** call, a metamethod of a value it reads (lua_getfield, lua_gettable,
+** lua_geti, luaL_len, luaL_tolstring on the caller's values), or an
+** allocation (lua_newuserdatauv, lua_createtable, lua_pushstring, ...: its
+** collection step may run any finalizer, which may close or change any
+** object). A binding never keeps a pointer into an object across such a
+** point, unless the object is in use:
+**
+**   - held (a Scene, Frames): lsys_hold marks the object busy until the
+**     binding returns or raises; its close and whatever would move or free
+**     its arrays refuse meanwhile (lsys_checkidle);
+**   - kept (a Contour, Surface, Texture or Func that an interpretation, a
+**     Scene or a model points to): an immutable object, whose close then
+**     only marks it closed; the collector frees it;
+**   - or the binding takes its pointers after the last such point (checking
+**     again that the object is alive), or copies what it needs before it.
+** tests/misuse_spec.lua calls every method with objects closed and changed
+** at such points.
+*/
+
+/*
+** Holds the userdata at 'idx' whose hold count is *busy until the running C
+** function returns or raises: increments *busy and pushes a to-be-closed
+** value that decrements it (also when a coroutine dies with the function
+** on its stack: then when the collector finalizes that value, before the
+** userdata). Allocates: take the userdata's pointers after it, checking
+** again that it is alive. Nothing may remove the value from the stack but
+** the return (lua_settop below it ends the hold early).
+*/
+void lsys_hold (lua_State *L, int idx, int *busy);
+
+/* Raises 'msg' ("cannot close a Scene while it is in use") when 'busy' is
+** not 0. */
+void lsys_checkidle (lua_State *L, int busy, const char *msg);
+
+/* Whether the running C function was called by the collector as a finalizer
+** (not by Lua code calling a __gc metamethod by hand). */
+int lsys_finalizing (lua_State *L);
+
+/* The life of an immutable object (Contour, Surface, Texture, Func), after
+** its core struct in the userdata: closed (its methods raise), and kept
+** (something points to it: its memory is freed only by the collector). */
+typedef struct lsys_life {
+  int closed;
+  int kept;
+} lsys_life;
+
+/* __close and __gc of an immutable object: marks it closed; returns whether
+** its memory is to be freed now (it is not kept, or the collector finalizes
+** it: nothing that points to it can run any more). */
+int lsys_life_end (lua_State *L, lsys_life *life);
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Lstring */
@@ -203,24 +261,42 @@ enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_S
 typedef struct lsys_lscene {
   lsys_scene sc;       /* mesh, palette, records and stiffnesses (scene.h) */
   int inited;          /* 0 once closed */
+  int busy;            /* holds (lsys_hold): it can be neither closed nor changed */
 } lsys_lscene;
 
 /* Pushes a new, empty Scene. */
 lsys_lscene *lsys_newscene (lua_State *L);
 /* The Scene at 'i'; raises when it is not one or was closed. */
 lsys_lscene *lsys_checkscene (lua_State *L, int i);
+/* The same, held for the rest of the running C function (lsys_hold). */
+lsys_lscene *lsys_holdscene (lua_State *L, int i);
+/* Raises "cannot change a Scene while it is in use" when S is held: before
+** anything that moves or frees its arrays (growth, a stolen mesh). */
+void lsys_changescene (lua_State *L, const lsys_lscene *S);
 
 /* The name of a turtle record kind (LSYS_REC_*): "segment", "sphere", ... */
 const char *lsys_recordkind (int kind);
 
 /* ---------------------------------------------------------------------- */
-/* Contour, Surface, Texture: core objects, immutable once made; each raises
-** when the value at 'i' is not one or was closed. */
+/* Contour, Surface, Texture, Func: core objects, immutable once made, each
+** the first member of its userdata and followed by its life. Each check
+** raises when the value at 'i' is not one or was closed; the keep functions
+** check and mark it kept, for a caller that points to it beyond the running
+** C function or across Lua code (and keeps a reference to it). */
+
+typedef struct lsys_lcontour { lsys_contour c; lsys_life life; } lsys_lcontour;
+typedef struct lsys_lsurface { lsys_surface s; lsys_life life; } lsys_lsurface;
+typedef struct lsys_ltexture { lsys_texture t; lsys_life life; } lsys_ltexture;
+typedef struct lsys_lfunc { lsys_func f; lsys_life life; } lsys_lfunc;
 
 const lsys_contour *lsys_checkcontour (lua_State *L, int i);
 const lsys_surface *lsys_checksurface (lua_State *L, int i);
 const lsys_texture *lsys_checktexture (lua_State *L, int i);
 const lsys_func *lsys_checkfunc (lua_State *L, int i);
+const lsys_contour *lsys_keepcontour (lua_State *L, int i);
+const lsys_surface *lsys_keepsurface (lua_State *L, int i);
+const lsys_texture *lsys_keeptexture (lua_State *L, int i);
+const lsys_func *lsys_keepfunc (lua_State *L, int i);
 
 /* The Canvas at 'i' (lua_canvas.c), for a binding that draws into one or
 ** shows its pixels; raises when it is not one or was closed. */
@@ -286,9 +362,10 @@ int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]
 
 /*
 ** The list opts.textures of the options table at 't' (0: none) as an array
-** of *ntex textures, or NULL when absent or empty. Pushes one value that
-** keeps the array alive (nil when NULL); raises, naming 'who', when the
-** list holds anything but live textures.
+** of *ntex textures, or NULL when absent or empty. The list is read once;
+** its textures are kept (lsys_keeptexture). Pushes one value that keeps the
+** array and its textures alive (nil when NULL); raises, naming 'who', when
+** the list holds anything but live textures.
 */
 const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
 

@@ -184,21 +184,26 @@ static size_t checkcount (lua_State *L, int arg) {
   return (size_t)m;
 }
 
+/* The methods that allocate take the curve again after each allocation (a
+** finalizer it runs may close the curve), and read it into memory of their
+** own before they make the tables. */
 static int bspline_sample (lua_State *L) {
   const lsys_bspline *c = checkbspline(L, 1, "sample");
   size_t m = checkcount(L, 2);
-  double *out = (double *)lua_newuserdatauv(L, m * (size_t)c->dim * sizeof *out, 0);
-  lsys_bspline_sample(c, m, out);
-  pushpoints(L, out, m, c->dim, NULL);
+  int dim = c->dim;
+  double *out = (double *)lua_newuserdatauv(L, m * (size_t)dim * sizeof *out, 0);
+  lsys_bspline_sample(checkbspline(L, 1, "sample"), m, out);
+  pushpoints(L, out, m, dim, NULL);
   return 1;
 }
 
 static int bspline_sample_length (lua_State *L) {
   const lsys_bspline *c = checkbspline(L, 1, "sample_length");
   size_t m = checkcount(L, 2);
-  double *out = (double *)lua_newuserdatauv(L, m * ((size_t)c->dim + 1) * sizeof *out, 0);
-  lsys_bspline_sample_length(c, m, out, out + m * (size_t)c->dim);
-  pushpoints(L, out, m, c->dim, out + m * (size_t)c->dim);
+  int dim = c->dim;
+  double *out = (double *)lua_newuserdatauv(L, m * ((size_t)dim + 1) * sizeof *out, 0);
+  lsys_bspline_sample_length(checkbspline(L, 1, "sample_length"), m, out, out + m * (size_t)dim);
+  pushpoints(L, out, m, dim, out + m * (size_t)dim);
   return 1;
 }
 
@@ -231,6 +236,7 @@ static int bspline_ray (lua_State *L) {
   d[0] = luaL_checknumber(L, 4), d[1] = luaL_checknumber(L, 5);
   for (pass = 0; pass < 2; pass++) {           /* again with room for all */
     h = (lsys_bspline_hit *)lua_newuserdatauv(L, cap * sizeof *h, 0);
+    c = checkbspline(L, 1, "ray");
     if ((st = lsys_bspline_ray(c, o, d, h, cap, &n, &e)) != LSYS_OK) {
       if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
       return luaL_error(L, "ray: %s", e.msg);
@@ -251,6 +257,8 @@ static int bspline_intersect (lua_State *L) {
   int st, pass;
   for (pass = 0; pass < 2; pass++) {
     h = (lsys_bspline_hit *)lua_newuserdatauv(L, cap * sizeof *h, 0);
+    a = checkbspline(L, 1, "intersect");
+    b = checkbspline(L, 2, "intersect");
     if ((st = lsys_bspline_intersect(a, b, h, cap, &n, &e)) != LSYS_OK) {
       if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
       return luaL_error(L, "intersect: %s", e.msg);
@@ -278,7 +286,12 @@ static int bspline_closest (lua_State *L) {
 
 static int bspline_points (lua_State *L) {
   const lsys_bspline *c = checkbspline(L, 1, "points");
-  pushpoints(L, c->pt, c->n, c->dim, NULL);
+  size_t n = c->n;
+  int dim = c->dim;
+  double *pt = (double *)lua_newuserdatauv(L, n * (size_t)dim * sizeof *pt + 1, 0);
+  c = checkbspline(L, 1, "points");
+  if (n > 0) memcpy(pt, c->pt, n * (size_t)dim * sizeof *pt);
+  pushpoints(L, pt, n, dim, NULL);
   return 1;
 }
 

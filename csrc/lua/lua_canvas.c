@@ -114,11 +114,13 @@ static int canvas_gc (lua_State *L) {         /* also __close: idempotent */
   return 0;
 }
 
+/* Each method takes the canvas after reading its colour (luaL_len runs a
+** table's metamethod, which may close the canvas). */
 static int canvas_clear (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
   double rgba[4];
+  lsys_checkcanvas(L, 1);
   checkcolour(L, 2, rgba, CLEAR);
-  lsys_canvas_clear(c, rgba);
+  lsys_canvas_clear(lsys_checkcanvas(L, 1), rgba);
   return 0;
 }
 
@@ -135,6 +137,7 @@ static int canvas_line (lua_State *L) {
   double x1 = luaL_checknumber(L, 4), y1 = luaL_checknumber(L, 5);
   double width = checksize(L, 6, 1, 1), rgba[4];
   checkcolour(L, 7, rgba, BLACK);
+  c = lsys_checkcanvas(L, 1);
   lsys_canvas_line(c, x0, y0, x1, y1, width, rgba);
   return 0;
 }
@@ -174,6 +177,7 @@ static int canvas_polyline (lua_State *L) {
   luaL_checktype(L, 2, LUA_TTABLE);
   checkcolour(L, 4, rgba, BLACK);
   n = luaL_len(L, 2);
+  c = lsys_checkcanvas(L, 1);               /* nothing below runs Lua code */
   flat = n > 0 && lua_rawgeti(L, 2, 1) != LUA_TTABLE;
   if (n > 0) lua_pop(L, 1);
   if (flat) {
@@ -195,6 +199,7 @@ static int canvas_rect (lua_State *L) {
   double w = (luaL_checknumber(L, 4), checksize(L, 4, 0, 0));
   double h = (luaL_checknumber(L, 5), checksize(L, 5, 0, 0)), rgba[4];
   checkcolour(L, 6, rgba, BLACK);
+  c = lsys_checkcanvas(L, 1);
   lsys_canvas_rect(c, x, y, w, h, rgba, lua_toboolean(L, 7));
   return 0;
 }
@@ -205,6 +210,7 @@ static int canvas_circle (lua_State *L) {
   luaL_checknumber(L, 4);
   r = checksize(L, 4, 0, 0);
   checkcolour(L, 5, rgba, BLACK);
+  c = lsys_checkcanvas(L, 1);
   lsys_canvas_circle(c, x, y, r, rgba);
   return 0;
 }
@@ -222,6 +228,7 @@ static int canvas_text (lua_State *L) {
   const char *s = luaL_checklstring(L, 4, &n);
   int scale = checkscale(L, 5);
   checkcolour(L, 6, rgba, BLACK);
+  c = lsys_checkcanvas(L, 1);
   lsys_canvas_text(c, x, y, s, n, scale, rgba);
   lua_pushinteger(L, (lua_Integer)lsys_canvas_text_width(n, scale));
   return 1;
@@ -252,6 +259,7 @@ static int canvas_save (lua_State *L) {
   lsys_canvas *c = lsys_checkcanvas(L, 1);
   const char *path = luaL_checkstring(L, 2);
   lsys_error e;
+  c = lsys_checkcanvas(L, 1);               /* again: converting a number allocates */
   if (lsys_canvas_save(c, path, &e) != LSYS_OK) return luaL_error(L, "save: %s", e.msg);
   return 0;
 }

@@ -37,6 +37,7 @@
 typedef struct lframes {
   lsys_cframes a;
   int closed;
+  int busy;                    /* held by F:stem (lsys_hold): neither closed nor changed */
 } lframes;
 
 typedef struct lwriter {
@@ -49,14 +50,27 @@ typedef struct lwriter {
 ** Frames
 ** ======================================================================= */
 
+#define FRAMES_INUSE "cannot close the frames while they are in use"
+
 static lsys_cframes *checkframes (lua_State *L, int i) {
   lframes *f = (lframes *)luaL_checkudata(L, i, FRAMES_T);
   if (f->closed) luaL_error(L, "the frames were closed");
   return &f->a;
 }
 
+/* The frames at 1 for a method that adds or rewrites frames: refused while
+** F:stem holds them. */
+static lsys_cframes *changeframes (lua_State *L) {
+  lsys_cframes *a = checkframes(L, 1);
+  lsys_checkidle(L, ((lframes *)lua_touserdata(L, 1))->busy,
+                 "cannot change the frames while they are in use");
+  return a;
+}
+
+/* __gc and __close (and F:close): idempotent; refused while held. */
 static int frames_close (lua_State *L) {
   lframes *f = (lframes *)luaL_checkudata(L, 1, FRAMES_T);
+  if (!f->closed && !lsys_finalizing(L)) lsys_checkidle(L, f->busy, FRAMES_INUSE);
   if (!f->closed) lsys_cframes_free(&f->a);
   f->closed = 1;
   return 0;
@@ -66,7 +80,7 @@ static int l_frames (lua_State *L) {
   lua_Integer seed = luaL_optinteger(L, 1, 1);
   lframes *f = (lframes *)lua_newuserdatauv(L, sizeof *f, 0);
   lsys_cframes_init(&f->a, (int64_t)seed);
-  f->closed = 0;
+  f->closed = f->busy = 0;
   luaL_setmetatable(L, FRAMES_T);
   return 1;
 }
@@ -118,38 +132,39 @@ static void readframe (lua_State *L, int t, lsys_cframe *f) {
   lua_pop(L, 2);
 }
 
+/* The frame tables are read before the frames are taken: their metamethods
+** run Lua code. */
 static int frames_add (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
   lsys_cframe f;
+  checkframes(L, 1);
   readframe(L, 2, &f);
-  return pushnew(L, a, &f);
+  return pushnew(L, changeframes(L), &f);
 }
 
 static int frames_set (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
-  lsys_cframe *f = frameat(L, a, 2), g;
+  lsys_cframe g;
+  frameat(L, checkframes(L, 1), 2);
   readframe(L, 3, &g);
-  *f = g;
+  *frameat(L, changeframes(L), 2) = g;
   return 0;
 }
 
-/* F:get(i [, withu]) */
+/* F:get(i [, withu]): a copy of the frame, then the tables */
 static int frames_get (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
-  lsys_cframe *f = frameat(L, a, 2);
+  lsys_cframe f = *frameat(L, checkframes(L, 1), 2);
   int withu = lua_toboolean(L, 3);
   lua_settop(L, 2);
   lua_createtable(L, 0, 5);
-  pushvec(L, f->p);
+  pushvec(L, f.p);
   lua_setfield(L, -2, "p");
-  pushvec(L, f->H);
+  pushvec(L, f.H);
   lua_setfield(L, -2, "H");
-  pushvec(L, f->U);
+  pushvec(L, f.U);
   lua_setfield(L, -2, "U");
-  lua_pushnumber(L, f->s);
+  lua_pushnumber(L, f.s);
   lua_setfield(L, -2, "s");
   if (withu) {
-    lua_pushnumber(L, f->u);
+    lua_pushnumber(L, f.u);
     lua_setfield(L, -2, "u");
   }
   return 1;
@@ -171,14 +186,14 @@ static int frames_random (lua_State *L) {
 }
 
 static int frames_copy (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
+  lsys_cframes *a = changeframes(L);
   lsys_cframe g = *frameat(L, a, 2);
   g.u = 0;
   return pushnew(L, a, &g);
 }
 
 static int frames_transform (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
+  lsys_cframes *a = changeframes(L);
   lsys_cframe g, *f = frameat(L, a, 2);
   double t[3], r[3];
   int i;
@@ -189,7 +204,7 @@ static int frames_transform (lua_State *L) {
 }
 
 static int frames_ahead (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
+  lsys_cframes *a = changeframes(L);
   lsys_cframe g = *frameat(L, a, 2);
   double d = num(L, 3);
   int i;
@@ -201,7 +216,7 @@ static int frames_ahead (lua_State *L) {
 /* F:branch(first, nframes, u, roll, angle, scale): between the stem frames
 ** around u (of nframes, the first at index first). */
 static int frames_branch (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
+  lsys_cframes *a = changeframes(L);
   lua_Integer first = luaL_checkinteger(L, 2), nf = luaL_checkinteger(L, 3);
   double x, t, u = num(L, 4);
   lua_Integer ns = nf - 1, k;
@@ -219,7 +234,7 @@ static int frames_branch (lua_State *L) {
 }
 
 static int frames_place (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
+  lsys_cframes *a = changeframes(L);
   lsys_cframe *f = frameat(L, a, 2), g;
   double X[3], Y[3], v[9];
   int i, j;
@@ -241,16 +256,15 @@ static int frames_place (lua_State *L) {
   return pushnew(L, a, &g);
 }
 
-/* The tropism field k: a Lua function of position in the trop list. */
-typedef struct fieldctx { lua_State *L; int trop; } fieldctx;
+/* The tropism field k: a Lua function of position, at k + 1 in the table at
+** 'fns' (the stem's own: the caller's list is read once, before the stem). */
+typedef struct fieldctx { lua_State *L; int fns; } fieldctx;
 
 static int callfield (void *ud, int k, const double p[3], double T[3]) {
   fieldctx *c = (fieldctx *)ud;
   lua_State *L = c->L;
   int i;
-  lua_rawgeti(L, c->trop, k + 1);
-  lua_rawgeti(L, -1, 1);
-  lua_remove(L, -2);
+  lua_rawgeti(L, c->fns, k + 1);
   for (i = 0; i < 3; i++) lua_pushnumber(L, p[i]);
   lua_call(L, 3, 3);                   /* its error is the caller's */
   if (lua_isnil(L, -3)) { lua_pop(L, 3); return 0; }
@@ -278,15 +292,45 @@ static double elem (lua_State *L, int i, int k, const char *what) {
 
 #define MAXTROP 8
 
+/* The tropisms of the list at 8 into trop (4 numbers each; a field: NaN,
+** its function into the table at 'fns'); their number. */
+static int readtrop (lua_State *L, double *trop, int fns) {
+  int nt, k;
+  luaL_checktype(L, 8, LUA_TTABLE);
+  nt = (int)luaL_len(L, 8);
+  luaL_argcheck(L, nt <= MAXTROP, 8, "too many tropisms");
+  for (k = 0; k < nt; k++) {
+    int t = lua_gettop(L) + 1, i;
+    if (lua_rawgeti(L, 8, k + 1) != LUA_TTABLE)
+      return luaL_error(L, "tropism %d must be {direction, strength}", k + 1);
+    lua_rawgeti(L, t, 1);
+    if (lua_isfunction(L, -1)) {
+      trop[4 * k] = NAN;
+      lua_pushvalue(L, -1);
+      lua_rawseti(L, fns, k + 1);
+    }
+    else if (lua_istable(L, -1)) {
+      for (i = 0; i < 3; i++) trop[4 * k + i] = elem(L, t + 1, i + 1, "a tropism direction");
+    }
+    else return luaL_error(L, "tropism %d: the direction must be {x, y, z} or a function",
+                           k + 1);
+    trop[4 * k + 3] = elem(L, t, 2, "a tropism");
+    lua_settop(L, t - 1);
+  }
+  return nt < 0 ? 0 : nt;
+}
+
+/* The arguments are read first (luaL_len runs Lua code), then the frames
+** are held: the field functions can neither close nor grow them. */
 static int frames_stem (lua_State *L) {
-  lsys_cframes *a = checkframes(L, 1);
-  lsys_cframe *f = frameat(L, a, 2);
+  lsys_cframes *a;
   lsys_cstem st;
   double trop[4 * MAXTROP], *bb = NULL;
   fieldctx fc;
-  lua_Integer segs;
+  lua_Integer segs, base;
   size_t first;
   int nt = 0, nb = 0, r, k;
+  frameat(L, checkframes(L, 1), 2);
   st.len = num(L, 3);
   segs = luaL_checkinteger(L, 4);
   luaL_argcheck(L, segs >= 1 && segs <= 100000, 4, "segments must be from 1 to 100000");
@@ -294,47 +338,35 @@ static int frames_stem (lua_State *L) {
   st.curv = num(L, 5);
   st.twist = num(L, 6);
   st.gnarl = num(L, 7);
-  if (!lua_isnoneornil(L, 8)) {
-    luaL_checktype(L, 8, LUA_TTABLE);
-    nt = (int)luaL_len(L, 8);
-    luaL_argcheck(L, nt <= MAXTROP, 8, "too many tropisms");
-    for (k = 0; k < nt; k++) {
-      int t = lua_gettop(L) + 1, i;
-      if (lua_rawgeti(L, 8, k + 1) != LUA_TTABLE)
-        return luaL_error(L, "tropism %d must be {direction, strength}", k + 1);
-      lua_rawgeti(L, t, 1);
-      if (lua_isfunction(L, -1)) trop[4 * k] = NAN;
-      else if (lua_istable(L, -1)) {
-        for (i = 0; i < 3; i++) trop[4 * k + i] = elem(L, t + 1, i + 1, "a tropism direction");
-      }
-      else return luaL_error(L, "tropism %d: the direction must be {x, y, z} or a function",
-                             k + 1);
-      trop[4 * k + 3] = elem(L, t, 2, "a tropism");
-      lua_settop(L, t - 1);
-    }
-  }
-  st.ntrop = nt;
-  st.trop = trop;
-  fc.L = L;
-  fc.trop = 8;
-  st.field = callfield;
-  st.ud = &fc;
   st.dev = luaL_optnumber(L, 9, 0);
-  if (!lua_isnoneornil(L, 10)) {
+  lua_settop(L, 11);
+  lua_newtable(L);                          /* 12: the field functions */
+  if (!lua_isnil(L, 8)) nt = readtrop(L, trop, 12);
+  if (!lua_isnil(L, 10)) {
     luaL_checktype(L, 10, LUA_TTABLE);
     luaL_checktype(L, 11, LUA_TTABLE);
     nb = (int)lua_rawlen(L, 10);
     luaL_argcheck(L, (int)lua_rawlen(L, 11) == nb, 11, "one roll per branch");
-    bb = (double *)lua_newuserdatauv(L, 2 * (size_t)nb * sizeof *bb + 1, 0);
+    bb = (double *)lua_newuserdatauv(L, 2 * (size_t)nb * sizeof *bb + 1, 0);   /* 13 */
     for (k = 0; k < nb; k++) {
       bb[k] = elem(L, 10, k + 1, "bu");
       bb[nb + k] = elem(L, 11, k + 1, "broll");
     }
   }
+  st.ntrop = nt;
+  st.trop = trop;
+  fc.L = L;
+  fc.fns = 12;
+  st.field = callfield;
+  st.ud = &fc;
   st.nb = nb;
   st.bu = bb;
   st.broll = bb ? bb + nb : NULL;
-  r = lsys_cframes_stem(a, (size_t)(f - a->f), &st, &first);
+  changeframes(L);
+  lsys_hold(L, 1, &((lframes *)lua_touserdata(L, 1))->busy);
+  a = checkframes(L, 1);                    /* again: the hold allocated */
+  base = frameat(L, a, 2) - a->f;
+  r = lsys_cframes_stem(a, (size_t)base, &st, &first);
   if (r != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_pushinteger(L, (lua_Integer)first + 1);
   return 1;
@@ -372,10 +404,12 @@ static const lsys_cframe *wframe (lua_State *L, int i) {
   return f;
 }
 
-/* The string written, checked alive (an Lstring can be closed by the user). */
+/* The string written, checked alive (an Lstring can be closed by the user)
+** and not in use by a derivation or interpretation (which a rule function
+** calling the writer would rewrite under them). */
 static void checkstring (lua_State *L) {
   lua_getiuservalue(L, 1, UV_STRING);
-  lsys_checklstring(L, -1);
+  lsys_checkwritable(L, -1, "cwriter");
   lua_pop(L, 1);
 }
 
@@ -538,7 +572,7 @@ static int writer_range (lua_State *L) {
   lwriter *w = checkwriter(L, 1);
   lua_Integer i = luaL_checkinteger(L, 2);
   const int32_t *r;
-  if (i < 1 || (size_t)(3 * i) > w->w.capi) return 0;
+  if (i < 1 || (lua_Unsigned)(i - 1) >= w->w.capi / 3) return 0;
   r = w->w.range + 3 * (i - 1);
   if (r[0] == 0 || r[1] == 0) return 0;
   lua_pushinteger(L, r[0]);

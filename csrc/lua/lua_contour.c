@@ -21,14 +21,17 @@
 #define MAXSIDES 65536        /* p of c:sample(p) */
 
 static lsys_contour *newcontour (lua_State *L) {
-  lsys_contour *c = (lsys_contour *)lua_newuserdatauv(L, sizeof *c, 0);
-  lsys_contour_init(c);
+  lsys_lcontour *u = (lsys_lcontour *)lua_newuserdatauv(L, sizeof *u, 0);
+  lsys_contour_init(&u->c);
+  u->life.closed = u->life.kept = 0;
   luaL_setmetatable(L, CONTOUR_T);
-  return c;
+  return &u->c;
 }
 
-static int contour_gc (lua_State *L) {       /* also __close: idempotent */
-  lsys_contour_free((lsys_contour *)luaL_checkudata(L, 1, CONTOUR_T));
+/* __gc and __close: idempotent; a kept contour is freed by the collector. */
+static int contour_gc (lua_State *L) {
+  lsys_lcontour *u = (lsys_lcontour *)luaL_checkudata(L, 1, CONTOUR_T);
+  if (lsys_life_end(L, &u->life)) lsys_contour_free(&u->c);
   return 0;
 }
 
@@ -122,6 +125,7 @@ static int contour_sample (lua_State *L) {
   luaL_argcheck(L, p >= 3 && p <= MAXSIDES, 2, "must be between 3 and 65536");
   luaL_argcheck(L, c->pt != NULL, 1, "empty contour");
   v = (double *)lua_newuserdatauv(L, 6 * ((size_t)p + 1) * sizeof *v, 0);
+  c = lsys_checkcontour(L, 1);              /* again: a finalizer may have closed it */
   lsys_contour_sample(c, (int)p, v, v + 3 * (p + 1));
   pushpoints(L, v, (int)p);
   pushpoints(L, v + 3 * (p + 1), (int)p);
@@ -144,8 +148,9 @@ static int contour_dim (lua_State *L) {
 }
 
 static int contour_tostring (lua_State *L) {
-  const lsys_contour *c = (const lsys_contour *)luaL_checkudata(L, 1, CONTOUR_T);
-  if (c->pt == NULL) {
+  const lsys_lcontour *u = (const lsys_lcontour *)luaL_checkudata(L, 1, CONTOUR_T);
+  const lsys_contour *c = &u->c;
+  if (u->life.closed) {
     lua_pushliteral(L, CONTOUR_T " (closed)");
     return 1;
   }

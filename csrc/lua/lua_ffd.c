@@ -268,9 +268,8 @@ static range readrange (lua_State *L, const lsys_scene *sc, int t, const char *w
 
 typedef struct luafn {
   lua_State *L;
-  lsys_lscene *S;
   int fn;                  /* stack index of the function */
-  int bad;                 /* which return was bad (1..3), 0: the call raised, -1: closed */
+  int bad;                 /* which return was bad (1..3), 0: the call raised */
 } luafn;
 
 /* Calls f(x, y, z) in protected mode; on failure leaves the error (or the
@@ -282,7 +281,6 @@ static int callfn (void *ud, const double p[3], double out[3]) {
   lua_pushvalue(L, f->fn);
   for (r = 0; r < 3; r++) lua_pushnumber(L, p[r]);
   if (lua_pcall(L, 3, 3, 0) != LUA_OK) { f->bad = 0; return LSYS_ERULE; }
-  if (!f->S->inited) { f->bad = -1; return LSYS_ERULE; }
   for (r = 0; r < 3; r++) {
     int ok;
     out[r] = lua_tonumberx(L, r - 3, &ok);
@@ -334,11 +332,10 @@ static int deform_fn (lua_State *L, lsys_lscene *S, const range *g) {
   int st, top;
   save = saverange(L, &S->sc.mesh, g);
   top = lua_gettop(L);
-  f.L = L; f.S = S; f.fn = 2; f.bad = 0;
+  f.L = L; f.fn = 2; f.bad = 0;
   memset(&e, 0, sizeof e);
   st = lsys_deform_func(&S->sc, g->v0, g->v1, g->l0, g->l1, callfn, &f, &e);
   if (st == LSYS_OK) return 0;
-  if (f.bad < 0 || !S->inited) return luaL_error(L, "scene:deform: the function closed the scene");
   restorerange(&S->sc.mesh, g, save);
   if (st != LSYS_ERULE || lua_gettop(L) == top)
     return luaL_error(L, "scene:deform: %s", e.msg);
@@ -358,7 +355,9 @@ static int deform_fn (lua_State *L, lsys_lscene *S, const range *g) {
   }
 }
 
-/* scene:deform(hp | f, opts) -> vertices moved */
+/* scene:deform(hp | f, opts) -> vertices moved. The scene is held from the
+** start: the options and the function run Lua code, which can neither close
+** it nor move its arrays meanwhile. */
 static int scene_deform (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   range g;
@@ -368,10 +367,12 @@ static int scene_deform (lua_State *L) {
     if (luaL_testudata(L, 2, HYPERPATCH_T) == NULL)
       return luaL_error(L, "scene:deform: argument 1 must be a Hyperpatch or a function, got %s",
                         luaL_typename(L, 2));
-    hp = checkhp(L, 2);
+    checkhp(L, 2);
   }
-  g = readrange(L, &S->sc, 3, "scene:deform");
   lua_settop(L, 3);
+  S = lsys_holdscene(L, 1);                 /* 4 */
+  g = readrange(L, &S->sc, 3, "scene:deform");
+  if (!isfn) hp = checkhp(L, 2);            /* again: the options ran Lua code */
   if (isfn) deform_fn(L, S, &g);
   else if (lsys_deform_range(&S->sc, g.v0, g.v1, g.l0, g.l1, hp) != LSYS_OK)
     return luaL_error(L, "scene:deform: range out of the scene");
@@ -389,6 +390,8 @@ static int scene_transform (lua_State *L) {
   int r, c;
   range g;
   luaL_checktype(L, 2, LUA_TTABLE);
+  lua_settop(L, 3);
+  S = lsys_holdscene(L, 1);                 /* 4: the matrix and options run Lua code */
   n = luaL_len(L, 2);
   if (n != 3 && n != 4) return luaL_error(L, "%s: the matrix must have 3 or 4 rows, got %I", who, n);
   for (r = 0; r < (int)n; r++) {

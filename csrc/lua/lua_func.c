@@ -21,14 +21,18 @@
 #include "lua_lsys.h"
 
 static lsys_func *newfunc (lua_State *L) {
-  lsys_func *f = (lsys_func *)lua_newuserdatauv(L, sizeof *f, 0);
-  lsys_func_init(f);
+  lsys_lfunc *u = (lsys_lfunc *)lua_newuserdatauv(L, sizeof *u, 0);
+  lsys_func_init(&u->f);
+  u->life.closed = u->life.kept = 0;
   luaL_setmetatable(L, FUNC_T);
-  return f;
+  return &u->f;
 }
 
-static int func_gc (lua_State *L) {          /* also __close: idempotent */
-  lsys_func_free((lsys_func *)luaL_checkudata(L, 1, FUNC_T));
+/* __gc and __close: idempotent; a kept function (a model's) is freed by the
+** collector. */
+static int func_gc (lua_State *L) {
+  lsys_lfunc *u = (lsys_lfunc *)luaL_checkudata(L, 1, FUNC_T);
+  if (lsys_life_end(L, &u->life)) lsys_func_free(&u->f);
   return 0;
 }
 
@@ -54,13 +58,13 @@ static int l_func (lua_State *L) {
   lsys_func *f;
   lsys_error e;
   luaL_checktype(L, 1, LUA_TTABLE);
-  if (!lua_isnoneornil(L, 2)) {
+  lua_settop(L, 2);
+  if (!lua_isnil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
     if (lua_getfield(L, 2, "name") != LUA_TNIL) {
       if (lua_type(L, -1) != LUA_TSTRING) luaL_error(L, "core.func: opts.name must be a string");
-      name = lua_tostring(L, -1);           /* kept alive by opts */
-    }
-    lua_pop(L, 1);
+      name = lua_tostring(L, -1);           /* 3, alive on the stack: an __index may */
+    }                                       /* have made it, and opts not keep it */
     samples = optsamples(L, 2);
     if (lua_getfield(L, 2, "approx") != LUA_TNIL) {
       const char *a = lua_tostring(L, -1);
@@ -115,8 +119,9 @@ static int l_func_parse (lua_State *L) {
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names the file and line */
   lua_createtable(L, (int)n, 0);
   for (k = 0; k < n; k++) {                  /* moved into userdata: nothing can raise */
-    lsys_func *f = (lsys_func *)lua_newuserdatauv(L, sizeof *f, 0);
-    *f = fs[k];
+    lsys_lfunc *u = (lsys_lfunc *)lua_newuserdatauv(L, sizeof *u, 0);
+    u->f = fs[k];
+    u->life.closed = u->life.kept = 0;
     lsys_func_init(&fs[k]);
     luaL_setmetatable(L, FUNC_T);
     lua_rawseti(L, -2, (lua_Integer)k + 1);
@@ -132,15 +137,20 @@ static int func_eval (lua_State *L) {
   return 1;
 }
 
+/* The points are copied before the lists are made (a finalizer run by an
+** allocation may close the function). */
 static int func_points (lua_State *L) {
+  size_t i, n = lsys_checkfunc(L, 1)->n;
+  double *pt = (double *)lua_newuserdatauv(L, 2 * n * sizeof *pt + 1, 0);
   const lsys_func *f = lsys_checkfunc(L, 1);
-  size_t i;
-  lua_createtable(L, (int)f->n, 0);
-  for (i = 0; i < f->n; i++) {
+  if (f->n < n) n = f->n;
+  if (n > 0) memcpy(pt, f->pt, 2 * n * sizeof *pt);
+  lua_createtable(L, (int)n, 0);
+  for (i = 0; i < n; i++) {
     lua_createtable(L, 2, 0);
-    lua_pushnumber(L, f->pt[2 * i]);
+    lua_pushnumber(L, pt[2 * i]);
     lua_rawseti(L, -2, 1);
-    lua_pushnumber(L, f->pt[2 * i + 1]);
+    lua_pushnumber(L, pt[2 * i + 1]);
     lua_rawseti(L, -2, 2);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
   }
@@ -163,20 +173,21 @@ static int func_approx (lua_State *L) {
 }
 
 static int func_format (lua_State *L) {
-  const lsys_func *f = lsys_checkfunc(L, 1);
-  size_t len = lsys_func_format(f, NULL, 0);
+  size_t len = lsys_func_format(lsys_checkfunc(L, 1), NULL, 0);
   luaL_Buffer b;
   char *p = luaL_buffinitsize(L, &b, len + 1);
-  lsys_func_format(f, p, len + 1);
+  lsys_func_format(lsys_checkfunc(L, 1), p, len + 1);   /* again: the buffer allocated */
   luaL_pushresultsize(&b, len);
   return 1;
 }
 
 static int func_tostring (lua_State *L) {
-  const lsys_func *f = (const lsys_func *)luaL_checkudata(L, 1, FUNC_T);
-  if (f->pt == NULL) lua_pushliteral(L, FUNC_T " (closed)");
-  else lua_pushfstring(L, FUNC_T "(%s: %d points%s)", f->name, (int)f->n,
-                       f->samples > 2 ? lua_pushfstring(L, ", %d samples", f->samples) : "");
+  const lsys_lfunc *u = (const lsys_lfunc *)luaL_checkudata(L, 1, FUNC_T);
+  const char *more = "";
+  if (!u->life.closed && u->f.samples > 2)
+    more = lua_pushfstring(L, ", %d samples", u->f.samples);
+  if (u->life.closed) lua_pushliteral(L, FUNC_T " (closed)");   /* read after that string */
+  else lua_pushfstring(L, FUNC_T "(%s: %d points%s)", u->f.name, (int)u->f.n, more);
   return 1;
 }
 

@@ -85,6 +85,14 @@ static lsys_limbs *checklimbs (lua_State *L) {
   return &t->g;
 }
 
+/* The table at 1 for a method that writes its scene (begin starts what
+** finish writes): refused while the scene is held (issue 34 §3). */
+static lsys_limbs *checkwriter (lua_State *L) {
+  lsys_limbs *g = checklimbs(L);
+  lsys_changescene(L, ((const llimbs *)lua_touserdata(L, 1))->S);
+  return g;
+}
+
 static int limbs_gc (lua_State *L) {
   llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
   if (!t->closed) {
@@ -163,12 +171,12 @@ static int limbs_scene (lua_State *L) {
 }
 
 static int limbs_update (lua_State *L) {
-  return status(L, lsys_limbs_update(checklimbs(L)), "update");
+  return status(L, lsys_limbs_update(checkwriter(L)), "update");
 }
 
 static int limbs_set_leaf (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
-  const lsys_surface *sf = (const lsys_surface *)luaL_testudata(L, 2, SURFACE_T);
+  const lsys_surface *sf = luaL_testudata(L, 2, SURFACE_T) ? lsys_checksurface(L, 2) : NULL;
   lsys_mesh m;
   int r;
   if (g->nl > 0) return luaL_error(L, "leaf shape: leaves are made already (set it first)");
@@ -246,8 +254,13 @@ static int limbs_add (lua_State *L) {
   return 1;
 }
 
-static int limbs_begin (lua_State *L) { return status(L, lsys_limbs_begin(checklimbs(L)), "begin"); }
-static int limbs_finish (lua_State *L) { return status(L, lsys_limbs_end(checklimbs(L)), "finish"); }
+static int limbs_begin (lua_State *L) {
+  return status(L, lsys_limbs_begin(checkwriter(L)), "begin");
+}
+
+static int limbs_finish (lua_State *L) {
+  return status(L, lsys_limbs_end(checkwriter(L)), "finish");
+}
 
 static int limbs_ticking (lua_State *L) {
   lua_pushboolean(L, checklimbs(L)->intick);
@@ -306,6 +319,7 @@ static int limbs_children (lua_State *L) {
   int32_t i = limbarg(L, g, 2), c;
   lua_Integer k = 0;
   lua_newtable(L);
+  g = checklimbs(L);                        /* again: a finalizer may have closed it */
   for (c = g->first[i]; c >= 0; c = g->next[c]) {
     lua_pushinteger(L, (lua_Integer)c + 1);
     lua_rawseti(L, -2, ++k);
@@ -334,7 +348,7 @@ static int limbs_living (lua_State *L) { return living(L, 0); }
 static int limbs_living0 (lua_State *L) { return living(L, 1); }
 
 static int limbs_base (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
+  lsys_limbs *g = checkwriter(L);
   int32_t i = limbarg(L, g, 2);
   int k;
   status(L, lsys_limbs_update(g), "base");
@@ -343,7 +357,7 @@ static int limbs_base (lua_State *L) {
 }
 
 static int limbs_tip (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
+  lsys_limbs *g = checkwriter(L);
   int32_t i = limbarg(L, g, 2);
   double t[3];
   int k;
@@ -354,11 +368,13 @@ static int limbs_tip (lua_State *L) {
 }
 
 static int limbs_frame (lua_State *L) {
-  lsys_limbs *g = checklimbs(L);
+  lsys_limbs *g = checkwriter(L);
   int32_t i = limbarg(L, g, 2);
+  double m[9];
   int k;
   status(L, lsys_limbs_update(g), "frame");
-  for (k = 0; k < 3; k++) lsys_pushnums(L, g->wm + 9 * i + 3 * k, 3);
+  memcpy(m, g->wm + 9 * i, sizeof m);       /* before the lists: a finalizer may close g */
+  for (k = 0; k < 3; k++) lsys_pushnums(L, m + 3 * k, 3);
   return 3;
 }
 
@@ -533,28 +549,21 @@ static int clauses (const crule *r, const double *args) {
   return 1;
 }
 
-/* Reads rule table at 'idx' (rule number j) into r. With alloc 0 it only
-** checks (and may raise); with alloc 1 (after a check) it copies the
-** condition's code into C memory and returns 0 when that fails. */
-static int readrule (lua_State *L, int idx, int j, crule *r, int alloc) {
+/* Reads rule table at 'idx' (rule number j) into r, every field once; its
+** condition's code is checked, then copied into C memory last (nothing runs
+** Lua code after the copy). Returns 0 when that allocation fails. */
+static int readrule (lua_State *L, int idx, int j, crule *r) {
   double v[4];
+  lsys_ins *c = NULL;
+  int nc = 0;
   idx = lua_absindex(L, idx);
   memset(r, 0, sizeof *r);
   if (!lua_istable(L, idx)) luaL_error(L, "set_rules: rule %d is not a table", j);
   if (lua_getfield(L, idx, "code") != LUA_TNIL) {
-    int nc;
-    lsys_ins *c = lsys_readcode(L, -1, &nc);
-    if (!alloc && lsys_expr_check(c, nc, NVARS, 0) != 0)
+    c = lsys_readcode(L, -1, &nc);          /* on the stack until the end */
+    if (lsys_expr_check(c, nc, NVARS, 0) != 0)
       luaL_error(L, "set_rules: rule %d: the condition's code is malformed", j);
-    if (alloc) {
-      if ((r->code = (lsys_ins *)LSYS_MALLOC((size_t)nc * sizeof *c + 1)) == NULL) return 0;
-      memcpy(r->code, c, (size_t)nc * sizeof *c);
-      r->ncode = nc;
-      simplify(c, nc, r);
-    }
-    lua_pop(L, 1);
   }
-  lua_pop(L, 1);
   r->slen = optfield(L, idx, "scale_length", 1);
   r->srad = optfield(L, idx, "scale_radius", 1);
   if (r->slen < 0 || r->srad < 0) luaL_error(L, "set_rules: rule %d: a scale factor is >= 0", j);
@@ -568,18 +577,32 @@ static int readrule (lua_State *L, int idx, int j, crule *r, int alloc) {
   if (v[0] < 0 || v[0] > 1e9 || v[0] != floor(v[0]))
     luaL_error(L, "set_rules: rule %d: 'fn' must be an index", j);
   r->fn = (int)v[0];
+  if (c != NULL) {
+    if ((r->code = (lsys_ins *)LSYS_MALLOC((size_t)nc * sizeof *c + 1)) == NULL) return 0;
+    memcpy(r->code, c, (size_t)nc * sizeof *c);
+    r->ncode = nc;
+    simplify(c, nc, r);
+    lua_pop(L, 2);
+  } else lua_pop(L, 1);
   return 1;
+}
+
+/* The rules being read by set_rules, in a userdata whose __gc frees them if
+** an error interrupts the reading. */
+static int kindbox_gc (lua_State *L) {
+  freekind((ckind *)lua_touserdata(L, 1));
+  return 0;
 }
 
 /* T:set_rules(kind, {rule, ...}): what the limbs tagged 'kind' run at each
 ** tick, in order; a rule is {code = {op, a, k, ...} (a condition over length,
 ** radius, age, level, leaves, count, root), scale_length =, scale_radius =,
-** blend = {r, g, b, t}, color = {r, g, b}, fn = index in run's list}. */
+** blend = {r, g, b, t}, color = {r, g, b}, fn = index in run's list}. The
+** list is read once; the table is taken after it (its metamethods ran). */
 static int limbs_set_rules (lua_State *L) {
   llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
   lua_Integer kind = luaL_checkinteger(L, 2), n, j;
-  ckind nk = {NULL, 0};
-  crule tmp;
+  ckind *nk;
   checklimbs(L);
   luaL_argcheck(L, kind >= 0 && kind <= 65535, 2, "a kind is 0 to 65535");
   luaL_checktype(L, 3, LUA_TTABLE);
@@ -587,11 +610,26 @@ static int limbs_set_rules (lua_State *L) {
   if (t->g.intick) return luaL_error(L, "set_rules: not during a tick");
   n = luaL_len(L, 3);
   luaL_argcheck(L, n >= 0 && n <= 10000, 3, "at most 10,000 rules");
-  for (j = 1; j <= n; j++) {          /* check everything first: nothing to free on error */
-    lua_rawgeti(L, 3, j);
-    readrule(L, -1, (int)j, &tmp, 0);
-    lua_pop(L, 1);
+  nk = (ckind *)lua_newuserdatauv(L, sizeof *nk, 0);        /* 4 */
+  nk->r = NULL;
+  nk->n = 0;
+  if (luaL_newmetatable(L, "lsys.LimbRules")) {
+    lua_pushcfunction(L, kindbox_gc);
+    lua_setfield(L, -2, "__gc");
   }
+  lua_setmetatable(L, 4);
+  if (n > 0 && (nk->r = (crule *)LSYS_MALLOC((size_t)n * sizeof *nk->r)) == NULL)
+    return luaL_error(L, "not enough memory");
+  for (j = 1; j <= n; j++) {
+    int ok;
+    lua_rawgeti(L, 3, j);
+    ok = readrule(L, -1, (int)j, &nk->r[nk->n]);
+    lua_pop(L, 1);
+    if (!ok) return luaL_error(L, "not enough memory");
+    nk->n++;
+  }
+  checklimbs(L);                            /* again: the rules' metamethods ran */
+  if (t->g.intick) return luaL_error(L, "set_rules: not during a tick");
   if (kind >= t->nkinds) {
     ckind *k2 = (ckind *)LSYS_REALLOC(t->kinds, (size_t)(kind + 1) * sizeof *k2);
     if (k2 == NULL) return luaL_error(L, "not enough memory");
@@ -599,18 +637,10 @@ static int limbs_set_rules (lua_State *L) {
     t->kinds = k2;
     t->nkinds = (int)kind + 1;
   }
-  if (n > 0 && (nk.r = (crule *)LSYS_MALLOC((size_t)n * sizeof *nk.r)) == NULL)
-    return luaL_error(L, "not enough memory");
-  for (j = 1; j <= n; j++) {
-    int ok;
-    lua_rawgeti(L, 3, j);
-    ok = readrule(L, -1, (int)j, &nk.r[nk.n], 1);
-    lua_pop(L, 1);
-    if (!ok) { freekind(&nk); return luaL_error(L, "not enough memory"); }
-    nk.n++;
-  }
   freekind(&t->kinds[kind]);
-  t->kinds[kind] = nk;
+  t->kinds[kind] = *nk;
+  nk->r = NULL;                             /* the table owns them now */
+  nk->n = 0;
   return 0;
 }
 

@@ -142,6 +142,7 @@ static const char *const statusname[] = {
   "?", "gtol", "ftol", "maxiter", "maxeval", "linesearch"
 };
 
+/* The goal is read before the chain is taken: its metamethods run Lua code. */
 static int ik_solve (lua_State *L) {
   lik *k = checkik(L, 1);
   lsys_opts go = ikopts(2, "ik: goal.");
@@ -162,6 +163,7 @@ static int ik_solve (lua_State *L) {
   o.max_iter = (int)getnum(L, &go, "max_iter", o.max_iter);
   o.gtol = getnum(L, &go, "gtol", o.gtol);
   if (o.max_iter < 1) o.max_iter = 1;
+  k = checkik(L, 1);
   if (lsys_ik_solve(&k->c, &G, &o, k->work, &r, &e) != LSYS_OK)
     return luaL_error(L, "ik: %s", e.msg);
   lua_createtable(L, 0, 6);
@@ -182,14 +184,19 @@ static int ik_solve (lua_State *L) {
 
 #define pushvec(L, v) lsys_pushnums((L), (v), 3)
 
+/* The angles are copied before the tables are made (a finalizer run by an
+** allocation may close the chain). */
 static int ik_angles (lua_State *L) {
+  int i, q, n = checkik(L, 1)->c.n;
+  double *a = (double *)lua_newuserdatauv(L, 3 * (size_t)n * sizeof *a, 0);
   lik *k = checkik(L, 1);
-  int i, q;
-  lua_createtable(L, k->c.n, 0);
-  for (i = 0; i < k->c.n; i++) {
+  for (i = 0; i < n; i++)
+    for (q = 0; q < 3; q++) a[3 * i + q] = k->c.j[i].alpha[q] * DEG;
+  lua_createtable(L, n, 0);
+  for (i = 0; i < n; i++) {
     lua_createtable(L, 3, 0);
     for (q = 0; q < 3; q++) {
-      lua_pushnumber(L, k->c.j[i].alpha[q] * DEG);
+      lua_pushnumber(L, a[3 * i + q]);
       lua_rawseti(L, -2, q + 1);
     }
     lua_rawseti(L, -2, i + 1);
@@ -216,14 +223,15 @@ static int ik_set_angles (lua_State *L) {
 static int ik_forward (lua_State *L) {
   lik *k = checkik(L, 1);
   double p[3], s[3], t[3], *pts;
-  int i;
-  pts = (double *)lua_newuserdatauv(L, (size_t)k->c.n * 6 * sizeof *pts, 0);
+  int i, n = k->c.n;
+  pts = (double *)lua_newuserdatauv(L, (size_t)n * 6 * sizeof *pts, 0);
+  k = checkik(L, 1);                        /* again: a finalizer may have closed it */
   lsys_ik_forward(&k->c, NULL, p, s, t, NULL, pts);
   pushvec(L, p);
   pushvec(L, s);
   pushvec(L, t);
-  lua_createtable(L, k->c.n, 0);
-  for (i = 0; i < k->c.n; i++) {
+  lua_createtable(L, n, 0);
+  for (i = 0; i < n; i++) {
     lua_createtable(L, 2, 0);
     pushvec(L, pts + 6 * i);
     lua_rawseti(L, -2, 1);

@@ -64,6 +64,8 @@ static int lstring_sub (lua_State *L) {
   if (j > s->n) j = s->n;
   d = lsys_newlstring(L);
   lsys_setowner(L, -1, 1);
+  s = checklstring(L, 1);                   /* again: a finalizer may have closed it */
+  if (i <= j && j > s->n) j = s->n;         /* or rewritten it */
   if (i <= j && lsys_lstring_append(d, s, i - 1, j, lsys_lstring_poff(s, i - 1)) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 1;
@@ -85,12 +87,16 @@ static int lstring_text (lua_State *L) {
   return 1;
 }
 
-/* Pushes name and parameters of module i (0-based) whose params are at 'off'. */
+/* Pushes name and parameters of module i (0-based) whose params are at 'off':
+** the parameters are read before the name is pushed (an allocation, whose
+** finalizers may close the string). */
 static int pushmodule (lua_State *L, lsys_lstring *s, size_t i, size_t off) {
   uint32_t c = s->code[i], np = LSYS_CNP(c), k;
   luaL_checkstack(L, (int)np + 2, "too many parameters");
-  lua_pushstring(L, lsys_alphabet_name(lsys_getalphabet(L), LSYS_CSYM(c)));
+  lua_pushnil(L);                           /* the name's place */
   for (k = 0; k < np; k++) lua_pushnumber(L, s->par[off + k]);
+  lua_pushstring(L, lsys_alphabet_name(lsys_getalphabet(L), LSYS_CSYM(c)));
+  lua_replace(L, -(int)np - 2);
   return (int)np + 1;
 }
 
@@ -152,8 +158,9 @@ static int lstring_modules (lua_State *L) {
 static int lstring_count (lua_State *L) {
   lsys_lstring *s = checklstring(L, 1);
   size_t len, i, n = 0;
-  const char *name = luaL_checklstring(L, 2, &len);
+  const char *name = luaL_checklstring(L, 2, &len);   /* a number is converted: allocates */
   uint32_t sym = lsys_alphabet_find(lsys_getalphabet(L), name, len);
+  s = checklstring(L, 1);
   if (sym != 0)
     for (i = 0; i < s->n; i++) n += LSYS_CSYM(s->code[i]) == sym;
   lua_pushinteger(L, (lua_Integer)n);
@@ -167,6 +174,7 @@ static int lstring_counts (lua_State *L) {
   size_t *n = (size_t *)lua_newuserdatauv(L, (a->n + 1) * sizeof *n, 0);
   size_t i;
   uint32_t k;
+  s = checklstring(L, 1);                   /* again: a finalizer may have closed it */
   memset(n, 0, (a->n + 1) * sizeof *n);
   for (i = 0; i < s->n; i++) {
     uint32_t sym = LSYS_CSYM(s->code[i]);
@@ -181,8 +189,16 @@ static int lstring_counts (lua_State *L) {
   return 1;
 }
 
+/* a == b: false when either is not an Lstring (Lua calls __eq for any two
+** userdata); raises when one was closed. */
 static int lstring_eq (lua_State *L) {
-  lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2);
+  lsys_lstring *a, *b;
+  if (luaL_testudata(L, 1, LSTRING_T) == NULL || luaL_testudata(L, 2, LSTRING_T) == NULL) {
+    lua_pushboolean(L, 0);
+    return 1;
+  }
+  a = checklstring(L, 1);
+  b = checklstring(L, 2);
   lua_pushboolean(L, a->n == b->n && a->npar == b->npar &&
                      (a->n == 0 || memcmp(a->code, b->code, a->n * sizeof *a->code) == 0) &&
                      (a->npar == 0 || memcmp(a->par, b->par, a->npar * sizeof *a->par) == 0));
@@ -190,8 +206,13 @@ static int lstring_eq (lua_State *L) {
 }
 
 static int lstring_concat (lua_State *L) {
-  lsys_lstring *a = checklstring(L, 1), *b = checklstring(L, 2), *d = lsys_newlstring(L);
+  lsys_lstring *a, *b, *d;
+  checklstring(L, 1);
+  checklstring(L, 2);
+  d = lsys_newlstring(L);
   lsys_setowner(L, -1, 1);
+  a = checklstring(L, 1);                   /* after the allocation (finalizers) */
+  b = checklstring(L, 2);
   if (lsys_lstring_copy(d, a) != LSYS_OK || lsys_lstring_append(d, b, 0, b->n, 0) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 1;
@@ -201,14 +222,17 @@ static int lstring_concat (lua_State *L) {
 ** inserted before each of the module indices in the ascending list
 ** 'positions' (n + 1: at the end), in one pass. */
 static int lstring_insert (lua_State *L) {
-  lsys_lstring *a = checklstring(L, 1), *b, *d;
+  lsys_lstring *a, *b, *d;
   lua_Integer k, np, prev = 1;
   size_t off = 0;
+  checklstring(L, 1);
   luaL_checktype(L, 2, LUA_TTABLE);
-  b = checklstring(L, 3);
-  np = luaL_len(L, 2);
-  d = lsys_newlstring(L);
+  checklstring(L, 3);
+  np = luaL_len(L, 2);                      /* may run Lua code */
+  d = lsys_newlstring(L);                   /* may run finalizers */
   lsys_setowner(L, -1, 1);
+  a = checklstring(L, 1);                   /* nothing below runs Lua code */
+  b = checklstring(L, 3);
   for (k = 1; k <= np + 1; k++) {
     lua_Integer at = (lua_Integer)a->n + 1;
     size_t o2;
@@ -233,8 +257,11 @@ static int lstring_insert (lua_State *L) {
 }
 
 static int lstring_copy (lua_State *L) {
-  lsys_lstring *a = checklstring(L, 1), *d = lsys_newlstring(L);
+  lsys_lstring *a, *d;
+  checklstring(L, 1);
+  d = lsys_newlstring(L);
   lsys_setowner(L, -1, 1);
+  a = checklstring(L, 1);                   /* after the allocation (finalizers) */
   if (lsys_lstring_copy(d, a) != LSYS_OK) return luaL_error(L, "not enough memory");
   return 1;
 }

@@ -20,17 +20,18 @@
 #include "lua_lsys.h"
 #include "population.h"
 
-/* A population: a Scene whose OPTS user value says so. */
+/* A population: a Scene whose OPTS user value says so (read before the
+** scene is taken: a metamethod of that table may close it). */
 static lsys_lscene *checkpop (lua_State *L, int i, const char *who) {
-  lsys_lscene *S = lsys_checkscene(L, i);
   int top = lua_gettop(L), pop = 0;
+  lsys_checkscene(L, i);
   if (lua_getiuservalue(L, i, LSYS_SCENE_OPTS) == LUA_TTABLE) {
     lua_getfield(L, -1, "population");
     pop = lua_toboolean(L, -1);
   }
   lua_settop(L, top);
   if (!pop) luaL_error(L, "%s: a population expected (lsys.population)", who);
-  return S;
+  return lsys_checkscene(L, i);
 }
 
 /* core.population(opts) -> an empty population Scene */
@@ -118,6 +119,9 @@ static int l_population_add (lua_State *L) {
   }
   list = 5;
   map = texmap(L, list, S);                                     /* 6 */
+  P = lsys_checkscene(L, 1);                   /* again: the lists ran Lua code */
+  S = lsys_checkscene(L, 2);
+  lsys_changescene(L, P);
   mt.limit = lsys_memory_limit();
   mt.used = lsys_scene_bytes(&P->sc);
   mt.hit = 0;
@@ -154,6 +158,7 @@ static int l_population_place (lua_State *L) {
     m[4 * (i / 3) + i % 3] = (float)x;
   }
   m[15] = 1;
+  lsys_changescene(L, P);
   if (lsys_scene_add_instance(&P->sc, (size_t)k - 1, m) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   lua_pushinteger(L, (lua_Integer)P->sc.ninst);
@@ -178,6 +183,7 @@ static int scene_instance (lua_State *L) {
   lua_Integer i = luaL_checkinteger(L, 2);
   const lsys_instance *in;
   float t[3], q[4], s[3];
+  S = lsys_holdscene(L, 1);                 /* the tables are made as it reads */
   if (i < 1 || (size_t)i > S->sc.ninst) { lua_pushnil(L); return 1; }
   in = &S->sc.inst[i - 1];
   lua_createtable(L, 0, 5);
@@ -200,6 +206,8 @@ static int scene_prototype (lua_State *L) {
   lua_Integer k = luaL_checkinteger(L, 2);
   const lsys_part *p;
   size_t i, n = 0;
+  lua_settop(L, 2);
+  S = lsys_holdscene(L, 1);                 /* 3: the OPTS table's metamethods run */
   if (k < 1 || (size_t)k > S->sc.nparts) { lua_pushnil(L); return 1; }
   p = &S->sc.parts[k - 1];
   for (i = 0; i < S->sc.ninst; i++) n += S->sc.inst[i].part == (uint32_t)(k - 1);
@@ -214,7 +222,7 @@ static int scene_prototype (lua_State *L) {
       lua_settable(L, -7);
     }
   }
-  lua_settop(L, 3);
+  lua_settop(L, 4);
   lua_pushinteger(L, (lua_Integer)p->nv); lua_setfield(L, -2, "vertices");
   lua_pushinteger(L, (lua_Integer)p->nt); lua_setfield(L, -2, "triangles");
   lua_pushinteger(L, (lua_Integer)p->nl); lua_setfield(L, -2, "lines");

@@ -16,7 +16,9 @@
 ** true; otherwise returns the RGBA pixels (a string, top row first), the
 ** width and the height. The scene's camera, light, background and textures
 ** are used, except where opts gives them (lsys_readlook; opts.textures: a
-** list of lsys.Texture, kept alive by the options table during the call).
+** list of lsys.Texture, read last: lsys_opttextures). The scene is taken
+** after everything that runs Lua code (the options' metamethods, finalizers
+** run by the allocation of the pixels).
 ** The supersampling factor is lowered when the supersampled image would
 ** exceed OSMesa's maximum size or LSYS_RENDER_MAX_SAMPLES; width and height
 ** themselves must fit OSMesa.
@@ -29,7 +31,7 @@ static int l_render (lua_State *L) {
   const lsys_lscene *S = lsys_checkscene(L, 1);
   const char *out = NULL;
   const lsys_texture *const *tex;
-  lsys_scene v = S->sc;               /* the scene as this picture sees it (scene.h) */
+  lsys_scene look = S->sc, v;         /* look: the camera, light, background opts give */
   lsys_render_opts o;
   lsys_opts ro = {0, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
   lsys_error e;
@@ -41,9 +43,7 @@ static int l_render (lua_State *L) {
     luaL_checktype(L, 2, LUA_TTABLE);
     ro.t = 2;
   }
-  lsys_readrenderopts(L, ro.t, &o, &v);
-  tex = lsys_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value */
-  if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
+  lsys_readrenderopts(L, ro.t, &o, &look);
   if (lsys_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
@@ -60,6 +60,13 @@ static int l_render (lua_State *L) {
   }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
+  tex = lsys_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value; kept */
+  S = lsys_checkscene(L, 1);          /* after the last Lua code (metamethods, finalizers) */
+  v = S->sc;                          /* the scene as this picture sees it (scene.h) */
+  v.cam = look.cam;
+  memcpy(v.light, look.light, sizeof v.light);
+  memcpy(v.background, look.background, sizeof v.background);
+  if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
   if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {
@@ -68,6 +75,7 @@ static int l_render (lua_State *L) {
     lua_pushboolean(L, 1);
     return 1;
   }
+  lua_pop(L, 1);                      /* the textures' value: the buffer is on top again */
   luaL_pushresultsize(&b, n);
   lua_pushinteger(L, o.width);
   lua_pushinteger(L, o.height);

@@ -89,7 +89,9 @@ static int rules_parse (lua_State *L) {
   int mode = luaL_checkoption(L, 3, "rule", modes);
   lsys_prule r;
   lsys_error e;
-  int st = lsys_rule_parse(&r, text, len, mode, R->m.ab, &R->decl, &e);
+  int st;
+  R = lsys_checkrules(L, 1);                /* again: converting a number allocates */
+  st = lsys_rule_parse(&r, text, len, mode, R->m.ab, &R->decl, &e);
   if (st != LSYS_OK) {
     lsys_prule_free(&r);
     lua_pushnil(L);
@@ -205,6 +207,7 @@ static int rules_add (lua_State *L) {
   lua_getfield(L, 5, "nvals"); sp.nvals = (uint32_t)luaL_optinteger(L, -1, 0); lua_pop(L, 1);
   lua_getfield(L, 5, "weight"); sp.weight = luaL_optnumber(L, -1, 1); lua_pop(L, 1);
   lua_getfield(L, 5, "id"); sp.id = (int)luaL_optinteger(L, -1, 0); lua_pop(L, 1);
+  R = checkidle(L, 1);                      /* again: the spec's metamethods ran Lua code */
   idx = lsys_model_add(&R->m, kind, sub, group, &sp, &e);
   if (idx < 0) return lsys_raise(L, (int)idx, &e, 1);
   lua_getiuservalue(L, 1, LSYS_RULES_FNS);
@@ -223,6 +226,7 @@ static int rules_skiplist (lua_State *L) {
   const char *text = luaL_checklstring(L, 4, &len);
   uint32_t *syms = (uint32_t *)lua_newuserdatauv(L, (len + 1) * sizeof *syms, 0);
   lsys_error e;
+  R = checkidle(L, 1);                      /* again: a finalizer may have closed them */
   while (i < len) {
     size_t nl;
     if (text[i] == ' ' || text[i] == '\t' || text[i] == '\n') { i++; continue; }
@@ -256,6 +260,7 @@ static int rules_config (lua_State *L) {
   lsys_lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
+  R = checkidle(L, 1);                      /* again: converting a number allocates */
   switch (key) {
     case 0: R->m.ring = lua_toboolean(L, 3); break;
     case 8: R->m.f32 = lua_toboolean(L, 3); break;
@@ -313,6 +318,8 @@ static int rules_setvm (lua_State *L) {
     return 1;
   }
   code = lsys_readcode(L, 3, &n);
+  R = checkidle(L, 1);                      /* again: the program's reading ran Lua code */
+  luaL_argcheck(L, (size_t)idx < R->m.nrules, 2, "bad rule index");
   st = lsys_model_setvm(&R->m, (size_t)idx, code, n);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   lua_pushboolean(L, st == LSYS_OK);
@@ -320,29 +327,35 @@ static int rules_setvm (lua_State *L) {
 }
 
 /* rules:setfuncs(list): the positional functions (Funcs) that LSYS_OP_FN
-** indices 0..#list-1 call; the list is kept as a user value, so the Funcs
-** live as long as the rules. Clears every rule's program (setvm again). */
+** indices 0..#list-1 call; the list is read once (lua_geti) into a copy kept
+** as a user value, so the Funcs live as long as the rules, and kept
+** (lsys_keepfunc: closing one leaves the model its values). Clears every
+** rule's program (setvm again). */
 static int rules_setfuncs (lua_State *L) {
-  lsys_lrules *R = checkidle(L, 1);
   lua_Integer n, k;
   const lsys_func **t;
+  lsys_lrules *R;
   int st;
+  checkidle(L, 1);
   luaL_checktype(L, 2, LUA_TTABLE);
+  lua_settop(L, 2);
   n = luaL_len(L, 2);
   luaL_argcheck(L, n >= 0 && n <= 65536, 2, "too many functions (limit is 65536)");
-  t = (const lsys_func **)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *t, 0);   /* scratch */
-  for (k = 0; k < n; k++) {
-    lua_geti(L, 2, k + 1);
-    t[k] = lsys_checkfunc(L, -1);
-    lua_pop(L, 1);
-  }
-  lua_createtable(L, (int)n, 0);           /* a copy: the caller may change its list */
+  lua_createtable(L, (int)n, 0);           /* 3: the copy */
   for (k = 1; k <= n; k++) {
     lua_geti(L, 2, k);
-    lua_rawseti(L, -2, k);
+    lua_rawseti(L, 3, k);
   }
+  t = (const lsys_func **)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *t, 0);   /* scratch */
+  for (k = 0; k < n; k++) {                /* from the copy: no Lua code runs from here */
+    lua_rawgeti(L, 3, k + 1);
+    t[k] = lsys_keepfunc(L, -1);
+    lua_pop(L, 1);
+  }
+  R = checkidle(L, 1);
   st = lsys_model_setfuncs(&R->m, t, (size_t)n);
   if (st != LSYS_OK) return luaL_error(L, "not enough memory");
+  lua_pushvalue(L, 3);
   lua_setiuservalue(L, 1, LSYS_RULES_FUNCS);
   return 0;
 }
@@ -470,6 +483,7 @@ static int rules_lstring (lua_State *L) {
   lsys_lstring *s = lsys_newlstring(L);
   int st;
   lsys_setowner(L, -1, 1);
+  R = lsys_checkrules(L, 1);                /* again: a finalizer may have closed them */
   st = lsys_lstring_parse(s, text, len, R->m.ab, &R->decl, &e);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   if (st != LSYS_OK) {
@@ -651,6 +665,7 @@ static int rules_axiom (lua_State *L) {
   lsys_error e;
   ltemplate *t;
   lua_settop(L, 2);
+  R = lsys_checkrules(L, 1);                /* again: converting a number allocates */
   if (lsys_rule_parse(&r, text, len, 2, R->m.ab, &R->decl, &e) != LSYS_OK) {
     lsys_prule_free(&r);
     lua_pushnil(L);
@@ -669,22 +684,24 @@ static int rules_axiom (lua_State *L) {
 /* rules:kinds(template) -> { name = { np = true, ... }, ... }: the distinct
 ** module names of the template and their parameter counts */
 static int rules_kinds (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  const lsys_alphabet *ab = lsys_checkrules(L, 1)->m.ab;   /* the state's: it outlives R */
   ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
   uint8_t *seen = (uint8_t *)lua_newuserdatauv(L, 1u << 13, 0);   /* a bit per code */
   uint32_t k;
   luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
   memset(seen, 0, 1u << 13);
   lua_newtable(L);
-  for (k = 0; k < t->nmod; k++) {
-    uint16_t c = t->code[k];
+  for (k = 0; k < t->nmod; k++) {           /* the loop allocates: the template is checked */
+    uint16_t c;
+    luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
+    c = t->code[k];
     if (seen[c >> 3] & (1u << (c & 7))) continue;
     seen[c >> 3] |= (uint8_t)(1u << (c & 7));
-    lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+    lua_pushstring(L, lsys_alphabet_name(ab, LSYS_CSYM(c)));
     if (lua_rawget(L, -2) != LUA_TTABLE) {
       lua_pop(L, 1);
       lua_newtable(L);
-      lua_pushstring(L, lsys_alphabet_name(R->m.ab, LSYS_CSYM(c)));
+      lua_pushstring(L, lsys_alphabet_name(ab, LSYS_CSYM(c)));
       lua_pushvalue(L, -2);
       lua_rawset(L, -4);
     }
@@ -707,6 +724,8 @@ static int rules_fill (lua_State *L) {
   lua_settop(L, 3);
   s = lsys_newlstring(L);
   lsys_setowner(L, 4, 1);
+  R = lsys_checkrules(L, 1);                /* again: a finalizer may have closed them */
+  luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
   if (lsys_lstring_reserve(s, t->nmod, t->npar) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   for (k = 0; k < t->nmod; k++) {

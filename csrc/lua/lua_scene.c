@@ -78,7 +78,8 @@ static void readvector (lua_State *L, int t, const char *k, double v[3], const c
 }
 
 /* opts.contours = {[id] = Contour}: an array by id (NULL holes) in a
-** userdata left on the stack, which keeps it alive for the run. */
+** userdata left on the stack, which keeps it and its contours alive for the
+** run (its user value lists them: the view's table may change meanwhile). */
 static void readcontours (lua_State *L, int t, lsys_turtle_opts *o) {
   const lsys_contour **c;
   lua_Integer max = 0;
@@ -90,46 +91,61 @@ static void readcontours (lua_State *L, int t, lsys_turtle_opts *o) {
     if (id > max) max = id;
     lua_pop(L, 1);
   }
-  c = (const lsys_contour **)lua_newuserdatauv(L, (size_t)(max + 1) * sizeof *c, 0);
+  c = (const lsys_contour **)lua_newuserdatauv(L, (size_t)(max + 1) * sizeof *c, 1);
   memset(c, 0, (size_t)(max + 1) * sizeof *c);
-  lua_pushnil(L);
-  while (lua_next(L, -3)) {
-    c[lua_tointeger(L, -2)] = lsys_checkcontour(L, -1);
-    lua_pop(L, 1);
+  lua_createtable(L, (int)max, 0);
+  lua_pushnil(L);                           /* no Lua code runs in this loop */
+  while (lua_next(L, -4)) {
+    lua_Integer id = lua_tointeger(L, -2);
+    c[id] = lsys_keepcontour(L, -1);
+    lua_rawseti(L, -3, id);
   }
+  lua_setiuservalue(L, -2, 1);
   lua_remove(L, -2);                        /* keep the array, drop the table */
   o->contours = c;
   o->ncontours = (int)max + 1;
 }
 
-/* opts.surfaces = {[name] = {surface=, scale=, texture=, s=, t=}}; the
-** array is left on the stack (names point into the keys of opts). */
+/* opts.surfaces = {[name] = {surface=, scale=, texture=, s=, t=}}, copied
+** once (the entries' metamethods may change the table) into the user value
+** of the array left on the stack: names, entries and surfaces alive. */
 static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
   lsys_surfuse *u;
-  int n = 0, k = 0;
+  int n = 0, k, refs;
   if (lua_getfield(L, t, "surfaces") != LUA_TTABLE) { lua_pop(L, 1); return; }
-  lua_pushnil(L);
-  while (lua_next(L, -2)) { n++; lua_pop(L, 1); }
-  if (n > 4096) luaL_error(L, "view surfaces: at most 4096 surfaces");
-  u = (lsys_surfuse *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *u, 0);
+  lua_newtable(L);                          /* name, entry, surface of each */
+  refs = lua_gettop(L);
   lua_pushnil(L);
   while (lua_next(L, -3)) {
-    lsys_opts e;
     if (lua_type(L, -2) != LUA_TSTRING || lua_type(L, -1) != LUA_TTABLE)
       luaL_error(L, "view surfaces: entries must be name = {surface = ..., ...}");
+    if (n >= 4096) luaL_error(L, "view surfaces: at most 4096 surfaces");
+    lua_rawseti(L, refs, 3 * n + 2);
+    lua_pushvalue(L, -1);
+    lua_rawseti(L, refs, 3 * n + 1);
+    n++;
+  }
+  u = (lsys_surfuse *)lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1) * sizeof *u, 1);
+  for (k = 0; k < n; k++) {
+    lsys_opts e;
+    lua_rawgeti(L, refs, 3 * k + 2);
     e = viewopts(L, -1);
-    u[k].name = lua_tostring(L, -2);
     lua_getfield(L, -1, "surface");
-    u[k].s = lsys_checksurface(L, -1);
+    u[k].s = lsys_keepsurface(L, -1);
+    lua_rawseti(L, refs, 3 * k + 3);
+    lua_rawgeti(L, refs, 3 * k + 1);
+    u[k].name = lua_tostring(L, -1);        /* alive in refs */
     lua_pop(L, 1);
     u[k].scale = lsys_optfinite(L, &e, "scale", 1);
     u[k].texture = optwhole(L, &e, "texture", 0, 0, 65535);
     u[k].ns = optwhole(L, &e, "s", 4, 1, 256);
     u[k].nt = optwhole(L, &e, "t", u[k].ns, 1, 256);
-    k++;
     lua_pop(L, 1);
   }
-  lua_remove(L, -2);
+  lua_pushvalue(L, refs);
+  lua_setiuservalue(L, -2, 1);
+  lua_replace(L, refs - 1);                 /* the array where the table was */
+  lua_settop(L, refs - 1);
   o->surfaces = u;
   o->nsurfaces = n;
 }
@@ -384,10 +400,13 @@ static int l_turtle_state (lua_State *L) {
 /* ---------------------------------------------------------------------- */
 /* Scene */
 
-/* __gc and __close: idempotent; every method of a closed scene raises. */
+/* __gc and __close: idempotent; every method of a closed scene raises. A
+** held scene is not closed (the collector cannot finalize it: a running
+** method holds it on the stack, but Lua code can call __close). */
 static int scene_gc (lua_State *L) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
+    if (!lsys_finalizing(L)) lsys_checkidle(L, S->busy, "cannot close a Scene while it is in use");
     lsys_scene_free(&S->sc);
     S->inited = 0;
   }
@@ -405,6 +424,7 @@ static int scene_index (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
   size_t nv, nt, nl;
+  S = lsys_checkscene(L, 1);                /* again: converting a number allocates */
   lsys_population_size(&S->sc, &nv, &nt, &nl);
   if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)nt);
   else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)nv);
@@ -461,8 +481,13 @@ static int scene_area (lua_State *L) {
   return 1;
 }
 
-static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) {
-  float l[3];
+/* Pushes the table of record k (0-based) of S: the record (and its
+** stiffness) is copied first, the tables are made from the copy (an
+** allocation may run a finalizer that closes S). */
+static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
+  const lsys_trec rec = S->sc.rec[k], *r = &rec;
+  float l[3], st[3];
+  if (r->stiff != LSYS_NOREC) memcpy(st, S->sc.stiff + 3 * r->stiff, sizeof st);
   l[0] = r->H[1] * r->U[2] - r->H[2] * r->U[1];          /* L = H x U */
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
@@ -475,8 +500,8 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
   }
   {
     float p0[3];
-    int k;
-    for (k = 0; k < 3; k++) p0[k] = r->p1[k] - r->len * r->H[k];
+    int j;
+    for (j = 0; j < 3; j++) p0[j] = r->p1[j] - r->len * r->H[j];
     pushvecf(L, p0); lua_setfield(L, -2, "p0");
   }
   lua_pushnumber(L, r->len); lua_setfield(L, -2, "length");
@@ -488,7 +513,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, const lsys_trec *r) 
   lua_pushnumber(L, r->w1); lua_setfield(L, -2, "w1");
   lua_pushinteger(L, r->color); lua_setfield(L, -2, "color");
   if (r->stiff != LSYS_NOREC) {
-    pushvecf(L, S->sc.stiff + 3 * r->stiff);
+    pushvecf(L, st);
     lua_setfield(L, -2, "stiffness");
   }
 }
@@ -498,7 +523,7 @@ static int scene_record (lua_State *L) {
   lsys_lscene *S = lsys_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   if (k < 1 || (size_t)k > S->sc.nrec) { lua_pushnil(L); return 1; }
-  pushrecord(L, S, &S->sc.rec[k - 1]);
+  pushrecord(L, S, (size_t)k - 1);
   return 1;
 }
 
@@ -507,7 +532,7 @@ static int records_iter (lua_State *L) {
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
   if (k < 1 || (size_t)k > S->sc.nrec) return 0;
   lua_pushinteger(L, k);
-  pushrecord(L, S, &S->sc.rec[k - 1]);
+  pushrecord(L, S, (size_t)k - 1);
   return 2;
 }
 
@@ -540,6 +565,7 @@ static int scene_edges (lua_State *L) {
   const lsys_trec *r;
   uint32_t *e;
   size_t n, i;
+  S = lsys_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
   r = &S->sc.rec[k - 1];
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
@@ -630,6 +656,7 @@ static int scene_save (lua_State *L) {
   if (xo.sides == 0) xo.sides = tubesides(L);
   if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
+  S = lsys_checkscene(L, 1);                /* again: the options ran Lua code */
   st = lsys_scene_save(&S->sc, format, path, &xo, &e);
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);

@@ -24,19 +24,22 @@
 
 #define MAXFILE ((size_t)16 << 20)    /* bytes of a surface file */
 
-static int surface_gc (lua_State *L) {       /* also __close: idempotent */
-  lsys_surface_free((lsys_surface *)luaL_checkudata(L, 1, SURFACE_T));
+/* __gc and __close: idempotent; a kept surface is freed by the collector. */
+static int surface_gc (lua_State *L) {
+  lsys_lsurface *u = (lsys_lsurface *)luaL_checkudata(L, 1, SURFACE_T);
+  if (lsys_life_end(L, &u->life)) lsys_surface_free(&u->s);
   return 0;
 }
 
 /* Pushes a new empty Surface whose user value is the string at 'name'. */
 static lsys_surface *newsurface (lua_State *L, int name) {
-  lsys_surface *s = (lsys_surface *)lua_newuserdatauv(L, sizeof *s, 1);
-  lsys_surface_init(s);
+  lsys_lsurface *u = (lsys_lsurface *)lua_newuserdatauv(L, sizeof *u, 1);
+  lsys_surface_init(&u->s);
+  u->life.closed = u->life.kept = 0;
   luaL_setmetatable(L, SURFACE_T);
   lua_pushvalue(L, name);
   lua_setiuservalue(L, -2, 1);
-  return s;
+  return &u->s;
 }
 
 /* core.surface_load(path) */
@@ -75,38 +78,42 @@ static int l_surface_parse (lua_State *L) {
 
 #define pushvec lsys_pushnums
 
-/* s:info() */
+/* s:info(): the fields are read again after each allocation (a finalizer
+** may close the surface) */
 static int surface_info (lua_State *L) {
-  const lsys_surface *s = lsys_checksurface(L, 1);
-  double prec[2];
-  size_t i;
+  const lsys_surface *s;
+  size_t i, n;
   lua_createtable(L, 0, 11);
+  s = lsys_checksurface(L, 1);
   lua_pushinteger(L, (lua_Integer)s->npatch);
   lua_setfield(L, -2, "patches");
-  pushvec(L, s->contact, 3);
+  pushvec(L, lsys_checksurface(L, 1)->contact, 3);
   lua_setfield(L, -2, "contact");
-  pushvec(L, s->heading, 3);
+  pushvec(L, lsys_checksurface(L, 1)->heading, 3);
   lua_setfield(L, -2, "heading");
-  pushvec(L, s->up, 3);
+  pushvec(L, lsys_checksurface(L, 1)->up, 3);
   lua_setfield(L, -2, "up");
-  pushvec(L, s->end, 3);
+  pushvec(L, lsys_checksurface(L, 1)->end, 3);
   lua_setfield(L, -2, "end");
-  pushvec(L, s->lo, 3);
+  pushvec(L, lsys_checksurface(L, 1)->lo, 3);
   lua_setfield(L, -2, "lo");
-  pushvec(L, s->hi, 3);
+  pushvec(L, lsys_checksurface(L, 1)->hi, 3);
   lua_setfield(L, -2, "hi");
+  s = lsys_checksurface(L, 1);
   lua_pushnumber(L, (lua_Number)s->size);
   lua_setfield(L, -2, "size");
-  prec[0] = s->precision_s;
-  prec[1] = s->precision_t;
   lua_createtable(L, 2, 0);
-  for (i = 0; i < 2; i++) {
-    lua_pushinteger(L, (lua_Integer)prec[i]);
-    lua_rawseti(L, -2, (lua_Integer)i + 1);
-  }
+  s = lsys_checksurface(L, 1);
+  lua_pushinteger(L, (lua_Integer)s->precision_s);
+  lua_rawseti(L, -2, 1);
+  lua_pushinteger(L, (lua_Integer)s->precision_t);
+  lua_rawseti(L, -2, 2);
   lua_setfield(L, -2, "precision");
-  lua_createtable(L, (int)s->npatch, 0);
-  for (i = 0; i < s->npatch && s->info != NULL; i++) {
+  lua_createtable(L, (int)lsys_checksurface(L, 1)->npatch, 0);
+  n = lsys_checksurface(L, 1)->npatch;
+  for (i = 0; i < n; i++) {
+    s = lsys_checksurface(L, 1);
+    if (s->info == NULL) break;
     lua_pushstring(L, s->info[i].name);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
   }
@@ -115,8 +122,9 @@ static int surface_info (lua_State *L) {
 }
 
 static int surface_tostring (lua_State *L) {
-  const lsys_surface *s = (const lsys_surface *)luaL_checkudata(L, 1, SURFACE_T);
-  if (s->patch == NULL) {
+  const lsys_lsurface *u = (const lsys_lsurface *)luaL_checkudata(L, 1, SURFACE_T);
+  const lsys_surface *s = &u->s;
+  if (u->life.closed) {
     lua_pushliteral(L, "lsys.Surface (closed)");
     return 1;
   }

@@ -26,6 +26,7 @@ static int l_texture_load (lua_State *L) {
   static const char *const modes[] = {"modulate", "m", "decal", "d", NULL};
   static const char *const fexpect = "'linear', 'near', 'l' or 'n'";
   const char *path = luaL_checkstring(L, 1);
+  lsys_ltexture *u;
   lsys_texture *t;
   lsys_error e;
   int mag = 0, min = 0, mode = LSYS_TEX_MODULATE, per_surface = 0, intensity = -1;
@@ -46,8 +47,10 @@ static int l_texture_load (lua_State *L) {
     per_surface = lsys_optbool(L, &o, "per_surface", -1) == 1;
     intensity = lsys_optbool(L, &o, "intensity", -1);
   }
-  t = (lsys_texture *)lua_newuserdatauv(L, sizeof *t, 0);
+  u = (lsys_ltexture *)lua_newuserdatauv(L, sizeof *u, 0);
+  t = &u->t;
   lsys_texture_init(t);                     /* valid before anything can fail */
+  u->life.closed = u->life.kept = 0;
   luaL_setmetatable(L, TEXTURE_T);
   if (lsys_texture_load(t, path, &e) != LSYS_OK) {
     if (e.code == LSYS_ENOMEM) return luaL_error(L, "lsys.texture_load: '%s': not enough memory",
@@ -62,8 +65,11 @@ static int l_texture_load (lua_State *L) {
   return 1;
 }
 
-static int texture_gc (lua_State *L) {       /* also __close: idempotent */
-  lsys_texture_free((lsys_texture *)luaL_checkudata(L, 1, TEXTURE_T));
+/* __gc and __close: idempotent; a kept texture (a Scene's, or one an
+** operation reads) is freed by the collector. */
+static int texture_gc (lua_State *L) {
+  lsys_ltexture *u = (lsys_ltexture *)luaL_checkudata(L, 1, TEXTURE_T);
+  if (lsys_life_end(L, &u->life)) lsys_texture_free(&u->t);
   return 0;
 }
 
@@ -77,27 +83,28 @@ static int texture_size (lua_State *L) {
 /* t:info() -> { path =, width =, height =, mag =, min =, mode =, per_surface =,
 ** intensity =, alpha = } with the long names of the settings. */
 static int texture_info (lua_State *L) {
-  const lsys_texture *t = lsys_checktexture(L, 1);
+  lsys_texture t = *lsys_checktexture(L, 1);   /* a copy: the table is made after */
   lua_createtable(L, 0, 9);
-  if (t->path != NULL) {
-    lua_pushstring(L, t->path);
+  if (t.path != NULL) {                     /* the string is read again, alive */
+    lua_pushstring(L, lsys_checktexture(L, 1)->path);
     lua_setfield(L, -2, "path");
   }
-  lua_pushinteger(L, t->w); lua_setfield(L, -2, "width");
-  lua_pushinteger(L, t->h); lua_setfield(L, -2, "height");
-  lua_pushstring(L, t->mag_linear ? "linear" : "near"); lua_setfield(L, -2, "mag");
-  lua_pushstring(L, t->min_linear ? "linear" : "near"); lua_setfield(L, -2, "min");
-  lua_pushstring(L, t->mode == LSYS_TEX_DECAL ? "decal" : "modulate");
+  lua_pushinteger(L, t.w); lua_setfield(L, -2, "width");
+  lua_pushinteger(L, t.h); lua_setfield(L, -2, "height");
+  lua_pushstring(L, t.mag_linear ? "linear" : "near"); lua_setfield(L, -2, "mag");
+  lua_pushstring(L, t.min_linear ? "linear" : "near"); lua_setfield(L, -2, "min");
+  lua_pushstring(L, t.mode == LSYS_TEX_DECAL ? "decal" : "modulate");
   lua_setfield(L, -2, "mode");
-  lua_pushboolean(L, t->per_surface); lua_setfield(L, -2, "per_surface");
-  lua_pushboolean(L, t->intensity); lua_setfield(L, -2, "intensity");
-  lua_pushboolean(L, lsys_texture_hasalpha(t)); lua_setfield(L, -2, "alpha");
+  lua_pushboolean(L, t.per_surface); lua_setfield(L, -2, "per_surface");
+  lua_pushboolean(L, t.intensity); lua_setfield(L, -2, "intensity");
+  lua_pushboolean(L, lsys_texture_hasalpha(lsys_checktexture(L, 1))); lua_setfield(L, -2, "alpha");
   return 1;
 }
 
 static int texture_tostring (lua_State *L) {
-  lsys_texture *t = (lsys_texture *)luaL_checkudata(L, 1, TEXTURE_T);
-  if (t->rgba == NULL) {
+  lsys_ltexture *u = (lsys_ltexture *)luaL_checkudata(L, 1, TEXTURE_T);
+  lsys_texture *t = &u->t;
+  if (u->life.closed) {
     lua_pushliteral(L, "Texture (closed)");
     return 1;
   }

@@ -195,7 +195,7 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   int take, world;
   if (lua_getfield(L, idx, "scene") == LUA_TNIL)
     luaL_error(L, "viewer:post: a frame without a scene");
-  S = lsys_checkscene(L, -1);
+  lsys_checkscene(L, -1);
   take = lsys_optbool(L, &fo, "take", 0);
   world = lsys_optbool(L, &fo, "world", 0);
   f->step = lsys_optint(L, &fo, "step", -1, -1, 1 << 30);
@@ -203,6 +203,7 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     f->nmodules = (size_t)lua_tointeger(L, -1);
     lua_pop(L, 1);
   }
+  S = lsys_checkscene(L, -1);               /* after the options: they ran Lua code */
   f->picks = (lsys_vpick *)LSYS_MALLOC((S->sc.nrec > 0 ? S->sc.nrec : 1) * sizeof *f->picks);
   if (f->picks == NULL || lsys_scene_set_palette(&f->sc, S->sc.pal, S->sc.npal) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
@@ -216,8 +217,10 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
     readlines(L, lua_gettop(L), f);
     lua_pop(L, 1);
   }
-  if (take) {                /* the scene's own mesh: checked again, options ran Lua code */
+  S = lsys_checkscene(L, -1);               /* again: the lines ran Lua code */
+  if (take) {                               /* the scene's own mesh */
     lsys_lscene *T = lsys_checkscene(L, -1);
+    lsys_changescene(L, T);
     f->sc.mesh = T->sc.mesh;
     lsys_mesh_init(&T->sc.mesh);
   }
@@ -309,6 +312,7 @@ static int viewer_post (lua_State *L) {
     lua_pop(L, 1);
   }
   readpostopts(L, t, s, (int)n);
+  v = checkviewer(L, 1);                    /* again: the frames and options ran Lua code */
   box->s = NULL;
   lsys_viewer_post(v, s);
   return 0;
@@ -326,11 +330,10 @@ static int viewer_patch (lua_State *L) {
   if (t) luaL_checktype(L, 3, LUA_TTABLE);
   step = lsys_optint(L, &po, "step", 0, 0, INT_MAX);
   count = (size_t)lsys_optint(L, &po, "count", 0, 0, INT_MAX);
-  if (lsys_optfield(L, &po, "note", LUA_TSTRING, "a string")) {
-    note = lua_tostring(L, -1);
-    lua_pop(L, 1);          /* the table at 3 keeps it */
-  }
+  if (lsys_optfield(L, &po, "note", LUA_TSTRING, "a string"))
+    note = lua_tostring(L, -1);   /* left on the stack: an __index may have made it */
   S = lsys_checkscene(L, 2);                /* again: the options ran Lua code */
+  v = checkviewer(L, 1);
   n = lsys_scene_take_ranges(&S->sc, r);
   rc = lsys_viewer_patch(v, &S->sc, r, n, step, count, note);
   if (rc < 0) {                             /* the ranges stay to be sent */
@@ -488,6 +491,7 @@ static int viewer_pending (lua_State *L) {
 static int viewer_screenshot (lua_State *L) {
   lsys_viewer *v = checkviewer(L, 1);
   const char *path = luaL_optstring(L, 2, NULL);
+  v = checkviewer(L, 1);                    /* again: converting a number allocates */
   lua_pushboolean(L, lsys_viewer_screenshot(v, path) == LSYS_OK);
   return 1;
 }
@@ -503,6 +507,7 @@ static int viewer_key (lua_State *L) {
   };
   lsys_viewer *v = checkviewer(L, 1);
   int i = luaL_checkoption(L, 2, NULL, names);
+  v = checkviewer(L, 1);                    /* again: converting a number allocates */
   lua_pushinteger(L, lsys_viewer_key(v, keys[i]));
   return 1;
 }
@@ -646,6 +651,7 @@ static int viewer_layout (lua_State *L) {
     lay.npanes = (int)n;
     lua_pop(L, 1);
   }
+  v = checkviewer(L, 1);                    /* again: the layout's metamethods ran */
   lua_pushinteger(L, lsys_viewer_layout(v, &lay));
   return 1;
 }
@@ -663,6 +669,7 @@ static int viewer_image (lua_State *L) {
   if ((lua_Integer)len != w * h * 4)
     return luaL_error(L, "viewer:image: %d bytes of pixels for %dx%d (%d expected)", (int)len,
                       (int)w, (int)h, (int)(w * h * 4));
+  v = checkviewer(L, 1);                    /* again: converting a number allocates */
   r = lsys_viewer_image(v, (int)k - 1, (const uint8_t *)px, (int)w, (int)h);
   if (r < 0) return luaL_error(L, "not enough memory for the viewer");
   lua_pushinteger(L, r);
@@ -672,6 +679,7 @@ static int viewer_image (lua_State *L) {
 static int viewer_text (lua_State *L) {
   lsys_viewer *v = checkviewer(L, 1);
   const char *status = luaL_optstring(L, 2, NULL), *help = luaL_optstring(L, 3, NULL);
+  v = checkviewer(L, 1);                    /* again: converting a number allocates */
   lua_pushinteger(L, lsys_viewer_text(v, status, help));
   return 1;
 }
