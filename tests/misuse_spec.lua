@@ -97,9 +97,10 @@ describe("lsys.core under misuse", function ()
     Tempdir = function () return core.tempdir(dir) end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
-  -- never closed), the pixels, the turtle and the in-use mark of one call (made and freed
-  -- inside it, never handed out), the window
-  local UNMADE = { Alphabet = true, Pixels = true, Turtle = true, Hold = true, Viewer = true }
+  -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules
+  -- of one call (made and freed inside it, never handed out), the window
+  local UNMADE = { Alphabet = true, Pixels = true, Turtle = true, Hold = true, LimbRules = true,
+                   Viewer = true }
   local kinds = {}
   for k in pairs(makers) do kinds[#kinds + 1] = k end
   table.sort(kinds)
