@@ -7,8 +7,9 @@ require "tests.helper"
 local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
 local have_core = pcall(require, "lsys.core")
 
--- per input; more under valgrind (tools/memcheck-all.sh sets LSYS_TEST_TIMEOUT)
-local BUDGET = tonumber(os.getenv("LSYS_TEST_TIMEOUT") or "") or 10
+-- seconds per input, times LSYS_TEST_SLOW (tools/memcheck-all.sh sets 30: valgrind)
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
+local BUDGET = 10 * SLOW
 
 local function replay (name)
   local dir = "tests/fuzz/corpus_" .. name
@@ -117,7 +118,7 @@ describe("the Lua fuzzer", function ()
 
   it("counts a cpfg load that is slow only under its line hook as a budget stop", function ()
     if not have_core then return pending("lsys.core is not built") end
-    if (tonumber(os.getenv("LSYS_TEST_SLOW")) or 1) > 1 then return pending("valgrind") end
+    if SLOW > 1 then return pending("valgrind") end
     local t = fuzz.target("cpfg")
     local F = fuzz.new(t, { budget = 0.05 })
     local kind = F.exec(fuzz.readfile("tests/fuzz/corpus_cpfg/finding-include-chain.l"))
