@@ -56,8 +56,8 @@ sq() { local s=${1//\'/\'\\\'\'}; printf "'%s'" "$s"; }   # one word for sh
   echo 'if [ "$(ulimit -v)" != unlimited ] || [ "$(ulimit -f)" != unlimited ]; then'
   echo "  exec $(sq "$REAL") \"\$@\""
   echo 'fi'
-  printf 'exec'
-  for a in "${VG[@]}"; do printf ' %s' "$(sq "$a")"; done
+  printf 'exec %s' "$(sq "$(command -v valgrind)")"       # by its path: specs change PATH
+  for a in "${VG[@]:1}"; do printf ' %s' "$(sq "$a")"; done
   echo " $(sq "--log-file=$LOGS/")\"\${MEMCHECK_TEST:-lsys}\"'.%p.vg' $(sq "$REAL") \"\$@\""
 } >"$WRAP"
 chmod +x "$WRAP"
