@@ -7,8 +7,9 @@ require "tests.helper"
 local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
 local have_core = pcall(require, "lsys.core")
 
--- per input; more under valgrind (tools/memcheck-all.sh sets LSYS_TEST_TIMEOUT)
-local BUDGET = tonumber(os.getenv("LSYS_TEST_TIMEOUT") or "") or 10
+-- seconds per input, times LSYS_TEST_SLOW (tools/memcheck-all.sh sets 30: valgrind)
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
+local BUDGET = 10 * SLOW
 
 local function replay (name)
   local dir = "tests/fuzz/corpus_" .. name
@@ -54,6 +55,32 @@ describe("the Lua fuzzer's corpora", function ()
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 
+  it("give jobs or fail naming the spec as batch specs in Lua, a table and a file alike",
+  function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("batchspec")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("expand, draw and graph or fail naming lsys.components as component definitions",
+  function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("components")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("grow the same limbs with their rules in C and in Lua as grow rules", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("grow")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
+  it("import to a file that loads alone and derives what the cpfg model derives", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("import")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
   it("load and derive or fail with file and line as cpfg L-system files, without reaching "
      .. "globals", function ()
     if not have_core then return pending("lsys.core is not built") end
@@ -81,6 +108,85 @@ describe("the Lua fuzzer", function ()
     assert.is_true(ok, kind)
     assert.equal("finding", kind)
     assert.equal("the records written back parse to other fields", msg)
+  end)
+
+  -- each target against a bug planted in what it checks: the input runs clean without it
+  local function planted (name, input, plant)
+    local t = fuzz.target(name)
+    local F = fuzz.new(t)
+    local unplant = plant()
+    local ok, kind, msg = pcall(F.exec, input)
+    unplant()
+    local kind2, msg2 = F.exec(input)
+    if t.finish then t.finish() end
+    assert.is_true(ok, kind)
+    assert.equal("ok", kind2, msg2)
+    return kind, msg
+  end
+
+  it("finds a batch spec whose sweep lsys.batch.jobs makes a job short", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local batch = require "lsys.batch"
+    local kind, msg = planted("batchspec",
+      '{ model = "m.lua", vary = { R = { 1, 2, 3 } }, outputs = { "{id}.png" } }', function ()
+        local jobs = batch.jobs
+        batch.jobs = function (spec)
+          local list, info = jobs(spec)
+          list[#list] = nil
+          return list, info
+        end
+        return function () batch.jobs = jobs end
+      end)
+    assert.equal("finding", kind)
+    assert.equal("the spec makes 3 jobs, lsys.batch.jobs gave 2", msg)
+  end)
+
+  it("finds a grow condition that C reads otherwise than Lua", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local compile = require "lsys.compile"
+    local kind, msg = planted("grow", "ticks 3\nrule length < 0.5 | scale_length 2\n",
+      function ()
+        local parse = compile.parseexpr           -- the machine's `<` becomes `<=`
+        compile.parseexpr = function (text) return parse((text:gsub("<", "<="))) end
+        return function () compile.parseexpr = parse end
+      end)
+    assert.equal("finding", kind)
+    assert.equal("after tick 1: limb 1: length 1.0 with the rules in C, 0.5 in Lua", msg)
+  end)
+
+  it("finds a p-graph's DOT text that leaves a quote of a name unescaped", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local C = require("lsys").components
+    local kind, msg = planted("components", '{ { "leaf", { name = "a \\"big\\" leaf" } } }',
+      function ()
+        local graph = C.graph
+        C.graph = function (root, opts) return (graph(root, opts):gsub('\\"', '"')) end
+        return function () C.graph = graph end
+      end)
+    assert.equal("finding", kind)
+    assert.equal('DOT line 6: an attribute\'s value followed by big:   n1 [label="a "big" '
+                 .. 'leaf\\nleaf"];', msg)
+  end)
+
+  it("finds an imported file that derives another string, or reads a global", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local import = require "lsys.cpfg.import"
+    local l = "Lsystem: 1\nderivation length: 2\nAxiom: A\nA --> AB\nendlsystem\n"
+    local source = import.source
+    local kind, msg = planted("import", l, function ()
+      import.source = function (...) return (source(...):gsub('axiom = "', 'axiom = "F')) end
+      return function () import.source = source end
+    end)
+    assert.equal("finding", kind)
+    assert.equal("the written file derives FABB, the direct load ABB", msg)
+    kind, msg = planted("import", l, function ()
+      import.source = function (...)
+        return (source(...):gsub("\nreturn ", "\nlocal _ = os.time\nreturn "))
+      end
+      return function () import.source = source end
+    end)
+    assert.equal("finding", kind)
+    assert.equal("the written file reads global os", msg)
   end)
 
   it("finds a rule expression that reaches a global", function ()
@@ -117,7 +223,7 @@ describe("the Lua fuzzer", function ()
 
   it("counts a cpfg load that is slow only under its line hook as a budget stop", function ()
     if not have_core then return pending("lsys.core is not built") end
-    if (tonumber(os.getenv("LSYS_TEST_SLOW")) or 1) > 1 then return pending("valgrind") end
+    if SLOW > 1 then return pending("valgrind") end
     local t = fuzz.target("cpfg")
     local F = fuzz.new(t, { budget = 0.05 })
     local kind = F.exec(fuzz.readfile("tests/fuzz/corpus_cpfg/finding-include-chain.l"))

@@ -5,10 +5,11 @@
 #   tools/fuzz.sh [SECONDS] [NAME...] [--c | --lua] [--no-merge]
 #
 # NAME: parsers contour surface derive expr png export func (C), view palette ruleexpr sketch
-# svg cpfg (Lua); default: all of them (--c: the C ones, --lua: the Lua ones). For the C
-# targets it configures build-fuzz/ with clang and LSYS_BUILD_FUZZ=ON, builds the targets,
-# then runs each for
-# SECONDS (default 600), at most JOBS (default nproc) at a time, on a scratch copy of its
+# svg cpfg batch batchspec components grow import (Lua: every file of
+# tests/fuzz/lua/targets/; lua-NAME names one too); default: all of them (--c: the C ones,
+# --lua: the Lua ones). For the C targets it configures build-fuzz/ with clang and
+# LSYS_BUILD_FUZZ=ON, builds the targets, then runs each for SECONDS (default 600), at most
+# JOBS (default nproc) at a time, on a scratch copy of its
 # corpus (build-fuzz/work/<name>/), with -max_total_time, -rss_limit_mb, -malloc_limit_mb (a
 # larger single allocation is a finding: a PNG chunk once asked for 1.9 GB), its dictionary
 # (tests/fuzz/<name>.dict) if there is one, and artifacts in build-fuzz/findings/<name>/.
@@ -121,12 +122,19 @@ run() {
   done
 }
 
-# runlua NAME: one Lua target for $secs seconds on its scratch corpus
+# runlua NAME: one Lua target for $secs seconds on its scratch corpus. An input stuck in C,
+# where no hook stops it, is stopped by timeout (twice the time, and 5 minutes more); the
+# input is then FINDINGS/.current.
 runlua() {
   local n=$1
   LUA_PATH="$PWD/lua/?.lua;$PWD/lua/?/init.lua;;" LUA_CPATH="$PWD/build/?.so;;" \
+    timeout -k 10 $((2 * secs + 300)) \
     lua5.4 tests/fuzz/lua/fuzz.lua "$n" --time "$secs" --corpus "$B/work/lua-$n" \
     --findings "$B/findings/lua-$n" >"$B/logs/lua-$n.1.log" 2>&1 || true
+  if [ -f "$B/findings/lua-$n/.current" ]; then
+    echo "   lua-$n stopped by timeout on $B/findings/lua-$n/.current" >>"$B/logs/lua-$n.1.log"
+    cp "$B/findings/lua-$n/.current" "$B/findings/lua-$n/timeout-current"
+  fi
 }
 
 # prepare NAME WORKDIR: an empty scratch copy of tests/fuzz/corpus_NAME
@@ -179,7 +187,7 @@ fi
 
 # the table
 status=0
-printf '\n%-13s %12s %7s %8s %15s  %s\n' target execs cov ft corpus findings
+printf '\n%-16s %12s %7s %8s %15s  %s\n' target execs cov ft corpus findings
 for n in "${names[@]}"; do
   execs=0; cov=-; ft=-
   for log in "$B/logs/$n".[0-9]*.log; do
@@ -195,7 +203,7 @@ for n in "${names[@]}"; do
   list=$(cd "$B/findings/$n" && ls 2>/dev/null | grep -E '^(crash|leak|timeout|oom)-' |
          tr '\n' ' ' || true)
   [ -z "$list" ] || status=1
-  printf '%-13s %12s %7s %8s %6s -> %-5s  %s\n' "$n" "$execs" "$cov" "$ft" "${before[$n]}" \
+  printf '%-16s %12s %7s %8s %6s -> %-5s  %s\n' "$n" "$execs" "$cov" "$ft" "${before[$n]}" \
     "$after" "${list:-none}"
   if [ "$after" -gt "$CORPUS_MAX" ] ||
      [ "$(cat "tests/fuzz/corpus_$n"/* 2>/dev/null | wc -c)" -gt 1048576 ]; then
@@ -213,7 +221,7 @@ for n in "${luanames[@]}"; do     # the Lua targets: cov = edges, ft = features
   k=$(find "$B/findings/lua-$n" -maxdepth 1 -type f ! -name '*.txt' ! -name '.*' 2>/dev/null | wc -l)
   [ "$k" = 0 ] || status=1
   [ -n "$line" ] || { status=1; k="the run failed (see $log)"; }
-  printf '%-13s %12s %7s %8s %6s -> %-5s  %s\n' "lua-$n" "${execs:-0}" "${cov:--}" "${ft:--}" \
+  printf '%-16s %12s %7s %8s %6s -> %-5s  %s\n' "lua-$n" "${execs:-0}" "${cov:--}" "${ft:--}" \
     "${before[lua-$n]}" "$after" "$([ "$k" = 0 ] && echo none || echo "$k")"
 done
 [ "$status" = 0 ] || echo "findings: $B/findings/<target>/ (logs in $B/logs/)"

@@ -5,12 +5,14 @@
 #
 # Builds build-memcheck/ (-O1 -g) and runs, each in its own valgrind, every C unit test,
 # every fuzz-corpus replay and every busted spec file (N at a time, default nproc). The lsys
-# program that specs start is traced too. Invalid reads and writes, uses of uninitialised
-# values and definite leaks in lsys's code fail the run; tools/valgrind.supp suppresses only
-# what the OpenGL stack (OSMesa, llvmpipe, GLFW, X11) keeps for the process or computes in
-# JIT code. REGEX selects the tests by name (e.g. 'safety|derive'), -E excludes. A test's
-# output goes to build-memcheck/memcheck/<test>.log, valgrind's reports to <test>.<pid>.vg
-# (one per process); the summary lists each test with its time.
+# program that specs start runs under valgrind too (LSYS_BIN is a wrapper); the programs
+# that lsys and the specs run (cpp, dot, ffmpeg, GNU parallel, ...) are not checked. Invalid
+# reads and writes, uses of uninitialised values and definite leaks in lsys's code fail the
+# run; tools/valgrind.supp suppresses only what the OpenGL stack (OSMesa, llvmpipe, GLFW,
+# X11) keeps for the process or computes in JIT code. REGEX selects the tests by name (e.g.
+# 'safety|derive'), -E excludes. A test's output goes to build-memcheck/memcheck/<test>.log,
+# valgrind's reports to <test>.<pid>.vg (one per process, the program's too); the summary
+# lists each test with its time.
 # Expect tens of minutes for the whole suite on 2 cores (the viewer specs are the slowest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +24,7 @@ while [ $# -gt 0 ]; do
   case $1 in
     -j) JOBS=${2:?-j needs a number}; shift 2 ;;
     -E) exclude=${2:?-E needs a regex}; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) include=$1; shift ;;
   esac
 done
@@ -35,17 +37,32 @@ LOGS=$PWD/$B/memcheck     # absolute: children may run elsewhere
 rm -rf "$LOGS"
 mkdir -p "$LOGS"
 
-# Children are traced (the lsys program that specs start through sh), except other
-# programs and the shells that set a memory limit (valgrind needs more address space).
-skip='*/Xvfb,*/xdotool,*/xauth,*/xwd,*/node,*/npm,*/ffmpeg,*/ls,*/stat,*/mkdir,*/rm,*/ln'
-skip=$skip',*/chmod,*/mknod,*/cat,*/cp,*/mv,*/sleep,*/kill,*/ps,*/timeout,*/env,*/touch,*/diff'
-skip=$skip',*/cmp,*/grep,*/sed,*/head,*/tail,*/wc,*/sort,*/find,*/xargs,*/git,*/cmake,*/make'
-skip=$skip',*/cc,*/gcc,*/gcc-*,*/clang,*/clang-*,*/luacheck,*/dot'   # layout_spec compiles; dot: Graphviz
+# Only lsys's own processes are checked. The test process runs under valgrind without its
+# children; the lsys program that specs start (through LSYS_BIN, also from sh, timeout, GNU
+# parallel ...) is a wrapper that runs it under valgrind of its own, again without its
+# children: the programs lsys and the specs run (cpp, dot, ffmpeg, ffprobe, perl, Xvfb, the
+# shell) are not lsys's to check. Under a memory or file-size limit (ulimit -v, -f) the
+# wrapper runs the program bare: valgrind needs more address space and writes its log.
 VG=(valgrind --error-exitcode=9 --leak-check=full --errors-for-leak-kinds=definite
     --show-leak-kinds=definite --keep-debuginfo=yes "--suppressions=$PWD/tools/valgrind.supp"
-    --trace-children=yes "--trace-children-skip=$skip" "--trace-children-skip-by-arg=*ulimit*")
-export LSYS_BIN=$PWD/$B/bin/lsys LSYS_BUILD_DIR=$PWD/$B
-export LSYS_TEST_SLOW=30       # the specs' waits for a window or a reply, times 30
+    --trace-children=no --child-silent-after-fork=yes)
+REAL=$PWD/$B/bin/lsys
+WRAP=$LOGS/lsys
+sq() { local s=${1//\'/\'\\\'\'}; printf "'%s'" "$s"; }   # one word for sh
+{
+  echo '#!/bin/sh'
+  echo '# tools/memcheck-all.sh: the lsys program under valgrind, its report in the logs of'
+  echo '# the test that started it (MEMCHECK_TEST)'
+  echo 'if [ "$(ulimit -v)" != unlimited ] || [ "$(ulimit -f)" != unlimited ]; then'
+  echo "  exec $(sq "$REAL") \"\$@\""
+  echo 'fi'
+  printf 'exec %s' "$(sq "$(command -v valgrind)")"       # by its path: specs change PATH
+  for a in "${VG[@]:1}"; do printf ' %s' "$(sq "$a")"; done
+  echo " $(sq "--log-file=$LOGS/")\"\${MEMCHECK_TEST:-lsys}\"'.%p.vg' $(sq "$REAL") \"\$@\""
+} >"$WRAP"
+chmod +x "$WRAP"
+export LSYS_BIN=$WRAP LSYS_BUILD_DIR=$PWD/$B
+export LSYS_TEST_SLOW=30       # the specs' waits (and the Lua fuzzer's budget), times 30
 export LUA_PATH="$PWD/lua/?.lua;$PWD/lua/?/init.lua;;" LUA_CPATH="$PWD/$B/?.so;;"
 
 # the tests: name and command
@@ -70,10 +87,11 @@ run() {   # run NAME COMMAND...: one test under valgrind, its log and status
   local name=$1 start=$SECONDS st=0 f
   shift
   # valgrind's reports go to one file per process (the test's own output stays clean)
-  "${VG[@]}" "--log-file=$LOGS/$name.%p.vg" "$@" >"$LOGS/$name.log" 2>&1 || st=$?
+  MEMCHECK_TEST=$name "${VG[@]}" "--log-file=$LOGS/$name.%p.vg" "$@" >"$LOGS/$name.log" 2>&1 \
+    || st=$?
   for f in "$LOGS/$name".*.vg; do
     [ -e "$f" ] || continue
-    # (a process that became a program not traced has no summary)
+    # (a process killed by its spec has no summary)
     if grep -qE "ERROR SUMMARY: [1-9]" "$f"; then st=9; fi
   done
   echo "$st $((SECONDS - start)) $name" >"$LOGS/$name.status"

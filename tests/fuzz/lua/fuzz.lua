@@ -1,7 +1,8 @@
 --- A coverage-guided fuzzer for the parts of lsys written in Lua (issue 13), which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
 -- rule expressions, sketch files in JSON and SVG (issue 15), cpfg's L-system files
--- (issue 18), and batch specs in CSV (issue 20).
+-- (issue 18), batch specs in CSV and in Lua (issue 20), component definitions (issue 16),
+-- the rules of incremental growth (issue 17) and `lsys import` (issue 34).
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]
 --          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
@@ -133,7 +134,7 @@ M.show = show
 --- Loads tests/fuzz/lua/targets/NAME.lua.
 function M.target (name)
   if type(name) ~= "string" or not name:match("^[%w_]+$") then
-    error("fuzz: a target name expected (view, palette, ruleexpr, sketch, svg, cpfg)", 0)
+    error("fuzz: a target name expected (a file of tests/fuzz/lua/targets/)", 0)
   end
   local path = HERE .. "targets/" .. name .. ".lua"
   if readfile(path) == nil then error("fuzz: no target '" .. name .. "' (" .. path .. ")", 0) end
@@ -586,7 +587,8 @@ usage: lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed
          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --replay DIR
        lua5.4 tests/fuzz/lua/fuzz.lua TARGET --merge DIR
-targets: view, palette, ruleexpr, sketch, svg, cpfg (tests/fuzz/lua/targets/)]]
+targets: view, palette, ruleexpr, sketch, svg, cpfg, batch, batchspec, components, grow,
+         import (tests/fuzz/lua/targets/)]]
 
 function M.main (args)
   local name = args[1]

@@ -3,7 +3,8 @@
 -- os.remove, os.rename, os.exit, os.getenv, os.tmpname, io.open, io.popen, io.lines,
 -- io.output, io.input, load, loadfile, dofile and require fail when code compiled from a
 -- string (not from a file) is on the stack. What trips is kept in `w.hits` and raised as
--- "fuzz tripwire: ...".
+-- "fuzz tripwire: ...". Options say which code is watched (targets/import.lua: the file the
+-- importer wrote, too), which globals it may read, and whether only direct calls count.
 local G = _G
 local next, error, tostring, setmetatable, getmetatable, rawset, ipairs =
       next, error, tostring, setmetatable, getmetatable, rawset, ipairs
@@ -21,8 +22,16 @@ local rulecode = M.rulecode
 local GWIRED = { "load", "loadfile", "dofile", "require" }
 
 --- A new tripwire set: `what` names the code in messages ("rule expression"); `top()`
--- returns the function where the stack walk stops (the target's run).
-function M.new (what, top)
+-- returns the function where the stack walk stops (the target's run). opts: `iscode(info)`
+-- (debug.getinfo "S" of a function: true for the code watched; default M.rulecode),
+-- `allow(info, name)` (true when that code may read global `name`: it is then not a
+-- tripwire either), `direct` (a tripwire counts only when the watched code calls it
+-- itself, not through lsys's functions further down).
+function M.new (what, top, opts)
+  opts = opts or {}
+  local watched = opts.iscode or rulecode
+  local allow = opts.allow or function () return false end
+  local direct = opts.direct
   local w = { hits = {} }
   local function hit (msg)
     w.hits[#w.hits + 1] = msg
@@ -31,11 +40,14 @@ function M.new (what, top)
   local shadow, oldmeta, sealed, greal = {}, nil, false, {}
   local TRAP = {
     __index = function (_, k)
-      if rulecode(getinfo(2, "S")) then hit(what .. " reached global '" .. tostring(k) .. "'") end
+      local info = getinfo(2, "S")
+      if watched(info) and not allow(info, k) then
+        hit(what .. " reached global '" .. tostring(k) .. "'")
+      end
       return shadow[k]
     end,
     __newindex = function (_, k, v)
-      if rulecode(getinfo(2, "S")) then hit(what .. " wrote global '" .. tostring(k) .. "'") end
+      if watched(getinfo(2, "S")) then hit(what .. " wrote global '" .. tostring(k) .. "'") end
       shadow[k] = v
     end,
   }
@@ -44,10 +56,10 @@ function M.new (what, top)
   function w.tripwire (name, real)
     return function (...)
       local stop = top()
-      for level = 2, 200 do
+      for level = 2, direct and 2 or 200 do
         local info = getinfo(level, "Sf")
         if info == nil or info.func == stop then break end
-        if rulecode(info) then hit(what .. " called " .. name) end
+        if watched(info) and not allow(info, name) then hit(what .. " called " .. name) end
       end
       return real(...)
     end
