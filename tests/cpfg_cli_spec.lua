@@ -288,11 +288,13 @@ describe("#gl lsys view on a cpfg model", function ()
       H.write(dir .. "/" .. f, H.read(D .. "cli/" .. f))
     end
     local bin = H.ABSBIN
-    os.execute("cd " .. dir .. " && (" .. Disp.env .. "timeout 60 " .. bin ..
+    local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
+    os.execute("cd " .. dir .. " && (" .. Disp.env .. "timeout " .. 60 * SLOW .. " " .. bin ..
       " view plant.l plant.v --size 200x200 >out.txt 2>err.txt; echo $? > rc.txt) &")
-    local win = Disp.env .. "timeout 10 xdotool search --sync --name 'lsys: plant.l' "
+    local win = Disp.env .. "timeout " .. 10 * SLOW ..
+                " xdotool search --sync --name 'lsys: plant.l' "
     local function wait_for (file, text)
-      for _ = 1, 100 do
+      for _ = 1, 100 * SLOW do
         local s = H.read(dir .. "/" .. file)
         if s and s:find(text, 1, true) then return s end
         Disp.sleep(0.1)
@@ -309,7 +311,7 @@ describe("#gl lsys view on a cpfg model", function ()
     H.write(dir .. "/plant.v", "angle increment: 45\n")
     err = wait_for("err.txt", "reloaded plant.l: 2 steps (")
     local _, n = err:gsub("reloaded plant%.l", "")
-    for _ = 1, 50 do
+    for _ = 1, 50 * SLOW do
       if n >= 2 then break end
       Disp.sleep(0.1)
       _, n = (H.read(dir .. "/err.txt") or ""):gsub("reloaded plant%.l", "")

@@ -383,7 +383,8 @@ describe("#gl the sketch window under Xvfb", function()
     os.execute(("cd %s && %s%s sketch %s/x.json --size 1200x800 --nodes 3 >%s 2>&1 &"):format(
       dir, D.env, BIN, dir, outf))
     local xd = D.env .. "xdotool "
-    local p = io.popen(D.env .. "timeout 20 xdotool search --sync --name 'lsys sketch' 2>/dev/null")
+    local p = io.popen(D.env .. "timeout " .. 20 * SLOW ..
+                       " xdotool search --sync --name 'lsys sketch' 2>/dev/null")
     local wid = p:read("l")
     p:close()
     assert.truthy(wid, "the window did not open: " .. tostring(io.open(outf):read("a")))
