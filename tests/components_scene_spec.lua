@@ -157,6 +157,11 @@ describe("lsys.components geometry", function ()
     -- nothing at all: drawn at 0, not scaled
     lo, hi = bounds("cube", { 0, 0, 0 })
     for k = 1, 3 do assert.equal(0, lo[k]) assert.equal(0, hi[k]) end
+    -- a width so much smaller than the depth that depth / width is not finite
+    lo, hi = bounds("sphere", { 1e-300, 1, 1e10 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)
+    assert.near(0, lo[2], 0.02) assert.near(1, hi[2], 0.02)
+    assert.near(5e9, hi[3], 1e8)
   end)
 
   it("names the instance whose geometry is too large to be finite", function ()

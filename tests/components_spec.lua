@@ -179,6 +179,11 @@ describe("lsys.components.expand", function ()
     bad:branch(C.leaf {}, { only = { 7 } })
     assert.equal("lsys.components: tree (at tree#1): the flags of its branch link to leaf " ..
                  "name iteration 7, but it makes 5", errmsg(C.expand, bad))
+    -- an iteration number past what %d formats (found by the components fuzz target)
+    local h = C.hydra {}
+    h:child(C.leaf {}, { only = { 1e308 } })
+    assert.equal("lsys.components: hydra (at hydra#1): the flags of its child link to leaf " ..
+                 "name iteration 1e+308, but it makes 5", errmsg(C.expand, h))
   end)
 
   it("makes a leaf link's target once, where the recursion ends", function ()
@@ -265,6 +270,18 @@ describe("lsys.components.expand", function ()
     w:child(C.simple { name = "s", size = function (ctx) return { 1, 2 - ctx.i, 1 } end })
     assert.equal("lsys.components: simple 's' (at wreath#1/s#3): 'size': gave {1, -1, 1}, " ..
                  "not three numbers >= 0", errmsg(C.expand, w))
+  end)
+
+  it("refuses stems of negative length, which the turtle would draw forwards", function ()
+    assert.equal("lsys.components: horn: 'length' must be a number >= 0, got -1",
+                 errmsg(C.horn, { length = -1 }))
+    assert.equal("lsys.components: tree 't': 'length' must be a number >= 0, got {1, -1}",
+                 errmsg(C.tree, { name = "t", length = { 1, -1 } }))
+    local w = C.wreath { n = 2 }
+    w:child(C.horn { name = "h", length = function (ctx) return 1 - ctx.i end })
+    assert.equal("lsys.components: horn 'h' (at wreath#1/h#2): 'length': gave -1, not a " ..
+                 "number >= 0", errmsg(C.expand, w))
+    assert.equal(4, C.expand(C.tree { length = 0, n = 3 }:branch(C.leaf {})):count())
   end)
 
   it("bounds the strengths of the tropisms, so that a stem's turn stays finite", function ()

@@ -24,7 +24,7 @@ local ipairs, setmetatable, rawget, tostring, require, pcall, error, type =
       ipairs, setmetatable, rawget, tostring, require, pcall, error, type
 local math, string, table, utf8 = math, string, table, utf8
 local format, concat, sort = string.format, table.concat, table.sort
-local floor, mtype = math.floor, math.type
+local floor, max, huge, mtype = math.floor, math.max, math.huge, math.type
 local _ENV = nil
 
 local M = {}
@@ -175,15 +175,18 @@ end
 local PRIMDRAW   -- kind -> function (w, T, inst, wd, h, d)
 
 -- A primitive of size (wd, h, d) on the turtle's frame, base at the turtle; a size that
--- is not what the turtle's primitive draws is made by a scale afterwards (w.post). One
--- without width (flat across) is drawn as wide as it is high or deep, then flattened; the
--- point sets have only a width.
+-- is not what the turtle's primitive draws is made by a scale afterwards (w.post): the
+-- primitive drawn wd wide, scaled by h / wd and d / wd. When those are not finite (a width
+-- of 0, flat across, or far smaller than the rest) it is drawn as wide as its largest size
+-- instead, and every scale is at most 1. The point sets have only a width.
 local function primitive (w, inst, prim, wd, h, d)
   local m0 = w.wr:count() + 1
   local p, H, U = w.wr:turtle()
   local base = { p = p, H = H, U = U, s = 1 }
   local r = wd
-  if r == 0 and prim ~= "tube" and prim ~= "area" then r = h > d and h or d end
+  if prim ~= "tube" and prim ~= "area" and not (h / wd < huge and d / wd < huge) then
+    r = max(wd, h, d)
+  end
   local uniform = PRIMDRAW[prim](w, inst, r, h, d)
   if not uniform or r ~= wd then      -- r is 0 only when all three are: then uniform
     w.post[#w.post + 1] = { m0 = m0, m1 = w.wr:count(), frame = base,

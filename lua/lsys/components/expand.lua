@@ -271,8 +271,8 @@ local function checkflags (inst, l, n)
   for _, x in ipairs(l.flags.list) do
     if x > n then
       error(format("lsys.components: %s (at %s): the flags of its %s link to %s name " ..
-                   "iteration %d, but it makes %d", who(inst.proto), inst.path, l.type,
-                   who(l.to), x, n), 0)
+                   "iteration %s, but it makes %d", who(inst.proto), inst.path, l.type,
+                   who(l.to), show(x), n), 0)
     end
   end
 end

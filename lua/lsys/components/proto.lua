@@ -30,10 +30,12 @@ local M = {}
 --   boolean
 --   any      a number, vector or function the component reads itself (fields)
 -- Bounds of the values that lsys.components hands to code with limits of its own: the
--- curvatures of lsys.sketch.organ.leaf, sizes the drawing divides by, and tropism strengths
+-- curvatures of lsys.sketch.organ.leaf, sizes the drawing divides by, stem lengths the
+-- turtle draws forwards, and tropism strengths
 -- (radians of turn per segment and unit of |H x T|: past 100 a stem only spins, and the
 -- angle in degrees must stay finite).
 local NONNEG = { 0, huge, "three numbers >= 0" }
+local LENGTH = { 0, huge, "a number >= 0" }        -- a stem's: the turtle draws it forwards
 local CURL = { -10, 10, "a number from -10 to 10" }
 local TROPISM = { -100, 100, "a number from -100 to 100" }
 M.TROPISM = TROPISM
@@ -57,7 +59,7 @@ local KINDS = {
     profile = { "points", { { 0.3, 0 }, { 0.5, 0.3 }, { 0.35, 0.7 }, { 0.15, 1 } } },
   },
   horn = {
-    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
+    length = { "number", 1, LENGTH }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
     segments = { "integer", 8 }, curvature = { "number", 0 }, twist = { "number", 0 },
     thickness = { "points", nil },
     primitive = { "enum", "tube", BASIC.primitive[3] },
@@ -71,7 +73,7 @@ local KINDS = {
     phototropism = { "number", 0 },
   },
   tree = {
-    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
+    length = { "number", 1, LENGTH }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
     segments = { "integer", 16 }, n = { "integer", 10 }, thickness = { "points", nil },
     first = { "number", 0.25 }, last = { "number", 1 }, density = { "number", 1 },
     angle = { "number", 60 }, divergence = { "number", 137.50776405003785 },
