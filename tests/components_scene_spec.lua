@@ -6,6 +6,12 @@
 local C = require "lsys.components"
 local lsys = require "lsys"
 
+local function errmsg (fn, ...)
+  local ok, msg = pcall(fn, ...)
+  assert.is_false(ok)
+  return tostring(msg):gsub("^[^:]*%.lua:%d+: ", "")
+end
+
 local function dist (a, b)
   return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2 + (a[3] - b[3]) ^ 2)
 end
@@ -127,6 +133,60 @@ describe("lsys.components geometry", function ()
     assert.near(0.5, hi[1], 1e-6)
     lo, hi = bounds("cone", { 1, 2, 1 })
     assert.near(0, lo[2], 1e-6) assert.near(2, hi[2], 1e-6) assert.near(0.5, hi[1], 1e-6)
+  end)
+
+  it("draws a primitive without width flat, without dividing by its width", function ()
+    local function bounds (prim, size)
+      local m = C.model(C.simple { primitive = prim, size = size })
+      local lo, hi = m:interpret():bounds()
+      return lo, hi
+    end
+    local lo, hi = bounds("cube", { 0, 1, 0.5 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)
+    assert.near(0, lo[2], 1e-6) assert.near(1, hi[2], 1e-6)
+    assert.near(-0.25, lo[3], 1e-6) assert.near(0.25, hi[3], 1e-6)
+    lo, hi = bounds("sphere", { 0, 2, 1 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)
+    assert.near(0, lo[2], 0.02) assert.near(2, hi[2], 0.02)
+    assert.near(0.5, hi[3], 0.02)
+    lo, hi = bounds("cylinder", { 0, 3, 0.4 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)
+    assert.near(3, hi[2], 1e-6) assert.near(0.2, hi[3], 1e-6)
+    lo, hi = bounds("disc", { 0, 0, 1 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6) assert.near(0.5, hi[3], 1e-6)
+    -- nothing at all: drawn at 0, not scaled
+    lo, hi = bounds("cube", { 0, 0, 0 })
+    for k = 1, 3 do assert.equal(0, lo[k]) assert.equal(0, hi[k]) end
+    -- a width so much smaller than the depth that depth / width is not finite
+    lo, hi = bounds("sphere", { 1e-300, 1, 1e10 })
+    assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)
+    assert.near(0, lo[2], 0.02) assert.near(1, hi[2], 0.02)
+    assert.near(5e9, hi[3], 1e8)
+  end)
+
+  it("names the instance whose geometry is too large to be finite", function ()
+    local a = C.simple { scale = 1e200 }
+    a:child(C.simple { name = "b", scale = 1e200 })
+    assert.equal("lsys.components: simple 'b' (at simple#1/b#1): its geometry is not finite " ..
+                 "(a length, radius or size too large for its scale)",
+                 errmsg(C.model, a))
+    local h = C.horn { length = 1e308 }
+    h:child(C.horn { name = "h2", length = 1e308 })
+    assert.equal("lsys.components: horn (at horn#1): its geometry is not finite (a length, " ..
+                 "radius or size too large for its scale)", errmsg(C.model, h))
+  end)
+
+  it("tells lsys.sketch.organ.leaf's ranges in its messages", function ()
+    local organ = require "lsys.sketch.organ"
+    assert.equal("lsys.sketch.organ.leaf: 'depth' must be a number from -10 to 10",
+                 errmsg(organ.leaf, { section = "cup", depth = 20 }))
+    assert.equal("lsys.sketch.organ.leaf: 'curl' must be a number from -10 to 10",
+                 errmsg(organ.leaf, { curl = -30 }))
+    assert.equal("lsys.sketch.organ.leaf: 'width' must be a number > 0 and at most 10",
+                 errmsg(organ.leaf, { width = 20 }))
+    -- one message when several are wrong: the first of width, curl, depth
+    assert.equal("lsys.sketch.organ.leaf: 'width' must be a number > 0 and at most 10",
+                 errmsg(organ.leaf, { width = 0, curl = 0 / 0, depth = 11 }))
   end)
 
   it("continues point-set primitives into the following instances (Tube)", function ()

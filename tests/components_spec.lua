@@ -179,6 +179,11 @@ describe("lsys.components.expand", function ()
     bad:branch(C.leaf {}, { only = { 7 } })
     assert.equal("lsys.components: tree (at tree#1): the flags of its branch link to leaf " ..
                  "name iteration 7, but it makes 5", errmsg(C.expand, bad))
+    -- an iteration number past what %d formats (found by the components fuzz target)
+    local h = C.hydra {}
+    h:child(C.leaf {}, { only = { 1e308 } })
+    assert.equal("lsys.components: hydra (at hydra#1): the flags of its child link to leaf " ..
+                 "name iteration 1e+308, but it makes 5", errmsg(C.expand, h))
   end)
 
   it("makes a leaf link's target once, where the recursion ends", function ()
@@ -221,6 +226,111 @@ describe("lsys.components.expand", function ()
     w2:child(C.leaf { name = "bad", length = function (ctx) return ctx.i == 2 and "x" or 1 end })
     assert.equal("lsys.components: leaf 'bad' (at wreath#1/bad#2): 'length': gave x, not a " ..
                  "finite number", errmsg(C.expand, w2))
+  end)
+
+  it("refuses leaf curvatures and widths past lsys.sketch.organ.leaf's range", function ()
+    -- what the leaf's surface is made with: organ.leaf takes curvatures from -10 to 10 and
+    -- widths up to 10 lengths
+    assert.equal("lsys.components: leaf: 'lateral' must be a number from -10 to 10, got 20",
+                 errmsg(C.leaf, { lateral = 20 }))
+    assert.equal("lsys.components: leaf 'l': 'longitudinal' must be a number from -10 to " ..
+                 "10, got {0, -30}", errmsg(C.leaf, { name = "l", longitudinal = { 0, -30 } }))
+    assert.equal("lsys.components: leaf: 'width' must be at most 10 times 'length', got 20 " ..
+                 "and 1", errmsg(C.leaf, { width = 20 }))
+    assert.equal("lsys.components: leaf: 'width' must be at most 10 times 'length', got " ..
+                 "{1, 3} and {1, 0.25}", errmsg(C.leaf, { width = { 1, 3 }, length = { 1, 0.25 } }))
+    assert.equal("lsys.components: leaf: 'width' must be at most 10 times 'length', got 0.5 " ..
+                 "and 0", errmsg(C.leaf, { length = 0 }))
+    -- the ends of the ranges are the extremes; an outline has no width of its own
+    assert.is_true(C.isproto(C.leaf { lateral = { -10, 10 }, width = { 10, 1 } }))
+    assert.is_true(C.isproto(C.leaf { width = 20, outline = { { 0, 0 }, { 0.5, 1 } } }))
+    -- a function's value is checked for each instance, when the leaf is drawn
+    local w = C.wreath { n = 3 }
+    w:child(C.leaf { name = "l", lateral = function (ctx) return 5 * ctx.i end })
+    assert.equal("lsys.components: leaf 'l' (at wreath#1/l#3): 'lateral': gave 15, not a " ..
+                 "number from -10 to 10", errmsg(C.model, w))
+    w = C.wreath { n = 3 }
+    w:child(C.leaf { name = "l", longitudinal = { 0, 1, f = function (v) return v * 11 end } })
+    assert.equal("lsys.components: leaf 'l' (at wreath#1/l#3): 'longitudinal': gave 11, not " ..
+                 "a number from -10 to 10", errmsg(C.model, w))
+    w = C.wreath { n = 3 }
+    w:child(C.leaf { name = "l", length = 0.5, width = function (ctx) return 2.5 * ctx.i end })
+    assert.equal("lsys.components: leaf 'l' (at wreath#1/l#3): 'width': gave 7.5, more " ..
+                 "than 10 times the length (0.5)", errmsg(C.model, w))
+  end)
+
+  it("refuses primitive sizes below 0 when the prototype is made or a function gives one",
+     function ()
+    assert.equal("lsys.components: simple: 'size' must be three numbers >= 0, got {1, -1, 1}",
+                 errmsg(C.simple, { size = { 1, -1, 1 } }))
+    assert.equal("lsys.components: horn: 'size' must be three numbers >= 0, got {{1, 1, 1}, " ..
+                 "{-0.5, 1, 1}}", errmsg(C.horn, { size = { { 1, 1, 1 }, { -0.5, 1, 1 } } }))
+    assert.is_true(C.isproto(C.simple { size = { 0, 0, 0 } }))
+    local w = C.wreath { n = 3 }
+    w:child(C.simple { name = "s", size = function (ctx) return { 1, 2 - ctx.i, 1 } end })
+    assert.equal("lsys.components: simple 's' (at wreath#1/s#3): 'size': gave {1, -1, 1}, " ..
+                 "not three numbers >= 0", errmsg(C.expand, w))
+  end)
+
+  it("refuses stems of negative length, which the turtle would draw forwards", function ()
+    assert.equal("lsys.components: horn: 'length' must be a number >= 0, got -1",
+                 errmsg(C.horn, { length = -1 }))
+    assert.equal("lsys.components: tree 't': 'length' must be a number >= 0, got {1, -1}",
+                 errmsg(C.tree, { name = "t", length = { 1, -1 } }))
+    local w = C.wreath { n = 2 }
+    w:child(C.horn { name = "h", length = function (ctx) return 1 - ctx.i end })
+    assert.equal("lsys.components: horn 'h' (at wreath#1/h#2): 'length': gave -1, not a " ..
+                 "number >= 0", errmsg(C.expand, w))
+    assert.equal(4, C.expand(C.tree { length = 0, n = 3 }:branch(C.leaf {})):count())
+  end)
+
+  it("bounds the strengths of the tropisms, so that a stem's turn stays finite", function ()
+    assert.equal("lsys.components: tree: 'gravitropism' must be a number from -100 to 100, " ..
+                 "got 1e+308", errmsg(C.tree, { gravitropism = 1e308 }))
+    assert.equal("lsys.components: tree: 'phototropism' must be a number from -100 to 100, " ..
+                 "got {0, -101}", errmsg(C.tree, { phototropism = { 0, -101 } }))
+    assert.equal("lsys.components: world: 'wind.strength' must be a number from -100 to 100, " ..
+                 "got 1e+300", errmsg(C.world, { wind = { strength = 1e300 } }))
+    assert.equal("lsys.components: world: 'cylinder.strength' must be a number from -100 to " ..
+                 "100, got -200", errmsg(C.world, { cylinder = { strength = -200 } }))
+    local w = C.world {}
+    w:child(C.tree { name = "t", n = 2, curvature = 30,
+                     gravitropism = function (ctx) return ctx.depth * 1e308 end })
+    assert.equal("lsys.components: tree 't' (at world#1/t#1): 'gravitropism': gave 1e+308, " ..
+                 "not a number from -100 to 100", errmsg(C.expand, w))
+    assert.is_true(C.isproto(C.tree { gravitropism = -100, phototropism = { 100, 0 } }))
+  end)
+
+  it("limits every n to the placements' 10^6 when the prototype is made", function ()
+    assert.equal(1000000, require("lsys.components.place").MAX_N)
+    assert.equal("lsys.components: phiball: 'n' must be from 0 to 1000000, got 6000000",
+                 errmsg(C.phiball, { n = 6000000 }))
+    assert.equal("lsys.components: tree 't': 'n' must be from 0 to 1000000, got 1000001",
+                 errmsg(C.tree, { name = "t", n = 1000001 }))
+    assert.equal(1000000, C.hydra { n = 1000000 }:param("n"))
+  end)
+
+  it("stops at max_instances before working out a multiplier's or a tree's children",
+     function ()
+    local calls = 0
+    local ball = C.phiball { n = 1000000, child_size = function () calls = calls + 1 return 1 end }
+    ball:child(C.simple {})
+    assert.equal("lsys.components: the graph makes more than 10 instances (at phiball#1/" ..
+                 "simple); raise max_instances or lower a count",
+                 errmsg(C.expand, ball, { max_instances = 10 }))
+    assert.equal(0, calls)                 -- no child_size, no placement was computed
+    -- the flags' count: 1 + 10^6 - 3 instances exactly fit, one fewer does not
+    local t = C.tree { n = 1000000, angle = function () calls = calls + 1 return 30 end }
+    t:branch(C.leaf {}, { except = { 1, 2, 3, 3 } })
+    assert.equal("lsys.components: the graph makes more than 999997 instances (at tree#1/" ..
+                 "leaf); raise max_instances or lower a count",
+                 errmsg(C.expand, t, { max_instances = 999997 }))
+    assert.equal(0, calls)
+    local h = C.hydra { n = 4 }
+    h:child(C.leaf {}, { only = { 2, 3 } })
+    assert.equal(3, C.expand(h, { max_instances = 3 }):count())
+    assert.equal("lsys.components: the graph makes more than 2 instances (at hydra#1/leaf); " ..
+                 "raise max_instances or lower a count", errmsg(C.expand, h, { max_instances = 2 }))
   end)
 
   it("is reproducible: the same graph and seed give the same frames", function ()

@@ -181,6 +181,27 @@ describe("lsys.components skeleton and all-mode deformations", function ()
     end
   end)
 
+  it("all mode: a Hyperpatch without moves is not applied (its map is the identity)",
+     function ()
+    local W = require "lsys.components.world"
+    local map, calls = W.map, 0
+    W.map = function (...) calls = calls + 1 return map(...) end
+    local ok, err = pcall(function ()
+      local base = C.scene(plant())
+      local d = C.hyperpatch { degree = { 1, 2, 1 } }
+      d:child(plant())
+      local s = C.scene(d)
+      assert.equal(0, calls)           -- no box from the vertices, no deformation
+      for i = 1, base.nvertices do assert.same({ base:vertex(i) }, { s:vertex(i) }) end
+      d = C.hyperpatch { degree = { 1, 2, 1 }, moves = { { 0, 2, 0, 0.5, 0, 0 } } }
+      d:child(plant())
+      C.scene(d)
+      assert.equal(1, calls)
+    end)
+    W.map = map
+    assert(ok, err)
+  end)
+
   it("all mode: a partial deformation leaves the subtrees outside it untouched", function ()
     local function graph (deform)
       local root = C.tree { name = "root", length = 3, n = 2, angle = 40, segments = 4 }

@@ -16,13 +16,15 @@
 -- closed circle contour, Area: an open line contour), which is the article's
 -- "triangulated with those of the following instances".
 -- @module lsys.components.emit
+local C = require "lsys.components.proto"
 local X = require "lsys.components.expand"
 local core = require "lsys.core"
 
-local ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8 =
-      ipairs, setmetatable, rawget, tostring, require, math, string, table, utf8
+local ipairs, setmetatable, rawget, tostring, require, pcall, error, type =
+      ipairs, setmetatable, rawget, tostring, require, pcall, error, type
+local math, string, table, utf8 = math, string, table, utf8
 local format, concat, sort = string.format, table.concat, table.sort
-local floor, mtype = math.floor, math.type
+local floor, max, huge, mtype = math.floor, math.max, math.huge, math.type
 local _ENV = nil
 
 local M = {}
@@ -173,15 +175,22 @@ end
 local PRIMDRAW   -- kind -> function (w, T, inst, wd, h, d)
 
 -- A primitive of size (wd, h, d) on the turtle's frame, base at the turtle; a size that
--- is not what the turtle's primitive draws is made by a scale afterwards (w.post).
+-- is not what the turtle's primitive draws is made by a scale afterwards (w.post): the
+-- primitive drawn wd wide, scaled by h / wd and d / wd. When those are not finite (a width
+-- of 0, flat across, or far smaller than the rest) it is drawn as wide as its largest size
+-- instead, and every scale is at most 1. The point sets have only a width.
 local function primitive (w, inst, prim, wd, h, d)
   local m0 = w.wr:count() + 1
   local p, H, U = w.wr:turtle()
   local base = { p = p, H = H, U = U, s = 1 }
-  local uniform = PRIMDRAW[prim](w, inst, wd, h, d)
-  if not uniform then
+  local r = wd
+  if prim ~= "tube" and prim ~= "area" and not (h / wd < huge and d / wd < huge) then
+    r = max(wd, h, d)
+  end
+  local uniform = PRIMDRAW[prim](w, inst, r, h, d)
+  if not uniform or r ~= wd then      -- r is 0 only when all three are: then uniform
     w.post[#w.post + 1] = { m0 = m0, m1 = w.wr:count(), frame = base,
-                            sx = 1, sy = uniform == false and h / wd or 1, sz = d / wd,
+                            sx = wd / r, sy = uniform == false and h / r or 1, sz = d / r,
                             prim = prim }
   end
 end
@@ -319,7 +328,12 @@ local LEAFPARAMS = { "length", "width", "lateral", "longitudinal" }
 local function leafname (w, inst)
   local p = inst.proto
   local len = inst.length or X.get(inst, "length")
-  local surf, key = leafsurface(p, X.get(inst, "width"), len, X.get(inst, "lateral"),
+  local width = X.get(inst, "width")
+  if p:param("outline") == nil and not (width / len <= C.MAX_LEAF_RATIO) then
+    X.fail(inst, "width", "gave %s, more than %d times the length (%s)", C.show(width),
+           C.MAX_LEAF_RATIO, C.show(len))
+  end
+  local surf, key = leafsurface(p, width, len, X.get(inst, "lateral"),
                                 X.get(inst, "longitudinal"), w.detail)
   local tex = p:param("texture")
   local entry = {}
@@ -374,6 +388,8 @@ end
 
 emit = function (w, tree, inst)
   local wr = w.wr
+  local outer = w.inst
+  w.inst = inst
   wr:open(inst.index, inst.fi)    -- `[` and the move to the instance's frame
   local kind = inst.kind
   local p = inst.proto
@@ -404,6 +420,21 @@ emit = function (w, tree, inst)
   end
   wr:close()                      -- `]`: the turtle as its parent left it
   if kind == "ffd" or kind == "hyperpatch" then w.deformers[#w.deformers + 1] = inst end
+  w.inst = outer
+end
+
+-- The writer refuses numbers that are not finite: the lengths and widths that finite
+-- parameters made too large (scales multiplied down the graph, a length times a scale).
+-- Its error (an argument error of the writer's) is told as the instance being emitted's.
+local function emitall (w, tree)
+  local ok, err = pcall(emit, w, tree, tree.list[1])
+  if ok then return end
+  local inst = w.inst
+  if inst ~= nil and type(err) == "string" and err:find("not a finite number", 1, true) then
+    error(format("lsys.components: %s (at %s): its geometry is not finite (a length, " ..
+                 "radius or size too large for its scale)", C.who(inst.proto), inst.path), 0)
+  end
+  error(err, 0)
 end
 
 -- }=========================================================================================
@@ -421,7 +452,7 @@ M.DETAIL = 1
 -- ranges (inst.m0, m1, at, modules) are this emission's from now on.
 function M.emit (tree, rules, detail, rename)
   local w = newwriter(rules, tree, detail or M.DETAIL, rename)
-  emit(w, tree, tree.list[1])
+  emitall(w, tree)
   local wr = w.wr
   tree.writer = wr
   local owner = setmetatable({}, {

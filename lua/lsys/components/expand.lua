@@ -15,7 +15,7 @@ local type, pairs, ipairs, error, setmetatable, rawget, rawset, tostring, pcall,
 local math, string, table = math, string, table
 local format, concat = string.format, table.concat
 local floor = math.floor
-local isnum, who = C.isnum, C.who
+local isnum, who, show = C.isnum, C.who, C.show
 local _ENV = nil
 
 local M = {}
@@ -96,9 +96,14 @@ local function value (inst, p, key, ctx)
                                                       isnum(out[3]))) then
     efail(inst, key, "gave %s, not a vector of three finite numbers", tostring(out))
   end
+  local b = sch[3]
+  if b ~= nil and not C.within(b, out) then
+    efail(inst, key, "gave %s, not %s", show(out), b[3])
+  end
   return out
 end
 M.value = value
+M.fail = efail
 
 -- Per prototype, what each parameter is: most are plain constants, read once; a range
 -- without a function depends only on (i, n); the rest (functions) go through `value` with
@@ -261,19 +266,34 @@ local function instmeta (tree)
   }
 end
 
+-- The flags of link l name only iterations of the n that inst makes.
+local function checkflags (inst, l, n)
+  for _, x in ipairs(l.flags.list) do
+    if x > n then
+      error(format("lsys.components: %s (at %s): the flags of its %s link to %s name " ..
+                   "iteration %s, but it makes %d", who(inst.proto), inst.path, l.type,
+                   who(l.to), show(x), n), 0)
+    end
+  end
+end
+
 -- The flags of a link allow iteration i (of n)?
 local function allowed (inst, l, i, n)
   local f = l.flags
   if f == nil then return true end
-  for _, x in ipairs(f.list) do
-    if x > n then
-      error(format("lsys.components: %s (at %s): the flags of its %s link to %s name " ..
-                   "iteration %d, but it makes %d", who(inst.proto), inst.path, l.type,
-                   who(l.to), x, n), 0)
-    end
-  end
+  checkflags(inst, l, n)
   if f.mode == "only" then return f.set[i] == true end
   return f.set[i] ~= true
+end
+
+-- How many of the n iterations the flags of link l allow.
+local function nallowed (inst, l, n)
+  local f = l.flags
+  if f == nil then return n end
+  checkflags(inst, l, n)
+  local k = 0
+  for _ in pairs(f.set) do k = k + 1 end
+  return f.mode == "only" and k or n - k
 end
 
 -- The tropisms acting on a stem: { direction (a vector or a function of position), its
@@ -350,14 +370,23 @@ Expander.__index = Expander
 
 -- A new instance of proto at arena frame fi (its parent's; `fresh`: a frame made for it
 -- alone, which the instance may keep), iteration i of n, u along a Tree's stem.
+-- The error of a graph that makes more than max_instances, at proto below parent.
+function Expander:toomany (parent, proto)
+  error(format("lsys.components: the graph makes more than %d instances (at %s/%s); " ..
+               "raise max_instances or lower a count", self.max,
+               parent and parent.path or "", proto.name or proto.kind), 0)
+end
+
+-- Stops before the k instances that link l of inst makes (of a multiplier or a Tree's
+-- branches) are worked out, when they would make more than max_instances.
+function Expander:room (inst, l, k)
+  if #self.list + k > self.max then self:toomany(inst, l.to) end
+end
+
 function Expander:add (proto, fi, fresh, i, n, u, parent, ltype)
   local list = self.list
   local index = #list + 1
-  if index > self.max then
-    error(format("lsys.components: the graph makes more than %d instances (at %s/%s); " ..
-                 "raise max_instances or lower a count", self.max,
-                 parent and parent.path or "", proto.name or proto.kind), 0)
-  end
+  if index > self.max then self:toomany(parent, proto) end
   local on = self.onpath
   local depth = (on[proto] or 0) + 1
   local label = proto.name or proto.kind
@@ -451,7 +480,14 @@ function Expander:build (inst, fi, fresh)
       efail(inst, "segments", "must be from 1 to 100000, got %s", tostring(segs))
     end
     local nb = kind == "tree" and p:param("n") or 0
-    if nb > 0 and hasbranches(p) then plan = branchplan(inst, nb) end
+    if nb > 0 and hasbranches(p) then
+      for _, l in ipairs(p.links) do
+        if l.type == "branch" and self:follows(l) then
+          self:room(inst, l, nallowed(inst, l, nb))
+        end
+      end
+      plan = branchplan(inst, nb)
+    end
     inst.st = stem(self, inst, fi, len, segs, plan)
     inst.ns = segs + 1
     inst.length = len
@@ -490,10 +526,14 @@ function Expander:branches (inst, l, plan)
   end
 end
 
+-- Whether link l's target may appear again on the path (its recursion has not ended).
+function Expander:follows (l)
+  local on = self.onpath[l.to]
+  return on == nil or on < l.to.recursion
+end
+
 function Expander:follow (inst, l, tip, plan, ends)
-  local target = l.to
-  local on = self.onpath[target]
-  if on ~= nil and on >= target.recursion then return end    -- the recursion ends here
+  if not self:follows(l) then return end                      -- the recursion ends here
   if l.type == "leaf" and not ends then return end             -- only where it ends
   local kind = inst.kind
   if C.MULTIPLIERS[kind] and l.type ~= "leaf" then
@@ -501,7 +541,7 @@ function Expander:follow (inst, l, tip, plan, ends)
   elseif kind == "tree" and l.type == "branch" then
     if plan then self:branches(inst, l, plan) end
   else
-    self:add(target, tip, false, inst.i, inst.n, nil, inst, l.type)
+    self:add(l.to, tip, false, inst.i, inst.n, nil, inst, l.type)
   end
 end
 
@@ -552,8 +592,9 @@ end
 -- multiplier's up, Y = its left, Z = its heading) in the multiplier's frame.
 function Expander:multiply (inst, l)
   local p = inst.proto
-  local kids, sizes = placekids(inst, p)
   local n = p:param("n")
+  self:room(inst, l, nallowed(inst, l, n))
+  local kids, sizes = placekids(inst, p)
   local frames, fi = self.frames, inst.fi
   for i, k in ipairs(kids) do
     if allowed(inst, l, i, n) then

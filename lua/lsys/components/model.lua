@@ -82,13 +82,6 @@ local function pieces (inst, holes)
   return out
 end
 
--- World <-> the local coordinates of frame f (x right, y along, z front, in units of s).
-local function tolocal (f, x, y, z)
-  local R, F = right(f), front(f)
-  local d = { x - f.p[1], y - f.p[2], z - f.p[3] }
-  return dot(d, R) / f.s, dot(d, f.H) / f.s, dot(d, F) / f.s
-end
-
 local function unit (a)
   local l = sqrt(dot(a, a))
   return { a[1] / l, a[2] / l, a[3] / l }
@@ -113,12 +106,13 @@ local function follow (map, f)
   return framemap({ right(f), f.H, front(f) }, f.p, { right(g), H, front(g) }, o, { 1, 1, 1 })
 end
 
--- Does the deformer change anything? (An FFD without functions only isolates.)
+-- Does the deformer change anything? (An FFD without functions only isolates, and so does
+-- a Hyperpatch without moves: its control points on the lattice map every point to itself.)
 local function active (inst)
   local p = inst.proto
   if p:param("mode") ~= "all" then return false end
-  return inst.kind == "hyperpatch" or p:param("fx") ~= nil or p:param("fy") ~= nil or
-         p:param("fz") ~= nil
+  if inst.kind == "hyperpatch" then return #p:param("moves") > 0 end
+  return p:param("fx") ~= nil or p:param("fy") ~= nil or p:param("fz") ~= nil
 end
 
 -- Finishes the scene the turtle drew from the emitted string.
@@ -135,19 +129,28 @@ local function finish (out, scene)
       local holes = isolated(inst, iso)
       local ranges = pieces(inst, holes)
       local map = W.map(inst, function ()
-        local lo, hi = { huge, huge, huge }, { -huge, -huge, -huge }
+        -- the frame and its axes once: this runs for every vertex of the subtree
+        local f = inst.frame
+        local R, F, H, P, s = right(f), front(f), f.H, f.p, f.s
+        local x0, x1, y0, y1, z0, z1 = huge, -huge, huge, -huge, huge, -huge
         for _, r in ipairs(ranges) do
           local v0, v1 = scene:module_range(r[1], r[2])
           for i = v0 or 1, v0 and v1 or 0 do
-            local q = { tolocal(inst.frame, scene:vertex(i)) }
-            for k = 1, 3 do
-              if q[k] < lo[k] then lo[k] = q[k] end
-              if q[k] > hi[k] then hi[k] = q[k] end
-            end
+            local x, y, z = scene:vertex(i)
+            x, y, z = x - P[1], y - P[2], z - P[3]
+            local a = (x * R[1] + y * R[2] + z * R[3]) / s
+            local b = (x * H[1] + y * H[2] + z * H[3]) / s
+            local c = (x * F[1] + y * F[2] + z * F[3]) / s
+            if a < x0 then x0 = a end
+            if a > x1 then x1 = a end
+            if b < y0 then y0 = b end
+            if b > y1 then y1 = b end
+            if c < z0 then z0 = c end
+            if c > z1 then z1 = c end
           end
         end
-        if lo[1] == huge then return nil end
-        return lo, hi
+        if x0 == huge then return nil end
+        return { x0, y0, z0 }, { x1, y1, z1 }
       end)
       if map ~= nil then
         local fn = map

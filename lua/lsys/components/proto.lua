@@ -3,10 +3,12 @@
 -- between them. lsys.components gathers this module with the expansion
 -- (lsys.components.expand) and the placements (lsys.components.place).
 -- @module lsys.components.proto
-local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, math, string, table =
-      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, math, string, table
+local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select =
+      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select
+local math, string, table = math, string, table
 local format, concat, sort = string.format, table.concat, table.sort
 local floor, huge = math.floor, math.huge
+local place = require "lsys.components.place"
 local _ENV = nil
 
 local M = {}
@@ -18,18 +20,33 @@ local M = {}
 --   number   a finite number, or a range {v0, v1} over the instance's iteration (see
 --            docs/components.md, "Ranges, functions and flag lists"), or a function
 --   vec3     {x, y, z}, or a range of two such, or a function
+-- A number or vec3 entry may have bounds as its third field ({lo, hi, what}: every value,
+-- each component of a vector, in [lo, hi]; `what` says so in messages): a constant and the
+-- ends of a range are checked here, a function's value for each instance
+-- (lsys.components.expand).
 --   integer  a whole number (not varied per instance)
 --   enum     one of the listed strings
 --   points   a list of {x, y} or {x, y, z} points (outlines, profiles)
 --   boolean
 --   any      a number, vector or function the component reads itself (fields)
+-- Bounds of the values that lsys.components hands to code with limits of its own: the
+-- curvatures of lsys.sketch.organ.leaf, sizes the drawing divides by, stem lengths the
+-- turtle draws forwards, and tropism strengths
+-- (radians of turn per segment and unit of |H x T|: past 100 a stem only spins, and the
+-- angle in degrees must stay finite).
+local NONNEG = { 0, huge, "three numbers >= 0" }
+local LENGTH = { 0, huge, "a number >= 0" }        -- a stem's: the turtle draws it forwards
+local CURL = { -10, 10, "a number from -10 to 10" }
+local TROPISM = { -100, 100, "a number from -100 to 100" }
+M.TROPISM = TROPISM
+
 local BASIC = {
   translate = { "vec3", { 0, 0, 0 } },    -- in the parent's frame: x right, y along, z front
   rotate = { "vec3", { 0, 0, 0 } },       -- degrees about the local x, then y, then z axes
   scale = { "number", 1 },                 -- uniform, for the component and all below it
   primitive = { "enum", "none", { "none", "cube", "sphere", "cylinder", "cone", "disc",
                                   "area", "tube" } },
-  size = { "vec3", { 1, 1, 1 } },          -- of the primitive: width, height, depth
+  size = { "vec3", { 1, 1, 1 }, NONNEG },  -- of the primitive: width, height, depth
   color = { "integer", nil },              -- a palette index (the view's colours)
   texture = { "integer", 0 },              -- a view texture index (0: none)
   geometry = { "any", nil },               -- an L-system model or Lstring drawn on the frame
@@ -42,7 +59,7 @@ local KINDS = {
     profile = { "points", { { 0.3, 0 }, { 0.5, 0.3 }, { 0.35, 0.7 }, { 0.15, 1 } } },
   },
   horn = {
-    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
+    length = { "number", 1, LENGTH }, radius = { "number", 0.05 }, tip = { "number", 0.5 },
     segments = { "integer", 8 }, curvature = { "number", 0 }, twist = { "number", 0 },
     thickness = { "points", nil },
     primitive = { "enum", "tube", BASIC.primitive[3] },
@@ -51,16 +68,17 @@ local KINDS = {
     length = { "number", 1 }, width = { "number", 0.5 },
     shape = { "enum", "ovate", { "ovate", "lanceolate", "elliptic", "obovate", "linear",
                                  "cordate" } },
-    outline = { "points", nil }, lateral = { "number", 0 }, longitudinal = { "number", 0 },
+    outline = { "points", nil }, lateral = { "number", 0, CURL },
+    longitudinal = { "number", 0, CURL },
     phototropism = { "number", 0 },
   },
   tree = {
-    length = { "number", 1 }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
+    length = { "number", 1, LENGTH }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
     segments = { "integer", 16 }, n = { "integer", 10 }, thickness = { "points", nil },
     first = { "number", 0.25 }, last = { "number", 1 }, density = { "number", 1 },
     angle = { "number", 60 }, divergence = { "number", 137.50776405003785 },
     deviation = { "number", 0 }, gnarl = { "number", 0 }, curvature = { "number", 0 },
-    phototropism = { "number", 0 }, gravitropism = { "number", 0 },
+    phototropism = { "number", 0, TROPISM }, gravitropism = { "number", 0, TROPISM },
     branch_scale = { "number", 1 },
     primitive = { "enum", "tube", BASIC.primitive[3] },
   },
@@ -123,6 +141,19 @@ local function who (p)
 end
 M.who = who
 
+-- A number or a vector of them as messages show it.
+local function show (v)
+  if type(v) == "table" then
+    local out = {}
+    for i, x in ipairs(v) do out[i] = show(x) end
+    return "{" .. concat(out, ", ") .. "}"
+  elseif type(v) == "number" then
+    return format("%.14g", v)
+  end
+  return tostring(v)
+end
+M.show = show
+
 local function fail (p, fmt, ...)
   error(format("lsys.components: %s: " .. fmt, who(p), ...), 0)
 end
@@ -143,9 +174,12 @@ local function fields (p, key, v, spec)
     if t == nil then
       fail(p, "'%s': unknown field '%s' (known: %s)", key, tostring(k), concat(names, ", "))
     end
-    if t == "vec3" and not isvec(x) or t == "number" and not isnum(x) then
+    if t == "vec3" and not isvec(x) or t ~= "vec3" and not isnum(x) then
       fail(p, "'%s.%s' must be %s", key, k,
            t == "vec3" and "a vector {x, y, z} of finite numbers" or "a finite number")
+    end
+    if t == "tropism" and not (x >= TROPISM[1] and x <= TROPISM[2]) then
+      fail(p, "'%s.%s' must be %s, got %s", key, k, TROPISM[3], show(x))
     end
   end
 end
@@ -175,10 +209,10 @@ local ANY = {
   end,
   ["world.cylinder"] = function (p, key, v)
     fields(p, key, v, { axis = "vec3", point = "vec3", radius = "number", pitch = "number",
-                        strength = "number" })
+                        strength = "tropism" })
   end,
   ["world.wind"] = function (p, key, v)
-    fields(p, key, v, { direction = "vec3", strength = "number" })
+    fields(p, key, v, { direction = "vec3", strength = "tropism" })
   end,
 }
 for _, k in ipairs { "ffd.fx", "ffd.fy", "ffd.fz" } do
@@ -204,6 +238,29 @@ ANY["*.geometry"] = function (p, key, v)
   if not ok then fail(p, "'%s' must be an L-system model or an Lstring, got %s", key, type(v)) end
 end
 
+-- Whether the number or vector x is within the bounds b ({lo, hi, what}; nil: none).
+local function within (b, x)
+  if b == nil then return true end
+  if type(x) == "number" then return x >= b[1] and x <= b[2] end
+  for k = 1, 3 do
+    if not (x[k] >= b[1] and x[k] <= b[2]) then return false end
+  end
+  return true
+end
+M.within = within
+
+-- A constant, or each end of a range without a function, within the schema's bounds.
+local function bounded (p, key, sch, v, ...)
+  local b = sch[3]
+  if b == nil or type(v) == "table" and v.f ~= nil then return v end
+  for k = 1, select("#", ...) do
+    if not within(b, (select(k, ...))) then
+      fail(p, "'%s' must be %s, got %s", key, b[3], show(v))
+    end
+  end
+  return v
+end
+
 -- Checks the value of parameter `key` of prototype `p` against its schema.
 local function check (p, key, v)
   local sch = schema(p.kind, key)
@@ -215,18 +272,20 @@ local function check (p, key, v)
   end
   if type(v) == "function" and (t == "number" or t == "vec3") then return v end
   if t == "number" then
-    if isnum(v) then return v end
+    if isnum(v) then return bounded(p, key, sch, v, v) end
     if type(v) == "table" and isnum(v[1]) and isnum(v[2]) and #v == 2 then
       if v.f ~= nil and type(v.f) ~= "function" then
         fail(p, "'%s': the range's f must be a function, got %s", key, type(v.f))
       end
-      return v
+      return bounded(p, key, sch, v, v[1], v[2])
     end
     fail(p, "'%s' must be a number, a range {v0, v1} or a function, got %s", key,
          v ~= v and "NaN" or type(v) == "number" and tostring(v) or type(v))
   elseif t == "vec3" then
-    if isvec(v) then return v end
-    if type(v) == "table" and #v == 2 and isvec(v[1]) and isvec(v[2]) then return v end
+    if isvec(v) then return bounded(p, key, sch, v, v) end
+    if type(v) == "table" and #v == 2 and isvec(v[1]) and isvec(v[2]) then
+      return bounded(p, key, sch, v, v[1], v[2])
+    end
     fail(p, "'%s' must be a vector {x, y, z}, a range of two vectors or a function", key)
   elseif t == "integer" then
     if isnum(v) and v == floor(v) then return v end
@@ -264,7 +323,32 @@ M.Proto = Proto
 --- True when `x` is a component prototype.
 function M.isproto (x) return getmetatable(x) == Proto end
 
-local MAX_N = 10000000
+-- One limit for every `n` (a Tree's branches, a multiplier's children), the placements':
+-- checked here, before anything is computed for n children.
+local MAX_N = place.MAX_N
+
+-- The most a leaf's width may be, in lengths (lsys.sketch.organ.leaf's limit).
+M.MAX_LEAF_RATIO = 10
+
+-- The width and length of a leaf whose values are known (constants, ranges without a
+-- function; at each end of a range), checked against M.MAX_LEAF_RATIO. A leaf with an
+-- outline has no width of its own.
+local function leafratio (p)
+  local w, l = p.params.width, p.params.length
+  if p.params.outline ~= nil or type(w) == "function" or type(l) == "function" or
+     type(w) == "table" and w.f ~= nil or type(l) == "table" and l.f ~= nil then
+    return
+  end
+  w, l = w or KINDS.leaf.width[2], l or KINDS.leaf.length[2]
+  for k = 1, 2 do
+    local a = type(w) == "table" and w[k] or w
+    local b = type(l) == "table" and l[k] or l
+    if not (a / b <= M.MAX_LEAF_RATIO) then
+      fail(p, "'width' must be at most %d times 'length', got %s and %s", M.MAX_LEAF_RATIO,
+           show(w), show(l))
+    end
+  end
+end
 
 -- A new prototype of `kind` from the table of parameters `t`.
 local function new (kind, t)
@@ -300,6 +384,7 @@ local function new (kind, t)
   if n ~= nil and (n < 0 or n > MAX_N) then
     fail(p, "'n' must be from 0 to %d, got %s", MAX_N, tostring(n))
   end
+  if kind == "leaf" then leafratio(p) end
   return p
 end
 

@@ -666,9 +666,11 @@ function M.leaf (o)
   if not isnum(len) or len <= 0 or len > 1e5 then
     error(who .. ": 'length' must be a number of pixels > 0 (at most 1e5)", 2)
   end
-  for k, x in pairs { width = wid, curl = curl, depth = depth } do
+  for _, kx in ipairs { { "width", wid }, { "curl", curl }, { "depth", depth } } do
+    local k, x = kx[1], kx[2]
     if not isnum(x) or abs(x) > 10 or (k == "width" and x <= 0) then
-      error(format("%s: '%s' must be a number%s", who, k, k == "width" and " > 0" or ""), 2)
+      error(format("%s: '%s' must be a number %s", who, k,
+                   k == "width" and "> 0 and at most 10" or "from -10 to 10"), 2)
     end
   end
   if SHAPES[shape] == nil then
