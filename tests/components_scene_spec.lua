@@ -174,6 +174,10 @@ describe("lsys.components geometry", function ()
     h:child(C.horn { name = "h2", length = 1e308 })
     assert.equal("lsys.components: horn (at horn#1): its geometry is not finite (a length, " ..
                  "radius or size too large for its scale)", errmsg(C.model, h))
+    -- frames so far away that the move to them overflows (the C writer's moveto)
+    assert.equal("lsys.components: simple (at wreath#1/simple#1): its geometry is not " ..
+                 "finite (a length, radius or size too large for its scale)",
+                 errmsg(C.model, C.wreath { radius = 1e308 }:child(C.simple {})))
   end)
 
   it("tells lsys.sketch.organ.leaf's ranges in its messages", function ()

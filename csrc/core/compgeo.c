@@ -200,7 +200,10 @@ void lsys_cwriter_free (lsys_cwriter *w) {
 
 int lsys_cwriter_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np) {
   size_t n = w->s->n;
+  uint32_t k;
   int r;
+  for (k = 0; k < np; k++)          /* a move to a frame too far away: sqrt overflowed */
+    if (!isfinite(p[k])) return LSYS_ESYNTAX;
   if (grow((void **)&w->owner, &w->capo, n + 1, sizeof *w->owner) != LSYS_OK)
     return LSYS_ENOMEM;
   if ((r = lsys_lstring_push(w->s, sym, p, np)) != LSYS_OK) return r;

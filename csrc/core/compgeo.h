@@ -113,7 +113,8 @@ typedef struct lsys_cwriter {
 void lsys_cwriter_init (lsys_cwriter *w, lsys_lstring *s);
 void lsys_cwriter_free (lsys_cwriter *w);
 
-/* Appends a module written by instance w->cur. */
+/* Appends a module written by instance w->cur; LSYS_ESYNTAX for a parameter that is not
+** finite (a move to a frame so far away that its length overflowed). */
 int lsys_cwriter_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np);
 
 /* Opens instance 'inst' (>= 1): `[`, then the modules that take the turtle to f. */

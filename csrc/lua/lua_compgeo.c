@@ -417,6 +417,7 @@ static int wcheck (lua_State *L, int r) {
   if (r == LSYS_OK) return 0;
   if (r == LSYS_EARG) return luaL_error(L, "the writer has no open instance");
   if (r == LSYS_ELIMIT) return luaL_error(L, "the string has too many modules");
+  if (r == LSYS_ESYNTAX) return luaL_error(L, "a move or turn is not a finite number");
   return luaL_error(L, "not enough memory");
 }
 
