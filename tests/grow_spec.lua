@@ -34,6 +34,14 @@ local function davison (K, cap)
 end
 
 describe("lsys.grow ticks", function ()
+  it("ticks a world without plants (issue 34 §16)", function ()
+    local w = grow.world {}
+    w:tick(1)
+    assert.equal(1, w.ticks)
+    assert.equal(0, w:count())
+    assert.equal(0, w:scene().nvertices)
+  end)
+
   it("runs rules in parallel: reads see the start of the tick, new limbs wait", function ()
     local K = grow.kind("k")
     local seen = {}

@@ -603,7 +603,7 @@ int lsys_limbs_begin (lsys_limbs *g) {
   if (g->intick) return LSYS_EBUSY;
   g->intick = 1;
   g->n0 = g->n;
-  memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
+  if (g->np > 0) memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
   return LSYS_OK;
 }
 

@@ -262,6 +262,20 @@ static void retry (void) {
   }
 }
 
+/* A tick of a world without plants or limbs (issue 34 §16: the plants' counts were
+** copied from a NULL array, which UBSan reports). */
+static void empty (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  assert(lsys_limbs_begin(&g) == LSYS_OK);
+  assert(lsys_limbs_end(&g) == LSYS_OK);
+  assert(g.n == 0 && sc.mesh.nv == 0);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
 /* A leaf shape: a pentagon 'roof' of 5 vertices and 3 triangles, one
 ** vertex off the leaf's plane (z). */
 static void pentagon (lsys_mesh *m) {
@@ -362,6 +376,7 @@ static void leafshape (void) {
 }
 
 int main (void) {
+  empty();
   geometry();
   leafshape();
   ticks();
