@@ -1720,6 +1720,14 @@ function core.write_file(path, bytes) end
 ---@return string? message
 function core.read_file(path, max) end
 
+--- The absolute name of `path` without symbolic links, `.` or `..`, and what it is:
+--- "file" (regular), "directory" or "other" (a device, a FIFO, a socket); nil and
+--- "PATH: why" when it does not exist. Opens nothing (a FIFO does not block it).
+---@param path string
+---@return string? real
+---@return "file"|"directory"|"other"|string kind_or_message
+function core.realpath(path) end
+
 -- ---------------------------------------------------------------------------------------------
 -- Contours, surfaces and textures (csrc/lua/lua_contour.c, lua_surface.c, lua_texture.c):
 -- what `lsys.view.normalize` makes of the files a view names. All are immutable once made;
