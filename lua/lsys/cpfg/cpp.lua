@@ -140,12 +140,19 @@ local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
 local CPP_SECONDS, CPP_KIB = 60, 1024 * 1024
 
 local have_timeout
-local function limits ()
+
+-- The shell words that run the command `words` (shell words already) under those limits:
+-- a shell of its own (a fresh one, so that the limits hold for it alone), started without
+-- a preloaded library (a sanitizer's runtime, tools/sanitize.sh, reserves terabytes of
+-- address space and would fail under the memory limit).
+local function limited (words)
   if have_timeout == nil then
     have_timeout = os.execute("command -v timeout >/dev/null 2>&1") == true
   end
-  return ("ulimit -t %d 2>/dev/null; ulimit -v %d 2>/dev/null; "):format(CPP_SECONDS, CPP_KIB),
-         have_timeout and ("timeout -s KILL %d "):format(CPP_SECONDS) or ""
+  return "LD_PRELOAD= sh -c " .. shq(("ulimit -t %d 2>/dev/null; ulimit -v %d 2>/dev/null; "
+    .. "exec %s%s"):format(CPP_SECONDS, CPP_KIB,
+                           have_timeout and ("timeout -s KILL %d "):format(CPP_SECONDS) or "",
+                           words))
 end
 
 -- The directives through which cpp reads a file.
@@ -296,20 +303,18 @@ function M.system (path, defines)
   for line in text:gmatch("[^\n]+") do
     if line:find("^%s*#") and not isdirective(line) then protect = true; break end
   end
-  local ulimit, timeout = limits()
   local run
   if protect then
     local base = path:match("[^/]*$")
     run = "cd " .. shq(dirof(path)) .. " && LC_ALL=C sed -E " .. shq(sedprogram()) .. " < "
-          .. shq("./" .. base) .. " | " .. timeout .. concat(args, " ") .. " -"
+          .. shq("./" .. base) .. " | " .. limited(concat(args, " ") .. " -")
   else
-    run = timeout .. concat(args, " ") .. " "
-          .. shq(path:sub(1, 1) == "-" and "./" .. path or path)
+    run = limited(concat(args, " ") .. " " .. shq(path:sub(1, 1) == "-" and "./" .. path or path))
   end
   -- cpp's output goes straight to the pipe (fd 4), its messages wait in a variable
   local sep = ("__lsys_cpp_%08x%08x__"):format(math.random(0, 0x7fffffff),
                                                math.random(0, 0x7fffffff))
-  local cmd = "{ e=$( { { " .. ulimit .. run .. "; } 2>&1 >&4; echo \"" .. sep .. " $?\"; } ); "
+  local cmd = "{ e=$( { { " .. run .. "; } 2>&1 >&4; echo \"" .. sep .. " $?\"; } ); "
               .. "printf '\\n%s\\n%s\\n' " .. sep .. " \"$e\"; } 4>&1"
   local out, msg, status, over = runcpp(cmd, sep)
   if protect then
@@ -340,11 +345,13 @@ function M.system (path, defines)
   if status ~= 0 then
     local first = msg:match("[^\n]*error:[^\n]*") or msg:match("[^\n]+") or ""
     first = first:gsub("^([^:]+:%d+):%d+:", "%1:"):gsub(" fatal error:", ""):gsub(" error:", "")
-    -- a message quotes its file: only a model file's
+    -- a message about a line quotes it: only a model file's (cpp's own, "cc1: out of
+    -- memory ...", names none)
     local f = first:match("^([^:]+):%d+:")
     local real = f and core.realpath(protect and f:sub(1, 1) ~= "/" and f ~= path
                                      and dirof(path) .. "/" .. f or f)
-    if f == nil or not (f == path or real == mainreal or (real and guard.files[real])) then
+    if first == "" or f and not (f == path or real == mainreal or (real and guard.files[real]))
+    then
       first = status == nil and "cpp failed" or
               status >= 128 and ("cpp was stopped (more than %d s or %d MiB)"):format(
                 CPP_SECONDS, CPP_KIB // 1024) or ("cpp failed (status %d)"):format(status)
