@@ -1722,6 +1722,14 @@ function core.write_file(path, bytes) end
 ---@return string? message
 function core.read_file(path, max) end
 
+--- The absolute name of `path` without symbolic links, `.` or `..`, and what it is:
+--- "file" (regular), "directory" or "other" (a device, a FIFO, a socket); nil and
+--- "PATH: why" when it does not exist. Opens nothing (a FIFO does not block it).
+---@param path string
+---@return string? real
+---@return "file"|"directory"|"other"|string kind_or_message
+function core.realpath(path) end
+
 -- ---------------------------------------------------------------------------------------------
 -- The writers (csrc/lua/lua_outfile.c): every file the Lua side writes goes through them
 -- (manual §9, "Output files"), whole or absent.

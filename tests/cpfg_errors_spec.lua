@@ -170,10 +170,10 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
   end)
 
   it("refuses to include an endless file or a folder", function ()
-    assert.equal("main.l:1: /dev/zero: larger than 16 MiB",
+    assert.equal("main.l:1: /dev/zero: not a regular file",
                  err('#include "/dev/zero"\n' .. lsystem("A")))
     os.execute("mkdir '" .. dir .. "/sub'")
-    assert.equal("main.l:2: sub: cannot be read", err('\n#include "sub"\n' .. lsystem("A")))
+    assert.equal("main.l:2: sub: not a regular file", err('\n#include "sub"\n' .. lsystem("A")))
   end)
 
   it("stops a file that includes itself", function ()
@@ -206,6 +206,130 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
     local m = load("main.l", { ["k.h"] = "#define K 2\n",
                                ["main.l"] = ('#include "k.h"\n'):rep(50) .. lsystem("A(K)") })
     assert.equal("A(2)", tostring(m:derive(0)))
+  end)
+end)
+
+-- Issue 34 §8: what an #include may read, for both preprocessors. A model's files are
+-- the file and the regular files below its folder; nothing else is opened, and no line of
+-- another file is ever quoted.
+describe("lsys.cpfg.load's #include", function ()
+  local hascpp = os.execute("command -v cpp >/dev/null 2>&1")
+  local shq = require("lsys.text").shq
+
+  -- The message of loading `text` as sub/main.l (the model's folder is sub), or nil.
+  local function suberr (text, how)
+    os.execute("mkdir -p " .. shq(dir .. "/sub"))
+    H.write(dir .. "/sub/main.l", text)
+    local ok, msg = pcall(lsys.cpfg.load, dir .. "/sub/main.l", nil, { cpp = how })
+    if ok then return nil end
+    return (msg:gsub(dir:gsub("%p", "%%%0") .. "/", ""))
+  end
+
+  local function each (f)
+    f("builtin")
+    if hascpp then f("system") end
+  end
+
+  it("refuses a file outside the model's folder, and never quotes it", function ()
+    H.write(dir .. "/up.h", "secret line\n")
+    os.execute("ln -s /etc/passwd " .. shq(dir .. "/sub-link.h"))
+    each(function (how)
+      assert.equal('sub/main.l:1: /etc/passwd: outside the model\'s folder',
+                   suberr('#include "/etc/passwd"\n' .. lsystem("A"), how))
+      assert.equal("sub/main.l:2: ../up.h: outside the model's folder",
+                   suberr('\n#include "../up.h"\n' .. lsystem("A"), how))
+      assert.equal("sub/main.l:1: ./../sub/../up.h: outside the model's folder",
+                   suberr('#include "./../sub/../up.h"\n' .. lsystem("A"), how))
+      os.execute("ln -sf ../sub-link.h " .. shq(dir .. "/sub/link.h"))
+      assert.equal("sub/main.l:1: link.h: outside the model's folder",   -- a link out
+                   suberr('#include "link.h"\n' .. lsystem("A"), how))
+    end)
+  end)
+
+  it("refuses devices, folders and FIFOs without opening them", function ()
+    os.execute("mkfifo " .. shq(dir .. "/fifo"))
+    each(function (how)
+      assert.equal("main.l:1: fifo: not a regular file",
+                   err('#include "fifo"\n' .. lsystem("A"), nil, { cpp = how }))
+      assert.equal("main.l:1: /dev/zero: not a regular file",
+                   err('#include "/dev/zero"\n' .. lsystem("A"), nil, { cpp = how }))
+    end)
+  end)
+
+  it("takes the files below the folder, through links that stay in it", function ()
+    each(function (how)
+      os.execute("mkdir -p " .. shq(dir .. "/sub/inc"))
+      H.write(dir .. "/sub/inc/k.h", "#define K 4\n")
+      os.execute("ln -sf inc/k.h " .. shq(dir .. "/sub/k2.h"))
+      assert.is_nil(suberr('#include "inc/k.h"\n#include "k2.h"\n' .. lsystem("A(K)"), how))
+    end)
+  end)
+
+  it("refuses what the system cpp could read past the scan", function ()
+    if not hascpp then return pending("no cpp") end
+    local opts = { cpp = "system" }
+    assert.equal('main.l:2: #include needs a "file" name',
+                 err('#define F "/etc/passwd"\n#include F\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: /etc/passwd: outside the model's folder",      -- a digraph
+                 err('%:include "/etc/passwd"\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: /etc/passwd: outside the model's folder",      -- a continuation
+                 err('#inc\\\nlude "/etc/passwd"\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:2: /etc/passwd: outside the model's folder",      -- '/*' in quotes
+                 err("A '/*'\n#include \"/etc/passwd\"\n" .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: /etc/passwd: outside the model's folder",
+                 err('#include </etc/passwd>\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: /etc/passwd: outside the model's folder",
+                 err('#embed "/etc/passwd"\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: __has_include is not supported",
+                 err('#if __has_include("/etc/passwd")\n#endif\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: _Pragma is not supported",
+                 err('_Pragma("GCC dependency \\"x\\"")\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: #pragma ... dependency is not supported",
+                 err('#pragma GCC dependency "main.l"\n' .. lsystem("A"), nil, opts))
+    assert.equal("main.l:1: /etc/passwd: outside the model's folder",      -- a #line's name
+                 err('#line 1 "/etc/passwd"\n' .. lsystem("A"), nil, opts))
+    -- prose in a comment is not a directive that needs a file
+    assert.truthy(load("main.l", { ["main.l"] = "/* a comment\n  #include files */\n"
+                                   .. lsystem("A") }, opts))
+  end)
+
+  it("bounds the system cpp's output as the built-in preprocessor's", function ()
+    if not hascpp then return pending("no cpp") end
+    local files = {}
+    for i = 1, 22 do
+      files["f" .. i .. ".l"] = ('#include "f%d.l"\n'):rep(2):format(i + 1, i + 1)
+    end
+    files["f23.l"] = "\n"
+    assert.equal("f23.l:1: more than 4 MiB of text with the #include files and macros",
+                 err('#include "f1.l"\n' .. lsystem("A"), files, { cpp = "system" }))
+    local defs = "#define A0 x\n"
+    for i = 1, 30 do defs = defs .. ("#define A%d A%d A%d\n"):format(i, i - 1, i - 1) end
+    assert.equal("main.l:34: more than 4 MiB of text with the #include files and macros",
+                 err(defs .. lsystem("X(A30)"), nil, { cpp = "system" }))
+    -- arguments expanded before they are used: 2^29 tokens in cc1's memory, within 1 GiB
+    local bomb = err("#define D(x) x x\n" .. lsystem("X(" .. ("D("):rep(30) .. "1"
+                                                     .. (")"):rep(30) .. ")"), nil,
+                     { cpp = "system" })
+    assert.truthy(bomb:find("^cc1: out of memory") or bomb:find("^cpp was stopped"), bomb)
+  end)
+
+  it("writes no file: cpp reads the model through a pipe", function ()
+    if not hascpp then return pending("no cpp") end
+    -- luacheck: push ignore 122 (os.tmpname and io.open watched for the call)
+    local tmpname, open = os.tmpname, io.open
+    local wrote = {}
+    os.tmpname = function () wrote[#wrote + 1] = "os.tmpname" return tmpname() end
+    io.open = function (path, mode)
+      if mode and mode:find("[wa+]") then wrote[#wrote + 1] = path end
+      return open(path, mode)
+    end
+    local ok, m = pcall(load, "main.l", { ["main.l"] = "#define N 2\n"    -- '#' on a text line
+                        .. lsystem("A(N)", "A(x) --> F(x)\n\t#(N) F\n") }, { cpp = "system" })
+    os.tmpname, io.open = tmpname, open
+    -- luacheck: pop
+    assert(ok, m)
+    assert.equal("F(2)#(2)F", tostring(m:derive(1)))
+    assert.same({ dir .. "/main.l" }, wrote)          -- the spec's own file, nothing else
   end)
 end)
 

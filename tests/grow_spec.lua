@@ -34,6 +34,14 @@ local function davison (K, cap)
 end
 
 describe("lsys.grow ticks", function ()
+  it("ticks a world without plants (issue 34 §16)", function ()
+    local w = grow.world {}
+    w:tick(1)
+    assert.equal(1, w.ticks)
+    assert.equal(0, w:count())
+    assert.equal(0, w:scene().nvertices)
+  end)
+
   it("runs rules in parallel: reads see the start of the tick, new limbs wait", function ()
     local K = grow.kind("k")
     local seen = {}
@@ -487,6 +495,58 @@ describe("lsys.grow from an L-system", function ()
     end
     assert.equal(5, k)
     assert.equal(5, w:count())
+  end)
+end)
+
+describe("lsys.grow and max_memory (issue 34 §10)", function ()
+  local lsys = require "lsys"
+  local saved
+  before_each(function () saved = lsys.max_memory() end)
+  after_each(function () lsys.max_memory(saved == math.huge and "unlimited" or saved) end)
+  local MSG = "the world would need more than max_memory (64 MiB) with %d limbs (set "
+              .. "LSYS_MAX_MEMORY, or lsys.max_memory)"
+
+  it("counts the limbs' arrays and handles as they are made", function ()
+    lsys.max_memory("64M")
+    local w = grow.world { max_limbs = 1000000 }
+    local root = w:plant()
+    assert.equal("lsys.grow: " .. MSG:format(116173), errof(function ()
+      for _ = 1, 400000 do root:spawn {} end
+    end))
+    assert.equal(116173, w:count())                -- the limbs made are kept
+    assert.equal("lsys.grow: " .. MSG:format(116173), errof(w.scene, w))   -- their geometry
+  end)
+
+  it("names the rule and the tick whose limbs or geometry do not fit", function ()
+    lsys.max_memory("64M")
+    local K = grow.kind("k")
+    K:rule("spawn", function (l) l:spawn { angle = 20 } l:spawn { angle = -20 } end)
+    local w = grow.world { max_limbs = 1000000 }
+    w:plant { kind = K }
+    assert.equal("lsys.grow: tick 10: " .. MSG:format(59049), errof(w.tick, w, 30))
+    assert.equal(10, w.ticks)
+    w = grow.world { max_limbs = 1000000, sides = 3 }
+    w:plant { kind = K }
+    assert.equal("lsys.grow: rule 'spawn' of kind 'k' failed on limb 3245 (tick 11): "
+                 .. MSG:format(65537), errof(w.tick, w, 30))
+  end)
+
+  it("estimates what its Lua side keeps per limb and per plant", function ()
+    local w = grow.world { max_limbs = 1000000 }
+    local root = w:plant()
+    local function kib ()
+      collectgarbage()
+      collectgarbage()
+      return collectgarbage("count")
+    end
+    local a = kib()
+    for _ = 1, 20000 do root:spawn {} end
+    local limb = (kib() - a) * 1024 / 20000
+    a = kib()
+    for _ = 1, 20000 do w:plant() end
+    local plant = (kib() - a) * 1024 / 20000 - limb        -- a plant has its root limb
+    assert.truthy(math.abs(limb - grow._LIMB_BYTES) < 0.15 * grow._LIMB_BYTES, limb)
+    assert.truthy(math.abs(plant - grow._PLANT_BYTES) < 0.25 * grow._PLANT_BYTES, plant)
   end)
 end)
 

@@ -279,6 +279,59 @@ describe("lsys.population errors", function ()
   end)
 end)
 
+describe("lsys.population and max_memory (issue 34 §10)", function ()
+  local core = require "lsys.core"
+  local saved
+  before_each(function () saved = lsys.max_memory() end)
+  after_each(function () lsys.max_memory(saved == math.huge and "unlimited" or saved) end)
+  local m = lsys.lsystem { axiom = "F" }
+
+  it("counts the plants' tables and instances before making them", function ()
+    lsys.max_memory("64M")
+    local placed = 0
+    local msg = H.errof(lsys.population, { count = 1000000, place = function (i)
+      placed = placed + 1
+      return { model = m, at = { i, 0, 0 } }
+    end })
+    assert.equal("lsys.population: 1000000 plants need 337 MiB, more than max_memory (64 MiB)",
+                 msg)
+    assert.equal(0, placed)
+    assert.equal(100000, lsys.population({ count = 100000, place = function (i)
+      return { model = m, at = { i, 0, 0 } }                 -- a tenth of them fit
+    end }, { records = false }).ninstances)
+  end)
+
+  it("counts the prototypes' tables as they come", function ()
+    lsys.max_memory("24M")
+    assert.equal("lsys.population: place(4789) makes prototype 4789: the plants and their "
+                 .. "prototypes need more than max_memory (24 MiB)",
+                 H.errof(lsys.population, { count = 50000, place = function (i)
+                   return { model = m, seed = i, at = { i, 0, 0 } }
+                 end }))
+  end)
+
+  it("counts the plants' tables with the prototypes' geometry", function ()
+    local big = lsys.lsystem { axiom = ("F+"):rep(30000),
+                               view = { line_style = "cylinder", contour_sides = 8, angle = 1 } }
+    lsys.max_memory("64M")
+    assert.truthy(big:interpret(big:derive(0)))    -- the plant alone fits
+    assert.equal("lsys.population: the prototypes need more than max_memory (64 MiB)",
+                 H.errof(lsys.population, { count = 100000, place = function (i)
+                   return { model = big, at = { i, 0, 0 } }
+                 end }))
+  end)
+
+  it("keeps the room for the instances within the budget in the core", function ()
+    lsys.max_memory("64M")
+    local pop = core.population({})
+    local sc = m:interpret(m:derive(0))
+    local msg = H.errof(core.population_add, pop, sc, false, 4000000000, 0)
+    assert.equal("lsys.population: 4000000000 plants need 253.3 GiB, more than max_memory "
+                 .. "(64 MiB)", (msg:gsub("^[^:]*:%d+: ", "")))
+    assert.equal(1, core.population_add(pop, sc, false, 1000, 0))
+  end)
+end)
+
 describe("population files", function ()
   local function ext_data (doc, bin, node)
     local a = node.extensions.EXT_mesh_gpu_instancing.attributes

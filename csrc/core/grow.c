@@ -50,15 +50,20 @@ void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
 
 void lsys_limbs_free (lsys_limbs *g) {
   void *arrs[] = {
-    g->parent, g->plant, g->first, g->next, g->level, g->tag, g->age, g->flag, g->chg, g->len,
+    g->parent, g->plant, g->first, g->next, g->last, g->prev, g->level, g->tag, g->age, g->flag, g->chg, g->len,
     g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
     g->t0, g->col, g->leaf, g->nleaves, g->lf_limb, g->lf_next, g->lf_k, g->lf_v0, g->lf_t0,
     g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount, g->pcount0,
     g->pending, g->qmap, g->sh_mem
   };
-  size_t k;
+  size_t k, maxlimbs = g->maxlimbs, maxmem = g->max_memory, hl = g->held_limb,
+         hp = g->held_plant;
   for (k = 0; k < sizeof arrs / sizeof arrs[0]; k++) LSYS_FREE(arrs[k]);
   lsys_limbs_init(g, g->sc, g->sides);
+  g->maxlimbs = maxlimbs;             /* the settings stay */
+  g->max_memory = maxmem;
+  g->held_limb = hl;
+  g->held_plant = hp;
 }
 
 /* {======================================================================
@@ -66,17 +71,21 @@ void lsys_limbs_free (lsys_limbs *g) {
 ** ======================================================================= */
 
 /* Arrays that grow together: each to 'need' elements of its size, from *cap
-** (doubling from 64). The arrays grown before a failure keep their data. */
+** (doubling), as far as the meter 'mt' allows (lsys_meter_take: LSYS_EMEMORY
+** when not even 'need' fit). The arrays grown before a failure keep their data. */
 typedef struct soa { void **p; size_t size; } soa;
 
-static int growsoa (const soa *a, size_t n, size_t *cap, size_t need) {
-  size_t ncap = *cap ? *cap : 64, k, big = 0;
+static size_t rowbytes (const soa *a, size_t n) {
+  size_t k, sum = 0;
+  for (k = 0; k < n; k++) sum += a[k].size;
+  return sum;
+}
+
+static int growsoa (const soa *a, size_t n, size_t *cap, size_t need, lsys_meter *mt) {
+  size_t ncap, k;
+  int st;
   if (need <= *cap) return LSYS_OK;
-  for (k = 0; k < n; k++) if (a[k].size > big) big = a[k].size;
-  while (ncap < need) {
-    if (ncap > ((size_t)-1 / 2) / big) return LSYS_ENOMEM;
-    ncap *= 2;
-  }
+  if ((st = lsys_meter_take(mt, *cap, need, rowbytes(a, n), &ncap)) != LSYS_OK) return st;
   for (k = 0; k < n; k++) {
     void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
     if (q == NULL) return LSYS_ENOMEM;
@@ -86,11 +95,16 @@ static int growsoa (const soa *a, size_t n, size_t *cap, size_t need) {
   return LSYS_OK;
 }
 
-/* Grows every per-limb array to hold 'need' limbs. */
-static int reserve_limbs (lsys_limbs *g, size_t need) {
-  const soa a[] = {
+/* The per-limb, per-leaf and per-plant arrays of g (NLIMB, NLEAF, NPLANT of them). */
+#define NLIMB 27
+#define NLEAF 7
+#define NPLANT 3
+
+static void limbarrays (lsys_limbs *g, soa a[NLIMB]) {
+  const soa t[NLIMB] = {
     {(void **)&g->parent, 4}, {(void **)&g->plant, 4}, {(void **)&g->first, 4},
-    {(void **)&g->next, 4}, {(void **)&g->level, 2}, {(void **)&g->tag, 2},
+    {(void **)&g->next, 4}, {(void **)&g->last, 4}, {(void **)&g->prev, 4},
+    {(void **)&g->level, 2}, {(void **)&g->tag, 2},
     {(void **)&g->age, 4},
     {(void **)&g->flag, 1}, {(void **)&g->chg, 1}, {(void **)&g->len, 8},
     {(void **)&g->rad, 8}, {(void **)&g->nlen, 8}, {(void **)&g->nrad, 8},
@@ -99,28 +113,68 @@ static int reserve_limbs (lsys_limbs *g, size_t need) {
     {(void **)&g->wm, 72}, {(void **)&g->v0, 4}, {(void **)&g->t0, 4}, {(void **)&g->col, 2},
     {(void **)&g->leaf, 4}, {(void **)&g->nleaves, 4}
   };
-  return growsoa(a, sizeof a / sizeof a[0], &g->cap, need);
+  memcpy(a, t, sizeof t);
 }
 
-static int reserve_leaves (lsys_limbs *g, size_t need) {
-  const soa a[] = {
+static void leafarrays (lsys_limbs *g, soa a[NLEAF]) {
+  const soa t[NLEAF] = {
     {(void **)&g->lf_limb, 4}, {(void **)&g->lf_next, 4}, {(void **)&g->lf_k, 4},
     {(void **)&g->lf_v0, 4}, {(void **)&g->lf_t0, 4}, {(void **)&g->lf_size, 4},
     {(void **)&g->lf_col, 2}
   };
-  return growsoa(a, sizeof a / sizeof a[0], &g->lcap, need);
+  memcpy(a, t, sizeof t);
+}
+
+static void plantarrays (lsys_limbs *g, soa a[NPLANT]) {
+  const soa t[NPLANT] = {
+    {(void **)&g->ppos, 3 * sizeof *g->ppos}, {(void **)&g->pcount, sizeof *g->pcount},
+    {(void **)&g->pcount0, sizeof *g->pcount0}
+  };
+  memcpy(a, t, sizeof t);
+}
+
+size_t lsys_limbs_bytes (const lsys_limbs *g) {
+  lsys_limbs *w = (lsys_limbs *)g;          /* the descriptors only name its arrays */
+  soa l[NLIMB], f[NLEAF], p[NPLANT];
+  double b;
+  limbarrays(w, l);
+  leafarrays(w, f);
+  plantarrays(w, p);
+  b = (double)g->cap * rowbytes(l, NLIMB) + (double)g->lcap * rowbytes(f, NLEAF) +
+      (double)g->pcap * rowbytes(p, NPLANT) +
+      (double)(g->capfreelimb + g->capfreeleaf) * 2 * sizeof(uint32_t) +
+      (double)g->cappend * sizeof *g->pending + (g->qmap ? 32768.0 * sizeof *g->qmap : 0) +
+      (g->sh_mem ? 8.0 * g->sh_nv * sizeof(float) + 3.0 * g->sh_nt * sizeof(uint32_t) : 0) +
+      (double)g->n * g->held_limb + (double)g->np * g->held_plant +
+      (double)lsys_scene_bytes(g->sc);
+  return b < (double)SIZE_MAX ? (size_t)b : SIZE_MAX;
+}
+
+/* A meter of g's budget, counting what g holds now. */
+static void gmeter (const lsys_limbs *g, lsys_meter *mt) {
+  mt->limit = g->max_memory > 0 ? g->max_memory : lsys_memory_limit();
+  mt->used = lsys_limbs_bytes(g);
+  mt->hit = 0;
+  mt->lock = NULL;
+}
+
+/* Room for 'more' bytes the caller keeps (a limb's or a plant's), then for
+** 'need' items of the arrays a[n] (capacity *cap), within g's budget. */
+static int reserve (lsys_limbs *g, size_t more, const soa *a, size_t n, size_t *cap,
+                    size_t need) {
+  lsys_meter mt;
+  gmeter(g, &mt);
+  if (!lsys_meter_fits(&mt, more)) return LSYS_EMEMORY;
+  mt.used += more;
+  return growsoa(a, n, cap, need, &mt);
 }
 
 int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
-  size_t c = g->pcap;
+  soa a[NPLANT];
+  int r;
   if (g->np >= INT32_MAX) return LSYS_ELIMIT;
-  if (lsys_grow((void **)&g->ppos, &c, g->np + 1, 3 * sizeof *g->ppos) != LSYS_OK) return LSYS_ENOMEM;
-  c = g->pcap;
-  if (lsys_grow((void **)&g->pcount, &c, g->np + 1, sizeof *g->pcount) != LSYS_OK) return LSYS_ENOMEM;
-  c = g->pcap;
-  if (lsys_grow((void **)&g->pcount0, &c, g->np + 1, sizeof *g->pcount0) != LSYS_OK)
-    return LSYS_ENOMEM;
-  g->pcap = c;
+  plantarrays(g, a);
+  if ((r = reserve(g, g->held_plant, a, NPLANT, &g->pcap, g->np + 1)) != LSYS_OK) return r;
   vcopy(g->ppos + 3 * g->np, pos);
   g->pcount[g->np] = g->pcount0[g->np] = 0;
   *id = (int32_t)g->np++;
@@ -261,7 +315,8 @@ static int isfin (double x) { return isfinite(x); }
 int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
   int32_t i, p = s->parent;
   double m[9];
-  int k;
+  soa a[NLIMB];
+  int k, r;
   if (p >= 0 ? !lsys_limbs_alive(g, p) : (s->plant < 0 || (size_t)s->plant >= g->np))
     return LSYS_EARG;
   if (!(isfin(s->length) && s->length >= 0 && isfin(s->radius) && s->radius >= 0 &&
@@ -272,15 +327,17 @@ int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
   if (localrot(s->axis, s->angle, s->roll, m) != LSYS_OK) return LSYS_EARG;
   if (g->maxlimbs > 0 && g->nalive >= g->maxlimbs) return LSYS_ELIMIT;
   if (g->n >= INT32_MAX - 1) return LSYS_ELIMIT;
-  if (reserve_limbs(g, g->n + 1) != LSYS_OK) return LSYS_ENOMEM;
+  limbarrays(g, a);
+  if ((r = reserve(g, g->held_limb, a, NLIMB, &g->cap, g->n + 1)) != LSYS_OK) return r;
   i = (int32_t)g->n++;
   g->parent[i] = p;
   g->plant[i] = p >= 0 ? g->plant[p] : s->plant;
-  g->first[i] = g->next[i] = -1;
+  g->first[i] = g->last[i] = g->next[i] = -1;
+  g->prev[i] = p >= 0 ? g->last[p] : -1;
   if (p >= 0) {                      /* appended last among its siblings */
-    int32_t *c = &g->first[p];
-    while (*c >= 0) c = &g->next[*c];
-    *c = i;
+    if (g->last[p] >= 0) g->next[g->last[p]] = i;
+    else g->first[p] = i;
+    g->last[p] = i;
   }
   g->level[i] = (uint16_t)(p >= 0 ? (g->level[p] < 65535 ? g->level[p] + 1 : 65535) : 1);
   g->age[i] = 0;
@@ -352,8 +409,12 @@ int lsys_limbs_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double 
 
 static int defer (lsys_limbs *g, int op, int32_t i, int n, double size, const float *rgb) {
   lsys_limbop *o;
-  if (lsys_grow((void **)&g->pending, &g->cappend, g->npend + 1, sizeof *g->pending) != LSYS_OK)
-    return LSYS_ENOMEM;
+  lsys_meter mt;
+  int r;
+  gmeter(g, &mt);
+  r = lsys_grow_metered((void **)&g->pending, &g->cappend, g->npend + 1, sizeof *g->pending,
+                        &mt);
+  if (r != LSYS_OK) return r;
   o = &g->pending[g->npend++];
   o->op = op; o->limb = i; o->n = n; o->size = size;
   o->rgb[0] = rgb ? rgb[0] : 0; o->rgb[1] = rgb ? rgb[1] : 0; o->rgb[2] = rgb ? rgb[2] : 0;
@@ -414,7 +475,14 @@ static int newrange (lsys_limbs *g, int leaf, uint32_t *v0, uint32_t *t0) {
     *t0 = fl[2 * *nf + 1];
     return LSYS_OK;
   }
-  if ((r = lsys_mesh_reserve(m, nv, nt)) != LSYS_OK) return r;
+  {                                   /* the mesh grows within g's budget */
+    lsys_meter mt, *old = m->meter;
+    gmeter(g, &mt);
+    m->meter = &mt;
+    r = lsys_mesh_reserve(m, nv, nt);
+    m->meter = old;
+    if (r != LSYS_OK) return r;
+  }
   *v0 = (uint32_t)m->nv;
   *t0 = (uint32_t)m->nt;
   memset(m->pos + 3 * m->nv, 0, 3 * nv * sizeof *m->pos);
@@ -526,7 +594,10 @@ static int addleaves (lsys_limbs *g, lsys_limbop *o) {
     int32_t l;
     if (g->lf_free >= 0) { l = g->lf_free; g->lf_free = g->lf_next[l]; }
     else {
-      if (g->nl >= INT32_MAX - 1 || reserve_leaves(g, g->nl + 1) != LSYS_OK) return LSYS_ENOMEM;
+      soa a[NLEAF];
+      if (g->nl >= INT32_MAX - 1) return LSYS_ENOMEM;
+      leafarrays(g, a);
+      if ((r = reserve(g, 0, a, NLEAF, &g->lcap, g->nl + 1)) != LSYS_OK) return r;
       l = (int32_t)g->nl++;
     }
     if ((r = newrange(g, 1, &g->lf_v0[l], &g->lf_t0[l])) != LSYS_OK) {
@@ -592,9 +663,11 @@ static int removelimb (lsys_limbs *g, int32_t i) {
     c = g->next[c];
   }
   if (p >= 0) {                      /* unlinked from its parent's children */
-    int32_t *q = &g->first[p];
-    while (*q >= 0 && *q != i) q = &g->next[*q];
-    if (*q == i) *q = g->next[i];
+    int32_t pv = g->prev[i], nx = g->next[i];
+    if (pv >= 0) g->next[pv] = nx;
+    else g->first[p] = nx;
+    if (nx >= 0) g->prev[nx] = pv;
+    else g->last[p] = pv;
   }
   return LSYS_OK;
 }
@@ -603,7 +676,7 @@ int lsys_limbs_begin (lsys_limbs *g) {
   if (g->intick) return LSYS_EBUSY;
   g->intick = 1;
   g->n0 = g->n;
-  memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
+  if (g->np > 0) memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
   return LSYS_OK;
 }
 

@@ -73,10 +73,15 @@ typedef struct lsys_limbs {
   int sides;
   double ring[2 * LSYS_LIMBS_MAXSIDES];   /* cos, sin of the sides' angles */
   size_t maxlimbs;        /* 0: no cap; else lsys_limbs_add fails with LSYS_ELIMIT past it */
+  size_t max_memory;      /* the budget (bytes) of lsys_limbs_bytes: growing past it fails
+                             with LSYS_EMEMORY; 0: the process's (lsys_memory_limit) */
+  size_t held_limb, held_plant;   /* bytes the caller keeps for each limb and each plant
+                                     made (lsys.grow's Lua handles), counted in the budget */
   size_t n, cap;          /* limb ids 0 .. n - 1, dead ones included */
   size_t nalive;
   /* per limb */
   int32_t *parent, *plant, *first, *next;   /* tree: first child, next sibling */
+  int32_t *last, *prev;   /* last child, previous sibling: appending and unlinking in O(1) */
   uint16_t *level, *tag;
   uint32_t *age;
   uint8_t *flag, *chg;    /* LSYS_LIMB_*; what changed since the last update */
@@ -136,11 +141,20 @@ void lsys_limbs_free (lsys_limbs *g);
 */
 int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape);
 
-/* A new plant at 'pos'; its index in *id. LSYS_OK or LSYS_ENOMEM. */
+/* The bytes g's budget counts: its arrays (capacities), its scene's
+** (lsys_scene_bytes), and what the caller keeps for its limbs and plants. */
+size_t lsys_limbs_bytes (const lsys_limbs *g);
+
+/* A new plant at 'pos'; its index in *id. LSYS_OK, LSYS_EMEMORY (the budget,
+** max_memory) or LSYS_ENOMEM. */
 int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id);
 
 /* A new limb; its id in *id. LSYS_OK, LSYS_EARG (no such parent or plant, a
-** dead parent, bad numbers), LSYS_ELIMIT (maxlimbs reached) or LSYS_ENOMEM. */
+** dead parent, bad numbers), LSYS_ELIMIT (maxlimbs reached), LSYS_EMEMORY
+** (the budget) or LSYS_ENOMEM. Everything that grows (the limbs' arrays, the
+** leaves', the deferred operations, the scene's mesh) grows within the
+** budget; a failed update (LSYS_EMEMORY too) leaves what it did not do for a
+** retry. */
 int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id);
 
 /* Setters (of the next state within a tick). LSYS_OK or LSYS_EARG (a dead or

@@ -128,6 +128,23 @@ int lsys_population_add (lsys_scene *dst, const lsys_scene *src, const uint16_t 
   return LSYS_OK;
 }
 
+int lsys_population_reserve (lsys_scene *dst, size_t n, lsys_meter *mt) {
+  size_t more;
+  lsys_instance *in;
+  if (n <= dst->instcap) return LSYS_OK;
+  if (n > SIZE_MAX / sizeof *in) return LSYS_ENOMEM;
+  more = (n - dst->instcap) * sizeof *in;
+  if (!lsys_meter_fits(mt, more)) {
+    mt->hit = 1;
+    return LSYS_EMEMORY;
+  }
+  if ((in = (lsys_instance *)LSYS_REALLOC(dst->inst, n * sizeof *in)) == NULL) return LSYS_ENOMEM;
+  dst->inst = in;
+  dst->instcap = n;
+  if (mt != NULL) mt->used += more;
+  return LSYS_OK;
+}
+
 /* ---------------------------------------------------------------------- */
 /* sizes and the flattened copy */
 

@@ -36,6 +36,14 @@
 int lsys_population_add (lsys_scene *dst, const lsys_scene *src, const uint16_t *texmap,
                          int records, size_t *part);
 
+/*
+** Makes room in 'dst' for 'n' instances in all, exactly (no doubling: a
+** population knows its plants before it places them), within the meter 'mt'
+** (NULL: none; 'mt->used' must count dst's arrays). Returns LSYS_OK;
+** LSYS_EMEMORY (mt->hit set), LSYS_ENOMEM. dst is unchanged on failure.
+*/
+int lsys_population_reserve (lsys_scene *dst, size_t n, lsys_meter *mt);
+
 /* The vertices, triangles and line segments scene 's' draws: its mesh's
 ** sizes without instances, else the sum over its instances of their parts'
 ** (a flattened copy's sizes). */

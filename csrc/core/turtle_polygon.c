@@ -10,12 +10,14 @@
 #include "turtle_impl.h"
 #include "polygon.h"
 
+/* The triangulation's scratch, growing within this interpretation's budget. */
 struct lsys_polywork *lsys_turtle_polywork (lsys_turtle *t) {
   if (t->pw == NULL) {
     t->pw = (struct lsys_polywork *)LSYS_MALLOC(sizeof *t->pw);
     if (t->pw == NULL) return NULL;
     memset(t->pw, 0, sizeof *t->pw);
   }
+  t->pw->meter = t->meter;
   return t->pw;
 }
 
@@ -24,7 +26,11 @@ int lsys_turtle_polyvertex (run *R) {
   lsys_polygon *p;
   if (t->npolys == 0 || !R->draw) return LSYS_OK;
   p = &t->polys[t->npolys - 1];
-  if (lsys_grow((void **)&p->v, &p->cap, 3 * (p->n + 1), sizeof(double)) != LSYS_OK)
+  if (p->n >= LSYS_POLYGON_MAXV)
+    return lsys_turtle_fail(R, LSYS_ELIMIT, "a polygon of more than %u vertices (lsys's limit)",
+                            (unsigned)LSYS_POLYGON_MAXV);
+  if (lsys_grow_metered((void **)&p->v, &p->cap, 3 * (p->n + 1), sizeof(double), t->meter) !=
+      LSYS_OK)
     return lsys_turtle_nomem(R);
   if (p->n == 0) { vcopy(p->H, R->st.H); vcopy(p->L, R->st.L); }
   vcopy(p->v + 3 * p->n++, R->st.pos);
@@ -83,6 +89,10 @@ int lsys_turtle_polyend (run *R) {
   if (p->n < 3) return LSYS_OK;
   if (lsys_turtle_polywork(t) == NULL) return lsys_turtle_nomem(R);
   nt = lsys_polygon_triangulate(t->pw, p->v, p->n, nrm, &tri);
+  if (nt == LSYS_ELIMIT)
+    return lsys_turtle_fail(R, LSYS_ELIMIT, "the polygon of %zu vertices is too intricate to "
+                            "fill (its ear tests would look at more than %u n log2 n points)",
+                            p->n, (unsigned)LSYS_POLYGON_MAXWORK);
   if (nt < 0) return lsys_turtle_nomem(R);
   if (lsys_mesh_reserve(t->mesh, p->n, (size_t)nt) != LSYS_OK) return lsys_turtle_nomem(R);
   first = (uint32_t)t->mesh->nv;

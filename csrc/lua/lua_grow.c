@@ -3,7 +3,9 @@
 ** (lsys.grow). Limb ids and plant numbers are 1-based here. Every method
 ** checks that the table and its scene are alive.
 **
-**   core.limbs{sides = 8, max_limbs = 0} -> Limbs      (with a Scene of its own)
+**   core.limbs{sides = 8, max_limbs = 0, limb_bytes = 0, plant_bytes = 0} -> Limbs
+**                                       (with a Scene of its own; the bytes the caller
+**                                       keeps per limb and plant count in max_memory)
 **   T:scene() -> Scene                  T:update()     writes what changed into it
 **   T:plant(x, y, z) -> p
 **   T:set_leaf(shape [, ns, nt])      every leaf's shape (before the first leaf):
@@ -121,16 +123,29 @@ static double numarg (lua_State *L, int k) {
   return x;
 }
 
+/* The world's memory budget is spent (its limbs at 1): an error without a position (the
+** file of lsys.grow that called would be no help; a tick names the rule and limb). */
+static int memerror (lua_State *L) {
+  const llimbs *t = (const llimbs *)luaL_checkudata(L, 1, LIMBS_T);
+  char b[32];
+  size_t limit = t->g.max_memory > 0 ? t->g.max_memory : lsys_memory_limit();
+  lua_pushfstring(L, "lsys.grow: the world would need more than max_memory (%s) with %I "
+                  "limbs (set LSYS_MAX_MEMORY, or lsys.max_memory)", lsys_fmtsize(b, limit),
+                  (lua_Integer)t->g.n);
+  return lua_error(L);
+}
+
 static int status (lua_State *L, int r, const char *what) {
   if (r == LSYS_OK) return 0;
   if (r == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+  if (r == LSYS_EMEMORY) return memerror(L);
   if (r == LSYS_ELIMIT) return luaL_error(L, "%s: too many (colours or limbs)", what);
   if (r == LSYS_EBUSY) return luaL_error(L, "%s: %s", what, "a tick is (not) running");
   return luaL_error(L, "%s: bad arguments", what);
 }
 
 static int l_limbs (lua_State *L) {
-  lua_Integer sides = 8, max = 0;
+  lua_Integer sides = 8, max = 0, held[2] = {0, 0};
   llimbs *t;
   lsys_lscene *S;
   lsys_material grey;
@@ -140,8 +155,13 @@ static int l_limbs (lua_State *L) {
     sides = luaL_optinteger(L, -1, 8);
     lua_getfield(L, 1, "max_limbs");
     max = luaL_optinteger(L, -1, 0);
-    lua_pop(L, 2);
+    lua_getfield(L, 1, "limb_bytes");           /* what the caller keeps per limb, plant */
+    held[0] = luaL_optinteger(L, -1, 0);
+    lua_getfield(L, 1, "plant_bytes");
+    held[1] = luaL_optinteger(L, -1, 0);
+    lua_pop(L, 4);
   }
+  luaL_argcheck(L, held[0] >= 0 && held[1] >= 0, 1, "limb_bytes and plant_bytes must be >= 0");
   luaL_argcheck(L, sides >= 3 && sides <= LSYS_LIMBS_MAXSIDES, 1, "sides must be 3 to 64");
   luaL_argcheck(L, max >= 0, 1, "max_limbs must be >= 0");
   lua_settop(L, 1);
@@ -160,6 +180,8 @@ static int l_limbs (lua_State *L) {
   lsys_rng_seed(&t->rng, 1);
   lsys_limbs_init(&t->g, &S->sc, (int)sides);
   t->g.maxlimbs = (size_t)max;
+  t->g.held_limb = (size_t)held[0];
+  t->g.held_plant = (size_t)held[1];
   t->closed = 0;
   return 1;
 }

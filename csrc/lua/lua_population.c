@@ -7,7 +7,9 @@
 **                                      view's camera, light, background fields)
 **                                      and the table the Scene keeps (user value
 **                                      OPTS: its textures, prototypes, view)
-**   core.population_add(pop, scene, records) -> k   scene appended as prototype k
+**   core.population_add(pop, scene, records [, plants, held]) -> k   scene appended as
+**                                      prototype k, with room for 'plants' instances; the
+**                                      budget counts 'held' bytes the caller keeps too
 **   core.population_place(pop, k, x1, x2, x3, y1, y2, y3, z1, z2, z3, t1, t2, t3)
 **                                      an instance of prototype k: the images of the
 **                                      axes, then the translation -> instances so far
@@ -98,13 +100,17 @@ static void settextures (lua_State *L, int popidx, int opts) {
   lua_setiuservalue(L, popidx, LSYS_SCENE_TEX);
 }
 
-/* core.population_add(pop, scene, records) -> k (1-based) */
+/* core.population_add(pop, scene, records [, plants, held]) -> k (1-based) */
 static int l_population_add (lua_State *L) {
   lsys_lscene *P = checkpop(L, 1, "lsys.population"), *S = lsys_checkscene(L, 2);
   int records = lua_toboolean(L, 3), opts, list, st;
+  lua_Integer plants = luaL_optinteger(L, 4, 0);
+  lua_Number held = luaL_optnumber(L, 5, 0);
   uint16_t *map;
   lsys_meter mt;
   size_t part;
+  luaL_argcheck(L, plants >= 0 && plants <= UINT32_MAX, 4, "a number of plants expected");
+  luaL_argcheck(L, held >= 0 && held < 1e18, 5, "a number of bytes expected");
   if (S == P) return luaL_error(L, "lsys.population: a population cannot hold itself");
   if (S->sc.ninst > 0)
     return luaL_error(L, "lsys.population: a prototype must be a plant, not a population");
@@ -123,9 +129,17 @@ static int l_population_add (lua_State *L) {
   S = lsys_checkscene(L, 2);
   lsys_changescene(L, P);
   mt.limit = lsys_memory_limit();
-  mt.used = lsys_scene_bytes(&P->sc);
+  mt.used = lsys_scene_bytes(&P->sc) + (size_t)held;     /* the caller's tables count too */
   mt.hit = 0;
   mt.lock = NULL;
+  st = lsys_population_reserve(&P->sc, (size_t)plants, &mt);
+  if (st == LSYS_EMEMORY) {
+    char b1[32], b2[32];
+    double need = (double)mt.used + (double)plants * sizeof *P->sc.inst;
+    return luaL_error(L, "lsys.population: %I plants need %s, more than max_memory (%s)",
+                      plants, lsys_fmtsize(b1, (size_t)need), lsys_fmtsize(b2, mt.limit));
+  }
+  if (st != LSYS_OK) return luaL_error(L, "not enough memory");
   P->sc.meter = P->sc.mesh.meter = &mt;
   st = lsys_population_add(&P->sc, &S->sc, map, records, &part);
   P->sc.meter = P->sc.mesh.meter = NULL;

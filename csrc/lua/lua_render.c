@@ -8,6 +8,7 @@
 #include "lua_aux.h"
 #include "lua_lsys.h"
 #include "outfile.h"
+#include "path.h"
 #include "pngio.h"
 
 /*
@@ -173,13 +174,35 @@ static int l_read_file (lua_State *L) {
   return 1;
 }
 
+/* core.realpath(path) -> the absolute name without symbolic links, '.' or '..', and
+** "file", "directory" or "other" (opening nothing); nil and "PATH: why" when it does not
+** exist (path.h) */
+static int l_realpath (lua_State *L) {
+  static const char *const kinds[] = {"file", "directory", "other"};
+  const char *path = luaL_checkstring(L, 1);
+  lsys_error e;
+  int kind;
+  char *real = lsys_path_real(path, &kind, &e);
+  if (real == NULL) {
+    if (e.code == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+    lua_pushnil(L);
+    lua_pushstring(L, e.msg);
+    return 2;
+  }
+  lua_pushstring(L, real);           /* may raise: a leak only on a memory error */
+  LSYS_FREE(real);
+  lua_pushstring(L, kinds[kind - 1]);
+  return 2;
+}
+
 static const luaL_Reg pixels_meta[] = {
   {"__gc", pixels_gc}, {NULL, NULL}
 };
 
 static const luaL_Reg render_funcs[] = {
   {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write},
-  {"write_file", l_write_file}, {"read_file", l_read_file}, {NULL, NULL}
+  {"write_file", l_write_file}, {"read_file", l_read_file}, {"realpath", l_realpath},
+  {NULL, NULL}
 };
 
 #ifndef LSYS_NO_RENDER

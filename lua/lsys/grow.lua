@@ -410,6 +410,13 @@ local function leafshape (T, leaf, dir, whence)
   if not ok then fail("world: %s", (tostring(err):gsub("^leaf shape", "leaf"))) end
 end
 
+-- What a world's Lua side keeps per limb (its handle, a table of 4 fields, and its slot in
+-- _limbs) and per plant (its generator, a Frames, and its slot in _gen), in bytes: the C
+-- table counts them in max_memory with its own arrays and its scene (issue 34 §10;
+-- tests/grow_spec.lua checks them against collectgarbage("count")).
+local LIMB_BYTES, PLANT_BYTES = 176, 100
+M._LIMB_BYTES, M._PLANT_BYTES = LIMB_BYTES, PLANT_BYTES
+
 --- A world of plants. opts: `seed` (1: plant k's generator is seeded seed + k - 1 unless
 -- its plant call gives one), `max_limbs` (100,000 living limbs in all: spawn returns nil
 -- past it), `sides` (8: the limbs' cylinders), `shoot_color` (new limbs; "#5a9e32"),
@@ -436,7 +443,8 @@ function M.world (opts)
     fail("world: 'sides' must be a whole number 3..64")
   end
   local w = setmetatable({
-    _T = core.limbs { sides = sides, max_limbs = floor(max) }, _limbs = {}, _gen = {},
+    _T = core.limbs { sides = sides, max_limbs = floor(max), limb_bytes = LIMB_BYTES,
+                      plant_bytes = PLANT_BYTES }, _limbs = {}, _gen = {},
     _kinds = {}, _kindlist = {}, _kver = {}, _names = {}, _fns = {}, _fnidx = {},
     _seed = floor(seed), _max = floor(max), ticks = 0, capped = false,
     shoot_color = opts.shoot_color or "#5a9e32", leaf_color = opts.leaf_color or "#3f8f2a",
@@ -564,7 +572,7 @@ function World:_step ()
   T:begin()
   local ok, msg = pcall(T.run, T, limbs, self, self._fns)
   local ri, li = T:where()
-  T:finish()
+  local fok, ferr = pcall(T.finish, T)    -- the tick is over even when its geometry fails
   self.ticks = self.ticks + 1
   if self._removed then
     self._removed = false
@@ -576,7 +584,11 @@ function World:_step ()
     local names = limb and self._names[self._kinds[getmetatable(limb)]]
     error(format("lsys.grow: rule '%s' of kind '%s' failed on limb %d (tick %d): %s",
                  names and names[ri] or tostring(ri), kind, li or 0, self.ticks,
-                 tostring(msg)), 0)
+                 (tostring(msg):gsub("^lsys%.grow: ", ""))), 0)
+  end
+  if not fok then
+    error(format("lsys.grow: tick %d: %s", self.ticks,
+                 (tostring(ferr):gsub("^lsys%.grow: ", ""))), 0)
   end
 end
 

@@ -27,6 +27,27 @@ local OPTS = { view = true, records = true, progress = true, count = true, place
 --- The most plants one population may have.
 M.MAX_PLANTS = 100000000
 
+-- What the population holds besides its scene, for the memory budget (issue 34 §10): the
+-- bytes of a Lua array of k slots (16 a value, the slots a power of 2), a plant's instance
+-- in the scene (lsys_instance: 16 floats and a part), and the tables and key string of a
+-- prototype with its entry (measured with collectgarbage("count"): about 800 bytes and the
+-- key's length).
+local function arraybytes (k)
+  local c = 1
+  while c < k do c = c * 2 end
+  return k > 0 and 16 * c or 0
+end
+local INSTANCE, PROTOTYPE = 68, 800
+
+-- Sizes as the core writes them (lsys_fmtsize).
+local function fmtsize (b)
+  if b >= 2 ^ 63 then return "no limit" end
+  if b >= 2 ^ 30 then return format("%.1f GiB", b / 2 ^ 30) end
+  if b >= 2 ^ 20 then return format("%.0f MiB", b / 2 ^ 20) end
+  if b >= 2 ^ 10 then return format("%.0f KiB", b / 2 ^ 10) end
+  return format("%d bytes", b)
+end
+
 -- Errors found here are raised as FAIL objects and turned into the message of
 -- lsys.population at its level; errors of the models themselves pass through with the
 -- plant named.
@@ -342,6 +363,14 @@ local function build (spec, opts)
   local o = options(spec, opts)
   local n, get = plants(spec, o)
   if n > M.MAX_PLANTS then fail("%d plants: more than the limit of %d", n, M.MAX_PLANTS) end
+  -- the plants' tables (which, xf) and instances, and the prototypes' tables as they come,
+  -- within the memory budget before they are built
+  local budget = core.max_memory()
+  local held = arraybytes(n) + arraybytes(12 * n)
+  if held + INSTANCE * n > budget then
+    fail("%d plants need %s, more than max_memory (%s)", n, fmtsize(held + INSTANCE * n),
+         fmtsize(budget))
+  end
   local records = o.records ~= false
   local progress = o.progress
   -- 1: every plant checked, its prototype found, its transform computed
@@ -353,6 +382,11 @@ local function build (spec, opts)
     local k = key(e, ids)
     local p = byid[k]
     if p == nil then
+      held = held + PROTOTYPE + #k
+      if held + INSTANCE * n > budget then
+        fail("%s makes prototype %d: the plants and their prototypes need more than "
+             .. "max_memory (%s)", where, #protos + 1, fmtsize(budget))
+      end
       protos[#protos + 1] = { entry = e, where = where, first = i }
       p = #protos
       byid[k] = p
@@ -369,7 +403,8 @@ local function build (spec, opts)
   for p, proto in ipairs(protos) do
     local ok, sc, s = pcall(interpret, proto.entry, records)
     if not ok then error(format("%s (prototype %d): %s", proto.where, p, tostring(sc)), 0) end
-    core.population_add(pop, sc, records)
+    local aok, aerr = pcall(core.population_add, pop, sc, records, n, held)
+    if not aok then fail("%s", (tostring(aerr):gsub("^.-lsys%.population: ", ""))) end
     local e = proto.entry
     state.prototypes[p] = {
       model = model.ismodel(e.model) and e.model or nil, seed = e.seed, steps = e.steps,

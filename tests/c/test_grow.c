@@ -262,6 +262,65 @@ static void retry (void) {
   }
 }
 
+/* A tick of a world without plants or limbs (issue 34 §16: the plants' counts were
+** copied from a NULL array, which UBSan reports). */
+static void empty (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  assert(lsys_limbs_begin(&g) == LSYS_OK);
+  assert(lsys_limbs_end(&g) == LSYS_OK);
+  assert(g.n == 0 && sc.mesh.nv == 0);
+  lsys_limbs_free(&g);
+  lsys_scene_free(&sc);
+}
+
+/* The budget (issue 34 §10): every growth within max_memory, the caller's
+** bytes per limb and plant counted, the settings kept by free; and a limb of
+** many children, appended and unlinked in order (no walk along siblings). */
+static void budget (void) {
+  lsys_scene sc;
+  lsys_limbs g;
+  const double origin[3] = {0, 0, 0};
+  int32_t pl, id, k, n = 0;
+  lsys_limbspec s = spec(-1, 0, 1, 0.1);
+  int r = LSYS_OK;
+  size_t before;
+  lsys_scene_init(&sc);
+  lsys_limbs_init(&g, &sc, 8);
+  g.max_memory = 1 << 20;
+  g.held_limb = 100;
+  g.held_plant = 1000;
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK);
+  assert(lsys_limbs_add(&g, &s, &id) == LSYS_OK && id == 0);
+  before = lsys_limbs_bytes(&g);
+  assert(lsys_limbs_update(&g) == LSYS_OK && lsys_limbs_bytes(&g) > before);   /* the mesh */
+  while (r == LSYS_OK) {                  /* children of the root until the budget ends */
+    s = spec(0, 10, 0.5, 0.05);
+    if ((r = lsys_limbs_add(&g, &s, &id)) == LSYS_OK) n++;
+    if (r == LSYS_OK && n % 64 == 0) r = lsys_limbs_update(&g);
+  }
+  assert(r == LSYS_EMEMORY && n > 100);
+  assert(lsys_limbs_bytes(&g) <= g.max_memory);
+  assert(g.n == (size_t)n + 1 && g.first[0] == 1 && g.last[0] == n);
+  for (k = 1, id = g.first[0]; id >= 0; id = g.next[id], k++) assert(id == k);   /* in order */
+  assert(lsys_limbs_remove(&g, 5) == LSYS_EMEMORY);   /* even the deferred ops count */
+  g.max_memory = 0;                       /* the process's budget: the rest goes through */
+  assert(lsys_limbs_remove(&g, 5) == LSYS_OK && lsys_limbs_remove(&g, n) == LSYS_OK);
+  assert(lsys_limbs_update(&g) == LSYS_OK);
+  assert(g.last[0] == n - 1 && g.next[4] == 6 && g.prev[6] == 4);
+  for (k = 0, id = g.first[0]; id >= 0; id = g.next[id]) k++;
+  assert(k == n - 2);
+  g.max_memory = lsys_limbs_bytes(&g);    /* a plant that does not fit, then one that does */
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_EMEMORY);
+  g.max_memory += 2000;
+  assert(lsys_limbs_plant(&g, origin, &pl) == LSYS_OK && pl == 1);
+  lsys_limbs_free(&g);
+  assert(g.max_memory > 0 && g.held_limb == 100 && g.held_plant == 1000 && g.n == 0);
+  lsys_scene_free(&sc);
+}
+
 /* A leaf shape: a pentagon 'roof' of 5 vertices and 3 triangles, one
 ** vertex off the leaf's plane (z). */
 static void pentagon (lsys_mesh *m) {
@@ -362,6 +421,8 @@ static void leafshape (void) {
 }
 
 int main (void) {
+  empty();
+  budget();
   geometry();
   leafshape();
   ticks();

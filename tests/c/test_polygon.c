@@ -5,7 +5,12 @@
 **
 ** Every result is checked the same way (check): the triangles face the
 ** normal, their areas add up to the polygon's, and each triangle's centroid
-** lies inside the polygon.
+** lies inside the polygon. Big polygons of hostile shapes (combs, zigzag
+** corridors, spirals, saws, stars of random radii; issue 34 §11) are checked
+** in linear time instead (tiling): every side of the polygon is the side of
+** one triangle and every other side of a triangle is the side of another,
+** the other way round. The ways of cutting (the reflex list or the tree, the
+** walk or the heap) are compared with each other (test_modes).
 **
 ** polygon.c is compiled into this test with counting allocators, so that
 ** test_nomem can make each allocation fail (the library's polygon.o is then
@@ -24,6 +29,14 @@ static long nalloc, failat = -1;    /* allocation number 'failat' fails */
 static void *trealloc (void *p, size_t n) {
   return nalloc++ == failat ? NULL : realloc(p, n);
 }
+
+/* the sizes at which polygon.c builds its tree and cuts from its heap, and the
+** work it allows, as variables: test_modes compares the ways of cutting */
+static size_t kdmin = 64, qmin = 1024;
+static double maxwork = 256;
+#define KDMIN kdmin
+#define QMIN qmin
+#define MAXWORK maxwork
 
 /* polygon.c compiled in with counting allocators (see test_nomem) */
 #define LSYS_MALLOC(n)     malloc(n)
@@ -382,6 +395,190 @@ static void test_large (void) {
   free(p);
 }
 
+/* ---------------------------------------------------------------------- */
+/* big and hostile polygons (issue 34 §11) */
+
+static int cmpu64 (const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* Whether the nt triangles t tile the polygon of n vertices (none repeated,
+** collinear or doubled back): each side i -> i + 1 of the polygon is the
+** side of exactly one triangle, run the same way, and every other triangle
+** side u -> v is matched by exactly one v -> u. With every triangle facing
+** the normal and the areas adding up (check), that makes a triangulation. */
+static int tiling (const uint32_t *t, long nt, size_t n) {
+  uint64_t *e = malloc(3 * (size_t)nt * sizeof *e);
+  long i, k, m = 3 * nt;
+  int ok = 1;
+  assert(e != NULL);
+  for (i = 0; i < nt; i++)
+    for (k = 0; k < 3; k++)
+      e[3 * i + k] = (uint64_t)t[3 * i + k] << 32 | t[3 * i + (k + 1) % 3];
+  qsort(e, (size_t)m, sizeof *e, cmpu64);
+  for (i = 0; i < m && ok; i++) {
+    uint32_t u = (uint32_t)(e[i] >> 32), v = (uint32_t)e[i];
+    uint64_t back = (uint64_t)v << 32 | u;
+    if (i > 0 && e[i] == e[i - 1]) ok = 0;                  /* a side used twice */
+    else if (v != (u + 1) % n)                              /* not a side: matched */
+      ok = bsearch(&back, e, (size_t)m, sizeof *e, cmpu64) != NULL;
+    else ok = bsearch(&back, e, (size_t)m, sizeof *e, cmpu64) == NULL;
+  }
+  if (ok) {                                                 /* every side is there */
+    size_t j;
+    for (j = 0; j < n && ok; j++) {
+      uint64_t side = (uint64_t)j << 32 | (uint32_t)((j + 1) % n);
+      ok = bsearch(&side, e, (size_t)m, sizeof *e, cmpu64) != NULL;
+    }
+  }
+  free(e);
+  return ok;
+}
+
+#define PT(x, y) do { p[3 * n] = (x); p[3 * n + 1] = (y); p[3 * n + 2] = 0; n++; } while (0)
+
+/* Hostile simple polygons of about 'size' vertices into p (room for 2 size
+** + 8): 0 a comb, 1 a zigzag corridor between combs from both sides, 2 a
+** spiral band, 3 a saw, 4 a star of random radii, 5 a comb whose teeth
+** widen 100 times along it. Returns the vertex count. */
+static size_t hostile (double *p, int kind, size_t size) {
+  size_t n = 0, i, teeth = size / 4;
+  switch (kind) {
+  case 0: return comb(p, teeth);
+  case 1:
+    for (i = 0; i < teeth / 2; i++) {            /* walls up from the floor ... */
+      double x = 2.0 * (double)i;
+      PT(x + 0.25, 0); PT(x + 0.25, 9); PT(x + 0.75, 9); PT(x + 0.75, 0);
+    }
+    PT((double)teeth, 0); PT((double)teeth, 10);
+    for (i = teeth / 2; i-- > 0;) {              /* ... and down from the ceiling */
+      double x = 2.0 * (double)i + 1;
+      PT(x + 0.75, 10); PT(x + 0.75, 1); PT(x + 0.25, 1); PT(x + 0.25, 10);
+    }
+    PT(0, 10); PT(0, 0);
+    return n;
+  case 2:
+    for (i = 0; i < size / 2; i++) {
+      double a = 0.002 * (double)i, r = 1 + 0.2 * a / (2 * PI);
+      p[3 * i] = r * cos(a); p[3 * i + 1] = r * sin(a); p[3 * i + 2] = 0;
+      p[3 * (size - 1 - i)] = (r - 0.1) * cos(a);
+      p[3 * (size - 1 - i) + 1] = (r - 0.1) * sin(a);
+      p[3 * (size - 1 - i) + 2] = 0;
+    }
+    return size / 2 * 2;
+  case 3:
+    for (i = 0; i + 2 < size; i++) PT((double)i, i % 2 ? 1.0 : 0.0);
+    PT((double)size, -5); PT(0, -5);
+    return n;
+  case 4:
+    for (i = 0; i < size; i++) {
+      double a = 2 * PI * (double)i / (double)size, r = 0.1 + urand();
+      PT(r * cos(a), r * sin(a));
+    }
+    return n;
+  default:
+    for (i = 0; i < teeth; i++) {
+      double k = log(100.0) / (double)teeth, x = exp(k * (double)i) - 1;
+      double x2 = exp(k * ((double)i + 0.5)) - 1, x3 = exp(k * ((double)i + 1)) - 1;
+      PT(x, 0); PT(x2, 0); PT(x2, -10); PT(x3, -10);
+    }
+    PT(p[3 * (n - 1)], 1); PT(0, 1);
+    return n;
+  }
+}
+
+/* The ways of cutting agree: the tree finds what the reflex list finds
+** (the same triangles when walking); cut from the heap, small polygons are
+** still triangulations; the heap's result does not depend on how the tree
+** searches. */
+static void test_modes (void) {
+  double *p = malloc(3 * 600 * sizeof *p), nrm[3];
+  uint32_t *first = malloc(3 * 600 * sizeof *first);
+  const uint32_t *t;
+  int trial;
+  assert(p != NULL && first != NULL);
+  srand(11);
+  for (trial = 0; trial < 600; trial++) {
+    size_t n, i;
+    long nt, nt2;
+    int kind = trial % 4;
+    if (kind == 0) n = hostile(p, trial / 4 % 6, 64 + (size_t)(urand() * 200));
+    else {
+      n = 64 + (size_t)(urand() * 200);
+      for (i = 0; i < n; i++) {
+        double r = 0.1 + urand(), a = 2 * PI * ((double)i + 0.8 * urand()) / (double)n;
+        if (kind == 1) { p[3 * i] = r * cos(a); p[3 * i + 1] = r * sin(a); }
+        else if (kind == 2) { p[3 * i] = floor(6 * r * cos(a)); p[3 * i + 1] = floor(6 * r * sin(a)); }
+        else { p[3 * i] = urand(); p[3 * i + 1] = urand(); }      /* self-intersecting */
+        p[3 * i + 2] = 0;
+      }
+    }
+    kdmin = 64; qmin = (size_t)-1;              /* walking: the tree, then the list */
+    nt = lsys_polygon_triangulate(&work, p, n, nrm, &t);
+    assert(nt >= 0);
+    memcpy(first, t, 3 * (size_t)nt * sizeof *t);
+    kdmin = (size_t)-1;
+    nt2 = lsys_polygon_triangulate(&work, p, n, nrm, &t);
+    assert(nt2 == nt && memcmp(first, t, 3 * (size_t)nt * sizeof *t) == 0);
+    kdmin = 3; qmin = 3;                         /* the heap, with the tree */
+    if (kind <= 1) assert(check(p, n, 2, -1, nrm) == nt);
+    else check(p, n, 0, -1, nrm);            /* snapped to a grid or random: not simple */
+    if (kind == 0) {
+      nt = lsys_polygon_triangulate(&work, p, n, nrm, &t);
+      assert(tiling(t, nt, n));
+    }
+  }
+  kdmin = 64; qmin = 1024;
+  free(first);
+  free(p);
+}
+
+/* Big hostile polygons: n - 2 triangles that tile them (linear checks). */
+static void test_hostile (void) {
+  const size_t size = 200000;
+  double *p = malloc(3 * (2 * size + 8) * sizeof *p), nrm[3];
+  int kind;
+  assert(p != NULL);
+  srand(5);
+  for (kind = 0; kind < 6; kind++) {              /* a star of slivers is the slowest */
+    size_t n = hostile(p, kind, kind == 4 ? size / 8 : size);
+    long nt = check(p, n, 1, (long)n - 2, nrm);
+    assert(tiling(work.tris, nt, n));            /* check's triangles */
+    reverse(p, n);                               /* the other way round */
+    nt = check(p, n, 1, (long)n - 2, nrm);
+    assert(tiling(work.tris, nt, n));
+  }
+  free(p);
+}
+
+/* What is refused: more than LSYS_POLYGON_MAXV vertices (before anything is
+** read), more work than allowed, more memory than the meter leaves. */
+static void test_limits (void) {
+  static const double sq[] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
+  double *p = malloc(3 * 4100 * sizeof *p), nrm[3];
+  const uint32_t *t;
+  lsys_polywork w = {0};
+  lsys_meter mt = {1000, 0, 0, NULL};
+  size_t n;
+  assert(p != NULL);
+  assert(lsys_polygon_triangulate(&work, sq, (size_t)LSYS_POLYGON_MAXV + 1, nrm, &t) ==
+         LSYS_ELIMIT);
+  n = comb(p, 1000);
+  maxwork = 0.01;                                /* a comb of 4002 needs about 2 */
+  assert(lsys_polygon_triangulate(&work, p, n, nrm, &t) == LSYS_ELIMIT);
+  maxwork = 256;
+  assert(lsys_polygon_triangulate(&work, p, n, nrm, &t) == (long)n - 2);
+  w.meter = &mt;                                 /* 1000 bytes: 4 vertices, not 4002 */
+  assert(lsys_polygon_triangulate(&w, sq, 4, nrm, &t) == 2);
+  assert(lsys_polygon_triangulate(&w, p, n, nrm, &t) == LSYS_EMEMORY && mt.hit);
+  mt.limit = (size_t)-1;
+  assert(lsys_polygon_triangulate(&w, p, n, nrm, &t) == (long)n - 2);
+  lsys_polywork_free(&w);
+  assert(w.meter == &mt && w.xy == NULL);       /* freeing keeps the meter */
+  free(p);
+}
+
 /* Each allocation fails in turn: LSYS_ENOMEM, and the work area stays usable. */
 static void test_nomem (void) {
   static const double sq[] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
@@ -407,6 +604,9 @@ int main (void) {
   test_bad();
   test_random();
   test_large();
+  test_modes();
+  test_hostile();
+  test_limits();
   test_nomem();
   lsys_polywork_free(&work);
   lsys_polywork_free(&work);                   /* idempotent */

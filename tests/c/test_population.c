@@ -3,7 +3,8 @@
 ** with their palettes merged and their records moved, instance sizes and
 ** bounds, the flattened copy (positions, normals under a non-uniform scale,
 ** the memory budget), the split of a transform into translation, rotation
-** and scale, and every allocation failing in turn.
+** and scale, room for the instances within the memory budget, and every
+** allocation failing in turn.
 **
 ** The core files are compiled in with counting allocators (talloc.h).
 */
@@ -254,12 +255,42 @@ static void nomem (void) {
   }
 }
 
+/* Room for n instances, exactly, within the meter (issue 34 §10: a population
+** counts its instances before placing them). */
+static void reserve (void) {
+  lsys_scene pop;
+  lsys_meter mt = {0, 0, 0, NULL};
+  const double t[3] = {0, 0, 0}, one[3] = {1, 1, 1};
+  float m[16];
+  size_t k;
+  lsys_scene_init(&pop);
+  mt.limit = 1000 * sizeof(lsys_instance);
+  assert(lsys_population_reserve(&pop, 1001, &mt) == LSYS_EMEMORY && mt.hit);
+  assert(pop.instcap == 0 && pop.inst == NULL && mt.used == 0);
+  mt.hit = 0;
+  assert(lsys_population_reserve(&pop, 1000, &mt) == LSYS_OK && !mt.hit);
+  assert(pop.instcap == 1000 && mt.used == mt.limit);
+  assert(lsys_population_reserve(&pop, 10, &mt) == LSYS_OK && pop.instcap == 1000);
+  pop.nparts = 1;                        /* placing them grows nothing */
+  trs(m, t, 0, one);
+  for (k = 0; k < 1000; k++) assert(lsys_scene_add_instance(&pop, 0, m) == LSYS_OK);
+  assert(pop.instcap == 1000 && pop.ninst == 1000);
+  pop.nparts = 0;
+  failat = nalloc;                       /* an allocation failure leaves it as it was */
+  assert(lsys_population_reserve(&pop, 2000, NULL) == LSYS_ENOMEM);
+  failat = -1;
+  assert(pop.instcap == 1000);
+  lsys_scene_free(&pop);
+  assert(nlive == 0);
+}
+
 int main (void) {
   prototypes();
   palettes();
   instances();
   normals();
   split();
+  reserve();
   nomem();
   printf("test_population: ok\n");
   return 0;

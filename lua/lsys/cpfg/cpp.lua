@@ -9,6 +9,7 @@ local concat, insert, remove, sort = table.concat, table.insert, table.remove, t
 local format = string.format
 local io, os = io, os
 local shq = require("lsys.text").shq
+local core = require "lsys.core"
 local _ENV = nil
 
 local M = {}
@@ -17,8 +18,11 @@ local M = {}
 -- #include of /dev/zero must not take the memory.
 local MAXBYTES = 16 * 1024 * 1024
 
--- The text of a file, or nil and "PATH: why".
+-- The text of a regular file, or nil and "PATH: why". Anything else (a folder, a device
+-- such as /dev/zero, a FIFO that would block the open) is refused unopened.
 local function readfile (path)
+  local _, kind = core.realpath(path)
+  if kind ~= nil and kind ~= "file" then return nil, path .. ": not a regular file" end
   local f, err = io.open(path, "rb")
   if not f then return nil, err end
   local parts, size = {}, 0
@@ -47,8 +51,36 @@ local function dirof (path)
 end
 M.dirof = dirof
 
--- One shell word: the text in single quotes, a quote inside as '\''; nothing in it is
--- interpreted by the shell.
+local function fail (file, line, fmt, ...)
+  error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
+end
+
+-- Where an #include may read (issue 34 §8) ---------------------------------------------
+
+-- A model's files are the file itself and the regular files below its folder (symbolic
+-- links and '..' resolved): an #include of anything else (/etc/shadow, /dev/zero, a FIFO,
+-- a folder) is refused, for the built-in preprocessor and the system cpp alike, before it
+-- is opened. A guard is { root = the folder resolved, files = { [resolved name] = true } }.
+local function newguard (main)
+  return { root = core.realpath(dirof(main)) or dirof(main), files = {} }
+end
+
+local function below (root, real)
+  return root == "/" or real:sub(1, #root + 1) == root .. "/"
+end
+
+-- The file that `#include "inc"` on line n of `file` names (relative to the including
+-- file's folder, as cpp finds it) and its resolved name, nil when it does not exist (the
+-- preprocessor says so, or skips it in a branch not taken); raises when it may not be read.
+local function included (guard, file, n, inc)
+  local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
+  local real, kind = core.realpath(p)
+  if real == nil then return p, nil end
+  if kind ~= "file" then fail(file, n, "%s: not a regular file", inc) end
+  if not below(guard.root, real) then fail(file, n, "%s: outside the model's folder", inc) end
+  guard.files[real] = true
+  return p, real
+end
 
 -- The directives of the preprocessor. A line whose first non-blank character is '#'
 -- followed by anything else (a width module `#(0.06)` starting a continued successor,
@@ -100,64 +132,235 @@ local function marked (out, main, base)
   return lines
 end
 
+-- The limits of the system cpp, besides what the scan below refuses: the text and lines it
+-- may give (those of the built-in preprocessor, MAXTEXT and MAXLINES), the CPU seconds and
+-- memory of its process (ulimit), and its wall clock (timeout(1) where there is one: an
+-- open that waits, which no scan of the text can rule out entirely).
+local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
+local CPP_SECONDS, CPP_KIB = 60, 1024 * 1024
+
+local have_timeout
+
+-- The shell words that run the command `words` (shell words already) under those limits:
+-- a shell of its own (a fresh one, so that the limits hold for it alone), started without
+-- a preloaded library (a sanitizer's runtime, tools/sanitize.sh, reserves terabytes of
+-- address space and would fail under the memory limit).
+local function limited (words)
+  if have_timeout == nil then
+    have_timeout = os.execute("command -v timeout >/dev/null 2>&1") == true
+  end
+  return "LD_PRELOAD= sh -c " .. shq(("ulimit -t %d 2>/dev/null; ulimit -v %d 2>/dev/null; "
+    .. "exec %s%s"):format(CPP_SECONDS, CPP_KIB,
+                           have_timeout and ("timeout -s KILL %d "):format(CPP_SECONDS) or "",
+                           words))
+end
+
+-- The directives through which cpp reads a file.
+local READS = { include = true, include_next = true, import = true, embed = true }
+
+-- Skips blanks and /* */ comments of `line` from i.
+local function blanks (line, i)
+  while true do
+    i = line:match("^[ \t\f\v]*()", i)
+    if line:sub(i, i + 1) ~= "/*" then return i end
+    local e = line:find("*/", i + 2, true)
+    if not e then return #line + 1 end
+    i = e + 2
+  end
+end
+
+local decomment
+
+-- Calls f(n, name, rest, maybe) for each directive of `text` that cpp could see, and more:
+-- lines joined at a backslash before the newline (blanks between too), '#' or '%:' looked
+-- for at the start of every line and after every "*/" on it, blanks and comments before
+-- and after it; n is its line. `maybe` is true on a line that starts in a /* */ comment
+-- as far as this scan can tell (which a quote can fool: it sees every directive anyway).
+local function directives (text, f)
+  local n, pending, pn, st = 0, nil, nil, { incomment = false }
+  for raw in (text:gsub("\r\n?", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+    n = n + 1
+    local line, ln = (pending or "") .. raw, pn or n
+    if line:find("\\[ \t\f\v]*$") then
+      pending, pn = line:gsub("\\[ \t\f\v]*$", ""), ln
+    else
+      local maybe, i = st.incomment, 1
+      pending, pn = nil, nil
+      decomment(line, st)
+      while i do
+        local j = blanks(line, i)
+        local h = line:match("^#()", j) or line:match("^%%:()", j)
+        if h then
+          local name, rest = line:match("^([%a_][%w_]*)(.*)$", blanks(line, h))
+          if name then f(ln, name, rest, maybe) end
+        end
+        local e = line:find("*/", i, true)
+        i = e and e + 2
+      end
+    end
+  end
+end
+
+-- The line of byte `at` of `text`.
+local function lineof (text, at)
+  local _, k = text:sub(1, at):gsub("\n", "")
+  return k + 1
+end
+
+-- Checks every file the system cpp could read for `file` (its text `text`) as the built-in
+-- preprocessor would include it (see included), recursively: each #include, #include_next,
+-- #import, #embed of a "file" (a <file> only when it names an absolute path: with
+-- -nostdinc cpp looks nowhere else), in every branch and comment, each file read once and
+-- MAXBYTES in all. A directive that names its file otherwise (a macro), `__has_include`
+-- (cpp opens the file to answer it), and `_Pragma` or #pragma ... dependency (which also
+-- open files) are refused.
+local function prescan (guard, file, text, depth, seen)
+  if depth > 200 then fail(file, 1, "#include nested too deeply") end   -- cpp's own limit
+  seen.bytes = (seen.bytes or 0) + #text
+  if seen.bytes > MAXBYTES then
+    fail(file, 1, "the model's files are larger than %d MiB in all", MAXBYTES // (1024 * 1024))
+  end
+  directives(text, function (n, name, rest, maybe)
+    if READS[name] then
+      rest = rest:sub(blanks(rest, 1))
+      local inc = rest:match('^"(.-)"') or rest:match("^<(/.-)>")
+      if inc == nil and not rest:find("^<") and not maybe then   -- (prose in a comment)
+        fail(file, n, "#%s needs a \"file\" name", name)
+      end
+      local p, real
+      if inc then p, real = included(guard, file, n, inc) end
+      if real and not seen[real] then
+        seen[real] = true
+        local t, why = readfile(p)
+        if not t then fail(file, n, "%s: %s", inc, why:match("^.*: (.-)$") or why) end
+        prescan(guard, p, t, depth + 1, seen)
+      end
+    elseif name == "pragma" and rest:find("dependency", 1, true) then
+      fail(file, n, "#pragma ... dependency is not supported")
+    end
+  end)
+  for _, w in ipairs { "__has_include", "_Pragma" } do
+    local at = text:find(w, 1, true)
+    if at then fail(file, lineof(text, at), "%s is not supported", w) end
+  end
+end
+
+-- The sed program that gives a text line whose '#' starts no directive (isdirective) the
+-- name HASH for its '#', for cpp to read it from stdin.
+local function sedprogram ()
+  local names = {}
+  for d in pairs(DIRECTIVES) do names[#names + 1] = d end
+  sort(names)
+  return ("\\%%^[[:space:]]*#[[:space:]]*($|[0-9]|/[*/]|(%s)([^[:alnum:]_]|$))%%!"
+          .. "s/^([[:space:]]*)#/\\1%s/"):format(concat(names, "|"), HASH)
+end
+
+-- Runs the shell command `cmd`, whose output is cpp's output, then a line `sep`, cpp's
+-- messages and a line "`sep` STATUS"; reads at most twice MAXTEXT bytes and a little (the
+-- pipe is then closed: cpp ends on its next write). Returns the output, the messages, cpp's
+-- status (nil when unknown) and whether it was stopped at the limit.
+local function runcpp (cmd, sep)
+  local p = io.popen(cmd, "r")
+  if not p then return "", "cannot run the shell", nil, false end
+  local parts, size, over = {}, 0, false
+  while true do
+    local chunk = p:read(65536)
+    if not chunk then break end
+    size = size + #chunk
+    parts[#parts + 1] = chunk
+    if size > 2 * MAXTEXT + 65536 then over = true; break end
+  end
+  p:close()
+  local all = concat(parts)
+  local at = all:find("\n" .. sep .. "\n", 1, true)
+  if not at then return all, "", nil, over end
+  local rest = all:sub(at + #sep + 2)
+  local msgs, st = rest:match("^(.-)\n?" .. sep .. " (%d+)\n?$")
+  return all:sub(1, at), msgs or rest, tonumber(st), over
+end
+
 --- Runs the system C preprocessor on `path` with `defines` ({ NAME = value }); returns
--- the located lines, or nil and cpp's first message.
+-- the located lines, or nil and cpp's first message. Raises { cpfg = true, msg = } for an
+-- #include that may not be read, or at a limit.
 function M.system (path, defines)
-  local args = { "cpp", "-x", "c", "-undef", "-nostdinc", "-w" }
+  local args = { "cpp", "-x", "c", "-undef", "-nostdinc", "-w", "-fmax-errors=20" }
   local names = {}
   for k in pairs(defines or {}) do names[#names + 1] = k end
   sort(names)
   for _, k in ipairs(names) do args[#args + 1] = shq("-D" .. k .. "=" .. tostring(defines[k])) end
-  -- a name that starts with '-' (a vlab specifications file can say anything) must not
-  -- reach cpp as an option such as -o FILE
-  -- text lines starting with '#' (see DIRECTIVES) would be errors for cpp: the file
-  -- goes through stdin with a name in their '#', cpp running in the file's folder so
-  -- that #include "x" finds the same files
-  local text = readfile(path)
+  -- everything cpp could read is checked first; then cpp runs on no other input
+  local text, err = readfile(path)
+  if not text then return nil, err end
+  local guard = newguard(path)
+  local mainreal = core.realpath(path)
+  prescan(guard, path, text, 0, { [mainreal or path] = true })
+  -- text lines starting with '#' (see DIRECTIVES) would be errors for cpp: then the file
+  -- goes through sed, which gives their '#' a name, and cpp reads stdin in the file's
+  -- folder, so that #include "x" finds the same files; a name that starts with '-' (a
+  -- vlab specifications file can say anything) must not reach cpp as an option such as
+  -- -o FILE. Its output and then its messages come back on one pipe: no file is written.
   local protect = false
-  if text then
-    for line in text:gmatch("[^\n]+") do
-      if line:find("^%s*#") and not isdirective(line) then protect = true; break end
-    end
+  for line in text:gmatch("[^\n]+") do
+    if line:find("^%s*#") and not isdirective(line) then protect = true; break end
   end
-  local cmd, tmp
+  local run
   if protect then
-    tmp = os.tmpname()
-    local f = io.open(tmp, "wb")
-    local lines = {}
-    for line in (text .. "\n"):gmatch("([^\n]*)\n") do
-      if line:find("^%s*#") and not isdirective(line) then
-        line = line:gsub("#", HASH, 1)
-      end
-      lines[#lines + 1] = line
-    end
-    f:write(concat(lines, "\n"))
-    f:close()
-    args[#args + 1] = "-"
-    cmd = "cd " .. shq(dirof(path)) .. " && " .. concat(args, " ") .. " <" .. shq(tmp)
+    local base = path:match("[^/]*$")
+    run = "cd " .. shq(dirof(path)) .. " && LC_ALL=C sed -E " .. shq(sedprogram()) .. " < "
+          .. shq("./" .. base) .. " | " .. limited(concat(args, " ") .. " -")
   else
-    args[#args + 1] = shq(path:sub(1, 1) == "-" and "./" .. path or path)
-    cmd = concat(args, " ")
+    run = limited(concat(args, " ") .. " " .. shq(path:sub(1, 1) == "-" and "./" .. path or path))
   end
-  local errf = os.tmpname()
-  local p = io.popen(cmd .. " 2>" .. shq(errf), "r")
-  local out = p and p:read("a") or ""
-  local ok = p and p:close()
-  local msg = readfile(errf) or ""
-  os.remove(errf)
-  if tmp then
-    os.remove(tmp)
+  -- cpp's output goes straight to the pipe (fd 4), its messages wait in a variable
+  local sep = ("__lsys_cpp_%08x%08x__"):format(math.random(0, 0x7fffffff),
+                                               math.random(0, 0x7fffffff))
+  local cmd = "{ e=$( { { " .. run .. "; } 2>&1 >&4; echo \"" .. sep .. " $?\"; } ); "
+              .. "printf '\\n%s\\n%s\\n' " .. sep .. " \"$e\"; } 4>&1"
+  local out, msg, status, over = runcpp(cmd, sep)
+  if protect then
     out = out:gsub(HASH, "#")
     msg = msg:gsub("<stdin>", function () return path end)
   end
-  if not ok then
-    local first = msg:match("[^\n]*error:[^\n]*") or msg:match("[^\n]+") or "cpp failed"
+  local lines, size = marked(out, path, protect and dirof(path)), #out
+  -- every file cpp says it read is the model's (the scan saw them all, unless a #line
+  -- names another); the first that is not is refused, its lines never shown
+  local prev = { file = path, line = 1 }
+  for _, l in ipairs(lines) do
+    if l.file ~= prev.file and l.file ~= path then
+      local real, kind = core.realpath(l.file)
+      if real and real ~= mainreal and not guard.files[real] and
+         (kind ~= "file" or not below(guard.root, real)) then
+        fail(prev.file, prev.line, "%s: outside the model's folder", l.file)
+      end
+    end
+    prev = l
+  end
+  if over or size > MAXTEXT then
+    fail(prev.file, prev.line, "more than %d MiB of text with the #include files and macros",
+         MAXTEXT // (1024 * 1024))
+  elseif #lines > MAXLINES then
+    fail(lines[MAXLINES + 1].file, lines[MAXLINES + 1].line,
+         "more than %d lines with the #include files", MAXLINES)
+  end
+  if status ~= 0 then
+    local first = msg:match("[^\n]*error:[^\n]*") or msg:match("[^\n]+") or ""
     first = first:gsub("^([^:]+:%d+):%d+:", "%1:"):gsub(" fatal error:", ""):gsub(" error:", "")
+    -- a message about a line quotes it: only a model file's (cpp's own, "cc1: out of
+    -- memory ...", names none)
+    local f = first:match("^([^:]+):%d+:")
+    local real = f and core.realpath(protect and f:sub(1, 1) ~= "/" and f ~= path
+                                     and dirof(path) .. "/" .. f or f)
+    if first == "" or f and not (f == path or real == mainreal or (real and guard.files[real]))
+    then
+      first = status == nil and "cpp failed" or
+              status >= 128 and ("cpp was stopped (more than %d s or %d MiB)"):format(
+                CPP_SECONDS, CPP_KIB // 1024) or ("cpp failed (status %d)"):format(status)
+    end
     return nil, first
   end
   -- cpp turns a leading tab into a space; cpfg reads a line starting with a tab as the
   -- continuation of the one before, so the tabs come back from the source lines
-  local lines, sources = marked(out, path, tmp and dirof(path)), {}
+  local sources = {}
   for _, l in ipairs(lines) do
     local src = sources[l.file]
     if src == nil then
@@ -175,16 +378,12 @@ end
 
 -- The built-in preprocessor ----------------------------------------------------------
 
-local function fail (file, line, fmt, ...)
-  error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
-end
-
 -- cpfg's number literals (lsys.cpfg.parse's etok)
 local NUMBER = { "^%d+%.%d*[eE][-+]?%d+$", "^%d*%.%d+[eE][-+]?%d+$", "^%d+%.%d*$", "^%d*%.%d+$",
                  "^%d+$" }
 
 -- Removes /* */ comments (kept state across lines) and // comments, outside strings.
-local function decomment (text, st)
+decomment = function (text, st)
   local out, i, n = {}, 1, #text
   while i <= n do
     if st.incomment then
@@ -440,10 +639,9 @@ local function define (rest, macros, file, line)
   return name
 end
 
--- The most lines the built-in preprocessor reads, counting each #include of a file anew
--- (files that include each other twice would otherwise run for hours), and the most text,
--- as read and as the macros expand it.
-local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
+-- MAXLINES: the most lines the built-in preprocessor reads, counting each #include of a
+-- file anew (files that include each other twice would otherwise run for hours), and
+-- MAXTEXT the most text, as read and as the macros expand it (the system cpp's limits).
 
 --- The built-in preprocessor: #define (objects and function-like macros), #undef,
 -- #include "file" (relative to the including file), #ifdef, #ifndef, #if, #elif, #else,
@@ -462,6 +660,7 @@ function M.builtin (path, defines, keep)
   local lines = {}
   local seen, size = 0, 0
   local texts = {}      -- path -> text: a file included many times is read once
+  local guard = newguard(path)
   local function run (file, text, level)
     if level > 32 then fail(file, 1, "#include nested too deeply") end
     local st = { incomment = false }
@@ -526,7 +725,7 @@ function M.builtin (path, defines, keep)
           elseif dir == "include" and active() then
             local inc = rest:match('^"(.-)"')
             if not inc then fail(file, n, "#include needs a \"file\" name") end
-            local p = inc:sub(1, 1) == "/" and inc or dirof(file) .. "/" .. inc
+            local p = included(guard, file, n, inc)
             local t, why = texts[p], nil
             if not t then t, why = readfile(p) end
             if not t then fail(file, n, "%s: %s", inc, why:match("^.*: (.-)$") or why) end
