@@ -562,6 +562,34 @@ describe("lsys.grow errors", function ()
     w:tick(0)                                        -- the world still works
   end)
 
+  it("names the caller's line, not lsys.grow's, for a bad rule table or option", function ()
+    -- the checks sit at different depths of lsys.grow (found by the grow fuzz target)
+    local K = grow.kind("tree")
+    local line = debug.getinfo(1, "l").currentline
+    local ok1, e1 = pcall(function () K:rule("r1", { scale_length = -1 }) end)
+    local ok2, e2 = pcall(function () grow.world { seed = "x" } end)
+    local ok3, e3 = pcall(function () K:rule("r1", { color = "nope" }) end)
+    assert.is_false(ok1 or ok2 or ok3)
+    local here = "tests/grow_spec.lua:"
+    assert.equal(here .. (line + 1) .. ": lsys.grow: rule 'r1' of kind 'tree': 'scale_length' " ..
+                 "must be a factor >= 0", e1)
+    assert.equal(here .. (line + 2) .. ": lsys.grow: world: 'seed' must be a finite number, " ..
+                 "got x", e2)
+    assert.equal(here .. (line + 3) .. ": lsys.grow: rule 'r1' of kind 'tree': 'color': " ..
+                 "colour 'nope' is not #rrggbb", e3)
+  end)
+
+  it("says what is not finite: a scale run away, a string beyond the scene's floats", function ()
+    local K = grow.kind("tree")
+    K:rule("big", { scale_length = 1e300 })
+    local w = grow.world()
+    w:plant { kind = K }
+    assert.truthy(errof(w.tick, w, 3):find("rule 'big' of kind 'tree' failed on limb 1 " ..
+      "(tick 2): its scale makes the limb's length or radius too large to be finite", 1, true))
+    assert.equal("lsys.grow: from_lstring: segment 1 (module 1) is beyond what the scene's " ..
+                 "floats hold", errof(grow.from_lstring, "F(1e39)"):match("lsys%.grow: .*"))
+  end)
+
   it("refuses bad spawns, factors, colours and options", function ()
     local w = grow.world()
     local a = w:plant()

@@ -709,7 +709,8 @@ static int limbs_run (lua_State *L) {
       if (r->ncl > 0 ? !clauses(r, args)
           : r->code != NULL && !lsys_expr_run(r->code, r->ncode, args, out, &t->rng, NULL))
         continue;
-      status(L, apply(g, r, (int32_t)i), "run");
+      if (apply(g, r, (int32_t)i) != LSYS_OK)      /* set_length and set_radius refuse inf */
+        luaL_error(L, "its scale makes the limb's length or radius too large to be finite");
       if (r->fn > 0) {
         lua_rawgeti(L, 4, r->fn);
         lua_rawgeti(L, 2, (lua_Integer)i + 1);

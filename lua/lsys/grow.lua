@@ -36,7 +36,19 @@ local _ENV = nil
 
 local M = {}
 
-local function fail (fmt, ...) error("lsys.grow: " .. format(fmt, ...), 3) end
+-- Raises "lsys.grow: ..." at the first Lua function outside this file that called into it
+-- (its checks sit at different depths: a rule table's fields, a world's options).
+local SELF = debug.getinfo(1, "S").source
+local function outside ()
+  local k = 3                       -- 1: outside, 2: fail, 3: what called fail
+  while true do
+    local info = debug.getinfo(k, "S")
+    if info == nil then return 1 end
+    if info.source ~= SELF and info.what ~= "C" then return k - 1 end
+    k = k + 1
+  end
+end
+local function fail (fmt, ...) error("lsys.grow: " .. format(fmt, ...), outside()) end
 
 local function isnum (x)
   return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge
@@ -79,12 +91,16 @@ M.Limb = Limb
 -- A colour ({r, g, b} or "#rrggbb") as three numbers; `what` names it in errors.
 local parsed = setmetatable({}, { __mode = "k" })    -- "#rrggbb" -> {r, g, b}, parsed once
 
-local function rgb (c, what)
+local function rgb (c, what, where)
   local v = type(c) == "string" and parsed[c]
   if not v then
     local ok
     ok, v = pcall(view.color, c, "lsys.grow", what)
-    if not ok then error(v, 3) end
+    if not ok then
+      v = tostring(v):gsub("^lsys%.grow: ", "")
+      if where then fail("%s: %s", where, v) end
+      fail("%s", v)
+    end
     if type(c) == "string" then parsed[c] = v end
   end
   return v[1], v[2], v[3]
@@ -125,13 +141,13 @@ local function tablerule (K, name, spec)
       r[k] = spec[k]
     end
   end
-  if spec.color ~= nil then r.color = { rgb(spec.color, where .. " color") } end
+  if spec.color ~= nil then r.color = { rgb(spec.color, "color", where) } end
   if spec.blend ~= nil then
     local b = spec.blend
     if type(b) ~= "table" or not isnum(b[2]) or b[2] < 0 or b[2] > 1 then
       fail("%s: 'blend' must be {colour, fraction 0..1}", where)
     end
-    local cr, cg, cb = rgb(b[1], where .. " blend")
+    local cr, cg, cb = rgb(b[1], "blend", where)
     r.blend = { cr, cg, cb, b[2] }
   end
   if r[2] == nil and r.scale_length == nil and r.scale_radius == nil and r.color == nil and
@@ -742,6 +758,10 @@ function M.from_lstring (s, opts)
   local bylimb, byrec = {}, {}
   for k, r in scene:records() do
     if r.kind == "segment" then
+      if not (isnum(r.p0[1]) and isnum(r.p0[2]) and isnum(r.p0[3]) and isnum(r.length)) then
+        fail("from_lstring: segment %d (module %d) is beyond what the scene's floats hold",
+             k, r.module or 0)
+      end
       local H, U = r.H, r.U
       local L = { H[2] * U[3] - H[3] * U[2], H[3] * U[1] - H[1] * U[3], H[1] * U[2] - H[2] * U[1] }
       local X, Z = { -L[1], -L[2], -L[3] }, { -U[1], -U[2], -U[3] }
