@@ -246,6 +246,22 @@ describe("lsys.cpfg.load's #include", function ()
     end)
   end)
 
+  it("tells the model's own files from others (what lsys view watches)", function ()
+    local cpp = require "lsys.cpfg.cpp"
+    os.execute("mkdir -p " .. shq(dir .. "/sub/inc"))
+    H.write(dir .. "/sub/main.l", "x\n")
+    H.write(dir .. "/sub/inc/k.h", "y\n")
+    H.write(dir .. "/up.h", "z\n")
+    local main = dir .. "/sub/main.l"
+    assert.is_true(cpp.ismodelfile(main, dir .. "/sub/inc/k.h"))
+    assert.is_true(cpp.ismodelfile(main, dir .. "/sub/../sub/inc/k.h"))
+    assert.is_false(cpp.ismodelfile(main, dir .. "/sub/../up.h"))
+    assert.is_false(cpp.ismodelfile(main, "/etc/passwd"))
+    assert.is_false(cpp.ismodelfile(main, "/dev/zero"))
+    assert.is_false(cpp.ismodelfile(main, dir .. "/sub/inc"))
+    assert.is_false(cpp.ismodelfile(main, dir .. "/sub/missing.h"))
+  end)
+
   it("refuses devices, folders and FIFOs without opening them", function ()
     os.execute("mkfifo " .. shq(dir .. "/fifo"))
     each(function (how)

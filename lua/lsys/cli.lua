@@ -746,9 +746,11 @@ local function source_files (src)
     if not ok then return files end
     l, v, pal = l2, v2, pal or p2
   end
-  -- the files it #includes, in every branch of #if (a missing one is no obstacle)
+  -- the files it #includes, in every branch of #if (a missing one is no obstacle); only the
+  -- model's own files, as its preprocessing reads (never /dev/zero or /etc/shadow)
   local function scan (file, depth)
     if seen[file] or depth > 32 then return end
+    if depth > 0 and not cpp.ismodelfile(l, file) then return end
     add(file)
     local text = cpp.readfile(file)
     for inc in (text or ""):gmatch('#%s*include%s*"([^"\n]+)"') do

@@ -69,6 +69,13 @@ local function below (root, real)
   return root == "/" or real:sub(1, #root + 1) == root .. "/"
 end
 
+--- Whether `path` is one of the files of the model `main` (a regular file below its folder,
+-- links and '..' resolved): what its preprocessing may read, and what `lsys view` watches.
+function M.ismodelfile (main, path)
+  local real, kind = core.realpath(path)
+  return real ~= nil and kind == "file" and below(newguard(main).root, real)
+end
+
 -- The file that `#include "inc"` on line n of `file` names (relative to the including
 -- file's folder, as cpp finds it) and its resolved name, nil when it does not exist (the
 -- preprocessor says so, or skips it in a branch not taken); raises when it may not be read.
