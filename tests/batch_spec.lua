@@ -239,6 +239,9 @@ describe("batch specs", function()
       assert.equal("spec: vary.R[2]: 'abc' is not a number", err { vary = { R = { 1, "abc" } } })
       assert.equal("spec: vary.steps[1]: -1 must be from 0 to 10000000",
         err { vary = { steps = { -1 } } })
+      -- a hole in a list of values (the batchspec fuzz target: concat of a nil word)
+      assert.equal("spec: vary.seed[1]: a value expected, got nil",
+        err { vary = { seed = { nil, 0 } } })
       assert.equal("spec: jobs[2].seed: 0.5 is not a whole number",
         err { jobs = { {}, { seed = 0.5 } } })
       assert.equal("spec: jobs[1]: model: cannot open 'models/none.lua'",

@@ -163,6 +163,36 @@ f:close()
                                   outputs = { "x{a}.txt", "x{a}.txt" } }))
     end)
 
+    -- The proof from the templates checks job 1 alone; job by job, 10^8 or 10^9 jobs take
+    -- minutes (the batchspec fuzz target's findings: {rep} alone and a file in a folder
+    -- beside one at the top were checked job by job). A count hook stops the check when it
+    -- runs 10^7 Lua instructions: job by job it would run thousands a job.
+    it("proves from the templates that replicates in {rep} and files at two depths differ",
+    function()
+      local function bounded (f, ...)
+        debug.sethook(function () error("over 10^7 instructions: checked job by job", 0) end,
+                      "", 1e7)
+        local r = table.pack(pcall(f, ...))
+        debug.sethook()
+        return table.unpack(r, 1, r.n)
+      end
+      local ok, jobs = bounded(batch.jobs, spec { replicates = 129 ^ 3, outputs = "r{rep}.png" })
+      assert.is_true(ok, jobs)
+      assert.equal(2146689, #jobs)
+      assert.same({ { format = "png", path = "r2146689.png" } }, jobs[#jobs].outputs)
+      ok, jobs = bounded(batch.jobs, spec { vary = { angle = { 7, 1 } }, replicates = 10265536,
+                                            outputs = { "x//{id}.png", "{id}.png" } })
+      assert.is_true(ok, jobs)
+      assert.equal(20531072, #jobs)
+      assert.same({ { format = "png", path = "x/00000003.png" },
+                    { format = "png", path = "00000003.png" } }, jobs[3].outputs)
+      -- with a sweep of values, {rep} is not the job: checked job by job, which finds it
+      assert.equal("spec: vary a=2 rep=1: outputs[1]: 'r1.png' is also written by job 0001 "
+        .. "(spec: vary a=1 rep=1): give each job its own files, with {id} for instance",
+        err_of(batch.jobs, spec { vary = { a = { 1, 2 } }, replicates = 2,
+                                  outputs = "r{rep}.png" }))
+    end)
+
     it("finds, job by job, the file of the first of 10^5 jobs written again by job 90,001",
     function()
       -- a = 1 again at the 10th value: job 90,001 (a = 1, b = 1, c = 1) writes 1/1/1.txt
@@ -224,7 +254,8 @@ return { model = "m.lua", vary = { { "a", w }, { "b", v }, { "c", v } },
       local PAIRS = { { "{id}.txt", "{id}.json" }, { "a/{id}.txt", "b/{id}.txt" },
                       { "{id}.txt", "x{id}.txt" }, { "{id}.txt", "{id}x.txt" },
                       { "{id}.obj", "{id}.mtl" }, { "{id}/x.obj", "{id}/y.mtl" },
-                      { "a{id}.txt", "{id}.txt" }, { "{id}.txt", "./{id}.txt" } }
+                      { "a{id}.txt", "{id}.txt" }, { "{id}.txt", "./{id}.txt" },
+                      { "x//{id}.txt", "{id}.txt" }, { "x/{id}.txt", "x{id}.txt" } }
       -- the sweep's 12 jobs: a (1, 11, 0.1) slowest, then b (1, 11), then rep (1, 2)
       local function paths_by_hand (outs)
         local seen, shared, n = {}, false, 0

@@ -821,7 +821,9 @@ local function sweep_source (spec, who, reps, base)
   for _, e in ipairs(vary) do
     -- each value checked and converted once, before the product; its words in `where`
     local conv, words, param = {}, {}, CONV[e[1]] == nil
-    for i, v in ipairs(e[2]) do
+    for i = 1, #e[2] do                 -- every value up to the length: a hole is an error
+      local v = e[2][i]
+      if v == nil then fail(format("vary.%s[%d]", e[1], i), "a value expected, got nil") end
       local job = { params = {} }
       setfield(job, e[1], v, format("vary.%s[%d]", e[1], i), fail)
       conv[i], words[i] = param and job.params[e[1]] or job[e[1]], format("%s=%s", e[1],
@@ -907,8 +909,9 @@ end
 The shape of the template `tpl` of the sweep `src`, whose first job is `job1`: the path it
 gives every job, as a list of pieces -- literal text, or a token for a value that changes
 from job to job ("id", "n", or "num" for any other number: the seed, a varied variable,
-steps, width, height, rep) -- normalized as `normalize` does the paths, and its last
-segment (the file's name) as a list of pieces. nil when a varied text (model, name) is in
+steps, width, height, rep; {rep} is {n} when the sweep is replicates alone) -- normalized
+as `normalize` does the paths, its last segment (the file's name) as a list of pieces, and
+its number of segments (depth). nil when a varied text (model, name) is in
 the template: its values could hold "/" or be "..".
 
 A number's text ("12", "-0.5", "1e+20") never holds "/", is never empty, "." or "..": a
@@ -926,6 +929,8 @@ local function shape (src, job1, tpl)
     lit(tpl:sub(pos, a - 1))
     pos = b
     if k == "id" or k == "n" then pieces[#pieces + 1] = { k }
+    elseif k == "rep" and #src.vary == 0 then
+      pieces[#pieces + 1] = { "n" }       -- replicates alone: job n is replicate n
     elseif k == "seed" or src.varied[k] then
       if k == "model" or k == "name" then return nil end
       pieces[#pieces + 1] = { "num" }
@@ -975,8 +980,11 @@ local function shape (src, job1, tpl)
     for i = from, to do t[#t + 1] = flat[i] end
     return table.concat(t)
   end
-  if first == nil then return { prefix = text(1, #flat), suffix = "", name = segs[#segs] } end
-  return { prefix = text(1, first - 1), suffix = text(last + 1, #flat), name = segs[#segs] }
+  if first == nil then
+    return { prefix = text(1, #flat), suffix = "", name = segs[#segs], depth = #segs }
+  end
+  return { prefix = text(1, first - 1), suffix = text(last + 1, #flat), name = segs[#segs],
+           depth = #segs }
 end
 
 -- Whether the file name `name` (a shape's last segment) gives back the job it was made for:
@@ -1007,11 +1015,13 @@ end
 local function starts (s, p) return s:sub(1, #p) == p end
 local function ends (s, p) return p == "" or s:sub(-#p) == p end
 
--- Whether the paths of two shapes always differ: when neither literal beginning is a
--- beginning of the other, or neither literal end an end of the other (two equal paths
--- would begin, and end, with both).
+-- Whether the paths of two shapes always differ: when they have not as many segments (a
+-- token's text never holds "/"), or neither literal beginning is a beginning of the other,
+-- or neither literal end an end of the other (two equal paths would begin, and end, with
+-- both).
 local function apart (a, b)
-  return (not starts(a.prefix, b.prefix) and not starts(b.prefix, a.prefix)) or
+  return a.depth ~= b.depth or
+         (not starts(a.prefix, b.prefix) and not starts(b.prefix, a.prefix)) or
          (not ends(a.suffix, b.suffix) and not ends(b.suffix, a.suffix))
 end
 
@@ -1030,7 +1040,7 @@ local function proven (src, job1)
     shapes[#shapes + 1] = s
     if t.format == "obj" then          -- its material file: the same, .obj -> .mtl
       shapes[#shapes + 1] = { prefix = s.prefix, suffix = s.suffix:sub(1, -5) .. ".mtl",
-                              name = s.name }
+                              name = s.name, depth = s.depth }
     end
   end
   for i = 1, #shapes do

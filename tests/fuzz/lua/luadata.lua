@@ -17,6 +17,14 @@ local real = { rep = string.rep, find = string.find, match = string.match,
 local sub = string.sub
 local _ENV = nil
 
+-- The results of pcall(f, ...) of a guard that tail-calls this, or the error of f raised
+-- at the level of the guard's caller (the input's code, not this file: the message of a
+-- bad argument to string.rep is the input's error, not one of the harness).
+local function rethrow (ok, ...)
+  if not ok then error((...), 2) end
+  return ...
+end
+
 local M = {}
 
 --- The value of the expression `text` in an empty environment, compiled as chunk `name`
@@ -62,14 +70,14 @@ local GUARDS = {
         CTX.trip("memory", "string.rep of " .. tostring(n))
       end
     end
-    return real.rep(s, n, sep)
+    return rethrow(pcall(real.rep, s, n, sep))
   end,
 }
 for _, name in ipairs { "find", "match", "gmatch", "gsub" } do
   local f = real[name]
   GUARDS[name] = function (s, p, ...)
     if heavy(s, p) then CTX.trip("time", "pattern " .. tostring(p)) end
-    return f(s, p, ...)
+    return rethrow(pcall(f, s, p, ...))
   end
 end
 
