@@ -63,6 +63,41 @@ describe("lsys.components geometry", function ()
     assert.equal(n, it:count())
   end)
 
+  it("puts a primitive's children at its top, the cube's too", function ()
+    -- the cube's surface had its end point at its top, so the turtle stood a width above
+    -- where the emitter put it and the children of a cube were that much too high
+    for _, prim in ipairs { "cube", "sphere", "cylinder", "cone", "disc" } do
+      local s = C.simple { primitive = prim, size = { 1, 2, 3 } }
+      s:child(C.leaf {}, { only = { 1 } })
+      local m = C.model(s)
+      assert.equal(2, check_frames(m, m:interpret()))
+      assert.same({ 0, 2, 0 }, m.components.tree.list[2].frame.p)
+    end
+  end)
+
+  it("names the instance whose texture the view does not have", function ()
+    assert.equal("lsys.components: leaf (at leaf#1): 'texture': 53, but the view has 0 " ..
+                 "textures (view.textures)", errmsg(C.model, C.leaf { texture = 53 }))
+    assert.equal("lsys.components: simple 'box' (at box#1): 'texture': 3, but the view has 0 " ..
+                 "textures (view.textures)",
+                 errmsg(C.model, C.simple { name = "box", primitive = "cube", texture = 3 }))
+    assert.equal("lsys.components: leaf: 'texture' must be a whole number >= 0, got -1",
+                 errmsg(C.leaf, { texture = -1 }))
+  end)
+
+  it("refuses a Phiball whose cap is too narrow to have an area", function ()
+    local ball = C.phiball { n = 13, close = 121e-320 }
+    ball:child(C.simple {})
+    assert.equal("lsys.components: phiball (at phiball#1): the cap from 'open' (0) to 'close' " ..
+                 "(1.2100013512604e-318) is too narrow for the children to have room (give " ..
+                 "a radius or open it wider)", errmsg(C.model, ball))
+    -- with a radius of its own, the children stand on that sphere
+    local b2 = C.phiball { n = 3, close = 1e-6, radius = 2 }
+    b2:child(C.simple {})
+    local m = C.model(b2)
+    assert.equal(4, check_frames(m, m:interpret()))
+  end)
+
   it("draws stems as generalized cylinders through the stem frames, tapered", function ()
     local h = C.horn { length = 2, radius = 0.1, tip = 0.5, segments = 4, curvature = 40 }
     local m = C.model(h)

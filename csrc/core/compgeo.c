@@ -71,6 +71,18 @@ static void rot2 (lsys_cframe *g, const double k[3], double deg) {
   rot(g->U, ax, deg);
 }
 
+/* H made unit, and U unit and normal to it (Gram-Schmidt). Every turn ends with this:
+** rounding leaves a frame a little off, and a turn about an axis made from such a frame
+** (right, -U) scales the error up, so that along a chain of ~50 rotated instances the
+** frames shrank geometrically. A degenerate frame is left as it is. */
+static void orthonorm (lsys_cframe *g) {
+  double d;
+  if (!vnorm(g->H)) return;
+  d = vdot(g->U, g->H);
+  vlin(g->U, g->U, 1, g->H, -d);
+  vnorm(g->U);
+}
+
 static void right (const lsys_cframe *f, double R[3]) {      /* R = -L = -(H x U) */
   vcross(R, f->H, f->U);
   R[0] = -R[0]; R[1] = -R[1]; R[2] = -R[2];
@@ -93,6 +105,7 @@ void lsys_cframe_transform (const lsys_cframe *f, const double t[3], const doubl
   if (r[0] != 0) { right(g, ax); rot2(g, ax, r[0]); }
   if (r[1] != 0) rot(g->U, g->H, r[1]);
   if (r[2] != 0) { vset(ax, -g->U[0], -g->U[1], -g->U[2]); rot(g->H, ax, r[2]); }
+  orthonorm(g);
   g->s = g->s * s;
 }
 
@@ -104,6 +117,7 @@ void lsys_cframe_tropism (lsys_cframe *g, const double T[3], double e) {
   if (m > 1e-12) {
     ax[0] /= m; ax[1] /= m; ax[2] /= m;
     rot2(g, ax, (e * m) * DEG);
+    orthonorm(g);
   }
 }
 
@@ -123,6 +137,7 @@ void lsys_cframe_branch (const lsys_cframe *A, const lsys_cframe *B, double t, d
   }
   out.s = A->s * scale;
   out.u = 0;
+  orthonorm(&out);
   *g = out;
 }
 
@@ -169,6 +184,7 @@ int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_
       }
       nextb++;
     }
+    orthonorm(&g);
     s = step * g.s;
     vlin(g.p, g.p, 1, g.H, s);
     g.u = (double)k / st->segs;

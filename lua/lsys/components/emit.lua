@@ -35,7 +35,9 @@ local M = {}
 local leafcache = setmetatable({}, { __mode = "v" })   -- key -> organ surface
 
 -- A cpfg surface file of flat quads (each a bicubic patch whose control points lie on the
--- bilinear quad): the cube primitive, base at the contact point, 1 wide, high and deep.
+-- bilinear quad): the cube primitive, base at the contact point, 1 wide, high and deep. Its
+-- end point is its base too: the turtle stays where the emitter (which places the children
+-- from the base) believes it is.
 local function cubetext ()
   local faces = {
     { { -.5, 0, -.5 }, { .5, 0, -.5 }, { .5, 0, .5 }, { -.5, 0, .5 } },       -- bottom
@@ -46,7 +48,7 @@ local function cubetext ()
     { { .5, 0, -.5 }, { .5, 1, -.5 }, { .5, 1, .5 }, { .5, 0, .5 } },
   }
   local out = { "-0.5 0.5 0 1 -0.5 0.5", "PRECISION S: 1 T: 1",
-                "CONTACT POINT X: 0 Y: 0 Z: 0", "END POINT X: 0 Y: 1 Z: 0",
+                "CONTACT POINT X: 0 Y: 0 Z: 0", "END POINT X: 0 Y: 0 Z: 0",
                 "HEADING X: 0 Y: 1 Z: 0", "UP X: 0 Y: 0 Z: 1", "SIZE: 1" }
   for k, q in ipairs(faces) do
     out[#out + 1] = "face" .. k
@@ -128,6 +130,15 @@ function W:code (name)
     self.sym[name] = id
   end
   return id
+end
+
+-- Texture index tex of instance inst, which the view must have (its ntextures).
+function W:texture (inst, tex)
+  if tex > self.ntextures then
+    X.fail(inst, "texture", "%d, but the view has %d textures (view.textures)", tex,
+           self.ntextures)
+  end
+  return tex
 end
 
 function W:op (name, ...)
@@ -245,7 +256,7 @@ local function setcolor (w, inst, default)
   local c = inst.proto:param("color") or default
   if c then w:op(";", c) end
   local tex = inst.proto:param("texture")
-  if tex and tex ~= 0 then w:op("@Tx", tex) end
+  if tex and tex ~= 0 then w:op("@Tx", w:texture(inst, tex)) end
 end
 
 -- Children of a Tree along its stem, in the order of u.
@@ -338,7 +349,7 @@ local function leafname (w, inst)
   local tex = p:param("texture")
   local entry = {}
   if tex and tex ~= 0 then
-    entry.texture = tex
+    entry.texture = w:texture(inst, tex)
     key = key .. "|t" .. tex
   end
   return "~" .. w:surface(key, surf, entry)
@@ -444,14 +455,16 @@ end
 M.DETAIL = 1
 
 --- Emits the i-tree `tree` (lsys.components.expand) with `rules` (a model's lsys.Rules),
--- the leaves' `detail` (M.DETAIL) and `rename` (nil, or a function that renames a module
+-- the leaves' `detail` (M.DETAIL), `rename` (nil, or a function that renames a module
 -- name before it is interned: lsys.components.mix gives each plant's surfaces their own
--- characters). Returns { lstring =, owner = (module index -> instance index), surfaces =
--- (view surfaces), post = (scales of primitives), deformers = (FFD and Hyperpatch
--- instances, deepest first), area = (an Area primitive was used) }; the instances' module
--- ranges (inst.m0, m1, at, modules) are this emission's from now on.
-function M.emit (tree, rules, detail, rename)
+-- characters) and `ntextures` (how many textures the view has; 0 when nil). Returns
+-- { lstring =, owner = (module index -> instance index), surfaces = (view surfaces),
+-- post = (scales of primitives), deformers = (FFD and Hyperpatch instances, deepest
+-- first), area = (an Area primitive was used) }; the instances' module ranges (inst.m0,
+-- m1, at, modules) are this emission's from now on.
+function M.emit (tree, rules, detail, rename, ntextures)
   local w = newwriter(rules, tree, detail or M.DETAIL, rename)
+  w.ntextures = ntextures or 0
   emitall(w, tree)
   local wr = w.wr
   tree.writer = wr

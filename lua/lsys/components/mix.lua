@@ -83,7 +83,7 @@ local function emitted (st, m, name, seed)
     t[c] = nc
     return nc
   end })
-  local out = E.emit(tree, m._rules, nil, renaming(rename))
+  local out = E.emit(tree, m._rules, nil, renaming(rename), #(view.textures or {}))
   for c, entry in pairs(out.surfaces) do view.surfaces[rename[c] or c] = entry end
   if out.area then
     view.contours = view.contours or {}

@@ -209,7 +209,7 @@ function M.model (root, opts)
       if #s == #out.lstring then finish(out, scene) end
     end,
   }
-  out = E.emit(tree, m._rules, detail)
+  out = E.emit(tree, m._rules, detail, nil, #(m.view.textures or {}))
   local v = m.view
   v.surfaces = v.surfaces or {}
   for c, entry in pairs(out.surfaces) do v.surfaces[c] = entry end

@@ -178,6 +178,11 @@ function M.phiball (p)
   local c1, c2 = cos(rad(t1)), cos(rad(t2))
   local f, total = fractions(o)
   local R = o.radius or sqrt(total / (2 * pi * (c1 - c2)))
+  if not (R < huge) then      -- cos open == cos close in doubles (a cap ~1e-8 degrees wide)
+    error(format("phiball: the cap from 'open' (%s) to 'close' (%s) is too narrow for the " ..
+                 "children to have room (give a radius or open it wider)", show(t1), show(t2)),
+          0)
+  end
   local n, out = o.n, {}
   for i = 1, n do
     local c = c1 - f[i] * (c1 - c2)

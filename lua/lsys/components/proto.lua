@@ -39,6 +39,7 @@ local LENGTH = { 0, huge, "a number >= 0" }        -- a stem's: the turtle draws
 local CURL = { -10, 10, "a number from -10 to 10" }
 local TROPISM = { -100, 100, "a number from -100 to 100" }
 M.TROPISM = TROPISM
+local INDEX = { 0, huge, "a whole number >= 0" }   -- a view's texture (its count: the model's)
 
 local BASIC = {
   translate = { "vec3", { 0, 0, 0 } },    -- in the parent's frame: x right, y along, z front
@@ -48,7 +49,7 @@ local BASIC = {
                                   "area", "tube" } },
   size = { "vec3", { 1, 1, 1 }, NONNEG },  -- of the primitive: width, height, depth
   color = { "integer", nil },              -- a palette index (the view's colours)
-  texture = { "integer", 0 },              -- a view texture index (0: none)
+  texture = { "integer", 0, INDEX },       -- a view texture index (0: none)
   geometry = { "any", nil },               -- an L-system model or Lstring drawn on the frame
 }
 
@@ -70,7 +71,8 @@ local KINDS = {
                                  "cordate" } },
     outline = { "points", nil }, lateral = { "number", 0, CURL },
     longitudinal = { "number", 0, CURL },
-    phototropism = { "number", 0 },
+    phototropism = { "number", 0, { 0, 1, "a number from 0 to 1 (the fraction of the turn " ..
+                                          "to the light)" } },
   },
   tree = {
     length = { "number", 1, LENGTH }, radius = { "number", 0.05 }, tip = { "number", 0.3 },
@@ -288,7 +290,7 @@ local function check (p, key, v)
     end
     fail(p, "'%s' must be a vector {x, y, z}, a range of two vectors or a function", key)
   elseif t == "integer" then
-    if isnum(v) and v == floor(v) then return v end
+    if isnum(v) and v == floor(v) then return bounded(p, key, sch, v, v) end
     fail(p, "'%s' must be a whole number, got %s", key, tostring(v))
   elseif t == "enum" then
     for _, e in ipairs(sch[3]) do if v == e then return v end end
