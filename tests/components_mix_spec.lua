@@ -33,11 +33,11 @@ describe("a component's geometry from an L-system", function()
                             geometry = ls }
     local scene = C.scene(root)
     -- the frame: at x = 1 (x is the frame's right), heading +y, up -z: F(2) runs up,
-    -- & pitches the heading towards -up = +z
+    -- & pitches the heading towards up = -z (as cpfg's &)
     local seg = segments(scene)
     assert.equal(2, #seg)
     assert.near({ { 1, 0, 0 }, { 1, 2, 0 } }, seg[1], 1e-9)
-    assert.near({ { 1, 2, 0 }, { 1, 2, 1 } }, seg[2], 1e-9)
+    assert.near({ { 1, 2, 0 }, { 1, 2, -1 } }, seg[2], 1e-9)
   end)
 
   it("takes an Lstring too, turned with the instance", function()

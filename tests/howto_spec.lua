@@ -71,8 +71,8 @@ describe("#gl the manual's How do I section", function()
   it("gives the position of module i", function()
     local out, status = run(4)
     assert.equal(0, status, out)
-    assert.equal("5\tL(0.6)\tat 0.000 1.100 0.000 heading 0.00 0.64 0.77\n"
-                 .. "11\tL(0.5)\tat 0.000 2.100 0.000 heading -0.52 0.64 -0.56\n", out)
+    assert.equal("5\tL(0.6)\tat 0.000 1.100 0.000 heading 0.00 0.64 -0.77\n"
+                 .. "11\tL(0.5)\tat 0.000 2.100 0.000 heading 0.52 0.64 0.56\n", out)
   end)
 
   it("makes a growth animation", function()

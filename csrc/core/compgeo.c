@@ -259,7 +259,7 @@ void lsys_cwriter_angles (const double AH[3], const double AU[3], const double B
   }
   g = atan2(-bl, bu);
   /* (a -+ 180, -b, g -+ 180) turns the same way; take it when it needs fewer
-  ** modules (a pure pitch up is then one `&`) or smaller rolls */
+  ** modules (a pure pitch up is then one `^`) or smaller rolls */
   if (fabs(a) > 1e-11) {
     double a2 = a > 0 ? a - PI : a + PI, g2 = g > 0 ? g - PI : g + PI;
     int n1 = (fabs(a) > 1e-11) + (fabs(g) > 1e-11), n2 = (fabs(a2) > 1e-11) + (fabs(g2) > 1e-11);

@@ -106,7 +106,7 @@ typedef struct lsys_cwriter {
   size_t depth, capstk;
   int32_t *range;             /* per instance: m0, m1, at (module indices, 1-based) */
   size_t capi;
-  uint32_t sym_open, sym_close, sym_roll, sym_pitch, sym_move, sym_draw;  /* [ ] / & f F */
+  uint32_t sym_open, sym_close, sym_roll, sym_pitch, sym_move, sym_draw;  /* [ ] / ^ f F */
 } lsys_cwriter;
 
 /* A writer into s, the turtle at the origin with H = +y, U = -z. */
@@ -129,7 +129,7 @@ int lsys_cwriter_orient (lsys_cwriter *w, const double H[3], const double U[3]);
 /* Moves the turtle d along H with `F` (draw) or `f`; nothing for d <= 1e-15. */
 int lsys_cwriter_forward (lsys_cwriter *w, double d, int draw);
 
-/* The angles (degrees) of a roll `/`, a pitch `&` and a roll `/` that turn the
+/* The angles (degrees) of a roll `/`, a pitch `^` (H toward -U) and a roll `/` that turn the
 ** orientation (AH, AU) onto (BH, BU); with BU NULL only the first two (aim H at
 ** BH), out[2] = 0. */
 void lsys_cwriter_angles (const double AH[3], const double AU[3], const double BH[3],

@@ -8,9 +8,12 @@
 ** Rotations, with the frame kept right-handed as L = H x U (cpfg's initial
 ** frame H = (0,1,0), L = (-1,0,0), U = (0,0,-1)):
 **   +  turn left:   H toward L          -  turn right
-**   &  pitch down:  H toward -U         ^  pitch up
+**   &  pitch down:  H toward U          ^  pitch up:  H toward -U
 **   /  roll right:  L toward U          \  roll left
-** so that + turns anticlockwise seen from +z, as cpfg does.
+** so that + turns anticlockwise seen from +z, as cpfg does. & is ABOP's R_L(delta)
+** (§1.5: [H' L' U'] = [H L U] R_L, H' = H cos + U sin), the direction cpfg's ?H reports
+** (&(30) from the initial frame heads (0, 0.866, -0.5)); tests/cpfg_probe_spec.lua
+** compares these with cpfg.
 */
 #include <math.h>
 #include <stdarg.h>
@@ -373,8 +376,8 @@ static int rotate (run *R, int op, const double *p, uint32_t np) {
   switch (op) {
     case OP_LEFT: turn(R, st->H, st->L, x); break;
     case OP_RIGHT: turn(R, st->H, st->L, -x); break;
-    case OP_DOWN: turn(R, st->H, st->U, -x); break;
-    case OP_UP: turn(R, st->H, st->U, x); break;
+    case OP_DOWN: turn(R, st->H, st->U, x); break;
+    case OP_UP: turn(R, st->H, st->U, -x); break;
     case OP_ROLLR: turn(R, st->L, st->U, x); break;
     default: turn(R, st->L, st->U, -x); break;
   }
@@ -408,11 +411,13 @@ static int turnaround (run *R) {
   return LSYS_OK;
 }
 
-/* @v: H and U in a vertical plane, U up (y is up). */
+/* @v: rolls about H until L is horizontal, L = V x H / |V x H| with V = +y (ABOP's $;
+** in our frame, where L = H x U, U = L x H). cpfg does the same: after /(30)&(50)
+** its L is (-0.866, 0, -0.5), U (0.321, -0.766, -0.557). */
 static int vertical (run *R) {
   lsys_tstate *st = &R->st;
   double V[3] = {0, 1, 0}, l[3];
-  vcross(l, st->H, V);
+  vcross(l, V, st->H);
   if (vnorm(l)) { vcopy(st->L, l); vcross(st->U, st->L, st->H); }
   return LSYS_OK;
 }

@@ -450,7 +450,7 @@ static int l_cwriter (lua_State *L) {
   w->w.sym_open = intern(L, 1, "[");
   w->w.sym_close = intern(L, 1, "]");
   w->w.sym_roll = intern(L, 1, "/");
-  w->w.sym_pitch = intern(L, 1, "&");
+  w->w.sym_pitch = intern(L, 1, "^");        /* H toward -U, as the writer's angles */
   w->w.sym_move = intern(L, 1, "f");
   w->w.sym_draw = intern(L, 1, "F");
   w->nsym = lsys_checkrules(L, 1)->m.ab->n;

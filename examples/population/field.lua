@@ -75,7 +75,7 @@ local clover = lsys.lsystem {
 
 -- One ground tile, 1 x 1 in the plane y = 0 (the turtle starts heading up, +y): scaled below.
 local ground = lsys.lsystem {
-  name = "ground", axiom = ";(1) &(90) { . f(1) . -(90) f(1) . -(90) f(1) . }",
+  name = "ground", axiom = ";(1) ^(90) { . f(1) . -(90) f(1) . -(90) f(1) . }",
   view = { palette = { "#6d6a3c" } },
 }
 

@@ -226,9 +226,9 @@ PRIMDRAW = {
     return wd == d or nil
   end,
   disc = function (w, _, wd, _, d)
-    w:op("^", 90)
+    w:op("&", 90)                          -- the disc faces H (turned to the frame's -z)
     w:op("@c", wd)
-    w:op("&", 90)
+    w:op("^", 90)
     return wd == d or nil
   end,
   cube = function (w, _, wd, h, d)

@@ -149,9 +149,9 @@ end
 --- Yaw and pitch, 3D (§4.2.2), at the middle of each piece: the Euler angles, in the global
 -- frame, of the piece's chord s (x to the viewer's right, y up, z towards the viewer).
 -- After the template's @R(0,1,0,0,0,-1) (H = +y, L = -x, U = -z), + turns towards L, to
--- the viewer's left, and & pitches towards -U, towards the viewer, so the paper's
+-- the viewer's left, and ^ pitches towards -U, towards the viewer, so the paper's
 -- yaw = atan(sx/sy) and pitch = atan(sz/|sxy|) become yaw = atan2(-sx, sy) (sx counted
--- along L) and pitch = atan2(sz, |sxy|): +(yaw) &(pitch) then heads the turtle along s.
+-- along L) and pitch = atan2(sz, |sxy|): +(yaw) ^(pitch) then heads the turtle along s.
 -- Yaw is unwrapped (continuous) along the stem.
 function M.yaw_pitch (geometry, an, xs, ds)
   local st, py, pp = an.stem, {}, {}

@@ -18,7 +18,8 @@
 --  * 3D: S realigns with @R(0,1,0,0,0,-1), the turtle's initial frame (H = +y, L = -x,
 --    U = -z), where the paper writes @R(0,1,0,0,0,1): with U = +z the left vector is +x, so
 --    + would turn to the viewer's right and the L and R organs of a 3D stem would swap sides
---    against those of the 2D template, which keeps the initial frame.
+--    against those of the 2D template, which keeps the initial frame. In this frame the
+--    pitch towards the viewer (+z = -U) is ^, where the paper's & pitches towards its U = +z.
 --  * Fibonacci: the organ is rolled by θ about the stem (/(θ)) before it turns out; the
 --    paper's production leaves that out. θ and the (a, b) weights are computed by a
 --    module C(x, θ) that B makes, so the rules stay one expression per parameter.
@@ -63,7 +64,7 @@ function M.rules (o)
     format("S(x, d) : d > %s --> S(x, d/2) S(x + d/2, d/2)", D),
   }
   if o.threed then
-    r[#r + 1] = format("S(x, d) --> @R(0, 1, 0, 0, 0, -1) +(%s(x + d/2)) &(%s(x + d/2)) F(d)",
+    r[#r + 1] = format("S(x, d) --> @R(0, 1, 0, 0, 0, -1) +(%s(x + d/2)) ^(%s(x + d/2)) F(d)",
                        n "yaw", n "pitch")
   else
     r[#r + 1] = format("S(x, d) --> +(%s(x)) F(d)", n "stem_shape")
