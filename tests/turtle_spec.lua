@@ -266,17 +266,37 @@ describe("tropisms", function ()
     assert.near(0, u2[3], 1e-9)
   end)
 
-  it("twists U toward the projection of a torque vector (§6.1)", function ()
-    -- H = +y, U = -z, T = +x: V = (H x T) x H = +x; alpha = e |T x H| = e
+  it("twists U about H by a torque as cpfg does (§6.1)", function ()
+    -- H = +y, U = -z, T = +x: V = (H x T) x H = +x, and U turns by |U x e V| = e radians
+    -- away from V (cpfg's rotation turns that way: tests/data/cpfg_probes.lua, "torque")
     local e = 0.4
     local m = model { view = { torques = { { vector = { 1, 0, 0 }, elasticity = e } } } }
     local _, h, _, u = final(m, "F")
     assert.near({ 0, 1, 0 }, h, 1e-12)
-    assert.near({ math.sin(e), 0, -math.cos(e) }, u, 1e-12)
-    -- a large elasticity stops at V instead of turning past it
+    assert.near({ -math.sin(e), 0, -math.cos(e) }, u, 1e-12)
+    -- at most one radian per move; the intensity multiplies the elasticity
     m = model { view = { torques = { { vector = { 1, 0, 0 }, elasticity = 5 } } } }
     _, _, _, u = final(m, "F")
-    assert.near({ 1, 0, 0 }, u, 1e-12)
+    assert.near({ -math.sin(1), 0, -math.cos(1) }, u, 1e-12)
+    m = model { view = { torques = { { vector = { 1, 0, 0 }, elasticity = 0.8,
+                                       intensity = 0.5 } } } }
+    _, _, _, u = final(m, "F")
+    assert.near({ -math.sin(e), 0, -math.cos(e) }, u, 1e-12)
+  end)
+
+  it("bends after each move by the old-style tropism that _ sets (cpfg's bend)", function ()
+    -- T = +x, H = +y, L = -x, U = -z: T . U = 0, then H turns towards L by asin(e T . L)
+    local m = model { view = { old_tropism = { vector = { 1, 0, 0 }, increment = 0.25 } } }
+    local p, h = final(m, "F(2)")
+    assert.near({ 0, 2, 0 }, p, 1e-12) assert.near({ 0, 1, 0 }, h, 1e-12)
+    p, h = final(m, "_(0.5) F(2)")                    -- the move first, then the bend
+    assert.near({ 0, 2, 0 }, p, 1e-12)
+    local a = math.asin(0.5)                           -- towards -L = +x
+    assert.near({ math.sin(a), math.cos(a), 0 }, h, 1e-12)
+    p = final(m, "_ _ F(1) F(1)")                      -- _ adds the increment twice
+    assert.near({ math.sin(a), 1 + math.cos(a), 0 }, p, 1e-12)
+    p = final(m, "[ _(0.5) F(1) ] F(1) F(1)")          -- ] restores the elasticity
+    assert.near({ 0, 2, 0 }, p, 1e-12)
   end)
 end)
 

@@ -87,7 +87,7 @@ describe("view files", function ()
     assert.same({
       dir = DATA, angle = 22.5, color = 3, line_width = 2, line_style = "line",
       contour_sides = 16, light = { 5, 3, 1 },
-      tropisms = { { vector = { 0, -2, 0 }, elasticity = 0.05, increment = 0.01 } },
+      old_tropism = { vector = { 0, -2, 0 }, elasticity = 0.05, increment = 0.01 },
       surfaces = { c = { file = "calyx.s", scale = 2.0 } },
     }, v)
     assert.same({
@@ -242,7 +242,7 @@ describe("view files", function ()
         { file = "b.png", mag = "near", min = "near", mode = "decal", per_surface = false },
       },
       tropisms = {
-        { vector = { 1, 0, 0 }, angle = 0, elasticity = 0, increment = 0 },
+        { vector = { 1, 0, 0 }, angle = 0, elasticity = 0, increment = 0, intensity = 0.5 },
         { vector = { 0, 0, 1 }, elasticity = 0, increment = 0.5, torque = true },
       },
       surfaces = {
@@ -255,7 +255,6 @@ describe("view files", function ()
       "x.v:1: 'texture': mipmaps (L: mipmap) are not supported; linear used",
       "x.v:1: 'texture': E: blend is not supported; modulate used",
       "x.v:1: 'texture': R: (the texture's aspect on cylinders) is not supported; ignored",
-      "x.v:3: 'tropism': the intensity I: is not supported; ignored",
       "x.v:4: 'torque': a torque has no angle; A: ignored",
     }, w)
   end)

@@ -38,7 +38,7 @@ static const struct { const char *name; uint8_t op; } symbols[] = {
   {"@D", OP_SCALE}, {"@Di", OP_SCALEMUL}, {"@Dd", OP_SCALEDIV},
   {"@L", OP_LABEL}, {"@S", OP_SYSTEM}, {"Z", OP_STIFF},
   {"@Ts", OP_TSET}, {"@Ti", OP_TINC}, {"@Td", OP_TDEC}, {"@Tp", OP_TPREVENT},
-  {"@Tf", OP_TFORCE},
+  {"@Tf", OP_TFORCE}, {"_", OP_OLDELAST},
   {"?", OP_SUB}, {"$", OP_SUBEND},
   {"@Gs", OP_GSTART}, {"@Gc", OP_GPOINT}, {"@Ge", OP_GEND}, {"@Gt", OP_GTAN},
   {"@Gr", OP_GRAD}, {"@PS", OP_PSTARTP}, {"@PC", OP_PCTRL}, {"@PD", OP_PDRAW},
@@ -72,6 +72,7 @@ void lsys_turtle_defaults (lsys_turtle_opts *o) {
   o->style = LSYS_STYLE_LINE;
   o->sides = 8;
   o->minimize_twist = 1;
+  o->otrop[1] = 1;
 }
 
 void lsys_turtle_init (lsys_turtle *t) {
@@ -227,7 +228,7 @@ static void tropisms (run *R) {
   int k, bent = 0, twisted = 0;
   for (k = 0; k < o->ntrop; k++) {
     const lsys_tropism *tp = &o->trop[k];
-    double T[3], hxt[3], s, e = st->elast[k], f;
+    double T[3], hxt[3], s, e = st->elast[k] * tp->intensity, f;
     if (tp->torque || e == 0) continue;
     vcopy(T, tp->vec);
     if (!vnorm(T)) continue;
@@ -245,25 +246,62 @@ static void tropisms (run *R) {
     vrotate(st->H, axis, a);
   }
   if (bent) untwist(st);
-  for (k = 0; k < o->ntrop; k++) {
-    const lsys_tropism *tp = &o->trop[k];
-    double T[3], V[3], hxt[3], c[3], e = st->elast[k], ang, maxang;
-    if (!tp->torque || e == 0) continue;
-    vcopy(T, tp->vec);
-    if (!vnorm(T)) continue;
-    vcross(hxt, st->H, T);
-    vcross(V, hxt, st->H);                /* T projected on the plane normal to H */
-    if (!vnorm(V)) continue;
-    ang = e * vlen(hxt);                  /* alpha = e |T x H| */
-    vcross(c, st->U, V);
-    maxang = atan2(vlen(c), vdot(st->U, V));
-    if (ang > maxang) ang = maxang;       /* do not turn past V */
-    if (vdot(c, st->H) < 0) ang = -ang;
-    vrotate(st->U, st->H, ang);
-    vcross(st->L, st->H, st->U);
-    twisted = 1;
+  /* Torques (§6.1) act together, as cpfg's do: D = sum of e_i T_i (unit vectors), V the
+  ** projection of D / |D| on the plane normal to H, of length |H x D/|D||; U turns about H
+  ** towards |D| V by |U x |D| V| radians, at most one. */
+  {
+    double D[3] = {0, 0, 0}, n[3], w[3], V[3], c[3], dl;
+    int any = 0;
+    for (k = 0; k < o->ntrop; k++) {
+      const lsys_tropism *tp = &o->trop[k];
+      double T[3], e = st->elast[k] * tp->intensity;
+      if (!tp->torque || e == 0) continue;
+      vcopy(T, tp->vec);
+      if (!vnorm(T)) continue;
+      vlin(D, D, 1, T, e);
+      any = 1;
+    }
+    if (any && (dl = vlen(D)) > 0) {
+      vlin(n, D, 1.0 / dl, D, 0);
+      vcross(w, st->H, n);
+      if (vdot(w, w) > 1e-8) {
+        vcross(V, w, st->H);
+        vlin(V, V, dl, V, 0);
+        vcross(c, st->U, V);
+        if ((a = vlen(c)) >= 1e-7) {
+          double axis[3];
+          vlin(axis, c, 1.0 / a, c, 0);
+          vrotate(st->U, axis, -(a > 1 ? 1 : a));
+          vcross(st->L, st->H, st->U);
+          orthonormal(st);
+        }
+        twisted = 1;
+      }
+    }
   }
   if (!bent || twisted) { vcopy(st->refH, st->H); vcopy(st->refU, st->U); }
+}
+
+/* After each move, cpfg's old-style tropism (its interpret.c `bend`): H turns towards U
+** by the angle whose sine is e (T . U), then towards L by the one whose sine is e (T . L),
+** e the elasticity `_` sets. Each is a rotation in a plane of the frame, so the frame
+** stays orthonormal. */
+static void oldbend (run *R) {
+  lsys_tstate *st = &R->st;
+  const double *T = R->o->otrop;
+  double h[3], c, s;
+  c = st->oelast * vdot(T, st->U);
+  if (c > 1) c = 1; else if (c < -1) c = -1;
+  s = sqrt(1 - c * c);
+  vlin(h, st->H, s, st->U, c);
+  vlin(st->U, st->U, s, st->H, -c);
+  vcopy(st->H, h);
+  c = st->oelast * vdot(T, st->L);
+  if (c > 1) c = 1; else if (c < -1) c = -1;
+  s = sqrt(1 - c * c);
+  vlin(h, st->H, s, st->L, c);
+  vlin(st->L, st->L, s, st->H, -c);
+  vcopy(st->H, h);
 }
 
 /* --- segments ------------------------------------------------------------ */
@@ -302,7 +340,7 @@ static int flush (run *R) {
 }
 
 /* F f G g: a step of d (the view's step without a parameter) after the
-** tropisms bent the heading. F and G draw a segment, whose top width waits
+** tropisms bent the heading; the old-style tropism bends it after the step. F and G draw a segment, whose top width waits
 ** for a following ! or #; inside a polygon F and f add a vertex instead. */
 static int move (run *R, int op, const double *p, uint32_t np) {
   lsys_tstate *st = &R->st;
@@ -316,6 +354,7 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   vlin(st->pos, st->pos, 1, st->H, d);
   if (!isfinite(st->pos[0] + st->pos[1] + st->pos[2]))   /* nothing could draw it */
     return lsys_turtle_failop(R, "the position is no longer finite after a move of %g", d);
+  if (st->oelast != 0) oldbend(R);
   if (op == OP_f || op == OP_g) {
     st->tip = LSYS_NOREC;
     return op == OP_f && R->t->npolys > 0 ? lsys_turtle_polyvertex(R) : LSYS_OK;
@@ -612,6 +651,15 @@ static int elasticity (run *R, int op, const double *p, uint32_t np) {
   return LSYS_OK;
 }
 
+/* _(e): sets the elasticity of the old-style tropism; _ adds the view's increment. */
+static int oldelast (run *R, const double *p, uint32_t np) {
+  double x;
+  int s;
+  if ((s = arg(R, p, np, 0, R->st.oelast + R->o->oincr, &x)) != LSYS_OK) return s;
+  R->st.oelast = x;
+  return LSYS_OK;
+}
+
 /* @Tf: the twist is forced, not minimised: the frame is the new reference. */
 static int forcetwist (run *R) {
   vcopy(R->st.refH, R->st.H); vcopy(R->st.refU, R->st.U);
@@ -676,6 +724,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_TSET: case OP_TINC: case OP_TDEC: return elasticity(R, op, p, np);
     case OP_TPREVENT: untwist(&R->st); return LSYS_OK;
     case OP_TFORCE: return forcetwist(R);
+    case OP_OLDELAST: return oldelast(R, p, np);
     case OP_SUB: return substart(R, p, np);
     case OP_SUBEND: return subend(R);
     default: return LSYS_OK;
@@ -765,6 +814,7 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   if (t->nstess > 0) memset(t->stessok, 0, t->nstess);
   R->ab = ab;
   for (k = 0; k < o->ntrop; k++) st->elast[k] = o->trop[k].elasticity;
+  st->oelast = o->oelast;
   if (setring(R) != LSYS_OK) return t->err.code;
   return LSYS_OK;
 }

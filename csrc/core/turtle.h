@@ -40,6 +40,7 @@ typedef struct lsys_tropism {
   double elasticity;      /* initial elasticity */
   double increment;       /* for @Ti / @Td without a value */
   int torque;             /* 1: twist response (§6.1) */
+  double intensity;       /* cpfg's I:, from -1 to 1: multiplies the elasticity (1) */
 } lsys_tropism;
 
 /* The numeric view options the turtle reads. */
@@ -55,6 +56,10 @@ typedef struct lsys_turtle_opts {
   int minimize_twist;     /* generalized cylinders: rotation-minimising frames (1) */
   lsys_tropism trop[LSYS_MAXTROPISMS];
   int ntrop;
+  /* cpfg's old-style tropism (`tropism direction:`, `initial elasticity:`, `elasticity
+  ** increment:`): a unit direction (0, 1, 0 by default), the initial elasticity that `_`
+  ** changes, and what `_` without a parameter adds */
+  double otrop[3], oelast, oincr;
   /* contours[id] for @#(id), 1 <= id < ncontours (NULL: not defined); id 0 is the circle */
   const lsys_contour *const *contours; int ncontours;
   const lsys_texture *const *tex; int ntex;     /* @Tx(k): tex[k - 1] */
@@ -77,6 +82,7 @@ typedef struct lsys_tstate {
   double gtan[2];               /* @Gt: tangent coefficients of the next segments */
   double grad[4];               /* @Gr: radius tangents (angle, length) x 2 */
   int gadjust;                  /* @Gr(1) */
+  double oelast;                /* elasticity of the old-style tropism (`_`) */
   double elast[LSYS_MAXTROPISMS];   /* last: [ and ] copy only the view's tropisms */
 } lsys_tstate;
 

@@ -174,6 +174,7 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
       tp->angle = lsys_optfinite(L, &e, "angle", 0);
       tp->elasticity = lsys_optfinite(L, &e, "elasticity", 0);
       tp->increment = lsys_optfinite(L, &e, "increment", 0);
+      tp->intensity = lsys_optfinite(L, &e, "intensity", 1);
       lua_getfield(L, -1, "torque");
       tp->torque = lua_toboolean(L, -1);
       lua_pop(L, 2);
@@ -181,6 +182,20 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
     lua_pop(L, 1);
   }
   o->ntrop = n;
+  /* old_tropism = {vector =, elasticity =, increment =} (lsys.view checked it) */
+  if (lua_getfield(L, t, "old_tropism") == LUA_TTABLE) {
+    lsys_opts e = viewopts(L, -1);
+    double len;
+    readvector(L, e.t, "vector", o->otrop, "view old_tropism");
+    len = sqrt(o->otrop[0] * o->otrop[0] + o->otrop[1] * o->otrop[1] +
+               o->otrop[2] * o->otrop[2]);
+    if (!(len > 0) || !isfinite(len))
+      luaL_error(L, "view old_tropism: the vector must be finite and not 0");
+    o->otrop[0] /= len; o->otrop[1] /= len; o->otrop[2] /= len;
+    o->oelast = lsys_optfinite(L, &e, "elasticity", 0);
+    o->oincr = lsys_optfinite(L, &e, "increment", 0);
+  }
+  lua_pop(L, 1);
 }
 
 /* Reads the turtle options from the table at 't'. Leaves three values on

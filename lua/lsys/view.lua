@@ -12,7 +12,12 @@
 --                    (cpfg guide §6; `angle` is the diatropism angle); an entry with
 --                    `torque = true` is a twist response (§6.1)
 --   torques          list of { vector = {x,y,z}, elasticity = 0, increment = 0 }, numbered
---                    after the tropisms by @Ts @Ti @Td
+--                    after the tropisms by @Ts @Ti @Td; a tropism or torque may have an
+--                    `intensity` (1) that multiplies its elasticity
+--   old_tropism      { vector = {0,1,0}, elasticity = 0, increment = 0 }: cpfg's old-style
+--                    tropism, which bends H after each move with the elasticity `_(e)`
+--                    sets (`_` adds the increment); it acts whenever that elasticity is not
+--                    0, with the default vector when the view has none
 --   palette          colour index -> colour: a list (index 1 first, [0] optional) whose
 --                    entries are {r,g,b} (0..1), "#rrggbb", or materials
 --                    { diffuse = {r,g,b}, ambient =, specular =, emission =, shininess = };
@@ -115,6 +120,7 @@ local KINDS = {
   angle = "number", step = "number", line_width = "number", width_increment = "number",
   color = "integer", color_increment = "integer", line_style = "style",
   contour_sides = "integer", tropisms = "list", torques = "list", palette = "palette",
+  old_tropism = "oldtropism",
   background = "color", viewpoint = "vec", target = "vec", up = "vec", direction = "vec",
   projection = "projection", fov = "number", twist = "number", light = "vec",
   supersample = "integer", dir = "string", contours = "contours", surfaces = "surfaces",
@@ -199,10 +205,36 @@ local function tropism (t, where, name, torque)
     if x ~= nil and not isnum(x) then fail(where, "'%s.%s' must be a number", name, k) end
     out[k] = x or 0
   end
+  if t.intensity ~= nil then
+    if not isnum(t.intensity) then fail(where, "'%s.intensity' must be a number", name) end
+    out.intensity = t.intensity
+  end
   for k in pairs(t) do
     if k ~= "vector" and k ~= "angle" and k ~= "elasticity" and k ~= "increment"
-       and k ~= "torque" then
+       and k ~= "torque" and k ~= "intensity" then
       fail(where, "'%s': unknown field '%s'", name, tostring(k))
+    end
+  end
+  return out
+end
+
+-- cpfg's old-style tropism: { vector = {0, 1, 0}, elasticity = 0, increment = 0 }.
+local function oldtropism (t, where, name)
+  if type(t) ~= "table" then fail(where, "'%s' must be a table", name) end
+  local out = { vector = t.vector ~= nil and vec(t.vector, where, name .. ".vector")
+                         or { 0, 1, 0 } }
+  if out.vector[1] == 0 and out.vector[2] == 0 and out.vector[3] == 0 then
+    fail(where, "'%s.vector' is {0, 0, 0}: a tropism needs a direction", name)
+  end
+  for _, k in ipairs { "elasticity", "increment" } do
+    local x = t[k]
+    if x ~= nil and not isnum(x) then fail(where, "'%s.%s' must be a number", name, k) end
+    out[k] = x or 0
+  end
+  for k in pairs(t) do
+    if k ~= "vector" and k ~= "elasticity" and k ~= "increment" then
+      fail(where, "'%s': unknown field '%s' (known: vector, elasticity, increment)", name,
+           tostring(k))
     end
   end
   return out
@@ -561,6 +593,8 @@ function M.normalize (v, where)
         l[i] = tropism(t, where, format("%s[%d]", name, i), k == "torques")
       end
       out[k] = l
+    elseif kind == "oldtropism" then
+      out[k] = oldtropism(x, where, name)
     elseif kind == "contours" then
       out[k] = contours(ctx, x, name)
     elseif kind == "surfaces" then
@@ -604,7 +638,8 @@ end
 -- The view options the turtle reads (core.interpret and friends), under the schema's own
 -- names: this schema owns names, defaults and checks; the C side only reads them.
 local TURTLE = { "angle", "step", "line_width", "width_increment", "color", "color_increment",
-                 "line_style", "contour_sides", "tropisms", "torques", "palette", "contours",
+                 "line_style", "contour_sides", "tropisms", "torques", "old_tropism",
+                 "palette", "contours",
                  "surfaces", "textures", "minimize_twist" }
 M.TURTLE = {}                   -- by name: the options that change how the turtle draws
 for _, k in ipairs(TURTLE) do M.TURTLE[k] = true end

@@ -470,21 +470,29 @@ COMMANDS["texture"] = function (P, rest, cmd)
   P.v.textures = l
 end
 
+-- cpfg's I: scales the unit vector by I / |T| clamped to [-1, 1], then by |T| (its
+-- movements.c): the factor on the elasticity of lsys's unit vector.
+local function intensity (f)
+  if f.I == nil then return nil end
+  local len = math.sqrt(f.T[1] ^ 2 + f.T[2] ^ 2 + f.T[3] ^ 2)
+  return len * math.max(-1, math.min(1, f.I / len))
+end
+
 COMMANDS["tropism"] = function (P, rest, cmd)
   local f = P:fields(rest, cmd, { T = 3, A = 1, E = 1, S = 1, I = 1 }, "T, A, E, S, I")
   if f.T == nil then P:err("'%s' needs the vector T: x y z", cmd) end
-  if f.I then P:warn("'%s': the intensity I: is not supported; ignored", cmd) end
+  if f.I == 0 then return P:warn("'%s': intensity 0; cpfg leaves this tropism out", cmd) end
   P:addtropism { vector = P:nonzero(f.T, cmd), angle = f.A or 0, elasticity = f.E or 0,
-                 increment = f.S or 0 }
+                 increment = f.S or 0, intensity = intensity(f) }
 end
 
 COMMANDS["torque"] = function (P, rest, cmd)
   local f = P:fields(rest, cmd, { T = 3, A = 1, E = 1, S = 1, I = 1 }, "T, E, S")
   if f.T == nil then P:err("'%s' needs the vector T: x y z", cmd) end
   if f.A then P:warn("'%s': a torque has no angle; A: ignored", cmd) end
-  if f.I then P:warn("'%s': the intensity I: is not supported; ignored", cmd) end
+  if f.I == 0 then return P:warn("'%s': intensity 0; cpfg leaves this torque out", cmd) end
   P:addtropism { vector = P:nonzero(f.T, cmd), elasticity = f.E or 0, increment = f.S or 0,
-                 torque = true }
+                 torque = true, intensity = intensity(f) }
 end
 
 COMMANDS["tropism direction"] = function (P, rest, cmd)
@@ -583,15 +591,11 @@ function Parser:finish ()
     self.line = self.cline
     self:err("the comment that starts here is not closed")
   end
+  -- the old-style tropism, which `_` controls (cpfg's default direction is +y)
   local lg = self.legacy
-  if lg.vector then
-    self.line = lg.line or self.line
-    self:addtropism { vector = lg.vector, elasticity = lg.elasticity or 0,
-                      increment = lg.increment or 0 }
-  elseif lg.line then
-    self.line = lg.line
-    self:warn("'initial elasticity' and 'elasticity increment' without 'tropism direction' "
-              .. "are ignored")
+  if lg.vector or lg.line then
+    self.v.old_tropism = { vector = lg.vector or { 0, 1, 0 }, elasticity = lg.elasticity or 0,
+                           increment = lg.increment or 0 }
   end
   local v = self.v
   local ntex = v.textures and #v.textures or 0
