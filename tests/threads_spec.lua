@@ -229,6 +229,12 @@ describe("interpretation on threads", function()
     assert.is_true(ntri > 100000)
   end)
 
+  it("give the same cylinders when @!(n) changes their sides along the string", function()
+    same_scene({ axiom = "F", productions = "F --> F[+@!(3)F@O(0.1)]F[-@!(24)F]@!(5)F",
+                 view = { angle = 25.7, line_style = "cylinder", contour_sides = 4,
+                          line_width = 0.2 } }, 7)
+  end)
+
   it("give the same ribbons, with a parametric string", function()
     same_scene({ axiom = "A(1)", productions = "A(s) --> F(s)[+A(s/1.456)][-A(s/1.456)]",
                  view = { angle = 30, line_style = "polygon" } }, 16)

@@ -325,6 +325,22 @@ describe("geometry", function ()
     assert.near({ 0.5, 3, 0.5 }, hi, 1e-6)
   end)
 
+  it("takes the sides of cylinders from @!(n), one symbol as in cpfg", function ()
+    local m = model { view = { line_style = "cylinder", contour_sides = 6 } }
+    assert.equal(2 * 5 + 2 * 5, m:interpret("@!(5) F").ntriangles)
+    assert.equal(2 * 8 + 2 * 8, m:interpret("@! F").ntriangles)          -- cpfg's default 8
+    assert.equal(2 * 3 + 2 * 3, m:interpret("@!(2) F").ntriangles)       -- at least 3
+    -- ] restores the sides; a ring of other sides is not shared: both ends capped
+    assert.equal(2 * (2 * 12 + 2 * 12) + 2 * 6 + 2 * 6,
+                 m:interpret("[ @!(12) F ] [ @!(12) F ] F").ntriangles)
+    assert.equal((2 * 4 + 2 * 4) + (2 * 9 + 2 * 9), m:interpret("@!(4) F @!(9) F").ntriangles)
+    -- generalized cylinders too: one strip of 7 sides, two caps of 5 triangles
+    assert.equal(2 * 7 + 2 * 5, m:interpret("@!(7) @Gs f @Ge(1)").ntriangles)
+    assert.equal(1, #m:lstring("@!(5)"))                                  -- not @ and !(5)
+    assert.error_contains(function () m:interpret("@!(2000) F") end, "2000 sides",
+                          "at most 1024")
+  end)
+
   it("fills { . } polygons, concave ones too", function ()
     local m = model { view = { angle = 90 } }
     -- an L-shaped hexagon of area 3: 4 triangles

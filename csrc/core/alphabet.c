@@ -116,7 +116,7 @@ nomem:
 static const char *const atnames[] = {
   "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@PS", "@PC", "@PD", "@Ts", "@Ti",
   "@Td", "@Tp", "@Tf", "@Tx", "@Di", "@Dd", "@D", "@o", "@O", "@c", "@v",
-  "@R", "@M", "@L", "@S", "@#", "@H", "@X", NULL
+  "@R", "@M", "@L", "@S", "@#", "@!", "@H", "@X", NULL
 };
 
 static int isletter (int c) {

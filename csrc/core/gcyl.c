@@ -201,7 +201,8 @@ int lsys_gcyl_segment (lsys_mesh *m, const lsys_gcpoint *a, lsys_gcpoint *b,
   g.len = vlen(d);
   vlin(g.T0, a->H, sh->tan0 * g.len, a->H, 0);
   vlin(g.T1, b->H, sh->tan1 * g.len, b->H, 0);
-  share = a->ring != NOREF && a->color == b->color && a->texture == b->texture &&
+  share = a->ring != NOREF && a->sides == p && a->color == b->color &&
+          a->texture == b->texture &&
           sh->tan0 > 0 && g.len > 0;
   capa = sh->capstart && ca->closed && ca->cap != NULL && a->r > 0;
   capb = sh->capend && cb->closed && cb->cap != NULL && b->r > 0;
@@ -255,6 +256,7 @@ int lsys_gcyl_segment (lsys_mesh *m, const lsys_gcpoint *a, lsys_gcpoint *b,
         if (capb) cap(m, &out, cb, p, col, 1);
         vcopy(b->V, out.V);
         b->ring = vdot(out.T, b->H) > 0.9999 ? r1 : NOREF;
+        b->sides = p;
       }
     }
   }

@@ -23,6 +23,7 @@ typedef struct lsys_gcpoint {
   int contour, color, texture;
   int first;              /* 1: the point of @Gs (the start gets a cap) */
   uint32_t ring;          /* first vertex of its ring in the mesh, or UINT32_MAX */
+  int sides;              /* the ring's vertices less one (@!(n) may change them) */
 } lsys_gcpoint;
 
 /* A sampled contour (contour.h) as the builder reads it. */

@@ -38,7 +38,7 @@ static const struct { const char *name; uint8_t op; } symbols[] = {
   {"@D", OP_SCALE}, {"@Di", OP_SCALEMUL}, {"@Dd", OP_SCALEDIV},
   {"@L", OP_LABEL}, {"@S", OP_SYSTEM}, {"Z", OP_STIFF},
   {"@Ts", OP_TSET}, {"@Ti", OP_TINC}, {"@Td", OP_TDEC}, {"@Tp", OP_TPREVENT},
-  {"@Tf", OP_TFORCE}, {"_", OP_OLDELAST},
+  {"@Tf", OP_TFORCE}, {"_", OP_OLDELAST}, {"@!", OP_SIDES},
   {"?", OP_SUB}, {"$", OP_SUBEND},
   {"@Gs", OP_GSTART}, {"@Gc", OP_GPOINT}, {"@Ge", OP_GEND}, {"@Gt", OP_GTAN},
   {"@Gr", OP_GRAD}, {"@PS", OP_PSTARTP}, {"@PC", OP_PCTRL}, {"@PD", OP_PDRAW},
@@ -306,10 +306,10 @@ static void oldbend (run *R) {
 
 /* --- segments ------------------------------------------------------------ */
 
-/* The cos/sin table of the run's sides, for cylinders, discs and spheres. */
+/* The cos/sin table of the state's sides, for cylinders, discs and spheres. */
 static int setring (run *R) {
   lsys_turtle *t = R->t;
-  int n = R->o->sides;
+  int n = R->st.sides;
   if (t->nring == n && t->ring) return LSYS_OK;
   if (lsys_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2, sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
@@ -397,11 +397,12 @@ static int push (run *R) {
   return LSYS_OK;
 }
 
-static void pop (run *R) {
-  if (R->depth == 0) return;                 /* unbalanced ']': ignored, as cpfg does */
+static int pop (run *R) {
+  if (R->depth == 0) return LSYS_OK;         /* unbalanced ']': ignored, as cpfg does */
   R->depth--;
   memcpy(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
          R->stsize);
+  return R->t->nring == R->st.sides ? LSYS_OK : setring(R);  /* @!(n) in the branch */
 }
 
 /* --- the commands ----------------------------------------------------------- */
@@ -651,6 +652,19 @@ static int elasticity (run *R, int op, const double *p, uint32_t np) {
   return LSYS_OK;
 }
 
+/* @!(n): the sides of cylinders, discs and spheres from here on (cpfg's blackbox.c: 8
+** without a parameter, at least 3); lsys's limit, as the view's, is 1024. */
+static int sides (run *R, const double *p, uint32_t np) {
+  double x;
+  int s, n;
+  if ((s = arg(R, p, np, 0, 8, &x)) != LSYS_OK) return s;
+  if (x > 1024) return lsys_turtle_failop(R, "%g sides: at most 1024", x);
+  n = x < 3 ? 3 : (int)x;
+  R->st.sides = n;
+  if (n > R->t->maxsides) R->t->maxsides = n;
+  return setring(R);
+}
+
 /* _(e): sets the elasticity of the old-style tropism; _ adds the view's increment. */
 static int oldelast (run *R, const double *p, uint32_t np) {
   double x;
@@ -702,7 +716,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_SETFRAME: return setframe(R, p, np);
     case OP_MOVETO: return moveto(R, p, np);
     case OP_PUSH: return push(R);
-    case OP_POP: pop(R); return LSYS_OK;
+    case OP_POP: return pop(R);
     case OP_WIDER: case OP_THINNER: return width(R, op, p, np);
     case OP_COLINC: case OP_COLDEC: return colour(R, op, p, np);
     case OP_TEXTURE: return texture(R, p, np);
@@ -725,6 +739,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_TPREVENT: untwist(&R->st); return LSYS_OK;
     case OP_TFORCE: return forcetwist(R);
     case OP_OLDELAST: return oldelast(R, p, np);
+    case OP_SIDES: return sides(R, p, np);
     case OP_SUB: return substart(R, p, np);
     case OP_SUBEND: return subend(R);
     default: return LSYS_OK;
@@ -815,6 +830,7 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   R->ab = ab;
   for (k = 0; k < o->ntrop; k++) st->elast[k] = o->trop[k].elasticity;
   st->oelast = o->oelast;
+  st->sides = o->sides;
   if (setring(R) != LSYS_OK) return t->err.code;
   return LSYS_OK;
 }
@@ -907,7 +923,8 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   t->mode = LSYS_TURTLE_DRAW;
   t->mesh = &t->scene->mesh;
   t->npolys = 0; t->nsub = 0;
-  status = loop(t, R, s, a, b, poff);
+  status = t->nring == R->st.sides ? LSYS_OK : setring(R);   /* started after an @!(n) */
+  if (status == LSYS_OK) status = loop(t, R, s, a, b, poff);
   if (status == LSYS_OK) status = flush(R);
   t->state = R->st;
   return status;

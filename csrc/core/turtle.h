@@ -75,6 +75,7 @@ typedef struct lsys_tstate {
   double width, scale;
   double stiff[3];
   int color, color2, texture, contour, hasstiff;
+  int sides;                    /* of cylinders, discs and spheres: the view's, or @!(n) */
   uint32_t last;                /* last segment record, or LSYS_NOREC */
   uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
   uint32_t gc;                  /* active generalized-cylinder control point (§3.4), or
@@ -137,7 +138,8 @@ typedef struct lsys_turtle {
   lsys_lstring hbuf;
   struct lsys_polywork *pw;
   uint8_t *op; size_t nop;      /* what each symbol id does */
-  const double *ring; int nring;/* cos/sin table for 'sides' */
+  const double *ring; int nring;/* cos/sin table for the state's 'sides' */
+  int maxsides;                 /* the most sides an @!(n) of the run asked for (0: none) */
   double *ringbuf; size_t ringcap;
   void *runbuf;                 /* the state of a run (kept: a rule error may longjmp out) */
   lsys_gcpoint *gcp; size_t ngcp, gcpcap;     /* generalized-cylinder control points */

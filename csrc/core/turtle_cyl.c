@@ -12,7 +12,7 @@
 /* A ring of sides + 1 vertices (the last repeats the first, for uv) around
 ** 'c' in the plane of L and U; normals tilted by 'slope' along H (tapers). */
 static uint32_t ring (run *R, const double *c, double r, double slope, double v, int col) {
-  lsys_tubeframe f = { R->st.H, R->st.L, R->st.U, R->t->ring, R->o->sides, (unsigned)col };
+  lsys_tubeframe f = { R->st.H, R->st.L, R->st.U, R->t->ring, R->st.sides, (unsigned)col };
   return lsys_mesh_ring(R->t->mesh, &f, c, r, slope, v);
 }
 
@@ -30,6 +30,7 @@ static int cylend (run *R, const double *c, double r, uint32_t rng, double v, in
   e->v = (float)v;
   e->color = col;
   e->continued = 0;
+  e->sides = R->st.sides;
   return LSYS_OK;
 }
 
@@ -46,7 +47,7 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
                           double len, int col) {
   lsys_turtle *t = R->t;
   lsys_mesh *m = t->mesh;
-  int n = R->o->sides;
+  int n = R->st.sides;
   double r0 = w0 / 2, r1 = w1 / 2, slope = len > 0 ? (r0 - r1) / len : 0, v0 = 0;
   uint32_t base = LSYS_NOREC, top;
   lsys_cylend *e = R->st.tip != LSYS_NOREC ? &t->ends[R->st.tip] : NULL;
@@ -56,7 +57,7 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
     double d[3];
     vlin(d, e->c, 1, p0, -1);
     if (vdot(d, d) <= 1e-18 * (1 + vdot(p0, p0)) && fabs(e->r - r0) <= 1e-9 * (1 + r0) &&
-        vdot(e->H, R->st.H) > 0.866 && e->color == col) {
+        vdot(e->H, R->st.H) > 0.866 && e->color == col && e->sides == n) {
       base = e->ring;                    /* share the ring: no crack, no cap */
       e->continued = 1;
       v0 = e->v;
@@ -80,10 +81,10 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
 int lsys_turtle_capends (run *R) {
   lsys_turtle *t = R->t;
   lsys_mesh *m = t->mesh;
-  int n = R->o->sides;
   size_t e;
   for (e = 0; e < t->nends; e++) {
     lsys_cylend *ce = &t->ends[e];
+    int n = ce->sides;
     if (ce->continued) continue;
     if (lsys_mesh_reserve(m, (size_t)n + 1, (size_t)n) != LSYS_OK) return lsys_turtle_nomem(R);
     lsys_mesh_cap(m, ce->c, ce->H, ce->ring, n, (unsigned)ce->color, 1);

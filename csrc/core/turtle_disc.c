@@ -10,7 +10,7 @@ int lsys_turtle_disc (run *R, const double *c, const double *a, const double *b,
                       const double *nrm, double d, int col) {
   lsys_mesh *m = R->t->mesh;
   const double *cs = R->t->ring;
-  int n = R->o->sides, k;
+  int n = R->st.sides, k;
   uint32_t first;
   double ab[3];
   if (lsys_mesh_reserve(m, (size_t)n + 1, (size_t)n) != LSYS_OK) return lsys_turtle_nomem(R);

@@ -16,7 +16,7 @@
 static const lsys_csample *csample (run *R, int id) {
   lsys_turtle *t = R->t;
   lsys_csample *c;
-  int p = R->o->sides, k;
+  int p = R->st.sides, k;
   size_t need = 3 * ((size_t)p + 1);
   if ((size_t)id >= t->ncs) {
     size_t old = t->ncs, cap = t->ncs;
@@ -25,7 +25,7 @@ static const lsys_csample *csample (run *R, int id) {
     t->ncs = cap;
   }
   c = &t->cs[id];
-  if (c->valid) return c;
+  if (c->valid && c->sides == p) return c;
   if (c->vcap < need) {
     double *v = (double *)LSYS_REALLOC(c->v, need * sizeof(double));
     double *n = v ? (double *)LSYS_REALLOC(c->n, need * sizeof(double)) : NULL;
@@ -69,6 +69,7 @@ static const lsys_csample *csample (run *R, int id) {
     c->ncap = (int)nt;
   }
   c->valid = 1;
+  c->sides = p;
   return c;
 }
 
@@ -156,7 +157,7 @@ int lsys_turtle_gcmodule (run *R, int op, const double *p, uint32_t np) {
               ? (double)R->o->tex[b->texture - 1]->w / R->o->tex[b->texture - 1]->h : 1;
   sh.capstart = a->first;
   sh.capend = op == OP_GEND;
-  if (lsys_gcyl_segment(t->mesh, a, b, &sh, &ca, &cb, R->o->sides) != LSYS_OK)
+  if (lsys_gcyl_segment(t->mesh, a, b, &sh, &ca, &cb, R->st.sides) != LSYS_OK)
     return lsys_turtle_nomem(R);
   if ((s = newrec(R, LSYS_REC_GCYL, a->pos, b->pos, 2 * a->r, 2 * b->r)) != LSYS_OK) return s;
   if (!R->o->norecords) {

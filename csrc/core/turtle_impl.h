@@ -38,7 +38,7 @@ enum {
   OP_QP, OP_QH, OP_QU, OP_QL,
   OP_SCALE, OP_SCALEMUL, OP_SCALEDIV,
   OP_LABEL, OP_SYSTEM, OP_STIFF,
-  OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE, OP_OLDELAST,
+  OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE, OP_OLDELAST, OP_SIDES,
   OP_SUB, OP_SUBEND,
   OP_GSTART, OP_GPOINT, OP_GEND, OP_GTAN, OP_GRAD,
   OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE, OP_JOINT
@@ -57,6 +57,7 @@ struct lsys_cylend {
   double v;               /* the ring's texture coordinate v (as its vertices keep it) */
   uint32_t ring;          /* first vertex of the ring (sides + 1 vertices) */
   int color, continued;
+  int sides;              /* the state's sides when it was drawn */
 };
 
 /* A contour sampled for this run's number of sides (cpfg guide §3.2.3). */
@@ -65,6 +66,7 @@ struct lsys_csample {
   uint32_t *cap;          /* end-cap triangles, anticlockwise in the contour's xy */
   size_t vcap, capcap;
   int ncap, left, closed, valid;
+  int sides;              /* the sides it was sampled with */
 };
 
 /* A patch defined by @PS / @PC (§4.3). */

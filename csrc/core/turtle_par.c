@@ -83,6 +83,7 @@ typedef struct par {
   pthread_mutex_t mx;          /* phase 0: the pieces ready to run, and the meter */
   pthread_cond_t cv;
   int *ready, nready, finished;
+  int maxsides;                /* the most sides of the run's cylinders, discs, spheres */
 } par;
 
 /* ---------------------------------------------------------------------- */
@@ -413,8 +414,8 @@ static void phase (par *P, worker *w, int nt, int ph) {
 ** room for at once (a cylinder's, a sphere's): the scene has that much room
 ** past its pieces' places, so that a piece drawing to its places asks for
 ** room that is there (it uses exactly what it counted). */
-static size_t slack (const lsys_turtle *t, int what) {
-  size_t n = (size_t)t->o->sides, rows = n / 2 < 2 ? 2 : n / 2;
+static size_t slack (const par *P, int what) {
+  size_t n = (size_t)P->maxsides, rows = n / 2 < 2 ? 2 : n / 2;
   return what == 0 ? 3 * (n + 2) + (rows + 1) * (n + 1) : 4 * n + 2 * rows * n;
 }
 
@@ -436,7 +437,7 @@ static int places (par *P) {
   if (nv > UINT32_MAX || ns >= LSYS_NOREC)
     return lsys_seterror(&t->err, LSYS_ELIMIT, (size_t)-1, "more than %u vertices",
                          (unsigned)UINT32_MAX);
-  if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(t, 0), ntri + slack(t, 1))
+  if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(P, 0), ntri + slack(P, 1))
                                != LSYS_OK)
     goto nomem;
   if (ns > 0 && lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
@@ -506,6 +507,9 @@ static int runall (par *P, int nt) {
   phase(P, w, nt, 0);
   for (k = 0; k < P->np && st == LSYS_OK; k++)
     if (P->p[k].status != LSYS_OK) { t->err = P->p[k].err; st = P->p[k].status; }
+  P->maxsides = t->o->sides;                   /* and what @!(n) asked for */
+  for (k = 0; k < nt; k++)
+    if (w[k].wt.maxsides > P->maxsides) P->maxsides = w[k].wt.maxsides;
   if (st == LSYS_OK && (st = places(P)) == LSYS_OK) {
     phase(P, w, nt, 1);
     for (k = 0; k < P->np && st == LSYS_OK; k++)

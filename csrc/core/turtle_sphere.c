@@ -8,7 +8,7 @@
 int lsys_turtle_sphere (run *R, const double *c, double d, int col) {
   lsys_mesh *m = R->t->mesh;
   const double *cs = R->t->ring;
-  int n = R->o->sides, rows = n / 2 < 2 ? 2 : n / 2, i, k;
+  int n = R->st.sides, rows = n / 2 < 2 ? 2 : n / 2, i, k;
   uint32_t first;
   if (lsys_mesh_reserve(m, (size_t)(rows + 1) * (n + 1), 2 * (size_t)rows * n) != LSYS_OK)
     return lsys_turtle_nomem(R);
