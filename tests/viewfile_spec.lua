@@ -231,6 +231,14 @@ describe("view files", function ()
     end
   end)
 
+  it("read twist of cylinders as cpfg draws it: on turns contours with the rolls", function ()
+    -- cpfg's gen_cyl_twist: "on" spreads the turtle's roll at each @Gc along the strips
+    -- (lsys's minimize_twist = false); "off", the default, carries the contour untwisted
+    assert.is_false(parse("twist of cylinders: on\n").minimize_twist)
+    assert.is_true(parse("twist of cylinders: off\n").minimize_twist)
+    assert.is_nil(parse("angle increment: 10\n").minimize_twist)
+  end)
+
   it("read cpfg's abbreviations and optional texture, tropism and torque fields", function ()
     local v, w = parse("texture: F: a.png H: linear L: mipmap E: b R: 2\n" ..
                        "texture: F: b.png E: decal\n" ..

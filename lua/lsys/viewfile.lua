@@ -430,8 +430,13 @@ COMMANDS["polygonization level"] = function (P, rest, cmd)
   P.v.contour_sides = math.max(3, 1 << (n + 1))
 end
 
+-- cpfg's "on" (its gen_cyl_twist) turns each generalized cylinder's contour with the
+-- turtle's roll at the control points, spread evenly along the strips; "off", its
+-- default, carries the contour along without twist, ignoring the rolls: lsys's
+-- minimize_twist = false and true (the guide's wording suggests the reverse; what cpfg
+-- draws decides: herb-lily's leaves, `/(phi) @Gc(1) \(phi)`, twist with "on").
 COMMANDS["twist of cylinders"] = function (P, rest, cmd)
-  P.v.minimize_twist = P:onoff(rest, cmd)
+  P.v.minimize_twist = not P:onoff(rest, cmd)
 end
 
 COMMANDS["texture"] = function (P, rest, cmd)

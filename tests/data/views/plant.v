@@ -16,7 +16,7 @@ background color: 0.1,0.2,0.3
 contour: 1 leaf.con
 contour: 2 sub/stem.con    // a path relative to this file
 contour sides: 12
-twist of cylinders: off
+twist of cylinders: on
 texture: F: bark.png H: l L: n E: d
 texture: F: leaf.png H:n L:l E:m S:   /* mapped onto whole surfaces */
 tropism: T: 0,-1,0 A: 30 E: 0.2 S: 0.05
