@@ -231,6 +231,19 @@ describe("view files", function ()
     end
   end)
 
+  it("fit a parallel view to the model as cpfg does, keeping only its direction", function ()
+    -- cpfg fits a parallel window to the model's box: the points give only the direction
+    local v = parse("viewpoint: 0,0,10\nview reference point: 5,2,0\n")
+    assert.same({ 5, 2, -10 }, v.direction)
+    assert.is_nil(v.viewpoint) assert.is_nil(v.target)
+    v = parse("projection: parallel\nview reference point: 1,2,3\n")   -- viewpoint 0,0,1
+    assert.same({ 1, 2, 2 }, v.direction)
+    -- a perspective view keeps both points, in any order of the commands
+    v = parse("viewpoint: 0,0,10\nview reference point: 5,2,0\nprojection: perspective\n")
+    assert.same({ 0, 0, 10 }, v.viewpoint) assert.same({ 5, 2, 0 }, v.target)
+    assert.is_nil(v.direction)
+  end)
+
   it("read twist of cylinders as cpfg draws it: on turns contours with the rolls", function ()
     -- cpfg's gen_cyl_twist: "on" spreads the turtle's roll at each @Gc along the strips
     -- (lsys's minimize_twist = false); "off", the default, carries the contour untwisted

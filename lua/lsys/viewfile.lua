@@ -596,6 +596,17 @@ function Parser:finish ()
     self.line = self.cline
     self:err("the comment that starts here is not closed")
   end
+  -- A parallel view (cpfg's default) is fitted to the model's box, centred on it: cpfg
+  -- takes only the direction from the viewpoint to the view reference point (defaults
+  -- (0, 0, 1) and the origin); a perspective view keeps both points.
+  local v0 = self.v
+  if (v0.projection or "parallel") == "parallel" and (v0.viewpoint or v0.target) then
+    local e, t = v0.viewpoint or { 0, 0, 1 }, v0.target or { 0, 0, 0 }
+    local d = { t[1] - e[1], t[2] - e[2], t[3] - e[3] }
+    if d[1] ~= 0 or d[2] ~= 0 or d[3] ~= 0 then
+      v0.direction, v0.viewpoint, v0.target = d, nil, nil
+    end
+  end
   -- the old-style tropism, which `_` controls (cpfg's default direction is +y)
   local lg = self.legacy
   if lg.vector or lg.line then
