@@ -1,6 +1,6 @@
 -- Bicubic surfaces (cpfg guide §4.1, §4.3, Appendix A): core.surface_load, core.surface_parse,
 -- Surface:info and core.patch_eval.
-require "tests.helper"
+local H = require "tests.helper"
 local core = require "lsys.core"
 
 local DIR = "tests/data/surfaces/"
@@ -200,8 +200,23 @@ describe("surfaces drawn by the turtle", function()
     assert.equal(2 * 4 * 4 * 2, scene("@PS(3) @PD(3) @PD(3,4,4)").ntriangles)
   end)
 
-  it("rejects undefined surfaces and bad patch modules, naming the module", function()
-    assert.error_contains(function() scene("F ~Q") end, "module 2 '~Q'", "no such surface")
+  it("draws nothing for an undefined surface, as cpfg, and warns naming the first", function()
+    local sc = scene("F ~Q(2) F ~Q ~R")
+    assert.equal(0, sc.ntriangles)
+    assert.equal(2, sc.nlines)                          -- the turtle did not move: 0..1..2
+    local p = sc:turtle(5)
+    assert.near({ 0, 2, 0 }, p, 1e-12)
+    local dir = H.tmpdir()
+    H.write(dir .. "/w.lua", 'local lsys = require "lsys"\n'
+      .. 'lsys.lsystem { axiom = "F ~Q(2) F ~R" }:interpret()\n')
+    local out, code = H.sh(H.BIN .. " " .. dir .. "/w.lua")
+    H.rmdir(dir)
+    assert.equal(0, code, out)
+    assert.equal("Lua warning: lsys: module 2 '~Q': no such surface in the view "
+                 .. "(view.surfaces); nothing drawn there, as in cpfg\n", out)
+  end)
+
+  it("rejects bad patch modules, naming the module", function()
     assert.error_contains(function() scene("@PD(1,4,4)") end, "module 1 '@PD'",
                           "patch 1 was not started with @PS(1)")
     assert.error_contains(function() scene("@PS(0) @PC(0,4,0)") end, "'@PC'",

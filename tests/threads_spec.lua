@@ -235,6 +235,19 @@ describe("interpretation on threads", function()
                           line_width = 0.2 } }, 7)
   end)
 
+  it("warn about the first undefined surface on any number of threads", function()
+    H.write(dir .. "/w.lua", 'local lsys = require "lsys"\n'
+      .. 'local m = lsys.lsystem { axiom = "F", threads = tonumber(arg[1]) }\n'
+      .. 'local s = m:lstring(("F[+F]"):rep(20000) .. "~Q" .. ("F[-F]~R"):rep(20000))\n'
+      .. 'm:interpret(s)\n')
+    for _, t in ipairs { 1, 2, 3 } do
+      local out, code = H.sh(H.BIN .. " " .. dir .. "/w.lua " .. t)
+      assert.equal(0, code, out)
+      assert.equal("Lua warning: lsys: module 100001 '~Q': no such surface in the view "
+                   .. "(view.surfaces); nothing drawn there, as in cpfg\n", out)
+    end
+  end)
+
   it("give the same ribbons, with a parametric string", function()
     same_scene({ axiom = "A(1)", productions = "A(s) --> F(s)[+A(s/1.456)][-A(s/1.456)]",
                  view = { angle = 30, line_style = "polygon" } }, 16)

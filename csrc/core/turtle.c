@@ -168,21 +168,6 @@ int lsys_turtle_failop (run *R, const char *fmt, ...) {
   return s;
 }
 
-/* "module N 'symbol': message", naming the module's own symbol (a ~X has
-** no command name). */
-static int failsym (run *R, const char *fmt, ...)
-#if defined(__GNUC__)
-  __attribute__((format(printf, 2, 3)))
-#endif
-  ;
-static int failsym (run *R, const char *fmt, ...) {
-  va_list ap;
-  int s;
-  va_start(ap, fmt);
-  s = vfail(R, LSYS_EARG, lsys_alphabet_name(R->ab, R->sym), fmt, ap);
-  va_end(ap);
-  return s;
-}
 
 int lsys_turtle_nomem (run *R) {
   lsys_meter *mt = R->t->meter;
@@ -652,6 +637,18 @@ static int elasticity (run *R, int op, const double *p, uint32_t np) {
   return LSYS_OK;
 }
 
+/* ~X without a surface X in the view: nothing is drawn and the turtle stays, as cpfg
+** does (its FindSurfaceIndex finds none and the surface and its end point are skipped);
+** the run warns about the first such module. */
+static int nosurface (run *R) {
+  lsys_turtle *t = R->t;
+  if (t->warn.code == 0 || R->mod < t->warn.pos)
+    lsys_seterror(&t->warn, LSYS_EARG, R->mod, "module %zu '%s': no such surface in the view "
+                  "(view.surfaces); nothing drawn there, as in cpfg", R->mod + 1,
+                  lsys_alphabet_name(R->ab, R->sym));
+  return LSYS_OK;
+}
+
 /* @!(n): the sides of cylinders, discs and spheres from here on (cpfg's blackbox.c: 8
 ** without a parameter, at least 3); lsys's limit, as the view's, is 1024. */
 static int sides (run *R, const double *p, uint32_t np) {
@@ -725,7 +722,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_GTAN: case OP_GRAD: return lsys_turtle_gcshape(R, op, p, np);
     case OP_PSTARTP: case OP_PCTRL: case OP_PDRAW: return lsys_turtle_patch(R, op, p, np);
     case OP_SURFACE: return lsys_turtle_surface(R, R->sym, p, np);
-    case OP_NOSURFACE: return failsym(R, "no such surface in the view (view.surfaces)");
+    case OP_NOSURFACE: return nosurface(R);
     case OP_DISCZ: case OP_DISC: case OP_SPHERE: return roundshape(R, op, p, np);
     case OP_PSTART: return lsys_turtle_polystart(R);
     case OP_PEND: return lsys_turtle_polyend(R);
@@ -761,7 +758,7 @@ static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
     uint32_t id = lsys_alphabet_find(ab, symbols[k].name, strlen(symbols[k].name));
     if (id != 0 && id < ab->n) t->op[id] = symbols[k].op;
   }
-  /* ~X: a view surface, or an error when the view has none called X */
+  /* ~X: a view surface, or nothing (and a warning) when the view has none called X */
   for (id = 1; id < ab->n; id++)
     if (ab->names[id][0] == '~' && ab->names[id][1] != '\0') t->op[id] = OP_NOSURFACE;
   if (o->nsurfaces > 0) {

@@ -508,8 +508,11 @@ static int runall (par *P, int nt) {
   for (k = 0; k < P->np && st == LSYS_OK; k++)
     if (P->p[k].status != LSYS_OK) { t->err = P->p[k].err; st = P->p[k].status; }
   P->maxsides = t->o->sides;                   /* and what @!(n) asked for */
-  for (k = 0; k < nt; k++)
+  for (k = 0; k < nt; k++) {
+    const lsys_error *e = &w[k].wt.warn;      /* the warning about the first module */
     if (w[k].wt.maxsides > P->maxsides) P->maxsides = w[k].wt.maxsides;
+    if (e->code != 0 && (t->warn.code == 0 || e->pos < t->warn.pos)) t->warn = *e;
+  }
   if (st == LSYS_OK && (st = places(P)) == LSYS_OK) {
     phase(P, w, nt, 1);
     for (k = 0; k < P->np && st == LSYS_OK; k++)

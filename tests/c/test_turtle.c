@@ -131,16 +131,18 @@ static void test_errors (void) {
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   assert(strstr(t.err.msg, "module 2 '@#': contour 65535 is not defined") != NULL);
   /* the two forms of a module's message, "module N: ..." and "module N 'symbol': ...",
-  ** with the module's index as the position; a ~X names its own symbol */
+  ** with the module's index as the position */
   parse(&s, &a, "F@Dd(0)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 1);
   assert(strcmp(t.err.msg, "module 2: @Dd: division of the scale by 0") == 0);
   parse(&s, &a, "FF@Gr(1,2,3)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 2);
   assert(strcmp(t.err.msg, "module 3 '@Gr': takes 1, 2 or 4 parameters, not 3") == 0);
-  parse(&s, &a, "F~Q");
-  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG && t.err.pos == 1);
-  assert(strcmp(t.err.msg, "module 2 '~Q': no such surface in the view (view.surfaces)") == 0);
+  /* a ~X the view has no surface for: nothing drawn, a warning naming its own symbol */
+  parse(&s, &a, "F~QF~R");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.warn.pos == 1 && sc.nrec == 2);
+  assert(strcmp(t.warn.msg, "module 2 '~Q': no such surface in the view (view.surfaces); "
+                            "nothing drawn there, as in cpfg") == 0);
   parse(&s, &a, "]]}F[[{");                  /* unbalanced: ignored, as cpfg does */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && sc.nrec == 1);
   lsys_turtle_free(&t);
