@@ -13,7 +13,7 @@ local shoot = "[ &(a + ran(12) - 6) F(50) L(0) A ]"
 local leaf = "[ ;(2) !(1) &(50) G(8) { . -(25) g(10+3*t) . +(50) g(10+3*t) . +(130) g(10+3*t) . } ]"
 
 return lsys.lsystem {
-  axiom = ";(1) !(1) F(200) /(45) A",
+  axiom = ";(1) !(1) F(200) /(300) A",
   steps = 8,
   seed = 4,
   env = {

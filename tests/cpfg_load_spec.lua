@@ -53,8 +53,28 @@ describe("lsys.cpfg.load", function ()
     assert.equal("B(6)+A(4)-C(3)", derive("context.l"))   -- cpfg
   end)
 
-  it("reseeds the generator with srand, in Start: and in a production mid-step", function ()
-    local m = lsys.cpfg.load(D .. "srand.l")
+  it("evaluates a block local that draws a random number once, at its assignment", function ()
+    -- Regression (issue 35 §8): the local's text was substituted at each use, so
+    -- {a = floor(n * ran(1)); b = n - a;} --> B(a)C(b) drew twice and a + b was not n.
+    local s = derive("randlocal.l")
+    local pairs_, seen = 0, {}
+    for a, b in s:gmatch("B%((%d+)%)C%((%d+)%)") do
+      pairs_ = pairs_ + 1
+      assert.equal(10, tonumber(a) + tonumber(b), s)
+      seen[a] = true
+    end
+    assert.equal(12, pairs_)
+    assert.truthy(next(seen, next(seen)), "a is not constant: " .. s)
+  end)
+
+  it("reseeds cpfg's generator with srand, in Start: and in a production mid-step", function ()
+    assert.equal("EB(266.4441833496094)B(682.0352172851562)", derive("srand.l", 1))  -- cpfg
+    assert.equal("EB(266.4441833496094)C(266.4441833496094)B(682.0352172851562)"        -- cpfg
+                 .. "C(682.0352172851562)", derive("srand.l", 2))
+  end)
+
+  it("reseeds lsys's generator with srand, in Start: and in a production mid-step", function ()
+    local m = lsys.cpfg.load(D .. "srand.l", nil, { random = "lsys" })
     local s1 = tostring(m:derive(1))
     local b1, b2 = s1:match("^EB%(([%d.]+)%)B%(([%d.]+)%)$")
     assert.truthy(b1 and b2 and b1 ~= b2, s1)
@@ -102,13 +122,20 @@ describe("lsys.cpfg.load", function ()
     -- cpfg with seeds 7, 8, 9: 128, 105, 115 Bs of 512; n = 2046 always (the pre-condition
     -- blocks of both weighted productions run for all 1023 X modules of the derivation)
     local m = lsys.cpfg.load(D .. "stochblocks.l")
-    local total = 0
-    for seed = 1, 5 do
+    for seed, bs in pairs { [7] = 128, [8] = 105, [9] = 115 } do   -- cpfg's, exactly
       m.seed = seed
       local s = m:derive()
+      assert.equal(bs, s:count("B"))
       assert.equal(512, s:count("B") + s:count("C"))
       assert.equal(2046, m.env.n)
       assert.equal(s:count("B"), select(2, tostring(s):gsub("B%(18%)", "")))
+    end
+    local l = lsys.cpfg.load(D .. "stochblocks.l", nil, { random = "lsys" })
+    local total = 0
+    for seed = 1, 5 do
+      l.seed = seed
+      local s = l:derive()
+      assert.equal(2046, l.env.n)
       total = total + s:count("B")
     end
     assert.is_true(math.abs(total / 5 - 128) < 20, tostring(total / 5))   -- weights 1 : 3
@@ -130,7 +157,9 @@ describe("lsys.cpfg.load", function ()
     local out, code = H.sh(H.BIN .. " " .. dir .. "/run.lua")
     H.rmdir(dir)
     assert.equal(0, code, out)
-    assert.equal("a\tb=2.5\n", out)                                      -- cpfg
+    -- cpfg; a format of 49 characters in EndEach ran into the guard of rule text's string
+    -- patterns (the loader's own pattern: vlab's 07-canalization-output)
+    assert.equal("a\tb=2.5\nTotal = 12, ray florets = 4, disc =  2.25%\n", out)
   end)
 
   it("rewrites a predecessor of several modules as cpfg does", function ()
@@ -167,8 +196,8 @@ describe("lsys.cpfg.load", function ()
 end)
 
 describe("lsys.cpfg.load errors", function ()
-  local function err (file)
-    local ok, msg = pcall(lsys.cpfg.load, D .. file)
+  local function err (file, opts)
+    local ok, msg = pcall(lsys.cpfg.load, D .. file, nil, opts)
     assert.is_false(ok)
     return msg
   end
@@ -205,11 +234,17 @@ describe("lsys.cpfg.load errors", function ()
                  .. "with parameters on the last one", err("errors_multi.l"))
   end)
 
-  it("refuses a post-condition block with side effects in a stochastic production",
-     function ()
+  it("runs the chosen production's post-condition block only, as cpfg", function ()
+    assert.equal("C(10)B(11)C(21)B(22)B(23)C(33)", derive("stochpost.l"))     -- cpfg
+  end)
+
+  it("refuses a post-condition block with side effects in a stochastic production with "
+     .. "lsys's generator", function ()
     assert.equal(D .. "errors_stoch.l:6: in a stochastic L-system, a post-condition block "
                  .. "that assigns g is not supported (lsys runs the blocks of every production "
-                 .. "that applies, cpfg only the chosen one's)", err("errors_stoch.l"))
+                 .. "that applies, cpfg only the chosen one's)",
+                 err("errors_stoch.l", { random = "lsys" }))
+    assert.truthy(lsys.cpfg.load(D .. "errors_stoch.l"))
   end)
 
   it("keeps rule code away from globals", function ()
@@ -300,6 +335,67 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
   end)
 end)
 
+describe("lsys.cpfg.load with cpfg's random numbers (the default)", function ()
+  -- module names and parameters within cpfg's printed precision (6 digits)
+  local function same (s, cpfg)
+    local a, b = {}, {}
+    for n, p in s:gmatch("([^()])(%b())") do a[#a + 1] = { n, p } end
+    for n, p in cpfg:gmatch("([^()])(%b())") do b[#b + 1] = { n, p } end
+    assert.equal(s:gsub("%b()", ""), (cpfg:gsub("%b()", "")))
+    assert.equal(#b, #a)
+    for i = 1, #a do
+      local x, y = {}, {}
+      for v in a[i][2]:gmatch("[^(),]+") do x[#x + 1] = tonumber(v) end
+      for v in b[i][2]:gmatch("[^(),]+") do y[#y + 1] = tonumber(v) end
+      assert.equal(#y, #x)
+      for k = 1, #x do assert.near(y[k], x[k], 1e-5 * math.max(1, math.abs(y[k]))) end
+    end
+  end
+
+  it("gives cpfg's string: a stochastic choice, ran, nran, bran and biran in cpfg's order",
+     function ()
+    local m = lsys.cpfg.load(D .. "cpfgrandom.l")
+    local s = m:derive()
+    same(tostring(s), "A(2)C(0.159248,7)C(0.669283,5)[-D(0.774447)]F(5)F[B(7.49902)]A(3)"   -- cpfg
+         .. "C(0.142851,3)[-B(5.76559)]F(4.88299)C(0.698823,5)")
+    -- cpfg -homo: the homomorphism draws from the derivation's generator, and cpfg's -g
+    -- writes the string of its second interpretation (after the view-volume pass)
+    m:expand(s)
+    same(tostring(m:expand(s)), "A(2)E(0.960761)G(0.159248)E(0.144375)G(0.669283)"      -- cpfg
+         .. "[-D(0.774447)]F(5)F[B(7.49902)]A(3)E(0.446683)G(0.142851)[-B(5.76559)]F(4.88299)"
+         .. "E(0.324584)G(0.698823)")
+  end)
+
+  it("draws the choice number for every module of a stochastic L-system", function ()
+    assert.equal("CFCFCFDFBAFCFDFBAFCFBAF", derive("stochchoice.l"))   -- cpfg
+  end)
+
+  it("starts a homomorphism with its own seed again at every interpretation", function ()
+    local m = lsys.cpfg.load(D .. "homoseed.l")
+    local s = m:derive()
+    same(tostring(s), "AB(0.870465)B(0.170828)AB(0.577304)B(0.749902)AB(0.785799)"   -- cpfg
+         .. "B(0.0963717)")
+    -- cpfg's TurtleDraw starts the homomorphism's erand48 at {0x330E, 99, 0} each time:
+    -- C(ran) draws its 1st, 2nd and 7th numbers (nran's pair took 3 to 6), and the first
+    -- nran gives the mean (cpfg's nrand flag starts at 10); nran's pair is the process's,
+    -- so the second interpretation's nran numbers go on from the first's
+    local first, second = tostring(m:expand(s)), tostring(m:expand(s))
+    same(first:gsub("C%(([^,]*),[^)]*%)", "C(%1)"), "AC(0.380257)C(0.504358)AC(0.736335)"
+         .. "C(0.913879)AC(0.0572016)C(0.0958014)")
+    assert.equal("0", first:match("^AC%([^,]*,([^)]*)%)"))
+    assert.equal(first:gsub(",[^)]*%)", ")"), (second:gsub(",[^)]*%)", ")")))
+    assert.not_equal(first, second)
+  end)
+
+  it("gives lsys's generator with random = \"lsys\"", function ()
+    local a = lsys.cpfg.load(D .. "stochchoice.l", nil, { random = "lsys" })
+    assert.equal("lsys", a.random)
+    assert.not_equal("CFCFCFDFBAFCFDFBAFCFBAF", tostring(a:derive()))
+    assert.error_contains(function () lsys.cpfg.load(D .. "stochchoice.l", nil, { random = 1 }) end,
+                          "option 'random' must be \"cpfg\" or \"lsys\"")
+  end)
+end)
+
 describe("lsys.cpfg.load on a stochastic model", function ()
   -- cpfg's statistics of stoch_stats.l over 300 runs, each with its own seed written into
   -- a copy of the file (seed: for the productions, Start: {srand(k);} for ran and nran):
@@ -312,8 +408,10 @@ describe("lsys.cpfg.load on a stochastic model", function ()
     ["I.1"] = { 1.0057, 0.09366 }, ["X.1"] = { 4.996, 0.3153 },
   }, 300
 
-  it("matches cpfg's counts and parameter means within 4 standard errors", function ()
-    local m = lsys.cpfg.load(D .. "stoch_stats.l")
+  it("matches cpfg's counts and parameter means within 4 standard errors with lsys's "
+     .. "generator", function ()
+    -- lsys's generator draws ran and nran from the seed too (cpfg's only from srand)
+    local m = lsys.cpfg.load(D .. "stoch_stats.l", nil, { random = "lsys" })
     local K, got = 200, {}
     for k in pairs(CPFG) do got[k] = {} end
     for seed = 1, K do

@@ -170,6 +170,27 @@ describe("ran and nran", function()
   end)
 end)
 
+  it("draw once per use: one random expression twice in a successor gives two numbers", function()
+    -- Regression (issue 35 §7): the compiler listed identical expression text once, so
+    -- B(ran(10))C(ran(10)) gave B = C in every module.
+    local s = H.model(H.rep("A", 200), "A --> B(ran(10)) C(ran(10))", { seed = 2 }):derive(1)
+    local b, c, same = {}, {}, 0
+    for _, name, x in s:modules() do
+      if name == "B" then b[#b + 1] = x else c[#c + 1] = x end
+    end
+    assert.equal(200, #b)
+    assert.equal(200, #c)
+    for i = 1, 200 do if b[i] == c[i] then same = same + 1 end end
+    assert.equal(0, same)
+  end)
+
+  it("call a user's function at each use, and reuse an expression that calls nothing", function()
+    local n = 0
+    local env = { tick = function() n = n + 1; return n end }
+    assert.equal("B(1)C(2)", derive("A", "A --> B(tick()) C(tick())", 1, { env = env }))
+    assert.equal("D(2)E(2)F(2)", derive("A(7)", "A(x) --> D(x//3) E(x//3) F(x // 3)", 1))
+  end)
+
 describe("number printing", function()
   it("prints 0.1 + 0.2 with every digit needed to read it back", function()
     assert.equal("B(0.30000000000000004)", derive("A", "A --> B(0.1 + 0.2)", 1))

@@ -157,3 +157,58 @@ describe("stochastic choice", function()
     end, "productions: entry 1: unknown key 'wieght' in {pattern, function, weight = w}")
   end)
 end)
+
+describe("cpfg's generator (random = \"cpfg\")", function()
+  local lsys = require "lsys"
+  -- erand48 from cpfg's start {0x330E, 0, 0} (glibc, the same numbers everywhere)
+  local E48 = { "0.17082803610628972", "0.7499019804849638", "0.09637165562356742" }
+
+  local function run (opts, n, lua)
+    opts.random = opts.random or "cpfg"
+    local m = lsys.lsystem(opts)
+    m.lua_expressions = lua or nil
+    return tostring(m:derive(n)), m
+  end
+
+  it("draws ran as cpfg's erand48, in the order of the string, whatever the seed", function()
+    local s = run({ axiom = "A A A", productions = "A --> B(ran(1))", seed = 5 }, 1)
+    local t = run({ axiom = "A A A", productions = "A --> B(ran(1))", seed = 6 }, 1)
+    assert.equal(("B(%s)B(%s)B(%s)"):format(E48[1], E48[2], E48[3]), s)
+    assert.equal(s, t)             -- cpfg's seed: chooses productions; ran starts from srand(0)
+  end)
+
+  it("starts nran with the mean (cpfg's nrand flag starts at 10) and srand(a) as cpfg",
+     function()
+    local s = run({ axiom = "A", productions = "A --> N(nran(3, 1)) R(ran(1))" }, 1)
+    assert.equal("N(3)R(" .. E48[1] .. ")", s)
+    local m = lsys.lsystem { axiom = "A", productions = "A --> R(ran(1))", random = "cpfg",
+                             start = function (mm) mm:srand(42) end }
+    assert.equal("R(0.7445250000610066)", tostring(m:derive(1)))
+  end)
+
+  it("evaluates a chosen rule's successor after every alternative's condition", function()
+    -- cpfg tries each production (condition, probability), chooses, then evaluates the
+    -- chosen successor: the closure (replayed) and the machine (run in two parts) agree
+    local rules = "A : ran(1) < 0.9 --> B(ran(1)) : 1\nA : ran(1) < 0.9 --> C(ran(1)) : 2"
+    local a = run({ axiom = ("A"):rep(30), productions = rules, seed = 3 }, 1)
+    local b = run({ axiom = ("A"):rep(30), productions = rules, seed = 3 }, 1, true)
+    assert.equal(a, b)
+    -- the first module: the conditions draw E48[1] and E48[2], the successor E48[3]
+    assert.equal(E48[3], a:match("^[BC]%(([^)]*)%)"))
+  end)
+
+  it("is the same on any number of threads (a step runs in order on one)", function()
+    local opts = { axiom = ("A[F]"):rep(5000), seed = 9,
+                   productions = "A --> A B(ran(1)) : 1\nA --> C(nran(0, 1)) : 1" }
+    opts.threads = 1
+    local one = run(opts, 2)
+    opts.threads, opts.random = 4, nil
+    assert.equal(one, (run(opts, 2)))
+  end)
+
+  it("refuses another name", function()
+    assert.error_contains(function ()
+      lsys.lsystem { axiom = "A", random = "drand48" }
+    end, "option 'random' must be \"lsys\" or \"cpfg\", not \"drand48\"")
+  end)
+end)

@@ -102,7 +102,16 @@ local function child (l, v, pal, ref, homo)
   local ok2, s = pcall(m.derive, m)
   if not ok2 then return "lsys fails to derive: " .. tostring(s) .. note end
   if homo == "homo" then
+    -- cpfg -g interprets the string once (its view-volume pass) before it writes the
+    -- string after the homomorphism, drawing random numbers (from the derivation's
+    -- generator, or the homomorphism's own, and nran's pair): cpfg's string is that of
+    -- the second expansion
+    if m.random == "cpfg" then
+      pcall(m.expand, m, s)
+      m._seed = function () end    -- and its writer does not start a homomorphism seed again
+    end
     ok2, s = pcall(m.expand, m, s)
+    m._seed = nil
     if not ok2 then return "lsys fails to apply the homomorphism: " .. tostring(s) .. note end
   end
   local dt = os.clock() - t0
@@ -116,6 +125,7 @@ local function child (l, v, pal, ref, homo)
            .. note
   end
   m.seed = (m.seed or 0) + 7919
+  m.random = "lsys"               -- cpfg's generator is the same for every seed but one
   local ok4, s2 = pcall(m.derive, m)
   if ok4 and homo == "homo" then ok4, s2 = pcall(m.expand, m, s2) end
   if ok4 and diff(a, modules(s2)) then d = "stochastic: " .. d end

@@ -118,31 +118,61 @@ static int keepalt (lsys_model *m, lsys_scratch *w, const lsys_rule *r, double w
       (st = lsys_lstring_append(&m->altdyn, &m->dyn, 0, m->dyn.n, 0)) != LSYS_OK)
     return st;
   a[3] = (double)m->altdyn.n;
+  a[5] = 0;
   memcpy(a + ALTHEAD, args, (r->nargs + r->nvals) * sizeof *args);
   *altn = need;
   return LSYS_OK;
 }
 
+/*
+** cpfg's SelectProd (generate.c): the weights as floats, their float sum t, then
+** x = (float)(t * u) with u this module's drand48 number, and the first
+** alternative that brings x - w1 - ... - wk (float arithmetic) to 0 or below;
+** when rounding leaves x above 0, the last one. Returns its offset in w->alt.
+*/
+static size_t cpfgpick (lsys_model *m, lsys_scratch *w, size_t nalt) {
+  volatile float total = 0, x;     /* volatile: every step rounded to float */
+  size_t at = 0, k, last = 0;
+  double u = m->choice_ready ? m->choice_u : lsys_drand48(&m->choice48);
+  m->choice_ready = 0;
+  for (k = 0; k < nalt; k++) {
+    const lsys_rule *r = &m->rules[(size_t)w->alt[at]];
+    total = total + (float)w->alt[at + 1];
+    at += ALTHEAD + r->nargs + r->nvals;
+  }
+  x = (float)((double)total * u);
+  for (k = 0, at = 0; k < nalt; k++) {
+    const lsys_rule *r = &m->rules[(size_t)w->alt[at]];
+    x = x - (float)w->alt[at + 1];
+    if (x <= 0) return at;
+    last = at;
+    at += ALTHEAD + r->nargs + r->nvals;
+  }
+  return last;
+}
+
 /* The first alternative in w->alt whose cumulative weight exceeds u * total
 ** (u drawn when there are several); the last one of positive weight when
-** rounding leaves none. */
-static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, lsys_pick *pk) {
+** rounding leaves none. Returns its offset in w->alt. */
+static size_t lsyspick (lsys_model *m, lsys_scratch *w, size_t nalt, double total) {
   double target = nalt > 1 ? lsys_rng_uniform(w->rng) * total : 0, cum = 0;
   size_t at = 0, k, last = 0;
-  const lsys_rule *r = NULL;
   for (k = 0; k < nalt; k++) {
-    r = &m->rules[(size_t)w->alt[at]];
+    const lsys_rule *r = &m->rules[(size_t)w->alt[at]];
     if (w->alt[at + 1] > 0) {
       last = at;
       cum += w->alt[at + 1];
-      if (cum > target) break;
+      if (cum > target) return at;
     }
     at += ALTHEAD + r->nargs + r->nvals;
   }
-  if (k == nalt) {
-    at = last;
-    r = &m->rules[(size_t)w->alt[at]];
-  }
+  return last;
+}
+
+/* The chosen alternative into *pk. */
+static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, lsys_pick *pk) {
+  size_t at = m->cpfg ? cpfgpick(m, w, nalt) : lsyspick(m, w, nalt, total);
+  const lsys_rule *r = &m->rules[(size_t)w->alt[at]];
   pk->r = r;
   pk->args = w->alt + at + ALTHEAD;
   pk->vals = pk->args + r->nargs;
@@ -159,6 +189,8 @@ static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, 
 static int evalrule (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
                      const double *args, double *vals) {
   int st;
+  if (r->vm != NULL && m->cpfg && (r->flags & LSYS_RF_STOCH))   /* the rest: cpfgvalues */
+    return lsys_expr_span(r->vm, 0, r->vmtry, args, vals, w->rng, m->funcs);
   if (r->vm != NULL) {
     if (!lsys_expr_run(r->vm, r->nvm, args, vals, w->rng, m->funcs)) return 0;
     return (st = lsys_checkvals(m, w, r, i, vals)) != LSYS_OK ? st : 1;
@@ -173,6 +205,73 @@ static int evalrule (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t 
   return st;
 }
 
+int lsys_cpfg_mark (lsys_model *m) {
+  if (m->cpfgtry == 1) {
+    m->cpfgtried = 1;
+    return 1;
+  }
+  lsys_cpfg_resume(m);
+  return 0;
+}
+
+int lsys_cpfg_resume (lsys_model *m) {
+  if (m->cpfgtry != 2) return 0;
+  m->cur->x48 = m->cpfgz.x48;
+  m->cur->iset = m->cpfgz.iset;
+  m->cur->gset = m->cpfgz.gset;
+  m->cpfgtry = 0;
+  return 1;
+}
+
+/* Tries weighted rule r that runs in Lua under cpfg's generator: up to its mark
+** when it has one (a[5] = 1 and the state before it in a[6..8] once kept). */
+static int cpfgtry (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+                    const double *args, double *vals, double keep[3]) {
+  int st;
+  keep[0] = (double)w->rng->x48;        /* 48 bits: exact in a double */
+  keep[1] = w->rng->iset;
+  keep[2] = w->rng->gset;
+  m->cpfgtry = 1;
+  m->cpfgtried = 0;
+  st = evalrule(m, w, r, i, args, vals);
+  m->cpfgtry = 0;
+  return st;
+}
+
+/* Runs the chosen rule that stopped at its mark again, from the state it was
+** tried in; at the mark the state becomes the one after every try. */
+static int cpfgreplay (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+                       const double *a, lsys_pick *pk) {
+  int st;
+  m->cpfgz = *w->rng;
+  w->rng->x48 = (uint64_t)a[6];
+  w->rng->iset = (int)a[7];
+  w->rng->gset = a[8];
+  m->cpfgtry = 2;
+  st = evalrule(m, w, r, i, pk->args, (double *)pk->vals);
+  if (m->cpfgtry == 2) *w->rng = m->cpfgz;     /* no mark this time: as after the tries */
+  m->cpfgtry = 0;
+  if (st < 0) return st;
+  if (st == 0)
+    return lsys_seterror(&m->err, LSYS_ERULE, i, "the chosen rule did not apply when it ran "
+                         "again (cpfg's generator runs a rule's condition twice)");
+  if (r->flags & LSYS_RF_DYN) { pk->dyn = &m->dyn; pk->d0 = 0; pk->d1 = m->dyn.n; pk->dp = 0; }
+  return LSYS_OK;
+}
+
+/* cpfg evaluates the condition and the probability of every production that
+** may apply, chooses, and only then the successor of the chosen one
+** (generate.c: FindApplProductions, SelectProd, ApplyProd): the values of a
+** weighted rule's program are run once it is chosen, drawing their numbers
+** after every alternative's condition. (A rule that runs in Lua draws them
+** when it is tried.) */
+static int cpfgvalues (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+                       lsys_pick *pk) {
+  double *vals = (double *)pk->vals;
+  lsys_expr_span(r->vm, r->vmtry, r->nvm, pk->args, vals + r->vmtryout, w->rng, m->funcs);
+  return lsys_checkvals(m, w, r, i, vals);
+}
+
 /*
 ** Chooses the rule of 'sets' for the module 'code' with parameters 'par'
 ** whose context is position 'i' of 'v', drawing from w->rng. Returns the
@@ -185,8 +284,8 @@ int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int 
                  const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk) {
   uint32_t sym = LSYS_CSYM(code), np = LSYS_CNP(code);
   size_t nalt = 0, altn = 0;   /* alternatives and doubles used in w->alt */
-  double total = 0;
-  int si, st;
+  double total = 0, keep[3];
+  int si, st, tried;
   pk->dyn = NULL;
   if (!w->worker) lsys_lstring_clear(&m->altdyn);
   for (si = 0; si < nsets; si++) {
@@ -206,7 +305,9 @@ int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int 
                                                             args + r->lcargs + np + r->moreargs)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
-      if ((st = evalrule(m, w, r, i, args, vals)) <= 0) {
+      tried = m->cpfg && (r->flags & LSYS_RF_STOCH) && r->vm == NULL;
+      st = tried ? cpfgtry(m, w, r, i, args, vals, keep) : evalrule(m, w, r, i, args, vals);
+      if (st <= 0) {
         if (st < 0) return st;
         continue;
       }
@@ -226,13 +327,25 @@ int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int 
         return lsys_seterror(&m->err, LSYS_ERULE, i, "weight is %g, not a finite number >= 0", wt);
       }
       if ((st = keepalt(m, w, r, wt, args, &altn)) != LSYS_OK) return st;
+      if (tried && m->cpfgtried) {
+        double *a = w->alt + altn - (ALTHEAD + r->nargs + r->nvals);
+        a[5] = 1;
+        memcpy(a + 6, keep, sizeof keep);
+      }
       nalt++;
       total += wt;
     }
     if (b < e) break;
   }
-  if (nalt == 0 || !(total > 0)) return 0;   /* only weight 0 applies: nothing is chosen */
+  /* only weight 0 applies: nothing is chosen (cpfg takes the first) */
+  if (nalt == 0 || (!(total > 0) && !m->cpfg)) return 0;
   pickalt(m, w, nalt, total, pk);
+  if (m->cpfg) {
+    const double *a = pk->args - ALTHEAD;
+    if (pk->r->vm != NULL) st = cpfgvalues(m, w, pk->r, i, pk);
+    else st = a[5] != 0 ? cpfgreplay(m, w, pk->r, i, a, pk) : LSYS_OK;
+    if (st != LSYS_OK) return st;
+  }
   return 1 + (int)pk->r->nmore;
 }
 
@@ -386,6 +499,20 @@ static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ru
 }
 
 /* The productions of one step on the calling thread: the module loop. */
+/* cpfg draws the number that chooses a production for every module it visits
+** in a stochastic L-system, whether a rule applies to it or not (generate.c). */
+static void cpfgdraw (lsys_model *m, lsys_ruleset *const *sets, int nsets) {
+  int k;
+  m->choice_ready = 0;
+  for (k = 0; k < nsets; k++) {
+    if (sets[k] != NULL && sets[k]->stoch) {
+      m->choice_u = lsys_drand48(&m->choice48);
+      m->choice_ready = 1;
+      return;
+    }
+  }
+}
+
 static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *vp,
                     lsys_ruleset **sets, int nsets) {
   int st;
@@ -403,6 +530,7 @@ static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *v
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
     const lsys_ruleset *s0 = nsets ? sets[nsets - 1] : NULL;
     int done = 0;
+    if (m->cpfg) cpfgdraw(m, sets, nsets);
     if (sym < nact && m->nsub == 0) {     /* the fast loop */
       uint32_t a = m->act[sym];
       if (a == ACT_COPY && dst->n < lim) {
@@ -532,7 +660,9 @@ static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   v.code = src->code;
   lsys_lstring_clear(out);
-  if ((st = seqloop(m, src, out, &v, sets, nsets)) != LSYS_OK) return st;
+  st = seqloop(m, src, out, &v, sets, nsets);
+  m->choice_ready = 0;
+  if (st != LSYS_OK) return st;
   if (out != dst) lsys_swapstr(src, out);
   return LSYS_OK;
 }
@@ -644,6 +774,17 @@ static int reentered (lsys_model *m, const char *what) {
                        "a rule called %s on the model it belongs to", what);
 }
 
+/* The homomorphism draws from its own generator; cpfg's nrand keeps one pair
+** for the process, which the homomorphism's generator shares. */
+static void usehrng (lsys_model *m) {
+  m->cur = &m->hrng;
+  if (m->cpfg) { m->hrng.iset = m->rng.iset; m->hrng.gset = m->rng.gset; }
+}
+
+static void leavehrng (lsys_model *m) {
+  if (m->cpfg) { m->rng.iset = m->hrng.iset; m->rng.gset = m->hrng.gset; }
+}
+
 int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   lsys_rng *keep = m->cur;
@@ -653,10 +794,11 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
   if (src == dst) return lsys_seterror(&m->err, LSYS_EARG, (size_t)-1, "expand in place");
   m->depth_hit = 0;
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
-  if (kind == LSYS_HOMO) m->cur = &m->hrng;
+  if (kind == LSYS_HOMO && !m->hshare) usehrng(m);
   m->busy = 1;
   st = expandall(m, kind, src, dst);
   m->busy = 0;
+  if (kind == LSYS_HOMO && !m->hshare) leavehrng(m);
   unmeter(m, dst);
   m->cur = keep;
   return st;
@@ -684,7 +826,7 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   m->hsrc = src;
   m->hctx = hasctx;
   m->hkeep = m->cur;
-  m->cur = &m->hrng;
+  if (!m->hshare) usehrng(m);
   m->busy = 1;                 /* until lsys_homo_end */
   return 1;
 }
@@ -715,6 +857,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
 
 void lsys_homo_end (lsys_model *m) {
   if (m->hsrc != NULL) {
+    if (m->cur == &m->hrng) leavehrng(m);
     m->cur = m->hkeep;
     m->busy = 0;
     unmeter(m, NULL);

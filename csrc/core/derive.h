@@ -44,6 +44,9 @@ typedef struct lsys_rule {
   double weight;
   int id;                       /* the caller's rule number (messages) */
   lsys_ins *vm; int nvm;        /* when set, evaluated in C instead of the callback */
+  int vmtry, vmtryout;          /* the program's first vmtry instructions: the condition
+                                ** and the weight (vmtryout outputs); cpfg runs the rest,
+                                ** the successor's values, only for the chosen rule */
 } lsys_rule;
 
 typedef struct lsys_rulespec {
@@ -65,6 +68,7 @@ typedef struct lsys_ruleset {
   uint32_t *start; uint32_t nsym;           /* byp[start[s] .. start[s+1]) */
   uint32_t *plain;   /* plain[s]: the first rule for s when it is a pure template copy */
   int compiled, hasctx;
+  int stoch;         /* a rule of the set is weighted (cpfg: a stochastic L-system) */
 } lsys_ruleset;
 
 typedef struct lsys_skip {
@@ -110,6 +114,23 @@ typedef struct lsys_model {
                                ** process default, lsys_memory_limit() */
   int maxdepth[3];             /* by kind; [LSYS_PROD] unused */
   lsys_rng rng, hrng;          /* derivation; homomorphism */
+  /* cpfg's generator (random = "cpfg", rng.h): rng and hrng draw erand48's numbers;
+  ** productions are chosen by drand48, one number for every module a step visits in
+  ** a stochastic set, in single precision as cpfg's SelectProd; a step runs on the
+  ** calling thread */
+  int cpfg;
+  int hshare;                  /* cpfg: no homomorphism seed, the homomorphism draws
+                               ** from the derivation's generator */
+  int choice_ready;            /* cpfg: choice_u is this module's number */
+  uint64_t choice48;           /* cpfg: drand48's state */
+  double choice_u;
+  int cpfgtry;                 /* cpfg: 1 while a weighted rule that runs in Lua is
+                               ** tried (its mark, lsys_cpfg_mark, stops it after the
+                               ** condition and weight), 2 while the chosen one runs
+                               ** again from its state before the try (the mark then
+                               ** puts back the state after every try, cpfgz) */
+  int cpfgtried;               /* cpfg: the rule tried reached its mark */
+  lsys_rng cpfgz;
   lsys_rng *cur;               /* the generator 'ran' uses now */
   lsys_rulefn fn; void *fnud;
   const lsys_func **funcs;     /* positional functions of LSYS_OP_FN (the table is
@@ -140,6 +161,18 @@ typedef struct lsys_model {
   lsys_meter meter;            /* the budget of the running operation */
   lsys_error err;
 } lsys_model;
+
+/* The mark a weighted rule running in Lua calls after its condition and weight
+** (lsys.cpfg_try): 1 when it is being tried and is to stop there (cpfg
+** evaluates a successor only once the production is chosen); else 0, after
+** putting back the generator's state of the moment the choice was made. */
+int lsys_cpfg_mark (lsys_model *m);
+
+/* The start of a weighted rule in Lua that keeps what its try computed (the
+** cpfg loader's statement blocks: their locals stay in the rule's table): 1
+** when the chosen rule runs again and is to go on from its mark, skipping its
+** pre-condition block and condition (they ran once, as in cpfg); else 0. */
+int lsys_cpfg_resume (lsys_model *m);
 
 /* x rounded to the nearest float32, as a double; beyond float32's range,
 ** +-FLT_MAX (so a finite value stays finite). */

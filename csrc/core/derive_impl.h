@@ -8,7 +8,11 @@
 #include "derive.h"
 
 #define NONE UINT32_MAX
-#define ALTHEAD 5     /* a stochastic alternative's record in w->alt before its args, vals */
+/* A stochastic alternative's record in w->alt before its args and vals: rule,
+** weight, its produced successor's [b, e) and parameters in m->altdyn, then for
+** cpfg's generator whether the rule stopped at its mark (lsys.cpfg_try) and the
+** generator's state before it was tried (x48, iset, gset: replayed when chosen). */
+#define ALTHEAD 9
 
 /* A view of the string being matched: codes, parameters, and for contexts
 ** the bracket matches and per-module parameter offsets. */

@@ -767,6 +767,7 @@ int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, c
   size_t n = src->n, tot, ptot, c;
   lsys_lstring *seqout = dst == src ? &m->tmp : dst, *out;
   job *j;
+  if (m->cpfg) return LSYS_PAR_SEQ;       /* cpfg's numbers come in the order of a scan */
   if (n < m->parmin || n < 2) return LSYS_PAR_SEQ;      /* never on the thread count: the
                                     ** strings it makes are kept in other buffers */
   if (m->par == NULL) {

@@ -223,6 +223,17 @@ int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
   LSYS_FREE(r->vm);
   r->vm = c;
   r->nvm = c ? n : 0;
+  r->vmtry = r->vmtryout = 0;
+  if (c != NULL) {          /* the condition ends in COND, the weight in the first RET */
+    int pc = 0;
+    while (pc < n && c[pc].op != LSYS_OP_COND && c[pc].op != LSYS_OP_RET) pc++;
+    if (pc < n && c[pc].op == LSYS_OP_COND) r->vmtry = pc + 1;
+    if (r->flags & LSYS_RF_WEXPR) {
+      for (pc = r->vmtry; pc < n && c[pc].op != LSYS_OP_RET; pc++) {}
+      r->vmtry = pc + 1;
+      r->vmtryout = 1;
+    }
+  }
   return LSYS_OK;
 }
 
@@ -276,6 +287,8 @@ int lsys_compileset (lsys_model *m, lsys_ruleset *s) {
                    !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN | LSYS_RF_STOCH)))
                   ? s->byp[s->start[i]] : NONE;
   }
+  for (s->stoch = 0, k = 0; k < s->nlist; k++)
+    if (m->rules[s->list[k]].flags & LSYS_RF_STOCH) s->stoch = 1;
   s->nsym = nsym;
   s->compiled = 1;
   return LSYS_OK;

@@ -108,9 +108,14 @@ static double fn2 (int f, double x, double y) {
 
 int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
                    lsys_rng *rng, const lsys_func *const *funcs) {
+  return lsys_expr_span(code, 0, n, args, out, rng, funcs);
+}
+
+int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, double *out,
+                    lsys_rng *rng, const lsys_func *const *funcs) {
   double st[LSYS_EXPR_STACK];
   int sp = 0, pc;
-  for (pc = 0; pc < n; pc++) {
+  for (pc = from; pc < to; pc++) {
     const lsys_ins *i = &code[pc];
     double y;
     switch (i->op) {

@@ -54,4 +54,10 @@ int lsys_expr_check (const lsys_ins *code, int n, int nargs, int nfuncs);
 int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
                    lsys_rng *rng, const lsys_func *const *funcs);
 
+/* Runs instructions [from, to) of a checked program, where from and to are 0,
+** n or just after a COND or RET (the stack is empty there): a program run in
+** parts draws its numbers when each part runs. */
+int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, double *out,
+                    lsys_rng *rng, const lsys_func *const *funcs);
+
 #endif

@@ -13,6 +13,10 @@
 ** position); the hash is SplitMix64's own mixer. Only 64-bit integer
 ** operations: the same seed gives the same numbers on every machine (unlike
 ** drand48).
+**
+** A model may ask for cpfg's generator instead (random = "cpfg"; docs/cpfg.md):
+** then the numbers are erand48's, in the order they are drawn, as cpfg draws
+** them, and a step runs on one thread.
 */
 #ifndef LSYS_RNG_H
 #define LSYS_RNG_H
@@ -35,7 +39,28 @@ typedef struct lsys_rng {
   uint64_t z;          /* SplitMix64 state of the draws at 'pos' */
   unsigned phase;
   int fresh;           /* z is to be derived from (base, pos) at the next draw */
+  /* cpfg's generator (lsys_rng_cpfg): one sequence in the order of the draws */
+  int cpfg;            /* 1: draws come from x48, as cpfg's erand48(main_xsubi) */
+  int iset;            /* cpfg's nrand: 0 to make a pair, else return gset */
+  uint64_t x48;        /* the 48-bit state of erand48 */
+  double gset;         /* the second number of nrand's pair */
 } lsys_rng;
+
+/*
+** drand48's linear congruential step (POSIX: x' = (0x5DEECE66D x + 0xB) mod 2^48), and
+** its number x' / 2^48. Integer arithmetic only, so it gives glibc's numbers on every
+** machine; cpfg draws ran, nran, bran and biran with erand48 and chooses stochastic
+** productions with drand48 (cpfg's utility.c and generate.c).
+*/
+static inline double lsys_drand48 (uint64_t *x) {
+  *x = (*x * 0x5DEECE66Dull + 0xBu) & 0xFFFFFFFFFFFFull;
+  return (double)*x * 0x1.0p-48;
+}
+
+/* The erand48 state cpfg's srand(a) sets: {0x330E, a & 0xFFFF, (a >> 16) & 0xFFFF}. */
+static inline uint64_t lsys_cpfg_srand48 (uint64_t a) {
+  return 0x330Eu | (a & 0xFFFFu) << 16 | ((a >> 16) & 0xFFFFu) << 32;
+}
 
 /* SplitMix64's output function (a bijection of 64-bit words). */
 static inline uint64_t lsys_mix64 (uint64_t z) {
@@ -65,10 +90,23 @@ static inline void lsys_rng_stream (lsys_rng *r, uint64_t step, unsigned phase) 
   lsys_rng_setbase(r);
 }
 
-/* Seeds the generator: key from 'seed', step 0, between steps. */
+/* Seeds the generator: key from 'seed', step 0, between steps. cpfg's
+** generator starts where a cpfg run starts, whatever the seed: erand48's state
+** {0x330E, 0, 0} and nrand's first number the mean (its pair flag starts at 10,
+** not 0: a cpfg quirk). */
 static inline void lsys_rng_seed (lsys_rng *r, uint64_t seed) {
   r->key = lsys_splitmix64(&seed);
   lsys_rng_stream(r, 0, LSYS_RNG_BETWEEN);
+  r->x48 = lsys_cpfg_srand48(0);
+  r->iset = 10;
+  r->gset = 0;
+}
+
+/* The homomorphism generator of a cpfg model with a homomorphism seed: each
+** interpretation starts it at {0x330E, seed & 0xFFFF, seed >> 16} (cpfg's
+** interpret.c), leaving nrand's pair as it was. */
+static inline void lsys_rng_cpfg_hseed (lsys_rng *r, uint64_t seed) {
+  r->x48 = lsys_cpfg_srand48(seed);
 }
 
 /*
@@ -79,6 +117,11 @@ static inline void lsys_rng_seed (lsys_rng *r, uint64_t seed) {
 ** the string, and the current module's own later draws as outside any module.
 */
 static inline void lsys_rng_reseed (lsys_rng *r, uint64_t seed) {
+  if (r->cpfg) {             /* cpfg's Do_srand: the state from the seed's low 32 bits */
+    r->x48 = lsys_cpfg_srand48(seed);
+    r->iset = 0;
+    return;
+  }
   r->key = lsys_splitmix64(&seed);
   if (r->pos == LSYS_RNG_FREE) {
     r->step = 0;
@@ -107,12 +150,35 @@ static inline uint64_t lsys_rng_next (lsys_rng *r) {
 
 /* Uniform in [0, 1). */
 static inline double lsys_rng_uniform (lsys_rng *r) {
+  if (r->cpfg) return lsys_drand48(&r->x48);
   return (double)(lsys_rng_next(r) >> 11) * 0x1.0p-53;
+}
+
+/* cpfg's nrand: Marsaglia's polar method, which makes two numbers and returns
+** the second at the next call; the pair is made when iset is 0. */
+static inline double lsys_rng_cpfg_normal (lsys_rng *r, double mu, double sd) {
+  double v1, v2, rsq, fac;
+  if (r->iset != 0) {
+    r->iset = 0;
+    return r->gset * sd + mu;
+  }
+  do {
+    v1 = 2.0 * lsys_drand48(&r->x48) - 1.0;
+    v2 = 2.0 * lsys_drand48(&r->x48) - 1.0;
+    rsq = v1 * v1 + v2 * v2;
+  } while (rsq >= 1.0 || rsq == 0.0);
+  fac = sqrt(-2.0 * log(rsq) / rsq);
+  r->gset = v1 * fac;
+  r->iset = 1;
+  return v2 * fac * sd + mu;
 }
 
 /* Normal with mean 'mu' and standard deviation 'sd' (Box-Muller). */
 static inline double lsys_rng_normal (lsys_rng *r, double mu, double sd) {
-  double u1 = 1.0 - lsys_rng_uniform(r), u2 = lsys_rng_uniform(r);
+  double u1, u2;
+  if (r->cpfg) return lsys_rng_cpfg_normal(r, mu, sd);
+  u1 = 1.0 - lsys_rng_uniform(r);
+  u2 = lsys_rng_uniform(r);
   return mu + sd * sqrt(-2.0 * log(u1)) * cos(6.283185307179586 * u2);
 }
 

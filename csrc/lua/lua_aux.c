@@ -237,7 +237,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
                    double *vals) {
   lsys_lrules *R = (lsys_lrules *)ud;
   lua_State *L = R->L;
-  uint32_t k;
+  uint32_t k, nv;
   lua_rawgeti(L, R->fnidx, (lua_Integer)(r - m->rules) + 1);
   luaL_checkstack(L, (int)(r->nargs + r->nvals) + 4, "too many parameters");
   if (R->sb != NULL) {                         /* max_instructions is per call */
@@ -251,6 +251,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
     R->produced = 0;
     lua_call(L, (int)r->nargs, 1);
     res = R->produced;               /* no produce: the rule does not apply */
+    if (m->cpfgtry == 1 && m->cpfgtried) res = 1;   /* stopped at its mark: it applies */
     R->produced = keep;
     lua_pop(L, 1);
     if (res && lsys_lstring_unbalanced(&m->dyn) >= 0)
@@ -262,7 +263,9 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
     lua_pop(L, (int)r->nvals + 1);
     return 0;
   }
-  for (k = 0; k < r->nvals; k++) {
+  /* stopped at its mark (cpfg's generator): the weight only, the rest when chosen */
+  nv = m->cpfgtry == 1 && m->cpfgtried ? ((r->flags & LSYS_RF_WEXPR) ? 1 : 0) : r->nvals;
+  for (k = 0; k < nv; k++) {
     int idx = -(int)r->nvals + (int)k;
     if (lua_type(L, idx) != LUA_TNUMBER)
       return luaL_error(L, "value %d is %s, not a number", (int)k + 1, luaL_typename(L, idx));

@@ -256,7 +256,8 @@ static uint64_t seedof (lua_State *L, int idx) {
 static int rules_config (lua_State *L) {
   static const char *const keys[] = {"ring", "max_modules", "group", "depth_decomposition",
                                      "depth_homomorphism", "seed", "hseed", "max_memory",
-                                     "float32", "threads", "max_instructions", NULL};
+                                     "float32", "threads", "max_instructions", "random",
+                                     "hshare", NULL};
   lsys_lrules *R = checkidle(L, 1);
   int key = luaL_checkoption(L, 2, NULL, keys);
   lua_Number x;
@@ -297,9 +298,28 @@ static int rules_config (lua_State *L) {
       luaL_argcheck(L, x >= 1000, 3, "max_instructions must be a number >= 1000");
       R->max_instructions = x;
       break;
-    default:
-      lsys_rng_seed(key == 5 ? &R->m.rng : &R->m.hrng, seedof(L, 3));
+    case 11: {                         /* "lsys" or "cpfg" (rng.h) */
+      static const char *const kinds[] = {"lsys", "cpfg", NULL};
+      int on = luaL_checkoption(L, 3, NULL, kinds);
+      R->m.cpfg = R->m.rng.cpfg = R->m.hrng.cpfg = on;
       break;
+    }
+    case 12: R->m.hshare = lua_toboolean(L, 3); break;
+    case 5: {
+      uint64_t seed = seedof(L, 3);
+      lsys_rng_seed(&R->m.rng, seed);
+      /* cpfg's seed: statement: seed48({seed, 0, 155}) when it is not 0, else
+      ** drand48's own start (glibc: state 0) */
+      R->m.choice48 = seed != 0 ? (uint64_t)155 << 32 | (seed & 0xFFFFu) : 0;
+      R->m.choice_ready = 0;
+      break;
+    }
+    default: {                         /* cpfg: nrand's pair is the process's */
+      uint64_t seed = seedof(L, 3);
+      if (R->m.cpfg) lsys_rng_cpfg_hseed(&R->m.hrng, seed);
+      else lsys_rng_seed(&R->m.hrng, seed);
+      break;
+    }
   }
   return 0;
 }
@@ -802,6 +822,21 @@ static int l_ran (lua_State *L) {
   return 1;
 }
 
+/* core.cpfg_try(): the mark of a weighted rule in Lua (lsys_cpfg_mark): true
+** when the rule is tried under cpfg's generator and is to return now */
+static int l_cpfg_try (lua_State *L) {
+  lsys_lrules *R = deriving(L, "cpfg_try");
+  lua_pushboolean(L, lsys_cpfg_mark(&R->m));
+  return 1;
+}
+
+/* core.cpfg_resume(): lsys_cpfg_resume */
+static int l_cpfg_resume (lua_State *L) {
+  lsys_lrules *R = deriving(L, "cpfg_resume");
+  lua_pushboolean(L, lsys_cpfg_resume(&R->m));
+  return 1;
+}
+
 static int l_srand (lua_State *L) {
   lsys_lrules *R = deriving(L, "srand");
   lsys_rng_reseed(R->m.cur, seedof(L, 1));
@@ -876,7 +911,8 @@ static const luaL_Reg rules_meta[] = {
 
 static const luaL_Reg core_funcs[] = {
   {"rules", l_rules}, {"produce", l_produce}, {"nproduce", l_nproduce},
-  {"ran", l_ran}, {"nran", l_nran}, {"srand", l_srand},
+  {"ran", l_ran}, {"nran", l_nran}, {"srand", l_srand}, {"cpfg_try", l_cpfg_try},
+  {"cpfg_resume", l_cpfg_resume},
   {"producing", l_producing}, {"max_memory", l_max_memory},
   {"names_mark", l_names_mark}, {"names_truncate", l_names_truncate},
   {NULL, NULL}

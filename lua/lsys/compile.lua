@@ -16,7 +16,8 @@ local type, tostring, tonumber, pairs, ipairs, error, load, math, mathtype, setm
       getmetatable, debug_registry =
       type, tostring, tonumber, pairs, ipairs, error, load, math, math.type, setmetatable,
       getmetatable, debug.getregistry()
-local format, concat, insert, table_sort = string.format, table.concat, table.insert, table.sort
+local format, concat, insert, remove, table_sort =
+      string.format, table.concat, table.insert, table.remove, table.sort
 local _ENV = nil
 
 local M = {}
@@ -85,7 +86,7 @@ end
 -- return function(formals) ... end end`. Each expression stands on lines of its
 -- own inside parentheses: an expression is checked on its own (checkexpr), and a
 -- line comment at its end cannot swallow the code that follows it.
-local function factorysource (formals, cond, exprs, frees)
+local function factorysource (formals, cond, exprs, frees, weighted)
   local ups = {}
   for name in pairs(frees) do ups[#ups + 1] = name end
   table_sort(ups)
@@ -101,8 +102,16 @@ local function factorysource (formals, cond, exprs, frees)
   end
   local vals = {}
   for k, e in ipairs(exprs) do vals[k] = "(\n" .. e .. "\n)" end
+  if weighted then
+    -- the mark of cpfg's generator (lsys_cpfg_mark): a rule being tried stops after its
+    -- condition and weight; the chosen one's values are drawn after every try
+    local w = weighted == "expr" and remove(vals, 1)
+    body[#body + 1] = (w and "local w_ = " .. w .. "; " or "") ..
+      "if try_() then return true" .. (w and ", w_" or "") .. " end;"
+    if w then insert(vals, 1, "w_") end
+  end
   body[#body + 1] = "return true" .. (#vals > 0 and ", " .. concat(vals, ", ") or "")
-  return "local E, type_, error_ = ...; " .. concat(head, " ") ..
+  return "local E, type_, error_, try_ = ...; " .. concat(head, " ") ..
          " return function(" .. concat(formals, ", ") .. ") " .. concat(body, " ") .. " end"
 end
 
@@ -121,9 +130,17 @@ local SEALED = setmetatable({}, {
 })
 M.SEALED = SEALED
 
+-- Whether the text of expression e calls nothing (a name, `)` or `]` followed by `(`, a
+-- string or a table): only such an expression gives the same value twice, so only they
+-- are listed once. `B(ran(10)) C(ran(10))` draws twice, and a user's function with
+-- effects runs at each use.
+local function callsnothing (e)
+  return not (e:find("[%w_%]%)]%s*%(") or e:find("[%w_%]%)]%s*[\"'{]") or e:find("%[=*%["))
+end
+
 -- The successor's modules into spec.succ, and where each of their parameters comes from
 -- into spec.src: a constant, a formal parameter (an index in `seen`), or a computed value
--- (an index in `exprs`, where each distinct expression is listed once).
+-- (an index in `exprs`; an expression that calls nothing is listed once).
 local function successor (r, spec, seen, exprs, fail)
   local exprindex = {}
   for _, m in ipairs(r.succ) do
@@ -146,7 +163,7 @@ local function successor (r, spec, seen, exprs, fail)
         if not k then
           exprs[#exprs + 1] = e
           k = #exprs - 1
-          exprindex[e] = k
+          if callsnothing(e) then exprindex[e] = k end
         end
         insert(spec.src, PS_VAL); insert(spec.src, k); insert(spec.src, 0)
       end
@@ -232,7 +249,8 @@ function M.rule (r, info)
   local frees = {}
   if r.cond then M.freenames(r.cond, seen, frees) end
   for _, e in ipairs(exprs) do M.freenames(e, seen, frees) end
-  local src = factorysource(formals, r.cond, exprs, frees)
+  local weighted = r.weight and (spec.flags & core.RF_WEXPR ~= 0 and "expr" or "const")
+  local src = factorysource(formals, r.cond, exprs, frees, weighted)
   local factory, msg = load(src, "=rule", "t", SEALED)   -- messages say 'rule:N:'
   if not factory then fail("%s", msg) end
   return spec, factory, frees, parsetrees(r.cond, exprs, seen)

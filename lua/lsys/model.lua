@@ -98,6 +98,7 @@ local OPTIONS = {
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
   depth_warnings = "any", threads = "number", max_instructions = "number",
+  random = "string",
 }
 
 local Model = {}
@@ -374,7 +375,7 @@ make = function (opts, where, fail, dir)
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
     system_call = opts.system_call, after_interpret = opts.after_interpret,
-    threads = opts.threads,
+    threads = opts.threads, random = opts.random or "lsys",
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
   self._fns = debug.getuservalue(rules, 1)
@@ -397,9 +398,28 @@ make = function (opts, where, fail, dir)
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
   self:_checkcounts()
-  rules:config("seed", self.seed)          -- step() before any derive() uses the seed too
-  rules:config("hseed", self.homomorphism_seed or self.seed)
+  if self.random ~= "lsys" and self.random ~= "cpfg" then
+    fail(format("option 'random' must be \"lsys\" or \"cpfg\", not \"%s\"",
+                tostring(self.random)))
+  end
+  self:_seed()                   -- step() before any derive() uses the seed too
   return self
+end
+
+-- Seeds the generators from model.seed and model.homomorphism_seed, with the generator
+-- model.random names (docs/manual.md §10): "lsys", counter-based, or "cpfg", cpfg's
+-- erand48 and drand48 in the order cpfg draws. With "cpfg" and no homomorphism_seed,
+-- the homomorphism draws from the derivation's numbers, as in cpfg.
+function Model:_seed (homoonly)
+  local rules, r = self._rules, self.random
+  if r ~= "lsys" and r ~= "cpfg" then
+    error(format("model.random must be \"lsys\" or \"cpfg\", not \"%s\"", tostring(r)), 0)
+  end
+  rules:config("random", r)
+  if not homoonly then rules:config("seed", self.seed) end
+  local share = r == "cpfg" and self.homomorphism_seed == nil
+  rules:config("hshare", share)
+  if not share then rules:config("hseed", self.homomorphism_seed or self.seed) end
 end
 
 -- The positional functions of the model (option `functions`, else its view's): the list
@@ -481,7 +501,7 @@ function Model:_bind ()
         end
       end
       self:_checkfuncs(info)
-      self._fns[i] = info.factory(E, type, error)
+      self._fns[i] = info.factory(E, type, error, core.cpfg_try)
       -- the C expression machine when the expressions allow it, else the closure
       codes[i] = not self.lua_expressions and compile.machine(info.trees, E, lib) or false
     end
@@ -651,10 +671,8 @@ function Model:derive (n, opts)
   end
   n = n or self.steps
   checksteps(n, "derive")
-  local rules = self._rules
   self:_threads("derive")
-  rules:config("seed", self.seed)
-  rules:config("hseed", self.homomorphism_seed or self.seed)
+  self:_seed()
   self._warned = false
   local E = self:_bind()
   if self.start then             -- first: the axiom may read what start sets (as in cpfg)
@@ -731,7 +749,7 @@ function Model:expand (s)
   if not islstring(s) then error("expand: an Lstring expected", 2) end
   self:_idle("expand")
   self:_bind()
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  self:_seed(true)
   return self:_core("expand", s, HOMO)
 end
 
@@ -744,7 +762,7 @@ end
 -- (cpfg: productions at step n see the values of string n-1).
 function Model:_query (s)
   local opts = view.turtle_options(self:_view(), self.allow_system_calls)
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  self:_seed(true)
   return self:_call(core.query, "interpret", self._rules, s, opts)
 end
 
@@ -768,7 +786,7 @@ function Model:interpret (s, over)
   self:_threads("interpret")
   local v = self:_view(over)
   self:_bind()
-  self._rules:config("hseed", self.homomorphism_seed or self.seed)
+  self:_seed(true)
   local topts = view.turtle_options(v, self.allow_system_calls)
   topts.records = records and true or false
   local scene = self:_call(core.interpret, "interpret", self._rules, s, topts)

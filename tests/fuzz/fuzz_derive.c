@@ -11,7 +11,8 @@
 **   o <options>      r ring, g<d> group, D<d> decomposition depth, H<d>
 **                    homomorphism depth, m<d> module limit (100, 2000,
 **                    10000, 30), M<d> memory budget (max_memory: default,
-**                    2 KiB, 16 KiB, 128 KiB, 1 MiB), n<d> steps, S<d> seed
+**                    2 KiB, 16 KiB, 128 KiB, 1 MiB), n<d> steps, S<d> seed,
+**                    C cpfg's generator (C1: the homomorphism shares it)
 **   a <Lstring>      the axiom (text notation; several lines append)
 **   p|d|h[mods] <rule>   a production, decomposition or homomorphism rule
 **                    in the rule language; mods: g<d> group, s<d>
@@ -37,7 +38,7 @@
 ** Invariants: a step or an expansion returns LSYS_OK, LSYS_ELIMIT,
 ** LSYS_EMEMORY or LSYS_ERULE (with m->err set to it), leaves the model idle
 ** and 'ran' on the derivation's generator (m->cur); the homomorphism draws
-** from its own generator, never the derivation's; lsys_model_add refuses a
+** from its own generator, never the derivation's (but with C1); lsys_model_add refuses a
 ** constant parameter that is not finite (1e999); a result has at most
 ** max_modules modules, its parameter counts add up to npar, every parameter
 ** is finite, and formatting and reparsing it gives the same string; the
@@ -305,8 +306,18 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
   if (h->n > 0) {
     if (h->nout != (int)r->nvals)
       return lsys_seterror(&m->err, LSYS_ERULE, m->cur_index, "rule %d: bad program", r->id);
-    if (!lsys_expr_run(h->code, h->n, args, out, m->cur, m->funcs)) return 0;
-    for (k = 0; k < r->nvals; k++) {
+    uint32_t nv = r->nvals;
+    if (r->flags & LSYS_RF_STOCH) {  /* as a Lua closure: cpfg's mark after the weight */
+      int at = 0, wout = (r->flags & LSYS_RF_WEXPR) ? 1 : 0;
+      while (at < h->n && h->code[at].op != LSYS_OP_COND && h->code[at].op != LSYS_OP_RET) at++;
+      at = at < h->n && h->code[at].op == LSYS_OP_COND ? at + 1 : 0;
+      if (wout) { while (at < h->n && h->code[at].op != LSYS_OP_RET) at++; at++; }
+      if (!lsys_expr_span(h->code, 0, at, args, out, m->cur, m->funcs)) return 0;
+      if (lsys_cpfg_mark(m)) nv = (uint32_t)wout;
+      else lsys_expr_span(h->code, at, h->n, args, out + wout, m->cur, m->funcs);
+    }
+    else if (!lsys_expr_run(h->code, h->n, args, out, m->cur, m->funcs)) return 0;
+    for (k = 0; k < nv; k++) {
       if (!isfinite(out[k]))
         return lsys_seterror(&m->err, LSYS_ERULE, m->cur_index,
                              "rule %d: value %u is not a finite number", r->id, k + 1);
@@ -534,6 +545,10 @@ static void options (harness *H, const char *s, size_t len) {
       case 'M': if (d >= 0) H->m.max_memory = budgets[d % 5]; break;
       case 'n': if (d >= 0) H->steps = d > 6 ? 6 : d; break;
       case 'S': if (d >= 0) H->seed = (uint64_t)d; break;
+      case 'C':                       /* cpfg's generator; C1: the homomorphism shares it */
+        H->m.cpfg = H->m.rng.cpfg = H->m.hrng.cpfg = 1;
+        if (d == 1) H->m.hshare = 1;
+        break;
       default: break;
     }
   }
@@ -630,6 +645,7 @@ static void run (harness *H) {
   int k, st;
   lsys_rng_seed(&H->m.rng, H->seed);
   lsys_rng_seed(&H->m.hrng, H->seed + 1);
+  H->m.choice48 = H->seed;
   checkstring(H, src);
   for (k = 0; k < H->steps; k++) {
     st = lsys_derive_step(&H->m, src, dst);
@@ -656,9 +672,10 @@ static void run (harness *H) {
   if (st != LSYS_OK) checkfail(H, st);
   else checkstring(H, dst);
   {                         /* the derivation's generator is not the homomorphism's */
-    lsys_rng r0;
+    lsys_rng r0 = H->m.rng;   /* (unless it is cpfg's and shared; nrand's pair always is) */
     lsys_rng_seed(&r0, H->seed);
-    if (memcmp(&r0, &H->m.rng, sizeof r0) != 0) __builtin_trap();
+    if (H->m.cpfg) { r0.iset = H->m.rng.iset; r0.gset = H->m.rng.gset; }
+    if (!H->m.hshare && memcmp(&r0, &H->m.rng, sizeof r0) != 0) __builtin_trap();
   }
   streaming(H, src, dst, st == LSYS_OK);
   if (lsys_expand(&H->m, LSYS_PROD, src, dst) != LSYS_EARG) __builtin_trap();
@@ -667,11 +684,13 @@ static void run (harness *H) {
     int s1, s2;
     char msg[sizeof H->m.err.msg];
     lsys_rng_seed(&H->m.rng, H->seed);
+    H->m.choice48 = H->seed;
     keep = H->m.rng;
     if (lsys_lstring_copy(&H->w, src) != LSYS_OK) __builtin_trap();
     s1 = lsys_derive_step(&H->m, src, &H->t);
     memcpy(msg, H->m.err.msg, sizeof msg);
     H->m.rng = keep;
+    H->m.choice48 = H->seed;
     s2 = lsys_derive_step(&H->m, &H->w, &H->w);
     checkcur(H);
     if (lsys_lstring_widen(&H->t) != LSYS_OK || lsys_lstring_widen(&H->w) != LSYS_OK)

@@ -718,6 +718,7 @@ local function modeltable (C, W, reset)
   W("  axiom = %s,", quote(tidy(o.axiom)))
   W("  steps = %s,", tostring(math.tointeger(o.steps) or o.steps))
   if o.seed then W("  seed = %s,", tostring(math.tointeger(o.seed) or o.seed)) end
+  W("  random = \"cpfg\",   -- cpfg's random numbers in cpfg's order, as lsys.cpfg.load")
   if o.numbers then
     W("  numbers = %s,   -- parameters stored as cpfg stores them", quote(o.numbers))
   end

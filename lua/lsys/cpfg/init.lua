@@ -10,7 +10,7 @@ local type, pairs, ipairs, error, pcall, load, select, setmetatable, next, tostr
 local math, string = math, string
 local floor, log, exp, sqrt, min = math.floor, math.log, math.exp, math.sqrt, math.min
 local concat, sort = table.concat, table.sort
-local format, rep = string.format, string.rep
+local format, rep, gsub = string.format, string.rep, string.gsub
 local io_write = io.write
 local require = require
 local cpp = require "lsys.cpfg.cpp"
@@ -125,9 +125,11 @@ end
 -- printf: C's format on numbers; %d and the other integer conversions take the integer
 -- part; length modifiers (%lf, %ld) are accepted and mean nothing, as for C's printf of
 -- a double
+-- (string.gsub itself, not the rules' guarded view of it: the pattern is the loader's,
+-- linear in the format's length, which the guard's bound for any pattern overstates)
 function H._printf (fmt, ...)
   local args, i = { ... }, 0
-  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)[hlLqjzt]*([diouxXcfFeEgGs%%])", function (flags, c)
+  local out = gsub(fmt, "%%([-+ #0]*%d*%.?%d*)[hlLqjzt]*([diouxXcfFeEgGs%%])", function (flags, c)
     if c == "%" then return "%" end
     i = i + 1
     local x = args[i] or 0
@@ -145,6 +147,7 @@ end
 function H._loop () error("cpfg: a loop ran 100000000 times", 0) end
 for k, v in pairs(model.BUILTIN) do H[k] = v end
 H.ran, H.nran, H.produce = core.ran, core.nran, core.produce
+H._try, H._resume = core.cpfg_try, core.cpfg_resume
 
 -- Expressions --------------------------------------------------------------------------
 
@@ -391,6 +394,18 @@ local function sideeffect (list, own)
   return found
 end
 
+-- Whether expression e draws a random number: a block local set from one is evaluated once
+-- (cpfg's `{a=floor(n*ran(1)); b=n-a;}` keeps a+b = n), so the rule takes the function form
+-- rather than substituting the expression's text at each use.
+local RANDOM = { ran = true, nran = true, bran = true, biran = true }
+local function draws (e)
+  if e == nil then return false end
+  if e.k == "call" and RANDOM[e.f] then return true end
+  for _, f in ipairs({ "a", "b", "c" }) do if draws(e[f]) then return true end end
+  for _, x in ipairs(e.args or e.idx or {}) do if draws(x) then return true end end
+  return false
+end
+
 local function compile (T, src, pos)
   local file, line = T.P:where(pos)
   local chunk, err = load(src, "=" .. file .. ":" .. line, "t", {})
@@ -514,7 +529,7 @@ local function production (T, ls, p, section, stochastic)
     local function block (list)
       for _, s in ipairs(list or {}) do
         if s.k ~= "assign" or s.lhs.k ~= "name" or
-           not (locals[s.lhs.n] or params[s.lhs.n]) then
+           not (locals[s.lhs.n] or params[s.lhs.n]) or draws(s.e) then
           error(NOSTRING, 0)
         end
         local code = N(T, ctx, s.e)
@@ -539,7 +554,9 @@ local function production (T, ls, p, section, stochastic)
     local own = {}
     for n in pairs(locals) do own[n] = true end
     for n in pairs(params) do own[n] = true end
-    local se = sideeffect(p.post, own)
+    -- with cpfg's generator the chosen production's post-condition block runs alone (its
+    -- mark, below); lsys's runs the blocks of every production that applies
+    local se = T.random == "lsys" and sideeffect(p.post, own)
     if se then
       fail(T, se[1], "in a stochastic L-system, a post-condition block that %s is not "
            .. "supported (lsys runs the blocks of every production that applies, cpfg only "
@@ -564,8 +581,30 @@ local function production (T, ls, p, section, stochastic)
   end
   local out = { "local E, H, L = ...", "return function (" .. concat(args, ", ") .. ")",
                 "  local _n = 0" }
-  statements(T, ctx, p.pre, out, "  ")
-  if p.cond then out[#out + 1] = "  if not " .. B(T, ctx, p.cond) .. " then return end" end
+  -- cpfg's generator: a weighted production being tried stops after its condition
+  -- (lsys_cpfg_mark); the chosen one then goes on from there (its locals are in L), so
+  -- that its post-condition block and successor draw after every production was tried,
+  -- and its pre-condition block runs once
+  -- (a formal parameter the pre-condition block assigns is kept in L[-k] meanwhile)
+  local ind = weighted and "    " or "  "
+  local keep, back = {}, {}
+  if weighted then
+    local pre = {}
+    walknames(p.pre, pre, {})
+    for _, n in ipairs(pre) do
+      if params[n] and not back[n] then
+        keep[#keep + 1] = format("L[%d] = %s", -#keep - 1, mangle(n))
+        back[n] = format("%s = L[%d]", mangle(n), -#keep)
+        back[#back + 1] = back[n]
+      end
+    end
+    out[#out + 1] = "  if H._resume() then " .. concat(back, "; ") .. " else"
+  end
+  statements(T, ctx, p.pre, out, ind)
+  if p.cond then out[#out + 1] = ind .. "if not " .. B(T, ctx, p.cond) .. " then return end" end
+  if weighted then
+    out[#out + 1] = "    if H._try() then " .. concat(keep, "; ") .. " return end\n  end"
+  end
   statements(T, ctx, p.post, out, "  ")
   local tmpl, vals = template(T, ctx, p.succ)
   local v = #vals > 0 and ", " .. concat(vals, ", ") or ""
@@ -806,6 +845,7 @@ local function translate (P, lsystems, opts)
               localtables = {}, origin = { productions = {}, decomposition = {},
                                            homomorphism = {} }, modnames = nil }
   T.H = setmetatable({}, { __index = H })
+  T.random = opts.random or "cpfg"        -- the generator the model will have
   local warned = {}
   T.undefined = function (n, pos)
     local file, line = P:where(pos)
@@ -989,12 +1029,15 @@ local function checkopts (opts, fname)
   if type(opts) ~= "table" then error(fname .. ": opts must be a table", 3) end
   for k in pairs(opts) do
     if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" and
-       k ~= "functions" then
+       k ~= "functions" and k ~= "random" then
       error(format("%s: unknown option '%s'", fname, tostring(k)), 3)
     end
   end
   if opts.functions ~= nil and opts.functions ~= "cpfg" and opts.functions ~= "exact" then
     error(format("%s: option 'functions' must be \"cpfg\" or \"exact\"", fname), 3)
+  end
+  if opts.random ~= nil and opts.random ~= "cpfg" and opts.random ~= "lsys" then
+    error(format("%s: option 'random' must be \"cpfg\" or \"lsys\"", fname), 3)
   end
   return opts
 end
@@ -1046,7 +1089,7 @@ function M.options (lfile, opts)
     local lines = kept and cpp.builtin(lfile, defs, kept) or cpp.run(lfile, defs, opts.cpp)
     local P = parse.new(lines)
     local lsystems = P:file()
-    local o, T = translate(P, lsystems, { name = lfile, keep = opts.keep,
+    local o, T = translate(P, lsystems, { name = lfile, keep = opts.keep, random = opts.random,
                                           globals = kept and kept.values })
     if T.keep then T.keep.defines = kept end
     return o, T.keep
@@ -1059,7 +1102,9 @@ end
 -- (read with lsys.view.load; contours, surfaces and functions are relative to its
 -- folder). opts: colormap or materials (a .map or .mat file, the palette), cpp and
 -- defines as for `options`, functions ("cpfg", the default: the view's functions
--- approximated as cpfg does; "exact": lsys's exact values). Returns an lsys Model; raises
+-- approximated as cpfg does; "exact": lsys's exact values), random ("cpfg", the default:
+-- cpfg's random numbers in cpfg's order, on one thread; "lsys": lsys's generator, which
+-- does not depend on the order nor on the threads). Returns an lsys Model; raises
 -- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
@@ -1084,11 +1129,12 @@ function M.load (lfile, vfile, opts)
     for k, x in pairs(opts.defines or {}) do defs[k] = x end
     local lines = cpp.run(lfile, defs, opts.cpp)
     local P = parse.new(lines)
-    o, T = translate(P, P:file(), { name = lfile })
+    o, T = translate(P, P:file(), { name = lfile, random = opts.random })
   end)
   if not ok then error(cpfgerror(err), 0) end
   o.view = v
   if opts.functions ~= "exact" then o.functions = cpfgfuncs(v) end
+  o.random = opts.random or "cpfg"      -- cpfg's numbers in cpfg's order (docs/cpfg.md)
   local ok2, m = pcall(model.lsystem, o)
   if not ok2 then
     -- name the cpfg line of a rule lsys refused
