@@ -4,7 +4,7 @@
 #
 #   tools/fuzz.sh [SECONDS] [NAME...] [--c | --lua] [--no-merge]
 #
-# NAME: parsers contour surface derive expr png export func (C), view palette ruleexpr sketch
+# NAME: parsers contour surface derive expr png sgi export func (C), view palette ruleexpr sketch
 # svg cpfg batch batchspec components grow import (Lua: every file of
 # tests/fuzz/lua/targets/; lua-NAME names one too); default: all of them (--c: the C ones,
 # --lua: the Lua ones). For the C targets it configures build-fuzz/ with clang and
@@ -33,7 +33,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ALL="parsers contour surface derive expr png export func"
+ALL="parsers contour surface derive expr png sgi export func"
 ALL_LUA=""
 for t in tests/fuzz/lua/targets/*.lua; do [ -f "$t" ] && ALL_LUA="$ALL_LUA $(basename "$t" .lua)"; done
 ALL_LUA=${ALL_LUA# }

@@ -1,10 +1,15 @@
 /*
-** Texture images (texture.h): a PNG file read into RGBA pixels, with the
-** settings of a cpfg `texture:` entry.
+** Texture images (texture.h): a PNG or SGI image file read into RGBA
+** pixels, with the settings of a cpfg `texture:` entry.
 */
+#define _XOPEN_SOURCE 700       /* fileno, fstat */
+#include <errno.h>
+#include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "pngio.h"
+#include "sgiio.h"
 #include "texture.h"
 
 void lsys_texture_init (lsys_texture *t) {
@@ -48,11 +53,47 @@ static int isgrey (const uint8_t *px, size_t n) {
   return 1;
 }
 
+enum { NOTIMAGE, PNG, SGI };
+
+/* Sets *kind to what the file 'path' holds, by its first bytes (not by its
+** name: cpfg's models name SGI images .rgb, .rgba, .bw, .sgi, .int or
+** .inta). Returns LSYS_OK, or LSYS_EARG when it cannot be opened or read
+** (the messages of lsys_png_read). */
+static int sniff (const char *path, int *kind, lsys_error *e) {
+  static const uint8_t pngsig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  uint8_t b[8];
+  size_t n;
+  struct stat st;
+  FILE *f = fopen(path, "rb");
+  int err;
+  if (f == NULL)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for reading: %s", path,
+                         strerror(errno));
+  if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+    const char *why = fstat(fileno(f), &st) != 0 ? strerror(errno)
+                      : S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file";
+    fclose(f);
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path, why);
+  }
+  n = fread(b, 1, sizeof b, f);
+  err = ferror(f) ? errno : 0;
+  fclose(f);
+  if (err) return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path,
+                                strerror(err));
+  *kind = n == sizeof b && memcmp(b, pngsig, sizeof b) == 0 ? PNG
+          : n >= 2 && (b[0] << 8 | b[1]) == LSYS_SGI_MAGIC ? SGI : NOTIMAGE;
+  return LSYS_OK;
+}
+
 int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e) {
   uint8_t *px = NULL;
   char *copy;
   size_t len = strlen(path);
-  int w, h, st = lsys_png_read(path, &px, &w, &h, e);
+  int w, h, kind = NOTIMAGE, st = sniff(path, &kind, e);
+  if (st != LSYS_OK) return st;
+  if (kind == NOTIMAGE)
+    return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "'%s' is not a PNG or SGI image", path);
+  st = kind == PNG ? lsys_png_read(path, &px, &w, &h, e) : lsys_sgi_read(path, &px, &w, &h, e);
   if (st != LSYS_OK) return st;
   copy = (char *)LSYS_MALLOC(len + 1);
   if (copy == NULL) {

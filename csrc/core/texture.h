@@ -1,13 +1,15 @@
 /*
-** Textures (cpfg guide §5, Appendix B.2): images read with libpng (PNG
-** replaces cpfg's rgb/rle/tga), with the filters and environment mode of a
-** `texture:` view entry.
+** Textures (cpfg guide §5, Appendix B.2): PNG images (read with libpng,
+** pngio.h) and SGI images (cpfg's .rgb and its kin, sgiio.h), told apart by
+** their first bytes, with the filters and environment mode of a `texture:`
+** view entry. cpfg's Utah RLE and Targa files are not read.
 **
 ** Texture coordinates follow OpenGL (and cpfg, and OBJ): (0, 0) is the
 ** bottom left corner of the image, u grows to the right, v upwards, and
-** both repeat outside [0, 1]. The pixels are kept as the PNG stores them,
-** top row first; the renderer and the glTF writer, whose images start at
-** the top, flip v themselves.
+** both repeat outside [0, 1]. The pixels are kept top row first, as a PNG
+** stores them (an SGI image's rows, stored bottom first, are turned over);
+** the renderer and the glTF writer, whose images start at the top, flip v
+** themselves.
 */
 #ifndef LSYS_TEXTURE_H
 #define LSYS_TEXTURE_H
@@ -32,11 +34,14 @@ void lsys_texture_init (lsys_texture *t);
 /* Frees the pixels and the path and leaves 't' empty (idempotent). */
 void lsys_texture_free (lsys_texture *t);
 
-/* Reads a PNG file into 't' (filters and mode left as they are). A grey
-** image (every pixel has R = G = B) sets 'intensity', any other clears it.
-** On failure 't' is unchanged. Returns LSYS_OK, or the code of
-** lsys_png_read (LSYS_EARG: cannot open; LSYS_ESYNTAX: not a PNG or
-** damaged; LSYS_ELIMIT; LSYS_ENOMEM) with e->msg naming the file. */
+/* Reads a PNG or SGI image file into 't' (filters and mode left as they
+** are): a file starting with the PNG signature goes to lsys_png_read, one
+** starting with the SGI magic number to lsys_sgi_read, whatever its name.
+** A grey image (every pixel has R = G = B) sets 'intensity', any other
+** clears it. On failure 't' is unchanged. Returns LSYS_OK, or the code of
+** the reader (LSYS_EARG: cannot open; LSYS_ESYNTAX: damaged, or "not a PNG
+** or SGI image"; LSYS_ELIMIT; LSYS_EMEMORY; LSYS_ENOMEM) with e->msg naming
+** the file. */
 int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e);
 
 /* Makes 'dst' a copy of 's' (pixels, path, settings). Returns LSYS_OK, or

@@ -252,7 +252,7 @@ local function resolve (dir, path)
 end
 M.resolve = resolve
 
--- Largest texture (PNG) read; contours and surfaces have readfile's default (16 MiB).
+-- Largest texture (PNG or SGI image) read; contours and surfaces have readfile's default (16 MiB).
 local MAXIMAGE = 256 * 2 ^ 20
 
 local readfile = viewfile.readfile
