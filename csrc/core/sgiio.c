@@ -44,11 +44,8 @@
 ** the first row that does not is an error: the time is bounded by the
 ** pixels plus the file.
 */
-#define _XOPEN_SOURCE 700       /* fileno, fstat */
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "pngio.h"
 #include "sgiio.h"
@@ -260,43 +257,13 @@ int lsys_sgi_decode (const uint8_t *bytes, size_t n, const char *name, uint8_t *
 }
 
 int lsys_sgi_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
-  FILE *f;
-  struct stat st;
-  uint8_t *buf;
   size_t n;
-  int err, code;
+  int code;
+  char *buf;
   *rgba = NULL;
   *w = *h = 0;
-  if ((f = fopen(path, "rb")) == NULL)
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot open '%s' for reading: %s", path,
-                         strerror(errno));
-  if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-    const char *why = fstat(fileno(f), &st) != 0 ? strerror(errno)
-                      : S_ISDIR(st.st_mode) ? strerror(EISDIR) : "not a regular file";
-    fclose(f);
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path, why);
-  }
-  if ((uint64_t)st.st_size > LSYS_SGI_MAXFILE) {
-    char b[32];
-    fclose(f);
-    return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %s", path,
-                         lsys_fmtsize(b, LSYS_SGI_MAXFILE));
-  }
-  /* the size fstat gave: a file that grows meanwhile is read as it was */
-  if ((buf = (uint8_t *)LSYS_MALLOC(st.st_size > 0 ? (size_t)st.st_size : 1)) == NULL) {
-    fclose(f);
-    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot read '%s': not enough memory",
-                         path);
-  }
-  n = fread(buf, 1, (size_t)st.st_size, f);
-  err = ferror(f) ? errno : 0;
-  fclose(f);
-  if (err) {
-    LSYS_FREE(buf);
-    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot read '%s': %s", path,
-                         strerror(err));
-  }
-  code = lsys_sgi_decode(buf, n, path, rgba, w, h, e);
+  if ((buf = lsys_readfile(path, LSYS_SGI_MAXFILE, &n, e)) == NULL) return e->code;
+  code = lsys_sgi_decode((const uint8_t *)buf, n, path, rgba, w, h, e);
   LSYS_FREE(buf);
   return code;
 }

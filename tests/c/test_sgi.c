@@ -537,7 +537,7 @@ static void test_files (void) {
   lsys_texture_free(&t);
   /* the reader's own file errors */
   assert(lsys_sgi_read(tmp("missing.rgb"), &px, &w, &h, &e) == LSYS_EARG && px == NULL);
-  assert(strstr(e.msg, "missing.rgb' for reading: No such file or directory"));
+  assert(strstr(e.msg, "missing.rgb': No such file or directory"));   /* lsys_readfile */
   assert(lsys_sgi_read(dir, &px, &w, &h, &e) == LSYS_EARG && px == NULL);
   assert(strstr(e.msg, dir) && strstr(e.msg, "Is a directory"));
   assert(lsys_sgi_read("/dev/null", &px, &w, &h, &e) == LSYS_EARG && px == NULL);
