@@ -189,9 +189,9 @@ describe("lsys.components geometry", function ()
     assert.near(3, hi[2], 1e-6) assert.near(0.2, hi[3], 1e-6)
     lo, hi = bounds("disc", { 0, 0, 1 })
     assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6) assert.near(0.5, hi[3], 1e-6)
-    -- nothing at all: drawn at 0, not scaled
+    -- nothing at all: no surface, as cpfg draws none of scale 0 (and nothing divided by 0)
     lo, hi = bounds("cube", { 0, 0, 0 })
-    for k = 1, 3 do assert.equal(0, lo[k]) assert.equal(0, hi[k]) end
+    assert.is_nil(lo); assert.is_nil(hi)
     -- a width so much smaller than the depth that depth / width is not finite
     lo, hi = bounds("sphere", { 1e-300, 1, 1e10 })
     assert.near(0, lo[1], 1e-6) assert.near(0, hi[1], 1e-6)

@@ -232,9 +232,13 @@ describe("ignore list", function()
     assert.equal("AGX", derive("AFB", "A < B --> X\nF --> G", 1, { ignore = "F" }))
   end)
 
-  it("never ignores brackets, even when they are listed", function()
-    -- the branch is still skipped as a whole: A > C would need to enter [B]
-    assert.equal("A[B]C", derive("A[B]C", "A > B --> X", 1, { ignore = "[]" }))
+  it("steps over listed brackets in a right context, as cpfg; a left context keeps them",
+     function()
+    -- cpfg (its RconDiff tests the ignore table before it skips a branch)
+    assert.equal("X[B]C", derive("A[B]C", "A > B --> X", 1, { ignore = "[]" }))
+    assert.equal("[X]B", derive("[A]B", "A > B --> X", 1, { ignore = "]" }))
+    assert.equal("A[B]C", derive("A[B]C", "A > C --> X", 1, { ignore = "[" }))
+    assert.equal("A[B]C", derive("A[B]C", "B < C --> X", 1, { ignore = "[" }))
   end)
 
   it("cannot match a context module that is on the ignore list: it is skipped", function()
@@ -253,8 +257,14 @@ describe("consider list", function()
     assert.equal("XCDB", derive("ACDB", "A > B --> X", 1, { consider = "AB" }))
   end)
 
-  it("does not make the right context ignore brackets (unlike cpfg)", function()
-    assert.equal("A[B]", derive("A[B]", "A > B --> X", 1, { consider = "AB" }))
+  it("makes the right context step over brackets it does not name, as cpfg", function()
+    -- cpfg: its consider list ignores every other module, brackets included
+    assert.equal("X[B]", derive("A[B]", "A > B --> X", 1, { consider = "AB" }))
+    assert.equal("A[B]", derive("A[B]", "A > B --> X", 1, { consider = "AB[]" }))
+    assert.equal("A[B]", derive("A[B]", "A > [B] --> X", 1, { consider = "AB" }))
+    assert.equal("X[B]C[B]", derive("A[B]C[B]", "A > BB --> X", 1, { consider = "AB" }))
+    assert.equal("A[X]C", derive("A[B]C", "B > C --> X", 1, { consider = "BC" }))
+    assert.equal("[A]B", derive("[A]B", "B > A --> X", 1, { consider = "AB" }))
   end)
 
   it("still lets the left context climb out of a branch", function()

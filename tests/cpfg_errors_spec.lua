@@ -399,15 +399,72 @@ describe("lsys.cpfg.load's translated statements", function ()
                  err(lsystem("A", nil, "define: { array a[10000][1001]; }\n")))
   end)
 
-  it("refuse an array index that is not a number in range, NaN and infinity too", function ()
-    assert.equal("index", derive("a[0/0] = 1;"):match("cpfg: (index) %S+ out of range 0..2 "
-                                                      .. "of array a$"))
-    assert.equal("index", derive("y = a[0/0];"):match("cpfg: (index) %S+ out of range 0..2 "
-                                                      .. "of array a$"))
-    assert.truthy(derive("y = a[1/0];"):find("cpfg: index inf out of range 0..2 of array a",
-                                             1, true))
-    assert.truthy(derive("y = a[3];"):find("cpfg: index 3 out of range 0..2 of array a", 1,
-                                           true))
-    assert.equal("B(0)", derive("y = a[-0.5];"))
+  it("take the nearest element for an index out of range, as cpfg; refuse NaN", function ()
+    local warning = require "lsys.warning"
+    local saved, got = warning.warn, {}
+    warning.warn = function (msg)
+      if msg:find("array a", 1, true) then
+        got[#got + 1] = msg:gsub(dir:gsub("%p", "%%%0") .. "/", "")
+      end
+    end
+    local r = {}
+    for i, body in ipairs { "a[2] = 5; y = a[7];", "a[0] = 4; y = a[-3];",
+                            "a[2] = 6; y = a[3];", "y = a[-0.5];", "a[0/0] = 1;",
+                            "y = a[0/0];" } do
+      r[i] = derive(body)
+    end
+    warning.warn = saved
+    assert.same({ "B(5)", "B(4)", "B(6)", "B(0)" }, { r[1], r[2], r[3], r[4] })   -- cpfg
+    assert.equal("index", r[5]:match("cpfg: (index) %S+ out of range 0..2 of array a$"))
+    assert.equal("index", r[6]:match("cpfg: (index) %S+ out of range 0..2 of array a$"))
+    assert.same({
+      "main.l:3: array a: index 7 out of range 0..2; 2 used, as cpfg does (said once per "
+        .. "array and derivation)",
+      "main.l:3: array a: index -3 out of range 0..2; 0 used, as cpfg does (said once per "
+        .. "array and derivation)",
+      "main.l:3: array a: index 3 out of range 0..2; 2 used, as cpfg does (said once per "
+        .. "array and derivation)",
+    }, got)
+  end)
+end)
+
+describe("lsys.cpfg.load's messages", function ()
+  it("hint at '-->' for a production written with '->'", function ()
+    assert.equal("main.l:4: '->' is not a production arrow in cpfg; write '-->'",
+                 err(lsystem("A(1)", "A(x) -> A(x+1)\n")))
+    assert.equal("main.l:4: '-->' expected in a production, found the end of the line",
+                 err(lsystem("A(1)", "A(x) B\n")))
+    -- a '-' module before a right context is not an arrow
+    local m = load("main.l", { ["main.l"] = lsystem("-B", "-<B --> C\n") })
+    assert.equal("-C", tostring(m:derive(1)))
+  end)
+
+  it("name the .l file and the production's line when a rule fails as it derives",
+     function ()
+    local m = load("main.l", { ["main.l"] = lsystem("A(1)", "A(x) --> B(x)\n\nB(x) --> C(x/0)\n") })
+    local ok, msg = pcall(m.derive, m, 2)
+    assert.is_false(ok)
+    assert.equal("main.l:6: rule 2 'B(x) --> C((x / 0.0))', module 1: value 1 is "
+                 .. "infinite, not a finite number", (msg:gsub(dir:gsub("%p", "%%%0") .. "/", "")))
+  end)
+
+  it("refuse a bracket in a predecessor, saying why", function ()
+    assert.equal("main.l:4: a bracket in a predecessor is not supported: lsys rewrites "
+                 .. "modules, never the branch structure; remove a branch with % (a cut) "
+                 .. "from a module in it (docs/cpfg.md)",
+                 err(lsystem("A[BC]D", "[BC] --> X\n")))
+    assert.equal("main.l:4: a bracket in a predecessor is not supported: lsys rewrites "
+                 .. "modules, never the branch structure; remove a branch with % (a cut) "
+                 .. "from a module in it (docs/cpfg.md)",
+                 err(lsystem("A[BC]D", "A < B C] --> X\n")))
+  end)
+
+  it("say that a model without its view file has no functions", function ()
+    local m = load("main.l", { ["main.l"] = lsystem("A(1)", "A(x) --> A(func(1, x))\n") })
+    local ok, msg = pcall(m.derive, m, 1)
+    assert.is_false(ok)
+    assert.equal("main.l:4: rule 1 'A(x) --> A(func(1.0, x))': unknown function 1 (functions: "
+                 .. "none); a cpfg model's functions come from its view file (.v), and none "
+                 .. "was given", (msg:gsub(dir:gsub("%p", "%%%0") .. "/", "")))
   end)
 end)

@@ -203,8 +203,8 @@ describe("lsys.cpfg.load errors", function ()
   end
 
   it("names the file and line of a syntax error", function ()
-    assert.equal(D .. "errors_syntax.l:5: '-->' expected in a production, found the end of "
-                 .. "the line", err("errors_syntax.l"))
+    assert.equal(D .. "errors_syntax.l:5: '->' is not a production arrow in cpfg; write '-->'",
+                 err("errors_syntax.l"))
   end)
 
   it("never hands cpp a file name that reads as an option", function ()
@@ -280,6 +280,41 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
     assert(r[1], r[2])
     return got, table.unpack(r, 2, r.n)
   end
+
+  it("refuses ?E, or derives it as cpfg without an environmental program on request",
+     function ()
+    local ok, msg = pcall(lsys.cpfg.load, D .. "envq.l")
+    assert.is_false(ok)
+    assert.equal(D .. "envq.l:5: ?E (an environmental program's query module) is not "
+                 .. "supported: lsys runs no environmental program; environment = \"none\" "
+                 .. "(--environment none) derives the model as cpfg does without one", msg)
+    assert.equal("A(3)?E(7,6)", derive("envq.l", nil, { environment = "none" }))   -- cpfg
+    assert.error_matches(function () lsys.cpfg.load(D .. "envq.l", nil, { environment = 1 }) end,
+                         "option 'environment' must be \"none\"", 1, true)
+  end)
+
+  it("reads a module's parameters after blanks, as cpfg's lexer does", function ()
+    assert.equal("A(3)F(2)F(2)B", derive("blankparen.l"))               -- cpfg
+  end)
+
+  it("leaves out a surface or texture file that is not there, with a warning, as cpfg",
+     function ()
+    local got, m = warnings(function ()
+      return lsys.cpfg.load(D .. "nofiles.l", D .. "nofiles.v")
+    end)
+    assert.same({
+      D .. "nofiles.v:1: 'texture': cannot open 'gone.rgb'; left out, as cpfg does (the "
+        .. "textures after it move down a place)",
+      D .. "nofiles.v:3: 'surface': cannot open 'bract.s'; ~b draws nothing (as in cpfg)",
+    }, got)
+    assert.is_nil(m.view.surfaces.b)
+    assert.equal(1, #m.view.textures)                    -- the second moved down
+    assert.equal("../views/leaf.png", m.view.textures[1].file)
+    assert.is_nil(m.view.surfaces.l.texture)             -- texture 2 is gone: untextured
+    local sc = m:interpret()
+    assert.equal(3, sc.nlines)                           -- the F's; ~b draws nothing
+    assert.equal(50, sc.ntriangles)                      -- ~l: leaf.s
+  end)
 
   it("skips a character cpfg's expression lexer skips, with a warning", function ()
     local got, s = warnings(function () return derive("stray.l") end)

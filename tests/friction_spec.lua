@@ -164,11 +164,19 @@ describe("issue 19 §11: mistakes that used to pass in silence", function ()
                      { vector = { 0, 0, 0 }, elasticity = 0.2 } } } }), 1, true)
   end)
 
-  it("refuses a negative contour or texture number", function ()
+  it("refuses a negative contour; an undefined texture warns and draws untextured (cpfg)",
+     function ()
     local m = lsys.lsystem { axiom = "F@#(-1)F" }
     assert.matches("module 2 '@#': contour -1 is not defined", errof(m.interpret, m), 1, true)
-    m = lsys.lsystem { axiom = "F@Tx(-2)F" }
-    assert.matches("module 2 '@Tx': texture -2 is not defined", errof(m.interpret, m), 1, true)
+    local dir = H.tmpdir()
+    H.write(dir .. "/w.lua", 'local lsys = require "lsys"\n'
+      .. 'local sc = lsys.lsystem { axiom = "F@Tx(-2)F@Tx(3)F" }:interpret()\n'
+      .. 'print(sc.nlines)\n')
+    local out, code = H.sh(H.BIN .. " " .. dir .. "/w.lua")
+    H.rmdir(dir)
+    assert.equal(0, code, out)
+    assert.equal("Lua warning: lsys: module 2 '@Tx': texture -2 is not defined (the view has "
+                 .. "0; view.textures); untextured from there, as in cpfg\n3\n", out)
   end)
 
   it("refuses positions that overflow instead of drawing nothing", function ()

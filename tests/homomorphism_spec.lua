@@ -83,6 +83,25 @@ describe("homomorphism", function()
     assert.not_equal("F(0)F(0)F(0)F(0)", a)
   end)
 
+  it("draws modules a rule run in Lua names for the first time as it expands", function()
+    -- F and @O exist only in the successor of a production with a statement block: the
+    -- turtle meets them mid-run (vlab's paintbrush drew no stem when first interpreted).
+    -- In a process of its own: a module name, once made, stays.
+    local H = require "tests.helper"
+    local out, code = H.lsys([[
+local lsys = require "lsys"
+local m = lsys.cpfg.load("tests/data/cpfg/homonew.l")
+local s = m:derive()
+for _ = 1, 2 do
+  local sc, kinds = m:interpret(s), {}
+  for _, r in sc:records() do kinds[#kinds + 1] = r.kind end
+  print(table.concat(kinds, " "), sc:record(1) and sc:record(1).p1[2])
+end
+]])
+    assert.equal(0, code, out)
+    assert.equal("segment sphere\t2.0\nsegment sphere\t2.0\n", out)
+  end)
+
   it("without homomorphism rules m:expand returns an equal string", function()
     local m = lsys.lsystem { axiom = "F(1)[+A]", productions = "A --> B" }
     assert.equal("F(1)[+B]", tostring(m:expand(m:derive(1))))

@@ -164,6 +164,60 @@ describe("surfaces drawn by the turtle", function()
     assert.near(-1, lo[1], 1e-6); assert.near(0, hi[1], 1e-6)
   end)
 
+  it("turns a surface whose UP is off the axes as cpfg does (x l + y h + z u)", function()
+    -- cpfg: ?P after each (tests/data/surfaces/tilted.s: UP 0.6, 0, -0.8; patches.c reads a
+    -- point as x l + y h + z u with l = h x u, then along the turtle's L, H, U)
+    local v = { surfaces = { t = DIR .. "tilted.s" } }
+    local cases = {
+      { "~t(1)", { -0.266667, 0.666667, -0.0333333 } },
+      { "/(30)&(20)F(1)~t(2)F(1)", { 0.139476, 3.10951, -1.30825 } },
+      { "+(40)^(70)\\(10)~t(1.5)", { -0.516047, -0.0113417, 0.946608 } },
+    }
+    for _, c in ipairs(cases) do
+      local m = lsys.lsystem { axiom = c[1] .. "?P(0,0,0)", steps = 0, view = v }
+      local s = m:derive()
+      assert.near(c[2], { select(2, s:module(#s)) }, 1e-5)
+    end
+    -- its points are turned so too: the patch's corner (0, 0, 0) is (-1, 0, 0) from the
+    -- contact point, 1/3 of it at SIZE 3: x l = (0.8, 0, 0.6) / 3, then along L = (-1, 0, 0)
+    -- and U = (0, 0, -1) of the first frame
+    local out = os.tmpname() .. ".obj"
+    scene("~t", v):save(out)
+    local found = false
+    for line in io.lines(out) do
+      local x, y, z = line:match("^v (%S+) (%S+) (%S+)")
+      if x and math.abs(x + 0.8 / 3) < 1e-6 and math.abs(y) < 1e-6 and
+         math.abs(z + 0.2) < 1e-6 then found = true end
+    end
+    os.remove(out)
+    os.remove((out:gsub("%.obj$", ".mtl")))
+    assert.is_true(found)
+  end)
+
+  it("scales along L, H and U with three parameters, as cpfg; by the first with two",
+     function()
+    -- cpfg: the box of its rayshade output (-ray) and ?P; the end point scales by the first
+    local v = { surfaces = { t = DIR .. "tilted.s" } }
+    local cases = {
+      { "~t(1,2,3)", { -0.26667, 0, -0.6 }, { 0.63333, 2, 0.8 },
+        { -0.266667, 0.666667, -0.0333333 } },
+      { "/(30)&(20)~t(0.5,1,2)", { -0.076536, -0.13681, -0.68838 },
+        { 0.24348, 1.1221, 0.59236 }, { -0.0506359, 0.307531, -0.178963 } },
+      { "~t(2,1)", { -0.53333, 0, -0.4 }, { 1.2667, 2, 0.53333 },
+        { -0.533333, 1.33333, -0.0666666 } },
+    }
+    for _, c in ipairs(cases) do
+      local m = lsys.lsystem { axiom = c[1] .. "?P(0,0,0)", steps = 0, view = v }
+      local s = m:derive()
+      local lo, hi = m:interpret(s):bounds()
+      assert.near(c[2], lo, 1e-4)
+      assert.near(c[3], hi, 1e-4)
+      assert.near(c[4], { select(2, s:module(#s)) }, 1e-5)
+    end
+    assert.equal(0, scene("~t(1,0,1)", v).ntriangles)       -- a scale of 0: nothing drawn
+    assert.equal(0, scene("~t(0)", v).ntriangles)
+  end)
+
   it("leaves the turtle at the end point, scaled by the parameter and the entry", function()
     local sc = scene("~L F")
     assert.near({ 0, 1, 0 }, sc:record(2).p0, 1e-6)

@@ -193,6 +193,30 @@ describe("texture_load of SGI images (cpfg's .rgb)", function ()
     assert.same({ 255, 0, 0, 255 }, { px:byte(o + 1, o + 4) })
   end)
 
+  it("goes into a .glb as a PNG of its pixels (glTF has no SGI images)", function ()
+    local glb = require "tests.glb"
+    local sc = lsys.lsystem { axiom = "@Tx(1) { f + f + f + f } @Tx(2) { f + f + f + f }",
+      view = { angle = 90, textures = { path("alpha.rgba"), path("checker.png") } },
+    }:interpret()
+    sc:save(path("t.glb"))
+    local doc, bin = glb.read(path("t.glb"))
+    assert.equal(2, #doc.images)
+    local function image (i)
+      local bv = doc.bufferViews[doc.images[i].bufferView + 1]
+      return bin:sub(bv.byteOffset + 1, bv.byteOffset + bv.byteLength)
+    end
+    assert.equal("image/png", doc.images[1].mimeType)
+    write("t1.png", image(1))
+    local px, w, h = core.png_read(path("t1.png"))
+    assert.same({ 1, 2 }, { w, h })                      -- RGBA: a texel is transparent
+    assert.equal(pixels { { 10, 20, 30, 0 }, { 1, 2, 3 } }, px)
+    local f = assert(io.open(path("checker.png"), "rb"))
+    assert.equal(f:read("a"), image(2))                  -- a PNG goes in as it is
+    f:close()
+    os.remove(path("t.glb"))
+    os.remove(path("t1.png"))
+  end)
+
   it("loads from a view file's texture: line", function ()
     local v = view.load(path("plant.v"), { quiet = true })
     assert.same({ { file = "light08.rgb", mag = "linear", min = "near", mode = "decal",

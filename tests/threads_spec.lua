@@ -256,9 +256,9 @@ describe("interpretation on threads", function()
   it("name the module one thread names when two pieces fail", function()
     local m = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F[-F]F" }
     local text, k = tostring(m:derive(7)), 0
-    text = text:gsub("F", function ()             -- the 90,000th and 30,000th F: no texture
+    text = text:gsub("F", function ()             -- the 90,000th and 30,000th F: no contour
       k = k + 1
-      if k == 30000 or k == 90000 then return "@Tx(3)" end
+      if k == 30000 or k == 90000 then return "@#(3)" end
     end)
     local s = m:lstring(text)
     local msgs = {}
@@ -270,8 +270,8 @@ describe("interpretation on threads", function()
     end
     assert.equal(msgs[1], msgs[2])
     assert.equal(msgs[1], msgs[3])
-    assert.matches("texture 3 is not defined", msgs[1])
-    local first = text:find("@Tx", 1, true)
+    assert.matches("contour 3 is not defined", msgs[1])
+    local first = text:find("@#", 1, true)
     local before = text:sub(1, first - 1):gsub("%(.-%)", "")   -- one character a module
     assert.matches("module " .. (#before + 1) .. "[^%d]", msgs[1])
   end)

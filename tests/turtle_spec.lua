@@ -178,12 +178,25 @@ describe("turtle records", function ()
     assert.equal(1, sc:record(4).parent)
   end)
 
-  it("tapers a segment to the width set right after it", function ()
+  it("tapers a segment to the width set before the module that ends it, as cpfg", function ()
     local sc = m:interpret("!(2) F !(1) F")
     assert.equal(2, sc:record(1).w0); assert.equal(1, sc:record(1).w1)
     assert.equal(1, sc:record(2).w0); assert.equal(1, sc:record(2).w1)
-    sc = m:interpret("!(2) F + !(1) F")              -- a rotation ends the segment first
+    -- cpfg (its rayshade output: a cone of radii 1 and 0.5): a turn, a colour or a
+    -- module the turtle does not know leaves the segment open; F f G g [ ] { } ~ and
+    -- every @ module end it (cpfg's EndNode)
+    for _, text in ipairs { "!(2) F + !(1) F", "!(2) F ; , A !(1) [F]", "!(2) F !(1) @O(1) F" } do
+      sc = m:interpret(text)
+      assert.equal(2, sc:record(1).w0); assert.equal(1, sc:record(1).w1)
+    end
+    sc = m:interpret("!(2) F [ !(1) F ]")
     assert.equal(2, sc:record(1).w1)
+    sc = m:interpret("!(2) F @O(1) !(1) F")
+    assert.equal(2, sc:record(1).w1)
+    -- the segment keeps its own frame: the turn after it does not tilt it
+    sc = m:interpret("!(2) F + !(1) F", { line_style = "cylinder", contour_sides = 4 })
+    local _, hi = sc:bounds()
+    assert.near(1, hi[1], 1e-9)                  -- the first tube's radius 1 along x
   end)
 
   it("keeps Z(sh,su,sl) stiffness on the next segment", function ()
@@ -353,6 +366,9 @@ describe("geometry", function ()
   it("takes polygon vertices from F and f inside braces but not from G and g", function ()
     local m = model { view = { angle = 90 } }
     local sc = m:interpret("{ F + F + F + F }")
+    -- F draws its segment too, as cpfg draws the edges (its F calls StartNode in a polygon)
+    assert.near(1, sc:area(), 1e-9); assert.equal(4, sc.nlines)
+    sc = m:interpret("{ f + f + f + f }")
     assert.near(1, sc:area(), 1e-9); assert.equal(0, sc.nlines)
     sc = m:interpret("{ . G(2) + g . + f . }")                 -- G draws but adds no vertex
     assert.near(0.5, sc:area(), 1e-9)

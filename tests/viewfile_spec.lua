@@ -114,6 +114,13 @@ describe("view files", function ()
     v = parse("line style: cylinder\ninitial line width: 3\n")
     assert.same({ line_width = 3, line_style = "polygon" }, v)   -- no unit: polygons
     assert.same({ line_style = "line" }, parse("line style: 1"))  -- cpfg's digits 1..3
+    -- cpfg reads only the unit's first letter: p pixels, s cylinders, else polygons
+    assert.same({ line_width = 0.1, line_style = "cylinder" }, parse("initial line width: 0.1 s"))
+    assert.same({ line_width = 2, line_style = "line" }, parse("initial line width: 2 pnts"))
+    local iv, iw = parse("initial line width: 1 inches")
+    assert.same({ line_width = 1, line_style = "polygon" }, iv)
+    assert.same({ "x.v:1: 'initial line width': unknown unit 'inches' read as polygons "
+                  .. "(as cpfg does)" }, iw)
   end)
 
   it("strip /* */ and // comments, keeping line numbers", function ()
@@ -146,11 +153,16 @@ describe("view files", function ()
       assert.equal(("x.v:1: '%s' is not supported; ignored"):format(k), ws[1])
     end
     -- Lua's warn(): the lsys program turns it on, as `lua -W` does
+    -- once per kind in a process (a viewer reloading its model says it once); the list
+    -- each parse returns has them all
     local out, code = H.lsys('local view = require "lsys.view"\n' ..
       'view.parse("z buffer: on\\nangle factor: 4\\n", "y.v")\n' ..
-      'view.parse("z buffer: on\\n", "q.v", { quiet = true })\n')
+      'view.parse("z buffer: on\\n", "q.v", { quiet = true })\n' ..
+      'local _, w = view.parse("z buffer: on\\ncue range: 1\\n", "r.v")\n' ..
+      'print(#w)\n')
     assert.equal(0, code, out)
-    assert.equal("Lua warning: y.v:1: 'z buffer' is not supported; ignored\n", out)
+    assert.equal("Lua warning: y.v:1: 'z buffer' is not supported; ignored\n"
+                 .. "Lua warning: r.v:2: 'cue range' is not supported; ignored\n2\n", out)
   end)
 
   it("ignore what cpfg ignores: an unknown line style, a '?' left for a value", function ()
@@ -182,8 +194,6 @@ describe("view files", function ()
       { "color increment: 1 2 3",
         "x.v:1: 'color increment' expects an increment (and a back increment), got '1 2 3'" },
       { "initial line width: -1", "x.v:1: 'initial line width' must not be negative" },
-      { "initial line width: 1 inches",
-        "x.v:1: 'initial line width': the unit must be pixels or polygons, got 'inches'" },
       { "projection: oblique",
         "x.v:1: 'projection' must be parallel or perspective, got 'oblique'" },
       { "viewing angle: 180", "x.v:1: 'viewing angle' must be between 0 and 180 degrees" },

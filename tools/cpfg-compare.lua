@@ -1,6 +1,6 @@
 -- Runs vlab's example models through cpfg and through lsys.cpfg and compares the derived
 -- strings module by module (parameters within cpfg's printed precision).
--- Usage: lua5.4 tools/cpfg-compare.lua VLAB_EXT CPFG [--timeout S] [--homo]
+-- Usage: lua5.4 tools/cpfg-compare.lua VLAB_EXT CPFG [--timeout S] [--homo | --geometry]
 --                                       [MODEL_DIR ...] [--all FOLDER ...]
 --   VLAB_EXT: vlab's oofs/ext folder (git archive HEAD oofs/ext of the vlab repository);
 --   CPFG: the cpfg program, built for batch use (docs/cpfg.md, "cpfg as a reference");
@@ -14,7 +14,16 @@
 -- refuses (its message), cpfg fails (its message); "stochastic:" before a difference
 -- when lsys's own string changes with the seed (cpfg's drand48 cannot be matched string
 -- for string: see tools/cpfg-stats.lua). A view lsys refuses is reported and the strings
--- are compared without it. The environment program of `-e` is not run.
+-- are compared without it. The environment program of `-e` is not run; lsys reads ?E
+-- with environment = "none", as cpfg without the program.
+--   cpfg -g reads the L-system before the view, so the names of a view's function set are
+--   undefined in its batch run (an interactive cpfg reads the view first and defines them
+--   as 1, 2, ...): cpfg is given a copy of the .l file with those #defines in front.
+--   With --homo, a string cpfg stops writing at a query module is compared up to there.
+--   --geometry: for an identical string, also the bounding box of what each draws: cpfg's
+--   rayshade file (-ray: lines as cylinders of the line width; see raypoints) and lsys's
+--   scene (its segments as cylinders of their width); the largest difference of a corner
+--   coordinate, in % of the diagonal of cpfg's box (within 1 %: "box within X %").
 -- Run from the checkout after a build (it sets package.path to ./lua and ./build).
 package.path = "./lua/?.lua;./lua/?/init.lua;" .. package.path
 package.cpath = "./build/?.so;" .. package.cpath
@@ -63,9 +72,193 @@ end
 -- The lsys side, run in a child process (so a crash or a runaway derivation costs one
 -- model): loads L, V, the palette, derives, compares with cpfg's string in REF and
 -- returns the verdict. A model whose string changes with the seed is "stochastic".
-local function child (l, v, pal, ref, homo)
+-- The bounding box of a point list: lo, hi (nil when it is empty).
+local function boxof (pts)
+  if #pts == 0 then return nil end
+  local lo, hi = { math.huge, math.huge, math.huge }, { -math.huge, -math.huge, -math.huge }
+  for _, p in ipairs(pts) do
+    for k = 1, 3 do
+      if p[k] < lo[k] then lo[k] = p[k] end
+      if p[k] > hi[k] then hi[k] = p[k] end
+    end
+  end
+  return lo, hi
+end
+
+-- Points around a circle of radius r about c, perpendicular to the unit vector n.
+local function ring (pts, c, n, r)
+  local a = math.abs(n[1]) < 0.9 and { 1, 0, 0 } or { 0, 1, 0 }
+  local u = { n[2] * a[3] - n[3] * a[2], n[3] * a[1] - n[1] * a[3], n[1] * a[2] - n[2] * a[1] }
+  local lu = math.sqrt(u[1] ^ 2 + u[2] ^ 2 + u[3] ^ 2)
+  u = { u[1] / lu, u[2] / lu, u[3] / lu }
+  local v = { n[2] * u[3] - n[3] * u[2], n[3] * u[1] - n[1] * u[3], n[1] * u[2] - n[2] * u[1] }
+  for k = 0, 63 do
+    local t = 2 * math.pi * k / 64
+    local cs, sn = math.cos(t) * r, math.sin(t) * r
+    pts[#pts + 1] = { c[1] + cs * u[1] + sn * v[1], c[2] + cs * u[2] + sn * v[2],
+                      c[3] + cs * u[3] + sn * v[3] }
+  end
+end
+
+-- The points of what cpfg's rayshade file (-ray) draws. cpfg's own OBJ writer turns its
+-- predefined surfaces the wrong way (object.c negates the left axis, "should this be
+-- -1 ?"), its rayshade writer turns them back (`rotate 0 1 0 180`) and draws what the
+-- screen shows, so the geometry is read from there: cylinders, cones, spheres, discs,
+-- polygons and triangles, with objects (`name ... end`) placed by scale, rotate,
+-- transform and translate. Curved shapes are sampled (64 points a circle).
+local function raypoints (path)
+  local text = read(path) or ""
+  local body = text:match("#else\n(.-)#endif") or ""
+  local tok = {}
+  for line in body:gmatch("[^\n]+") do
+    if not line:find("^#") then
+      for w in line:gmatch("%S+") do tok[#tok + 1] = w end
+    end
+  end
+  local i, objs = 1, {}
+  local function num () local x = tonumber(tok[i]); i = i + 1; return x end
+  local function isnum (k) return tonumber(tok[k or i]) ~= nil end
+  local function vec () return { num(), num(), num() } end
+  local function surf () if tok[i] and not isnum() then i = i + 1 end end
+  local function sub (a, b) return { a[1] - b[1], a[2] - b[2], a[3] - b[3] } end
+  local function unit (a)
+    local l = math.sqrt(a[1] ^ 2 + a[2] ^ 2 + a[3] ^ 2)
+    return l > 0 and { a[1] / l, a[2] / l, a[3] / l } or { 0, 0, 1 }
+  end
+  local function primitives (pts)
+    while tok[i] do
+      local w = tok[i]
+      i = i + 1
+      if w == "end" then return
+      elseif w == "cylinder" or w == "cone" then
+        surf()
+        local r0 = num()
+        local p0 = vec()
+        local r1 = w == "cone" and num() or r0
+        local p1 = vec()
+        local n = unit(sub(p1, p0))
+        ring(pts, p0, n, r0)
+        ring(pts, p1, n, r1)
+      elseif w == "sphere" then
+        surf()
+        local r, c = num(), vec()
+        ring(pts, c, { 1, 0, 0 }, r); ring(pts, c, { 0, 1, 0 }, r); ring(pts, c, { 0, 0, 1 }, r)
+      elseif w == "disc" then
+        surf()
+        local r, c, n = num(), vec(), vec()
+        ring(pts, c, unit(n), r)
+      elseif w == "poly" then
+        surf()
+        while isnum() do pts[#pts + 1] = vec() end
+      elseif w == "triangle" or w == "triangleuv" then
+        surf()
+        local k = i
+        while isnum(k) do k = k + 1 end
+        local per = (k - i) // 3              -- 3 numbers a vertex, or with normal and uv
+        for _ = 1, 3 do
+          pts[#pts + 1] = vec()
+          i = i + per - 3
+        end
+      elseif w == "object" then       -- object [SURFACE] NAME
+        if not objs[tok[i]] and tok[i + 1] and objs[tok[i + 1]] then i = i + 1 end
+        local obj = objs[tok[i]] or {}
+        i = i + 1
+        local t = {}
+        for n, p in ipairs(obj) do t[n] = { p[1], p[2], p[3] } end
+        while tok[i] == "scale" or tok[i] == "translate" or tok[i] == "rotate" or
+              tok[i] == "transform" do
+          local op = tok[i]
+          i = i + 1
+          if op == "scale" then
+            local f = vec()
+            for _, p in ipairs(t) do for k = 1, 3 do p[k] = p[k] * f[k] end end
+          elseif op == "translate" then
+            local d = vec()
+            for _, p in ipairs(t) do for k = 1, 3 do p[k] = p[k] + d[k] end end
+          elseif op == "rotate" then
+            local ax, deg = unit(vec()), num()
+            local c, sn = math.cos(math.rad(deg)), math.sin(math.rad(deg))
+            for _, p in ipairs(t) do     -- Rodrigues
+              local d = ax[1] * p[1] + ax[2] * p[2] + ax[3] * p[3]
+              local x = { ax[2] * p[3] - ax[3] * p[2], ax[3] * p[1] - ax[1] * p[3],
+                          ax[1] * p[2] - ax[2] * p[1] }
+              for k = 1, 3 do p[k] = p[k] * c + x[k] * sn + ax[k] * d * (1 - c) end
+            end
+          else                          -- a row vector times the 3 x 3 matrix (+ a move)
+            local m = {}
+            while isnum() do m[#m + 1] = num() end
+            for _, p in ipairs(t) do
+              local x, y, z = p[1], p[2], p[3]
+              for k = 1, 3 do
+                p[k] = x * m[k] + y * m[3 + k] + z * m[6 + k] + (m[9 + k] or 0)
+              end
+            end
+          end
+        end
+        for _, p in ipairs(t) do pts[#pts + 1] = p end
+      elseif w == "name" then
+        local n = tok[i]
+        i = i + 1
+        if tok[i] == "grid" then i = i + 4 end
+        local own = {}
+        primitives(own)
+        objs[n] = own
+      elseif w == "grid" then i = i + 3
+      elseif w == "applysurf" then i = i + 1
+      end
+    end
+  end
+  local top = {}
+  primitives(top)
+  -- the last name defined is the model (`object FILE` in the header places it)
+  local name = ("\n" .. body):match(".*\nname (%S+)")
+  return name and objs[name] or top
+end
+
+-- "box within X %" or "box differs ..." for lsys's scene of string s against cpfg's OBJ.
+local function geometry (m, s, ray)
+  local clo, chi = boxof(raypoints(ray))
+  -- the segments as cylinders of their width, as cpfg's rayshade writer draws every
+  -- line (rings at both ends, as for cpfg's cylinders: how tubes are joined is not the
+  -- question), and the other shapes as lsys tessellates them
+  local out = os.tmpname() .. ".obj"
+  local sc = m:interpret(s, { line_style = "line" })
+  sc:save(out)
+  local pts = {}
+  for line in io.lines(out) do
+    local x, y, z = line:match("^v%s+(%S+)%s+(%S+)%s+(%S+)")
+    if x then pts[#pts + 1] = { tonumber(x), tonumber(y), tonumber(z) } end
+  end
+  os.remove(out)
+  os.remove((out:gsub("%.obj$", ".mtl")))
+  for _, r in sc:records() do
+    if r.kind == "segment" and r.length > 0 then
+      ring(pts, r.p0, r.H, r.w0 / 2)
+      ring(pts, r.p1, r.H, r.w1 / 2)
+    end
+  end
+  local llo, lhi = boxof(pts)
+  if not clo and not llo then return "neither draws anything" end
+  if not clo then return "lsys draws, cpfg's rayshade file has nothing" end
+  if not llo then return "lsys draws nothing, cpfg does" end
+  local diag = math.sqrt((chi[1] - clo[1]) ^ 2 + (chi[2] - clo[2]) ^ 2 + (chi[3] - clo[3]) ^ 2)
+  local worst = 0
+  for k = 1, 3 do
+    worst = math.max(worst, math.abs(llo[k] - clo[k]), math.abs(lhi[k] - chi[k]))
+  end
+  local pct = diag > 0 and 100 * worst / diag or (worst == 0 and 0 or math.huge)
+  local function box (lo, hi)
+    return string.format("(%.4g,%.4g,%.4g)..(%.4g,%.4g,%.4g)", lo[1], lo[2], lo[3], hi[1],
+                         hi[2], hi[3])
+  end
+  if pct <= 1 then return string.format("box within %.2g %%", pct) end
+  return string.format("box differs by %.3g %% of the diagonal: lsys %s, cpfg %s", pct,
+                       box(llo, lhi), box(clo, chi))
+end
+
+local function child (l, v, pal, ref, homo, obj)
   local lsys = require "lsys"
-  local opts = {}
+  local opts = { environment = "none" }   -- ?E as cpfg without its program (cpfg runs none here)
   if pal ~= "" then
     if pal:match("%.mat$") then opts.materials = pal else opts.colormap = pal end
   end
@@ -106,7 +299,9 @@ local function child (l, v, pal, ref, homo)
     -- string after the homomorphism, drawing random numbers (from the derivation's
     -- generator, or the homomorphism's own, and nran's pair): cpfg's string is that of
     -- the second expansion
-    if m.random == "cpfg" then
+    -- (a model with query modules had that pass already: cpfg's last interpretation
+    -- between steps, which fills them, is the one after the derivation)
+    if m.random == "cpfg" and not m._queries then
       pcall(m.expand, m, s)
       m._seed = function () end    -- and its writer does not start a homomorphism seed again
     end
@@ -118,11 +313,21 @@ local function child (l, v, pal, ref, homo)
   local text = (read(ref) or ""):gsub("\n", "")
   local ok3, r = pcall(lsys.lstring, text, m.modules)
   if not ok3 then return "cannot read cpfg's string: " .. tostring(r) .. note end
-  local a = modules(s)
-  local d = diff(a, modules(r))
+  local a, b = modules(s), modules(r)
+  local upto = ""
+  if homo == "homo" and #b > 0 and b[#b][1] == "?" and #b[#b][2] == 0 and #a >= #b and
+     a[#b][1]:sub(1, 1) == "?" then
+    -- cpfg -homo writes nothing after its first query module: compare up to there
+    upto = string.format(" up to cpfg's first query module, %d of %d", #b, #a)
+    a = { table.unpack(a, 1, #b - 1) }
+    b[#b] = nil
+  end
+  local d = diff(a, b)
   if not d then
-    return string.format("identical (%d modules, %d steps, lsys %.2f s)", #a, m.steps, dt)
-           .. note
+    local g = ""
+    if obj ~= "" and homo ~= "homo" then g = "; " .. geometry(m, s, obj) end
+    return string.format("identical%s (%d modules, %d steps, lsys %.2f s)%s", upto, #a,
+                         m.steps, dt, g) .. note
   end
   m.seed = (m.seed or 0) + 7919
   m.random = "lsys"               -- cpfg's generator is the same for every seed but one
@@ -134,7 +339,7 @@ end
 
 if arg[1] == "--child" then
   io.output("/dev/null")          -- the model's printf output
-  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5], arg[6])
+  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5], arg[6], arg[7] or "")
   io.stdout:write((ok and r or "error: " .. tostring(r)), "\n")
   os.exit(0)
 end
@@ -212,20 +417,50 @@ local function random (path)
   return s:find("%f[%w_][nb]?i?ran%s*%(") ~= nil or s:find("%f[%w_]srand%s*%(") ~= nil
 end
 
-local timeout, homo = 300, false
+local timeout, homo, geom = 300, false, false
+
+-- The names of the view's function set (`function set: F.fset`), in order, or nil.
+local function setnames (dir, v)
+  local text = v and read(dir .. "/" .. v) or ""
+  local file = text:gsub("/%*.-%*/", ""):match("\n%s*function set:%s*(%S+)")
+               or text:match("^%s*function set:%s*(%S+)")
+  local set = file and read(dir .. "/" .. file)
+  if not set then return nil end
+  local names = {}
+  for n in set:gmatch("\nname:%s*([%w_.]+)") do names[#names + 1] = n:gsub("%.[^.]*$", "") end
+  return #names > 0 and names or nil
+end
+
+-- The folder to run cpfg in: `dir` itself, or a scratch folder of links to its files with
+-- a copy of the .l file that defines the function set's names first (see the header).
+local function cpfgdir (dir, c)
+  local names = setnames(dir, c.v)
+  if not names then return dir, nil end
+  local tmp = io.popen("mktemp -d"):read("l")
+  os.execute("ln -s " .. q(dir) .. "/* " .. q(tmp) .. "/ && rm " .. q(tmp .. "/" .. c.l))
+  local defs = {}
+  for i, n in ipairs(names) do defs[i] = string.format("#define %s %d\n", n, i) end
+  write(tmp .. "/" .. c.l, table.concat(defs) .. (read(dir .. "/" .. c.l) or ""))
+  return tmp, tmp
+end
 
 local function compare (dir, c)
   local out, empty, err, ref = os.tmpname(), os.tmpname(), os.tmpname(), os.tmpname()
-  local cmd = "cd " .. q(dir) .. " && timeout " .. timeout .. " " .. q(cpfg) ..
+  local obj = geom and not homo and os.tmpname() .. ".ray" or ""
+  local cdir, scratch = cpfgdir(dir, c)
+  local cmd = "cd " .. q(cdir) .. " && timeout " .. timeout .. " " .. q(cpfg) ..
               (homo and " -homo" or "") .. " -g -m " ..
-              q(empty) .. " -str " .. q(out) .. " " .. q(c.l) .. (c.v and " " .. q(c.v) or "")
-              .. " </dev/null >/dev/null 2>" .. q(err)
+              q(empty) .. " -str " .. q(out) .. (obj ~= "" and " -ray " .. q(obj) or "") ..
+              " " .. q(c.l) .. (c.v and " " .. q(c.v) or "") .. " </dev/null >/dev/null 2>" ..
+              q(err)
   local _, _, code = os.execute(cmd)
+  if scratch then os.execute("rm -r " .. q(scratch)) end
   local text = read(out) or ""
   local msg = (read(err) or ""):gsub("\n+$", "")
   for _, f in ipairs({ out, empty, err }) do os.remove(f) end
   if text == "" then
     os.remove(ref)
+    if obj ~= "" then os.remove(obj) end
     local first = msg:match("[^\n]*[Ee]rror[^\n]*") or msg:match("[^\n]+") or ""
     if code == 124 then first = "timed out after " .. timeout .. " s" end
     return "cpfg fails: " .. (first ~= "" and first or "no string written")
@@ -234,10 +469,11 @@ local function compare (dir, c)
   local p = io.popen("timeout " .. timeout .. " lua5.4 " .. q(arg[0]) .. " --child " ..
                      q(dir .. "/" .. c.l) .. " " .. q(c.v and dir .. "/" .. c.v or "") .. " " ..
                      q(c.pal and dir .. "/" .. c.pal or "") .. " " .. q(ref) ..
-                     (homo and " homo" or "") .. " 2>&1")
+                     (homo and " homo" or " derived") .. " " .. q(obj) .. " 2>&1")
   local r = p:read("a")
   local ok, _, code2 = p:close()
   os.remove(ref)
+  if obj ~= "" then os.remove(obj) end
   r = r:gsub("\n+$", ""):match("[^\n]*$")
   if not ok and code2 == 124 then r = "lsys timed out after " .. timeout .. " s" end
   if r == "" then r = "lsys crashed (exit " .. tostring(code2) .. ")" end
@@ -269,6 +505,9 @@ while i <= #arg do
     i = i + 2
   elseif arg[i] == "--homo" then
     homo = true
+    i = i + 1
+  elseif arg[i] == "--geometry" then
+    geom = true
     i = i + 1
   elseif arg[i] == "--timeout" then
     timeout = tonumber(arg[i + 1]) or timeout

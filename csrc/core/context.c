@@ -52,9 +52,14 @@ uint32_t lsys_eqsym (const lsys_model *m) {
   return e ? e : NONE;
 }
 
+/* Is 'sym' ignored by the contexts (on the ignore list, or off the consider list)? A
+** bracket can be: cpfg's consider list ignores every module it does not name, brackets
+** included (lsys_input.y, Consider). Only the right context skips an ignored bracket
+** (cpfg's RconDiff tests its ignore table first); the left context keeps the branch
+** structure (LconDiff handles brackets first). */
 static inline int skipped (const view *v, uint32_t sym) {
   int in;
-  if (v->skip == NULL || sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) return 0;
+  if (v->skip == NULL) return 0;
   in = (v->skip->bits[sym >> 3] >> (sym & 7)) & 1;
   return v->skip->consider ? !in : in;
 }
@@ -116,8 +121,9 @@ static size_t branchend (const view *v, size_t j) {
 ** ']' matches a literal ']' (it does not skip the rest of a branch), and a
 ** pattern module never matches past the ']' that ends the predecessor's
 ** branch. '=' (without parameters) moves to the ']' ending the current
-** branch. Ignored modules are skipped; brackets never are. 'a' receives
-** the pattern's parameters.
+** branch. Ignored modules are skipped, before anything else: an ignored
+** bracket is stepped over as any module (cpfg's consider list that does not
+** name the brackets). 'a' receives the pattern's parameters.
 */
 int lsys_matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
                      double *a) {
@@ -137,11 +143,11 @@ int lsys_matchright (const lsys_model *m, const view *v, size_t j, const lsys_ru
       }
       if (++steps > 2 * v->n + 2) return 0;
       sym = LSYS_CSYM(v->code[j]);
-      if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
+      if (skipped(v, sym)) j++;            /* first, as cpfg: an ignored bracket too */
+      else if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
         if (v->match[j] == NONE) return 0;
         j = v->match[j] + 1;
       }
-      else if (skipped(v, sym)) j++;
       else break;
     }
     if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;

@@ -26,9 +26,9 @@
 ** instance, by part). The extension is in extensionsUsed and, as it
 ** recommends (the file has no fallback), in extensionsRequired.
 **
-** Textures: each one used gets an image (the PNG file's bytes, embedded), a
-** sampler (its filters, REPEAT wrapping) and a texture; each (slot,
-** texture) pair gets a material whose baseColorTexture is it: modulate
+** Textures: each one used gets an image (a PNG file's bytes embedded, an SGI
+** image encoded as PNG from its pixels), a sampler (its filters, REPEAT
+** wrapping) and a texture; each (slot, texture) pair gets a material whose baseColorTexture is it: modulate
 ** keeps the diffuse colour as the factor (glTF multiplies by the texel's
 ** RGB, also for an intensity texture of a colour image), decal uses a white
 ** factor and KHR_materials_unlit. A modulated texture with transparent
@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "export_impl.h"
+#include "pngio.h"
 #include "population.h"
 
 #define GLB_MAGIC  0x46546C67u     /* "glTF" */
@@ -219,13 +220,15 @@ static int glbmaterials (glb *G, lsys_error *e) {
   return LSYS_OK;
 }
 
-/* Reads the whole file 'name' (a texture) into a new block; LSYS_OK, or an
-** error naming the .glb being written and the file. Refuses what is not a
-** regular PNG file (it may have changed since it was loaded) or is too large
-** for glTF binary. */
-static int slurpimage (const char *name, unsigned char **data, size_t *len,
+/* The PNG bytes of texture 't' into a new block; LSYS_OK, or an error naming
+** the .glb being written and the file. A PNG file is embedded as it is; an
+** SGI image (glTF has no such type) is encoded as PNG from the pixels read
+** when the texture was loaded. Refuses a file that is now neither (it may
+** have changed since it was loaded) or is too large for glTF binary. */
+static int slurpimage (const lsys_texture *t, unsigned char **data, size_t *len,
                        const char *path, lsys_error *e) {
   static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  const char *name = t->path;
   lsys_error re;
   size_t n = 0;
   unsigned char *p = (unsigned char *)lsys_readfile(name, (size_t)UINT32_MAX / 2, &n, &re);
@@ -237,10 +240,19 @@ static int slurpimage (const char *name, unsigned char **data, size_t *len,
     return lsys_seterror(e, re.code, (size_t)-1, "cannot write '%s': cannot read texture "
                          "'%s': %s", path, name, why != NULL ? why + 3 : re.msg);
   }
+  if (n >= 2 && p[0] == 0x01 && p[1] == 0xda && t->rgba != NULL) {   /* SGI's magic, 474 */
+    int st;
+    LSYS_FREE(p);
+    st = lsys_png_encode(t->rgba, t->w, t->h, lsys_texture_hasalpha(t), data, len, &re);
+    if (st != LSYS_OK)
+      return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': texture '%s' as PNG: %s",
+                           path, name, re.msg);
+    return LSYS_OK;
+  }
   if (n < 8 || memcmp(p, sig, 8) != 0) {
     LSYS_FREE(p);
     return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "cannot write '%s': texture '%s' is no "
-                         "longer a PNG file", path, name);
+                         "longer a PNG or SGI image", path, name);
   }
   *data = p;
   *len = n;
@@ -252,8 +264,7 @@ static int slurpimage (const char *name, unsigned char **data, size_t *len,
 static int glbimages (glb *G, lsys_error *e) {
   size_t i, n = G->nimg;
   for (i = 0; i < n; i++) {
-    int st = slurpimage(G->g.tex[G->imgtex[i] - 1]->path, &G->img[i], &G->imglen[i], G->path,
-                        e);
+    int st = slurpimage(G->g.tex[G->imgtex[i] - 1], &G->img[i], &G->imglen[i], G->path, e);
     if (st != LSYS_OK) {
       G->nimg = i;
       return st;

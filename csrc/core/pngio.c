@@ -21,6 +21,8 @@
 typedef struct pngio {
   FILE *f;
   char msg[200];          /* the last libpng error */
+  unsigned char *buf;     /* lsys_png_encode: the bytes so far */
+  size_t len, cap;
 } pngio;
 
 static void onerror (png_structp png, png_const_charp msg) {
@@ -49,15 +51,69 @@ static void flushfn (png_structp png) {
   if (fflush(io->f) != 0) png_error(png, strerror(errno));
 }
 
+static void memwritefn (png_structp png, png_bytep p, size_t n) {
+  pngio *io = (pngio *)png_get_io_ptr(png);
+  if (n > (size_t)-1 - io->len ||
+      lsys_grow((void **)&io->buf, &io->cap, io->len + n, 1) != LSYS_OK)
+    png_error(png, "not enough memory");
+  memcpy(io->buf + io->len, p, n);
+  io->len += n;
+}
+
+static void memflushfn (png_structp png) { (void)png; }
+
+/* The image rows, after the header (the caller's setjmp catches libpng's errors). */
+static void putimage (png_structp png, png_infop info, const uint8_t *rgba, int w, int h,
+                      int alpha) {
+  int y;
+  png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8,
+               alpha ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (!alpha) png_set_filler(png, 0, PNG_FILLER_AFTER);   /* drop the 4th byte */
+  for (y = 0; y < h; y++) png_write_row(png, rgba + (size_t)4 * w * y);
+  png_write_end(png, NULL);
+}
+
+int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
+                     size_t *len, lsys_error *e) {
+  pngio io = {NULL, "", NULL, 0, 0};
+  pngio *volatile iop = &io;
+  png_structp png;
+  png_infop info;
+  *out = NULL;
+  *len = 0;
+  if (w <= 0 || h <= 0 || w > LSYS_PNG_MAXSIZE || h > LSYS_PNG_MAXSIZE)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "bad image size %dx%d", w, h);
+  png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onerror, onwarning);
+  info = png ? png_create_info_struct(png) : NULL;
+  if (info == NULL) {
+    png_destroy_write_struct(&png, NULL);
+    return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    LSYS_FREE(iop->buf);
+    return lsys_seterror(e, strcmp(iop->msg, "not enough memory") == 0 ? LSYS_ENOMEM
+                         : LSYS_EARG, (size_t)-1, "%s", iop->msg);
+  }
+  png_set_write_fn(png, &io, memwritefn, memflushfn);
+  putimage(png, info, rgba, w, h, alpha);
+  png_destroy_write_struct(&png, &info);
+  *out = io.buf;
+  *len = io.len;
+  return LSYS_OK;
+}
+
 /* The file is written through an lsys_outfile: a failure leaves whatever was
 ** at 'path' untouched and removes only the temporary file (outfile.h). */
 int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
                     lsys_error *e) {
-  pngio io = {NULL, ""};
+  pngio io = {NULL, "", NULL, 0, 0};
   lsys_outfile out;
   png_structp png;
   png_infop info;
-  int y, st;
+  int st;
   if (w <= 0 || h <= 0 || w > LSYS_PNG_MAXSIZE || h > LSYS_PNG_MAXSIZE)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': bad image size %dx%d",
                          path, w, h);
@@ -77,19 +133,13 @@ int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alp
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", path, io.msg);
   }
   png_set_write_fn(png, &io, writefn, flushfn);
-  png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8,
-               alpha ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  if (!alpha) png_set_filler(png, 0, PNG_FILLER_AFTER);   /* drop the 4th byte */
-  for (y = 0; y < h; y++) png_write_row(png, rgba + (size_t)4 * w * y);
-  png_write_end(png, NULL);
+  putimage(png, info, rgba, w, h, alpha);
   png_destroy_write_struct(&png, &info);
   return lsys_outfile_commit(&out, e);
 }
 
 int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
-  pngio io = {NULL, ""};
+  pngio io = {NULL, "", NULL, 0, 0};
   png_structp png;
   png_infop info;
   uint8_t sig[8];

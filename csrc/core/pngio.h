@@ -23,6 +23,14 @@ int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alp
                     lsys_error *e);
 
 /*
+** Encodes the w x h image 'rgba' as lsys_png_write does, into a new block
+** *out (free it with LSYS_FREE) of *len bytes: a .glb embeds an SGI
+** texture so. Returns LSYS_OK, or LSYS_ENOMEM / LSYS_EARG with e->msg.
+*/
+int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
+                     size_t *len, lsys_error *e);
+
+/*
 ** Reads any PNG (grey, palette, 16-bit, interlaced, with or without alpha)
 ** as 8-bit RGBA, top row first, into a new block *rgba (free it with
 ** LSYS_FREE) of *w x *h pixels. Returns LSYS_OK; LSYS_ESYNTAX for a file

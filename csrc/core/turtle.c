@@ -304,29 +304,57 @@ static int setring (run *R) {
   return LSYS_OK;
 }
 
-/* Emits the pending segment with its final top width, in the line style. */
+/* Emits the pending segment with its final top width, in the line style, in
+** the frame, sides and texture it was made with (turns may have come since). */
 static int flush (run *R) {
   lsys_tstate *st = &R->st;
-  double w1 = st->width * st->scale;
-  int s = LSYS_OK;
+  double w1 = st->width * st->scale, H[3], L[3], U[3];
+  int s = LSYS_OK, sides = st->sides, tex = st->texture;
   if (!R->pending) return LSYS_OK;
   R->pending = 0;
   R->t->mesh->curtex = (unsigned)R->ptex;
   if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
+  vcopy(H, st->H); vcopy(L, st->L); vcopy(U, st->U);
+  vcopy(st->H, R->pH); vcopy(st->L, R->pL); vcopy(st->U, R->pU);
+  st->sides = R->psides;
+  st->texture = R->ptex;
   switch (R->o->style) {
     case LSYS_STYLE_LINE:
       if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
         s = lsys_turtle_nomem(R);
       break;
     case LSYS_STYLE_POLYGON: s = lsys_turtle_ribbon(R, R->p0, R->p1, R->w0, w1, R->pcol); break;
-    default: s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol); break;
+    default:
+      if ((s = setring(R)) == LSYS_OK)
+        s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
+      break;
   }
+  vcopy(st->H, H); vcopy(st->L, L); vcopy(st->U, U);
+  st->sides = sides;
+  st->texture = tex;
   return s;
 }
 
+/* Does 'op' end the pending segment? cpfg's EndNode comes at F f G g [ ] { }
+** ~ and every @ module (interpret.c); turns, colours, widths, queries and
+** modules the turtle does not know leave it open. Sub-L-system ends change the
+** scale, so they end it too. */
+static int endsnode (int op) {
+  switch (op) {
+    case OP_LEFT: case OP_RIGHT: case OP_DOWN: case OP_UP: case OP_ROLLL: case OP_ROLLR:
+    case OP_TURN: case OP_WIDER: case OP_THINNER: case OP_COLINC: case OP_COLDEC:
+    case OP_PVERT: case OP_QP: case OP_QH: case OP_QU: case OP_QL: case OP_STIFF:
+    case OP_OLDELAST:
+      return 0;
+    default:
+      return 1;
+  }
+}
+
 /* F f G g: a step of d (the view's step without a parameter) after the
-** tropisms bent the heading; the old-style tropism bends it after the step. F and G draw a segment, whose top width waits
-** for a following ! or #; inside a polygon F and f add a vertex instead. */
+** tropisms bent the heading; the old-style tropism bends it after the step. F and G
+** draw a segment, whose top width waits for a following ! or # (endsnode); inside a
+** polygon F and f add a vertex too. */
 static int move (run *R, int op, const double *p, uint32_t np) {
   lsys_tstate *st = &R->st;
   double p0[3], d;
@@ -344,8 +372,9 @@ static int move (run *R, int op, const double *p, uint32_t np) {
     st->tip = LSYS_NOREC;
     return op == OP_f && R->t->npolys > 0 ? lsys_turtle_polyvertex(R) : LSYS_OK;
   }
-  if (op == OP_F && R->t->npolys > 0)       /* an edge of a polygon, not drawn */
-    return lsys_turtle_polyvertex(R);
+  /* an edge of a polygon: a vertex, and drawn as a segment too, as cpfg draws it (its
+  ** F calls StartNode whether or not a polygon is open) */
+  if (op == OP_F && R->t->npolys > 0 && (s = lsys_turtle_polyvertex(R)) != LSYS_OK) return s;
   if (!R->draw) return LSYS_OK;
   if ((s = newrec(R, LSYS_REC_SEGMENT, p0, st->pos, st->width * st->scale,
                   st->width * st->scale)) != LSYS_OK)
@@ -360,6 +389,8 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   R->len = fabs(d);
   R->pcol = st->color;
   R->ptex = st->texture;
+  R->psides = st->sides;
+  vcopy(R->pH, st->H); vcopy(R->pL, st->L); vcopy(R->pU, st->U);
   return LSYS_OK;
 }
 
@@ -513,15 +544,23 @@ static int colour (run *R, int op, const double *p, uint32_t np) {
   return s;
 }
 
-/* @Tx(k): texture k of the view (0: none). */
+/* @Tx(k): texture k of the view (0: none). A texture the view does not define leaves
+** what follows untextured, as in cpfg (textures.c, is_valid_texture_index: a texture
+** that could not be read is not in its table); the run warns about the first such
+** module. */
 static int texture (run *R, const double *p, uint32_t np) {
+  lsys_turtle *t = R->t;
   double x;
   int k, s;
   if ((s = arg(R, p, np, 0, 0, &x)) != LSYS_OK) return s;
   k = toindex(x);
-  if (x < 0 || k > R->o->ntex)
-    return lsys_turtle_failop(R, "texture %g is not defined (the view has %d; view.textures)",
-                              x < 0 ? x : (double)k, R->o->ntex);
+  if (x < 0 || k > R->o->ntex) {
+    if (t->warn.code == 0 || R->mod < t->warn.pos)
+      lsys_seterror(&t->warn, LSYS_EARG, R->mod, "module %zu '@Tx': texture %g is not defined "
+                    "(the view has %d; view.textures); untextured from there, as in cpfg",
+                    R->mod + 1, x < 0 ? x : (double)k, R->o->ntex);
+    k = 0;
+  }
   R->st.texture = k;
   return LSYS_OK;
 }
@@ -697,11 +736,12 @@ static int subend (run *R) {
 
 /* Interprets one module: op, its parameters (overwritten by a query) and
 ** whether it is the string's own module. The pending segment is emitted
-** first, unless a width change right after it sets its top width. */
+** first when the module ends it (endsnode): a width change before that sets
+** its top width. */
 static int module (run *R, int op, double *p, uint32_t np, int original) {
   int s;
   R->op = op;
-  if (op != OP_WIDER && op != OP_THINNER && R->pending && (s = flush(R)) != LSYS_OK) return s;
+  if (R->pending && endsnode(op) && (s = flush(R)) != LSYS_OK) return s;
   R->modtri = R->t->mesh != NULL ? R->t->mesh->nt : 0;   /* what this module draws starts here */
   switch (op) {
     case OP_F: case OP_G: case OP_f: case OP_g: return move(R, op, p, np);
@@ -849,6 +889,17 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
       if (e < 0) return e;
       if (e > 0) {                      /* interpret the expansion in place of the module */
         size_t j, hoff = 0;
+        /* a rule that runs in Lua may name modules the alphabet did not have when the
+        ** run started (cpfg's homomorphisms, vlab's paintbrush): classify them now */
+        if (R->ab != NULL && R->ab->n > nop) {
+          for (j = 0; j < t->hbuf.n; j++)
+            if (LSYS_CSYM(t->hbuf.code[j]) >= nop) break;
+          if (j < t->hbuf.n) {
+            if ((status = buildops(t, R->ab)) != LSYS_OK) return lsys_turtle_nomem(R);
+            op = t->op;
+            nop = t->nop;
+          }
+        }
         for (j = 0; j < t->hbuf.n && status == LSYS_OK; j++) {
           uint16_t hc = t->hbuf.code[j];
           uint32_t hs = LSYS_CSYM(hc), hn = LSYS_CNP(hc);

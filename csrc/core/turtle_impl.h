@@ -90,11 +90,14 @@ struct run {
   int op;                       /* the operation being interpreted (messages) */
   double tdeg, tcos, tsin;      /* the last turn angle and its cosine and sine */
   size_t stsize;                /* bytes of the state that [ and ] copy */
-  /* a segment whose top width may still change (! or # right after F) */
+  /* a segment whose top width may still change: cpfg ends a segment at the next
+  ** F f G g [ ] { } ~ or @ module (its EndNode), so a ! or # before that sets the
+  ** top width; the frame and sides are the segment's own */
   int pending;
   uint32_t prec;                /* its record */
   double p0[3], p1[3], w0, len;
-  int pcol, ptex;
+  double pH[3], pL[3], pU[3];
+  int pcol, ptex, psides;
   uint32_t sym;                 /* the symbol being interpreted */
   const lsys_alphabet *ab;
   size_t recbase;               /* the scene's index of the first record this run writes */

@@ -60,31 +60,52 @@ static int surftess (run *R, int k, int uvsurf, const lsys_mesh **out) {
   return LSYS_OK;
 }
 
+/* The turn from surface space (contact point at the origin) to the world
+** that cpfg applies (patches.c): a point (x, y, z) first becomes x l + y h +
+** z u, where h and u are the file's HEADING and UP and l = h x u, and that
+** is then read as coordinates along the turtle's L, H and U. (The turn that
+** maps h to H and u to U is the transpose of the first step; the two agree
+** only when HEADING and UP lie on the axes.) */
+static void surfturn (const lsys_tstate *st, const lsys_surface *S, const double sc[3],
+                      double Rw[3][3]) {
+  double LS[3];
+  int a, b;
+  vcross(LS, S->heading, S->up);
+  for (a = 0; a < 3; a++)
+    for (b = 0; b < 3; b++) {
+      const double *col = b == 0 ? LS : b == 1 ? S->heading : S->up;
+      Rw[a][b] = st->L[a] * sc[0] * col[0] + st->H[a] * sc[1] * col[1] +
+                 st->U[a] * sc[2] * col[2];
+    }
+}
+
 /* Appends a copy of surface k's tessellation (surftess), turned to the
-** turtle's frame and scaled to the placement 'pl'. */
-static int surfcopy (run *R, int k, const lsys_place *pl) {
+** turtle's frame (surfturn), scaled to the placement 'pl' and along L, H and U
+** by 'sc' (cpfg's ~X(sx, sy, sz), relative to sx: its glScaled after the turn
+** by M); normals by the inverse scales. */
+static int surfcopy (run *R, int k, const lsys_place *pl, const double sc[3]) {
   const lsys_surface *S = R->o->surfaces[k].s;
   lsys_tstate *st = &R->st;
   lsys_mesh *m = R->t->mesh;
-  double Rw[3][3], kk = pl->scale / (S->size > 0 ? S->size : 1), LS[3];
+  double Rw[3][3], Rn[3][3], kk = pl->scale / (S->size > 0 ? S->size : 1);
+  double inv[3] = {1 / sc[0], 1 / sc[1], 1 / sc[2]};
   uint32_t first;
   size_t i;
   const lsys_mesh *tm = NULL;
-  int a, b, s;
+  int a, s;
   if ((s = surftess(R, k, pl->uv_surface, &tm)) != LSYS_OK) return s;
   if (lsys_mesh_reserve(m, tm->nv, tm->nt) != LSYS_OK) return lsys_turtle_nomem(R);
-  vcross(LS, S->heading, S->up);
-  for (a = 0; a < 3; a++)              /* H_S -> H, U_S -> U, H_S x U_S -> L */
-    for (b = 0; b < 3; b++)
-      Rw[a][b] = st->L[a] * LS[b] + st->H[a] * S->heading[b] + st->U[a] * S->up[b];
+  surfturn(st, S, sc, Rw);
+  surfturn(st, S, inv, Rn);
   first = (uint32_t)m->nv;
   for (i = 0; i < tm->nv; i++) {
     const float *q = tm->pos + 3 * i, *n = tm->nrm + 3 * i;
     double P[3], N[3];
     for (a = 0; a < 3; a++) {
       P[a] = st->pos[a] + kk * (Rw[a][0] * q[0] + Rw[a][1] * q[1] + Rw[a][2] * q[2]);
-      N[a] = Rw[a][0] * n[0] + Rw[a][1] * n[1] + Rw[a][2] * n[2];
+      N[a] = Rn[a][0] * n[0] + Rn[a][1] * n[1] + Rn[a][2] * n[2];
     }
+    vnorm(N);
     lsys_mesh_vertex(m, P, N, tm->uv[2 * i], tm->uv[2 * i + 1], pl->color, 1);
   }
   for (i = 0; i < tm->nt; i++) {
@@ -94,24 +115,47 @@ static int surfcopy (run *R, int k, const lsys_place *pl) {
   return LSYS_OK;
 }
 
-/* ~X(s): the view's surface X at the turtle, scaled by s; the turtle then
-** stands at the surface's end point. */
+/* Where the turtle stands after ~X: the surface's END POINT turned as its
+** points are (surfturn; cpfg's transform_end_point, which scales by the first
+** parameter only). */
+static void surfend (const lsys_tstate *st, const lsys_surface *S, double scale,
+                     double out[3]) {
+  static const double one[3] = {1, 1, 1};
+  double Rw[3][3], d[3], kk = scale / (S->size > 0 ? S->size : 1);
+  int a;
+  surfturn(st, S, one, Rw);
+  for (a = 0; a < 3; a++) d[a] = S->end[a] - S->contact[a];
+  for (a = 0; a < 3; a++)
+    out[a] = st->pos[a] + kk * (Rw[a][0] * d[0] + Rw[a][1] * d[1] + Rw[a][2] * d[2]);
+}
+
+/* ~X(s) or ~X(sx, sy, sz): the view's surface X at the turtle, scaled by s, or
+** by sx along L, sy along H and sz along U (cpfg's interpret.c: fewer than three
+** parameters scale it uniformly by the first; a scale of 0 draws nothing); the
+** turtle then stands at the surface's end point, scaled by the first. */
 int lsys_turtle_surface (run *R, uint32_t sym, const double *p, uint32_t np) {
   const lsys_turtle_opts *o = R->o;
   lsys_tstate *st = &R->st;
   const lsys_surfuse *u = NULL;
   lsys_place pl;
-  double x, p0[3];
+  double x, y = 0, z = 0, p0[3], sc[3] = {1, 1, 1};
   int k, s, tex;
   for (k = 0; k < o->nsurfaces; k++)
     if (R->t->surfsym[k] == sym) { u = &o->surfaces[k]; break; }
   if (u == NULL) return LSYS_OK;
   if ((s = arg(R, p, np, 0, 1, &x)) != LSYS_OK) return s;
+  if (np >= 3) {
+    if ((s = arg(R, p, np, 1, 1, &y)) != LSYS_OK || (s = arg(R, p, np, 2, 1, &z)) != LSYS_OK)
+      return s;
+    if (x != 0) { sc[1] = y / x; sc[2] = z / x; }
+  }
   tex = u->texture > 0 ? u->texture : st->texture;
   place(R, &pl, u->scale * x * st->scale, tex);
   vcopy(p0, st->pos);
-  if (R->draw && (s = surfcopy(R, k, &pl)) != LSYS_OK) return s;
-  lsys_surface_endpoint(u->s, &pl, st->pos);
+  if (R->draw && x != 0 && (np < 3 || (y != 0 && z != 0)) &&
+      (s = surfcopy(R, k, &pl, sc)) != LSYS_OK)
+    return s;
+  surfend(st, u->s, pl.scale, st->pos);
   st->tip = LSYS_NOREC;
   return R->draw ? newrec(R, LSYS_REC_SURFACE, p0, st->pos, 0, 0) : LSYS_OK;
 }

@@ -20,13 +20,14 @@ end
 -- lsys.Surface rolled a quarter turn about its length. The templates place an organ with
 -- the organ's upper side on the turtle's up vector, which after +(angle) still points out
 -- of the plane of stem and organ (towards the viewer, for a leaf on the left). A leaf's
--- upper side faces the apex of the stem: with UP along the surface's +x, the surface's
--- +z goes to the turtle's -L (the left vector is H x U, docs/surfaces.md), which after
--- +(angle) points up the stem.
+-- upper side faces the apex of the stem: with UP along the surface's -x, the surface's
+-- +z goes to the turtle's -L (cpfg's placement, docs/surfaces.md: x l + y h + z u with
+-- l = h x u, along the turtle's L, H, U; the left vector is H x U), which after +(angle)
+-- points up the stem.
 function M.organ (name)
   local org = organ.load(DIR .. "/organ_" .. name .. ".json")
   local text, n = org:text():gsub("\nUP  X: 0%.000000 Y: 0%.000000 Z: 1%.000000\n",
-                                  "\nUP  X: 1.000000 Y: 0.000000 Z: 0.000000\n")
+                                  "\nUP  X: -1.000000 Y: 0.000000 Z: 0.000000\n")
   assert(n == 1, "organ_" .. name .. ": the surface's UP line is not the expected one")
   return core.surface_parse(text, "organ_" .. name .. ".s")
 end

@@ -95,6 +95,9 @@ Options:
   --mat FILE         a cpfg model's material file (.mat), likewise
   --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
                      #define in the file wins); may be repeated
+  --environment none  derive a cpfg model's ?E modules as cpfg does without its
+                     environmental program (lsys runs none; without this option a model
+                     with ?E is refused)
   --stats            print statistics instead of the string: steps, modules, the count of
                      each module name, and the derivation time
   --progress         print "step k/N: M modules" on stderr after each step (the default
@@ -127,7 +130,8 @@ Options:
   --every K          with --frames: steps 0, K, 2K, ... and always the last
   --size WxH         picture size in pixels (default 800x800)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
-  --map FILE, --mat FILE, --define NAME=VALUE   a cpfg model's, as for `lsys derive`
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   a cpfg model's, as
+                     for `lsys derive`
   --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
                      such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
                      viewpoint=0,10,40, background=1,1,1, supersample=2, ...
@@ -159,7 +163,7 @@ Options:
   --progress         a line per step and frame on stderr (on a terminal a progress bar
                      is shown without it)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE   as for `lsys render`
+  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
   -h, --help         show this help
 ]=]
 
@@ -213,7 +217,7 @@ Options:
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE   as for `lsys render`
+  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
   -h, --help           show this help
 
 The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
@@ -244,7 +248,7 @@ Options:
   --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
                      the automatic joint stiffness (default 1 each)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE   as for render
+  --mat FILE, --define NAME=VALUE, --environment none   as for render
 
 The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
 `model:step(lsys.lstring(text))`, or arrange it again with --string.
@@ -355,7 +359,7 @@ functions, the palette) stay where they are; OUT.lua finds them from its own fol
 
 Options:
   -o, --output OUT.lua  the file to write (required); it appears whole or not at all
-  --map FILE, --mat FILE, --define NAME=VALUE   as for `lsys derive`
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   as for `lsys derive`
   -h, --help            show this help
 ]]
 
@@ -658,8 +662,14 @@ end
 -- The cpfg options of a command line (--map, --mat, --define) as lsys.cpfg.load options,
 -- or nil when none is given.
 local function cpfg_opts (cmd, opts)
-  if opts.map == nil and opts.mat == nil and opts.define == nil then return nil end
+  if opts.map == nil and opts.mat == nil and opts.define == nil and opts.environment == nil then
+    return nil
+  end
   if opts.map ~= nil and opts.mat ~= nil then usage(cmd, "give --map or --mat, not both") end
+  if opts.environment ~= nil and opts.environment ~= "none" then
+    usage(cmd, "--environment must be none (lsys runs no environmental program), got '%s'",
+          opts.environment)
+  end
   local defines
   for _, d in ipairs(opts.define or {}) do
     local k, v = d:match("^([%a_][%w_]*)=(.*)$")
@@ -668,7 +678,8 @@ local function cpfg_opts (cmd, opts)
     defines = defines or {}
     defines[k] = v
   end
-  return { colormap = opts.map, materials = opts.mat, defines = defines }
+  return { colormap = opts.map, materials = opts.mat, defines = defines,
+           environment = opts.environment }
 end
 
 --[[
@@ -705,8 +716,8 @@ local function model_source (cmd, opts, pos)
   local lopts = cpfg_opts(cmd, opts)
   if kind == "lua" then
     if lopts ~= nil then
-      usage(cmd, "--map, --mat and --define apply to a cpfg MODEL (a .l file or a vlab "
-            .. "object folder)")
+      usage(cmd, "--map, --mat, --define and --environment apply to a cpfg MODEL (a .l "
+            .. "file or a vlab object folder)")
     end
     return { path = find_model(arg), kind = kind }
   end
@@ -776,8 +787,8 @@ local commands = {}
 -- and, when it has --output, -o for it.
 local function model_opts (extra)
   local o = { steps = "value", seed = "value", set = "list", name = "value", view = "list",
-              map = "value", mat = "value", define = "list", help = "flag",
-              short = { h = "help", o = extra.output and "output" or nil } }
+              map = "value", mat = "value", define = "list", environment = "value",
+              help = "flag", short = { h = "help", o = extra.output and "output" or nil } }
   for k, v in pairs(extra) do o[k] = v or nil end
   return o
 end
@@ -1548,7 +1559,8 @@ function commands.grow (args)
 end
 
 local IMPORT_OPTS = {
-  output = "value", map = "value", mat = "value", define = "list", help = "flag",
+  output = "value", map = "value", mat = "value", define = "list", environment = "value",
+  help = "flag",
   short = { h = "help", o = "output" },
 }
 

@@ -174,7 +174,9 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
                             pattern = { r.lc, r.preds or { r.pred }, r.rc },
                             made = not e.fn and kinds(r.succ) or nil }
     if spec.fn then self._fns[idx + 1] = spec.fn end
-    if kind == PROD and e.text:find("?[PHUL]") then self._queries = true end
+    -- (cpfg interprets the string between steps when it has query modules, ?E included:
+    -- its environment step, which runs the homomorphism's random numbers too)
+    if kind == PROD and e.text:find("?[PHULE]") then self._queries = true end
   end
 end
 
@@ -393,7 +395,7 @@ make = function (opts, where, fail, dir)
   self:_configure(opts, fail)
   local nv = view.normalize(v, where or "model")   -- a bad view fails at definition
   self:_functions(opts.functions or nv.functions, nv.dir, fail)
-  if self.axiom:find("?[PHUL]") then self._queries = true end
+  if self.axiom:find("?[PHULE]") then self._queries = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
@@ -458,9 +460,10 @@ function Model:_checkfuncs (info)
   for _, r in ipairs(info.funcrefs) do
     local ok = r[1] == "name" and self._funcnames[r[2]] or r[1] == "id" and self._funclist[r[2]]
     if not ok then
-      error(format("%s: %s: unknown function %s (functions: %s)", self._where, info.label,
+      error(format("%s: %s: unknown function %s (functions: %s)%s", info.where or self._where,
+                   info.label,
                    r[1] == "name" and "'" .. r[2] .. "'" or tostring(math.tointeger(r[2]) or r[2]),
-                   func.names(self._funcnames)), 0)
+                   func.names(self._funcnames), self._funchint or ""), 0)
     end
   end
 end
@@ -497,7 +500,7 @@ function Model:_bind ()
       for name in pairs(info.frees) do
         if E[name] == nil then
           error(format("%s: %s: unknown name '%s' (not a parameter, not in env)",
-                       self._where, info.label, name), 0)
+                       info.where or self._where, info.label, name), 0)
         end
       end
       self:_checkfuncs(info)
@@ -623,7 +626,8 @@ function Model:_call (fn, what, ...)
     local info = self._info[idx + 1]
     local label = info and info.label or format("rule %d", idx + 1)
     msg = msg:gsub("^rule:%d+: ", "")
-    error(format("%s: %s, module %d: %s", self._where, label, mod, msg), 0)
+    error(format("%s: %s, module %d: %s", info and info.where or self._where, label, mod, msg),
+          0)
   end
   error(format("%s: %s", self._where, msg), 0)
 end

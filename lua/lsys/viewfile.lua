@@ -8,10 +8,10 @@
 -- @module lsys.viewfile
 local warning = require "lsys.warning"
 
-local type, ipairs, error, tostring, tonumber, math, string, table, require, setmetatable,
-      utf8 =
-      type, ipairs, error, tostring, tonumber, math, string, table, require, setmetatable,
-      utf8
+local type, ipairs, pairs, next, error, tostring, tonumber, math, string, table, require,
+      setmetatable, utf8, io =
+      type, ipairs, pairs, next, error, tostring, tonumber, math, string, table, require,
+      setmetatable, utf8, io
 local format = string.format
 local _ENV = nil
 
@@ -132,9 +132,9 @@ end
 --   * vectors are three numbers "x,y,z" (cpfg reads %f,%f,%f; spaces are accepted too).
 --   * angle factor n gives the angle 360/n; twist is in tenths of a degree (control.c
 --     turns the picture by 0.1 * twist degrees).
---   * initial line width: w [pixels|polygons]: cpfg switches the line style to
---     polygons, or to pixel lines when a unit starting with 'p' follows; here "pixels"
---     gives "line" and "polygons" (or no unit) "polygon".
+--   * initial line width: w [unit]: cpfg switches the line style to polygons, to pixel
+--     lines when the unit starts with 'p' ("line" here) and to cylinders when it starts
+--     with 's'; another unit is polygons too, with a warning here.
 --   * polygonization level: n is the older form of contour sides: 2^(n+1), at least 3.
 --   * light: V: x y z is a directional light; cpfg lights the model from the first one.
 --   * surface: c file scale [s t] [texture]: one number after the scale is a texture,
@@ -152,6 +152,9 @@ for _, k in ipairs {
   "shadow map", "ps linecap", "maximum depth", "window size", "window position",
 } do IGNORED[k] = true end
 M.VIEWFILE_IGNORED = IGNORED
+-- The display-only commands warned about (through warn()) in this process: a viewer that
+-- reloads its model, or a batch of a hundred vlab models, says each kind once.
+local SAID = {}
 
 -- cpfg's values for what a view file does not set, where they differ from lsys.view's
 -- defaults (interpret.c, InitializeParameters: angle increment 45, line width increment
@@ -320,9 +323,13 @@ COMMANDS["initial line width"] = function (P, rest, cmd)
   if x < 0 then P:err("'%s' must not be negative", cmd) end
   local style = "polygon"
   if w[2] then
-    style = UNITS[w[2]]
-    if style == nil then
-      P:err("'%s': the unit must be pixels or polygons, got '%s'", cmd, show(w[2]))
+    -- cpfg looks only at the unit's first letter (interpret.c, case 4): p pixels,
+    -- s cylinders, anything else polygons
+    style = UNITS[w[2]] or (w[2]:sub(1, 1) == "p" and "line")
+            or (w[2]:sub(1, 1) == "s" and "cylinder")
+    if not style then
+      style = "polygon"
+      P:warn("'%s': unknown unit '%s' read as polygons (as cpfg does)", cmd, show(w[2]))
     end
   end
   P.v.line_width, P.v.line_style = x, style
@@ -473,6 +480,7 @@ COMMANDS["texture"] = function (P, rest, cmd)
   local l = P.v.textures or {}
   l[#l + 1] = t
   P.v.textures = l
+  P.texlines[#l] = P.line
 end
 
 -- cpfg's I: scales the unit vector by I / |T| clamped to [-1, 1], then by |T| (its
@@ -540,7 +548,51 @@ COMMANDS["surface"] = function (P, rest, cmd)
   if l[w[1]] ~= nil then P:err("'%s': '%s' is already defined", cmd, w[1]) end
   l[w[1]] = s
   P.v.surfaces = l
-  P.surfaces[#P.surfaces + 1] = { line = P.line, texture = s.texture }
+  P.surfaces[#P.surfaces + 1] = { line = P.line, texture = s.texture, name = w[1] }
+end
+
+-- opts.missing = "warn": a surface or texture file found neither in `dir` nor in the
+-- current folder is left out with a warning, as cpfg carries on without it (its
+-- interpret.c, cases 21 and 35): ~X of a missing surface then draws nothing, and the
+-- textures after a missing one move down a place, as in cpfg's table of textures; a
+-- surface naming a texture past the end is drawn untextured.
+local function exists (path)
+  local h = io.open(path, "rb")
+  if h then h:close() end
+  return h ~= nil
+end
+
+local function findable (dir, f)
+  if f:sub(1, 1) == "/" or dir == nil then return exists(f) end
+  return exists((dir:sub(-1) == "/" and dir or dir .. "/") .. f) or exists(f)
+end
+
+function Parser:dropmissing (dir)
+  local v = self.v
+  local kept = {}
+  for i, t in ipairs(v.textures or {}) do
+    if findable(dir, t.file) then
+      kept[#kept + 1] = t
+    else
+      self.line = self.texlines[i]
+      self:warn("'texture': cannot open '%s'; left out, as cpfg does (the textures after it "
+                .. "move down a place)", show(t.file))
+    end
+  end
+  if v.textures then v.textures = #kept > 0 and kept or nil end
+  for _, s in ipairs(self.surfaces) do
+    local sp = v.surfaces and v.surfaces[s.name]
+    if sp and not findable(dir, sp.file) then
+      self.line = s.line
+      self:warn("'surface': cannot open '%s'; ~%s draws nothing (as in cpfg)", show(sp.file),
+                s.name)
+      v.surfaces[s.name] = nil
+    end
+  end
+  if v.surfaces and next(v.surfaces) == nil then v.surfaces = nil end
+  for _, sp in pairs(v.surfaces or {}) do
+    if sp.texture and sp.texture > #kept then sp.texture = nil end
+  end
 end
 
 -- One line of a view file, comments removed.
@@ -563,6 +615,7 @@ function Parser:command (s)
     h(self, rest, cmd)
   elseif IGNORED[cmd] then
     self:warn("'%s' is not supported; ignored", cmd)
+    self.display[#self.warnings] = cmd
   else
     self:err("unknown view command '%s'", show(cmd))
   end
@@ -637,17 +690,23 @@ function M.parse (text, name, opts)
   end
   opts = opts or {}
   local P = setmetatable({ name = name or "view", line = 0, v = {}, warnings = {},
-                           nlights = 0, legacy = {}, surfaces = {},
+                           nlights = 0, legacy = {}, surfaces = {}, texlines = {},
+                           display = {},
                            incomment = false, cline = 0 }, Parser)
   for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     P.line = P.line + 1
     P:command(P:uncomment(line))
   end
   P:finish()
+  if opts.missing == "warn" then P:dropmissing(opts.dir) end
   local v = P.v
   if opts.dir ~= nil then v.dir = opts.dir end
   if not opts.quiet then
-    for _, w in ipairs(P.warnings) do warning.warn(w) end
+    for i, w in ipairs(P.warnings) do
+      local kind = P.display[i]         -- display-only commands: once per kind and process
+      if not (kind and SAID[kind]) then warning.warn(w) end
+      if kind then SAID[kind] = true end
+    end
   end
   return v, P.warnings
 end
@@ -660,11 +719,12 @@ end
 -- direction, light, background color, contour, contour sides, polygonization level,
 -- twist of cylinders, texture, tropism, torque, tropism direction, initial
 -- elasticity, elasticity increment, surface, function, function set (or functions).
--- Commands listed in VIEWFILE_IGNORED (front distance, z buffer, render mode, ...) are
--- warnings; any other command and any
--- malformed value raise "file.v:LINE: what is wrong". The warnings go to warn() (off in a
--- plain `lua` unless -W; the lsys program shows them) unless opts.quiet. Returns the view
--- and the list of warnings.
+-- opts.missing = "warn" leaves out, with a warning, a surface or texture file that
+-- cannot be found (cpfg's behaviour; lsys.cpfg.load asks for it). Commands listed in
+-- VIEWFILE_IGNORED (front distance, z buffer, render mode, ...) are warnings; any other
+-- command and any malformed value raise "file.v:LINE: what is wrong". The warnings go
+-- to warn() (off in a plain `lua` unless -W; the lsys program shows them) unless
+-- opts.quiet. Returns the view and the list of warnings.
 function M.load (path, opts)
   if type(path) ~= "string" then error("lsys.view.load: a file name expected", 2) end
   if opts ~= nil and type(opts) ~= "table" then
@@ -674,7 +734,8 @@ function M.load (path, opts)
   if text == nil then error("lsys.view.load: " .. err, 0) end
   local dir = path:match("^(.*)/[^/]*$")
   if dir == "" then dir = "/" end
-  return M.parse(text, path, { dir = dir or ".", quiet = opts and opts.quiet })
+  return M.parse(text, path, { dir = dir or ".", quiet = opts and opts.quiet,
+                               missing = opts and opts.missing })
 end
 
 return M

@@ -607,7 +607,7 @@ static void test_textures (void) {
                        OUT "_missing.png'"));
   t1.path = (char *)OUT ".obj";
   assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_ESYNTAX);
-  assert(strstr(e.msg, "is no longer a PNG file") != NULL);
+  assert(strstr(e.msg, "is no longer a PNG or SGI image") != NULL);
   /* PLY ignores textures */
   t1.path = (char *)p1;
   assert(lsys_mesh_save_ply(&m, pal, 2, list, 3, OUT "_t.ply", &e) == LSYS_OK);

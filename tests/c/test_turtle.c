@@ -123,10 +123,12 @@ static void test_errors (void) {
   assert(strstr(t.warn.msg, "polygon '{' of module 2 is never closed") != NULL);
   parse(&s, &a, "F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.warn.code == 0);
-  /* textures and contours the view does not define are errors */
-  parse(&s, &a, "F@Tx(1e30)");
-  assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
-  assert(strstr(t.err.msg, "module 2 '@Tx': texture 65535 is not defined (the view has 0") != NULL);
+  /* a texture the view does not define: a warning, and untextured (cpfg); contours the
+  ** view does not define are errors */
+  parse(&s, &a, "F@Tx(1e30)F@Tx(-1)");
+  assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK && t.warn.code != 0 && t.warn.pos == 1);
+  assert(strstr(t.warn.msg, "module 2 '@Tx': texture 65535 is not defined (the view has 0; "
+                "view.textures); untextured from there") != NULL);
   parse(&s, &a, "F@#(4e9)");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   assert(strstr(t.err.msg, "module 2 '@#': contour 65535 is not defined") != NULL);

@@ -216,9 +216,11 @@ end
 -- o, keep, true; else the expanded one, and why the names could not be kept.
 local function translations (lfile, v, lopts)
   local o, keep = quietly(cpfg.options, lfile, { view = v, defines = lopts.defines,
-                                                   cpp = lopts.cpp, keep = true })
+                                                   cpp = lopts.cpp, keep = true,
+                                                   environment = lopts.environment })
   local ok, o2, keep2 = pcall(quietly, cpfg.options, lfile,
-                              { view = v, defines = lopts.defines, keep = true, names = true })
+                              { view = v, defines = lopts.defines, keep = true, names = true,
+                                environment = lopts.environment })
   if not ok then        -- (no reason to give when there is no #define to keep)
     local text = cpp.readfile(lfile) or ""
     return o, keep, false, text:find("#%s*[di][en][fc]") and
@@ -759,9 +761,9 @@ local function modeltable (C, W, reset)
 end
 
 --- The text of the lsys model file for the cpfg model `lfile` (and view file `vfile`).
--- opts: colormap or materials, defines, cpp (as for lsys.cpfg.load), out (the path the
--- text will be written to: the view's files are found from there; default lfile with
--- .lua). Raises the loader's "file:line: message" errors, and "cannot import: ..." for
+-- opts: colormap or materials, defines, cpp, environment (as for lsys.cpfg.load), out
+-- (the path the text will be written to: the view's files are found from there; default
+-- lfile with .lua). Raises the loader's "file:line: message" errors, and "cannot import: ..." for
 -- what the writer does not handle.
 -- What a written file may reach when it loads (codegen.check): lsys.lsystem and
 -- lsys.here, the helpers' table, and the base functions of its top-level code.
@@ -777,7 +779,7 @@ function M.source (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.import: a file name expected", 2) end
   opts = opts or {}
   local lopts = { colormap = opts.colormap, materials = opts.materials,
-                  defines = opts.defines, cpp = opts.cpp }
+                  defines = opts.defines, cpp = opts.cpp, environment = opts.environment }
   local m = cpfg.load(lfile, vfile, lopts)           -- its errors, its warnings (once)
   local pal = opts.colormap or opts.materials
   local out = opts.out or (lfile:gsub("%.l$", "") .. ".lua")

@@ -104,9 +104,21 @@ local function aindex (a, ...)
   end
   local k = 0
   for d = 1, n do
-    local i = trunc((select(d, ...)))
-    if not (i >= 0 and i < a.dims[d]) then      -- a NaN index too
-      error(format("cpfg: index %g out of range 0..%d of array %s", i, a.dims[d] - 1, a.name), 0)
+    local x = select(d, ...)
+    local i = trunc(x)
+    if not (i >= 0 and i < a.dims[d]) then
+      if x ~= x then                            -- cpfg's own result is undefined
+        error(format("cpfg: index %g out of range 0..%d of array %s", x, a.dims[d] - 1,
+                     a.name), 0)
+      end
+      -- cpfg takes the nearest element, with a warning (generate.c, tARRAYREF)
+      i = x < 0 and 0 or a.dims[d] - 1
+      if not a.warned then
+        a.warned = true
+        warning.warn(format("%sarray %s: index %g out of range 0..%d; %d used, as cpfg does "
+                            .. "(said once per array and derivation)", a.where or "cpfg: ",
+                            a.name, x, a.dims[d] - 1, i))
+      end
     end
     k = k * a.dims[d] + i
   end
@@ -742,8 +754,10 @@ local function arrayinit (T, ls)
       T.keep.arrays[#T.keep.arrays + 1] = { key = T.arrays[ls.scope][a.name], name = a.name,
                                             dims = dims, values = parts }
     end
+    local afile, aline = T.P:where(a.pos)
+    local where = format("%s:%d: ", afile, aline)        -- where the array is defined
     inits[#inits + 1] = function ()
-      local t = { name = a.name, dims = dims, v = {} }
+      local t = { name = a.name, dims = dims, v = {}, where = where }
       for i = 0, size - 1 do t.v[i] = 0.0 end
       if vals then
         local v = { vals() }
@@ -758,6 +772,16 @@ end
 local function rules (T, ls, list, section, stochastic)
   local out = {}
   for _, p in ipairs(list) do
+    for _, m in ipairs(p.pred) do
+      if m.sym == "[" or m.sym == "]" then
+        -- cpfg matches '[' and ']' there as modules (`[f(y)P(r)?E(x)] --> *` removes a
+        -- whole branch); lsys's brackets are the string's structure, which its rule
+        -- matching, contexts and parallel steps rely on, never a module a rule rewrites
+        fail(T, m.pos, "a bracket in a predecessor is not supported: lsys rewrites modules, "
+             .. "never the branch structure; remove a branch with %% (a cut) from a module "
+             .. "in it (docs/cpfg.md)")
+      end
+    end
     out[#out + 1] = production(T, ls, p, section, stochastic)
     T.origin[section][#out] = p.pos
   end
@@ -1029,7 +1053,7 @@ local function checkopts (opts, fname)
   if type(opts) ~= "table" then error(fname .. ": opts must be a table", 3) end
   for k in pairs(opts) do
     if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" and
-       k ~= "functions" and k ~= "random" then
+       k ~= "functions" and k ~= "random" and k ~= "environment" then
       error(format("%s: unknown option '%s'", fname, tostring(k)), 3)
     end
   end
@@ -1039,7 +1063,24 @@ local function checkopts (opts, fname)
   if opts.random ~= nil and opts.random ~= "cpfg" and opts.random ~= "lsys" then
     error(format("%s: option 'random' must be \"cpfg\" or \"lsys\"", fname), 3)
   end
+  if opts.environment ~= nil and opts.environment ~= "none" then
+    error(format("%s: option 'environment' must be \"none\" (lsys runs no environmental "
+                 .. "program)", fname), 3)
+  end
   return opts
+end
+
+-- An open L-system's ?E modules exchange values with an environmental program that cpfg
+-- runs beside the model (cpfg -e; Mech and Prusinkiewicz 1996). lsys runs none, and a
+-- model that relies on one would silently draw another plant, so ?E is refused unless
+-- the caller asks for cpfg's behaviour without a program (environment = "none": the
+-- modules keep the values the rules give them, as `cpfg -g` without -e does).
+local function envcheck (P, opts)
+  if P.envq and opts.environment ~= "none" then
+    P:fail(P.envq, "?E (an environmental program's query module) is not supported: lsys "
+           .. "runs no environmental program; environment = \"none\" (--environment none) "
+           .. "derives the model as cpfg does without one")
+  end
 end
 
 -- The view's positional functions as cpfg computes them (lsys.func approx "cpfg"), or
@@ -1089,6 +1130,7 @@ function M.options (lfile, opts)
     local lines = kept and cpp.builtin(lfile, defs, kept) or cpp.run(lfile, defs, opts.cpp)
     local P = parse.new(lines)
     local lsystems = P:file()
+    envcheck(P, opts)
     local o, T = translate(P, lsystems, { name = lfile, keep = opts.keep, random = opts.random,
                                           globals = kept and kept.values })
     if T.keep then T.keep.defines = kept end
@@ -1104,7 +1146,9 @@ end
 -- defines as for `options`, functions ("cpfg", the default: the view's functions
 -- approximated as cpfg does; "exact": lsys's exact values), random ("cpfg", the default:
 -- cpfg's random numbers in cpfg's order, on one thread; "lsys": lsys's generator, which
--- does not depend on the order nor on the threads). Returns an lsys Model; raises
+-- does not depend on the order nor on the threads), environment ("none": a model with ?E
+-- modules derives as cpfg does without an environmental program; without it such a
+-- model is refused). Returns an lsys Model; raises
 -- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
@@ -1112,7 +1156,7 @@ function M.load (lfile, vfile, opts)
     error("lsys.cpfg.load: the view file must be a file name", 2)
   end
   opts = checkopts(opts, "lsys.cpfg.load")
-  local v = vfile and viewmod.load(vfile) or { dir = cpp.dirof(lfile) }
+  local v = vfile and viewmod.load(vfile, { missing = "warn" }) or { dir = cpp.dirof(lfile) }
   -- what the view leaves unset (or sets to '?') is cpfg's default, not lsys.view's
   for k, x in pairs(viewfile.CPFG_DEFAULTS) do
     if v[k] == nil then v[k] = x end
@@ -1129,7 +1173,9 @@ function M.load (lfile, vfile, opts)
     for k, x in pairs(opts.defines or {}) do defs[k] = x end
     local lines = cpp.run(lfile, defs, opts.cpp)
     local P = parse.new(lines)
-    o, T = translate(P, P:file(), { name = lfile, random = opts.random })
+    local lsystems = P:file()
+    envcheck(P, opts)
+    o, T = translate(P, lsystems, { name = lfile, random = opts.random })
   end)
   if not ok then error(cpfgerror(err), 0) end
   o.view = v
@@ -1146,6 +1192,19 @@ function M.load (lfile, vfile, opts)
       msg = format("%s:%d: %s", file, line, msg)
     end
     error(msg, 0)
+  end
+  -- messages name the .l file and the production's line, not lsys's list of rules
+  m._where = lfile
+  for _, info in pairs(m._info) do
+    local n, sect = info.label:match("%(entry (%d+) of ([^)]+)%)$")
+    local pos = sect and T.origin[sect] and T.origin[sect][tonumber(n)]
+    if pos then
+      local file, line = T.P:where(pos)
+      info.where, info.label = format("%s:%d", file, line), info.label:gsub(" %(entry.*$", "")
+    end
+  end
+  if not vfile then
+    m._funchint = "; a cpfg model's functions come from its view file (.v), and none was given"
   end
   T.model = m         -- (srand in Start: blocks run by the axiom, before the start hook)
   if T.usesfunc then T.H.func = function (id, x) return m:func(id, x) end end

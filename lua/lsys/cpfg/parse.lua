@@ -468,8 +468,15 @@ function P:modules (formal)
     local c = self:symbol()
     if not c then return list end
     local m = { sym = c, pos = s }
-    if self.src:sub(self.pos, self.pos) == "(" then
-      self.pos = self.pos + 1
+    local prev = list[#list]
+    if c == "E" and prev and prev.sym == "?" and not prev.params then
+      self.envq = self.envq or prev.pos      -- the first ?E: cpfg's environment module
+    end
+    -- cpfg's lexer reads a '(' after a symbol as its parameters with blanks between
+    -- (lsys_input.l, state SYMBOL): vlab's Lychnis writes `+ (90)`.
+    local _, b = self.src:find("^[ \t]*%(", self.pos)
+    if b then
+      self.pos = b + 1
       m.params = {}
       if formal then
         repeat
@@ -505,9 +512,26 @@ end
 
 -- L-system files ---------------------------------------------------------------------
 
+-- The text of the production that starts at `pos`, continued lines (a newline and a
+-- tab) included.
+function P:logicalline (pos)
+  local src, e = self.src, pos
+  while true do
+    e = src:find("\n", e, true) or #src + 1
+    if src:sub(e + 1, e + 1) ~= "\t" then return src:sub(pos, e - 1) end
+    e = e + 1
+  end
+end
+
 function P:production ()
   local pos = self.pos
   local prod = { pos = pos }
+  -- '->' where '-->' is meant reads as a module '-' and a right context '>': say so
+  local text = self:logicalline(pos)
+  local arrow = text:find("%->")
+  if arrow and not text:find("%-%->") and not text:find("%-o>") then
+    self:fail(pos + arrow - 1, "'->' is not a production arrow in cpfg; write '-->'")
+  end
   local function part ()
     self:sp()
     if self.src:sub(self.pos, self.pos) == "*" then
