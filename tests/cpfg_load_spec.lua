@@ -293,6 +293,10 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
                          "option 'environment' must be \"none\"", 1, true)
   end)
 
+  it("takes a number too large for a double as infinite in a block", function ()
+    assert.equal("B(1,1)", derive("infinite.l"))                        -- cpfg
+  end)
+
   it("reads a module's parameters after blanks, as cpfg's lexer does", function ()
     assert.equal("A(3)F(2)F(2)B", derive("blankparen.l"))               -- cpfg
   end)

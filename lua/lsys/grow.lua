@@ -32,6 +32,15 @@ local type, pairs, ipairs, error, setmetatable, getmetatable, rawget, rawset, to
 local math, string, debug = math, string, debug
 local format, table = string.format, table
 local floor = math.floor
+
+-- A generator seed as the integer core.frames takes: a whole number as itself, any other
+-- (1e303, 0.5) by its bits, as a model's seed is taken (lua_rules.c, seedof): the same
+-- seed gives the same plant everywhere.
+local function seedint (x)
+  local i = math.tointeger(x)
+  if i then return i end
+  return (string.unpack("<i8", string.pack("<d", x)))
+end
 local _ENV = nil
 
 local M = {}
@@ -462,7 +471,7 @@ function M.world (opts)
     _T = core.limbs { sides = sides, max_limbs = floor(max), limb_bytes = LIMB_BYTES,
                       plant_bytes = PLANT_BYTES }, _limbs = {}, _gen = {},
     _kinds = {}, _kindlist = {}, _kver = {}, _names = {}, _fns = {}, _fnidx = {},
-    _seed = floor(seed), _max = floor(max), ticks = 0, capped = false,
+    _seed = seed, _max = floor(max), ticks = 0, capped = false,
     shoot_color = opts.shoot_color or "#5a9e32", leaf_color = opts.leaf_color or "#3f8f2a",
   }, World)
   rgb(w.shoot_color, "shoot_color")
@@ -538,7 +547,7 @@ end
 -- its number - 1); its number.
 function World:_newplant (x, y, z, seed)
   local p = self._T:plant(x, y, z)
-  self._gen[p] = core.frames(floor(seed or self._seed + p - 1))
+  self._gen[p] = core.frames(seedint(floor(seed or self._seed + p - 1)))
   return p
 end
 
@@ -675,7 +684,7 @@ end
 
 --- A number from the world's own generator (seeded by `seed`): [0, 1) or [a, b).
 function World:random (a, b)
-  self._wgen = self._wgen or core.frames(self._seed)
+  self._wgen = self._wgen or core.frames(seedint(floor(self._seed)))
   local x = self._wgen:random()
   if a == nil then return x end
   return a + (b - a) * x

@@ -51,9 +51,12 @@ local function fail (T, pos, fmt, ...)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
 end
 
+-- A number as source text for rule strings and for Lua alike (a block's closure has no
+-- `math`): 2.21e308 in a file is infinite.
 local function numlit (v)
   if v ~= v then return "(0.0/0.0)" end
-  if v == math.huge then return "math.huge" end
+  if v == math.huge then return "(1.0/0.0)" end
+  if v == -math.huge then return "(-1.0/0.0)" end
   local s = format("%.17g", v)
   if not s:find("[%.eEn]") then s = s .. ".0" end
   return s
