@@ -52,7 +52,7 @@ describe("the suite", function ()
     -- %q elsewhere only shows a value in a message or makes a key, never writes code
     local shown = { ["lua/lsys/repl.lua"] = 1, ["lua/lsys/population.lua"] = 2,
                     ["lua/lsys/components/graph.lua"] = 1, ["lua/lsys/frames.lua"] = 1 }
-    local src = readlines("lua/lsys/*.lua lua/lsys/*/*.lua")
+    local src = readlines("lua/lsys/*.lua lua/lsys/*/*.lua lua/lsys/*/*/*.lua")
     assert.is_true(#src > 10000)
     local count = {}
     for _, o in ipairs(offenders(src, "%%q", function (l)

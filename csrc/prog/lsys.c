@@ -512,9 +512,9 @@ static int samedir (const char *a, const char *b) {
 #endif
 
 /*
-** Pushes the first directory that holds lsys/cli.lua, or nil: the source tree when running
-** from the build directory, then the install tree relative to the program (BINDIR to
-** LUADIR, and the usual ../share/lua/5.4 where luarocks deploys), then the compiled-in
+** Pushes the first directory that holds lsys/cli/init.lua, or nil: the source tree when
+** running from the build directory, then the install tree relative to the program (BINDIR
+** to LUADIR, and the usual ../share/lua/5.4 where luarocks deploys), then the compiled-in
 ** install directory, then ../../lua (a build tree moved with its sources).
 */
 static void pushluadir (lua_State *L, const char *exedir) {
@@ -530,7 +530,7 @@ static void pushluadir (lua_State *L, const char *exedir) {
 #endif
   lua_pushfstring(L, "%s/../../lua", exedir);  /* SRC/build/bin/lsys in a moved tree */
   for (int i = top + 1; i <= lua_gettop(L); i++) {
-    lua_pushfstring(L, "%s/lsys/cli.lua", lua_tostring(L, i));
+    lua_pushfstring(L, "%s/lsys/cli/init.lua", lua_tostring(L, i));
     if (isfile(lua_tostring(L, -1))) {
       char real[PATH_MAX];  /* without "bin/.." for readable messages */
       if (realpath(lua_tostring(L, i), real) != NULL)
@@ -657,8 +657,8 @@ static int pmain (lua_State *L) {
   if (lua_pcall(L, 1, 1, base) != LUA_OK) {
     const char *msg = lua_tostring(L, -1);
     if (lua_isnil(L, luadir) && msg != NULL && strstr(msg, "'lsys.cli' not found") != NULL)
-      return luaL_error(L, "cannot find the lsys Lua files (lsys/cli.lua) beside the program "
-                           "(%s) nor in its install directory; LUA_PATH may name them",
+      return luaL_error(L, "cannot find the lsys Lua files (lsys/cli/init.lua) beside the "
+                           "program (%s) nor in its install directory; LUA_PATH may name them",
                            lua_tostring(L, exedir));
     return lua_error(L);
   }

@@ -1,0 +1,55 @@
+--- `lsys animate`: a model growing, one frame per derivation step, as an .mp4 video or an
+-- animated .gif (through ffmpeg).
+-- @module lsys.cli.commands.animate
+local A = require "lsys.cli.args"
+local S = require "lsys.cli.source"
+local HELP = require("lsys.cli.help").help
+
+local tonumber, error, pcall, next, require = tonumber, error, pcall, next, require
+local string = string
+local format = string.format
+local parse, out, usage, clock, model_opts = A.parse, A.out, A.usage, A.clock, A.model_opts
+local size_opt, int_opt, default_output = A.size_opt, A.int_opt, A.default_output
+local frames_progress, frames_error = A.frames_progress, A.frames_error
+local prepare = S.prepare
+local _ENV = nil
+
+local ANIMATE_OPTS = model_opts {
+  output = "value", size = "value", fps = "value", every = "value", hold = "value",
+  progress = "flag",
+}
+
+-- `lsys animate MODEL -o OUT.mp4|OUT.gif`: the model growing, through ffmpeg.
+local function run (args)
+  local opts, pos = parse("animate", ANIMATE_OPTS, args, 2)
+  if opts.help then out(HELP.animate) return 0 end
+  local w, h = size_opt("animate", opts.size)
+  local outpath = opts.output or default_output(pos, ".mp4", "tree.mp4")
+  local ext = (outpath:match("%.(%w+)$") or ""):lower()
+  if ext ~= "mp4" and ext ~= "gif" then
+    usage("animate", "the output must be an .mp4 video or a .gif animation, got '%s' (for "
+      .. "PNG pictures: lsys render MODEL --frames DIR)", outpath)
+  end
+  local every = int_opt("animate", "every", opts.every, 1)
+  local fps = opts.fps and tonumber(opts.fps)
+  if opts.fps ~= nil and not (fps and fps > 0 and fps <= 1000) then
+    usage("animate", "--fps expects frames a second in (0, 1000], got '%s'", opts.fps)
+  end
+  local hold = opts.hold and tonumber(opts.hold)
+  if opts.hold ~= nil and not (hold and hold >= 0 and hold <= 3600) then
+    usage("animate", "--hold expects seconds from 0 to 3600, got '%s'", opts.hold)
+  end
+  local model, _, views = prepare("animate", opts, pos)
+  local t0 = clock()
+  local ok, r, n, fw, fh = pcall(require("lsys").animate, model, {
+    out = outpath, fps = fps, hold = hold, every = every, width = w, height = h,
+    view = next(views) and views or nil, progress = frames_progress(opts),
+  })
+  if not ok then error(frames_error(r), 0) end
+  local held = hold and hold > 0 and format(", the last held %g s", hold) or ""
+  out(format("wrote %s (%d frame%s, %dx%d, %g a second%s) in %.1f s\n", r, n,
+    n == 1 and "" or "s", fw, fh, fps or require("lsys.frames").FPS, held, clock() - t0))
+  return 0
+end
+
+return run

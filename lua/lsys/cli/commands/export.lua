@@ -1,0 +1,37 @@
+--- `lsys export`: a model's geometry written to an .obj, .ply or .glb file.
+-- @module lsys.cli.commands.export
+local A = require "lsys.cli.args"
+local S = require "lsys.cli.source"
+local HELP = require("lsys.cli.help").help
+
+local string = string
+local format = string.format
+local parse, out, usage, RENDER_OPTS = A.parse, A.out, A.usage, A.RENDER_OPTS
+local scene_of = S.scene_of
+local _ENV = nil
+
+local function run (args)
+  local opts, pos = parse("export", RENDER_OPTS, args, 2)
+  if opts.help then out(HELP.export) return 0 end
+  if opts.size ~= nil then usage("export", "--size applies to render only") end
+  if opts.frames ~= nil or opts.every ~= nil then
+    usage("export", "--frames and --every apply to render only")
+  end
+  if #pos == 0 then usage("export", "a MODEL is required") end
+  local outpath = opts.output
+  if outpath == nil then usage("export", "-o OUT.obj, OUT.ply or OUT.glb is required") end
+  local ext = outpath:lower():match("%.(%w+)$")
+  if ext ~= "obj" and ext ~= "ply" and ext ~= "glb" then
+    usage("export", "the output must end in .obj, .ply or .glb, got '%s'", outpath)
+  end
+  if opts.lines ~= nil and opts.lines ~= "lines" and opts.lines ~= "tubes" then
+    usage("export", "--lines expects 'lines' or 'tubes', got '%s'", opts.lines)
+  end
+  local scene = scene_of("export", opts, pos)
+  scene:save(outpath, { lines = opts.lines })
+  out(format("wrote %s (%d vertices, %d triangles, %d lines%s)\n", outpath, scene.nvertices,
+    scene.ntriangles, scene.nlines, opts.lines == "tubes" and " as tubes" or ""))
+  return 0
+end
+
+return run

@@ -1,0 +1,99 @@
+--- `lsys sketch`: the sketch window, or with plot, model or render a sketch file's
+-- positional functions, generated model or picture written to a file.
+-- @module lsys.cli.commands.sketch
+local A = require "lsys.cli.args"
+local HELP = require("lsys.cli.help").help
+
+local tostring, tonumber, error, pcall, require = tostring, tonumber, error, pcall, require
+local string, math = string, math
+local format = string.format
+local parse, out, usage, size_opt = A.parse, A.out, A.usage, A.size_opt
+local _ENV = nil
+
+local SKETCH_OPTS = {
+  size = "value", nodes = "value", phyllotaxis = "value", output = "value", help = "flag",
+  short = { h = "help", o = "output" },
+}
+
+-- --nodes and --phyllotaxis of `lsys sketch` as lsys.sketch.load options.
+local function sketch_load_opts (opts)
+  local lo = {}
+  if opts.nodes ~= nil then
+    lo.nodes_per_layer = math.tointeger(tonumber(opts.nodes))
+    if lo.nodes_per_layer == nil or lo.nodes_per_layer < 1 or lo.nodes_per_layer > 10000 then
+      usage("sketch", "--nodes expects a whole number from 1 to 10000, got '%s'", opts.nodes)
+    end
+  end
+  if opts.phyllotaxis ~= nil then
+    local p = opts.phyllotaxis
+    if p ~= "distichous" and p ~= "decussate" and p ~= "fibonacci" then
+      usage("sketch", "--phyllotaxis expects distichous, decussate or fibonacci, got '%s'", p)
+    end
+    lo.phyllotaxis = p
+  end
+  return lo
+end
+
+local sketch_file_write
+
+-- `lsys sketch plot|model|render FILE -o OUT`.
+local function sketch_file_command (sub, opts, pos)
+  if #pos < 2 then usage("sketch", "%s: a sketch FILE is required", sub) end
+  if #pos > 2 then usage("sketch", "unexpected argument '%s'", pos[3]) end
+  local file = pos[2]
+  local ext = sub == "model" and ".lua" or ".png"
+  local outpath = opts.output or ((file:match("([^/]-)%.?[^./]*$") or "sketch") ..
+                                  (sub == "plot" and "-functions" or "") .. ext)
+  if not outpath:lower():find("%" .. ext .. "$") then
+    usage("sketch", "%s: the output must be a %s file, got '%s'", sub, ext, outpath)
+  end
+  local lo = sketch_load_opts(opts)
+  local w, h = size_opt("sketch", opts.size)
+  if sub == "model" and w then usage("sketch", "model: --size applies to plot and render") end
+  local sketch = require "lsys.sketch"
+  local ok, err = pcall(function ()
+    local sk = sketch.load(file, lo)
+    sketch_file_write(sub, sk, outpath, w, h)
+  end)
+  -- the pipeline's messages name the file and the stroke; where in lsys they were raised
+  -- is no news to the user
+  if not ok then error((tostring(err):gsub("^[^:\n]*%.lua:%d+: ", "")), 0) end
+  return 0
+end
+
+-- Writes what `lsys sketch plot|model|render` makes of the Sketch sk.
+function sketch_file_write (sub, sk, outpath, w, h)
+  if sub == "plot" then
+    require("lsys.sketch.plot").png(sk, outpath, { width = w or 900, height = h or 600 })
+    out(format("wrote %s\n", outpath))
+  elseif sub == "model" then
+    sk:save_model(outpath)
+    out(format("wrote %s\n", outpath))
+  else
+    local m = sk:model {}
+    local scene = m:interpret(m:derive())
+    require("lsys").render(scene, { out = outpath, width = w or 800, height = h or 800 })
+    out(format("wrote %s (%dx%d, %d triangles, %d lines)\n", outpath, w or 800, h or 800,
+      scene.ntriangles, scene.nlines))
+  end
+end
+
+local function run (args)
+  local sub = args[2]
+  local opts, pos = parse("sketch", SKETCH_OPTS, args, 2)
+  if opts.help then out(HELP.sketch) return 0 end
+  if sub == "plot" or sub == "model" or sub == "render" then
+    return sketch_file_command(sub, opts, pos)
+  end
+  if #pos > 1 then usage("sketch", "unexpected argument '%s' (one FILE at most)", pos[2]) end
+  local w, h = size_opt("sketch", opts.size)
+  local lo = sketch_load_opts(opts)
+  if opts.output ~= nil then usage("sketch", "-o applies to plot, model and render") end
+  require("lsys.sketch.window").run {
+    file = pos[1], nodes = lo.nodes_per_layer, phyllotaxis = lo.phyllotaxis,
+    window = w and { w, h } or nil, out = out,
+  }
+  return 0
+end
+
+return run

@@ -1,0 +1,432 @@
+--- The help texts of the `lsys` program: `usage`, what `lsys --help` prints, and `help`,
+-- each command's text by its name (`lsys help COMMAND`, `lsys COMMAND --help`).
+-- @module lsys.cli.help
+local _ENV = nil
+
+local M = {}
+
+local USAGE = [[
+usage: lsys [COMMAND] [ARGS]
+
+  lsys                        start the REPL, with `lsys` loaded
+  lsys FILE.lua [ARGS]        run a Lua script (`-` reads it from stdin), like `lua FILE.lua`
+  lsys derive [MODEL] [OPTS]  derive a model; print the L-string or its statistics
+  lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png),
+                              or --frames DIR: one picture per step, one camera
+  lsys animate [MODEL] -o OUT.mp4|OUT.gif   an animation of the model growing (ffmpeg)
+  lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
+  lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
+  lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
+  lsys sketch [FILE] [OPTS]   draw a plant's construction lines; the plant follows (a window)
+  lsys sketch plot|model|render FILE -o OUT   a sketch's functions, model or picture
+  lsys components graph MODEL -o OUT   draw a component graph's p-graph (Graphviz)
+  lsys grow FILE [OPTS]       grow plants tick by tick in the window (lsys.grow), or to PNGs
+  lsys import MODEL.l [VIEW.v] -o OUT.lua   write a cpfg model as an lsys model file
+  lsys batch SPEC [OPTS]      run the jobs a CSV or Lua spec lists (sweeps; --shard K/N)
+  lsys test [PATH...] [OPTS]  run busted specs of models with lsys and lsys.testing
+  lsys help [COMMAND]         this help, or a command's help
+
+MODEL is a Lua file that returns a model, an example's name, a cpfg L-system file (.l,
+with its view file VIEW.v after it: `lsys render plant.l plant.v`) or a vlab object folder.
+
+Options:
+  -h, --help      show this help
+  -v, --version   show the version
+
+Environment: LSYS_DEBUG=1 adds a Lua traceback to error messages; LUA_PATH and LUA_CPATH
+work as in `lua`. Exit status: 0 success, 1 error, 2 usage error.
+]]
+
+local HELP = {}
+
+HELP.derive = [=[
+usage: lsys derive [MODEL [VIEW.v]] [--steps N] [--seed S] [--set NAME=VALUE]...
+                   [--name NAME] [--map FILE | --mat FILE] [--define NAME=VALUE]...
+                   [--stats] [--progress]
+
+Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a component
+graph's root prototype, see `lsys help components`, or a table of named models), derives
+it and prints the resulting L-string in cpfg notation. Without MODEL,
+derives the default example (examples/default.lua). A MODEL that is not a file is looked up
+in the examples directory, with or without .lua: `lsys derive abop/fig1_24a`.
+
+A MODEL ending in .l is a cpfg L-system file, loaded as lsys.cpfg.load does (docs/cpfg.md),
+with VIEW.v, when given, as its view file: `lsys derive plant.l plant.v`. A folder with a
+`specifications` file is a vlab object: the specifications name its .l, .v and palette.
+
+Options:
+  --steps N          number of derivation steps (sets model.steps)
+  --seed S           random seed (sets model.seed)
+  --set NAME=VALUE   sets model.env[NAME] to VALUE, a number if it reads as one, else a
+                     string; may be repeated (a cpfg model's env holds the variables of
+                     its Start and End blocks; a #define is not one: see `lsys import`)
+  --name NAME        the model to derive when MODEL returns a table of models (default:
+                     the first name in sorted order)
+  --map FILE         a cpfg model's colour map (.map), relative to the .l file's folder
+  --mat FILE         a cpfg model's material file (.mat), likewise
+  --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
+                     #define in the file wins); may be repeated
+  --environment none  derive a cpfg model's ?E modules as cpfg does without its
+                     environmental program (lsys runs none; without this option a model
+                     with ?E is refused)
+  --stats            print statistics instead of the string: steps, modules, the count of
+                     each module name, and the derivation time
+  --progress         print "step k/N: M modules" on stderr after each step (the default
+                     when stderr is a terminal)
+  -h, --help         show this help
+]=]
+
+HELP.render = [=[
+usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
+                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
+       lsys render [MODEL [VIEW.v]] --frames DIR [--every K] [OPTIONS as above]
+
+Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
+VIEW.v, or a vlab object folder, as for `lsys derive`), interprets it with the turtle and
+renders it headless (OSMesa) to a PNG file. Without MODEL, renders the default example
+(examples/default.lua) to tree.png. A Lua file may also return a Scene, such as a field of
+plants made by lsys.population (examples/population/field.lua): it is rendered as it is.
+
+With --frames DIR, writes one picture per derivation step into DIR instead (made when
+missing): step-0000.png, step-0001.png, ... All look through one camera, fitted to the last
+step, so the plant grows in place from picture to picture. `lsys animate` makes a video
+of them.
+
+Options:
+  -o, --output OUT   the PNG file (default: tree.png for the default model, else the
+                     model's file name with .png, in the current directory)
+  --frames DIR       one picture per step into DIR (not with -o); a progress bar on a
+                     terminal, else a line per frame with --progress
+  --every K          with --frames: steps 0, K, 2K, ... and always the last
+  --size WxH         picture size in pixels (default 800x800)
+  --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   a cpfg model's, as
+                     for `lsys derive`
+  --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
+                     such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
+                     viewpoint=0,10,40, background=1,1,1, supersample=2, ...
+  -h, --help         show this help
+]=]
+
+HELP.animate = [=[
+usage: lsys animate [MODEL [VIEW.v]] [-o OUT.mp4|OUT.gif] [--fps N] [--every K]
+                    [--hold S] [--size WxH] [--steps N] [--seed S] [--set NAME=VALUE]...
+                    [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
+                    [--define NAME=VALUE]... [--progress]
+
+Derives MODEL (as for `lsys render`) and writes an animation of it growing: one frame per
+derivation step, all through one camera fitted to the last step, so the plant grows in
+place. An .mp4 is an H.264 video (yuv420p, plays everywhere); a .gif an animated GIF that
+loops, its colours from one palette made for the whole animation. The frames are drawn
+headless into a temporary folder and encoded by ffmpeg (Debian package ffmpeg: apt-get
+install ffmpeg); without it, `lsys render MODEL --frames DIR` writes the pictures.
+
+Options:
+  -o, --output OUT   the .mp4 or .gif file (default: the model's name with .mp4, or
+                     tree.mp4 for the default model, in the current directory); it
+                     appears whole or not at all
+  --fps N            frames a second (default 4)
+  --every K          steps 0, K, 2K, ... and always the last (default: every step)
+  --hold S           the last frame stays S seconds longer (default 0)
+  --size WxH         frame size in pixels (default 800x800; an .mp4's are rounded up to
+                     even numbers, as H.264 needs)
+  --progress         a line per step and frame on stderr (on a terminal a progress bar
+                     is shown without it)
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
+  -h, --help         show this help
+]=]
+
+HELP.export = [[
+usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps N]
+                   [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
+
+Derives and interprets MODEL (as for `lsys render`: a cpfg MODEL.l takes its VIEW.v after
+it) and writes its geometry: Wavefront OBJ (with a .mtl file next
+to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT. A file
+returning a population (lsys.population) is written as it is: .glb with one mesh per
+prototype placed by EXT_mesh_gpu_instancing, .obj and .ply with every plant written out.
+
+Options: as for `lsys render`; -o is required.
+  --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800
+                  render) instead of lines, which most viewers draw one pixel wide
+                  (default: --lines lines)
+]]
+
+HELP.view = [=[
+usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--step K] [--rate R] [--no-status]
+                 [--last | --history SIZE]
+                 [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
+                 [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
+                 [--define NAME=VALUE]...
+
+Opens the viewer window on MODEL (a Lua file returning a model, an example name, a cpfg
+.l file with its VIEW.v, or a vlab object folder, as for `lsys derive`; default: the
+default example) with every derivation step, the last one shown. When the model file
+changes on disk (for a cpfg model: the .l file, the files it #includes, the view file or
+the palette) it is loaded again and the window updates,
+keeping its camera; an error (a syntax error, a bad rule) is printed here and the last
+good model stays on screen. A click on a module prints its index and text. The window
+closes with Esc or Q, and Ctrl-C here closes it too.
+
+In the window: drag to orbit, right-drag or shift-drag to pan, scroll to zoom; left and
+right arrows step through the derivation, space animates, + and - change the speed;
+R resets the view, F fits, W toggles wireframe, S saves a screenshot (lsys-NNN.png) --
+while animating, every step through the window's camera into MODEL-frames/ --, H shows
+this list.
+
+Options:
+  --size WxH           window size (default 800x800)
+  --step K             the step shown first (default: the last)
+  --rate R             animation speed in steps per second (default 2)
+  --no-status          no status line at the bottom of the window
+  --last               keep the last step only (no stepping: the least memory)
+  --history SIZE       the memory the kept steps may take (default 256M; e.g. 1G): beyond
+                       it the window keeps every 2nd, 4th, ... step and the last
+  --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
+                       (through the same path as the S key) and exit
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
+  -h, --help           show this help
+
+The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
+without one.
+]=]
+
+HELP.arrange = [[
+usage: lsys arrange [MODEL] [-o OUT.txt] [--string FILE] [--size WxH] [--r0 R] [--s0u S]
+                    [--s0h S] [--steps N] [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]...
+                    [--name NAME]
+
+Opens MODEL (default: the default example) derived in the viewer window for arranging by
+inverse kinematics as in ilsa (Power et al. 1999; docs/arrange.md):
+
+  click           a segment: the fixed point; the active branch above it turns red
+  click again     within the red branch: the end of the branch path, which turns yellow
+  Ctrl-drag       move the path's end with the tool: G or 1 sphere (default), D or 2 disc
+                  (twist), A or 3 axis (in and out), P or 4 plane (in the view plane)
+  arrow keys      move the fixed point: up/down along the branch, left/right to siblings
+  Delete          prune the active branch (the marker @X takes its place)
+  U, Ctrl-Z       undo           Ctrl-S   save the arranged L-string to OUT
+  drag, scroll    orbit, zoom (as in lsys view)          Esc  quit
+
+Options:
+  -o, --output OUT   where Ctrl-S saves (default: MODEL's name with -arranged.txt)
+  --string FILE      start from an L-string saved before (cpfg text) instead of deriving
+  --size WxH         window size (default 800x800)
+  --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
+                     the automatic joint stiffness (default 1 each)
+  --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
+  --mat FILE, --define NAME=VALUE, --environment none   as for render
+
+The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
+`model:step(lsys.lstring(text))`, or arrange it again with --string.
+]]
+
+HELP.sketch = [[
+usage: lsys sketch [FILE] [--size WxH] [--nodes N] [--phyllotaxis P]
+       lsys sketch plot FILE [-o functions.png] [--size WxH]
+       lsys sketch model FILE [-o plant.lua] [--nodes N] [--phyllotaxis P]
+       lsys sketch render FILE [-o plant.png] [--size WxH] [--nodes N] [--phyllotaxis P]
+
+Sketch-based parameterization of L-systems (Anastacio et al. 2009; docs/sketch.md): the
+construction lines of a plant -- a stem, left and right boundaries, inclination lines --
+become positional functions that parameterize a phyllotaxis template.
+
+`lsys sketch [FILE]` opens the sketch window: the sketch on the left, the plant it makes
+on the right, updated while you draw, the functions plotted under it. FILE (a .json or
+.svg sketch) is read when it exists and is where Ctrl+S saves (default sketch.json; a
+.svg is saved as .json next to it). In the window: left drag draws a stroke; 1 2 3 4 or
+the toolbar pick its role (stem, left boundary, right boundary, inclination line); a new
+stem or boundary replaces the old one; right drag (or shift drag) moves the nearest
+stroke; Delete or Backspace deletes the selected (else the last) stroke; Ctrl+Z undoes;
++ and - change the nodes per layer, P the phyllotaxis; the wheel over the sketch (or [
+and ]) sets the pressure of the points drawn next (darker nearer, lighter farther); Tab
+hides the plots; Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua).
+Over the plant: drag orbits, right drag pans, the wheel zooms. H lists the keys.
+
+  plot     draws the positional functions (six panels, seven with pitch) to a PNG
+  model    writes the generated model as an editable Lua file
+  render   renders the plant headless to a PNG
+
+Options:
+  -o, --output OUT    the file written (default: FILE's name with -functions.png, .lua,
+                      .png, in the current directory)
+  --size WxH          the window's size (default 1200x800), or the picture's (plot:
+                      900x600, render: 800x800); a new sketch is 600x600 pixels
+  --nodes N           nodes per layer (default: the sketch's)
+  --phyllotaxis P     distichous, decussate or fibonacci (default: the sketch's)
+  -h, --help          show this help
+
+The window needs a display; a drawing tablet's pen pressure is read when X reports one (XInput2),
+else the wheel sets it (docs/sketch.md, "Pressure and tablets").
+]]
+
+HELP.components = [[
+usage: lsys components graph MODEL [-o OUT] [--params]
+
+Component graphs (Lintermann and Deussen 1999; docs/components.md). MODEL is a Lua file
+that returns the root prototype of a component graph (`return plant`). Every command that
+takes a MODEL (derive, render, export, view, arrange) takes such a file too: the graph is
+expanded (--seed seeds it) and drawn as an ordinary model; a click in `lsys view` prints
+the instance's path and parameters.
+
+  graph    draws the p-graph: a camera box at the root, child links as thin lines, branch
+           links bold, leaf links dashed, the links of a recursion doubled, ending at a
+           dashed copy of the component the recursion returns to; flag lists on the links
+
+Options:
+  -o, --output OUT    the file written: .png, .svg or .pdf (through Graphviz's dot, Debian
+                      package graphviz) or .dot/.gv, the DOT text (default: MODEL's name
+                      with -graph.png, in the current directory)
+  --params            show the components' parameters in the nodes
+  -h, --help          show this help
+]]
+
+HELP.grow = [[
+usage: lsys grow FILE [--ticks N] [--seed S] [--rate R] [--size WxH] [--screenshot OUT.png]
+       lsys grow FILE --frames DIR [--every K] [--ticks N] [--seed S] [--size WxH]
+
+Incremental growth (Davison, "Incremental rules for growing plants"; docs/grow.md). FILE is a
+Lua file that returns a world of lsys.grow, planted (`return w` after w:plant{...};
+`lsys.grow.world{ticks = N}` says how long it grows), or a table with a world(opts) function
+that makes one (as examples/grow/davison.lua). The plants grow tick by tick in the window:
+each tick changes the limbs in place and the window receives only what changed. The camera
+frames the plants' final size (the world is grown once headless first), so they grow in
+place.
+
+In the window: space pauses and resumes (at the end, grows on), right grows one tick, + and
+- change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace
+starts again; drag orbits, right-drag pans, scroll zooms, R resets the view, F fits, W
+wireframe, S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
+the triangles and the frames drawn a second.
+
+Options:
+  --ticks N            how long to grow (default: the world's length, else 100)
+  --seed S             the seed given to world(opts) (a file returning a World seeds it)
+  --rate R             ticks a second (default: as fast as the window draws them)
+  --size WxH           window or picture size (default 1000x600)
+  --screenshot OUT.png grow to the end in the window, save its picture, exit; prints the
+                       window's drawing rate while growing
+  --frames DIR         no window: one PNG per tick into DIR (tick-0000.png, ...), one camera
+  --every K            with --frames: every K-th tick (and the last)
+  -h, --help           show this help
+]]
+
+HELP.import = [[
+usage: lsys import MODEL.l [VIEW.v] -o OUT.lua [--map FILE | --mat FILE]
+                   [--define NAME=VALUE]...
+       lsys import FOLDER -o OUT.lua
+
+Writes the cpfg model MODEL.l (with its view file VIEW.v and colour map or material file),
+or the vlab object FOLDER, as an lsys model file to edit from there on: a Lua file that
+returns lsys.lsystem{...}, with the rules in lsys's notation, the #defines of plain numbers
+as env entries that the rules read by name (`--set NAME=VALUE` changes one), the view
+settings, and the productions with statement blocks as Lua functions. `lsys derive OUT.lua`
+gives the string `lsys derive MODEL.l` gives. The view's files (contours, surfaces,
+functions, the palette) stay where they are; OUT.lua finds them from its own folder.
+
+Options:
+  -o, --output OUT.lua  the file to write (required); it appears whole or not at all
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   as for `lsys derive`
+  -h, --help            show this help
+]]
+
+HELP.batch = [[
+usage: lsys batch SPEC [-o DIR] [--shard K/N | --shard slurm] [--list] [--force]
+                  [--progress]
+
+Runs the jobs SPEC lists -- each a model, values for its variables, a seed and the files
+to write -- one after the other, and records each in a manifest (docs/batch.md). SPEC is
+a CSV file with a header line -- the columns model, seed, steps, width, height, name, id,
+out (file name templates separated by ;), png, glb, obj, ply, lstring, stats, and a
+column per model variable it sets, as --set does -- or a Lua file that returns a list of
+jobs or a sweep, expanded in the order of its names (the last one varies fastest):
+
+  return { model = "plant.lua", seed = 1, vary = { R = { 1.2, 1.4 }, angle = { 20, 30 } },
+           replicates = 5, width = 256, height = 256,
+           outputs = { "png/{id}.png", "stats/{id}.json" } }
+
+Model files are found from SPEC's folder; outputs go to DIR. In a template {id} is the
+job's id (0001, 0002, ...: its number in SPEC), {seed}, {model}, {rep} and {R} (a
+variable) its values. A job that gives no seed gets one made from SPEC's seed and its
+number: the same in any shard, on any host. The formats, by extension: .png (width x
+height, default 800x800), .glb .obj .ply (meshes), .txt (the L-string), .json (modules,
+counts by name, triangles, area, bounds).
+
+Every file appears whole or not at all. A job is skipped when the manifest says it ran
+with the same values and its files are there: a run that was killed, or had failures,
+goes on where it stopped. A job that fails is recorded with its message and the
+others go on; the exit status is then 1.
+
+Options:
+  -o, --out DIR     the output folder (made when missing; default: the current folder)
+                    and its manifest, DIR/manifest.jsonl (DIR/manifest-K-of-N.jsonl for a
+                    shard): a JSON line per job run (job, seed, params, outputs, seconds,
+                    status ok or failed, error)
+  --shard K/N       run shard K of N only: jobs K, K+N, K+2N, ... For GNU parallel:
+                    parallel lsys batch SPEC -o DIR --shard {}/4 ::: 1 2 3 4
+  --shard slurm     the shard of this task of a Slurm job array (SLURM_ARRAY_TASK_ID,
+                    SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT): in an sbatch script
+                    with #SBATCH --array=0-9, lsys batch SPEC -o DIR --shard slurm
+  --list            print the jobs (of the shard), each done, failed or to do; run nothing
+  --force           run the jobs that are done as well
+  --progress        a line per job on stderr (on a terminal a progress line shows anyway)
+  -h, --help        show this help
+]]
+
+HELP.test = [[
+usage: lsys test [PATH...] [BUSTED OPTIONS]
+
+Runs busted specs (files or folders of *_spec.lua files) with this lsys, in this program:
+`require "lsys"` and `require "lsys.testing"` work in any folder, with no --lpath or
+LUA_PATH, and whatever `lua` or `busted` the system names. Without PATH: what a .busted
+file in the current folder says, else the folder spec/ when there is one, else every
+*_spec.lua file in and below the current folder.
+
+lsys.testing adds assertions for models (docs/testing.md):
+  assert.lstring_equal(expected, actual [, tol])   L-strings, module by module
+  assert.near(expected, actual, tol)               numbers and tables of numbers
+  assert.error_contains(fn, text, ...)             an error message holding each text
+  assert.scene_stats(scene, { triangles = N, ... } [, tol])   scene statistics
+  assert.image_matches(scene, "golden.png" [, opts])   a picture against a golden image;
+                     LSYS_UPDATE_GOLDEN=1 writes the golden images instead
+
+The other options are busted's (busted --help lists them), for example:
+  -t, --tags=TAGS, --exclude-tags=TAGS   run only, or leave out, tests tagged #TAG
+  --filter=PATTERN   only tests whose names match the Lua pattern
+  -o, --output=NAME  busted's output: utfTerminal, plainTerminal, TAP, json, junit
+  -v, --verbose      more output, with tracebacks
+  -h, --help         show this help
+
+The exit status is busted's: 0 when every test passed, 1 otherwise. busted itself comes
+from the Debian package lua-busted, or `luarocks --lua-version 5.4 install busted`.
+]]
+
+HELP.repl = [[
+usage: lsys [repl]
+
+The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
+prints its values; Lstrings print abbreviated, scenes as a summary, tables one level deep.
+Incomplete statements continue on `>>` lines; a `local` stays defined for the lines after
+it. help() gives an overview, help "derive" or help(lsys.render) the manual's section.
+With readline: Tab completes names, and the history is kept in ~/.lsys_history. Ctrl-C
+clears the line at the prompt and interrupts a running evaluation; Ctrl-D quits.
+
+lsys.show(x) opens the viewer window on a model, an Lstring or a scene (or updates it) and
+returns at once; clicks on modules in the window are printed at the prompt (set
+lsys.viewer.on_pick to a function to handle them yourself).
+]]
+
+HELP.help = [[
+usage: lsys help [COMMAND]
+
+Shows the list of commands, or the help of COMMAND.
+]]
+
+M.usage = USAGE
+M.help = HELP
+
+return M
