@@ -20,15 +20,19 @@
 local core = require "lsys.core"
 local shortest, shq = require("lsys.text").number, require("lsys.text").shq
 local model = require "lsys.model"
-local host = require("lsys.program").host
+local load = require "lsys.load"
+local program = require "lsys.program"
+local fs = require "lsys.util.fs"
+local strip_internal = require("lsys.util.errors").strip_internal
 
 local type, pairs, ipairs, next, error, pcall, tostring, tonumber, require, loadfile, select,
       setmetatable, getmetatable =
       type, pairs, ipairs, next, error, pcall, tostring, tonumber, require, loadfile, select,
       setmetatable, getmetatable
-local io, os, math, string, table, debug, collectgarbage, package =
-      io, os, math, string, table, debug, collectgarbage, package
+local io, os, math, string, table, collectgarbage, package =
+      io, os, math, string, table, collectgarbage, package
 local format = string.format
+local host, clock, isfile = program.host, program.clock, fs.isfile
 local _ENV = nil
 
 local M = {}
@@ -54,22 +58,7 @@ local RESERVED = { id = true, model = true, name = true, seed = true, steps = tr
                    stats = true, rep = true }
 
 -- {===========================================================================================
--- Helpers: the clock, messages, JSON
-
-local function clock ()
-  local f = host().clock
-  return f ~= nil and f() or os.clock()
-end
-
--- The folder holding lsys's own Lua modules, as error positions show it: a job's message
--- names the user's file, not where in lsys it was raised (as lsys.cli.strip_internal).
-local SRCDIR = (debug.getinfo(1, "S").source:match("^@(.*)lsys[/\\]batch%.lua$"))
-
-local function strip_internal (msg)
-  msg = tostring(msg)
-  if SRCDIR == nil or SRCDIR == "" then return msg end
-  return (msg:gsub(SRCDIR:gsub("%p", "%%%0") .. "lsys[/\\][%w_/\\]*%.lua:%d+: ", ""))
-end
+-- Helpers: messages, JSON
 
 -- A value in a message: text quoted, anything else as tostring gives it.
 local function show (v)
@@ -428,14 +417,6 @@ local function readfile (path)
   f:close()
   if text == nil then error(format("cannot read '%s': %s", path, tostring(rerr)), 0) end
   return text
-end
-
-local function isfile (path)
-  local f = io.open(path, "r")
-  if f == nil then return false end
-  local ok, err = f:read(0)
-  f:close()
-  return ok ~= nil or err == nil
 end
 
 -- `p` relative to the folder `dir` ("." for the current one); an absolute `p` as it is.
@@ -1507,74 +1488,24 @@ end
 
 -- Makes the folder `dir` and the ones above it that are missing (`made` caches them).
 local function mkdirs (dir, made)
-  if made[dir] then return end
-  local path = dir:sub(1, 1) == "/" and "/" or ""
-  for seg in dir:gmatch("[^/]+") do
-    path = path .. seg
-    if not made[path] then
-      local ok, err = core.mkdir(path)
-      if not ok then error(err, 0) end
-      made[path] = true
-    end
-    path = path .. "/"
-  end
-  made[dir] = true
+  local ok, err = fs.mkdirs(dir, made)
+  if not ok then error(err, 0) end
 end
 
-local function is_model (v)
-  return model.ismodel(v)
-end
-
-local function is_proto (v)
-  return type(v) == "table" and v.links ~= nil and require("lsys.components.proto").isproto(v)
-end
+-- What a job's model file is told when it returns a single model and the job names one.
+local SINGLE = "'name' picks one of a table of models"
 
 -- The model of job `job`, made afresh (its file run again: nothing a job does to its model
 -- reaches the next), with its seed, steps and variables. `chunks` caches the loaded files.
 local function job_model (job, chunks)
-  local chunk = chunks[job.path]
-  if chunk == nil then
-    local c, err = loadfile(job.path, "t")
-    chunk = c or err
-    chunks[job.path] = chunk
-  end
-  if type(chunk) ~= "function" then error(chunk, 0) end
-  local ok, v = model.runfile(job.path, chunk)
-  if not ok then
-    local msg = strip_internal(v)
-    error(msg:find(job.path, 1, true) and msg or job.path .. ": " .. msg, 0)
-  end
-  if not is_model(v) and not is_proto(v) then
-    local names = {}
-    if type(v) == "table" then
-      for k, x in pairs(v) do
-        if type(k) == "string" and (is_model(x) or is_proto(x)) then names[#names + 1] = k end
-      end
-      table.sort(names)
-    end
-    if #names == 0 then
-      error(format("%s returned %s, not a model (end the file with `return lsys.lsystem "
-        .. "{ ... }`, a component graph's root prototype, or a table of models)", job.path,
-        type(v)), 0)
-    end
-    local name = job.name or names[1]
-    if v[name] == nil or not (is_model(v[name]) or is_proto(v[name])) then
-      error(format("%s has no model named '%s' (models: %s)", job.path, name,
-        table.concat(names, ", ")), 0)
-    end
-    v = v[name]
-  elseif job.name ~= nil then
-    error(format("%s returns a single model; 'name' picks one of a table of models",
-      job.path), 0)
-  end
-  if is_proto(v) then
+  local v = load.run(job.path, { chunks = chunks, strip = true })
+  v = load.pick(v, job.path, job.name, { single = SINGLE })
+  if load.isproto(v) then
     if job.steps ~= nil or next(job.params) ~= nil then
       error(format("%s is a component graph: it has no derivation steps nor variables",
         job.path), 0)
     end
-    local cok, m = pcall(require("lsys.components").model, v, { seed = job.seed })
-    if not cok then error(format("%s: %s", job.path, strip_internal(m)), 0) end
-    v = m
+    v = load.expand(v, job.path, job.seed, { strip = true })
   end
   local m = v
   if job.steps ~= nil then m.steps = job.steps end
@@ -1582,11 +1513,7 @@ local function job_model (job, chunks)
   local env = m.env
   for k, x in pairs(job.params) do
     if env == nil or env[k] == nil then
-      local names = {}
-      for name in pairs(env or {}) do
-        if type(name) == "string" then names[#names + 1] = name end
-      end
-      table.sort(names)
+      local names = load.variables(env)
       error(format("%s has no variable %s (%s)", job.path, k, #names == 0 and
         "its env is empty" or "its variables: " .. table.concat(names, ", ")), 0)
     end
