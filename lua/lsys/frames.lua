@@ -13,6 +13,7 @@
 local core = require "lsys.core"
 local model = require "lsys.model"
 local shq = require("lsys.text").shq
+local fs = require "lsys.util.fs"
 
 local type, pairs, ipairs, error, pcall, tostring, require =
       type, pairs, ipairs, error, pcall, tostring, require
@@ -102,13 +103,8 @@ end
 
 -- Makes the folder `dir` and the ones above it that are missing. Raises naming it.
 local function mkdirs (who, dir)
-  local path = dir:sub(1, 1) == "/" and "/" or ""
-  for seg in dir:gmatch("[^/]+") do
-    path = path .. seg
-    local ok, err = core.mkdir(path)
-    if not ok then error(format("%s: %s", who, err), 0) end
-    path = path .. "/"
-  end
+  local ok, err = fs.mkdirs(dir)
+  if not ok then error(format("%s: %s", who, err), 0) end
 end
 
 -- }===========================================================================================
@@ -211,16 +207,9 @@ end
 
 -- The path of the program `prog` (a name looked up on PATH, or a path), or nil.
 local function which (prog)
-  local function isfile (p)
-    local f = io.open(p, "r")
-    if f == nil then return false end
-    local ok, err = f:read(0)
-    f:close()
-    return ok ~= nil or err == nil
-  end
-  if prog:find("/") then return isfile(prog) and prog or nil end
+  if prog:find("/") then return fs.isfile(prog) and prog or nil end
   for d in (os.getenv("PATH") or ""):gmatch("[^:]+") do
-    if isfile(d .. "/" .. prog) then return d .. "/" .. prog end
+    if fs.isfile(d .. "/" .. prog) then return d .. "/" .. prog end
   end
   return nil
 end

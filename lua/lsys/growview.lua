@@ -14,11 +14,11 @@
 local grow = require "lsys.grow"
 local core = require "lsys.core"
 local series = require "lsys.frames"
-local host = require("lsys.program").host
+local clock = require("lsys.program").clock
 
 local type, pcall, tostring, error, require, getmetatable =
       type, pcall, tostring, error, require, getmetatable
-local math, string, os, table = math, string, os, table
+local math, string, table = math, string, table
 local table_remove = table.remove
 local format = string.format
 local _ENV = nil
@@ -26,11 +26,6 @@ local _ENV = nil
 local M = {}
 
 M.DEFAULT_TICKS = 100       -- how long a world grows that does not say (world{ticks = N})
-
-local function clock ()
-  local f = host().clock
-  return f ~= nil and f() or os.clock()
-end
 
 local function isworld (x) return getmetatable(x) == grow.World end
 

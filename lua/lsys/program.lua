@@ -5,7 +5,7 @@
 -- (isatty, clock, interrupt for Ctrl-C, set_idle and clear_line for the REPL's prompt).
 -- A plain `lua` has no such table: both modules then go without the helpers.
 -- @module lsys.program
-local type, package = type, package
+local type, package, os = type, package, os
 local _ENV = nil
 
 local M = {}
@@ -15,6 +15,12 @@ local M = {}
 function M.host ()
   local h = package.loaded["lsys.host"]
   return type(h) == "table" and h or {}
+end
+
+--- Seconds on the program's clock (monotonic, for timings), or os.clock's under another Lua.
+function M.clock ()
+  local f = M.host().clock
+  return f ~= nil and f() or os.clock()
 end
 
 return M

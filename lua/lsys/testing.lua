@@ -425,13 +425,8 @@ end
 local function mkdir_for (path)
   local dir = path:match("^(.*)/[^/]*$")
   if dir == nil or dir == "" then return end
-  local sofar = dir:sub(1, 1) == "/" and "/" or ""
-  for seg in dir:gmatch("[^/]+") do
-    sofar = sofar .. seg
-    local ok, err = core().mkdir(sofar)
-    if not ok then error(err, 0) end
-    sofar = sofar .. "/"
-  end
+  local ok, err = require("lsys.util.fs").mkdirs(dir)
+  if not ok then error(err, 0) end
 end
 
 local function write_png (path, px, w, h)

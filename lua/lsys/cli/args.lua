@@ -1,12 +1,15 @@
 --- What the commands of the `lsys` program share: usage errors, output, the terminal and
 -- files, the option parser, the option readers and the progress lines of several commands.
 -- @module lsys.cli.args
-local host = require("lsys.program").host
+local program = require "lsys.program"
+local fs = require "lsys.util.fs"
 
 local pairs, tonumber, tostring, error, setmetatable =
       pairs, tonumber, tostring, error, setmetatable
-local io, os, string, table, math = io, os, string, table, math
+local io, string, table, math = io, string, table, math
 local format = string.format
+local host, clock = program.host, program.clock
+local isfile, isdir = fs.isfile, fs.isdir
 local _ENV = nil
 
 local M = {}
@@ -28,27 +31,6 @@ end
 local function isatty (fd)
   local f = host().isatty
   return f ~= nil and f(fd) or false
-end
-
-local function clock ()
-  local f = host().clock
-  return f ~= nil and f() or os.clock()
-end
-
-local function isfile (path)
-  local f = io.open(path, "r")
-  if f == nil then return false end
-  local ok, err = f:read(0)  -- nil, msg for a directory (it opens but cannot be read)
-  f:close()
-  return ok ~= nil or err == nil
-end
-
-local function isdir (path)
-  local f = io.open(path, "r")
-  if f == nil then return false end
-  local ok, _, code = f:read(0)
-  f:close()
-  return ok == nil and code == 21     -- EISDIR
 end
 
 -- }===========================================================================================

@@ -30,6 +30,7 @@
 local host = require("lsys.program").host
 local A = require "lsys.cli.args"
 local H = require "lsys.cli.help"
+local strip_internal = require("lsys.util.errors").strip_internal
 
 local G = _G
 local type, tostring, error, xpcall, require, loadfile, getmetatable, warn =
@@ -77,18 +78,10 @@ local function dispatch (args)
   usage(nil, "unknown command '%s'", a)
 end
 
--- The folder holding lsys's own Lua modules (the one above this file's lsys/cli/), as it
--- appears in error positions.
-local SRCDIR = (debug.getinfo(1, "S").source:match("^@(.*)lsys[/\\]cli[/\\]init%.lua$"))
-
 --- 'msg' without the positions in lsys's own sources that Lua put in it ("/usr/share/lsys/
 -- lua/lsys/model.lua:123: "): a user's error names the user's file or the public function,
 -- not where inside lsys it was raised (LSYS_DEBUG=1 keeps them, with a traceback).
-function M.strip_internal (msg)
-  if SRCDIR == nil or SRCDIR == "" then return msg end
-  local dir = SRCDIR:gsub("%p", "%%%0")
-  return (msg:gsub(dir .. "lsys[/\\][%w_/\\]*%.lua:%d+: ", ""))
-end
+M.strip_internal = strip_internal
 
 local function handler (e)
   if getmetatable(e) == USAGE_ERROR then return e end

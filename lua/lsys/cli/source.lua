@@ -2,11 +2,12 @@
 -- .l file with its view file or a vlab object folder, loaded with --steps, --seed, --set.
 -- @module lsys.cli.source
 local A = require "lsys.cli.args"
+local load = require "lsys.load"
 local normalize = require("lsys.text").normpath
 local host = require("lsys.program").host
 
-local type, pairs, ipairs, tostring, tonumber, error, pcall, require, loadfile =
-      type, pairs, ipairs, tostring, tonumber, error, pcall, require, loadfile
+local type, ipairs, tostring, tonumber, error, pcall, require =
+      type, ipairs, tostring, tonumber, error, pcall, require
 local io, string, table, math, debug = io, string, table, math, debug
 local format = string.format
 local usage, isatty, clock, isfile, isdir = A.usage, A.isatty, A.clock, A.isfile, A.isdir
@@ -46,71 +47,6 @@ local function find_model (arg)
       table.concat(dirs, ", ")), 0)
   end
   error(format("cannot open model '%s'", arg), 0)
-end
-
-local function is_model (v)
-  if type(v) ~= "table" and type(v) ~= "userdata" then return false end
-  local ok, derive = pcall(function () return v.derive end)
-  return ok and type(derive) == "function"
-end
-
--- True when 'v' is a component graph's prototype (lsys.components, issue 16).
-local function is_proto (v)
-  return type(v) == "table" and require("lsys.components.proto").isproto(v)
-end
-
--- A model file's value as a model: a component graph's root prototype becomes
--- lsys.components.model(v) (expanded with 'seed'), anything else stays as it is.
-local function as_model (v, path, seed)
-  if not is_proto(v) then return v end
-  local ok, m = pcall(require("lsys.components").model, v, { seed = seed })
-  if not ok then
-    local msg = tostring(m):gsub("^[^:\n]*%.lua:%d+: ", "")
-    error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
-  end
-  return m
-end
-
---[[
-Runs the model file 'path' and returns the model it returns, and its name when the file
-returns a table of named models ('name' picks one; default: the first in sorted order).
-A component graph (the root prototype, or one in the table) is made a model here, the one
-place every command loads its model through, with 'seed' for its expansion.
-]]
-local function load_model (path, name, seed)
-  local chunk, err = loadfile(path, "t")
-  if chunk == nil then error(err, 0) end
-  -- runfile names the file when `return lsys.lsystem{...}` is a tail call
-  local ok, v = require("lsys.model").runfile(path, chunk)
-  if not ok then          -- name the model file when the message does not
-    local msg = tostring(v)
-    if msg:find(path, 1, true) == nil then msg = path .. ": " .. msg end
-    error(msg, 0)
-  end
-  if is_model(v) or is_proto(v) then
-    if name ~= nil then
-      error(format("%s returns a single model; --name applies to a table of models", path), 0)
-    end
-    return as_model(v, path, seed)
-  end
-  if require("lsys.model").isscene(v) then return v end   -- a population: prepare checks
-  if type(v) == "table" then
-    local names = {}
-    for k, x in pairs(v) do
-      if type(k) == "string" and (is_model(x) or is_proto(x)) then names[#names + 1] = k end
-    end
-    table.sort(names)
-    if #names > 0 then
-      if name == nil then return as_model(v[names[1]], path, seed), names[1] end
-      if is_model(v[name]) or is_proto(v[name]) then
-        return as_model(v[name], path, seed), name
-      end
-      error(format("%s has no model named '%s' (models: %s)", path, name,
-        table.concat(names, ", ")), 0)
-    end
-  end
-  error(format("%s returned %s, not a model (end the file with `return lsys.lsystem { ... }`,"
-    .. " a component graph's root prototype, or a table of models)", path, type(v)), 0)
 end
 
 -- The cpfg options of a command line (--map, --mat, --define) as lsys.cpfg.load options,
@@ -184,9 +120,10 @@ local function model_source (cmd, opts, pos)
   return { path = arg, kind = kind, vfile = view, lopts = lopts or {} }
 end
 
--- Loads the model of model_source's `src` (`name` and `seed` as for load_model).
+-- Loads the model of model_source's `src`: a Lua model file through lsys.load.model (`name`
+-- picks one of a table of models, `seed` expands a component graph), a cpfg model here.
 local function load_source (src, name, seed)
-  if src.kind == "lua" then return load_model(src.path, name, seed) end
+  if src.kind == "lua" then return load.model(src.path, name, seed) end
   local cpfg = require "lsys.cpfg"
   local ok, m
   if src.kind == "object" then ok, m = pcall(cpfg.load_object, src.path, src.lopts)
@@ -248,11 +185,7 @@ end
 -- of (a misspelt name would otherwise change nothing without a word).
 local function set_env (model, sets, src)
   if model.env == nil then model.env = {} end
-  local names = {}
-  for k in pairs(model.env) do
-    if type(k) == "string" then names[#names + 1] = k end
-  end
-  table.sort(names)
+  local names = load.variables(model.env)
   for _, kv in ipairs(sets) do
     if model.env[kv[1]] == nil then
       local have = #names == 0 and "the model has no variables (its env is empty)"

@@ -5,12 +5,12 @@ local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 
-local type, tostring, error, pcall, require, loadfile =
-      type, tostring, error, pcall, require, loadfile
+local type, tostring, error, pcall, require = type, tostring, error, pcall, require
 local string = string
 local format = string.format
 local parse, out, usage = A.parse, A.out, A.usage
 local find_model = S.find_model
+local run_file = require("lsys.load").run
 local _ENV = nil
 
 local COMPONENTS_OPTS = { output = "value", params = "flag", help = "flag",
@@ -34,13 +34,7 @@ local function run (args)
       outpath)
   end
   local path = find_model(pos[2])
-  local chunk, err = loadfile(path, "t")
-  if chunk == nil then error(err, 0) end
-  local ok, root = require("lsys.model").runfile(path, chunk)
-  if not ok then
-    local msg = tostring(root)
-    error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
-  end
+  local root = run_file(path)
   local okp, kind, links = pcall(function () return root.kind, root.links end)
   if not okp or type(kind) ~= "string" or type(links) ~= "table" then
     error(format("%s returned %s, not a component graph (end the file with `return` and the "

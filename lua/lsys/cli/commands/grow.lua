@@ -5,12 +5,13 @@ local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 
-local tostring, tonumber, error, require, loadfile = tostring, tonumber, error, require, loadfile
+local tonumber, require = tonumber, require
 local io, string = io, string
 local format = string.format
 local parse, out, usage, clock, isatty = A.parse, A.out, A.usage, A.clock, A.isatty
 local size_opt, int_opt = A.size_opt, A.int_opt
 local find_model = S.find_model
+local run_file = require("lsys.load").run
 local _ENV = nil
 
 local GROW_OPTS = {
@@ -41,16 +42,7 @@ local function run (args)
   end
   if every and not opts.frames then usage("grow", "--every applies to --frames") end
   local path = find_model(pos[1])
-  local function load ()
-    local chunk, err = loadfile(path, "t")
-    if chunk == nil then error(err, 0) end
-    local ok, v = require("lsys.model").runfile(path, chunk)
-    if not ok then
-      local msg = tostring(v)
-      error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
-    end
-    return v
-  end
+  local function load () return run_file(path) end
   local GV = require "lsys.growview"
   local make = GV.maker(load(), path, { seed = seed }, load)
   local t0 = clock()

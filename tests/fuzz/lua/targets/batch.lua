@@ -1,4 +1,4 @@
---- Fuzz target: batch specs in CSV (lsys.batch.csv and lsys.batch.jobs, lua/lsys/batch.lua).
+--- Fuzz target: batch specs in CSV (lsys.batch.csv and lsys.batch.jobs, lua/lsys/batch/).
 --
 -- The bytes are a CSV spec: they are parsed by lsys.batch.csv under the name "fuzz.csv",
 -- and written to a scratch folder's fuzz.csv (next to a model file m.lua, which the spec may

@@ -1,5 +1,5 @@
 --- Fuzz target: batch specs in Lua (lsys.batch.jobs on a table and on a spec file,
--- lua/lsys/batch.lua). Its corpus is tests/fuzz/corpus_batchspec (the CSV specs are
+-- lua/lsys/batch/). Its corpus is tests/fuzz/corpus_batchspec (the CSV specs are
 -- targets/batch.lua's).
 --
 -- The bytes are the text of a table constructor (tests/fuzz/lua/luadata.lua: evaluated in
