@@ -1,4 +1,4 @@
--- Arrangement solver benchmark (issue 6): the time of one inverse-kinematics solve
+-- Arrangement solver benchmark: the time of one inverse-kinematics solve
 -- (lsys_ik_solve: conjugate gradients on objective (1)) for branch paths of 10, 100 and 1000
 -- joints, next to the L-BFGS of liblbfgs on the same objective as the reference.
 --
@@ -19,7 +19,7 @@
 local script = arg and arg[0] or "bench/arrange.lua"
 local B = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
 local verdict = B.verdict
-local TARGET_MS, TARGET_N = 1, 100           -- the issue's target: < 1 ms for 100 joints
+local TARGET_MS, TARGET_N = 1, 100           -- the target: < 1 ms for 100 joints
 
 local shell_quote, capture = B.shell_quote, B.capture
 

@@ -1,4 +1,4 @@
--- Batch runs benchmark (issue 20): jobs a second of `lsys batch` for 1,000 small plants
+-- Batch runs benchmark: jobs a second of `lsys batch` for 1,000 small plants
 -- rendered to 256x256 PNG pictures, in one process and as 2 shards under GNU parallel
 -- (`parallel -j2 lsys batch SPEC --shard {}/2 ::: 1 2`), and whether both give the same bytes.
 --
@@ -15,7 +15,7 @@
 --   batch ratio 2 shards / 1 process: 1.85; the same bytes: yes
 -- Without GNU parallel (Debian package parallel) it says so and times one process only.
 --
--- Then a sweep of 10^6 jobs (issue 34 §9: expanded in memory, its `--list` took 2.26 GB and
+-- Then a sweep of 10^6 jobs (once expanded in memory, when its `--list` took 2.26 GB and
 -- 115 s): the CPU time, wall-clock time and peak memory (VmHWM) of a fresh `lsys batch`
 -- process for `--list` of every job (printed to /dev/null), `--list` of shard 1/100, a run
 -- of shard 1/20 (50,000 jobs that derive a 1-module plant and write its L-string, into a
@@ -149,7 +149,7 @@ measure("run --shard 1/20 again (all done: 50000 manifest lines)", "big.lua -o o
 measure("--list --shard 1/20 (all done)", "big.lua -o out --list --shard 1/20")
 measure("--list --shard 1000/1000, no {id} (every path checked)",
   "noid.lua -o out --list --shard 1000/1000")
-print("(before issue 34 §9: --list of 1000000 jobs took 2.26 GB and 115 s)")
+print("(before specs were streamed: --list of 1000000 jobs took 2.26 GB and 115 s)")
 
 -- }=====
 

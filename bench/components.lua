@@ -1,4 +1,4 @@
--- Component graphs benchmark (issue 16): expanding a chestnut-like plant into a scene.
+-- Component graphs benchmark: expanding a chestnut-like plant into a scene.
 --
 --   build/bin/lsys bench/components.lua
 --

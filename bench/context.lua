@@ -1,4 +1,4 @@
--- Context-sensitive derivation benchmark (issue 20): modules produced per second by lsys on
+-- Context-sensitive derivation benchmark: modules produced per second by lsys on
 -- context-sensitive models, side by side with the npm package lindenmayer (bench/peers/).
 --
 --   build/bin/lsys bench/context.lua

@@ -1,4 +1,4 @@
--- The built-in cpfg preprocessor on hostile inputs (issue 34 §18): how long lsys.cpfg.load
+-- The built-in cpfg preprocessor on hostile inputs: how long lsys.cpfg.load
 -- takes to refuse each of the files the cpfg fuzz target found (tests/cpfg_errors_spec.lua
 -- checks their messages; timing lives here, not in the suite).
 --

@@ -1,4 +1,4 @@
--- Derivation benchmark (issue 2): modules produced per second and peak memory of lsys on two
+-- Derivation benchmark: modules produced per second and peak memory of lsys on two
 -- fixed models, side by side with the npm package lindenmayer (peer, bench/peers/).
 --
 --   build/bin/lsys bench/derive.lua          run everything and print the table
@@ -15,7 +15,7 @@
 --
 -- With cpfg (`--cpfg PATH`, or the environment variable CPFG: a cpfg built for batch use as
 -- docs/cpfg.md, "cpfg as a reference", describes, which honours CPFG_SKIP_VV), both programs
--- are also timed the same way (issue 20): whole process, wall clock, best of 5, minus the
+-- are also timed the same way: whole process, wall clock, best of 5, minus the
 -- same process on the model with 0 steps (start-up); cpfg runs `-g` with CPFG_SKIP_VV=1
 -- (no view-volume pass) writing its string in binary (-strb: no number formatting) to
 -- /dev/null, lsys derives in a fresh process. Peak memory is each process's maximum
@@ -162,7 +162,7 @@ end
 
 local function mib (kib) return kib / 1024 end
 
--- Whole-process timing (issue 20): the best of 'runs' wall-clock times of `cmd` and the
+-- Whole-process timing: the best of 'runs' wall-clock times of `cmd` and the
 -- largest resident size (KiB) GNU time reports, or nil when /usr/bin/time is missing.
 local TIME = io.open("/usr/bin/time", "r") and (io.close(io.open("/usr/bin/time")) and
   "/usr/bin/time") or nil

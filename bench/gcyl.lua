@@ -1,4 +1,4 @@
--- Generalized cylinders and predefined surfaces benchmark (issue 4).
+-- Generalized cylinders and predefined surfaces benchmark.
 --
 --   build/bin/lsys bench/gcyl.lua
 --

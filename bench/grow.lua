@@ -1,4 +1,4 @@
--- Incremental growth benchmark (issue 17): Davison's growth model ("Incremental rules for
+-- Incremental growth benchmark: Davison's growth model ("Incremental rules for
 -- growing plants", section "Incremental rules"; docs/manual.md §12) run both ways for the
 -- same seed:
 --

@@ -1,4 +1,4 @@
--- The forest growing in the viewer window (issue 17): examples/grow/forest.lua, five trees
+-- The forest growing in the viewer window: examples/grow/forest.lua, five trees
 -- growing to 20,000 limbs, shown live by `lsys grow` (lsys.growview): after each tick the
 -- window receives only the vertex ranges that changed and what was appended, and draws one
 -- tick while the next one grows.

@@ -1,5 +1,5 @@
 /*
-** Speed of the arrangement solver (issue 6): lsys_ik_solve (conjugate
+** Speed of the arrangement solver: lsys_ik_solve (conjugate
 ** gradients, cg.h) on branch paths of 10, 100 and 1000 joints, from a
 ** nearby start -- one mouse-move step of a drag -- and, when liblbfgs is
 ** available (LSYS_HAVE_LBFGS), the L-BFGS of liblbfgs on the same objective

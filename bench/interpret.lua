@@ -1,18 +1,18 @@
--- Interpretation and rendering benchmark (issues 3 and 20).
+-- Interpretation and rendering benchmark.
 --
 --   build/bin/lsys bench/interpret.lua
 --
 -- (1) turtle throughput in "line" style on the ABOP fig. 1.24a string after 10 steps
 --     (F --> F[+F]F[-F]F, 24.4 M modules): modules per second, with and without turtle
---     records (issue 20: >= 50 M/s with records, >= 100 M/s without);
+--     records (target: >= 50 M/s with records, >= 100 M/s without);
 -- (2) triangles generated per second in "cylinder" style (8 sides) on the same model after
---     7 steps (issue 20: >= 50 M triangles/s);
+--     7 steps (target: >= 50 M triangles/s);
 --     both on every core (the model's default threads) and on one thread (threads = 1);
 -- (3) OSMesa render time of a scene of about 1 M triangles at 1024x1024, with the default
 --     3x supersampling and without.
 -- Times are wall clock (the lsys program's monotonic clock; os.clock CPU time under plain
 -- Lua), best of 3. Peak memory is this process's VmHWM at the end: (1) with records holds
--- the most (issue 20: at most 1 GiB, half the 2 GiB before it).
+-- the most (target: at most 1 GiB, half the 2 GiB before it).
 
 local RUNS = 3
 local B = dofile(((arg and arg[0] or "bench/interpret.lua"):match("^(.*)/[^/]*$") or ".")

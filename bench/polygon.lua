@@ -1,12 +1,12 @@
--- Polygon filling benchmark (issue 34 §11): the turtle's '{ ... }' polygons of 256,000 and
+-- Polygon filling benchmark: the turtle's '{ ... }' polygons of 256,000 and
 -- 512,000 vertices, combs and other shapes hostile to ear clipping, interpreted by a model
 -- (the polygon's vertices placed with @M and '.', then triangulated: csrc/core/polygon.c).
 --
 --   build/bin/lsys bench/polygon.lua [VERTICES ...]
 --
 -- For each shape and size it prints the interpretation time (best of 3), triangles per
--- second, and whether the triangles are n - 2 and cover the polygon's area. The issue's
--- figures before: a comb of 256,000 vertices took 47 s, 512,000 took 200 s; its target here
+-- second, and whether the triangles are n - 2 and cover the polygon's area. The figures
+-- before: a comb of 256,000 vertices took 47 s, 512,000 took 200 s; its target here
 -- is under a second each. Plain Lua works too: LUA_PATH='./lua/?.lua;./lua/?/init.lua;;'
 -- LUA_CPATH='./build/?.so;;' lua5.4 bench/polygon.lua
 
@@ -14,7 +14,7 @@ local B = dofile(((arg and arg[0] or "bench/polygon.lua"):match("^(.*)/[^/]*$") 
                  .. "/common.lua")
 local lsys = B.load_lsys()
 
-local TARGET = 1.0          -- seconds for a comb (issue 34 §11)
+local TARGET = 1.0          -- seconds for a comb
 
 -- The shapes: each returns the list of points {x1, y1, x2, y2, ...} of about n vertices
 -- and the polygon's area.

@@ -1,4 +1,4 @@
--- Populations (issue 20): the field of examples/population/field.lua -- 10,000 plants of 20
+-- Populations: the field of examples/population/field.lua -- 10,000 plants of 20
 -- kinds and a ground tile -- built, drawn and exported as instances, beside the same scene
 -- written out (scene:flatten()). For each it prints the plants, the prototypes, the
 -- triangles drawn, the bytes the scene holds, the time to build it, to render it (800 x 800,

@@ -1,4 +1,4 @@
--- Sketch benchmark (issue 15): a synthetic sketch of 2,000 points per stroke, 10 layers of
+-- Sketch benchmark: a synthetic sketch of 2,000 points per stroke, 10 layers of
 -- 55 nodes, through the pipeline of lsys.sketch (Anastacio et al. 2009): load (checks),
 -- analysis (stroke capture, construction lines, nodes, rays), functions, model, derive and
 -- interpret. Prints the best of several runs of each stage in ms and the total; the sketch

@@ -1,4 +1,4 @@
--- One public API style (issue 14 §5): lsys.type for the kinds of lsys objects, the old
+-- One public API style: lsys.type for the kinds of lsys objects, the old
 -- names kept one release with a warning, errors that begin with the public name, library
 -- warnings through Lua's warn(), lsys.arrange's arguments, and the one rule lsys.viewer
 -- follows without a window.

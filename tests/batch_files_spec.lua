@@ -1,4 +1,4 @@
--- The files `lsys batch` writes (issue 34 §6, §12, §17; lua/lsys/batch/, docs/batch.md
+-- The files `lsys batch` writes (lua/lsys/batch/, docs/batch.md
 -- §4-§6): outputs stay inside the output folder (a template that leaves it, by "..", an
 -- absolute path, or a model's or name's text, is refused before any job runs), never go
 -- through a symbolic link already in the folder, a resumed run removes the temporaries that

@@ -1,4 +1,4 @@
--- Batch runs (issue 20): lsys.batch and `lsys batch SPEC`. CSV specs (RFC 4180 quoting,
+-- Batch runs: lsys.batch and `lsys batch SPEC`. CSV specs (RFC 4180 quoting,
 -- CRLF, errors that name the file, line and column), Lua specs (job lists, sweeps expanded
 -- in a stated order), seeds made from the spec, shards (K/N and Slurm's variables); runs:
 -- the files and the manifest, a failing job recorded while the others run, jobs done

@@ -1,4 +1,4 @@
--- Batch specs read as streams (issue 34 §9; lua/lsys/batch/, docs/batch.md §2): a sweep of
+-- Batch specs read as streams (lua/lsys/batch/, docs/batch.md §2): a sweep of
 -- 10^6 jobs is listed, sharded and checked without making every job (job n computed from
 -- n), a spec making more jobs than lsys.batch.MAX_JOBS is refused with the count, and the
 -- check that no two jobs write the same file stays exact: proved from the templates when

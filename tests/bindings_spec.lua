@@ -1,7 +1,7 @@
 -- The floor of the Lua bindings (csrc/lua/lua_aux.c): the option readers that every binding
 -- shares, core errors raised with or without the caller's position, and the checks that an
--- object is alive. Messages are API: these are the ones the restructuring of issue 14 had
--- to keep byte for byte.
+-- object is alive. Messages are API: these are the ones the restructuring of the bindings
+-- had to keep byte for byte.
 local H = require "tests.helper"
 local lsys = require "lsys"
 local core = require "lsys.core"

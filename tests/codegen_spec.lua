@@ -1,4 +1,4 @@
--- lsys.codegen (issue 34 §2): text from elsewhere stays text in the Lua source lsys writes
+-- lsys.codegen: text from elsewhere stays text in the Lua source lsys writes
 -- (lsys import, sketch:save_model), and a written source reaches only what it was meant to.
 local codegen = require "lsys.codegen"
 

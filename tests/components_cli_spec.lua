@@ -1,4 +1,4 @@
--- The lsys program and the viewer on component graphs (issue 16): model files that return
+-- The lsys program and the viewer on component graphs: model files that return
 -- a prototype, in every command; the pick report of an instance (its path and parameters);
 -- a click in the window (#gl, on a private Xvfb as tests/viewer_spec.lua).
 local H = require "tests.helper"

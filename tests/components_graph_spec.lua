@@ -1,4 +1,4 @@
--- The p-graph as Graphviz DOT (issue 16; lsys.components.graph, `lsys components graph`):
+-- The p-graph as Graphviz DOT (lsys.components.graph, `lsys components graph`):
 -- the DOT text of Lintermann and Deussen 1999's fig. 2 graph, link styles of their fig. 3,
 -- recursions doubled and ended by a dashed copy, flags on the links, escaping, errors,
 -- rendering with Graphviz's dot and the command line. Prototypes are plain tables of the

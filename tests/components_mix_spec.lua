@@ -1,4 +1,4 @@
--- Component graphs and L-systems mixed (issue 16): a component drawing an L-system as its
+-- Component graphs and L-systems mixed: a component drawing an L-system as its
 -- `geometry`, and an L-system placing component plants with a module
 -- (lsys.components.mix).
 require "tests.helper"

@@ -1,4 +1,4 @@
--- The geometry of component graphs (issue 16): the i-tree emitted as relative turtle
+-- The geometry of component graphs: the i-tree emitted as relative turtle
 -- modules into an ordinary lsys model (lsys.components.emit, lsys.components.model). The
 -- turtle must stand exactly on every instance's frame, stems must be generalized cylinders
 -- through the stem frames, primitives must have the sizes asked for, and every module must

@@ -1,4 +1,4 @@
--- Component graphs (issue 16; Lintermann and Deussen 1999): prototypes, their parameters and
+-- Component graphs (Lintermann and Deussen 1999): prototypes, their parameters and
 -- links, and the expansion of the p-graph into the i-tree (recursion, multipliers, ranges
 -- and functions per instance, flag lists, leaf links, errors).
 local C = require "lsys.components"

@@ -1,4 +1,4 @@
--- The World of component graphs (issue 16; Lintermann and Deussen 1999, section
+-- The World of component graphs (Lintermann and Deussen 1999, section
 -- "Tropisms", and "Free-form deformations"): gravity, light, wind and a cylinder bend the
 -- stems below a World; leaves turn to the light; FFD and Hyperpatch deform either the
 -- drawn geometry ("all") or only the skeleton of frames ("skeleton"), and `isolate`

@@ -254,7 +254,7 @@ describe("lsys import", function ()
     assert.equal("p.lua\n", (H.sh("ls -A " .. dir)))
   end)
 
-  it("runs no text of the .l file (issue 34 §2: a carriage return ended its comment)",
+  it("runs no text of the .l file (a carriage return ended its comment)",
      function ()
     local marker = dir .. "/P"
     local l = dir .. "/evil\ros.exit(3) --\r.l"

@@ -209,7 +209,7 @@ describe("lsys.cpfg.load's built-in preprocessor", function ()
   end)
 end)
 
--- Issue 34 §8: what an #include may read, for both preprocessors. A model's files are
+-- What an #include may read, for both preprocessors. A model's files are
 -- the file and the regular files below its folder; nothing else is opened, and no line of
 -- another file is ever quoted.
 describe("lsys.cpfg.load's #include", function ()

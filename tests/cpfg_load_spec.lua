@@ -54,7 +54,7 @@ describe("lsys.cpfg.load", function ()
   end)
 
   it("evaluates a block local that draws a random number once, at its assignment", function ()
-    -- Regression (issue 35 §8): the local's text was substituted at each use, so
+    -- Regression: the local's text was substituted at each use, so
     -- {a = floor(n * ran(1)); b = n - a;} --> B(a)C(b) drew twice and a + b was not n.
     local s = derive("randlocal.l")
     local pairs_, seen = 0, {}

@@ -1,4 +1,4 @@
--- lsys's turtle against cpfg's (issue 35): the cases of tests/data/cpfg_probes.lua, made by
+-- lsys's turtle against cpfg's: the cases of tests/data/cpfg_probes.lua, made by
 -- tools/cpfg-probes.lua with cpfg as the oracle, are turtle sequences with query modules
 -- (?P position, ?H ?L ?U frame) that cpfg filled in batch mode. lsys loads the same .l and
 -- .v texts with lsys.cpfg.load; every query must report what cpfg's did, positions to 1e-4

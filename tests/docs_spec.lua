@@ -1,4 +1,4 @@
--- The documentation against the repository (issue 19, item 16): every relative link of
+-- The documentation against the repository: every relative link of
 -- the Markdown pages points at a file that exists (and at a heading that exists, for
 -- `page.md#anchor`); no page, and no comment in the sources, points outside the repository
 -- (the project's working notes and source texts are not part of it: the pages cite the

@@ -1,4 +1,4 @@
--- Finalizers at chosen points, for the specs of objects freed under a call (issue 34):
+-- Finalizers at chosen points, for the specs of objects freed under a call:
 -- lifetimes_spec.lua and misuse_spec.lua. In generational mode the collector runs a minor
 -- cycle, and with it the finalizers of the garbage it finds, after the heap grew by a
 -- percentage of its size (the minor multiplier); F.arm makes the next cycle fall after about

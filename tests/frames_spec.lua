@@ -1,4 +1,4 @@
--- Picture series and growth animations (issue 19 item 3): lsys.frames and lsys.animate,
+-- Picture series and growth animations: lsys.frames and lsys.animate,
 -- `lsys render MODEL --frames DIR` and `lsys animate MODEL -o OUT`. One camera for every
 -- picture (the last step's), the steps kept by --every, the files; ffmpeg's videos and GIFs
 -- read back with ffprobe; the messages without ffmpeg, when it fails, and for bad options.

@@ -1,12 +1,12 @@
--- What a new user trips over (issue 19): each item of the issue that is a behaviour of the
--- library has its spec here, under the item's number.
+-- What a new user trips over: each such mistake that is a behaviour of the library has
+-- its spec here.
 local H = require "tests.helper"
 local lsys = require "lsys"
 local format = string.format
 
 local errof = H.errof
 
-describe("issue 19 §8: the number of steps is bounded", function ()
+describe("the number of steps is bounded", function ()
   local m = lsys.lsystem { axiom = "A", productions = "A --> B" }
 
   it("refuses math.huge and 1e300 steps with a clear error, at once", function ()
@@ -31,7 +31,7 @@ describe("issue 19 §8: the number of steps is bounded", function ()
   end)
 end)
 
-describe("issue 19 §9: long quoted text is elided in messages", function ()
+describe("long quoted text is elided in messages", function ()
   local big = H.rep("F(1)", 200000)
 
   it("keeps a message about a 800 kB axiom short and shows where it is wrong", function ()
@@ -64,7 +64,7 @@ describe("issue 19 §9: long quoted text is elided in messages", function ()
   end)
 end)
 
-describe("issue 19 §12: a model that fails leaves no module names behind", function ()
+describe("a model that fails leaves no module names behind", function ()
   it("lets later models use names after one failed with too many", function ()
     local names = {}
     for i = 1, 2100 do names[#names + 1] = "m" .. i end
@@ -85,7 +85,7 @@ describe("issue 19 §12: a model that fails leaves no module names behind", func
   end)
 end)
 
-describe("issue 19 §13: a rule that derives its own model", function ()
+describe("a rule that derives its own model", function ()
   it("gets one clear message for its own model", function ()
     local m
     m = lsys.lsystem { axiom = "A", productions = { { "A", function ()
@@ -116,7 +116,7 @@ describe("issue 19 §13: a rule that derives its own model", function ()
   end)
 end)
 
-describe("issue 19 §11: mistakes that used to pass in silence", function ()
+describe("mistakes that used to pass in silence", function ()
   local function warnings (f)
     local warning = require "lsys.warning"
     local saved, got = warning.warn, {}
@@ -208,7 +208,7 @@ describe("issue 19 §11: mistakes that used to pass in silence", function ()
   end)
 end)
 
-describe("issue 19 §1: changing a colour", function ()
+describe("changing a colour", function ()
   local m = lsys.lsystem { axiom = ";(1)F;(2)F", view = { line_width = 5 } }
   local function px (x, o)
     o = o or {}
@@ -249,7 +249,7 @@ describe("issue 19 §1: changing a colour", function ()
   end)
 end)
 
-describe("issue 19 §1: a palette of one colour", function ()
+describe("a palette of one colour", function ()
   it("draws every colour index in it, entry 0 included (regression: fig27's petals)", function ()
     local m = lsys.lsystem { axiom = ";(100) F ;(0) F ;(3) F",
       view = { palette = { "#e08cb2" }, line_style = "cylinder", line_width = 0.3,
@@ -266,7 +266,7 @@ describe("issue 19 §1: a palette of one colour", function ()
   end)
 end)
 
-describe("issue 19 §2: files next to the model", function ()
+describe("files next to the model", function ()
   it("are found from the model file's folder, from anywhere", function ()
     local dir = H.tmpdir()
     os.execute("mkdir -p '" .. dir .. "/plants' '" .. dir .. "/elsewhere'")
@@ -290,7 +290,7 @@ describe("issue 19 §2: files next to the model", function ()
   end)
 end)
 
-describe("issue 19 §15: lsys export --lines tubes", function ()
+describe("lsys export --lines tubes", function ()
   it("writes line-style segments as tubes, no GL lines", function ()
     local glb = require "tests.glb"
     local dir = H.tmpdir()
@@ -321,7 +321,7 @@ describe("issue 19 §15: lsys export --lines tubes", function ()
   end)
 end)
 
-describe("issue 19 §7: --set and --view say what is wrong with them", function ()
+describe("--set and --view say what is wrong with them", function ()
   it("warns about a --set name the model has no variable of, listing the model's", function ()
     local out, code = H.sh(H.BIN .. " derive --steps 1 --stats --set Q=3 examples/default.lua")
     assert.equal(0, code)
@@ -358,7 +358,7 @@ describe("issue 19 §7: --set and --view say what is wrong with them", function 
   end)
 end)
 
-describe("issue 19 §10: messages name the user's file or the public function", function ()
+describe("messages name the user's file or the public function", function ()
   -- what must never show in a message: lsys's own sources, its core's names, Lua's own
   -- complaints about lsys's variables, or a function Lua cannot name
   local INTERNAL = { "lua/lsys/", "lsys%.core", "'%?'", "%.c:%d", "attempt to", "for iterator" }
@@ -463,7 +463,7 @@ describe("issue 19 §10: messages name the user's file or the public function", 
   end)
 end)
 
-describe("issue 19 §14: memory a user did not ask for", function ()
+describe("memory a user did not ask for", function ()
   it("holds a long axiom once, as its text, until it derives", function ()
     -- 400 000 modules, 2 MB of text: the model keeps the text and the C template, no table
     -- a module (the expressions are kept once each: 'x' and 'x*x+1')

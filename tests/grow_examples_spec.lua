@@ -1,4 +1,4 @@
--- The incremental growth examples (issue 17): examples/grow/davison.lua (the paper's five
+-- The incremental growth examples: examples/grow/davison.lua (the paper's five
 -- trees), examples/grow/leafy.lua (leaves as a surface) and examples/grow/side_by_side.lua
 -- (one plant as an L-system and as limbs).
 local lsys = require "lsys"

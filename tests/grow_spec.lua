@@ -1,4 +1,4 @@
--- Incremental growth (issue 17; Davison, "Incremental rules for growing plants"): persistent
+-- Incremental growth (Davison, "Incremental rules for growing plants"): persistent
 -- limbs, if-then rules in parallel ticks, kinds and subclassing, geometry rewritten in place
 -- (lsys.grow over csrc/core/grow.c).
 local grow = require "lsys.grow"
@@ -34,7 +34,7 @@ local function davison (K, cap)
 end
 
 describe("lsys.grow ticks", function ()
-  it("ticks a world without plants (issue 34 §16)", function ()
+  it("ticks a world without plants", function ()
     local w = grow.world {}
     w:tick(1)
     assert.equal(1, w.ticks)
@@ -513,7 +513,7 @@ describe("lsys.grow from an L-system", function ()
   end)
 end)
 
-describe("lsys.grow and max_memory (issue 34 §10)", function ()
+describe("lsys.grow and max_memory", function ()
   local lsys = require "lsys"
   local saved
   before_each(function () saved = lsys.max_memory() end)

@@ -1,4 +1,4 @@
--- A growing world shown and drawn (issue 17): `lsys grow FILE --frames DIR` (one camera for
+-- A growing world shown and drawn: `lsys grow FILE --frames DIR` (one camera for
 -- every tick), the live window (#gl, on a private Xvfb: the patches of csrc/gl/vlive.c draw
 -- the same plants as the offscreen renderer; its growth keys pressed through xdotool), the
 -- world's length and view, lsys.render's `fit` box and scene:look.

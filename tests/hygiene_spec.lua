@@ -1,4 +1,4 @@
--- Rules the tree keeps about itself (issue 34), so that a class of bug cannot come back:
+-- Rules the tree keeps about itself, so that a class of bug cannot come back:
 -- specs assert behaviour, never time (a timing belongs in a benchmark under bench/: a
 -- loaded machine must not fail the suite); text goes into generated Lua only through
 -- lsys.codegen; the library writes files through one writer (§6), lsys.core's

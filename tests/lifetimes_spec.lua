@@ -1,4 +1,4 @@
--- Objects freed or changed under a call (issue 34 §3-§5, §13): a binding that holds pointers
+-- Objects freed or changed under a call: a binding that holds pointers
 -- into an object while Lua code runs (a callback, a metamethod of an argument, or a finalizer
 -- run by an allocation) must find the object as it left it. Each test fails before its fix
 -- (a crash, a use-after-free under tools/sanitize.sh, or a wrong answer).

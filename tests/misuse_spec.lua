@@ -1,4 +1,4 @@
--- Misuse of lsys.core (issue 34, "make the classes impossible"): seeded random calls of every
+-- Misuse of lsys.core, to make its classes of bug impossible: seeded random calls of every
 -- method and metamethod of every userdata type of lsys.core (found in their metatables, so
 -- that a new method is called without a change here) and of its functions, on live, closed
 -- and wrong objects, with hostile arguments: tables whose metamethods, and functions whose
@@ -9,7 +9,7 @@
 -- memory fails it.
 --
 -- LSYS_MISUSE_CALLS=N sets the number of calls (default 5000, a few seconds), LSYS_MISUSE_SEED
--- the seed (default 1). The audit of issue 34 made 18,000:
+-- the seed (default 1). The safety audit made 18,000:
 --   LSYS_MISUSE_CALLS=18000 lua5.4 /usr/bin/busted --cpath=build/?.so tests/misuse_spec.lua
 local H = require "tests.helper"
 local fin = require "tests.finalizers"

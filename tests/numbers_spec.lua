@@ -1,4 +1,4 @@
--- Parameters stored as cpfg stores them (issue 18 §2): `numbers = "float32"` rounds every
+-- Parameters stored as cpfg stores them: `numbers = "float32"` rounds every
 -- parameter a step produces (constants, expressions of the C machine and of Lua, Lua rule
 -- functions, decomposition, homomorphism) and the axiom's to float32.
 local lsys = require "lsys"

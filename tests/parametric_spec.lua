@@ -171,7 +171,7 @@ describe("ran and nran", function()
 end)
 
   it("draw once per use: one random expression twice in a successor gives two numbers", function()
-    -- Regression (issue 35 §7): the compiler listed identical expression text once, so
+    -- Regression: the compiler listed identical expression text once, so
     -- B(ran(10))C(ran(10)) gave B = C in every module.
     local s = H.model(H.rep("A", 200), "A --> B(ran(10)) C(ran(10))", { seed = 2 }):derive(1)
     local b, c, same = {}, {}, 0

@@ -279,7 +279,7 @@ describe("lsys.population errors", function ()
   end)
 end)
 
-describe("lsys.population and max_memory (issue 34 §10)", function ()
+describe("lsys.population and max_memory", function ()
   local core = require "lsys.core"
   local saved
   before_each(function () saved = lsys.max_memory() end)

@@ -1,4 +1,4 @@
--- A rule function that calls a method of its own model (issue 34 §15): the message names the
+-- A rule function that calls a method of its own model: the message names the
 -- method called, also when that method would derive first (interpret with no string).
 local lsys = require "lsys"
 local H = require "tests.helper"

@@ -1,4 +1,4 @@
--- The rock (issue 19): `luarocks --lua-version 5.4 make` installs lsys into a temporary
+-- The rock: `luarocks --lua-version 5.4 make` installs lsys into a temporary
 -- tree from a copy of this source folder, offline (--deps-mode=none: the dependencies come
 -- from Debian packages), and the installed lsys runs from another folder with the paths
 -- `luarocks path` prints: it derives and renders a model, `require "lsys"` works in lua5.4,

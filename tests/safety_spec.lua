@@ -1,4 +1,4 @@
--- Memory safety, safe outputs, bounded memory: each finding of the audit (issue 13) with
+-- Memory safety, safe outputs, bounded memory: each finding of the audit with
 -- the test that fails before its fix.
 local H = require "tests.helper"
 local lsys = require "lsys"

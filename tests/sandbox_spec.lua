@@ -1,4 +1,4 @@
--- The rule sandbox (issue 34 §1 and §7; docs/manual.md §5): rule text reaches none of the
+-- The rule sandbox (docs/manual.md §5): rule text reaches none of the
 -- process's library tables, and runs within an instruction budget, the memory budget and
 -- bounded string functions. Each reproducer of the audit fails before the fix.
 local H = require "tests.helper"

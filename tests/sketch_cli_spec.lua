@@ -1,4 +1,4 @@
--- `lsys sketch` on the command line (issue 15): usage errors (exit 2, the command's
+-- `lsys sketch` on the command line: usage errors (exit 2, the command's
 -- message), the help, and the plot, model and render subcommands on an example sketch.
 local H = require "tests.helper"
 local core = require "lsys.core"

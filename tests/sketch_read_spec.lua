@@ -1,4 +1,4 @@
--- Sketch files (issue 15): lsys.sketch.read reads JSON and SVG into the normalized sketch
+-- Sketch files: lsys.sketch.read reads JSON and SVG into the normalized sketch
 -- and refuses bad files with a message that names the file and the stroke;
 -- lsys.sketch.svgpath flattens SVG path data.
 local H = require "tests.helper"

@@ -244,7 +244,7 @@ describe("models from sketches", function ()
     H.rmdir(d)
   end)
 
-  it("keeps the sketch's file name a comment (issue 34 §2: a carriage return ended it)",
+  it("keeps the sketch's file name a comment (a carriage return ended it)",
      function ()
     local d = H.tmpdir()
     local marker = d .. "/P"
@@ -261,7 +261,7 @@ describe("models from sketches", function ()
     H.rmdir(d)
   end)
 
-  it("writes the model file whole or not at all (issue 34 §6: ulimit -f truncated it)",
+  it("writes the model file whole or not at all (ulimit -f truncated it)",
      function ()
     local d = H.tmpdir()
     H.write(d .. "/plant.lua", "-- the good model\n")
@@ -284,8 +284,8 @@ describe("models from sketches", function ()
   end)
 end)
 
--- Every rule of model m that has expressions runs on the C expression machine (the issue:
--- "no Lua call per module"); returns the labels of those that do not.
+-- Every rule of model m that has expressions runs on the C expression machine (the aim:
+-- no Lua call per module); returns the labels of those that do not.
 local function offmachine (m)
   m:derive(1)                       -- binds the rules to env
   local off = {}

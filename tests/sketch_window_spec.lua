@@ -1,4 +1,4 @@
--- The sketch window (issue 15): the state machine of lsys.sketch.window fed events as the
+-- The sketch window: the state machine of lsys.sketch.window fed events as the
 -- window sends them (strokes drawn, moved, deleted, undone; the wheel's pressure; keys;
 -- the toolbar; saving), the session's handling of a sketch that makes no plant yet, and
 -- (#gl) the real window under a private Xvfb, drawn with xdotool, saved and read back.

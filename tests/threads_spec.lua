@@ -1,4 +1,4 @@
--- The derivation step on several threads (issue 20): the option `threads`, LSYS_THREADS, and
+-- The derivation step on several threads: the option `threads`, LSYS_THREADS, and
 -- the same string for every number of threads (docs/manual.md §10).
 local H = require "tests.helper"
 local lsys = require "lsys"

@@ -1,4 +1,4 @@
--- Every file the Lua side writes is whole or absent (issue 34 §6, §12, §14): lsys.core's
+-- Every file the Lua side writes is whole or absent: lsys.core's
 -- writers (core.outfile, core.tempdir), lsys.animate and lsys components graph against
 -- planted links, TMPDIR, a user path that reads as an option, and the program's Ctrl-C and
 -- SIGTERM, which remove the temporaries and leave an existing output as it was.
@@ -17,7 +17,7 @@ end
 
 local function have (prog) return (sh("command -v " .. prog)) ~= "" end
 
--- Links named as the writers before issue 34 named their temporary files (NAME and a
+-- Links named as older writers named their temporary files (NAME and a
 -- time, from a second ago to a minute ahead), each pointing at `victim`.
 local function plant (dir, name, form, victim)
   local now = os.time()

@@ -4,7 +4,7 @@
 --                                       [MODEL_DIR ...] [--all FOLDER ...]
 --   VLAB_EXT: vlab's oofs/ext folder (git archive HEAD oofs/ext of the vlab repository);
 --   CPFG: the cpfg program, built for batch use (docs/cpfg.md, "cpfg as a reference");
---   MODEL_DIR: object folders under VLAB_EXT (default: the fidelity list of issue 18);
+--   MODEL_DIR: object folders under VLAB_EXT (default: the cpfg fidelity list);
 --   --all FOLDER: every object folder under VLAB_EXT/FOLDER (nested ext/ folders too) whose
 --     specifications run cpfg; each cpfg command there is one model;
 --   --timeout S: seconds each program may take per model (default 300);

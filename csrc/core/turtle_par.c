@@ -1,5 +1,5 @@
 /*
-** The turtle on several threads (issue 20): a long string is cut at its big
+** The turtle on several threads: a long string is cut at its big
 ** branches. A branch's state is known as soon as its '[' is reached, and the
 ** module after its ']' starts from that same state (']' restores what '['
 ** saved), so the string falls into pieces, each a run of modules with a known

@@ -1,6 +1,6 @@
 /*
 ** Pen pressure from an X input device (a drawing tablet), for the sketch
-** window (issue 15, Anastacio et al. 2009 §3.5: pressure sets the stem's
+** window (Anastacio et al. 2009 §3.5: pressure sets the stem's
 ** depth). GLFW 3.3 reports no pressure, so this opens its own connection to
 ** the X server and reads the "Abs Pressure" valuator of every XInput 2
 ** device that has one. libX11 and libXi are opened with dlopen, like

@@ -95,7 +95,7 @@ int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 
 /* ---------------------------------------------------------------------- */
 /*
-** Objects in use (issue 34). Lua code can run in the middle of a binding: a
+** Objects in use. Lua code can run in the middle of a binding: a
 ** call, a metamethod of a value it reads (lua_getfield, lua_gettable,
 ** lua_geti, luaL_len, luaL_tolstring on the caller's values), or an
 ** allocation (lua_newuserdatauv, lua_createtable, lua_pushstring, ...: its

@@ -88,7 +88,7 @@ static lsys_limbs *checklimbs (lua_State *L) {
 }
 
 /* The table at 1 for a method that writes its scene (begin starts what
-** finish writes): refused while the scene is held (issue 34 §3). */
+** finish writes): refused while the scene is held. */
 static lsys_limbs *checkwriter (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
   lsys_changescene(L, ((const llimbs *)lua_touserdata(L, 1))->S);

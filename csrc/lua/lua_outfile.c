@@ -1,6 +1,6 @@
 /*
 ** Lua binding of the writer of csrc/core/outfile.h: every file the Lua side
-** of lsys writes goes through it (issue 34 §6), whole or absent.
+** of lsys writes goes through it, whole or absent.
 **
 **   core.outfile(path) -> Outfile      a new output (a temporary file beside it)
 **     o:write(s, ...) -> o             strings or numbers; raises at a failed write

@@ -1,5 +1,5 @@
 /*
-** The bounds rule code runs within (issue 34 §1 and §7; docs/manual.md §4,
+** The bounds rule code runs within (docs/manual.md §4,
 ** "What rule code can reach"). Rule text may come from someone else, so
 ** while a model's rules run (a derivation step, an expansion, the turtle
 ** streaming the homomorphism; lsys_rules_run) and while rules:sandboxed runs

@@ -108,7 +108,7 @@ static void laction (int i) {
 }
 
 /*
-** Ending the program at SIGINT or SIGTERM (issue 34 §12): the handler sets a hook that
+** Ending the program at SIGINT or SIGTERM: the handler sets a hook that
 ** raises at every Lua instruction from then on, so no pcall can swallow the interrupt
 ** and the program unwinds to main. What it opened is closed on the way (to-be-closed
 ** variables, then the finalizers at lua_close): the temporary files of an animation, a
@@ -714,7 +714,7 @@ int main (int argc, char **argv) {
   setstop(0);
 #ifdef SIGXFSZ
   /* a write beyond `ulimit -f` fails (EFBIG) instead of killing the program: the writers
-  ** report it and remove their temporary, and the old file stays (issue 34 §6) */
+  ** report it and remove their temporary, and the old file stays */
   signal(SIGXFSZ, SIG_IGN);
 #endif
   lua_gc(L, LUA_GCSTOP);  /* stop the collector while building the state */

@@ -1,4 +1,4 @@
--- A forest of five trees growing to 20,000 limbs (issue 17): the interactive-rate example of
+-- A forest of five trees growing to 20,000 limbs: the interactive-rate example of
 -- incremental growth. Davison's rules ("Incremental rules for growing plants",
 -- section "Incremental rules"; docs/manual.md §12) with a larger cap: a limb without
 -- leaves lengthens by 8 % a tick up to a length that shrinks with its level, thickens while

@@ -1,4 +1,4 @@
--- One plant written two ways (issue 17): as an L-system, re-derived and redrawn at each step,
+-- One plant written two ways: as an L-system, re-derived and redrawn at each step,
 -- and as incremental rules on persistent limbs. Both give the same plant at every step: a
 -- shoot grows by 25 % a step up to length 1; at age 2, below level 5, it forks into two
 -- shoots 30 degrees either side, the fork turned 90 degrees from the one before.

@@ -8,7 +8,7 @@
 --   local s = a:lstring()                 -- the arranged string; model:step(s) grows it on
 --
 -- Arguments are positional, what a call needs first, an optional table of settings last
--- (opts, the plane's view), as Model methods take them (issue 14 §5). Errors of
+-- (opts, the plane's view), as Model methods take them. Errors of
 -- lsys.arrange begin "lsys.arrange: ", those of a method its name ("select: ...").
 --
 -- The arrangement lives in the string as joint modules @J(h, u, l) (degrees, turtle.c):

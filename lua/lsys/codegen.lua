@@ -1,4 +1,4 @@
---- Writing Lua source that other text goes into (issue 34 §2): `lsys import` (a cpfg model's
+--- Writing Lua source that other text goes into: `lsys import` (a cpfg model's
 -- comments, file names and strings), `sketch:save_model` (a sketch's names). Every piece of
 -- text from elsewhere goes through one of these, so that no byte of it can end a comment or
 -- a string and become code; `check` then runs the written source in an environment of

@@ -1,4 +1,4 @@
---- Picture series and growth animations (issue 19): a model's derivation steps as PNG
+--- Picture series and growth animations: a model's derivation steps as PNG
 -- pictures through one camera (`lsys.frames`), and those pictures as a video or an animated
 -- GIF through ffmpeg (`lsys.animate`): what `lsys render MODEL --frames DIR` and
 -- `lsys animate MODEL -o OUT` run.

@@ -1,4 +1,4 @@
---- Incremental growth (issue 17; Davison, "Incremental rules for growing plants", section
+--- Incremental growth (Davison, "Incremental rules for growing plants", section
 -- "Incremental rules"; docs/manual.md §12): a plant is a set of persistent limbs
 -- whose state changes a little at each tick, and new limbs are attached to existing ones;
 -- nothing is derived or drawn anew. The limbs' state lives in a C table (csrc/core/grow.c,
@@ -437,8 +437,8 @@ end
 
 -- What a world's Lua side keeps per limb (its handle, a table of 4 fields, and its slot in
 -- _limbs) and per plant (its generator, a Frames, and its slot in _gen), in bytes: the C
--- table counts them in max_memory with its own arrays and its scene (issue 34 §10;
--- tests/grow_spec.lua checks them against collectgarbage("count")).
+-- table counts them in max_memory with its own arrays and its scene (so that a
+-- world stays within its budget; tests/grow_spec.lua checks them against collectgarbage("count")).
 local LIMB_BYTES, PLANT_BYTES = 176, 100
 M._LIMB_BYTES, M._PLANT_BYTES = LIMB_BYTES, PLANT_BYTES
 

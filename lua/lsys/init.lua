@@ -95,7 +95,7 @@ function M.type (x)
   return nil
 end
 
--- the type predicates before lsys.type (issue 14 §5): one release more, with a warning
+-- the type predicates before lsys.type: one release more, with a warning
 M.islstring = warning.alias("lsys.islstring", 'lsys.type(x) == "lstring"', model.islstring)
 M.isscene = warning.alias("lsys.isscene", 'lsys.type(x) == "scene"', model.isscene)
 M.ismodel = warning.alias("lsys.ismodel", 'lsys.type(x) == "model"', model.ismodel)
@@ -137,8 +137,8 @@ function M.wait () return _G.require("lsys.viewer").wait() end
 -- window does not load it).
 -- lsys.sketch likewise (docs/sketch.md): its readers need cjson and lxp only when a sketch
 -- is read, so `require "lsys"` works without them. lsys.components (docs/components.md),
--- the component graphs of issue 16, lsys.grow (incremental growth, issue 17) and lsys.batch
--- (batch runs, issue 20) likewise.
+-- the component graphs, lsys.grow (incremental growth) and lsys.batch
+-- (batch runs) likewise.
 setmetatable(M, { __index = function (_, k)
   if k == "viewer" then return _G.require("lsys.viewer") end
   if k == "sketch" then return _G.require("lsys.sketch") end

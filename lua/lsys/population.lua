@@ -27,7 +27,7 @@ local OPTS = { view = true, records = true, progress = true, count = true, place
 --- The most plants one population may have.
 M.MAX_PLANTS = 100000000
 
--- What the population holds besides its scene, for the memory budget (issue 34 §10): the
+-- What the population holds besides its scene, for the memory budget: the
 -- bytes of a Lua array of k slots (16 a value, the slots a power of 2), a plant's instance
 -- in the scene (lsys_instance: 16 floats and a part), and the tables and key string of a
 -- prototype with its entry (measured with collectgarbage("count"): about 800 bytes and the

@@ -1,5 +1,5 @@
---- What rule code sees of Lua's libraries (docs/manual.md §4, "What rule code can reach";
--- issue 34 §1 and §7). Rule text may come from someone else (a cpfg file, a service
+--- What rule code sees of Lua's libraries (docs/manual.md §4, "What rule code can
+-- reach"). Rule text may come from someone else (a cpfg file, a service
 -- building models from text), so:
 --
 -- * it is given no library table of the process: `math`, `string` and `table` are

@@ -436,7 +436,7 @@ function M.wait ()
 end
 
 -- True while the window is open: `state()` tells (nil without a window, `open` false
--- once it was closed); the predicate stays one release more, with a warning (issue 14 §5).
+-- once it was closed); the predicate stays one release more, with a warning.
 M.isopen = warning.alias("lsys.viewer.isopen", "lsys.viewer.state()", function ()
   return S.viewer ~= nil and S.viewer:state().open
 end)

@@ -1,4 +1,4 @@
---- The library's warnings (issue 14 §5): they go through Lua 5.4's warn(), never straight
+--- The library's warnings: they go through Lua 5.4's warn(), never straight
 -- to stderr, so the host decides. Warnings are off in a plain `lua` unless it runs with -W
 -- (or a script calls warn("@on")), as Lua intends; the lsys program turns them on.
 --

@@ -262,7 +262,7 @@ static void retry (void) {
   }
 }
 
-/* A tick of a world without plants or limbs (issue 34 §16: the plants' counts were
+/* A tick of a world without plants or limbs (the plants' counts were
 ** copied from a NULL array, which UBSan reports). */
 static void empty (void) {
   lsys_scene sc;
@@ -276,7 +276,7 @@ static void empty (void) {
   lsys_scene_free(&sc);
 }
 
-/* The budget (issue 34 §10): every growth within max_memory, the caller's
+/* The budget: every growth within max_memory, the caller's
 ** bytes per limb and plant counted, the settings kept by free; and a limb of
 ** many children, appended and unlinked in order (no walk along siblings). */
 static void budget (void) {

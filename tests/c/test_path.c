@@ -1,7 +1,7 @@
 /*
 ** C unit tests for resolved file names (path.h): symbolic links and '..'
 ** resolved, the kinds of file told apart, a FIFO resolved without blocking,
-** a missing file reported by name (issue 34 §8: what the cpfg preprocessor
+** a missing file reported by name (what the cpfg preprocessor
 ** checks before it includes a file).
 */
 #define _XOPEN_SOURCE 700

@@ -6,7 +6,7 @@
 ** Every result is checked the same way (check): the triangles face the
 ** normal, their areas add up to the polygon's, and each triangle's centroid
 ** lies inside the polygon. Big polygons of hostile shapes (combs, zigzag
-** corridors, spirals, saws, stars of random radii; issue 34 §11) are checked
+** corridors, spirals, saws, stars of random radii) are checked
 ** in linear time instead (tiling): every side of the polygon is the side of
 ** one triangle and every other side of a triangle is the side of another,
 ** the other way round. The ways of cutting (the reflex list or the tree, the
@@ -396,7 +396,7 @@ static void test_large (void) {
 }
 
 /* ---------------------------------------------------------------------- */
-/* big and hostile polygons (issue 34 §11) */
+/* big and hostile polygons */
 
 static int cmpu64 (const void *a, const void *b) {
   uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;

@@ -255,7 +255,7 @@ static void nomem (void) {
   }
 }
 
-/* Room for n instances, exactly, within the meter (issue 34 §10: a population
+/* Room for n instances, exactly, within the meter (a population
 ** counts its instances before placing them). */
 static void reserve (void) {
   lsys_scene pop;

@@ -1,4 +1,4 @@
---- The geometry of an i-tree (issue 16; Lintermann and Deussen 1999, section "A geometry
+--- The geometry of an i-tree (Lintermann and Deussen 1999, section "A geometry
 -- generation example": each instance of the i-tree produces its geometry in its own frame).
 -- The instances become turtle modules in one Lstring, so the plant is an ordinary lsys model:
 -- the turtle draws it, and rendering, export, the viewer, picking and the arrangement work

@@ -1,4 +1,4 @@
---- The expansion of a p-graph into the i-tree (issue 16; Lintermann and Deussen 1999,
+--- The expansion of a p-graph into the i-tree (Lintermann and Deussen 1999,
 -- sections "Modeling with components" and "A geometry generation example"): every link
 -- followed from the root makes an instance of its target; multipliers (Hydra, Wreath,
 -- Phiball, and Tree on its branch links) make one instance per iteration; a prototype on a

@@ -1,4 +1,4 @@
---- Component graphs (issue 16): plants modelled as graphs of components, after Lintermann
+--- Component graphs: plants modelled as graphs of components, after Lintermann
 -- and Deussen, "Interactive Modeling of Plants" (IEEE CG&A 1999), the method behind Xfrog.
 -- docs/components.md is the reference.
 --

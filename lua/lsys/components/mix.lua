@@ -1,4 +1,4 @@
---- L-systems that place component plants (issue 16: "an L-system can place a component
+--- L-systems that place component plants ("an L-system can place a component
 -- graph's plant with a module"). The other direction, a component drawing an L-system,
 -- is the basic parameter `geometry` (lsys.components.emit).
 --

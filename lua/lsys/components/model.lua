@@ -1,4 +1,4 @@
---- A component graph as an ordinary lsys model (issue 16): the p-graph is expanded
+--- A component graph as an ordinary lsys model: the p-graph is expanded
 -- (lsys.components.expand), its i-tree emitted as turtle modules (lsys.components.emit),
 -- and the model's derivation gives that Lstring, so `lsys view`, `lsys render`, export,
 -- picking and the arrangement take the plant like any L-system. After the turtle has drawn

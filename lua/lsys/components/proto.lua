@@ -1,4 +1,4 @@
---- The prototypes of a component graph (issue 16; Lintermann and Deussen 1999): the nodes
+--- The prototypes of a component graph (Lintermann and Deussen 1999): the nodes
 -- of the p-graph, their kinds, their parameters with defaults and checks, and the links
 -- between them. lsys.components gathers this module with the expansion
 -- (lsys.components.expand) and the placements (lsys.components.place).

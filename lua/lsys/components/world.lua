@@ -1,4 +1,4 @@
---- The World component's fields and the deformations of the skeleton (issue 16; Lintermann
+--- The World component's fields and the deformations of the skeleton (Lintermann
 -- and Deussen 1999, section "Tropisms" and section "Free-form deformations"): the checked
 -- settings of a World (gravity, light, a cylinder to climb, wind), the direction field of
 -- the cylindrical tropism, the phototropism of a leaf's frame, the maps of FFD and

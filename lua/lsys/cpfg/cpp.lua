@@ -55,7 +55,7 @@ local function fail (file, line, fmt, ...)
   error({ cpfg = true, msg = format("%s:%d: " .. fmt, file, line, ...) }, 0)
 end
 
--- Where an #include may read (issue 34 §8) ---------------------------------------------
+-- Where an #include may read ---------------------------------------------
 
 -- A model's files are the file itself and the regular files below its folder (symbolic
 -- links and '..' resolved): an #include of anything else (/etc/shadow, /dev/zero, a FIFO,

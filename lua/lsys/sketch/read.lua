@@ -1,4 +1,4 @@
---- Sketch files (issue 15): the construction lines of Anastacio et al. 2009, §3.2 (a stem,
+--- Sketch files: the construction lines of Anastacio et al. 2009, §3.2 (a stem,
 -- left and right boundaries, inclination lines), read from JSON or SVG into one checked,
 -- normalized table that lsys.sketch's pipeline takes:
 --

@@ -1,4 +1,4 @@
---- SVG path data and number lists, flattened to polylines (issue 15: sketch files).
+--- SVG path data and number lists, flattened to polylines (sketch files).
 --
 -- `flatten(d, opts)` reads the `d` attribute of an SVG `<path>` (SVG 1.1 §8.3, SVG 2 §9.3:
 -- M L H V C S Q T A Z, absolute and relative, implicit repeated commands, numbers such as

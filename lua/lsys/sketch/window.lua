@@ -1,4 +1,4 @@
---- The sketch window (`lsys sketch [FILE]`, issue 15): draw the construction lines of
+--- The sketch window (`lsys sketch [FILE]`): draw the construction lines of
 -- Anastacio et al. 2009 (§3.2: a stem, left and right boundaries, inclination lines) and
 -- see the plant they parameterize beside them, updated while the stroke is drawn. The
 -- paper's sketching program and cpfg were two programs without immediate feedback (§7);

@@ -1,8 +1,8 @@
---- A coverage-guided fuzzer for the parts of lsys written in Lua (issue 13), which
+--- A coverage-guided fuzzer for the parts of lsys written in Lua, which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
--- rule expressions, sketch files in JSON and SVG (issue 15), cpfg's L-system files
--- (issue 18), batch specs in CSV and in Lua (issue 20), component definitions (issue 16),
--- the rules of incremental growth (issue 17) and `lsys import` (issue 34).
+-- rule expressions, sketch files in JSON and SVG, cpfg's L-system files,
+-- batch specs in CSV and in Lua, component definitions,
+-- the rules of incremental growth and `lsys import`.
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]
 --          [--corpus DIR] [--findings DIR] [--budget SECONDS] [--mem MB] [--maxlen N]

@@ -1,4 +1,4 @@
---- Fuzz target: cpfg L-system files (issue 18), lsys.cpfg.load with the built-in
+--- Fuzz target: cpfg L-system files, lsys.cpfg.load with the built-in
 -- preprocessor (lua/lsys/cpfg/cpp.lua, parse.lua, init.lua), then a short derivation of
 -- the model. Its corpus is tests/fuzz/corpus_cpfg.
 --

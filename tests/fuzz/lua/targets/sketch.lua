@@ -1,4 +1,4 @@
---- Fuzz target: sketch files in JSON, lsys.sketch.read.json (issue 15).
+--- Fuzz target: sketch files in JSON, lsys.sketch.read.json.
 --
 -- The bytes are read as the JSON text of a sketch named "fuzz.json". A refused file must
 -- fail with a message that begins with the file's name; a read one must be a normalized

@@ -1,4 +1,4 @@
---- Fuzz target: sketch files in SVG, lsys.sketch.read.svg (issue 15), with the SVG path
+--- Fuzz target: sketch files in SVG, lsys.sketch.read.svg, with the SVG path
 -- data parser lsys.sketch.svgpath, transforms, lengths and the XML around them.
 --
 -- The bytes are read as an SVG file named "fuzz.svg". A refused file must fail with a
