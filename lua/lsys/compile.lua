@@ -403,6 +403,194 @@ local F1 = { abs = 0, floor = 1, ceil = 2, sqrt = 3, exp = 4, log = 5, sin = 6, 
              tan = 8, asin = 9, acos = 10, atan = 11 }
 local F2 = { min = 12, max = 13, fmod = 14, atan = 15 }
 
+-- Machine code for a tree (M.gen) -------------------------------------------------------
+-- The generator's state `g`: `out` (the code, flat {op, a, k}), `formals` (names to
+-- argument indices), `E` (the other names) and `lib` (what calls are known by, M.library).
+-- Each function below generates one node and returns its type as M.gen does, or nil.
+
+local gen      -- the code of any node: one case a node kind (GEN, below)
+
+local function emit (g, op, a, k)
+  local out = g.out
+  out[#out + 1] = op; out[#out + 1] = a or 0; out[#out + 1] = k or 0
+  return #out // 3 - 1
+end
+
+local function isnum (t) return t == "n" or t == "i" end
+
+-- which function a call names
+local function fnof (g, node)
+  local formals, E, lib = g.formals, g.E, g.lib
+  local f
+  if node[1] == "name" then
+    if formals[node[2]] then return nil end
+    f = E[node[2]]
+  elseif node[1] == "field" then
+    if formals[node[2]] then return nil end
+    local base = E[node[2]]
+    if type(base) ~= "table" then return nil end
+    f = base[node[3]]
+  end
+  if f == nil then return nil end
+  if f == lib.ran then return "ran" elseif f == lib.nran then return "nran" end
+  if lib.func ~= nil and f == lib.func then return "func" end
+  if lib.isfunc ~= nil and lib.isfunc(f) then return "fn", f end
+  for name, v in pairs(lib.math) do
+    if v == f and (F1[name] or F2[name]) then return name end
+  end
+  return nil
+end
+
+-- a number: "i" for an integer (none beyond 2^53, which a double cannot hold), else "n"
+local function number (g, v)
+  if mathtype(v) == "integer" then
+    if v > 2 ^ 53 or v < -2 ^ 53 then return nil end
+    emit(g, OP.K, 0, v)
+    return "i"
+  end
+  emit(g, OP.K, 0, v)
+  return "n"
+end
+
+-- a positional function (an lsys.Func) applied to the value of tree `a`
+local function applyfn (g, f, a)
+  if f == nil or not isnum(gen(g, a)) then return nil end
+  emit(g, OP.FN, g.lib.index(f))
+  return "n"
+end
+
+-- func(ID, x) and func("name", x): ID a number in the text or in env
+local function funcall (g, args)
+  if #args ~= 2 then return nil end
+  local id, f = args[1], nil
+  if id[1] == "str" then f = g.lib.byname[id[2]]
+  else
+    local v = id[1] == "num" and id[2] or id[1] == "name" and not g.formals[id[2]] and
+              g.E[id[2]]
+    if type(v) == "number" then f = g.lib.list[v] end
+  end
+  return applyfn(g, f, args[2])
+end
+
+-- ran, nran and the math functions that the machine has, their arguments generated
+local function mathcall (g, name, args)
+  local fold = (name == "min" or name == "max") and #args >= 2
+  local types = {}
+  for k, a in ipairs(args) do
+    types[k] = gen(g, a)
+    if not isnum(types[k]) then return nil end
+    -- min and max fold from the left as Lua's do (it matters with nan: min(3, nan, 2)
+    -- is 2 in Lua, min(3, min(nan, 2)) would be 3)
+    if fold and k >= 2 then emit(g, OP.F2, F2[name]) end
+  end
+  -- the result's type as Lua has it ("i": may be an integer, so the integer checks
+  -- of `bin` keep arithmetic between two of them in Lua): floor and ceil give integers,
+  -- min and max return one of their arguments as it is, abs keeps an integer, and
+  -- fmod of two integers is an integer fmod that raises on 0: not on the machine
+  local anyint, allint = false, #args > 0
+  for _, a in ipairs(types) do
+    if a == "i" then anyint = true else allint = false end
+  end
+  if name == "ran" then
+    if #args == 0 then emit(g, OP.K, 0, 1) elseif #args ~= 1 then return nil end
+    emit(g, OP.RAN); return "n"
+  elseif name == "nran" then
+    if #args ~= 2 then return nil end
+    emit(g, OP.NRAN); return "n"
+  elseif fold then
+    return anyint and "i" or "n"
+  elseif name == "atan" and #args == 2 then emit(g, OP.F2, F2.atan); return "n"
+  elseif name == "fmod" and #args == 2 then
+    if allint then return nil end
+    emit(g, OP.F2, F2.fmod); return "n"
+  elseif F1[name] and #args == 1 then
+    emit(g, OP.F1, F1[name])
+    if name == "floor" or name == "ceil" or (name == "abs" and anyint) then return "i" end
+    return "n"
+  end
+  return nil
+end
+
+-- One function a node kind of the tree (M.parseexpr's nodes).
+local GEN = {}
+
+function GEN.num (g, n) return number(g, n[2]) end
+
+function GEN.bool (g, n) emit(g, OP.K, 0, n[2] and 1 or 0); return "b" end
+
+function GEN.paren (g, n) return gen(g, n[2]) end
+
+-- a formal parameter, or a number or boolean in env
+function GEN.name (g, n)
+  local a = g.formals[n[2]]
+  if a then emit(g, OP.ARG, a); return "n" end
+  local v = g.E[n[2]]
+  if type(v) == "number" then return number(g, v) end
+  if type(v) == "boolean" then emit(g, OP.K, 0, v and 1 or 0); return "b" end
+  return nil
+end
+
+-- t.x: a number in a table of env
+function GEN.field (g, n)
+  if g.formals[n[2]] then return nil end
+  local base = g.E[n[2]]
+  local v = type(base) == "table" and base[n[3]]
+  if type(v) == "number" then return number(g, v) end
+  return nil
+end
+
+function GEN.un (g, n)
+  local t = gen(g, n[3])
+  if n[2] == "-" and t == "n" then emit(g, OP.UNM); return "n" end   -- not integers: they wrap
+  if n[2] == "not" and t == "b" then emit(g, OP.NOT); return "b" end
+  return nil
+end
+
+-- and, or (a jump over the right side), ==, ~=, arithmetic and order comparisons
+function GEN.bin (g, n)
+  local op = n[2]
+  if op == "and" or op == "or" then
+    if gen(g, n[3]) ~= "b" then return nil end
+    local j = emit(g, op == "and" and OP.JF or OP.JT, 0)
+    if gen(g, n[4]) ~= "b" then return nil end
+    g.out[3 * j + 2] = #g.out // 3
+    return "b"
+  end
+  local ta = gen(g, n[3])
+  local tb = ta and gen(g, n[4])
+  if not tb then return nil end
+  if op == "==" or op == "~=" then
+    if (ta == "b") ~= (tb == "b") then return nil end
+    emit(g, OP[op]); return "b"
+  end
+  if not isnum(ta) or not isnum(tb) then return nil end
+  if ta == "i" and tb == "i" and op ~= "/" and op ~= "^" and op ~= "<" and op ~= "<=" and
+     op ~= ">" and op ~= ">=" then
+    return nil                   -- integer arithmetic: Lua's own rules
+  end
+  emit(g, OP[op])
+  return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
+end
+
+-- a call of ran, nran, a math function that the machine has, or a positional function
+function GEN.call (g, n)
+  local name, fobj = fnof(g, n[2])
+  local args = n[3]
+  if not name then return nil end
+  if name == "func" then return funcall(g, args) end
+  if name == "fn" then
+    if #args ~= 1 then return nil end
+    return applyfn(g, fobj, args[1])
+  end
+  return mathcall(g, name, args)
+end
+
+gen = function (g, n)
+  local f = GEN[n[1]]
+  if f then return f(g, n) end
+  return nil
+end
+
 --- Generates machine code for tree `e` into `out` (flat {op, a, k}).
 -- `formals` maps names to argument indices; `E` resolves other names;
 -- `lib` holds Lua's math table (math) and the model's functions (ran, nran).
@@ -411,158 +599,7 @@ local F2 = { min = 12, max = 13, fmod = 14, atan = 15 }
 -- integers (wrapping, raising on // 0): such expressions stay in Lua, as do
 -- integers beyond 2^53 that a double cannot hold.
 function M.gen (e, out, formals, E, lib)
-  local function emit (op, a, k)
-    out[#out + 1] = op; out[#out + 1] = a or 0; out[#out + 1] = k or 0
-    return #out // 3 - 1
-  end
-  local gen
-  local function fnof (node)            -- which function a call names
-    local f
-    if node[1] == "name" then
-      if formals[node[2]] then return nil end
-      f = E[node[2]]
-    elseif node[1] == "field" then
-      if formals[node[2]] then return nil end
-      local base = E[node[2]]
-      if type(base) ~= "table" then return nil end
-      f = base[node[3]]
-    end
-    if f == nil then return nil end
-    if f == lib.ran then return "ran" elseif f == lib.nran then return "nran" end
-    if lib.func ~= nil and f == lib.func then return "func" end
-    if lib.isfunc ~= nil and lib.isfunc(f) then return "fn", f end
-    for name, v in pairs(lib.math) do
-      if v == f and (F1[name] or F2[name]) then return name end
-    end
-    return nil
-  end
-  local function num (v)
-    if mathtype(v) == "integer" then
-      if v > 2 ^ 53 or v < -2 ^ 53 then return nil end
-      emit(OP.K, 0, v)
-      return "i"
-    end
-    emit(OP.K, 0, v)
-    return "n"
-  end
-  local function isnum (t) return t == "n" or t == "i" end
-  -- and, or (a jump over the right side), ==, ~=, arithmetic and order comparisons
-  local function binary (n)
-    local op = n[2]
-    if op == "and" or op == "or" then
-      if gen(n[3]) ~= "b" then return nil end
-      local j = emit(op == "and" and OP.JF or OP.JT, 0)
-      if gen(n[4]) ~= "b" then return nil end
-      out[3 * j + 2] = #out // 3
-      return "b"
-    end
-    local ta = gen(n[3])
-    local tb = ta and gen(n[4])
-    if not tb then return nil end
-    if op == "==" or op == "~=" then
-      if (ta == "b") ~= (tb == "b") then return nil end
-      emit(OP[op]); return "b"
-    end
-    if not isnum(ta) or not isnum(tb) then return nil end
-    if ta == "i" and tb == "i" and op ~= "/" and op ~= "^" and op ~= "<" and op ~= "<=" and
-       op ~= ">" and op ~= ">=" then
-      return nil                   -- integer arithmetic: Lua's own rules
-    end
-    emit(OP[op])
-    return (op == "<" or op == "<=" or op == ">" or op == ">=") and "b" or "n"
-  end
-  -- a positional function (an lsys.Func) applied to the value of tree `a`
-  local function applyfn (f, a)
-    if f == nil or not isnum(gen(a)) then return nil end
-    emit(OP.FN, lib.index(f))
-    return "n"
-  end
-  -- func(ID, x) and func("name", x): ID a number in the text or in env
-  local function funcall (args)
-    if #args ~= 2 then return nil end
-    local id, f = args[1], nil
-    if id[1] == "str" then f = lib.byname[id[2]]
-    else
-      local v = id[1] == "num" and id[2] or id[1] == "name" and not formals[id[2]] and E[id[2]]
-      if type(v) == "number" then f = lib.list[v] end
-    end
-    return applyfn(f, args[2])
-  end
-  -- a call of ran, nran, a math function that the machine has, or a positional function
-  local function call (n)
-    local name, fobj = fnof(n[2])
-    local args = n[3]
-    if not name then return nil end
-    if name == "func" then return funcall(args) end
-    if name == "fn" then
-      if #args ~= 1 then return nil end
-      return applyfn(fobj, args[1])
-    end
-    local fold = (name == "min" or name == "max") and #args >= 2
-    local types = {}
-    for k, a in ipairs(args) do
-      types[k] = gen(a)
-      if not isnum(types[k]) then return nil end
-      -- min and max fold from the left as Lua's do (it matters with nan: min(3, nan, 2)
-      -- is 2 in Lua, min(3, min(nan, 2)) would be 3)
-      if fold and k >= 2 then emit(OP.F2, F2[name]) end
-    end
-    -- the result's type as Lua has it ("i": may be an integer, so the integer checks
-    -- above keep arithmetic between two of them in Lua): floor and ceil give integers,
-    -- min and max return one of their arguments as it is, abs keeps an integer, and
-    -- fmod of two integers is an integer fmod that raises on 0: not on the machine
-    local anyint, allint = false, #args > 0
-    for _, a in ipairs(types) do
-      if a == "i" then anyint = true else allint = false end
-    end
-    if name == "ran" then
-      if #args == 0 then emit(OP.K, 0, 1) elseif #args ~= 1 then return nil end
-      emit(OP.RAN); return "n"
-    elseif name == "nran" then
-      if #args ~= 2 then return nil end
-      emit(OP.NRAN); return "n"
-    elseif fold then
-      return anyint and "i" or "n"
-    elseif name == "atan" and #args == 2 then emit(OP.F2, F2.atan); return "n"
-    elseif name == "fmod" and #args == 2 then
-      if allint then return nil end
-      emit(OP.F2, F2.fmod); return "n"
-    elseif F1[name] and #args == 1 then
-      emit(OP.F1, F1[name])
-      if name == "floor" or name == "ceil" or (name == "abs" and anyint) then return "i" end
-      return "n"
-    end
-    return nil
-  end
-  function gen (n)
-    local kind = n[1]
-    if kind == "num" then return num(n[2])
-    elseif kind == "bool" then emit(OP.K, 0, n[2] and 1 or 0); return "b"
-    elseif kind == "paren" then return gen(n[2])
-    elseif kind == "name" then
-      local a = formals[n[2]]
-      if a then emit(OP.ARG, a); return "n" end
-      local v = E[n[2]]
-      if type(v) == "number" then return num(v) end
-      if type(v) == "boolean" then emit(OP.K, 0, v and 1 or 0); return "b" end
-      return nil
-    elseif kind == "field" then
-      if formals[n[2]] then return nil end
-      local base = E[n[2]]
-      local v = type(base) == "table" and base[n[3]]
-      if type(v) == "number" then return num(v) end
-      return nil
-    elseif kind == "un" then
-      local t = gen(n[3])
-      if n[2] == "-" and t == "n" then emit(OP.UNM); return "n" end   -- not integers: they wrap
-      if n[2] == "not" and t == "b" then emit(OP.NOT); return "b" end
-      return nil
-    elseif kind == "bin" then return binary(n)
-    elseif kind == "call" then return call(n)
-    end
-    return nil
-  end
-  return gen(e)
+  return gen({ out = out, formals = formals, E = E, lib = lib }, e)
 end
 
 --- What `gen` calls by identity, for one binding of a model's rules: Lua's math table,
