@@ -202,11 +202,8 @@ end
 -- Lua files and top-level functions still over the budget, each with what is to become of
 -- it; the lists only shrink (one that fits the budget again must leave its list).
 local LUA_LONG_FILES = {
-  ["lua/lsys/cpfg/init.lua"] = "to be cut into the translator and the loader",
 }
 local LUA_LONG_FUNCTIONS = {
-  ["lua/lsys/cpfg/init.lua translate"] = "one step a section of the L-system file",
-  ["lua/lsys/compile.lua M.gen"] = "one case a node kind of the expression tree",
 }
 
 -- The top-level functions of a Lua file (`function f`, `local function f`, `f = function`

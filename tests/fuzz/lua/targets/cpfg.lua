@@ -1,6 +1,6 @@
 --- Fuzz target: cpfg L-system files, lsys.cpfg.load with the built-in
--- preprocessor (lua/lsys/cpfg/cpp.lua, parse.lua, init.lua), then a short derivation of
--- the model. Its corpus is tests/fuzz/corpus_cpfg.
+-- preprocessor (lua/lsys/cpfg/cpp.lua, parse.lua, translate.lua, emit.lua, helpers.lua,
+-- init.lua), then a short derivation of the model. Its corpus is tests/fuzz/corpus_cpfg.
 --
 -- The bytes are the text of main.l in a scratch folder. A line "//@ NAME" (a comment to
 -- cpfg) starts another file, NAME (letters, digits, `_ . -`, optionally under `a/`), so an
