@@ -64,7 +64,7 @@ describe("batch outputs", function()
         vary = { name = { "a", "../../up" } }, outputs = "{name}/{id}.txt" })
     -- and by the program, which writes nothing
     H.write(dir .. "/f.csv", "model,out\nm.lua,a{id}.txt\nm.lua,../{id}.txt\n")
-    local out, code = run("f.csv -o o")
+    local out, code = run("f.csv -d o")
     assert.equal(1, code, out)
     assert.equal("lsys: f.csv:3: column 'out': '../0002.txt' leaves the output folder: an "
       .. "output is a file in it\n", out)
@@ -89,7 +89,7 @@ describe("batch outputs", function()
       .. q(dir .. "/o/0002.txt")))
     H.write(dir .. "/f.csv", "model,out\nm.lua,link/{id}.txt\nm.lua,{id}.txt\n"
       .. "m.lua,ok/{id}.txt\nm.lua,link/../{id}.txt\n")
-    local out, code = run("f.csv -o o")
+    local out, code = run("f.csv -d o")
     assert.equal(1, code, out)
     assert.truthy(out:find("lsys: batch: job 0001 (f.csv:2) failed: cannot write "
       .. "'o/link/0001.txt': 'o/link' is a symbolic link (lsys batch writes no file through a "
@@ -105,7 +105,7 @@ describe("batch outputs", function()
     -- a manifest that is a link is not appended to
     H.write(dir .. "/g.csv", "model,out\nm.lua,g{id}.txt\n")
     assert(os.execute("ln -s ../victim.txt " .. q(dir .. "/o/manifest-1-of-2.jsonl")))
-    out, code = run("g.csv -o o --shard 1/2")
+    out, code = run("g.csv -d o --shard 1/2")
     assert.equal(1, code, out)
     assert.equal("lsys: cannot write the manifest 'o/manifest-1-of-2.jsonl': it is a symbolic "
       .. "link (lsys batch writes no file through a link)\n", out)
@@ -158,7 +158,7 @@ describe("batch outputs", function()
     -- the program, resuming a job, says so in the manifest's start line
     H.write(dir .. "/o/.0003.txt.lsys-" .. dead .. "-5.tmp", "partial")
     os.remove(dir .. "/o/0003.txt")
-    local out, code = run("f.csv -o o --shard 1/2")
+    local out, code = run("f.csv -d o --shard 1/2")
     assert.equal(0, code, out)
     assert.truthy(out:find("f.csv: 2 jobs (shard 1/2 of 4): 1 ok, 0 failed, 1 done before", 1,
       true), out)

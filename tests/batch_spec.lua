@@ -341,7 +341,7 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
 
   it("writes each job's files and a manifest line; stats count the modules", function()
     H.write(dir .. "/sweep.lua", SWEEP)
-    local out, code = run("sweep.lua -o out")
+    local out, code = run("sweep.lua -d out")
     assert.equal(0, code, out)
     assert.truthy(out:find("sweep.lua: 6 jobs: 6 ok, 0 failed, 0 done before; 6 ran in ", 1,
       true), out)
@@ -419,18 +419,18 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
     local csv = "model,R,out\nplant.lua,1.2,{id}.txt\nplant.lua,1.3,{id}.txt\n"
       .. "plant.lua,1.4,{id}.txt\n"
     H.write(dir .. "/p.csv", csv)
-    local out, code = run("p.csv -o o")
+    local out, code = run("p.csv -d o")
     assert.equal(0, code, out)
-    out = run("p.csv -o o")
+    out = run("p.csv -d o")
     assert.truthy(out:find("p.csv: 3 jobs: all done before (--force runs them again)", 1, true),
       out)
     H.write(dir .. "/p.csv", (csv:gsub("1%.3", "1.35")))     -- job 0002 changed
     os.remove(dir .. "/o/0003.txt")                           -- job 0003's file is gone
     H.write(dir .. "/o/0001.txt", "edited\n")                 -- job 0001's file was replaced
-    out, code = run("p.csv -o o")
+    out, code = run("p.csv -d o")
     assert.equal(0, code, out)
     assert.truthy(out:find("p.csv: 3 jobs: 3 ok, 0 failed, 0 done before", 1, true), out)
-    out = run("p.csv -o o --force")
+    out = run("p.csv -d o --force")
     assert.truthy(out:find("p.csv: 3 jobs: 3 ok, 0 failed, 0 done before", 1, true), out)
     assert.equal(3 * 5, #manifest(dir .. "/o/manifest.jsonl"))    -- 3 runs that ran jobs
   end)
@@ -438,7 +438,7 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
   it("goes on where a killed run stopped, with the files a whole run makes", function()
     H.write(dir .. "/sweep.lua", SWEEP)
     -- job 5 is K = 3, R = 1.3: the process dies (SIGKILL) as that job starts
-    local out, code = run("sweep.lua -o a", "BATCH_KILL_AT=3")
+    local out, code = run("sweep.lua -d a", "BATCH_KILL_AT=3")
     assert.equal(137, code, out)
     local st = statuses(dir .. "/a/manifest.jsonl")
     assert.same({ ["0001"] = "ok", ["0002"] = "ok", ["0003"] = "ok", ["0004"] = "ok" }, st)
@@ -449,11 +449,11 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
       if f:find("%.png$") then assert.truthy(core.png_read(dir .. "/a/" .. f)) end
     end
     local stamp = core.filestamp(dir .. "/a/png/0001.png")
-    out, code = run("sweep.lua -o a")
+    out, code = run("sweep.lua -d a")
     assert.equal(0, code, out)
     assert.truthy(out:find("sweep.lua: 6 jobs: 2 ok, 0 failed, 4 done before", 1, true), out)
     assert.equal(stamp, (core.filestamp(dir .. "/a/png/0001.png")))      -- not written again
-    out, code = run("sweep.lua -o b")
+    out, code = run("sweep.lua -d b")
     assert.equal(0, code, out)
     local all = files(dir .. "/b")
     assert.same(all, files(dir .. "/a"))
@@ -468,10 +468,10 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
       return
     end
     H.write(dir .. "/sweep.lua", SWEEP)
-    local out, code = run("sweep.lua -o one")
+    local out, code = run("sweep.lua -d one")
     assert.equal(0, code, out)
     out, code = sh("cd " .. q(dir) .. " && parallel -j2 " .. q(ABSBIN)
-      .. " batch sweep.lua -o two --shard {}/2 ::: 1 2")
+      .. " batch sweep.lua -d two --shard {}/2 ::: 1 2")
     assert.equal(0, code, out)
     assert.truthy(out:find("sweep.lua: 3 jobs (shard 1/2 of 6): 3 ok", 1, true), out)
     assert.truthy(out:find("sweep.lua: 3 jobs (shard 2/2 of 6): 3 ok", 1, true), out)
@@ -486,13 +486,13 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
       assert.equal(H.read(dir .. "/one/" .. f), H.read(dir .. "/two/" .. f), f)
     end
     -- the shards' manifests count for an unsharded run, and the other way round
-    out = run("sweep.lua -o two")
+    out = run("sweep.lua -d two")
     assert.truthy(out:find("sweep.lua: 6 jobs: all done before", 1, true), out)
-    out = run("sweep.lua -o one --shard 2/2 --list")
+    out = run("sweep.lua -d one --shard 2/2 --list")
     assert.truthy(out:find("3 jobs (shard 2/2 of 6): 3 done, 0 failed, 0 to do", 1, true), out)
     -- a copy of the folder (its files' times new) keeps its jobs done
     assert.equal(0, select(2, sh("cp -r " .. q(dir .. "/two") .. " " .. q(dir .. "/copy"))))
-    out = run("sweep.lua -o copy")
+    out = run("sweep.lua -d copy")
     assert.truthy(out:find("sweep.lua: 6 jobs: all done before", 1, true), out)
   end)
 
@@ -523,5 +523,36 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
     out, code = run("e.csv")
     assert.equal(1, code, out)
     assert.equal("lsys: e.csv:2: column 'R': 'x' is not a number\n", out)
+  end)
+
+  it("writes into -d DIR (--dir DIR); -o DIR and --out DIR, the old spellings, warn", function()
+    H.write(dir .. "/p.csv", "model,R,out\nplant.lua,1.2,{id}.txt\n")
+    local function warning (old)
+      return "Lua warning: lsys: 'lsys batch " .. old .. " DIR' is deprecated; use "
+        .. "'lsys batch --dir DIR' (-d DIR)\n"
+    end
+    for _, c in ipairs { { "-d a", "a" }, { "--dir=b", "b" }, { "-o c", "c", "-o" },
+                         { "--out d", "d", "--out" }, { "--out=e", "e", "--out" } } do
+      local out, code = run("p.csv " .. c[1])
+      assert.equal(0, code, out)
+      assert.truthy(out:find("manifest " .. c[2] .. "/manifest.jsonl\n", 1, true), out)
+      assert.equal(H.read(dir .. "/a/0001.txt"), H.read(dir .. "/" .. c[2] .. "/0001.txt"))
+      if c[3] then
+        assert.equal(warning(c[3]), out:match("^[^\n]*\n"))
+      else
+        assert.falsy(out:find("warning", 1, true), out)
+      end
+    end
+    local function usage (args, msg)
+      local o, c = run(args)
+      assert.equal(2, c, o)
+      assert.truthy(o:find("lsys: batch: " .. msg .. "\nRun 'lsys batch --help' for its options.",
+        1, true), o)
+    end
+    usage("p.csv -d a -o b", "-o is the old spelling of -d: give one of them")
+    usage("p.csv --dir=", "--dir expects a folder, got ''")
+    usage("p.csv --out=", "--out expects a folder, got ''")
+    local out = run("--help")
+    assert.truthy(out:find("\n  -d, --dir DIR     the output folder", 1, true), out)
   end)
 end)

@@ -89,7 +89,7 @@ describe("batch specs as streams", function()
     H.write(dir .. "/big.lua", big_sweep('{ "s/{id}.txt", "{a}-{b}/{id}.png" }'))
     -- the program lists the shard, then reports its own peak resident size
     H.write(dir .. "/list.lua", [[
-local n = require("lsys.cli").main("batch", "big.lua", "-o", "out", "--list", "--shard",
+local n = require("lsys.cli").main("batch", "big.lua", "-d", "out", "--list", "--shard",
                                   "999/1000")
 local f = io.open("/proc/self/status", "r")
 io.stderr:write("exit ", n, " peak ", f:read("a"):match("VmHWM:%s*(%d+)"), " kB\n")

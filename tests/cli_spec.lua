@@ -140,3 +140,207 @@ describe("lsys render and export", function()
     assert.truthy(out:find("cannot open '/nonexistent/dir/t.obj'", 1, true), out)
   end)
 end)
+
+-- `lsys ARGS`: what it wrote on stdout, what on stderr, and its exit status (`env`: the
+-- variables set for it, "DISPLAY=:1 ").
+local function run3 (args, env)
+  local err = os.tmpname()
+  local p = io.popen((env or "") .. BIN .. " " .. args .. " 2>" .. err .. "; echo \"exit:$?\"")
+  local out = p:read("a")
+  p:close()
+  local f = assert(io.open(err))
+  local errout = f:read("a")
+  f:close()
+  os.remove(err)
+  local code = tonumber(out:match("exit:(%d+)%s*$"))
+  return (out:gsub("exit:%d+%s*$", "")), errout, code
+end
+
+-- The lines a usage error of `lsys CMD` prints.
+local function usage_text (cmd, msg)
+  return "lsys: " .. cmd .. ": " .. msg .. "\nRun 'lsys " .. cmd .. " --help' for its options.\n"
+end
+
+describe("lsys -V and -v", function()
+  it("prints the version with -V and --version, and with -v, the old spelling, warning", function()
+    local out, err, code = run3("-V")
+    assert.equal(0, code, err)
+    assert.matches("^lsys %S+ %(Lua 5%.4%)\n$", out)
+    assert.equal("", err)
+    local out2, err2, code2 = run3("--version")
+    assert.equal(0, code2, err2)
+    assert.equal(out, out2)
+    assert.equal("", err2)
+    local out3, err3, code3 = run3("-v")
+    assert.equal(0, code3, err3)
+    assert.equal(out, out3)
+    assert.equal("Lua warning: lsys: 'lsys -v' is deprecated; use 'lsys -V' (--version)\n", err3)
+  end)
+
+  it("says in the help that -V is the version and -v verbose", function()
+    local out, code = run("--help")
+    assert.equal(0, code, out)
+    assert.truthy(out:find("\n  -V, --version   show the version\n", 1, true), out)
+    assert.truthy(out:find("-v is --verbose where a command has a verbose mode", 1, true), out)
+    assert.falsy(out:find("-v, --version", 1, true), out)
+    out = run("help test")
+    assert.truthy(out:find("\n  -v, --verbose      more output", 1, true), out)
+  end)
+end)
+
+describe("--threads, --max-memory and --max-modules", function()
+  local paths = {}
+  local function model (text)
+    local path = tmpmodel('local lsys = require "lsys"\nreturn lsys.lsystem ' .. text .. "\n")
+    paths[#paths + 1] = path
+    return path
+  end
+  after_each(function()
+    for _, p in ipairs(paths) do os.remove(p) end
+    paths = {}
+  end)
+
+  it("--max-modules sets the model's max_modules, over the model's own", function()
+    local path = model '{ axiom = "F", steps = 5, productions = "F --> FF" }'
+    local out, code = run("derive " .. path .. " --max-modules 10")
+    assert.equal(1, code, out)
+    assert.equal("lsys: " .. path .. ": the string would exceed max_modules (10 modules)\n", out)
+    path = model '{ axiom = "F", steps = 5, productions = "F --> FF", max_modules = 10 }'
+    out, code = run("derive " .. path)
+    assert.equal(1, code, out)
+    out, code = run("derive " .. path .. " --max-modules=1e6")
+    assert.equal(0, code, out)
+    assert.equal(("F"):rep(32) .. "\n", out)
+  end)
+
+  it("--max-memory sets the model's max_memory, over the model's own", function()
+    local rules = 'axiom = "A(1,2,3)", steps = 14, productions = "A(x,y,z) --> A(x,y,z) A(x,y,z)"'
+    local path = model("{ " .. rules .. " }")
+    local out, code = run("derive " .. path .. " --stats --max-memory 64K")
+    assert.equal(1, code, out)
+    assert.equal("lsys: " .. path .. ": the derivation would need more than max_memory (64 KiB) "
+      .. "at module 513 (set max_memory in the model, or LSYS_MAX_MEMORY)\n", out)
+    out, code = run("derive " .. path .. " --stats --max-memory 65536")
+    assert.equal(1, code, out)
+    assert.truthy(out:find("more than max_memory (64 KiB) at module 513", 1, true), out)
+    path = model("{ " .. rules .. ', max_memory = "64K" }')
+    out, code = run("derive " .. path .. " --stats")
+    assert.equal(1, code, out)
+    for _, size in ipairs { "64M", "unlimited" } do
+      out, code = run("derive " .. path .. " --stats --max-memory " .. size)
+      assert.equal(0, code, out)
+      assert.truthy(out:find("\nmodules 16384\n", 1, true), out)
+    end
+  end)
+
+  it("--threads sets the model's threads, and 1 and 2 threads give the same string", function()
+    local path = model [[{ axiom = "F", threads = 1,
+      start = function (m) io.stderr:write("threads ", m.threads, "\n") end }]]
+    local out, err, code = run3("derive " .. path .. " --threads 2")
+    assert.equal(0, code, err)
+    assert.equal("F\n", out)
+    assert.equal("threads 2\n", err)
+    -- a string long enough for a step to run on several threads (8192 modules)
+    path = model [[{ axiom = "A(1)", seed = 5, steps = 13,
+                     productions = "A(s) --> F(s)[+A(s*ran(1))][-A(s/2)]" }]]
+    local one, code1 = run("derive " .. path .. " --threads 1")
+    local two, code2 = run("derive " .. path .. " --threads=2")
+    assert.equal(0, code1, one:sub(1, 200))
+    assert.equal(0, code2, two:sub(1, 200))
+    assert.is_true(#one > 100000, #one)
+    assert.is_true(one == two)
+  end)
+
+  it("are usage errors (exit 2) with a bad value, for every command that loads a model",
+  function()
+    local path = model '{ axiom = "F" }'
+    local bad = {
+      { "--threads 0", "--threads expects a whole number from 1 to 64, got '0'" },
+      { "--threads 65", "--threads expects a whole number from 1 to 64, got '65'" },
+      { "--threads 1.5", "--threads expects a whole number from 1 to 64, got '1.5'" },
+      { "--threads=many", "--threads expects a whole number from 1 to 64, got 'many'" },
+      { "--max-modules 0", "--max-modules expects a whole number from 1 to 1e12, got '0'" },
+      { "--max-modules 2e12",
+        "--max-modules expects a whole number from 1 to 1e12, got '2e12'" },
+      { "--max-modules ten", "--max-modules expects a whole number from 1 to 1e12, got 'ten'" },
+      { "--max-memory lots", "--max-memory: 'lots' is not a size (use a number of bytes, or "
+        .. 'e.g. "512M", "2G", "unlimited")' },
+      { "--max-memory 0", "--max-memory: '0' is not a size (use a number of bytes, or "
+        .. 'e.g. "512M", "2G", "unlimited")' },
+    }
+    for _, b in ipairs(bad) do
+      local out, err, code = run3("derive " .. path .. " " .. b[1])
+      assert.equal(2, code, err)
+      assert.equal("", out)
+      assert.equal(usage_text("derive", b[2]), err)
+    end
+    -- the other commands check them as derive does, before any window or file
+    local dir = os.tmpname()
+    for _, cmd in ipairs { "render", "export", "animate", "view", "arrange" } do
+      local o = ({ render = " -o " .. dir .. ".png", export = " -o " .. dir .. ".obj",
+                   animate = " -o " .. dir .. ".gif" })[cmd] or ""
+      local _, err, code = run3(cmd .. " " .. path .. o .. " --threads 0")
+      assert.equal(2, code, err)
+      assert.equal(usage_text(cmd, "--threads expects a whole number from 1 to 64, got '0'"), err)
+    end
+    os.remove(dir)
+  end)
+
+  it("apply to a model, not to a file returning a Scene", function()
+    local path = tmpmodel('local lsys = require "lsys"\n'
+      .. 'return lsys.population { { model = lsys.lsystem { axiom = "F" } } }\n')
+    paths[#paths + 1] = path
+    local _, err, code = run3("export " .. path .. " -o " .. path .. ".obj --max-modules 5")
+    assert.equal(2, code, err)
+    assert.equal(usage_text("export", path .. " returns a Scene (a population): --threads, "
+      .. "--max-memory and --max-modules apply to a model"), err)
+  end)
+end)
+
+describe("lsys view --show", function()
+  local D = require "tests.display"
+  teardown(function() D.stop() end)
+
+  it("checks --show K, and --step K, its old spelling, which warns", function()
+    local out, err, code = run3("view --show x examples/default.lua")
+    assert.equal(2, code, out)
+    assert.equal(usage_text("view", "--show expects a step number (0 or more), got 'x'"), err)
+    out, err, code = run3("view --step x examples/default.lua")
+    assert.equal(2, code, out)
+    assert.equal("Lua warning: lsys: 'lsys view --step K' is deprecated; use 'lsys view --show K'\n"
+      .. usage_text("view", "--step expects a step number (0 or more), got 'x'"), err)
+    out, err, code = run3("view --last --show 1 examples/default.lua")
+    assert.equal(2, code, out)
+    assert.equal(usage_text("view", "--last and --show exclude each other"), err)
+    out, err, code = run3("view --show 1 --step 1 examples/default.lua")
+    assert.equal(2, code, out)
+    assert.equal(usage_text("view", "--step is the old spelling of --show: give one of them"), err)
+    out = run("view --help")
+    assert.truthy(out:find("\n  --show K             the step shown first (default: the last)",
+      1, true), out)
+  end)
+
+  it("#gl shows step K first with --show K, as with --step K", function()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    local dir = os.tmpname()
+    os.remove(dir)
+    assert(os.execute("mkdir -p " .. dir))
+    local function shot (opts, name)
+      local out, err, code = run3("view examples/abop/fig1_24a.lua --steps 3 --size 120x120 "
+        .. "--no-status " .. opts .. " --screenshot " .. dir .. "/" .. name, D.env)
+      assert.equal(0, code, err)
+      assert.truthy(out:find("wrote " .. dir .. "/" .. name, 1, true), out)
+      return err, (require("lsys.core").png_read(dir .. "/" .. name))
+    end
+    local err0, show0 = shot("--show 0", "show0.png")
+    local err1, step0 = shot("--step 0", "step0.png")
+    local _, last = shot("", "last.png")
+    os.execute("rm -rf " .. dir)
+    assert.falsy(err0:find("deprecated", 1, true), err0)
+    assert.truthy(err1:find("Lua warning: lsys: 'lsys view --step K' is deprecated; use "
+      .. "'lsys view --show K'\n", 1, true), err1)
+    assert.is_true(show0 == step0)
+    assert.is_false(show0 == last)
+  end)
+end)

@@ -4,8 +4,8 @@
 local program = require "lsys.program"
 local fs = require "lsys.util.fs"
 
-local pairs, tonumber, tostring, error, setmetatable =
-      pairs, tonumber, tostring, error, setmetatable
+local pairs, tonumber, tostring, error, setmetatable, require =
+      pairs, tonumber, tostring, error, setmetatable, require
 local io, string, table, math = io, string, table, math
 local format = string.format
 local host, clock = program.host, program.clock
@@ -42,11 +42,12 @@ end
 --[[
 Parses args[first..] against 'spec', a table of option name -> "flag" | "value" | "list"
 (short aliases: spec.short = { h = "help", o = "output" }). Accepts `--name value`,
-`--name=value`, `-x value`, and `--` before positional arguments. Returns the options table
-and the list of positional arguments; raises usage errors for command 'cmd'.
+`--name=value`, `-x value`, and `--` before positional arguments. Returns the options table,
+the list of positional arguments and how each option was spelt ({ out = "-o" }: what a
+message about it quotes); raises usage errors for command 'cmd'.
 ]]
 local function parse (cmd, spec, args, first)
-  local opts, pos = {}, {}
+  local opts, pos, given = {}, {}, {}
   local i = first
   while i <= args.n do
     local a = args[i]
@@ -64,6 +65,7 @@ local function parse (cmd, spec, args, first)
     if name ~= nil then
       local kind = spec[name]
       if kind == nil or name == "short" then usage(cmd, "unknown option '--%s'", name) end
+      given[name] = a:match("^[^=]*")
       if kind == "flag" then
         if val ~= nil then usage(cmd, "option '--%s' takes no value", name) end
         opts[name] = true
@@ -87,15 +89,37 @@ local function parse (cmd, spec, args, first)
     end
     i = i + 1
   end
-  return opts, pos
+  return opts, pos, given
+end
+
+--[[
+An option under its old spelling: `old` (an option name of the spec) is now `new`. When
+given, the first use warns as deprecated names do (lsys.warning: "lsys: 'lsys batch -o DIR'
+is deprecated; use 'lsys batch --dir DIR' (-d DIR)"), and its value moves to opts[new].
+`arg` names the value in the messages ("DIR"), `short` the new short spelling (nil: none).
+Returns the spelling given (`given` from parse), for the messages about the value; nil when
+the old one was not given. Both spellings at once are a usage error.
+]]
+local function renamed (cmd, opts, given, old, new, arg, short)
+  if opts[old] == nil then return nil end
+  local was = given[old]
+  if opts[new] ~= nil then
+    usage(cmd, "%s is the old spelling of %s: give one of them", was, given[new])
+  end
+  require("lsys.warning").deprecated(format("'lsys %s %s %s'", cmd, was, arg),
+    format("'lsys %s --%s %s'%s", cmd, new, arg, short and format(" (-%s %s)", short, arg) or ""))
+  opts[new], opts[old] = opts[old], nil
+  return was
 end
 
 -- The options of the commands that load a model (model_source, prepare) and then the
 -- command's own: `extra` (false: an option the command does not take), with -h for --help
--- and, when it has --output, -o for it.
+-- and, when it has --output, -o for it. --threads, --max-memory and --max-modules set the
+-- model options threads, max_memory and max_modules.
 local function model_opts (extra)
   local o = { steps = "value", seed = "value", set = "list", name = "value", view = "list",
               map = "value", mat = "value", define = "list", environment = "value",
+              threads = "value", ["max-memory"] = "value", ["max-modules"] = "value",
               help = "flag", short = { h = "help", o = extra.output and "output" or nil } }
   for k, v in pairs(extra) do o[k] = v or nil end
   return o
@@ -198,6 +222,7 @@ M.clock = clock
 M.isfile = isfile
 M.isdir = isdir
 M.parse = parse
+M.renamed = renamed
 M.model_opts = model_opts
 M.RENDER_OPTS = RENDER_OPTS
 M.size_opt = size_opt

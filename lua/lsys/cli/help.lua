@@ -31,7 +31,13 @@ with its view file VIEW.v after it: `lsys render plant.l plant.v`) or a vlab obj
 
 Options:
   -h, --help      show this help
-  -v, --version   show the version
+  -V, --version   show the version
+
+Conventions: -o FILE names the file a command writes (a folder is -d DIR or --frames DIR);
+-v is --verbose where a command has a verbose mode (lsys test: busted's); --steps N is the
+number of derivation steps of every command that loads a model, and --threads N,
+--max-memory SIZE and --max-modules N set its limits. The old spellings `lsys -v`, `lsys
+batch -o DIR` and `lsys view --step K` still work in this release and warn.
 
 Environment: LSYS_DEBUG=1 adds a Lua traceback to error messages; LUA_PATH and LUA_CPATH
 work as in `lua`. Exit status: 0 success, 1 error, 2 usage error.
@@ -42,6 +48,7 @@ local HELP = {}
 HELP.derive = [=[
 usage: lsys derive [MODEL [VIEW.v]] [--steps N] [--seed S] [--set NAME=VALUE]...
                    [--name NAME] [--map FILE | --mat FILE] [--define NAME=VALUE]...
+                   [--threads N] [--max-memory SIZE] [--max-modules N]
                    [--stats] [--progress]
 
 Loads MODEL, a Lua file that returns a model made by lsys.lsystem{...} (or a component
@@ -69,6 +76,14 @@ Options:
   --environment none  derive a cpfg model's ?E modules as cpfg does without its
                      environmental program (lsys runs none; without this option a model
                      with ?E is refused)
+  --threads N        the threads a step (and an interpretation) may use, 1 to 64 (sets
+                     model.threads; default: the model's, else LSYS_THREADS, else the
+                     processors); the string is the same for any number
+  --max-memory SIZE  the memory one step (or interpretation) may take: bytes, or e.g.
+                     512M, 2G, unlimited (sets max_memory; default: the model's, else
+                     LSYS_MAX_MEMORY, else half the physical memory)
+  --max-modules N    the longest string a step may build, 1 to 1e12 (sets max_modules;
+                     default: the model's, else 50000000)
   --stats            print statistics instead of the string: steps, modules, the count of
                      each module name, and the derivation time
   --progress         print "step k/N: M modules" on stderr after each step (the default
@@ -79,7 +94,8 @@ Options:
 HELP.render = [=[
 usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
                    [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
-                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--threads N]
+                   [--max-memory SIZE] [--max-modules N] [--progress]
        lsys render [MODEL [VIEW.v]] --frames DIR [--every K] [OPTIONS as above]
 
 Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
@@ -101,6 +117,8 @@ Options:
   --every K          with --frames: steps 0, K, 2K, ... and always the last
   --size WxH         picture size in pixels (default 800x800)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
+  --threads N, --max-memory SIZE, --max-modules N   the model's limits, as for `lsys
+                     derive` (the interpretation's too)
   --map FILE, --mat FILE, --define NAME=VALUE, --environment none   a cpfg model's, as
                      for `lsys derive`
   --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
@@ -113,7 +131,8 @@ HELP.animate = [=[
 usage: lsys animate [MODEL [VIEW.v]] [-o OUT.mp4|OUT.gif] [--fps N] [--every K]
                     [--hold S] [--size WxH] [--steps N] [--seed S] [--set NAME=VALUE]...
                     [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
-                    [--define NAME=VALUE]... [--progress]
+                    [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
+                    [--max-modules N] [--progress]
 
 Derives MODEL (as for `lsys render`) and writes an animation of it growing: one frame per
 derivation step, all through one camera fitted to the last step, so the plant grows in
@@ -134,14 +153,16 @@ Options:
   --progress         a line per step and frame on stderr (on a terminal a progress bar
                      is shown without it)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
+  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --max-modules N   as for `lsys render`
   -h, --help         show this help
 ]=]
 
 HELP.export = [[
 usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps N]
                    [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
-                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--progress]
+                   [--map FILE | --mat FILE] [--define NAME=VALUE]... [--threads N]
+                   [--max-memory SIZE] [--max-modules N] [--progress]
 
 Derives and interprets MODEL (as for `lsys render`: a cpfg MODEL.l takes its VIEW.v after
 it) and writes its geometry: Wavefront OBJ (with a .mtl file next
@@ -156,11 +177,12 @@ Options: as for `lsys render`; -o is required.
 ]]
 
 HELP.view = [=[
-usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--step K] [--rate R] [--no-status]
+usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--show K] [--rate R] [--no-status]
                  [--last | --history SIZE]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
                  [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
-                 [--define NAME=VALUE]...
+                 [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
+                 [--max-modules N]
 
 Opens the viewer window on MODEL (a Lua file returning a model, an example name, a cpfg
 .l file with its VIEW.v, or a vlab object folder, as for `lsys derive`; default: the
@@ -179,7 +201,8 @@ this list.
 
 Options:
   --size WxH           window size (default 800x800)
-  --step K             the step shown first (default: the last)
+  --show K             the step shown first (default: the last); --step K, its old
+                       spelling, warns (--steps N is the number of steps, as everywhere)
   --rate R             animation speed in steps per second (default 2)
   --no-status          no status line at the bottom of the window
   --last               keep the last step only (no stepping: the least memory)
@@ -188,7 +211,8 @@ Options:
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none   as for `lsys render`
+  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --max-modules N   as for `lsys render`
   -h, --help           show this help
 
 The window needs a display (X11 or Wayland through XWayland); `lsys render` draws PNG files
@@ -198,7 +222,7 @@ without one.
 HELP.arrange = [[
 usage: lsys arrange [MODEL] [-o OUT.txt] [--string FILE] [--size WxH] [--r0 R] [--s0u S]
                     [--s0h S] [--steps N] [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]...
-                    [--name NAME]
+                    [--name NAME] [--threads N] [--max-memory SIZE] [--max-modules N]
 
 Opens MODEL (default: the default example) derived in the viewer window for arranging by
 inverse kinematics as in ilsa (Power et al. 1999; docs/arrange.md):
@@ -219,7 +243,8 @@ Options:
   --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
                      the automatic joint stiffness (default 1 each)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none   as for render
+  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --max-modules N   as for render
 
 The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
 `model:step(lsys.lstring(text))`, or arrange it again with --string.
@@ -335,7 +360,7 @@ Options:
 ]]
 
 HELP.batch = [[
-usage: lsys batch SPEC [-o DIR] [--shard K/N | --shard slurm] [--list] [--force]
+usage: lsys batch SPEC [-d DIR] [--shard K/N | --shard slurm] [--list] [--force]
                   [--progress]
 
 Runs the jobs SPEC lists -- each a model, values for its variables, a seed and the files
@@ -362,15 +387,16 @@ goes on where it stopped. A job that fails is recorded with its message and the
 others go on; the exit status is then 1.
 
 Options:
-  -o, --out DIR     the output folder (made when missing; default: the current folder)
+  -d, --dir DIR     the output folder (made when missing; default: the current folder)
                     and its manifest, DIR/manifest.jsonl (DIR/manifest-K-of-N.jsonl for a
                     shard): a JSON line per job run (job, seed, params, outputs, seconds,
-                    status ok or failed, error)
+                    status ok or failed, error). -o/--out DIR, its old spelling, warns
+                    (everywhere else -o names a file)
   --shard K/N       run shard K of N only: jobs K, K+N, K+2N, ... For GNU parallel:
-                    parallel lsys batch SPEC -o DIR --shard {}/4 ::: 1 2 3 4
+                    parallel lsys batch SPEC -d DIR --shard {}/4 ::: 1 2 3 4
   --shard slurm     the shard of this task of a Slurm job array (SLURM_ARRAY_TASK_ID,
                     SLURM_ARRAY_TASK_MIN, SLURM_ARRAY_TASK_COUNT): in an sbatch script
-                    with #SBATCH --array=0-9, lsys batch SPEC -o DIR --shard slurm
+                    with #SBATCH --array=0-9, lsys batch SPEC -d DIR --shard slurm
   --list            print the jobs (of the shard), each done, failed or to do; run nothing
   --force           run the jobs that are done as well
   --progress        a line per job on stderr (on a terminal a progress line shows anyway)

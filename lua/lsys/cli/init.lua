@@ -66,7 +66,10 @@ local function dispatch (args)
   local a = args[1]
   if a == nil then return require("lsys.repl").run() end
   if a == "-h" or a == "--help" then out(USAGE) return 0 end
-  if a == "-v" or a == "--version" then
+  -- -V and --version print the version; -v is --verbose where a command has a verbose
+  -- mode (lsys test), and prints the version here for one more release, with a warning
+  if a == "-V" or a == "--version" or a == "-v" then
+    if a == "-v" then require("lsys.warning").deprecated("'lsys -v'", "'lsys -V' (--version)") end
     out(format("lsys %s (%s)\n", host().version or "scm", G._VERSION))
     return 0
   end

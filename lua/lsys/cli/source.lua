@@ -216,7 +216,54 @@ local function check_views (cmd, model, vlist)
   end
 end
 
--- Loads the model named by the positional arguments and applies --steps --seed --set.
+-- --threads, --max-memory and --max-modules checked, as the model options they set:
+-- { threads =, max_memory = (bytes; math.huge: "unlimited"), max_modules = }; nil when none
+-- is given.
+local function limit_opts (cmd, opts)
+  local t, mem, mods = opts.threads, opts["max-memory"], opts["max-modules"]
+  if t == nil and mem == nil and mods == nil then return nil end
+  local lmodel = require "lsys.model"
+  local lim = {}
+  if t ~= nil then
+    lim.threads = math.tointeger(tonumber(t))
+    if lim.threads == nil or not lmodel.checkthreads(lim.threads) then
+      usage(cmd, "--threads expects a whole number from 1 to %d, got '%s'", lmodel.MAX_THREADS, t)
+    end
+  end
+  if mem ~= nil then
+    local ok, r = pcall(lmodel.parse_size, mem, "--max-memory")
+    if not ok then usage(cmd, "%s", (tostring(r):gsub("^[^\n]-:%d+: ", ""))) end
+    lim.max_memory = r
+  end
+  if mods ~= nil then
+    local n = tonumber(mods)
+    if not (n and n == math.floor(n) and n >= 1 and n <= 1e12) then
+      usage(cmd, "--max-modules expects a whole number from 1 to 1e12, got '%s'", mods)
+    end
+    lim.max_modules = math.tointeger(n) or n
+  end
+  return lim
+end
+
+-- Sets the options of limit_opts on the model `m`, over the model's own: `threads` is read
+-- by every derive; max_modules and max_memory are given to the core when a model is made
+-- (lsys.model), so they go to its rules here as they would have then.
+local function apply_limits (m, lim)
+  local rules = require("lsys.model").ismodel(m) and m._rules
+  if lim.threads ~= nil then m.threads = lim.threads end
+  if lim.max_modules ~= nil then
+    m.max_modules = lim.max_modules
+    if rules then rules:config("max_modules", lim.max_modules) end
+  end
+  if lim.max_memory ~= nil then
+    m.max_memory = lim.max_memory
+    -- "unlimited": the most the core takes, 2^63 bytes, as good as none
+    if rules then rules:config("max_memory", math.min(lim.max_memory, 2 ^ 63)) end
+  end
+end
+
+-- Loads the model named by the positional arguments and applies --steps --seed --set, and
+-- --threads --max-memory --max-modules.
 local function prepare (cmd, opts, pos)
   local src = model_source(cmd, opts, pos)
   local steps, seed
@@ -235,6 +282,7 @@ local function prepare (cmd, opts, pos)
     if seed == nil then usage(cmd, "--seed expects a number, got '%s'", opts.seed) end
     seed = math.tointeger(seed) or seed
   end
+  local limits = limit_opts(cmd, opts)
   local sets = {}
   for _, s in ipairs(opts.set or {}) do
     local k, v = s:match("^([%a_][%w_]*)=(.*)$")
@@ -264,6 +312,10 @@ local function prepare (cmd, opts, pos)
       usage(cmd, "%s returns a Scene (a population): --steps, --seed, --set and --view "
         .. "apply to a model", path)
     end
+    if limits ~= nil then
+      usage(cmd, "%s returns a Scene (a population): --threads, --max-memory and "
+        .. "--max-modules apply to a model", path)
+    end
     return model, path, views, src
   end
   if model.components ~= nil and model.components.tree ~= nil and
@@ -273,6 +325,7 @@ local function prepare (cmd, opts, pos)
   end
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end
+  if limits ~= nil then apply_limits(model, limits) end
   if #sets > 0 then set_env(model, sets, src) end
   check_views(cmd, model, vlist)
   return model, path, views, src

@@ -8,13 +8,15 @@ local pairs, ipairs, tostring, error, pcall, require =
       pairs, ipairs, tostring, error, pcall, require
 local io, string, table, math = io, string, table, math
 local format = string.format
-local parse, out, usage, clock, isatty, mmss =
-      A.parse, A.out, A.usage, A.clock, A.isatty, A.mmss
+local parse, out, usage, clock, isatty, mmss, renamed =
+      A.parse, A.out, A.usage, A.clock, A.isatty, A.mmss, A.renamed
 local _ENV = nil
 
+-- -d/--dir DIR is the output folder; -o/--out DIR its old spelling (everywhere else -o names
+-- an output file).
 local BATCH_OPTS = {
-  out = "value", shard = "value", list = "flag", force = "flag", progress = "flag",
-  help = "flag", short = { h = "help", o = "out" },
+  dir = "value", out = "value", shard = "value", list = "flag", force = "flag",
+  progress = "flag", help = "flag", short = { h = "help", d = "dir", o = "out" },
 }
 
 --[[
@@ -64,7 +66,7 @@ end
 
 -- `lsys batch SPEC --list`: the jobs of the shard, done or not.
 local function batch_list (batch, spec, opts, shard)
-  local p = batch.plan(spec, { out = opts.out, shard = shard })
+  local p = batch.plan(spec, { out = opts.dir, shard = shard })
   local STATUS = { done = "done", failed = "failed", todo = "to do" }
   local count = { done = 0, failed = 0, todo = 0 }
   for _, j in ipairs(p.jobs) do
@@ -88,11 +90,12 @@ end
 
 -- `lsys batch SPEC`: the jobs of a spec, or of one shard of them.
 local function run (args)
-  local opts, pos = parse("batch", BATCH_OPTS, args, 2)
+  local opts, pos, given = parse("batch", BATCH_OPTS, args, 2)
   if opts.help then out(HELP.batch) return 0 end
+  local flag = renamed("batch", opts, given, "out", "dir", "DIR", "d") and "--out" or "--dir"
   if #pos == 0 then usage("batch", "a SPEC is required: a .csv or .lua file listing the jobs") end
   if #pos > 1 then usage("batch", "unexpected argument '%s' (one SPEC)", pos[2]) end
-  if opts.out == "" then usage("batch", "--out expects a folder, got ''") end
+  if opts.dir == "" then usage("batch", "%s expects a folder, got ''", flag) end
   if opts.list and opts.force then usage("batch", "--list runs nothing: --force does not apply") end
   local batch = require "lsys.batch"
   local shard
@@ -108,7 +111,7 @@ local function run (args)
     if not ok then error(unnamed(r), 0) end
     return r
   end
-  local ok, r = pcall(batch.run, pos[1], { out = opts.out, shard = shard,
+  local ok, r = pcall(batch.run, pos[1], { out = opts.dir, shard = shard,
                                            force = opts.force or nil,
                                            progress = batch_progress(opts) })
   if not ok then error(unnamed(r), 0) end

@@ -10,22 +10,27 @@ local ipairs, tostring, tonumber, error, pcall, require, getmetatable, next =
 local io, string, table, math = io, string, table, math
 local format = string.format
 local parse, out, usage, clock, isatty = A.parse, A.out, A.usage, A.clock, A.isatty
-local model_opts, size_opt, USAGE_ERROR = A.model_opts, A.size_opt, A.USAGE_ERROR
+local model_opts, size_opt, renamed, USAGE_ERROR = A.model_opts, A.size_opt, A.renamed,
+      A.USAGE_ERROR
 local model_source, prepare, source_files = S.model_source, S.prepare, S.source_files
 local _ENV = nil
 
+-- --step K is the old spelling of --show K (the step shown first): --steps N is the number
+-- of derivation steps, as for every command.
 local VIEW_OPTS = model_opts {
-  size = "value", step = "value", rate = "value", screenshot = "value",
+  size = "value", show = "value", step = "value", rate = "value", screenshot = "value",
   ["no-status"] = "flag", last = "flag", history = "value",
 }
 
--- --step, --rate and --screenshot of `lsys view`.
-local function view_opts (opts)
+-- --show, --rate, --screenshot and --history of `lsys view`; the messages about --show
+-- name the spelling given (--step, the old one, warns). Returns also that spelling.
+local function view_opts (opts, given)
   local step, rate
-  if opts.step ~= nil then
-    step = math.tointeger(tonumber(opts.step))
+  local flag = renamed("view", opts, given, "step", "show", "K") or "--show"
+  if opts.show ~= nil then
+    step = math.tointeger(tonumber(opts.show))
     if step == nil or step < 0 then
-      usage("view", "--step expects a step number (0 or more), got '%s'", opts.step)
+      usage("view", "%s expects a step number (0 or more), got '%s'", flag, opts.show)
     end
   end
   if opts.rate ~= nil then
@@ -45,8 +50,10 @@ local function view_opts (opts)
     if not ok then usage("view", "%s", (tostring(r):gsub("^[^\n]-:%d+: ", ""))) end
     history = r
   end
-  if opts.last and opts.step ~= nil then usage("view", "--last and --step exclude each other") end
-  return step, rate, shot, history
+  if opts.last and opts.show ~= nil then
+    usage("view", "--last and %s exclude each other", flag)
+  end
+  return step, rate, shot, history, flag
 end
 
 -- Handles the window's events until it is closed (or Ctrl-C); a change of one of the
@@ -91,10 +98,10 @@ local function watch (V, files, reload)
 end
 
 local function run (args)
-  local opts, pos = parse("view", VIEW_OPTS, args, 2)
+  local opts, pos, given = parse("view", VIEW_OPTS, args, 2)
   if opts.help then out(HELP.view) return 0 end
   local w, h = size_opt("view", opts.size)
-  local step, rate, shot, history = view_opts(opts)
+  local step, rate, shot, history, flag = view_opts(opts, given)
   local V = require "lsys.viewer"
   local print_pick = require("lsys.repl").print_pick
   local src = model_source("view", opts, pos)
@@ -115,7 +122,7 @@ local function run (args)
         first = st.step
       end
       if first ~= nil and first > model.steps then
-        error(format("--step %d: the model has %d steps", first, model.steps), 0)
+        error(format("%s %d: the model has %d steps", flag, first, model.steps), 0)
       end
       V.show(model, {
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
