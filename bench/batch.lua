@@ -89,13 +89,13 @@ if not STREAM_ONLY then
       local m = dofile(dir .. "/plant.lua")
       return #m:derive()
     end)(), B.clock_name, RUNS))
-  local one = best("one", q(BIN) .. " batch spec.lua -o OUT")
+  local one = best("one", q(BIN) .. " batch spec.lua -d OUT")
   print(("batch 1 process: %d jobs in %.2f s, %.1f jobs/s"):format(njobs, one, njobs / one))
   if (sh("command -v parallel")) == "" then
     print("batch 2 shards: GNU parallel is not installed (Debian: apt-get install parallel); "
       .. "one process only")
   else
-    local two = best("two", "parallel -j2 " .. q(BIN) .. " batch spec.lua -o OUT --shard {}/2 "
+    local two = best("two", "parallel -j2 " .. q(BIN) .. " batch spec.lua -d OUT --shard {}/2 "
       .. "::: 1 2")
     print(("batch 2 shards (GNU parallel -j2): %d jobs in %.2f s, %.1f jobs/s"):format(njobs,
       two, njobs / two))
@@ -142,13 +142,13 @@ local function measure (what, args)
     or "unknown (no /proc/self/status)"))
 end
 print("batch stream: a sweep of 1000000 jobs (100 x 100 x 100), a fresh process each")
-measure("--list 1000000 jobs", "big.lua -o out --list")
-measure("--list --shard 1/100 (10000 jobs)", "big.lua -o out --list --shard 1/100")
-measure("run --shard 1/20 (50000 jobs)", "big.lua -o out --shard 1/20")
-measure("run --shard 1/20 again (all done: 50000 manifest lines)", "big.lua -o out --shard 1/20")
-measure("--list --shard 1/20 (all done)", "big.lua -o out --list --shard 1/20")
+measure("--list 1000000 jobs", "big.lua -d out --list")
+measure("--list --shard 1/100 (10000 jobs)", "big.lua -d out --list --shard 1/100")
+measure("run --shard 1/20 (50000 jobs)", "big.lua -d out --shard 1/20")
+measure("run --shard 1/20 again (all done: 50000 manifest lines)", "big.lua -d out --shard 1/20")
+measure("--list --shard 1/20 (all done)", "big.lua -d out --list --shard 1/20")
 measure("--list --shard 1000/1000, no {id} (every path checked)",
-  "noid.lua -o out --list --shard 1000/1000")
+  "noid.lua -d out --list --shard 1000/1000")
 print("(before specs were streamed: --list of 1000000 jobs took 2.26 GB and 115 s)")
 
 -- }=====

@@ -1,6 +1,7 @@
 -- Arrangement by inverse kinematics (lsys.arrange; Power et al. 1999): branch paths and their
 -- @J joints, the four draggers, the turtle drawing what the solver computed, stiffness from Z,
 -- widths and the da Vinci rule (eqs. 4-6), pruning, grow-arrange-grow (fig. 10).
+-- ctest: slow (drives the arrangement window under Xvfb)
 require "tests.helper"
 local lsys = require "lsys"
 

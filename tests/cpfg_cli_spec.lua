@@ -1,6 +1,7 @@
 -- The lsys program on cpfg models (docs/cpfg.md, "The command line"): derive, render,
 -- export and view take a .l file (with its .v after it) or a vlab object folder, and
 -- `lsys import` writes the lsys model file that derives the same string.
+-- ctest: slow (runs the program on cpfg models and vlab objects)
 local H = require "tests.helper"
 local core = require "lsys.core"
 

@@ -2,6 +2,7 @@
 -- (tests/fuzz/lua/targets/cpfg.lua) found in the preprocessor and the parser. Each file
 -- fails with a message naming its file and line, or loads. How long the hostile inputs take
 -- is measured by bench/cpp.lua, never here (a loaded machine must not fail the suite).
+-- ctest: slow (runs the program on many broken cpfg files)
 require "tests.helper"
 local H = require "tests.helper"
 local lsys = require "lsys"

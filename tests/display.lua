@@ -29,8 +29,12 @@ function D.start ()
   if have("Xvfb") then
     local dfile, pfile = os.tmpname(), os.tmpname()
     -- -displayfd: Xvfb picks a free display number and writes it when it is ready
+    -- a watcher stops the server when this process ends, so a spec that never calls
+    -- D.stop (or a run that is killed) leaves no Xvfb behind; $PPID is this Lua process
     os.execute(string.format("Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp " ..
-      "3>%s >/dev/null 2>&1 & echo $! > %s", dfile, pfile))
+      "3>%s >/dev/null 2>&1 & x=$!; echo $x > %s; p=$PPID; " ..
+      "(while kill -0 $p 2>/dev/null; do sleep 1; done; kill $x) >/dev/null 2>&1 &",
+      dfile, pfile))
     local n
     for _ = 1, 100 do
       local f = io.open(dfile)

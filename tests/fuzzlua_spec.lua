@@ -3,6 +3,7 @@
 -- runtime error inside lsys, a failed check, a rule expression or translated cpfg code that
 -- reaches a global, a hang). Fuzzing itself is
 -- `lua5.4 tests/fuzz/lua/fuzz.lua TARGET --time 600`.
+-- ctest: slow (replays every corpus of the Lua fuzzer)
 require "tests.helper"
 local fuzz = dofile "tests/fuzz/lua/fuzz.lua"
 local have_core = pcall(require, "lsys.core")

@@ -148,6 +148,7 @@ describe("lsys grow --frames", function ()
 end)
 
 describe("#gl lsys grow in the window", function ()
+  teardown(function () D.stop() end)
   it("grows the plants live and draws them as the offscreen renderer does", function ()
     local ok, why = D.start()
     if not ok then return pending(why) end
@@ -172,6 +173,7 @@ describe("#gl lsys grow in the window", function ()
 end)
 
 describe("#gl the growth keys", function ()
+  teardown(function () D.stop() end)
   local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
   -- a script growing one tree 5 ticks a second and logging each key's effect
   local SCRIPT = [[

@@ -395,6 +395,12 @@ print(pcall(m.derive, m, 26))
     assert.truthy(m:interpret(m:derive(4)).nlines > 0)  -- smaller ones still draw
   end)
 
+  it("takes max_memory = \"unlimited\" as a model option (no limit of its own)", function ()
+    local m = lsys.lsystem { axiom = "F", max_memory = "unlimited", productions = "F --> FF" }
+    assert.equal(math.huge, m.max_memory)
+    assert.equal(256, #m:derive(8))
+  end)
+
   -- a PNG whose header declares w x h pixels (CRCs computed), its data a few bytes
   local function crc32 (s)
     local c = 0xffffffff

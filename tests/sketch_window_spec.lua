@@ -2,6 +2,7 @@
 -- window sends them (strokes drawn, moved, deleted, undone; the wheel's pressure; keys;
 -- the toolbar; saving), the session's handling of a sketch that makes no plant yet, and
 -- (#gl) the real window under a private Xvfb, drawn with xdotool, saved and read back.
+-- ctest: slow (drives the window under Xvfb with waits)
 local H = require "tests.helper"
 local core = require "lsys.core"
 local W = require "lsys.sketch.window"

@@ -1,5 +1,6 @@
 -- The derivation step on several threads: the option `threads`, LSYS_THREADS, and
 -- the same string for every number of threads (docs/manual.md §10).
+-- ctest: slow (derives large strings on 1 to 8 threads)
 local H = require "tests.helper"
 local lsys = require "lsys"
 

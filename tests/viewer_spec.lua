@@ -3,6 +3,7 @@
 -- error without a display. Everything runs the lsys program on a private Xvfb
 -- (tests/display.lua); without Xvfb or a display the specs are reported pending with
 -- the reason.
+-- ctest: slow (drives the window under Xvfb with waits)
 local core = require "lsys.core"
 local D = require "tests.display"
 local H = require "tests.helper"

@@ -2,6 +2,7 @@
 -- writers (core.outfile, core.tempdir), lsys.animate and lsys components graph against
 -- planted links, TMPDIR, a user path that reads as an option, and the program's Ctrl-C and
 -- SIGTERM, which remove the temporaries and leave an existing output as it was.
+-- ctest: slow (writes large strings and files through the program)
 local H = require "tests.helper"
 local core = require "lsys.core"
 local q = require("lsys.text").shq

@@ -306,10 +306,7 @@ function Model:_configure (opts, fail)
     if not ok then fail("max_modules must be between 1 and 1e12") end
     self.max_modules = opts.max_modules
   end
-  if opts.max_memory then
-    self.max_memory = M.parse_size(opts.max_memory)
-    rules:config("max_memory", self.max_memory)
-  end
+  if opts.max_memory then self:_limits { max_memory = M.parse_size(opts.max_memory) } end
   if opts.max_instructions then
     local n = opts.max_instructions
     if not (n >= 1000) then fail("max_instructions must be a number >= 1000 (or math.huge)") end
@@ -832,6 +829,22 @@ function M.where (m) return m._where end
 function M.owner (s)
   local ok, r = pcall(debug.getuservalue, s, 1)
   return ok and r ~= nil and rules_models[r] or nil
+end
+
+-- Sets the model's limits over its own options, as lsys.lsystem would have set them:
+-- `lim` holds any of threads, max_modules (checked by the caller) and max_memory (bytes;
+-- math.huge for none). The command line's --threads, --max-modules and --max-memory.
+function Model:_limits (lim)
+  if lim.threads ~= nil then self.threads = lim.threads end
+  if lim.max_modules ~= nil then
+    self.max_modules = lim.max_modules
+    self._rules:config("max_modules", lim.max_modules)
+  end
+  if lim.max_memory ~= nil then
+    self.max_memory = lim.max_memory
+    -- "unlimited" (math.huge): the most the core takes, 2^63 bytes, as good as none
+    self._rules:config("max_memory", math.min(lim.max_memory, 2 ^ 63))
+  end
 end
 
 --- Selects the rule group `n` (0 = only the productions, always active).

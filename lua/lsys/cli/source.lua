@@ -245,21 +245,10 @@ local function limit_opts (cmd, opts)
   return lim
 end
 
--- Sets the options of limit_opts on the model `m`, over the model's own: `threads` is read
--- by every derive; max_modules and max_memory are given to the core when a model is made
--- (lsys.model), so they go to its rules here as they would have then.
+-- Sets the options of limit_opts on the model `m`, over the model's own (Model:_limits).
 local function apply_limits (m, lim)
-  local rules = require("lsys.model").ismodel(m) and m._rules
-  if lim.threads ~= nil then m.threads = lim.threads end
-  if lim.max_modules ~= nil then
-    m.max_modules = lim.max_modules
-    if rules then rules:config("max_modules", lim.max_modules) end
-  end
-  if lim.max_memory ~= nil then
-    m.max_memory = lim.max_memory
-    -- "unlimited": the most the core takes, 2^63 bytes, as good as none
-    if rules then rules:config("max_memory", math.min(lim.max_memory, 2 ^ 63)) end
-  end
+  if require("lsys.model").ismodel(m) then m:_limits(lim)
+  elseif lim.threads ~= nil then m.threads = lim.threads end
 end
 
 -- Loads the model named by the positional arguments and applies --steps --seed --set, and
