@@ -4,7 +4,7 @@
 -- SIGTERM, which remove the temporaries and leave an existing output as it was.
 local H = require "tests.helper"
 local core = require "lsys.core"
-local q = require("lsys.text").shq
+local q = require("lsys.util.text").shq
 
 local sh, ABSBIN = H.sh, H.ABSBIN
 
