@@ -47,7 +47,7 @@ function B.verdict (ok) return ok and "PASS" or "MISS" end
 --- 's' quoted for the shell
 function B.shell_quote (s)
   B.load_lsys()              -- lsys's modules on the path
-  return require("lsys.text").shq(tostring(s))
+  return require("lsys.util.text").shq(tostring(s))
 end
 
 --- the contents of a file, or nil

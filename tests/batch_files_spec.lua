@@ -9,7 +9,7 @@
 local H = require "tests.helper"
 local batch = require "lsys.batch"
 
-local sh, q = H.sh, require("lsys.text").shq
+local sh, q = H.sh, require("lsys.util.text").shq
 
 local MODEL = [[
 return require("lsys").lsystem { axiom = "A", steps = 1, env = { k = 1 }, productions = "A --> F" }

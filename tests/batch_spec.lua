@@ -15,7 +15,7 @@ local cjson = require "cjson"
 local sh, ABSBIN = H.sh, H.ABSBIN
 
 -- One word for the shell.
-local q = require("lsys.text").shq
+local q = require("lsys.util.text").shq
 
 -- A small plant: R and angle are its variables; K is a job's number, and the start hook
 -- kills the lsys process (SIGKILL, as `kill -9` from outside) at job KILL_AT when the

@@ -7,7 +7,7 @@
 local H = require "tests.helper"
 local batch = require "lsys.batch"
 
-local q = require("lsys.text").shq
+local q = require("lsys.util.text").shq
 
 -- A model with three variables; its jobs are never run here.
 local MODEL = [[

@@ -263,7 +263,7 @@ describe("lsys import", function ()
             .. "os.exit(3) */\nLsystem: 1\nderivation length: 1\nAxiom: A(N)\n"
             .. "A(x) --> B(x)\nendlsystem\n")
     local out = dir .. "/evil.lua"
-    local msg, code = lsys("import " .. require("lsys.text").shq(l) .. " -o " .. out)
+    local msg, code = lsys("import " .. require("lsys.util.text").shq(l) .. " -o " .. out)
     assert.equal(0, code, msg)
     assert.is_nil(H.read(marker))
     local text = H.read(out)

@@ -215,7 +215,7 @@ end)
 -- another file is ever quoted.
 describe("lsys.cpfg.load's #include", function ()
   local hascpp = os.execute("command -v cpp >/dev/null 2>&1")
-  local shq = require("lsys.text").shq
+  local shq = require("lsys.util.text").shq
 
   -- The message of loading `text` as sub/main.l (the model's folder is sub), or nil.
   local function suberr (text, how)

@@ -28,7 +28,7 @@ end
 local function have (prog) return (sh("command -v " .. prog)) ~= "" end
 
 -- One word for the shell.
-local q = require("lsys.text").shq
+local q = require("lsys.util.text").shq
 
 -- The frames, width and height of a video or GIF, as ffprobe counts them.
 local function probe (path)

@@ -1,11 +1,15 @@
 -- The shape of the source tree, checked so that it stays that way:
 --   * layers: csrc/core includes only the core, csrc/gl the core and itself, csrc/lua the
 --     three; a forbidden system header is a compile error (cmake/forbid/);
+--   * the Lua modules' layers (LUA_LAYERS): a module requires only its own layer and those
+--     below; nothing but init.lua requires "lsys", and init.lua only gathers; a require
+--     inside a function only loads an optional dependency (LUA_LAZY);
 --   * no include cycle among the C modules and no require cycle among the Lua modules;
 --   * no file in csrc/ over 1000 lines and no C function over 120 lines, except the
 --     dispatch switches listed in DISPATCH; the same budget for lua/, except what
 --     LUA_LONG_FILES and LUA_LONG_FUNCTIONS list (lists that only shrink).
 local H = require "tests.helper"
+local format = string.format
 
 -- Functions allowed past 120 lines: a switch that reads as a table, one case per command.
 local DISPATCH = {
@@ -224,6 +228,188 @@ local function luafunctions (path)
   return out
 end
 
+-- The module name of a file: lua/lsys/a/b.lua is lsys.a.b, lua/lsys/a/init.lua is lsys.a.
+local function modname (f)
+  return (f:gsub("^lua/", ""):gsub("%.lua$", ""):gsub("/init$", ""):gsub("/", "."))
+end
+
+-- The tokens of Lua source: { kind = "name" | "string" | "op", text =, line = } each;
+-- comments, numbers and white space are dropped.
+local function luatokens (src)
+  local out, i, n, line = {}, 1, #src, 1
+  local function add (kind, text) out[#out + 1] = { kind = kind, text = text, line = line } end
+  local function skip (j)              -- to j + 1, counting the newlines passed
+    local _, nl = src:sub(i, j):gsub("\n", "")
+    line, i = line + nl, j + 1
+  end
+  while i <= n do
+    local c = src:sub(i, i)
+    local long = src:match("^%[(=*)%[", src:sub(i, i + 1) == "--" and i + 2 or i)
+    if src:sub(i, i + 1) == "--" and not long then
+      i = src:find("\n", i, true) or n + 1
+    elseif long then
+      local open = src:find("[", i, true) + #long + 2
+      local close, j = src:find("]" .. long .. "]", open, true)
+      if src:sub(i, i + 1) ~= "--" then add("string", src:sub(open, (close or n + 1) - 1)) end
+      skip(j or n)
+    elseif c == '"' or c == "'" then
+      local j, buf = i + 1, {}
+      while j <= n and src:sub(j, j) ~= c do
+        if src:sub(j, j) == "\\" then j = j + 1 end
+        buf[#buf + 1] = src:sub(j, j)
+        j = j + 1
+      end
+      add("string", table.concat(buf))
+      skip(j)
+    elseif c:match("[%a_]") then
+      local w = src:match("^[%w_]+", i)
+      add("name", w); i = i + #w
+    elseif c:match("%d") then
+      i = i + #src:match("^[%w_.]+", i)
+    else
+      if c == "\n" then line = line + 1 elseif not c:match("%s") then add("op", c) end
+      i = i + 1
+    end
+  end
+  return out
+end
+
+-- Walks the tokens of the Lua file `path` keeping the blocks open (function, if, do,
+-- repeat: the keywords with an `end` or `until` of their own; `while` and `for` open theirs
+-- with `do`): visit(k, token, functions) for each token, `functions` the number of
+-- functions it is inside; close(kind, first line, last line) for each block closed.
+local function luawalk (path, visit, close)
+  local t = luatokens(io.open(path):read("a"))
+  local stack, nfun = {}, 0
+  for k, tok in ipairs(t) do
+    visit(k, tok, nfun, t)
+    if tok.kind == "name" then
+      local w = tok.text
+      if w == "function" or w == "if" or w == "do" or w == "repeat" then
+        stack[#stack + 1] = { w, tok.line }
+        if w == "function" then nfun = nfun + 1 end
+      elseif (w == "end" or w == "until") and #stack > 0 then
+        local b = table.remove(stack)
+        if b[1] == "function" then nfun = nfun - 1 end
+        if close then close(b[1], b[2], tok.line) end
+      end
+    end
+  end
+end
+
+-- The requires of the Lua file `path` whose module name is written out: `require "m"`,
+-- `require("m")`, `pcall(require, "m")` (also as `_G.require`): { module =, line =, lazy =
+-- (inside a function) } each. A name built at run time ends where its text does
+-- ("lsys.cli.commands.").
+local function luarequires (path)
+  local out = {}
+  luawalk(path, function (k, tok, nfun, t)
+    if tok.kind ~= "name" or tok.text ~= "require" then return end
+    local a, b, before = t[k + 1], t[k + 2], t[k - 1]
+    local name
+    if a and a.kind == "string" then name = a.text
+    elseif a and a.text == "(" and b and b.kind == "string" then name = b.text
+    elseif a and a.text == "," and b and b.kind == "string" and before and before.text == "("
+    then name = b.text end
+    if name then out[#out + 1] = { module = name, line = tok.line, lazy = nfun > 0 } end
+  end)
+  return out
+end
+
+-- The functions of the Lua file `path`: { first =, last = } (lines) each.
+local function luafunctionspans (path)
+  local out = {}
+  luawalk(path, function () end, function (kind, first, last)
+    if kind == "function" then out[#out + 1] = { first = first, last = last } end
+  end)
+  return out
+end
+
+-- The layers of the Lua modules, lowest first, each { name, module, ... }: a module may
+-- require modules of its own layer and of those below, never above. "lsys.x*" is lsys.x
+-- and every lsys.x.NAME; an exact name wins over such a prefix.
+local LUA_LAYERS = {
+  { "the C module", "lsys.core" },
+  { "util", "lsys.util*", "lsys.program" },         -- helpers that know nothing of models
+  { "the kernel", "lsys.model", "lsys.compile", "lsys.codegen", "lsys.view", "lsys.viewfile",
+    "lsys.func", "lsys.population", "lsys.warning", "lsys.sandbox", "lsys.kinds" },
+  -- what builds models and plants on the kernel: other notations (component graphs,
+  -- sketches, cpfg's files), incremental growth, the arrangement
+  { "the front ends", "lsys.components*", "lsys.sketch*", "lsys.cpfg*", "lsys.grow",
+    "lsys.arrange" },
+  -- pictures and model files: both take a component graph's prototype for a Model
+  { "render and load", "lsys.render", "lsys.load" },
+  { "the tools", "lsys.frames", "lsys.testing", "lsys.batch*" },
+  -- the window: lsys.viewer and the sessions in it (lua/lsys/ui/; their documented names
+  -- lsys.growview, lsys.arrange_ui and lsys.sketch.window give them)
+  { "the window", "lsys.viewer", "lsys.ui*", "lsys.growview", "lsys.arrange_ui",
+    "lsys.sketch.window" },
+  { "the library", "lsys" },                        -- init.lua: `require "lsys"`
+  { "the program", "lsys.cli*", "lsys.repl*" },     -- the command line and the REPL
+}
+
+-- The layer (index in LUA_LAYERS) of module `name`, or nil.
+local function layerof (name)
+  local best, blen
+  for i, l in ipairs(LUA_LAYERS) do
+    for j = 2, #l do
+      local base = l[j]:match("^(.-)%*$")
+      if l[j] == name then return i end
+      if base and (name == base or name:sub(1, #base + 1) == base .. ".")
+         and (blen == nil or #base > blen) then
+        best, blen = i, #base
+      end
+    end
+  end
+  return best
+end
+
+-- Modules a function may require when it first needs them, each with why it is loaded
+-- late; "lsys.x*" as in LUA_LAYERS. Every other require is at the top of its file.
+local LUA_LAZY = {
+  ["cjson"] = "lua-cjson, an optional library: JSON sketches, organs and the sketch window",
+  ["cjson.safe"] = "lua-cjson, as cjson",
+  ["lxp"] = "lua-expat, an optional library: SVG sketches only",
+  ["lsys.viewer"] = "the window (libglfw, a display): what never opens one does not load it",
+  ["lsys.ui*"] = "the window sessions, loaded by the command that opens their window",
+  ["lsys.repl"] = "the REPL, loaded when it runs (lsys with no command, lsys view)",
+  ["lsys.cli.commands*"] = "the program loads only the command that runs",
+  ["lsys.components*"] = "component graphs, loaded by the scripts that make them",
+  ["lsys.sketch*"] = "sketches, loaded by the scripts and commands that read them",
+  ["lsys.cpfg*"] = "cpfg's model files, loaded by the commands given one",
+  ["lsys.batch"] = "batch runs, loaded by lsys.batch and `lsys batch`",
+  ["lsys.arrange"] = "the arrangement, loaded by lsys.arrange",
+  ["lsys"] = "the library, which the REPL loads for its user as it starts (LIBRARY_USERS)",
+  ["lsys.readline"] = "the program's line editor, there when it was built with readline",
+  ["busted.runner"] = "busted, an optional program: only `lsys test` runs it",
+}
+
+-- Files that look modules up at each use instead of keeping them, and why.
+local LUA_LOOKED_UP = {
+  ["lua/lsys/testing.lua"] = "busted gives each spec file its own package.loaded, and this "
+    .. "module, loaded once by a helper, must use that file's modules",
+  ["lua/lsys/util/fs.lua"] = "lsys.core, for lsys.testing's reason",
+}
+
+-- Files besides init.lua that require "lsys", and why.
+local LIBRARY_USERS = {
+  ["lua/lsys/repl.lua"] = "the REPL hands its user the library as the global lsys",
+}
+
+-- The LUA_LAZY entry that covers module `name`, or nil.
+local function lazyentry (name)
+  if LUA_LAZY[name] then return name end
+  local best
+  for k in pairs(LUA_LAZY) do
+    local base = k:match("^(.-)%*$")
+    if base and (name == base or name:sub(1, #base + 1) == base .. ".")
+       and (best == nil or #k > #best) then
+      best = k
+    end
+  end
+  return best
+end
+
 describe("the Lua tree", function ()
   it("keeps to the size budget: 1000 lines a file, 120 a top-level function", function ()
     local over, fits = {}, {}
@@ -256,18 +442,88 @@ describe("the Lua tree", function ()
 
   it("has no require cycle among the lsys modules", function ()
     local graph = {}
-    local files = luafiles()
-    for _, f in ipairs(files) do
-      -- lua/lsys/a/b.lua is lsys.a.b, lua/lsys/a/init.lua is lsys.a
-      local name = f:gsub("^lua/", ""):gsub("%.lua$", ""):gsub("/init$", ""):gsub("/", ".")
+    for _, f in ipairs(luafiles()) do
+      local name = modname(f)
       graph[name] = {}
-      local src = io.open(f):read("a"):gsub("%-%-[^\n]*", "")
-      for m in src:gmatch("require%s*%(?%s*[\"']([%w_.]+)[\"']") do
-        if m == "lsys" or m:match("^lsys%.") and m ~= "lsys.core" then
-          table.insert(graph[name], m)
+      for _, r in ipairs(luarequires(f)) do
+        if r.module == "lsys" or r.module:match("^lsys%.") and r.module ~= "lsys.core" then
+          table.insert(graph[name], r.module)
         end
       end
     end
     assert.is_nil(cycle(graph))
+  end)
+
+  it("gives every module a layer", function ()
+    local none = {}
+    for _, f in ipairs(luafiles()) do
+      if layerof(modname(f)) == nil then none[#none + 1] = f .. " (" .. modname(f) .. ")" end
+    end
+    assert.same({}, none)
+  end)
+
+  it("requires only downwards: a module requires its own layer or those below", function ()
+    local bad = {}
+    for _, f in ipairs(luafiles()) do
+      local from = layerof(modname(f))
+      for _, r in ipairs(luarequires(f)) do
+        local to = r.module:match("^lsys") and layerof(r.module)
+        if from and to and to > from then
+          bad[#bad + 1] = format("%s:%d -> %s (%s requires %s)", f, r.line, r.module,
+                                 LUA_LAYERS[from][1], LUA_LAYERS[to][1])
+        end
+      end
+    end
+    assert.same({}, bad)
+  end)
+
+  it("has no file but init.lua that requires \"lsys\" (the REPL hands it to its user)",
+     function ()
+    local bad = {}
+    for _, f in ipairs(luafiles()) do
+      for _, r in ipairs(luarequires(f)) do
+        if r.module == "lsys" and f ~= "lua/lsys/init.lua" and not LIBRARY_USERS[f] then
+          bad[#bad + 1] = format("%s:%d -> lsys", f, r.line)
+        end
+      end
+    end
+    assert.same({}, bad)
+    for f in pairs(LIBRARY_USERS) do
+      local uses = false
+      for _, r in ipairs(luarequires(f)) do uses = uses or r.module == "lsys" end
+      assert(uses, f .. " is listed in LIBRARY_USERS but does not require \"lsys\": unlist it")
+    end
+  end)
+
+  it("has an init.lua that only gathers: no function body longer than two lines", function ()
+    local long = {}
+    for _, fn in ipairs(luafunctionspans("lua/lsys/init.lua")) do
+      if fn.last - fn.first + 1 > 2 then
+        long[#long + 1] = format("lua/lsys/init.lua:%d: a function of %d lines", fn.first,
+                                 fn.last - fn.first + 1)
+      end
+    end
+    assert.same({}, long)
+  end)
+
+  it("requires inside functions only what LUA_LAZY lists (optional dependencies)", function ()
+    local bad, used = {}, {}
+    for _, f in ipairs(luafiles()) do
+      if not LUA_LOOKED_UP[f] then
+        for _, r in ipairs(luarequires(f)) do
+          if r.lazy then
+            local entry = lazyentry(r.module)
+            if entry then used[entry] = true
+            else bad[#bad + 1] = format("%s:%d -> %s", f, r.line, r.module) end
+          end
+        end
+      end
+    end
+    table.sort(bad)
+    assert.same({}, bad)
+    local unused = {}
+    for k in pairs(LUA_LAZY) do if not used[k] then unused[#unused + 1] = k end end
+    table.sort(unused)
+    assert.same({}, unused)        -- listed, but no function requires it: unlist it
   end)
 end)

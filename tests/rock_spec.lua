@@ -10,7 +10,7 @@
 local H = require "tests.helper"
 local core = require "lsys.core"
 
-local quote = require("lsys.text").shq
+local quote = require("lsys.util.text").shq
 
 describe("the rock #rock #slow", function()
   local _, missing = H.sh("command -v luarocks")
@@ -52,7 +52,9 @@ describe("the rock #rock #slow", function()
 
   it("installs the program, the modules and lsys/core.so into the tree", function()
     for _, f in ipairs { "/bin/lsys", "/share/lua/5.4/lsys/init.lua",
-                         "/share/lua/5.4/lsys/testing.lua", "/lib/lua/5.4/lsys/core.so" } do
+                         "/share/lua/5.4/lsys/testing.lua", "/share/lua/5.4/lsys/render.lua",
+                         "/share/lua/5.4/lsys/util/text.lua", "/share/lua/5.4/lsys/ui/grow.lua",
+                         "/share/lua/5.4/lsys/cli/init.lua", "/lib/lua/5.4/lsys/core.so" } do
       assert.truthy(H.read(tree .. f), tree .. f .. " is missing")
     end
     local out, code = in_work("command -v lsys")

@@ -5,7 +5,7 @@
 -- ctest: slow (writes large strings and files through the program)
 local H = require "tests.helper"
 local core = require "lsys.core"
-local q = require("lsys.text").shq
+local q = require("lsys.util.text").shq
 
 local sh, ABSBIN = H.sh, H.ABSBIN
 

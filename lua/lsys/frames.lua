@@ -12,11 +12,13 @@
 -- @module lsys.frames
 local core = require "lsys.core"
 local model = require "lsys.model"
-local shq = require("lsys.text").shq
+local load = require "lsys.load"
+local draw = require("lsys.render").draw
+local shq = require("lsys.util.text").shq
 local fs = require "lsys.util.fs"
 
-local type, pairs, ipairs, error, pcall, tostring, require =
-      type, pairs, ipairs, error, pcall, tostring, require
+local type, pairs, ipairs, error, pcall, tostring =
+      type, pairs, ipairs, error, pcall, tostring
 local io, os, math, string, table = io, os, math, string, table
 local format = string.format
 local _ENV = nil
@@ -84,9 +86,7 @@ end
 -- The model of lsys.frames and lsys.animate: a Model, or a component graph's root
 -- prototype (made one, as lsys.render does).
 local function checkmodel (who, m)
-  if type(m) == "table" and m.links ~= nil and require("lsys.components.proto").isproto(m) then
-    return require("lsys.components").model(m)
-  end
+  if load.isproto(m) then return load.tomodel(m) end
   if not model.ismodel(m) then
     error(format("%s: a Model (lsys.lsystem{...}) or a component prototype expected, got %s",
       who, type(m)), 3)
@@ -148,11 +148,8 @@ local function series (who, m, opts, name)
   for i, k in ipairs(kept) do
     local path = name(i, k)
     local sc = k == n and last or scene(k)
-    -- as lsys.render(sc, ropts) (which `require "lsys"` would bring in a cycle): the scene
-    -- keeps its view; the supersampling is the view's
-    local v = model.sceneview(sc)
-    ropts.out, ropts.supersample = path, v and v.supersample
-    local rok, rerr = pcall(core.render, sc, ropts)
+    ropts.out = path                   -- the scene keeps its view, and its supersampling
+    local rok, rerr = pcall(draw, sc, ropts)
     if not rok then error(blame(who, rerr), 0) end
     files[i] = path
     if progress then progress("frame", i, #kept, path, k) end

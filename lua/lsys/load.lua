@@ -1,11 +1,14 @@
 --- Model files, loaded one way by the commands of the program and by lsys.batch: the file
 -- run, a failure naming it, a model picked from a table of named models, a component
--- graph's prototype made a Model.
+-- graph's prototype made a Model. Whatever takes a model or a component graph's root
+-- prototype (lsys.render, lsys.frames, the viewer, lsys.batch, the commands) tells and
+-- converts a prototype here: isproto, tomodel.
 -- @module lsys.load
+local model = require "lsys.model"
 local strip_internal = require("lsys.util.errors").strip_internal
 
-local type, pairs, tostring, error, pcall, require, loadfile =
-      type, pairs, tostring, error, pcall, require, loadfile
+local type, pairs, tostring, error, pcall, require, loadfile, package =
+      type, pairs, tostring, error, pcall, require, loadfile, package
 local string, table = string, table
 local format = string.format
 local _ENV = nil
@@ -20,9 +23,20 @@ function M.ismodel (v)
   return ok and type(derive) == "function"
 end
 
---- Whether `v` is a component graph's prototype (lsys.components).
+--- Whether `v` is a component graph's prototype (lsys.components). There is none before
+-- lsys.components.proto is loaded, and this does not load it: a script without component
+-- graphs never does.
 function M.isproto (v)
-  return type(v) == "table" and require("lsys.components.proto").isproto(v)
+  local proto = type(v) == "table" and package.loaded["lsys.components.proto"]
+  return type(proto) == "table" and proto.isproto(v)
+end
+
+--- `v` as a Model: a component graph's prototype made one by lsys.components.model (`opts`,
+-- its options: seed, detail, ...); anything else as it is. Raises lsys.components.model's
+-- errors.
+function M.tomodel (v, opts)
+  if not M.isproto(v) then return v end
+  return require("lsys.components").model(v, opts)
 end
 
 local function either (v) return M.ismodel(v) or M.isproto(v) end
@@ -46,7 +60,7 @@ function M.run (path, opts)
     if chunks then chunks[path] = chunk end
   end
   if type(chunk) ~= "function" then error(chunk, 0) end
-  local ok, v = require("lsys.model").runfile(path, chunk)
+  local ok, v = model.runfile(path, chunk)
   if not ok then
     local msg = opts and opts.strip and strip_internal(v) or tostring(v)
     error(msg:find(path, 1, true) and msg or path .. ": " .. msg, 0)
@@ -70,7 +84,7 @@ function M.pick (v, path, name, opts)
     end
     return v
   end
-  if opts and opts.scene and require("lsys.model").isscene(v) then return v end
+  if opts and opts.scene and model.isscene(v) then return v end
   local names = {}
   if type(v) == "table" then
     for k, x in pairs(v) do
@@ -92,15 +106,15 @@ function M.pick (v, path, name, opts)
 end
 
 --[[
-`v` as a Model: a component graph's prototype (of the file `path`) made one by
-lsys.components.model, expanded with `seed`; anything else as it is. A failure is raised
+`v` as a Model: a component graph's prototype (of the file `path`) made one by M.tomodel,
+expanded with `seed`; anything else as it is. A failure is raised
 naming the file: its message without its first position (the component module's line),
 the file's name in front when the message does not hold it; with opts.strip (as lsys.batch
 records it), without lsys's own positions and the file's name always in front.
 ]]
 function M.expand (v, path, seed, opts)
   if not M.isproto(v) then return v end
-  local ok, m = pcall(require("lsys.components").model, v, { seed = seed })
+  local ok, m = pcall(M.tomodel, v, { seed = seed })
   if ok then return m end
   if opts and opts.strip then error(format("%s: %s", path, strip_internal(m)), 0) end
   local msg = tostring(m):gsub("^[^:\n]*%.lua:%d+: ", "")

@@ -82,6 +82,29 @@ local LSTRING_MT = getmetatable(core.lstring(""))
 local function islstring (x) return getmetatable(x) == LSTRING_MT end
 M.islstring = islstring
 
+--- lsys.lstring: parses cpfg text notation into an Lstring; `names` declares
+-- multi-character module names ("Apex Leaf").
+function M.lstring (text, names)
+  if (names == nil or names == "") and type(text) ~= "string" then
+    error(format("lsys.lstring: the text must be a string, got %s", type(text)), 2)
+  end
+  if names == nil or names == "" then
+    local ok, s = pcall(core.lstring, text)
+    if not ok then error((tostring(s):gsub("^lstring: ", "lsys.lstring: ")), 2) end
+    return s
+  end
+  if type(text) ~= "string" then
+    error(format("lsys.lstring: the text must be a string, got %s", type(text)), 2)
+  end
+  if type(names) ~= "string" then
+    error(format("lsys.lstring: the names must be a string (\"Apex Leaf\"), got %s",
+                 type(names)), 2)
+  end
+  local s, msg, pos = core.rules(names):lstring(text)
+  if not s then error(format("lsys.lstring: %s at character %d", msg, pos), 2) end
+  return s
+end
+
 
 -- Names usable in rule expressions besides `env` (lsys.sandbox: no library table of the
 -- process is among them).
@@ -211,6 +234,14 @@ function Model:_checkcounts ()
       end
     end
   end
+end
+
+--- lsys.here: the directory of the Lua file that calls this ("." when it is not a file):
+-- for a model's contour, surface and texture files next to it, as
+-- `view = { dir = lsys.here() }`.
+function M.here ()
+  local src = debug.getinfo(2, "S").source
+  return src:match("^@(.*)/[^/]*$") or "."
 end
 
 -- The model file lsys.cli is running (see runfile), or nil.
@@ -649,6 +680,15 @@ local hooked
 
 --- The model whose hook runs now, or nil.
 function M.hooked () return hooked end
+
+--- lsys.srand(seed), cpfg's: in a rule function, reseeds the generator of the model
+-- deriving; in a model's hook (start, start_each, end_each, finish), that model's (m:srand).
+function M.srand (seed)
+  local m = not core.producing() and hooked
+  if m then return m:srand(seed) end
+  local ok, err = pcall(core.srand, seed)
+  if not ok then error("lsys." .. tostring(err):gsub("^[^:]*:%d+: ", ""), 2) end
+end
 
 -- Runs the hook `f` of model `m` (f(m, ...)) with `hooked` set to m for its duration.
 local function runhook (m, f, ...)

@@ -19,9 +19,10 @@ local _ENV = nil
 
 local M = {}
 
--- lsys and lsys.core are looked up at each use, not kept: busted gives each spec file its
--- own package.loaded, and this module, loaded once by a helper, must use that file's lsys.
-local function lsys () return require "lsys" end
+-- The modules are looked up at each use, not kept: busted gives each spec file its own
+-- package.loaded, and this module, loaded once by a helper, must use that file's modules
+-- (a Model's metatable is its file's lsys.model's).
+local function kind (x) return require("lsys.kinds").type(x) end
 local function core () return require "lsys.core" end
 
 --- Whether this lsys can draw pictures (built with OSMesa): without it, image_matches on a
@@ -45,11 +46,11 @@ local function long_names (s)
 end
 
 local function as_lstring (x, names, what)
-  if lsys().type(x) == "lstring" then return x end
+  if kind(x) == "lstring" then return x end
   if type(x) ~= "string" then
     error(format("the %s L-string must be an Lstring or a string, not a %s", what, type(x)), 0)
   end
-  local ok, s = pcall(lsys().lstring, x, names)
+  local ok, s = pcall(require("lsys.model").lstring, x, names)
   if not ok then error(format("the %s text does not read as an L-string: %s", what,
                               (tostring(s):gsub("^lsys%.lstring: ", ""))), 0) end
   return s
@@ -74,7 +75,7 @@ end
 
 -- A parameter as the L-string's text shows it: 2, not 2.0; the shortest form that reads
 -- back as the same number.
-local num = require("lsys.text").number
+local num = require("lsys.util.text").number
 
 -- Lines showing the modules of s around module i (#s + 1: its end), carets under module i;
 -- head is "expected: " or "actual:   ".
@@ -108,8 +109,8 @@ function M.compare_lstrings (expected, actual, tol)
   end
   local test, how = number_test(tol)
   if names == nil then
-    local s = lsys().type(actual) == "lstring" and actual
-              or lsys().type(expected) == "lstring" and expected
+    local s = kind(actual) == "lstring" and actual
+              or kind(expected) == "lstring" and expected
     names = s and long_names(s) or nil
   end
   local e = as_lstring(expected, names, "expected")
@@ -239,10 +240,10 @@ local IS_STAT = {}
 for _, k in ipairs(STATS) do IS_STAT[k] = true end
 
 local function as_scene (x)
-  local kind = lsys().type(x)
-  if kind == "model" then return x:interpret() end
-  if kind == "scene" then return x end
-  error(format("a Scene or a Model expected, got %s", kind or type(x)), 0)
+  local k = kind(x)
+  if k == "model" then return x:interpret() end
+  if k == "scene" then return x end
+  error(format("a Scene or a Model expected, got %s", k or type(x)), 0)
 end
 
 --- Statistics of a scene (a Model is derived and interpreted first): modules (of the
@@ -415,7 +416,7 @@ local function picture (x, opts)
   local w, h = parse_size(opts.size)
   local ro = { width = w, height = h }
   for k, v in pairs(opts.render or {}) do ro[k] = v end
-  local ok, px, pw, ph = pcall(lsys().render, x, ro)
+  local ok, px, pw, ph = pcall(require("lsys.render").render, x, ro)
   if not ok then error(px, 0) end
   return px, pw, ph
 end

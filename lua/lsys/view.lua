@@ -72,12 +72,13 @@
 -- the same for text in memory; `load_colormap` and `load_materials` read palettes. They
 -- are lsys.viewfile's, given here under the same names.
 -- @module lsys.view
+local core = require "lsys.core"
 local viewfile = require "lsys.viewfile"
 local warning = require "lsys.warning"
 
-local type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall, require,
+local type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall,
       setmetatable, getmetatable, rawget, utf8 =
-      type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall, require,
+      type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall,
       setmetatable, getmetatable, rawget, utf8
 local format = string.format
 local _ENV = nil
@@ -127,12 +128,6 @@ local KINDS = {
   textures = "textures", minimize_twist = "boolean", functions = "functions",
 }
 M.KINDS = KINDS
-
-local core                    -- lsys.core, loaded when a view first names a file
-local function getcore ()
-  if core == nil then core = require "lsys.core" end
-  return core
-end
 
 local function fail (where, fmt, ...)
   error(format("%s: " .. fmt, where, ...), 0)
@@ -271,7 +266,7 @@ local cache_src = setmetatable({}, { __mode = "k" })
 
 -- The lsys.core function `fn`, or an error saying this build lacks it.
 local function corefn (ctx, name, fn)
-  local f = getcore()[fn]
+  local f = core[fn]
   if f == nil then fail(ctx.where, "%s: this build of lsys.core has no %s", name, fn) end
   return f
 end

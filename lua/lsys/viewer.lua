@@ -24,10 +24,11 @@
 -- @module lsys.viewer
 local core = require "lsys.core"
 local model = require "lsys.model"
+local load = require "lsys.load"
 local warning = require "lsys.warning"
 
-local type, pairs, ipairs, error, pcall, tostring, require, getmetatable =
-      type, pairs, ipairs, error, pcall, tostring, require, getmetatable
+local type, pairs, ipairs, error, pcall, tostring, getmetatable =
+      type, pairs, ipairs, error, pcall, tostring, getmetatable
 local io, os, string, math = io, os, string, math
 local format = string.format
 local _ENV = nil
@@ -270,9 +271,7 @@ end
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
-  if type(x) == "table" and require("lsys.components.proto").isproto(x) then
-    x = require("lsys.components").model(x)    -- a component graph's root prototype
-  end
+  x = load.tomodel(x)                            -- a component graph's root prototype
   S.strings, S.steps, S.populations = {}, {}, {}
   if model.ismodel(x) then
     frames, textures = model_frames(x, opts)

@@ -6,22 +6,17 @@
 -- `load(path)` reads a cpfg view file into a view table; `parse(text, name)` does the
 -- same for text in memory. `load_colormap` and `load_materials` read palettes.
 -- @module lsys.viewfile
+local core = require "lsys.core"
 local warning = require "lsys.warning"
 
-local type, ipairs, pairs, next, error, tostring, tonumber, math, string, table, require,
+local type, ipairs, pairs, next, error, tostring, tonumber, math, string, table,
       setmetatable, utf8, io =
-      type, ipairs, pairs, next, error, tostring, tonumber, math, string, table, require,
+      type, ipairs, pairs, next, error, tostring, tonumber, math, string, table,
       setmetatable, utf8, io
 local format = string.format
 local _ENV = nil
 
 local M = {}
-
-local core                    -- lsys.core, loaded when a file is first read
-local function getcore ()
-  if core == nil then core = require "lsys.core" end
-  return core
-end
 
 local function isnum (x)
   return type(x) == "number" and x == x and x ~= math.huge and x ~= -math.huge
@@ -38,7 +33,7 @@ local MAXFILE = 16 * 2 ^ 20
 -- file"): a view can name any path, /dev/zero included. lsys.view reads the files of
 -- contours, surfaces and textures with it too.
 function M.readfile (path, max)
-  return getcore().read_file(path, max or MAXFILE)
+  return core.read_file(path, max or MAXFILE)
 end
 local readfile = M.readfile
 
@@ -269,7 +264,7 @@ end
 
 function Parser:addtropism (t)
   local l = self.v.tropisms or {}
-  local max = getcore().MAXTROPISMS       -- the turtle's limit (LSYS_MAXTROPISMS)
+  local max = core.MAXTROPISMS       -- the turtle's limit (LSYS_MAXTROPISMS)
   if #l >= max then self:err("more than %d tropisms and torques", max) end
   l[#l + 1] = t
   self.v.tropisms = l

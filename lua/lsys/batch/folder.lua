@@ -1,7 +1,7 @@
 --- The output folder of an lsys.batch run: its symbolic links, which no job writes through,
 -- and the temporaries that dead runs left of a job's files.
 -- @module lsys.batch.folder
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 local join = require("lsys.batch.fields").join
 
 local ipairs, next = ipairs, next

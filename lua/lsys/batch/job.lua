@@ -2,8 +2,8 @@
 -- interpreted, and written to its files, with the record of the manifest that says so.
 -- @module lsys.batch.job
 local core = require "lsys.core"
-local model = require "lsys.model"
 local load = require "lsys.load"
+local draw = require("lsys.render").draw
 local B = require "lsys.batch.base"
 local F = require "lsys.batch.fields"
 local J = require "lsys.batch.json"
@@ -113,11 +113,7 @@ local function run_job (job, claims, dir, ctx)
       local path = join(dir, o.path)
       mkdirs(dirname(path), ctx.made)
       if o.format == "png" then
-        -- lsys.render(sc, ...) (which `require "lsys"` would bring in a cycle): the
-        -- scene's view, and its supersampling
-        local v = model.sceneview(sc)
-        core.render(sc, { out = path, width = job.width or B.SIZE,
-                          height = job.height or B.SIZE, supersample = v and v.supersample })
+        draw(sc, { out = path, width = job.width or B.SIZE, height = job.height or B.SIZE })
       elseif o.format == "lstring" then
         core.write_file(path, tostring(s) .. "\n")
       elseif o.format == "stats" then

@@ -1,7 +1,7 @@
 --- JSON text as lsys.batch writes it in its manifests and stats files: the same bytes for
 -- the same value in every process.
 -- @module lsys.batch.json
-local shortest = require("lsys.text").number
+local shortest = require("lsys.util.text").number
 
 local type, pairs, ipairs, error, tostring, setmetatable, getmetatable =
       type, pairs, ipairs, error, tostring, setmetatable, getmetatable

@@ -3,7 +3,7 @@
 -- @module lsys.batch.manifest
 local core = require "lsys.core"
 local J = require "lsys.batch.json"
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 local join = require("lsys.batch.fields").join
 local host = require("lsys.program").host
 

@@ -3,7 +3,10 @@
 -- @module lsys.cli.source
 local A = require "lsys.cli.args"
 local load = require "lsys.load"
-local normalize = require("lsys.text").normpath
+local lmodel = require "lsys.model"
+local lview = require "lsys.view"
+local warning = require "lsys.warning"
+local normalize = require("lsys.util.text").normpath
 local host = require("lsys.program").host
 
 local type, ipairs, tostring, tonumber, error, pcall, require =
@@ -194,7 +197,7 @@ local function set_env (model, sets, src)
         have = have .. "; the preprocessor replaces a #define's name by its value, and "
           .. "`lsys import` writes a model file whose #defines of numbers are variables"
       end
-      require("lsys.warning").warn(format("lsys: --set %s: the model has no variable %s (%s)",
+      warning.warn(format("lsys: --set %s: the model has no variable %s (%s)",
         kv[1], kv[1], have))
     end
     model.env[kv[1]] = kv[2]
@@ -204,11 +207,10 @@ end
 -- Checks each --view NAME=VALUE as the model's view will, so that a wrong one is blamed on
 -- the option rather than on the model file.
 local function check_views (cmd, model, vlist)
-  local view = require "lsys.view"
   local dir = type(model.view) == "table" and model.view.dir or nil
   for _, e in ipairs(vlist) do
     local k, s = e[1], e[2]
-    local ok, err = pcall(view.normalize, { [k] = value(s:match("=(.*)$")), dir = dir }, "")
+    local ok, err = pcall(lview.normalize, { [k] = value(s:match("=(.*)$")), dir = dir }, "")
     if not ok then
       err = tostring(err):gsub("^: ", ""):gsub("'view%.", "'")
       usage(cmd, "--view %s: %s", s, err)
@@ -261,7 +263,7 @@ local function prepare (cmd, opts, pos)
     if steps == nil or steps < 0 then
       usage(cmd, "--steps expects a non-negative integer, got '%s'", opts.steps)
     end
-    local limit = require("lsys.model").MAX_STEPS
+    local limit = lmodel.MAX_STEPS
     if steps > limit then
       usage(cmd, "--steps %s is more than the limit of %d steps", opts.steps, limit)
     end
@@ -292,7 +294,7 @@ local function prepare (cmd, opts, pos)
 
   local path = src.path
   local model = load_source(src, opts.name, seed)
-  if require("lsys.model").isscene(model) then     -- a file returning a population
+  if lmodel.isscene(model) then     -- a file returning a population
     if cmd ~= "render" and cmd ~= "export" or opts.frames ~= nil then
       error(format("%s returns a Scene (a population, lsys.population): `lsys render` and "
         .. "`lsys export` take it", path), 0)
@@ -336,7 +338,7 @@ end
 local function scene_of (cmd, opts, pos)
   local model, path, views = prepare(cmd, opts, pos)
   local verbose = opts.progress or isatty(2)
-  if require("lsys.model").isscene(model) then return model, path, views, verbose end
+  if lmodel.isscene(model) then return model, path, views, verbose end
   local s = derive(model, opts)
   local t0 = clock()
   local scene = model:interpret(s, views)

@@ -19,6 +19,7 @@
 local C = require "lsys.components.proto"
 local X = require "lsys.components.expand"
 local core = require "lsys.core"
+local model = require "lsys.model"
 
 local ipairs, setmetatable, rawget, tostring, require, pcall, error, type =
       ipairs, setmetatable, rawget, tostring, require, pcall, error, type
@@ -383,7 +384,6 @@ end
 -- follows (a primitive, the children) starts from the frame again.
 local function geometry (w, g)
   local s = g
-  local model = require "lsys.model"
   if model.ismodel(g) then
     w.derived = w.derived or {}
     s = w.derived[g]

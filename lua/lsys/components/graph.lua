@@ -15,7 +15,7 @@
 --   graph.quote(s) -> s quoted for a POSIX shell
 -- @module lsys.components.graph
 local core = require "lsys.core"
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 local type, pairs, ipairs, error, tostring, pcall = type, pairs, ipairs, error, tostring, pcall
 local io, math, string, table, utf8 = io, math, string, table, utf8
 local format, byte, concat, sort = string.format, string.byte, table.concat, table.sort

@@ -8,7 +8,7 @@ local math = math
 local concat, insert, remove, sort = table.concat, table.insert, table.remove, table.sort
 local format = string.format
 local io, os = io, os
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 local core = require "lsys.core"
 local _ENV = nil
 

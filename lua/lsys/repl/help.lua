@@ -9,8 +9,8 @@
 -- directories (an install: share/lsys/docs, where `cmake --install` puts them).
 -- @module lsys.repl.help
 local host = require("lsys.program").host
-local normalize = require("lsys.text").normpath
-local shq = require("lsys.text").shq
+local normalize = require("lsys.util.text").normpath
+local shq = require("lsys.util.text").shq
 
 local G = _G
 local type, tostring, pairs, ipairs, select, pcall, getmetatable, rawget =

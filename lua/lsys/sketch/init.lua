@@ -11,6 +11,7 @@
 -- The steps (lsys.sketch.geometry, .functions, .templates) are exported for the tests and
 -- the sketch window: sketch.geometry, sketch.functions, sketch.templates.
 -- @module lsys.sketch
+local core = require "lsys.core"
 local geometry = require "lsys.sketch.geometry"
 local functions = require "lsys.sketch.functions"
 local templates = require "lsys.sketch.templates"
@@ -322,7 +323,7 @@ function M.template (name, threed)
 end
 
 -- Lua source of a number that reads back to the same double.
-local num = require("lsys.text").number
+local num = require("lsys.util.text").number
 
 local codegen = require "lsys.codegen"
 local quote = codegen.string
@@ -424,7 +425,7 @@ function Sketch:save_model (path, opts)
   local okc, cerr = pcall(codegen.check, text, path:match("[^/]*$"), CHECK)
   if not okc then error("save_model: " .. cerr, 2) end
   -- the C writer: an exclusive temporary beside `path`, checked writes, then the rename
-  local okw, err = pcall(require("lsys.core").write_file, path, text)
+  local okw, err = pcall(core.write_file, path, text)
   if not okw then error("save_model: " .. tostring(err), 2) end
   return path
 end

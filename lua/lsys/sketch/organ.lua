@@ -29,6 +29,7 @@
 --               The end further left meets the left boundary, the other the right one.
 -- @module lsys.sketch.organ
 local core = require "lsys.core"
+local model = require "lsys.model"
 
 local type, pairs, ipairs, error, setmetatable, tostring, pcall, math, string,
       table, require =
@@ -556,7 +557,6 @@ function Organ:save_mesh (path, view)
   local v = { color = 2 }
   for k, x in pairs(view or {}) do v[k] = x end
   v.surfaces = { O = self }
-  local model = require "lsys.model"
   local ok, err = pcall(function ()
     local m = model.lsystem { axiom = "~O", view = v }
     m:interpret(m:derive(0)):save(path)

@@ -14,6 +14,7 @@
 -- names the stroke by its index and role. Geometry (an inclination line that misses the
 -- stem, a boundary on the wrong side) is the pipeline's to check, not this module's.
 -- @module lsys.sketch.read
+local core = require "lsys.core"
 local svgpath = require "lsys.sketch.svgpath"
 local cjson_safe = require "cjson.safe"
 
@@ -68,7 +69,7 @@ local function isarray (t)
 end
 
 -- The shortest text of x that reads back as x.
-local num = require("lsys.text").number
+local num = require("lsys.util.text").number
 
 local function show (v)
   if type(v) == "string" then return "'" .. v .. "'" end
@@ -603,17 +604,11 @@ end
 -- --------------------------------------------------------------------------
 -- Files
 
-local core
-local function getcore ()
-  if core == nil then core = require "lsys.core" end
-  return core
-end
-
 --- Reads the sketch file `path`: JSON or SVG by the extension (.json, .svg), else by the
 -- first character ('{' or '<'). Messages begin with `path`.
 function M.file (path)
   if type(path) ~= "string" then error("lsys.sketch.read.file: a file name expected", 2) end
-  local text, err = getcore().read_file(path, M.MAX_FILE)
+  local text, err = core.read_file(path, M.MAX_FILE)
   if text == nil then error(err, 0) end
   local ext = lower(match(path, "%.(%w+)$") or "")
   if ext == "json" then return M.json(text, path) end
@@ -668,7 +663,7 @@ end
 -- same folder renamed over `path` once written (lsys.core's write_file).
 function M.save (sketch, path)
   if type(path) ~= "string" then error("lsys.sketch.read.save: a file name expected", 2) end
-  getcore().write_file(path, M.to_json(sketch))
+  core.write_file(path, M.to_json(sketch))
   return true
 end
 

@@ -59,7 +59,7 @@ local format, byte, char = string.format, string.byte, string.char
 local concat, sort, insert, table_remove = table.concat, table.sort, table.insert, table.remove
 local math_min, math_max = math.min, math.max
 local ARG = arg
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 local _ENV = nil   -- no globals below: a target may seal _G while an input runs
 
 local M = {}

@@ -4,8 +4,9 @@
 local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
+local F = require "lsys.frames"
 
-local tonumber, error, pcall, next, require = tonumber, error, pcall, next, require
+local tonumber, error, pcall, next = tonumber, error, pcall, next
 local string = string
 local format = string.format
 local parse, out, usage, clock, model_opts = A.parse, A.out, A.usage, A.clock, A.model_opts
@@ -41,14 +42,14 @@ local function run (args)
   end
   local model, _, views = prepare("animate", opts, pos)
   local t0 = clock()
-  local ok, r, n, fw, fh = pcall(require("lsys").animate, model, {
+  local ok, r, n, fw, fh = pcall(F.animate, model, {
     out = outpath, fps = fps, hold = hold, every = every, width = w, height = h,
     view = next(views) and views or nil, progress = frames_progress(opts),
   })
   if not ok then error(frames_error(r), 0) end
   local held = hold and hold > 0 and format(", the last held %g s", hold) or ""
   out(format("wrote %s (%d frame%s, %dx%d, %g a second%s) in %.1f s\n", r, n,
-    n == 1 and "" or "s", fw, fh, fps or require("lsys.frames").FPS, held, clock() - t0))
+    n == 1 and "" or "s", fw, fh, fps or F.FPS, held, clock() - t0))
   return 0
 end
 

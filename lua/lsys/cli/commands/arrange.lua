@@ -4,6 +4,7 @@
 local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
+local arrange = require "lsys.arrange"
 
 local ipairs, tostring, tonumber, error, pcall, require, next =
       ipairs, tostring, tonumber, error, pcall, require, next
@@ -45,10 +46,9 @@ local function run (args)
   else
     s = derive(model, opts)
   end
-  local lsys = require "lsys"
-  local arr = lsys.arrange(model, s, aopts)
+  local arr = arrange(model, s, aopts)
   local outpath = opts.output or ((path:match("([^/]-)%.?[^./]*$") or "model") .. "-arranged.txt")
-  require("lsys.arrange_ui").run(arr, { out = outpath, width = w, height = h,
+  require("lsys.ui.arrange").run(arr, { out = outpath, width = w, height = h,
                                         title = "arrange " .. path:match("([^/]*)$") })
   return 0
 end

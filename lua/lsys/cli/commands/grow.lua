@@ -43,7 +43,7 @@ local function run (args)
   if every and not opts.frames then usage("grow", "--every applies to --frames") end
   local path = find_model(pos[1])
   local function load () return run_file(path) end
-  local GV = require "lsys.growview"
+  local GV = require "lsys.ui.grow"
   local make = GV.maker(load(), path, { seed = seed }, load)
   local t0 = clock()
   if opts.frames then

@@ -4,8 +4,10 @@
 local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
+local frames = require("lsys.frames").frames
+local render = require("lsys.render").render
 
-local error, pcall, next, require = error, pcall, next, require
+local error, pcall, next = error, pcall, next
 local io, string = io, string
 local format = string.format
 local parse, out, usage, clock, RENDER_OPTS = A.parse, A.out, A.usage, A.clock, A.RENDER_OPTS
@@ -19,7 +21,7 @@ local function render_frames (opts, pos, w, h)
   local every = int_opt("render", "every", opts.every, 1)
   local model, _, views = prepare("render", opts, pos)
   local t0 = clock()
-  local ok, files, steps = pcall(require("lsys").frames, model, {
+  local ok, files, steps = pcall(frames, model, {
     dir = opts.frames, every = every, width = w, height = h,
     view = next(views) and views or nil, progress = frames_progress(opts),
   })
@@ -51,9 +53,8 @@ local function run (args)
     usage("render", "the output must be a .png file, got '%s'", outpath)
   end
   local scene, _, _, verbose = scene_of("render", opts, pos)
-  local lsys = require "lsys"
   local t0 = clock()
-  lsys.render(scene, { out = outpath, width = w, height = h })
+  render(scene, { out = outpath, width = w, height = h })
   if verbose then
     io.stderr:write(format("rendered %dx%d in %.2f s\n", w, h, clock() - t0))
   end

@@ -3,6 +3,7 @@
 -- @module lsys.cli.commands.sketch
 local A = require "lsys.cli.args"
 local HELP = require("lsys.cli.help").help
+local render = require("lsys.render").render
 
 local tostring, tonumber, error, pcall, require = tostring, tonumber, error, pcall, require
 local string, math = string, math
@@ -72,7 +73,7 @@ function sketch_file_write (sub, sk, outpath, w, h)
   else
     local m = sk:model {}
     local scene = m:interpret(m:derive())
-    require("lsys").render(scene, { out = outpath, width = w or 800, height = h or 800 })
+    render(scene, { out = outpath, width = w or 800, height = h or 800 })
     out(format("wrote %s (%dx%d, %d triangles, %d lines)\n", outpath, w or 800, h or 800,
       scene.ntriangles, scene.nlines))
   end
@@ -89,7 +90,7 @@ local function run (args)
   local w, h = size_opt("sketch", opts.size)
   local lo = sketch_load_opts(opts)
   if opts.output ~= nil then usage("sketch", "-o applies to plot, model and render") end
-  require("lsys.sketch.window").run {
+  require("lsys.ui.sketch").run {
     file = pos[1], nodes = lo.nodes_per_layer, phyllotaxis = lo.phyllotaxis,
     window = w and { w, h } or nil, out = out,
   }

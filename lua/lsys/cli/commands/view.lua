@@ -1,9 +1,11 @@
 --- `lsys view`: the viewer window on a model, loaded again when one of its files changes.
 -- @module lsys.cli.commands.view
+local core = require "lsys.core"
 local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 local host = require("lsys.program").host
+local parse_size = require("lsys.model").parse_size
 
 local ipairs, tostring, tonumber, error, pcall, require, getmetatable, next =
       ipairs, tostring, tonumber, error, pcall, require, getmetatable, next
@@ -46,7 +48,7 @@ local function view_opts (opts, given)
   local history
   if opts.history ~= nil then
     if opts.last then usage("view", "--last and --history exclude each other") end
-    local ok, r = pcall(require("lsys.model").parse_size, opts.history, "--history")
+    local ok, r = pcall(parse_size, opts.history, "--history")
     if not ok then usage("view", "%s", (tostring(r):gsub("^[^\n]-:%d+: ", ""))) end
     history = r
   end
@@ -60,7 +62,6 @@ end
 -- files files() lists (its time or size, stable for 0.1 s) calls reload(), after which
 -- the list is asked again. Closes the window.
 local function watch (V, files, reload)
-  local core = require "lsys.core"
   local list = files()
   local function stamp ()     -- "missing" while the model file is (being rewritten)
     local t = {}

@@ -26,7 +26,7 @@ local type, pairs, ipairs, pcall, error, tostring =
 local os_remove, open, mathtype, execute, tmpname = os.remove, io.open, math.type, os.execute,
       os.tmpname
 local format, concat = string.format, table.concat
-local shq = require("lsys.text").shq
+local shq = require("lsys.util.text").shq
 
 -- 3 s: the fuzzer's line hook slows lsys's Lua about 20 times
 local T = { maxlen = 4096, budget = 3 }

@@ -1,5 +1,5 @@
 --- Small text helpers shared by lsys's modules (no dependencies, so anything may require it).
--- @module lsys.text
+-- @module lsys.util.text
 local math, string, table = math, string, table
 local format = string.format
 local tonumber = tonumber

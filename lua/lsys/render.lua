@@ -1,0 +1,95 @@
+--- Pictures: lsys.render, a Scene, a Model or a component graph's prototype drawn to a PNG
+-- file (or to RGBA pixels) offscreen. Every PNG lsys draws goes through here: the library's
+-- lsys.render, lsys.frames (one camera box for a series), lsys.batch, the window sessions'
+-- exports and the command line.
+-- @module lsys.render
+local core = require "lsys.core"
+local model = require "lsys.model"
+local view = require "lsys.view"
+local load = require "lsys.load"
+
+local type, pairs, error, pcall, tostring, next = type, pairs, error, pcall, tostring, next
+local string = string
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+-- Options of lsys.render that are not view options.
+local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,
+                      transparent = true, wireframe = true, fit = true }
+M.RENDER_ONLY = RENDER_ONLY
+
+-- lsys.render, raising its errors at `level` (0: without a position).
+local function render (level, x, opts)
+  opts = opts or {}
+  if type(opts) ~= "table" then error("lsys.render: an options table expected", level) end
+  local ext = type(opts.out) == "string" and opts.out:match("%.([%w]+)$")
+  if ext and ext:lower() ~= "png" then      -- not PNG data under another format's name
+    error(format("lsys.render: '%s': lsys writes PNG images; name the file .png", opts.out),
+          level)
+  end
+  x = load.tomodel(x)                             -- a component graph's root
+  local over, drawn = {}, {}
+  for k, val in pairs(opts.view or {}) do over[k] = val end
+  for k, val in pairs(opts) do
+    if view.KINDS[k] then over[k] = val
+    elseif not RENDER_ONLY[k] then
+      error(format("lsys.render: unknown option '%s'", tostring(k)), level)
+    end
+  end
+  for k, val in pairs(over) do        -- what changes the drawing goes to the turtle
+    if view.TURTLE[k] then drawn[k] = val; over[k] = nil end
+  end
+  if model.ismodel(x) then
+    local ok, sc = pcall(x.interpret, x, nil, next(drawn) and drawn or nil)
+    if not ok then error(sc, level) end
+    x = sc
+  elseif next(drawn) and model.isscene(x) then
+    error(format("lsys.render: '%s' changes how the turtle draws: render the model, or "
+                 .. "interpret it with the option (m:interpret(s, { %s = ... }))",
+                 next(drawn), next(drawn)), level)
+  end
+  if not model.isscene(x) then
+    error("lsys.render: a Scene, a Model or a component prototype expected", level)
+  end
+  -- the scene keeps its camera, light, background and textures; a render that changes
+  -- them passes the whole view they make with the scene's own
+  local v = model.sceneview(x)
+  local ro = { supersample = v and v.supersample }
+  if next(over) then
+    local ok, r = pcall(view.normalize, view.merge(v or view.normalize({}, "lsys.render"), over),
+                        "lsys.render")
+    if not ok then error(r, level) end
+    ro = view.render_options(r)
+  end
+  ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
+  ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
+  ro.fit = opts.fit
+  local ok, a, b, c = pcall(core.render, x, ro)
+  if not ok then error(a, level) end
+  return a, b, c
+end
+
+--- Renders `x` (a Scene, a Model: derived and interpreted, or a component graph's root
+-- prototype: made a Model) to a PNG file.
+-- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
+-- width and height), width, height (800), zoom (1: magnifies about the centre),
+-- transparent (a transparent background, RGBA PNG), wireframe, fit (a box {x0, y0, z0, x1,
+-- y1, z1} the camera frames instead of the scene: one camera for a series of pictures of a
+-- growing plant), and view fields (camera,
+-- background, light, supersample) that replace the scene's view for this picture;
+-- `opts.view` may hold them. Raises blaming its caller.
+function M.render (x, opts)
+  local a, b, c = render(3, x, opts)    -- 3: the caller of this function
+  return a, b, c
+end
+
+--- As M.render, raising its errors without a position: for callers that put their own
+-- name in front of the message (lsys.frames) or record it (lsys.batch).
+function M.draw (x, opts)
+  local a, b, c = render(0, x, opts)
+  return a, b, c
+end
+
+return M

@@ -1,0 +1,657 @@
+--- The sketch window (`lsys sketch [FILE]`): draw the construction lines of
+-- Anastacio et al. 2009 (§3.2: a stem, left and right boundaries, inclination lines) and
+-- see the plant they parameterize beside them, updated while the stroke is drawn. The
+-- paper's sketching program and cpfg were two programs without immediate feedback (§7);
+-- here one window holds the sketch pane, the 3D plant (the viewer's scene and orbit
+-- camera) and the positional functions plotted.
+--
+-- The logic is a state machine fed events in the sketch's own pixels (`new`, then
+-- `pointer`, `scroll`, `key`, `toolbar`), so it is tested without a window; `run` opens
+-- the window (lsys.core's viewer with panes) and feeds it. Mice have no pressure: the
+-- wheel (or [ and ]) sets the pressure of the points drawn next, shown by the stroke's
+-- colour as in §7.3 (farther lighter, nearer darker); §3.5 maps it to depth.
+--
+-- Its documented name is lsys.sketch.window (lua/lsys/sketch/window.lua gives this module);
+-- the code lives with the other window sessions in lua/lsys/ui/.
+-- @module lsys.ui.sketch
+local core = require "lsys.core"
+local model = require "lsys.model"
+local sketch = require "lsys.sketch"
+local read = require "lsys.sketch.read"
+local plot = require "lsys.sketch.plot"
+local render = require("lsys.render").render
+local now = require("lsys.program").clock
+local require = require
+
+local type, ipairs, pcall, tostring, error, setmetatable =
+      type, ipairs, pcall, tostring, error, setmetatable
+local math, string, table = math, string, table
+local format, remove = string.format, table.remove
+local floor, min, max, huge = math.floor, math.min, math.max, math.huge
+local _ENV = nil
+
+local M = {}
+
+M.ROLES = { "stem", "boundary_left", "boundary_right", "inclination" }
+M.LABELS = { stem = "1 stem", boundary_left = "2 left", boundary_right = "3 right",
+             inclination = "4 incl." }
+M.PHYLLOTAXIS = { "distichous", "decussate", "fibonacci" }
+M.UNDO_LIMIT = 100           -- sketches kept for Ctrl+Z
+M.PICK_RADIUS = 20           -- pixels: how near a right-press must be to move a stroke
+M.SCROLL_STEP = 0.05         -- pressure per wheel notch ([ and ] step twice that)
+
+local ONCE = { stem = true, boundary_left = true, boundary_right = true }
+
+-- {=========================================================================================
+-- The state machine
+
+local State = {}
+State.__index = State
+
+local function copy_points (pts)
+  local out = {}
+  for i, p in ipairs(pts) do out[i] = { p[1], p[2], p[3] } end
+  return out
+end
+
+local function copy_strokes (strokes)
+  local out = {}
+  for i, s in ipairs(strokes) do out[i] = { role = s.role, points = copy_points(s.points) } end
+  return out
+end
+
+--- A new sketch session. opts: `sketch` (a sketch table as lsys.sketch.read returns or
+-- takes; default an empty one), `width`, `height` (of a new sketch, default 600 x 600),
+-- `nodes` (nodes per layer), `phyllotaxis`, `file` (where `save` writes).
+function M.new (opts)
+  opts = opts or {}
+  local sk = opts.sketch
+  local st = setmetatable({
+    width = sk and sk.width or opts.width or 600,
+    height = sk and sk.height or opts.height or 600,
+    nodes = opts.nodes or (sk and sk.nodes_per_layer) or 5,
+    phyllotaxis = opts.phyllotaxis or (sk and sk.phyllotaxis) or "distichous",
+    depth = sk and sk.depth or nil,
+    strokes = sk and copy_strokes(sk.strokes) or {},
+    file = opts.file,
+    role = "stem",
+    pressure = 0.5,          -- of the points drawn next (§3.5: 0.5 is the drawing plane)
+    drawing = nil,           -- the stroke being drawn: { role, points }
+    moving = nil,            -- { index, x, y }: the stroke being moved, the last point
+    selected = nil,          -- index of the stroke last drawn or moved
+    undo = {},
+    changed = true,          -- the sketch changed since the plant was last computed
+    status = nil,
+    overlay = true,          -- draw the nodes and rays of the analysis over the sketch
+  }, State)
+  return st
+end
+
+--- The sketch as lsys.sketch.read takes it (JSON shape), with the stroke being drawn when
+-- it has two points or more.
+function State:sketch ()
+  local d = self.drawing
+  local drawn = d and #d.points >= 2
+  local strokes = {}
+  for i, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
+    if not (drawn and (d.replace == i or not d.replace and ONCE[d.role] and s.role == d.role))
+    then
+      strokes[#strokes + 1] = { role = s.role, points = copy_points(s.points) }
+    end
+  end
+  if drawn then
+    local at = d.replace and d.replace <= #strokes + 1 and d.replace or #strokes + 1
+    table.insert(strokes, at, { role = d.role, points = copy_points(d.points) })
+  end
+  return {
+    file = self.file, width = self.width, height = self.height, nodes_per_layer = self.nodes,
+    phyllotaxis = self.phyllotaxis, depth = self.depth, strokes = strokes,
+  }
+end
+
+-- Remembers the strokes and settings for undo.
+function State:push_undo ()
+  local u = self.undo
+  u[#u + 1] = { strokes = copy_strokes(self.strokes), nodes = self.nodes,
+                phyllotaxis = self.phyllotaxis, selected = self.selected }
+  if #u > M.UNDO_LIMIT then remove(u, 1) end
+end
+
+function State:touch (msg)
+  self.changed = true
+  if msg then self.status = msg end
+end
+
+--- Undoes the last change (a stroke drawn, moved or deleted; nodes; phyllotaxis).
+function State:undo_last ()
+  local u = remove(self.undo)
+  if u == nil then self.status = "nothing to undo" return false end
+  self.strokes, self.nodes, self.phyllotaxis, self.selected =
+    u.strokes, u.nodes, u.phyllotaxis, u.selected
+  self:touch("undone")
+  return true
+end
+
+local function clamp01 (p) return p < 0 and 0 or p > 1 and 1 or p end
+
+-- The stroke nearest (x, y) within M.PICK_RADIUS pixels (distance to its segments).
+function State:nearest (x, y)
+  local best, bd = nil, M.PICK_RADIUS
+  for i, s in ipairs(self.strokes) do
+    local pts = s.points
+    for j = 1, #pts do
+      local a, b = pts[j], pts[j + 1] or pts[j]
+      local dx, dy = b[1] - a[1], b[2] - a[2]
+      local l2 = dx * dx + dy * dy
+      local t = l2 > 0 and max(0, min(1, ((x - a[1]) * dx + (y - a[2]) * dy) / l2)) or 0
+      local ex, ey = a[1] + t * dx - x, a[2] + t * dy - y
+      local d = (ex * ex + ey * ey) ^ 0.5
+      if d <= bd then best, bd = i, d end
+    end
+  end
+  return best
+end
+
+--- Feeds a pointer event in sketch pixels: phase "down" | "move" | "up"; button "left"
+-- (draws a stroke of the current role) or "right" (moves the nearest stroke; also left
+-- with shift). A left press with `ctrl` redraws a stroke in place: the selected one, else
+-- the nearest, keeps its place and role and takes the points drawn. `pressure`, when a
+-- number, is a tablet pen's (§3.5): it becomes the pressure of this point and of the points
+-- drawn next. Returns true when the sketch changed.
+function State:pointer (phase, x, y, button, shift, pressure, ctrl)
+  if type(pressure) == "number" and phase ~= "up" and (self.drawing or phase == "down") then
+    self.pressure = floor(clamp01(pressure) * 1000 + 0.5) / 1000
+  end
+  if phase == "down" then
+    if button == "right" or button == "middle" or shift then
+      local k = self:nearest(x, y)
+      if k == nil then self.status = "no stroke near the pointer to move" return false end
+      self:push_undo()
+      self.moving = { index = k, x = x, y = y }
+      self.selected = k
+      return false
+    end
+    if button ~= "left" then return false end
+    self.drawing = { role = self.role, points = { { x, y, self.pressure } } }
+    if ctrl then
+      local k = self.strokes[self.selected or 0] and self.selected or self:nearest(x, y)
+      if k == nil then
+        self.drawing = nil
+        self.status = "no stroke to redraw: select one (right click) first"
+        return false
+      end
+      self.drawing.role, self.drawing.replace = self.strokes[k].role, k
+      self.status = format("redrawing stroke %d (%s)", k, self.strokes[k].role)
+    end
+    return false
+  elseif phase == "move" then
+    local m = self.moving
+    if m then
+      local dx, dy = x - m.x, y - m.y
+      for _, p in ipairs(self.strokes[m.index].points) do p[1], p[2] = p[1] + dx, p[2] + dy end
+      m.x, m.y = x, y
+      self:touch()
+      return true
+    end
+    local d = self.drawing
+    if d == nil then return false end
+    local last = d.points[#d.points]
+    local ddx, ddy = x - last[1], y - last[2]
+    if ddx * ddx + ddy * ddy < 1 then return false end   -- under a pixel: nothing new
+    d.points[#d.points + 1] = { x, y, self.pressure }
+    if #d.points >= 2 then self:touch() end
+    return #d.points >= 2
+  elseif phase == "up" then
+    if self.moving then
+      self.moving = nil
+      self:touch(format("moved stroke %d (%s)", self.selected, self.strokes[self.selected].role))
+      return true
+    end
+    local d = self.drawing
+    if d == nil then return false end
+    self:pointer("move", x, y, "left")
+    self.drawing = nil
+    if #d.points < 2 then
+      self.status = "a stroke needs two points or more: drag to draw"
+      return false
+    end
+    self:push_undo()
+    if d.replace then                -- redrawn in place
+      local k = d.replace
+      self.strokes[k] = { role = d.role, points = d.points }
+      self.selected = k
+      self:touch(format("redrew stroke %d (%s, %d points)", k, d.role, #d.points))
+      return true
+    end
+    if ONCE[d.role] then             -- a new stem (or boundary) replaces the old one
+      for i = #self.strokes, 1, -1 do
+        if self.strokes[i].role == d.role then remove(self.strokes, i) end
+      end
+    end
+    self.strokes[#self.strokes + 1] = d
+    self.selected = #self.strokes
+    self:touch(format("drew stroke %d (%s, %d points)", #self.strokes, d.role, #d.points))
+    return true
+  end
+  return false
+end
+
+--- The wheel: `dy` notches (up positive) raise the pressure of the points drawn next
+-- (nearer) by M.SCROLL_STEP each. Returns the new pressure.
+function State:scroll (dy)
+  self.pressure = clamp01(self.pressure + dy * M.SCROLL_STEP)
+  self.pressure = floor(self.pressure * 1000 + 0.5) / 1000
+  self.status = format("pressure %.2f (%s)", self.pressure, self.pressure > 0.5 and "nearer"
+    or self.pressure < 0.5 and "farther" or "the drawing plane")
+  return self.pressure
+end
+
+--- Deletes the selected stroke, else the last one.
+function State:delete ()
+  local k = self.selected or #self.strokes
+  if self.strokes[k] == nil then self.status = "no stroke to delete" return false end
+  self:push_undo()
+  local s = remove(self.strokes, k)
+  self.selected = nil
+  self:touch(format("deleted stroke %d (%s)", k, s.role))
+  return true
+end
+
+--- Picks the role of the strokes drawn next (a name of M.ROLES or its index).
+function State:set_role (r)
+  r = M.ROLES[r] or r
+  for _, x in ipairs(M.ROLES) do
+    if x == r then self.role = r self.status = "drawing: " .. r return true end
+  end
+  return false
+end
+
+function State:set_nodes (n)
+  n = max(1, min(read.MAX_NODES, floor(n)))
+  if n == self.nodes then return false end
+  self:push_undo()
+  self.nodes = n
+  self:touch(format("%d nodes per layer", n))
+  return true
+end
+
+function State:cycle_phyllotaxis ()
+  local i = 1
+  for k, p in ipairs(M.PHYLLOTAXIS) do if p == self.phyllotaxis then i = k end end
+  self:push_undo()
+  self.phyllotaxis = M.PHYLLOTAXIS[i % #M.PHYLLOTAXIS + 1]
+  self:touch("phyllotaxis: " .. self.phyllotaxis)
+end
+
+--- Where Ctrl+S writes: the file given (a .svg is saved next to it as .json), else
+-- sketch.json.
+function State:save_path ()
+  local f = self.file or "sketch.json"
+  if f:lower():find("%.svg$") then f = f:sub(1, -5) .. ".json" end
+  return f
+end
+
+--- Saves the sketch as JSON (lsys.sketch.read.save); a sketch that is not complete yet (no
+-- stem) is written as it is. Returns the path.
+function State:save (path)
+  path = path or self:save_path()
+  local t = self:sketch()
+  local ok, err = pcall(read.save, t, path)
+  if not ok then
+    if not tostring(err):find("no stem stroke", 1, true) then error(err, 0) end
+    local cjson = require "cjson"
+    t.file = nil
+    core.write_file(path, cjson.encode(t) .. "\n")
+  end
+  self.status = "saved " .. path
+  return path
+end
+
+--- A key, by the viewer's name ("1", "p", "[", "backspace", ...); returns the action the
+-- session must take ("save", "export", "plots") or nil.
+function State:key (name, ctrl)
+  if ctrl then
+    if name == "z" then self:undo_last()
+    elseif name == "s" then return "save"
+    elseif name == "e" then return "export" end
+    return nil
+  end
+  if name == "1" or name == "2" or name == "3" or name == "4" then
+    self:set_role(name + 0)
+  elseif name == "=" or name == "+" then self:set_nodes(self.nodes + 1)
+  elseif name == "-" then self:set_nodes(self.nodes - 1)
+  elseif name == "p" then self:cycle_phyllotaxis()
+  elseif name == "[" then self:scroll(-2)
+  elseif name == "]" then self:scroll(2)
+  elseif name == "delete" or name == "backspace" then self:delete()
+  elseif name == "a" then
+    self.overlay = not self.overlay
+    self.status = self.overlay and "nodes and rays shown" or "nodes and rays hidden"
+  elseif name == "tab" then return "plots" end
+  return nil
+end
+
+-- The toolbar: four role buttons, then the settings (M.toolbar_hit says which is where).
+M.TOOLBAR_W, M.TOOLBAR_H, M.BUTTON_W = 900, 44, 130
+
+--- What a click at x on the toolbar does: a role (its index), "nodes-", "nodes+",
+-- "phyllotaxis", or nil.
+function M.toolbar_hit (x)
+  local k = floor(x / M.BUTTON_W) + 1
+  if k >= 1 and k <= 4 then return k end
+  local rest = x - 4 * M.BUTTON_W
+  if rest >= 0 and rest < 100 then return rest < 50 and "nodes-" or "nodes+" end
+  if rest >= 100 then return "phyllotaxis" end
+  return nil
+end
+
+function State:toolbar (x)
+  local h = M.toolbar_hit(x)
+  if type(h) == "number" then return self:set_role(h) end
+  if h == "nodes-" then return self:set_nodes(self.nodes - 1) end
+  if h == "nodes+" then return self:set_nodes(self.nodes + 1) end
+  if h == "phyllotaxis" then self:cycle_phyllotaxis() return true end
+  return false
+end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- Pictures: the sketch pane, the toolbar (lsys.core canvases)
+
+local ROLE_RGB = {
+  boundary_left = { 0.15, 0.35, 0.85 }, boundary_right = { 0.1, 0.55, 0.8 },
+  inclination = { 0.85, 0.4, 0.1 },
+}
+
+--- The colour of a stem point of pressure p (§7.3: farther lighter, nearer darker): from
+-- a pale green at 0 (farthest) to a near-black green at 1 (nearest).
+function M.stem_rgb (p)
+  p = clamp01(p)
+  return { 0.75 - 0.7 * p, 0.9 - 0.65 * p, 0.75 - 0.7 * p }
+end
+
+local function draw_stroke (c, s, width)
+  local pts = s.points
+  local rgb = ROLE_RGB[s.role]
+  for j = 1, #pts - 1 do
+    local a, b = pts[j], pts[j + 1]
+    c:line(a[1], a[2], b[1], b[2], width, rgb or M.stem_rgb((a[3] + b[3]) / 2))
+  end
+end
+
+--- Draws the sketch of `st` into canvas `c` (its size): the strokes by role, the stem by
+-- pressure, the selected stroke wider, the stroke being drawn (a stroke redrawn in place
+-- hides the old one), and, when given and st.overlay is on, the sketch's analysis `an`
+-- (the nodes and the rays of §3.4 to the boundaries, lsys.sketch.plot.analysis).
+function M.draw_sketch (st, c, an)
+  c:clear({ 1, 1, 1, 1 })
+  local d = st.drawing
+  local drawn = d and #d.points >= 2
+  for i, s in ipairs(st.strokes) do
+    if not (drawn and d.replace == i) then draw_stroke(c, s, i == st.selected and 4 or 2.5) end
+  end
+  if drawn then draw_stroke(c, d, 2.5) end
+  if an and st.overlay then
+    plot.analysis(c, an, { x = 0, y = 0, scale = 1 }, { line_width = 1.5 })
+  end
+  return c
+end
+
+--- Draws the toolbar (M.TOOLBAR_W x M.TOOLBAR_H) into canvas `c`.
+function M.draw_toolbar (st, c)
+  local bw, h = M.BUTTON_W, M.TOOLBAR_H
+  c:clear({ 0.93, 0.93, 0.93, 1 })
+  for k, r in ipairs(M.ROLES) do
+    local x = (k - 1) * bw
+    local on = st.role == r
+    c:rect(x + 2, 2, bw - 4, h - 4, on and { 0.25, 0.25, 0.3, 1 } or { 1, 1, 1, 1 }, true)
+    c:rect(x + 2, 2, bw - 4, h - 4, { 0.5, 0.5, 0.5, 1 })
+    local rgb = r == "stem" and M.stem_rgb(st.pressure) or ROLE_RGB[r]
+    c:line(x + 8, h / 2, x + 22, h / 2, 3, rgb)
+    c:text(x + 27, h / 2 - 7, M.LABELS[r], 2, on and { 1, 1, 1, 1 } or { 0, 0, 0, 1 })
+  end
+  local x = 4 * bw
+  c:text(x + 6, h / 2 - 7, format("-%3d +", st.nodes), 2, { 0, 0, 0, 1 })
+  c:text(x + 106, h / 2 - 7, format("%s %.2f", st.phyllotaxis, st.pressure), 2,
+         { 0, 0, 0, 1 })
+  return c
+end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- The window
+
+--- Where the panes go, in fractions of the window (y down): the toolbar and the sketch on
+-- the left, the plant on the right, the function plots under it (Tab hides them).
+function M.layout (plots)
+  local lay = {
+    scene = { 0.5, 0, 1, plots and 0.68 or 1 },
+    panes = {
+      { 0, 0, 0.5, 0.05, bg = { 0.93, 0.93, 0.93 } },            -- 1 the toolbar
+      { 0, 0.05, 0.5, 1, bg = { 0.8, 0.8, 0.8 } },               -- 2 the sketch
+    },
+  }
+  if plots then lay.panes[3] = { 0.5, 0.68, 1, 1, bg = { 1, 1, 1 } } end   -- 3 the plots
+  return lay
+end
+
+--- Where the sketch point (x, y) is in a winw x winh window (the arithmetic of the panes in
+-- csrc/gl/vpanes.c): for driving the window from tests.
+function M.to_window (st, winw, winh, x, y)
+  local r = M.layout(true).panes[2]
+  local function round (v) return floor(v + 0.5) end
+  local px, py = round(r[1] * winw), round(r[2] * winh)
+  local pw, ph = round(r[3] * winw) - px, round(r[4] * winh) - py
+  local s = min(pw / st.width, ph / st.height)
+  return px + (pw - s * st.width) / 2 + s * x, py + (ph - s * st.height) / 2 + s * y
+end
+
+--- The pipeline of a sketch table: lsys.sketch's Sketch, its model, derived and
+-- interpreted. Raises the pipeline's error (a sketch that makes no plant yet).
+function M.pipeline (t)
+  local sk = sketch.load(t)
+  local m = sk:model { phyllotaxis = t.phyllotaxis }
+  local s = m:derive()
+  return { sketch = sk, model = m, lstring = s, scene = m:interpret(s) }
+end
+
+M.HELP = [[
+left drag: draw a stroke   1 2 3 4 (or the toolbar): stem, left, right boundary, inclination
+right drag / shift drag: move the nearest stroke   Ctrl+left drag: redraw it in place
+Delete / Backspace: delete the selected stroke   A: nodes and rays over the sketch
+wheel over the sketch, [ ]: pressure of the points drawn next (nearer darker, farther lighter);
+a tablet pen's own pressure when X reports one
++ -: nodes per layer   P: phyllotaxis   Tab: function plots   Ctrl+Z: undo
+Ctrl+S: save the sketch   Ctrl+E: export the plant (.glb, .obj, .png) and the model (.lua)
+over the plant: drag orbit, right drag pan, wheel zoom   R: reset view   F: fit
+S: screenshot   H: this help   Esc / Q: quit]]
+
+local function first_line (msg)
+  msg = tostring(msg):gsub("^lsys: ", ""):gsub("^[^:\n]*%.lua:%d+: ", "")
+  return (msg:match("^[^\n]*"))
+end
+
+-- The session: the state, the window, the last pipeline result.
+local Session = {}
+Session.__index = Session
+
+function Session:status ()
+  local st = self.st
+  local head = format("%d strokes  %d nodes/layer  %s  pressure %.2f  ", #st.strokes, st.nodes,
+                      st.phyllotaxis, st.pressure)
+  local tail
+  if self.error then tail = self.error
+  elseif self.result then
+    tail = format("%d modules  %d triangles", #self.result.lstring, self.result.scene.ntriangles)
+  else tail = "draw a stem (1), boundaries (2, 3) and inclination lines (4)" end
+  if st.status then tail = st.status .. "  |  " .. tail end
+  return head .. tail
+end
+
+function Session:show_sketch ()
+  local st, v = self.st, self.v
+  local an
+  if st.overlay and self.result and self.result.sketch.analysis then
+    local ok, a = pcall(self.result.sketch.analysis, self.result.sketch)
+    if ok then an = a end
+  end
+  M.draw_sketch(st, self.canvas, an)
+  v:image(2, self.canvas:pixels(), st.width, st.height)
+  M.draw_toolbar(st, self.toolbar)
+  v:image(1, self.toolbar:pixels(), M.TOOLBAR_W, M.TOOLBAR_H)
+  v:text(self:status(), M.HELP)
+end
+
+function Session:show_plots ()
+  if not self.plots then return end
+  local c
+  if self.result and self.result.sketch.functions then
+    local pok, pc = pcall(function ()
+      return plot.functions(self.result.sketch:functions(), { width = 900, height = 330 })
+    end)
+    if pok then c = pc end
+  end
+  if c == nil then
+    c = core.canvas(900, 330, { 1, 1, 1, 1 })
+    c:text(20, 150, self.error and "no functions: the sketch makes no plant yet"
+      or "the function plots appear here", 2, { 0.3, 0.3, 0.3, 1 })
+  end
+  local w, h = c:size()
+  self.v:image(3, c:pixels(), w, h)
+end
+
+-- Runs the pipeline on the sketch and posts the plant, or the error.
+function Session:compute (final)
+  local st = self.st
+  st.changed = false
+  local ok, r = pcall(self.pipeline, st:sketch())
+  if ok then
+    self.result, self.error = r, nil
+    self.v:post({ { scene = r.scene, modules = #r.lstring } },
+      { keep_camera = self.posted or nil, title = self.title })
+    self.posted = true
+  else
+    self.result, self.error = nil, first_line(r)
+    self.v:post({ { scene = self.empty } }, { keep_camera = true, title = self.title })
+  end
+  if final then self:show_plots() end
+end
+
+-- Says once, at the first press on the sketch, whether a tablet's pressure is read.
+function Session:tell_pen ()
+  local ok, vs = pcall(self.v.state, self.v)
+  if not ok or type(vs) ~= "table" or vs.pen == nil then return end
+  self.pen_told = true
+  local msg = vs.pen and "tablet pressure from " .. vs.pen_devices
+    or "no tablet pressure (" .. tostring(vs.pen_devices) .. "): the wheel and [ ] set it"
+  self.st.status = self.st.status and self.st.status .. "  |  " .. msg or msg
+  self.out(msg .. "\n")
+end
+
+function Session:export ()
+  local r = self.result
+  if r == nil then
+    self.st.status = "nothing to export: " .. (self.error or "no plant")
+    return
+  end
+  local base = self.st:save_path():gsub("%.[^./]*$", "")
+  r.scene:save(base .. ".glb")
+  r.scene:save(base .. ".obj")                       -- and its .mtl
+  render(r.scene, { out = base .. ".png", width = 800, height = 800 })
+  local files = { base .. ".glb", base .. ".obj", base .. ".png" }
+  if r.sketch.save_model then
+    r.sketch:save_model(base .. ".lua")
+    files[#files + 1] = base .. ".lua"
+  end
+  self.st.status = "exported " .. table.concat(files, ", ")
+  self.out(self.st.status .. "\n")
+end
+
+-- One event of the window; returns true when the pictures must be drawn again.
+function Session:event (ev)
+  local st = self.st
+  if ev.type == "pointer" then
+    if ev.pane == 1 then
+      return ev.phase == "down" and st:toolbar(ev.x) or ev.phase == "down"
+    elseif ev.pane == 2 then
+      st:pointer(ev.phase, ev.x, ev.y, ev.button, ev.shift, ev.pressure, ev.ctrl)
+      if ev.phase == "down" and not self.pen_told then self:tell_pen() end
+      return true
+    end
+  elseif ev.type == "scroll" and ev.pane == 2 then
+    st:scroll(ev.dy)
+    return true
+  elseif ev.type == "key" then
+    local act = st:key(ev.key, ev.ctrl)
+    if act == "save" then
+      local ok, err = pcall(st.save, st)
+      if ok then self.out(format("saved %s\n", err)) else st.status = first_line(err) end
+    elseif act == "export" then
+      local ok, err = pcall(self.export, self)
+      if not ok then st.status = "cannot export: " .. first_line(err) end
+    elseif act == "plots" then
+      self.plots = not self.plots
+      self.v:layout(M.layout(self.plots))
+      self:show_plots()
+    end
+    return true
+  elseif ev.type == "screenshot" and ev.ok then
+    self.out(format("wrote %s\n", ev.path))
+  end
+  return false
+end
+
+--- The session of state `st` in window `v` (a core Viewer, or a stand-in with its
+-- post, layout, image and text methods): lays the panes out, computes the plant and
+-- shows everything. opts: `pipeline`, `out`, `file` as for `run`.
+function M.session (v, st, opts)
+  local self = setmetatable({
+    st = st, v = v, plots = true, pipeline = opts.pipeline or M.pipeline,
+    out = opts.out or function () end,
+    title = "lsys sketch: " .. (opts.file or "sketch.json"),
+    canvas = core.canvas(st.width, st.height), toolbar = core.canvas(M.TOOLBAR_W, M.TOOLBAR_H),
+    empty = model.lsystem({ axiom = "", name = "no plant" }):interpret(),
+  }, Session)
+  v:layout(M.layout(self.plots))
+  self:compute(true)
+  self:show_sketch()
+  return self
+end
+
+--- Opens the sketch window and runs it until it is closed. opts: `file` (the sketch file:
+-- read when it exists, where Ctrl+S saves), `width`, `height` (a new sketch's size),
+-- `nodes`, `phyllotaxis`, `window` ({w, h}, default 1200 x 800), `pipeline` (default
+-- M.pipeline), `out` (function writing the lines the program prints).
+function M.run (opts)
+  opts = opts or {}
+  local sk
+  if opts.file and core.filestamp(opts.file) then sk = read.file(opts.file) end
+  local st = M.new { sketch = sk, file = opts.file, width = opts.width, height = opts.height,
+                     nodes = opts.nodes, phyllotaxis = opts.phyllotaxis }
+  local win = opts.window or { 1200, 800 }
+  local v = core.viewer_open { width = win[1], height = win[2] }
+  local self = M.session(v, st, opts)
+  local last = -huge
+  while true do
+    local ev = v:poll(st.drawing and 0.01 or 0.1)
+    local redraw = false
+    while ev ~= nil do
+      if ev.type == "closed" then v:close() return st end
+      if self:event(ev) then redraw = true end
+      ev = v:poll(0)
+    end
+    -- the plant follows the pen: at most every 50 ms while drawing, always at release
+    if st.changed and (st.drawing == nil or now() - last >= 0.05) then
+      self:compute(st.drawing == nil and st.moving == nil)
+      last = now()
+      redraw = true
+    end
+    if redraw then self:show_sketch() end
+  end
+end
+
+-- }=========================================================================================
+
+return M
