@@ -3,9 +3,10 @@
 -- @module lsys.cli.args
 local program = require "lsys.program"
 local fs = require "lsys.util.fs"
+local warning = require "lsys.warning"
 
-local pairs, tonumber, tostring, error, setmetatable, require =
-      pairs, tonumber, tostring, error, setmetatable, require
+local pairs, tonumber, tostring, error, setmetatable =
+      pairs, tonumber, tostring, error, setmetatable
 local io, string, table, math = io, string, table, math
 local format = string.format
 local host, clock = program.host, program.clock
@@ -106,7 +107,7 @@ local function renamed (cmd, opts, given, old, new, arg, short)
   if opts[new] ~= nil then
     usage(cmd, "%s is the old spelling of %s: give one of them", was, given[new])
   end
-  require("lsys.warning").deprecated(format("'lsys %s %s %s'", cmd, was, arg),
+  warning.deprecated(format("'lsys %s %s %s'", cmd, was, arg),
     format("'lsys %s --%s %s'%s", cmd, new, arg, short and format(" (-%s %s)", short, arg) or ""))
   opts[new], opts[old] = opts[old], nil
   return was

@@ -31,6 +31,7 @@ local host = require("lsys.program").host
 local A = require "lsys.cli.args"
 local H = require "lsys.cli.help"
 local strip_internal = require("lsys.util.errors").strip_internal
+local warning = require "lsys.warning"
 
 local G = _G
 local type, tostring, error, xpcall, require, loadfile, getmetatable, warn =
@@ -69,7 +70,7 @@ local function dispatch (args)
   -- -V and --version print the version; -v is --verbose where a command has a verbose
   -- mode (lsys test), and prints the version here for one more release, with a warning
   if a == "-V" or a == "--version" or a == "-v" then
-    if a == "-v" then require("lsys.warning").deprecated("'lsys -v'", "'lsys -V' (--version)") end
+    if a == "-v" then warning.deprecated("'lsys -v'", "'lsys -V' (--version)") end
     out(format("lsys %s (%s)\n", host().version or "scm", G._VERSION))
     return 0
   end

@@ -224,7 +224,6 @@ end
 local function limit_opts (cmd, opts)
   local t, mem, mods = opts.threads, opts["max-memory"], opts["max-modules"]
   if t == nil and mem == nil and mods == nil then return nil end
-  local lmodel = require "lsys.model"
   local lim = {}
   if t ~= nil then
     lim.threads = math.tointeger(tonumber(t))
@@ -249,7 +248,7 @@ end
 
 -- Sets the options of limit_opts on the model `m`, over the model's own (Model:_limits).
 local function apply_limits (m, lim)
-  if require("lsys.model").ismodel(m) then m:_limits(lim)
+  if lmodel.ismodel(m) then m:_limits(lim)
   elseif lim.threads ~= nil then m.threads = lim.threads end
 end
 
