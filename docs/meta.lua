@@ -1636,6 +1636,14 @@ function core.query(rules, s, opts) end
 ---@return integer color
 function core.turtle_state(rules, s, i, opts) end
 
+--- The turtle's symbol table (csrc/core/symbols.h): one row per named turtle symbol, in
+--- the table's order. `split` says how the turtle on several threads treats the symbol:
+--- "cross" (its effect crosses branches: the string stays on one thread), "state", "open",
+--- "close", "segment", "shape" or "record". `query` is true for ?P ?H ?U ?L. The predefined
+--- surfaces `~X` are named by the view and not listed. A new table each call.
+---@return { name: string, op: string, split: string, query: boolean }[]
+function core.symbols() end
+
 -- ---------------------------------------------------------------------------------------------
 -- Free-form deformation (csrc/lua/lua_ffd.c; docs/components.md)
 

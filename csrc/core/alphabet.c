@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "alphabet.h"
+#include "symbols.h"
 
 static uint32_t hashname (const char *s, size_t len) {
   uint32_t h = 2166136261u;               /* FNV-1a */
@@ -111,14 +112,6 @@ nomem:
   return 0;
 }
 
-/* cpfg's '@' modules (004 Appendix A and later issues), longest first
-** where one is a prefix of another. */
-static const char *const atnames[] = {
-  "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@PS", "@PC", "@PD", "@Ts", "@Ti",
-  "@Td", "@Tp", "@Tf", "@Tx", "@Di", "@Dd", "@D", "@o", "@O", "@c", "@v",
-  "@R", "@M", "@L", "@S", "@#", "@!", "@H", "@X", NULL
-};
-
 static int isletter (int c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
 }
@@ -150,13 +143,10 @@ size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl) {
     }
   if (best > 0) return best;
   switch (c) {
-    case '@': {
-      for (i = 0; atnames[i] != NULL; i++) {
-        size_t n = strlen(atnames[i]);
-        if (n <= len && memcmp(atnames[i], s, n) == 0) return n;
-      }
+    case '@':        /* the turtle's '@' names (symbols.h), the longest that fits; else '@'
+                        and one letter (cpfg's @H, lsys's @X, ...) */
+      if ((best = lsys_symbols_match(s, len, '@')) > 0) return best;
       return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;
-    }
     case '?':
       return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;
     case '~': {

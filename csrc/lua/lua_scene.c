@@ -5,6 +5,7 @@
 **   core.interpret(rules, lstring, opts) -> Scene
 **   core.query(rules, lstring, opts)     -> number of query modules filled
 **   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
+**   core.symbols()                       -> the turtle's symbol table (symbols.h)
 **
 ** 'opts' is the normalised view under the names of its schema, which owns
 ** names, defaults and checks (lua/lsys/view.lua): angle, step, line_width,
@@ -23,6 +24,7 @@
 #include "export.h"
 #include "interpret.h"
 #include "population.h"
+#include "symbols.h"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
 ** error while the homomorphism is streamed leaves it to the collector. */
@@ -700,6 +702,33 @@ static int scene_look (lua_State *L) {
   return 0;
 }
 
+/* core.symbols() -> { {name=, op=, split=, query=}, ... }: the rows of the turtle's
+** symbol table (symbols.h) that have a module name, in its order. 'split' is how the
+** parallel turtle treats the symbol ("cross": keeps the string on one thread, "state",
+** "open", "close", "segment", "shape", "record"); 'query' is true for the query modules.
+** A new table each call. */
+static int l_symbols (lua_State *L) {
+  static const char *const split[] = {"cross", "state", "open", "close", "segment", "shape",
+                                      "record"};
+  int k, n = 0;
+  lua_createtable(L, LSYS_NSYMBOLS, 0);
+  for (k = 0; k < LSYS_NSYMBOLS; k++) {
+    const lsys_symbol *r = &lsys_symbols[k];
+    if (r->name == NULL) continue;
+    lua_createtable(L, 0, 4);
+    lua_pushstring(L, r->name);
+    lua_setfield(L, -2, "name");
+    lua_pushstring(L, r->op);
+    lua_setfield(L, -2, "op");
+    lua_pushstring(L, r->split < sizeof split / sizeof split[0] ? split[r->split] : "cross");
+    lua_setfield(L, -2, "split");
+    lua_pushboolean(L, r->query);
+    lua_setfield(L, -2, "query");
+    lua_rawseti(L, -2, ++n);
+  }
+  return 1;
+}
+
 static const luaL_Reg scene_methods[] = {
   {"bounds", scene_bounds},
   {"look", scene_look},
@@ -725,6 +754,7 @@ static const luaL_Reg scene_funcs[] = {
   {"interpret", l_interpret},
   {"query", l_query},
   {"turtle_state", l_turtle_state},
+  {"symbols", l_symbols},
   {NULL, NULL}
 };
 

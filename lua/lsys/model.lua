@@ -20,6 +20,20 @@ local _ENV = nil
 
 local M = {}
 
+-- The query modules (?P ?H ?U ?L), from the turtle's symbol table.
+local QUERIES = {}
+for _, row in ipairs(core.symbols()) do
+  if row.query then QUERIES[#QUERIES + 1] = row.name end
+end
+
+-- Does `s` hold a query module?
+local function hasquery (s)
+  for _, name in ipairs(QUERIES) do
+    if s:count(name) > 0 then return true end
+  end
+  return false
+end
+
 -- --------------------------------------------------------------------------
 -- The memory budget (max_memory): the most memory one derivation step or one
 -- interpretation may take for its strings, tables, mesh and records.
@@ -731,7 +745,7 @@ function Model:step (s)
   self:_idle("step")
   self:_threads("step")
   self:_bind()
-  if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
+  if self._queries or hasquery(s) then
     self:_query(s)
   end
   return self:_core("step", s)
