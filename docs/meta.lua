@@ -1644,6 +1644,14 @@ function core.turtle_state(rules, s, i, opts) end
 ---@return { name: string, op: string, split: string, query: boolean }[]
 function core.symbols() end
 
+--- The export formats of `Scene:save` (csrc/core/export.h), in their order: `name`, `ext`
+--- (the file name's extension, lower case, without the dot), `title`, `companion` (the
+--- extension of a file written beside it: OBJ's material file; absent when none),
+--- `textures` (textured triangles name or embed their image) and `instancing` (a population
+--- is written with instancing unless `opts.instancing = false`). A new table each call.
+---@return { name: string, ext: string, title: string, companion?: string, textures: boolean, instancing: boolean }[]
+function core.formats() end
+
 -- ---------------------------------------------------------------------------------------------
 -- Free-form deformation (csrc/lua/lua_ffd.c; docs/components.md)
 

@@ -9,12 +9,17 @@
 #include "export.h"
 #include "population.h"
 
+#define ROW(id, name, ext, title, companion, textures, save, instanced) \
+  {name, ext, title, companion, textures, save, instanced},
+const lsys_format lsys_export_formats[LSYS_NFORMATS] = { LSYS_FORMATS(ROW) };
+#undef ROW
+
 int lsys_export_format (const char *path) {
   const char *ext = strrchr(path, '.');
+  int k;
   if (ext == NULL) return -1;
-  if (strcmp(ext, ".obj") == 0) return LSYS_FORMAT_OBJ;
-  if (strcmp(ext, ".ply") == 0) return LSYS_FORMAT_PLY;
-  if (strcmp(ext, ".glb") == 0) return LSYS_FORMAT_GLB;
+  for (k = 0; k < LSYS_NFORMATS; k++)
+    if (strcmp(ext + 1, lsys_export_formats[k].ext) == 0) return k;
   return -1;
 }
 
@@ -29,16 +34,9 @@ double lsys_export_pixel (const lsys_mesh *m) {
 
 static int savemesh (const lsys_scene *s, const lsys_mesh *m, int format, const char *path,
                      lsys_error *e) {
-  switch (format) {
-    case LSYS_FORMAT_OBJ:
-      return lsys_mesh_save_obj(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    case LSYS_FORMAT_PLY:
-      return lsys_mesh_save_ply(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    case LSYS_FORMAT_GLB:
-      return lsys_mesh_save_glb(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    default:
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "unknown format of '%s'", path);
-  }
+  if (format < 0 || format >= LSYS_NFORMATS)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "unknown format of '%s'", path);
+  return lsys_export_formats[format].save(m, s->pal, s->npal, s->tex, s->ntex, path, e);
 }
 
 /* The tube options of 'o' checked; LSYS_OK or LSYS_EARG naming 'path'. */
@@ -102,22 +100,24 @@ static int tubedparts (lsys_scene *dst, const lsys_scene *s, const lsys_export_o
   return st;
 }
 
-/* A population: as glb with instancing (its tubes per prototype), or
-** flattened. */
+/* A population: with instancing (glb; its tubes per prototype) when the format
+** has an instanced writer, or flattened. */
 static int savepopulation (const lsys_scene *s, int format, const char *path,
                            const lsys_export_opts *o, lsys_error *e) {
+  int (*instanced) (const lsys_scene *, const char *, lsys_error *) =
+    lsys_export_formats[format].instanced;
   int tubes = o != NULL && o->tubes, st;
   lsys_meter mt = {0, 0, 0, NULL};
   lsys_scene f;
   if (tubes && (st = checktubes(o, path, e)) != LSYS_OK) return st;
-  if (format == LSYS_FORMAT_GLB && (o == NULL || !o->flatten)) {
+  if (instanced != NULL && (o == NULL || !o->flatten)) {
     lsys_scene t;
-    if (!tubes) return lsys_scene_save_glb_instanced(s, path, e);
+    if (!tubes) return instanced(s, path, e);
     lsys_scene_init(&t);
     st = tubedparts(&t, s, o, o->pixel > 0 ? o->pixel : scenepixel(s));
     t.inst = s->inst;                          /* borrowed for the call */
     t.ninst = s->ninst;
-    if (st == LSYS_OK) st = lsys_scene_save_glb_instanced(&t, path, e);
+    if (st == LSYS_OK) st = instanced(&t, path, e);
     else tubeserror(st, path, e);
     t.inst = NULL;
     t.ninst = 0;
@@ -154,7 +154,7 @@ int lsys_scene_save (const lsys_scene *s, int format, const char *path,
   lsys_mesh tm;
   double pixel;
   int st;
-  if (format < 0 || format > LSYS_FORMAT_GLB)
+  if (format < 0 || format >= LSYS_NFORMATS)
     return savemesh(s, &s->mesh, format, path, e);
   if (s->ninst > 0) return savepopulation(s, format, path, o, e);
   if (o == NULL || !o->tubes || s->mesh.nl == 0) return savemesh(s, &s->mesh, format, path, e);

@@ -31,9 +31,45 @@
 #include "scene.h"
 #include "texture.h"
 
-enum { LSYS_FORMAT_OBJ = 0, LSYS_FORMAT_PLY = 1, LSYS_FORMAT_GLB = 2 };
+/*
+** The export formats, in one table: X(id, name, ext, title, companion, textures, save,
+** instanced), one row per format, in the order they are listed (messages, help,
+** core.formats()). A new format is a row here and its writer.
+**   id          LSYS_FORMAT_<id>, the row's index
+**   name        its name (lsys.batch's output field, core.formats())
+**   ext         its file name's extension, lower case, without the dot
+**   title       what it is, in words
+**   companion   the extension of a file written beside it (OBJ's material file), or NULL
+**   textures    1: a textured triangle names or embeds its image
+**   save        the writer, on a mesh with a palette and textures (below)
+**   instanced   the writer of a population with instancing (unless it is flattened), or
+**               NULL: a population is always written flattened
+*/
+#define LSYS_FORMATS(X) \
+  X(OBJ, "obj", "obj", "Wavefront OBJ", "mtl", 1, lsys_mesh_save_obj, NULL) \
+  X(PLY, "ply", "ply", "binary PLY", NULL, 0, lsys_mesh_save_ply, NULL) \
+  X(GLB, "glb", "glb", "glTF 2.0 binary", NULL, 1, lsys_mesh_save_glb, \
+    lsys_scene_save_glb_instanced)
 
-/* The format a file name's extension names (.obj, .ply, .glb, lower case),
+#define LSYS_FORMAT_ENUM(id, name, ext, title, companion, textures, save, instanced) \
+  LSYS_FORMAT_##id,
+enum { LSYS_FORMATS(LSYS_FORMAT_ENUM) LSYS_NFORMATS };
+#undef LSYS_FORMAT_ENUM
+
+/* One row of the table. */
+typedef struct lsys_format {
+  const char *name, *ext, *title;
+  const char *companion;      /* NULL: none */
+  int textures;
+  int (*save) (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+               const lsys_texture *const *tex, int ntex, const char *path, lsys_error *e);
+  int (*instanced) (const lsys_scene *s, const char *path, lsys_error *e);   /* or NULL */
+} lsys_format;
+
+/* The rows, lsys_export_formats[LSYS_FORMAT_<id>] (export.c). */
+extern const lsys_format lsys_export_formats[LSYS_NFORMATS];
+
+/* The format a file name's extension names (one of the table's, lower case),
 ** or -1. */
 int lsys_export_format (const char *path);
 

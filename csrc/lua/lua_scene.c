@@ -6,6 +6,7 @@
 **   core.query(rules, lstring, opts)     -> number of query modules filled
 **   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
 **   core.symbols()                       -> the turtle's symbol table (symbols.h)
+**   core.formats()                       -> the export formats of scene:save (export.h)
 **
 ** 'opts' is the normalised view under the names of its schema, which owns
 ** names, defaults and checks (lua/lsys/view.lua): angle, step, line_width,
@@ -641,6 +642,51 @@ static int tubesides (lua_State *L) {
   return sides;
 }
 
+/* The export formats' extensions as a message lists them: ".obj, .ply or .glb"
+** (pushed). */
+static const char *extlist (lua_State *L) {
+  luaL_Buffer b;
+  int k;
+  luaL_buffinit(L, &b);
+  for (k = 0; k < LSYS_NFORMATS; k++) {
+    if (k > 0) luaL_addstring(&b, k + 1 < LSYS_NFORMATS ? ", " : " or ");
+    luaL_addchar(&b, '.');
+    luaL_addstring(&b, lsys_export_formats[k].ext);
+  }
+  luaL_pushresult(&b);
+  return lua_tostring(L, -1);
+}
+
+/* core.formats() -> { {name=, ext=, title=, companion=, textures=, instancing=}, ... }:
+** the export formats of scene:save (export.h), in their order. 'ext' and 'companion'
+** (the extension of a file written beside it, absent when none) are lower case without
+** the dot; 'textures': textured triangles name or embed their image; 'instancing': a
+** population is written with instancing unless flattened. A new table each call. */
+static int l_formats (lua_State *L) {
+  int k;
+  lua_createtable(L, LSYS_NFORMATS, 0);
+  for (k = 0; k < LSYS_NFORMATS; k++) {
+    const lsys_format *f = &lsys_export_formats[k];
+    lua_createtable(L, 0, 6);
+    lua_pushstring(L, f->name);
+    lua_setfield(L, -2, "name");
+    lua_pushstring(L, f->ext);
+    lua_setfield(L, -2, "ext");
+    lua_pushstring(L, f->title);
+    lua_setfield(L, -2, "title");
+    if (f->companion != NULL) {
+      lua_pushstring(L, f->companion);
+      lua_setfield(L, -2, "companion");
+    }
+    lua_pushboolean(L, f->textures);
+    lua_setfield(L, -2, "textures");
+    lua_pushboolean(L, f->instanced != NULL);
+    lua_setfield(L, -2, "instancing");
+    lua_rawseti(L, -2, k + 1);
+  }
+  return 1;
+}
+
 /* scene:save(path [, opts]) -> true; .obj (+ .mtl), .ply, .glb; opts.lines
 ** "lines" (default) or "tubes", with opts.sides and opts.pixel_size; for a
 ** population, opts.instancing (glb; default true) and opts.max_memory (the
@@ -672,7 +718,7 @@ static int scene_save (lua_State *L) {
   lua_settop(L, 3);
   if (xo.sides == 0) xo.sides = tubesides(L);
   if (format < 0)
-    return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
+    return luaL_error(L, "scene:save: unknown format of '%s' (use %s)", path, extlist(L));
   S = lsys_checkscene(L, 1);                /* again: the options ran Lua code */
   st = lsys_scene_save(&S->sc, format, path, &xo, &e);
   if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
@@ -755,6 +801,7 @@ static const luaL_Reg scene_funcs[] = {
   {"query", l_query},
   {"turtle_state", l_turtle_state},
   {"symbols", l_symbols},
+  {"formats", l_formats},
   {NULL, NULL}
 };
 
