@@ -2,6 +2,8 @@
 --   * layers: csrc/core includes only the core, csrc/gl the core and itself, csrc/lua the
 --     three; a forbidden system header is a compile error (cmake/forbid/);
 --   * no include cycle among the C modules and no require cycle among the Lua modules;
+--   * no Lua module reads the user values of the bindings' objects (debug.getuservalue):
+--     the bindings give what the Lua side needs as functions and methods;
 --   * no file in csrc/ over 1000 lines and no C function over 120 lines, except the
 --     dispatch switches listed in DISPATCH; the same budget for lua/, except what
 --     LUA_LONG_FILES and LUA_LONG_FUNCTIONS list (lists that only shrink).
@@ -272,5 +274,17 @@ describe("the Lua tree", function ()
       end
     end
     assert.is_nil(cycle(graph))
+  end)
+
+  it("reads no binding's internals: no debug.getuservalue or debug.setuservalue", function ()
+    local bad = {}
+    for _, f in ipairs(luafiles()) do
+      local n = 0
+      for line in io.lines(f) do
+        n = n + 1
+        if line:find("debug%.[gs]etuservalue") then bad[#bad + 1] = f .. ":" .. n end
+      end
+    end
+    assert.same({}, bad)
   end)
 end)

@@ -290,6 +290,18 @@ static int l_lstring (lua_State *L) {
   return 1;
 }
 
+/* core.lstring_rules(s) -> the Rules that made the Lstring 's' (its owner, the user
+** value lsys_setowner keeps), or nil for an Lstring made without rules: lsys.model finds
+** the model of a string by it. Raises for anything but an Lstring; answers for a closed
+** one too, as it reads only the user value, which a close leaves (the model of a closed
+** string is named in the message its use raises). */
+static int l_lstring_rules (lua_State *L) {
+  luaL_checkudata(L, 1, LSTRING_T);
+  if (lua_getiuservalue(L, 1, 1) != LUA_TUSERDATA || luaL_testudata(L, -1, RULES_T) == NULL)
+    lua_pushnil(L);
+  return 1;
+}
+
 static const luaL_Reg lstring_methods[] = {
   {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module}, {"set", lstring_set},
   {"insert", lstring_insert},
@@ -308,4 +320,6 @@ void lsys_open_lstring (lua_State *L) {
   lsys_createmeta(L, LSTRING_T, lstring_meta, lstring_methods);
   lua_pushcfunction(L, l_lstring);
   lua_setfield(L, -2, "lstring");
+  lua_pushcfunction(L, l_lstring_rules);
+  lua_setfield(L, -2, "lstring_rules");
 }

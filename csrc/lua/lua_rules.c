@@ -893,6 +893,15 @@ static int l_producing (lua_State *L) {
 static int l_produce (lua_State *L) { return produce(L, 1); }
 static int l_nproduce (lua_State *L) { return produce(L, 0); }
 
+/* rules:functions() -> the table of the rules' Lua functions, which lsys.model fills
+** (entry k: the function of the rules whose function index is k) and the callbacks of
+** a derivation call; the table itself, not a copy. */
+static int rules_functions (lua_State *L) {
+  lsys_checkrules(L, 1);
+  lua_getiuservalue(L, 1, LSYS_RULES_FNS);
+  return 1;
+}
+
 static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
@@ -902,7 +911,7 @@ static const luaL_Reg rules_methods[] = {
   {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
   {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill},
-  {"kinds", rules_kinds}, {NULL, NULL}
+  {"kinds", rules_kinds}, {"functions", rules_functions}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {

@@ -7,6 +7,7 @@
 **   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
 **   core.symbols()                       -> the turtle's symbol table (symbols.h)
 **   core.formats()                       -> the export formats of scene:save (export.h)
+**   core.scene_options(scene)            -> the options table a scene keeps
 **
 ** 'opts' is the normalised view under the names of its schema, which owns
 ** names, defaults and checks (lua/lsys/view.lua): angle, step, line_width,
@@ -748,6 +749,17 @@ static int scene_look (lua_State *L) {
   return 0;
 }
 
+/* core.scene_options(scene) -> the options table the scene keeps: the view it was
+** interpreted with, or what lsys.population gave it ({population = true, view = ...});
+** nil when it keeps none. Raises for anything but a Scene; answers for a closed one
+** too, as it reads only the user value, which a close leaves (lsys.render of a closed
+** population then raises what the renderer says). */
+static int l_scene_options (lua_State *L) {
+  luaL_checkudata(L, 1, SCENE_T);
+  lua_getiuservalue(L, 1, LSYS_SCENE_OPTS);
+  return 1;
+}
+
 /* core.symbols() -> { {name=, op=, split=, query=}, ... }: the rows of the turtle's
 ** symbol table (symbols.h) that have a module name, in its order. 'split' is how the
 ** parallel turtle treats the symbol ("cross": keeps the string on one thread, "state",
@@ -802,6 +814,7 @@ static const luaL_Reg scene_funcs[] = {
   {"turtle_state", l_turtle_state},
   {"symbols", l_symbols},
   {"formats", l_formats},
+  {"scene_options", l_scene_options},
   {NULL, NULL}
 };
 

@@ -394,7 +394,7 @@ make = function (opts, where, fail, dir)
     threads = opts.threads, random = opts.random or "lsys",
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
-  self._fns = debug.getuservalue(rules, 1)
+  self._fns = rules:functions()
   rules_models[rules] = self
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
     fail("option 'steps' must be a whole number >= 0")
@@ -832,7 +832,7 @@ function M.ismodel (x) return getmetatable(x) == Model end
 function M.sceneview (scene)
   local v = scene_views[scene]
   if v == nil and getmetatable(scene) == SCENE_MT then
-    local o = debug.getuservalue(scene, 3)
+    local o = core.scene_options(scene)
     if type(o) == "table" and o.population then v = o.view end
   end
   return v
@@ -842,10 +842,10 @@ end
 -- lsys.cli ran, or "model".
 function M.where (m) return m._where end
 
---- The model whose rules made the Lstring `s`, or nil.
+--- The model whose rules made the Lstring `s`, or nil (also for anything but an Lstring).
 function M.owner (s)
-  local ok, r = pcall(debug.getuservalue, s, 1)
-  return ok and r ~= nil and rules_models[r] or nil
+  local r = islstring(s) and core.lstring_rules(s)
+  return r and rules_models[r] or nil
 end
 
 --- Selects the rule group `n` (0 = only the productions, always active).
