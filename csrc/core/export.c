@@ -124,15 +124,15 @@ static int savepopulation (const lsys_scene *s, int format, const char *path,
     lsys_scene_free(&t);
     return st;
   }
-  mt.limit = o != NULL && o->max_memory > 0 ? o->max_memory : lsys_memory_limit();
+  mt.limit = o != NULL && o->max_memory > 0 ? o->max_memory : lsys_common_memory_limit();
   lsys_scene_init(&f);
   st = lsys_population_flatten(&f, s, &mt);
   if (st == LSYS_EMEMORY) {
     char b1[32], b2[32];
     return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': the population written out "
                          "needs %s, more than max_memory (%s)", path,
-                         lsys_fmtsize(b1, lsys_population_flatbytes(s)),
-                         lsys_fmtsize(b2, mt.limit));
+                         lsys_common_fmtsize(b1, lsys_population_flatbytes(s)),
+                         lsys_common_fmtsize(b2, mt.limit));
   }
   if (st == LSYS_ELIMIT)
     return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': the population written out "
@@ -142,15 +142,15 @@ static int savepopulation (const lsys_scene *s, int format, const char *path,
   if (tubes && o->pixel == 0) {                /* the scale of the population as drawn */
     lsys_export_opts to = *o;
     to.pixel = scenepixel(s);
-    st = lsys_scene_save(&f, format, path, &to, e);
+    st = lsys_export_scene(&f, format, path, &to, e);
   } else
-    st = lsys_scene_save(&f, format, path, o, e);
+    st = lsys_export_scene(&f, format, path, o, e);
   lsys_scene_free(&f);
   return st;
 }
 
-int lsys_scene_save (const lsys_scene *s, int format, const char *path,
-                     const lsys_export_opts *o, lsys_error *e) {
+int lsys_export_scene (const lsys_scene *s, int format, const char *path,
+                       const lsys_export_opts *o, lsys_error *e) {
   lsys_mesh tm;
   double pixel;
   int st;

@@ -79,7 +79,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->stess);
   LSYS_FREE(t->stessok);
   lsys_lstring_free(&t->hbuf);
-  if (t->pw) { lsys_polywork_free(t->pw); LSYS_FREE(t->pw); }
+  if (t->pw) { lsys_polygon_work_free(t->pw); LSYS_FREE(t->pw); }
   memset(t, 0, sizeof *t);
 }
 
@@ -151,7 +151,7 @@ int lsys_turtle_nomem (run *R) {
     char b[32];
     return lsys_turtle_fail(R, LSYS_EMEMORY, "the interpretation would need more than "
                             "max_memory (%s) (set max_memory in the model, or LSYS_MAX_MEMORY)",
-                            lsys_fmtsize(b, mt->limit));
+                            lsys_common_fmtsize(b, mt->limit));
   }
   return lsys_turtle_fail(R, LSYS_ENOMEM, "not enough memory");
 }
@@ -272,7 +272,8 @@ static int setring (run *R) {
   lsys_turtle *t = R->t;
   int n = R->st.sides;
   if (t->nring == n && t->ring) return LSYS_OK;
-  if (lsys_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2, sizeof(double)) != LSYS_OK)
+  if (lsys_common_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2,
+                       sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
   lsys_mesh_ringtable(t->ringbuf, n);
   t->ring = t->ringbuf;
@@ -363,8 +364,8 @@ static int push (run *R) {
   else {
     size_t k = R->depth - NSTACK;
     if (k >= t->stackcap &&
-        lsys_grow_metered((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack, t->meter)
-        != LSYS_OK)
+        lsys_common_grow_metered((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack,
+                                 t->meter) != LSYS_OK)
       return lsys_turtle_nomem(R);
     to = &t->stack[k];
   }
@@ -682,7 +683,7 @@ static int substart (run *R, const double *p, uint32_t np) {
   double x;
   int s;
   if ((s = arg(R, p, np, 1, 1, &x)) != LSYS_OK) return s;
-  if (lsys_grow((void **)&t->subscale, &t->subcap, t->nsub + 1, sizeof(double)) != LSYS_OK)
+  if (lsys_common_grow((void **)&t->subscale, &t->subcap, t->nsub + 1, sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
   t->subscale[t->nsub++] = R->st.scale;
   R->st.scale *= x;

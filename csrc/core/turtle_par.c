@@ -139,8 +139,8 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
     if ((k = cls[sym]) != 0) {
       if (k == K_CROSS) { st = 1; break; }
       if (k == K_OPEN) {
-        if (depth == opencap && (depth >= MAXOPEN || lsys_grow((void **)&open, &opencap,
-                                                               depth + 1, sizeof *open))) {
+        if (depth == opencap && (depth >= MAXOPEN || lsys_common_grow((void **)&open, &opencap,
+                                                                      depth + 1, sizeof *open))) {
           st = depth >= MAXOPEN ? 1 : LSYS_ENOMEM;
           break;
         }
@@ -251,7 +251,7 @@ static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
     else { p->src = p->dep; p->srcend = st->tip; }
     p->foreign = 1;
   }
-  if (lsys_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
+  if (lsys_common_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
     return lsys_seterror(&wt->err, LSYS_ENOMEM, p->a, "not enough memory");
   wt->ends[0] = P->p[p->src].ends[p->srcend];
   wt->ends[0].ring = FOREIGN;
@@ -438,10 +438,10 @@ static int places (par *P) {
   if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(P, 0), ntri + slack(P, 1))
                                != LSYS_OK)
     goto nomem;
-  if (ns > 0 && lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
-                                  S->meter) != LSYS_OK)
+  if (ns > 0 && lsys_common_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
+                                         S->meter) != LSYS_OK)
     goto nomem;
-  if (lsys_grow((void **)&t->ends, &t->endcap, ne, sizeof *t->ends) != LSYS_OK) goto nomem;
+  if (lsys_common_grow((void **)&t->ends, &t->endcap, ne, sizeof *t->ends) != LSYS_OK) goto nomem;
   t->nends = 0;
   for (k = 0; k < P->np; k++) {
     piece *p = &P->p[k];

@@ -54,9 +54,9 @@ static lsys_opts viewopts (lua_State *L, int t) {
 }
 
 /* An integer option: a number in [lo, hi], its fraction dropped. Not
-** lsys_optint: its message shows the number, and a fraction is no error. */
+** lsysL_optint: its message shows the number, and a fraction is no error. */
 static int optwhole (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
-  double x = lsys_optfinite(L, o, k, def);
+  double x = lsysL_optfinite(L, o, k, def);
   if (!(x >= lo && x <= hi)) {
     char got[32];
     snprintf(got, sizeof got, "%g", x);
@@ -101,7 +101,7 @@ static void readcontours (lua_State *L, int t, lsys_turtle_opts *o) {
   lua_pushnil(L);                           /* no Lua code runs in this loop */
   while (lua_next(L, -4)) {
     lua_Integer id = lua_tointeger(L, -2);
-    c[id] = lsys_keepcontour(L, -1);
+    c[id] = lsysL_keepcontour(L, -1);
     lua_rawseti(L, -3, id);
   }
   lua_setiuservalue(L, -2, 1);
@@ -135,12 +135,12 @@ static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
     lua_rawgeti(L, refs, 3 * k + 2);
     e = viewopts(L, -1);
     lua_getfield(L, -1, "surface");
-    u[k].s = lsys_keepsurface(L, -1);
+    u[k].s = lsysL_keepsurface(L, -1);
     lua_rawseti(L, refs, 3 * k + 3);
     lua_rawgeti(L, refs, 3 * k + 1);
     u[k].name = lua_tostring(L, -1);        /* alive in refs */
     lua_pop(L, 1);
-    u[k].scale = lsys_optfinite(L, &e, "scale", 1);
+    u[k].scale = lsysL_optfinite(L, &e, "scale", 1);
     u[k].texture = optwhole(L, &e, "texture", 0, 0, 65535);
     u[k].ns = optwhole(L, &e, "s", 4, 1, 256);
     u[k].nt = optwhole(L, &e, "t", u[k].ns, 1, 256);
@@ -175,10 +175,10 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
       if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
       e = viewopts(L, -1);
       readvector(L, e.t, "vector", tp->vec, what);
-      tp->angle = lsys_optfinite(L, &e, "angle", 0);
-      tp->elasticity = lsys_optfinite(L, &e, "elasticity", 0);
-      tp->increment = lsys_optfinite(L, &e, "increment", 0);
-      tp->intensity = lsys_optfinite(L, &e, "intensity", 1);
+      tp->angle = lsysL_optfinite(L, &e, "angle", 0);
+      tp->elasticity = lsysL_optfinite(L, &e, "elasticity", 0);
+      tp->increment = lsysL_optfinite(L, &e, "increment", 0);
+      tp->intensity = lsysL_optfinite(L, &e, "intensity", 1);
       lua_getfield(L, -1, "torque");
       tp->torque = lua_toboolean(L, -1);
       lua_pop(L, 2);
@@ -196,8 +196,8 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
     if (!(len > 0) || !isfinite(len))
       luaL_error(L, "view old_tropism: the vector must be finite and not 0");
     o->otrop[0] /= len; o->otrop[1] /= len; o->otrop[2] /= len;
-    o->oelast = lsys_optfinite(L, &e, "elasticity", 0);
-    o->oincr = lsys_optfinite(L, &e, "increment", 0);
+    o->oelast = lsysL_optfinite(L, &e, "elasticity", 0);
+    o->oincr = lsysL_optfinite(L, &e, "increment", 0);
   }
   lua_pop(L, 1);
 }
@@ -210,10 +210,10 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   luaL_checktype(L, t, LUA_TTABLE);
   v = viewopts(L, t);
   lsys_turtle_defaults(o);
-  o->angle = lsys_optfinite(L, &v, "angle", o->angle);
-  o->step = lsys_optfinite(L, &v, "step", o->step);
-  o->width = lsys_optfinite(L, &v, "line_width", o->width);
-  o->dwidth = lsys_optfinite(L, &v, "width_increment", o->dwidth);
+  o->angle = lsysL_optfinite(L, &v, "angle", o->angle);
+  o->step = lsysL_optfinite(L, &v, "step", o->step);
+  o->width = lsysL_optfinite(L, &v, "line_width", o->width);
+  o->dwidth = lsysL_optfinite(L, &v, "width_increment", o->dwidth);
   o->color = optwhole(L, &v, "color", o->color, 0, 65535);
   o->dcolor = optwhole(L, &v, "color_increment", o->dcolor, -65535, 65535);
   o->sides = optwhole(L, &v, "contour_sides", o->sides, 3, 1024);
@@ -239,7 +239,7 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   if (o->contours == NULL) lua_pushnil(L);
   readsurfaces(L, t, o);
   if (o->surfaces == NULL) lua_pushnil(L);
-  o->tex = lsys_opttextures(L, t, "view", &o->ntex);
+  o->tex = lsysL_opttextures(L, t, "view", &o->ntex);
 }
 
 static void readcolor (lua_State *L, int t, const char *k, float *c, int required) {
@@ -269,7 +269,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     lua_pop(L, 1);
     S->sc.pal = (lsys_material *)LSYS_MALLOC(sizeof *S->sc.pal);
     if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
-    lsys_material_color(S->sc.pal, 0.6, 0.6, 0.6);
+    lsys_mesh_material_color(S->sc.pal, 0.6, 0.6, 0.6);
     S->sc.npal = S->sc.palcap = 1;
     return;
   }
@@ -281,7 +281,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
   for (k = 0; k < n; k++) {
     lsys_material *m = &S->sc.pal[k];
     lsys_opts e;
-    lsys_material_color(m, 0.6, 0.6, 0.6);
+    lsys_mesh_material_color(m, 0.6, 0.6, 0.6);
     if (lua_geti(L, -1, k) != LUA_TTABLE) {
       if (k == 0) { lua_pop(L, 1); continue; }
       luaL_error(L, "palette entry %d must be a material table", (int)k);
@@ -295,7 +295,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     readcolor(L, -1, "ambient", m->ambient, 0);
     readcolor(L, -1, "specular", m->specular, 0);
     readcolor(L, -1, "emission", m->emission, 0);
-    m->shininess = (float)lsys_optfinite(L, &e, "shininess", m->shininess);
+    m->shininess = (float)lsysL_optfinite(L, &e, "shininess", m->shininess);
     if (m->shininess < 0 || m->shininess > 128)
       luaL_error(L, "palette entry %d: shininess must be in [0, 128]", (int)k);
     lua_pop(L, 1);
@@ -310,7 +310,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
 /* ---------------------------------------------------------------------- */
 /* running the turtle with the homomorphism streamed from the rules */
 
-/* What the protected run of the turtle needs (lsys_rules_run). */
+/* What the protected run of the turtle needs (lsysL_rules_run). */
 typedef struct turtlecall {
   lsys_turtle *t;
   lsys_lstring *s;
@@ -319,9 +319,9 @@ typedef struct turtlecall {
 
 /* The turtle's run with the model bound: interpret.h streams the
 ** homomorphism and attaches the model's memory budget. */
-static int doturtle (lua_State *L, lsys_model *m, void *ud) {
+static int doturtle (lua_State *L, lsys_rules *m, void *ud) {
   turtlecall *x = (turtlecall *)ud;
-  return lsys_interpret(m, x->t, x->s, lsys_getalphabet(L), x->homo);
+  return lsys_interpret_run(m, x->t, x->s, lsysL_getalphabet(L), x->homo);
 }
 
 /* Runs the turtle over the Lstring at 2 with the rules at 1 and options at
@@ -330,15 +330,15 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   static const int lstr[1] = {2};
   turtlecall x;
   int st;
-  x.s = t->mode == LSYS_TURTLE_DRAW ? lsys_checklstring_any(L, 2) : checklstring(L, 2);
+  x.s = t->mode == LSYS_TURTLE_DRAW ? lsysL_checklstring_any(L, 2) : checklstring(L, 2);
   x.t = t;
   readopts(L, opt, o);
   lua_getfield(L, opt, "homomorphism");
   x.homo = lua_isnil(L, -1) || lua_toboolean(L, -1);
   lua_pop(L, 1);
   t->o = o;
-  st = lsys_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
-  if (st != LSYS_OK) lsys_raise(L, st, &t->err, 1);
+  st = lsysL_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
+  if (st != LSYS_OK) lsysL_raise(L, st, &t->err, 1);
   if (t->warn.code != 0) {             /* through warn(), as the library's warnings go */
     lua_warning(L, "lsys: ", 1);
     lua_warning(L, t->warn.msg, 0);
@@ -353,10 +353,10 @@ static int l_interpret (lua_State *L) {
   lsys_lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
-  S = lsys_newscene(L);      /* 4 */
+  S = lsysL_newscene(L);      /* 4 */
   readpalette(L, 3, S);
   look = viewopts(L, 3);                   /* how to look at the scene, from the view */
-  lsys_readlook(L, &look, &S->sc);
+  lsysL_readlook(L, &look, &S->sc);
   t = newturtle(L, LSYS_TURTLE_DRAW);                        /* 5 */
   t->scene = &S->sc;
   turtlerun(L, t, &o, 3);
@@ -387,7 +387,7 @@ static int l_query (lua_State *L) {
   return 1;
 }
 
-#define pushvec(L, v) lsys_pushnums((L), (v), 3)
+#define pushvec(L, v) lsysL_pushnums((L), (v), 3)
 
 static void pushvecf (lua_State *L, const float *v) {
   double d[3] = {v[0], v[1], v[2]};
@@ -425,7 +425,8 @@ static int l_turtle_state (lua_State *L) {
 static int scene_gc (lua_State *L) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
-    if (!lsys_finalizing(L)) lsys_checkidle(L, S->busy, "cannot close a Scene while it is in use");
+    if (!lsysL_finalizing(L))
+      lsysL_checkidle(L, S->busy, "cannot close a Scene while it is in use");
     lsys_scene_free(&S->sc);
     S->inited = 0;
   }
@@ -440,10 +441,10 @@ static size_t countrec (const lsys_lscene *S, int kind) {
 
 /* The sizes of a scene as drawn: a population's instances written out. */
 static int scene_index (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
   size_t nv, nt, nl;
-  S = lsys_checkscene(L, 1);                /* again: converting a number allocates */
+  S = lsysL_checkscene(L, 1);                /* again: converting a number allocates */
   lsys_population_size(&S->sc, &nv, &nt, &nl);
   if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)nt);
   else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)nv);
@@ -485,7 +486,7 @@ static int scene_tostring (lua_State *L) {
 
 /* scene:bounds() -> {xmin, ymin, zmin}, {xmax, ymax, zmax} (nil when empty) */
 static int scene_bounds (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   double lo[3], hi[3];
   if (!lsys_scene_bounds(&S->sc, lo, hi)) { lua_pushnil(L); return 1; }
   pushvec(L, lo);
@@ -495,7 +496,7 @@ static int scene_bounds (lua_State *L) {
 
 /* scene:area() -> total area of the triangles (as drawn: a population's instances) */
 static int scene_area (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_pushnumber(L, lsys_population_area(&S->sc));
   return 1;
 }
@@ -511,7 +512,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
   lua_createtable(L, 0, 12);
-  lua_pushstring(L, lsys_recordkind(r->kind)); lua_setfield(L, -2, "kind");
+  lua_pushstring(L, lsysL_recordkind(r->kind)); lua_setfield(L, -2, "kind");
   lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
   if (r->parent != LSYS_NOREC) {
     lua_pushinteger(L, (lua_Integer)r->parent + 1);
@@ -539,7 +540,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
 
 /* scene:record(k) -> table for turtle record k (1-based), or nil */
 static int scene_record (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   if (k < 1 || (size_t)k > S->sc.nrec) { lua_pushnil(L); return 1; }
   pushrecord(L, S, (size_t)k - 1);
@@ -547,7 +548,7 @@ static int scene_record (lua_State *L) {
 }
 
 static int records_iter (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
   if (k < 1 || (size_t)k > S->sc.nrec) return 0;
   lua_pushinteger(L, k);
@@ -557,7 +558,7 @@ static int records_iter (lua_State *L) {
 
 /* for k, rec in scene:records() do ... end */
 static int scene_records (lua_State *L) {
-  lsys_checkscene(L, 1);
+  lsysL_checkscene(L, 1);
   lua_pushcfunction(L, records_iter);
   lua_pushvalue(L, 1);
   lua_pushinteger(L, 0);
@@ -566,7 +567,7 @@ static int scene_records (lua_State *L) {
 
 /* scene:find(module) -> index of the first record of module i (1-based), or nil */
 static int scene_find (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer m = luaL_checkinteger(L, 2);
   size_t k;
   for (k = 0; k < S->sc.nrec; k++)
@@ -579,12 +580,12 @@ static int scene_find (lua_State *L) {
 ** {{x, y, z}, {x, y, z}} of its triangles (empty for lines and records that
 ** drew none; a leaf or flower gives its whole outline and inner edges) */
 static int scene_edges (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   const lsys_trec *r;
   uint32_t *e;
   size_t n, i;
-  S = lsys_holdscene(L, 1);
+  S = lsysL_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
   r = &S->sc.rec[k - 1];
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
@@ -604,7 +605,7 @@ static int scene_edges (lua_State *L) {
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   lua_Integer i;
-  if (lsys_checkscene(L, 1)->sc.ninst > 0)
+  if (lsysL_checkscene(L, 1)->sc.ninst > 0)
     return luaL_error(L, "scene:turtle: a population has no Lstring of its own (its prototypes' "
                       "are in scene:prototype(k).lstring)");
   i = luaL_checkinteger(L, 2);
@@ -696,7 +697,7 @@ static int scene_save (lua_State *L) {
   static const char *const keys[] = {"lines", "sides", "pixel_size", "instancing",
                                      "max_memory", NULL};
   static const char *const lines[] = {"lines", "tubes", NULL};
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
   lsys_export_opts xo = {0, 0, 0, 0, 0};
@@ -706,43 +707,43 @@ static int scene_save (lua_State *L) {
   if (!lua_isnoneornil(L, 3)) {
     lsys_opts o = {3, "scene:save: opts.", "", LSYS_GOT_VALUE, 0};
     luaL_checktype(L, 3, LUA_TTABLE);
-    if (lsys_optunknown(L, &o, keys))
+    if (lsysL_optunknown(L, &o, keys))
       return luaL_error(L, "scene:save: unknown option '%s' (use lines, sides, pixel_size, "
                         "instancing, max_memory)", luaL_tolstring(L, -1, NULL));
-    xo.tubes = lsys_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
-    xo.sides = lsys_optint(L, &o, "sides", 0, 3, 1024);
-    xo.pixel = lsys_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
-    xo.flatten = !lsys_optbool(L, &o, "instancing", 1);
-    xo.max_memory = (size_t)lsys_optnum(L, &o, "max_memory", 0, 0, 1.8e19,
-                                        "a positive number of bytes");
+    xo.tubes = lsysL_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
+    xo.sides = lsysL_optint(L, &o, "sides", 0, 3, 1024);
+    xo.pixel = lsysL_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
+    xo.flatten = !lsysL_optbool(L, &o, "instancing", 1);
+    xo.max_memory = (size_t)lsysL_optnum(L, &o, "max_memory", 0, 0, 1.8e19,
+                                         "a positive number of bytes");
   }
   lua_settop(L, 3);
   if (xo.sides == 0) xo.sides = tubesides(L);
   if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use %s)", path, extlist(L));
-  S = lsys_checkscene(L, 1);                /* again: the options ran Lua code */
-  st = lsys_scene_save(&S->sc, format, path, &xo, &e);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
+  S = lsysL_checkscene(L, 1);                /* again: the options ran Lua code */
+  st = lsys_export_scene(&S->sc, format, path, &xo, &e);
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
 
 /* scene:look(opts): how the scene is looked at from now on (its camera,
-** light and background: the look fields of a view, lsys_readlook). */
+** light and background: the look fields of a view, lsysL_readlook). */
 static int scene_look (lua_State *L) {
   static const char *const keys[] = {
     "background", "light", "viewpoint", "target", "up", "direction", "projection", "fov",
     "twist", "zoom", "fit", NULL
   };
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lsys_opts o = {2, "scene:look: opts.", "", LSYS_GOT_TYPE, 0};
   lsys_scene sc;
   luaL_checktype(L, 2, LUA_TTABLE);
-  if (lsys_optunknown(L, &o, keys))
+  if (lsysL_optunknown(L, &o, keys))
     return luaL_error(L, "scene:look: unknown option '%s'", luaL_tolstring(L, -1, NULL));
   sc = S->sc;                   /* read into a copy: an error leaves the scene as it was */
-  lsys_readlook(L, &o, &sc);
-  S = lsys_checkscene(L, 1);
+  lsysL_readlook(L, &o, &sc);
+  S = lsysL_checkscene(L, 1);
   S->sc.cam = sc.cam;
   memcpy(S->sc.light, sc.light, sizeof sc.light);
   memcpy(S->sc.background, sc.background, sizeof sc.background);
@@ -823,12 +824,12 @@ static const luaL_Reg turtle_meta[] = {
 };
 
 /* The Scene's __index (scene_index) finds its methods in __methods. */
-void lsys_open_scene (lua_State *L) {
-  lsys_createmeta(L, SCENE_T, scene_meta, NULL);
+void lsysL_open_scene (lua_State *L) {
+  lsysL_createmeta(L, SCENE_T, scene_meta, NULL);
   luaL_getmetatable(L, SCENE_T);
   luaL_newlib(L, scene_methods);
   lua_setfield(L, -2, "__methods");
   lua_pop(L, 1);
-  lsys_createmeta(L, TURTLE_T, turtle_meta, NULL);
+  lsysL_createmeta(L, TURTLE_T, turtle_meta, NULL);
   luaL_setfuncs(L, scene_funcs, 0);
 }

@@ -58,9 +58,9 @@ static void test_rows (void) {
       size_t n = strlen(r->name);
       char text[16];
       assert(n > 0 && n + 4 < sizeof text);
-      assert(lsys_scan_name(r->name, n, NULL) == n);
+      assert(lsys_alphabet_scan(r->name, n, NULL) == n);
       snprintf(text, sizeof text, "%s(1)", r->name);
-      assert(lsys_scan_name(text, strlen(text), NULL) == n);
+      assert(lsys_alphabet_scan(text, strlen(text), NULL) == n);
       assert(r->name[0] != '@' || lsys_symbols_match(text, strlen(text), '@') == n);
     }
     assert(r->keep == (unsigned)LISTED(keeping, r->name));
@@ -68,8 +68,8 @@ static void test_rows (void) {
   }
   assert(named == LSYS_NSYMBOLS - 3);                    /* but NONE, SURFACE, NOSURFACE */
   /* '@' and a letter the table does not have is still one module (cpfg's @H) */
-  assert(lsys_scan_name("@H(1)", 5, NULL) == 2 && lsys_scan_name("@Dx", 3, NULL) == 2);
-  assert(lsys_scan_name("@Dix", 4, NULL) == 3 && lsys_scan_name("@1", 2, NULL) == 1);
+  assert(lsys_alphabet_scan("@H(1)", 5, NULL) == 2 && lsys_alphabet_scan("@Dx", 3, NULL) == 2);
+  assert(lsys_alphabet_scan("@Dix", 4, NULL) == 3 && lsys_alphabet_scan("@1", 2, NULL) == 1);
   assert(lsys_symbols_match("@Dd", 3, '@') == 3 && lsys_symbols_match("@Q", 2, '@') == 0);
 }
 
