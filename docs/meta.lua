@@ -1386,6 +1386,13 @@ function core.rules(names) end
 ---@return lsys.Lstring
 function core.lstring(text) end
 
+--- The Rules that made the Lstring `s` (its owner), or nil for a string made without rules:
+--- how lsys.model finds the model of a string. Raises for anything but an Lstring; answers
+--- for a closed one too (the user value it reads stays after a close).
+---@param s lsys.Lstring
+---@return lsys.Rules?
+function core.lstring_rules(s) end
+
 --- Same as `lsys.produce`.
 ---@param template string
 ---@param ... number
@@ -1560,6 +1567,12 @@ function Rules:newset(kind, sub, group) end
 ---@return boolean
 function Rules:busy() end
 
+--- The table of the rules' Lua functions, which lsys.model fills (entry k: the function of
+--- the rules whose function index is k) and a derivation's callbacks call: the table
+--- itself, not a copy. Raises `the model's rules were closed`.
+---@return table<integer, function>
+function Rules:functions() end
+
 --- Parses an axiom into a template without a Lua table per module: parameters are numbers
 --- or expressions (brackets must balance). Returns the template and the list of its
 --- distinct expression texts, in order, or nil, a message and a 1-based position.
@@ -1635,6 +1648,29 @@ function core.query(rules, s, opts) end
 ---@return number width
 ---@return integer color
 function core.turtle_state(rules, s, i, opts) end
+
+--- The options table a Scene keeps: the normalised view it was interpreted with, or what
+--- lsys.population gave it (`{ population = true, view = ... }`); nil when it keeps none.
+--- Raises for anything but a Scene; answers for a closed one too.
+---@param scene lsys.Scene
+---@return table?
+function core.scene_options(scene) end
+
+--- The turtle's symbol table (csrc/core/symbols.h): one row per named turtle symbol, in
+--- the table's order. `split` says how the turtle on several threads treats the symbol:
+--- "cross" (its effect crosses branches: the string stays on one thread), "state", "open",
+--- "close", "segment", "shape" or "record". `query` is true for ?P ?H ?U ?L. The predefined
+--- surfaces `~X` are named by the view and not listed. A new table each call.
+---@return { name: string, op: string, split: string, query: boolean }[]
+function core.symbols() end
+
+--- The export formats of `Scene:save` (csrc/core/export.h), in their order: `name`, `ext`
+--- (the file name's extension, lower case, without the dot), `title`, `companion` (the
+--- extension of a file written beside it: OBJ's material file; absent when none),
+--- `textures` (textured triangles name or embed their image) and `instancing` (a population
+--- is written with instancing unless `opts.instancing = false`). A new table each call.
+---@return { name: string, ext: string, title: string, companion?: string, textures: boolean, instancing: boolean }[]
+function core.formats() end
 
 -- ---------------------------------------------------------------------------------------------
 -- Free-form deformation (csrc/lua/lua_ffd.c; docs/components.md)

@@ -148,3 +148,38 @@ describe("a closed object", function ()
     assert.equal("lsys.Lstring (closed)", tostring(s))
   end)
 end)
+
+describe("what the Lua side reads of an object", function ()
+  it("gives a model's rule functions, its Lstrings' rules and a scene's options", function ()
+    local mm = lsys.lsystem { axiom = "A", productions = { "A --> F A" } }
+    local fns = mm._rules:functions()
+    assert.is_table(fns)
+    assert.equal(fns, mm._rules:functions())            -- the table itself, not a copy
+    assert.equal(mm._rules, core.lstring_rules(mm:derive(2)))
+    assert.is_nil(core.lstring_rules(lsys.lstring("F")))  -- made without rules
+    local view = { angle = 30 }
+    local o = core.scene_options(mm:interpret(nil, view))
+    assert.is_table(o)
+    assert.equal(30, o.angle)
+  end)
+
+  it("checks the type, and the rules' liveness", function ()
+    local s, sc = m:derive(1), m:interpret()
+    -- (the function's name in the message depends on how it is called)
+    local function argerr (f, x) return (errof(f, x):gsub(" to '[^']*' ", " to F ")) end
+    assert.equal("bad argument #1 to F (lsys.Lstring expected, got lsys.Scene)",
+                 argerr(core.lstring_rules, sc))
+    assert.equal("bad argument #1 to F (lsys.Scene expected, got lsys.Lstring)",
+                 argerr(core.scene_options, s))
+    assert.equal("bad argument #1 to F (lsys.Rules expected, got lsys.Lstring)",
+                 argerr(m._rules.functions, s))
+    local r = core.rules()
+    close(r)
+    assert.has_error(function () r:functions() end, "the model's rules were closed")
+    -- a closed Lstring or Scene still names its rules and options (only the user values are
+    -- read, which a close leaves): the messages of their use name the model
+    close(s); close(sc)
+    assert.equal(m._rules, core.lstring_rules(s))
+    assert.is_table(core.scene_options(sc))
+  end)
+end)

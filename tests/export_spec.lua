@@ -124,6 +124,50 @@ describe("export", function ()
   end)
 end)
 
+describe("export formats", function ()
+  local core = require "lsys.core"
+
+  it("are listed by the core in one order, with what each writes", function ()
+    local rows = core.formats()
+    local names = {}
+    for i, f in ipairs(rows) do names[i] = f.name end
+    assert.same({ "obj", "ply", "glb" }, names)
+    assert.same({ name = "obj", ext = "obj", title = "Wavefront OBJ", companion = "mtl",
+                  textures = true, instancing = false }, rows[1])
+    assert.same({ name = "ply", ext = "ply", title = "binary PLY", textures = false,
+                  instancing = false }, rows[2])
+    assert.same({ name = "glb", ext = "glb", title = "glTF 2.0 binary", textures = true,
+                  instancing = true }, rows[3])
+    assert.not_equal(core.formats(), core.formats())       -- a new table each call
+  end)
+
+  it("are what scene:save writes, and what its message lists", function ()
+    local sc = lsys.lsystem { axiom = "F+F" }:interpret()
+    local exts = {}
+    for _, f in ipairs(core.formats()) do
+      local file = path("." .. f.ext)
+      assert.is_true(sc:save(file))
+      assert.truthy(io.open(file, "rb")):close()
+      if f.companion then assert.truthy(io.open(path("." .. f.companion), "rb")):close() end
+      exts[#exts + 1] = "." .. f.ext
+    end
+    cleanup()
+    local list = table.concat(exts, ", ", 1, #exts - 1) .. " or " .. exts[#exts]
+    assert.has_error(function () sc:save(path(".stl")) end,
+                     "scene:save: unknown format of '" .. path(".stl") .. "' (use " .. list .. ")")
+  end)
+
+  it("are the ones the export command and lsys.batch list", function ()
+    local names = require("lsys.batch.formats").names
+    assert.same({ "png", "glb", "obj", "ply", "lstring", "stats" }, names)
+    local help = require("lsys.cli.help")
+    assert.truthy(help.usage:find("write a model's geometry to OUT (.obj, .ply or .glb)", 1, true))
+    assert.truthy(help.help.export:find("-o OUT.{obj,ply,glb} ", 1, true))
+    assert.truthy(help.help.batch:find("), png, glb, obj, ply, lstring, stats, and a", 1, true))
+    assert.truthy(help.help.batch:find(" .glb .obj .ply (meshes)", 1, true))
+  end)
+end)
+
 describe("export colours", function ()
   -- palette entry 1: sRGB (0.5, 0.25, 1) at half opacity, glowing red at 0.5
   local sc

@@ -5,6 +5,8 @@
 --     below; nothing but init.lua requires "lsys", and init.lua only gathers; a require
 --     inside a function only loads an optional dependency (LUA_LAZY);
 --   * no include cycle among the C modules and no require cycle among the Lua modules;
+--   * no Lua module reads the user values of the bindings' objects (debug.getuservalue):
+--     the bindings give what the Lua side needs as functions and methods;
 --   * no file in csrc/ over 1000 lines and no C function over 120 lines, except the
 --     dispatch switches listed in DISPATCH; the same budget for lua/, except what
 --     LUA_LONG_FILES and LUA_LONG_FUNCTIONS list (lists that only shrink).
@@ -112,6 +114,70 @@ local function cycle (graph)
   end
 end
 
+-- The functions a header declares that are not static: { name, ... } (prototypes at the top
+-- level; preprocessor lines, bodies and attributes left out).
+local function declared (path)
+  local src = strip(io.open(path):read("a"))
+  local text = {}
+  for line in (src .. "\n"):gmatch("([^\n]*)\n") do        -- #lines, with their \ continuations
+    if text.cont or line:match("^%s*#") then
+      text.cont = line:match("\\%s*$") ~= nil
+    else
+      text[#text + 1] = line
+    end
+  end
+  local flat, depth = {}, 0
+  for c in table.concat(text, "\n"):gmatch(".") do         -- the top level: bodies become ';'
+    if c == "{" then
+      if depth == 0 then flat[#flat + 1] = ";" end
+      depth = depth + 1
+    elseif c == "}" then depth = depth - 1
+    elseif depth == 0 then flat[#flat + 1] = c end
+  end
+  local names = {}
+  for stmt in table.concat(flat):gmatch("[^;]+") do
+    stmt = stmt:gsub("__attribute__%s*%b()", ""):gsub("%s+", " "):gsub("^ ", ""):gsub(" $", "")
+    local pre, name = stmt:match("^([^()]-)%f[%w_]([%w_]+) ?%b()$")
+    if pre and pre ~= "" and not pre:find("%f[%w_]static%f[^%w_]") and
+       not pre:find("%f[%w_]typedef%f[^%w_]") then
+      names[#names + 1] = name
+    end
+  end
+  return names
+end
+
+-- The functions a C file defines at the top level: { name = true }.
+local function defined (path)
+  local src = "\n" .. strip(io.open(path):read("a"))
+  local names = {}
+  for name in src:gmatch("\n[%a_][^\n;{}()]-%f[%w_]([%w_]+)%s*%b()%s*{") do names[name] = true end
+  return names
+end
+
+-- The module of a C file: its name up to the first '_' (turtle_cyl.c is module turtle,
+-- export_obj.c export, derive_impl.h derive).
+local function module_of (path) return path:match("([^/_]+)[^/]*%.[ch]$") end
+
+-- Public names of the core and the GL layer that start with neither lsys_<module>_ of the
+-- file that defines them nor that of the header that declares them, each with the reason:
+-- only where the name is a concept of several files. A key ending in '_' is a prefix.
+local NAME_EXCEPTIONS = {
+  lsys_seterror = "the error record (lsys_error, common.h) that every module of the core "
+    .. "fills, in the one form of its messages",
+  lsys_vseterror_at = "the error record, as lsys_seterror (with a place)",
+  lsys_vseterror_line = "the error record, as lsys_seterror (with a file and line)",
+  lsys_rules_ = "the rule set (lsys_rules, derive.h; derive_rules.c): what Lua calls "
+    .. "lsys.Rules, used by the derivation, the contexts, the homomorphism and the bindings",
+}
+
+local function excepted (name)
+  if NAME_EXCEPTIONS[name] then return true end
+  for k in pairs(NAME_EXCEPTIONS) do
+    if k:sub(-1) == "_" and name:sub(1, #k) == k then return true end
+  end
+  return false
+end
+
 local C = ls("csrc/*/*.c csrc/*/*.h")
 local where = {}                       -- file name -> path
 for _, f in ipairs(C) do where[f:match("[^/]+$")] = f end
@@ -171,6 +237,56 @@ describe("the C tree", function ()
       end
     end
     assert.is_nil(cycle(graph))
+  end)
+
+  it("names the public functions of the core and the GL layer lsys_<module>_<verb>", function ()
+    -- the module of the file that defines a function, or of the header that declares it
+    -- (render.h's lsys_render_offscreen lives in osmesa.c), but for NAME_EXCEPTIONS
+    local function core_or_gl (f) return layer(f) == "core" or layer(f) == "gl" end
+    local function of (name, f)
+      local prefix = "lsys_" .. module_of(f) .. "_"
+      return name:sub(1, #prefix) == prefix
+    end
+    local def = {}
+    for _, f in ipairs(C) do
+      if core_or_gl(f) and f:match("%.c$") then
+        for name in pairs(defined(f)) do def[name] = def[name] or f end
+      end
+    end
+    local bad, used, n = {}, {}, 0
+    for _, h in ipairs(C) do
+      if core_or_gl(h) and h:match("%.h$") then
+        for _, name in ipairs(declared(h)) do
+          n = n + 1
+          local f = def[name]
+          if not (of(name, h) or f and of(name, f)) then
+            if excepted(name) then used[name] = true
+            else bad[#bad + 1] = h .. ": " .. name .. (f and " (" .. f .. ")" or "") end
+          end
+        end
+      end
+    end
+    assert.is_true(n > 300)
+    assert.same({}, bad)
+    for k in pairs(NAME_EXCEPTIONS) do            -- an exception nothing needs must go
+      local any = used[k]
+      for name in pairs(used) do any = any or (k:sub(-1) == "_" and name:sub(1, #k) == k) end
+      assert.is_true(any, k)
+    end
+  end)
+
+  it("names the bindings' shared functions lsysL_ (and the entry luaopen_lsys_core)", function ()
+    local bad = {}
+    for _, h in ipairs(C) do
+      if layer(h) == "lua" and h:match("%.h$") then
+        for _, name in ipairs(declared(h)) do
+          if not name:match("^lsysL_") and name ~= "luaopen_lsys_core" then
+            bad[#bad + 1] = h .. ": " .. name
+          end
+        end
+      end
+    end
+    assert.same({}, bad)
   end)
 
   it("makes a forbidden header a compile error in the core and the GL layer", function ()
@@ -525,5 +641,17 @@ describe("the Lua tree", function ()
     for k in pairs(LUA_LAZY) do if not used[k] then unused[#unused + 1] = k end end
     table.sort(unused)
     assert.same({}, unused)        -- listed, but no function requires it: unlist it
+  end)
+
+  it("reads no binding's internals: no debug.getuservalue or debug.setuservalue", function ()
+    local bad = {}
+    for _, f in ipairs(luafiles()) do
+      local n = 0
+      for line in io.lines(f) do
+        n = n + 1
+        if line:find("debug%.[gs]etuservalue") then bad[#bad + 1] = f .. ":" .. n end
+      end
+    end
+    assert.same({}, bad)
   end)
 end)

@@ -223,6 +223,47 @@ describe("turtle records", function ()
   end)
 end)
 
+describe("the symbol table", function ()
+  local core = require "lsys.core"
+
+  it("lists each named symbol once, with its split class and the query modules", function ()
+    local rows, seen, queries = core.symbols(), {}, {}
+    local split = { cross = true, state = true, open = true, close = true, segment = true,
+                    shape = true, record = true }
+    for _, r in ipairs(rows) do
+      assert.is_nil(seen[r.name])
+      seen[r.name] = r
+      assert.is_true(split[r.split])
+      if r.query then queries[#queries + 1] = r.name end
+    end
+    assert.same({ "?P", "?H", "?U", "?L" }, queries)
+    assert.equal("open", seen["["].split)
+    assert.equal("close", seen["]"].split)
+    assert.equal("segment", seen.F.split)
+    assert.equal("cross", seen["{"].split)
+    assert.equal("LEFT", seen["+"].op)
+    assert.not_equal(core.symbols(), core.symbols())      -- a new table each call
+  end)
+
+  it("is the table of docs/drawing.md section 1", function ()
+    local doc, names = H.read("docs/drawing.md"), {}
+    local section = doc:match("\n## 1%. The turtle\n(.-)\n## ")
+    for row in section:gmatch("\n(| `[^\n]*)") do
+      local first = row:match("^| (.-) |")
+      for span in first:gmatch("`([^`]+)`") do
+        for word in span:gmatch("%S+") do
+          names[(word:gsub("\\|", "|"):match("^[^(]+") or word)] = true
+        end
+      end
+    end
+    local missing = {}
+    for _, r in ipairs(core.symbols()) do
+      if not names[r.name] then missing[#missing + 1] = r.name end
+    end
+    assert.same({}, missing)
+  end)
+end)
+
 describe("tropisms", function ()
   it("bends H toward T by e|H x T| before each move (eq. 1)", function ()
     for _, e in ipairs { 0.1, 0.3, 0.6 } do

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "alphabet.h"
+#include "symbols.h"
 
 static uint32_t hashname (const char *s, size_t len) {
   uint32_t h = 2166136261u;               /* FNV-1a */
@@ -89,7 +90,7 @@ uint32_t lsys_alphabet_intern (lsys_alphabet *a, const char *name, size_t len,
   }
   if (a->n == a->cap) {
     size_t cap = a->cap;
-    if (lsys_grow((void **)&a->names, &cap, a->n + 1, sizeof *a->names) != LSYS_OK)
+    if (lsys_common_grow((void **)&a->names, &cap, a->n + 1, sizeof *a->names) != LSYS_OK)
       goto nomem;
     a->cap = (uint32_t)cap;
   }
@@ -111,14 +112,6 @@ nomem:
   return 0;
 }
 
-/* cpfg's '@' modules (004 Appendix A and later issues), longest first
-** where one is a prefix of another. */
-static const char *const atnames[] = {
-  "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@PS", "@PC", "@PD", "@Ts", "@Ti",
-  "@Td", "@Tp", "@Tf", "@Tx", "@Di", "@Dd", "@D", "@o", "@O", "@c", "@v",
-  "@R", "@M", "@L", "@S", "@#", "@!", "@H", "@X", NULL
-};
-
 static int isletter (int c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
 }
@@ -136,7 +129,7 @@ static size_t utf8len (const unsigned char *s, size_t len) {
   return n;
 }
 
-size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl) {
+size_t lsys_alphabet_scan (const char *s, size_t len, const lsys_names *decl) {
   unsigned char c;
   size_t best = 0, i;
   if (len == 0) return 0;
@@ -150,13 +143,10 @@ size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl) {
     }
   if (best > 0) return best;
   switch (c) {
-    case '@': {
-      for (i = 0; atnames[i] != NULL; i++) {
-        size_t n = strlen(atnames[i]);
-        if (n <= len && memcmp(atnames[i], s, n) == 0) return n;
-      }
+    case '@':        /* the turtle's '@' names (symbols.h), the longest that fits; else '@'
+                        and one letter (cpfg's @H, lsys's @X, ...) */
+      if ((best = lsys_symbols_match(s, len, '@')) > 0) return best;
       return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;
-    }
     case '?':
       return (len > 1 && isletter((unsigned char)s[1])) ? 2 : 1;
     case '~': {
@@ -171,9 +161,9 @@ size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl) {
   }
 }
 
-int lsys_names_add (lsys_names *d, const char *name, size_t len) {
+int lsys_alphabet_names_add (lsys_names *d, const char *name, size_t len) {
   char *copy;
-  if (lsys_grow((void **)&d->v, &d->cap, d->n + 1, sizeof *d->v) != LSYS_OK)
+  if (lsys_common_grow((void **)&d->v, &d->cap, d->n + 1, sizeof *d->v) != LSYS_OK)
     return LSYS_ENOMEM;
   copy = (char *)LSYS_MALLOC(len + 1);
   if (copy == NULL) return LSYS_ENOMEM;
@@ -183,7 +173,7 @@ int lsys_names_add (lsys_names *d, const char *name, size_t len) {
   return LSYS_OK;
 }
 
-void lsys_names_free (lsys_names *d) {
+void lsys_alphabet_names_free (lsys_names *d) {
   size_t i;
   for (i = 0; i < d->n; i++) LSYS_FREE(d->v[i]);
   LSYS_FREE(d->v);

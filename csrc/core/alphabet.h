@@ -66,9 +66,9 @@ static inline const char *lsys_alphabet_name (const lsys_alphabet *a, uint32_t i
 ** '?' followed by a letter (query modules), '~' followed by one character
 ** (a predefined surface), one UTF-8 character otherwise.
 */
-size_t lsys_scan_name (const char *s, size_t len, const lsys_names *decl);
+size_t lsys_alphabet_scan (const char *s, size_t len, const lsys_names *decl);
 
-int lsys_names_add (lsys_names *d, const char *name, size_t len);
-void lsys_names_free (lsys_names *d);
+int lsys_alphabet_names_add (lsys_names *d, const char *name, size_t len);
+void lsys_alphabet_names_free (lsys_names *d);
 
 #endif

@@ -36,7 +36,7 @@ static void push (hitbuf *hb, double t, double s, double x, double y) {
     return;
   }
   if (hb->n == hb->cap
-      && lsys_grow((void **)&hb->h, &hb->cap, hb->n + 1, sizeof *hb->h) != LSYS_OK) {
+      && lsys_common_grow((void **)&hb->h, &hb->cap, hb->n + 1, sizeof *hb->h) != LSYS_OK) {
     hb->err = LSYS_ENOMEM;
     return;
   }

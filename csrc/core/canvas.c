@@ -77,10 +77,10 @@ int lsys_canvas_init (lsys_canvas *c, int w, int h, lsys_error *e) {
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "canvas size %dx%d is outside 1x1 .. %dx%d",
                          w, h, LSYS_CANVAS_MAXSIZE, LSYS_CANVAS_MAXSIZE);
   bytes = (size_t)w * (size_t)h * 4;
-  if (bytes > lsys_memory_limit())
+  if (bytes > lsys_common_memory_limit())
     return lsys_seterror(e, LSYS_EMEMORY, (size_t)-1, "a %dx%d canvas needs %s, more than the "
-                         "memory limit (%s)", w, h, lsys_fmtsize(b1, bytes),
-                         lsys_fmtsize(b2, lsys_memory_limit()));
+                         "memory limit (%s)", w, h, lsys_common_fmtsize(b1, bytes),
+                         lsys_common_fmtsize(b2, lsys_common_memory_limit()));
   c->px = (uint8_t *)LSYS_MALLOC(bytes);
   if (c->px == NULL) return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
   memset(c->px, 0, bytes);
@@ -316,5 +316,5 @@ int lsys_canvas_save (const lsys_canvas *c, const char *path, lsys_error *e) {
   size_t i, n = (size_t)c->w * (size_t)c->h;
   int alpha = 0;
   for (i = 0; i < n && !alpha; i++) alpha = c->px[4 * i + 3] != 255;
-  return lsys_png_write(path, c->px, c->w, c->h, alpha, e);
+  return lsys_pngio_write(path, c->px, c->w, c->h, alpha, e);
 }

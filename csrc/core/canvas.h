@@ -33,7 +33,7 @@ typedef struct lsys_canvas {
 /* Makes a w x h canvas of transparent black (the clip rectangle is the
 ** whole canvas). Returns LSYS_OK; LSYS_EARG for a size outside
 ** [1, LSYS_CANVAS_MAXSIZE], LSYS_EMEMORY when the pixels would not fit the
-** memory budget (lsys_memory_limit), LSYS_ENOMEM; e->msg says which. On
+** memory budget (lsys_common_memory_limit), LSYS_ENOMEM; e->msg says which. On
 ** failure c->px is NULL. */
 int lsys_canvas_init (lsys_canvas *c, int w, int h, lsys_error *e);
 

@@ -49,7 +49,7 @@ int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, 
 ** mapping stays one piece (realloc can then move it with mremap, which does
 ** not span mappings of different kinds); what it grows into later stays
 ** marked. Blocks under 8 MiB are left alone. */
-void lsys_hugepages (void *p, size_t n) {
+void lsys_common_hugepages (void *p, size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   const uintptr_t page = 4096;
   uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
@@ -59,7 +59,7 @@ void lsys_hugepages (void *p, size_t n) {
 #endif
 }
 
-int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
+int lsys_common_grow (void **p, size_t *cap, size_t need, size_t elem) {
   size_t ncap = *cap ? *cap : 16;
   void *np;
   if (need <= *cap) return LSYS_OK;
@@ -69,7 +69,7 @@ int lsys_grow (void **p, size_t *cap, size_t need, size_t elem) {
   }
   np = LSYS_REALLOC(*p, ncap * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  lsys_hugepages(np, ncap * elem);
+  lsys_common_hugepages(np, ncap * elem);
   *p = np;
   *cap = ncap;
   return LSYS_OK;
@@ -93,7 +93,7 @@ static int take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *n
   return LSYS_OK;
 }
 
-int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
+int lsys_common_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap) {
   int st;
   if (mt->lock == NULL) return take(mt, cap, need, elem, ncap);
   pthread_mutex_lock((pthread_mutex_t *)mt->lock);
@@ -102,26 +102,26 @@ int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_
   return st;
 }
 
-int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {
+int lsys_common_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {
   size_t ncap;
   void *np;
   int st;
   if (need <= *cap) return LSYS_OK;
-  if (mt == NULL) return lsys_grow(p, cap, need, elem);
-  if ((st = lsys_meter_take(mt, *cap, need, elem, &ncap)) != LSYS_OK) return st;
+  if (mt == NULL) return lsys_common_grow(p, cap, need, elem);
+  if ((st = lsys_common_meter_take(mt, *cap, need, elem, &ncap)) != LSYS_OK) return st;
   np = LSYS_REALLOC(*p, ncap * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  lsys_hugepages(np, ncap * elem);
+  lsys_common_hugepages(np, ncap * elem);
   *p = np;
   *cap = ncap;
   return LSYS_OK;
 }
 
-int lsys_meter_fits (const lsys_meter *mt, size_t bytes) {
+int lsys_common_meter_fits (const lsys_meter *mt, size_t bytes) {
   return mt == NULL || (mt->used <= mt->limit && bytes <= mt->limit - mt->used);
 }
 
-static size_t memlimit;       /* set by lsys_set_memory_limit; 0: the default */
+static size_t memlimit;       /* set by lsys_common_set_memory_limit; 0: the default */
 
 /* A cgroup's memory limit (v2, then v1), or 0 when there is none. */
 static size_t cgrouplimit (void) {
@@ -140,28 +140,28 @@ static size_t cgrouplimit (void) {
   return 0;
 }
 
-size_t lsys_physical_memory (void) {
+size_t lsys_common_physical_memory (void) {
   long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
   size_t phys = pages > 0 && size > 0 ? (size_t)pages * (size_t)size : 0, cg = cgrouplimit();
   if (cg > 0 && (phys == 0 || cg < phys)) phys = cg;
   return phys;
 }
 
-size_t lsys_memory_limit (void) {
+size_t lsys_common_memory_limit (void) {
   static size_t def;
   if (memlimit > 0) return memlimit;
   if (def == 0) {
-    size_t phys = lsys_physical_memory();
+    size_t phys = lsys_common_physical_memory();
     def = phys > 0 ? phys / 2 : (size_t)1 << 32;       /* unknown: 4 GiB */
   }
   return def;
 }
 
-void lsys_set_memory_limit (size_t bytes) {
+void lsys_common_set_memory_limit (size_t bytes) {
   memlimit = bytes;
 }
 
-const char *lsys_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n) {
+const char *lsys_common_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n) {
   size_t i, k = n > LSYS_QUOTE ? LSYS_QUOTE - 4 : n;
   for (i = 0; i < k; i++) {
     unsigned char c = (unsigned char)s[i];
@@ -172,7 +172,7 @@ const char *lsys_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n) {
   return buf;
 }
 
-const char *lsys_fmtsize (char buf[32], size_t bytes) {
+const char *lsys_common_fmtsize (char buf[32], size_t bytes) {
   double x = (double)bytes;
   if (bytes == (size_t)-1) snprintf(buf, 32, "no limit");
   else if (x >= 1024.0 * 1024 * 1024) snprintf(buf, 32, "%.1f GiB", x / (1024.0 * 1024 * 1024));
@@ -182,7 +182,7 @@ const char *lsys_fmtsize (char buf[32], size_t bytes) {
   return buf;
 }
 
-char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
+char *lsys_common_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
   FILE *f = fopen(path, "rb");
   char *buf = NULL, *nb;
   size_t cap = 0, n = 0;
@@ -201,7 +201,7 @@ char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
     char b[32];
     fclose(f);
     lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %s", path,
-                  lsys_fmtsize(b, max));
+                  lsys_common_fmtsize(b, max));
     return NULL;
   }
   for (;;) {
@@ -217,7 +217,7 @@ char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e) {
     if (n > max) {            /* it grew while we read it */
       char b[32];
       lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': larger than %s", path,
-                    lsys_fmtsize(b, max));
+                    lsys_common_fmtsize(b, max));
       break;
     }
     if (ferror(f)) {

@@ -56,7 +56,7 @@ int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, 
 /* Grows '*p' (an array of 'elem'-byte items with capacity '*cap') so that it
 ** holds at least 'need' items; capacity doubles. Returns LSYS_OK or
 ** LSYS_ENOMEM (the old block stays valid). */
-int lsys_grow (void **p, size_t *cap, size_t need, size_t elem);
+int lsys_common_grow (void **p, size_t *cap, size_t need, size_t elem);
 
 /*
 ** The memory budget (docs/manual.md §9, max_memory). The buffers that grow with
@@ -76,47 +76,47 @@ typedef struct lsys_meter {
 
 /* Asks for huge pages behind the block of n bytes at p when it is big (8 MiB
 ** or more) and the system gives them on request (Linux): its first touch then
-** faults every 2 MiB, not every 4 KiB. lsys_grow and the meter's growth call it. */
-void lsys_hugepages (void *p, size_t n);
+** faults every 2 MiB, not every 4 KiB. lsys_common_grow and the meter's growth call it. */
+void lsys_common_hugepages (void *p, size_t n);
 
-/* lsys_grow within the meter 'mt' (NULL: none): the doubled capacity is cut
+/* lsys_common_grow within the meter 'mt' (NULL: none): the doubled capacity is cut
 ** to what the budget leaves; LSYS_EMEMORY when even 'need' items do not
 ** fit. 'mt->used' must include the block's present size ('*cap' items). */
-int lsys_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt);
+int lsys_common_grow_metered (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt);
 
-/* The budgeting half of lsys_grow_metered, for arrays that grow together:
+/* The budgeting half of lsys_common_grow_metered, for arrays that grow together:
 ** the capacity *ncap (>= need) to give a block of 'cap' items of 'elem'
 ** bytes, counted in the meter; LSYS_EMEMORY when 'need' items do not fit.
 ** Allocates nothing. */
-int lsys_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap);
+int lsys_common_meter_take (lsys_meter *mt, size_t cap, size_t need, size_t elem, size_t *ncap);
 
 /* Whether 'bytes' more fit in the meter (NULL: always). */
-int lsys_meter_fits (const lsys_meter *mt, size_t bytes);
+int lsys_common_meter_fits (const lsys_meter *mt, size_t bytes);
 
-/* The process-wide default budget: what lsys_set_memory_limit set, else
+/* The process-wide default budget: what lsys_common_set_memory_limit set, else
 ** half of the physical memory (or of a smaller cgroup memory limit). */
-size_t lsys_memory_limit (void);
-void lsys_set_memory_limit (size_t bytes);   /* 0: back to the default */
+size_t lsys_common_memory_limit (void);
+void lsys_common_set_memory_limit (size_t bytes);   /* 0: back to the default */
 
 /* Physical memory in bytes, lowered to the cgroup's memory limit when there
 ** is one; 0 when unknown. */
-size_t lsys_physical_memory (void);
+size_t lsys_common_physical_memory (void);
 
 /* A short printable quote of 'n' bytes of a file for messages: at most
 ** LSYS_QUOTE characters (a longer word is cut to its first LSYS_QUOTE - 4
 ** and "..."), control and non-ASCII bytes as '?'. A file that a view names
 ** may be anything (as in cpfg), so a message shows a token, never a line. */
 #define LSYS_QUOTE 16
-const char *lsys_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n);
+const char *lsys_common_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n);
 
 /* Writes 'bytes' as a short size for messages ("512 MiB", "12.0 GiB"). */
-const char *lsys_fmtsize (char buf[32], size_t bytes);
+const char *lsys_common_fmtsize (char buf[32], size_t bytes);
 
 /* Reads the whole file 'path' (at most 'max' bytes) into a new block (free
 ** it with LSYS_FREE; not NUL-terminated) of *len bytes. Refuses what is not
 ** a regular file (a device such as /dev/zero, a FIFO, a folder). On failure
 ** returns NULL with e->msg naming the file ("cannot open 'x': ...", "cannot
 ** read 'x': larger than N MiB", "cannot read 'x': not a regular file"). */
-char *lsys_readfile (const char *path, size_t max, size_t *len, lsys_error *e);
+char *lsys_common_readfile (const char *path, size_t max, size_t *len, lsys_error *e);
 
 #endif

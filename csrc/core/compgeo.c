@@ -14,19 +14,19 @@
 #define RAD (PI / 180.0)
 #define DEG (180.0 / PI)
 
-void lsys_cframes_init (lsys_cframes *a, int64_t seed) {
+void lsys_compgeo_frames_init (lsys_cframes *a, int64_t seed) {
   a->f = NULL;
   a->n = a->cap = 0;
   a->rng = (uint64_t)seed;
 }
 
-void lsys_cframes_free (lsys_cframes *a) {
+void lsys_compgeo_frames_free (lsys_cframes *a) {
   LSYS_FREE(a->f);
   a->f = NULL;
   a->n = a->cap = 0;
 }
 
-#define grow lsys_grow
+#define grow lsys_common_grow
 
 /* grow, with the new part zeroed */
 static int growz (void **p, size_t *cap, size_t need, size_t size) {
@@ -36,7 +36,7 @@ static int growz (void **p, size_t *cap, size_t need, size_t size) {
   return LSYS_OK;
 }
 
-int lsys_cframes_add (lsys_cframes *a, const lsys_cframe *f, size_t *idx) {
+int lsys_compgeo_frames_add (lsys_cframes *a, const lsys_cframe *f, size_t *idx) {
   lsys_cframe copy = *f;             /* f may point into the arena, which may move */
   if (grow((void **)&a->f, &a->cap, a->n + 1, sizeof *a->f) != LSYS_OK) return LSYS_ENOMEM;
   a->f[a->n] = copy;
@@ -45,7 +45,7 @@ int lsys_cframes_add (lsys_cframes *a, const lsys_cframe *f, size_t *idx) {
 }
 
 /* splitmix64 (Steele, Lea and Flood 2014): the same sequence on every machine. */
-double lsys_cframes_random (lsys_cframes *a) {
+double lsys_compgeo_frames_random (lsys_cframes *a) {
   uint64_t z = (a->rng += 0x9E3779B97F4A7C15u);
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9u;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBu;
@@ -88,7 +88,8 @@ static void right (const lsys_cframe *f, double R[3]) {      /* R = -L = -(H x U
   R[0] = -R[0]; R[1] = -R[1]; R[2] = -R[2];
 }
 
-void lsys_cframe_topoint (const lsys_cframe *f, double x, double y, double z, double out[3]) {
+void lsys_compgeo_frame_topoint (const lsys_cframe *f, double x, double y, double z,
+                                 double out[3]) {
   double R[3];
   int i;
   right(f, R);
@@ -96,10 +97,10 @@ void lsys_cframe_topoint (const lsys_cframe *f, double x, double y, double z, do
     out[i] = f->p[i] + f->s * (x * R[i] + y * f->H[i] + z * -f->U[i]);
 }
 
-void lsys_cframe_transform (const lsys_cframe *f, const double t[3], const double r[3],
-                            double s, lsys_cframe *g) {
+void lsys_compgeo_frame_transform (const lsys_cframe *f, const double t[3], const double r[3],
+                                   double s, lsys_cframe *g) {
   double p[3], ax[3];
-  lsys_cframe_topoint(f, t[0], t[1], t[2], p);
+  lsys_compgeo_frame_topoint(f, t[0], t[1], t[2], p);
   if (g != f) *g = *f;
   vcopy(g->p, p);
   if (r[0] != 0) { right(g, ax); rot2(g, ax, r[0]); }
@@ -109,7 +110,7 @@ void lsys_cframe_transform (const lsys_cframe *f, const double t[3], const doubl
   g->s = g->s * s;
 }
 
-void lsys_cframe_tropism (lsys_cframe *g, const double T[3], double e) {
+void lsys_compgeo_frame_tropism (lsys_cframe *g, const double T[3], double e) {
   const double *H = g->H;
   double ax[3], m;
   vcross(ax, H, T);
@@ -121,8 +122,8 @@ void lsys_cframe_tropism (lsys_cframe *g, const double T[3], double e) {
   }
 }
 
-void lsys_cframe_branch (const lsys_cframe *A, const lsys_cframe *B, double t, double roll,
-                         double angle, double scale, lsys_cframe *g) {
+void lsys_compgeo_frame_branch (const lsys_cframe *A, const lsys_cframe *B, double t, double roll,
+                                double angle, double scale, lsys_cframe *g) {
   const double *H = A->H, *U = A->U;
   double L[3], U1[3], r = roll * RAD, c = cos(r), s = sin(r), a = angle * RAD;
   lsys_cframe out;
@@ -145,22 +146,22 @@ void lsys_cframe_branch (const lsys_cframe *A, const lsys_cframe *B, double t, d
 ** pieces the frame bends by the curvature, twists (a Horn), turns by the gnarl
 ** (a random angle about a random axis normal to H), by the tropisms, and away
 ** from every branch it passes (the deviation), then moves a piece along H. */
-int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_t *first) {
+int lsys_compgeo_frames_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_t *first) {
   lsys_cframe g = a->f[base];
   double step = st->len / st->segs, R0[3];
   int k, t, nextb = 0;
   size_t idx;
   right(&g, R0);
   g.u = 0;
-  if (lsys_cframes_add(a, &g, first) != LSYS_OK) return LSYS_ENOMEM;
+  if (lsys_compgeo_frames_add(a, &g, first) != LSYS_OK) return LSYS_ENOMEM;
   for (k = 1; k <= st->segs; k++) {
     double ax[3], s;
     if (st->curv != 0) { right(&g, ax); rot2(&g, ax, st->curv / st->segs); }
     if (st->twist != 0) rot(g.U, g.H, st->twist / st->segs);
     if (st->gnarl != 0) {
-      double an = (lsys_cframes_random(a) * 2 - 1) * st->gnarl;
+      double an = (lsys_compgeo_frames_random(a) * 2 - 1) * st->gnarl;
       right(&g, ax);
-      rot(ax, g.H, lsys_cframes_random(a) * 360);
+      rot(ax, g.H, lsys_compgeo_frames_random(a) * 360);
       rot2(&g, ax, an);
     }
     for (t = 0; t < st->ntrop; t++) {
@@ -172,7 +173,7 @@ int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_
         if (r == 0) continue;
       }
       else vcopy(T, tr);
-      lsys_cframe_tropism(&g, T, tr[3]);
+      lsys_compgeo_frame_tropism(&g, T, tr[3]);
     }
     while (nextb < st->nb && st->bu[nextb] <= (double)k / st->segs) {
       if (st->dev != 0) {
@@ -188,7 +189,7 @@ int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_
     s = step * g.s;
     vlin(g.p, g.p, 1, g.H, s);
     g.u = (double)k / st->segs;
-    if (lsys_cframes_add(a, &g, &idx) != LSYS_OK) return LSYS_ENOMEM;
+    if (lsys_compgeo_frames_add(a, &g, &idx) != LSYS_OK) return LSYS_ENOMEM;
   }
   return LSYS_OK;
 }
@@ -199,14 +200,14 @@ int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_
 ** The writer
 ** ======================================================================= */
 
-void lsys_cwriter_init (lsys_cwriter *w, lsys_lstring *s) {
+void lsys_compgeo_writer_init (lsys_cwriter *w, lsys_lstring *s) {
   memset(w, 0, sizeof *w);
   w->s = s;
   vset(w->T.H, 0, 1, 0);
   vset(w->T.U, 0, 0, -1);
 }
 
-void lsys_cwriter_free (lsys_cwriter *w) {
+void lsys_compgeo_writer_free (lsys_cwriter *w) {
   LSYS_FREE(w->owner);
   LSYS_FREE(w->stk);
   LSYS_FREE(w->range);
@@ -214,7 +215,7 @@ void lsys_cwriter_free (lsys_cwriter *w) {
   w->capo = w->capstk = w->capi = 0;
 }
 
-int lsys_cwriter_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np) {
+int lsys_compgeo_writer_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np) {
   size_t n = w->s->n;
   uint32_t k;
   int r;
@@ -227,15 +228,17 @@ int lsys_cwriter_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np
   return LSYS_OK;
 }
 
-static int op1 (lsys_cwriter *w, uint32_t sym, double x) { return lsys_cwriter_op(w, sym, &x, 1); }
+static int op1 (lsys_cwriter *w, uint32_t sym, double x) {
+  return lsys_compgeo_writer_op(w, sym, &x, 1);
+}
 
 /* A rotation unless it is a no-op. */
 static int turn (lsys_cwriter *w, uint32_t sym, double a) {
   return (a > 1e-9 || a < -1e-9) ? op1(w, sym, a) : LSYS_OK;
 }
 
-void lsys_cwriter_angles (const double AH[3], const double AU[3], const double BH[3],
-                          const double BU[3], double out[3]) {
+void lsys_compgeo_writer_angles (const double AH[3], const double AU[3], const double BH[3],
+                                 const double BU[3], double out[3]) {
   double L[3], h, l, u, sb, a, b, g, ca, sa, cb, s2, bl, bu;
   int i;
   vcross(L, AH, AU);
@@ -270,10 +273,10 @@ void lsys_cwriter_angles (const double AH[3], const double AU[3], const double B
   out[0] = a * DEG; out[1] = b * DEG; out[2] = g * DEG;
 }
 
-int lsys_cwriter_orient (lsys_cwriter *w, const double H[3], const double U[3]) {
+int lsys_compgeo_writer_orient (lsys_cwriter *w, const double H[3], const double U[3]) {
   double an[3];
   int r;
-  lsys_cwriter_angles(w->T.H, w->T.U, H, U, an);
+  lsys_compgeo_writer_angles(w->T.H, w->T.U, H, U, an);
   if ((r = turn(w, w->sym_roll, an[0])) != LSYS_OK ||
       (r = turn(w, w->sym_pitch, an[1])) != LSYS_OK ||
       (r = turn(w, w->sym_roll, an[2])) != LSYS_OK) return r;
@@ -282,7 +285,7 @@ int lsys_cwriter_orient (lsys_cwriter *w, const double H[3], const double U[3]) 
   return LSYS_OK;
 }
 
-int lsys_cwriter_forward (lsys_cwriter *w, double d, int draw) {
+int lsys_compgeo_writer_forward (lsys_cwriter *w, double d, int draw) {
   int r;
   if (d <= 1e-15) return LSYS_OK;
   if ((r = op1(w, draw ? w->sym_draw : w->sym_move, d)) != LSYS_OK) return r;
@@ -303,7 +306,7 @@ static int moveto (lsys_cwriter *w, const lsys_cframe *f) {
     double aim[3], an[3], L[3], U1[3], ca, sa, cb, sb;
     int i;
     vset(aim, d[0] / len, d[1] / len, d[2] / len);
-    lsys_cwriter_angles(T->H, T->U, aim, NULL, an);
+    lsys_compgeo_writer_angles(T->H, T->U, aim, NULL, an);
     if ((r = turn(w, w->sym_roll, an[0])) != LSYS_OK ||
         (r = turn(w, w->sym_pitch, an[1])) != LSYS_OK) return r;
     vcross(L, T->H, T->U);
@@ -317,10 +320,10 @@ static int moveto (lsys_cwriter *w, const lsys_cframe *f) {
     if ((r = op1(w, w->sym_move, len)) != LSYS_OK) return r;
   }
   vcopy(T->p, f->p);
-  return lsys_cwriter_orient(w, f->H, f->U);
+  return lsys_compgeo_writer_orient(w, f->H, f->U);
 }
 
-int lsys_cwriter_open (lsys_cwriter *w, int32_t inst, const lsys_cframe *f) {
+int lsys_compgeo_writer_open (lsys_cwriter *w, int32_t inst, const lsys_cframe *f) {
   size_t m0 = w->s->n + 1;
   lsys_cframe fr = *f;               /* f may point into an arena the caller grows */
   int r;
@@ -333,19 +336,20 @@ int lsys_cwriter_open (lsys_cwriter *w, int32_t inst, const lsys_cframe *f) {
   w->T.m0 = m0;
   w->T.inst = inst;
   w->cur = inst;
-  if ((r = lsys_cwriter_op(w, w->sym_open, NULL, 0)) != LSYS_OK || (r = moveto(w, &fr)) != LSYS_OK)
+  if ((r = lsys_compgeo_writer_op(w, w->sym_open, NULL, 0)) != LSYS_OK ||
+      (r = moveto(w, &fr)) != LSYS_OK)
     return r;
   w->range[3 * (inst - 1)] = (int32_t)m0;
   w->range[3 * (inst - 1) + 2] = (int32_t)w->s->n;
   return LSYS_OK;
 }
 
-int lsys_cwriter_close (lsys_cwriter *w) {
+int lsys_compgeo_writer_close (lsys_cwriter *w) {
   int32_t inst = w->T.inst;
   int r;
   if (w->depth == 0 || inst < 1) return LSYS_EARG;
   w->cur = inst;
-  if ((r = lsys_cwriter_op(w, w->sym_close, NULL, 0)) != LSYS_OK) return r;
+  if ((r = lsys_compgeo_writer_op(w, w->sym_close, NULL, 0)) != LSYS_OK) return r;
   w->range[3 * (inst - 1) + 1] = (int32_t)w->s->n;
   w->T = w->stk[--w->depth];
   w->cur = w->T.inst;

@@ -39,32 +39,32 @@ typedef struct lsys_cframes {
   uint64_t rng;               /* splitmix64 state */
 } lsys_cframes;
 
-void lsys_cframes_init (lsys_cframes *a, int64_t seed);
-void lsys_cframes_free (lsys_cframes *a);
+void lsys_compgeo_frames_init (lsys_cframes *a, int64_t seed);
+void lsys_compgeo_frames_free (lsys_cframes *a);
 
 /* Appends a frame (copied; f may point into the arena). Returns LSYS_OK and
 ** its index in *idx, or LSYS_ENOMEM. */
-int lsys_cframes_add (lsys_cframes *a, const lsys_cframe *f, size_t *idx);
+int lsys_compgeo_frames_add (lsys_cframes *a, const lsys_cframe *f, size_t *idx);
 
 /* The next number of the generator, in [0, 1): splitmix64's output, top 53 bits. */
-double lsys_cframes_random (lsys_cframes *a);
+double lsys_compgeo_frames_random (lsys_cframes *a);
 
 /* The world position of the local point (x, y, z) of f. */
-void lsys_cframe_topoint (const lsys_cframe *f, double x, double y, double z, double out[3]);
+void lsys_compgeo_frame_topoint (const lsys_cframe *f, double x, double y, double z, double out[3]);
 
 /* g = f moved by the basic parameters: translate t (local), rotate r (about
 ** the local x, then y, then z axes), scale s. g may be f. */
-void lsys_cframe_transform (const lsys_cframe *f, const double t[3], const double r[3],
-                            double s, lsys_cframe *g);
+void lsys_compgeo_frame_transform (const lsys_cframe *f, const double t[3], const double r[3],
+                                   double s, lsys_cframe *g);
 
 /* H turned towards direction T by the angle e |H x T| radians (cpfg's tropism,
 ** ABOP section 2.3), U with it. */
-void lsys_cframe_tropism (lsys_cframe *g, const double T[3], double e);
+void lsys_compgeo_frame_tropism (lsys_cframe *g, const double T[3], double e);
 
 /* A Tree's branch between stem frames A and B at t (0 at A): A's orientation
 ** rolled by 'roll' about H and pitched down by 'angle'; scale A.s * scale. */
-void lsys_cframe_branch (const lsys_cframe *A, const lsys_cframe *B, double t, double roll,
-                         double angle, double scale, lsys_cframe *g);
+void lsys_compgeo_frame_branch (const lsys_cframe *A, const lsys_cframe *B, double t, double roll,
+                                double angle, double scale, lsys_cframe *g);
 
 /* A direction field of position (a World's field given as a function): sets
 ** T and returns 1, returns 0 for "no direction here", or LSYS_ERULE. */
@@ -86,7 +86,7 @@ typedef struct lsys_cstem {
 /* The stem from frame 'base': segs + 1 frames appended (the first a copy of
 ** the base, u = k / segs), the index of the first in *first. Returns LSYS_OK,
 ** LSYS_ENOMEM or the field's error. */
-int lsys_cframes_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_t *first);
+int lsys_compgeo_frames_stem (lsys_cframes *a, size_t base, const lsys_cstem *st, size_t *first);
 
 /* The writer ------------------------------------------------------------ */
 
@@ -110,29 +110,29 @@ typedef struct lsys_cwriter {
 } lsys_cwriter;
 
 /* A writer into s, the turtle at the origin with H = +y, U = -z. */
-void lsys_cwriter_init (lsys_cwriter *w, lsys_lstring *s);
-void lsys_cwriter_free (lsys_cwriter *w);
+void lsys_compgeo_writer_init (lsys_cwriter *w, lsys_lstring *s);
+void lsys_compgeo_writer_free (lsys_cwriter *w);
 
 /* Appends a module written by instance w->cur; LSYS_ESYNTAX for a parameter that is not
 ** finite (a move to a frame so far away that its length overflowed). */
-int lsys_cwriter_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np);
+int lsys_compgeo_writer_op (lsys_cwriter *w, uint32_t sym, const double *p, uint32_t np);
 
 /* Opens instance 'inst' (>= 1): `[`, then the modules that take the turtle to f. */
-int lsys_cwriter_open (lsys_cwriter *w, int32_t inst, const lsys_cframe *f);
+int lsys_compgeo_writer_open (lsys_cwriter *w, int32_t inst, const lsys_cframe *f);
 
 /* Closes the innermost open instance with `]`; the turtle is as before its `[`. */
-int lsys_cwriter_close (lsys_cwriter *w);
+int lsys_compgeo_writer_close (lsys_cwriter *w);
 
 /* Turns the turtle to (H, U) with a roll, a pitch and a roll (no-ops left out). */
-int lsys_cwriter_orient (lsys_cwriter *w, const double H[3], const double U[3]);
+int lsys_compgeo_writer_orient (lsys_cwriter *w, const double H[3], const double U[3]);
 
 /* Moves the turtle d along H with `F` (draw) or `f`; nothing for d <= 1e-15. */
-int lsys_cwriter_forward (lsys_cwriter *w, double d, int draw);
+int lsys_compgeo_writer_forward (lsys_cwriter *w, double d, int draw);
 
 /* The angles (degrees) of a roll `/`, a pitch `^` (H toward -U) and a roll `/` that turn the
 ** orientation (AH, AU) onto (BH, BU); with BU NULL only the first two (aim H at
 ** BH), out[2] = 0. */
-void lsys_cwriter_angles (const double AH[3], const double AU[3], const double BH[3],
-                          const double BU[3], double out[3]);
+void lsys_compgeo_writer_angles (const double AH[3], const double AU[3], const double BH[3],
+                                 const double BU[3], double out[3]);
 
 #endif

@@ -7,7 +7,7 @@
 
 #include "derive_impl.h"
 
-int lsys_buildtables (lsys_model *m, const lsys_lstring *s) {
+int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
   size_t i, off = 0;
   if (s->n >= NONE) return LSYS_ELIMIT;
   if (m->matchcap < s->n + 1) {
@@ -15,10 +15,12 @@ int lsys_buildtables (lsys_model *m, const lsys_lstring *s) {
     uint32_t *mt = m->match, *po = m->poff;
     size_t cap2 = cap;
     int st;
-    if ((st = lsys_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt, &m->meter)) != LSYS_OK)
+    if ((st = lsys_common_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt,
+                                       &m->meter)) != LSYS_OK)
       return st;
     m->match = mt;
-    if ((st = lsys_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po, &m->meter)) != LSYS_OK)
+    if ((st = lsys_common_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po,
+                                       &m->meter)) != LSYS_OK)
       return st;
     m->poff = po;
     m->matchcap = cap < cap2 ? cap : cap2;
@@ -47,7 +49,7 @@ int lsys_buildtables (lsys_model *m, const lsys_lstring *s) {
   return LSYS_OK;
 }
 
-uint32_t lsys_eqsym (const lsys_model *m) {
+uint32_t lsys_context_eqsym (const lsys_rules *m) {
   uint32_t e = lsys_alphabet_find(m->ab, "=", 1);
   return e ? e : NONE;
 }
@@ -66,8 +68,8 @@ static inline int skipped (const view *v, uint32_t sym) {
 
 /* Left context: scans left from 'i', skipping whole branches to the left
 ** and climbing out of the current one; fills the lc parameters of 'args'. */
-int lsys_matchleft (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
-                    double *args) {
+int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
+                            double *args) {
   long long j = (long long)i - 1;
   size_t steps = 0;
   double *a = args + r->lcargs;
@@ -125,8 +127,8 @@ static size_t branchend (const view *v, size_t j) {
 ** bracket is stepped over as any module (cpfg's consider list that does not
 ** name the brackets). 'a' receives the pattern's parameters.
 */
-int lsys_matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
-                     double *a) {
+int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const lsys_rule *r,
+                             double *a) {
   size_t steps = 0;
   uint32_t k;
   for (k = 0; k < r->nrc; k++) {

@@ -116,9 +116,9 @@ static size_t nextline (reader *R, token *t) {
   return 0;
 }
 
-/* A printable copy of a token for a message (lsys_quote: a short token). */
+/* A printable copy of a token for a message (lsys_common_quote: a short token). */
 static const char *show (const token *t, char buf[32]) {
-  return lsys_quote(buf, t->s, t->len);
+  return lsys_common_quote(buf, t->s, t->len);
 }
 
 /* Sets the error "name:line: message" (common.h) and returns LSYS_ESYNTAX. */

@@ -28,7 +28,7 @@ static inline const double *parof (const lsys_lstring *s, size_t p) {
 
 /* Appends modules [i, j) of 'src' (parameters from 'poff'): a successor a
 ** function produced. */
-static int emitdyn (lsys_model *m, lsys_lstring *out, const lsys_lstring *src, size_t i,
+static int emitdyn (lsys_rules *m, lsys_lstring *out, const lsys_lstring *src, size_t i,
                     size_t j, size_t poff) {
   size_t p0 = out->npar;
   int st;
@@ -39,7 +39,7 @@ static int emitdyn (lsys_model *m, lsys_lstring *out, const lsys_lstring *src, s
 }
 
 /* Writes the successor of 'r' into 'out'. */
-static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
+static int emit (lsys_rules *m, lsys_lstring *out, const lsys_rule *r,
                  const double *args, const double *vals) {
   uint32_t k;
   int st;
@@ -64,8 +64,8 @@ static int emit (lsys_model *m, lsys_lstring *out, const lsys_rule *r,
 
 /* The values the expression machine computed for rule 'r' at module 'i' must
 ** be finite (the Lua callback checks its own). A worker only reports. */
-int lsys_checkvals (lsys_model *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
-                    const double *vals) {
+int lsys_derive_checkvals (lsys_rules *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
+                           const double *vals) {
   uint32_t k;
   for (k = 0; k < r->nvals; k++)
     if (!isfinite(vals[k])) {
@@ -78,9 +78,9 @@ int lsys_checkvals (lsys_model *m, const lsys_scratch *w, const lsys_rule *r, si
   return LSYS_OK;
 }
 
-int lsys_needscratch (lsys_scratch *w, size_t nargs) {
+int lsys_derive_needscratch (lsys_scratch *w, size_t nargs) {
   if (w->argscap < nargs &&
-      lsys_grow((void **)&w->args, &w->argscap, nargs, sizeof *w->args) != LSYS_OK)
+      lsys_common_grow((void **)&w->args, &w->argscap, nargs, sizeof *w->args) != LSYS_OK)
     return LSYS_ENOMEM;
   return LSYS_OK;
 }
@@ -88,7 +88,7 @@ int lsys_needscratch (lsys_scratch *w, size_t nargs) {
 /* Do the modules after i match the rest of r's predecessor (symbol and
 ** parameter count, one after the other, as cpfg's PredDiff)? Copies their
 ** parameters (following 'par', the module's own np of them) into 'args'. */
-static int matchmore (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
+static int matchmore (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
                       const double *par, double *args) {
   uint32_t k, np = LSYS_CNP(v->code[i]);
   if (i + r->nmore >= v->n) return 0;
@@ -102,12 +102,13 @@ static int matchmore (const lsys_model *m, const view *v, size_t i, const lsys_r
 
 /* Keeps a stochastic alternative in w->alt: rule, weight, where its produced
 ** successor is in m->altdyn (modules [b, e), parameters from p), args, vals. */
-static int keepalt (lsys_model *m, lsys_scratch *w, const lsys_rule *r, double wt,
+static int keepalt (lsys_rules *m, lsys_scratch *w, const lsys_rule *r, double wt,
                     const double *args, size_t *altn) {
   size_t need = *altn + ALTHEAD + r->nargs + r->nvals;
   double *a;
   int st;
-  if (w->altcap < need && lsys_grow((void **)&w->alt, &w->altcap, need, sizeof *w->alt) != LSYS_OK)
+  if (w->altcap < need &&
+      lsys_common_grow((void **)&w->alt, &w->altcap, need, sizeof *w->alt) != LSYS_OK)
     return LSYS_ENOMEM;
   a = w->alt + *altn;
   a[0] = (double)(r - m->rules);
@@ -130,7 +131,7 @@ static int keepalt (lsys_model *m, lsys_scratch *w, const lsys_rule *r, double w
 ** alternative that brings x - w1 - ... - wk (float arithmetic) to 0 or below;
 ** when rounding leaves x above 0, the last one. Returns its offset in w->alt.
 */
-static size_t cpfgpick (lsys_model *m, lsys_scratch *w, size_t nalt) {
+static size_t cpfgpick (lsys_rules *m, lsys_scratch *w, size_t nalt) {
   volatile float total = 0, x;     /* volatile: every step rounded to float */
   size_t at = 0, k, last = 0;
   double u = m->choice_ready ? m->choice_u : lsys_drand48(&m->choice48);
@@ -154,7 +155,7 @@ static size_t cpfgpick (lsys_model *m, lsys_scratch *w, size_t nalt) {
 /* The first alternative in w->alt whose cumulative weight exceeds u * total
 ** (u drawn when there are several); the last one of positive weight when
 ** rounding leaves none. Returns its offset in w->alt. */
-static size_t lsyspick (lsys_model *m, lsys_scratch *w, size_t nalt, double total) {
+static size_t lsyspick (lsys_rules *m, lsys_scratch *w, size_t nalt, double total) {
   double target = nalt > 1 ? lsys_rng_uniform(w->rng) * total : 0, cum = 0;
   size_t at = 0, k, last = 0;
   for (k = 0; k < nalt; k++) {
@@ -170,7 +171,7 @@ static size_t lsyspick (lsys_model *m, lsys_scratch *w, size_t nalt, double tota
 }
 
 /* The chosen alternative into *pk. */
-static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, lsys_pick *pk) {
+static void pickalt (lsys_rules *m, lsys_scratch *w, size_t nalt, double total, lsys_pick *pk) {
   size_t at = m->cpfg ? cpfgpick(m, w, nalt) : lsyspick(m, w, nalt, total);
   const lsys_rule *r = &m->rules[(size_t)w->alt[at]];
   pk->r = r;
@@ -186,14 +187,14 @@ static void pickalt (lsys_model *m, lsys_scratch *w, size_t nalt, double total, 
 
 /* Runs rule r's condition and values: the expression machine, or the
 ** callback (never on a worker). 1 applies, 0 does not, or an error. */
-static int evalrule (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+static int evalrule (lsys_rules *m, lsys_scratch *w, const lsys_rule *r, size_t i,
                      const double *args, double *vals) {
   int st;
   if (r->vm != NULL && m->cpfg && (r->flags & LSYS_RF_STOCH))   /* the rest: cpfgvalues */
     return lsys_expr_span(r->vm, 0, r->vmtry, args, vals, w->rng, m->funcs);
   if (r->vm != NULL) {
     if (!lsys_expr_run(r->vm, r->nvm, args, vals, w->rng, m->funcs)) return 0;
-    return (st = lsys_checkvals(m, w, r, i, vals)) != LSYS_OK ? st : 1;
+    return (st = lsys_derive_checkvals(m, w, r, i, vals)) != LSYS_OK ? st : 1;
   }
   if (!(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN))) return 1;
   if (w->worker) return LSYS_ERULE;
@@ -205,16 +206,16 @@ static int evalrule (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t 
   return st;
 }
 
-int lsys_cpfg_mark (lsys_model *m) {
+int lsys_derive_cpfg_mark (lsys_rules *m) {
   if (m->cpfgtry == 1) {
     m->cpfgtried = 1;
     return 1;
   }
-  lsys_cpfg_resume(m);
+  lsys_derive_cpfg_resume(m);
   return 0;
 }
 
-int lsys_cpfg_resume (lsys_model *m) {
+int lsys_derive_cpfg_resume (lsys_rules *m) {
   if (m->cpfgtry != 2) return 0;
   m->cur->x48 = m->cpfgz.x48;
   m->cur->iset = m->cpfgz.iset;
@@ -225,7 +226,7 @@ int lsys_cpfg_resume (lsys_model *m) {
 
 /* Tries weighted rule r that runs in Lua under cpfg's generator: up to its mark
 ** when it has one (a[5] = 1 and the state before it in a[6..8] once kept). */
-static int cpfgtry (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+static int cpfgtry (lsys_rules *m, lsys_scratch *w, const lsys_rule *r, size_t i,
                     const double *args, double *vals, double keep[3]) {
   int st;
   keep[0] = (double)w->rng->x48;        /* 48 bits: exact in a double */
@@ -240,7 +241,7 @@ static int cpfgtry (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i
 
 /* Runs the chosen rule that stopped at its mark again, from the state it was
 ** tried in; at the mark the state becomes the one after every try. */
-static int cpfgreplay (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+static int cpfgreplay (lsys_rules *m, lsys_scratch *w, const lsys_rule *r, size_t i,
                        const double *a, lsys_pick *pk) {
   int st;
   m->cpfgz = *w->rng;
@@ -265,11 +266,11 @@ static int cpfgreplay (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_
 ** weighted rule's program are run once it is chosen, drawing their numbers
 ** after every alternative's condition. (A rule that runs in Lua draws them
 ** when it is tried.) */
-static int cpfgvalues (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_t i,
+static int cpfgvalues (lsys_rules *m, lsys_scratch *w, const lsys_rule *r, size_t i,
                        lsys_pick *pk) {
   double *vals = (double *)pk->vals;
   lsys_expr_span(r->vm, r->vmtry, r->nvm, pk->args, vals + r->vmtryout, w->rng, m->funcs);
-  return lsys_checkvals(m, w, r, i, vals);
+  return lsys_derive_checkvals(m, w, r, i, vals);
 }
 
 /*
@@ -280,8 +281,8 @@ static int cpfgvalues (lsys_model *m, lsys_scratch *w, const lsys_rule *r, size_
 ** until the next call; the successor a function produced in pk->dyn), 0
 ** when no rule applies, or an error code.
 */
-int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
-                 const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk) {
+int lsys_derive_choose (lsys_rules *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
+                        const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk) {
   uint32_t sym = LSYS_CSYM(code), np = LSYS_CNP(code);
   size_t nalt = 0, altn = 0;   /* alternatives and doubles used in w->alt */
   double total = 0, keep[3];
@@ -296,12 +297,12 @@ int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int 
       const lsys_rule *r = &m->rules[s->byp[b]];
       double *args, *vals, wt;
       if (r->pred_np != np) continue;
-      if (lsys_needscratch(w, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+      if (lsys_derive_needscratch(w, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
       args = w->args;
       vals = args + r->nargs;
       if (r->nmore && !matchmore(m, v, i, r, par, args + r->lcargs + np)) continue;
-      if (r->nlc && (v->match == NULL || !lsys_matchleft(m, v, i, r, args))) continue;
-      if (r->nrc && (v->match == NULL || !lsys_matchright(m, v, i + 1 + r->nmore, r,
+      if (r->nlc && (v->match == NULL || !lsys_context_matchleft(m, v, i, r, args))) continue;
+      if (r->nrc && (v->match == NULL || !lsys_context_matchright(m, v, i + 1 + r->nmore, r,
                                                             args + r->lcargs + np + r->moreargs)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
@@ -349,71 +350,72 @@ int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int 
   return 1 + (int)pk->r->nmore;
 }
 
-/* Rewrites the module (see lsys_choose) into 'out' on the calling thread. */
-static int rewrite (lsys_model *m, lsys_ruleset *const *sets, int nsets, const view *v,
+/* Rewrites the module (see lsys_derive_choose) into 'out' on the calling thread. */
+static int rewrite (lsys_rules *m, lsys_ruleset *const *sets, int nsets, const view *v,
                     size_t i, uint16_t code, const double *par, lsys_lstring *out) {
   lsys_pick pk;
   int st;
   m->sc.rng = m->cur;
-  st = lsys_choose(m, &m->sc, sets, nsets, v, i, code, par, &pk);
+  st = lsys_derive_choose(m, &m->sc, sets, nsets, v, i, code, par, &pk);
   if (st <= 0) return st;
   st = pk.dyn != NULL ? emitdyn(m, out, pk.dyn, pk.d0, pk.d1, pk.dp)
                       : emit(m, out, pk.r, pk.args, pk.vals);
   return st == LSYS_OK ? (int)(1 + pk.r->nmore) : st;
 }
 
-static int pushsub (lsys_model *m, uint32_t id) {
-  if (lsys_grow((void **)&m->substack, &m->subcap, m->nsub + 1, sizeof *m->substack) != LSYS_OK)
+static int pushsub (lsys_rules *m, uint32_t id) {
+  if (lsys_common_grow((void **)&m->substack, &m->subcap, m->nsub + 1,
+                       sizeof *m->substack) != LSYS_OK)
     return LSYS_ENOMEM;
   m->substack[m->nsub++] = id;
   return LSYS_OK;
 }
 
 /* The production sets for sub-L-system 'sub': the active group, then 0. */
-static int prodsets (lsys_model *m, int sub, lsys_ruleset **sets) {
+static int prodsets (lsys_rules *m, int sub, lsys_ruleset **sets) {
   int n = 0;
-  if (m->group != 0 && (sets[n] = lsys_findset(m, LSYS_PROD, sub, m->group)) != NULL) n++;
-  if ((sets[n] = lsys_findset(m, LSYS_PROD, sub, 0)) != NULL) n++;
+  if (m->group != 0 && (sets[n] = lsys_derive_findset(m, LSYS_PROD, sub, m->group)) != NULL) n++;
+  if ((sets[n] = lsys_derive_findset(m, LSYS_PROD, sub, 0)) != NULL) n++;
   return n;
 }
 
-static int compileall (lsys_model *m, int kind, int *hasctx) {
+static int compileall (lsys_rules *m, int kind, int *hasctx) {
   size_t k;
   *hasctx = 0;
   for (k = 0; k < m->nsets; k++)
     if (m->sets[k].kind == kind) {
-      if (lsys_compileset(m, &m->sets[k]) != LSYS_OK) return LSYS_ENOMEM;
+      if (lsys_derive_compileset(m, &m->sets[k]) != LSYS_OK) return LSYS_ENOMEM;
       if (m->sets[k].hasctx) *hasctx = 1;
     }
   return LSYS_OK;
 }
 
-static int limiterror (lsys_model *m, size_t i) {
+static int limiterror (lsys_rules *m, size_t i) {
   return lsys_seterror(&m->err, LSYS_ELIMIT, i,
                        "the string would exceed max_modules (%zu modules)", m->max_modules);
 }
 
-static int fail (lsys_model *m, int st, size_t i) {
+static int fail (lsys_rules *m, int st, size_t i) {
   if (st == LSYS_ELIMIT) return limiterror(m, i);
   if (st == LSYS_ENOMEM) return lsys_seterror(&m->err, st, i, "not enough memory");
   if (st == LSYS_EMEMORY) {
     char b[32];
     return lsys_seterror(&m->err, st, i, "the derivation would need more than max_memory (%s) "
                          "at module %zu (set max_memory in the model, or LSYS_MAX_MEMORY)",
-                         lsys_fmtsize(b, m->meter.limit), i + 1);
+                         lsys_common_fmtsize(b, m->meter.limit), i + 1);
   }
   return st;
 }
 
 /* The view of 'src' a step reads, with the context tables when its rules have contexts. */
-static int setview (lsys_model *m, const lsys_lstring *src, int hasctx, view *v) {
+static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v) {
   int st;
   memset(v, 0, sizeof *v);
   v->code = src->code; v->par = src->par; v->n = src->n; v->ring = m->ring;
-  v->eq = lsys_eqsym(m);
-  v->skip = lsys_findskip(m, 0);
+  v->eq = lsys_context_eqsym(m);
+  v->skip = lsys_derive_findskip(m, 0);
   if (hasctx) {
-    if ((st = lsys_buildtables(m, src)) != LSYS_OK) return st;
+    if ((st = lsys_context_buildtables(m, src)) != LSYS_OK) return st;
     v->match = m->match;
     v->poff = m->poff;
   }
@@ -427,13 +429,13 @@ static int setview (lsys_model *m, const lsys_lstring *src, int hasctx, view *v)
 ** full path (contexts, stochastic or several rules, cut, sub-L-systems).
 ** Sets *nact to the table's length (0: no table).
 */
-static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_t *nact) {
+static int fasttable (lsys_rules *m, lsys_ruleset *const *sets, int nsets, size_t *nact) {
   const lsys_ruleset *s0 = nsets ? sets[0] : NULL;
   uint32_t k;
   *nact = 0;
   if (nsets > 1) return LSYS_OK;
   if (m->actcap < m->ab->n &&
-      lsys_grow((void **)&m->act, &m->actcap, m->ab->n, sizeof *m->act) != LSYS_OK)
+      lsys_common_grow((void **)&m->act, &m->actcap, m->ab->n, sizeof *m->act) != LSYS_OK)
     return LSYS_ENOMEM;
   *nact = m->ab->n;
   for (k = 0; k < *nact; k++) {
@@ -447,7 +449,7 @@ static int fasttable (lsys_model *m, lsys_ruleset *const *sets, int nsets, size_
       m->act[k] = (s0->start[k + 1] - s0->start[k] == 1 && r->vm != NULL && r->nlc == 0 &&
                    r->nrc == 0 && r->nmore == 0 && !(r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)))
                   ? s0->byp[s0->start[k]] : ACT_SLOW;
-      if (m->act[k] != ACT_SLOW && lsys_needscratch(&m->sc, r->nvals + 1) != LSYS_OK)
+      if (m->act[k] != ACT_SLOW && lsys_derive_needscratch(&m->sc, r->nvals + 1) != LSYS_OK)
         return LSYS_ENOMEM;
     }
   }
@@ -475,13 +477,13 @@ static size_t skipcut (const lsys_lstring *src, size_t i, size_t *p) {
 
 /* Module i enters a sub-L-system (?(id, scale), 'idd' its first parameter)
 ** or leaves one ($): the rule sets and the ignore list switch to it. */
-static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ruleset **sets,
+static int subswitch (lsys_rules *m, uint32_t sym, double idd, size_t i, lsys_ruleset **sets,
                       int *nsets, view *v) {
   int sub;
   size_t k;
   if (sym == LSYS_SYM_SUB) {
     sub = (idd >= 0 && idd < 1e9) ? (int)idd : -1;
-    if (sub < 0 || (lsys_findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
+    if (sub < 0 || (lsys_derive_findset(m, LSYS_PROD, sub, 0) == NULL && sub != 0))
       return lsys_seterror(&m->err, LSYS_ERULE, i,
                            "sub-L-system %g is not defined (module %zu)", idd, i + 1);
     for (k = 0; k < m->nsub && (uint32_t)sub != m->substack[k]; k++) {}
@@ -494,14 +496,14 @@ static int subswitch (lsys_model *m, uint32_t sym, double idd, size_t i, lsys_ru
   else
     sub = --m->nsub > 0 ? (int)m->substack[m->nsub - 1] : 0;
   *nsets = prodsets(m, sub, sets);
-  v->skip = lsys_findskip(m, sub);
+  v->skip = lsys_derive_findskip(m, sub);
   return LSYS_OK;
 }
 
 /* The productions of one step on the calling thread: the module loop. */
 /* cpfg draws the number that chooses a production for every module it visits
 ** in a stochastic L-system, whether a rule applies to it or not (generate.c). */
-static void cpfgdraw (lsys_model *m, lsys_ruleset *const *sets, int nsets) {
+static void cpfgdraw (lsys_rules *m, lsys_ruleset *const *sets, int nsets) {
   int k;
   m->choice_ready = 0;
   for (k = 0; k < nsets; k++) {
@@ -513,7 +515,7 @@ static void cpfgdraw (lsys_model *m, lsys_ruleset *const *sets, int nsets) {
   }
 }
 
-static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *vp,
+static int seqloop (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, view *vp,
                     lsys_ruleset **sets, int nsets) {
   int st;
   size_t i, p = 0, n = src->n, lim, nact;
@@ -565,7 +567,7 @@ static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *v
           if (lsys_expr_run(r->vm, r->nvm, spar + p, m->sc.args, m->cur, m->funcs)) {
             /* a bad value is reported here: running the program again in the full
             ** path would draw its random numbers again */
-            if ((st = lsys_checkvals(m, &m->sc, r, i, m->sc.args)) != LSYS_OK) return st;
+            if ((st = lsys_derive_checkvals(m, &m->sc, r, i, m->sc.args)) != LSYS_OK) return st;
             if ((st = emit(m, dst, r, spar + p, m->sc.args)) != LSYS_OK) return fail(m, st, i);
             p += np;
             lim = dst->cap < m->max_modules ? dst->cap : m->max_modules;
@@ -623,7 +625,7 @@ static int seqloop (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, view *v
 }
 
 /* Makes 's' wide within the step's budget (a narrow string, lstring.h). */
-int lsys_widen (lsys_model *m, lsys_lstring *s) {
+int lsys_derive_widen (lsys_rules *m, lsys_lstring *s) {
   lsys_meter *keep = s->meter;
   int st;
   if (s->sym8 == NULL) return LSYS_OK;
@@ -634,7 +636,7 @@ int lsys_widen (lsys_model *m, lsys_lstring *s) {
 }
 
 /* Exchanges the contents of two strings (each keeps its meter). */
-void lsys_swapstr (lsys_lstring *a, lsys_lstring *b) {
+void lsys_derive_swapstr (lsys_lstring *a, lsys_lstring *b) {
   lsys_lstring t = *a;
   lsys_meter *ma = a->meter, *mb = b->meter;
   *a = *b;
@@ -646,31 +648,31 @@ void lsys_swapstr (lsys_lstring *a, lsys_lstring *b) {
 
 /* The productions of a step; 'dst' may be 'src' (rewritten in place, or
 ** into m->tmp and exchanged). */
-static int productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+static int productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[2];
   int nsets, hasctx, st;
   lsys_lstring *out = dst == src ? &m->tmp : dst;
   view v;
   m->nsub = 0;
   if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  if (hasctx && (st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
+  if (hasctx && (st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
   nsets = prodsets(m, 0, sets);
-  if ((st = lsys_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
-  if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
+  if ((st = lsys_derive_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
+  if ((st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   v.code = src->code;
   lsys_lstring_clear(out);
   st = seqloop(m, src, out, &v, sets, nsets);
   m->choice_ready = 0;
   if (st != LSYS_OK) return st;
-  if (out != dst) lsys_swapstr(src, out);
+  if (out != dst) lsys_derive_swapstr(src, out);
   return LSYS_OK;
 }
 
 /* ---------------------------------------------------------------------- */
 /* Decomposition and homomorphism: recursive rewriting of single modules. */
 
-static int needlevels (lsys_model *m, size_t n) {
+static int needlevels (lsys_rules *m, size_t n) {
   if (m->nlevels < n) {
     lsys_lstring *lv = (lsys_lstring *)LSYS_REALLOC(m->levels, n * sizeof *lv);
     if (lv == NULL) return LSYS_ENOMEM;
@@ -684,7 +686,7 @@ static int needlevels (lsys_model *m, size_t n) {
   return LSYS_OK;
 }
 
-static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int nsets,
+static int expandone (lsys_rules *m, int kind, lsys_ruleset *const *sets, int nsets,
                       const view *v, size_t i, uint16_t code, const double *par, int depth,
                       lsys_lstring *out) {
   uint32_t np = LSYS_CNP(code);
@@ -719,15 +721,15 @@ static int expandone (lsys_model *m, int kind, lsys_ruleset *const *sets, int ns
   return lsys_lstring_push(out, LSYS_CSYM(code), par, np);
 }
 
-static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
+static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[1];
   int hasctx, st;
   size_t i, p = 0;
   view v;
   lsys_lstring_clear(dst);
-  if ((st = lsys_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
+  if ((st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   if (compileall(m, kind, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  if ((sets[0] = lsys_findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
+  if ((sets[0] = lsys_derive_findset(m, kind, 0, 0)) == NULL || sets[0]->nlist == 0)
     return (st = lsys_lstring_copy(dst, src)) == LSYS_OK ? LSYS_OK : fail(m, st, 0);
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
@@ -746,13 +748,13 @@ static int expandall (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *
 ** counted, and the strings that grow are attached to the meter until the
 ** operation ends. Returns LSYS_EMEMORY when the budget is spent already.
 */
-static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+static int meter (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
                    m->matchcap * (sizeof *m->match + sizeof *m->poff);
   if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
-  m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_memory_limit();
+  m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_common_memory_limit();
   m->meter.used = used;
   if (used > m->meter.limit) return fail(m, LSYS_EMEMORY, 0);
   if (dst != NULL) dst->meter = &m->meter;
@@ -761,7 +763,7 @@ static int meter (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
   return LSYS_OK;
 }
 
-static void unmeter (lsys_model *m, lsys_lstring *dst) {
+static void unmeter (lsys_rules *m, lsys_lstring *dst) {
   size_t k;
   if (dst != NULL) dst->meter = NULL;
   m->tmp.meter = m->dyn.meter = m->altdyn.meter = NULL;
@@ -769,23 +771,23 @@ static void unmeter (lsys_model *m, lsys_lstring *dst) {
 }
 
 /* The error of the operation 'what' started while the model is busy. */
-static int reentered (lsys_model *m, const char *what) {
+static int reentered (lsys_rules *m, const char *what) {
   return lsys_seterror(&m->err, LSYS_EBUSY, (size_t)-1,
                        "a rule called %s on the model it belongs to", what);
 }
 
 /* The homomorphism draws from its own generator; cpfg's nrand keeps one pair
 ** for the process, which the homomorphism's generator shares. */
-static void usehrng (lsys_model *m) {
+static void usehrng (lsys_rules *m) {
   m->cur = &m->hrng;
   if (m->cpfg) { m->hrng.iset = m->rng.iset; m->hrng.gset = m->rng.gset; }
 }
 
-static void leavehrng (lsys_model *m) {
+static void leavehrng (lsys_rules *m) {
   if (m->cpfg) { m->rng.iset = m->hrng.iset; m->rng.gset = m->hrng.gset; }
 }
 
-int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
+int lsys_derive_expand (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   lsys_rng *keep = m->cur;
   if (m->busy) return reentered(m, "expand");
@@ -805,7 +807,7 @@ int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst) 
 }
 
 /* Streaming homomorphism: the turtle asks for one module at a time. */
-int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
+int lsys_derive_homo_begin (lsys_rules *m, lsys_lstring *src) {
   lsys_ruleset *set;
   int hasctx = 0;
   int st;
@@ -813,13 +815,13 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   m->hsrc = NULL;
   m->depth_hit = 0;
   if (compileall(m, LSYS_HOMO, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  set = lsys_findset(m, LSYS_HOMO, 0, 0);
+  set = lsys_derive_findset(m, LSYS_HOMO, 0, 0);
   if (set == NULL || set->nlist == 0 || m->maxdepth[LSYS_HOMO] < 1) return 0;
   if (lsys_lstring_widen(src) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if (needlevels(m, (size_t)m->maxdepth[LSYS_HOMO] + 1) != LSYS_OK)
     return fail(m, LSYS_ENOMEM, 0);
-  if ((st = meter(m, src, NULL)) != LSYS_OK) return st;   /* until lsys_homo_end */
-  if (hasctx && (st = lsys_buildtables(m, src)) != LSYS_OK) {
+  if ((st = meter(m, src, NULL)) != LSYS_OK) return st;   /* until lsys_derive_homo_end */
+  if (hasctx && (st = lsys_context_buildtables(m, src)) != LSYS_OK) {
     unmeter(m, NULL);
     return fail(m, st, 0);
   }
@@ -827,11 +829,11 @@ int lsys_homo_begin (lsys_model *m, lsys_lstring *src) {
   m->hctx = hasctx;
   m->hkeep = m->cur;
   if (!m->hshare) usehrng(m);
-  m->busy = 1;                 /* until lsys_homo_end */
+  m->busy = 1;                 /* until lsys_derive_homo_end */
   return 1;
 }
 
-int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
+int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring *out) {
   lsys_ruleset *sets[1];
   const lsys_lstring *src = m->hsrc;
   uint16_t code;
@@ -841,12 +843,12 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   if (src == NULL || i >= src->n) return 0;
   code = src->code[i];
   sym = LSYS_CSYM(code);
-  sets[0] = lsys_findset(m, LSYS_HOMO, 0, 0);
+  sets[0] = lsys_derive_findset(m, LSYS_HOMO, 0, 0);
   if (sym >= sets[0]->nsym || sets[0]->start[sym] == sets[0]->start[sym + 1]) return 0;
   memset(&v, 0, sizeof v);
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
-  v.eq = lsys_eqsym(m);
-  v.skip = lsys_findskip(m, 0);
+  v.eq = lsys_context_eqsym(m);
+  v.skip = lsys_derive_findskip(m, 0);
   if (m->hctx) { v.match = m->match; v.poff = m->poff; }
   lsys_lstring_clear(out);
   lsys_rng_at(m->cur, i);
@@ -855,7 +857,7 @@ int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out) {
   return 1;
 }
 
-void lsys_homo_end (lsys_model *m) {
+void lsys_derive_homo_end (lsys_rules *m) {
   if (m->hsrc != NULL) {
     if (m->cur == &m->hrng) leavehrng(m);
     m->cur = m->hkeep;
@@ -865,21 +867,21 @@ void lsys_homo_end (lsys_model *m) {
   m->hsrc = NULL;
 }
 
-static int derivestep (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+static int derivestep (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   long sz;
   lsys_rng_stream(&m->rng, m->rng.step + 1, LSYS_RNG_PROD);
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
-  sz = lsys_model_setsize(m, LSYS_DECOMP, 0, 0);
+  sz = lsys_rules_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
     lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_DECOMP);
     if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
-    lsys_swapstr(dst, &m->tmp);
+    lsys_derive_swapstr(dst, &m->tmp);
   }
   return LSYS_OK;
 }
 
-int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst) {
+int lsys_derive_step (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   int st;
   if (m->busy) return reentered(m, "step");
   m->depth_hit = 0;

@@ -85,7 +85,7 @@ typedef struct lsys_scratch {
   int worker;                  /* a worker thread: no callbacks, nothing written to the model */
 } lsys_scratch;
 
-struct lsys_model;
+struct lsys_rules;
 struct lsys_par;
 /*
 ** Evaluates rule 'r' for the matched module: 'args' holds the formal
@@ -94,10 +94,10 @@ struct lsys_par;
 ** (RF_DYN). Returns 1 when the rule applies, 0 when its condition fails,
 ** or a negative LSYS_E* code with m->err set.
 */
-typedef int (*lsys_rulefn) (void *ud, struct lsys_model *m, const lsys_rule *r,
+typedef int (*lsys_rulefn) (void *ud, struct lsys_rules *m, const lsys_rule *r,
                             const double *args, double *vals);
 
-typedef struct lsys_model {
+typedef struct lsys_rules {
   lsys_alphabet *ab;
   lsys_rule *rules; size_t nrules, rulecap;
   lsys_patmod *pat; size_t npat, patcap;
@@ -111,7 +111,7 @@ typedef struct lsys_model {
                                ** stores them (lsys_round32) */
   size_t max_modules;
   size_t max_memory;           /* bytes for a step's strings and tables; 0: the
-                               ** process default, lsys_memory_limit() */
+                               ** process default, lsys_common_memory_limit() */
   int maxdepth[3];             /* by kind; [LSYS_PROD] unused */
   lsys_rng rng, hrng;          /* derivation; homomorphism */
   /* cpfg's generator (random = "cpfg", rng.h): rng and hrng draw erand48's numbers;
@@ -125,7 +125,7 @@ typedef struct lsys_model {
   uint64_t choice48;           /* cpfg: drand48's state */
   double choice_u;
   int cpfgtry;                 /* cpfg: 1 while a weighted rule that runs in Lua is
-                               ** tried (its mark, lsys_cpfg_mark, stops it after the
+                               ** tried (its mark, lsys_derive_cpfg_mark, stops it after the
                                ** condition and weight), 2 while the chosen one runs
                                ** again from its state before the try (the mark then
                                ** puts back the state after every try, cpfgz) */
@@ -134,9 +134,9 @@ typedef struct lsys_model {
   lsys_rng *cur;               /* the generator 'ran' uses now */
   lsys_rulefn fn; void *fnud;
   const lsys_func **funcs;     /* positional functions of LSYS_OP_FN (the table is
-                               ** owned, the functions not: lsys_model_setfuncs) */
+                               ** owned, the functions not: lsys_rules_setfuncs) */
   size_t nfuncs;
-  int threads;                 /* for a step; 0: lsys_default_threads() */
+  int threads;                 /* for a step; 0: lsys_derive_default_threads() */
   size_t parmin;               /* strings shorter than this are rewritten on one thread */
   /* scratch, reused */
   lsys_scratch sc;             /* the calling thread's */
@@ -160,19 +160,19 @@ typedef struct lsys_model {
   lsys_rng *hkeep;
   lsys_meter meter;            /* the budget of the running operation */
   lsys_error err;
-} lsys_model;
+} lsys_rules;
 
 /* The mark a weighted rule running in Lua calls after its condition and weight
 ** (lsys.cpfg_try): 1 when it is being tried and is to stop there (cpfg
 ** evaluates a successor only once the production is chosen); else 0, after
 ** putting back the generator's state of the moment the choice was made. */
-int lsys_cpfg_mark (lsys_model *m);
+int lsys_derive_cpfg_mark (lsys_rules *m);
 
 /* The start of a weighted rule in Lua that keeps what its try computed (the
 ** cpfg loader's statement blocks: their locals stay in the rule's table): 1
 ** when the chosen rule runs again and is to go on from its mark, skipping its
 ** pre-condition block and condition (they ran once, as in cpfg); else 0. */
-int lsys_cpfg_resume (lsys_model *m);
+int lsys_derive_cpfg_resume (lsys_rules *m);
 
 /* x rounded to the nearest float32, as a double; beyond float32's range,
 ** +-FLT_MAX (so a finite value stays finite). */
@@ -185,37 +185,37 @@ static inline double lsys_round32 (double x) {
 ** LSYS_THREADS from the environment when it is a whole number from 1 (more
 ** than LSYS_MAXTHREADS counts as that), else the processors this process may
 ** run on. Read once. */
-int lsys_default_threads (void);
+int lsys_derive_default_threads (void);
 
-int lsys_model_init (lsys_model *m, lsys_alphabet *ab);
-void lsys_model_free (lsys_model *m);
+int lsys_rules_init (lsys_rules *m, lsys_alphabet *ab);
+void lsys_rules_free (lsys_rules *m);
 
 /* Adds a rule to the set (kind, sub, group); returns its index in
 ** m->rules or a negative code (message in e). */
-long lsys_model_add (lsys_model *m, int kind, int sub, int group,
+long lsys_rules_add (lsys_rules *m, int kind, int sub, int group,
                      const lsys_rulespec *spec, lsys_error *e);
 
 /* Sets (code != NULL) or clears the expression program of rule 'idx'; it
 ** must write exactly the rule's nvals values. Returns LSYS_OK or LSYS_EARG. */
-int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n);
+int lsys_rules_setvm (lsys_rules *m, size_t idx, const lsys_ins *code, int n);
 
 /* Sets the table of positional functions the rules' expression programs
 ** call (LSYS_OP_FN indices); the pointers are copied, the functions are the
 ** caller's and must stay alive while the model uses them. Clears every
 ** rule's program first (their indices referred to the old table). Returns
 ** LSYS_OK, LSYS_ENOMEM or LSYS_EBUSY. */
-int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n);
+int lsys_rules_setfuncs (lsys_rules *m, const lsys_func *const *funcs, size_t n);
 
 /* Sets the ignore (consider = 0) or consider list of sub-L-system 'sub'. */
-int lsys_model_skiplist (lsys_model *m, int sub, int consider,
+int lsys_rules_skiplist (lsys_rules *m, int sub, int consider,
                          const uint32_t *syms, size_t n);
 
 /* Creates the set (kind, sub, group) if it does not exist (a sub-L-system
 ** with no rules of its own). */
-int lsys_model_newset (lsys_model *m, int kind, int sub, int group);
+int lsys_rules_newset (lsys_rules *m, int kind, int sub, int group);
 
 /* Number of rules in the set (kind, sub, group); -1 when there is none. */
-long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
+long lsys_rules_setsize (const lsys_rules *m, int kind, int sub, int group);
 
 /*
 ** One parallel derivation step 'src' -> 'dst' (productions, cut, then
@@ -230,25 +230,25 @@ long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group);
 ** would need more than m->max_memory bytes (checked before allocating);
 ** LSYS_ERULE (or what the callback returned) with m->err set; LSYS_EBUSY
 ** when the model is busy already (a rule callback called it again). The
-** functions that change the rules (lsys_model_add, _setvm, _skiplist,
+** functions that change the rules (lsys_rules_add, _setvm, _skiplist,
 ** _newset) also return LSYS_EBUSY while the model is busy.
 */
-int lsys_derive_step (lsys_model *m, lsys_lstring *src, lsys_lstring *dst);
+int lsys_derive_step (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst);
 
 /* Applies the rules of 'kind' (LSYS_HOMO or LSYS_DECOMP) to every module
 ** of 'src' recursively within m->maxdepth[kind], into 'dst'. */
-int lsys_expand (lsys_model *m, int kind, lsys_lstring *src, lsys_lstring *dst);
+int lsys_derive_expand (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst);
 
 /*
 ** The homomorphism one module at a time, for the turtle (no expanded copy).
-** lsys_homo_begin prepares 'src' (which must not change until
-** lsys_homo_end); it returns 1, 0 when there is no homomorphism, or an
-** error code. lsys_homo_module expands module 'i' (parameters at 'poff')
+** lsys_derive_homo_begin prepares 'src' (which must not change until
+** lsys_derive_homo_end); it returns 1, 0 when there is no homomorphism, or an
+** error code. lsys_derive_homo_module expands module 'i' (parameters at 'poff')
 ** into 'out' and returns 1, or 0 when no homomorphism rule is for its
 ** symbol (the module stands for itself), or an error code with m->err set.
 */
-int lsys_homo_begin (lsys_model *m, lsys_lstring *src);
-int lsys_homo_module (lsys_model *m, size_t i, size_t poff, lsys_lstring *out);
-void lsys_homo_end (lsys_model *m);
+int lsys_derive_homo_begin (lsys_rules *m, lsys_lstring *src);
+int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring *out);
+void lsys_derive_homo_end (lsys_rules *m);
 
 #endif

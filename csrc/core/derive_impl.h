@@ -40,11 +40,11 @@ typedef struct lsys_pick {
 /* Strings shorter than this are rewritten on one thread (threads cost more). */
 #define LSYS_PARMIN 8192
 
-int lsys_choose (lsys_model *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
-                 const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk);
-int lsys_checkvals (lsys_model *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
-                    const double *vals);
-int lsys_needscratch (lsys_scratch *w, size_t nargs);
+int lsys_derive_choose (lsys_rules *m, lsys_scratch *w, lsys_ruleset *const *sets, int nsets,
+                        const view *v, size_t i, uint16_t code, const double *par, lsys_pick *pk);
+int lsys_derive_checkvals (lsys_rules *m, const lsys_scratch *w, const lsys_rule *r, size_t i,
+                           const double *vals);
+int lsys_derive_needscratch (lsys_scratch *w, size_t nargs);
 
 /*
 ** The productions of a step on several threads (derive_par.c): 'v' is the
@@ -57,36 +57,36 @@ int lsys_needscratch (lsys_scratch *w, size_t nargs);
 ** sequential step gives, at the module where it gives it).
 */
 #define LSYS_PAR_SEQ 1
-int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
-                          lsys_ruleset *const *sets, int nsets);
-void lsys_par_free (lsys_model *m);
+int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
+                                 lsys_ruleset *const *sets, int nsets);
+void lsys_derive_par_free (lsys_rules *m);
 
 /* Makes 's' wide within the running step's budget; exchanges two strings'
 ** contents (each keeps its meter). */
-int lsys_widen (lsys_model *m, lsys_lstring *s);
-void lsys_swapstr (lsys_lstring *a, lsys_lstring *b);
+int lsys_derive_widen (lsys_rules *m, lsys_lstring *s);
+void lsys_derive_swapstr (lsys_lstring *a, lsys_lstring *b);
 
 /* The set (kind, sub, group) or NULL; the ignore/consider list of
 ** sub-L-system 'sub' or NULL; groups the set's rules by predecessor
 ** (LSYS_OK or LSYS_ENOMEM). derive_rules.c. */
-lsys_ruleset *lsys_findset (const lsys_model *m, int kind, int sub, int group);
-lsys_skip *lsys_findskip (const lsys_model *m, int sub);
-int lsys_compileset (lsys_model *m, lsys_ruleset *s);
+lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int group);
+lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub);
+int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s);
 
 /* Builds the bracket-match and parameter-offset tables of 's' in m->match
 ** and m->poff (within the model's memory budget). LSYS_OK, LSYS_ELIMIT,
 ** LSYS_ENOMEM or LSYS_EMEMORY. */
-int lsys_buildtables (lsys_model *m, const lsys_lstring *s);
+int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s);
 
 /* The symbol of '=' in the model's alphabet, or NONE. */
-uint32_t lsys_eqsym (const lsys_model *m);
+uint32_t lsys_context_eqsym (const lsys_rules *m);
 
 /* Whether rule r's left context matches before module i, and its right
 ** context from module j; they write the contexts' parameters into 'args'
 ** (left) and 'a' (right). */
-int lsys_matchleft (const lsys_model *m, const view *v, size_t i, const lsys_rule *r,
-                    double *args);
-int lsys_matchright (const lsys_model *m, const view *v, size_t j, const lsys_rule *r,
-                     double *a);
+int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
+                            double *args);
+int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const lsys_rule *r,
+                             double *a);
 
 #endif

@@ -46,7 +46,7 @@ enum {
   PC_PLAIN,     /* one rule that always applies: its template */
   PC_VM,        /* one rule on the expression machine, no condition */
   PC_VMC,       /* the same with a condition */
-  PC_GEN,       /* contexts, weights, several rules, groups: lsys_choose */
+  PC_GEN,       /* contexts, weights, several rules, groups: lsys_derive_choose */
   PC_SEQ        /* the sequential step must run */
 };
 
@@ -94,14 +94,14 @@ typedef struct chunk {
   size_t o, po;               /* where they go in the new string */
   size_t lo;                  /* filling: modules [lo, b) are written */
   size_t fail;                /* filling: the module whose values failed, or SIZE_MAX */
-  int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_choose ran; a
+  int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_derive_choose ran; a
                               ** successor shorter than its module */
 } chunk;
 
 enum { PH_NP, PH_COUNT, PH_FILL };
 
 typedef struct job {
-  lsys_model *m;
+  lsys_rules *m;
   const uint16_t *code;       /* the source: wide, */
   const uint8_t *code8;       /* or narrow */
   const double *spar;
@@ -122,7 +122,7 @@ typedef struct worker { job *j; lsys_scratch *w; lsys_rng rng; pthread_t t; } wo
 
 static const double nopar[1];
 
-void lsys_par_free (lsys_model *m) {
+void lsys_derive_par_free (lsys_rules *m) {
   int k;
   if (m->par == NULL) return;
   for (k = 0; k < LSYS_MAXTHREADS; k++) {
@@ -136,7 +136,7 @@ void lsys_par_free (lsys_model *m) {
   m->par = NULL;
 }
 
-int lsys_default_threads (void) {
+int lsys_derive_default_threads (void) {
   static atomic_int cached;
   int n = atomic_load(&cached);
   const char *e;
@@ -190,8 +190,8 @@ static int bytes (uint8_t **p, size_t *cap, size_t n) {
 
 /* The templates as symbols, whether each rule's successor fits a narrow
 ** string, and the workers' scratch, large enough that filling never
-** allocates (lsys_choose included). */
-static int prepare (lsys_model *m, lsys_par *P, int nt) {
+** allocates (lsys_derive_choose included). */
+static int prepare (lsys_rules *m, lsys_par *P, int nt) {
   size_t k, nargs = 1, nalt = 1;
   uint32_t q;
   if (!bytes(&P->t8, &P->nt8, m->ntcode + 1) || !bytes(&P->rnar, &P->nrnar, m->nrules + 1))
@@ -211,8 +211,8 @@ static int prepare (lsys_model *m, lsys_par *P, int nt) {
   for (k = 0; k < (size_t)nt; k++) {
     lsys_scratch *w = &P->ws[k];
     w->worker = 1;
-    if (lsys_needscratch(w, nargs) != LSYS_OK ||
-        (w->altcap < nalt && lsys_grow((void **)&w->alt, &w->altcap, nalt, sizeof *w->alt)
+    if (lsys_derive_needscratch(w, nargs) != LSYS_OK ||
+        (w->altcap < nalt && lsys_common_grow((void **)&w->alt, &w->altcap, nalt, sizeof *w->alt)
                              != LSYS_OK))
       return 0;
   }
@@ -225,7 +225,7 @@ static int prepare (lsys_model *m, lsys_par *P, int nt) {
 ** Returns 0 when a rule of the sets needs the calling thread, else 1 with
 ** *needsp set when counting reads parameters.
 */
-static int classify (lsys_model *m, lsys_ruleset *const *sets, int nsets, int *needsp) {
+static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *needsp) {
   lsys_par *P = m->par;
   uint32_t k, n = m->ab->n;
   int si;
@@ -294,10 +294,10 @@ static int classify (lsys_model *m, lsys_ruleset *const *sets, int nsets, int *n
 /* The rule that rewrites module i ('cd', parameters *args; classes PC_VM,
 ** PC_VMC and PC_GEN), or NULL when the module is copied; *vals gets its
 ** values and *args its arguments. Returns -1 when the step must run
-** sequentially (a value that is not finite, an error of lsys_choose). */
+** sequentially (a value that is not finite, an error of lsys_derive_choose). */
 static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **args,
                  const double **vals, const lsys_rule **rule) {
-  lsys_model *m = j->m;
+  lsys_rules *m = j->m;
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   lsys_pick pk;
   int st;
@@ -307,14 +307,14 @@ static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **
     if (r->pred_np != LSYS_CNP(cd)) return 0;
     lsys_rng_at(w->rng, i);
     if (!lsys_expr_run(r->vm, r->nvm, *args, w->args, w->rng, m->funcs)) return 0;
-    if (lsys_checkvals(m, w, r, i, w->args) != LSYS_OK) return -1;
+    if (lsys_derive_checkvals(m, w, r, i, w->args) != LSYS_OK) return -1;
     *vals = w->args;
     *rule = r;
     return 0;
   }
   if (e->cls != PC_GEN) return -1;
   lsys_rng_at(w->rng, i);
-  st = lsys_choose(m, w, j->sets, j->nsets, j->v, i, cd, *args, &pk);
+  st = lsys_derive_choose(m, w, j->sets, j->nsets, j->v, i, cd, *args, &pk);
   if (st < 0 || st > 1 || (st == 1 && pk.dyn != NULL)) return -1;
   if (st == 1) { *rule = pk.r; *args = pk.args; *vals = pk.vals; }
   return 0;
@@ -411,7 +411,7 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
 }
 
 /* Writes the successor of rule r (arguments 'args', values 'vals') at oc, op. */
-static void put (const lsys_model *m, const lsys_rule *r, const double *args,
+static void put (const lsys_rules *m, const lsys_rule *r, const double *args,
                  const double *vals, uint16_t *oc, double *op) {
   const uint16_t *t = m->tcode + r->succ;
   uint32_t k;
@@ -441,7 +441,7 @@ typedef struct wout { uint16_t *o0, *oc; double *p0, *op; } wout;
 ** Returns 1, 0 when its values failed, -1 when it does not fit (a bug). */
 static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
                      const double *args) {
-  const lsys_model *m = j->m;
+  const lsys_rules *m = j->m;
   uint32_t np = LSYS_CNP(cd), k;
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   const lsys_rule *r = NULL;
@@ -662,7 +662,7 @@ static void cut (job *j, size_t n, int nt) {
 }
 
 /* The totals of the counts and the places of the chunks; *flags gets what
-** the chunks need (bit 0 wide, 1 lsys_choose ran, 2 shorter successors).
+** the chunks need (bit 0 wide, 1 lsys_derive_choose ran, 2 shorter successors).
 ** Returns 0 when a chunk failed. */
 static int prefix (job *j, size_t *n, size_t *np, int *flags) {
   size_t c, o = 0, po = 0;
@@ -689,7 +689,7 @@ static void paroffsets (job *j) {
 ** and np parameters within the budget (it grows its arrays by doubling,
 ** into 'out', and a narrow source is made wide first): only then may this
 ** step succeed where that one would fail. */
-static int roomy (lsys_model *m, const lsys_lstring *src, lsys_lstring *out, size_t n,
+static int roomy (lsys_rules *m, const lsys_lstring *src, lsys_lstring *out, size_t n,
                   size_t np) {
   size_t obytes = lsys_lstring_bytes(out), base, need;
   if (n > m->max_modules) return 0;
@@ -706,7 +706,7 @@ static int roomy (lsys_model *m, const lsys_lstring *src, lsys_lstring *out, siz
 ** message is that of the first such module in the string (the modules
 ** rewritten so far had none; the others are as they were). */
 static int firsterror (job *j) {
-  lsys_model *m = j->m;
+  lsys_rules *m = j->m;
   lsys_rng rng = j->rng;
   size_t c, i;
   m->sc.rng = &rng;
@@ -719,9 +719,9 @@ static int firsterror (job *j) {
       if (e->cls == PC_VM && e->pnp == LSYS_CNP(cd)) {
         const lsys_rule *r = &m->rules[e->rule];
         lsys_rng_at(&rng, i);
-        if (lsys_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+        if (lsys_derive_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
         if (lsys_expr_run(r->vm, r->nvm, j->spar + sp, m->sc.args, &rng, m->funcs) &&
-            lsys_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK)
+            lsys_derive_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK)
           return LSYS_ERULE;
       }
       sp += LSYS_CNP(cd);
@@ -761,9 +761,9 @@ static int room (job *j, lsys_lstring *src, lsys_lstring *out, size_t tot, size_
   return lsys_lstring_prepare(out, tot, ptot > 0 ? ptot : 1) == LSYS_OK;  /* no NULL + 0 */
 }
 
-int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
-                          lsys_ruleset *const *sets, int nsets) {
-  int nt = m->threads > 0 ? m->threads : lsys_default_threads(), needsp, flags, st = LSYS_OK;
+int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
+                                 lsys_ruleset *const *sets, int nsets) {
+  int nt = m->threads > 0 ? m->threads : lsys_derive_default_threads(), needsp, flags, st = LSYS_OK;
   size_t n = src->n, tot, ptot, c;
   lsys_lstring *seqout = dst == src ? &m->tmp : dst, *out;
   job *j;
@@ -785,7 +785,7 @@ int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, c
   atomic_init(&j->stop, 0);
   cut(j, n, nt);
   if (!count(j, src, needsp, nt) || !prefix(j, &tot, &ptot, &flags)) goto seq;
-  j->narrow = !(flags & 1) && lsys_model_setsize(m, LSYS_DECOMP, 0, 0) <= 0;
+  j->narrow = !(flags & 1) && lsys_rules_setsize(m, LSYS_DECOMP, 0, 0) <= 0;
   j->inplace = dst == src && v->match == NULL && !(flags & 4) &&
                j->narrow == (src->sym8 != NULL);
   out = j->inplace ? src : seqout;
@@ -804,7 +804,7 @@ int lsys_par_productions (lsys_model *m, lsys_lstring *src, lsys_lstring *dst, c
     out->n = tot;
     out->npar = j->narrow ? 0 : ptot;
     out->nck = 0;
-    if (out != dst) lsys_swapstr(src, out);
+    if (out != dst) lsys_derive_swapstr(src, out);
   }
   LSYS_FREE(j);
   return st;

@@ -8,7 +8,7 @@
 
 #include "derive_impl.h"
 
-int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
+int lsys_rules_init (lsys_rules *m, lsys_alphabet *ab) {
   memset(m, 0, sizeof *m);
   m->ab = ab;
   m->max_modules = 50000000;
@@ -22,7 +22,7 @@ int lsys_model_init (lsys_model *m, lsys_alphabet *ab) {
   return LSYS_OK;
 }
 
-void lsys_model_free (lsys_model *m) {
+void lsys_rules_free (lsys_rules *m) {
   size_t i;
   for (i = 0; i < m->nsets; i++) {
     LSYS_FREE(m->sets[i].list);
@@ -42,7 +42,7 @@ void lsys_model_free (lsys_model *m) {
   LSYS_FREE(m->tsrc);
   LSYS_FREE(m->sc.args);
   LSYS_FREE(m->sc.alt);
-  lsys_par_free(m);
+  lsys_derive_par_free(m);
   LSYS_FREE(m->match);
   LSYS_FREE(m->poff);
   LSYS_FREE(m->substack);
@@ -53,7 +53,7 @@ void lsys_model_free (lsys_model *m) {
   memset(m, 0, sizeof *m);
 }
 
-lsys_ruleset *lsys_findset (const lsys_model *m, int kind, int sub, int group) {
+lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int group) {
   size_t i;
   for (i = 0; i < m->nsets; i++)
     if (m->sets[i].kind == kind && m->sets[i].sub == sub && m->sets[i].group == group)
@@ -61,12 +61,12 @@ lsys_ruleset *lsys_findset (const lsys_model *m, int kind, int sub, int group) {
   return NULL;
 }
 
-long lsys_model_setsize (const lsys_model *m, int kind, int sub, int group) {
-  lsys_ruleset *s = lsys_findset(m, kind, sub, group);
+long lsys_rules_setsize (const lsys_rules *m, int kind, int sub, int group) {
+  lsys_ruleset *s = lsys_derive_findset(m, kind, sub, group);
   return s ? (long)s->nlist : -1;
 }
 
-lsys_skip *lsys_findskip (const lsys_model *m, int sub) {
+lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub) {
   size_t i;
   for (i = 0; i < m->nskips; i++)
     if (m->skips[i].sub == sub) return &m->skips[i];
@@ -74,18 +74,19 @@ lsys_skip *lsys_findskip (const lsys_model *m, int sub) {
 }
 
 /* The error of a change to the rules while the model is busy. */
-static int busyerror (lsys_model *m, lsys_error *e) {
+static int busyerror (lsys_rules *m, lsys_error *e) {
   return lsys_seterror(e != NULL ? e : &m->err, LSYS_EBUSY, (size_t)-1,
                        "the model is deriving: its rules cannot change now");
 }
 
-int lsys_model_skiplist (lsys_model *m, int sub, int consider,
+int lsys_rules_skiplist (lsys_rules *m, int sub, int consider,
                          const uint32_t *syms, size_t n) {
-  lsys_skip *k = lsys_findskip(m, sub);
+  lsys_skip *k = lsys_derive_findskip(m, sub);
   size_t i;
   if (m->busy) return busyerror(m, NULL);
   if (k == NULL) {
-    if (lsys_grow((void **)&m->skips, &m->skipcap, m->nskips + 1, sizeof *m->skips) != LSYS_OK)
+    if (lsys_common_grow((void **)&m->skips, &m->skipcap, m->nskips + 1,
+                         sizeof *m->skips) != LSYS_OK)
       return LSYS_ENOMEM;
     k = &m->skips[m->nskips++];
   }
@@ -97,11 +98,11 @@ int lsys_model_skiplist (lsys_model *m, int sub, int consider,
   return LSYS_OK;
 }
 
-int lsys_model_newset (lsys_model *m, int kind, int sub, int group) {
+int lsys_rules_newset (lsys_rules *m, int kind, int sub, int group) {
   lsys_ruleset *set;
   if (m->busy) return busyerror(m, NULL);
-  if (lsys_findset(m, kind, sub, group) != NULL) return LSYS_OK;
-  if (lsys_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
+  if (lsys_derive_findset(m, kind, sub, group) != NULL) return LSYS_OK;
+  if (lsys_common_grow((void **)&m->sets, &m->setcap, m->nsets + 1, sizeof *m->sets) != LSYS_OK)
     return LSYS_ENOMEM;
   set = &m->sets[m->nsets++];
   memset(set, 0, sizeof *set);
@@ -129,9 +130,9 @@ static int predmodules (const lsys_rulespec *sp, lsys_error *e) {
   return LSYS_OK;
 }
 
-long lsys_model_add (lsys_model *m, int kind, int sub, int group,
+long lsys_rules_add (lsys_rules *m, int kind, int sub, int group,
                      const lsys_rulespec *sp, lsys_error *e) {
-  lsys_ruleset *set = lsys_findset(m, kind, sub, group);
+  lsys_ruleset *set = lsys_derive_findset(m, kind, sub, group);
   lsys_rule *r;
   uint32_t k, nargs = 0, lcargs = 0;
   if (m->busy) return busyerror(m, e);
@@ -149,16 +150,20 @@ long lsys_model_add (lsys_model *m, int kind, int sub, int group,
     if (st != LSYS_OK) return st;
   }
   if (set == NULL) {
-    if (lsys_model_newset(m, kind, sub, group) != LSYS_OK) goto nomem;
-    set = lsys_findset(m, kind, sub, group);
+    if (lsys_rules_newset(m, kind, sub, group) != LSYS_OK) goto nomem;
+    set = lsys_derive_findset(m, kind, sub, group);
   }
-  if (lsys_grow((void **)&m->rules, &m->rulecap, m->nrules + 1, sizeof *m->rules) != LSYS_OK ||
-      lsys_grow((void **)&set->list, &set->listcap, set->nlist + 1, sizeof *set->list) != LSYS_OK ||
-      lsys_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nmore + sp->nrc,
-                sizeof *m->pat) != LSYS_OK ||
+  if (lsys_common_grow((void **)&m->rules, &m->rulecap, m->nrules + 1,
+                       sizeof *m->rules) != LSYS_OK ||
+      lsys_common_grow((void **)&set->list, &set->listcap, set->nlist + 1,
+                       sizeof *set->list) != LSYS_OK ||
+      lsys_common_grow((void **)&m->pat, &m->patcap, m->npat + sp->nlc + sp->nmore + sp->nrc,
+                       sizeof *m->pat) != LSYS_OK ||
       /* + 1: the code array exists once a rule does (no NULL + 0 for empty successors) */
-      lsys_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc + 1, sizeof *m->tcode) != LSYS_OK ||
-      lsys_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc, sizeof *m->tsrc) != LSYS_OK)
+      lsys_common_grow((void **)&m->tcode, &m->tcodecap, m->ntcode + sp->nsucc + 1,
+                       sizeof *m->tcode) != LSYS_OK ||
+      lsys_common_grow((void **)&m->tsrc, &m->tsrccap, m->ntsrc + sp->nsrc,
+                       sizeof *m->tsrc) != LSYS_OK)
     goto nomem;
   r = &m->rules[m->nrules];
   memset(r, 0, sizeof *r);
@@ -206,7 +211,7 @@ nomem:
   return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
 }
 
-int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
+int lsys_rules_setvm (lsys_rules *m, size_t idx, const lsys_ins *code, int n) {
   lsys_rule *r;
   lsys_ins *c = NULL;
   if (m->busy) return busyerror(m, NULL);
@@ -237,7 +242,7 @@ int lsys_model_setvm (lsys_model *m, size_t idx, const lsys_ins *code, int n) {
   return LSYS_OK;
 }
 
-int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n) {
+int lsys_rules_setfuncs (lsys_rules *m, const lsys_func *const *funcs, size_t n) {
   const lsys_func **t = NULL;
   size_t i;
   if (m->busy) return busyerror(m, NULL);
@@ -259,7 +264,7 @@ int lsys_model_setfuncs (lsys_model *m, const lsys_func *const *funcs, size_t n)
 }
 
 /* Groups the set's rules by predecessor (count, prefix sum, fill). */
-int lsys_compileset (lsys_model *m, lsys_ruleset *s) {
+int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s) {
   uint32_t nsym = m->ab->n, i;
   size_t k;
   if (s->compiled && s->nsym == nsym) return LSYS_OK;

@@ -9,12 +9,17 @@
 #include "export.h"
 #include "population.h"
 
+#define ROW(id, name, ext, title, companion, textures, save, instanced) \
+  {name, ext, title, companion, textures, save, instanced},
+const lsys_format lsys_export_formats[LSYS_NFORMATS] = { LSYS_FORMATS(ROW) };
+#undef ROW
+
 int lsys_export_format (const char *path) {
   const char *ext = strrchr(path, '.');
+  int k;
   if (ext == NULL) return -1;
-  if (strcmp(ext, ".obj") == 0) return LSYS_FORMAT_OBJ;
-  if (strcmp(ext, ".ply") == 0) return LSYS_FORMAT_PLY;
-  if (strcmp(ext, ".glb") == 0) return LSYS_FORMAT_GLB;
+  for (k = 0; k < LSYS_NFORMATS; k++)
+    if (strcmp(ext + 1, lsys_export_formats[k].ext) == 0) return k;
   return -1;
 }
 
@@ -29,16 +34,9 @@ double lsys_export_pixel (const lsys_mesh *m) {
 
 static int savemesh (const lsys_scene *s, const lsys_mesh *m, int format, const char *path,
                      lsys_error *e) {
-  switch (format) {
-    case LSYS_FORMAT_OBJ:
-      return lsys_mesh_save_obj(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    case LSYS_FORMAT_PLY:
-      return lsys_mesh_save_ply(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    case LSYS_FORMAT_GLB:
-      return lsys_mesh_save_glb(m, s->pal, s->npal, s->tex, s->ntex, path, e);
-    default:
-      return lsys_seterror(e, LSYS_EARG, (size_t)-1, "unknown format of '%s'", path);
-  }
+  if (format < 0 || format >= LSYS_NFORMATS)
+    return lsys_seterror(e, LSYS_EARG, (size_t)-1, "unknown format of '%s'", path);
+  return lsys_export_formats[format].save(m, s->pal, s->npal, s->tex, s->ntex, path, e);
 }
 
 /* The tube options of 'o' checked; LSYS_OK or LSYS_EARG naming 'path'. */
@@ -102,37 +100,39 @@ static int tubedparts (lsys_scene *dst, const lsys_scene *s, const lsys_export_o
   return st;
 }
 
-/* A population: as glb with instancing (its tubes per prototype), or
-** flattened. */
+/* A population: with instancing (glb; its tubes per prototype) when the format
+** has an instanced writer, or flattened. */
 static int savepopulation (const lsys_scene *s, int format, const char *path,
                            const lsys_export_opts *o, lsys_error *e) {
+  int (*instanced) (const lsys_scene *, const char *, lsys_error *) =
+    lsys_export_formats[format].instanced;
   int tubes = o != NULL && o->tubes, st;
   lsys_meter mt = {0, 0, 0, NULL};
   lsys_scene f;
   if (tubes && (st = checktubes(o, path, e)) != LSYS_OK) return st;
-  if (format == LSYS_FORMAT_GLB && (o == NULL || !o->flatten)) {
+  if (instanced != NULL && (o == NULL || !o->flatten)) {
     lsys_scene t;
-    if (!tubes) return lsys_scene_save_glb_instanced(s, path, e);
+    if (!tubes) return instanced(s, path, e);
     lsys_scene_init(&t);
     st = tubedparts(&t, s, o, o->pixel > 0 ? o->pixel : scenepixel(s));
     t.inst = s->inst;                          /* borrowed for the call */
     t.ninst = s->ninst;
-    if (st == LSYS_OK) st = lsys_scene_save_glb_instanced(&t, path, e);
+    if (st == LSYS_OK) st = instanced(&t, path, e);
     else tubeserror(st, path, e);
     t.inst = NULL;
     t.ninst = 0;
     lsys_scene_free(&t);
     return st;
   }
-  mt.limit = o != NULL && o->max_memory > 0 ? o->max_memory : lsys_memory_limit();
+  mt.limit = o != NULL && o->max_memory > 0 ? o->max_memory : lsys_common_memory_limit();
   lsys_scene_init(&f);
   st = lsys_population_flatten(&f, s, &mt);
   if (st == LSYS_EMEMORY) {
     char b1[32], b2[32];
     return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': the population written out "
                          "needs %s, more than max_memory (%s)", path,
-                         lsys_fmtsize(b1, lsys_population_flatbytes(s)),
-                         lsys_fmtsize(b2, mt.limit));
+                         lsys_common_fmtsize(b1, lsys_population_flatbytes(s)),
+                         lsys_common_fmtsize(b2, mt.limit));
   }
   if (st == LSYS_ELIMIT)
     return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': the population written out "
@@ -142,19 +142,19 @@ static int savepopulation (const lsys_scene *s, int format, const char *path,
   if (tubes && o->pixel == 0) {                /* the scale of the population as drawn */
     lsys_export_opts to = *o;
     to.pixel = scenepixel(s);
-    st = lsys_scene_save(&f, format, path, &to, e);
+    st = lsys_export_scene(&f, format, path, &to, e);
   } else
-    st = lsys_scene_save(&f, format, path, o, e);
+    st = lsys_export_scene(&f, format, path, o, e);
   lsys_scene_free(&f);
   return st;
 }
 
-int lsys_scene_save (const lsys_scene *s, int format, const char *path,
-                     const lsys_export_opts *o, lsys_error *e) {
+int lsys_export_scene (const lsys_scene *s, int format, const char *path,
+                       const lsys_export_opts *o, lsys_error *e) {
   lsys_mesh tm;
   double pixel;
   int st;
-  if (format < 0 || format > LSYS_FORMAT_GLB)
+  if (format < 0 || format >= LSYS_NFORMATS)
     return savemesh(s, &s->mesh, format, path, e);
   if (s->ninst > 0) return savepopulation(s, format, path, o, e);
   if (o == NULL || !o->tubes || s->mesh.nl == 0) return savemesh(s, &s->mesh, format, path, e);

@@ -31,9 +31,45 @@
 #include "scene.h"
 #include "texture.h"
 
-enum { LSYS_FORMAT_OBJ = 0, LSYS_FORMAT_PLY = 1, LSYS_FORMAT_GLB = 2 };
+/*
+** The export formats, in one table: X(id, name, ext, title, companion, textures, save,
+** instanced), one row per format, in the order they are listed (messages, help,
+** core.formats()). A new format is a row here and its writer.
+**   id          LSYS_FORMAT_<id>, the row's index
+**   name        its name (lsys.batch's output field, core.formats())
+**   ext         its file name's extension, lower case, without the dot
+**   title       what it is, in words
+**   companion   the extension of a file written beside it (OBJ's material file), or NULL
+**   textures    1: a textured triangle names or embeds its image
+**   save        the writer, on a mesh with a palette and textures (below)
+**   instanced   the writer of a population with instancing (unless it is flattened), or
+**               NULL: a population is always written flattened
+*/
+#define LSYS_FORMATS(X) \
+  X(OBJ, "obj", "obj", "Wavefront OBJ", "mtl", 1, lsys_export_obj, NULL) \
+  X(PLY, "ply", "ply", "binary PLY", NULL, 0, lsys_export_ply, NULL) \
+  X(GLB, "glb", "glb", "glTF 2.0 binary", NULL, 1, lsys_export_glb, \
+    lsys_export_glb_instanced)
 
-/* The format a file name's extension names (.obj, .ply, .glb, lower case),
+#define LSYS_FORMAT_ENUM(id, name, ext, title, companion, textures, save, instanced) \
+  LSYS_FORMAT_##id,
+enum { LSYS_FORMATS(LSYS_FORMAT_ENUM) LSYS_NFORMATS };
+#undef LSYS_FORMAT_ENUM
+
+/* One row of the table. */
+typedef struct lsys_format {
+  const char *name, *ext, *title;
+  const char *companion;      /* NULL: none */
+  int textures;
+  int (*save) (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+               const lsys_texture *const *tex, int ntex, const char *path, lsys_error *e);
+  int (*instanced) (const lsys_scene *s, const char *path, lsys_error *e);   /* or NULL */
+} lsys_format;
+
+/* The rows, lsys_export_formats[LSYS_FORMAT_<id>] (export.c). */
+extern const lsys_format lsys_export_formats[LSYS_NFORMATS];
+
+/* The format a file name's extension names (one of the table's, lower case),
 ** or -1. */
 int lsys_export_format (const char *path);
 
@@ -53,7 +89,7 @@ typedef struct lsys_export_opts {
   double pixel;            /* scene units per unit of line width; 0: the default */
   int flatten;             /* a population: 1 writes every instance out in every format;
                               0 keeps glb's instancing (OBJ and PLY are always flattened) */
-  size_t max_memory;       /* the bytes a flattened copy may take; 0: lsys_memory_limit() */
+  size_t max_memory;       /* the bytes a flattened copy may take; 0: lsys_common_memory_limit() */
 } lsys_export_opts;
 
 /* The default size of a pixel of line width, in scene units: the largest
@@ -68,12 +104,12 @@ double lsys_export_pixel (const lsys_mesh *m);
 ** call. LSYS_OK or an error with e->msg naming the file (LSYS_EARG for bad
 ** options). With tubes, the mesh is copied once with its tubes added.
 ** A population (a scene with instances, population.h) is written as GLB
-** with instancing (lsys_scene_save_glb_instanced; with tubes, each
+** with instancing (lsys_export_glb_instanced; with tubes, each
 ** prototype gets its own) unless o->flatten; otherwise, and always as OBJ
 ** or PLY, a flattened copy (lsys_population_flatten) is made first,
 ** LSYS_EMEMORY when it would take more than o->max_memory. */
-int lsys_scene_save (const lsys_scene *s, int format, const char *path,
-                     const lsys_export_opts *o, lsys_error *e);
+int lsys_export_scene (const lsys_scene *s, int format, const char *path,
+                       const lsys_export_opts *o, lsys_error *e);
 
 /* The writers themselves, on a mesh with a palette and textures: */
 /*
@@ -87,15 +123,15 @@ int lsys_scene_save (const lsys_scene *s, int format, const char *path,
 ** the file (map_Kd), GLB files embed it; PLY ignores textures. Return
 ** LSYS_OK or an error with e->msg naming the file.
 */
-int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
-int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
-int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e);
+int lsys_export_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e);
+int lsys_export_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e);
+int lsys_export_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e);
 
 /*
 ** A population (a scene with parts and instances: population.h) as glTF
@@ -103,10 +139,10 @@ int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npa
 ** instances and draws something, one node per such mesh whose extension
 ** gives its instances' translations, rotations and scales (the extension
 ** is listed in extensionsUsed and extensionsRequired). Materials and
-** textures as lsys_mesh_save_glb. LSYS_EARG (naming the instance) when an
+** textures as lsys_export_glb. LSYS_EARG (naming the instance) when an
 ** instance is not a translation, rotation and positive scale
 ** (lsys_population_trs): such a population must be flattened.
 */
-int lsys_scene_save_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e);
+int lsys_export_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e);
 
 #endif

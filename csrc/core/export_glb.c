@@ -15,7 +15,7 @@
 ** equivalent: export.h's tubes replace the lines by triangles before this
 ** writer sees them). An empty mesh gives a scene without nodes.
 **
-** Instancing (a population, lsys_scene_save_glb_instanced): the meshes are
+** Instancing (a population, lsys_export_glb_instanced): the meshes are
 ** the scene's parts (its prototypes) that have instances, each with its own
 ** vertex accessors over its range of the shared vertex view and its own
 ** index and line accessors over its part of each run (the sorts are
@@ -147,7 +147,7 @@ typedef struct jbuf {
 
 static char *jroom (jbuf *j, size_t k) {
   if (j->err) return NULL;
-  if (lsys_grow((void **)&j->p, &j->cap, j->n + k + 1, 1) != LSYS_OK) {
+  if (lsys_common_grow((void **)&j->p, &j->cap, j->n + k + 1, 1) != LSYS_OK) {
     j->err = 1;
     return NULL;
   }
@@ -170,7 +170,7 @@ static void jadd (jbuf *j, const char *fmt, ...) {
 
 static void jnum (jbuf *j, float x) {
   char *s = jroom(j, 16);
-  if (s != NULL) j->n = (size_t)(lsys_putfloat(s, x) - j->p);
+  if (s != NULL) j->n = (size_t)(lsys_export_putfloat(s, x) - j->p);
 }
 
 /* 'head' (the key with its quotes and colon), then the array of 'v'. */
@@ -231,7 +231,7 @@ static int slurpimage (const lsys_texture *t, unsigned char **data, size_t *len,
   const char *name = t->path;
   lsys_error re;
   size_t n = 0;
-  unsigned char *p = (unsigned char *)lsys_readfile(name, (size_t)UINT32_MAX / 2, &n, &re);
+  unsigned char *p = (unsigned char *)lsys_common_readfile(name, (size_t)UINT32_MAX / 2, &n, &re);
   *data = NULL;
   if (p == NULL && re.code == LSYS_ENOMEM)
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
@@ -243,7 +243,7 @@ static int slurpimage (const lsys_texture *t, unsigned char **data, size_t *len,
   if (n >= 2 && p[0] == 0x01 && p[1] == 0xda && t->rgba != NULL) {   /* SGI's magic, 474 */
     int st;
     LSYS_FREE(p);
-    st = lsys_png_encode(t->rgba, t->w, t->h, lsys_texture_hasalpha(t), data, len, &re);
+    st = lsys_pngio_encode(t->rgba, t->w, t->h, lsys_texture_hasalpha(t), data, len, &re);
     if (st != LSYS_OK)
       return lsys_seterror(e, st, (size_t)-1, "cannot write '%s': texture '%s' as PNG: %s",
                            path, name, re.msg);
@@ -327,7 +327,7 @@ static void jmaterials (jbuf *j, const glb *G) {
   int first = 1;
   jadd(j, "\"materials\":[");
   for (k = 0, r = 0; k < g->nmat; k++) {
-    const lsys_material *mt = lsys_slotmaterial(G->pal, G->npal, k);
+    const lsys_material *mt = lsys_export_slotmaterial(G->pal, G->npal, k);
     const lsys_run *fr = r < g->nruns && g->runs[r].slot == k ? &g->runs[r] : NULL;
     if (plainused(g, k, fr)) {
       jmaterial(j, mt, k, fr != NULL && fr->tex == 0 && fr->twosided, NULL, 0, 0, first);
@@ -652,8 +652,8 @@ static void binrest (lsys_writer *w, const glb *G) {
   }
   if (G->inst != NULL) bininstances(w, G);
   for (i = 0; i < G->nimg; i++) {
-    lsys_wbytes(w, G->img[i], G->imglen[i]);
-    lsys_wbytes(w, zero, (4 - G->imglen[i] % 4) % 4);
+    lsys_export_wbytes(w, G->img[i], G->imglen[i]);
+    lsys_export_wbytes(w, zero, (4 - G->imglen[i] % 4) % 4);
   }
 }
 
@@ -669,22 +669,22 @@ static int glbwrite (const glb *G, const char *json, size_t jlen, lsys_error *e)
   lsys_writer *w;
   int st;
   if (jlen > UINT32_MAX - 1024 || total > UINT32_MAX) return toolarge(G, e);
-  if ((st = lsys_wopen(&w, G->path, e)) != LSYS_OK) return st;
+  if ((st = lsys_export_wopen(&w, G->path, e)) != LSYS_OK) return st;
   p = put32(hdr, GLB_MAGIC);
   p = put32(p, 2);
   p = put32(p, (uint32_t)total);
   p = put32(p, (uint32_t)jlen);
   p = put32(p, GLB_JSON);
-  lsys_wbytes(w, hdr, (size_t)(p - hdr));
-  lsys_wbytes(w, json, jlen);
+  lsys_export_wbytes(w, hdr, (size_t)(p - hdr));
+  lsys_export_wbytes(w, json, jlen);
   if (G->binlen) {
     p = put32(hdr, (uint32_t)G->binlen);
     p = put32(p, GLB_BIN);
-    lsys_wbytes(w, hdr, (size_t)(p - hdr));
+    lsys_export_wbytes(w, hdr, (size_t)(p - hdr));
   }
   binvertices(w, G->m, G->nv);
   binrest(w, G);
-  return lsys_wcommit(w, e);
+  return lsys_export_wcommit(w, e);
 }
 
 static void glbfree (glb *G) {
@@ -693,7 +693,7 @@ static void glbfree (glb *G) {
   LSYS_FREE(G->img); LSYS_FREE(G->imglen); LSYS_FREE(G->imgtex);
   LSYS_FREE(G->pmat); LSYS_FREE(G->rmat); LSYS_FREE(G->gtex);
   LSYS_FREE(G->ifirst); LSYS_FREE(G->iord);
-  lsys_freegroups(&G->g);
+  lsys_export_freegroups(&G->g);
 }
 
 /* Writes the file of G (its mesh, palette, path and parts set); frees G. */
@@ -710,7 +710,7 @@ static int glbsave (glb *G, const lsys_texture *const *tex, int ntex, lsys_error
     return toolarge(G, e);
   }
   G->binlen = G->vbytes + G->ibytes + G->lbytes + G->nbytes;
-  st = lsys_groupmesh(&G->g, m, G->npal, tex, ntex, G->path, e);
+  st = lsys_export_groupmesh(&G->g, m, G->npal, tex, ntex, G->path, e);
   if (st != LSYS_OK) memset(&G->g, 0, sizeof G->g);     /* it freed its arrays */
   if (st == LSYS_OK) st = glbmaterials(G, e);
   if (st == LSYS_OK) st = glbimages(G, e);
@@ -723,11 +723,11 @@ static int glbsave (glb *G, const lsys_texture *const *tex, int ntex, lsys_error
   return st;
 }
 
-int lsys_mesh_save_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e) {
+int lsys_export_glb (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e) {
   glb G = {0};
-  int st = lsys_checkmesh(m, path, e);
+  int st = lsys_export_checkmesh(m, path, e);
   if (st != LSYS_OK) return st;
   G.m = m; G.pal = pal; G.npal = npal; G.path = path;
   G.whole.nv = m->nv; G.whole.nt = m->nt; G.whole.nl = m->nl;
@@ -763,10 +763,10 @@ static int byparts (glb *G, const lsys_scene *s, int *used, lsys_error *e) {
   return LSYS_OK;
 }
 
-int lsys_scene_save_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e) {
+int lsys_export_glb_instanced (const lsys_scene *s, const char *path, lsys_error *e) {
   glb G = {0};
   size_t p;
-  int st = lsys_checkmesh(&s->mesh, path, e), used = 0;
+  int st = lsys_export_checkmesh(&s->mesh, path, e), used = 0;
   if (st != LSYS_OK) return st;
   for (p = 0; p < s->nparts; p++) {
     const lsys_part *q = &s->parts[p];
@@ -782,7 +782,7 @@ int lsys_scene_save_glb_instanced (const lsys_scene *s, const char *path, lsys_e
     glbfree(&G);
     if (st != LSYS_OK) return st;
     lsys_mesh_init(&empty);
-    return lsys_mesh_save_glb(&empty, s->pal, s->npal, NULL, 0, path, e);
+    return lsys_export_glb(&empty, s->pal, s->npal, NULL, 0, path, e);
   }
   return glbsave(&G, s->tex, s->ntex, e);
 }

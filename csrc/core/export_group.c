@@ -6,7 +6,7 @@
 
 #include "export_impl.h"
 
-int lsys_checkmesh (const lsys_mesh *m, const char *path, lsys_error *e) {
+int lsys_export_checkmesh (const lsys_mesh *m, const char *path, lsys_error *e) {
   size_t t;
   if (m->nt > UINT32_MAX || m->nl > UINT32_MAX / 2 || m->nv > UINT32_MAX)
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot write '%s': mesh too large", path);
@@ -18,7 +18,7 @@ int lsys_checkmesh (const lsys_mesh *m, const char *path, lsys_error *e) {
   return LSYS_OK;
 }
 
-void lsys_freegroups (lsys_groups *g) {
+void lsys_export_freegroups (lsys_groups *g) {
   LSYS_FREE(g->tfirst); LSYS_FREE(g->lfirst);
   LSYS_FREE(g->tord); LSYS_FREE(g->lord); LSYS_FREE(g->runs);
 }
@@ -80,7 +80,7 @@ static int findruns (lsys_groups *g, const lsys_mesh *m) {
       unsigned tx = texof(g, m, v[0]);
       lsys_run *r;
       if (g->nruns == g->runcap &&
-          lsys_grow((void **)&g->runs, &g->runcap, g->nruns + 1, sizeof *g->runs) != LSYS_OK)
+          lsys_common_grow((void **)&g->runs, &g->runcap, g->nruns + 1, sizeof *g->runs) != LSYS_OK)
         return LSYS_ENOMEM;
       r = &g->runs[g->nruns++];
       r->first = i;
@@ -100,9 +100,9 @@ static int findruns (lsys_groups *g, const lsys_mesh *m) {
 /* Colour indices are 16-bit, so more than 65536 slots are never needed:
 ** c % npal == c % 65536 == c when npal > 65536. Texture indices are
 ** 16-bit too. */
-int lsys_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
-                    const lsys_texture *const *tex, int ntex, const char *path,
-                    lsys_error *e) {
+int lsys_export_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
+                           const lsys_texture *const *tex, int ntex, const char *path,
+                           lsys_error *e) {
   size_t nmat = npal == 0 ? 1 : (npal < 65536 ? npal : 65536);
   uint32_t *order = NULL;      /* triangles by texture, when textured */
   size_t *tcount = NULL;
@@ -123,7 +123,7 @@ int lsys_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
   if (!g->tfirst || !g->lfirst || !g->tord || !g->lord ||
       (g->ntex > 0 && (order == NULL || tcount == NULL))) {
     LSYS_FREE(order); LSYS_FREE(tcount);
-    lsys_freegroups(g);
+    lsys_export_freegroups(g);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
   }
   if (order != NULL) bytexture(g, m, order, tcount);   /* by texture first */
@@ -131,7 +131,7 @@ int lsys_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
   bymaterial(g, m, order);
   LSYS_FREE(order);
   if (findruns(g, m) != LSYS_OK) {
-    lsys_freegroups(g);
+    lsys_export_freegroups(g);
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "cannot write '%s': out of memory", path);
   }
   return LSYS_OK;
@@ -142,6 +142,6 @@ static const lsys_material defmaterial = {
   {0.24f, 0.24f, 0.24f, 1}, {0.8f, 0.8f, 0.8f, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, 0
 };
 
-const lsys_material *lsys_slotmaterial (const lsys_material *pal, size_t npal, size_t k) {
+const lsys_material *lsys_export_slotmaterial (const lsys_material *pal, size_t npal, size_t k) {
   return npal == 0 ? &defmaterial : &pal[k];
 }

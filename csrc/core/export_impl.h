@@ -36,23 +36,23 @@ typedef struct lsys_writer {
 } lsys_writer;
 
 /* Opens a writer for 'path' into *wp; LSYS_OK, or an error naming it. */
-int lsys_wopen (lsys_writer **wp, const char *path, lsys_error *e);
-void lsys_wflush (lsys_writer *w);
-void lsys_wbytes (lsys_writer *w, const void *s, size_t n);
-void lsys_wstr (lsys_writer *w, const char *s);
+int lsys_export_wopen (lsys_writer **wp, const char *path, lsys_error *e);
+void lsys_export_wflush (lsys_writer *w);
+void lsys_export_wbytes (lsys_writer *w, const void *s, size_t n);
+void lsys_export_wstr (lsys_writer *w, const char *s);
 /* Flushes and closes the temporary file; the target is replaced by
-** lsys_wcommit. On failure the temporary file is gone and e names the
+** lsys_export_wcommit. On failure the temporary file is gone and e names the
 ** target. */
-int lsys_wfinish (lsys_writer *w, lsys_error *e);
+int lsys_export_wfinish (lsys_writer *w, lsys_error *e);
 /* Finishes (when not done yet) and replaces the target; frees the writer. */
-int lsys_wcommit (lsys_writer *w, lsys_error *e);
+int lsys_export_wcommit (lsys_writer *w, lsys_error *e);
 /* Drops what was written; the target stays as it was. Frees the writer
 ** (NULL is allowed). */
-void lsys_wabort (lsys_writer *w);
+void lsys_export_wabort (lsys_writer *w);
 
 /* Room for 'k' (<= WBUFSIZE) more bytes; fill them, then call wdone. */
 static inline unsigned char *wroom (lsys_writer *w, size_t k) {
-  if (w->n + k > WBUFSIZE) lsys_wflush(w);
+  if (w->n + k > WBUFSIZE) lsys_export_wflush(w);
   return w->b + w->n;
 }
 
@@ -67,11 +67,11 @@ static inline void wdone (lsys_writer *w, void *end) {
 /* Writes 'f' in decimal, in the style of %g, with the fewest significant
 ** digits between 6 and 9 that read back as the same float; non-finite
 ** values as 0. At most 15 characters; returns the end. */
-char *lsys_putfloat (char *s, float f);
+char *lsys_export_putfloat (char *s, float f);
 
 /* 'tag', then the 'n' floats of 'v' (non-finite ones as 0) each after a
 ** space; ends the line. */
-void lsys_putvec (lsys_writer *w, const char *tag, const float *v, int n);
+void lsys_export_putvec (lsys_writer *w, const char *tag, const float *v, int n);
 
 static inline char *putuint (char *s, uint64_t u) {
   char t[20];
@@ -112,7 +112,7 @@ static inline unsigned char *putf32 (unsigned char *p, float f) {
 
 /* Triangles must refer to existing vertices, and the counts must fit the
 ** 32-bit numbers of the formats. LSYS_OK, or an error naming 'path'. */
-int lsys_checkmesh (const lsys_mesh *m, const char *path, lsys_error *e);
+int lsys_export_checkmesh (const lsys_mesh *m, const char *path, lsys_error *e);
 
 /*
 ** Triangles and segments sorted by material with a counting sort. With
@@ -140,12 +140,12 @@ typedef struct lsys_groups {
 } lsys_groups;
 
 /* Groups the mesh for a palette of 'npal' materials and the textures
-** 'tex' (see lsys_mesh_save_obj). LSYS_OK, or LSYS_ENOMEM with a message
+** 'tex' (see lsys_export_obj). LSYS_OK, or LSYS_ENOMEM with a message
 ** naming 'path' and nothing to free. */
-int lsys_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
-                    const lsys_texture *const *tex, int ntex, const char *path,
-                    lsys_error *e);
-void lsys_freegroups (lsys_groups *g);
+int lsys_export_groupmesh (lsys_groups *g, const lsys_mesh *m, size_t npal,
+                           const lsys_texture *const *tex, int ntex, const char *path,
+                           lsys_error *e);
+void lsys_export_freegroups (lsys_groups *g);
 
 /* Whether slot k's plain material is used: by untextured triangles (the
 ** first run of the slot, texture 0) or by segments. 'r' is the slot's
@@ -156,6 +156,6 @@ static inline int plainused (const lsys_groups *g, size_t k, const lsys_run *r) 
 
 /* The material of slot k: pal[k], or a grey default when the palette is
 ** empty. */
-const lsys_material *lsys_slotmaterial (const lsys_material *pal, size_t npal, size_t k);
+const lsys_material *lsys_export_slotmaterial (const lsys_material *pal, size_t npal, size_t k);
 
 #endif

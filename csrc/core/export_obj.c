@@ -42,7 +42,7 @@ static void putrgb (lsys_writer *w, const char *tag, const float *c) {
   float v[3];
   int k;
   for (k = 0; k < 3; k++) v[k] = tolinear(c[k]);
-  lsys_putvec(w, tag, v, 3);
+  lsys_export_putvec(w, tag, v, 3);
 }
 
 /* "<tag> m<k>" or "<tag> m<k>_t<t>" and a newline: the name of slot k's
@@ -73,19 +73,19 @@ static void putmtl (lsys_writer *w, const lsys_material *mt, size_t k, const lsy
   int spec = mt->specular[0] > 0 || mt->specular[1] > 0 || mt->specular[2] > 0;
   int decal = tx != NULL && tx->mode == LSYS_TEX_DECAL;
   float d = lsys_unit(mt->diffuse[3]);
-  lsys_wstr(w, "\n");
+  lsys_export_wstr(w, "\n");
   putmtlname(w, "newmtl", k, t);
   putrgb(w, "Ka", mt->ambient);
   putrgb(w, "Kd", decal ? white : mt->diffuse);
   putrgb(w, "Ks", mt->specular);
   putrgb(w, "Ke", mt->emission);
-  lsys_putvec(w, "Ns", &mt->shininess, 1);  /* the same Phong exponent as OpenGL's */
-  lsys_putvec(w, "d", &d, 1);
-  lsys_wstr(w, decal ? "illum 0\n" : spec ? "illum 2\n" : "illum 1\n");
+  lsys_export_putvec(w, "Ns", &mt->shininess, 1);  /* the same Phong exponent as OpenGL's */
+  lsys_export_putvec(w, "d", &d, 1);
+  lsys_export_wstr(w, decal ? "illum 0\n" : spec ? "illum 2\n" : "illum 1\n");
   if (tx != NULL) {
-    lsys_wstr(w, "map_Kd ");
-    lsys_wstr(w, tx->path);
-    lsys_wstr(w, "\n");
+    lsys_export_wstr(w, "map_Kd ");
+    lsys_export_wstr(w, tx->path);
+    lsys_export_wstr(w, "\n");
   }
 }
 
@@ -95,18 +95,18 @@ static int writemtl (lsys_writer **wp, const lsys_groups *g, const lsys_material
                      size_t npal, const char *path, lsys_error *e) {
   lsys_writer *w;
   size_t k, r = 0;
-  int st = lsys_wopen(&w, path, e);
+  int st = lsys_export_wopen(&w, path, e);
   if (st != LSYS_OK) return st;
-  lsys_wstr(w, "# lsys materials\n");
+  lsys_export_wstr(w, "# lsys materials\n");
   for (k = 0; k < g->nmat; k++) {
-    const lsys_material *mt = lsys_slotmaterial(pal, npal, k);
+    const lsys_material *mt = lsys_export_slotmaterial(pal, npal, k);
     if (plainused(g, k, r < g->nruns ? &g->runs[r] : NULL)) putmtl(w, mt, k, NULL, 0);
     for (; r < g->nruns && g->runs[r].slot == k; r++)
       if (g->runs[r].tex > 0)
         putmtl(w, mt, k, g->tex[g->runs[r].tex - 1], g->runs[r].tex);
   }
-  if ((st = lsys_wfinish(w, e)) != LSYS_OK) {
-    lsys_wabort(w);
+  if ((st = lsys_export_wfinish(w, e)) != LSYS_OK) {
+    lsys_export_wabort(w);
     return st;
   }
   *wp = w;
@@ -151,18 +151,18 @@ static void putvertices (lsys_writer *w, const lsys_mesh *m, const lsys_groups *
   size_t i;
   snprintf(head, sizeof head, "# lsys: %zu vertices, %zu triangles, %zu line segments\n",
            m->nv, m->nt, m->nl);
-  lsys_wstr(w, head);
-  lsys_wstr(w, "mtllib ");
-  lsys_wstr(w, mtlname);
-  lsys_wstr(w, "\n");
-  for (i = 0; i < m->nv; i++) lsys_putvec(w, "v", m->pos + 3 * i, 3);
+  lsys_export_wstr(w, head);
+  lsys_export_wstr(w, "mtllib ");
+  lsys_export_wstr(w, mtlname);
+  lsys_export_wstr(w, "\n");
+  for (i = 0; i < m->nv; i++) lsys_export_putvec(w, "v", m->pos + 3 * i, 3);
   for (i = 0; i < m->nl; i++) {
     const float *p = m->lpos + 6 * (size_t)g->lord[i];
-    lsys_putvec(w, "v", p, 3);
-    lsys_putvec(w, "v", p + 3, 3);
+    lsys_export_putvec(w, "v", p, 3);
+    lsys_export_putvec(w, "v", p + 3, 3);
   }
-  for (i = 0; i < m->nv; i++) lsys_putvec(w, "vn", m->nrm + 3 * i, 3);
-  for (i = 0; i < m->nv; i++) lsys_putvec(w, "vt", m->uv + 2 * i, 2);
+  for (i = 0; i < m->nv; i++) lsys_export_putvec(w, "vn", m->nrm + 3 * i, 3);
+  for (i = 0; i < m->nv; i++) lsys_export_putvec(w, "vt", m->uv + 2 * i, 2);
 }
 
 /* The faces and segments, under their materials. */
@@ -194,14 +194,14 @@ static void putelements (lsys_writer *w, const lsys_mesh *m, const lsys_groups *
 ** refer to positions only), and 'usemtl m<k>_t<t>' with the faces of slot
 ** k textured with texture t.
 */
-int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e) {
+int lsys_export_obj (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e) {
   lsys_groups g;
   lsys_writer *w, *mw = NULL;
   const char *mtlname;
   char *mpath;
-  int st = lsys_checkmesh(m, path, e);
+  int st = lsys_export_checkmesh(m, path, e);
   if (st != LSYS_OK) return st;
   mpath = mtlpath(path, &mtlname);
   if (mpath == NULL)
@@ -211,14 +211,14 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
                          "cannot write '%s': it would be its own material file", path);
   }
-  st = lsys_wopen(&w, path, e);          /* first, so that a bad path names the .obj */
+  st = lsys_export_wopen(&w, path, e);          /* first, so that a bad path names the .obj */
   if (st == LSYS_OK) {
-    st = lsys_groupmesh(&g, m, npal, tex, ntex, path, e);
+    st = lsys_export_groupmesh(&g, m, npal, tex, ntex, path, e);
     if (st == LSYS_OK) {
       st = writemtl(&mw, &g, pal, npal, mpath, e);
-      if (st != LSYS_OK) lsys_freegroups(&g);
+      if (st != LSYS_OK) lsys_export_freegroups(&g);
     }
-    if (st != LSYS_OK) lsys_wabort(w);
+    if (st != LSYS_OK) lsys_export_wabort(w);
   }
   if (st != LSYS_OK) {
     LSYS_FREE(mpath);
@@ -226,17 +226,17 @@ int lsys_mesh_save_obj (const lsys_mesh *m, const lsys_material *pal, size_t npa
   }
   putvertices(w, m, &g, mtlname);
   putelements(w, m, &g);
-  lsys_freegroups(&g);
+  lsys_export_freegroups(&g);
   LSYS_FREE(mpath);
   /* both files complete before either replaces its target */
-  if ((st = lsys_wfinish(w, e)) != LSYS_OK) {
-    lsys_wabort(w);
-    lsys_wabort(mw);
+  if ((st = lsys_export_wfinish(w, e)) != LSYS_OK) {
+    lsys_export_wabort(w);
+    lsys_export_wabort(mw);
     return st;
   }
-  if ((st = lsys_wcommit(mw, e)) != LSYS_OK) {
-    lsys_wabort(w);
+  if ((st = lsys_export_wcommit(mw, e)) != LSYS_OK) {
+    lsys_export_wabort(w);
     return st;
   }
-  return lsys_wcommit(w, e);
+  return lsys_export_wcommit(w, e);
 }

@@ -35,13 +35,13 @@ static void plyheader (lsys_writer *w, const lsys_mesh *m) {
                    "property uchar red\nproperty uchar green\nproperty uchar blue\n"
                    "element face %zu\nproperty list uchar uint vertex_indices\n",
                    m->nv + 2 * m->nl, m->nt);
-  lsys_wbytes(w, head, (size_t)n);
+  lsys_export_wbytes(w, head, (size_t)n);
   if (m->nl > 0) {
     n = snprintf(head, sizeof head, "element edge %zu\nproperty int vertex1\n"
                  "property int vertex2\n", m->nl);
-    lsys_wbytes(w, head, (size_t)n);
+    lsys_export_wbytes(w, head, (size_t)n);
   }
-  lsys_wstr(w, "end_header\n");
+  lsys_export_wstr(w, "end_header\n");
 }
 
 /* The vertices, two per segment after those of the mesh. */
@@ -51,11 +51,11 @@ static void plyvertices (lsys_writer *w, const lsys_mesh *m, const lsys_material
   for (i = 0; i < m->nv; i++) {
     unsigned char *p = wroom(w, 64);
     p = plyvertex(p, m->pos + 3 * i, m->nrm + 3 * i, m->uv + 2 * i,
-                  lsys_slotmaterial(pal, npal, m->col[i] % nmat));
+                  lsys_export_slotmaterial(pal, npal, m->col[i] % nmat));
     wdone(w, p);
   }
   for (i = 0; i < m->nl; i++) {
-    const lsys_material *mt = lsys_slotmaterial(pal, npal, m->lcol[i] % nmat);
+    const lsys_material *mt = lsys_export_slotmaterial(pal, npal, m->lcol[i] % nmat);
     unsigned char *p = wroom(w, 128);
     p = plyvertex(p, m->lpos + 6 * i, NULL, NULL, mt);
     p = plyvertex(p, m->lpos + 6 * i + 3, NULL, NULL, mt);
@@ -71,17 +71,17 @@ static void plyvertices (lsys_writer *w, const lsys_mesh *m, const lsys_material
 ** not kept. Textures are ignored (PLY has no standard way to name an
 ** image); the texture coordinates are there as s and t.
 */
-int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
-                        const lsys_texture *const *tex, int ntex, const char *path,
-                        lsys_error *e) {
+int lsys_export_ply (const lsys_mesh *m, const lsys_material *pal, size_t npal,
+                     const lsys_texture *const *tex, int ntex, const char *path,
+                     lsys_error *e) {
   lsys_writer *w;
   size_t i;
-  int st = lsys_checkmesh(m, path, e);
+  int st = lsys_export_checkmesh(m, path, e);
   (void)tex; (void)ntex;
   if (st != LSYS_OK) return st;
   if (m->nv + 2 * m->nl > (size_t)INT32_MAX)
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot write '%s': mesh too large", path);
-  st = lsys_wopen(&w, path, e);
+  st = lsys_export_wopen(&w, path, e);
   if (st != LSYS_OK) return st;
   plyheader(w, m);
   plyvertices(w, m, pal, npal);
@@ -99,5 +99,5 @@ int lsys_mesh_save_ply (const lsys_mesh *m, const lsys_material *pal, size_t npa
     p = put32(p, (uint32_t)(m->nv + 2 * i + 1));
     wdone(w, p);
   }
-  return lsys_wcommit(w, e);
+  return lsys_export_wcommit(w, e);
 }

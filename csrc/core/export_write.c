@@ -12,12 +12,12 @@
 /* Buffered output                                                      */
 /* ------------------------------------------------------------------ */
 
-void lsys_wflush (lsys_writer *w) {
+void lsys_export_wflush (lsys_writer *w) {
   lsys_outfile_write(&w->out, w->b, w->n);
   w->n = 0;
 }
 
-void lsys_wbytes (lsys_writer *w, const void *s, size_t n) {
+void lsys_export_wbytes (lsys_writer *w, const void *s, size_t n) {
   const unsigned char *p = (const unsigned char *)s;
   while (n > 0) {
     size_t k = n < WBUFSIZE ? n : WBUFSIZE;
@@ -28,11 +28,11 @@ void lsys_wbytes (lsys_writer *w, const void *s, size_t n) {
   }
 }
 
-void lsys_wstr (lsys_writer *w, const char *s) {
-  lsys_wbytes(w, s, strlen(s));
+void lsys_export_wstr (lsys_writer *w, const char *s) {
+  lsys_export_wbytes(w, s, strlen(s));
 }
 
-int lsys_wopen (lsys_writer **wp, const char *path, lsys_error *e) {
+int lsys_export_wopen (lsys_writer **wp, const char *path, lsys_error *e) {
   lsys_writer *w = (lsys_writer *)LSYS_MALLOC(sizeof *w);
   int st;
   if (w == NULL)
@@ -46,20 +46,20 @@ int lsys_wopen (lsys_writer **wp, const char *path, lsys_error *e) {
   return LSYS_OK;
 }
 
-int lsys_wfinish (lsys_writer *w, lsys_error *e) {
-  lsys_wflush(w);
+int lsys_export_wfinish (lsys_writer *w, lsys_error *e) {
+  lsys_export_wflush(w);
   return lsys_outfile_finish(&w->out, e);
 }
 
-int lsys_wcommit (lsys_writer *w, lsys_error *e) {
+int lsys_export_wcommit (lsys_writer *w, lsys_error *e) {
   int st;
-  lsys_wflush(w);
+  lsys_export_wflush(w);
   st = lsys_outfile_commit(&w->out, e);
   LSYS_FREE(w);
   return st;
 }
 
-void lsys_wabort (lsys_writer *w) {
+void lsys_export_wabort (lsys_writer *w) {
   if (w == NULL) return;
   lsys_outfile_abort(&w->out);
   LSYS_FREE(w);
@@ -90,7 +90,7 @@ static double scale10 (double x, int e) {
 ** bits where 9 decimal digits need 30, so they are exact except next to a
 ** tie, where being one unit off still stays within half a float ulp.
 */
-char *lsys_putfloat (char *s, float f) {
+char *lsys_export_putfloat (char *s, float f) {
   double a = f, m, v;
   uint64_t M = 0;
   int e2, k, kk = 0, p, i, nd;
@@ -141,13 +141,13 @@ char *lsys_putfloat (char *s, float f) {
   return s;
 }
 
-void lsys_putvec (lsys_writer *w, const char *tag, const float *v, int n) {
+void lsys_export_putvec (lsys_writer *w, const char *tag, const float *v, int n) {
   char *s = (char *)wroom(w, 64);
   int k;
   while (*tag) *s++ = *tag++;
   for (k = 0; k < n; k++) {
     *s++ = ' ';
-    s = lsys_putfloat(s, fin(v[k]));
+    s = lsys_export_putfloat(s, fin(v[k]));
   }
   *s++ = '\n';
   wdone(w, s);

@@ -53,8 +53,8 @@ static void transform_normal (float n[3], const double J[3][3]) {
 /* ---------------------------------------------------------------------- */
 /* the hyperpatch */
 
-int lsys_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double origin[3],
-                          const double axes[3][3], lsys_error *e) {
+int lsys_ffd_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double origin[3],
+                              const double axes[3][3], lsys_error *e) {
   double A[3][3], c[3][3], d;
   int r, k, i, j, l;
   memset(hp, 0, sizeof *hp);
@@ -86,7 +86,7 @@ int lsys_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double or
   for (l = 0; l <= deg[2]; l++)
     for (j = 0; j <= deg[1]; j++)
       for (i = 0; i <= deg[0]; i++) {
-        double *P = lsys_hyperpatch_point(hp, i, j, l);
+        double *P = lsys_ffd_hyperpatch_point(hp, i, j, l);
         double s = (double)i / deg[0], t = (double)j / deg[1], u = (double)l / deg[2];
         for (r = 0; r < 3; r++)
           P[r] = origin[r] + s * axes[0][r] + t * axes[1][r] + u * axes[2][r];
@@ -94,17 +94,17 @@ int lsys_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double or
   return LSYS_OK;
 }
 
-size_t lsys_hyperpatch_count (const lsys_hyperpatch *hp) {
+size_t lsys_ffd_hyperpatch_count (const lsys_hyperpatch *hp) {
   return (size_t)(hp->deg[0] + 1) * (size_t)(hp->deg[1] + 1) * (size_t)(hp->deg[2] + 1);
 }
 
-double *lsys_hyperpatch_point (lsys_hyperpatch *hp, int i, int j, int k) {
+double *lsys_ffd_hyperpatch_point (lsys_hyperpatch *hp, int i, int j, int k) {
   if (i < 0 || i > hp->deg[0] || j < 0 || j > hp->deg[1] || k < 0 || k > hp->deg[2])
     return NULL;
   return hp->cp[i + (hp->deg[0] + 1) * (j + (hp->deg[1] + 1) * k)];
 }
 
-void lsys_hyperpatch_local (const lsys_hyperpatch *hp, const double p[3], double stu[3]) {
+void lsys_ffd_hyperpatch_local (const lsys_hyperpatch *hp, const double p[3], double stu[3]) {
   double q[3] = {p[0] - hp->origin[0], p[1] - hp->origin[1], p[2] - hp->origin[2]};
   int r;
   for (r = 0; r < 3; r++)
@@ -128,12 +128,12 @@ static void bernstein (int d, double x, double b[LSYS_HP_MAXDEG + 1],
   for (i = 0; i <= d; i++) db[i] = d * ((i > 0 ? lo[i - 1] : 0) - (i < d ? lo[i] : 0));
 }
 
-void lsys_hyperpatch_eval (const lsys_hyperpatch *hp, const double p[3], double out[3],
-                           double J[3][3]) {
+void lsys_ffd_hyperpatch_eval (const lsys_hyperpatch *hp, const double p[3], double out[3],
+                               double J[3][3]) {
   double stu[3], b[3][LSYS_HP_MAXDEG + 1], db[3][LSYS_HP_MAXDEG + 1];
   double D[3][3] = {{0}};                  /* D[r][c]: d out[r] / d stu[c] */
   int i, j, k, r, c;
-  lsys_hyperpatch_local(hp, p, stu);
+  lsys_ffd_hyperpatch_local(hp, p, stu);
   for (r = 0; r < 3; r++) bernstein(hp->deg[r], stu[r], b[r], db[r]);
   out[0] = out[1] = out[2] = 0;
   for (k = 0; k <= hp->deg[2]; k++)
@@ -193,12 +193,12 @@ static int apply (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1, map
 }
 
 static int hpmap (void *ctx, const double p[3], double out[3], double J[3][3]) {
-  lsys_hyperpatch_eval((const lsys_hyperpatch *)ctx, p, out, J);
+  lsys_ffd_hyperpatch_eval((const lsys_hyperpatch *)ctx, p, out, J);
   return LSYS_OK;
 }
 
-int lsys_deform_range (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                       const lsys_hyperpatch *hp) {
+int lsys_ffd_range (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                    const lsys_hyperpatch *hp) {
   size_t at;
   if (checkrange(s, v0, v1, l0, l1) != LSYS_OK) return LSYS_EARG;
   return apply(s, v0, v1, l0, l1, hpmap, (void *)hp, &at);
@@ -215,8 +215,8 @@ static int affmap (void *ctx, const double p[3], double out[3], double J[3][3]) 
   return LSYS_OK;
 }
 
-int lsys_deform_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                        const double m[12]) {
+int lsys_ffd_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                     const double m[12]) {
   size_t at;
   if (checkrange(s, v0, v1, l0, l1) != LSYS_OK) return LSYS_EARG;
   return apply(s, v0, v1, l0, l1, affmap, (void *)m, &at);
@@ -263,8 +263,8 @@ static double rangediag (const lsys_mesh *m, size_t v0, size_t v1, size_t l0, si
   return len3(d);
 }
 
-int lsys_deform_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                      lsys_deform_fn fn, void *ud, lsys_error *e) {
+int lsys_ffd_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                   lsys_deform_fn fn, void *ud, lsys_error *e) {
   fnctx f;
   size_t at = (size_t)-1;
   int st;
@@ -294,8 +294,8 @@ static size_t firstrec (const lsys_scene *s, uint32_t m) {
   return lo;
 }
 
-int lsys_scene_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t *v0,
-                             size_t *v1, size_t *l0, size_t *l1) {
+int lsys_ffd_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t *v0,
+                           size_t *v1, size_t *l0, size_t *l1) {
   const lsys_mesh *m = &s->mesh;
   size_t r0, r1, t0, t1, t, nseg = 0, k;
   *v0 = *v1 = *l0 = *l1 = 0;

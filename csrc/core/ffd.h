@@ -15,7 +15,7 @@
 **
 **                B_i^d(s) = C(d, i) s^i (1 - s)^(d - i). The control points
 **                P_ijk are stored at i + (dl + 1) * (j + (dm + 1) * k).
-**                lsys_hyperpatch_init puts them on the regular lattice,
+**                lsys_ffd_hyperpatch_init puts them on the regular lattice,
 **                origin + (i/dl) a + (j/dm) b + (k/dn) c, where the map is
 **                the identity (the linear precision of Bernstein
 **                polynomials). Points outside the box (s, t or u outside
@@ -53,27 +53,27 @@ typedef struct lsys_hyperpatch {
 ** LSYS_EARG with a message in 'e' for a degree outside 1..4, a non-finite
 ** number, or a singular frame (edge vectors that are zero, parallel or in
 ** one plane: |det| <= 1e-12 |a| |b| |c|). */
-int lsys_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double origin[3],
-                          const double axes[3][3], lsys_error *e);
+int lsys_ffd_hyperpatch_init (lsys_hyperpatch *hp, const int deg[3], const double origin[3],
+                              const double axes[3][3], lsys_error *e);
 
 /* The number of control points, (dl + 1)(dm + 1)(dn + 1). */
-size_t lsys_hyperpatch_count (const lsys_hyperpatch *hp);
+size_t lsys_ffd_hyperpatch_count (const lsys_hyperpatch *hp);
 
 /* Control point (i, j, k) (0-based), or NULL when an index is out of range. */
-double *lsys_hyperpatch_point (lsys_hyperpatch *hp, int i, int j, int k);
+double *lsys_ffd_hyperpatch_point (lsys_hyperpatch *hp, int i, int j, int k);
 
 /* Lattice coordinates (s, t, u) of the world point p. */
-void lsys_hyperpatch_local (const lsys_hyperpatch *hp, const double p[3], double stu[3]);
+void lsys_ffd_hyperpatch_local (const lsys_hyperpatch *hp, const double p[3], double stu[3]);
 
 /* The image of the world point p in out[3] and, when J is not NULL, the
 ** Jacobian d out / d p (row r: the derivatives of out[r]). */
-void lsys_hyperpatch_eval (const lsys_hyperpatch *hp, const double p[3], double out[3],
-                           double J[3][3]);
+void lsys_ffd_hyperpatch_eval (const lsys_hyperpatch *hp, const double p[3], double out[3],
+                               double J[3][3]);
 
 /* Deforms vertices [v0, v1) and the end points of line segments [l0, l1)
 ** by the hyperpatch. LSYS_EARG when a range is reversed or past the end. */
-int lsys_deform_range (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                       const lsys_hyperpatch *hp);
+int lsys_ffd_range (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                    const lsys_hyperpatch *hp);
 
 /* A map given by a function: writes the image of p in out and returns
 ** LSYS_OK, or a non-zero status that stops the deformation. */
@@ -88,13 +88,13 @@ typedef int (*lsys_deform_fn) (void *ud, const double p[3], double out[3]);
 ** its status is returned with e->pos the vertex index (a line end: nv +
 ** 2 * segment + end). fn must not change the number of the scene's vertices
 ** or lines (its arrays may move: each point is found again after fn). */
-int lsys_deform_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                      lsys_deform_fn fn, void *ud, lsys_error *e);
+int lsys_ffd_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                   lsys_deform_fn fn, void *ud, lsys_error *e);
 
 /* The affine map p' = M p + t, m = {M row 0, t0, M row 1, t1, M row 2,
 ** t2} (a 3 x 4 matrix by rows). */
-int lsys_deform_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
-                        const double m[12]);
+int lsys_ffd_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
+                     const double m[12]);
 
 /*
 ** The vertices [*v0, *v1) and line segments [*l0, *l1) that modules [m0, m1)
@@ -114,7 +114,7 @@ int lsys_deform_affine (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l
 ** (cylinders, ribbons) the line range is empty. Returns 1, or 0 with empty
 ** ranges when the modules drew nothing (or the scene has no records).
 */
-int lsys_scene_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t *v0,
-                             size_t *v1, size_t *l0, size_t *l1);
+int lsys_ffd_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t *v0,
+                           size_t *v1, size_t *l0, size_t *l1);
 
 #endif

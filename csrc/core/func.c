@@ -269,7 +269,7 @@ static int error (reader *R, const char *fmt, ...) {
 
 /* The current line, quoted for a message. */
 static const char *shown (const reader *R, char buf[LSYS_QUOTE + 1]) {
-  return lsys_quote(buf, R->l, R->ll);
+  return lsys_common_quote(buf, R->l, R->ll);
 }
 
 /* When the current line is "word: value" (blanks allowed before the colon),
@@ -352,7 +352,7 @@ static int points (reader *R, long n, int fver, double **pt, size_t *cap, size_t
                    shown(R, b));
     for (c = 0; c < 2; c++) {
       if (!tonum(tok[c], tl[c], &xy[c]))
-        return error(R, "bad number '%s'", lsys_quote(b, tok[c], tl[c]));
+        return error(R, "bad number '%s'", lsys_common_quote(b, tok[c], tl[c]));
       if (!isfinite(xy[c]) || fabs(xy[c]) > MAXCOORD)
         return error(R, "%c is %s", "xy"[c], isfinite(xy[c]) ?
                      "out of range (limit is 1e9)" : "not a finite number");
@@ -360,13 +360,13 @@ static int points (reader *R, long n, int fver, double **pt, size_t *cap, size_t
     m = 1;
     if (nt == 3 && (!toint(tok[2], tl[2], LSYS_FUNC_MAXPOINTS, &m) || m < 1))
       return error(R, "the multiplicity must be a whole number from 1 to %d, got '%s'",
-                   LSYS_FUNC_MAXPOINTS, lsys_quote(b, tok[2], tl[2]));
+                   LSYS_FUNC_MAXPOINTS, lsys_common_quote(b, tok[2], tl[2]));
     if (*np > 0 && xy[0] < (*pt)[2 * *np - 2])
       return error(R, "x is %.17g, less than the x before it (%.17g)", xy[0],
                    (*pt)[2 * *np - 2]);
     if (*np + (size_t)m > LSYS_FUNC_MAXPOINTS)
       return error(R, "too many points (limit is %d)", LSYS_FUNC_MAXPOINTS);
-    if (lsys_grow((void **)pt, cap, *np + (size_t)m, 2 * sizeof **pt) != LSYS_OK)
+    if (lsys_common_grow((void **)pt, cap, *np + (size_t)m, 2 * sizeof **pt) != LSYS_OK)
       return lsys_seterror(R->e, LSYS_ENOMEM, (size_t)-1, "not enough memory");
     for (; m > 0; m--, (*np)++) { (*pt)[2 * *np] = xy[0]; (*pt)[2 * *np + 1] = xy[1]; }
   }
@@ -406,7 +406,7 @@ static int fverhead (reader *R, char *name, long *samples) {
     }
     if (keyword(R, "flip", &v, &vl)) {
       if (!(vl == 2 && memcmp(v, "on", 2) == 0) && !(vl == 3 && memcmp(v, "off", 3) == 0))
-        return error(R, "'flip' must be 'on' or 'off', got '%s'", lsys_quote(b, v, vl));
+        return error(R, "'flip' must be 'on' or 'off', got '%s'", lsys_common_quote(b, v, vl));
       continue;
     }
     R->pos = save; R->line = line;                /* the points line: read it again */

@@ -25,8 +25,8 @@
 #define NOREF UINT32_MAX
 #define MAXSLOPE 20.0
 
-void lsys_hermite (const double P0[3], const double T0[3], const double P1[3],
-                   const double T1[3], double u, double F[3], double dF[3]) {
+void lsys_gcyl_hermite (const double P0[3], const double T0[3], const double P1[3],
+                        const double T1[3], double u, double F[3], double dF[3]) {
   double u2 = u * u, u3 = u2 * u;
   int k;
   if (F != NULL) {
@@ -111,7 +111,7 @@ typedef struct seg {
 static void axis (const seg *g, double t, const double *prevT, ring *q) {
   double R[2], dR[2], dF[3], sp;
   lsys_gcyl_section(g->sh, g->a->r, g->b->r, g->len, t, R, dR);
-  lsys_hermite(g->a->pos, g->T0, g->b->pos, g->T1, R[0], q->F, dF);
+  lsys_gcyl_hermite(g->a->pos, g->T0, g->b->pos, g->T1, R[0], q->F, dF);
   q->t = t;
   q->r = R[1] > 0 ? R[1] : 0;
   vcopy(q->T, dF);

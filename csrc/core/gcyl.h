@@ -48,8 +48,8 @@ typedef struct lsys_gcshape {
 } lsys_gcshape;
 
 /* F(u) and F'(u) of the Hermite curve P0, T0, P1, T1 (either output may be NULL). */
-void lsys_hermite (const double P0[3], const double T0[3], const double P1[3],
-                   const double T1[3], double u, double F[3], double dF[3]);
+void lsys_gcyl_hermite (const double P0[3], const double T0[3], const double P1[3],
+                        const double T1[3], double u, double F[3], double dF[3]);
 
 /* The longitudinal section R(t) = (R_u, R_v) of a segment from radius rb to
 ** rt whose axis has length 'len' (for @Gr(1)), and its derivative. */

@@ -6,7 +6,7 @@
 #include "grammar.h"
 #include "lstring.h"
 
-void lsys_prule_free (lsys_prule *r) {
+void lsys_grammar_prule_free (lsys_prule *r) {
   LSYS_FREE(r->mods);
   LSYS_FREE(r->params);
   memset(r, 0, sizeof *r);
@@ -53,7 +53,7 @@ static size_t findtop (const char *t, size_t b, size_t e, const char *tok) {
 
 static int addmod (lsys_prule *r, uint32_t sym, uint32_t pos) {
   lsys_pmod *m;
-  if (lsys_grow((void **)&r->mods, &r->modcap, r->nmods + 1, sizeof *r->mods) != LSYS_OK)
+  if (lsys_common_grow((void **)&r->mods, &r->modcap, r->nmods + 1, sizeof *r->mods) != LSYS_OK)
     return LSYS_ENOMEM;
   m = &r->mods[r->nmods++];
   m->sym = sym;
@@ -64,7 +64,8 @@ static int addmod (lsys_prule *r, uint32_t sym, uint32_t pos) {
 }
 
 static int addparam (lsys_prule *r, size_t b, size_t e) {
-  if (lsys_grow((void **)&r->params, &r->parcap, r->nparams + 1, sizeof *r->params) != LSYS_OK)
+  if (lsys_common_grow((void **)&r->params, &r->parcap, r->nparams + 1,
+                       sizeof *r->params) != LSYS_OK)
     return LSYS_ENOMEM;
   r->params[r->nparams].off = (uint32_t)b;
   r->params[r->nparams].len = (uint32_t)(e - b);
@@ -90,7 +91,7 @@ static int parsemods (lsys_prule *r, const char *t, size_t b, size_t e, int form
     start = i;
     if (t[i] == ')')
       return lsys_seterror(err, LSYS_ESYNTAX, i, "unbalanced parentheses: ')' without '('");
-    nl = lsys_scan_name(t + i, e - i, decl);
+    nl = lsys_alphabet_scan(t + i, e - i, decl);
     if (nl == 0)
       return lsys_seterror(err, LSYS_ESYNTAX, i, "unexpected '%c'", t[i]);
     sym = lsys_alphabet_intern(a, t + i, nl, err);
@@ -229,8 +230,8 @@ static int parsepattern (lsys_prule *r, const char *t, size_t b, size_t e,
   return LSYS_OK;
 }
 
-int lsys_rule_parse (lsys_prule *r, const char *t, size_t len, int pattern_only,
-                     lsys_alphabet *a, const lsys_names *decl, lsys_error *err) {
+int lsys_grammar_rule_parse (lsys_prule *r, const char *t, size_t len, int pattern_only,
+                             lsys_alphabet *a, const lsys_names *decl, lsys_error *err) {
   size_t arrow, colon, lb = 0, le, sb, se, k;
   int st;
   memset(r, 0, sizeof *r);

@@ -30,7 +30,7 @@ typedef struct lsys_prule {
   int empty;                /* the successor is '*' */
 } lsys_prule;
 
-void lsys_prule_free (lsys_prule *r);
+void lsys_grammar_prule_free (lsys_prule *r);
 
 /*
 ** Parses one rule. With 'pattern_only' the text is only 'lc < pred > rc'
@@ -39,7 +39,7 @@ void lsys_prule_free (lsys_prule *r);
 ** 3: the same without the bracket-balance check, for pieces of a successor).
 ** Returns LSYS_OK or LSYS_ESYNTAX with e->pos the byte offset at fault.
 */
-int lsys_rule_parse (lsys_prule *r, const char *text, size_t len, int pattern_only,
-                     lsys_alphabet *a, const lsys_names *decl, lsys_error *e);
+int lsys_grammar_rule_parse (lsys_prule *r, const char *text, size_t len, int pattern_only,
+                             lsys_alphabet *a, const lsys_names *decl, lsys_error *e);
 
 #endif

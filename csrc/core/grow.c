@@ -18,7 +18,7 @@ enum { C_NEW = 1, C_LEN = 2, C_RAD = 4, C_ROT = 8, C_COL = 16, C_LEAF = 32, C_XF
 #define LEAF_TILT 50.0                   /* degrees between a leaf and its limb's heading */
 #define GOLDEN 137.50776405003785        /* degrees between successive leaves around it */
 
-/* The built-in leaf shape (lsys_limbs_set_leaf): a rhombus 1 long, 0.5 wide. */
+/* The built-in leaf shape (lsys_grow_set_leaf): a rhombus 1 long, 0.5 wide. */
 static const float QUAD_POS[12] = {0, 0, 0, -0.25f, 0.5f, 0, 0, 1, 0, 0.25f, 0.5f, 0};
 static const float QUAD_NRM[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
 static const float QUAD_UV[8] = {0.5f, 0, 1, 0.5f, 0.5f, 1, 0, 0.5f};
@@ -34,7 +34,7 @@ static void quadleaf (lsys_limbs *g) {
   g->sh_mem = NULL;
 }
 
-void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
+void lsys_grow_init (lsys_limbs *g, lsys_scene *sc, int sides) {
   int k;
   memset(g, 0, sizeof *g);
   g->sc = sc;
@@ -48,7 +48,7 @@ void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides) {
   quadleaf(g);
 }
 
-void lsys_limbs_free (lsys_limbs *g) {
+void lsys_grow_free (lsys_limbs *g) {
   void *arrs[] = {
     g->parent, g->plant, g->first, g->next, g->last, g->prev, g->level, g->tag, g->age, g->flag, g->chg, g->len,
     g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
@@ -59,7 +59,7 @@ void lsys_limbs_free (lsys_limbs *g) {
   size_t k, maxlimbs = g->maxlimbs, maxmem = g->max_memory, hl = g->held_limb,
          hp = g->held_plant;
   for (k = 0; k < sizeof arrs / sizeof arrs[0]; k++) LSYS_FREE(arrs[k]);
-  lsys_limbs_init(g, g->sc, g->sides);
+  lsys_grow_init(g, g->sc, g->sides);
   g->maxlimbs = maxlimbs;             /* the settings stay */
   g->max_memory = maxmem;
   g->held_limb = hl;
@@ -71,7 +71,7 @@ void lsys_limbs_free (lsys_limbs *g) {
 ** ======================================================================= */
 
 /* Arrays that grow together: each to 'need' elements of its size, from *cap
-** (doubling), as far as the meter 'mt' allows (lsys_meter_take: LSYS_EMEMORY
+** (doubling), as far as the meter 'mt' allows (lsys_common_meter_take: LSYS_EMEMORY
 ** when not even 'need' fit). The arrays grown before a failure keep their data. */
 typedef struct soa { void **p; size_t size; } soa;
 
@@ -85,7 +85,7 @@ static int growsoa (const soa *a, size_t n, size_t *cap, size_t need, lsys_meter
   size_t ncap, k;
   int st;
   if (need <= *cap) return LSYS_OK;
-  if ((st = lsys_meter_take(mt, *cap, need, rowbytes(a, n), &ncap)) != LSYS_OK) return st;
+  if ((st = lsys_common_meter_take(mt, *cap, need, rowbytes(a, n), &ncap)) != LSYS_OK) return st;
   for (k = 0; k < n; k++) {
     void *q = LSYS_REALLOC(*a[k].p, ncap * a[k].size);
     if (q == NULL) return LSYS_ENOMEM;
@@ -133,7 +133,7 @@ static void plantarrays (lsys_limbs *g, soa a[NPLANT]) {
   memcpy(a, t, sizeof t);
 }
 
-size_t lsys_limbs_bytes (const lsys_limbs *g) {
+size_t lsys_grow_bytes (const lsys_limbs *g) {
   lsys_limbs *w = (lsys_limbs *)g;          /* the descriptors only name its arrays */
   soa l[NLIMB], f[NLEAF], p[NPLANT];
   double b;
@@ -152,8 +152,8 @@ size_t lsys_limbs_bytes (const lsys_limbs *g) {
 
 /* A meter of g's budget, counting what g holds now. */
 static void gmeter (const lsys_limbs *g, lsys_meter *mt) {
-  mt->limit = g->max_memory > 0 ? g->max_memory : lsys_memory_limit();
-  mt->used = lsys_limbs_bytes(g);
+  mt->limit = g->max_memory > 0 ? g->max_memory : lsys_common_memory_limit();
+  mt->used = lsys_grow_bytes(g);
   mt->hit = 0;
   mt->lock = NULL;
 }
@@ -164,12 +164,12 @@ static int reserve (lsys_limbs *g, size_t more, const soa *a, size_t n, size_t *
                     size_t need) {
   lsys_meter mt;
   gmeter(g, &mt);
-  if (!lsys_meter_fits(&mt, more)) return LSYS_EMEMORY;
+  if (!lsys_common_meter_fits(&mt, more)) return LSYS_EMEMORY;
   mt.used += more;
   return growsoa(a, n, cap, need, &mt);
 }
 
-int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
+int lsys_grow_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
   soa a[NPLANT];
   int r;
   if (g->np >= INT32_MAX) return LSYS_ELIMIT;
@@ -181,7 +181,7 @@ int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
   return LSYS_OK;
 }
 
-int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape) {
+int lsys_grow_set_leaf (lsys_limbs *g, const lsys_mesh *shape) {
   size_t k, nv, nt;
   float *f;
   uint32_t *t;
@@ -216,7 +216,7 @@ int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape) {
   return LSYS_OK;
 }
 
-int lsys_limbs_alive (const lsys_limbs *g, int32_t i) {
+int lsys_grow_alive (const lsys_limbs *g, int32_t i) {
   return i >= 0 && (size_t)i < g->n && (g->flag[i] & LSYS_LIMB_ALIVE);
 }
 
@@ -269,7 +269,7 @@ static void worldframe (lsys_limbs *g, int32_t i) {
   }
 }
 
-void lsys_limbs_tip (const lsys_limbs *g, int32_t i, double tip[3]) {
+void lsys_grow_tip (const lsys_limbs *g, int32_t i, double tip[3]) {
   vlin(tip, g->wp + 3 * i, 1, g->wm + 9 * i + 3, g->len[i]);
 }
 
@@ -295,7 +295,7 @@ static int colorindex (lsys_limbs *g, const float rgb[3], uint16_t *idx) {
     lsys_material m;
     size_t at;
     int r;
-    lsys_material_color(&m, q[0] / 31.0, q[1] / 31.0, q[2] / 31.0);
+    lsys_mesh_material_color(&m, q[0] / 31.0, q[1] / 31.0, q[2] / 31.0);
     if ((r = lsys_scene_add_material(g->sc, &m, &at)) != LSYS_OK) return r;
     if (at >= 65535) return LSYS_ELIMIT;
     g->qmap[key] = (uint16_t)(at + 1);
@@ -312,12 +312,12 @@ static int colorindex (lsys_limbs *g, const float rgb[3], uint16_t *idx) {
 
 static int isfin (double x) { return isfinite(x); }
 
-int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
+int lsys_grow_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
   int32_t i, p = s->parent;
   double m[9];
   soa a[NLIMB];
   int k, r;
-  if (p >= 0 ? !lsys_limbs_alive(g, p) : (s->plant < 0 || (size_t)s->plant >= g->np))
+  if (p >= 0 ? !lsys_grow_alive(g, p) : (s->plant < 0 || (size_t)s->plant >= g->np))
     return LSYS_EARG;
   if (!(isfin(s->length) && s->length >= 0 && isfin(s->radius) && s->radius >= 0 &&
         isfin(s->at) && s->at >= 0 && s->at <= 1 && isfin(s->angle) && isfin(s->roll)))
@@ -350,7 +350,7 @@ int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
   memcpy(g->loc + 9 * i, m, sizeof m);
   memcpy(g->nloc + 9 * i, m, sizeof m);
   g->at[i] = s->at;
-  g->v0[i] = g->t0[i] = UINT32_MAX;     /* no range yet: lsys_limbs_update gives one */
+  g->v0[i] = g->t0[i] = UINT32_MAX;     /* no range yet: lsys_grow_update gives one */
   g->leaf[i] = -1;
   g->nleaves[i] = 0;
   g->nalive++;
@@ -361,9 +361,9 @@ int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id) {
 }
 
 /* Whether limb i can be changed (it lives). */
-static int settable (lsys_limbs *g, int32_t i) { return lsys_limbs_alive(g, i); }
+static int settable (lsys_limbs *g, int32_t i) { return lsys_grow_alive(g, i); }
 
-int lsys_limbs_set_length (lsys_limbs *g, int32_t i, double len) {
+int lsys_grow_set_length (lsys_limbs *g, int32_t i, double len) {
   if (!settable(g, i) || !isfin(len) || len < 0) return LSYS_EARG;
   g->nlen[i] = len;
   if (!g->intick) g->len[i] = len;
@@ -372,7 +372,7 @@ int lsys_limbs_set_length (lsys_limbs *g, int32_t i, double len) {
   return LSYS_OK;
 }
 
-int lsys_limbs_set_radius (lsys_limbs *g, int32_t i, double r) {
+int lsys_grow_set_radius (lsys_limbs *g, int32_t i, double r) {
   if (!settable(g, i) || !isfin(r) || r < 0) return LSYS_EARG;
   g->nrad[i] = r;
   if (!g->intick) g->rad[i] = r;
@@ -381,7 +381,7 @@ int lsys_limbs_set_radius (lsys_limbs *g, int32_t i, double r) {
   return LSYS_OK;
 }
 
-int lsys_limbs_set_color (lsys_limbs *g, int32_t i, const float rgb[3]) {
+int lsys_grow_set_color (lsys_limbs *g, int32_t i, const float rgb[3]) {
   int k;
   if (!settable(g, i)) return LSYS_EARG;
   for (k = 0; k < 3; k++) if (!isfinite(rgb[k])) return LSYS_EARG;
@@ -394,7 +394,7 @@ int lsys_limbs_set_color (lsys_limbs *g, int32_t i, const float rgb[3]) {
   return LSYS_OK;
 }
 
-int lsys_limbs_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
+int lsys_grow_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
                         double roll) {
   double m[9];
   if (!settable(g, i) || !isfin(angle) || !isfin(roll) || !isfin(axis[0]) ||
@@ -412,8 +412,8 @@ static int defer (lsys_limbs *g, int op, int32_t i, int n, double size, const fl
   lsys_meter mt;
   int r;
   gmeter(g, &mt);
-  r = lsys_grow_metered((void **)&g->pending, &g->cappend, g->npend + 1, sizeof *g->pending,
-                        &mt);
+  r = lsys_common_grow_metered((void **)&g->pending, &g->cappend, g->npend + 1, sizeof *g->pending,
+                               &mt);
   if (r != LSYS_OK) return r;
   o = &g->pending[g->npend++];
   o->op = op; o->limb = i; o->n = n; o->size = size;
@@ -422,19 +422,19 @@ static int defer (lsys_limbs *g, int op, int32_t i, int n, double size, const fl
   return LSYS_OK;
 }
 
-int lsys_limbs_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]) {
+int lsys_grow_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]) {
   if (!settable(g, i) || n < 0 || n > 1000 || !isfin(size) || size < 0 ||
       !isfinite(rgb[0]) || !isfinite(rgb[1]) || !isfinite(rgb[2]))
     return LSYS_EARG;
   return n == 0 ? LSYS_OK : defer(g, OP_LEAVES, i, n, size, rgb);
 }
 
-int lsys_limbs_drop_leaves (lsys_limbs *g, int32_t i) {
+int lsys_grow_drop_leaves (lsys_limbs *g, int32_t i) {
   if (!settable(g, i)) return LSYS_EARG;
   return defer(g, OP_DROP, i, 0, 0, NULL);
 }
 
-int lsys_limbs_remove (lsys_limbs *g, int32_t i) {
+int lsys_grow_remove (lsys_limbs *g, int32_t i) {
   if (!settable(g, i)) return LSYS_EARG;
   return defer(g, OP_REMOVE, i, 0, 0, NULL);
 }
@@ -454,7 +454,7 @@ static void degenerate (lsys_limbs *g, uint32_t v0, uint32_t nv) {
 }
 
 static int pushrange (uint32_t **a, size_t *n, size_t *cap, uint32_t v0, uint32_t t0) {
-  if (lsys_grow((void **)a, cap, *n + 1, 2 * sizeof **a) != LSYS_OK) return LSYS_ENOMEM;
+  if (lsys_common_grow((void **)a, cap, *n + 1, 2 * sizeof **a) != LSYS_OK) return LSYS_ENOMEM;
   (*a)[2 * *n] = v0;
   (*a)[2 * *n + 1] = t0;
   (*n)++;
@@ -521,7 +521,7 @@ static void writelimb (lsys_limbs *g, int32_t i) {
   double r = g->rad[i], tip[3];
   uint32_t S = (uint32_t)g->sides, k, v0 = g->v0[i];
   uint16_t col = g->col[i];
-  lsys_limbs_tip(g, i, tip);
+  lsys_grow_tip(g, i, tip);
   for (k = 0; k < S; k++) {
     double c = g->ring[2 * k], s = g->ring[2 * k + 1];
     float *P0 = m->pos + 3 * (size_t)(v0 + k), *P1 = m->pos + 3 * (size_t)(v0 + S + k);
@@ -550,7 +550,7 @@ static void writeleaf (lsys_limbs *g, int32_t l) {
   double tip[3], radial[3], y[3], w[3], x[3], z[3];
   uint32_t v0 = g->lf_v0[l], k, nv = g->sh_nv;
   uint16_t c = g->lf_col[l];
-  lsys_limbs_tip(g, i, tip);
+  lsys_grow_tip(g, i, tip);
   vlin(radial, R, cos(phi), F, sin(phi));
   vlin(y, H, cos(tilt), radial, sin(tilt));
   vlin(w, R, -sin(phi), F, cos(phi));
@@ -588,7 +588,7 @@ static void recolor (lsys_limbs *g, int32_t i) {
 static int addleaves (lsys_limbs *g, lsys_limbop *o) {
   int r;
   uint16_t c;
-  if (!lsys_limbs_alive(g, o->limb)) return LSYS_OK;
+  if (!lsys_grow_alive(g, o->limb)) return LSYS_OK;
   if ((r = colorindex(g, o->rgb, &c)) != LSYS_OK) return r;
   while (o->n > 0) {
     int32_t l;
@@ -654,7 +654,7 @@ static int killone (lsys_limbs *g, int32_t c) {
 static int removelimb (lsys_limbs *g, int32_t i) {
   int32_t c = i, p = g->parent[i];
   int r;
-  if (!lsys_limbs_alive(g, i)) return LSYS_OK;
+  if (!lsys_grow_alive(g, i)) return LSYS_OK;
   for (;;) {
     if ((r = killone(g, c)) != LSYS_OK) return r;
     if (g->first[c] >= 0) { c = g->first[c]; continue; }
@@ -672,7 +672,7 @@ static int removelimb (lsys_limbs *g, int32_t i) {
   return LSYS_OK;
 }
 
-int lsys_limbs_begin (lsys_limbs *g) {
+int lsys_grow_begin (lsys_limbs *g) {
   if (g->intick) return LSYS_EBUSY;
   g->intick = 1;
   g->n0 = g->n;
@@ -680,7 +680,7 @@ int lsys_limbs_begin (lsys_limbs *g) {
   return LSYS_OK;
 }
 
-int lsys_limbs_end (lsys_limbs *g) {
+int lsys_grow_end (lsys_limbs *g) {
   size_t i;
   if (!g->intick) return LSYS_EBUSY;
   g->intick = 0;
@@ -693,10 +693,10 @@ int lsys_limbs_end (lsys_limbs *g) {
     if (c & C_ROT) memcpy(g->loc + 9 * i, g->nloc + 9 * i, 9 * sizeof *g->loc);
     if (i < g->n0) g->age[i]++;
   }
-  return lsys_limbs_update(g);       /* applies what was deferred, then the geometry */
+  return lsys_grow_update(g);       /* applies what was deferred, then the geometry */
 }
 
-int lsys_limbs_update (lsys_limbs *g) {
+int lsys_grow_update (lsys_limbs *g) {
   size_t i;
   int r;
   if (!g->intick && g->npend > 0) {  /* what a tick (or a call outside one) deferred; on
@@ -705,7 +705,7 @@ int lsys_limbs_update (lsys_limbs *g) {
     for (k = 0; k < g->npend; k++) {
       lsys_limbop *o = &g->pending[k];
       r = o->op == OP_LEAVES ? addleaves(g, o)
-          : o->op == OP_DROP ? (lsys_limbs_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK)
+          : o->op == OP_DROP ? (lsys_grow_alive(g, o->limb) ? dropleaves(g, o->limb) : LSYS_OK)
           : removelimb(g, o->limb);
       if (r != LSYS_OK) { memmove(g->pending, g->pending + k, (g->npend - k) * sizeof *o);
                           g->npend -= k; return r; }

@@ -11,8 +11,8 @@
 ** given in creation order and never reused, so a parent's id is below its
 ** children's and one pass in id order updates every world frame.
 **
-** Ticks are parallel steps as in an L-system: between lsys_limbs_begin and
-** lsys_limbs_end, setters write the next state while getters (the arrays
+** Ticks are parallel steps as in an L-system: between lsys_grow_begin and
+** lsys_grow_end, setters write the next state while getters (the arrays
 ** len, rad, rgb, ...) keep the state of the start of the tick; limbs added
 ** during a tick exist at once but first run at the next tick; removals and
 ** leaves take effect at the end of the tick.
@@ -20,8 +20,8 @@
 ** Geometry lives in a scene (scene.h) the caller owns: each limb owns a fixed
 ** range of vertices and triangles (a cylinder of 'sides' sides: 2 sides
 ** vertices, 2 sides triangles), each leaf another (the world's leaf shape,
-** lsys_limbs_set_leaf: by default a quad of 4 vertices and 2 triangles; lit
-** on both sides); lsys_limbs_update rewrites in place the
+** lsys_grow_set_leaf: by default a quad of 4 vertices and 2 triangles; lit
+** on both sides); lsys_grow_update rewrites in place the
 ** ranges of limbs that changed or moved, marks them dirty in the scene
 ** (lsys_scene_touch), and appends ranges for new limbs. A removed limb's or
 ** leaf's range is made degenerate and reused by the next one made. Once the
@@ -45,7 +45,7 @@
 /* What a new limb is. */
 typedef struct lsys_limbspec {
   int32_t parent;         /* its parent's id, or -1 for a root */
-  int32_t plant;          /* a root's plant (lsys_limbs_plant); a child takes its parent's */
+  int32_t plant;          /* a root's plant (lsys_grow_plant); a child takes its parent's */
   double at;              /* where along the parent it grows, 0 to 1 (1: the tip) */
   double axis[3];         /* the rotation from the parent's frame: roll about the parent's
                              heading first, then 'angle' about 'axis' (in the parent's
@@ -65,16 +65,16 @@ typedef struct lsys_limbop {
   float rgb[3];
 } lsys_limbop;
 
-/* Flags of lsys_grow.flag */
+/* Flags of lsys_limbs.flag */
 #define LSYS_LIMB_ALIVE 0x01
 
 typedef struct lsys_limbs {
   lsys_scene *sc;         /* the geometry's scene (borrowed) */
   int sides;
   double ring[2 * LSYS_LIMBS_MAXSIDES];   /* cos, sin of the sides' angles */
-  size_t maxlimbs;        /* 0: no cap; else lsys_limbs_add fails with LSYS_ELIMIT past it */
-  size_t max_memory;      /* the budget (bytes) of lsys_limbs_bytes: growing past it fails
-                             with LSYS_EMEMORY; 0: the process's (lsys_memory_limit) */
+  size_t maxlimbs;        /* 0: no cap; else lsys_grow_add fails with LSYS_ELIMIT past it */
+  size_t max_memory;      /* the budget (bytes) of lsys_grow_bytes: growing past it fails
+                             with LSYS_EMEMORY; 0: the process's (lsys_common_memory_limit) */
   size_t held_limb, held_plant;   /* bytes the caller keeps for each limb and each plant
                                      made (lsys.grow's Lua handles), counted in the budget */
   size_t n, cap;          /* limb ids 0 .. n - 1, dead ones included */
@@ -102,7 +102,7 @@ typedef struct lsys_limbs {
   float *lf_size;
   uint16_t *lf_col;
   int32_t lf_free;
-  /* the leaf shape, in the leaf's frame (lsys_limbs_set_leaf) */
+  /* the leaf shape, in the leaf's frame (lsys_grow_set_leaf) */
   const float *sh_pos, *sh_nrm, *sh_uv;
   const uint32_t *sh_tri;
   uint32_t sh_nv, sh_nt;
@@ -119,14 +119,14 @@ typedef struct lsys_limbs {
   size_t n0;              /* limbs at its start: the ones that age at its end */
   lsys_limbop *pending;   /* deferred to the end of the tick */
   size_t npend, cappend;
-  int dirty;              /* something waits for lsys_limbs_update */
+  int dirty;              /* something waits for lsys_grow_update */
   uint16_t *qmap;         /* quantized colour -> palette index + 1 (32768 entries) */
 } lsys_limbs;
 
 /* A grower writing into 'sc' with cylinders of 'sides' sides (3 to
 ** LSYS_LIMBS_MAXSIDES). */
-void lsys_limbs_init (lsys_limbs *g, lsys_scene *sc, int sides);
-void lsys_limbs_free (lsys_limbs *g);
+void lsys_grow_init (lsys_limbs *g, lsys_scene *sc, int sides);
+void lsys_grow_free (lsys_limbs *g);
 
 /*
 ** The shape of every leaf: the triangles of 'shape' (positions, normals and
@@ -139,15 +139,15 @@ void lsys_limbs_free (lsys_limbs *g);
 ** LSYS_LIMBS_MAXLEAFV vertices, an index out of range or a coordinate that
 ** is not finite; LSYS_ENOMEM.
 */
-int lsys_limbs_set_leaf (lsys_limbs *g, const lsys_mesh *shape);
+int lsys_grow_set_leaf (lsys_limbs *g, const lsys_mesh *shape);
 
 /* The bytes g's budget counts: its arrays (capacities), its scene's
 ** (lsys_scene_bytes), and what the caller keeps for its limbs and plants. */
-size_t lsys_limbs_bytes (const lsys_limbs *g);
+size_t lsys_grow_bytes (const lsys_limbs *g);
 
 /* A new plant at 'pos'; its index in *id. LSYS_OK, LSYS_EMEMORY (the budget,
 ** max_memory) or LSYS_ENOMEM. */
-int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id);
+int lsys_grow_plant (lsys_limbs *g, const double pos[3], int32_t *id);
 
 /* A new limb; its id in *id. LSYS_OK, LSYS_EARG (no such parent or plant, a
 ** dead parent, bad numbers), LSYS_ELIMIT (maxlimbs reached), LSYS_EMEMORY
@@ -155,40 +155,40 @@ int lsys_limbs_plant (lsys_limbs *g, const double pos[3], int32_t *id);
 ** leaves', the deferred operations, the scene's mesh) grows within the
 ** budget; a failed update (LSYS_EMEMORY too) leaves what it did not do for a
 ** retry. */
-int lsys_limbs_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id);
+int lsys_grow_add (lsys_limbs *g, const lsys_limbspec *s, int32_t *id);
 
 /* Setters (of the next state within a tick). LSYS_OK or LSYS_EARG (a dead or
 ** unknown limb, a negative or non-finite value). */
-int lsys_limbs_set_length (lsys_limbs *g, int32_t i, double len);
-int lsys_limbs_set_radius (lsys_limbs *g, int32_t i, double r);
-int lsys_limbs_set_color (lsys_limbs *g, int32_t i, const float rgb[3]);
-int lsys_limbs_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
+int lsys_grow_set_length (lsys_limbs *g, int32_t i, double len);
+int lsys_grow_set_radius (lsys_limbs *g, int32_t i, double r);
+int lsys_grow_set_color (lsys_limbs *g, int32_t i, const float rgb[3]);
+int lsys_grow_set_turn (lsys_limbs *g, int32_t i, const double axis[3], double angle,
                         double roll);
 
 /* n leaves of 'size' and colour rgb at the tip of limb i; all its leaves
 ** dropped; the limb and its subtree removed. Deferred to the end of a tick.
 ** LSYS_OK, LSYS_EARG or LSYS_ENOMEM. */
-int lsys_limbs_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]);
-int lsys_limbs_drop_leaves (lsys_limbs *g, int32_t i);
-int lsys_limbs_remove (lsys_limbs *g, int32_t i);
+int lsys_grow_add_leaves (lsys_limbs *g, int32_t i, int n, double size, const float rgb[3]);
+int lsys_grow_drop_leaves (lsys_limbs *g, int32_t i);
+int lsys_grow_remove (lsys_limbs *g, int32_t i);
 
-/* A tick: lsys_limbs_begin, the rules' reads and writes, lsys_limbs_end (which
+/* A tick: lsys_grow_begin, the rules' reads and writes, lsys_grow_end (which
 ** commits the next state, applies what was deferred, ages the limbs that
 ** existed at the start, and updates the geometry). LSYS_EBUSY when a tick is
 ** already running (begin) or none is (end). */
-int lsys_limbs_begin (lsys_limbs *g);
-int lsys_limbs_end (lsys_limbs *g);
+int lsys_grow_begin (lsys_limbs *g);
+int lsys_grow_end (lsys_limbs *g);
 
 /* Writes what changed into the scene (world frames down the changed
 ** subtrees, vertex ranges in place, new ranges appended). LSYS_OK or
 ** LSYS_ENOMEM (then the scene may lack the newest limbs; a later update
 ** retries). */
-int lsys_limbs_update (lsys_limbs *g);
+int lsys_grow_update (lsys_limbs *g);
 
 /* Whether limb i exists and is alive. */
-int lsys_limbs_alive (const lsys_limbs *g, int32_t i);
+int lsys_grow_alive (const lsys_limbs *g, int32_t i);
 
-/* The limb's world tip: its base + H * length (after lsys_limbs_update). */
-void lsys_limbs_tip (const lsys_limbs *g, int32_t i, double tip[3]);
+/* The limb's world tip: its base + H * length (after lsys_grow_update). */
+void lsys_grow_tip (const lsys_limbs *g, int32_t i, double tip[3]);
 
 #endif

@@ -14,7 +14,7 @@
 ** 'm'; with 'homo', modules that the homomorphism rewrites are replaced by
 ** what it gives. The model must not be busy (the bindings mark it). Returns
 ** what lsys_turtle_run returns, with t->err set on failure. */
-int lsys_interpret (lsys_model *m, lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab,
-                    int homo);
+int lsys_interpret_run (lsys_rules *m, lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab,
+                        int homo);
 
 #endif

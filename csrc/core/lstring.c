@@ -30,12 +30,12 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
   int st;
   if (s->sym8 != NULL && (st = lsys_lstring_widen(s)) != LSYS_OK) return st;
   if (s->n + nmod > s->cap &&
-      (st = lsys_grow_metered((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code,
-                              s->meter)) != LSYS_OK)
+      (st = lsys_common_grow_metered((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code,
+                                     s->meter)) != LSYS_OK)
     return st;
   if (s->npar + npar > s->parcap &&
-      (st = lsys_grow_metered((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par,
-                              s->meter)) != LSYS_OK)
+      (st = lsys_common_grow_metered((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par,
+                                     s->meter)) != LSYS_OK)
     return st;
   return LSYS_OK;
 }
@@ -55,7 +55,7 @@ static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
   np = LSYS_REALLOC(*p, new > 0 ? new : 1);
   if (np == NULL) return LSYS_ENOMEM;
   *p = np;
-  if (new > old) lsys_hugepages(np, new);
+  if (new > old) lsys_common_hugepages(np, new);
   if (mt != NULL) mt->used = base + new;
   return LSYS_OK;
 }
@@ -116,7 +116,7 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
   if (mt != NULL) mt->used = base;
   np = LSYS_MALLOC(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  lsys_hugepages(np, need * elem);
+  lsys_common_hugepages(np, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;
@@ -192,7 +192,7 @@ size_t lsys_lstring_poff (lsys_lstring *s, size_t i) {
   if (k >= s->nck) {            /* extend the checkpoint table up to k */
     size_t need = s->n / LSYS_CKSTEP + 1;
     if (s->ckcap < need &&
-        lsys_grow((void **)&s->ck, &s->ckcap, need, sizeof *s->ck) != LSYS_OK) {
+        lsys_common_grow((void **)&s->ck, &s->ckcap, need, sizeof *s->ck) != LSYS_OK) {
       for (m = 0, off = 0; m < i; m++) off += LSYS_CNP(s->code[m]);
       return off;               /* no memory for the table: plain scan */
     }
@@ -235,7 +235,7 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
     uint32_t sym, np = 0;
     if (isspacec((unsigned char)text[i])) { i++; continue; }
     start = i;
-    nl = lsys_scan_name(text + i, len - i, decl);
+    nl = lsys_alphabet_scan(text + i, len - i, decl);
     if (nl == 0)
       return lsys_seterror(e, LSYS_ESYNTAX, i, "unexpected '%c'", text[i]);
     sym = lsys_alphabet_intern(a, text + i, nl, e);
@@ -290,7 +290,7 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
   return LSYS_OK;
 }
 
-int lsys_fmtnum_digits (char *buf, size_t size, double x, int digits) {
+int lsys_lstring_fmtnum_digits (char *buf, size_t size, double x, int digits) {
   int prec;
   if (x == 0) return snprintf(buf, size, signbit(x) ? "-0" : "0");
   if (x == trunc(x) && fabs(x) < 1e15) return snprintf(buf, size, "%.0f", x);
@@ -302,19 +302,19 @@ int lsys_fmtnum_digits (char *buf, size_t size, double x, int digits) {
   return (int)strlen(buf);
 }
 
-int lsys_fmtnum (char *buf, size_t size, double x) {
-  return lsys_fmtnum_digits(buf, size, x, 0);
+int lsys_lstring_fmtnum (char *buf, size_t size, double x) {
+  return lsys_lstring_fmtnum_digits(buf, size, x, 0);
 }
 
-int lsys_buf_add (lsys_buf *b, const char *s, size_t len) {
-  if (lsys_grow((void **)&b->p, &b->cap, b->n + len + 1, 1) != LSYS_OK) return LSYS_ENOMEM;
+int lsys_lstring_buf_add (lsys_buf *b, const char *s, size_t len) {
+  if (lsys_common_grow((void **)&b->p, &b->cap, b->n + len + 1, 1) != LSYS_OK) return LSYS_ENOMEM;
   memcpy(b->p + b->n, s, len);
   b->n += len;
   b->p[b->n] = '\0';
   return LSYS_OK;
 }
 
-void lsys_buf_free (lsys_buf *b) {
+void lsys_lstring_buf_free (lsys_buf *b) {
   LSYS_FREE(b->p);
   memset(b, 0, sizeof *b);
 }
@@ -337,14 +337,15 @@ int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabe
     uint32_t c = lsys_lstring_code(s, k), np = LSYS_CNP(c), m;
     const char *name = lsys_alphabet_name(a, LSYS_CSYM(c));
     size_t len = strlen(name), start = b->n;
-    if (lsys_buf_add(b, name, len) != LSYS_OK) return LSYS_ENOMEM;
+    if (lsys_lstring_buf_add(b, name, len) != LSYS_OK) return LSYS_ENOMEM;
     for (q = 0; q < nr; q++)
-      if (lsys_scan_name(b->p + rs[q], b->n - rs[q], decl) != rl[q]) break;
-    if (q == nr && nr > 0 && np == 0 && lsys_scan_name(b->p + start, len, decl) != len)
+      if (lsys_alphabet_scan(b->p + rs[q], b->n - rs[q], decl) != rl[q]) break;
+    if (q == nr && nr > 0 && np == 0 && lsys_alphabet_scan(b->p + start, len, decl) != len)
       q = 0;                           /* the name itself would not read back */
     if (q < nr) {                      /* it would: separate with a space */
       b->n = start;
-      if (lsys_buf_add(b, " ", 1) != LSYS_OK || lsys_buf_add(b, name, len) != LSYS_OK)
+      if (lsys_lstring_buf_add(b, " ", 1) != LSYS_OK ||
+          lsys_lstring_buf_add(b, name, len) != LSYS_OK)
         return LSYS_ENOMEM;
       nr = 0;
       start++;
@@ -358,13 +359,13 @@ int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabe
     if (np == 0) continue;
     for (m = 0; m < np; m++) {
       char num[40];
-      int n = lsys_fmtnum_digits(num, sizeof num, s->par[off + m], digits);
-      if (lsys_buf_add(b, m == 0 ? "(" : ",", 1) != LSYS_OK ||
-          lsys_buf_add(b, num, (size_t)n) != LSYS_OK)
+      int n = lsys_lstring_fmtnum_digits(num, sizeof num, s->par[off + m], digits);
+      if (lsys_lstring_buf_add(b, m == 0 ? "(" : ",", 1) != LSYS_OK ||
+          lsys_lstring_buf_add(b, num, (size_t)n) != LSYS_OK)
         return LSYS_ENOMEM;
     }
     off += np;
-    if (lsys_buf_add(b, ")", 1) != LSYS_OK) return LSYS_ENOMEM;
+    if (lsys_lstring_buf_add(b, ")", 1) != LSYS_OK) return LSYS_ENOMEM;
   }
   return LSYS_OK;
 }

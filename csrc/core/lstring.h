@@ -121,12 +121,12 @@ int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabe
 long long lsys_lstring_unbalanced (const lsys_lstring *s);
 
 /* Writes the shortest of %.15g/%.16g/%.17g that reads back as 'x'. */
-int lsys_fmtnum (char *buf, size_t size, double x);
+int lsys_lstring_fmtnum (char *buf, size_t size, double x);
 
-/* Writes 'x' with 'digits' significant digits (%.*g; 0: as lsys_fmtnum). */
-int lsys_fmtnum_digits (char *buf, size_t size, double x, int digits);
+/* Writes 'x' with 'digits' significant digits (%.*g; 0: as lsys_lstring_fmtnum). */
+int lsys_lstring_fmtnum_digits (char *buf, size_t size, double x, int digits);
 
-int lsys_buf_add (lsys_buf *b, const char *s, size_t len);
-void lsys_buf_free (lsys_buf *b);
+int lsys_lstring_buf_add (lsys_buf *b, const char *s, size_t len);
+void lsys_lstring_buf_free (lsys_buf *b);
 
 #endif

@@ -64,7 +64,7 @@ fail:
 /*
 ** Grows the 'k' arrays 'arr' (item sizes 'elem') that share the capacity
 ** '*cap' to hold 'need' items. Every array starts from the same capacity, so
-** lsys_grow picks the same new one for all; '*cap' changes only when all of
+** lsys_common_grow picks the same new one for all; '*cap' changes only when all of
 ** them have grown (an array that grew before a failure is merely larger).
 */
 static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_t need,
@@ -74,11 +74,11 @@ static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_
   if (mt != NULL) {              /* the budget for all of them: one block of 'sum' per item */
     for (i = 0; i < k; i++) sum += elem[i];
     if (need <= c) return LSYS_OK;
-    if ((st = lsys_meter_take(mt, *cap, need, sum, &c)) != LSYS_OK) return st;
+    if ((st = lsys_common_meter_take(mt, *cap, need, sum, &c)) != LSYS_OK) return st;
     for (i = 0; i < k; i++) {    /* exactly the capacity the budget allowed */
       void *np = LSYS_REALLOC(*arr[i], c * elem[i]);
       if (np == NULL) return LSYS_ENOMEM;
-      lsys_hugepages(np, c * elem[i]);
+      lsys_common_hugepages(np, c * elem[i]);
       *arr[i] = np;
     }
     *cap = c;
@@ -86,7 +86,7 @@ static int growall (void **arr[], const size_t elem[], int k, size_t *cap, size_
   }
   for (i = 0; i < k; i++) {
     c = *cap;
-    if (lsys_grow(arr[i], &c, need, elem[i]) != LSYS_OK) return LSYS_ENOMEM;
+    if (lsys_common_grow(arr[i], &c, need, elem[i]) != LSYS_OK) return LSYS_ENOMEM;
   }
   *cap = c;
   return LSYS_OK;
@@ -150,8 +150,8 @@ int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
     if ((st = growall(arr, elem, 6, &m->vcap, m->nv + nv, m->meter)) != LSYS_OK) return st;
   }
   if (m->nt + nt > m->tcap &&
-      (st = lsys_grow_metered((void **)&m->tri, &m->tcap, m->nt + nt, 3 * sizeof(uint32_t),
-                              m->meter)) != LSYS_OK)
+      (st = lsys_common_grow_metered((void **)&m->tri, &m->tcap, m->nt + nt, 3 * sizeof(uint32_t),
+                                     m->meter)) != LSYS_OK)
     return st;
   return LSYS_OK;
 }
@@ -237,7 +237,7 @@ int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]) {
   return ok;
 }
 
-void lsys_material_color (lsys_material *mt, double r, double g, double b) {
+void lsys_mesh_material_color (lsys_material *mt, double r, double g, double b) {
   float c[3];
   int k;
   c[0] = lsys_unit(r); c[1] = lsys_unit(g); c[2] = lsys_unit(b);

@@ -154,7 +154,7 @@ int lsys_mesh_tubes (lsys_mesh *dst, const lsys_mesh *src, int n, double unit);
 
 /* Fills a material from an RGB colour (diffuse), with the default ambient
 ** and no specular highlight. */
-void lsys_material_color (lsys_material *mt, double r, double g, double b);
+void lsys_mesh_material_color (lsys_material *mt, double r, double g, double b);
 
 /* x clamped to [0, 1], as colours are (NaN gives 0). */
 static inline float lsys_unit (double x) {

@@ -157,7 +157,7 @@ const char *lsys_outfile_name (const lsys_outfile *o) {
   return o->target != NULL ? o->target : o->path;
 }
 
-char *lsys_tempdir_make (const char *parent, const char *prefix, lsys_error *e) {
+char *lsys_outfile_tempdir_make (const char *parent, const char *prefix, lsys_error *e) {
   const char *what = "", *sep;
   size_t n;
   char *d;
@@ -191,7 +191,7 @@ char *lsys_tempdir_make (const char *parent, const char *prefix, lsys_error *e) 
   return d;
 }
 
-int lsys_tempdir_remove (const char *dir) {
+int lsys_outfile_tempdir_remove (const char *dir) {
   int err = 0;
   DIR *d = opendir(dir);
   if (d != NULL) {

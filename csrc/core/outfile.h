@@ -66,12 +66,12 @@ const char *lsys_outfile_name (const lsys_outfile *o);
 ** it is NULL, $TMPDIR (/tmp when TMPDIR is unset or empty). Returns its
 ** path (LSYS_MALLOC'd, the caller frees it), or NULL with e->msg ("cannot
 ** make a temporary folder in '/x' (TMPDIR): No such file or directory"). */
-char *lsys_tempdir_make (const char *parent, const char *prefix, lsys_error *e);
+char *lsys_outfile_tempdir_make (const char *parent, const char *prefix, lsys_error *e);
 
 /* Removes the folder 'dir' and the entries in it (files and links, which
 ** are removed, never followed; empty folders); nothing below one level.
 ** Returns 0, or the errno of the first entry or of the folder that could
 ** not be removed (ENOTEMPTY for a folder left with something in it). */
-int lsys_tempdir_remove (const char *dir);
+int lsys_outfile_tempdir_remove (const char *dir);
 
 #endif

@@ -21,7 +21,7 @@
 typedef struct pngio {
   FILE *f;
   char msg[200];          /* the last libpng error */
-  unsigned char *buf;     /* lsys_png_encode: the bytes so far */
+  unsigned char *buf;     /* lsys_pngio_encode: the bytes so far */
   size_t len, cap;
 } pngio;
 
@@ -54,7 +54,7 @@ static void flushfn (png_structp png) {
 static void memwritefn (png_structp png, png_bytep p, size_t n) {
   pngio *io = (pngio *)png_get_io_ptr(png);
   if (n > (size_t)-1 - io->len ||
-      lsys_grow((void **)&io->buf, &io->cap, io->len + n, 1) != LSYS_OK)
+      lsys_common_grow((void **)&io->buf, &io->cap, io->len + n, 1) != LSYS_OK)
     png_error(png, "not enough memory");
   memcpy(io->buf + io->len, p, n);
   io->len += n;
@@ -75,8 +75,8 @@ static void putimage (png_structp png, png_infop info, const uint8_t *rgba, int 
   png_write_end(png, NULL);
 }
 
-int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
-                     size_t *len, lsys_error *e) {
+int lsys_pngio_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
+                       size_t *len, lsys_error *e) {
   pngio io = {NULL, "", NULL, 0, 0};
   pngio *volatile iop = &io;
   png_structp png;
@@ -107,8 +107,8 @@ int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char
 
 /* The file is written through an lsys_outfile: a failure leaves whatever was
 ** at 'path' untouched and removes only the temporary file (outfile.h). */
-int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
-                    lsys_error *e) {
+int lsys_pngio_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
+                      lsys_error *e) {
   pngio io = {NULL, "", NULL, 0, 0};
   lsys_outfile out;
   png_structp png;
@@ -138,7 +138,7 @@ int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alp
   return lsys_outfile_commit(&out, e);
 }
 
-int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
+int lsys_pngio_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
   pngio io = {NULL, "", NULL, 0, 0};
   png_structp png;
   png_infop info;
@@ -201,12 +201,12 @@ int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error 
              (unsigned long)pw, (unsigned long)ph, LSYS_PNG_MAXSIZE);
     png_longjmp(png, 1);
   }
-  if ((double)pw * ph * 4 > (double)lsys_memory_limit()) {    /* before decoding */
+  if ((double)pw * ph * 4 > (double)lsys_common_memory_limit()) {    /* before decoding */
     char b1[32], b2[32];
     code = LSYS_EMEMORY;
     snprintf(io.msg, sizeof io.msg, "%lux%lu pixels need %s, more than max_memory (%s)",
-             (unsigned long)pw, (unsigned long)ph, lsys_fmtsize(b1, (size_t)4 * pw * ph),
-             lsys_fmtsize(b2, lsys_memory_limit()));
+             (unsigned long)pw, (unsigned long)ph, lsys_common_fmtsize(b1, (size_t)4 * pw * ph),
+             lsys_common_fmtsize(b2, lsys_common_memory_limit()));
     png_longjmp(png, 1);
   }
   /* whatever the file holds, deliver 8-bit RGBA */

@@ -19,16 +19,16 @@
 ** a failure leaves what was at 'path' as it was. Returns LSYS_OK, or
 ** LSYS_EARG with e->msg naming the file and the reason.
 */
-int lsys_png_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
-                    lsys_error *e);
+int lsys_pngio_write (const char *path, const uint8_t *rgba, int w, int h, int alpha,
+                      lsys_error *e);
 
 /*
-** Encodes the w x h image 'rgba' as lsys_png_write does, into a new block
+** Encodes the w x h image 'rgba' as lsys_pngio_write does, into a new block
 ** *out (free it with LSYS_FREE) of *len bytes: a .glb embeds an SGI
 ** texture so. Returns LSYS_OK, or LSYS_ENOMEM / LSYS_EARG with e->msg.
 */
-int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
-                     size_t *len, lsys_error *e);
+int lsys_pngio_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char **out,
+                       size_t *len, lsys_error *e);
 
 /*
 ** Reads any PNG (grey, palette, 16-bit, interlaced, with or without alpha)
@@ -38,6 +38,6 @@ int lsys_png_encode (const uint8_t *rgba, int w, int h, int alpha, unsigned char
 ** LSYS_ELIMIT when it is larger than LSYS_PNG_MAXSIZE, LSYS_ENOMEM; e->msg
 ** names the file. On failure *rgba is NULL.
 */
-int lsys_png_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e);
+int lsys_pngio_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e);
 
 #endif

@@ -97,7 +97,7 @@ typedef struct ring {
 
 #define NONE UINT32_MAX
 
-void lsys_polywork_free (lsys_polywork *w) {
+void lsys_polygon_work_free (lsys_polywork *w) {
   lsys_meter *mt = w->meter;
   LSYS_FREE(w->xy);
   LSYS_FREE(w->link);
@@ -654,20 +654,21 @@ static int cut (ring *r, size_t m) {
 static int reserve (lsys_polywork *w, size_t n) {
   lsys_meter *mt = w->meter;
   int st;
-  if ((st = lsys_grow_metered((void **)&w->xy, &w->xycap, n, 2 * sizeof(double), mt)) ||
-      (st = lsys_grow_metered((void **)&w->link, &w->linkcap, n, 4 * sizeof(uint32_t), mt)) ||
-      (st = lsys_grow_metered((void **)&w->state, &w->statecap, n, 1, mt)) ||
-      (st = lsys_grow_metered((void **)&w->tris, &w->tcap, n, 3 * sizeof(uint32_t), mt)))
+  if ((st = lsys_common_grow_metered((void **)&w->xy, &w->xycap, n, 2 * sizeof(double), mt)) ||
+      (st = lsys_common_grow_metered((void **)&w->link, &w->linkcap, n, 4 * sizeof(uint32_t),
+                                     mt)) ||
+      (st = lsys_common_grow_metered((void **)&w->state, &w->statecap, n, 1, mt)) ||
+      (st = lsys_common_grow_metered((void **)&w->tris, &w->tcap, n, 3 * sizeof(uint32_t), mt)))
     return st;
   if (n < KDMIN) return LSYS_OK;
-  if ((st = lsys_grow_metered((void **)&w->kd, &w->kdcap, n, 3 * sizeof(uint32_t), mt)) ||
-      (st = lsys_grow_metered((void **)&w->kdaxis, &w->kdaxiscap, n, 1, mt)) ||
-      (st = lsys_grow_metered((void **)&w->kdbox, &w->kdboxcap, n, 4 * sizeof(float), mt)))
+  if ((st = lsys_common_grow_metered((void **)&w->kd, &w->kdcap, n, 3 * sizeof(uint32_t), mt)) ||
+      (st = lsys_common_grow_metered((void **)&w->kdaxis, &w->kdaxiscap, n, 1, mt)) ||
+      (st = lsys_common_grow_metered((void **)&w->kdbox, &w->kdboxcap, n, 4 * sizeof(float), mt)))
     return st;
   if (n < QMIN) return LSYS_OK;
-  if ((st = lsys_grow_metered((void **)&w->queue, &w->qcap, n, 6 * sizeof(uint32_t), mt)))
+  if ((st = lsys_common_grow_metered((void **)&w->queue, &w->qcap, n, 6 * sizeof(uint32_t), mt)))
     return st;
-  return lsys_grow_metered((void **)&w->key, &w->keycap, n, sizeof(double), mt);
+  return lsys_common_grow_metered((void **)&w->key, &w->keycap, n, sizeof(double), mt);
 }
 
 /* The Newell normal of the polygon, with the first point as origin so that

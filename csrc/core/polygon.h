@@ -15,7 +15,7 @@
 #define LSYS_POLYGON_MAXWORK 256
 
 /* Scratch arrays, grown by doubling and reused from one polygon to the next.
-** A zeroed struct is a valid empty one; lsys_polywork_free releases it. */
+** A zeroed struct is a valid empty one; lsys_polygon_work_free releases it. */
 typedef struct lsys_polywork {
   double *xy;                 /* projected points, 2 per vertex */
   size_t xycap;
@@ -39,7 +39,7 @@ typedef struct lsys_polywork {
                                  caller's, as the turtle's interpretation meter */
 } lsys_polywork;
 
-void lsys_polywork_free (lsys_polywork *w);
+void lsys_polygon_work_free (lsys_polywork *w);
 
 /*
 ** Triangulates the polygon of 'n' vertices 'pts' (x, y, z each; the last

@@ -34,7 +34,7 @@ static int mergepalette (lsys_scene *dst, const lsys_scene *src, size_t *off) {
   size_t n = src->npal;
   long at;
   if (pal == NULL || n == 0) {
-    lsys_material_color(&grey, 0.6, 0.6, 0.6);
+    lsys_mesh_material_color(&grey, 0.6, 0.6, 0.6);
     pal = &grey;
     n = 1;
   }
@@ -43,7 +43,8 @@ static int mergepalette (lsys_scene *dst, const lsys_scene *src, size_t *off) {
     return LSYS_OK;
   }
   if (n > 65536 - dst->npal) return LSYS_ELIMIT;
-  if (lsys_grow((void **)&dst->pal, &dst->palcap, dst->npal + n, sizeof *dst->pal) != LSYS_OK)
+  if (lsys_common_grow((void **)&dst->pal, &dst->palcap, dst->npal + n,
+                       sizeof *dst->pal) != LSYS_OK)
     return LSYS_ENOMEM;
   memcpy(dst->pal + dst->npal, pal, n * sizeof *pal);
   *off = dst->npal;
@@ -61,8 +62,8 @@ static int reserveall (lsys_scene *dst, const lsys_scene *src, int records) {
   if (src->nrec > (size_t)UINT32_MAX - dst->nrec) return LSYS_ELIMIT;
   if ((st = lsys_scene_reserve_records(dst, src->nrec)) != LSYS_OK) return st;
   if (src->nstiff > 0)
-    st = lsys_grow_metered((void **)&dst->stiff, &dst->stiffcap,
-                           3 * (dst->nstiff + src->nstiff), sizeof(float), dst->meter);
+    st = lsys_common_grow_metered((void **)&dst->stiff, &dst->stiffcap,
+                                  3 * (dst->nstiff + src->nstiff), sizeof(float), dst->meter);
   return st;
 }
 
@@ -134,7 +135,7 @@ int lsys_population_reserve (lsys_scene *dst, size_t n, lsys_meter *mt) {
   if (n <= dst->instcap) return LSYS_OK;
   if (n > SIZE_MAX / sizeof *in) return LSYS_ENOMEM;
   more = (n - dst->instcap) * sizeof *in;
-  if (!lsys_meter_fits(mt, more)) {
+  if (!lsys_common_meter_fits(mt, more)) {
     mt->hit = 1;
     return LSYS_EMEMORY;
   }
@@ -273,7 +274,7 @@ int lsys_population_flatten (lsys_scene *dst, const lsys_scene *s, lsys_meter *m
   int st;
   lsys_population_size(s, &nv, &nt, &nl);
   if (nv > UINT32_MAX || nl > UINT32_MAX) return LSYS_ELIMIT;
-  if (!lsys_meter_fits(mt, lsys_population_flatbytes(s))) return LSYS_EMEMORY;
+  if (!lsys_common_meter_fits(mt, lsys_population_flatbytes(s))) return LSYS_EMEMORY;
   if (s->ninst == 0) {
     if ((st = lsys_mesh_copy(&dst->mesh, &s->mesh)) != LSYS_OK) return st;
   } else {

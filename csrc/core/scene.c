@@ -6,7 +6,7 @@
 
 #include "scene.h"
 
-void lsys_camera_defaults (lsys_camera *c) {
+void lsys_scene_camera_defaults (lsys_camera *c) {
   memset(c, 0, sizeof *c);
   c->up[1] = 1;
   c->dir[2] = -1;
@@ -18,7 +18,7 @@ void lsys_camera_defaults (lsys_camera *c) {
 void lsys_scene_init (lsys_scene *s) {
   memset(s, 0, sizeof *s);
   lsys_mesh_init(&s->mesh);
-  lsys_camera_defaults(&s->cam);
+  lsys_scene_camera_defaults(&s->cam);
   s->light[0] = 0.4; s->light[1] = 0.8; s->light[2] = 0.6;
   s->background[0] = 0.93f; s->background[1] = 0.96f; s->background[2] = 1.0f;
 }
@@ -55,7 +55,7 @@ int lsys_scene_set_palette (lsys_scene *s, const lsys_material *pal, size_t n) {
 int lsys_scene_add_material (lsys_scene *s, const lsys_material *m, size_t *idx) {
   lsys_material copy = *m;             /* m may point into the palette */
   if (s->npal >= 65536) return LSYS_ELIMIT;
-  if (lsys_grow((void **)&s->pal, &s->palcap, s->npal + 1, sizeof *s->pal) != LSYS_OK)
+  if (lsys_common_grow((void **)&s->pal, &s->palcap, s->npal + 1, sizeof *s->pal) != LSYS_OK)
     return LSYS_ENOMEM;
   s->pal[s->npal] = copy;
   *idx = s->npal++;
@@ -64,14 +64,15 @@ int lsys_scene_add_material (lsys_scene *s, const lsys_material *m, size_t *idx)
 
 int lsys_scene_reserve_records (lsys_scene *s, size_t n) {
   if (n > SIZE_MAX - s->nrec) return LSYS_ENOMEM;
-  return lsys_grow_metered((void **)&s->rec, &s->reccap, s->nrec + n, sizeof *s->rec, s->meter);
+  return lsys_common_grow_metered((void **)&s->rec, &s->reccap, s->nrec + n, sizeof *s->rec,
+                                  s->meter);
 }
 
 int lsys_scene_add_stiffness (lsys_scene *s, const double k[3], uint32_t *idx) {
   int st, j;
   if (s->nstiff >= LSYS_NOREC) return LSYS_ENOMEM;
-  st = lsys_grow_metered((void **)&s->stiff, &s->stiffcap, 3 * (s->nstiff + 1), sizeof(float),
-                         s->meter);
+  st = lsys_common_grow_metered((void **)&s->stiff, &s->stiffcap, 3 * (s->nstiff + 1),
+                                sizeof(float), s->meter);
   if (st != LSYS_OK) return st;
   for (j = 0; j < 3; j++) s->stiff[3 * s->nstiff + j] = (float)k[j];
   *idx = (uint32_t)s->nstiff++;
@@ -80,7 +81,7 @@ int lsys_scene_add_stiffness (lsys_scene *s, const double k[3], uint32_t *idx) {
 
 long lsys_scene_begin_part (lsys_scene *s) {
   lsys_part *p;
-  if (lsys_grow((void **)&s->parts, &s->partcap, s->nparts + 1, sizeof *s->parts) != LSYS_OK)
+  if (lsys_common_grow((void **)&s->parts, &s->partcap, s->nparts + 1, sizeof *s->parts) != LSYS_OK)
     return -1;
   p = &s->parts[s->nparts];
   memset(p, 0, sizeof *p);
@@ -101,7 +102,7 @@ void lsys_scene_end_part (lsys_scene *s, size_t part) {
 int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]) {
   lsys_instance *in;
   if (part >= s->nparts || part > UINT32_MAX) return LSYS_EARG;
-  if (lsys_grow((void **)&s->inst, &s->instcap, s->ninst + 1, sizeof *s->inst) != LSYS_OK)
+  if (lsys_common_grow((void **)&s->inst, &s->instcap, s->ninst + 1, sizeof *s->inst) != LSYS_OK)
     return LSYS_ENOMEM;
   in = &s->inst[s->ninst++];
   in->part = (uint32_t)part;
@@ -109,7 +110,7 @@ int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]) {
   return LSYS_OK;
 }
 
-void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b) {
+void lsys_scene_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b) {
   size_t i = 0, j, k, best = 0;
   if (b <= a) return;
   if (*n > 0 && a >= r[2 * *n - 2]) i = *n - 1;       /* usually at or after the last */
@@ -135,7 +136,7 @@ void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b) {
 }
 
 void lsys_scene_touch (lsys_scene *s, size_t v0, size_t nv) {
-  lsys_ranges_add(s->dirty, &s->ndirty, LSYS_SCENE_NDIRTY, v0, v0 + nv);
+  lsys_scene_ranges_add(s->dirty, &s->ndirty, LSYS_SCENE_NDIRTY, v0, v0 + nv);
 }
 
 int lsys_scene_take_dirty (lsys_scene *s, size_t *v0, size_t *v1) {

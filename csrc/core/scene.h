@@ -136,7 +136,8 @@ typedef struct lsys_scene {
   lsys_part *parts; size_t nparts, partcap;
   lsys_instance *inst; size_t ninst, instcap;
   size_t dirty[2 * (LSYS_SCENE_NDIRTY + 1)];  /* vertex ranges changed in place: [dirty[2k],
-                                                 dirty[2k+1]), sorted, apart (lsys_ranges_add) */
+                                                 dirty[2k+1]), sorted, apart
+                                                 (lsys_scene_ranges_add) */
   size_t ndirty;
   lsys_meter *meter;      /* while it is filled: the memory budget of its arrays (or NULL) */
   int cull;               /* 1: its solid (not two-sided) triangles are wound counterclockwise
@@ -145,7 +146,7 @@ typedef struct lsys_scene {
 } lsys_scene;
 
 /* Fills 'c' with the defaults above. */
-void lsys_camera_defaults (lsys_camera *c);
+void lsys_scene_camera_defaults (lsys_camera *c);
 
 /* An empty scene: no geometry, no palette (a grey default), the default
 ** camera, the light towards (0.4, 0.8, 0.6), a pale sky-blue background
@@ -183,7 +184,7 @@ void lsys_scene_end_part (lsys_scene *s, size_t part);
 ** LSYS_EARG (no such part) or LSYS_ENOMEM. */
 int lsys_scene_add_instance (lsys_scene *s, size_t part, const float m[16]);
 
-/* Marks vertices [v0, v0 + nv) changed in place (lsys_ranges_add into the
+/* Marks vertices [v0, v0 + nv) changed in place (lsys_scene_ranges_add into the
 ** dirty ranges). lsys_scene_take_dirty returns the range covering them all (0
 ** when there is none) and empties the list; lsys_scene_take_ranges copies the
 ** list into r (room for 2 * LSYS_SCENE_NDIRTY), returns its length and empties
@@ -197,7 +198,7 @@ size_t lsys_scene_take_ranges (lsys_scene *s, size_t *r);
 ** more than 'max' ranges, the two with the smallest gap between them merge
 ** (r has room for max + 1 ranges). The list then covers every range added,
 ** and a little more once it is full. */
-void lsys_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b);
+void lsys_scene_ranges_add (size_t *r, size_t *n, size_t max, size_t a, size_t b);
 
 /* The part that holds record 'r' (its index), or -1 when none does. */
 long lsys_scene_part_of_record (const lsys_scene *s, size_t r);

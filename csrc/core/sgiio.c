@@ -146,8 +146,8 @@ past:
                        (unsigned long)len);
 }
 
-int lsys_sgi_decode (const uint8_t *bytes, size_t n, const char *name, uint8_t **rgba,
-                     int *w, int *h, lsys_error *e) {
+int lsys_sgiio_decode (const uint8_t *bytes, size_t n, const char *name, uint8_t **rgba,
+                       int *w, int *h, lsys_error *e) {
   sgi s;
   unsigned storage, dim, nch, c, r;
   uint32_t cmap;
@@ -196,12 +196,12 @@ int lsys_sgi_decode (const uint8_t *bytes, size_t n, const char *name, uint8_t *
   if (npix * 4 > SIZE_MAX / 2)
     return lsys_seterror(e, LSYS_ELIMIT, (size_t)-1, "cannot read '%s': %ux%u pixels is "
                          "too large for this machine", name, s.x, s.y);
-  if ((double)npix * 4 > (double)lsys_memory_limit()) {
+  if ((double)npix * 4 > (double)lsys_common_memory_limit()) {
     char b1[32], b2[32];
     return lsys_seterror(e, LSYS_EMEMORY, (size_t)-1, "cannot read '%s': %ux%u pixels need "
                          "%s, more than max_memory (%s)", name, s.x, s.y,
-                         lsys_fmtsize(b1, (size_t)(npix * 4)),
-                         lsys_fmtsize(b2, lsys_memory_limit()));
+                         lsys_common_fmtsize(b1, (size_t)(npix * 4)),
+                         lsys_common_fmtsize(b2, lsys_common_memory_limit()));
   }
   nch = s.z < 4 ? s.z : 4;
   /* what the file must hold, before anything is allocated */
@@ -256,14 +256,14 @@ int lsys_sgi_decode (const uint8_t *bytes, size_t n, const char *name, uint8_t *
   return LSYS_OK;
 }
 
-int lsys_sgi_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
+int lsys_sgiio_read (const char *path, uint8_t **rgba, int *w, int *h, lsys_error *e) {
   size_t n;
   int code;
   char *buf;
   *rgba = NULL;
   *w = *h = 0;
-  if ((buf = lsys_readfile(path, LSYS_SGI_MAXFILE, &n, e)) == NULL) return e->code;
-  code = lsys_sgi_decode((const uint8_t *)buf, n, path, rgba, w, h, e);
+  if ((buf = lsys_common_readfile(path, LSYS_SGI_MAXFILE, &n, e)) == NULL) return e->code;
+  code = lsys_sgiio_decode((const uint8_t *)buf, n, path, rgba, w, h, e);
   LSYS_FREE(buf);
   return code;
 }

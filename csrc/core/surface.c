@@ -106,8 +106,8 @@ static void weights (const double M[4][4], double u, double w[4], double dw[4]) 
   }
 }
 
-void lsys_patch_eval (int basis, const lsys_patch *p, double s, double t, double pos[3],
-                      double ds[3], double dt[3]) {
+void lsys_surface_patch_eval (int basis, const lsys_patch *p, double s, double t, double pos[3],
+                              double ds[3], double dt[3]) {
   const double (*M)[4] = basismatrix(basis);
   double ws[4], dws[4], wt[4], dwt[4], P[3] = {0, 0, 0}, S[3] = {0, 0, 0}, T[3] = {0, 0, 0};
   int r, c, k;
@@ -193,14 +193,14 @@ static int word (reader *r, const char **w, size_t *n) {
   return 1;
 }
 
-/* A printable copy of a word for messages (lsys_quote: a short token). */
+/* A printable copy of a word for messages (lsys_common_quote: a short token). */
 static const char *quote (char buf[32], const char *w, size_t n) {
-  return lsys_quote(buf, w, n);
+  return lsys_common_quote(buf, w, n);
 }
 
 /* The same for a patch name read from the file. */
 static const char *qname (char buf[32], const char *name) {
-  return lsys_quote(buf, name, strlen(name));
+  return lsys_common_quote(buf, name, strlen(name));
 }
 
 /* Fails with "name:LINE: message" (common.h); the error position is the
@@ -360,13 +360,14 @@ typedef struct nbref {
 
 static int growpatches (lsys_surface *s, nbref **ref, size_t *cap, size_t *rcap) {
   size_t c = *cap;
-  if (lsys_grow((void **)&s->patch, &c, s->npatch + 1, sizeof *s->patch) != LSYS_OK)
+  if (lsys_common_grow((void **)&s->patch, &c, s->npatch + 1, sizeof *s->patch) != LSYS_OK)
     return LSYS_ENOMEM;
   c = *cap;
-  if (lsys_grow((void **)&s->info, &c, s->npatch + 1, sizeof *s->info) != LSYS_OK)
+  if (lsys_common_grow((void **)&s->info, &c, s->npatch + 1, sizeof *s->info) != LSYS_OK)
     return LSYS_ENOMEM;
   c = *cap;
-  if (lsys_grow((void **)ref, rcap, s->npatch + 1, sizeof **ref) != LSYS_OK) return LSYS_ENOMEM;
+  if (lsys_common_grow((void **)ref, rcap, s->npatch + 1, sizeof **ref) != LSYS_OK)
+    return LSYS_ENOMEM;
   *cap = c;
   return LSYS_OK;
 }
@@ -652,7 +653,7 @@ static double fit (double v) {
 static int normalat (int basis, const lsys_patch *p, const xform *x, double s, double t,
                      double pos[3], double n[3]) {
   double ds[3], dt[3], l, a;
-  lsys_patch_eval(basis, p, s, t, pos, ds, dt);
+  lsys_surface_patch_eval(basis, p, s, t, pos, ds, dt);
   if (!x->identity) {
     rotate(x, ds, ds);
     rotate(x, dt, dt);
@@ -685,7 +686,7 @@ static void uvbounds (const uvmap *uv, int basis, const lsys_patch *p, int ns, i
   for (j = 0; j <= nt; j++)
     for (i = 0; i <= ns; i++) {
       double pos[3], a, b;
-      lsys_patch_eval(basis, p, (double)i / ns, (double)j / nt, pos, NULL, NULL);
+      lsys_surface_patch_eval(basis, p, (double)i / ns, (double)j / nt, pos, NULL, NULL);
       a = vdot(pos, uv->a1);
       b = vdot(pos, uv->a2);
       if (a < lo[0]) lo[0] = a;
@@ -827,8 +828,8 @@ void lsys_surface_endpoint (const lsys_surface *s, const lsys_place *pl, double 
   place(&x, s->end, out);
 }
 
-int lsys_patch_mesh (lsys_mesh *m, int basis, const lsys_patch *p, const lsys_place *pl,
-                     int ns, int nt) {
+int lsys_surface_patch_mesh (lsys_mesh *m, int basis, const lsys_patch *p, const lsys_place *pl,
+                             int ns, int nt) {
   static const double dflt[3] = {0, 0, 1};
   xform x = {0};
   uvmap uv = {0};
@@ -839,10 +840,10 @@ int lsys_patch_mesh (lsys_mesh *m, int basis, const lsys_patch *p, const lsys_pl
     /* axes: the patch's mean s direction, and its mean t direction made
     ** orthogonal to it; (s, t) when either is degenerate */
     double c00[3], c10[3], c01[3], c11[3], a1[3], a2[3];
-    lsys_patch_eval(basis, p, 0, 0, c00, NULL, NULL);
-    lsys_patch_eval(basis, p, 1, 0, c10, NULL, NULL);
-    lsys_patch_eval(basis, p, 0, 1, c01, NULL, NULL);
-    lsys_patch_eval(basis, p, 1, 1, c11, NULL, NULL);
+    lsys_surface_patch_eval(basis, p, 0, 0, c00, NULL, NULL);
+    lsys_surface_patch_eval(basis, p, 1, 0, c10, NULL, NULL);
+    lsys_surface_patch_eval(basis, p, 0, 1, c01, NULL, NULL);
+    lsys_surface_patch_eval(basis, p, 1, 1, c11, NULL, NULL);
     vlin(a1, c10, 1, c00, -1);
     vlin(a1, a1, 1, c11, 1);
     vlin(a1, a1, 1, c01, -1);

@@ -76,8 +76,8 @@ int lsys_surface_parse (lsys_surface *s, const char *text, size_t len, const cha
 ** i.e. across columns c = 0..3; t across rows r = 0..3), with the partial
 ** derivatives (either may be NULL). Basis as LSYS_BASIS_*; any other
 ** value is taken as Bézier. */
-void lsys_patch_eval (int basis, const lsys_patch *p, double s, double t, double pos[3],
-                      double ds[3], double dt[3]);
+void lsys_surface_patch_eval (int basis, const lsys_patch *p, double s, double t, double pos[3],
+                              double ds[3], double dt[3]);
 
 /* Where and how a surface or patch is drawn. */
 typedef struct lsys_place {
@@ -119,7 +119,7 @@ void lsys_surface_endpoint (const lsys_surface *s, const lsys_place *pl, double 
 ** over the bounds of the tessellated patch to [0,1]. Returns as
 ** lsys_surface_mesh.
 */
-int lsys_patch_mesh (lsys_mesh *m, int basis, const lsys_patch *p, const lsys_place *pl,
-                     int ns, int nt);
+int lsys_surface_patch_mesh (lsys_mesh *m, int basis, const lsys_patch *p, const lsys_place *pl,
+                             int ns, int nt);
 
 #endif

@@ -58,7 +58,7 @@ enum { NOTIMAGE, PNG, SGI };
 /* Sets *kind to what the file 'path' holds, by its first bytes (not by its
 ** name: cpfg's models name SGI images .rgb, .rgba, .bw, .sgi, .int or
 ** .inta). Returns LSYS_OK, or LSYS_EARG when it cannot be opened or read
-** (the messages of lsys_png_read). */
+** (the messages of lsys_pngio_read). */
 static int sniff (const char *path, int *kind, lsys_error *e) {
   static const uint8_t pngsig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   uint8_t b[8];
@@ -93,7 +93,7 @@ int lsys_texture_load (lsys_texture *t, const char *path, lsys_error *e) {
   if (st != LSYS_OK) return st;
   if (kind == NOTIMAGE)
     return lsys_seterror(e, LSYS_ESYNTAX, (size_t)-1, "'%s' is not a PNG or SGI image", path);
-  st = kind == PNG ? lsys_png_read(path, &px, &w, &h, e) : lsys_sgi_read(path, &px, &w, &h, e);
+  st = kind == PNG ? lsys_pngio_read(path, &px, &w, &h, e) : lsys_sgiio_read(path, &px, &w, &h, e);
   if (st != LSYS_OK) return st;
   copy = (char *)LSYS_MALLOC(len + 1);
   if (copy == NULL) {

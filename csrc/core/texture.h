@@ -35,8 +35,8 @@ void lsys_texture_init (lsys_texture *t);
 void lsys_texture_free (lsys_texture *t);
 
 /* Reads a PNG or SGI image file into 't' (filters and mode left as they
-** are): a file starting with the PNG signature goes to lsys_png_read, one
-** starting with the SGI magic number to lsys_sgi_read, whatever its name.
+** are): a file starting with the PNG signature goes to lsys_pngio_read, one
+** starting with the SGI magic number to lsys_sgiio_read, whatever its name.
 ** A grey image (every pixel has R = G = B) sets 'intensity', any other
 ** clears it. On failure 't' is unchanged. Returns LSYS_OK, or the code of
 ** the reader (LSYS_EARG: cannot open; LSYS_ESYNTAX: damaged, or "not a PNG

@@ -24,28 +24,6 @@
 #include "turtle_impl.h"
 #include "polygon.h"
 
-static const struct { const char *name; uint8_t op; } symbols[] = {
-  {"F", OP_F}, {"f", OP_f}, {"G", OP_G}, {"g", OP_g},
-  {"+", OP_LEFT}, {"-", OP_RIGHT}, {"&", OP_DOWN}, {"^", OP_UP},
-  {"\\", OP_ROLLL}, {"/", OP_ROLLR}, {"|", OP_TURN},
-  {"@v", OP_VERT}, {"@R", OP_SETFRAME}, {"@M", OP_MOVETO},
-  {"[", OP_PUSH}, {"]", OP_POP},
-  {"#", OP_WIDER}, {"!", OP_THINNER}, {";", OP_COLINC}, {",", OP_COLDEC},
-  {"@Tx", OP_TEXTURE}, {"@#", OP_CONTOUR},
-  {"@o", OP_DISCZ}, {"@c", OP_DISC}, {"@O", OP_SPHERE},
-  {"{", OP_PSTART}, {"}", OP_PEND}, {".", OP_PVERT},
-  {"?P", OP_QP}, {"?H", OP_QH}, {"?U", OP_QU}, {"?L", OP_QL},
-  {"@D", OP_SCALE}, {"@Di", OP_SCALEMUL}, {"@Dd", OP_SCALEDIV},
-  {"@L", OP_LABEL}, {"@S", OP_SYSTEM}, {"Z", OP_STIFF},
-  {"@Ts", OP_TSET}, {"@Ti", OP_TINC}, {"@Td", OP_TDEC}, {"@Tp", OP_TPREVENT},
-  {"@Tf", OP_TFORCE}, {"_", OP_OLDELAST}, {"@!", OP_SIDES},
-  {"?", OP_SUB}, {"$", OP_SUBEND},
-  {"@Gs", OP_GSTART}, {"@Gc", OP_GPOINT}, {"@Ge", OP_GEND}, {"@Gt", OP_GTAN},
-  {"@Gr", OP_GRAD}, {"@PS", OP_PSTARTP}, {"@PC", OP_PCTRL}, {"@PD", OP_PDRAW},
-  {"@J", OP_JOINT},
-  {NULL, 0}
-};
-
 /* Rebuilds an orthonormal frame from H and an approximate U. */
 static void orthonormal (lsys_tstate *st) {
   double d;
@@ -101,7 +79,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->stess);
   LSYS_FREE(t->stessok);
   lsys_lstring_free(&t->hbuf);
-  if (t->pw) { lsys_polywork_free(t->pw); LSYS_FREE(t->pw); }
+  if (t->pw) { lsys_polygon_work_free(t->pw); LSYS_FREE(t->pw); }
   memset(t, 0, sizeof *t);
 }
 
@@ -134,10 +112,8 @@ static void jointturn (double *a, double *b, double deg) {
 
 /* The symbol of a command, for messages. */
 static const char *opname (int op) {
-  int k;
-  for (k = 0; symbols[k].name; k++)
-    if (symbols[k].op == op) return symbols[k].name;
-  return "?";
+  const char *name = op >= 0 && op < LSYS_NSYMBOLS ? lsys_symbols[op].name : NULL;
+  return name != NULL ? name : "?";
 }
 
 /* An error about the current module: "module N: message", or "module N
@@ -175,7 +151,7 @@ int lsys_turtle_nomem (run *R) {
     char b[32];
     return lsys_turtle_fail(R, LSYS_EMEMORY, "the interpretation would need more than "
                             "max_memory (%s) (set max_memory in the model, or LSYS_MAX_MEMORY)",
-                            lsys_fmtsize(b, mt->limit));
+                            lsys_common_fmtsize(b, mt->limit));
   }
   return lsys_turtle_fail(R, LSYS_ENOMEM, "not enough memory");
 }
@@ -296,7 +272,8 @@ static int setring (run *R) {
   lsys_turtle *t = R->t;
   int n = R->st.sides;
   if (t->nring == n && t->ring) return LSYS_OK;
-  if (lsys_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2, sizeof(double)) != LSYS_OK)
+  if (lsys_common_grow((void **)&t->ringbuf, &t->ringcap, 2 * (size_t)n + 2,
+                       sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
   lsys_mesh_ringtable(t->ringbuf, n);
   t->ring = t->ringbuf;
@@ -335,26 +312,10 @@ static int flush (run *R) {
   return s;
 }
 
-/* Does 'op' end the pending segment? cpfg's EndNode comes at F f G g [ ] { }
-** ~ and every @ module (interpret.c); turns, colours, widths, queries and
-** modules the turtle does not know leave it open. Sub-L-system ends change the
-** scale, so they end it too. */
-static int endsnode (int op) {
-  switch (op) {
-    case OP_LEFT: case OP_RIGHT: case OP_DOWN: case OP_UP: case OP_ROLLL: case OP_ROLLR:
-    case OP_TURN: case OP_WIDER: case OP_THINNER: case OP_COLINC: case OP_COLDEC:
-    case OP_PVERT: case OP_QP: case OP_QH: case OP_QU: case OP_QL: case OP_STIFF:
-    case OP_OLDELAST:
-      return 0;
-    default:
-      return 1;
-  }
-}
-
 /* F f G g: a step of d (the view's step without a parameter) after the
 ** tropisms bent the heading; the old-style tropism bends it after the step. F and G
-** draw a segment, whose top width waits for a following ! or # (endsnode); inside a
-** polygon F and f add a vertex too. */
+** draw a segment, whose top width waits for a following ! or # (the symbol table's
+** 'keep'); inside a polygon F and f add a vertex too. */
 static int move (run *R, int op, const double *p, uint32_t np) {
   lsys_tstate *st = &R->st;
   double p0[3], d;
@@ -403,8 +364,8 @@ static int push (run *R) {
   else {
     size_t k = R->depth - NSTACK;
     if (k >= t->stackcap &&
-        lsys_grow_metered((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack, t->meter)
-        != LSYS_OK)
+        lsys_common_grow_metered((void **)&t->stack, &t->stackcap, k + 1, sizeof *t->stack,
+                                 t->meter) != LSYS_OK)
       return lsys_turtle_nomem(R);
     to = &t->stack[k];
   }
@@ -722,7 +683,7 @@ static int substart (run *R, const double *p, uint32_t np) {
   double x;
   int s;
   if ((s = arg(R, p, np, 1, 1, &x)) != LSYS_OK) return s;
-  if (lsys_grow((void **)&t->subscale, &t->subcap, t->nsub + 1, sizeof(double)) != LSYS_OK)
+  if (lsys_common_grow((void **)&t->subscale, &t->subcap, t->nsub + 1, sizeof(double)) != LSYS_OK)
     return lsys_turtle_nomem(R);
   t->subscale[t->nsub++] = R->st.scale;
   R->st.scale *= x;
@@ -736,12 +697,14 @@ static int subend (run *R) {
 
 /* Interprets one module: op, its parameters (overwritten by a query) and
 ** whether it is the string's own module. The pending segment is emitted
-** first when the module ends it (endsnode): a width change before that sets
-** its top width. */
+** first when the module ends it, as cpfg's EndNode comes at F f G g [ ] { } ~
+** and every @ module (interpret.c), and sub-L-system ends change the scale;
+** turns, colours, widths and queries leave it open (the symbol table's 'keep',
+** symbols.h): a width change before that sets its top width. */
 static int module (run *R, int op, double *p, uint32_t np, int original) {
   int s;
   R->op = op;
-  if (R->pending && endsnode(op) && (s = flush(R)) != LSYS_OK) return s;
+  if (R->pending && !lsys_symbols_keep((unsigned)op) && (s = flush(R)) != LSYS_OK) return s;
   R->modtri = R->t->mesh != NULL ? R->t->mesh->nt : 0;   /* what this module draws starts here */
   switch (op) {
     case OP_F: case OP_G: case OP_f: case OP_g: return move(R, op, p, np);
@@ -794,9 +757,10 @@ static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
   }
   t->nop = ab->n;
   memset(t->op, 0, ab->n);
-  for (k = 0; symbols[k].name; k++) {
-    uint32_t id = lsys_alphabet_find(ab, symbols[k].name, strlen(symbols[k].name));
-    if (id != 0 && id < ab->n) t->op[id] = symbols[k].op;
+  for (k = 0; k < LSYS_NSYMBOLS; k++) {      /* the named rows of the symbol table */
+    const char *name = lsys_symbols[k].name;
+    uint32_t id = name != NULL ? lsys_alphabet_find(ab, name, strlen(name)) : 0;
+    if (id != 0 && id < ab->n) t->op[id] = (uint8_t)k;
   }
   /* ~X: a view surface, or nothing (and a warning) when the view has none called X */
   for (id = 1; id < ab->n; id++)

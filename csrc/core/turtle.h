@@ -113,7 +113,7 @@ typedef struct lsys_turtle {
   size_t stop;                  /* LSYS_TURTLE_STATE: modules to interpret */
   lsys_meter *meter;            /* the memory budget of the branch stack (NULL: none); the
                                    scene's mesh and records have theirs (scene->meter,
-                                   mesh.meter: lsys_interpret sets all three to one) */
+                                   mesh.meter: lsys_interpret_run sets all three to one) */
   int threads;                  /* DRAW mode: threads for a long string (turtle_par.c; 0 or 1:
                                    the caller's alone) */
   size_t piecemin;              /* the smallest branch given a thread of its own (0: the

@@ -20,7 +20,7 @@ static int cylend (run *R, const double *c, double r, uint32_t rng, double v, in
   lsys_turtle *t = R->t;
   lsys_cylend *e;
   if (t->nends == t->endcap &&
-      lsys_grow((void **)&t->ends, &t->endcap, t->nends + 1, sizeof *t->ends) != LSYS_OK)
+      lsys_common_grow((void **)&t->ends, &t->endcap, t->nends + 1, sizeof *t->ends) != LSYS_OK)
     return lsys_turtle_nomem(R);
   e = &t->ends[t->nends++];
   vcopy(e->c, c);

@@ -20,7 +20,8 @@ static const lsys_csample *csample (run *R, int id) {
   size_t need = 3 * ((size_t)p + 1);
   if ((size_t)id >= t->ncs) {
     size_t old = t->ncs, cap = t->ncs;
-    if (lsys_grow((void **)&t->cs, &cap, (size_t)id + 1, sizeof *t->cs) != LSYS_OK) return NULL;
+    if (lsys_common_grow((void **)&t->cs, &cap, (size_t)id + 1, sizeof *t->cs) != LSYS_OK)
+      return NULL;
     memset(t->cs + old, 0, (cap - old) * sizeof *t->cs);
     t->ncs = cap;
   }
@@ -56,7 +57,8 @@ static const lsys_csample *csample (run *R, int id) {
     if (lsys_turtle_polywork(t) == NULL) return NULL;
     nt = lsys_polygon_triangulate(t->pw, c->v, (size_t)p, nrm, &tri);
     if (nt < 0) return NULL;
-    if (lsys_grow((void **)&c->cap, &c->capcap, 3 * (size_t)(nt + 1), sizeof(uint32_t)) != LSYS_OK)
+    if (lsys_common_grow((void **)&c->cap, &c->capcap, 3 * (size_t)(nt + 1),
+                         sizeof(uint32_t)) != LSYS_OK)
       return NULL;
     for (k = 0; k < nt; k++) {
       const uint32_t *q = tri + 3 * k;
@@ -88,7 +90,7 @@ static int gcpoint (run *R, uint32_t *idx) {
   if (t->ngcp >= UINT32_MAX - 1)
     return lsys_turtle_fail(R, LSYS_ELIMIT, "too many control points");
   if (t->ngcp == t->gcpcap &&
-      lsys_grow((void **)&t->gcp, &t->gcpcap, t->ngcp + 1, sizeof *t->gcp) != LSYS_OK)
+      lsys_common_grow((void **)&t->gcp, &t->gcpcap, t->ngcp + 1, sizeof *t->gcp) != LSYS_OK)
     return lsys_turtle_nomem(R);
   g = &t->gcp[t->ngcp];
   vcopy(g->pos, st->pos); vcopy(g->H, st->H); vcopy(g->U, st->U); vcopy(g->V, st->U);

@@ -18,6 +18,7 @@
 
 #include <math.h>
 
+#include "symbols.h"
 #include "turtle.h"
 #include "vec3.h"
 
@@ -25,24 +26,10 @@
 #define RAD(a) ((a) * (PI / 180.0))
 #define NSTACK 64             /* turtle states kept on the C stack */
 
-/* what a symbol does */
-enum {
-  OP_NONE = 0,
-  OP_F, OP_f, OP_G, OP_g,
-  OP_LEFT, OP_RIGHT, OP_DOWN, OP_UP, OP_ROLLL, OP_ROLLR, OP_TURN,
-  OP_VERT, OP_SETFRAME, OP_MOVETO,
-  OP_PUSH, OP_POP,
-  OP_WIDER, OP_THINNER, OP_COLINC, OP_COLDEC, OP_TEXTURE, OP_CONTOUR,
-  OP_DISCZ, OP_DISC, OP_SPHERE,
-  OP_PSTART, OP_PEND, OP_PVERT,
-  OP_QP, OP_QH, OP_QU, OP_QL,
-  OP_SCALE, OP_SCALEMUL, OP_SCALEDIV,
-  OP_LABEL, OP_SYSTEM, OP_STIFF,
-  OP_TSET, OP_TINC, OP_TDEC, OP_TPREVENT, OP_TFORCE, OP_OLDELAST, OP_SIDES,
-  OP_SUB, OP_SUBEND,
-  OP_GSTART, OP_GPOINT, OP_GEND, OP_GTAN, OP_GRAD,
-  OP_PSTARTP, OP_PCTRL, OP_PDRAW, OP_SURFACE, OP_NOSURFACE, OP_JOINT
-};
+/* what a symbol does: OP_<op> for each row of the symbol table (symbols.h) */
+#define OP_ENUM(op, name, split, keep, query) OP_##op,
+enum { LSYS_SYMBOLS(OP_ENUM) OP_COUNT };
+#undef OP_ENUM
 
 /* A polygon being collected (§4.2): its vertices, 3 doubles each. */
 struct lsys_polygon {

@@ -21,7 +21,8 @@
 **     one run.
 ** Modules whose effect crosses branches through something other than the
 ** state (polygons, generalized cylinders, patches, surfaces, sub-L-systems,
-** @S) and homomorphisms keep the string on one thread.
+** @S: the symbol table's LSYS_SPLIT_CROSS, the default, symbols.h) and
+** homomorphisms keep the string on one thread.
 */
 #include <pthread.h>
 #include <sched.h>
@@ -89,28 +90,25 @@ typedef struct par {
 /* ---------------------------------------------------------------------- */
 /* the cut */
 
-/* What each symbol is to the cut: bracket, crossing, records and lines. */
+/* What each symbol is to the cut: bracket, crossing, records and lines, from the
+** symbol table's split class of its operation (symbols.h); a class this does not
+** know, like an operation out of the table, crosses branches. */
 static void classify (const lsys_turtle *t, uint8_t *cls, uint8_t *nrec, uint8_t *nline,
                       uint8_t *nshape) {
   size_t k;
   int rec = !t->o->norecords, line = t->o->style == LSYS_STYLE_LINE;
   for (k = 0; k < t->nop; k++) {
-    int op = t->op[k];
     cls[k] = nrec[k] = nline[k] = nshape[k] = 0;
-    switch (op) {
-      case OP_PUSH: cls[k] = K_OPEN; break;
-      case OP_POP: cls[k] = K_CLOSE; break;
-      case OP_F: case OP_G:
+    switch (lsys_symbols_split(t->op[k])) {
+      case LSYS_SPLIT_STATE: break;
+      case LSYS_SPLIT_OPEN: cls[k] = K_OPEN; break;
+      case LSYS_SPLIT_CLOSE: cls[k] = K_CLOSE; break;
+      case LSYS_SPLIT_SEGMENT:
         nrec[k] = (uint8_t)rec; nline[k] = (uint8_t)line; nshape[k] = (uint8_t)!line;
         break;
-      case OP_DISCZ: case OP_DISC: case OP_SPHERE: nrec[k] = (uint8_t)rec; nshape[k] = 1; break;
-      case OP_LABEL: nrec[k] = (uint8_t)rec; break;
-      case OP_PSTART: case OP_PEND: case OP_PVERT: case OP_SUB: case OP_SUBEND:
-      case OP_GSTART: case OP_GPOINT: case OP_GEND: case OP_GTAN: case OP_GRAD:
-      case OP_PSTARTP: case OP_PCTRL: case OP_PDRAW: case OP_SURFACE: case OP_NOSURFACE:
-      case OP_SYSTEM:
-        cls[k] = K_CROSS; break;
-      default: break;
+      case LSYS_SPLIT_SHAPE: nrec[k] = (uint8_t)rec; nshape[k] = 1; break;
+      case LSYS_SPLIT_RECORD: nrec[k] = (uint8_t)rec; break;
+      default: cls[k] = K_CROSS; break;       /* LSYS_SPLIT_CROSS and anything else */
     }
   }
 }
@@ -141,8 +139,8 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
     if ((k = cls[sym]) != 0) {
       if (k == K_CROSS) { st = 1; break; }
       if (k == K_OPEN) {
-        if (depth == opencap && (depth >= MAXOPEN || lsys_grow((void **)&open, &opencap,
-                                                               depth + 1, sizeof *open))) {
+        if (depth == opencap && (depth >= MAXOPEN || lsys_common_grow((void **)&open, &opencap,
+                                                                      depth + 1, sizeof *open))) {
           st = depth >= MAXOPEN ? 1 : LSYS_ENOMEM;
           break;
         }
@@ -253,7 +251,7 @@ static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
     else { p->src = p->dep; p->srcend = st->tip; }
     p->foreign = 1;
   }
-  if (lsys_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
+  if (lsys_common_grow((void **)&wt->ends, &wt->endcap, 1, sizeof *wt->ends) != LSYS_OK)
     return lsys_seterror(&wt->err, LSYS_ENOMEM, p->a, "not enough memory");
   wt->ends[0] = P->p[p->src].ends[p->srcend];
   wt->ends[0].ring = FOREIGN;
@@ -440,10 +438,10 @@ static int places (par *P) {
   if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(P, 0), ntri + slack(P, 1))
                                != LSYS_OK)
     goto nomem;
-  if (ns > 0 && lsys_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
-                                  S->meter) != LSYS_OK)
+  if (ns > 0 && lsys_common_grow_metered((void **)&S->stiff, &S->stiffcap, 3 * ns, sizeof(float),
+                                         S->meter) != LSYS_OK)
     goto nomem;
-  if (lsys_grow((void **)&t->ends, &t->endcap, ne, sizeof *t->ends) != LSYS_OK) goto nomem;
+  if (lsys_common_grow((void **)&t->ends, &t->endcap, ne, sizeof *t->ends) != LSYS_OK) goto nomem;
   t->nends = 0;
   for (k = 0; k < P->np; k++) {
     piece *p = &P->p[k];

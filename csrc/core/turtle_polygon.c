@@ -29,7 +29,7 @@ int lsys_turtle_polyvertex (run *R) {
   if (p->n >= LSYS_POLYGON_MAXV)
     return lsys_turtle_fail(R, LSYS_ELIMIT, "a polygon of more than %u vertices (lsys's limit)",
                             (unsigned)LSYS_POLYGON_MAXV);
-  if (lsys_grow_metered((void **)&p->v, &p->cap, 3 * (p->n + 1), sizeof(double), t->meter) !=
+  if (lsys_common_grow_metered((void **)&p->v, &p->cap, 3 * (p->n + 1), sizeof(double), t->meter) !=
       LSYS_OK)
     return lsys_turtle_nomem(R);
   if (p->n == 0) { vcopy(p->H, R->st.H); vcopy(p->L, R->st.L); }
@@ -43,7 +43,8 @@ int lsys_turtle_polystart (run *R) {
   if (!R->draw) { t->npolys++; return LSYS_OK; }
   if (t->npolys == t->polycap) {
     size_t old = t->polycap;
-    if (lsys_grow((void **)&t->polys, &t->polycap, t->npolys + 1, sizeof *t->polys) != LSYS_OK)
+    if (lsys_common_grow((void **)&t->polys, &t->polycap, t->npolys + 1,
+                         sizeof *t->polys) != LSYS_OK)
       return lsys_turtle_nomem(R);
     memset(t->polys + old, 0, (t->polycap - old) * sizeof *t->polys);
   }

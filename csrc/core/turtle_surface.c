@@ -182,7 +182,7 @@ int lsys_turtle_patch (run *R, int op, const double *p, uint32_t np) {
     return s;
   if ((size_t)i >= t->npatch) {
     size_t old = t->npatch, cap = t->npatch;
-    if (lsys_grow((void **)&t->patch, &cap, (size_t)i + 1, sizeof *t->patch) != LSYS_OK)
+    if (lsys_common_grow((void **)&t->patch, &cap, (size_t)i + 1, sizeof *t->patch) != LSYS_OK)
       return lsys_turtle_nomem(R);
     memset(t->patch + old, 0, (cap - old) * sizeof *t->patch);
     t->npatch = cap;
@@ -213,7 +213,7 @@ int lsys_turtle_patch (run *R, int op, const double *p, uint32_t np) {
       if (!pt->started) break;
       if (!R->draw) return LSYS_OK;
       place(R, &pl, 1, R->st.texture);
-      if ((s = lsys_patch_mesh(t->mesh, pt->basis, &pt->p, &pl, a, b)) != LSYS_OK)
+      if ((s = lsys_surface_patch_mesh(t->mesh, pt->basis, &pt->p, &pl, a, b)) != LSYS_OK)
         return s == LSYS_ENOMEM ? lsys_turtle_nomem(R)
                                 : lsys_turtle_fail(R, s, "the scene is too big");
       return newrec(R, LSYS_REC_SURFACE, R->st.pos, R->st.pos, 0, 0);

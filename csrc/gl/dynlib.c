@@ -39,7 +39,7 @@ void *lsys_dynlib_open (const char *const *names, char *err, size_t nerr) {
   return NULL;
 }
 
-/* Each pointer is stored through memcpy, as in lsys_gl_load (render.c):
+/* Each pointer is stored through memcpy, as in lsys_render_gl_load (render.c):
 ** dlsym returns an object pointer, and all function pointers share its
 ** representation on the platforms that have dlsym. */
 const char *lsys_dynlib_syms (void *lib, const lsys_dynsym *syms, size_t n) {

@@ -140,9 +140,9 @@ static const lsys_vframe *curframe (const lsys_viewer *v) {
 static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
                        lsys_render_opts *o) {
   *sc = f->sc;
-  lsys_vcam_apply(&v->cam, &sc->cam);
+  lsys_viewcam_apply(&v->cam, &sc->cam);
   sc->cam.has_box = 0;            /* near and far: from what is drawn */
-  lsys_vframe_bounds((lsys_vframe *)f, sc->cam.bounds);   /* the viewer thread's frame */
+  lsys_vsnap_frame_bounds((lsys_vframe *)f, sc->cam.bounds);   /* the viewer thread's frame */
   sc->cam.has_bounds = 1;
   lsys_render_defaults(o);
   o->width = v->sr[2];
@@ -159,7 +159,7 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
 ** and sets v->cam from the result.
 */
 static void fit (lsys_viewer *v, const lsys_vframe *f, int home) {
-  if (lsys_vcam_fit(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
+  if (lsys_viewcam_fit(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], !home) != LSYS_OK)
     return;
   if (home) v->home = v->cam;
   v->dirty = 1;
@@ -379,18 +379,18 @@ static void draw (lsys_viewer *v) {
 
 /* The mouse moves the camera (viewcam.h); the arrival camera's up stays up. */
 static void orbit (lsys_viewer *v, double dx, double dy) {
-  lsys_vcam_orbit(&v->cam, v->home.valid ? v->home.u : v->cam.u, dx, dy);
+  lsys_viewcam_orbit(&v->cam, v->home.valid ? v->home.u : v->cam.u, dx, dy);
   v->dirty = 1;
 }
 
 static void pan (lsys_viewer *v, double dx, double dy) {
   const lsys_vframe *f = curframe(v);
-  lsys_vcam_pan(&v->cam, f != NULL ? &f->sc.cam : NULL, v->sr[3], dx, dy);
+  lsys_viewcam_pan(&v->cam, f != NULL ? &f->sc.cam : NULL, v->sr[3], dx, dy);
   v->dirty = 1;
 }
 
 static void zoom (lsys_viewer *v, double steps) {
-  lsys_vcam_zoom(&v->cam, steps);
+  lsys_viewcam_zoom(&v->cam, steps);
   v->dirty = 1;
 }
 
@@ -400,10 +400,10 @@ static void pick (lsys_viewer *v, double x, double y) {
   double proj[16], view[16];
   if (f == NULL) return;
   event(v, LSYS_VEV_MISS, &ev);
-  if (lsys_vcam_matrices(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], proj, view) ==
+  if (lsys_viewcam_matrices(&v->cam, &f->sc, &f->sc.cam, v->sr[2], v->sr[3], proj, view) ==
       LSYS_OK &&
-      lsys_vpick_event(f, proj, view, v->sr[2], v->sr[3], x - v->sr[0], y - v->sr[1], PICK_TOL,
-                       &ev))
+      lsys_viewcam_pick_event(f, proj, view, v->sr[2], v->sr[3], x - v->sr[0], y - v->sr[1],
+                              PICK_TOL, &ev))
     ev.type = LSYS_VEV_PICK;
   ev.x = x;
   ev.y = y;
@@ -655,7 +655,7 @@ static int mkwindow (lsys_viewer *v, int samples, char *err, size_t nerr) {
     return 0;
   }
   G.MakeContextCurrent(v->win);
-  if (lsys_gl_load(&v->gl, lsys_glfw_getproc, &e) != LSYS_OK) {
+  if (lsys_render_gl_load(&v->gl, lsys_glfwdl_getproc, &e) != LSYS_OK) {
     snprintf(err, nerr, "%s", e.msg);
     G.MakeContextCurrent(NULL);
     G.DestroyWindow(v->win);
@@ -667,7 +667,7 @@ static int mkwindow (lsys_viewer *v, int samples, char *err, size_t nerr) {
 
 static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   lsys_glfwerr[0] = '\0';
-  G.SetErrorCallback(lsys_glfw_onerror);
+  G.SetErrorCallback(lsys_glfwdl_onerror);
   if (!G.Init()) {
     snprintf(err, nerr, "cannot start GLFW: %s",
              lsys_glfwerr[0] ? lsys_glfwerr : "unknown error");
@@ -694,7 +694,7 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   }
   G.SwapInterval(1);
   {
-    lsys_glproc rp = lsys_glfw_getproc("glReadPixels"), rb = lsys_glfw_getproc("glReadBuffer");
+    lsys_glproc rp = lsys_glfwdl_getproc("glReadPixels"), rb = lsys_glfwdl_getproc("glReadBuffer");
     if (rp == NULL || rb == NULL) {
       snprintf(err, nerr, "the OpenGL context has no glReadPixels");
       G.DestroyWindow(v->win);
@@ -808,7 +808,7 @@ lsys_viewer *lsys_viewer_open (const lsys_viewer_opts *o, lsys_error *e) {
     lsys_seterror(e, LSYS_EARG, (size_t)-1, "a viewer window is already open");
     return NULL;
   }
-  if (lsys_glfw_load(e) != LSYS_OK) {
+  if (lsys_glfwdl_load(e) != LSYS_OK) {
     pthread_mutex_unlock(&glfwlock);
     return NULL;
   }

@@ -21,12 +21,12 @@ static const char *const glfwlibs[] = { LSYS_GLFW_SONAME, "libglfw.so.3", "libgl
 lsys_glfwapi lsys_glfw;
 char lsys_glfwerr[192];
 
-void lsys_glfw_onerror (int code, const char *msg) {
+void lsys_glfwdl_onerror (int code, const char *msg) {
   snprintf(lsys_glfwerr, sizeof lsys_glfwerr, "%s (GLFW error 0x%x)", msg ? msg : "?",
            (unsigned)code);
 }
 
-int lsys_glfw_load (lsys_error *e) {
+int lsys_glfwdl_load (lsys_error *e) {
 #define SYM(f) {&G.f, sizeof G.f, "glfw" #f}
   const lsys_dynsym syms[] = {
     SYM(Init), SYM(Terminate), SYM(SetErrorCallback), SYM(DefaultWindowHints),
@@ -57,7 +57,7 @@ int lsys_glfw_load (lsys_error *e) {
   return LSYS_OK;
 }
 
-lsys_glproc lsys_glfw_getproc (const char *name) {
+lsys_glproc lsys_glfwdl_getproc (const char *name) {
   GLFWglproc f = G.GetProcAddress(name);
   lsys_glproc g;
   memcpy(&g, &f, sizeof g);

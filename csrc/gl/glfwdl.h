@@ -45,17 +45,17 @@ typedef struct lsys_glfwapi {
   double (*GetTime) (void);
 } lsys_glfwapi;
 
-/* The table (valid after lsys_glfw_load) and the last GLFW error reported
-** (written on the viewer thread by the error callback lsys_glfw_onerror). */
+/* The table (valid after lsys_glfwdl_load) and the last GLFW error reported
+** (written on the viewer thread by the error callback lsys_glfwdl_onerror). */
 extern lsys_glfwapi lsys_glfw;
 extern char lsys_glfwerr[192];
-void lsys_glfw_onerror (int code, const char *msg);
+void lsys_glfwdl_onerror (int code, const char *msg);
 
 /* Opens libglfw and fills the table, once; LSYS_OK or LSYS_EARG with e->msg
 ** saying what is missing. Callers serialise it (the viewer's lock). */
-int lsys_glfw_load (lsys_error *e);
+int lsys_glfwdl_load (lsys_error *e);
 
-/* glfwGetProcAddress, in the form lsys_gl_load wants. */
-lsys_glproc lsys_glfw_getproc (const char *name);
+/* glfwGetProcAddress, in the form lsys_render_gl_load wants. */
+lsys_glproc lsys_glfwdl_getproc (const char *name);
 
 #endif

@@ -55,7 +55,7 @@ static struct {
   lsys_render_cache cache;
 } S;
 
-/* OSMesaGetProcAddress, in the form lsys_gl_load wants. */
+/* OSMesaGetProcAddress, in the form lsys_render_gl_load wants. */
 static lsys_glproc getproc (const char *name) {
   OSMESAproc f = S.getproc(name);
   lsys_glproc g;
@@ -101,7 +101,7 @@ static int setup (lsys_error *e) {
   /* entry points and limits can only be asked with a current context */
   if (!S.makecurrent(S.ctx, &pixel, GL_UNSIGNED_BYTE, 1, 1)) {
     st = lsys_seterror(e, LSYS_EARG, (size_t)-1, "OSMesa cannot make its context current");
-  } else if ((st = lsys_gl_load(&S.gl, getproc, e)) == LSYS_OK) {
+  } else if ((st = lsys_render_gl_load(&S.gl, getproc, e)) == LSYS_OK) {
     S.getintegerv(OSMESA_MAX_WIDTH, &mw);
     S.getintegerv(OSMESA_MAX_HEIGHT, &mh);
     S.gl.GetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
@@ -183,7 +183,7 @@ static int render (const lsys_scene *sc, const lsys_render_opts *o, uint8_t *rgb
   ** limits, LSYS_RENDER_MAX_SAMPLES and the memory budget */
   while (ss > 1 && ((long long)w * ss > S.maxw || (long long)h * ss > S.maxh ||
                     (long long)w * h * ss * ss > LSYS_RENDER_MAX_SAMPLES ||
-                    (double)w * h * ss * ss * 8 > (double)lsys_memory_limit()))
+                    (double)w * h * ss * ss * 8 > (double)lsys_common_memory_limit()))
     ss--;
   /* without supersampling, draw straight into the caller's buffer */
   buf = ss == 1 ? rgba : (uint8_t *)LSYS_MALLOC((size_t)w * ss * h * ss * 4);

@@ -10,9 +10,9 @@
 int lsys_overlay_quad (lsys_overlay *t, float x, float y, float w, float h, const uint8_t c[4]) {
   size_t n = t->n, i;
   float *p;
-  if (lsys_grow((void **)&t->v, &t->vcap, 8 * (n + 1), sizeof *t->v) ||
-      lsys_grow((void **)&t->c, &t->ccap, 16 * (n + 1), 1) ||
-      lsys_grow((void **)&t->i, &t->icap, 6 * (n + 1), sizeof *t->i))
+  if (lsys_common_grow((void **)&t->v, &t->vcap, 8 * (n + 1), sizeof *t->v) ||
+      lsys_common_grow((void **)&t->c, &t->ccap, 16 * (n + 1), 1) ||
+      lsys_common_grow((void **)&t->i, &t->icap, 6 * (n + 1), sizeof *t->i))
     return LSYS_ENOMEM;
   p = t->v + 8 * n;
   p[0] = x;     p[1] = y;

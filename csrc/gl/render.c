@@ -91,7 +91,7 @@ static const struct { const char *name; size_t off; } glfns[] = {
 
 /* Each pointer is stored through memcpy: all function pointers share one
 ** representation on the platforms GL loaders run on (dlsym relies on it). */
-int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e) {
+int lsys_render_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e) {
   size_t i;
   memset(gl, 0, sizeof *gl);
   for (i = 0; i < sizeof glfns / sizeof glfns[0]; i++) {
@@ -343,7 +343,7 @@ static int upload (frame *F, size_t k, int pot, int maxsize) {
   if (W != t->w || H != t->h || nc != 4) {
     int x, y;
     uint8_t *d;
-    if (lsys_grow((void **)&c->texbuf, &c->texbufcap, (size_t)W * H * nc, 1) != LSYS_OK)
+    if (lsys_common_grow((void **)&c->texbuf, &c->texbufcap, (size_t)W * H * nc, 1) != LSYS_OK)
       return LSYS_ENOMEM;
     d = c->texbuf;
     for (y = 0; y < H; y++) {
@@ -729,10 +729,10 @@ static int reserve (frame *F) {
   size_t nwv = 0, nwi = 0, k;
   if (F->ntex > 0) {                      /* textured: groups, texture buckets */
     nstart += 2 * F->npal + 1 + F->ntex + 2;
-    if (lsys_grow((void **)&c->tidx, &c->tidxcap, 3 * m->nt, sizeof *c->tidx) ||
-        lsys_grow((void **)&c->texok, &c->texokcap, F->ntex + 1, 1) ||
-        lsys_grow((void **)&c->texname, &c->texnamecap, F->ntex + 1, sizeof *c->texname) ||
-        lsys_grow((void **)&c->texkey, &c->texkeycap, F->ntex + 1, sizeof *c->texkey))
+    if (lsys_common_grow((void **)&c->tidx, &c->tidxcap, 3 * m->nt, sizeof *c->tidx) ||
+        lsys_common_grow((void **)&c->texok, &c->texokcap, F->ntex + 1, 1) ||
+        lsys_common_grow((void **)&c->texname, &c->texnamecap, F->ntex + 1, sizeof *c->texname) ||
+        lsys_common_grow((void **)&c->texkey, &c->texkeycap, F->ntex + 1, sizeof *c->texkey))
       return LSYS_ENOMEM;
     c->texok[0] = 0;
     for (k = 1; k <= F->ntex; k++) {
@@ -747,13 +747,13 @@ static int reserve (frame *F) {
   }
   if (m->nl > 0) widecount(F, &nwv, &nwi);
   if (nwv > UINT32_MAX) return LSYS_ENOMEM;   /* indices are 32-bit */
-  if (lsys_grow((void **)&c->idx, &c->idxcap, 3 * m->nt, sizeof *c->idx) ||
-      lsys_grow((void **)&c->rgba, &c->rgbacap, 4 * (m->nv + 2 * m->nl), 1) ||
-      lsys_grow((void **)&c->lidx, &c->lidxcap, 2 * m->nl, sizeof *c->lidx) ||
-      lsys_grow((void **)&c->start, &c->startcap, nstart, sizeof *c->start) ||
-      lsys_grow((void **)&c->wpos, &c->wposcap, 4 * nwv, sizeof *c->wpos) ||
-      lsys_grow((void **)&c->wrgba, &c->wrgbacap, 4 * nwv, 1) ||
-      lsys_grow((void **)&c->widx, &c->widxcap, nwi, sizeof *c->widx))
+  if (lsys_common_grow((void **)&c->idx, &c->idxcap, 3 * m->nt, sizeof *c->idx) ||
+      lsys_common_grow((void **)&c->rgba, &c->rgbacap, 4 * (m->nv + 2 * m->nl), 1) ||
+      lsys_common_grow((void **)&c->lidx, &c->lidxcap, 2 * m->nl, sizeof *c->lidx) ||
+      lsys_common_grow((void **)&c->start, &c->startcap, nstart, sizeof *c->start) ||
+      lsys_common_grow((void **)&c->wpos, &c->wposcap, 4 * nwv, sizeof *c->wpos) ||
+      lsys_common_grow((void **)&c->wrgba, &c->wrgbacap, 4 * nwv, 1) ||
+      lsys_common_grow((void **)&c->widx, &c->widxcap, nwi, sizeof *c->widx))
     return LSYS_ENOMEM;
   F->gstart = c->start + 2 * F->npal + 1 + (size_t)F->maxw + 2;
   F->tstart = F->gstart + 2 * F->npal + 1;

@@ -81,7 +81,7 @@ typedef void (*lsys_glproc) (void);
 
 /* Fills 'gl' with get("glClear") and so on. Returns LSYS_OK, or LSYS_EARG
 ** with e->msg naming the first entry point that 'get' did not find. */
-int lsys_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e);
+int lsys_render_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e);
 
 /* The camera (lsys_camera, LSYS_PERSPECTIVE, LSYS_PARALLEL) is the scene's:
 ** scene.h. */

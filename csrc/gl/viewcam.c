@@ -318,8 +318,8 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 /* ---------------------------------------------------------------------- */
 /* the viewer's camera */
 
-int lsys_vcam_fit (lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam, int w, int h,
-                   int keep) {
+int lsys_viewcam_fit (lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam, int w, int h,
+                      int keep) {
   lsys_camera rc = *cam;
   double proj[16], view[16], eye[3], lo[3], hi[3], d[3];
   int i;
@@ -358,7 +358,7 @@ int lsys_vcam_fit (lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam, in
   return LSYS_OK;
 }
 
-void lsys_vcam_apply (const lsys_vcam *c, lsys_camera *cam) {
+void lsys_viewcam_apply (const lsys_vcam *c, lsys_camera *cam) {
   if (!c->valid) return;
   cam->has_eye = cam->has_target = cam->has_up = 1;
   cam->twist = 0;               /* in u already */
@@ -372,14 +372,14 @@ void lsys_vcam_apply (const lsys_vcam *c, lsys_camera *cam) {
     vlin(cam->eye, c->target, 1, c->f, -c->dist);
 }
 
-int lsys_vcam_matrices (const lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam,
-                        int w, int h, double proj[16], double view[16]) {
+int lsys_viewcam_matrices (const lsys_vcam *c, const lsys_scene *s, const lsys_camera *cam,
+                           int w, int h, double proj[16], double view[16]) {
   lsys_camera rc = *cam;
-  lsys_vcam_apply(c, &rc);
+  lsys_viewcam_apply(c, &rc);
   return lsys_render_camera_scene(s, &rc, w, h, proj, view);
 }
 
-void lsys_vcam_orbit (lsys_vcam *c, const double up[3], double dx, double dy) {
+void lsys_viewcam_orbit (lsys_vcam *c, const double up[3], double dx, double dy) {
   double r[3];
   vcross(r, c->f, c->u);
   vrotate(c->f, up, -dx * LSYS_VCAM_ORBIT);       /* turntable: about the view's up */
@@ -393,7 +393,7 @@ void lsys_vcam_orbit (lsys_vcam *c, const double up[3], double dx, double dy) {
   vcross(c->u, r, c->f);
 }
 
-double lsys_vcam_pixelsize (const lsys_vcam *c, const lsys_camera *cam, int h) {
+double lsys_viewcam_pixelsize (const lsys_vcam *c, const lsys_camera *cam, int h) {
   double hh = h > 0 ? h : 1;
   if (cam != NULL && cam->projection == LSYS_PARALLEL) return 2 * c->halfh / hh;
   {
@@ -403,15 +403,15 @@ double lsys_vcam_pixelsize (const lsys_vcam *c, const lsys_camera *cam, int h) {
   }
 }
 
-void lsys_vcam_pan (lsys_vcam *c, const lsys_camera *cam, int h, double dx, double dy) {
-  double r[3], s = lsys_vcam_pixelsize(c, cam, h);
+void lsys_viewcam_pan (lsys_vcam *c, const lsys_camera *cam, int h, double dx, double dy) {
+  double r[3], s = lsys_viewcam_pixelsize(c, cam, h);
   vcross(r, c->f, c->u);
   vnorm(r);
   vlin(c->target, c->target, 1, r, -dx * s);
   vlin(c->target, c->target, 1, c->u, dy * s);
 }
 
-void lsys_vcam_zoom (lsys_vcam *c, double steps) {
+void lsys_viewcam_zoom (lsys_vcam *c, double steps) {
   double k = pow(0.88, steps);
   c->dist *= k;
   c->halfh *= k;
@@ -462,8 +462,8 @@ static int unproject (const double inv[16], double x, double y, double z, double
   return 1;
 }
 
-int lsys_vcam_ray (const double proj[16], const double view[16], int w, int h, double x,
-                   double y, double origin[3], double dir[3]) {
+int lsys_viewcam_ray (const double proj[16], const double view[16], int w, int h, double x,
+                      double y, double origin[3], double dir[3]) {
   double pv[16], inv[16], back[3], nx, ny;
   int i, j;
   if (w <= 0 || h <= 0) return 0;
@@ -563,8 +563,8 @@ static void xpick (const lsys_vpick *p, const float m[16], lsys_vpick *q) {
   q->kind = p->kind;
 }
 
-long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol, long *plant) {
+long lsys_viewcam_pick_find (const lsys_vframe *f, const double proj[16], const double view[16],
+                             int w, int h, double x, double y, double tol, long *plant) {
   /* the camera's right axis, for the projected radius: row 0 of 'view' */
   double right[3] = {view[0], view[4], view[8]};
   const lsys_scene *s = &f->sc;
@@ -587,9 +587,9 @@ long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double 
   return b.k;
 }
 
-int lsys_vpick_event (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol, lsys_vevent *ev) {
-  long plant, k = lsys_vpick_find(f, proj, view, w, h, x, y, tol, &plant);
+int lsys_viewcam_pick_event (const lsys_vframe *f, const double proj[16], const double view[16],
+                             int w, int h, double x, double y, double tol, lsys_vevent *ev) {
+  long plant, k = lsys_viewcam_pick_find(f, proj, view, w, h, x, y, tol, &plant);
   if (k < 0) return 0;
   ev->module = f->picks[k].module;
   ev->kind = f->picks[k].kind;

@@ -92,7 +92,7 @@ void lsys_vsnap_free (lsys_vsnap *s);
 /* The bounds of what frame f's scene draws (lo, hi; lsys_scene_bounds) into
 ** b, found once for each state of the mesh: whoever changes it clears
 ** f->hasbounds. */
-void lsys_vframe_bounds (lsys_vframe *f, double b[6]);
+void lsys_vsnap_frame_bounds (lsys_vframe *f, double b[6]);
 
 /* The status line under frame 'cur' of 's' (which must exist) into line[n]:
 ** "step 3 (4/6)  1 234 modules  ...", or for a live snapshot "tick 12  300
@@ -272,12 +272,12 @@ void lsys_viewer_close (lsys_viewer *v);
 ** NULL) is set to the instance hit (0-based; -1 otherwise). Plain
 ** arithmetic (viewcam.c): tested without a window.
 */
-long lsys_vpick_find (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol, long *plant);
+long lsys_viewcam_pick_find (const lsys_vframe *f, const double proj[16], const double view[16],
+                             int w, int h, double x, double y, double tol, long *plant);
 
-/* lsys_vpick_find into event 'ev': its module, kind and plant when
+/* lsys_viewcam_pick_find into event 'ev': its module, kind and plant when
 ** something is hit (then returns 1; 0 leaves ev alone). */
-int lsys_vpick_event (const lsys_vframe *f, const double proj[16], const double view[16],
-                      int w, int h, double x, double y, double tol, lsys_vevent *ev);
+int lsys_viewcam_pick_event (const lsys_vframe *f, const double proj[16], const double view[16],
+                             int w, int h, double x, double y, double tol, lsys_vevent *ev);
 
 #endif

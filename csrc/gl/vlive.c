@@ -42,7 +42,7 @@ int lsys_vlive_patch (lsys_vlive *l, const lsys_scene *s, const size_t *r, size_
   }
   if ((rc = lsys_mesh_sync(&st->mesh, &s->mesh, r, n)) != LSYS_OK) return rc;
   for (k = 0; k < n; k++)             /* what the frame lacks: these, on top of the rest */
-    lsys_ranges_add(l->pend, &l->npend, LSYS_SCENE_NDIRTY, r[2 * k], r[2 * k + 1]);
+    lsys_scene_ranges_add(l->pend, &l->npend, LSYS_SCENE_NDIRTY, r[2 * k], r[2 * k + 1]);
   l->chg = 1;
   l->step = step;
   l->count = count;

@@ -178,7 +178,7 @@ static int upload (lsys_vpanes *p, int k, const lsys_gl *gl) {
   lsys_vimage *im = &p->img[k];
   int tw = pot(im->w), th = pot(im->h), y;
   size_t row = 4 * (size_t)tw;
-  if (lsys_grow((void **)&p->pad, &p->padcap, row * (size_t)th, 1) != LSYS_OK) return 0;
+  if (lsys_common_grow((void **)&p->pad, &p->padcap, row * (size_t)th, 1) != LSYS_OK) return 0;
   memset(p->pad, 0, row * (size_t)th);
   for (y = 0; y < im->h; y++)
     memcpy(p->pad + (size_t)y * row, im->rgba + (size_t)y * 4 * (size_t)im->w, 4 * (size_t)im->w);

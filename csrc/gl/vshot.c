@@ -27,7 +27,7 @@ int lsys_vshot_png (lsys_vshot *r, const int rect[4], const char *path, lsys_err
   if (w <= 0 || h <= 0)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "cannot write '%s': the window is empty",
                          path);
-  if (lsys_grow((void **)&r->pixels, &r->cap, row * (size_t)h + row, 1) != LSYS_OK)
+  if (lsys_common_grow((void **)&r->pixels, &r->cap, row * (size_t)h + row, 1) != LSYS_OK)
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1,
                          "not enough memory for a %dx%d picture", w, h);
   r->ReadBuffer(GL_BACK);
@@ -40,7 +40,7 @@ int lsys_vshot_png (lsys_vshot *r, const int rect[4], const char *path, lsys_err
     memcpy(a, b, row);
     memcpy(b, t, row);
   }
-  return lsys_png_write(path, r->pixels, w, h, 0, e);
+  return lsys_pngio_write(path, r->pixels, w, h, 0, e);
 }
 
 void lsys_vshot_screenshot (lsys_vshot *r, const char *path, int w, int h, lsys_vevent *ev) {

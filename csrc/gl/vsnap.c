@@ -103,7 +103,7 @@ void lsys_vsnap_status (const lsys_vsnap *s, long cur, double fps, int playing, 
            c, fps, playing ? "  playing" : "", wireframe ? "  wireframe" : "");
 }
 
-void lsys_vframe_bounds (lsys_vframe *f, double b[6]) {
+void lsys_vsnap_frame_bounds (lsys_vframe *f, double b[6]) {
   if (!f->hasbounds) {
     double lo[3], hi[3];
     int i;

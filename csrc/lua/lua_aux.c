@@ -11,8 +11,8 @@
 
 #define ALPHABET_KEY "lsys.alphabet"   /* the state's alphabet, in the registry */
 
-void lsys_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
-                      const luaL_Reg *methods) {
+void lsysL_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
+                       const luaL_Reg *methods) {
   luaL_newmetatable(L, tname);
   luaL_setfuncs(L, meta, 0);
   if (methods != NULL) {
@@ -30,7 +30,7 @@ static int alphabet_gc (lua_State *L) {
   return 0;
 }
 
-lsys_alphabet *lsys_getalphabet (lua_State *L) {
+lsys_alphabet *lsysL_getalphabet (lua_State *L) {
   lsys_alphabet *a;
   if (lua_getfield(L, LUA_REGISTRYINDEX, ALPHABET_KEY) == LUA_TUSERDATA) {
     a = (lsys_alphabet *)lua_touserdata(L, -1);
@@ -53,7 +53,7 @@ lsys_alphabet *lsys_getalphabet (lua_State *L) {
 
 /* The message is built as luaL_error builds its own (position, then text),
 ** so level 1 gives the same bytes as luaL_error(L, "%s", msg). */
-int lsys_raise (lua_State *L, int code, const lsys_error *e, int level) {
+int lsysL_raise (lua_State *L, int code, const lsys_error *e, int level) {
   if (level > 0) luaL_where(L, level);
   else lua_pushliteral(L, "");
   lua_pushstring(L, code == LSYS_ENOMEM ? "not enough memory" : e->msg);
@@ -61,7 +61,7 @@ int lsys_raise (lua_State *L, int code, const lsys_error *e, int level) {
   return lua_error(L);
 }
 
-lsys_ins *lsys_readcode (lua_State *L, int t, int *n) {
+lsys_ins *lsysL_readcode (lua_State *L, int t, int *n) {
   lua_Integer k, len;
   lsys_ins *code;
   t = lua_absindex(L, t);
@@ -84,7 +84,7 @@ lsys_ins *lsys_readcode (lua_State *L, int t, int *n) {
 
 /* v is copied before the list is made: it may point into an object that a
 ** finalizer run by the allocation closes. */
-void lsys_pushnums (lua_State *L, const double *v, int n) {
+void lsysL_pushnums (lua_State *L, const double *v, int n) {
   double d[LSYS_PUSHNUMS_MAX];
   int k;
   if (n > LSYS_PUSHNUMS_MAX) n = LSYS_PUSHNUMS_MAX;
@@ -96,12 +96,12 @@ void lsys_pushnums (lua_State *L, const double *v, int n) {
   }
 }
 
-int lsys_readnames (lua_State *L, const char *s, lsys_names *d) {
+int lsysL_readnames (lua_State *L, const char *s, lsys_names *d) {
   while (*s) {
     size_t n = 0;
     while (*s == ' ' || *s == '\t' || *s == '\n' || *s == ',') s++;
     while (s[n] && s[n] != ' ' && s[n] != '\t' && s[n] != '\n' && s[n] != ',') n++;
-    if (n > 0 && lsys_names_add(d, s, n) != LSYS_OK) return LSYS_ENOMEM;
+    if (n > 0 && lsys_alphabet_names_add(d, s, n) != LSYS_OK) return LSYS_ENOMEM;
     s += n;
   }
   (void)L;
@@ -124,7 +124,7 @@ static int hold_release (lua_State *L) {
   return 0;
 }
 
-void lsys_hold (lua_State *L, int idx, int *busy) {
+void lsysL_hold (lua_State *L, int idx, int *busy) {
   hold *h;
   idx = lua_absindex(L, idx);
   h = (hold *)lua_newuserdatauv(L, sizeof *h, 1);
@@ -143,7 +143,7 @@ void lsys_hold (lua_State *L, int idx, int *busy) {
   lua_toclose(L, -1);
 }
 
-void lsys_checkidle (lua_State *L, int busy, const char *msg) {
+void lsysL_checkidle (lua_State *L, int busy, const char *msg) {
   if (busy) luaL_error(L, "%s", msg);
 }
 
@@ -151,22 +151,22 @@ void lsys_checkidle (lua_State *L, int busy, const char *msg) {
 ** interface names the metamethod "__gc"; Lua code calling a __gc by hand is
 ** named as its call site says (a field, a method, a local; a metamethod
 ** other than a finalizer is named without its underscores). */
-int lsys_finalizing (lua_State *L) {
+int lsysL_finalizing (lua_State *L) {
   lua_Debug ar;
   if (!lua_getstack(L, 0, &ar) || !lua_getinfo(L, "n", &ar)) return 0;
   return ar.namewhat != NULL && strcmp(ar.namewhat, "metamethod") == 0 && ar.name != NULL &&
          strcmp(ar.name, "__gc") == 0;
 }
 
-int lsys_life_end (lua_State *L, lsys_life *life) {
+int lsysL_life_end (lua_State *L, lsys_life *life) {
   life->closed = 1;
-  return !life->kept || lsys_finalizing(L);
+  return !life->kept || lsysL_finalizing(L);
 }
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Lstring */
 
-lsys_lstring *lsys_newlstring (lua_State *L) {
+lsys_lstring *lsysL_newlstring (lua_State *L) {
   lsys_lstr *u = (lsys_lstr *)lua_newuserdatauv(L, sizeof *u, 1);
   lsys_lstring_init(&u->s);           /* valid empty state before anything can fail */
   u->closed = u->busy = 0;
@@ -174,7 +174,7 @@ lsys_lstring *lsys_newlstring (lua_State *L) {
   return &u->s;
 }
 
-lsys_lstring *lsys_checklstring_any (lua_State *L, int i) {
+lsys_lstring *lsysL_checklstring_any (lua_State *L, int i) {
   lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
   if (u->closed) luaL_error(L, "the Lstring was closed");
   return &u->s;
@@ -186,22 +186,22 @@ static lsys_lstring *wide (lua_State *L, lsys_lstring *s) {
   return s;
 }
 
-lsys_lstring *lsys_checklstring (lua_State *L, int i) {
-  return wide(L, lsys_checklstring_any(L, i));
+lsys_lstring *lsysL_checklstring (lua_State *L, int i) {
+  return wide(L, lsysL_checklstring_any(L, i));
 }
 
-lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what) {
+lsys_lstring *lsysL_checkwritable (lua_State *L, int i, const char *what) {
   lsys_lstr *u = (lsys_lstr *)luaL_checkudata(L, i, LSTRING_T);
   if (u->closed) luaL_error(L, "the Lstring was closed");
   if (u->busy) luaL_error(L, "%s: the Lstring is in use by a derivation or interpretation", what);
   return wide(L, &u->s);
 }
 
-void lsys_lstring_busy (lua_State *L, int i, int delta) {
+void lsysL_lstring_busy (lua_State *L, int i, int delta) {
   ((lsys_lstr *)luaL_checkudata(L, i, LSTRING_T))->busy += delta;
 }
 
-void lsys_setowner (lua_State *L, int idx, int owner) {
+void lsysL_setowner (lua_State *L, int idx, int owner) {
   idx = lua_absindex(L, idx);
   lua_pushvalue(L, owner);
   if (lua_type(L, -1) == LUA_TUSERDATA && lua_getmetatable(L, -1)) {
@@ -213,7 +213,7 @@ void lsys_setowner (lua_State *L, int idx, int owner) {
   lua_setiuservalue(L, idx, 1);
 }
 
-const lsys_names *lsys_ownernames (lua_State *L, int idx) {
+const lsys_names *lsysL_ownernames (lua_State *L, int idx) {
   lsys_lrules *R;
   const lsys_names *d = NULL;
   if (lua_getiuservalue(L, idx, 1) == LUA_TUSERDATA &&
@@ -226,14 +226,14 @@ const lsys_names *lsys_ownernames (lua_State *L, int idx) {
 /* ---------------------------------------------------------------------- */
 /* lsys.Rules: running a core operation on a model */
 
-lsys_lrules *lsys_checkrules (lua_State *L, int i) {
+lsys_lrules *lsysL_checkrules (lua_State *L, int i) {
   lsys_lrules *R = (lsys_lrules *)luaL_checkudata(L, i, RULES_T);
   if (!R->inited) luaL_error(L, "the model's rules were closed");
   return R;
 }
 
 /* The callback the core calls for rules that need Lua. */
-static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+static int rulefn (void *ud, lsys_rules *m, const lsys_rule *r, const double *args,
                    double *vals) {
   lsys_lrules *R = (lsys_lrules *)ud;
   lua_State *L = R->L;
@@ -241,7 +241,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
   lua_rawgeti(L, R->fnidx, (lua_Integer)(r - m->rules) + 1);
   luaL_checkstack(L, (int)(r->nargs + r->nvals) + 4, "too many parameters");
   if (R->sb != NULL) {                         /* max_instructions is per call */
-    lsys_sandbox_collect(L, R->sb);
+    lsysL_sandbox_collect(L, R->sb);
     R->sb->ran = 0;
     R->sb->strict = !(r->flags & LSYS_RF_DYN);
   }
@@ -295,7 +295,7 @@ typedef struct runargs {
 /* In protected mode: 1 = the rules, 2 = the runargs. */
 static int protectedrun (lua_State *L) {
   runargs *a = (runargs *)lua_touserdata(L, 2);
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   lua_getiuservalue(L, 1, LSYS_RULES_FNS);
   R->L = L;
   R->fnidx = lua_gettop(L);
@@ -308,17 +308,17 @@ static int protectedrun (lua_State *L) {
   return 0;
 }
 
-int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
-                    const int *lstr, int n) {
-  lsys_lrules *R = lsys_checkrules(L, ridx);
+int lsysL_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                     const int *lstr, int n) {
+  lsys_lrules *R = lsysL_checkrules(L, ridx);
   runargs a;
   lsys_sandbox sb;
   int k, err;
   ridx = lua_absindex(L, ridx);
   if (R->m.busy) return luaL_error(L, "a rule called %s on the model it belongs to", what);
-  for (k = 0; k < n; k++) lsys_checklstring_any(L, lstr[k]);   /* alive, before any mark */
-  lsys_sandbox_enter(L, &sb, R);                        /* its value stays below */
-  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], 1);
+  for (k = 0; k < n; k++) lsysL_checklstring_any(L, lstr[k]);   /* alive, before any mark */
+  lsysL_sandbox_enter(L, &sb, R);                        /* its value stays below */
+  for (k = 0; k < n; k++) lsysL_lstring_busy(L, lstr[k], 1);
   a.op = op; a.ud = ud; a.st = LSYS_OK;
   lua_getfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);   /* restored after */
   lua_pushcfunction(L, protectedrun);
@@ -327,8 +327,8 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
   R->sb = &sb;
   err = lua_pcall(L, 2, 0, 0);
   R->sb = NULL;
-  lsys_sandbox_leave(L, &sb, err);
-  for (k = 0; k < n; k++) lsys_lstring_busy(L, lstr[k], -1);
+  lsysL_sandbox_leave(L, &sb, err);
+  for (k = 0; k < n; k++) lsysL_lstring_busy(L, lstr[k], -1);
   R->m.busy = 0;             /* the core sets it while it runs; an error skips the reset */
   lua_pushvalue(L, err != LUA_OK ? -2 : -1);
   lua_setfield(L, LUA_REGISTRYINDEX, LSYS_PRODUCING);
@@ -344,7 +344,7 @@ int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, vo
 /* lsys.Scene; Contour, Surface, Texture */
 
 /* Pushes a new, empty Scene (no palette yet, nothing to look at) and returns it. */
-lsys_lscene *lsys_newscene (lua_State *L) {
+lsys_lscene *lsysL_newscene (lua_State *L) {
   lsys_lscene *S = (lsys_lscene *)lua_newuserdatauv(L, sizeof *S, LSYS_SCENE_NUV);
   memset(S, 0, sizeof *S);
   luaL_setmetatable(L, SCENE_T);
@@ -353,20 +353,20 @@ lsys_lscene *lsys_newscene (lua_State *L) {
   return S;
 }
 
-lsys_lscene *lsys_checkscene (lua_State *L, int i) {
+lsys_lscene *lsysL_checkscene (lua_State *L, int i) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, i, SCENE_T);
   if (!S->inited) luaL_error(L, "the scene was closed");
   return S;
 }
 
-lsys_lscene *lsys_holdscene (lua_State *L, int i) {
+lsys_lscene *lsysL_holdscene (lua_State *L, int i) {
   i = lua_absindex(L, i);
-  lsys_hold(L, i, &lsys_checkscene(L, i)->busy);
-  return lsys_checkscene(L, i);             /* again: the hold allocated */
+  lsysL_hold(L, i, &lsysL_checkscene(L, i)->busy);
+  return lsysL_checkscene(L, i);             /* again: the hold allocated */
 }
 
-void lsys_changescene (lua_State *L, const lsys_lscene *S) {
-  lsys_checkidle(L, S->busy, "cannot change a Scene while it is in use");
+void lsysL_changescene (lua_State *L, const lsys_lscene *S) {
+  lsysL_checkidle(L, S->busy, "cannot change a Scene while it is in use");
 }
 
 static const char *const kindname[] = {
@@ -374,7 +374,7 @@ static const char *const kindname[] = {
 };
 #define NKINDS ((int)(sizeof kindname / sizeof kindname[0]))
 
-const char *lsys_recordkind (int kind) {
+const char *lsysL_recordkind (int kind) {
   return kindname[kind >= 0 && kind < NKINDS ? kind : 0];
 }
 
@@ -391,35 +391,35 @@ static void *checkimm (lua_State *L, int i, const char *tname, size_t off, const
 #define CHECKIMM(T, tname, what, keep) \
   ((T *)checkimm(L, i, tname, offsetof(T, life), what, keep))
 
-const lsys_contour *lsys_checkcontour (lua_State *L, int i) {
+const lsys_contour *lsysL_checkcontour (lua_State *L, int i) {
   return &CHECKIMM(lsys_lcontour, CONTOUR_T, "contour", 0)->c;
 }
 
-const lsys_surface *lsys_checksurface (lua_State *L, int i) {
+const lsys_surface *lsysL_checksurface (lua_State *L, int i) {
   return &CHECKIMM(lsys_lsurface, SURFACE_T, "surface", 0)->s;
 }
 
-const lsys_texture *lsys_checktexture (lua_State *L, int i) {
+const lsys_texture *lsysL_checktexture (lua_State *L, int i) {
   return &CHECKIMM(lsys_ltexture, TEXTURE_T, "texture", 0)->t;
 }
 
-const lsys_func *lsys_checkfunc (lua_State *L, int i) {
+const lsys_func *lsysL_checkfunc (lua_State *L, int i) {
   return &CHECKIMM(lsys_lfunc, FUNC_T, "function", 0)->f;
 }
 
-const lsys_contour *lsys_keepcontour (lua_State *L, int i) {
+const lsys_contour *lsysL_keepcontour (lua_State *L, int i) {
   return &CHECKIMM(lsys_lcontour, CONTOUR_T, "contour", 1)->c;
 }
 
-const lsys_surface *lsys_keepsurface (lua_State *L, int i) {
+const lsys_surface *lsysL_keepsurface (lua_State *L, int i) {
   return &CHECKIMM(lsys_lsurface, SURFACE_T, "surface", 1)->s;
 }
 
-const lsys_texture *lsys_keeptexture (lua_State *L, int i) {
+const lsys_texture *lsysL_keeptexture (lua_State *L, int i) {
   return &CHECKIMM(lsys_ltexture, TEXTURE_T, "texture", 1)->t;
 }
 
-const lsys_func *lsys_keepfunc (lua_State *L, int i) {
+const lsys_func *lsysL_keepfunc (lua_State *L, int i) {
   return &CHECKIMM(lsys_lfunc, FUNC_T, "function", 1)->f;
 }
 
@@ -450,12 +450,12 @@ static int bad (lua_State *L, const lsys_opts *o, const char *k, const char *exp
   return luaL_error(L, "%s%s%s must be %s", o->pre, k, o->post, expect);
 }
 
-int lsys_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect) {
+int lsysL_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect) {
   return bad(L, o, k, expect, NULL);
 }
 
-int lsys_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
-                   const char *expect) {
+int lsysL_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
+                    const char *expect) {
   int ty;
   if (o->t == 0) return 0;
   ty = lua_getfield(L, o->t, k);
@@ -464,19 +464,19 @@ int lsys_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
   return 1;
 }
 
-int lsys_optbool (lua_State *L, const lsys_opts *o, const char *k, int def) {
+int lsysL_optbool (lua_State *L, const lsys_opts *o, const char *k, int def) {
   int b;
-  if (!lsys_optfield(L, o, k, LUA_TBOOLEAN, "a boolean")) return def;
+  if (!lsysL_optfield(L, o, k, LUA_TBOOLEAN, "a boolean")) return def;
   b = lua_toboolean(L, -1);
   lua_pop(L, 1);
   return b;
 }
 
 /* The bounds are checked before the conversion to int. */
-int lsys_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
+int lsysL_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
   lua_Integer x;
   int isint;
-  if (!lsys_optfield(L, o, k, o->numerals ? LUA_TNONE : LUA_TNUMBER, "an integer")) return def;
+  if (!lsysL_optfield(L, o, k, o->numerals ? LUA_TNONE : LUA_TNUMBER, "an integer")) return def;
   x = lua_tointegerx(L, -1, &isint);
   if (!isint || x < lo || x > hi) {
     char expect[64];
@@ -487,12 +487,12 @@ int lsys_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int l
   return (int)x;
 }
 
-double lsys_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
-                    double hi, const char *expect) {
+double lsysL_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
+                     double hi, const char *expect) {
   double x = 0;
   int ok;
   if (expect == NULL) expect = "a finite number";
-  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  if (!lsysL_optfield(L, o, k, LUA_TNONE, NULL)) return def;
   if (o->numerals) x = lua_tonumberx(L, -1, &ok);
   else if ((ok = lua_type(L, -1) == LUA_TNUMBER)) x = lua_tonumber(L, -1);
   if (!ok || !isfinite(x)) bad(L, o, k, expect, ok ? "a non-finite number" : luaL_typename(L, -1));
@@ -501,11 +501,11 @@ double lsys_optnum (lua_State *L, const lsys_opts *o, const char *k, double def,
   return x;
 }
 
-int lsys_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
-                    const char *const names[], const char *expect) {
+int lsysL_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
+                     const char *const names[], const char *expect) {
   const char *s;
   int i;
-  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  if (!lsysL_optfield(L, o, k, LUA_TNONE, NULL)) return def;
   if (lua_type(L, -1) != LUA_TSTRING) return bad(L, o, k, expect, luaL_typename(L, -1));
   s = lua_tostring(L, -1);
   for (i = 0; names[i] != NULL; i++)
@@ -516,7 +516,7 @@ int lsys_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
   return luaL_error(L, "%s%s%s must be %s, got '%s'", o->pre, k, o->post, expect, s);
 }
 
-int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]) {
+int lsysL_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]) {
   if (o->t == 0) return 0;
   lua_pushnil(L);
   while (lua_next(L, o->t)) {
@@ -533,7 +533,7 @@ int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]
 /* The list is copied with lua_geti (its metamethods run once per entry),
 ** then checked from the copy, after the array is made: nothing runs Lua code
 ** between the checks and the return. The array's user value is the copy. */
-const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex) {
+const lsys_texture *const *lsysL_opttextures (lua_State *L, int t, const char *who, int *ntex) {
   const lsys_texture **arr;
   lua_Integer n, k;
   *ntex = 0;
@@ -567,7 +567,7 @@ const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *wh
       luaL_error(L, "%s: opts.textures[%I] must be a texture (lsys.texture_load), got %s", who,
                  k, luaL_typename(L, -1));
     if (u->life.closed) luaL_error(L, "%s: opts.textures[%I] was closed", who, k);
-    arr[k - 1] = lsys_keeptexture(L, -1);
+    arr[k - 1] = lsysL_keeptexture(L, -1);
     lua_pop(L, 1);
   }
   lua_insert(L, -2);
@@ -584,7 +584,7 @@ const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *wh
 ** messages never show the value. */
 static int optvec3 (lua_State *L, const lsys_opts *o, const char *k, int colour, double v[3]) {
   int i, ok;
-  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return 0;
+  if (!lsysL_optfield(L, o, k, LUA_TNONE, NULL)) return 0;
   ok = lua_type(L, -1) == LUA_TTABLE && luaL_len(L, -1) == 3;
   for (i = 0; ok && i < 3; i++) {
     ok = lua_rawgeti(L, -1, i + 1) == LUA_TNUMBER && isfinite(v[i] = lua_tonumber(L, -1)) &&
@@ -602,7 +602,7 @@ static int iszero (const double v[3]) {
   return v[0] == 0 && v[1] == 0 && v[2] == 0;
 }
 
-void lsys_readbox (lua_State *L, int t, const char *what, double box[6]) {
+void lsysL_readbox (lua_State *L, int t, const char *what, double box[6]) {
   int i;
   for (i = 0; i < 6; i++) {
     lua_rawgeti(L, t, i + 1);
@@ -617,7 +617,7 @@ void lsys_readbox (lua_State *L, int t, const char *what, double box[6]) {
 
 /* The look fields of the options at o->t (scene.h): each one given
 ** replaces the scene's; the messages begin with o->pre. */
-void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
+void lsysL_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
   static const char *const projections[] = {"perspective", "parallel", NULL};
   lsys_camera *cam = &sc->cam;
   double v[3];
@@ -643,15 +643,15 @@ void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
       cam->eye[1] == cam->target[1] && cam->eye[2] == cam->target[2])
     luaL_error(L, "%sviewpoint%s and %starget%s must differ", o->pre, o->post, o->pre,
                o->post);
-  p = lsys_optchoice(L, o, "projection", -1, projections, "'perspective' or 'parallel'");
+  p = lsysL_optchoice(L, o, "projection", -1, projections, "'perspective' or 'parallel'");
   if (p >= 0) cam->projection = p == 0 ? LSYS_PERSPECTIVE : LSYS_PARALLEL;
-  cam->fov = lsys_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
-  cam->twist = lsys_optnum(L, o, "twist", cam->twist, -HUGE_VAL, HUGE_VAL, "a number of degrees");
-  cam->zoom = lsys_optnum(L, o, "zoom", cam->zoom, 0, HUGE_VAL, "a positive number");
-  if (lsys_optfield(L, o, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
+  cam->fov = lsysL_optnum(L, o, "fov", cam->fov, 0, 180, "a number of degrees in (0, 180)");
+  cam->twist = lsysL_optnum(L, o, "twist", cam->twist, -HUGE_VAL, HUGE_VAL, "a number of degrees");
+  cam->zoom = lsysL_optnum(L, o, "zoom", cam->zoom, 0, HUGE_VAL, "a positive number");
+  if (lsysL_optfield(L, o, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
     char what[96];
     snprintf(what, sizeof what, "%sfit%s", o->pre, o->post);
-    lsys_readbox(L, lua_gettop(L), what, cam->box);
+    lsysL_readbox(L, lua_gettop(L), what, cam->box);
     cam->has_box = 1;
     lua_pop(L, 1);
   }
@@ -667,7 +667,7 @@ void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
 static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, int max) {
   lua_Integer v;
   int isint;
-  if (!lsys_optfield(L, o, k, LUA_TNONE, NULL)) return def;
+  if (!lsysL_optfield(L, o, k, LUA_TNONE, NULL)) return def;
   v = lua_tointegerx(L, -1, &isint);
   if (!isint || v < 1 || v > max) {
     char expect[64];
@@ -684,17 +684,17 @@ static const char *const renderopts[] = {
   "fit", NULL
 };
 
-void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {
+void lsysL_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {
   lsys_opts ro = {t, "lsys.render: opts.", "", LSYS_GOT_VALUE, 0};
   lsys_render_defaults(o);
-  if (lsys_optunknown(L, &ro, renderopts))          /* unknown keys are mistakes */
+  if (lsysL_optunknown(L, &ro, renderopts))          /* unknown keys are mistakes */
     luaL_error(L, "lsys.render: unknown option %s", got(L, -1));
   o->width = optsize(L, &ro, "width", o->width, 16384);
   o->height = optsize(L, &ro, "height", o->height, 16384);
   o->supersample = optsize(L, &ro, "supersample", o->supersample, 16);
-  o->transparent = lsys_optbool(L, &ro, "transparent", 0);
-  o->wireframe = lsys_optbool(L, &ro, "wireframe", 0);
-  lsys_readlook(L, &ro, sc);
+  o->transparent = lsysL_optbool(L, &ro, "transparent", 0);
+  o->wireframe = lsysL_optbool(L, &ro, "wireframe", 0);
+  lsysL_readlook(L, &ro, sc);
 }
 
 #endif

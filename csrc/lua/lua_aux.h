@@ -62,12 +62,12 @@
 ** replaces a placeholder {"__index", NULL} in 'meta'. Leaves the stack as
 ** it was.
 */
-void lsys_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
-                      const luaL_Reg *methods);
+void lsysL_createmeta (lua_State *L, const char *tname, const luaL_Reg *meta,
+                       const luaL_Reg *methods);
 
 /* The alphabet shared by all models and Lstrings of a Lua state (made at
 ** the first call); raises once it was finalized. */
-lsys_alphabet *lsys_getalphabet (lua_State *L);
+lsys_alphabet *lsysL_getalphabet (lua_State *L);
 
 /*
 ** Raises the error of a failed core call: "not enough memory" for
@@ -76,22 +76,22 @@ lsys_alphabet *lsys_getalphabet (lua_State *L);
 ** luaL_error does), 0 raises the message as it is (one that names a file
 ** and line of its own). Never returns.
 */
-int lsys_raise (lua_State *L, int code, const lsys_error *e, int level);
+int lsysL_raise (lua_State *L, int code, const lsys_error *e, int level);
 
 /* The program {op, a, k, ...} (expr.h) of the table at 't', copied into a
 ** new userdata pushed on the stack; *n its length. Raises when an entry is
 ** not a number or it is longer than LSYS_EXPR_MAXCODE (unchecked otherwise:
 ** the caller runs lsys_expr_check). */
-lsys_ins *lsys_readcode (lua_State *L, int t, int *n);
+lsys_ins *lsysL_readcode (lua_State *L, int t, int *n);
 
 /* Pushes a new list of the n <= LSYS_PUSHNUMS_MAX numbers v[0..n-1] (read
 ** before anything is allocated). */
 #define LSYS_PUSHNUMS_MAX 16
-void lsys_pushnums (lua_State *L, const double *v, int n);
+void lsysL_pushnums (lua_State *L, const double *v, int n);
 
 /* Reads a list of module names separated by white space or commas into 'd'.
 ** Returns LSYS_OK or LSYS_ENOMEM. */
-int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
+int lsysL_readnames (lua_State *L, const char *s, lsys_names *d);
 
 /* ---------------------------------------------------------------------- */
 /*
@@ -103,9 +103,9 @@ int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 ** object). A binding never keeps a pointer into an object across such a
 ** point, unless the object is in use:
 **
-**   - held (a Scene, Frames): lsys_hold marks the object busy until the
+**   - held (a Scene, Frames): lsysL_hold marks the object busy until the
 **     binding returns or raises; its close and whatever would move or free
-**     its arrays refuse meanwhile (lsys_checkidle);
+**     its arrays refuse meanwhile (lsysL_checkidle);
 **   - kept (a Contour, Surface, Texture or Func that an interpretation, a
 **     Scene or a model points to): an immutable object, whose close then
 **     only marks it closed; the collector frees it;
@@ -124,15 +124,15 @@ int lsys_readnames (lua_State *L, const char *s, lsys_names *d);
 ** again that it is alive. Nothing may remove the value from the stack but
 ** the return (lua_settop below it ends the hold early).
 */
-void lsys_hold (lua_State *L, int idx, int *busy);
+void lsysL_hold (lua_State *L, int idx, int *busy);
 
 /* Raises 'msg' ("cannot close a Scene while it is in use") when 'busy' is
 ** not 0. */
-void lsys_checkidle (lua_State *L, int busy, const char *msg);
+void lsysL_checkidle (lua_State *L, int busy, const char *msg);
 
 /* Whether the running C function was called by the collector as a finalizer
 ** (not by Lua code calling a __gc metamethod by hand). */
-int lsys_finalizing (lua_State *L);
+int lsysL_finalizing (lua_State *L);
 
 /* The life of an immutable object (Contour, Surface, Texture, Func), after
 ** its core struct in the userdata: closed (its methods raise), and kept
@@ -145,7 +145,7 @@ typedef struct lsys_life {
 /* __close and __gc of an immutable object: marks it closed; returns whether
 ** its memory is to be freed now (it is not kept, or the collector finalizes
 ** it: nothing that points to it can run any more). */
-int lsys_life_end (lua_State *L, lsys_life *life);
+int lsysL_life_end (lua_State *L, lsys_life *life);
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Lstring */
@@ -161,27 +161,27 @@ typedef struct lsys_lstr {
 } lsys_lstr;
 
 /* Pushes a new empty Lstring and returns it. */
-lsys_lstring *lsys_newlstring (lua_State *L);
+lsys_lstring *lsysL_newlstring (lua_State *L);
 
 /* The Lstring at 'i'; raises when it is not one or was closed. */
-lsys_lstring *lsys_checklstring (lua_State *L, int i);       /* made wide (lstring.h) */
-lsys_lstring *lsys_checklstring_any (lua_State *L, int i);   /* as it is: narrow or wide */
-#define checklstring(L, i) lsys_checklstring(L, (i))
+lsys_lstring *lsysL_checklstring (lua_State *L, int i);       /* made wide (lstring.h) */
+lsys_lstring *lsysL_checklstring_any (lua_State *L, int i);   /* as it is: narrow or wide */
+#define checklstring(L, i) lsysL_checklstring(L, (i))
 
 /* The same for an Lstring that is about to be rewritten in place: raises
 ** also when an operation is using it. */
-lsys_lstring *lsys_checkwritable (lua_State *L, int i, const char *what);
+lsys_lstring *lsysL_checkwritable (lua_State *L, int i, const char *what);
 
 /* Marks the Lstring at 'i' used by an operation (+1) or no longer (-1). */
-void lsys_lstring_busy (lua_State *L, int i, int delta);
+void lsysL_lstring_busy (lua_State *L, int i, int delta);
 
 /* Makes the value at 'owner' the owner of the Lstring at 'idx' (an Lstring
 ** passes on its own owner). */
-void lsys_setowner (lua_State *L, int idx, int owner);
+void lsysL_setowner (lua_State *L, int idx, int owner);
 
 /* The declared names of the model that made the Lstring at 'idx' (its
 ** owner), or NULL. */
-const lsys_names *lsys_ownernames (lua_State *L, int idx);
+const lsys_names *lsysL_ownernames (lua_State *L, int idx);
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Rules: the compiled rules of one model (the C side of lsys.lsystem) */
@@ -195,15 +195,15 @@ enum { LSYS_RULES_FNS = 1, LSYS_RULES_TPL = 2, LSYS_RULES_FUNCS = 3, LSYS_RULES_
 ** The bounds of rule code while a model's rules run (lua_sandbox.c): the
 ** Lua instructions of one call (a count hook), the memory Lua may grow by
 ** (a wrapped allocator), and strings' methods (the sandbox's string
-** library). Filled by lsys_sandbox_enter, which pushes one value that
-** lsys_sandbox_leave removes (at 'stridx').
+** library). Filled by lsysL_sandbox_enter, which pushes one value that
+** lsysL_sandbox_leave removes (at 'stridx').
 */
 #define LSYS_MAX_INSTRUCTIONS 1e8    /* one call's default (max_instructions) */
 typedef struct lsys_sandbox {
   lua_Alloc alloc; void *aud;        /* the allocator it wraps */
   lua_Hook hook; int hmask, hcount;  /* the hook it replaced */
   long long limit, net;              /* bytes Lua may grow by; grown since entry */
-  long long gcat;                    /* grown this much: collect (lsys_sandbox_collect) */
+  long long gcat;                    /* grown this much: collect (lsysL_sandbox_collect) */
   double budget, ran;                /* instructions of one call: the most, so far */
   int memhit, timehit;               /* a growth refused; the budget ran out */
   int strict;                        /* rule text runs (not a rule written as a function):
@@ -212,7 +212,7 @@ typedef struct lsys_sandbox {
 } lsys_sandbox;
 
 typedef struct lsys_lrules {
-  lsys_model m;
+  lsys_rules m;
   lsys_names decl;
   lua_State *L;        /* while a step runs */
   int fnidx;           /* stack index of the closure table while a step runs */
@@ -223,7 +223,7 @@ typedef struct lsys_lrules {
 } lsys_lrules;
 
 /* The Rules at 'i'; raises when they were closed. */
-lsys_lrules *lsys_checkrules (lua_State *L, int i);
+lsys_lrules *lsysL_checkrules (lua_State *L, int i);
 
 /*
 ** Runs op(L, m, ud) on the model of the Rules at 'ridx' with its rule
@@ -235,19 +235,19 @@ lsys_lrules *lsys_checkrules (lua_State *L, int i);
 ** when the model is running already ("a rule of this model called 'what' on
 ** the same model"). Returns op's status. 'op' sees a stack of its own.
 */
-typedef int (*lsys_ruleop) (lua_State *L, lsys_model *m, void *ud);
-int lsys_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
-                    const int *lstr, int n);
+typedef int (*lsys_ruleop) (lua_State *L, lsys_rules *m, void *ud);
+int lsysL_rules_run (lua_State *L, int ridx, const char *what, lsys_ruleop op, void *ud,
+                     const int *lstr, int n);
 
 /* Enters the bounds of the Rules R (pushes one value); leaves them (removes
 ** it), rewording the error object on top when 'err' is a memory error the
 ** bound caused. Runs nest. */
-void lsys_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R);
-void lsys_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err);
+void lsysL_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R);
+void lsysL_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err);
 /* At a safe point of the run (between calls of rule code, in the count hook):
 ** collects garbage when Lua has grown halfway to the bound, so that garbage is not
 ** what reaches it. */
-void lsys_sandbox_collect (lua_State *L, lsys_sandbox *sb);
+void lsysL_sandbox_collect (lua_State *L, lsys_sandbox *sb);
 
 /* ---------------------------------------------------------------------- */
 /* lsys.Scene: what an interpretation drew (docs/drawing.md §5) */
@@ -261,21 +261,21 @@ enum { LSYS_SCENE_RULES = 1, LSYS_SCENE_LSTRING = 2, LSYS_SCENE_OPTS = 3, LSYS_S
 typedef struct lsys_lscene {
   lsys_scene sc;       /* mesh, palette, records and stiffnesses (scene.h) */
   int inited;          /* 0 once closed */
-  int busy;            /* holds (lsys_hold): it can be neither closed nor changed */
+  int busy;            /* holds (lsysL_hold): it can be neither closed nor changed */
 } lsys_lscene;
 
 /* Pushes a new, empty Scene. */
-lsys_lscene *lsys_newscene (lua_State *L);
+lsys_lscene *lsysL_newscene (lua_State *L);
 /* The Scene at 'i'; raises when it is not one or was closed. */
-lsys_lscene *lsys_checkscene (lua_State *L, int i);
-/* The same, held for the rest of the running C function (lsys_hold). */
-lsys_lscene *lsys_holdscene (lua_State *L, int i);
+lsys_lscene *lsysL_checkscene (lua_State *L, int i);
+/* The same, held for the rest of the running C function (lsysL_hold). */
+lsys_lscene *lsysL_holdscene (lua_State *L, int i);
 /* Raises "cannot change a Scene while it is in use" when S is held: before
 ** anything that moves or frees its arrays (growth, a stolen mesh). */
-void lsys_changescene (lua_State *L, const lsys_lscene *S);
+void lsysL_changescene (lua_State *L, const lsys_lscene *S);
 
 /* The name of a turtle record kind (LSYS_REC_*): "segment", "sphere", ... */
-const char *lsys_recordkind (int kind);
+const char *lsysL_recordkind (int kind);
 
 /* ---------------------------------------------------------------------- */
 /* Contour, Surface, Texture, Func: core objects, immutable once made, each
@@ -289,18 +289,18 @@ typedef struct lsys_lsurface { lsys_surface s; lsys_life life; } lsys_lsurface;
 typedef struct lsys_ltexture { lsys_texture t; lsys_life life; } lsys_ltexture;
 typedef struct lsys_lfunc { lsys_func f; lsys_life life; } lsys_lfunc;
 
-const lsys_contour *lsys_checkcontour (lua_State *L, int i);
-const lsys_surface *lsys_checksurface (lua_State *L, int i);
-const lsys_texture *lsys_checktexture (lua_State *L, int i);
-const lsys_func *lsys_checkfunc (lua_State *L, int i);
-const lsys_contour *lsys_keepcontour (lua_State *L, int i);
-const lsys_surface *lsys_keepsurface (lua_State *L, int i);
-const lsys_texture *lsys_keeptexture (lua_State *L, int i);
-const lsys_func *lsys_keepfunc (lua_State *L, int i);
+const lsys_contour *lsysL_checkcontour (lua_State *L, int i);
+const lsys_surface *lsysL_checksurface (lua_State *L, int i);
+const lsys_texture *lsysL_checktexture (lua_State *L, int i);
+const lsys_func *lsysL_checkfunc (lua_State *L, int i);
+const lsys_contour *lsysL_keepcontour (lua_State *L, int i);
+const lsys_surface *lsysL_keepsurface (lua_State *L, int i);
+const lsys_texture *lsysL_keeptexture (lua_State *L, int i);
+const lsys_func *lsysL_keepfunc (lua_State *L, int i);
 
 /* The Canvas at 'i' (lua_canvas.c), for a binding that draws into one or
 ** shows its pixels; raises when it is not one or was closed. */
-lsys_canvas *lsys_checkcanvas (lua_State *L, int i);
+lsys_canvas *lsysL_checkcanvas (lua_State *L, int i);
 
 /* ---------------------------------------------------------------------- */
 /*
@@ -329,59 +329,59 @@ typedef struct lsys_opts {
 
 /* Pushes o[k] and returns 1, or returns 0 when it is absent. With a 'type'
 ** (not LUA_TNONE), a value of another type raises ("must be <expect>"). */
-int lsys_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
-                   const char *expect);
+int lsysL_optfield (lua_State *L, const lsys_opts *o, const char *k, int type,
+                    const char *expect);
 
 /* Raises "<option k> must be <expect>" for the bad value of o[k] on top of
 ** the stack (shown with LSYS_GOT_VALUE). */
-int lsys_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect);
+int lsysL_opterror (lua_State *L, const lsys_opts *o, const char *k, const char *expect);
 
 /* A boolean ("must be a boolean"). */
-int lsys_optbool (lua_State *L, const lsys_opts *o, const char *k, int def);
+int lsysL_optbool (lua_State *L, const lsys_opts *o, const char *k, int def);
 
 /* An integer in [lo, hi]: a number, or a numeral with o->numerals ("must be
 ** an integer"), whose value is an integer in range ("must be an integer in
 ** [lo, hi]"). */
-int lsys_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi);
+int lsysL_optint (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi);
 
 /* A finite number in the open interval (lo, hi) (-HUGE_VAL, HUGE_VAL: no
 ** bound); "must be <expect>" (NULL: "a finite number") for anything else. */
-double lsys_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
-                    double hi, const char *expect);
-#define lsys_optfinite(L, o, k, def) lsys_optnum(L, o, k, def, -HUGE_VAL, HUGE_VAL, NULL)
+double lsysL_optnum (lua_State *L, const lsys_opts *o, const char *k, double def, double lo,
+                     double hi, const char *expect);
+#define lsysL_optfinite(L, o, k, def) lsysL_optnum(L, o, k, def, -HUGE_VAL, HUGE_VAL, NULL)
 
 /* A string out of the NULL-terminated list 'names': returns its index.
 ** Anything else raises "must be <expect>"; a string is always shown. */
-int lsys_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
-                    const char *const names[], const char *expect);
+int lsysL_optchoice (lua_State *L, const lsys_opts *o, const char *k, int def,
+                     const char *const names[], const char *expect);
 
 /* Whether the table has a key that is not a string in the NULL-terminated
 ** list 'names' (the caller's message names it): then pushes the first such
 ** key in lua_next order and returns 1. */
-int lsys_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]);
+int lsysL_optunknown (lua_State *L, const lsys_opts *o, const char *const names[]);
 
 /*
 ** The list opts.textures of the options table at 't' (0: none) as an array
 ** of *ntex textures, or NULL when absent or empty. The list is read once;
-** its textures are kept (lsys_keeptexture). Pushes one value that keeps the
+** its textures are kept (lsysL_keeptexture). Pushes one value that keeps the
 ** array and its textures alive (nil when NULL); raises, naming 'who', when
 ** the list holds anything but live textures.
 */
-const lsys_texture *const *lsys_opttextures (lua_State *L, int t, const char *who, int *ntex);
+const lsys_texture *const *lsysL_opttextures (lua_State *L, int t, const char *who, int *ntex);
 
 /* A box {x0, y0, z0, x1, y1, z1} of finite numbers (low corner first) from the
 ** table at t, or an error naming 'what'. */
-void lsys_readbox (lua_State *L, int t, const char *what, double box[6]);
+void lsysL_readbox (lua_State *L, int t, const char *what, double box[6]);
 
 /* How to look at scene 'sc' (scene.h: camera, light, background) from the
 ** fields of the options o->t that are present: background, light,
 ** viewpoint, target, up, direction, projection, fov, twist, zoom. Each field
 ** given replaces the scene's; the messages begin with o->pre. */
-void lsys_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc);
+void lsysL_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc);
 
 /* Fills 'o' from the lsys.render options table at 't' (0: none), checking
 ** every field, and the look fields into 'sc' (a copy of the scene for this
-** picture: lsys_readlook). Only when built with rendering. */
-void lsys_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc);
+** picture: lsysL_readlook). Only when built with rendering. */
+void lsysL_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc);
 
 #endif

@@ -115,10 +115,10 @@ static int l_bspline (lua_State *L) {
     luaL_checktype(L, 2, LUA_TTABLE);
     o.t = 2;
   }
-  if (lsys_optunknown(L, &o, names))
+  if (lsysL_optunknown(L, &o, names))
     return luaL_error(L, "bspline: unknown option '%s'", luaL_tolstring(L, -1, NULL));
-  degree = lsys_optint(L, &o, "degree", 3, 2, 3);
-  clamped = lsys_optbool(L, &o, "clamped", 0);
+  degree = lsysL_optint(L, &o, "degree", 3, 2, 3);
+  clamped = lsysL_optbool(L, &o, "clamped", 0);
   lua_settop(L, 1);
   pt = readpoints(L, 1, "bspline", 0, &n, &dim);
   c = (lsys_bspline *)lua_newuserdatauv(L, sizeof *c, 0);
@@ -391,11 +391,11 @@ static int l_stroke_curve (lua_State *L) {
     luaL_checktype(L, 2, LUA_TTABLE);
     o.t = 2;
   }
-  if (lsys_optunknown(L, &o, names))
+  if (lsysL_optunknown(L, &o, names))
     return luaL_error(L, "stroke_curve: unknown option '%s'", luaL_tolstring(L, -1, NULL));
-  spacing = lsys_optnum(L, &o, "spacing", 1.0, 0.0, HUGE_VAL, "a positive number");
-  steps = lsys_optint(L, &o, "steps", 3, 0, MAXSTEPS);
-  degree = lsys_optint(L, &o, "degree", 2, 2, 3);
+  spacing = lsysL_optnum(L, &o, "spacing", 1.0, 0.0, HUGE_VAL, "a positive number");
+  steps = lsysL_optint(L, &o, "steps", 3, 0, MAXSTEPS);
+  degree = lsysL_optint(L, &o, "degree", 2, 2, 3);
   lua_settop(L, 2);
   pt = readpoints(L, 1, "stroke_curve", 2, &n, &dim);
   if ((st = lsys_bspline_stroke_size(pt, n, dim, spacing, degree, &cap, &e)) != LSYS_OK)
@@ -428,7 +428,7 @@ static const luaL_Reg bspline_funcs[] = {
   {"chaikin_reverse", l_chaikin_reverse}, {"stroke_curve", l_stroke_curve}, {NULL, NULL}
 };
 
-void lsys_open_bspline (lua_State *L) {
-  lsys_createmeta(L, BSPLINE_T, bspline_meta, bspline_methods);
+void lsysL_open_bspline (lua_State *L) {
+  lsysL_createmeta(L, BSPLINE_T, bspline_meta, bspline_methods);
   luaL_setfuncs(L, bspline_funcs, 0);
 }

@@ -25,7 +25,7 @@
 #define CANVAS_TOSTR "Canvas"
 
 /* The canvas at 'i'; raises when it is not one or was closed. */
-lsys_canvas *lsys_checkcanvas (lua_State *L, int i) {
+lsys_canvas *lsysL_checkcanvas (lua_State *L, int i) {
   lsys_canvas *c = (lsys_canvas *)luaL_checkudata(L, i, CANVAS_T);
   if (c->px == NULL) luaL_error(L, "the canvas was closed");
   return c;
@@ -118,26 +118,26 @@ static int canvas_gc (lua_State *L) {         /* also __close: idempotent */
 ** table's metamethod, which may close the canvas). */
 static int canvas_clear (lua_State *L) {
   double rgba[4];
-  lsys_checkcanvas(L, 1);
+  lsysL_checkcanvas(L, 1);
   checkcolour(L, 2, rgba, CLEAR);
-  lsys_canvas_clear(lsys_checkcanvas(L, 1), rgba);
+  lsys_canvas_clear(lsysL_checkcanvas(L, 1), rgba);
   return 0;
 }
 
 static int canvas_size (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   lua_pushinteger(L, c->w);
   lua_pushinteger(L, c->h);
   return 2;
 }
 
 static int canvas_line (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   double x0 = luaL_checknumber(L, 2), y0 = luaL_checknumber(L, 3);
   double x1 = luaL_checknumber(L, 4), y1 = luaL_checknumber(L, 5);
   double width = checksize(L, 6, 1, 1), rgba[4];
   checkcolour(L, 7, rgba, BLACK);
-  c = lsys_checkcanvas(L, 1);
+  c = lsysL_checkcanvas(L, 1);
   lsys_canvas_line(c, x0, y0, x1, y1, width, rgba);
   return 0;
 }
@@ -170,14 +170,14 @@ static void getpoint (lua_State *L, int i, int flat, lua_Integer k, double *x, d
 
 /* c:polyline(points [, width [, colour]]): segment by segment, nothing allocated. */
 static int canvas_polyline (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   double width = checksize(L, 3, 1, 1), rgba[4], xy[4];
   lua_Integer n, k;
   int flat;
   luaL_checktype(L, 2, LUA_TTABLE);
   checkcolour(L, 4, rgba, BLACK);
   n = luaL_len(L, 2);
-  c = lsys_checkcanvas(L, 1);               /* nothing below runs Lua code */
+  c = lsysL_checkcanvas(L, 1);               /* nothing below runs Lua code */
   flat = n > 0 && lua_rawgeti(L, 2, 1) != LUA_TTABLE;
   if (n > 0) lua_pop(L, 1);
   if (flat) {
@@ -194,23 +194,23 @@ static int canvas_polyline (lua_State *L) {
 }
 
 static int canvas_rect (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   double x = luaL_checknumber(L, 2), y = luaL_checknumber(L, 3);
   double w = (luaL_checknumber(L, 4), checksize(L, 4, 0, 0));
   double h = (luaL_checknumber(L, 5), checksize(L, 5, 0, 0)), rgba[4];
   checkcolour(L, 6, rgba, BLACK);
-  c = lsys_checkcanvas(L, 1);
+  c = lsysL_checkcanvas(L, 1);
   lsys_canvas_rect(c, x, y, w, h, rgba, lua_toboolean(L, 7));
   return 0;
 }
 
 static int canvas_circle (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   double x = luaL_checknumber(L, 2), y = luaL_checknumber(L, 3), r, rgba[4];
   luaL_checknumber(L, 4);
   r = checksize(L, 4, 0, 0);
   checkcolour(L, 5, rgba, BLACK);
-  c = lsys_checkcanvas(L, 1);
+  c = lsysL_checkcanvas(L, 1);
   lsys_canvas_circle(c, x, y, r, rgba);
   return 0;
 }
@@ -222,13 +222,13 @@ static int checkscale (lua_State *L, int i) {
 }
 
 static int canvas_text (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   double x = luaL_checknumber(L, 2), y = luaL_checknumber(L, 3), rgba[4];
   size_t n;
   const char *s = luaL_checklstring(L, 4, &n);
   int scale = checkscale(L, 5);
   checkcolour(L, 6, rgba, BLACK);
-  c = lsys_checkcanvas(L, 1);
+  c = lsysL_checkcanvas(L, 1);
   lsys_canvas_text(c, x, y, s, n, scale, rgba);
   lua_pushinteger(L, (lua_Integer)lsys_canvas_text_width(n, scale));
   return 1;
@@ -236,14 +236,14 @@ static int canvas_text (lua_State *L) {
 
 static int canvas_text_width (lua_State *L) {
   size_t n;
-  lsys_checkcanvas(L, 1);
+  lsysL_checkcanvas(L, 1);
   luaL_checklstring(L, 2, &n);
   lua_pushinteger(L, (lua_Integer)lsys_canvas_text_width(n, checkscale(L, 3)));
   return 1;
 }
 
 static int canvas_clip (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   if (lua_gettop(L) <= 1) {
     lsys_canvas_unclip(c);
   } else {
@@ -256,16 +256,16 @@ static int canvas_clip (lua_State *L) {
 }
 
 static int canvas_save (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   const char *path = luaL_checkstring(L, 2);
   lsys_error e;
-  c = lsys_checkcanvas(L, 1);               /* again: converting a number allocates */
+  c = lsysL_checkcanvas(L, 1);               /* again: converting a number allocates */
   if (lsys_canvas_save(c, path, &e) != LSYS_OK) return luaL_error(L, "save: %s", e.msg);
   return 0;
 }
 
 static int canvas_pixels (lua_State *L) {
-  lsys_canvas *c = lsys_checkcanvas(L, 1);
+  lsys_canvas *c = lsysL_checkcanvas(L, 1);
   lua_pushlstring(L, (const char *)c->px, (size_t)c->w * (size_t)c->h * 4);
   return 1;
 }
@@ -290,8 +290,8 @@ static const luaL_Reg canvas_meta[] = {
   {NULL, NULL}
 };
 
-void lsys_open_canvas (lua_State *L) {
-  lsys_createmeta(L, CANVAS_T, canvas_meta, canvas_methods);
+void lsysL_open_canvas (lua_State *L) {
+  lsysL_createmeta(L, CANVAS_T, canvas_meta, canvas_methods);
   lua_pushcfunction(L, l_canvas);
   lua_setfield(L, -2, "canvas");
 }

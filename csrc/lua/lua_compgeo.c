@@ -37,7 +37,7 @@
 typedef struct lframes {
   lsys_cframes a;
   int closed;
-  int busy;                    /* held by F:stem (lsys_hold): neither closed nor changed */
+  int busy;                    /* held by F:stem (lsysL_hold): neither closed nor changed */
 } lframes;
 
 typedef struct lwriter {
@@ -62,16 +62,16 @@ static lsys_cframes *checkframes (lua_State *L, int i) {
 ** F:stem holds them. */
 static lsys_cframes *changeframes (lua_State *L) {
   lsys_cframes *a = checkframes(L, 1);
-  lsys_checkidle(L, ((lframes *)lua_touserdata(L, 1))->busy,
-                 "cannot change the frames while they are in use");
+  lsysL_checkidle(L, ((lframes *)lua_touserdata(L, 1))->busy,
+                  "cannot change the frames while they are in use");
   return a;
 }
 
 /* __gc and __close (and F:close): idempotent; refused while held. */
 static int frames_close (lua_State *L) {
   lframes *f = (lframes *)luaL_checkudata(L, 1, FRAMES_T);
-  if (!f->closed && !lsys_finalizing(L)) lsys_checkidle(L, f->busy, FRAMES_INUSE);
-  if (!f->closed) lsys_cframes_free(&f->a);
+  if (!f->closed && !lsysL_finalizing(L)) lsysL_checkidle(L, f->busy, FRAMES_INUSE);
+  if (!f->closed) lsys_compgeo_frames_free(&f->a);
   f->closed = 1;
   return 0;
 }
@@ -79,7 +79,7 @@ static int frames_close (lua_State *L) {
 static int l_frames (lua_State *L) {
   lua_Integer seed = luaL_optinteger(L, 1, 1);
   lframes *f = (lframes *)lua_newuserdatauv(L, sizeof *f, 0);
-  lsys_cframes_init(&f->a, (int64_t)seed);
+  lsys_compgeo_frames_init(&f->a, (int64_t)seed);
   f->closed = f->busy = 0;
   luaL_setmetatable(L, FRAMES_T);
   return 1;
@@ -100,12 +100,12 @@ static double num (lua_State *L, int i) {
 
 static int pushnew (lua_State *L, lsys_cframes *a, const lsys_cframe *g) {
   size_t idx;
-  if (lsys_cframes_add(a, g, &idx) != LSYS_OK) return luaL_error(L, "not enough memory");
+  if (lsys_compgeo_frames_add(a, g, &idx) != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_pushinteger(L, (lua_Integer)idx + 1);
   return 1;
 }
 
-#define pushvec(L, v) lsys_pushnums((L), (v), 3)
+#define pushvec(L, v) lsysL_pushnums((L), (v), 3)
 
 static void readvec (lua_State *L, int t, const char *k, double v[3]) {
   int i;
@@ -181,7 +181,7 @@ static int frames_count (lua_State *L) {
 }
 
 static int frames_random (lua_State *L) {
-  lua_pushnumber(L, lsys_cframes_random(checkframes(L, 1)));
+  lua_pushnumber(L, lsys_compgeo_frames_random(checkframes(L, 1)));
   return 1;
 }
 
@@ -198,7 +198,7 @@ static int frames_transform (lua_State *L) {
   double t[3], r[3];
   int i;
   for (i = 0; i < 3; i++) { t[i] = num(L, 3 + i); r[i] = num(L, 6 + i); }
-  lsys_cframe_transform(f, t, r, num(L, 9), &g);
+  lsys_compgeo_frame_transform(f, t, r, num(L, 9), &g);
   g.u = 0;
   return pushnew(L, a, &g);
 }
@@ -228,8 +228,8 @@ static int frames_branch (lua_State *L) {
   if (k >= ns) k = ns - 1;
   if (k < 0) k = 0;
   t = x - (double)k;
-  lsys_cframe_branch(&a->f[first - 1 + k], &a->f[first + k], t, num(L, 5), num(L, 6),
-                     num(L, 7), &g);
+  lsys_compgeo_frame_branch(&a->f[first - 1 + k], &a->f[first + k], t, num(L, 5), num(L, 6),
+                            num(L, 7), &g);
   return pushnew(L, a, &g);
 }
 
@@ -363,10 +363,10 @@ static int frames_stem (lua_State *L) {
   st.bu = bb;
   st.broll = bb ? bb + nb : NULL;
   changeframes(L);
-  lsys_hold(L, 1, &((lframes *)lua_touserdata(L, 1))->busy);
+  lsysL_hold(L, 1, &((lframes *)lua_touserdata(L, 1))->busy);
   a = checkframes(L, 1);                    /* again: the hold allocated */
   base = frameat(L, a, 2) - a->f;
-  r = lsys_cframes_stem(a, (size_t)base, &st, &first);
+  r = lsys_compgeo_frames_stem(a, (size_t)base, &st, &first);
   if (r != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_pushinteger(L, (lua_Integer)first + 1);
   return 1;
@@ -388,7 +388,7 @@ static lwriter *checkwriter (lua_State *L, int i) {
 
 static int writer_free (lua_State *L) {
   lwriter *w = (lwriter *)luaL_checkudata(L, 1, CWRITER_T);
-  if (!w->closed) lsys_cwriter_free(&w->w);
+  if (!w->closed) lsys_compgeo_writer_free(&w->w);
   w->closed = 1;
   return 0;
 }
@@ -409,7 +409,7 @@ static const lsys_cframe *wframe (lua_State *L, int i) {
 ** calling the writer would rewrite under them). */
 static void checkstring (lua_State *L) {
   lua_getiuservalue(L, 1, UV_STRING);
-  lsys_checkwritable(L, -1, "cwriter");
+  lsysL_checkwritable(L, -1, "cwriter");
   lua_pop(L, 1);
 }
 
@@ -422,7 +422,7 @@ static int wcheck (lua_State *L, int r) {
 }
 
 static uint32_t intern (lua_State *L, int ridx, const char *name) {
-  lsys_lrules *R = lsys_checkrules(L, ridx);
+  lsys_lrules *R = lsysL_checkrules(L, ridx);
   lsys_error e;
   uint32_t id = lsys_alphabet_intern(R->m.ab, name, strlen(name), &e);
   if (id == 0) luaL_error(L, "%s", e.msg);
@@ -432,16 +432,16 @@ static uint32_t intern (lua_State *L, int ridx, const char *name) {
 static int l_cwriter (lua_State *L) {
   lwriter *w;
   lsys_lstring *s;
-  lsys_checkrules(L, 1);
+  lsysL_checkrules(L, 1);
   checkframes(L, 2);
   lua_settop(L, 2);
   w = (lwriter *)lua_newuserdatauv(L, sizeof *w, 3);       /* 3 */
   memset(w, 0, sizeof *w);
   w->closed = 1;                             /* until it is whole */
   luaL_setmetatable(L, CWRITER_T);
-  s = lsys_newlstring(L);                    /* 4 */
-  lsys_setowner(L, 4, 1);
-  lsys_cwriter_init(&w->w, s);
+  s = lsysL_newlstring(L);                    /* 4 */
+  lsysL_setowner(L, 4, 1);
+  lsys_compgeo_writer_init(&w->w, s);
   lua_setiuservalue(L, 3, UV_STRING);
   lua_pushvalue(L, 2);
   lua_setiuservalue(L, 3, UV_FRAMES);
@@ -453,7 +453,7 @@ static int l_cwriter (lua_State *L) {
   w->w.sym_pitch = intern(L, 1, "^");        /* H toward -U, as the writer's angles */
   w->w.sym_move = intern(L, 1, "f");
   w->w.sym_draw = intern(L, 1, "F");
-  w->nsym = lsys_checkrules(L, 1)->m.ab->n;
+  w->nsym = lsysL_checkrules(L, 1)->m.ab->n;
   w->closed = 0;
   return 1;
 }
@@ -466,8 +466,8 @@ static int writer_symbol (lua_State *L) {
   lsys_error e;
   uint32_t id;
   lua_getiuservalue(L, 1, UV_RULES);
-  R = lsys_checkrules(L, -1);
-  luaL_argcheck(L, len > 0 && lsys_scan_name(name, len, &R->decl) == len, 2,
+  R = lsysL_checkrules(L, -1);
+  luaL_argcheck(L, len > 0 && lsys_alphabet_scan(name, len, &R->decl) == len, 2,
                 "not a module name");
   id = lsys_alphabet_intern(R->m.ab, name, len, &e);
   if (id == 0) return luaL_error(L, "%s", e.msg);
@@ -485,7 +485,7 @@ static int writer_op (lua_State *L) {
   luaL_argcheck(L, np <= LSYS_MAXPARAMS, 2 + LSYS_MAXPARAMS + 1, "too many parameters");
   for (k = 0; k < np; k++) p[k] = num(L, 3 + k);
   checkstring(L);
-  return wcheck(L, lsys_cwriter_op(&w->w, (uint32_t)sym, p, (uint32_t)np));
+  return wcheck(L, lsys_compgeo_writer_op(&w->w, (uint32_t)sym, p, (uint32_t)np));
 }
 
 static int writer_open (lua_State *L) {
@@ -494,13 +494,13 @@ static int writer_open (lua_State *L) {
   const lsys_cframe *f = wframe(L, 3);
   luaL_argcheck(L, inst >= 1 && inst <= INT32_MAX / 4, 2, "not an instance index");
   checkstring(L);
-  return wcheck(L, lsys_cwriter_open(&w->w, (int32_t)inst, f));
+  return wcheck(L, lsys_compgeo_writer_open(&w->w, (int32_t)inst, f));
 }
 
 static int writer_close (lua_State *L) {
   lwriter *w = checkwriter(L, 1);
   checkstring(L);
-  return wcheck(L, lsys_cwriter_close(&w->w));
+  return wcheck(L, lsys_compgeo_writer_close(&w->w));
 }
 
 static int writer_orient (lua_State *L) {
@@ -510,14 +510,14 @@ static int writer_orient (lua_State *L) {
   memcpy(H, f->H, sizeof H);
   memcpy(U, f->U, sizeof U);
   checkstring(L);
-  return wcheck(L, lsys_cwriter_orient(&w->w, H, U));
+  return wcheck(L, lsys_compgeo_writer_orient(&w->w, H, U));
 }
 
 static int writer_forward (lua_State *L) {
   lwriter *w = checkwriter(L, 1);
   double d = num(L, 2);
   checkstring(L);
-  return wcheck(L, lsys_cwriter_forward(&w->w, d, lua_toboolean(L, 3)));
+  return wcheck(L, lsys_compgeo_writer_forward(&w->w, d, lua_toboolean(L, 3)));
 }
 
 static int writer_setpos (lua_State *L) {
@@ -543,7 +543,7 @@ static int writer_segment (lua_State *L) {
   memcpy(H, b->H, sizeof H);
   memcpy(U, b->U, sizeof U);
   checkstring(L);
-  wcheck(L, lsys_cwriter_orient(&w->w, H, U));
+  wcheck(L, lsys_compgeo_writer_orient(&w->w, H, U));
   return 3;
 }
 
@@ -614,9 +614,9 @@ static const luaL_Reg writer_meta[] = {
   {"__index", NULL}, {"__gc", writer_free}, {"__close", writer_free}, {NULL, NULL}
 };
 
-void lsys_open_compgeo (lua_State *L) {
-  lsys_createmeta(L, FRAMES_T, frames_meta, frames_methods);
-  lsys_createmeta(L, CWRITER_T, writer_meta, writer_methods);
+void lsysL_open_compgeo (lua_State *L) {
+  lsysL_createmeta(L, FRAMES_T, frames_meta, frames_methods);
+  lsysL_createmeta(L, CWRITER_T, writer_meta, writer_methods);
   lua_pushcfunction(L, l_frames);
   lua_setfield(L, -2, "frames");
   lua_pushcfunction(L, l_cwriter);

@@ -31,7 +31,7 @@ static lsys_contour *newcontour (lua_State *L) {
 /* __gc and __close: idempotent; a kept contour is freed by the collector. */
 static int contour_gc (lua_State *L) {
   lsys_lcontour *u = (lsys_lcontour *)luaL_checkudata(L, 1, CONTOUR_T);
-  if (lsys_life_end(L, &u->life)) lsys_contour_free(&u->c);
+  if (lsysL_life_end(L, &u->life)) lsys_contour_free(&u->c);
   return 0;
 }
 
@@ -42,11 +42,11 @@ static int l_contour_load (lua_State *L) {
   lsys_error e;
   size_t len = 0;
   int st;
-  char *text = lsys_readfile(path, MAXFILE, &len, &e);
-  if (text == NULL) return lsys_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
+  char *text = lsys_common_readfile(path, MAXFILE, &len, &e);
+  if (text == NULL) return lsysL_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
   st = lsys_contour_parse(c, text, len, path, &e);
   LSYS_FREE(text);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
@@ -119,13 +119,13 @@ static void pushpoints (lua_State *L, const double *v, int p) {
 
 /* c:sample(p) -> vertices, normals */
 static int contour_sample (lua_State *L) {
-  const lsys_contour *c = lsys_checkcontour(L, 1);
+  const lsys_contour *c = lsysL_checkcontour(L, 1);
   lua_Integer p = luaL_checkinteger(L, 2);
   double *v;
   luaL_argcheck(L, p >= 3 && p <= MAXSIDES, 2, "must be between 3 and 65536");
   luaL_argcheck(L, c->pt != NULL, 1, "empty contour");
   v = (double *)lua_newuserdatauv(L, 6 * ((size_t)p + 1) * sizeof *v, 0);
-  c = lsys_checkcontour(L, 1);              /* again: a finalizer may have closed it */
+  c = lsysL_checkcontour(L, 1);              /* again: a finalizer may have closed it */
   lsys_contour_sample(c, (int)p, v, v + 3 * (p + 1));
   pushpoints(L, v, (int)p);
   pushpoints(L, v + 3 * (p + 1), (int)p);
@@ -133,17 +133,17 @@ static int contour_sample (lua_State *L) {
 }
 
 static int contour_size (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_checkcontour(L, 1)->n);
+  lua_pushinteger(L, (lua_Integer)lsysL_checkcontour(L, 1)->n);
   return 1;
 }
 
 static int contour_closed (lua_State *L) {
-  lua_pushboolean(L, lsys_checkcontour(L, 1)->closed);
+  lua_pushboolean(L, lsysL_checkcontour(L, 1)->closed);
   return 1;
 }
 
 static int contour_dim (lua_State *L) {
-  lua_pushinteger(L, lsys_checkcontour(L, 1)->dim);
+  lua_pushinteger(L, lsysL_checkcontour(L, 1)->dim);
   return 1;
 }
 
@@ -174,7 +174,7 @@ static const luaL_Reg contour_funcs[] = {
   {"contour_load", l_contour_load}, {"contour", l_contour}, {NULL, NULL}
 };
 
-void lsys_open_contour (lua_State *L) {
-  lsys_createmeta(L, CONTOUR_T, contour_meta, contour_methods);
+void lsysL_open_contour (lua_State *L) {
+  lsysL_createmeta(L, CONTOUR_T, contour_meta, contour_methods);
   luaL_setfuncs(L, contour_funcs, 0);
 }

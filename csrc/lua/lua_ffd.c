@@ -101,7 +101,7 @@ static int l_hyperpatch (lua_State *L) {
   }
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_settop(L, 1);
-  if (lsys_optunknown(L, &o, names))
+  if (lsysL_optunknown(L, &o, names))
     return luaL_error(L, "%s: unknown option %s (known: degree, origin, size, axes)", who,
                       luaL_tolstring(L, -1, NULL));
   lua_getfield(L, 1, "degree");
@@ -140,7 +140,7 @@ static int l_hyperpatch (lua_State *L) {
   h->closed = 0;
   luaL_setmetatable(L, HYPERPATCH_T);
   memset(&e, 0, sizeof e);
-  if (lsys_hyperpatch_init(&h->hp, deg, origin, axes, &e) != LSYS_OK)
+  if (lsys_ffd_hyperpatch_init(&h->hp, deg, origin, axes, &e) != LSYS_OK)
     return luaL_error(L, "%s: %s", who, e.msg);
   return 1;
 }
@@ -151,7 +151,7 @@ static double *checkpoint (lua_State *L, lsys_hyperpatch *hp, const char *who) {
               k = luaL_checkinteger(L, 4);
   double *P = NULL;
   if (i >= 0 && i <= 4 && j >= 0 && j <= 4 && k >= 0 && k <= 4)
-    P = lsys_hyperpatch_point(hp, (int)i, (int)j, (int)k);
+    P = lsys_ffd_hyperpatch_point(hp, (int)i, (int)j, (int)k);
   if (P == NULL)
     luaL_error(L, "%s: no control point (%I, %I, %I): indices are 0..%d, 0..%d, 0..%d", who, i,
                j, k, hp->deg[0], hp->deg[1], hp->deg[2]);
@@ -179,7 +179,7 @@ static int hp_map (lua_State *L) {
   double p[3], q[3];
   int r;
   for (r = 0; r < 3; r++) p[r] = checkfinite(L, 2 + r, "hyperpatch:map", what[r]);
-  lsys_hyperpatch_eval(hp, p, q, NULL);
+  lsys_ffd_hyperpatch_eval(hp, p, q, NULL);
   for (r = 0; r < 3; r++) lua_pushnumber(L, q[r]);
   return 3;
 }
@@ -192,7 +192,7 @@ static int hp_degree (lua_State *L) {
 }
 
 static int hp_count (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_hyperpatch_count(checkhp(L, 1)));
+  lua_pushinteger(L, (lua_Integer)lsys_ffd_hyperpatch_count(checkhp(L, 1)));
   return 1;
 }
 
@@ -201,7 +201,7 @@ static int hp_tostring (lua_State *L) {
   if (h->closed) lua_pushliteral(L, "lsys.Hyperpatch (closed)");
   else lua_pushfstring(L, "lsys.Hyperpatch: degree %d x %d x %d, %d control points",
                        h->hp.deg[0], h->hp.deg[1], h->hp.deg[2],
-                       (int)lsys_hyperpatch_count(&h->hp));
+                       (int)lsys_ffd_hyperpatch_count(&h->hp));
   return 1;
 }
 
@@ -238,7 +238,7 @@ static range readrange (lua_State *L, const lsys_scene *sc, int t, const char *w
   if (lua_isnoneornil(L, t)) return g;
   luaL_checktype(L, t, LUA_TTABLE);
   o.t = lua_absindex(L, t);
-  if (lsys_optunknown(L, &o, names))
+  if (lsysL_optunknown(L, &o, names))
     luaL_error(L, "%s: unknown option %s (known: modules, vertices)", who,
                luaL_tolstring(L, -1, NULL));
   lua_getfield(L, t, "modules"); hasm = !lua_isnil(L, -1);
@@ -250,7 +250,7 @@ static range readrange (lua_State *L, const lsys_scene *sc, int t, const char *w
     readpair(L, o.t, "modules", who, ab);
     m0 = ab[0] - 1 >= UINT32_MAX ? UINT32_MAX : (uint32_t)(ab[0] - 1);
     m1 = ab[1] >= UINT32_MAX ? UINT32_MAX : (uint32_t)ab[1];
-    lsys_scene_module_range(sc, m0, m1, &g.v0, &g.v1, &g.l0, &g.l1);
+    lsys_ffd_module_range(sc, m0, m1, &g.v0, &g.v1, &g.l0, &g.l1);
   } else if (hasv) {
     readpair(L, o.t, "vertices", who, ab);
     if ((size_t)ab[1] > sc->mesh.nv)
@@ -334,7 +334,7 @@ static int deform_fn (lua_State *L, lsys_lscene *S, const range *g) {
   top = lua_gettop(L);
   f.L = L; f.fn = 2; f.bad = 0;
   memset(&e, 0, sizeof e);
-  st = lsys_deform_func(&S->sc, g->v0, g->v1, g->l0, g->l1, callfn, &f, &e);
+  st = lsys_ffd_func(&S->sc, g->v0, g->v1, g->l0, g->l1, callfn, &f, &e);
   if (st == LSYS_OK) return 0;
   restorerange(&S->sc.mesh, g, save);
   if (st != LSYS_ERULE || lua_gettop(L) == top)
@@ -359,7 +359,7 @@ static int deform_fn (lua_State *L, lsys_lscene *S, const range *g) {
 ** start: the options and the function run Lua code, which can neither close
 ** it nor move its arrays meanwhile. */
 static int scene_deform (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   range g;
   int isfn = lua_type(L, 2) == LUA_TFUNCTION;
   lsys_hyperpatch *hp = NULL;
@@ -370,11 +370,11 @@ static int scene_deform (lua_State *L) {
     checkhp(L, 2);
   }
   lua_settop(L, 3);
-  S = lsys_holdscene(L, 1);                 /* 4 */
+  S = lsysL_holdscene(L, 1);                 /* 4 */
   g = readrange(L, &S->sc, 3, "scene:deform");
   if (!isfn) hp = checkhp(L, 2);            /* again: the options ran Lua code */
   if (isfn) deform_fn(L, S, &g);
-  else if (lsys_deform_range(&S->sc, g.v0, g.v1, g.l0, g.l1, hp) != LSYS_OK)
+  else if (lsys_ffd_range(&S->sc, g.v0, g.v1, g.l0, g.l1, hp) != LSYS_OK)
     return luaL_error(L, "scene:deform: range out of the scene");
   lua_pushinteger(L, (lua_Integer)(g.v1 - g.v0));
   return 1;
@@ -384,14 +384,14 @@ static int scene_deform (lua_State *L) {
 ** [, {0, 0, 0, 1}]} by rows */
 static int scene_transform (lua_State *L) {
   static const char *who = "scene:transform";
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   double m[12];
   lua_Integer n;
   int r, c;
   range g;
   luaL_checktype(L, 2, LUA_TTABLE);
   lua_settop(L, 3);
-  S = lsys_holdscene(L, 1);                 /* 4: the matrix and options run Lua code */
+  S = lsysL_holdscene(L, 1);                 /* 4: the matrix and options run Lua code */
   n = luaL_len(L, 2);
   if (n != 3 && n != 4) return luaL_error(L, "%s: the matrix must have 3 or 4 rows, got %I", who, n);
   for (r = 0; r < (int)n; r++) {
@@ -411,7 +411,7 @@ static int scene_transform (lua_State *L) {
     lua_pop(L, 1);
   }
   g = readrange(L, &S->sc, 3, who);
-  if (lsys_deform_affine(&S->sc, g.v0, g.v1, g.l0, g.l1, m) != LSYS_OK)
+  if (lsys_ffd_affine(&S->sc, g.v0, g.v1, g.l0, g.l1, m) != LSYS_OK)
     return luaL_error(L, "%s: range out of the scene", who);
   lua_pushinteger(L, (lua_Integer)(g.v1 - g.v0));
   return 1;
@@ -419,13 +419,13 @@ static int scene_transform (lua_State *L) {
 
 /* scene:module_range(m0 [, m1]) -> v0, v1 (1-based, inclusive) or nil */
 static int scene_module_range (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer a = luaL_checkinteger(L, 2), b = luaL_optinteger(L, 3, a);
   size_t v0, v1, l0, l1;
   luaL_argcheck(L, a >= 1, 2, "module indices start at 1");
   luaL_argcheck(L, b >= a, 3, "the last module is before the first");
-  if (!lsys_scene_module_range(&S->sc, a - 1 >= UINT32_MAX ? UINT32_MAX : (uint32_t)(a - 1),
-                               b >= UINT32_MAX ? UINT32_MAX : (uint32_t)b, &v0, &v1, &l0, &l1)
+  if (!lsys_ffd_module_range(&S->sc, a - 1 >= UINT32_MAX ? UINT32_MAX : (uint32_t)(a - 1),
+                             b >= UINT32_MAX ? UINT32_MAX : (uint32_t)b, &v0, &v1, &l0, &l1)
       || v1 == v0) {
     lua_pushnil(L);
     return 1;
@@ -437,7 +437,7 @@ static int scene_module_range (lua_State *L) {
 
 /* scene:vertex(i) -> x, y, z, nx, ny, nz */
 static int scene_vertex (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer i = luaL_checkinteger(L, 2);
   int r;
   if (i < 1 || (size_t)i > S->sc.mesh.nv)
@@ -461,9 +461,9 @@ static const luaL_Reg scene_methods[] = {
   {"module_range", scene_module_range}, {"vertex", scene_vertex}, {NULL, NULL}
 };
 
-/* After lsys_open_scene: adds the methods to the Scene's __methods. */
-void lsys_open_ffd (lua_State *L) {
-  lsys_createmeta(L, HYPERPATCH_T, hp_meta, hp_methods);
+/* After lsysL_open_scene: adds the methods to the Scene's __methods. */
+void lsysL_open_ffd (lua_State *L) {
+  lsysL_createmeta(L, HYPERPATCH_T, hp_meta, hp_methods);
   luaL_getmetatable(L, SCENE_T);
   lua_getfield(L, -1, "__methods");
   luaL_setfuncs(L, scene_methods, 0);

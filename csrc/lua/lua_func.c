@@ -13,7 +13,7 @@
 **   f:name() -> string    f:samples() -> integer    f:format() -> fver 1 1 text
 **   f:approx() -> "exact" | "cpfg"
 **
-** A Func is immutable once made; rules call it from C (lsys_checkfunc).
+** A Func is immutable once made; rules call it from C (lsysL_checkfunc).
 */
 #include <string.h>
 
@@ -32,7 +32,7 @@ static lsys_func *newfunc (lua_State *L) {
 ** collector. */
 static int func_gc (lua_State *L) {
   lsys_lfunc *u = (lsys_lfunc *)luaL_checkudata(L, 1, FUNC_T);
-  if (lsys_life_end(L, &u->life)) lsys_func_free(&u->f);
+  if (lsysL_life_end(L, &u->life)) lsys_func_free(&u->f);
   return 0;
 }
 
@@ -116,7 +116,7 @@ static int l_func_parse (lua_State *L) {
   int st;
   luaL_argcheck(L, vs >= -1 && vs <= LSYS_FUNC_MAXSAMPLES, 3, "samples out of range");
   st = lsys_func_parse(&fs, &n, text, len, name, (int)vs, &e);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names the file and line */
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 0);   /* names the file and line */
   lua_createtable(L, (int)n, 0);
   for (k = 0; k < n; k++) {                  /* moved into userdata: nothing can raise */
     lsys_lfunc *u = (lsys_lfunc *)lua_newuserdatauv(L, sizeof *u, 0);
@@ -132,7 +132,7 @@ static int l_func_parse (lua_State *L) {
 
 /* f(x) and f:eval(x) */
 static int func_eval (lua_State *L) {
-  const lsys_func *f = lsys_checkfunc(L, 1);
+  const lsys_func *f = lsysL_checkfunc(L, 1);
   lua_pushnumber(L, lsys_func_eval(f, luaL_checknumber(L, 2)));
   return 1;
 }
@@ -140,9 +140,9 @@ static int func_eval (lua_State *L) {
 /* The points are copied before the lists are made (a finalizer run by an
 ** allocation may close the function). */
 static int func_points (lua_State *L) {
-  size_t i, n = lsys_checkfunc(L, 1)->n;
+  size_t i, n = lsysL_checkfunc(L, 1)->n;
   double *pt = (double *)lua_newuserdatauv(L, 2 * n * sizeof *pt + 1, 0);
-  const lsys_func *f = lsys_checkfunc(L, 1);
+  const lsys_func *f = lsysL_checkfunc(L, 1);
   if (f->n < n) n = f->n;
   if (n > 0) memcpy(pt, f->pt, 2 * n * sizeof *pt);
   lua_createtable(L, (int)n, 0);
@@ -158,25 +158,25 @@ static int func_points (lua_State *L) {
 }
 
 static int func_name (lua_State *L) {
-  lua_pushstring(L, lsys_checkfunc(L, 1)->name);
+  lua_pushstring(L, lsysL_checkfunc(L, 1)->name);
   return 1;
 }
 
 static int func_samples (lua_State *L) {
-  lua_pushinteger(L, lsys_checkfunc(L, 1)->samples);
+  lua_pushinteger(L, lsysL_checkfunc(L, 1)->samples);
   return 1;
 }
 
 static int func_approx (lua_State *L) {
-  lua_pushstring(L, lsys_checkfunc(L, 1)->cpfg ? "cpfg" : "exact");
+  lua_pushstring(L, lsysL_checkfunc(L, 1)->cpfg ? "cpfg" : "exact");
   return 1;
 }
 
 static int func_format (lua_State *L) {
-  size_t len = lsys_func_format(lsys_checkfunc(L, 1), NULL, 0);
+  size_t len = lsys_func_format(lsysL_checkfunc(L, 1), NULL, 0);
   luaL_Buffer b;
   char *p = luaL_buffinitsize(L, &b, len + 1);
-  lsys_func_format(lsys_checkfunc(L, 1), p, len + 1);   /* again: the buffer allocated */
+  lsys_func_format(lsysL_checkfunc(L, 1), p, len + 1);   /* again: the buffer allocated */
   luaL_pushresultsize(&b, len);
   return 1;
 }
@@ -206,7 +206,7 @@ static const luaL_Reg func_funcs[] = {
   {"func", l_func}, {"func_parse", l_func_parse}, {NULL, NULL}
 };
 
-void lsys_open_func (lua_State *L) {
-  lsys_createmeta(L, FUNC_T, func_meta, func_methods);
+void lsysL_open_func (lua_State *L) {
+  lsysL_createmeta(L, FUNC_T, func_meta, func_methods);
   luaL_setfuncs(L, func_funcs, 0);
 }

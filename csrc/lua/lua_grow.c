@@ -91,7 +91,7 @@ static lsys_limbs *checklimbs (lua_State *L) {
 ** finish writes): refused while the scene is held. */
 static lsys_limbs *checkwriter (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
-  lsys_changescene(L, ((const llimbs *)lua_touserdata(L, 1))->S);
+  lsysL_changescene(L, ((const llimbs *)lua_touserdata(L, 1))->S);
   return g;
 }
 
@@ -99,7 +99,7 @@ static int limbs_gc (lua_State *L) {
   llimbs *t = (llimbs *)luaL_checkudata(L, 1, LIMBS_T);
   if (!t->closed) {
     int k;
-    lsys_limbs_free(&t->g);
+    lsys_grow_free(&t->g);
     for (k = 0; k < t->nkinds; k++) freekind(&t->kinds[k]);
     LSYS_FREE(t->kinds);
     t->kinds = NULL;
@@ -113,7 +113,7 @@ static int limbs_gc (lua_State *L) {
 static int32_t limbarg (lua_State *L, lsys_limbs *g, int k) {
   lua_Integer i = luaL_checkinteger(L, k);
   if (i < 1 || (lua_Unsigned)i > g->n) luaL_argerror(L, k, "no such limb");
-  if (!lsys_limbs_alive(g, (int32_t)(i - 1))) luaL_argerror(L, k, "the limb was removed");
+  if (!lsys_grow_alive(g, (int32_t)(i - 1))) luaL_argerror(L, k, "the limb was removed");
   return (int32_t)(i - 1);
 }
 
@@ -128,9 +128,9 @@ static double numarg (lua_State *L, int k) {
 static int memerror (lua_State *L) {
   const llimbs *t = (const llimbs *)luaL_checkudata(L, 1, LIMBS_T);
   char b[32];
-  size_t limit = t->g.max_memory > 0 ? t->g.max_memory : lsys_memory_limit();
+  size_t limit = t->g.max_memory > 0 ? t->g.max_memory : lsys_common_memory_limit();
   lua_pushfstring(L, "lsys.grow: the world would need more than max_memory (%s) with %I "
-                  "limbs (set LSYS_MAX_MEMORY, or lsys.max_memory)", lsys_fmtsize(b, limit),
+                  "limbs (set LSYS_MAX_MEMORY, or lsys.max_memory)", lsys_common_fmtsize(b, limit),
                   (lua_Integer)t->g.n);
   return lua_error(L);
 }
@@ -168,8 +168,8 @@ static int l_limbs (lua_State *L) {
   t = (llimbs *)lua_newuserdatauv(L, sizeof *t, 1);          /* 2 */
   t->closed = 1;
   luaL_setmetatable(L, LIMBS_T);
-  S = lsys_newscene(L);     /* 3 */
-  lsys_material_color(&grey, 0.6, 0.6, 0.6);               /* colour 0: a Scene has one */
+  S = lsysL_newscene(L);     /* 3 */
+  lsys_mesh_material_color(&grey, 0.6, 0.6, 0.6);               /* colour 0: a Scene has one */
   if (lsys_scene_set_palette(&S->sc, &grey, 1) != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_setiuservalue(L, 2, 1);
   t->S = S;
@@ -178,7 +178,7 @@ static int l_limbs (lua_State *L) {
   t->cur_rule = 0;
   t->cur_limb = 0;
   lsys_rng_seed(&t->rng, 1);
-  lsys_limbs_init(&t->g, &S->sc, (int)sides);
+  lsys_grow_init(&t->g, &S->sc, (int)sides);
   t->g.maxlimbs = (size_t)max;
   t->g.held_limb = (size_t)held[0];
   t->g.held_plant = (size_t)held[1];
@@ -193,21 +193,21 @@ static int limbs_scene (lua_State *L) {
 }
 
 static int limbs_update (lua_State *L) {
-  return status(L, lsys_limbs_update(checkwriter(L)), "update");
+  return status(L, lsys_grow_update(checkwriter(L)), "update");
 }
 
 static int limbs_set_leaf (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
-  const lsys_surface *sf = luaL_testudata(L, 2, SURFACE_T) ? lsys_checksurface(L, 2) : NULL;
+  const lsys_surface *sf = luaL_testudata(L, 2, SURFACE_T) ? lsysL_checksurface(L, 2) : NULL;
   lsys_mesh m;
   int r;
   if (g->nl > 0) return luaL_error(L, "leaf shape: leaves are made already (set it first)");
-  if (lua_isnoneornil(L, 2)) return status(L, lsys_limbs_set_leaf(g, NULL), "leaf shape");
+  if (lua_isnoneornil(L, 2)) return status(L, lsys_grow_set_leaf(g, NULL), "leaf shape");
   if (sf == NULL) {
     const lsys_lscene *S = (const lsys_lscene *)luaL_testudata(L, 2, SCENE_T);
     if (S == NULL || !S->inited) return luaL_typeerror(L, 2, "lsys.Surface or open lsys.Scene");
     if (S->sc.mesh.nt == 0) return luaL_error(L, "leaf shape: the scene has no triangles");
-    r = lsys_limbs_set_leaf(g, &S->sc.mesh);
+    r = lsys_grow_set_leaf(g, &S->sc.mesh);
     if (r == LSYS_EARG)
       return luaL_error(L, "leaf shape: the scene has more than %d vertices or a point that is "
                         "not finite", LSYS_LIMBS_MAXLEAFV);
@@ -224,7 +224,7 @@ static int limbs_set_leaf (lua_State *L) {
     pl.uv_surface = 1;
     lsys_mesh_init(&m);
     r = lsys_surface_mesh(&m, sf, &pl, (int)ns, (int)nt);
-    if (r == LSYS_OK) r = lsys_limbs_set_leaf(g, &m);
+    if (r == LSYS_OK) r = lsys_grow_set_leaf(g, &m);
     lsys_mesh_free(&m);
     if (r == LSYS_EARG || r == LSYS_ELIMIT)
       return luaL_error(L, "leaf shape: the surface makes more than %d vertices (%d x %d lines "
@@ -239,7 +239,7 @@ static int limbs_plant (lua_State *L) {
   int32_t id;
   int k;
   for (k = 0; k < 3; k++) p[k] = numarg(L, 2 + k);
-  status(L, lsys_limbs_plant(g, p, &id), "plant");
+  status(L, lsys_grow_plant(g, p, &id), "plant");
   lua_pushinteger(L, (lua_Integer)id + 1);
   return 1;
 }
@@ -265,7 +265,7 @@ static int limbs_add (lua_State *L) {
     luaL_argcheck(L, tag >= 0 && tag <= 65535, 15, "a tag is 0 to 65535");
     s.tag = (uint16_t)tag;
   }
-  r = lsys_limbs_add(g, &s, &id);
+  r = lsys_grow_add(g, &s, &id);
   if (r == LSYS_ELIMIT) {
     lua_pushnil(L);
     lua_pushliteral(L, "cap");
@@ -277,11 +277,11 @@ static int limbs_add (lua_State *L) {
 }
 
 static int limbs_begin (lua_State *L) {
-  return status(L, lsys_limbs_begin(checkwriter(L)), "begin");
+  return status(L, lsys_grow_begin(checkwriter(L)), "begin");
 }
 
 static int limbs_finish (lua_State *L) {
-  return status(L, lsys_limbs_end(checkwriter(L)), "finish");
+  return status(L, lsys_grow_end(checkwriter(L)), "finish");
 }
 
 static int limbs_ticking (lua_State *L) {
@@ -324,7 +324,7 @@ static int limbs_parent (lua_State *L) {
 static int limbs_alive (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
   lua_Integer i = luaL_checkinteger(L, 2);
-  lua_pushboolean(L, i >= 1 && (lua_Unsigned)i <= g->n && lsys_limbs_alive(g, (int32_t)(i - 1)));
+  lua_pushboolean(L, i >= 1 && (lua_Unsigned)i <= g->n && lsys_grow_alive(g, (int32_t)(i - 1)));
   return 1;
 }
 
@@ -373,7 +373,7 @@ static int limbs_base (lua_State *L) {
   lsys_limbs *g = checkwriter(L);
   int32_t i = limbarg(L, g, 2);
   int k;
-  status(L, lsys_limbs_update(g), "base");
+  status(L, lsys_grow_update(g), "base");
   for (k = 0; k < 3; k++) lua_pushnumber(L, g->wp[3 * i + k]);
   return 3;
 }
@@ -383,8 +383,8 @@ static int limbs_tip (lua_State *L) {
   int32_t i = limbarg(L, g, 2);
   double t[3];
   int k;
-  status(L, lsys_limbs_update(g), "tip");
-  lsys_limbs_tip(g, i, t);
+  status(L, lsys_grow_update(g), "tip");
+  lsys_grow_tip(g, i, t);
   for (k = 0; k < 3; k++) lua_pushnumber(L, t[k]);
   return 3;
 }
@@ -394,9 +394,9 @@ static int limbs_frame (lua_State *L) {
   int32_t i = limbarg(L, g, 2);
   double m[9];
   int k;
-  status(L, lsys_limbs_update(g), "frame");
+  status(L, lsys_grow_update(g), "frame");
   memcpy(m, g->wm + 9 * i, sizeof m);       /* before the lists: a finalizer may close g */
-  for (k = 0; k < 3; k++) lsys_pushnums(L, m + 3 * k, 3);
+  for (k = 0; k < 3; k++) lsysL_pushnums(L, m + 3 * k, 3);
   return 3;
 }
 
@@ -415,7 +415,7 @@ static int setsize (lua_State *L, int radius, int scale, const char *what) {
   luaL_argcheck(L, x >= 0, 3, scale ? "a scale factor is >= 0"
                                : radius ? "a radius is >= 0" : "a length is >= 0");
   if (scale) x *= radius ? g->nrad[i] : g->nlen[i];
-  return status(L, radius ? lsys_limbs_set_radius(g, i, x) : lsys_limbs_set_length(g, i, x),
+  return status(L, radius ? lsys_grow_set_radius(g, i, x) : lsys_grow_set_length(g, i, x),
                 what);
 }
 
@@ -434,7 +434,7 @@ static int limbs_set_color (lua_State *L) {
   int32_t i = limbarg(L, g, 2);
   float c[3];
   rgbarg(L, 3, c);
-  return status(L, lsys_limbs_set_color(g, i, c), "set_color");
+  return status(L, lsys_grow_set_color(g, i, c), "set_color");
 }
 
 /* blend_color(i, r, g, b, t): from the colour of the start of the tick towards
@@ -447,7 +447,7 @@ static int limbs_blend_color (lua_State *L) {
   int k;
   rgbarg(L, 3, c);
   for (k = 0; k < 3; k++) c[k] = (float)(g->rgb[3 * i + k] + (c[k] - g->rgb[3 * i + k]) * t);
-  return status(L, lsys_limbs_set_color(g, i, c), "blend_color");
+  return status(L, lsys_grow_set_color(g, i, c), "blend_color");
 }
 
 static int limbs_set_turn (lua_State *L) {
@@ -457,7 +457,7 @@ static int limbs_set_turn (lua_State *L) {
   int k;
   for (k = 0; k < 3; k++) ax[k] = numarg(L, 3 + k);
   luaL_argcheck(L, ax[0] != 0 || ax[1] != 0 || ax[2] != 0, 3, "the axis is zero");
-  return status(L, lsys_limbs_set_turn(g, i, ax, numarg(L, 6), numarg(L, 7)), "set_turn");
+  return status(L, lsys_grow_set_turn(g, i, ax, numarg(L, 6), numarg(L, 7)), "set_turn");
 }
 
 static int limbs_add_leaves (lua_State *L) {
@@ -469,17 +469,17 @@ static int limbs_add_leaves (lua_State *L) {
   luaL_argcheck(L, n >= 0 && n <= 1000, 3, "0 to 1000 leaves at a time");
   luaL_argcheck(L, size >= 0, 4, "a leaf size is >= 0");
   rgbarg(L, 5, c);
-  return status(L, lsys_limbs_add_leaves(g, i, (int)n, size, c), "add_leaves");
+  return status(L, lsys_grow_add_leaves(g, i, (int)n, size, c), "add_leaves");
 }
 
 static int limbs_drop_leaves (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
-  return status(L, lsys_limbs_drop_leaves(g, limbarg(L, g, 2)), "drop_leaves");
+  return status(L, lsys_grow_drop_leaves(g, limbarg(L, g, 2)), "drop_leaves");
 }
 
 static int limbs_remove (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
-  return status(L, lsys_limbs_remove(g, limbarg(L, g, 2)), "remove");
+  return status(L, lsys_grow_remove(g, limbarg(L, g, 2)), "remove");
 }
 
 /* }====================================================================== */
@@ -582,7 +582,7 @@ static int readrule (lua_State *L, int idx, int j, crule *r) {
   memset(r, 0, sizeof *r);
   if (!lua_istable(L, idx)) luaL_error(L, "set_rules: rule %d is not a table", j);
   if (lua_getfield(L, idx, "code") != LUA_TNIL) {
-    c = lsys_readcode(L, -1, &nc);          /* on the stack until the end */
+    c = lsysL_readcode(L, -1, &nc);          /* on the stack until the end */
     if (lsys_expr_check(c, nc, NVARS, 0) != 0)
       luaL_error(L, "set_rules: rule %d: the condition's code is malformed", j);
   }
@@ -669,15 +669,15 @@ static int limbs_set_rules (lua_State *L) {
 /* Applies the declarative part of rule r to limb i. */
 static int apply (lsys_limbs *g, const crule *r, int32_t i) {
   int st = LSYS_OK, k;
-  if (r->slen != 1) st = lsys_limbs_set_length(g, i, g->nlen[i] * r->slen);
-  if (st == LSYS_OK && r->srad != 1) st = lsys_limbs_set_radius(g, i, g->nrad[i] * r->srad);
+  if (r->slen != 1) st = lsys_grow_set_length(g, i, g->nlen[i] * r->slen);
+  if (st == LSYS_OK && r->srad != 1) st = lsys_grow_set_radius(g, i, g->nrad[i] * r->srad);
   if (st == LSYS_OK && r->blend) {
     float c[3];
     for (k = 0; k < 3; k++)
       c[k] = (float)(g->rgb[3 * i + k] + (r->brgb[k] - g->rgb[3 * i + k]) * r->bt);
-    st = lsys_limbs_set_color(g, i, c);
+    st = lsys_grow_set_color(g, i, c);
   }
-  if (st == LSYS_OK && r->setcol) st = lsys_limbs_set_color(g, i, r->crgb);
+  if (st == LSYS_OK && r->setcol) st = lsys_grow_set_color(g, i, r->crgb);
   return st;
 }
 
@@ -764,8 +764,8 @@ static const luaL_Reg limbs_meta[] = {
   {"__index", NULL}, {"__gc", limbs_gc}, {"__close", limbs_gc}, {NULL, NULL}
 };
 
-void lsys_open_grow (lua_State *L) {
-  lsys_createmeta(L, LIMBS_T, limbs_meta, limbs_methods);
+void lsysL_open_grow (lua_State *L) {
+  lsysL_createmeta(L, LIMBS_T, limbs_meta, limbs_methods);
   lua_pushcfunction(L, l_limbs);
   lua_setfield(L, -2, "limbs");
 }

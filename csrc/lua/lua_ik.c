@@ -57,17 +57,17 @@ static lsys_opts ikopts (int t, const char *pre) {
 static void getvec (lua_State *L, const lsys_opts *o, const char *key, double v[3],
                     const double *def) {
   int i;
-  if (!lsys_optfield(L, o, key, LUA_TNONE, NULL)) {
-    if (def == NULL) lsys_opterror(L, o, key, "a table of 3 numbers");
+  if (!lsysL_optfield(L, o, key, LUA_TNONE, NULL)) {
+    if (def == NULL) lsysL_opterror(L, o, key, "a table of 3 numbers");
     memcpy(v, def, 3 * sizeof *v);
     return;
   }
-  if (!lua_istable(L, -1)) lsys_opterror(L, o, key, "a table of 3 numbers");
+  if (!lua_istable(L, -1)) lsysL_opterror(L, o, key, "a table of 3 numbers");
   for (i = 0; i < 3; i++) {
     lua_rawgeti(L, -1, i + 1);
     v[i] = lua_tonumber(L, -1);
     if (!lua_isnumber(L, -1) || !isfinite(v[i]))
-      lsys_opterror(L, o, key, "a table of 3 finite numbers");
+      lsysL_opterror(L, o, key, "a table of 3 finite numbers");
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
@@ -75,8 +75,8 @@ static void getvec (lua_State *L, const lsys_opts *o, const char *key, double v[
 
 /* A number >= 0 (weights, counts, tolerances). */
 static double getnum (lua_State *L, const lsys_opts *o, const char *key, double def) {
-  double x = lsys_optnum(L, o, key, def, -HUGE_VAL, HUGE_VAL, "a number >= 0");
-  if (x < 0) lsys_opterror(L, o, key, "a number >= 0");
+  double x = lsysL_optnum(L, o, key, def, -HUGE_VAL, HUGE_VAL, "a number >= 0");
+  if (x < 0) lsysL_opterror(L, o, key, "a number >= 0");
   return x;
 }
 
@@ -182,7 +182,7 @@ static int ik_solve (lua_State *L) {
   return 1;
 }
 
-#define pushvec(L, v) lsys_pushnums((L), (v), 3)
+#define pushvec(L, v) lsysL_pushnums((L), (v), 3)
 
 /* The angles are copied before the tables are made (a finalizer run by an
 ** allocation may close the chain). */
@@ -257,8 +257,8 @@ static const luaL_Reg ik_meta[] = {
   {"__gc", ik_gc}, {"__close", ik_gc}, {"__len", ik_len}, {NULL, NULL}
 };
 
-void lsys_open_ik (lua_State *L) {
-  lsys_createmeta(L, IK_T, ik_meta, ik_methods);
+void lsysL_open_ik (lua_State *L) {
+  lsysL_createmeta(L, IK_T, ik_meta, ik_methods);
   lua_pushcfunction(L, l_ik_chain);
   lua_setfield(L, -2, "ik_chain");
 }

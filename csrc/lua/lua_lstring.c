@@ -19,7 +19,7 @@ static int lstring_gc (lua_State *L) {
 }
 
 static int lstring_len (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_checklstring_any(L, 1)->n);
+  lua_pushinteger(L, (lua_Integer)lsysL_checklstring_any(L, 1)->n);
   return 1;
 }
 
@@ -28,13 +28,13 @@ static int lstring_len (lua_State *L) {
 static void pushtext (lua_State *L, int idx, size_t i, size_t j, int digits) {
   lsys_lstring *s = checklstring(L, idx);
   lsys_buf b = {0};
-  if (lsys_lstring_format_digits(&b, s, lsys_getalphabet(L), lsys_ownernames(L, idx), i, j,
+  if (lsys_lstring_format_digits(&b, s, lsysL_getalphabet(L), lsysL_ownernames(L, idx), i, j,
                                  digits) != LSYS_OK) {
-    lsys_buf_free(&b);
+    lsys_lstring_buf_free(&b);
     luaL_error(L, "not enough memory");
   }
   lua_pushlstring(L, b.p ? b.p : "", b.n);
-  lsys_buf_free(&b);   /* lua_pushlstring may raise: a leak of b only on memory errors */
+  lsys_lstring_buf_free(&b);   /* lua_pushlstring may raise: a leak of b only on memory errors */
 }
 
 static int lstring_tostring (lua_State *L) {
@@ -62,8 +62,8 @@ static int lstring_sub (lua_State *L) {
   lua_Integer je = luaL_optinteger(L, 3, -1);
   size_t j = je >= 0 ? (size_t)je : (je < -(lua_Integer)s->n ? 0 : s->n + (size_t)je + 1);
   if (j > s->n) j = s->n;
-  d = lsys_newlstring(L);
-  lsys_setowner(L, -1, 1);
+  d = lsysL_newlstring(L);
+  lsysL_setowner(L, -1, 1);
   s = checklstring(L, 1);                   /* again: a finalizer may have closed it */
   if (i <= j && j > s->n) j = s->n;         /* or rewritten it */
   if (i <= j && lsys_lstring_append(d, s, i - 1, j, lsys_lstring_poff(s, i - 1)) != LSYS_OK)
@@ -95,7 +95,7 @@ static int pushmodule (lua_State *L, lsys_lstring *s, size_t i, size_t off) {
   luaL_checkstack(L, (int)np + 2, "too many parameters");
   lua_pushnil(L);                           /* the name's place */
   for (k = 0; k < np; k++) lua_pushnumber(L, s->par[off + k]);
-  lua_pushstring(L, lsys_alphabet_name(lsys_getalphabet(L), LSYS_CSYM(c)));
+  lua_pushstring(L, lsys_alphabet_name(lsysL_getalphabet(L), LSYS_CSYM(c)));
   lua_replace(L, -(int)np - 2);
   return (int)np + 1;
 }
@@ -159,7 +159,7 @@ static int lstring_count (lua_State *L) {
   lsys_lstring *s = checklstring(L, 1);
   size_t len, i, n = 0;
   const char *name = luaL_checklstring(L, 2, &len);   /* a number is converted: allocates */
-  uint32_t sym = lsys_alphabet_find(lsys_getalphabet(L), name, len);
+  uint32_t sym = lsys_alphabet_find(lsysL_getalphabet(L), name, len);
   s = checklstring(L, 1);
   if (sym != 0)
     for (i = 0; i < s->n; i++) n += LSYS_CSYM(s->code[i]) == sym;
@@ -170,7 +170,7 @@ static int lstring_count (lua_State *L) {
 /* s:counts() -> { name = count, ... } for every module name in s */
 static int lstring_counts (lua_State *L) {
   lsys_lstring *s = checklstring(L, 1);
-  lsys_alphabet *a = lsys_getalphabet(L);
+  lsys_alphabet *a = lsysL_getalphabet(L);
   size_t *n = (size_t *)lua_newuserdatauv(L, (a->n + 1) * sizeof *n, 0);
   size_t i;
   uint32_t k;
@@ -209,8 +209,8 @@ static int lstring_concat (lua_State *L) {
   lsys_lstring *a, *b, *d;
   checklstring(L, 1);
   checklstring(L, 2);
-  d = lsys_newlstring(L);
-  lsys_setowner(L, -1, 1);
+  d = lsysL_newlstring(L);
+  lsysL_setowner(L, -1, 1);
   a = checklstring(L, 1);                   /* after the allocation (finalizers) */
   b = checklstring(L, 2);
   if (lsys_lstring_copy(d, a) != LSYS_OK || lsys_lstring_append(d, b, 0, b->n, 0) != LSYS_OK)
@@ -229,8 +229,8 @@ static int lstring_insert (lua_State *L) {
   luaL_checktype(L, 2, LUA_TTABLE);
   checklstring(L, 3);
   np = luaL_len(L, 2);                      /* may run Lua code */
-  d = lsys_newlstring(L);                   /* may run finalizers */
-  lsys_setowner(L, -1, 1);
+  d = lsysL_newlstring(L);                   /* may run finalizers */
+  lsysL_setowner(L, -1, 1);
   a = checklstring(L, 1);                   /* nothing below runs Lua code */
   b = checklstring(L, 3);
   for (k = 1; k <= np + 1; k++) {
@@ -259,8 +259,8 @@ static int lstring_insert (lua_State *L) {
 static int lstring_copy (lua_State *L) {
   lsys_lstring *a, *d;
   checklstring(L, 1);
-  d = lsys_newlstring(L);
-  lsys_setowner(L, -1, 1);
+  d = lsysL_newlstring(L);
+  lsysL_setowner(L, -1, 1);
   a = checklstring(L, 1);                   /* after the allocation (finalizers) */
   if (lsys_lstring_copy(d, a) != LSYS_OK) return luaL_error(L, "not enough memory");
   return 1;
@@ -268,7 +268,7 @@ static int lstring_copy (lua_State *L) {
 
 /* s:bytes(): memory held by the string (codes, parameters), in bytes */
 static int lstring_bytes (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_lstring_bytes(lsys_checklstring_any(L, 1)));
+  lua_pushinteger(L, (lua_Integer)lsys_lstring_bytes(lsysL_checklstring_any(L, 1)));
   return 1;
 }
 
@@ -279,14 +279,26 @@ static int l_lstring (lua_State *L) {
   const char *names = luaL_optstring(L, 2, "");
   lsys_names decl = {0};
   lsys_error e;
-  lsys_lstring *s = lsys_newlstring(L);
-  int st = lsys_readnames(L, names, &decl);
+  lsys_lstring *s = lsysL_newlstring(L);
+  int st = lsysL_readnames(L, names, &decl);
   if (st == LSYS_OK)
-    st = lsys_lstring_parse(s, text, len, lsys_getalphabet(L), &decl, &e);
-  lsys_names_free(&decl);
+    st = lsys_lstring_parse(s, text, len, lsysL_getalphabet(L), &decl, &e);
+  lsys_alphabet_names_free(&decl);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   if (st != LSYS_OK)
     return luaL_error(L, "lstring: %s at character %d", e.msg, (int)e.pos + 1);
+  return 1;
+}
+
+/* core.lstring_rules(s) -> the Rules that made the Lstring 's' (its owner, the user
+** value lsysL_setowner keeps), or nil for an Lstring made without rules: lsys.model finds
+** the model of a string by it. Raises for anything but an Lstring; answers for a closed
+** one too, as it reads only the user value, which a close leaves (the model of a closed
+** string is named in the message its use raises). */
+static int l_lstring_rules (lua_State *L) {
+  luaL_checkudata(L, 1, LSTRING_T);
+  if (lua_getiuservalue(L, 1, 1) != LUA_TUSERDATA || luaL_testudata(L, -1, RULES_T) == NULL)
+    lua_pushnil(L);
   return 1;
 }
 
@@ -304,8 +316,10 @@ static const luaL_Reg lstring_meta[] = {
   {NULL, NULL}
 };
 
-void lsys_open_lstring (lua_State *L) {
-  lsys_createmeta(L, LSTRING_T, lstring_meta, lstring_methods);
+void lsysL_open_lstring (lua_State *L) {
+  lsysL_createmeta(L, LSTRING_T, lstring_meta, lstring_methods);
   lua_pushcfunction(L, l_lstring);
   lua_setfield(L, -2, "lstring");
+  lua_pushcfunction(L, l_lstring_rules);
+  lua_setfield(L, -2, "lstring_rules");
 }

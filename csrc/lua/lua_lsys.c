@@ -7,26 +7,26 @@
 #include "lua_lsys.h"
 
 int luaopen_lsys_core (lua_State *L) {
-  lsys_getalphabet(L);                /* the state's alphabet, before any model */
+  lsysL_getalphabet(L);                /* the state's alphabet, before any model */
   lua_newtable(L);
-  lsys_open_rules(L);
-  lsys_open_lstring(L);
-  lsys_open_scene(L);
-  lsys_open_render(L);
-  lsys_open_outfile(L);
-  lsys_open_contour(L);
-  lsys_open_surface(L);
-  lsys_open_texture(L);
-  lsys_open_viewer(L);
-  lsys_open_ik(L);
-  lsys_open_bspline(L);
-  lsys_open_func(L);
-  lsys_open_canvas(L);
-  lsys_open_ffd(L);                   /* after lsys_open_scene: adds Scene methods */
-  lsys_open_compgeo(L);
-  lsys_open_grow(L);
-  lsys_open_population(L);             /* after lsys_open_scene: adds Scene methods */
-  lsys_open_sandbox(L);                /* after lsys_open_rules: adds a Rules method */
+  lsysL_open_rules(L);
+  lsysL_open_lstring(L);
+  lsysL_open_scene(L);
+  lsysL_open_render(L);
+  lsysL_open_outfile(L);
+  lsysL_open_contour(L);
+  lsysL_open_surface(L);
+  lsysL_open_texture(L);
+  lsysL_open_viewer(L);
+  lsysL_open_ik(L);
+  lsysL_open_bspline(L);
+  lsysL_open_func(L);
+  lsysL_open_canvas(L);
+  lsysL_open_ffd(L);                   /* after lsysL_open_scene: adds Scene methods */
+  lsysL_open_compgeo(L);
+  lsysL_open_grow(L);
+  lsysL_open_population(L);             /* after lsysL_open_scene: adds Scene methods */
+  lsysL_open_sandbox(L);                /* after lsysL_open_rules: adds a Rules method */
   lua_pushinteger(L, LSYS_MAXTROPISMS);   /* the view schema's limit comes from the turtle */
   lua_setfield(L, -2, "MAXTROPISMS");
   return 1;

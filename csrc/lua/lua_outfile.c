@@ -51,7 +51,7 @@ static int l_outfile (lua_State *L) {
   lua_pushvalue(L, 1);
   lua_setiuservalue(L, -2, 1);
   st = lsys_outfile_open(&u->o, path, &e);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
   u->state = OPEN;
   return 1;
 }
@@ -74,7 +74,7 @@ static int outfile_write (lua_State *L) {
     lsys_seterror(&e, LSYS_EARG, (size_t)-1, "cannot write '%s': %s", u->o.path, strerror(en));
     lsys_outfile_abort(&u->o);
     u->state = DONE;
-    return lsys_raise(L, LSYS_EARG, &e, 1);
+    return lsysL_raise(L, LSYS_EARG, &e, 1);
   }
   lua_settop(L, 1);
   return 1;
@@ -90,7 +90,7 @@ static int outfile_name (lua_State *L) {
     if (st != LSYS_OK) {
       lsys_outfile_abort(&u->o);
       u->state = DONE;
-      return lsys_raise(L, st, &e, 1);
+      return lsysL_raise(L, st, &e, 1);
     }
     u->state = HANDED;
   }
@@ -103,7 +103,7 @@ static int outfile_commit (lua_State *L) {
   lsys_error e;
   int st = lsys_outfile_commit(&u->o, &e);
   u->state = DONE;
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -136,8 +136,8 @@ static int l_tempdir (lua_State *L) {
   lsys_error e;
   t->path = NULL;
   luaL_setmetatable(L, TEMPDIR_T);
-  t->path = lsys_tempdir_make(parent, prefix, &e);
-  if (t->path == NULL) return lsys_raise(L, e.code, &e, 1);
+  t->path = lsys_outfile_tempdir_make(parent, prefix, &e);
+  if (t->path == NULL) return lsysL_raise(L, e.code, &e, 1);
   return 1;
 }
 
@@ -153,7 +153,7 @@ static int tempdir_remove (lua_State *L) {
   ltempdir *t = (ltempdir *)luaL_checkudata(L, 1, TEMPDIR_T);
   int en;
   if (t->path == NULL) return luaL_error(L, "tempdir:remove: the folder was removed");
-  en = lsys_tempdir_remove(t->path);
+  en = lsys_outfile_tempdir_remove(t->path);
   if (en != 0) {
     lua_pushfstring(L, "cannot remove the temporary folder '%s': %s", t->path, strerror(en));
     LSYS_FREE(t->path);
@@ -170,7 +170,7 @@ static int tempdir_remove (lua_State *L) {
 static int tempdir_gc (lua_State *L) {
   ltempdir *t = (ltempdir *)luaL_checkudata(L, 1, TEMPDIR_T);
   if (t->path != NULL) {
-    (void)lsys_tempdir_remove(t->path);
+    (void)lsys_outfile_tempdir_remove(t->path);
     LSYS_FREE(t->path);
     t->path = NULL;
   }
@@ -203,8 +203,8 @@ static const luaL_Reg outfile_funcs[] = {
   {"outfile", l_outfile}, {"tempdir", l_tempdir}, {NULL, NULL}
 };
 
-void lsys_open_outfile (lua_State *L) {
-  lsys_createmeta(L, OUTFILE_T, outfile_meta, outfile_methods);
-  lsys_createmeta(L, TEMPDIR_T, tempdir_meta, tempdir_methods);
+void lsysL_open_outfile (lua_State *L) {
+  lsysL_createmeta(L, OUTFILE_T, outfile_meta, outfile_methods);
+  lsysL_createmeta(L, TEMPDIR_T, tempdir_meta, tempdir_methods);
   luaL_setfuncs(L, outfile_funcs, 0);
 }

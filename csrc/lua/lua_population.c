@@ -26,14 +26,14 @@
 ** scene is taken: a metamethod of that table may close it). */
 static lsys_lscene *checkpop (lua_State *L, int i, const char *who) {
   int top = lua_gettop(L), pop = 0;
-  lsys_checkscene(L, i);
+  lsysL_checkscene(L, i);
   if (lua_getiuservalue(L, i, LSYS_SCENE_OPTS) == LUA_TTABLE) {
     lua_getfield(L, -1, "population");
     pop = lua_toboolean(L, -1);
   }
   lua_settop(L, top);
   if (!pop) luaL_error(L, "%s: a population expected (lsys.population)", who);
-  return lsys_checkscene(L, i);
+  return lsysL_checkscene(L, i);
 }
 
 /* core.population(opts) -> an empty population Scene */
@@ -42,8 +42,8 @@ static int l_population (lua_State *L) {
   lsys_lscene *S;
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_settop(L, 1);
-  S = lsys_newscene(L);
-  lsys_readlook(L, &look, &S->sc);
+  S = lsysL_newscene(L);
+  lsysL_readlook(L, &look, &S->sc);
   lua_pushboolean(L, 1);
   lua_setfield(L, 1, "population");
   lua_pushvalue(L, 1);
@@ -93,8 +93,8 @@ static uint16_t *texmap (lua_State *L, int list, const lsys_lscene *src) {
 static void settextures (lua_State *L, int popidx, int opts) {
   lsys_lscene *S;
   int ntex;
-  const lsys_texture *const *tex = lsys_opttextures(L, opts, "lsys.population", &ntex);
-  S = lsys_checkscene(L, popidx);
+  const lsys_texture *const *tex = lsysL_opttextures(L, opts, "lsys.population", &ntex);
+  S = lsysL_checkscene(L, popidx);
   S->sc.tex = tex;
   S->sc.ntex = tex != NULL ? ntex : 0;
   lua_setiuservalue(L, popidx, LSYS_SCENE_TEX);
@@ -102,7 +102,7 @@ static void settextures (lua_State *L, int popidx, int opts) {
 
 /* core.population_add(pop, scene, records [, plants, held]) -> k (1-based) */
 static int l_population_add (lua_State *L) {
-  lsys_lscene *P = checkpop(L, 1, "lsys.population"), *S = lsys_checkscene(L, 2);
+  lsys_lscene *P = checkpop(L, 1, "lsys.population"), *S = lsysL_checkscene(L, 2);
   int records = lua_toboolean(L, 3), opts, list, st;
   lua_Integer plants = luaL_optinteger(L, 4, 0);
   lua_Number held = luaL_optnumber(L, 5, 0);
@@ -125,10 +125,10 @@ static int l_population_add (lua_State *L) {
   }
   list = 5;
   map = texmap(L, list, S);                                     /* 6 */
-  P = lsys_checkscene(L, 1);                   /* again: the lists ran Lua code */
-  S = lsys_checkscene(L, 2);
-  lsys_changescene(L, P);
-  mt.limit = lsys_memory_limit();
+  P = lsysL_checkscene(L, 1);                   /* again: the lists ran Lua code */
+  S = lsysL_checkscene(L, 2);
+  lsysL_changescene(L, P);
+  mt.limit = lsys_common_memory_limit();
   mt.used = lsys_scene_bytes(&P->sc) + (size_t)held;     /* the caller's tables count too */
   mt.hit = 0;
   mt.lock = NULL;
@@ -137,7 +137,8 @@ static int l_population_add (lua_State *L) {
     char b1[32], b2[32];
     double need = (double)mt.used + (double)plants * sizeof *P->sc.inst;
     return luaL_error(L, "lsys.population: %I plants need %s, more than max_memory (%s)",
-                      plants, lsys_fmtsize(b1, (size_t)need), lsys_fmtsize(b2, mt.limit));
+                      plants, lsys_common_fmtsize(b1, (size_t)need),
+                      lsys_common_fmtsize(b2, mt.limit));
   }
   if (st != LSYS_OK) return luaL_error(L, "not enough memory");
   P->sc.meter = P->sc.mesh.meter = &mt;
@@ -146,7 +147,7 @@ static int l_population_add (lua_State *L) {
   if (st == LSYS_EMEMORY) {
     char b[32];
     return luaL_error(L, "lsys.population: the prototypes need more than max_memory (%s)",
-                      lsys_fmtsize(b, mt.limit));
+                      lsys_common_fmtsize(b, mt.limit));
   }
   if (st == LSYS_ELIMIT)
     return luaL_error(L, "lsys.population: too many prototypes: more than 2^32 vertices or "
@@ -172,7 +173,7 @@ static int l_population_place (lua_State *L) {
     m[4 * (i / 3) + i % 3] = (float)x;
   }
   m[15] = 1;
-  lsys_changescene(L, P);
+  lsysL_changescene(L, P);
   if (lsys_scene_add_instance(&P->sc, (size_t)k - 1, m) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   lua_pushinteger(L, (lua_Integer)P->sc.ninst);
@@ -186,18 +187,18 @@ static void setnums (lua_State *L, const char *k, const float *v, int n) {
   double d[16];
   int i;
   for (i = 0; i < n; i++) d[i] = v[i];
-  lsys_pushnums(L, d, n);
+  lsysL_pushnums(L, d, n);
   lua_setfield(L, -2, k);
 }
 
 /* scene:instance(i) -> { prototype =, matrix = {16, column-major}, at =, rotation =
 ** {x, y, z, w}, scale = } (rotation and scale when the matrix is T R S), or nil */
 static int scene_instance (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer i = luaL_checkinteger(L, 2);
   const lsys_instance *in;
   float t[3], q[4], s[3];
-  S = lsys_holdscene(L, 1);                 /* the tables are made as it reads */
+  S = lsysL_holdscene(L, 1);                 /* the tables are made as it reads */
   if (i < 1 || (size_t)i > S->sc.ninst) { lua_pushnil(L); return 1; }
   in = &S->sc.inst[i - 1];
   lua_createtable(L, 0, 5);
@@ -216,12 +217,12 @@ static int scene_instance (lua_State *L) {
 ** with the fields lsys.population keeps about it (model, seed, steps, lstring, ...),
 ** or nil */
 static int scene_prototype (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   const lsys_part *p;
   size_t i, n = 0;
   lua_settop(L, 2);
-  S = lsys_holdscene(L, 1);                 /* 3: the OPTS table's metamethods run */
+  S = lsysL_holdscene(L, 1);                 /* 3: the OPTS table's metamethods run */
   if (k < 1 || (size_t)k > S->sc.nparts) { lua_pushnil(L); return 1; }
   p = &S->sc.parts[k - 1];
   for (i = 0; i < S->sc.ninst; i++) n += S->sc.inst[i].part == (uint32_t)(k - 1);
@@ -249,28 +250,28 @@ static int scene_prototype (lua_State *L) {
 ** the bytes it may take, default the process's budget) */
 static int scene_flatten (lua_State *L) {
   static const char *const keys[] = {"max_memory", NULL};
-  lsys_lscene *S = lsys_checkscene(L, 1), *F;
+  lsys_lscene *S = lsysL_checkscene(L, 1), *F;
   lsys_meter mt = {0, 0, 0, NULL};
   int st;
-  mt.limit = lsys_memory_limit();
+  mt.limit = lsys_common_memory_limit();
   if (!lua_isnoneornil(L, 2)) {
     lsys_opts o = {2, "scene:flatten: opts.", "", LSYS_GOT_VALUE, 0};
     luaL_checktype(L, 2, LUA_TTABLE);
-    if (lsys_optunknown(L, &o, keys))
+    if (lsysL_optunknown(L, &o, keys))
       return luaL_error(L, "scene:flatten: unknown option '%s' (use max_memory)",
                         luaL_tolstring(L, -1, NULL));
-    mt.limit = (size_t)lsys_optnum(L, &o, "max_memory", (double)mt.limit, 0, 1.8e19,
-                                   "a positive number of bytes");
+    mt.limit = (size_t)lsysL_optnum(L, &o, "max_memory", (double)mt.limit, 0, 1.8e19,
+                                    "a positive number of bytes");
   }
   lua_settop(L, 1);
-  F = lsys_newscene(L);
-  S = lsys_checkscene(L, 1);
+  F = lsysL_newscene(L);
+  S = lsysL_checkscene(L, 1);
   st = lsys_population_flatten(&F->sc, &S->sc, &mt);
   if (st == LSYS_EMEMORY) {
     char b1[32], b2[32];
     return luaL_error(L, "scene:flatten: the flattened scene needs %s, more than max_memory "
-                      "(%s)", lsys_fmtsize(b1, lsys_population_flatbytes(&S->sc)),
-                      lsys_fmtsize(b2, mt.limit));
+                      "(%s)", lsys_common_fmtsize(b1, lsys_population_flatbytes(&S->sc)),
+                      lsys_common_fmtsize(b2, mt.limit));
   }
   if (st == LSYS_ELIMIT)
     return luaL_error(L, "scene:flatten: more than 2^32 vertices or line segments");
@@ -292,8 +293,8 @@ static const luaL_Reg scene_methods[] = {
   {NULL, NULL}
 };
 
-/* After lsys_open_scene: adds the methods to the Scene's __methods. */
-void lsys_open_population (lua_State *L) {
+/* After lsysL_open_scene: adds the methods to the Scene's __methods. */
+void lsysL_open_population (lua_State *L) {
   luaL_getmetatable(L, SCENE_T);
   lua_getfield(L, -1, "__methods");
   luaL_setfuncs(L, scene_methods, 0);

@@ -16,8 +16,8 @@
 ** writes that PNG file (RGB, or RGBA with opts.transparent) and returns
 ** true; otherwise returns the RGBA pixels (a string, top row first), the
 ** width and the height. The scene's camera, light, background and textures
-** are used, except where opts gives them (lsys_readlook; opts.textures: a
-** list of lsys.Texture, read last: lsys_opttextures). The scene is taken
+** are used, except where opts gives them (lsysL_readlook; opts.textures: a
+** list of lsys.Texture, read last: lsysL_opttextures). The scene is taken
 ** after everything that runs Lua code (the options' metamethods, finalizers
 ** run by the allocation of the pixels).
 ** The supersampling factor is lowered when the supersampled image would
@@ -29,7 +29,7 @@ static int l_render (lua_State *L) {
   return luaL_error(L, "lsys was built without OSMesa: install libosmesa6-dev and rebuild "
                        "(./setup.sh does)");
 #else
-  const lsys_lscene *S = lsys_checkscene(L, 1);
+  const lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *out = NULL;
   const lsys_texture *const *tex;
   lsys_scene look = S->sc, v;         /* look: the camera, light, background opts give */
@@ -44,8 +44,8 @@ static int l_render (lua_State *L) {
     luaL_checktype(L, 2, LUA_TTABLE);
     ro.t = 2;
   }
-  lsys_readrenderopts(L, ro.t, &o, &look);
-  if (lsys_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
+  lsysL_readrenderopts(L, ro.t, &o, &look);
+  if (lsysL_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
@@ -53,16 +53,16 @@ static int l_render (lua_State *L) {
     return luaL_error(L, "lsys.render: %dx%d is larger than OSMesa's limit of %dx%d",
                       o.width, o.height, maxw, maxh);
   n = (size_t)o.width * (size_t)o.height * 4;
-  if ((double)n * 3 > (double)lsys_memory_limit()) {   /* the picture, colour and depth */
+  if ((double)n * 3 > (double)lsys_common_memory_limit()) {   /* the picture, colour and depth */
     char b1[32], b2[32];
     return luaL_error(L, "lsys.render: a %dx%d picture needs %s, more than max_memory (%s)",
-                      o.width, o.height, lsys_fmtsize(b1, n * 3),
-                      lsys_fmtsize(b2, lsys_memory_limit()));
+                      o.width, o.height, lsys_common_fmtsize(b1, n * 3),
+                      lsys_common_fmtsize(b2, lsys_common_memory_limit()));
   }
   /* the pixels live in Lua memory, so an error cannot leak them */
   px = out ? (uint8_t *)lua_newuserdatauv(L, n, 0) : (uint8_t *)luaL_buffinitsize(L, &b, n);
-  tex = lsys_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value; kept */
-  S = lsys_checkscene(L, 1);          /* after the last Lua code (metamethods, finalizers) */
+  tex = lsysL_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value; kept */
+  S = lsysL_checkscene(L, 1);          /* after the last Lua code (metamethods, finalizers) */
   v = S->sc;                          /* the scene as this picture sees it (scene.h) */
   v.cam = look.cam;
   memcpy(v.light, look.light, sizeof v.light);
@@ -71,7 +71,7 @@ static int l_render (lua_State *L) {
   if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {
-    if (lsys_png_write(out, px, o.width, o.height, o.transparent, &e) != LSYS_OK)
+    if (lsys_pngio_write(out, px, o.width, o.height, o.transparent, &e) != LSYS_OK)
       return luaL_error(L, "lsys.render: %s", e.msg);
     lua_pushboolean(L, 1);
     return 1;
@@ -99,7 +99,7 @@ static int l_png_read (lua_State *L) {
   lsys_error e;
   *box = NULL;
   luaL_setmetatable(L, PIXELS_T);
-  if (lsys_png_read(path, box, &w, &h, &e) != LSYS_OK) return lsys_raise(L, e.code, &e, 1);
+  if (lsys_pngio_read(path, box, &w, &h, &e) != LSYS_OK) return lsysL_raise(L, e.code, &e, 1);
   lua_pushlstring(L, (const char *)*box, (size_t)w * h * 4);
   LSYS_FREE(*box);
   *box = NULL;
@@ -131,8 +131,8 @@ static int l_png_write (lua_State *L) {
     luaL_checktype(L, 5, LUA_TBOOLEAN);
     alpha = lua_toboolean(L, 5);
   }
-  if (lsys_png_write(path, px, (int)w, (int)h, alpha, &e) != LSYS_OK)
-    return lsys_raise(L, e.code, &e, 1);
+  if (lsys_pngio_write(path, px, (int)w, (int)h, alpha, &e) != LSYS_OK)
+    return lsysL_raise(L, e.code, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -149,13 +149,13 @@ static int l_write_file (lua_State *L) {
     lsys_outfile_write(&out, bytes, len);
     st = lsys_outfile_commit(&out, &e);
   }
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
 
 /* core.read_file(path, max) -> the bytes of a regular file of at most 'max'
-** bytes, or nil and a message naming the file (lsys_readfile) */
+** bytes, or nil and a message naming the file (lsys_common_readfile) */
 static int l_read_file (lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
   lua_Number max = luaL_checknumber(L, 2);
@@ -163,7 +163,7 @@ static int l_read_file (lua_State *L) {
   size_t len;
   char *text;
   luaL_argcheck(L, max >= 0 && max < 1e15, 2, "a number of bytes expected");
-  text = lsys_readfile(path, (size_t)max, &len, &e);
+  text = lsys_common_readfile(path, (size_t)max, &len, &e);
   if (text == NULL) {
     lua_pushnil(L);
     lua_pushstring(L, e.msg);
@@ -215,8 +215,8 @@ static int renderstate_gc (lua_State *L) {
 }
 #endif
 
-void lsys_open_render (lua_State *L) {
-  lsys_createmeta(L, PIXELS_T, pixels_meta, NULL);
+void lsysL_open_render (lua_State *L) {
+  lsysL_createmeta(L, PIXELS_T, pixels_meta, NULL);
 #ifndef LSYS_NO_RENDER
   if (lua_getfield(L, LUA_REGISTRYINDEX, "lsys.renderstate") == LUA_TNIL) {
     lua_newuserdatauv(L, 0, 0);

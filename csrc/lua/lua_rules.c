@@ -3,7 +3,7 @@
 ** parsing rule text, adding rules, configuring and running derivation steps,
 ** and what rule functions call while a model derives: successor templates
 ** with lsys.produce / lsys.nproduce, and lsys.ran / lsys.nran. Running an
-** operation with the rule functions bound is lsys_rules_run (lua_aux.c).
+** operation with the rule functions bound is lsysL_rules_run (lua_aux.c).
 */
 #include <math.h>
 #include <string.h>
@@ -15,7 +15,7 @@
 /* The Rules at 'i' for a method that changes them: raises also while they
 ** derive. */
 static lsys_lrules *checkidle (lua_State *L, int i) {
-  lsys_lrules *R = lsys_checkrules(L, i);
+  lsys_lrules *R = lsysL_checkrules(L, i);
   if (R->m.busy) luaL_error(L, "the rules of a model cannot change while it derives");
   return R;
 }
@@ -27,8 +27,8 @@ static int rules_gc (lua_State *L) {
   lsys_lrules *R = (lsys_lrules *)luaL_checkudata(L, 1, RULES_T);
   if (R->inited && R->m.busy) return luaL_error(L, "cannot close the rules of a model while it derives");
   if (R->inited) {
-    lsys_model_free(&R->m);
-    lsys_names_free(&R->decl);
+    lsys_rules_free(&R->m);
+    lsys_alphabet_names_free(&R->decl);
     R->inited = 0;
   }
   return 0;
@@ -37,17 +37,17 @@ static int rules_gc (lua_State *L) {
 /* core.rules([names]): a new empty rule store */
 static int l_rules (lua_State *L) {
   const char *names = luaL_optstring(L, 1, "");
-  lsys_alphabet *a = lsys_getalphabet(L);
+  lsys_alphabet *a = lsysL_getalphabet(L);
   lsys_lrules *R = (lsys_lrules *)lua_newuserdatauv(L, sizeof *R, LSYS_RULES_NUV);
   memset(R, 0, sizeof *R);
   luaL_setmetatable(L, RULES_T);
-  lsys_model_init(&R->m, a);
+  lsys_rules_init(&R->m, a);
   R->inited = 1;
   lua_newtable(L);
   lua_setiuservalue(L, -2, LSYS_RULES_FNS);
   lua_newtable(L);
   lua_setiuservalue(L, -2, LSYS_RULES_TPL);
-  if (lsys_readnames(L, names, &R->decl) != LSYS_OK) return luaL_error(L, "not enough memory");
+  if (lsysL_readnames(L, names, &R->decl) != LSYS_OK) return luaL_error(L, "not enough memory");
   return 1;
 }
 
@@ -55,7 +55,7 @@ static void pushpmods (lua_State *L, const char *text, const lsys_prule *r,
                        size_t from, size_t n) {
   size_t k;
   uint32_t j;
-  lsys_alphabet *a = lsys_getalphabet(L);
+  lsys_alphabet *a = lsysL_getalphabet(L);
   lua_createtable(L, (int)n, 0);
   for (k = 0; k < n; k++) {
     const lsys_pmod *pm = &r->mods[from + k];
@@ -83,17 +83,17 @@ static void pushpmods (lua_State *L, const char *text, const lsys_prule *r,
 */
 static int rules_parse (lua_State *L) {
   static const char *const modes[] = {"rule", "pattern", "successor", NULL};
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   size_t len;
   const char *text = luaL_checklstring(L, 2, &len);
   int mode = luaL_checkoption(L, 3, "rule", modes);
   lsys_prule r;
   lsys_error e;
   int st;
-  R = lsys_checkrules(L, 1);                /* again: converting a number allocates */
-  st = lsys_rule_parse(&r, text, len, mode, R->m.ab, &R->decl, &e);
+  R = lsysL_checkrules(L, 1);                /* again: converting a number allocates */
+  st = lsys_grammar_rule_parse(&r, text, len, mode, R->m.ab, &R->decl, &e);
   if (st != LSYS_OK) {
-    lsys_prule_free(&r);
+    lsys_grammar_prule_free(&r);
     lua_pushnil(L);
     lua_pushstring(L, st == LSYS_ENOMEM ? "not enough memory" : e.msg);
     lua_pushinteger(L, (lua_Integer)e.pos + 1);
@@ -122,7 +122,7 @@ static int rules_parse (lua_State *L) {
   }
   lua_pushboolean(L, r.empty);
   lua_setfield(L, -2, "empty");
-  lsys_prule_free(&r);
+  lsys_grammar_prule_free(&r);
   return 1;
 }
 
@@ -208,8 +208,8 @@ static int rules_add (lua_State *L) {
   lua_getfield(L, 5, "weight"); sp.weight = luaL_optnumber(L, -1, 1); lua_pop(L, 1);
   lua_getfield(L, 5, "id"); sp.id = (int)luaL_optinteger(L, -1, 0); lua_pop(L, 1);
   R = checkidle(L, 1);                      /* again: the spec's metamethods ran Lua code */
-  idx = lsys_model_add(&R->m, kind, sub, group, &sp, &e);
-  if (idx < 0) return lsys_raise(L, (int)idx, &e, 1);
+  idx = lsys_rules_add(&R->m, kind, sub, group, &sp, &e);
+  if (idx < 0) return lsysL_raise(L, (int)idx, &e, 1);
   lua_getiuservalue(L, 1, LSYS_RULES_FNS);
   lua_getfield(L, 5, "fn");
   lua_rawseti(L, -2, (lua_Integer)idx + 1);
@@ -230,14 +230,14 @@ static int rules_skiplist (lua_State *L) {
   while (i < len) {
     size_t nl;
     if (text[i] == ' ' || text[i] == '\t' || text[i] == '\n') { i++; continue; }
-    nl = lsys_scan_name(text + i, len - i, &R->decl);
+    nl = lsys_alphabet_scan(text + i, len - i, &R->decl);
     if (nl == 0) return luaL_error(L, "bad module name at '%s'", text + i);
     syms[n] = lsys_alphabet_intern(R->m.ab, text + i, nl, &e);
-    if (syms[n] == 0) return lsys_raise(L, e.code, &e, 1);
+    if (syms[n] == 0) return lsysL_raise(L, e.code, &e, 1);
     n++;
     i += nl;
   }
-  if (lsys_model_skiplist(&R->m, sub, consider, syms, n) != LSYS_OK)
+  if (lsys_rules_skiplist(&R->m, sub, consider, syms, n) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 0;
 }
@@ -265,7 +265,7 @@ static int rules_config (lua_State *L) {
   switch (key) {
     case 0: R->m.ring = lua_toboolean(L, 3); break;
     case 8: R->m.f32 = lua_toboolean(L, 3); break;
-    case 9: {                          /* 0: the default (lsys_default_threads) */
+    case 9: {                          /* 0: the default (lsys_derive_default_threads) */
       lua_Integer t = luaL_checkinteger(L, 3);
       luaL_argcheck(L, t >= 0 && t <= LSYS_MAXTHREADS, 3, "bad number of threads");
       R->m.threads = (int)t;
@@ -333,14 +333,14 @@ static int rules_setvm (lua_State *L) {
   int st, n;
   luaL_argcheck(L, idx >= 0 && (size_t)idx < R->m.nrules, 2, "bad rule index");
   if (lua_isnoneornil(L, 3)) {
-    lsys_model_setvm(&R->m, (size_t)idx, NULL, 0);
+    lsys_rules_setvm(&R->m, (size_t)idx, NULL, 0);
     lua_pushboolean(L, 1);
     return 1;
   }
-  code = lsys_readcode(L, 3, &n);
+  code = lsysL_readcode(L, 3, &n);
   R = checkidle(L, 1);                      /* again: the program's reading ran Lua code */
   luaL_argcheck(L, (size_t)idx < R->m.nrules, 2, "bad rule index");
-  st = lsys_model_setvm(&R->m, (size_t)idx, code, n);
+  st = lsys_rules_setvm(&R->m, (size_t)idx, code, n);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   lua_pushboolean(L, st == LSYS_OK);
   return 1;
@@ -349,7 +349,7 @@ static int rules_setvm (lua_State *L) {
 /* rules:setfuncs(list): the positional functions (Funcs) that LSYS_OP_FN
 ** indices 0..#list-1 call; the list is read once (lua_geti) into a copy kept
 ** as a user value, so the Funcs live as long as the rules, and kept
-** (lsys_keepfunc: closing one leaves the model its values). Clears every
+** (lsysL_keepfunc: closing one leaves the model its values). Clears every
 ** rule's program (setvm again). */
 static int rules_setfuncs (lua_State *L) {
   lua_Integer n, k;
@@ -369,11 +369,11 @@ static int rules_setfuncs (lua_State *L) {
   t = (const lsys_func **)lua_newuserdatauv(L, (size_t)(n + 1) * sizeof *t, 0);   /* scratch */
   for (k = 0; k < n; k++) {                /* from the copy: no Lua code runs from here */
     lua_rawgeti(L, 3, k + 1);
-    t[k] = lsys_keepfunc(L, -1);
+    t[k] = lsysL_keepfunc(L, -1);
     lua_pop(L, 1);
   }
   R = checkidle(L, 1);
-  st = lsys_model_setfuncs(&R->m, t, (size_t)n);
+  st = lsys_rules_setfuncs(&R->m, t, (size_t)n);
   if (st != LSYS_OK) return luaL_error(L, "not enough memory");
   lua_pushvalue(L, 3);
   lua_setiuservalue(L, 1, LSYS_RULES_FUNCS);
@@ -382,7 +382,7 @@ static int rules_setfuncs (lua_State *L) {
 
 /* rules:hasvm(idx): whether rule idx runs on the expression machine */
 static int rules_hasvm (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   lua_Integer idx = luaL_checkinteger(L, 2);
   lua_pushboolean(L, idx >= 0 && (size_t)idx < R->m.nrules && R->m.rules[idx].vm != NULL);
   return 1;
@@ -393,7 +393,7 @@ static int rules_newset (lua_State *L) {
   lsys_lrules *R = checkidle(L, 1);
   int kind = (int)luaL_checkinteger(L, 2);
   luaL_argcheck(L, kind >= LSYS_PROD && kind <= LSYS_HOMO, 2, "bad rule kind");
-  if (lsys_model_newset(&R->m, kind, (int)luaL_checkinteger(L, 3),
+  if (lsys_rules_newset(&R->m, kind, (int)luaL_checkinteger(L, 3),
                         (int)luaL_optinteger(L, 4, 0)) != LSYS_OK)
     return luaL_error(L, "not enough memory");
   return 0;
@@ -401,8 +401,8 @@ static int rules_newset (lua_State *L) {
 
 /* rules:size(kind, sub, group): number of rules or -1 */
 static int rules_size (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
-  lua_pushinteger(L, lsys_model_setsize(&R->m, (int)luaL_checkinteger(L, 2),
+  lsys_lrules *R = lsysL_checkrules(L, 1);
+  lua_pushinteger(L, lsys_rules_setsize(&R->m, (int)luaL_checkinteger(L, 2),
                                         (int)luaL_optinteger(L, 3, 0),
                                         (int)luaL_optinteger(L, 4, 0)));
   return 1;
@@ -410,16 +410,17 @@ static int rules_size (lua_State *L) {
 
 /* rules:busy() -> whether the model is deriving (a rule function is running) */
 static int rules_busy (lua_State *L) {
-  lua_pushboolean(L, lsys_checkrules(L, 1)->m.busy);
+  lua_pushboolean(L, lsysL_checkrules(L, 1)->m.busy);
   return 1;
 }
 
 typedef struct stepop { int what; lsys_lstring *src, *dst; } stepop;
 
-static int dostep (lua_State *L, lsys_model *m, void *ud) {
+static int dostep (lua_State *L, lsys_rules *m, void *ud) {
   stepop *o = (stepop *)ud;
   (void)L;
-  return o->what < 0 ? lsys_derive_step(m, o->src, o->dst) : lsys_expand(m, o->what, o->src, o->dst);
+  return o->what < 0 ? lsys_derive_step(m, o->src, o->dst)
+                     : lsys_derive_expand(m, o->what, o->src, o->dst);
 }
 
 /* Runs a derivation step (what < 0) or an expansion of the Lstring at 2 into the
@@ -429,25 +430,25 @@ static void run (lua_State *L, lsys_lrules *R, int what, int dstidx) {
   int idx[2], st;
   idx[0] = 2; idx[1] = dstidx;
   o.what = what;
-  o.src = what < 0 ? lsys_checklstring_any(L, 2) : checklstring(L, 2);   /* a step reads */
-  o.dst = lsys_checklstring_any(L, dstidx);               /* narrow strings (lstring.h) */
-  st = lsys_rules_run(L, 1, what < 0 ? "step" : "expand", dostep, &o, idx, 2);
-  if (st != LSYS_OK) lsys_raise(L, st, &R->m.err, 1);
+  o.src = what < 0 ? lsysL_checklstring_any(L, 2) : checklstring(L, 2);   /* a step reads */
+  o.dst = lsysL_checklstring_any(L, dstidx);               /* narrow strings (lstring.h) */
+  st = lsysL_rules_run(L, 1, what < 0 ? "step" : "expand", dostep, &o, idx, 2);
+  if (st != LSYS_OK) lsysL_raise(L, st, &R->m.err, 1);
   /* tell the collector about the memory behind the new string */
   lua_gc(L, LUA_GCSTEP, (int)((o.dst->n * 2 + o.dst->npar * 8) >> 10));
 }
 
 /* rules:step(src [, dst]) -> dst: one derivation step */
 static int rules_step (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
-  lsys_checklstring_any(L, 2);
-  if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); lsys_newlstring(L); }
+  lsys_lrules *R = lsysL_checkrules(L, 1);
+  lsysL_checklstring_any(L, 2);
+  if (lua_isnoneornil(L, 3)) { lua_settop(L, 2); lsysL_newlstring(L); }
   else {
     luaL_argcheck(L, !lua_rawequal(L, 2, 3), 3, "source and destination are the same string");
-    lsys_checkwritable(L, 3, "step");
+    lsysL_checkwritable(L, 3, "step");
     lua_settop(L, 3);
   }
-  lsys_setowner(L, 3, 1);
+  lsysL_setowner(L, 3, 1);
   run(L, R, -1, 3);
   lua_settop(L, 3);
   return 1;
@@ -457,12 +458,12 @@ static int rules_step (lua_State *L) {
 ** caller's own string, which nothing else holds: derive's). Its memory is
 ** reused; on an error its contents are lost (it is left empty). */
 static int rules_advance (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
-  lsys_lstring *s = lsys_checklstring_any(L, 2);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
+  lsys_lstring *s = lsysL_checklstring_any(L, 2);
   luaL_argcheck(L, !((lsys_lstr *)lua_touserdata(L, 2))->busy, 2,
                 "the Lstring is in use by a derivation or interpretation");
   lua_settop(L, 2);
-  lsys_setowner(L, 2, 1);
+  lsysL_setowner(L, 2, 1);
   (void)s;
   run(L, R, -1, 2);
   lua_settop(L, 2);
@@ -471,13 +472,13 @@ static int rules_advance (lua_State *L) {
 
 /* rules:expand(src, kind) -> new Lstring */
 static int rules_expand (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   int kind = (int)luaL_optinteger(L, 3, LSYS_HOMO);
   checklstring(L, 2);
   luaL_argcheck(L, kind == LSYS_HOMO || kind == LSYS_DECOMP, 3, "bad rule kind");
   lua_settop(L, 3);
-  lsys_newlstring(L);
-  lsys_setowner(L, 4, 1);
+  lsysL_newlstring(L);
+  lsysL_setowner(L, 4, 1);
   run(L, R, kind, 4);
   lua_settop(L, 4);
   return 1;
@@ -485,7 +486,7 @@ static int rules_expand (lua_State *L) {
 
 /* rules:current() -> rule index (0-based) or nil, module index (1-based), depth_hit */
 static int rules_current (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   if (R->m.cur_rule >= 0) lua_pushinteger(L, R->m.cur_rule);
   else lua_pushnil(L);
   lua_pushinteger(L, (lua_Integer)R->m.cur_index + 1);
@@ -496,14 +497,14 @@ static int rules_current (lua_State *L) {
 
 /* rules:lstring(text): parse with this model's declared names */
 static int rules_lstring (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   size_t len;
   const char *text = luaL_checklstring(L, 2, &len);
   lsys_error e;
-  lsys_lstring *s = lsys_newlstring(L);
+  lsys_lstring *s = lsysL_newlstring(L);
   int st;
-  lsys_setowner(L, -1, 1);
-  R = lsys_checkrules(L, 1);                /* again: a finalizer may have closed them */
+  lsysL_setowner(L, -1, 1);
+  R = lsysL_checkrules(L, 1);                /* again: a finalizer may have closed them */
   st = lsys_lstring_parse(s, text, len, R->m.ab, &R->decl, &e);
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   if (st != LSYS_OK) {
@@ -517,14 +518,14 @@ static int rules_lstring (lua_State *L) {
 
 /* rules:ran(): returns the functions ran(x) and nran(mean, sd) bound to this model */
 static int ranfn (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, lua_upvalueindex(1));
+  lsys_lrules *R = lsysL_checkrules(L, lua_upvalueindex(1));
   lua_Number x = luaL_optnumber(L, 1, 1);
   lua_pushnumber(L, x * lsys_rng_uniform(R->m.cur));
   return 1;
 }
 
 static int nranfn (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, lua_upvalueindex(1));
+  lsys_lrules *R = lsysL_checkrules(L, lua_upvalueindex(1));
   lua_Number mu = luaL_checknumber(L, 1), sd = luaL_checknumber(L, 2);
   lua_pushnumber(L, lsys_rng_normal(R->m.cur, mu, sd));
   return 1;
@@ -533,13 +534,13 @@ static int nranfn (lua_State *L) {
 /* rules:srand(seed): reseeds the generator in use (the derivation's, or the
 ** homomorphism's while it runs), as cpfg's srand; allowed during a step */
 static int rules_srand (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   lsys_rng_reseed(R->m.cur, seedof(L, 2));
   return 0;
 }
 
 static int rules_ran (lua_State *L) {
-  lsys_checkrules(L, 1);
+  lsysL_checkrules(L, 1);
   lua_pushvalue(L, 1);
   lua_pushcclosure(L, ranfn, 1);
   lua_pushvalue(L, 1);
@@ -650,20 +651,20 @@ static ltemplate *gettemplate (lua_State *L, lsys_lrules *R, int tidx) {
   }
   lua_pop(L, 1);
   t = newtemplate(L);
-  if (lsys_rule_parse(&r, text, len, 3, R->m.ab, &R->decl, &e) != LSYS_OK) {
-    lsys_prule_free(&r);
+  if (lsys_grammar_rule_parse(&r, text, len, 3, R->m.ab, &R->decl, &e) != LSYS_OK) {
+    lsys_grammar_prule_free(&r);
     return (ltemplate *)(intptr_t)luaL_error(L, "produce: %s at character %d in '%s'",
                                               e.msg, (int)e.pos + 1, text);
   }
   bad = filltemplate(L, t, &r, text, 0);
-  if (t->code == NULL) { lsys_prule_free(&r); luaL_error(L, "not enough memory"); }
+  if (t->code == NULL) { lsys_grammar_prule_free(&r); luaL_error(L, "not enough memory"); }
   if (bad != NULL) {
     lua_pushlstring(L, text + bad->off, bad->len);   /* before the rule is freed */
-    lsys_prule_free(&r);
+    lsys_grammar_prule_free(&r);
     luaL_error(L, "produce: parameters in a template are numbers or '?' (got '%s' in '%s')",
                lua_tostring(L, -1), text);
   }
-  lsys_prule_free(&r);
+  lsys_grammar_prule_free(&r);
   lua_pushvalue(L, tidx);
   lua_pushvalue(L, -2);
   lua_rawset(L, -4);
@@ -678,16 +679,16 @@ static ltemplate *gettemplate (lua_State *L, lsys_lrules *R, int tidx) {
 ** in order; rules:fill(template, values) makes the Lstring.
 */
 static int rules_axiom (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   size_t len;
   const char *text = luaL_checklstring(L, 2, &len);
   lsys_prule r;
   lsys_error e;
   ltemplate *t;
   lua_settop(L, 2);
-  R = lsys_checkrules(L, 1);                /* again: converting a number allocates */
-  if (lsys_rule_parse(&r, text, len, 2, R->m.ab, &R->decl, &e) != LSYS_OK) {
-    lsys_prule_free(&r);
+  R = lsysL_checkrules(L, 1);                /* again: converting a number allocates */
+  if (lsys_grammar_rule_parse(&r, text, len, 2, R->m.ab, &R->decl, &e) != LSYS_OK) {
+    lsys_grammar_prule_free(&r);
     lua_pushnil(L);
     lua_pushstring(L, e.msg);
     lua_pushinteger(L, (lua_Integer)e.pos + 1);
@@ -696,7 +697,7 @@ static int rules_axiom (lua_State *L) {
   t = newtemplate(L);                 /* 3 */
   lua_newtable(L);                    /* 4: the expressions */
   filltemplate(L, t, &r, text, 4);
-  lsys_prule_free(&r);
+  lsys_grammar_prule_free(&r);
   if (t->code == NULL) return luaL_error(L, "not enough memory");
   return 2;
 }
@@ -704,7 +705,7 @@ static int rules_axiom (lua_State *L) {
 /* rules:kinds(template) -> { name = { np = true, ... }, ... }: the distinct
 ** module names of the template and their parameter counts */
 static int rules_kinds (lua_State *L) {
-  const lsys_alphabet *ab = lsys_checkrules(L, 1)->m.ab;   /* the state's: it outlives R */
+  const lsys_alphabet *ab = lsysL_checkrules(L, 1)->m.ab;   /* the state's: it outlives R */
   ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
   uint8_t *seen = (uint8_t *)lua_newuserdatauv(L, 1u << 13, 0);   /* a bit per code */
   uint32_t k;
@@ -735,16 +736,16 @@ static int rules_kinds (lua_State *L) {
 /* rules:fill(template, values) -> Lstring: the template's slots filled from
 ** the list 'values' (finite numbers) */
 static int rules_fill (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   ltemplate *t = (ltemplate *)luaL_checkudata(L, 2, TEMPLATE_T);
   lsys_lstring *s;
   uint32_t k, m, p = 0;
   luaL_checktype(L, 3, LUA_TTABLE);
   luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
   lua_settop(L, 3);
-  s = lsys_newlstring(L);
-  lsys_setowner(L, 4, 1);
-  R = lsys_checkrules(L, 1);                /* again: a finalizer may have closed them */
+  s = lsysL_newlstring(L);
+  lsysL_setowner(L, 4, 1);
+  R = lsysL_checkrules(L, 1);                /* again: a finalizer may have closed them */
   luaL_argcheck(L, t->code != NULL, 2, "the template was finalized");
   if (lsys_lstring_reserve(s, t->nmod, t->npar) != LSYS_OK)
     return luaL_error(L, "not enough memory");
@@ -822,18 +823,18 @@ static int l_ran (lua_State *L) {
   return 1;
 }
 
-/* core.cpfg_try(): the mark of a weighted rule in Lua (lsys_cpfg_mark): true
+/* core.cpfg_try(): the mark of a weighted rule in Lua (lsys_derive_cpfg_mark): true
 ** when the rule is tried under cpfg's generator and is to return now */
 static int l_cpfg_try (lua_State *L) {
   lsys_lrules *R = deriving(L, "cpfg_try");
-  lua_pushboolean(L, lsys_cpfg_mark(&R->m));
+  lua_pushboolean(L, lsys_derive_cpfg_mark(&R->m));
   return 1;
 }
 
-/* core.cpfg_resume(): lsys_cpfg_resume */
+/* core.cpfg_resume(): lsys_derive_cpfg_resume */
 static int l_cpfg_resume (lua_State *L) {
   lsys_lrules *R = deriving(L, "cpfg_resume");
-  lua_pushboolean(L, lsys_cpfg_resume(&R->m));
+  lua_pushboolean(L, lsys_derive_cpfg_resume(&R->m));
   return 1;
 }
 
@@ -847,14 +848,14 @@ static int l_srand (lua_State *L) {
 ** core.names_truncate(n): forgets the names interned since (lsys.lsystem, when
 ** the model it was making failed: no object refers to them) */
 static int l_names_mark (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_getalphabet(L)->n);
+  lua_pushinteger(L, (lua_Integer)lsysL_getalphabet(L)->n);
   return 1;
 }
 
 static int l_names_truncate (lua_State *L) {
   lua_Integer n = luaL_checkinteger(L, 1);
   luaL_argcheck(L, n >= LSYS_SYM_FIRSTFREE && n <= LSYS_MAXSYM + 1, 1, "bad mark");
-  lsys_alphabet_truncate(lsys_getalphabet(L), (uint32_t)n);
+  lsys_alphabet_truncate(lsysL_getalphabet(L), (uint32_t)n);
   return 0;
 }
 
@@ -872,10 +873,10 @@ static int l_max_memory (lua_State *L) {
   if (!lua_isnoneornil(L, 1)) {
     lua_Number x = luaL_checknumber(L, 1);
     luaL_argcheck(L, x >= 0 && x < 1.8e19, 1, "a number of bytes >= 0 expected");
-    lsys_set_memory_limit(x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x);
+    lsys_common_set_memory_limit(x >= (double)((size_t)-1) ? (size_t)-1 : (size_t)x);
   }
-  lua_pushnumber(L, (lua_Number)lsys_memory_limit());
-  lua_pushnumber(L, (lua_Number)lsys_physical_memory());
+  lua_pushnumber(L, (lua_Number)lsys_common_memory_limit());
+  lua_pushnumber(L, (lua_Number)lsys_common_physical_memory());
   return 2;
 }
 
@@ -893,6 +894,15 @@ static int l_producing (lua_State *L) {
 static int l_produce (lua_State *L) { return produce(L, 1); }
 static int l_nproduce (lua_State *L) { return produce(L, 0); }
 
+/* rules:functions() -> the table of the rules' Lua functions, which lsys.model fills
+** (entry k: the function of the rules whose function index is k) and the callbacks of
+** a derivation call; the table itself, not a copy. */
+static int rules_functions (lua_State *L) {
+  lsysL_checkrules(L, 1);
+  lua_getiuservalue(L, 1, LSYS_RULES_FNS);
+  return 1;
+}
+
 static const luaL_Reg rules_methods[] = {
   {"parse", rules_parse}, {"add", rules_add}, {"skiplist", rules_skiplist},
   {"config", rules_config}, {"size", rules_size}, {"step", rules_step},
@@ -902,7 +912,7 @@ static const luaL_Reg rules_methods[] = {
   {"setvm", rules_setvm}, {"newset", rules_newset}, {"hasvm", rules_hasvm},
   {"setfuncs", rules_setfuncs},
   {"busy", rules_busy}, {"axiom", rules_axiom}, {"fill", rules_fill},
-  {"kinds", rules_kinds}, {NULL, NULL}
+  {"kinds", rules_kinds}, {"functions", rules_functions}, {NULL, NULL}
 };
 
 static const luaL_Reg rules_meta[] = {
@@ -934,9 +944,9 @@ static void setconstants (lua_State *L) {
   lua_pushinteger(L, LSYS_RF_WEXPR); lua_setfield(L, -2, "RF_WEXPR");
 }
 
-void lsys_open_rules (lua_State *L) {
-  lsys_createmeta(L, RULES_T, rules_meta, rules_methods);
-  lsys_createmeta(L, TEMPLATE_T, template_meta, NULL);
+void lsysL_open_rules (lua_State *L) {
+  lsysL_createmeta(L, RULES_T, rules_meta, rules_methods);
+  lsysL_createmeta(L, TEMPLATE_T, template_meta, NULL);
   luaL_setfuncs(L, core_funcs, 0);
   setconstants(L);
 }

@@ -2,7 +2,7 @@
 ** The bounds rule code runs within (docs/manual.md §4,
 ** "What rule code can reach"). Rule text may come from someone else, so
 ** while a model's rules run (a derivation step, an expansion, the turtle
-** streaming the homomorphism; lsys_rules_run) and while rules:sandboxed runs
+** streaming the homomorphism; lsysL_rules_run) and while rules:sandboxed runs
 ** a function (the axiom's expressions, a cpfg file's Start/End blocks):
 **
 ** - a count hook bounds the Lua instructions of each call of rule code
@@ -38,9 +38,9 @@
 /* Lua's allocator with the growth since the sandbox was entered bounded. A
 ** growth refused in Lua's core makes it collect garbage and ask again; the
 ** buffers of lauxlib (string.rep, table.concat, gsub) ask the allocator
-** directly and raise at once, so lsys_sandbox_collect collects at safe points
+** directly and raise at once, so lsysL_sandbox_collect collects at safe points
 ** before the budget is reached. The memory error is reworded by
-** lsys_sandbox_leave. */
+** lsysL_sandbox_leave. */
 static void *boundedalloc (void *ud, void *ptr, size_t osize, size_t nsize) {
   lsys_sandbox *sb = (lsys_sandbox *)ud;
   size_t old = ptr != NULL ? osize : 0;         /* a new block: osize is its type */
@@ -54,7 +54,7 @@ static void *boundedalloc (void *ud, void *ptr, size_t osize, size_t nsize) {
   return p;
 }
 
-void lsys_sandbox_collect (lua_State *L, lsys_sandbox *sb) {
+void lsysL_sandbox_collect (lua_State *L, lsys_sandbox *sb) {
   if (sb->net <= sb->gcat) return;
   lua_gc(L, LUA_GCCOLLECT, 0);
   /* next when halfway from what is left to the bound: what rule code keeps is not
@@ -73,7 +73,7 @@ static void counthook (lua_State *L, lua_Debug *ar) {
   ** Ctrl-C before a long step still stops it within HOOKSTEP instructions) */
   if (sb->hook != NULL && sb->hook != counthook && (sb->hmask & LUA_MASKCOUNT))
     sb->hook(L, ar);
-  lsys_sandbox_collect(L, sb);
+  lsysL_sandbox_collect(L, sb);
   sb->ran += HOOKSTEP;
   if (sb->ran > sb->budget) {
     char b[48];
@@ -85,8 +85,8 @@ static void counthook (lua_State *L, lua_Debug *ar) {
   }
 }
 
-void lsys_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R) {
-  size_t limit = R->m.max_memory > 0 ? R->m.max_memory : lsys_memory_limit();
+void lsysL_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R) {
+  size_t limit = R->m.max_memory > 0 ? R->m.max_memory : lsys_common_memory_limit();
   memset(sb, 0, sizeof *sb);
   sb->budget = R->max_instructions > 0 ? R->max_instructions : LSYS_MAX_INSTRUCTIONS;
   sb->limit = limit >= (size_t)LLONG_MAX ? LLONG_MAX : (long long)limit;
@@ -116,7 +116,7 @@ void lsys_sandbox_enter (lua_State *L, lsys_sandbox *sb, const lsys_lrules *R) {
   sb->entered = 1;
 }
 
-void lsys_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err) {
+void lsysL_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err) {
   if (!sb->entered) return;
   sb->entered = 0;
   lua_setallocf(L, sb->alloc, sb->aud);
@@ -140,24 +140,24 @@ void lsys_sandbox_leave (lua_State *L, lsys_sandbox *sb, int err) {
     lua_pop(L, 1);
     lua_pushfstring(L, "needs more than max_memory (%s) for Lua values (set max_memory "
                     "in the model, or LSYS_MAX_MEMORY)",
-                    lsys_fmtsize(b, (size_t)sb->limit));
+                    lsys_common_fmtsize(b, (size_t)sb->limit));
   }
 }
 
 /* rules:sandboxed(f, ...) -> f(...) within the bounds of the model's rules (its
 ** max_instructions for the whole call, its max_memory); raises f's error. */
 static int rules_sandboxed (lua_State *L) {
-  lsys_lrules *R = lsys_checkrules(L, 1);
+  lsys_lrules *R = lsysL_checkrules(L, 1);
   lsys_sandbox sb;
   int n, err;
   luaL_checktype(L, 2, LUA_TFUNCTION);
   n = lua_gettop(L);
-  lsys_sandbox_enter(L, &sb, R);
+  lsysL_sandbox_enter(L, &sb, R);
   lua_rotate(L, 2, 1);                       /* the string library below f and its args */
   sb.stridx = 2;
   sb.strict = 1;
   err = lua_pcall(L, n - 2, LUA_MULTRET, 0);
-  lsys_sandbox_leave(L, &sb, err);
+  lsysL_sandbox_leave(L, &sb, err);
   if (err != LUA_OK) return lua_error(L);
   return lua_gettop(L) - 1;
 }
@@ -179,7 +179,7 @@ static int l_sandbox_strings (lua_State *L) {
   return 0;
 }
 
-void lsys_open_sandbox (lua_State *L) {
+void lsysL_open_sandbox (lua_State *L) {
   lua_pushcfunction(L, l_sandbox_strings);
   lua_setfield(L, -2, "sandbox_strings");
   lua_pushcfunction(L, l_sandbox_strict);

@@ -5,6 +5,9 @@
 **   core.interpret(rules, lstring, opts) -> Scene
 **   core.query(rules, lstring, opts)     -> number of query modules filled
 **   core.turtle_state(rules, lstring, i, opts) -> pos, H, L, U  (after module i, 1-based)
+**   core.symbols()                       -> the turtle's symbol table (symbols.h)
+**   core.formats()                       -> the export formats of scene:save (export.h)
+**   core.scene_options(scene)            -> the options table a scene keeps
 **
 ** 'opts' is the normalised view under the names of its schema, which owns
 ** names, defaults and checks (lua/lsys/view.lua): angle, step, line_width,
@@ -23,6 +26,7 @@
 #include "export.h"
 #include "interpret.h"
 #include "population.h"
+#include "symbols.h"
 
 /* A turtle for one call, owned by the Lua stack: a rule function raising an
 ** error while the homomorphism is streamed leaves it to the collector. */
@@ -50,9 +54,9 @@ static lsys_opts viewopts (lua_State *L, int t) {
 }
 
 /* An integer option: a number in [lo, hi], its fraction dropped. Not
-** lsys_optint: its message shows the number, and a fraction is no error. */
+** lsysL_optint: its message shows the number, and a fraction is no error. */
 static int optwhole (lua_State *L, const lsys_opts *o, const char *k, int def, int lo, int hi) {
-  double x = lsys_optfinite(L, o, k, def);
+  double x = lsysL_optfinite(L, o, k, def);
   if (!(x >= lo && x <= hi)) {
     char got[32];
     snprintf(got, sizeof got, "%g", x);
@@ -97,7 +101,7 @@ static void readcontours (lua_State *L, int t, lsys_turtle_opts *o) {
   lua_pushnil(L);                           /* no Lua code runs in this loop */
   while (lua_next(L, -4)) {
     lua_Integer id = lua_tointeger(L, -2);
-    c[id] = lsys_keepcontour(L, -1);
+    c[id] = lsysL_keepcontour(L, -1);
     lua_rawseti(L, -3, id);
   }
   lua_setiuservalue(L, -2, 1);
@@ -131,12 +135,12 @@ static void readsurfaces (lua_State *L, int t, lsys_turtle_opts *o) {
     lua_rawgeti(L, refs, 3 * k + 2);
     e = viewopts(L, -1);
     lua_getfield(L, -1, "surface");
-    u[k].s = lsys_keepsurface(L, -1);
+    u[k].s = lsysL_keepsurface(L, -1);
     lua_rawseti(L, refs, 3 * k + 3);
     lua_rawgeti(L, refs, 3 * k + 1);
     u[k].name = lua_tostring(L, -1);        /* alive in refs */
     lua_pop(L, 1);
-    u[k].scale = lsys_optfinite(L, &e, "scale", 1);
+    u[k].scale = lsysL_optfinite(L, &e, "scale", 1);
     u[k].texture = optwhole(L, &e, "texture", 0, 0, 65535);
     u[k].ns = optwhole(L, &e, "s", 4, 1, 256);
     u[k].nt = optwhole(L, &e, "t", u[k].ns, 1, 256);
@@ -171,10 +175,10 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
       if (lua_geti(L, tt, k + 1) != LUA_TTABLE) luaL_error(L, "%s must be a table", what);
       e = viewopts(L, -1);
       readvector(L, e.t, "vector", tp->vec, what);
-      tp->angle = lsys_optfinite(L, &e, "angle", 0);
-      tp->elasticity = lsys_optfinite(L, &e, "elasticity", 0);
-      tp->increment = lsys_optfinite(L, &e, "increment", 0);
-      tp->intensity = lsys_optfinite(L, &e, "intensity", 1);
+      tp->angle = lsysL_optfinite(L, &e, "angle", 0);
+      tp->elasticity = lsysL_optfinite(L, &e, "elasticity", 0);
+      tp->increment = lsysL_optfinite(L, &e, "increment", 0);
+      tp->intensity = lsysL_optfinite(L, &e, "intensity", 1);
       lua_getfield(L, -1, "torque");
       tp->torque = lua_toboolean(L, -1);
       lua_pop(L, 2);
@@ -192,8 +196,8 @@ static void readtropisms (lua_State *L, int t, lsys_turtle_opts *o) {
     if (!(len > 0) || !isfinite(len))
       luaL_error(L, "view old_tropism: the vector must be finite and not 0");
     o->otrop[0] /= len; o->otrop[1] /= len; o->otrop[2] /= len;
-    o->oelast = lsys_optfinite(L, &e, "elasticity", 0);
-    o->oincr = lsys_optfinite(L, &e, "increment", 0);
+    o->oelast = lsysL_optfinite(L, &e, "elasticity", 0);
+    o->oincr = lsysL_optfinite(L, &e, "increment", 0);
   }
   lua_pop(L, 1);
 }
@@ -206,10 +210,10 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   luaL_checktype(L, t, LUA_TTABLE);
   v = viewopts(L, t);
   lsys_turtle_defaults(o);
-  o->angle = lsys_optfinite(L, &v, "angle", o->angle);
-  o->step = lsys_optfinite(L, &v, "step", o->step);
-  o->width = lsys_optfinite(L, &v, "line_width", o->width);
-  o->dwidth = lsys_optfinite(L, &v, "width_increment", o->dwidth);
+  o->angle = lsysL_optfinite(L, &v, "angle", o->angle);
+  o->step = lsysL_optfinite(L, &v, "step", o->step);
+  o->width = lsysL_optfinite(L, &v, "line_width", o->width);
+  o->dwidth = lsysL_optfinite(L, &v, "width_increment", o->dwidth);
   o->color = optwhole(L, &v, "color", o->color, 0, 65535);
   o->dcolor = optwhole(L, &v, "color_increment", o->dcolor, -65535, 65535);
   o->sides = optwhole(L, &v, "contour_sides", o->sides, 3, 1024);
@@ -235,7 +239,7 @@ static void readopts (lua_State *L, int t, lsys_turtle_opts *o) {
   if (o->contours == NULL) lua_pushnil(L);
   readsurfaces(L, t, o);
   if (o->surfaces == NULL) lua_pushnil(L);
-  o->tex = lsys_opttextures(L, t, "view", &o->ntex);
+  o->tex = lsysL_opttextures(L, t, "view", &o->ntex);
 }
 
 static void readcolor (lua_State *L, int t, const char *k, float *c, int required) {
@@ -265,7 +269,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     lua_pop(L, 1);
     S->sc.pal = (lsys_material *)LSYS_MALLOC(sizeof *S->sc.pal);
     if (S->sc.pal == NULL) luaL_error(L, "not enough memory");
-    lsys_material_color(S->sc.pal, 0.6, 0.6, 0.6);
+    lsys_mesh_material_color(S->sc.pal, 0.6, 0.6, 0.6);
     S->sc.npal = S->sc.palcap = 1;
     return;
   }
@@ -277,7 +281,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
   for (k = 0; k < n; k++) {
     lsys_material *m = &S->sc.pal[k];
     lsys_opts e;
-    lsys_material_color(m, 0.6, 0.6, 0.6);
+    lsys_mesh_material_color(m, 0.6, 0.6, 0.6);
     if (lua_geti(L, -1, k) != LUA_TTABLE) {
       if (k == 0) { lua_pop(L, 1); continue; }
       luaL_error(L, "palette entry %d must be a material table", (int)k);
@@ -291,7 +295,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
     readcolor(L, -1, "ambient", m->ambient, 0);
     readcolor(L, -1, "specular", m->specular, 0);
     readcolor(L, -1, "emission", m->emission, 0);
-    m->shininess = (float)lsys_optfinite(L, &e, "shininess", m->shininess);
+    m->shininess = (float)lsysL_optfinite(L, &e, "shininess", m->shininess);
     if (m->shininess < 0 || m->shininess > 128)
       luaL_error(L, "palette entry %d: shininess must be in [0, 128]", (int)k);
     lua_pop(L, 1);
@@ -306,7 +310,7 @@ static void readpalette (lua_State *L, int t, lsys_lscene *S) {
 /* ---------------------------------------------------------------------- */
 /* running the turtle with the homomorphism streamed from the rules */
 
-/* What the protected run of the turtle needs (lsys_rules_run). */
+/* What the protected run of the turtle needs (lsysL_rules_run). */
 typedef struct turtlecall {
   lsys_turtle *t;
   lsys_lstring *s;
@@ -315,9 +319,9 @@ typedef struct turtlecall {
 
 /* The turtle's run with the model bound: interpret.h streams the
 ** homomorphism and attaches the model's memory budget. */
-static int doturtle (lua_State *L, lsys_model *m, void *ud) {
+static int doturtle (lua_State *L, lsys_rules *m, void *ud) {
   turtlecall *x = (turtlecall *)ud;
-  return lsys_interpret(m, x->t, x->s, lsys_getalphabet(L), x->homo);
+  return lsys_interpret_run(m, x->t, x->s, lsysL_getalphabet(L), x->homo);
 }
 
 /* Runs the turtle over the Lstring at 2 with the rules at 1 and options at
@@ -326,15 +330,15 @@ static void turtlerun (lua_State *L, lsys_turtle *t, lsys_turtle_opts *o, int op
   static const int lstr[1] = {2};
   turtlecall x;
   int st;
-  x.s = t->mode == LSYS_TURTLE_DRAW ? lsys_checklstring_any(L, 2) : checklstring(L, 2);
+  x.s = t->mode == LSYS_TURTLE_DRAW ? lsysL_checklstring_any(L, 2) : checklstring(L, 2);
   x.t = t;
   readopts(L, opt, o);
   lua_getfield(L, opt, "homomorphism");
   x.homo = lua_isnil(L, -1) || lua_toboolean(L, -1);
   lua_pop(L, 1);
   t->o = o;
-  st = lsys_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
-  if (st != LSYS_OK) lsys_raise(L, st, &t->err, 1);
+  st = lsysL_rules_run(L, 1, "interpret", doturtle, &x, lstr, 1);
+  if (st != LSYS_OK) lsysL_raise(L, st, &t->err, 1);
   if (t->warn.code != 0) {             /* through warn(), as the library's warnings go */
     lua_warning(L, "lsys: ", 1);
     lua_warning(L, t->warn.msg, 0);
@@ -349,10 +353,10 @@ static int l_interpret (lua_State *L) {
   lsys_lscene *S;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
-  S = lsys_newscene(L);      /* 4 */
+  S = lsysL_newscene(L);      /* 4 */
   readpalette(L, 3, S);
   look = viewopts(L, 3);                   /* how to look at the scene, from the view */
-  lsys_readlook(L, &look, &S->sc);
+  lsysL_readlook(L, &look, &S->sc);
   t = newturtle(L, LSYS_TURTLE_DRAW);                        /* 5 */
   t->scene = &S->sc;
   turtlerun(L, t, &o, 3);
@@ -383,7 +387,7 @@ static int l_query (lua_State *L) {
   return 1;
 }
 
-#define pushvec(L, v) lsys_pushnums((L), (v), 3)
+#define pushvec(L, v) lsysL_pushnums((L), (v), 3)
 
 static void pushvecf (lua_State *L, const float *v) {
   double d[3] = {v[0], v[1], v[2]};
@@ -421,7 +425,8 @@ static int l_turtle_state (lua_State *L) {
 static int scene_gc (lua_State *L) {
   lsys_lscene *S = (lsys_lscene *)luaL_checkudata(L, 1, SCENE_T);
   if (S->inited) {
-    if (!lsys_finalizing(L)) lsys_checkidle(L, S->busy, "cannot close a Scene while it is in use");
+    if (!lsysL_finalizing(L))
+      lsysL_checkidle(L, S->busy, "cannot close a Scene while it is in use");
     lsys_scene_free(&S->sc);
     S->inited = 0;
   }
@@ -436,10 +441,10 @@ static size_t countrec (const lsys_lscene *S, int kind) {
 
 /* The sizes of a scene as drawn: a population's instances written out. */
 static int scene_index (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *k = luaL_checkstring(L, 2);
   size_t nv, nt, nl;
-  S = lsys_checkscene(L, 1);                /* again: converting a number allocates */
+  S = lsysL_checkscene(L, 1);                /* again: converting a number allocates */
   lsys_population_size(&S->sc, &nv, &nt, &nl);
   if (strcmp(k, "ntriangles") == 0) lua_pushinteger(L, (lua_Integer)nt);
   else if (strcmp(k, "nvertices") == 0) lua_pushinteger(L, (lua_Integer)nv);
@@ -481,7 +486,7 @@ static int scene_tostring (lua_State *L) {
 
 /* scene:bounds() -> {xmin, ymin, zmin}, {xmax, ymax, zmax} (nil when empty) */
 static int scene_bounds (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   double lo[3], hi[3];
   if (!lsys_scene_bounds(&S->sc, lo, hi)) { lua_pushnil(L); return 1; }
   pushvec(L, lo);
@@ -491,7 +496,7 @@ static int scene_bounds (lua_State *L) {
 
 /* scene:area() -> total area of the triangles (as drawn: a population's instances) */
 static int scene_area (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_pushnumber(L, lsys_population_area(&S->sc));
   return 1;
 }
@@ -507,7 +512,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
   l[2] = r->H[0] * r->U[1] - r->H[1] * r->U[0];
   lua_createtable(L, 0, 12);
-  lua_pushstring(L, lsys_recordkind(r->kind)); lua_setfield(L, -2, "kind");
+  lua_pushstring(L, lsysL_recordkind(r->kind)); lua_setfield(L, -2, "kind");
   lua_pushinteger(L, (lua_Integer)r->module + 1); lua_setfield(L, -2, "module");
   if (r->parent != LSYS_NOREC) {
     lua_pushinteger(L, (lua_Integer)r->parent + 1);
@@ -535,7 +540,7 @@ static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
 
 /* scene:record(k) -> table for turtle record k (1-based), or nil */
 static int scene_record (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   if (k < 1 || (size_t)k > S->sc.nrec) { lua_pushnil(L); return 1; }
   pushrecord(L, S, (size_t)k - 1);
@@ -543,7 +548,7 @@ static int scene_record (lua_State *L) {
 }
 
 static int records_iter (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2) + 1;
   if (k < 1 || (size_t)k > S->sc.nrec) return 0;
   lua_pushinteger(L, k);
@@ -553,7 +558,7 @@ static int records_iter (lua_State *L) {
 
 /* for k, rec in scene:records() do ... end */
 static int scene_records (lua_State *L) {
-  lsys_checkscene(L, 1);
+  lsysL_checkscene(L, 1);
   lua_pushcfunction(L, records_iter);
   lua_pushvalue(L, 1);
   lua_pushinteger(L, 0);
@@ -562,7 +567,7 @@ static int scene_records (lua_State *L) {
 
 /* scene:find(module) -> index of the first record of module i (1-based), or nil */
 static int scene_find (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer m = luaL_checkinteger(L, 2);
   size_t k;
   for (k = 0; k < S->sc.nrec; k++)
@@ -575,12 +580,12 @@ static int scene_find (lua_State *L) {
 ** {{x, y, z}, {x, y, z}} of its triangles (empty for lines and records that
 ** drew none; a leaf or flower gives its whole outline and inner edges) */
 static int scene_edges (lua_State *L) {
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
   const lsys_trec *r;
   uint32_t *e;
   size_t n, i;
-  S = lsys_holdscene(L, 1);
+  S = lsysL_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
   r = &S->sc.rec[k - 1];
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
@@ -600,7 +605,7 @@ static int scene_edges (lua_State *L) {
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   lua_Integer i;
-  if (lsys_checkscene(L, 1)->sc.ninst > 0)
+  if (lsysL_checkscene(L, 1)->sc.ninst > 0)
     return luaL_error(L, "scene:turtle: a population has no Lstring of its own (its prototypes' "
                       "are in scene:prototype(k).lstring)");
   i = luaL_checkinteger(L, 2);
@@ -639,6 +644,51 @@ static int tubesides (lua_State *L) {
   return sides;
 }
 
+/* The export formats' extensions as a message lists them: ".obj, .ply or .glb"
+** (pushed). */
+static const char *extlist (lua_State *L) {
+  luaL_Buffer b;
+  int k;
+  luaL_buffinit(L, &b);
+  for (k = 0; k < LSYS_NFORMATS; k++) {
+    if (k > 0) luaL_addstring(&b, k + 1 < LSYS_NFORMATS ? ", " : " or ");
+    luaL_addchar(&b, '.');
+    luaL_addstring(&b, lsys_export_formats[k].ext);
+  }
+  luaL_pushresult(&b);
+  return lua_tostring(L, -1);
+}
+
+/* core.formats() -> { {name=, ext=, title=, companion=, textures=, instancing=}, ... }:
+** the export formats of scene:save (export.h), in their order. 'ext' and 'companion'
+** (the extension of a file written beside it, absent when none) are lower case without
+** the dot; 'textures': textured triangles name or embed their image; 'instancing': a
+** population is written with instancing unless flattened. A new table each call. */
+static int l_formats (lua_State *L) {
+  int k;
+  lua_createtable(L, LSYS_NFORMATS, 0);
+  for (k = 0; k < LSYS_NFORMATS; k++) {
+    const lsys_format *f = &lsys_export_formats[k];
+    lua_createtable(L, 0, 6);
+    lua_pushstring(L, f->name);
+    lua_setfield(L, -2, "name");
+    lua_pushstring(L, f->ext);
+    lua_setfield(L, -2, "ext");
+    lua_pushstring(L, f->title);
+    lua_setfield(L, -2, "title");
+    if (f->companion != NULL) {
+      lua_pushstring(L, f->companion);
+      lua_setfield(L, -2, "companion");
+    }
+    lua_pushboolean(L, f->textures);
+    lua_setfield(L, -2, "textures");
+    lua_pushboolean(L, f->instanced != NULL);
+    lua_setfield(L, -2, "instancing");
+    lua_rawseti(L, -2, k + 1);
+  }
+  return 1;
+}
+
 /* scene:save(path [, opts]) -> true; .obj (+ .mtl), .ply, .glb; opts.lines
 ** "lines" (default) or "tubes", with opts.sides and opts.pixel_size; for a
 ** population, opts.instancing (glb; default true) and opts.max_memory (the
@@ -647,7 +697,7 @@ static int scene_save (lua_State *L) {
   static const char *const keys[] = {"lines", "sides", "pixel_size", "instancing",
                                      "max_memory", NULL};
   static const char *const lines[] = {"lines", "tubes", NULL};
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
   lsys_export_opts xo = {0, 0, 0, 0, 0};
@@ -657,47 +707,85 @@ static int scene_save (lua_State *L) {
   if (!lua_isnoneornil(L, 3)) {
     lsys_opts o = {3, "scene:save: opts.", "", LSYS_GOT_VALUE, 0};
     luaL_checktype(L, 3, LUA_TTABLE);
-    if (lsys_optunknown(L, &o, keys))
+    if (lsysL_optunknown(L, &o, keys))
       return luaL_error(L, "scene:save: unknown option '%s' (use lines, sides, pixel_size, "
                         "instancing, max_memory)", luaL_tolstring(L, -1, NULL));
-    xo.tubes = lsys_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
-    xo.sides = lsys_optint(L, &o, "sides", 0, 3, 1024);
-    xo.pixel = lsys_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
-    xo.flatten = !lsys_optbool(L, &o, "instancing", 1);
-    xo.max_memory = (size_t)lsys_optnum(L, &o, "max_memory", 0, 0, 1.8e19,
-                                        "a positive number of bytes");
+    xo.tubes = lsysL_optchoice(L, &o, "lines", 0, lines, "'lines' or 'tubes'");
+    xo.sides = lsysL_optint(L, &o, "sides", 0, 3, 1024);
+    xo.pixel = lsysL_optnum(L, &o, "pixel_size", 0, 0, HUGE_VAL, "a positive number");
+    xo.flatten = !lsysL_optbool(L, &o, "instancing", 1);
+    xo.max_memory = (size_t)lsysL_optnum(L, &o, "max_memory", 0, 0, 1.8e19,
+                                         "a positive number of bytes");
   }
   lua_settop(L, 3);
   if (xo.sides == 0) xo.sides = tubesides(L);
   if (format < 0)
-    return luaL_error(L, "scene:save: unknown format of '%s' (use .obj, .ply or .glb)", path);
-  S = lsys_checkscene(L, 1);                /* again: the options ran Lua code */
-  st = lsys_scene_save(&S->sc, format, path, &xo, &e);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 1);
+    return luaL_error(L, "scene:save: unknown format of '%s' (use %s)", path, extlist(L));
+  S = lsysL_checkscene(L, 1);                /* again: the options ran Lua code */
+  st = lsys_export_scene(&S->sc, format, path, &xo, &e);
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
   lua_pushboolean(L, 1);
   return 1;
 }
 
 /* scene:look(opts): how the scene is looked at from now on (its camera,
-** light and background: the look fields of a view, lsys_readlook). */
+** light and background: the look fields of a view, lsysL_readlook). */
 static int scene_look (lua_State *L) {
   static const char *const keys[] = {
     "background", "light", "viewpoint", "target", "up", "direction", "projection", "fov",
     "twist", "zoom", "fit", NULL
   };
-  lsys_lscene *S = lsys_checkscene(L, 1);
+  lsys_lscene *S = lsysL_checkscene(L, 1);
   lsys_opts o = {2, "scene:look: opts.", "", LSYS_GOT_TYPE, 0};
   lsys_scene sc;
   luaL_checktype(L, 2, LUA_TTABLE);
-  if (lsys_optunknown(L, &o, keys))
+  if (lsysL_optunknown(L, &o, keys))
     return luaL_error(L, "scene:look: unknown option '%s'", luaL_tolstring(L, -1, NULL));
   sc = S->sc;                   /* read into a copy: an error leaves the scene as it was */
-  lsys_readlook(L, &o, &sc);
-  S = lsys_checkscene(L, 1);
+  lsysL_readlook(L, &o, &sc);
+  S = lsysL_checkscene(L, 1);
   S->sc.cam = sc.cam;
   memcpy(S->sc.light, sc.light, sizeof sc.light);
   memcpy(S->sc.background, sc.background, sizeof sc.background);
   return 0;
+}
+
+/* core.scene_options(scene) -> the options table the scene keeps: the view it was
+** interpreted with, or what lsys.population gave it ({population = true, view = ...});
+** nil when it keeps none. Raises for anything but a Scene; answers for a closed one
+** too, as it reads only the user value, which a close leaves (lsys.render of a closed
+** population then raises what the renderer says). */
+static int l_scene_options (lua_State *L) {
+  luaL_checkudata(L, 1, SCENE_T);
+  lua_getiuservalue(L, 1, LSYS_SCENE_OPTS);
+  return 1;
+}
+
+/* core.symbols() -> { {name=, op=, split=, query=}, ... }: the rows of the turtle's
+** symbol table (symbols.h) that have a module name, in its order. 'split' is how the
+** parallel turtle treats the symbol ("cross": keeps the string on one thread, "state",
+** "open", "close", "segment", "shape", "record"); 'query' is true for the query modules.
+** A new table each call. */
+static int l_symbols (lua_State *L) {
+  static const char *const split[] = {"cross", "state", "open", "close", "segment", "shape",
+                                      "record"};
+  int k, n = 0;
+  lua_createtable(L, LSYS_NSYMBOLS, 0);
+  for (k = 0; k < LSYS_NSYMBOLS; k++) {
+    const lsys_symbol *r = &lsys_symbols[k];
+    if (r->name == NULL) continue;
+    lua_createtable(L, 0, 4);
+    lua_pushstring(L, r->name);
+    lua_setfield(L, -2, "name");
+    lua_pushstring(L, r->op);
+    lua_setfield(L, -2, "op");
+    lua_pushstring(L, r->split < sizeof split / sizeof split[0] ? split[r->split] : "cross");
+    lua_setfield(L, -2, "split");
+    lua_pushboolean(L, r->query);
+    lua_setfield(L, -2, "query");
+    lua_rawseti(L, -2, ++n);
+  }
+  return 1;
 }
 
 static const luaL_Reg scene_methods[] = {
@@ -725,6 +813,9 @@ static const luaL_Reg scene_funcs[] = {
   {"interpret", l_interpret},
   {"query", l_query},
   {"turtle_state", l_turtle_state},
+  {"symbols", l_symbols},
+  {"formats", l_formats},
+  {"scene_options", l_scene_options},
   {NULL, NULL}
 };
 
@@ -733,12 +824,12 @@ static const luaL_Reg turtle_meta[] = {
 };
 
 /* The Scene's __index (scene_index) finds its methods in __methods. */
-void lsys_open_scene (lua_State *L) {
-  lsys_createmeta(L, SCENE_T, scene_meta, NULL);
+void lsysL_open_scene (lua_State *L) {
+  lsysL_createmeta(L, SCENE_T, scene_meta, NULL);
   luaL_getmetatable(L, SCENE_T);
   luaL_newlib(L, scene_methods);
   lua_setfield(L, -2, "__methods");
   lua_pop(L, 1);
-  lsys_createmeta(L, TURTLE_T, turtle_meta, NULL);
+  lsysL_createmeta(L, TURTLE_T, turtle_meta, NULL);
   luaL_setfuncs(L, scene_funcs, 0);
 }

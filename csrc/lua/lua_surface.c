@@ -27,7 +27,7 @@
 /* __gc and __close: idempotent; a kept surface is freed by the collector. */
 static int surface_gc (lua_State *L) {
   lsys_lsurface *u = (lsys_lsurface *)luaL_checkudata(L, 1, SURFACE_T);
-  if (lsys_life_end(L, &u->life)) lsys_surface_free(&u->s);
+  if (lsysL_life_end(L, &u->life)) lsys_surface_free(&u->s);
   return 0;
 }
 
@@ -49,11 +49,11 @@ static int l_surface_load (lua_State *L) {
   lsys_error e;
   size_t len = 0;
   int st;
-  char *text = lsys_readfile(path, MAXFILE, &len, &e);
-  if (text == NULL) return lsys_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
+  char *text = lsys_common_readfile(path, MAXFILE, &len, &e);
+  if (text == NULL) return lsysL_raise(L, LSYS_ESYNTAX, &e, 0);   /* names the file */
   st = lsys_surface_parse(s, text, len, path, &e);
   LSYS_FREE(text);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
@@ -72,11 +72,11 @@ static int l_surface_parse (lua_State *L) {
   }
   s = newsurface(L, 2);
   st = lsys_surface_parse(s, text, len, name, &e);
-  if (st != LSYS_OK) return lsys_raise(L, st, &e, 0);   /* names file and line */
+  if (st != LSYS_OK) return lsysL_raise(L, st, &e, 0);   /* names file and line */
   return 1;
 }
 
-#define pushvec lsys_pushnums
+#define pushvec lsysL_pushnums
 
 /* s:info(): the fields are read again after each allocation (a finalizer
 ** may close the surface) */
@@ -84,35 +84,35 @@ static int surface_info (lua_State *L) {
   const lsys_surface *s;
   size_t i, n;
   lua_createtable(L, 0, 11);
-  s = lsys_checksurface(L, 1);
+  s = lsysL_checksurface(L, 1);
   lua_pushinteger(L, (lua_Integer)s->npatch);
   lua_setfield(L, -2, "patches");
-  pushvec(L, lsys_checksurface(L, 1)->contact, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->contact, 3);
   lua_setfield(L, -2, "contact");
-  pushvec(L, lsys_checksurface(L, 1)->heading, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->heading, 3);
   lua_setfield(L, -2, "heading");
-  pushvec(L, lsys_checksurface(L, 1)->up, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->up, 3);
   lua_setfield(L, -2, "up");
-  pushvec(L, lsys_checksurface(L, 1)->end, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->end, 3);
   lua_setfield(L, -2, "end");
-  pushvec(L, lsys_checksurface(L, 1)->lo, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->lo, 3);
   lua_setfield(L, -2, "lo");
-  pushvec(L, lsys_checksurface(L, 1)->hi, 3);
+  pushvec(L, lsysL_checksurface(L, 1)->hi, 3);
   lua_setfield(L, -2, "hi");
-  s = lsys_checksurface(L, 1);
+  s = lsysL_checksurface(L, 1);
   lua_pushnumber(L, (lua_Number)s->size);
   lua_setfield(L, -2, "size");
   lua_createtable(L, 2, 0);
-  s = lsys_checksurface(L, 1);
+  s = lsysL_checksurface(L, 1);
   lua_pushinteger(L, (lua_Integer)s->precision_s);
   lua_rawseti(L, -2, 1);
   lua_pushinteger(L, (lua_Integer)s->precision_t);
   lua_rawseti(L, -2, 2);
   lua_setfield(L, -2, "precision");
-  lua_createtable(L, (int)lsys_checksurface(L, 1)->npatch, 0);
-  n = lsys_checksurface(L, 1)->npatch;
+  lua_createtable(L, (int)lsysL_checksurface(L, 1)->npatch, 0);
+  n = lsysL_checksurface(L, 1)->npatch;
   for (i = 0; i < n; i++) {
-    s = lsys_checksurface(L, 1);
+    s = lsysL_checksurface(L, 1);
     if (s->info == NULL) break;
     lua_pushstring(L, s->info[i].name);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
@@ -167,7 +167,7 @@ static int l_patch_eval (lua_State *L) {
     }
     lua_pop(L, 1);
   }
-  lsys_patch_eval(basis, &p, s, t, pos, NULL, NULL);
+  lsys_surface_patch_eval(basis, &p, s, t, pos, NULL, NULL);
   for (k = 0; k < 3; k++) lua_pushnumber(L, (lua_Number)pos[k]);
   return 3;
 }
@@ -192,7 +192,7 @@ static const luaL_Reg funcs[] = {
   {NULL, NULL}
 };
 
-void lsys_open_surface (lua_State *L) {
-  lsys_createmeta(L, SURFACE_T, surface_meta, surface_methods);
+void lsysL_open_surface (lua_State *L) {
+  lsysL_createmeta(L, SURFACE_T, surface_meta, surface_methods);
   luaL_setfuncs(L, funcs, 0);
 }

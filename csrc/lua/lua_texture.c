@@ -35,17 +35,17 @@ static int l_texture_load (lua_State *L) {
     luaL_checktype(L, 2, LUA_TTABLE);
     lua_settop(L, 2);
     o.pre = lua_pushfstring(L, "lsys.texture_load: '%s': opts.", path);     /* 3 */
-    if (lsys_optunknown(L, &o, optnames)) {
+    if (lsysL_optunknown(L, &o, optnames)) {
       const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1)
                                                       : luaL_typename(L, -1);
       return luaL_error(L, "lsys.texture_load: '%s': unknown option '%s' (known: mag, min, "
                         "mode, per_surface, intensity)", path, k);
     }
-    mag = lsys_optchoice(L, &o, "mag", 0, filters, fexpect) / 2;
-    min = lsys_optchoice(L, &o, "min", 0, filters, fexpect) / 2;
-    mode = lsys_optchoice(L, &o, "mode", 0, modes, "'modulate', 'decal', 'm' or 'd'") / 2;
-    per_surface = lsys_optbool(L, &o, "per_surface", -1) == 1;
-    intensity = lsys_optbool(L, &o, "intensity", -1);
+    mag = lsysL_optchoice(L, &o, "mag", 0, filters, fexpect) / 2;
+    min = lsysL_optchoice(L, &o, "min", 0, filters, fexpect) / 2;
+    mode = lsysL_optchoice(L, &o, "mode", 0, modes, "'modulate', 'decal', 'm' or 'd'") / 2;
+    per_surface = lsysL_optbool(L, &o, "per_surface", -1) == 1;
+    intensity = lsysL_optbool(L, &o, "intensity", -1);
   }
   u = (lsys_ltexture *)lua_newuserdatauv(L, sizeof *u, 0);
   t = &u->t;
@@ -69,12 +69,12 @@ static int l_texture_load (lua_State *L) {
 ** operation reads) is freed by the collector. */
 static int texture_gc (lua_State *L) {
   lsys_ltexture *u = (lsys_ltexture *)luaL_checkudata(L, 1, TEXTURE_T);
-  if (lsys_life_end(L, &u->life)) lsys_texture_free(&u->t);
+  if (lsysL_life_end(L, &u->life)) lsys_texture_free(&u->t);
   return 0;
 }
 
 static int texture_size (lua_State *L) {
-  const lsys_texture *t = lsys_checktexture(L, 1);
+  const lsys_texture *t = lsysL_checktexture(L, 1);
   lua_pushinteger(L, t->w);
   lua_pushinteger(L, t->h);
   return 2;
@@ -83,10 +83,10 @@ static int texture_size (lua_State *L) {
 /* t:info() -> { path =, width =, height =, mag =, min =, mode =, per_surface =,
 ** intensity =, alpha = } with the long names of the settings. */
 static int texture_info (lua_State *L) {
-  lsys_texture t = *lsys_checktexture(L, 1);   /* a copy: the table is made after */
+  lsys_texture t = *lsysL_checktexture(L, 1);   /* a copy: the table is made after */
   lua_createtable(L, 0, 9);
   if (t.path != NULL) {                     /* the string is read again, alive */
-    lua_pushstring(L, lsys_checktexture(L, 1)->path);
+    lua_pushstring(L, lsysL_checktexture(L, 1)->path);
     lua_setfield(L, -2, "path");
   }
   lua_pushinteger(L, t.w); lua_setfield(L, -2, "width");
@@ -97,7 +97,7 @@ static int texture_info (lua_State *L) {
   lua_setfield(L, -2, "mode");
   lua_pushboolean(L, t.per_surface); lua_setfield(L, -2, "per_surface");
   lua_pushboolean(L, t.intensity); lua_setfield(L, -2, "intensity");
-  lua_pushboolean(L, lsys_texture_hasalpha(lsys_checktexture(L, 1))); lua_setfield(L, -2, "alpha");
+  lua_pushboolean(L, lsys_texture_hasalpha(lsysL_checktexture(L, 1))); lua_setfield(L, -2, "alpha");
   return 1;
 }
 
@@ -122,8 +122,8 @@ static const luaL_Reg texture_meta[] = {
   {NULL, NULL}
 };
 
-void lsys_open_texture (lua_State *L) {
-  lsys_createmeta(L, TEXTURE_T, texture_meta, texture_methods);
+void lsysL_open_texture (lua_State *L) {
+  lsysL_createmeta(L, TEXTURE_T, texture_meta, texture_methods);
   lua_pushcfunction(L, l_texture_load);
   lua_setfield(L, -2, "texture_load");
 }

@@ -86,11 +86,11 @@ static lsys_opts vopts (int t) {
 static void readopenopts (lua_State *L, int t, lsys_viewer_opts *o) {
   lsys_opts vo = vopts(t);
   lsys_viewer_defaults(o);
-  o->width = lsys_optint(L, &vo, "width", o->width, 1, 16384);
-  o->height = lsys_optint(L, &vo, "height", o->height, 1, 16384);
-  o->samples = lsys_optint(L, &vo, "samples", o->samples, 0, 32);
-  o->visible = lsys_optbool(L, &vo, "visible", o->visible);
-  o->status = lsys_optbool(L, &vo, "status", o->status);
+  o->width = lsysL_optint(L, &vo, "width", o->width, 1, 16384);
+  o->height = lsysL_optint(L, &vo, "height", o->height, 1, 16384);
+  o->samples = lsysL_optint(L, &vo, "samples", o->samples, 0, 32);
+  o->visible = lsysL_optbool(L, &vo, "visible", o->visible);
+  o->status = lsysL_optbool(L, &vo, "status", o->status);
 }
 
 static int l_viewer_open (lua_State *L) {
@@ -195,15 +195,15 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   int take, world;
   if (lua_getfield(L, idx, "scene") == LUA_TNIL)
     luaL_error(L, "viewer:post: a frame without a scene");
-  lsys_checkscene(L, -1);
-  take = lsys_optbool(L, &fo, "take", 0);
-  world = lsys_optbool(L, &fo, "world", 0);
-  f->step = lsys_optint(L, &fo, "step", -1, -1, 1 << 30);
-  if (lsys_optfield(L, &fo, "modules", LUA_TNUMBER, "an integer")) {
+  lsysL_checkscene(L, -1);
+  take = lsysL_optbool(L, &fo, "take", 0);
+  world = lsysL_optbool(L, &fo, "world", 0);
+  f->step = lsysL_optint(L, &fo, "step", -1, -1, 1 << 30);
+  if (lsysL_optfield(L, &fo, "modules", LUA_TNUMBER, "an integer")) {
     f->nmodules = (size_t)lua_tointeger(L, -1);
     lua_pop(L, 1);
   }
-  S = lsys_checkscene(L, -1);               /* after the options: they ran Lua code */
+  S = lsysL_checkscene(L, -1);               /* after the options: they ran Lua code */
   f->picks = (lsys_vpick *)LSYS_MALLOC((S->sc.nrec > 0 ? S->sc.nrec : 1) * sizeof *f->picks);
   if (f->picks == NULL || lsys_scene_set_palette(&f->sc, S->sc.pal, S->sc.npal) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
@@ -213,14 +213,14 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
   if (S->sc.ninst > 0) setinstances(L, f, &S->sc);
-  if (lsys_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
+  if (lsysL_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
     readlines(L, lua_gettop(L), f);
     lua_pop(L, 1);
   }
-  S = lsys_checkscene(L, -1);               /* again: the lines ran Lua code */
+  S = lsysL_checkscene(L, -1);               /* again: the lines ran Lua code */
   if (take) {                               /* the scene's own mesh */
-    lsys_lscene *T = lsys_checkscene(L, -1);
-    lsys_changescene(L, T);
+    lsys_lscene *T = lsysL_checkscene(L, -1);
+    lsysL_changescene(L, T);
     f->sc.mesh = T->sc.mesh;
     lsys_mesh_init(&T->sc.mesh);
   }
@@ -245,40 +245,40 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
   lsys_opts po = vopts(t);
   const lsys_texture *const *tex;
   int ntex = 0, i;
-  s->first = (size_t)lsys_optint(L, &po, "first", n, 1, n) - 1;
-  if (lsys_optfield(L, &po, "rate", LUA_TNUMBER, "a number of frames per second")) {
+  s->first = (size_t)lsysL_optint(L, &po, "first", n, 1, n) - 1;
+  if (lsysL_optfield(L, &po, "rate", LUA_TNUMBER, "a number of frames per second")) {
     double r = lua_tonumber(L, -1);
-    if (!(r > 0 && r <= 1000)) lsys_opterror(L, &po, "rate", "in (0, 1000]");
+    if (!(r > 0 && r <= 1000)) lsysL_opterror(L, &po, "rate", "in (0, 1000]");
     s->rate = r;
     lua_pop(L, 1);
   }
-  if (lsys_optfield(L, &po, "title", LUA_TSTRING, "a string")) {
+  if (lsysL_optfield(L, &po, "title", LUA_TSTRING, "a string")) {
     snprintf(s->title, sizeof s->title, "%s", lua_tostring(L, -1));
     lua_pop(L, 1);
   }
-  if (lsys_optfield(L, &po, "frames_dir", LUA_TSTRING, "a folder's path")) {
+  if (lsysL_optfield(L, &po, "frames_dir", LUA_TSTRING, "a folder's path")) {
     size_t len;
     const char *d = lua_tolstring(L, -1, &len);
-    if (len == 0 || len >= sizeof s->framesdir) lsys_opterror(L, &po, "frames_dir",
-                                                              "a path of 1 to 511 bytes");
+    if (len == 0 || len >= sizeof s->framesdir) lsysL_opterror(L, &po, "frames_dir",
+                                                               "a path of 1 to 511 bytes");
     memcpy(s->framesdir, d, len + 1);
     lua_pop(L, 1);
   }
-  s->keep_camera = lsys_optbool(L, &po, "keep_camera", 0);
-  s->capture = lsys_optbool(L, &po, "capture", 0);
-  s->live = lsys_optbool(L, &po, "live", 0);
-  if (s->live && n != 1) lsys_opterror(L, &po, "live", "for one frame");
-  if (lsys_optfield(L, &po, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
+  s->keep_camera = lsysL_optbool(L, &po, "keep_camera", 0);
+  s->capture = lsysL_optbool(L, &po, "capture", 0);
+  s->live = lsysL_optbool(L, &po, "live", 0);
+  if (s->live && n != 1) lsysL_opterror(L, &po, "live", "for one frame");
+  if (lsysL_optfield(L, &po, "fit", LUA_TTABLE, "a box {x0, y0, z0, x1, y1, z1}")) {
     double box[6];
     size_t k;
-    lsys_readbox(L, lua_gettop(L), "viewer: opts.fit", box);
+    lsysL_readbox(L, lua_gettop(L), "viewer: opts.fit", box);
     for (k = 0; k < s->nframes; k++) {
       s->frames[k].sc.cam.has_box = 1;
       memcpy(s->frames[k].sc.cam.box, box, sizeof box);
     }
     lua_pop(L, 1);
   }
-  tex = lsys_opttextures(L, t, "viewer:post", &ntex);
+  tex = lsysL_opttextures(L, t, "viewer:post", &ntex);
   if (lsys_vsnap_textures(s, ntex) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   for (i = 0; i < ntex; i++)
@@ -322,17 +322,17 @@ static int viewer_post (lua_State *L) {
 ** returns the request's serial number. */
 static int viewer_patch (lua_State *L) {
   lsys_viewer *v = checkviewer(L, 1);
-  lsys_lscene *S = lsys_checkscene(L, 2);
+  lsys_lscene *S = lsysL_checkscene(L, 2);
   int t = lua_isnoneornil(L, 3) ? 0 : 3, step, rc;
   lsys_opts po = vopts(t);
   size_t r[2 * LSYS_SCENE_NDIRTY], n, count;
   const char *note = NULL;
   if (t) luaL_checktype(L, 3, LUA_TTABLE);
-  step = lsys_optint(L, &po, "step", 0, 0, INT_MAX);
-  count = (size_t)lsys_optint(L, &po, "count", 0, 0, INT_MAX);
-  if (lsys_optfield(L, &po, "note", LUA_TSTRING, "a string"))
+  step = lsysL_optint(L, &po, "step", 0, 0, INT_MAX);
+  count = (size_t)lsysL_optint(L, &po, "count", 0, 0, INT_MAX);
+  if (lsysL_optfield(L, &po, "note", LUA_TSTRING, "a string"))
     note = lua_tostring(L, -1);   /* left on the stack: an __index may have made it */
-  S = lsys_checkscene(L, 2);                /* again: the options ran Lua code */
+  S = lsysL_checkscene(L, 2);                /* again: the options ran Lua code */
   v = checkviewer(L, 1);
   n = lsys_scene_take_ranges(&S->sc, r);
   rc = lsys_viewer_patch(v, &S->sc, r, n, step, count, note);
@@ -422,7 +422,7 @@ static int viewer_poll (lua_State *L) {
     case LSYS_VEV_PICK:
       lua_pushinteger(L, (lua_Integer)ev.module + 1);
       lua_setfield(L, -2, "module");
-      lua_pushstring(L, lsys_recordkind(ev.kind));
+      lua_pushstring(L, lsysL_recordkind(ev.kind));
       lua_setfield(L, -2, "kind");
       if (ev.plant > 0) {
         lua_pushinteger(L, ev.plant);
@@ -766,11 +766,11 @@ static int l_mkdir (lua_State *L) {
   return 1;
 }
 
-void lsys_open_viewer (lua_State *L) {
+void lsysL_open_viewer (lua_State *L) {
 #ifndef LSYS_NO_VIEWER
   lua_pushcfunction(L, l_pen_devices);
   lua_setfield(L, -2, "pen_devices");
-  lsys_createmeta(L, VIEWER_T, viewer_meta, viewer_methods);
+  lsysL_createmeta(L, VIEWER_T, viewer_meta, viewer_methods);
   lua_pushcfunction(L, l_viewer_open);
   lua_setfield(L, -2, "viewer_open");
   lua_pushboolean(L, 1);

@@ -103,7 +103,7 @@ local function factorysource (formals, cond, exprs, frees, weighted)
   local vals = {}
   for k, e in ipairs(exprs) do vals[k] = "(\n" .. e .. "\n)" end
   if weighted then
-    -- the mark of cpfg's generator (lsys_cpfg_mark): a rule being tried stops after its
+    -- the mark of cpfg's generator (lsys_derive_cpfg_mark): a rule being tried stops after its
     -- condition and weight; the chosen one's values are drawn after every try
     local w = weighted == "expr" and remove(vals, 1)
     body[#body + 1] = (w and "local w_ = " .. w .. "; " or "") ..

@@ -20,6 +20,20 @@ local _ENV = nil
 
 local M = {}
 
+-- The query modules (?P ?H ?U ?L), from the turtle's symbol table.
+local QUERIES = {}
+for _, row in ipairs(core.symbols()) do
+  if row.query then QUERIES[#QUERIES + 1] = row.name end
+end
+
+-- Does `s` hold a query module?
+local function hasquery (s)
+  for _, name in ipairs(QUERIES) do
+    if s:count(name) > 0 then return true end
+  end
+  return false
+end
+
 -- --------------------------------------------------------------------------
 -- The memory budget (max_memory): the most memory one derivation step or one
 -- interpretation may take for its strings, tables, mesh and records.
@@ -408,7 +422,7 @@ make = function (opts, where, fail, dir)
     threads = opts.threads, random = opts.random or "lsys",
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
-  self._fns = debug.getuservalue(rules, 1)
+  self._fns = rules:functions()
   rules_models[rules] = self
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
     fail("option 'steps' must be a whole number >= 0")
@@ -768,7 +782,7 @@ function Model:step (s)
   self:_idle("step")
   self:_threads("step")
   self:_bind()
-  if self._queries or s:count("?P") + s:count("?H") + s:count("?U") + s:count("?L") > 0 then
+  if self._queries or hasquery(s) then
     self:_query(s)
   end
   return self:_core("step", s)
@@ -855,7 +869,7 @@ function M.ismodel (x) return getmetatable(x) == Model end
 function M.sceneview (scene)
   local v = scene_views[scene]
   if v == nil and getmetatable(scene) == SCENE_MT then
-    local o = debug.getuservalue(scene, 3)
+    local o = core.scene_options(scene)
     if type(o) == "table" and o.population then v = o.view end
   end
   return v
@@ -865,10 +879,10 @@ end
 -- lsys.cli ran, or "model".
 function M.where (m) return m._where end
 
---- The model whose rules made the Lstring `s`, or nil.
+--- The model whose rules made the Lstring `s`, or nil (also for anything but an Lstring).
 function M.owner (s)
-  local ok, r = pcall(debug.getuservalue, s, 1)
-  return ok and r ~= nil and rules_models[r] or nil
+  local r = islstring(s) and core.lstring_rules(s)
+  return r and rules_models[r] or nil
 end
 
 -- Sets the model's limits over its own options, as lsys.lsystem would have set them:

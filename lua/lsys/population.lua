@@ -39,7 +39,7 @@ local function arraybytes (k)
 end
 local INSTANCE, PROTOTYPE = 68, 800
 
--- Sizes as the core writes them (lsys_fmtsize).
+-- Sizes as the core writes them (lsys_common_fmtsize).
 local function fmtsize (b)
   if b >= 2 ^ 63 then return "no limit" end
   if b >= 2 ^ 30 then return format("%.1f GiB", b / 2 ^ 30) end

@@ -278,7 +278,7 @@ static void test_save (void) {
   fresh(&c, 7, 3);
   lsys_canvas_rect(&c, 1, 1, 2, 1, WHITE, 1);
   assert(lsys_canvas_save(&c, path, &e) == LSYS_OK);
-  assert(lsys_png_read(path, &rgba, &w, &h, &e) == LSYS_OK);
+  assert(lsys_pngio_read(path, &rgba, &w, &h, &e) == LSYS_OK);
   assert(w == 7 && h == 3 && memcmp(rgba, c.px, 7 * 3 * 4) == 0);
   free(rgba);                                       /* pngio.o allocates with malloc */
   remove(path);

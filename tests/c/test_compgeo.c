@@ -39,14 +39,14 @@ static void orthonormal (const lsys_cframe *f) {
 static void random_values (void) {
   lsys_cframes a;
   int k;
-  lsys_cframes_init(&a, 1);
+  lsys_compgeo_frames_init(&a, 1);
   /* splitmix64 from state 1, top 53 bits / 2^53 (computed apart, in Python) */
-  assert(lsys_cframes_random(&a) == 0.5665615751722809);
-  assert(lsys_cframes_random(&a) == 0.7457817572627011);
-  assert(lsys_cframes_random(&a) == 0.9710027535867962);
-  lsys_cframes_init(&a, -5);
+  assert(lsys_compgeo_frames_random(&a) == 0.5665615751722809);
+  assert(lsys_compgeo_frames_random(&a) == 0.7457817572627011);
+  assert(lsys_compgeo_frames_random(&a) == 0.9710027535867962);
+  lsys_compgeo_frames_init(&a, -5);
   for (k = 0; k < 1000; k++) {
-    double x = lsys_cframes_random(&a);
+    double x = lsys_compgeo_frames_random(&a);
     assert(x >= 0 && x < 1);
   }
 }
@@ -55,27 +55,27 @@ static void transform (void) {
   lsys_cframe f = start(2), g;
   const double t[3] = {1, 2, 3}, z[3] = {0, 0, 0}, rx[3] = {90, 0, 0}, rz[3] = {0, 0, 90};
   double q[3];
-  lsys_cframe_topoint(&f, 1, 2, 3, q);
+  lsys_compgeo_frame_topoint(&f, 1, 2, 3, q);
   assert(vnear(q, 2, 4, 6, 1e-15));                  /* s (x R + y H + z F) */
-  lsys_cframe_transform(&f, t, z, 0.5, &g);
+  lsys_compgeo_frame_transform(&f, t, z, 0.5, &g);
   assert(vnear(g.p, 2, 4, 6, 1e-15) && g.s == 1);
   assert(vnear(g.H, 0, 1, 0, 0) && vnear(g.U, 0, 0, -1, 0));
-  lsys_cframe_transform(&f, z, rx, 1, &g);           /* about the right axis x: H to +z */
+  lsys_compgeo_frame_transform(&f, z, rx, 1, &g);           /* about the right axis x: H to +z */
   assert(vnear(g.H, 0, 0, 1, 1e-15) && vnear(g.U, 0, 1, 0, 1e-15));
-  lsys_cframe_transform(&f, z, rz, 1, &g);           /* about the front axis z: H to -x */
+  lsys_compgeo_frame_transform(&f, z, rz, 1, &g);           /* about the front axis z: H to -x */
   assert(vnear(g.H, -1, 0, 0, 1e-15) && vnear(g.U, 0, 0, -1, 0));
   g = f;
-  lsys_cframe_transform(&g, t, rx, 3, &g);           /* in place */
+  lsys_compgeo_frame_transform(&g, t, rx, 3, &g);           /* in place */
   assert(vnear(g.p, 2, 4, 6, 1e-15) && g.s == 6 && vnear(g.H, 0, 0, 1, 1e-15));
 }
 
 static void branch (void) {
   lsys_cframe A = start(2), B = start(2), g;
   B.p[1] = 1;
-  lsys_cframe_branch(&A, &B, 0.5, 0, 90, 0.25, &g);  /* pitched down 90: H = U */
+  lsys_compgeo_frame_branch(&A, &B, 0.5, 0, 90, 0.25, &g);  /* pitched down 90: H = U */
   assert(vnear(g.p, 0, 0.5, 0, 0) && g.s == 0.5);
   assert(vnear(g.H, 0, 0, -1, 1e-15) && vnear(g.U, 0, -1, 0, 1e-15));
-  lsys_cframe_branch(&A, &B, 0, 90, 90, 1, &g);      /* rolled 90 first: U = L = -x */
+  lsys_compgeo_frame_branch(&A, &B, 0, 90, 90, 1, &g);      /* rolled 90 first: U = L = -x */
   assert(vnear(g.H, -1, 0, 0, 1e-15));
   orthonormal(&g);
 }
@@ -95,51 +95,51 @@ static void stems (void) {
   lsys_cstem st;
   size_t base, first, k;
   double trop[8] = {0, -1, 0, 0.1, NAN, 0, 0, 0.1};
-  lsys_cframes_init(&a, 1);
-  assert(lsys_cframes_add(&a, &f, &base) == LSYS_OK && base == 0);
+  lsys_compgeo_frames_init(&a, 1);
+  assert(lsys_compgeo_frames_add(&a, &f, &base) == LSYS_OK && base == 0);
   memset(&st, 0, sizeof st);
   st.len = 2; st.segs = 4;
-  assert(lsys_cframes_stem(&a, base, &st, &first) == LSYS_OK && first == 1 && a.n == 6);
+  assert(lsys_compgeo_frames_stem(&a, base, &st, &first) == LSYS_OK && first == 1 && a.n == 6);
   for (k = 0; k <= 4; k++) {                         /* straight, 2 x 2 long, u = k / 4 */
     assert(vnear(a.f[first + k].p, 0, (double)k, 0, 1e-15));
     assert(a.f[first + k].u == (double)k / 4);
   }
   st.segs = 10; st.curv = 90;                        /* a quarter turn about the right axis */
-  assert(lsys_cframes_stem(&a, base, &st, &first) == LSYS_OK);
+  assert(lsys_compgeo_frames_stem(&a, base, &st, &first) == LSYS_OK);
   assert(vnear(a.f[first + 10].H, 0, 0, 1, 1e-12));
   orthonormal(&a.f[first + 10]);
   /* a horizontal stem bends down under gravity, more at each segment */
   f.H[0] = 1; f.H[1] = 0; f.H[2] = 0;
-  assert(lsys_cframes_add(&a, &f, &base) == LSYS_OK);
+  assert(lsys_compgeo_frames_add(&a, &f, &base) == LSYS_OK);
   st.curv = 0; st.ntrop = 1; st.trop = trop;
-  assert(lsys_cframes_stem(&a, base, &st, &first) == LSYS_OK);
+  assert(lsys_compgeo_frames_stem(&a, base, &st, &first) == LSYS_OK);
   for (k = 1; k <= 10; k++) assert(a.f[first + k].H[1] < a.f[first + k - 1].H[1]);
   {
     double y = a.f[first + 10].H[1];                 /* the field (k = 1) pulls the same way */
     st.ntrop = 2; st.trop = trop + 0; st.field = field;
     trop[4] = NAN;
     trop[0] = NAN;                                   /* tropism 0 asks the field: none there */
-    assert(lsys_cframes_stem(&a, base, &st, &first) == LSYS_OK);
+    assert(lsys_compgeo_frames_stem(&a, base, &st, &first) == LSYS_OK);
     assert(fieldcalls == 20);
     assert(near(a.f[first + 10].H[1], y, 1e-12));
   }
   /* the gnarl draws two numbers a segment, in turn with everyone else */
   memset(&st, 0, sizeof st);
   st.len = 1; st.segs = 3; st.gnarl = 20;
-  lsys_cframes_init(&b, 9);
-  assert(lsys_cframes_add(&b, &f, &base) == LSYS_OK);
-  assert(lsys_cframes_stem(&b, base, &st, &first) == LSYS_OK);
+  lsys_compgeo_frames_init(&b, 9);
+  assert(lsys_compgeo_frames_add(&b, &f, &base) == LSYS_OK);
+  assert(lsys_compgeo_frames_stem(&b, base, &st, &first) == LSYS_OK);
   {
     lsys_cframes c;
-    double x = lsys_cframes_random(&b);
-    lsys_cframes_init(&c, 9);
-    for (k = 0; k < 6; k++) lsys_cframes_random(&c);
-    assert(lsys_cframes_random(&c) == x);
+    double x = lsys_compgeo_frames_random(&b);
+    lsys_compgeo_frames_init(&c, 9);
+    for (k = 0; k < 6; k++) lsys_compgeo_frames_random(&c);
+    assert(lsys_compgeo_frames_random(&c) == x);
   }
   assert(!vnear(b.f[first + 3].H, 1, 0, 0, 1e-3));  /* it did turn */
   orthonormal(&b.f[first + 3]);
-  lsys_cframes_free(&a);
-  lsys_cframes_free(&b);
+  lsys_compgeo_frames_free(&a);
+  lsys_compgeo_frames_free(&b);
 }
 
 /* roll a, pitch b (degrees) under the turtle's conventions: `/` U1 = U ca - L sa, then
@@ -158,8 +158,8 @@ static void rollpitch (double H[3], double U[3], double a, double b) {
 static void randframe (lsys_cframes *g, double H[3], double U[3]) {
   double a[3];
   int i;
-  for (i = 0; i < 3; i++) H[i] = lsys_cframes_random(g) * 2 - 1;
-  for (i = 0; i < 3; i++) a[i] = lsys_cframes_random(g) * 2 - 1;
+  for (i = 0; i < 3; i++) H[i] = lsys_compgeo_frames_random(g) * 2 - 1;
+  for (i = 0; i < 3; i++) a[i] = lsys_compgeo_frames_random(g) * 2 - 1;
   vnorm(H);
   vcross(U, H, a);
   vnorm(U);
@@ -168,7 +168,7 @@ static void randframe (lsys_cframes *g, double H[3], double U[3]) {
 static void angles (void) {
   lsys_cframes g;
   int k;
-  lsys_cframes_init(&g, 3);
+  lsys_compgeo_frames_init(&g, 3);
   for (k = 0; k < 2000; k++) {
     double AH[3], AU[3], BH[3], BU[3], H[3], U[3], an[3];
     randframe(&g, AH, AU);
@@ -176,13 +176,13 @@ static void angles (void) {
     if (k == 0) { vcopy(BH, AH); vcopy(BU, AU); }                 /* nothing to do */
     if (k == 1) { vcopy(BH, AH); vset(BU, -AU[0], -AU[1], -AU[2]); }  /* a half roll */
     if (k == 2) { vset(BH, -AH[0], -AH[1], -AH[2]); vcopy(BU, AU); }  /* straight back */
-    lsys_cwriter_angles(AH, AU, BH, BU, an);
+    lsys_compgeo_writer_angles(AH, AU, BH, BU, an);
     vcopy(H, AH); vcopy(U, AU);
     rollpitch(H, U, an[0], an[1]);
     rollpitch(H, U, an[2], 0);
     assert(vnear(H, BH[0], BH[1], BH[2], 1e-9) && vnear(U, BU[0], BU[1], BU[2], 1e-9));
     if (k == 0) assert(fabs(an[0]) < 1e-9 && fabs(an[1]) < 1e-9 && fabs(an[2]) < 1e-9);
-    lsys_cwriter_angles(AH, AU, BH, NULL, an);                   /* aim only */
+    lsys_compgeo_writer_angles(AH, AU, BH, NULL, an);                   /* aim only */
     assert(an[0] > -90 - 1e-9 && an[0] <= 90 + 1e-9 && an[2] == 0);
     vcopy(H, AH); vcopy(U, AU);
     rollpitch(H, U, an[0], an[1]);
@@ -197,23 +197,23 @@ static void writer (void) {
   double p[2] = {2, 3};
   size_t k;
   lsys_lstring_init(&s);
-  lsys_cwriter_init(&w, &s);
+  lsys_compgeo_writer_init(&w, &s);
   w.sym_open = 1; w.sym_close = 2; w.sym_roll = 3; w.sym_pitch = 4; w.sym_move = 5;
   w.sym_draw = 6;
   f.p[1] = 1;                          /* straight ahead: `[ f(1)` and nothing to turn */
-  assert(lsys_cwriter_open(&w, 1, &f) == LSYS_OK);
+  assert(lsys_compgeo_writer_open(&w, 1, &f) == LSYS_OK);
   assert(s.n == 2 && LSYS_CSYM(s.code[1]) == 5 && s.par[0] == 1);
-  assert(lsys_cwriter_op(&w, 9, p, 2) == LSYS_OK);
+  assert(lsys_compgeo_writer_op(&w, 9, p, 2) == LSYS_OK);
   g.p[0] = 1; g.p[1] = 1;              /* one to the right, facing the same way */
-  assert(lsys_cwriter_open(&w, 2, &g) == LSYS_OK);
+  assert(lsys_compgeo_writer_open(&w, 2, &g) == LSYS_OK);
   assert(vnear(w.T.p, 1, 1, 0, 0) && vnear(w.T.H, 0, 1, 0, 1e-15));
-  assert(lsys_cwriter_forward(&w, 0.5, 1) == LSYS_OK);
-  assert(lsys_cwriter_forward(&w, 1e-16, 1) == LSYS_OK);     /* nothing */
-  assert(lsys_cwriter_close(&w) == LSYS_OK);
+  assert(lsys_compgeo_writer_forward(&w, 0.5, 1) == LSYS_OK);
+  assert(lsys_compgeo_writer_forward(&w, 1e-16, 1) == LSYS_OK);     /* nothing */
+  assert(lsys_compgeo_writer_close(&w) == LSYS_OK);
   assert(vnear(w.T.p, 0, 1, 0, 0) && w.cur == 1);           /* as before its `[` */
-  assert(lsys_cwriter_close(&w) == LSYS_OK);
+  assert(lsys_compgeo_writer_close(&w) == LSYS_OK);
   assert(w.cur == 0 && w.depth == 0);
-  assert(lsys_cwriter_close(&w) == LSYS_EARG);               /* nothing open */
+  assert(lsys_compgeo_writer_close(&w) == LSYS_EARG);               /* nothing open */
   assert(LSYS_CSYM(s.code[0]) == 1 && LSYS_CSYM(s.code[s.n - 1]) == 2);
   {
     /* [ f(1) X(2,3) [ / & f / & / F ] ]: the second instance's modules are its own */
@@ -224,8 +224,8 @@ static void writer (void) {
     assert(w.range[0] == 1 && w.range[1] == (int32_t)s.n && w.range[2] == 2);
     assert(LSYS_CSYM(s.code[w.range[4] - 2]) == 6);          /* F(0.5) before its `]` */
   }
-  assert(lsys_cwriter_open(&w, 0, &f) == LSYS_EARG);
-  lsys_cwriter_free(&w);
+  assert(lsys_compgeo_writer_open(&w, 0, &f) == LSYS_EARG);
+  lsys_compgeo_writer_free(&w);
   lsys_lstring_free(&s);
 }
 
@@ -241,23 +241,23 @@ static void failures (void) {
     size_t i, first;
     int r = LSYS_OK, j;
     lsys_lstring_init(&s);
-    lsys_cframes_init(&a, 1);
-    lsys_cwriter_init(&w, &s);
+    lsys_compgeo_frames_init(&a, 1);
+    lsys_compgeo_writer_init(&w, &s);
     w.sym_open = 1; w.sym_close = 2; w.sym_roll = 3; w.sym_pitch = 4; w.sym_move = 5;
     w.sym_draw = 6;
     memset(&st, 0, sizeof st);
     st.len = 1; st.segs = 200;
     failat = nalloc + k;
-    for (j = 0; j < 100 && r == LSYS_OK; j++) r = lsys_cframes_add(&a, &f, &i);
-    if (r == LSYS_OK) r = lsys_cframes_stem(&a, 0, &st, &first);
+    for (j = 0; j < 100 && r == LSYS_OK; j++) r = lsys_compgeo_frames_add(&a, &f, &i);
+    if (r == LSYS_OK) r = lsys_compgeo_frames_stem(&a, 0, &st, &first);
     for (j = 1; j <= 300 && r == LSYS_OK; j++) {
       f.p[0] = j;
-      r = lsys_cwriter_open(&w, j, &f);
+      r = lsys_compgeo_writer_open(&w, j, &f);
     }
     failat = -1;
     assert(r == LSYS_OK || r == LSYS_ENOMEM);
-    lsys_cframes_free(&a);
-    lsys_cwriter_free(&w);
+    lsys_compgeo_frames_free(&a);
+    lsys_compgeo_writer_free(&w);
     lsys_lstring_free(&s);
     assert(nlive == 0);
   }

@@ -17,7 +17,7 @@
 
 static lsys_alphabet ab;
 
-static void addrule (lsys_model *m, int kind, const char *text) {
+static void addrule (lsys_rules *m, int kind, const char *text) {
   lsys_prule r;
   lsys_error e;
   lsys_patmod lc[16], rc[16], more[16];
@@ -26,7 +26,7 @@ static void addrule (lsys_model *m, int kind, const char *text) {
   lsys_rulespec sp;
   char names[32][16];
   uint32_t k, j, nf = 0, ns = 0;
-  int st = lsys_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e);
+  int st = lsys_grammar_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e);
   if (st != LSYS_OK) { fprintf(stderr, "%s: %s\n", text, e.msg); abort(); }
   memset(&sp, 0, sizeof sp);
   for (k = 0; k < r.nlc + r.npred + r.nrc; k++) {  /* formal names in order */
@@ -60,8 +60,8 @@ static void addrule (lsys_model *m, int kind, const char *text) {
   sp.more = more; sp.nmore = r.npred - 1;
   sp.succ = succ; sp.src = src; sp.nsrc = ns;
   if (r.weight.len) { sp.flags |= LSYS_RF_STOCH; sp.weight = atof(text + r.weight.off); }
-  assert(lsys_model_add(m, kind, 0, 0, &sp, &e) >= 0);
-  lsys_prule_free(&r);
+  assert(lsys_rules_add(m, kind, 0, 0, &sp, &e) >= 0);
+  lsys_grammar_prule_free(&r);
 }
 
 static void setstr (lsys_lstring *s, const char *text) {
@@ -77,15 +77,15 @@ static void expect (lsys_lstring *s, const char *want) {
     fprintf(stderr, "expected %s, got %s\n", want, b.p ? b.p : "");
     abort();
   }
-  lsys_buf_free(&b);
+  lsys_lstring_buf_free(&b);
 }
 
 /* one step of 'rules' (one per line) on 'axiom' must give 'want' */
 static void step (const char *rules, const char *ignore, const char *axiom, const char *want) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
   char buf[512], *line, *save;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   snprintf(buf, sizeof buf, "%s", rules);
   for (line = strtok_r(buf, "\n", &save); line; line = strtok_r(NULL, "\n", &save))
     addrule(&m, LSYS_PROD, line);
@@ -93,7 +93,7 @@ static void step (const char *rules, const char *ignore, const char *axiom, cons
     uint32_t syms[16];
     size_t n = 0;
     for (; *ignore; ignore++) syms[n++] = lsys_alphabet_intern(&ab, ignore, 1, NULL);
-    lsys_model_skiplist(&m, 0, 0, syms, n);
+    lsys_rules_skiplist(&m, 0, 0, syms, n);
   }
   lsys_lstring_init(&a);
   lsys_lstring_init(&b);
@@ -102,7 +102,7 @@ static void step (const char *rules, const char *ignore, const char *axiom, cons
   expect(&b, want);
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 static void test_context (void) {
@@ -138,22 +138,22 @@ static void test_predecessor (void) {
   step("X < AB > Y --> Z", NULL, "XABY", "XZY");
   step("AB --> X", NULL, "A", "A");                      /* the string ends first */
   {                                   /* decomposition and homomorphism: one module */
-    lsys_model m;
+    lsys_rules m;
     lsys_rulespec sp;
     lsys_patmod more[1];
     lsys_error e;
-    lsys_model_init(&m, &ab);
+    lsys_rules_init(&m, &ab);
     memset(&sp, 0, sizeof sp);
     sp.pred.sym = lsys_alphabet_intern(&ab, "A", 1, NULL);
     more[0].sym = lsys_alphabet_intern(&ab, "B", 1, NULL);
     more[0].np = 0;
     sp.more = more; sp.nmore = 1;
-    assert(lsys_model_add(&m, LSYS_DECOMP, 0, 0, &sp, &e) == LSYS_EARG);
+    assert(lsys_rules_add(&m, LSYS_DECOMP, 0, 0, &sp, &e) == LSYS_EARG);
     assert(strstr(e.msg, "productions only") != NULL);
     more[0].sym = LSYS_SYM_LBR;
-    assert(lsys_model_add(&m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EARG);
+    assert(lsys_rules_add(&m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EARG);
     assert(strstr(e.msg, "module 2 of the predecessor") != NULL);
-    lsys_model_free(&m);
+    lsys_rules_free(&m);
   }
 }
 
@@ -166,10 +166,10 @@ static void test_cut (void) {
 }
 
 static void test_stochastic (void) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
   int k, nfb = 0;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   addrule(&m, LSYS_PROD, "B --> F : 1");
   addrule(&m, LSYS_PROD, "B --> G : 3");
   lsys_lstring_init(&a);
@@ -183,13 +183,13 @@ static void test_stochastic (void) {
   assert(nfb > 1000 - 110 && nfb < 1000 + 110);          /* 4 standard deviations */
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 static void test_limits (void) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   addrule(&m, LSYS_PROD, "F --> FF");
   m.max_modules = 100;
   lsys_lstring_init(&a);
@@ -199,12 +199,12 @@ static void test_limits (void) {
   assert(strstr(m.err.msg, "max_modules") != NULL);
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 /* A rule callback that calls the engine on its own model: every entry point
 ** refuses with LSYS_EBUSY and leaves the running step intact. */
-static int reenter (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+static int reenter (void *ud, lsys_rules *m, const lsys_rule *r, const double *args,
                     double *vals) {
   lsys_lstring *other = (lsys_lstring *)ud;
   lsys_rulespec sp;
@@ -213,32 +213,32 @@ static int reenter (void *ud, lsys_model *m, const lsys_rule *r, const double *a
   memset(&sp, 0, sizeof sp);
   assert(lsys_derive_step(m, other, other + 1) == LSYS_EBUSY);
   assert(strcmp(m->err.msg, "a rule called step on the model it belongs to") == 0);
-  assert(lsys_expand(m, LSYS_HOMO, other, other + 1) == LSYS_EBUSY);
+  assert(lsys_derive_expand(m, LSYS_HOMO, other, other + 1) == LSYS_EBUSY);
   assert(strcmp(m->err.msg, "a rule called expand on the model it belongs to") == 0);
-  assert(lsys_homo_begin(m, other) == LSYS_EBUSY);
+  assert(lsys_derive_homo_begin(m, other) == LSYS_EBUSY);
   assert(strcmp(m->err.msg, "a rule called interpret on the model it belongs to") == 0);
-  assert(lsys_model_add(m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EBUSY);
-  assert(lsys_model_setvm(m, 0, NULL, 0) == LSYS_EBUSY);
-  assert(lsys_model_newset(m, LSYS_PROD, 5, 0) == LSYS_EBUSY);
+  assert(lsys_rules_add(m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EBUSY);
+  assert(lsys_rules_setvm(m, 0, NULL, 0) == LSYS_EBUSY);
+  assert(lsys_rules_newset(m, LSYS_PROD, 5, 0) == LSYS_EBUSY);
   vals[0] = 7;
   return 1;
 }
 
 static void test_reentry (void) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b, other[2];
   lsys_rulespec sp;
   lsys_psrc src = {LSYS_PS_VAL, 0, 0};
   uint16_t succ = LSYS_CODE(LSYS_SYM_LBR, 0);
   lsys_error e;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   memset(&sp, 0, sizeof sp);
   sp.pred.sym = lsys_alphabet_intern(&ab, "A", 1, &e);
   succ = LSYS_CODE(sp.pred.sym, 1);                /* A --> A(value 0) */
   sp.succ = &succ; sp.nsucc = 1;
   sp.src = &src; sp.nsrc = 1;
   sp.flags = LSYS_RF_CALL; sp.nvals = 1;
-  assert(lsys_model_add(&m, LSYS_PROD, 0, 0, &sp, &e) == 0);
+  assert(lsys_rules_add(&m, LSYS_PROD, 0, 0, &sp, &e) == 0);
   lsys_lstring_init(&a); lsys_lstring_init(&b);
   lsys_lstring_init(&other[0]); lsys_lstring_init(&other[1]);
   m.fn = reenter;
@@ -250,17 +250,17 @@ static void test_reentry (void) {
   assert(m.busy == 0);
   lsys_lstring_free(&a); lsys_lstring_free(&b);
   lsys_lstring_free(&other[0]); lsys_lstring_free(&other[1]);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 /* The memory budget: a step whose strings would outgrow max_memory fails with
 ** LSYS_EMEMORY before allocating, and a refused expansion leaves the model as
 ** it was (its generator included: a fuzzing finding). */
 static void test_budget (void) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
   char axiom[301];
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   addrule(&m, LSYS_PROD, "F --> FF");
   addrule(&m, LSYS_HOMO, "F --> G");
   lsys_lstring_init(&a); lsys_lstring_init(&b);
@@ -271,18 +271,18 @@ static void test_budget (void) {
   assert(strstr(m.err.msg, "max_memory (2 KiB)") != NULL);
   assert(b.meter == NULL && m.busy == 0);
   m.max_memory = 700;
-  assert(lsys_expand(&m, LSYS_HOMO, &a, &b) == LSYS_EMEMORY);
+  assert(lsys_derive_expand(&m, LSYS_HOMO, &a, &b) == LSYS_EMEMORY);
   assert(m.cur == &m.rng && m.busy == 0);         /* not left on the homomorphism's generator */
   m.max_memory = 0;                               /* the process default */
   assert(lsys_derive_step(&m, &a, &b) == LSYS_OK && b.n == 600 && b.meter == NULL);
   lsys_lstring_free(&a); lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 static void test_decomposition (void) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   addrule(&m, LSYS_PROD, "A --> AB");
   addrule(&m, LSYS_DECOMP, "B --> CD");
   addrule(&m, LSYS_DECOMP, "C --> E");
@@ -298,7 +298,7 @@ static void test_decomposition (void) {
   assert(m.depth_hit == 0);
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
 }
 
 /* Every path through a checked program writes the outputs the check reports:

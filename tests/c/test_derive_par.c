@@ -19,7 +19,7 @@ static lsys_alphabet ab;
 
 /* Adds the rule 'text' (successor parameters: numbers, formal names, or $k
 ** for value k of the rule's program 'code', which may be NULL). */
-static long addrule (lsys_model *m, int group, const char *text, const lsys_ins *code,
+static long addrule (lsys_rules *m, int group, const char *text, const lsys_ins *code,
                      int ncode, uint32_t nvals) {
   lsys_prule r;
   lsys_error e;
@@ -30,7 +30,7 @@ static long addrule (lsys_model *m, int group, const char *text, const lsys_ins 
   char names[16][8];
   uint32_t k, j, nf = 0, ns = 0;
   long idx;
-  assert(lsys_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e) == LSYS_OK);
+  assert(lsys_grammar_rule_parse(&r, text, strlen(text), 0, &ab, NULL, &e) == LSYS_OK);
   memset(&sp, 0, sizeof sp);
   for (k = 0; k < r.nlc + r.npred + r.nrc; k++) {
     const lsys_pmod *pm = &r.mods[k];
@@ -66,17 +66,17 @@ static long addrule (lsys_model *m, int group, const char *text, const lsys_ins 
     sp.flags |= LSYS_RF_STOCH;
     sp.weight = atof(text + r.weight.off);
   }
-  idx = lsys_model_add(m, LSYS_PROD, 0, group, &sp, &e);
+  idx = lsys_rules_add(m, LSYS_PROD, 0, group, &sp, &e);
   assert(idx >= 0);
-  if (code != NULL) assert(lsys_model_setvm(m, (size_t)idx, code, ncode) == LSYS_OK);
-  lsys_prule_free(&r);
+  if (code != NULL) assert(lsys_rules_setvm(m, (size_t)idx, code, ncode) == LSYS_OK);
+  lsys_grammar_prule_free(&r);
   return idx;
 }
 
 #define I(op, a, k) {LSYS_OP_##op, a, k}
 
 /* The model of the tests: every kind of rule a worker runs. */
-static void rules (lsys_model *m) {
+static void rules (lsys_rules *m) {
   /* A(s) --> F(s)[+A(s*ran(1) + 0.5)][-A(nran(s, 0.1))] */
   static const lsys_ins a[] = {I(ARG, 0, 0), I(K, 0, 1), I(RAN, 0, 0), I(MUL, 0, 0),
                                I(K, 0, 0.5), I(ADD, 0, 0), I(RET, 0, 0),
@@ -99,11 +99,11 @@ static void rules (lsys_model *m) {
 ** step only), in place when 'inplace'. Returns the status. */
 static int derive (const char *axiom, int steps, int threads, int group, lsys_lstring *out,
                    char *msg, int inplace) {
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b, *s = &a, *d = &b, *t;
   lsys_error e;
   int k, st = LSYS_OK;
-  lsys_model_init(&m, &ab);
+  lsys_rules_init(&m, &ab);
   rules(&m);
   m.threads = threads > 0 ? threads : 1;
   m.parmin = threads > 0 ? 1 : (size_t)-1;
@@ -121,7 +121,7 @@ static int derive (const char *axiom, int steps, int threads, int group, lsys_ls
   else assert(lsys_lstring_copy(out, s) == LSYS_OK);        /* wide */
   lsys_lstring_free(&a);
   lsys_lstring_free(&b);
-  lsys_model_free(&m);
+  lsys_rules_free(&m);
   return st;
 }
 
@@ -166,9 +166,9 @@ static void test_narrow (void) {
   lsys_lstring_init(&t);
   for (threads = 0; threads <= 8; threads += threads < 2 ? 1 : 6)
     for (inplace = 0; inplace < 2; inplace++) {
-      lsys_model m;
+      lsys_rules m;
       lsys_lstring *a = &s, *b = inplace ? &s : &t, *x;
-      lsys_model_init(&m, &ab);
+      lsys_rules_init(&m, &ab);
       addrule(&m, 0, "F --> F[+F]F[-F]F", NULL, 0, 0);
       addrule(&m, 0, "X --> F[-X][+X]FX : 1", NULL, 0, 0);
       addrule(&m, 0, "X --> FX : 2", NULL, 0, 0);
@@ -189,7 +189,7 @@ static void test_narrow (void) {
         assert(lsys_lstring_widen(a) == LSYS_OK);
         assert(a->sym8 == NULL && same(&ref, a));
       }
-      lsys_model_free(&m);
+      lsys_rules_free(&m);
     }
   lsys_lstring_free(&ref);
   lsys_lstring_free(&s);
@@ -201,7 +201,7 @@ static void test_narrow (void) {
 static void test_same_errors (void) {
   char one[256], many[256];
   lsys_lstring s;
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring a, b;
   lsys_error e;
   /* A(s) --> A(1 / (s - 3)) ... at the module A(3) */
@@ -211,7 +211,7 @@ static void test_same_errors (void) {
   int k;
   lsys_lstring_init(&s);
   for (k = 1; k <= 8; k *= 2) {
-    lsys_model_init(&m, &ab);
+    lsys_rules_init(&m, &ab);
     addrule(&m, 0, "A(s) --> A($0)", inv, 6, 1);
     m.threads = k;
     m.parmin = 1;
@@ -225,7 +225,7 @@ static void test_same_errors (void) {
     if (k > 1) assert(strcmp(one, many) == 0);
     lsys_lstring_free(&a);
     lsys_lstring_free(&b);
-    lsys_model_free(&m);
+    lsys_rules_free(&m);
   }
   for (k = 1; k <= 8; k *= 2) {               /* max_modules: 200000 */
     assert(derive("A(1)", 20, k, 0, &s, k == 1 ? one : many, k > 2) == LSYS_ELIMIT);
@@ -237,7 +237,7 @@ static void test_same_errors (void) {
 /* Rules the workers cannot run leave the step to the calling thread: the
 ** callback, a cut, a sub-L-system. */
 static int calls;
-static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+static int rulefn (void *ud, lsys_rules *m, const lsys_rule *r, const double *args,
                    double *vals) {
   (void)ud; (void)m; (void)r; (void)args; (void)vals;
   calls++;
@@ -248,12 +248,12 @@ static void test_sequential (void) {
   static const char *const axioms[] = {"BBBBBBBB", "BBB%BBBB[BB%B]B", "BB?(1,1)BB$B"};
   size_t x;
   for (x = 0; x < 3; x++) {
-    lsys_model m;
+    lsys_rules m;
     lsys_lstring a, b;
     lsys_error e;
     lsys_rulespec sp;
     uint16_t succ[2];
-    lsys_model_init(&m, &ab);
+    lsys_rules_init(&m, &ab);
     m.threads = 4;
     m.parmin = 1;
     m.fn = rulefn;
@@ -263,8 +263,8 @@ static void test_sequential (void) {
     sp.succ = succ;
     sp.nsucc = 2;
     sp.flags = x == 0 ? LSYS_RF_CALL : 0;     /* a condition in the callback */
-    assert(lsys_model_add(&m, LSYS_PROD, 0, 0, &sp, &e) >= 0);
-    if (x == 2) assert(lsys_model_newset(&m, LSYS_PROD, 1, 0) == LSYS_OK);
+    assert(lsys_rules_add(&m, LSYS_PROD, 0, 0, &sp, &e) >= 0);
+    if (x == 2) assert(lsys_rules_newset(&m, LSYS_PROD, 1, 0) == LSYS_OK);
     lsys_lstring_init(&a);
     lsys_lstring_init(&b);
     assert(lsys_lstring_parse(&a, axioms[x], strlen(axioms[x]), &ab, NULL, &e) == LSYS_OK);
@@ -274,13 +274,13 @@ static void test_sequential (void) {
     assert(b.n == (x == 0 ? 16u : x == 1 ? 6u : 10u));
     lsys_lstring_free(&a);
     lsys_lstring_free(&b);
-    lsys_model_free(&m);
+    lsys_rules_free(&m);
   }
 }
 
 int main (void) {
   assert(lsys_alphabet_init(&ab) == LSYS_OK);
-  assert(lsys_default_threads() >= 1 && lsys_default_threads() <= LSYS_MAXTHREADS);
+  assert(lsys_derive_default_threads() >= 1 && lsys_derive_default_threads() <= LSYS_MAXTHREADS);
   test_same_string();
   test_narrow();
   test_same_errors();

@@ -56,9 +56,9 @@ static void identity (void) {
   for (k = 0; k < 65; k++) {
     if (k < 64) allegree(d, k); else { d[0] = 1; d[1] = 3; d[2] = 4; }
     makescene(&s, 60);
-    assert(lsys_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
-    assert(lsys_hyperpatch_count(&hp) == (size_t)((d[0] + 1) * (d[1] + 1) * (d[2] + 1)));
-    assert(lsys_deform_range(&s, 0, s.mesh.nv, 0, s.mesh.nl, &hp) == LSYS_OK);
+    assert(lsys_ffd_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
+    assert(lsys_ffd_hyperpatch_count(&hp) == (size_t)((d[0] + 1) * (d[1] + 1) * (d[2] + 1)));
+    assert(lsys_ffd_range(&s, 0, s.mesh.nv, 0, s.mesh.nl, &hp) == LSYS_OK);
     for (v = 0; v < 3 * s.mesh.nv; v++) {
       assert(near(s.mesh.pos[v], orig.mesh.pos[v], 1e-6 * (1 + fabs(orig.mesh.pos[v]))));
       assert(near(s.mesh.nrm[v], orig.mesh.nrm[v], 1e-6));
@@ -122,7 +122,7 @@ static void affine (void) {
   affinemap(A);
   makescene(&orig, 40);
   makescene(&aff, 40);
-  assert(lsys_deform_affine(&aff, 0, aff.mesh.nv, 0, aff.mesh.nl, A) == LSYS_OK);
+  assert(lsys_ffd_affine(&aff, 0, aff.mesh.nv, 0, aff.mesh.nl, A) == LSYS_OK);
   for (v = 0; v < orig.mesh.nv; v++) {       /* the affine map itself, by hand */
     double p[3] = {orig.mesh.pos[3 * v], orig.mesh.pos[3 * v + 1], orig.mesh.pos[3 * v + 2]};
     double q[3], n[3];
@@ -135,16 +135,16 @@ static void affine (void) {
   }
   for (k = 0; k < 65; k++) {
     if (k < 64) allegree(d, k); else { d[0] = 1; d[1] = 3; d[2] = 4; }
-    assert(lsys_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
+    assert(lsys_ffd_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
     for (l = 0; l <= d[2]; l++)
       for (j = 0; j <= d[1]; j++)
         for (i = 0; i <= d[0]; i++) {
-          double *P = lsys_hyperpatch_point(&hp, i, j, l), q[3];
+          double *P = lsys_ffd_hyperpatch_point(&hp, i, j, l), q[3];
           applyaff(A, P, q);
           memcpy(P, q, sizeof q);
         }
     makescene(&s, 40);
-    assert(lsys_deform_range(&s, 0, s.mesh.nv, 0, s.mesh.nl, &hp) == LSYS_OK);
+    assert(lsys_ffd_range(&s, 0, s.mesh.nv, 0, s.mesh.nl, &hp) == LSYS_OK);
     for (v = 0; v < 3 * s.mesh.nv; v++) {
       assert(near(s.mesh.pos[v], aff.mesh.pos[v], 1e-5));
       assert(near(s.mesh.nrm[v], aff.mesh.nrm[v], 1e-5));
@@ -167,12 +167,12 @@ static void onepoint (void) {
   lsys_error e;
   double q[3], J[3][3], *P;
   int r;
-  assert(lsys_hyperpatch_init(&hp, d, o, unit, &e) == LSYS_OK);
-  P = lsys_hyperpatch_point(&hp, 1, 2, 0);
+  assert(lsys_ffd_hyperpatch_init(&hp, d, o, unit, &e) == LSYS_OK);
+  P = lsys_ffd_hyperpatch_point(&hp, 1, 2, 0);
   assert(P == hp.cp[1 + 3 * (2 + 4 * 0)]);
   assert(near(P[0], 0.5, 1e-15) && near(P[1], 2 / 3.0, 1e-15) && P[2] == 0);
   for (r = 0; r < 3; r++) P[r] += delta[r];
-  lsys_hyperpatch_eval(&hp, p, q, J);
+  lsys_ffd_hyperpatch_eval(&hp, p, q, J);
   for (r = 0; r < 3; r++) assert(near(q[r], p[r] + 0.145152 * delta[r], 1e-12));
   /* d/ds of B_1^2(s) = 2 - 4 s = 0.8 at 0.3: J[r][0] = [r == 0] + 0.8 * 0.432 * 0.8 delta[r] */
   for (r = 0; r < 3; r++) assert(near(J[r][0], (r == 0) + 0.8 * 0.432 * 0.8 * delta[r], 1e-12));
@@ -181,15 +181,15 @@ static void onepoint (void) {
   /* outside the cube the same polynomial (extrapolation): s = 1.5 */
   {
     const double x[3] = {1.5, 0.6, 0.2};
-    lsys_hyperpatch_eval(&hp, x, q, NULL);
+    lsys_ffd_hyperpatch_eval(&hp, x, q, NULL);
     /* B_1^2(1.5) = 2 * 1.5 * -0.5 = -1.5 */
     for (r = 0; r < 3; r++) assert(near(q[r], x[r] - 1.5 * 0.432 * 0.8 * delta[r], 1e-12));
   }
-  assert(lsys_hyperpatch_point(&hp, 3, 0, 0) == NULL);
-  assert(lsys_hyperpatch_point(&hp, 0, 4, 0) == NULL);
-  assert(lsys_hyperpatch_point(&hp, 0, 0, 2) == NULL);
-  assert(lsys_hyperpatch_point(&hp, -1, 0, 0) == NULL);
-  assert(lsys_hyperpatch_point(&hp, 2, 3, 1) == hp.cp[23]);
+  assert(lsys_ffd_hyperpatch_point(&hp, 3, 0, 0) == NULL);
+  assert(lsys_ffd_hyperpatch_point(&hp, 0, 4, 0) == NULL);
+  assert(lsys_ffd_hyperpatch_point(&hp, 0, 0, 2) == NULL);
+  assert(lsys_ffd_hyperpatch_point(&hp, -1, 0, 0) == NULL);
+  assert(lsys_ffd_hyperpatch_point(&hp, 2, 3, 1) == hp.cp[23]);
 }
 
 /* The square z = 0, normal +z, under the shear z' = z + 0.5 x: the plane
@@ -222,20 +222,20 @@ static void normals (void) {
   lsys_error e;
   int i, j, k, r, pass;
   size_t v;
-  assert(lsys_hyperpatch_init(&hp, d, o, ax, &e) == LSYS_OK);
+  assert(lsys_ffd_hyperpatch_init(&hp, d, o, ax, &e) == LSYS_OK);
   for (k = 0; k < 2; k++)
     for (j = 0; j < 2; j++)
       for (i = 0; i < 2; i++) {
-        double *P = lsys_hyperpatch_point(&hp, i, j, k);
+        double *P = lsys_ffd_hyperpatch_point(&hp, i, j, k);
         P[2] += 0.5 * P[0];
       }
   for (pass = 0; pass < 3; pass++) {
     square(&s);
-    if (pass == 0) assert(lsys_deform_range(&s, 0, 4, 0, 0, &hp) == LSYS_OK);
-    else if (pass == 1) assert(lsys_deform_func(&s, 0, 4, 0, 0, shear, NULL, &e) == LSYS_OK);
+    if (pass == 0) assert(lsys_ffd_range(&s, 0, 4, 0, 0, &hp) == LSYS_OK);
+    else if (pass == 1) assert(lsys_ffd_func(&s, 0, 4, 0, 0, shear, NULL, &e) == LSYS_OK);
     else {
       const double m[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0.5, 0, 1, 0};
-      assert(lsys_deform_affine(&s, 0, 4, 0, 0, m) == LSYS_OK);
+      assert(lsys_ffd_affine(&s, 0, 4, 0, 0, m) == LSYS_OK);
     }
     for (v = 0; v < 4; v++) {
       float *P = s.mesh.pos + 3 * v;
@@ -254,17 +254,17 @@ static void rejected (void) {
   lsys_error e;
   int d0[3] = {1, 0, 2}, d5[3] = {5, 1, 1}, ok[3] = {4, 4, 4};
   double nan3[3] = {0, NAN, 0};
-  assert(lsys_hyperpatch_init(&hp, d0, o, unit, &e) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, d0, o, unit, &e) == LSYS_EARG);
   assert(strstr(e.msg, "degree 2 is 0") != NULL);
-  assert(lsys_hyperpatch_init(&hp, d5, o, unit, &e) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, d5, o, unit, &e) == LSYS_EARG);
   assert(strstr(e.msg, "degree 1 is 5") != NULL && strstr(e.msg, "1 (linear) to 4") != NULL);
-  assert(lsys_hyperpatch_init(&hp, ok, o, flat, &e) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, ok, o, flat, &e) == LSYS_EARG);
   assert(strstr(e.msg, "degenerate") != NULL);
-  assert(lsys_hyperpatch_init(&hp, ok, o, zero, &e) == LSYS_EARG);
-  assert(lsys_hyperpatch_init(&hp, ok, nan3, unit, &e) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, ok, o, zero, &e) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, ok, nan3, unit, &e) == LSYS_EARG);
   assert(strstr(e.msg, "origin[2]") != NULL);
-  assert(lsys_hyperpatch_init(&hp, ok, o, unit, &e) == LSYS_OK);
-  assert(lsys_hyperpatch_count(&hp) == 125);
+  assert(lsys_ffd_hyperpatch_init(&hp, ok, o, unit, &e) == LSYS_OK);
+  assert(lsys_ffd_hyperpatch_count(&hp) == 125);
 }
 
 /* A callback that fails at its 'fail'-th call and counts its calls. */
@@ -287,14 +287,14 @@ static void ranges (void) {
   size_t v, a, b;
   makescene(&orig, 10);
   makescene(&s, 10);
-  assert(lsys_deform_affine(&s, 3, 11, 0, 0, m) == LSYS_EARG);
-  assert(lsys_deform_affine(&s, 4, 3, 0, 0, m) == LSYS_EARG);
-  assert(lsys_deform_affine(&s, 0, 0, 1, 3, m) == LSYS_EARG);
-  assert(lsys_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
-  assert(lsys_deform_range(&s, 0, 11, 0, 0, &hp) == LSYS_EARG);
+  assert(lsys_ffd_affine(&s, 3, 11, 0, 0, m) == LSYS_EARG);
+  assert(lsys_ffd_affine(&s, 4, 3, 0, 0, m) == LSYS_EARG);
+  assert(lsys_ffd_affine(&s, 0, 0, 1, 3, m) == LSYS_EARG);
+  assert(lsys_ffd_hyperpatch_init(&hp, d, ORIGIN, FRAME, &e) == LSYS_OK);
+  assert(lsys_ffd_range(&s, 0, 11, 0, 0, &hp) == LSYS_EARG);
   assert(lsys_scene_take_dirty(&s, &a, &b) == 0);
   /* vertices [3, 6) and line 1 only; the rest untouched bit for bit */
-  assert(lsys_deform_affine(&s, 3, 6, 1, 2, m) == LSYS_OK);
+  assert(lsys_ffd_affine(&s, 3, 6, 1, 2, m) == LSYS_OK);
   for (v = 0; v < 10; v++)
     assert(s.mesh.pos[3 * v] == orig.mesh.pos[3 * v] + (v >= 3 && v < 6 ? 5.0f : 0.0f));
   assert(memcmp(s.mesh.lpos, orig.mesh.lpos, 6 * sizeof(float)) == 0);
@@ -304,7 +304,7 @@ static void ranges (void) {
   /* a failing callback stops at vertex 1 + 2 = 3 of the range [1, 8) */
   makescene(&s, 10);
   memset(&e, 0, sizeof e);
-  assert(lsys_deform_func(&s, 1, 8, 0, 2, failing, &c, &e) == LSYS_ERULE);
+  assert(lsys_ffd_func(&s, 1, 8, 0, 2, failing, &c, &e) == LSYS_ERULE);
   assert(e.code == LSYS_ERULE && e.pos == 3);
   assert(strcmp(e.msg, "the deformation function failed at vertex 3") == 0);
   for (v = 0; v < 10; v++)
@@ -314,7 +314,7 @@ static void ranges (void) {
   /* failing on a line end: e->pos = nv + 2 * segment + end */
   c.calls = 0;
   c.fail = 7 * 10 + 3;                        /* all 10 vertices, then the 4th line end */
-  assert(lsys_deform_func(&s, 0, 10, 0, 2, failing, &c, &e) == LSYS_ERULE);
+  assert(lsys_ffd_func(&s, 0, 10, 0, 2, failing, &c, &e) == LSYS_ERULE);
   assert(e.pos == 10 + 3 && strcmp(e.msg, "the deformation function failed at line end 3") == 0);
   lsys_scene_free(&s);
   lsys_scene_free(&orig);
@@ -336,34 +336,34 @@ static void modules (void) {
   assert(lsys_mesh_reserve(&s.mesh, 10, 5) == LSYS_OK);
   for (k = 0; k < 10; k++) lsys_mesh_vertex(&s.mesh, p, n, 0, 0, 1, 0);
   for (k = 0; k < 5; k++) lsys_mesh_tri(&s.mesh, tri[3 * k], tri[3 * k + 1], tri[3 * k + 2]);
-  assert(lsys_scene_module_range(&s, 0, 9, &v0, &v1, &l0, &l1) == 0);   /* no records */
+  assert(lsys_ffd_module_range(&s, 0, 9, &v0, &v1, &l0, &l1) == 0);   /* no records */
   assert(lsys_scene_reserve_records(&s, 4) == LSYS_OK);
   for (k = 0; k < 4; k++) {
     lsys_trec *r = &s.rec[s.nrec++];
     memset(r, 0, sizeof *r);
     r->module = mod[k]; r->kind = kind[k]; r->tri0 = t0[k]; r->ntri = nt[k];
   }
-  assert(lsys_scene_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
   assert(v0 == 0 && v1 == 4 && l0 == 0 && l1 == 0);     /* no lines: not the line style */
-  assert(lsys_scene_module_range(&s, 1, 3, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 1, 3, &v0, &v1, &l0, &l1) == 1);
   /* triangle 2 (4 5 3) made vertices 4 and 5; vertex 3 belongs to earlier triangles */
   assert(v0 == 4 && v1 == 6);
-  assert(lsys_scene_module_range(&s, 3, 5, &v0, &v1, &l0, &l1) == 0);   /* drew nothing */
+  assert(lsys_ffd_module_range(&s, 3, 5, &v0, &v1, &l0, &l1) == 0);   /* drew nothing */
   assert(v0 == 0 && v1 == 0);
-  assert(lsys_scene_module_range(&s, 2, 9, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 2, 9, &v0, &v1, &l0, &l1) == 1);
   assert(v0 == 4 && v1 == 10);
-  assert(lsys_scene_module_range(&s, 6, 9, &v0, &v1, &l0, &l1) == 0);
+  assert(lsys_ffd_module_range(&s, 6, 9, &v0, &v1, &l0, &l1) == 0);
   /* the line style: two lines for the two segment records */
   {
     const double a[3] = {0, 0, 0}, b[3] = {0, 1, 0};
     assert(lsys_mesh_line(&s.mesh, a, b, 1, 1, 0) == LSYS_OK);
     assert(lsys_mesh_line(&s.mesh, b, a, 1, 1, 0) == LSYS_OK);
   }
-  assert(lsys_scene_module_range(&s, 2, 3, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 2, 3, &v0, &v1, &l0, &l1) == 1);
   assert(l0 == 0 && l1 == 2);
-  assert(lsys_scene_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
   assert(l0 == 0 && l1 == 0);
-  assert(lsys_scene_module_range(&s, 3, 9, &v0, &v1, &l0, &l1) == 1);
+  assert(lsys_ffd_module_range(&s, 3, 9, &v0, &v1, &l0, &l1) == 1);
   assert(l0 == 2 && l1 == 2 && v0 == 6 && v1 == 10);
   lsys_scene_free(&s);
 }

@@ -27,12 +27,12 @@ static void near3 (const double *a, double x, double y, double z, double tol) {
 static void test_hermite (void) {
   double P0[3] = {0, 0, 0}, T0[3] = {0, 2, 0}, P1[3] = {1, 1, 0}, T1[3] = {2, 0, 0};
   double F[3], dF[3];
-  lsys_hermite(P0, T0, P1, T1, 0, F, dF);
+  lsys_gcyl_hermite(P0, T0, P1, T1, 0, F, dF);
   near3(F, 0, 0, 0, 1e-15); near3(dF, 0, 2, 0, 1e-15);
-  lsys_hermite(P0, T0, P1, T1, 1, F, dF);
+  lsys_gcyl_hermite(P0, T0, P1, T1, 1, F, dF);
   near3(F, 1, 1, 0, 1e-15); near3(dF, 2, 0, 0, 1e-15);
   /* F(1/2) = (P0 + P1)/2 + (T0 - T1)/8; F'(1/2) = 3/2 (P1 - P0) - (T0 + T1)/4 */
-  lsys_hermite(P0, T0, P1, T1, 0.5, F, dF);
+  lsys_gcyl_hermite(P0, T0, P1, T1, 0.5, F, dF);
   near3(F, 0.5 - 0.25, 0.5 + 0.25, 0, 1e-15);
   near3(dF, 1.5 - 0.5, 1.5 - 0.5, 0, 1e-15);
 }

@@ -17,7 +17,7 @@ static void roundtrip (lsys_alphabet *a, const char *in, const char *out, size_t
   assert(s.n == n);
   assert(lsys_lstring_format(&b, &s, a, NULL, 0, s.n) == LSYS_OK);
   assert(strcmp(b.p ? b.p : "", out) == 0);
-  lsys_buf_free(&b);
+  lsys_lstring_buf_free(&b);
   lsys_lstring_free(&s);
 }
 
@@ -100,17 +100,17 @@ static void test_alphabet (void) {
 
 static void test_scan (void) {
   lsys_names d = {0};
-  assert(lsys_scan_name("@GsA", 4, NULL) == 3);
-  assert(lsys_scan_name("@XY", 3, NULL) == 2);
-  assert(lsys_scan_name("?P(1)", 5, NULL) == 2);
-  assert(lsys_scan_name("?(1)", 4, NULL) == 1);
-  assert(lsys_scan_name("~ab", 3, NULL) == 2);
-  assert(lsys_scan_name("(", 1, NULL) == 0);
-  assert(lsys_scan_name("\xce\xb1x", 3, NULL) == 2);     /* one UTF-8 character */
-  assert(lsys_names_add(&d, "Apex", 4) == LSYS_OK);
-  assert(lsys_scan_name("Apex(1)", 7, &d) == 4);
-  assert(lsys_scan_name("Ape", 3, &d) == 1);
-  lsys_names_free(&d);
+  assert(lsys_alphabet_scan("@GsA", 4, NULL) == 3);
+  assert(lsys_alphabet_scan("@XY", 3, NULL) == 2);
+  assert(lsys_alphabet_scan("?P(1)", 5, NULL) == 2);
+  assert(lsys_alphabet_scan("?(1)", 4, NULL) == 1);
+  assert(lsys_alphabet_scan("~ab", 3, NULL) == 2);
+  assert(lsys_alphabet_scan("(", 1, NULL) == 0);
+  assert(lsys_alphabet_scan("\xce\xb1x", 3, NULL) == 2);     /* one UTF-8 character */
+  assert(lsys_alphabet_names_add(&d, "Apex", 4) == LSYS_OK);
+  assert(lsys_alphabet_scan("Apex(1)", 7, &d) == 4);
+  assert(lsys_alphabet_scan("Ape", 3, &d) == 1);
+  lsys_alphabet_names_free(&d);
 }
 
 int main (void) {

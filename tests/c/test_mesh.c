@@ -92,8 +92,8 @@ static void testmesh (lsys_mesh *m, lsys_material pal[2]) {
   assert(lsys_mesh_line(m, a, b, 2, 1, 1) == LSYS_OK);
   a[1] = 7;
   assert(lsys_mesh_line(m, a, b, 1, 1, 2) == LSYS_OK);
-  lsys_material_color(&pal[0], 0.2, 0.6, 0.1);
-  lsys_material_color(&pal[1], 1, 0.5, 0);
+  lsys_mesh_material_color(&pal[0], 0.2, 0.6, 0.1);
+  lsys_mesh_material_color(&pal[1], 1, 0.5, 0);
   pal[1].specular[0] = pal[1].specular[1] = pal[1].specular[2] = 0.5f;
   pal[1].shininess = 32;
 }
@@ -134,7 +134,7 @@ static void test_buffers (void) {
   assert(lsys_mesh_reserve(&m, 0, (size_t)-1 / 2) != LSYS_OK);
   lsys_mesh_free(&m);
   lsys_mesh_free(&m);                          /* idempotent */
-  lsys_material_color(&mt, 0.5, 2, -1);
+  lsys_mesh_material_color(&mt, 0.5, 2, -1);
   assert(mt.diffuse[0] == 0.5f && mt.diffuse[1] == 1 && mt.diffuse[2] == 0 && mt.diffuse[3] == 1);
   assert(mt.ambient[0] == 0.15f && mt.ambient[3] == 1);
   assert(mt.specular[0] == 0 && mt.emission[0] == 0 && mt.shininess == 0);
@@ -149,7 +149,7 @@ static void test_obj (void) {
   size_t len;
   char *s, *t;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
   s = slurp(OUT ".obj", &len);
   assert(countlines(s, "mtllib lsys_test_mesh.mtl\n") == 1);
   assert(countlines(s, "v ") == 12 + 6);
@@ -179,7 +179,7 @@ static void test_obj (void) {
          != NULL);
   free(s);
   /* no palette: one grey default */
-  assert(lsys_mesh_save_obj(&m, NULL, 0, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
   s = slurp(OUT "_grey.mtl", &len);
   assert(countlines(s, "newmtl ") == 1 && strstr(s, "newmtl m0\n"));
   assert(strstr(s, "Kd 0.60382736 0.60382736 0.60382736\n") != NULL);     /* sRGB 0.8 */
@@ -191,7 +191,7 @@ static void test_obj (void) {
   remove(OUT "_grey.obj");
   remove(OUT "_grey.mtl");
   /* no extension: the .mtl is appended; a dot in a directory name is not one */
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_mesh_noext", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_mesh_noext", &e) == LSYS_OK);
   s = slurp("/tmp/lsys_test_mesh_noext.mtl", &len);
   free(s);
   remove("/tmp/lsys_test_mesh_noext");
@@ -237,7 +237,7 @@ static void test_numbers (void) {
     }
     lsys_mesh_vertex(&m, pt, n, 0, 0, 0, 0);
   }
-  assert(lsys_mesh_save_obj(&m, NULL, 0, NULL, 0, OUT "_num.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT "_num.obj", &e) == LSYS_OK);
   s = slurp(OUT "_num.obj", &len);
   p = strstr(s, "\nv ");
   assert(p != NULL);
@@ -283,7 +283,7 @@ static void test_ply (void) {
   char *s, *h;
   const unsigned char *d;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT ".ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT ".ply", &e) == LSYS_OK);
   s = slurp(OUT ".ply", &len);
   assert(strncmp(s, "ply\nformat binary_little_endian 1.0\n", 36) == 0);
   h = strstr(s, "end_header\n");
@@ -321,7 +321,7 @@ static void test_ply (void) {
   free(s);
   /* without segments: no edge element */
   m.nl = 0;
-  assert(lsys_mesh_save_ply(&m, NULL, 0, NULL, 0, OUT "_nl.ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, NULL, 0, NULL, 0, OUT "_nl.ply", &e) == LSYS_OK);
   s = slurp(OUT "_nl.ply", &len);
   assert(strstr(s, "element edge") == NULL && strstr(s, "element vertex 12\n") != NULL);
   h = strstr(s, "end_header\n");
@@ -353,7 +353,7 @@ static void test_glb (void) {
   unsigned char *s, *bin;
   char *json;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT ".glb", &len);
   assert(rd32(s) == 0x46546C67u && rd32(s + 4) == 2 && rd32(s + 8) == len);
   jlen = rd32(s + 12);
@@ -405,7 +405,7 @@ static void test_glb (void) {
   m.nrm[3] = NAN;
   m.nrm[6] = 3; m.nrm[7] = 4; m.nrm[8] = 0;
   m.pos[0] = NAN;
-  assert(lsys_mesh_save_glb(&m, NULL, 0, NULL, 0, OUT "_n.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT "_n.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_n.glb", &len);
   jlen = rd32(s + 12);
   bin = s + 28 + jlen;
@@ -417,7 +417,7 @@ static void test_glb (void) {
 
   /* only segments */
   m.nt = 0;
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_l.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_l.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_l.glb", &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 20 + jlen) == 72 && len == 28 + jlen + 72);
@@ -432,7 +432,7 @@ static void test_glb (void) {
 
   /* empty: a JSON chunk only, a scene without nodes */
   lsys_mesh_clear(&m);
-  assert(lsys_mesh_save_glb(&m, NULL, 0, NULL, 0, OUT "_empty.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT "_empty.glb", &e) == LSYS_OK);
   s = (unsigned char *)slurp(OUT "_empty.glb", &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 8) == len && len == 20 + jlen && jlen % 4 == 0);
@@ -450,35 +450,35 @@ static void test_errors (void) {
   lsys_error e;
   FILE *f;
   testmesh(&m, pal);
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.obj", &e) ==
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.obj", &e) ==
          LSYS_EARG);
   assert(strcmp(e.msg, "cannot open '/nonexistent-lsys/x.obj' for writing: "
                        "No such file or directory") == 0);
-  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.ply", &e) ==
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.ply", &e) ==
          LSYS_EARG);
   assert(strcmp(e.msg, "cannot open '/nonexistent-lsys/x.ply' for writing: "
                        "No such file or directory") == 0);
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.glb", &e) ==
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.glb", &e) ==
          LSYS_EARG);
   assert(strstr(e.msg, "'/nonexistent-lsys/x.glb'") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp", &e) == LSYS_EARG);   /* a directory */
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp", &e) == LSYS_EARG);   /* a directory */
   assert(strstr(e.msg, "cannot open '/tmp' for writing") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_x.mtl", &e) ==
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_x.mtl", &e) ==
          LSYS_EARG);
   assert(strstr(e.msg, "its own material file") != NULL);
   f = fopen("/dev/full", "wb");
   if (f != NULL) {                              /* a full disk: the error comes late */
     fclose(f);
-    assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
+    assert(lsys_export_ply(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
     assert(strcmp(e.msg, "cannot write '/dev/full': No space left on device") == 0);
-    assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
+    assert(lsys_export_glb(&m, pal, 2, NULL, 0, "/dev/full", &e) == LSYS_EARG);
     assert(strcmp(e.msg, "cannot write '/dev/full': No space left on device") == 0);
   }
   m.tri[4] = 12;                                 /* a vertex that does not exist */
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_bad.glb", &e) == LSYS_EARG);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_bad.glb", &e) == LSYS_EARG);
   assert(strstr(e.msg, "triangle 2 refers to vertex 12 of 12") != NULL);
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT "_bad.obj", &e) == LSYS_EARG);
-  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT "_bad.ply", &e) == LSYS_EARG);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT "_bad.obj", &e) == LSYS_EARG);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT "_bad.ply", &e) == LSYS_EARG);
   f = fopen(OUT "_bad.glb", "rb");              /* nothing was created */
   assert(f == NULL);
   lsys_mesh_free(&m);
@@ -507,26 +507,26 @@ static void test_textures (void) {
   t2.rgba = px2; t2.w = 1; t2.h = 1; t2.path = (char *)p2;        /* decal, linear */
   t2.mode = LSYS_TEX_DECAL; t2.mag_linear = t2.min_linear = 1;
   nopath.rgba = px2; nopath.w = 1; nopath.h = 1;
-  assert(lsys_png_write(p1, px1, 2, 2, 1, &e) == LSYS_OK);
-  assert(lsys_png_write(p2, px2, 1, 1, 0, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p1, px1, 2, 2, 1, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p2, px2, 1, 1, 0, &e) == LSYS_OK);
   testmesh(&m, pal);
   /* textures given, none used: the same files as without */
-  assert(lsys_mesh_save_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
   s = slurp(OUT ".mtl", &len);
-  assert(lsys_mesh_save_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
   s2 = slurp(OUT "_t.mtl", &len2);
   assert(len == len2 && memcmp(s, s2, len) == 0);
   free(s2);
   json = glbjson(OUT ".glb", &file, &len, &bin, &blen);
-  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
   s2 = slurp(OUT "_t.glb", &len2);
   assert(len == len2 && memcmp(file, s2, len) == 0);
   free(s2); free(s); free(json); free(file);
   /* textured */
   m.tex[0] = 1; m.tex[6] = 2; m.tex[9] = 1;
   m.tex[1] = 2;                                 /* only a triangle's first vertex counts */
-  assert(lsys_mesh_save_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
   s = slurp(OUT "_t.mtl", &len);
   assert(countlines(s, "newmtl ") == 5);
   assert(strstr(s, "newmtl m0\n") < strstr(s, "newmtl m0_t1\n"));
@@ -548,7 +548,7 @@ static void test_textures (void) {
   assert(strstr(s, "usemtl m1_t1\nf 10/10/10 ") != NULL && strstr(s, "usemtl m1_t2\nf 7/7/7 "));
   free(s);
   /* glb: 4 triangle primitives, 2 line primitives, 5 materials, 2 images */
-  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
   json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
   assert(count(json, "\"mode\":4") == 4 && count(json, "\"mode\":1") == 2);
   assert(count(json, "\"name\":\"m") == 5);
@@ -593,8 +593,8 @@ static void test_textures (void) {
   free(json); free(file);
   /* a texture index past the list, or of a texture without a file: untextured */
   m.tex[0] = 4; m.tex[6] = 3; m.tex[9] = 0;
-  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
-  assert(lsys_mesh_save_glb(&m, pal, 2, NULL, 0, OUT "_t2.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_t2.glb", &e) == LSYS_OK);
   json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
   json2 = glbjson(OUT "_t2.glb", &file2, &len2, &bin2, &blen2);
   assert(strcmp(json, json2) == 0 && blen == blen2 && memcmp(bin, bin2, blen) == 0);
@@ -602,16 +602,16 @@ static void test_textures (void) {
   /* a texture file that went missing or changed: an error naming both files */
   m.tex[0] = 1;
   t1.path = (char *)OUT "_missing.png";
-  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_EARG);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_EARG);
   assert(strstr(e.msg, "cannot write '" OUT "_t.glb': cannot read texture '"
                        OUT "_missing.png'"));
   t1.path = (char *)OUT ".obj";
-  assert(lsys_mesh_save_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_ESYNTAX);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_ESYNTAX);
   assert(strstr(e.msg, "is no longer a PNG or SGI image") != NULL);
   /* PLY ignores textures */
   t1.path = (char *)p1;
-  assert(lsys_mesh_save_ply(&m, pal, 2, list, 3, OUT "_t.ply", &e) == LSYS_OK);
-  assert(lsys_mesh_save_ply(&m, pal, 2, NULL, 0, OUT "_t2.ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 2, list, 3, OUT "_t.ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT "_t2.ply", &e) == LSYS_OK);
   s = slurp(OUT "_t.ply", &len);
   s2 = slurp(OUT "_t2.ply", &len2);
   assert(len == len2 && memcmp(s, s2, len) == 0);
@@ -637,7 +637,7 @@ static void test_nomem (void) {
   int f, done = 0;
   lsys_texture_init(&tx);
   tx.rgba = px; tx.w = tx.h = 1; tx.path = (char *)OUT "_nomem.png";
-  assert(lsys_png_write(tx.path, px, 1, 1, 1, &e0) == LSYS_OK);
+  assert(lsys_pngio_write(tx.path, px, 1, 1, 1, &e0) == LSYS_OK);
   for (k = 0; !done; k++) {
     lsys_mesh m;
     lsys_material pal[2];
@@ -661,12 +661,12 @@ static void test_nomem (void) {
       }
     }
     assert(st == LSYS_OK || st == LSYS_ENOMEM);
-    lsys_material_color(&pal[0], 1, 0, 0);
-    lsys_material_color(&pal[1], 0, 1, 0);
+    lsys_mesh_material_color(&pal[0], 1, 0, 0);
+    lsys_mesh_material_color(&pal[1], 0, 1, 0);
     for (f = 0; f < 3 && st == LSYS_OK; f++) {
-      st = f == 0 ? lsys_mesh_save_obj(&m, pal, 2, list, 1, paths[f], &e)
-         : f == 1 ? lsys_mesh_save_ply(&m, pal, 2, list, 1, paths[f], &e)
-                  : lsys_mesh_save_glb(&m, pal, 2, list, 1, paths[f], &e);
+      st = f == 0 ? lsys_export_obj(&m, pal, 2, list, 1, paths[f], &e)
+         : f == 1 ? lsys_export_ply(&m, pal, 2, list, 1, paths[f], &e)
+                  : lsys_export_glb(&m, pal, 2, list, 1, paths[f], &e);
       assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, "out of memory") &&
                                strstr(e.msg, OUT "_nomem.")));
     }
@@ -716,16 +716,16 @@ static void bench (void) {
     double a[3] = { (double)i, 0, 1.5 }, b[3] = { (double)i, 1, 0.25 };
     assert(lsys_mesh_line(&m, a, b, 1, 1, (unsigned)i) == LSYS_OK);
   }
-  for (i = 0; i < 8; i++) lsys_material_color(&pal[i], 0.1 * (double)i, 0.5, 0.2);
+  for (i = 0; i < 8; i++) lsys_mesh_material_color(&pal[i], 0.1 * (double)i, 0.5, 0.2);
   printf("bench: %zu vertices, %zu triangles, %zu segments\n", m.nv, m.nt, m.nl);
   t0 = now();
-  assert(lsys_mesh_save_obj(&m, pal, 8, NULL, 0, OUT "_bench.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 8, NULL, 0, OUT "_bench.obj", &e) == LSYS_OK);
   printf("  obj %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_mesh_save_ply(&m, pal, 8, NULL, 0, OUT "_bench.ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 8, NULL, 0, OUT "_bench.ply", &e) == LSYS_OK);
   printf("  ply %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_mesh_save_glb(&m, pal, 8, NULL, 0, OUT "_bench.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 8, NULL, 0, OUT "_bench.glb", &e) == LSYS_OK);
   printf("  glb %.3f s\n", now() - t0);
   lsys_mesh_free(&m);
 }

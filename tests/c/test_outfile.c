@@ -59,7 +59,7 @@ static void tempdirs (void) {
   char *t;
   path(victim, "victim.txt");
   spit(victim, "keep me");
-  t = lsys_tempdir_make(dir, "frames", &e);
+  t = lsys_outfile_tempdir_make(dir, "frames", &e);
   assert(t != NULL && strncmp(t, dir, strlen(dir)) == 0);
   assert(strstr(t + strlen(dir), "/frames-") == t + strlen(dir));
   assert(stat(t, &st) == 0 && S_ISDIR(st.st_mode) && (st.st_mode & 07777) == 0700);
@@ -69,23 +69,23 @@ static void tempdirs (void) {
   assert(symlink(victim, link) == 0);
   spit(file, "png");
   assert(mkdir(sub, 0700) == 0);
-  assert(lsys_tempdir_remove(t) == 0);
+  assert(lsys_outfile_tempdir_remove(t) == 0);
   assert(access(t, F_OK) != 0 && same(victim, "keep me"));
-  assert(lsys_tempdir_remove(t) != 0);                   /* gone: says so */
+  assert(lsys_outfile_tempdir_remove(t) != 0);                   /* gone: says so */
   LSYS_FREE(t);
   /* $TMPDIR is the default parent; a missing one is named */
   assert(setenv("TMPDIR", dir, 1) == 0);
-  t = lsys_tempdir_make(NULL, NULL, &e);
+  t = lsys_outfile_tempdir_make(NULL, NULL, &e);
   assert(t != NULL && strncmp(t, dir, strlen(dir)) == 0 && strstr(t, "/lsys-") != NULL);
-  assert(lsys_tempdir_remove(t) == 0);
+  assert(lsys_outfile_tempdir_remove(t) == 0);
   LSYS_FREE(t);
   path(missing, "none");
   assert(setenv("TMPDIR", missing, 1) == 0);
-  assert(lsys_tempdir_make(NULL, "x", &e) == NULL);
+  assert(lsys_outfile_tempdir_make(NULL, "x", &e) == NULL);
   snprintf(msg, sizeof msg, "cannot make a temporary folder in '%s' (TMPDIR): No such file "
            "or directory", missing);
   assert(strcmp(e.msg, msg) == 0);
-  assert(lsys_tempdir_make(dir, "a/b", &e) == NULL && strstr(e.msg, "must not hold '/'"));
+  assert(lsys_outfile_tempdir_make(dir, "a/b", &e) == NULL && strstr(e.msg, "must not hold '/'"));
   assert(unsetenv("TMPDIR") == 0);
   unlink(victim);
 }

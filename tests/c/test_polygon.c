@@ -574,7 +574,7 @@ static void test_limits (void) {
   assert(lsys_polygon_triangulate(&w, p, n, nrm, &t) == LSYS_EMEMORY && mt.hit);
   mt.limit = (size_t)-1;
   assert(lsys_polygon_triangulate(&w, p, n, nrm, &t) == (long)n - 2);
-  lsys_polywork_free(&w);
+  lsys_polygon_work_free(&w);
   assert(w.meter == &mt && w.xy == NULL);       /* freeing keeps the meter */
   free(p);
 }
@@ -593,7 +593,7 @@ static void test_nomem (void) {
     failat = -1;
     nt = lsys_polygon_triangulate(&w, sq, 4, nrm, &t);
     assert(nt == 2 && t == w.tris);
-    lsys_polywork_free(&w);
+    lsys_polygon_work_free(&w);
   }
 }
 
@@ -608,8 +608,8 @@ int main (void) {
   test_hostile();
   test_limits();
   test_nomem();
-  lsys_polywork_free(&work);
-  lsys_polywork_free(&work);                   /* idempotent */
+  lsys_polygon_work_free(&work);
+  lsys_polygon_work_free(&work);                   /* idempotent */
   printf("test_polygon: ok\n");
   return 0;
 }

@@ -32,7 +32,7 @@ static void plant (lsys_scene *s, unsigned col, size_t npal, float shade) {
   uint32_t st;
   size_t i;
   lsys_scene_init(s);
-  for (i = 0; i < npal; i++) lsys_material_color(&pal[i], shade * (float)i, 0.5, 0.5);
+  for (i = 0; i < npal; i++) lsys_mesh_material_color(&pal[i], shade * (float)i, 0.5, 0.5);
   assert(lsys_scene_set_palette(s, pal, npal) == LSYS_OK);
   assert(lsys_mesh_reserve(&s->mesh, 3, 1) == LSYS_OK);
   for (i = 0; i < 3; i++) lsys_mesh_vertex(&s->mesh, p[i], n, 0, 0, col, 0);

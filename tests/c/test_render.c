@@ -56,7 +56,7 @@ static lsys_mesh boxmesh (const double lo[3], const double hi[3]) {
 /* The camera these tests were written for: the scene's default, but in
 ** perspective. */
 static void testcam (lsys_camera *c) {
-  lsys_camera_defaults(c);
+  lsys_scene_camera_defaults(c);
   c->projection = LSYS_PERSPECTIVE;
 }
 
@@ -265,13 +265,13 @@ static void test_png (void) {
   const char *p = tmppath("pattern.png");
   pattern(src, W, H);
   /* RGBA round trip */
-  assert(lsys_png_write(p, src, W, H, 1, &e) == LSYS_OK);
-  assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p, src, W, H, 1, &e) == LSYS_OK);
+  assert(lsys_pngio_read(p, &got, &w, &h, &e) == LSYS_OK);
   assert(w == W && h == H && memcmp(got, src, sizeof src) == 0);
   free(got);
   /* RGB: alpha dropped on writing, 255 on reading */
-  assert(lsys_png_write(p, src, W, H, 0, &e) == LSYS_OK);
-  assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p, src, W, H, 0, &e) == LSYS_OK);
+  assert(lsys_pngio_read(p, &got, &w, &h, &e) == LSYS_OK);
   for (i = 0; i < W * H; i++) {
     assert(memcmp(got + 4 * i, src + 4 * i, 3) == 0);
     assert(got[4 * i + 3] == 255);
@@ -283,7 +283,7 @@ static void test_png (void) {
     uint8_t rows[2][2] = {{0x01, 0x20}, {0x22, 0x10}};     /* 4 pixels a row, 2 rows */
     static const uint8_t want[8] = {0, 1, 2, 0, 2, 2, 1, 0};
     writeraw(p, 4, 2, 4, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE, rows[0], 2, plte, 3);
-    assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+    assert(lsys_pngio_read(p, &got, &w, &h, &e) == LSYS_OK);
     assert(w == 4 && h == 2);
     for (i = 0; i < 8; i++) {
       assert(memcmp(got + 4 * i, &plte[want[i]], 3) == 0);
@@ -302,7 +302,7 @@ static void test_png (void) {
       }
     writeraw(p, 9, 9, 16, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_INTERLACE_ADAM7, rows[0], 36, NULL,
              0);
-    assert(lsys_png_read(p, &got, &w, &h, &e) == LSYS_OK);
+    assert(lsys_pngio_read(p, &got, &w, &h, &e) == LSYS_OK);
     assert(w == 9 && h == 9);
     for (y = 0; y < 9; y++)
       for (x = 0; x < 9; x++) {
@@ -312,38 +312,38 @@ static void test_png (void) {
     free(got);
   }
   /* errors name the file and the reason, and never crash */
-  assert(lsys_png_write("/nonexistent-dir/x.png", src, W, H, 0, &e) == LSYS_EARG);
+  assert(lsys_pngio_write("/nonexistent-dir/x.png", src, W, H, 0, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "cannot open '/nonexistent-dir/x.png' for writing: "
                        "No such file or directory") == 0);
-  assert(lsys_png_read("/nonexistent-dir/x.png", &got, &w, &h, &e) == LSYS_EARG);
+  assert(lsys_pngio_read("/nonexistent-dir/x.png", &got, &w, &h, &e) == LSYS_EARG);
   assert(got == NULL && strstr(e.msg, "cannot open '/nonexistent-dir/x.png' for reading"));
   {
     const char *q = tmppath("bad.png");
     size_t n, k;
     uint8_t *good;
     writefile(q, "hello, not a picture", 20);
-    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
+    assert(lsys_pngio_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
     assert(strstr(e.msg, "is not a PNG file") && strstr(e.msg, q));
     writefile(q, "", 0);
-    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
+    assert(lsys_pngio_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX && got == NULL);
     /* every truncation of a valid file fails cleanly */
-    assert(lsys_png_write(p, src, W, H, 1, &e) == LSYS_OK);
+    assert(lsys_pngio_write(p, src, W, H, 1, &e) == LSYS_OK);
     good = readfile(p, &n);
     for (k = 0; k < n; k++) {
       writefile(q, good, k);
-      assert(lsys_png_read(q, &got, &w, &h, &e) != LSYS_OK && got == NULL);
+      assert(lsys_pngio_read(q, &got, &w, &h, &e) != LSYS_OK && got == NULL);
       assert(strstr(e.msg, q) != NULL);
     }
     /* a flipped byte anywhere after the signature: an error or a picture, no crash */
     for (k = 8; k < n; k++) {
       good[k] ^= 0x5a;
       writefile(q, good, n);
-      if (lsys_png_read(q, &got, &w, &h, &e) == LSYS_OK) free(got);
+      if (lsys_pngio_read(q, &got, &w, &h, &e) == LSYS_OK) free(got);
       else assert(got == NULL && strstr(e.msg, q) != NULL);
       good[k] ^= 0x5a;
     }
     writefile(q, good, n / 2);
-    assert(lsys_png_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX);
+    assert(lsys_pngio_read(q, &got, &w, &h, &e) == LSYS_ESYNTAX);
     assert(strstr(e.msg, "unexpected end of file") != NULL);
     free(good);
     remove(q);
@@ -365,7 +365,7 @@ static void test_texture_load (void) {
   assert(t.rgba == NULL && t.path == NULL && t.mode == LSYS_TEX_MODULATE && !t.intensity);
   assert(!t.mag_linear && !t.min_linear && !t.per_surface);
   /* a grey image sets intensity, a colour one clears it; the path is copied */
-  assert(lsys_png_write(p, grey, 2, 1, 1, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p, grey, 2, 1, 1, &e) == LSYS_OK);
   t.mode = LSYS_TEX_DECAL;
   t.mag_linear = 1;
   assert(lsys_texture_load(&t, p, &e) == LSYS_OK);
@@ -373,7 +373,7 @@ static void test_texture_load (void) {
   assert(t.path != p && strcmp(t.path, p) == 0);
   assert(t.mode == LSYS_TEX_DECAL && t.mag_linear == 1);      /* settings kept */
   assert(lsys_texture_hasalpha(&t) == 1);
-  assert(lsys_png_write(p, colour, 2, 1, 1, &e) == LSYS_OK);
+  assert(lsys_pngio_write(p, colour, 2, 1, 1, &e) == LSYS_OK);
   assert(lsys_texture_load(&t, p, &e) == LSYS_OK);            /* replaces the pixels */
   assert(t.intensity == 0 && t.rgba[5] == 201 && lsys_texture_hasalpha(&t) == 0);
   /* failures name the file and leave the texture as it was */
@@ -437,7 +437,7 @@ static void dump (const uint8_t *img, const char *name) {
   lsys_error e;
   if (dir == NULL) return;
   snprintf(path, sizeof path, "%s/%s", dir, name);
-  assert(lsys_png_write(path, img, IW, IH, 1, &e) == LSYS_OK);
+  assert(lsys_pngio_write(path, img, IW, IH, 1, &e) == LSYS_OK);
 }
 
 static int brightness (const uint8_t *p) {
@@ -485,9 +485,9 @@ static void test_offscreen (void) {
   uint8_t img[IW * IH * 4];
   const uint8_t *c;
   int ss, i, back[2];
-  lsys_material_color(&pal[0], 1, 0, 0);
-  lsys_material_color(&pal[1], 0, 0, 1);
-  lsys_material_color(&pal[2], 1, 0, 0);
+  lsys_mesh_material_color(&pal[0], 1, 0, 0);
+  lsys_mesh_material_color(&pal[1], 0, 0, 1);
+  lsys_mesh_material_color(&pal[2], 1, 0, 0);
   pal[2].diffuse[3] = 0.5f;                     /* translucent red */
   lsys_render_defaults(&o);
   testlook(&sc);
@@ -687,8 +687,8 @@ static void test_textured (void) {
   lsys_error e;
   uint8_t ref[IW * IH * 4], img[IW * IH * 4], lit[4];
   int i, k;
-  lsys_material_color(&pal[0], 1, 1, 1);
-  lsys_material_color(&pal[1], 1, 1, 1);
+  lsys_mesh_material_color(&pal[0], 1, 1, 1);
+  lsys_mesh_material_color(&pal[1], 1, 1, 1);
   pal[1].diffuse[3] = 0.5f;
   lsys_render_defaults(&o);
   testlook(&sc);

@@ -41,8 +41,8 @@ static void palette (void) {
   lsys_scene s;
   lsys_material m[2];
   lsys_scene_init(&s);
-  lsys_material_color(&m[0], 1, 0, 0);
-  lsys_material_color(&m[1], 0, 1, 0);
+  lsys_mesh_material_color(&m[0], 1, 0, 0);
+  lsys_mesh_material_color(&m[1], 0, 1, 0);
   assert(lsys_scene_set_palette(&s, m, 2) == LSYS_OK);
   m[0].diffuse[0] = 0.5f;                     /* the scene holds a copy */
   assert(s.npal == 2 && s.pal[0].diffuse[0] == 1.0f && s.pal[1].diffuse[1] == 1.0f);
@@ -140,7 +140,7 @@ static void ranges (void) {
     if (t % 100 == 0) { n = 0; memset(bit, 0, sizeof bit); }
     x = x * 1103515245u + 12345u; a = (x >> 8) % (NV - 50);
     x = x * 1103515245u + 12345u; len = (x >> 8) % 40;
-    lsys_ranges_add(r, &n, MAX, a, a + len);
+    lsys_scene_ranges_add(r, &n, MAX, a, a + len);
     for (v = a; v < a + len; v++) bit[v] = 1;
     assert(n <= MAX);
     for (k = 0; k < n; k++) {
@@ -155,11 +155,12 @@ static void ranges (void) {
     }
   }
   n = 0;                                               /* MAX apart ranges: exact */
-  for (k = 0; k < MAX; k++) lsys_ranges_add(r, &n, MAX, 100 * (MAX - k), 100 * (MAX - k) + 10);
+  for (k = 0; k < MAX; k++)
+    lsys_scene_ranges_add(r, &n, MAX, 100 * (MAX - k), 100 * (MAX - k) + 10);
   assert(n == MAX && r[0] == 100 && r[1] == 110 && r[2 * MAX - 1] == 100 * MAX + 10);
-  lsys_ranges_add(r, &n, MAX, 5, 6);                   /* one more: the nearest two merge */
+  lsys_scene_ranges_add(r, &n, MAX, 5, 6);                   /* one more: the nearest two merge */
   assert(n == MAX && r[0] == 5 && r[1] == 6 && r[2] == 100 && r[3] == 210);
-  lsys_ranges_add(r, &n, MAX, 0, 10000);               /* covers all: one */
+  lsys_scene_ranges_add(r, &n, MAX, 0, 10000);               /* covers all: one */
   assert(n == 1 && r[0] == 0 && r[1] == 10000);
 }
 

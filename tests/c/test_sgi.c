@@ -140,7 +140,7 @@ static uint8_t *ok (const uint8_t *b, size_t n, int w, int h) {
   uint8_t *px;
   int gw, gh;
   lsys_error e;
-  int st = lsys_sgi_decode(b, n, NAME, &px, &gw, &gh, &e);
+  int st = lsys_sgiio_decode(b, n, NAME, &px, &gw, &gh, &e);
   if (st != LSYS_OK) fprintf(stderr, "unexpected: %s\n", e.msg);
   assert(st == LSYS_OK && px != NULL && gw == w && gh == h);
   return px;
@@ -153,7 +153,7 @@ static void bad (const uint8_t *b, size_t n, int code, const char *what) {
   int w = -1, h = -1;
   long live = nlive;
   lsys_error e;
-  int st = lsys_sgi_decode(b, n, NAME, &px, &w, &h, &e);
+  int st = lsys_sgiio_decode(b, n, NAME, &px, &w, &h, &e);
   if (st != code || strstr(e.msg, what) == NULL)
     fprintf(stderr, "expected %d '%s', got %d '%s'\n", code, what, st, st ? e.msg : "");
   assert(st == code && e.code == code);
@@ -433,9 +433,9 @@ static void test_errors (void) {
   bad(buf, n, LSYS_ESYNTAX, "RLE row 0 of channel 0 runs past its length (7 bytes)");
   /* the memory budget, and a failing allocation */
   n = verbatim(buf, 1, 3, 64, 64, 3);
-  lsys_set_memory_limit(4 * 64 * 64 - 1);
+  lsys_common_set_memory_limit(4 * 64 * 64 - 1);
   bad(buf, n, LSYS_EMEMORY, "64x64 pixels need 16 KiB, more than max_memory");
-  lsys_set_memory_limit(0);
+  lsys_common_set_memory_limit(0);
   failat = nalloc;
   bad(buf, n, LSYS_ENOMEM, "not enough memory for 64x64 pixels");
   failat = -1;
@@ -457,7 +457,7 @@ static void test_damage (void) {
       int w, h;
       lsys_error e;
       memcpy(buf, good, k);
-      assert(lsys_sgi_decode(buf, k, NAME, &px, &w, &h, &e) != LSYS_OK);
+      assert(lsys_sgiio_decode(buf, k, NAME, &px, &w, &h, &e) != LSYS_OK);
       assert(px == NULL && strstr(e.msg, NAME) != NULL);
     }
     for (k = 0; k < n; k++)
@@ -467,7 +467,7 @@ static void test_damage (void) {
         lsys_error e;
         memcpy(buf, good, n);
         buf[k] ^= (uint8_t)(1u << bit);
-        if (lsys_sgi_decode(buf, n, NAME, &px, &w, &h, &e) == LSYS_OK) {
+        if (lsys_sgiio_decode(buf, n, NAME, &px, &w, &h, &e) == LSYS_OK) {
           assert(px != NULL && w >= 1 && h >= 1);
           tfree(px);
         }
@@ -503,7 +503,7 @@ static void test_files (void) {
   lsys_texture t;
   size_t n = rle(buf, 1, 3, 5, 4, 3, val, 0, 0);
   spit(p, buf, n);
-  assert(lsys_sgi_read(p, &px, &w, &h, &e) == LSYS_OK && w == 5 && h == 4);
+  assert(lsys_sgiio_read(p, &px, &w, &h, &e) == LSYS_OK && w == 5 && h == 4);
   checkval(px, 5, 4, 3);
   tfree(px);
   /* the texture loader: by the content, whatever the name */
@@ -536,21 +536,21 @@ static void test_files (void) {
   assert(t.w == 3 && t.h == 2 && strcmp(t.path, p) == 0);
   lsys_texture_free(&t);
   /* the reader's own file errors */
-  assert(lsys_sgi_read(tmp("missing.rgb"), &px, &w, &h, &e) == LSYS_EARG && px == NULL);
-  assert(strstr(e.msg, "missing.rgb': No such file or directory"));   /* lsys_readfile */
-  assert(lsys_sgi_read(dir, &px, &w, &h, &e) == LSYS_EARG && px == NULL);
+  assert(lsys_sgiio_read(tmp("missing.rgb"), &px, &w, &h, &e) == LSYS_EARG && px == NULL);
+  assert(strstr(e.msg, "missing.rgb': No such file or directory"));   /* lsys_common_readfile */
+  assert(lsys_sgiio_read(dir, &px, &w, &h, &e) == LSYS_EARG && px == NULL);
   assert(strstr(e.msg, dir) && strstr(e.msg, "Is a directory"));
-  assert(lsys_sgi_read("/dev/null", &px, &w, &h, &e) == LSYS_EARG && px == NULL);
+  assert(lsys_sgiio_read("/dev/null", &px, &w, &h, &e) == LSYS_EARG && px == NULL);
   assert(strstr(e.msg, "'/dev/null': not a regular file"));
   spit(r, (const uint8_t *)"GIF89a", 6);
-  assert(lsys_sgi_read(r, &px, &w, &h, &e) == LSYS_ESYNTAX && px == NULL);
+  assert(lsys_sgiio_read(r, &px, &w, &h, &e) == LSYS_ESYNTAX && px == NULL);
   assert(strstr(e.msg, r) && strstr(e.msg, "is not an SGI image"));
   /* larger than LSYS_SGI_MAXFILE (a sparse file: nothing is read) */
   {
     FILE *f = fopen(r, "wb");
     assert(f != NULL && ftruncate(fileno(f), (off_t)LSYS_SGI_MAXFILE + 1) == 0);
     fclose(f);
-    assert(lsys_sgi_read(r, &px, &w, &h, &e) == LSYS_ELIMIT && px == NULL && w == 0);
+    assert(lsys_sgiio_read(r, &px, &w, &h, &e) == LSYS_ELIMIT && px == NULL && w == 0);
     assert(strstr(e.msg, r) && strstr(e.msg, "larger than 1.0 GiB"));
   }
   remove(p);

@@ -114,32 +114,32 @@ static void test_bezier (void) {
   for (i = 0; i <= 4; i++)
     for (j = 0; j <= 4; j++) {
       double s = i / 4.0, t = j / 4.0;
-      lsys_patch_eval(LSYS_BASIS_BEZIER, &p, s, t, pos, ds, dt);
+      lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, s, t, pos, ds, dt);
       nearv(pos, 3 * s, 3 * t, 0, 1e-14);
       nearv(ds, 3, 0, 0, 1e-13);
       nearv(dt, 0, 3, 0, 1e-13);
     }
   /* corners interpolate: s runs across columns, t across rows */
   randpatch(&p, 7);
-  lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 0, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 0, 0, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 0, 0)[0], ctrl(&p, 0, 0)[1], ctrl(&p, 0, 0)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 1, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 1, 0, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 0, 3)[0], ctrl(&p, 0, 3)[1], ctrl(&p, 0, 3)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 0, 1, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 0, 1, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 3, 0)[0], ctrl(&p, 3, 0)[1], ctrl(&p, 3, 0)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 1, 1, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 1, 1, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 3, 3)[0], ctrl(&p, 3, 3)[1], ctrl(&p, 3, 3)[2], 1e-15);
   /* one raised control point, row 1 column 2: z = B1(t) B2(s) at (0.5, 0.25) */
   memset(&p, 0, sizeof p);
   setctrl(&p, 1, 2, 0, 0, 1);
-  lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 0.5, 0.25, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 0.5, 0.25, pos, NULL, NULL);
   nearv(pos, 0, 0, (3 * 0.25 * 0.75 * 0.75) * (3 * 0.25 * 0.5), 1e-15);
   /* an unknown basis is Bézier */
   randpatch(&p, 9);
   {
     double q[3];
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &p, 0.3, 0.7, pos, NULL, NULL);
-    lsys_patch_eval(42, &p, 0.3, 0.7, q, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &p, 0.3, 0.7, pos, NULL, NULL);
+    lsys_surface_patch_eval(42, &p, 0.3, 0.7, q, NULL, NULL);
     nearv(q, pos[0], pos[1], pos[2], 0);
   }
 }
@@ -155,16 +155,16 @@ static void test_bspline (void) {
       setctrl(&p, r, c, c, r, ctrl(&p, r, c)[2]);
       z += w[r] * w[c] * ctrl(&p, r, c)[2];
     }
-  lsys_patch_eval(LSYS_BASIS_BSPLINE, &p, 0, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BSPLINE, &p, 0, 0, pos, NULL, NULL);
   nearv(pos, 1, 1, z, 1e-14);
   /* at (1,1) the weights are (0,1,4,1)/6: x = y = 2 */
-  lsys_patch_eval(LSYS_BASIS_BSPLINE, &p, 1, 1, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BSPLINE, &p, 1, 1, pos, NULL, NULL);
   assert(near(pos[0], 2, 1e-14) && near(pos[1], 2, 1e-14));
   /* (s, t) = (1, 0): x from the columns' weights (0,1,4,1)/6, y from (1,4,1,0)/6 */
-  lsys_patch_eval(LSYS_BASIS_BSPLINE, &p, 1, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BSPLINE, &p, 1, 0, pos, NULL, NULL);
   assert(near(pos[0], 2, 1e-14) && near(pos[1], 1, 1e-14));
   /* linear precision in the middle too */
-  lsys_patch_eval(LSYS_BASIS_BSPLINE, &p, 0.25, 0.5, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_BSPLINE, &p, 0.25, 0.5, pos, NULL, NULL);
   assert(near(pos[0], 1.25, 1e-14) && near(pos[1], 1.5, 1e-14));
 }
 
@@ -173,20 +173,20 @@ static void test_cardinal (void) {
   double pos[3];
   randpatch(&p, 5);
   /* the corners of the parameter square are control points (1,1) (1,2) (2,1) (2,2) */
-  lsys_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 0, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 1, 1)[0], ctrl(&p, 1, 1)[1], ctrl(&p, 1, 1)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_CARDINAL, &p, 1, 0, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_CARDINAL, &p, 1, 0, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 1, 2)[0], ctrl(&p, 1, 2)[1], ctrl(&p, 1, 2)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 1, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 1, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 2, 1)[0], ctrl(&p, 2, 1)[1], ctrl(&p, 2, 1)[2], 1e-15);
-  lsys_patch_eval(LSYS_BASIS_CARDINAL, &p, 1, 1, pos, NULL, NULL);
+  lsys_surface_patch_eval(LSYS_BASIS_CARDINAL, &p, 1, 1, pos, NULL, NULL);
   nearv(pos, ctrl(&p, 2, 2)[0], ctrl(&p, 2, 2)[1], ctrl(&p, 2, 2)[2], 1e-15);
   /* Catmull-Rom tangent at a corner: (P(1,2) - P(1,0)) / 2 along s */
   {
     double ds[3], dt[3];
     const double *a = ctrl(&p, 1, 2), *b = ctrl(&p, 1, 0), *c = ctrl(&p, 2, 1),
                  *d = ctrl(&p, 0, 1);
-    lsys_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 0, pos, ds, dt);
+    lsys_surface_patch_eval(LSYS_BASIS_CARDINAL, &p, 0, 0, pos, ds, dt);
     nearv(ds, (a[0] - b[0]) / 2, (a[1] - b[1]) / 2, (a[2] - b[2]) / 2, 1e-14);
     nearv(dt, (c[0] - d[0]) / 2, (c[1] - d[1]) / 2, (c[2] - d[2]) / 2, 1e-14);
   }
@@ -201,12 +201,12 @@ static void test_derivatives (void) {
     randpatch(&p, 11u * (unsigned)basis);
     for (k = 0; k < 5; k++) {
       double s = pts[k][0], t = pts[k][1], h = 1e-6, pos[3], ds[3], dt[3], a[3], b[3];
-      lsys_patch_eval(basis, &p, s, t, pos, ds, dt);
-      lsys_patch_eval(basis, &p, s + h, t, a, NULL, NULL);
-      lsys_patch_eval(basis, &p, s - h, t, b, NULL, NULL);
+      lsys_surface_patch_eval(basis, &p, s, t, pos, ds, dt);
+      lsys_surface_patch_eval(basis, &p, s + h, t, a, NULL, NULL);
+      lsys_surface_patch_eval(basis, &p, s - h, t, b, NULL, NULL);
       for (c = 0; c < 3; c++) assert(near(ds[c], (a[c] - b[c]) / (2 * h), 1e-7));
-      lsys_patch_eval(basis, &p, s, t + h, a, NULL, NULL);
-      lsys_patch_eval(basis, &p, s, t - h, b, NULL, NULL);
+      lsys_surface_patch_eval(basis, &p, s, t + h, a, NULL, NULL);
+      lsys_surface_patch_eval(basis, &p, s, t - h, b, NULL, NULL);
       for (c = 0; c < 3; c++) assert(near(dt[c], (a[c] - b[c]) / (2 * h), 1e-7));
     }
   }
@@ -575,8 +575,8 @@ static void test_placement (void) {
   /* any point: x along L (= H_S x U_S = +x), y along H, z along U */
   for (i = 0; i < m.nv; i++) {
     double sp[3];
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
-                    (double)(i / 5) / 4, sp, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
+                            (double)(i / 5) / 4, sp, NULL, NULL);
     vtx(&m, i, p);
     nearv(p, 1 + 2 * sp[2], 2 + 2 * sp[0], 3 + 2 * sp[1], 1e-6);
   }
@@ -593,7 +593,7 @@ static void test_placement (void) {
   vtx(&m, 9 + 8, q);                      /* patch "tip", s = t = 1: file (0.2, 1.05, 0.32)? */
   {
     double sp[3];
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &petal.patch[1], 1, 1, sp, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &petal.patch[1], 1, 1, sp, NULL, NULL);
     nearv(sp, 0.2, 1.05, 0.32, 1e-12);
     nearv(q, 2 * 0.32, 2 * 0.2, 2 * 1.05, 1e-5);
   }
@@ -619,8 +619,8 @@ static void test_placement (void) {
     ** components along L, H, U */
     for (i = 0; i < 16; i++) {
       double d[3], LS[3];
-      lsys_patch_eval(LSYS_BASIS_BEZIER, &s.patch[0], (double)(i % 4) / 3,
-                      (double)(i / 4) / 3, sp, NULL, NULL);
+      lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &s.patch[0], (double)(i % 4) / 3,
+                              (double)(i / 4) / 3, sp, NULL, NULL);
       vlin(d, sp, 1, s.contact, -1);
       vcross(LS, H, U);
       vtx(&m, i, p);
@@ -739,20 +739,20 @@ static void test_uv (void) {
   assert(lsys_surface_mesh(&m, &leaf, &pl, 4, 4) == LSYS_OK);
   for (i = 0; i < m.nv; i++) {
     double u = m.uv[2 * i], v = m.uv[2 * i + 1], sp[3], x0, x1;
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
-                    (double)(i / 5) / 4, sp, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
+                            (double)(i / 5) / 4, sp, NULL, NULL);
     if (u < ulo) ulo = u;
     if (u > uhi) uhi = u;
     if (v < vlo) vlo = v;
     if (v > vhi) vhi = v;
     assert(near(v, sp[1], 1e-6));           /* y spans 0..1 exactly */
     /* x spans the widest row of the tessellation */
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], 0, 0.5, sp + 0, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], 0, 0.5, sp + 0, NULL, NULL);
     x0 = sp[0];
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], 1, 0.5, sp, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], 1, 0.5, sp, NULL, NULL);
     x1 = sp[0];
-    lsys_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
-                    (double)(i / 5) / 4, sp, NULL, NULL);
+    lsys_surface_patch_eval(LSYS_BASIS_BEZIER, &leaf.patch[0], (double)(i % 5) / 4,
+                            (double)(i / 5) / 4, sp, NULL, NULL);
     assert(near(u, (sp[0] - x0) / (x1 - x0), 1e-6));
   }
   assert(ulo == 0 && uhi == 1 && vlo == 0 && vhi == 1);
@@ -774,7 +774,7 @@ static void test_patch_mesh (void) {
   pl.scale = 50;
   for (r = LSYS_BASIS_BEZIER; r <= LSYS_BASIS_CARDINAL; r++) {
     lsys_mesh_clear(&m);
-    assert(lsys_patch_mesh(&m, r, &p, &pl, 3, 2) == LSYS_OK);
+    assert(lsys_surface_patch_mesh(&m, r, &p, &pl, 3, 2) == LSYS_OK);
     assert(m.nv == 12 && m.nt == 12);
     check_mesh(&m, 0, 0);
     for (i = 0; i < 12; i++) {
@@ -793,7 +793,7 @@ static void test_patch_mesh (void) {
     for (c = 0; c < 4; c++) setctrl(&p, r, c, c, 0, r);   /* in the xz plane */
   lsys_mesh_clear(&m);
   pl.uv_surface = 1;
-  assert(lsys_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 2, 4) == LSYS_OK);
+  assert(lsys_surface_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 2, 4) == LSYS_OK);
   for (i = 0; i < m.nv; i++) {
     assert(near(m.uv[2 * i], (double)(i % 3) / 2, 1e-6));
     assert(near(m.uv[2 * i + 1], (double)(i / 3) / 4, 1e-6));
@@ -803,17 +803,17 @@ static void test_patch_mesh (void) {
   for (r = 0; r < 4; r++)
     for (c = 0; c < 4; c++) setctrl(&p, r, c, c, 0, 0);
   lsys_mesh_clear(&m);
-  assert(lsys_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 2, 2) == LSYS_OK);
+  assert(lsys_surface_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 2, 2) == LSYS_OK);
   for (i = 0; i < m.nv; i++) {
     assert(m.uv[2 * i] == (float)((double)(i % 3) / 2));
     assert(m.nrm[3 * i + 2] == 1);
   }
-  assert(lsys_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 1, 0) == LSYS_EARG);
+  assert(lsys_surface_patch_mesh(&m, LSYS_BASIS_BEZIER, &p, &pl, 1, 0) == LSYS_EARG);
   /* huge coordinates stay finite in the float mesh */
   for (r = 0; r < 4; r++)
     for (c = 0; c < 4; c++) setctrl(&p, r, c, 1e300 * c, 1e300 * r, -1e300);
   lsys_mesh_clear(&m);
-  assert(lsys_patch_mesh(&m, LSYS_BASIS_CARDINAL, &p, &pl, 2, 2) == LSYS_OK);
+  assert(lsys_surface_patch_mesh(&m, LSYS_BASIS_CARDINAL, &p, &pl, 2, 2) == LSYS_OK);
   for (i = 0; i < 3 * m.nv; i++) assert(isfinite(m.pos[i]) && isfinite(m.nrm[i]));
   lsys_mesh_free(&m);
 }

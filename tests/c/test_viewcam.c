@@ -61,29 +61,29 @@ static void test_orbit (void) {
   lsys_camera cam;
   lsys_vcam c = front(1, 2, 3, 10);
   double up[3] = {0, 1, 0}, proj[16], view[16], eye[3], out[3], r[3];
-  lsys_camera_defaults(&cam);
+  lsys_scene_camera_defaults(&cam);
   cam.projection = LSYS_PERSPECTIVE;
   /* a drag of 90 degrees to the right: the eye goes round to the left (-x) */
-  lsys_vcam_orbit(&c, up, (PI / 2) / LSYS_VCAM_ORBIT, 0);
+  lsys_viewcam_orbit(&c, up, (PI / 2) / LSYS_VCAM_ORBIT, 0);
   assert(near3(c.f, 1, 0, 0, 1e-12) && near3(c.u, 0, 1, 0, 1e-12));
   assert(near3(c.target, 1, 2, 3, 0) && c.dist == 10);
-  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
+  assert(lsys_viewcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, -9, 2, 3, 1e-9));
   project(proj, view, c.target, out);              /* the target stays in the middle */
   assert(fabs(out[0] - W / 2) < 1e-9 && fabs(out[1] - H / 2) < 1e-9);
   /* back, then a drag down by 45 degrees lifts the eye */
-  lsys_vcam_orbit(&c, up, -(PI / 2) / LSYS_VCAM_ORBIT, 0);
+  lsys_viewcam_orbit(&c, up, -(PI / 2) / LSYS_VCAM_ORBIT, 0);
   assert(near3(c.f, 0, 0, -1, 1e-12));
-  lsys_vcam_orbit(&c, up, 0, (PI / 4) / LSYS_VCAM_ORBIT);
+  lsys_viewcam_orbit(&c, up, 0, (PI / 4) / LSYS_VCAM_ORBIT);
   assert(near3(c.f, 0, -sqrt(0.5), -sqrt(0.5), 1e-12));
   assert(near3(c.u, 0, sqrt(0.5), -sqrt(0.5), 1e-12));
-  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
+  assert(lsys_viewcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, 1, 2 + 10 * sqrt(0.5), 3 + 10 * sqrt(0.5), 1e-9));
   /* a turntable turn after that keeps the horizon: right stays horizontal,
   ** the frame orthonormal */
-  lsys_vcam_orbit(&c, up, 37, 0);
+  lsys_viewcam_orbit(&c, up, 37, 0);
   vcross(r, c.f, c.u);
   assert(fabs(r[1]) < 1e-12);
   assert(fabs(vdot(c.f, c.u)) < 1e-12 && fabs(vlen(c.f) - 1) < 1e-12 &&
@@ -96,22 +96,22 @@ static void test_zoom (void) {
   lsys_camera cam;
   lsys_vcam c = front(0, 0, 0, 10);
   double proj[16], view[16], eye[3];
-  lsys_camera_defaults(&cam);
+  lsys_scene_camera_defaults(&cam);
   cam.projection = LSYS_PERSPECTIVE;
-  lsys_vcam_zoom(&c, 1);                           /* one step in: 12% closer */
+  lsys_viewcam_zoom(&c, 1);                           /* one step in: 12% closer */
   assert(fabs(c.dist - 8.8) < 1e-12 && fabs(c.halfh - 1.76) < 1e-12);
-  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
+  assert(lsys_viewcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   eyeof(view, eye);
   assert(near3(eye, 0, 0, 8.8, 1e-9));
-  lsys_vcam_zoom(&c, -2);                          /* two steps out */
+  lsys_viewcam_zoom(&c, -2);                          /* two steps out */
   assert(fabs(c.dist - 10 / 0.88) < 1e-9 && fabs(c.halfh - 2 / 0.88) < 1e-9);
-  lsys_vcam_zoom(&c, 1e4);                         /* never down to nothing */
+  lsys_viewcam_zoom(&c, 1e4);                         /* never down to nothing */
   assert(c.dist == 1e-9 && c.halfh == 1e-9);
   /* parallel: the half height is the scale; the picture shows 2 halfh */
   c = front(0, 0, 0, 10);
   cam.projection = LSYS_PARALLEL;
-  lsys_vcam_zoom(&c, 1);
-  assert(lsys_vcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
+  lsys_viewcam_zoom(&c, 1);
+  assert(lsys_viewcam_matrices(&c, NULL, &cam, W, H, proj, view) == LSYS_OK);
   assert(fabs(proj[5] - 1 / 1.76) < 1e-12 && fabs(proj[0] - 1 / 1.76) < 1e-12);
   printf("zoom: ok\n");
 }
@@ -121,8 +121,8 @@ static void test_zoom (void) {
 static void checkpan (lsys_camera *cam, double dx, double dy) {
   lsys_vcam c = front(1, 1, 1, 10);
   double proj[16], view[16], old[3] = {1, 1, 1}, out[3];
-  lsys_vcam_pan(&c, cam, H, dx, dy);
-  assert(lsys_vcam_matrices(&c, NULL, cam, W, H, proj, view) == LSYS_OK);
+  lsys_viewcam_pan(&c, cam, H, dx, dy);
+  assert(lsys_viewcam_matrices(&c, NULL, cam, W, H, proj, view) == LSYS_OK);
   project(proj, view, old, out);
   assert(fabs(out[0] - (W / 2 + dx)) < 1e-9 && fabs(out[1] - (H / 2 + dy)) < 1e-9);
 }
@@ -130,16 +130,16 @@ static void checkpan (lsys_camera *cam, double dx, double dy) {
 static void test_pan (void) {
   lsys_camera cam;
   lsys_vcam c = front(0, 0, 0, 10);
-  lsys_camera_defaults(&cam);
+  lsys_scene_camera_defaults(&cam);
   cam.projection = LSYS_PERSPECTIVE;
   /* perspective, 30 degrees: 2 dist tan(15 degrees) / h world units a pixel */
-  assert(fabs(lsys_vcam_pixelsize(&c, &cam, H) - 20 * tan(PI / 12) / H) < 1e-15);
-  assert(lsys_vcam_pixelsize(&c, NULL, H) == lsys_vcam_pixelsize(&c, &cam, H));
+  assert(fabs(lsys_viewcam_pixelsize(&c, &cam, H) - 20 * tan(PI / 12) / H) < 1e-15);
+  assert(lsys_viewcam_pixelsize(&c, NULL, H) == lsys_viewcam_pixelsize(&c, &cam, H));
   checkpan(&cam, 20, -10);
   cam.fov = 60;
   checkpan(&cam, -35, 5);
   cam.projection = LSYS_PARALLEL;                /* 2 halfh / h */
-  assert(fabs(lsys_vcam_pixelsize(&c, &cam, H) - 4.0 / H) < 1e-15);
+  assert(fabs(lsys_viewcam_pixelsize(&c, &cam, H) - 4.0 / H) < 1e-15);
   checkpan(&cam, 20, -10);
   printf("pan: ok\n");
 }
@@ -162,11 +162,11 @@ static void test_fit (void) {
   int i, parallel;
   stick(&m);
   for (parallel = 0; parallel < 2; parallel++) {
-    lsys_camera_defaults(&cam);
+    lsys_scene_camera_defaults(&cam);
     cam.projection = LSYS_PERSPECTIVE;
     cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
     memset(&c, 0, sizeof c);
-    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK && c.valid);
+    assert(lsys_viewcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK && c.valid);
     assert(near3(c.target, 0, 1, 0, 1e-12));       /* the middle of the bounds */
     assert(near3(c.f, 0, 0, -1, 1e-12) && near3(c.u, 0, 1, 0, 1e-12));
     assert(lsys_render_camera(&m, &cam, W, H, proj, view) == LSYS_OK);
@@ -175,7 +175,7 @@ static void test_fit (void) {
     if (!parallel) assert(fabs(c.dist - vlen(d)) < 1e-12);
     else assert(fabs(c.halfh - 1 / proj[5]) < 1e-12);
     /* the same picture (near and far planes, and a parallel eye, may differ) */
-    assert(lsys_vcam_matrices(&c, sceneof(&m), &cam, W, H, p2, v2) == LSYS_OK);
+    assert(lsys_viewcam_matrices(&c, sceneof(&m), &cam, W, H, p2, v2) == LSYS_OK);
     for (i = 0; i < 12; i++) assert(fabs(v2[i] - view[i]) < 1e-12);
     for (i = 0; i < 3; i++) {
       double p[3] = {0.3 * i, 2.0 - i, 0.5 * i - 0.5}, a[3], b[3];
@@ -187,20 +187,20 @@ static void test_fit (void) {
   /* keeping the direction: after an orbit, F fits again looking the same way */
   {
     double up[3] = {0, 1, 0}, f[3];
-    lsys_camera_defaults(&cam);
+    lsys_scene_camera_defaults(&cam);
     cam.projection = LSYS_PERSPECTIVE;
-    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
-    lsys_vcam_orbit(&c, up, 100, 40);
-    lsys_vcam_zoom(&c, 5);
+    assert(lsys_viewcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
+    lsys_viewcam_orbit(&c, up, 100, 40);
+    lsys_viewcam_zoom(&c, 5);
     vcopy(f, c.f);
-    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 1) == LSYS_OK);
+    assert(lsys_viewcam_fit(&c, sceneof(&m), &cam, W, H, 1) == LSYS_OK);
     assert(near3(c.f, f[0], f[1], f[2], 1e-12) && near3(c.target, 0, 1, 0, 1e-12));
   }
   /* a bad view camera leaves 'c' alone */
   cam.dir[0] = cam.dir[1] = cam.dir[2] = 0;
   cam.has_eye = 0;
   memset(&c, 0, sizeof c);
-  assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_EARG && !c.valid);
+  assert(lsys_viewcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_EARG && !c.valid);
   lsys_mesh_free(&m);
   printf("fit: ok\n");
 }
@@ -221,25 +221,25 @@ static void test_ray (void) {
   f.picks = &pick;
   f.npicks = 1;
   for (parallel = 0; parallel < 2; parallel++) {
-    lsys_camera_defaults(&cam);
+    lsys_scene_camera_defaults(&cam);
     cam.projection = LSYS_PERSPECTIVE;
     cam.projection = parallel ? LSYS_PARALLEL : LSYS_PERSPECTIVE;
-    assert(lsys_vcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
-    lsys_vcam_orbit(&c, c.u, 30, -20);             /* not along an axis */
-    assert(lsys_vcam_matrices(&c, sceneof(&m), &cam, W, H, proj, view) == LSYS_OK);
+    assert(lsys_viewcam_fit(&c, sceneof(&m), &cam, W, H, 0) == LSYS_OK);
+    lsys_viewcam_orbit(&c, c.u, 30, -20);             /* not along an axis */
+    assert(lsys_viewcam_matrices(&c, sceneof(&m), &cam, W, H, proj, view) == LSYS_OK);
     /* through the middle of the image: along the view, through the target,
     ** which is on the stick; a click there picks it */
-    assert(lsys_vcam_ray(proj, view, W, H, W / 2, H / 2, org, dir) == 1);
+    assert(lsys_viewcam_ray(proj, view, W, H, W / 2, H / 2, org, dir) == 1);
     assert(near3(dir, c.f[0], c.f[1], c.f[2], 1e-9));
     vlin(q, c.target, 1, org, -1);
     t = vdot(q, dir);
     assert(t > 0);
     vlin(p, org, 1, dir, t);
     assert(near3(p, 0, 1, 0, 1e-9));
-    assert(lsys_vpick_find(&f, proj, view, W, H, W / 2, H / 2, 6, NULL) == 0);
-    assert(lsys_vpick_find(&f, proj, view, W, H, 5, 5, 6, NULL) == -1);
+    assert(lsys_viewcam_pick_find(&f, proj, view, W, H, W / 2, H / 2, 6, NULL) == 0);
+    assert(lsys_viewcam_pick_find(&f, proj, view, W, H, 5, 5, 6, NULL) == -1);
     /* elsewhere: every point of the ray projects back to the pixel */
-    assert(lsys_vcam_ray(proj, view, W, H, 30, 170, org, dir) == 1);
+    assert(lsys_viewcam_ray(proj, view, W, H, 30, 170, org, dir) == 1);
     assert(fabs(vlen(dir) - 1) < 1e-12);
     for (t = 0; t < 3; t += 1) {
       vlin(p, org, 1, dir, t);
@@ -251,7 +251,7 @@ static void test_ray (void) {
     if (parallel) assert(near3(dir, c.f[0], c.f[1], c.f[2], 1e-9));
   }
   memset(proj, 0, sizeof proj);                    /* nothing to invert */
-  assert(lsys_vcam_ray(proj, view, W, H, 1, 1, org, dir) == 0);
+  assert(lsys_viewcam_ray(proj, view, W, H, 1, 1, org, dir) == 0);
   lsys_mesh_free(&m);
   printf("ray: ok\n");
 }

@@ -1,5 +1,5 @@
 /*
-** C unit tests of the viewer's window-free parts: picking (lsys_vpick_find)
+** C unit tests of the viewer's window-free parts: picking (lsys_viewcam_pick_find)
 ** through a known camera, snapshots (lsys_vsnap_new/free, with meshes and
 ** textures copied), lsys_mesh_copy / lsys_texture_copy, the status line,
 ** and live frames (a grown scene patched into a frame, lsys_vlive). The window
@@ -55,30 +55,30 @@ static void test_pick (void) {
   setpick(&picks[2], -0.5f, 0.5f, 1, 0.5f, 0.5f, 1, 0.1f, 12);   /* thick, in front */
   setpick(&picks[3], -0.5f, 0.5f, -1, 0.5f, 0.5f, -1, 0.1f, 13); /* same, behind */
   /* on the vertical line at y = -0.5: pixel (100, 150) */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == 0);
   /* 5 pixels off it: still within the tolerance; 8 off: nothing */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 105, 150, 6, NULL) == 0);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 108, 150, 6, NULL) == -1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 105, 150, 6, NULL) == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 108, 150, 6, NULL) == -1);
   /* on the diagonal at (0.3, 0.3): pixel (130, 70); the vertical line is 30 px away */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 130, 70, 6, NULL) == 1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 130, 70, 6, NULL) == 1);
   /* near the origin both thin lines are close: the nearest on screen wins */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 99, 103, 6, NULL) == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 99, 103, 6, NULL) == 0);
   /* the two thick bars overlap on screen at y = 0.5 (pixel row 50), 10 px wide
   ** each side: the one nearer the eye (z = 1) is hit, inside its width and
   ** beyond the thin-line tolerance */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 58, 6, NULL) == 2);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 60, 62, 6, NULL) == -1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 60, 58, 6, NULL) == 2);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 60, 62, 6, NULL) == -1);
   /* the diagonal reaches (0.5, 0.5) = pixel (150, 50), where the bars are: a
   ** direct hit on a thick bar beats a thin line passing through */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 150, 50, 6, NULL) == 2);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 150, 50, 6, NULL) == 2);
   /* beyond the near plane (clipped, not drawn): ignored */
   setpick(&picks[0], 0, -1, 10, 0, 0, 10, 0, 10);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == -1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 100, 150, 6, NULL) == -1);
   /* a point (sphere) pick: p0 = p1 */
   setpick(&picks[0], -0.5f, -0.5f, 0, -0.5f, -0.5f, 0, 0.05f, 20);
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 52, 152, 6, NULL) == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 52, 152, 6, NULL) == 0);
   f.npicks = 0;
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 100, 6, NULL) == -1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 100, 100, 6, NULL) == -1);
   printf("pick: ok\n");
 }
 
@@ -114,18 +114,18 @@ static void test_pick_population (void) {
   inst[1].m[0] = inst[1].m[5] = inst[1].m[10] = 2;
   inst[2].part = 1; inst[2].m[13] = -0.5f;              /* at y = -0.5 */
   /* instance 0's vertical stick: x = -0.5, y 0..0.2 -> pixel (50, 90) */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 50, 90, 3, &plant) == 0 && plant == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 50, 90, 3, &plant) == 0 && plant == 0);
   /* instance 1's vertical stick, twice as long: x = 0.5, y 0..0.4 -> (150, 65) */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 150, 65, 3, &plant) == 0 && plant == 1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 150, 65, 3, &plant) == 0 && plant == 1);
   /* its horizontal one: y = 0, x 0.5..0.9 -> (180, 100) */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 180, 100, 3, &plant) == 1 && plant == 1);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 180, 100, 3, &plant) == 1 && plant == 1);
   /* instance 2 (part 1): x = 0, y -0.5..-0.3 -> (100, 140) */
   memset(&ev, 0, sizeof ev);
-  assert(lsys_vpick_event(&f, proj, view, 200, 200, 100, 140, 3, &ev) == 1);
+  assert(lsys_viewcam_pick_event(&f, proj, view, 200, 200, 100, 140, 3, &ev) == 1);
   assert(ev.module == 3 && ev.plant == 3 && ev.kind == LSYS_REC_SEGMENT);
   /* nothing there: the prototypes themselves (at the origin) are not drawn */
-  assert(lsys_vpick_find(&f, proj, view, 200, 200, 100, 90, 3, &plant) == -1 && plant == -1);
-  assert(lsys_vpick_event(&f, proj, view, 200, 200, 100, 90, 3, &ev) == 0);
+  assert(lsys_viewcam_pick_find(&f, proj, view, 200, 200, 100, 90, 3, &plant) == -1 && plant == -1);
+  assert(lsys_viewcam_pick_event(&f, proj, view, 200, 200, 100, 90, 3, &ev) == 0);
   printf("pick in a population: ok\n");
 }
 
@@ -206,39 +206,39 @@ static void test_live (void) {
   lsys_limbspec spec;
   for (every = 1; every <= 3; every += 2) {
     lsys_scene_init(&sc);
-    lsys_limbs_init(&g, &sc, 6);
+    lsys_grow_init(&g, &sc, 6);
     lsys_vlive_init(&l);
     assert(lsys_vlive_patch(&l, &sc, NULL, 0, 0, 0, NULL) == LSYS_EARG);   /* not on */
     lsys_vlive_reset(&l, 1);
     lsys_mesh_free(&f->sc.mesh);
     lsys_mesh_init(&f->sc.mesh);
-    assert(lsys_limbs_plant(&g, pos, &p) == LSYS_OK);
+    assert(lsys_grow_plant(&g, pos, &p) == LSYS_OK);
     memset(&spec, 0, sizeof spec);
     spec.parent = -1; spec.plant = p; spec.at = 1; spec.axis[2] = 1;
     spec.length = 1; spec.radius = 0.1;
     spec.rgb[1] = 0.5f;
-    assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
-    assert(lsys_limbs_update(&g) == LSYS_OK);
+    assert(lsys_grow_add(&g, &spec, &id) == LSYS_OK);
+    assert(lsys_grow_update(&g) == LSYS_OK);
     for (t = 1; t <= 12; t++) {
       size_t i, n0 = g.n;
-      assert(lsys_limbs_begin(&g) == LSYS_OK);
+      assert(lsys_grow_begin(&g) == LSYS_OK);
       for (i = 0; i < n0; i++) {
-        if (!lsys_limbs_alive(&g, (int32_t)i)) continue;
-        if (g.len[i] < 2) assert(lsys_limbs_set_length(&g, (int32_t)i, g.len[i] * 1.1) == 0);
+        if (!lsys_grow_alive(&g, (int32_t)i)) continue;
+        if (g.len[i] < 2) assert(lsys_grow_set_length(&g, (int32_t)i, g.len[i] * 1.1) == 0);
         if (g.age[i] == 2 && g.first[i] < 0 && g.n < 300) {   /* two children */
           spec.parent = (int32_t)i; spec.angle = 30; spec.length = 0.5;
-          assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
+          assert(lsys_grow_add(&g, &spec, &id) == LSYS_OK);
           spec.angle = -30;
-          assert(lsys_limbs_add(&g, &spec, &id) == LSYS_OK);
+          assert(lsys_grow_add(&g, &spec, &id) == LSYS_OK);
         }
         if (t == 8 && g.level[i] == 3) {
           float c[3] = {0.5f, 0.3f, 0.1f};
-          assert(lsys_limbs_set_color(&g, (int32_t)i, c) == LSYS_OK);
+          assert(lsys_grow_set_color(&g, (int32_t)i, c) == LSYS_OK);
         }
       }
-      if (t == 10) assert(lsys_limbs_add_leaves(&g, 3, 4, 0.3, spec.rgb) == LSYS_OK);
-      if (t == 11) assert(lsys_limbs_remove(&g, 2) == LSYS_OK);
-      assert(lsys_limbs_end(&g) == LSYS_OK);
+      if (t == 10) assert(lsys_grow_add_leaves(&g, 3, 4, 0.3, spec.rgb) == LSYS_OK);
+      if (t == 11) assert(lsys_grow_remove(&g, 2) == LSYS_OK);
+      assert(lsys_grow_end(&g) == LSYS_OK);
       n = lsys_scene_take_ranges(&sc, r);
       for (i = 0; i < n; i++) moved += r[2 * i + 1] - r[2 * i];
       assert(lsys_vlive_patch(&l, &sc, r, n, t, g.nalive, t % 2 ? "growing" : NULL) == LSYS_OK);
@@ -266,7 +266,7 @@ static void test_live (void) {
     assert(lsys_vlive_take(&l, f, note) == 1);
     same(f, &sc);
     lsys_vlive_free(&l);
-    lsys_limbs_free(&g);
+    lsys_grow_free(&g);
     lsys_scene_free(&sc);
   }
   s->live = 0;

@@ -75,7 +75,7 @@ static void test_png (const char *dir) {
   assert(lsys_vshot_png(&r, rect, path, &e) == LSYS_OK);
   assert(readbuf == GL_BACK && align == 1);
   assert(rx == 2 && ry == 1 && rw == 4 && rh == 3);
-  assert(lsys_png_read(path, &px, &w, &h, &e) == LSYS_OK);
+  assert(lsys_pngio_read(path, &px, &w, &h, &e) == LSYS_OK);
   assert(w == 4 && h == 3);
   /* the top row of the PNG is the highest row read (y = 1 + 2) */
   assert(at(px, w, 0, 0)[0] == 2 && at(px, w, 0, 0)[1] == 3 && at(px, w, 0, 0)[2] == 7);
@@ -107,7 +107,7 @@ static void test_series (const char *dir) {
   assert(ev.first == 0 && ev.step == 5 && reads == 3);
   assert(strcmp(ev.path, s->framesdir) == 0);
   snprintf(path, sizeof path, "%s/frames/step-0002.png", dir);
-  assert(lsys_png_read(path, &px, &w, &h, &e) == LSYS_OK);
+  assert(lsys_pngio_read(path, &px, &w, &h, &e) == LSYS_OK);
   assert(w == 4 && h == 3 && px[2] == 1);     /* frame 1 drawn for step 2 */
   free(px);
   snprintf(path, sizeof path, "%s/frames/step-0001.png", dir);

@@ -1,8 +1,8 @@
 /*
 ** libFuzzer target for the derivation engine (csrc/core/derive.c): a model is
 ** built from the input text, derived for a few steps, then decomposed and
-** interpreted by the homomorphism, both as a whole (lsys_expand) and one
-** module at a time (lsys_homo_begin/module/end). Crashes, leaks, sanitizer
+** interpreted by the homomorphism, both as a whole (lsys_derive_expand) and one
+** module at a time (lsys_derive_homo_begin/module/end). Crashes, leaks, sanitizer
 ** reports and the invariants below are failures; rule errors (a sub-L-system
 ** that is not defined, a bad weight, a value that is not finite) and the
 ** module limit are expected results.
@@ -38,11 +38,11 @@
 ** Invariants: a step or an expansion returns LSYS_OK, LSYS_ELIMIT,
 ** LSYS_EMEMORY or LSYS_ERULE (with m->err set to it), leaves the model idle
 ** and 'ran' on the derivation's generator (m->cur); the homomorphism draws
-** from its own generator, never the derivation's (but with C1); lsys_model_add refuses a
+** from its own generator, never the derivation's (but with C1); lsys_rules_add refuses a
 ** constant parameter that is not finite (1e999); a result has at most
 ** max_modules modules, its parameter counts add up to npar, every parameter
 ** is finite, and formatting and reparsing it gives the same string; the
-** streaming homomorphism gives what lsys_expand gives (same seeds).
+** streaming homomorphism gives what lsys_derive_expand gives (same seeds).
 **
 **   tools/fuzz.sh 600 derive       (or, by hand:)
 **   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DLSYS_BUILD_FUZZ=ON -DLSYS_BUILD_TESTS=OFF
@@ -263,7 +263,7 @@ static int compile (cc *c, const char *b, size_t len, int endop) {
 
 /* Everything that would change the model or its scratch is refused while
 ** a rule runs, and changes nothing. */
-static void reenter (lsys_model *m, const lsys_rule *r) {
+static void reenter (lsys_rules *m, const lsys_rule *r) {
   lsys_lstring a, b;
   lsys_rulespec sp;
   lsys_error e;
@@ -277,13 +277,13 @@ static void reenter (lsys_model *m, const lsys_rule *r) {
   memset(&sp, 0, sizeof sp);
   sp.pred.sym = LSYS_SYM_FIRSTFREE;
   if (lsys_derive_step(m, &a, &b) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_expand(m, LSYS_HOMO, &a, &b) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_expand(m, LSYS_DECOMP, &a, &b) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_homo_begin(m, &a) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_model_add(m, LSYS_PROD, 0, 0, &sp, &e) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_model_setvm(m, (size_t)(r - m->rules), ret, 2) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_model_skiplist(m, 0, 1, &sym, 1) != LSYS_EBUSY) __builtin_trap();
-  if (lsys_model_newset(m, LSYS_PROD, 9, 9) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_derive_expand(m, LSYS_HOMO, &a, &b) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_derive_expand(m, LSYS_DECOMP, &a, &b) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_derive_homo_begin(m, &a) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_rules_add(m, LSYS_PROD, 0, 0, &sp, &e) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_rules_setvm(m, (size_t)(r - m->rules), ret, 2) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_rules_skiplist(m, 0, 1, &sym, 1) != LSYS_EBUSY) __builtin_trap();
+  if (lsys_rules_newset(m, LSYS_PROD, 9, 9) != LSYS_EBUSY) __builtin_trap();
   if (m->nrules != nrules || m->nsets != nsets || m->nskips != nskips || m->cur != cur ||
       memcmp(&rng, &m->rng, sizeof rng) != 0 || memcmp(&hrng, &m->hrng, sizeof hrng) != 0 ||
       !m->busy || a.n != 0 || b.n != 0)
@@ -296,7 +296,7 @@ static void reenter (lsys_model *m, const lsys_rule *r) {
 /* Runs the rule's program (condition, weight, values); for LSYS_RF_DYN
 ** rules produces the successor template itself, once to three times
 ** depending on the first argument. */
-static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *args,
+static int rulefn (void *ud, lsys_rules *m, const lsys_rule *r, const double *args,
                    double *vals) {
   const hrule *h = &hrules[r - m->rules];
   double out[MAXCODE + 1];
@@ -313,7 +313,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
       at = at < h->n && h->code[at].op == LSYS_OP_COND ? at + 1 : 0;
       if (wout) { while (at < h->n && h->code[at].op != LSYS_OP_RET) at++; at++; }
       if (!lsys_expr_span(h->code, 0, at, args, out, m->cur, m->funcs)) return 0;
-      if (lsys_cpfg_mark(m)) nv = (uint32_t)wout;
+      if (lsys_derive_cpfg_mark(m)) nv = (uint32_t)wout;
       else lsys_expr_span(h->code, at, h->n, args, out + wout, m->cur, m->funcs);
     }
     else if (!lsys_expr_run(h->code, h->n, args, out, m->cur, m->funcs)) return 0;
@@ -356,7 +356,7 @@ static int rulefn (void *ud, lsys_model *m, const lsys_rule *r, const double *ar
 typedef struct harness {
   lsys_alphabet ab;
   lsys_names decl;
-  lsys_model m;
+  lsys_rules m;
   lsys_lstring s[2], t, u, w;
   lsys_buf b;
   long last;                   /* the index of the last rule added, or -1 */
@@ -373,7 +373,7 @@ static void trace (harness *H, const char *what, lsys_lstring *s, int st) {
 }
 
 /* A number, as grammar.lua's isnumber: a constant successor parameter
-** (1e999 too, which lsys_model_add must refuse). */
+** (1e999 too, which lsys_rules_add must refuse). */
 static int isnum (const char *s, size_t len, double *x) {
   char buf[64], *end;
   if (len == 0 || len >= sizeof buf) return 0;
@@ -408,10 +408,10 @@ static void addrule (harness *H, int kind, const char *mb, const char *me, const
     else if (*mb == 'v') vm = 1;
     else if (*mb == 'y') vm = 2;
   }
-  if (lsys_rule_parse(&r, text, len, 0, &H->ab, &H->decl, &e) != LSYS_OK ||
+  if (lsys_grammar_rule_parse(&r, text, len, 0, &H->ab, &H->decl, &e) != LSYS_OK ||
       r.nlc > 16 || r.nrc > 16 || r.nsucc > 64 || r.nparams > 64) {
     if (tracing) fprintf(stderr, "rule %d: not parsed\n", id);
-    lsys_prule_free(&r);
+    lsys_grammar_prule_free(&r);
     return;
   }
   memset(&sp, 0, sizeof sp);
@@ -471,12 +471,12 @@ static void addrule (harness *H, int kind, const char *mb, const char *me, const
   sp.nvals = (uint32_t)nvals;
   sp.id = id;
   h->n = c.err ? 0 : c.n;
-  lsys_prule_free(&r);
+  lsys_grammar_prule_free(&r);
   if (c.err) {                                       /* the model would not load */
     if (tracing) fprintf(stderr, "rule %d: expression not compiled\n", id);
     return;
   }
-  idx = lsys_model_add(&H->m, kind, sub, group, &sp, &e);
+  idx = lsys_rules_add(&H->m, kind, sub, group, &sp, &e);
   if (tracing) fprintf(stderr, "rule %d: %ld, %d instructions, %d values\n", id, idx, h->n, nvals);
   if (idx < 0) {
     if (idx != LSYS_EARG) __builtin_trap();          /* DYN with a weight, 1e999 */
@@ -487,7 +487,7 @@ static void addrule (harness *H, int kind, const char *mb, const char *me, const
   h->nout = h->n > 0 ? lsys_expr_check(h->code, h->n, (int)H->m.rules[idx].nargs, 0) : 0;
   if (h->n > 0 && h->nout != (int)H->m.rules[idx].nvals) __builtin_trap();
   if (vm == 1 && h->n > 0 &&
-      lsys_model_setvm(&H->m, (size_t)idx, h->code, h->n) != LSYS_OK)
+      lsys_rules_setvm(&H->m, (size_t)idx, h->code, h->n) != LSYS_OK)
     __builtin_trap();                                /* a checked program is accepted */
   H->last = idx;
 }
@@ -507,7 +507,7 @@ static void rawvm (harness *H, const uint8_t *p, size_t n) {
     code[k].k = ks[p[2] % 8] * (1 + (p[2] >> 3));
   }
   nout = lsys_expr_check(code, k, (int)r->nargs, (int)H->m.nfuncs);
-  st = lsys_model_setvm(&H->m, (size_t)H->last, code, k);
+  st = lsys_rules_setvm(&H->m, (size_t)H->last, code, k);
   if (tracing) fprintf(stderr, "raw program: %d instructions, %d outputs, setvm %d\n", k, nout, st);
   if (st == LSYS_OK && (nout != (int)r->nvals || !(r->flags & LSYS_RF_CALL) ||
                         (r->flags & LSYS_RF_DYN)))
@@ -521,13 +521,13 @@ static void skiplist (harness *H, int sub, int consider, const char *s, size_t l
   while (i < len && n < 64) {
     size_t nl;
     if (s[i] == ' ') { i++; continue; }
-    nl = lsys_scan_name(s + i, len - i, &H->decl);
+    nl = lsys_alphabet_scan(s + i, len - i, &H->decl);
     if (nl == 0) { i++; continue; }
     syms[n] = lsys_alphabet_intern(&H->ab, s + i, nl, NULL);
     if (syms[n] != 0) n++;
     i += nl;
   }
-  if (lsys_model_skiplist(&H->m, sub, consider, syms, n) != LSYS_OK) __builtin_trap();
+  if (lsys_rules_skiplist(&H->m, sub, consider, syms, n) != LSYS_OK) __builtin_trap();
 }
 
 static void options (harness *H, const char *s, size_t len) {
@@ -601,13 +601,13 @@ static int same (const lsys_lstring *a, const lsys_lstring *b) {
 }
 
 /* The homomorphism one module at a time into H->w, as the turtle asks for
-** it; it must give what lsys_expand gave ('whole', when 'ok'). */
+** it; it must give what lsys_derive_expand gave ('whole', when 'ok'). */
 static void streaming (harness *H, lsys_lstring *s, const lsys_lstring *whole, int ok) {
   size_t i, poff = 0;
   int st;
   lsys_rng_seed(&H->m.rng, H->seed);
   lsys_rng_seed(&H->m.hrng, H->seed + 1);
-  st = lsys_homo_begin(&H->m, s);
+  st = lsys_derive_homo_begin(&H->m, s);
   if (st <= 0) checkcur(H);
   if (st < 0) {
     checkfail(H, st);
@@ -617,7 +617,7 @@ static void streaming (harness *H, lsys_lstring *s, const lsys_lstring *whole, i
   lsys_lstring_clear(&H->w);
   for (i = 0; i < s->n; i++) {
     uint32_t np = LSYS_CNP(s->code[i]);
-    int r = st == 1 ? lsys_homo_module(&H->m, i, poff, &H->t) : 0;
+    int r = st == 1 ? lsys_derive_homo_module(&H->m, i, poff, &H->t) : 0;
     if (r < 0) {
       checkfail(H, r);
       if (ok) __builtin_trap();
@@ -630,12 +630,12 @@ static void streaming (harness *H, lsys_lstring *s, const lsys_lstring *whole, i
     }
     else if (lsys_lstring_append(&H->w, s, i, i + 1, poff) != LSYS_OK) __builtin_trap();
     poff += np;
-    if (H->w.n > H->m.max_modules) {   /* lsys_expand would have stopped */
+    if (H->w.n > H->m.max_modules) {   /* lsys_derive_expand would have stopped */
       if (ok) __builtin_trap();
       break;
     }
   }
-  lsys_homo_end(&H->m);
+  lsys_derive_homo_end(&H->m);
   checkcur(H);
   if (ok && i == s->n && !same(&H->w, whole)) __builtin_trap();
 }
@@ -659,14 +659,14 @@ static void run (harness *H) {
     tmp = src; src = dst; dst = tmp;
   }
   /* decomposition and homomorphism of the last string */
-  st = lsys_expand(&H->m, LSYS_DECOMP, src, &H->t);
+  st = lsys_derive_expand(&H->m, LSYS_DECOMP, src, &H->t);
   checkcur(H);
   trace(H, "decomposition", st == LSYS_OK ? &H->t : NULL, st);
   if (st != LSYS_OK) checkfail(H, st);
   else checkstring(H, &H->t);
   lsys_rng_seed(&H->m.rng, H->seed);
   lsys_rng_seed(&H->m.hrng, H->seed + 1);
-  st = lsys_expand(&H->m, LSYS_HOMO, src, dst);
+  st = lsys_derive_expand(&H->m, LSYS_HOMO, src, dst);
   checkcur(H);
   trace(H, "homomorphism", st == LSYS_OK ? dst : NULL, st);
   if (st != LSYS_OK) checkfail(H, st);
@@ -678,7 +678,7 @@ static void run (harness *H) {
     if (!H->m.hshare && memcmp(&r0, &H->m.rng, sizeof r0) != 0) __builtin_trap();
   }
   streaming(H, src, dst, st == LSYS_OK);
-  if (lsys_expand(&H->m, LSYS_PROD, src, dst) != LSYS_EARG) __builtin_trap();
+  if (lsys_derive_expand(&H->m, LSYS_PROD, src, dst) != LSYS_EARG) __builtin_trap();
   {                         /* a step in place gives what a step into another string gives */
     lsys_rng keep;
     int s1, s2;
@@ -710,9 +710,9 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   if (H == NULL) return 0;
   if (tracing < 0) tracing = getenv("FUZZ_TRACE") != NULL;
   if (lsys_alphabet_init(&H->ab) != LSYS_OK) { free(H); return 0; }
-  lsys_names_add(&H->decl, "Apex", 4);
-  lsys_names_add(&H->decl, "Leaf", 4);
-  lsys_model_init(&H->m, &H->ab);
+  lsys_alphabet_names_add(&H->decl, "Apex", 4);
+  lsys_alphabet_names_add(&H->decl, "Leaf", 4);
+  lsys_rules_init(&H->m, &H->ab);
   H->m.max_modules = 2000;
   H->m.parmin = 16;             /* the workers' step (derive_par.c) from 16 modules, */
   H->m.threads = 3;             /* narrow strings and steps in place included */
@@ -741,7 +741,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       case 'h': addrule(H, LSYS_HOMO, p + 1, me, body, blen, line); break;
       case 'i': skiplist(H, d, 0, body, blen); break;
       case 'c': skiplist(H, d, 1, body, blen); break;
-      case 'n': if (lsys_model_newset(&H->m, LSYS_PROD, d, 0) != LSYS_OK) __builtin_trap(); break;
+      case 'n': if (lsys_rules_newset(&H->m, LSYS_PROD, d, 0) != LSYS_OK) __builtin_trap(); break;
       case 'x': rawvm(H, (const uint8_t *)body, blen); break;
       default: break;
     }
@@ -751,9 +751,9 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   if (H->s[0].n <= H->m.max_modules) run(H);
   lsys_lstring_free(&H->s[0]); lsys_lstring_free(&H->s[1]);
   lsys_lstring_free(&H->t); lsys_lstring_free(&H->u); lsys_lstring_free(&H->w);
-  lsys_buf_free(&H->b);
-  lsys_model_free(&H->m);
-  lsys_names_free(&H->decl);
+  lsys_lstring_buf_free(&H->b);
+  lsys_rules_free(&H->m);
+  lsys_alphabet_names_free(&H->decl);
   lsys_alphabet_free(&H->ab);
   free(H);
   return 0;

@@ -512,7 +512,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
     if (byte(&r) & 1) {
       double c[3];
       for (k = 0; k < 3; k++) c[k] = fl(&r);
-      lsys_material_color(&pal[i], c[0], c[1], c[2]);
+      lsys_mesh_material_color(&pal[i], c[0], c[1], c[2]);
     }
     else {
       for (k = 0; k < 16; k++) f[k] = fl(&r);
@@ -544,7 +544,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
         break;
       default:
         snprintf(path, sizeof path, "%s/t%d.png", dir, k + 1);
-        T(lsys_png_write(path, px[k], 2, 2, 1, &e) == LSYS_OK);
+        T(lsys_pngio_write(path, px[k], 2, 2, 1, &e) == LSYS_OK);
         tx[k].path = strdup(path);
         break;
     }
@@ -597,7 +597,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
     size_t len, mlen;
     char *obj, *mtl;
     snprintf(path, sizeof path, "%s/m.obj", dir);
-    st = lsys_mesh_save_obj(&m, pal, npal, tp, ntex, path, &e);
+    st = lsys_export_obj(&m, pal, npal, tp, ntex, path, &e);
     if (bad) T(st == LSYS_EARG && strstr(e.msg, "m.obj") != NULL);
     else {
       T(st == LSYS_OK);
@@ -612,7 +612,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       free(mtl);
     }
     snprintf(path, sizeof path, "%s/m.ply", dir);
-    st = lsys_mesh_save_ply(&m, pal, npal, tp, ntex, path, &e);
+    st = lsys_export_ply(&m, pal, npal, tp, ntex, path, &e);
     if (bad) T(st == LSYS_EARG && strstr(e.msg, "m.ply") != NULL);
     else {
       T(st == LSYS_OK);
@@ -623,7 +623,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       free(obj);
     }
     snprintf(path, sizeof path, "%s/m.glb", dir);
-    st = lsys_mesh_save_glb(&m, pal, npal, tp, ntex, path, &e);
+    st = lsys_export_glb(&m, pal, npal, tp, ntex, path, &e);
     if (bad || badtex) T((st == LSYS_EARG || st == LSYS_ESYNTAX) && strstr(e.msg, "m.glb") != NULL);
     else {
       T(st == LSYS_OK);

@@ -1,6 +1,6 @@
 /*
 ** libFuzzer target for the two text parsers of the core: the rule parser
-** (lsys_rule_parse, all three modes) and the Lstring text parser. The first
+** (lsys_grammar_rule_parse, all three modes) and the Lstring text parser. The first
 ** byte picks the parser; the rest is the text. A parsed Lstring is then
 ** drawn by the turtle in every style, with two contours (closed and open),
 ** a predefined surface ~L and a texture in the view, twist minimisation on
@@ -57,21 +57,21 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   const char *text;
   if (size < 1) return 0;
   if (lsys_alphabet_init(&a) != LSYS_OK) return 0;
-  lsys_names_add(&decl, "Apex", 4);
-  lsys_names_add(&decl, "Leaf", 4);
+  lsys_alphabet_names_add(&decl, "Apex", 4);
+  lsys_alphabet_names_add(&decl, "Leaf", 4);
   text = (const char *)data + 1;
   size--;
   switch (data[0] % 4) {
     case 0: case 1: case 2: {
       lsys_prule r;
-      if (lsys_rule_parse(&r, text, size, data[0] % 4, &a, &decl, &e) == LSYS_OK) {
+      if (lsys_grammar_rule_parse(&r, text, size, data[0] % 4, &a, &decl, &e) == LSYS_OK) {
         size_t k;   /* every span must lie inside the text */
         for (k = 0; k < r.nparams; k++)
           if (r.params[k].off + r.params[k].len > size) __builtin_trap();
         if (r.cond.off + r.cond.len > size || r.weight.off + r.weight.len > size)
           __builtin_trap();
       }
-      lsys_prule_free(&r);
+      lsys_grammar_prule_free(&r);
       break;
     }
     default: {
@@ -87,7 +87,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
         if (t.n != s.n || t.npar != s.npar) __builtin_trap();
         lsys_lstring_unbalanced(&s);
         lsys_lstring_free(&t);
-        lsys_buf_free(&b);
+        lsys_lstring_buf_free(&b);
         {   /* the turtle draws any string in every style without a crash */
           lsys_turtle tu;
           lsys_turtle_opts o;
@@ -126,7 +126,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       break;
     }
   }
-  lsys_names_free(&decl);
+  lsys_alphabet_names_free(&decl);
   lsys_alphabet_free(&a);
   return 0;
 }

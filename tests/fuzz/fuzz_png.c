@@ -1,5 +1,5 @@
 /*
-** libFuzzer target for reading PNG files (csrc/core/pngio.c lsys_png_read) and
+** libFuzzer target for reading PNG files (csrc/core/pngio.c lsys_pngio_read) and
 ** textures (csrc/core/texture.c lsys_texture_load). The input is a PNG file.
 ** Before it is written to a temporary file the harness repairs what would
 ** stop libpng at the door: when the first byte is 0x89 the rest of the
@@ -142,8 +142,8 @@ static void roundtrip (const char *path, const uint8_t *px, int w, int h) {
   size_t i, n = (size_t)w * (size_t)h;
   snprintf(out, sizeof out, "%s.png", path);
   for (alpha = 0; alpha < 2; alpha++) {
-    if (lsys_png_write(out, px, w, h, alpha, &e) != LSYS_OK) __builtin_trap();
-    if (lsys_png_read(out, &back, &bw, &bh, &e) != LSYS_OK) __builtin_trap();
+    if (lsys_pngio_write(out, px, w, h, alpha, &e) != LSYS_OK) __builtin_trap();
+    if (lsys_pngio_read(out, &back, &bw, &bh, &e) != LSYS_OK) __builtin_trap();
     if (bw != w || bh != h) __builtin_trap();
     for (i = 0; i < n; i++)
       if (memcmp(back + 4 * i, px + 4 * i, 3) != 0 ||
@@ -167,7 +167,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   if (!repair(b, size) || !tempname(path, sizeof path)) { free(b); return 0; }
   if (!writefile(path, b, size)) { remove(path); free(b); return 0; }
   free(b);
-  st = lsys_png_read(path, &px, &w, &h, &e);
+  st = lsys_pngio_read(path, &px, &w, &h, &e);
   lsys_texture_init(&t);
   t.mag_linear = 1;
   t.mode = LSYS_TEX_DECAL;

@@ -1,6 +1,6 @@
 /*
-** libFuzzer target for reading SGI images (csrc/core/sgiio.c lsys_sgi_decode
-** and lsys_sgi_read) and textures (csrc/core/texture.c lsys_texture_load).
+** libFuzzer target for reading SGI images (csrc/core/sgiio.c lsys_sgiio_decode
+** and lsys_sgiio_read) and textures (csrc/core/texture.c lsys_texture_load).
 ** The input is an SGI image file. When its first byte is 0x01 the harness
 ** sets the second to 0xDA, completing the magic number, so that mutations
 ** reach the header and the data. Crashes, leaks and sanitizer reports are
@@ -24,7 +24,7 @@
 ** Inputs whose header declares more than 4096 x 4096 pixels are skipped: an
 ** RLE image whose rows all share one run of data may be a few kilobytes and
 ** declare 32768 x 32768 pixels, which the reader allocates (4 GiB, within
-** the memory budget, by design, like lsys_png_read). Run with
+** the memory budget, by design, like lsys_pngio_read). Run with
 ** -rss_limit_mb=2048. FUZZ_TRACE=1 in the environment prints what the
 ** reader says.
 **
@@ -178,9 +178,9 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   if (!writefile(path, b, size)) { remove(path); free(b); return 0; }
   if (tracing < 0) tracing = getenv("FUZZ_TRACE") != NULL;
   /* in memory, from the file, as a texture */
-  st = lsys_sgi_decode(b, size, path, &px, &w, &h, &e);
+  st = lsys_sgiio_decode(b, size, path, &px, &w, &h, &e);
   if (tracing) fprintf(stderr, "%d: %dx%d %s\n", st, w, h, st == LSYS_OK ? "" : e.msg);
-  st2 = lsys_sgi_read(path, &px2, &w2, &h2, &e2);
+  st2 = lsys_sgiio_read(path, &px2, &w2, &h2, &e2);
   lsys_texture_init(&t);
   t.mag_linear = 1;
   t.mode = LSYS_TEX_DECAL;

@@ -74,7 +74,7 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
       for (basis = 1; basis <= 3; basis++) {
         size_t v0 = m.nv, t0 = m.nt;
         pl.uv_surface = basis != 2;
-        if (lsys_patch_mesh(&m, basis, &s.patch[i], &pl, 3, 2) != LSYS_OK) __builtin_trap();
+        if (lsys_surface_patch_mesh(&m, basis, &s.patch[i], &pl, 3, 2) != LSYS_OK) __builtin_trap();
         check(&m, v0, t0, 12, 12);
       }
     lsys_surface_endpoint(&s, &pl, end);

@@ -2,7 +2,9 @@
 -- variables, the values of its fields checked and converted, and the paths of its files.
 -- @module lsys.batch.fields
 local B = require "lsys.batch.base"
+local formats = require "lsys.batch.formats"
 local model = require "lsys.model"
+local series = require("lsys.util.text").series
 
 local type, ipairs, tostring, tonumber = type, ipairs, tostring, tonumber
 local math, string = math, string
@@ -11,22 +13,29 @@ local _ENV = nil
 
 local M = {}
 
--- The output formats, in the order a job writes them: { name, file extension (none: any) }.
-local FORMATS = {
-  { "png", "png" }, { "glb", "glb" }, { "obj", "obj" }, { "ply", "ply" }, { "lstring" },
-  { "stats", "json" },
-}
+-- The output formats, in the order a job writes them: { name, file extension (none: any) }
+-- (lsys.batch.formats).
+local FORMATS = formats.list
 local FORMAT_RANK, FORMAT_EXT = {}, {}
 for i, f in ipairs(FORMATS) do FORMAT_RANK[f[1]], FORMAT_EXT[f[1]] = i, f[2] end
 -- The format of a template in a list of outputs (the CSV column `out`), by its extension.
-local BY_EXT = { png = "png", glb = "glb", obj = "obj", ply = "ply", json = "stats",
-                 txt = "lstring", lstring = "lstring", str = "lstring" }
+local BY_EXT = { json = "stats", txt = "lstring", lstring = "lstring", str = "lstring" }
+for _, f in ipairs(FORMATS) do
+  if f[1] == "png" or f.mesh then BY_EXT[f[2]] = f[1] end
+end
+-- What the message on an unknown extension lists: ".png, .glb, .obj, .ply, .json (stats) or
+-- .txt (the L-string)".
+local BY_EXT_LIST = {}
+for i, e in ipairs(formats.exts) do BY_EXT_LIST[i] = e end
+BY_EXT_LIST[#BY_EXT_LIST + 1] = ".json (stats)"
+BY_EXT_LIST[#BY_EXT_LIST + 1] = ".txt (the L-string)"
+BY_EXT_LIST = series(BY_EXT_LIST, "or")
 
--- The fields of a job that are not model variables.
+-- The fields of a job that are not model variables: these and the formats' names.
 local RESERVED = { id = true, model = true, name = true, seed = true, steps = true,
                    width = true, height = true, out = true, outputs = true, params = true,
-                   png = true, glb = true, obj = true, ply = true, lstring = true,
-                   stats = true, rep = true }
+                   rep = true }
+for _, f in ipairs(FORMATS) do RESERVED[f[1]] = true end
 
 -- A value in a message: text quoted, anything else as tostring gives it.
 local function show (v)
@@ -99,8 +108,7 @@ local function output_format (key, tpl)
   if key == "out" then
     local f = BY_EXT[ext]
     if f == nil then
-      return nil, format("'%s': the format is told by the extension: .png, .glb, .obj, .ply, "
-        .. ".json (stats) or .txt (the L-string)", tpl)
+      return nil, format("'%s': the format is told by the extension: %s", tpl, BY_EXT_LIST)
     end
     return f
   end

@@ -88,7 +88,8 @@ local function complete (src, job, n)
     local path, why = expand(job, t.template)
     if path == nil then fail(t.field, why) end
     claim(path, t.field)
-    if t.format == "obj" then claim(companion(path), t.field, path) end
+    local beside = companion(path, t.format)
+    if beside ~= nil then claim(beside, t.field, path) end
     outs[#outs + 1] = { format = t.format, path = path, i = #outs + 1 }
   end
   if #outs > 1 then table.sort(outs, outputs_order) end    -- a job writes its formats in one order

@@ -4,6 +4,8 @@
 local B = require "lsys.batch.base"
 local CSV = require "lsys.batch.csv"
 local F = require "lsys.batch.fields"
+local formats = require "lsys.batch.formats"
+local series = require("lsys.util.text").series
 
 local type, pairs, ipairs, error, tostring = type, pairs, ipairs, error, tostring
 local math, string, table = math, string, table
@@ -15,6 +17,10 @@ local show, conv_number, conv_whole, isname, output_format =
 local _ENV = nil
 
 local M = {}
+
+-- The formats' names as the messages list them: "png, glb, obj, ply, lstring, stats" and
+-- "png, glb, obj, ply, lstring and stats".
+local NAMES, NAMES_AND = series(formats.names), series(formats.names, "and")
 
 -- The number of jobs `count` (a float: a sweep's may be past 2^63) as an integer, checked
 -- against lsys.batch.MAX_JOBS; `where` and `what` say where they come from.
@@ -60,12 +66,12 @@ local function csv_source (path, text)
     seen[name] = c
     if name == "outputs" or name == "params" or name == "rep" then
       fail(format("'%s' is a field of Lua specs; a CSV spec gives its outputs in the columns "
-        .. "out, png, glb, obj, ply, lstring and stats, and a model variable per column", name))
+        .. "out, %s, and a model variable per column", name, NAMES_AND))
     end
     if not RESERVED[name] and not isname(name) then
       fail(format("'%s' is not a model variable's name (letters, digits and _, not starting "
-        .. "with a digit) nor one of id, model, name, seed, steps, width, height, out, png, "
-        .. "glb, obj, ply, lstring, stats", name))
+        .. "with a digit) nor one of id, model, name, seed, steps, width, height, out, %s",
+        name, NAMES))
     end
     if name == "out" or FORMAT_RANK[name] then has_out = true end
     cols[c] = name
@@ -75,8 +81,7 @@ local function csv_source (path, text)
   end
   if not has_out then
     error(format("%s:%d: no output column: add 'out' (file name templates such as "
-      .. "png/{id}.png, separated by ;) or png, glb, obj, ply, lstring, stats", path,
-      head.line), 0)
+      .. "png/{id}.png, separated by ;) or %s", path, head.line, NAMES), 0)
   end
   local src = { count = check_count(path, "the file makes", #at + 0.0),
                 col = function (name) return format("column '%s': ", name) end }
@@ -146,7 +151,7 @@ local function lua_outputs (outs, fail)
   end
   for k in pairs(outs) do
     if not (math.type(k) == "integer" and k >= 1 and k <= #outs) and not FORMAT_RANK[k] then
-      fail("outputs", format("%s is not a format (png, glb, obj, ply, lstring, stats)", show(k)))
+      fail("outputs", format("%s is not a format (%s)", show(k), NAMES))
     end
   end
   return list

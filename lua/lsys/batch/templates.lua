@@ -12,6 +12,11 @@ local _ENV = nil
 
 local M = {}
 
+-- The extension of the file an output of a format writes beside it, by the format's name
+-- (obj: its material file, mtl).
+local COMPANION = {}
+for _, f in ipairs(F.FORMATS) do COMPANION[f[1]] = f.companion end
+
 -- The value of the placeholder {k} of a job's template, as text; or nil and why.
 local function placeholder (job, k)
   local v
@@ -77,11 +82,14 @@ local function expand (job, tpl)
   return normalize(path)
 end
 
--- The material file an .obj output writes beside it: the file name's extension becomes
--- .mtl, as export_obj.c's mtlpath does (".obj" alone stays whole).
-local function companion (path)
-  if path:match("[^/]*$"):find("^%.[^.]*$") then return path .. ".mtl" end
-  return (path:gsub("%.[^./]*$", ".mtl"))
+-- The file an output of format `fmt` writes beside its file `path` (an .obj's material
+-- file), or nil: the file name's extension becomes the companion's, as export_obj.c's
+-- mtlpath does (".obj" alone stays whole).
+local function companion (path, fmt)
+  local ext = COMPANION[fmt]
+  if ext == nil then return nil end
+  if path:match("[^/]*$"):find("^%.[^.]*$") then return path .. "." .. ext end
+  return (path:gsub("%.[^./]*$", "." .. ext))
 end
 
 --[[
@@ -217,8 +225,11 @@ local function proven (src, job1)
     local s = shape(src, job1, t.template)
     if s == nil or not names_job(s.name) then return false end
     shapes[#shapes + 1] = s
-    if t.format == "obj" then          -- its material file: the same, .obj -> .mtl
-      shapes[#shapes + 1] = { prefix = s.prefix, suffix = s.suffix:sub(1, -5) .. ".mtl",
+    local ext = COMPANION[t.format]
+    if ext ~= nil then                 -- its material file: the same, .obj -> .mtl
+      shapes[#shapes + 1] = { prefix = s.prefix,
+                              suffix = s.suffix:sub(1, -#F.FORMAT_EXT[t.format] - 2) ..
+                                "." .. ext,
                               name = s.name, depth = s.depth }
     end
   end

@@ -1,9 +1,34 @@
 --- The help texts of the `lsys` program: `usage`, what `lsys --help` prints, and `help`,
 -- each command's text by its name (`lsys help COMMAND`, `lsys COMMAND --help`).
 -- @module lsys.cli.help
+local core = require "lsys.core"
+local batch_formats = require "lsys.batch.formats"
+local series = require("lsys.util.text").series
+
+local ipairs, pairs, table = ipairs, pairs, table
 local _ENV = nil
 
 local M = {}
+
+-- The lists of formats the texts show, at their $NAME: the export formats of the core
+-- (core.formats()) and the outputs of lsys.batch (lsys.batch.formats).
+local LISTS = {}
+do
+  local exts, dots, meshes = {}, {}, {}
+  for _, f in ipairs(core.formats()) do
+    exts[#exts + 1] = f.ext
+    dots[#dots + 1] = "." .. f.ext
+  end
+  for _, f in ipairs(batch_formats.list) do
+    if f.mesh then meshes[#meshes + 1] = "." .. f[2] end
+  end
+  LISTS.EXPORT_EXTS = series(dots, "or")                       -- .obj, .ply or .glb
+  LISTS.EXPORT_BRACE = "{" .. table.concat(exts, ",") .. "}"   -- {obj,ply,glb}
+  LISTS.BATCH_NAMES = series(batch_formats.names)              -- png, glb, ..., stats
+  LISTS.BATCH_MESHES = table.concat(meshes, " ")               -- .glb .obj .ply
+end
+
+local function fill (text) return (text:gsub("%$([%u_]+)", LISTS)) end
 
 local USAGE = [[
 usage: lsys [COMMAND] [ARGS]
@@ -14,7 +39,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png),
                               or --frames DIR: one picture per step, one camera
   lsys animate [MODEL] -o OUT.mp4|OUT.gif   an animation of the model growing (ffmpeg)
-  lsys export MODEL -o OUT    write a model's geometry to OUT (.obj, .ply or .glb)
+  lsys export MODEL -o OUT    write a model's geometry to OUT ($EXPORT_EXTS)
   lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
   lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
   lsys sketch [FILE] [OPTS]   draw a plant's construction lines; the plant follows (a window)
@@ -159,7 +184,7 @@ Options:
 ]=]
 
 HELP.export = [[
-usage: lsys export MODEL [VIEW.v] -o OUT.{obj,ply,glb} [--lines tubes] [--steps N]
+usage: lsys export MODEL [VIEW.v] -o OUT.$EXPORT_BRACE [--lines tubes] [--steps N]
                    [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
                    [--map FILE | --mat FILE] [--define NAME=VALUE]... [--threads N]
                    [--max-memory SIZE] [--max-modules N] [--progress]
@@ -366,7 +391,7 @@ usage: lsys batch SPEC [-d DIR] [--shard K/N | --shard slurm] [--list] [--force]
 Runs the jobs SPEC lists -- each a model, values for its variables, a seed and the files
 to write -- one after the other, and records each in a manifest (docs/batch.md). SPEC is
 a CSV file with a header line -- the columns model, seed, steps, width, height, name, id,
-out (file name templates separated by ;), png, glb, obj, ply, lstring, stats, and a
+out (file name templates separated by ;), $BATCH_NAMES, and a
 column per model variable it sets, as --set does -- or a Lua file that returns a list of
 jobs or a sweep, expanded in the order of its names (the last one varies fastest):
 
@@ -378,7 +403,7 @@ Model files are found from SPEC's folder; outputs go to DIR. In a template {id} 
 job's id (0001, 0002, ...: its number in SPEC), {seed}, {model}, {rep} and {R} (a
 variable) its values. A job that gives no seed gets one made from SPEC's seed and its
 number: the same in any shard, on any host. The formats, by extension: .png (width x
-height, default 800x800), .glb .obj .ply (meshes), .txt (the L-string), .json (modules,
+height, default 800x800), $BATCH_MESHES (meshes), .txt (the L-string), .json (modules,
 counts by name, triangles, area, bounds).
 
 Every file appears whole or not at all. A job is skipped when the manifest says it ran
@@ -452,7 +477,8 @@ usage: lsys help [COMMAND]
 Shows the list of commands, or the help of COMMAND.
 ]]
 
-M.usage = USAGE
+M.usage = fill(USAGE)
+for k, text in pairs(HELP) do HELP[k] = fill(text) end
 M.help = HELP
 
 return M

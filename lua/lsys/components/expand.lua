@@ -314,7 +314,7 @@ end
 
 local NOTROPISM = {}
 
--- The stem of a Horn or Tree (compgeo.c, lsys_cframes_stem): frames at the ends of
+-- The stem of a Horn or Tree (compgeo.c, lsys_compgeo_frames_stem): frames at the ends of
 -- `segments` equal pieces from frame fi, bent by the curvature, the gnarl (random), the
 -- tropisms of the world (each turning H towards its direction by the angle e |H x T|, as
 -- cpfg's tropism, ABOP section 2.3) and, for a Tree, deviated at its branches (plan). Returns
@@ -511,7 +511,7 @@ end
 
 -- A Tree's branches on link l: the stem frame at u (position between the stem frames,
 -- orientation of the one below), rolled by the divergence about H and pitched down by the
--- branching angle about the right axis (compgeo.c, lsys_cframe_branch).
+-- branching angle about the right axis (compgeo.c, lsys_compgeo_frame_branch).
 function Expander:branches (inst, l, plan)
   local frames, st, ns = self.frames, inst.st, inst.ns
   local nb = plan.n

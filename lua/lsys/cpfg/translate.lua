@@ -288,7 +288,7 @@ local function production (T, ls, p, section, stochastic)
   local out = { "local E, H, L = ...", "return function (" .. concat(args, ", ") .. ")",
                 "  local _n = 0" }
   -- cpfg's generator: a weighted production being tried stops after its condition
-  -- (lsys_cpfg_mark); the chosen one then goes on from there (its locals are in L), so
+  -- (lsys_derive_cpfg_mark); the chosen one then goes on from there (its locals are in L), so
   -- that its post-condition block and successor draw after every production was tried,
   -- and its pre-condition block runs once
   -- (a formal parameter the pre-condition block assigns is kept in L[-k] meanwhile)

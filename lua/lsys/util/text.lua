@@ -34,4 +34,11 @@ end
 --- s single-quoted for a POSIX shell (a quote inside becomes '\'').
 function M.shq (s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
+--- The strings of the list `items` as a message lists them: "a, b or c" with `last` "or",
+-- "a, b and c" with "and", "a, b, c" without.
+function M.series (items, last)
+  if last == nil or #items < 2 then return table.concat(items, ", ") end
+  return table.concat(items, ", ", 1, #items - 1) .. " " .. last .. " " .. items[#items]
+end
+
 return M
