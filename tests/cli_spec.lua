@@ -297,6 +297,43 @@ describe("--threads, --max-memory and --max-modules", function()
   end)
 end)
 
+describe("a file returning a Scene (a population) on the command line", function()
+  local path = tmpmodel('local lsys = require "lsys"\n'
+    .. 'local m = lsys.lsystem { axiom = "F(1)[+F(1)]F(1)", view = { angle = 30 } }\n'
+    .. 'return lsys.population { { model = m }, { model = m, at = { 2, 0, 0 } } }\n')
+  teardown(function() os.remove(path) end)
+
+  it("#gl takes --view for the picture (background, camera), as a model does", function()
+    local png = os.tmpname() .. ".png"
+    local out, code = run("render " .. path .. " -o " .. png
+      .. " --size 64x64 --view background=0,0,1")
+    assert.equal(0, code, out)
+    local px = require("lsys.core").png_read(png)
+    os.remove(png)
+    assert.equal(string.char(0, 0, 255, 255), px:sub(1, 4))     -- a corner: the background
+  end)
+
+  it("refuses a --view that changes how the turtle draws, naming it", function()
+    local _, err, code = run3("render " .. path .. " -o " .. path .. ".png --view angle=10")
+    assert.equal(2, code, err)
+    assert.equal(usage_text("render", path .. " returns a Scene (a population): --view "
+      .. "angle=10 changes how the turtle draws, which applies to a model"), err)
+  end)
+end)
+
+describe("lsys render's messages", function()
+  it("name no library function, as export's do", function()
+    local _, err, code = run3("render examples/default.lua --steps 1 -o /nonexistent/x.png")
+    assert.equal(1, code)
+    assert.equal("lsys: cannot open '/nonexistent/x.png' for writing: No such file or "
+      .. "directory\n", err)
+    _, err, code = run3("export examples/default.lua --steps 1 -o /nonexistent/x.obj")
+    assert.equal(1, code)
+    assert.equal("lsys: cannot open '/nonexistent/x.obj' for writing: No such file or "
+      .. "directory\n", err)
+  end)
+end)
+
 describe("lsys view --show", function()
   local D = require "tests.display"
   teardown(function() D.stop() end)

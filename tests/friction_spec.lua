@@ -505,7 +505,7 @@ describe("memory a user did not ask for", function ()
     local out, code = H.sh("LSYS_MAX_MEMORY=100M " .. H.BIN .. " render --size 16384x16384 -o "
                            .. os.tmpname() .. ".png examples/abop/fig1_24a.lua")
     assert.equal(1, code)
-    assert.matches("lsys: lsys.render: a 16384x16384 picture needs 3.0 GiB, more than max_memory "
+    assert.matches("lsys: a 16384x16384 picture needs 3.0 GiB, more than max_memory "
                    .. "(100 MiB)", out, 1, true)
   end)
 end)

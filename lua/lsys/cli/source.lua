@@ -298,10 +298,19 @@ local function prepare (cmd, opts, pos)
       error(format("%s returns a Scene (a population, lsys.population): `lsys render` and "
         .. "`lsys export` take it", path), 0)
     end
-    if steps ~= nil or seed ~= nil or #sets > 0 or #vlist > 0 then
-      usage(cmd, "%s returns a Scene (a population): --steps, --seed, --set and --view "
-        .. "apply to a model", path)
+    if steps ~= nil or seed ~= nil or #sets > 0 then
+      usage(cmd, "%s returns a Scene (a population): --steps, --seed and --set apply to a "
+        .. "model", path)
     end
+    -- the picture's options (camera, light, background...) apply to the drawn scene too;
+    -- what changes how the turtle draws does not
+    for _, e in ipairs(vlist) do
+      if lview.TURTLE[e[1]] then
+        usage(cmd, "%s returns a Scene (a population): --view %s changes how the turtle "
+          .. "draws, which applies to a model", path, e[2])
+      end
+    end
+    check_views(cmd, model, vlist)
     if limits ~= nil then
       usage(cmd, "%s returns a Scene (a population): --threads, --max-memory and "
         .. "--max-modules apply to a model", path)
@@ -333,11 +342,13 @@ local function derive (model, opts)
   return model:derive()
 end
 
--- Derives and interprets the model of a render or export command line.
+-- Derives and interprets the model of a render or export command line: the scene, the
+-- model's path, the --view values, whether to print progress, and whether the scene was
+-- drawn here with those views (false for a file returning a Scene).
 local function scene_of (cmd, opts, pos)
   local model, path, views = prepare(cmd, opts, pos)
   local verbose = opts.progress or isatty(2)
-  if lmodel.isscene(model) then return model, path, views, verbose end
+  if lmodel.isscene(model) then return model, path, views, verbose, false end
   local s = derive(model, opts)
   local t0 = clock()
   local scene = model:interpret(s, views)
@@ -345,7 +356,7 @@ local function scene_of (cmd, opts, pos)
     io.stderr:write(format("interpreted %d modules: %d triangles, %d lines (%.2f s)\n", #s,
       scene.ntriangles, scene.nlines, clock() - t0))
   end
-  return scene, path, views, verbose
+  return scene, path, views, verbose, true
 end
 
 M.find_model = find_model

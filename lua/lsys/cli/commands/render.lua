@@ -7,7 +7,7 @@ local HELP = require("lsys.cli.help").help
 local frames = require("lsys.frames").frames
 local render = require("lsys.render").render
 
-local error, pcall, next = error, pcall, next
+local error, pcall, next, tostring = error, pcall, next, tostring
 local io, string = io, string
 local format = string.format
 local parse, out, usage, clock, RENDER_OPTS = A.parse, A.out, A.usage, A.clock, A.RENDER_OPTS
@@ -52,9 +52,16 @@ local function run (args)
   if not outpath:lower():find("%.png$") then
     usage("render", "the output must be a .png file, got '%s'", outpath)
   end
-  local scene, _, _, verbose = scene_of("render", opts, pos)
+  local scene, _, views, verbose, drawn = scene_of("render", opts, pos)
   local t0 = clock()
-  render(scene, { out = outpath, width = w, height = h })
+  -- a model's views went to its interpretation; a population's (a file returning a Scene)
+  -- replace its picture's
+  local ok, err = pcall(render, scene, { out = outpath, width = w, height = h,
+                                         view = not drawn and next(views) and views or nil })
+  -- the command's messages name no library function (as export's do)
+  if not ok then
+    error((tostring(err):gsub("^[^\n]-:%d+: ", ""):gsub("^lsys%.render: ", "")), 0)
+  end
   if verbose then
     io.stderr:write(format("rendered %dx%d in %.2f s\n", w, h, clock() - t0))
   end
