@@ -185,10 +185,15 @@ local function setfield (job, k, v, field, fail)
   end
 end
 
+-- The error function of a spec's fields: "who: field: msg", raised without a position.
+local function failer (who)
+  return function (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+end
+
 -- A raw job with the spec's defaults, from which every job of the spec is cloned.
 local function newjob (spec, who)
   local job = { params = {}, templates = {}, col = function (name) return name .. ": " end }
-  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  local fail = failer(who)
   for _, k in ipairs { "model", "name", "steps", "width", "height", "outputs", "params" } do
     if spec[k] ~= nil then setfield(job, k, spec[k], k, fail) end
   end
@@ -235,7 +240,7 @@ end
 
 -- The source of the jobs of a list (`list`, the spec's array part or its field jobs).
 local function list_source (spec, who, list, base)
-  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  local fail = failer(who)
   if type(list) ~= "table" then fail("jobs", "a list of jobs expected") end
   local src = { count = check_count(who, "the list makes", #list + 0.0),
                 col = function (name) return name .. ": " end }
@@ -254,7 +259,7 @@ end
 -- slowest, the last fastest, then the replicates. Job n is made from the digits of n - 1
 -- in the mixed radix of the lists' lengths (the replicates the last digit).
 local function sweep_source (spec, who, reps, base)
-  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  local fail = failer(who)
   local vary = spec.vary and vary_list(spec.vary, fail) or {}
   local seeded, varied = false, {}
   local count, dims = reps + 0.0, {}
@@ -316,7 +321,7 @@ end
 
 -- The source of the jobs of a Lua spec (a table) `spec`, named `who` in messages.
 local function lua_source (spec, who)
-  local function fail (field, msg) error(format("%s: %s: %s", who, field, msg), 0) end
+  local fail = failer(who)
   if type(spec) ~= "table" then
     error(format("%s: a spec is a table (a list of jobs, or { model = ..., vary = ..., "
       .. "outputs = ... }), got %s", who, type(spec)), 0)
