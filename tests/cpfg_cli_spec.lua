@@ -92,8 +92,8 @@ describe("lsys derive on a cpfg model", function ()
   it("derives and imports a model with ?E only with --environment none", function ()
     local out, code = lsys("derive " .. D .. "envq.l")
     assert.equal(1, code)
-    assert.truthy(out:find("envq.l:5: ?E (an environmental program's query module) is not "
-                           .. "supported", 1, true), out)
+    assert.truthy(out:find("envq.l:5: ?E (a query of the environment) needs an "
+                           .. "environment", 1, true), out)
     out, code = lsys("derive " .. D .. "envq.l --environment none")
     assert.equal(0, code, out)
     assert.equal("A(3)?E(7,6)\n", out)                                  -- cpfg

@@ -281,16 +281,19 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
     return got, table.unpack(r, 2, r.n)
   end
 
-  it("refuses ?E, or derives it as cpfg without an environmental program on request",
-     function ()
+  it("refuses ?E without an environment, derives it as cpfg without one on request, and " ..
+     "asks the environment given", function ()
     local ok, msg = pcall(lsys.cpfg.load, D .. "envq.l")
     assert.is_false(ok)
-    assert.equal(D .. "envq.l:5: ?E (an environmental program's query module) is not "
-                 .. "supported: lsys runs no environmental program; environment = \"none\" "
-                 .. "(--environment none) derives the model as cpfg does without one", msg)
+    assert.equal(D .. "envq.l:5: ?E (a query of the environment) needs an environment: give "
+                 .. "the model one (option 'environment', docs/open.md), or environment = "
+                 .. "\"none\" (--environment none) to derive it as cpfg does without one", msg)
     assert.equal("A(3)?E(7,6)", derive("envq.l", nil, { environment = "none" }))   -- cpfg
+    -- string 0 is answered 20, string 1 (A(2)?E(21,6)) 40: the rules add 1 after each
+    local function env (_, info) return { { 20 * (info.step + 1) } } end
+    assert.equal("A(3)?E(41,6)", derive("envq.l", nil, { environment = env }))
     assert.error_matches(function () lsys.cpfg.load(D .. "envq.l", nil, { environment = 1 }) end,
-                         "option 'environment' must be \"none\"", 1, true)
+                         "option 'environment' must be \"none\" or an environment", 1, true)
   end)
 
   it("takes a number too large for a double as infinite in a block", function ()

@@ -448,7 +448,8 @@ local LUA_LAYERS = {
   { "the C module", "lsys.core" },
   { "util", "lsys.util*", "lsys.program" },         -- helpers that know nothing of models
   { "the kernel", "lsys.model", "lsys.compile", "lsys.codegen", "lsys.view", "lsys.viewfile",
-    "lsys.func", "lsys.population", "lsys.warning", "lsys.sandbox", "lsys.kinds" },
+    "lsys.func", "lsys.population", "lsys.warning", "lsys.sandbox", "lsys.kinds",
+    "lsys.environment" },
   -- what builds models and plants on the kernel: other notations (component graphs,
   -- sketches, cpfg's files), incremental growth, the arrangement
   { "the front ends", "lsys.components*", "lsys.sketch*", "lsys.cpfg*", "lsys.grow",

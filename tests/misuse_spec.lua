@@ -98,9 +98,10 @@ describe("lsys.core under misuse", function ()
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules
-  -- of one call (made and freed inside it, never handed out), the window
+  -- of one call and the queries of core.environment (made and freed inside it, never handed
+  -- out), the window
   local UNMADE = { Alphabet = true, Pixels = true, Turtle = true, Hold = true, LimbRules = true,
-                   Viewer = true }
+                   Viewer = true, EnvQueries = true }
   local kinds = {}
   for k in pairs(makers) do kinds[#kinds + 1] = k end
   table.sort(kinds)

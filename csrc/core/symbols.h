@@ -74,6 +74,7 @@ enum {
   X(QH,          "?H",   STATE,    1, 1) \
   X(QU,          "?U",   STATE,    1, 1) \
   X(QL,          "?L",   STATE,    1, 1) \
+  X(QE,          "?E",   CROSS,    1, 0)  /* the environment's queries, in order */ \
   X(SCALE,       "@D",   STATE,    0, 0) \
   X(SCALEMUL,    "@Di",  STATE,    0, 0) \
   X(SCALEDIV,    "@Dd",  STATE,    0, 0) \

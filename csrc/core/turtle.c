@@ -731,6 +731,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_PEND: return lsys_turtle_polyend(R);
     case OP_PVERT: return lsys_turtle_polyvertex(R);
     case OP_QP: case OP_QH: case OP_QU: case OP_QL: return query(R, op, p, np, original);
+    case OP_QE: return R->t->envq != NULL ? lsys_turtle_envquery(R, p, np, original) : LSYS_OK;
     case OP_SCALE: case OP_SCALEMUL: case OP_SCALEDIV: return scale(R, op, p, np);
     case OP_LABEL: return mark(R, LSYS_REC_LABEL);
     case OP_SYSTEM: return systemcall(R);
@@ -842,12 +843,14 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
   const uint8_t *s8 = s->sym8, *op = t->op;
   size_t i, nop = t->nop;
   int status = LSYS_OK;
+  R->s = s;
   for (i = a; i < b && status == LSYS_OK; i++) {
     uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
     uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
     double *p = s->par != NULL ? s->par + off : NULL;
     R->mod = i;
     off += np;
+    R->nextpar = off;
     if (t->expand != NULL) {
       int e = t->expand(t->expandud, i, off - np, &t->hbuf, &t->err);
       if (e < 0) return e;
@@ -869,6 +872,7 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
           uint32_t hs = LSYS_CSYM(hc), hn = LSYS_CNP(hc);
           if (hs < nop && op[hs]) {
             R->sym = hs;
+            R->hj = j; R->hnext = hoff + hn;
             status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
           }
           hoff += hn;

@@ -93,6 +93,31 @@ typedef struct lsys_tstate {
 typedef int (*lsys_expandfn) (void *ud, size_t i, size_t poff, lsys_lstring *out,
                               lsys_error *e);
 
+/*
+** ?E: a communication module the interpretation met (open L-systems, docs/open.md), with
+** the turtle's state there and the module after it, for the environment to answer.
+*/
+#define LSYS_ENVQ_MADE ((size_t)-1)     /* mod: a module the homomorphism made */
+#define LSYS_ENVQ_NONE ((uint32_t)-1)   /* next: no module follows */
+
+typedef struct lsys_envquery {
+  size_t mod;                   /* its index in the string, or LSYS_ENVQ_MADE */
+  size_t par;                   /* its parameters: in the string's pool, or (made) the pool's */
+  uint32_t np;
+  uint32_t next, nextnp;        /* the following module's symbol (or LSYS_ENVQ_NONE) */
+  size_t nextpar;               /* its parameters, in the string's pool after a module of
+                                   the string, in the pool after a made one */
+  double pos[3], H[3], L[3], U[3];
+  double width, scale;
+} lsys_envquery;
+
+typedef struct lsys_envqueries {
+  lsys_envquery *q; size_t n, cap;
+  double *pool; size_t npool, poolcap;   /* parameters of modules the homomorphism made */
+} lsys_envqueries;
+
+void lsys_turtle_envfree (lsys_envqueries *q);
+
 enum {
   LSYS_TURTLE_DRAW = 0,   /* geometry and records */
   LSYS_TURTLE_QUERY = 1,  /* only fill the parameters of ?P ?H ?U ?L */
@@ -116,6 +141,8 @@ typedef struct lsys_turtle {
                                    mesh.meter: lsys_interpret_run sets all three to one) */
   int threads;                  /* DRAW mode: threads for a long string (turtle_par.c; 0 or 1:
                                    the caller's alone) */
+  lsys_envqueries *envq;        /* not NULL: the ?E modules met are appended here (any mode;
+                                   the caller empties it) */
   size_t piecemin;              /* the smallest branch given a thread of its own (0: the
                                    default; tests set it small to split short strings) */
   /* outputs */

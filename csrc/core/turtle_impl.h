@@ -86,11 +86,20 @@ struct run {
   double pH[3], pL[3], pU[3];
   int pcol, ptex, psides;
   uint32_t sym;                 /* the symbol being interpreted */
+  /* what follows the module being interpreted (a ?E sends it): the string's next module,
+  ** or, inside an expansion, the expansion's next (hj < hbuf.n: j, with its parameters at
+  ** hnext of hbuf) */
+  const lsys_lstring *s;
+  size_t nextpar;               /* the string's next module's parameters */
+  size_t hj, hnext;             /* in an expansion: the module's place, the next's parameters */
   const lsys_alphabet *ab;
   size_t recbase;               /* the scene's index of the first record this run writes */
   int fixed;                    /* a piece of a parallel run (turtle_par.c): the records and
                                    lines go to places counted beforehand and cannot grow */
 };
+
+/* turtle_env.c: ?E, a query of the environment appended to t->envq. */
+int lsys_turtle_envquery (run *R, const double *p, uint32_t np, int original);
 
 /* turtle.c: errors about the current module, "module N: <fmt>" and
 ** "module N 'op': <fmt>" (code LSYS_EARG), and a failed allocation (the

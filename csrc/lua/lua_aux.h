@@ -43,6 +43,7 @@
 #define TEMPLATE_T "lsys.Template"   /* lua_rules.c: successor templates */
 #define SCENE_T    "lsys.Scene"      /* lua_scene.c */
 #define TURTLE_T   "lsys.Turtle"     /* lua_scene.c: a turtle for one call */
+#define ENVQ_T     "lsys.EnvQueries" /* lua_scene.c: the ?E of one environmental pass */
 #define CONTOUR_T  "lsys.Contour"    /* lua_contour.c */
 #define SURFACE_T  "lsys.Surface"    /* lua_surface.c */
 #define TEXTURE_T  "lsys.Texture"    /* lua_texture.c */

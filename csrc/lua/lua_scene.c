@@ -18,6 +18,7 @@
 ** and the call's allow_system_calls, records, homomorphism. What C checks
 ** again only protects memory (sizes, counts, indices).
 */
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -388,6 +389,79 @@ static int l_query (lua_State *L) {
 }
 
 #define pushvec(L, v) lsysL_pushnums((L), (v), 3)
+
+static int envq_gc (lua_State *L) {
+  lsys_turtle_envfree((lsys_envqueries *)luaL_checkudata(L, 1, ENVQ_T));
+  return 0;
+}
+
+/* A list of n numbers at p, on the stack. */
+static void pushlist (lua_State *L, const double *p, uint32_t n) {
+  uint32_t k;
+  lua_createtable(L, (int)n, 0);
+  for (k = 0; k < n; k++) {
+    lua_pushnumber(L, p[k]);
+    lua_rawseti(L, -2, (lua_Integer)k + 1);
+  }
+}
+
+/* One query of 'Q' as a table: index (nil for a module the homomorphism made), params,
+** position, heading, left, up, width, scale, and following with following_params (nil
+** at the end of the string or of the expansion). */
+static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_envquery *q,
+                          const lsys_lstring *s, const lsys_alphabet *ab) {
+  int made = q->mod == LSYS_ENVQ_MADE;
+  lua_createtable(L, 0, 11);
+  if (!made) {
+    lua_pushinteger(L, (lua_Integer)q->mod + 1);
+    lua_setfield(L, -2, "index");
+  }
+  pushlist(L, (made ? Q->pool : s->par) + q->par, q->np);
+  lua_setfield(L, -2, "params");
+  pushvec(L, q->pos); lua_setfield(L, -2, "position");
+  pushvec(L, q->H); lua_setfield(L, -2, "heading");
+  pushvec(L, q->L); lua_setfield(L, -2, "left");
+  pushvec(L, q->U); lua_setfield(L, -2, "up");
+  lua_pushnumber(L, q->width); lua_setfield(L, -2, "width");
+  lua_pushnumber(L, q->scale); lua_setfield(L, -2, "scale");
+  if (q->next != LSYS_ENVQ_NONE) {
+    lua_pushstring(L, lsys_alphabet_name(ab, q->next));
+    lua_setfield(L, -2, "following");
+    pushlist(L, (made ? Q->pool : s->par) + q->nextpar, q->nextnp);
+    lua_setfield(L, -2, "following_params");
+  }
+}
+
+/* core.environment(rules, lstring, opts) -> queries, filled: the query pass of an open
+** L-system (docs/open.md): fills ?P ?H ?U ?L as core.query does and returns the ?E
+** modules met, each a table (pushenvquery), in the order the turtle met them. */
+static int l_environment (lua_State *L) {
+  lsys_turtle *t;
+  lsys_turtle_opts o;
+  lsys_envqueries *Q;
+  lsys_lstring *s = checklstring(L, 2);
+  size_t n, k;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  lua_settop(L, 3);
+  Q = (lsys_envqueries *)lua_newuserdatauv(L, sizeof *Q, 0);    /* 4: freed however it ends */
+  memset(Q, 0, sizeof *Q);
+  luaL_setmetatable(L, ENVQ_T);
+  t = newturtle(L, LSYS_TURTLE_QUERY);                         /* 5 */
+  t->envq = Q;
+  turtlerun(L, t, &o, 3);
+  n = t->nqueries;
+  lsys_turtle_free(t);
+  s = checklstring(L, 2);          /* a rule function may have closed nothing, but check */
+  luaL_checkstack(L, 4, "too many queries");
+  lua_createtable(L, Q->n > INT_MAX ? INT_MAX : (int)Q->n, 0);
+  for (k = 0; k < Q->n; k++) {
+    pushenvquery(L, Q, &Q->q[k], s, lsysL_getalphabet(L));
+    lua_rawseti(L, -2, (lua_Integer)k + 1);
+  }
+  lsys_turtle_envfree(Q);
+  lua_pushinteger(L, (lua_Integer)n);
+  return 2;
+}
 
 static void pushvecf (lua_State *L, const float *v) {
   double d[3] = {v[0], v[1], v[2]};
@@ -812,6 +886,7 @@ static const luaL_Reg scene_meta[] = {
 static const luaL_Reg scene_funcs[] = {
   {"interpret", l_interpret},
   {"query", l_query},
+  {"environment", l_environment},
   {"turtle_state", l_turtle_state},
   {"symbols", l_symbols},
   {"formats", l_formats},
@@ -823,6 +898,10 @@ static const luaL_Reg turtle_meta[] = {
   {"__gc", turtle_gc}, {NULL, NULL}
 };
 
+static const luaL_Reg envq_meta[] = {
+  {"__gc", envq_gc}, {NULL, NULL}
+};
+
 /* The Scene's __index (scene_index) finds its methods in __methods. */
 void lsysL_open_scene (lua_State *L) {
   lsysL_createmeta(L, SCENE_T, scene_meta, NULL);
@@ -831,5 +910,6 @@ void lsysL_open_scene (lua_State *L) {
   lua_setfield(L, -2, "__methods");
   lua_pop(L, 1);
   lsysL_createmeta(L, TURTLE_T, turtle_meta, NULL);
+  lsysL_createmeta(L, ENVQ_T, envq_meta, NULL);
   luaL_setfuncs(L, scene_funcs, 0);
 }

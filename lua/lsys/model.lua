@@ -10,6 +10,7 @@ local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
 local sandbox = require "lsys.sandbox"
+local environment = require "lsys.environment"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
       math, string, table, debug, _G, os =
@@ -135,7 +136,7 @@ local OPTIONS = {
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
   depth_warnings = "any", threads = "number", max_instructions = "number",
-  random = "string",
+  random = "string", environment = "any",
 }
 
 local Model = {}
@@ -214,6 +215,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     -- (cpfg interprets the string between steps when it has query modules, ?E included:
     -- its environment step, which runs the homomorphism's random numbers too)
     if kind == PROD and e.text:find("?[PHULE]") then self._queries = true end
+    if e.text:find("?E", 1, true) then self._hasE = true end
   end
 end
 
@@ -419,9 +421,13 @@ make = function (opts, where, fail, dir)
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
     system_call = opts.system_call, after_interpret = opts.after_interpret,
-    threads = opts.threads, random = opts.random or "lsys",
+    threads = opts.threads, random = opts.random or "lsys", environment = opts.environment,
     _rules = rules, _info = {}, _where = where or "model", _group = 0,
   }, Model)
+  if opts.environment ~= nil then
+    local bad = environment.check(opts.environment)
+    if bad then fail(bad) end
+  end
   self._fns = rules:functions()
   rules_models[rules] = self
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
@@ -438,6 +444,7 @@ make = function (opts, where, fail, dir)
   local nv = view.normalize(v, where or "model")   -- a bad view fails at definition
   self:_functions(opts.functions or nv.functions, nv.dir, fail)
   if self.axiom:find("?[PHULE]") then self._queries = true end
+  if self.axiom:find("?E", 1, true) then self._hasE = true end
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
@@ -747,7 +754,7 @@ function Model:derive (n, opts)
       runhook(self, self.start_each, k)
       self:_bind()
     end
-    if self._queries then self:_query(s) end
+    self:_pass(s, k - 1)
     local t
     if own then t = self:_core("advance", s) else t = self:_core("step", s) end
     if self.end_each then
@@ -782,9 +789,7 @@ function Model:step (s)
   self:_idle("step")
   self:_threads("step")
   self:_bind()
-  if self._queries or hasquery(s) then
-    self:_query(s)
-  end
+  self:_pass(s, nil, true)
   return self:_core("step", s)
 end
 
@@ -811,6 +816,29 @@ end
 -- The view of the model with `over` merged in, checked, defaults filled.
 function Model:_view (over)
   return view.normalize(over and view.merge(self.view, over) or self.view, self._where)
+end
+
+-- The pass before a derivation step from `s` (string `step`): with an environment and ?E
+-- modules in `s`, the environmental pass (lsys.environment), which fills the query modules
+-- too; else the query pass when the rules make query modules (or `any`: `s` has some).
+function Model:_pass (s, step, any)
+  if (self._hasE or self.environment) and self.environment ~= false then
+    if s:count("?E") > 0 then
+      if self.environment then
+        return environment.pass(self, s, step, function ()
+          local opts = view.turtle_options(self:_view(), self.allow_system_calls)
+          self:_seed(true)
+          return self:_call(core.environment, "interpret", self._rules, s, opts)
+        end)
+      elseif not self._warnedE then
+        self._warnedE = true
+        warning.warn(format("lsys: %s: the string has ?E modules but the model has no "
+          .. "environment: they keep the parameters the rules give them (option "
+          .. "'environment', docs/open.md)", self._where))
+      end
+    end
+  end
+  if self._queries or (any and hasquery(s)) then self:_query(s) end
 end
 
 -- Fills the query modules ?P ?H ?U ?L of `s` in place from an interpretation

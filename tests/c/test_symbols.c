@@ -16,13 +16,14 @@
 ** polygon stack, sub-L-systems, generalized cylinders, patches, @S), as
 ** docs/architecture.md lists them; the ~X surfaces have no name of their own. */
 static const char *const crossing[] = {
-  "{", "}", ".", "?", "$", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@PS", "@PC", "@PD", "@S"
+  "{", "}", ".", "?", "$", "@Gs", "@Gc", "@Ge", "@Gt", "@Gr", "@PS", "@PC", "@PD", "@S",
+  "?E"                                   /* the environment's queries, in string order */
 };
 
 /* The symbols that leave a pending segment open, and the query modules. */
 static const char *const keeping[] = {
   "+", "-", "&", "^", "\\", "/", "|", "#", "!", ";", ",", ".", "?P", "?H", "?U", "?L", "Z",
-  "_"
+  "_", "?E"
 };
 static const char *const queries[] = {"?P", "?H", "?U", "?L"};
 

@@ -721,6 +721,9 @@ local function modeltable (C, W, reset)
   W("  steps = %s,", tostring(math.tointeger(o.steps) or o.steps))
   if o.seed then W("  seed = %s,", tostring(math.tointeger(o.seed) or o.seed)) end
   W("  random = \"cpfg\",   -- cpfg's random numbers in cpfg's order, as lsys.cpfg.load")
+  if C.envnone then
+    W("  environment = false,   -- no environment: ?E keep their values, as cpfg without -e")
+  end
   if o.numbers then
     W("  numbers = %s,   -- parameters stored as cpfg stores them", quote(o.numbers))
   end
@@ -789,7 +792,7 @@ function M.source (lfile, vfile, opts)
               keep = keep, named = named, why = why, view = v, lname = {},
               taken = { env = true, cpfg = true, lsys = true, math = true, func = true,
                         m = true, array = true, reset = true, productions = true },
-              comment = leadcomment(lfile) }
+              comment = leadcomment(lfile), envnone = opts.environment == "none" }
   if pal then
     C.palfile = pal:sub(1, 1) == "/" and pal or cpp.dirof(lfile) .. "/" .. pal
     local rel = relative(v.dir, cpp.dirof(C.palfile))

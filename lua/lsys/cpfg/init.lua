@@ -16,6 +16,7 @@ local model = require "lsys.model"
 local func = require "lsys.func"
 local viewmod = require "lsys.view"
 local viewfile = require "lsys.viewfile"
+local environment = require "lsys.environment"
 local _ENV = nil
 
 local translate, untakable = translator.translate, translator.untakable
@@ -63,24 +64,34 @@ local function checkopts (opts, fname)
   if opts.random ~= nil and opts.random ~= "cpfg" and opts.random ~= "lsys" then
     error(format("%s: option 'random' must be \"cpfg\" or \"lsys\"", fname), 3)
   end
-  if opts.environment ~= nil and opts.environment ~= "none" then
-    error(format("%s: option 'environment' must be \"none\" (lsys runs no environmental "
-                 .. "program)", fname), 3)
+  if opts.environment ~= nil and opts.environment ~= "none" and
+     environment.check(opts.environment) ~= nil then
+    error(format("%s: option 'environment' must be \"none\" or an environment (a function, "
+                 .. "an object with an answer method, or a list of those; docs/open.md)",
+                 fname), 3)
   end
   return opts
 end
 
--- An open L-system's ?E modules exchange values with an environmental program that cpfg
--- runs beside the model (cpfg -e; Mech and Prusinkiewicz 1996). lsys runs none, and a
--- model that relies on one would silently draw another plant, so ?E is refused unless
--- the caller asks for cpfg's behaviour without a program (environment = "none": the
--- modules keep the values the rules give them, as `cpfg -g` without -e does).
+-- An open L-system's ?E modules exchange values with an environment, which cpfg runs
+-- beside the model as a program (cpfg -e; Mech and Prusinkiewicz 1996). A model that
+-- relies on one would silently draw another plant without it, so ?E is refused unless
+-- the caller gives an environment (lsys.environment) or asks for cpfg's behaviour without
+-- one (environment = "none": the modules keep the values the rules give them, as
+-- `cpfg -g` without -e does).
 local function envcheck (P, opts)
-  if P.envq and opts.environment ~= "none" then
-    P:fail(P.envq, "?E (an environmental program's query module) is not supported: lsys "
-           .. "runs no environmental program; environment = \"none\" (--environment none) "
-           .. "derives the model as cpfg does without one")
+  if P.envq and opts.environment == nil then
+    P:fail(P.envq, "?E (a query of the environment) needs an environment: give the model "
+           .. "one (option 'environment', docs/open.md), or environment = \"none\" "
+           .. "(--environment none) to derive it as cpfg does without one")
   end
+end
+
+-- The model option of the load option `environment`: false for "none" (no environment,
+-- and no warning about the ?E modules), else the environment itself.
+local function envoption (e)
+  if e == "none" then return false end
+  return e
 end
 
 -- The view's positional functions as cpfg computes them (lsys.func approx "cpfg"), or
@@ -146,9 +157,10 @@ end
 -- defines as for `options`, functions ("cpfg", the default: the view's functions
 -- approximated as cpfg does; "exact": lsys's exact values), random ("cpfg", the default:
 -- cpfg's random numbers in cpfg's order, on one thread; "lsys": lsys's generator, which
--- does not depend on the order nor on the threads), environment ("none": a model with ?E
--- modules derives as cpfg does without an environmental program; without it such a
--- model is refused). Returns an lsys Model; raises
+-- does not depend on the order nor on the threads), environment (what the ?E modules
+-- query, as the model option: a function or an object, docs/open.md; "none": they keep
+-- their values, as cpfg does without an environmental program; without it a model with
+-- ?E modules is refused). Returns an lsys Model; raises
 -- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
@@ -181,6 +193,7 @@ function M.load (lfile, vfile, opts)
   o.view = v
   if opts.functions ~= "exact" then o.functions = cpfgfuncs(v) end
   o.random = opts.random or "cpfg"      -- cpfg's numbers in cpfg's order (docs/cpfg.md)
+  o.environment = envoption(opts.environment)
   local ok2, m = pcall(model.lsystem, o)
   if not ok2 then
     -- name the cpfg line of a rule lsys refused
