@@ -17,6 +17,9 @@ local lsys = require "lsys"
 local core = require "lsys.core"
 
 local CALLS = tonumber(os.getenv("LSYS_MISUSE_CALLS")) or 5000
+-- the test environmental program (tests/c/envslave.c): ctest sets LSYS_ENVSLAVE
+local ENVSLAVE = os.getenv("LSYS_ENVSLAVE")
+  or H.absolute((os.getenv("LSYS_BUILD_DIR") or "build") .. "/lsys_envslave")
 local SEED = tonumber(os.getenv("LSYS_MISUSE_SEED")) or 1
 
 -- the functions of lsys.core left out: they write files where they are told, open windows,
@@ -95,6 +98,11 @@ describe("lsys.core under misuse", function ()
     -- the writers: always in the temporary folder (their targets are their own)
     Outfile = function () return core.outfile(dir .. "/out" .. random(4) .. ".txt") end,
     Tempdir = function () return core.tempdir(dir) end,
+    -- an environmental program: the test program over pipes, answering by echo (the random
+    -- messages lack their Control line, so they are refused without waiting)
+    EnvProcess = function ()
+      return core.envproc { argv = { ENVSLAVE, "-e", "x.e", "echo" }, dir = dir, timeout = 10 }
+    end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules
@@ -262,6 +270,7 @@ describe("lsys.core under misuse", function ()
     paths = { dir .. "/x.obj", dir .. "/x.glb", dir .. "/x.ply", dir .. "/x.png",
               dir .. "/x.txt", dir .. "/missing/x.obj" }
     H.write(dir .. "/leaf.s", leaf)
+    H.write(dir .. "/x.e", "communication type: pipes\n")
     for _, k in ipairs(kinds) do
       pool[k] = { makers[k](), makers[k]() }
       closed[k] = makers[k]()

@@ -14,6 +14,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsysL_open_scene(L);
   lsysL_open_render(L);
   lsysL_open_outfile(L);
+  lsysL_open_envproc(L);
   lsysL_open_contour(L);
   lsysL_open_surface(L);
   lsysL_open_texture(L);

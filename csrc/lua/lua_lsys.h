@@ -27,6 +27,7 @@ void lsysL_open_grow (lua_State *L);     /* lua_grow.c: Limbs, limbs (lsys.grow)
 void lsysL_open_population (lua_State *L); /* lua_population.c: population; scene:instance */
 void lsysL_open_sandbox (lua_State *L);  /* lua_sandbox.c: sandbox_strings; rules:sandboxed */
 void lsysL_open_outfile (lua_State *L);  /* lua_outfile.c: Outfile, Tempdir (atomic writers) */
+void lsysL_open_envproc (lua_State *L);  /* lua_envproc.c: EnvProcess, envproc */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);
