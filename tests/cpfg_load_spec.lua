@@ -293,7 +293,8 @@ describe("lsys.cpfg.load on vlab's constructs", function ()
     local function env (_, info) return { { 20 * (info.step + 1) } } end
     assert.equal("A(3)?E(41,6)", derive("envq.l", nil, { environment = env }))
     assert.error_matches(function () lsys.cpfg.load(D .. "envq.l", nil, { environment = 1 }) end,
-                         "option 'environment' must be \"none\" or an environment", 1, true)
+                         "option 'environment' must be \"none\", a communication file "
+                         .. "(.e) or an environment", 1, true)
   end)
 
   it("takes a number too large for a double as infinite in a block", function ()

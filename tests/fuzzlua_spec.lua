@@ -46,6 +46,11 @@ describe("the Lua fuzzer's corpora", function ()
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 
+  it("read or fail naming the file as cpfg's communication files (.e)", function ()
+    local counts = replay("efile")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
   it("read or fail naming the file and line as SVG sketch files", function ()
     local counts = replay("svg")
     assert.is_true(counts.ok > 0 and counts.error > 0)

@@ -189,3 +189,179 @@ describe("examples/open", function ()
     assert.is_true(closed:derive():count("F") > open:derive():count("F"))
   end)
 end)
+
+describe("cpfg's communication files (.e)", function ()
+  local efile = require "lsys.environment.efile"
+  local dir
+  before_each(function () dir = os.tmpname(); os.remove(dir); os.execute("mkdir " .. dir) end)
+  after_each(function () os.execute("rm -rf " .. dir) end)
+  local function efilewith (text)
+    local f = assert(io.open(dir .. "/field.e", "w"))
+    f:write(text)
+    f:close()
+    return dir .. "/field.e"
+  end
+
+  it("say which program to start, how to talk to it and what each query carries",
+     function ()
+    local path = efilewith("executable: honda81 density.spec\ncommunication type: files\n"
+      .. "turtle position:P:%.4f %.4f %.0f\nturtle line width: %5.2lf\nverbose: off\n")
+    local e = efile.read(path)
+    assert.equal("files", e.transport)
+    assert.equal(1000, e.max)
+    assert.same({ "honda81", "-e", "field.e", "density.spec" }, e.argv)
+    assert.equal(dir, e.dir)
+    assert.same({ position = "P:%.4f %.4f %.0f", width = " %5.2f" }, e.formats)
+    assert.is_true(e.following)
+    e = efile.read(efilewith("communication type: pipes 50\nexecutable: c -e x.e s &\n"
+      .. "following module: no\n"))
+    assert.equal(50, e.max)
+    assert.same({ "c", "-e", "x.e", "s" }, e.argv)
+    assert.is_false(e.following)
+    assert.is_nil(efile.read(efilewith("communication type: memory\nexecutable: c\n")).max)
+  end)
+
+  it("name the file and line of what lsys cannot do", function ()
+    local function err (text) return select(2, pcall(efile.read, efilewith(text))) end
+    assert.equal(dir .. "/field.e:1: communication type 'sockets': lsys speaks pipes, files "
+      .. "and memory", err("communication type: sockets\nexecutable: a\n"))
+    assert.equal(dir .. "/field.e:2: interpreted modules: lsys does not send the geometry "
+      .. "of the module after a ?E (cpfg's GLS records)",
+      err("executable: a\ninterpreted modules: F\n"))
+    assert.equal(dir .. "/field.e:2: the format takes 4 values, the turtle sends 3",
+      err("executable: a\nturtle position: %g %g %g %g\n"))
+    assert.truthy(err("executable: a\nturtle up: %d %d %d\n"):find("field.e:2: turtle format "
+      .. "' %d %d %d': the % at character 2 is not a conversion", 1, true))
+    assert.equal(dir .. "/field.e: no 'executable:' line: which program answers the queries?",
+      err("communication type: pipes\n"))
+    assert.truthy(err("verbose: on\n"):find("no 'executable:' line", 1, true))
+  end)
+
+  it("skip unknown directives and blank lines with a warning, as cpfg", function ()
+    local w = warnings(function ()
+      efile.read(efilewith("executable: a\n\nradius: 2\n"))
+    end)
+    assert.same({ "lsys: " .. dir .. "/field.e:2: not a directive of a communication file: "
+      .. "skipped", "lsys: " .. dir .. "/field.e:3: unknown directive 'radius' in a "
+      .. "communication file: skipped" }, w)
+  end)
+end)
+
+describe("the text cpfg's environmental programs read", function ()
+  local program = require "lsys.environment.program"
+  local m = lsys.lsystem { axiom = "", view = { angle = 90 } }
+
+  it("gives each ?E cpfg's id: its byte offset in cpfg's string from the first", function ()
+    local s = m:lstring("?E(1,2)F(2)?E(3)@O(1)[+(90)F?E]/(45)?E(5,6,7)!(2)?E(1)?E(8)")
+    local qs = {}
+    for i = 1, #s do
+      if s:module(i) == "?E" then qs[#qs + 1] = { index = i } end
+    end
+    qs[#qs + 1] = {}                                   -- made by the homomorphism
+    assert.same({ 0, 20, 45, 55, 80, 88, 1 }, program.ids(qs, s))   -- cpfg's, with its probe
+  end)
+
+  it("writes a query as cpfg does: the module, the one after it, the turtle's values",
+     function ()
+    local spec = { formats = { position = "P:%.4f %.4f %.0f", width = " %g", scale = " %g" },
+                   following = true }
+    local q = { params = { 0.5 }, position = { -1, 1, 0.4 }, scale = 0.5, following = "]",
+                following_params = {} }
+    assert.equal("12 E(0.5)]\nP:-1.0000 1.0000 0\n 1\n 0.5\n", program.item(spec, q, 12, 2))
+    q.params, q.following, q.following_params = { 0.1, 3 }, "F", { 2.5 }
+    assert.equal("0 E(0.1,3)F(2.5)\nP:-1.0000 1.0000 0\n 1\n 0.5\n",
+                 program.item(spec, q, 0, 2))
+    q.following = "?E"
+    assert.truthy(program.item(spec, q, 0, 2):find("^0 E%(0.1,3%)%?\n"))
+    q.following = "@Gs"
+    assert.truthy(program.item(spec, q, 0, 2):find("^0 E%(0.1,3%)@G\n"))
+    spec.following = false
+    assert.truthy(program.item(spec, q, 0, 2):find("^0 E%(0.1,3%)\n"))
+  end)
+
+  it("reads the answers: an empty field keeps a parameter, the Control line ends them",
+     function ()
+    local got = {}
+    assert.equal(1, program.parse("0 E(0)\n12 E(,5)\nxx\n22 E(1e2,junk)\nControl: 1\n"
+      .. "30 E(9)\n", got))
+    assert.same({ [0] = { 0, n = 1 }, [12] = { nil, 5, n = 2 }, [22] = { 100, 0, n = 2 } }, got)
+  end)
+end)
+
+describe("an environmental program as the environment", function ()
+  local H = require "tests.helper"
+  local ENVSLAVE = os.getenv("LSYS_ENVSLAVE")
+    or H.absolute((os.getenv("LSYS_BUILD_DIR") or "build") .. "/lsys_envslave")
+  local dir
+  setup(function () dir = H.tmpdir() end)
+  teardown(function () H.rmdir(dir) end)
+
+  -- a communication file for lsys_envslave answering as `spec` over `transport`
+  local function efile (transport, spec, extra)
+    local path = dir .. "/" .. transport:gsub(" ", "") .. "-" .. spec .. ".e"
+    H.write(path, "executable: " .. ENVSLAVE .. " " .. spec .. "\ncommunication type: "
+      .. transport .. "\nturtle position: %g %g %g\n" .. (extra or ""))
+    return path
+  end
+
+  local function derive (axiom, env, extra)
+    local o = { axiom = axiom, steps = 1, view = { angle = 90 }, environment = env }
+    for k, v in pairs(extra or {}) do o[k] = v end
+    return tostring(lsys.lsystem(o):derive())
+  end
+
+  for _, t in ipairs { "pipes", "files", "memory" } do
+    it("sends the queries over " .. t .. " and writes the program's answers", function ()
+      local env = lsys.environment.program(efile(t, "sum"))
+      -- each ?E learns the sum of the coordinates where it stands
+      assert.equal("F(2)?E(2)+(90)F(3)?E(-1,7)", derive("F(2)?E(0)+(90)F(3)?E(0,7)", env))
+      assert.equal("F(2)?E(2)+(90)F(3)?E(-1,7)", derive("F(2)?E(9)+(90)F(3)?E(0,7)", env))
+      assert.equal("", H.sh("ls -A '" .. dir .. "' | grep field || true"))  -- files removed
+    end)
+  end
+
+  it("sends a step in chunks and reads answers that come in parts", function ()
+    local env = lsys.environment.program(efile("pipes 2", "chunks"))
+    local axiom = ("?E(%d)"):rep(7):format(1, 2, 3, 4, 5, 6, 7)
+    assert.equal("?E(2)?E(3)?E(4)?E(5)?E(6)?E(7)?E(8)", derive(axiom, env))
+    env = lsys.environment.program(efile("files 3", "chunks"))
+    assert.equal("?E(2)?E(3)?E(4)?E(5)?E(6)?E(7)?E(8)", derive(axiom, env))
+  end)
+
+  it("starts the program for each derivation and ends it after", function ()
+    local env = lsys.environment.program(efile("pipes", "echo"))
+    local m = lsys.lsystem { axiom = "?E(1)", productions = "?E(x) --> ?E(x)", steps = 3,
+                             environment = env }
+    assert.equal("?E(4)", tostring(m:derive()))           -- strings 0, 1 and 2 answered
+    assert.is_nil(env.proc)                               -- ended
+    assert.equal("?E(4)", tostring(m:derive()))           -- a fresh program, the same again
+  end)
+
+  it("stops the derivation with the program's name when it cannot start or answer",
+     function ()
+    local path = dir .. "/none.e"
+    H.write(path, "executable: lsys-no-such-program x\n")
+    local err = H.errof(derive, "?E(1)", lsys.environment.program(path))
+    local tail = ": environment: environmental program 'lsys-no-such-program': not found on "
+      .. "the PATH"
+    assert.equal(tail, err:sub(-#tail))
+    local env = lsys.environment.program(efile("pipes", "hang"), { timeout = 0.3 })
+    err = H.errof(derive, "?E(1)", env)
+    assert.truthy(err:find("0.3", 1, true) and err:find("lsys_envslave", 1, true), err)
+    assert.error_contains(function () lsys.environment.program(dir .. "/missing.e") end,
+                          "cannot open '" .. dir .. "/missing.e'")
+  end)
+
+  it("with vlab's honda81 gives the string of the Lua environment and of cpfg", function ()
+    local bin = os.getenv("LSYS_ENVIRO_BIN")
+    if not bin then
+      return pending("vlab's environmental programs are not built (tools/enviro-build.sh; "
+                     .. "LSYS_ENVIRO_BIN=their folder)")
+    end
+    local out, code = H.sh("cd tests/data/cpfg/open && PATH='" .. bin .. "':$PATH "
+      .. H.absolute(H.BIN) .. " derive ulam.l ulam.v --environment ulam.e 2>/dev/null")
+    assert.equal(0, code, out)
+    local want = tostring(dofile("examples/open/ulam.lua"):derive())
+    assert.equal(want, (out:gsub("\n", "")))
+  end)
+end)

@@ -14,6 +14,7 @@ local func = require "lsys.func"
 local view = require "lsys.view"
 local warning = require "lsys.warning"
 local population = require "lsys.population"
+local environment = require "lsys.environment"
 local render = require "lsys.render"
 local frames = require "lsys.frames"
 
@@ -34,6 +35,7 @@ M.view = view
 M.parse_size = model.parse_size        -- the memory budget (max_memory)
 M.max_memory = model.max_memory
 M.func = func                          -- positional functions (cpfg .func files)
+M.environment = environment            -- open L-systems: what ?E modules ask (docs/open.md)
 
 M.type = kinds.type                    -- "lstring", "scene", "model", ... or nil
 

@@ -748,6 +748,7 @@ function Model:derive (n, opts)
   -- them: then each step rewrites its string in place (its memory is reused, the string
   -- before the step is not kept)
   local own = not each and not self.end_each
+  local _ <close> = environment.session(self)  -- the environments' start and finish
   if each and n > 0 then each(0, s) end   -- (n = 0: the axiom after finish, below)
   for k = 1, n do
     if self.start_each then

@@ -98,8 +98,10 @@ Options:
   --mat FILE         a cpfg model's material file (.mat), likewise
   --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
                      #define in the file wins); may be repeated
-  --environment none  derive a cpfg model's ?E modules as cpfg does without its
-                     environmental program (lsys runs none; without this option a model
+  --environment FILE.e  the environment a cpfg model's ?E modules ask: the program of
+                     the communication file, started as cpfg -e starts it (vlab's honda81,
+                     chiba, ...; docs/open.md)
+  --environment none  derive them as cpfg does without one (without this option a model
                      with ?E is refused)
   --threads N        the threads a step (and an interpretation) may use, 1 to 64 (sets
                      model.threads; default: the model's, else LSYS_THREADS, else the
@@ -144,7 +146,7 @@ Options:
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
   --threads N, --max-memory SIZE, --max-modules N   the model's limits, as for `lsys
                      derive` (the interpretation's too)
-  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   a cpfg model's, as
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment FILE.e|none   a cpfg model's, as
                      for `lsys derive`
   --view NAME=VALUE  sets a view option for this picture (a number, a word, or a list
                      such as 0,1,0): line_style=cylinder, projection=perspective, fov=40,
@@ -178,7 +180,7 @@ Options:
   --progress         a line per step and frame on stderr (on a terminal a progress bar
                      is shown without it)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --mat FILE, --define NAME=VALUE, --environment FILE.e|none, --threads N, --max-memory SIZE,
   --max-modules N   as for `lsys render`
   -h, --help         show this help
 ]=]
@@ -236,7 +238,7 @@ Options:
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --mat FILE, --define NAME=VALUE, --environment FILE.e|none, --threads N, --max-memory SIZE,
   --max-modules N   as for `lsys render`
   -h, --help           show this help
 
@@ -268,7 +270,7 @@ Options:
   --r0 R, --s0u S, --s0h S   trunk radius and trunk flexural and torsional stiffness for
                      the automatic joint stiffness (default 1 each)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
-  --mat FILE, --define NAME=VALUE, --environment none, --threads N, --max-memory SIZE,
+  --mat FILE, --define NAME=VALUE, --environment FILE.e|none, --threads N, --max-memory SIZE,
   --max-modules N   as for render
 
 The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it further with
@@ -380,7 +382,7 @@ functions, the palette) stay where they are; OUT.lua finds them from its own fol
 
 Options:
   -o, --output OUT.lua  the file to write (required); it appears whole or not at all
-  --map FILE, --mat FILE, --define NAME=VALUE, --environment none   as for `lsys derive`
+  --map FILE, --mat FILE, --define NAME=VALUE, --environment FILE.e|none   as for `lsys derive`
   -h, --help            show this help
 ]]
 

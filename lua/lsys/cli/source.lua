@@ -59,9 +59,10 @@ local function cpfg_opts (cmd, opts)
     return nil
   end
   if opts.map ~= nil and opts.mat ~= nil then usage(cmd, "give --map or --mat, not both") end
-  if opts.environment ~= nil and opts.environment ~= "none" then
-    usage(cmd, "--environment must be none (lsys runs no environmental program), got '%s'",
-          opts.environment)
+  local e = opts.environment
+  if e ~= nil and e ~= "none" and not (e:find("%.e$") and isfile(e)) then
+    usage(cmd, "--environment must be none or a communication file (FILE.e) that exists, "
+          .. "got '%s'", e)
   end
   local defines
   for _, d in ipairs(opts.define or {}) do

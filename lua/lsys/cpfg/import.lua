@@ -781,6 +781,10 @@ local CHECK = {
 function M.source (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.import: a file name expected", 2) end
   opts = opts or {}
+  if opts.environment ~= nil and opts.environment ~= "none" then
+    error("cannot import: an environment (the file would not run the program); load the model "
+          .. "with lsys.cpfg.load and its environment option instead", 0)
+  end
   local lopts = { colormap = opts.colormap, materials = opts.materials,
                   defines = opts.defines, cpp = opts.cpp, environment = opts.environment }
   local m = cpfg.load(lfile, vfile, lopts)           -- its errors, its warnings (once)

@@ -64,11 +64,12 @@ local function checkopts (opts, fname)
   if opts.random ~= nil and opts.random ~= "cpfg" and opts.random ~= "lsys" then
     error(format("%s: option 'random' must be \"cpfg\" or \"lsys\"", fname), 3)
   end
-  if opts.environment ~= nil and opts.environment ~= "none" and
-     environment.check(opts.environment) ~= nil then
-    error(format("%s: option 'environment' must be \"none\" or an environment (a function, "
-                 .. "an object with an answer method, or a list of those; docs/open.md)",
-                 fname), 3)
+  local e = opts.environment
+  if e ~= nil and e ~= "none" and not (type(e) == "string" and e:find("%.e$")) and
+     environment.check(e) ~= nil then
+    error(format("%s: option 'environment' must be \"none\", a communication file (.e) or "
+                 .. "an environment (a function, an object with an answer method, or a list "
+                 .. "of those; docs/open.md)", fname), 3)
   end
   return opts
 end
@@ -91,6 +92,7 @@ end
 -- and no warning about the ?E modules), else the environment itself.
 local function envoption (e)
   if e == "none" then return false end
+  if type(e) == "string" then return environment.program(e) end   -- a .e file: its program
   return e
 end
 
@@ -158,7 +160,8 @@ end
 -- approximated as cpfg does; "exact": lsys's exact values), random ("cpfg", the default:
 -- cpfg's random numbers in cpfg's order, on one thread; "lsys": lsys's generator, which
 -- does not depend on the order nor on the threads), environment (what the ?E modules
--- query, as the model option: a function or an object, docs/open.md; "none": they keep
+-- query: a communication file FILE.e, whose program is started as cpfg -e does, or the
+-- model option's function or object, docs/open.md; "none": they keep
 -- their values, as cpfg does without an environmental program; without it a model with
 -- ?E modules is refused). Returns an lsys Model; raises
 -- "file:line: message".

@@ -1,7 +1,7 @@
 --- A coverage-guided fuzzer for the parts of lsys written in Lua, which
 -- libFuzzer cannot see: the cpfg view file reader, the colour map and material readers,
 -- rule expressions, sketch files in JSON and SVG, cpfg's L-system files,
--- batch specs in CSV and in Lua, component definitions,
+-- batch specs in CSV and in Lua, component definitions, cpfg's communication files (.e),
 -- the rules of incremental growth and `lsys import`.
 --
 --   lua5.4 tests/fuzz/lua/fuzz.lua TARGET [--time SECONDS] [--runs N] [--seed S]

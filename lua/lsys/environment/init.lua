@@ -15,13 +15,44 @@
 -- `false` says the model has none on purpose: its ?E keep their values, without a warning.
 -- @module lsys.environment
 local warning = require "lsys.warning"
+local program = require "lsys.environment.program"
 
-local type, ipairs, pairs, error, pcall, tostring, getmetatable, math, string, table =
-      type, ipairs, pairs, error, pcall, tostring, getmetatable, math, string, table
+local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable =
+      type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable
+local math, string, table = math, string, table
 local format, pack, unpack = string.format, string.pack, string.unpack
 local _ENV = nil
 
 local M = {}
+
+-- The environments of the option `environment` (one, or a list), each once.
+local function each (env)
+  if env == nil or env == false then return {} end
+  if type(env) == "function" or env[1] == nil then return { env } end
+  return env
+end
+
+-- Calls the method `name` of every environment of `env` that has one.
+local function call (env, name, info)
+  for _, e in ipairs(each(env)) do
+    if type(e) ~= "function" then
+      local ok, f = pcall(function () return e[name] end)
+      if ok and type(f) == "function" then f(e, info) end
+    end
+  end
+end
+
+--- The environments of `model` around a derivation: their `start(self, info)` methods
+-- now, their `finish(self, info)` methods when the value returned is closed (a
+-- to-be-closed variable of derive: however the derivation ends). An environmental program
+-- starts and ends so, afresh for each derivation, as cpfg restarts it on every rewind.
+function M.session (model)
+  local env = model.environment
+  if not env then return nil end
+  local ok, err = pcall(call, env, "start", { model = model })
+  if not ok then error(format("%s: environment: %s", model._where, tostring(err)), 0) end
+  return setmetatable({}, { __close = function () call(env, "finish", { model = model }) end })
+end
 
 -- Is `e` one environment: a function, or an object with an `answer` method?
 local function single (e)
@@ -147,7 +178,7 @@ function M.pass (model, s, step, interpret)
   local env = model.environment
   local queries = interpret()
   if #queries == 0 then return 0 end
-  local info = { step = step, model = model }
+  local info = { step = step, model = model, lstring = s }
   local label = format("%s: environment", model._where)
   local answers
   if single(env) then answers = ask(env, queries, info, label) or {}
@@ -160,5 +191,9 @@ function M.pass (model, s, step, interpret)
   end
   return #queries
 end
+
+--- An environmental program of cpfg's (vlab's ENVIRO), from its communication file
+-- (lsys.environment.program).
+M.program = program.program
 
 return M
