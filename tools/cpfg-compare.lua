@@ -1,7 +1,7 @@
 -- Runs vlab's example models through cpfg and through lsys.cpfg and compares the derived
 -- strings module by module (parameters within cpfg's printed precision).
 -- Usage: lua5.4 tools/cpfg-compare.lua VLAB_EXT CPFG [--timeout S] [--homo | --geometry]
---                                       [MODEL_DIR ...] [--all FOLDER ...]
+--                                       [--enviro BIN] [MODEL_DIR ...] [--all FOLDER ...]
 --   VLAB_EXT: vlab's oofs/ext folder (git archive HEAD oofs/ext of the vlab repository);
 --   CPFG: the cpfg program, built for batch use (docs/cpfg.md, "cpfg as a reference");
 --   MODEL_DIR: object folders under VLAB_EXT (default: the cpfg fidelity list);
@@ -14,8 +14,10 @@
 -- refuses (its message), cpfg fails (its message); "stochastic:" before a difference
 -- when lsys's own string changes with the seed (cpfg's drand48 cannot be matched string
 -- for string: see tools/cpfg-stats.lua). A view lsys refuses is reported and the strings
--- are compared without it. The environment program of `-e` is not run; lsys reads ?E
--- with environment = "none", as cpfg without the program.
+-- are compared without it. The environment program of `-e` is not run, and lsys reads ?E
+-- with environment = "none", as cpfg without the program, unless --enviro BIN names the
+-- folder of vlab's environmental programs (tools/enviro-build.sh): then both run the
+-- model's `-e FILE.e` with the program found there ("[environment FILE.e run]").
 --   cpfg -g reads the L-system before the view, so the names of a view's function set are
 --   undefined in its batch run (an interactive cpfg reads the view first and defines them
 --   as 1, 2, ...): cpfg is given a copy of the .l file with those #defines in front.
@@ -256,9 +258,10 @@ local function geometry (m, s, ray)
                        box(llo, lhi), box(clo, chi))
 end
 
-local function child (l, v, pal, ref, homo, obj)
+local function child (l, v, pal, ref, homo, obj, env)
   local lsys = require "lsys"
-  local opts = { environment = "none" }   -- ?E as cpfg without its program (cpfg runs none here)
+  -- ?E as cpfg without its program (cpfg runs none here), or with the program of env
+  local opts = { environment = env ~= "" and env or "none" }
   if pal ~= "" then
     if pal:match("%.mat$") then opts.materials = pal else opts.colormap = pal end
   end
@@ -339,7 +342,8 @@ end
 
 if arg[1] == "--child" then
   io.output("/dev/null")          -- the model's printf output
-  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5], arg[6], arg[7] or "")
+  local ok, r = pcall(child, arg[2], arg[3], arg[4], arg[5], arg[6], arg[7] or "",
+                      arg[8] or "")
   io.stdout:write((ok and r or "error: " .. tostring(r)), "\n")
   os.exit(0)
 end
@@ -417,7 +421,7 @@ local function random (path)
   return s:find("%f[%w_][nb]?i?ran%s*%(") ~= nil or s:find("%f[%w_]srand%s*%(") ~= nil
 end
 
-local timeout, homo, geom = 300, false, false
+local timeout, homo, geom, enviro = 300, false, false, nil
 
 -- The names of the view's function set (`function set: F.fset`), in order, or nil.
 local function setnames (dir, v)
@@ -448,7 +452,10 @@ local function compare (dir, c)
   local out, empty, err, ref = os.tmpname(), os.tmpname(), os.tmpname(), os.tmpname()
   local obj = geom and not homo and os.tmpname() .. ".ray" or ""
   local cdir, scratch = cpfgdir(dir, c)
-  local cmd = "cd " .. q(cdir) .. " && timeout " .. timeout .. " " .. q(cpfg) ..
+  local run = enviro and c.env and not homo
+  local path = run and "PATH=" .. q(enviro) .. ":$PATH " or ""
+  local cmd = "cd " .. q(cdir) .. " && " .. path .. "timeout " .. timeout .. " " .. q(cpfg) ..
+              (run and " -e " .. q(c.env) or "") ..
               (homo and " -homo" or "") .. " -g -m " ..
               q(empty) .. " -str " .. q(out) .. (obj ~= "" and " -ray " .. q(obj) or "") ..
               " " .. q(c.l) .. (c.v and " " .. q(c.v) or "") .. " </dev/null >/dev/null 2>" ..
@@ -466,10 +473,11 @@ local function compare (dir, c)
     return "cpfg fails: " .. (first ~= "" and first or "no string written")
   end
   write(ref, text)
-  local p = io.popen("timeout " .. timeout .. " lua5.4 " .. q(arg[0]) .. " --child " ..
+  local p = io.popen(path .. "timeout " .. timeout .. " lua5.4 " .. q(arg[0]) .. " --child " ..
                      q(dir .. "/" .. c.l) .. " " .. q(c.v and dir .. "/" .. c.v or "") .. " " ..
                      q(c.pal and dir .. "/" .. c.pal or "") .. " " .. q(ref) ..
-                     (homo and " homo" or " derived") .. " " .. q(obj) .. " 2>&1")
+                     (homo and " homo" or " derived") .. " " .. q(obj) .. " " ..
+                     q(run and dir .. "/" .. c.env or "") .. " 2>&1")
   local r = p:read("a")
   local ok, _, code2 = p:close()
   os.remove(ref)
@@ -480,7 +488,7 @@ local function compare (dir, c)
   local cerr = msg:match("[^\n]*[Ee]rror[^\n]*") or msg:match("[^\n]*Invalid[^\n]*")
   if cerr then r = r .. " [cpfg: " .. cerr .. "]" end
   if r:find("^differs") and random(dir .. "/" .. c.l) then r = "stochastic: " .. r end
-  if c.env then r = r .. " [environment " .. c.env .. " not run]" end
+  if c.env then r = r .. " [environment " .. c.env .. (run and " run]" or " not run]") end
   return r
 end
 
@@ -509,6 +517,9 @@ while i <= #arg do
   elseif arg[i] == "--geometry" then
     geom = true
     i = i + 1
+  elseif arg[i] == "--enviro" then
+    enviro = arg[i + 1]
+    i = i + 2
   elseif arg[i] == "--timeout" then
     timeout = tonumber(arg[i + 1]) or timeout
     i = i + 2
