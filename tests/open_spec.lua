@@ -115,6 +115,17 @@ describe("the environment of an open L-system", function ()
     assert.same({ "a(3,4)", "a(1)", "b(5)" }, seen)
   end)
 
+  it("gives the environment the plant as the turtle draws it, closed after the pass",
+     function ()
+    local kept
+    local m = model("F(1)[+F(1)?E(0)]F(1)?E(0)", "", function (queries, info)
+      kept = info.scene
+      return { info.scene.nlines, #queries }
+    end, { view = { angle = 45 } })
+    assert.equal("F(1)[+F(1)?E(3)]F(1)?E(2)", tostring(m:derive()))
+    assert.error_contains(function () return kept.nlines end, "closed")
+  end)
+
   it("runs in a lone step, and a model's step counts from the string given", function ()
     local m = model("", "", function (queries, info)
       assert.is_nil(info.step)
@@ -363,5 +374,27 @@ describe("an environmental program as the environment", function ()
     assert.equal(0, code, out)
     local want = tostring(dofile("examples/open/ulam.lua"):derive())
     assert.equal(want, (out:gsub("\n", "")))
+  end)
+end)
+
+describe("lsys.environment.collision", function ()
+  it("answers as honda81: 0 where another query of the group and of no less vigour reaches",
+     function ()
+    local c = lsys.environment.collision { radius = 0.5 }
+    local function q (x, y, v, g) return { position = { x, y, 0 }, params = { v, g } } end
+    assert.same({ 0, 1, 1, 1, 0, 0 }, c:answer {
+      q(0, 0, 1), q(0.3, 0, 2),          -- the weaker stops, the stronger goes on
+      q(5, 5, 1), q(5.2, 5, 1, 1),       -- other groups never meet
+      q(9, 0, 1), q(9, 0.5, 1) })        -- one vigour, within the radius: both stop
+    assert.same({ 1, 1 }, c:answer { q(0, 0, 1), q(0.51, 0, 1) })
+    assert.error_contains(function () lsys.environment.collision { radius = 0 } end,
+                          "radius must be a number > 0")
+  end)
+
+  it("grows examples/open/ulam.lua as its own Lua environment does", function ()
+    local m = dofile("examples/open/ulam.lua")
+    local want = tostring(m:derive())
+    m.environment = lsys.environment.collision { radius = 0.01 }
+    assert.equal(want, tostring(m:derive()))
   end)
 end)

@@ -8,6 +8,10 @@
 -- parameters in the string, and the step's rules then see them. The final string gets no
 -- pass: its ?E keep what the rules gave them, as in cpfg.
 --
+-- `info` holds step, model, lstring (the string asked about) and scene: the plant as the
+-- turtle draws that string, made when an environment first reads it (a light environment's
+-- occluders) and closed after the pass.
+--
 -- The model option `environment` is a function `(queries, info) -> answers`, an object with
 -- a method `answer(self, queries, info)` (what the built-in environments are), or a list of
 -- those: then the first parameter of each ?E is the number of its environment (from 1), as
@@ -16,9 +20,10 @@
 -- @module lsys.environment
 local warning = require "lsys.warning"
 local program = require "lsys.environment.program"
+local collision = require "lsys.environment.collision"
 
-local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable =
-      type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable
+local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
+      type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
 local math, string, table = math, string, table
 local format, pack, unpack = string.format, string.pack, string.unpack
 local _ENV = nil
@@ -178,11 +183,24 @@ function M.pass (model, s, step, interpret)
   local env = model.environment
   local queries = interpret()
   if #queries == 0 then return 0 end
-  local info = { step = step, model = model, lstring = s }
+  -- info.scene: the plant as the turtle draws string `s` (model:interpret), made when an
+  -- environment first reads it and closed after the pass (the light's occluders)
+  local scene
+  local info = setmetatable({ step = step, model = model, lstring = s }, {
+    __index = function (t, k)
+      if k ~= "scene" then return nil end
+      scene = model:interpret(s)
+      rawset(t, "scene", scene)
+      return scene
+    end })
   local label = format("%s: environment", model._where)
   local answers
-  if single(env) then answers = ask(env, queries, info, label) or {}
-  else answers = routed(env, queries, info, label) end
+  local ok, err = pcall(function ()
+    if single(env) then answers = ask(env, queries, info, label) or {}
+    else answers = routed(env, queries, info, label) end
+  end)
+  if scene then local _ <close> = scene end          -- the scene's memory goes now
+  if not ok then error(err, 0) end
   local over = apply(s, queries, answers, model.numbers == "float32", label)
   if over ~= nil then
     warning.warn(format("lsys: %s: the environment gave %d values for the ?E of %d "
@@ -195,5 +213,9 @@ end
 --- An environmental program of cpfg's (vlab's ENVIRO), from its communication file
 -- (lsys.environment.program).
 M.program = program.program
+
+--- Which queries another reaches (Honda 1981's test, as vlab's honda81 answers it;
+-- lsys.environment.collision).
+M.collision = collision.collision
 
 return M
