@@ -398,3 +398,18 @@ describe("lsys.environment.collision", function ()
     assert.equal(want, tostring(m:derive()))
   end)
 end)
+
+describe("the queries of a pass", function ()
+  it("carry cpfg's ids, as lsys.environment.program counts them from the string", function ()
+    local program = require "lsys.environment.program"
+    local got
+    local m = lsys.lsystem { axiom = "?E(1,2)F(2)?E(3)@O(1)[+(90)F?E]/(45)?E(5,6,7)!(2)?E(1)"
+      .. "?E(8)A", homomorphism = "A --> ?E(9)G(1)", environment = function (q) got = q end }
+    m:derive(1)
+    local ids = {}
+    for k, q in ipairs(got) do ids[k] = q.cpfg_id end
+    assert.same({ 0, 20, 45, 55, 80, 88, 1 }, ids)                  -- cpfg's, with its probe
+    for _, q in ipairs(got) do q.cpfg_id = nil end
+    assert.same(ids, program.ids(got, m:lstring(m.axiom)))
+  end)
+end)

@@ -432,6 +432,27 @@ static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_env
   }
 }
 
+/* cpfg's ids of the queries (lsys.environment.program): the byte offset of each ?E of the
+** string in cpfg's string, from the first one's (a module takes its name's bytes, and
+** 1 + 5n for n > 0 parameters; a ?E is two modules there, ? and E, whose sizes add to the
+** same), 1 for a ?E the homomorphism made. The queries of the string come in its order. */
+static void cpfgids (const lsys_envqueries *Q, const lsys_lstring *s, const lsys_alphabet *ab,
+                     double *id) {
+  size_t k, i = 0, at = 0, first = (size_t)-1;
+  for (k = 0; k < Q->n; k++) {
+    const lsys_envquery *q = &Q->q[k];
+    if (q->mod == LSYS_ENVQ_MADE) { id[k] = 1; continue; }
+    for (; i < q->mod && i < s->n; i++) {
+      uint16_t c = s->sym8 != NULL ? (uint16_t)LSYS_CODE(s->sym8[i], 0) : s->code[i];
+      uint32_t np = LSYS_CNP(c);
+      if (first != (size_t)-1)
+        at += strlen(lsys_alphabet_name(ab, LSYS_CSYM(c))) + (np > 0 ? 1 + 5 * (size_t)np : 0);
+    }
+    if (first == (size_t)-1) first = q->mod;
+    id[k] = (double)at;
+  }
+}
+
 /* core.environment(rules, lstring, opts) -> queries, filled: the query pass of an open
 ** L-system (docs/open.md): fills ?P ?H ?U ?L as core.query does and returns the ?E
 ** modules met, each a table (pushenvquery), in the order the turtle met them. */
@@ -440,6 +461,7 @@ static int l_environment (lua_State *L) {
   lsys_turtle_opts o;
   lsys_envqueries *Q;
   lsys_lstring *s = checklstring(L, 2);
+  double *ids;
   size_t n, k;
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
@@ -453,9 +475,13 @@ static int l_environment (lua_State *L) {
   lsys_turtle_free(t);
   s = checklstring(L, 2);          /* a rule function may have closed nothing, but check */
   luaL_checkstack(L, 4, "too many queries");
+  ids = (double *)lua_newuserdatauv(L, (Q->n + 1) * sizeof *ids, 0);     /* 6 */
+  cpfgids(Q, s, lsysL_getalphabet(L), ids);
   lua_createtable(L, Q->n > INT_MAX ? INT_MAX : (int)Q->n, 0);
   for (k = 0; k < Q->n; k++) {
     pushenvquery(L, Q, &Q->q[k], s, lsysL_getalphabet(L));
+    lua_pushinteger(L, (lua_Integer)ids[k]);
+    lua_setfield(L, -2, "cpfg_id");
     lua_rawseti(L, -2, (lua_Integer)k + 1);
   }
   lsys_turtle_envfree(Q);

@@ -62,8 +62,14 @@ local function cpfgsize (name, n)
   return #name + (n > 0 and 1 + 5 * n or 0)
 end
 
--- The ids of the queries (cpfg's byte offsets from the first ?E of the string), by query.
+-- The ids of the queries (cpfg's byte offsets from the first ?E of the string), by query:
+-- the pass gives them (core.environment's cpfg_id); else counted here from the string.
 local function ids (queries, s)
+  if queries[1] and queries[1].cpfg_id then
+    local out = {}
+    for k, q in ipairs(queries) do out[k] = q.cpfg_id end
+    return out
+  end
   local out, first, last = {}, nil, nil
   for _, q in ipairs(queries) do
     if q.index then
