@@ -126,6 +126,16 @@ describe("the environment of an open L-system", function ()
     assert.error_contains(function () return kept.nlines end, "closed")
   end)
 
+  it("sends the ?E of a sub-L-system with the turtle it scales", function ()
+    local got
+    lsys.lsystem { axiom = "F(1)?(2,0.5)F(1)?E(0)$F(1)?E(0)", steps = 1,
+                   sub = { [2] = { productions = "B --> B" } },
+                   environment = function (qs) got = qs end }:derive()
+    assert.equal(2, #got)
+    assert.same({ 4, 0.5, { 0, 1.5, 0 } }, { got[1].index, got[1].scale, got[1].position })
+    assert.same({ 7, 1, { 0, 2.5, 0 } }, { got[2].index, got[2].scale, got[2].position })
+  end)
+
   it("runs in a lone step, and a model's step counts from the string given", function ()
     local m = model("", "", function (queries, info)
       assert.is_nil(info.step)
