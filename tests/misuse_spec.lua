@@ -103,6 +103,10 @@ describe("lsys.core under misuse", function ()
     EnvProcess = function ()
       return core.envproc { argv = { ENVSLAVE, "-e", "x.e", "echo" }, dir = dir, timeout = 10 }
     end,
+    -- the light environment: a model's cylinders, and its lines as capsules
+    Light = function ()
+      return core.light(model():interpret(), { line_radius = 0.05, samples = 8 })
+    end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules

@@ -53,6 +53,7 @@
 #define FUNC_T     "lsys.Func"       /* lua_func.c: positional functions */
 #define CANVAS_T   "lsys.Canvas"     /* lua_canvas.c */
 #define ENVPROC_T  "lsys.EnvProcess" /* lua_envproc.c: an environmental program */
+#define LIGHT_T    "lsys.Light"      /* lua_light.c: the light environment */
 #define HOLD_T     "lsys.Hold"       /* lua_aux.c: an object held by a running binding */
 
 /* The registry field of the Rules deriving now (lsys.produce, lsys.ran). */

@@ -28,6 +28,7 @@ void lsysL_open_population (lua_State *L); /* lua_population.c: population; scen
 void lsysL_open_sandbox (lua_State *L);  /* lua_sandbox.c: sandbox_strings; rules:sandboxed */
 void lsysL_open_outfile (lua_State *L);  /* lua_outfile.c: Outfile, Tempdir (atomic writers) */
 void lsysL_open_envproc (lua_State *L);  /* lua_envproc.c: EnvProcess, envproc */
+void lsysL_open_light (lua_State *L);    /* lua_light.c: Light, light */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);
