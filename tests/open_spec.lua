@@ -423,3 +423,42 @@ describe("the queries of a pass", function ()
     assert.same(ids, program.ids(got, m:lstring(m.axiom)))
   end)
 end)
+
+describe("lsys.environment.light", function ()
+  it("answers the light each ?E sees of the sky through the plant's own geometry", function ()
+    -- a bud under a leaf (a disc 0.5 above it) and one in the open
+    local m = lsys.lsystem { steps = 1, view = { angle = 90 },
+      axiom = "[F(1)?E(0)][+(90)f(3)-(90)F(1)?E(0,0,0,0)][f(1.5)&(90)@c(1.5)]",
+      environment = lsys.environment.light { samples = 64 } }
+    local s = m:derive()
+    local _, shaded = s:module(3)
+    assert.is_true(shaded > 0.3 and shaded < 0.8, shaded)   -- the disc hides part of the sky
+    local _, open, dx, dy, dz = s:module(10)
+    assert.equal(1, open)                                     -- nothing above it
+    assert.near({ 0, 1, 0 }, { dx, dy, dz }, 0.05)            -- the sky's light comes from up
+    assert.error_contains(function () lsys.environment.light { colour = 1 } end,
+                          "lsys.environment.light: unknown option 'colour'")
+    assert.error_contains(function () lsys.environment.light { facing = "down" } end,
+                          "facing must be \"up\" or \"heading\"")
+    m.environment = lsys.environment.light { samples = 0.5 }
+    assert.error_contains(function () m:derive() end, "environment: lsys.environment.light: "
+      .. "samples must be an integer in [1, 65536], got 0.5")
+  end)
+
+  it("grows examples/open/shade.lua's crown where the light is, alike on any threads",
+     function ()
+    local counts = {}
+    for _, t in ipairs { 1, 2 } do
+      local m = dofile("examples/open/shade.lua")
+      m.threads = t
+      local s = m:derive()
+      counts[t] = { #s, s:count("B"), s:count("L"), s:count("F") }
+    end
+    assert.same({ 73010, 4038, 5359, 10718 }, counts[1])
+    assert.same(counts[1], counts[2])
+    -- in the dark every bud dies at its first pass
+    local m = dofile("examples/open/shade.lua")
+    m.environment = function (qs) local a = {} for i in ipairs(qs) do a[i] = 0 end return a end
+    assert.equal(0, m:derive():count("B"))
+  end)
+end)

@@ -21,6 +21,7 @@
 local warning = require "lsys.warning"
 local program = require "lsys.environment.program"
 local collision = require "lsys.environment.collision"
+local light = require "lsys.environment.light"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
       type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
@@ -217,5 +218,9 @@ M.program = program.program
 --- Which queries another reaches (Honda 1981's test, as vlab's honda81 answers it;
 -- lsys.environment.collision).
 M.collision = collision.collision
+
+--- The light reaching each query from a sky, through the plant's own geometry
+-- (lsys.environment.light).
+M.light = light.light
 
 return M
