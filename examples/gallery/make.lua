@@ -322,6 +322,16 @@ local PICTURES = {
     "One of Davison's trees whose leaves are the cpfg leaf surface (examples/cpfg/surfaces/"
     .. "leaf.s, 162 vertices a leaf) instead of quads, rewritten in place as they grow.",
     grow = true, png = "grow/leafy.png", width = 320, height = 320 },
+  { "open/ulam.lua", nil, "Ulam's crystal",
+    "An open L-system (Měch and Prusinkiewicz 1996, §5.1): each apex sends a sensor ahead, "
+    .. "and the collision environment stops the ones that would meet another; 16 steps, "
+    .. "the string cpfg derives with vlab's honda81.", png = "open/ulam.png",
+    width = 320, height = 320 },
+  { "open/shade.lua", nil, "Shoots that grow where the light is",
+    "Every bud asks the light environment how much of an overcast sky it sees through the "
+    .. "plant's own leaves: buds in light grow, in shade wait, in deep shade die; the crown "
+    .. "fills the light and its inside stays bare.", png = "open/shade.png",
+    width = 320, height = 320 },
 }
 
 local function load (file, name)
@@ -408,6 +418,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Sketches (Anastacio et al. 2009, figs. 5, 7-14)", "sketch/fig7_cone.png", 3 },
   { "Component graphs (Lintermann and Deussen 1999)", "components/fig2_abcd.png", 2 },
   { "Incremental growth (Davison)", "grow/davison.png", 3 },
+  { "Open L-systems (Měch and Prusinkiewicz 1996)", "open/ulam.png", 2 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
