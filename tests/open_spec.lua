@@ -168,6 +168,13 @@ describe("the environment of an open L-system", function ()
       .. "the 1 environments, got 4")
   end)
 
+  it("keeps the queries of a pass within the model's max_memory", function ()
+    local m = lsys.lsystem { axiom = "A", steps = 16, max_memory = "8M",
+                             productions = "A --> ?E(0)[A]A", environment = function () end }
+    assert.error_contains(function () m:derive() end, "the environment's 16383 queries would "
+      .. "need more than max_memory (8 MiB) as Lua tables")
+  end)
+
   it("warns once when the string has ?E modules and the model no environment", function ()
     local m = lsys.lsystem { axiom = "A", productions = "A --> ?E(1)A", steps = 3 }
     local w = warnings(function () m:derive() end)

@@ -432,6 +432,9 @@ static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_env
   }
 }
 
+/* What one query takes as a Lua table with its lists (pushenvquery), about. */
+#define ENVQ_TABLE_BYTES 1024
+
 /* cpfg's ids of the queries (lsys.environment.program): the byte offset of each ?E of the
 ** string in cpfg's string, from the first one's (a module takes its name's bytes, and
 ** 1 + 5n for n > 0 parameters; a ?E is two modules there, ? and E, whose sizes add to the
@@ -461,18 +464,28 @@ static int l_environment (lua_State *L) {
   lsys_turtle_opts o;
   lsys_envqueries *Q;
   lsys_lstring *s = checklstring(L, 2);
+  const lsys_lrules *R = lsysL_checkrules(L, 1);
+  lsys_meter mt = {0, 0, 0, NULL};
   double *ids;
   size_t n, k;
+  char b[32];
   luaL_checktype(L, 3, LUA_TTABLE);
   lua_settop(L, 3);
+  /* the queries and the tables they become are the model's memory too (max_memory) */
+  mt.limit = R->m.max_memory != 0 ? R->m.max_memory : lsys_common_memory_limit();
   Q = (lsys_envqueries *)lua_newuserdatauv(L, sizeof *Q, 0);    /* 4: freed however it ends */
   memset(Q, 0, sizeof *Q);
   luaL_setmetatable(L, ENVQ_T);
   t = newturtle(L, LSYS_TURTLE_QUERY);                         /* 5 */
   t->envq = Q;
+  t->meter = &mt;
   turtlerun(L, t, &o, 3);
   n = t->nqueries;
   lsys_turtle_free(t);
+  if (!lsys_common_meter_fits(&mt, Q->n * ENVQ_TABLE_BYTES))
+    return luaL_error(L, "the environment's %I queries would need more than max_memory (%s) "
+                      "as Lua tables (set max_memory in the model, or LSYS_MAX_MEMORY)",
+                      (lua_Integer)Q->n, lsys_common_fmtsize(b, mt.limit));
   s = checklstring(L, 2);          /* a rule function may have closed nothing, but check */
   luaL_checkstack(L, 4, "too many queries");
   ids = (double *)lua_newuserdatauv(L, (Q->n + 1) * sizeof *ids, 0);     /* 6 */
