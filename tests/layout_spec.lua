@@ -453,7 +453,7 @@ local LUA_LAYERS = {
   -- what builds models and plants on the kernel: other notations (component graphs,
   -- sketches, cpfg's files), incremental growth, the arrangement
   { "the front ends", "lsys.components*", "lsys.sketch*", "lsys.cpfg*", "lsys.grow",
-    "lsys.arrange" },
+    "lsys.arrange", "lsys.stand" },
   -- pictures and model files: both take a component graph's prototype for a Model
   { "render and load", "lsys.render", "lsys.load" },
   { "the tools", "lsys.frames", "lsys.testing", "lsys.batch*" },

@@ -469,3 +469,43 @@ describe("lsys.environment.light", function ()
     assert.equal(0, m:derive():count("B"))
   end)
 end)
+
+describe("lsys.stand", function ()
+  it("grows one plant as it grows alone, and two that shade each other", function ()
+    local want = tostring(dofile("examples/open/ulam.lua"):derive())
+    local m = dofile("examples/open/ulam.lua")
+    local own = m.environment
+    local scene, s = lsys.stand({ { model = m } }, { environment = own })
+    assert.equal(want, tostring(s[1]))
+    assert.equal(1, scene.ninstances)
+    assert.equal(own, m.environment)                       -- the model's own, given back
+    -- two light-seeking plants 4 apart: each grows fewer buds than one alone
+    local alone = dofile("examples/open/shade.lua")
+    alone.steps = 10
+    local n = alone:derive():count("B")
+    local a, b = dofile("examples/open/shade.lua"), dofile("examples/open/shade.lua")
+    a.steps, b.steps = 10, 10
+    local got
+    scene, s = lsys.stand({ { model = a, at = { -2, 0, 0 } }, { model = b, at = { 2, 0, 0 } } },
+      { environment = { answer = function (self, qs, info)
+        got = got or { n = #qs, plants = info.plants, x = qs[#qs].position[1] }
+        return self.light:answer(qs, info)
+      end, light = lsys.environment.light { samples = 48, radiance = "cosine" } } })
+    assert.equal(2, scene.ninstances)
+    assert.same({ n = 2, plants = 2, x = 2 }, got)         -- both plants' first buds, placed
+    assert.is_true(s[1]:count("B") < n and s[2]:count("B") < n,
+                   s[1]:count("B") .. " " .. s[2]:count("B") .. " " .. n)
+  end)
+
+  it("says what is wrong with the plants", function ()
+    local m = dofile("examples/open/ulam.lua")
+    assert.error_contains(function () lsys.stand({ { model = m }, { model = m } },
+      { environment = m.environment }) end,
+      "lsys.stand: plant 2: its model is plant 1's (each plant of a stand grows a model of "
+      .. "its own)")
+    assert.error_contains(function () lsys.stand({ { model = m } }, {}) end,
+                          "opts.environment (the stand's environment) expected")
+    assert.error_contains(function () lsys.stand({ { model = m, at = 3 } },
+      { environment = m.environment }) end, "lsys.stand: plant 1: 'at'")
+  end)
+end)

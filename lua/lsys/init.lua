@@ -15,6 +15,7 @@ local view = require "lsys.view"
 local warning = require "lsys.warning"
 local population = require "lsys.population"
 local environment = require "lsys.environment"
+local stand = require "lsys.stand"
 local render = require "lsys.render"
 local frames = require "lsys.frames"
 
@@ -36,6 +37,7 @@ M.parse_size = model.parse_size        -- the memory budget (max_memory)
 M.max_memory = model.max_memory
 M.func = func                          -- positional functions (cpfg .func files)
 M.environment = environment            -- open L-systems: what ?E modules ask (docs/open.md)
+M.stand = stand.stand                  -- open L-systems growing together in one environment
 
 M.type = kinds.type                    -- "lstring", "scene", "model", ... or nil
 

@@ -170,6 +170,15 @@ local function transform (e, where, out, at)
   out[at + 10], out[at + 11], out[at + 12] = tx, ty, tz
 end
 
+--- The transform of plant `e` (its at, rotate and scale, as the population places it): 12
+-- numbers, the 3 x 3 matrix by columns then the translation; raises naming `where`.
+function M.transform (e, where)
+  local out = {}
+  local ok, err = pcall(transform, e, where, out, 0)
+  if not ok then error(getmetatable(err) == FAIL and err.msg or err, 0) end
+  return out
+end
+
 -- ---------------------------------------------------------------------------
 -- prototypes: what makes two plants the same
 
