@@ -111,11 +111,13 @@ void lsys_light_free (lsys_light *L);
 ** out[0 .. n): normals_or_null gives each point's normal (3 doubles each,
 ** normalised here) or NULL for none; dir_out, when not NULL, gets 3
 ** doubles a point: the mean unoccluded direction, normalised (sum_k w_k c_k
-** V_k d_k; 0, 0, 0 when every direction is blocked). 'threads' workers
-** (at least 1, at most LSYS_LIGHT_MAXTHREADS) share the points in chunks; the results are the same for every number of
-** threads. Allocates nothing per ray. Returns LSYS_OK, or LSYS_EARG for a
-** point or normal that is not finite or a zero normal (e names it; nothing
-** is written).
+** V_k d_k; 0, 0, 0 when every direction is blocked). 'threads' workers (1
+** to LSYS_LIGHT_MAXTHREADS; out of range is clamped) share the points in
+** chunks; the results are the same for every number of threads. Allocates
+** per query (the points' order, the normals), nothing per ray. Returns
+** LSYS_OK; LSYS_ENOMEM; LSYS_EARG for more than 2^32 points, or a point or
+** normal that is not finite or a zero normal (e names it; nothing is
+** written).
 */
 int lsys_light_query (const lsys_light *L, const double *points, size_t n,
                       const double *normals_or_null, double *out, double *dir_out, int threads,

@@ -353,7 +353,8 @@ static void test_errors (void) {
   lsys_light_defaults(&o);
   o.meter = &mt;
   assert(lsys_light_build(&L, &s, &o, &e) == LSYS_EMEMORY && mt.hit && mt.used == 0);
-  assert(strcmp(e.msg, "light: the hierarchy needs 280 bytes, more than max_memory (100 bytes)") == 0);
+  assert(strcmp(e.msg, "light: the hierarchy needs 280 bytes, more than max_memory "
+                "(100 bytes)") == 0);
   mt.limit = 1 << 20;
   mt.hit = 0;
   L = build(&s, &o);
