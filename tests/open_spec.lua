@@ -443,6 +443,14 @@ describe("lsys.environment.light", function ()
     local _, open, dx, dy, dz = s:module(10)
     assert.equal(1, open)                                     -- nothing above it
     assert.near({ 0, 1, 0 }, { dx, dy, dz }, 0.05)            -- the sky's light comes from up
+    -- a leaf's light: 1 open and facing up, 0 facing down (no light from below)
+    local function leaf (axiom, facing)
+      return tostring(lsys.lsystem { axiom = axiom, steps = 1,
+        environment = lsys.environment.light { facing = facing } }:derive())
+    end
+    assert.equal("^(90)?E(1)", leaf("^(90)?E(0)", "up"))
+    assert.equal("&(90)?E(0)", leaf("&(90)?E(0)", "up"))
+    assert.equal("?E(1)", leaf("?E(0)", "heading"))
     assert.error_contains(function () lsys.environment.light { colour = 1 } end,
                           "lsys.environment.light: unknown option 'colour'")
     assert.error_contains(function () lsys.environment.light { facing = "down" } end,

@@ -9,16 +9,17 @@
 -- shade) to 1 (under the open sky); a ?E of four parameters or more also gets the
 -- direction light comes from most (the mean unoccluded direction: x, y, z), as vlab's
 -- chiba answers. `facing = "up"` or `"heading"` weighs each direction by its cosine with
--- the turtle's up or heading vector there (a leaf's irradiance), and counts none from
--- behind; without it every direction of the sky counts alike (a bud's exposure).
+-- the turtle's up or heading vector there (a leaf's irradiance, 1 for an open leaf facing
+-- straight up), and counts none from behind; without it every direction of the sky counts
+-- alike (a bud's exposure).
 -- sky: "overcast" (default; `samples` directions of the upper hemisphere, 64),
 -- { sun = { x, y, z }, ambient = a } (a sun direction, and the overcast sky's share a),
 -- or a list of { x, y, z, w } (weighted directions).
 -- @module lsys.environment.light
 local core = require "lsys.core"
 
-local type, ipairs, pairs, error, pcall, tostring, setmetatable =
-      type, ipairs, pairs, error, pcall, tostring, setmetatable
+local type, ipairs, pairs, error, pcall, tostring, setmetatable, math =
+      type, ipairs, pairs, error, pcall, tostring, setmetatable, math
 local format = string.format
 local _ENV = nil
 
@@ -71,8 +72,18 @@ function Light:answer (queries, info)
     if #q.params >= 4 then want = true end
   end
   local ok, values, dirs = pcall(L.query, L, pts, nrm, { directions = want })
+  local scale = 1
+  if ok and nrm then
+    -- a leaf's light relative to an open leaf facing straight up (1), as a bud's is to
+    -- the open sky: the core gives the cosine-weighted sum, 1/2 for it under a uniform sky
+    local d, w = L:sky()
+    local open = 0
+    for k = 1, #w do open = open + w[k] * math.max(0, d[3 * k - 1]) end
+    if open > 0 then scale = 1 / open end
+  end
   L:close()
   if not ok then error(values, 0) end
+  if scale ~= 1 then for i = 1, #values do values[i] = values[i] * scale end end
   local answers = {}
   for i, q in ipairs(queries) do
     if #q.params >= 4 then
