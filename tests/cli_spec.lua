@@ -293,7 +293,7 @@ describe("--threads, --max-memory and --max-modules", function()
     local _, err, code = run3("export " .. path .. " -o " .. path .. ".obj --max-modules 5")
     assert.equal(2, code, err)
     assert.equal(usage_text("export", path .. " returns a Scene (a population): --threads, "
-      .. "--max-memory and --max-modules apply to a model"), err)
+      .. "--max-memory, --max-modules and --environment apply to a model"), err)
   end)
 end)
 

@@ -78,8 +78,7 @@ describe("lsys derive on a cpfg model", function ()
                            .. "not with a Lua model", 1, true), out)
     out, code = lsys("derive examples/abop/fig1_24a.lua --map x.map")
     assert.equal(2, code)
-    assert.truthy(out:find("--map, --mat, --define and --environment apply to a cpfg MODEL",
-                           1, true), out)
+    assert.truthy(out:find("--map, --mat and --define apply to a cpfg MODEL", 1, true), out)
     out, code = lsys("derive " .. PLANT .. " plant.txt")
     assert.equal(2, code)
     assert.truthy(out:find("unexpected argument 'plant.txt' (after MODEL.l comes its view "

@@ -380,6 +380,22 @@ describe("an environmental program as the environment", function ()
                           "cannot open '" .. dir .. "/missing.e'")
   end)
 
+  it("is given to a Lua model on the command line with --environment FILE.e", function ()
+    local e = efile("pipes", "sum")
+    local path = dir .. "/m.lua"
+    H.write(path, 'return require("lsys").lsystem { axiom = "F(2)?E(0)", view = { angle = 90 } }')
+    local out, code = H.sh(H.BIN .. " derive " .. path .. " --environment " .. e)
+    assert.equal(0, code, out)
+    assert.equal("F(2)?E(2)\n", out)
+    out, code = H.sh(H.BIN .. " derive " .. path .. " --environment none")
+    assert.equal(0, code, out)
+    assert.equal("F(2)?E(0)\n", out)                       -- none: no warning either
+    out, code = H.sh(H.BIN .. " derive " .. path .. " --environment nothing.e")
+    assert.equal(2, code, out)
+    assert.truthy(out:find("--environment must be none or a communication file (FILE.e) that "
+                           .. "exists, got 'nothing.e'", 1, true), out)
+  end)
+
   it("with vlab's honda81 gives the string of the Lua environment and of cpfg", function ()
     local bin = os.getenv("LSYS_ENVIRO_BIN")
     if not bin then

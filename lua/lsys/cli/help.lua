@@ -98,9 +98,9 @@ Options:
   --mat FILE         a cpfg model's material file (.mat), likewise
   --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
                      #define in the file wins); may be repeated
-  --environment FILE.e  the environment a cpfg model's ?E modules ask: the program of
-                     the communication file, started as cpfg -e starts it (vlab's honda81,
-                     chiba, ...; docs/open.md)
+  --environment FILE.e  the environment the model's ?E modules ask (a cpfg model's or a
+                     Lua model's): the program of the communication file, started as
+                     cpfg -e starts it (vlab's honda81, chiba, ...; docs/open.md)
   --environment none  derive them as cpfg does without one (without this option a model
                      with ?E is refused)
   --threads N        the threads a step (and an interpretation) may use, 1 to 64 (sets

@@ -4,6 +4,7 @@
 local A = require "lsys.cli.args"
 local load = require "lsys.load"
 local lmodel = require "lsys.model"
+local lenvironment = require "lsys.environment"
 local lview = require "lsys.view"
 local warning = require "lsys.warning"
 local normalize = require("lsys.util.text").normpath
@@ -109,11 +110,12 @@ local function model_source (cmd, opts, pos)
   end
   local lopts = cpfg_opts(cmd, opts)
   if kind == "lua" then
-    if lopts ~= nil then
-      usage(cmd, "--map, --mat, --define and --environment apply to a cpfg MODEL (a .l "
-            .. "file or a vlab object folder)")
+    if lopts ~= nil and (lopts.colormap or lopts.materials or lopts.defines) then
+      usage(cmd, "--map, --mat and --define apply to a cpfg MODEL (a .l file or a vlab "
+            .. "object folder)")
     end
-    return { path = find_model(arg), kind = kind }
+    -- --environment FILE.e (or none) gives a Lua model the program as its environment too
+    return { path = find_model(arg), kind = kind, environment = opts.environment }
   end
   if opts.name ~= nil then usage(cmd, "--name applies to a Lua file that returns models") end
   if kind == "l" then
@@ -312,11 +314,18 @@ local function prepare (cmd, opts, pos)
       end
     end
     check_views(cmd, model, vlist)
-    if limits ~= nil then
-      usage(cmd, "%s returns a Scene (a population): --threads, --max-memory and "
-        .. "--max-modules apply to a model", path)
+    if limits ~= nil or src.environment ~= nil then
+      usage(cmd, "%s returns a Scene (a population): --threads, --max-memory, "
+        .. "--max-modules and --environment apply to a model", path)
     end
     return model, path, views, src
+  end
+  if src.environment ~= nil then
+    if not lmodel.ismodel(model) then
+      usage(cmd, "%s does not return a Model: --environment applies to a model", path)
+    end
+    if src.environment == "none" then model.environment = false
+    else model.environment = lenvironment.program(src.environment) end
   end
   if model.components ~= nil and model.components.tree ~= nil and
      (steps ~= nil or #sets > 0) then
