@@ -50,6 +50,18 @@ function B.shell_quote (s)
   return require("lsys.util.text").shq(tostring(s))
 end
 
+--- the command that runs this script again (the interpreter and its options, then the
+-- script): for a benchmark that measures each case in a fresh process
+function B.self_command ()
+  local lo = 0
+  while arg and arg[lo - 1] do lo = lo - 1 end
+  local parts = {}
+  for i = lo, -1 do parts[#parts + 1] = B.shell_quote(arg[i]) end
+  if #parts == 0 then parts[1] = "lua5.4" end
+  parts[#parts + 1] = B.shell_quote(arg[0])
+  return table.concat(parts, " ")
+end
+
 --- the contents of a file, or nil
 function B.read_file (path)
   local f = io.open(path, "r")

@@ -19,15 +19,7 @@ local format = string.format
 local N = 100000
 local THREADS = 2
 
-local function self_command ()
-  local lo = 0
-  while arg and arg[lo - 1] do lo = lo - 1 end
-  local parts = {}
-  for i = lo, -1 do parts[#parts + 1] = B.shell_quote(arg[i]) end
-  if #parts == 0 then parts[1] = "lua5.4" end
-  parts[#parts + 1] = B.shell_quote(arg[0])
-  return table.concat(parts, " ")
-end
+local self_command = B.self_command
 
 -- a small deterministic generator (the same points every run)
 local function lcg (seed)

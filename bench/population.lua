@@ -14,15 +14,7 @@ local format = string.format
 local FIELD = B.root .. "/examples/population/field.lua"
 local SIZE = 800
 
-local function self_command ()
-  local lo = 0
-  while arg and arg[lo - 1] do lo = lo - 1 end
-  local parts = {}
-  for i = lo, -1 do parts[#parts + 1] = B.shell_quote(arg[i]) end
-  if #parts == 0 then parts[1] = "lua5.4" end
-  parts[#parts + 1] = B.shell_quote(arg[0])
-  return table.concat(parts, " ")
-end
+local self_command = B.self_command
 
 -- child: one way of holding the field, measured in this process
 local function child (mode)
