@@ -277,17 +277,6 @@ end)
 
 describe("the text cpfg's environmental programs read", function ()
   local program = require "lsys.environment.program"
-  local m = lsys.lsystem { axiom = "", view = { angle = 90 } }
-
-  it("gives each ?E cpfg's id: its byte offset in cpfg's string from the first", function ()
-    local s = m:lstring("?E(1,2)F(2)?E(3)@O(1)[+(90)F?E]/(45)?E(5,6,7)!(2)?E(1)?E(8)")
-    local qs = {}
-    for i = 1, #s do
-      if s:module(i) == "?E" then qs[#qs + 1] = { index = i } end
-    end
-    qs[#qs + 1] = {}                                   -- made by the homomorphism
-    assert.same({ 0, 20, 45, 55, 80, 88, 1 }, program.ids(qs, s))   -- cpfg's, with its probe
-  end)
 
   it("writes a query as cpfg does: the module, the one after it, the turtle's values",
      function ()
@@ -433,8 +422,7 @@ describe("lsys.environment.collision", function ()
 end)
 
 describe("the queries of a pass", function ()
-  it("carry cpfg's ids, as lsys.environment.program counts them from the string", function ()
-    local program = require "lsys.environment.program"
+  it("carry cpfg's ids: a ?E's byte offset in cpfg's string from the first", function ()
     local got
     local m = lsys.lsystem { axiom = "?E(1,2)F(2)?E(3)@O(1)[+(90)F?E]/(45)?E(5,6,7)!(2)?E(1)"
       .. "?E(8)A", homomorphism = "A --> ?E(9)G(1)", environment = function (q) got = q end }
@@ -442,8 +430,6 @@ describe("the queries of a pass", function ()
     local ids = {}
     for k, q in ipairs(got) do ids[k] = q.cpfg_id end
     assert.same({ 0, 20, 45, 55, 80, 88, 1 }, ids)                  -- cpfg's, with its probe
-    for _, q in ipairs(got) do q.cpfg_id = nil end
-    assert.same(ids, program.ids(got, m:lstring(m.axiom)))
   end)
 end)
 

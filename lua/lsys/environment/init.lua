@@ -32,9 +32,10 @@ local _ENV = nil
 local M = {}
 
 -- The environments of the option `environment` (one, or a list), each once.
+local single
 local function each (env)
   if env == nil or env == false then return {} end
-  if type(env) == "function" or env[1] == nil then return { env } end
+  if single(env) then return { env } end
   return env
 end
 
@@ -61,7 +62,7 @@ function M.session (model)
 end
 
 -- Is `e` one environment: a function, or an object with an `answer` method?
-local function single (e)
+function single (e)
   if type(e) == "function" then return true end
   if type(e) ~= "table" and type(e) ~= "userdata" then return false end
   local ok, f = pcall(function () return e.answer end)
@@ -203,7 +204,8 @@ function M.pass (model, s, step, interpret)
   if scene then local _ <close> = scene end          -- the scene's memory goes now
   if not ok then error(err, 0) end
   local over = apply(s, queries, answers, model.numbers == "float32", label)
-  if over ~= nil then
+  if over ~= nil and not model._warnedover then       -- once a model, not at every step
+    model._warnedover = true
     warning.warn(format("lsys: %s: the environment gave %d values for the ?E of %d "
       .. "parameter%s at module %d: the rest are dropped (at step %s)", model._where, over.n,
       over.np, over.np == 1 and "" or "s", over.i, tostring(step)))

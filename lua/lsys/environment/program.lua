@@ -56,36 +56,12 @@ local function following (q)
   return name .. params(q.following_params or {})
 end
 
--- cpfg's size of a module in its string: the name's bytes, and 1 + 5n for n > 0
--- parameters; a ?E is two modules there (? and E).
-local function cpfgsize (name, n)
-  return #name + (n > 0 and 1 + 5 * n or 0)
-end
-
--- The ids of the queries (cpfg's byte offsets from the first ?E of the string), by query:
--- the pass gives them (core.environment's cpfg_id); else counted here from the string.
-local function ids (queries, s)
-  if queries[1] and queries[1].cpfg_id then
-    local out = {}
-    for k, q in ipairs(queries) do out[k] = q.cpfg_id end
-    return out
-  end
-  local out, first, last = {}, nil, nil
-  for _, q in ipairs(queries) do
-    if q.index then
-      first = first or q.index
-      last = q.index
-    end
-  end
-  local offset, at = {}, 0
-  if first then
-    for i = first, last do
-      offset[i] = at
-      local m = { s:module(i) }
-      at = at + cpfgsize(m[1], #m - 1)
-    end
-  end
-  for k, q in ipairs(queries) do out[k] = q.index and offset[q.index] or 1 end
+-- The ids of the queries, by query: cpfg's, which the pass counts (core.environment's
+-- cpfg_id: the byte offset of the ?E in cpfg's string from the first ?E of the pass; 1 for
+-- a ?E the homomorphism made).
+local function ids (queries)
+  local out = {}
+  for k, q in ipairs(queries) do out[k] = q.cpfg_id or 1 end
   return out
 end
 
@@ -196,7 +172,7 @@ function Program:answer (queries, info)
   if self.proc == nil then self:start() end
   local spec, proc = self.spec, self.proc
   local width0 = info.model and info.model:_view().line_width or 1
-  local id = ids(queries, info.lstring)
+  local id = ids(queries)
   local items = {}
   for k, q in ipairs(queries) do items[k] = item(spec, q, id[k], width0) end
   local parts = chunks(spec, items)
@@ -227,7 +203,6 @@ function Program:answer (queries, info)
   return answers
 end
 
-M.ids = ids              -- for the tests: the ids cpfg gives the queries of a string
 M.item = item
 M.parse = parse
 
