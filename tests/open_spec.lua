@@ -507,6 +507,26 @@ describe("lsys.stand", function ()
                    s[1]:count("B") .. " " .. s[2]:count("B") .. " " .. n)
   end)
 
+  it("keeps a plant done growing in the scene the others see, and gives each one's string",
+     function ()
+    -- plant 1 stops after one step: at plant 2's third pass it still stands there
+    local function plant (steps)
+      return lsys.lsystem { axiom = "F(1) A", steps = steps, view = { angle = 90 },
+                            productions = "A --> F(1) ?E(0) A" }
+    end
+    local seen = {}
+    lsys.stand({ { model = plant(1) }, { model = plant(4), at = { 3, 0, 0 } } },
+      { environment = function (qs, info)
+        local _, hi = info.scene:bounds()
+        seen[#seen + 1] = string.format("%d:%d:%d:%s:%s", info.step, #qs, info.scene.ninstances,
+          tostring(info.lstrings[1] ~= nil), tostring(info.lstrings[2] ~= nil))
+        assert(hi[1] >= 3 - 1e-9)                          -- plant 2 is in the scene too
+        return {}
+      end })
+    -- at pass 1 both ask; then plant 1 is done (1 step) but is still drawn
+    assert.same({ "1:1:2:false:true", "2:2:2:false:true", "3:3:2:false:true" }, seen)
+  end)
+
   it("says what is wrong with the plants", function ()
     local m = dofile("examples/open/ulam.lua")
     assert.error_contains(function () lsys.stand({ { model = m }, { model = m } },

@@ -5,7 +5,10 @@
 -- before each step, the ?E queries of all the plants go to the one environment
 -- `opts.environment` together, in world coordinates (each plant placed by its at, rotate
 -- and scale, as lsys.population places it), with `info.scene` the whole stand as drawn
--- then (every plant waiting at its pass, placed); the answers go back to each plant. A plant
+-- then (every plant placed: those waiting at a pass as they stand there, those done growing
+-- from their final strings), and `info.lstrings[i]` plant i's string asked about (for
+-- environments that read a plant's structure: lsys.environment.vigour); the answers go back
+-- to each plant. Positions and directions are in the world's frame, the answers too. A plant
 -- is { model = (a Model of its own: two plants may not share one), at =, rotate =, scale =,
 -- steps = (its model's steps) }. Returns the stand as a population Scene (each plant drawn
 -- from its final string; opts.view as lsys.population's) and the list of final Lstrings.
@@ -102,7 +105,8 @@ function M.stand (plants, opts)
     local m = p.model
     saved[i] = m.environment
     m.environment = { answer = function (_, qs, info)
-      return coroutine.yield(qs, info.step, info.scene)   -- the scene: open until answered
+      -- the scene: open until answered
+      return coroutine.yield(qs, info.step, info.scene, info.lstring)
     end }
     cos[i] = coroutine.create(function () return m:derive(p.steps) end)
   end
@@ -112,35 +116,40 @@ function M.stand (plants, opts)
     while left > 0 do
       for i = 1, #plants do                      -- each plant on to its next pass or its end
         if results[i] == nil and parked[i] == nil then
-          local rok, a, step, scene = coroutine.resume(cos[i], answers[i])
+          local rok, a, step, scene, s = coroutine.resume(cos[i], answers[i])
           answers[i] = nil
           if not rok then error(format("plant %d: %s", i, tostring(a)), 0) end
           if coroutine.status(cos[i]) == "dead" then
             results[i], left = a, left - 1
           else
-            parked[i] = { queries = a, step = step, scene = scene }
+            parked[i] = { queries = a, step = step, scene = scene, lstring = s }
           end
         end
       end
       if next(parked) == nil then break end
       local k = math.huge                        -- the earliest pass waiting is answered
       for _, w in pairs(parked) do k = math.min(k, w.step or 0) end
-      local all, who, entries = {}, {}, {}
+      local all, who, entries, lstrings = {}, {}, {}, {}
       for i = 1, #plants do
-        local w = parked[i]
+        local w, p = parked[i], plants[i]
         if w then
-          entries[#entries + 1] = { model = w.scene, at = plants[i].at,
-                                    rotate = plants[i].rotate, scale = plants[i].scale }
-          if (w.step or 0) == k then
-            for j, q in ipairs(w.queries) do
-              all[#all + 1] = world(q, xf[i], i)
-              who[#all] = { i, j }
-            end
+          entries[#entries + 1] = { model = w.scene, at = p.at, rotate = p.rotate,
+                                    scale = p.scale }
+          lstrings[i] = w.lstring
+        elseif results[i] ~= nil then            -- a plant done growing still stands there
+          entries[#entries + 1] = { model = p.model, lstring = results[i], at = p.at,
+                                    rotate = p.rotate, scale = p.scale }
+        end
+        if w and (w.step or 0) == k then
+          for j, q in ipairs(w.queries) do
+            all[#all + 1] = world(q, xf[i], i)
+            who[#all] = { i, j }
           end
         end
       end
       local made
-      local info = setmetatable({ step = k, plants = #plants }, { __index = function (t, key)
+      local info = setmetatable({ step = k, plants = #plants, lstrings = lstrings },
+                                { __index = function (t, key)
         if key ~= "scene" then return nil end
         made = population.population(entries, { records = false })
         rawset(t, "scene", made)

@@ -22,6 +22,7 @@ local warning = require "lsys.warning"
 local program = require "lsys.environment.program"
 local collision = require "lsys.environment.collision"
 local light = require "lsys.environment.light"
+local vigour = require "lsys.environment.vigour"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
       type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
@@ -224,5 +225,9 @@ M.collision = collision.collision
 --- The light reaching each query from a sky, through the plant's own geometry
 -- (lsys.environment.light).
 M.light = light.light
+
+--- A tree's vigour shared out among its buds by the Borchert-Honda model, from the light
+-- they sense (lsys.environment.vigour).
+M.vigour = vigour.vigour
 
 return M
