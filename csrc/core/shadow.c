@@ -466,13 +466,25 @@ typedef struct dirjob {
   const lsys_shadow *S;
   const double *p, *h;
   double *out;
-  double cosmax;                /* the cone: cos of the half-angle */
+  double cosmax;                /* the cone: cos of the half-angle (-1: every direction) */
   double radius;                /* in voxels */
   size_t np, nch;
   atomic_size_t next;
 } dirjob;
 
-/* The direction of point t (its heading h, unit) into o. */
+/* Whether the offset d (squared length d2 > 0, d . h = dot) lies in the cone
+** of cosine cm around the unit heading: dot / |d| >= cm, without the root. */
+static int incone (double dot, double d2, double cm) {
+  if (cm <= -1) return 1;                      /* 180 degrees: every direction */
+  if (cm >= 0) return dot >= 0 && dot * dot >= cm * cm * d2;
+  return dot >= 0 || dot * dot <= cm * cm * d2;
+}
+
+/*
+** The direction of point t (its heading h, unit) into o. The voxels around
+** the point's are scanned in the grid's order; a voxel's cosine with the
+** heading (a root) is taken only when its shadow is not above the best yet.
+*/
 static void direction (const dirjob *J, size_t t, const double h[3], double o[3]) {
   const lsys_shadow *S = J->S;
   const double *p = J->p + 3 * t;
@@ -487,28 +499,31 @@ static void direction (const dirjob *J, size_t t, const double h[3], double o[3]
     lo[c] = v[c] - m > 0 ? v[c] - m : 0;
     hi[c] = v[c] + m < S->n[c] - 1 ? v[c] + m : S->n[c] - 1;
   }
-  for (j = lo[1]; j <= hi[1]; j++)
+  for (j = lo[1]; j <= hi[1]; j++) {
+    double dy = S->lo[1] + (j + 0.5) * S->voxel - p[1];
     for (k = lo[2]; k <= hi[2]; k++) {
       const double *row = S->s + vindex(S, 0, j, k);
+      double dz = S->lo[2] + (k + 0.5) * S->voxel - p[2], dyz = dy * dy + dz * dz;
+      double hyz = dy * h[1] + dz * h[2];
+      if (dyz > r2) continue;
       for (i = lo[0]; i <= hi[0]; i++) {
-        double d[3], d2, len, cs, s;
-        if (i == v[0] && j == v[1] && k == v[2]) continue;
-        d[0] = S->lo[0] + (i + 0.5) * S->voxel - p[0];
-        d[1] = S->lo[1] + (j + 0.5) * S->voxel - p[1];
-        d[2] = S->lo[2] + (k + 0.5) * S->voxel - p[2];
-        d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if (d2 > r2 || !(d2 > 0)) continue;
+        double dx = S->lo[0] + (i + 0.5) * S->voxel - p[0], d2 = dx * dx + dyz;
+        double dot = dx * h[0] + hyz, s = row[i], len, cs;
+        if (d2 > r2 || !(d2 > 0) || (found && s > best) || !incone(dot, d2, J->cosmax) ||
+            (i == v[0] && j == v[1] && k == v[2]))
+          continue;
         len = sqrt(d2);
-        cs = (d[0] * h[0] + d[1] * h[1] + d[2] * h[2]) / len;
-        if (cs < J->cosmax) continue;
-        s = row[i];
-        if (found && !(s < best || (s == best && cs > bestcs))) continue;
+        cs = dot / len;
+        if (found && s == best && !(cs > bestcs)) continue;
         found = 1;
         best = s;
         bestcs = cs;
-        for (c = 0; c < 3; c++) bd[c] = d[c] / len;
+        bd[0] = dx / len;
+        bd[1] = dy / len;
+        bd[2] = dz / len;
       }
     }
+  }
   memcpy(o, found ? bd : h, 3 * sizeof(double));
 }
 

@@ -21,8 +21,8 @@
 -- as a bud; a query then has no shadow of its own to take away, and gets max(C - s, 0) / C)
 -- or "both". Defaults: voxel 1 (world units: about an internode), depth 4, a 1, b 2, C 8
 -- (the shadow, beyond its own, that leaves a bud no light: a bud one voxel under another
--- keeps 1 - 0.5 / 8 of its light; bench/shadow.lua fits C between about 7 and 15 against ray
--- casting), angle 90, radius 2 (voxels), margin (radius + 1) voxels (world units), threads 0
+-- keeps 1 - 0.5 / 8 of its light; fitted to ray casting, bench/shadow.lua finds C from about
+-- 6 to 13), angle 90, radius 2 (voxels), margin (radius + 1) voxels (world units), threads 0
 -- (the derivation's default). The directions go to voxel centres, so they come in steps of
 -- the grid.
 -- @module lsys.environment.shadow
