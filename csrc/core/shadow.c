@@ -280,8 +280,8 @@ static int addchecked (lsys_shadow *S, const double *p, const double *w, size_t 
   caster *c;
   addjob J;
   if (n == 0) return LSYS_OK;
-  bytes = n * sizeof *c + ((size_t)nl + 1) * sizeof *start;
   if (n > ((size_t)-1 / 2) / sizeof *c) return LSYS_ENOMEM;
+  bytes = n * sizeof *c + ((size_t)nl + 1) * sizeof *start;
   if (!lsys_common_meter_fits(S->meter, bytes)) return nomemory(S, bytes, e);
   c = (caster *)LSYS_MALLOC(n * sizeof *c);
   start = (size_t *)LSYS_MALLOC(((size_t)nl + 1) * sizeof *start);
