@@ -107,6 +107,10 @@ describe("lsys.core under misuse", function ()
     Light = function ()
       return core.light(model():interpret(), { line_radius = 0.05, samples = 8 })
     end,
+    -- the shadow-propagation grid
+    Shadow = function ()
+      return core.shadow { lo = { 0, 0, 0 }, hi = { 4, 3, 4 }, voxel = 0.5 }
+    end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules

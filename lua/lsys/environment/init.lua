@@ -22,6 +22,7 @@ local warning = require "lsys.warning"
 local program = require "lsys.environment.program"
 local collision = require "lsys.environment.collision"
 local light = require "lsys.environment.light"
+local shadow = require "lsys.environment.shadow"
 local vigour = require "lsys.environment.vigour"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
@@ -225,6 +226,10 @@ M.collision = collision.collision
 --- The light reaching each query from a sky, through the plant's own geometry
 -- (lsys.environment.light).
 M.light = light.light
+
+--- The light reaching each query estimated by the shadow-propagation grid of Palubicki et
+-- al. 2009 (lsys.environment.shadow).
+M.shadow = shadow.shadow
 
 --- A tree's vigour shared out among its buds by the Borchert-Honda model, from the light
 -- they sense (lsys.environment.vigour).
