@@ -373,6 +373,18 @@ for i, p in ipairs(PICTURES) do
       #PICTURES, png, w:count(), sc.ntriangles, os.clock() - t0))
     rows[#rows + 1] = { png = png, title = title, caption = caption, file = file,
                         limbs = w:count(), tris = sc.ntriangles, lines = 0 }
+  elseif wanted(png) and p.scene then
+    -- a file that returns the Scene it makes (a stand of open L-systems grown together)
+    local t0 = os.clock()
+    local sc = dofile(examples .. "/" .. file)
+    assert(require("lsys.core").mkdir(dir .. "/" .. (png:match("^(.*)/") or ".")))
+    lsys.render(sc, { out = dir .. "/" .. png, width = math.floor(p.width * size / 480),
+                      height = math.floor(p.height * size / 480) })
+    drawn = drawn + 1
+    io.stderr:write(string.format("[%2d/%d] %-20s %8d plants %8d triangles  %.2f s\n", i,
+      #PICTURES, png, sc.ninstances, sc.ntriangles, os.clock() - t0))
+    rows[#rows + 1] = { png = png, title = title, caption = caption, file = file,
+                        plants = sc.ninstances, tris = sc.ntriangles, lines = 0 }
   elseif wanted(png) then
     local m = load(file, name)
     local t0 = os.clock()
@@ -440,6 +452,8 @@ local function section (f, list, cols)
         caps[#caps + 1] = r.plot and string.format("**%s.** %s<br>`%s`", r.title,
           r.caption, r.file) or r.limbs and string.format("**%s.** %s<br>`%s`, %d limbs, "
           .. "%d triangles", r.title, r.caption, r.file, r.limbs, r.tris)
+          or r.plants and string.format("**%s.** %s<br>`%s`, %d plants, %d triangles",
+          r.title, r.caption, r.file, r.plants, r.tris)
           or string.format("**%s.** %s<br>`%s`%s, %d modules, %s", r.title, r.caption,
           r.file, r.name and (" `" .. r.name .. "`") or "", r.n,
           r.tris > 0 and (r.tris .. " triangles") or (r.lines .. " lines"))

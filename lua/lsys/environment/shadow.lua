@@ -6,8 +6,8 @@
 -- its own). docs/open.md §2.
 --
 -- `lsys.environment.shadow { voxel =, depth =, a =, b =, C =, angle =, radius =, margin =,
--- casters =, threads = }` builds the grid at each pass over the box of the query points
--- (and of the scene, when it casts), widened by `margin` on every side, and answers each
+-- casters =, obstacles =, threads = }` builds the grid at each pass over the box of the
+-- query points (and of the scene, when it casts), widened by `margin` on every side, and answers each
 -- ?E with Q / C, from 0 (deep shade) to 1 (nothing above it); a ?E of four parameters or
 -- more also gets the direction of least shadow (x, y, z): the unit vector to the centre of
 -- the least-shadowed voxel whose centre is within `radius` voxels and `angle` degrees of
@@ -15,6 +15,11 @@
 -- itself when there is none), as the light environment answers the direction of most
 -- light.
 --
+-- obstacles: a list of boxes { lo = { x, y, z }, hi = { x, y, z }, shadow = (C), cast =
+-- (true) } that are there at every pass (a wall, a rock, a roof): each adds `shadow` to the
+-- voxels it overlaps, so that no bud finds light in it or turns towards it, and with `cast`
+-- each of its voxels in the grid casts as a bud does, so that it shades the buds beside and
+-- under it (examples/open/wall.lua).
 -- casters: "queries" (the default: every ?E is a bud that casts, as in the paper),
 -- "scene" (the plant as the turtle draws it, info.scene: each triangle at its centroid,
 -- weighing its area over a voxel's face, so that a voxel's face of leaf weighs as much
@@ -53,6 +58,62 @@ end
 
 local function finite (x) return type(x) == "number" and x == x and x - x == 0 end
 
+local function vec3 (v)
+  return type(v) == "table" and finite(v[1]) and finite(v[2]) and finite(v[3])
+end
+
+-- The option `obstacles` checked: a list of { lo =, hi =, shadow = (C), cast = (true) }.
+local function obstacles (list, C)
+  if list == nil then return {} end
+  if type(list) ~= "table" then
+    error("lsys.environment.shadow: obstacles must be a list of boxes { lo =, hi = }", 3)
+  end
+  local out = {}
+  for i, b in ipairs(list) do
+    local function bad (what)
+      error(format("lsys.environment.shadow: obstacle %d: %s", i, what), 4)
+    end
+    if type(b) ~= "table" or not vec3(b.lo) or not vec3(b.hi) then
+      bad("lo and hi must be points { x, y, z }")
+    end
+    for c = 1, 3 do if b.hi[c] < b.lo[c] then bad("hi must not be below lo") end end
+    local sh = b.shadow == nil and C or b.shadow
+    if not (finite(sh) and sh >= 0) then bad("shadow must be a finite number >= 0") end
+    if b.cast ~= nil and type(b.cast) ~= "boolean" then bad("cast must be a boolean") end
+    out[i] = { lo = { b.lo[1], b.lo[2], b.lo[3] }, hi = { b.hi[1], b.hi[2], b.hi[3] },
+               shadow = sh, cast = b.cast ~= false }
+  end
+  return out
+end
+
+-- The centres of the voxels (of the grid lo, voxel v, hi, continued outside it) that lie in
+-- box b and whose shadow reaches the grid, `depth` deep: the casters of an obstacle.
+local MAXCAST = 4000000
+local function centres (b, lo, hi, v, depth)
+  local pts, r = {}, {}
+  for c = 1, 3 do
+    local a = math.max(b.lo[c], lo[c] - (c == 2 and 0 or depth * v))
+    local z = math.min(b.hi[c], hi[c] + depth * v)
+    if z < a then return pts end
+    r[c] = { math.floor((a - lo[c]) / v), math.floor((z - lo[c]) / v) }
+  end
+  local n = (r[1][2] - r[1][1] + 1) * (r[2][2] - r[2][1] + 1) * (r[3][2] - r[3][1] + 1)
+  if n > MAXCAST then
+    error(format("lsys.environment.shadow: an obstacle covers %d voxels of the grid (at most "
+      .. "%d cast): make the voxels bigger or the obstacle smaller", n, MAXCAST), 0)
+  end
+  for i = r[1][1], r[1][2] do
+    for j = r[2][1], r[2][2] do
+      for k = r[3][1], r[3][2] do
+        pts[#pts + 1] = lo[1] + (i + 0.5) * v
+        pts[#pts + 1] = lo[2] + (j + 0.5) * v
+        pts[#pts + 1] = lo[3] + (k + 0.5) * v
+      end
+    end
+  end
+  return pts
+end
+
 --- The environment (see the module's header for the options).
 function M.shadow (opts)
   opts = opts or {}
@@ -62,7 +123,7 @@ function M.shadow (opts)
   local o = {}
   for k, d in pairs(DEFAULTS) do o[k] = d end
   for k, v in pairs(opts) do
-    if DEFAULTS[k] == nil and k ~= "margin" then
+    if DEFAULTS[k] == nil and k ~= "margin" and k ~= "obstacles" then
       error(format("lsys.environment.shadow: unknown option '%s'", tostring(k)), 2)
     end
     o[k] = v
@@ -84,6 +145,7 @@ function M.shadow (opts)
   end)
   if not ok then error(reword(err), 2) end
   if o.margin == nil then o.margin = (math.ceil(o.radius) + 1) * o.voxel end
+  o.obstacles = obstacles(o.obstacles, o.C)
   return setmetatable({ opts = o }, Shadow)
 end
 
@@ -132,6 +194,13 @@ function Shadow:answer (queries, info)
     local own = o.casters ~= "scene"
     if own then g:add(pts) end
     if scene and slo then g:add_scene(scene) end
+    for _, b in ipairs(o.obstacles) do            -- a wall, a rock: dark, and casting
+      if b.shadow > 0 then g:add_box(b.lo, b.hi, b.shadow) end
+      if b.cast then
+        local c = centres(b, lo, hi, o.voxel, o.depth)
+        if #c > 0 then g:add(c) end
+      end
+    end
     -- a query that cast has its own a taken away by the exposure; one that did not, none
     values = g:exposure(pts, own and o.C or o.C - o.a)
     if want then dirs = g:direction(pts, hs, { angle = o.angle, radius = o.radius }) end

@@ -32,6 +32,9 @@
 -- and n the internodes it bears, itself included (Q / n: its branch's light-use, by which
 -- §4.5 sheds branches). examples/open/selforg.lua grows a tree so.
 --
+-- The object's fields sense, alpha, lambda, xi and tropism are its options, and may be
+-- changed between derivations (examples/open/wall.lua gives the tree another sense).
+--
 -- In a stand (lsys.stand), the queries of each plant are shared out within that plant (by
 -- the query's `plant` and the stand's `info.lstrings`); directions are in the world's frame.
 -- @module lsys.environment.vigour
