@@ -22,6 +22,8 @@ local warning = require "lsys.warning"
 local program = require "lsys.environment.program"
 local collision = require "lsys.environment.collision"
 local light = require "lsys.environment.light"
+local space = require "lsys.environment.space"
+local colonize = require "lsys.environment.colonize"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
       type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
@@ -224,5 +226,13 @@ M.collision = collision.collision
 --- The light reaching each query from a sky, through the plant's own geometry
 -- (lsys.environment.light).
 M.light = light.light
+
+--- What is within a radius of each query: how many, their density, the nearest, whether
+-- none (lsys.environment.space).
+M.space = space.space
+
+--- Space colonisation: buds compete for markers and grow towards those they win
+-- (lsys.environment.colonize).
+M.colonize = colonize.colonize
 
 return M
