@@ -107,6 +107,12 @@ describe("lsys.core under misuse", function ()
     Light = function ()
       return core.light(model():interpret(), { line_radius = 0.05, samples = 8 })
     end,
+    -- space: a hash of points and a scene's, and space colonisation's markers
+    Space = function ()
+      return core.space({ 0, 0, 0, 0.5, 0, 0, 1, 1, 1 }, { radius = 1, groups = { 0, 1, 0 },
+                                                          scene = model():interpret() })
+    end,
+    Markers = function () return core.markers { 0, 1, 0, 1, 0, 0, 0, 2, 0 } end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules

@@ -147,15 +147,15 @@ typedef struct lsys_markers_opts {
 ** and which their passes' scratch is counted against too. Returns LSYS_OK;
 ** LSYS_EARG (a marker not finite, too many); LSYS_EMEMORY; LSYS_ENOMEM.
 */
-int lsys_markers_new (lsys_markers **M, const double *points, size_t n, lsys_meter *mt,
-                      lsys_error *e);
+int lsys_space_markers_new (lsys_markers **M, const double *points, size_t n,
+                            lsys_meter *mt, lsys_error *e);
 
-void lsys_markers_free (lsys_markers *M);
+void lsys_space_markers_free (lsys_markers *M);
 
 /* The markers left, and their positions (3 doubles each, valid until the
 ** next pass or removal). */
-size_t lsys_markers_count (const lsys_markers *M);
-const double *lsys_markers_points (const lsys_markers *M);
+size_t lsys_space_markers_count (const lsys_markers *M);
+const double *lsys_space_markers_points (const lsys_markers *M);
 
 /*
 ** One pass (above) over the 'nb' buds (3 doubles each) with their headings
@@ -165,15 +165,16 @@ const double *lsys_markers_points (const lsys_markers *M);
 ** (nothing is changed); LSYS_EMEMORY (the scratch would exceed the meter);
 ** LSYS_ENOMEM. Removed markers are gone only when it returns LSYS_OK.
 */
-int lsys_markers_perceive (lsys_markers *M, const double *buds, const double *headings,
-                           size_t nb, const lsys_markers_opts *o, size_t *counts,
-                           double *dirs, lsys_error *e);
+int lsys_space_markers_perceive (lsys_markers *M, const double *buds,
+                                 const double *headings, size_t nb,
+                                 const lsys_markers_opts *o, size_t *counts, double *dirs,
+                                 lsys_error *e);
 
 /*
 ** Removes the markers within 'radius' (> 0) of any of the 'n' points;
-** *removed (may be NULL) gets how many. Returns as lsys_markers_perceive.
+** *removed (may be NULL) gets how many. Returns as lsys_space_markers_perceive.
 */
-int lsys_markers_remove (lsys_markers *M, const double *points, size_t n, double radius,
-                         int threads, size_t *removed, lsys_error *e);
+int lsys_space_markers_remove (lsys_markers *M, const double *points, size_t n,
+                               double radius, int threads, size_t *removed, lsys_error *e);
 
 #endif

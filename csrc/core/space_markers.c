@@ -29,8 +29,8 @@ static int overbudget (lsys_error *e, lsys_meter *mt, size_t need) {
                        lsys_common_fmtsize(b2, mt->limit));
 }
 
-int lsys_markers_new (lsys_markers **out, const double *points, size_t n, lsys_meter *mt,
-                      lsys_error *e) {
+int lsys_space_markers_new (lsys_markers **out, const double *points, size_t n,
+                            lsys_meter *mt, lsys_error *e) {
   lsys_markers *M;
   size_t i, bytes;
   *out = NULL;
@@ -56,16 +56,16 @@ int lsys_markers_new (lsys_markers **out, const double *points, size_t n, lsys_m
   return LSYS_OK;
 }
 
-void lsys_markers_free (lsys_markers *M) {
+void lsys_space_markers_free (lsys_markers *M) {
   if (M == NULL) return;
   if (M->mt != NULL) M->mt->used -= M->bytes;
   LSYS_FREE(M->p);
   LSYS_FREE(M);
 }
 
-size_t lsys_markers_count (const lsys_markers *M) { return M->n; }
+size_t lsys_space_markers_count (const lsys_markers *M) { return M->n; }
 
-const double *lsys_markers_points (const lsys_markers *M) { return M->p; }
+const double *lsys_space_markers_points (const lsys_markers *M) { return M->p; }
 
 /* ---------------------------------------------------------------------- */
 /* a pass */
@@ -194,9 +194,9 @@ static int headings (double *h, const double *heads, size_t nb, lsys_error *e) {
   return LSYS_OK;
 }
 
-int lsys_markers_perceive (lsys_markers *M, const double *buds, const double *heads,
-                           size_t nb, const lsys_markers_opts *o, size_t *counts,
-                           double *dirs, lsys_error *e) {
+int lsys_space_markers_perceive (lsys_markers *M, const double *buds, const double *heads,
+                                 size_t nb, const lsys_markers_opts *o, size_t *counts,
+                                 double *dirs, lsys_error *e) {
   const double pi = 3.14159265358979323846;
   lsys_space_opts so;
   lsys_space *S = NULL;
@@ -237,8 +237,8 @@ int lsys_markers_perceive (lsys_markers *M, const double *buds, const double *he
   return st;
 }
 
-int lsys_markers_remove (lsys_markers *M, const double *points, size_t n, double radius,
-                         int threads, size_t *removed, lsys_error *e) {
+int lsys_space_markers_remove (lsys_markers *M, const double *points, size_t n,
+                               double radius, int threads, size_t *removed, lsys_error *e) {
   lsys_space_opts so;
   lsys_space *S = NULL;
   pjob j;

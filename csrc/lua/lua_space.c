@@ -204,10 +204,10 @@ static int l_space (lua_State *L) {
   threads = lsysL_optint(L, &op, "threads", 0, 0, LSYS_SPACE_MAXTHREADS);
   mt.limit = (size_t)lsysL_optnum(L, &op, "max_memory", (double)lsys_common_memory_limit(), 0,
                                   1.8e19, "a positive number of bytes");
-  pts = readflat(L, 1, who, "points", &n);                             /* at 3 */
-  o.groups = (const int64_t *)readvalues(L, &op, "groups", n, 1); /* at 4 */
-  o.vigour = (const double *)readvalues(L, &op, "vigour", n, 0);  /* at 5 */
-  if (lsysL_optfield(L, &op, "scene", LUA_TNONE, NULL)) {              /* at 6 */
+  pts = readflat(L, 1, who, "points", &n);                          /* at 3 */
+  o.groups = (const int64_t *)readvalues(L, &op, "groups", n, 1);   /* at 4 */
+  o.vigour = (const double *)readvalues(L, &op, "vigour", n, 0);    /* at 5 */
+  if (lsysL_optfield(L, &op, "scene", LUA_TNONE, NULL)) {           /* at 6 */
     lsysL_checkscene(L, 6);
     scene = 6;
   }
@@ -369,7 +369,7 @@ static int l_markers (lua_State *L) {
   u->mt.lock = NULL;
   u->threads = threads;
   luaL_setmetatable(L, MARKERS_T);
-  st = lsys_markers_new(&u->M, pts, (size_t)n, &u->mt, &e);
+  st = lsys_space_markers_new(&u->M, pts, (size_t)n, &u->mt, &e);
   if (st != LSYS_OK) return raise(L, st, &e, who);
   return 1;
 }
@@ -410,7 +410,7 @@ static int markers_perceive (lua_State *L) {
   checkmarkers(L, 1, who);                             /* again: Lua code ran since */
   u = (lmarkers *)lua_touserdata(L, 1);
   o.threads = threadsof(asked, u->threads);
-  st = lsys_markers_perceive(u->M, buds, heads, (size_t)nb, &o, cnt, dir, &e);
+  st = lsys_space_markers_perceive(u->M, buds, heads, (size_t)nb, &o, cnt, dir, &e);
   if (st != LSYS_OK) return raise(L, st, &e, who);
   lua_createtable(L, nb > INT32_MAX ? 0 : (int)nb, 0);
   for (k = 0; k < nb; k++) {
@@ -446,31 +446,31 @@ static int markers_remove (lua_State *L) {
   pts = readflat(L, 2, who, "points", &n);
   checkmarkers(L, 1, who);                             /* again: Lua code ran since */
   u = (lmarkers *)lua_touserdata(L, 1);
-  st = lsys_markers_remove(u->M, pts, (size_t)n, r, threadsof(asked, u->threads), &removed,
-                           &e);
+  st = lsys_space_markers_remove(u->M, pts, (size_t)n, r, threadsof(asked, u->threads),
+                                 &removed, &e);
   if (st != LSYS_OK) return raise(L, st, &e, who);
   lua_pushinteger(L, (lua_Integer)removed);
   return 1;
 }
 
 static int markers_count (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_markers_count(checkmarkers(L, 1, "markers:count")));
+  lua_pushinteger(L, (lua_Integer)lsys_space_markers_count(checkmarkers(L, 1, "markers:count")));
   return 1;
 }
 
 static int markers_len (lua_State *L) {
-  lua_pushinteger(L, (lua_Integer)lsys_markers_count(checkmarkers(L, 1, "markers:__len")));
+  lua_pushinteger(L, (lua_Integer)lsys_space_markers_count(checkmarkers(L, 1, "markers:__len")));
   return 1;
 }
 
 /* markers:points() -> flat list */
 static int markers_points (lua_State *L) {
   static const char *who = "markers:points";
-  size_t n = lsys_markers_count(checkmarkers(L, 1, who));
+  size_t n = lsys_space_markers_count(checkmarkers(L, 1, who));
   double *c = (double *)lua_newuserdatauv(L, n > 0 ? 3 * n * sizeof(double) : 1, 0);
   lsys_markers *M = checkmarkers(L, 1, who);           /* again: the allocation may close it */
-  n = lsys_markers_count(M);                           /* and it cannot have grown */
-  if (n > 0) memcpy(c, lsys_markers_points(M), 3 * n * sizeof(double));
+  n = lsys_space_markers_count(M);                           /* and it cannot have grown */
+  if (n > 0) memcpy(c, lsys_space_markers_points(M), 3 * n * sizeof(double));
   pushlist(L, c, (lua_Integer)(3 * n), 0);
   return 1;
 }
@@ -480,14 +480,14 @@ static int markers_close (lua_State *L) {
   lmarkers *u = (lmarkers *)luaL_checkudata(L, 1, MARKERS_T);
   lsys_markers *M = u->M;
   u->M = NULL;
-  lsys_markers_free(M);
+  lsys_space_markers_free(M);
   return 0;
 }
 
 static int markers_tostring (lua_State *L) {
   lmarkers *u = (lmarkers *)luaL_checkudata(L, 1, MARKERS_T);
   if (u->M == NULL) lua_pushliteral(L, MARKERS_T " (closed)");
-  else lua_pushfstring(L, MARKERS_T ": %I markers", (lua_Integer)lsys_markers_count(u->M));
+  else lua_pushfstring(L, MARKERS_T ": %I markers", (lua_Integer)lsys_space_markers_count(u->M));
   return 1;
 }
 

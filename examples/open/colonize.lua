@@ -5,7 +5,8 @@
 -- degrees of its heading, each marker going to the nearest such bud). A bud that won some
 -- grows an internode towards them, with a lateral bud beside it; one that won none waits.
 -- Markers within 0.6 of a bud are taken for good: the crown fills from below until the
--- markers are used up, and the branches keep apart because they compete for the same space.
+-- markers are used up (after 24 steps: 1581 internodes), and the branches keep apart
+-- because they compete for the same space.
 --
 --   lsys render examples/open/colonize.lua -o colonize.png
 local lsys = require "lsys"
@@ -15,8 +16,8 @@ local RX, RY, Y = 4.5, 3.5, 7        -- the crown: radii across and up, the heig
 return lsys.lsystem {
   name = "colonize",
   axiom = "!(0.07) F(3.5) A ?E(0, 0, 1, 0)",
-  steps = 36,
-  env = { L = 0.3, W0 = 0.015, DW = 0.0045, DIV = 137.5, LAT = 45, OFF = 0.02 },
+  steps = 26,
+  env = { L = 0.3, W0 = 0.015, DW = 0.006, DIV = 137.5, LAT = 45, OFF = 0.02 },
   productions = {
     -- a bud that won markers: an internode towards them, and a lateral bud just aside,
     -- first in the string (of two buds at one place the first wins a marker; aside, the

@@ -275,7 +275,7 @@ static void test_scene (void) {
 static lsys_markers *markers (const double *p, size_t n, lsys_meter *mt) {
   lsys_markers *M;
   lsys_error e;
-  int st = lsys_markers_new(&M, p, n, mt, &e);
+  int st = lsys_space_markers_new(&M, p, n, mt, &e);
   if (st != LSYS_OK) fprintf(stderr, "markers: %d %s\n", st, e.msg);
   assert(st == LSYS_OK);
   return M;
@@ -291,7 +291,7 @@ static void perceive (lsys_markers *M, const double *b, const double *h, size_t 
   o.angle = angle;
   o.kill = kill;
   o.threads = threads;
-  st = lsys_markers_perceive(M, b, h, nb, &o, cnt, dir, &e);
+  st = lsys_space_markers_perceive(M, b, h, nb, &o, cnt, dir, &e);
   if (st != LSYS_OK) fprintf(stderr, "perceive: %d %s\n", st, e.msg);
   assert(st == LSYS_OK);
 }
@@ -310,11 +310,11 @@ static void test_markers (void) {
   const double *left;
   lsys_markers *M = markers(m, 6, NULL);
   perceive(M, b, h, 2, 1.5, 180, 0.2, 1, cnt, dir);   /* the whole sphere */
-  assert(lsys_markers_count(M) == 5);
+  assert(lsys_space_markers_count(M) == 5);
   assert(cnt[0] == 3 && cnt[1] == 1);                /* markers 0, 2, 3; marker 1 */
   assert(NEAR(dir[0], 1, 1e-15) && dir[1] == 0 && dir[2] == 0);   /* (0,1)+(1,0)+(0,-1) */
   assert(dir[3] == -1 && dir[4] == 0 && dir[5] == 0);
-  left = lsys_markers_points(M);                     /* the order kept, 4 gone */
+  left = lsys_space_markers_points(M);                     /* the order kept, 4 gone */
   assert(left[9] == 0 && left[10] == -1 && left[12] == 9);
   perceive(M, b, h, 2, 1.5, 90, 0, 3, cnt, dir);     /* cones: the half-space ahead */
   assert(cnt[0] == 3 && cnt[1] == 0);                /* 0, 1 and 2 (at 90 degrees) bud 0's: */
@@ -323,12 +323,12 @@ static void test_markers (void) {
   perceive(M, b, h, 2, 1.5, 89, 0, 1, cnt, dir);     /* narrower: marker 0 only */
   assert(cnt[0] == 1 && cnt[1] == 0);
   assert(dir[0] == 0 && dir[1] == 1 && dir[2] == 0);
-  assert(lsys_markers_count(M) == 5);
-  assert(lsys_markers_remove(M, b, 2, 1.05, 2, &removed, NULL) == LSYS_OK);
-  assert(removed == 4 && lsys_markers_count(M) == 1);   /* 0, 1, 2, 3 within 1.05 */
+  assert(lsys_space_markers_count(M) == 5);
+  assert(lsys_space_markers_remove(M, b, 2, 1.05, 2, &removed, NULL) == LSYS_OK);
+  assert(removed == 4 && lsys_space_markers_count(M) == 1);   /* 0, 1, 2, 3 within 1.05 */
   perceive(M, b, h, 2, 1.5, 180, 0, 1, cnt, dir);
   assert(cnt[0] == 0 && cnt[1] == 0 && dir[0] == 0 && dir[3] == 0);
-  lsys_markers_free(M);
+  lsys_space_markers_free(M);
 }
 
 /* What fate1 finds, testing every bud. */
@@ -379,10 +379,10 @@ static void test_markers_brute (void) {
   M3 = markers(m, NM, NULL);
   perceive(M1, b, h, NB, 1.5, 60, 0.3, 1, c1, dir1);
   perceive(M3, b, h, NB, 1.5, 60, 0.3, 3, c3, dir3);
-  assert(lsys_markers_count(M1) == left && lsys_markers_count(M3) == left);
+  assert(lsys_space_markers_count(M1) == left && lsys_space_markers_count(M3) == left);
   assert(memcmp(c1, c3, sizeof c1) == 0 && memcmp(dir1, dir3, sizeof dir1) == 0);
-  assert(memcmp(lsys_markers_points(M1), lsys_markers_points(M3), 3 * left * sizeof(double))
-         == 0);
+  assert(memcmp(lsys_space_markers_points(M1), lsys_space_markers_points(M3),
+                3 * left * sizeof(double)) == 0);
   for (k = 0; k < NB; k++) {
     double *r = ref + 3 * k, len = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
     assert(c1[k] == cref[k]);
@@ -390,8 +390,8 @@ static void test_markers_brute (void) {
       assert(NEAR(dir1[3 * k], r[0] / len, 1e-12) && NEAR(dir1[3 * k + 1], r[1] / len, 1e-12) &&
              NEAR(dir1[3 * k + 2], r[2] / len, 1e-12));
   }
-  lsys_markers_free(M1);
-  lsys_markers_free(M3);
+  lsys_space_markers_free(M1);
+  lsys_space_markers_free(M3);
 }
 
 static void test_errors (void) {
@@ -438,38 +438,38 @@ static void test_errors (void) {
   assert(lsys_space_query(S, &q, out, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "space: query point 1 is not finite") == 0);
   lsys_space_free(S);
-  assert(lsys_markers_new(&M, bad, 1, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_new(&M, bad, 1, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: marker 1 is not finite") == 0);
   mt.used = 0;
   mt.limit = 10;
-  assert(lsys_markers_new(&M, p, 2, &mt, &e) == LSYS_EMEMORY);
+  assert(lsys_space_markers_new(&M, p, 2, &mt, &e) == LSYS_EMEMORY);
   mt.limit = 1 << 20;
   M = markers(p, 2, &mt);
   assert(mt.used == M->bytes);
-  assert(lsys_markers_perceive(M, z, z, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_perceive(M, z, z, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: heading 1 is not a finite non-zero vector") == 0);
-  assert(lsys_markers_perceive(M, bad, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_perceive(M, bad, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: bud 1 is not finite") == 0);
   mo.angle = 0;
-  assert(lsys_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: the angle must be a number of degrees in (0, 180]") == 0);
   mo.angle = 90;
   mo.kill = -1;
-  assert(lsys_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
   mo.kill = 0;
   mo.perception = 0;
-  assert(lsys_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: the perception radius must be a finite number > 0") == 0);
   mo.perception = 2;
-  assert(lsys_markers_count(M) == 2);             /* nothing changed by the failures */
-  assert(lsys_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_OK);
+  assert(lsys_space_markers_count(M) == 2);             /* nothing changed by the failures */
+  assert(lsys_space_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_OK);
   assert(cnt[0] == 1 && mt.used == M->bytes);     /* the scratch given back */
   mt.limit = M->bytes + 8;                        /* no room for the pass's scratch */
-  assert(lsys_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EMEMORY);
+  assert(lsys_space_markers_perceive(M, z, p + 3, 1, &mo, cnt, NULL, &e) == LSYS_EMEMORY);
   assert(strstr(e.msg, "more than max_memory") != NULL && mt.used == M->bytes);
-  assert(lsys_markers_remove(M, z, 1, 0, 1, NULL, &e) == LSYS_EARG);
+  assert(lsys_space_markers_remove(M, z, 1, 0, 1, NULL, &e) == LSYS_EARG);
   assert(strcmp(e.msg, "markers: the radius must be a finite number > 0") == 0);
-  lsys_markers_free(M);
+  lsys_space_markers_free(M);
   assert(mt.used == 0);
 }
 
@@ -490,13 +490,13 @@ static int sequence (const double *p, const double *h) {
   q.threads = 2;
   if ((st = lsys_space_build(&S, p, 200, &o, NULL)) == LSYS_OK &&
       (st = lsys_space_query(S, &q, out, NULL)) == LSYS_OK &&
-      (st = lsys_markers_new(&M, p, 200, NULL, NULL)) == LSYS_OK) {
-    st = lsys_markers_perceive(M, p, h, 20, &mo, cnt, dir, NULL);
-    if (st != LSYS_OK) assert(lsys_markers_count(M) == 200);     /* nothing removed */
-    else st = lsys_markers_remove(M, p + 300, 20, 0.3, 2, NULL, NULL);
+      (st = lsys_space_markers_new(&M, p, 200, NULL, NULL)) == LSYS_OK) {
+    st = lsys_space_markers_perceive(M, p, h, 20, &mo, cnt, dir, NULL);
+    if (st != LSYS_OK) assert(lsys_space_markers_count(M) == 200);     /* nothing removed */
+    else st = lsys_space_markers_remove(M, p + 300, 20, 0.3, 2, NULL, NULL);
   }
   lsys_space_free(S);
-  lsys_markers_free(M);
+  lsys_space_markers_free(M);
   return st;
 }
 

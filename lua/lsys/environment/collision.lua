@@ -12,8 +12,8 @@
 -- @module lsys.environment.collision
 local core = require "lsys.core"
 
-local type, ipairs, pairs, error, pcall, setmetatable, tostring, math =
-      type, ipairs, pairs, error, pcall, setmetatable, tostring, math
+local type, ipairs, pairs, error, pcall, setmetatable, tostring, tonumber, math =
+      type, ipairs, pairs, error, pcall, setmetatable, tostring, tonumber, math
 local format = string.format
 local _ENV = nil
 
@@ -43,6 +43,14 @@ end
 
 function Collision.__tostring () return "lsys.environment.collision" end
 
+-- core.space's message about point k as one about its query.
+local function blame (msg)
+  msg = tostring(msg)
+  local k = msg:match("^core%.space: points%[(%d+)%] must be a finite number")
+  if k then return format("query %d: its position is not finite", (tonumber(k) + 2) // 3) end
+  return (msg:gsub("^core%.space: point (%d+)", "query %1: its position"))
+end
+
 --- Answers the queries of a pass: 1 for a query no other reaches, else 0.
 function Collision:answer (queries)
   local pts, groups, vigour = {}, {}, {}
@@ -64,9 +72,7 @@ function Collision:answer (queries)
   end
   local ok, space = pcall(core.space, pts, { radius = self.radius, groups = groups,
                                              vigour = vigour, threads = self.threads })
-  if not ok then        -- a position not finite, or too far out: said of its query
-    error((tostring(space):gsub("^core%.space: point (%d+)", "query %1: its position")), 0)
-  end
+  if not ok then error(blame(space), 0) end
   local _ <close> = space
   return space:free()
 end

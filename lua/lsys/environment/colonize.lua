@@ -25,8 +25,8 @@
 -- @module lsys.environment.colonize
 local core = require "lsys.core"
 
-local type, ipairs, pairs, error, pcall, tostring, setmetatable, math =
-      type, ipairs, pairs, error, pcall, tostring, setmetatable, math
+local type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math =
+      type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math
 local format = string.format
 local _ENV = nil
 
@@ -132,6 +132,18 @@ local function markermaker (m)
   end
 end
 
+-- core.markers' message about bud or heading k as one about its query.
+local function blame (msg)
+  msg = tostring(msg)
+  local what, k = msg:match("^markers:perceive: (%a+)%[(%d+)%] must be a finite number")
+  if k then
+    return format("query %d: its %s is not finite", (tonumber(k) + 2) // 3,
+                  what == "buds" and "position" or "heading")
+  end
+  return (msg:gsub("^markers:perceive: bud (%d+)", "query %1: its position")
+             :gsub("^markers:perceive: heading (%d+)", "query %1: its heading"))
+end
+
 --- The environment (see the module's header for the options).
 function M.colonize (opts)
   if type(opts) ~= "table" then bad("an options table expected") end
@@ -194,10 +206,7 @@ function Colonize:answer (queries)
     heads[3 * i - 2], heads[3 * i - 1], heads[3 * i] = h[1], h[2], h[3]
   end
   local ok, counts, dirs = pcall(set.perceive, set, buds, heads, self.popts)
-  if not ok then        -- a position not finite, or too far out: said of its query
-    error((tostring(counts):gsub("^markers:perceive: bud (%d+)", "query %1: its position")
-                           :gsub("^markers:perceive: heading (%d+)", "query %1: its heading")), 0)
-  end
+  if not ok then error(blame(counts), 0) end
   local answers, all = {}, self.count_answer
   for i, q in ipairs(queries) do
     local c = counts[i]

@@ -19,8 +19,8 @@
 -- @module lsys.environment.space
 local core = require "lsys.core"
 
-local type, ipairs, pairs, error, pcall, tostring, setmetatable, math =
-      type, ipairs, pairs, error, pcall, tostring, setmetatable, math
+local type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math =
+      type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math
 local format = string.format
 local _ENV = nil
 
@@ -33,6 +33,14 @@ local OPTIONS = { radius = true, answer = true, scene = true, offset = true, thr
 local ANSWERS = { count = "count", density = "density", nearest = "nearest", free = "count" }
 
 local function bad (msg) error("lsys.environment.space: " .. msg, 3) end
+
+-- core.space's message about point k as one about its query.
+local function blame (msg)
+  msg = tostring(msg)
+  local k = msg:match("^core%.space: points%[(%d+)%] must be a finite number")
+  if k then return format("query %d: its position is not finite", (tonumber(k) + 2) // 3) end
+  return (msg:gsub("^core%.space: point (%d+)", "query %1: its position"))
+end
 
 --- The environment (see the module's header for the options).
 function M.space (opts)
@@ -57,7 +65,7 @@ function M.space (opts)
   if t ~= nil and (math.type(t) ~= "integer" or t < 0 or t > 64) then
     bad("threads must be an integer in [0, 64]")
   end
-  return setmetatable({ radius = r, answer = answer, scene = opts.scene or false,
+  return setmetatable({ radius = r, what = answer, scene = opts.scene or false,
                         offset = off, threads = t or 0 }, Space)
 end
 
@@ -72,15 +80,13 @@ function Space:answer (queries, info)
   end
   local ok, space = pcall(core.space, pts, { radius = self.radius, threads = self.threads,
                                              scene = self.scene and info.scene or nil })
-  if not ok then        -- a position not finite, or too far out: said of its query
-    error((tostring(space):gsub("^core%.space: point (%d+)", "query %1: its position")), 0)
-  end
+  if not ok then error(blame(space), 0) end
   local _ <close> = space
-  local kind = ANSWERS[self.answer]
+  local kind = ANSWERS[self.what]
   local values = space[kind](space, nil, { offset = self.offset })
-  if self.answer == "free" then
+  if self.what == "free" then
     for i = 1, #values do values[i] = values[i] == 0 and 1 or 0 end
-  elseif self.answer == "nearest" then
+  elseif self.what == "nearest" then
     local r = self.radius
     for i = 1, #values do if values[i] > r then values[i] = r end end
   end
