@@ -35,7 +35,7 @@ describe("core.space", function ()
     assert.same({ 4, 0, 3 }, S:count { 0.6, 0, 0, 10, 10, 10, -0.1, 0, 0 })
     assert.equal(math.type(S:count()[1]), "integer")
     assert.equal(6, #S)
-    assert.same({ points = 6, listed = 6, cells = 3, buckets = 16, bytes = S:stats().bytes,
+    assert.same({ points = 6, listed = 6, cells = 3, buckets = 64, bytes = S:stats().bytes,
                   radius = 1 }, S:stats())
     assert.equal("lsys.Space: 6 points in 3 cells of 1.0", tostring(S))
   end)

@@ -259,7 +259,7 @@ static void sortpoints (lsys_space *S, const double *points, size_t n, scratch *
 int lsys_space_build (lsys_space **out, const double *points, size_t n,
                       const lsys_space_opts *o, lsys_error *e) {
   lsys_meter *mt = o != NULL ? o->meter : NULL;
-  size_t ns, total, nb = 16, need, used0 = mt != NULL ? mt->used : 0;
+  size_t ns, total, nb = 64, need, used0 = mt != NULL ? mt->used : 0;
   scratch sc = {NULL, NULL, NULL};
   lsys_space *S;
   int st;
@@ -331,16 +331,16 @@ static double ask1 (const qjob *j, const double x[3], uint32_t self, int64_t g, 
   const lsys_space *S = j->S;
   const double r2 = j->r2, off2 = j->off2;
   const int kind = j->q->kind;
-  int64_t c[3], dx, dy, dz, k = j->span;
+  int64_t c[3], dy, dz, k = j->span;
   double acc = kind == LSYS_SPACE_NEAREST ? HUGE_VAL : 0;
   int i;
   for (i = 0; i < 3; i++) c[i] = lsys_space_coord(x[i], S->cell);
-  for (dx = -k; dx <= k; dx++)
-    for (dy = -k; dy <= k; dy++)
-      for (dz = -k; dz <= k; dz++) {
-        uint32_t a, b, s;
-        lsys_space_cellrange(S, c[0] + dx, c[1] + dy, c[2] + dz, &a, &b);
-        for (s = a; s < b; s++) {
+  for (dy = -k; dy <= k; dy++)
+    for (dz = -k; dz <= k; dz++) {
+      uint32_t rg[2 * LSYS_SPACE_MAXSPAN + 1][2], s;
+      int nr = lsys_space_rowcells(S, c[0] - k, c[0] + k, c[1] + dy, c[2] + dz, rg), ir;
+      for (ir = 0; ir < nr; ir++)
+        for (s = rg[ir][0]; s < rg[ir][1]; s++) {
           const double *p = S->p + 3 * (size_t)s;
           double ex, ey, ez, d2;
           if (S->id[s] == self) continue;
@@ -361,7 +361,7 @@ static double ask1 (const qjob *j, const double x[3], uint32_t self, int64_t g, 
             default: if (S->g[s] == g && vg <= S->v[s]) return 0;
           }
         }
-      }
+    }
   if (kind == LSYS_SPACE_FREE) return 1;
   if (kind == LSYS_SPACE_NEAREST && acc < HUGE_VAL) return sqrt(acc);
   return acc;

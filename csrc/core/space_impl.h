@@ -37,30 +37,49 @@ static inline int64_t lsys_space_coord (double x, double c) {
   return (int64_t)floor(x / c);
 }
 
-/* The bucket of the cell (x, y, z). */
-static inline uint64_t lsys_space_hash (int64_t x, int64_t y, int64_t z, uint64_t mask) {
-  uint64_t h = (uint64_t)x * 0x9E3779B97F4A7C15ull ^ (uint64_t)y * 0xC2B2AE3D27D4EB4Full ^
-               (uint64_t)z * 0x165667B19E3779F9ull;
+/*
+** The bucket of the cell (x, y, z): a mix of (y, z), plus x. The cells of
+** one row along x are in consecutive buckets, so a query reads the cells of
+** a row around its own from one stretch of the table and of the cells
+** (stored in bucket order), and a walk through the stored points goes along
+** rows: what neighbours read is near in memory. Rows fall at random places;
+** two that overlap share buckets, told apart by the cells' coordinates.
+*/
+static inline uint64_t lsys_space_row (int64_t y, int64_t z) {
+  uint64_t h = (uint64_t)y * 0x9E3779B97F4A7C15ull ^ (uint64_t)z * 0xC2B2AE3D27D4EB4Full;
   h ^= h >> 31;
   h *= 0xBF58476D1CE4E5B9ull;
   h ^= h >> 29;
-  return h & mask;
+  return h;
 }
 
-/* The stored points of the cell (x, y, z): [*a, *b), empty when it has none. */
-static inline void lsys_space_cellrange (const lsys_space *S, int64_t x, int64_t y, int64_t z,
-                                         uint32_t *a, uint32_t *b) {
-  uint64_t k = lsys_space_hash(x, y, z, S->mask);
-  uint32_t c, c1 = S->bstart[k + 1];
-  for (c = S->bstart[k]; c < c1; c++) {
-    const int64_t *q = S->cc + 3 * (size_t)c;
-    if (q[0] == x && q[1] == y && q[2] == z) {
-      *a = S->pstart[c];
-      *b = S->pstart[c + 1];
-      return;
+static inline uint64_t lsys_space_hash (int64_t x, int64_t y, int64_t z, uint64_t mask) {
+  return (lsys_space_row(y, z) + (uint64_t)x) & mask;
+}
+
+/* The point ranges [r[i][0], r[i][1]) of the cells (x, y, z) with x0 <= x <=
+** x1 that have points, into r (room for x1 - x0 + 1 <= the buckets); returns
+** how many. */
+static inline int lsys_space_rowcells (const lsys_space *S, int64_t x0, int64_t x1, int64_t y,
+                                       int64_t z, uint32_t r[][2]) {
+  uint64_t k0 = lsys_space_hash(x0, y, z, S->mask), k1 = k0 + (uint64_t)(x1 - x0), ka, kb;
+  int n = 0, part;
+  for (part = 0; part < 2; part++) {          /* the stretch, and what wraps around */
+    uint32_t c, c1;
+    if (part == 0) { ka = k0; kb = k1 <= S->mask ? k1 : S->mask; }
+    else if (k1 > S->mask) { ka = 0; kb = k1 - S->mask - 1; }
+    else break;
+    c1 = S->bstart[kb + 1];
+    for (c = S->bstart[ka]; c < c1; c++) {
+      const int64_t *q = S->cc + 3 * (size_t)c;
+      if (q[1] == y && q[2] == z && q[0] >= x0 && q[0] <= x1) {
+        r[n][0] = S->pstart[c];
+        r[n][1] = S->pstart[c + 1];
+        n++;
+      }
     }
   }
-  *a = *b = 0;
+  return n;
 }
 
 /* The cells a query of radius r looks at on each side of its own. */

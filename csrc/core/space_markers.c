@@ -83,18 +83,18 @@ typedef struct pjob {
 /* The fate of marker x. */
 static uint32_t fate1 (const pjob *j, const double x[3]) {
   const lsys_space *S = j->S;
-  int64_t c[3], dx, dy, dz, k = j->span;
+  int64_t c[3], dy, dz, k = j->span;
   uint32_t best = ALONE;
   double bd2 = HUGE_VAL;
   int i;
   if (!lsys_space_near(x, S->cell)) return ALONE;      /* beyond every cell: no bud near */
   for (i = 0; i < 3; i++) c[i] = lsys_space_coord(x[i], S->cell);
-  for (dx = -k; dx <= k; dx++)
-    for (dy = -k; dy <= k; dy++)
-      for (dz = -k; dz <= k; dz++) {
-        uint32_t a, b, s;
-        lsys_space_cellrange(S, c[0] + dx, c[1] + dy, c[2] + dz, &a, &b);
-        for (s = a; s < b; s++) {
+  for (dy = -k; dy <= k; dy++)
+    for (dz = -k; dz <= k; dz++) {
+      uint32_t rg[2 * LSYS_SPACE_MAXSPAN + 1][2], s;
+      int nr = lsys_space_rowcells(S, c[0] - k, c[0] + k, c[1] + dy, c[2] + dz, rg), ir;
+      for (ir = 0; ir < nr; ir++)
+        for (s = rg[ir][0]; s < rg[ir][1]; s++) {
           const double *p = S->p + 3 * (size_t)s;
           double v[3], d2;
           uint32_t bud = S->id[s];
@@ -112,7 +112,7 @@ static uint32_t fate1 (const pjob *j, const double x[3]) {
           best = bud;
           bd2 = d2;
         }
-      }
+    }
   return best;
 }
 

@@ -91,15 +91,28 @@ static int threadsof (int asked, int def) {
 /* ---------------------------------------------------------------------- */
 /* lists */
 
+/* Whether the table at i has a metatable (its reads may run Lua code). */
+static int hasmeta (lua_State *L, int i) {
+  if (!lua_getmetatable(L, i)) return 0;
+  lua_pop(L, 1);
+  return 1;
+}
+
+/* t[k] pushed: raw for a table without a metatable (the lists of a pass: no
+** metamethod to run, and faster), else as Lua reads it. */
+#define geti(L, t, k, raw) ((raw) ? lua_rawgeti(L, t, k) : lua_geti(L, t, k))
+
 /* The flat list of points at i into a new block on the stack; *n triples. */
 static double *readflat (lua_State *L, int i, const char *who, const char *what,
                          lua_Integer *n) {
   lua_Integer len, k;
   double *v;
+  int raw;
   if (!lua_istable(L, i))
     luaL_error(L, "%s: %s must be a flat list {x1, y1, z1, x2, ...}, got %s", who, what,
                luaL_typename(L, i));
-  len = luaL_len(L, i);
+  raw = !hasmeta(L, i);
+  len = raw ? (lua_Integer)lua_rawlen(L, i) : luaL_len(L, i);
   if (len < 0 || len % 3 != 0 || len / 3 > MAXPOINTS)
     luaL_error(L, "%s: %s must be a flat list {x1, y1, z1, x2, ...} of at most 2^28 points, "
                "got %I numbers", who, what, len);
@@ -107,7 +120,7 @@ static double *readflat (lua_State *L, int i, const char *who, const char *what,
   for (k = 1; k <= len; k++) {
     int ok;
     double x;
-    lua_geti(L, i, k);
+    geti(L, i, k, raw);
     x = lua_tonumberx(L, -1, &ok);
     if (lua_type(L, -1) != LUA_TNUMBER || !isfinite(x))
       luaL_error(L, "%s: %s[%I] must be a finite number, got %s", who, what, k,
@@ -125,20 +138,21 @@ static void *readvalues (lua_State *L, const lsys_opts *o, const char *k, lua_In
                          int ints) {
   lua_Integer len, j;
   void *b;
-  int t;
+  int t, raw;
   if (!lsysL_optfield(L, o, k, LUA_TTABLE, ints ? "a list of integers, one a point"
                                                : "a list of numbers, one a point")) {
     lua_pushnil(L);
     return NULL;
   }
   t = lua_gettop(L);
-  len = luaL_len(L, t);
+  raw = !hasmeta(L, t);
+  len = raw ? (lua_Integer)lua_rawlen(L, t) : luaL_len(L, t);
   if (len != n)
     luaL_error(L, "%s%s%s has %I entries for %I points", o->pre, k, o->post, len, n);
   b = lua_newuserdatauv(L, n > 0 ? (size_t)n * 8 : 1, 0);
   for (j = 1; j <= n; j++) {
     int ok;
-    lua_geti(L, t, j);
+    geti(L, t, j, raw);
     if (ints) {
       lua_Integer x = lua_tointegerx(L, -1, &ok);
       if (!ok || lua_type(L, -1) != LUA_TNUMBER)
