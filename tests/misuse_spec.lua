@@ -113,6 +113,11 @@ describe("lsys.core under misuse", function ()
                                                           scene = model():interpret() })
     end,
     Markers = function () return core.markers { 0, 1, 0, 1, 0, 0, 0, 2, 0 } end,
+    Field = function ()
+      local F = core.field { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 0.5 }
+      F:fill(1)
+      return F
+    end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules

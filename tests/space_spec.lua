@@ -1,8 +1,9 @@
 -- Space from Lua (csrc/lua/lua_space.c): core.space's queries on hand-made points, the
 -- scene's points, threads, bad options and closed objects; core.markers' associations,
--- removal and errors; the environments on them: lsys.environment.collision (the answers of
--- the Lua algorithm it replaced, kept here as the reference), lsys.environment.space and
--- lsys.environment.colonize, and examples/open/colonize.lua (the C side is
+-- removal and errors; core.field's diffusion, takes and sources; the environments on them:
+-- lsys.environment.collision (the answers of the Lua algorithm it replaced, kept here as the
+-- reference), lsys.environment.space, lsys.environment.colonize and
+-- lsys.environment.resource, and examples/open/colonize.lua and roots.lua (the C side is
 -- tests/c/test_space.c).
 local H = require "tests.helper"
 local lsys = require "lsys"
@@ -481,5 +482,136 @@ describe("lsys.environment.colonize", function ()
     local lo, hi = m:interpret(s):bounds()
     assert.near({ -4.07, 0, -3.98 }, { lo[1], lo[2], lo[3] }, 0.01)
     assert.near({ 4.12, 9.91, 4.32 }, { hi[1], hi[2], hi[3] }, 0.01)
+  end)
+end)
+
+describe("core.field", function ()
+  it("diffuses, shares what is taken, adds sources and gives gradients", function ()
+    local F = core.field { lo = { 0, 0, 0 }, hi = { 2.5, 0, 0 }, cell = 0.5 }
+    assert.same({ 5, 1, 1, 0.5 }, { F:dims() })
+    assert.equal("lsys.Field: 5 x 1 x 1 cells of 0.5", tostring(F))
+    F:set { 0, 0, 1, 0, 0 }
+    assert.equal(2, F:diffuse(0.25, 1))                 -- D t / h^2 = 1: 2 substeps of 1/2
+    assert.same({ 0.25, 0, 0.5, 0, 0.25 }, F:values())
+    assert.same({ -0.5, 0, 0, 0, 0, 0, -0.25, 0, 0, 0, 0, 0 },
+                F:gradient { 0.25, 0, 0, 1.25, 0, 0, 1.75, 0, 0, 9, 0, 0 })
+    local got = F:take({ 1.2, 0, 0, 1.3, 0, 0, 0.1, 0, 0, 9, 0, 0 }, { 0.4, 0.6, 0.1, 1 })
+    assert.near({ 0.2, 0.3, 0.1, 0 }, got, 1e-15)       -- too little: shared 2 : 3
+    assert.near({ 0.15, 0, 0, 0, 0.25 }, F:values(), 1e-15)
+    assert.equal(1, F:add({ 0.1, 0, 0, 7, 0, 0 }, { 1, 1 }))
+    assert.near({ 1.15, 0 }, F:at { 0.1, 0, 0, 7, 0, 0 }, 1e-15)
+    assert.near(1.4, F:total(), 1e-15)
+    F:fill(2)
+    assert.same({ 2, 2, 2, 2, 2 }, F:values())
+  end)
+
+  it("gives the same amounts on every number of threads", function ()
+    local function run (threads)
+      local F = core.field { lo = { 0, 0, 0 }, hi = { 4, 3, 5 }, cell = 0.25, threads = threads }
+      local amounts = {}
+      for i = 1, 200 do amounts[i] = i % 7 end
+      assert.equal(200, F:add(randompoints(200, 3, 8), amounts))
+      F:diffuse(0.3, 2)
+      return F:values(), F:total()
+    end
+    local a, ta = run(1)
+    local b, tb = run(3)
+    assert.same(a, b)
+    assert.near(ta, tb, 0)
+  end)
+
+  it("raises clear errors for bad options and amounts, and once closed", function ()
+    assert.equal("core.field: opts.lo is required (a list {x, y, z} of finite numbers)",
+                 H.errof(core.field, { hi = { 1, 1, 1 }, cell = 1 }))
+    assert.equal("core.field: opts.cell is required (a finite number > 0)",
+                 H.errof(core.field, { lo = { 0, 0, 0 }, hi = { 1, 1, 1 } }))
+    assert.equal("core.field: the box must have finite lo <= hi on each axis",
+                 H.errof(core.field, { lo = { 0, 0, 0 }, hi = { 1, -1, 1 }, cell = 1 }))
+    assert.equal("core.field: unknown option 'size' (known: lo, hi, cell, threads, max_memory)",
+                 H.errof(core.field, { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 1, size = 2 }))
+    assert.matches("^core.field: .* more than max_memory %(100 bytes%)$",
+      H.errof(core.field, { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 0.1, max_memory = 100 }))
+    local F = core.field { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 0.5 }
+    assert.equal("field:set: 2 values for 8 cells", H.errof(F.set, F, { 1, 2 }))
+    assert.equal("field:take: amount 1 must be a finite number >= 0",
+                 H.errof(F.take, F, { 0, 0, 0 }, { -1 }))
+    assert.equal("field:take: 2 wants for 1 points", H.errof(F.take, F, { 0, 0, 0 }, { 1, 2 }))
+    assert.equal("field:diffuse: the diffusion needs 2400000 substeps, more than 100000: make "
+      .. "the cells larger", H.errof(F.diffuse, F, 1e5, 1))
+    F:close()
+    F:close()
+    assert.equal("lsys.Field (closed)", tostring(F))
+    for _, k in ipairs { "dims", "values", "total" } do
+      assert.equal("field:" .. k .. ": the field was closed", H.errof(F[k], F))
+    end
+    assert.equal("field:take: the field was closed", H.errof(F.take, F, {}, {}))
+  end)
+end)
+
+describe("lsys.environment.resource", function ()
+  local function q (x, want, n)
+    local params = { want }
+    for i = 2, n or 1 do params[i] = 0 end
+    return { position = { x, 0, 0 }, heading = { 0, 1, 0 }, params = params }
+  end
+
+  it("gives each ?E what it asks, or its share, then diffuses and feeds between passes",
+     function ()
+    local env = lsys.environment.resource { lo = { 0, 0, 0 }, hi = { 2.5, 0, 0 }, cell = 0.5,
+      initial = function (x) return x < 1 and 1 or 0 end, diffusion = 0.25,
+      sources = { { 2.4, 0, 0, 1 } } }
+    assert.near(2, env:total(), 1e-15)                  -- cells 0 and 1
+    -- the first pass: the source adds 1 to cell 4, diffusion spreads [1, 1, 0, 0, 1]
+    -- over 2 substeps of 1/2 to [1, 0.75, 0.5, 0.5, 0.25 + ...]; then the takes
+    local a = env:answer { q(0.1, 0.5), q(1.1, 0.3, 4), q(1.2, 0.3), q(9, 1) }
+    assert.equal(0.5, a[1])
+    assert.near(0.25, a[2][1], 1e-15)                   -- cell 2 had 0.5 for 0.6 asked
+    assert.near(0.25, a[3], 1e-15)
+    assert.equal(0, a[4])                               -- outside the box
+    assert.same({ -1, 0, 0 }, { a[2][2], a[2][3], a[2][4] })   -- more water at x < 1
+    assert.near(0, env:at(1.1, 0, 0), 1e-15)
+    assert.near(3 - 1, env:total(), 1e-12)              -- 2 + 1 in, 1 taken
+  end)
+
+  it("grows examples/open/roots.lua towards its spring, the same on every number of threads",
+     function ()
+    -- the counts of the roots whose picture was looked at: 510 internodes, 154 apices,
+    -- reaching from the origin to the spring at (5, -6, 0)
+    local m = dofile("examples/open/roots.lua")
+    local s = m:derive()
+    assert.equal(510, s:count("F"))
+    assert.equal(154, s:count("R"))
+    local lo, hi = m:interpret(s):bounds()
+    assert.near({ -0.07, -6.57, -1.36 }, { lo[1], lo[2], lo[3] }, 0.01)
+    assert.near({ 5.50, 0, 1.47 }, { hi[1], hi[2], hi[3] }, 0.01)
+    assert.equal(tostring(s), tostring(m:derive()))     -- the field made afresh
+    local m1 = dofile("examples/open/roots.lua")
+    m1.environment.threads = 1
+    local m3 = dofile("examples/open/roots.lua")
+    m3.environment.threads = 3
+    assert.equal(tostring(m1:derive()), tostring(m3:derive()))
+  end)
+
+  it("raises clear errors for bad options", function ()
+    local R = lsys.environment.resource
+    local ok = { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 0.5 }
+    local function with (k, v)
+      local o = {}
+      for key, x in pairs(ok) do o[key] = x end
+      o[k] = v
+      return function () R(o) end
+    end
+    assert.error_contains(with("lo", { 0, 0 }), "lo must be a list {x, y, z} of finite numbers")
+    assert.error_contains(with("hi", { 1, -1, 1 }), "lo must not be above hi in x, y or z")
+    assert.error_contains(with("cell", 0), "cell must be a number > 0")
+    assert.error_contains(with("diffusion", -1), "diffusion must be a number >= 0")
+    assert.error_contains(with("initial", "wet"), "initial must be a number >= 0 or a function")
+    assert.error_contains(with("sources", { { 0, 0, 0 } }),
+                          "sources[1] must be a list {x, y, z, rate} of finite numbers")
+    assert.error_contains(with("rain", 1), "unknown option 'rain'")
+    local env = R(ok)
+    env.initial = function () return -1 end
+    assert.equal("lsys.environment.resource: initial gave -1 at cell 1, not a number >= 0",
+                 H.errof(env.total, env))
   end)
 end)

@@ -177,4 +177,81 @@ int lsys_space_markers_perceive (lsys_markers *M, const double *buds,
 int lsys_space_markers_remove (lsys_markers *M, const double *points, size_t n,
                                double radius, int threads, size_t *removed, lsys_error *e);
 
+/* ---------------------------------------------------------------------- */
+/*
+** A resource field (docs/open.md): an amount (soil water, a nutrient) in
+** each cell of a grid of cubic cells of side h over a box, spreading by
+** diffusion, fed by sources and taken by the plant. Cell (i, j, k) covers
+** lo + h [i, i + 1) x [j, j + 1) x [k, k + 1); n_a = ceil((hi_a - lo_a) / h)
+** cells along each axis (at least 1: one cell across an axis makes the
+** field 2D, or 1D). The amounts are stored x fastest.
+**
+** Diffusion over a time t with coefficient D (units^2 a unit of time) is the
+** explicit scheme on the grid's graph, m substeps of
+**
+**     q_c <- q_c + a sum_{c' next to c} (q_c' - q_c),   a = D t / (m h^2),
+**
+** (the neighbours along the axes of more than one cell; none beyond the box:
+** nothing flows out), with m the least that keeps a <= 1 / (2 d), d the
+** number of such axes: each new amount is then a weighted mean of old ones,
+** so none goes negative and the total stays what it was.
+*/
+typedef struct lsys_field lsys_field;
+
+#define LSYS_FIELD_MAXCELLS ((size_t)1 << 30)
+#define LSYS_FIELD_MAXSUBSTEPS 100000
+
+/* A field over the box lo .. hi (lo < hi, or equal for one cell) of cells of
+** side 'cell', every amount 0, counted in the meter 'mt' (NULL: none: it
+** must outlive the field). Returns LSYS_OK; LSYS_EARG (a bad box or cell,
+** more than LSYS_FIELD_MAXCELLS cells); LSYS_EMEMORY; LSYS_ENOMEM. */
+int lsys_space_field_new (lsys_field **F, const double lo[3], const double hi[3],
+                          double cell, lsys_meter *mt, lsys_error *e);
+
+void lsys_space_field_free (lsys_field *F);
+
+/* The cells along each axis into n; the side of a cell. */
+double lsys_space_field_dims (const lsys_field *F, size_t n[3]);
+
+/* The amounts, n[0] n[1] n[2] of them (x fastest), to read or write (write
+** finite amounts >= 0). */
+double *lsys_space_field_values (lsys_field *F);
+
+/* The index of the cell of p, or -1 outside the grid (or p not finite). */
+long long lsys_space_field_cell (const lsys_field *F, const double p[3]);
+
+/*
+** Diffuses over the time t (>= 0) with the coefficient D (>= 0), on
+** 'threads' workers (the same amounts for every number); *substeps (may be
+** NULL) gets m. Returns LSYS_OK; LSYS_EARG (D or t not finite and >= 0, or
+** more than LSYS_FIELD_MAXSUBSTEPS substeps: e says so).
+*/
+int lsys_space_field_diffuse (lsys_field *F, double D, double t, int threads, long *substeps,
+                              lsys_error *e);
+
+/*
+** The n points (3 doubles each) take from the cells they are in: point i
+** asks for want[i] (>= 0, finite) and gets it into got[i] when its cell has
+** enough for all who ask there, else its share want[i] q / (the sum asked
+** there), so the answer does not depend on the points' order; the cells
+** lose what was given. A point outside the grid gets 0. Returns LSYS_OK;
+** LSYS_EARG (a point not finite, a bad amount: nothing is taken).
+*/
+int lsys_space_field_take (lsys_field *F, const double *points, const double *want, size_t n,
+                           double *got, lsys_error *e);
+
+/* Adds amount[i] to the cell of point i (an amount < 0 takes, down to 0);
+** points outside the grid add nothing. Returns how many were inside, or -1
+** for a point or amount not finite (e says which; nothing is added). */
+long long lsys_space_field_add (lsys_field *F, const double *points, const double *amount,
+                                size_t n, lsys_error *e);
+
+/* The gradient of the amounts at p into g (central differences between the
+** neighbouring cells, one-sided at the box's faces; 0 across an axis of one
+** cell and outside the grid), amount per unit length. */
+void lsys_space_field_gradient (const lsys_field *F, const double p[3], double g[3]);
+
+/* The sum of the amounts. */
+double lsys_space_field_total (const lsys_field *F);
+
 #endif

@@ -36,6 +36,18 @@
 **   markers:count() (and #markers) -> the markers left; markers:points() -> a flat list
 **   markers:close(), __close, __gc, __tostring
 **
+**   core.field(opts) -> Field                  (a resource that diffuses in a grid)
+**     opts {lo = {x, y, z}, hi = {x, y, z} (lo <= hi), cell = h (> 0), threads = n,
+**     max_memory = bytes}; every amount 0
+**   field:dims() -> nx, ny, nz, h;  field:values() -> the flat list of amounts (x fastest)
+**   field:set(values) (a list of nx ny nz finite amounts >= 0), field:fill(v)
+**   field:at(points) -> the amounts of the points' cells (0 outside)
+**   field:add(points, amounts) -> how many were inside (an amount < 0 takes, down to 0)
+**   field:take(points, wants) -> what each got (its cell's share: space.h)
+**   field:diffuse(D, t [, opts {threads = n}]) -> the substeps taken (space.h)
+**   field:gradient(points) -> a flat list, 3 a point;  field:total() -> the sum
+**   field:close(), __close, __gc, __tostring
+**
 ** The lists are read into blocks the stack owns before anything else (their
 ** metamethods may run any Lua code, and close the object), the object is
 ** checked again, the core runs (it calls no Lua), and the lists of results
@@ -49,6 +61,7 @@
 
 #define SPACE_T   "lsys.Space"
 #define MARKERS_T "lsys.Markers"
+#define FIELD_T   "lsys.Field"
 #define MAXPOINTS ((lua_Integer)1 << 28)
 
 typedef struct lspace {
@@ -61,6 +74,12 @@ typedef struct lmarkers {
   lsys_meter mt;              /* the markers' budget: they point to it */
   int threads;
 } lmarkers;
+
+typedef struct lfield {
+  lsys_field *F;              /* NULL once closed */
+  lsys_meter mt;              /* the field's budget: it points to it */
+  int threads;
+} lfield;
 
 static lsys_space *checkspace (lua_State *L, int i, const char *who) {
   lspace *u = (lspace *)luaL_checkudata(L, i, SPACE_T);
@@ -80,6 +99,7 @@ static int raise (lua_State *L, int st, const lsys_error *e, const char *who) {
   if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
   if (strncmp(m, "space: ", 7) == 0) m += 7;
   else if (strncmp(m, "markers: ", 9) == 0) m += 9;
+  else if (strncmp(m, "field: ", 7) == 0) m += 7;
   return luaL_error(L, "%s: %s", who, m);
 }
 
@@ -506,6 +526,279 @@ static int markers_tostring (lua_State *L) {
 }
 
 /* ---------------------------------------------------------------------- */
+/* lsys.Field */
+
+static lsys_field *checkfield (lua_State *L, int i, const char *who) {
+  lfield *u = (lfield *)luaL_checkudata(L, i, FIELD_T);
+  if (u->F == NULL) luaL_error(L, "%s: the field was closed", who);
+  return u->F;
+}
+
+/* opts[k] = {x, y, z} into v. */
+static void optvec3 (lua_State *L, const lsys_opts *o, const char *k, double v[3]) {
+  static const char *expect = "a list {x, y, z} of finite numbers";
+  int a, ok;
+  if (!lsysL_optfield(L, o, k, LUA_TTABLE, expect))
+    luaL_error(L, "%s%s%s is required (%s)", o->pre, k, o->post, expect);
+  if (luaL_len(L, -1) != 3) lsysL_opterror(L, o, k, expect);
+  for (a = 0; a < 3; a++) {
+    lua_geti(L, -1, a + 1);
+    v[a] = lua_tonumberx(L, -1, &ok);
+    if (lua_type(L, -1) != LUA_TNUMBER || !isfinite(v[a])) {
+      lua_pop(L, 1);
+      lsysL_opterror(L, o, k, expect);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+}
+
+/* core.field(opts) */
+static int l_field (lua_State *L) {
+  static const char *const names[] = {"lo", "hi", "cell", "threads", "max_memory", NULL};
+  static const char *who = "core.field";
+  lsys_opts op = {1, "core.field: opts.", "", LSYS_GOT_VALUE, 0};
+  double lo[3], hi[3], cell;
+  lsys_error e;
+  lfield *u;
+  int threads, st;
+  size_t limit;
+  luaL_checktype(L, 1, LUA_TTABLE);
+  lua_settop(L, 1);
+  checkopts(L, &op, names, who, "lo, hi, cell, threads, max_memory");
+  optvec3(L, &op, "lo", lo);
+  optvec3(L, &op, "hi", hi);
+  if (!lsysL_optfield(L, &op, "cell", LUA_TNONE, NULL))
+    return luaL_error(L, "core.field: opts.cell is required (a finite number > 0)");
+  lua_pop(L, 1);
+  cell = lsysL_optnum(L, &op, "cell", 1, 0, HUGE_VAL, "a finite number > 0");
+  threads = lsysL_optint(L, &op, "threads", 0, 0, LSYS_SPACE_MAXTHREADS);
+  limit = (size_t)lsysL_optnum(L, &op, "max_memory", (double)lsys_common_memory_limit(), 0,
+                               1.8e19, "a positive number of bytes");
+  u = (lfield *)lua_newuserdatauv(L, sizeof *u, 0);
+  u->F = NULL;
+  memset(&u->mt, 0, sizeof u->mt);
+  u->mt.limit = limit;
+  u->threads = threads;
+  luaL_setmetatable(L, FIELD_T);
+  st = lsys_space_field_new(&u->F, lo, hi, cell, &u->mt, &e);
+  if (st != LSYS_OK) return raise(L, st, &e, who);
+  return 1;
+}
+
+static int field_dims (lua_State *L) {
+  size_t n[3];
+  double h = lsys_space_field_dims(checkfield(L, 1, "field:dims"), n);
+  lua_pushinteger(L, (lua_Integer)n[0]);
+  lua_pushinteger(L, (lua_Integer)n[1]);
+  lua_pushinteger(L, (lua_Integer)n[2]);
+  lua_pushnumber(L, h);
+  return 4;
+}
+
+static size_t cellsof (const lsys_field *F) {
+  size_t n[3];
+  lsys_space_field_dims(F, n);
+  return n[0] * n[1] * n[2];
+}
+
+/* field:values() -> flat list */
+static int field_values (lua_State *L) {
+  static const char *who = "field:values";
+  size_t n = cellsof(checkfield(L, 1, who));
+  double *c = (double *)lua_newuserdatauv(L, n * sizeof(double), 0);
+  lsys_field *F = checkfield(L, 1, who);               /* again: the allocation may close it */
+  memcpy(c, lsys_space_field_values(F), n * sizeof(double));
+  pushlist(L, c, (lua_Integer)n, 0);
+  return 1;
+}
+
+/* field:set(values) */
+static int field_set (lua_State *L) {
+  static const char *who = "field:set";
+  size_t n = cellsof(checkfield(L, 1, who)), k;
+  lua_Integer len;
+  double *v;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  lua_settop(L, 2);
+  len = luaL_len(L, 2);
+  if (len < 0 || (size_t)len != n)
+    return luaL_error(L, "%s: %I values for %I cells", who, len, (lua_Integer)n);
+  v = (double *)lua_newuserdatauv(L, n * sizeof(double), 0);
+  for (k = 0; k < n; k++) {
+    int ok;
+    lua_geti(L, 2, (lua_Integer)k + 1);
+    v[k] = lua_tonumberx(L, -1, &ok);
+    if (lua_type(L, -1) != LUA_TNUMBER || !isfinite(v[k]) || v[k] < 0)
+      return luaL_error(L, "%s: values[%I] must be a finite number >= 0", who,
+                        (lua_Integer)k + 1);
+    lua_pop(L, 1);
+  }
+  memcpy(lsys_space_field_values(checkfield(L, 1, who)), v, n * sizeof(double));
+  return 0;
+}
+
+/* field:fill(v) */
+static int field_fill (lua_State *L) {
+  lsys_field *F = checkfield(L, 1, "field:fill");
+  double x = luaL_checknumber(L, 2), *q = lsys_space_field_values(F);
+  size_t k, n = cellsof(F);
+  luaL_argcheck(L, isfinite(x) && x >= 0, 2, "a finite amount >= 0 expected");
+  for (k = 0; k < n; k++) q[k] = x;
+  return 0;
+}
+
+/* The points at 2 and, with 'values', the list at 3 of as many numbers: blocks at 4, 5. */
+static lua_Integer readpv (lua_State *L, const char *who, const char *what, int values,
+                           const double **pts, const double **v) {
+  lua_Integer n, k;
+  double *b;
+  *pts = readflat(L, 2, who, "points", &n);                           /* at 4 */
+  *v = NULL;
+  if (!values) return n;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  if (luaL_len(L, 3) != n)
+    luaL_error(L, "%s: %I %s for %I points", who, luaL_len(L, 3), what, n);
+  b = (double *)lua_newuserdatauv(L, n > 0 ? (size_t)n * sizeof(double) : 1, 0);   /* at 5 */
+  for (k = 1; k <= n; k++) {
+    int ok;
+    lua_geti(L, 3, k);
+    b[k - 1] = lua_tonumberx(L, -1, &ok);
+    if (lua_type(L, -1) != LUA_TNUMBER)
+      luaL_error(L, "%s: %s[%I] must be a number, got %s", who, what, k, luaL_typename(L, -1));
+    lua_pop(L, 1);
+  }
+  *v = b;
+  return n;
+}
+
+/* field:at(points) -> amounts */
+static int field_at (lua_State *L) {
+  static const char *who = "field:at";
+  const double *pts, *none, *q;
+  lua_Integer n, k;
+  double *out;
+  lsys_field *F;
+  checkfield(L, 1, who);
+  lua_settop(L, 3);
+  n = readpv(L, who, NULL, 0, &pts, &none);
+  out = (double *)lua_newuserdatauv(L, n > 0 ? (size_t)n * sizeof(double) : 1, 0);
+  F = checkfield(L, 1, who);                           /* again: Lua code ran since */
+  q = lsys_space_field_values(F);
+  for (k = 0; k < n; k++) {
+    long long c = lsys_space_field_cell(F, pts + 3 * k);
+    out[k] = c >= 0 ? q[c] : 0;
+  }
+  pushlist(L, out, n, 0);
+  return 1;
+}
+
+/* field:add(points, amounts) -> inside */
+static int field_add (lua_State *L) {
+  static const char *who = "field:add";
+  const double *pts, *v;
+  lua_Integer n;
+  long long in;
+  lsys_error e;
+  checkfield(L, 1, who);
+  lua_settop(L, 3);
+  n = readpv(L, who, "amounts", 1, &pts, &v);
+  in = lsys_space_field_add(checkfield(L, 1, who), pts, v, (size_t)n, &e);
+  if (in < 0) return raise(L, LSYS_EARG, &e, who);
+  lua_pushinteger(L, (lua_Integer)in);
+  return 1;
+}
+
+/* field:take(points, wants) -> got */
+static int field_take (lua_State *L) {
+  static const char *who = "field:take";
+  const double *pts, *v;
+  lua_Integer n;
+  lsys_error e;
+  double *got;
+  int st;
+  checkfield(L, 1, who);
+  lua_settop(L, 3);
+  n = readpv(L, who, "wants", 1, &pts, &v);
+  got = (double *)lua_newuserdatauv(L, n > 0 ? (size_t)n * sizeof(double) : 1, 0);
+  st = lsys_space_field_take(checkfield(L, 1, who), pts, v, (size_t)n, got, &e);
+  if (st != LSYS_OK) return raise(L, st, &e, who);
+  pushlist(L, got, n, 0);
+  return 1;
+}
+
+/* field:diffuse(D, t [, opts]) -> substeps */
+static int field_diffuse (lua_State *L) {
+  static const char *const names[] = {"threads", NULL};
+  static const char *who = "field:diffuse";
+  lsys_opts op = {0, "field:diffuse: opts.", "", LSYS_GOT_VALUE, 0};
+  double D, t;
+  long m;
+  lsys_error e;
+  lfield *u;
+  int asked, st;
+  checkfield(L, 1, who);
+  D = luaL_checknumber(L, 2);
+  t = luaL_checknumber(L, 3);
+  lua_settop(L, 4);
+  if (!lua_isnil(L, 4)) {
+    luaL_checktype(L, 4, LUA_TTABLE);
+    op.t = 4;
+    checkopts(L, &op, names, who, "threads");
+  }
+  asked = lsysL_optint(L, &op, "threads", -1, 0, LSYS_SPACE_MAXTHREADS);
+  checkfield(L, 1, who);                               /* again: Lua code ran since */
+  u = (lfield *)lua_touserdata(L, 1);
+  st = lsys_space_field_diffuse(u->F, D, t, threadsof(asked, u->threads), &m, &e);
+  if (st != LSYS_OK) return raise(L, st, &e, who);
+  lua_pushinteger(L, (lua_Integer)m);
+  return 1;
+}
+
+/* field:gradient(points) -> flat list */
+static int field_gradient (lua_State *L) {
+  static const char *who = "field:gradient";
+  const double *pts, *none;
+  lua_Integer n, k;
+  double *out;
+  lsys_field *F;
+  checkfield(L, 1, who);
+  lua_settop(L, 3);
+  n = readpv(L, who, NULL, 0, &pts, &none);
+  out = (double *)lua_newuserdatauv(L, n > 0 ? 3 * (size_t)n * sizeof(double) : 1, 0);
+  F = checkfield(L, 1, who);
+  for (k = 0; k < n; k++) lsys_space_field_gradient(F, pts + 3 * k, out + 3 * k);
+  pushlist(L, out, 3 * n, 0);
+  return 1;
+}
+
+static int field_total (lua_State *L) {
+  lua_pushnumber(L, lsys_space_field_total(checkfield(L, 1, "field:total")));
+  return 1;
+}
+
+/* field:close(), __close, __gc: idempotent */
+static int field_close (lua_State *L) {
+  lfield *u = (lfield *)luaL_checkudata(L, 1, FIELD_T);
+  lsys_field *F = u->F;
+  u->F = NULL;
+  lsys_space_field_free(F);
+  return 0;
+}
+
+static int field_tostring (lua_State *L) {
+  lfield *u = (lfield *)luaL_checkudata(L, 1, FIELD_T);
+  size_t n[3];
+  if (u->F == NULL) lua_pushliteral(L, FIELD_T " (closed)");
+  else {
+    double h = lsys_space_field_dims(u->F, n);
+    lua_pushfstring(L, FIELD_T ": %I x %I x %I cells of %f", (lua_Integer)n[0],
+                    (lua_Integer)n[1], (lua_Integer)n[2], h);
+  }
+  return 1;
+}
+
+/* ---------------------------------------------------------------------- */
 
 static const luaL_Reg space_meta[] = {
   {"__index", NULL}, {"__gc", space_close}, {"__close", space_close},
@@ -523,12 +816,22 @@ static const luaL_Reg markers_methods[] = {
   {"perceive", markers_perceive}, {"remove", markers_remove}, {"count", markers_count},
   {"points", markers_points}, {"close", markers_close}, {NULL, NULL}
 };
+static const luaL_Reg field_meta[] = {
+  {"__index", NULL}, {"__gc", field_close}, {"__close", field_close},
+  {"__tostring", field_tostring}, {NULL, NULL}
+};
+static const luaL_Reg field_methods[] = {
+  {"dims", field_dims}, {"values", field_values}, {"set", field_set}, {"fill", field_fill},
+  {"at", field_at}, {"add", field_add}, {"take", field_take}, {"diffuse", field_diffuse},
+  {"gradient", field_gradient}, {"total", field_total}, {"close", field_close}, {NULL, NULL}
+};
 static const luaL_Reg space_funcs[] = {
-  {"space", l_space}, {"markers", l_markers}, {NULL, NULL}
+  {"space", l_space}, {"markers", l_markers}, {"field", l_field}, {NULL, NULL}
 };
 
 void lsysL_open_space (lua_State *L) {
   lsysL_createmeta(L, SPACE_T, space_meta, space_methods);
   lsysL_createmeta(L, MARKERS_T, markers_meta, markers_methods);
+  lsysL_createmeta(L, FIELD_T, field_meta, field_methods);
   luaL_setfuncs(L, space_funcs, 0);
 }

@@ -6,8 +6,10 @@
 ** and 3 threads giving the same bits; the scene's points and the offset;
 ** markers associated with the nearest bud that perceives them (within the
 ** radius and the cone), killed for good, their directions, against a
-** brute-force reference and on every number of threads; bad options, the
-** memory budget, and every allocation failing in turn.
+** brute-force reference and on every number of threads; the resource field's
+** diffusion (spelled out on a row, kept on a grid, the same on every number
+** of threads), takes shared in proportion, sources and gradients; bad
+** options, the memory budget, and every allocation failing in turn.
 **
 ** The core files are compiled in with counting allocators (talloc.h).
 */
@@ -23,6 +25,7 @@
 #include "scene.c"
 #include "space.c"
 #include "space_markers.c"
+#include "space_field.c"
 
 #define NEAR(a, b, eps) (fabs((double)(a) - (double)(b)) <= (eps))
 
@@ -473,6 +476,122 @@ static void test_errors (void) {
   assert(mt.used == 0);
 }
 
+/* ---------------------------------------------------------------------- */
+/* the resource field */
+
+static lsys_field *field (double x0, double y0, double z0, double x1, double y1, double z1,
+                          double h) {
+  double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
+  lsys_field *F;
+  lsys_error e;
+  int st = lsys_space_field_new(&F, lo, hi, h, NULL, &e);
+  if (st != LSYS_OK) fprintf(stderr, "field: %d %s\n", st, e.msg);
+  assert(st == LSYS_OK);
+  return F;
+}
+
+/* A row of 5 cells: D t / h^2 = 1 takes 2 substeps of a = 1/2, spelled out. */
+static void test_field_row (void) {
+  lsys_field *F = field(0, 0, 0, 2.5, 0, 0, 0.5);
+  size_t n[3];
+  double *q = lsys_space_field_values(F), g[3], p[3] = {0.25, 0, 0};
+  long m;
+  assert(lsys_space_field_dims(F, n) == 0.5 && n[0] == 5 && n[1] == 1 && n[2] == 1);
+  assert(q[0] == 0 && q[4] == 0);
+  q[2] = 1;
+  assert(lsys_space_field_diffuse(F, 0.25, 1, 1, &m, NULL) == LSYS_OK && m == 2);
+  q = lsys_space_field_values(F);                  /* the buffers swap */
+  assert(q[0] == 0.25 && q[1] == 0 && q[2] == 0.5 && q[3] == 0 && q[4] == 0.25);
+  assert(lsys_space_field_total(F) == 1);
+  lsys_space_field_gradient(F, p, g);              /* one-sided at a face */
+  assert(g[0] == -0.5 && g[1] == 0 && g[2] == 0);
+  p[0] = 1.75;                                     /* central: (q4 - q2) / 2h */
+  lsys_space_field_gradient(F, p, g);
+  assert(g[0] == -0.25);
+  p[0] = 2.6;
+  lsys_space_field_gradient(F, p, g);
+  assert(g[0] == 0 && lsys_space_field_cell(F, p) == -1);
+  p[0] = 2.4;
+  assert(lsys_space_field_cell(F, p) == 4);
+  assert(lsys_space_field_diffuse(F, 0, 1, 1, &m, NULL) == LSYS_OK && m == 0);
+  lsys_space_field_free(F);
+}
+
+/* A 3D grid: the total kept, nothing negative, the same bits on 1 and 3 threads. */
+static void test_field_grid (void) {
+  lsys_field *A = field(0, 0, 0, 4, 3, 5, 0.25), *B = field(0, 0, 0, 4, 3, 5, 0.25);
+  size_t n[3], i, cells;
+  double *a, *b, total;
+  long m;
+  lsys_space_field_dims(A, n);
+  assert(n[0] == 16 && n[1] == 12 && n[2] == 20);
+  cells = n[0] * n[1] * n[2];
+  a = lsys_space_field_values(A);
+  b = lsys_space_field_values(B);
+  for (i = 0; i < cells; i++) a[i] = b[i] = rnd() < 0.1 ? 10 * rnd() : 0;
+  total = lsys_space_field_total(A);
+  assert(lsys_space_field_diffuse(A, 0.3, 2, 1, &m, NULL) == LSYS_OK && m == 58);
+  assert(lsys_space_field_diffuse(B, 0.3, 2, 3, NULL, NULL) == LSYS_OK);
+  a = lsys_space_field_values(A);
+  b = lsys_space_field_values(B);
+  assert(memcmp(a, b, cells * sizeof(double)) == 0);
+  assert(NEAR(lsys_space_field_total(A), total, 1e-9 * total));
+  for (i = 0; i < cells; i++) assert(a[i] >= 0);
+  lsys_space_field_free(A);
+  lsys_space_field_free(B);
+}
+
+/* Takes: shared in proportion where a cell has too little, whole where it has enough;
+** sources, and what goes below 0. */
+static void test_field_take (void) {
+  static const double p[] = {1.2, 0, 0, 1.3, 0, 0, 0.1, 0, 0, 9, 0, 0};
+  static const double want[] = {0.4, 0.6, 0.1, 1};
+  double got[4], add[2] = {1, -5}, bad[3] = {0, NAN, 0};
+  lsys_field *F = field(0, 0, 0, 2.5, 0, 0, 0.5);
+  double *q = lsys_space_field_values(F);
+  lsys_error e;
+  q[0] = 0.25;
+  q[2] = 0.5;
+  assert(lsys_space_field_take(F, p, want, 4, got, NULL) == LSYS_OK);
+  assert(NEAR(got[0], 0.2, 1e-15) && NEAR(got[1], 0.3, 1e-15) && got[2] == 0.1 && got[3] == 0);
+  assert(q[2] == 0 && NEAR(q[0], 0.15, 1e-15));
+  assert(lsys_space_field_add(F, p + 6, add, 2, NULL) == 1);     /* (9, 0, 0) is outside */
+  assert(NEAR(q[0], 1.15, 1e-15));
+  assert(lsys_space_field_add(F, p + 3, add + 1, 1, NULL) == 1 && q[2] == 0);   /* not < 0 */
+  add[0] = -1;
+  assert(lsys_space_field_take(F, p, add, 1, got, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "field: amount 1 must be a finite number >= 0") == 0);
+  assert(lsys_space_field_add(F, bad, add, 1, &e) == -1);
+  assert(strcmp(e.msg, "field: point 1 is not finite") == 0);
+  lsys_space_field_free(F);
+}
+
+static void test_field_errors (void) {
+  double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  lsys_meter mt = {100, 0, 0, NULL};
+  lsys_field *F;
+  lsys_error e;
+  assert(lsys_space_field_new(&F, lo, hi, 0, NULL, &e) == LSYS_EARG && F == NULL);
+  assert(strcmp(e.msg, "field: the cell must be a finite number > 0") == 0);
+  hi[1] = -1;
+  assert(lsys_space_field_new(&F, lo, hi, 1, NULL, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "field: the box must have finite lo <= hi on each axis") == 0);
+  hi[1] = 1e9;
+  assert(lsys_space_field_new(&F, lo, hi, 1e-3, NULL, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "field: more than 1073741824 cells") == 0);
+  hi[1] = 1;
+  assert(lsys_space_field_new(&F, lo, hi, 0.1, &mt, &e) == LSYS_EMEMORY);
+  assert(strstr(e.msg, "more than max_memory (100 bytes)") != NULL);
+  mt.limit = 1 << 20;
+  assert(lsys_space_field_new(&F, lo, hi, 0.1, &mt, &e) == LSYS_OK && mt.used == F->bytes);
+  assert(lsys_space_field_diffuse(F, 1000, 1, 1, NULL, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "field: the diffusion needs 600000 substeps, more than 100000: make "
+                "the cells larger") == 0);
+  assert(lsys_space_field_diffuse(F, -1, 1, 1, NULL, &e) == LSYS_EARG);
+  lsys_space_field_free(F);
+  assert(mt.used == 0);
+}
+
 /* A build, a query, markers, a pass and a removal, as far as they go. */
 static int sequence (const double *p, const double *h) {
   lsys_space *S = NULL;
@@ -494,6 +613,14 @@ static int sequence (const double *p, const double *h) {
     st = lsys_space_markers_perceive(M, p, h, 20, &mo, cnt, dir, NULL);
     if (st != LSYS_OK) assert(lsys_space_markers_count(M) == 200);     /* nothing removed */
     else st = lsys_space_markers_remove(M, p + 300, 20, 0.3, 2, NULL, NULL);
+  }
+  if (st == LSYS_OK) {
+    double lo[3] = {0, 0, 0}, hi[3] = {3, 3, 3};
+    lsys_field *F;
+    if ((st = lsys_space_field_new(&F, lo, hi, 0.5, NULL, NULL)) == LSYS_OK) {
+      st = lsys_space_field_diffuse(F, 1, 1, 2, NULL, NULL);
+      lsys_space_field_free(F);
+    }
   }
   lsys_space_free(S);
   lsys_space_markers_free(M);
@@ -533,6 +660,10 @@ int main (void) {
   test_markers();
   test_markers_brute();
   test_errors();
+  test_field_row();
+  test_field_grid();
+  test_field_take();
+  test_field_errors();
   test_nomem();
   printf("test_space: ok\n");
   return 0;

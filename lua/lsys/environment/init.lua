@@ -24,6 +24,7 @@ local collision = require "lsys.environment.collision"
 local light = require "lsys.environment.light"
 local space = require "lsys.environment.space"
 local colonize = require "lsys.environment.colonize"
+local resource = require "lsys.environment.resource"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
       type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
@@ -234,5 +235,9 @@ M.space = space.space
 --- Space colonisation: buds compete for markers and grow towards those they win
 -- (lsys.environment.colonize).
 M.colonize = colonize.colonize
+
+--- Soil water or a nutrient that diffuses in a grid between passes, fed by sources and taken
+-- by the plant (lsys.environment.resource).
+M.resource = resource.resource
 
 return M
