@@ -12,14 +12,18 @@
 --   colonize   100,000 markers in a sphere of radius 20 and 10,000 buds in it, random headings,
 --              perception 3, cone 90 degrees, kill radius 0.5: one pass of markers:perceive
 --              (fresh markers each run), and of lsys.environment.colonize's answer (the lists
---              made in Lua from 10,000 queries).
+--              made in Lua from 10,000 queries);
+--   resource   a field of 128 x 64 x 128 cells (about a million): a pass of
+--              lsys.environment.resource with 100,000 ?E queries (a source fed, one unit of
+--              time diffused, the takes), and the diffusion alone (field:diffuse, 6 substeps).
 --
 -- It prints its figures next to the targets (a pass of 100,000 collision queries under
--- 0.1 s; C at least 5 times the Lua algorithm; a colonisation pass under 0.25 s) and never
--- fails on them.
+-- 0.1 s; C at least 5 times the Lua algorithm; a colonisation pass under 0.25 s; a resource
+-- pass under 0.25 s) and never fails on them.
 --
 --   build/bin/lsys bench/space.lua               every case, as a table
---   build/bin/lsys bench/space.lua collision     one (or density, colonize): a RESULT line
+--   build/bin/lsys bench/space.lua collision     one (or density, colonize, resource): a
+--                                                RESULT line
 local B = dofile((arg and arg[0] or "bench/space.lua"):match("^(.*)/[^/]*$") .. "/common.lua")
 local format = string.format
 
@@ -174,6 +178,34 @@ function CASES.colonize (lsys, core)
   return format("pass=%.6f env=%.6f won=%d left=%d", tpass, tenv, won, left)
 end
 
+function CASES.resource (lsys, core)
+  local q = queries()
+  for i = 1, N do
+    local p = q[i].position
+    p[1], p[2], p[3] = p[1] / 50 * 16, -p[2] / 50 * 8, p[3] / 50 * 16   -- into the soil box
+    q[i].params = { 0.01, 0, 0, 0 }
+  end
+  local opts = { lo = { 0, -8, 0 }, hi = { 16, 0, 16 }, cell = 0.125, initial = 0.1,
+                 diffusion = 0.015625, sources = { { 8, -4, 8, 100 } }, threads = THREADS }
+  local tenv = math.huge
+  for _ = 1, 3 do
+    local env = lsys.environment.resource(opts)
+    env:total()                                    -- the field made: not timed
+    collectgarbage()
+    local t0 = B.clock()
+    env:answer(q)
+    tenv = math.min(tenv, B.clock() - t0)
+    env:start()
+  end
+  local F <close> = core.field { lo = opts.lo, hi = opts.hi, cell = opts.cell,
+                                 threads = THREADS }
+  F:fill(1)
+  local m
+  local tdiff = B.best(function () m = F:diffuse(opts.diffusion, 1) end, 3)
+  local nx, ny, nz = F:dims()
+  return format("env=%.6f diffuse=%.6f substeps=%d cells=%d", tenv, tdiff, m, nx * ny * nz)
+end
+
 local mode = arg and arg[1]
 if CASES[mode] then
   local lsys = B.load_lsys()
@@ -183,7 +215,7 @@ if CASES[mode] then
   return
 end
 if mode ~= nil then
-  io.stderr:write("usage: lsys bench/space.lua [collision | density | colonize]\n")
+  io.stderr:write("usage: lsys bench/space.lua [collision | density | colonize | resource]\n")
   os.exit(2)
 end
 
@@ -221,3 +253,10 @@ print(format("  %-44s %7.1f ms   target < 250 ms: %s", "markers:perceive (a pass
 print(format("  %-44s %7.1f ms   target < 250 ms: %s", "lsys.environment.colonize (a pass)",
              1000 * k.env, B.verdict(k.env < 0.25)))
 print(format("  peak memory (VmHWM) %.0f MiB", k.peak_mib))
+local f = measure("resource")
+print(format("\nresource, %d cells, %d queries:", f.cells, N))
+print(format("  %-44s %7.1f ms   target < 250 ms: %s", "lsys.environment.resource (a pass)",
+             1000 * f.env, B.verdict(f.env < 0.25)))
+print(format("  %-44s %7.1f ms", format("field:diffuse (%d substeps)", f.substeps),
+             1000 * f.diffuse))
+print(format("  peak memory (VmHWM) %.0f MiB", f.peak_mib))
