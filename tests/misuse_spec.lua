@@ -111,6 +111,17 @@ describe("lsys.core under misuse", function ()
     Shadow = function ()
       return core.shadow { lo = { 0, 0, 0 }, hi = { 4, 3, 4 }, voxel = 0.5 }
     end,
+    -- space: a hash of points and a scene's, and space colonisation's markers
+    Space = function ()
+      return core.space({ 0, 0, 0, 0.5, 0, 0, 1, 1, 1 }, { radius = 1, groups = { 0, 1, 0 },
+                                                          scene = model():interpret() })
+    end,
+    Markers = function () return core.markers { 0, 1, 0, 1, 0, 0, 0, 2, 0 } end,
+    Field = function ()
+      local F = core.field { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cell = 0.5 }
+      F:fill(1)
+      return F
+    end,
   }
   -- the types of lsys.core no maker makes, and why: the state's alphabet (one a state,
   -- never closed), the pixels, the turtle, the in-use mark and the rule box of limbs:set_rules

@@ -17,6 +17,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsysL_open_envproc(L);
   lsysL_open_light(L);
   lsysL_open_shadow(L);
+  lsysL_open_space(L);
   lsysL_open_contour(L);
   lsysL_open_surface(L);
   lsysL_open_texture(L);

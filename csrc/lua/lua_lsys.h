@@ -30,6 +30,7 @@ void lsysL_open_outfile (lua_State *L);  /* lua_outfile.c: Outfile, Tempdir (ato
 void lsysL_open_envproc (lua_State *L);  /* lua_envproc.c: EnvProcess, envproc */
 void lsysL_open_light (lua_State *L);    /* lua_light.c: Light, light */
 void lsysL_open_shadow (lua_State *L);   /* lua_shadow.c: Shadow, shadow */
+void lsysL_open_space (lua_State *L);    /* lua_space.c: Space, Markers, Field */
 
 /* require "lsys.core" */
 int luaopen_lsys_core (lua_State *L);

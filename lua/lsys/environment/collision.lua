@@ -1,14 +1,20 @@
 --- A collision environment: which queries another one reaches (the collision test of
 -- Honda 1981 that vlab's honda81 program answers, built in; docs/open.md §2).
 --
--- `lsys.environment.collision { radius = r }` answers each ?E(v [, g]) with 1 when no
--- other query of the same group g (0 without a second parameter) and of a vigour at least
--- v stands within distance r of it, else 0: of two sensors that would meet, the weaker
--- stops, and two of one vigour both stop, as honda81 answers. The queries are hashed into
--- cells of size r, so a pass is linear in the number of queries.
+-- `lsys.environment.collision { radius = r [, threads = n] }` answers each ?E(v [, g]) with
+-- 1 when no other query of the same group g (0 without a second parameter) and of a vigour
+-- at least v stands within distance r of it, else 0: of two sensors that would meet, the
+-- weaker stops, and two of one vigour both stop, as honda81 answers. The queries go into a
+-- space (core.space: a hash of cells of side r, in C), so a pass is linear in the number of
+-- queries; the distances are compared as |p - q|^2 <= r^2, summed in the order x, y, z.
+-- Groups are compared as numbers (a NaN group meets nobody), vigours with <= (a NaN vigour
+-- neither stops nor is stopped).
 -- @module lsys.environment.collision
-local type, ipairs, error, setmetatable, math = type, ipairs, error, setmetatable, math
-local floor = math.floor
+local core = require "lsys.core"
+
+local type, ipairs, pairs, error, pcall, setmetatable, tostring, tonumber, math =
+      type, ipairs, pairs, error, pcall, setmetatable, tostring, tonumber, math
+local format = string.format
 local _ENV = nil
 
 local M = {}
@@ -16,56 +22,59 @@ local M = {}
 local Collision = {}
 Collision.__index = Collision
 
---- The environment; opts: radius (> 0, world units).
+--- The environment; opts: radius (> 0, world units), threads (0 .. 64; 0, the default: the
+-- derivation's number).
 function M.collision (opts)
   local r = type(opts) == "table" and opts.radius
   if type(r) ~= "number" or not (r > 0 and r < math.huge) then
     error("lsys.environment.collision: radius must be a number > 0", 2)
   end
-  return setmetatable({ radius = r }, Collision)
+  for k in pairs(opts) do
+    if k ~= "radius" and k ~= "threads" then
+      error(format("lsys.environment.collision: unknown option '%s'", tostring(k)), 2)
+    end
+  end
+  local t = opts.threads
+  if t ~= nil and (math.type(t) ~= "integer" or t < 0 or t > 64) then
+    error("lsys.environment.collision: threads must be an integer in [0, 64]", 2)
+  end
+  return setmetatable({ radius = r, threads = t or 0 }, Collision)
 end
 
 function Collision.__tostring () return "lsys.environment.collision" end
 
--- The cell of a point: integers for each coordinate, packed into one key.
-local function cell (p, r)
-  return floor(p[1] / r), floor(p[2] / r), floor(p[3] / r)
+-- core.space's message about point k as one about its query.
+local function blame (msg)
+  msg = tostring(msg)
+  local k = msg:match("^core%.space: points%[(%d+)%] must be a finite number")
+  if k then return format("query %d: its position is not finite", (tonumber(k) + 2) // 3) end
+  return (msg:gsub("^core%.space: point (%d+)", "query %1: its position"))
 end
 
-local function key (x, y, z) return x * 73856093 ~ y * 19349663 ~ z * 83492791 end
-
+--- Answers the queries of a pass: 1 for a query no other reaches, else 0.
 function Collision:answer (queries)
-  local r = self.radius
-  local r2 = r * r
-  local cells = {}
+  local pts, groups, vigour = {}, {}, {}
+  local ids, nid = {}, 0               -- the groups' values, numbered (the core's integers)
   for i, q in ipairs(queries) do
-    local k = key(cell(q.position, r))
-    local c = cells[k]
-    if c == nil then c = {}; cells[k] = c end
-    c[#c + 1] = i
-  end
-  local answers = {}
-  for i, q in ipairs(queries) do
-    local p, v, g = q.position, q.params[1] or 0, q.params[2] or 0
-    local cx, cy, cz = cell(p, r)
-    local free = 1
-    for dx = -1, 1 do
-      for dy = -1, 1 do
-        for dz = -1, 1 do
-          for _, j in ipairs(cells[key(cx + dx, cy + dy, cz + dz)] or {}) do
-            local o = queries[j]
-            if j ~= i and (o.params[2] or 0) == g and v <= (o.params[1] or 0) then
-              local ex, ey, ez = p[1] - o.position[1], p[2] - o.position[2],
-                                 p[3] - o.position[3]
-              if ex * ex + ey * ey + ez * ez <= r2 then free = 0 end
-            end
-          end
-        end
-      end
+    local p, params = q.position, q.params
+    pts[3 * i - 2], pts[3 * i - 1], pts[3 * i] = p[1], p[2], p[3]
+    vigour[i] = params[1] or 0
+    local g = params[2] or 0
+    local id
+    if g ~= g then                      -- NaN equals nothing, itself neither
+      nid = nid + 1
+      id = nid
+    else
+      id = ids[g]
+      if id == nil then nid = nid + 1; id = nid; ids[g] = id end
     end
-    answers[i] = free
+    groups[i] = id
   end
-  return answers
+  local ok, space = pcall(core.space, pts, { radius = self.radius, groups = groups,
+                                             vigour = vigour, threads = self.threads })
+  if not ok then error(blame(space), 0) end
+  local _ <close> = space
+  return space:free()
 end
 
 return M

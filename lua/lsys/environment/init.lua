@@ -24,6 +24,9 @@ local collision = require "lsys.environment.collision"
 local light = require "lsys.environment.light"
 local shadow = require "lsys.environment.shadow"
 local vigour = require "lsys.environment.vigour"
+local space = require "lsys.environment.space"
+local colonize = require "lsys.environment.colonize"
+local resource = require "lsys.environment.resource"
 
 local type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset =
       type, ipairs, pairs, error, pcall, tostring, getmetatable, setmetatable, rawset
@@ -234,5 +237,17 @@ M.shadow = shadow.shadow
 --- A tree's vigour shared out among its buds by the Borchert-Honda model, from the light
 -- they sense (lsys.environment.vigour).
 M.vigour = vigour.vigour
+
+--- What is within a radius of each query: how many, their density, the nearest, whether
+-- none (lsys.environment.space).
+M.space = space.space
+
+--- Space colonisation: buds compete for markers and grow towards those they win
+-- (lsys.environment.colonize).
+M.colonize = colonize.colonize
+
+--- Soil water or a nutrient that diffuses in a grid between passes, fed by sources and taken
+-- by the plant (lsys.environment.resource).
+M.resource = resource.resource
 
 return M
