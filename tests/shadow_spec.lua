@@ -278,6 +278,41 @@ describe("lsys.environment.shadow", function ()
     assert.equal(1, select(2, m:derive():module(3)))           -- the disc casts nothing
   end)
 
+  it("darkens an obstacle's voxels, and shades beside and below it when it casts", function ()
+    -- buds at (0, 1, 0) and 3 aside; a box over x in [-1, 0.5], y in [2.2, 2.8]
+    local function answers (obstacles)
+      local m = lsys.lsystem { steps = 1, view = { angle = 90 },
+        axiom = "[F(1)?E(0)][-(90)f(3)+(90)F(1)?E(0)]",
+        environment = lsys.environment.shadow { C = 1, a = 0.2, obstacles = obstacles } }
+      local s = m:derive()
+      return select(2, s:module(3)), select(2, s:module(10))
+    end
+    assert.same({ 1, 1 }, { answers(nil) })
+    local box = { lo = { -1, 2.2, -0.5 }, hi = { 0.5, 2.8, 0.5 } }
+    -- cast: the box's voxels above the bud shade it; the far bud stays in the open
+    local near, far = answers { box }
+    assert.is_true(near < 1 and near > 0, near)
+    assert.equal(1, far)
+    -- not cast: the box shades nothing outside itself
+    assert.same({ 1, 1 }, { answers { { lo = box.lo, hi = box.hi, cast = false } } })
+    -- a bud inside it gets the box's shadow
+    local inside = { lo = { -0.5, 0.5, -0.5 }, hi = { 0.5, 1.5, 0.5 }, shadow = 0.75,
+                     cast = false }
+    assert.near(0.25, (answers { inside }), 1e-12)
+    for _, case in ipairs {
+      { 3, "obstacles must be a list of boxes { lo =, hi = }" },
+      { { { lo = { 0, 0 }, hi = { 1, 1, 1 } } }, "obstacle 1: lo and hi must be points" },
+      { { { lo = { 0, 2, 0 }, hi = { 1, 1, 1 } } }, "obstacle 1: hi must not be below lo" },
+      { { { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, shadow = -1 } },
+        "obstacle 1: shadow must be a finite number >= 0" },
+      { { { lo = { 0, 0, 0 }, hi = { 1, 1, 1 }, cast = 1 } },
+        "obstacle 1: cast must be a boolean" },
+    } do
+      assert.error_contains(function () lsys.environment.shadow { obstacles = case[1] } end,
+                            "lsys.environment.shadow: " .. case[2])
+    end
+  end)
+
   it("grows examples/open/shade.lua alike on any threads", function ()
     local strings = {}
     for _, t in ipairs { 1, 2 } do

@@ -127,3 +127,49 @@ describe("lsys.environment.vigour", function ()
                    true)
   end)
 end)
+
+-- The segments of a scene whose end lies at x < 0, and all of them.
+local function sides (sc)
+  local left, all = 0, 0
+  for _, r in sc:records() do
+    if r.kind == "segment" then
+      all = all + 1
+      if r.p1[1] < 0 then left = left + 1 end
+    end
+  end
+  return left, all
+end
+
+describe("the self-organizing tree (examples/open/selforg.lua)", function ()
+  it("grows the same tree on one thread and on two, and sheds its shaded branches",
+     function ()
+    local m = dofile("examples/open/selforg.lua")
+    m.steps = 10
+    local s = m:derive()
+    assert.same({ 864, 823, 351, 525 }, { s:count("I"), s:count("L"), s:count("A"),
+                                          s:count("B") })
+    m.threads = 1
+    assert.equal(tostring(s), tostring(m:derive()))
+    -- without shedding the same tree keeps more internodes
+    local keep = dofile("examples/open/selforg.lua")
+    keep.steps, keep.env.SHED = 10, 0
+    assert.is_true(keep:derive():count("I") > 864)
+  end)
+
+  it("grows away from a wall", function ()
+    local free, wall = dofile("examples/open/selforg.lua"), dofile("examples/open/wall.lua")
+    free.steps, wall.steps = 12, 12
+    local l, n = sides(free:interpret(free:derive()))
+    assert.is_true(l > 0.3 * n and l < 0.7 * n, l .. " of " .. n)
+    l, n = sides(wall:interpret(wall:derive()))
+    assert.is_true(l < 0.05 * n, l .. " of " .. n)        -- the wall stands at x = -2.5
+  end)
+
+  it("stays small under an older neighbour", function ()
+    local _, strings = dofile("examples/open/neighbour.lua")
+    local alone = dofile("examples/open/selforg.lua")
+    alone.axiom = "W(7)"
+    local n, a = strings[2]:count("I"), alone:derive():count("I")
+    assert.is_true(n < a / 3, n .. " under the neighbour, " .. a .. " alone")
+  end)
+end)
