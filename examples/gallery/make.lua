@@ -332,6 +332,24 @@ local PICTURES = {
     .. "plant's own leaves: buds in light grow, in shade wait, in deep shade die; the crown "
     .. "fills the light and its inside stays bare.", png = "open/shade.png",
     width = 320, height = 320 },
+  { "open/selforg.lua", nil, "A self-organizing tree",
+    "Palubicki et al. 2009: buds sense their light in a shadow grid, the Borchert-Honda model "
+    .. "shares the tree's vigour out among them, each grows a shoot as long as its share "
+    .. "towards the light, and shaded branches are shed; 16 steps.", png = "open/selforg.png",
+    width = 400, height = 400 },
+  { "open/wall.lua", nil, "Beside a wall",
+    "The same tree 2.5 from a wall (seen edge on): the wall shades the buds near it in the "
+    .. "grid, and the crown grows to the open side.", png = "open/wall.png",
+    width = 400, height = 400 },
+  { "open/neighbour.lua", nil, "Under a neighbour",
+    "A sapling 3 from an older tree, its seed waiting 7 steps: in the older tree's shade it "
+    .. "grows a fifth of what it grows alone, leaning out to the light.",
+    png = "open/neighbour.png", scene = true, width = 480, height = 336 },
+  { "open/forest.lua", nil, "A stand",
+    "Nine trees grown together in one grid, seen from above, each with leaves of its own "
+    .. "colour: each crown keeps to the space it wins (crown shyness); the edge trees spread "
+    .. "out, an overtopped one stays small.", png = "open/forest.png", scene = true,
+    width = 480, height = 336 },
 }
 
 local function load (file, name)
@@ -431,6 +449,7 @@ local SECTIONS = {     -- heading, first picture of the section, pictures per ro
   { "Component graphs (Lintermann and Deussen 1999)", "components/fig2_abcd.png", 2 },
   { "Incremental growth (Davison)", "grow/davison.png", 3 },
   { "Open L-systems (Měch and Prusinkiewicz 1996)", "open/ulam.png", 2 },
+  { "Self-organizing trees (Palubicki et al. 2009)", "open/selforg.png", 2 },
 }
 
 -- One section: a table of 'cols' pictures per row, each with its caption underneath
