@@ -22,9 +22,8 @@ local function child (which)
     m.steps = TREE_STEPS
     strings = { m:derive() }
   else
-    local scene
-    scene, strings = dofile(B.root .. "/examples/open/forest.lua")
-    scene:close()
+    local _
+    _, strings = dofile(B.root .. "/examples/open/forest.lua")
   end
   local t = B.clock() - t0
   local n, leaves, modules = 0, 0, 0
