@@ -9,11 +9,11 @@
 -- casters =, obstacles =, threads = }` builds the grid at each pass over the box of the
 -- query points (and of the scene, when it casts), widened by `margin` on every side, and
 -- answers each ?E with Q / C, from 0 (deep shade) to 1 (nothing above it); a ?E of four
--- parameters or more also gets the direction of least shadow (x, y, z): the unit vector to the centre of
--- the least-shadowed voxel whose centre is within `radius` voxels and `angle` degrees of
--- the turtle's heading there (of equal shadows, the one nearest the heading; the heading
--- itself when there is none), as the light environment answers the direction of most
--- light.
+-- parameters or more also gets the direction of least shadow (x, y, z): the unit vector to
+-- the centre of the least-shadowed voxel whose centre is within `radius` voxels and `angle`
+-- degrees of the turtle's heading there (of equal shadows, the one nearest the heading; the
+-- heading itself when there is none), as the light environment answers the direction of
+-- most light.
 --
 -- obstacles: a list of boxes { lo = { x, y, z }, hi = { x, y, z }, shadow = (C), cast =
 -- (true) } that are there at every pass (a wall, a rock, a roof): each adds `shadow` to the
