@@ -759,7 +759,9 @@ static int viewer_light (lua_State *L) {
                                1.8e19, "a positive number of bytes");
   v = checkviewer(L, 1);                    /* again: the options ran Lua code */
   if ((s = lsys_viewer_posted(v)) == NULL) return luaL_error(L, "viewer:light: nothing shown");
-  luaL_argcheck(L, k >= 1 && (size_t)k <= s->nframes, 2, "no such frame");
+  if (k < 1 || (size_t)k > s->nframes)
+    return luaL_error(L, "viewer:light: no frame %I (the window shows frames 1 to %I)", k,
+                      (lua_Integer)s->nframes);
   if (s->frames[k - 1].light == NULL) {
     lsys_vlight *nl = computelight(L, s, (size_t)k - 1, threads, limit);
     if (lsys_viewer_light(v, s, (size_t)k - 1, nl) < 0) {   /* cannot happen: we post */
@@ -797,9 +799,13 @@ static int viewer_colour (lua_State *L) {
   lsys_vstate st;
   int i;
   if (s == NULL) return luaL_error(L, "viewer:colour: nothing shown");
-  luaL_argcheck(L, k >= 1 && (size_t)k <= s->nframes, 2, "no such frame");
+  if (k < 1 || (size_t)k > s->nframes)
+    return luaL_error(L, "viewer:colour: no frame %I (the window shows frames 1 to %I)", k,
+                      (lua_Integer)s->nframes);
   f = &s->frames[k - 1];
-  luaL_argcheck(L, t >= 1 && (size_t)t <= f->sc.mesh.nt, 3, "no such triangle");
+  if (t < 1 || (size_t)t > f->sc.mesh.nt)
+    return luaL_error(L, "viewer:colour: no triangle %I in frame %I (it has %I)", t, k,
+                      (lua_Integer)f->sc.mesh.nt);
   lsys_viewer_state(v, &st);
   col = f->sc.mesh.col;
   if (st.light && f->light != NULL && f->light->col != NULL) {

@@ -572,7 +572,7 @@ end
 -- The results of core function `f`, its errors named as lsys.viewer.<name>'s.
 local function named (name, ok, ...)
   if not ok then
-    error((tostring((...)):gsub("^viewer:%a+: ", "lsys.viewer." .. name .. ": ")), 3)
+    error("lsys.viewer." .. name .. ": " .. tostring((...)):gsub("^viewer:%a+: ", ""), 3)
   end
   return ...
 end
@@ -601,7 +601,8 @@ end
 function M.colour (t, k)
   local v
   v, k = shownframe("colour", k)
-  return named("colour", pcall(v.colour, v, k, t))
+  local r, g, b = named("colour", pcall(v.colour, v, k, t))
+  return r, g, b
 end
 
 --- The colour of light `x` (0 to 1) on the ramp the L key colours leaves with, r, g, b.
