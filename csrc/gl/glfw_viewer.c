@@ -4,11 +4,11 @@
 **
 ** Threads. The caller's thread (Lua) and the viewer thread share only the
 ** fields under 'mu': the mailbox, the event queue, requests (close, keys,
-** screenshots) and the published state. Everything else -- the window, the
-** GL context, the snapshot being shown, the camera -- belongs to the viewer
-** thread. The caller wakes the viewer with glfwPostEmptyEvent, which GLFW
-** allows from any thread, and only while the viewer is open (checked under
-** 'mu', so never after glfwTerminate).
+** screenshots), the published state and the frames' light colours.
+** Everything else -- the window, the GL context, the snapshot being shown,
+** the camera -- belongs to the viewer thread. The caller wakes the viewer
+** with glfwPostEmptyEvent, which GLFW allows from any thread, and only while
+** the viewer is open (checked under 'mu', so never after glfwTerminate).
 **
 ** Drawing is on demand: the loop sleeps in glfwWaitEventsTimeout until an
 ** input event, a post, a request or the next animation step, and redraws
@@ -32,7 +32,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "font.h"
 #include "glfwdl.h"
 #include "overlay.h"
 #include "pngio.h"
@@ -231,6 +230,7 @@ static void takemail (lsys_viewer *v) {
 /* Draws the status line, the help and the light's legend over the picture. */
 static void overlay (lsys_viewer *v) {
   const lsys_vframe *f = curframe(v);
+  const char *help = v->panes.help[0] != '\0' ? v->panes.help : lsys_overlay_help;
   char line[256], note[96];
   if (v->panes.msg[0] != '\0')
     snprintf(line, sizeof line, "%s", v->panes.msg);
@@ -243,8 +243,7 @@ static void overlay (lsys_viewer *v) {
                       v->wireframe, v->note, line, sizeof line);
   if (f != NULL) lsys_vlight_note(lightof(v, f), note, sizeof note);
   lsys_overlay_screen(&v->text, &v->gl, v->fbw, v->fbh, v->winh, v->o.status ? line : NULL,
-                      v->help ? (v->panes.help[0] != '\0' ? v->panes.help : lsys_overlay_help) : NULL,
-                      v->light && f != NULL ? note : NULL);
+                      v->help ? help : NULL, v->light && f != NULL ? note : NULL);
 }
 
 /* ---------------------------------------------------------------------- */

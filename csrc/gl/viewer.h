@@ -5,7 +5,8 @@
 ** The caller (the Lua binding) builds a snapshot -- the frames to show, one
 ** per derivation step, with their meshes, palettes, textures and pick
 ** records -- and posts it; the viewer takes ownership, and from then on the
-** snapshot is immutable and private to the viewer thread. A newer post
+** snapshot is immutable and private to the viewer thread, but for the light
+** colours the caller may give its frames (lsys_viewer_light, vlight.h). A newer post
 ** replaces an older one not yet taken (a mailbox of one). What happens in
 ** the window comes back as events (picks, screenshots written, the window
 ** closed) that the caller polls, so the caller's thread never waits on the

@@ -51,7 +51,8 @@
 **   v:light(k [, opts]) -> info          the light colours of frame k (vlight.h), computed
 **                                        on this thread unless they were: { frame, leaves,
 **                                        min, max, mean, msg (why none) }; opts: threads
-**                                        (0: the default), max_memory (bytes)
+**                                        (0: the default), max_memory (bytes); nil, msg
+**                                        once the window is closed
 **   v:colour(k, t) -> r, g, b            triangle t of frame k as the window draws it now
 **                                        (its first vertex's diffuse colour, in [0, 1])
 **   v:close()                            (also when collected)
@@ -758,7 +759,11 @@ static int viewer_light (lua_State *L) {
   limit = (size_t)lsysL_optnum(L, &lo, "max_memory", (double)lsys_common_memory_limit(), 0,
                                1.8e19, "a positive number of bytes");
   v = checkviewer(L, 1);                    /* again: the options ran Lua code */
-  if ((s = lsys_viewer_posted(v)) == NULL) return luaL_error(L, "viewer:light: nothing shown");
+  if ((s = lsys_viewer_posted(v)) == NULL) {     /* closed meanwhile, or nothing shown */
+    lua_pushnil(L);
+    lua_pushliteral(L, "no window open");
+    return 2;
+  }
   if (k < 1 || (size_t)k > s->nframes)
     return luaL_error(L, "viewer:light: no frame %I (the window shows frames 1 to %I)", k,
                       (lua_Integer)s->nframes);
@@ -799,6 +804,8 @@ static int viewer_colour (lua_State *L) {
   lsys_vstate st;
   int i;
   if (s == NULL) return luaL_error(L, "viewer:colour: nothing shown");
+  if (s->live)                              /* its mesh is the window's to grow */
+    return luaL_error(L, "viewer:colour: not for a growing scene (lsys.viewer.live)");
   if (k < 1 || (size_t)k > s->nframes)
     return luaL_error(L, "viewer:colour: no frame %I (the window shows frames 1 to %I)", k,
                       (lua_Integer)s->nframes);

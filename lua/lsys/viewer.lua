@@ -20,10 +20,10 @@
 --
 -- Without a window (none opened yet, closed, or none possible: no display, or lsys built
 -- without the viewer) every function follows one rule. The ones asked to act on a window
--- raise: `open` and `show` open one, and say why none can be; `key` and `screenshot` say
--- "no window open" (they never open one). The ones that ask about the window or wait for
--- it do nothing and answer as for a closed window: `poll` and `sync` false, `pending` 0,
--- `state` and `project` nil; `wait` and `close` return at once.
+-- raise: `open` and `show` open one, and say why none can be; `key`, `screenshot` and
+-- `light` say "no window open" (they never open one). The ones that ask about the window or
+-- wait for it do nothing and answer as for a closed window: `poll` and `sync` false,
+-- `pending` 0, `state`, `project` and `colour` nil; `wait` and `close` return at once.
 -- @module lsys.viewer
 local core = require "lsys.core"
 local model = require "lsys.model"
@@ -47,6 +47,7 @@ local S = {             -- the one window and what it shows
   on_pick = nil,        -- callback of the last show (or M.on_pick)
   on_event = nil,
   nframes = 0,          -- frames of the snapshot last posted
+  current = nil,        -- the frame shown, as the last poll knew it
   light = false,        -- the L key is on (as the window last said, or a show set it)
   lit = {},             -- frame index -> true once its light colours were asked for
   nlit = 0,             -- light colours computed so far (sync waits for them too)
@@ -343,7 +344,7 @@ function M.show (x, opts)
   })
   v:text(nil, "")
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
-  S.nframes, S.lit, S.want = #frames, {}, nil
+  S.nframes, S.lit, S.want, S.current = #frames, {}, nil, first
   if opts.light_colours ~= nil then S.light = opts.light_colours end
   if opts.light_colours then S.lit[first] = true
   elseif S.light then S.want = first end       -- the window keeps them on: poll gives them
@@ -365,7 +366,7 @@ function M.live (scene, opts)
                   title = "lsys: " .. (opts.title or "growing") })
   v:text(nil, opts.help or "")
   S.on_pick, S.on_event = nil, opts.on_event
-  S.nframes, S.lit, S.want = 1, {}, nil
+  S.nframes, S.lit, S.want, S.current = 1, {}, nil, 1
 end
 
 --- Sends the window what changed in the scene shown by `live` since the last patch (the
@@ -429,6 +430,7 @@ local function handle (v, ev)
     S.light = ev.on
     if ev.on then S.want = ev.frame end
   elseif ev.type == "step" then
+    S.current = ev.frame
     if S.light then S.want = ev.frame end
   elseif ev.type == "closed" then
     v:close()
@@ -446,7 +448,7 @@ local function lighten (v)
   if k == nil or not S.light or S.lit[k] or k > S.nframes then return end
   S.lit[k] = true
   S.nlit = S.nlit + 1
-  v:light(k)
+  v:light(k)                 -- (nil when the window was closed meanwhile)
 end
 
 --- Handles the window's events: calls `on_pick` for clicks on modules (and `on_event`
@@ -557,11 +559,12 @@ function M.sync (timeout)
   return st.serial >= serial
 end
 
--- Frame `k` (default: the frame shown) checked for lsys.viewer.<name>.
+-- Frame `k` (default: the frame shown, as the last poll knew it) checked for
+-- lsys.viewer.<name>.
 local function shownframe (name, k)
   local v = S.viewer
   if v == nil or not v:state().open then error("lsys.viewer." .. name .. ": no window open", 3) end
-  k = k or v:state().frame
+  k = k or S.current
   if math.type(k) ~= "integer" or k < 1 or k > S.nframes then
     error(format("lsys.viewer.%s: no frame %s (the window shows frames 1 to %d)", name,
       tostring(k), S.nframes), 3)
@@ -577,8 +580,9 @@ local function named (name, ok, ...)
   return ...
 end
 
---- The light colours of the leaves of frame `k` (default: the frame shown; 1-based, as
--- `state().frame`), computed now unless they were, whether the L key is on or not:
+--- The light colours of the leaves of frame `k` (default: the frame shown, as the last
+-- `poll` knew it; 1-based, as `state().frame`), computed now unless they were, whether the
+-- L key is on or not:
 -- { frame, leaves = the leaf triangles coloured, min, max, mean = their light (0 in full
 -- shade to 1 for an open horizontal leaf; the mean weighted by area), msg = why none are
 -- (no leaves, a population, a growing scene, the memory budget) }. `opts`: `threads`
@@ -587,7 +591,8 @@ end
 function M.light (k, opts)
   local v
   v, k = shownframe("light", k)
-  local info = named("light", pcall(v.light, v, k, opts))
+  local info, why = named("light", pcall(v.light, v, k, opts))
+  if info == nil then error("lsys.viewer.light: " .. why, 2) end
   if not S.lit[k] then
     S.lit[k] = true
     S.nlit = S.nlit + 1
@@ -595,10 +600,15 @@ function M.light (k, opts)
   return info
 end
 
---- The colour triangle `t` (1-based) of frame `k` (default: the frame shown) is drawn in
--- now, r, g, b in [0, 1] (its first vertex's material): its light colour while the L
--- key is on and the frame has its colours, else the model's.
+--- The colour triangle `t` (1-based) of frame `k` (default: the frame shown, as the last
+-- `poll` knew it) is drawn in now, r, g, b in [0, 1] (its first vertex's material): its
+-- light colour while the L key is on and the frame has its colours, else the model's. Nil
+-- without a window.
 function M.colour (t, k)
+  if S.viewer == nil or not S.viewer:state().open then return nil end
+  if math.type(t) ~= "integer" then
+    error("lsys.viewer.colour: the triangle must be an integer, got " .. tostring(t), 2)
+  end
   local v
   v, k = shownframe("colour", k)
   local r, g, b = named("colour", pcall(v.colour, v, k, t))
