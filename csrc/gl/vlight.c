@@ -155,7 +155,6 @@ int lsys_vlight_compute (lsys_vlight *l, const lsys_vframe *f, int live, int thr
   int st, wrap = 0;
   char b1[32], b2[32];
   memset(l, 0, sizeof *l);
-  l->min = l->max = l->mean = 0;
   if (live) return nothing(l, "not for a growing scene");
   if (f->sc.ninst > 0) return nothing(l, "not for a population");
   if ((n = leaves(f, NULL)) == 0) return nothing(l, "no leaves in this step");
