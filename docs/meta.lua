@@ -621,6 +621,7 @@ function lsys.wait() end
 ---@field lines? lsys.Line[] For a Scene: segments drawn over it.
 ---@field capture? boolean A tool takes the keys and Ctrl-drags: they come to `on_event` as `{ type = "key", key =, ctrl =, shift = }` and `{ type = "drag", phase = "begin"|"move"|"end", x =, y = }` (the arrows no longer step).
 ---@field frames_dir? string Where S, pressed while animating, saves every step ("NAME-frames").
+---@field light_colours? boolean `true`: the leaves coloured by the light they receive from the first picture (the L key); `false`: the model's colours; nil: as the window had them.
 
 --- An overlay segment of `lsys.show(scene, { lines = ... })`.
 ---@class lsys.Line
@@ -643,9 +644,9 @@ function lsys.wait() end
 ---@field y number Window y of the click (pixels from the top).
 
 --- The viewer window (docs/viewer.md). Without a window (none open, no display, lsys built
---- without the viewer) `open`, `show`, `key` and `screenshot` raise; `poll`, `sync`,
---- `pending`, `state`, `project`, `wait` and `close` do nothing and answer as for a closed
---- window (false, 0, nil).
+--- without the viewer) `open`, `show`, `key`, `screenshot` and `light` raise; `poll`,
+--- `sync`, `pending`, `state`, `project`, `colour`, `wait` and `close` do nothing and answer
+--- as for a closed window (false, 0, nil).
 ---@class lsys.viewer
 ---@field on_pick? fun(info: lsys.Pick) Called for picks of shows without their own on_pick.
 ---@field last_pick? lsys.Pick The last pick.
@@ -684,7 +685,7 @@ function lsys.viewer.screenshot(path, timeout) end
 ---@return boolean
 function lsys.viewer.sync(timeout) end
 --- The window's state, nil before the first window.
----@return { open: boolean, drawn: integer, drawms: number, serial: integer, width: integer, height: integer, fbwidth: integer, fbheight: integer, frame: integer, nframes: integer, step?: integer, playing: boolean, wireframe: boolean, scene: integer[] }?
+---@return { open: boolean, drawn: integer, drawms: number, serial: integer, width: integer, height: integer, fbwidth: integer, fbheight: integer, frame: integer, nframes: integer, step?: integer, playing: boolean, wireframe: boolean, light: boolean, scene: integer[] }?
 function lsys.viewer.state() end
 --- Window coordinates (pixels from the top left) and depth of a world point, with the
 --- camera last drawn; nil when it is behind the eye or nothing was drawn.
@@ -694,9 +695,30 @@ function lsys.viewer.state() end
 ---@return number? depth
 function lsys.viewer.project(p) end
 --- Presses a key of the window: "right" "left" "home" "end" "space" "r" "f" "w" "s" "h"
---- "q" "escape" "+" "-" "redraw".
+--- "l" "q" "escape" "+" "-" "redraw".
 ---@param name string
 function lsys.viewer.key(name) end
+--- The light colours of frame `k`'s leaves (default: the frame shown), computed unless they
+--- were (docs/viewer.md, "Light on the leaves"). Raises `lsys.viewer.light: ...` without a
+--- window, for a frame not shown and for bad options.
+---@param k? integer
+---@param opts? { threads?: integer, max_memory?: number }
+---@return { frame: integer, leaves: integer, min: number, max: number, mean: number, msg?: string }
+function lsys.viewer.light(k, opts) end
+--- The colour triangle `t` of frame `k` (default: the frame shown) is drawn in now: its light
+--- colour while the L key is on, else the model's; nil without a window.
+---@param t integer
+---@param k? integer
+---@return number r
+---@return number g
+---@return number b
+function lsys.viewer.colour(t, k) end
+--- The colour of light `x` (0 to 1) on the L key's ramp.
+---@param x number
+---@return number r
+---@return number g
+---@return number b
+function lsys.viewer.ramp(x) end
 --- Events waiting for `poll`.
 ---@return integer
 function lsys.viewer.pending() end
@@ -2060,6 +2082,14 @@ function core.viewer_open(opts) end
 ---@return string? why
 function core.pen_devices() end
 
+--- The colour of light x (clamped to [0, 1]) on the ramp of the window's L key. Only in a
+--- build with the viewer.
+---@param x number
+---@return number r
+---@return number g
+---@return number b
+function core.light_ramp(x) end
+
 --- The modification time (seconds, with a fraction) and size of a file, or nil and a
 --- message: `lsys view` reloads a model when they change.
 ---@param path string
@@ -2075,12 +2105,13 @@ local Viewer = {}
 --- `frames` is a list of `{ scene =, step =, modules =, render = lsys.render options,
 --- world =, take =, lines = }`.
 ---@param frames table[]
----@param opts? { first?: integer, rate?: number, title?: string, keep_camera?: boolean, capture?: boolean, textures?: lsys.Texture[] }
+---@param opts? { first?: integer, rate?: number, title?: string, keep_camera?: boolean, capture?: boolean, textures?: lsys.Texture[], light?: boolean } `light`: the L key on (the first frame's light colours computed before posting) or off; nil leaves it.
 function Viewer:post(frames, opts) end
 
 --- The next event, waiting up to `timeout` seconds (0): `{ type = "pick"|"miss"|
---- "screenshot"|"step"|"closed"|"key"|"drag", frame, step, module, kind, x, y, path, ok,
---- msg, key, ctrl, shift, phase }` (the fields of its type), or nil.
+--- "screenshot"|"step"|"closed"|"key"|"drag"|"light", frame, step, module, kind, x, y, path,
+--- ok, msg, key, ctrl, shift, phase, on }` (the fields of its type; "light": the L key, `on`),
+--- or nil.
 ---@param timeout? number
 ---@return table?
 function Viewer:poll(timeout) end
@@ -2095,9 +2126,23 @@ function Viewer:screenshot(path) end
 ---@return integer serial
 function Viewer:key(name) end
 --- `{ open, drawn, serial, width, height, fbwidth, fbheight, frame, nframes, playing,
---- wireframe, scene }` (scene: the scene's rectangle in the window, `{x, y, w, h}`).
+--- wireframe, light, scene }` (scene: the scene's rectangle in the window, `{x, y, w, h}`).
 ---@return table
 function Viewer:state() end
+--- The light colours of frame k of the snapshot last posted (csrc/gl/vlight.h), computed on
+--- this thread unless they were, and handed to the window: `{ frame, leaves, min, max, mean,
+--- msg }`; nil and a message once the window is closed.
+---@param k integer
+---@param opts? { threads?: integer, max_memory?: number }
+---@return table
+function Viewer:light(k, opts) end
+--- The colour triangle t of frame k is drawn in now (r, g, b).
+---@param k integer
+---@param t integer
+---@return number r
+---@return number g
+---@return number b
+function Viewer:colour(k, t) end
 --- Splits the window into the scene and image panes (csrc/gl/vpanes.c), rectangles in
 --- fractions of the window, y down; nil: the scene fills it again. While a layout is on,
 --- every key comes back as a "key" event, and the mouse over a pane as "pointer" (`pane`,

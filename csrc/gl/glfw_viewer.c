@@ -4,11 +4,11 @@
 **
 ** Threads. The caller's thread (Lua) and the viewer thread share only the
 ** fields under 'mu': the mailbox, the event queue, requests (close, keys,
-** screenshots) and the published state. Everything else -- the window, the
-** GL context, the snapshot being shown, the camera -- belongs to the viewer
-** thread. The caller wakes the viewer with glfwPostEmptyEvent, which GLFW
-** allows from any thread, and only while the viewer is open (checked under
-** 'mu', so never after glfwTerminate).
+** screenshots), the published state and the frames' light colours.
+** Everything else -- the window, the GL context, the snapshot being shown,
+** the camera -- belongs to the viewer thread. The caller wakes the viewer
+** with glfwPostEmptyEvent, which GLFW allows from any thread, and only while
+** the viewer is open (checked under 'mu', so never after glfwTerminate).
 **
 ** Drawing is on demand: the loop sleeps in glfwWaitEventsTimeout until an
 ** input event, a post, a request or the next animation step, and redraws
@@ -32,13 +32,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "font.h"
 #include "glfwdl.h"
 #include "overlay.h"
 #include "pngio.h"
 #include "turtle.h"
 #include "viewcam.h"
 #include "viewer.h"
+#include "vlight.h"
 #include "vpanes.h"
 #include "vshot.h"
 #include "xpen.h"
@@ -63,6 +63,7 @@ struct lsys_viewer {
   pthread_cond_t cv;
   /* shared, under mu */
   lsys_vsnap *mail;               /* posted, not yet taken */
+  const lsys_vsnap *posted;       /* the last posted (mail or snap): its frames' light */
   int started, startok, quit, open;
   char starterr[256];
   lsys_vevent *ev;                /* queue: ev[evhead .. evhead + nev) modulo MAXEVENTS */
@@ -90,7 +91,7 @@ struct lsys_viewer {
   int moved;
   int playing;
   double rate, nextt;
-  int wireframe, help, dirty;
+  int wireframe, help, dirty, light;   /* light: leaves coloured by it (the L key) */
   double drawms;                  /* smoothed time to draw a frame */
   int seqreq;                     /* 1: the S key while animating: save every frame */
   char drawerr[256];              /* why the last picture could not be drawn (status line) */
@@ -135,11 +136,22 @@ static const lsys_vframe *curframe (const lsys_viewer *v) {
          ? &v->snap->frames[v->cur] : NULL;
 }
 
+/* The light colours frame f is drawn with: none while the L key is off or
+** until the caller gives them. */
+static const lsys_vlight *lightof (lsys_viewer *v, const lsys_vframe *f) {
+  const lsys_vlight *l;
+  pthread_mutex_lock(&v->mu);
+  l = v->light ? f->light : NULL;
+  pthread_mutex_unlock(&v->mu);
+  return l;
+}
+
 /* Frame f seen through the viewer's camera: its scene with the camera
 ** replaced (the arrays borrowed, scene.h) and the options of this window. */
 static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
                        lsys_render_opts *o) {
   *sc = f->sc;
+  lsys_vlight_apply(lightof(v, f), sc);
   lsys_viewcam_apply(&v->cam, &sc->cam);
   sc->cam.has_box = 0;            /* near and far: from what is drawn */
   lsys_vsnap_frame_bounds((lsys_vframe *)f, sc->cam.bounds);   /* the viewer thread's frame */
@@ -204,6 +216,7 @@ static void takemail (lsys_viewer *v) {
   }
   v->rate = s->rate > 0 ? s->rate : 2;
   v->playing = 0;
+  if (s->light >= 0) v->light = s->light;
   v->cur = s->nframes > 0 ? (long)(s->first < s->nframes ? s->first : s->nframes - 1) : -1;
   if (s->title[0] != '\0') G.SetWindowTitle(v->win, s->title);
   if (v->cur >= 0 && (!s->keep_camera || !v->cam.valid))
@@ -212,26 +225,13 @@ static void takemail (lsys_viewer *v) {
 }
 
 /* ---------------------------------------------------------------------- */
-/* text: the status line and the help (overlay.h) */
+/* text: the status line, the help and the light's legend (overlay.h) */
 
-static const char helptext[] =
-  "drag: orbit   right-drag / shift-drag: pan   scroll: zoom\n"
-  "click: pick a module\n"
-  "left / right: step back / forward   home / end: first / last\n"
-  "space: animate   + / -: faster / slower\n"
-  "R: reset view   F: fit   W: wireframe   S: screenshot\n"
-  "S while animating: save every step (this camera) to a folder\n"
-  "H: this help   Esc / Q: quit";
-
-/* Draws the status line (and the help) over the picture. */
+/* Draws the status line, the help and the light's legend over the picture. */
 static void overlay (lsys_viewer *v) {
-  static const uint8_t fg[4] = {255, 255, 255, 255}, bg[4] = {0, 0, 0, 140};
   const lsys_vframe *f = curframe(v);
-  char line[256];
-  float px = (float)(v->winh > 0 ? 2.0 * v->fbh / v->winh : 2.0);
-  float lh = (LSYS_FONT_H + 4) * px;
-  size_t n;
-  v->text.n = 0;
+  const char *help = v->panes.help[0] != '\0' ? v->panes.help : lsys_overlay_help;
+  char line[256], note[96];
   if (v->panes.msg[0] != '\0')
     snprintf(line, sizeof line, "%s", v->panes.msg);
   else if (f == NULL)
@@ -241,25 +241,9 @@ static void overlay (lsys_viewer *v) {
   else
     lsys_vsnap_status(v->snap, v->cur, v->drawms > 0 ? 1000 / v->drawms : 0.0, v->playing,
                       v->wireframe, v->note, line, sizeof line);
-  n = strlen(line);
-  if (v->fbw < (float)(n + 12) * (LSYS_FONT_W + 1) * px && px > 1) {   /* smaller to fit */
-    px = px / 2 < 1 ? 1 : px / 2;
-    lh = (LSYS_FONT_H + 4) * px;
-  }
-  lsys_overlay_quad(&v->text, 0, (float)v->fbh - lh, (float)v->fbw, lh, bg);
-  lsys_overlay_text(&v->text, line, 2 * px, (float)v->fbh - lh + 2 * px, px, fg);
-  if (v->help) {
-    const char *help = v->panes.help[0] != '\0' ? v->panes.help : helptext, *s;
-    int lines = 1;
-    for (s = help; *s; s++) lines += *s == '\n';
-    lsys_overlay_quad(&v->text, 0, 0, (float)v->fbw, lines * (LSYS_FONT_H + 3) * px + 4 * px,
-                      bg);
-    lsys_overlay_text(&v->text, help, 2 * px, 2 * px, px, fg);
-  }
-  else if (n + 14 < (size_t)(v->fbw / ((LSYS_FONT_W + 1) * px)))
-    lsys_overlay_text(&v->text, "H: help", (float)v->fbw - 9 * (LSYS_FONT_W + 1) * px,
-                      (float)v->fbh - lh + 2 * px, px, fg);
-  lsys_overlay_draw(&v->text, &v->gl, v->fbw, v->fbh);
+  if (f != NULL) lsys_vlight_note(lightof(v, f), note, sizeof note);
+  lsys_overlay_screen(&v->text, &v->gl, v->fbw, v->fbh, v->winh, v->o.status ? line : NULL,
+                      v->help ? help : NULL, v->light && f != NULL ? note : NULL);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -277,16 +261,7 @@ static void screenshot (lsys_viewer *v, const char *path) {
   pushevent(v, &ev);
 }
 
-/* The scene's rectangle in framebuffer pixels: x, y (GL rows go up), w, h. */
-static void fbrect (const lsys_viewer *v, int r[4]) {
-  double k = (double)v->fbh / v->winh;      /* framebuffer pixels per window pixel */
-  r[0] = (int)lround(v->sr[0] * k);
-  r[1] = (int)lround((v->winh - v->sr[1] - v->sr[3]) * k);
-  r[2] = (int)lround(v->sr[2] * k);
-  r[3] = (int)lround(v->sr[3] * k);
-}
-
-/* Draws frame f through the current camera into the rectangle r (fbrect);
+/* Draws frame f through the current camera into the rectangle r (lsys_vpanes_fbrect);
 ** 'sc' is the scene as drawn. */
 static int drawscene (lsys_viewer *v, const lsys_vframe *f, const int r[4], lsys_scene *sc,
                       lsys_error *e) {
@@ -317,14 +292,14 @@ static void draw (lsys_viewer *v) {
   lsys_vpanes_scene(&v->panes, v->winw, v->winh, v->sr);
   if (v->seqreq && v->snap != NULL) {   /* the S key while animating; drawn over next */
     lsys_vevent ev;
-    fbrect(v, r);
+    lsys_vpanes_fbrect(v->sr, v->winh, v->fbh, r);
     event(v, LSYS_VEV_FRAMES, &ev);
     lsys_vshot_series(&v->shot, v->snap, r, drawframe, v, &ev);
     pushevent(v, &ev);
   }
   v->seqreq = 0;
   if (f != NULL) {
-    fbrect(v, r);
+    lsys_vpanes_fbrect(v->sr, v->winh, v->fbh, r);
     v->drawerr[0] = '\0';
     if (drawscene(v, f, r, &sc, &e) != LSYS_OK) {
       snprintf(v->drawerr, sizeof v->drawerr, "%s", e.msg);   /* on the status line */
@@ -340,7 +315,7 @@ static void draw (lsys_viewer *v) {
     lsys_overlay_lines(&v->gl, f->lines, f->nlines,
                        v->winh > 0 ? (float)v->fbh / (float)v->winh : 1);
   lsys_vpanes_draw(&v->panes, &v->gl, v->winw, v->winh, v->fbw, v->fbh);
-  if (v->o.status) overlay(v);
+  if (v->o.status || v->light) overlay(v);
   pthread_mutex_lock(&v->mu);
   wantshot = v->shotreq && (f != NULL || v->mail == NULL);
   if (wantshot) {
@@ -366,6 +341,7 @@ static void draw (lsys_viewer *v) {
   v->st.nframes = v->snap ? (long)v->snap->nframes : 0;
   v->st.playing = v->playing;
   v->st.wireframe = v->wireframe;
+  v->st.light = v->light;
   v->st.capture = capturing(v);
   memcpy(v->st.scene, v->sr, sizeof v->sr);
   if (f != NULL)
@@ -437,6 +413,15 @@ static void key (lsys_viewer *v, int k, int mods) {
       v->wireframe = !v->wireframe;
       v->dirty = 1;
       break;
+    case GLFW_KEY_L: {            /* the caller gives the frames their colours */
+      lsys_vevent e;
+      v->light = !v->light;
+      v->dirty = 1;
+      event(v, LSYS_VEV_LIGHT, &e);
+      e.ok = v->light;
+      pushevent(v, &e);
+      break;
+    }
     case GLFW_KEY_H: case GLFW_KEY_SLASH:
       v->help = !v->help;
       v->dirty = 1;
@@ -636,12 +621,6 @@ static void started (lsys_viewer *v, int ok, const char *msg) {
   pthread_mutex_unlock(&v->mu);
 }
 
-static int softrenderer (const lsys_gl *gl) {
-  const char *r = (const char *)gl->GetString(GL_RENDERER);
-  return r != NULL && (strstr(r, "llvmpipe") != NULL || strstr(r, "softpipe") != NULL ||
-                       strstr(r, "swrast") != NULL);
-}
-
 /* Creates the window with 'samples' and makes its context current with
 ** the GL entry points loaded; 0 (window destroyed, message in err) when
 ** that fails. */
@@ -684,7 +663,7 @@ static int openwindow (lsys_viewer *v, char *err, size_t nerr) {
   /* A software renderer (llvmpipe under Xvfb, say) pays for every sample,
   ** and Mesa 22's llvmpipe leaves gaps in thin multisampled lines: no
   ** multisampling there. */
-  if (v->o.samples > 0 && softrenderer(&v->gl)) {
+  if (v->o.samples > 0 && lsys_render_software(&v->gl)) {
     G.MakeContextCurrent(NULL);
     G.DestroyWindow(v->win);
     if (!mkwindow(v, 0, err, nerr)) {
@@ -876,6 +855,7 @@ void lsys_viewer_post (lsys_viewer *v, lsys_vsnap *s) {
   lsys_vlive_reset(&v->live, s->live && s->nframes == 1);
   old = v->mail;
   v->mail = s;
+  v->posted = s;
   v->serial++;
   wake_locked(v);
   pthread_mutex_unlock(&v->mu);
@@ -970,6 +950,26 @@ int lsys_viewer_key (lsys_viewer *v, int k) {
   if (v->nkeys < (int)(sizeof v->keys / sizeof v->keys[0])) v->keys[v->nkeys++] = k;
   serial = ++v->serial;
   wake_locked(v);
+  pthread_mutex_unlock(&v->mu);
+  return serial;
+}
+
+const lsys_vsnap *lsys_viewer_posted (lsys_viewer *v) {
+  const lsys_vsnap *s;
+  pthread_mutex_lock(&v->mu);
+  s = v->open ? v->posted : NULL;
+  pthread_mutex_unlock(&v->mu);
+  return s;
+}
+
+int lsys_viewer_light (lsys_viewer *v, const lsys_vsnap *s, size_t k, lsys_vlight *l) {
+  int serial = LSYS_EARG;
+  pthread_mutex_lock(&v->mu);
+  if (s != NULL && s == v->posted && k < s->nframes && s->frames[k].light == NULL) {
+    s->frames[k].light = l;
+    serial = ++v->serial;
+    wake_locked(v);
+  }
   pthread_mutex_unlock(&v->mu);
   return serial;
 }

@@ -6,6 +6,7 @@
 
 #include "font.h"              /* csrc/core/font.h */
 #include "overlay.h"
+#include "vlight.h"
 
 int lsys_overlay_quad (lsys_overlay *t, float x, float y, float w, float h, const uint8_t c[4]) {
   size_t n = t->n, i;
@@ -77,6 +78,76 @@ void lsys_overlay_draw (const lsys_overlay *t, const lsys_gl *gl, int fbw, int f
   gl->DisableClientState(GL_VERTEX_ARRAY);
   gl->DisableClientState(GL_COLOR_ARRAY);
   gl->Disable(GL_BLEND);
+}
+
+const char lsys_overlay_help[] =
+  "drag: orbit   right-drag / shift-drag: pan   scroll: zoom\n"
+  "click: pick a module\n"
+  "left / right: step back / forward   home / end: first / last\n"
+  "space: animate   + / -: faster / slower\n"
+  "R: reset view   F: fit   W: wireframe   S: screenshot\n"
+  "L: colour the leaves by the light they receive\n"
+  "S while animating: save every step (this camera) to a folder\n"
+  "H: this help   Esc / Q: quit";
+
+#define ADV(px) ((LSYS_FONT_W + 1) * (px))    /* the advance of a character */
+
+/* The legend of the light colours at the top right, from y down: a title,
+** the ramp between 0 and 1, and 'note'. */
+static void legend (lsys_overlay *t, int fbw, float y, float px, const char *note,
+                    const uint8_t fg[4], const uint8_t bg[4]) {
+  static const char title[] = "leaf light (L)";
+  size_t n = strlen(note) > sizeof title - 1 ? strlen(note) : sizeof title - 1, k;
+  float w = (float)n * ADV(px) + 4 * px, lh = (LSYS_FONT_H + 4) * px, x, bw;
+  if (w > fbw / 2 && px > 1) {                      /* smaller to fit */
+    px = px / 2 < 1 ? 1 : px / 2;
+    w = (float)n * ADV(px) + 4 * px;
+    lh = (LSYS_FONT_H + 4) * px;
+  }
+  x = (float)fbw - w - 2 * px;
+  y += 2 * px;
+  lsys_overlay_quad(t, x, y, w, 3 * lh + 2 * px, bg);
+  lsys_overlay_text(t, title, x + 2 * px, y + 2 * px, px, fg);
+  lsys_overlay_text(t, "0", x + 2 * px, y + lh + 2 * px, px, fg);
+  lsys_overlay_text(t, "1", x + w - 2 * px - ADV(px), y + lh + 2 * px, px, fg);
+  bw = (w - 4 * px - 2 * ADV(px) - 2 * px) / LSYS_VLIGHT_BINS;
+  for (k = 0; k < LSYS_VLIGHT_BINS; k++) {
+    float rgb[3];
+    uint8_t c[4] = {0, 0, 0, 255};
+    int i;
+    lsys_vlight_ramp((double)k / (LSYS_VLIGHT_BINS - 1), rgb);
+    for (i = 0; i < 3; i++) c[i] = (uint8_t)(255 * rgb[i] + 0.5f);
+    lsys_overlay_quad(t, x + 3 * px + ADV(px) + (float)k * bw, y + lh + px, bw + 0.5f,
+                      LSYS_FONT_H * px + 2 * px, c);
+  }
+  lsys_overlay_text(t, note, x + 2 * px, y + 2 * lh + 2 * px, px, fg);
+}
+
+void lsys_overlay_screen (lsys_overlay *t, const lsys_gl *gl, int fbw, int fbh, int winh,
+                          const char *line, const char *help, const char *light) {
+  static const uint8_t fg[4] = {255, 255, 255, 255}, bg[4] = {0, 0, 0, 140};
+  float px = (float)(winh > 0 ? 2.0 * fbh / winh : 2.0), lh, top = 0;
+  size_t n = line != NULL ? strlen(line) : 0;
+  t->n = 0;
+  if (fbw < (float)(n + 12) * ADV(px) && px > 1) px = px / 2 < 1 ? 1 : px / 2;
+  lh = (LSYS_FONT_H + 4) * px;
+  if (line != NULL) {
+    lsys_overlay_quad(t, 0, (float)fbh - lh, (float)fbw, lh, bg);
+    lsys_overlay_text(t, line, 2 * px, (float)fbh - lh + 2 * px, px, fg);
+    if (help == NULL && n + 14 < (size_t)(fbw / ADV(px)))
+      lsys_overlay_text(t, "H: help", (float)fbw - 9 * ADV(px), (float)fbh - lh + 2 * px, px,
+                        fg);
+  }
+  if (help != NULL) {
+    const char *s;
+    int lines = 1;
+    for (s = help; *s; s++) lines += *s == '\n';
+    top = lines * (LSYS_FONT_H + 3) * px + 4 * px;
+    lsys_overlay_quad(t, 0, 0, (float)fbw, top, bg);
+    lsys_overlay_text(t, help, 2 * px, 2 * px, px, fg);
+  }
+  if (light != NULL) legend(t, fbw, top, px, light, fg, bg);
+  lsys_overlay_draw(t, gl, fbw, fbh);
 }
 
 void lsys_overlay_free (lsys_overlay *t) {

@@ -31,6 +31,21 @@ void lsys_overlay_text (lsys_overlay *t, const char *s, float x, float y, float 
 ** depth test or lighting, and leaves it at that (nothing when 't' is empty). */
 void lsys_overlay_draw (const lsys_overlay *t, const lsys_gl *gl, int fbw, int fbh);
 
+/* The help of the window's keys (the H key, docs/viewer.md). */
+extern const char lsys_overlay_help[];
+
+/*
+** Lays out and draws what the window writes over its picture (a fbw x fbh
+** framebuffer of a window winh high in screen coordinates: 2 framebuffer
+** pixels a font pixel on a plain screen, fewer when the status line does
+** not fit): the status line 'line' at the bottom with "H: help" at its right
+** when there is room, the help text 'help' at the top, and the legend of the
+** light colours (vlight.h) at the top right, under the help: a title, the
+** ramp from 0 to 1 and 'light' (lsys_vlight_note). NULL leaves each out.
+*/
+void lsys_overlay_screen (lsys_overlay *t, const lsys_gl *gl, int fbw, int fbh, int winh,
+                          const char *line, const char *help, const char *light);
+
 /* Frees the arrays of 't' and leaves it empty. */
 void lsys_overlay_free (lsys_overlay *t);
 

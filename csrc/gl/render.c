@@ -104,6 +104,12 @@ int lsys_render_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsy
   return LSYS_OK;
 }
 
+int lsys_render_software (const lsys_gl *gl) {
+  const char *r = (const char *)gl->GetString(GL_RENDERER);
+  return r != NULL && (strstr(r, "llvmpipe") != NULL || strstr(r, "softpipe") != NULL ||
+                       strstr(r, "swrast") != NULL);
+}
+
 /* ---------------------------------------------------------------------- */
 /* drawing */
 

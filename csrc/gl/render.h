@@ -83,6 +83,10 @@ typedef void (*lsys_glproc) (void);
 ** with e->msg naming the first entry point that 'get' did not find. */
 int lsys_render_gl_load (lsys_gl *gl, lsys_glproc (*get) (const char *name), lsys_error *e);
 
+/* 1 when the current context of 'gl' renders in software (llvmpipe, softpipe,
+** swrast: Mesa on Xvfb, say), where every sample costs. */
+int lsys_render_software (const lsys_gl *gl);
+
 /* The camera (lsys_camera, LSYS_PERSPECTIVE, LSYS_PARALLEL) is the scene's:
 ** scene.h. */
 

@@ -5,7 +5,8 @@
 ** The caller (the Lua binding) builds a snapshot -- the frames to show, one
 ** per derivation step, with their meshes, palettes, textures and pick
 ** records -- and posts it; the viewer takes ownership, and from then on the
-** snapshot is immutable and private to the viewer thread. A newer post
+** snapshot is immutable and private to the viewer thread, but for the light
+** colours the caller may give its frames (lsys_viewer_light, vlight.h). A newer post
 ** replaces an older one not yet taken (a mailbox of one). What happens in
 ** the window comes back as events (picks, screenshots written, the window
 ** closed) that the caller polls, so the caller's thread never waits on the
@@ -40,6 +41,8 @@ typedef struct lsys_vline {
   int ontop;                    /* drawn over everything (not depth-tested), after the rest */
 } lsys_vline;
 
+struct lsys_vlight;
+
 /* One picture: a scene with what picking and highlighting it need. */
 typedef struct lsys_vframe {
   lsys_scene sc;                /* owned mesh and palette (no records); camera, light and
@@ -55,6 +58,10 @@ typedef struct lsys_vframe {
   int step;                     /* derivation step, or -1 when unknown */
   int hasbounds;                /* the viewer's: bounds[] holds the mesh's (0: to find) */
   double bounds[6];
+  uint32_t *leafr;              /* owned: the leaves' triangles, ranges [a, b) (vlight.h) */
+  size_t nleafr;
+  struct lsys_vlight *light;    /* owned: the light colours (vlight.h), NULL until the
+                                   caller gives them (lsys_viewer_light, under the lock) */
 } lsys_vframe;
 
 /* What is shown: frames 0..nframes-1 (usually steps 0..n), textures shared
@@ -78,6 +85,8 @@ typedef struct lsys_vsnap {
                                    ("": lsys-frames in the current directory) */
   int live;                     /* 1: one frame, grown in place by lsys_viewer_patch (its
                                    mesh as posted is ignored: the patches fill it) */
+  int light;                    /* the L key's colours by light: 1 on, 0 off, -1 (the
+                                   default) as they were */
 } lsys_vsnap;
 
 /* A new empty snapshot with room for n frames (each frame's scene
@@ -122,14 +131,16 @@ enum {
                                    it held (1), released (2) over 'pane'; x, y in the pixels
                                    of the pane's image; button (GLFW's), mods */
   LSYS_VEV_SCROLL,              /* panes: the wheel over 'pane' (scroll: notches, up > 0) */
-  LSYS_VEV_FRAMES               /* the S key while animating: every frame saved through the
+  LSYS_VEV_FRAMES,              /* the S key while animating: every frame saved through the
                                    current camera into the folder 'path' ('count' pictures,
                                    of steps 'first' to 'step') or not (msg says why) */
+  LSYS_VEV_LIGHT                /* the L key: leaves coloured by their light (ok 1) or not
+                                   (ok 0); the caller gives the frames their colours */
 };
 
 typedef struct lsys_vevent {
   int type;
-  int ok;                       /* SCREENSHOT: 1 written, 0 failed (msg says why) */
+  int ok;                       /* SCREENSHOT: 1 written, 0 failed (msg says why); LIGHT */
   long frame;                   /* the frame index shown (-1 when none) */
   long step;                    /* that frame's step */
   uint32_t module;              /* PICK: the module */
@@ -233,6 +244,7 @@ typedef struct lsys_vstate {
   long frame, nframes;          /* the frame shown (-1: none yet) and how many there are */
   int playing;                  /* animating through the frames */
   int wireframe;
+  int light;                    /* leaves coloured by their light (the L key) */
   double proj[16], view[16];    /* the camera of the last picture drawn */
   int capture;                  /* the snapshot shown captures keys and drags */
   int scene[4];                 /* the scene's rectangle in the window (x, y, w, h): the
@@ -258,6 +270,21 @@ void lsys_viewer_state (lsys_viewer *v, lsys_vstate *st);
 int lsys_viewer_layout (lsys_viewer *v, const lsys_vlayout *lay);
 int lsys_viewer_image (lsys_viewer *v, int pane, const uint8_t *rgba, int w, int h);
 int lsys_viewer_text (lsys_viewer *v, const char *status, const char *help);
+
+/*
+** Light colours (vlight.h), computed by the caller on its own thread.
+** lsys_viewer_posted returns the snapshot last posted (NULL once the window
+** is closed): the caller may read its frames' meshes and leaves, which the
+** window never changes (but a live frame's), until it posts again or closes
+** the window, and the light of its frames, which only the caller gives.
+** lsys_viewer_light gives frame k of 's' the colours *l, which the window
+** then owns and draws while the L key is on: it returns the request's
+** serial number (lsys_viewer_key), or LSYS_EARG when 's' is no longer the
+** snapshot last posted or the frame has its colours already (*l is then
+** left to the caller).
+*/
+const lsys_vsnap *lsys_viewer_posted (lsys_viewer *v);
+int lsys_viewer_light (lsys_viewer *v, const lsys_vsnap *s, size_t k, struct lsys_vlight *l);
 
 /* Closes the window (if open), ends the thread and frees 'v'. */
 void lsys_viewer_close (lsys_viewer *v);

@@ -111,6 +111,14 @@ void lsys_vpanes_scene (const lsys_vpanes *p, int winw, int winh, int out[4]) {
   if (out[3] < 1) out[3] = 1;
 }
 
+void lsys_vpanes_fbrect (const int sr[4], int winh, int fbh, int r[4]) {
+  double k = (double)fbh / winh;            /* framebuffer pixels per window pixel */
+  r[0] = (int)lround(sr[0] * k);
+  r[1] = (int)lround((winh - sr[1] - sr[3]) * k);
+  r[2] = (int)lround(sr[2] * k);
+  r[3] = (int)lround(sr[3] * k);
+}
+
 /* Where pane k's image goes, in window coordinates (x, y, scale): as large
 ** as fits, its aspect kept, centred. Without an image: the pane, scale 1. */
 static void placement (const lsys_vpanes *p, int k, int winw, int winh, double *x, double *y,

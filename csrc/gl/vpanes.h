@@ -81,6 +81,11 @@ void lsys_vpanes_rect (const float r[4], int winw, int winh, int out[4]);
 ** layout is on. */
 void lsys_vpanes_scene (const lsys_vpanes *p, int winw, int winh, int out[4]);
 
+/* The scene's rectangle sr (window coordinates, lsys_vpanes_scene) in the
+** pixels of a framebuffer fbh high of a window winh high: x, y (counted up
+** from the bottom, as GL does), w, h. */
+void lsys_vpanes_fbrect (const int sr[4], int winh, int fbh, int r[4]);
+
 /*
 ** What the window point (x, y) is over: the pane's index (0-based), with
 ** (*px, *py) the point in the pixels of the pane's image (in the pane's

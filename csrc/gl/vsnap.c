@@ -8,6 +8,7 @@
 
 #include "population.h"
 #include "viewer.h"
+#include "vlight.h"
 
 lsys_vsnap *lsys_vsnap_new (size_t n) {
   lsys_vsnap *s = (lsys_vsnap *)LSYS_MALLOC(sizeof *s);
@@ -15,6 +16,7 @@ lsys_vsnap *lsys_vsnap_new (size_t n) {
   if (s == NULL) return NULL;
   memset(s, 0, sizeof *s);
   s->rate = 2;
+  s->light = -1;
   if (n > 0) {
     s->frames = (lsys_vframe *)LSYS_MALLOC(n * sizeof *s->frames);
     if (s->frames == NULL) { LSYS_FREE(s); return NULL; }
@@ -36,6 +38,9 @@ void lsys_vsnap_free (lsys_vsnap *s) {
     LSYS_FREE(s->frames[k].picks);
     LSYS_FREE(s->frames[k].partpicks);
     LSYS_FREE(s->frames[k].lines);
+    LSYS_FREE(s->frames[k].leafr);
+    if (s->frames[k].light != NULL) lsys_vlight_free(s->frames[k].light);
+    LSYS_FREE(s->frames[k].light);
   }
   LSYS_FREE(s->frames);
   for (k = 0; k < (size_t)s->ntex; k++) lsys_texture_free(&s->tex[k]);

@@ -11,7 +11,9 @@
 **                                        opts: first (1-based), rate, title,
 **                                        keep_camera, capture, textures = { Texture... },
 **                                        live, fit = {x0, y0, z0, x1, y1, z1}, frames_dir
-**                                        (where S saves every frame while animating);
+**                                        (where S saves every frame while animating),
+**                                        light (the L key on or off: true computes the
+**                                        first frame's light colours before posting);
 **                                        a frame's lines = { { p0 =, p1 =, color = {r, g, b
 **                                        [, a]}, width = px }... } are drawn over it
 **   v:patch(scene [, opts]) -> serial    a live frame (post{..., live = true}) brought to
@@ -19,7 +21,8 @@
 **                                        since the last patch and what it appended;
 **                                        opts: step, count, note (the status line)
 **   v:poll([timeout]) -> event or nil    { type = "pick" | "miss" | "screenshot" |
-**                                        "step" | "closed" | "key" | "drag" | "frames",
+**                                        "step" | "closed" | "key" | "drag" | "frames" |
+**                                        "light" (the L key: on),
 **                                        frame (1-based), step, module (1-based), kind, x,
 **                                        y, path, ok, msg, key, ctrl, shift, phase; frames:
 **                                        count, first, last (steps) };
@@ -32,7 +35,7 @@
 **   v:key(name) -> serial                "right" "left" "home" "end" "space" "r" ...
 **                                        "redraw"; drawn when state().serial >= serial
 **   v:state() -> table                   open, drawn, serial, width, height, fbwidth,
-**                                        fbheight, frame, nframes, playing, wireframe,
+**                                        fbheight, frame, nframes, playing, wireframe, light,
 **                                        drawms (the time to draw a picture, smoothed);
 **                                        after the first press on a pane pen (a pressure
 **                                        device is read) and pen_devices (its names or
@@ -45,7 +48,15 @@
 **   v:image(k, pixels, w, h) -> serial   an RGBA image (w * h * 4 bytes, top row first)
 **                                        shown in pane k (1-based), copied
 **   v:text(status [, help]) -> serial    the status line ("" the usual) and help text
+**   v:light(k [, opts]) -> info          the light colours of frame k (vlight.h), computed
+**                                        on this thread unless they were: { frame, leaves,
+**                                        min, max, mean, msg (why none) }; opts: threads
+**                                        (0: the default), max_memory (bytes); nil, msg
+**                                        once the window is closed
+**   v:colour(k, t) -> r, g, b            triangle t of frame k as the window draws it now
+**                                        (its first vertex's diffuse colour, in [0, 1])
 **   v:close()                            (also when collected)
+**   core.light_ramp(x) -> r, g, b        the colour of light x on the L key's ramp
 **   core.pen_devices() -> list           the X input devices: { id, name, pressure =
 **                                        { min, max, value } for a tablet }; or nil, why
 **   core.filestamp(path) -> mtime, size  or nil, message
@@ -60,11 +71,14 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "derive.h"
+#include "light.h"
 #include "lua_aux.h"
 #include "lua_lsys.h"
 
 #ifndef LSYS_NO_VIEWER
 #include "viewer.h"
+#include "vlight.h"
 #include "xpen.h"
 
 typedef struct lviewer { lsys_viewer *v; } lviewer;
@@ -212,6 +226,8 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   memcpy(f->sc.light, S->sc.light, sizeof f->sc.light);
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
+  if (lsys_vlight_leaves(f, S->sc.rec, S->sc.nrec) != LSYS_OK)
+    luaL_error(L, "not enough memory for the viewer");
   if (S->sc.ninst > 0) setinstances(L, f, &S->sc);
   if (lsysL_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
     readlines(L, lua_gettop(L), f);
@@ -239,6 +255,28 @@ static int snapbox_gc (lua_State *L) {
   return 0;
 }
 
+/* The light colours of frame k of 's' (not yet posted, or the last posted:
+** its meshes stay while this thread does not post again), computed with
+** 'threads' (0: the default) within 'limit' bytes: a new block, for the
+** frame to own. A budget exceeded becomes the frame's message. */
+static lsys_vlight *computelight (lua_State *L, const lsys_vsnap *s, size_t k, int threads,
+                                  size_t limit) {
+  lsys_meter mt = {0, 0, 0, NULL};
+  lsys_vlight *l = (lsys_vlight *)LSYS_MALLOC(sizeof *l);
+  lsys_error e;
+  int st;
+  if (l == NULL) luaL_error(L, "not enough memory for the viewer");
+  mt.limit = limit;
+  st = lsys_vlight_compute(l, &s->frames[k], s->live, threads > 0 ? threads :
+                           lsys_derive_default_threads(), &mt, &e);
+  if (st == LSYS_ENOMEM) {
+    LSYS_FREE(l);
+    luaL_error(L, "not enough memory for the viewer");
+  }
+  if (st != LSYS_OK) snprintf(l->msg, sizeof l->msg, "%s", e.msg);
+  return l;
+}
+
 /* The options of v:post for the snapshot 's' of n frames, from the table
 ** at 't' (0: none). */
 static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
@@ -262,6 +300,10 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
     if (len == 0 || len >= sizeof s->framesdir) lsysL_opterror(L, &po, "frames_dir",
                                                                "a path of 1 to 511 bytes");
     memcpy(s->framesdir, d, len + 1);
+    lua_pop(L, 1);
+  }
+  if (lsysL_optfield(L, &po, "light", LUA_TBOOLEAN, "a boolean")) {
+    s->light = lua_toboolean(L, -1);
     lua_pop(L, 1);
   }
   s->keep_camera = lsysL_optbool(L, &po, "keep_camera", 0);
@@ -312,6 +354,8 @@ static int viewer_post (lua_State *L) {
     lua_pop(L, 1);
   }
   readpostopts(L, t, s, (int)n);
+  if (s->light == 1)                        /* drawn with its colours from the first picture */
+    s->frames[s->first].light = computelight(L, s, s->first, 0, lsys_common_memory_limit());
   v = checkviewer(L, 1);                    /* again: the frames and options ran Lua code */
   box->s = NULL;
   lsys_viewer_post(v, s);
@@ -350,7 +394,7 @@ static int viewer_patch (lua_State *L) {
 
 static const char *const evnames[] = {
   "none", "pick", "miss", "screenshot", "step", "closed", "key", "drag", "pointer", "scroll",
-  "frames"
+  "frames", "light"
 };
 
 static void setnum (lua_State *L, const char *k, double x) {
@@ -456,6 +500,9 @@ static int viewer_poll (lua_State *L) {
     case LSYS_VEV_POINTER: case LSYS_VEV_SCROLL:
       paneevent(L, &ev);
       break;
+    case LSYS_VEV_LIGHT:
+      setbool(L, "on", ev.ok);
+      break;
     case LSYS_VEV_FRAMES:
       lua_pushinteger(L, ev.count);
       lua_setfield(L, -2, "count");
@@ -499,11 +546,11 @@ static int viewer_screenshot (lua_State *L) {
 static int viewer_key (lua_State *L) {
   static const char *const names[] = {
     "right", "left", "home", "end", "space", "r", "f", "w", "s", "h", "q", "escape", "+", "-",
-    "redraw", NULL
+    "redraw", "l", NULL
   };
   static const int keys[] = {
     LSYS_VKEY_RIGHT, LSYS_VKEY_LEFT, LSYS_VKEY_HOME, LSYS_VKEY_END, ' ', 'R', 'F', 'W', 'S',
-    'H', 'Q', 256, '=', '-', LSYS_VKEY_REDRAW
+    'H', 'Q', 256, '=', '-', LSYS_VKEY_REDRAW, 'L'
   };
   lsys_viewer *v = checkviewer(L, 1);
   int i = luaL_checkoption(L, 2, NULL, names);
@@ -551,6 +598,8 @@ static int viewer_state (lua_State *L) {
   lua_setfield(L, -2, "playing");
   lua_pushboolean(L, st.wireframe);
   lua_setfield(L, -2, "wireframe");
+  lua_pushboolean(L, st.light);
+  lua_setfield(L, -2, "light");
   lua_createtable(L, 4, 0);             /* the scene's rectangle: x, y, w, h */
   for (int i = 0; i < 4; i++) {
     lua_pushinteger(L, st.scene[i]);
@@ -691,6 +740,90 @@ static int viewer_close (lua_State *L) {
   return 0;
 }
 
+/* v:light(k [, {threads =, max_memory =}]): frame k's light colours, computed
+** here unless they were (only this thread gives them), and what they show. */
+static int viewer_light (lua_State *L) {
+  static const char *const names[] = {"threads", "max_memory", NULL};
+  lsys_viewer *v = checkviewer(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2);
+  int t = lua_isnoneornil(L, 3) ? 0 : 3, threads;
+  lsys_opts lo = {t, "viewer:light: opts.", "", LSYS_GOT_VALUE, 0};
+  const lsys_vsnap *s;
+  const lsys_vlight *l;
+  size_t limit;
+  if (t) luaL_checktype(L, 3, LUA_TTABLE);
+  if (lsysL_optunknown(L, &lo, names))
+    return luaL_error(L, "viewer:light: unknown option '%s' (known: threads, max_memory)",
+                      luaL_tolstring(L, -1, NULL));
+  threads = lsysL_optint(L, &lo, "threads", 0, 0, LSYS_LIGHT_MAXTHREADS);
+  limit = (size_t)lsysL_optnum(L, &lo, "max_memory", (double)lsys_common_memory_limit(), 0,
+                               1.8e19, "a positive number of bytes");
+  v = checkviewer(L, 1);                    /* again: the options ran Lua code */
+  if ((s = lsys_viewer_posted(v)) == NULL) {     /* closed meanwhile, or nothing shown */
+    lua_pushnil(L);
+    lua_pushliteral(L, "no window open");
+    return 2;
+  }
+  if (k < 1 || (size_t)k > s->nframes)
+    return luaL_error(L, "viewer:light: no frame %I (the window shows frames 1 to %I)", k,
+                      (lua_Integer)s->nframes);
+  if (s->frames[k - 1].light == NULL) {
+    lsys_vlight *nl = computelight(L, s, (size_t)k - 1, threads, limit);
+    if (lsys_viewer_light(v, s, (size_t)k - 1, nl) < 0) {   /* cannot happen: we post */
+      lsys_vlight_free(nl);
+      LSYS_FREE(nl);
+      return luaL_error(L, "viewer:light: the frame is gone");
+    }
+  }
+  l = s->frames[k - 1].light;
+  lua_createtable(L, 0, 6);
+  lua_pushinteger(L, k);
+  lua_setfield(L, -2, "frame");
+  lua_pushinteger(L, (lua_Integer)l->nleaves);
+  lua_setfield(L, -2, "leaves");
+  setnum(L, "min", l->min);
+  setnum(L, "max", l->max);
+  setnum(L, "mean", l->mean);
+  if (l->msg[0] != '\0') {
+    lua_pushstring(L, l->msg);
+    lua_setfield(L, -2, "msg");
+  }
+  return 1;
+}
+
+/* v:colour(k, t) -> r, g, b: triangle t of frame k as the window draws it now,
+** with the light colours while the L key is on. */
+static int viewer_colour (lua_State *L) {
+  static const lsys_material grey = {{0}, {0.8f, 0.8f, 0.8f, 1}, {0}, {0}, 0};
+  lsys_viewer *v = checkviewer(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2), t = luaL_checkinteger(L, 3);
+  const lsys_vsnap *s = lsys_viewer_posted(v);
+  const lsys_vframe *f;
+  const lsys_material *mt = &grey;
+  const uint16_t *col;
+  lsys_vstate st;
+  int i;
+  if (s == NULL) return luaL_error(L, "viewer:colour: nothing shown");
+  if (s->live)                              /* its mesh is the window's to grow */
+    return luaL_error(L, "viewer:colour: not for a growing scene (lsys.viewer.live)");
+  if (k < 1 || (size_t)k > s->nframes)
+    return luaL_error(L, "viewer:colour: no frame %I (the window shows frames 1 to %I)", k,
+                      (lua_Integer)s->nframes);
+  f = &s->frames[k - 1];
+  if (t < 1 || (size_t)t > f->sc.mesh.nt)
+    return luaL_error(L, "viewer:colour: no triangle %I in frame %I (it has %I)", t, k,
+                      (lua_Integer)f->sc.mesh.nt);
+  lsys_viewer_state(v, &st);
+  col = f->sc.mesh.col;
+  if (st.light && f->light != NULL && f->light->col != NULL) {
+    col = f->light->col;
+    mt = &f->light->pal[col[f->sc.mesh.tri[3 * (t - 1)]] % f->light->npal];
+  } else if (f->sc.npal > 0)
+    mt = &f->sc.pal[col[f->sc.mesh.tri[3 * (t - 1)]] % f->sc.npal];
+  for (i = 0; i < 3; i++) lua_pushnumber(L, mt->diffuse[i]);
+  return 3;
+}
+
 static const luaL_Reg viewer_meta[] = {
   {"__index", NULL},  /* placeholder: the method table */
   {"__gc", viewer_close}, {NULL, NULL}
@@ -702,6 +835,7 @@ static const luaL_Reg viewer_methods[] = {
   {"screenshot", viewer_screenshot},
   {"key", viewer_key}, {"state", viewer_state}, {"project", viewer_project},
   {"layout", viewer_layout}, {"image", viewer_image}, {"text", viewer_text},
+  {"light", viewer_light}, {"colour", viewer_colour},
   {"close", viewer_close}, {NULL, NULL}
 };
 #endif
@@ -721,6 +855,16 @@ static int l_filestamp (lua_State *L) {
 }
 
 #ifndef LSYS_NO_VIEWER
+/* core.light_ramp(x) -> r, g, b: the colour of light x (clamped to [0, 1]) on the
+** ramp of the window's L key (vlight.h). */
+static int l_light_ramp (lua_State *L) {
+  float rgb[3];
+  int i;
+  lsys_vlight_ramp(luaL_checknumber(L, 1), rgb);
+  for (i = 0; i < 3; i++) lua_pushnumber(L, rgb[i]);
+  return 3;
+}
+
 /* core.pen_devices() -> { { id, name, pressure = { min, max, value } or nil }... }
 ** the X input devices and which report pressure (xpen.h); or nil, why. */
 static int l_pen_devices (lua_State *L) {
@@ -770,6 +914,8 @@ void lsysL_open_viewer (lua_State *L) {
 #ifndef LSYS_NO_VIEWER
   lua_pushcfunction(L, l_pen_devices);
   lua_setfield(L, -2, "pen_devices");
+  lua_pushcfunction(L, l_light_ramp);
+  lua_setfield(L, -2, "light_ramp");
   lsysL_createmeta(L, VIEWER_T, viewer_meta, viewer_methods);
   lua_pushcfunction(L, l_viewer_open);
   lua_setfield(L, -2, "viewer_open");

@@ -13,14 +13,17 @@
 -- is fitted to the step shown first (the last, by default) and kept while stepping, so
 -- the plant grows in place. The model's `view` is read at each show: change it and show
 -- again. The S key pressed while animating saves every step through that camera to a
--- folder (`frames_dir`), a picture series as lsys.frames writes.
+-- folder (`frames_dir`), a picture series as lsys.frames writes. The L key colours the
+-- leaves by the light they receive: `poll` computes the colours of each frame shown while
+-- it is on (core.light, on this thread: the window draws on meanwhile) and hands them to
+-- the window (csrc/gl/vlight.h; docs/viewer.md, "Light on the leaves").
 --
 -- Without a window (none opened yet, closed, or none possible: no display, or lsys built
 -- without the viewer) every function follows one rule. The ones asked to act on a window
--- raise: `open` and `show` open one, and say why none can be; `key` and `screenshot` say
--- "no window open" (they never open one). The ones that ask about the window or wait for
--- it do nothing and answer as for a closed window: `poll` and `sync` false, `pending` 0,
--- `state` and `project` nil; `wait` and `close` return at once.
+-- raise: `open` and `show` open one, and say why none can be; `key`, `screenshot` and
+-- `light` say "no window open" (they never open one). The ones that ask about the window or
+-- wait for it do nothing and answer as for a closed window: `poll` and `sync` false,
+-- `pending` 0, `state`, `project` and `colour` nil; `wait` and `close` return at once.
 -- @module lsys.viewer
 local core = require "lsys.core"
 local model = require "lsys.model"
@@ -43,6 +46,12 @@ local S = {             -- the one window and what it shows
   model = nil,          -- the model shown, if any
   on_pick = nil,        -- callback of the last show (or M.on_pick)
   on_event = nil,
+  nframes = 0,          -- frames of the snapshot last posted
+  current = nil,        -- the frame shown, as the last poll knew it
+  light = false,        -- the L key is on (as the window last said, or a show set it)
+  lit = {},             -- frame index -> true once its light colours were asked for
+  nlit = 0,             -- light colours computed so far (sync waits for them too)
+  want = nil,           -- the frame to give its light colours at the end of a poll
 }
 
 --- Called with the pick information when a click hits a module and the show did not
@@ -72,7 +81,7 @@ local SHOW_OPTS = {
   height = "number", on_pick = "function", on_event = "function", view = "table",
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
   model = "table", lines = "table", capture = "boolean", history = "number",
-  frames_dir = "string",
+  frames_dir = "string", light_colours = "boolean",
 }
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
@@ -267,7 +276,9 @@ end
 -- { type = "drag", phase = "begin" | "move" | "end", x =, y = }), `frames_dir` (where
 -- the S key, pressed while animating, saves every step through the window's camera as
 -- step-NNNN.png: default "<name>-frames" in the current directory, the name of the model's
--- file or the title; see `on_frames`).
+-- file or the title; see `on_frames`), `light_colours` (true: the leaves coloured by the
+-- light they receive, as the L key does, from the first picture; false: in their own
+-- colours; default: as the window had them).
 function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
@@ -329,9 +340,14 @@ function M.show (x, opts)
                                                (x.name or model.where(x)) or nil),
     keep_camera = opts.keep_camera, capture = opts.capture,
     textures = textures and #textures > 0 and textures or nil,
+    light = opts.light_colours,      -- true: the first frame's colours come with the post
   })
   v:text(nil, "")
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
+  S.nframes, S.lit, S.want, S.current = #frames, {}, nil, first
+  if opts.light_colours ~= nil then S.light = opts.light_colours end
+  if opts.light_colours then S.lit[first] = true
+  elseif S.light then S.want = first end       -- the window keeps them on: poll gives them
 end
 
 --- Shows a scene that changes in place (a growing world's, lsys.grow) and returns at
@@ -350,6 +366,7 @@ function M.live (scene, opts)
                   title = "lsys: " .. (opts.title or "growing") })
   v:text(nil, opts.help or "")
   S.on_pick, S.on_event = nil, opts.on_event
+  S.nframes, S.lit, S.want, S.current = 1, {}, nil, 1
 end
 
 --- Sends the window what changed in the scene shown by `live` since the last patch (the
@@ -398,29 +415,55 @@ local function pickinfo (ev)
   return info
 end
 
+-- One event of the window: the callbacks, and what the L key needs. Returns true when
+-- it was "closed" (the window is then forgotten).
+local function handle (v, ev)
+  if S.on_event then S.on_event(ev) end
+  if ev.type == "pick" then
+    local info = pickinfo(ev)
+    M.last_pick = info
+    local f = S.on_pick or M.on_pick
+    if f then f(info) end
+  elseif ev.type == "frames" then
+    if M.on_frames then M.on_frames(ev) end
+  elseif ev.type == "light" then
+    S.light = ev.on
+    if ev.on then S.want = ev.frame end
+  elseif ev.type == "step" then
+    S.current = ev.frame
+    if S.light then S.want = ev.frame end
+  elseif ev.type == "closed" then
+    v:close()
+    S.viewer = nil
+    return true
+  end
+  return false
+end
+
+-- Gives the frame last stepped to its light colours while the L key is on, unless it has
+-- them: computed here, on the Lua thread, while the window goes on drawing.
+local function lighten (v)
+  local k = S.want
+  S.want = nil
+  if k == nil or not S.light or S.lit[k] or k > S.nframes then return end
+  S.lit[k] = true
+  S.nlit = S.nlit + 1
+  v:light(k)                 -- (nil when the window was closed meanwhile)
+end
+
 --- Handles the window's events: calls `on_pick` for clicks on modules (and `on_event`
--- for every event). Waits up to `timeout` seconds (default 0) for the first event.
+-- for every event), and while the L key is on gives the frame shown the light colours
+-- of its leaves. Waits up to `timeout` seconds (default 0) for the first event.
 -- Returns true while the window is open.
 function M.poll (timeout)
   local v = S.viewer
   if v == nil then return false end
   local ev = v:poll(timeout or 0)
   while ev ~= nil do
-    if S.on_event then S.on_event(ev) end
-    if ev.type == "pick" then
-      local info = pickinfo(ev)
-      M.last_pick = info
-      local f = S.on_pick or M.on_pick
-      if f then f(info) end
-    elseif ev.type == "frames" then
-      if M.on_frames then M.on_frames(ev) end
-    elseif ev.type == "closed" then
-      v:close()
-      S.viewer = nil
-      return false
-    end
+    if handle(v, ev) then return false end
     ev = v:poll(0)
   end
+  lighten(v)
   return v:state().open
 end
 
@@ -457,19 +500,12 @@ function M.screenshot (path, timeout)
   repeat
     local ev = v:poll(0.25)
     while ev ~= nil do
-      if S.on_event then S.on_event(ev) end
       if ev.type == "screenshot" then
+        if S.on_event then S.on_event(ev) end
         if not ev.ok then error("lsys.viewer.screenshot: " .. ev.msg, 2) end
         return ev.path
-      elseif ev.type == "closed" then
-        M.close()
+      elseif handle(v, ev) then
         error("lsys.viewer.screenshot: the window was closed", 2)
-      elseif ev.type == "pick" then
-        M.last_pick = pickinfo(ev)
-        local f = S.on_pick or M.on_pick
-        if f then f(M.last_pick) end
-      elseif ev.type == "frames" and M.on_frames then
-        M.on_frames(ev)
       end
       ev = v:poll(0)
     end
@@ -478,7 +514,7 @@ function M.screenshot (path, timeout)
 end
 
 --- The window's state: { open, drawn, width, height, frame, nframes, playing,
--- wireframe, step } (nil when no window was opened).
+-- wireframe, light, step } (nil when no window was opened).
 function M.state ()
   if S.viewer == nil then return nil end
   local st = S.viewer:state()
@@ -494,27 +530,95 @@ function M.project (p)
 end
 
 --- Presses a key of the window: "right", "left", "home", "end", "space", "r", "f", "w",
--- "s", "h", "q", "+", "-", "redraw".
+-- "s", "h", "l", "q", "+", "-", "redraw". ("l" turns the light colours on or off: the
+-- next `poll` gives the frame shown its colours, and `sync` waits for them.)
 function M.key (name)
   if S.viewer == nil then error("lsys.viewer.key: no window open", 2) end
   S.viewer:key(name)
 end
 
---- Waits until the window has drawn what was last shown (at most `timeout` seconds, 10);
--- returns true when it has.
+--- Waits until the window has drawn what was last shown, and the light colours this
+-- asked for (at most `timeout` seconds, 10); returns true when it has.
 function M.sync (timeout)
   if S.viewer == nil then return false end
   local deadline = os.time() + (timeout or 10)
-  -- the window takes posts and keys in order before drawing: once a picture drawn after
-  -- this redraw request is on screen, so is everything asked before it
-  local serial = S.viewer:key("redraw")
-  local st
+  local st, serial, n
   repeat
-    M.poll(0.05)
+    n = S.nlit
+    -- the window takes posts and keys in order before drawing: once a picture drawn after
+    -- this redraw request is on screen, so is everything asked before it
+    serial = S.viewer:key("redraw")
+    repeat
+      M.poll(0.05)
+      if S.viewer == nil then return false end
+      st = S.viewer:state()
+    until st.serial >= serial or os.time() > deadline
+    M.poll(0)                  -- the events before that picture: an L key's among them
     if S.viewer == nil then return false end
-    st = S.viewer:state()
-  until st.serial >= serial or os.time() > deadline
+  until S.nlit == n or os.time() > deadline
   return st.serial >= serial
+end
+
+-- Frame `k` (default: the frame shown, as the last poll knew it) checked for
+-- lsys.viewer.<name>.
+local function shownframe (name, k)
+  local v = S.viewer
+  if v == nil or not v:state().open then error("lsys.viewer." .. name .. ": no window open", 3) end
+  k = k or S.current
+  if math.type(k) ~= "integer" or k < 1 or k > S.nframes then
+    error(format("lsys.viewer.%s: no frame %s (the window shows frames 1 to %d)", name,
+      tostring(k), S.nframes), 3)
+  end
+  return v, k
+end
+
+-- The results of core function `f`, its errors named as lsys.viewer.<name>'s.
+local function named (name, ok, ...)
+  if not ok then
+    error("lsys.viewer." .. name .. ": " .. tostring((...)):gsub("^viewer:%a+: ", ""), 3)
+  end
+  return ...
+end
+
+--- The light colours of the leaves of frame `k` (default: the frame shown, as the last
+-- `poll` knew it; 1-based, as `state().frame`), computed now unless they were, whether the
+-- L key is on or not:
+-- { frame, leaves = the leaf triangles coloured, min, max, mean = their light (0 in full
+-- shade to 1 for an open horizontal leaf; the mean weighted by area), msg = why none are
+-- (no leaves, a population, a growing scene, the memory budget) }. `opts`: `threads`
+-- (the default: the derivation's; the colours are the same for any number), `max_memory`
+-- (bytes; default the process's budget).
+function M.light (k, opts)
+  local v
+  v, k = shownframe("light", k)
+  local info, why = named("light", pcall(v.light, v, k, opts))
+  if info == nil then error("lsys.viewer.light: " .. why, 2) end
+  if not S.lit[k] then
+    S.lit[k] = true
+    S.nlit = S.nlit + 1
+  end
+  return info
+end
+
+--- The colour triangle `t` (1-based) of frame `k` (default: the frame shown, as the last
+-- `poll` knew it) is drawn in now, r, g, b in [0, 1] (its first vertex's material): its
+-- light colour while the L key is on and the frame has its colours, else the model's. Nil
+-- without a window.
+function M.colour (t, k)
+  if S.viewer == nil or not S.viewer:state().open then return nil end
+  if math.type(t) ~= "integer" then
+    error("lsys.viewer.colour: the triangle must be an integer, got " .. tostring(t), 2)
+  end
+  local v
+  v, k = shownframe("colour", k)
+  local r, g, b = named("colour", pcall(v.colour, v, k, t))
+  return r, g, b
+end
+
+--- The colour of light `x` (0 to 1) on the ramp the L key colours leaves with, r, g, b.
+function M.ramp (x)
+  if not core.has_viewer then error("lsys.viewer.ramp: lsys was built without the viewer", 2) end
+  return core.light_ramp(x)
 end
 
 return M

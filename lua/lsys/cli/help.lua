@@ -222,9 +222,9 @@ closes with Esc or Q, and Ctrl-C here closes it too.
 
 In the window: drag to orbit, right-drag or shift-drag to pan, scroll to zoom; left and
 right arrows step through the derivation, space animates, + and - change the speed;
-R resets the view, F fits, W toggles wireframe, S saves a screenshot (lsys-NNN.png) --
-while animating, every step through the window's camera into MODEL-frames/ --, H shows
-this list.
+R resets the view, F fits, W toggles wireframe, L colours the leaves by the light they
+receive (and back), S saves a screenshot (lsys-NNN.png) -- while animating, every step
+through the window's camera into MODEL-frames/ --, H shows this list.
 
 Options:
   --size WxH           window size (default 800x800)
