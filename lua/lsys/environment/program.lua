@@ -24,6 +24,7 @@ local setmetatable, ipairs, tonumber, error, pcall, type, tostring =
       setmetatable, ipairs, tonumber, error, pcall, type, tostring
 local io, string, table = io, string, table
 local format, pack, unpack, concat = string.format, string.pack, string.unpack, table.concat
+local unpackl = table.unpack
 local _ENV = nil
 
 local M = {}
@@ -103,24 +104,41 @@ end
 Program.__gc = Program.finish
 Program.__close = Program.finish
 
--- The text item of query q (id `id`) with the turtle lines the file asks for.
-local function item (spec, q, id, width0)
-  local out = { format("%d E%s%s", id, params(q.params), spec.following and following(q) or "") }
+-- The format of an item and the turtle fields it takes, made once a file: the formats are
+-- checked (lsys.environment.efile: conversions of numbers only, as many as the values).
+local function layout (spec)
+  local L = spec.layout
+  if L then return L end
+  local fmts, fields = { "%d E%s%s" }, {}
   for _, field in ipairs(efile.ORDER) do
     local fmt = spec.formats[field]
-    if fmt then
-      if field == "width" then
-        -- cpfg sends the view's line width as the sub-L-systems scale it, not !'s and #'s
-        out[#out + 1] = format(fmt, f32(width0 * q.scale))
-      elseif field == "scale" then
-        out[#out + 1] = format(fmt, f32(q.scale))
-      else
-        local v = q[field]
-        out[#out + 1] = format(fmt, f32(v[1]), f32(v[2]), f32(v[3]))
-      end
+    if fmt then fmts[#fmts + 1], fields[#fields + 1] = fmt, field end
+  end
+  L = { fmt = concat(fmts, "\n") .. "\n", fields = fields }
+  spec.layout = L
+  return L
+end
+
+-- The text item of query q (id `id`) with the turtle lines the file asks for.
+local function item (spec, q, id, width0)
+  local L = layout(spec)
+  local a = { id, params(q.params), spec.following and following(q) or "" }
+  local n = 3
+  for _, field in ipairs(L.fields) do
+    if field == "width" then
+      -- cpfg sends the view's line width as the sub-L-systems scale it, not !'s and #'s
+      n = n + 1
+      a[n] = f32(width0 * q.scale)
+    elseif field == "scale" then
+      n = n + 1
+      a[n] = f32(q.scale)
+    else
+      local v = q[field]
+      a[n + 1], a[n + 2], a[n + 3] = f32(v[1]), f32(v[2]), f32(v[3])
+      n = n + 3
     end
   end
-  return concat(out, "\n") .. "\n"
+  return format(L.fmt, unpackl(a, 1, n))
 end
 
 -- The chunks of the items: lists of item texts, at most spec.max items (or, in shared
