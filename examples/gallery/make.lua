@@ -337,6 +337,10 @@ local PICTURES = {
     .. "shares the tree's vigour out among them, each grows a shoot as long as its share "
     .. "towards the light, and shaded branches are shed; 16 steps.", png = "open/selforg.png",
     width = 400, height = 400 },
+  { "open/excurrent.lua", nil, "Apical control",
+    "The same rules with more of the vigour kept by the main axis at each branching (the "
+    .. "Borchert-Honda lambda 0.57 for 0.52) and a stronger pull upwards: a conical "
+    .. "(excurrent) crown.", png = "open/excurrent.png", width = 400, height = 400 },
   { "open/wall.lua", nil, "Beside a wall",
     "The same tree 2.5 from a wall (seen edge on): the wall shades the buds near it in the "
     .. "grid, and the crown grows to the open side.", png = "open/wall.png",
