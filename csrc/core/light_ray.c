@@ -2,15 +2,29 @@
 ** Rays through the light's hierarchy (light_impl.h): the primitive tests
 ** and the traversal of the 4-wide tree.
 **
-** A ray's four slab tests against a node's children run side by side in SSE
-** on x86-64 (elsewhere, or with LSYS_LIGHT_SCALAR, in a plain loop that
-** finds the same children). Each ray uses the near and far planes its
-** direction's signs pick, so an empty slot's inverted box is never entered.
-** The leaves a node's box test hits are tested at once (an occluded ray may
-** stop there), four triangles at a time; its inner children are visited
-** nearest first, from a fixed stack on the C stack. Any hit beyond tmin
-** counts, up to a cap (a transmittance counts the hits: each primitive is in
-** one leaf, so it is met at most once).
+** The rays of a query share their directions, so they are traced in
+** packets: up to four rays of one direction from nearby points (the query
+** takes its points in Morton order) walk the tree together, each lane of a
+** vector one ray (Wald et al. 2001, "Interactive rendering with coherent
+** ray tracing", section 3). A node's four children are tested against the
+** packet's rays, and a child goes on the stack with the mask of the rays
+** that enter it, so a ray only meets the boxes and primitives it would meet
+** alone: a packet does the same tests as its rays one by one, in another
+** order, with one walk's loads and branches for all of them. A node's
+** children go on the stack without a branch on each, farthest first in
+** the order the build worked out for the direction's octant. A triangle
+** test's part that depends only on the triangle and the direction (the
+** cross product of the direction with an edge, the determinant and its
+** inverse) is done once for the packet; the rest in each ray's lanes, four
+** triangles at a time (Möller and Trumbore 1997). The vectors are SSE2 on
+** x86-64 and plain arrays of four floats elsewhere (or with
+** LSYS_LIGHT_SCALAR), which compute each lane alike.
+**
+** Any hit beyond tmin counts, up to a cap (a transmittance counts the hits:
+** each primitive is in one leaf, so a ray meets it at most once, and the
+** count up to the cap does not depend on the order the primitives come
+** in). Testing every primitive (lsys_light_brute) uses the same triangle
+** and capsule tests, so both agree exactly.
 */
 #include <float.h>
 #include <math.h>
@@ -18,12 +32,63 @@
 
 #include "light_impl.h"
 
-#define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 3 of its 4 children */
+#define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 4 and pops 1 */
 
 #if defined(__SSE2__) && !defined(LSYS_LIGHT_SCALAR)
 #define VEC 1
 #include <emmintrin.h>
 #endif
+
+/* ---------------------------------------------------------------------- */
+/* four floats at once */
+
+#ifdef VEC
+typedef __m128 f4;
+#define f4load _mm_loadu_ps
+#define f4set1 _mm_set1_ps
+#define f4add _mm_add_ps
+#define f4sub _mm_sub_ps
+#define f4mul _mm_mul_ps
+#define f4div _mm_div_ps
+#define f4min _mm_min_ps                   /* a < b ? a : b, lane by lane */
+#define f4max _mm_max_ps                   /* a > b ? a : b */
+#define f4lane(a, k) _mm_shuffle_ps((a), (a), 0x55 * (k))   /* lane k in all four */
+#define f4le(a, b) _mm_movemask_ps(_mm_cmple_ps((a), (b)))   /* bit k: a[k] <= b[k] */
+#define f4ge(a, b) _mm_movemask_ps(_mm_cmpge_ps((a), (b)))
+#define f4gt(a, b) _mm_movemask_ps(_mm_cmpgt_ps((a), (b)))
+#define f4ne(a, b) _mm_movemask_ps(_mm_cmpneq_ps((a), (b)))
+#else
+typedef struct f4 { float x[4]; } f4;
+#define F4OP(name, expr) \
+  static inline f4 name (f4 a, f4 b) { \
+    f4 r; int k; for (k = 0; k < 4; k++) r.x[k] = (expr); return r; }
+#define F4CMP(name, expr) \
+  static inline int name (f4 a, f4 b) { \
+    int m = 0, k; for (k = 0; k < 4; k++) m |= (expr) << k; return m; }
+F4OP(f4add, a.x[k] + b.x[k])
+F4OP(f4sub, a.x[k] - b.x[k])
+F4OP(f4mul, a.x[k] * b.x[k])
+F4OP(f4div, a.x[k] / b.x[k])
+F4OP(f4min, a.x[k] < b.x[k] ? a.x[k] : b.x[k])
+F4OP(f4max, a.x[k] > b.x[k] ? a.x[k] : b.x[k])
+F4CMP(f4le, a.x[k] <= b.x[k])
+F4CMP(f4ge, a.x[k] >= b.x[k])
+F4CMP(f4gt, a.x[k] > b.x[k])
+F4CMP(f4ne, a.x[k] != b.x[k])
+static inline f4 f4load (const float *p) {
+  f4 r;
+  memcpy(r.x, p, sizeof r.x);
+  return r;
+}
+static inline f4 f4set1 (float x) {
+  f4 r = {{x, x, x, x}};
+  return r;
+}
+#define f4lane(a, k) f4set1((a).x[k])
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* the primitives */
 
 /* Whether the ray o + t d, t > tmin, meets the capsule P (from outside: a
 ** point in it is not shadowed by it, as a bud by its own stem), in doubles:
@@ -67,193 +132,282 @@ static int capsule (const lsys_lprim *P, const float o[3], const float d[3], flo
   return t > tmin && t < HUGE_VAL;
 }
 
-/* A ray set up for the slab tests: for each axis, the rows of a node's
-** boxes that hold its near and far planes (lo or hi by the direction's sign),
-** the origin and the inverse direction (a zero component made tiny, so that
-** no 0 * inf makes a NaN), also 4 times over for the vector tests. */
-typedef struct ray {
-  int near[3], far[3];
-  float o[3], d[3], inv[3], tmin;
-#ifdef VEC
-  __m128 vo[3], vd[3], vinv[3], vtmin;
-#endif
-} ray;
 
-/* The entry distances of the ray into the four children of q (tn) and the
-** mask of those it enters (bit k: child k). */
-static inline int slabs (const lsys_lnode4 *q, const ray *r, float tn[4]) {
-#ifdef VEC
-  __m128 lo = r->vtmin, hi = _mm_set1_ps(FLT_MAX);
+/* A direction set up for the tests: for each axis, the rows of a node's
+** boxes that hold its near and far planes (lo or hi by the direction's
+** sign), the inverse direction (a zero component made tiny, so that no 0 *
+** inf makes a NaN) and the octant (bit c: the ray goes down axis c). */
+typedef struct rdir {
+  int near[3], far[3], oct;
+  float d[3], tmin;
+  f4 vd[3], vinv[3], vtmin;
+} rdir;
+
+/* Up to four rays of one direction: their origins, by axis (lane k: ray k)
+** for the box tests, and each in all four lanes for the triangle tests. */
+typedef struct rpack {
+  float o[4][3];
+  f4 ox[3];
+  f4 vo[4][3];
+} rpack;
+
+static void setdir (rdir *D, const float d[3], float tmin) {
   int c;
+  D->oct = 0;
   for (c = 0; c < 3; c++) {
-    __m128 a = _mm_loadu_ps(q->b[r->near[c]]), b = _mm_loadu_ps(q->b[r->far[c]]);
-    lo = _mm_max_ps(lo, _mm_mul_ps(_mm_sub_ps(a, r->vo[c]), r->vinv[c]));
-    hi = _mm_min_ps(hi, _mm_mul_ps(_mm_sub_ps(b, r->vo[c]), r->vinv[c]));
+    float x = d[c] != 0 ? d[c] : 1e-30f, inv = 1 / x;
+    D->d[c] = d[c];
+    D->near[c] = inv >= 0 ? c : 3 + c;
+    D->far[c] = inv >= 0 ? 3 + c : c;
+    D->oct |= (inv < 0) << c;
+    D->vd[c] = f4set1(d[c]);
+    D->vinv[c] = f4set1(inv);
   }
-  _mm_storeu_ps(tn, lo);
-  return _mm_movemask_ps(_mm_cmple_ps(lo, hi));
-#else
-  int k, c, mask = 0;
-  for (k = 0; k < 4; k++) {
-    float lo = r->tmin, hi = FLT_MAX;
+  D->tmin = tmin;
+  D->vtmin = f4set1(tmin);
+}
+
+/* The n (1 .. 4) origins o[0 .. n) into P; the lanes past n repeat ray 0. */
+static void setpack (rpack *P, const float *const o[4], int n) {
+  float x[3][4];
+  int k, c;
+  for (k = 0; k < 4; k++)
     for (c = 0; c < 3; c++) {
-      float a = (q->b[r->near[c]][k] - r->o[c]) * r->inv[c];
-      float b = (q->b[r->far[c]][k] - r->o[c]) * r->inv[c];
-      lo = a > lo ? a : lo;
-      hi = b < hi ? b : hi;
+      P->o[k][c] = o[k < n ? k : 0][c];
+      x[c][k] = P->o[k][c];
+      P->vo[k][c] = f4set1(P->o[k][c]);
     }
-    tn[k] = lo;
-    mask |= (lo <= hi) << k;
-  }
-  return mask;
-#endif
+  for (c = 0; c < 3; c++) P->ox[c] = f4load(x[c]);
 }
 
-/* The hits of the ray among the four triangles of T (Möller and Trumbore,
-** both faces), each lane as the scalar test computes it. */
-static inline int hit4 (const lsys_ltri4 *T, const ray *r) {
-#ifdef VEC
-  const __m128 *o = r->vo, *d = r->vd, zero = _mm_setzero_ps(), one = _mm_set1_ps(1);
-  __m128 a[3], e1[3], e2[3], p[3], q[3], s[3], det, inv, u, v, t, ok;
+/* What a triangle test shares between the rays of a direction, for the four
+** triangles of a packet: the edges, the direction's cross product p with
+** the second edge, the determinant's inverse, and the mask of the
+** triangles whose determinant is not 0. */
+typedef struct trid {
+  f4 e1[3], e2[3], p[3], inv;
+  int ok;
+} trid;
+
+static inline void trisetup (trid *S, const lsys_ltri4 *T, const rdir *D) {
+  f4 det;
   int c;
   for (c = 0; c < 3; c++) {
-    a[c] = _mm_loadu_ps(T->a[c]);
-    e1[c] = _mm_loadu_ps(T->e1[c]);
-    e2[c] = _mm_loadu_ps(T->e2[c]);
-    s[c] = _mm_sub_ps(o[c], a[c]);
+    S->e1[c] = f4load(T->e1[c]);
+    S->e2[c] = f4load(T->e2[c]);
   }
-  p[0] = _mm_sub_ps(_mm_mul_ps(d[1], e2[2]), _mm_mul_ps(d[2], e2[1]));
-  p[1] = _mm_sub_ps(_mm_mul_ps(d[2], e2[0]), _mm_mul_ps(d[0], e2[2]));
-  p[2] = _mm_sub_ps(_mm_mul_ps(d[0], e2[1]), _mm_mul_ps(d[1], e2[0]));
-  det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1[0], p[0]), _mm_mul_ps(e1[1], p[1])),
-                   _mm_mul_ps(e1[2], p[2]));
-  inv = _mm_div_ps(one, det);
-  u = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s[0], p[0]), _mm_mul_ps(s[1], p[1])),
-                            _mm_mul_ps(s[2], p[2])), inv);
-  q[0] = _mm_sub_ps(_mm_mul_ps(s[1], e1[2]), _mm_mul_ps(s[2], e1[1]));
-  q[1] = _mm_sub_ps(_mm_mul_ps(s[2], e1[0]), _mm_mul_ps(s[0], e1[2]));
-  q[2] = _mm_sub_ps(_mm_mul_ps(s[0], e1[1]), _mm_mul_ps(s[1], e1[0]));
-  v = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], q[0]), _mm_mul_ps(d[1], q[1])),
-                            _mm_mul_ps(d[2], q[2])), inv);
-  t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2[0], q[0]), _mm_mul_ps(e2[1], q[1])),
-                            _mm_mul_ps(e2[2], q[2])), inv);
-  ok = _mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmpge_ps(u, zero));
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmple_ps(u, one), _mm_cmpge_ps(v, zero)));
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmple_ps(_mm_add_ps(u, v), one),
-                                 _mm_cmpgt_ps(t, r->vtmin)));
-  c = _mm_movemask_ps(ok);
-  return (c & 1) + (c >> 1 & 1) + (c >> 2 & 1) + (c >> 3 & 1);
-#else
-  const float *o = r->o, *d = r->d;
-  int k, n = 0;
-  for (k = 0; k < 4; k++) {
-    float e1[3] = {T->e1[0][k], T->e1[1][k], T->e1[2][k]};
-    float e2[3] = {T->e2[0][k], T->e2[1][k], T->e2[2][k]}, p[3], q[3], s[3], det, inv, u, v;
-    p[0] = d[1] * e2[2] - d[2] * e2[1];
-    p[1] = d[2] * e2[0] - d[0] * e2[2];
-    p[2] = d[0] * e2[1] - d[1] * e2[0];
-    det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
-    if (det == 0) continue;
-    inv = 1 / det;
-    s[0] = o[0] - T->a[0][k]; s[1] = o[1] - T->a[1][k]; s[2] = o[2] - T->a[2][k];
-    u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv;
-    if (!(u >= 0 && u <= 1)) continue;
-    q[0] = s[1] * e1[2] - s[2] * e1[1];
-    q[1] = s[2] * e1[0] - s[0] * e1[2];
-    q[2] = s[0] * e1[1] - s[1] * e1[0];
-    v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) * inv;
-    if (!(v >= 0 && u + v <= 1)) continue;
-    n += (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv > r->tmin;
-  }
-  return n;
-#endif
+  S->p[0] = f4sub(f4mul(D->vd[1], S->e2[2]), f4mul(D->vd[2], S->e2[1]));
+  S->p[1] = f4sub(f4mul(D->vd[2], S->e2[0]), f4mul(D->vd[0], S->e2[2]));
+  S->p[2] = f4sub(f4mul(D->vd[0], S->e2[1]), f4mul(D->vd[1], S->e2[0]));
+  det = f4add(f4add(f4mul(S->e1[0], S->p[0]), f4mul(S->e1[1], S->p[1])),
+              f4mul(S->e1[2], S->p[2]));
+  S->inv = f4div(f4set1(1), det);
+  S->ok = f4ne(det, f4set1(0));
 }
 
-/* The lowest set bit's index of the non-zero 4-bit mask m. */
+/* The mask of the four triangles of T that the ray from o (in all four
+** lanes) hits: Möller and Trumbore's barycentric u, v and distance t, both
+** faces. */
+static inline int trihit (const trid *S, const lsys_ltri4 *T, const rdir *D, const f4 o[3]) {
+  const f4 zero = f4set1(0), one = f4set1(1);
+  f4 s0 = f4sub(o[0], f4load(T->a[0])), s1 = f4sub(o[1], f4load(T->a[1]));
+  f4 s2 = f4sub(o[2], f4load(T->a[2])), q0, q1, q2, u, v, t;
+  int m;
+  u = f4mul(f4add(f4add(f4mul(s0, S->p[0]), f4mul(s1, S->p[1])), f4mul(s2, S->p[2])), S->inv);
+  m = S->ok & f4ge(u, zero) & f4le(u, one);
+  if (m == 0) return 0;
+  q0 = f4sub(f4mul(s1, S->e1[2]), f4mul(s2, S->e1[1]));
+  q1 = f4sub(f4mul(s2, S->e1[0]), f4mul(s0, S->e1[2]));
+  q2 = f4sub(f4mul(s0, S->e1[1]), f4mul(s1, S->e1[0]));
+  v = f4mul(f4add(f4add(f4mul(D->vd[0], q0), f4mul(D->vd[1], q1)), f4mul(D->vd[2], q2)),
+            S->inv);
+  t = f4mul(f4add(f4add(f4mul(S->e2[0], q0), f4mul(S->e2[1], q1)), f4mul(S->e2[2], q2)),
+            S->inv);
+  return m & f4ge(v, zero) & f4le(f4add(u, v), one) & f4gt(t, D->vtmin);
+}
+
+/* The hits a mask of trihit counts. */
+static inline int nbits (int m) {
+  return (m & 1) + (m >> 1 & 1) + (m >> 2 & 1) + (m >> 3 & 1);
+}
+
+/* The mask of the four children of q (bit k: child k) that the ray from o
+** (in all four lanes) enters: its slab tests against their boxes side by
+** side. */
+static inline int slabs (const lsys_lnode4 *q, const rdir *D, const f4 o[3]) {
+  f4 lo, hi;
+  lo = f4mul(f4sub(f4load(q->b[D->near[0]]), o[0]), D->vinv[0]);
+  hi = f4mul(f4sub(f4load(q->b[D->far[0]]), o[0]), D->vinv[0]);
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[D->near[1]]), o[1]), D->vinv[1]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[D->far[1]]), o[1]), D->vinv[1]));
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[D->near[2]]), o[2]), D->vinv[2]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[D->far[2]]), o[2]), D->vinv[2]));
+  return f4le(f4max(lo, D->vtmin), hi);
+}
+
+/* ---------------------------------------------------------------------- */
+/* the walk */
+
+
+/* A stack item: a child's item (LSYS_LITEM) and the mask of the rays that
+** go there, above it. */
+#define ITEM(item, rays) (((item) & LSYS_LITEMBITS) | (uint64_t)(rays) << 40)
+
+/* The 4 bits of a slab test's mask spread to every fourth bit. */
+static const unsigned short fours[16] = {
+  0x0000, 0x0001, 0x0010, 0x0011, 0x0100, 0x0101, 0x0110, 0x0111,
+  0x1000, 0x1001, 0x1010, 0x1011, 0x1100, 0x1101, 0x1110, 0x1111
+};
+
+/* Pushes child k of q with the rays that enter it (bits 4 k .. 4 k + 3 of
+** 'by'), when there are any. */
+#define PUSH(k) do { \
+    unsigned k_ = (k), e_ = by >> 4 * k_ & 0xfu; \
+    stack[sp] = ITEM(q->item[k_], e_); \
+    sp += e_ != 0; \
+  } while (0)
+
+/* The index of the lowest set bit of the non-zero 4-bit mask m. */
 static inline int lowbit (int m) {
+#if defined(__GNUC__)
+  return __builtin_ctz((unsigned)m);
+#else
   return (m & 1) ? 0 : (m & 2) ? 1 : (m & 4) ? 2 : 3;
+#endif
 }
 
-/* The hits of the ray in the tree T (its leaves: packets of triangles when
-** 'tri', else capsules), counting on from 'hits' up to cap. */
-static int walk (const lsys_light *L, const lsys_ltree *T, int tri, const ray *r, int hits,
-                 int cap) {
-  uint32_t stack[STACK], cur = 0;
-  int sp = 0, c;
-  for (;;) {
-    const lsys_lnode4 *q = &T->node[cur];
-    float tn[4];
-    int m = slabs(q, r, tn), lv = m & (int)q->leaves, inner = m & ~(int)q->leaves;
-    while (lv != 0) {                               /* leaves: their primitives now */
-      int k = lowbit(lv);
-      uint32_t i = q->child[k], end = i + q->cnt[k];
-      lv &= lv - 1;
-      for (; i < end; i++)
-        if ((hits += tri ? hit4(&L->pack[i], r) : capsule(&L->caps[i], r->o, r->d, r->tmin))
-            >= cap)
-          return cap;
-    }
-    if (inner == 0) {                               /* nothing below: the stack */
-      if (sp == 0) return hits;
-      cur = stack[--sp];
-    } else if ((inner & (inner - 1)) == 0) cur = q->child[lowbit(inner)];   /* one child */
-    else {                                          /* several: the nearest first */
-      float kt[4];
-      uint32_t kn[4];
-      int n = 0;
-      while (inner != 0) {
-        int k = lowbit(inner), i = n++;
-        inner &= inner - 1;
-        for (; i > 0 && kt[i - 1] < tn[k]; i--) { kt[i] = kt[i - 1]; kn[i] = kn[i - 1]; }
-        kt[i] = tn[k];
-        kn[i] = q->child[k];
+/*
+** The hits of the rays of P in the tree T (its leaves: packets of triangles
+** when 'tri', else capsules), counted on in hits[r] up to cap for the rays
+** r of the mask 'rays'. *last gets the packet (or capsule) of a hit that
+** took a ray to the cap, when there is one (else it is left as it is).
+*/
+static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir *D,
+                  const rpack *P, int rays, int cap, int hits[4], uint32_t *last) {
+  uint64_t stack[STACK];
+  int sp = 1;
+  stack[0] = ITEM(LSYS_LITEM(0, 0), rays);          /* the root */
+  while (sp > 0) {
+    uint64_t it = stack[--sp];
+    uint32_t i = (uint32_t)it, n = (uint32_t)(it >> 32) & 0xff;
+    int m = (int)(it >> 40) & rays;                 /* less the rays done since */
+    if (m == 0) continue;
+    if (n > 0) {                                    /* a leaf: its primitives */
+      for (n += i; i < n; i++) {
+        int live = m, r;
+        trid S;
+        if (tri) trisetup(&S, &L->pack[i], D);
+        for (; live != 0; live &= live - 1) {
+          r = lowbit(live);
+          hits[r] += tri ? nbits(trihit(&S, &L->pack[i], D, P->vo[r]))
+                         : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
+          if (hits[r] >= cap) {
+            hits[r] = cap;
+            m &= ~(1 << r);
+            *last = i;
+          }
+        }
+        if (m == 0) break;
       }
-      for (c = 0; c < n - 1; c++) stack[sp++] = kn[c];   /* the farthest deepest */
-      cur = kn[n - 1];
+      rays &= ~((int)(it >> 40) & ~m);              /* those that reached the cap */
+      if (rays == 0) return;
+    } else {                                        /* a node: the children the rays enter */
+      const lsys_lnode4 *q = &T->node[i];
+      unsigned by = 0, o = LSYS_LORDER(q, D->oct); /* by: bit 4 k + r, ray r enters child k */
+      int live = m;
+      for (; live != 0; live &= live - 1) {
+        int r = lowbit(live);
+        by |= (unsigned)fours[slabs(q, D, P->vo[r])] << r;
+      }
+      PUSH(o >> 6);                                 /* farthest first */
+      PUSH(o >> 4 & 3);
+      PUSH(o >> 2 & 3);
+      PUSH(o & 3);
     }
   }
 }
 
-static void setup (ray *r, const float o[3], const float d[3], float tmin) {
-  int c;
-  for (c = 0; c < 3; c++) {
-    float x = d[c] != 0 ? d[c] : 1e-30f;
-    r->o[c] = o[c];
-    r->d[c] = d[c];
-    r->inv[c] = 1 / x;
-    r->near[c] = r->inv[c] >= 0 ? c : 3 + c;
-    r->far[c] = r->near[c] == c ? 3 + c : c;
-#ifdef VEC
-    r->vo[c] = _mm_set1_ps(o[c]);
-    r->vd[c] = _mm_set1_ps(d[c]);
-    r->vinv[c] = _mm_set1_ps(r->inv[c]);
-#endif
-  }
-  r->tmin = tmin;
-#ifdef VEC
-  r->vtmin = _mm_set1_ps(tmin);
-#endif
+/* The hits of the rays of P (mask 'rays'; the others get 0) up to cap: the
+** triangles' tree, then the capsules' for those still under the cap. */
+static void trace (const lsys_light *L, const rdir *D, const rpack *P, int rays, int cap,
+                   int hits[4], uint32_t *last) {
+  int r;
+  for (r = 0; r < 4; r++) hits[r] = 0;
+  if (L->tri.nnodes > 0) walk(L, &L->tri, 1, D, P, rays, cap, hits, &last[0]);
+  for (r = 0; r < 4; r++) if (hits[r] >= cap) rays &= ~(1 << r);
+  if (rays != 0 && L->cap.nnodes > 0) walk(L, &L->cap, 0, D, P, rays, cap, hits, &last[1]);
 }
 
 int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  ray r;
-  int hits = 0;
-  setup(&r, o, d, tmin);
-  if (L->tri.nnodes > 0) hits = walk(L, &L->tri, 1, &r, 0, cap);
-  if (hits < cap && L->cap.nnodes > 0) hits = walk(L, &L->cap, 0, &r, hits, cap);
-  return hits;
+  const float *po[4] = {o, o, o, o};
+  uint32_t last[2];
+  int hits[4];
+  rdir D;
+  rpack P;
+  setdir(&D, d, tmin);
+  setpack(&P, po, 1);
+  trace(L, &D, &P, 1, cap, hits, last);
+  return hits[0];
 }
 
 int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  ray r;
+  const float *po[4] = {o, o, o, o};
   size_t i;
   int hits = 0;
-  setup(&r, o, d, tmin);
-  for (i = 0; i < L->npack; i++)
-    if ((hits += hit4(&L->pack[i], &r)) >= cap) return cap;
+  rdir D;
+  rpack P;
+  setdir(&D, d, tmin);
+  setpack(&P, po, 1);
+  for (i = 0; i < L->npack; i++) {
+    trid S;
+    trisetup(&S, &L->pack[i], &D);
+    if ((hits += nbits(trihit(&S, &L->pack[i], &D, P.vo[0]))) >= cap) return cap;
+  }
   for (i = 0; i < L->ncap; i++)
-    if ((hits += capsule(&L->caps[i], o, d, tmin)) >= cap) return cap;
+    if ((hits += capsule(&L->caps[i], P.o[0], D.d, tmin)) >= cap) return cap;
   return hits;
+}
+
+/*
+** A ray that stops at its first hit (cap 1) from a point near the last one
+** in the same direction is likely stopped by the same primitive: the packet
+** (or capsule) that stopped the last packet's ray is tested first, and the
+** ray only goes into a packet when that does not stop it. Any hit gives the
+** same answer, so this changes no result, only the work.
+*/
+void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
+                      const float d[3], float tmin, int cap, uint8_t *hits) {
+  const float *po[4];
+  size_t idx[4], i = 0;
+  uint32_t last[2] = {UINT32_MAX, UINT32_MAX};
+  int n, r, h[4];
+  rdir D;
+  rpack P;
+  setdir(&D, d, tmin);
+  while (i < m) {
+    for (n = 0; n < 4 && i < m; i++) {            /* the next packet */
+      hits[i] = 0;
+      if (want != NULL && !want[i]) continue;
+      if (cap == 1 && (last[0] != UINT32_MAX || last[1] != UINT32_MAX)) {
+        const float *pi[4] = {o[i], o[i], o[i], o[i]};
+        setpack(&P, pi, 1);
+        if (last[0] != UINT32_MAX) {
+          trid S;
+          trisetup(&S, &L->pack[last[0]], &D);
+          hits[i] = trihit(&S, &L->pack[last[0]], &D, P.vo[0]) != 0;
+        } else hits[i] = (uint8_t)capsule(&L->caps[last[1]], o[i], d, tmin);
+        if (hits[i]) continue;
+      }
+      idx[n] = i;
+      po[n++] = o[i];
+    }
+    if (n == 0) continue;
+    setpack(&P, po, n);
+    last[0] = last[1] = UINT32_MAX;
+    trace(L, &D, &P, (1 << n) - 1, cap, h, last);
+    for (r = 0; r < n; r++) hits[idx[r]] = (uint8_t)h[r];
+    if (last[0] != UINT32_MAX) last[1] = UINT32_MAX;   /* a packet first */
+  }
 }
