@@ -445,7 +445,7 @@ static void orders (lsys_lnode4 *q, const node2 *n2, size_t x, const size_t kid[
     n = 0;
     order(n2, x, kid, nk, oct, &o, &n);
     for (k = nk; k < 4; k++) o |= (uint8_t)(k << 2 * n++);
-    q->item[oct >> 1] |= (uint64_t)o << (48 + 8 * (oct & 1));
+    q->item[oct >> 1] |= (uint64_t)o << (40 + 8 * (oct & 1));
   }
 }
 

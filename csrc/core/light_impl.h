@@ -21,9 +21,10 @@
 ** taking up to four of a node's descendants as children: their boxes side
 ** by side, for the four slab tests at once. An empty slot has the box
 ** lo = FLT_MAX, hi = -FLT_MAX, which no ray enters. A child's item holds,
-** in its low 40 bits, what a walk puts on its stack for it (LSYS_LITEM);
-** its top 16 bits hold the order of the children for two of the octants
-** (LSYS_LORDER). */
+** in its low 40 bits, what a walk needs to visit it (LSYS_LITEM); bits 40
+** to 55 hold the order of the children for two of the octants
+** (LSYS_LORDER); the top 4 bits are 0 (a walk puts the mask of its rays
+** there). */
 typedef struct lsys_lnode4 {
   float b[6][4];                 /* the children's boxes: lo x, y, z, hi x, y, z */
   uint64_t item[4];              /* the children: LSYS_LITEM, and the orders above */
@@ -32,13 +33,12 @@ typedef struct lsys_lnode4 {
 /* A child's item: an inner child's node (n = 0) or a leaf's first packet
 ** (or capsule) and their number n (1 .. 16). */
 #define LSYS_LITEM(first, n) ((uint64_t)(n) << 32 | (uint64_t)(first))
-#define LSYS_LITEMBITS 0xffffffffffull
 
 /* The children of q nearest first for a ray of the octant oct (bit c: the
-** ray goes down axis c): 2 bits each, the nearest lowest, in the top byte
-** of item[oct / 2] (odd octants) or the byte below it (even ones). */
+** ray goes down axis c): 2 bits each, the nearest lowest, in bits 48 to 55
+** of item[oct / 2] (odd octants) or 40 to 47 (even ones). */
 #define LSYS_LORDER(q, oct) \
-  ((unsigned)((q)->item[(oct) >> 1] >> (48 + 8 * ((oct) & 1))) & 0xffu)
+  ((unsigned)((q)->item[(oct) >> 1] >> (40 + 8 * ((oct) & 1))) & 0xffu)
 
 /* One hierarchy: its nodes (root 0) in an aligned block. */
 typedef struct lsys_ltree {

@@ -33,6 +33,7 @@
 #include "light_impl.h"
 
 #define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 4 and pops 1 */
+#define CASTMAX 256                        /* rays lsys_light_cast orders at once */
 
 #if defined(__SSE2__) && !defined(LSYS_LIGHT_SCALAR)
 #define VEC 1
@@ -233,15 +234,15 @@ static inline int nbits (int m) {
 
 /* The mask of the four children of q (bit k: child k) that the ray from o
 ** (in all four lanes) enters: its slab tests against their boxes side by
-** side. */
-static inline int slabs (const lsys_lnode4 *q, const rdir *D, const f4 o[3]) {
+** side, the near and far planes in the rows nf[0 .. 2], nf[3 .. 5]. */
+static inline int slabs (const lsys_lnode4 *q, const int nf[6], const rdir *D, const f4 o[3]) {
   f4 lo, hi;
-  lo = f4mul(f4sub(f4load(q->b[D->near[0]]), o[0]), D->vinv[0]);
-  hi = f4mul(f4sub(f4load(q->b[D->far[0]]), o[0]), D->vinv[0]);
-  lo = f4max(lo, f4mul(f4sub(f4load(q->b[D->near[1]]), o[1]), D->vinv[1]));
-  hi = f4min(hi, f4mul(f4sub(f4load(q->b[D->far[1]]), o[1]), D->vinv[1]));
-  lo = f4max(lo, f4mul(f4sub(f4load(q->b[D->near[2]]), o[2]), D->vinv[2]));
-  hi = f4min(hi, f4mul(f4sub(f4load(q->b[D->far[2]]), o[2]), D->vinv[2]));
+  lo = f4mul(f4sub(f4load(q->b[nf[0]]), o[0]), D->vinv[0]);
+  hi = f4mul(f4sub(f4load(q->b[nf[3]]), o[0]), D->vinv[0]);
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[nf[1]]), o[1]), D->vinv[1]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[4]]), o[1]), D->vinv[1]));
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[nf[2]]), o[2]), D->vinv[2]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[5]]), o[2]), D->vinv[2]));
   return f4le(f4max(lo, D->vtmin), hi);
 }
 
@@ -249,9 +250,9 @@ static inline int slabs (const lsys_lnode4 *q, const rdir *D, const f4 o[3]) {
 /* the walk */
 
 
-/* A stack item: a child's item (LSYS_LITEM) and the mask of the rays that
-** go there, above it. */
-#define ITEM(item, rays) (((item) & LSYS_LITEMBITS) | (uint64_t)(rays) << 40)
+/* A stack item: a child's item (LSYS_LITEM, the orders left in) and the
+** mask of the rays that go there in its top 4 bits. */
+#define ITEM(item, rays) ((item) | (uint64_t)(rays) << 60)
 
 /* The 4 bits of a slab test's mask spread to every fourth bit. */
 static const unsigned short fours[16] = {
@@ -285,12 +286,14 @@ static inline int lowbit (int m) {
 static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir *D,
                   const rpack *P, int rays, int cap, int hits[4], uint32_t *last) {
   uint64_t stack[STACK];
-  int sp = 1;
+  int sp = 1, h[4], nf[6], c, oct = D->oct;
+  for (c = 0; c < 4; c++) h[c] = hits[c];          /* locals: no store to them aliases D */
+  for (c = 0; c < 3; c++) { nf[c] = D->near[c]; nf[3 + c] = D->far[c]; }
   stack[0] = ITEM(LSYS_LITEM(0, 0), rays);          /* the root */
   while (sp > 0) {
     uint64_t it = stack[--sp];
     uint32_t i = (uint32_t)it, n = (uint32_t)(it >> 32) & 0xff;
-    int m = (int)(it >> 40) & rays;                 /* less the rays done since */
+    int m = (int)(it >> 60) & rays;                 /* less the rays done since */
     if (m == 0) continue;
     if (n > 0) {                                    /* a leaf: its primitives */
       for (n += i; i < n; i++) {
@@ -299,25 +302,25 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
         if (tri) trisetup(&S, &L->pack[i], D);
         for (; live != 0; live &= live - 1) {
           r = lowbit(live);
-          hits[r] += tri ? nbits(trihit(&S, &L->pack[i], D, P->vo[r]))
-                         : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
-          if (hits[r] >= cap) {
-            hits[r] = cap;
+          h[r] += tri ? nbits(trihit(&S, &L->pack[i], D, P->vo[r]))
+                     : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
+          if (h[r] >= cap) {
+            h[r] = cap;
             m &= ~(1 << r);
             *last = i;
           }
         }
         if (m == 0) break;
       }
-      rays &= ~((int)(it >> 40) & ~m);              /* those that reached the cap */
-      if (rays == 0) return;
+      rays &= ~((int)(it >> 60) & ~m);              /* those that reached the cap */
+      if (rays == 0) break;
     } else {                                        /* a node: the children the rays enter */
       const lsys_lnode4 *q = &T->node[i];
-      unsigned by = 0, o = LSYS_LORDER(q, D->oct); /* by: bit 4 k + r, ray r enters child k */
+      unsigned by = 0, o = LSYS_LORDER(q, oct);    /* by: bit 4 k + r, ray r enters child k */
       int live = m;
       for (; live != 0; live &= live - 1) {
         int r = lowbit(live);
-        by |= (unsigned)fours[slabs(q, D, P->vo[r])] << r;
+        by |= (unsigned)fours[slabs(q, nf, D, P->vo[r])] << r;
       }
       PUSH(o >> 6);                                 /* farthest first */
       PUSH(o >> 4 & 3);
@@ -325,6 +328,7 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
       PUSH(o & 3);
     }
   }
+  for (c = 0; c < 4; c++) hits[c] = h[c];
 }
 
 /* The hits of the rays of P (mask 'rays'; the others get 0) up to cap: the
@@ -377,19 +381,80 @@ int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], f
 ** ray only goes into a packet when that does not stop it. Any hit gives the
 ** same answer, so this changes no result, only the work.
 */
+/* The 8 bits of x spread to the even bits of 16. */
+static unsigned evens (unsigned x) {
+  x = (x | x << 4) & 0x0f0fu;
+  x = (x | x << 2) & 0x3333u;
+  return (x | x << 1) & 0x5555u;
+}
+
+/* The n rays ix[0 .. n) (n <= CASTMAX) put in the order of their origins'
+** projections along d on the plane across it (a Morton order there): rays
+** that are near there go close to each other all the way. */
+static void across (const float (*o)[3], const float d[3], uint16_t *ix, size_t n) {
+  float e1[3], e2[3], len, lo[2] = {FLT_MAX, FLT_MAX}, hi[2] = {-FLT_MAX, -FLT_MAX}, sc[2];
+  float uv[CASTMAX][2];
+  uint16_t key[CASTMAX], tmp[CASTMAX];
+  size_t cnt[257], i, k;
+  int ax = fabsf(d[0]) <= fabsf(d[1]) && fabsf(d[0]) <= fabsf(d[2]) ? 0
+         : fabsf(d[1]) <= fabsf(d[2]) ? 1 : 2, c, pass;
+  e1[0] = ax == 0 ? 0 : ax == 1 ? -d[2] : d[1];      /* d x the axis d is least along */
+  e1[1] = ax == 1 ? 0 : ax == 0 ? d[2] : -d[0];
+  e1[2] = ax == 2 ? 0 : ax == 0 ? -d[1] : d[0];
+  len = sqrtf(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  if (!(len > 0)) return;
+  for (c = 0; c < 3; c++) e1[c] /= len;
+  e2[0] = d[1] * e1[2] - d[2] * e1[1];
+  e2[1] = d[2] * e1[0] - d[0] * e1[2];
+  e2[2] = d[0] * e1[1] - d[1] * e1[0];
+  for (i = 0; i < n; i++) {
+    const float *p = o[ix[i]];
+    uv[i][0] = p[0] * e1[0] + p[1] * e1[1] + p[2] * e1[2];
+    uv[i][1] = p[0] * e2[0] + p[1] * e2[1] + p[2] * e2[2];
+    for (c = 0; c < 2; c++) {
+      lo[c] = uv[i][c] < lo[c] ? uv[i][c] : lo[c];
+      hi[c] = uv[i][c] > hi[c] ? uv[i][c] : hi[c];
+    }
+  }
+  for (c = 0; c < 2; c++) sc[c] = hi[c] > lo[c] ? 255.99f / (hi[c] - lo[c]) : 0;
+  for (i = 0; i < n; i++) {
+    unsigned u = (unsigned)((uv[i][0] - lo[0]) * sc[0]), v = (unsigned)((uv[i][1] - lo[1]) * sc[1]);
+    key[i] = (uint16_t)(evens(u > 255 ? 255 : u) | evens(v > 255 ? 255 : v) << 1);
+  }
+  for (pass = 0; pass < 2; pass++) {                 /* a radix sort, a byte at a time */
+    uint16_t *from = pass == 0 ? ix : tmp, *to = pass == 0 ? tmp : ix, kt[CASTMAX];
+    memset(cnt, 0, sizeof cnt);
+    for (i = 0; i < n; i++) cnt[(key[i] >> 8 * pass & 0xff) + 1]++;
+    for (k = 1; k < 257; k++) cnt[k] += cnt[k - 1];
+    for (i = 0; i < n; i++) {
+      size_t at = cnt[key[i] >> 8 * pass & 0xff]++;
+      to[at] = from[i];
+      kt[at] = key[i];
+    }
+    memcpy(key, kt, n * sizeof *key);
+  }
+}
+
 void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
                       const float d[3], float tmin, int cap, uint8_t *hits) {
   const float *po[4];
-  size_t idx[4], i = 0;
+  uint16_t ix[CASTMAX];
+  size_t idx[4], i, j, nw;
   uint32_t last[2] = {UINT32_MAX, UINT32_MAX};
   int n, r, h[4];
   rdir D;
   rpack P;
   setdir(&D, d, tmin);
-  while (i < m) {
-    for (n = 0; n < 4 && i < m; i++) {            /* the next packet */
-      hits[i] = 0;
-      if (want != NULL && !want[i]) continue;
+  for (; m > CASTMAX; m -= CASTMAX, o += CASTMAX, hits += CASTMAX, want += want ? CASTMAX : 0)
+    lsys_light_cast(L, o, want, CASTMAX, d, tmin, cap, hits);
+  for (i = nw = 0; i < m; i++) {
+    hits[i] = 0;
+    if (want == NULL || want[i]) ix[nw++] = (uint16_t)i;
+  }
+  across(o, d, ix, nw);
+  for (j = 0; j < nw;) {
+    for (n = 0; n < 4 && j < nw; j++) {           /* the next packet */
+      i = ix[j];
       if (cap == 1 && (last[0] != UINT32_MAX || last[1] != UINT32_MAX)) {
         const float *pi[4] = {o[i], o[i], o[i], o[i]};
         setpack(&P, pi, 1);
