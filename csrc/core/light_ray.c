@@ -34,6 +34,7 @@
 
 #define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 4 and pops 1 */
 #define CASTMAX 256                        /* rays lsys_light_cast orders at once */
+#define PACK 8                             /* rays in a packet (8 at most: masks are bytes) */
 
 #if defined(__SSE2__) && !defined(LSYS_LIGHT_SCALAR)
 #define VEC 1
@@ -144,12 +145,11 @@ typedef struct rdir {
   f4 vd[3], vinv[3], vtmin;
 } rdir;
 
-/* Up to four rays of one direction: their origins, by axis (lane k: ray k)
-** for the box tests, and each in all four lanes for the triangle tests. */
+/* Up to PACK rays of one direction: their origins, each also in all four
+** lanes for the tests. */
 typedef struct rpack {
-  float o[4][3];
-  f4 ox[3];
-  f4 vo[4][3];
+  float o[PACK][3];
+  f4 vo[PACK][3];
 } rpack;
 
 static void setdir (rdir *D, const float d[3], float tmin) {
@@ -168,17 +168,14 @@ static void setdir (rdir *D, const float d[3], float tmin) {
   D->vtmin = f4set1(tmin);
 }
 
-/* The n (1 .. 4) origins o[0 .. n) into P; the lanes past n repeat ray 0. */
-static void setpack (rpack *P, const float *const o[4], int n) {
-  float x[3][4];
+/* The n (1 .. PACK) origins o[0 .. n) into P (only the first n are used). */
+static void setpack (rpack *P, const float *const o[PACK], int n) {
   int k, c;
-  for (k = 0; k < 4; k++)
+  for (k = 0; k < n; k++)
     for (c = 0; c < 3; c++) {
-      P->o[k][c] = o[k < n ? k : 0][c];
-      x[c][k] = P->o[k][c];
-      P->vo[k][c] = f4set1(P->o[k][c]);
+      P->o[k][c] = o[k][c];
+      P->vo[k][c] = f4set1(o[k][c]);
     }
-  for (c = 0; c < 3; c++) P->ox[c] = f4load(x[c]);
 }
 
 /* What a triangle test shares between the rays of a direction, for the four
@@ -227,10 +224,8 @@ static inline int trihit (const trid *S, const lsys_ltri4 *T, const rdir *D, con
   return m & f4ge(v, zero) & f4le(f4add(u, v), one) & f4gt(t, D->vtmin);
 }
 
-/* The hits a mask of trihit counts. */
-static inline int nbits (int m) {
-  return (m & 1) + (m >> 1 & 1) + (m >> 2 & 1) + (m >> 3 & 1);
-}
+/* The hits a mask of trihit counts: its bits. */
+static const unsigned char nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
 
 /* The mask of the four children of q (bit k: child k) that the ray from o
 ** (in all four lanes) enters: its slab tests against their boxes side by
@@ -251,29 +246,32 @@ static inline int slabs (const lsys_lnode4 *q, const int nf[6], const rdir *D, c
 
 
 /* A stack item: a child's item (LSYS_LITEM, the orders left in) and the
-** mask of the rays that go there in its top 4 bits. */
-#define ITEM(item, rays) ((item) | (uint64_t)(rays) << 60)
+** mask of the rays that go there in its top byte. */
+#define ITEM(item, rays) ((item) | (uint64_t)(rays) << 56)
 
-/* The 4 bits of a slab test's mask spread to every fourth bit. */
-static const unsigned short fours[16] = {
-  0x0000, 0x0001, 0x0010, 0x0011, 0x0100, 0x0101, 0x0110, 0x0111,
-  0x1000, 0x1001, 0x1010, 0x1011, 0x1100, 0x1101, 0x1110, 0x1111
+/* The 4 bits of a slab test's mask spread to every eighth bit. */
+static const uint32_t eighths[16] = {
+  0x00000000, 0x00000001, 0x00000100, 0x00000101, 0x00010000, 0x00010001, 0x00010100,
+  0x00010101, 0x01000000, 0x01000001, 0x01000100, 0x01000101, 0x01010000, 0x01010001,
+  0x01010100, 0x01010101
 };
 
-/* Pushes child k of q with the rays that enter it (bits 4 k .. 4 k + 3 of
+/* Pushes child k of q with the rays that enter it (bits 8 k .. 8 k + 7 of
 ** 'by'), when there are any. */
 #define PUSH(k) do { \
-    unsigned k_ = (k), e_ = by >> 4 * k_ & 0xfu; \
+    unsigned k_ = (k), e_ = by >> 8 * k_ & 0xffu; \
     stack[sp] = ITEM(q->item[k_], e_); \
     sp += e_ != 0; \
   } while (0)
 
-/* The index of the lowest set bit of the non-zero 4-bit mask m. */
+/* The index of the lowest set bit of the non-zero mask m. */
 static inline int lowbit (int m) {
 #if defined(__GNUC__)
   return __builtin_ctz((unsigned)m);
 #else
-  return (m & 1) ? 0 : (m & 2) ? 1 : (m & 4) ? 2 : 3;
+  int k = 0;
+  while (!(m >> k & 1)) k++;
+  return k;
 #endif
 }
 
@@ -284,16 +282,16 @@ static inline int lowbit (int m) {
 ** took a ray to the cap, when there is one (else it is left as it is).
 */
 static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir *D,
-                  const rpack *P, int rays, int cap, int hits[4], uint32_t *last) {
+                  const rpack *P, int rays, int cap, int hits[PACK], uint32_t *last) {
   uint64_t stack[STACK];
-  int sp = 1, h[4], nf[6], c, oct = D->oct;
-  for (c = 0; c < 4; c++) h[c] = hits[c];          /* locals: no store to them aliases D */
+  int sp = 1, h[PACK], nf[6], c, oct = D->oct;
+  for (c = 0; c < PACK; c++) h[c] = hits[c];          /* locals: no store to them aliases D */
   for (c = 0; c < 3; c++) { nf[c] = D->near[c]; nf[3 + c] = D->far[c]; }
   stack[0] = ITEM(LSYS_LITEM(0, 0), rays);          /* the root */
   while (sp > 0) {
     uint64_t it = stack[--sp];
     uint32_t i = (uint32_t)it, n = (uint32_t)(it >> 32) & 0xff;
-    int m = (int)(it >> 60) & rays;                 /* less the rays done since */
+    int m = (int)(it >> 56) & rays;                 /* less the rays done since */
     if (m == 0) continue;
     if (n > 0) {                                    /* a leaf: its primitives */
       for (n += i; i < n; i++) {
@@ -302,7 +300,7 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
         if (tri) trisetup(&S, &L->pack[i], D);
         for (; live != 0; live &= live - 1) {
           r = lowbit(live);
-          h[r] += tri ? nbits(trihit(&S, &L->pack[i], D, P->vo[r]))
+          h[r] += tri ? nbits[trihit(&S, &L->pack[i], D, P->vo[r])]
                      : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
           if (h[r] >= cap) {
             h[r] = cap;
@@ -312,15 +310,16 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
         }
         if (m == 0) break;
       }
-      rays &= ~((int)(it >> 60) & ~m);              /* those that reached the cap */
+      rays &= ~((int)(it >> 56) & ~m);              /* those that reached the cap */
       if (rays == 0) break;
     } else {                                        /* a node: the children the rays enter */
       const lsys_lnode4 *q = &T->node[i];
-      unsigned by = 0, o = LSYS_LORDER(q, oct);    /* by: bit 4 k + r, ray r enters child k */
+      uint32_t by = 0;                              /* bit 8 k + r: ray r enters child k */
+      unsigned o = LSYS_LORDER(q, oct);
       int live = m;
       for (; live != 0; live &= live - 1) {
         int r = lowbit(live);
-        by |= (unsigned)fours[slabs(q, nf, D, P->vo[r])] << r;
+        by |= eighths[slabs(q, nf, D, P->vo[r])] << r;
       }
       PUSH(o >> 6);                                 /* farthest first */
       PUSH(o >> 4 & 3);
@@ -328,25 +327,25 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
       PUSH(o & 3);
     }
   }
-  for (c = 0; c < 4; c++) hits[c] = h[c];
+  for (c = 0; c < PACK; c++) hits[c] = h[c];
 }
 
 /* The hits of the rays of P (mask 'rays'; the others get 0) up to cap: the
 ** triangles' tree, then the capsules' for those still under the cap. */
 static void trace (const lsys_light *L, const rdir *D, const rpack *P, int rays, int cap,
-                   int hits[4], uint32_t *last) {
+                   int hits[PACK], uint32_t *last) {
   int r;
-  for (r = 0; r < 4; r++) hits[r] = 0;
+  for (r = 0; r < PACK; r++) hits[r] = 0;
   if (L->tri.nnodes > 0) walk(L, &L->tri, 1, D, P, rays, cap, hits, &last[0]);
-  for (r = 0; r < 4; r++) if (hits[r] >= cap) rays &= ~(1 << r);
+  for (r = 0; r < PACK; r++) if (hits[r] >= cap) rays &= ~(1 << r);
   if (rays != 0 && L->cap.nnodes > 0) walk(L, &L->cap, 0, D, P, rays, cap, hits, &last[1]);
 }
 
 int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  const float *po[4] = {o, o, o, o};
+  const float *po[PACK] = {o};
   uint32_t last[2];
-  int hits[4];
+  int hits[PACK];
   rdir D;
   rpack P;
   setdir(&D, d, tmin);
@@ -357,7 +356,7 @@ int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], f
 
 int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  const float *po[4] = {o, o, o, o};
+  const float *po[PACK] = {o};
   size_t i;
   int hits = 0;
   rdir D;
@@ -367,7 +366,7 @@ int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], f
   for (i = 0; i < L->npack; i++) {
     trid S;
     trisetup(&S, &L->pack[i], &D);
-    if ((hits += nbits(trihit(&S, &L->pack[i], &D, P.vo[0]))) >= cap) return cap;
+    if ((hits += nbits[trihit(&S, &L->pack[i], &D, P.vo[0])]) >= cap) return cap;
   }
   for (i = 0; i < L->ncap; i++)
     if ((hits += capsule(&L->caps[i], P.o[0], D.d, tmin)) >= cap) return cap;
@@ -439,11 +438,11 @@ static void across (const float (*o)[3], const float d[3], uint16_t *ix, size_t 
 
 void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
                       const float d[3], float tmin, int cap, uint8_t *hits) {
-  const float *po[4];
+  const float *po[PACK];
   uint16_t ix[CASTMAX];
-  size_t idx[4], i, j, nw, tries = 0, stops = 0;
+  size_t idx[PACK], i, j, nw, tries = 0, stops = 0;
   uint32_t last[2] = {UINT32_MAX, UINT32_MAX};
-  int n, r, h[4], k, c;
+  int n, r, h[PACK], k, c;
   trid S;                                         /* the last stopping packet's setup */
   rdir D;
   rpack P;
@@ -457,7 +456,7 @@ void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *w
   }
   across(o, d, ix, nw);
   for (j = 0; j < nw;) {
-    for (n = 0; n < 4 && j < nw; j++) {           /* the next packet */
+    for (n = 0; n < PACK && j < nw; j++) {        /* the next packet */
       i = ix[j];
       k = last[0] != UINT32_MAX ? 1 : last[1] != UINT32_MAX ? 2 : 0;
       if (cap == 1 && k != 0 && (tries < 16 || 8 * stops >= tries)) {
