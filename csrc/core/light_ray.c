@@ -34,7 +34,7 @@
 
 #define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 4 and pops 1 */
 #define CASTMAX 256                        /* rays lsys_light_cast orders at once */
-#define PACK 8                             /* rays in a packet (8 at most: masks are bytes) */
+#define PACK 16                            /* rays in a packet (16 at most: 16-bit masks) */
 
 #if defined(__SSE2__) && !defined(LSYS_LIGHT_SCALAR)
 #define VEC 1
@@ -245,21 +245,23 @@ static inline int slabs (const lsys_lnode4 *q, const int nf[6], const rdir *D, c
 /* the walk */
 
 
-/* A stack item: a child's item (LSYS_LITEM, the orders left in) and the
-** mask of the rays that go there in its top byte. */
-#define ITEM(item, rays) ((item) | (uint64_t)(rays) << 56)
+/* A stack item: a child's item (LSYS_LITEM, the orders masked off) and the
+** mask of the rays that go there above it. */
+#define ITEM(item, rays) (((item) & 0xffffffffffull) | (uint64_t)(rays) << 40)
 
-/* The 4 bits of a slab test's mask spread to every eighth bit. */
-static const uint32_t eighths[16] = {
-  0x00000000, 0x00000001, 0x00000100, 0x00000101, 0x00010000, 0x00010001, 0x00010100,
-  0x00010101, 0x01000000, 0x01000001, 0x01000100, 0x01000101, 0x01010000, 0x01010001,
-  0x01010100, 0x01010101
+/* The 4 bits of a slab test's mask spread to every sixteenth bit. */
+#define SPREAD16(m) ((uint64_t)((m) & 1) | (uint64_t)((m) >> 1 & 1) << 16 | \
+                     (uint64_t)((m) >> 2 & 1) << 32 | (uint64_t)((m) >> 3 & 1) << 48)
+static const uint64_t sixteenths[16] = {
+  SPREAD16(0), SPREAD16(1), SPREAD16(2), SPREAD16(3), SPREAD16(4), SPREAD16(5), SPREAD16(6),
+  SPREAD16(7), SPREAD16(8), SPREAD16(9), SPREAD16(10), SPREAD16(11), SPREAD16(12),
+  SPREAD16(13), SPREAD16(14), SPREAD16(15)
 };
 
-/* Pushes child k of q with the rays that enter it (bits 8 k .. 8 k + 7 of
-** 'by'), when there are any. */
+/* Pushes child k of q with the rays that enter it (bits 16 k .. 16 k + 15
+** of 'by'), when there are any. */
 #define PUSH(k) do { \
-    unsigned k_ = (k), e_ = by >> 8 * k_ & 0xffu; \
+    unsigned k_ = (k), e_ = (unsigned)(by >> 16 * k_) & 0xffffu; \
     stack[sp] = ITEM(q->item[k_], e_); \
     sp += e_ != 0; \
   } while (0)
@@ -291,7 +293,7 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
   while (sp > 0) {
     uint64_t it = stack[--sp];
     uint32_t i = (uint32_t)it, n = (uint32_t)(it >> 32) & 0xff;
-    int m = (int)(it >> 56) & rays;                 /* less the rays done since */
+    int m = (int)(it >> 40) & rays;                 /* less the rays done since */
     if (m == 0) continue;
     if (n > 0) {                                    /* a leaf: its primitives */
       for (n += i; i < n; i++) {
@@ -310,16 +312,16 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
         }
         if (m == 0) break;
       }
-      rays &= ~((int)(it >> 56) & ~m);              /* those that reached the cap */
+      rays &= ~((int)(it >> 40) & ~m);              /* those that reached the cap */
       if (rays == 0) break;
     } else {                                        /* a node: the children the rays enter */
       const lsys_lnode4 *q = &T->node[i];
-      uint32_t by = 0;                              /* bit 8 k + r: ray r enters child k */
+      uint64_t by = 0;                              /* bit 16 k + r: ray r enters child k */
       unsigned o = LSYS_LORDER(q, oct);
       int live = m;
       for (; live != 0; live &= live - 1) {
         int r = lowbit(live);
-        by |= eighths[slabs(q, nf, D, P->vo[r])] << r;
+        by |= sixteenths[slabs(q, nf, D, P->vo[r])] << r;
       }
       PUSH(o >> 6);                                 /* farthest first */
       PUSH(o >> 4 & 3);
