@@ -3,22 +3,28 @@
 ** and the traversal of the 4-wide tree.
 **
 ** The rays of a query share their directions, so they are traced in
-** packets: up to four rays of one direction from nearby points (the query
-** takes its points in Morton order) walk the tree together, each lane of a
-** vector one ray (Wald et al. 2001, "Interactive rendering with coherent
-** ray tracing", section 3). A node's four children are tested against the
-** packet's rays, and a child goes on the stack with the mask of the rays
-** that enter it, so a ray only meets the boxes and primitives it would meet
-** alone: a packet does the same tests as its rays one by one, in another
-** order, with one walk's loads and branches for all of them. A node's
-** children go on the stack without a branch on each, farthest first in
-** the order the build worked out for the direction's octant. A triangle
-** test's part that depends only on the triangle and the direction (the
-** cross product of the direction with an edge, the determinant and its
-** inverse) is done once for the packet; the rest in each ray's lanes, four
-** triangles at a time (Möller and Trumbore 1997). The vectors are SSE2 on
-** x86-64 and plain arrays of four floats elsewhere (or with
-** LSYS_LIGHT_SCALAR), which compute each lane alike.
+** packets (after Wald et al. 2001, "Interactive rendering with coherent ray
+** tracing"): up to PACK rays of one direction from nearby points walk the
+** tree together. A node is fetched once for the packet; each of its rays
+** tests the node's four child boxes side by side in one vector, and a child
+** goes on the stack once, with the mask of the rays that enter it. So a ray
+** meets exactly the boxes and primitives it would meet alone (a packet does
+** its rays' tests in another order), while the loads, the stack and the
+** branches of one walk serve all of them. The children go on the stack
+** without a branch on each, farthest first in the order the build worked
+** out for the direction's octant. The part of a triangle test that depends
+** only on the triangle and the direction (the direction's cross product
+** with an edge, the determinant and its inverse) is done once a packet of
+** triangles for all the rays, the rest for each ray, four triangles at a
+** time (Möller and Trumbore 1997, section 2). The rays of a query are put
+** in packets by the order of their origins across their direction (so that
+** a packet's rays run side by side), and a ray that stops at its first hit
+** is first tested against the packet of triangles that stopped the last
+** packet (lsys_light_cast).
+**
+** The vectors are SSE2 on x86-64 and plain arrays of four floats elsewhere
+** (or with LSYS_LIGHT_SCALAR), which compute each lane alike, in the same
+** order: the same results on every machine.
 **
 ** Any hit beyond tmin counts, up to a cap (a transmittance counts the hits:
 ** each primitive is in one leaf, so a ray meets it at most once, and the
@@ -54,7 +60,6 @@ typedef __m128 f4;
 #define f4div _mm_div_ps
 #define f4min _mm_min_ps                   /* a < b ? a : b, lane by lane */
 #define f4max _mm_max_ps                   /* a > b ? a : b */
-#define f4lane(a, k) _mm_shuffle_ps((a), (a), 0x55 * (k))   /* lane k in all four */
 #define f4le(a, b) _mm_movemask_ps(_mm_cmple_ps((a), (b)))   /* bit k: a[k] <= b[k] */
 #define f4ge(a, b) _mm_movemask_ps(_mm_cmpge_ps((a), (b)))
 #define f4gt(a, b) _mm_movemask_ps(_mm_cmpgt_ps((a), (b)))
@@ -86,7 +91,6 @@ static inline f4 f4set1 (float x) {
   f4 r = {{x, x, x, x}};
   return r;
 }
-#define f4lane(a, k) f4set1((a).x[k])
 #endif
 
 /* ---------------------------------------------------------------------- */
@@ -450,8 +454,13 @@ void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *w
   rpack P;
   memset(&S, 0, sizeof S);
   setdir(&D, d, tmin);
-  for (; m > CASTMAX; m -= CASTMAX, o += CASTMAX, hits += CASTMAX, want += want ? CASTMAX : 0)
+  while (m > CASTMAX) {                           /* a block at a time */
     lsys_light_cast(L, o, want, CASTMAX, d, tmin, cap, hits);
+    m -= CASTMAX;
+    o += CASTMAX;
+    hits += CASTMAX;
+    if (want != NULL) want += CASTMAX;
+  }
   for (i = nw = 0; i < m; i++) {
     hits[i] = 0;
     if (want == NULL || want[i]) ix[nw++] = (uint16_t)i;
