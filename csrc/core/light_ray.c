@@ -425,8 +425,12 @@ static void across (const float (*o)[3], const float d[3], uint16_t *ix, size_t 
   }
   for (c = 0; c < 2; c++) sc[c] = hi[c] > lo[c] ? 255.99f / (hi[c] - lo[c]) : 0;
   for (i = 0; i < n; i++) {
-    unsigned u = (unsigned)((uv[i][0] - lo[0]) * sc[0]), v = (unsigned)((uv[i][1] - lo[1]) * sc[1]);
-    key[i] = (uint16_t)(evens(u > 255 ? 255 : u) | evens(v > 255 ? 255 : v) << 1);
+    unsigned q[2];
+    for (c = 0; c < 2; c++) {                        /* 0 .. 255 (0 for a NaN) */
+      float x = (uv[i][c] - lo[c]) * sc[c];
+      q[c] = x >= 255 ? 255 : x > 0 ? (unsigned)x : 0;
+    }
+    key[i] = (uint16_t)(evens(q[0]) | evens(q[1]) << 1);
   }
   for (pass = 0; pass < 2; pass++) {                 /* a radix sort, a byte at a time */
     uint16_t *from = pass == 0 ? ix : tmp, *to = pass == 0 ? tmp : ix, kt[CASTMAX];
