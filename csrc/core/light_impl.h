@@ -21,10 +21,9 @@
 ** taking up to four of a node's descendants as children: their boxes side
 ** by side, for the four slab tests at once. An empty slot has the box
 ** lo = FLT_MAX, hi = -FLT_MAX, which no ray enters. A child's item holds,
-** in its low 40 bits, what a walk needs to visit it (LSYS_LITEM); bits 40
-** to 55 hold the order of the children for two of the octants
-** (LSYS_LORDER); the top 4 bits are 0 (a walk puts the mask of its rays
-** there). */
+** in its low 40 bits, what a walk needs to visit it (LSYS_LITEM: a walk's
+** stack keeps those bits and the mask of its rays above them); bits 40 to
+** 55 hold the order of the children for two of the octants (LSYS_LORDER). */
 typedef struct lsys_lnode4 {
   float b[6][4];                 /* the children's boxes: lo x, y, z, hi x, y, z */
   uint64_t item[4];              /* the children: LSYS_LITEM, and the orders above */
