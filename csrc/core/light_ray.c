@@ -441,12 +441,12 @@ static void across (const float (*o)[3], const float d[3], uint16_t *ix, size_t 
 ** The rays, taken CASTMAX at a time in the order across d, go through the
 ** tree PACK at a time (trace). A ray that stops at its first hit (cap 1)
 ** from a point near the last one in the same direction is likely stopped by
-** the same primitive: the packet
-** (or capsule) that stopped the last packet's ray is tested first, and the
-** ray only goes into a packet when that does not stop it; once 16 tries have
-** been made, only while at least one in eight stops its ray (among points
-** far apart it seldom does, and costs a test each). Any hit gives the same
-** answer, so this changes no result, only the work.
+** the same primitive: the packet (or capsule) that stopped the last
+** packet's ray is tested first, and the ray only goes into a packet when
+** that does not stop it; once 16 tries have been made, only while at least
+** one in eight stops its ray (among points far apart it seldom does, and
+** costs a test each). Any hit gives the same answer, so this changes no
+** result, only the work.
 */
 void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
                       const float d[3], float tmin, int cap, uint8_t *hits) {
