@@ -16,7 +16,7 @@
 
 #include "light_impl.h"
 
-#define CHUNK 64                /* points a worker takes at a time */
+#define CHUNK 256               /* points a worker takes at a time */
 #define DEFSAMPLES 64
 #define DEFHITS 8
 
@@ -198,9 +198,10 @@ int lsys_light_build (lsys_light **out, const lsys_scene *s, const lsys_light_op
 /*
 ** Rays of one direction from nearby points take nearly the same path
 ** through the hierarchy, so a worker traces its chunk of points (nearby:
-** the points are taken in Morton order) one direction at a time, and the
-** nodes stay in its caches. Each point still sums its directions in their
-** order, so its result is what it would be alone.
+** the points are taken in Morton order) one direction at a time, in
+** packets (lsys_light_cast), and the nodes stay in its caches. Each point
+** still sums its directions in their order, so its result is what it would
+** be alone.
 */
 typedef struct qjob {
   const lsys_light *L;
@@ -215,7 +216,8 @@ typedef struct qjob {
 static void chunk (const qjob *j, size_t a, size_t b) {
   const lsys_light *L = j->L;
   float o[CHUNK][3], tmin = (float)L->offset;
-  double E[CHUNK], M[CHUNK][3];
+  double E[CHUNK], M[CHUNK][3], W[CHUNK];
+  uint8_t want[CHUNK], hits[CHUNK];
   size_t idx[CHUNK], m = b - a, i, k;
   int c;
   for (i = 0; i < m; i++) {
@@ -228,16 +230,23 @@ static void chunk (const qjob *j, size_t a, size_t b) {
   }
   for (k = 0; k < L->ndirs; k++) {
     const double *d = L->dir + 3 * k;
+    int any = 0;
     for (i = 0; i < m; i++) {
-      double w = L->w[k], v;
+      double w = L->w[k];
       if (j->n != NULL) {
         const double *n = j->n + 3 * idx[i];
         double cs = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-        if (!(cs > 0)) continue;
-        w *= cs;
+        w = cs > 0 ? w * cs : 0;
       }
-      if (w == 0) continue;
-      v = w * L->taupow[lsys_light_trace(L, o[i], L->dirf + 3 * k, tmin, L->maxhits)];
+      W[i] = w;
+      any |= want[i] = w != 0;
+    }
+    if (!any) continue;
+    lsys_light_cast(L, (const float (*)[3])o, want, m, L->dirf + 3 * k, tmin, L->maxhits, hits);
+    for (i = 0; i < m; i++) {
+      double v;
+      if (!want[i]) continue;
+      v = W[i] * L->taupow[hits[i]];
       E[i] += v;
       for (c = 0; c < 3; c++) M[i][c] += v * d[c];
     }

@@ -14,7 +14,10 @@
 ** explicit stack; its leaves become packets of triangles or runs of
 ** capsules in leaf order, its boxes are padded, and it is collapsed into a
 ** 4-wide tree: each node takes a binary node's children, opening the inner
-** one of the largest box until it has four.
+** one of the largest box until it has four. For each of the eight octants
+** of directions a node keeps the order a ray meets its children in, as the
+** splits it was made of give it (each split's lower side first along an
+** axis the ray goes up), so that a walk need not sort them.
 */
 #include <float.h>
 #include <math.h>
@@ -147,7 +150,8 @@ typedef struct bin { float b[6]; size_t n; } bin;   /* a box: lo[3], hi[3] */
 typedef struct node2 {
   float lo[3], hi[3];          /* the box (padded once built) */
   uint32_t off;                /* leaf: its first item; else its first child */
-  uint32_t cnt;                /* leaf: its items (>= 1); else 0 */
+  uint16_t cnt;                /* leaf: its items (1 .. MAXLEAF); else 0 */
+  uint16_t axis;               /* inner: the axis its children were split along */
 } node2;
 
 typedef struct builder {
@@ -210,10 +214,12 @@ static float blocks (const builder *B, size_t n) {
 }
 
 /* The best split of ix[first .. first + n) (box nb, centroids' box cb) by
-** binned SAH: puts the primitives of the left side first and returns their
-** number; 0 for a leaf; n / 2 (unordered) when no binned split separates
-** them and they are too many for a leaf. */
-static size_t split (builder *B, size_t first, size_t n, const float nb[6], const float cb[6]) {
+** binned SAH: puts the primitives of the left side first (the lower
+** centroids along the axis *axis) and returns their number; 0 for a leaf;
+** n / 2 (unordered) when no binned split separates them and they are too
+** many for a leaf. */
+static size_t split (builder *B, size_t first, size_t n, const float nb[6], const float cb[6],
+                     int *axis) {
   bin bins[3][NBINS];
   float scale[3], best = FLT_MAX, rarea[NBINS];
   size_t rn[NBINS], i, j;
@@ -256,6 +262,7 @@ static size_t split (builder *B, size_t first, size_t n, const float nb[6], cons
       if (cost < best) { best = cost; bax = ax; bk = k; }
     }
   }
+  *axis = 0;
   if (bax < 0) return n <= MAXLEAF ? 0 : n / 2;
   /* a leaf costs its tests; a split one step and its sides' tests (per unit area) */
   if (n <= MAXLEAF && harea(nb) * (blocks(B, n) - 1) <= best) return 0;
@@ -268,6 +275,7 @@ static size_t split (builder *B, size_t first, size_t n, const float nb[6], cons
     }
   }
   i -= first;
+  *axis = bax;
   return i == 0 || i == n ? n / 2 : i;
 }
 
@@ -305,14 +313,15 @@ static int buildtree (builder *B) {
   for (;;) {
     float nb[6], cb[6];
     size_t nl, c;
+    int axis = 0;
     node2 *nd = &B->n2[t.node];
     bounds(B, t.first, t.n, nb, cb);
     memcpy(nd->lo, nb, 3 * sizeof(float));
     memcpy(nd->hi, nb + 3, 3 * sizeof(float));
-    nl = t.n <= 1 ? 0 : t.depth >= FORCEDEPTH ? t.n / 2 : split(B, t.first, t.n, nb, cb);
+    nl = t.n <= 1 ? 0 : t.depth >= FORCEDEPTH ? t.n / 2 : split(B, t.first, t.n, nb, cb, &axis);
     if (nl == 0) {
       nd->off = (uint32_t)t.first;
-      nd->cnt = (uint32_t)t.n;
+      nd->cnt = (uint16_t)t.n;
       if (sp == 0) return LSYS_OK;
       t = stack[--sp];
       continue;
@@ -320,6 +329,7 @@ static int buildtree (builder *B) {
     if ((st = newpair(B, &c)) != LSYS_OK) return st;
     B->n2[t.node].off = (uint32_t)c;
     B->n2[t.node].cnt = 0;
+    B->n2[t.node].axis = (uint16_t)axis;
     stack[sp].node = c + 1;
     stack[sp].first = t.first + nl;
     stack[sp].n = t.n - nl;
@@ -364,7 +374,7 @@ static void packleaf (builder *B, node2 *leaf, void *ud) {
     }
   }
   leaf->off = (uint32_t)*np;
-  leaf->cnt = (uint32_t)npk;
+  leaf->cnt = (uint16_t)npk;
   *np += npk;
 }
 
@@ -409,10 +419,34 @@ static void setslot (lsys_lnode4 *q, int k, const node2 *x, uint32_t child) {
     q->b[c][k] = x != NULL ? x->lo[c] : FLT_MAX;
     q->b[3 + c][k] = x != NULL ? x->hi[c] : -FLT_MAX;
   }
-  q->child[k] = child;
-  q->cnt[k] = (uint8_t)(x != NULL ? x->cnt : 0);
-  if (k == 0) q->leaves = q->pad[0] = q->pad[1] = 0;
-  if (q->cnt[k] > 0) q->leaves |= 1u << k;
+  q->item[k] = LSYS_LITEM(child, x != NULL ? x->cnt : 0);
+}
+
+/* The slots of the binary subtree at x whose leaves (for this purpose) are
+** the 4-wide node's children kid[0 .. nk), in the order a ray of the octant
+** oct meets them (each split's lower side first along an axis the ray goes
+** up, else last), from *n on in ord. */
+static void order (const node2 *n2, size_t x, const size_t kid[4], int nk, int oct,
+                   uint8_t *ord, int *n) {
+  int k;
+  for (k = 0; k < nk; k++)
+    if (kid[k] == x) { *ord |= (uint8_t)(k << 2 * (*n)++); return; }
+  k = oct >> n2[x].axis & 1;                      /* 1: the ray goes down that axis */
+  order(n2, n2[x].off + (size_t)k, kid, nk, oct, ord, n);
+  order(n2, n2[x].off + (size_t)(1 - k), kid, nk, oct, ord, n);
+}
+
+/* q's child orders for each octant, its children being kid[0 .. nk) under
+** the binary node x (empty slots last). */
+static void orders (lsys_lnode4 *q, const node2 *n2, size_t x, const size_t kid[4], int nk) {
+  int oct, n, k;
+  for (oct = 0; oct < 8; oct++) {
+    uint8_t o = 0;
+    n = 0;
+    order(n2, x, kid, nk, oct, &o, &n);
+    for (k = nk; k < 4; k++) o |= (uint8_t)(k << 2 * n++);
+    q->item[oct >> 1] |= (uint64_t)o << (40 + 8 * (oct & 1));
+  }
 }
 
 /* The children of the binary node x that a 4-wide node takes: its two, then
@@ -452,8 +486,10 @@ static int collapse (builder *B, lsys_ltree *T) {
   T->nnodes = T->depth = 1;
   if (B->n2[0].cnt > 0) {                          /* the root is a leaf */
     int k;
+    size_t kid[4] = {0, 0, 0, 0};
     setslot(&T->node[0], 0, &B->n2[0], B->n2[0].off);
     for (k = 1; k < 4; k++) setslot(&T->node[0], k, NULL, 0);
+    orders(&T->node[0], B->n2, 0, kid, 1);
     return LSYS_OK;
   }
   stack[sp].x = 0; stack[sp].q = 0; stack[sp++].depth = 1;
@@ -471,6 +507,7 @@ static int collapse (builder *B, lsys_ltree *T) {
       }
       setslot(&T->node[it.q], k, y, child);
     }
+    orders(&T->node[it.q], B->n2, it.x, kid, nk);
   }
   return LSYS_OK;
 }

@@ -20,14 +20,24 @@
 /* A node of a 4-wide tree, made from the binary tree the build makes by
 ** taking up to four of a node's descendants as children: their boxes side
 ** by side, for the four slab tests at once. An empty slot has the box
-** lo = FLT_MAX, hi = -FLT_MAX, which no ray enters. */
+** lo = FLT_MAX, hi = -FLT_MAX, which no ray enters. A child's item holds,
+** in its low 40 bits, what a walk needs to visit it (LSYS_LITEM: a walk's
+** stack keeps those bits and the mask of its rays above them); bits 40 to
+** 55 hold the order of the children for two of the octants (LSYS_LORDER). */
 typedef struct lsys_lnode4 {
   float b[6][4];                 /* the children's boxes: lo x, y, z, hi x, y, z */
-  uint32_t child[4];             /* an inner child: its node; a leaf: its first item */
-  uint8_t cnt[4];                /* a leaf: its items (1 .. 16); else 0 */
-  uint32_t leaves;               /* bit k set: child k is a leaf */
-  uint32_t pad[2];               /* to 128 bytes: two cache lines */
+  uint64_t item[4];              /* the children: LSYS_LITEM, and the orders above */
 } lsys_lnode4;
+
+/* A child's item: an inner child's node (n = 0) or a leaf's first packet
+** (or capsule) and their number n (1 .. 16). */
+#define LSYS_LITEM(first, n) ((uint64_t)(n) << 32 | (uint64_t)(first))
+
+/* The children of q nearest first for a ray of the octant oct (bit c: the
+** ray goes down axis c): 2 bits each, the nearest lowest, in bits 48 to 55
+** of item[oct / 2] (odd octants) or 40 to 47 (even ones). */
+#define LSYS_LORDER(q, oct) \
+  ((unsigned)((q)->item[(oct) >> 1] >> (40 + 8 * ((oct) & 1))) & 0xffu)
 
 /* One hierarchy: its nodes (root 0) in an aligned block. */
 typedef struct lsys_ltree {
@@ -85,5 +95,10 @@ int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], f
 int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap);
 
+/* The rays o[i] + t d, t > tmin, of the m origins with want[i] set (want
+** NULL: all of them): their hits, counted up to cap, into hits[i] (0 for
+** the others). The same counts as lsys_light_trace gives each. */
+void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
+                      const float d[3], float tmin, int cap, uint8_t *hits);
 
 #endif

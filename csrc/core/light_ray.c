@@ -2,15 +2,35 @@
 ** Rays through the light's hierarchy (light_impl.h): the primitive tests
 ** and the traversal of the 4-wide tree.
 **
-** A ray's four slab tests against a node's children run side by side in SSE
-** on x86-64 (elsewhere, or with LSYS_LIGHT_SCALAR, in a plain loop that
-** finds the same children). Each ray uses the near and far planes its
-** direction's signs pick, so an empty slot's inverted box is never entered.
-** The leaves a node's box test hits are tested at once (an occluded ray may
-** stop there), four triangles at a time; its inner children are visited
-** nearest first, from a fixed stack on the C stack. Any hit beyond tmin
-** counts, up to a cap (a transmittance counts the hits: each primitive is in
-** one leaf, so it is met at most once).
+** The rays of a query share their directions, so they are traced in
+** packets (after Wald et al. 2001, "Interactive rendering with coherent ray
+** tracing"): up to PACK rays of one direction from nearby points walk the
+** tree together. A node is fetched once for the packet; each of its rays
+** tests the node's four child boxes side by side in one vector, and a child
+** goes on the stack once, with the mask of the rays that enter it. So a ray
+** meets exactly the boxes and primitives it would meet alone (a packet does
+** its rays' tests in another order), while the loads, the stack and the
+** branches of one walk serve all of them. The children go on the stack
+** without a branch on each, farthest first in the order the build worked
+** out for the direction's octant. The part of a triangle test that depends
+** only on the triangle and the direction (the direction's cross product
+** with an edge, the determinant and its inverse) is done once a packet of
+** triangles for all the rays, the rest for each ray, four triangles at a
+** time (Möller and Trumbore 1997, section 2). The rays of a query are put
+** in packets by the order of their origins across their direction (so that
+** a packet's rays run side by side), and a ray that stops at its first hit
+** is first tested against the packet of triangles that stopped the last
+** packet (lsys_light_cast).
+**
+** The vectors are SSE2 on x86-64 and plain arrays of four floats elsewhere
+** (or with LSYS_LIGHT_SCALAR), which compute each lane alike, in the same
+** order: the same results on every machine.
+**
+** Any hit beyond tmin counts, up to a cap (a transmittance counts the hits:
+** each primitive is in one leaf, so a ray meets it at most once, and the
+** count up to the cap does not depend on the order the primitives come
+** in). Testing every primitive (lsys_light_brute) uses the same triangle
+** and capsule tests, so both agree exactly.
 */
 #include <float.h>
 #include <math.h>
@@ -18,12 +38,63 @@
 
 #include "light_impl.h"
 
-#define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 3 of its 4 children */
+#define STACK (3 * LSYS_LIGHT_STACK + 4)  /* a node pushes at most 4 and pops 1 */
+#define CASTMAX 256                        /* rays lsys_light_cast orders at once */
+#define PACK 16                            /* rays in a packet (16 at most: 16-bit masks) */
 
 #if defined(__SSE2__) && !defined(LSYS_LIGHT_SCALAR)
 #define VEC 1
 #include <emmintrin.h>
 #endif
+
+/* ---------------------------------------------------------------------- */
+/* four floats at once */
+
+#ifdef VEC
+typedef __m128 f4;
+#define f4load _mm_loadu_ps
+#define f4set1 _mm_set1_ps
+#define f4add _mm_add_ps
+#define f4sub _mm_sub_ps
+#define f4mul _mm_mul_ps
+#define f4div _mm_div_ps
+#define f4min _mm_min_ps                   /* a < b ? a : b, lane by lane */
+#define f4max _mm_max_ps                   /* a > b ? a : b */
+#define f4le(a, b) _mm_movemask_ps(_mm_cmple_ps((a), (b)))   /* bit k: a[k] <= b[k] */
+#define f4ge(a, b) _mm_movemask_ps(_mm_cmpge_ps((a), (b)))
+#define f4gt(a, b) _mm_movemask_ps(_mm_cmpgt_ps((a), (b)))
+#define f4ne(a, b) _mm_movemask_ps(_mm_cmpneq_ps((a), (b)))
+#else
+typedef struct f4 { float x[4]; } f4;
+#define F4OP(name, expr) \
+  static inline f4 name (f4 a, f4 b) { \
+    f4 r; int k; for (k = 0; k < 4; k++) r.x[k] = (expr); return r; }
+#define F4CMP(name, expr) \
+  static inline int name (f4 a, f4 b) { \
+    int m = 0, k; for (k = 0; k < 4; k++) m |= (expr) << k; return m; }
+F4OP(f4add, a.x[k] + b.x[k])
+F4OP(f4sub, a.x[k] - b.x[k])
+F4OP(f4mul, a.x[k] * b.x[k])
+F4OP(f4div, a.x[k] / b.x[k])
+F4OP(f4min, a.x[k] < b.x[k] ? a.x[k] : b.x[k])
+F4OP(f4max, a.x[k] > b.x[k] ? a.x[k] : b.x[k])
+F4CMP(f4le, a.x[k] <= b.x[k])
+F4CMP(f4ge, a.x[k] >= b.x[k])
+F4CMP(f4gt, a.x[k] > b.x[k])
+F4CMP(f4ne, a.x[k] != b.x[k])
+static inline f4 f4load (const float *p) {
+  f4 r;
+  memcpy(r.x, p, sizeof r.x);
+  return r;
+}
+static inline f4 f4set1 (float x) {
+  f4 r = {{x, x, x, x}};
+  return r;
+}
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* the primitives */
 
 /* Whether the ray o + t d, t > tmin, meets the capsule P (from outside: a
 ** point in it is not shadowed by it, as a bud by its own stem), in doubles:
@@ -67,193 +138,364 @@ static int capsule (const lsys_lprim *P, const float o[3], const float d[3], flo
   return t > tmin && t < HUGE_VAL;
 }
 
-/* A ray set up for the slab tests: for each axis, the rows of a node's
-** boxes that hold its near and far planes (lo or hi by the direction's sign),
-** the origin and the inverse direction (a zero component made tiny, so that
-** no 0 * inf makes a NaN), also 4 times over for the vector tests. */
-typedef struct ray {
-  int near[3], far[3];
-  float o[3], d[3], inv[3], tmin;
-#ifdef VEC
-  __m128 vo[3], vd[3], vinv[3], vtmin;
-#endif
-} ray;
 
-/* The entry distances of the ray into the four children of q (tn) and the
-** mask of those it enters (bit k: child k). */
-static inline int slabs (const lsys_lnode4 *q, const ray *r, float tn[4]) {
-#ifdef VEC
-  __m128 lo = r->vtmin, hi = _mm_set1_ps(FLT_MAX);
+/* A direction set up for the tests: for each axis, the rows of a node's
+** boxes that hold its near and far planes (lo or hi by the direction's
+** sign), the inverse direction (a zero component made tiny, so that no 0 *
+** inf makes a NaN) and the octant (bit c: the ray goes down axis c). */
+typedef struct rdir {
+  int near[3], far[3], oct;
+  float d[3], tmin;
+  f4 vd[3], vinv[3], vtmin;
+} rdir;
+
+/* Up to PACK rays of one direction: their origins, each also in all four
+** lanes for the tests. */
+typedef struct rpack {
+  float o[PACK][3];
+  f4 vo[PACK][3];
+} rpack;
+
+static void setdir (rdir *D, const float d[3], float tmin) {
   int c;
+  D->oct = 0;
   for (c = 0; c < 3; c++) {
-    __m128 a = _mm_loadu_ps(q->b[r->near[c]]), b = _mm_loadu_ps(q->b[r->far[c]]);
-    lo = _mm_max_ps(lo, _mm_mul_ps(_mm_sub_ps(a, r->vo[c]), r->vinv[c]));
-    hi = _mm_min_ps(hi, _mm_mul_ps(_mm_sub_ps(b, r->vo[c]), r->vinv[c]));
+    float x = d[c] != 0 ? d[c] : 1e-30f, inv = 1 / x;
+    D->d[c] = d[c];
+    D->near[c] = inv >= 0 ? c : 3 + c;
+    D->far[c] = inv >= 0 ? 3 + c : c;
+    D->oct |= (inv < 0) << c;
+    D->vd[c] = f4set1(d[c]);
+    D->vinv[c] = f4set1(inv);
   }
-  _mm_storeu_ps(tn, lo);
-  return _mm_movemask_ps(_mm_cmple_ps(lo, hi));
-#else
-  int k, c, mask = 0;
-  for (k = 0; k < 4; k++) {
-    float lo = r->tmin, hi = FLT_MAX;
+  D->tmin = tmin;
+  D->vtmin = f4set1(tmin);
+}
+
+/* The n (1 .. PACK) origins o[0 .. n) into P (only the first n are used). */
+static void setpack (rpack *P, const float *const o[PACK], int n) {
+  int k, c;
+  for (k = 0; k < n; k++)
     for (c = 0; c < 3; c++) {
-      float a = (q->b[r->near[c]][k] - r->o[c]) * r->inv[c];
-      float b = (q->b[r->far[c]][k] - r->o[c]) * r->inv[c];
-      lo = a > lo ? a : lo;
-      hi = b < hi ? b : hi;
+      P->o[k][c] = o[k][c];
+      P->vo[k][c] = f4set1(o[k][c]);
     }
-    tn[k] = lo;
-    mask |= (lo <= hi) << k;
-  }
-  return mask;
-#endif
 }
 
-/* The hits of the ray among the four triangles of T (Möller and Trumbore,
-** both faces), each lane as the scalar test computes it. */
-static inline int hit4 (const lsys_ltri4 *T, const ray *r) {
-#ifdef VEC
-  const __m128 *o = r->vo, *d = r->vd, zero = _mm_setzero_ps(), one = _mm_set1_ps(1);
-  __m128 a[3], e1[3], e2[3], p[3], q[3], s[3], det, inv, u, v, t, ok;
+/* What a triangle test shares between the rays of a direction, for the four
+** triangles of a packet: the edges, the direction's cross product p with
+** the second edge, the determinant's inverse, and the mask of the
+** triangles whose determinant is not 0. */
+typedef struct trid {
+  f4 e1[3], e2[3], p[3], inv;
+  int ok;
+} trid;
+
+static inline void trisetup (trid *S, const lsys_ltri4 *T, const rdir *D) {
+  f4 det;
   int c;
   for (c = 0; c < 3; c++) {
-    a[c] = _mm_loadu_ps(T->a[c]);
-    e1[c] = _mm_loadu_ps(T->e1[c]);
-    e2[c] = _mm_loadu_ps(T->e2[c]);
-    s[c] = _mm_sub_ps(o[c], a[c]);
+    S->e1[c] = f4load(T->e1[c]);
+    S->e2[c] = f4load(T->e2[c]);
   }
-  p[0] = _mm_sub_ps(_mm_mul_ps(d[1], e2[2]), _mm_mul_ps(d[2], e2[1]));
-  p[1] = _mm_sub_ps(_mm_mul_ps(d[2], e2[0]), _mm_mul_ps(d[0], e2[2]));
-  p[2] = _mm_sub_ps(_mm_mul_ps(d[0], e2[1]), _mm_mul_ps(d[1], e2[0]));
-  det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(e1[0], p[0]), _mm_mul_ps(e1[1], p[1])),
-                   _mm_mul_ps(e1[2], p[2]));
-  inv = _mm_div_ps(one, det);
-  u = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s[0], p[0]), _mm_mul_ps(s[1], p[1])),
-                            _mm_mul_ps(s[2], p[2])), inv);
-  q[0] = _mm_sub_ps(_mm_mul_ps(s[1], e1[2]), _mm_mul_ps(s[2], e1[1]));
-  q[1] = _mm_sub_ps(_mm_mul_ps(s[2], e1[0]), _mm_mul_ps(s[0], e1[2]));
-  q[2] = _mm_sub_ps(_mm_mul_ps(s[0], e1[1]), _mm_mul_ps(s[1], e1[0]));
-  v = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], q[0]), _mm_mul_ps(d[1], q[1])),
-                            _mm_mul_ps(d[2], q[2])), inv);
-  t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(e2[0], q[0]), _mm_mul_ps(e2[1], q[1])),
-                            _mm_mul_ps(e2[2], q[2])), inv);
-  ok = _mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmpge_ps(u, zero));
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmple_ps(u, one), _mm_cmpge_ps(v, zero)));
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmple_ps(_mm_add_ps(u, v), one),
-                                 _mm_cmpgt_ps(t, r->vtmin)));
-  c = _mm_movemask_ps(ok);
-  return (c & 1) + (c >> 1 & 1) + (c >> 2 & 1) + (c >> 3 & 1);
-#else
-  const float *o = r->o, *d = r->d;
-  int k, n = 0;
-  for (k = 0; k < 4; k++) {
-    float e1[3] = {T->e1[0][k], T->e1[1][k], T->e1[2][k]};
-    float e2[3] = {T->e2[0][k], T->e2[1][k], T->e2[2][k]}, p[3], q[3], s[3], det, inv, u, v;
-    p[0] = d[1] * e2[2] - d[2] * e2[1];
-    p[1] = d[2] * e2[0] - d[0] * e2[2];
-    p[2] = d[0] * e2[1] - d[1] * e2[0];
-    det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
-    if (det == 0) continue;
-    inv = 1 / det;
-    s[0] = o[0] - T->a[0][k]; s[1] = o[1] - T->a[1][k]; s[2] = o[2] - T->a[2][k];
-    u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv;
-    if (!(u >= 0 && u <= 1)) continue;
-    q[0] = s[1] * e1[2] - s[2] * e1[1];
-    q[1] = s[2] * e1[0] - s[0] * e1[2];
-    q[2] = s[0] * e1[1] - s[1] * e1[0];
-    v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) * inv;
-    if (!(v >= 0 && u + v <= 1)) continue;
-    n += (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) * inv > r->tmin;
-  }
-  return n;
-#endif
+  S->p[0] = f4sub(f4mul(D->vd[1], S->e2[2]), f4mul(D->vd[2], S->e2[1]));
+  S->p[1] = f4sub(f4mul(D->vd[2], S->e2[0]), f4mul(D->vd[0], S->e2[2]));
+  S->p[2] = f4sub(f4mul(D->vd[0], S->e2[1]), f4mul(D->vd[1], S->e2[0]));
+  det = f4add(f4add(f4mul(S->e1[0], S->p[0]), f4mul(S->e1[1], S->p[1])),
+              f4mul(S->e1[2], S->p[2]));
+  S->inv = f4div(f4set1(1), det);
+  S->ok = f4ne(det, f4set1(0));
 }
 
-/* The lowest set bit's index of the non-zero 4-bit mask m. */
+/* The mask of the four triangles of T that the ray from o (in all four
+** lanes) hits: Möller and Trumbore's barycentric u, v and distance t, both
+** faces. */
+static inline int trihit (const trid *S, const lsys_ltri4 *T, const rdir *D, const f4 o[3]) {
+  const f4 zero = f4set1(0), one = f4set1(1);
+  f4 s0 = f4sub(o[0], f4load(T->a[0])), s1 = f4sub(o[1], f4load(T->a[1]));
+  f4 s2 = f4sub(o[2], f4load(T->a[2])), q0, q1, q2, u, v, t;
+  int m;
+  u = f4mul(f4add(f4add(f4mul(s0, S->p[0]), f4mul(s1, S->p[1])), f4mul(s2, S->p[2])), S->inv);
+  m = S->ok & f4ge(u, zero) & f4le(u, one);
+  if (m == 0) return 0;
+  q0 = f4sub(f4mul(s1, S->e1[2]), f4mul(s2, S->e1[1]));
+  q1 = f4sub(f4mul(s2, S->e1[0]), f4mul(s0, S->e1[2]));
+  q2 = f4sub(f4mul(s0, S->e1[1]), f4mul(s1, S->e1[0]));
+  v = f4mul(f4add(f4add(f4mul(D->vd[0], q0), f4mul(D->vd[1], q1)), f4mul(D->vd[2], q2)),
+            S->inv);
+  t = f4mul(f4add(f4add(f4mul(S->e2[0], q0), f4mul(S->e2[1], q1)), f4mul(S->e2[2], q2)),
+            S->inv);
+  return m & f4ge(v, zero) & f4le(f4add(u, v), one) & f4gt(t, D->vtmin);
+}
+
+/* The hits a mask of trihit counts: its bits. */
+static const unsigned char nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+/* The mask of the four children of q (bit k: child k) that the ray from o
+** (in all four lanes) enters: its slab tests against their boxes side by
+** side, the near and far planes in the rows nf[0 .. 2], nf[3 .. 5]. */
+static inline int slabs (const lsys_lnode4 *q, const int nf[6], const rdir *D, const f4 o[3]) {
+  f4 lo, hi;
+  lo = f4mul(f4sub(f4load(q->b[nf[0]]), o[0]), D->vinv[0]);
+  hi = f4mul(f4sub(f4load(q->b[nf[3]]), o[0]), D->vinv[0]);
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[nf[1]]), o[1]), D->vinv[1]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[4]]), o[1]), D->vinv[1]));
+  lo = f4max(lo, f4mul(f4sub(f4load(q->b[nf[2]]), o[2]), D->vinv[2]));
+  hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[5]]), o[2]), D->vinv[2]));
+  return f4le(f4max(lo, D->vtmin), hi);
+}
+
+/* ---------------------------------------------------------------------- */
+/* the walk */
+
+
+/* A stack item: a child's item (LSYS_LITEM, the orders masked off) and the
+** mask of the rays that go there above it. */
+#define ITEM(item, rays) (((item) & 0xffffffffffull) | (uint64_t)(rays) << 40)
+
+/* The 4 bits of a slab test's mask spread to every sixteenth bit. */
+#define SPREAD16(m) ((uint64_t)((m) & 1) | (uint64_t)((m) >> 1 & 1) << 16 | \
+                     (uint64_t)((m) >> 2 & 1) << 32 | (uint64_t)((m) >> 3 & 1) << 48)
+static const uint64_t sixteenths[16] = {
+  SPREAD16(0), SPREAD16(1), SPREAD16(2), SPREAD16(3), SPREAD16(4), SPREAD16(5), SPREAD16(6),
+  SPREAD16(7), SPREAD16(8), SPREAD16(9), SPREAD16(10), SPREAD16(11), SPREAD16(12),
+  SPREAD16(13), SPREAD16(14), SPREAD16(15)
+};
+
+/* Pushes child k of q with the rays that enter it (bits 16 k .. 16 k + 15
+** of 'by'), when there are any. */
+#define PUSH(k) do { \
+    unsigned k_ = (k), e_ = (unsigned)(by >> 16 * k_) & 0xffffu; \
+    stack[sp] = ITEM(q->item[k_], e_); \
+    sp += e_ != 0; \
+  } while (0)
+
+/* The index of the lowest set bit of the non-zero mask m. */
 static inline int lowbit (int m) {
-  return (m & 1) ? 0 : (m & 2) ? 1 : (m & 4) ? 2 : 3;
+#if defined(__GNUC__)
+  return __builtin_ctz((unsigned)m);
+#else
+  int k = 0;
+  while (!(m >> k & 1)) k++;
+  return k;
+#endif
 }
 
-/* The hits of the ray in the tree T (its leaves: packets of triangles when
-** 'tri', else capsules), counting on from 'hits' up to cap. */
-static int walk (const lsys_light *L, const lsys_ltree *T, int tri, const ray *r, int hits,
-                 int cap) {
-  uint32_t stack[STACK], cur = 0;
-  int sp = 0, c;
-  for (;;) {
-    const lsys_lnode4 *q = &T->node[cur];
-    float tn[4];
-    int m = slabs(q, r, tn), lv = m & (int)q->leaves, inner = m & ~(int)q->leaves;
-    while (lv != 0) {                               /* leaves: their primitives now */
-      int k = lowbit(lv);
-      uint32_t i = q->child[k], end = i + q->cnt[k];
-      lv &= lv - 1;
-      for (; i < end; i++)
-        if ((hits += tri ? hit4(&L->pack[i], r) : capsule(&L->caps[i], r->o, r->d, r->tmin))
-            >= cap)
-          return cap;
-    }
-    if (inner == 0) {                               /* nothing below: the stack */
-      if (sp == 0) return hits;
-      cur = stack[--sp];
-    } else if ((inner & (inner - 1)) == 0) cur = q->child[lowbit(inner)];   /* one child */
-    else {                                          /* several: the nearest first */
-      float kt[4];
-      uint32_t kn[4];
-      int n = 0;
-      while (inner != 0) {
-        int k = lowbit(inner), i = n++;
-        inner &= inner - 1;
-        for (; i > 0 && kt[i - 1] < tn[k]; i--) { kt[i] = kt[i - 1]; kn[i] = kn[i - 1]; }
-        kt[i] = tn[k];
-        kn[i] = q->child[k];
+/*
+** The hits of the rays of P in the tree T (its leaves: packets of triangles
+** when 'tri', else capsules), counted on in hits[r] up to cap for the rays
+** r of the mask 'rays'. *last gets the packet (or capsule) of a hit that
+** took a ray to the cap, when there is one (else it is left as it is).
+*/
+static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir *D,
+                  const rpack *P, int rays, int cap, int hits[PACK], uint32_t *last) {
+  uint64_t stack[STACK];
+  int sp = 1, h[PACK], nf[6], c, oct = D->oct;
+  for (c = 0; c < PACK; c++) h[c] = hits[c];          /* locals: no store to them aliases D */
+  for (c = 0; c < 3; c++) { nf[c] = D->near[c]; nf[3 + c] = D->far[c]; }
+  stack[0] = ITEM(LSYS_LITEM(0, 0), rays);          /* the root */
+  while (sp > 0) {
+    uint64_t it = stack[--sp];
+    uint32_t i = (uint32_t)it, n = (uint32_t)(it >> 32) & 0xff;
+    int m = (int)(it >> 40) & rays;                 /* less the rays done since */
+    if (m == 0) continue;
+    if (n > 0) {                                    /* a leaf: its primitives */
+      for (n += i; i < n; i++) {
+        int live = m, r;
+        trid S;
+        if (tri) trisetup(&S, &L->pack[i], D);
+        for (; live != 0; live &= live - 1) {
+          r = lowbit(live);
+          h[r] += tri ? nbits[trihit(&S, &L->pack[i], D, P->vo[r])]
+                     : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
+          if (h[r] >= cap) {
+            h[r] = cap;
+            m &= ~(1 << r);
+            *last = i;
+          }
+        }
+        if (m == 0) break;
       }
-      for (c = 0; c < n - 1; c++) stack[sp++] = kn[c];   /* the farthest deepest */
-      cur = kn[n - 1];
+      rays &= ~((int)(it >> 40) & ~m);              /* those that reached the cap */
+      if (rays == 0) break;
+    } else {                                        /* a node: the children the rays enter */
+      const lsys_lnode4 *q = &T->node[i];
+      uint64_t by = 0;                              /* bit 16 k + r: ray r enters child k */
+      unsigned o = LSYS_LORDER(q, oct);
+      int live = m;
+      for (; live != 0; live &= live - 1) {
+        int r = lowbit(live);
+        by |= sixteenths[slabs(q, nf, D, P->vo[r])] << r;
+      }
+      PUSH(o >> 6);                                 /* farthest first */
+      PUSH(o >> 4 & 3);
+      PUSH(o >> 2 & 3);
+      PUSH(o & 3);
     }
   }
+  for (c = 0; c < PACK; c++) hits[c] = h[c];
 }
 
-static void setup (ray *r, const float o[3], const float d[3], float tmin) {
-  int c;
-  for (c = 0; c < 3; c++) {
-    float x = d[c] != 0 ? d[c] : 1e-30f;
-    r->o[c] = o[c];
-    r->d[c] = d[c];
-    r->inv[c] = 1 / x;
-    r->near[c] = r->inv[c] >= 0 ? c : 3 + c;
-    r->far[c] = r->near[c] == c ? 3 + c : c;
-#ifdef VEC
-    r->vo[c] = _mm_set1_ps(o[c]);
-    r->vd[c] = _mm_set1_ps(d[c]);
-    r->vinv[c] = _mm_set1_ps(r->inv[c]);
-#endif
-  }
-  r->tmin = tmin;
-#ifdef VEC
-  r->vtmin = _mm_set1_ps(tmin);
-#endif
+/* The hits of the rays of P (mask 'rays'; the others get 0) up to cap: the
+** triangles' tree, then the capsules' for those still under the cap. */
+static void trace (const lsys_light *L, const rdir *D, const rpack *P, int rays, int cap,
+                   int hits[PACK], uint32_t *last) {
+  int r;
+  for (r = 0; r < PACK; r++) hits[r] = 0;
+  if (L->tri.nnodes > 0) walk(L, &L->tri, 1, D, P, rays, cap, hits, &last[0]);
+  for (r = 0; r < PACK; r++) if (hits[r] >= cap) rays &= ~(1 << r);
+  if (rays != 0 && L->cap.nnodes > 0) walk(L, &L->cap, 0, D, P, rays, cap, hits, &last[1]);
 }
 
 int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  ray r;
-  int hits = 0;
-  setup(&r, o, d, tmin);
-  if (L->tri.nnodes > 0) hits = walk(L, &L->tri, 1, &r, 0, cap);
-  if (hits < cap && L->cap.nnodes > 0) hits = walk(L, &L->cap, 0, &r, hits, cap);
-  return hits;
+  const float *po[PACK] = {o};
+  uint32_t last[2];
+  int hits[PACK];
+  rdir D;
+  rpack P;
+  setdir(&D, d, tmin);
+  setpack(&P, po, 1);
+  trace(L, &D, &P, 1, cap, hits, last);
+  return hits[0];
 }
 
 int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap) {
-  ray r;
+  const float *po[PACK] = {o};
   size_t i;
   int hits = 0;
-  setup(&r, o, d, tmin);
-  for (i = 0; i < L->npack; i++)
-    if ((hits += hit4(&L->pack[i], &r)) >= cap) return cap;
+  rdir D;
+  rpack P;
+  setdir(&D, d, tmin);
+  setpack(&P, po, 1);
+  for (i = 0; i < L->npack; i++) {
+    trid S;
+    trisetup(&S, &L->pack[i], &D);
+    if ((hits += nbits[trihit(&S, &L->pack[i], &D, P.vo[0])]) >= cap) return cap;
+  }
   for (i = 0; i < L->ncap; i++)
-    if ((hits += capsule(&L->caps[i], o, d, tmin)) >= cap) return cap;
+    if ((hits += capsule(&L->caps[i], P.o[0], D.d, tmin)) >= cap) return cap;
   return hits;
+}
+
+/* The 8 bits of x spread to the even bits of 16. */
+static unsigned evens (unsigned x) {
+  x = (x | x << 4) & 0x0f0fu;
+  x = (x | x << 2) & 0x3333u;
+  return (x | x << 1) & 0x5555u;
+}
+
+/* The n rays ix[0 .. n) (n <= CASTMAX) put in the order of their origins'
+** projections along d on the plane across it (a Morton order there): rays
+** that are near there go close to each other all the way. */
+static void across (const float (*o)[3], const float d[3], uint16_t *ix, size_t n) {
+  float e1[3], e2[3], len, lo[2] = {FLT_MAX, FLT_MAX}, hi[2] = {-FLT_MAX, -FLT_MAX}, sc[2];
+  float uv[CASTMAX][2];
+  uint16_t key[CASTMAX], tmp[CASTMAX];
+  size_t cnt[257], i, k;
+  int ax = fabsf(d[0]) <= fabsf(d[1]) && fabsf(d[0]) <= fabsf(d[2]) ? 0
+         : fabsf(d[1]) <= fabsf(d[2]) ? 1 : 2, c, pass;
+  e1[0] = ax == 0 ? 0 : ax == 1 ? -d[2] : d[1];      /* d x the axis d is least along */
+  e1[1] = ax == 1 ? 0 : ax == 0 ? d[2] : -d[0];
+  e1[2] = ax == 2 ? 0 : ax == 0 ? -d[1] : d[0];
+  len = sqrtf(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  if (!(len > 0)) return;
+  for (c = 0; c < 3; c++) e1[c] /= len;
+  e2[0] = d[1] * e1[2] - d[2] * e1[1];
+  e2[1] = d[2] * e1[0] - d[0] * e1[2];
+  e2[2] = d[0] * e1[1] - d[1] * e1[0];
+  for (i = 0; i < n; i++) {
+    const float *p = o[ix[i]];
+    uv[i][0] = p[0] * e1[0] + p[1] * e1[1] + p[2] * e1[2];
+    uv[i][1] = p[0] * e2[0] + p[1] * e2[1] + p[2] * e2[2];
+    for (c = 0; c < 2; c++) {
+      lo[c] = uv[i][c] < lo[c] ? uv[i][c] : lo[c];
+      hi[c] = uv[i][c] > hi[c] ? uv[i][c] : hi[c];
+    }
+  }
+  for (c = 0; c < 2; c++) sc[c] = hi[c] > lo[c] ? 255.99f / (hi[c] - lo[c]) : 0;
+  for (i = 0; i < n; i++) {
+    unsigned q[2];
+    for (c = 0; c < 2; c++) {                        /* 0 .. 255 (0 for a NaN) */
+      float x = (uv[i][c] - lo[c]) * sc[c];
+      q[c] = x >= 255 ? 255 : x > 0 ? (unsigned)x : 0;
+    }
+    key[i] = (uint16_t)(evens(q[0]) | evens(q[1]) << 1);
+  }
+  for (pass = 0; pass < 2; pass++) {                 /* a radix sort, a byte at a time */
+    uint16_t *from = pass == 0 ? ix : tmp, *to = pass == 0 ? tmp : ix, kt[CASTMAX];
+    memset(cnt, 0, sizeof cnt);
+    for (i = 0; i < n; i++) cnt[(key[i] >> 8 * pass & 0xff) + 1]++;
+    for (k = 1; k < 257; k++) cnt[k] += cnt[k - 1];
+    for (i = 0; i < n; i++) {
+      size_t at = cnt[key[i] >> 8 * pass & 0xff]++;
+      to[at] = from[i];
+      kt[at] = key[i];
+    }
+    memcpy(key, kt, n * sizeof *key);
+  }
+}
+
+/*
+** The rays, taken CASTMAX at a time in the order across d, go through the
+** tree PACK at a time (trace). A ray that stops at its first hit (cap 1)
+** from a point near the last one in the same direction is likely stopped by
+** the same primitive: the packet (or capsule) that stopped the last
+** packet's ray is tested first, and the ray only goes into a packet when
+** that does not stop it; once 16 tries have been made, only while at least
+** one in eight stops its ray (among points far apart it seldom does, and
+** costs a test each). Any hit gives the same answer, so this changes no
+** result, only the work.
+*/
+void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *want, size_t m,
+                      const float d[3], float tmin, int cap, uint8_t *hits) {
+  const float *po[PACK];
+  uint16_t ix[CASTMAX];
+  size_t idx[PACK], i, j, nw, tries = 0, stops = 0;
+  uint32_t last[2] = {UINT32_MAX, UINT32_MAX};
+  int n, r, h[PACK], k, c;
+  trid S;                                         /* the last stopping packet's setup */
+  rdir D;
+  rpack P;
+  memset(&S, 0, sizeof S);
+  setdir(&D, d, tmin);
+  while (m > CASTMAX) {                           /* a block at a time */
+    lsys_light_cast(L, o, want, CASTMAX, d, tmin, cap, hits);
+    m -= CASTMAX;
+    o += CASTMAX;
+    hits += CASTMAX;
+    if (want != NULL) want += CASTMAX;
+  }
+  for (i = nw = 0; i < m; i++) {
+    hits[i] = 0;
+    if (want == NULL || want[i]) ix[nw++] = (uint16_t)i;
+  }
+  across(o, d, ix, nw);
+  for (j = 0; j < nw;) {
+    for (n = 0; n < PACK && j < nw; j++) {        /* the next packet */
+      i = ix[j];
+      k = last[0] != UINT32_MAX ? 1 : last[1] != UINT32_MAX ? 2 : 0;
+      if (cap == 1 && k != 0 && (tries < 16 || 8 * stops >= tries)) {
+        tries++;
+        if (k == 1) {
+          f4 vo[3];
+          for (c = 0; c < 3; c++) vo[c] = f4set1(o[i][c]);
+          hits[i] = trihit(&S, &L->pack[last[0]], &D, vo) != 0;
+        } else hits[i] = (uint8_t)capsule(&L->caps[last[1]], o[i], d, tmin);
+        if (hits[i]) { stops++; continue; }
+      }
+      idx[n] = i;
+      po[n++] = o[i];
+    }
+    if (n == 0) continue;
+    setpack(&P, po, n);
+    last[0] = last[1] = UINT32_MAX;
+    trace(L, &D, &P, (1 << n) - 1, cap, h, last);
+    for (r = 0; r < n; r++) hits[idx[r]] = (uint8_t)h[r];
+    if (last[0] != UINT32_MAX) {                    /* a packet first */
+      last[1] = UINT32_MAX;
+      trisetup(&S, &L->pack[last[0]], &D);
+    }
+  }
 }

@@ -7,8 +7,8 @@
 ** cosine; lines occlude as capsules only with a radius, and not a point in
 ** them; instances are placed; 1 and 3 threads give the same bits; the
 ** hierarchy agrees with testing every primitive on random triangles and
-** points; the memory budget, bad options, and every allocation failing in
-** turn.
+** points, with and without a transmittance, ray by ray and in packets;
+** the memory budget, bad options, and every allocation failing in turn.
 **
 ** The core files are compiled in with counting allocators (talloc.h).
 */
@@ -318,6 +318,80 @@ static void test_brute (void) {
   lsys_scene_free(&s);
 }
 
+/* The light and mean direction of point i as its rays one by one give them,
+** summed in the sky's order (what a query must give, bit for bit). */
+static void byrays (const lsys_light *L, const double *p, double *E, double dir[3]) {
+  const double *d, *w;
+  double M[3] = {0, 0, 0}, len;
+  size_t k, n = lsys_light_sky(L, &d, &w);
+  int c;
+  *E = 0;
+  for (k = 0; k < n; k++) {
+    double v = w[k] * L->taupow[lsys_light_hits(L, p, d + 3 * k, L->maxhits, 1)];
+    *E += v;
+    for (c = 0; c < 3; c++) M[c] += v * d[3 * k + c];
+  }
+  len = sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]);
+  for (c = 0; c < 3; c++) dir[c] = len > 0 ? M[c] / len : 0;
+}
+
+/*
+** Opaque surfaces, where a query's rays stop at their first hit and try the
+** primitive that stopped the last packet first: clusters of nearly the same
+** point (so that packets fill and the last stopper stops the next), points
+** spread out, and more points than a worker takes at a time. Every value
+** and direction is what the point's rays give one by one, for 1, 2 and 3
+** threads; and a direction's rays cast together (some left out, in blocks
+** larger than one ordering) count what each counts alone.
+*/
+static void test_packets (void) {
+  enum { NP = 1200 };
+  static double pts[3 * NP], out1[NP], out2[NP], out3[NP], dir1[3 * NP], dir3[3 * NP];
+  static float of[NP][3];
+  static uint8_t want[NP], hits[NP];
+  lsys_scene s;
+  lsys_light_opts o;
+  lsys_light *L;
+  const double *d, *w;
+  size_t i, k, n;
+  double mean = 0;
+  int c, cap;
+  randomscene(&s, pts, NP);
+  for (i = 0; i < NP / 2; i++)                    /* the first half: clusters of 8 */
+    for (c = 0; c < 3; c++) pts[3 * i + c] = pts[3 * (i / 8 * 8) + c] + 1e-3 * rnd();
+  lsys_light_defaults(&o);
+  o.line_radius = 0.05;
+  L = build(&s, &o);
+  assert(L->maxhits == 1);
+  assert(lsys_light_query(L, pts, NP, NULL, out1, dir1, 1, NULL) == LSYS_OK);
+  assert(lsys_light_query(L, pts, NP, NULL, out2, NULL, 2, NULL) == LSYS_OK);
+  assert(lsys_light_query(L, pts, NP, NULL, out3, dir3, 3, NULL) == LSYS_OK);
+  assert(memcmp(out1, out2, sizeof out1) == 0 && memcmp(out1, out3, sizeof out1) == 0);
+  assert(memcmp(dir1, dir3, sizeof dir1) == 0);
+  for (i = 0; i < NP; i++) {
+    double E, dir[3];
+    byrays(L, pts + 3 * i, &E, dir);
+    assert(E == out1[i]);
+    assert(dir[0] == dir1[3 * i] && dir[1] == dir1[3 * i + 1] && dir[2] == dir1[3 * i + 2]);
+    mean += E / NP;
+  }
+  assert(mean > 0.1 && mean < 0.9);               /* rays stopped and rays through */
+  n = lsys_light_sky(L, &d, &w);
+  for (i = 0; i < NP; i++) {
+    for (c = 0; c < 3; c++) of[i][c] = (float)pts[3 * i + c];
+    want[i] = i % 7 != 3;
+  }
+  for (cap = 1; cap <= 8; cap += 7)
+    for (k = 0; k < n; k += 9) {
+      float df[3] = {(float)d[3 * k], (float)d[3 * k + 1], (float)d[3 * k + 2]};
+      lsys_light_cast(L, (const float (*)[3])of, want, NP, df, (float)L->offset, cap, hits);
+      for (i = 0; i < NP; i++)
+        assert(hits[i] == (want[i] ? lsys_light_brute(L, of[i], df, (float)L->offset, cap) : 0));
+    }
+  lsys_light_free(L);
+  lsys_scene_free(&s);
+}
+
 static void test_errors (void) {
   lsys_scene s;
   lsys_light_opts o;
@@ -400,6 +474,7 @@ int main (void) {
   test_lines();
   test_instances();
   test_brute();
+  test_packets();
   test_errors();
   test_nomem();
   printf("test_light: ok\n");
