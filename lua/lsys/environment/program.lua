@@ -16,6 +16,10 @@
 -- byte offset of the ?E in cpfg's string from the first ?E of the pass (a module takes its
 -- name's length, and 1 + 5n bytes for n > 0 parameters), 1 for a ?E the homomorphism made.
 -- Values travel as text: %g of the value rounded to a 32-bit float, as cpfg sends them.
+-- When the file names interpreted modules (`interpreted modules:`, `when interpret:`) and
+-- the module after a ?E is one, its item ends with "Dbegin", the module's drawing follows
+-- as cpfg's GLS text (from info.scene's records of that module), and "Dend" starts the next
+-- item or the step's last Control line (docs/open.md §3 says what is sent and what differs).
 -- @module lsys.environment.program
 local core = require "lsys.core"
 local efile = require "lsys.environment.efile"
