@@ -198,6 +198,28 @@ describe("the communication file's interpreted modules", function ()
   end)
 end)
 
+describe("scene:vertices", function ()
+  it("gives the vertices of a record's triangles in the turtle's order", function ()
+    local m = lsys.lsystem { axiom = "F{.f.+f.+f.}@O(1)", view = { angle = 90 } }
+    local sc = m:interpret(m:derive())
+    local k = sc:find(12)                                   -- the polygon, at its }
+    assert.equal("polygon", sc:record(k).kind)
+    local v = sc:vertices(k)
+    local want = { { 0, 1 }, { 0, 2 }, { 0, 2 }, { -1, 2 }, { -1, 2 }, { -1, 1 }, { -1, 1 } }
+    assert.equal(#want, #v)
+    for i, w in ipairs(want) do
+      assert.near(w[1], v[i][1], 1e-6)
+      assert.near(w[2], v[i][2], 1e-6)
+      assert.near(0, v[i][3], 1e-6)
+    end
+    assert.same({}, sc:vertices(1))                         -- the segment: no triangles
+    assert.is_true(#sc:vertices(sc:find(13)) > 3)           -- the sphere's
+    assert.has_error(function () sc:vertices(99) end, "scene:vertices: no record 99")
+    getmetatable(sc).__close(sc)
+    assert.has_error(function () sc:vertices(k) end, "the scene was closed")
+  end)
+end)
+
 describe("the geometry of an interpreted module", function ()
   it("is sent as cpfg sends it: Dbegin, its GLS text, Dend", function ()
     assert.equal(CPFG, sent("pipes3", "pipes 3"))
