@@ -247,6 +247,30 @@ describe("the geometry of an interpreted module", function ()
     assert.truthy(s:find("^0 E%(0%)\n 0 1 0\n22 E%(1%)\n"), s)
   end)
 
+  it("has the colours of cpfg's pass: set by interpreted modules, kept by brackets",
+     function ()
+    -- ;(5) and ;(7) are not interpreted: cpfg's pass keeps colour 1 (the view's); the ;(9)
+    -- after ?E(2) is (when interpret: 1), until the ] restores 1; Y's expansion sets 4
+    local l = write("colours.l", "Lsystem: 1\nderivation length: 1\nAxiom: ;(5)?E(0)F(1)"
+      .. "[;(7)?E(1)F(1)?E(2);(9)?E(3)F(1)]?E(4)F(1)?E(5)Z?E(6)Y?E(7)F(1)F\n\nA --> A\n\n"
+      .. "homomorphism\n\nZ --> {.f(1).+f(1).+f(1).}\nY --> ;(4)F(1)\n\nendlsystem\n")
+    local e, log = efilelog("colours", "pipes", "interpreted modules: F,Z,Y\n"
+                            .. "when interpret: 1\n")
+    lsys.cpfg.load(l, DATA .. "interpreted.v", { colormap = colormap(), environment = e })
+      :derive()
+    local got, id = {}, nil
+    local lines = {}
+    for line in H.read(log):gmatch("[^\n]*\n") do lines[#lines + 1] = line end
+    for i, line in ipairs(lines) do
+      if line:find(" E(", 1, true) then id = line:match("^(%d+)") end
+      if line == "material\n" then got[#got + 1] = id .. ":" .. lines[i + 2] end
+    end
+    assert.same({ "0: 0.00392157 0.00784314 0.0117647 0\n",
+                  "38: 0.0352941 0.0705882 0.105882 0\n",
+                  "69: 0.00392157 0.00784314 0.0117647 0\n",
+                  "93: 0.0156863 0.0313726 0.0470588 0\n" }, got)      -- cpfg's
+  end)
+
   it("is the same for every thread count", function ()
     local function with (threads)
       local e, log = efilelog("threads" .. threads, "pipes")

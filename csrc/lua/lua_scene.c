@@ -411,7 +411,7 @@ static void pushlist (lua_State *L, const double *p, uint32_t n) {
 static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_envquery *q,
                           const lsys_lstring *s, const lsys_alphabet *ab) {
   int made = q->mod == LSYS_ENVQ_MADE;
-  lua_createtable(L, 0, 11);
+  lua_createtable(L, 0, 12);
   if (!made) {
     lua_pushinteger(L, (lua_Integer)q->mod + 1);
     lua_setfield(L, -2, "index");
@@ -424,6 +424,7 @@ static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_env
   pushvec(L, q->U); lua_setfield(L, -2, "up");
   lua_pushnumber(L, q->width); lua_setfield(L, -2, "width");
   lua_pushnumber(L, q->scale); lua_setfield(L, -2, "scale");
+  lua_pushinteger(L, q->color); lua_setfield(L, -2, "color");
   if (q->next != LSYS_ENVQ_NONE) {
     lua_pushstring(L, lsys_alphabet_name(ab, q->next));
     lua_setfield(L, -2, "following");

@@ -272,9 +272,26 @@ local function polygon (G, k, m)
   return out
 end
 
+-- The colour cpfg draws record r of the module after query q with: its pass changes the
+-- colour only in interpreted modules, so a record drawn in the colour the turtle had at the
+-- ?E is in cpfg's colour of the pass (G.C); one whose module changed it, in the colour set.
+local function colour (G, q, r)
+  if r.color == q.color then return G.C end
+  return r.color
+end
+
 -- The geometry of the module at string index m after query q: its records' texts.
 local function geometry (G, q, m)
-  local name = G.lstring:module(m)
+  local name, p1 = G.lstring:module(m)
+  if name == ";" or name == "," then          -- a colour module interpreted: cpfg's changes,
+    local c = p1 and (p1 < 0 and -floor(-p1) or floor(p1))            -- C's (int)
+              or G.C + (name == ";" and G.dcolor or -G.dcolor)
+    if name == ";" and c > 255 then c = c - 256 end
+    if name == "," and c < 0 then c = c + 256 end
+    G.C = c
+    material(G, c)                             -- and its material is sent then
+    return
+  end
   local recs = G.records[m]
   local direct = recs == nil and name == "{" and G.closing(m) or nil
   if direct then recs = { direct } end
@@ -285,17 +302,19 @@ local function geometry (G, q, m)
   local out = G.out
   for j, k in ipairs(recs) do
     local r = G.scene:record(k)
+    local c = colour(G, q, r)
     flush(G, true)                           -- a primitive ends the segment before it
+    if j == #recs then G.C = c end
     if r.kind == "segment" then
-      material(G, r.color)
-      local c = { pos = r.p0, H = r.H, L = r.L, U = r.U, len = r.length,
-                  width = G.width0 * q.scale }
+      material(G, c)
+      local seg = { pos = r.p0, H = r.H, L = r.L, U = r.U, len = r.length,
+                    width = G.width0 * q.scale }
       if j == 1 and (name == "F" or name == "G") then
-        c.pos, c.H, c.L, c.U = q.position, q.heading, q.left, q.up
+        seg.pos, seg.H, seg.L, seg.U = q.position, q.heading, q.left, q.up
       end
-      G.pending = c
+      G.pending = seg
     elseif r.kind == "polygon" then
-      material(G, r.color)
+      material(G, c)
       out[#out + 1] = "polygon\n"
       for _, v in ipairs(polygon(G, k, direct and m or nil)) do
         out[#out + 1] = gf(" %g", v[1])
@@ -304,12 +323,12 @@ local function geometry (G, q, m)
         out[#out + 1] = "\n"
       end
     elseif r.kind == "sphere" then
-      material(G, r.color)
+      material(G, c)
       out[#out + 1] = "pushmatrix\ntranslate"
       for i = 1, 3 do out[#out + 1] = gf(" %g", r.p1[i]) end
       out[#out + 1] = gf("\nsphere %g\npopmatrix\n", r.w0 / 2)
     elseif r.kind == "disc" or r.kind == "surface" then
-      material(G, r.color)                   -- cpfg's disc is its material alone
+      material(G, c)                         -- cpfg's disc is its material alone
     end
   end
 end
@@ -327,8 +346,10 @@ local function newgeometry (info, width0)
     t[#t + 1] = k
   end
   local s = info.lstring
+  local view = info.model and info.model:_view() or {}
   local G = { scene = scene, lstring = s, records = records, colour = -1,
-              palette = info.model and info.model:_view().palette, width0 = width0 }
+              palette = view.palette, width0 = width0, C = view.color or 1,
+              dcolor = view.color_increment or 1, stack = {} }
   -- the polygon record of the `{` at index m: at its `}`, which draws it
   function G.closing (m)
     local depth, i = 1, m
@@ -346,6 +367,19 @@ local function newgeometry (info, width0)
   return G
 end
 
+-- Goes over the string's modules i to j after a query (`open`: its module is interpreted)
+-- as cpfg's pass does: a segment waiting for its end ends at the first module that ends
+-- one, a bracket keeps and restores cpfg's colour of the pass. `brackets`: only these.
+local function scan (G, i, j, open, brackets)
+  local s, stack = G.lstring, G.stack
+  for k = i, j do
+    local name = s:module(k)
+    if name == "[" then stack[#stack + 1] = G.C
+    elseif name == "]" and #stack > 0 then G.C = stack[#stack]; stack[#stack] = nil end
+    if not brackets and G.pending and (ends(name) or G.records[k]) then flush(G, open) end
+  end
+end
+
 -- The texts of a pass, in order, and which are items: each query's item, after an
 -- interpreted module its geometry; the Dend the step's last chunk ends with, if any.
 local function units (spec, queries, info, width0)
@@ -356,6 +390,10 @@ local function units (spec, queries, info, width0)
     opens[k] = spec.following and efile.interprets(spec, q.following,
                                                    #(q.following_params or {}))
     if opens[k] and G == nil then G = true end
+  end
+  local first
+  for k, q in ipairs(queries) do
+    if q.index then first = k; break end
   end
   if G then G = newgeometry(info, width0) end     -- the scene only when it is sent
   for k, q in ipairs(queries) do
@@ -368,17 +406,18 @@ local function units (spec, queries, info, width0)
     isitem[#out] = true
     if G and q.index then
       G.out = out
+      if k == first then scan(G, 1, q.index - 1, false) end
       local m, stop = q.index + 1, #s
       for j = k + 1, #queries do
         if queries[j].index then stop = queries[j].index - 1; break end
       end
       local i = m
-      if open and m <= stop then geometry(G, q, m); i = m + 1 end
-      while G.pending and i <= stop do   -- the segment ends at the next module that ends one
-        local name = s:module(i)
-        if ends(name) or G.records[i] then flush(G, open) end
-        i = i + 1
+      if open and m <= stop then
+        geometry(G, q, m)
+        scan(G, m, m, open, true)                 -- an interpreted [ or ] keeps its colour
+        i = m + 1
       end
+      scan(G, i, stop, open)
     end
   end
   return out, isitem, open and "Dend\n" or ""
