@@ -292,19 +292,20 @@ local function geometry (G, q, m)
     material(G, c)                             -- and its material is sent then
     return
   end
-  local recs = G.records[m]
-  local direct = recs == nil and name == "{" and G.closing(m) or nil
-  if direct then recs = { direct } end
-  if recs == nil then
+  local k0, nrec = G.records[m], G.nrecords[m]
+  local direct = k0 == nil and name == "{" and G.closing(m) or nil
+  if direct then k0, nrec = direct, 1 end
+  if k0 == nil then
     if ends(name) then flush(G, true) end
     return
   end
   local out = G.out
-  for j, k in ipairs(recs) do
+  for j = 1, nrec do
+    local k = k0 + j - 1
     local r = G.scene:record(k)
     local c = colour(G, q, r)
     flush(G, true)                           -- a primitive ends the segment before it
-    if j == #recs then G.C = c end
+    if j == nrec then G.C = c end
     if r.kind == "segment" then
       material(G, c)
       local seg = { pos = r.p0, H = r.H, L = r.L, U = r.U, len = r.length,
@@ -333,21 +334,20 @@ local function geometry (G, q, m)
   end
 end
 
--- The state of the geometry of one pass: the scene, its records by module, the colour
--- sent last, the segment waiting for its end.
+-- The state of the geometry of one pass: the scene, the first record of each module and
+-- their number, the colour sent last, cpfg's colour, the segment waiting for its end.
 local function newgeometry (info, width0)
   local scene = info.scene
-  local records, closes = {}, {}
+  local records, nrecords, closes = {}, {}, {}     -- a module's records follow each other
   for k, r in scene:records() do
     local m = r.module
     if r.kind == "polygon" then closes[m] = k end
-    local t = records[m]
-    if t == nil then t = {}; records[m] = t end
-    t[#t + 1] = k
+    if records[m] == nil then records[m] = k end
+    nrecords[m] = (nrecords[m] or 0) + 1
   end
   local s = info.lstring
   local view = info.model and info.model:_view() or {}
-  local G = { scene = scene, lstring = s, records = records, colour = -1,
+  local G = { scene = scene, lstring = s, records = records, nrecords = nrecords, colour = -1,
               palette = view.palette, width0 = width0, C = view.color or 1,
               dcolor = view.color_increment or 1, stack = {} }
   -- the polygon record of the `{` at index m: at its `}`, which draws it
