@@ -253,9 +253,8 @@ describe("cpfg's communication files (.e)", function ()
     local function err (text) return select(2, pcall(efile.read, efilewith(text))) end
     assert.equal(dir .. "/field.e:1: communication type 'sockets': lsys speaks pipes, files "
       .. "and memory", err("communication type: sockets\nexecutable: a\n"))
-    assert.equal(dir .. "/field.e:2: interpreted modules: lsys does not send the geometry "
-      .. "of the module after a ?E (cpfg's GLS records)",
-      err("executable: a\ninterpreted modules: F\n"))
+    assert.equal(dir .. "/field.e:2: remote host: lsys does not send a program on another "
+      .. "host", err("executable: a\nremote host: b\n"))
     assert.equal(dir .. "/field.e:2: the format takes 4 values, the turtle sends 3",
       err("executable: a\nturtle position: %g %g %g %g\n"))
     assert.truthy(err("executable: a\nturtle up: %d %d %d\n"):find("field.e:2: turtle format "

@@ -109,6 +109,7 @@ typedef struct lsys_envquery {
                                    the string, in the pool after a made one */
   double pos[3], H[3], L[3], U[3];
   double width, scale;
+  int color;                    /* the colour index there (as a record keeps it: 16 bits) */
 } lsys_envquery;
 
 typedef struct lsys_envqueries {

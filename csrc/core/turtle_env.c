@@ -70,6 +70,7 @@ int lsys_turtle_envquery (run *R, const double *p, uint32_t np, int original) {
   memcpy(q->U, st->U, sizeof q->U);
   q->width = st->width;
   q->scale = st->scale;
+  q->color = (uint16_t)st->color;
   Q->n++;
   return LSYS_OK;
 }

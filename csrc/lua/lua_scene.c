@@ -411,7 +411,7 @@ static void pushlist (lua_State *L, const double *p, uint32_t n) {
 static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_envquery *q,
                           const lsys_lstring *s, const lsys_alphabet *ab) {
   int made = q->mod == LSYS_ENVQ_MADE;
-  lua_createtable(L, 0, 11);
+  lua_createtable(L, 0, 12);
   if (!made) {
     lua_pushinteger(L, (lua_Integer)q->mod + 1);
     lua_setfield(L, -2, "index");
@@ -424,6 +424,7 @@ static void pushenvquery (lua_State *L, const lsys_envqueries *Q, const lsys_env
   pushvec(L, q->U); lua_setfield(L, -2, "up");
   lua_pushnumber(L, q->width); lua_setfield(L, -2, "width");
   lua_pushnumber(L, q->scale); lua_setfield(L, -2, "scale");
+  lua_pushinteger(L, q->color); lua_setfield(L, -2, "color");
   if (q->next != LSYS_ENVQ_NONE) {
     lua_pushstring(L, lsys_alphabet_name(ab, q->next));
     lua_setfield(L, -2, "following");
@@ -715,6 +716,34 @@ static int scene_edges (lua_State *L) {
   return 1;
 }
 
+/* scene:vertices(k) -> the vertices record k's triangles use, in the order the
+** turtle made them: for a polygon its vertices as the turtle gave them (the mesh
+** keeps them in order; ear clipping only indexes them); {} for a record without
+** triangles. A list of {x, y, z}. */
+static int scene_vertices (lua_State *L) {
+  lsys_lscene *S = lsysL_checkscene(L, 1);
+  lua_Integer k = luaL_checkinteger(L, 2);
+  const lsys_trec *r;
+  uint32_t lo = UINT32_MAX, hi = 0, i;
+  size_t t;
+  S = lsysL_holdscene(L, 1);
+  if (k < 1 || (size_t)k > S->sc.nrec)
+    return luaL_error(L, "scene:vertices: no record %d", (int)k);
+  r = &S->sc.rec[k - 1];
+  for (t = 0; t < 3 * (size_t)r->ntri; t++) {
+    uint32_t v = S->sc.mesh.tri[3 * (size_t)r->tri0 + t];
+    if (v < lo) lo = v;
+    if (v > hi) hi = v;
+  }
+  lua_createtable(L, r->ntri > 0 ? (int)(hi - lo + 1) : 0, 0);
+  if (r->ntri > 0)
+    for (i = lo; i <= hi; i++) {
+      pushvecf(L, S->sc.mesh.pos + 3 * (size_t)i);
+      lua_rawseti(L, -2, (lua_Integer)(i - lo) + 1);
+    }
+  return 1;
+}
+
 /* scene:turtle(i) -> pos, H, L, U, width, color after module i (0: the start) */
 static int scene_turtle (lua_State *L) {
   lua_Integer i;
@@ -909,6 +938,7 @@ static const luaL_Reg scene_methods[] = {
   {"records", scene_records},
   {"find", scene_find},
   {"edges", scene_edges},
+  {"vertices", scene_vertices},
   {"turtle", scene_turtle},
   {"save", scene_save},
   {NULL, NULL}

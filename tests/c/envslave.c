@@ -23,6 +23,8 @@
 **   chunks  as echo, but the items of all chunks are kept until the last chunk
 **           (flag 4; the others get "Control: 5" alone), then answered in parts
 **           of 2 items with the flags 1, 0, ..., 4 (5 for one part)
+**   log=FILE  appends each chunk as it came (Control: 8 too) to FILE and answers
+**           none of its items: what a master sends, byte for byte
 **   hang    reads a chunk (even Control: 8) and never answers
 **   die     reads a chunk and exits with status 5
 **   exit    exits at once with status 3
@@ -205,7 +207,7 @@ static int answer (const char *spec, char *chunk, text *part, int maxparts) {
     kept.n = 0;
     return k;
   }
-  else
+  else if (strncmp(spec, "log=", 4) != 0)
     for (i = 0; i < n; i++)
       if (isitem(line[i])) echo(&one, line[i]);
   adds(&one, "Control: 5\n");
@@ -348,6 +350,12 @@ int main (int argc, char **argv) {
   }
   else if (write(1, "\1", 1) != 1) die("write");
   while ((chunk = getchunk()) != NULL) {
+    if (strncmp(spec, "log=", 4) == 0) {              /* before answer() splits it */
+      FILE *f = fopen(spec + 4, "ab");
+      if (f == NULL) die(spec + 4);
+      fputs(chunk, f);
+      if (fclose(f) != 0) die(spec + 4);
+    }
     memset(part, 0, sizeof part);
     nparts = answer(spec, chunk, part, 64);
     if (nparts == 0) {                                 /* Control: 8 */

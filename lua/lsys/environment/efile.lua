@@ -7,16 +7,18 @@
 --     the type; nil for memory, chunked by size), argv = { program, args... },
 --     formats = { position =, heading =, left =, up =, width =, scale = } (each a C format
 --     of the values, as the file gives it, or nil: not sent), following = true | false,
---     verbose = true | false }
+--     verbose = true | false, interpreted = nil, or the flags of the modules whose
+--     geometry follows their ?E (M.interprets tells) }
 --
 -- A line is `keyword: value`, the keyword compared as written (cpfg trims nothing); a blank
 -- line or an unknown keyword is skipped with a warning, as cpfg does. Raises
--- "file:line: message" for what lsys cannot do: sockets, a remote host, interpreted modules
--- (the geometry of the module after a ?E), strings-only and binary modes.
+-- "file:line: message" for what lsys cannot do: sockets, a remote host, strings-only and
+-- binary modes, and for `interpreted modules:` and `when interpret:` lines it cannot read.
 -- @module lsys.environment.efile
 local warning = require "lsys.warning"
 
-local io, table, tonumber, error, format = io, table, tonumber, error, string.format
+local io, table, tonumber, error, format, pairs = io, table, tonumber, error, string.format,
+      pairs
 local _ENV = nil
 
 local M = {}
@@ -31,8 +33,6 @@ M.ORDER = { "position", "heading", "left", "up", "width", "scale" }   -- as cpfg
 
 local MAX = { pipes = 100, files = 1000 }   -- queries a chunk by default (cpfg's)
 local REFUSED = {
-  ["when interpret"] = "the geometry of the module after a ?E (cpfg's GLS records)",
-  ["interpreted modules"] = "the geometry of the module after a ?E (cpfg's GLS records)",
   ["remote host"] = "a program on another host",
   ["strings only"] = "cpfg's distributed mode",
   ["binary data"] = "cpfg's distributed mode",
@@ -76,6 +76,63 @@ local function cformat (fmt, n, fail)
   return table.concat(out)
 end
 
+-- The flags of the modules are cpfg's: a table character -> bits, `other` the bits of every
+-- character not in it; bit 0x80 any number of parameters, 0x40 >> n exactly n.
+
+-- `interpreted modules:` sets the flags of the modules it names (cpfg's: a name alone, any
+-- number of parameters; `X(n)` with n of 0 to 6, exactly n; `all`, every module, and the
+-- rest of the line unread). A name replaces what earlier lines gave its character.
+local function interpreted (value, t, fail)
+  for w in value:gmatch("[^,; ]+") do
+    if w == "all" then
+      for c in pairs(t) do t[c] = nil end
+      t.other = 0x80
+      return
+    end
+    local c, n = w:match("^(.)%((%d)%)$")
+    if #w == 1 then
+      t[w] = 0x80
+    elseif c and tonumber(n) <= 6 then
+      t[c] = 0x40 >> tonumber(n)
+    else
+      fail(format("interpreted modules: '%s' is not a module lsys can name: one character, "
+                  .. "alone (any parameters) or with its number of parameters, 0 to 6, as "
+                  .. "in F(1)", w))
+    end
+  end
+end
+
+-- `when interpret:` adds to every module's flags: n (0 to 6) the modules of n parameters,
+-- a negative number all of them (cpfg's; a number above 6 is skipped with a warning, as
+-- cpfg does).
+local function wheninterpret (value, t, fail, where)
+  for w in value:gmatch("[^,; \t]+") do
+    local n = w:match("^[-+]?%d+$") and tonumber(w)
+    if n == nil then
+      fail(format("when interpret: '%s' is not a number of parameters (0 to 6, or -1 for "
+                  .. "all modules)", w))
+    end
+    if n > 6 then
+      warning.warn(format("lsys: %s: when interpret: modules of %d parameters cannot be told "
+                          .. "apart (6 at most, as in cpfg): skipped; name them in "
+                          .. "'interpreted modules:'", where, n))
+    else
+      local bits = n < 0 and 0xff or 0x40 >> n
+      for c, f in pairs(t) do t[c] = f | bits end
+    end
+  end
+end
+
+--- Whether the module `name` with `n` parameters is interpreted after a ?E (its geometry
+-- follows the query), by the flags of `spec` (a read file): cpfg's test, on the flags of
+-- the name's first character.
+function M.interprets (spec, name, n)
+  local t = spec.interpreted
+  if t == nil or name == nil or name == "" then return false end
+  local f = t[name:sub(1, 1)] or t.other
+  return f & 0x80 ~= 0 or (n <= 6 and f & (0x40 >> n) ~= 0)
+end
+
 --- Reads the `.e` file `path`; the result as the module's header says.
 function M.read (path)
   local f, err = io.open(path, "r")
@@ -112,6 +169,12 @@ function M.read (path)
       local w = words(value)[1]
       if w ~= "yes" and w ~= "no" then fail("following module: yes or no expected") end
       spec.following = w == "yes"
+    elseif key == "interpreted modules" then
+      spec.interpreted = spec.interpreted or { other = 0 }
+      interpreted(value, spec.interpreted, fail)
+    elseif key == "when interpret" then
+      spec.interpreted = spec.interpreted or { other = 0 }
+      wheninterpret(value, spec.interpreted, fail, format("%s:%d", path, n))
     elseif key == "verbose" then
       spec.verbose = words(value)[1] == "on"
     elseif REFUSED[key] then

@@ -1,0 +1,4 @@
+angle increment: 90
+initial color: 1
+line style: cylinder
+initial line width: 3

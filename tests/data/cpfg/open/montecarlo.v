@@ -1,0 +1,2 @@
+angle increment: 90
+initial color: 1
