@@ -227,11 +227,15 @@ describe("lsys.cpfg.load errors", function ()
                  err("errors_include.l"))
   end)
 
-  it("refuses a predecessor of several modules in a homomorphism unless it is a name",
-     function ()
-    assert.equal(D .. "errors_multi.l:6: a strict predecessor of several modules ('AB') in a "
-                 .. "decomposition or homomorphism is supported only as letters and digits "
-                 .. "with parameters on the last one", err("errors_multi.l"))
+  it("reads a predecessor of several modules in a homomorphism, and refuses one in a "
+     .. "decomposition unless it is a name", function ()
+    -- A(x)B: the homomorphism rewrites the two modules as one, as cpfg's does
+    local s, m = derive("errors_multi.l")
+    assert.equal("A(2)B", s)
+    assert.equal("C", tostring(m:expand(m:derive())))
+    assert.equal(D .. "errors_multi_decomp.l:6: a strict predecessor of several modules ('AB') "
+                 .. "in a decomposition is supported only as letters and digits with "
+                 .. "parameters on the last one", err("errors_multi_decomp.l"))
   end)
 
   it("runs the chosen production's post-condition block only, as cpfg", function ()

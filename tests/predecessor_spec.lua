@@ -52,6 +52,22 @@ describe("a predecessor of several modules, as cpfg", function ()
     assert.equal(8, #s:gsub("X", "BC"):gsub("Y", "B"))
   end)
 
+  it("rewrites modules side by side in the homomorphism, drawn and expanded", function ()
+    local m = lsys.lsystem { axiom = "F(1,0) #(2) F(3,1) #(4) F(5,0) A #(9)", steps = 0,
+      homomorphism = { "F(a, n) #(w) : n == 0 --> !(w) F(a)", "F(a, n) --> !(0.5) F(a)",
+                       "A --> F(7,0) #(8)" }, max_depth = { homomorphism = 2 } }
+    -- the first F takes its #; the second's condition fails, so its # stands for itself;
+    -- the F before A has none after it; what A becomes has no modules after it in the
+    -- string (the F it makes does not take A's #(9))
+    assert.equal("!(2)F(1)!(0.5)F(3)#(4)!(0.5)F(5)!(0.5)F(7)#(8)#(9)",
+                 tostring(m:expand(m:derive())))
+    local widths = {}
+    for _, r in m:interpret(m:derive()):records() do
+      if r.kind == "segment" then widths[#widths + 1] = r.w0 end
+    end
+    assert.same({ 2, 0.5, 0.5, 0.5 }, widths)
+  end)
+
   it("is refused where it cannot work, naming the rule", function ()
     local function err (o)
       local ok, msg = pcall(function ()
@@ -61,7 +77,7 @@ describe("a predecessor of several modules, as cpfg", function ()
       return msg
     end
     assert.matches("rule 2 'A B %-%-> X' %(entry 1 of decomposition%): a predecessor of several "
-      .. "modules is for productions only, not for the decomposition",
+      .. "modules is for productions and the homomorphism only, not for the decomposition",
       err { axiom = "AB", productions = { "A --> A" }, decomposition = { "A B --> X" } })
     assert.matches("rule 1 'A %[B %-%-> X' %(entry 1 of productions%): a bracket cannot be in a "
       .. "predecessor at character 3", err { axiom = "AB", productions = { "A [B --> X" } })

@@ -300,7 +300,8 @@ int lsys_derive_choose (lsys_rules *m, lsys_scratch *w, lsys_ruleset *const *set
       if (lsys_derive_needscratch(w, r->nargs + r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
       args = w->args;
       vals = args + r->nargs;
-      if (r->nmore && !matchmore(m, v, i, r, par, args + r->lcargs + np)) continue;
+      if (r->nmore && (v->single || !matchmore(m, v, i, r, par, args + r->lcargs + np)))
+        continue;
       if (r->nlc && (v->match == NULL || !lsys_context_matchleft(m, v, i, r, args))) continue;
       if (r->nrc && (v->match == NULL || !lsys_context_matchright(m, v, i + 1 + r->nmore, r,
                                                             args + r->lcargs + np + r->moreargs)))
@@ -686,6 +687,9 @@ static int needlevels (lsys_rules *m, size_t n) {
   return LSYS_OK;
 }
 
+/* Expands module i (or, at depth 0, the modules a predecessor of several
+** modules starting at i takes) into 'out'. Returns the number of modules
+** after i that the rule took as well (0 but at depth 0), or an error code. */
 static int expandone (lsys_rules *m, int kind, lsys_ruleset *const *sets, int nsets,
                       const view *v, size_t i, uint16_t code, const double *par, int depth,
                       lsys_lstring *out) {
@@ -698,12 +702,16 @@ static int expandone (lsys_rules *m, int kind, lsys_ruleset *const *sets, int ns
     if (st < 0) return st;
     if (st >= 1) {
       size_t k, p = 0;
+      view made = *v;          /* what the rule made has no modules after it in v */
+      int more = st - 1;
+      made.single = 1;
       for (k = 0; k < lv->n; k++) {
-        st = expandone(m, kind, sets, nsets, v, i, lv->code[k], parof(lv, p), depth + 1, out);
+        st = expandone(m, kind, sets, nsets, &made, i, lv->code[k], parof(lv, p), depth + 1,
+                       out);
         if (st < 0) return st;
         p += LSYS_CNP(lv->code[k]);
       }
-      return LSYS_OK;
+      return more;
     }
   }
   else if (!m->depth_hit) {        /* could a rule go deeper? (for the warning; */
@@ -738,6 +746,10 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
     p += LSYS_CNP(src->code[i]);
+    for (; st > 0 && i + 1 < src->n; st--) {    /* taken by a predecessor of several */
+      i++;
+      p += LSYS_CNP(src->code[i]);
+    }
   }
   return LSYS_OK;
 }
@@ -854,7 +866,7 @@ int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring 
   lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);
   if (st < 0) return fail(m, st, i);
-  return 1;
+  return 1 + st;
 }
 
 void lsys_derive_homo_end (lsys_rules *m) {

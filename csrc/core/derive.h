@@ -244,8 +244,10 @@ int lsys_derive_expand (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring
 ** lsys_derive_homo_begin prepares 'src' (which must not change until
 ** lsys_derive_homo_end); it returns 1, 0 when there is no homomorphism, or an
 ** error code. lsys_derive_homo_module expands module 'i' (parameters at 'poff')
-** into 'out' and returns 1, or 0 when no homomorphism rule is for its
-** symbol (the module stands for itself), or an error code with m->err set.
+** into 'out' and returns 1 (1 + k when a predecessor of several modules took
+** the k modules after i too: the caller skips them), or 0 when no homomorphism
+** rule is for its symbol (the module stands for itself), or an error code with
+** m->err set.
 */
 int lsys_derive_homo_begin (lsys_rules *m, lsys_lstring *src);
 int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring *out);

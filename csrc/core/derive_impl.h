@@ -25,6 +25,8 @@ typedef struct view {
   const lsys_skip *skip;
   int ring;
   uint32_t eq;             /* the symbol of '=' (right contexts), or NONE */
+  int single;              /* the module is one an expansion made: it has no modules after
+                              it in the view, so no predecessor of several modules applies */
 } view;
 
 /* The rule chosen for a module: its arguments and values; for a rule

@@ -142,10 +142,10 @@ long lsys_rules_add (lsys_rules *m, int kind, int sub, int group,
     return lsys_seterror(e, LSYS_EARG, (size_t)-1,
                          "a rule with a function has a number as its weight");
   if (sp->nmore > 0) {       /* cpfg's strict predecessor of several modules */
-    const char *what = kind == LSYS_DECOMP ? "decomposition" : "homomorphism";
-    if (kind != LSYS_PROD)
+    if (kind == LSYS_DECOMP)
       return lsys_seterror(e, LSYS_EARG, (size_t)-1, "a predecessor of several modules is "
-                           "for productions only, not for the %s", what);
+                           "for productions and the homomorphism only, not for the "
+                           "decomposition");
     int st = predmodules(sp, e);
     if (st != LSYS_OK) return st;
   }

@@ -877,6 +877,10 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
           }
           hoff += hn;
         }
+        for (; e > 1 && i + 1 < b; e--) {      /* modules a predecessor of several took */
+          i++;
+          off += LSYS_CNP(s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i]);
+        }
         continue;
       }
     }

@@ -88,7 +88,8 @@ typedef struct lsys_tstate {
 } lsys_tstate;
 
 /* Expands module 'i' (parameters at 'poff') by the homomorphism into
-** 'out' (cleared by the callee); returns 1 when it did, 0 when the module
+** 'out' (cleared by the callee); returns 1 when it did (1 + k when the rule
+** took the k modules after i too: the turtle skips them), 0 when the module
 ** stands for itself, or a negative LSYS_E* code (message in 'e'). */
 typedef int (*lsys_expandfn) (void *ud, size_t i, size_t poff, lsys_lstring *out,
                               lsys_error *e);

@@ -137,7 +137,7 @@ static void test_predecessor (void) {
   step("ABB --> X\nB --> Y", NULL, "ABBB", "XY");
   step("X < AB > Y --> Z", NULL, "XABY", "XZY");
   step("AB --> X", NULL, "A", "A");                      /* the string ends first */
-  {                                   /* decomposition and homomorphism: one module */
+  {                  /* decomposition: one module; the homomorphism: several too */
     lsys_rules m;
     lsys_rulespec sp;
     lsys_patmod more[1];
@@ -149,7 +149,8 @@ static void test_predecessor (void) {
     more[0].np = 0;
     sp.more = more; sp.nmore = 1;
     assert(lsys_rules_add(&m, LSYS_DECOMP, 0, 0, &sp, &e) == LSYS_EARG);
-    assert(strstr(e.msg, "productions only") != NULL);
+    assert(strstr(e.msg, "not for the decomposition") != NULL);
+    assert(lsys_rules_add(&m, LSYS_HOMO, 0, 0, &sp, &e) >= 0);
     more[0].sym = LSYS_SYM_LBR;
     assert(lsys_rules_add(&m, LSYS_PROD, 0, 0, &sp, &e) == LSYS_EARG);
     assert(strstr(e.msg, "module 2 of the predecessor") != NULL);

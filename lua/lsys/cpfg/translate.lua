@@ -483,9 +483,11 @@ local function rules (T, ls, list, section, stochastic)
 end
 
 -- A strict predecessor of several modules (`leaf(a)` is l, e, a, f(a) in cpfg) is one in
--- productions, as in cpfg. In a decomposition or homomorphism (lsys rewrites one module
--- there) it becomes a declared lsys module name when it is letters with parameters on the
--- last one only; every string then reads it as one module.
+-- productions and in the homomorphism, as in cpfg. When it is letters with parameters on the
+-- last one only, a decomposition's or homomorphism's becomes a declared lsys module name
+-- (every string then reads it as one module); any other is kept as several modules in the
+-- homomorphism (vlab's 12-two-trees: `F(vig,n)#(w)`), and refused in a decomposition (lsys
+-- decomposes one module at a time).
 local function declare (T, lsystems)
   local names, list = {}, {}
   for _, ls in ipairs(lsystems) do
@@ -497,16 +499,20 @@ local function declare (T, lsystems)
             if not m.sym:find("^[%a%d_]$") or (m.params and i < #p.pred) then ok = false end
             text[#text + 1] = m.sym
           end
+          if (not ok or not text[1]:find("^%a")) and part == ls.homomorphism then
+            goto several
+          end
           if not ok or not text[1]:find("^%a") then
-            fail(T, p.pos, "a strict predecessor of several modules ('%s') in a decomposition or "
-                 .. "homomorphism is supported only as letters and digits with parameters on "
-                 .. "the last one", concat(text))
+            fail(T, p.pos, "a strict predecessor of several modules ('%s') in a decomposition "
+                 .. "is supported only as letters and digits with parameters on the last "
+                 .. "one", concat(text))
           end
           local name = concat(text)
           if not names[name] then names[name] = true; list[#list + 1] = name end
           local last = p.pred[#p.pred]
           p.pred = { { sym = name, params = last.params, pos = p.pred[1].pos } }
         end
+        ::several::
       end
     end
   end
