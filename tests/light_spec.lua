@@ -191,4 +191,28 @@ describe("core.light", function ()
                                  __index = function () light:close() return 0 end })
     assert.equal("light:query: the light was closed", H.errof(light.query, light, p))
   end)
+
+  it("survives a finalizer that closes it while sky() makes its lists", function ()
+    -- with the collector at every allocation, the garbage's finalizer runs inside sky():
+    -- it either answers the whole sky or says the light was closed (under the sanitizers
+    -- the copy of a freed sky shows)
+    local saved = collectgarbage("incremental", 1, 1000)
+    local answered, refused = 0, 0
+    for _ = 1, 20 do
+      local light = core.light(leaf(), { samples = 4096 })
+      setmetatable({}, { __gc = function () light:close() end })
+      local ok, d, w = pcall(light.sky, light)
+      if ok then
+        answered = answered + 1
+        assert.equal(3 * 4096, #d)
+        assert.near(1, sum(w), 1e-9)
+      else
+        refused = refused + 1
+        assert.matches("the light was closed", d, 1, true)
+      end
+    end
+    collectgarbage("incremental", 200, 100)       -- Lua's defaults
+    if saved == "generational" then collectgarbage("generational") end
+    assert.equal(20, answered + refused)
+  end)
 end)

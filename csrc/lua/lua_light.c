@@ -265,6 +265,9 @@ static int light_sky (lua_State *L) {
   const double *d, *w;
   size_t n = lsys_light_sky(checklight(L, 1, "light:sky"), &d, &w), k;
   double *c = (double *)lua_newuserdatauv(L, n * 4 * sizeof(double), 0);
+  /* the allocation may run finalizers, and one may close the light: ask again (a closed
+  ** light raises; an open one has the same sky) */
+  n = lsys_light_sky(checklight(L, 1, "light:sky"), &d, &w);
   memcpy(c, d, 3 * n * sizeof(double));                 /* copied: the tables allocate */
   memcpy(c + 3 * n, w, n * sizeof(double));
   lua_createtable(L, (int)(3 * n), 0);
