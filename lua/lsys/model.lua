@@ -11,6 +11,7 @@ local view = require "lsys.view"
 local warning = require "lsys.warning"
 local sandbox = require "lsys.sandbox"
 local environment = require "lsys.environment"
+local params = require "lsys.params"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
       math, string, table, debug, _G, os =
@@ -136,7 +137,7 @@ local OPTIONS = {
   homomorphism_seed = "number", allow_system_calls = "boolean", system_call = "function",
   functions = "table", after_interpret = "function", numbers = "string",
   depth_warnings = "any", threads = "number", max_instructions = "number",
-  random = "string", environment = "any",
+  random = "string", environment = "any", params = "table",
 }
 
 local Model = {}
@@ -428,6 +429,14 @@ make = function (opts, where, fail, dir)
     local bad = environment.check(opts.environment)
     if bad then fail(bad) end
   end
+  if opts.params ~= nil then                  -- tunable parameters: names in a copy of env
+    local e = {}
+    for k, x in pairs(self.env) do e[k] = x end
+    self.env, self._onparam = e, {}
+    self.params, self._params = params.make(opts.params, e, fail, function (k, x)
+      for _, f in ipairs(self._onparam) do f(k, x) end
+    end)
+  end
   self._fns = rules:functions()
   rules_models[rules] = self
   if self.steps < 0 or self.steps ~= math.floor(self.steps) then
@@ -515,6 +524,22 @@ function Model:_checkfuncs (info)
                    func.names(self._funcnames), self._funchint or ""), 0)
     end
   end
+end
+
+--- The declaration of tunable parameter `name` (lsys.params): a copy, or nil.
+function Model:param (name)
+  local d = self._params and self._params[name]
+  if d == nil then return nil end
+  local c = {}
+  for k, x in pairs(d) do c[k] = x end
+  return c
+end
+
+--- Calls fn(name, value) after each change of a tunable parameter (m.params.R = 1.5).
+function Model:on_param (fn)
+  if type(fn) ~= "function" then error("on_param: a function expected", 2) end
+  if self._onparam == nil then error("on_param: the model has no params", 2) end
+  self._onparam[#self._onparam + 1] = fn
 end
 
 -- The lookup table rule closures bind their free names from.
