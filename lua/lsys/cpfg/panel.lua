@@ -188,7 +188,7 @@ function M.read (path)
         elseif key == "colourmap" then P.colourmap = val
         else error(where .. "unknown panel field '" .. key .. "'", 0) end
       else
-        if not FIELDS[item.type][key] then
+        if not (FIELDS[item.type] or {})[key] then
           error(format("%sunknown field '%s' in a %s", where, key, item.type), 0)
         end
         field(item, key, val, where)
