@@ -51,6 +51,11 @@ describe("the Lua fuzzer's corpora", function ()
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 
+  it("read or fail naming the file and line as vlab's control panel files", function ()
+    local counts = replay("panel")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
   it("read or fail naming the file and line as SVG sketch files", function ()
     local counts = replay("svg")
     assert.is_true(counts.ok > 0 and counts.error > 0)
