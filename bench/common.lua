@@ -86,6 +86,17 @@ function B.capture (cmd)
   return out, ok, how, code
 end
 
+--- The fields of the RESULT line a benchmark run of this script prints (`args` after the
+-- script), as a table of numbers and words; raises with the run's output when it has none.
+function B.measure (args)
+  local out = B.capture(B.self_command() .. " " .. args)
+  local line = out:match("RESULT ([^\n]*)")
+  if not line then error("the run '" .. args .. "' failed:\n" .. out, 0) end
+  local r = {}
+  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
+  return r
+end
+
 --- the path of node, or nil
 function B.node_path ()
   local p = io.popen("command -v node 2>/dev/null")

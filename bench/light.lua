@@ -25,7 +25,6 @@ local format = string.format
 local N = 100000
 local THREADS = 2
 
-local self_command = B.self_command
 
 -- a small deterministic generator (the same points every run)
 local function lcg (seed)
@@ -97,14 +96,7 @@ local function child (which)
     st.nodes, st.bytes, build, tbox, mbox, tbud, mbud, nbud or 0, B.peak_mib() or -1))
 end
 
-local function measure (which)
-  local out = B.capture(self_command() .. " " .. which)
-  local line = out:match("RESULT ([^\n]*)")
-  if not line then error("the " .. which .. " run failed:\n" .. out, 0) end
-  local r = {}
-  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
-  return r
-end
+local measure = B.measure
 
 local mode = arg and arg[1]
 if SCENES[mode] then

@@ -14,7 +14,6 @@ local format = string.format
 local FIELD = B.root .. "/examples/population/field.lua"
 local SIZE = 800
 
-local self_command = B.self_command
 
 -- child: one way of holding the field, measured in this process
 local function child (mode)
@@ -43,14 +42,7 @@ local function child (mode)
     scene.bytes, build, render, save, glb, B.peak_mib() or -1))
 end
 
-local function measure (mode)
-  local out = B.capture(self_command() .. " " .. mode)
-  local line = out:match("RESULT ([^\n]*)")
-  if not line then error("the " .. mode .. " run failed:\n" .. out, 0) end
-  local r = {}
-  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
-  return r
-end
+local measure = B.measure
 
 local function mib (b) return format("%.1f MiB", b / 1048576) end
 local function ms (s) return format("%.0f ms", 1000 * s) end

@@ -36,14 +36,7 @@ local function child (which)
   return lsys
 end
 
-local function measure (which)
-  local out = B.capture(B.self_command() .. " " .. which)
-  local line = out:match("RESULT ([^\n]*)")
-  if not line then error("the " .. which .. " run failed:\n" .. out, 0) end
-  local r = {}
-  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
-  return r
-end
+local measure = B.measure
 
 local mode = arg and arg[1]
 if mode == "tree" or mode == "forest" then

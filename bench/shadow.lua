@@ -33,7 +33,6 @@ local NERR = 10000
 local C_DEFAULT = 8          -- lsys.environment.shadow's
 local ACROSS = { 24, 48, 96 }   -- voxels across the plant's largest extent, case (b)
 
-local self_command = B.self_command
 
 -- a small deterministic generator (the same points every run)
 local function lcg (seed)
@@ -191,14 +190,7 @@ local function accuracy (which)
   io.write(table.concat(out, " "))
 end
 
-local function measure (args)
-  local out = B.capture(self_command() .. " " .. args)
-  local line = out:match("RESULT ([^\n]*)")
-  if not line then error("the run '" .. args .. "' failed:\n" .. out, 0) end
-  local r = {}
-  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
-  return r
-end
+local measure = B.measure
 
 local mode, what = arg and arg[1], arg and arg[2]
 if mode == "speed" and tonumber(what) then

@@ -219,14 +219,7 @@ if mode ~= nil then
   os.exit(2)
 end
 
-local function measure (which)
-  local out = B.capture(B.self_command() .. " " .. which)
-  local line = out:match("RESULT ([^\n]*)")
-  if not line then error("the " .. which .. " run failed:\n" .. out, 0) end
-  local r = {}
-  for k, v in line:gmatch("([%w_]+)=(%S+)") do r[k] = tonumber(v) or v end
-  return r
-end
+local measure = B.measure
 
 print(format("core.space and core.markers: %d threads, best of 3, %s", THREADS, B.clock_name))
 local c = measure("collision")

@@ -24,6 +24,7 @@
 -- `env:count()` says how many are left, `env:points()` where (a flat list).
 -- @module lsys.environment.colonize
 local core = require "lsys.core"
+local check = require "lsys.environment.check"
 
 local type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math =
       type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math
@@ -43,13 +44,10 @@ local TRIES = 1000                  -- draws a marker, at most, before an envelo
 
 local function bad (msg) error("lsys.environment.colonize: " .. msg, 3) end
 
-local function finite (x) return type(x) == "number" and x == x and x > -math.huge
-                                 and x < math.huge end
+local finite = check.finite
 
 local function vec3 (v, what)
-  if type(v) ~= "table" or #v ~= 3 or not (finite(v[1]) and finite(v[2]) and finite(v[3])) then
-    bad(what .. " must be a list {x, y, z} of finite numbers")
-  end
+  if not check.vec3(v) then bad(what .. " must be a list {x, y, z} of finite numbers") end
   return v
 end
 

@@ -19,6 +19,7 @@
 -- cell's amount.
 -- @module lsys.environment.resource
 local core = require "lsys.core"
+local check = require "lsys.environment.check"
 
 local type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math =
       type, ipairs, pairs, error, pcall, tostring, tonumber, setmetatable, math
@@ -35,13 +36,10 @@ local OPTIONS = { lo = true, hi = true, cell = true, diffusion = true, initial =
 
 local function bad (msg) error("lsys.environment.resource: " .. msg, 3) end
 
-local function finite (x) return type(x) == "number" and x == x and x > -math.huge
-                                 and x < math.huge end
+local finite = check.finite
 
 local function vec3 (v, what)
-  if type(v) ~= "table" or #v ~= 3 or not (finite(v[1]) and finite(v[2]) and finite(v[3])) then
-    bad(what .. " must be a list {x, y, z} of finite numbers")
-  end
+  if not check.vec3(v) then bad(what .. " must be a list {x, y, z} of finite numbers") end
   return { v[1], v[2], v[3] }
 end
 

@@ -32,6 +32,7 @@
 -- the grid.
 -- @module lsys.environment.shadow
 local core = require "lsys.core"
+local check = require "lsys.environment.check"
 
 local type, ipairs, pairs, error, pcall, tostring, setmetatable, math =
       type, ipairs, pairs, error, pcall, tostring, setmetatable, math
@@ -56,11 +57,7 @@ local function reword (msg)
                        :gsub("^shadow:%w+: ", "lsys.environment.shadow: "))
 end
 
-local function finite (x) return type(x) == "number" and x == x and x - x == 0 end
-
-local function vec3 (v)
-  return type(v) == "table" and finite(v[1]) and finite(v[2]) and finite(v[3])
-end
+local finite, vec3 = check.finite, check.vec3
 
 -- The option `obstacles` checked: a list of { lo =, hi =, shadow = (C), cast = (true) }.
 local function obstacles (list, C)
