@@ -16,12 +16,13 @@ return lsys.lsystem {
   axiom = ";(1) !(1) F(200) /(300) A",
   steps = 8,
   seed = 4,
-  env = {
-    a = 24,         -- branching angle
-    d1 = 94.74,     -- divergence angles between the three shoots
-    d2 = 132.63,
-    lr = 1.109,     -- internode elongation rate per step
-    vr = 1.732,     -- width increase rate per step
+  -- tunable in `lsys view` (sliders beside the plant) and from scripts (m.params.a = 30)
+  params = {
+    a = { 24, min = 0, max = 90, step = 1, label = "branching angle" },
+    d1 = { 94.74, min = 0, max = 180, step = 0.01, label = "divergence 1" },
+    d2 = { 132.63, min = 0, max = 180, step = 0.01, label = "divergence 2" },
+    lr = { 1.109, min = 1, max = 1.3, step = 0.001, label = "elongation rate" },
+    vr = { 1.732, min = 1, max = 2.5, step = 0.001, label = "width rate" },
   },
   productions = {
     "A --> !(vr) F(50) " .. shoot .. " /(d1 + ran(20) - 10) " .. shoot

@@ -29,6 +29,8 @@ local core = require "lsys.core"
 local model = require "lsys.model"
 local load = require "lsys.load"
 local warning = require "lsys.warning"
+local edit = require "lsys.ui.edit"
+local tune = require "lsys.ui.tune"
 
 local type, pairs, ipairs, error, pcall, tostring, getmetatable =
       type, pairs, ipairs, error, pcall, tostring, getmetatable
@@ -52,6 +54,7 @@ local S = {             -- the one window and what it shows
   lit = {},             -- frame index -> true once its light colours were asked for
   nlit = 0,             -- light colours computed so far (sync waits for them too)
   want = nil,           -- the frame to give its light colours at the end of a poll
+  editor = nil,         -- the editing panes' session (lsys.ui.edit), while one is shown
 }
 
 --- Called with the pick information when a click hits a module and the show did not
@@ -81,7 +84,8 @@ local SHOW_OPTS = {
   height = "number", on_pick = "function", on_event = "function", view = "table",
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
   model = "table", lines = "table", capture = "boolean", history = "number",
-  frames_dir = "string", light_colours = "boolean",
+  frames_dir = "string", light_colours = "boolean", edit = "boolean", file = "string",
+  out = "function", on_build = "function",
 }
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
@@ -251,6 +255,76 @@ function M.open (opts)
   open(checkopts(opts, "lsys.viewer.open"), "lsys.viewer.open")
 end
 
+-- The Lua file a model was made in (for saving its edited values), or nil.
+local function modelfile (m)
+  local w = model.where(m)
+  local f = type(w) == "string" and (w:match("^(.-):%d+$") or w)
+  if f and f:match("%.lua$") and core.filestamp(f) then return f end
+  return nil
+end
+
+-- Ends the editing session, if one is shown: the scene fills the window again.
+local function detach ()
+  local e = S.editor
+  if e == nil then return end
+  S.editor = nil
+  e:stop()
+  if S.viewer ~= nil and S.viewer:state().open then
+    S.viewer:layout(nil)
+    S.viewer:text("", "")
+  end
+end
+
+local handle
+
+--- Shows the plant of `subject` (lsys.ui.edit: what is edited and how its plant is made
+-- again; lsys.ui.tune makes them for a model's params and for vlab panels) with the
+-- editing panes beside it, and returns the session (lsys.ui.edit) at once, after the
+-- first plant was built (`session.error` says why there is none). Edits in the panes (and
+-- `m.params.R = v` from a script or the REPL) make the plant again in `poll`. `show` of a
+-- model with params comes here. opts: as for `show` (title, width, height, samples,
+-- status, keep_camera, on_pick, on_event), and `out(msg)` for what saving reports.
+function M.edit (subject, opts)
+  opts = checkopts(opts, "lsys.viewer.edit")
+  if type(subject) ~= "table" or type(subject.build) ~= "function" then
+    fail("a subject { build = function, items = ... } expected", 2, "lsys.viewer.edit")
+  end
+  local v = open(opts, "lsys.viewer.edit")
+  detach()
+  local first = not opts.keep_camera
+  local title = "lsys: " .. (opts.title or subject.title or "edit")
+  local session = edit.session(v, subject, {
+    post = function (scene)
+      local m = subject.model
+      local s = scene.lstring
+      S.strings, S.populations, S.model = { s }, {}, m
+      S.steps = { m and m.steps or nil }
+      local f, vw = frame(scene, S.steps[1], s and #s or nil, true)
+      local tex = vw and vw.textures
+      v:post({ f }, { keep_camera = not first or nil, title = title,
+                      textures = tex and #tex > 0 and tex or nil })
+      first = false
+      S.nframes, S.current, S.lit = 1, 1, {}
+      if S.light then S.want = 1 end
+    end,
+    poll = function ()
+      local ev = v:poll(0)
+      while ev ~= nil do
+        if handle(v, ev) then return false end
+        ev = v:poll(0)
+      end
+      return true
+    end,
+    out = opts.out,
+  })
+  S.editor = session
+  session.report = opts.on_build
+  S.on_pick, S.on_event = opts.on_pick, opts.on_event
+  session:changed()
+  session:idle()
+  return session
+end
+
 --- Shows `x` in the viewer window, opening it if needed, and returns at once.
 -- `x` is a Model (derived; every step is kept and can be stepped through; a component
 -- graph's root prototype is made one by lsys.components.model), an Lstring
@@ -283,6 +357,12 @@ function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
   x = load.tomodel(x)                            -- a component graph's root prototype
+  if model.ismodel(x) and (opts.edit or opts.edit == nil and x.params ~= nil and
+                           #x.params > 0) then
+    return M.edit(tune.params(x, { file = opts.file or modelfile(x), view = opts.view,
+                                   title = opts.title }), opts)
+  end
+  detach()
   S.strings, S.steps, S.populations = {}, {}, {}
   if model.ismodel(x) then
     frames, textures = model_frames(x, opts)
@@ -360,6 +440,7 @@ function M.live (scene, opts)
   opts = opts or {}
   if not model.isscene(scene) then fail("a Scene expected", 2, "lsys.viewer.live") end
   local v = open(opts, "lsys.viewer.live")
+  detach()
   S.strings, S.steps, S.populations, S.model = {}, {}, {}, nil
   local f = frame(scene, 0, 0, false)
   v:post({ f }, { live = true, fit = opts.fit, capture = true,
@@ -415,13 +496,18 @@ local function pickinfo (ev)
   return info
 end
 
--- One event of the window: the callbacks, and what the L key needs. Returns true when
--- it was "closed" (the window is then forgotten).
-local function handle (v, ev)
+-- One event of the window: the callbacks, the editing panes', and what the L key needs.
+-- Returns true when it was "closed" (the window is then forgotten).
+function handle (v, ev)
   if S.on_event then S.on_event(ev) end
+  local e = S.editor
+  if e ~= nil and (ev.type == "pointer" or ev.type == "scroll" or ev.type == "key") then
+    if e:event(ev) then e.redraw = true end
+  end
   if ev.type == "pick" then
     local info = pickinfo(ev)
     M.last_pick = info
+    if e ~= nil and e:event({ type = "pick", info = info }) then e.redraw = true end
     local f = S.on_pick or M.on_pick
     if f then f(info) end
   elseif ev.type == "frames" then
@@ -433,6 +519,8 @@ local function handle (v, ev)
     S.current = ev.frame
     if S.light then S.want = ev.frame end
   elseif ev.type == "closed" then
+    if S.editor ~= nil then S.editor:stop() end
+    S.editor = nil
     v:close()
     S.viewer = nil
     return true
@@ -458,10 +546,17 @@ end
 function M.poll (timeout)
   local v = S.viewer
   if v == nil then return false end
-  local ev = v:poll(timeout or 0)
+  local e = S.editor
+  local ev = v:poll(e ~= nil and e.dirty and 0 or timeout or 0)
   while ev ~= nil do
     if handle(v, ev) then return false end
     ev = v:poll(0)
+  end
+  e = S.editor
+  if e ~= nil then
+    if not e:idle() and e.redraw then e:draw() end
+    e.redraw = false
+    if S.viewer == nil then return false end       -- closed while building
   end
   lighten(v)
   return v:state().open
@@ -485,6 +580,7 @@ end)
 
 --- Closes the window.
 function M.close ()
+  detach()
   if S.viewer ~= nil then S.viewer:close() end
   S.viewer = nil
 end

@@ -9,6 +9,7 @@ local lview = require "lsys.view"
 local warning = require "lsys.warning"
 local normalize = require("lsys.util.text").normpath
 local host = require("lsys.program").host
+local tune = require "lsys.ui.tune"
 
 local type, ipairs, tostring, tonumber, error, pcall, require =
       type, ipairs, tostring, tonumber, error, pcall, require
@@ -203,7 +204,14 @@ local function set_env (model, sets, src)
       warning.warn(format("lsys: --set %s: the model has no variable %s (%s)",
         kv[1], kv[1], have))
     end
-    model.env[kv[1]] = kv[2]
+    if model.params ~= nil and model.param and model:param(kv[1]) ~= nil then
+      local ok, err = pcall(function () model.params[kv[1]] = kv[2] end)   -- in its range
+      if not ok then
+        error(format("--set %s: %s", kv[1], tostring(err):gsub("^[^\n]-:%d+: ", "")), 0)
+      end
+    else
+      model.env[kv[1]] = kv[2]
+    end
   end
 end
 
@@ -331,6 +339,14 @@ local function prepare (cmd, opts, pos)
      (steps ~= nil or #sets > 0) then
     usage(cmd, "%s is a component graph: it has no derivation steps (--steps) nor "
       .. "variables (--set)", path)
+  end
+  -- the values `lsys view` saved beside a model it could not rewrite (lsys.ui.tune)
+  if src.kind == "lua" and lmodel.ismodel(model) and model.params ~= nil and #model.params > 0 then
+    local side = tune.sidecar(path)
+    local values = tune.read_sidecar(side)
+    if values ~= nil and tune.apply_sidecar(model, values, side) > 0 and cmd ~= "view" then
+      io.stderr:write(format("lsys: %s: the parameter values of %s\n", path, side))
+    end
   end
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end

@@ -144,6 +144,7 @@ end
 -- memory of its process (ulimit), and its wall clock (timeout(1) where there is one: an
 -- open that waits, which no scan of the text can rule out entirely).
 local MAXLINES, MAXTEXT = 100000, 4 * 1024 * 1024
+local MAXARG = 120 * 1024          -- the longest argument Linux passes (MAX_ARG_STRLEN 128 KiB)
 local CPP_SECONDS, CPP_KIB = 60, 1024 * 1024
 
 local have_timeout
@@ -288,16 +289,24 @@ end
 
 --- Runs the system C preprocessor on `path` with `defines` ({ NAME = value }); returns
 -- the located lines, or nil and cpp's first message. Raises { cpfg = true, msg = } for an
--- #include that may not be read, or at a limit.
-function M.system (path, defines)
+-- #include that may not be read, or at a limit. `text`, when given, is read in place of
+-- the file's own bytes (a panel's edited #defines); its #includes are the file's.
+function M.system (path, defines, text)
   local args = { "cpp", "-x", "c", "-undef", "-nostdinc", "-w", "-fmax-errors=20" }
   local names = {}
   for k in pairs(defines or {}) do names[#names + 1] = k end
   sort(names)
   for _, k in ipairs(names) do args[#args + 1] = shq("-D" .. k .. "=" .. tostring(defines[k])) end
   -- everything cpp could read is checked first; then cpp runs on no other input
-  local text, err = readfile(path)
-  if not text then return nil, err end
+  local given = text ~= nil
+  if not given then
+    local t, err = readfile(path)
+    if not t then return nil, err end
+    text = t
+  elseif #text > MAXARG then         -- (it goes to cpp as one shell word)
+    return nil, format("%s: an edited text of over %d bytes is for the built-in "
+                       .. "preprocessor (cpp = \"builtin\")", path, MAXARG)
+  end
   local guard = newguard(path)
   local mainreal = core.realpath(path)
   prescan(guard, path, text, 0, { [mainreal or path] = true })
@@ -306,15 +315,18 @@ function M.system (path, defines)
   -- folder, so that #include "x" finds the same files; a name that starts with '-' (a
   -- vlab specifications file can say anything) must not reach cpp as an option such as
   -- -o FILE. Its output and then its messages come back on one pipe: no file is written.
-  local protect = false
+  local protect = given
   for line in text:gmatch("[^\n]+") do
     if line:find("^%s*#") and not isdirective(line) then protect = true; break end
   end
   local run
   if protect then
     local base = path:match("[^/]*$")
-    run = "cd " .. shq(dirof(path)) .. " && LC_ALL=C sed -E " .. shq(sedprogram()) .. " < "
-          .. shq("./" .. base) .. " | " .. limited(concat(args, " ") .. " -")
+    local from = given and "printf '%s' " .. shq(text) .. " | LC_ALL=C sed -E "
+                             .. shq(sedprogram())
+                 or "LC_ALL=C sed -E " .. shq(sedprogram()) .. " < " .. shq("./" .. base)
+    run = "cd " .. shq(dirof(path)) .. " && " .. from .. " | "
+          .. limited(concat(args, " ") .. " -")
   else
     run = limited(concat(args, " ") .. " " .. shq(path:sub(1, 1) == "-" and "./" .. path or path))
   end
@@ -659,7 +671,7 @@ end
 -- keep.where[name] its file and line, keep.notes[name] the comment on its line;
 -- keep.conflict names one defined again with another value or undefined (the text is then
 -- not what cpp would give).
-function M.builtin (path, defines, keep)
+function M.builtin (path, defines, keep, given)
   local macros = {}
   for k, v in pairs(defines or {}) do macros[k] = { body = tostring(v) } end
   if keep then keep.values, keep.order, keep.where, keep.notes = {}, {}, {}, {} end
@@ -758,22 +770,27 @@ function M.builtin (path, defines, keep)
     end
     if #cond > 0 then fail(file, n, "unterminated #if") end
   end
-  local text, err = readfile(path)
-  if not text then error({ cpfg = true, msg = err }, 0) end
+  local text = given
+  if text == nil then
+    local err
+    text, err = readfile(path)
+    if not text then error({ cpfg = true, msg = err }, 0) end
+  end
   run(path, text, 0)
   while #lines > 1 and lines[#lines].text == "" do remove(lines) end
   return lines
 end
 
 --- Preprocesses `path`: with `how` "system" (cpp, an error when missing), "builtin", or
--- nil (cpp when present). Returns the located lines; raises { cpfg = true, msg = }.
-function M.run (path, defines, how)
+-- nil (cpp when present); `text` in place of the file's bytes. Returns the located lines;
+-- raises { cpfg = true, msg = }.
+function M.run (path, defines, how, text)
   if how == "system" or (how == nil and system_cpp()) then
-    local lines, err = M.system(path, defines)
+    local lines, err = M.system(path, defines, text)
     if not lines then error({ cpfg = true, msg = err }, 0) end
     return lines
   elseif how == nil or how == "builtin" then
-    return M.builtin(path, defines)
+    return M.builtin(path, defines, nil, text)
   end
   error("lsys.cpfg: cpp must be \"system\" or \"builtin\"", 3)
 end

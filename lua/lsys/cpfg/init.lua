@@ -5,8 +5,8 @@
 -- and `load_object` read vlab object folders. Errors name the .l file and line.
 -- See docs/cpfg.md.
 -- @module lsys.cpfg
-local type, pairs, ipairs, error, pcall, tostring, tonumber =
-  type, pairs, ipairs, error, pcall, tostring, tonumber
+local type, pairs, ipairs, error, pcall, tostring, tonumber, next =
+  type, pairs, ipairs, error, pcall, tostring, tonumber, next
 local format = string.format
 local cpp = require "lsys.cpfg.cpp"
 local parse = require "lsys.cpfg.parse"
@@ -17,6 +17,7 @@ local func = require "lsys.func"
 local viewmod = require "lsys.view"
 local viewfile = require "lsys.viewfile"
 local environment = require "lsys.environment"
+local panel = require "lsys.cpfg.panel"
 local _ENV = nil
 
 local translate, untakable = translator.translate, translator.untakable
@@ -54,9 +55,12 @@ local function checkopts (opts, fname)
   if type(opts) ~= "table" then error(fname .. ": opts must be a table", 3) end
   for k in pairs(opts) do
     if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" and
-       k ~= "functions" and k ~= "random" and k ~= "environment" then
+       k ~= "functions" and k ~= "random" and k ~= "environment" and k ~= "edits" then
       error(format("%s: unknown option '%s'", fname, tostring(k)), 3)
     end
+  end
+  if opts.edits ~= nil and type(opts.edits) ~= "table" then
+    error(format("%s: option 'edits' must be a table { NAME = value }", fname), 3)
   end
   if opts.functions ~= nil and opts.functions ~= "cpfg" and opts.functions ~= "exact" then
     error(format("%s: option 'functions' must be \"cpfg\" or \"exact\"", fname), 3)
@@ -163,7 +167,9 @@ end
 -- query: a communication file FILE.e, whose program is started as cpfg -e does, or the
 -- model option's function or object, docs/open.md; "none": they keep
 -- their values, as cpfg does without an environmental program; without it a model with
--- ?E modules is refused). Returns an lsys Model; raises
+-- ?E modules is refused), edits ({ NAME = value }: the file's `#define NAME` lines get
+-- these values, as a vlab panel's awkped writes them, without writing the file; a
+-- #define in the file beats `defines`, not `edits`). Returns an lsys Model; raises
 -- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
@@ -186,7 +192,13 @@ function M.load (lfile, vfile, opts)
   local ok, err = pcall(function ()
     local defs = funcdefines(v)
     for k, x in pairs(opts.defines or {}) do defs[k] = x end
-    local lines = cpp.run(lfile, defs, opts.cpp)
+    local text
+    if opts.edits and next(opts.edits) then      -- a panel's values, as awkped writes them
+      local t, why = cpp.readfile(lfile)
+      if not t then error({ cpfg = true, msg = why }, 0) end
+      text = panel.edit(t, opts.edits)
+    end
+    local lines = cpp.run(lfile, defs, opts.cpp, text)
     local P = parse.new(lines)
     local lsystems = P:file()
     envcheck(P, opts)

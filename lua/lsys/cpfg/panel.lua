@@ -329,6 +329,34 @@ function M.edit (text, defs)
   return table.concat(out), changed
 end
 
+--- The panel file's text with the `value:` line of each slider and button giving its
+-- current value (what vlab's panel writes when it saves itself); nil and why when the
+-- file cannot be read.
+function M.text (P)
+  local f, err = io.open(P.path, "rb")
+  if not f then return nil, err end
+  local text = f:read("a")
+  f:close()
+  local at = {}                 -- the line of each item's `type:` -> its value
+  for _, item in ipairs(P.items) do
+    if (item.type == "SLIDER" or item.type == "BUTTON") and item.line then
+      at[item.line] = item.value
+    end
+  end
+  local out, n, pending = {}, 0, nil
+  for line, nl in text:gmatch("([^\n]*)(\n?)") do
+    n = n + 1
+    if line:match("^%s*type:") then pending = at[n] end
+    if pending ~= nil and line:match("^%s*value:") then
+      line = line:match("^(%s*value:%s?)") .. M.number(pending) .. (line:match("\r$") or "")
+      pending = nil
+    end
+    out[#out + 1] = line .. nl
+    if nl == "" then break end
+  end
+  return table.concat(out)
+end
+
 local function exists (path)
   local f = io.open(path, "rb")
   if f then f:close() end

@@ -7,8 +7,8 @@ local HELP = require("lsys.cli.help").help
 local host = require("lsys.program").host
 local parse_size = require("lsys.model").parse_size
 
-local ipairs, tostring, tonumber, error, pcall, require, getmetatable, next =
-      ipairs, tostring, tonumber, error, pcall, require, getmetatable, next
+local ipairs, pairs, tostring, tonumber, error, pcall, require, getmetatable, next =
+      ipairs, pairs, tostring, tonumber, error, pcall, require, getmetatable, next
 local io, string, table, math = io, string, table, math
 local format = string.format
 local parse, out, usage, clock, isatty = A.parse, A.out, A.usage, A.clock, A.isatty
@@ -21,7 +21,8 @@ local _ENV = nil
 -- of derivation steps, as for every command.
 local VIEW_OPTS = model_opts {
   size = "value", show = "value", step = "value", rate = "value", screenshot = "value",
-  ["no-status"] = "flag", last = "flag", history = "value",
+  ["no-status"] = "flag", last = "flag", history = "value", edit = "flag",
+  ["no-edit"] = "flag",
 }
 
 -- --show, --rate, --screenshot and --history of `lsys view`; the messages about --show
@@ -98,6 +99,45 @@ local function watch (V, files, reload)
   if not iok and not tostring(ierr):find("interrupted!", 1, true) then error(ierr, 0) end
 end
 
+-- each plant the editing panes build again, on stderr (a terminal's line overwritten)
+local function report (session, verbose)
+  local st = session.stats
+  if st == nil then return end
+  local vals = session.form:status()
+  io.stderr:write(format("%sbuilt %s%s%d triangles (%.0f ms)%s", verbose and "\r" or "",
+    vals ~= "" and vals .. ": " or "", st.modules and format("%d modules, ", st.modules) or "",
+    st.triangles, st.ms, verbose and "   " or "\n"))
+end
+
+-- the panes that edit a cpfg model: its vlab panels (unless --no-edit)
+local function edit_subject (s, model, editing, title)
+  if editing == false or s.kind == "lua" then return nil end
+  local cpfg = require "lsys.cpfg"
+  local panel = require "lsys.cpfg.panel"
+  local l, v, pal = s.path, s.vfile, nil
+  local dir = s.path
+  if s.kind == "object" then l, v, pal = cpfg.object_files(s.path)
+  else dir = s.path:match("^(.*)/[^/]*$") or "." end
+  local found = panel.find(dir)
+  if #found == 0 then return nil end
+  local panels = {}
+  for _, f in ipairs(found) do
+    if f.target == nil or f.target == l or f.editor == "awkped" or f.editor == "ped" then
+      panels[#panels + 1] = panel.read(f.panel)
+    end
+  end
+  local lo = {}
+  for k, x in pairs(s.lopts or {}) do lo[k] = x end
+  if pal and not lo.colormap and not lo.materials then
+    local full = dir .. "/" .. pal
+    if pal:match("%.mat$") then lo.materials = full else lo.colormap = full end
+  end
+  local subject = require("lsys.ui.tune").panels({ l = l, v = v }, panels,
+    { title = title, load = lo })
+  subject.model = model
+  return subject
+end
+
 local function run (args)
   local opts, pos, given = parse("view", VIEW_OPTS, args, 2)
   if opts.help then out(HELP.view) return 0 end
@@ -108,6 +148,11 @@ local function run (args)
   local src = model_source("view", opts, pos)
   local path = src.path:gsub("/+$", "")
   local verbose = isatty(2)
+  if opts.edit and opts["no-edit"] then usage("view", "--edit and --no-edit exclude each other") end
+  local editing = opts.edit and true or opts["no-edit"] and false or nil
+  if editing and opts.show ~= nil then
+    usage("view", "--edit shows the last step: --show does not go with it")
+  end
 
   -- Loads and shows the model; returns true, or false and the message.
   local shown = false
@@ -125,7 +170,24 @@ local function run (args)
       if first ~= nil and first > model.steps then
         error(format("%s %d: the model has %d steps", flag, first, model.steps), 0)
       end
+      local subject = edit_subject(src, model, editing, path:match("([^/]*)$"))
+      if subject ~= nil then
+        local session = V.edit(subject, {
+          width = w, height = h, keep_camera = keep or nil, title = path:match("([^/]*)$"),
+          status = not opts["no-status"],
+          on_pick = V.on_pick == nil and print_pick or nil,
+          on_build = function (se) report(se, verbose) end,
+          out = function (msg) io.stderr:write("lsys: ", msg) end,
+        })
+        if session.error then error(session.error, 0) end
+        io.stderr:write(format("%s %s: %d panel items (%.2f s)\n", keep and "reloaded" or
+          "editing", path, #session.form.items, clock() - t0))
+        return V.state()
+      end
       V.show(model, {
+        edit = editing, file = src.kind == "lua" and src.path or nil,
+        on_build = function (se) report(se, verbose) end,
+        out = function (msg) io.stderr:write("lsys: ", msg) end,
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
         steps = not opts.last, history = history,
         title = path:match("([^/]*)$"), status = not opts["no-status"],

@@ -1,0 +1,325 @@
+--- What the editing panes edit (lsys.ui.edit's subjects): a Lua model's tunable
+-- parameters (lsys.params) and a cpfg model's vlab control panels (lsys.cpfg.panel).
+--
+-- Saving (Ctrl+S, the form's save button):
+--   * a Lua model's values are written back into its file where that is safe: each
+--     parameter's declaration `NAME = { value, ...` appears exactly once in the file and
+--     its first entry is a literal (a number, true, false or a quoted string without
+--     escapes); the file is replaced atomically. Otherwise (a model made by a function,
+--     names built at run time) the values go to the sidecar file beside the model,
+--     `plant.params` for `plant.lua`: lines `NAME = value`, which loading the model reads
+--     (lsys.load; `read_sidecar`) and applies over the declared defaults.
+--   * a vlab panel's values are written as vlab's awkped writes them: the `#define` lines
+--     of the L-system file (the panel's target) get the values (lsys.cpfg.panel.edit).
+-- @module lsys.ui.tune
+local core = require "lsys.core"
+local panel = require "lsys.cpfg.panel"
+local cpfg = require "lsys.cpfg"
+
+local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
+      type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
+local math, string, table, io = math, string, table, io
+local format = string.format
+local _ENV = nil
+
+local M = {}
+
+-- {=========================================================================================
+-- A Lua model's params
+
+--- The form items of model m's tunable parameters (in the order of `pairs(m.params)`).
+function M.param_items (m)
+  local items = {}
+  if m.params == nil then return items end
+  for name in pairs(m.params) do
+    local d = m:param(name)
+    items[#items + 1] = {
+      name = name, label = d.label, kind = d.kind, default = d.default, min = d.min,
+      max = d.max, step = d.step, choices = d.choices,
+      get = function () return m.params[name] end,
+      set = function (v) m.params[name] = v end,
+    }
+  end
+  return items
+end
+
+--- A value as a Lua literal that reads back equal.
+function M.literal (v)
+  if type(v) == "boolean" then return tostring(v) end
+  if type(v) == "string" then return format("%q", v) end
+  if math.type(v) == "integer" then return format("%d", v) end
+  for _, f in ipairs({ "%.15g", "%.17g" }) do
+    local s = format(f, v)
+    if math.tointeger(v) and not s:find("[.eEn]") then s = s .. ".0" end
+    if tonumber(s) == v then return s end
+  end
+  return format("%.17g", v)
+end
+
+-- The declarations `NAME = { literal` in `text`: the places of the literal (i, j) of each
+-- name, or nil and why.
+local LITERAL = { "^%-?%d[%w%.+-]*", "^%-?%.%d[%w%.+-]*", "^true%f[^%w_]",
+                  "^false%f[^%w_]", '^"[^"\\\n]*"', "^'[^'\\\n]*'" }
+local function places (text, names)
+  local at = {}
+  for _, name in ipairs(names) do
+    local found, n = nil, 0
+    local init = 1
+    while true do
+      local s, e = text:find("%f[%w_]" .. name .. "%s*=%s*{%s*", init)
+      if s == nil then break end
+      if s == 1 or text:sub(s - 1, s - 1) ~= "." then
+        n = n + 1
+        for _, p in ipairs(LITERAL) do
+          local i, j = text:find(p, e + 1)
+          if i then found = { i, j } break end
+        end
+      end
+      init = e + 1
+    end
+    if n ~= 1 then
+      return nil, format("'%s = {' appears %d times in the file", name, n)
+    end
+    if found == nil then return nil, format("the default of '%s' is not a literal", name) end
+    at[name] = found
+  end
+  return at
+end
+
+--- The model file's text `text` with the defaults of `values` ({ NAME = v }) rewritten,
+-- or nil and why it is not safe.
+function M.rewrite (text, values)
+  local names = {}
+  for k in pairs(values) do names[#names + 1] = k end
+  table.sort(names)
+  local at, why = places(text, names)
+  if at == nil then return nil, why end
+  table.sort(names, function (a, b) return at[a][1] > at[b][1] end)   -- from the end
+  for _, k in ipairs(names) do
+    local p = at[k]
+    text = text:sub(1, p[1] - 1) .. M.literal(values[k]) .. text:sub(p[2] + 1)
+  end
+  return text
+end
+
+--- The sidecar file of model file `path`: plant.lua -> plant.params.
+function M.sidecar (path)
+  return (path:gsub("%.lua$", "")) .. ".params"
+end
+
+--- Reads a sidecar's `NAME = value` lines: { NAME = value } (numbers, true, false, quoted
+-- strings); raises "file:line: ..." for anything else. Nil when there is no such file.
+function M.read_sidecar (path)
+  local f = io.open(path, "rb")
+  if f == nil then return nil end
+  local text = f:read(64 * 1024)
+  f:close()
+  local t, n = {}, 0
+  for line in (text .. "\n"):gmatch("([^\n]*)\n") do
+    n = n + 1
+    local l = line:gsub("%-%-.*$", ""):match("^%s*(.-)%s*$")
+    if l ~= "" then
+      local k, v = l:match("^([%a_][%w_]*)%s*=%s*(.-)$")
+      local x
+      if v == "true" then x = true elseif v == "false" then x = false
+      elseif v and v:match('^"[^"\\]*"$') then x = v:sub(2, -2)
+      elseif v then x = math.tointeger(v) or (v:match("^[-+%d.eE]+$") and tonumber(v))
+      end
+      if k == nil or x == nil then
+        error(format("%s:%d: a line 'NAME = value' expected (a number, true, false or a "
+                     .. "quoted string)", path, n), 0)
+      end
+      t[k] = x
+    end
+  end
+  return t
+end
+
+--- Applies a sidecar's values to model m (raising "file: params.R: ..." for a value the
+-- model refuses); returns how many.
+function M.apply_sidecar (m, values, path)
+  local n = 0
+  for k, v in pairs(values) do
+    if m.params == nil or m:param(k) == nil then
+      error(format("%s: the model has no parameter '%s'", path, k), 0)
+    end
+    local ok, err = pcall(function () m.params[k] = v end)
+    if not ok then error(format("%s: %s", path, tostring(err):gsub("^[^\n]-:%d+: ", "")), 0) end
+    n = n + 1
+  end
+  return n
+end
+
+--- Saves model m's current values for its file `path`: in the file when safe, else in
+-- the sidecar. Returns the message.
+function M.save_params (m, path)
+  if path == nil then error("the model has no file to save its values to", 0) end
+  local values = {}
+  for k, v in pairs(m.params) do values[k] = v end
+  local f = io.open(path, "rb")
+  local text = f and f:read("a")
+  if f then f:close() end
+  local new, why = nil, "the model file cannot be read"
+  if text then new, why = M.rewrite(text, values) end
+  if new then
+    if new ~= text then core.write_file(path, new) end
+    return path
+  end
+  local side = M.sidecar(path)
+  local lines = { "-- the values lsys view saved for " .. path:match("[^/]*$")
+                  .. " (" .. why .. ")" }
+  local names = {}
+  for k in pairs(values) do names[#names + 1] = k end
+  table.sort(names)
+  for _, k in ipairs(names) do lines[#lines + 1] = k .. " = " .. M.literal(values[k]) end
+  core.write_file(side, table.concat(lines, "\n") .. "\n")
+  return side
+end
+
+-- Sessions by model: the callback m:on_param registers once reaches the current one.
+local live = setmetatable({}, { __mode = "k" })
+
+--- The subject (lsys.ui.edit) of Lua model m with params; opts: file (its path, for
+-- saving), title, view (view fields over the model's).
+function M.params (m, opts)
+  opts = opts or {}
+  local subject = { title = opts.title, form_title = "parameters" }
+  subject.items = function () return M.param_items(m) end
+  subject.build = function (check)
+    local s = m:derive(m.steps, { progress = function () check() end })
+    check()
+    return m:interpret(s, opts.view)
+  end
+  subject.save = function () return M.save_params(m, opts.file) end
+  subject.model = m
+  subject.attach = function (session)
+    if live[m] == nil and m.params ~= nil and #m.params > 0 then
+      m:on_param(function () local s = live[m]; if s then s:changed() end end)
+    end
+    live[m] = session
+  end
+  subject.stop = function () live[m] = false end
+  return subject
+end
+
+-- }=========================================================================================
+
+-- {=========================================================================================
+-- vlab panels
+
+-- The items of one panel: its sliders (the panel's integer values, the define's value
+-- after the scale shown beside) and its buttons (a group's buttons one choice; a lone
+-- button a toggle), each with the message's #define. Items without a #define message (an
+-- edit by line and field) are shown but say that lsys does not apply them.
+local function panel_items (P, changed)
+  local items, groups = {}, {}
+  for _, it in ipairs(P.items) do
+    local m = it.message
+    local def = m and m.kind == "d" and m.define
+    if it.type == "SLIDER" and def then
+      local item = { name = it.name, label = it.name, kind = "number", min = it.min,
+                     max = it.max, step = 1, default = it.default or it.value }
+      item.get = function () return it.value end
+      item.set = function (v) it.value = math.tointeger(v) or math.floor(v + 0.5); changed() end
+      setmetatable(item, { __index = function (_, k)      -- the define's value as it is now
+        if k == "note" then
+          local _, y = panel.apply(P, it)
+          return format("(%s %s)", def, panel.number(y))
+        end
+      end })
+      items[#items + 1] = item
+    elseif it.type == "BUTTON" and def then
+      if it.group then
+        local g = groups[it.group]
+        if g == nil then
+          g = { name = it.group, label = it.group, kind = "choice", choices = {}, buttons = {} }
+          g.get = function ()
+            for k, b in ipairs(g.buttons) do if b.value == 1 then return g.choices[k] end end
+            return g.choices[1]
+          end
+          g.set = function (v)
+            for k, b in ipairs(g.buttons) do b.value = g.choices[k] == v and 1 or 0 end
+            changed()
+          end
+          groups[it.group] = g
+          items[#items + 1] = g
+        end
+        g.choices[#g.choices + 1] = it.name
+        g.buttons[#g.buttons + 1] = it
+        if it.value == 1 then g.default = it.name end
+      else
+        local item = { name = it.name, label = it.name, kind = "boolean",
+                       default = it.value == 1 }
+        item.get = function () return it.value == 1 end
+        item.set = function (v) it.value = v and 1 or 0; changed() end
+        items[#items + 1] = item
+      end
+    end
+  end
+  for _, g in pairs(groups) do g.default = g.default or g.choices[1] end
+  return items
+end
+
+--- The subject of a cpfg model whose vlab panels drive its #defines. `files` = { l =, v =,
+-- palette = (a .map or .mat path or nil) }, `panels` a list of panel tables (lsys.cpfg.
+-- panel.read), opts: title, load (the lsys.cpfg.load options besides `edits`).
+function M.panels (files, panels, opts)
+  opts = opts or {}
+  local subject = { title = opts.title, form_name = "panels",
+                    form_title = #panels == 1 and panels[1].name or "vlab panels" }
+  local items, session = {}, nil
+  local function changed () if session then session:changed() end end
+  for _, P in ipairs(panels) do
+    for _, it in ipairs(panel_items(P, changed)) do items[#items + 1] = it end
+  end
+  subject.panel_count = #panels
+  subject.items = items
+  local function edits ()
+    local d = {}
+    for _, P in ipairs(panels) do
+      for k, v in pairs(panel.defines(P)) do d[k] = v end
+    end
+    return d
+  end
+  subject.model = nil
+  subject.load = function ()
+    local o = {}
+    for k, v in pairs(opts.load or {}) do o[k] = v end
+    o.edits = edits()
+    local m = cpfg.load(files.l, files.v, o)
+    subject.model = m
+    return m
+  end
+  subject.build = function (check)
+    local m = subject.load()
+    check()
+    local s = m:derive(m.steps, { progress = function () check() end })
+    check()
+    return m:interpret(s)
+  end
+  subject.save = function ()
+    local f = io.open(files.l, "rb")
+    if f == nil then error(files.l .. ": cannot be read", 0) end
+    local text = f:read("a")
+    f:close()
+    local new, n = panel.edit(text, edits())
+    local saved = {}
+    for _, P in ipairs(panels) do                 -- the panels keep their values too
+      local pt = panel.text(P)
+      if pt then
+        core.write_file(P.path, pt)
+        saved[#saved + 1] = P.path
+      end
+    end
+    if n > 0 and new ~= text then core.write_file(files.l, new) end
+    table.insert(saved, 1, files.l .. (n == 0 and " (no #define to change)" or ""))
+    return table.concat(saved, ", ")
+  end
+  subject.attach = function (s) session = s end
+  subject.stop = function () session = nil end
+  return subject
+end
+
+-- }=========================================================================================
+
+return M
