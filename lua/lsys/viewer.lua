@@ -290,6 +290,7 @@ function M.edit (subject, opts)
     fail("a subject { build = function, items = ... } expected", 2, "lsys.viewer.edit")
   end
   local v = open(opts, "lsys.viewer.edit")
+  local prev = S.editor       -- a reload: the new session opens where the old one was
   detach()
   local first = not opts.keep_camera
   local title = "lsys: " .. (opts.title or subject.title or "edit")
@@ -318,6 +319,7 @@ function M.edit (subject, opts)
     out = opts.out,
   })
   S.editor = session
+  if prev ~= nil and opts.keep_camera then session:resume(prev) end
   session.report = opts.on_build
   S.on_pick, S.on_event = opts.on_pick, opts.on_event
   session:changed()

@@ -103,6 +103,19 @@ function M.session (v, subject, opts)
   return self
 end
 
+--- Opens where session `prev` (of the same window, before a reload) was: the same tab,
+-- the same row selected, the same scroll.
+function Session:resume (prev)
+  if prev.tabs[prev.active] and self.tabs[prev.active] and
+     prev.tabs[prev.active].name == self.tabs[prev.active].name then
+    self.active = prev.active
+  end
+  local f = prev.form
+  if f.selected and f.selected <= #self.form.items then self.form.selected = f.selected end
+  self.form.scroll = f.scroll
+  self:draw()
+end
+
 --- Marks the plant stale: the next `idle` builds it again (an edit calls it).
 function Session:changed ()
   self.dirty = true

@@ -128,9 +128,8 @@ local function edit_subject (s, model, editing, title)
   end
   local lo = {}
   for k, x in pairs(s.lopts or {}) do lo[k] = x end
-  if pal and not lo.colormap and not lo.materials then
-    local full = dir .. "/" .. pal
-    if pal:match("%.mat$") then lo.materials = full else lo.colormap = full end
+  if pal and not lo.colormap and not lo.materials then     -- (relative to the .l file)
+    if pal:match("%.mat$") then lo.materials = pal else lo.colormap = pal end
   end
   local subject = require("lsys.ui.tune").panels({ l = l, v = v }, panels,
     { title = title, load = lo })

@@ -1,0 +1,199 @@
+-- (#gl) Editing a plant in the real window under a private Xvfb, with xdotool: a slider
+-- of a Lua model's params dragged (the plant built again: its module count checked against
+-- the same model derived here), the values saved into the model file and loaded back; a
+-- vlab object's panel slider moved; a script's m.params.k = v reaching an open window.
+-- ctest: slow (drives the window under Xvfb with waits)
+local H = require "tests.helper"
+local D = require "tests.display"
+local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1   -- under valgrind: longer waits
+local have_core = pcall(require, "lsys.core")
+
+local TREE = [[
+local lsys = require "lsys"
+local m = lsys.lsystem {
+  axiom = "A(0)",
+  steps = 8,
+  params = {
+    k = { 3, min = 1, max = 7, step = 1, label = "levels" },
+    angle = { 30, min = 5, max = 80 },
+  },
+  productions = { "A(i) : i < k --> F [ +(angle) A(i+1) ] [ -(angle) A(i+1) ]" },
+}
+-- a script reacting to the sliders
+m:on_param(function (name, v) io.stderr:write("param ", name, " = ", tostring(v), "\n") end)
+return m
+]]
+
+local function bin ()
+  local b = os.getenv("LSYS_BIN") or "build/bin/lsys"
+  if b:sub(1, 1) ~= "/" then b = io.popen("pwd"):read("l") .. "/" .. b end
+  return b
+end
+
+-- The window of `name` (xdotool's id), waiting for it to open.
+local function window (name, log)
+  local p = io.popen(D.env .. "timeout " .. 30 * SLOW .. " xdotool search --sync --name '"
+                     .. name .. "' 2>/dev/null")
+  local wid = p:read("l")
+  p:close()
+  assert.truthy(wid, "the window did not open: " .. tostring(H.read(log)))
+  return wid
+end
+
+-- A drag in window pixels along the points.
+local function drag (wid, pts)
+  local cmd = { D.env .. "xdotool" }
+  for i, p in ipairs(pts) do
+    cmd[#cmd + 1] = ("mousemove --window %s %d %d"):format(wid, math.floor(p[1] + 0.5),
+                                                          math.floor(p[2] + 0.5))
+    if i == 1 then cmd[#cmd + 1] = "mousedown 1" end
+  end
+  cmd[#cmd + 1] = "mouseup 1"
+  local out, code = H.sh(table.concat(cmd, " ") .. " 2>&1")
+  assert(code == 0, "xdotool: " .. tostring(out) .. " (window " .. wid .. ")")
+end
+
+-- (typed through XTEST with the pointer over the window, which has the focus then: the
+-- key sent to the window with --window, XSendEvent, failed here with BadWindow)
+local function key (wid, k)
+  local out, code = H.sh(D.env .. "xdotool mousemove --window " .. wid .. " 300 300 key " .. k)
+  assert(code == 0, "xdotool key " .. k .. ": " .. tostring(out) .. " (window " .. wid .. ")")
+end
+
+-- The last "built ...: N modules" line of the log: the values and N.
+local function last_built (log)
+  local vals, n
+  for line in (H.read(log) or ""):gmatch("[^\n]+") do
+    local v, m = line:match("^built (.-): (%d+) modules")
+    if v then vals, n = v, tonumber(m) end
+  end
+  return vals, n
+end
+
+-- Waits until the log's last build says `pattern` about its values.
+local function wait_built (log, pattern, seconds)
+  for _ = 1, 10 * (seconds or 20) * SLOW do
+    local v = last_built(log)
+    if v and v:find(pattern) then return true end
+    D.sleep(0.1)
+  end
+  return false
+end
+
+describe("#gl editing in the window under Xvfb", function ()
+  teardown(function () D.stop() end)
+
+  it("drags a params slider, builds the plant again, saves the value into the file", function ()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    if not have_core then pending("lsys.core is not built") return end
+    local lsys = require "lsys"
+    local form = require "lsys.ui.form"
+    local edit = require "lsys.ui.edit"
+    local dir = H.tmpdir()
+    local path = dir .. "/tree.lua"
+    H.write(path, TREE)
+    local log = dir .. "/log.txt"
+    os.execute(("cd %s && %s%s view %s --size 1200x800 >%s 2>&1 &"):format(dir, D.env, bin(),
+               path, log))
+    local wid = window("lsys: tree.lua", log)
+    assert.is_true(wait_built(log, "k 3"), H.read(log))
+    -- the slider of k (the form's row 2: angle, k), from its value 3 to 6
+    local f = form.new(require("lsys.ui.tune").param_items(dofile(path)))
+    local function at (v)
+      local x, y = f:point_of(2, v, edit.PANE_W)
+      return { edit.to_window(2, x, y, 1200, 800) }
+    end
+    drag(wid, { at(3), at(4), at(5), at(6) })
+    assert.is_true(wait_built(log, "k 6"), H.read(log))
+    local vals, n = last_built(log)
+    local m = dofile(path)
+    m.params.k = 6
+    assert.equal(#m:derive(), n, vals)                 -- 63 F, their brackets, 64 A
+    assert.equal(63 + 63 * 2 * 2 + 64 + 63 * 2, n)
+    -- the model's on_param callback heard the slider
+    assert.truthy(H.read(log):find("param k = 6", 1, true), H.read(log))
+    -- Ctrl+S writes the value into the model file, which is loaded again
+    key(wid, "ctrl+s")
+    local out = D.wait_for(log, "reloaded", 20 * SLOW)
+    assert.truthy(out:find("saved " .. path, 1, true), out)
+    assert.equal(6, dofile(path).params.k)
+    assert.truthy(H.read(path):find("k = { 6, min = 1", 1, true))
+    -- the reset button: k back to its default (now 6, the saved value) after a change
+    key(wid, "Right")                                  -- the selected row: a step up
+    assert.is_true(wait_built(log, "k 7"), H.read(log))
+    key(wid, "Escape")
+    D.sleep(0.5 * SLOW)
+    local _ = lsys
+  end)
+
+  it("opens a vlab object with its panel and moves a slider", function ()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    if not have_core then pending("lsys.core is not built") return end
+    local EXT = os.getenv("LSYS_VLAB_EXT") or "../vlab/oofs/ext"
+    local src = EXT .. "/10-manuals/ext/10-GettingStarted/ext/01-Lychnis"
+    if io.open(src .. "/plant.l") == nil then
+      pending("no vlab objects at " .. EXT .. " (set LSYS_VLAB_EXT)")
+      return
+    end
+    local lsys = require "lsys"
+    local panel = require "lsys.cpfg.panel"
+    local form = require "lsys.ui.form"
+    local edit = require "lsys.ui.edit"
+    local tune = require "lsys.ui.tune"
+    local dir = H.tmpdir()
+    assert(os.execute(("cp -r '%s' '%s/Lychnis'"):format(src, dir)))   -- saving writes it
+    local obj = dir .. "/Lychnis"
+    local log = dir .. "/log.txt"
+    os.execute(("cd %s && %s%s view %s --size 1200x800 >%s 2>&1 &"):format(dir, D.env, bin(),
+               obj, log))
+    local wid = window("lsys: Lychnis", log)
+    assert.is_true(wait_built(log, "Steps 300"), H.read(log))
+    local _, n300 = last_built(log)
+    assert.equal(1370, n300)
+    local P = panel.read(obj .. "/panel.l")
+    local s = tune.panels({ l = obj .. "/plant.l" }, { P }, {})
+    local f = form.new(s.items)
+    local function at (v)
+      local x, y = f:point_of(1, v, edit.PANE_W)        -- Steps, the panel's first slider
+      return { edit.to_window(2, x, y, 1200, 800) }
+    end
+    drag(wid, { at(300), at(200), at(100), at(40) })
+    assert.is_true(wait_built(log, "^Steps [34]%d "), H.read(log))
+    local vals, n = last_built(log)
+    local steps = tonumber(vals:match("^Steps (%d+)"))
+    -- the same model with that many steps, loaded here as the window loads it
+    local m = lsys.cpfg.load(obj .. "/plant.l", obj .. "/plant.v",
+                             { materials = obj .. "/material.mat", edits = { STEPS = steps } })
+    assert.equal(#m:derive(), n, vals)
+    assert.is_true(n < 200, vals)
+    key(wid, "Escape")
+    D.sleep(0.5 * SLOW)
+  end)
+
+  it("hears m.params.k = v from a script while the window is open", function ()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not have_core then pending("lsys.core is not built") return end
+    local dir = H.tmpdir()
+    H.write(dir .. "/tree.lua", TREE)
+    H.write(dir .. "/script.lua", [[
+      local lsys = require "lsys"
+      local V = require "lsys.viewer"
+      local m = dofile("tree.lua")
+      local session = lsys.show(m, { width = 900, height = 600 })
+      io.write("first ", session.stats.modules, "\n")
+      m.params.k = 5                  -- as typed at the REPL, which polls while it waits
+      V.poll(0)
+      io.write("then ", session.stats.modules, " ", session.builds, "\n")
+      V.close()
+    ]])
+    local out = H.sh(("cd %s && %s%s script.lua 2>&1"):format(dir, D.env, bin()))
+    assert.truthy(out:find("first 57\n", 1, true), out)     -- 7 F, 14 +-, 28 brackets, 8 A
+    assert.truthy(out:find("then 249 2\n", 1, true), out)
+    assert.truthy(out:find("param k = 5", 1, true), out)
+  end)
+end)
