@@ -191,15 +191,27 @@ end
 -- {=========================================================================================
 -- Layout: the grid of swatches, then the selected swatch and its values
 
--- The grid for a pane of w x h pixels: columns, rows, cell size, top left.
+-- The text scale of a pane of w x h pixels: 2, or 1 when it is small.
+function Pane:scale () return (self.w >= 380 and self.h >= 480) and 2 or 1 end
+
+-- The height of what is drawn below the grid: the selected swatch and its values, the
+-- legend, and the big swatch's size.
+function Pane:details ()
+  local ts = self:scale()
+  local big = ts == 2 and M.BIG or M.BIG // 2
+  local nlines = self.materials and 7 or 3
+  return max(big, 12 * ts + (nlines - 1) * 10 * ts) + 2 * 11 * ts + 12, big
+end
+
+-- The grid: columns, rows, cell size, top left; sized to the pane (self.w x self.h).
 function Pane:grid ()
-  local n = self:count()
+  local n, ts = self:count(), self:scale()
   local cols = n > 16 and 16 or max(1, min(n, max(4, ceil(sqrt(n)))))
   local rows = ceil(n / cols)
-  local avail = self.h - 44 - M.MARGIN - (self.materials and 200 or 130)
-  local cell = floor(min((self.w - 2 * M.MARGIN) / cols, M.MAX_CELL,
-                         max(8, avail / rows)))
-  return cols, rows, max(cell, 6), M.MARGIN, 40
+  local y0 = 7 * ts + 26
+  local avail = self.h - y0 - self:details() - M.MARGIN
+  local cell = floor(min((self.w - 2 * M.MARGIN) / cols, M.MAX_CELL, avail / rows))
+  return cols, rows, max(cell, 6), M.MARGIN, y0
 end
 
 --- The rectangle of swatch `i` in the last drawn canvas's pixels (420 x 700 before the
@@ -233,8 +245,8 @@ function Pane:source ()
   if self.file then
     return format("%s (%d %s)", self.file:match("[^/]*$"), self:count(), what)
   end
-  return format("%s table (%d %s)", self.view.palette == nil and "default" or "view",
-                self:count(), what)
+  return format("%s (%d %s)", self.view.palette == nil and "default palette" or
+                "palette table", self:count(), what)
 end
 
 -- The lines of values of entry i: { label, colour or nil, text }.
@@ -260,56 +272,63 @@ function Pane:values (i)
   return out
 end
 
+-- Draws swatch i: its colour, its number when it fits, the mark of a used index.
+function Pane:swatch (c, i, used)
+  local x, y, cell = self:swatch_rect(i)
+  local col = self.entries[i].diffuse
+  c:rect(x, y, cell, cell, opaque(col), true)
+  c:rect(x, y, cell, cell, GREY)
+  local ink = luminance(col) > 0.5 and INK or { 1, 1, 1, 1 }
+  local label = tostring(i)
+  local scale = c:text_width(label, 2) + 4 <= cell and cell >= 30 and 2 or 1
+  if c:text_width(label, scale) + 3 <= cell and cell >= 10 then
+    c:text(x + 2, y + 2, label, scale, ink)
+  end
+  if used then
+    local r = max(2, cell // 7)
+    c:circle(x + cell - r - 2, y + cell - r - 2, r, ink)
+  end
+end
+
+-- Draws the selected entry large at (x0, y) with its values, then the legend.
+function Pane:selection (c, y, used)
+  local ts = self:scale()
+  local _, big = self:details()
+  local m = self.entries[self.selected]
+  c:rect(M.MARGIN, y, big, big, opaque(m.diffuse), true)
+  c:rect(M.MARGIN, y, big, big, INK)
+  local x = M.MARGIN + big + 6 * ts
+  c:text(x, y, format("index %d%s", self.selected, used and "  (used)" or ""), ts, INK)
+  local ly = y + 12 * ts
+  for _, l in ipairs(self:values(self.selected)) do
+    c:text(x, ly, l[1], ts, GREY)
+    if l[2] then
+      c:rect(x + 50 * ts, ly - 1, 7 * ts, 7 * ts, opaque(l[2]), true)
+      c:rect(x + 50 * ts, ly - 1, 7 * ts, 7 * ts, GREY)
+    end
+    c:text(x + 60 * ts, ly, l[3], ts, INK)
+    ly = ly + 10 * ts
+  end
+  ly = max(ly, y + big) + 5 * ts
+  c:circle(M.MARGIN + 2 * ts, ly + 3 * ts, 2 * ts, INK)
+  c:text(M.MARGIN + 8 * ts, ly, "used by the plant", ts, GREY)
+  if self.dirty then c:text(M.MARGIN, ly + 11 * ts, "edited: Ctrl+S saves", ts, SELECT) end
+end
+
 --- Draws the pane into canvas `c` (any size; it lays itself out to c:size()).
 function Pane:draw (c)
   self.w, self.h = c:size()
   c:clear(BG)
-  c:text(M.MARGIN, 12, self:source(), 2, INK)
+  local title = self:source()
+  c:text(M.MARGIN, 12, title, c:text_width(title, 2) <= self.w - 2 * M.MARGIN and 2 or 1,
+         INK)
   local _, used = self:used()
-  local _, rows, cell = self:grid()
-  for i = 0, self.last do
-    local x, y = self:swatch_rect(i)
-    local col = self.entries[i].diffuse
-    c:rect(x, y, cell, cell, opaque(col), true)
-    c:rect(x, y, cell, cell, GREY)
-    local ink = luminance(col) > 0.5 and INK or { 1, 1, 1, 1 }
-    local label = tostring(i)
-    local scale = c:text_width(label, 2) + 4 <= cell and cell >= 30 and 2 or 1
-    if c:text_width(label, scale) + 3 <= cell and cell >= 10 then
-      c:text(x + 2, y + 2, label, scale, ink)
-    end
-    if used[i] then
-      local r = max(2, cell // 8)
-      c:circle(x + cell - r - 2, y + cell - r - 2, r, ink)
-    end
-  end
-  do                                              -- the selection, over its neighbours
-    local x, y = self:swatch_rect(self.selected)
-    c:rect(x - 2, y - 2, cell + 4, cell + 4, SELECT)
-    c:rect(x - 1, y - 1, cell + 2, cell + 2, SELECT)
-    c:rect(x, y, cell, cell, { 1, 1, 1, 1 })
-  end
-  local y = 40 + rows * cell + 12
-  local m = self.entries[self.selected]
-  c:rect(M.MARGIN, y, M.BIG, M.BIG, opaque(m.diffuse), true)
-  c:rect(M.MARGIN, y, M.BIG, M.BIG, INK)
-  local x = M.MARGIN + M.BIG + 12
-  local note = used[self.selected] and "  (used)" or ""
-  c:text(x, y, format("index %d%s", self.selected, note), 2, INK)
-  local ly = y + 24
-  for _, l in ipairs(self:values(self.selected)) do
-    c:text(x, ly, l[1], 2, GREY)
-    if l[2] then
-      c:rect(x + 100, ly - 1, 14, 14, opaque(l[2]), true)
-      c:rect(x + 100, ly - 1, 14, 14, GREY)
-    end
-    c:text(x + 120, ly, l[3], 2, INK)
-    ly = ly + 20
-  end
-  ly = max(ly, y + M.BIG) + 10
-  c:circle(M.MARGIN + 5, ly + 6, 4, INK)
-  c:text(M.MARGIN + 16, ly, "used by the plant", 2, GREY)
-  if self.dirty then c:text(M.MARGIN, ly + 22, "edited: Ctrl+S saves", 2, SELECT) end
+  local _, rows, cell, _, y0 = self:grid()
+  for i = 0, self.last do self:swatch(c, i, used[i]) end
+  local x, y = self:swatch_rect(self.selected)     -- the selection, over its neighbours
+  for d = 1, 3 do c:rect(x - d, y - d, cell + 2 * d, cell + 2 * d, SELECT) end
+  c:rect(x, y, cell, cell, { 1, 1, 1, 1 })
+  self:selection(c, y0 + rows * cell + 12, used[self.selected])
 end
 
 -- {=========================================================================================
