@@ -107,6 +107,24 @@ describe("the palette pane's swatches", function()
     assert.is_true(#H.read(dir .. "/pane.png") > 1000)
   end)
 
+  it("draws a material palette by its diffuse colours, the selected one's fields listed",
+     function()
+    H.write(dir .. "/m.mat", mat_bytes())
+    local pane = P.new(plant("m.mat"))
+    assert.equal("m.mat (6 materials)", pane:source())
+    local c = core.canvas(420, 700)
+    pane:draw(c)
+    local px = c:pixels()
+    local x, y, w = pane:swatch_rect(5)
+    local o = ((y + w // 2) * 420 + x + w - 4) * 4
+    assert.same({ 200, 30, 30 }, { px:byte(o + 1, o + 3) })
+    local v = pane:values(1)
+    assert.same({ "diffuse", "140 110  80" }, { v[1][1], v[1][3] })
+    assert.same({ "ambient", " 40  30  20" }, { v[2][1], v[2][3] })
+    assert.same({ "shininess", "20" }, { v[5][1], v[5][3] })
+    c:save(dir .. "/pane-mat.png")
+  end)
+
   it("fits a small canvas and a short palette", function()
     local pane = P.new(plant(nil))               -- lsys.view's default palette: 0 .. 12
     assert.equal(13, pane:count())
