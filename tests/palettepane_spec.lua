@@ -350,6 +350,12 @@ describe("the palette pane's save", function()
     assert.same({ 1, 0, 0 }, p[3])
     assert.same({ 0, 128 / 255, 1 }, p[254])
     assert.same({ 1, 0, 0 }, p[255])
+    local big = {}
+    for i = 0, 299 do big[i] = { i % 2, 0, 0 } end
+    local wide = P.new { palette = big, dir = dir }
+    assert.same({ dir .. "/palette.map" }, wide:save())
+    assert.truthy(wide:status():find("entries 256 to 299 left out", 1, true))
+    assert.equal(768, #H.read(dir .. "/palette.map"))
     local mats = lsys.lsystem { axiom = "F", view = { dir = dir,
       palette = { { diffuse = { 1, 1, 0 }, shininess = 12 } } } }
     assert.same({ dir .. "/palette.mat" }, P.new(mats):save())

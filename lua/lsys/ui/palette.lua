@@ -534,6 +534,9 @@ function Pane:save ()
   local bytes
   if fmt == "map" then
     bytes = M.colormap_bytes(self.entries, self.last)
+    if self.last > 255 then
+      note = note .. format("; entries 256 to %d left out (a colour map has 256)", self.last)
+    end
   else
     local indices = {}
     for i = 0, self.last do
