@@ -397,6 +397,13 @@ function Scene:area() end
 ---@return integer color
 function Scene:turtle(i) end
 
+--- How much each colour index draws: `{[c] = n}`, the number of triangles and line
+--- segments in colour index `c` (the turtle's index, 0 to 65535, before the palette's length
+--- wraps it), for the indices the scene uses. A population's prototypes count once each.
+--- The palette pane (lsys.ui.palette) marks the colours a plant uses with it.
+---@return table<integer, integer>
+function Scene:colors() end
+
 ---@param k integer 1-based record index.
 ---@return lsys.Record?
 function Scene:record(k) end

@@ -248,3 +248,18 @@ void lsys_mesh_material_color (lsys_material *mt, double r, double g, double b) 
   }
   mt->diffuse[3] = mt->ambient[3] = mt->specular[3] = mt->emission[3] = 1.0f;
 }
+
+size_t lsys_mesh_color_counts (const lsys_mesh *m, uint32_t *count) {
+  size_t i, used = 0;
+  memset(count, 0, LSYS_MESH_NCOLORS * sizeof *count);
+  for (i = 0; i < m->nt; i++) {
+    uint32_t *c = &count[m->col[m->tri[3 * i]]];
+    if (*c < UINT32_MAX) (*c)++;
+  }
+  for (i = 0; i < m->nl; i++) {
+    uint32_t *c = &count[m->lcol[i]];
+    if (*c < UINT32_MAX) (*c)++;
+  }
+  for (i = 0; i < LSYS_MESH_NCOLORS; i++) used += count[i] > 0;
+  return used;
+}

@@ -100,6 +100,16 @@ int lsys_mesh_bounds (const lsys_mesh *m, double lo[3], double hi[3]);
 ** beyond the mesh are ignored). Returns the number of edges. */
 size_t lsys_mesh_edges (const lsys_mesh *m, size_t t0, size_t nt, uint32_t *edges);
 
+/* Colour indices are 16 bits: LSYS_MESH_NCOLORS of them. */
+#define LSYS_MESH_NCOLORS 65536
+
+/* How much of 'm' each colour index draws: count[c] (LSYS_MESH_NCOLORS
+** entries, all written) becomes the number of triangles (a triangle has
+** its first vertex's colour) and line segments of colour c, stopping at
+** UINT32_MAX. The indices are the turtle's, before the palette wraps them.
+** Returns how many indices are used (count[c] > 0). */
+size_t lsys_mesh_color_counts (const lsys_mesh *m, uint32_t *count);
+
 /* ---- Tubes (mesh_tube.c): the turtle's cylinders and exported lines ---- */
 
 /* The cos/sin table of a ring of 'n' sides: cs[2k], cs[2k + 1] for k in

@@ -769,6 +769,17 @@ static int scene_turtle (lua_State *L) {
   return 6;
 }
 
+/* scene:colors() -> {[c] = n}: triangles and line segments drawn in colour index c */
+static int scene_colors (lua_State *L) {
+  uint32_t *n = (uint32_t *)lua_newuserdatauv(L, LSYS_MESH_NCOLORS * sizeof *n, 0);
+  size_t c;
+  lsys_mesh_color_counts(&lsysL_checkscene(L, 1)->sc.mesh, n);    /* checked after allocating */
+  lua_newtable(L);
+  for (c = 0; c < LSYS_MESH_NCOLORS; c++)
+    if (n[c] > 0) { lua_pushinteger(L, (lua_Integer)n[c]); lua_rawseti(L, -2, (lua_Integer)c); }
+  return 1;
+}
+
 /* The sides of exported tubes by default: the view's contour_sides when
 ** the scene was interpreted with one (its turtle options, a user value),
 ** else the turtle's default. */
@@ -940,6 +951,7 @@ static const luaL_Reg scene_methods[] = {
   {"edges", scene_edges},
   {"vertices", scene_vertices},
   {"turtle", scene_turtle},
+  {"colors", scene_colors},
   {"save", scene_save},
   {NULL, NULL}
 };

@@ -140,6 +140,26 @@ static void test_buffers (void) {
   assert(mt.specular[0] == 0 && mt.emission[0] == 0 && mt.shininess == 0);
 }
 
+/* ---- colour counts ---- */
+
+static void test_color_counts (void) {
+  static uint32_t count[LSYS_MESH_NCOLORS];
+  lsys_mesh m;
+  lsys_material pal[2];
+  double a[3] = { 0, 0, 0 }, b[3] = { 1, 0, 0 };
+  lsys_mesh_init(&m);
+  count[5] = 9;                                 /* every entry is written */
+  assert(lsys_mesh_color_counts(&m, count) == 0 && count[5] == 0);
+  lsys_mesh_free(&m);
+  testmesh(&m, pal);                            /* triangles 0, 0, 1, 3; segments 0, 1, 2 */
+  assert(lsys_mesh_color_counts(&m, count) == 4);
+  assert(count[0] == 3 && count[1] == 2 && count[2] == 1 && count[3] == 1 && count[4] == 0);
+  addtri(&m, 0, 0, 0, 65535, 0);                /* the last index; not wrapped */
+  assert(lsys_mesh_line(&m, a, b, 1, 1, 65535) == LSYS_OK);
+  assert(lsys_mesh_color_counts(&m, count) == 5 && count[65535] == 2);
+  lsys_mesh_free(&m);
+}
+
 /* ---- OBJ ---- */
 
 static void test_obj (void) {
@@ -736,6 +756,7 @@ int main (int argc, char **argv) {
     return 0;
   }
   test_buffers();
+  test_color_counts();
   test_obj();
   test_numbers();
   test_ply();
