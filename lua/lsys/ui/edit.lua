@@ -36,23 +36,40 @@ M.BOTTOM = 0.965           -- where the panes end: the status line is below
 M.PANE_W, M.PANE_H = 432, 736
 M.TABS_H = 36
 
+M.MAIN_H = 400            -- a pane with values of its own: its height over them
+M.ITEMS_H = M.PANE_H - M.MAIN_H
+
 --- The layout (lsys.core's v:layout) of the editing window: the scene, the tabs (pane 1),
--- the active pane (pane 2).
-function M.layout ()
-  return {
+-- the active pane (pane 2); with `split` (a pane that has values of its own, `items`),
+-- the pane over a form of its values (pane 3).
+function M.layout (split)
+  local lay = {
     scene = { 0, 0, M.SPLIT, 1 },
     panes = {
       { M.SPLIT, 0, 1, M.TABS, bg = { 0.9, 0.9, 0.93 } },
       { M.SPLIT, M.TABS, 1, M.BOTTOM, bg = { 0.97, 0.97, 0.98 } },
     },
   }
+  if split then
+    local y = M.TABS + (M.BOTTOM - M.TABS) * M.MAIN_H / M.PANE_H
+    lay.panes[2][4] = y
+    lay.panes[3] = { M.SPLIT, y, 1, M.BOTTOM, bg = { 0.97, 0.97, 0.98 } }
+  end
+  return lay
 end
 
---- Where the pixel (x, y) of pane k's image (1 tabs, 2 the pane) is in a winw x winh
--- window: what the Xvfb tests aim with (the arithmetic of csrc/gl/vpanes.c).
-function M.to_window (k, x, y, winw, winh)
-  local r = M.layout().panes[k]
-  local w, h = M.PANE_W, k == 1 and M.TABS_H or M.PANE_H
+--- The size of pane k's image (1 tabs, 2 the pane, 3 its values) in the layout.
+function M.size (k, split)
+  if k == 1 then return M.PANE_W, M.TABS_H end
+  if not split then return M.PANE_W, M.PANE_H end
+  return M.PANE_W, k == 2 and M.MAIN_H or M.ITEMS_H
+end
+
+--- Where the pixel (x, y) of pane k's image is in a winw x winh window (`split` as for
+-- `layout`): what the Xvfb tests aim with (the arithmetic of csrc/gl/vpanes.c).
+function M.to_window (k, x, y, winw, winh, split)
+  local r = M.layout(split).panes[k]
+  local w, h = M.size(k, split)
   local function round (v) return floor(v + 0.5) end
   local px, py = round(r[1] * winw), round(r[2] * winh)
   local pw, ph = round(r[3] * winw) - px, round(r[4] * winh) - py
@@ -89,6 +106,8 @@ function M.session (v, subject, opts)
     function () end, active = 1, dirty = false, building = false, stats = nil,
     error = nil, superseded = 0, builds = 0, undo = {}, title = subject.title or "edit",
     tabsc = core.canvas(M.PANE_W, M.TABS_H), panec = core.canvas(M.PANE_W, M.PANE_H),
+    mainc = core.canvas(M.PANE_W, M.MAIN_H), itemc = core.canvas(M.PANE_W, M.ITEMS_H),
+    itemform = nil, split = false,
   }, Session)
   self.form = form.new(subject.items or {}, {
     title = subject.form_title or "parameters", name = subject.form_name,
@@ -98,8 +117,7 @@ function M.session (v, subject, opts)
   self.tabs = { self.form }
   for _, p in ipairs(subject.panes or {}) do self.tabs[#self.tabs + 1] = p end
   if subject.attach then subject.attach(self) end
-  v:layout(M.layout())
-  self:draw()
+  self:arrange()
   return self
 end
 
@@ -144,8 +162,9 @@ function Session:status ()
 end
 
 function Session:help ()
-  local p = self:pane()
-  return M.HELP .. (p.help and "\n" .. p.help or "")
+  local h = self:pane().help           -- a string, or a list of lines
+  if type(h) == "table" then h = table.concat(h, "\n") end
+  return M.HELP .. (h and "\n" .. h or "")
 end
 
 local function draw_tabs (self, c)
@@ -165,18 +184,46 @@ local function draw_tabs (self, c)
   end
 end
 
---- Draws the tabs, the active pane, and the status and help texts.
-function Session:draw ()
-  draw_tabs(self, self.tabsc)
-  self.v:image(1, self.tabsc:pixels(), M.PANE_W, M.TABS_H)
-  local c = self.panec
-  local p = self:pane()
+-- Draws pane p into canvas c, or says why it failed.
+local function draw_pane (p, c)
   local ok, err = pcall(p.draw, p, c)
   if not ok then
     c:clear({ 1, 1, 1, 1 })
     c:text(12, 40, "the pane failed: " .. first_line(err):sub(1, 30), 2, { 0.6, 0, 0, 1 })
   end
-  self.v:image(2, c:pixels(), M.PANE_W, M.PANE_H)
+end
+
+--- Lays the window out for the active pane (over a form of its values when it has any)
+-- and draws it.
+function Session:arrange ()
+  local p = self:pane()
+  local split = p ~= self.form and type(p.items) == "function"
+  if split then
+    self.itemform = form.new(function () return p:items() end,
+      { title = (p.name or "pane") .. ": values", name = "values" })
+  else
+    self.itemform = nil
+  end
+  self.split = split
+  self.v:layout(M.layout(split))
+  self:draw()
+end
+
+--- Draws the tabs, the active pane (and its values), and the status and help texts.
+function Session:draw ()
+  draw_tabs(self, self.tabsc)
+  self.v:image(1, self.tabsc:pixels(), M.PANE_W, M.TABS_H)
+  local p = self:pane()
+  if self.split then
+    draw_pane(p, self.mainc)
+    self.v:image(2, self.mainc:pixels(), M.PANE_W, M.MAIN_H)
+    self.itemform:refresh()
+    draw_pane(self.itemform, self.itemc)
+    self.v:image(3, self.itemc:pixels(), M.PANE_W, M.ITEMS_H)
+  else
+    draw_pane(p, self.panec)
+    self.v:image(2, self.panec:pixels(), M.PANE_W, M.PANE_H)
+  end
   self.v:text(self:status(), self:help())
 end
 
@@ -192,6 +239,7 @@ function Session:select (k)
   self.active = k
   local p = self:pane()
   if p.refresh then p:refresh() end
+  self:arrange()
   return true
 end
 
@@ -254,10 +302,12 @@ function Session:event (ev)
       local p = self:pane()
       if p == self.form and ev.phase == "down" then self:remember() end
       return p:pointer(ev.phase, ev.x, ev.y, ev.button, ev.shift, ev.ctrl) and true or false
+    elseif ev.pane == 3 and self.itemform then
+      return self.itemform:pointer(ev.phase, ev.x, ev.y, ev.button, ev.shift, ev.ctrl)
     end
-  elseif t == "scroll" and ev.pane == 2 then
-    local p = self:pane()
-    return p.scroll and p:scroll(ev.dy, ev.x, ev.y) and true or false
+  elseif t == "scroll" and (ev.pane == 2 or ev.pane == 3) then
+    local p = ev.pane == 3 and self.itemform or self:pane()
+    return p and p.scroll and p:scroll(ev.dy, ev.x, ev.y) and true or false
   elseif t == "key" then
     local k = ev.key
     if ev.ctrl and k == "s" then self:save() return true end
@@ -300,6 +350,12 @@ function Session:idle ()
       self.error = nil
       self.stats = { triangles = r.ntriangles, modules = r.lstring and #r.lstring or nil,
                      ms = ms }
+      for _, p in ipairs(self.tabs) do      -- the panes that look at the plant, before the
+        if p.set_scene then                  -- window takes its mesh
+          p:set_scene(r)
+          if p.used then p:used() end
+        end
+      end
       if self.post then self.post(r) end
       if self.report then self.report(self) end
       posted = true

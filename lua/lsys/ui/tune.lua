@@ -15,6 +15,7 @@
 local core = require "lsys.core"
 local panel = require "lsys.cpfg.panel"
 local cpfg = require "lsys.cpfg"
+local palette = require "lsys.ui.palette"
 
 local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
       type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
@@ -176,6 +177,16 @@ function M.save_params (m, path)
   return side
 end
 
+--- The panes beside the form for model m (lsys.ui.edit's subjects): the palette, and
+-- those the model's kind has. `changed()` is the session's. A pane that cannot be made
+-- for this model (a palette file that cannot be read) is left out; `warn(msg)` hears why.
+function M.panes (m, changed, warn)
+  local list = {}
+  local ok, p = pcall(palette.new, m, { on_change = function () changed() end })
+  if ok then list[#list + 1] = p elseif warn then warn(tostring(p)) end
+  return list
+end
+
 -- Sessions by model: the callback m:on_param registers once reaches the current one.
 local live = setmetatable({}, { __mode = "k" })
 
@@ -192,6 +203,7 @@ function M.params (m, opts)
   end
   subject.save = function () return M.save_params(m, opts.file) end
   subject.model = m
+  subject.panes = M.panes(m, function () local s = live[m]; if s then s:changed() end end)
   subject.attach = function (session)
     if live[m] == nil and m.params ~= nil and #m.params > 0 then
       m:on_param(function () local s = live[m]; if s then s:changed() end end)
@@ -260,9 +272,9 @@ local function panel_items (P, changed)
   return items
 end
 
---- The subject of a cpfg model whose vlab panels drive its #defines. `files` = { l =, v =,
--- palette = (a .map or .mat path or nil) }, `panels` a list of panel tables (lsys.cpfg.
--- panel.read), opts: title, load (the lsys.cpfg.load options besides `edits`).
+--- The subject of a cpfg model whose vlab panels drive its #defines. `files` = { l =, v = },
+-- `panels` a list of panel tables (lsys.cpfg.panel.read), opts: title, load (the
+-- lsys.cpfg.load options besides `edits`), model (the model as loaded: its palette pane).
 function M.panels (files, panels, opts)
   opts = opts or {}
   local subject = { title = opts.title, form_name = "panels",
@@ -281,12 +293,18 @@ function M.panels (files, panels, opts)
     end
     return d
   end
-  subject.model = nil
+  subject.model = opts.model
+  local pal
+  if opts.model then
+    subject.panes = M.panes(opts.model, changed)
+    for _, p in ipairs(subject.panes) do if p.name == "palette" then pal = p end end
+  end
   subject.load = function ()
     local o = {}
     for k, v in pairs(opts.load or {}) do o[k] = v end
     o.edits = edits()
     local m = cpfg.load(files.l, files.v, o)
+    if pal and pal.dirty then m.view.palette = pal.view.palette end   -- edited colours
     subject.model = m
     return m
   end

@@ -131,10 +131,8 @@ local function edit_subject (s, model, editing, title)
   if pal and not lo.colormap and not lo.materials then     -- (relative to the .l file)
     if pal:match("%.mat$") then lo.materials = pal else lo.colormap = pal end
   end
-  local subject = require("lsys.ui.tune").panels({ l = l, v = v }, panels,
-    { title = title, load = lo })
-  subject.model = model
-  return subject
+  return require("lsys.ui.tune").panels({ l = l, v = v }, panels,
+    { title = title, load = lo, model = model })
 end
 
 local function run (args)
