@@ -632,7 +632,7 @@ end
 -- next `poll` gives the frame shown its colours, and `sync` waits for them.)
 function M.key (name)
   if S.viewer == nil then error("lsys.viewer.key: no window open", 2) end
-  S.viewer:key(name)
+  return S.viewer:key(name)
 end
 
 --- Waits until the window has drawn what was last shown, and the light colours this
