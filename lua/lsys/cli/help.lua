@@ -205,7 +205,7 @@ Options: as for `lsys render`; -o is required.
 
 HELP.view = [=[
 usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--show K] [--rate R] [--no-status]
-                 [--last | --history SIZE]
+                 [--last | --history SIZE] [--edit | --no-edit]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
                  [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
                  [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
@@ -226,6 +226,12 @@ R resets the view, F fits, W toggles wireframe, L colours the leaves by the ligh
 receive (and back), S saves a screenshot (lsys-NNN.png) -- while animating, every step
 through the window's camera into MODEL-frames/ --, H shows this list.
 
+A model with tunable parameters (the model option `params`), or a cpfg model with vlab
+control panels (panel.l beside it, or named by its vlab object's specifications), opens
+with its sliders beside the plant, and a tab for its palette: moving one makes the plant
+again at once (its last step), Ctrl+S saves the values into the model file (a vlab model:
+its #defines, as vlab's awkped does). See docs/viewer.md, "Editing a plant".
+
 Options:
   --size WxH           window size (default 800x800)
   --show K             the step shown first (default: the last); --step K, its old
@@ -237,6 +243,8 @@ Options:
                        it the window keeps every 2nd, 4th, ... step and the last
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
+  --edit               the editing panes for any model (its last step); --no-edit: none,
+                       every step as for a model without params
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
   --mat FILE, --define NAME=VALUE, --environment FILE.e|none, --threads N, --max-memory SIZE,
   --max-modules N   as for `lsys render`
