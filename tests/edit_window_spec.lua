@@ -217,5 +217,11 @@ describe("#gl editing in the window under Xvfb", function ()
     assert.truthy(out:find("first 57\n", 1, true), out)     -- 7 F, 14 +-, 28 brackets, 8 A
     assert.truthy(out:find("then 249 2\n", 1, true), out)
     assert.truthy(out:find("param k = 5", 1, true), out)
+    -- the same typed at the REPL: it builds the plant after the line that set the value
+    out = H.sh(("cd %s && printf '%%s\\n' 'm = dofile(\"tree.lua\")' "
+                .. "'s = lsys.show(m, { width = 900, height = 600 })' 'm.params.k = 6' "
+                .. "'print(s.stats.modules .. \" \" .. s.builds)' 'lsys.viewer.close()' "
+                .. "| %s%s 2>&1"):format(dir, D.env, bin()))
+    assert.truthy(out:find("\n505 2\n", 1, true) or out:find("^505 2\n"), out)
   end)
 end)

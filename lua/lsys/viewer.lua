@@ -564,9 +564,12 @@ function M.poll (timeout)
   return v:state().open
 end
 
---- The number of window events waiting for `poll` (0 without a window).
+--- The number of window events waiting for `poll` (0 without a window), and 1 more while
+-- the editing panes' plant is to be built again (a value set from a script or the REPL):
+-- `poll` builds it.
 function M.pending ()
-  return S.viewer ~= nil and S.viewer:pending() or 0
+  if S.viewer == nil then return 0 end
+  return S.viewer:pending() + (S.editor ~= nil and S.editor.dirty and 1 or 0)
 end
 
 --- Runs `poll` until the window is closed (Esc, Q or its close button).
