@@ -270,6 +270,17 @@ describe("lsys.ui.tune", function ()
     assert.is_false(ok)
     assert.matches("made.params: the model has no parameter 'zz'", err, 1, true)
     assert.is_nil(tune.read_sidecar(d .. "/none.params"))
+    -- strings as choices may be: quotes, backslashes, newlines and "--" kept
+    write(side, table.concat({ "a = " .. tune.side_literal('say "hi" -- \\ \n'),
+                               "b = \"x\" -- a note", "c = 1e999", "" }, "\n"))
+    ok, err = pcall(tune.read_sidecar, side)
+    assert.is_false(ok)
+    assert.matches("made.params:3: a line 'NAME = value' expected", err, 1, true)
+    write(side, table.concat({ "a = " .. tune.side_literal('say "hi" -- \\ \n'),
+                               "b = \"x\" -- a note", "" }, "\n"))
+    assert.same({ a = 'say "hi" -- \\ \n', b = "x" }, tune.read_sidecar(side))
+    write(side, "")
+    assert.same({}, tune.read_sidecar(side))
   end)
 
   it("writes literals that read back equal", function ()

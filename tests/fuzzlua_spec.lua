@@ -51,6 +51,12 @@ describe("the Lua fuzzer's corpora", function ()
     assert.is_true(counts.ok > 0 and counts.error > 0)
   end)
 
+  it("read or fail naming the file and line as parameter sidecar files", function ()
+    if not have_core then return pending("lsys.core is not built") end
+    local counts = replay("sidecar")
+    assert.is_true(counts.ok > 0 and counts.error > 0)
+  end)
+
   it("read or fail naming the file and line as vlab's control panel files", function ()
     local counts = replay("panel")
     assert.is_true(counts.ok > 0 and counts.error > 0)

@@ -24,6 +24,7 @@ local format = string.format
 local _ENV = nil
 
 local M = {}
+local unquote
 
 -- {=========================================================================================
 -- A Lua model's params
@@ -108,23 +109,74 @@ function M.sidecar (path)
   return (path:gsub("%.lua$", "")) .. ".params"
 end
 
+-- A string as a sidecar line holds it: in double quotes, with \\, \" and \n escaped.
+local function quote (v)
+  return '"' .. v:gsub('[\\"\n]', { ["\\"] = "\\\\", ['"'] = '\\"', ["\n"] = "\\n" }) .. '"'
+end
+
+-- The string of a quoted sidecar value, or nil when it is not one quote writes.
+function unquote (v)
+  local body = v:sub(2, -2)
+  local out, i = {}, 1
+  while i <= #body do
+    local c = body:sub(i, i)
+    if c == '"' then return nil end
+    if c == "\\" then
+      local e = body:sub(i + 1, i + 1)
+      c = e == "\\" and "\\" or e == '"' and '"' or e == "n" and "\n" or nil
+      if c == nil then return nil end
+      i = i + 1
+    end
+    out[#out + 1] = c
+    i = i + 1
+  end
+  return table.concat(out)
+end
+
+-- The value's text of a line's `NAME = ...` part: a quoted string up to its closing quote,
+-- else the words before a `--` comment; nil when something follows a closing quote.
+local function value_text (v)
+  if v:sub(1, 1) ~= '"' then return (v:gsub("%s*%-%-.*$", "")) end
+  local i = 2
+  while i <= #v do
+    local c = v:sub(i, i)
+    if c == "\\" then i = i + 1
+    elseif c == '"' then
+      local rest = v:sub(i + 1)
+      if rest:match("^%s*$") or rest:match("^%s*%-%-") then return v:sub(1, i) end
+      return nil
+    end
+    i = i + 1
+  end
+  return nil
+end
+
+--- A value as a sidecar line writes it (a string quoted as `read_sidecar` reads it).
+function M.side_literal (v)
+  if type(v) == "string" then return quote(v) end
+  return M.literal(v)
+end
+
 --- Reads a sidecar's `NAME = value` lines: { NAME = value } (numbers, true, false, quoted
 -- strings); raises "file:line: ..." for anything else. Nil when there is no such file.
 function M.read_sidecar (path)
   local f = io.open(path, "rb")
   if f == nil then return nil end
-  local text = f:read(64 * 1024)
+  local text = f:read(64 * 1024 + 1) or ""
   f:close()
+  if #text > 64 * 1024 then error(format("%s: over 64 kB: not a sidecar file", path), 0) end
   local t, n = {}, 0
   for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     n = n + 1
-    local l = line:gsub("%-%-.*$", ""):match("^%s*(.-)%s*$")
-    if l ~= "" then
-      local k, v = l:match("^([%a_][%w_]*)%s*=%s*(.-)$")
+    local k, v = line:match("^%s*([%a_][%w_]*)%s*=%s*(.-)%s*$")
+    if v then v = value_text(v) end
+    if k ~= nil or not line:match("^%s*%-%-") and line:match("%S") then
       local x
       if v == "true" then x = true elseif v == "false" then x = false
-      elseif v and v:match('^"[^"\\]*"$') then x = v:sub(2, -2)
-      elseif v then x = math.tointeger(v) or (v:match("^[-+%d.eE]+$") and tonumber(v))
+      elseif v and v:match('^".*"$') then x = unquote(v)
+      elseif v then
+        x = math.tointeger(v) or (v:match("^[-+%d.eE]+$") and tonumber(v))
+        if x and not (x == x and x - x == 0) then x = nil end    -- 1e999: not a value
       end
       if k == nil or x == nil then
         error(format("%s:%d: a line 'NAME = value' expected (a number, true, false or a "
@@ -172,7 +224,7 @@ function M.save_params (m, path)
   local names = {}
   for k in pairs(values) do names[#names + 1] = k end
   table.sort(names)
-  for _, k in ipairs(names) do lines[#lines + 1] = k .. " = " .. M.literal(values[k]) end
+  for _, k in ipairs(names) do lines[#lines + 1] = k .. " = " .. M.side_literal(values[k]) end
   core.write_file(side, table.concat(lines, "\n") .. "\n")
   return side
 end
