@@ -7,6 +7,8 @@
 **       the same from a string; 'name' (default "surface") starts messages
 **   s:info() -> {patches, contact, heading, up, end, lo, hi, size,
 **                precision = {s, t}, names = {...}}
+**   s:patch(i) -> { {x, y, z}, ... }          the 16 control points of patch i
+**       (from 1), row by row as patch_eval takes them
 **   core.patch_eval(basis, ctrl, s, t) -> x, y, z
 **       basis 1 | 2 | 3 or "bezier" | "bspline" | "cardinal"; ctrl a list of
 **       16 {x, y, z}, row by row (row r, column c at 4 r + c + 1)
@@ -121,6 +123,28 @@ static int surface_info (lua_State *L) {
   return 1;
 }
 
+/* s:patch(i): copied first (a finalizer run by an allocation may close the
+** surface) */
+static int surface_patch (lua_State *L) {
+  lua_Integer i = luaL_checkinteger(L, 2);
+  size_t n = lsysL_checksurface(L, 1)->npatch;
+  lsys_patch p;
+  int k, j;
+  luaL_argcheck(L, i >= 1 && (size_t)i <= n, 2,
+                lua_pushfstring(L, "patch index must be from 1 to %I", (lua_Integer)n));
+  p = lsysL_checksurface(L, 1)->patch[i - 1];
+  lua_createtable(L, 16, 0);
+  for (k = 0; k < 16; k++) {
+    lua_createtable(L, 3, 0);
+    for (j = 0; j < 3; j++) {
+      lua_pushnumber(L, (lua_Number)p.ctrl[3 * k + j]);
+      lua_rawseti(L, -2, j + 1);
+    }
+    lua_rawseti(L, -2, k + 1);
+  }
+  return 1;
+}
+
 static int surface_tostring (lua_State *L) {
   const lsys_lsurface *u = (const lsys_lsurface *)luaL_checkudata(L, 1, SURFACE_T);
   const lsys_surface *s = &u->s;
@@ -174,6 +198,7 @@ static int l_patch_eval (lua_State *L) {
 
 static const luaL_Reg surface_methods[] = {
   {"info", surface_info},
+  {"patch", surface_patch},
   {NULL, NULL}
 };
 

@@ -485,13 +485,13 @@ end
 -- The positional functions of the model (option `functions`, else its view's): the list
 -- that func(ID, x) indexes, the table by name of func("name", x), and `func` itself.
 function Model:_functions (spec, dir, fail)
-  local list, byname = {}, {}
+  local list, byname, files = {}, {}, {}
   if spec ~= nil then
-    local ok, l, b = pcall(func.collect, spec, dir, "option 'functions'")
+    local ok, l, b, fl = pcall(func.collect, spec, dir, "option 'functions'")
     if not ok then fail(l) end
-    list, byname = l, b
+    list, byname, files = l, b, fl
   end
-  self._funclist, self._funcnames = list, byname
+  self._funclist, self._funcnames, self._funcfiles = list, byname, files
   self._func = function (id, x)
     local f = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
     if not f then
@@ -510,6 +510,49 @@ function Model:func (id, x)
     error(format("func: x must be a number, got %s", type(x)), 2)
   end
   return self._func(id, x)
+end
+
+--- Replaces the model's positional function `id` (its position from 1, or its name) by
+-- the lsys.Func `f`: every place the old function held (func(ID, x) and func("name", x)
+-- alike) takes `f` from the next derivation step on. An edited function keeps the file
+-- it was read from (Model:functions). Raises for an unknown id, or inside a step.
+function Model:set_func (id, f)
+  if not func.isfunc(f) then
+    error(format("set_func: an lsys.Func expected, got %s", type(f)), 2)
+  end
+  local list, byname = self._funclist, self._funcnames
+  local old = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
+  if not old then
+    error(format("set_func: unknown function %s (functions: %s)",
+                 type(id) == "string" and "'" .. id .. "'" or tostring(id),
+                 func.names(byname)), 2)
+  end
+  self:_idle("set_func")
+  for i, g in ipairs(list) do if g == old then list[i] = f end end
+  for k, g in pairs(byname) do if g == old then byname[k] = f end end
+  if self._funcfiles[old] and self._funcfiles[f] == nil then
+    self._funcfiles[f] = self._funcfiles[old]
+  end
+end
+
+--- The model's positional functions: a list of { id =, name =, func = lsys.Func,
+-- file = (the path it was read from, or nil) }, first the listed ones by position (id
+-- 1, 2, ...), then those given only by name (id the name, sorted).
+function Model:functions ()
+  local out, seen, keys = {}, {}, {}
+  for i, f in ipairs(self._funclist) do
+    out[#out + 1] = { id = i, name = f:name(), func = f, file = self._funcfiles[f] }
+    seen[f] = true
+  end
+  for k, f in pairs(self._funcnames) do
+    if not seen[f] then keys[#keys + 1] = k end
+  end
+  table.sort(keys)
+  for _, k in ipairs(keys) do
+    local f = self._funcnames[k]
+    out[#out + 1] = { id = k, name = k, func = f, file = self._funcfiles[f] }
+  end
+  return out
 end
 
 -- Raises when a rule calls func(ID, x) or func("name", x) with a function the model
