@@ -153,6 +153,42 @@ function M.collect (spec, dir, what)
   return list, byname, files
 end
 
+--- Replaces the function `id` (a position in `list` from 1, or a name in `byname`) of a
+-- function table (as `collect` returns) by the Func `f`: every entry of `list` and
+-- `byname` that held the old function takes `f`, which keeps the old one's file. Returns
+-- nil, or a message for a bad `f` or an unknown id.
+function M.replace (list, byname, files, id, f)
+  if not isfunc(f) then return format("an lsys.Func expected, got %s", type(f)) end
+  local old = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
+  if not old then
+    return format("unknown function %s (functions: %s)",
+                  type(id) == "string" and "'" .. id .. "'" or tostring(id), M.names(byname))
+  end
+  for i, g in ipairs(list) do if g == old then list[i] = f end end
+  for k, g in pairs(byname) do if g == old then byname[k] = f end end
+  if files[f] == nil then files[f] = files[old] end
+  return nil
+end
+
+--- The functions of a function table (as `collect` returns) for editors: a list of
+-- { id =, name =, func =, file = (the path read, or nil) }, first the listed ones by
+-- position (id 1, 2, ...), then those given only by name (id the name, sorted).
+function M.entries (list, byname, files)
+  local out, seen, keys = {}, {}, {}
+  for i, f in ipairs(list) do
+    out[#out + 1] = { id = i, name = f:name(), func = f, file = files[f] }
+    seen[f] = true
+  end
+  for k, f in pairs(byname) do
+    if not seen[f] then keys[#keys + 1] = k end
+  end
+  table.sort(keys)
+  for _, k in ipairs(keys) do
+    out[#out + 1] = { id = k, name = k, func = byname[k], file = files[byname[k]] }
+  end
+  return out
+end
+
 --- Writes the list of Funcs `fs` as a cpfg function set (.fset: "funcgalleryver 1 1",
 -- "items: N", then each function as `save` writes it), atomically.
 function M.save_set (fs, path)

@@ -512,47 +512,17 @@ function Model:func (id, x)
   return self._func(id, x)
 end
 
---- Replaces the model's positional function `id` (its position from 1, or its name) by
--- the lsys.Func `f`: every place the old function held (func(ID, x) and func("name", x)
--- alike) takes `f` from the next derivation step on. An edited function keeps the file
--- it was read from (Model:functions). Raises for an unknown id, or inside a step.
+--- Replaces the positional function `id` (position or name) by the lsys.Func `f`
+-- wherever the old one was, from the next step on (lsys.func.replace).
 function Model:set_func (id, f)
-  if not func.isfunc(f) then
-    error(format("set_func: an lsys.Func expected, got %s", type(f)), 2)
-  end
-  local list, byname = self._funclist, self._funcnames
-  local old = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
-  if not old then
-    error(format("set_func: unknown function %s (functions: %s)",
-                 type(id) == "string" and "'" .. id .. "'" or tostring(id),
-                 func.names(byname)), 2)
-  end
   self:_idle("set_func")
-  for i, g in ipairs(list) do if g == old then list[i] = f end end
-  for k, g in pairs(byname) do if g == old then byname[k] = f end end
-  if self._funcfiles[old] and self._funcfiles[f] == nil then
-    self._funcfiles[f] = self._funcfiles[old]
-  end
+  local err = func.replace(self._funclist, self._funcnames, self._funcfiles, id, f)
+  if err then error("set_func: " .. err, 2) end
 end
 
---- The model's positional functions: a list of { id =, name =, func = lsys.Func,
--- file = (the path it was read from, or nil) }, first the listed ones by position (id
--- 1, 2, ...), then those given only by name (id the name, sorted).
+--- The model's positional functions, { id =, name =, func =, file = } (lsys.func.entries).
 function Model:functions ()
-  local out, seen, keys = {}, {}, {}
-  for i, f in ipairs(self._funclist) do
-    out[#out + 1] = { id = i, name = f:name(), func = f, file = self._funcfiles[f] }
-    seen[f] = true
-  end
-  for k, f in pairs(self._funcnames) do
-    if not seen[f] then keys[#keys + 1] = k end
-  end
-  table.sort(keys)
-  for _, k in ipairs(keys) do
-    local f = self._funcnames[k]
-    out[#out + 1] = { id = k, name = k, func = f, file = self._funcfiles[f] }
-  end
-  return out
+  return func.entries(self._funclist, self._funcnames, self._funcfiles)
 end
 
 -- Raises when a rule calls func(ID, x) or func("name", x) with a function the model

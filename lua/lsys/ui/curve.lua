@@ -285,11 +285,16 @@ local function bounds (pts, a, b, box)
   return box
 end
 
+-- Widens box by frac of its size on each side; a flat extent becomes c +- max(|c|, 1) / 2.
 local function padded (box, frac)
   for k = 1, 3, 2 do
     local span = box[k + 1] - box[k]
-    if span < 1e-9 then span = max(abs(box[k]), 1) end
-    box[k], box[k + 1] = box[k] - frac * span, box[k + 1] + frac * span
+    if span < 1e-9 then
+      local mid, half = (box[k] + box[k + 1]) / 2, max(abs(box[k]), 1) / 2
+      box[k], box[k + 1] = mid - half, mid + half
+    else
+      box[k], box[k + 1] = box[k] - frac * span, box[k + 1] + frac * span
+    end
   end
   return box
 end
@@ -753,8 +758,15 @@ function Pane:draw_tabs (c)
     if used > w then break end
     first = k
   end
+  if first > 1 then                          -- tabs hidden on the left
+    c:text(x, TAB_H / 2 - 7, "<", 2, GREY)
+    x = x + 16
+  end
   for k = first, n do
-    if x + widths[k] > w then break end
+    if x + widths[k] > w - (k < n and 16 or 0) then
+      c:text(w - 14, TAB_H / 2 - 7, ">", 2, GREY)  -- and on the right
+      break
+    end
     local on = k == self.cur
     c:rect(x, 3, widths[k], TAB_H - 6, on and { 0.25, 0.25, 0.3, 1 } or WHITE, true)
     c:rect(x, 3, widths[k], TAB_H - 6, GREY)
@@ -766,6 +778,13 @@ function Pane:draw_tabs (c)
 end
 
 local function basename (p) return (p:match("[^/]*$")) end
+
+-- Text at 2x when it fits in the canvas from x, else at 1x.
+local function say (c, x, y, s, colour)
+  local w = c:size()
+  local scale = c:text_width(s, 2) <= w - x - 4 and 2 or 1
+  c:text(x, scale == 2 and y or y + 4, s, scale, colour)
+end
 
 --- Draws the pane into canvas `c` (any size from 240 x 240): the names of the curves, the
 -- current one with its control polygon and points (the selection in red), and the
@@ -780,7 +799,7 @@ function Pane:draw (c)
   local kind = e.kind == "func" and "function" or e.kind
   local head = (name:sub(1, #e.kind) == e.kind and name or kind .. " " .. name)
                .. (e.dirty and " *" or "")
-  c:text(8, top + 7, head, 2, BLACK)
+  say(c, 8, top + 7, head, BLACK)
   if e.file then
     local s = basename(e.file)
     local tw = c:text_width(s, 1)
@@ -834,17 +853,16 @@ function Pane:draw (c)
   local fy = self.h - FOOT_H + 6
   local p = sel and e.pts[sel]
   if p and e.kind == "surface" then
-    c:text(8, fy, format("patch %d point %d", (sel - 1) // 16 + 1, (sel - 1) % 16 + 1), 2,
-           BLACK)
-    c:text(8, fy + 22, format("x %.4g  y %.4g  z %.4g", p[1], p[2], p[3]), 2, BLACK)
+    say(c, 8, fy, format("patch %d point %d", (sel - 1) // 16 + 1, (sel - 1) % 16 + 1), BLACK)
+    say(c, 8, fy + 22, format("x %.4g  y %.4g  z %.4g", p[1], p[2], p[3]), BLACK)
   elseif p then
-    c:text(8, fy, format("point %d of %d", sel, #e.pts), 2, BLACK)
-    c:text(8, fy + 22, format("x %.4g  y %.4g", p[1], p[2]), 2, BLACK)
+    say(c, 8, fy, format("point %d of %d", sel, #e.pts), BLACK)
+    say(c, 8, fy + 22, format("x %.4g  y %.4g", p[1], p[2]), BLACK)
   else
-    c:text(8, fy, format("%d %s", e.kind == "surface" and #e.pts // 16 or #e.pts,
-                         e.kind == "surface" and "patches" or "points"), 2, BLACK)
-    c:text(8, fy + 22, self.msg or (e.kind == "surface" and "click a point: its x y z"
-      or "drag a point, click curve: add"), 2, GREY)
+    say(c, 8, fy, format("%d %s", e.kind == "surface" and #e.pts // 16 or #e.pts,
+                         e.kind == "surface" and "patches" or "points"), BLACK)
+    say(c, 8, fy + 22, self.msg or (e.kind == "surface" and "click a point: its x y z"
+      or "drag a point, click curve: add"), GREY)
   end
   return c
 end
