@@ -25,6 +25,7 @@ M.PICK_RADIUS = 10       -- pixels: how near a press must be to take a point or 
 M.SAMPLES = 200          -- points of a drawn curve
 M.WIDTH, M.HEIGHT = 420, 700   -- the canvas size assumed before the first draw
 M.MIN_POINTS = { func = 4, closed = 3, open = 4 }
+M.UNDO_LIMIT = 100       -- edits kept for Ctrl+Z
 
 local TAB_H, HEAD_H, FOOT_H = 32, 28, 56
 local PAD_L, PAD_R, PAD_T, PAD_B = 52, 14, 10, 26
@@ -40,7 +41,7 @@ left drag a point: move it (a function's end points keep x = 0 and x = 1)
 left click on the curve, or Shift+click anywhere: add a point there
 right click a point, or Delete / Backspace: remove the selected point
 Left / Right: select the point before / after   Up / Down: nudge it
-F: fit the view   Ctrl+S: save the edited curves into their files
+F: fit the view   Ctrl+Z: undo   Ctrl+S: save the edited curves into their files
 surfaces are shown (front and side views of the control nets), not edited]]
 
 -- {=========================================================================================
@@ -249,7 +250,7 @@ function M.new (target, opts)
   local self = setmetatable({
     name = "curves", help = M.HELP, entries = entries, cur = 1,
     on_change = opts.on_change, w = opts.width or M.WIDTH, h = opts.height or M.HEIGHT,
-    drag = nil, selected = nil, msg = nil, tabs = {},
+    drag = nil, selected = nil, msg = nil, tabs = {}, undo = {},
   }, Pane)
   for _, e in ipairs(entries) do self:fit(e) end
   return self
@@ -452,6 +453,27 @@ function Pane:commit (e)
   return true
 end
 
+-- Remembers the points of the current curve for undo.
+function Pane:push_undo ()
+  local u = self.undo
+  u[#u + 1] = { cur = self.cur, pts = copy(self:current().pts) }
+  if #u > M.UNDO_LIMIT then remove(u, 1) end
+end
+
+--- Undoes the last edit (a drag, a point added, removed or nudged), showing its curve.
+-- Returns false when there is nothing to undo.
+function Pane:undo_last ()
+  local u = remove(self.undo)
+  if u == nil then self.msg = "nothing to undo" return false end
+  self.cur, self.selected, self.drag = u.cur, nil, nil
+  local e = self:current()
+  e.pts = u.pts
+  self:commit(e)
+  self:fit(e)
+  self.msg = "undone"
+  return true
+end
+
 -- Moves the run of points of the selection to data (x, y), within the rules of its kind.
 function Pane:move_to (x, y)
   local e, i = self:current(), self.selected
@@ -490,6 +512,7 @@ function Pane:add_point (x, y)
       if d < best then best, at = d, k + 1 end
     end
   end
+  self:push_undo()
   insert(pts, at, { x, y, e.kind == "contour" and e.dim == 3 and 0 or nil })
   if not self:commit(e) then return nil end
   self.selected = at
@@ -518,6 +541,7 @@ function Pane:remove_point (i)
       return false
     end
   end
+  self:push_undo()
   remove(e.pts, i)
   if not self:commit(e) then return false end
   self.selected = nil
@@ -570,8 +594,8 @@ function Pane:pointer (phase, x, y, button, shift)
   elseif phase == "move" then
     local d = self.drag
     if d == nil or self.selected == nil then return false end
-    local dx, dy = todata(d.map, x + d.dx, y + d.dy)
-    self:move_to(dx, dy)
+    if not d.pushed then self:push_undo() d.pushed = true end
+    self:move_to(todata(d.map, x + d.dx, y + d.dy))
     return true
   elseif phase == "up" then
     if self.drag == nil then return false end
@@ -587,7 +611,10 @@ function Pane.scroll () return false end
 
 --- A key (GLFW's lower-case names). Returns whether the pane took it.
 function Pane:key (name, ctrl, shift)
-  if ctrl then return false end              -- Ctrl+S and the others are the host's
+  if ctrl then                               -- Ctrl+S and the others are the host's
+    if name == "z" then self:undo_last() return true end
+    return false
+  end
   local e = self:current()
   if name == "[" or name == "tab" and shift then return self:select_target(self.cur - 1)
   elseif name == "]" or name == "tab" then return self:select_target(self.cur + 1)
@@ -602,6 +629,7 @@ function Pane:key (name, ctrl, shift)
   elseif (name == "up" or name == "down") and self.selected and e.kind ~= "surface" then
     local p = e.pts[self.selected]
     local step = (e.box[4] - e.box[3]) / 100 * (name == "up" and 1 or -1)
+    self:push_undo()
     self:move_to(p[1], p[2] + step)
     self:fit(e)
     return true
