@@ -2076,6 +2076,19 @@ function Surface:info() end
 ---@return number[][]
 function Surface:patch(i) end
 
+--- A copy of the surface (names, neighbours, frame, size, precision) with other control
+--- points: 16 `{x, y, z}` per patch, patch after patch (point `16 (i - 1) + k` is point k of
+--- patch i), bounds computed again. Raises `expected N points (16 per patch), got M`,
+--- `point 5: coordinate 2 is not finite`.
+---@param points number[][]
+---@return lsys.Surface
+function Surface:with_points(points) end
+
+--- The surface as a cpfg surface file's text (every line written, numbers in the shortest
+--- form that reads back the same; HEADING and UP as normalised when read).
+---@return string
+function Surface:format() end
+
 --- Reads a PNG texture.
 ---@param path string
 ---@param opts? { mag?: "near"|"linear"|"n"|"l", min?: "near"|"linear"|"n"|"l", mode?: "modulate"|"decal"|"m"|"d", per_surface?: boolean, intensity?: boolean } Filters default "near", mode "modulate", per_surface false, intensity true for a grey image.

@@ -2,7 +2,8 @@
 -- dragging a function's points (end points keep x, inner points stay between their
 -- neighbours), adding and removing points, the targets of a model and the model's next
 -- derivation and interpretation after an edit, saving back into .func, .fset and .con files,
--- surfaces shown, switching targets, the picture, and the messages for bad targets.
+-- surfaces' control points moved and saved, switching targets, the picture, and the messages
+-- for bad targets.
 local H = require "tests.helper"
 local core = require "lsys.core"
 local lsys = require "lsys"
@@ -220,7 +221,7 @@ describe("the curve pane and a model", function ()
     assert.is_nil(t[4].file)
     assert.equal("examples/cpfg/surfaces/leaf.s", t[5].file)
     assert.equal("lsys.Surface", getmetatable(t[5].object).__name)
-    assert.is_nil(t[5].set)
+    assert.equal("function", type(t[5].set))
     assert.same({ 1, 2, "size" }, { t[1].id, t[2].id, t[3].id })
   end)
 
@@ -409,29 +410,70 @@ describe("saving edited curves", function ()
 end)
 
 describe("the curve pane's surfaces, targets and picture", function ()
-  it("shows a surface's control points in front and side views, not editing them", function ()
+  it("moves a surface's points in the front and side views, shared points together", function ()
     local s = core.surface_load("examples/cpfg/surfaces/leaf.s")
     local pane = P.new(s)
     local e = pane:current()
     assert.equal(16 * s:info().patches, #e.pts)
     assert.same(s:patch(1)[5], e.pts[5])
-    local x, y = pane:to_pixels(5)
-    pane:pointer("down", x, y, "left")
-    pane:pointer("move", x + 30, y, "left")
-    pane:pointer("up", x + 30, y, "left")
-    assert.equal(5, pane.selected)
-    assert.same(s:patch(1)[5], e.pts[5])
-    local p = s:patch(1)[5]
-    assert.equal(string.format("surface: 2 patches  patch 1 point 5: x %.4g y %.4g z %.4g",
-                               p[1], p[2], p[3]), pane:status())
-    local sx, sy = pane:to_pixels(5, true)           -- the side view, below the front one
+    assert.same(s:patch(1)[13], s:patch(2)[1])      -- the edge the two patches share
+    local a = pane:maps()
+    local x, y = pane:to_pixels(13)
+    drag(pane, x, y, 30, 0)
+    local f = pane:current().object
+    assert.are_not.equal(s, f)
+    local p13, p17 = f:patch(1)[13], f:patch(2)[1]
+    assert.near(-0.38 + 30 / a.sx, p13[1], 1e-9)
+    assert.near({ 0.45, 0.056 }, { p13[2], p13[3] }, 1e-9)
+    assert.same(p13, p17)
+    assert.same(s:patch(1)[14], f:patch(1)[14])      -- the others stay
+    assert.equal(-0.38, s:patch(1)[13][1])            -- the old surface is unchanged
+    local sx, sy = pane:to_pixels(6, true)           -- the side view, below the front one
     assert.is_true(sy > y)
-    pane:pointer("down", sx, sy, "left")
-    assert.equal(5, pane.selected)
+    local b = select(2, pane:maps())
+    drag(pane, sx, sy, 20, 0)
+    local q = pane:current().object:patch(1)[6]
+    assert.near({ -0.0733, 0.12, 0.029 + 20 / b.sx }, q, 1e-9)
+    assert.equal(6, pane.selected)
+    assert.equal(string.format("surface: 2 patches  patch 1 point 6: x %.4g y %.4g z %.4g",
+                               q[1], q[2], q[3]), pane:status())
     pane:key("delete")
-    assert.equal("surfaces are shown, not edited", pane.msg)
+    assert.equal("a surface's points are moved, not removed", pane.msg)
+    pane:pointer("down", sx, sy + 40, "left", true)
+    assert.equal("a surface's points are moved, not added", pane.msg)
     assert.equal("patch index must be from 1 to 2",
                  (H.errof(s.patch, s, 3):gsub("^bad argument #2 to '[^']*' %((.*)%)$", "%1")))
+    assert.equal("expected 32 points (16 per patch), got 1",
+                 (H.errof(s.with_points, s, { { 0, 0, 0 } })
+                   :gsub("^bad argument #2 to '[^']*' %((.*)%)$", "%1")))
+  end)
+
+  it("puts an edited surface into the model's view and saves it as a .s file", function ()
+    local dir = H.tmpdir()
+    local path = dir .. "/leaf.s"
+    H.write(path, H.read("examples/cpfg/surfaces/leaf.s"))
+    local m = lsys.lsystem { axiom = "~l", view = { surfaces = { l = { file = path,
+                                                                         scale = 2 } } } }
+    local before = m:interpret()
+    local pane = P.new(P.targets(m))
+    assert.equal(path, pane:current().file)
+    drag_point(pane, 12, 40, 0)                      -- a point of the widest row, outwards
+    local sp = m.view.surfaces.l
+    assert.equal(pane:current().object, sp.surface)
+    assert.equal(2, sp.scale)
+    assert.is_nil(sp.file)
+    local after = m:interpret()
+    assert.equal(before.ntriangles, after.ntriangles)
+    local l1, h1 = before:bounds()
+    local l2, h2 = after:bounds()
+    local moved = 0                                  -- the largest change of the bounds
+    for k = 1, 3 do moved = math.max(moved, math.abs(h2[k] - h1[k]), math.abs(l2[k] - l1[k])) end
+    assert.is_true(moved > 0.05, "the surface did not grow")
+    assert.same({ path }, pane:save())
+    local back = core.surface_load(path)
+    assert.same(P.points(pane:current().object), P.points(back))
+    assert.same({ "base", "tip" }, back:info().names)
+    H.rmdir(dir)
   end)
 
   it("switches targets with [ ], Tab and the names at the top", function ()
@@ -479,6 +521,18 @@ describe("the curve pane's surfaces, targets and picture", function ()
       if size[1] == 420 then c:save(os.getenv("LSYS_CURVEPANE_PNG") or
                                     (os.getenv("TMPDIR") or "/tmp") .. "/lsys-pane-curves.png") end
     end
+  end)
+
+  it("has the new Contour and Surface methods raise once the object was closed", function ()
+    local c = core.contour(SQUARE, true)
+    local s = core.surface_load("examples/cpfg/surfaces/leaf.s")
+    local pts = P.points(s)
+    getmetatable(c).__close(c)
+    getmetatable(s).__close(s)
+    assert.equal("the contour was closed", H.errof(c.points, c))
+    assert.equal("the surface was closed", H.errof(s.patch, s, 1))
+    assert.equal("the surface was closed", H.errof(s.format, s))
+    assert.equal("the surface was closed", H.errof(s.with_points, s, pts))
   end)
 
   it("raises clear errors for bad targets and options", function ()

@@ -42,7 +42,8 @@ left click on the curve, or Shift+click anywhere: add a point there
 right click a point, or Delete / Backspace: remove the selected point
 Left / Right: select the point before / after   Up / Down: nudge it
 F: fit the view   Ctrl+Z: undo   Ctrl+S: save the edited curves into their files
-surfaces are shown (front and side views of the control nets), not edited]]
+a surface: drag a point in the front view (x, y) or the side view (z, y); the points
+at the same place (shared edges, collapsed corners) move with it]]
 
 -- {=========================================================================================
 -- Targets
@@ -60,6 +61,17 @@ local function copy (pts)
   local out = {}
   for i, p in ipairs(pts) do out[i] = { p[1], p[2], p[3] } end
   return out
+end
+
+--- The control points of a Func, Contour or Surface (16 per patch, patch after patch), as
+-- lists of numbers.
+function M.points (o)
+  if udname(o) ~= "lsys.Surface" then return o:points() end
+  local pts = {}
+  for p = 1, o:info().patches do
+    for k, q in ipairs(o:patch(p)) do pts[16 * (p - 1) + k] = q end
+  end
+  return pts
 end
 
 -- The working state of one target: its kind, names, object, file and the points edited.
@@ -102,15 +114,11 @@ local function entry (t, what)
     error(format("%s: 'name' must be a string, got %s", what, type(e.name)), 0)
   end
   local o = e.object
+  e.pts = M.points(o)
   if e.kind == "func" then
-    e.pts, e.fname, e.samples, e.approx = o:points(), o:name(), o:samples(), o:approx()
+    e.fname, e.samples, e.approx = o:name(), o:samples(), o:approx()
   elseif e.kind == "contour" then
-    e.pts, e.closed, e.dim = o:points(), o:closed(), o:dim()
-  else
-    e.pts = {}
-    for p = 1, o:info().patches do
-      for k, q in ipairs(o:patch(p)) do e.pts[16 * (p - 1) + k] = q end
-    end
+    e.closed, e.dim = o:closed(), o:dim()
   end
   return e
 end
@@ -118,7 +126,7 @@ end
 --- The editable curves of a model: its positional functions (Model:functions), its view's
 -- contours and surfaces; each { kind = "func" | "contour" | "surface", name =, id =,
 -- object =, file = (the path it was read from, or nil), set = function (obj) that puts
--- an edited object into the model (surfaces have none) }. The pane calls `set` after
+-- an edited object into the model }. The pane calls `set` after
 -- every edit, so the model's next derivation and interpretation use the edit.
 function M.targets (m)
   if type(m) ~= "table" or type(m.set_func) ~= "function" then
@@ -157,9 +165,23 @@ function M.targets (m)
   table.sort(keys)
   for _, k in ipairs(keys) do
     local raw = m.view.surfaces and m.view.surfaces[k]
+    local file = type(raw) == "string" and raw or type(raw) == "table" and raw.file
     out[#out + 1] = { kind = "surface", name = "surface " .. k, id = k,
-                      object = nv.surfaces[k].surface,
-                      file = path(type(raw) == "table" and raw.file or raw) }
+                      object = nv.surfaces[k].surface, file = path(file),
+                      set = function (s)
+                        local t = {}
+                        for key, x in pairs(m.view.surfaces) do t[key] = x end
+                        local old = t[k]
+                        if type(old) == "table" and getmetatable(old) == nil then
+                          local sp = {}             -- scale, texture, precision stay
+                          for key, x in pairs(old) do sp[key] = x end
+                          sp.surface, sp.file = s, nil
+                          t[k] = sp
+                        else
+                          t[k] = s
+                        end
+                        m.view.surfaces = t
+                      end }
   end
   return out
 end
@@ -372,23 +394,23 @@ function Pane:to_pixels (i, side)
   return topx(a, p[1], p[2])
 end
 
--- The point nearest (px, py) within M.PICK_RADIUS pixels: its index and where it is drawn
--- (x, y in pixels), or nil.
+-- The point nearest (px, py) within M.PICK_RADIUS pixels: its index, where it is drawn
+-- (x, y in pixels) and whether that is a surface's side view; or nil.
 function Pane:hit (px, py)
   local e = self:current()
   local a, b = self:maps()
-  local best, bx, by, bd = nil, nil, nil, M.PICK_RADIUS
+  local best, bx, by, bside, bd = nil, nil, nil, false, M.PICK_RADIUS
   for i, p in ipairs(e.pts) do
     local x, y = topx(a, p[1], p[2])
     local d = ((x - px) ^ 2 + (y - py) ^ 2) ^ 0.5
-    if d < bd then best, bx, by, bd = i, x, y, d end
+    if d < bd then best, bx, by, bside, bd = i, x, y, false, d end
     if b then
       x, y = topx(b, p[3], p[2])
       d = ((x - px) ^ 2 + (y - py) ^ 2) ^ 0.5
-      if d < bd then best, bx, by, bd = i, x, y, d end
+      if d < bd then best, bx, by, bside, bd = i, x, y, true, d end
     end
   end
-  return best, bx, by
+  return best, bx, by, bside
 end
 
 -- The distance in pixels from (px, py) to the drawn curve of the current entry.
@@ -439,12 +461,11 @@ function Pane:commit (e)
     end
     ok, obj = pcall(core.contour, pts, e.closed)
   else
-    self.msg = "surfaces are shown, not edited"
-    return false
+    ok, obj = pcall(e.object.with_points, e.object, e.pts)
   end
   if not ok then
     self.msg = tostring(obj):gsub("^bad argument #%d+ to '[^']*' %((.*)%)$", "%1")
-    e.pts = e.object:points()
+    e.pts = M.points(e.object)
     return false
   end
   e.object, e.dirty = obj, true
@@ -474,10 +495,22 @@ function Pane:undo_last ()
   return true
 end
 
--- Moves the run of points of the selection to data (x, y), within the rules of its kind.
-function Pane:move_to (x, y)
+-- Moves the run of points of the selection to data (x, y), within the rules of its kind;
+-- a surface's point and those at the same place to (x, y) of the front view, or with
+-- `side` to (z, y).
+function Pane:move_to (x, y, side)
   local e, i = self:current(), self.selected
   local pts = e.pts
+  if e.kind == "surface" then
+    local p = pts[i]
+    local px, py, pz = p[1], p[2], p[3]
+    for _, q in ipairs(pts) do
+      if q[1] == px and q[2] == py and q[3] == pz then
+        if side then q[3], q[2] = x, y else q[1], q[2] = x, y end
+      end
+    end
+    return self:commit(e)
+  end
   local a, b = group(pts, i)
   if e.kind == "func" then
     if a == 1 then x = 0
@@ -494,7 +527,7 @@ end
 function Pane:add_point (x, y)
   local e = self:current()
   local pts, at = e.pts, nil
-  if e.kind == "surface" then self.msg = "surfaces are shown, not edited" return nil end
+  if e.kind == "surface" then self.msg = "a surface's points are moved, not added" return nil end
   if e.kind == "func" then
     if x <= 0 or x >= 1 then self.msg = "a new point's x must lie between 0 and 1" return nil end
     at = #pts
@@ -525,7 +558,10 @@ end
 function Pane:remove_point (i)
   local e = self:current()
   i = i or self.selected
-  if e.kind == "surface" then self.msg = "surfaces are shown, not edited" return false end
+  if e.kind == "surface" then
+    self.msg = "a surface's points are moved, not removed"
+    return false
+  end
   if i == nil or e.pts[i] == nil then self.msg = "no point selected" return false end
   local least = e.kind == "func" and M.MIN_POINTS.func
     or e.closed and M.MIN_POINTS.closed or M.MIN_POINTS.open
@@ -574,14 +610,14 @@ function Pane:pointer (phase, x, y, button, shift)
   if phase == "down" then
     local k = self:tab_at(x, y)
     if k then return self:select_target(k) end
-    local i, px, py = self:hit(x, y)
+    local i, px, py, side = self:hit(x, y)
     if button == "right" then
       if i then self.selected = i self:remove_point(i) return true end
       return false
     end
     if button ~= "left" then return false end
-    local a = self:maps()
-    if e.kind ~= "surface" and (shift or i == nil and self:curve_distance(x, y) <= M.PICK_RADIUS)
+    local a, b = self:maps()
+    if shift or e.kind ~= "surface" and i == nil and self:curve_distance(x, y) <= M.PICK_RADIUS
     then
       i = self:add_point(todata(a, x, y))
       if i == nil then return true end
@@ -589,13 +625,14 @@ function Pane:pointer (phase, x, y, button, shift)
     end
     self.selected = i
     if i == nil then self.msg = nil return true end
-    if e.kind ~= "surface" then self.drag = { map = a, dx = px - x, dy = py - y } end
+    self.drag = { map = side and b or a, side = side, dx = px - x, dy = py - y }
     return true
   elseif phase == "move" then
     local d = self.drag
     if d == nil or self.selected == nil then return false end
     if not d.pushed then self:push_undo() d.pushed = true end
-    self:move_to(todata(d.map, x + d.dx, y + d.dy))
+    local dx, dy = todata(d.map, x + d.dx, y + d.dy)
+    self:move_to(dx, dy, d.side)
     return true
   elseif phase == "up" then
     if self.drag == nil then return false end
@@ -626,7 +663,7 @@ function Pane:key (name, ctrl, shift)
     local i = self.selected or (name == "left" and 1 or n)
     self.selected = (i - 1 + (name == "left" and -1 or 1)) % n + 1
     return true
-  elseif (name == "up" or name == "down") and self.selected and e.kind ~= "surface" then
+  elseif (name == "up" or name == "down") and self.selected then
     local p = e.pts[self.selected]
     local step = (e.box[4] - e.box[3]) / 100 * (name == "up" and 1 or -1)
     self:push_undo()
@@ -665,8 +702,9 @@ end
 
 --- Writes the edited curves back into their files, in their own formats, atomically: a
 -- function read from a .func file with lsys.func.save; one read from a .fset by rewriting
--- that set with the edited functions in place; a contour as a cpfg .con file. Curves
--- without a file are left (self.msg says so). Returns the list of paths written.
+-- that set with the edited functions in place; a contour as a cpfg .con file; a surface
+-- as a cpfg .s file (Surface:format). Curves without a file are left (self.msg says so).
+-- Returns the list of paths written.
 function Pane:save ()
   local sets, order, written, nofile = {}, {}, {}, 0
   for _, e in ipairs(self.entries) do
@@ -681,6 +719,11 @@ function Pane:save ()
       e.dirty = false
     elseif e.dirty and e.kind == "contour" then
       M.save_contour(e.object, e.file)
+      written[#written + 1] = e.file
+      e.dirty = false
+    elseif e.dirty then
+      local ok, err = pcall(core.write_file, e.file, e.object:format())
+      if not ok then error("lsys.ui.curve: cannot save " .. tostring(err), 0) end
       written[#written + 1] = e.file
       e.dirty = false
     end
@@ -889,7 +932,7 @@ function Pane:draw (c)
   else
     say(c, 8, fy, format("%d %s", e.kind == "surface" and #e.pts // 16 or #e.pts,
                          e.kind == "surface" and "patches" or "points"), BLACK)
-    say(c, 8, fy + 22, self.msg or (e.kind == "surface" and "click a point: its x y z"
+    say(c, 8, fy + 22, self.msg or (e.kind == "surface" and "drag a point: front, side"
       or "drag a point, click curve: add"), GREY)
   end
   return c
