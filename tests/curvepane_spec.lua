@@ -553,6 +553,10 @@ describe("the curve pane's surfaces, targets and picture", function ()
                  message(P.new, { name = "w", func = f, set = "x" }))
     assert.equal("lsys.ui.curve.new: unknown option 'onchange'",
                  message(P.new, f, { onchange = print }))
+    assert.equal("lsys.ui.curve.new: 'on_change' must be a function",
+                 message(P.new, f, { on_change = 1 }))
+    assert.equal("lsys.ui.curve.new: 'width' must be a number >= 1",
+                 message(P.new, f, { width = "wide" }))
     assert.equal("lsys.ui.curve.targets: a model expected, got string", message(P.targets, "m"))
     assert.equal("to_pixels: no point 9 (the curve has 4)",
                  message(P.new(f).to_pixels, P.new(f), 9))

@@ -254,6 +254,11 @@ function M.new (target, opts)
   if opts.on_change ~= nil and type(opts.on_change) ~= "function" then
     error("lsys.ui.curve.new: 'on_change' must be a function", 2)
   end
+  for _, k in ipairs { "width", "height" } do
+    if opts[k] ~= nil and not (type(opts[k]) == "number" and opts[k] >= 1) then
+      error(format("lsys.ui.curve.new: '%s' must be a number >= 1", k), 2)
+    end
+  end
   if type(target) == "table" and getmetatable(target) == nil and next(target) == nil then
     error("lsys.ui.curve.new: no curves to edit (an empty list)", 2)
   end
