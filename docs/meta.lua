@@ -198,7 +198,7 @@ function lsys.nproduce(template, ...) end
 ---@field max_memory? number|string The memory budget of this model's steps and interpretations, in bytes or as `"512M"`, `"2G"`, `"unlimited"` (see `lsys.parse_size`). Default: `lsys.max_memory()`.
 ---@field max_instructions? number Most Lua instructions one call of rule code may run (rule expressions, rule functions, the axiom's expressions, a cpfg file's blocks), at least 1000; `math.huge` for none. Default 100 000 000.
 ---@field depth_warnings? boolean|{ decomposition?: boolean, homomorphism?: boolean } Whether a derivation warns (once) when the depth limit stops a rule that would apply; false for neither. Default true.
----@field functions? table Positional functions for `func(ID, x)` and `func("name", x)`: `lsys.Func`s and file names (.func, .fset), a list and/or a table by name. Fixed when the model is made. Default: the view's `functions`.
+---@field functions? table Positional functions for `func(ID, x)` and `func("name", x)`: `lsys.Func`s and file names (.func, .fset), a list and/or a table by name. Fixed when the model is made (Model:set_func replaces one). Default: the view's `functions`.
 ---@field threads? integer Threads a derivation step may use, from 1 to 64; the string is the same for every number. Read by every `derive` and `step`. Default: `LSYS_THREADS` from the environment, else the number of processors.
 ---@field numbers? "double"|"float32" How parameters are stored; "float32" rounds every parameter a step produces to the nearest 32-bit float, as cpfg stores them. Default "double".
 ---@field after_interpret? fun(model: lsys.Model, scene: lsys.Scene, s: lsys.Lstring) Called by `interpret` with the scene it made, before returning it. Default: none.
@@ -308,6 +308,19 @@ function Model:lstring(text) end
 ---@param view? lsys.View
 ---@return lsys.Scene
 function Model:interpret(s, view) end
+
+--- Replaces the positional function `id` (its position from 1 or its name) by `f` for
+--- func(ID, x) and func("name", x) alike, from the next derivation step on (the curve editor,
+--- lsys.ui.curve, does this after an edit). Raises `set_func: unknown function 'x'
+--- (functions: ...)`, or when a rule of the model calls it.
+---@param id integer|string
+---@param f lsys.Func
+function Model:set_func(id, f) end
+
+--- The model's positional functions: the listed ones by position, then those given only by
+--- name; `file` is the path a function was read from.
+---@return { id: integer|string, name: string, func: lsys.Func, file?: string }[]
+function Model:functions() end
 
 --- View options (docs/drawing.md §2); every field is optional.
 ---@class lsys.View
@@ -1040,6 +1053,11 @@ function lsys.func.load(path) end
 ---@param f lsys.Func
 ---@param path string
 function lsys.func.save(f, path) end
+
+--- Writes the Funcs as a cpfg function set (`funcgalleryver 1 1`, `.fset`), atomically.
+---@param fs lsys.Func[] At least one.
+---@param path string
+function lsys.func.save_set(fs, path) end
 
 --- A positional function (metatable "lsys.Func"): `f(x)` evaluates it, x clamped into
 --- [0, 1]. Rules call it on the expression machine: by name in `env`, or `func(ID, x)`.
@@ -1876,6 +1894,9 @@ function Contour:size() end
 function Contour:closed() end
 ---@return 2|3
 function Contour:dim() end
+--- The control points, `{x, y}` or `{x, y, z}` each (as many numbers as `dim`).
+---@return number[][]
+function Contour:points() end
 
 -- ---------------------------------------------------------------------------------------------
 -- B-spline curves and stroke capture (csrc/lua/lua_bspline.c; docs/sketch.md, Curves).
@@ -2055,6 +2076,25 @@ local Surface = {}
 --- size =, precision = {s, t}, names = {...} }` (lo, hi: the bounds of the control points).
 ---@return table
 function Surface:info() end
+
+--- The 16 control points `{x, y, z}` of patch `i` (from 1), row by row as core.patch_eval
+--- takes them. Raises `patch index must be from 1 to N`.
+---@param i integer
+---@return number[][]
+function Surface:patch(i) end
+
+--- A copy of the surface (names, neighbours, frame, size, precision) with other control
+--- points: 16 `{x, y, z}` per patch, patch after patch (point `16 (i - 1) + k` is point k of
+--- patch i), bounds computed again. Raises `expected N points (16 per patch), got M`,
+--- `point 5: coordinate 2 is not finite`.
+---@param points number[][]
+---@return lsys.Surface
+function Surface:with_points(points) end
+
+--- The surface as a cpfg surface file's text (every line written, numbers in the shortest
+--- form that reads back the same; HEADING and UP as normalised when read).
+---@return string
+function Surface:format() end
 
 --- Reads a PNG texture.
 ---@param path string

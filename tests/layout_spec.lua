@@ -460,7 +460,8 @@ local LUA_LAYERS = {
   -- the window: lsys.viewer and the sessions in it (lua/lsys/ui/; their documented names
   -- lsys.growview, lsys.arrange_ui and lsys.sketch.window give them)
   { "the window", "lsys.viewer", "lsys.ui*", "lsys.growview", "lsys.arrange_ui",
-    "lsys.sketch.window" },
+    "lsys.sketch.window",
+    "lsys.ui.curve" },                                -- the curve editor pane
   { "the library", "lsys" },                        -- init.lua: `require "lsys"`
   { "the program", "lsys.cli*", "lsys.repl*" },     -- the command line and the REPL
 }

@@ -550,12 +550,30 @@ static int readheader (reader *r, lsys_surface *s) {
   return LSYS_OK;
 }
 
+/* The bounds of the control points into s->lo, s->hi. */
+static void setbounds (lsys_surface *s) {
+  size_t i;
+  int k;
+  for (k = 0; k < 3; k++) {
+    s->lo[k] = HUGE_VAL;
+    s->hi[k] = -HUGE_VAL;
+  }
+  for (i = 0; i < s->npatch; i++) {
+    const double *c = s->patch[i].ctrl;
+    int j;
+    for (j = 0; j < 48; j++) {
+      if (c[j] < s->lo[j % 3]) s->lo[j % 3] = c[j];
+      if (c[j] > s->hi[j % 3]) s->hi[j % 3] = c[j];
+    }
+  }
+}
+
 int lsys_surface_parse (lsys_surface *s, const char *text, size_t len, const char *name,
                         lsys_error *e) {
   reader r;
   nbref *ref = NULL;
-  size_t cap = 0, rcap = 0, i;
-  int st, k;
+  size_t cap = 0, rcap = 0;
+  int st;
   lsys_surface_init(s);
   r.text = r.p = r.lp = r.le = r.tp = text != NULL ? text : "";
   r.end = r.p + (text != NULL ? len : 0);
@@ -583,19 +601,92 @@ int lsys_surface_parse (lsys_surface *s, const char *text, size_t len, const cha
     lsys_surface_free(s);
     return st;
   }
-  for (k = 0; k < 3; k++) {
-    s->lo[k] = HUGE_VAL;
-    s->hi[k] = -HUGE_VAL;
+  setbounds(s);
+  return LSYS_OK;
+}
+
+/* ------------------------------------------------------------------ */
+/* Editing and writing                                                  */
+/* ------------------------------------------------------------------ */
+
+int lsys_surface_with_points (lsys_surface *dst, const lsys_surface *s, const double *pt,
+                              lsys_error *e) {
+  size_t i, n = s->npatch;
+  lsys_patch *patch;
+  lsys_patchinfo *info;
+  for (i = 0; i < 48 * n; i++)
+    if (!(fabs(pt[i]) <= LSYS_SURFACE_MAXCOORD))       /* also NaN */
+      return lsys_seterror(e, LSYS_EARG, i, "point %zu: coordinate %d is %s", i / 3 + 1,
+                           (int)(i % 3) + 1, isfinite(pt[i]) ? "out of range (limit is 1e30)"
+                                                              : "not finite");
+  patch = (lsys_patch *)LSYS_MALLOC((n ? n : 1) * sizeof *patch);
+  info = (lsys_patchinfo *)LSYS_MALLOC((n ? n : 1) * sizeof *info);
+  if (patch == NULL || info == NULL) {
+    LSYS_FREE(patch);
+    LSYS_FREE(info);
+    return lsys_seterror(e, LSYS_ENOMEM, 0, "not enough memory");
   }
+  for (i = 0; i < n; i++) {
+    memcpy(patch[i].ctrl, pt + 48 * i, sizeof patch[i].ctrl);
+    info[i] = s->info[i];
+  }
+  lsys_surface_free(dst);
+  *dst = *s;
+  dst->patch = patch;
+  dst->info = info;
+  setbounds(dst);
+  return LSYS_OK;
+}
+
+/* x in the shortest %g form that reads back to x. */
+static void shortest (char buf[32], double x) {
+  int p;
+  for (p = 1; p <= 17; p++) {
+    snprintf(buf, 32, "%.*g", p, x);
+    if (strtod(buf, NULL) == x) return;
+  }
+}
+
+size_t lsys_surface_format (const lsys_surface *s, char *buf, size_t size) {
+  static const char *const vecs[4] = {"CONTACT POINT", "END POINT", "HEADING", "UP"};
+  static const char *const nbs[8] = {"AL", "A", "AR", "L", "R", "BL", "B", "BR"};
+  const double *v[4];
+  size_t len = 0, i;
+  char a[3][32];
+  int w, k, d;
+#define PUT(...) do { w = snprintf(len < size ? buf + len : NULL, len < size ? size - len : 0, \
+                                   __VA_ARGS__); if (w > 0) len += (size_t)w; } while (0)
+  v[0] = s->contact; v[1] = s->end; v[2] = s->heading; v[3] = s->up;
+  for (k = 0; k < 3; k++) {
+    shortest(a[0], s->lo[k]);
+    shortest(a[1], s->hi[k]);
+    PUT("%s%s %s", k ? "  " : "", a[0], a[1]);
+  }
+  PUT("\nPRECISION S: %d T: %d\n", s->precision_s, s->precision_t);
+  for (k = 0; k < 4; k++) {
+    for (d = 0; d < 3; d++) shortest(a[d], v[k][d]);
+    PUT("%s X: %s Y: %s Z: %s\n", vecs[k], a[0], a[1], a[2]);
+  }
+  shortest(a[0], s->size);
+  PUT("SIZE: %s\n", a[0]);
   for (i = 0; i < s->npatch; i++) {
-    const double *c = s->patch[i].ctrl;
-    int j;
-    for (j = 0; j < 48; j++) {
-      if (c[j] < s->lo[j % 3]) s->lo[j % 3] = c[j];
-      if (c[j] > s->hi[j % 3]) s->hi[j % 3] = c[j];
+    const lsys_patchinfo *in = &s->info[i];
+    shortest(a[0], in->diffuse[0]);
+    shortest(a[1], in->diffuse[1]);
+    PUT("%s\nTOP COLOR: %d DIFFUSE: %s BOTTOM COLOR: %d DIFFUSE: %s\n", in->name, in->color[0],
+        a[0], in->color[1], a[1]);
+    for (d = 0; d < 8; d++)
+      PUT("%s: %s%s", nbs[d], in->nb[d] >= 0 ? s->info[in->nb[d]].name : "~",
+          d == 2 || d == 4 || d == 7 ? "\n" : " ");
+    for (k = 0; k < 16; k++) {
+      shortest(a[0], s->patch[i].ctrl[3 * k]);
+      shortest(a[1], s->patch[i].ctrl[3 * k + 1]);
+      shortest(a[2], s->patch[i].ctrl[3 * k + 2]);
+      PUT("%s %s %s%s", a[0], a[1], a[2], k % 4 == 3 ? "\n" : "  ");
     }
   }
-  return LSYS_OK;
+#undef PUT
+  return len;
 }
 
 /* ------------------------------------------------------------------ */

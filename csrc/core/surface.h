@@ -72,6 +72,26 @@ void lsys_surface_free (lsys_surface *s);
 int lsys_surface_parse (lsys_surface *s, const char *text, size_t len, const char *name,
                         lsys_error *e);
 
+/*
+** Sets 'dst' to a copy of 's' whose control points are 'pt' (48 doubles per
+** patch, in patch order, laid out as lsys_patch.ctrl), with the bounds
+** computed again: how an editor changes a surface. 'dst' must have been
+** initialised and must not be 's'; its old contents are freed. Returns
+** LSYS_OK, LSYS_EARG ('e' set, "point 5: coordinate 2 is not finite";
+** 'dst' unchanged) or LSYS_ENOMEM.
+*/
+int lsys_surface_with_points (lsys_surface *dst, const lsys_surface *s, const double *pt,
+                              lsys_error *e);
+
+/*
+** Writes 's' as a surface file (the format at the top of surface.c, every
+** line present, numbers in the shortest form that reads back the same;
+** HEADING and UP as normalised when read) into 'buf' of 'size' bytes, NUL
+** terminated when size > 0, as snprintf does. Returns the length of the
+** whole text (call with size 0 first to learn it).
+*/
+size_t lsys_surface_format (const lsys_surface *s, char *buf, size_t size);
+
 /* A point of a patch at (s, t) in [0,1]^2 (s along the rows' direction,
 ** i.e. across columns c = 0..3; t across rows r = 0..3), with the partial
 ** derivatives (either may be NULL). Basis as LSYS_BASIS_*; any other

@@ -7,6 +7,7 @@
 **       defaults to true
 **   c:sample(p) -> vertices, normals         p + 1 entries each, {x, y, z}
 **   c:size() -> n    c:closed() -> boolean    c:dim() -> 2 | 3
+**   c:points() -> { {x, y [, z]}, ... }      the control points (dim numbers each)
 **
 ** A Contour is immutable once made.
 */
@@ -147,6 +148,27 @@ static int contour_dim (lua_State *L) {
   return 1;
 }
 
+/* c:points(): the control points are copied first (a finalizer run by an
+** allocation may close the contour). */
+static int contour_points (lua_State *L) {
+  size_t i, n = lsysL_checkcontour(L, 1)->n;
+  double *pt = (double *)lua_newuserdatauv(L, 3 * n * sizeof *pt + 1, 0);   /* scratch */
+  const lsys_contour *c = lsysL_checkcontour(L, 1);
+  int k, dim = c->dim;
+  if (c->n < n) n = c->n;
+  if (n > 0) memcpy(pt, c->pt, 3 * n * sizeof *pt);
+  lua_createtable(L, (int)n, 0);
+  for (i = 0; i < n; i++) {
+    lua_createtable(L, dim, 0);
+    for (k = 0; k < dim; k++) {
+      lua_pushnumber(L, pt[3 * i + (size_t)k]);
+      lua_rawseti(L, -2, k + 1);
+    }
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  return 1;
+}
+
 static int contour_tostring (lua_State *L) {
   const lsys_lcontour *u = (const lsys_lcontour *)luaL_checkudata(L, 1, CONTOUR_T);
   const lsys_contour *c = &u->c;
@@ -161,7 +183,7 @@ static int contour_tostring (lua_State *L) {
 
 static const luaL_Reg contour_methods[] = {
   {"sample", contour_sample}, {"size", contour_size}, {"closed", contour_closed},
-  {"dim", contour_dim}, {NULL, NULL}
+  {"dim", contour_dim}, {"points", contour_points}, {NULL, NULL}
 };
 
 static const luaL_Reg contour_meta[] = {

@@ -7,6 +7,12 @@
 **       the same from a string; 'name' (default "surface") starts messages
 **   s:info() -> {patches, contact, heading, up, end, lo, hi, size,
 **                precision = {s, t}, names = {...}}
+**   s:patch(i) -> { {x, y, z}, ... }          the 16 control points of patch i
+**       (from 1), row by row as patch_eval takes them
+**   s:with_points(points) -> Surface          a copy with other control points:
+**       16 {x, y, z} per patch, patch after patch (point 16 (i - 1) + k is
+**       point k of patch i)
+**   s:format() -> string                      the surface file's text
 **   core.patch_eval(basis, ctrl, s, t) -> x, y, z
 **       basis 1 | 2 | 3 or "bezier" | "bspline" | "cardinal"; ctrl a list of
 **       16 {x, y, z}, row by row (row r, column c at 4 r + c + 1)
@@ -121,6 +127,74 @@ static int surface_info (lua_State *L) {
   return 1;
 }
 
+/* s:patch(i): copied first (a finalizer run by an allocation may close the
+** surface) */
+static int surface_patch (lua_State *L) {
+  lua_Integer i = luaL_checkinteger(L, 2);
+  size_t n = lsysL_checksurface(L, 1)->npatch;
+  lsys_patch p;
+  int k, j;
+  luaL_argcheck(L, i >= 1 && (size_t)i <= n, 2,
+                lua_pushfstring(L, "patch index must be from 1 to %I", (lua_Integer)n));
+  p = lsysL_checksurface(L, 1)->patch[i - 1];
+  lua_createtable(L, 16, 0);
+  for (k = 0; k < 16; k++) {
+    lua_createtable(L, 3, 0);
+    for (j = 0; j < 3; j++) {
+      lua_pushnumber(L, (lua_Number)p.ctrl[3 * k + j]);
+      lua_rawseti(L, -2, j + 1);
+    }
+    lua_rawseti(L, -2, k + 1);
+  }
+  return 1;
+}
+
+/* s:with_points(points) */
+static int surface_with_points (lua_State *L) {
+  size_t n = lsysL_checksurface(L, 1)->npatch, i;
+  lsys_surface *dst;
+  lsys_error e;
+  double *pt;
+  int k, st;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  lua_settop(L, 2);
+  if ((size_t)luaL_len(L, 2) != 16 * n)
+    return luaL_argerror(L, 2, lua_pushfstring(L, "expected %I points (16 per patch), got %I",
+                                                (lua_Integer)(16 * n), luaL_len(L, 2)));
+  pt = (double *)lua_newuserdatauv(L, 48 * n * sizeof *pt + 1, 0);   /* 3: scratch */
+  for (i = 0; i < 16 * n; i++) {
+    if (lua_geti(L, 2, (lua_Integer)i + 1) != LUA_TTABLE)
+      return luaL_argerror(L, 2, lua_pushfstring(L, "point %I is a %s, not a table",
+                                                  (lua_Integer)i + 1, luaL_typename(L, -1)));
+    for (k = 0; k < 3; k++) {
+      int isnum;
+      lua_geti(L, -1, k + 1);
+      pt[3 * i + (size_t)k] = (double)lua_tonumberx(L, -1, &isnum);
+      if (!isnum)
+        return luaL_argerror(L, 2, lua_pushfstring(L, "coordinate %d of point %I is not a "
+                                                    "number", k + 1, (lua_Integer)i + 1));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_getiuservalue(L, 1, 1);                 /* 4: the name */
+  dst = newsurface(L, 4);                     /* 5 */
+  st = lsys_surface_with_points(dst, lsysL_checksurface(L, 1), pt, &e);
+  if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+  if (st != LSYS_OK) return luaL_argerror(L, 2, e.msg);
+  return 1;
+}
+
+/* s:format() */
+static int surface_format (lua_State *L) {
+  size_t len = lsys_surface_format(lsysL_checksurface(L, 1), NULL, 0);
+  luaL_Buffer b;
+  char *p = luaL_buffinitsize(L, &b, len + 1);
+  len = lsys_surface_format(lsysL_checksurface(L, 1), p, len + 1);   /* again: it allocated */
+  luaL_pushresultsize(&b, len);
+  return 1;
+}
+
 static int surface_tostring (lua_State *L) {
   const lsys_lsurface *u = (const lsys_lsurface *)luaL_checkudata(L, 1, SURFACE_T);
   const lsys_surface *s = &u->s;
@@ -174,6 +248,9 @@ static int l_patch_eval (lua_State *L) {
 
 static const luaL_Reg surface_methods[] = {
   {"info", surface_info},
+  {"patch", surface_patch},
+  {"with_points", surface_with_points},
+  {"format", surface_format},
   {NULL, NULL}
 };
 

@@ -77,6 +77,7 @@ end
 
 -- The Funcs one entry of a functions list stands for: a Func, a file name (a .fset gives
 -- all of its functions) or { file = NAME, samples = N, approx = "exact" | "cpfg" }.
+-- Also returns the path read (nil for a Func).
 local function entry (x, dir, what)
   if isfunc(x) then return { x } end
   local file, samples, approx = x, 0, nil
@@ -102,7 +103,7 @@ local function entry (x, dir, what)
   local ok, fs = pcall(readall, path, math.tointeger(samples))
   if not ok and path ~= file and file:sub(1, 1) ~= "/" then   -- then the current folder
     local ok2, fs2 = pcall(readall, file, math.tointeger(samples))
-    if ok2 then ok, fs = ok2, fs2 end
+    if ok2 then ok, fs, path = ok2, fs2, file end
   end
   if not ok then error(format("%s: %s", what, tostring(fs)), 0) end
   if approx == "cpfg" then       -- computed as cpfg approximates them
@@ -111,32 +112,36 @@ local function entry (x, dir, what)
                       approx = "cpfg" }
     end
   end
-  return fs
+  return fs, path
 end
 
 --- The function table of a model: `spec` is a list of Funcs, file names (relative to
 -- `dir`) or { file =, samples = } (a .fset gives all of its functions, in order), and/or
 -- a table by name { internode = f | file }. Returns the list (func(ID, x): ID is the
--- position, from 1) and the table by name (func("name", x): the keyed entries, then the
--- listed functions by their own names). `what` starts messages.
+-- position, from 1), the table by name (func("name", x): the keyed entries, then the
+-- listed functions by their own names) and the file each Func was read from (a table
+-- keyed by the Func; none for a Func given). `what` starts messages.
 function M.collect (spec, dir, what)
   what = what or "functions"
   if type(spec) ~= "table" then error(format("%s must be a table", what), 0) end
-  local list, byname, n, m = {}, {}, 0, 0
+  local list, byname, files, n, m = {}, {}, {}, 0, 0
   for i, x in ipairs(spec) do
     m = i
-    for _, f in ipairs(entry(x, dir, format("%s[%d]", what, i))) do
+    local fs, path = entry(x, dir, format("%s[%d]", what, i))
+    for _, f in ipairs(fs) do
       n = n + 1
       list[n] = f
+      files[f] = path
     end
   end
   for k, x in pairs(spec) do
     if type(k) == "string" then
-      local fs = entry(x, dir, format("%s.%s", what, k))
+      local fs, path = entry(x, dir, format("%s.%s", what, k))
       if #fs ~= 1 then
         error(format("%s.%s: a function set has %d functions, not one", what, k, #fs), 0)
       end
       byname[k] = fs[1]
+      files[fs[1]] = path
     elseif math.type(k) ~= "integer" or k < 1 or k > m then
       error(format("%s: keys must be positions 1, 2, ... without holes, or names; got %s",
                    what, tostring(k)), 0)
@@ -145,7 +150,61 @@ function M.collect (spec, dir, what)
   for _, f in ipairs(list) do
     if byname[f:name()] == nil then byname[f:name()] = f end
   end
-  return list, byname
+  return list, byname, files
+end
+
+--- Replaces the function `id` (a position in `list` from 1, or a name in `byname`) of a
+-- function table (as `collect` returns) by the Func `f`: every entry of `list` and
+-- `byname` that held the old function takes `f`, which keeps the old one's file. Returns
+-- nil, or a message for a bad `f` or an unknown id.
+function M.replace (list, byname, files, id, f)
+  if not isfunc(f) then return format("an lsys.Func expected, got %s", type(f)) end
+  local old = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
+  if not old then
+    return format("unknown function %s (functions: %s)",
+                  type(id) == "string" and "'" .. id .. "'" or tostring(id), M.names(byname))
+  end
+  for i, g in ipairs(list) do if g == old then list[i] = f end end
+  for k, g in pairs(byname) do if g == old then byname[k] = f end end
+  if files[f] == nil then files[f] = files[old] end
+  return nil
+end
+
+--- The functions of a function table (as `collect` returns) for editors: a list of
+-- { id =, name =, func =, file = (the path read, or nil) }, first the listed ones by
+-- position (id 1, 2, ...), then those given only by name (id the name, sorted).
+function M.entries (list, byname, files)
+  local out, seen, keys = {}, {}, {}
+  for i, f in ipairs(list) do
+    out[#out + 1] = { id = i, name = f:name(), func = f, file = files[f] }
+    seen[f] = true
+  end
+  for k, f in pairs(byname) do
+    if not seen[f] then keys[#keys + 1] = k end
+  end
+  table.sort(keys)
+  for _, k in ipairs(keys) do
+    out[#out + 1] = { id = k, name = k, func = byname[k], file = files[byname[k]] }
+  end
+  return out
+end
+
+--- Writes the list of Funcs `fs` as a cpfg function set (.fset: "funcgalleryver 1 1",
+-- "items: N", then each function as `save` writes it), atomically.
+function M.save_set (fs, path)
+  if type(fs) ~= "table" or #fs == 0 then
+    error("lsys.func.save_set: a list of at least one lsys.Func expected", 2)
+  end
+  if type(path) ~= "string" then error("lsys.func.save_set: a file name expected", 2) end
+  local parts = { format("funcgalleryver 1 1\nitems: %d\n", #fs) }
+  for i, f in ipairs(fs) do
+    if not isfunc(f) then
+      error(format("lsys.func.save_set: item %d is a %s, not an lsys.Func", i, type(f)), 2)
+    end
+    parts[i + 1] = f:format()
+  end
+  local ok, err = pcall(core.write_file, path, table.concat(parts))
+  if not ok then error("lsys.func.save_set: " .. tostring(err), 0) end
 end
 
 --- The names of a function table for messages: "internode, angle" (sorted), or "none".

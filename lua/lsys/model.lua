@@ -485,13 +485,13 @@ end
 -- The positional functions of the model (option `functions`, else its view's): the list
 -- that func(ID, x) indexes, the table by name of func("name", x), and `func` itself.
 function Model:_functions (spec, dir, fail)
-  local list, byname = {}, {}
+  local list, byname, files = {}, {}, {}
   if spec ~= nil then
-    local ok, l, b = pcall(func.collect, spec, dir, "option 'functions'")
+    local ok, l, b, fl = pcall(func.collect, spec, dir, "option 'functions'")
     if not ok then fail(l) end
-    list, byname = l, b
+    list, byname, files = l, b, fl
   end
-  self._funclist, self._funcnames = list, byname
+  self._funclist, self._funcnames, self._funcfiles = list, byname, files
   self._func = function (id, x)
     local f = type(id) == "string" and byname[id] or type(id) == "number" and list[id]
     if not f then
@@ -510,6 +510,19 @@ function Model:func (id, x)
     error(format("func: x must be a number, got %s", type(x)), 2)
   end
   return self._func(id, x)
+end
+
+--- Replaces the positional function `id` (position or name) by the lsys.Func `f`
+-- wherever the old one was, from the next step on (lsys.func.replace).
+function Model:set_func (id, f)
+  self:_idle("set_func")
+  local err = func.replace(self._funclist, self._funcnames, self._funcfiles, id, f)
+  if err then error("set_func: " .. err, 2) end
+end
+
+--- The model's positional functions, { id =, name =, func =, file = } (lsys.func.entries).
+function Model:functions ()
+  return func.entries(self._funclist, self._funcnames, self._funcfiles)
 end
 
 -- Raises when a rule calls func(ID, x) or func("name", x) with a function the model

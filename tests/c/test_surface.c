@@ -870,6 +870,64 @@ static void test_nomem (void) {
   assert(live == 0);
 }
 
+/* ---- editing and writing ---- */
+
+/* with_points copies the patches and their links with new control points and
+** bounds; format writes a text that reads back to the same surface; a
+** failed allocation leaves the destination as it was. */
+static void test_edit_format (void) {
+  lsys_surface s, t, u;
+  lsys_error e;
+  double pt[96];
+  size_t len, n, i;
+  char *text;
+  int d;
+  failat = -1;
+  loadfile(&s, PETAL);
+  assert(s.npatch == 2);
+  for (i = 0; i < 2; i++) memcpy(pt + 48 * i, s.patch[i].ctrl, sizeof s.patch[i].ctrl);
+  pt[3 * 5 + 2] = 7.5;                          /* patch 0, point 5: z */
+  lsys_surface_init(&t);
+  assert(lsys_surface_with_points(&t, &s, pt, &e) == LSYS_OK);
+  assert(t.npatch == 2 && t.patch != s.patch && t.info != s.info);
+  assert(t.patch[0].ctrl[17] == 7.5 && s.patch[0].ctrl[17] != 7.5);
+  assert(t.hi[2] == 7.5 && s.hi[2] < 7.5);
+  for (d = 0; d < 8; d++) assert(t.info[1].nb[d] == s.info[1].nb[d]);
+  assert(strcmp(t.info[1].name, s.info[1].name) == 0);
+  pt[4] = NAN;
+  assert(lsys_surface_with_points(&t, &s, pt, &e) == LSYS_EARG);
+  assert(strcmp(e.msg, "point 2: coordinate 2 is not finite") == 0);
+  assert(t.patch[0].ctrl[17] == 7.5);           /* unchanged */
+  failat = nalloc;                              /* the next allocation fails */
+  assert(lsys_surface_with_points(&t, &s, s.patch[0].ctrl, &e) == LSYS_ENOMEM);
+  failat = -1;
+  assert(t.patch[0].ctrl[17] == 7.5);
+  len = lsys_surface_format(&t, NULL, 0);
+  text = malloc(len + 1);
+  assert(text != NULL);
+  n = lsys_surface_format(&t, text, len + 1);
+  assert(n == len && text[len] == '\0' && strlen(text) == len);
+  assert(strstr(text, "\nPRECISION S: ") != NULL && strstr(text, "\nSIZE: ") != NULL);
+  assert(lsys_surface_parse(&u, text, len, "t.s", &e) == LSYS_OK);
+  assert(u.npatch == t.npatch && u.size == t.size);
+  assert(u.precision_s == t.precision_s && u.precision_t == t.precision_t);
+  for (i = 0; i < u.npatch; i++) {
+    assert(memcmp(u.patch[i].ctrl, t.patch[i].ctrl, sizeof u.patch[i].ctrl) == 0);
+    assert(strcmp(u.info[i].name, t.info[i].name) == 0);
+    assert(u.info[i].color[0] == t.info[i].color[0]);
+    assert(u.info[i].diffuse[1] == t.info[i].diffuse[1]);
+    for (d = 0; d < 8; d++) assert(u.info[i].nb[d] == t.info[i].nb[d]);
+  }
+  for (d = 0; d < 3; d++) {
+    assert(u.contact[d] == t.contact[d] && u.end[d] == t.end[d]);
+    assert(fabs(u.heading[d] - t.heading[d]) < 1e-15 && fabs(u.up[d] - t.up[d]) < 1e-15);
+  }
+  free(text);
+  lsys_surface_free(&u);
+  lsys_surface_free(&t);
+  lsys_surface_free(&s);
+}
+
 int main (void) {
   test_bezier();
   test_bspline();
@@ -887,6 +945,7 @@ int main (void) {
   test_uv();
   test_patch_mesh();
   test_nomem();
+  test_edit_format();
   assert(live == 0);
   printf("test_surface: all passed\n");
   return 0;
