@@ -196,6 +196,85 @@ describe("#gl editing in the window under Xvfb", function ()
     assert.is_true(n < 200)
   end)
 
+  it("drags a curve's control points: the function, the plant and the saved file", function ()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    if not have_core then pending("lsys.core is not built") return end
+    local lsys = require "lsys"
+    local func = require "lsys.func"
+    local curve = require "lsys.ui.curve"
+    local edit = require "lsys.ui.edit"
+    local core = require "lsys.core"
+    local dir = H.tmpdir()
+    func.save(func.new { points = { { 0, 0.3 }, { 0.33, 0.3 }, { 0.66, 0.3 }, { 1, 0.3 } },
+                         name = "levels" }, dir .. "/levels.func")
+    H.write(dir .. "/fan.lua", [[
+local lsys = require "lsys"
+return lsys.lsystem {
+  axiom = "A(0)", steps = 10,
+  params = { angle = { 30, min = 5, max = 80 } },
+  functions = { "levels.func" }, view = { dir = lsys.here() },
+  productions = {
+    'A(i) : i < 10 * func("levels", 0.5) --> F [ +(angle) A(i+1) ] [ -(angle) A(i+1) ]' },
+}
+]])
+    local log = dir .. "/log.txt"
+    os.execute(("cd %s && %s%s view fan.lua --size 1200x800 >%s 2>&1 &"):format(dir, D.env,
+               bin(), log))
+    local wid = window("lsys: fan.lua", log)
+    assert.is_true(wait_built(log, "angle 30"), H.read(log))
+    local _, n0 = last_built(log)
+    assert.equal(7 * 7 + 8, n0)                          -- 3 levels
+    key(wid, "Tab")                                      -- the curves
+    -- the same pane here, driven the same way, says where the points are drawn
+    local pane = curve.new(curve.targets(dofile(dir .. "/fan.lua")))
+    local c = core.canvas(edit.PANE_W, edit.PANE_H)
+    pane:draw(c)
+    local function move (i, y)
+      local x0, y0 = pane:to_pixels(i)
+      local e = pane:current()
+      -- the pixel of data y at the point's x: the pane's mapping, through to_pixels of a
+      -- point moved there and back
+      local keep = e.pts[i][2]
+      e.pts[i][2] = y
+      local _, y1 = pane:to_pixels(i)
+      e.pts[i][2] = keep
+      local pts = {}
+      for k = 0, 4 do
+        pts[#pts + 1] = { edit.to_window(2, x0, y0 + (y1 - y0) * k / 4, 1200, 800) }
+      end
+      D.sleep(0.3 * SLOW)
+      drag(wid, pts)
+      pane:pointer("down", x0, y0, "left")
+      pane:pointer("move", x0, y1, "left")
+      pane:pointer("up", x0, y1, "left")
+      pane:draw(c)
+    end
+    move(2, 0.6)
+    move(3, 0.6)
+    local f = pane:current().object
+    assert.is_true(f(0.5) > 0.45, "f(0.5) = " .. f(0.5))
+    local levels = math.ceil(10 * f(0.5))
+    local want = 7 * (2 ^ levels - 1) + 2 ^ levels
+    for _ = 1, 100 * SLOW do
+      local _, n = last_built(log)
+      if n == want then break end
+      D.sleep(0.1)
+    end
+    local _, n = last_built(log)
+    assert.equal(want, n, H.read(log))
+    key(wid, "ctrl+s")
+    D.wait_for(log, "saved", 10 * SLOW)
+    local back = func.load(dir .. "/levels.func")
+    assert.near(f(0.5), back(0.5), 0.02)                  -- the window's drag, within a pixel
+    local m = dofile(dir .. "/fan.lua")
+    assert.equal(n, #m:derive())
+    key(wid, "Escape")
+    D.sleep(0.5 * SLOW)
+    local _ = lsys
+  end)
+
   it("hears m.params.k = v from a script while the window is open", function ()
     local ok, why = D.start()
     if not ok then pending(why) return end

@@ -286,6 +286,35 @@ end
 --- The target shown: the entry { kind, name, object, file, pts, ... }.
 function Pane:current () return self.entries[self.cur] end
 
+--- Shows `target` (what `new` takes: a form's curve item, a Func, ...), added to the
+-- curves, or in place of the one of the same kind and name; the host calls it when a
+-- form's curve item is clicked.
+function Pane:edit (target)
+  local ok, e = pcall(entry, target, "target")
+  if not ok then error("lsys.ui.curve.edit: " .. tostring(e), 2) end
+  local k = #self.entries + 1
+  for i, x in ipairs(self.entries) do
+    if x.kind == e.kind and x.name == e.name then k = i end
+  end
+  self.entries[k] = e
+  self:fit(e)
+  self.cur, self.selected, self.drag = k, nil, nil
+end
+
+--- Points the curves at model m (a new model made from the same files: a vlab panel's
+-- reload), by kind and name; the curves edited so far go into it.
+function Pane:retarget (m)
+  local by = {}
+  for _, t in ipairs(M.targets(m)) do by[t.kind .. "\0" .. t.name] = t end
+  for _, e in ipairs(self.entries) do
+    local t = by[e.kind .. "\0" .. tostring(e.name)]
+    if t ~= nil then
+      e.set = t.set
+      if e.dirty then t.set(e.object) end
+    end
+  end
+end
+
 -- The curve of entry e as a polyline in data coordinates.
 local function curve (e)
   local out, n = {}, M.SAMPLES

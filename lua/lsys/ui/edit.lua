@@ -18,6 +18,7 @@
 -- and never a queue of old ones. The window draws on its own thread all the while.
 -- @module lsys.ui.edit
 local form = require "lsys.ui.form"
+local curve = require "lsys.ui.curve"
 local core = require "lsys.core"
 local now = require("lsys.program").clock
 
@@ -249,13 +250,20 @@ function Session:find (name)
   return nil
 end
 
--- A form item of kind "curve" was clicked: the curve pane, when there is one, edits it.
+-- A form item of kind "curve" was clicked (a component's range): the curve pane edits it,
+-- one made for it when there is none yet.
 function Session:open_curve (item)
   local k = self:find("curves")
-  if k == nil then self.message = "no curve editor for " .. tostring(item.name) return end
-  local p = self.tabs[k]
-  if p.edit then p:edit(item) end
-  self:select(k)
+  if k == nil then
+    local ok, p = pcall(curve.new, item, { on_change = function () self:changed() end })
+    if not ok then self.message = first_line(p) return end
+    self.tabs[#self.tabs + 1] = p
+    k = #self.tabs
+  else
+    local ok, err = pcall(self.tabs[k].edit, self.tabs[k], item)
+    if not ok then self.message = first_line(err) return end
+  end
+  if not self:select(k) then self:draw() end
 end
 
 --- Ctrl+S: the subject's values and every pane's edits written back.

@@ -16,6 +16,7 @@ local core = require "lsys.core"
 local panel = require "lsys.cpfg.panel"
 local cpfg = require "lsys.cpfg"
 local palette = require "lsys.ui.palette"
+local curve = require "lsys.ui.curve"
 
 local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
       type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
@@ -234,7 +235,16 @@ end
 -- for this model (a palette file that cannot be read) is left out; `warn(msg)` hears why.
 function M.panes (m, changed, warn)
   local list = {}
-  local ok, p = pcall(palette.new, m, { on_change = function () changed() end })
+  local ok, targets = pcall(curve.targets, m)
+  if ok and #targets > 0 then
+    local cp
+    ok, cp = pcall(curve.new, targets, { on_change = function () changed() end })
+    if ok then list[#list + 1] = cp elseif warn then warn(tostring(cp)) end
+  elseif not ok and warn then
+    warn(tostring(targets))
+  end
+  local p
+  ok, p = pcall(palette.new, m, { on_change = function () changed() end })
   if ok then list[#list + 1] = p elseif warn then warn(tostring(p)) end
   return list
 end
@@ -346,10 +356,12 @@ function M.panels (files, panels, opts)
     return d
   end
   subject.model = opts.model
-  local pal
+  local pal, curves
   if opts.model then
     subject.panes = M.panes(opts.model, changed)
-    for _, p in ipairs(subject.panes) do if p.name == "palette" then pal = p end end
+    for _, p in ipairs(subject.panes) do
+      if p.name == "palette" then pal = p elseif p.name == "curves" then curves = p end
+    end
   end
   subject.load = function ()
     local o = {}
@@ -357,6 +369,7 @@ function M.panels (files, panels, opts)
     o.edits = edits()
     local m = cpfg.load(files.l, files.v, o)
     if pal and pal.dirty then m.view.palette = pal.view.palette end   -- edited colours
+    if curves then curves:retarget(m) end                             -- and curves
     subject.model = m
     return m
   end
