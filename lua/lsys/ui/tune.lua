@@ -17,6 +17,7 @@ local panel = require "lsys.cpfg.panel"
 local cpfg = require "lsys.cpfg"
 local palette = require "lsys.ui.palette"
 local curve = require "lsys.ui.curve"
+local codegen = require "lsys.codegen"
 
 local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
       type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
@@ -49,7 +50,7 @@ end
 --- A value as a Lua literal that reads back equal.
 function M.literal (v)
   if type(v) == "boolean" then return tostring(v) end
-  if type(v) == "string" then return format("%q", v) end
+  if type(v) == "string" then return codegen.string(v) end
   if math.type(v) == "integer" then return format("%d", v) end
   for _, f in ipairs({ "%.15g", "%.17g" }) do
     local s = format(f, v)
@@ -220,8 +221,8 @@ function M.save_params (m, path)
     return path
   end
   local side = M.sidecar(path)
-  local lines = { "-- the values lsys view saved for " .. path:match("[^/]*$")
-                  .. " (" .. why .. ")" }
+  local lines = { codegen.comment("the values lsys view saved for " .. path:match("[^/]*$")
+                                  .. " (" .. why .. ")") }
   local names = {}
   for k in pairs(values) do names[#names + 1] = k end
   table.sort(names)
