@@ -372,6 +372,37 @@ describe("vlab panels as form items", function ()
     assert.matches("A(i) : i < LEVELS --> ", text, 1, true)
   end)
 
+  it("sets a view file's fields from a panel that ped drives, and saves them", function ()
+    local d = object()
+    write(d .. "/tree.v", "line style: cylinder\ninitial line width: 2\n")
+    write(d .. "/view.panel", table.concat({ "panel name: View", "type: SLIDER",
+      "name: Width x 10", "origin: 0 0", "min/max: 1 50", "value: 20",
+      "message: n 2 1 -1 %d", "type: BUTTON", "name: Anim", "origin: 0 0", "value: 1",
+      "message: o 1 %d", "" }, "\n"))
+    local panel = require "lsys.cpfg.panel"
+    local VP = panel.read(d .. "/view.panel")
+    local AP = panel.read(d .. "/panel.l")
+    write(d .. "/one.l", "Lsystem: 1\nderivation length: 1\nAxiom: F(5)\nendlsystem\n")
+    local s = tune.panels({ l = d .. "/one.l", v = d .. "/tree.v" }, {
+      { panel = VP, target = d .. "/tree.v", editor = "ped" },
+      { panel = AP, target = d .. "/tree.a", editor = "ped" } }, {})
+    assert.equal(2, #s.items)                         -- the .a panel is not shown
+    assert.matches("not shown: panel.l %(sets tree.a%)", s.note)
+    assert.equal("(tree.v:2 field 1 2)", s.items[1].note)
+    local function depth (sc)          -- one segment: the ribbon's width
+      local lo, hi = sc:bounds()
+      return hi[1] - lo[1]
+    end
+    local w2 = depth(s.build(function () end))
+    s.items[1].set(40)
+    assert.equal("(tree.v:2 field 1 4)", s.items[1].note)
+    local w4 = depth(s.build(function () end))
+    assert.near(2, w2, 1e-6)
+    assert.near(4, w4, 1e-6)
+    assert.matches("tree.v", s.save(), 1, true)
+    assert.equal("line style: cylinder\ninitial line width: 4\n", read(d .. "/tree.v"))
+  end)
+
   it("loads a cpfg model with edits (a #define in the file loses to them)", function ()
     local d = object()
     for _, how in ipairs({ "builtin", "system" }) do

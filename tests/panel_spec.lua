@@ -227,6 +227,32 @@ describe("lsys.cpfg.panel.defines", function ()
   end)
 end)
 
+describe("lsys.cpfg.panel.edit_lines", function ()
+  it("sets a line's field as awkped counts fields (awk's $F) and as ped counts them", function ()
+    local text = "scale factor: 0.9\ntexture: F: a.png E: m R: 0.5 H: l\nz buffer: on\n"
+    local out, n = panel.edit_lines(text, { { line = 2, field = 7, value = 1.5 } })
+    assert.equal("scale factor: 0.9\ntexture: F: a.png E: m R: 1.5 H: l\nz buffer: on\n", out)
+    assert.equal(1, n)
+    out = panel.edit_lines(text, { { line = 1, field = 1, value = 2 } }, "ped")
+    assert.equal("scale factor: 2\n", out:match("^[^\n]*\n"))
+    out = panel.edit_lines(text, { { line = 3, on = false } })
+    assert.matches("\nz buffer: off\n$", out)
+    -- a line or field the text does not have: nothing changes
+    local same, k = panel.edit_lines(text, { { line = 9, field = 1, value = 1 },
+                                             { line = 1, field = 7, value = 1 } })
+    assert.same({ text, 0 }, { same, k })
+  end)
+
+  it("gives the line edits of a panel's n, o and older messages", function ()
+    local P = read("target: Lsystem\n\ntype: SLIDER\nname: s\norigin: 0 0\nmin/max: 0 99\n"
+      .. "value: 25\nmessage: n 12 7 -1 %d\n\ntype: BUTTON\nname: z\norigin: 0 0\n"
+      .. "value: 1\nmessage: o 3 %d\n\ntype: SLIDER\nname: t\norigin: 0 0\n"
+      .. "min/max: 0 9\nvalue: 3\nmessage: d T %d 1\n")
+    assert.same({ { line = 12, field = 7, value = 2.5 }, { line = 3, on = true } },
+                panel.line_edits(P))
+  end)
+end)
+
 describe("lsys.cpfg.panel.find", function ()
   -- vlab's oofs/ext folder: LSYS_VLAB_EXT, or a vlab checkout beside the repository
   local EXT = os.getenv("LSYS_VLAB_EXT") or "../vlab/oofs/ext"

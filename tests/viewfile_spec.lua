@@ -178,6 +178,28 @@ describe("view files", function ()
     }, w)
   end)
 
+  it("skip as cpfg skips a surface line without its name, an old texture line", function ()
+    -- cpfg reads `surface: petal.s 1 4 6` as the name 'p' and the file "etal.s", and a
+    -- texture line whose first word is no field fails (vlab's VlabTools/Lychnis)
+    local v, w = parse("surface: petal.s 1 4 6\ntexture: leafs.png\ninitial color: 2\n")
+    assert.same({ color = 2 }, v)
+    assert.same({
+      "x.v:1: 'surface': no name before the file 'petal.s': cpfg reads the name 'p' and the "
+        .. "file 'etal.s', which does not exist, and skips the line",
+      "x.v:2: 'texture': 'leafs.png' is not a field (F: file, H, L, E, S, R): cpfg skips "
+        .. "the line",
+    }, w)
+    local dir = os.tmpname()
+    os.remove(dir)
+    os.execute("mkdir -p " .. dir)
+    local f = io.open(dir .. "/etal.s", "w")
+    f:write("x")
+    f:close()
+    local v2 = view.parse("surface: petal.s 1 4 6\n", "x.v", { dir = dir, quiet = true })
+    assert.same({ p = { file = "etal.s", scale = 1, precision = { 4, 6 } } }, v2.surfaces)
+    os.execute("rm -rf " .. dir)
+  end)
+
   it("reject malformed values with file and line", function ()
     local cases = {
       { "angle factor: abc", "x.v:1: 'angle factor': 'abc' is not a number" },

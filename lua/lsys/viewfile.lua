@@ -441,7 +441,16 @@ COMMANDS["twist of cylinders"] = function (P, rest, cmd)
   P.v.minimize_twist = not P:onoff(rest, cmd)
 end
 
+local TEXFIELDS = { F = true, H = true, L = true, E = true, S = true, R = true }
+
 COMMANDS["texture"] = function (P, rest, cmd)
+  local first = rest:match("^[%s:,]*([^%s:,]+)")
+  if first and not TEXFIELDS[first] and first:find("%.") then
+    -- `texture: leafs.png` (no F:): cpfg reads the 'l' as an unknown field and skips the
+    -- line, its texture not counted (vlab's VlabTools/Lychnis has these)
+    return P:warn("'%s': '%s' is not a field (F: file, H, L, E, S, R): cpfg skips the line",
+                  cmd, show(first))
+  end
   local f, order = P:fields(rest, cmd, { F = "word", H = "word", L = "word", E = "word",
                                          S = 0, R = 1 }, "F, H, L, E, S, R")
   if f.F == nil then P:err("'%s' needs the image file F:", cmd) end
@@ -517,6 +526,22 @@ end
 
 COMMANDS["surface"] = function (P, rest, cmd)
   local w = P:words(rest, cmd, 3, 6, "a name, a file, a scale, [s t] and [a texture]")
+  if utf8.len(w[1]) ~= 1 and utf8.len(w[1]) and w[1]:match("^[%w_.][%w_.-]*%.s$") then
+    -- `surface: petal.s 1 4 6` (no name): cpfg reads the name "p" and the file "etal.s",
+    -- which it skips when there is no such file (vlab's VlabTools/Lychnis has these)
+    local c = w[1]:sub(1, utf8.offset(w[1], 2) - 1)
+    local file = w[1]:sub(#c + 1)
+    local dir = P.dir or "."
+    local f = io.open(file:sub(1, 1) == "/" and file or dir .. "/" .. file, "rb")
+    if f == nil then
+      return P:warn("'%s': no name before the file '%s': cpfg reads the name '%s' and the "
+                    .. "file '%s', which does not exist, and skips the line", cmd, w[1], c, file)
+    end
+    f:close()
+    table.insert(w, 2, file)
+    w[1] = c
+    if #w > 6 then w[7] = nil end
+  end
   if utf8.len(w[1]) ~= 1 then
     P:err("'%s': the name must be one character, got '%s'", cmd, show(w[1]))
   end
@@ -686,7 +711,7 @@ function M.parse (text, name, opts)
   opts = opts or {}
   local P = setmetatable({ name = name or "view", line = 0, v = {}, warnings = {},
                            nlights = 0, legacy = {}, surfaces = {}, texlines = {},
-                           display = {},
+                           display = {}, dir = opts.dir,
                            incomment = false, cline = 0 }, Parser)
   for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     P.line = P.line + 1

@@ -55,12 +55,16 @@ local function checkopts (opts, fname)
   if type(opts) ~= "table" then error(fname .. ": opts must be a table", 3) end
   for k in pairs(opts) do
     if k ~= "cpp" and k ~= "colormap" and k ~= "materials" and k ~= "defines" and
-       k ~= "functions" and k ~= "random" and k ~= "environment" and k ~= "edits" then
+       k ~= "functions" and k ~= "random" and k ~= "environment" and k ~= "edits" and
+       k ~= "texts" then
       error(format("%s: unknown option '%s'", fname, tostring(k)), 3)
     end
   end
   if opts.edits ~= nil and type(opts.edits) ~= "table" then
     error(format("%s: option 'edits' must be a table { NAME = value }", fname), 3)
+  end
+  if opts.texts ~= nil and type(opts.texts) ~= "table" then
+    error(format("%s: option 'texts' must be a table { [file] = text }", fname), 3)
   end
   if opts.functions ~= nil and opts.functions ~= "cpfg" and opts.functions ~= "exact" then
     error(format("%s: option 'functions' must be \"cpfg\" or \"exact\"", fname), 3)
@@ -169,7 +173,9 @@ end
 -- their values, as cpfg does without an environmental program; without it a model with
 -- ?E modules is refused), edits ({ NAME = value }: the file's `#define NAME` lines get
 -- these values, as a vlab panel's awkped writes them, without writing the file; a
--- #define in the file beats `defines`, not `edits`). Returns an lsys Model; raises
+-- #define in the file beats `defines`, not `edits`), texts ({ [file] = text }: the text
+-- of the .l or .v file read in place of the file's, a panel's line edits). Returns an
+-- lsys Model; raises
 -- "file:line: message".
 function M.load (lfile, vfile, opts)
   if type(lfile) ~= "string" then error("lsys.cpfg.load: a file name expected", 2) end
@@ -177,7 +183,13 @@ function M.load (lfile, vfile, opts)
     error("lsys.cpfg.load: the view file must be a file name", 2)
   end
   opts = checkopts(opts, "lsys.cpfg.load")
-  local v = vfile and viewmod.load(vfile, { missing = "warn" }) or { dir = cpp.dirof(lfile) }
+  local texts = opts.texts or {}
+  local v
+  if vfile and texts[vfile] then            -- the view file as a panel edited it
+    v = viewfile.parse(texts[vfile], vfile, { dir = cpp.dirof(vfile), missing = "warn" })
+  else
+    v = vfile and viewmod.load(vfile, { missing = "warn" }) or { dir = cpp.dirof(lfile) }
+  end
   -- what the view leaves unset (or sets to '?') is cpfg's default, not lsys.view's
   for k, x in pairs(viewfile.CPFG_DEFAULTS) do
     if v[k] == nil then v[k] = x end
@@ -192,9 +204,10 @@ function M.load (lfile, vfile, opts)
   local ok, err = pcall(function ()
     local defs = funcdefines(v)
     for k, x in pairs(opts.defines or {}) do defs[k] = x end
-    local text
+    local text = texts[lfile]
     if opts.edits and next(opts.edits) then      -- a panel's values, as awkped writes them
-      local t, why = cpp.readfile(lfile)
+      local t, why = text, nil
+      if t == nil then t, why = cpp.readfile(lfile) end
       if not t then error({ cpfg = true, msg = why }, 0) end
       text = panel.edit(t, opts.edits)
     end

@@ -304,6 +304,63 @@ function M.defines (P)
   return t
 end
 
+--- A text with the line edits of `edits` made, as vlab's editors make them: each edit is
+-- { line = L, field = F, value = x } or { line = L, on = true | false } (the line's on/off
+-- word). `editor` "awkped" (the default) counts fields as awk does, the line's words from
+-- the first, and joins the edited line's words with single spaces; "ped" counts the words
+-- after the line's label (the text up to its first ':'). The value is written as awk
+-- prints it. Returns the text and how many lines changed; an edit of a line or field the
+-- text does not have changes nothing.
+function M.edit_lines (text, edits, editor)
+  local by = {}
+  for _, e in ipairs(edits) do
+    local t = by[e.line]
+    if t == nil then t = {}; by[e.line] = t end
+    t[#t + 1] = e
+  end
+  local out, n, changed = {}, 0, 0
+  for line, nl in text:gmatch("([^\n]*)(\n?)") do
+    n = n + 1
+    local list = by[n]
+    if list then
+      local head, rest = nil, line
+      if editor == "ped" then head, rest = line:match("^([^:]*:)(.*)$") end
+      if head == nil then head, rest = "", line end
+      local w = words(rest)
+      local before = line
+      for _, e in ipairs(list) do
+        if e.on ~= nil then
+          for i, x in ipairs(w) do
+            if x == "on" or x == "off" then w[i] = e.on and "on" or "off" end
+          end
+        elseif w[e.field] ~= nil then
+          w[e.field] = M.number(e.value)
+        end
+      end
+      line = head .. (head ~= "" and " " or "") .. table.concat(w, " ")
+      if line ~= before then changed = changed + 1 end
+    end
+    out[#out + 1] = line .. nl
+    if nl == "" then break end
+  end
+  return table.concat(out), changed
+end
+
+--- The line edits the panel's items give in their current state (messages `n`, `o` and
+-- the older `L F V S`), for `edit_lines`.
+function M.line_edits (P)
+  local t = {}
+  for _, item in ipairs(P.items) do
+    local m = item.message
+    if sends(item) and m.kind ~= "d" then
+      local _, v, out = M.apply(P, item)
+      if m.kind == "o" then t[#t + 1] = { line = out.line, on = v ~= 0 }
+      else t[#t + 1] = { line = out.line, field = out.field, value = v } end
+    end
+  end
+  return t
+end
+
 --- The number as awk prints a field it computed: an integer as one, otherwise "%.6g".
 function M.number (x)
   if math.type(x) == "integer" then return format("%d", x) end

@@ -115,6 +115,7 @@ function M.session (v, subject, opts)
     on_save = function () return self:save() end,
     on_curve = function (item) self:open_curve(item) end,
   })
+  self.form.message = subject.note
   self.tabs = { self.form }
   for _, p in ipairs(subject.panes or {}) do self.tabs[#self.tabs + 1] = p end
   if subject.attach then subject.attach(self) end

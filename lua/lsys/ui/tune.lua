@@ -18,6 +18,7 @@ local cpfg = require "lsys.cpfg"
 local palette = require "lsys.ui.palette"
 local curve = require "lsys.ui.curve"
 local codegen = require "lsys.codegen"
+local form = require "lsys.ui.form"
 
 local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
       type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
@@ -282,32 +283,43 @@ end
 -- {=========================================================================================
 -- vlab panels
 
--- The items of one panel: its sliders (the panel's integer values, the define's value
--- after the scale shown beside) and its buttons (a group's buttons one choice; a lone
--- button a toggle), each with the message's #define. Items without a #define message (an
--- edit by line and field) are shown but say that lsys does not apply them.
-local function panel_items (P, changed)
+-- What an item's message does now, for the form: "(NAME value)" for a #define, "(plant.v:20
+-- field 1 value)" for a line's field, "(plant.v:3 on)".
+local function note (P, it, target)
+  local ok, def, y, out = pcall(panel.apply, P, it)
+  if not ok then return "(" .. form.bare(def) .. ")" end
+  local m = it.message
+  if m.kind == "d" then return format("(%s %s)", def, panel.number(y)) end
+  local file = (target or "?"):match("([^/]*)$")
+  if m.kind == "o" then return format("(%s:%d %s)", file, out.line, y ~= 0 and "on" or "off") end
+  return format("(%s:%d field %d %s)", file, out.line, out.field, panel.number(y))
+end
+
+-- The items of one panel: its sliders (the panel's integer values, beside them what the
+-- message makes of the value) and its buttons (a group's buttons one choice, a lone button
+-- a toggle). `target` is the file its line edits change.
+local function panel_items (P, target, changed)
   local items, groups = {}, {}
+  local function withnote (item, it)
+    return setmetatable(item, { __index = function (_, k)    -- the value as it is now
+      if k == "note" then return note(P, it, target) end
+    end })
+  end
   for _, it in ipairs(P.items) do
     local m = it.message
-    local def = m and m.kind == "d" and m.define
-    if it.type == "SLIDER" and def then
+    local sends = m and m.kind ~= nil
+    if it.type == "SLIDER" and sends then
       local item = { name = it.name, label = it.name, kind = "number", min = it.min,
                      max = it.max, step = 1, default = it.default or it.value }
       item.get = function () return it.value end
       item.set = function (v) it.value = math.tointeger(v) or math.floor(v + 0.5); changed() end
-      setmetatable(item, { __index = function (_, k)      -- the define's value as it is now
-        if k == "note" then
-          local _, y = panel.apply(P, it)
-          return format("(%s %s)", def, panel.number(y))
-        end
-      end })
-      items[#items + 1] = item
-    elseif it.type == "BUTTON" and def then
+      items[#items + 1] = withnote(item, it)
+    elseif it.type == "BUTTON" and sends then
       if it.group then
         local g = groups[it.group]
         if g == nil then
-          g = { name = it.group, label = it.group, kind = "choice", choices = {}, buttons = {} }
+          local gname = it.group.name or format("group %d", it.group.line or #items + 1)
+          g = { name = gname, label = gname, kind = "choice", choices = {}, buttons = {} }
           g.get = function ()
             for k, b in ipairs(g.buttons) do if b.value == 1 then return g.choices[k] end end
             return g.choices[1]
@@ -327,7 +339,7 @@ local function panel_items (P, changed)
                        default = it.value == 1 }
         item.get = function () return it.value == 1 end
         item.set = function (v) it.value = v and 1 or 0; changed() end
-        items[#items + 1] = item
+        items[#items + 1] = withnote(item, it)
       end
     end
   end
@@ -335,26 +347,56 @@ local function panel_items (P, changed)
   return items
 end
 
---- The subject of a cpfg model whose vlab panels drive its #defines. `files` = { l =, v = },
--- `panels` a list of panel tables (lsys.cpfg.panel.read), opts: title, load (the
--- lsys.cpfg.load options besides `edits`), model (the model as loaded: its palette pane).
+--- The subject of a cpfg model whose vlab panels drive it. `files` = { l =, v = },
+-- `panels` a list of panel tables (lsys.cpfg.panel.read) or of { panel = P, target = the
+-- file its messages edit (default the .l file), editor = "awkped" | "ped" }; opts: title, load (the lsys.cpfg.load
+-- options besides `edits` and `texts`), model (the model as loaded: its palette and
+-- curve panes). A panel's #define messages (`d`) set the .l file's #defines as awkped
+-- does, its line messages (`n`, `o`, `L F V S`) the fields of its target's lines as ped
+-- does, both in memory (lsys.cpfg.load's `edits` and `texts`); a panel for a file lsys
+-- does not read (an animation file, .a) is left out.
 function M.panels (files, panels, opts)
   opts = opts or {}
+  local list, skipped = {}, {}
+  for _, x in ipairs(panels) do
+    local P, target, editor = x, files.l, nil
+    if x.panel then P, target, editor = x.panel, x.target or files.l, x.editor end
+    if target == files.l or target == files.v then
+      list[#list + 1] = { P = P, target = target, editor = editor }
+    else skipped[#skipped + 1] = P.path:match("([^/]*)$") .. " (sets " ..
+      tostring(target):match("([^/]*)$") .. ")" end
+  end
   local subject = { title = opts.title, form_name = "panels",
-                    form_title = #panels == 1 and panels[1].name or "vlab panels" }
+                    form_title = #list == 1 and list[1].P.name or "vlab panels" }
   local items, session = {}, nil
   local function changed () if session then session:changed() end end
-  for _, P in ipairs(panels) do
-    for _, it in ipairs(panel_items(P, changed)) do items[#items + 1] = it end
+  for _, e in ipairs(list) do
+    for _, it in ipairs(panel_items(e.P, e.target, changed)) do items[#items + 1] = it end
   end
-  subject.panel_count = #panels
+  subject.panel_count = #list
   subject.items = items
+  if #skipped > 0 then                    -- said in the form's message line
+    subject.note = "not shown: " .. table.concat(skipped, ", ") .. ": a file lsys does not read"
+  end
+  local function readtext (path)
+    local f = io.open(path, "rb")
+    if f == nil then error(path .. ": cannot be read", 0) end
+    local t = f:read("a")
+    f:close()
+    return t
+  end
+  -- the #defines of every panel, and the texts its line edits make of their targets
   local function edits ()
-    local d = {}
-    for _, P in ipairs(panels) do
-      for k, v in pairs(panel.defines(P)) do d[k] = v end
+    local d, texts, n = {}, {}, 0
+    for _, e in ipairs(list) do
+      for k, v in pairs(panel.defines(e.P)) do d[k] = v end
+      local le = panel.line_edits(e.P)
+      if #le > 0 then
+        local t, c = panel.edit_lines(texts[e.target] or readtext(e.target), le, e.editor)
+        texts[e.target], n = t, n + c
+      end
     end
-    return d
+    return d, texts, n
   end
   subject.model = opts.model
   local pal, curves
@@ -367,7 +409,7 @@ function M.panels (files, panels, opts)
   subject.load = function ()
     local o = {}
     for k, v in pairs(opts.load or {}) do o[k] = v end
-    o.edits = edits()
+    o.edits, o.texts = edits()
     local m = cpfg.load(files.l, files.v, o)
     if pal and pal.dirty then m.view.palette = pal.view.palette end   -- edited colours
     if curves then curves:retarget(m) end                             -- and curves
@@ -382,21 +424,26 @@ function M.panels (files, panels, opts)
     return m:interpret(s)
   end
   subject.save = function ()
-    local f = io.open(files.l, "rb")
-    if f == nil then error(files.l .. ": cannot be read", 0) end
-    local text = f:read("a")
-    f:close()
-    local new, n = panel.edit(text, edits())
+    local defs, texts = edits()
     local saved = {}
-    for _, P in ipairs(panels) do                 -- the panels keep their values too
-      local pt = panel.text(P)
+    local ltext = texts[files.l] or readtext(files.l)
+    local new = panel.edit(ltext, defs)
+    if new ~= readtext(files.l) then
+      core.write_file(files.l, new)
+      saved[#saved + 1] = files.l
+    end
+    if files.v and texts[files.v] and texts[files.v] ~= readtext(files.v) then
+      core.write_file(files.v, texts[files.v])
+      saved[#saved + 1] = files.v
+    end
+    for _, e in ipairs(list) do                  -- the panels keep their values too
+      local pt = panel.text(e.P)
       if pt then
-        core.write_file(P.path, pt)
-        saved[#saved + 1] = P.path
+        core.write_file(e.P.path, pt)
+        saved[#saved + 1] = e.P.path
       end
     end
-    if n > 0 and new ~= text then core.write_file(files.l, new) end
-    table.insert(saved, 1, files.l .. (n == 0 and " (no #define to change)" or ""))
+    if #saved == 0 then return "nothing (no value changed)" end
     return table.concat(saved, ", ")
   end
   subject.attach = function (s) session = s end

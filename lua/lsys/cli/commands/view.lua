@@ -120,11 +120,10 @@ local function edit_subject (s, model, editing, title)
   else dir = s.path:match("^(.*)/[^/]*$") or "." end
   local found = panel.find(dir)
   if #found == 0 then return nil end
-  local panels = {}
+  local panels = {}             -- each with the file its messages edit (the .l file: awkped)
   for _, f in ipairs(found) do
-    if f.target == nil or f.target == l or f.editor == "awkped" or f.editor == "ped" then
-      panels[#panels + 1] = panel.read(f.panel)
-    end
+    panels[#panels + 1] = { panel = panel.read(f.panel), target = f.target or l,
+                            editor = f.editor }
   end
   local lo = {}
   for k, x in pairs(s.lopts or {}) do lo[k] = x end
