@@ -250,6 +250,11 @@ describe("lsys.cpfg.panel.edit_lines", function ()
       .. "min/max: 0 9\nvalue: 3\nmessage: d T %d 1\n")
     assert.same({ { line = 12, field = 7, value = 2.5 }, { line = 3, on = true } },
                 panel.line_edits(P))
+    -- a line that is not a number is no line edit (the fuzzer's: `o LABEL3 %d`)
+    local Q = read("target: Lsystem\n\ntype: BUTTON\nname: Sw\norigin: 0 0\nvalue: 0\n"
+                   .. "message: o LABEL3 %d\n")
+    assert.is_nil(Q.items[1].message.kind)
+    assert.same({}, panel.line_edits(Q))
   end)
 end)
 

@@ -61,13 +61,13 @@ local function message (text)
   if w[1] == "d" and #w >= 4 then
     m.kind, m.define, m.format, m.scale = "d", w[2], w[3], tonumber(w[4])
     m.scaletext = w[4]
-  elseif w[1] == "n" and #w >= 5 then
+  elseif w[1] == "n" and #w >= 5 and isint(w[2]) and isint(w[3]) then
     m.kind, m.line, m.field, m.scale, m.format = "n", tonumber(w[2]), tonumber(w[3]),
       tonumber(w[4]), w[5]
     m.scaletext = w[4]
-  elseif w[1] == "o" and #w >= 3 then
+  elseif w[1] == "o" and #w >= 3 and isint(w[2]) then
     m.kind, m.line, m.format = "o", tonumber(w[2]), w[3]
-  elseif isint(w[1]) and #w >= 4 then
+  elseif isint(w[1]) and #w >= 4 and isint(w[2]) then
     m.kind, m.line, m.field, m.format, m.scale = "line", tonumber(w[1]), tonumber(w[2]),
       w[3], tonumber(w[4])
     m.scaletext = w[4]

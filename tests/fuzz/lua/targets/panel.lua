@@ -4,8 +4,8 @@
 -- Expected errors are strings naming the file ("PATH: ..." or "PATH:LINE: ..."). Checks on
 -- what loads: every item has a known type and its line; a slider's value lies in its
 -- min/max; a group's buttons are buttons of the panel; apply of every item with a message
--- gives a number (or fails naming the file); defines gives numbers by names; and reading
--- the file again gives the same table.
+-- gives a number (or fails naming the file); defines gives numbers by names; the line
+-- edits apply to a text; and reading the file again gives the same table.
 local panel = require "lsys.cpfg.panel"
 
 local type, pairs, ipairs, pcall, tostring, error, os_remove, tmpname, open, mathtype =
@@ -93,6 +93,15 @@ local function check (P)
       end
       if not ok and not T.clean(name) then return "apply failed: " .. tostring(name) end
     end
+  end
+  local lok, le = pcall(panel.line_edits, P)
+  if not lok then
+    if not T.clean(le) then return "line_edits failed: " .. tostring(le) end
+  else
+    local eok, text = pcall(panel.edit_lines, "a: 1 2 3\nb c: on\n\n", le)
+    if not eok or type(text) ~= "string" then return "edit_lines failed: " .. tostring(text) end
+    eok, text = pcall(panel.edit_lines, "a: 1 2 3\nb c: on\n", le, "ped")
+    if not eok or type(text) ~= "string" then return "edit_lines failed: " .. tostring(text) end
   end
   local ok, d = pcall(panel.defines, P)
   if not ok then
