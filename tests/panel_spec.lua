@@ -307,4 +307,40 @@ describe("lsys.cpfg.panel.find", function ()
     assert.equal(26, #s40)
     steps.value = 300
   end)
+
+  it("opens every cpfg object of vlab's with a panel, as lsys view does, and builds it", function ()
+    if not have_vlab then return pending("no vlab objects at " .. EXT .. " (set LSYS_VLAB_EXT)") end
+    if not have_core then return pending("lsys.core is not built") end
+    local tune = require "lsys.ui.tune"
+    local p = io.popen("cd '" .. EXT .. "' && grep -rl '^[[:space:]]*panel ' "
+                       .. "--include=specifications . | sort")
+    local opened, lpfg, names = 0, 0, {}
+    for spec in p:lines() do
+      local dir = EXT .. "/" .. spec:gsub("^%./", ""):gsub("/specifications$", "")
+      local l, v, pal = lsys.cpfg.object_files(dir)
+      local f = io.open(l)
+      local head = f:read("a")
+      f:close()
+      if head:find("lpfgall.h", 1, true) then           -- an lpfg model, not cpfg's
+        lpfg = lpfg + 1
+      else
+        local panels = {}
+        for _, x in ipairs(panel.find(dir)) do
+          panels[#panels + 1] = { panel = panel.read(x.panel), target = x.target or l,
+                                  editor = x.editor }
+        end
+        local lo = {}
+        if pal then lo[pal:match("%.mat$") and "materials" or "colormap"] = pal end
+        local m = lsys.cpfg.load(l, v, lo)
+        local s = tune.panels({ l = l, v = v }, panels, { load = lo, model = m })
+        local sc = s.build(function () end)
+        assert.is_true(#sc.lstring > 0, dir)
+        opened = opened + 1
+        names[#names + 1] = dir:match("([^/]*)$")
+      end
+    end
+    p:close()
+    assert.is_true(opened >= 17, table.concat(names, ", "))
+    assert.equal(1, lpfg)
+  end)
 end)
