@@ -68,7 +68,10 @@ local function value (inst, p, key, ctx)
   local t = sch[1]
   if t ~= "number" and t ~= "vec3" then return v end
   local out
-  if type(v) == "function" then
+  if t == "number" and C.isfunc(v) then
+    local n, i = ctx.n or 1, ctx.i or 1
+    out = v(n > 1 and (i - 1) / (n - 1) or 0)
+  elseif type(v) == "function" then
     local ok, r = pcall(v, ctx)
     if not ok then efail(inst, key, "its function failed: %s", tostring(r)) end
     out = r
@@ -115,7 +118,7 @@ local function howof (p, key)
   local v = p:param(key)
   local t = C.schema(p.kind, key)[1]
   if t ~= "number" and t ~= "vec3" then return CONST, v end
-  if type(v) == "function" then return CALL end
+  if type(v) == "function" or C.isfunc(v) then return CALL end
   if type(v) == "table" and #v == 2 then
     if v.f ~= nil or t == "vec3" then return CALL end
     return RANGE, v
@@ -123,14 +126,15 @@ local function howof (p, key)
   return CONST, v
 end
 
--- The per-prototype cache of parameter kinds (weak: prototypes can be collected).
+-- The per-prototype cache of parameter kinds (weak: prototypes can be collected), made
+-- again when the prototype's `version` changed (proto:set).
 local cachemeta = { __mode = "k" }
 local protocache = setmetatable({}, cachemeta)
 
 local function pcache (p)
   local pc = protocache[p]
-  if pc == nil then
-    pc = { how = {}, v = {} }
+  if pc == nil or pc.version ~= p.version then
+    pc = { how = {}, v = {}, version = p.version }
     protocache[p] = pc
   end
   return pc

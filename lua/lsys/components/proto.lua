@@ -3,8 +3,8 @@
 -- between them. lsys.components gathers this module with the expansion
 -- (lsys.components.expand) and the placements (lsys.components.place).
 -- @module lsys.components.proto
-local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select =
-      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select
+local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select, pcall =
+      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select, pcall
 local math, string, table = math, string, table
 local format, concat, sort = string.format, table.concat, table.sort
 local floor, huge = math.floor, math.huge
@@ -137,6 +137,14 @@ M.known = known
 
 local function isnum (x) return type(x) == "number" and x == x and x > -huge and x < huge end
 M.isnum = isnum
+
+-- Whether x is an lsys.Func (a positional function, lsys.func): a number parameter may be
+-- one, read at the instance's place u = (i - 1)/(n - 1) in its iteration as a range is.
+local function isfunc (x)
+  local mt = type(x) == "userdata" and getmetatable(x)
+  return type(mt) == "table" and mt.__name == "lsys.Func"
+end
+M.isfunc = isfunc
 
 local function who (p)
   return p.name and format("%s '%s'", p.kind, p.name) or p.kind
@@ -273,6 +281,7 @@ local function check (p, key, v)
     return v
   end
   if type(v) == "function" and (t == "number" or t == "vec3") then return v end
+  if t == "number" and isfunc(v) then return v end
   if t == "number" then
     if isnum(v) then return bounded(p, key, sch, v, v) end
     if type(v) == "table" and isnum(v[1]) and isnum(v[2]) and #v == 2 then
@@ -281,7 +290,7 @@ local function check (p, key, v)
       end
       return bounded(p, key, sch, v, v[1], v[2])
     end
-    fail(p, "'%s' must be a number, a range {v0, v1} or a function, got %s", key,
+    fail(p, "'%s' must be a number, a range {v0, v1}, a function or an lsys.Func, got %s", key,
          v ~= v and "NaN" or type(v) == "number" and tostring(v) or type(v))
   elseif t == "vec3" then
     if isvec(v) then return bounded(p, key, sch, v, v) end
@@ -338,6 +347,7 @@ M.MAX_LEAF_RATIO = 10
 local function leafratio (p)
   local w, l = p.params.width, p.params.length
   if p.params.outline ~= nil or type(w) == "function" or type(l) == "function" or
+     isfunc(w) or isfunc(l) or
      type(w) == "table" and w.f ~= nil or type(l) == "table" and l.f ~= nil then
     return
   end
@@ -397,6 +407,48 @@ function Proto:param (key)
   local sch = schema(self.kind, key)
   if sch == nil then fail(self, "unknown parameter '%s'", tostring(key)) end
   return sch[2]
+end
+
+--- Sets parameter `key` (a name in M.known(kind), "recursion" or "name") to `v`, checked as
+-- the constructor checks it (nil: back to the default); a failure raises and leaves the
+-- prototype as it was. Bumps `version`, which tells the expansion's per-prototype caches
+-- that the parameters changed. Returns self.
+function Proto:set (key, v)
+  if getmetatable(self) ~= Proto then
+    error("lsys.components: set: call it as proto:set(key, value)", 2)
+  end
+  if key == "name" then
+    if v ~= nil and (type(v) ~= "string" or v == "") then
+      fail(self, "'name' must be a non-empty string")
+    end
+    self.name = v
+  elseif key == "recursion" then
+    if v == nil then v = 1 end
+    if not isnum(v) or v ~= floor(v) or v < 1 or v > 1000 then
+      fail(self, "'recursion' must be a whole number from 1 to 1000, got %s", tostring(v))
+    end
+    self.recursion, self.recursive = v, true
+  else
+    if type(key) ~= "string" or schema(self.kind, key) == nil then
+      fail(self, "unknown parameter '%s' (known: %s)", tostring(key),
+           concat(known(self.kind), ", "))
+    end
+    local old = self.params[key]
+    if v ~= nil then check(self, key, v) end
+    if key == "n" and v ~= nil and (v < 0 or v > MAX_N) then
+      fail(self, "'n' must be from 0 to %d, got %s", MAX_N, tostring(v))
+    end
+    self.params[key] = v
+    if self.kind == "leaf" and (key == "width" or key == "length" or key == "outline") then
+      local ok, err = pcall(leafratio, self)
+      if not ok then
+        self.params[key] = old
+        error(err, 0)
+      end
+    end
+  end
+  self.version = (self.version or 0) + 1
+  return self
 end
 
 -- Checks the flags of a link: { only = {i...} } or { except = {i...} }.
