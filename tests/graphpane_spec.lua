@@ -312,6 +312,48 @@ describe("lsys.ui.graph items", function ()
     assert.same({ "component", "component", "component" }, what)
   end)
 
+  it("draws the last i-tree again when only drawn parameters changed", function ()
+    local stem, whorl, leaf = small()
+    local pane = P.new(stem, { dot = false })
+    assert.is_false(P.reuses(stem))
+    pane:rebuild()
+    assert.is_true(P.reuses(stem))
+    local function fresh () return C.scene(stem, { seed = 1 }) end
+    local function check (s)
+      local f = fresh()
+      assert.equal(f.ntriangles, s.ntriangles)
+      local lo1, hi1 = s:bounds()
+      local lo2, hi2 = f:bounds()
+      assert.same({ lo2, hi2 }, { lo1, hi1 })
+    end
+    pane:select(leaf)
+    items(pane).width.set(0.05)                 -- the leaf's shape only: the same i-tree
+    assert.is_true(P.reuses(stem))
+    local s1, m1 = pane:rebuild()
+    check(s1)
+    items(pane).length.set(0.6)                 -- moves what is on the leaf: expanded again
+    assert.is_false(P.reuses(stem))
+    local s2, m2 = pane:rebuild()
+    check(s2)
+    assert.is_true(m1.components.tree ~= m2.components.tree)
+    pane:select(stem)
+    items(pane).radius.set(0.2)
+    assert.is_true(P.reuses(stem))
+    local s3, m3 = pane:rebuild()
+    assert.equal(m2.components.tree, m3.components.tree)
+    check(s3)
+    whorl:child(C.leaf {})                       -- a link: expanded again
+    assert.is_false(P.reuses(stem))
+    check(pane:rebuild())
+    assert.is_false(P.reuses(stem, { seed = 2 }))
+    -- a drawn parameter that is a Lua function may draw random numbers: never reused
+    leaf:set("lateral", function (ctx) return ctx.random() end)
+    pane:rebuild()
+    assert.is_false(P.reuses(stem))
+    assert.matches("lsys.ui.graph.rebuild: a component prototype expected",
+                   H.errof(P.rebuild, 1))
+  end)
+
   it("turns a curve edit into the range the component reads", function ()
     local stem = small()
     local pane = P.new(stem, { dot = false })

@@ -409,10 +409,26 @@ function Proto:param (key)
   return sch[2]
 end
 
+-- The parameters that only the geometry's emitter reads (lsys.components.emit), never the
+-- expansion: a change of one leaves the i-tree as it was, so lsys.ui.graph draws the plant
+-- again from the i-tree it has.
+M.DRAWN = {
+  ["*"] = { color = true, texture = true },
+  leaf = { width = true, shape = true, outline = true, lateral = true, longitudinal = true },
+  horn = { radius = true, tip = true, thickness = true, primitive = true },
+  tree = { radius = true, tip = true, thickness = true, primitive = true },
+}
+local function drawn (kind, key)
+  local k = M.DRAWN[kind]
+  return M.DRAWN["*"][key] == true or k ~= nil and k[key] == true
+end
+M.drawn = drawn
+
 --- Sets parameter `key` (a name in M.known(kind), "recursion" or "name") to `v`, checked as
 -- the constructor checks it (nil: back to the default); a failure raises and leaves the
 -- prototype as it was. Bumps `version`, which tells the expansion's per-prototype caches
--- that the parameters changed. Returns self.
+-- that the parameters changed, and `xversion` unless the parameter is one of M.DRAWN (an
+-- i-tree made before is then no longer the graph's). Returns self.
 function Proto:set (key, v)
   if getmetatable(self) ~= Proto then
     error("lsys.components: set: call it as proto:set(key, value)", 2)
@@ -448,6 +464,7 @@ function Proto:set (key, v)
     end
   end
   self.version = (self.version or 0) + 1
+  if not drawn(self.kind, key) then self.xversion = (self.xversion or 0) + 1 end
   return self
 end
 

@@ -791,12 +791,85 @@ end
 -- {=========================================================================================
 -- Rebuilding the plant
 
---- The Scene of the p-graph from `root` (opts: seed, view, detail, name as
--- lsys.components.model): the fastest way from a graph to a Scene, lsys.components.scene.
+-- The i-tree of the last rebuild of each root (weak: a root no longer used goes), kept with
+-- what it was made from: each prototype's `xversion` (bumped by proto:set for every
+-- parameter the expansion reads) and its links, in the order of the graph's walk.
+local trees = setmetatable({}, { __mode = "k" })
+
+-- What the expansion of the graph depends on, as a flat list: prototypes, their
+-- xversions, their links (type, target, flags).
+local function signature (root, seed, maxi)
+  local sig = { seed, maxi or false }
+  for _, n in ipairs(G.nodes(root)) do
+    local p = n.p
+    sig[#sig + 1] = p
+    sig[#sig + 1] = p.xversion or 0
+    sig[#sig + 1] = p.recursion
+    for _, l in ipairs(p.links) do
+      sig[#sig + 1] = l.type
+      sig[#sig + 1] = l.to
+      sig[#sig + 1] = l.flags or false
+    end
+    sig[#sig + 1] = "|"
+  end
+  return sig
+end
+
+local function same (a, b)
+  if #a ~= #b then return false end
+  for i = 1, #a do if a[i] ~= b[i] then return false end end
+  return true
+end
+
+-- Whether an emission of the graph draws random numbers: a Lua function (which may call
+-- ctx.random) in a parameter the emitter reads. Reusing the i-tree would then give other
+-- numbers than a fresh expansion, so it is not reused.
+local function drawn_calls (root)
+  for _, n in ipairs(G.nodes(root)) do
+    for k, v in pairs(n.p.params) do
+      if proto.drawn(n.p.kind, k) and (type(v) == "function" or type(v) == "table" and
+                                      v.f ~= nil) then
+        return true
+      end
+    end
+  end
+  return false
+end
+
+--- The Scene of the p-graph from `root` (opts: seed, view, detail, name, max_instances as
+-- lsys.components.model). When nothing the expansion reads changed since the last rebuild
+-- of this root (only parameters of lsys.components.proto.DRAWN were set, through
+-- proto:set: a leaf's shape, a stem's radius, colours), the i-tree of that rebuild is
+-- drawn again instead of expanding the graph anew: the same scene, sooner. Returns the
+-- scene and the model (its `components` as lsys.components.model gives them).
 function M.rebuild (root, opts)
+  if not proto.isproto(root) then
+    error(format("lsys.ui.graph.rebuild: a component prototype expected, got %s",
+                 type(root)), 2)
+  end
   opts = opts or {}
-  return C.scene(root, { seed = opts.seed or 1, view = opts.view, detail = opts.detail,
-                         name = opts.name })
+  local seed = opts.seed or 1
+  local sig = signature(root, seed, opts.max_instances)
+  local last = trees[root]
+  local mo = { seed = seed, view = opts.view, detail = opts.detail, name = opts.name,
+               max_instances = opts.max_instances }
+  if last and same(last.sig, sig) and not drawn_calls(root) then mo.tree = last.tree end
+  local ok, m = pcall(C.model, root, mo)
+  if not ok then
+    trees[root] = nil
+    error((tostring(m):gsub("^[^\n]-:%d+: ", ""):gsub("^lsys%.components%.model:",
+          "lsys.ui.graph.rebuild:")), 2)
+  end
+  trees[root] = { sig = sig, tree = m.components.tree }
+  return m:interpret(), m
+end
+
+--- Whether the next M.rebuild of `root` (same seed) reuses the i-tree of the last.
+function M.reuses (root, opts)
+  local last = trees[root]
+  return last ~= nil and same(last.sig, signature(root, (opts and opts.seed) or 1,
+                                                  opts and opts.max_instances)) and
+         not drawn_calls(root)
 end
 
 -- }=========================================================================================
