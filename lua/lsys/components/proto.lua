@@ -124,6 +124,16 @@ local function schema (kind, key)
 end
 M.schema = schema
 
+-- Each kind's defaults and known parameters, for Proto:param, which runs for every
+-- instance: default[kind][key] (nil for none) and isknown[kind][key].
+local default, isknown = {}, {}
+for kind, own in pairs(KINDS) do
+  local d, k = {}, {}
+  for key, sch in pairs(BASIC) do d[key], k[key] = sch[2], true end
+  for key, sch in pairs(own) do d[key], k[key] = sch[2], true end
+  default[kind], isknown[kind] = d, k
+end
+
 local function known (kind)
   local out = {}
   for k in pairs(BASIC) do out[#out + 1] = k end
@@ -290,7 +300,7 @@ local function check (p, key, v)
       end
       return bounded(p, key, sch, v, v[1], v[2])
     end
-    fail(p, "'%s' must be a number, a range {v0, v1}, a function or an lsys.Func, got %s", key,
+    fail(p, "'%s' must be a number, a range {v0, v1} or a function, got %s", key,
          v ~= v and "NaN" or type(v) == "number" and tostring(v) or type(v))
   elseif t == "vec3" then
     if isvec(v) then return bounded(p, key, sch, v, v) end
@@ -369,7 +379,8 @@ local function new (kind, t)
           3)
   end
   t = t or {}
-  local p = setmetatable({ kind = kind, links = {}, params = {}, recursion = 1 }, Proto)
+  local p = setmetatable({ kind = kind, links = {}, params = {}, recursion = 1, version = 0,
+                           xversion = 0 }, Proto)
   if t.name ~= nil then
     if type(t.name) ~= "string" or t.name == "" then
       error(format("lsys.components.%s: 'name' must be a non-empty string", kind), 3)
@@ -404,9 +415,12 @@ end
 function Proto:param (key)
   local v = self.params[key]
   if v ~= nil then return v end
-  local sch = schema(self.kind, key)
-  if sch == nil then fail(self, "unknown parameter '%s'", tostring(key)) end
-  return sch[2]
+  local kind = self.kind
+  v = default[kind][key]
+  if v == nil and not isknown[kind][key] then
+    fail(self, "unknown parameter '%s'", tostring(key))
+  end
+  return v
 end
 
 -- The parameters that only the geometry's emitter reads (lsys.components.emit), never the
