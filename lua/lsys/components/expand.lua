@@ -146,7 +146,8 @@ end
 --- The value of parameter `key` for instance inst at iteration i of n (ctx made only for a
 -- function); the fast path of `value`.
 local function get (inst, p, key, i, n)
-  local pc = pcache(p)
+  local pc = protocache[p]                    -- pcache(p), inline: this runs most often
+  if pc == nil or pc.version ~= p.version then pc = pcache(p) end
   local how = pc.how[key]
   if how == nil then
     local h, v = howof(p, key)
