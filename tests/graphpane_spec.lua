@@ -280,6 +280,16 @@ describe("lsys.ui.graph items", function ()
     assert.is_nil(it.fx)                                 -- a function of space: no item
   end)
 
+  it("offers the textures the view has", function ()
+    local chestnut = dofile("examples/components/chestnut.lua")
+    local pane = P.new(chestnut, { dot = false })
+    pane:select(chestnut.components.tree.root)
+    local it = items(pane)
+    assert.same({ 2, 0, 2, 1 }, { it.texture.value, it.texture.min, it.texture.max,
+                                  it.texture.step })
+    assert.same({ 1, 1, 16 }, { it.color.value, it.color.min, it.color.max })
+  end)
+
   it("applies a set to the prototype, calls on_change and changes the scene", function ()
     local stem, whorl, leaf = small()
     local what = {}

@@ -742,6 +742,12 @@ function Pane:items ()
   end
   for _, key in ipairs(SHOWN[p.kind]) do additems(out, p, key, apply) end
   for _, key in ipairs(BASIC_SHOWN) do additems(out, p, key, apply) end
+  local view = self.model_opts.view
+  if type(view) == "table" and type(view.textures) == "table" then
+    for _, it in ipairs(out) do     -- a texture index the view has (0: none)
+      if it.name == "texture" then it.max = max(#view.textures, it.value) end
+    end
+  end
   if p.recursive then
     local r = p.recursion
     out[#out + 1] = { name = "recursion", label = "recursion", kind = "number", value = r,
