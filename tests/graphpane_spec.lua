@@ -488,6 +488,21 @@ describe("lsys.ui.graph save_lua", function ()
     assert.is_true(lsys.func.isfunc(m.components.tree.root.params.length))
   end)
 
+  it("writes names and strings as literals: nothing in them becomes code", function ()
+    local name = 'x"\n]] error("ran") --[['
+    local lf = C.leaf { name = name, length = function (ctx) return 0.1 * ctx.i end }
+    local path = dir .. "/names.lua"
+    P.save_lua(lf, path, { name = name .. "\r--" })
+    local text = H.read(path)
+    assert.is_nil(text:find("\n]] error", 1, true))
+    -- the comment about the function stays one line: its newline written as \10
+    assert.is_truthy(text:find("-- leaf 'x\"\\10]] error", 1, true))
+    local ok, m = pcall(load.run, path)
+    assert.is_true(ok, tostring(m))
+    assert.equal(name, m.components.tree.root.name)
+    assert.equal(name .. "\r--", m.name)
+  end)
+
   it("writes the view and the chestnut's model options", function ()
     local chestnut = dofile("examples/components/chestnut.lua")
     local root = chestnut.graph { branches = 2, subs = 2, twigs = 2, leaves = 2 }

@@ -10,6 +10,7 @@ local proto = require "lsys.components.proto"
 local G = require "lsys.components.graph"
 local X = require "lsys.components.expand"
 local lfunc = require "lsys.func"
+local codegen = require "lsys.codegen"
 
 local type, pairs, ipairs, error, tostring, pcall = type, pairs, ipairs, error, tostring, pcall
 local math, string, table = math, string, table
@@ -72,15 +73,6 @@ end
 -- {=========================================================================================
 -- Writing the graph as a Lua model file
 
-local KEYWORDS = {}
-for w in ("and break do else elseif end false for function goto if in local nil not or " ..
-          "repeat return then true until while"):gmatch("%S+") do KEYWORDS[w] = true end
-
-local function keyname (k)
-  if type(k) == "string" and k:match("^[%a_][%w_]*$") and not KEYWORDS[k] then return k end
-  return "[" .. (type(k) == "string" and format("%q", k) or format("%.17g", k)) .. "]"
-end
-
 -- Lua source of a plain value (numbers, strings, booleans, lists and records of them,
 -- lsys.Func); nil and what cannot be written (its place in `where`).
 local function lua (v, where)
@@ -89,13 +81,14 @@ local function lua (v, where)
     if v ~= v or v == math.huge or v == -math.huge then return nil, where .. " (not finite)" end
     if math.type(v) == "integer" then return format("%d", v) end
     return format("%.17g", v)
-  elseif t == "string" then return format("%q", v)
+  elseif t == "string" then return codegen.string(v)
   elseif t == "boolean" then return tostring(v)
   elseif proto.isfunc(v) then
     local pts = {}
     for i, q in ipairs(v:points()) do pts[i] = format("{ %.17g, %.17g }", q[1], q[2]) end
-    return format("lsys.func.new { points = { %s }, name = %q, samples = %d, approx = %q }",
-                  concat(pts, ", "), v:name(), v:samples(), v:approx())
+    return format("lsys.func.new { points = { %s }, name = %s, samples = %d, approx = %s }",
+                  concat(pts, ", "), codegen.string(v:name()), v:samples(),
+                  codegen.string(v:approx()))
   elseif t == "table" then
     local parts, keys = {}, {}
     local n = #v
@@ -112,7 +105,7 @@ local function lua (v, where)
       if type(k) ~= "string" and type(k) ~= "number" then return nil, where end
       local s, err = lua(v[k], where .. "." .. tostring(k))
       if not s then return nil, err end
-      parts[#parts + 1] = keyname(k) .. " = " .. s
+      parts[#parts + 1] = codegen.key(k) .. " = " .. s
     end
     return "{ " .. concat(parts, ", ") .. " }"
   end
@@ -152,7 +145,7 @@ function M.save (root, path, opts)
     for k in pairs(p.params) do keys[#keys + 1] = k end
     sort(keys)
     local parts = {}
-    if p.name then parts[1] = "name = " .. format("%q", p.name) end
+    if p.name then parts[1] = "name = " .. codegen.string(p.name) end
     for _, k in ipairs(keys) do
       local v = p.params[k]
       local sch = proto.schema(p.kind, k)
@@ -160,8 +153,9 @@ function M.save (root, path, opts)
       if sch[1] == "number" and (type(v) == "function" or type(v) == "table" and v.f) then
         local f, err = M.tofunc(p, k)
         if not f then savefail("%s", err) end
-        notes[#notes + 1] = format("-- %s was a Lua function: written as the curve through its " ..
-                                   "values at %d positions", where, SAMPLES)
+        notes[#notes + 1] = codegen.comment(format("%s was a Lua function: written as the " ..
+                                                   "curve through its values at %d positions",
+                                                   where, SAMPLES))
         v = f
       end
       local s, err = lua(v, where)
@@ -169,7 +163,7 @@ function M.save (root, path, opts)
         savefail("%s cannot be written to a file (%s): give it a value, a range or an " ..
                  "lsys.Func", where, err)
       end
-      parts[#parts + 1] = keyname(k) .. " = " .. s
+      parts[#parts + 1] = codegen.key(k) .. " = " .. s
     end
     if p.recursive then parts[#parts + 1] = "recursion = " .. p.recursion end
     out[#out + 1] = format("%s = C.%s { %s }", var[n.p], p.kind, concat(parts, ", "))
