@@ -553,6 +553,34 @@ describe("lsys.ui.graph bad input", function ()
   end)
 end)
 
+describe("proto:set", function ()
+  it("checks as the constructor does, resets with nil, versions the prototype", function ()
+    local t = C.tree { name = "t", n = 4 }
+    assert.same({ 0, 0 }, { t.version, t.xversion })
+    assert.equal(t, t:set("n", 7))
+    assert.same({ 7, 1, 1 }, { t.params.n, t.version, t.xversion })
+    t:set("radius", 0.2)                           -- drawn only: the i-tree stays
+    assert.same({ 2, 1 }, { t.version, t.xversion })
+    t:set("n", nil)
+    assert.same({ 10, 3, 2 }, { t:param("n"), t.version, t.xversion })
+    assert.matches("'n' must be from 0 to", H.errof(t.set, t, "n", 1e9))
+    assert.matches("'segments' must be a whole number", H.errof(t.set, t, "segments", 1.5))
+    assert.equal(3, t.version)                     -- a refused value changes nothing
+    t:set("recursion", 4)
+    assert.same({ 4, true }, { t.recursion, t.recursive })
+    assert.matches("'recursion' must be a whole number from 1 to 1000",
+                   H.errof(t.set, t, "recursion", 0))
+    t:set("name", "u")
+    assert.equal("u", t.name)
+    assert.matches("call it as proto:set", H.errof(t.set, {}, "n", 1))
+    -- an lsys.Func for a number, not for a vector
+    local f = lsys.func.new { points = { { 0, 1 }, { 0.3, 1 }, { 0.6, 1 }, { 1, 1 } } }
+    t:set("length", f)
+    assert.equal(f, t.params.length)
+    assert.matches("'rotate' must be a vector", H.errof(t.set, t, "rotate", f))
+  end)
+end)
+
 describe("lsys.ui.graph chestnut", function ()
   it("draws the chestnut's graph into a 420 x 700 pane", function ()
     local chestnut = dofile("examples/components/chestnut.lua")
