@@ -118,7 +118,7 @@ W.__index = W
 local function newwriter (rules, tree, detail, rename)
   local wr = core.cwriter(rules, tree.frames)
   return setmetatable({ wr = wr, frames = tree.frames, detail = detail, rename = rename,
-                        sym = {}, surf = {}, leaves = {}, nsurf = 0, post = {},
+                        sym = {}, surf = {}, leaves = {}, leafq = {}, nsurf = 0, post = {},
                         deformers = {} }, W)
 end
 
@@ -337,16 +337,18 @@ end
 local LEAFPARAMS = { "length", "width", "lateral", "longitudinal" }
 
 -- The module name ("~" and the surface character) of a leaf instance's surface.
-local function leafname (w, inst)
+-- `len`, `width`, `lat`, `lon`: the values when the caller has them (a parameter function
+-- is called once per instance: it may draw random numbers).
+local function leafname (w, inst, len, width, lat, lon)
   local p = inst.proto
-  local len = inst.length or X.get(inst, "length")
-  local width = X.get(inst, "width")
+  len = len or inst.length or X.get(inst, "length")
+  width = width or X.get(inst, "width")
   if p:param("outline") == nil and not (width / len <= C.MAX_LEAF_RATIO) then
     X.fail(inst, "width", "gave %s, more than %d times the length (%s)", C.show(width),
            C.MAX_LEAF_RATIO, C.show(len))
   end
-  local surf, key = leafsurface(p, width, len, X.get(inst, "lateral"),
-                                X.get(inst, "longitudinal"), w.detail)
+  local surf, key = leafsurface(p, width, len, lat or X.get(inst, "lateral"),
+                                lon or X.get(inst, "longitudinal"), w.detail)
   local tex = p:param("texture")
   local entry = {}
   if tex and tex ~= 0 then
@@ -372,7 +374,20 @@ local function leaf (w, inst)
     code = byp[k]
     if code == nil then code = w:code(leafname(w, inst)) byp[k] = code end
   else
-    code = w:code(leafname(w, inst))
+    -- a function among the shape's parameters: the surface is still one of those of the
+    -- quantized numbers (leafsurface), kept by them for this prototype
+    local byq = w.leafq[p]
+    if byq == nil then byq = {} w.leafq[p] = byq end
+    local len = inst.length or X.get(inst, "length")
+    local width = X.get(inst, "width")
+    local lat, lon = X.get(inst, "lateral"), X.get(inst, "longitudinal")
+    local k = (floor(width / len * 50 + 0.5) * 1001 + floor(lat * 50 + 0.5) + 500) * 1001 +
+              floor(lon * 50 + 0.5) + 500
+    code = k == k and byq[k] or nil
+    if code == nil or p:param("outline") == nil and not (width / len <= C.MAX_LEAF_RATIO) then
+      code = w:code(leafname(w, inst, len, width, lat, lon))   -- raises on a bad width
+      if k == k then byq[k] = code end
+    end
   end
   local wr = w.wr
   wr:op(w:code(";"), p:param("color") or 2)

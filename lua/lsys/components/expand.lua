@@ -72,6 +72,9 @@ local function value (inst, p, key, ctx)
     local ok, r = pcall(v, ctx)
     if not ok then efail(inst, key, "its function failed: %s", tostring(r)) end
     out = r
+  elseif t == "number" and C.isfunc(v) then
+    local n, i = ctx.n or 1, ctx.i or 1
+    out = v(n > 1 and (i - 1) / (n - 1) or 0)
   elseif type(v) == "table" and (t == "number" and #v == 2 or t == "vec3" and #v == 2) then
     local n, i = ctx.n or 1, ctx.i or 1
     local u = n > 1 and (i - 1) / (n - 1) or 0
@@ -107,15 +110,18 @@ M.fail = efail
 
 -- Per prototype, what each parameter is: most are plain constants, read once; a range
 -- without a function depends only on (i, n); the rest (functions) go through `value` with
--- the instance's ctx. cache[p][key] = CONST, RANGE or CALL in .how, the constant in .v.
-local CONST, RANGE, CALL = 1, 2, 3
+-- the instance's ctx. cache[p][key] = CONST, RANGE, CALL or FUNC in .how, the constant in .v.
+-- FUNC: a Lua function of ctx giving a number, called straight from `get` (.v the
+-- function, .b the bounds).
+local CONST, RANGE, CALL, FUNC = 1, 2, 3, 4
 local NIL = {}
 
 local function howof (p, key)
   local v = p:param(key)
   local t = C.schema(p.kind, key)[1]
   if t ~= "number" and t ~= "vec3" then return CONST, v end
-  if type(v) == "function" then return CALL end
+  if type(v) == "function" then return t == "number" and FUNC or CALL, v end
+  if C.isfunc(v) then return CALL end
   if type(v) == "table" and #v == 2 then
     if v.f ~= nil or t == "vec3" then return CALL end
     return RANGE, v
@@ -123,14 +129,15 @@ local function howof (p, key)
   return CONST, v
 end
 
--- The per-prototype cache of parameter kinds (weak: prototypes can be collected).
+-- The per-prototype cache of parameter kinds (weak: prototypes can be collected), made
+-- again when the prototype's `version` changed (proto:set).
 local cachemeta = { __mode = "k" }
 local protocache = setmetatable({}, cachemeta)
 
 local function pcache (p)
   local pc = protocache[p]
-  if pc == nil then
-    pc = { how = {}, v = {} }
+  if pc == nil or pc.version ~= p.version then
+    pc = { how = {}, v = {}, b = {}, version = p.version }
     protocache[p] = pc
   end
   return pc
@@ -139,13 +146,15 @@ end
 --- The value of parameter `key` for instance inst at iteration i of n (ctx made only for a
 -- function); the fast path of `value`.
 local function get (inst, p, key, i, n)
-  local pc = pcache(p)
+  local pc = protocache[p]                    -- pcache(p), inline: this runs most often
+  if pc == nil or pc.version ~= p.version then pc = pcache(p) end
   local how = pc.how[key]
   if how == nil then
     local h, v = howof(p, key)
     pc.how[key] = h
     if v == nil then v = NIL end
     pc.v[key] = v
+    if h == FUNC then pc.b[key] = C.schema(p.kind, key)[3] or false end
     how = h
   end
   if how == CONST then
@@ -156,6 +165,15 @@ local function get (inst, p, key, i, n)
     local v = pc.v[key]
     local u = n > 1 and (i - 1) / (n - 1) or 0
     return v[1] + u * (v[2] - v[1])
+  elseif how == FUNC then
+    local ok, r = pcall(pc.v[key], inst.ctx)
+    if not ok then efail(inst, key, "its function failed: %s", tostring(r)) end
+    if not isnum(r) then efail(inst, key, "gave %s, not a finite number", tostring(r)) end
+    local b = pc.b[key]
+    if b and not (r >= b[1] and r <= b[2]) then
+      efail(inst, key, "gave %s, not %s", show(r), b[3])
+    end
+    return r
   end
   return value(inst, p, key, inst.ctx)
 end
@@ -167,7 +185,7 @@ function M.calls (p, key)
   local pc = pcache(p)
   local how = pc.how[key]
   if how == nil then how = howof(p, key) end
-  return how == CALL
+  return how == CALL or how == FUNC
 end
 
 -- }=========================================================================================
@@ -347,7 +365,8 @@ local function branchplan (inst, nb)
   local pc = pcache(p)
   get(inst, p, "angle", 1, nb)
   get(inst, p, "branch_scale", 1, nb)
-  local callang, callsc = pc.how.angle == CALL, pc.how.branch_scale == CALL
+  local ha, hs = pc.how.angle, pc.how.branch_scale
+  local callang, callsc = ha == CALL or ha == FUNC, hs == CALL or hs == FUNC
   local us, rolls, angles, scales = {}, {}, {}, {}
   for b = 1, nb do
     local t = nb > 1 and (b - 1) / (nb - 1) or 0

@@ -12,6 +12,7 @@
 --
 --   graph.dot(root [, opts]) -> string
 --   graph.render(root, path [, opts]) -> path     .dot/.gv as text; .png/.svg/.pdf via `dot`
+--   graph.nodes(root) -> the nodes and links as the drawing sees them
 --   graph.quote(s) -> s quoted for a POSIX shell
 -- @module lsys.components.graph
 local core = require "lsys.core"
@@ -380,6 +381,18 @@ local function build (root, opts)
   for _, e in ipairs(edges) do out[#out + 1] = e end
   out[#out + 1] = "}\n"
   return concat(out, "\n")
+end
+
+--- The nodes of the p-graph from `root` in depth-first preorder, as the drawing sees them
+-- (lsys.ui.graph lays them out): each { p = the prototype, id = "n1", ..., title, path,
+-- cyclic, comp, out = { { type = link type, to = node, back = true for the link that
+-- returns to the start of a recursion, label = the flags' text or nil } } }. Raises as
+-- M.dot on what is not a p-graph.
+function M.nodes (root)
+  local nodes, err = walk(root)
+  if nodes == nil then error("graph.nodes: " .. err, 2) end
+  components(nodes)
+  return nodes
 end
 
 --- The DOT text of the p-graph whose root prototype is `root`.

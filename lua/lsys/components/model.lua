@@ -169,12 +169,16 @@ local function finish (out, scene)
   end
 end
 
-local OPTS = { seed = true, max_instances = true, view = true, name = true, detail = true }
+local OPTS = { seed = true, max_instances = true, view = true, name = true, detail = true,
+               tree = true }
 
 --- The component graph at `root` as an lsys model. opts: `seed`, `max_instances` (as
 -- expand), `view` (fields over the component view: a cylinder line style, 12-sided
 -- tubes), `name`, `detail` (how finely leaves are drawn: 1, the default, 16 triangles a
--- leaf; n: 2 x 2 patches of n x (n + 1) quads). The model derives the plant's Lstring in
+-- leaf; n: 2 x 2 patches of n x (n + 1) quads), `tree` (the i-tree of `root` made before,
+-- by lsys.components.expand with the same seed and max_instances: used instead of
+-- expanding again, when only parameters of proto.DRAWN changed since; it must be
+-- root's). The model derives the plant's Lstring in
 -- 0 steps; `m.components` holds
 -- { tree = the i-tree, owner = module index -> instance index, instance(i) = the
 -- instance that drew module i }.
@@ -199,7 +203,15 @@ function M.model (root, opts)
     error(format("lsys.components.model: 'detail' must be a whole number from 1 to 16, got %s",
                  tostring(detail)), 2)
   end
-  local tree = X.expand(root, { seed = opts.seed, max_instances = opts.max_instances })
+  local tree = opts.tree
+  if tree ~= nil then
+    if type(tree) ~= "table" or tree.root ~= root or type(tree.list) ~= "table" then
+      error("lsys.components.model: 'tree' must be an i-tree of this root " ..
+            "(lsys.components.expand)", 2)
+    end
+  else
+    tree = X.expand(root, { seed = opts.seed, max_instances = opts.max_instances })
+  end
   local out
   local m = lmodel.lsystem {
     axiom = "", steps = 0, name = opts.name or root.name or "components",

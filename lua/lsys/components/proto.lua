@@ -3,8 +3,8 @@
 -- between them. lsys.components gathers this module with the expansion
 -- (lsys.components.expand) and the placements (lsys.components.place).
 -- @module lsys.components.proto
-local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select =
-      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select
+local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select, pcall =
+      type, pairs, ipairs, error, setmetatable, getmetatable, tostring, select, pcall
 local math, string, table = math, string, table
 local format, concat, sort = string.format, table.concat, table.sort
 local floor, huge = math.floor, math.huge
@@ -124,6 +124,16 @@ local function schema (kind, key)
 end
 M.schema = schema
 
+-- Each kind's defaults and known parameters, for Proto:param, which runs for every
+-- instance: default[kind][key] (nil for none) and isknown[kind][key].
+local default, isknown = {}, {}
+for kind, own in pairs(KINDS) do
+  local d, k = {}, {}
+  for key, sch in pairs(BASIC) do d[key], k[key] = sch[2], true end
+  for key, sch in pairs(own) do d[key], k[key] = sch[2], true end
+  default[kind], isknown[kind] = d, k
+end
+
 local function known (kind)
   local out = {}
   for k in pairs(BASIC) do out[#out + 1] = k end
@@ -137,6 +147,14 @@ M.known = known
 
 local function isnum (x) return type(x) == "number" and x == x and x > -huge and x < huge end
 M.isnum = isnum
+
+-- Whether x is an lsys.Func (a positional function, lsys.func): a number parameter may be
+-- one, read at the instance's place u = (i - 1)/(n - 1) in its iteration as a range is.
+local function isfunc (x)
+  local mt = type(x) == "userdata" and getmetatable(x)
+  return type(mt) == "table" and mt.__name == "lsys.Func"
+end
+M.isfunc = isfunc
 
 local function who (p)
   return p.name and format("%s '%s'", p.kind, p.name) or p.kind
@@ -273,6 +291,7 @@ local function check (p, key, v)
     return v
   end
   if type(v) == "function" and (t == "number" or t == "vec3") then return v end
+  if t == "number" and isfunc(v) then return v end
   if t == "number" then
     if isnum(v) then return bounded(p, key, sch, v, v) end
     if type(v) == "table" and isnum(v[1]) and isnum(v[2]) and #v == 2 then
@@ -338,6 +357,7 @@ M.MAX_LEAF_RATIO = 10
 local function leafratio (p)
   local w, l = p.params.width, p.params.length
   if p.params.outline ~= nil or type(w) == "function" or type(l) == "function" or
+     isfunc(w) or isfunc(l) or
      type(w) == "table" and w.f ~= nil or type(l) == "table" and l.f ~= nil then
     return
   end
@@ -359,7 +379,8 @@ local function new (kind, t)
           3)
   end
   t = t or {}
-  local p = setmetatable({ kind = kind, links = {}, params = {}, recursion = 1 }, Proto)
+  local p = setmetatable({ kind = kind, links = {}, params = {}, recursion = 1, version = 0,
+                           xversion = 0 }, Proto)
   if t.name ~= nil then
     if type(t.name) ~= "string" or t.name == "" then
       error(format("lsys.components.%s: 'name' must be a non-empty string", kind), 3)
@@ -394,9 +415,71 @@ end
 function Proto:param (key)
   local v = self.params[key]
   if v ~= nil then return v end
-  local sch = schema(self.kind, key)
-  if sch == nil then fail(self, "unknown parameter '%s'", tostring(key)) end
-  return sch[2]
+  local kind = self.kind
+  v = default[kind][key]
+  if v == nil and not isknown[kind][key] then
+    fail(self, "unknown parameter '%s'", tostring(key))
+  end
+  return v
+end
+
+-- The parameters that only the geometry's emitter reads (lsys.components.emit), never the
+-- expansion: a change of one leaves the i-tree as it was, so lsys.ui.graph draws the plant
+-- again from the i-tree it has.
+M.DRAWN = {
+  ["*"] = { color = true, texture = true },
+  leaf = { width = true, shape = true, outline = true, lateral = true, longitudinal = true },
+  horn = { radius = true, tip = true, thickness = true, primitive = true },
+  tree = { radius = true, tip = true, thickness = true, primitive = true },
+}
+local function drawn (kind, key)
+  local k = M.DRAWN[kind]
+  return M.DRAWN["*"][key] == true or k ~= nil and k[key] == true
+end
+M.drawn = drawn
+
+--- Sets parameter `key` (a name in M.known(kind), "recursion" or "name") to `v`, checked as
+-- the constructor checks it (nil: back to the default); a failure raises and leaves the
+-- prototype as it was. Bumps `version`, which tells the expansion's per-prototype caches
+-- that the parameters changed, and `xversion` unless the parameter is one of M.DRAWN (an
+-- i-tree made before is then no longer the graph's). Returns self.
+function Proto:set (key, v)
+  if getmetatable(self) ~= Proto then
+    error("lsys.components: set: call it as proto:set(key, value)", 2)
+  end
+  if key == "name" then
+    if v ~= nil and (type(v) ~= "string" or v == "") then
+      fail(self, "'name' must be a non-empty string")
+    end
+    self.name = v
+  elseif key == "recursion" then
+    if v == nil then v = 1 end
+    if not isnum(v) or v ~= floor(v) or v < 1 or v > 1000 then
+      fail(self, "'recursion' must be a whole number from 1 to 1000, got %s", tostring(v))
+    end
+    self.recursion, self.recursive = v, true
+  else
+    if type(key) ~= "string" or schema(self.kind, key) == nil then
+      fail(self, "unknown parameter '%s' (known: %s)", tostring(key),
+           concat(known(self.kind), ", "))
+    end
+    local old = self.params[key]
+    if v ~= nil then check(self, key, v) end
+    if key == "n" and v ~= nil and (v < 0 or v > MAX_N) then
+      fail(self, "'n' must be from 0 to %d, got %s", MAX_N, tostring(v))
+    end
+    self.params[key] = v
+    if self.kind == "leaf" and (key == "width" or key == "length" or key == "outline") then
+      local ok, err = pcall(leafratio, self)
+      if not ok then
+        self.params[key] = old
+        error(err, 0)
+      end
+    end
+  end
+  self.version = (self.version or 0) + 1
+  if not drawn(self.kind, key) then self.xversion = (self.xversion or 0) + 1 end
+  return self
 end
 
 -- Checks the flags of a link: { only = {i...} } or { except = {i...} }.
