@@ -546,6 +546,54 @@ describe("lsys.ui.edit", function ()
     assert.matches("Ctrl+S: save", w.help, 1, true)
   end)
 
+  it("edits a component graph: a box clicked, its parameter set, the plant expanded", function ()
+    local C = lsys.components
+    local leaf = C.leaf { name = "leaf", length = 0.3, width = 0.15 }
+    local whorl = C.hydra { name = "whorl", n = 3, angle = 60 }
+    whorl:child(leaf)
+    local stem = C.tree { name = "stem", length = 2, n = 6, angle = { 60, 30 }, segments = 4 }
+    stem:branch(whorl)
+    local m = C.model(stem)
+    local w = window()
+    local posted = {}
+    local d = tmpdir()
+    local subject = tune.graph(m, { file = d .. "/plant.lua" })
+    local s = edit.session(w, subject, { post = function (sc) posted[#posted + 1] = sc end })
+    assert.equal("graph", s.tabs[1].name)
+    assert.equal(3, #w.lay.panes)                   -- the graph over its values
+    assert.same({ 432 * 400 * 4, 432, 400 }, w.images[2])
+    s:changed()
+    s:idle()
+    local t0 = posted[1].ntriangles
+    -- a click on the whorl's box selects it; its values come into the form below
+    s:draw()
+    local g = s.tabs[1]
+    local bx, by, bw, bh = g:box("whorl")
+    local cx, cy = bx + bw / 2, by + bh / 2
+    s:event({ type = "pointer", pane = 2, phase = "down", x = cx, y = cy, button = "left" })
+    s:event({ type = "pointer", pane = 2, phase = "up", x = cx, y = cy, button = "left" })
+    assert.equal(whorl, g:selected())
+    s:draw()
+    local f = s.itemform
+    local row
+    for i, it in ipairs(f.items) do if it.name == "n" then row = i end end
+    assert.truthy(row, "no item n")
+    local x, y = f:point_of(row, 5, 432)
+    s:event({ type = "pointer", pane = 3, phase = "down", x = x, y = y, button = "left" })
+    s:event({ type = "pointer", pane = 3, phase = "up", x = x, y = y, button = "left" })
+    assert.equal(5, whorl.params.n)
+    assert.is_true(s:idle())
+    -- 6 whorls of 5 leaves for 6 of 3: the leaves' triangles grow by 6 * 2 leaves' worth
+    local per = (t0 - C.model(C.tree { name = "stem", length = 2, n = 6, angle = { 60, 30 },
+                                       segments = 4 }):interpret().ntriangles) / 18
+    assert.near(t0 + 12 * per, posted[2].ntriangles, 0.5)
+    -- Ctrl+S: the edited graph as a model file beside the model's, which loads back
+    s:event({ type = "key", key = "s", ctrl = true })
+    local back = dofile(d .. "/plant-edited.lua")
+    back = require("lsys.load").tomodel(back)
+    assert.equal(posted[2].ntriangles, back:interpret().ntriangles)
+  end)
+
   it("maps pane pixels to the window as the panes are laid out", function ()
     local x, y = edit.to_window(2, 0, 0, 1200, 800)
     assert.near(768, x, 1)

@@ -359,6 +359,10 @@ function M.show (x, opts)
   opts = checkopts(opts)
   local frames, textures, title
   x = load.tomodel(x)                            -- a component graph's root prototype
+  if model.ismodel(x) and opts.edit ~= false and tune.graph_root(x) ~= nil then
+    return M.edit(tune.graph(x, { file = opts.file or modelfile(x), title = opts.title }),
+                  opts)
+  end
   if model.ismodel(x) and (opts.edit or opts.edit == nil and x.params ~= nil and
                            #x.params > 0) then
     return M.edit(tune.params(x, { file = opts.file or modelfile(x), view = opts.view,

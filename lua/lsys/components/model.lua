@@ -181,7 +181,8 @@ local OPTS = { seed = true, max_instances = true, view = true, name = true, deta
 -- root's). The model derives the plant's Lstring in
 -- 0 steps; `m.components` holds
 -- { tree = the i-tree, owner = module index -> instance index, instance(i) = the
--- instance that drew module i }.
+-- instance that drew module i, and the options it was made with: view, detail, seed,
+-- max_instances }.
 function M.model (root, opts)
   if not C.isproto(root) then
     error(format("lsys.components.model: a component prototype expected, got %s",
@@ -226,7 +227,8 @@ function M.model (root, opts)
   v.surfaces = v.surfaces or {}
   for c, entry in pairs(out.surfaces) do v.surfaces[c] = entry end
   m.components = {
-    tree = tree, owner = out.owner, lstring = out.lstring,
+    tree = tree, owner = out.owner, lstring = out.lstring, view = opts.view,
+    detail = detail, seed = opts.seed, max_instances = opts.max_instances,
     instance = function (i) return tree.list[out.owner[i]] end,
   }
   return m

@@ -116,7 +116,7 @@ function M.session (v, subject, opts)
     on_curve = function (item) self:open_curve(item) end,
   })
   self.form.message = subject.note
-  self.tabs = { self.form }
+  self.tabs = { subject.first or self.form }     -- (a graph's pane before its form)
   for _, p in ipairs(subject.panes or {}) do self.tabs[#self.tabs + 1] = p end
   if subject.attach then subject.attach(self) end
   self:arrange()
@@ -201,8 +201,10 @@ function Session:arrange ()
   local p = self:pane()
   local split = p ~= self.form and type(p.items) == "function"
   if split then
-    self.itemform = form.new(function () return p:items() end,
-      { title = (p.name or "pane") .. ": values", name = "values" })
+    self.itemform = form.new(function () return p:items() or {} end,
+      { title = (p.name or "pane") .. ": values", name = "values",
+        on_curve = function (item) self:open_curve(item) end,
+        on_save = function () return self:save() end })
   else
     self.itemform = nil
   end

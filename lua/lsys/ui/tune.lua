@@ -19,6 +19,7 @@ local palette = require "lsys.ui.palette"
 local curve = require "lsys.ui.curve"
 local codegen = require "lsys.codegen"
 local form = require "lsys.ui.form"
+local graph = require "lsys.ui.graph"
 
 local type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable =
       type, pairs, ipairs, error, pcall, tostring, tonumber, setmetatable
@@ -278,6 +279,52 @@ function M.params (m, opts)
   return subject
 end
 
+--- Whether model m is a component graph's (lsys.components.model): its root prototype.
+function M.graph_root (m)
+  local c = type(m) == "table" and m.components
+  local t = type(c) == "table" and c.tree
+  return type(t) == "table" and t.root or nil
+end
+
+--- The subject of a component graph (lsys.components; Lintermann and Deussen 1999, the
+-- p-graph edited as in their modeller): model m made by lsys.components.model. The graph
+-- pane comes first, over the selected component's parameters; a click on a box or on the
+-- plant selects one, an edit expands the graph again (lsys.ui.graph.rebuild: only the
+-- drawing again when only drawn parameters changed). Ctrl+S writes the graph as a Lua
+-- model file beside the model's: `NAME-edited.lua` (opts.file: the model file; the
+-- hand-written file is never overwritten). opts: file, title.
+function M.graph (m, opts)
+  opts = opts or {}
+  local root = M.graph_root(m)
+  if root == nil then error("lsys.ui.tune.graph: a component graph's model expected", 2) end
+  local session
+  local function changed () if session then session:changed() end end
+  local out = opts.file and (opts.file:gsub("%.lua$", "") .. "-edited.lua") or nil
+  local c = m.components            -- what the model was made with (not its view, which
+  local pane = graph.new(root, {     -- holds the surfaces the emission made)
+    on_change = changed, seed = c.seed or m.seed, view = c.view or m.VIEW, detail = c.detail,
+    path = out, name = m.name })
+  pane:select(root)                  -- its parameters in the form from the start
+  local subject = { title = opts.title, form_name = "params", first = pane, model = m }
+  subject.panes = {}
+  for _, p in ipairs(M.panes(m, changed)) do subject.panes[#subject.panes + 1] = p end
+  subject.build = function (check)
+    local sc, nm = graph.rebuild(root, pane.model_opts)
+    check()
+    subject.model = nm
+    return sc
+  end
+  subject.save = function ()
+    if out == nil then error("the graph has no model file to save beside", 0) end
+    pane:save(out)
+    return out .. " (the edited graph as a model file: lsys view it)"
+  end
+  pane.save = nil                    -- (saved once, through the subject)
+  subject.attach = function (s) session = s end
+  subject.stop = function () session = nil end
+  return subject
+end
+
 -- }=========================================================================================
 
 -- {=========================================================================================
@@ -349,12 +396,12 @@ end
 
 --- The subject of a cpfg model whose vlab panels drive it. `files` = { l =, v = },
 -- `panels` a list of panel tables (lsys.cpfg.panel.read) or of { panel = P, target = the
--- file its messages edit (default the .l file), editor = "awkped" | "ped" }; opts: title, load (the lsys.cpfg.load
--- options besides `edits` and `texts`), model (the model as loaded: its palette and
--- curve panes). A panel's #define messages (`d`) set the .l file's #defines as awkped
--- does, its line messages (`n`, `o`, `L F V S`) the fields of its target's lines as ped
--- does, both in memory (lsys.cpfg.load's `edits` and `texts`); a panel for a file lsys
--- does not read (an animation file, .a) is left out.
+-- file its messages edit (default the .l file), editor = "awkped" | "ped" }; opts: title,
+-- load (the lsys.cpfg.load options besides `edits` and `texts`), model (the model as
+-- loaded: its palette and curve panes). A panel's #define messages (`d`) set the .l
+-- file's #defines as awkped does, its line messages (`n`, `o`, `L F V S`) the fields of
+-- its target's lines as its editor does, both in memory (lsys.cpfg.load's `edits` and
+-- `texts`); a panel for a file lsys does not read (an animation file, .a) is left out.
 function M.panels (files, panels, opts)
   opts = opts or {}
   local list, skipped = {}, {}
