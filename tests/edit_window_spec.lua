@@ -275,6 +275,75 @@ return lsys.lsystem {
     local _ = lsys
   end)
 
+  it("clicks a component graph's box and drags its parameter: the plant expanded", function ()
+    local ok, why = D.start()
+    if not ok then pending(why) return end
+    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
+    if not have_core then pending("lsys.core is not built") return end
+    local lsys = require "lsys"
+    local form = require "lsys.ui.form"
+    local edit = require "lsys.ui.edit"
+    local tune = require "lsys.ui.tune"
+    local core = require "lsys.core"
+    local dir = H.tmpdir()
+    local SRC = [[
+local lsys = require "lsys"
+local C = lsys.components
+local leaf = C.leaf { name = "leaf", length = 0.3, width = 0.15 }
+local whorl = C.hydra { name = "whorl", n = 3, angle = 60 }
+whorl:child(leaf)
+local stem = C.tree { name = "stem", length = 2, n = 6, angle = { 60, 30 }, segments = 4 }
+stem:branch(whorl)
+return C.model(stem, { name = "plant" })
+]]
+    H.write(dir .. "/plant.lua", SRC)
+    local log = dir .. "/log.txt"
+    os.execute(("cd %s && %s%s view plant.lua --size 1200x800 >%s 2>&1 &"):format(dir, D.env,
+               bin(), log))
+    local wid = window("lsys: plant.lua", log)
+    local first = D.wait_for(log, "triangles", 20 * SLOW)
+    local t0 = tonumber(first:match("(%d+) triangles"))
+    assert.truthy(t0, first)
+    -- the same pane here says where the whorl's box is; the form below, where n's slider
+    local m = dofile(dir .. "/plant.lua")
+    local subject = tune.graph(m)
+    local g = subject.first
+    g:draw(core.canvas(edit.PANE_W, edit.MAIN_H))
+    local bx, by, bw, bh = g:box("whorl")
+    local wx, wy = edit.to_window(2, bx + bw / 2, by + bh / 2, 1200, 800, true)
+    D.sleep(0.3 * SLOW)
+    drag(wid, { { wx, wy }, { wx, wy } })               -- a click
+    local whorl
+    for _, n in ipairs(require("lsys.components.graph").nodes(tune.graph_root(m))) do
+      if n.p.name == "whorl" then whorl = n.p end
+    end
+    g:select(whorl)
+    local f = form.new(g:items())
+    local row
+    for i, it in ipairs(f.items) do if it.name == "n" then row = i end end
+    f:draw(core.canvas(edit.PANE_W, edit.ITEMS_H))
+    local function at (v)
+      local x, y = f:point_of(row, v, edit.PANE_W)
+      return { edit.to_window(3, x, y, 1200, 800, true) }
+    end
+    D.sleep(0.5 * SLOW)
+    drag(wid, { at(3), at(4), at(5) })
+    -- the plant with 5 leaves a whorl, expanded here
+    local n5
+    for _ = 1, 100 * SLOW do
+      local text = H.read(log) or ""
+      local last
+      for t in text:gmatch("(%d+) triangles") do last = tonumber(t) end
+      if last and last ~= t0 then n5 = last break end
+      D.sleep(0.1)
+    end
+    whorl:set("n", 5)
+    local want = lsys.components.model(tune.graph_root(m)):interpret().ntriangles
+    assert.equal(want, n5, H.read(log))
+    key(wid, "Escape")
+    D.sleep(0.5 * SLOW)
+  end)
+
   it("hears m.params.k = v from a script while the window is open", function ()
     local ok, why = D.start()
     if not ok then pending(why) return end
