@@ -568,3 +568,23 @@ describe("the curve pane's surfaces, targets and picture", function ()
     assert.equal("set_func: an lsys.Func expected, got number", message(m.set_func, m, 1, 2))
   end)
 end)
+
+describe("the curve pane on a sketch's model", function ()
+  it("edits the functions a sketch derives (its env's lsys.Funcs): the next derivation", function ()
+    local m = dofile("examples/sketch/fig8.lua").distichous
+    local names = {}
+    for _, t in ipairs(P.targets(m)) do
+      if t.kind == "func" then names[#names + 1] = t.name end
+    end
+    assert.same({ "angle_left", "angle_right", "internode", "size_left", "size_right",
+                  "stem_shape" }, names)
+    local before = tostring(m:derive())
+    local pane = P.new(P.targets(m))
+    local e = pane:current()
+    assert.equal("angle_left", e.name)
+    e.pts[2][2] = e.pts[2][2] + 0.5
+    assert.is_true(pane:commit(e))
+    assert.is_true(rawequal(m.env.angle_left, e.object))
+    assert.not_equal(before, tostring(m:derive()))
+  end)
+end)

@@ -123,8 +123,8 @@ local function entry (t, what)
   return e
 end
 
---- The editable curves of a model: its positional functions (Model:functions), its view's
--- contours and surfaces; each { kind = "func" | "contour" | "surface", name =, id =,
+--- The editable curves of a model: its positional functions (Model:functions, and the
+-- lsys.Funcs its env holds: a sketch's), its view's contours and surfaces; each { kind = "func" | "contour" | "surface", name =, id =,
 -- object =, file = (the path it was read from, or nil), set = function (obj) that puts
 -- an edited object into the model }. The pane calls `set` after
 -- every edit, so the model's next derivation and interpretation use the edit.
@@ -133,10 +133,23 @@ function M.targets (m)
     error(format("lsys.ui.curve.targets: a model expected, got %s", type(m)), 2)
   end
   local out = {}
+  local seen = {}
   for _, f in ipairs(m:functions()) do
     local id = f.id
+    seen[f.func] = true
     out[#out + 1] = { kind = "func", name = f.name, id = id, object = f.func, file = f.file,
                       set = function (g) m:set_func(id, g) end }
+  end
+  -- functions the rules read as names of env (a sketch's model: lsys.sketch derives them
+  -- from the strokes); edited in env, the next step's rules bind the new one; no file
+  local names = {}
+  for k, x in pairs(type(m.env) == "table" and m.env or {}) do
+    if type(k) == "string" and func.isfunc(x) and not seen[x] then names[#names + 1] = k end
+  end
+  table.sort(names)
+  for _, k in ipairs(names) do
+    out[#out + 1] = { kind = "func", name = k, object = m.env[k],
+                      set = function (g) m.env[k] = g end }
   end
   if type(m.view) ~= "table" then return out end
   local nv = view.normalize(m.view, "lsys.ui.curve.targets")
