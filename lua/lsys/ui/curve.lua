@@ -124,10 +124,11 @@ local function entry (t, what)
 end
 
 --- The editable curves of a model: its positional functions (Model:functions, and the
--- lsys.Funcs its env holds: a sketch's), its view's contours and surfaces; each { kind = "func" | "contour" | "surface", name =, id =,
--- object =, file = (the path it was read from, or nil), set = function (obj) that puts
--- an edited object into the model }. The pane calls `set` after
--- every edit, so the model's next derivation and interpretation use the edit.
+-- lsys.Funcs its env holds: a sketch's), its view's contours and surfaces; each { kind =
+-- "func" | "contour" | "surface", name =, id =, object =, file = (the path it was read
+-- from, or nil), set = function (obj) that puts an edited object into the model }. The
+-- pane calls `set` after every edit, so the model's next derivation and interpretation
+-- use the edit.
 function M.targets (m)
   if type(m) ~= "table" or type(m.set_func) ~= "function" then
     error(format("lsys.ui.curve.targets: a model expected, got %s", type(m)), 2)
