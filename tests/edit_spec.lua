@@ -587,6 +587,17 @@ describe("lsys.ui.edit", function ()
     local per = (t0 - C.model(C.tree { name = "stem", length = 2, n = 6, angle = { 60, 30 },
                                        segments = 4 }):interpret().ntriangles) / 18
     assert.near(t0 + 12 * per, posted[2].ntriangles, 0.5)
+    -- a click on the plant: the component whose instance drew the module is selected
+    local cm = subject.model.components
+    local k
+    for i = 1, #cm.lstring do
+      local inst = cm.instance(i)
+      if inst and inst.proto == leaf then k = i break end
+    end
+    assert.truthy(k, "no module drawn by a leaf")
+    assert.is_true(s:event({ type = "pick", info = { module = k, lstring = cm.lstring,
+                                                     instance = cm.instance(k) } }))
+    assert.equal(leaf, g:selected())
     -- Ctrl+S: the edited graph as a model file beside the model's, which loads back
     s:event({ type = "key", key = "s", ctrl = true })
     local back = dofile(d .. "/plant-edited.lua")
