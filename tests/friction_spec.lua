@@ -188,8 +188,9 @@ describe("mistakes that used to pass in silence", function ()
   it("writes PNG only under a PNG name", function ()
     local dir = H.tmpdir()
     local m = lsys.lsystem { axiom = "F" }
-    assert.matches("lsys.render: '" .. dir .. "/x.jpg': lsys writes PNG images; name the file "
-                   .. ".png", errof(lsys.render, m, { out = dir .. "/x.jpg" }), 1, true)
+    assert.matches("lsys.render: '" .. dir .. "/x.jpg': unknown picture format '.jpg': lsys "
+                   .. "writes .png, .svg, .eps or .pdf", errof(lsys.render, m,
+                   { out = dir .. "/x.jpg" }), 1, true)
     assert.is_nil(io.open(dir .. "/x.jpg"))
     lsys.render(m, { out = dir .. "/x.PNG", width = 16, height = 16 })
     assert.truthy(io.open(dir .. "/x.PNG"))

@@ -455,7 +455,7 @@ local LUA_LAYERS = {
   { "the front ends", "lsys.components*", "lsys.sketch*", "lsys.cpfg*", "lsys.grow",
     "lsys.arrange", "lsys.stand" },
   -- pictures and model files: both take a component graph's prototype for a Model
-  { "render and load", "lsys.render", "lsys.load" },
+  { "render and load", "lsys.render", "lsys.vector", "lsys.load" },
   { "the tools", "lsys.frames", "lsys.testing", "lsys.batch*" },
   -- the window: lsys.viewer and the sessions in it (lua/lsys/ui/; their documented names
   -- lsys.growview, lsys.arrange_ui and lsys.sketch.window give them)

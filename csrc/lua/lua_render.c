@@ -84,6 +84,108 @@ static int l_render (lua_State *L) {
 #endif
 }
 
+#ifndef LSYS_NO_RENDER
+/* Sets t[k] = x for the flat arrays of l_project. */
+static void seti (lua_State *L, lua_Integer *k, double x) {
+  lua_pushnumber(L, x);
+  lua_rawseti(L, -2, ++*k);
+}
+#endif
+
+/*
+** core.project(scene [, opts]) -> { width =, height =, background = {r, g, b},
+** lines = {...}, triangles = {...}, palette = {{r, g, b, a}, ...} }: what the
+** scene draws, projected through the camera of core.render with the same options
+** (lsysL_readrenderopts: the view fields, width, height, zoom, fit) into a window
+** of width x height pixels (x from the left, y from the top, depth in [0, 1]).
+** 'lines' holds 9 numbers per segment: x0, y0, depth0, x1, y1, depth1, the widths
+** at both ends in pixels (as the renderer reads them) and the palette entry
+** (1-based); 'triangles' 10 per triangle: three corners (x, y, depth) and the
+** palette entry of its first vertex. A segment or triangle with a point behind
+** the eye is left out. 'palette': the diffuse colours the renderer draws with.
+** A population (instances) is not projected: raises.
+*/
+static int l_project (lua_State *L) {
+#ifdef LSYS_NO_RENDER
+  return luaL_error(L, "lsys was built without OSMesa: install libosmesa6-dev and rebuild "
+                       "(./setup.sh does)");
+#else
+  lsys_lscene *S = lsysL_checkscene(L, 1);
+  lsys_scene look = S->sc, v;
+  lsys_render_opts o;
+  double proj[16], view[16];
+  lua_Integer k;
+  size_t i, j, npal;
+  int t = 0;
+  if (!lua_isnoneornil(L, 2)) {
+    luaL_checktype(L, 2, LUA_TTABLE);
+    t = 2;
+  }
+  lsysL_readrenderopts(L, t, &o, &look);
+  lua_settop(L, 1);
+  S = lsysL_holdscene(L, 1);           /* after the last Lua code; kept while tables grow */
+  lua_createtable(L, 0, 6);
+  lua_pushinteger(L, o.width); lua_setfield(L, -2, "width");
+  lua_pushinteger(L, o.height); lua_setfield(L, -2, "height");
+  lua_createtable(L, 3, 0);
+  for (k = 0; k < 3; k++) { lua_pushnumber(L, look.background[k]); lua_rawseti(L, -2, k + 1); }
+  lua_setfield(L, -2, "background");
+  if (S->sc.ninst > 0)
+    return luaL_error(L, "lsys.render: vector output draws one plant, not a population of %d "
+                      "(render it to .png)", (int)S->sc.ninst);
+  v = S->sc;
+  v.cam = look.cam;
+  if (lsys_render_camera_scene(&v, &v.cam, o.width, o.height, proj, view) != LSYS_OK)
+    return luaL_error(L, "lsys.render: bad camera: the viewpoint and the target coincide, a "
+                      "zero direction or up vector");
+  npal = v.pal != NULL && v.npal > 0 ? (v.npal > 65536 ? 65536 : v.npal) : 0;
+  lua_createtable(L, (int)(npal > 0 ? npal : 1), 0);
+  for (i = 0; i < (npal > 0 ? npal : 1); i++) {
+    static const float grey[4] = {0.8f, 0.8f, 0.8f, 1};
+    const float *d = npal > 0 ? v.pal[i].diffuse : grey;
+    lua_createtable(L, 4, 0);
+    for (k = 0; k < 4; k++) {
+      lua_pushnumber(L, d[k] <= 0 ? 0 : d[k] >= 1 ? 1 : d[k]);
+      lua_rawseti(L, -2, k + 1);
+    }
+    lua_rawseti(L, -2, (lua_Integer)i + 1);
+  }
+  lua_setfield(L, -2, "palette");
+  if (npal == 0) npal = 1;
+  lua_createtable(L, (int)(9 * v.mesh.nl), 0);
+  for (i = 0, k = 0; i < v.mesh.nl; i++) {
+    double p[3], w[2][3];
+    int in = 1;
+    for (j = 0; j < 2; j++) {
+      const float *q = v.mesh.lpos + 6 * i + 3 * j;
+      p[0] = q[0]; p[1] = q[1]; p[2] = q[2];
+      in &= lsys_render_project(proj, view, o.width, o.height, p, w[j]);
+    }
+    if (!in) continue;
+    for (j = 0; j < 6; j++) seti(L, &k, w[j / 3][j % 3]);
+    seti(L, &k, v.mesh.lwidth[2 * i]);
+    seti(L, &k, v.mesh.lwidth[2 * i + 1]);
+    seti(L, &k, (double)(v.mesh.lcol[i] % npal + 1));
+  }
+  lua_setfield(L, -2, "lines");
+  lua_createtable(L, (int)(10 * v.mesh.nt), 0);
+  for (i = 0, k = 0; i < v.mesh.nt; i++) {
+    double p[3], w[3][3];
+    int in = 1;
+    for (j = 0; j < 3; j++) {
+      const float *q = v.mesh.pos + 3 * (size_t)v.mesh.tri[3 * i + j];
+      p[0] = q[0]; p[1] = q[1]; p[2] = q[2];
+      in &= lsys_render_project(proj, view, o.width, o.height, p, w[j]);
+    }
+    if (!in) continue;
+    for (j = 0; j < 9; j++) seti(L, &k, w[j / 3][j % 3]);
+    seti(L, &k, (double)(v.mesh.col[v.mesh.tri[3 * i]] % npal + 1));
+  }
+  lua_setfield(L, -2, "triangles");
+  return 1;
+#endif
+}
+
 static int pixels_gc (lua_State *L) {
   uint8_t **p = (uint8_t **)luaL_checkudata(L, 1, PIXELS_T);
   LSYS_FREE(*p);
@@ -200,7 +302,7 @@ static const luaL_Reg pixels_meta[] = {
 };
 
 static const luaL_Reg render_funcs[] = {
-  {"render", l_render}, {"png_read", l_png_read}, {"png_write", l_png_write},
+  {"render", l_render}, {"project", l_project}, {"png_read", l_png_read}, {"png_write", l_png_write},
   {"write_file", l_write_file}, {"read_file", l_read_file}, {"realpath", l_realpath},
   {NULL, NULL}
 };

@@ -7,6 +7,7 @@ local core = require "lsys.core"
 local model = require "lsys.model"
 local view = require "lsys.view"
 local load = require "lsys.load"
+local vector = require "lsys.vector"
 
 local type, pairs, error, pcall, tostring, next = type, pairs, error, pcall, tostring, next
 local string = string
@@ -25,9 +26,10 @@ local function render (level, x, opts)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", level) end
   local ext = type(opts.out) == "string" and opts.out:match("%.([%w]+)$")
-  if ext and ext:lower() ~= "png" then      -- not PNG data under another format's name
-    error(format("lsys.render: '%s': lsys writes PNG images; name the file .png", opts.out),
-          level)
+  ext = ext and ext:lower()
+  if ext and ext ~= "png" and not vector.FORMATS[ext] then  -- not under another format's name
+    error(format("lsys.render: '%s': unknown picture format '.%s': lsys writes %s",
+                 opts.out, ext, vector.KNOWN), level)
   end
   x = load.tomodel(x)                             -- a component graph's root
   local over, drawn = {}, {}
@@ -66,14 +68,20 @@ local function render (level, x, opts)
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
   ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
   ro.fit = opts.fit
+  if ext and vector.FORMATS[ext] then
+    local ok, err = pcall(vector.write, x, ro, ext)
+    if not ok then error(err, level) end
+    return true
+  end
   local ok, a, b, c = pcall(core.render, x, ro)
   if not ok then error(a, level) end
   return a, b, c
 end
 
 --- Renders `x` (a Scene, a Model: derived and interpreted, or a component graph's root
--- prototype: made a Model) to a PNG file.
--- opts: out (the PNG path; without it the RGBA pixels are returned as a string, plus
+-- prototype: made a Model) to a PNG file, or with `out` naming a .svg, .eps or .pdf file to
+-- a vector picture of the same framing (lsys.vector).
+-- opts: out (the path; without it the RGBA pixels are returned as a string, plus
 -- width and height), width, height (800), zoom (1: magnifies about the centre),
 -- transparent (a transparent background, RGBA PNG), wireframe, fit (a box {x0, y0, z0, x1,
 -- y1, z1} the camera frames instead of the scene: one camera for a series of pictures of a

@@ -119,8 +119,8 @@ Options:
 ]=]
 
 HELP.render = [=[
-usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--seed S]
-                   [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
+usage: lsys render [MODEL [VIEW.v]] [-o OUT.png|.svg|.eps|.pdf] [--size WxH] [--steps N]
+                   [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
                    [--map FILE | --mat FILE] [--define NAME=VALUE]... [--threads N]
                    [--max-memory SIZE] [--max-modules N] [--progress]
        lsys render [MODEL [VIEW.v]] --frames DIR [--every K] [OPTIONS as above]
@@ -128,8 +128,11 @@ usage: lsys render [MODEL [VIEW.v]] [-o OUT.png] [--size WxH] [--steps N] [--see
 Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
 VIEW.v, or a vlab object folder, as for `lsys derive`), interprets it with the turtle and
 renders it headless (OSMesa) to a PNG file. Without MODEL, renders the default example
-(examples/default.lua) to tree.png. A Lua file may also return a Scene, such as a field of
-plants made by lsys.population (examples/population/field.lua): it is rendered as it is.
+(examples/default.lua) to tree.png. An OUT ending in .svg, .eps or .pdf gets a vector
+picture instead: the lines as stroked paths with their widths and colours, polygons as
+filled paths, framed as the PNG of that --size would be (docs/drawing.md §6). A Lua file
+may also return a Scene, such as a field of plants made by lsys.population
+(examples/population/field.lua): it is rendered as it is (to PNG only).
 
 With --frames DIR, writes one picture per derivation step into DIR instead (made when
 missing): step-0000.png, step-0001.png, ... All look through one camera, fitted to the last
@@ -137,8 +140,9 @@ step, so the plant grows in place from picture to picture. `lsys animate` makes 
 of them.
 
 Options:
-  -o, --output OUT   the PNG file (default: tree.png for the default model, else the
-                     model's file name with .png, in the current directory)
+  -o, --output OUT   the picture: .png, .svg, .eps or .pdf (default: tree.png for the
+                     default model, else the model's file name with .png, in the current
+                     directory)
   --frames DIR       one picture per step into DIR (not with -o); a progress bar on a
                      terminal, else a line per frame with --progress
   --every K          with --frames: steps 0, K, 2K, ... and always the last

@@ -1,4 +1,4 @@
---- `lsys render`: a model rendered headless to a PNG file, or with --frames DIR one picture
+--- `lsys render`: a model rendered headless to a PNG file (or an SVG, EPS or PDF picture), or with --frames DIR one picture
 -- per derivation step through one camera.
 -- @module lsys.cli.commands.render
 local A = require "lsys.cli.args"
@@ -6,6 +6,7 @@ local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 local frames = require("lsys.frames").frames
 local render = require("lsys.render").render
+local vector = require "lsys.vector"
 
 local error, pcall, next, tostring = error, pcall, next, tostring
 local io, string = io, string
@@ -49,8 +50,9 @@ local function run (args)
   end
   if opts.every ~= nil then usage("render", "--every applies to --frames") end
   local outpath = opts.output or default_output(pos, ".png", "tree.png")
-  if not outpath:lower():find("%.png$") then
-    usage("render", "the output must be a .png file, got '%s'", outpath)
+  local ext = outpath:lower():match("%.(%w+)$")
+  if ext ~= "png" and not vector.FORMATS[ext or ""] then
+    usage("render", "the output must be a %s file, got '%s'", vector.KNOWN, outpath)
   end
   local scene, _, views, verbose, drawn = scene_of("render", opts, pos)
   local t0 = clock()
