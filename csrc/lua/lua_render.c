@@ -1,6 +1,6 @@
 /*
-** Rendering and PNG functions of lsys.core: render, png_read, png_write,
-** has_render.
+** Rendering and PNG functions of lsys.core: render, project (the renderer's
+** camera applied to a scene, for vector pictures), png_read, png_write, has_render.
 */
 #include <math.h>
 #include <string.h>
@@ -302,8 +302,8 @@ static const luaL_Reg pixels_meta[] = {
 };
 
 static const luaL_Reg render_funcs[] = {
-  {"render", l_render}, {"project", l_project}, {"png_read", l_png_read}, {"png_write", l_png_write},
-  {"write_file", l_write_file}, {"read_file", l_read_file}, {"realpath", l_realpath},
+  {"render", l_render}, {"project", l_project}, {"png_read", l_png_read},
+  {"png_write", l_png_write}, {"write_file", l_write_file}, {"read_file", l_read_file}, {"realpath", l_realpath},
   {NULL, NULL}
 };
 

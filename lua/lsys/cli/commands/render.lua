@@ -1,5 +1,5 @@
---- `lsys render`: a model rendered headless to a PNG file (or an SVG, EPS or PDF picture), or with --frames DIR one picture
--- per derivation step through one camera.
+--- `lsys render`: a model rendered headless to a PNG file (or an SVG, EPS or PDF picture), or
+-- with --frames DIR one picture per derivation step through one camera.
 -- @module lsys.cli.commands.render
 local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
