@@ -128,7 +128,7 @@ describe("lsys render and export", function()
     assert.truthy(out:find("--size expects WxH", 1, true))
     out, code = run("render -o " .. dir .. "/x.jpg")
     assert.equal(2, code)
-    assert.truthy(out:find("must be a .png file", 1, true))
+    assert.truthy(out:find("must be a .png, .svg, .eps or .pdf file", 1, true))
   end)
 
   it("reports a bad view option (a usage error) and an unwritable output", function()

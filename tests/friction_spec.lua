@@ -442,7 +442,7 @@ describe("messages name the user's file or the public function", function ()
     H.write(dir .. "/syntax.lua", "return lsys.lsystem {\n")
     local runs = {
       { "derive --steps 1e8", "--steps 1e8 is more than" },
-      { "render -o x.jpg", "the output must be a .png file" },
+      { "render -o x.jpg", "the output must be a .png, .svg, .eps or .pdf file" },
       { "derive no/such/model.lua", "no/such/model.lua" },
       { "render --size 0x0", "--size expects WxH" },
       { "derive --steps 1 " .. dir .. "/bad.lua", "bad.lua:2:" },

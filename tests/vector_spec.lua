@@ -192,6 +192,26 @@ describe("vector pictures #gl", function ()
     assert.truthy(f.eps:find("^%%!PS%-Adobe%-3%.0 EPSF%-3%.0\n%%%%BoundingBox: 0 0 300 400\n"))
     assert.equal(count(f.svg, "<path "), count(f.eps, " s\n"))
     assert.equal(count(f.svg, "<path "), count(f.pdf, " S\n"))
+    -- the three carry the same points in the same order: the EPS and the PDF are the
+    -- picture the SVG is (compared with the PNG below)
+    local function svgpts (t)
+      local out = {}
+      for d in t:gmatch(' d="([^"]*)"') do
+        for v in d:gmatch("%-?[%d%.]+") do out[#out + 1] = v end
+      end
+      return out
+    end
+    local function pspts (t)
+      local out = {}
+      for x, y in t:gmatch("(%-?[%d%.]+) (%-?[%d%.]+) [ml]%f[%s]") do
+        out[#out + 1] = x; out[#out + 1] = y
+      end
+      return out
+    end
+    local sp = svgpts(f.svg)
+    assert.is_true(#sp > 1000)
+    assert.same(sp, pspts(f.eps))
+    assert.same(sp, pspts(f.pdf))
   end)
 
   it("is the same picture as the PNG", function ()
@@ -252,6 +272,20 @@ describe("vector pictures #gl", function ()
                                   { model = square, at = { 3, 0, 0 } } }
     assert.matches("vector output draws one plant, not a population of 2",
                    H.errof(lsys.render, pop, { out = "x.svg" }), 1, true)
+  end)
+
+  it("keeps within max_memory and refuses options that only a PNG has", function ()
+    local sc = square:interpret()
+    local old = core.max_memory()
+    core.max_memory(500)                 -- the four segments' numbers need 4 * 9 * 16 bytes
+    local ok, err = pcall(core.project, sc)
+    core.max_memory(old)
+    assert.is_false(ok)
+    assert.matches("lsys.render: a vector picture of 4 lines and 0 triangles needs 576 bytes, "
+                   .. "more than max_memory (500 bytes)", err, 1, true)
+    assert.equal(4, #core.project(sc).lines / 9)
+    assert.matches("wireframe applies to .png pictures",
+                   H.errof(lsys.render, square, { out = "x.svg", wireframe = true }), 1, true)
   end)
 
   it("is written by lsys render -o", function ()

@@ -133,6 +133,16 @@ static int l_project (lua_State *L) {
   if (S->sc.ninst > 0)
     return luaL_error(L, "lsys.render: vector output draws one plant, not a population of %d "
                       "(render it to .png)", (int)S->sc.ninst);
+  {                                    /* the tables: a Lua number per value, ~16 bytes */
+    double need = 16.0 * (9.0 * (double)S->sc.mesh.nl + 10.0 * (double)S->sc.mesh.nt);
+    if (need > (double)lsys_common_memory_limit()) {
+      char b1[32], b2[32];
+      return luaL_error(L, "lsys.render: a vector picture of %d lines and %d triangles needs "
+                        "%s, more than max_memory (%s)", (int)S->sc.mesh.nl, (int)S->sc.mesh.nt,
+                        lsys_common_fmtsize(b1, (size_t)need),
+                        lsys_common_fmtsize(b2, lsys_common_memory_limit()));
+    }
+  }
   v = S->sc;
   v.cam = look.cam;
   if (lsys_render_camera_scene(&v, &v.cam, o.width, o.height, proj, view) != LSYS_OK)

@@ -232,6 +232,7 @@ end
 --- Writes Scene `scene` to the file `ro.out` in format `fmt`, through core.project with the
 -- render options `ro` (those of core.render). Returns the projection and the items.
 function M.write (scene, ro, fmt)
+  if ro.wireframe then error("lsys.render: wireframe applies to .png pictures", 0) end
   local ok, p = pcall(core.project, scene, ro)
   if not ok then error(p, 0) end
   local items = M.paths(p)
