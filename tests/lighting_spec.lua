@@ -1,0 +1,103 @@
+-- The default lights of the renderer (key, fill, sky, ground and ambient: csrc/gl/render.c,
+-- docs/drawing.md "Lights"): no organ turned away from the key light renders nearly black,
+-- and a leaf keeps its shading. Rendered headless through OSMesa.
+--
+-- Measures, printed in the failure messages (before the fill, sky and ground lights, with one
+-- key light over the material's ambient: foxglove 8.4 % near-black, default tree 0.9 %,
+-- chestnut 1.9 %; the turned leaf 43 % of the facing one; the leaf lit from behind 29 %;
+-- after: 0 % for each picture, 59 % and 65 %):
+--   * the near-black share: of the plant's pixels (those that differ from the background,
+--     as tests/helper.lua's H.ink counts them), the share whose luminance is below 10 %,
+--     in the gallery's pictures (examples/gallery/make.lua: 480 pixels for the default tree,
+--     320 for the others);
+--   * a two-sided mid-green square facing the camera against the same turned 75 degrees
+--     about its vertical edge: the mean luminance of its pixels;
+--   * the square with its back to the key light against the same facing it.
+--
+-- Tagged #gl: `busted --exclude-tags=gl` leaves it out.
+local lsys = require "lsys"
+local core = require "lsys.core"
+
+-- Luminance of an sRGB-encoded pixel in [0, 1] (ITU-R BT.709 weights on the stored values).
+local function luma (r, g, b) return (0.2126 * r + 0.7152 * g + 0.0722 * b) / 255 end
+
+-- Of the pixels of px (w x h) that differ from its top left corner by more than 40 in the sum
+-- of R, G and B: how many, their mean luminance, and the share below 10 % luminance.
+local function measure (px, w, h)
+  local br, bg, bb = px:byte(1, 3)
+  local n, dark, sum = 0, 0, 0
+  for i = 0, w * h - 1 do
+    local r, g, b = px:byte(4 * i + 1, 4 * i + 3)
+    if math.abs(r - br) + math.abs(g - bg) + math.abs(b - bb) > 40 then
+      local y = luma(r, g, b)
+      n, sum = n + 1, sum + y
+      if y < 0.10 then dark = dark + 1 end
+    end
+  end
+  return n, n > 0 and sum / n or 0, n > 0 and dark / n or 0
+end
+
+-- A mid-green two-sided square in the xy plane facing the camera (+z), rolled `roll` degrees
+-- about its vertical left edge, lit from `light`; 96 x 96 pixels, a black background.
+local function square (roll, light)
+  local m = lsys.lsystem {
+    axiom = string.format("/(%g) { f + f + f + f }", roll),
+    view = { angle = 90, palette = { { 0.30, 0.60, 0.20 } }, background = { 0, 0, 0 },
+             light = light },
+  }
+  local px, w, h = lsys.render(m, { width = 96, height = 96 })
+  return measure(px, w, h)
+end
+
+describe("default lighting #gl", function()
+  if not core.has_render then
+    pending("lsys was built without OSMesa: lighting specs skipped")
+    return
+  end
+
+  local PICTURES = {
+    { "default.lua", nil, 480 }, { "sketch/fig14.lua", nil, 320 },
+    { "components/chestnut.lua", nil, 320 }, { "sketch/fig10.lua", "side", 320 },
+    { "sketch/fig8.lua", "decussate", 320 }, { "sketch/fig8.lua", "distichous", 320 },
+    { "sketch/fig8.lua", "fibonacci", 320 },
+  }
+  for _, p in ipairs(PICTURES) do
+    local label = p[1] .. (p[2] and " (" .. p[2] .. ")" or "")
+    it("leaves under 2 % of the plant nearly black: " .. label, function()
+      local v = dofile("examples/" .. p[1])
+      if p[2] then v = v[p[2]] end
+      local px, w, h = lsys.render(v:interpret(v:derive()), { width = p[3], height = p[3] })
+      local n, _, dark = measure(px, w, h)
+      assert.is_true(n > 1000, label .. ": only " .. n .. " plant pixels")
+      assert.is_true(dark < 0.02, string.format(
+        "%s: %.2f %% of %d plant pixels below 10 %% luminance (at most 2 %%)",
+        label, 100 * dark, n))
+    end)
+  end
+
+  it("keeps a leaf turned 75 degrees from the camera at half the facing one or more", function()
+    local n0, facing = square(0)
+    local n1, turned = square(75)
+    -- the turned square is foreshortened to about cos 75 = 0.26 of the facing one
+    assert.is_true(n0 > 4000 and n1 > 0.15 * n0 and n1 < 0.4 * n0,
+                   "pixels facing " .. n0 .. ", turned " .. n1)
+    assert.is_true(turned >= 0.5 * facing, string.format(
+      "turned %.3f, facing %.3f: %.0f %% (at least 50 %%)", turned, facing,
+      100 * turned / facing))
+    -- and the leaf keeps its shape: turning it does change its shade
+    assert.is_true(math.abs(turned - facing) > 0.02 * facing, string.format(
+      "turned %.3f, facing %.3f: flat shading", turned, facing))
+  end)
+
+  it("does not draw a leaf with its back to the key light black", function()
+    local n0, lit = square(0, { 0, 0, 1 })
+    local n1, back = square(0, { 0, 0, -1 })
+    assert.are.equal(n0, n1)
+    assert.is_true(back >= 0.35 * lit, string.format(
+      "back to the light %.3f, facing it %.3f: %.0f %% (at least 35 %%)", back, lit,
+      100 * back / lit))
+    -- still darker than the lit side: the key light is the brightest
+    assert.is_true(back < 0.8 * lit, string.format(
+      "back to the light %.3f, facing it %.3f: the key light does not show", back, lit))
+  end)
+end)
