@@ -37,13 +37,14 @@ local function measure (px, w, h)
   return n, n > 0 and sum / n or 0, n > 0 and dark / n or 0
 end
 
--- A mid-green two-sided square in the xy plane facing the camera (+z), rolled `roll` degrees
--- about its vertical left edge, lit from `light`; 96 x 96 pixels, a black background.
-local function square (roll, light)
+-- A mid-green two-sided square in the xy plane facing +z, rolled `roll` degrees about its
+-- vertical left edge, lit from `light`, seen along `direction` ({0, 0, -1}: from +z, its
+-- front); 96 x 96 pixels, a black background.
+local function square (roll, light, direction)
   local m = lsys.lsystem {
     axiom = string.format("/(%g) { f + f + f + f }", roll),
     view = { angle = 90, palette = { { 0.30, 0.60, 0.20 } }, background = { 0, 0, 0 },
-             light = light },
+             light = light, direction = direction },
   }
   local px, w, h = lsys.render(m, { width = 96, height = 96 })
   return measure(px, w, h)
@@ -96,6 +97,12 @@ describe("default lighting #gl", function()
     assert.is_true(back >= 0.35 * lit, string.format(
       "back to the light %.3f, facing it %.3f: %.0f %% (at least 35 %%)", back, lit,
       100 * back / lit))
+    -- each face has its own normal: the back seen from behind and lit from behind is the
+    -- front seen and lit from the front
+    local n2, behind = square(0, { 0, 0, -1 }, { 0, 0, 1 })
+    assert.are.equal(n0, n2)
+    assert.is_true(math.abs(behind - lit) < 0.005, string.format(
+      "back face lit from behind %.3f, front face lit from the front %.3f", behind, lit))
     -- still darker than the lit side: the key light is the brightest
     assert.is_true(back < 0.8 * lit, string.format(
       "back to the light %.3f, facing it %.3f: the key light does not show", back, lit))
