@@ -128,4 +128,89 @@ describe("default lighting #gl", function()
     assert.is_true(back < 0.8 * lit, string.format(
       "back to the light %.3f, facing it %.3f: the key light does not show", back, lit))
   end)
+
+  -- the centre pixel of a white square facing the camera, drawn with the view `view`
+  local function centre (view, opts)
+    local v = { angle = 90, palette = { { 1, 1, 1 } }, background = { 0, 0, 0 } }
+    for k, x in pairs(view or {}) do v[k] = x end
+    local m = lsys.lsystem { axiom = "{ f + f + f + f }", view = v }
+    local o = { width = 32, height = 32, supersample = 1 }
+    for k, x in pairs(opts or {}) do o[k] = x end
+    local px = lsys.render(m, o)
+    return { px:byte(4 * (16 * 32 + 16) + 1, 4 * (16 * 32 + 16) + 3) }
+  end
+
+  it("lights a view with its own lights only, in their colours, as cpfg does", function()
+    -- one red light from the front: red diffuse, and OpenGL's ambient 0.2 times the
+    -- material's 0.3 in every channel (0.06 of 255 is 15)
+    local red = centre { lights = { { direction = { 0, 0, 1 }, diffuse = { 1, 0, 0 } } } }
+    assert.near(255, red[1], 1)
+    assert.near(15, red[2], 1)
+    assert.near(15, red[3], 1)
+    -- a light from behind the square lights its back, which the camera does not see
+    local behind = centre { lights = { { direction = { 0, 0, -1 } } } }
+    assert.same({ 15, 15, 15 }, behind)
+    -- a point light 3 in front of the square's centre (the square spans x from -1 to 0),
+    -- lit at its corners (OpenGL 1.x lights vertices): cos = 3 / sqrt(9.5); and a light's
+    -- own ambient colour
+    local point = centre { lights = { { position = { -0.5, 0.5, 3 }, diffuse = { 0, 0.5, 0 },
+                                        ambient = { 0, 0, 0.5 } } } }
+    assert.near(15, point[1], 1)
+    assert.near(15 + 127.5 * 3 / math.sqrt(9.5), point[2], 1)
+    assert.near(15 + 0.5 * 0.3 * 255, point[3], 2)
+    -- the render's own lights replace the view's; an empty list brings the default back
+    assert.same(red, centre(nil, { lights = { { direction = { 0, 0, 1 },
+                                                 diffuse = { 1, 0, 0 } } } }))
+    assert.same(centre(), centre({ lights = { { direction = { 0, 0, 1 } } } }, { lights = {} }))
+    assert.are_not.same(centre(), behind)
+  end)
+
+  it("reads a view file's light: lines into lights", function()
+    local dir = os.tmpname()
+    os.remove(dir)
+    local f = assert(io.open(dir, "w"))
+    f:write("light: V: 0 0 1 D: 1 0 0\nlight: O: -0.5 0.5 3 D: 0 0.5 0 A: 0 0 0.5\n")
+    f:close()
+    local v = lsys.view.load(dir, { quiet = true })
+    os.remove(dir)
+    assert.same({ { direction = { 0, 0, 1 }, diffuse = { 1, 0, 0 } },
+                  { position = { -0.5, 0.5, 3 }, diffuse = { 0, 0.5, 0 },
+                    ambient = { 0, 0, 0.5 } } }, v.lights)
+    assert.same({ 0, 0, 1 }, v.light)
+    local c = centre { lights = v.lights }
+    assert.near(255, c[1], 1)
+    assert.near(15 + 127.5 * 3 / math.sqrt(9.5), c[2], 1)
+  end)
+
+  it("says what is wrong with a light", function()
+    local function err (lights)
+      local ok, e = pcall(centre, { lights = lights })
+      assert.is_false(ok)
+      return e
+    end
+    assert.matches("view.lights%[1%]' needs a direction or a position %(one of them%)",
+                   err { { diffuse = { 1, 1, 1 } } })
+    assert.matches("view.lights%[2%].direction' must not be the zero vector",
+                   err { { direction = { 0, 0, 1 } }, { direction = { 0, 0, 0 } } })
+    assert.matches("view.lights%[1%].diffuse'%[2%] must not be negative",
+                   err { { direction = { 0, 0, 1 }, diffuse = { 1, -1, 0 } } })
+    assert.matches("has 9 lights; at most 8 can be drawn", err(
+      { {}, {}, {}, {}, {}, {}, {}, {}, {} }))
+    -- the same checks in the core, for a caller that gives core.render its options itself
+    local sc = lsys.lsystem { axiom = "{ f + f + f + f }", view = { angle = 90 } }:interpret()
+    local function cerr (lights)
+      local ok, e = pcall(core.render, sc, { width = 16, height = 16, lights = lights })
+      assert.is_false(ok)
+      return e
+    end
+    assert.matches("opts.lights%[1%] needs a direction or a position %(one of them%)",
+                   cerr { { position = { 1, 2, 3 }, direction = { 1, 0, 0 } } })
+    assert.matches("opts.lights%[1%].specular must be {r, g, b} with finite numbers >= 0",
+                   cerr { { position = { 1, 2, 3 }, specular = { 1, 0 } } })
+    assert.matches("opts.lights%[1%].direction must not be the zero vector",
+                   cerr { { direction = { 0, 0, 0 } } })
+    assert.matches("opts.lights has 9 lights; at most 8 can be drawn",
+                   cerr { {}, {}, {}, {}, {}, {}, {}, {}, {} })
+    assert.matches("opts.lights%[2%] must be a table", cerr { { direction = { 1, 0, 0 } }, 5 })
+  end)
 end)

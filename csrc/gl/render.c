@@ -801,13 +801,39 @@ static void setlight (const lsys_gl *gl, GLenum id, const double d[3], float k, 
   gl->Enable(id);
 }
 
+/* A view's own lights (scene.h), as cpfg draws them: each with its colours,
+** a direction (w = 0) or a position (w = 1) in world space; the rest off. */
+static void viewlights (const lsys_gl *gl, const lsys_scene *s) {
+  int k, j;
+  for (k = 0; k < LSYS_SCENE_NLIGHTS; k++) {
+    const lsys_slight *l = &s->lights[k];
+    GLenum id = (GLenum)(GL_LIGHT0 + k);
+    GLfloat pos[4], a[4], d[4], sp[4];
+    if (k >= s->nlights) { gl->Disable(id); continue; }
+    for (j = 0; j < 4; j++) pos[j] = (GLfloat)l->pos[j];
+    for (j = 0; j < 3; j++) {
+      a[j] = l->ambient[j];
+      d[j] = l->diffuse[j];
+      sp[j] = l->specular[j];
+    }
+    a[3] = d[3] = sp[3] = 1;
+    gl->Lightfv(id, GL_POSITION, pos);
+    gl->Lightfv(id, GL_AMBIENT, a);
+    gl->Lightfv(id, GL_DIFFUSE, d);
+    gl->Lightfv(id, GL_SPECULAR, sp);
+    gl->Enable(id);
+  }
+}
+
 /* Clears the framebuffer and sets the state every frame starts from: the
 ** camera's matrices, depth test, the lights and colour materials. */
 static void startframe (const frame *F, const lsys_scene *s, const lsys_render_opts *o) {
   static const double up[3] = {0, 1, 0}, down[3] = {0, -1, 0};
   static const GLfloat ambient[4] = {AMBIENT, AMBIENT, AMBIENT, 1};
+  static const GLfloat dim[4] = {0.2f, 0.2f, 0.2f, 1};     /* OpenGL's own default */
   const lsys_gl *gl = F->gl;
   double back[3];
+  int k;
   gl->Viewport(o->x, o->y, F->fbw, F->fbh);
   gl->ClearColor(s->background[0], s->background[1], s->background[2],
                  o->transparent ? 0.0f : 1.0f);
@@ -825,14 +851,20 @@ static void startframe (const frame *F, const lsys_scene *s, const lsys_render_o
   gl->Enable(GL_NORMALIZE);
   /* directions (w = 0) in world space, as the modelview matrix holds only
   ** the view transform here */
-  back[0] = -s->light[0];
-  back[1] = -s->light[1];
-  back[2] = -s->light[2];
-  setlight(gl, GL_LIGHT0, s->light, KEY, 1);
-  setlight(gl, GL_LIGHT1, back, FILL, 0);
-  setlight(gl, GL_LIGHT2, up, SKY, 0);
-  setlight(gl, GL_LIGHT3, down, GROUND, 0);
-  gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  if (s->nlights > 0) {
+    viewlights(gl, s);
+    gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, dim);
+  } else {
+    back[0] = -s->light[0];
+    back[1] = -s->light[1];
+    back[2] = -s->light[2];
+    setlight(gl, GL_LIGHT0, s->light, KEY, 1);
+    setlight(gl, GL_LIGHT1, back, FILL, 0);
+    setlight(gl, GL_LIGHT2, up, SKY, 0);
+    setlight(gl, GL_LIGHT3, down, GROUND, 0);
+    for (k = 4; k < LSYS_SCENE_NLIGHTS; k++) gl->Disable((GLenum)(GL_LIGHT0 + k));
+    gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  }
   gl->LightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 0);
   gl->ColorMaterial(GL_FRONT_AND_BACK, GL_DIFFUSE);
   gl->Enable(GL_COLOR_MATERIAL);
