@@ -87,13 +87,13 @@ describe("view files", function ()
     assert.same({
       dir = DATA, angle = 22.5, color = 3, line_width = 2, line_style = "line",
       contour_sides = 16, light = { 5, 3, 1 },
+      lights = { { direction = { 5, 3, 1 }, diffuse = { 1.3, 1.5, 1.3 } },
+                 { direction = { -1, -1, 0 } } },
       old_tropism = { vector = { 0, -2, 0 }, elasticity = 0.05, increment = 0.01 },
       surfaces = { c = { file = "calyx.s", scale = 2.0 } },
     }, v)
     assert.same({
       DATA .. "/legacy.v:4: 'initial color': a second (back) colour is not supported; ignored",
-      DATA .. "/legacy.v:7: 'light': 'D:' is not supported; ignored",
-      DATA .. "/legacy.v:8: 'light': only the first light is used; this one is ignored",
     }, warnings)
   end)
 

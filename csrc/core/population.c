@@ -293,6 +293,8 @@ int lsys_population_flatten (lsys_scene *dst, const lsys_scene *s, lsys_meter *m
   }
   dst->cam = s->cam;
   memcpy(dst->light, s->light, sizeof dst->light);
+  memcpy(dst->lights, s->lights, sizeof dst->lights);
+  dst->nlights = s->nlights;
   memcpy(dst->background, s->background, sizeof dst->background);
   dst->tex = s->tex;
   dst->ntex = s->ntex;

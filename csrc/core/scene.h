@@ -123,6 +123,17 @@ typedef struct lsys_instance {
   float m[16];
 } lsys_instance;
 
+/* At most this many lights of a view's own (OpenGL 1.x has at least 8). */
+#define LSYS_SCENE_NLIGHTS 8
+
+/* One light of a view's own (cpfg's "light:" lines): pos[3] = 0 makes it a
+** direction towards the light (world space), 1 a position; its ambient,
+** diffuse and specular colours are RGB in [0, 1]. */
+typedef struct lsys_slight {
+  double pos[4];
+  float ambient[3], diffuse[3], specular[3];
+} lsys_slight;
+
 typedef struct lsys_scene {
   lsys_mesh mesh;
   lsys_material *pal; size_t npal;             /* owned; colour c uses pal[c % npal] */
@@ -132,6 +143,8 @@ typedef struct lsys_scene {
   float *stiff; size_t nstiff, stiffcap;       /* 3 per Z-stiffened record */
   lsys_camera cam;
   double light[3];      /* world-space direction towards the key light */
+  lsys_slight lights[LSYS_SCENE_NLIGHTS];   /* a view's own lights: when nlights > 0 */
+  int nlights;          /* they replace the default ones (key, fill, sky, ground) */
   float background[3];  /* RGB in [0, 1] */
   lsys_part *parts; size_t nparts, partcap;
   lsys_instance *inst; size_t ninst, instcap;

@@ -766,14 +766,74 @@ static int reserve (frame *F) {
   return LSYS_OK;
 }
 
-/* Clears the framebuffer and sets the state every frame starts from: the
-** camera's matrices, depth test, the key light and colour materials. */
-static void startframe (const frame *F, const lsys_scene *s, const lsys_render_opts *o) {
-  static const GLfloat white[4] = {1, 1, 1, 1};
-  static const GLfloat key[4] = {0.75f, 0.75f, 0.75f, 1};
+/* The default lights, as fractions of the diffuse colour: a key light from
+** the scene's direction, a dimmer fill from the opposite direction, and a
+** sky above with a fainter bounce from the ground below (a two-light
+** approximation of a hemisphere), over an ambient term stronger than the
+** material's own (GL_LIGHT_MODEL_AMBIENT times the material's ambient, 0.3 of
+** its colour by default). Any normal gets some of these: a face edge-on to
+** the key light still has the fill's side or the sky's, and the ambient
+** keeps a face turned away from all of them above about 0.4 of its colour,
+** while the key light, brighter than the rest together at its side, keeps the
+** shape. */
+#define KEY 0.60f
+#define FILL 0.25f
+#define SKY 0.20f
+#define GROUND 0.10f
+#define AMBIENT 1.35f
+
+/* Sets light 'id' to come from direction d (world space, w = 0) with the
+** diffuse intensity 'k' and, when 'spec', a white highlight. */
+static void setlight (const lsys_gl *gl, GLenum id, const double d[3], float k, int spec) {
   static const GLfloat black[4] = {0, 0, 0, 1};
+  static const GLfloat white[4] = {1, 1, 1, 1};
+  GLfloat pos[4], dif[4];
+  pos[0] = (GLfloat)d[0];
+  pos[1] = (GLfloat)d[1];
+  pos[2] = (GLfloat)d[2];
+  pos[3] = 0;
+  dif[0] = dif[1] = dif[2] = k;
+  dif[3] = 1;
+  gl->Lightfv(id, GL_POSITION, pos);
+  gl->Lightfv(id, GL_AMBIENT, black);
+  gl->Lightfv(id, GL_DIFFUSE, dif);
+  gl->Lightfv(id, GL_SPECULAR, spec ? white : black);
+  gl->Enable(id);
+}
+
+/* A view's own lights (scene.h), as cpfg draws them: each with its colours,
+** a direction (w = 0) or a position (w = 1) in world space; the rest off. */
+static void viewlights (const lsys_gl *gl, const lsys_scene *s) {
+  int k, j;
+  for (k = 0; k < LSYS_SCENE_NLIGHTS; k++) {
+    const lsys_slight *l = &s->lights[k];
+    GLenum id = (GLenum)(GL_LIGHT0 + k);
+    GLfloat pos[4], a[4], d[4], sp[4];
+    if (k >= s->nlights) { gl->Disable(id); continue; }
+    for (j = 0; j < 4; j++) pos[j] = (GLfloat)l->pos[j];
+    for (j = 0; j < 3; j++) {
+      a[j] = l->ambient[j];
+      d[j] = l->diffuse[j];
+      sp[j] = l->specular[j];
+    }
+    a[3] = d[3] = sp[3] = 1;
+    gl->Lightfv(id, GL_POSITION, pos);
+    gl->Lightfv(id, GL_AMBIENT, a);
+    gl->Lightfv(id, GL_DIFFUSE, d);
+    gl->Lightfv(id, GL_SPECULAR, sp);
+    gl->Enable(id);
+  }
+}
+
+/* Clears the framebuffer and sets the state every frame starts from: the
+** camera's matrices, depth test, the lights and colour materials. */
+static void startframe (const frame *F, const lsys_scene *s, const lsys_render_opts *o) {
+  static const double up[3] = {0, 1, 0}, down[3] = {0, -1, 0};
+  static const GLfloat ambient[4] = {AMBIENT, AMBIENT, AMBIENT, 1};
+  static const GLfloat dim[4] = {0.2f, 0.2f, 0.2f, 1};     /* OpenGL's own default */
   const lsys_gl *gl = F->gl;
-  GLfloat pos[4];
+  double back[3];
+  int k;
   gl->Viewport(o->x, o->y, F->fbw, F->fbh);
   gl->ClearColor(s->background[0], s->background[1], s->background[2],
                  o->transparent ? 0.0f : 1.0f);
@@ -789,18 +849,22 @@ static void startframe (const frame *F, const lsys_scene *s, const lsys_render_o
   gl->Disable(GL_BLEND);
   gl->ShadeModel(GL_SMOOTH);
   gl->Enable(GL_NORMALIZE);
-  /* the key light: a direction (w = 0) in world space, as the modelview
-  ** matrix holds only the view transform here */
-  pos[0] = (GLfloat)s->light[0];
-  pos[1] = (GLfloat)s->light[1];
-  pos[2] = (GLfloat)s->light[2];
-  pos[3] = 0;
-  gl->Lightfv(GL_LIGHT0, GL_POSITION, pos);
-  gl->Lightfv(GL_LIGHT0, GL_AMBIENT, black);
-  gl->Lightfv(GL_LIGHT0, GL_DIFFUSE, key);
-  gl->Lightfv(GL_LIGHT0, GL_SPECULAR, white);
-  gl->Enable(GL_LIGHT0);
-  gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, white);
+  /* directions (w = 0) in world space, as the modelview matrix holds only
+  ** the view transform here */
+  if (s->nlights > 0) {
+    viewlights(gl, s);
+    gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, dim);
+  } else {
+    back[0] = -s->light[0];
+    back[1] = -s->light[1];
+    back[2] = -s->light[2];
+    setlight(gl, GL_LIGHT0, s->light, KEY, 1);
+    setlight(gl, GL_LIGHT1, back, FILL, 0);
+    setlight(gl, GL_LIGHT2, up, SKY, 0);
+    setlight(gl, GL_LIGHT3, down, GROUND, 0);
+    for (k = 4; k < LSYS_SCENE_NLIGHTS; k++) gl->Disable((GLenum)(GL_LIGHT0 + k));
+    gl->LightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+  }
   gl->LightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, 0);
   gl->ColorMaterial(GL_FRONT_AND_BACK, GL_DIFFUSE);
   gl->Enable(GL_COLOR_MATERIAL);

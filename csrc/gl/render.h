@@ -180,8 +180,8 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
 ** Draws scene 's' into the current GL context's framebuffer of fbw x fbh
 ** pixels, through the scene's camera, with its palette (a grey default
 ** when it has none): clears to the scene's background, lights with its key
-** light plus ambient, lights
-** two-sided vertices on both faces, and draws lines with their widths
+** light, a fill opposite it, a sky and a ground light and ambient (render.c),
+** lights two-sided vertices on both faces, and draws lines with their widths
 ** scaled by fbh / o->height (the supersampling factor offscreen, the content
 ** scale in a window). Lines narrower than LSYS_RENDER_WIDE pixels are GL
 ** lines; wider ones are flat bands facing the eye, tapered from one end's

@@ -615,6 +615,70 @@ void lsysL_readbox (lua_State *L, int t, const char *what, double box[6]) {
     if (box[i] > box[i + 3]) luaL_error(L, "%s: its low corner is above its high one", what);
 }
 
+/* Field k of light i (the table on top) into v: three finite numbers, not
+** negative for a 'colour' (above 1 brightens, as OpenGL allows). Returns 0
+** when the light has no k. */
+static int lightvec (lua_State *L, const lsys_opts *o, int i, const char *k, int colour,
+                     double v[3]) {
+  int j, ok;
+  if (lua_getfield(L, -1, k) == LUA_TNIL) { lua_pop(L, 1); return 0; }
+  ok = lua_type(L, -1) == LUA_TTABLE && luaL_len(L, -1) == 3;
+  for (j = 0; ok && j < 3; j++) {
+    ok = lua_rawgeti(L, -1, j + 1) == LUA_TNUMBER && isfinite(v[j] = lua_tonumber(L, -1)) &&
+         (!colour || v[j] >= 0);
+    lua_pop(L, 1);
+  }
+  if (!ok)
+    luaL_error(L, "%slights[%d].%s%s must be %s", o->pre, i, k, o->post,
+               colour ? "{r, g, b} with finite numbers >= 0" : "{x, y, z} with 3 finite numbers");
+  lua_pop(L, 1);
+  return 1;
+}
+
+/* Colour k of light i into c, 'def' grey when the light has none. */
+static void lightcolour (lua_State *L, const lsys_opts *o, int i, const char *k, double def,
+                         float c[3]) {
+  double v[3] = {def, def, def};
+  lightvec(L, o, i, k, 1, v);
+  c[0] = (float)v[0]; c[1] = (float)v[1]; c[2] = (float)v[2];
+}
+
+/* opts.lights: a list of at most LSYS_SCENE_NLIGHTS lights, each { direction
+** = {x, y, z} (towards the light) or position = {x, y, z}, ambient = (0),
+** diffuse = (1), specular = (1) colours }, which replace the default ones;
+** an empty list gives the default lights back. */
+static void readlights (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
+  lua_Integer n, i;
+  if (!lsysL_optfield(L, o, "lights", LUA_TTABLE, "a list of lights")) return;
+  n = luaL_len(L, -1);
+  if (n > LSYS_SCENE_NLIGHTS)
+    luaL_error(L, "%slights%s has %d lights; at most %d can be drawn", o->pre, o->post,
+               (int)n, LSYS_SCENE_NLIGHTS);
+  for (i = 1; i <= n; i++) {
+    lsys_slight *l = &sc->lights[i - 1];
+    double v[3], p[3];
+    int dir, pos;
+    if (lua_rawgeti(L, -1, i) != LUA_TTABLE)
+      luaL_error(L, "%slights[%d]%s must be a table", o->pre, (int)i, o->post);
+    dir = lightvec(L, o, (int)i, "direction", 0, v);
+    pos = lightvec(L, o, (int)i, "position", 0, p);
+    if (dir == pos)
+      luaL_error(L, "%slights[%d]%s needs a direction or a position (one of them)", o->pre,
+                 (int)i, o->post);
+    if (dir && iszero(v))
+      luaL_error(L, "%slights[%d].direction%s must not be the zero vector", o->pre, (int)i,
+                 o->post);
+    memcpy(l->pos, dir ? v : p, sizeof v);
+    l->pos[3] = dir ? 0 : 1;
+    lightcolour(L, o, (int)i, "ambient", 0, l->ambient);
+    lightcolour(L, o, (int)i, "diffuse", 1, l->diffuse);
+    lightcolour(L, o, (int)i, "specular", 1, l->specular);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  sc->nlights = (int)n;
+}
+
 /* The look fields of the options at o->t (scene.h): each one given
 ** replaces the scene's; the messages begin with o->pre. */
 void lsysL_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
@@ -631,6 +695,7 @@ void lsysL_readlook (lua_State *L, const lsys_opts *o, lsys_scene *sc) {
     if (iszero(v)) luaL_error(L, "%slight%s must not be the zero vector", o->pre, o->post);
     memcpy(sc->light, v, sizeof v);
   }
+  readlights(L, o, sc);
   if (optvec3(L, o, "viewpoint", 0, cam->eye)) cam->has_eye = 1;
   if (optvec3(L, o, "target", 0, cam->target)) cam->has_target = 1;
   if (optvec3(L, o, "up", 0, cam->up)) {
@@ -679,7 +744,8 @@ static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, in
 }
 
 static const char *const renderopts[] = {
-  "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
+  "out", "width", "height", "supersample", "background", "transparent", "light", "lights",
+  "wireframe",
   "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
   "fit", NULL
 };

@@ -66,6 +66,8 @@ static int l_render (lua_State *L) {
   v = S->sc;                          /* the scene as this picture sees it (scene.h) */
   v.cam = look.cam;
   memcpy(v.light, look.light, sizeof v.light);
+  memcpy(v.lights, look.lights, sizeof v.lights);
+  v.nlights = look.nlights;
   memcpy(v.background, look.background, sizeof v.background);
   if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
   if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)

@@ -885,8 +885,8 @@ static int scene_save (lua_State *L) {
 ** light and background: the look fields of a view, lsysL_readlook). */
 static int scene_look (lua_State *L) {
   static const char *const keys[] = {
-    "background", "light", "viewpoint", "target", "up", "direction", "projection", "fov",
-    "twist", "zoom", "fit", NULL
+    "background", "light", "lights", "viewpoint", "target", "up", "direction", "projection",
+    "fov", "twist", "zoom", "fit", NULL
   };
   lsys_lscene *S = lsysL_checkscene(L, 1);
   lsys_opts o = {2, "scene:look: opts.", "", LSYS_GOT_TYPE, 0};
@@ -899,6 +899,8 @@ static int scene_look (lua_State *L) {
   S = lsysL_checkscene(L, 1);
   S->sc.cam = sc.cam;
   memcpy(S->sc.light, sc.light, sizeof sc.light);
+  memcpy(S->sc.lights, sc.lights, sizeof sc.lights);
+  S->sc.nlights = sc.nlights;
   memcpy(S->sc.background, sc.background, sizeof sc.background);
   return 0;
 }

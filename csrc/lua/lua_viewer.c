@@ -224,6 +224,8 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   f->sc.cam = S->sc.cam;                  /* how the scene is to be looked at */
   f->sc.cull = S->sc.cull;
   memcpy(f->sc.light, S->sc.light, sizeof f->sc.light);
+  memcpy(f->sc.lights, S->sc.lights, sizeof f->sc.lights);
+  f->sc.nlights = S->sc.nlights;
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
   setpicks(f, S->sc.rec, S->sc.nrec, world);
   if (lsys_vlight_leaves(f, S->sc.rec, S->sc.nrec) != LSYS_OK)

@@ -30,6 +30,9 @@
 --   fov              field of view for "perspective", degrees (30)
 --   twist            rotation of the picture about the view axis, degrees (0)
 --   light            direction the key light comes from ({0.4, 0.8, 0.6}), world space
+--   lights           a view's own lights, replacing the default key, fill, sky and ground
+--                    lights (as cpfg's "light:" lines do): at most 8, each { direction =
+--                    {x,y,z} or position = {x,y,z}, ambient =, diffuse =, specular = }
 --   supersample      anti-aliasing factor for rendering (3)
 --   dir              directory that relative file names of this view are read from
 --                    (default: the current directory); `load` sets it to the .v file's
@@ -124,6 +127,7 @@ local KINDS = {
   old_tropism = "oldtropism",
   background = "color", viewpoint = "vec", target = "vec", up = "vec", direction = "vec",
   projection = "projection", fov = "number", twist = "number", light = "vec",
+  lights = "lights",
   supersample = "integer", dir = "string", contours = "contours", surfaces = "surfaces",
   textures = "textures", minimize_twist = "boolean", functions = "functions",
 }
@@ -214,6 +218,41 @@ local function tropism (t, where, name, torque)
 end
 
 -- cpfg's old-style tropism: { vector = {0, 1, 0}, elasticity = 0, increment = 0 }.
+-- A view's own lights (cpfg's "light:" lines), which replace the default ones: at most 8,
+-- each { direction = {x,y,z} (towards the light) or position = {x,y,z}, ambient = (black),
+-- diffuse = (white), specular = (white) }: colours {r,g,b} >= 0 (above 1 brightens).
+local function lights (x, where, name)
+  if type(x) ~= "table" then fail(where, "'%s' must be a list of lights", name) end
+  if #x > 8 then fail(where, "'%s' has %d lights; at most 8 can be drawn", name, #x) end
+  local l = {}
+  for i, t in ipairs(x) do
+    local n = format("%s[%d]", name, i)
+    if type(t) ~= "table" then fail(where, "'%s' must be a table", n) end
+    if (t.direction == nil) == (t.position == nil) then
+      fail(where, "'%s' needs a direction or a position (one of them)", n)
+    end
+    local o = {}
+    if t.direction ~= nil then
+      o.direction = vec(t.direction, where, n .. ".direction")
+      if o.direction[1] == 0 and o.direction[2] == 0 and o.direction[3] == 0 then
+        fail(where, "'%s.direction' must not be the zero vector", n)
+      end
+    else
+      o.position = vec(t.position, where, n .. ".position")
+    end
+    for _, k in ipairs { "ambient", "diffuse", "specular" } do   -- above 1 brightens
+      if t[k] ~= nil then
+        o[k] = vec(t[k], where, n .. "." .. k)
+        for j = 1, 3 do
+          if o[k][j] < 0 then fail(where, "'%s.%s'[%d] must not be negative", n, k, j) end
+        end
+      end
+    end
+    l[i] = o
+  end
+  return l
+end
+
 local function oldtropism (t, where, name)
   if type(t) ~= "table" then fail(where, "'%s' must be a table", name) end
   local out = { vector = t.vector ~= nil and vec(t.vector, where, name .. ".vector")
@@ -590,6 +629,8 @@ function M.normalize (v, where)
       out[k] = l
     elseif kind == "oldtropism" then
       out[k] = oldtropism(x, where, name)
+    elseif kind == "lights" then
+      out[k] = lights(x, where, name)
     elseif kind == "contours" then
       out[k] = contours(ctx, x, name)
     elseif kind == "surfaces" then
@@ -641,7 +682,7 @@ for _, k in ipairs(TURTLE) do M.TURTLE[k] = true end
 
 -- How to look at a scene: the camera, the light and the background, which the scene keeps
 -- (csrc/core/scene.h) and the renderer and the viewer read from it.
-local LOOK = { "background", "light", "viewpoint", "target", "up", "direction",
+local LOOK = { "background", "light", "lights", "viewpoint", "target", "up", "direction",
                "projection", "fov", "twist" }
 
 --- The options core.interpret reads, from a normalised view: the turtle's, and how the

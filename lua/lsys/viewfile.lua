@@ -131,7 +131,10 @@ end
 --     lines when the unit starts with 'p' ("line" here) and to cylinders when it starts
 --     with 's'; another unit is polygons too, with a warning here.
 --   * polygonization level: n is the older form of contour sides: 2^(n+1), at least 3.
---   * light: V: x y z is a directional light; cpfg lights the model from the first one.
+--   * light: V: x y z is a directional light, O: x y z a point light at that position;
+--     A:, D:, S: its ambient, diffuse and specular colours (cpfg/OpenGL's defaults: black,
+--     white, white). A view with light: lines is lit by those (at most 8) and nothing
+--     else, as cpfg does; the first one's direction is also the view's `light`.
 --   * surface: c file scale [s t] [texture]: one number after the scale is a texture,
 --     two are the precision s t, three are s t texture (control.c case 21).
 
@@ -371,16 +374,34 @@ end
 COMMANDS["light"] = function (P, rest, cmd)
   local f, order = P:fields(rest, cmd, { V = 3, O = 3, A = 3, D = 3, S = 3, P = 5, T = 3 },
                             "V, O, A, D, S, P, T")
-  P.nlights = P.nlights + 1
-  if P.nlights > 1 then
-    P:warn("'%s': only the first light is used; this one is ignored", cmd)
+  if P.nlights >= 8 then
+    P:warn("'%s': at most 8 lights are drawn; this one is ignored", cmd)
     return
   end
   for _, k in ipairs(order) do
-    if k ~= "V" then P:warn("'%s': '%s:' is not supported; ignored", cmd, k) end
+    if k == "P" or k == "T" then P:warn("'%s': '%s:' is not supported; ignored", cmd, k) end
   end
-  if f.V then P.v.light = P:nonzero(f.V, cmd)
-  else P:warn("'%s' without a direction V: is ignored", cmd) end
+  if f.V and f.O then P:warn("'%s': both V: and O:; the direction V: is used", cmd) end
+  if not f.V and not f.O then
+    P:warn("'%s' without a direction V: or a position O: is ignored", cmd)
+    return
+  end
+  local l = f.V and { direction = P:nonzero(f.V, cmd) } or { position = f.O }
+  for _, kn in ipairs { { "A", "ambient" }, { "D", "diffuse" }, { "S", "specular" } } do
+    local k, name = kn[1], kn[2]
+    if f[k] then
+      for i = 1, 3 do
+        if f[k][i] < 0 then
+          P:err("'%s': the components of '%s:' must not be negative", cmd, k)
+        end
+      end
+      l[name] = f[k]
+    end
+  end
+  P.nlights = P.nlights + 1
+  P.v.lights = P.v.lights or {}
+  P.v.lights[P.nlights] = l
+  if P.nlights == 1 and l.direction then P.v.light = l.direction end
 end
 
 local function background (P, rest, cmd)

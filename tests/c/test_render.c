@@ -558,7 +558,8 @@ static void test_offscreen (void) {
   assert(pixel(img, q[0], q[1])[3] == 255);
   o.transparent = 0;
   /* two-sided: seen from behind with the light behind, a two-sided quad is
-  ** lit on its back face, a one-sided one only gets ambient light */
+  ** lit on its back face by the key light, a one-sided one only by the fill
+  ** opposite it and ambient light */
   sc.cam.dir[2] = 1;
   sc.light[0] = 0; sc.light[1] = 0; sc.light[2] = -1;
   assert(lsys_render_camera(&m, &sc.cam, IW, IH, proj, view) == LSYS_OK);
@@ -570,7 +571,7 @@ static void test_offscreen (void) {
     back[i] = brightness(pixel(img, q[0], q[1]));
   }
   memset(qts, 0, sizeof qts);
-  assert(back[1] > back[0] + 100);
+  assert(back[1] > back[0] + 60);       /* 255 and 167: the key light against the fill */
   /* wireframe still draws, an empty scene is all background */
   lsys_render_defaults(&o);
   testlook(&sc);
