@@ -84,8 +84,8 @@ int lsys_turtle_cylinder (run *R, const double *p0, const double *p1, double w0,
                                   t->ring, n);
       u0 = e->u0;
       if (!R->o->minimize_twist) {       /* u of the turtle's vertex k, the nearest turn */
-        double d = (double)k / n - u0;
-        u0 += d - floor(d + 0.5);
+        double du = (double)k / n - u0;
+        u0 += du - floor(du + 0.5);
       }
     }
   }
