@@ -347,7 +347,7 @@ function Model:functions() end
 ---@field supersample? integer Anti-aliasing factor (3).
 ---@field dir? string Base directory of relative file names below (a .v file's directory after view.load).
 ---@field contours? table<integer, string|{ points: number[][], closed?: boolean }> Contours of generalized cylinders by @# id (>= 1); files as in Appendix B.1 of the cpfg guide (Měch and Prusinkiewicz; docs/manual.md §12) or vlab's versioned `cver` files (docs/drawing.md §3a).
----@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders").
+---@field minimize_twist? boolean Rotation-minimising frames along generalized cylinders (true; cpfg "twist of cylinders"); false also turns cylinder textures with the roll.
 ---@field textures? (string|{ file: string, mag?: "near"|"linear", min?: "near"|"linear", mode?: "modulate"|"decal", per_surface?: boolean, intensity?: boolean })[] PNG textures; @Tx(k) picks the k-th.
 ---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
 ---@field functions? (string|lsys.Func|{ file: string, samples?: integer })[] Positional functions for the model's rules (not read by the turtle), as a view file's `function:` lines give them; a model without its own `functions` option takes these.

@@ -470,7 +470,9 @@ describe("lsys.environment.light", function ()
       local s = m:derive()
       counts[t] = { #s, s:count("B"), s:count("L"), s:count("F") }
     end
-    assert.same({ 73010, 4038, 5359, 10718 }, counts[1])
+    -- the stems' tubes shade too, so these counts follow their shape (tubes that keep their
+    -- section under a roll shade a little more than pinched ones did)
+    assert.same({ 72692, 4002, 5337, 10674 }, counts[1])
     assert.same(counts[1], counts[2])
     -- in the dark every bud dies at its first pass
     local m = dofile("examples/open/shade.lua")

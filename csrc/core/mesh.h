@@ -118,19 +118,21 @@ void lsys_mesh_ringtable (double *cs, int n);
 
 /* How rings are laid out: in the plane of L and U (L = H x U, so that the
 ** bands lsys_mesh_band makes face outwards), by the table 'cs' of 'n'
-** sides, in colour 'col'. */
+** sides, in colour 'col'; u of the first vertex 'u0' (0 unless set). */
 typedef struct lsys_tubeframe {
   const double *H, *L, *U;
   const double *cs;
   int n;
   unsigned col;
+  double u0;
 } lsys_tubeframe;
 
 /*
-** Appends a ring of n + 1 vertices (the last repeats the first, for u = 1)
-** of radius 'r' around 'c', with u = k / n and 'v'; normals point outwards,
-** tilted along H by 'slope' (a taper's (r0 - r1) / length). Room must have
-** been reserved. Returns its first vertex.
+** Appends a ring of n + 1 vertices (the last repeats the first, for u = u0 +
+** 1) of radius 'r' around 'c': vertex k along L cos(2 pi k / n) + U sin(2 pi
+** k / n), with u = u0 + k / n and 'v'; normals point outwards, tilted along H
+** by 'slope' (a taper's (r0 - r1) / length). Room must have been reserved.
+** Returns its first vertex.
 */
 uint32_t lsys_mesh_ring (lsys_mesh *m, const lsys_tubeframe *f, const double c[3], double r,
                          double slope, double v);
@@ -141,8 +143,36 @@ uint32_t lsys_mesh_ring (lsys_mesh *m, const lsys_tubeframe *f, const double c[3
 void lsys_mesh_cap (lsys_mesh *m, const double c[3], const double nn[3], uint32_t ring, int n,
                     unsigned col, int flip);
 
-/* Appends the 2 n triangles between the rings at 'base' and 'top'. */
-void lsys_mesh_band (lsys_mesh *m, uint32_t base, uint32_t top, int n);
+/* Appends the 2 n triangles between the rings at 'base' and 'top'. 'twist'
+** is how far the top ring is turned about the heading from the base ring
+** (radians, in the sense its vertices go round; see lsys_mesh_ringmatch):
+** each quad is split along its shorter diagonal, from base vertex k to top
+** vertex k + 1 unless the twist is positive, so that a twisted band's
+** triangles span no more of the circle than an untwisted band's do. */
+void lsys_mesh_band (lsys_mesh *m, uint32_t base, uint32_t top, int n, double twist);
+
+/* Carries the vector 'v' over a bend into 'out': rotates it by the least
+** rotation that takes the unit heading 'a' to the unit heading 'b' (the
+** rotation about a x b; a . b must be above -1). A vector normal to 'a'
+** comes out normal to 'b': parallel transport of a tube's frame. */
+void lsys_mesh_transport (double out[3], const double v[3], const double a[3],
+                          const double b[3]);
+
+/*
+** The frame L2, U2 of a ring that continues a ring of 'n' sides ('cs' its
+** lsys_mesh_ringtable) whose first vertex points along the unit 'pL' about
+** the unit heading 'pH', for a segment with the turtle frame H, L, U (unit,
+** L and U normal to H): L, U turned about H by the whole number of sides,
+** *steps (0 .. n - 1), that brings the first vertex closest to pL carried
+** over the bend (lsys_mesh_transport). Vertex k of the new ring is then
+** vertex k + *steps of the turtle's own ring, where the turtle puts it, and
+** matches vertex k of the old ring to within half a side. Returns the twist
+** left, the angle from the carried pL to L2 about H in the sense the ring's
+** vertices go round (|twist| <= pi / n), for lsys_mesh_band.
+*/
+double lsys_mesh_ringmatch (double L2[3], double U2[3], int *steps, const double pH[3],
+                            const double pL[3], const double H[3], const double L[3],
+                            const double U[3], const double *cs, int n);
 
 /*
 ** Makes 'dst' (empty or freed) the vertices and triangles of 'src' followed

@@ -29,7 +29,7 @@ uint32_t lsys_mesh_ring (lsys_mesh *m, const lsys_tubeframe *f, const double c[3
     vlin(p, c, 1, d, r);
     vlin(nn, d, 1, f->H, slope);
     if (slope != 0) vnorm(nn);
-    lsys_mesh_vertex(m, p, nn, (double)k / n, v, f->col, 0);
+    lsys_mesh_vertex(m, p, nn, f->u0 + (double)k / n, v, f->col, 0);
   }
   return first;
 }
@@ -50,12 +50,54 @@ void lsys_mesh_cap (lsys_mesh *m, const double c[3], const double nn[3], uint32_
   }
 }
 
-void lsys_mesh_band (lsys_mesh *m, uint32_t base, uint32_t top, int n) {
+/* A twist below this (radians) counts as none: the two diagonals of an
+** untwisted band are as long, and rounding must not pick between them. */
+#define NOTWIST 1e-9
+
+void lsys_mesh_band (lsys_mesh *m, uint32_t base, uint32_t top, int n, double twist) {
   uint32_t k;
+  if (twist > NOTWIST) {        /* top k sits ahead of base k: base k + 1 to top k is shorter */
+    for (k = 0; k < (uint32_t)n; k++) {
+      lsys_mesh_tri(m, base + k, top + k, base + k + 1);
+      lsys_mesh_tri(m, base + k + 1, top + k, top + k + 1);
+    }
+    return;
+  }
   for (k = 0; k < (uint32_t)n; k++) {     /* outward facing */
     lsys_mesh_tri(m, base + k, top + k + 1, base + k + 1);
     lsys_mesh_tri(m, base + k, top + k, top + k + 1);
   }
+}
+
+void lsys_mesh_transport (double out[3], const double v[3], const double a[3],
+                          const double b[3]) {
+  double s[3], c = vdot(a, b), av = vdot(a, v), sv;
+  vlin(s, a, 1, b, 1);
+  sv = vdot(s, v) / (1 + c);
+  out[0] = v[0] + 2 * av * b[0] - sv * s[0];
+  out[1] = v[1] + 2 * av * b[1] - sv * s[1];
+  out[2] = v[2] + 2 * av * b[2] - sv * s[2];
+}
+
+/* The ring's own angle of the old first vertex is phi; the nearest whole
+** side k * 2 pi / n is where the new first vertex goes, so the band between
+** them turns by k * 2 pi / n - phi, at most half a side either way. */
+double lsys_mesh_ringmatch (double L2[3], double U2[3], int *steps, const double pH[3],
+                            const double pL[3], const double H[3], const double L[3],
+                            const double U[3], const double *cs, int n) {
+  double t[3], phi, side = 2 * PI / n, k, c, s;
+  int j;
+  lsys_mesh_transport(t, pL, pH, H);
+  phi = atan2(vdot(t, U), vdot(t, L));
+  k = floor(phi / side + 0.5);
+  j = (int)k % n;
+  if (j < 0) j += n;
+  c = cs[2 * j];
+  s = cs[2 * j + 1];
+  vlin(L2, L, c, U, s);
+  vlin(U2, U, c, L, -s);
+  *steps = j;
+  return k * side - phi;
 }
 
 /* ------------------------------------------------------------------ */
@@ -151,18 +193,20 @@ static void capend (lsys_mesh *d, tubeend *e, int n) {
 
 /*
 ** One tube for segment 'cur' ('prev' the segment before it, when e->open).
-** A continuing tube carries the frame of the one before over the bend (U
-** made normal to the new H), so that its rings line up with the shared one;
+** A continuing tube carries the frame of the one before over the bend
+** (parallel transport, lsys_mesh_transport), so that its rings line up with
+** the shared one and the band between them does not twist;
 ** a new run takes a frame of its own.
 */
 static void addtube (lsys_mesh *d, const seg *cur, const seg *prev, tubeend *e,
                      const double *cs, int n) {
   double U[3], L[3], back[3], slope = (cur->r0 - cur->r1) / cur->len, v0 = 0;
-  lsys_tubeframe f = { cur->H, L, U, cs, n, cur->col };
+  lsys_tubeframe f = { cur->H, L, U, cs, n, cur->col, 0 };
   uint32_t base = 0;
   int shared = e->open && joins(prev, cur);
-  if (shared) {
-    vlin(U, e->U, 1, cur->H, -vdot(e->U, cur->H));
+  if (shared) {                 /* the frame carried over the bend: no twist */
+    lsys_mesh_transport(U, e->U, e->H, cur->H);
+    vlin(U, U, 1, cur->H, -vdot(U, cur->H));
     if (!vnorm(U)) normalto(U, cur->H);
     base = e->ring;
     v0 = d->uv[2 * base + 1];
@@ -180,7 +224,7 @@ static void addtube (lsys_mesh *d, const seg *cur, const seg *prev, tubeend *e,
   e->ring = lsys_mesh_ring(d, &f, cur->p1, cur->r1, slope,
                            v0 + (cur->r0 + cur->r1 > 0 ? cur->len / (PI * (cur->r0 + cur->r1))
                                                        : 0));
-  lsys_mesh_band(d, base, e->ring, n);
+  lsys_mesh_band(d, base, e->ring, n, 0);
   vcopy(e->c, cur->p1);
   vcopy(e->H, cur->H);
   vcopy(e->U, U);

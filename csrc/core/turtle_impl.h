@@ -41,7 +41,8 @@ struct lsys_polygon {
 ** continue from it or a cap can close it at the end. */
 struct lsys_cylend {
   double c[3], H[3], r;
-  double v;               /* the ring's texture coordinate v (as its vertices keep it) */
+  double L[3];            /* where the ring's first vertex points from c (unit) */
+  double u0, v;           /* the ring's texture coordinates: u of its first vertex, v */
   uint32_t ring;          /* first vertex of the ring (sides + 1 vertices) */
   int color, continued;
   int sides;              /* the state's sides when it was drawn */

@@ -8,7 +8,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "mesh.h"
 #include "turtle.h"
+#include "vec3.h"
 
 static void parse (lsys_lstring *s, lsys_alphabet *a, const char *text) {
   lsys_error e;
@@ -47,6 +49,105 @@ static void test_draw (void) {
   parse(&s, &a, "F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
   assert(sc.nrec == 1 && sc.mesh.nt == 8 + 2 * 4);
+  lsys_turtle_free(&t);
+  lsys_scene_free(&sc);
+  lsys_lstring_free(&s);
+  lsys_alphabet_free(&a);
+}
+
+/* The least distance from the y axis of the band triangles of sc's mesh (those
+** with no vertex on the axis: not caps), sampled on a barycentric grid. */
+static double waist (const lsys_scene *sc) {
+  const lsys_mesh *m = &sc->mesh;
+  double least = INFINITY;
+  size_t t;
+  for (t = 0; t < m->nt; t++) {
+    const float *v[3];
+    int k, i, j, cap = 0;
+    for (k = 0; k < 3; k++) {
+      v[k] = m->pos + 3 * m->tri[3 * t + k];
+      if (hypot(v[k][0], v[k][2]) < 1e-6) cap = 1;
+    }
+    if (cap) continue;
+    for (i = 0; i <= 10; i++)
+      for (j = 0; i + j <= 10; j++) {
+        double a = i / 10.0, b = j / 10.0, c = 1 - a - b;
+        double x = c * v[0][0] + a * v[1][0] + b * v[2][0];
+        double z = c * v[0][2] + a * v[1][2] + b * v[2][2];
+        if (hypot(x, z) < least) least = hypot(x, z);
+      }
+  }
+  return least;
+}
+
+/* A roll between two cylinders: the second segment's ring starts at the
+** turtle's ring vertex nearest the shared ring's first vertex, so the band
+** between them keeps the section (it pinched to 2 % of the radius). */
+static void test_roll (void) {
+  static const char *const rolls[] = { "F/(137.5)F", "F/(180)F", "F\\(45)F", "F/(90)F",
+                                       "F/(10)F/(200)F\\(137.5)F" };
+  lsys_alphabet a;
+  lsys_lstring s;
+  lsys_scene sc;
+  lsys_turtle t;
+  lsys_turtle_opts o;
+  double cs[2 * 8 + 2], L2[3], U2[3], out[3], tw;
+  int n, k, steps;
+  assert(lsys_alphabet_init(&a) == LSYS_OK);
+  lsys_lstring_init(&s);
+  lsys_scene_init(&sc);
+  lsys_turtle_init(&t);
+  lsys_turtle_defaults(&o);
+  o.style = LSYS_STYLE_CYLINDER;
+  t.o = &o;
+  t.scene = &sc;
+  for (n = 8; n <= 16; n += 2) {
+    o.sides = n;
+    for (k = 0; k < (int)(sizeof rolls / sizeof *rolls); k++) {
+      double w;
+      parse(&s, &a, rolls[k]);
+      assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
+      w = waist(&sc) / 0.5;                      /* width 1: radius 0.5 */
+      assert(w >= cos(PI / n) - 1e-6 && w < 1);  /* no nearer than the n-gon's own sides */
+    }
+  }
+  /* the old first vertex 100 degrees round from L: the new ring starts at the
+  ** turtle's vertex 2 (90 degrees), 10 degrees short of it */
+  lsys_mesh_ringtable(cs, 8);
+  {
+    const double H[3] = {0, 1, 0}, L[3] = {1, 0, 0}, U[3] = {0, 0, 1};
+    double pL[3] = {cos(100 * PI / 180), 0, sin(100 * PI / 180)};
+    tw = lsys_mesh_ringmatch(L2, U2, &steps, H, pL, H, L, U, cs, 8);
+    assert(steps == 2 && fabs(tw + 10 * PI / 180) < 1e-12);
+    assert(fabs(L2[2] - 1) < 1e-12 && fabs(U2[0] + 1) < 1e-12);
+    pL[0] = cos(-100 * PI / 180); pL[2] = sin(-100 * PI / 180);   /* vertex 6, 10 past it */
+    tw = lsys_mesh_ringmatch(L2, U2, &steps, H, pL, H, L, U, cs, 8);
+    assert(steps == 6 && fabs(tw - 10 * PI / 180) < 1e-12);
+  }
+  {
+    /* a bend of 30 degrees about z carries x into the new heading's normal plane
+    ** and leaves z alone */
+    const double A[3] = {0, 1, 0}, B[3] = {-sin(PI / 6), cos(PI / 6), 0};
+    const double X[3] = {1, 0, 0}, Z[3] = {0, 0, 1};
+    lsys_mesh_transport(out, X, A, B);
+    assert(fabs(out[0] - cos(PI / 6)) < 1e-12 && fabs(out[1] - sin(PI / 6)) < 1e-12);
+    assert(fabs(vdot(out, B)) < 1e-12);
+    lsys_mesh_transport(out, Z, A, B);
+    assert(fabs(out[2] - 1) < 1e-12 && fabs(out[0]) + fabs(out[1]) < 1e-12);
+  }
+  {
+    /* the band's diagonals: base k to top k + 1, or base k + 1 to top k when
+    ** the top ring is turned ahead */
+    lsys_mesh m;
+    lsys_mesh_init(&m);
+    assert(lsys_mesh_reserve(&m, 0, 16) == LSYS_OK);
+    lsys_mesh_band(&m, 0, 10, 4, -0.1);
+    assert(m.tri[0] == 0 && m.tri[1] == 11 && m.tri[2] == 1);
+    lsys_mesh_band(&m, 0, 10, 4, 0.1);
+    assert(m.tri[24] == 0 && m.tri[25] == 10 && m.tri[26] == 1);
+    assert(m.tri[27] == 1 && m.tri[28] == 10 && m.tri[29] == 11);
+    lsys_mesh_free(&m);
+  }
   lsys_turtle_free(&t);
   lsys_scene_free(&sc);
   lsys_lstring_free(&s);
@@ -155,6 +256,7 @@ static void test_errors (void) {
 
 int main (void) {
   test_draw();
+  test_roll();
   test_state_and_query();
   test_errors();
   printf("test_turtle ok\n");
