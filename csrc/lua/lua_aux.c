@@ -681,7 +681,7 @@ static int optsize (lua_State *L, const lsys_opts *o, const char *k, int def, in
 static const char *const renderopts[] = {
   "out", "width", "height", "supersample", "background", "transparent", "light", "wireframe",
   "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
-  "fit", NULL
+  "fit", "shade", NULL
 };
 
 void lsysL_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {
