@@ -85,6 +85,8 @@ static int checkopts (const lsys_light_opts *o, lsys_error *e) {
     return bad(e, "light: %s must be a finite number >= 0", "line_radius");
   if (!(o->offset >= 0 && isfinite(o->offset)))
     return bad(e, "light: %s must be a finite number > 0", "offset");
+  if (!(o->max_distance >= 0) || isnan(o->max_distance))
+    return bad(e, "light: %s must be a number >= 0", "max_distance");
   if (o->kind == LSYS_LIGHT_SUN && !(o->ambient >= 0 && o->ambient <= 1))
     return bad(e, "light: %s must be a number in [0, 1]", "ambient");
   return LSYS_OK;
@@ -184,6 +186,7 @@ int lsys_light_build (lsys_light **out, const lsys_scene *s, const lsys_light_op
   for (c = 0; c < 3; c++) diag += (L->hi[c] - L->lo[c]) * (L->hi[c] - L->lo[c]);
   diag = sqrt(diag);
   L->offset = o->offset > 0 ? o->offset : diag > 0 ? 1e-4 * diag : 1e-7;
+  L->tmax = o->max_distance > 0 ? (float)o->max_distance : HUGE_VALF;
   L->tau = o->transmittance;
   L->maxhits = L->tau > 0 ? (o->max_hits > 0 ? o->max_hits : DEFHITS) : 1;
   L->taupow[0] = 1;

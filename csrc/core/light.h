@@ -72,6 +72,8 @@ typedef struct lsys_light_opts {
                                 radius; 0 (default): lines do not occlude */
   double offset;             /* > 0, world units: hits nearer than this to a point are not
                                 counted; 0: 1e-4 of the scene's bounding-box diagonal */
+  double max_distance;       /* > 0, world units: hits this far or farther along a ray are not
+                                counted (ambient occlusion's reach); 0 (default): no limit */
   lsys_meter *meter;         /* the memory budget of the build (NULL: none) */
 } lsys_light_opts;
 
@@ -131,7 +133,7 @@ void lsys_light_info (const lsys_light *L, lsys_light_stats *st);
 size_t lsys_light_sky (const lsys_light *L, const double **dirs, const double **w);
 
 /*
-** The hits along the ray o + t d, t > offset (d need not be unit; it is
+** The hits along the ray o + t d, offset < t < max_distance (d need not be unit; it is
 ** used as given), counted up to 'cap' (>= 1): through the hierarchy, or
 ** with 'brute' by testing every primitive (the reference the tests compare
 ** the hierarchy with). Both test each primitive the same way, so they agree

@@ -71,6 +71,7 @@ struct lsys_light {
   double *dir, *w; size_t ndirs;  /* the sky: unit directions (3 each) and weights */
   float *dirf;                    /* the directions in floats, for the rays */
   double offset;                  /* world units */
+  float tmax;                     /* hits at this distance or beyond do not count (inf: none) */
   double tau;                     /* transmittance */
   int maxhits;                    /* hits counted along a ray: 1 when opaque */
   double taupow[LSYS_LIGHT_MAXHITS + 1];   /* tau^k: what a ray with k hits lets through */
@@ -88,7 +89,7 @@ struct lsys_light {
 int lsys_light_bvh (lsys_light *L, const lsys_scene *s, double radius, lsys_meter *mt,
                     lsys_error *e);
 
-/* The hits along o + t d, t > tmin, counted up to cap (>= 1); brute: every
+/* The hits along o + t d, tmin < t < L->tmax, counted up to cap (>= 1); brute: every
 ** primitive tested, without the hierarchy (light_ray.c). */
 int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], float tmin,
                       int cap);

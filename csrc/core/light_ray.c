@@ -63,6 +63,7 @@ typedef __m128 f4;
 #define f4le(a, b) _mm_movemask_ps(_mm_cmple_ps((a), (b)))   /* bit k: a[k] <= b[k] */
 #define f4ge(a, b) _mm_movemask_ps(_mm_cmpge_ps((a), (b)))
 #define f4gt(a, b) _mm_movemask_ps(_mm_cmpgt_ps((a), (b)))
+#define f4lt(a, b) _mm_movemask_ps(_mm_cmplt_ps((a), (b)))
 #define f4ne(a, b) _mm_movemask_ps(_mm_cmpneq_ps((a), (b)))
 #else
 typedef struct f4 { float x[4]; } f4;
@@ -81,6 +82,7 @@ F4OP(f4max, a.x[k] > b.x[k] ? a.x[k] : b.x[k])
 F4CMP(f4le, a.x[k] <= b.x[k])
 F4CMP(f4ge, a.x[k] >= b.x[k])
 F4CMP(f4gt, a.x[k] > b.x[k])
+F4CMP(f4lt, a.x[k] < b.x[k])
 F4CMP(f4ne, a.x[k] != b.x[k])
 static inline f4 f4load (const float *p) {
   f4 r;
@@ -96,10 +98,11 @@ static inline f4 f4set1 (float x) {
 /* ---------------------------------------------------------------------- */
 /* the primitives */
 
-/* Whether the ray o + t d, t > tmin, meets the capsule P (from outside: a
+/* Whether the ray o + t d, tmin < t < tmax, meets the capsule P (from outside: a
 ** point in it is not shadowed by it, as a bud by its own stem), in doubles:
 ** the first of its entries into the body and the two end spheres. */
-static int capsule (const lsys_lprim *P, const float o[3], const float d[3], float tmin) {
+static int capsule (const lsys_lprim *P, const float o[3], const float d[3], float tmin,
+                    float tmax) {
   double w[3], r = P->c[0], bb = P->c[1], dd = 0, dw = 0, ww = 0, db = 0, wb = 0, t = HUGE_VAL;
   double s, A, Bq, C, h;
   int c, end;
@@ -135,7 +138,7 @@ static int capsule (const lsys_lprim *P, const float o[3], const float d[3], flo
       if (ts > 0 && ts < t) t = ts;
     }
   }
-  return t > tmin && t < HUGE_VAL;
+  return t > tmin && t < HUGE_VAL && t < tmax;
 }
 
 
@@ -145,8 +148,8 @@ static int capsule (const lsys_lprim *P, const float o[3], const float d[3], flo
 ** inf makes a NaN) and the octant (bit c: the ray goes down axis c). */
 typedef struct rdir {
   int near[3], far[3], oct;
-  float d[3], tmin;
-  f4 vd[3], vinv[3], vtmin;
+  float d[3], tmin, tmax;
+  f4 vd[3], vinv[3], vtmin, vtmax;
 } rdir;
 
 /* Up to PACK rays of one direction: their origins, each also in all four
@@ -156,7 +159,7 @@ typedef struct rpack {
   f4 vo[PACK][3];
 } rpack;
 
-static void setdir (rdir *D, const float d[3], float tmin) {
+static void setdir (rdir *D, const lsys_light *L, const float d[3], float tmin) {
   int c;
   D->oct = 0;
   for (c = 0; c < 3; c++) {
@@ -170,6 +173,8 @@ static void setdir (rdir *D, const float d[3], float tmin) {
   }
   D->tmin = tmin;
   D->vtmin = f4set1(tmin);
+  D->tmax = L->tmax;
+  D->vtmax = f4set1(L->tmax);
 }
 
 /* The n (1 .. PACK) origins o[0 .. n) into P (only the first n are used). */
@@ -225,7 +230,7 @@ static inline int trihit (const trid *S, const lsys_ltri4 *T, const rdir *D, con
             S->inv);
   t = f4mul(f4add(f4add(f4mul(S->e2[0], q0), f4mul(S->e2[1], q1)), f4mul(S->e2[2], q2)),
             S->inv);
-  return m & f4ge(v, zero) & f4le(f4add(u, v), one) & f4gt(t, D->vtmin);
+  return m & f4ge(v, zero) & f4le(f4add(u, v), one) & f4gt(t, D->vtmin) & f4lt(t, D->vtmax);
 }
 
 /* The hits a mask of trihit counts: its bits. */
@@ -242,7 +247,7 @@ static inline int slabs (const lsys_lnode4 *q, const int nf[6], const rdir *D, c
   hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[4]]), o[1]), D->vinv[1]));
   lo = f4max(lo, f4mul(f4sub(f4load(q->b[nf[2]]), o[2]), D->vinv[2]));
   hi = f4min(hi, f4mul(f4sub(f4load(q->b[nf[5]]), o[2]), D->vinv[2]));
-  return f4le(f4max(lo, D->vtmin), hi);
+  return f4le(f4max(lo, D->vtmin), f4min(D->vtmax, hi));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -307,7 +312,7 @@ static void walk (const lsys_light *L, const lsys_ltree *T, int tri, const rdir 
         for (; live != 0; live &= live - 1) {
           r = lowbit(live);
           h[r] += tri ? nbits[trihit(&S, &L->pack[i], D, P->vo[r])]
-                     : capsule(&L->caps[i], P->o[r], D->d, D->tmin);
+                     : capsule(&L->caps[i], P->o[r], D->d, D->tmin, D->tmax);
           if (h[r] >= cap) {
             h[r] = cap;
             m &= ~(1 << r);
@@ -354,7 +359,7 @@ int lsys_light_trace (const lsys_light *L, const float o[3], const float d[3], f
   int hits[PACK];
   rdir D;
   rpack P;
-  setdir(&D, d, tmin);
+  setdir(&D, L, d, tmin);
   setpack(&P, po, 1);
   trace(L, &D, &P, 1, cap, hits, last);
   return hits[0];
@@ -367,7 +372,7 @@ int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], f
   int hits = 0;
   rdir D;
   rpack P;
-  setdir(&D, d, tmin);
+  setdir(&D, L, d, tmin);
   setpack(&P, po, 1);
   for (i = 0; i < L->npack; i++) {
     trid S;
@@ -375,7 +380,7 @@ int lsys_light_brute (const lsys_light *L, const float o[3], const float d[3], f
     if ((hits += nbits[trihit(&S, &L->pack[i], &D, P.vo[0])]) >= cap) return cap;
   }
   for (i = 0; i < L->ncap; i++)
-    if ((hits += capsule(&L->caps[i], P.o[0], D.d, tmin)) >= cap) return cap;
+    if ((hits += capsule(&L->caps[i], P.o[0], D.d, tmin, D.tmax)) >= cap) return cap;
   return hits;
 }
 
@@ -459,7 +464,7 @@ void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *w
   rdir D;
   rpack P;
   memset(&S, 0, sizeof S);
-  setdir(&D, d, tmin);
+  setdir(&D, L, d, tmin);
   while (m > CASTMAX) {                           /* a block at a time */
     lsys_light_cast(L, o, want, CASTMAX, d, tmin, cap, hits);
     m -= CASTMAX;
@@ -482,7 +487,7 @@ void lsys_light_cast (const lsys_light *L, const float (*o)[3], const uint8_t *w
           f4 vo[3];
           for (c = 0; c < 3; c++) vo[c] = f4set1(o[i][c]);
           hits[i] = trihit(&S, &L->pack[last[0]], &D, vo) != 0;
-        } else hits[i] = (uint8_t)capsule(&L->caps[last[1]], o[i], d, tmin);
+        } else hits[i] = (uint8_t)capsule(&L->caps[last[1]], o[i], d, tmin, D.tmax);
         if (hits[i]) { stops++; continue; }
       }
       idx[n] = i;

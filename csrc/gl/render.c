@@ -916,9 +916,11 @@ int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, i
     return lsys_seterror(e, LSYS_ENOMEM, (size_t)-1, "not enough memory to draw the scene");
   }
   startframe(&F, s, o);
+  if (o->sky) lsys_render_backdrop(gl, o, F.proj, F.view);
   if (F.m->nt > 0) {
     size_t v;
     for (v = 0; v < F.m->nv; v++) setrgba(F.c->rgba + 4 * v, &F.pal[F.m->col[v] % F.npal]);
+    if (o->shade != NULL) lsys_render_shade(F.c->rgba, o->shade, F.m->nv);
     if (F.ntex == 0) sorttriangles(&F);
     else {
       sorttextured(&F);

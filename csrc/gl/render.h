@@ -136,7 +136,21 @@ typedef struct lsys_render_opts {
   lsys_render_cache *cache; /* optional scratch kept by the caller; NULL: temporary */
   const lsys_gl *gl;        /* entry points of the current context (lsys_render_draw);
                                lsys_render_offscreen uses its own */
+  const uint8_t *shade;     /* NULL, or one factor per mesh vertex (255: 1) scaling its
+                               diffuse colour: baked shadows and occlusion (shade.h) */
+  int sky;                  /* 1: a vertical gradient behind the scene (backdrop.c) */
+  float sky_top[3], sky_bottom[3];   /* its colours at the top and bottom edges */
 } lsys_render_opts;
+
+/* Draws the sky gradient of o over the whole viewport, behind everything
+** (without writing depth), then loads the camera's matrices proj and view
+** again and leaves the depth test on. */
+void lsys_render_backdrop (const lsys_gl *gl, const lsys_render_opts *o, const double proj[16],
+                           const double view[16]);
+
+/* Scales the RGB of the n colours rgba (4 bytes each) by the factors f[0 .. n)
+** (255: 1), leaving alpha (backdrop.c). */
+void lsys_render_shade (uint8_t *rgba, const uint8_t *f, size_t n);
 
 /* Fills 'o' with the defaults above (no cache, no GL). */
 void lsys_render_defaults (lsys_render_opts *o);

@@ -747,7 +747,7 @@ static const char *const renderopts[] = {
   "out", "width", "height", "supersample", "background", "transparent", "light", "lights",
   "wireframe",
   "viewpoint", "target", "up", "direction", "projection", "fov", "twist", "zoom", "textures",
-  "fit", NULL
+  "fit", "shade", NULL
 };
 
 void lsysL_readrenderopts (lua_State *L, int t, lsys_render_opts *o, lsys_scene *sc) {

@@ -10,6 +10,129 @@
 #include "outfile.h"
 #include "path.h"
 #include "pngio.h"
+#include "shade.h"
+
+#ifndef LSYS_NO_RENDER
+#define SHADEPREP_T "lsys.ShadePrep"
+
+/* What a picture with shadows, a ground or a sky holds while it is drawn: the
+** scene's mesh with the ground appended, the palette with its colour, the
+** vertices' shading factors. A userdata, so that an error frees them. */
+typedef struct shadeprep {
+  lsys_mesh mesh;
+  lsys_material *pal;
+  uint8_t *f;
+  int ground;
+} shadeprep;
+
+static int shadeprep_gc (lua_State *L) {
+  shadeprep *p = (shadeprep *)luaL_checkudata(L, 1, SHADEPREP_T);
+  if (p->ground) lsys_mesh_free(&p->mesh);
+  LSYS_FREE(p->pal);
+  LSYS_FREE(p->f);
+  memset(p, 0, sizeof *p);
+  return 0;
+}
+
+static double numfield (lua_State *L, int t, const char *k, double def) {
+  double x;
+  lua_getfield(L, t, k);
+  x = lua_isnumber(L, -1) ? lua_tonumber(L, -1) : def;
+  lua_pop(L, 1);
+  return x;
+}
+
+static void rgbfield (lua_State *L, int t, const char *k, float rgb[3], const float *def) {
+  int c;
+  lua_getfield(L, t, k);
+  for (c = 0; c < 3; c++) {
+    if (lua_istable(L, -1)) {
+      lua_rawgeti(L, -1, c + 1);
+      rgb[c] = lua_isnumber(L, -1) ? (float)lua_tonumber(L, -1) : def[c];
+      lua_pop(L, 1);
+    } else rgb[c] = def[c];
+  }
+  lua_pop(L, 1);
+}
+
+/* What opts.shade asks (lsys.render checked it): into so, g, o; the ground's
+** colour into gcol. Returns 1 when a ground is asked. */
+static int readshade (lua_State *L, int t, lsys_shade_opts *so, lsys_shade_ground *g,
+                      float gcol[3], lsys_render_opts *o) {
+  static const float top[3] = {0.55f, 0.72f, 0.92f}, bottom[3] = {0.93f, 0.95f, 0.97f};
+  static const float grey[3] = {0.72f, 0.76f, 0.68f};
+  int ground, s;
+  lsys_shade_defaults(so);
+  g->size = 1.6;
+  g->cells = 96;
+  if (t == 0 || lua_getfield(L, t, "shade") != LUA_TTABLE) {
+    if (t != 0) lua_pop(L, 1);
+    return 0;
+  }
+  s = lua_gettop(L);
+  so->shadows = lua_getfield(L, s, "shadows"), lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  so->ao = lua_getfield(L, s, "ao"), lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  ground = lua_getfield(L, s, "ground"), lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  o->sky = lua_getfield(L, s, "sky"), lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  so->softness = numfield(L, s, "softness", so->softness);
+  so->shadow_strength = numfield(L, s, "shadow_strength", so->shadow_strength);
+  so->ao_samples = (int)numfield(L, s, "ao_samples", so->ao_samples);
+  so->ao_distance = numfield(L, s, "ao_distance", so->ao_distance);
+  so->ao_strength = numfield(L, s, "ao_strength", so->ao_strength);
+  so->threads = (int)numfield(L, s, "threads", 2);
+  g->size = numfield(L, s, "ground_size", g->size);
+  g->cells = (int)numfield(L, s, "ground_cells", g->cells);
+  rgbfield(L, s, "ground_color", gcol, grey);
+  rgbfield(L, s, "sky_top", o->sky_top, top);
+  rgbfield(L, s, "sky_bottom", o->sky_bottom, bottom);
+  lua_pop(L, 1);
+  return ground;
+}
+
+/* Makes scene v the one drawn with a ground (its mesh and palette in p) and
+** the shading factors of o. Raises on failure (p is freed by its __gc). */
+static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts *o,
+                     const lsys_shade_opts *so, lsys_shade_ground *g, const float gcol[3],
+                     int ground) {
+  lsys_error e;
+  int st;
+  if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0) {
+    size_t npal = v->npal > 0 ? v->npal : 1;
+    if (npal >= LSYS_MESH_NCOLORS) luaL_error(L, "lsys.render: ground: the palette is full");
+    if (lsys_mesh_copy(&p->mesh, &v->mesh) != LSYS_OK) luaL_error(L, "not enough memory");
+    p->ground = 1;
+    if ((p->pal = (lsys_material *)LSYS_MALLOC((npal + 1) * sizeof *p->pal)) == NULL)
+      luaL_error(L, "not enough memory");
+    if (v->npal > 0) memcpy(p->pal, v->pal, npal * sizeof *p->pal);
+    else {
+      static const lsys_material grey = {{0.24f, 0.24f, 0.24f, 1}, {0.8f, 0.8f, 0.8f, 1},
+                                         {0, 0, 0, 1}, {0, 0, 0, 1}, 0};
+      p->pal[0] = grey;
+    }
+    lsys_mesh_material_color(&p->pal[npal], gcol[0], gcol[1], gcol[2]);
+    g->col = (unsigned)npal;
+    if ((st = lsys_shade_add_ground(&p->mesh, g, &e)) != LSYS_OK)
+      luaL_error(L, "lsys.render: %s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
+    v->mesh = p->mesh;
+    v->pal = p->pal;
+    v->npal = npal + 1;
+  }
+  if ((so->shadows || so->ao) && v->mesh.nv > 0) {
+    lsys_shade_opts oo = *so;
+    lsys_meter mt = {0};
+    mt.limit = lsys_common_memory_limit();
+    oo.meter = &mt;
+    if ((p->f = (uint8_t *)LSYS_MALLOC(v->mesh.nv)) == NULL) luaL_error(L, "not enough memory");
+    if ((st = lsys_shade_compute(p->f, v, &oo, &e)) != LSYS_OK)
+      luaL_error(L, "lsys.render: %s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
+    o->shade = p->f;
+  }
+}
+#endif
 
 /*
 ** core.render(scene [, opts]): draws the scene offscreen. With opts.out,
@@ -39,12 +162,24 @@ static int l_render (lua_State *L) {
   luaL_Buffer b;
   uint8_t *px;
   size_t n;
-  int maxw, maxh, ntex;
+  int maxw, maxh, ntex, ground;
+  lsys_shade_opts so;
+  lsys_shade_ground g;
+  float gcol[3];
+  shadeprep *prep;
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
     ro.t = 2;
   }
   lsysL_readrenderopts(L, ro.t, &o, &look);
+  ground = readshade(L, ro.t, &so, &g, gcol, &o);
+  prep = (shadeprep *)lua_newuserdatauv(L, sizeof *prep, 0);
+  memset(prep, 0, sizeof *prep);
+  if (luaL_newmetatable(L, SHADEPREP_T)) {
+    lua_pushcfunction(L, shadeprep_gc);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
   if (lsysL_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
@@ -70,6 +205,7 @@ static int l_render (lua_State *L) {
   v.nlights = look.nlights;
   memcpy(v.background, look.background, sizeof v.background);
   if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
+  prepare(L, prep, &v, &o, &so, &g, gcol, ground);
   if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)
     return luaL_error(L, "lsys.render: %s", e.msg);
   if (out) {

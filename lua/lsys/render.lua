@@ -10,6 +10,7 @@ local load = require "lsys.load"
 local vector = require "lsys.vector"
 
 local type, pairs, error, pcall, tostring, next = type, pairs, error, pcall, tostring, next
+local math_type = math.type
 local string = string
 local format = string.format
 local _ENV = nil
@@ -18,8 +19,61 @@ local M = {}
 
 -- Options of lsys.render that are not view options.
 local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom = true,
-                      transparent = true, wireframe = true, fit = true }
+                      transparent = true, wireframe = true, fit = true, shadows = true,
+                      ao = true, ground = true, sky = true }
 M.RENDER_ONLY = RENDER_ONLY
+
+-- The fields each of the options shadows, ao, ground and sky may have as a table: the check
+-- (a number in [lo, hi], an integer when int; "rgb": a colour) and the field it gives core.
+local SHADE_FIELDS = {
+  shadows = { softness = { 0, 30, "softness" }, strength = { 0, 1, "shadow_strength" },
+              threads = { 1, 64, "threads", int = true } },
+  ao = { samples = { 1, 1024, "ao_samples", int = true }, strength = { 0, 1, "ao_strength" },
+         distance = { 0, 1e300, "ao_distance" }, threads = { 1, 64, "threads", int = true } },
+  ground = { color = { "rgb", "ground_color" }, size = { 1e-9, 1000, "ground_size" },
+             cells = { 1, 1024, "ground_cells", int = true } },
+  sky = { top = { "rgb", "sky_top" }, bottom = { "rgb", "sky_bottom" } },
+}
+
+-- A colour {r, g, b} in [0, 1], or nil.
+local function rgb (x)
+  if type(x) ~= "table" then return nil end
+  for i = 1, 3 do
+    if type(x[i]) ~= "number" or not (x[i] >= 0 and x[i] <= 1) then return nil end
+  end
+  return { x[1], x[2], x[3] }
+end
+
+-- opts.shadows, ao, ground and sky (true, false or a table of their fields), checked, as
+-- core.render's opts.shade (nil when none is on).
+local function shade (opts)
+  local out, any = {}, false
+  for name, fields in pairs(SHADE_FIELDS) do
+    local x = opts[name]
+    if x ~= nil and x ~= false then
+      if x ~= true and type(x) ~= "table" then
+        error(format("lsys.render: opts.%s must be true, false or a table", name), 0)
+      end
+      out[name], any = true, true
+      if type(x) == "table" then
+        for k, val in pairs(x) do
+          local f = fields[k]
+          if f == nil then
+            error(format("lsys.render: opts.%s: unknown field '%s'", name, tostring(k)), 0)
+          elseif f[1] == "rgb" then
+            out[f[2]] = rgb(val) or error(format("lsys.render: opts.%s.%s must be a colour "
+                                                 .. "{r, g, b} in [0, 1]", name, k), 0)
+          elseif type(val) ~= "number" or not (val >= f[1] and val <= f[2])
+                 or (f.int and math_type(val) ~= "integer") then
+            error(format("lsys.render: opts.%s.%s must be %s in [%g, %g]", name, k,
+                         f.int and "an integer" or "a number", f[1], f[2]), 0)
+          else out[f[3]] = val end
+        end
+      end
+    end
+  end
+  return any and out or nil
+end
 
 -- lsys.render, raising its errors at `level` (0: without a position).
 local function render (level, x, opts)
@@ -68,11 +122,14 @@ local function render (level, x, opts)
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
   ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
   ro.fit = opts.fit
-  if ext and vector.FORMATS[ext] then
+  if ext and vector.FORMATS[ext] then   -- (drawn flat: no shading)
     local ok, err = pcall(vector.write, x, ro, ext)
     if not ok then error(err, level) end
     return true
   end
+  local sok, sh = pcall(shade, opts)
+  if not sok then error(sh, level) end
+  ro.shade = sh
   local ok, a, b, c = pcall(core.render, x, ro)
   if not ok then error(a, level) end
   return a, b, c
@@ -85,7 +142,9 @@ end
 -- width and height), width, height (800), zoom (1: magnifies about the centre),
 -- transparent (a transparent background, RGBA PNG), wireframe, fit (a box {x0, y0, z0, x1,
 -- y1, z1} the camera frames instead of the scene: one camera for a series of pictures of a
--- growing plant), and view fields (camera,
+-- growing plant), shadows, ao, ground, sky (true or a table of their settings: baked shadows
+-- of the key light, ambient occlusion, a ground plane, a sky gradient; docs/drawing.md), and
+-- view fields (camera,
 -- background, light, supersample) that replace the scene's view for this picture;
 -- `opts.view` may hold them. Raises blaming its caller.
 function M.render (x, opts)

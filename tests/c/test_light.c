@@ -87,6 +87,33 @@ static void test_sun_triangle (void) {
   lsys_scene_free(&s);
 }
 
+/* max_distance: the triangle 2 above the point stops the sun's ray only when it is within
+** reach; a reach of 0 is no limit, a negative one an error. */
+static void test_max_distance (void) {
+  static const double a[3] = {-1, 2, -1}, b[3] = {1, 2, -1}, c[3] = {0, 2, 1};
+  lsys_scene s;
+  lsys_light_opts o;
+  lsys_light *L;
+  lsys_error e;
+  lsys_scene_init(&s);
+  tri(&s, a, b, c);
+  sun_opts(&o, 0, 1, 0);
+  o.max_distance = 2.5;
+  L = build(&s, &o);
+  assert(at(L, 0, 0, 0, NULL) == 0);              /* 2 away: blocked */
+  assert(at(L, 0, -1, 0, NULL) == 1);             /* 3 away: beyond the reach */
+  lsys_light_free(L);
+  o.max_distance = 1.5;
+  L = build(&s, &o);
+  assert(at(L, 0, 0, 0, NULL) == 1);
+  assert(at(L, 0, 1, 0, NULL) == 0);              /* 1 away */
+  lsys_light_free(L);
+  o.max_distance = -1;
+  assert(lsys_light_build(&L, &s, &o, &e) == LSYS_EARG && L == NULL);
+  assert(strstr(e.msg, "max_distance") != NULL);
+  lsys_scene_free(&s);
+}
+
 static void test_overcast (void) {
   lsys_scene s;
   lsys_light *L;
@@ -468,6 +495,7 @@ static void test_nomem (void) {
 
 int main (void) {
   test_sun_triangle();
+  test_max_distance();
   test_overcast();
   test_transmittance();
   test_normals();

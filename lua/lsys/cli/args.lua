@@ -129,7 +129,7 @@ end
 -- The options of render and export (export refuses --size, --frames and --every).
 local RENDER_OPTS = model_opts {
   output = "value", size = "value", progress = "flag", lines = "value", frames = "value",
-  every = "value",
+  every = "value", flat = "flag", ao = "flag",
 }
 
 -- --size WxH (nil when absent).

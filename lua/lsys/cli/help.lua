@@ -122,7 +122,7 @@ HELP.render = [=[
 usage: lsys render [MODEL [VIEW.v]] [-o OUT.png|.svg|.eps|.pdf] [--size WxH] [--steps N]
                    [--seed S] [--set NAME=VALUE]... [--view NAME=VALUE]... [--name NAME]
                    [--map FILE | --mat FILE] [--define NAME=VALUE]... [--threads N]
-                   [--max-memory SIZE] [--max-modules N] [--progress]
+                   [--max-memory SIZE] [--max-modules N] [--progress] [--flat] [--ao]
        lsys render [MODEL [VIEW.v]] --frames DIR [--every K] [OPTIONS as above]
 
 Derives MODEL (a Lua file returning a model, an example name, a cpfg .l file with its
@@ -147,6 +147,10 @@ Options:
                      terminal, else a line per frame with --progress
   --every K          with --frames: steps 0, K, 2K, ... and always the last
   --size WxH         picture size in pixels (default 800x800)
+  --flat             no shadows, ground or sky: a 3D plant (triangles, deep in every
+                     direction) gets shadows of the key light, a ground plane under it and
+                     a sky gradient (unless --view background=... is given); 2D drawings never
+  --ao               ambient occlusion too (darker where the plant is crowded; slower)
   --steps N, --seed S, --set NAME=VALUE, --name NAME, --progress   as for `lsys derive`
   --threads N, --max-memory SIZE, --max-modules N   the model's limits, as for `lsys
                      derive` (the interpretation's too)

@@ -1,0 +1,71 @@
+/*
+** Shadows and ambient occlusion baked into a scene's vertices (docs/drawing.md
+** "Shadows, ambient occlusion, ground and sky"). The fixed-function renderer
+** lights each vertex with the key light alone, so it draws no shadows; this
+** computes, with the light environment's ray caster (light.h), a factor per
+** vertex in [0, 1] by which the renderer scales the vertex's diffuse colour.
+**
+** Shadow: one ray (or, with a soft edge, several rays spread over a cone of
+** the given angle around it) from the vertex towards the key light; the
+** blocked fraction b darkens the vertex by strength * b. Ambient occlusion:
+** rays over the hemisphere of the vertex's normal (a Fibonacci spiral over
+** the sphere, each weighted by its cosine to the normal), hits nearer than
+** the distance counting; the cosine-weighted blocked fraction b darkens it
+** by strength * b. A two-sided vertex takes the mean of its two faces. The
+** factor is the product of the two. Rays start a little off the surface,
+** along the normal, so that a surface does not shadow its own vertices.
+*/
+#ifndef LSYS_SHADE_H
+#define LSYS_SHADE_H
+
+#include "common.h"
+#include "scene.h"
+
+#define LSYS_SHADE_MAXSAMPLES 1024   /* ambient occlusion rays per face */
+
+typedef struct lsys_shade_opts {
+  int shadows;              /* 1: shadows of the key light */
+  double softness;          /* the cone of the shadow rays in degrees, [0, 30]; 0: one ray */
+  double shadow_strength;   /* [0, 1]: how much a fully blocked vertex is darkened */
+  int ao;                   /* 1: ambient occlusion */
+  int ao_samples;           /* rays per face, 1 .. LSYS_SHADE_MAXSAMPLES */
+  double ao_distance;       /* > 0 world units: the reach of the rays; 0: 1/4 of the
+                               scene's bounding-box diagonal */
+  double ao_strength;       /* [0, 1] */
+  int threads;              /* workers, 1 .. LSYS_LIGHT_MAXTHREADS (the result is the same) */
+  lsys_meter *meter;        /* the memory budget (NULL: none) */
+} lsys_shade_opts;
+
+/* The defaults: neither shadows nor ambient occlusion; softness 0, shadow
+** strength 0.6, 16 rays, distance 0 (a quarter diagonal), ambient strength
+** 0.6, 1 thread. */
+void lsys_shade_defaults (lsys_shade_opts *o);
+
+/*
+** The factors of the vertices of scene s's mesh into out[0 .. nv), as
+** bytes (255: unchanged). A scene with instances (a population) is not
+** shaded: every factor 255. Returns LSYS_OK; LSYS_EARG for a bad option (e
+** names it); LSYS_EMEMORY (beyond the meter); LSYS_ENOMEM.
+*/
+int lsys_shade_compute (uint8_t *out, const lsys_scene *s, const lsys_shade_opts *o,
+                        lsys_error *e);
+
+/* The ground plane under a scene (lsys_shade_add_ground). */
+typedef struct lsys_shade_ground {
+  double size;              /* > 0: its side over the plant's widest extent (and at least
+                               its height's half); default 1.6 */
+  int cells;                /* cells along a side, 1 .. 1024; default 96 */
+  unsigned col;             /* its colour index */
+} lsys_shade_ground;
+
+/*
+** Appends to m a square grid of cells x cells quads facing up (+y), just
+** under m's lowest point (by 1e-3 of its diagonal), centred under its
+** bounding box and g->size times its widest horizontal extent (at least half
+** its height) across, coloured g->col, solid (one-sided). Returns LSYS_OK,
+** LSYS_EARG (bad size or cells: e names it), LSYS_ENOMEM; nothing for an
+** empty mesh.
+*/
+int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error *e);
+
+#endif
