@@ -44,10 +44,13 @@ describe("shadows and ambient occlusion #gl", function()
   -- a stem of 10 up from the origin and the square centred on its top; the light from
   -- (0.5, 1, 0) puts the square's shadow 5 units towards -x on the ground at y = 0
   local quad = lsys.lsystem { axiom = "F(10) &(90) f(-2) -(90) f(-2) " .. SQUARE }
+  -- the camera frames the plant, not its ground: these pictures frame the ground's 20
+  -- units across (x and z from -10 to 10) to see the shadow beside the plant
+  local GROUND = { -10, 0, -10, 10, 10, 10 }
 
   it("a quad above the ground casts its shadow where the light puts it", function()
     local px, w, h = lsys.render(quad, opts { light = { 0.5, 1, 0 }, shadows = true,
-                                              ground = { size = 4 } })
+                                              ground = { size = 4 }, fit = GROUND })
     assert.are.equal(200, w)
     assert.are.equal(200, h)
     -- the ground is 4 x 5 = 20 units across (the plant's height over 2 is its widest
@@ -59,13 +62,14 @@ describe("shadows and ambient occlusion #gl", function()
     assert.is_near(open, lum(px, w, 55, 40, 4), 1.5)
     assert.is_near(open, lum(px, w, 55, 160, 4), 1.5)
     -- without shadows the same ground is even
-    local flat = lsys.render(quad, opts { light = { 0.5, 1, 0 }, ground = { size = 4 } })
+    local flat = lsys.render(quad, opts { light = { 0.5, 1, 0 }, ground = { size = 4 },
+                                          fit = GROUND })
     assert.is_near(lum(flat, w, 145, 100, 4), lum(flat, w, 55, 100, 4), 1)
   end)
 
   it("the light from the other side moves the shadow to the other side", function()
     local px, w = lsys.render(quad, opts { light = { -0.5, 1, 0 }, shadows = true,
-                                           ground = { size = 4 } })
+                                           ground = { size = 4 }, fit = GROUND })
     assert.is_true(lum(px, w, 145, 100, 4) < 0.8 * lum(px, w, 55, 100, 4))
   end)
 
@@ -73,10 +77,11 @@ describe("shadows and ambient occlusion #gl", function()
     -- a wall (x in [-4, 0], y in [0, 4], z = 0) standing on the ground, a grid of quads: the
     -- two corners where they meet, seen from above with x = -2 in the middle and -z up
     local wall = lsys.lsystem { axiom = SQUARE }
+    local box = { -5.2, 0, -3.2, 1.2, 4, 3.2 }      -- the ground's 6.4 across, framed
     local o = opts { light = { 0, 1, 0 }, ground = true, ao = { samples = 32, distance = 4 },
-                     viewpoint = { -2, 100, 0 }, target = { -2, 0, 0 } }
+                     viewpoint = { -2, 100, 0 }, target = { -2, 0, 0 }, fit = box }
     local px, w = lsys.render(wall, o)
-    local plain = lsys.render(wall, opts { light = { 0, 1, 0 }, ground = true,
+    local plain = lsys.render(wall, opts { light = { 0, 1, 0 }, ground = true, fit = box,
                                            viewpoint = { -2, 100, 0 }, target = { -2, 0, 0 } })
     -- without occlusion the ground is even; with it, darker at the wall's foot (rows 96 and
     -- 104, either side of the wall) than at the open edges (rows 16 and 184)
@@ -103,7 +108,7 @@ describe("shadows and ambient occlusion #gl", function()
     assert.is_true(base == lsys.render(tree, opts { shadows = { strength = 0 },
                                                     ao = { strength = 0 } }))
     -- and the square's shadow on the ground does change them
-    local lit = { ground = { size = 4 }, light = { 0.5, 1, 0 } }
+    local lit = { ground = { size = 4 }, light = { 0.5, 1, 0 }, fit = GROUND }
     local ground = lsys.render(quad, opts(lit))
     lit.shadows = true
     assert.is_false(ground == lsys.render(quad, opts(lit)))

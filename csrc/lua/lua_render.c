@@ -115,6 +115,14 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
     }
     lsys_mesh_material_color(&p->pal[npal], gcol[0], gcol[1], gcol[2]);
     g->col = (unsigned)npal;
+    if (!v->cam.has_box) {                  /* the camera frames the plant, not its ground */
+      double lo[3], hi[3];
+      if (lsys_mesh_bounds(&v->mesh, lo, hi)) {
+        v->cam.has_box = 1;
+        memcpy(v->cam.box, lo, sizeof lo);
+        memcpy(v->cam.box + 3, hi, sizeof hi);
+      }
+    }
     if ((st = lsys_shade_add_ground(&p->mesh, g, &e)) != LSYS_OK)
       luaL_error(L, "lsys.render: %s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
     v->mesh = p->mesh;
