@@ -73,7 +73,10 @@ local function run (args)
   if opts.help then out(HELP.animate) return 0 end
   if opts.orbit then return orbit(opts, pos) end
   for _, k in ipairs { "frames", "seconds", "axis" } do
-    if opts[k] ~= nil then usage("animate", "--%s goes with --orbit (a turntable)", k) end
+    if opts[k] ~= nil then
+      usage("animate", "--%s goes with --orbit (a turntable)%s", k, k == "frames" and
+        "; for a picture of each step: lsys render MODEL --frames DIR" or "")
+    end
   end
   local w, h = size_opt("animate", opts.size)
   local outpath = opts.output or default_output(pos, ".mp4", "tree.mp4")
