@@ -280,6 +280,12 @@ local function run (prog, args)
     tostring(code)
 end
 
+-- Raises, blaming the caller of the caller, when the file name `out` holds a control
+-- character (a newline would split ffmpeg's messages and the shell's words).
+local function refuse (who, out)
+  if out:find("%c") then error(format("%s: refusing the file name %q", who, out), 3) end
+end
+
 --- Writes an animation of model `m` growing: one frame per derivation step (or every K-th
 -- and the last), all through one camera fitted to the last step, encoded by ffmpeg as an
 -- H.264 video (.mp4) or an animated GIF (.gif, one palette made for the whole). opts:
@@ -302,7 +308,7 @@ function M.animate (m, opts)
     error(format("lsys.animate: '%s': the output must be an .mp4 video or a .gif "
       .. "animation (for PNG pictures use lsys.frames)", out), 2)
   end
-  if out:find("%c") then error(format("lsys.animate: refusing the file name %q", out), 2) end
+  refuse("lsys.animate", out)
   local fps, hold = opts.fps or M.FPS, opts.hold or 0
   if not (fps > 0 and fps <= 1000) then
     error(format("lsys.animate: option 'fps' must be in (0, 1000], got %s", tostring(fps)), 2)
@@ -528,7 +534,7 @@ function M.orbit (x, opts)
       error(format("%s: '%s': the output must be an .mp4 video or a .gif animation (for "
         .. "PNG pictures use the option 'dir')", who, out), 2)
     end
-    if out:find("%c") then error(format("%s: refusing the file name %q", who, out), 2) end
+    refuse(who, out)
     if opts.transparent then
       error(who .. ": option 'transparent' is for PNG pictures (option 'dir')", 2)
     end
