@@ -590,6 +590,40 @@ function lsys.frames(m, opts) end
 ---@return integer height
 function lsys.animate(m, opts) end
 
+--- Writes a turntable of `x` (a Model, a component graph's root or a Scene): its final plant
+--- seen by a camera going once around it about the view's up (or `opts.axis`), fitted once
+--- to the plant's bounding sphere, to `opts.out` (an .mp4 or .gif, through ffmpeg) or as PNG
+--- pictures orbit-0000.png, ... into `opts.dir` (docs/drawing.md, section 6). Returns `out`
+--- (or the list of pictures), the number of frames, the width, the height, the frames'
+--- cameras ({ angle =, viewpoint =, target =, up =, zoom = }) and the box `fit` they go
+--- with. Raises `lsys.orbit: option 'K' ...` for a bad option.
+---@param x lsys.Model|lsys.Scene
+---@param opts lsys.OrbitOptions
+---@return string|string[] out
+---@return integer frames
+---@return integer width
+---@return integer height
+---@return table[] cameras
+---@return number[] fit
+function lsys.orbit(x, opts) end
+
+---@class lsys.OrbitOptions
+---@field out? string The .mp4 or .gif file (or `dir`).
+---@field dir? string The folder for PNG pictures (or `out`).
+---@field frames? integer Frames in the turn (72).
+---@field seconds? number The turn's length at `fps` (instead of `frames`).
+---@field fps? number Frames a second (24).
+---@field axis? number[] The axis {x, y, z} (the view's up, else +y).
+---@field steps? integer A model's steps (`m.steps`).
+---@field width? integer Pixels (800; even for .mp4).
+---@field height? integer Pixels (800; even for .mp4).
+---@field view? lsys.View View fields (a model's interpretation; a scene's camera).
+---@field zoom? number Magnifies the fitted picture (1).
+---@field wireframe? boolean As lsys.render.
+---@field transparent? boolean As lsys.render (PNG pictures only).
+---@field progress? fun(phase: string, k: integer, n: integer, detail: any, what: any)
+---@field ffmpeg? string The program ("ffmpeg" on PATH).
+
 ---@class lsys.SeriesOptions
 ---@field every? integer Steps 0, K, 2K, ... and always the last (1).
 ---@field steps? integer The steps derived (`m.steps`).

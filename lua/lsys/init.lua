@@ -67,6 +67,10 @@ M.frames = frames.frames
 -- (.mp4 or .gif) through ffmpeg (lsys.frames.animate).
 M.animate = frames.animate
 
+--- Writes a turntable of `x` (a Model, a Scene or a component graph's root): a camera going
+-- once around the final plant, to `opts.out` (.mp4 or .gif) or `opts.dir` (lsys.frames.orbit).
+M.orbit = frames.orbit
+
 --- Shows `x` (a Model, an Lstring or a Scene) in the viewer window; see lsys.viewer.
 function M.show (x, opts) return require("lsys.viewer").show(x, opts) end
 

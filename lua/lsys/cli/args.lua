@@ -5,8 +5,8 @@ local program = require "lsys.program"
 local fs = require "lsys.util.fs"
 local warning = require "lsys.warning"
 
-local pairs, tonumber, tostring, error, setmetatable =
-      pairs, tonumber, tostring, error, setmetatable
+local pairs, tonumber, tostring, error, setmetatable, type =
+      pairs, tonumber, tostring, error, setmetatable, type
 local io, string, table, math = io, string, table, math
 local format = string.format
 local host, clock = program.host, program.clock
@@ -198,7 +198,8 @@ local function frames_progress (opts)
         err:write(format("\rframe %d/%d [%s%s] %s, %s left\27[K%s", k, n, ("#"):rep(fill),
           ("."):rep(24 - fill), mmss(spent), mmss(spent / k * (n - k)), k == n and "\n" or ""))
       else
-        err:write(format("frame %d/%d: step %d (%.1f s)\n", k, n, step, spent))
+        err:write(format("frame %d/%d: %s (%.1f s)\n", k, n, type(step) == "string" and step
+          or format("step %d", step), spent))
       end
     elseif phase == "encode" then
       err:write(format("encoding %s with ffmpeg\n", detail))

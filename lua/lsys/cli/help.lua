@@ -39,6 +39,7 @@ usage: lsys [COMMAND] [ARGS]
   lsys render [MODEL] [OPTS]  render a model to PNG (default: the default tree to tree.png),
                               or --frames DIR: one picture per step, one camera
   lsys animate [MODEL] -o OUT.mp4|OUT.gif   an animation of the model growing (ffmpeg)
+  lsys animate [MODEL] --orbit              a turntable of the final plant (ffmpeg)
   lsys export MODEL -o OUT    write a model's geometry to OUT ($EXPORT_EXTS)
   lsys view [MODEL] [OPTS]    show a model in a window; reload it when its file changes
   lsys arrange [MODEL] [OPTS] bend, twist and prune a model in the window (inverse kinematics)
@@ -168,6 +169,8 @@ usage: lsys animate [MODEL [VIEW.v]] [-o OUT.mp4|OUT.gif] [--fps N] [--every K]
                     [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
                     [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
                     [--max-modules N] [--progress]
+       lsys animate [MODEL [VIEW.v]] --orbit [-o OUT.mp4|OUT.gif] [--frames N]
+                    [--seconds S] [--fps N] [--axis X,Y,Z] [OPTIONS as above]
 
 Derives MODEL (as for `lsys render`) and writes an animation of it growing: one frame per
 derivation step, all through one camera fitted to the last step, so the plant grows in
@@ -175,6 +178,12 @@ place. An .mp4 is an H.264 video (yuv420p, plays everywhere); a .gif an animated
 loops, its colours from one palette made for the whole animation. The frames are drawn
 headless into a temporary folder and encoded by ffmpeg (Debian package ffmpeg: apt-get
 install ffmpeg); without it, `lsys render MODEL --frames DIR` writes the pictures.
+
+With --orbit, writes a turntable instead: the final plant seen by a camera that goes
+once around it, about the view's up vector (+y unless the view sets `up`),
+counterclockwise seen from above. The first frame looks along the view's direction, so
+the elevation, the projection and the light stay the view's; the camera is fitted once,
+to the plant's bounding sphere, so the whole plant stays in every frame at the same size.
 
 Options:
   -o, --output OUT   the .mp4 or .gif file (default: the model's name with .mp4, or
@@ -187,6 +196,12 @@ Options:
                      even numbers, as H.264 needs)
   --progress         a line per step and frame on stderr (on a terminal a progress bar
                      is shown without it)
+  --orbit            a turntable of the final plant (default output: the model's name
+                     with -orbit.mp4, or tree-orbit.mp4); not with --every or --hold
+  --frames N         with --orbit: frames in the turn (default 72: one every 5 degrees)
+  --seconds S        with --orbit: the turn lasts S seconds at --fps (instead of --frames)
+  --fps N            with --orbit: default 24
+  --axis X,Y,Z       with --orbit: the axis the camera turns about (default the view's up)
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
   --mat FILE, --define NAME=VALUE, --environment FILE.e|none, --threads N, --max-memory SIZE,
   --max-modules N   as for `lsys render`
