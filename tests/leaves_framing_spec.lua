@@ -109,9 +109,7 @@ describe("the double compound leaf (sketch fig. 9)", function()
     local path = os.tmpname() .. ".obj"
     sc:save(path)
     -- the frond: the axis and the rachises (material m1) in the plane z = 0
-    local lo, hi = { sc:bounds() }, nil
-    hi = lo[2]
-    lo = lo[1]
+    local lo, hi = sc:bounds()
     assert.is_true(math.abs(hi[3] - lo[3]) < 0.05 * (hi[2] - lo[2]))
     local normals = objnormals(path, "m2")
     os.remove(path)
