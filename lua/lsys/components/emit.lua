@@ -405,9 +405,10 @@ local function leaf (w, inst)
   local s = w.frames:scale(inst.fi)
   local detail = w.detail
   if byp then
-    if detail == nil then    -- constants: read in any order
-      detail = autodetail(w, (inst.length or X.get(inst, "length")) * s,
-                          X.get(inst, "lateral"), X.get(inst, "longitudinal"))
+    if detail == nil then    -- constants: read in any order; most leaves of a tree are small
+      local len = (inst.length or X.get(inst, "length")) * s
+      detail = len < w.small and 1 or
+               autodetail(w, len, X.get(inst, "lateral"), X.get(inst, "longitudinal"))
     end
     local k = (inst.n * 16777216 + inst.i) * 32 + detail
     code = byp[k]
@@ -423,7 +424,7 @@ local function leaf (w, inst)
     local len = inst.length or X.get(inst, "length")
     local width = X.get(inst, "width")
     local lat, lon = X.get(inst, "lateral"), X.get(inst, "longitudinal")
-    if detail == nil then detail = autodetail(w, len * s, lat, lon) end
+    if detail == nil then detail = len * s < w.small and 1 or autodetail(w, len * s, lat, lon) end
     local k = ((floor(width / len * 50 + 0.5) * 1001 + floor(lat * 50 + 0.5) + 500) * 1001 +
                floor(lon * 50 + 0.5) + 500) * 32 + detail
     code = k == k and byq[k] or nil
@@ -529,6 +530,7 @@ M.BENT = 0.2
 function M.emit (tree, rules, detail, rename, ntextures)
   local w = newwriter(rules, tree, detail, rename)
   w.ntextures = ntextures or 0
+  if detail == nil then w.small = M.SIZES[1] * w.extent end    -- drawn at 1 below it
   emitall(w, tree)
   local wr = w.wr
   tree.writer = wr
