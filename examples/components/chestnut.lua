@@ -63,6 +63,9 @@ local VIEW = {
   },
   palette = { { 1, 1, 1 }, { 0.95, 1, 0.9 }, { 0.55, 0.65, 0.3 } },
   background = { 0.86, 0.92, 0.98 },
+  -- a little from above: seen level, the trunk's foot ends in a straight edge, as if cut
+  -- off by the frame; from above it is a curve, standing on the (unseen) ground
+  direction = { 0, -0.3, -1 },
 }
 
 local M = C.model(chestnut(), { seed = 1, view = VIEW, name = "chestnut" })

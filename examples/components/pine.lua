@@ -19,10 +19,10 @@ local lsys = require "lsys"
 local C = lsys.components
 
 -- The bend: a Hyperpatch of degrees 1 (across), 2 (up the tree) and 1 (front to back) on
--- the box around the tree; the middle row of control points moves 0.3 and the top row 1.2
+-- the box around the tree; the middle row of control points moves 1.2 and the top row 4.5
 -- units to the right (local x): the tree leans and curves like a windswept pine.
 local MOVES = {}
-for _, row in ipairs { { 1, 0.3 }, { 2, 1.2 } } do
+for _, row in ipairs { { 1, 1.2 }, { 2, 4.5 } } do
   for i = 0, 1 do
     for k = 0, 1 do MOVES[#MOVES + 1] = { i, row[1], k, row[2], 0, 0 } end
   end

@@ -23,9 +23,12 @@ end
 -- upper side faces the apex of the stem: with UP along the surface's -x, the surface's
 -- +z goes to the turtle's -L (cpfg's placement, docs/surfaces.md: x l + y h + z u with
 -- l = h x u, along the turtle's L, H, U; the left vector is H x U), which after +(angle)
--- points up the stem.
-function M.organ (name)
+-- points up the stem. `flat`: the surface as drawn, not rolled: its upper side on the
+-- turtle's up vector, out of the plane of stem and organ, so that a compound leaf's
+-- leaflets lie in the plane of its rachis (the frond's plane, fig. 9).
+function M.organ (name, flat)
   local org = organ.load(DIR .. "/organ_" .. name .. ".json")
+  if flat then return core.surface_parse(org:text(), "organ_" .. name .. ".s") end
   local text, n = org:text():gsub("\nUP  X: 0%.000000 Y: 0%.000000 Z: 1%.000000\n",
                                   "\nUP  X: -1.000000 Y: 0.000000 Z: 0.000000\n")
   assert(n == 1, "organ_" .. name .. ": the surface's UP line is not the expected one")

@@ -7,7 +7,9 @@
 local lsys = require "lsys"
 local common = dofile(lsys.here() .. "/common.lua")
 
-local leaflet = common.organ("leaflet")
+-- the leaflets lie in the plane of the rachis (their upper side towards the viewer), so
+-- that the fronds of the double leaf are flat as in the paper's figure
+local leaflet = common.organ("leaflet", true)
 local single = common.sketch("fig9_leaf"):model {
   organ = leaflet, organ_color = common.LEAF, width = 0.008,
   view = common.view({ 0, -0.9, -1 }),

@@ -25,7 +25,7 @@ local ipairs, setmetatable, rawget, tostring, require, pcall, error, type =
       ipairs, setmetatable, rawget, tostring, require, pcall, error, type
 local math, string, table, utf8 = math, string, table, utf8
 local format, concat, sort = string.format, table.concat, table.sort
-local floor, max, huge, mtype = math.floor, math.max, math.huge, math.type
+local floor, max, huge, mtype, abs = math.floor, math.max, math.huge, math.type, math.abs
 local _ENV = nil
 
 local M = {}
@@ -115,9 +115,30 @@ end
 local W = {}
 W.__index = W
 
+-- The plant's size for the leaves' automatic detail: the largest side of the box around
+-- at most 257 of its frames' positions, taken evenly (the first and the last among them).
+local function extent (frames)
+  local n = frames:count()
+  local lo, hi = { huge, huge, huge }, { -huge, -huge, -huge }
+  local step = n > 256 and n / 256 or 1
+  local k = 1
+  while k <= n + 0.5 do
+    local p = frames:get(floor(k + 0.5)).p
+    for j = 1, 3 do
+      if p[j] < lo[j] then lo[j] = p[j] end
+      if p[j] > hi[j] then hi[j] = p[j] end
+    end
+    k = k + step
+  end
+  local e = 0
+  for j = 1, 3 do if hi[j] - lo[j] > e then e = hi[j] - lo[j] end end
+  return e
+end
+
 local function newwriter (rules, tree, detail, rename)
   local wr = core.cwriter(rules, tree.frames)
   return setmetatable({ wr = wr, frames = tree.frames, detail = detail, rename = rename,
+                        extent = detail == nil and extent(tree.frames) or nil,
                         sym = {}, surf = {}, leaves = {}, leafq = {}, nsurf = 0, post = {},
                         deformers = {} }, W)
 end
@@ -339,7 +360,19 @@ local LEAFPARAMS = { "length", "width", "lateral", "longitudinal" }
 -- The module name ("~" and the surface character) of a leaf instance's surface.
 -- `len`, `width`, `lat`, `lon`: the values when the caller has them (a parameter function
 -- is called once per instance: it may draw random numbers).
-local function leafname (w, inst, len, width, lat, lon)
+-- The leaves' automatic detail (the model option `detail` not given): by the leaf's drawn
+-- length relative to the plant's size (M.SIZES: the relative lengths from which each
+-- detail after 1 is used), one more for a leaf bent across or along (|lateral| +
+-- |longitudinal| at least M.BENT) once it is drawn finer than 1, at most #M.SIZES + 1.
+local function autodetail (w, len, lat, lon)
+  local r = w.extent > 0 and len / w.extent or 1
+  local d = 1
+  for k, v in ipairs(M.SIZES) do if r >= v then d = k + 1 end end
+  if d > 1 and d <= #M.SIZES and abs(lat) + abs(lon) >= M.BENT then d = d + 1 end
+  return d
+end
+
+local function leafname (w, inst, len, width, lat, lon, detail)
   local p = inst.proto
   len = len or inst.length or X.get(inst, "length")
   width = width or X.get(inst, "width")
@@ -348,7 +381,7 @@ local function leafname (w, inst, len, width, lat, lon)
            C.MAX_LEAF_RATIO, C.show(len))
   end
   local surf, key = leafsurface(p, width, len, lat or X.get(inst, "lateral"),
-                                lon or X.get(inst, "longitudinal"), w.detail)
+                                lon or X.get(inst, "longitudinal"), detail)
   local tex = p:param("texture")
   local entry = {}
   if tex and tex ~= 0 then
@@ -369,10 +402,20 @@ local function leaf (w, inst)
     w.leaves[p] = byp
   end
   local code
+  local s = w.frames:scale(inst.fi)
+  local detail = w.detail
   if byp then
-    local k = inst.n * 16777216 + inst.i
+    if detail == nil then    -- constants: read in any order; most leaves of a tree are small
+      local len = (inst.length or X.get(inst, "length")) * s
+      detail = len < w.small and 1 or
+               autodetail(w, len, X.get(inst, "lateral"), X.get(inst, "longitudinal"))
+    end
+    local k = (inst.n * 16777216 + inst.i) * 32 + detail
     code = byp[k]
-    if code == nil then code = w:code(leafname(w, inst)) byp[k] = code end
+    if code == nil then
+      code = w:code(leafname(w, inst, nil, nil, nil, nil, detail))
+      byp[k] = code
+    end
   else
     -- a function among the shape's parameters: the surface is still one of those of the
     -- quantized numbers (leafsurface), kept by them for this prototype
@@ -381,17 +424,19 @@ local function leaf (w, inst)
     local len = inst.length or X.get(inst, "length")
     local width = X.get(inst, "width")
     local lat, lon = X.get(inst, "lateral"), X.get(inst, "longitudinal")
-    local k = (floor(width / len * 50 + 0.5) * 1001 + floor(lat * 50 + 0.5) + 500) * 1001 +
-              floor(lon * 50 + 0.5) + 500
+    if detail == nil then detail = len * s < w.small and 1 or autodetail(w, len * s, lat, lon) end
+    local k = ((floor(width / len * 50 + 0.5) * 1001 + floor(lat * 50 + 0.5) + 500) * 1001 +
+               floor(lon * 50 + 0.5) + 500) * 32 + detail
     code = k == k and byq[k] or nil
     if code == nil or p:param("outline") == nil and not (width / len <= C.MAX_LEAF_RATIO) then
-      code = w:code(leafname(w, inst, len, width, lat, lon))   -- raises on a bad width
+      -- raises on a bad width
+      code = w:code(leafname(w, inst, len, width, lat, lon, detail))
       if k == k then byq[k] = code end
     end
   end
   local wr = w.wr
   wr:op(w:code(";"), p:param("color") or 2)
-  wr:op(code, (inst.length or X.get(inst, "length")) * w.frames:scale(inst.fi))
+  wr:op(code, (inst.length or X.get(inst, "length")) * s)
 end
 
 -- A component given as an L-system's geometry (`geometry` = a model or an Lstring): its
@@ -465,21 +510,27 @@ end
 
 -- }=========================================================================================
 
--- How finely leaves are drawn by default: each leaf is 2 x 2 bicubic patches of
--- `detail` x (`detail` + 1) quads, 16 triangles at 1 (the model option `detail`).
-M.DETAIL = 1
+-- How finely leaves are drawn: each leaf is 2 x 2 bicubic patches of `detail` x
+-- (`detail` + 1) quads, 8 d (d + 1) triangles at detail d (16 at 1, 48, 96, 160 at 4). The
+-- model option `detail` gives every leaf the same; without it each leaf's is chosen by
+-- autodetail from M.SIZES and M.BENT, so that the many small leaves of a tree stay at 1 and
+-- a leaf drawn large (a fifth of the plant) is smooth.
+M.SIZES = { 0.06, 0.12, 0.2 }
+M.BENT = 0.2
 
 --- Emits the i-tree `tree` (lsys.components.expand) with `rules` (a model's lsys.Rules),
--- the leaves' `detail` (M.DETAIL), `rename` (nil, or a function that renames a module
--- name before it is interned: lsys.components.mix gives each plant's surfaces their own
--- characters) and `ntextures` (how many textures the view has; 0 when nil). Returns
+-- the leaves' `detail` (nil: each leaf's own, autodetail), `rename` (nil, or a function
+-- that renames a module name before it is interned: lsys.components.mix gives each plant's
+-- surfaces their own characters) and `ntextures` (how many textures the view has; 0 when
+-- nil). Returns
 -- { lstring =, owner = (module index -> instance index), surfaces = (view surfaces),
 -- post = (scales of primitives), deformers = (FFD and Hyperpatch instances, deepest
 -- first), area = (an Area primitive was used) }; the instances' module ranges (inst.m0,
 -- m1, at, modules) are this emission's from now on.
 function M.emit (tree, rules, detail, rename, ntextures)
-  local w = newwriter(rules, tree, detail or M.DETAIL, rename)
+  local w = newwriter(rules, tree, detail, rename)
   w.ntextures = ntextures or 0
+  if detail == nil then w.small = M.SIZES[1] * w.extent end    -- drawn at 1 below it
   emitall(w, tree)
   local wr = w.wr
   tree.writer = wr

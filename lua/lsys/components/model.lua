@@ -174,8 +174,9 @@ local OPTS = { seed = true, max_instances = true, view = true, name = true, deta
 
 --- The component graph at `root` as an lsys model. opts: `seed`, `max_instances` (as
 -- expand), `view` (fields over the component view: a cylinder line style, 12-sided
--- tubes), `name`, `detail` (how finely leaves are drawn: 1, the default, 16 triangles a
--- leaf; n: 2 x 2 patches of n x (n + 1) quads), `tree` (the i-tree of `root` made before,
+-- tubes), `name`, `detail` (how finely leaves are drawn: n, 2 x 2 patches of n x (n + 1)
+-- quads, 16 triangles a leaf at 1; nil, the default: each leaf's by its size in the
+-- plant and its bend, lsys.components.emit), `tree` (the i-tree of `root` made before,
 -- by lsys.components.expand with the same seed and max_instances: used instead of
 -- expanding again, when only parameters of proto.DRAWN changed since; it must be
 -- root's). The model derives the plant's Lstring in
