@@ -9,6 +9,7 @@
 -- A PATTERN (a Lua pattern) draws only the pictures whose PNG name matches one of the
 -- patterns, e.g. `cpfg/fig1[0-3]`, and leaves README.md as it is.
 local lsys = require "lsys"
+local render = require "lsys.render"
 
 local size, patterns = 480, {}
 for _, a in ipairs(arg or {}) do
@@ -388,8 +389,8 @@ for i, p in ipairs(PICTURES) do
     local w = dofile(examples .. "/" .. file).world():grow()
     local sc = w:scene()
     assert(require("lsys.core").mkdir(dir .. "/grow"))
-    lsys.render(sc, { out = dir .. "/" .. png, width = math.floor(p.width * size / 480),
-                      height = math.floor(p.height * size / 480) })
+    lsys.render(sc, render.shaded(sc, { out = dir .. "/" .. png,
+      width = math.floor(p.width * size / 480), height = math.floor(p.height * size / 480) }))
     drawn = drawn + 1
     io.stderr:write(string.format("[%2d/%d] %-20s %8d limbs %8d triangles  %.2f s\n", i,
       #PICTURES, png, w:count(), sc.ntriangles, os.clock() - t0))
@@ -415,6 +416,7 @@ for i, p in ipairs(PICTURES) do
     local ro = { out = dir .. "/" .. png, width = math.floor((p.width or 480) * size / 480),
                  height = math.floor((p.height or 480) * size / 480) }
     for k, v in pairs(p.render or {}) do ro[k] = v end
+    if not ro.wireframe then render.shaded(sc, ro) end   -- as `lsys render` shades it
     lsys.render(sc, ro)
     local f = assert(io.open(dir .. "/" .. png, "rb"))
     bytes = bytes + f:seek("end")

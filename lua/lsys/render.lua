@@ -147,6 +147,40 @@ end
 -- view fields (camera,
 -- background, light, supersample) that replace the scene's view for this picture;
 -- `opts.view` may hold them. Raises blaming its caller.
+--- Whether `scene` draws a 3D plant: triangles, and a box deep in every direction (at
+-- least 1/20 of its largest extent), so that a flat drawing in a plane is not one. `lsys
+-- render` and the gallery shade such a picture: `M.shaded(scene, opts)`.
+function M.solid (scene)
+  if scene.ntriangles == 0 then return false end
+  local lo, hi = scene:bounds()
+  if type(lo) ~= "table" then return false end
+  local d = { hi[1] - lo[1], hi[2] - lo[2], hi[3] - lo[3] }
+  local big = d[1] > d[2] and d[1] or d[2]
+  big = big > d[3] and big or d[3]
+  return d[1] >= big / 20 and d[2] >= big / 20 and d[3] >= big / 20
+end
+
+-- Whether the scene's view has a background of its own (not lsys.view's default).
+local function ownbackground (scene)
+  local v = model.sceneview(scene)
+  local b, d = v and v.background, view.DEFAULTS.background
+  if type(b) ~= "table" then return false end
+  return b[1] ~= d[1] or b[2] ~= d[2] or b[3] ~= d[3]
+end
+
+--- The render options `opts` with the shading `lsys render` gives a 3D plant (M.solid):
+-- shadows and a ground, and a sky unless the picture has a background of its own (the
+-- scene's view gives one, or `background` is true: one was given for this picture).
+-- Options already set stay. Returns opts.
+function M.shaded (scene, opts, background)
+  if M.solid(scene) then
+    if opts.shadows == nil then opts.shadows = true end
+    if opts.ground == nil then opts.ground = true end
+    if opts.sky == nil and not background and not ownbackground(scene) then opts.sky = true end
+  end
+  return opts
+end
+
 function M.render (x, opts)
   local a, b, c = render(3, x, opts)    -- 3: the caller of this function
   return a, b, c

@@ -5,10 +5,11 @@ local A = require "lsys.cli.args"
 local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 local frames = require("lsys.frames").frames
-local render = require("lsys.render").render
+local lrender = require "lsys.render"
+local render = lrender.render
 local vector = require "lsys.vector"
 
-local error, pcall, next, tostring, type = error, pcall, next, tostring, type
+local error, pcall, next, tostring = error, pcall, next, tostring
 local io, string = io, string
 local format = string.format
 local parse, out, usage, clock, RENDER_OPTS = A.parse, A.out, A.usage, A.clock, A.RENDER_OPTS
@@ -32,18 +33,6 @@ local function render_frames (opts, pos, w, h)
     #files, #files == 1 and "" or "s", steps[1], steps[#steps], opts.frames, base(files[1]),
     #files > 1 and " to " .. base(files[#files]) or "", w, h, clock() - t0))
   return 0
-end
-
--- Whether scene draws a 3D plant: triangles, and a box deep in every direction (at least
--- 1/20 of its largest extent), so that a flat drawing in a plane gets no shadows.
-local function solid (scene)
-  if scene.ntriangles == 0 then return false end
-  local lo, hi = scene:bounds()
-  if type(lo) ~= "table" then return false end
-  local d = { hi[1] - lo[1], hi[2] - lo[2], hi[3] - lo[3] }
-  local big = d[1] > d[2] and d[1] or d[2]
-  big = big > d[3] and big or d[3]
-  return d[1] >= big / 20 and d[2] >= big / 20 and d[3] >= big / 20
 end
 
 local function run (args)
@@ -73,9 +62,7 @@ local function run (args)
   -- a 3D plant is shaded: shadows, a ground, a sky unless a background is given
   local ro = { out = outpath, width = w, height = h,
                view = not drawn and next(views) and views or nil }
-  if not opts.flat and solid(scene) then
-    ro.shadows, ro.ground, ro.sky = true, true, views.background == nil or nil
-  end
+  if not opts.flat then lrender.shaded(scene, ro, views.background ~= nil) end
   if opts.ao then ro.ao = true end
   local ok, err = pcall(render, scene, ro)
   -- the command's messages name no library function (as export's do)
