@@ -114,6 +114,26 @@ describe("shadows and ambient occlusion #gl", function()
     assert.is_false(ground == lsys.render(quad, opts(lit)))
   end)
 
+  it("puts no ground under a plant seen from below, and frames the plant, not its ground",
+     function()
+    -- from below (a shell's view), a ground would hide the plant: there is none
+    local below = { viewpoint = { 0, -100, 0.01 }, target = { 0, 0, 0 } }
+    local o1, o2 = opts(below), opts(below)
+    o1.ground = true
+    assert.is_true(lsys.render(quad, o1) == lsys.render(quad, o2))
+    -- from above, the ground is drawn but the camera fits the plant alone: the square
+    -- covers the same pixels with and without its ground
+    local side = { viewpoint = { 0, 40, 100 }, target = { 0, 5, 0 }, up = { 0, 1, 0 } }
+    local a = lsys.render(quad, opts(side))
+    local g = opts(side)
+    g.ground = { size = 4 }
+    local b = lsys.render(quad, g)
+    assert.is_false(a == b)                         -- the ground is seen
+    local lo, hi = quad:interpret():bounds()
+    g.fit = { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] }
+    assert.is_true(b == lsys.render(quad, g))        -- framed as the plant's own box
+  end)
+
   it("gives the same picture for 1 and 2 threads", function()
     local m = dofile("examples/default.lua")
     m.steps = 5

@@ -93,6 +93,20 @@ static int readshade (lua_State *L, int t, lsys_shade_opts *so, lsys_shade_groun
   return ground;
 }
 
+/* Whether camera c sees a ground (horizontal, under mesh m: +y is the world's up, as the
+** turtle's heading starts) from above: the eye over the mesh's lowest point, or looking
+** down or level when it has no eye. A shell seen from below gets none. */
+static int above (const lsys_camera *c, const lsys_mesh *m) {
+  double lo[3], hi[3];
+  if (c->has_eye) {
+    if (!lsys_mesh_bounds(m, lo, hi)) return 0;
+    return c->eye[1] > lo[1];
+  } else {
+    double n = sqrt(c->dir[0] * c->dir[0] + c->dir[1] * c->dir[1] + c->dir[2] * c->dir[2]);
+    return c->dir[1] <= 0.05 * n;
+  }
+}
+
 /* Makes scene v the one drawn with a ground (its mesh and palette in p) and
 ** the shading factors of o. Raises on failure (p is freed by its __gc). */
 static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts *o,
@@ -100,7 +114,7 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
                      int ground) {
   lsys_error e;
   int st;
-  if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0) {
+  if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0 && above(&v->cam, &v->mesh)) {
     size_t npal = v->npal > 0 ? v->npal : 1;
     if (npal >= LSYS_MESH_NCOLORS) luaL_error(L, "lsys.render: ground: the palette is full");
     if (lsys_mesh_copy(&p->mesh, &v->mesh) != LSYS_OK) luaL_error(L, "not enough memory");
