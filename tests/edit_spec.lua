@@ -15,25 +15,7 @@ local tune = require "lsys.ui.tune"
 local edit = require "lsys.ui.edit"
 local core = require "lsys.core"
 
-local function tmpdir ()
-  local d = os.tmpname()
-  os.remove(d)
-  assert(os.execute("mkdir -p " .. d))
-  return d
-end
-
-local function write (path, text)
-  local f = assert(io.open(path, "wb"))
-  f:write(text)
-  f:close()
-end
-
-local function read (path)
-  local f = assert(io.open(path, "rb"))
-  local t = f:read("a")
-  f:close()
-  return t
-end
+local tmpdir, write, read = H.tmpdir, H.write, H.read
 
 -- a binary tree k levels deep: 2^k - 1 F and as many brackets
 local TREE = [[
@@ -615,4 +597,3 @@ describe("lsys.ui.edit", function ()
   end)
 end)
 
-local _ = H

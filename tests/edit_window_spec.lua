@@ -80,15 +80,23 @@ local function wait_built (log, pattern, seconds)
   return false
 end
 
+-- A display with xdotool and the core built; else the test is pending, saying which.
+local function ready ()
+  local ok, why = D.start()
+  if not ok then pending(why) return false end
+  if not D.have("xdotool") then
+    pending("xdotool is not installed (./setup.sh does)")
+    return false
+  end
+  if not have_core then pending("lsys.core is not built") return false end
+  return true
+end
+
 describe("#gl editing in the window under Xvfb", function ()
   teardown(function () D.stop() end)
 
   it("drags a params slider, builds the plant again, saves the value into the file", function ()
-    local ok, why = D.start()
-    if not ok then pending(why) return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    if not have_core then pending("lsys.core is not built") return end
-    local lsys = require "lsys"
+    if not ready() then return end
     local form = require "lsys.ui.form"
     local edit = require "lsys.ui.edit"
     local dir = H.tmpdir()
@@ -125,7 +133,6 @@ describe("#gl editing in the window under Xvfb", function ()
     assert.is_true(wait_built(log, "k 7"), H.read(log))
     key(wid, "Escape")
     D.sleep(0.5 * SLOW)
-    local _ = lsys
   end)
 
   -- Opens the vlab object `src` (copied: saving writes it) and drags its panel's first
@@ -173,19 +180,13 @@ describe("#gl editing in the window under Xvfb", function ()
   end
 
   it("opens a vlab object with its panel and moves a slider", function ()
-    local ok, why = D.start()
-    if not ok then pending(why) return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    if not have_core then pending("lsys.core is not built") return end
+    if not ready() then return end
     local n = panel_drag(H.absolute("examples/vlab/tunable-tree"), 7, 4, 13119)
     assert.is_true(n < 13119)
   end)
 
   it("opens vlab's Lychnis with its panel and moves its Steps slider", function ()
-    local ok, why = D.start()
-    if not ok then pending(why) return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    if not have_core then pending("lsys.core is not built") return end
+    if not ready() then return end
     local EXT = os.getenv("LSYS_VLAB_EXT") or "../vlab/oofs/ext"
     local src = EXT .. "/10-manuals/ext/10-GettingStarted/ext/01-Lychnis"
     if io.open(src .. "/plant.l") == nil then
@@ -197,11 +198,7 @@ describe("#gl editing in the window under Xvfb", function ()
   end)
 
   it("drags a curve's control points: the function, the plant and the saved file", function ()
-    local ok, why = D.start()
-    if not ok then pending(why) return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    if not have_core then pending("lsys.core is not built") return end
-    local lsys = require "lsys"
+    if not ready() then return end
     local func = require "lsys.func"
     local curve = require "lsys.ui.curve"
     local edit = require "lsys.ui.edit"
@@ -272,14 +269,10 @@ return lsys.lsystem {
     assert.equal(n, #m:derive())
     key(wid, "Escape")
     D.sleep(0.5 * SLOW)
-    local _ = lsys
   end)
 
   it("clicks a component graph's box and drags its parameter: the plant expanded", function ()
-    local ok, why = D.start()
-    if not ok then pending(why) return end
-    if not D.have("xdotool") then pending("xdotool is not installed (./setup.sh does)") return end
-    if not have_core then pending("lsys.core is not built") return end
+    if not ready() then return end
     local lsys = require "lsys"
     local form = require "lsys.ui.form"
     local edit = require "lsys.ui.edit"

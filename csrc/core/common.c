@@ -10,6 +10,7 @@
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -170,6 +171,14 @@ const char *lsys_common_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n
   if (n > k) { memcpy(buf + k, "...", 3); k += 3; }
   buf[k] = '\0';
   return buf;
+}
+
+void lsys_common_shortest (char buf[32], double x) {
+  int p;
+  for (p = 1; p <= 17; p++) {
+    snprintf(buf, 32, "%.*g", p, x);
+    if (strtod(buf, NULL) == x) return;
+  }
 }
 
 const char *lsys_common_fmtsize (char buf[32], size_t bytes) {

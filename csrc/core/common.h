@@ -109,6 +109,9 @@ size_t lsys_common_physical_memory (void);
 #define LSYS_QUOTE 16
 const char *lsys_common_quote (char buf[LSYS_QUOTE + 1], const char *s, size_t n);
 
+/* Writes x in the shortest %g form that reads back to x (the file writers). */
+void lsys_common_shortest (char buf[32], double x);
+
 /* Writes 'bytes' as a short size for messages ("512 MiB", "12.0 GiB"). */
 const char *lsys_common_fmtsize (char buf[32], size_t bytes);
 

@@ -521,14 +521,6 @@ int lsys_func_parse (lsys_func **out, size_t *nout, const char *text, size_t len
 /* ---------------------------------------------------------------------- */
 /* Writing. */
 
-/* x in the shortest %g form that reads back to x. */
-static void shortest (char buf[32], double x) {
-  int p;
-  for (p = 1; p <= 17; p++) {
-    snprintf(buf, 32, "%.*g", p, x);
-    if (strtod(buf, NULL) == x) return;
-  }
-}
 
 size_t lsys_func_format (const lsys_func *f, char *buf, size_t size) {
   size_t len = 0, i, runs = 0;
@@ -543,8 +535,8 @@ size_t lsys_func_format (const lsys_func *f, char *buf, size_t size) {
     size_t m = 1;
     while (i + m < f->n && f->pt[2 * (i + m)] == f->pt[2 * i] &&
            f->pt[2 * (i + m) + 1] == f->pt[2 * i + 1]) m++;
-    shortest(a, f->pt[2 * i]);
-    shortest(c, f->pt[2 * i + 1]);
+    lsys_common_shortest(a, f->pt[2 * i]);
+    lsys_common_shortest(c, f->pt[2 * i + 1]);
     PUT("%s %s %zu\n", a, c, m);
     i += m;
   }

@@ -638,14 +638,6 @@ int lsys_surface_with_points (lsys_surface *dst, const lsys_surface *s, const do
   return LSYS_OK;
 }
 
-/* x in the shortest %g form that reads back to x. */
-static void shortest (char buf[32], double x) {
-  int p;
-  for (p = 1; p <= 17; p++) {
-    snprintf(buf, 32, "%.*g", p, x);
-    if (strtod(buf, NULL) == x) return;
-  }
-}
 
 size_t lsys_surface_format (const lsys_surface *s, char *buf, size_t size) {
   static const char *const vecs[4] = {"CONTACT POINT", "END POINT", "HEADING", "UP"};
@@ -658,30 +650,30 @@ size_t lsys_surface_format (const lsys_surface *s, char *buf, size_t size) {
                                    __VA_ARGS__); if (w > 0) len += (size_t)w; } while (0)
   v[0] = s->contact; v[1] = s->end; v[2] = s->heading; v[3] = s->up;
   for (k = 0; k < 3; k++) {
-    shortest(a[0], s->lo[k]);
-    shortest(a[1], s->hi[k]);
+    lsys_common_shortest(a[0], s->lo[k]);
+    lsys_common_shortest(a[1], s->hi[k]);
     PUT("%s%s %s", k ? "  " : "", a[0], a[1]);
   }
   PUT("\nPRECISION S: %d T: %d\n", s->precision_s, s->precision_t);
   for (k = 0; k < 4; k++) {
-    for (d = 0; d < 3; d++) shortest(a[d], v[k][d]);
+    for (d = 0; d < 3; d++) lsys_common_shortest(a[d], v[k][d]);
     PUT("%s X: %s Y: %s Z: %s\n", vecs[k], a[0], a[1], a[2]);
   }
-  shortest(a[0], s->size);
+  lsys_common_shortest(a[0], s->size);
   PUT("SIZE: %s\n", a[0]);
   for (i = 0; i < s->npatch; i++) {
     const lsys_patchinfo *in = &s->info[i];
-    shortest(a[0], in->diffuse[0]);
-    shortest(a[1], in->diffuse[1]);
+    lsys_common_shortest(a[0], in->diffuse[0]);
+    lsys_common_shortest(a[1], in->diffuse[1]);
     PUT("%s\nTOP COLOR: %d DIFFUSE: %s BOTTOM COLOR: %d DIFFUSE: %s\n", in->name, in->color[0],
         a[0], in->color[1], a[1]);
     for (d = 0; d < 8; d++)
       PUT("%s: %s%s", nbs[d], in->nb[d] >= 0 ? s->info[in->nb[d]].name : "~",
           d == 2 || d == 4 || d == 7 ? "\n" : " ");
     for (k = 0; k < 16; k++) {
-      shortest(a[0], s->patch[i].ctrl[3 * k]);
-      shortest(a[1], s->patch[i].ctrl[3 * k + 1]);
-      shortest(a[2], s->patch[i].ctrl[3 * k + 2]);
+      lsys_common_shortest(a[0], s->patch[i].ctrl[3 * k]);
+      lsys_common_shortest(a[1], s->patch[i].ctrl[3 * k + 1]);
+      lsys_common_shortest(a[2], s->patch[i].ctrl[3 * k + 2]);
       PUT("%s %s %s%s", a[0], a[1], a[2], k % 4 == 3 ? "\n" : "  ");
     }
   }

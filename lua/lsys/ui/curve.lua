@@ -10,10 +10,11 @@
 -- @module lsys.ui.curve
 local core = require "lsys.core"
 local func = require "lsys.func"
+local number = require("lsys.util.text").number
 local view = require "lsys.view"
 
-local type, ipairs, pairs, next, error, tostring, tonumber, pcall, setmetatable, getmetatable =
-      type, ipairs, pairs, next, error, tostring, tonumber, pcall, setmetatable, getmetatable
+local type, ipairs, pairs, next, error, tostring, pcall, setmetatable, getmetatable =
+      type, ipairs, pairs, next, error, tostring, pcall, setmetatable, getmetatable
 local math, string, table = math, string, table
 local format, concat, insert, remove = string.format, table.concat, table.insert, table.remove
 local floor, min, max, abs, huge = math.floor, math.min, math.max, math.abs, math.huge
@@ -205,18 +206,9 @@ end
 -- {=========================================================================================
 -- The contour file writer
 
--- x in the shortest %g form that reads back to x.
-local function shortest (x)
-  for p = 1, 17 do
-    local s = format("%." .. p .. "g", x)
-    if tonumber(s) == x then return s end
-  end
-  return format("%.17g", x)
-end
-
 --- The text of contour `c` in cpfg's contour format (the cpfg guide, Appendix B.1): a line
--- "N dim open|closed", then N lines of dim numbers, in the shortest form that reads back
--- to the same doubles.
+-- "N dim open|closed", then N lines of dim numbers, each in a form that reads back to
+-- the same double (lsys.util.text.number).
 function M.contour_text (c)
   if udname(c) ~= "lsys.Contour" then
     error(format("lsys.ui.curve.contour_text: an lsys.Contour expected, got %s",
@@ -226,7 +218,7 @@ function M.contour_text (c)
   local lines = { format("%d %d %s", #pts, dim, c:closed() and "closed" or "open") }
   for i, p in ipairs(pts) do
     local t = {}
-    for k = 1, dim do t[k] = shortest(p[k]) end
+    for k = 1, dim do t[k] = number(p[k]) end
     lines[i + 1] = concat(t, " ")
   end
   return concat(lines, "\n") .. "\n"
