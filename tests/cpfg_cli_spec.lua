@@ -312,7 +312,7 @@ describe("#gl lsys view on a cpfg model", function ()
     local SLOW = tonumber(os.getenv("LSYS_TEST_SLOW")) or 1
     os.execute("cd " .. dir .. " && (" .. Disp.env .. "timeout " .. 60 * SLOW .. " " .. bin ..
       " view plant.l plant.v --size 200x200 >out.txt 2>err.txt; echo $? > rc.txt) &")
-    local win = Disp.env .. "timeout " .. 10 * SLOW ..
+    local win = Disp.env .. "timeout " .. 30 * SLOW ..
                 " xdotool search --sync --name 'lsys: plant.l' "
     local function wait_for (file, text)
       for _ = 1, 100 * SLOW do

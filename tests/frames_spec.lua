@@ -335,7 +335,7 @@ describe("#gl the viewer's S key while animating", function()
     H.write(dir .. "/bush.lua", (MODEL:gsub("steps = 5", "steps = 3")))
     os.execute("cd " .. q(dir) .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " .. ABSBIN
       .. " view bush.lua --size 300x240 --rate 1 >out.txt 2>err.txt; echo $? > rc.txt) &")
-    local win = D.env .. "timeout " .. 10 * SLOW ..
+    local win = D.env .. "timeout " .. 30 * SLOW ..
       " xdotool search --sync --name 'lsys: bush.lua' windowfocus --sync %1 key "
     local function wait_for (file, text) return D.wait_for(dir .. "/" .. file, text, 10 * SLOW) end
     -- space: animate from step 0 (one step a second); S then saves the steps, not one picture

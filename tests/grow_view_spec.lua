@@ -200,7 +200,7 @@ log:close()
     local log = dir .. "/keys.txt"
     os.execute(D.env .. "timeout " .. 60 * SLOW .. " " .. BIN .. " " .. dir .. "/keys.lua "
       .. log .. " >" .. dir .. "/out.txt 2>&1 &")
-    local win = D.env .. "timeout " .. 10 * SLOW
+    local win = D.env .. "timeout " .. 30 * SLOW
       .. " xdotool search --sync --name 'lsys: growth keys' "
     local lines = {}
     -- presses a key and waits for its line in the log

@@ -314,7 +314,7 @@ V.close()
     write(dir .. "/m.lua", MODEL:format(1, "line"))
     os.execute("cd " .. dir .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " .. bin ..
       " view m.lua --size 300x300 >out.txt 2>err.txt; echo $? > rc.txt) &")
-    local win = D.env .. "timeout " .. 10 * SLOW .. " xdotool search --sync --name 'lsys: m.lua' "
+    local win = D.env .. "timeout " .. 30 * SLOW .. " xdotool search --sync --name 'lsys: m.lua' "
     local function key (k)
       return os.execute(win .. "windowfocus --sync %1 key " .. k .. " >/dev/null 2>&1")
     end

@@ -178,7 +178,7 @@ print(select(2, pcall(V.light)))
     os.execute("cd " .. dir .. " && (" .. D.env .. "timeout " .. 60 * SLOW .. " " ..
       H.absolute(BIN) .. " view m.lua --show 1 --size 300x300 --no-status >out.txt " ..
       "2>err.txt; echo $? > rc.txt) &")
-    local win = D.env .. "timeout " .. 10 * SLOW ..
+    local win = D.env .. "timeout " .. 30 * SLOW ..
       " xdotool search --sync --name 'lsys: m.lua' "
     local function key (k)
       return os.execute(win .. "windowfocus --sync %1 key " .. k .. " >/dev/null 2>&1")
