@@ -408,6 +408,26 @@ describe("the scene's look #gl", function()
     assert.same({ 0, 255, 0 }, { core.render(sc, { width = 8, height = 8,
                                                    background = { 0, 1, 0 } }):byte(1, 3) })
   end)
+
+  it("keeps a look given in C (scene:look) when lsys.render names other view fields",
+     function()
+    if not core.has_render then return pending("lsys was built without OSMesa") end
+    -- a grown world's scene and one turned by scene:look have no Lua view: supersample (or
+    -- a background) for one picture used to put the default camera back
+    local sc = core.interpret(m._rules, m:derive(), { angle = 30, line_width = 3 })
+    sc:look { background = { 0, 0, 0 }, direction = { 1, 0, 0 } }   -- the plant edge-on
+    local looked = core.render(sc, o)
+    assert.is_true(looked == lsys.render(sc, o))
+    local red = lsys.render(sc, { width = 48, height = 48, supersample = 1,
+                                  background = { 1, 0, 0 } })
+    -- the same pixels but the background's: the camera stayed
+    local n = 0
+    for i = 0, 48 * 48 - 1 do
+      local a, b = looked:sub(4 * i + 1, 4 * i + 3), red:sub(4 * i + 1, 4 * i + 3)
+      if a ~= b and not (a == "\0\0\0" and b == "\255\0\0") then n = n + 1 end
+    end
+    assert.is_true(n < 48, n .. " pixels differ beyond the background")
+  end)
 end)
 
 describe("textures #gl", function()

@@ -1,5 +1,6 @@
 -- Baked shadows, ambient occlusion, the ground plane and the sky (lsys.render's shadows, ao,
--- ground and sky options): where the shadow of a quad falls on the ground, an occluded
+-- ground and sky options): where the shadow of a quad falls on the ground, a population on
+-- its ground with its shadows, a ground that reaches the picture's edge, an occluded
 -- corner, nothing changed with the options off, the same picture for 1 and 2 threads, and
 -- the options' errors.
 --
@@ -132,6 +133,47 @@ describe("shadows and ambient occlusion #gl", function()
     local lo, hi = quad:interpret():bounds()
     g.fit = { lo[1], lo[2], lo[3], hi[1], hi[2], hi[3] }
     assert.is_true(b == lsys.render(quad, g))        -- framed as the plant's own box
+  end)
+
+  it("stands a population on the ground, each plant shadowing it and the others", function()
+    -- two of the quads 12 apart as a population (instances of one prototype): the light
+    -- from (0.5, 1, 0) puts each square's shadow 5 units towards -x, so the right plant's
+    -- falls on the left plant's stem region and both fall on the ground
+    local pop = lsys.population({ { model = quad, at = { -6, 0, 0 } },
+                                  { model = quad, at = { 6, 0, 0 } } })
+    assert.equal(2, pop.ninstances)
+    local view = { light = { 0.5, 1, 0 }, fit = { -16, 0, -10, 16, 10, 10 },
+                   background = { 0, 0, 0 } }
+    local bare = lsys.render(pop, opts(view))
+    view.ground = true
+    local ground = lsys.render(pop, opts(view))
+    view.shadows = true
+    local shadowed = lsys.render(pop, opts(view))
+    -- the picture is 32 units across in 200 pixels (with the fit's margin): x = -11 (the
+    -- left shadow's centre) and x = 1 (the right one's) against the open ground at x = 12
+    local function at (x) return math.floor(100 + x * 200 / 32 * 0.9 + 0.5) end
+    local open = lum(ground, 200, at(12), 100, 3)
+    assert.is_true(open > lum(bare, 200, at(12), 100, 3) + 20, "the ground is drawn")
+    for _, x in ipairs { -11, 1 } do
+      local sh = lum(shadowed, 200, at(x), 100, 3)
+      assert.is_true(sh < 0.8 * lum(shadowed, 200, at(12), 100, 3),
+                     ("x = %g: shadow %.1f, open %.1f"):format(x, sh, open))
+      assert.is_true(lum(ground, 200, at(x), 100, 3) > 0.95 * open)   -- none without
+    end
+  end)
+
+  it("grows the ground to the picture's bottom edge in a view from the side", function()
+    -- a camera looking 11 degrees down: the square ground of 1.6 plant extents would end
+    -- above the bottom edge; the ground reaches it now
+    local m = lsys.lsystem { axiom = "#(0.5) F(10) [+(40) F(6)] [-(40) F(6)]",
+                             view = { line_style = "cylinder", direction = { 0, -0.2, -1 } } }
+    local px = lsys.render(m, { width = 120, height = 120, supersample = 1, ground = true,
+                                background = { 1, 1, 1 } })
+    for _, x in ipairs { 2, 60, 117 } do      -- the bottom row, left to right
+      local o = (119 * 120 + x) * 4
+      local r, g, b = px:byte(o + 1, o + 3)
+      assert.is_true(r + g + b < 3 * 250, ("bottom row x = %d: %d %d %d"):format(x, r, g, b))
+    end
   end)
 
   it("gives the same picture for 1 and 2 threads", function()

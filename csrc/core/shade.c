@@ -213,7 +213,8 @@ done:
 
 int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error *e) {
   double lo[3], hi[3], c[3], half, ext, diag = 0, p[3], n[3] = {0, 1, 0};
-  size_t i, j, k = (size_t)g->cells, v0;
+  double x0, z0, x1, z1, cell;
+  size_t i, j, nx, nz, v0;
   int a;
   if (!(g->size > 0 && g->size <= 1000))
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "ground: size must be in (0, 1000]");
@@ -229,19 +230,32 @@ int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error 
   if (ext < (hi[1] - lo[1]) / 2) ext = (hi[1] - lo[1]) / 2;
   if (!(ext > 0)) ext = 1;
   half = g->size * ext / 2;
-  if (lsys_mesh_reserve(m, (k + 1) * (k + 1), 2 * k * k) != LSYS_OK) return LSYS_ENOMEM;
+  x0 = c[0] - half; x1 = c[0] + half;
+  z0 = c[2] - half; z1 = c[2] + half;
+  if (g->has_rect) {
+    double reach = LSYS_SHADE_GROUND_REACH * half;
+    x0 = fmin(x0, fmax(g->rect[0], c[0] - reach));
+    z0 = fmin(z0, fmax(g->rect[1], c[2] - reach));
+    x1 = fmax(x1, fmin(g->rect[2], c[0] + reach));
+    z1 = fmax(z1, fmin(g->rect[3], c[2] + reach));
+  }
+  cell = 2 * half / g->cells;
+  while ((x1 - x0) / cell * ((z1 - z0) / cell) > 4.0 * g->cells * g->cells) cell *= 1.25;
+  nx = (size_t)ceil((x1 - x0) / cell - 1e-9);
+  nz = (size_t)ceil((z1 - z0) / cell - 1e-9);
+  if (lsys_mesh_reserve(m, (nx + 1) * (nz + 1), 2 * nx * nz) != LSYS_OK) return LSYS_ENOMEM;
   v0 = m->nv;
   p[1] = lo[1] - 1e-3 * sqrt(diag);
-  for (j = 0; j <= k; j++)
-    for (i = 0; i <= k; i++) {
-      p[0] = c[0] - half + 2 * half * (double)i / (double)k;
-      p[2] = c[2] - half + 2 * half * (double)j / (double)k;
-      lsys_mesh_vertex(m, p, n, (double)i / (double)k, (double)j / (double)k, g->col, 0);
+  for (j = 0; j <= nz; j++)
+    for (i = 0; i <= nx; i++) {
+      p[0] = x0 + (x1 - x0) * (double)i / (double)nx;
+      p[2] = z0 + (z1 - z0) * (double)j / (double)nz;
+      lsys_mesh_vertex(m, p, n, (double)i / (double)nx, (double)j / (double)nz, g->col, 0);
       m->tex[m->nv - 1] = 0;
     }
-  for (j = 0; j < k; j++)
-    for (i = 0; i < k; i++) {        /* counterclockwise seen from above */
-      uint32_t q = (uint32_t)(v0 + j * (k + 1) + i), r = q + (uint32_t)(k + 1);
+  for (j = 0; j < nz; j++)
+    for (i = 0; i < nx; i++) {        /* counterclockwise seen from above */
+      uint32_t q = (uint32_t)(v0 + j * (nx + 1) + i), r = q + (uint32_t)(nx + 1);
       lsys_mesh_tri(m, q, r, q + 1);
       lsys_mesh_tri(m, q + 1, r, r + 1);
     }

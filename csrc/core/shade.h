@@ -54,17 +54,25 @@ int lsys_shade_compute (uint8_t *out, const lsys_scene *s, const lsys_shade_opts
 typedef struct lsys_shade_ground {
   double size;              /* > 0: its side over the plant's widest extent (and at least
                                its height's half); default 1.6 */
-  int cells;                /* cells along a side, 1 .. 1024; default 96 */
+  int cells;                /* cells along a side, 1 .. 1024 (lsys.render's default 160) */
   unsigned col;             /* its colour index */
+  int has_rect;             /* 1: the ground reaches over rect too (what a camera sees) */
+  double rect[4];           /* x0, z0, x1, z1 */
 } lsys_shade_ground;
 
+/* The farthest a ground reaches from the plant's centre in x or z, in halves
+** of its default square's side (a camera looking at the horizon). */
+#define LSYS_SHADE_GROUND_REACH 4
+
 /*
-** Appends to m a square grid of cells x cells quads facing up (+y), just
-** under m's lowest point (by 1e-3 of its diagonal), centred under its
-** bounding box and g->size times its widest horizontal extent (at least half
-** its height) across, coloured g->col, solid (one-sided). Returns LSYS_OK,
-** LSYS_EARG (bad size or cells: e names it), LSYS_ENOMEM; nothing for an
-** empty mesh.
+** Appends to m a grid of quads facing up (+y), just under m's lowest point
+** (by 1e-3 of its diagonal), coloured g->col, solid (one-sided): a square
+** centred under its bounding box and g->size times its widest horizontal
+** extent (at least half its height) across, of cells x cells cells, grown to
+** cover g->rect (when has_rect) within LSYS_SHADE_GROUND_REACH half sides of
+** the centre, with cells of the same size (fewer, larger ones when that
+** would make more than 4 cells^2). Returns LSYS_OK, LSYS_EARG (bad size or
+** cells: e names it), LSYS_ENOMEM; nothing for an empty mesh.
 */
 int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error *e);
 

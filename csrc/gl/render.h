@@ -191,6 +191,15 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
                          const double p[3], double out[3]);
 
 /*
+** The ray through the point (nx, ny) of the picture of lsys_render_camera's
+** matrices, in normalised coordinates (-1 .. 1 from the left and the bottom
+** edge): its origin (on the eye's plane in a parallel view, the eye in a
+** perspective one) and its unit direction, in world space.
+*/
+void lsys_render_unproject (const double proj[16], const double view[16], double nx,
+                            double ny, double origin[3], double dir[3]);
+
+/*
 ** Draws scene 's' into the current GL context's framebuffer of fbw x fbh
 ** pixels, through the scene's camera, with its palette (a grey default
 ** when it has none): clears to the scene's background, lights with its key

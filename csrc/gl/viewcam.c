@@ -315,6 +315,24 @@ int lsys_render_project (const double proj[16], const double view[16], int w, in
   return 1;
 }
 
+void lsys_render_unproject (const double proj[16], const double view[16], double nx,
+                            double ny, double origin[3], double dir[3]) {
+  /* the view's rows are r, u and -f; its translation -R eye */
+  double r[3] = {view[0], view[4], view[8]}, u[3] = {view[1], view[5], view[9]};
+  double f[3] = {-view[2], -view[6], -view[10]}, x = nx / proj[0], y = ny / proj[5];
+  int i;
+  for (i = 0; i < 3; i++) origin[i] = -view[12] * r[i] - view[13] * u[i] + view[14] * f[i];
+  if (proj[15] == 1) {               /* parallel: the ray starts off the eye, along f */
+    for (i = 0; i < 3; i++) {
+      origin[i] += x * r[i] + y * u[i];
+      dir[i] = f[i];
+    }
+  } else {
+    for (i = 0; i < 3; i++) dir[i] = f[i] + x * r[i] + y * u[i];
+    vnormlen(dir);
+  }
+}
+
 /* ---------------------------------------------------------------------- */
 /* the viewer's camera */
 

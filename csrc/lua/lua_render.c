@@ -10,23 +10,28 @@
 #include "outfile.h"
 #include "path.h"
 #include "pngio.h"
+#include "population.h"
 #include "shade.h"
 
 #ifndef LSYS_NO_RENDER
 #define SHADEPREP_T "lsys.ShadePrep"
 
-/* What a picture with shadows, a ground or a sky holds while it is drawn: the
-** scene's mesh with the ground appended, the palette with its colour, the
-** vertices' shading factors. A userdata, so that an error frees them. */
+/* What a picture with shadows, a ground or a sky holds while it is drawn: a
+** population's flattened copy (its instances written out, so that each plant
+** shadows the others and its own vertices), the scene's mesh with the ground
+** appended, the palette with its colour, the vertices' shading factors. A
+** userdata, so that an error frees them. */
 typedef struct shadeprep {
+  lsys_scene flat;
   lsys_mesh mesh;
   lsys_material *pal;
   uint8_t *f;
-  int ground;
+  int flattened, ground;
 } shadeprep;
 
 static int shadeprep_gc (lua_State *L) {
   shadeprep *p = (shadeprep *)luaL_checkudata(L, 1, SHADEPREP_T);
+  if (p->flattened) lsys_scene_free(&p->flat);
   if (p->ground) lsys_mesh_free(&p->mesh);
   LSYS_FREE(p->pal);
   LSYS_FREE(p->f);
@@ -63,8 +68,9 @@ static int readshade (lua_State *L, int t, lsys_shade_opts *so, lsys_shade_groun
   static const float grey[3] = {0.72f, 0.76f, 0.68f};
   int ground, s;
   lsys_shade_defaults(so);
+  memset(g, 0, sizeof *g);
   g->size = 1.6;
-  g->cells = 96;
+  g->cells = 160;
   if (t == 0 || lua_getfield(L, t, "shade") != LUA_TTABLE) {
     if (t != 0) lua_pop(L, 1);
     return 0;
@@ -107,6 +113,43 @@ static int above (const lsys_camera *c, const lsys_mesh *m) {
   }
 }
 
+/* Where the picture o of scene v (its camera framing a box: has_box) sees the
+** plane under its lowest point: the hits of rays through the picture's edges
+** into g->rect, so that the ground reaches the picture's bottom and sides. In a
+** parallel view that looks down less than 30 degrees only hits nearer the
+** camera than the plant's centre count: every ray of such a view meets the
+** plane, and the ground ends behind the plant (a horizon) rather than at the
+** picture's top; a steeper view is ground wherever it reaches. */
+static void groundrect (const lsys_scene *v, const lsys_render_opts *o, lsys_shade_ground *g) {
+  enum { N = 16 };
+  double proj[16], view[16], lo[3], hi[3], c[3], fh[3];
+  int k, side, shallow;
+  if (!lsys_mesh_bounds(&v->mesh, lo, hi)) return;
+  if (lsys_render_camera_scene(v, &v->cam, o->width, o->height, proj, view) != LSYS_OK) return;
+  shallow = proj[15] == 1 && -view[6] > -0.5;       /* parallel, f[1] = -view[6] */
+  for (k = 0; k < 3; k++) c[k] = (lo[k] + hi[k]) / 2;
+  fh[0] = -view[2]; fh[1] = 0; fh[2] = -view[10];      /* the camera's forward, level */
+  for (side = 0; side < 4; side++)
+    for (k = 0; k <= N; k++) {
+      double s = -1 + 2.0 * k / N, org[3], d[3], t, px, pz;
+      lsys_render_unproject(proj, view, side < 2 ? s : side == 2 ? -1 : 1,
+                            side < 2 ? (side == 0 ? -1 : 1) : s, org, d);
+      if (!(d[1] < -1e-9)) continue;                    /* never meets the plane */
+      t = (lo[1] - org[1]) / d[1];
+      if (!(t > 0) && proj[15] != 1) continue;      /* (a parallel view's line is whole) */
+      px = org[0] + t * d[0];
+      pz = org[2] + t * d[2];
+      if (shallow && (px - c[0]) * fh[0] + (pz - c[2]) * fh[2] > 0) continue;
+      if (!g->has_rect) {
+        g->has_rect = 1;
+        g->rect[0] = g->rect[2] = px;
+        g->rect[1] = g->rect[3] = pz;
+      }
+      g->rect[0] = fmin(g->rect[0], px); g->rect[2] = fmax(g->rect[2], px);
+      g->rect[1] = fmin(g->rect[1], pz); g->rect[3] = fmax(g->rect[3], pz);
+    }
+}
+
 /* Makes scene v the one drawn with a ground (its mesh and palette in p) and
 ** the shading factors of o. Raises on failure (p is freed by its __gc). */
 static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts *o,
@@ -114,6 +157,28 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
                      int ground) {
   lsys_error e;
   int st;
+  if ((ground || so->shadows || so->ao) && v->ninst > 0) {
+    lsys_meter mt = {0};
+    mt.limit = lsys_common_memory_limit();
+    lsys_scene_init(&p->flat);
+    st = lsys_population_flatten(&p->flat, v, &mt);
+    if (st == LSYS_EMEMORY) {
+      char b1[32], b2[32];
+      luaL_error(L, "lsys.render: shadows, ambient occlusion or a ground draw the %zu "
+                 "instances one by one, which needs %s, more than max_memory (%s): render "
+                 "without them", v->ninst, lsys_common_fmtsize(b1, lsys_population_flatbytes(v)),
+                 lsys_common_fmtsize(b2, mt.limit));
+    }
+    if (st == LSYS_ELIMIT) luaL_error(L, "lsys.render: more than 2^32 vertices to shade");
+    if (st != LSYS_OK) luaL_error(L, "not enough memory");
+    p->flattened = 1;
+    v->mesh = p->flat.mesh;
+    v->pal = p->flat.pal;
+    v->npal = p->flat.npal;
+    v->parts = NULL; v->nparts = 0;
+    v->inst = NULL; v->ninst = 0;
+    v->rec = NULL; v->nrec = 0;
+  }
   if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0 && above(&v->cam, &v->mesh)) {
     size_t npal = v->npal > 0 ? v->npal : 1;
     if (npal >= LSYS_MESH_NCOLORS) luaL_error(L, "lsys.render: ground: the palette is full");
@@ -137,6 +202,7 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
         memcpy(v->cam.box + 3, hi, sizeof hi);
       }
     }
+    groundrect(v, o, g);
     if ((st = lsys_shade_add_ground(&p->mesh, g, &e)) != LSYS_OK)
       luaL_error(L, "lsys.render: %s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
     v->mesh = p->mesh;

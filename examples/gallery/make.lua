@@ -401,8 +401,8 @@ for i, p in ipairs(PICTURES) do
     local t0 = os.clock()
     local sc = dofile(examples .. "/" .. file)
     assert(require("lsys.core").mkdir(dir .. "/" .. (png:match("^(.*)/") or ".")))
-    lsys.render(sc, { out = dir .. "/" .. png, width = math.floor(p.width * size / 480),
-                      height = math.floor(p.height * size / 480) })
+    lsys.render(sc, render.shaded(sc, { out = dir .. "/" .. png,
+      width = math.floor(p.width * size / 480), height = math.floor(p.height * size / 480) }))
     drawn = drawn + 1
     io.stderr:write(string.format("[%2d/%d] %-20s %8d plants %8d triangles  %.2f s\n", i,
       #PICTURES, png, sc.ninstances, sc.ntriangles, os.clock() - t0))

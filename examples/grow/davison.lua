@@ -55,7 +55,7 @@ end
 function M.world (opts)
   opts = opts or {}
   local w = grow.world { seed = opts.seed or 3, ticks = opts.ticks or 60, leaf = opts.leaf,
-                         view = opts.view }
+                         view = opts.view or M.VIEW }
   local Tree = M.kind()
   local n = opts.trees or 5
   for k = 1, n do
@@ -64,11 +64,14 @@ function M.world (opts)
   return w
 end
 
-M.VIEW = { background = { 0.93, 0.96, 1 } }
+-- Seen a little from above, so that the ground `lsys render` puts under a 3D plant shows.
+M.VIEW = { direction = { 0, -0.2, -1 } }
 
 if arg and arg[0] and arg[0]:match("davison%.lua$") then
   local w = M.world():grow()
-  lsys.render(w:scene(), { out = arg[1] or "davison.png", width = 1000, height = 560 })
+  local sc = w:scene()
+  lsys.render(sc, require("lsys.render").shaded(sc, { out = arg[1] or "davison.png",
+                                                      width = 1000, height = 560 }))
   print(string.format("%d limbs after %d ticks -> %s", w:count(), w.ticks,
                       arg[1] or "davison.png"))
 end

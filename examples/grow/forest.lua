@@ -12,8 +12,8 @@
 --   build/bin/lsys grow examples/grow/forest.lua --frames frames/ --every 5
 --   build/bin/lsys examples/grow/forest.lua [out.png]      renders the grown forest
 --
--- As a module: M.world{ seed =, ticks =, trees =, max_limbs =, ground = } -> a planted
--- world, whose scene stands on a ground tile (ground = false: the trees alone).
+-- As a module: M.world{ seed =, ticks =, trees =, max_limbs = } -> a planted world. Its
+-- pictures stand on the ground that lsys render gives a 3D scene, with the trees' shadows.
 local lsys = require "lsys"
 local grow = lsys.grow
 
@@ -21,14 +21,6 @@ local M = {}
 
 local BARK, LEAF = "#5e4026", "#3d8a2e"
 local VIEW = { projection = "perspective", fov = 30, direction = { 0.15, -0.25, -1 } }
-
--- The ground: one square tile, 1 x 1 in the plane y = 0 from (0, 0, 0) to (1, 0, 1)
--- (the turtle starts heading up, +y), a meadow green; M.world's scene places it, scaled,
--- under the trees.
-local GROUND = lsys.lsystem {
-  name = "ground", axiom = "^(90) { . f(1) . -(90) f(1) . -(90) f(1) . }", steps = 0,
-  view = { palette = { { 0.55, 0.62, 0.38 } } },
-}
 
 function M.kind ()
   local Tree = grow.kind("forest tree")
@@ -73,26 +65,14 @@ function M.world (opts)
     local x = (k - (n + 1) / 2) * 9
     w:plant { kind = Tree, position = { x, 0, -0.04 * x * x }, radius = 0.04, length = 0.4 }
   end
-  if opts.ground ~= false then
-    -- its scene stands on the ground tile: the trees' scene and the tile as one population
-    -- (a plant each: the trees' geometry is not copied), the tile reaching a little beyond
-    -- the outer crowns
-    local half = (n - 1) / 2 * 9 + 6
-    local scene = w.scene
-    w.scene = function (self)
-      return lsys.population({
-        { model = scene(self) },
-        { model = GROUND, at = { -half, 0, -0.9 * half }, scale = { 2 * half, 1, 1.2 * half } },
-      }, { view = VIEW })
-    end
-  end
   return w
 end
 
 if arg and arg[0] and arg[0]:match("forest%.lua$") then
   local w = M.world():grow()
   local out = arg[1] or "forest.png"
-  lsys.render(w:scene(), { out = out, width = 1200, height = 600 })
+  local sc = w:scene()
+  lsys.render(sc, require("lsys.render").shaded(sc, { out = out, width = 1200, height = 600 }))
   print(string.format("%d limbs after %d ticks -> %s", w:count(), w.ticks, out))
 end
 

@@ -12,5 +12,5 @@ local old, young = dofile(here .. "/selforg.lua"), dofile(here .. "/selforg.lua"
 young.axiom = "W(7)"
 return lsys.stand({ { model = old }, { model = young, at = { 3, 0, 0 } } }, {
   environment = old.environment,           -- one environment for the stand
-  view = { background = { 1, 1, 1 } },
+  view = { direction = { 0, -0.15, -1 } },   -- a little from above: the ground shows
 })

@@ -118,6 +118,13 @@ local function render (level, x, opts)
                         "lsys.render")
     if not ok then error(r, level) end
     ro = view.render_options(r)
+    -- a scene without a view of its own keeps the camera and light it was given in C
+    -- (scene:look, a grown world's view): only the fields named here replace them
+    if v == nil then
+      for k in pairs(ro) do
+        if over[k] == nil then ro[k] = nil end
+      end
+    end
   end
   ro.out, ro.width, ro.height = opts.out, opts.width or 800, opts.height or 800
   ro.zoom, ro.transparent, ro.wireframe = opts.zoom, opts.transparent, opts.wireframe
