@@ -211,8 +211,22 @@ done:
   return st;
 }
 
+/* Half the side of the ground's square under the box lo .. hi. */
+static double halfside (const double lo[3], const double hi[3], double size) {
+  double ext = hi[0] - lo[0] > hi[2] - lo[2] ? hi[0] - lo[0] : hi[2] - lo[2];
+  if (ext < (hi[1] - lo[1]) / 2) ext = (hi[1] - lo[1]) / 2;
+  if (!(ext > 0)) ext = 1;
+  return size * ext / 2;
+}
+
+double lsys_shade_ground_half (const lsys_mesh *m, const lsys_shade_ground *g) {
+  double lo[3], hi[3];
+  if (!lsys_mesh_bounds(m, lo, hi)) return 0;
+  return halfside(lo, hi, g->size);
+}
+
 int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error *e) {
-  double lo[3], hi[3], c[3], half, ext, diag = 0, p[3], n[3] = {0, 1, 0};
+  double lo[3], hi[3], c[3], half, diag = 0, p[3], n[3] = {0, 1, 0};
   double x0, z0, x1, z1, cell;
   size_t i, j, nx, nz, v0;
   int a;
@@ -226,10 +240,7 @@ int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error 
     c[a] = (lo[a] + hi[a]) / 2;
     diag += (hi[a] - lo[a]) * (hi[a] - lo[a]);
   }
-  ext = hi[0] - lo[0] > hi[2] - lo[2] ? hi[0] - lo[0] : hi[2] - lo[2];
-  if (ext < (hi[1] - lo[1]) / 2) ext = (hi[1] - lo[1]) / 2;
-  if (!(ext > 0)) ext = 1;
-  half = g->size * ext / 2;
+  half = halfside(lo, hi, g->size);
   x0 = c[0] - half; x1 = c[0] + half;
   z0 = c[2] - half; z1 = c[2] + half;
   if (g->has_rect) {

@@ -76,4 +76,7 @@ typedef struct lsys_shade_ground {
 */
 int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error *e);
 
+/* Half the side of the square lsys_shade_add_ground puts under m (0: m is empty). */
+double lsys_shade_ground_half (const lsys_mesh *m, const lsys_shade_ground *g);
+
 #endif

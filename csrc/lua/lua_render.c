@@ -12,6 +12,7 @@
 #include "pngio.h"
 #include "population.h"
 #include "shade.h"
+#include "vec3.h"
 
 #ifndef LSYS_NO_RENDER
 #define SHADEPREP_T "lsys.ShadePrep"
@@ -116,19 +117,22 @@ static int above (const lsys_camera *c, const lsys_mesh *m) {
 /* Where the picture o of scene v (its camera framing a box: has_box) sees the
 ** plane under its lowest point: the hits of rays through the picture's edges
 ** into g->rect, so that the ground reaches the picture's bottom and sides. In a
-** parallel view that looks down less than 30 degrees only hits nearer the
-** camera than the plant's centre count: every ray of such a view meets the
-** plane, and the ground ends behind the plant (a horizon) rather than at the
-** picture's top; a steeper view is ground wherever it reaches. */
+** parallel view that looks down less than 30 degrees the hits are brought
+** no farther from the camera than the default square's far edge: every ray of
+** such a view meets the plane, and the ground ends behind the plant (a
+** horizon) rather than at the picture's top; a steeper view is ground
+** wherever it reaches. */
 static void groundrect (const lsys_scene *v, const lsys_render_opts *o, lsys_shade_ground *g) {
   enum { N = 16 };
-  double proj[16], view[16], lo[3], hi[3], c[3], fh[3];
+  double proj[16], view[16], lo[3], hi[3], c[3], fh[3], far;
   int k, side, shallow;
   if (!lsys_mesh_bounds(&v->mesh, lo, hi)) return;
   if (lsys_render_camera_scene(v, &v->cam, o->width, o->height, proj, view) != LSYS_OK) return;
   shallow = proj[15] == 1 && -view[6] > -0.5;       /* parallel, f[1] = -view[6] */
   for (k = 0; k < 3; k++) c[k] = (lo[k] + hi[k]) / 2;
   fh[0] = -view[2]; fh[1] = 0; fh[2] = -view[10];      /* the camera's forward, level */
+  if (!(vnormlen(fh) > 0)) shallow = 0;
+  far = lsys_shade_ground_half(&v->mesh, g);
   for (side = 0; side < 4; side++)
     for (k = 0; k <= N; k++) {
       double s = -1 + 2.0 * k / N, org[3], d[3], t, px, pz;
@@ -139,7 +143,10 @@ static void groundrect (const lsys_scene *v, const lsys_render_opts *o, lsys_sha
       if (!(t > 0) && proj[15] != 1) continue;      /* (a parallel view's line is whole) */
       px = org[0] + t * d[0];
       pz = org[2] + t * d[2];
-      if (shallow && (px - c[0]) * fh[0] + (pz - c[2]) * fh[2] > 0) continue;
+      if (shallow) {                /* no farther than the default square's far edge */
+        double beyond = (px - c[0]) * fh[0] + (pz - c[2]) * fh[2] - far;
+        if (beyond > 0) { px -= beyond * fh[0]; pz -= beyond * fh[2]; }
+      }
       if (!g->has_rect) {
         g->has_rect = 1;
         g->rect[0] = g->rect[2] = px;
