@@ -75,6 +75,25 @@ describe("lsys.components geometry", function ()
     end
   end)
 
+  it("draws a leaf without a texture untextured on a textured stem", function ()
+    -- the turtle keeps its texture into a branch: the pine's needles were drawn with
+    -- their twigs' bark (tests/gallery_spec.lua measured them nearly black)
+    local stem = C.tree { name = "stem", length = 4, n = 3, texture = 1 }
+    stem:branch(C.leaf { name = "leaf" })
+    local view = { dir = "examples/components", textures = { { file = "bark.png" } } }
+    local m = C.model(stem, { seed = 1, view = view })
+    local text = tostring(m:derive())
+    local leaves, untextured = 0, 0
+    -- each leaf is a branch `[` ... `~S` whose modules before the surface set its look
+    for head in text:gmatch("%[([^%[%]]-)~") do
+      leaves = leaves + 1
+      if head:find("@Tx(0)", 1, true) then untextured = untextured + 1 end
+    end
+    assert.equal(3, leaves)
+    assert.equal(3, untextured)
+    assert.truthy(text:find("@Tx(1)", 1, true))           -- the stem keeps its bark
+  end)
+
   it("names the instance whose texture the view does not have", function ()
     assert.equal("lsys.components: leaf (at leaf#1): 'texture': 53, but the view has 0 " ..
                  "textures (view.textures)", errmsg(C.model, C.leaf { texture = 53 }))

@@ -150,6 +150,7 @@ int lsys_shade_compute (uint8_t *out, const lsys_scene *s, const lsys_shade_opts
              s->light[2] * s->light[2]);
   if (o->shadows && len > 0 && isfinite(len)) {
     size_t *which = (size_t *)(void *)nrm;          /* the vertices asked, in nrm's room */
+    double *cosk = nrm + nv;                        /* their facing, behind them */
     for (c = 0; c < 3; c++) l[c] = s->light[c] / len;
     for (nq = 0, v = 0; v < nv; v++) {
       double n[3], cs;
@@ -158,11 +159,15 @@ int lsys_shade_compute (uint8_t *out, const lsys_scene *s, const lsys_shade_opts
       if (cs < 0 && m->twosided[v]) { cs = -cs; for (c = 0; c < 3; c++) n[c] = -n[c]; }
       if (cs <= 0) continue;                        /* turned away: the light misses it */
       for (c = 0; c < 3; c++) pts[3 * nq + c] = m->pos[3 * v + c] + lift * n[c];
+      cosk[nq] = cs;
       which[nq++] = v;
     }
     k = shadowdirs(dirs, l, o->softness);
     if (nq > 0 && (st = query(s, dirs, k, 0, pts, NULL, nq, val, o, e)) != LSYS_OK) goto done;
-    for (k = 0; k < nq; k++) fac[which[k]] *= 1 - o->shadow_strength * (1 - val[k]);
+    /* a shadow takes away the key light, which gives a vertex in proportion to its
+    ** facing: one lit at a grazing angle loses little */
+    for (k = 0; k < nq; k++)
+      fac[which[k]] *= 1 - o->shadow_strength * (1 - val[k]) * cosk[k];
   }
   if (o->ao) {
     size_t na = 2 * (size_t)o->ao_samples, i;

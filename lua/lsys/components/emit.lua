@@ -274,11 +274,20 @@ PRIMDRAW = {
 }
 M.AREA = 63        -- the contour id of the Area primitive's open line
 
+-- The turtle keeps its texture into a branch: an instance without a texture of its own
+-- under a textured one (a leaf on a bark-textured twig) turns it off (w.tex: the texture
+-- the turtle has where the instance is drawn).
 local function setcolor (w, inst, default)
   local c = inst.proto:param("color") or default
   if c then w:op(";", c) end
   local tex = inst.proto:param("texture")
-  if tex and tex ~= 0 then w:op("@Tx", w:texture(inst, tex)) end
+  if tex and tex ~= 0 then
+    w:op("@Tx", w:texture(inst, tex))
+    w.tex = tex
+  elseif (w.tex or 0) ~= 0 then
+    w:op("@Tx", 0)
+    w.tex = 0
+  end
 end
 
 -- Children of a Tree along its stem, in the order of u.
@@ -436,6 +445,11 @@ local function leaf (w, inst)
   end
   local wr = w.wr
   wr:op(w:code(";"), p:param("color") or 2)
+  local tex = p:param("texture")
+  if (tex or 0) == 0 and (w.tex or 0) ~= 0 then      -- (a textured leaf's surface has its own)
+    w:op("@Tx", 0)
+    w.tex = 0
+  end
   wr:op(code, (inst.length or X.get(inst, "length")) * s)
 end
 
@@ -459,7 +473,7 @@ end
 
 emit = function (w, tree, inst)
   local wr = w.wr
-  local outer = w.inst
+  local outer, outertex = w.inst, w.tex
   w.inst = inst
   wr:open(inst.index, inst.fi)    -- `[` and the move to the instance's frame
   local kind = inst.kind
@@ -491,7 +505,7 @@ emit = function (w, tree, inst)
   end
   wr:close()                      -- `]`: the turtle as its parent left it
   if kind == "ffd" or kind == "hyperpatch" then w.deformers[#w.deformers + 1] = inst end
-  w.inst = outer
+  w.inst, w.tex = outer, outertex
 end
 
 -- The writer refuses numbers that are not finite: the lengths and widths that finite
