@@ -15,9 +15,9 @@
 ** lsys_grow_end, setters write the next state while getters (the arrays
 ** len, rad, rgb, ...) keep the state of the start of the tick; limbs added
 ** during a tick exist at once (and are counted at once in nalive and pcount:
-** Davison's spawning rule tests treeLimbs.size(), the list makeChild has just
-** appended to) but first run at the next tick; removals and leaves take
-** effect at the end of the tick.
+** the paper's spawning rule, section "Incremental rules", tests
+** treeLimbs.size(), the list makeChild has just appended to) but first run at
+** the next tick; removals and leaves take effect at the end of the tick.
 **
 ** Geometry lives in a scene (scene.h) the caller owns: each limb owns a fixed
 ** range of vertices and triangles (a cylinder of 'sides' sides: 2 sides

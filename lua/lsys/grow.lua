@@ -21,8 +21,8 @@
 -- spawning rule reads its scene's list of limbs); limbs spawned in a tick first run at the
 -- next one, and removals and leaves take effect at its end. Within a tick, limbs run in
 -- the order they were made and each limb's rules in the order they were declared (a kind's
--- base kind's first). Randomness comes from each
--- plant's seeded generator (`limb:random`), so a run is reproducible.
+-- base kind's first). Randomness comes from each plant's seeded generator (`limb:random`),
+-- so a run is reproducible.
 -- @module lsys.grow
 local core = require "lsys.core"
 local view = require "lsys.view"
