@@ -2409,7 +2409,9 @@ function grow.from_lstring(s, opts) end
 ---@class lsys.grow.Limb
 local Limb = {}
 --- Declares a rule: a function (limb, world), or { when = "condition", scale_length,
---- scale_radius, color, blend = {colour, t}, fn }. Replaces one of the same name.
+--- scale_radius, color, blend = {colour, t}, fn }; a condition reads length, radius, age,
+--- level, leaves and root as at the start of the tick, count (its plant's living limbs) and
+--- total (the world's) as they are when it runs. Replaces one of the same name.
 ---@param name string
 ---@param spec function|table
 function Limb:rule(name, spec) end
@@ -2431,7 +2433,7 @@ function Limb:has_leaves() end
 function Limb:is_root() end
 ---@return boolean
 function Limb:alive() end
----@return integer The living limbs of its plant at the start of the tick.
+---@return integer The living limbs of its plant, with those made so far in the tick.
 function Limb:count() end
 ---@return number[]
 function Limb:base() end
@@ -2498,6 +2500,7 @@ function World:limbs() end
 ---@param id integer
 ---@return lsys.grow.Limb?
 function World:limb(id) end
+--- The living limbs (of plant `plant`), with those made so far in the tick.
 ---@param plant? integer
 ---@return integer
 function World:count(plant) end

@@ -17,16 +17,18 @@ local function two (l)
   end
 end
 
--- The paper's three rules ('length', 'thickness', 'child limbs spawning'), for a kind.
-local function davison (K, cap)
+-- The paper's three rules ('length', 'thickness', 'child limbs spawning'), for a kind: at
+-- most `cap` (256) limbs a plant before spawning, or in the world with `scene`.
+local function davison (K, cap, scene)
   K:rule("length", function (l)
     if l:length() < 1.0 and not l:has_leaves() then l:scale_length(1.1) end
   end)
   K:rule("thickness", function (l)
     if l:radius() <= -0.05 * l:level() + 0.25 and not l:has_leaves() then l:scale_radius(1.05) end
   end)
-  K:rule("spawn", function (l)
-    if l:age() == 5 and l:count() <= (cap or 256) and not l:has_leaves() and l:level() < 10 then
+  K:rule("spawn", function (l, w)
+    local n = scene and w:count() or l:count()
+    if l:age() == 5 and n <= (cap or 256) and not l:has_leaves() and l:level() < 10 then
       two(l)
     end
   end)
@@ -167,6 +169,73 @@ describe("lsys.grow ticks", function ()
     local names = {}
     for _, r in ipairs(Sub:rules()) do names[#names + 1] = r[1] end
     assert.same({ "a", "b", "c" }, names)
+  end)
+
+  it("gives a kind its base's rules written as tables: condition, changes and fn", function ()
+    local calls = {}
+    local Base = grow.kind("base")
+    Base:rule("length", { when = "length < 1", scale_length = 1.1 })
+    Base:rule("bark", { when = "age >= 0", blend = { "#000000", 0.5 } })
+    Base:rule("mark", { when = "root == 1", fn = function (l) calls[#calls + 1] = l:kind() end })
+    local Sub = grow.kind("sub", Base)
+    local Sub2 = grow.kind("sub2", Sub)
+    Sub2:rule("length", { when = "length < 1", scale_length = 2 })   -- replaced here only
+    local w = grow.world()
+    local a = w:plant { kind = Base, color = "#ffffff" }
+    local b = w:plant { kind = Sub, color = "#ffffff" }
+    local c = w:plant { kind = Sub2, color = "#ffffff" }
+    w:tick()
+    assert.near(0.55, a:length(), 1e-12)
+    assert.near(0.55, b:length(), 1e-12)
+    assert.near(1, c:length(), 1e-12)
+    for _, l in ipairs { a, b, c } do assert.same({ 0.5, 0.5, 0.5 }, l:color()) end
+    assert.same({ "base", "sub", "sub2" }, calls)
+    w:tick()                                         -- c is 1 long: its condition fails
+    assert.near(0.605, a:length(), 1e-12)
+    assert.near(0.605, b:length(), 1e-12)
+    assert.near(1, c:length(), 1e-12)
+    assert.same({ "length", "bark", "mark" }, (function ()
+      local names = {}
+      for _, r in ipairs(Sub:rules()) do names[#names + 1] = r[1] end
+      return names
+    end)())
+  end)
+
+  it("counts a child as soon as it is made, in its plant and in the world", function ()
+    -- every new limb spawns two while its plant has at most 3 limbs (Davison's spawning
+    -- rule reads treeLimbs.size(), which makeChild appends to)
+    local function spawn2 (l) l:spawn {} l:spawn {} end
+    local function grown (rule, plants)
+      local K = grow.kind("k")
+      K:rule("spawn", rule)
+      local w = grow.world()
+      for _ = 1, plants or 1 do w:plant { kind = K } end
+      w:tick(4)
+      local per = {}
+      for p = 1, plants or 1 do per[p] = w:count(p) end
+      return w:count(), per
+    end
+    local seen = {}
+    assert.equal(5, grown(function (l)
+      if l:age() == 0 then
+        seen[#seen + 1] = l:count()
+        if l:count() <= 3 then spawn2(l) end
+      end
+    end))
+    assert.same({ 1, 3, 5, 5, 5 }, seen)             -- the second child sees the first's two
+    assert.equal(5, grown { when = "age == 0 and count <= 3", fn = spawn2 })
+    -- two plants: per plant, or in the whole world as the paper counts (total)
+    local n, per = grown({ when = "age == 0 and count <= 3", fn = spawn2 }, 2)
+    assert.equal(10, n)
+    assert.same({ 5, 5 }, per)
+    n, per = grown({ when = "age == 0 and total <= 3", fn = spawn2 }, 2)
+    assert.equal(4, n)
+    assert.same({ 3, 1 }, per)
+    n, per = grown(function (l, world)
+      if l:age() == 0 and world:count() <= 3 then spawn2(l) end
+    end, 2)
+    assert.equal(4, n)
+    assert.same({ 3, 1 }, per)
   end)
 
   it("adds leaves and removes subtrees at the end of the tick, reusing their geometry", function ()
@@ -325,12 +394,13 @@ end)
 
 describe("lsys.grow rules run in C", function ()
   -- The paper's rules with their conditions in C: the same plants as the Lua functions.
-  local function cdavison (K, cap)
+  local function cdavison (K, cap, scene)
     K:rule("length", { when = "length < 1.0 and leaves == 0", scale_length = 1.1 })
     K:rule("thickness", { when = "radius <= -0.05 * level + 0.25 and leaves == 0",
                           scale_radius = 1.05 })
     K:rule("spawn", {
-      when = "age == 5 and count <= " .. (cap or 256) .. " and leaves == 0 and level < 10",
+      when = "age == 5 and " .. (scene and "total" or "count") .. " <= " .. (cap or 256)
+        .. " and leaves == 0 and level < 10",
       fn = two,
     })
     return K
@@ -354,6 +424,20 @@ describe("lsys.grow rules run in C", function ()
     local b = grown(cdavison, 45)
     assert.is_true(#a > 100, #a)
     assert.same(a, b)
+    -- capped at 40 limbs a plant: both count each child as it is made
+    local wa, wb
+    a, wa = grown(function (K) return davison(K, 40) end, 45)
+    b, wb = grown(function (K) return cdavison(K, 40) end, 45)
+    assert.same(a, b)
+    for p = 1, 3 do
+      assert.is_true(wa:count(p) >= 41 and wa:count(p) <= 42, wa:count(p))
+      assert.equal(wa:count(p), wb:count(p))
+    end
+    -- and 40 in the world, as the paper counts
+    a, wa = grown(function (K) return davison(K, 40, true) end, 45)
+    b = grown(function (K) return cdavison(K, 40, true) end, 45)
+    assert.same(a, b)
+    assert.is_true(wa:count() >= 41 and wa:count() <= 42, wa:count())
   end)
 
   it("decides every condition as Lua does, fast path or expression machine", function ()

@@ -147,6 +147,61 @@ describe("lsys grow --frames", function ()
   end)
 end)
 
+describe("the pace of a live world", function ()
+  -- lsys.growview's loop against a stand-in for lsys.viewer (no window): it presses `keys`
+  -- one a poll, then closes (unless the loop ends first, as a screenshot does); what the
+  -- status line got (viewer.patch's notes, each change once) and what on_key saw are kept.
+  local function session (opts, keys)
+    local fake, notes, seen, serial, events, closed = {}, {}, {}, 0, nil, false
+    function fake.live (_, o) events = o.on_event end
+    function fake.patch (_, _, _, note)
+      if notes[#notes] ~= note then notes[#notes + 1] = note end
+      serial = serial + 1
+      return serial
+    end
+    function fake.state ()
+      return { open = not closed, serial = serial, drawn = serial, drawms = 1 }
+    end
+    function fake.poll ()
+      local k = table.remove(keys, 1)
+      if k then events { type = "key", key = k } else closed = not opts.screenshot end
+      return true
+    end
+    function fake.sync () end
+    function fake.screenshot (path) return path end
+    function fake.close () end
+    local saved = package.loaded["lsys.viewer"]
+    package.loaded["lsys.viewer"] = fake
+    opts.fit = false
+    opts.on_key = function (k, st) seen[#seen + 1] = k .. " " .. st.rate end
+    local ok, err = pcall(require("lsys.growview").live, function ()
+      local w = grow.world { ticks = 3 }
+      w:plant {}
+      return w
+    end, opts)
+    package.loaded["lsys.viewer"] = saved
+    assert(ok, err)
+    return notes, seen
+  end
+
+  it("is the paper's tick of 100 ms unless told, and the status line shows it", function ()
+    local notes, seen = session({}, { "right", "+", "space" })
+    assert.same({ "right 10", "+ 20", "space 20" }, seen)
+    assert.same({ "growing 10 ticks/s", "paused, 10 ticks/s", "paused, 20 ticks/s",
+                  "growing 20 ticks/s" }, notes)
+    notes, seen = session({ rate = 2 }, { "-", "-" })
+    assert.same({ "- 1", "- 1" }, seen)
+    assert.same({ "growing 2 ticks/s", "growing 1 ticks/s" }, notes)
+  end)
+
+  it("grows as fast as the window draws for a screenshot, unless given a rate", function ()
+    local notes = session({ screenshot = "x.png" }, {})
+    assert.same({ "growing as fast as drawn", "done" }, notes)
+    notes = session({ screenshot = "x.png", rate = 30 }, {})
+    assert.same({ "growing 30 ticks/s", "done" }, notes)
+  end)
+end)
+
 describe("#gl lsys grow in the window", function ()
   teardown(function () D.stop() end)
   it("grows the plants live and draws them as the offscreen renderer does", function ()

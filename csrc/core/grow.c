@@ -53,7 +53,7 @@ void lsys_grow_free (lsys_limbs *g) {
     g->parent, g->plant, g->first, g->next, g->last, g->prev, g->level, g->tag, g->age, g->flag, g->chg, g->len,
     g->rad, g->nlen, g->nrad, g->rgb, g->nrgb, g->loc, g->nloc, g->at, g->wp, g->wm, g->v0,
     g->t0, g->col, g->leaf, g->nleaves, g->lf_limb, g->lf_next, g->lf_k, g->lf_v0, g->lf_t0,
-    g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount, g->pcount0,
+    g->lf_size, g->lf_col, g->freelimb, g->freeleaf, g->ppos, g->pcount,
     g->pending, g->qmap, g->sh_mem
   };
   size_t k, maxlimbs = g->maxlimbs, maxmem = g->max_memory, hl = g->held_limb,
@@ -98,7 +98,7 @@ static int growsoa (const soa *a, size_t n, size_t *cap, size_t need, lsys_meter
 /* The per-limb, per-leaf and per-plant arrays of g (NLIMB, NLEAF, NPLANT of them). */
 #define NLIMB 27
 #define NLEAF 7
-#define NPLANT 3
+#define NPLANT 2
 
 static void limbarrays (lsys_limbs *g, soa a[NLIMB]) {
   const soa t[NLIMB] = {
@@ -127,8 +127,7 @@ static void leafarrays (lsys_limbs *g, soa a[NLEAF]) {
 
 static void plantarrays (lsys_limbs *g, soa a[NPLANT]) {
   const soa t[NPLANT] = {
-    {(void **)&g->ppos, 3 * sizeof *g->ppos}, {(void **)&g->pcount, sizeof *g->pcount},
-    {(void **)&g->pcount0, sizeof *g->pcount0}
+    {(void **)&g->ppos, 3 * sizeof *g->ppos}, {(void **)&g->pcount, sizeof *g->pcount}
   };
   memcpy(a, t, sizeof t);
 }
@@ -176,7 +175,7 @@ int lsys_grow_plant (lsys_limbs *g, const double pos[3], int32_t *id) {
   plantarrays(g, a);
   if ((r = reserve(g, g->held_plant, a, NPLANT, &g->pcap, g->np + 1)) != LSYS_OK) return r;
   vcopy(g->ppos + 3 * g->np, pos);
-  g->pcount[g->np] = g->pcount0[g->np] = 0;
+  g->pcount[g->np] = 0;
   *id = (int32_t)g->np++;
   return LSYS_OK;
 }
@@ -676,7 +675,6 @@ int lsys_grow_begin (lsys_limbs *g) {
   if (g->intick) return LSYS_EBUSY;
   g->intick = 1;
   g->n0 = g->n;
-  if (g->np > 0) memcpy(g->pcount0, g->pcount, g->np * sizeof *g->pcount);
   return LSYS_OK;
 }
 

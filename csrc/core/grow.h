@@ -14,8 +14,10 @@
 ** Ticks are parallel steps as in an L-system: between lsys_grow_begin and
 ** lsys_grow_end, setters write the next state while getters (the arrays
 ** len, rad, rgb, ...) keep the state of the start of the tick; limbs added
-** during a tick exist at once but first run at the next tick; removals and
-** leaves take effect at the end of the tick.
+** during a tick exist at once (and are counted at once in nalive and pcount:
+** the paper's spawning rule, section "Incremental rules", tests
+** treeLimbs.size(), the list makeChild has just appended to) but first run at
+** the next tick; removals and leaves take effect at the end of the tick.
 **
 ** Geometry lives in a scene (scene.h) the caller owns: each limb owns a fixed
 ** range of vertices and triangles (a cylinder of 'sides' sides: 2 sides
@@ -113,7 +115,8 @@ typedef struct lsys_limbs {
   /* plants */
   size_t np, pcap;
   double *ppos;           /* 3 each */
-  uint32_t *pcount, *pcount0;   /* living limbs now, and at the start of the tick */
+  uint32_t *pcount;       /* living limbs of each plant, counted as they are made (as
+                             nalive): not the state of the start of a tick */
   /* a tick */
   int intick;
   size_t n0;              /* limbs at its start: the ones that age at its end */

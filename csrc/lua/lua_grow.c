@@ -18,7 +18,7 @@
 **   getters (the state at the start of a tick within one):
 **     T:length(i) T:radius(i) T:color(i) -> r, g, b  T:age(i) T:level(i) T:parent(i) -> id|nil
 **     T:plant_of(i) T:alive(i) T:leaves(i) T:children(i) -> {ids}  T:count() (ids made)
-**     T:living([p]) -> live limbs (of plant p)  T:living0(p) -> at the start of the tick
+**     T:living([p]) -> live limbs (of plant p), counted as they are made
 **     T:base(i) -> x, y, z  T:tip(i) -> x, y, z  T:frame(i) -> R, H, F (lists)
 **   setters (the next state within a tick):
 **     T:set_length(i, x) T:set_radius(i, x) T:scale_length(i, f) T:scale_radius(i, f)
@@ -57,8 +57,12 @@ typedef struct crule {
 
 typedef struct ckind { crule *r; int n; } ckind;
 
-/* The variables a condition reads, in this order (lsys.grow's VARS). */
-enum { V_LENGTH, V_RADIUS, V_AGE, V_LEVEL, V_LEAVES, V_COUNT, V_ROOT, NVARS };
+/* The variables a condition reads, in this order (lsys.grow's VARS): the
+** limb's state at the start of the tick, but for V_COUNT and V_TOTAL, the
+** living limbs of its plant and of the world as they are when the rule runs
+** (with the children made so far in the tick: Davison's spawning rule reads
+** treeLimbs.size(), which makeChild appends to). */
+enum { V_LENGTH, V_RADIUS, V_AGE, V_LEVEL, V_LEAVES, V_COUNT, V_ROOT, V_TOTAL, NVARS };
 
 typedef struct llimbs {
   lsys_limbs g;
@@ -354,20 +358,18 @@ static int limbs_count (lua_State *L) {
   return 1;
 }
 
-static int living (lua_State *L, int start) {
+static int limbs_living (lua_State *L) {
   lsys_limbs *g = checklimbs(L);
   lua_Integer p;
-  if (lua_isnoneornil(L, 2) && !start) {
+  if (lua_isnoneornil(L, 2)) {
     lua_pushinteger(L, (lua_Integer)g->nalive);
     return 1;
   }
   p = luaL_checkinteger(L, 2);
   luaL_argcheck(L, p >= 1 && (lua_Unsigned)p <= g->np, 2, "no such plant");
-  lua_pushinteger(L, (lua_Integer)(start && g->intick ? g->pcount0 : g->pcount)[p - 1]);
+  lua_pushinteger(L, (lua_Integer)g->pcount[p - 1]);
   return 1;
 }
-static int limbs_living (lua_State *L) { return living(L, 0); }
-static int limbs_living0 (lua_State *L) { return living(L, 1); }
 
 static int limbs_base (lua_State *L) {
   lsys_limbs *g = checkwriter(L);
@@ -618,7 +620,7 @@ static int kindbox_gc (lua_State *L) {
 
 /* T:set_rules(kind, {rule, ...}): what the limbs tagged 'kind' run at each
 ** tick, in order; a rule is {code = {op, a, k, ...} (a condition over length,
-** radius, age, level, leaves, count, root), scale_length =, scale_radius =,
+** radius, age, level, leaves, count, root, total), scale_length =, scale_radius =,
 ** blend = {r, g, b, t}, color = {r, g, b}, fn = index in run's list}. The
 ** list is read once; the table is taken after it (its metamethods ran). */
 static int limbs_set_rules (lua_State *L) {
@@ -701,9 +703,11 @@ static int limbs_run (lua_State *L) {
     k = &t->kinds[g->tag[i]];
     args[V_LENGTH] = g->len[i]; args[V_RADIUS] = g->rad[i]; args[V_AGE] = g->age[i];
     args[V_LEVEL] = g->level[i]; args[V_LEAVES] = g->nleaves[i];
-    args[V_COUNT] = g->pcount0[g->plant[i]]; args[V_ROOT] = g->parent[i] < 0;
+    args[V_ROOT] = g->parent[i] < 0;
     for (j = 0; j < k->n; j++) {
       const crule *r = &k->r[j];
+      args[V_COUNT] = g->pcount[g->plant[i]];     /* as the limbs made so far leave them */
+      args[V_TOTAL] = (double)g->nalive;
       t->cur_rule = j + 1;
       t->cur_limb = (int32_t)i + 1;
       if (r->ncl > 0 ? !clauses(r, args)
@@ -750,7 +754,7 @@ static const luaL_Reg limbs_methods[] = {
   {"age", limbs_age}, {"level", limbs_level}, {"plant_of", limbs_plant_of},
   {"leaves", limbs_leaves}, {"parent", limbs_parent}, {"alive", limbs_alive},
   {"color", limbs_color}, {"children", limbs_children}, {"count", limbs_count},
-  {"living", limbs_living}, {"living0", limbs_living0}, {"base", limbs_base},
+  {"living", limbs_living}, {"base", limbs_base},
   {"tip", limbs_tip}, {"frame", limbs_frame}, {"set_length", limbs_set_length},
   {"set_radius", limbs_set_radius}, {"scale_length", limbs_scale_length},
   {"scale_radius", limbs_scale_radius}, {"set_color", limbs_set_color},

@@ -17,10 +17,12 @@
 --
 -- Ticks are parallel steps as in an L-system: every rule of a tick reads the state of the
 -- start of the tick (its writes go to the next state; two scales in one tick compound),
--- limbs spawned in a tick first run at the next one, and removals and leaves take effect at
--- its end. Within a tick, limbs run in the order they were made and each limb's rules in
--- the order they were declared (a kind's base kind's first). Randomness comes from each
--- plant's seeded generator (`limb:random`), so a run is reproducible.
+-- but for the limb counts, which count a child as soon as it is made (as the paper's
+-- spawning rule reads its scene's list of limbs); limbs spawned in a tick first run at the
+-- next one, and removals and leaves take effect at its end. Within a tick, limbs run in
+-- the order they were made and each limb's rules in the order they were declared (a kind's
+-- base kind's first). Randomness comes from each plant's seeded generator (`limb:random`),
+-- so a run is reproducible.
 -- @module lsys.grow
 local core = require "lsys.core"
 local view = require "lsys.view"
@@ -88,7 +90,11 @@ function M.kind (name, base)
     fail("kind '%s': the base must be a kind, got %s", name, tostring(base))
   end
   local rules = {}
-  for k, r in ipairs(base._rules) do rules[k] = { r[1], r[2] } end
+  for k, r in ipairs(base._rules) do       -- each entry whole: a table rule's condition and
+    local c = {}                           -- declared changes with its name and fn
+    for f, v in pairs(r) do c[f] = v end
+    rules[k] = c
+  end
   local K = setmetatable({ _name = name, _rules = rules, _base = base }, { __index = base })
   K.__index = K
   K.__tostring = Limb.__tostring
@@ -115,8 +121,10 @@ local function rgb (c, what, where)
   return v[1], v[2], v[3]
 end
 
--- What a condition (`when`) may read: the limb's state at the start of the tick.
-local VARS = { "length", "radius", "age", "level", "leaves", "count", "root" }
+-- What a condition (`when`) may read: the limb's state at the start of the tick, and the
+-- living limbs of its plant (`count`) and of the world (`total`) as they are when the rule
+-- runs, with the limbs made so far in the tick (csrc/lua/lua_grow.c, V_COUNT).
+local VARS = { "length", "radius", "age", "level", "leaves", "count", "root", "total" }
 local FORMALS = {}
 for k, v in ipairs(VARS) do FORMALS[v] = k - 1 end
 local CONDENV = { math = math }
@@ -169,7 +177,7 @@ end
 --- Adds rule `name` to the kind, after its others; a rule of the same name (from the base
 -- kind) is replaced where it was. The rule is a function (limb, world) run for every limb
 -- of the kind at every tick, or a table run in C: { when = "length < 1 and leaves == 0"
--- (a condition over length, radius, age, level, leaves, count, root; none: always),
+-- (a condition over length, radius, age, level, leaves, count, root, total; none: always),
 -- scale_length =, scale_radius =, color =, blend = {colour, fraction}, fn = function (limb,
 -- world) called only where the condition holds }.
 function Limb.rule (K, name, spec)
@@ -229,8 +237,10 @@ function Limb:leaves () return self._T:leaves(self._id) end
 function Limb:has_leaves () return self._T:leaves(self._id) > 0 end
 function Limb:is_root () return self._T:parent(self._id) == nil end
 function Limb:alive () return self._T:alive(self._id) end
---- The number of living limbs of its plant at the start of the tick (now, outside one).
-function Limb:count () return self._T:living0(self._p) end
+--- The number of living limbs of its plant, counted as they are made: within a tick, with
+-- the limbs spawned so far in it (Davison's spawning rule tests `treeLimbs.size()`, which
+-- `makeChild` has just appended to); the limbs removed in it go at its end.
+function Limb:count () return self._T:living(self._p) end
 function Limb:base () return self._T:base(self._id) end
 function Limb:tip () return self._T:tip(self._id) end
 

@@ -384,12 +384,13 @@ In the window: space pauses and resumes (at the end, grows on), right grows one 
 - change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace
 starts again; drag orbits, right-drag pans, scroll zooms, R resets the view, F fits, W
 wireframe, S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
-the triangles and the frames drawn a second.
+the triangles, the frames drawn a second and the ticks a second.
 
 Options:
   --ticks N            how long to grow (default: the world's length, else 100)
   --seed S             the seed given to world(opts) (a file returning a World seeds it)
-  --rate R             ticks a second (default: as fast as the window draws them)
+  --rate R             ticks a second (default 10, the paper's tick of 100 ms; with
+                       --screenshot, as fast as the window draws them)
   --size WxH           window or picture size (default 1000x600)
   --screenshot OUT.png grow to the end in the window, save its picture, exit; prints the
                        window's drawing rate while growing

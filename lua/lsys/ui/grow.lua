@@ -104,8 +104,15 @@ local HELP = "drag: orbit   right-drag / shift-drag: pan   scroll: zoom\n"
 
 local RATES = { 1, 2, 5, 10, 20, 30, 60, math.huge }   -- ticks a second; huge: as fast as drawn
 
+-- The ticks a second of a live world that does not say: Davison's system "is activated every
+-- 100ms (the time interval between rewrites)" (002_f23b3156d9f0bdc0.txt, "Incremental
+-- rules"), a pace at which one sees the plants grow; as fast as the window draws (about 60
+-- a second) a world of 60 ticks is grown in a second.
+M.RATE = 10
+
 --- Grows the world in the window, live, until the window is closed. opts: `ticks`, `rate`
--- (ticks a second; default: as fast as the window draws each one), `width`, `height`,
+-- (ticks a second: default M.RATE, 10, or with `screenshot` as fast as the window draws
+-- each one), `width`, `height`,
 -- `title`, `screenshot` (a PNG path: grow to the end, save the window's picture, close),
 -- `on_tick(world)`, `on_key(key, state)` (after a growth key was handled: state { ticks,
 -- limbs, playing, rate }), `fit` (false: frame the plants as they are, without growing them
@@ -125,20 +132,18 @@ function M.live (make, opts)
   end
   local w = make()
   local n = length(w, opts.ticks)
-  local ri = #RATES
-  if opts.rate ~= nil then
-    ri = 1
-    while RATES[ri] < opts.rate and ri < #RATES do ri = ri + 1 end
-  end
-  local rate = opts.rate or RATES[ri]
+  local rate = opts.rate or (opts.screenshot and math.huge or M.RATE)
+  local ri = 1                            -- + and - go on from the nearest step above
+  while RATES[ri] < rate and ri < #RATES do ri = ri + 1 end
   local playing, onward = true, false     -- onward: grows past the end (space there)
   local serial, nextt = 0, 0
   local keys = {}
   local run = {}                          -- the figures of growing to the end
+  -- the status line's end: what the growth does, at what pace
   local function note ()
     if w.ticks >= n and not onward then return "done" end
-    if not playing then return "paused" end
-    return rate == math.huge and "growing" or format("growing %g/s", rate)
+    local pace = rate == math.huge and "as fast as drawn" or format("%g ticks/s", rate)
+    return (playing and "growing " or "paused, ") .. pace
   end
   -- the window draws one tick while the next grows: a tick waits for the one before the
   -- last to be on screen (prev), so ticks never pile up ahead of the pictures

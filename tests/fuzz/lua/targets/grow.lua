@@ -108,10 +108,11 @@ local function luarule (r, subkind)
     local env = { math = math }
     local chunk = load("return " .. r.when, "=when", "t", env)
     if chunk == nil then return nil, "the condition does not compile in Lua" end
-    cond = function (limb)
+    cond = function (limb, world)
       env.length, env.radius = limb:length() + 0.0, limb:radius() + 0.0
       env.age, env.level, env.leaves = limb:age() + 0.0, limb:level() + 0.0, limb:leaves() + 0.0
       env.count, env.root = limb:count() + 0.0, limb:is_root() and 1.0 or 0.0
+      env.total = world:count() + 0.0
       local v = chunk()
       if type(v) == "number" then return v ~= 0 end
       return v
@@ -120,7 +121,7 @@ local function luarule (r, subkind)
   local t = tablerule(r)
   local fn = t.fn
   return function (limb, world)
-    if cond and not cond(limb) then return end
+    if cond and not cond(limb, world) then return end
     if t.scale_length then limb:scale_length(t.scale_length) end
     if t.scale_radius then limb:scale_radius(t.scale_radius) end
     if t.blend then limb:blend_color(t.blend[1], t.blend[2]) end
@@ -332,6 +333,7 @@ T.seeds = {
 }
 
 T.dict = { "rule ", " | ", "\n", "length", "radius", "age", "level", "leaves", "count", "root",
+           "total",
            " and ", " or ", "not ", "<", "<=", ">", ">=", "==", "~=", "+", "-", "*", "/", "//",
            "%", "^", "(", ")", "math.", "math.pi", "math.huge", "abs(", "floor(", "sqrt(",
            "min(", "max(", "fmod(", "atan(", "sin(", "scale_length ", "scale_radius ",
