@@ -204,12 +204,32 @@ end)
 
 describe("#gl lsys grow in the window", function ()
   teardown(function () D.stop() end)
+  it("draws a 3D plant over the sky and on the ground, as lsys render does", function ()
+    local ok, why = D.start()
+    if not ok then return pending(why) end
+    local dir = tmpdir()
+    local function shot (flags)
+      local out, code = run(D.env .. BIN .. " grow " .. DAVISON .. " --ticks 30 --size 300x180 "
+        .. flags .. " --screenshot " .. dir .. "/w.png")
+      assert.equal(0, code, out)
+      local px, w = core.png_read(dir .. "/w.png")
+      local function at (x, y) return { px:byte(4 * (y * w + x) + 1, 4 * (y * w + x) + 3) } end
+      return at(150, 2), at(5, 150)       -- the top edge's middle, low on the left
+    end
+    local top, low = shot("")
+    -- the sky's top colour (0.55, 0.72, 0.92) above, the ground's grey-green below
+    assert.is_true(top[3] > top[1] + 40, table.concat(top, " "))
+    assert.is_true(low[2] > low[3] and low[1] < 220, table.concat(low, " "))
+    local ftop, flow = shot("--flat")
+    assert.same(ftop, flow)                -- the view's background, the same everywhere
+  end)
+
   it("grows the plants live and draws them as the offscreen renderer does", function ()
     local ok, why = D.start()
     if not ok then return pending(why) end
     local dir = tmpdir()
     local out, code = run(D.env .. BIN .. " grow " .. DAVISON .. " --ticks 30 --size 300x180"
-      .. " --screenshot " .. dir .. "/live.png")
+      .. " --flat --screenshot " .. dir .. "/live.png")
     assert.equal(0, code, out)
     assert.matches("limbs after 30 ticks; the window drew %d+ frames", out)
     run(BIN .. " grow " .. DAVISON .. " --ticks 30 --size 300x180 --frames " .. dir .. "/f"

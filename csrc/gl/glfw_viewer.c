@@ -91,7 +91,8 @@ struct lsys_viewer {
   int moved;
   int playing;
   double rate, nextt;
-  int wireframe, help, dirty, light;   /* light: leaves coloured by it (the L key) */
+  int wireframe, help, dirty, light, plain;   /* light: leaves coloured by it (the L key);
+                                                 plain: no sky and no ground (the G key) */
   double drawms;                  /* smoothed time to draw a frame */
   int seqreq;                     /* 1: the S key while animating: save every frame */
   char drawerr[256];              /* why the last picture could not be drawn (status line) */
@@ -163,6 +164,8 @@ static void frameview (lsys_viewer *v, const lsys_vframe *f, lsys_scene *sc,
   o->gl = &v->gl;
   o->cache = &v->cache;
   o->keep_textures = 1;
+  if (v->snap != NULL && !v->plain && (f->sc.mesh.nt > 0 || f->sc.ninst > 0))
+    lsys_render_backdrops(o, &sc->cam, v->snap->sky, v->snap->ground);
 }
 
 /*
@@ -412,6 +415,9 @@ static void key (lsys_viewer *v, int k, int mods) {
     case GLFW_KEY_W:
       v->wireframe = !v->wireframe;
       v->dirty = 1;
+      break;
+    case GLFW_KEY_G:              /* the sky and the ground off and on again */
+      v->plain = !v->plain, v->dirty = 1;
       break;
     case GLFW_KEY_L: {            /* the caller gives the frames their colours */
       lsys_vevent e;

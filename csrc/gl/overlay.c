@@ -86,7 +86,7 @@ const char lsys_overlay_help[] =
   "left / right: step back / forward   home / end: first / last\n"
   "space: animate   + / -: faster / slower\n"
   "R: reset view   F: fit   W: wireframe   S: screenshot\n"
-  "L: colour the leaves by the light they receive\n"
+  "L: colour the leaves by the light they receive   G: sky and ground\n"
   "S while animating: save every step (this camera) to a folder\n"
   "H: this help   Esc / Q: quit";
 

@@ -513,6 +513,40 @@ static void drawtriangles (const frame *F, int translucent, int wireframe) {
   gl->Disable(GL_LIGHTING);
 }
 
+/* The floor of o (a window's ground): one quad facing up, lit as a solid
+** surface of its colour, under the camera's own matrices. */
+static void drawfloor (const frame *F, const lsys_render_opts *o) {
+  static const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+  const lsys_gl *gl = F->gl;
+  const double *r = o->floor_rect;
+  float pos[12], nrm[12];
+  uint8_t rgba[16];
+  lsys_material mt;
+  int k, c;
+  for (k = 0; k < 4; k++) {         /* counterclockwise seen from above */
+    pos[3 * k] = (float)(k == 0 || k == 1 ? r[1] : r[3]);
+    pos[3 * k + 1] = (float)r[0];
+    pos[3 * k + 2] = (float)(k == 0 || k == 3 ? r[2] : r[4]);
+    nrm[3 * k] = 0; nrm[3 * k + 1] = 1; nrm[3 * k + 2] = 0;
+    for (c = 0; c < 3; c++) rgba[4 * k + c] = (uint8_t)(o->floor_rgb[c] * 255 + 0.5f);
+    rgba[4 * k + 3] = 255;
+  }
+  lsys_mesh_material_color(&mt, o->floor_rgb[0], o->floor_rgb[1], o->floor_rgb[2]);
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadMatrixd(F->view);
+  gl->Enable(GL_LIGHTING);
+  gl->EnableClientState(GL_VERTEX_ARRAY);
+  gl->EnableClientState(GL_NORMAL_ARRAY);
+  gl->EnableClientState(GL_COLOR_ARRAY);
+  gl->VertexPointer(3, GL_FLOAT, 0, pos);
+  gl->NormalPointer(GL_FLOAT, 0, nrm);
+  gl->ColorPointer(4, GL_UNSIGNED_BYTE, 0, rgba);
+  setmaterial(gl, &mt);
+  gl->DrawElements(GL_TRIANGLES, 6, GL_UNSIGNED_INT, idx);
+  gl->DisableClientState(GL_NORMAL_ARRAY);
+  gl->Disable(GL_LIGHTING);
+}
+
 /* ---------------------------------------------------------------------- */
 /* lines */
 
@@ -932,6 +966,7 @@ int lsys_render_draw (const lsys_scene *s, const lsys_render_opts *o, int fbw, i
     }
     drawtriangles(&F, 0, o->wireframe);
   }
+  if (o->floor && !o->wireframe) drawfloor(&F, o);
   if (F.m->nl > 0) drawlines(&F);
   if (F.m->nt > 0) drawtriangles(&F, 1, o->wireframe);   /* translucent, over everything */
   gl->DisableClientState(GL_VERTEX_ARRAY);

@@ -140,7 +140,33 @@ typedef struct lsys_render_opts {
                                diffuse colour: baked shadows and occlusion (shade.h) */
   int sky;                  /* 1: a vertical gradient behind the scene (backdrop.c) */
   float sky_top[3], sky_bottom[3];   /* its colours at the top and bottom edges */
+  int floor;                /* 1: a lit ground quad facing up (the window's ground; a
+                               picture's is part of its mesh, to take shadows) */
+  double floor_rect[5];     /* its height y, then x0, z0, x1, z1 */
+  float floor_rgb[3];       /* its colour */
 } lsys_render_opts;
+
+/* The sky and ground colours lsys.render gives a shaded picture (docs/drawing.md). */
+extern const float lsys_render_sky_top[3], lsys_render_sky_bottom[3], lsys_render_ground[3];
+
+/*
+** Whether what lies in the box lo .. hi, drawn with triangles, is a 3D plant:
+** the box is deep in every direction (at least 1/20 of its largest extent), as
+** lsys.render.solid decides for `lsys render`'s shading.
+*/
+int lsys_render_solid (const double lo[3], const double hi[3]);
+
+/* Sets o's floor under the box lo .. hi: just under its lowest point, the
+** square centred under it that a picture's ground starts from
+** (lsys_shade_add_ground's, size 1.6), in the ground colour. A window's camera
+** moves, so the floor is not grown to what it sees. */
+void lsys_render_setfloor (lsys_render_opts *o, const double lo[3], const double hi[3]);
+
+/* A window's sky (when 'sky') and floor (when 'ground', and the eye is above
+** the plant's foot) in o for what camera 'cam' frames, its bounds (has_bounds)
+** a 3D plant's (lsys_render_solid), as lsys render shades one; the bounds grow
+** over the floor, so that the near and far planes reach it. */
+void lsys_render_backdrops (lsys_render_opts *o, lsys_camera *cam, int sky, int ground);
 
 /* Draws the sky gradient of o over the whole viewport, behind everything
 ** (without writing depth), then loads the camera's matrices proj and view

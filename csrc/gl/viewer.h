@@ -87,6 +87,9 @@ typedef struct lsys_vsnap {
                                    mesh as posted is ignored: the patches fill it) */
   int light;                    /* the L key's colours by light: 1 on, 0 off, -1 (the
                                    default) as they were */
+  int sky, ground;              /* 1: a 3D frame (lsys_render_solid) is drawn over the sky
+                                   gradient, on a ground, as lsys render shades it (the G
+                                   key turns both off) */
 } lsys_vsnap;
 
 /* A new empty snapshot with room for n frames (each frame's scene

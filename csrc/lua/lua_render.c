@@ -65,8 +65,6 @@ static void rgbfield (lua_State *L, int t, const char *k, float rgb[3], const fl
 ** colour into gcol. Returns 1 when a ground is asked. */
 static int readshade (lua_State *L, int t, lsys_shade_opts *so, lsys_shade_ground *g,
                       float gcol[3], lsys_render_opts *o) {
-  static const float top[3] = {0.55f, 0.72f, 0.92f}, bottom[3] = {0.93f, 0.95f, 0.97f};
-  static const float grey[3] = {0.72f, 0.76f, 0.68f};
   int ground, s;
   lsys_shade_defaults(so);
   memset(g, 0, sizeof *g);
@@ -93,9 +91,9 @@ static int readshade (lua_State *L, int t, lsys_shade_opts *so, lsys_shade_groun
   so->threads = (int)numfield(L, s, "threads", 2);
   g->size = numfield(L, s, "ground_size", g->size);
   g->cells = (int)numfield(L, s, "ground_cells", g->cells);
-  rgbfield(L, s, "ground_color", gcol, grey);
-  rgbfield(L, s, "sky_top", o->sky_top, top);
-  rgbfield(L, s, "sky_bottom", o->sky_bottom, bottom);
+  rgbfield(L, s, "ground_color", gcol, lsys_render_ground);
+  rgbfield(L, s, "sky_top", o->sky_top, lsys_render_sky_top);
+  rgbfield(L, s, "sky_bottom", o->sky_bottom, lsys_render_sky_bottom);
   lua_pop(L, 1);
   return ground;
 }

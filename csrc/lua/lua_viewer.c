@@ -308,6 +308,8 @@ static void readpostopts (lua_State *L, int t, lsys_vsnap *s, int n) {
     s->light = lua_toboolean(L, -1);
     lua_pop(L, 1);
   }
+  s->sky = lsysL_optbool(L, &po, "sky", 0);
+  s->ground = lsysL_optbool(L, &po, "ground", 0);
   s->keep_camera = lsysL_optbool(L, &po, "keep_camera", 0);
   s->capture = lsysL_optbool(L, &po, "capture", 0);
   s->live = lsysL_optbool(L, &po, "live", 0);

@@ -167,8 +167,9 @@ function M.solid (scene)
   return d[1] >= big / 20 and d[2] >= big / 20 and d[3] >= big / 20
 end
 
--- Whether the scene's view has a background of its own (not lsys.view's default).
-local function ownbackground (scene)
+--- Whether the scene's view has a background of its own (not lsys.view's default): then
+-- `lsys render` and the window draw no sky behind it.
+function M.ownbackground (scene)
   local v = model.sceneview(scene)
   local b, d = v and v.background, view.DEFAULTS.background
   if type(b) ~= "table" then return false end
@@ -183,7 +184,7 @@ function M.shaded (scene, opts, background)
   if M.solid(scene) then
     if opts.shadows == nil then opts.shadows = true end
     if opts.ground == nil then opts.ground = true end
-    if opts.sky == nil and not background and not ownbackground(scene) then opts.sky = true end
+    if opts.sky == nil and not background and not M.ownbackground(scene) then opts.sky = true end
   end
   return opts
 end

@@ -31,6 +31,7 @@ local load = require "lsys.load"
 local warning = require "lsys.warning"
 local edit = require "lsys.ui.edit"
 local tune = require "lsys.ui.tune"
+local lrender = require "lsys.render"
 
 local type, pairs, ipairs, error, pcall, tostring, getmetatable =
       type, pairs, ipairs, error, pcall, tostring, getmetatable
@@ -85,8 +86,16 @@ local SHOW_OPTS = {
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
   model = "table", lines = "table", capture = "boolean", history = "number",
   frames_dir = "string", light_colours = "boolean", edit = "boolean", file = "string",
-  out = "function", on_build = "function",
+  out = "function", on_build = "function", flat = "boolean",
 }
+
+-- The sky and ground of a window showing `scene` (post options): as lsys render shades a
+-- 3D plant (the window draws them under a frame that is one: csrc/gl/render.h's
+-- lsys_render_solid), no sky over a view's own background; none with `flat`.
+local function backdrop (scene, flat)
+  if flat then return false, false end
+  return not lrender.ownbackground(scene), true
+end
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
 -- itself.
@@ -302,7 +311,8 @@ function M.edit (subject, opts)
       S.steps = { m and m.steps or nil }
       local f, vw = frame(scene, S.steps[1], s and #s or nil, true)
       local tex = vw and vw.textures
-      v:post({ f }, { keep_camera = not first or nil, title = title,
+      local sky, ground = backdrop(scene, opts.flat)
+      v:post({ f }, { keep_camera = not first or nil, title = title, sky = sky, ground = ground,
                       textures = tex and #tex > 0 and tex or nil })
       first = false
       S.nframes, S.current, S.lit = 1, 1, {}
@@ -420,8 +430,10 @@ function M.show (x, opts)
   end
   if opts.frames_dir == "" then fail("option 'frames_dir' must not be empty", 2) end
   local v = open(opts, "lsys.show")
+  local sky, ground = backdrop(frames[#frames].scene, opts.flat)
   v:post(frames, {
     first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
+    sky = sky, ground = ground,
     frames_dir = opts.frames_dir or frames_dir(opts.title or model.ismodel(x) and
                                                (x.name or model.where(x)) or nil),
     keep_camera = opts.keep_camera, capture = opts.capture,
@@ -449,7 +461,8 @@ function M.live (scene, opts)
   detach()
   S.strings, S.steps, S.populations, S.model = {}, {}, {}, nil
   local f = frame(scene, 0, 0, false)
-  v:post({ f }, { live = true, fit = opts.fit, capture = true,
+  local sky, ground = backdrop(scene, opts.flat)
+  v:post({ f }, { live = true, fit = opts.fit, capture = true, sky = sky, ground = ground,
                   title = "lsys: " .. (opts.title or "growing") })
   v:text(nil, opts.help or "")
   S.on_pick, S.on_event = nil, opts.on_event

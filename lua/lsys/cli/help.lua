@@ -228,7 +228,7 @@ Options: as for `lsys render`; -o is required.
 
 HELP.view = [=[
 usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--show K] [--rate R] [--no-status]
-                 [--last | --history SIZE] [--edit | --no-edit]
+                 [--last | --history SIZE] [--edit | --no-edit] [--flat]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
                  [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
                  [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
@@ -245,7 +245,8 @@ closes with Esc or Q, and Ctrl-C here closes it too.
 
 In the window: drag to orbit, right-drag or shift-drag to pan, scroll to zoom; left and
 right arrows step through the derivation, space animates, + and - change the speed;
-R resets the view, F fits, W toggles wireframe, L colours the leaves by the light they
+R resets the view, F fits, W toggles wireframe, G the sky and ground of a 3D plant
+(--flat: none), L colours the leaves by the light they
 receive (and back), S saves a screenshot (lsys-NNN.png) -- while animating, every step
 through the window's camera into MODEL-frames/ --, H shows this list.
 
@@ -266,6 +267,7 @@ Options:
                        it the window keeps every 2nd, 4th, ... step and the last
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
+  --flat               no sky and no ground under a 3D plant (the G key turns them on)
   --edit               the editing panes for any model (its last step); --no-edit: none,
                        every step as for a model without params
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,
@@ -369,7 +371,8 @@ Options:
 ]]
 
 HELP.grow = [[
-usage: lsys grow FILE [--ticks N] [--seed S] [--rate R] [--size WxH] [--screenshot OUT.png]
+usage: lsys grow FILE [--ticks N] [--seed S] [--rate R] [--size WxH] [--flat]
+                      [--screenshot OUT.png]
        lsys grow FILE --frames DIR [--every K] [--ticks N] [--seed S] [--size WxH]
 
 Incremental growth (Davison, "Incremental rules for growing plants"; docs/grow.md). FILE is a
@@ -383,7 +386,7 @@ place.
 In the window: space pauses and resumes (at the end, grows on), right grows one tick, + and
 - change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace
 starts again; drag orbits, right-drag pans, scroll zooms, R resets the view, F fits, W
-wireframe, S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
+wireframe, G sky and ground (--flat: none), S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
 the triangles, the frames drawn a second and the ticks a second.
 
 Options:
@@ -394,6 +397,7 @@ Options:
   --size WxH           window or picture size (default 1000x600)
   --screenshot OUT.png grow to the end in the window, save its picture, exit; prints the
                        window's drawing rate while growing
+  --flat               no sky and no ground (the G key turns them on)
   --frames DIR         no window: one PNG per tick into DIR (tick-0000.png, ...), one camera
   --every K            with --frames: every K-th tick (and the last)
   -h, --help           show this help

@@ -80,7 +80,8 @@ end
 
 M.HELP = [[
 over the plant: drag orbit, right drag pan, wheel zoom, click pick   R: reset view   F: fit
-W: wireframe   L: light on the leaves   S: screenshot   H: this help   Esc / Q: quit
+W: wireframe   G: sky and ground   L: light on the leaves   S: screenshot   H: this help
+Esc / Q: quit
 the tabs (or Tab): the panes   Ctrl+S: save the edits   Ctrl+Z: undo the last edit]]
 
 local SUPERSEDED = setmetatable({}, { __tostring = function () return "superseded" end })

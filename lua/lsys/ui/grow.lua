@@ -100,7 +100,7 @@ end
 local HELP = "drag: orbit   right-drag / shift-drag: pan   scroll: zoom\n"
   .. "space: pause / grow   right: one tick   + / -: faster / slower\n"
   .. "backspace: start again   R: reset view   F: fit   W: wireframe   S: screenshot\n"
-  .. "H: this help   Esc / Q: quit"
+  .. "G: sky and ground   H: this help   Esc / Q: quit"
 
 local RATES = { 1, 2, 5, 10, 20, 30, 60, math.huge }   -- ticks a second; huge: as fast as drawn
 
@@ -113,7 +113,8 @@ M.RATE = 10
 --- Grows the world in the window, live, until the window is closed. opts: `ticks`, `rate`
 -- (ticks a second: default M.RATE, 10, or with `screenshot` as fast as the window draws
 -- each one), `width`, `height`,
--- `title`, `screenshot` (a PNG path: grow to the end, save the window's picture, close),
+-- `title`, `flat` (no sky and no ground), `screenshot` (a PNG path: grow to the end, save
+-- the window's picture, close),
 -- `on_tick(world)`, `on_key(key, state)` (after a growth key was handled: state { ticks,
 -- limbs, playing, rate }), `fit` (false: frame the plants as they are, without growing them
 -- once first). Returns { ticks, limbs, drawn, fps, seconds, full, drawms, screenshot }: the
@@ -154,6 +155,7 @@ function M.live (make, opts)
   local function show ()
     viewer.live(w:scene(), {
       title = opts.title, width = opts.width, height = opts.height, fit = box, help = HELP,
+      flat = opts.flat,
       on_event = function (ev) if ev.type == "key" then keys[#keys + 1] = ev.key end end,
     })
     send()

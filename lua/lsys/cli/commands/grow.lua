@@ -16,7 +16,7 @@ local _ENV = nil
 
 local GROW_OPTS = {
   ticks = "value", seed = "value", rate = "value", size = "value", screenshot = "value",
-  frames = "value", every = "value", help = "flag", short = { h = "help" },
+  frames = "value", every = "value", flat = "flag", help = "flag", short = { h = "help" },
 }
 
 -- `lsys grow FILE`: the world live in the window, or --frames DIR.
@@ -60,7 +60,8 @@ local function run (args)
     return 0
   end
   local r = GV.live(make, { ticks = ticks, rate = rate, width = w, height = h,
-                            screenshot = opts.screenshot, title = pos[1] })
+                            screenshot = opts.screenshot, title = pos[1],
+                            flat = opts.flat or nil })
   if r.screenshot then
     out(format("wrote %s: %d limbs after %d ticks; the window drew %d frames in %.2f s "
       .. "(%.1f frames a second) while growing\n", r.screenshot, r.limbs, r.ticks, r.drawn,
