@@ -300,7 +300,8 @@ M.PICTURES = {
   -- incremental growth after Davison, examples/grow: a world grown to its length
   { "grow/davison.lua", nil, "Davison's five trees",
     "The paper's length, thickness and spawning rules (at most 256 limbs a tree before "
-    .. "spawning, level < 10), young shoots browning with age, leaves on the upper twigs; 60 ticks.",
+    .. "spawning, level < 10), young shoots browning with age, leaves on the upper twigs; "
+    .. "60 ticks.",
     grow = true, png = "grow/davison.png", width = 480, height = 270 },
   { "grow/forest.lua", nil, "A forest of 20,000 limbs",
     "Five trees, a leader and a side branch at each fork rolled by the golden angle, grown "

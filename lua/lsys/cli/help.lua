@@ -386,8 +386,9 @@ place.
 In the window: space pauses and resumes (at the end, grows on), right grows one tick, + and
 - change the speed (1 to 60 ticks a second, or as fast as the window draws), backspace
 starts again; drag orbits, right-drag pans, scroll zooms, R resets the view, F fits, W
-wireframe, G sky and ground (--flat: none), S screenshot, H help, Esc or Q quits. The status line shows the tick, the limbs,
-the triangles, the frames drawn a second and the ticks a second.
+wireframe, G sky and ground (--flat: none), S screenshot, H help, Esc or Q quits. The
+status line shows the tick, the limbs, the triangles, the frames drawn a second and the
+ticks a second.
 
 Options:
   --ticks N            how long to grow (default: the world's length, else 100)
