@@ -5,7 +5,7 @@
 -- published works, docs/manual.md §12); every `lsys COMMAND` a page shows is a command of
 -- the program; every JSON example reads, and the sketch files among them make a plant; the
 -- examples index names every file and folder of examples/, and the README every example
--- folder.
+-- folder and every package setup.sh installs.
 local H = require "tests.helper"
 
 -- The pages checked: every Markdown file of the repository but the changelog, which
@@ -253,6 +253,19 @@ describe("the documentation", function ()
     end
     assert.is_true(blocks >= 3)
     assert.equal(1, sketches)
+  end)
+
+  it("lists in the README every package setup.sh installs, and no other", function ()
+    local installs = output_lines("./setup.sh --packages")
+    assert.is_true(#installs > 10)
+    local listed = read("README.md"):match("installs the missing ones of these packages.-:%s*`"
+      .. "([^`]+)`")
+    assert.is_string(listed, "the README's list of packages")
+    local readme = {}
+    for p in listed:gmatch("%S+") do readme[#readme + 1] = p end
+    table.sort(installs)
+    table.sort(readme)
+    assert.same(installs, readme)
   end)
 
   it("indexes every folder and file of examples/ in examples/README.md", function ()

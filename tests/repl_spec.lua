@@ -297,7 +297,9 @@ describe("the REPL in a terminal", function()
 
   it("pages help with less on a terminal without $PAGER (tmux); q goes back to the prompt",
      function()
-    if not D.have("tmux") then pending("tmux is not installed") return end
+    for _, tool in ipairs { "tmux", "less" } do
+      if not D.have(tool) then pending(tool .. " is not installed (./setup.sh does)") return end
+    end
     local home = tmphome()
     local sock = "lsys-repl-" .. H.absolute(home):gsub("%W", "")
     local function tmux (args)
