@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages lsys needs (only those missing), builds into build/ and renders
-# the default plant headless to tree.png (OSMesa). Usage: ./setup.sh [--no-run]
-#   --no-run   install and build only (./test.sh uses this)
+# the default plant headless to tree.png (OSMesa). Usage: ./setup.sh [--no-run | --packages]
+#   --no-run     install and build only (./test.sh uses this)
+#   --packages   list the packages it installs, one a line, and do nothing else
 # Environment: BUILD_DIR (default build), BUILD_TYPE (default Release), JOBS (default nproc).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -20,6 +21,7 @@ PACKAGES=(
   graphviz                                 # `lsys components graph` pictures (dot)
   ffmpeg                                   # `lsys animate` videos and GIFs
   parallel                                 # GNU parallel: `lsys batch --shard` tests, bench
+  less tmux                                # the REPL's pager, and a terminal for its test
 )
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-Release}
@@ -29,7 +31,8 @@ run_example=1
 for a in "$@"; do
   case $a in
     --no-run) run_example=0 ;;
-    -h|--help) sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --packages) printf '%s\n' "${PACKAGES[@]}"; exit 0 ;;
+    -h|--help) sed -n '2,6p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "setup.sh: unknown argument '$a' (see ./setup.sh --help)" >&2; exit 2 ;;
   esac
 done

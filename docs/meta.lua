@@ -322,6 +322,27 @@ function Model:set_func(id, f) end
 ---@return { id: integer|string, name: string, func: lsys.Func, file?: string }[]
 function Model:functions() end
 
+--- A rule of the model, as `Model:rules` lists it.
+---@class lsys.RuleInfo
+---@field text string The rule as written; for a rule function, its pattern.
+---@field set string "productions", "group G", "sub-L-system S", "decomposition" or "homomorphism".
+---@field line integer Its line in the set's text, or its entry in the set's list.
+---@field fn? function The rule function, for a `{pattern, function}` entry.
+---@field weight? number That entry's weight.
+---@field where? string "FILE:LINE" of the production, for a model read from a cpfg file.
+
+--- The model's rules, set by set (productions, groups, sub-L-systems, decomposition,
+--- homomorphism), each set's in the order given. `tostring` of the list gives one line a
+--- rule under the name of its set.
+---@return lsys.RuleInfo[]
+function Model:rules() end
+
+--- The model as text: `tostring(m)`, its options (axiom, steps, seed, and those given:
+--- env, params, view, ignore or consider, the limits, the hooks...) and its rules as
+--- `Model:rules` gives them. What the REPL prints for a model.
+---@return string
+function Model:inspect() end
+
 --- View options (docs/drawing.md §2); every field is optional.
 ---@class lsys.View
 ---@field angle? number Angle increment, degrees (90).

@@ -3,8 +3,9 @@
 -- `page.md#anchor`); no page, and no comment in the sources, points outside the repository
 -- (the project's working notes and source texts are not part of it: the pages cite the
 -- published works, docs/manual.md §12); every `lsys COMMAND` a page shows is a command of
--- the program; the examples index names every file and folder of examples/, and the README
--- every example folder.
+-- the program; every JSON example reads, and the sketch files among them make a plant; the
+-- examples index names every file and folder of examples/, and the README every example
+-- folder and every package setup.sh installs.
 local H = require "tests.helper"
 
 -- The pages checked: every Markdown file of the repository but the changelog, which
@@ -224,6 +225,47 @@ describe("the documentation", function ()
       end
     end
     assert.same({}, bad)
+  end)
+
+  it("has JSON examples that read as JSON, and sketches that make a plant", function ()
+    local cjson = require "cjson"
+    local sketch = require "lsys.sketch"
+    local blocks, sketches = 0, 0
+    for _, page in ipairs(PAGES) do
+      local text = read(page)
+      for code in text:gmatch("\n```json\n(.-)```") do
+        blocks = blocks + 1
+        local ok, t = pcall(cjson.decode, code)
+        assert(ok, page .. ": a JSON example does not read: " .. tostring(t))
+        if type(t) == "table" and t.strokes ~= nil then   -- a sketch file (docs/sketch.md)
+          sketches = sketches + 1
+          local dir = H.tmpdir()
+          H.write(dir .. "/plant.json", code)
+          local made, m = pcall(function ()
+            return sketch.load(dir .. "/plant.json"):model()
+          end)
+          H.rmdir(dir)
+          assert(made, page .. ": its sketch example: " .. tostring(m))
+          local scene = m:interpret()
+          assert.is_true(scene.ntriangles > 0, page)
+        end
+      end
+    end
+    assert.is_true(blocks >= 3)
+    assert.equal(1, sketches)
+  end)
+
+  it("lists in the README every package setup.sh installs, and no other", function ()
+    local installs = output_lines("./setup.sh --packages")
+    assert.is_true(#installs > 10)
+    local listed = read("README.md"):match("installs the missing ones of these packages.-:%s*`"
+      .. "([^`]+)`")
+    assert.is_string(listed, "the README's list of packages")
+    local readme = {}
+    for p in listed:gmatch("%S+") do readme[#readme + 1] = p end
+    table.sort(installs)
+    table.sort(readme)
+    assert.same(installs, readme)
   end)
 
   it("indexes every folder and file of examples/ in examples/README.md", function ()

@@ -3,7 +3,7 @@
 -- loaded machine must not fail the suite); text goes into generated Lua only through
 -- lsys.codegen; the library writes files through one writer (§6), lsys.core's
 -- (core.write_file, core.outfile, core.tempdir: a new temporary file, checked writes, a
--- rename).
+-- rename); the C tests write in a private temporary folder of their own (tests/c/testdir.h).
 
 -- The lines of the files `ls` lists for `glob`, as { file, number, text }.
 local function readlines (glob)
@@ -162,5 +162,67 @@ describe("the library", function ()
     for key in pairs(ALLOWED) do
       assert.is_true(seen[key] ~= nil, "allowed but gone (take it off the list): " .. key)
     end
+  end)
+end)
+
+--[[
+The C tests (tests/c/) write their files in a folder of their own, which testdir.h makes
+with mkdtemp under $TMPDIR and removes at exit: no fixed name in /tmp that two runs at
+once would share, nothing left behind.
+]]
+describe("the C tests", function ()
+  local H = require "tests.helper"
+  local BUILD = os.getenv("LSYS_BUILD_DIR") or "build"
+
+  -- The C sources' code lines (comments blanked) that name /tmp or make a temporary
+  -- name themselves, as "file:line: text".
+  local function own_temporaries ()
+    local out = {}
+    local p = assert(io.popen("ls tests/c/*.c tests/c/*.h"))
+    for file in p:lines() do
+      if file ~= "tests/c/testdir.h" then
+        local f = assert(io.open(file, "rb"))
+        local code = f:read("a"):gsub("/%*.-%*/", function (c) return (c:gsub("[^\n]", " ")) end)
+        f:close()
+        local n = 0
+        for line in (code .. "\n"):gmatch("([^\n]*)\n") do
+          n = n + 1
+          if line:find('"/tmp', 1, true) or line:find("%f[%w_]mkdtemp%s*%(")
+             or line:find("%f[%w_]mkstemp%s*%(") or line:find("%f[%w_]tmpnam%s*%(") then
+            out[#out + 1] = ("%s:%d: %s"):format(file, n, line:gsub("^%s+", ""))
+          end
+        end
+      end
+    end
+    p:close()
+    return out
+  end
+
+  it("name no file in /tmp and make no temporary name but through testdir.h", function ()
+    assert.same({}, own_temporaries())
+  end)
+
+  it("write into a new folder under $TMPDIR and leave nothing there", function ()
+    local p = assert(io.popen("grep -l '#include \"testdir.h\"' tests/c/test_*.c"))
+    local tests = {}
+    for file in p:lines() do tests[#tests + 1] = file:match("tests/c/(test_[%w_]+)%.c$") end
+    p:close()
+    assert.is_true(#tests >= 9, table.concat(tests, " "))
+    local tmp = H.tmpdir()
+    for _, t in ipairs(tests) do
+      -- (test_envproc takes seconds: it checks its own folder is empty at its end)
+      if t ~= "test_envproc" then
+        local bin = BUILD .. "/" .. t
+        if not H.sh("ls " .. bin .. " 2>/dev/null"):find(t, 1, true) then
+          H.rmdir(tmp)
+          pending(bin .. " is not built (cmake with LSYS_BUILD_TESTS=ON builds it)")
+          return
+        end
+        local out, code = H.sh(("TMPDIR='%s' '%s' 2>&1"):format(tmp, bin))
+        assert.equal(0, code, t .. ": " .. out)
+        assert.equal("", H.sh("ls -A '" .. tmp .. "'"), t .. " left files")
+      end
+    end
+    H.rmdir(tmp)
   end)
 end)

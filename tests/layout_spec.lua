@@ -449,7 +449,7 @@ local LUA_LAYERS = {
   { "util", "lsys.util*", "lsys.program" },         -- helpers that know nothing of models
   { "the kernel", "lsys.model", "lsys.compile", "lsys.codegen", "lsys.view", "lsys.viewfile",
     "lsys.func", "lsys.population", "lsys.warning", "lsys.sandbox", "lsys.kinds",
-    "lsys.environment*", "lsys.params" },
+    "lsys.environment*", "lsys.params", "lsys.inspect" },
   -- what builds models and plants on the kernel: other notations (component graphs,
   -- sketches, cpfg's files), incremental growth, the arrangement
   { "the front ends", "lsys.components*", "lsys.sketch*", "lsys.cpfg*", "lsys.grow",

@@ -254,19 +254,87 @@ describe("the REPL in a terminal", function()
     assert.not_matches("near 'def'", out)   -- the abandoned line is not run
   end)
 
-  it("says help() in its greeting and prints a section of the manual for help", function()
+  it("says help() in its greeting and prints a section of the manual for help, whole " ..
+     "on a terminal that runs no pager", function()
     if not ptyrun() then return end
-    local out, code = drive {
+    -- ptyrun's terminal is TERM=dumb: without $PAGER, no pager runs
+    local out, code = drive({
       "expect help() for help",
       "expect > ",
       'send help "derive"',
       "expect ### m:derive([n [, opts]])",
-      "expect more lines in ",
+      "expect print(#kept[0], #kept[1], #kept[3])   --> 1  6  66",
       "expect > ",
       "sendraw \\x04",
       "wait",
-    }
+    }, "PAGER= ")
     assert.equal(0, code, out)
+    assert.not_matches("more lines", out)
+  end)
+
+  it("pages help longer than the screen through $PAGER, and prints shorter help", function()
+    if not ptyrun() then return end
+    local out, code = drive({
+      "expect > ",
+      'send help "Model options"',
+      "expect P:## 2. Model options",
+      "expect P:",
+      "expect > ",
+      "send help(lsys.lstring('F').count)",
+      "expect | `s:count(name)` |",
+      "expect > ",
+      "send 6 * 7",
+      "expect 42",
+      "expect > ",
+      "sendraw \\x04",
+      "wait",
+    }, "PAGER='head -n 2 | sed s/^/P:/' ")
+    assert.equal(0, code, out)
+    -- the pager had the section (the first two lines of it), the REPL printed none of it
+    assert.not_matches("| `axiom` |", out, 1, true)
+    assert.not_matches("P:| `s:count", out, 1, true)
+  end)
+
+  it("pages help with less on a terminal without $PAGER (tmux); q goes back to the prompt",
+     function()
+    for _, tool in ipairs { "tmux", "less" } do
+      if not D.have(tool) then pending(tool .. " is not installed (./setup.sh does)") return end
+    end
+    local home = tmphome()
+    local sock = "lsys-repl-" .. H.absolute(home):gsub("%W", "")
+    local function tmux (args)
+      return H.sh("tmux -L " .. sock .. " " .. args .. " 2>&1")
+    end
+    local function screen () return (tmux("capture-pane -p")) end
+    -- waits for 'text' on the screen; the screen
+    local function await (text)
+      local deadline = os.time() + TIMEOUT
+      repeat
+        local s = screen()
+        if s:find(text, 1, true) then return s end
+        os.execute("sleep 0.1")
+      until os.time() > deadline
+      error(("timed out waiting for %q; the screen:\n%s"):format(text, screen()))
+    end
+    local _, started = tmux(("-f /dev/null new-session -d -x 80 -y 24 " ..
+      "\"env -u PAGER -u LESS HOME='%s' '%s'\""):format(home, H.ABSBIN))
+    assert.equal(0, started)
+    local ok, err = pcall(function ()
+      await("\n>")     -- (capture-pane leaves out the blanks that end a line)
+      tmux("send-keys 'help \"Model options\"' Enter")
+      local s = await("| `seed` |")
+      -- less's prompt on the last line; the end of the section not yet shown
+      assert.matches("\n:%s*$", s)
+      assert.not_matches("### Tunable parameters", s, 1, true)
+      tmux("send-keys C-c")   -- less's; the REPL, in system(), ignores it
+      tmux("send-keys q")
+      tmux("send-keys '6 * 7' Enter")
+      s = await("\n42\n")
+      assert.matches("\n> 6 %* 7\n42\n", s)
+      assert.not_matches("interrupted", s, 1, true)
+    end)
+    tmux("kill-server")
+    assert(ok, err)
   end)
 
   it("#gl prints a click in the window at the prompt", function()
@@ -376,6 +444,40 @@ describe("what the REPL prints", function()
     assert.equal("nil\tnil\ntrue\nnil\ntrue\t1\nfalse\tnil\n", out)
   end)
 
+  it("keeps the first value of the last printed line in `_`", function()
+    local out = pipe {
+      'm = lsys.lsystem { axiom = "F", productions = "F --> F[+F]F" }',
+      "m:derive(2)",
+      '_:count("F")',
+      "_ * 2",
+      "x = 1",            -- prints nothing: `_` stays
+      "print('p')",
+      "_",
+      "'a', 'b'",
+      "_",
+      "error('e')",
+      "_",
+      "_ = 5",
+      "_, rawget(_G, '_')",
+      "for _, v in ipairs({ 7 }) do y = v end",
+      "_, y",
+    }
+    assert.equal("Lstring(21 modules): F[+F]F[+F[+F]F]F[+F]F\n9\n18\np\n18\na\tb\na\n" ..
+      "stdin:1: e\na\n5\tnil\n5\t7\n", out)
+  end)
+
+  it("prints a model with its options, view and rules", function()
+    local out = pipe {
+      'm = lsys.lsystem { axiom = "X", steps = 2, env = { R = 2 }, view = { angle = 20 },' ..
+        ' productions = "X --> F[+X]F[-X]+X\\nF --> FF" }',
+      "m",
+      "print(m)",
+    }
+    assert.equal('lsys.Model(stdin:1)\n  axiom = "X"\n  steps = 2\n  seed = 0\n' ..
+      "  env = { R = 2 }\n  view = { angle = 20 }\nproductions:\n" ..
+      "  1    X --> F[+X]F[-X]+X\n  2    F --> FF\nlsys.Model(stdin:1)\n", out)
+  end)
+
   it("keeps a `local` of one line for the lines after it, without making a global",
      function()
     local out = pipe {
@@ -398,19 +500,16 @@ describe("what the REPL prints", function()
     assert.equal("42\n1681\nnil\tnil\n7\tnil\n5\ttable\tAB\nnil\n1\tnil\nlast\n", out)
   end)
 
-  it("prints the manual's section on a function, a method, a value or a topic", function()
+  it("prints the manual's section on a function, a method or a topic, whole", function()
     local out = pipe { 'help "derive"' }
     assert.matches("^### m:derive%(%[n %[, opts%]%]%)\n", out)
-    assert.matches("\n%-%- %d+ more lines in [^\n]*/docs/manual.md line %d+ %-%-\n$", out)
-    local _, lines = out:gsub("\n", "")
-    assert.is_true(lines <= 24, out)
+    -- no pager without a terminal: the section to its last line
+    assert.matches("\n    print%(#kept%[0%], #kept%[1%], #kept%[3%]%)   %-%-> 1  6  66\n$", out)
     out = pipe { "help(lsys.lsystem)" }
     assert.matches("^## 2%. Model options\n", out)
-    out = pipe { 'm = lsys.lsystem { axiom = "F" }', "help(m)", "help(m.derive)" }
-    assert.matches("^## 3%. Model methods and module functions\n", out)
-    assert.matches("\n### m:derive", out)
-    out = pipe { 'help(lsys.lstring("F"))' }
-    assert.matches("^## 8%. Lstrings\n", out)
+    assert.matches("\n### Tunable parameters\n", out)
+    out = pipe { 'm = lsys.lsystem { axiom = "F" }', "help(m.derive)" }
+    assert.matches("^### m:derive", out)
     out = pipe { "help(lsys.lstring('F').count)" }
     assert.matches("^## 8%. Lstrings\n\n| operation | result |\n|%-%-%-|%-%-%-|\n" ..
       "| `s:count%(name%)` |[^\n]*\n\n%(the whole section: help \"Lstrings\"%)\n$", out)
@@ -422,6 +521,36 @@ describe("what the REPL prints", function()
     assert.equal("no help for nosuch; try help()\nno help for 42; try help()\n" ..
       "no help for this table; try help()\n" ..
       "print is Lua's: see https://www.lua.org/manual/5.4/manual.html#pdf-print\n", out)
+  end)
+
+  it("tells what a model, an Lstring or a scene is and its methods for help(x)", function()
+    local out = pipe { 'm = lsys.lsystem { axiom = "X", steps = 2, productions = ' ..
+      '"X --> F[+X]F[-X]+X\\nF --> FF", homomorphism = "X --> F" }', "help(m)" }
+    local lines = {}
+    for l in out:gmatch("([^\n]*)\n") do lines[#lines + 1] = l end
+    assert.equal('lsys.Model(stdin:1), a model: axiom "X", 2 steps', lines[1])
+    assert.equal("3 rules: productions 2, homomorphism 1", lines[2])
+    assert.equal('Its methods (help "m:NAME" prints the section on one):', lines[4])
+    -- each method with the first sentence of its section, cut to the 80 columns
+    assert.equal("  m:derive([n [, opts]])     Derives n steps from the axiom (default " ..
+      "m.steps...", lines[5])
+    assert.equal("  m:step(s)                  One derivation step (productions, cut, " ..
+      "decompos...", lines[#lines - 4])
+    assert.equal("  m:use_group(n)             Makes rule group n active beside group 0 " ..
+      "(the p...", lines[#lines - 3])
+    assert.equal("m:inspect() prints its options, view and rules.", lines[#lines - 1])
+    assert.equal('help "Model methods and module functions" prints the manual\'s section.',
+                 lines[#lines])
+    assert.matches("\n  m:rules%(%) +The model's rules, set by set", out)
+    for _, l in ipairs(lines) do assert.is_true(#l < 80, l) end
+    out = pipe { 's = lsys.lstring("F[+F]")', "help(s)" }
+    assert.matches('^Lstring%(5 modules%): F%[%+F%]\n\nIts methods %(help "s:NAME"', out)
+    assert.matches("\n  s:count%(name%) +number of modules named name", out)
+    assert.matches('\nhelp "Lstrings" prints the manual\'s section%.\n$', out)
+    out = pipe { 'sc = lsys.lsystem { axiom = "F" }:interpret()', "help(sc)" }
+    assert.matches("^Scene%(0 triangles, 1 lines, 1 turtle records; ", out)
+    assert.matches("\n  scene:records%(%) +turtle record k", out)
+    assert.matches('\nhelp "Scenes" prints the manual\'s section%.\n$', out)
   end)
 
   it("gives an overview for help(), from any folder", function()
@@ -444,7 +573,9 @@ describe("what the REPL prints", function()
     end
     out = run('help "derive"')
     assert.matches("^### m:derive", out)
-    assert.matches(prefix .. "/share/lsys/docs/manual.md line", out, 1, true)
+    -- the installed copy is the one read
+    H.write(prefix .. "/share/lsys/docs/manual.md", "# m\n\n### m:derive(n)\n\nInstalled.\n")
+    assert.equal("### m:derive(n)\n\nInstalled.\n", run('help "derive"'))
     H.rmdir(prefix .. "/share/lsys/docs")
     out = run('help "derive"')
     H.rmdir(prefix)
@@ -470,6 +601,7 @@ describe("lsys.repl's parts", function()
                                lsys = lsys },
                              { __index = _G })
     assert.same({ "m:derive" }, complete(env, "x = m:de"))
+    assert.same({ "m:inspect", "m:interpret" }, complete(env, "m:in"))
     assert.same({ "m.env" }, complete(env, "m.en"))
     assert.same({ "lsys.view.load_colormap" }, complete(env, "lsys.view.load_c"))
     assert.same({ "lsys.view", "lsys.viewer" }, complete(env, "lsys.vi"))
@@ -536,20 +668,46 @@ describe("lsys.repl's parts", function()
                  table.concat(out))
   end)
 
-  it("shows a screenful of a long section and where the rest is", function()
-    for _, size in ipairs({ { 24, 80 }, { 40, 100 }, { 10, 40 } }) do
-      local out = {}
-      local help = Help.new { size = function () return size[1], size[2] end,
-                              out = function (s) out[#out + 1] = s end }
-      help("Model options")
-      local text = table.concat(out)
-      local rows = 0
-      for l in text:gmatch("([^\n]*)\n") do
-        rows = rows + math.max(1, math.ceil(#l / size[2]))
-      end
-      assert.is_true(rows <= size[1], text)
-      assert.matches("^## 2%. Model options\n", text)
-      assert.matches("%-%- %d+ more lines in .*manual.md line %d+ %-%-\n$", text)
+  it("gives the pager what does not fit on the screen, and prints the rest", function()
+    local dir = H.tmpdir()
+    H.write(dir .. "/manual.md", "# M\n\n## Short\n\nOne line.\n\n## Long\n\n" ..
+      ("x"):rep(100) .. "\n" .. ("line\n"):rep(6))
+    local out, paged = {}, {}
+    local answer = true
+    local help = Help.new { dirs = { dir }, size = function () return 10, 50 end,
+                            out = function (s) out[#out + 1] = s end,
+                            page = function (t) paged[#paged + 1] = t return answer end }
+    help("Short")                 -- 3 rows: printed
+    assert.same({ "## Short\n\nOne line.\n" }, out)
+    assert.same({}, paged)
+    out = {}
+    help("Long")                  -- 2 + 3 rows for the wrapped line + 6: the pager's
+    local long = "## Long\n\n" .. ("x"):rep(100) .. "\n" .. ("line\n"):rep(6)
+    assert.same({ long }, paged)
+    assert.same({}, out)
+    answer = false                -- no pager could run: printed whole
+    help("Long")
+    assert.same({ long }, out)
+    H.rmdir(dir)
+  end)
+
+  it("picks $PAGER, else less or more on a terminal that can run them", function()
+    local function pager (env)
+      local script = H.tmpdir()
+      H.write(script .. "/p.lua",
+        "print(require('lsys.repl.help').pager_command() or 'none')")
+      local out = H.sh(("env -u PAGER -u LESS %s '%s' '%s/p.lua'"):format(env, H.ABSBIN, script))
+      H.rmdir(script)
+      return (out:gsub("\n$", ""))
+    end
+    assert.equal("most -s", pager("PAGER='most -s' TERM=dumb"))
+    assert.equal("none", pager("PAGER= TERM=dumb"))
+    assert.equal("none", pager("PAGER=' ' TERM="))
+    if H.sh("command -v less") ~= "" then
+      assert.equal("LESS=FRX less", pager("TERM=xterm"))
+      assert.equal("less", pager("TERM=xterm LESS=-S"))
+    else
+      pending("less is not installed")
     end
   end)
 

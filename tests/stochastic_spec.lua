@@ -158,6 +158,43 @@ describe("stochastic choice", function()
   end)
 end)
 
+describe("the generator as docs/manual.md §10 gives it in full", function()
+  local GAMMA = 0x9E3779B97F4A7C15
+  local function mix (z)   -- SplitMix64's output function, on Lua's 64-bit integers
+    z = (z ~ (z >> 30)) * 0xBF58476D1CE4E5B9
+    z = (z ~ (z >> 27)) * 0x94D049BB133111EB
+    return z ~ (z >> 31)
+  end
+  -- The j-th number (from 1) of module i (from 0) in step k's productions, seed s.
+  local function number (s, k, i, j)
+    local b = mix(mix(s + GAMMA) ~ mix((4 * k) ~ 0x5851F42D4C957F2D))
+    return (mix(mix(b + (i + 1) * GAMMA) + j * GAMMA) >> 11) * 2.0 ^ -53
+  end
+
+  it("gives the numbers of the manual's example, B's ran(1) first, then the choice", function()
+    local m = H.model("AAAA", "A --> B(ran(1)) : 1\nA --> C : 1", { seed = 7 })
+    local want = {}
+    for i = 0, 3 do
+      -- two equal weights: B when u times 2 stays below 1
+      want[#want + 1] = number(7, 1, i, 2) * 2 < 1 and ("B(%.17g)"):format(number(7, 1, i, 1))
+        or "C"
+    end
+    local s = m:derive(1)
+    assert.equal("CB(0.2575682584307001)B(0.5273343562147776)B(0.7335161708747543)", tostring(s))
+    for i = 1, 4 do
+      local name, x = s:module(i)
+      assert.equal(want[i], x and ("B(%.17g)"):format(x) or name)
+    end
+  end)
+
+  it("draws step 2 from the stream of 4k with k = 2", function()
+    local m = H.model("A", "A --> B(ran(1))A", { seed = 3 })
+    local s = m:derive(2)            -- B(step 1's) then step 2: B(ran) A -> B B(ran) A
+    assert.equal(number(3, 1, 0, 1), select(2, s:module(1)))
+    assert.equal(number(3, 2, 1, 1), select(2, s:module(2)))
+  end)
+end)
+
 describe("cpfg's generator (random = \"cpfg\")", function()
   local lsys = require "lsys"
   -- erand48 from cpfg's start {0x330E, 0, 0} (glibc, the same numbers everywhere)

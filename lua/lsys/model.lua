@@ -12,6 +12,7 @@ local warning = require "lsys.warning"
 local sandbox = require "lsys.sandbox"
 local environment = require "lsys.environment"
 local params = require "lsys.params"
+local inspect = require "lsys.inspect"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
       math, string, table, debug, _G, os =
@@ -209,6 +210,7 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     local added, idx = pcall(self._rules.add, self._rules, kind, sub, group, spec)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
+                            set = what, line = e.line, n = n, fn = e.fn, weight = e.weight,
                             trees = trees, funcrefs = factory and compile.funcrefs(e.text),
                             pattern = { r.lc, r.preds or { r.pred }, r.rc },
                             made = not e.fn and kinds(r.succ) or nil }
@@ -335,6 +337,7 @@ end
 -- ring, and the limits (max_modules, max_memory, max_depth).
 function Model:_configure (opts, fail)
   local rules = self._rules
+  self._options = opts          -- for m:inspect(): what the core keeps (ignore, ring...)
   if opts.ignore or opts.consider then
     local ok, msg = pcall(rules.skiplist, rules, 0, opts.consider ~= nil,
                           opts.consider or opts.ignore)
@@ -984,6 +987,8 @@ function Model:use_group (n)
   self._group = n
   self._rules:config("group", n)
 end
+
+Model.rules, Model.inspect = inspect.rules, inspect.text   -- m:rules(), m:inspect()
 
 function Model:__tostring ()
   return format("lsys.Model(%s)", self.name or self._where)

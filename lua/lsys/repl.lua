@@ -2,8 +2,9 @@
 -- Lua 5.4 like the `lua` REPL, with `lsys` loaded as a global and `help` (lsys.repl.help):
 -- a line is first tried as an expression list (`=expr` works too) and its values are
 -- printed (lsys.repl.show: Lstrings abbreviated, tables one level deep); otherwise it is run
--- as a statement, continued on `>> ` lines while Lua reports it incomplete. A `local` at
--- the top of a line stays visible to the lines after it. Errors print their message and
+-- as a statement, continued on `>> ` lines while Lua reports it incomplete; `_` is the
+-- first value of the last line whose values were printed. A `local` at the top of a line
+-- stays visible to the lines after it. Errors print their message and
 -- the session goes on. With readline (lsys.readline): line editing, Tab completion
 -- (lsys.repl.complete) and a history kept in ~/.lsys_history; Ctrl-C at the prompt
 -- abandons the line being typed.
@@ -55,11 +56,15 @@ local function incomplete (msg)
 end
 
 --[[
-The environment of the lines typed at the prompt: the `local`s kept from earlier lines,
-then the globals. An assignment to a name that is not a kept local sets the global.
+The environment of the lines typed at the prompt: the `local`s kept from earlier lines and
+`_`, the first value the last printed line gave (as in IPython), then the globals. An
+assignment to a name that is not a kept local sets the global; one to `_` stays in the
+environment, as `_` does.
 ]]
 local function new_env ()
-  return setmetatable({}, { __index = G, __newindex = G })
+  return setmetatable({}, { __index = G, __newindex = function (env, k, v)
+    if k == "_" then rawset(env, k, v) else G[k] = v end
+  end })
 end
 
 --[[
@@ -132,9 +137,10 @@ local function quiet (r)
   return r[2] == true
 end
 
--- Prints the values of an evaluation (r: xpcall's status and results, packed).
+-- Prints the values of an evaluation (r: xpcall's status and results, packed); whether
+-- it printed them.
 local function print_results (r)
-  if quiet(r) then return end
+  if quiet(r) then return false end
   local shown = {}
   for i = 2, r.n do
     local ok, s = pcall(S.show, r[i])
@@ -142,6 +148,7 @@ local function print_results (r)
   end
   local pok, perr = pcall(G.print, table.unpack(shown, 1, r.n - 1))
   if not pok then io.stderr:write("error calling 'print' (", tostring(perr), ")\n") end
+  return true
 end
 
 -- A parameter value in a line: numbers with 4 digits, vectors in braces, point lists
@@ -306,7 +313,8 @@ function M.run ()
       interrupt(true)
       local r = table.pack(xpcall(f, msghandler, keeper(env)))
       interrupt(idle_mode)
-      if r[1] then print_results(r) else err = r[2] end
+      if not r[1] then err = r[2]
+      elseif print_results(r) then rawset(env, "_", r[2]) end   -- the last result
     end
     if err ~= nil then
       io.stderr:write(tostring(err), "\n")

@@ -6,6 +6,7 @@
 ** source-over blending, non-finite and huge coordinates, size limits and a
 ** failing allocation.
 */
+#define _XOPEN_SOURCE 700       /* testdir.h */
 #undef NDEBUG
 #include <assert.h>
 #include <math.h>
@@ -13,6 +14,7 @@
 #include <string.h>
 
 #include "talloc.h"
+#include "testdir.h"
 /* canvas.c compiled in with counting allocators (pngio.o comes from the library) */
 #include "common.c"
 #include "canvas.c"
@@ -274,7 +276,7 @@ static void test_save (void) {
   lsys_error e;
   uint8_t *rgba;
   int w, h;
-  const char *path = "/tmp/lsys_test_canvas.png";
+  const char *path = testpath("canvas.png");
   fresh(&c, 7, 3);
   lsys_canvas_rect(&c, 1, 1, 2, 1, WHITE, 1);
   assert(lsys_canvas_save(&c, path, &e) == LSYS_OK);

@@ -25,12 +25,13 @@
 #include <unistd.h>
 
 #include "envproc.h"
+#include "testdir.h"
 
 #ifndef LSYS_ENVSLAVE
 #define LSYS_ENVSLAVE "build/lsys_envslave"
 #endif
 
-static char dir[64];
+static const char *dir;     /* the test's folder (testdir.h) */
 static const char *const TYPES[] = { "pipes", "files", "memory" };
 
 static double now (void) {
@@ -326,10 +327,7 @@ static void arguments (void) {
 int main (void) {
   int t;
   char x[128];
-  const char *tmp = getenv("TMPDIR");
-  snprintf(dir, sizeof dir, "%s/lsys-envproc-XXXXXX", tmp != NULL && strlen(tmp) < 30 ? tmp
-                                                                                     : "/tmp");
-  assert(mkdtemp(dir) != NULL);
+  dir = testdir();
   efile(0);
   arguments();
   for (t = LSYS_ENVPROC_PIPES; t <= LSYS_ENVPROC_MEMORY; t++) {

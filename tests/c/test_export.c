@@ -11,6 +11,7 @@
 ** The core files are compiled in with talloc.h's allocators, so that
 ** test_nomem makes each allocation fail in turn (run it under valgrind).
 */
+#define _XOPEN_SOURCE 700       /* testdir.h */
 #undef NDEBUG
 #include <assert.h>
 #include <math.h>
@@ -32,8 +33,9 @@
 #include "population.c"
 
 #include "testfile.h"
+#include "testdir.h"
 
-#define OUT "/tmp/lsys_test_export"
+#define OUT(suffix) testpath("export" suffix)   /* a file in the test's folder */
 
 /* ---- helpers ---- */
 
@@ -130,26 +132,26 @@ static void test_factors (void) {
   lsys_mesh_material_color(&pal[0], 0.5, 1, 0.04);
   pal[0].diffuse[3] = 0.5f;
   pal[0].emission[0] = 0.5f;
-  assert(lsys_export_glb(&m, pal, 1, NULL, 0, OUT ".glb", &e) == LSYS_OK);
-  s = json_of(OUT ".glb");
+  assert(lsys_export_glb(&m, pal, 1, NULL, 0, OUT(".glb"), &e) == LSYS_OK);
+  s = json_of(OUT(".glb"));
   assert(strstr(s, "\"baseColorFactor\":[0.21404114,1,0.0030959751,0.5]") != NULL);
   assert(strstr(s, "\"emissiveFactor\":[0.21404114,0,0]") != NULL);
   assert(strstr(s, "\"alphaMode\":\"BLEND\"") != NULL);
   free(s);
-  assert(lsys_export_obj(&m, pal, 1, NULL, 0, OUT ".obj", &e) == LSYS_OK);
-  s = slurp(OUT ".mtl", &len);
+  assert(lsys_export_obj(&m, pal, 1, NULL, 0, OUT(".obj"), &e) == LSYS_OK);
+  s = slurp(OUT(".mtl"), &len);
   assert(strstr(s, "\nKd 0.21404114 1 0.0030959751\n") != NULL);
   assert(strstr(s, "\nKe 0.21404114 0 0\n") != NULL);
   assert(strstr(s, "\nd 0.5\n") != NULL);
   free(s);
-  assert(lsys_export_ply(&m, pal, 1, NULL, 0, OUT ".ply", &e) == LSYS_OK);
-  s = slurp(OUT ".ply", &len);
+  assert(lsys_export_ply(&m, pal, 1, NULL, 0, OUT(".ply"), &e) == LSYS_OK);
+  s = slurp(OUT(".ply"), &len);
   {                                         /* the last vertex's colour: 128 255 10 */
     const unsigned char *q = (const unsigned char *)s + len - 13 - 3;
     assert(q[0] == 128 && q[1] == 255 && q[2] == 10);
   }
   free(s);
-  remove(OUT ".glb"); remove(OUT ".obj"); remove(OUT ".mtl"); remove(OUT ".ply");
+  remove(OUT(".glb")); remove(OUT(".obj")); remove(OUT(".mtl")); remove(OUT(".ply"));
   lsys_mesh_free(&m);
 }
 
@@ -300,48 +302,48 @@ static void test_scene (void) {
   line(&s.mesh, 0, 0, 0, 0, 7.2, 0, 1, 1, 1);
   line(&s.mesh, 0, 7.2, 0, 7.2, 7.2, 0, 1, 1, 1);
   assert(fabs(lsys_export_pixel(&s.mesh) - 0.01) < 1e-9);
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = json_of(OUT "_s.glb");
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_OK);
+  j = json_of(OUT("_s.glb"));
   assert(count(j, "\"mode\":4") == 2 && count(j, "\"mode\":1") == 0);
   assert(strstr(j, "\"count\":59,") != NULL);                  /* 3 + 2 * 4 * 7 vertices */
   assert(strstr(j, "\"count\":3,") != NULL && strstr(j, "\"count\":144,") != NULL);
   /* radius 0.005 (7.2 / 720 / 2), the rings in the planes x = 0 and x = 7.2 */
   assert(strstr(j, "\"min\":[-0.004330127,0,-0.005],\"max\":[7.2,7.20433,0.005]") != NULL);
   free(j);
-  assert(lsys_export_scene(&s, LSYS_FORMAT_OBJ, OUT "_s.obj", &o, &e) == LSYS_OK);
-  j = slurp(OUT "_s.obj", &len);
+  assert(lsys_export_scene(&s, LSYS_FORMAT_OBJ, OUT("_s.obj"), &o, &e) == LSYS_OK);
+  j = slurp(OUT("_s.obj"), &len);
   assert(countlines(j, "f ") == 49 && countlines(j, "l ") == 0 && countlines(j, "v ") == 59);
   free(j);
-  assert(lsys_export_scene(&s, LSYS_FORMAT_PLY, OUT "_s.ply", &o, &e) == LSYS_OK);
-  j = slurp(OUT "_s.ply", &len);
+  assert(lsys_export_scene(&s, LSYS_FORMAT_PLY, OUT("_s.ply"), &o, &e) == LSYS_OK);
+  j = slurp(OUT("_s.ply"), &len);
   assert(strstr(j, "element vertex 59\n") && strstr(j, "element face 49\n"));
   assert(strstr(j, "element edge") == NULL);
   free(j);
   o.pixel = 0.5;                               /* radius 0.25: thicker */
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = json_of(OUT "_s.glb");
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_OK);
+  j = json_of(OUT("_s.glb"));
   assert(strstr(j, "\"min\":[-0.21650635,0,-0.25],\"max\":[7.2,7.4165063,0.25]") != NULL);
   free(j);
   o.tubes = 0;                                  /* lines as lines */
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_OK);
-  j = json_of(OUT "_s.glb");
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_OK);
+  j = json_of(OUT("_s.glb"));
   assert(count(j, "\"mode\":1") == 1);
   free(j);
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", NULL, &e) == LSYS_OK);
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), NULL, &e) == LSYS_OK);
   o.tubes = 1;
   o.sides = 2;
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_EARG);
-  assert(strstr(e.msg, "3 to 1024 sides, got 2") && strstr(e.msg, OUT "_s.glb"));
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_EARG);
+  assert(strstr(e.msg, "3 to 1024 sides, got 2") && strstr(e.msg, OUT("_s.glb")));
   o.sides = 6;
   o.pixel = -1;
-  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT "_s.glb", &o, &e) == LSYS_EARG);
+  assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_EARG);
   assert(strstr(e.msg, "pixel size") != NULL);
   o.pixel = 0;
-  assert(lsys_export_scene(&s, -1, OUT "_s.xyz", &o, &e) == LSYS_EARG);
+  assert(lsys_export_scene(&s, -1, OUT("_s.xyz"), &o, &e) == LSYS_EARG);
   lsys_mesh_free(&s.mesh);
   lsys_mesh_init(&s.mesh);
   assert(lsys_export_pixel(&s.mesh) == 1);
-  remove(OUT "_s.glb"); remove(OUT "_s.obj"); remove(OUT "_s.mtl"); remove(OUT "_s.ply");
+  remove(OUT("_s.glb")); remove(OUT("_s.obj")); remove(OUT("_s.mtl")); remove(OUT("_s.ply"));
 }
 
 /* ---- populations ---- */
@@ -386,8 +388,8 @@ static void test_population (void) {
   lsys_mesh_material_color(&pal[0], 0.2, 0.6, 0.1);
   lsys_mesh_material_color(&pal[1], 0.5, 0.5, 0.5);
   population(&pop, pal);
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", NULL, &e) == LSYS_OK);
-  j = json_of(OUT "_p.glb");
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT("_p.glb"), NULL, &e) == LSYS_OK);
+  j = json_of(OUT("_p.glb"));
   assert(strstr(j, "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],"
                    "\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"]") != NULL);
   assert(count(j, "\"primitives\"") == 2 && count(j, "\"EXT_mesh_gpu_instancing\":{") == 2);
@@ -398,33 +400,33 @@ static void test_population (void) {
   assert(strstr(j, "\"byteOffset\":96,\"componentType\":5126,\"count\":3,") != NULL);
   free(j);
   /* written out: every instance */
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_OBJ, OUT "_p.obj", NULL, &e) == LSYS_OK);
-  j = slurp(OUT "_p.obj", &len);
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_OBJ, OUT("_p.obj"), NULL, &e) == LSYS_OK);
+  j = slurp(OUT("_p.obj"), &len);
   assert(countlines(j, "f ") == 3 && countlines(j, "l ") == 1);
   assert(countlines(j, "v ") == 11 && strstr(j, "\nv -5 0 -2\n") != NULL);   /* + 2 line ends */
   free(j);
   o.flatten = 1;
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
-  j = json_of(OUT "_p.glb");
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT("_p.glb"), &o, &e) == LSYS_OK);
+  j = json_of(OUT("_p.glb"));
   assert(strstr(j, "EXT_mesh_gpu_instancing") == NULL && count(j, "\"primitives\"") == 1);
   free(j);
   o.max_memory = 100;                                 /* too little to write it out */
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_PLY, OUT "_p.ply", &o, &e) == LSYS_EMEMORY);
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_PLY, OUT("_p.ply"), &o, &e) == LSYS_EMEMORY);
   assert(strstr(e.msg, "the population written out needs") && strstr(e.msg, "max_memory"));
   /* tubes: made per prototype, the instances kept */
   o.flatten = 0; o.max_memory = 0; o.tubes = 1; o.sides = 4;
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
-  j = json_of(OUT "_p.glb");
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT("_p.glb"), &o, &e) == LSYS_OK);
+  j = json_of(OUT("_p.glb"));
   assert(count(j, "\"mode\":1") == 0 && count(j, "\"EXT_mesh_gpu_instancing\":{") == 2);
   free(j);
   o.tubes = 0;
   pop.inst[1].m[4] = 0.5f;                            /* a shear: no T R S */
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", NULL, &e) == LSYS_EARG);
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT("_p.glb"), NULL, &e) == LSYS_EARG);
   assert(strstr(e.msg, "instance 2 is not a translation, rotation and positive scale"));
   o.flatten = 1;
-  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT "_p.glb", &o, &e) == LSYS_OK);
+  assert(lsys_export_scene(&pop, LSYS_FORMAT_GLB, OUT("_p.glb"), &o, &e) == LSYS_OK);
   lsys_scene_free(&pop);
-  remove(OUT "_p.glb"); remove(OUT "_p.obj"); remove(OUT "_p.mtl"); remove(OUT "_p.ply");
+  remove(OUT("_p.glb")); remove(OUT("_p.obj")); remove(OUT("_p.mtl")); remove(OUT("_p.ply"));
 }
 
 /* Every allocation of saving a population fails in turn, as test_nomem. */
@@ -446,9 +448,9 @@ static void test_population_nomem (void) {
     for (f = 0; f < 4 && st == LSYS_OK; f++) {
       o.tubes = f == 3;
       st = lsys_export_scene(&pop, f < 3 ? f : LSYS_FORMAT_GLB,
-                             f == 0 ? OUT "_pn.obj" : f == 1 ? OUT "_pn.ply" : OUT "_pn.glb", &o,
+                             f == 0 ? OUT("_pn.obj") : f == 1 ? OUT("_pn.ply") : OUT("_pn.glb"), &o,
                              &e);
-      assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, OUT "_pn.")));
+      assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, OUT("_pn."))));
     }
     assert(nlive == live);
     done = nalloc <= k;
@@ -456,7 +458,7 @@ static void test_population_nomem (void) {
   failat = -1;
   assert(k > 10);
   lsys_scene_free(&pop);
-  remove(OUT "_pn.obj"); remove(OUT "_pn.mtl"); remove(OUT "_pn.ply"); remove(OUT "_pn.glb");
+  remove(OUT("_pn.obj")); remove(OUT("_pn.mtl")); remove(OUT("_pn.ply")); remove(OUT("_pn.glb"));
 }
 
 /* ---- allocation failures ---- */
@@ -480,10 +482,10 @@ static void test_nomem (void) {
     nalloc = 0;
     failat = k;
     for (f = 0; f < 3 && st == LSYS_OK; f++) {
-      st = lsys_export_scene(&s, f, f == 0 ? OUT "_n.obj" : f == 1 ? OUT "_n.ply" : OUT "_n.glb",
+      st = lsys_export_scene(&s, f, f == 0 ? OUT("_n.obj") : f == 1 ? OUT("_n.ply") : OUT("_n.glb"),
                              &o, &e);
       assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, "out of memory") &&
-                               strstr(e.msg, OUT "_n.")));
+                               strstr(e.msg, OUT("_n."))));
     }
     assert(nlive == live);
     done = nalloc <= k;
@@ -491,7 +493,7 @@ static void test_nomem (void) {
   failat = -1;
   assert(k > 10);
   lsys_mesh_free(&s.mesh);
-  remove(OUT "_n.obj"); remove(OUT "_n.mtl"); remove(OUT "_n.ply"); remove(OUT "_n.glb");
+  remove(OUT("_n.obj")); remove(OUT("_n.mtl")); remove(OUT("_n.ply")); remove(OUT("_n.glb"));
 }
 
 int main (void) {

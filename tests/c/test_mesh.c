@@ -4,13 +4,14 @@
 ** formatting, the PLY header and byte layout, the GLB container, its JSON
 ** and its binary data.
 **
-** The files stay in /tmp (lsys_test_mesh.*) for the Lua readers in tests/.
+** The files go to the test's private folder (testdir.h).
 ** `test_mesh bench` also times each writer on a mesh of 1M triangles.
 **
 ** mesh.c and the writers (export_*.c) are compiled into this test with
 ** counting allocators, so that test_nomem can make each allocation fail in
 ** turn (the library's own copies of their objects are then not linked).
 */
+#define _XOPEN_SOURCE 700       /* testdir.h */
 #undef NDEBUG
 #include <assert.h>
 #include <math.h>
@@ -43,7 +44,9 @@ static void *trealloc (void *p, size_t n) {
 
 #include "testfile.h"
 
-#define OUT "/tmp/lsys_test_mesh"
+#include "testdir.h"
+
+#define OUT(suffix) testpath("lsys_test_mesh" suffix)   /* a file in the test's folder */
 
 /* ---- helpers ---- */
 
@@ -169,8 +172,8 @@ static void test_obj (void) {
   size_t len;
   char *s, *t;
   testmesh(&m, pal);
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
-  s = slurp(OUT ".obj", &len);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT(".obj"), &e) == LSYS_OK);
+  s = slurp(OUT(".obj"), &len);
   assert(countlines(s, "mtllib lsys_test_mesh.mtl\n") == 1);
   assert(countlines(s, "v ") == 12 + 6);
   assert(countlines(s, "vn ") == 12);
@@ -188,7 +191,7 @@ static void test_obj (void) {
   /* the segment vertices in material order: segments 1, 3, then 2 */
   assert(strstr(s, "v -2 0 0.5\nv 0 0 0\nv 0 0 5\nv 0 7 0\nv 1 0 5\nv 0 0 0\nv 1 0 5\n") != NULL);
   free(s);
-  s = slurp(OUT ".mtl", &len);
+  s = slurp(OUT(".mtl"), &len);
   assert(countlines(s, "newmtl ") == 2);
   /* colours linear (Blender's reading of MTL): sRGB 0.2 0.6 0.1, 0.5 */
   assert(strstr(s, "newmtl m0\nKa 0.00489631 0.027211783 0.0023219816\n"
@@ -199,23 +202,23 @@ static void test_obj (void) {
          != NULL);
   free(s);
   /* no palette: one grey default */
-  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT "_grey.obj", &e) == LSYS_OK);
-  s = slurp(OUT "_grey.mtl", &len);
+  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT("_grey.obj"), &e) == LSYS_OK);
+  s = slurp(OUT("_grey.mtl"), &len);
   assert(countlines(s, "newmtl ") == 1 && strstr(s, "newmtl m0\n"));
   assert(strstr(s, "Kd 0.60382736 0.60382736 0.60382736\n") != NULL);     /* sRGB 0.8 */
   free(s);
-  s = slurp(OUT "_grey.obj", &len);
+  s = slurp(OUT("_grey.obj"), &len);
   assert(countlines(s, "usemtl ") == 1 && countlines(s, "f ") == 4 && countlines(s, "l ") == 3);
   assert(countlines(s, "mtllib lsys_test_mesh_grey.mtl") == 1);
   free(s);
-  remove(OUT "_grey.obj");
-  remove(OUT "_grey.mtl");
+  remove(OUT("_grey.obj"));
+  remove(OUT("_grey.mtl"));
   /* no extension: the .mtl is appended; a dot in a directory name is not one */
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_mesh_noext", &e) == LSYS_OK);
-  s = slurp("/tmp/lsys_test_mesh_noext.mtl", &len);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT("_noext"), &e) == LSYS_OK);
+  s = slurp(OUT("_noext.mtl"), &len);
   free(s);
-  remove("/tmp/lsys_test_mesh_noext");
-  remove("/tmp/lsys_test_mesh_noext.mtl");
+  remove(OUT("_noext"));
+  remove(OUT("_noext.mtl"));
   lsys_mesh_free(&m);
 }
 
@@ -257,8 +260,8 @@ static void test_numbers (void) {
     }
     lsys_mesh_vertex(&m, pt, n, 0, 0, 0, 0);
   }
-  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT "_num.obj", &e) == LSYS_OK);
-  s = slurp(OUT "_num.obj", &len);
+  assert(lsys_export_obj(&m, NULL, 0, NULL, 0, OUT("_num.obj"), &e) == LSYS_OK);
+  s = slurp(OUT("_num.obj"), &len);
   p = strstr(s, "\nv ");
   assert(p != NULL);
   for (i = 0; i < 13; i++) {
@@ -288,8 +291,8 @@ static void test_numbers (void) {
   }
   free(s);
   free(want);
-  remove(OUT "_num.obj");
-  remove(OUT "_num.mtl");
+  remove(OUT("_num.obj"));
+  remove(OUT("_num.mtl"));
   lsys_mesh_free(&m);
 }
 
@@ -303,8 +306,8 @@ static void test_ply (void) {
   char *s, *h;
   const unsigned char *d;
   testmesh(&m, pal);
-  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT ".ply", &e) == LSYS_OK);
-  s = slurp(OUT ".ply", &len);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT(".ply"), &e) == LSYS_OK);
+  s = slurp(OUT(".ply"), &len);
   assert(strncmp(s, "ply\nformat binary_little_endian 1.0\n", 36) == 0);
   h = strstr(s, "end_header\n");
   assert(h != NULL);
@@ -341,14 +344,14 @@ static void test_ply (void) {
   free(s);
   /* without segments: no edge element */
   m.nl = 0;
-  assert(lsys_export_ply(&m, NULL, 0, NULL, 0, OUT "_nl.ply", &e) == LSYS_OK);
-  s = slurp(OUT "_nl.ply", &len);
+  assert(lsys_export_ply(&m, NULL, 0, NULL, 0, OUT("_nl.ply"), &e) == LSYS_OK);
+  s = slurp(OUT("_nl.ply"), &len);
   assert(strstr(s, "element edge") == NULL && strstr(s, "element vertex 12\n") != NULL);
   h = strstr(s, "end_header\n");
   assert(len == (size_t)(h - s) + 11 + 12 * 35 + 4 * 13);
   assert((unsigned char)h[11 + 32] == 204);      /* default grey 0.8 */
   free(s);
-  remove(OUT "_nl.ply");
+  remove(OUT("_nl.ply"));
   lsys_mesh_free(&m);
 }
 
@@ -373,8 +376,8 @@ static void test_glb (void) {
   unsigned char *s, *bin;
   char *json;
   testmesh(&m, pal);
-  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
-  s = (unsigned char *)slurp(OUT ".glb", &len);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT(".glb"), &e) == LSYS_OK);
+  s = (unsigned char *)slurp(OUT(".glb"), &len);
   assert(rd32(s) == 0x46546C67u && rd32(s + 4) == 2 && rd32(s + 8) == len);
   jlen = rd32(s + 12);
   assert(jlen % 4 == 0 && rd32(s + 16) == 0x4E4F534Au);
@@ -425,20 +428,20 @@ static void test_glb (void) {
   m.nrm[3] = NAN;
   m.nrm[6] = 3; m.nrm[7] = 4; m.nrm[8] = 0;
   m.pos[0] = NAN;
-  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT "_n.glb", &e) == LSYS_OK);
-  s = (unsigned char *)slurp(OUT "_n.glb", &len);
+  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT("_n.glb"), &e) == LSYS_OK);
+  s = (unsigned char *)slurp(OUT("_n.glb"), &len);
   jlen = rd32(s + 12);
   bin = s + 28 + jlen;
   assert(rdf32(bin) == 0 && rdf32(bin + 20) == 1 && rdf32(bin + 32 + 20) == 1);
   assert(rdf32(bin + 64 + 12) == 0.6f && rdf32(bin + 64 + 16) == 0.8f);
   assert(findmem(s + 20, jlen, "\"materials\":[{\"name\":\"m0\"", 25) != NULL);
   free(s);
-  remove(OUT "_n.glb");
+  remove(OUT("_n.glb"));
 
   /* only segments */
   m.nt = 0;
-  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_l.glb", &e) == LSYS_OK);
-  s = (unsigned char *)slurp(OUT "_l.glb", &len);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT("_l.glb"), &e) == LSYS_OK);
+  s = (unsigned char *)slurp(OUT("_l.glb"), &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 20 + jlen) == 72 && len == 28 + jlen + 72);
   json = malloc(jlen + 1);
@@ -448,12 +451,12 @@ static void test_glb (void) {
   assert(strstr(json, "\"mode\":4") == NULL && strstr(json, "TEXCOORD_0") == NULL);
   free(json);
   free(s);
-  remove(OUT "_l.glb");
+  remove(OUT("_l.glb"));
 
   /* empty: a JSON chunk only, a scene without nodes */
   lsys_mesh_clear(&m);
-  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT "_empty.glb", &e) == LSYS_OK);
-  s = (unsigned char *)slurp(OUT "_empty.glb", &len);
+  assert(lsys_export_glb(&m, NULL, 0, NULL, 0, OUT("_empty.glb"), &e) == LSYS_OK);
+  s = (unsigned char *)slurp(OUT("_empty.glb"), &len);
   jlen = rd32(s + 12);
   assert(rd32(s + 8) == len && len == 20 + jlen && jlen % 4 == 0);
   assert(findmem(s + 20, jlen, "\"scenes\":[{}]", 13) != NULL);
@@ -481,9 +484,9 @@ static void test_errors (void) {
   assert(lsys_export_glb(&m, pal, 2, NULL, 0, "/nonexistent-lsys/x.glb", &e) ==
          LSYS_EARG);
   assert(strstr(e.msg, "'/nonexistent-lsys/x.glb'") != NULL);
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp", &e) == LSYS_EARG);   /* a directory */
-  assert(strstr(e.msg, "cannot open '/tmp' for writing") != NULL);
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, "/tmp/lsys_test_x.mtl", &e) ==
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, testdir(), &e) == LSYS_EARG);   /* a directory */
+  assert(strstr(e.msg, "cannot open '") && strstr(e.msg, "' for writing"));
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT("_x.mtl"), &e) ==
          LSYS_EARG);
   assert(strstr(e.msg, "its own material file") != NULL);
   f = fopen("/dev/full", "wb");
@@ -495,11 +498,11 @@ static void test_errors (void) {
     assert(strcmp(e.msg, "cannot write '/dev/full': No space left on device") == 0);
   }
   m.tri[4] = 12;                                 /* a vertex that does not exist */
-  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_bad.glb", &e) == LSYS_EARG);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT("_bad.glb"), &e) == LSYS_EARG);
   assert(strstr(e.msg, "triangle 2 refers to vertex 12 of 12") != NULL);
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT "_bad.obj", &e) == LSYS_EARG);
-  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT "_bad.ply", &e) == LSYS_EARG);
-  f = fopen(OUT "_bad.glb", "rb");              /* nothing was created */
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT("_bad.obj"), &e) == LSYS_EARG);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT("_bad.ply"), &e) == LSYS_EARG);
+  f = fopen(OUT("_bad.glb"), "rb");              /* nothing was created */
   assert(f == NULL);
   lsys_mesh_free(&m);
 }
@@ -512,7 +515,7 @@ static void test_errors (void) {
 static void test_textures (void) {
   static uint8_t px1[16] = {255, 0, 0, 255, 0, 255, 0, 0, 0, 0, 255, 255, 9, 9, 9, 255};
   static uint8_t px2[4] = {10, 20, 30, 255};
-  const char *p1 = OUT "_tex1.png", *p2 = OUT "_tex 2.png";
+  const char *p1 = OUT("_tex1.png"), *p2 = OUT("_tex 2.png");
   lsys_texture t1, t2, nopath;
   const lsys_texture *list[3] = {&t1, &t2, &nopath};
   lsys_mesh m;
@@ -520,7 +523,7 @@ static void test_textures (void) {
   lsys_error e;
   size_t len, len2, blen, blen2;
   unsigned char *file, *file2, *bin, *bin2;
-  char *s, *s2, *t, *json, *json2;
+  char *s, *s2, *t, *json, *json2, want[3 * TD_PATH];
   int i;
   lsys_texture_init(&t1); lsys_texture_init(&t2); lsys_texture_init(&nopath);
   t1.rgba = px1; t1.w = 2; t1.h = 2; t1.path = (char *)p1;        /* modulate, with alpha */
@@ -531,35 +534,37 @@ static void test_textures (void) {
   assert(lsys_pngio_write(p2, px2, 1, 1, 0, &e) == LSYS_OK);
   testmesh(&m, pal);
   /* textures given, none used: the same files as without */
-  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT ".obj", &e) == LSYS_OK);
-  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT ".glb", &e) == LSYS_OK);
-  s = slurp(OUT ".mtl", &len);
-  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
-  s2 = slurp(OUT "_t.mtl", &len2);
+  assert(lsys_export_obj(&m, pal, 2, NULL, 0, OUT(".obj"), &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT(".glb"), &e) == LSYS_OK);
+  s = slurp(OUT(".mtl"), &len);
+  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT("_t.obj"), &e) == LSYS_OK);
+  s2 = slurp(OUT("_t.mtl"), &len2);
   assert(len == len2 && memcmp(s, s2, len) == 0);
   free(s2);
-  json = glbjson(OUT ".glb", &file, &len, &bin, &blen);
-  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
-  s2 = slurp(OUT "_t.glb", &len2);
+  json = glbjson(OUT(".glb"), &file, &len, &bin, &blen);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT("_t.glb"), &e) == LSYS_OK);
+  s2 = slurp(OUT("_t.glb"), &len2);
   assert(len == len2 && memcmp(file, s2, len) == 0);
   free(s2); free(s); free(json); free(file);
   /* textured */
   m.tex[0] = 1; m.tex[6] = 2; m.tex[9] = 1;
   m.tex[1] = 2;                                 /* only a triangle's first vertex counts */
-  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT "_t.obj", &e) == LSYS_OK);
-  s = slurp(OUT "_t.mtl", &len);
+  assert(lsys_export_obj(&m, pal, 2, list, 3, OUT("_t.obj"), &e) == LSYS_OK);
+  s = slurp(OUT("_t.mtl"), &len);
   assert(countlines(s, "newmtl ") == 5);
   assert(strstr(s, "newmtl m0\n") < strstr(s, "newmtl m0_t1\n"));
   assert(strstr(s, "newmtl m0_t1\n") < strstr(s, "newmtl m1\n"));
   assert(strstr(s, "newmtl m1\n") < strstr(s, "newmtl m1_t1\n"));
   assert(strstr(s, "newmtl m1_t1\n") < strstr(s, "newmtl m1_t2\n"));
   assert(countlines(s, "map_Kd ") == 3);
-  assert(strstr(s, "illum 1\nmap_Kd " OUT "_tex1.png\n") != NULL);    /* after m0_t1 */
+  snprintf(want, sizeof want, "illum 1\nmap_Kd %s\n", p1);
+  assert(strstr(s, want) != NULL);                                   /* after m0_t1 */
   assert(strstr(s, "newmtl m1_t2\nKa 0.07323896 0.01960665 0\nKd 1 1 1\n") != NULL);   /* decal: white */
-  assert(strstr(s, "illum 0\nmap_Kd " OUT "_tex 2.png\n") != NULL);
+  snprintf(want, sizeof want, "illum 0\nmap_Kd %s\n", p2);
+  assert(strstr(s, want) != NULL);
   assert(countlines(s, "illum 0") == 1);
   free(s);
-  s = slurp(OUT "_t.obj", &len);
+  s = slurp(OUT("_t.obj"), &len);
   assert(countlines(s, "usemtl ") == 5 && countlines(s, "f ") == 4);
   assert(countlines(s, "vt ") == 12);
   t = strstr(s, "usemtl m0\nf 4/4/4 5/5/5 6/6/6\nl ");        /* plain: triangle 1, segments */
@@ -568,8 +573,8 @@ static void test_textures (void) {
   assert(strstr(s, "usemtl m1_t1\nf 10/10/10 ") != NULL && strstr(s, "usemtl m1_t2\nf 7/7/7 "));
   free(s);
   /* glb: 4 triangle primitives, 2 line primitives, 5 materials, 2 images */
-  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
-  json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT("_t.glb"), &e) == LSYS_OK);
+  json = glbjson(OUT("_t.glb"), &file, &len, &bin, &blen);
   assert(count(json, "\"mode\":4") == 4 && count(json, "\"mode\":1") == 2);
   assert(count(json, "\"name\":\"m") == 5);
   assert(strstr(json, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") != NULL);
@@ -613,33 +618,34 @@ static void test_textures (void) {
   free(json); free(file);
   /* a texture index past the list, or of a texture without a file: untextured */
   m.tex[0] = 4; m.tex[6] = 3; m.tex[9] = 0;
-  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_OK);
-  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT "_t2.glb", &e) == LSYS_OK);
-  json = glbjson(OUT "_t.glb", &file, &len, &bin, &blen);
-  json2 = glbjson(OUT "_t2.glb", &file2, &len2, &bin2, &blen2);
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT("_t.glb"), &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 2, NULL, 0, OUT("_t2.glb"), &e) == LSYS_OK);
+  json = glbjson(OUT("_t.glb"), &file, &len, &bin, &blen);
+  json2 = glbjson(OUT("_t2.glb"), &file2, &len2, &bin2, &blen2);
   assert(strcmp(json, json2) == 0 && blen == blen2 && memcmp(bin, bin2, blen) == 0);
   free(json); free(file); free(json2); free(file2);
   /* a texture file that went missing or changed: an error naming both files */
   m.tex[0] = 1;
-  t1.path = (char *)OUT "_missing.png";
-  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_EARG);
-  assert(strstr(e.msg, "cannot write '" OUT "_t.glb': cannot read texture '"
-                       OUT "_missing.png'"));
-  t1.path = (char *)OUT ".obj";
-  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT "_t.glb", &e) == LSYS_ESYNTAX);
+  t1.path = (char *)OUT("_missing.png");
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT("_t.glb"), &e) == LSYS_EARG);
+  snprintf(want, sizeof want, "cannot write '%s': cannot read texture '%s'", OUT("_t.glb"),
+           OUT("_missing.png"));
+  assert(strstr(e.msg, want));
+  t1.path = (char *)OUT(".obj");
+  assert(lsys_export_glb(&m, pal, 2, list, 3, OUT("_t.glb"), &e) == LSYS_ESYNTAX);
   assert(strstr(e.msg, "is no longer a PNG or SGI image") != NULL);
   /* PLY ignores textures */
   t1.path = (char *)p1;
-  assert(lsys_export_ply(&m, pal, 2, list, 3, OUT "_t.ply", &e) == LSYS_OK);
-  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT "_t2.ply", &e) == LSYS_OK);
-  s = slurp(OUT "_t.ply", &len);
-  s2 = slurp(OUT "_t2.ply", &len2);
+  assert(lsys_export_ply(&m, pal, 2, list, 3, OUT("_t.ply"), &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 2, NULL, 0, OUT("_t2.ply"), &e) == LSYS_OK);
+  s = slurp(OUT("_t.ply"), &len);
+  s2 = slurp(OUT("_t2.ply"), &len2);
   assert(len == len2 && memcmp(s, s2, len) == 0);
   free(s); free(s2);
   lsys_mesh_free(&m);
   for (i = 0; i < 2; i++) remove(i ? p2 : p1);
-  remove(OUT "_t.obj"); remove(OUT "_t.mtl"); remove(OUT "_t.glb"); remove(OUT "_t2.glb");
-  remove(OUT "_t.ply"); remove(OUT "_t2.ply");
+  remove(OUT("_t.obj")); remove(OUT("_t.mtl")); remove(OUT("_t.glb")); remove(OUT("_t2.glb"));
+  remove(OUT("_t.ply")); remove(OUT("_t2.ply"));
 }
 
 /* ---- allocation failures ---- */
@@ -648,7 +654,7 @@ static void test_textures (void) {
 ** with a message, and nothing leaks (valgrind). A third of the triangles
 ** are textured, another third refer to a missing texture. */
 static void test_nomem (void) {
-  static const char *paths[3] = { OUT "_nomem.obj", OUT "_nomem.ply", OUT "_nomem.glb" };
+  const char *paths[3] = { OUT("_nomem.obj"), OUT("_nomem.ply"), OUT("_nomem.glb") };
   static uint8_t px[4] = { 1, 2, 3, 4 };
   lsys_texture tx;
   const lsys_texture *list[1] = { &tx };
@@ -656,7 +662,7 @@ static void test_nomem (void) {
   long k;
   int f, done = 0;
   lsys_texture_init(&tx);
-  tx.rgba = px; tx.w = tx.h = 1; tx.path = (char *)OUT "_nomem.png";
+  tx.rgba = px; tx.w = tx.h = 1; tx.path = (char *)OUT("_nomem.png");
   assert(lsys_pngio_write(tx.path, px, 1, 1, 1, &e0) == LSYS_OK);
   for (k = 0; !done; k++) {
     lsys_mesh m;
@@ -688,7 +694,7 @@ static void test_nomem (void) {
          : f == 1 ? lsys_export_ply(&m, pal, 2, list, 1, paths[f], &e)
                   : lsys_export_glb(&m, pal, 2, list, 1, paths[f], &e);
       assert(st == LSYS_OK || (st == LSYS_ENOMEM && strstr(e.msg, "out of memory") &&
-                               strstr(e.msg, OUT "_nomem.")));
+                               strstr(e.msg, OUT("_nomem."))));
     }
     done = nalloc <= k;                       /* no allocation failed: all paths are done */
     assert(!done || st == LSYS_OK);
@@ -697,7 +703,7 @@ static void test_nomem (void) {
   failat = -1;
   assert(k > 20);
   for (f = 0; f < 3; f++) remove(paths[f]);
-  remove(OUT "_nomem.mtl");
+  remove(OUT("_nomem.mtl"));
   remove(tx.path);
 }
 
@@ -739,13 +745,13 @@ static void bench (void) {
   for (i = 0; i < 8; i++) lsys_mesh_material_color(&pal[i], 0.1 * (double)i, 0.5, 0.2);
   printf("bench: %zu vertices, %zu triangles, %zu segments\n", m.nv, m.nt, m.nl);
   t0 = now();
-  assert(lsys_export_obj(&m, pal, 8, NULL, 0, OUT "_bench.obj", &e) == LSYS_OK);
+  assert(lsys_export_obj(&m, pal, 8, NULL, 0, OUT("_bench.obj"), &e) == LSYS_OK);
   printf("  obj %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_export_ply(&m, pal, 8, NULL, 0, OUT "_bench.ply", &e) == LSYS_OK);
+  assert(lsys_export_ply(&m, pal, 8, NULL, 0, OUT("_bench.ply"), &e) == LSYS_OK);
   printf("  ply %.3f s\n", now() - t0);
   t0 = now();
-  assert(lsys_export_glb(&m, pal, 8, NULL, 0, OUT "_bench.glb", &e) == LSYS_OK);
+  assert(lsys_export_glb(&m, pal, 8, NULL, 0, OUT("_bench.glb"), &e) == LSYS_OK);
   printf("  glb %.3f s\n", now() - t0);
   lsys_mesh_free(&m);
 }

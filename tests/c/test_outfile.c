@@ -14,8 +14,9 @@
 #include <unistd.h>
 
 #include "outfile.h"
+#include "testdir.h"
 
-static char dir[64];
+static const char *dir;     /* the test's folder (testdir.h) */
 
 static void path (char *out, const char *name) {
   snprintf(out, 256, "%s/%s", dir, name);
@@ -95,8 +96,7 @@ int main (void) {
   lsys_outfile o, o2;
   lsys_error e;
   struct stat st;
-  strcpy(dir, "/tmp/lsys-outfile-XXXXXX");
-  assert(mkdtemp(dir) != NULL);
+  dir = testdir();
   path(a, "a.txt");
   path(b, "b.txt");
   path(c, "missing/c.txt");

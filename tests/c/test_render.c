@@ -20,16 +20,7 @@
 #include "pngio.h"
 #include "render.h"
 #include "texture.h"
-
-static char tmpdir[256];
-
-static const char *tmppath (const char *name) {
-  static char buf[4][512];
-  static int k;
-  char *p = buf[k++ & 3];
-  snprintf(p, sizeof buf[0], "%s/%s", tmpdir, name);
-  return p;
-}
+#include "testdir.h"
 
 #ifndef LSYS_NO_RENDER
 
@@ -262,7 +253,7 @@ static void test_png (void) {
   uint8_t src[W * H * 4], *got = NULL;
   int w, h, i;
   lsys_error e;
-  const char *p = tmppath("pattern.png");
+  const char *p = testpath("pattern.png");
   pattern(src, W, H);
   /* RGBA round trip */
   assert(lsys_pngio_write(p, src, W, H, 1, &e) == LSYS_OK);
@@ -318,7 +309,7 @@ static void test_png (void) {
   assert(lsys_pngio_read("/nonexistent-dir/x.png", &got, &w, &h, &e) == LSYS_EARG);
   assert(got == NULL && strstr(e.msg, "cannot open '/nonexistent-dir/x.png' for reading"));
   {
-    const char *q = tmppath("bad.png");
+    const char *q = testpath("bad.png");
     size_t n, k;
     uint8_t *good;
     writefile(q, "hello, not a picture", 20);
@@ -358,7 +349,7 @@ static void test_png (void) {
 static void test_texture_load (void) {
   static const uint8_t grey[2 * 4] = {10, 10, 10, 255, 200, 200, 200, 128};
   static const uint8_t colour[2 * 4] = {10, 10, 10, 255, 200, 201, 200, 255};
-  const char *p = tmppath("tex.png"), *q = tmppath("nottex.png");
+  const char *p = testpath("tex.png"), *q = testpath("nottex.png");
   lsys_texture t;
   lsys_error e;
   lsys_texture_init(&t);
@@ -886,8 +877,6 @@ static void test_textured (void) {
 #endif
 
 int main (void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/lsys_test_render_%ld", (long)getpid());
-  assert(mkdir(tmpdir, 0700) == 0);
   test_png();
   test_texture_load();
 #ifndef LSYS_NO_RENDER                /* render.c is left out of such a build */
@@ -897,7 +886,6 @@ int main (void) {
   test_textured();
   lsys_render_shutdown();
 #endif
-  rmdir(tmpdir);
   printf("test_render: ok\n");
   return 0;
 }

@@ -21,11 +21,12 @@
 #include "common.c"
 #include "sgiio.c"
 #include "texture.c"
+#include "testdir.h"
 
 #define NAME "mem.rgb"
 #define MAXB (1 << 16)
 
-static char dir[64];
+static const char *dir;     /* the test's folder (testdir.h) */
 
 /* ---------------------------------------------------------------------- */
 /* writing SGI images */
@@ -481,13 +482,7 @@ static void test_damage (void) {
 /* ---------------------------------------------------------------------- */
 /* files and textures */
 
-static const char *tmp (const char *name) {
-  static char p[4][128];
-  static int k;
-  k = (k + 1) % 4;
-  snprintf(p[k], sizeof p[k], "%s/%s", dir, name);
-  return p[k];
-}
+static const char *tmp (const char *name) { return testpath(name); }
 
 static void spit (const char *path, const uint8_t *b, size_t n) {
   FILE *f = fopen(path, "wb");
@@ -560,16 +555,13 @@ static void test_files (void) {
 }
 
 int main (void) {
-  const char *t = getenv("TMPDIR");
-  snprintf(dir, sizeof dir, "%s/test_sgi_XXXXXX", t && strlen(t) < 40 ? t : "/tmp");
-  assert(mkdtemp(dir) != NULL);
+  dir = testdir();
   test_exact();
   test_channels();
   test_rle();
   test_errors();
   test_damage();
   test_files();
-  rmdir(dir);
   assert(nlive == 0);
   printf("test_sgi: ok\n");
   return 0;

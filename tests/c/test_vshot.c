@@ -5,6 +5,7 @@
 ** it; the first failure stops it and says why), and lsys-NNN.png names.
 ** The window itself is tested from Lua under Xvfb (tests/frames_spec.lua).
 */
+#define _XOPEN_SOURCE 700       /* testdir.h */
 #undef NDEBUG
 #include <assert.h>
 #include <stdio.h>
@@ -17,6 +18,7 @@
 
 #include "pngio.h"
 #include "vshot.h"
+#include "testdir.h"
 
 /* The fake back buffer: W x H, rows from the bottom (GL's order); pixel
 ** (x, y) = {x, y, frame, 255}. */
@@ -150,13 +152,10 @@ static void test_autoname (const char *dir) {
 }
 
 int main (void) {
-  char dir[] = "/tmp/lsys-test-vshot-XXXXXX", cmd[600];
-  assert(mkdtemp(dir) != NULL);
+  const char *dir = testdir();                  /* removed at exit, with what is in it */
   test_png(dir);
   test_series(dir);
   test_autoname(dir);
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  assert(system(cmd) == 0);
   printf("test_vshot: ok\n");
   return 0;
 }

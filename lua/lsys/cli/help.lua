@@ -499,11 +499,14 @@ HELP.repl = [[
 usage: lsys [repl]
 
 The interactive REPL: Lua 5.4 with `lsys` loaded as a global. An expression (or `=expr`)
-prints its values; Lstrings print abbreviated, scenes as a summary, tables one level deep.
-Incomplete statements continue on `>>` lines; a `local` stays defined for the lines after
-it. help() gives an overview, help "derive" or help(lsys.render) the manual's section.
-With readline: Tab completes names, and the history is kept in ~/.lsys_history. Ctrl-C
-clears the line at the prompt and interrupts a running evaluation; Ctrl-D quits.
+prints its values, and `_` is the first of them for the lines after; Lstrings print
+abbreviated, scenes as a summary, models with their options and rules (m:inspect()), tables
+one level deep. Incomplete statements continue on `>>` lines; a `local` stays defined for
+the lines after it. help() gives an overview, help "derive" or help(lsys.render) the
+manual's section, help(m) what a model is and its methods; text longer than the terminal
+goes through $PAGER (else less or more). With readline: Tab completes names, and the
+history is kept in ~/.lsys_history. Ctrl-C clears the line at the prompt and interrupts a
+running evaluation; Ctrl-D quits.
 
 lsys.show(x) opens the viewer window on a model, an Lstring or a scene (or updates it) and
 returns at once; clicks on modules in the window are printed at the prompt (set

@@ -1,5 +1,7 @@
---- help() at the REPL: an overview, or the section of the manual (docs/*.md) on a function,
--- a method, a value or a topic, a screenful at a time.
+--- help() at the REPL: an overview; the section of the manual (docs/*.md) on a function, a
+-- method or a topic; for a model, an Lstring or a scene, what it is and its methods. Text
+-- longer than the terminal goes through a pager ($PAGER, less or more); without a
+-- terminal it is printed whole.
 --
 -- The sections are found by their headings (`### m:derive([n [, opts]])`, `## lsys.show`,
 -- `## 8. Lstrings`), by the first cell of a table row (`` | `s:count(name)` | ``) and by a
@@ -8,6 +10,9 @@
 -- looked up beside the Lua files (the source tree: lua/../docs) and in the program's data
 -- directories (an install: share/lsys/docs, where `cmake --install` puts them).
 -- @module lsys.repl.help
+local core = require "lsys.core"
+local inspect = require "lsys.inspect"
+local S = require "lsys.repl.show"
 local host = require("lsys.program").host
 local normalize = require("lsys.util.text").normpath
 local shq = require("lsys.util.text").shq
@@ -15,7 +20,7 @@ local shq = require("lsys.util.text").shq
 local G = _G
 local type, tostring, pairs, ipairs, select, pcall, getmetatable, rawget =
       type, tostring, pairs, ipairs, select, pcall, getmetatable, rawget
-local io, string, table, math, debug, package = io, string, table, math, debug, package
+local io, os, string, table, math, debug, package = io, os, string, table, math, debug, package
 local format = string.format
 local _ENV = nil
 
@@ -35,6 +40,7 @@ local META_CLASS = { Model = "m", Lstring = "s", Scene = "scene" }
 -- The section of the manual on a kind of value (help(m), help(s), help(sc)).
 local KIND_TOPIC = { model = "Model methods and module functions", lstring = "Lstrings",
                      scene = "Scenes" }
+local KIND_RECEIVER = { model = "m", lstring = "s", scene = "scene" }
 
 local OVERVIEW = [[
 lsys: L-systems for plant modelling, Lua 5.4 with a C core. `lsys` is loaded:
@@ -45,10 +51,12 @@ lsys: L-systems for plant modelling, Lua 5.4 with a C core. `lsys` is loaded:
   lsys.render(m, { out = "plant.png" })   a picture; lsys.show(m) opens the window
   m = dofile("examples/abop/fig1_24d.lua") a model from a file (lsys.here() in it)
 
-More: help "derive", help(lsys.render), help(m), help(s): the manual's section on a
-function, a method or a value; help "Lstrings", help "context": a section by its title.
-At the prompt: Tab completes names (m:de<Tab>), the arrows recall lines of this and
-earlier sessions, Ctrl-C clears the line, `local` names stay for the next lines.
+More: help "derive", help(lsys.render): the manual's section on a method or a function;
+help(m), help(s), help(sc): what that model, Lstring or scene is and its methods;
+help "Lstrings", help "context": a section by its title. A model prints its options and
+rules (m:inspect(), m:rules()). At the prompt: `_` is the last value printed, Tab
+completes names (m:de<Tab>), the arrows recall lines of this and earlier sessions,
+Ctrl-C clears the line, `local` names stay for the next lines.
 ]]
 
 -- {===========================================================================================
@@ -109,10 +117,12 @@ end
 -- The name of an identifier without its receiver or module: "derive" for "m:derive".
 local function bare (id) return id:match("([%a_][%w_]*)$") end
 
-local function add (index, key, prio, sec, row)
+-- Files 'sec' under 'key' in the index: its table row 'row', or the line 'at' of the
+-- paragraph that introduces the key (for one-line summaries).
+local function add (index, key, prio, sec, row, at)
   local list = index[key]
   if list == nil then list = {}; index[key] = list end
-  list[#list + 1] = { prio = prio, sec = sec, row = row }
+  list[#list + 1] = { prio = prio, sec = sec, row = row, at = at }
 end
 
 -- Reads one doc into sections and adds its keys to 'index'.
@@ -141,7 +151,10 @@ local function read_doc (path, file, index, sections)
       end
     elseif not fence and cur ~= nil then
       local cell = l:match("^|%s*(`[^|]*)|")
-      local para = (i == 1 or lines[i - 1]:find("^%s*$")) and l:match("^`([%a_][%w_.:]*)[%(`]")
+      local para, call = nil, nil
+      if i == 1 or lines[i - 1]:find("^%s*$") then
+        para, call = l:match("^`([%a_][%w_.:]*)([%(`])")
+      end
       if cell ~= nil then
         local ids = idents(cell, {})
         local first = cell:match("^`([%a_][%w_]*)[%(`%[]")   -- `poll([timeout])` in lsys.viewer
@@ -153,8 +166,10 @@ local function read_doc (path, file, index, sections)
           add(index, bare(id), 7, cur, i)
         end
       elseif para ~= nil and para:find("[.:]") then
-        add(index, para, 2, cur)
-        add(index, bare(para), 6, cur)
+        -- `m:interpret([s [, view]])` introduces it; a bare `m:interpret` only mentions it
+        local later = call == "(" and 0 or 0.5
+        add(index, para, 2 + later, cur, nil, i)
+        add(index, bare(para), 6 + later, cur, nil, i)
       end
     end
   end
@@ -292,18 +307,46 @@ local function lookup (docs, topic)
   return nil
 end
 
--- Writes 'lines' to 'out', as many as fill the screen; then where the rest is.
-local function page (out, lines, rows, cols, where)
-  local budget, used, shown = rows - 3, 0, 0
-  for _, l in ipairs(lines) do
-    local h = math.max(1, (#l + cols - 1) // cols)
-    if used + h > budget and shown > 0 then break end
-    out(l .. "\n")
-    used, shown = used + h, shown + 1
-  end
-  if shown < #lines then
-    out(format("-- %d more lines in %s --\n", #lines - shown, where))
-  end
+-- The rows of the screen 'lines' take with 'cols' columns (a long line wraps).
+local function height (lines, cols)
+  local rows = 0
+  for _, l in ipairs(lines) do rows = rows + math.max(1, (#l + cols - 1) // cols) end
+  return rows
+end
+
+-- Whether the shell finds the command 'name'.
+local function have (name)
+  return os.execute("command -v " .. name .. " >/dev/null 2>&1") == true
+end
+
+--- The pager help uses on a terminal, as a shell command that reads the text on its
+-- standard input: $PAGER when set (and not empty), else less (with LESS=FRX unless LESS is
+-- set: the text stays on the screen after `q`, as git does), else more; nil without any,
+-- and on a terminal that cannot run them (TERM unset or "dumb", as in Emacs's shell).
+function M.pager_command ()
+  local p = os.getenv("PAGER")
+  if p ~= nil and p:find("%S") then return p end
+  local term = os.getenv("TERM")
+  if term == nil or term == "" or term == "dumb" then return nil end
+  if have("less") then return os.getenv("LESS") == nil and "LESS=FRX less" or "less" end
+  if have("more") then return "more" end
+  return nil
+end
+
+-- Shows 'text' with the pager; false when there is none or it could not run (the text
+-- is then to be printed). The text goes through a file in a private temporary folder, so
+-- that a pager quit early never breaks a pipe; while the pager runs, the REPL ignores
+-- Ctrl-C (os.execute is C's system()), which the pager handles.
+local function run_pager (text)
+  local cmd = M.pager_command()
+  if cmd == nil then return false end
+  local ok, dir = pcall(core.tempdir, nil, "lsys-help")
+  if not ok then return false end
+  local file = dir:path() .. "/help.txt"
+  local done = pcall(core.write_file, file, text) and
+    os.execute("exec < " .. shq(file) .. "\n" .. cmd) == true   -- any command line
+  pcall(dir.remove, dir)
+  return done
 end
 
 -- A doc line as it is printed: links as their text, no code fences.
@@ -344,12 +387,117 @@ local function section_lines (s, row)
   return lines
 end
 
+-- The first sentence of a doc line, without links and code marks.
+local function sentence (l)
+  l = clean(l):gsub("`", "")
+  return (l:match("^(.-%.)%s") or l):gsub("%s+$", "")
+end
+
+-- The signature and the one-line summary the docs give for 'key' ("m:derive"): from its
+-- declaration, table row, paragraph or heading; nil when they have nothing under that
+-- very name.
+local function summary (docs, key)
+  local best
+  for _, e in ipairs(docs.index[key] or {}) do
+    if best == nil or e.prio < best.prio then best = e end
+  end
+  if best == nil then return nil end
+  local s = best.sec
+  if s.meta then
+    local args = s.lines[s.last]:match("%b()") or "()"
+    return s.name .. args, sentence(s.lines[s.first]:gsub("^%-%-%-%s?", ""))
+  end
+  -- the call of 'key' in a piece of text, with its arguments
+  local function call (t) return t:match(key:gsub("%p", "%%%0") .. "%b()") or key end
+  if best.row then
+    local cell, what = s.lines[best.row]:match("^|([^|]*)|%s*([^|]*)")
+    return call(cell), sentence(what)
+  elseif best.at then
+    local l = s.lines[best.at]
+    return call(l), sentence(l:gsub("^`[^`]*`%s*", ""))
+  end
+  local first = ""
+  for i = s.first + 1, s.last do
+    if s.lines[i]:find("%S") then first = s.lines[i] break end
+  end
+  return (s.title:gsub("`", "")), first:find("^```") and "" or sentence(first)
+end
+
+-- The public methods of 'x' (those of its metatable's __index and __methods tables),
+-- sorted.
+local function methods_of (x)
+  local mt, seen, list = getmetatable(x), {}, {}
+  for _, t in ipairs({ type(mt) == "table" and mt.__index, type(mt) == "table" and
+                       mt.__methods }) do
+    if type(t) == "table" then
+      for k, v in pairs(t) do
+        if type(k) == "string" and type(v) == "function" and not k:find("^_")
+           and not seen[k] then
+          seen[k] = true
+          list[#list + 1] = k
+        end
+      end
+    end
+  end
+  table.sort(list)
+  return list
+end
+
+-- How help(x) names a model: what it is, and its rules by set (two lines).
+local function model_line (x)
+  local counts, order = {}, {}
+  for _, r in ipairs(inspect.rules(x)) do
+    if counts[r.set] == nil then order[#order + 1] = r.set end
+    counts[r.set] = (counts[r.set] or 0) + 1
+  end
+  local parts, n = {}, 0
+  for _, set in ipairs(order) do
+    parts[#parts + 1] = format("%s %d", set, counts[set])
+    n = n + counts[set]
+  end
+  return format("%s, a model: axiom %s, %s step%s", tostring(x),
+    S.show({ x.axiom }):match("^{ (.*) }$"), tostring(x.steps), x.steps == 1 and "" or "s"),
+    format("%d rule%s%s", n, n == 1 and "" or "s",
+      n > 0 and ": " .. table.concat(parts, ", ") or "")
+end
+
+-- What help(x) prints for a model, an Lstring or a scene: what it is, then its methods
+-- with the docs' summary of each, then where to read more.
+local function about_lines (docs, x, kind, cols)
+  local recv = KIND_RECEIVER[kind]
+  local lines = { kind == "model" and model_line(x) or S.show(x) }
+  if kind == "model" then lines[2] = select(2, model_line(x)) end
+  lines[#lines + 1] = ""
+  lines[#lines + 1] = format('Its methods (help "%s:NAME" prints the section on one):', recv)
+  local rows, width = {}, 0
+  for _, name in ipairs(methods_of(x)) do
+    local sig, what
+    if docs ~= nil then sig, what = summary(docs, recv .. ":" .. name) end
+    rows[#rows + 1] = { sig or format("%s:%s()", recv, name), what or "" }
+    width = math.max(width, math.min(#rows[#rows][1], 30))
+  end
+  for _, r in ipairs(rows) do
+    local l = format("  %-" .. width .. "s  %s", r[1], r[2])
+    if #l > cols - 1 then l = l:sub(1, cols - 4) .. "..." end
+    lines[#lines + 1] = l
+  end
+  lines[#lines + 1] = ""
+  if kind == "model" then
+    lines[#lines + 1] = "m:inspect() prints its options, view and rules."
+  end
+  lines[#lines + 1] = format('help "%s" prints the manual\'s section.', KIND_TOPIC[kind])
+  return lines
+end
+
 --- Makes the `help` function of the REPL.
 -- opts: `dirs` (the folders to look for the docs in; default M.dirs()), `out` (writes a
 -- string; default io.stdout), `size` (returns the rows and columns of the screen; default
--- the terminal's, else 24 by 80), `lsys` (the lsys module; default the global).
--- help() prints an overview; help(x) the section on x (a function, a method, a model, an
--- Lstring, a scene, or a topic as a string), or "no help for X; try help()".
+-- the terminal's, else 24 by 80), `page` (shows a text that does not fit on the screen,
+-- returning true, or false to have it printed; default: the pager when `out` is not given
+-- and stdout is a terminal), `lsys` (the lsys module; default the global).
+-- help() prints an overview; help(x) the section on x (a function, a method, or a topic as
+-- a string), what x is and its methods (a model, an Lstring, a scene), or "no help for X;
+-- try help()".
 function M.new (opts)
   opts = opts or {}
   local out = opts.out or function (s) io.stdout:write(s) end
@@ -364,14 +512,24 @@ function M.new (opts)
     if docs == nil and why == nil then docs, why = load_docs(opts.dirs or M.dirs()) end
     return docs, why
   end
+  -- the pager: opts.page, else on a terminal (when help writes to stdout) the terminal's
+  local pager = opts.page
+  if pager == nil and opts.out == nil and host().isatty and host().isatty(1) then
+    pager = run_pager
+  end
+  -- Prints 'lines', through the pager when they do not fit on the screen.
+  local function emit (lines)
+    local rows, cols = size()
+    local text = table.concat(lines, "\n") .. "\n"
+    if pager and height(lines, cols) > rows - 1 and pager(text) then return end
+    out(text)
+  end
   local function show (topic, label)
     local d, msg = get_docs()
     if d == nil then out(msg .. "\n") return end
     local e = lookup(d, topic)
     if e == nil then out(format("no help for %s; try help()\n", label or topic)) return end
-    local rows, cols = size()
-    page(out, section_lines(e.sec, e.row), rows, cols,
-      format("%s/%s line %d", d.dir, e.sec.file, e.row or e.sec.first))
+    emit(section_lines(e.sec, e.row))
   end
   return function (...)
     local lsys = opts.lsys or G.lsys
@@ -391,7 +549,9 @@ function M.new (opts)
     end
     if name ~= nil then return show(name) end
     local kind = type(lsys) == "table" and type(lsys.type) == "function" and lsys.type(x)
-    if kind and KIND_TOPIC[kind] then return show(KIND_TOPIC[kind]) end
+    if kind and KIND_TOPIC[kind] then   -- (without the docs, the methods' names alone)
+      return emit(about_lines(get_docs(), x, kind, select(2, size())))
+    end
     local mt = getmetatable(x)
     local label = (type(x) == "function" or type(x) == "table" and
       not (type(mt) == "table" and mt.__tostring)) and "this " .. type(x) or tostring(x)

@@ -1,6 +1,8 @@
 --- How the REPL shows a value (lsys.repl.show): Lstrings abbreviated with their numbers
 -- rounded, scenes summarised, tables one level deep, numbers as the `lua` REPL prints them.
 -- @module lsys.repl.show
+local ismodel = require("lsys.model").ismodel
+local inspect = require("lsys.inspect").text
 local type, tostring, tonumber, pcall, getmetatable, pairs, next, error =
       type, tostring, tonumber, pcall, getmetatable, pairs, next, error
 local math, string, table = math, string, table
@@ -196,6 +198,7 @@ function M.show (v)
   local tn = typename(v)
   if type(v) == "userdata" and tn == "lsys.Scene" then return scene_summary(v) end
   if type(v) == "userdata" and tn == "lsys.Lstring" then return lstring_summary(v) end
+  if ismodel(v) then return inspect(v) end
   if type(v) == "table" and not has_tostring(v) then
     local ok, s = pcall(table_text, v)
     if ok then return s end
