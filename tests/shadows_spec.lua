@@ -176,6 +176,34 @@ describe("shadows and ambient occlusion #gl", function()
     end
   end)
 
+  it("bakes the shading into a Scene that draws the same picture (lsys.render.bake)", function()
+    local render = require "lsys.render"
+    local view = { light = { 0.5, 1, 0 }, fit = GROUND, ground = { size = 4 }, shadows = true }
+    local sc = quad:interpret()
+    local b = render.bake(sc, opts(view))
+    assert.is_true(b.ntriangles > sc.ntriangles)           -- the ground is in its mesh
+    local want = lsys.render(sc, opts(view))
+    local got = lsys.render(b, opts { fit = GROUND })
+    -- 16 steps of each colour: within a step (1/16 of the colour) of the picture's
+    local worst = 0
+    for i = 0, 200 * 200 - 1 do
+      for c = 1, 3 do
+        local d = math.abs(want:byte(4 * i + c) - got:byte(4 * i + c))
+        if d > worst then worst = d end
+      end
+    end
+    assert.is_true(worst <= 16, "worst " .. worst)
+    assert.is_true(lum(got, 200, 55, 100, 4) < 0.8 * lum(got, 200, 145, 100, 4))  -- shadow
+    -- a population's plants are written out, with the ground under them
+    local pop = lsys.population({ { model = quad, at = { -6, 0, 0 } },
+                                  { model = quad, at = { 6, 0, 0 } } })
+    local bp = render.bake(pop, { ground = true, shadows = true })
+    assert.equal(0, bp.ninstances)
+    assert.is_true(bp.ntriangles > 2 * sc.ntriangles)
+    assert.has_error(function () render.bake(sc, { out = "x.png" }) end,
+                     "lsys.render.bake: opts.out: bake makes a Scene, it writes no file")
+  end)
+
   it("gives the same picture for 1 and 2 threads", function()
     local m = dofile("examples/default.lua")
     m.steps = 5

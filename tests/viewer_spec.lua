@@ -72,6 +72,34 @@ describe("#gl the viewer window", function()
     os.execute("rm -rf " .. dir)
   end)
 
+  it("draws a 3D plant with the shadows lsys render gives it with --shadows", function()
+    if not display() then return end
+    local dir = tmpdir()
+    -- a stem under a square, lit from the side: the square's shadow falls on the ground
+    write(dir .. "/m.lua", [[
+return require("lsys").lsystem {
+  axiom = "F(10) &(90) f(-2) -(90) f(-2) { . f(4) . +(90) f(4) . +(90) f(4) . +(90) f(4) . }",
+  view = { light = { 0.5, 1, 0.3 }, direction = { 0, -0.6, -1 } },
+}]])
+    local function shot (flags)
+      local out, code = run(D.env .. BIN .. " view " .. dir .. "/m.lua --size 300x240 " ..
+        "--no-status " .. flags .. " --screenshot " .. dir .. "/w.png")
+      assert.equal(0, code, out)
+      return core.png_read(dir .. "/w.png")
+    end
+    local plain, shaded = shot(""), shot("--shadows")
+    local darker, lighter = 0, 0
+    for i = 0, 300 * 240 - 1 do
+      local function lum (px) local r, g, b = px:byte(4 * i + 1, 4 * i + 3) return r + g + b end
+      local d = lum(shaded) - lum(plain)
+      if d < -60 then darker = darker + 1 elseif d > 60 then lighter = lighter + 1 end
+    end
+    -- the shadow: a patch of the ground darker, nothing lighter
+    assert.is_true(darker > 200, darker .. " pixels darker")
+    assert.is_true(lighter < darker / 10, lighter .. " pixels lighter")
+    os.execute("rm -rf " .. dir)
+  end)
+
   it("reports the module of the segment clicked, through the turtle records", function()
     local dir = clicks()
     if not dir then return end

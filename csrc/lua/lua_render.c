@@ -112,6 +112,28 @@ static int above (const lsys_camera *c, const lsys_mesh *m) {
   }
 }
 
+/* Pushes an empty shadeprep (freed by its __gc). */
+static shadeprep *newprep (lua_State *L) {
+  shadeprep *p = (shadeprep *)lua_newuserdatauv(L, sizeof *p, 0);
+  memset(p, 0, sizeof *p);
+  if (luaL_newmetatable(L, SHADEPREP_T)) {
+    lua_pushcfunction(L, shadeprep_gc);
+    lua_setfield(L, -2, "__gc");
+  }
+  lua_setmetatable(L, -2);
+  return p;
+}
+
+/* Scene v (a copy of the scene drawn, its arrays borrowed) with the camera, lights and
+** background of 'look' (what the options gave). */
+static void lookof (lsys_scene *v, const lsys_scene *look) {
+  v->cam = look->cam;
+  memcpy(v->light, look->light, sizeof v->light);
+  memcpy(v->lights, look->lights, sizeof v->lights);
+  v->nlights = look->nlights;
+  memcpy(v->background, look->background, sizeof v->background);
+}
+
 /* Where the picture o of scene v (its camera framing a box: has_box) sees the
 ** plane under its lowest point: the hits of rays through the picture's edges
 ** into g->rect, so that the ground reaches the picture's bottom and sides. In a
@@ -266,13 +288,7 @@ static int l_render (lua_State *L) {
   }
   lsysL_readrenderopts(L, ro.t, &o, &look);
   ground = readshade(L, ro.t, &so, &g, gcol, &o);
-  prep = (shadeprep *)lua_newuserdatauv(L, sizeof *prep, 0);
-  memset(prep, 0, sizeof *prep);
-  if (luaL_newmetatable(L, SHADEPREP_T)) {
-    lua_pushcfunction(L, shadeprep_gc);
-    lua_setfield(L, -2, "__gc");
-  }
-  lua_setmetatable(L, -2);
+  prep = newprep(L);
   if (lsysL_optfield(L, &ro, "out", LUA_TSTRING, "a file name"))
     out = lua_tostring(L, -1);        /* stays on the stack */
   if (lsys_render_maxsize(&maxw, &maxh, &e) != LSYS_OK)
@@ -292,11 +308,7 @@ static int l_render (lua_State *L) {
   tex = lsysL_opttextures(L, ro.t, "lsys.render", &ntex);   /* pushes one value; kept */
   S = lsysL_checkscene(L, 1);          /* after the last Lua code (metamethods, finalizers) */
   v = S->sc;                          /* the scene as this picture sees it (scene.h) */
-  v.cam = look.cam;
-  memcpy(v.light, look.light, sizeof v.light);
-  memcpy(v.lights, look.lights, sizeof v.lights);
-  v.nlights = look.nlights;
-  memcpy(v.background, look.background, sizeof v.background);
+  lookof(&v, &look);
   if (tex != NULL) { v.tex = tex; v.ntex = ntex; }
   prepare(L, prep, &v, &o, &so, &g, gcol, ground);
   if (lsys_render_offscreen(&v, &o, px, &e) != LSYS_OK)
@@ -316,6 +328,99 @@ static int l_render (lua_State *L) {
 }
 
 #ifndef LSYS_NO_RENDER
+#define BAKE_LEVELS 16          /* steps of a palette entry's diffuse colour */
+
+/* Bakes the factors f of the vertices of B's mesh (prepare's) into their colours: pal0
+** (npal entries) grows to 'levels' steps of each entry's diffuse colour, the first the
+** entry itself, the last 1/levels of it; a vertex takes the step of its factor. */
+static void bakecolours (lua_State *L, lsys_scene *B, const lsys_material *pal0, size_t npal,
+                         const uint8_t *f) {
+  size_t levels = BAKE_LEVELS, j, c, k;
+  lsys_material *pal;
+  int st;
+  while (npal * levels > LSYS_MESH_NCOLORS && levels > 1) levels /= 2;
+  if (f == NULL || levels < 2) {
+    if (lsys_scene_set_palette(B, pal0, npal) != LSYS_OK) luaL_error(L, "not enough memory");
+    return;
+  }
+  if ((pal = (lsys_material *)LSYS_MALLOC(npal * levels * sizeof *pal)) == NULL)
+    luaL_error(L, "not enough memory");
+  for (j = 0; j < levels; j++)
+    for (c = 0; c < npal; c++) {
+      lsys_material *m = &pal[j * npal + c];
+      float x = 1 - (float)j / (float)levels;
+      int i;
+      *m = pal0[c];
+      for (i = 0; i < 3; i++) m->diffuse[i] *= x;
+    }
+  st = lsys_scene_set_palette(B, pal, npal * levels);
+  LSYS_FREE(pal);
+  if (st != LSYS_OK) luaL_error(L, "not enough memory");
+  for (k = 0; k < B->mesh.nv; k++) {
+    size_t step = (size_t)((255 - f[k]) * (double)levels / 256.0);
+    B->mesh.col[k] = (uint16_t)(B->mesh.col[k] % npal + npal * step);
+  }
+}
+
+/*
+** core.bake(scene [, opts]) -> Scene: the scene as core.render draws it with
+** opts.shade (lsys.render.bake: shadows, ao, ground), for a window, which draws
+** no shadows of its own: a population's instances written out, the ground
+** appended, and each vertex's shading factor baked into its colour
+** (bakecolours). opts as core.render's (width and height: the picture whose
+** ground grows to what its camera sees). The camera (framing the plant), the
+** light and background are the picture's, the textures the scene's; its
+** records are kept unless it had instances.
+*/
+static int l_bake (lua_State *L) {
+  static const lsys_material grey = {{0.24f, 0.24f, 0.24f, 1}, {0.8f, 0.8f, 0.8f, 1},
+                                     {0, 0, 0, 1}, {0, 0, 0, 1}, 0};
+  const lsys_lscene *S = lsysL_checkscene(L, 1);
+  lsys_scene look = S->sc, v;
+  lsys_render_opts o;
+  lsys_opts ro = {0, "lsys.render.bake: opts.", "", LSYS_GOT_VALUE, 0};
+  lsys_shade_opts so;
+  lsys_shade_ground g;
+  float gcol[3];
+  shadeprep *prep;
+  lsys_lscene *B;
+  int ground;
+  if (!lua_isnoneornil(L, 2)) {
+    luaL_checktype(L, 2, LUA_TTABLE);
+    ro.t = 2;
+  }
+  lsysL_readrenderopts(L, ro.t, &o, &look);
+  ground = readshade(L, ro.t, &so, &g, gcol, &o);
+  prep = newprep(L);
+  B = lsysL_newscene(L);
+  S = lsysL_checkscene(L, 1);         /* after the last Lua code */
+  v = S->sc;
+  lookof(&v, &look);
+  prepare(L, prep, &v, &o, &so, &g, gcol, ground);
+  if (lsys_mesh_copy(&B->sc.mesh, &v.mesh) != LSYS_OK) return luaL_error(L, "not enough memory");
+  bakecolours(L, &B->sc, v.npal > 0 ? v.pal : &grey, v.npal > 0 ? v.npal : 1, prep->f);
+  if (!prep->flattened && v.nrec > 0) {
+    if (lsys_scene_reserve_records(&B->sc, v.nrec) != LSYS_OK)
+      return luaL_error(L, "not enough memory");
+    memcpy(B->sc.rec, v.rec, v.nrec * sizeof *v.rec);
+    B->sc.nrec = v.nrec;
+    if (v.nstiff > 0) {               /* the records' stiffnesses, 3 floats each */
+      if ((B->sc.stiff = (float *)LSYS_MALLOC(3 * v.nstiff * sizeof *v.stiff)) == NULL)
+        return luaL_error(L, "not enough memory");
+      memcpy(B->sc.stiff, v.stiff, 3 * v.nstiff * sizeof *v.stiff);
+      B->sc.nstiff = v.nstiff;
+      B->sc.stiffcap = 3 * v.nstiff;
+    }
+  }
+  lookof(&B->sc, &v);
+  B->sc.tex = S->sc.tex;
+  B->sc.ntex = S->sc.ntex;
+  B->sc.cull = v.cull;
+  lua_getiuservalue(L, 1, LSYS_SCENE_TEX);        /* the textures stay alive with it */
+  lua_setiuservalue(L, -2, LSYS_SCENE_TEX);
+  return 1;
+}
+
 /* Sets t[k] = x for the flat arrays of l_project. */
 static void seti (lua_State *L, lua_Integer *k, double x) {
   lua_pushnumber(L, x);
@@ -543,7 +648,7 @@ static const luaL_Reg pixels_meta[] = {
 };
 
 static const luaL_Reg render_funcs[] = {
-  {"render", l_render}, {"project", l_project}, {"png_read", l_png_read},
+  {"render", l_render}, {"bake", l_bake}, {"project", l_project}, {"png_read", l_png_read},
   {"png_write", l_png_write}, {"write_file", l_write_file}, {"read_file", l_read_file}, {"realpath", l_realpath},
   {NULL, NULL}
 };

@@ -76,7 +76,7 @@ local function shade (opts)
 end
 
 -- lsys.render, raising its errors at `level` (0: without a position).
-local function render (level, x, opts)
+local function render (level, x, opts, bake)
   opts = opts or {}
   if type(opts) ~= "table" then error("lsys.render: an options table expected", level) end
   local ext = type(opts.out) == "string" and opts.out:match("%.([%w]+)$")
@@ -137,7 +137,7 @@ local function render (level, x, opts)
   local sok, sh = pcall(shade, opts)
   if not sok then error(sh, level) end
   ro.shade = sh
-  local ok, a, b, c = pcall(core.render, x, ro)
+  local ok, a, b, c = pcall(bake and core.bake or core.render, x, ro)
   if not ok then error(a, level) end
   return a, b, c
 end
@@ -192,6 +192,19 @@ end
 function M.render (x, opts)
   local a, b, c = render(3, x, opts)    -- 3: the caller of this function
   return a, b, c
+end
+
+--- The Scene `x` (or a Model, interpreted) as M.render draws it with `opts`' shadows, ao
+-- and ground, baked: a new Scene with the ground in its mesh and each vertex's shading in
+-- its colour (its palette grows 16 steps of each colour), for the window, which draws no
+-- shadows of its own (`lsys view --shadows`); a population's plants are written out.
+-- opts: those of M.render but `out`; width and height (800) are the picture's whose
+-- camera the ground grows to. Raises blaming its caller.
+function M.bake (x, opts)
+  if opts ~= nil and type(opts) == "table" and opts.out ~= nil then
+    error("lsys.render.bake: opts.out: bake makes a Scene, it writes no file", 2)
+  end
+  return (render(3, x, opts, true))
 end
 
 --- As M.render, raising its errors without a position: for callers that put their own

@@ -86,7 +86,8 @@ local SHOW_OPTS = {
   keep_camera = "boolean", progress = "function", samples = "number", status = "boolean",
   model = "table", lines = "table", capture = "boolean", history = "number",
   frames_dir = "string", light_colours = "boolean", edit = "boolean", file = "string",
-  out = "function", on_build = "function", flat = "boolean",
+  out = "function", on_build = "function", flat = "boolean", shadows = "boolean",
+  ao = "boolean",
 }
 
 -- The sky and ground of a window showing `scene` (post options): as lsys render shades a
@@ -95,6 +96,18 @@ local SHOW_OPTS = {
 local function backdrop (scene, flat)
   if flat then return false, false end
   return not lrender.ownbackground(scene), true
+end
+
+-- The scene window v shows for `scene`: with opts.shadows or opts.ao, a 3D plant baked with
+-- them and its ground grown to what a picture of the window's scene pane sees
+-- (lsys.render.bake), and true.
+local function baked (v, scene, opts)
+  if not (opts.shadows or opts.ao) or not lrender.solid(scene) then return scene, false end
+  local st = v:state()
+  local r = st and st.scene
+  return lrender.bake(scene, { shadows = opts.shadows or nil, ao = opts.ao or nil,
+                               ground = true, width = r and r[3] > 0 and r[3] or nil,
+                               height = r and r[4] > 0 and r[4] or nil }), true
 end
 
 -- Errors of `show` are lsys.show's (the public name of lsys.viewer.show); `open` names
@@ -312,6 +325,9 @@ function M.edit (subject, opts)
       local f, vw = frame(scene, S.steps[1], s and #s or nil, true)
       local tex = vw and vw.textures
       local sky, ground = backdrop(scene, opts.flat)
+      local b
+      f.scene, b = baked(v, scene, opts)
+      ground = ground and not b
       v:post({ f }, { keep_camera = not first or nil, title = title, sky = sky, ground = ground,
                       textures = tex and #tex > 0 and tex or nil })
       first = false
@@ -429,8 +445,15 @@ function M.show (x, opts)
     fail("option 'rate' must be in (0, 1000] steps per second", 2)
   end
   if opts.frames_dir == "" then fail("option 'frames_dir' must not be empty", 2) end
-  local v = open(opts, "lsys.show")
   local sky, ground = backdrop(frames[#frames].scene, opts.flat)
+  local v = open(opts, "lsys.show")
+  if opts.shadows or opts.ao then
+    for _, f in ipairs(frames) do
+      local b
+      f.scene, b = baked(v, f.scene, opts)
+      ground = ground and not b
+    end
+  end
   v:post(frames, {
     first = first, rate = opts.rate, title = "lsys: " .. (opts.title or title),
     sky = sky, ground = ground,

@@ -228,7 +228,7 @@ Options: as for `lsys render`; -o is required.
 
 HELP.view = [=[
 usage: lsys view [MODEL [VIEW.v]] [--size WxH] [--show K] [--rate R] [--no-status]
-                 [--last | --history SIZE] [--edit | --no-edit] [--flat]
+                 [--last | --history SIZE] [--edit | --no-edit] [--flat] [--shadows] [--ao]
                  [--screenshot OUT.png] [--steps N] [--seed S] [--set NAME=VALUE]...
                  [--view NAME=VALUE]... [--name NAME] [--map FILE | --mat FILE]
                  [--define NAME=VALUE]... [--threads N] [--max-memory SIZE]
@@ -268,6 +268,9 @@ Options:
   --screenshot OUT.png draw the first picture as the window shows it, save it to OUT.png
                        (through the same path as the S key) and exit
   --flat               no sky and no ground under a 3D plant (the G key turns them on)
+  --shadows, --ao      a 3D plant drawn with the shadows (and ambient occlusion) that
+                       lsys render gives it, baked into its colours for each step shown
+                       (seconds for a large plant; each edit bakes it again)
   --edit               the editing panes for any model (its last step); --no-edit: none,
                        every step as for a model without params
   --steps N, --seed S, --set NAME=VALUE, --view NAME=VALUE, --name NAME, --map FILE,

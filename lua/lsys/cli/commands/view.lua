@@ -22,7 +22,7 @@ local _ENV = nil
 local VIEW_OPTS = model_opts {
   size = "value", show = "value", step = "value", rate = "value", screenshot = "value",
   ["no-status"] = "flag", last = "flag", history = "value", edit = "flag",
-  ["no-edit"] = "flag", flat = "flag",
+  ["no-edit"] = "flag", flat = "flag", shadows = "flag", ao = "flag",
 }
 
 -- --show, --rate, --screenshot and --history of `lsys view`; the messages about --show
@@ -186,6 +186,7 @@ local function run (args)
         out = function (msg) io.stderr:write("lsys: ", msg) end,
         width = w, height = h, step = first, rate = rate, keep_camera = keep or nil,
         steps = not opts.last, history = history, flat = opts.flat or nil,
+        shadows = opts.shadows or nil, ao = opts.ao or nil,
         title = path:match("([^/]*)$"), status = not opts["no-status"],
         view = next(views) and views or nil,
         -- a click prints the module, unless lsys.viewer.on_pick (set by the model) takes it
