@@ -842,7 +842,8 @@ static int l_formats (lua_State *L) {
   return 1;
 }
 
-/* scene:save(path [, opts]) -> true; .obj (+ .mtl), .ply, .glb; opts.lines
+/* scene:save(path [, opts]) -> {vertices =, triangles =, lines =, instances =}, what
+** the file holds (lsys_export_sizes); .obj (+ .mtl), .ply, .glb; opts.lines
 ** "lines" (default) or "tubes", with opts.sides and opts.pixel_size; for a
 ** population, opts.instancing (glb; default true) and opts.max_memory (the
 ** bytes its flattened copy may take) */
@@ -853,7 +854,8 @@ static int scene_save (lua_State *L) {
   lsys_lscene *S = lsysL_checkscene(L, 1);
   const char *path = luaL_checkstring(L, 2);
   int format = lsys_export_format(path);
-  lsys_export_opts xo = {0, 0, 0, 0, 0};
+  lsys_export_sizes sz = {0, 0, 0, 0};
+  lsys_export_opts xo = {0, 0, 0, 0, 0, NULL};
   lsys_error e;
   int st;
   memset(&e, 0, sizeof e);
@@ -875,9 +877,18 @@ static int scene_save (lua_State *L) {
   if (format < 0)
     return luaL_error(L, "scene:save: unknown format of '%s' (use %s)", path, extlist(L));
   S = lsysL_checkscene(L, 1);                /* again: the options ran Lua code */
+  xo.sizes = &sz;
   st = lsys_export_scene(&S->sc, format, path, &xo, &e);
   if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
-  lua_pushboolean(L, 1);
+  lua_createtable(L, 0, 4);
+  lua_pushinteger(L, (lua_Integer)sz.nv);
+  lua_setfield(L, -2, "vertices");
+  lua_pushinteger(L, (lua_Integer)sz.nt);
+  lua_setfield(L, -2, "triangles");
+  lua_pushinteger(L, (lua_Integer)sz.nl);
+  lua_setfield(L, -2, "lines");
+  lua_pushinteger(L, (lua_Integer)sz.ninst);
+  lua_setfield(L, -2, "instances");
   return 1;
 }
 

@@ -219,6 +219,7 @@ it) and writes its geometry: Wavefront OBJ (with a .mtl file next
 to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT. A file
 returning a population (lsys.population) is written as it is: .glb with one mesh per
 prototype placed by EXT_mesh_gpu_instancing, .obj and .ply with every plant written out.
+It prints what the file holds: its vertices, triangles and lines.
 
 Options: as for `lsys render`; -o is required.
   --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800
