@@ -204,7 +204,8 @@ describe("--threads, --max-memory and --max-modules", function()
     local path = model '{ axiom = "F", steps = 5, productions = "F --> FF" }'
     local out, code = run("derive " .. path .. " --max-modules 10")
     assert.equal(1, code, out)
-    assert.equal("lsys: " .. path .. ": the string would exceed max_modules (10 modules)\n", out)
+    assert.equal("lsys: " .. path .. ": step 4 of 5: the string would exceed max_modules (10 "
+                 .. "modules)\n", out)
     path = model '{ axiom = "F", steps = 5, productions = "F --> FF", max_modules = 10 }'
     out, code = run("derive " .. path)
     assert.equal(1, code, out)
@@ -218,8 +219,9 @@ describe("--threads, --max-memory and --max-modules", function()
     local path = model("{ " .. rules .. " }")
     local out, code = run("derive " .. path .. " --stats --max-memory 64K")
     assert.equal(1, code, out)
-    assert.equal("lsys: " .. path .. ": the derivation would need more than max_memory (64 KiB) "
-      .. "at module 513 (set max_memory in the model, or LSYS_MAX_MEMORY)\n", out)
+    assert.equal("lsys: " .. path .. ": step 11 of 14: the derivation would need more than "
+      .. "max_memory (64 KiB) at module 513 (set max_memory in the model, or LSYS_MAX_MEMORY)\n",
+      out)
     out, code = run("derive " .. path .. " --stats --max-memory 65536")
     assert.equal(1, code, out)
     assert.truthy(out:find("more than max_memory (64 KiB) at module 513", 1, true), out)

@@ -711,6 +711,8 @@ function Model:_call (fn, what, ...)
   end
   local idx, mod = rules:current()
   local msg = type(res) == "string" and res or tostring(res)
+  local step = self._atstep
+  self._atstep = nil
   if msg:find(NESTED, 1, true) then error(msg, 0) end      -- said once, at the innermost
   if idx then
     local info = self._info[idx + 1]
@@ -718,6 +720,11 @@ function Model:_call (fn, what, ...)
     msg = msg:gsub("^rule:%d+: ", "")
     error(format("%s: %s, module %d: %s", info and info.where or self._where, label, mod, msg),
           0)
+  end
+  -- not a rule's: a limit of the step (max_modules, max_memory), named with the step of
+  -- derive it stopped at, so that the user sees how far the model got
+  if step ~= nil then
+    error(format("%s: step %d of %d: %s", self._where, step, self._atsteps, msg), 0)
   end
   error(format("%s: %s", self._where, msg), 0)
 end
@@ -798,7 +805,9 @@ function Model:derive (n, opts)
     end
     self:_pass(s, k - 1)
     local t
+    self._atstep, self._atsteps = k, n  -- for a limit's message (_call): the step it stopped
     if own then t = self:_core("advance", s) else t = self:_core("step", s) end
+    self._atstep = nil
     if self.end_each then
       local r = runhook(self, self.end_each, t, k)
       if r ~= nil then
