@@ -50,11 +50,14 @@ describe("lsys derive on a cpfg model", function ()
     assert.equal("lsys: " .. D .. "macros.l:11: #error never\n", out)
   end)
 
-  it("warns when --set names no variable of the model (a #define is none)", function ()
+  it("refuses --set with a name the model has no variable of (a #define is none)", function ()
     local out, code = lsys("derive " .. PLANT .. " --set RATE=3")
-    assert.equal(0, code, out)
-    assert.truthy(out:find("lsys: --set RATE: the model has no variable RATE", 1, true), out)
-    assert.truthy(out:find(PLANT_STRING, 1, true), out)
+    assert.equal(2, code, out)
+    assert.truthy(out:find("lsys: derive: --set RATE: the model has no variable RATE (the "
+      .. "model's variables: ", 1, true), out)
+    assert.truthy(out:find("); the preprocessor replaces a #define's name by its value "
+      .. "(--define NAME=VALUE sets one)", 1, true), out)
+    assert.falsy(out:find(PLANT_STRING, 1, true), out)
   end)
 
   it("names the file and line of an error, and a missing file", function ()

@@ -13,6 +13,7 @@ local sandbox = require "lsys.sandbox"
 local environment = require "lsys.environment"
 local params = require "lsys.params"
 local inspect = require "lsys.inspect"
+local suggest = require "lsys.util.suggest"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
       math, string, table, debug, _G, os =
@@ -140,23 +141,14 @@ local OPTIONS = {
   depth_warnings = "any", threads = "number", max_instructions = "number",
   random = "string", environment = "any", params = "table",
 }
+local OPTION_NAMES = {}           -- for "did you mean" (lsys.util.suggest)
+for k in pairs(OPTIONS) do OPTION_NAMES[#OPTION_NAMES + 1] = k end
+table.sort(OPTION_NAMES)
 
 local Model = {}
 local rules_models = setmetatable({}, { __mode = "k" })   -- Rules userdata -> its model
 Model.__index = Model
 M.Model = Model
-
--- The parameter counts each module name has in a parsed successor: { name = { [n] = true } }
--- (kept instead of the successor's modules, which a generated successor has millions of).
-local function kinds (mods)
-  local made = {}
-  for _, m in ipairs(mods or {}) do
-    local k = made[m.name]
-    if k == nil then k = {}; made[m.name] = k end
-    k[#m.params] = true
-  end
-  return made
-end
 
 -- Splits a rules value (string or list) into entries { text=, fn=, line= }.
 local function entries (rules, what, fail)
@@ -211,9 +203,10 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
                             set = what, line = e.line, n = n, fn = e.fn, weight = e.weight,
+                            kind = kind,
                             trees = trees, funcrefs = factory and compile.funcrefs(e.text),
                             pattern = { r.lc, r.preds or { r.pred }, r.rc },
-                            made = not e.fn and kinds(r.succ) or nil }
+                            made = not e.fn and compile.kinds(r.succ) or nil }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     -- (cpfg interprets the string between steps when it has query modules, ?E included:
     -- its environment step, which runs the homomorphism's random numbers too)
@@ -222,36 +215,15 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
   end
 end
 
-local SPECIAL = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] = true }
-
--- Warns about each rule whose pattern names a module with a parameter count that no
--- module of that name has in the axioms and successors (which do name it): the rule can
--- never apply (`B(x,y) --> ...` where every B is `B(1)`). Rule functions may produce
--- anything: with one, nothing is said.
-function Model:_checkcounts ()
-  local made = self._rules:kinds(self._axiom)      -- the axiom's, counted in C
-  for _, info in pairs(self._info) do
-    if not info.made then return end           -- a rule function
-    for name, counts in pairs(info.made) do
-      made[name] = made[name] or {}
-      for n in pairs(counts) do made[name][n] = true end
-    end
-  end
-  for _, info in pairs(self._info) do
-    for _, part in ipairs(info.pattern) do
-      for _, m in ipairs(part) do
-        local counts, np = made[m.name], #m.params
-        if counts and not counts[np] and not SPECIAL[m.name] then
-          local have = {}
-          for k in pairs(counts) do have[#have + 1] = k end
-          table.sort(have)
-          warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
-            .. "successor (every '%s' there has %s): the rule never applies", self._where,
-            info.label, m.name, np, np == 1 and "" or "s", m.name, table.concat(have, " or ")))
-          break
-        end
-      end
-    end
+-- Warns about each rule that can never apply because a module of its pattern never
+-- appears with the rule's parameter count (compile.unreachable: made by the axiom or by a
+-- rule that can apply).
+function Model:_checkcounts (open)
+  for _, u in ipairs(compile.unreachable(self._info, self._rules:kinds(self._axiom), open)) do
+    warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
+      .. "successor of a rule that can apply (every '%s' there has %s): the rule never applies",
+      self._where, u.info.label, u.name, u.count, u.count == 1 and "" or "s", u.name,
+      table.concat(u.have, " or ")))
   end
 end
 
@@ -281,7 +253,9 @@ end
 local function checkoptions (opts, fail)
   for k, v in pairs(opts) do
     local t = OPTIONS[k]
-    if t == nil then fail(format("unknown option '%s'", tostring(k))) end
+    if t == nil then
+      fail(format("unknown option '%s'%s", tostring(k), suggest.hint(k, OPTION_NAMES)))
+    end
     if t == "rules" then
       if type(v) ~= "string" and type(v) ~= "table" then
         fail(format("option '%s' must be a string or a list of rules", k))
@@ -460,7 +434,7 @@ make = function (opts, where, fail, dir)
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
-  self:_checkcounts()
+  self:_checkcounts(opts.end_each ~= nil)      -- end_each may return any string
   if self.random ~= "lsys" and self.random ~= "cpfg" then
     fail(format("option 'random' must be \"lsys\" or \"cpfg\", not \"%s\"",
                 tostring(self.random)))

@@ -32,6 +32,7 @@ local A = require "lsys.cli.args"
 local H = require "lsys.cli.help"
 local strip_internal = require("lsys.util.errors").strip_internal
 local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 
 local G = _G
 local type, tostring, error, xpcall, require, loadfile, getmetatable, warn =
@@ -46,10 +47,11 @@ local M = {}
 
 -- The commands, each a module lsys.cli.commands.NAME that returns the function of the
 -- arguments; only the one that runs is loaded (`lsys derive` loads no window nor busted).
-local COMMANDS = {}
+local COMMANDS, NAMES = {}, {}
 for name in ("derive render animate export view arrange sketch components grow import batch "
              .. "test repl help"):gmatch("%S+") do
   COMMANDS[name] = true
+  NAMES[#NAMES + 1] = name
 end
 
 -- Runs the script 'path' ("-": stdin) with args[first+1..] as `arg` and `...`, like lua.c.
@@ -79,7 +81,7 @@ local function dispatch (args)
   if a:sub(1, 1) == "-" then usage(nil, "unknown option '%s'", a) end
   if isfile(a) then return run_script(a, args, 1) end
   if a:find("%.lua$") or a:find("/") then error(format("cannot open '%s'", a), 0) end
-  usage(nil, "unknown command '%s'", a)
+  usage(nil, "unknown command '%s'%s", a, suggest.hint(a, NAMES))
 end
 
 --- 'msg' without the positions in lsys's own sources that Lua put in it ("/usr/share/lsys/

@@ -6,7 +6,7 @@ local load = require "lsys.load"
 local lmodel = require "lsys.model"
 local lenvironment = require "lsys.environment"
 local lview = require "lsys.view"
-local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 local normalize = require("lsys.util.text").normpath
 local host = require("lsys.program").host
 local tune = require "lsys.ui.tune"
@@ -188,21 +188,25 @@ local function value (v)
   return v
 end
 
--- Applies --set NAME=VALUE to the model's env, warning about a name the model has no variable
--- of (a misspelt name would otherwise change nothing without a word).
-local function set_env (model, sets, src)
+-- Applies --set NAME=VALUE to the model's env. A name the model has no variable of is a
+-- usage error, as it is for a job of lsys batch: a misspelt name would otherwise change
+-- nothing without a word. (A model that reads a variable it may lack, `env.n or 5`, lists
+-- it in its env to take it from the command line.)
+local function set_env (cmd, model, sets, src)
   if model.env == nil then model.env = {} end
   local names = load.variables(model.env)
   for _, kv in ipairs(sets) do
     if model.env[kv[1]] == nil then
-      local have = #names == 0 and "the model has no variables (its env is empty)"
-        or "the model's variables: " .. table.concat(names, ", ")
+      local hint = suggest.hint(kv[1], names)
+      local have = hint ~= "" and hint
+        or #names == 0 and " (the model has no variables: its env is empty)"
+        or " (the model's variables: " .. table.concat(names, ", ") .. ")"
       if src.kind ~= "lua" then
-        have = have .. "; the preprocessor replaces a #define's name by its value, and "
-          .. "`lsys import` writes a model file whose #defines of numbers are variables"
+        have = have .. "; the preprocessor replaces a #define's name by its value (--define "
+          .. "NAME=VALUE sets one), and `lsys import` writes a model file whose #defines of "
+          .. "numbers are variables"
       end
-      warning.warn(format("lsys: --set %s: the model has no variable %s (%s)",
-        kv[1], kv[1], have))
+      usage(cmd, "--set %s: the model has no variable %s%s", kv[1], kv[1], have)
     end
     if model.params ~= nil and model.param and model:param(kv[1]) ~= nil then
       local ok, err = pcall(function () model.params[kv[1]] = kv[2] end)   -- in its range
@@ -351,7 +355,7 @@ local function prepare (cmd, opts, pos)
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end
   if limits ~= nil then apply_limits(model, limits) end
-  if #sets > 0 then set_env(model, sets, src) end
+  if #sets > 0 then set_env(cmd, model, sets, src) end
   check_views(cmd, model, vlist)
   return model, path, views, src
 end
