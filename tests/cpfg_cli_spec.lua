@@ -130,6 +130,29 @@ describe("lsys render and export on a cpfg model", function ()
     assert.equal("\137PNG", H.read(dir .. "/p.png"):sub(1, 4))
   end)
 
+  it("finds --map from the shell's folder first, then from the .l file's", function ()
+    assert(os.execute("mkdir " .. dir .. "/sub"))
+    for _, f in ipairs { "plant.l", "plant.h", "plant.v" } do
+      H.write(dir .. "/sub/" .. f, H.read(D .. "cli/" .. f))
+    end
+    local function map (path, r, g, b)       -- colour 2, the plant's, pure; the rest black
+      H.write(path, ("\0"):rep(6) .. string.char(r, g, b) .. ("\0"):rep(768 - 9))
+    end
+    local function kd (m)                    -- the colour the .mtl gives colour 2
+      local out, code = H.sh(("cd %s && %s export sub/plant.l sub/plant.v --map %s -o x.obj")
+                             :format(dir, H.ABSBIN, m))
+      if code ~= 0 then return out end
+      return H.read(dir .. "/x.mtl"):match("newmtl m2\n[^\n]*\nKd ([^\n]*)")
+    end
+    map(dir .. "/sub/c.map", 0, 0, 255)
+    assert.equal("0 0 1", kd("sub/c.map"))   -- the shell's path (was looked for in sub/sub/)
+    assert.equal("0 0 1", kd("c.map"))       -- the .l file's folder
+    map(dir .. "/c.map", 255, 0, 0)
+    assert.equal("1 0 0", kd("c.map"))       -- both: the shell's first
+    assert.equal("lsys: --map no.map: no such file in the current folder nor in the model's "
+                 .. "(sub)\n", kd("no.map"))
+  end)
+
   it("exports a vlab object to glTF", function ()
     local out, code = lsys("export " .. D .. "object -o " .. dir .. "/o.glb")
     assert.equal(0, code, out)

@@ -1,6 +1,7 @@
 --- Where the commands of the `lsys` program get their model: a Lua file, an example, a cpfg
 -- .l file with its view file or a vlab object folder, loaded with --steps, --seed, --set.
 -- @module lsys.cli.source
+local core = require "lsys.core"
 local A = require "lsys.cli.args"
 local load = require "lsys.load"
 local lmodel = require "lsys.model"
@@ -54,6 +55,13 @@ local function find_model (arg)
   error(format("cannot open model '%s'", arg), 0)
 end
 
+-- A --map or --mat file: from the shell's folder when it is there, else as lsys.cpfg.load
+-- takes it, from the .l file's folder (where vlab runs cpfg).
+local function palette_file (p)
+  if p == nil or p:sub(1, 1) == "/" or not isfile(p) then return p end
+  return core.realpath(p) or p
+end
+
 -- The cpfg options of a command line (--map, --mat, --define) as lsys.cpfg.load options,
 -- or nil when none is given.
 local function cpfg_opts (cmd, opts)
@@ -74,8 +82,8 @@ local function cpfg_opts (cmd, opts)
     defines = defines or {}
     defines[k] = v
   end
-  return { colormap = opts.map, materials = opts.mat, defines = defines,
-           environment = opts.environment }
+  return { colormap = palette_file(opts.map), materials = palette_file(opts.mat),
+           defines = defines, environment = opts.environment }
 end
 
 --[[
@@ -123,6 +131,14 @@ local function model_source (cmd, opts, pos)
     local f, err = io.open(arg, "r")
     if f == nil then error(err, 0) end
     f:close()
+  end
+  for _, o in ipairs { "map", "mat" } do          -- neither here nor beside the model
+    local p = opts[o]
+    local dir = kind == "object" and arg or (arg:match("^(.*)/[^/]*$") or ".")
+    if p ~= nil and p:sub(1, 1) ~= "/" and not isfile(p) and not isfile(dir .. "/" .. p) then
+      error(format("--%s %s: no such file in the current folder nor in the model's (%s)", o,
+                   p, normalize(dir)), 0)
+    end
   end
   return { path = arg, kind = kind, vfile = view, lopts = lopts or {} }
 end
