@@ -1,4 +1,5 @@
 -- The lsys program: derive, errors that name the model file.
+local H = require "tests.helper"
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 
 local function run (args)
@@ -185,6 +186,41 @@ describe("lsys -V and -v", function()
     assert.falsy(out:find("-v, --version", 1, true), out)
     out = run("help test")
     assert.truthy(out:find("\n  -v, --verbose      more output", 1, true), out)
+  end)
+end)
+
+describe("a model without a name", function()
+  local dir
+  before_each(function() dir = H.tmpdir() end)
+  after_each(function() H.rmdir(dir) end)
+
+  it("is named after its model file, through a tail call, a command or dofile", function()
+    H.write(dir .. "/plant.lua", 'local lsys = require "lsys"\n'
+      .. 'return lsys.lsystem { axiom = "F", productions = "F --> FF" }\n')
+    H.write(dir .. "/named.lua", 'local lsys = require "lsys"\n'
+      .. 'local m = lsys.lsystem { axiom = "F", name = "tree" }\nreturn m\n')
+    H.write(dir .. "/show.lua", ("local a, b = dofile(%q), dofile(%q)\n"
+      .. "print(tostring(a), a.name, tostring(b))\n"
+      .. 'print(tostring(require("lsys").lsystem { axiom = "F" }):match("%%((.*)%%)"))\n')
+      :format(dir .. "/plant.lua", dir .. "/named.lua"))
+    local out, code = run(dir .. "/show.lua")
+    assert.equal(0, code, out)
+    -- a model the script makes itself is no model file's: its file and line
+    assert.equal("lsys.Model(plant)\tplant\tlsys.Model(tree)\n" .. dir .. "/show.lua:3\n", out)
+    -- the commands' loader, and lsys.batch's
+    local load = require "lsys.load"
+    assert.equal("plant", load.model(dir .. "/plant.lua").name)
+    assert.equal("tree", load.model(dir .. "/named.lua").name)
+    -- dofile keeps Lua's errors and results
+    H.write(dir .. "/many.lua", 'error("no")')
+    H.write(dir .. "/show.lua", ("print(pcall(dofile, %q))\nprint(pcall(dofile, %q))\n"
+      .. "print(select('#', dofile(%q)))\n"):format(dir .. "/none.lua", dir .. "/many.lua",
+      dir .. "/three.lua"))
+    H.write(dir .. "/three.lua", "return 1, nil, 3\n")
+    out, code = run(dir .. "/show.lua")
+    assert.equal(0, code, out)
+    assert.equal("false\tcannot open " .. dir .. "/none.lua: No such file or directory\n"
+                 .. "false\t" .. dir .. "/many.lua:1: no\n3\n", out)
   end)
 end)
 

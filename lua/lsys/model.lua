@@ -235,18 +235,26 @@ function M.here ()
   return src:match("^@(.*)/[^/]*$") or "."
 end
 
--- The model file lsys.cli is running (see runfile), or nil.
+-- The model file being run (see runfile), or nil.
 local loading
 
---- Runs `chunk`, the model file `path` loaded by lsys.cli, in protected mode; returns
--- pcall's status and first result. A model it defines is named after the file when the
--- line of the lsys.lsystem call is unknown: `return lsys.lsystem{...}` is a tail call,
--- and the caller's frame is gone.
+-- The name of a model made by the model file `path` without one: the file's name without
+-- its folder and .lua (nil without a file).
+local function filename (path)
+  return path and (path:match("([^/]*)$"):gsub("%.lua$", ""))
+end
+
+--- Runs `chunk`, the model file `path` (loaded by lsys.load, or the program's dofile), in
+-- protected mode; returns what pcall returns. A model it makes without a name is named
+-- after the file (`plant` for dir/plant.lua), and its messages name the file when the
+-- line of the lsys.lsystem call is unknown (`return lsys.lsystem{...}` is a tail call:
+-- the caller's frame is gone).
 function M.runfile (path, chunk)
+  local outer = loading
   loading = path
-  local ok, v = pcall(chunk)
-  loading = nil
-  return ok, v
+  local r = table.pack(pcall(chunk))
+  loading = outer
+  return table.unpack(r, 1, r.n)
 end
 
 -- Checks the option names and their types; `fail` raises naming the model.
@@ -394,7 +402,7 @@ make = function (opts, where, fail, dir)
   if dir and type(v) == "table" and v.dir == nil then v = view.merge(v, { dir = dir }) end
   local self = setmetatable({
     axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = v, name = opts.name,
+    env = opts.env or {}, view = v, name = opts.name or filename(loading),
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,

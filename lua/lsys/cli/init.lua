@@ -31,6 +31,7 @@ local host = require("lsys.program").host
 local A = require "lsys.cli.args"
 local H = require "lsys.cli.help"
 local strip_internal = require("lsys.util.errors").strip_internal
+local runfile = require("lsys.model").runfile
 local warning = require "lsys.warning"
 local suggest = require "lsys.util.suggest"
 
@@ -101,13 +102,31 @@ local function handler (e)
   return M.strip_internal(msg)
 end
 
+-- The program's dofile (the REPL's and its scripts'): Lua's, run through lsys.model.runfile,
+-- so that a model the file makes without a name is named after it, as the commands name
+-- theirs: `dofile("examples/abop/fig1_24a.lua")` shows as
+-- lsys.Model(examples/abop/fig1_24a.lua), not lsys.Model(model), in the REPL and the
+-- window's title. Errors as dofile's.
+local lua_dofile = G.dofile
+local function dofile (path)
+  if path == nil then return lua_dofile() end    -- stdin
+  local chunk, err = loadfile(path)
+  if chunk == nil then error(err, 0) end
+  local r = table.pack(runfile(path, chunk))
+  if not r[1] then error(r[2], 0) end
+  return table.unpack(r, 2, r.n)
+end
+
 --- Runs the command line `lsys ...` given its arguments (strings).
 -- @return the exit status: 0 success, 1 error, 2 usage error
 function M.main (...)
   -- The library's warnings (a view file's unsupported commands, a deprecated name) go
   -- through warn(), which Lua starts with off; the program shows them, as `lua -W` does.
-  -- Called from another Lua, main leaves that to its host.
-  if host().exe ~= nil then warn("@on") end
+  -- Called from another Lua, main leaves that, and dofile, to its host.
+  if host().exe ~= nil then
+    warn("@on")
+    G.dofile = dofile
+  end
   local args = table.pack(...)
   local ok, r = xpcall(dispatch, handler, args)
   io.stdout:flush()
