@@ -395,6 +395,26 @@ describe("lsys view --show", function()
       1, true), out)
   end)
 
+  it("says once, without a display, that the window cannot open", function()
+    if not require("lsys.core").has_viewer then pending("built without the window") return end
+    local env = "env -u DISPLAY -u WAYLAND_DISPLAY "
+    local out, err, code = run3("view examples/abop/fig1_24a.lua", env)
+    assert.equal(1, code, out)
+    assert.equal("", out)
+    local why = err:match("^lsys: (cannot start GLFW: [^\n]*%(no display: DISPLAY is not set; "
+                          .. "`lsys render` draws PNG files without one%))\n$")
+    assert.truthy(why, err)
+    -- a model that fails too: its error, then the window's
+    local bad = os.tmpname()
+    local f = assert(io.open(bad, "w"))
+    f:write("return 1 +")
+    f:close()
+    out, err, code = run3("view " .. bad, env)
+    os.remove(bad)
+    assert.equal(1, code, out)
+    assert.equal("lsys: " .. bad .. ":1: unexpected symbol near <eof>\nlsys: " .. why .. "\n", err)
+  end)
+
   it("#gl shows step K first with --show K, as with --step K", function()
     local ok, why = D.start()
     if not ok then pending(why) return end
