@@ -217,13 +217,18 @@ end
 
 -- Warns about each rule that can never apply because a module of its pattern never
 -- appears with the rule's parameter count (compile.unreachable: made by the axiom or by a
--- rule that can apply).
+-- rule that can apply); once a process (the jobs of lsys batch make their model again).
+local countwarned = {}
 function Model:_checkcounts (open)
   for _, u in ipairs(compile.unreachable(self._info, self._rules:kinds(self._axiom), open)) do
-    warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
+    local msg = format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
       .. "successor of a rule that can apply (every '%s' there has %s): the rule never applies",
       self._where, u.info.label, u.name, u.count, u.count == 1 and "" or "s", u.name,
-      table.concat(u.have, " or ")))
+      table.concat(u.have, " or "))
+    if not countwarned[msg] then
+      countwarned[msg] = true
+      warning.warn(msg)
+    end
   end
 end
 
