@@ -395,7 +395,7 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
     assert.truthy(out:find("lsys: batch: job 0002 (f.csv:3) failed: bad.lua:3: k must not be "
       .. "0\n", 1, true), out)
     assert.truthy(out:find("lsys: batch: job 0005 (f.csv:6) failed: plant.lua has no "
-      .. "variable k (its variables: K, R, angle)", 1, true), out)
+      .. "variable k (did you mean 'K'?)\n", 1, true), out)
     assert.truthy(out:find("f.csv: 5 jobs: 3 ok, 2 failed, 0 done before", 1, true), out)
     assert.same({ "0001.txt", "0003.png", "0004.txt", "bad.lua", "f.csv", "plant.lua" },
                 files(dir))

@@ -1,4 +1,5 @@
 -- The lsys program: derive, errors that name the model file.
+local H = require "tests.helper"
 local BIN = os.getenv("LSYS_BIN") or "build/bin/lsys"
 
 local function run (args)
@@ -188,6 +189,41 @@ describe("lsys -V and -v", function()
   end)
 end)
 
+describe("a model without a name", function()
+  local dir
+  before_each(function() dir = H.tmpdir() end)
+  after_each(function() H.rmdir(dir) end)
+
+  it("is named after its model file, through a tail call, a command or dofile", function()
+    H.write(dir .. "/plant.lua", 'local lsys = require "lsys"\n'
+      .. 'return lsys.lsystem { axiom = "F", productions = "F --> FF" }\n')
+    H.write(dir .. "/named.lua", 'local lsys = require "lsys"\n'
+      .. 'local m = lsys.lsystem { axiom = "F", name = "tree" }\nreturn m\n')
+    H.write(dir .. "/show.lua", ("local a, b = dofile(%q), dofile(%q)\n"
+      .. "print(tostring(a), a.name, tostring(b))\n"
+      .. 'print(tostring(require("lsys").lsystem { axiom = "F" }):match("%%((.*)%%)"))\n')
+      :format(dir .. "/plant.lua", dir .. "/named.lua"))
+    local out, code = run(dir .. "/show.lua")
+    assert.equal(0, code, out)
+    -- a model the script makes itself is no model file's: its file and line
+    assert.equal("lsys.Model(plant)\tplant\tlsys.Model(tree)\n" .. dir .. "/show.lua:3\n", out)
+    -- the commands' loader, and lsys.batch's
+    local load = require "lsys.load"
+    assert.equal("plant", load.model(dir .. "/plant.lua").name)
+    assert.equal("tree", load.model(dir .. "/named.lua").name)
+    -- dofile keeps Lua's errors and results
+    H.write(dir .. "/many.lua", 'error("no")')
+    H.write(dir .. "/show.lua", ("print(pcall(dofile, %q))\nprint(pcall(dofile, %q))\n"
+      .. "print(select('#', dofile(%q)))\n"):format(dir .. "/none.lua", dir .. "/many.lua",
+      dir .. "/three.lua"))
+    H.write(dir .. "/three.lua", "return 1, nil, 3\n")
+    out, code = run(dir .. "/show.lua")
+    assert.equal(0, code, out)
+    assert.equal("false\tcannot open " .. dir .. "/none.lua: No such file or directory\n"
+                 .. "false\t" .. dir .. "/many.lua:1: no\n3\n", out)
+  end)
+end)
+
 describe("--threads, --max-memory and --max-modules", function()
   local paths = {}
   local function model (text)
@@ -204,7 +240,8 @@ describe("--threads, --max-memory and --max-modules", function()
     local path = model '{ axiom = "F", steps = 5, productions = "F --> FF" }'
     local out, code = run("derive " .. path .. " --max-modules 10")
     assert.equal(1, code, out)
-    assert.equal("lsys: " .. path .. ": the string would exceed max_modules (10 modules)\n", out)
+    assert.equal("lsys: " .. path .. ": step 4 of 5: the string would exceed max_modules (10 "
+                 .. "modules)\n", out)
     path = model '{ axiom = "F", steps = 5, productions = "F --> FF", max_modules = 10 }'
     out, code = run("derive " .. path)
     assert.equal(1, code, out)
@@ -218,8 +255,9 @@ describe("--threads, --max-memory and --max-modules", function()
     local path = model("{ " .. rules .. " }")
     local out, code = run("derive " .. path .. " --stats --max-memory 64K")
     assert.equal(1, code, out)
-    assert.equal("lsys: " .. path .. ": the derivation would need more than max_memory (64 KiB) "
-      .. "at module 513 (set max_memory in the model, or LSYS_MAX_MEMORY)\n", out)
+    assert.equal("lsys: " .. path .. ": step 11 of 14: the derivation would need more than "
+      .. "max_memory (64 KiB) at module 513 (set max_memory in the model, or LSYS_MAX_MEMORY)\n",
+      out)
     out, code = run("derive " .. path .. " --stats --max-memory 65536")
     assert.equal(1, code, out)
     assert.truthy(out:find("more than max_memory (64 KiB) at module 513", 1, true), out)
@@ -355,6 +393,26 @@ describe("lsys view --show", function()
     out = run("view --help")
     assert.truthy(out:find("\n  --show K             the step shown first (default: the last)",
       1, true), out)
+  end)
+
+  it("says once, without a display, that the window cannot open", function()
+    if not require("lsys.core").has_viewer then pending("built without the window") return end
+    local env = "env -u DISPLAY -u WAYLAND_DISPLAY "
+    local out, err, code = run3("view examples/abop/fig1_24a.lua", env)
+    assert.equal(1, code, out)
+    assert.equal("", out)
+    local why = err:match("^lsys: (cannot start GLFW: [^\n]*%(no display: DISPLAY is not set; "
+                          .. "`lsys render` draws PNG files without one%))\n$")
+    assert.truthy(why, err)
+    -- a model that fails too: its error, then the window's
+    local bad = os.tmpname()
+    local f = assert(io.open(bad, "w"))
+    f:write("return 1 +")
+    f:close()
+    out, err, code = run3("view " .. bad, env)
+    os.remove(bad)
+    assert.equal(1, code, out)
+    assert.equal("lsys: " .. bad .. ":1: unexpected symbol near <eof>\nlsys: " .. why .. "\n", err)
   end)
 
   it("#gl shows step K first with --show K, as with --step K", function()

@@ -50,11 +50,14 @@ describe("lsys derive on a cpfg model", function ()
     assert.equal("lsys: " .. D .. "macros.l:11: #error never\n", out)
   end)
 
-  it("warns when --set names no variable of the model (a #define is none)", function ()
+  it("refuses --set with a name the model has no variable of (a #define is none)", function ()
     local out, code = lsys("derive " .. PLANT .. " --set RATE=3")
-    assert.equal(0, code, out)
-    assert.truthy(out:find("lsys: --set RATE: the model has no variable RATE", 1, true), out)
-    assert.truthy(out:find(PLANT_STRING, 1, true), out)
+    assert.equal(2, code, out)
+    assert.truthy(out:find("lsys: derive: --set RATE: the model has no variable RATE (the "
+      .. "model's variables: ", 1, true), out)
+    assert.truthy(out:find("); the preprocessor replaces a #define's name by its value "
+      .. "(--define NAME=VALUE sets one)", 1, true), out)
+    assert.falsy(out:find(PLANT_STRING, 1, true), out)
   end)
 
   it("names the file and line of an error, and a missing file", function ()
@@ -125,6 +128,29 @@ describe("lsys render and export on a cpfg model", function ()
     assert.equal(0, code, out)
     assert.equal("wrote " .. dir .. "/p.png (64x48, 0 triangles, 2 lines)\n", out)
     assert.equal("\137PNG", H.read(dir .. "/p.png"):sub(1, 4))
+  end)
+
+  it("finds --map from the shell's folder first, then from the .l file's", function ()
+    assert(os.execute("mkdir " .. dir .. "/sub"))
+    for _, f in ipairs { "plant.l", "plant.h", "plant.v" } do
+      H.write(dir .. "/sub/" .. f, H.read(D .. "cli/" .. f))
+    end
+    local function map (path, r, g, b)       -- colour 2, the plant's, pure; the rest black
+      H.write(path, ("\0"):rep(6) .. string.char(r, g, b) .. ("\0"):rep(768 - 9))
+    end
+    local function kd (m)                    -- the colour the .mtl gives colour 2
+      local out, code = H.sh(("cd %s && %s export sub/plant.l sub/plant.v --map %s -o x.obj")
+                             :format(dir, H.ABSBIN, m))
+      if code ~= 0 then return out end
+      return H.read(dir .. "/x.mtl"):match("newmtl m2\n[^\n]*\nKd ([^\n]*)")
+    end
+    map(dir .. "/sub/c.map", 0, 0, 255)
+    assert.equal("0 0 1", kd("sub/c.map"))   -- the shell's path (was looked for in sub/sub/)
+    assert.equal("0 0 1", kd("c.map"))       -- the .l file's folder
+    map(dir .. "/c.map", 255, 0, 0)
+    assert.equal("1 0 0", kd("c.map"))       -- both: the shell's first
+    assert.equal("lsys: --map no.map: no such file in the current folder nor in the model's "
+                 .. "(sub)\n", kd("no.map"))
   end)
 
   it("exports a vlab object to glTF", function ()

@@ -276,7 +276,11 @@ describe("rendering #gl", function()
 
     it("names an unknown option", function()
       assert.has_error(function() lsys.render(m, { widht = 10 }) end,
-        "lsys.render: unknown option 'widht'")
+        "lsys.render: unknown option 'widht' (did you mean 'width'?)")
+      assert.has_error(function() lsys.render(m, { colour = 10 }) end,
+        "lsys.render: unknown option 'colour' (did you mean 'color'?)")    -- a view option
+      assert.has_error(function() lsys.render(m, { size = 10 }) end,
+        "lsys.render: unknown option 'size'")
     end)
 
     it("names a bad view option", function()

@@ -314,8 +314,8 @@ print("png", pcall(lsys.render, scene, { out = "%s/old.png", width = 600, height
     os.execute("mkdir '" .. d .. "/real' && ln -s real/b.ply '" .. d .. "/b.ply' && " ..
                "echo old > '" .. d .. "/real/b.ply'")
     local sc = scene()
-    assert.is_true(sc:save(d .. "/a.obj"))
-    assert.is_true(sc:save(d .. "/b.ply"))
+    assert.truthy(sc:save(d .. "/a.obj"))
+    assert.truthy(sc:save(d .. "/b.ply"))
     assert.truthy(slurp(d .. "/a.obj"):find("^# lsys: "))
     assert.truthy(slurp(d .. "/real/b.ply"):find("^ply\n"))
     local modes = H.sh("stat -c '%a %F' '" .. d .. "/a.obj' '" .. d .. "/b.ply'")

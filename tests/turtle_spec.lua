@@ -216,6 +216,29 @@ describe("turtle records", function ()
     assert.same({ 3, 3, 3, 5, 1 }, c)
   end)
 
+  it("gives a segment's tube or ribbon to its record (scene:edges, scene:vertices)", function ()
+    -- the record is made at F and the tube when the segment ends: the tube is its own
+    local text = "F(1) F(2) [+F(1)]"
+    local sc = m:interpret(text, { line_style = "polygon" })
+    assert.same({ { -0.5, 1, 0 }, { 0.5, 1, 0 }, { 0.5, 3, 0 }, { -0.5, 3, 0 } }, sc:vertices(2))
+    assert.equal(5, #sc:edges(2))                       -- two triangles
+    sc = m:interpret(text, { line_style = "cylinder", contour_sides = 4 })
+    local v = sc:vertices(2)                            -- the rings at y = 1 and 3 (seam twice)
+    assert.equal(10, #v)
+    for i, p in ipairs(v) do
+      assert.equal(i <= 5 and 1 or 3, p[2])
+      assert.near(0.5, math.sqrt(p[1] ^ 2 + p[3] ^ 2), 1e-12)
+    end
+    assert.equal(17, #sc:edges(2))       -- 4 quads: 4 + 4 around the rings, 5 along, 4 across
+    assert.equal(25, #sc:edges(1))                      -- and the start's cap of 4 triangles
+    local n = 0
+    for k in sc:records() do n = n + #sc:vertices(k) end
+    assert.equal(15 + 10 + 15, n)
+    sc = m:interpret(text)                              -- lines: no triangles
+    assert.same({}, sc:edges(2))
+    assert.same({}, sc:vertices(2))
+  end)
+
   it("skips modules it does not know", function ()
     local sc = m:interpret("A F B(1,2) F Xyz")
     assert.equal(2, sc.nsegments)

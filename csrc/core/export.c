@@ -32,11 +32,23 @@ double lsys_export_pixel (const lsys_mesh *m) {
   return ext > 0 && isfinite(ext) ? ext / 720 : 1;
 }
 
+/* Fills o->sizes, when asked, with mesh 'm' and 'ninst' instances. */
+static void sized (const lsys_export_opts *o, const lsys_mesh *m, size_t ninst) {
+  if (o == NULL || o->sizes == NULL) return;
+  o->sizes->nv = m->nv;
+  o->sizes->nt = m->nt;
+  o->sizes->nl = m->nl;
+  o->sizes->ninst = ninst;
+}
+
 static int savemesh (const lsys_scene *s, const lsys_mesh *m, int format, const char *path,
-                     lsys_error *e) {
+                     const lsys_export_opts *o, lsys_error *e) {
+  int st;
   if (format < 0 || format >= LSYS_NFORMATS)
     return lsys_seterror(e, LSYS_EARG, (size_t)-1, "unknown format of '%s'", path);
-  return lsys_export_formats[format].save(m, s->pal, s->npal, s->tex, s->ntex, path, e);
+  st = lsys_export_formats[format].save(m, s->pal, s->npal, s->tex, s->ntex, path, e);
+  if (st == LSYS_OK) sized(o, m, 0);
+  return st;
 }
 
 /* The tube options of 'o' checked; LSYS_OK or LSYS_EARG naming 'path'. */
@@ -112,13 +124,16 @@ static int savepopulation (const lsys_scene *s, int format, const char *path,
   if (tubes && (st = checktubes(o, path, e)) != LSYS_OK) return st;
   if (instanced != NULL && (o == NULL || !o->flatten)) {
     lsys_scene t;
-    if (!tubes) return instanced(s, path, e);
+    if (!tubes) {
+      if ((st = instanced(s, path, e)) == LSYS_OK) sized(o, &s->mesh, s->ninst);
+      return st;
+    }
     lsys_scene_init(&t);
     st = tubedparts(&t, s, o, o->pixel > 0 ? o->pixel : scenepixel(s));
     t.inst = s->inst;                          /* borrowed for the call */
     t.ninst = s->ninst;
-    if (st == LSYS_OK) st = instanced(&t, path, e);
-    else tubeserror(st, path, e);
+    if (st == LSYS_OK && (st = instanced(&t, path, e)) == LSYS_OK) sized(o, &t.mesh, t.ninst);
+    else if (st != LSYS_OK) tubeserror(st, path, e);
     t.inst = NULL;
     t.ninst = 0;
     lsys_scene_free(&t);
@@ -155,14 +170,15 @@ int lsys_export_scene (const lsys_scene *s, int format, const char *path,
   double pixel;
   int st;
   if (format < 0 || format >= LSYS_NFORMATS)
-    return savemesh(s, &s->mesh, format, path, e);
+    return savemesh(s, &s->mesh, format, path, o, e);
   if (s->ninst > 0) return savepopulation(s, format, path, o, e);
-  if (o == NULL || !o->tubes || s->mesh.nl == 0) return savemesh(s, &s->mesh, format, path, e);
+  if (o == NULL || !o->tubes || s->mesh.nl == 0)
+    return savemesh(s, &s->mesh, format, path, o, e);
   if ((st = checktubes(o, path, e)) != LSYS_OK) return st;
   pixel = o->pixel > 0 ? o->pixel : lsys_export_pixel(&s->mesh);
   st = lsys_mesh_tubes(&tm, &s->mesh, o->sides, pixel);
   if (st != LSYS_OK) return tubeserror(st, path, e);
-  st = savemesh(s, &tm, format, path, e);
+  st = savemesh(s, &tm, format, path, o, e);
   lsys_mesh_free(&tm);
   return st;
 }

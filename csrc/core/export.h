@@ -83,6 +83,14 @@ int lsys_export_format (const char *path);
 ** means lsys_export_pixel's. The triangles of a scene are written as they
 ** are either way.
 */
+/* What a file lsys_export_scene wrote holds: the vertices, triangles and line
+** segments of the mesh written (with tubes, the copy with them; a population
+** flattened, its copy; with instancing, its prototypes once each, and 'ninst'
+** instances of them; 0 otherwise). */
+typedef struct lsys_export_sizes {
+  size_t nv, nt, nl, ninst;
+} lsys_export_sizes;
+
 typedef struct lsys_export_opts {
   int tubes;               /* 1: line segments as tubes; 0: as lines */
   int sides;               /* sides of a tube, 3 .. 1024 */
@@ -90,6 +98,7 @@ typedef struct lsys_export_opts {
   int flatten;             /* a population: 1 writes every instance out in every format;
                               0 keeps glb's instancing (OBJ and PLY are always flattened) */
   size_t max_memory;       /* the bytes a flattened copy may take; 0: lsys_common_memory_limit() */
+  lsys_export_sizes *sizes; /* when not NULL, filled with what the file holds */
 } lsys_export_opts;
 
 /* The default size of a pixel of line width, in scene units: the largest

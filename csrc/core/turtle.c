@@ -287,8 +287,10 @@ static int flush (run *R) {
   lsys_tstate *st = &R->st;
   double w1 = st->width * st->scale, H[3], L[3], U[3];
   int s = LSYS_OK, sides = st->sides, tex = st->texture;
+  size_t nt0;
   if (!R->pending) return LSYS_OK;
   R->pending = 0;
+  nt0 = R->t->mesh->nt;
   R->t->mesh->curtex = (unsigned)R->ptex;
   if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
   vcopy(H, st->H); vcopy(L, st->L); vcopy(U, st->U);
@@ -305,6 +307,13 @@ static int flush (run *R) {
       if ((s = setring(R)) == LSYS_OK)
         s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
       break;
+  }
+  /* the segment's record owns the triangles drawn now (its record was made at its F,
+  ** before them): scene:edges and scene:vertices of a tube or ribbon then give them */
+  if (s == LSYS_OK && R->prec != LSYS_NOREC) {
+    lsys_trec *r = &R->t->scene->rec[R->prec - R->recbase];
+    r->tri0 = (uint32_t)nt0;
+    r->ntri = (uint32_t)(R->t->mesh->nt - nt0);
   }
   vcopy(st->H, H); vcopy(st->L, L); vcopy(st->U, U);
   st->sides = sides;

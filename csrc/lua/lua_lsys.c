@@ -12,6 +12,7 @@ int luaopen_lsys_core (lua_State *L) {
   lsysL_open_rules(L);
   lsysL_open_lstring(L);
   lsysL_open_scene(L);
+  lsysL_open_export(L);                 /* after lsysL_open_scene: adds a Scene method */
   lsysL_open_render(L);
   lsysL_open_outfile(L);
   lsysL_open_envproc(L);

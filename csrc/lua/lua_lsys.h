@@ -12,6 +12,7 @@
 void lsysL_open_rules (lua_State *L);    /* lua_rules.c: Rules, Template, rules, produce, ran */
 void lsysL_open_lstring (lua_State *L);  /* lua_lstring.c: Lstring, lstring */
 void lsysL_open_scene (lua_State *L);    /* lua_scene.c: Scene, interpret, query */
+void lsysL_open_export (lua_State *L);   /* lua_export.c: scene:save, formats */
 void lsysL_open_render (lua_State *L);   /* lua_render.c: render, png, files */
 void lsysL_open_contour (lua_State *L);  /* lua_contour.c: Contour */
 void lsysL_open_surface (lua_State *L);  /* lua_surface.c: Surface, patches */

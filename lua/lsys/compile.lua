@@ -34,6 +34,111 @@ local PROD, DECOMP, HOMO = 0, 1, 2
 M.PROD, M.DECOMP, M.HOMO = PROD, DECOMP, HOMO
 local PS_CONST, PS_ARG, PS_VAL = 0, 1, 2
 
+--- The parameter counts each module name has in a parsed successor (or axiom): { name =
+-- { [n] = true } } (kept instead of the successor's modules, which a generated successor
+-- has millions of).
+function M.kinds (mods)
+  local made = {}
+  for _, m in ipairs(mods or {}) do
+    local k = made[m.name]
+    if k == nil then k = {}; made[m.name] = k end
+    k[#m.params] = true
+  end
+  return made
+end
+
+-- Brackets, cuts and sub-L-system modules: never a reason a rule cannot apply.
+local STRUCTURE = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] = true }
+
+--[[
+The rules that can never apply because a module of their pattern never appears with the
+rule's parameter count (`A(x,y) --> ...` where every A made is `A(1)`), as a list of
+{ info =, name =, count =, have = { the counts that do appear, sorted } } in the order of
+the rules. `infos`: the model's rules, each with its kind, its pattern (lists of modules)
+and `made` (M.kinds of its successor; nil for a rule function, which may make anything:
+then nothing is said); `made`: the axiom's M.kinds. A module of the string counts when the
+axiom has it or a production or decomposition rule that can apply makes it; the
+homomorphism sees those and what its own rules that can apply make. A rule can apply once
+every module of its pattern can appear, and then what it makes can appear too: a fixed
+point, reached with a work list (a rule is tried again only when a name of its pattern
+gains a count). `open`: the string may get modules from elsewhere too (end_each returns
+strings): every successor counts then. A name that never appears at all says nothing (a
+rule kept for a module only another version of the model makes).
+]]
+function M.unreachable (infos, made, open)
+  local str, homo, byname, fired, pending = {}, {}, {}, {}, {}
+  local function add (reach, kinds)
+    for name, counts in pairs(kinds) do
+      local c = reach[name]
+      if c == nil then c = {}; reach[name] = c end
+      for n in pairs(counts) do
+        if not c[n] then c[n] = true; pending[#pending + 1] = name end
+      end
+    end
+  end
+  local function addmade (info)      -- what the string holds, the homomorphism sees too
+    if info.kind ~= HOMO then add(str, info.made) end
+    add(homo, info.made)
+  end
+  local function seen (info) return info.kind == HOMO and homo or str end
+  local function applies (info)
+    local reach = seen(info)
+    for _, part in ipairs(info.pattern) do
+      for _, m in ipairs(part) do
+        local c = reach[m.name]
+        if not STRUCTURE[m.name] and not (c and c[#m.params]) then return false end
+      end
+    end
+    return true
+  end
+  local function try (i)
+    if not fired[i] and applies(infos[i]) then fired[i] = true; addmade(infos[i]) end
+  end
+  add(str, made)
+  add(homo, made)
+  for _, info in pairs(infos) do
+    if not info.made then return {} end           -- a rule function
+    if open then addmade(info) end
+  end
+  for i, info in pairs(infos) do
+    for _, part in ipairs(info.pattern) do
+      for _, m in ipairs(part) do
+        local l = byname[m.name]
+        if l == nil then l = {}; byname[m.name] = l end
+        l[#l + 1] = i
+      end
+    end
+  end
+  pending = {}
+  for i in pairs(infos) do try(i) end
+  while #pending > 0 do
+    local name = remove(pending)
+    for _, i in ipairs(byname[name] or {}) do try(i) end
+  end
+  -- the first module of each rule that cannot apply whose name appears with other counts
+  local function why (info)
+    local reach = seen(info)
+    for _, part in ipairs(info.pattern) do
+      for _, m in ipairs(part) do
+        local c, np = reach[m.name], #m.params
+        if c and not c[np] and not STRUCTURE[m.name] then
+          local have = {}
+          for k in pairs(c) do have[#have + 1] = k end
+          table_sort(have)
+          return { info = info, name = m.name, count = np, have = have }
+        end
+      end
+    end
+  end
+  local idx, out = {}, {}
+  for i in pairs(infos) do
+    if not fired[i] then idx[#idx + 1] = i end
+  end
+  table_sort(idx)
+  for _, i in ipairs(idx) do out[#out + 1] = why(infos[i]) end
+  return out
+end
+
 --- The free names of a Lua expression: identifiers that are not keywords,
 -- not fields (after `.` or `:`), not inside strings, and not in `bound`.
 function M.freenames (expr, bound, out)

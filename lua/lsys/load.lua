@@ -44,7 +44,7 @@ local function either (v) return M.ismodel(v) or M.isproto(v) end
 --[[
 Runs the model file `path` and returns what it returns: the file loaded as text and run
 with no arguments in the global environment, through lsys.model.runfile, which names a
-model after the file when `return lsys.lsystem{...}` is a tail call. A failure is raised
+model the file makes without a name after the file. A failure is raised
 with the file's name in front when the message does not hold it. opts (optional):
 `chunks`, a table that keeps each file's chunk (or the message of its load) by its path,
 for a caller that runs one file many times; `strip`, lsys's own positions taken out of the

@@ -13,6 +13,7 @@ local sandbox = require "lsys.sandbox"
 local environment = require "lsys.environment"
 local params = require "lsys.params"
 local inspect = require "lsys.inspect"
+local suggest = require "lsys.util.suggest"
 
 local type, pairs, ipairs, error, setmetatable, getmetatable, tostring, tonumber, pcall,
       math, string, table, debug, _G, os =
@@ -140,23 +141,14 @@ local OPTIONS = {
   depth_warnings = "any", threads = "number", max_instructions = "number",
   random = "string", environment = "any", params = "table",
 }
+local OPTION_NAMES = {}           -- for "did you mean" (lsys.util.suggest)
+for k in pairs(OPTIONS) do OPTION_NAMES[#OPTION_NAMES + 1] = k end
+table.sort(OPTION_NAMES)
 
 local Model = {}
 local rules_models = setmetatable({}, { __mode = "k" })   -- Rules userdata -> its model
 Model.__index = Model
 M.Model = Model
-
--- The parameter counts each module name has in a parsed successor: { name = { [n] = true } }
--- (kept instead of the successor's modules, which a generated successor has millions of).
-local function kinds (mods)
-  local made = {}
-  for _, m in ipairs(mods or {}) do
-    local k = made[m.name]
-    if k == nil then k = {}; made[m.name] = k end
-    k[#m.params] = true
-  end
-  return made
-end
 
 -- Splits a rules value (string or list) into entries { text=, fn=, line= }.
 local function entries (rules, what, fail)
@@ -211,9 +203,10 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
     if not added then fail(format("%s: %s", label, tostring(idx):gsub("^.-:%d+: ", ""))) end
     self._info[idx + 1] = { label = label, factory = factory, frees = frees, text = e.text,
                             set = what, line = e.line, n = n, fn = e.fn, weight = e.weight,
+                            kind = kind,
                             trees = trees, funcrefs = factory and compile.funcrefs(e.text),
                             pattern = { r.lc, r.preds or { r.pred }, r.rc },
-                            made = not e.fn and kinds(r.succ) or nil }
+                            made = not e.fn and compile.kinds(r.succ) or nil }
     if spec.fn then self._fns[idx + 1] = spec.fn end
     -- (cpfg interprets the string between steps when it has query modules, ?E included:
     -- its environment step, which runs the homomorphism's random numbers too)
@@ -222,35 +215,19 @@ function Model:_addrules (rules, what, kind, sub, group, fail)
   end
 end
 
-local SPECIAL = { ["["] = true, ["]"] = true, ["%"] = true, ["?"] = true, ["$"] = true }
-
--- Warns about each rule whose pattern names a module with a parameter count that no
--- module of that name has in the axioms and successors (which do name it): the rule can
--- never apply (`B(x,y) --> ...` where every B is `B(1)`). Rule functions may produce
--- anything: with one, nothing is said.
-function Model:_checkcounts ()
-  local made = self._rules:kinds(self._axiom)      -- the axiom's, counted in C
-  for _, info in pairs(self._info) do
-    if not info.made then return end           -- a rule function
-    for name, counts in pairs(info.made) do
-      made[name] = made[name] or {}
-      for n in pairs(counts) do made[name][n] = true end
-    end
-  end
-  for _, info in pairs(self._info) do
-    for _, part in ipairs(info.pattern) do
-      for _, m in ipairs(part) do
-        local counts, np = made[m.name], #m.params
-        if counts and not counts[np] and not SPECIAL[m.name] then
-          local have = {}
-          for k in pairs(counts) do have[#have + 1] = k end
-          table.sort(have)
-          warning.warn(format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
-            .. "successor (every '%s' there has %s): the rule never applies", self._where,
-            info.label, m.name, np, np == 1 and "" or "s", m.name, table.concat(have, " or ")))
-          break
-        end
-      end
+-- Warns about each rule that can never apply because a module of its pattern never
+-- appears with the rule's parameter count (compile.unreachable: made by the axiom or by a
+-- rule that can apply); once a process (the jobs of lsys batch make their model again).
+local countwarned = {}
+function Model:_checkcounts (open)
+  for _, u in ipairs(compile.unreachable(self._info, self._rules:kinds(self._axiom), open)) do
+    local msg = format("lsys: %s: %s: no '%s' with %d parameter%s in the axiom or a "
+      .. "successor of a rule that can apply (every '%s' there has %s): the rule never applies",
+      self._where, u.info.label, u.name, u.count, u.count == 1 and "" or "s", u.name,
+      table.concat(u.have, " or "))
+    if not countwarned[msg] then
+      countwarned[msg] = true
+      warning.warn(msg)
     end
   end
 end
@@ -263,25 +240,35 @@ function M.here ()
   return src:match("^@(.*)/[^/]*$") or "."
 end
 
--- The model file lsys.cli is running (see runfile), or nil.
+-- The model file being run (see runfile), or nil.
 local loading
 
---- Runs `chunk`, the model file `path` loaded by lsys.cli, in protected mode; returns
--- pcall's status and first result. A model it defines is named after the file when the
--- line of the lsys.lsystem call is unknown: `return lsys.lsystem{...}` is a tail call,
--- and the caller's frame is gone.
+-- The name of a model made by the model file `path` without one: the file's name without
+-- its folder and .lua (nil without a file).
+local function filename (path)
+  return path and (path:match("([^/]*)$"):gsub("%.lua$", ""))
+end
+
+--- Runs `chunk`, the model file `path` (loaded by lsys.load, or the program's dofile), in
+-- protected mode; returns what pcall returns. A model it makes without a name is named
+-- after the file (`plant` for dir/plant.lua), and its messages name the file when the
+-- line of the lsys.lsystem call is unknown (`return lsys.lsystem{...}` is a tail call:
+-- the caller's frame is gone).
 function M.runfile (path, chunk)
+  local outer = loading
   loading = path
-  local ok, v = pcall(chunk)
-  loading = nil
-  return ok, v
+  local r = table.pack(pcall(chunk))
+  loading = outer
+  return table.unpack(r, 1, r.n)
 end
 
 -- Checks the option names and their types; `fail` raises naming the model.
 local function checkoptions (opts, fail)
   for k, v in pairs(opts) do
     local t = OPTIONS[k]
-    if t == nil then fail(format("unknown option '%s'", tostring(k))) end
+    if t == nil then
+      fail(format("unknown option '%s'%s", tostring(k), suggest.hint(k, OPTION_NAMES)))
+    end
     if t == "rules" then
       if type(v) ~= "string" and type(v) ~= "table" then
         fail(format("option '%s' must be a string or a list of rules", k))
@@ -420,7 +407,7 @@ make = function (opts, where, fail, dir)
   if dir and type(v) == "table" and v.dir == nil then v = view.merge(v, { dir = dir }) end
   local self = setmetatable({
     axiom = opts.axiom or "", steps = opts.steps or 1, seed = opts.seed or 0,
-    env = opts.env or {}, view = v, name = opts.name,
+    env = opts.env or {}, view = v, name = opts.name or filename(loading),
     homomorphism_seed = opts.homomorphism_seed,
     start = opts.start, start_each = opts.start_each, end_each = opts.end_each,
     finish = opts.finish, allow_system_calls = opts.allow_system_calls or false,
@@ -460,7 +447,7 @@ make = function (opts, where, fail, dir)
   -- the axiom: parsed now (errors at definition), its expressions evaluated per derivation
   local ok, msg = pcall(self._parseaxiom, self)
   if not ok then fail(msg) end
-  self:_checkcounts()
+  self:_checkcounts(opts.end_each ~= nil)      -- end_each may return any string
   if self.random ~= "lsys" and self.random ~= "cpfg" then
     fail(format("option 'random' must be \"lsys\" or \"cpfg\", not \"%s\"",
                 tostring(self.random)))
@@ -711,6 +698,8 @@ function Model:_call (fn, what, ...)
   end
   local idx, mod = rules:current()
   local msg = type(res) == "string" and res or tostring(res)
+  local step = self._atstep
+  self._atstep = nil
   if msg:find(NESTED, 1, true) then error(msg, 0) end      -- said once, at the innermost
   if idx then
     local info = self._info[idx + 1]
@@ -718,6 +707,11 @@ function Model:_call (fn, what, ...)
     msg = msg:gsub("^rule:%d+: ", "")
     error(format("%s: %s, module %d: %s", info and info.where or self._where, label, mod, msg),
           0)
+  end
+  -- not a rule's: a limit of the step (max_modules, max_memory), named with the step of
+  -- derive it stopped at, so that the user sees how far the model got
+  if step ~= nil then
+    error(format("%s: step %d of %d: %s", self._where, step, self._atsteps, msg), 0)
   end
   error(format("%s: %s", self._where, msg), 0)
 end
@@ -798,7 +792,9 @@ function Model:derive (n, opts)
     end
     self:_pass(s, k - 1)
     local t
+    self._atstep, self._atsteps = k, n  -- for a limit's message (_call): the step it stopped
     if own then t = self:_core("advance", s) else t = self:_core("step", s) end
+    self._atstep = nil
     if self.end_each then
       local r = runhook(self, self.end_each, t, k)
       if r ~= nil then

@@ -8,10 +8,11 @@ local model = require "lsys.model"
 local view = require "lsys.view"
 local load = require "lsys.load"
 local vector = require "lsys.vector"
+local suggest = require "lsys.util.suggest"
 
 local type, pairs, error, pcall, tostring, next = type, pairs, error, pcall, tostring, next
 local math_type = math.type
-local string = string
+local string, table = string, table
 local format = string.format
 local _ENV = nil
 
@@ -22,6 +23,10 @@ local RENDER_ONLY = { out = true, width = true, height = true, view = true, zoom
                       transparent = true, wireframe = true, fit = true, shadows = true,
                       ao = true, ground = true, sky = true }
 M.RENDER_ONLY = RENDER_ONLY
+local OPTION_NAMES = {}            -- lsys.render's and the view's, for "did you mean"
+for k in pairs(RENDER_ONLY) do OPTION_NAMES[#OPTION_NAMES + 1] = k end
+for k in pairs(view.KINDS) do OPTION_NAMES[#OPTION_NAMES + 1] = k end
+table.sort(OPTION_NAMES)
 
 -- The fields each of the options shadows, ao, ground and sky may have as a table: the check
 -- (a number in [lo, hi], an integer when int; "rgb": a colour) and the field it gives core.
@@ -91,7 +96,8 @@ local function render (level, x, opts, bake)
   for k, val in pairs(opts) do
     if view.KINDS[k] then over[k] = val
     elseif not RENDER_ONLY[k] then
-      error(format("lsys.render: unknown option '%s'", tostring(k)), level)
+      error(format("lsys.render: unknown option '%s'%s", tostring(k),
+                   suggest.hint(k, OPTION_NAMES)), level)
     end
   end
   for k, val in pairs(over) do        -- what changes the drawing goes to the turtle

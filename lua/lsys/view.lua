@@ -78,6 +78,7 @@
 local core = require "lsys.core"
 local viewfile = require "lsys.viewfile"
 local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 
 local type, pairs, ipairs, error, tostring, tonumber, math, string, table, pcall,
       setmetatable, getmetatable, rawget, utf8 =
@@ -592,6 +593,8 @@ function M.normalize (v, where)
       local known = {}
       for n in pairs(KINDS) do known[#known + 1] = n end
       table.sort(known)
+      local hint = suggest.hint(k, known)
+      if hint ~= "" then fail(where, "unknown view option '%s'%s", tostring(k), hint) end
       fail(where, "unknown view option '%s' (known: %s)", tostring(k), table.concat(known, ", "))
     elseif kind == "number" then
       if not isnum(x) then fail(where, "'%s' must be a finite number", name) end

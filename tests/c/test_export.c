@@ -283,7 +283,8 @@ static void test_leftout (void) {
 static void test_scene (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 6, 0, 0, 0};
+  lsys_export_opts o = {1, 6, 0, 0, 0, NULL};
+  lsys_export_sizes sz = {0, 0, 0, 0};
   lsys_material pal[2];
   double p[3] = {0, 0, 0}, nn[3] = {0, 0, 1};
   size_t len;
@@ -319,6 +320,10 @@ static void test_scene (void) {
   assert(strstr(j, "element vertex 59\n") && strstr(j, "element face 49\n"));
   assert(strstr(j, "element edge") == NULL);
   free(j);
+  o.sizes = &sz;                               /* what the file holds: the tubes, no lines */
+  assert(lsys_export_scene(&s, LSYS_FORMAT_PLY, OUT("_s.ply"), &o, &e) == LSYS_OK);
+  assert(sz.nv == 59 && sz.nt == 49 && sz.nl == 0 && sz.ninst == 0);
+  o.sizes = NULL;
   o.pixel = 0.5;                               /* radius 0.25: thicker */
   assert(lsys_export_scene(&s, LSYS_FORMAT_GLB, OUT("_s.glb"), &o, &e) == LSYS_OK);
   j = json_of(OUT("_s.glb"));
@@ -381,7 +386,7 @@ static void population (lsys_scene *pop, const lsys_material *pal) {
 static void test_population (void) {
   lsys_scene pop;
   lsys_material pal[2];
-  lsys_export_opts o = {0, 0, 0, 0, 0};
+  lsys_export_opts o = {0, 0, 0, 0, 0, NULL};
   lsys_error e;
   size_t len;
   char *j;
@@ -433,7 +438,7 @@ static void test_population (void) {
 static void test_population_nomem (void) {
   lsys_scene pop;
   lsys_material pal[2];
-  lsys_export_opts o = {1, 4, 0, 0, 0};
+  lsys_export_opts o = {1, 4, 0, 0, 0, NULL};
   lsys_error e;
   long k, live;
   int f, done = 0;
@@ -468,7 +473,7 @@ static void test_population_nomem (void) {
 static void test_nomem (void) {
   lsys_scene s;
   lsys_error e;
-  lsys_export_opts o = {1, 5, 0, 0, 0};
+  lsys_export_opts o = {1, 5, 0, 0, 0, NULL};
   long k, live;
   int f, done = 0;
   memset(&s, 0, sizeof s);

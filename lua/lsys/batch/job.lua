@@ -11,6 +11,7 @@ local link_on = require("lsys.batch.folder").link_on
 local clock = require("lsys.program").clock
 local strip_internal = require("lsys.util.errors").strip_internal
 local fs = require "lsys.util.fs"
+local hint = require("lsys.util.suggest").hint
 
 local pairs, ipairs, next, error, pcall, tostring = pairs, ipairs, next, error, pcall, tostring
 local os, math, string, table = os, math, string, table
@@ -49,8 +50,9 @@ local function job_model (job, chunks)
   for k, x in pairs(job.params) do
     if env == nil or env[k] == nil then
       local names = load.variables(env)
-      error(format("%s has no variable %s (%s)", job.path, k, #names == 0 and
-        "its env is empty" or "its variables: " .. table.concat(names, ", ")), 0)
+      local near = hint(k, names)
+      error(format("%s has no variable %s%s", job.path, k, near ~= "" and near or #names == 0
+        and " (its env is empty)" or " (its variables: " .. table.concat(names, ", ") .. ")"), 0)
     end
     env[k] = x
   end

@@ -4,6 +4,7 @@
 local program = require "lsys.program"
 local fs = require "lsys.util.fs"
 local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 
 local pairs, tonumber, tostring, error, setmetatable, type =
       pairs, tonumber, tostring, error, setmetatable, type
@@ -65,7 +66,14 @@ local function parse (cmd, spec, args, first)
     end
     if name ~= nil then
       local kind = spec[name]
-      if kind == nil or name == "short" then usage(cmd, "unknown option '--%s'", name) end
+      if kind == nil or name == "short" then
+        local names = {}
+        for k in pairs(spec) do
+          if k ~= "short" then names[#names + 1] = k end
+        end
+        usage(cmd, "unknown option '--%s'%s", name,
+              suggest.hint(name, names, function (n) return "'--" .. n .. "'" end))
+      end
       given[name] = a:match("^[^=]*")
       if kind == "flag" then
         if val ~= nil then usage(cmd, "option '--%s' takes no value", name) end

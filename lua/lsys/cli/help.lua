@@ -90,12 +90,14 @@ with VIEW.v, when given, as its view file: `lsys derive plant.l plant.v`. A fold
 Options:
   --steps N          number of derivation steps (sets model.steps)
   --seed S           random seed (sets model.seed)
-  --set NAME=VALUE   sets model.env[NAME] to VALUE, a number if it reads as one, else a
-                     string; may be repeated (a cpfg model's env holds the variables of
-                     its Start and End blocks; a #define is not one: see `lsys import`)
+  --set NAME=VALUE   sets model.env[NAME] to VALUE, a finite number; may be repeated. NAME
+                     must be a variable of the model (in its env; else a usage error, with
+                     the names near it). A cpfg model's env holds the variables of its
+                     Start and End blocks; a #define is not one: see `lsys import`
   --name NAME        the model to derive when MODEL returns a table of models (default:
                      the first name in sorted order)
-  --map FILE         a cpfg model's colour map (.map), relative to the .l file's folder
+  --map FILE         a cpfg model's colour map (.map): from the current folder, else
+                     from the .l file's (where vlab runs cpfg)
   --mat FILE         a cpfg model's material file (.mat), likewise
   --define NAME=VALUE  a preprocessor definition for a cpfg model, as cpp's -D (a
                      #define in the file wins); may be repeated
@@ -219,6 +221,7 @@ it) and writes its geometry: Wavefront OBJ (with a .mtl file next
 to it), binary PLY, or glTF 2.0 binary (.glb), chosen by the extension of OUT. A file
 returning a population (lsys.population) is written as it is: .glb with one mesh per
 prototype placed by EXT_mesh_gpu_instancing, .obj and .ply with every plant written out.
+It prints what the file holds: its vertices, triangles and lines.
 
 Options: as for `lsys render`; -o is required.
   --lines tubes   write line-style segments as closed tubes (as thick as in an 800x800

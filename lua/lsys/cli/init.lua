@@ -31,7 +31,9 @@ local host = require("lsys.program").host
 local A = require "lsys.cli.args"
 local H = require "lsys.cli.help"
 local strip_internal = require("lsys.util.errors").strip_internal
+local runfile = require("lsys.model").runfile
 local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 
 local G = _G
 local type, tostring, error, xpcall, require, loadfile, getmetatable, warn =
@@ -46,10 +48,11 @@ local M = {}
 
 -- The commands, each a module lsys.cli.commands.NAME that returns the function of the
 -- arguments; only the one that runs is loaded (`lsys derive` loads no window nor busted).
-local COMMANDS = {}
+local COMMANDS, NAMES = {}, {}
 for name in ("derive render animate export view arrange sketch components grow import batch "
              .. "test repl help"):gmatch("%S+") do
   COMMANDS[name] = true
+  NAMES[#NAMES + 1] = name
 end
 
 -- Runs the script 'path' ("-": stdin) with args[first+1..] as `arg` and `...`, like lua.c.
@@ -79,7 +82,7 @@ local function dispatch (args)
   if a:sub(1, 1) == "-" then usage(nil, "unknown option '%s'", a) end
   if isfile(a) then return run_script(a, args, 1) end
   if a:find("%.lua$") or a:find("/") then error(format("cannot open '%s'", a), 0) end
-  usage(nil, "unknown command '%s'", a)
+  usage(nil, "unknown command '%s'%s", a, suggest.hint(a, NAMES))
 end
 
 --- 'msg' without the positions in lsys's own sources that Lua put in it ("/usr/share/lsys/
@@ -99,13 +102,31 @@ local function handler (e)
   return M.strip_internal(msg)
 end
 
+-- The program's dofile (the REPL's and its scripts'): Lua's, run through lsys.model.runfile,
+-- so that a model the file makes without a name is named after it, as the commands name
+-- theirs: `dofile("examples/abop/fig1_24a.lua")` shows as
+-- lsys.Model(examples/abop/fig1_24a.lua), not lsys.Model(model), in the REPL and the
+-- window's title. Errors as dofile's.
+local lua_dofile = G.dofile
+local function dofile (path)
+  if path == nil then return lua_dofile() end    -- stdin
+  local chunk, err = loadfile(path)
+  if chunk == nil then error(err, 0) end
+  local r = table.pack(runfile(path, chunk))
+  if not r[1] then error(r[2], 0) end
+  return table.unpack(r, 2, r.n)
+end
+
 --- Runs the command line `lsys ...` given its arguments (strings).
 -- @return the exit status: 0 success, 1 error, 2 usage error
 function M.main (...)
   -- The library's warnings (a view file's unsupported commands, a deprecated name) go
   -- through warn(), which Lua starts with off; the program shows them, as `lua -W` does.
-  -- Called from another Lua, main leaves that to its host.
-  if host().exe ~= nil then warn("@on") end
+  -- Called from another Lua, main leaves that, and dofile, to its host.
+  if host().exe ~= nil then
+    warn("@on")
+    G.dofile = dofile
+  end
   local args = table.pack(...)
   local ok, r = xpcall(dispatch, handler, args)
   io.stdout:flush()

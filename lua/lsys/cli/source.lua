@@ -1,12 +1,13 @@
 --- Where the commands of the `lsys` program get their model: a Lua file, an example, a cpfg
 -- .l file with its view file or a vlab object folder, loaded with --steps, --seed, --set.
 -- @module lsys.cli.source
+local core = require "lsys.core"
 local A = require "lsys.cli.args"
 local load = require "lsys.load"
 local lmodel = require "lsys.model"
 local lenvironment = require "lsys.environment"
 local lview = require "lsys.view"
-local warning = require "lsys.warning"
+local suggest = require "lsys.util.suggest"
 local normalize = require("lsys.util.text").normpath
 local host = require("lsys.program").host
 local tune = require "lsys.ui.tune"
@@ -54,6 +55,13 @@ local function find_model (arg)
   error(format("cannot open model '%s'", arg), 0)
 end
 
+-- A --map or --mat file: from the shell's folder when it is there, else as lsys.cpfg.load
+-- takes it, from the .l file's folder (where vlab runs cpfg).
+local function palette_file (p)
+  if p == nil or p:sub(1, 1) == "/" or not isfile(p) then return p end
+  return core.realpath(p) or p
+end
+
 -- The cpfg options of a command line (--map, --mat, --define) as lsys.cpfg.load options,
 -- or nil when none is given.
 local function cpfg_opts (cmd, opts)
@@ -74,8 +82,8 @@ local function cpfg_opts (cmd, opts)
     defines = defines or {}
     defines[k] = v
   end
-  return { colormap = opts.map, materials = opts.mat, defines = defines,
-           environment = opts.environment }
+  return { colormap = palette_file(opts.map), materials = palette_file(opts.mat),
+           defines = defines, environment = opts.environment }
 end
 
 --[[
@@ -123,6 +131,14 @@ local function model_source (cmd, opts, pos)
     local f, err = io.open(arg, "r")
     if f == nil then error(err, 0) end
     f:close()
+  end
+  for _, o in ipairs { "map", "mat" } do          -- neither here nor beside the model
+    local p = opts[o]
+    local dir = kind == "object" and arg or (arg:match("^(.*)/[^/]*$") or ".")
+    if p ~= nil and p:sub(1, 1) ~= "/" and not isfile(p) and not isfile(dir .. "/" .. p) then
+      error(format("--%s %s: no such file in the current folder nor in the model's (%s)", o,
+                   p, normalize(dir)), 0)
+    end
   end
   return { path = arg, kind = kind, vfile = view, lopts = lopts or {} }
 end
@@ -188,21 +204,25 @@ local function value (v)
   return v
 end
 
--- Applies --set NAME=VALUE to the model's env, warning about a name the model has no variable
--- of (a misspelt name would otherwise change nothing without a word).
-local function set_env (model, sets, src)
+-- Applies --set NAME=VALUE to the model's env. A name the model has no variable of is a
+-- usage error, as it is for a job of lsys batch: a misspelt name would otherwise change
+-- nothing without a word. (A model that reads a variable it may lack, `env.n or 5`, lists
+-- it in its env to take it from the command line.)
+local function set_env (cmd, model, sets, src)
   if model.env == nil then model.env = {} end
   local names = load.variables(model.env)
   for _, kv in ipairs(sets) do
     if model.env[kv[1]] == nil then
-      local have = #names == 0 and "the model has no variables (its env is empty)"
-        or "the model's variables: " .. table.concat(names, ", ")
+      local hint = suggest.hint(kv[1], names)
+      local have = hint ~= "" and hint
+        or #names == 0 and " (the model has no variables: its env is empty)"
+        or " (the model's variables: " .. table.concat(names, ", ") .. ")"
       if src.kind ~= "lua" then
-        have = have .. "; the preprocessor replaces a #define's name by its value, and "
-          .. "`lsys import` writes a model file whose #defines of numbers are variables"
+        have = have .. "; the preprocessor replaces a #define's name by its value (--define "
+          .. "NAME=VALUE sets one), and `lsys import` writes a model file whose #defines of "
+          .. "numbers are variables"
       end
-      warning.warn(format("lsys: --set %s: the model has no variable %s (%s)",
-        kv[1], kv[1], have))
+      usage(cmd, "--set %s: the model has no variable %s%s", kv[1], kv[1], have)
     end
     if model.params ~= nil and model.param and model:param(kv[1]) ~= nil then
       local ok, err = pcall(function () model.params[kv[1]] = kv[2] end)   -- in its range
@@ -351,7 +371,7 @@ local function prepare (cmd, opts, pos)
   if steps ~= nil then model.steps = steps end
   if seed ~= nil then model.seed = seed end
   if limits ~= nil then apply_limits(model, limits) end
-  if #sets > 0 then set_env(model, sets, src) end
+  if #sets > 0 then set_env(cmd, model, sets, src) end
   check_views(cmd, model, vlist)
   return model, path, views, src
 end

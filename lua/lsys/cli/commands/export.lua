@@ -40,9 +40,10 @@ local function run (args)
     usage("export", "--lines expects 'lines' or 'tubes', got '%s'", opts.lines)
   end
   local scene = scene_of("export", opts, pos)
-  scene:save(outpath, { lines = opts.lines })
-  out(format("wrote %s (%d vertices, %d triangles, %d lines%s)\n", outpath, scene.nvertices,
-    scene.ntriangles, scene.nlines, opts.lines == "tubes" and " as tubes" or ""))
+  local n = scene:save(outpath, { lines = opts.lines })    -- what the file holds
+  local tubes = opts.lines == "tubes" and scene.nlines > 0
+  out(format("wrote %s (%d vertices, %d triangles, %d lines%s)\n", outpath, n.vertices,
+    n.triangles, n.lines, tubes and format("; %d lines as tubes", scene.nlines) or ""))
   return 0
 end
 

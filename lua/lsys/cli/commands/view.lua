@@ -219,8 +219,15 @@ local function run (args)
     return 0
   end
   if not ok then             -- an empty window waits for the file to be fixed
+    local wok, werr = pcall(V.open, { width = w, height = h, status = not opts["no-status"] })
+    if not wok then          -- no window at all (no display): said once, not by both calls
+      local why = werr:gsub("^lsys%.viewer%.open: ", "")
+      if tostring(err):gsub("^lsys%.show: ", "") ~= why then
+        io.stderr:write("lsys: ", tostring(err), "\n")       -- the model's own error
+      end
+      error(why, 0)
+    end
     io.stderr:write("lsys: ", tostring(err), "\n")
-    V.open { width = w, height = h, status = not opts["no-status"] }
     io.stderr:write(format("lsys: waiting for %s to change\n", path))
   end
 
