@@ -176,6 +176,24 @@ describe("shadows and ambient occlusion #gl", function()
     end
   end)
 
+  it("keeps the plant's colours when the ground's colours join the palette", function()
+    -- colour 3 of a palette of two is its first (c % n): with the ground's colours appended
+    -- it was the ground's own (cpfg fig. 27's petals were drawn grey)
+    local m = lsys.lsystem { axiom = ";(3) F(10) &(90) f(-2) -(90) f(-2) " .. SQUARE,
+                             view = { palette = { { 0.9, 0.1, 0.1 }, { 0.1, 0.1, 0.9 } } } }
+    local side = { viewpoint = { 0, 40, 100 }, target = { 0, 5, 0 }, up = { 0, 1, 0 } }
+    local a = lsys.render(m, opts(side))
+    local g = opts(side)
+    g.ground = true
+    local b = lsys.render(m, g)
+    -- the square's middle: red in both
+    local o = (20 * 200 + 100) * 4
+    local ra, ga, ba = a:byte(o + 1, o + 3)
+    local rb, gb, bb = b:byte(o + 1, o + 3)
+    assert.is_true(ra > 2 * ga and ra > 2 * ba, ("%d %d %d"):format(ra, ga, ba))
+    assert.is_true(rb > 2 * gb and rb > 2 * bb, ("%d %d %d"):format(rb, gb, bb))
+  end)
+
   it("bakes the shading into a Scene that draws the same picture (lsys.render.bake)", function()
     local render = require "lsys.render"
     local view = { light = { 0.5, 1, 0 }, fit = GROUND, ground = { size = 4 }, shadows = true }

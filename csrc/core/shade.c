@@ -264,9 +264,16 @@ int lsys_shade_add_ground (lsys_mesh *m, const lsys_shade_ground *g, lsys_error 
   p[1] = lo[1] - 1e-3 * sqrt(diag);
   for (j = 0; j <= nz; j++)
     for (i = 0; i <= nx; i++) {
+      unsigned col = g->col;
       p[0] = x0 + (x1 - x0) * (double)i / (double)nx;
       p[2] = z0 + (z1 - z0) * (double)j / (double)nz;
-      lsys_mesh_vertex(m, p, n, (double)i / (double)nx, (double)j / (double)nz, g->col, 0);
+      if (g->nfade > 1) {             /* the fade starts at the square's edge */
+        double d = hypot(p[0] - c[0], p[2] - c[2]) / half - 1;
+        double t = d <= 0 ? 0 : d >= LSYS_SHADE_GROUND_FADE - 1 ? 1
+                                  : d / (LSYS_SHADE_GROUND_FADE - 1);
+        col += (unsigned)(t * (g->nfade - 1) + 0.5);
+      }
+      lsys_mesh_vertex(m, p, n, (double)i / (double)nx, (double)j / (double)nz, col, 0);
       m->tex[m->nv - 1] = 0;
     }
   for (j = 0; j < nz; j++)

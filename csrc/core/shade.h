@@ -55,7 +55,11 @@ typedef struct lsys_shade_ground {
   double size;              /* > 0: its side over the plant's widest extent (and at least
                                its height's half); default 1.6 */
   int cells;                /* cells along a side, 1 .. 1024 (lsys.render's default 160) */
-  unsigned col;             /* its colour index */
+  unsigned col;             /* its colour index: col .. col + nfade - 1 when nfade > 1 */
+  unsigned nfade;           /* > 1: colours col .. col + nfade - 1 from the distance of the
+                               square's half side from its centre out to 2.5 times that
+                               (LSYS_SHADE_GROUND_FADE), so that a ground grown far fades
+                               into what is behind it */
   int has_rect;             /* 1: the ground reaches over rect too (what a camera sees) */
   double rect[4];           /* x0, z0, x1, z1 */
 } lsys_shade_ground;
@@ -63,6 +67,7 @@ typedef struct lsys_shade_ground {
 /* The farthest a ground reaches from the plant's centre in x or z, in halves
 ** of its default square's side (a camera looking at the horizon). */
 #define LSYS_SHADE_GROUND_REACH 4
+#define LSYS_SHADE_GROUND_FADE 2.5
 
 /*
 ** Appends to m a grid of quads facing up (+y), just under m's lowest point

@@ -16,6 +16,7 @@
 
 #ifndef LSYS_NO_RENDER
 #define SHADEPREP_T "lsys.ShadePrep"
+#define GROUND_FADE 32          /* colours of the ground, from its own to what is behind */
 
 /* What a picture with shadows, a ground or a sky holds while it is drawn: a
 ** population's flattened copy (its instances written out, so that each plant
@@ -207,11 +208,16 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
     v->rec = NULL; v->nrec = 0;
   }
   if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0 && above(&v->cam, &v->mesh)) {
-    size_t npal = v->npal > 0 ? v->npal : 1;
-    if (npal >= LSYS_MESH_NCOLORS) luaL_error(L, "lsys.render: ground: the palette is full");
+    size_t npal = v->npal > 0 ? v->npal : 1, k;
+    const float *behind = o->sky ? o->sky_bottom : v->background;   /* what it fades into */
+    if (npal + GROUND_FADE > LSYS_MESH_NCOLORS)
+      luaL_error(L, "lsys.render: ground: the palette is full");
     if (lsys_mesh_copy(&p->mesh, &v->mesh) != LSYS_OK) luaL_error(L, "not enough memory");
     p->ground = 1;
-    if ((p->pal = (lsys_material *)LSYS_MALLOC((npal + 1) * sizeof *p->pal)) == NULL)
+    /* colour c is pal[c % npal]: the same entry once the palette grows */
+    for (k = 0; k < p->mesh.nv; k++) p->mesh.col[k] = (uint16_t)(p->mesh.col[k] % npal);
+    for (k = 0; k < p->mesh.nl; k++) p->mesh.lcol[k] = (uint16_t)(p->mesh.lcol[k] % npal);
+    if ((p->pal = (lsys_material *)LSYS_MALLOC((npal + GROUND_FADE) * sizeof *p->pal)) == NULL)
       luaL_error(L, "not enough memory");
     if (v->npal > 0) memcpy(p->pal, v->pal, npal * sizeof *p->pal);
     else {
@@ -219,8 +225,14 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
                                          {0, 0, 0, 1}, {0, 0, 0, 1}, 0};
       p->pal[0] = grey;
     }
-    lsys_mesh_material_color(&p->pal[npal], gcol[0], gcol[1], gcol[2]);
+    for (k = 0; k < GROUND_FADE; k++) {
+      double t = (double)k / (GROUND_FADE - 1);
+      lsys_mesh_material_color(&p->pal[npal + k], gcol[0] + t * (behind[0] - gcol[0]),
+                               gcol[1] + t * (behind[1] - gcol[1]),
+                               gcol[2] + t * (behind[2] - gcol[2]));
+    }
     g->col = (unsigned)npal;
+    g->nfade = GROUND_FADE;
     if (!v->cam.has_box) {                  /* the camera frames the plant, not its ground */
       double lo[3], hi[3];
       if (lsys_mesh_bounds(&v->mesh, lo, hi)) {
@@ -234,7 +246,7 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
       luaL_error(L, "lsys.render: %s", st == LSYS_ENOMEM ? "not enough memory" : e.msg);
     v->mesh = p->mesh;
     v->pal = p->pal;
-    v->npal = npal + 1;
+    v->npal = npal + GROUND_FADE;
   }
   if ((so->shadows || so->ao) && v->mesh.nv > 0) {
     lsys_shade_opts oo = *so;
