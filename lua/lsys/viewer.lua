@@ -101,12 +101,13 @@ end
 -- The scene window v shows for `scene`: with opts.shadows or opts.ao, a 3D plant baked with
 -- them and its ground grown to what a picture of the window's scene pane sees
 -- (lsys.render.bake), and true.
-local function baked (v, scene, opts)
+local function baked (v, scene, opts, sky)
   if not (opts.shadows or opts.ao) or not lrender.solid(scene) then return scene, false end
   local st = v:state()
   local r = st and st.scene
   return lrender.bake(scene, { shadows = opts.shadows or nil, ao = opts.ao or nil,
-                               ground = true, width = r and r[3] > 0 and r[3] or nil,
+                               ground = true, sky = sky or nil,   -- (the colour it fades to)
+                               width = r and r[3] > 0 and r[3] or nil,
                                height = r and r[4] > 0 and r[4] or nil }), true
 end
 
@@ -326,7 +327,7 @@ function M.edit (subject, opts)
       local tex = vw and vw.textures
       local sky, ground = backdrop(scene, opts.flat)
       local b
-      f.scene, b = baked(v, scene, opts)
+      f.scene, b = baked(v, scene, opts, sky)
       ground = ground and not b
       v:post({ f }, { keep_camera = not first or nil, title = title, sky = sky, ground = ground,
                       textures = tex and #tex > 0 and tex or nil })
@@ -450,7 +451,7 @@ function M.show (x, opts)
   if opts.shadows or opts.ao then
     for _, f in ipairs(frames) do
       local b
-      f.scene, b = baked(v, f.scene, opts)
+      f.scene, b = baked(v, f.scene, opts, sky)
       ground = ground and not b
     end
   end
