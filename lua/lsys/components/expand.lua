@@ -201,12 +201,29 @@ M.Tree = Tree
 -- (index or nil), children (indices), i, n, depth, link, frame, params, ... }).
 function Tree:instances () return self.list end
 
---- How many instances have the name or kind `what` (nil: all).
+--- How many instances there are (nil: all) by the label their paths show (`what` a string:
+-- the prototype's name, its kind when it has none) or by kind (`{ kind = "leaf" }`). A
+-- named prototype is counted by its name only: in the rhododendron `count("leaf")` is the
+-- 920 leaves named "leaf", `count{ kind = "leaf" }` 3,320 with the 2,400 petals.
 function Tree:count (what)
   if what == nil then return #self.list end
+  local key = "label"
+  if type(what) == "table" then
+    for k in pairs(what) do
+      if k ~= "kind" then
+        error(format("lsys.components: count: unknown field '%s' (known: kind)", tostring(k)),
+              2)
+      end
+    end
+    key, what = "kind", what.kind
+  end
+  if type(what) ~= "string" then
+    error(format("lsys.components: count: expected a name or { kind = KIND }, got %s",
+                 type(what)), 2)
+  end
   local n = 0
   for _, inst in ipairs(self.list) do
-    if inst.name == what or inst.kind == what then n = n + 1 end
+    if inst[key] == what then n = n + 1 end
   end
   return n
 end
