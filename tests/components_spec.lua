@@ -317,8 +317,9 @@ describe("lsys.components.expand", function ()
                  "got {0, -101}", errmsg(C.tree, { phototropism = { 0, -101 } }))
     assert.equal("lsys.components: world: 'wind.strength' must be a number from -100 to 100, " ..
                  "got 1e+300", errmsg(C.world, { wind = { strength = 1e300 } }))
-    assert.equal("lsys.components: world: 'cylinder.strength' must be a number from -100 to " ..
-                 "100, got -200", errmsg(C.world, { cylinder = { strength = -200 } }))
+    assert.equal("lsys.components: world: 'cylinder.strength' must be a number from 0 to " ..
+                 "100 (radians a segment at most), got -200",
+                 errmsg(C.world, { cylinder = { strength = -200 } }))
     local w = C.world {}
     w:child(C.tree { name = "t", n = 2, curvature = 30,
                      gravitropism = function (ctx) return ctx.depth * 1e308 end })
