@@ -44,7 +44,7 @@ local function report (title, root, opts)
   local tm, m = B.best(function () return C.model(root, opts) end, RUNS)
   local ti, scene = B.best(function () return m:interpret() end, RUNS)
   local tt = B.best(function () return C.scene(root, opts) end, RUNS)
-  local n, nl = tree:count(), tree:count("leaf")
+  local n, nl = tree:count(), tree:count { kind = "leaf" }
   local nm, nt = #m.components.lstring, scene.ntriangles
   local emit = math.max(tm - te, 1e-9)
   print(string.format("%s: %d instances (%d leaves), %d modules, %d triangles", title, n, nl,

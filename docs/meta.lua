@@ -2391,8 +2391,9 @@ local CTree = {}
 --- and stem are new read-only copies of the C frame arena at each read.
 ---@return table[]
 function CTree:instances() end
---- How many instances have this name or kind (nil: all).
----@param what? string
+--- How many instances: by the label their paths show (a string: the prototype's name, its
+--- kind when it has none), by kind (`{ kind = "leaf" }`), or all (nil).
+---@param what? string|{kind: string}
 ---@return integer
 function CTree:count(what) end
 --- The instance at `path` ("tree#1/twig#3/leaf#17"), or nil.

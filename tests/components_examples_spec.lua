@@ -127,6 +127,9 @@ describe("examples/components", function ()
                   flower = 480, petal = 2400, collar = 60,
                   leaf = 20 * 14 + 40 * 4 + 60 * 8 }, counts(m))
     local t = m.components.tree
+    -- count: the 920 instances labelled "leaf"; of kind leaf, the 2,400 petals too
+    assert.same({ 920, 2400, 3320 }, { t:count("leaf"), t:count("petal"),
+                                       t:count { kind = "leaf" } })
     local list = t:instances()
     local seen = 0
     for _, tw in ipairs(list) do

@@ -161,6 +161,32 @@ describe("lsys.components.expand", function ()
       (l3.tip.p[3] - l3.frame.p[3]) ^ 2), 1e-9)
   end)
 
+  it("counts instances by the label their paths show, or by kind", function ()
+    -- named leaves and petals (both of kind leaf) and an unnamed leaf, labelled "leaf"
+    local tw = C.tree { name = "twig", n = 4 }
+    tw:branch(C.leaf { name = "leaf" })
+    local fl = C.hydra { name = "flower", n = 5 }
+    fl:child(C.leaf { name = "petal" })
+    tw:child(fl)
+    fl:child(C.leaf {})
+    local t = C.expand(tw)
+    assert.same({ 5, 1, 1, 0 }, { t:count("petal"), t:count("flower"), t:count("twig"),
+                                  t:count("tree") })      -- the Tree is named twig
+    assert.equal(9, t:count("leaf"))                      -- 4 named "leaf", 5 unnamed
+    assert.equal(14, t:count { kind = "leaf" })           -- and the 5 petals
+    assert.equal(1, t:count { kind = "tree" })
+    assert.equal(16, t:count())
+    local paths = 0
+    for _, inst in ipairs(t:instances()) do
+      if inst.path:match("/leaf#%d+$") then paths = paths + 1 end
+    end
+    assert.equal(t:count("leaf"), paths)
+    assert.equal("lsys.components: count: unknown field 'name' (known: kind)",
+                 errmsg(t.count, t, { name = "leaf" }))
+    assert.equal("lsys.components: count: expected a name or { kind = KIND }, got number",
+                 errmsg(t.count, t, 3))
+  end)
+
   it("creates the iterations a flag list allows", function ()
     local tw = C.tree { name = "twig", n = 15 }
     local small = C.horn { name = "small" }
@@ -291,8 +317,9 @@ describe("lsys.components.expand", function ()
                  "got {0, -101}", errmsg(C.tree, { phototropism = { 0, -101 } }))
     assert.equal("lsys.components: world: 'wind.strength' must be a number from -100 to 100, " ..
                  "got 1e+300", errmsg(C.world, { wind = { strength = 1e300 } }))
-    assert.equal("lsys.components: world: 'cylinder.strength' must be a number from -100 to " ..
-                 "100, got -200", errmsg(C.world, { cylinder = { strength = -200 } }))
+    assert.equal("lsys.components: world: 'cylinder.strength' must be a number from 0 to " ..
+                 "100 (radians a segment at most), got -200",
+                 errmsg(C.world, { cylinder = { strength = -200 } }))
     local w = C.world {}
     w:child(C.tree { name = "t", n = 2, curvature = 30,
                      gravitropism = function (ctx) return ctx.depth * 1e308 end })

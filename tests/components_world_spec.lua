@@ -54,28 +54,111 @@ describe("lsys.components World tropisms", function ()
                    1, true)
   end)
 
-  it("a cylinder makes a stem climb round its axis as a helix near the radius", function ()
+  it("a cylinder makes a stem climb round its axis on a helix at its radius", function ()
     local w = C.world { cylinder = { axis = { 0, 1, 0 }, point = { 0, 0, 0 }, radius = 0.3,
                                      pitch = 30, strength = 0.5 } }
     w:child(C.horn { length = 12, segments = 600, translate = { 0.3, 0, 0 } })
     local st = C.expand(w):instances()[2].stem
     local turned, last = 0, math.atan(st[1].p[3], st[1].p[1])
     for k = 2, #st do
-      local p = st[k].p
+      local p, q = st[k].p, st[k - 1].p
       local r = math.sqrt(p[1] * p[1] + p[3] * p[3])
-      assert.is_true(r > 0.2 and r < 0.4, "frame " .. k .. " at " .. r .. " from the axis")
+      -- the stem starts heading up the axis: it turns 60 degrees to the helix's pitch, at
+      -- most 0.5 radians a segment, in 3 segments; from then on every frame lies on it
+      if k > 4 then
+        assert.near(0.3, r, 1e-12)
+        local dy, dh = p[2] - q[2], math.sqrt((p[1] - q[1]) ^ 2 + (p[3] - q[3]) ^ 2)
+        assert.near(30, math.deg(math.atan(dy, dh)), 1e-9)
+      else
+        assert.is_true(math.abs(r - 0.3) < 2e-4, "frame " .. k .. " at " .. r)
+      end
       local a = math.atan(p[3], p[1])
       local d = (a - last + math.pi) % (2 * math.pi) - math.pi
       -- a x r seen from above (+y) is clockwise: atan(z, x) decreases
       assert.is_true(d < 0, "frame " .. k .. " goes round one way")
       turned, last = turned - d, a
-      assert.is_true(p[2] > st[k - 1].p[2] - 1e-12, "and climbs")
     end
-    -- 12 m of stem on a 30 degree helix of radius 0.3 goes round about 5 times
-    assert.is_true(turned > 4 * 2 * math.pi)
+    -- 12 of stem at 30 degrees climb 6 and go 10.4 round a circle of 0.3: 5.5 turns
+    assert.near(12 * math.cos(math.rad(30)) / 0.3, turned, 0.05)
     -- without the World the horn goes straight up
     local st2 = C.expand(C.horn { length = 12, segments = 600 }):instances()[1].stem
     assert.near({ 0, 12, 0 }, st2[#st2].p, 1e-9)
+  end)
+
+  it("a cylinder holds its radius from a start off it, or pulls as far as it can", function ()
+    -- a stem starting 0.5 out, heading along the axis: segments of 0.1 take it in at the
+    -- pitch, 0.094 closer each, and it is on the radius from the 9th frame on
+    local w = C.world { cylinder = { radius = 1, pitch = 20, strength = 0.6 } }
+    w:child(C.horn { length = 8, segments = 80, translate = { 1.5, 0, 0 } })
+    local st = C.expand(w):instances()[2].stem
+    local function r (k) return math.sqrt(st[k].p[1] ^ 2 + st[k].p[3] ^ 2) end
+    for k = 3, 6 do assert.near(0.1 * math.cos(math.rad(20)), r(k - 1) - r(k), 1e-3) end
+    for k = 9, #st do assert.near(1, r(k), 1e-12) end
+    -- too weak for a tight helix (each segment would turn 0.38 radians, the guide turns
+    -- 0.1): the stem cannot keep to the radius and strays from it
+    local weak = C.world { cylinder = { radius = 0.2, pitch = 30, strength = 0.1 } }
+    weak:child(C.horn { length = 8, segments = 80, translate = { 0.2, 0, 0 } })
+    local stray = 0
+    for _, f in ipairs(C.expand(weak):instances()[2].stem) do
+      stray = math.max(stray, math.abs(math.sqrt(f.p[1] ^ 2 + f.p[3] ^ 2) - 0.2))
+    end
+    assert.is_true(stray > 0.1, stray)
+  end)
+
+  it("a wall keeps the stems in the plane at its distance, along their own way", function ()
+    -- a tree whose branches leave the trunk all round; the wall's plane is z = 0.5
+    local function tree ()
+      local t = C.tree { name = "t", length = 4, n = 6, angle = 60, segments = 20,
+                         translate = { 0, 0, 0.5 } }
+      t:branch(C.tree { name = "b", length = 1.5, n = 0, segments = 15, gnarl = 10 })
+      return t
+    end
+    local w = C.world { wall = { point = { 0, 0, 0.2 }, normal = { 0, 0, 2 }, distance = 0.3,
+                                 strength = 0.4 } }
+    w:child(tree())
+    local far, spread = 0, 0
+    for _, inst in ipairs(C.expand(w):instances()) do
+      local st = inst.stem or {}
+      for k = 1, #st do
+        local q = math.abs(st[k].p[3] - 0.5)
+        -- a branch leaves the trunk up to 60 degrees out of the plane, and the wall turns
+        -- it at most 0.4 radians a segment: back on the plane within 8 segments
+        if k > 9 then far = math.max(far, q) end
+        spread = math.max(spread, math.abs(st[k].p[1]))
+      end
+    end
+    assert.is_true(far < 1e-12, far)
+    assert.is_true(spread > 1, spread)             -- the branches spread along the wall
+    -- the same tree without the wall is not flat
+    local out = 0
+    for _, inst in ipairs(C.expand(tree()):instances()) do
+      for _, f in ipairs(inst.stem or {}) do out = math.max(out, math.abs(f.p[3] - 0.5)) end
+    end
+    assert.is_true(out > 0.5, out)
+    -- a stem already in the plane and along it is not turned
+    local w2 = C.world { wall = { normal = { 0, 0, 1 } } }
+    w2:child(C.horn { length = 2, segments = 4 })
+    local st = C.expand(w2):instances()[2].stem
+    assert.near({ 0, 2, 0 }, st[5].p, 1e-15)
+  end)
+
+  it("a World's false switches a parent World's cylinder, wall or wind off", function ()
+    local w = C.world { cylinder = { radius = 1, strength = 0.5 }, wall = {},
+                        wind = { strength = 0.5 } }
+    local free = C.world { cylinder = false, wall = false, wind = false }
+    w:child(free)
+    free:child(C.horn { length = 2, segments = 4, translate = { 0.4, 0, 0 } })
+    local st = C.expand(w):instances()[3].stem
+    assert.near({ 0.4, 2, 0 }, st[5].p, 1e-12)
+    assert.equal("lsys.components: world: 'wall' must be a table or false",
+                 errmsg(C.world, { wall = 3 }))
+    assert.equal("lsys.components: world: 'wall.strength' must be a number from 0 to 100 " ..
+                 "(radians a segment at most), got -1",
+                 errmsg(C.world, { wall = { strength = -1 } }))
+    assert.equal("lsys.components: world: 'wall': unknown field 'radius' (known: distance, " ..
+                 "normal, point, strength)", errmsg(C.world, { wall = { radius = 1 } }))
+    assert.equal("lsys.components: world (at world#1): 'wall.normal' must not be zero",
+                 errmsg(C.expand, C.world { wall = { normal = { 0, 0, 0 } } }))
   end)
 
   it("turns a leaf by the fraction e of the rotation that makes U face the light", function ()

@@ -8,7 +8,7 @@
 -- the willow's leaves were drawn with their twigs' bark texture); now the most is 0.11 %
 -- (cpfg fig. 15c), the diagrams below aside.
 --
--- ctest: slow (draws the 77 pictures that have polygons, the forest stand of 1.7 M
+-- ctest: slow (draws the 84 pictures that have polygons, the forest stand of 1.7 M
 -- triangles with its shadows among them: about 40 s)
 --
 -- Tagged #gl: `busted --exclude-tags=gl` leaves it out.

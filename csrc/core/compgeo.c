@@ -168,7 +168,7 @@ int lsys_compgeo_frames_stem (lsys_cframes *a, size_t base, const lsys_cstem *st
       const double *tr = st->trop + 4 * t;
       double T[3];
       if (isnan(tr[0])) {
-        int r = st->field(st->ud, t, g.p, T);
+        int r = st->field(st->ud, t, g.p, g.H, T);
         if (r < 0) return r;
         if (r == 0) continue;
       }

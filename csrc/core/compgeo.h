@@ -66,9 +66,11 @@ void lsys_compgeo_frame_tropism (lsys_cframe *g, const double T[3], double e);
 void lsys_compgeo_frame_branch (const lsys_cframe *A, const lsys_cframe *B, double t, double roll,
                                 double angle, double scale, lsys_cframe *g);
 
-/* A direction field of position (a World's field given as a function): sets
-** T and returns 1, returns 0 for "no direction here", or LSYS_ERULE. */
-typedef int (*lsys_cfield) (void *ud, int k, const double p[3], double T[3]);
+/* A direction field (a World's field given as a function) at position p for a
+** stem heading H: sets T and returns 1, returns 0 for "no direction here", or
+** LSYS_ERULE. */
+typedef int (*lsys_cfield) (void *ud, int k, const double p[3], const double H[3],
+                            double T[3]);
 
 typedef struct lsys_cstem {
   double len;                 /* along the stem, in units of the base frame's scale */

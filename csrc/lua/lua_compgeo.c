@@ -13,7 +13,8 @@
 **   F:place(i, x, y, z, hx, hy, hz, ux, uy, uz, size) -> j a multiplier's child
 **       (position and axes in the local axes X = U, Y = H x U, Z = H of frame i)
 **   F:stem(i, len, segs, curv, twist, gnarl, trop, dev, bu, broll) -> first
-**       trop: list of {direction {x, y, z} | function (x, y, z) -> x, y, z, strength}
+**       trop: list of {direction {x, y, z} | function (x, y, z, hx, hy, hz) -> x, y, z,
+**       strength}: a function of the position and the heading before the turn
 **       bu, broll: the branches' places along the stem and rolls (nil: none)
 **
 **   core.cwriter(rules, frames) -> Cwriter  writes an Lstring owned by rules
@@ -256,17 +257,19 @@ static int frames_place (lua_State *L) {
   return pushnew(L, a, &g);
 }
 
-/* The tropism field k: a Lua function of position, at k + 1 in the table at
-** 'fns' (the stem's own: the caller's list is read once, before the stem). */
+/* The tropism field k: a Lua function of position and heading (x, y, z, hx,
+** hy, hz), at k + 1 in the table at 'fns' (the stem's own: the caller's list
+** is read once, before the stem). */
 typedef struct fieldctx { lua_State *L; int fns; } fieldctx;
 
-static int callfield (void *ud, int k, const double p[3], double T[3]) {
+static int callfield (void *ud, int k, const double p[3], const double H[3], double T[3]) {
   fieldctx *c = (fieldctx *)ud;
   lua_State *L = c->L;
   int i;
   lua_rawgeti(L, c->fns, k + 1);
   for (i = 0; i < 3; i++) lua_pushnumber(L, p[i]);
-  lua_call(L, 3, 3);                   /* its error is the caller's */
+  for (i = 0; i < 3; i++) lua_pushnumber(L, H[i]);
+  lua_call(L, 6, 3);                   /* its error is the caller's */
   if (lua_isnil(L, -3)) { lua_pop(L, 3); return 0; }
   for (i = 0; i < 3; i++) {
     int ok;

@@ -9,12 +9,15 @@
 --   52,416 leaflet instances (the benchmark's plant, bench/components.lua).
 --
 -- `opts` (when loaded as a function by the tests) makes a smaller tree of the same graph:
--- { branches =, subs =, twigs =, leaves = } counts per level.
+-- { branches =, subs =, twigs =, leaves = } counts per level; `levels` (default 5) the
+-- article's stages: 2 the trunk and its branches (fig. 6a), 4 the two more levels of
+-- sub-branches and twigs (fig. 6b), 5 with the leaves (fig. 6c). fig6_ab.lua draws 6a, 6b.
 local lsys = require "lsys"
 local C = lsys.components
 
 local function chestnut (opts)
   opts = opts or {}
+  local levels = opts.levels or 5
   -- the leaflet: textured (texture 1, the view's chestnut_leaf.png), white-ish so the
   -- texture's greens show; the middle leaflet of 7 is the longest (a sine over i of n)
   local leaflet = C.leaf {
@@ -38,20 +41,20 @@ local function chestnut (opts)
   local twig = C.tree { name = "twig", length = 0.9, radius = 0.015, tip = 0.5,
                         n = opts.leaves or 13, first = 0.1, angle = 55, segments = 4,
                         divergence = 90, phototropism = 0.2, color = 1, texture = 2 }
-  twig:branch(petiole)
+  if levels >= 5 then twig:branch(petiole) end
   local sub = C.tree { name = "sub-branch", length = 2.2, radius = 0.04, n = opts.twigs or 6,
                        first = 0.2, angle = 45, segments = 6, gnarl = 6, color = 1,
                        texture = 2 }
-  sub:branch(twig)
+  if levels >= 4 then sub:branch(twig) end
   -- the main branches: the lower ones longer, spreading, slightly hanging
   local branch = C.tree { name = "branch", length = { 6, 3 }, radius = 0.12,
                           n = opts.subs or 8, first = 0.25, angle = 40, segments = 10,
                           gnarl = 4, gravitropism = 0.02, color = 1, texture = 2 }
-  branch:branch(sub)
+  if levels >= 3 then branch:branch(sub) end
   local trunk = C.tree { name = "trunk", length = 9, radius = 0.42, n = opts.branches or 12,
                          first = 0.36, angle = { 70, 25 }, segments = 16, gnarl = 2,
                          color = 1, texture = 2 }
-  trunk:branch(branch)
+  if levels >= 2 then trunk:branch(branch) end
   return trunk
 end
 

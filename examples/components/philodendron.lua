@@ -1,11 +1,13 @@
 -- The philodendron climbing a stick of Lintermann and Deussen 1999, fig. 9b (section
 -- "Tropisms": "a cylindrical tropism for modeling a philodendron around a stick"). A World
--- component at the root sets a cylindrical tropism around the stick's axis: the stem is
--- drawn towards a helix of radius 0.3 around the y axis, climbing at a pitch of 30 degrees,
--- with strength 0.3. Under the World: a pot (a Revo), the stick (a Simple cylinder) and the
--- climbing stem, a Tree whose branches are petioles (Horns) carrying heart-shaped leaves.
+-- component at the root guides the stems below it onto a helix of radius 0.3 around the
+-- stick's axis (the y axis), climbing at a pitch of 30 degrees, turning them by at most 0.3
+-- radians a segment: the stem's frames are on the radius from its 6th on. Under the World:
+-- a pot (a Revo), the stick (a Simple cylinder) and the climbing stem, a Tree whose
+-- branches are petioles (Horns) carrying heart-shaped leaves; each petiole hangs on a World
+-- of its own with `cylinder = false`, so the stick does not pull the petioles in.
 --
---   1 world, 1 pot, 1 stick, 1 stem, 20 petioles, 20 leaves.
+--   1 world, 1 pot, 1 stick, 1 stem, 20 free (Worlds), 20 petioles, 20 leaves.
 local lsys = require "lsys"
 local C = lsys.components
 
@@ -39,7 +41,10 @@ local function philodendron (opts)
                         segments = 96, n = opts.leaves or 20, first = 0.12, last = 0.97,
                         angle = { 55, 40 }, divergence = 180, translate = { 0.3, POT - 0.05, 0 },
                         color = 3 }
-  stem:branch(petiole)
+  -- the petioles leave the stick's pull: a World under the stem switches the cylinder off
+  local free = C.world { name = "free", cylinder = false }
+  free:child(petiole)
+  stem:branch(free)
   world:child(pot)
   world:child(soil)
   world:child(stick)

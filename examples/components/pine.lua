@@ -19,12 +19,15 @@ local lsys = require "lsys"
 local C = lsys.components
 
 -- The bend: a Hyperpatch of degrees 1 (across), 2 (up the tree) and 1 (front to back) on
--- the box around the tree; the middle row of control points moves 1.2 and the top row 4.5
--- units to the right (local x): the tree leans and curves like a windswept pine.
+-- the box around the tree; the middle row of control points moves 1.2 (its left side) and
+-- 2.2 (its right side), the top row 4.5 and 7.5 units to the right (local x): the tree
+-- leans and curves like a windswept pine, and widens to the upper right, where a bend of
+-- the whole tree (fig. 10c) stretches the needles most ("the needles on the right appear
+-- too big").
 local MOVES = {}
-for _, row in ipairs { { 1, 1.2 }, { 2, 4.5 } } do
+for _, row in ipairs { { 1, 1.2, 2.2 }, { 2, 4.5, 7.5 } } do
   for i = 0, 1 do
-    for k = 0, 1 do MOVES[#MOVES + 1] = { i, row[1], k, row[2], 0, 0 } end
+    for k = 0, 1 do MOVES[#MOVES + 1] = { i, row[1], k, row[2 + i], 0, 0 } end
   end
 end
 

@@ -281,22 +281,49 @@ M.PICTURES = {
   { "components/rhododendron.lua", nil, "Fig. 5, rhododendron",
     "20 twigs on a Phiball; each twig a Tree with flag lists: small twigs at 2 and 13, leaves "
     .. "elsewhere; trusses of flowers at the tips.", width = 320, height = 320 },
-  { "components/agave.lua", nil, "Fig. 8, agave",
-    "34 leaves on a Phiball whose length and bend are ranges over i plus a seeded random "
-    .. "offset: the upright leaves are shorter and less bent.", width = 320, height = 320 },
-  { "components/chestnut.lua", nil, "Fig. 6, chestnut",
+  { "components/fig6_ab.lua", "a", "Fig. 6a, chestnut: two Trees",
+    "The chestnut's first stage: a trunk and its 12 branches, two Tree components with their "
+    .. "number, spacing, angle and shape set.", png = "components/fig6a.png",
+    width = 320, height = 320 },
+  { "components/fig6_ab.lua", "b", "Fig. 6b, chestnut: four Trees",
+    "Two more Trees, sub-branches and twigs: 96 and 576 of them, bare.",
+    png = "components/fig6b.png", width = 320, height = 320 },
+  { "components/chestnut.lua", nil, "Fig. 6c, chestnut",
     "A cascade of four Trees (trunk, branches, sub-branches, twigs) carrying 7,488 palmate "
     .. "leaves of 7 textured leaflets (52,416 Leaf instances); bark-textured stems.",
     width = 320, height = 320 },
+  { "components/maple.lua", nil, "Fig. 7, maple",
+    "Five levels of Trees from a short trunk: 1,260 twigs with 7,560 leaves in opposite "
+    .. "pairs, each a Hydra of five pointed lobes on a petiole; a broad, rounded crown.",
+    width = 320, height = 320 },
+  { "components/agave.lua", nil, "Fig. 8, agave",
+    "34 leaves on a Phiball whose length and bend are ranges over i plus a seeded random "
+    .. "offset: the upright leaves are shorter and less bent.", width = 320, height = 320 },
   { "components/willow.lua", nil, "Fig. 9a, weeping willow",
     "336 long, thin twigs that a strong gravitropism turns straight down, with 8,064 narrow "
     .. "leaves.", width = 320, height = 320 },
   { "components/philodendron.lua", nil, "Fig. 9b, philodendron",
-    "A World's cylindrical tropism winds the stem around a stick (radius 0.3, pitch 30°); "
-    .. "heart-shaped leaves on petioles, a Revo pot.", width = 320, height = 320 },
+    "A World's cylinder guides the stem round a stick on a helix of radius 0.3 and pitch "
+    .. "30°; heart-shaped leaves on petioles the stick does not pull, a Revo pot.",
+    width = 320, height = 320 },
+  { "components/fig10_ac.lua", "a", "Fig. 10a, pine undeformed",
+    "The pine's graph without its Hyperpatch: a straight trunk, whorls of branches, 8,960 "
+    .. "needles in pairs.", png = "components/fig10a.png", width = 320, height = 320 },
   { "components/pine.lua", nil, "Fig. 10b, pine",
     "A Hyperpatch bends the trunk and twigs; an isolating FFD above each needle pair keeps "
     .. "the needles undeformed.", width = 320, height = 320 },
+  { "components/fig10_ac.lua", "c", "Fig. 10c, pine deformed whole",
+    "The same bend without the isolating FFDs: the needles are deformed too, up to 1.7 "
+    .. "times their size, most at the upper right.", png = "components/fig10c.png",
+    width = 320, height = 320 },
+  { "components/figC_tree.lua", nil, "Fig. C, a Tree's parameters",
+    "One small Tree six times: as it is, gnarled, its branches crowded to the base, a "
+    .. "range of branching angles, phototropic branches, a curved stem.",
+    png = "components/figC.png", width = 640, height = 214 },
+  { "components/figD_placement.lua", nil, "Fig. D, placement by multipliers",
+    "A cone with a leaf at its base, multiplied by a Hydra (a star), a Wreath (a ring of "
+    .. "candles) and a Phiball (the golden section on a sphere).",
+    png = "components/figD.png", width = 640, height = 250 },
   -- incremental growth after Davison, examples/grow: a world grown to its length
   { "grow/davison.lua", nil, "Davison's five trees",
     "The paper's length, thickness and spawning rules (at most 256 limbs a tree before "

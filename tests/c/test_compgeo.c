@@ -81,9 +81,10 @@ static void branch (void) {
 }
 
 static int fieldcalls;
-static int field (void *ud, int k, const double p[3], double T[3]) {
+static double fieldH[3];                             /* the heading of the first call */
+static int field (void *ud, int k, const double p[3], const double H[3], double T[3]) {
   (void)ud; (void)p;
-  fieldcalls++;
+  if (fieldcalls++ == 0) { fieldH[0] = H[0]; fieldH[1] = H[1]; fieldH[2] = H[2]; }
   if (k == 0) return 0;                              /* no direction here */
   T[0] = 0; T[1] = -1; T[2] = 0;
   return 1;
@@ -121,6 +122,7 @@ static void stems (void) {
     trop[0] = NAN;                                   /* tropism 0 asks the field: none there */
     assert(lsys_compgeo_frames_stem(&a, base, &st, &first) == LSYS_OK);
     assert(fieldcalls == 20);
+    assert(vnear(fieldH, 1, 0, 0, 1e-15));           /* the base's heading, before a turn */
     assert(near(a.f[first + 10].H[1], y, 1e-12));
   }
   /* the gnarl draws two numbers a segment, in turn with everyone else */

@@ -201,12 +201,29 @@ M.Tree = Tree
 -- (index or nil), children (indices), i, n, depth, link, frame, params, ... }).
 function Tree:instances () return self.list end
 
---- How many instances have the name or kind `what` (nil: all).
+--- How many instances there are (nil: all) by the label their paths show (`what` a string:
+-- the prototype's name, its kind when it has none) or by kind (`{ kind = "leaf" }`). A
+-- named prototype is counted by its name only: in the rhododendron `count("leaf")` is the
+-- 920 leaves named "leaf", `count{ kind = "leaf" }` 3,320 with the 2,400 petals.
 function Tree:count (what)
   if what == nil then return #self.list end
+  local key = "label"
+  if type(what) == "table" then
+    for k in pairs(what) do
+      if k ~= "kind" then
+        error(format("lsys.components: count: unknown field '%s' (known: kind)", tostring(k)),
+              2)
+      end
+    end
+    key, what = "kind", what.kind
+  end
+  if type(what) ~= "string" then
+    error(format("lsys.components: count: expected a name or { kind = KIND }, got %s",
+                 type(what)), 2)
+  end
   local n = 0
   for _, inst in ipairs(self.list) do
-    if inst.name == what or inst.kind == what then n = n + 1 end
+    if inst[key] == what then n = n + 1 end
   end
   return n
 end
@@ -314,18 +331,24 @@ local function nallowed (inst, l, n)
   return f.mode == "only" and k or n - k
 end
 
--- The tropisms acting on a stem: { direction (a vector or a function of position), its
--- strength } for the Tree's gravi- and phototropism and the World's cylinder and wind.
-local function tropisms (inst, grav, photo)
+-- The tropisms acting on a stem of segments `step` long (in the world): { direction (a
+-- vector or a function of position and heading), its strength } for the Tree's gravi- and
+-- phototropism, the World's wind, then its guides (cylinder, wall), which turn the heading
+-- left by the others onto their target (world.lua, steer).
+local function tropisms (inst, grav, photo, step)
   local w = inst.world
   local out = {}
   if grav ~= 0 then out[#out + 1] = { w.gravity, grav } end
   if photo ~= 0 then out[#out + 1] = { w.light, photo } end
-  if w.cylinder and w.cylinder.strength ~= 0 then
-    out[#out + 1] = { W.cylinderfield(w.cylinder), w.cylinder.strength }
-  end
-  if w.wind and w.wind.dir and w.wind.strength ~= 0 then
+  if w.wind and w.wind.strength ~= 0 then
     out[#out + 1] = { w.wind.dir, w.wind.strength }
+  end
+  if w.cylinder and w.cylinder.strength ~= 0 then
+    out[#out + 1] = { W.cylinderguide(w.cylinder, step, w.cylinder.strength),
+                      w.cylinder.strength }
+  end
+  if w.wall and w.wall.strength ~= 0 then
+    out[#out + 1] = { W.wallguide(w.wall, step, w.wall.strength), w.wall.strength }
   end
   return out
 end
@@ -349,7 +372,9 @@ local function stem (ex, inst, fi, len, segs, plan)
   local twist = p.kind == "horn" and get(inst, p, "twist", i, n) or 0
   local w = inst.world
   local trop = NOTROPISM
-  if grav ~= 0 or photo ~= 0 or w.cylinder or w.wind then trop = tropisms(inst, grav, photo) end
+  if grav ~= 0 or photo ~= 0 or w.cylinder or w.wall or w.wind then
+    trop = tropisms(inst, grav, photo, len / segs * ex.frames:scale(fi))
+  end
   local bu, broll
   if plan and dev ~= 0 then bu, broll = plan.u, plan.roll end
   return ex.frames:stem(fi, len, segs, curv, twist, gnarl, trop, dev, bu, broll)
@@ -461,7 +486,7 @@ end
 local function worldof (inst, p)
   local w = {}
   for k, v in pairs(inst.world) do w[k] = v end
-  for _, k in ipairs { "gravity", "light", "cylinder", "wind" } do
+  for _, k in ipairs(W.SETTINGS) do
     if p.params[k] ~= nil then w[k] = W.check(inst, k, p.params[k]) end
   end
   return w

@@ -39,6 +39,8 @@ local LENGTH = { 0, huge, "a number >= 0" }        -- a stem's: the turtle draws
 local CURL = { -10, 10, "a number from -10 to 10" }
 local TROPISM = { -100, 100, "a number from -100 to 100" }
 M.TROPISM = TROPISM
+-- A guide's strength (a World's cylinder and wall): the most it turns a stem a segment.
+local GUIDE = { 0, 100, "a number from 0 to 100 (radians a segment at most)" }
 local INDEX = { 0, huge, "a whole number >= 0" }   -- a view's texture (its count: the model's)
 
 local BASIC = {
@@ -106,7 +108,7 @@ local KINDS = {
   },
   world = {
     gravity = { "any", { 0, -1, 0 } }, light = { "any", { 0, 1, 0 } },
-    cylinder = { "any", nil }, wind = { "any", nil },
+    cylinder = { "any", nil }, wall = { "any", nil }, wind = { "any", nil },
   },
 }
 M.KINDS = KINDS
@@ -198,8 +200,9 @@ local function fields (p, key, v, spec)
       fail(p, "'%s.%s' must be %s", key, k,
            t == "vec3" and "a vector {x, y, z} of finite numbers" or "a finite number")
     end
-    if t == "tropism" and not (x >= TROPISM[1] and x <= TROPISM[2]) then
-      fail(p, "'%s.%s' must be %s, got %s", key, k, TROPISM[3], show(x))
+    local b = t == "tropism" and TROPISM or t == "guide" and GUIDE
+    if b and not (x >= b[1] and x <= b[2]) then
+      fail(p, "'%s.%s' must be %s, got %s", key, k, b[3], show(x))
     end
   end
 end
@@ -228,10 +231,20 @@ local ANY = {
     if not v.origin or not v.size then fail(p, "'%s' needs an origin and a size", key) end
   end,
   ["world.cylinder"] = function (p, key, v)
+    if v == false then return end
+    if type(v) ~= "table" then fail(p, "'%s' must be a table or false", key) end
     fields(p, key, v, { axis = "vec3", point = "vec3", radius = "number", pitch = "number",
-                        strength = "tropism" })
+                        strength = "guide" })
+  end,
+  ["world.wall"] = function (p, key, v)
+    if v == false then return end
+    if type(v) ~= "table" then fail(p, "'%s' must be a table or false", key) end
+    fields(p, key, v, { point = "vec3", normal = "vec3", distance = "number",
+                        strength = "guide" })
   end,
   ["world.wind"] = function (p, key, v)
+    if v == false then return end
+    if type(v) ~= "table" then fail(p, "'%s' must be a table or false", key) end
     fields(p, key, v, { direction = "vec3", strength = "tropism" })
   end,
 }

@@ -1,7 +1,8 @@
 --- The World component's fields and the deformations of the skeleton (Lintermann
 -- and Deussen 1999, section "Tropisms" and section "Free-form deformations"): the checked
--- settings of a World (gravity, light, a cylinder to climb, wind), the direction field of
--- the cylindrical tropism, the phototropism of a leaf's frame, the maps of FFD and
+-- settings of a World (gravity, light, a cylinder to climb, a wall, wind), the guides that
+-- steer stems onto the cylinder's helix and the wall's plane, the phototropism of a leaf's
+-- frame, the maps of FFD and
 -- Hyperpatch components, and their "skeleton" mode, which moves the frames of a subtree
 -- (stems and instances) instead of the vertices of the scene.
 -- @module lsys.components.world
@@ -11,8 +12,8 @@ local core = require "lsys.core"
 local type, pairs, ipairs, error, tostring, pcall, rawget, math, string =
       type, pairs, ipairs, error, tostring, pcall, rawget, math, string
 local format = string.format
-local sqrt, sin, cos, rad, acos, huge = math.sqrt, math.sin, math.cos, math.rad, math.acos,
-                                        math.huge
+local sqrt, sin, cos, rad, acos, asin, atan, abs, huge = math.sqrt, math.sin, math.cos,
+  math.rad, math.acos, math.asin, math.atan, math.abs, math.huge
 local isnum, who = C.isnum, C.who
 local _ENV = nil
 
@@ -47,16 +48,20 @@ local function isvec (v)
   return type(v) == "table" and isnum(v[1]) and isnum(v[2]) and isnum(v[3])
 end
 
--- The fields of a table setting (cylinder, wind) with their defaults, checked.
+-- The fields of a table setting (cylinder, wall, wind) with their defaults, checked.
 local FIELDS = {
   cylinder = { { "axis", "vec", { 0, 1, 0 } }, { "point", "vec", { 0, 0, 0 } },
                { "radius", "num", 0.3 }, { "pitch", "num", 30 }, { "strength", "num", 0.3 } },
+  wall = { { "point", "vec", { 0, 0, 0 } }, { "normal", "vec", { 0, 0, 1 } },
+           { "distance", "num", 0 }, { "strength", "num", 0.3 } },
   wind = { { "direction", "vec", { 1, 0, 0 } }, { "strength", "num", 0.1 } },
 }
+M.SETTINGS = { "gravity", "light", "cylinder", "wall", "wind" }
 
 --- The World setting `key` of instance inst checked: gravity and light a vector or a
--- function of position; cylinder and wind a table of fields (a copy with defaults filled
--- in, and what the tropisms use precomputed).
+-- function of position; cylinder, wall and wind a table of fields (a copy with defaults
+-- filled in, and what the tropisms use precomputed), or false (none, over a parent
+-- World's).
 function M.check (inst, key, v)
   if key == "gravity" or key == "light" then
     if type(v) == "function" then return v end
@@ -65,7 +70,8 @@ function M.check (inst, key, v)
     end
     return unit(v)
   end
-  if type(v) ~= "table" then wfail(inst, key, "must be a table, got %s", type(v)) end
+  if v == false then return false end
+  if type(v) ~= "table" then wfail(inst, key, "must be a table or false, got %s", type(v)) end
   local out = {}
   local known = {}
   for _, fd in ipairs(FIELDS[key]) do
@@ -86,42 +92,105 @@ function M.check (inst, key, v)
     out.a = unit(out.axis)
     if out.a == nil then wfail(inst, "cylinder.axis", "must not be zero") end
     if out.radius < 0 then wfail(inst, "cylinder.radius", "must be >= 0") end
+  elseif key == "wall" then
+    out.n = unit(out.normal)
+    if out.n == nil then wfail(inst, "wall.normal", "must not be zero") end
   else
     local d = out.direction
     out.dir = unit { d[1], 0, d[3] }          -- horizontal: lsys is y-up
     if out.dir == nil then wfail(inst, "wind.direction", "has no horizontal part") end
   end
+  if key ~= "wind" and out.strength < 0 then wfail(inst, key .. ".strength", "must be >= 0") end
   return out
 end
 
---- The direction field of a World's cylinder: at (x, y, z) the unit tangent of the helix
--- of angle `pitch` (degrees against the plane normal to the axis) around the axis line
--- through `point`, turned towards the axis (or away) by how far the point is outside (or
--- inside) `radius`: T = cos(pitch) t + sin(pitch) a - k r, with a the axis, r the unit
--- radial direction, t = a x r (the direction round the axis) and k = (d - radius) / radius
--- clamped to [-1, 1] at the distance d from the axis. Lintermann and Deussen 1999, fig. 9b
--- (the philodendron climbing a stick); the article gives no formula, this is ours.
-function M.cylinderfield (cyl)
-  if cyl.field then return cyl.field end
+-- The guides (a World's cylinder and wall) steer a stem's next frame onto a target: the
+-- helix, the plane. Each segment the stem's heading H turns by cpfg's tropism, towards T
+-- by the angle e |H x T| (radians; ABOP section 2.3); a guide picks the T that makes that
+-- turn take H onto the direction D towards the target: by the whole angle b between H and
+-- D when b <= e (T at asin(b / e) from H towards D, so e |H x T| = b), else by e (T normal
+-- to H, towards D). So e is the most a guide turns a stem in a segment, and a stem that
+-- can follow its target lands every frame on it.
+local function steer (hx, hy, hz, dx, dy, dz, e)
+  local c = hx * dx + hy * dy + hz * dz
+  local wx, wy, wz = dx - c * hx, dy - c * hy, dz - c * hz
+  local w = sqrt(wx * wx + wy * wy + wz * wz)
+  if w < 1e-15 then return dx, dy, dz end     -- on course (or straight back: no turn)
+  wx, wy, wz = wx / w, wy / w, wz / w
+  local b = atan(w, c)
+  if b >= e then return wx, wy, wz end
+  local g = asin(b / e)
+  local cg, sg = cos(g), sin(g)
+  return cg * hx + sg * wx, cg * hy + sg * wy, cg * hz + sg * wz
+end
+
+--- The guide of a World's cylinder for a stem of segments `step` long (in the world):
+-- a function (x, y, z, hx, hy, hz) -> T for the stem's tropism (see steer). Its target is
+-- the helix of angle `pitch` (degrees against the plane normal to the axis) at `radius`
+-- from the axis line through `point`: D climbs at the pitch (D = cos(pitch) u + sin(pitch)
+-- a, a the axis) with u the horizontal direction (normal to the axis) that takes the frame
+-- from its distance d to `radius` in one step of s cos(pitch): u = sqrt(1 - c^2) t + c r,
+-- c = (radius^2 - d^2 - h^2) / (2 d h) clamped to [-1, 1], r the unit direction away from
+-- the axis and t = a x r round it. On the helix (d = radius) u is the chord of the circle
+-- to the next frame, so the stem's frames keep to the radius exactly, and its axis between
+-- them sags inwards by at most radius (1 - cos(phi / 2)), phi the angle round the axis a
+-- segment makes. Seen from the axis's tip the helix turns clockwise. Lintermann and Deussen
+-- 1999, fig. 9b (a philodendron climbing a stick) and section "Tropisms"; the article gives
+-- no formula, this is ours.
+function M.cylinderguide (cyl, step, e)
   local a, o, R = cyl.a, cyl.point, cyl.radius
   local cp, sp = cos(rad(cyl.pitch)), sin(rad(cyl.pitch))
-  cyl.field = function (x, y, z)
+  local h = step * cp
+  return function (x, y, z, hx, hy, hz)
     local d1, d2, d3 = x - o[1], y - o[2], z - o[3]
     local al = d1 * a[1] + d2 * a[2] + d3 * a[3]
     local r1, r2, r3 = d1 - al * a[1], d2 - al * a[2], d3 - al * a[3]
     local rho = sqrt(r1 * r1 + r2 * r2 + r3 * r3)
-    if rho < 1e-12 then return a[1], a[2], a[3] end
-    r1, r2, r3 = r1 / rho, r2 / rho, r3 / rho
-    local t1, t2, t3 = a[2] * r3 - a[3] * r2, a[3] * r1 - a[1] * r3, a[1] * r2 - a[2] * r1
-    local k = R > 1e-12 and (rho - R) / R or 1
-    if k > 1 then k = 1 elseif k < -1 then k = -1 end
-    local T1 = cp * t1 + sp * a[1] - k * r1
-    local T2 = cp * t2 + sp * a[2] - k * r2
-    local T3 = cp * t3 + sp * a[3] - k * r3
-    local l = sqrt(T1 * T1 + T2 * T2 + T3 * T3)
-    return T1 / l, T2 / l, T3 / l
+    local D1, D2, D3
+    if rho < 1e-12 then
+      D1, D2, D3 = a[1], a[2], a[3]           -- on the axis: up it, until off it
+    else
+      r1, r2, r3 = r1 / rho, r2 / rho, r3 / rho
+      local t1, t2, t3 = a[2] * r3 - a[3] * r2, a[3] * r1 - a[1] * r3, a[1] * r2 - a[2] * r1
+      local c = 0
+      if h > 1e-12 then c = (R * R - rho * rho - h * h) / (2 * rho * h) end
+      if c > 1 then c = 1 elseif c < -1 then c = -1 end
+      local k = sqrt(1 - c * c)
+      D1 = cp * (k * t1 + c * r1) + sp * a[1]
+      D2 = cp * (k * t2 + c * r2) + sp * a[2]
+      D3 = cp * (k * t3 + c * r3) + sp * a[3]
+    end
+    return steer(hx, hy, hz, D1, D2, D3, e)
   end
-  return cyl.field
+end
+
+--- The guide of a World's wall for a stem of segments `step` long: its target is the plane
+-- `distance` in front of the wall (the plane through `point` normal to `normal`, on the
+-- normal's side). D keeps the heading's direction along the plane and takes the frame from
+-- its offset q to the plane in one step: D = sqrt(1 - m^2) p + m n, m = -q / step clamped
+-- to [-1, 1], p the unit part of H along the plane (the plane's direction nearest to +y
+-- when H is normal to it). On the plane with a heading along it D is H: a stem the wall
+-- guides bends only by its own curvature and tropisms, and the wall takes it back to the
+-- plane. Lintermann and Deussen 1999, section "Tropisms" ("a plant can be forced to grow
+-- along a wall"); the article gives no formula, this is ours.
+function M.wallguide (wall, step, e)
+  local n, o, dist = wall.n, wall.point, wall.distance
+  return function (x, y, z, hx, hy, hz)
+    local q = (x - o[1]) * n[1] + (y - o[2]) * n[2] + (z - o[3]) * n[3] - dist
+    local hn = hx * n[1] + hy * n[2] + hz * n[3]
+    local p1, p2, p3 = hx - hn * n[1], hy - hn * n[2], hz - hn * n[3]
+    local pl = sqrt(p1 * p1 + p2 * p2 + p3 * p3)
+    if pl < 1e-9 then
+      local ref = abs(n[2]) < 0.999 and { 0, 1, 0 } or { 1, 0, 0 }
+      local rn = dot(ref, n)
+      p1, p2, p3 = ref[1] - rn * n[1], ref[2] - rn * n[2], ref[3] - rn * n[3]
+      pl = sqrt(p1 * p1 + p2 * p2 + p3 * p3)
+    end
+    local m = -q / step
+    if m > 1 then m = 1 elseif m < -1 then m = -1 end
+    local k = sqrt(1 - m * m) / pl
+    return steer(hx, hy, hz, k * p1 + m * n[1], k * p2 + m * n[2], k * p3 + m * n[3], e)
+  end
 end
 
 --- A leaf's phototropism: the frame f turned, in place, by the fraction e of the rotation
