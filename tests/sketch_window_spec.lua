@@ -196,6 +196,45 @@ describe("the sketch window's state machine", function()
     assert.equal(0, reds())
   end)
 
+  it("hides the old stem while a new one is drawn, as the plant does", function()
+    local st = W.new {}
+    plant_sketch(st)
+    local c = core.canvas(st.width, st.height)
+    local function white (x, y)
+      local px = c:pixels()
+      local i = 4 * (y * st.width + x)
+      return px:byte(i + 1) == 255 and px:byte(i + 2) == 255 and px:byte(i + 3) == 255
+    end
+    W.draw_sketch(st, c)
+    assert.is_false(white(300, 500))                -- the stem at x = 300
+    st:key("1")
+    st:pointer("down", 100, 550, "left")
+    st:pointer("move", 100, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(300, 500))                 -- the old stem is gone from the pane
+    assert.is_false(white(100, 450))                -- the new one is there
+    local stems = 0
+    for _, t in ipairs(st:sketch().strokes) do
+      if t.role == "stem" then stems = stems + 1 assert.equal(100, t.points[1][1]) end
+    end
+    assert.equal(1, stems)                          -- as the plant sees it
+    st:pointer("up", 100, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(300, 500))
+    -- a redrawn boundary hides the old one too; an inclination line adds to the others
+    st:key("2")
+    st:pointer("down", 150, 550, "left")
+    st:pointer("move", 150, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(200, 500))
+    st:pointer("up", 150, 380, "left")
+    st:key("4")
+    st:pointer("down", 150, 520, "left")
+    st:pointer("move", 450, 520, "left")
+    W.draw_sketch(st, c)
+    assert.is_false(white(250, 450))               -- the line at y = 450 stays
+  end)
+
   it("moves the nearest stroke with a right drag, and undoes it", function()
     local st = W.new {}
     plant_sketch(st)
@@ -295,7 +334,11 @@ local function fake_viewer ()
   local v = { posts = {}, images = {}, texts = {} }
   function v:layout (lay) self.lay = lay end
   function v:post (frames, opts) self.posts[#self.posts + 1] = { frames = frames, opts = opts } end
-  function v:image (k, px, w, h) self.images[k] = { w = w, h = h, n = #px } end
+  v.pixels, v.nimages = {}, {}
+  function v:image (k, px, w, h)
+    self.images[k] = { w = w, h = h, n = #px }
+    self.pixels[k], self.nimages[k] = px, (self.nimages[k] or 0) + 1
+  end
   function v:text (s) self.texts[#self.texts + 1] = s end
   return v
 end
@@ -348,6 +391,39 @@ describe("the sketch window's session", function()
     -- a click on the toolbar picks a role
     s:event { type = "pointer", pane = 1, phase = "down", x = W.BUTTON_W + 3, y = 5 }
     assert.equal("boundary_left", st.role)
+  end)
+end)
+
+describe("the sketch window's plots", function()
+  it("follow the plant: no stale message once the sketch makes one", function()
+    local v = fake_viewer()
+    local st = W.new {}
+    st:key("1") drag(st, 300, 550, 300, 50, 10)
+    st:key("2") drag(st, 200, 550, 200, 50, 10)
+    st:key("3") drag(st, 400, 550, 400, 50, 10)
+    st:key("4") drag(st, 150, 450, 450, 450, 6)
+    local s = W.session(v, st, {})
+    assert.truthy(s.error:find("at least two inclination lines", 1, true), s.error)
+    local message = v.pixels[3]
+    assert.equal(1, v.nimages[3])
+    -- the second line, still being drawn: the plant is posted, and the plots with it
+    st:pointer("down", 150, 300, "left")
+    st:pointer("move", 300, 300, "left")
+    st:pointer("move", 450, 300, "left")
+    s:compute()
+    assert.is_nil(s.error, s.error)
+    assert.is_true(v.posts[#v.posts].frames[1].scene.ntriangles > 0)
+    assert.equal(2, v.nimages[3])
+    assert.are_not.equal(message, v.pixels[3])
+    local live = v.pixels[3]
+    st:pointer("up", 450, 300, "left")
+    s:compute()
+    assert.equal(live, v.pixels[3])
+    -- and they go back to the message when the sketch makes no plant again
+    st:delete()
+    s:compute()
+    assert.truthy(s.error:find("at least two inclination lines", 1, true), s.error)
+    assert.equal(message, v.pixels[3])
   end)
 end)
 

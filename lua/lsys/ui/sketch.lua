@@ -87,15 +87,23 @@ function M.new (opts)
   return st
 end
 
+-- Whether stroke i is stood for by the stroke being drawn (once it has two points): the
+-- one redrawn in place, or the old stem or boundary of the role being drawn. The plant and
+-- the sketch pane both leave it out.
+function State:replaced (i)
+  local d = self.drawing
+  if d == nil or #d.points < 2 then return false end
+  return d.replace == i or not d.replace and ONCE[d.role] and self.strokes[i].role == d.role
+end
+
 --- The sketch as lsys.sketch.read takes it (JSON shape), with the stroke being drawn when
 -- it has two points or more.
 function State:sketch ()
   local d = self.drawing
   local drawn = d and #d.points >= 2
   local strokes = {}
-  for i, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
-    if not (drawn and (d.replace == i or not d.replace and ONCE[d.role] and s.role == d.role))
-    then
+  for i, s in ipairs(self.strokes) do
+    if not self:replaced(i) then
       strokes[#strokes + 1] = { role = s.role, points = copy_points(s.points) }
     end
   end
@@ -381,15 +389,16 @@ local function draw_stroke (c, s, width)
 end
 
 --- Draws the sketch of `st` into canvas `c` (its size): the strokes by role, the stem by
--- pressure, the selected stroke wider, the stroke being drawn (a stroke redrawn in place
--- hides the old one), and, when given and st.overlay is on, the sketch's analysis `an`
--- (the nodes and the rays of §3.4 to the boundaries, lsys.sketch.plot.analysis).
+-- pressure, the selected stroke wider, the stroke being drawn (which hides the stroke it
+-- replaces: one redrawn in place, the old stem or boundary), and, when given and
+-- st.overlay is on, the sketch's analysis `an` (the nodes and the rays of §3.4 to the
+-- boundaries, lsys.sketch.plot.analysis).
 function M.draw_sketch (st, c, an)
   c:clear({ 1, 1, 1, 1 })
   local d = st.drawing
   local drawn = d and #d.points >= 2
   for i, s in ipairs(st.strokes) do
-    if not (drawn and d.replace == i) then draw_stroke(c, s, i == st.selected and 4 or 2.5) end
+    if not st:replaced(i) then draw_stroke(c, s, i == st.selected and 4 or 2.5) end
   end
   if drawn then draw_stroke(c, d, 2.5) end
   if an and st.overlay then
@@ -522,8 +531,8 @@ function Session:show_plots ()
   self.v:image(3, c:pixels(), w, h)
 end
 
--- Runs the pipeline on the sketch and posts the plant, or the error.
-function Session:compute (final)
+-- Runs the pipeline on the sketch and posts the plant and its plots, or the error.
+function Session:compute ()
   local st = self.st
   st.changed = false
   local ok, r = pcall(self.pipeline, st:sketch())
@@ -536,7 +545,9 @@ function Session:compute (final)
     self.result, self.error = nil, first_line(r)
     self.v:post({ { scene = self.empty } }, { keep_camera = true, title = self.title })
   end
-  if final then self:show_plots() end
+  -- the plots follow the plant at every update, while drawing too: a plant beside "no
+  -- plant yet" (or functions of a sketch that no longer makes one) would be stale
+  self:show_plots()
 end
 
 -- Says once, at the first press on the sketch, whether a tablet's pressure is read.
@@ -615,7 +626,7 @@ function M.session (v, st, opts)
     empty = model.lsystem({ axiom = "", name = "no plant" }):interpret(),
   }, Session)
   v:layout(M.layout(self.plots))
-  self:compute(true)
+  self:compute()
   self:show_sketch()
   return self
 end
@@ -644,7 +655,7 @@ function M.run (opts)
     end
     -- the plant follows the pen: at most every 50 ms while drawing, always at release
     if st.changed and (st.drawing == nil or now() - last >= 0.05) then
-      self:compute(st.drawing == nil and st.moving == nil)
+      self:compute()
       last = now()
       redraw = true
     end
