@@ -427,6 +427,139 @@ describe("the sketch window's plots", function()
   end)
 end)
 
+describe("the sketch window's organ (§6: four strokes in three views)", function()
+  local organ = require "lsys.sketch.organ"
+  local LEAF = "examples/sketch/organ_leaf.json"
+
+  -- a stroke through the points pts, four pointer moves a segment
+  local function path (st, pts)
+    st:pointer("down", pts[1][1], pts[1][2], "left")
+    for i = 2, #pts do
+      for k = 1, 4 do
+        st:pointer("move", pts[i - 1][1] + (pts[i][1] - pts[i - 1][1]) * k / 4,
+                   pts[i - 1][2] + (pts[i][2] - pts[i - 1][2]) * k / 4, "left")
+      end
+    end
+    st:pointer("up", pts[#pts][1], pts[#pts][2], "left")
+  end
+
+  -- a leaf drawn in the pane's three views: the top view is the left half, the side view
+  -- the upper right quarter, the front view the lower right one (600 x 600)
+  local function draw_leaf (st)
+    st:key("1") path(st, { { 150, 500 }, { 100, 300 }, { 120, 200 }, { 150, 100 } })
+    st:key("2") path(st, { { 150, 500 }, { 200, 300 }, { 180, 200 }, { 150, 100 } })
+    st:key("3") path(st, { { 450, 280 }, { 470, 60 } })
+    st:key("4") path(st, { { 350, 420 }, { 450, 450 } })
+    path(st, { { 350, 420 }, { 450, 450 }, { 550, 420 } })
+  end
+
+  it("switches to the organ with O; its strokes are the organ's, not the plant's", function()
+    local st = W.new {}
+    plant_sketch(st)
+    assert.equal("organ", st:toggle_organ())
+    assert.is_nil(st:organ_table())
+    draw_leaf(st)
+    assert.equal(6, #st.strokes)                   -- the plant's are untouched
+    local roles = {}
+    for i, x in ipairs(st.organ_strokes) do roles[i] = x.role end
+    assert.same({ "top_left", "top_right", "side", "front" }, roles)   -- one of each
+    local t = st:organ_table().organ
+    assert.same({ 150, 500 }, t.top.left[1])
+    assert.same({ 150, 100 }, t.top.left[#t.top.left])
+    assert.same({ 550, 420 }, t.front[#t.front])  -- the second front stroke replaced the first
+    assert.equal(9, #t.front)
+    local org = organ.load(st:organ_table())
+    assert.truthy(tostring(org):find("^lsys%.Organ"))
+    -- the toolbar's buttons pick the organ's roles now
+    assert.is_true(st:toolbar(2 * W.BUTTON_W + 5))
+    assert.equal("side", st.organ_role)
+    assert.equal("inclination", st.role)          -- the plant's role stays
+    -- the pane shows the views and the organ's strokes, not the plant's
+    local c = core.canvas(st.width, st.height)
+    W.draw_sketch(st, c)
+    local px = c:pixels()
+    local function rgb (x, y) local i = 4 * (y * st.width + x) return { px:byte(i + 1, i + 3) } end
+    assert.same({ 255, 255, 255 }, rgb(300, 500))  -- the stem is not drawn
+    assert.are_not.same({ 255, 255, 255 }, rgb(460, 170))   -- the midrib is
+    -- back to the plant; undo takes back organ strokes as any other
+    st:key("o")
+    assert.equal("plant", st.mode)
+    assert.is_true(st:undo_last())
+    assert.equal(5, #st.organ_strokes[4].points)   -- the first front stroke again
+    assert.equal(6, #st.strokes)
+  end)
+
+  it("shows an organ file's strokes in their views and keeps their own pixels", function()
+    local org = organ.load(LEAF)
+    local st = W.new { organ = org }
+    -- unchanged, the strokes make the same organ
+    assert.equal(org:text(), organ.load(st:organ_table()):text())
+    -- shown inside their regions: the top view in the left half, the side view top right
+    local regions = require("lsys.ui.sketch_organ").regions(st.width, st.height)
+    for _, s in ipairs(st.organ_strokes) do
+      local r = regions[require("lsys.ui.sketch_organ").VIEW[s.role]]
+      for _, p in ipairs(st:pane_points(s)) do
+        assert.is_true(p[1] >= r[1] and p[1] <= r[1] + r[3] and p[2] >= r[2] and
+                       p[2] <= r[2] + r[4], s.role)
+      end
+    end
+    -- a move in the pane moves the stroke in its own pixels, by the pane's scale
+    st:key("o")
+    local side = st.organ_strokes[3]
+    assert.equal("side", side.role)
+    local x0 = side.points[1][1]
+    local q = st:pane_points(side)[20]
+    st:pointer("down", q[1], q[2], "right")
+    st:pointer("move", q[1] + 10, q[2], "right")
+    st:pointer("up", q[1] + 10, q[2], "right")
+    local sc = st.views.side.s
+    assert.near(x0 + 10 / sc, side.points[1][1], 1e-9)
+  end)
+
+  it("draws the plant with the organ, and says why a half-drawn organ makes none", function()
+    local v = fake_viewer()
+    local st = W.new { organ = organ.load(LEAF) }
+    plant_sketch(st)
+    local s = W.session(v, st, {})
+    assert.is_nil(s.error, s.error)
+    local with = s.result.scene.ntriangles
+    local plain = W.pipeline(st:sketch()).scene.ntriangles      -- the default leaf
+    assert.equal(W.pipeline(st:sketch(), organ.load(LEAF)).scene.ntriangles, with)
+    assert.is_true(with > plain + 1000, with .. " against " .. plain)
+    -- an organ of a front stroke alone: no top view, so the default leaf, and the reason
+    local st2 = W.new {}
+    plant_sketch(st2)
+    st2:key("o")
+    st2:key("4") drag(st2, 350, 420, 550, 420, 4)
+    local s2 = W.session(fake_viewer(), st2, {})
+    assert.equal(plain, s2.result.scene.ntriangles)
+    assert.truthy(s2:status():find("organ: ", 1, true), s2:status())
+    assert.truthy(s2:status():find("(the plant shows the default leaf)", 1, true), s2:status())
+  end)
+
+  it("saves the organ beside the sketch when it changed, as organ.load reads it", function()
+    local dir = tmpdir()
+    local st = W.new { file = dir .. "/herb.json" }
+    plant_sketch(st)
+    assert.equal(dir .. "/herb.json", st:save())   -- no organ yet: the sketch alone
+    assert.is_nil(io.open(dir .. "/herb.organ.json"))
+    st:key("o")
+    draw_leaf(st)
+    local spath, opath = st:save()
+    assert.equal(dir .. "/herb.json", spath)
+    assert.equal(dir .. "/herb.organ.json", opath)
+    local back = organ.load(opath)
+    assert.equal(organ.load(st:organ_table()):text(), back:text())
+    assert.equal(1, select("#", st:save()))        -- unchanged since: not written again
+    -- an organ file given is where it goes
+    local st2 = W.new { organ = back, organ_file = dir .. "/leaf.json" }
+    st2:key("o")
+    st2:key("3") drag(st2, 450, 280, 480, 60, 4)
+    assert.equal(dir .. "/leaf.json", select(2, st2:save(dir .. "/x.json")))
+    os.execute("rm -rf " .. dir)
+  end)
+end)
+
 describe("the sketch window's export", function()
   it("writes the plant as .glb, .obj and .png and the model as .lua beside the sketch", function()
     local dir = tmpdir()
