@@ -16,6 +16,7 @@ local functions = require "lsys.sketch.functions"
 local templates = require "lsys.sketch.templates"
 local compose = require "lsys.sketch.compose"
 local write = require "lsys.sketch.write"
+local cpfg = require "lsys.sketch.cpfg"
 local model = require "lsys.model"
 
 local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
@@ -398,6 +399,31 @@ function M.save_model (m, path)
   local ok, err = pcall(write.lua, d, path, "lsys.sketch.save_model")
   if not ok then error(err, 2) end
   return path
+end
+
+--- Writes the sketch's plant as a cpfg model (docs/sketch.md, "cpfg and L-studio"):
+-- `path` (a .l file), the view file, the function files, a colour map and the organ
+-- surfaces beside it. opts as sk:model. Returns the list of files written and the number
+-- of function readings cpfg cannot tell apart from their neighbours (0 but for very dense
+-- nodes).
+function Sketch:save_cpfg (path, opts)
+  opts = opts or {}
+  if type(path) ~= "string" then error("save_cpfg: a file name expected", 2) end
+  local ok, d = pcall(self._describe, self, opts)
+  if not ok then error(d, 2) end
+  local okw, files, inexact = pcall(cpfg.write, d, path, "save_cpfg")
+  if not okw then error(files, 2) end
+  return files, inexact
+end
+
+--- Writes a Model made by sk:model or lsys.sketch.compose as a cpfg model (as
+-- sk:save_cpfg writes a sketch's).
+function M.save_cpfg (m, path)
+  local d = description(m, "lsys.sketch.save_cpfg")
+  if type(path) ~= "string" then error("lsys.sketch.save_cpfg: a file name expected", 2) end
+  local ok, files, inexact = pcall(cpfg.write, d, path, "lsys.sketch.save_cpfg")
+  if not ok then error(files, 2) end
+  return files, inexact
 end
 
 --- Writes the sketch to a file (lsys.sketch.read's save: JSON).

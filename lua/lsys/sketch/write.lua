@@ -29,10 +29,11 @@ local function sorted (t, keep)
 end
 M.sorted = sorted
 
---- Writes the organ surfaces of description `d` beside `path` as cpfg surface files:
--- plant.lua (or plant.l) gives plant.organ.s for surface P, plant.organ.Q.s for Q, ...
--- Returns { letter = file name (no folder) }. Only organs of lsys.sketch.organ keep their
--- source; an lsys.Surface is refused. `who` begins the messages.
+--- The organ surfaces of description `d` as cpfg surface files beside `path`: plant.lua
+-- (or plant.l) gives plant.organ.s for surface P, plant.organ.Q.s for Q, ... Returns
+-- { letter = { name = file name (no folder), path =, text = } }, nothing written yet. Only
+-- organs of lsys.sketch.organ keep their source; an lsys.Surface is refused. `who`
+-- begins the messages.
 function M.surfaces (d, path, who)
   local out = {}
   local dir, base = path:match("^(.-)([^/]*)$")
@@ -44,12 +45,21 @@ function M.surfaces (d, path, who)
       error(format("%s: an lsys.Surface organ cannot be written (it keeps no source); " ..
                    "give an organ of lsys.sketch.organ", who), 0)
     end
-    local file = base .. (x == "P" and ".organ.s" or ".organ." .. x .. ".s")
-    local ok, err = pcall(org.save, org, dir .. file)
-    if not ok then error(format("%s: organ: %s", who, (tostring(err):gsub("^save: ", ""))), 0) end
-    out[x] = file
+    local ok, text = pcall(org.text, org)
+    if not ok then error(format("%s: organ: %s", who, tostring(text)), 0) end
+    local name = base .. (x == "P" and ".organ.s" or ".organ." .. x .. ".s")
+    out[x] = { name = name, path = dir .. name, text = text }
   end
   return out
+end
+
+--- Writes the files `files` ({ {path, text}, ... }), each atomically (a temporary beside
+-- it, then a rename), in order. Raises "who: ..." at the first that fails.
+function M.files (files, who)
+  for _, f in ipairs(files) do
+    local ok, err = pcall(core.write_file, f[1], f[2])
+    if not ok then error(format("%s: %s", who, tostring(err)), 0) end
+  end
 end
 
 -- The first lines of a written file, as plain text: where the plant comes from (the
@@ -152,7 +162,7 @@ function M.lua (d, path, who)
   local letters = sorted(surfiles)
   if #letters > 0 then
     local s = {}
-    for i, x in ipairs(letters) do s[i] = format("%s = %s", x, quote(surfiles[x])) end
+    for i, x in ipairs(letters) do s[i] = format("%s = %s", x, quote(surfiles[x].name)) end
     w("    -- the organs (lsys.sketch.organ), cpfg surface files beside this one")
     w("    dir = lsys.here(), surfaces = { %s },", concat(s, ", "))
   end
@@ -161,9 +171,11 @@ function M.lua (d, path, who)
   local text = concat(L, "\n") .. "\n"
   local okc, cerr = pcall(codegen.check, text, path:match("[^/]*$"), CHECK)
   if not okc then error(who .. ": " .. cerr, 0) end
-  -- the C writer: an exclusive temporary beside `path`, checked writes, then the rename
-  local okw, err = pcall(core.write_file, path, text)
-  if not okw then error(who .. ": " .. tostring(err), 0) end
+  -- everything made, then written: the organs, then the model file that names them
+  local out = {}
+  for _, x in ipairs(letters) do out[#out + 1] = { surfiles[x].path, surfiles[x].text } end
+  out[#out + 1] = { path, text }
+  M.files(out, who)
   return path
 end
 
