@@ -570,9 +570,12 @@ describe("the sketch window's export", function()
     s:compute(true)
     assert.is_nil(s.error, s.error)
     s:export()
-    for _, ext in ipairs { ".glb", ".obj", ".mtl", ".png", ".lua" } do
+    for _, ext in ipairs { ".glb", ".obj", ".mtl", ".png", ".lua", ".l", ".v", ".map",
+                           ".internode.func" } do
       assert.truthy(io.open(dir .. "/herb" .. ext), ext)
     end
+    local back = require("lsys").cpfg.load(dir .. "/herb.l", dir .. "/herb.v")
+    assert.equal(#s.result.lstring, #back:derive())
     assert.truthy(st.status:find("herb.obj", 1, true), st.status)
     local m = dofile(dir .. "/herb.lua")                -- the model file is a model
     assert.equal(tostring(s.result.lstring), tostring(m:derive()))

@@ -335,7 +335,8 @@ and ]) sets the pressure of the points drawn next (darker nearer, lighter farthe
 hides the plots; O switches to the organ: its left and right boundaries in a top view (1,
 2), its midrib in a side view (3) and its cross-section in a front view (4), and back;
 Ctrl+S saves the sketch (and a changed organ: the --organ file, else FILE.organ.json);
-Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua).
+Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua, and FILE.l with
+its files for cpfg).
 Over the plant: drag orbits, right drag pans, the wheel zooms. H lists the keys.
 
   plot     draws the positional functions (six panels, seven with pitch) to a PNG

@@ -596,7 +596,7 @@ a tablet pen's own pressure when X reports one
 O: draw the organ (1 2 top view boundaries, 3 side view midrib, 4 front view section) or
 the plant again
 Ctrl+S: save the sketch (and the organ)   Ctrl+E: export the plant (.glb, .obj, .png) and
-the model (.lua)
+the model (.lua, and .l for cpfg)
 over the plant: drag orbit, right drag pan, wheel zoom   R: reset view   F: fit
 S: screenshot   H: this help   Esc / Q: quit]]
 
@@ -722,6 +722,9 @@ function Session:export ()
   if r.sketch.save_model then
     r.sketch:save_model(base .. ".lua", { organ = r.organ })
     files[#files + 1] = base .. ".lua"
+    -- and for cpfg and L-studio, as the paper's program exported it (§7)
+    r.sketch:save_cpfg(base .. ".l", { organ = r.organ })
+    files[#files + 1] = base .. ".l (cpfg)"
   end
   self.st.status = "exported " .. table.concat(files, ", ")
   self.out(self.st.status .. "\n")
