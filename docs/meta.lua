@@ -1182,6 +1182,28 @@ function lsys.sketch.template(name, threed) end
 ---@return boolean
 function lsys.sketch.issketch(x) end
 
+--- One Model of two or more plants drawn on one stem (§7.2): the first draws its stem, the
+--- others' names take the suffixes 2, 3, ... and their stems move without drawing.
+--- Raises `lsys.sketch.compose: ...` for fewer than two Models or one not made by sk:model.
+---@param models lsys.Model[] Models made by sk:model.
+---@param opts? {name?: string, view?: lsys.View}
+---@return lsys.Model
+function lsys.sketch.compose(models, opts) end
+
+--- Writes a Model made by sk:model or lsys.sketch.compose as a Lua model file (as
+--- sk:save_model). Returns `path`.
+---@param m lsys.Model
+---@param path string
+---@return string
+function lsys.sketch.save_model(m, path) end
+
+--- Writes a Model made by sk:model or lsys.sketch.compose as cpfg's files (as
+--- sk:save_cpfg).
+---@param m lsys.Model
+---@param path string A `.l` file.
+---@return string[] files, integer inexact
+function lsys.sketch.save_cpfg(m, path) end
+
 ---@class lsys.SketchModelOptions
 ---@field phyllotaxis? "distichous"|"decussate"|"fibonacci"
 ---@field nodes_per_layer? integer
@@ -1228,6 +1250,15 @@ function Sketch:model(opts) end
 ---@param opts? lsys.SketchModelOptions
 ---@return string
 function Sketch:save_model(path, opts) end
+--- Writes the plant as cpfg's files (docs/sketch.md, cpfg and L-studio): `path` (a `.l`
+--- file), its `.v` view file, a `.func` file a function, a `.map` colour map and the organ's
+--- surface beside it, which cpfg derives to lsys's string. Returns the files written and
+--- how many function readings lie closer together than cpfg tells apart (0 but for very
+--- dense nodes).
+---@param path string
+---@param opts? lsys.SketchModelOptions
+---@return string[] files, integer inexact
+function Sketch:save_cpfg(path, opts) end
 --- Writes the sketch as JSON (lsys.sketch.read's save). Returns `path`.
 ---@param path string
 ---@return string

@@ -38,6 +38,18 @@ describe("lsys sketch", function()
       { "sketch x.json -o y.png", P .. "-o applies to plot, model and render" },
       { "sketch a.json b.json", P .. "unexpected argument 'b.json' (one FILE at most)" },
       { "sketch --bogus", P .. "unknown option '--bogus'" },
+      { "sketch render a.json --cpfg", P .. "render: --cpfg applies to model" },
+      { "sketch a.json --cpfg", P .. "--cpfg applies to model" },
+      { "sketch model a.json --cpfg -o a.lua",
+        P .. "model: the output must be a .l file, got 'a.lua'" },
+      { "sketch plot a.json --organ ovate",
+        P .. "plot: --organ applies to the window, model and render" },
+      { "sketch render a.json --organ oval",
+        P .. "--organ expects a leaf shape (ovate, lanceolate, elliptic, obovate, linear, " ..
+        "cordate) or an organ file (.json), got 'oval'" },
+      { "sketch a.json --organ leaf.s",
+        P .. "--organ expects a leaf shape (ovate, lanceolate, elliptic, obovate, linear, " ..
+        "cordate) or an organ file (.json), got 'leaf.s'" },
     }
     for _, c in ipairs(cases) do
       local out, code = run(BIN .. " " .. c[1])
@@ -93,6 +105,56 @@ describe("lsys sketch", function()
                     BIN) .. " sketch model " .. here .. "/" .. SKETCH)
     assert.equal(0, code, out)
     assert.equal("wrote fig8_herb.lua\n", out)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("draws the organ given: a leaf shape or an organ file", function()
+    local dir = tmpdir()
+    local function tris (organ)
+      local out, code = run(BIN .. " sketch render " .. SKETCH .. " -o " .. dir .. "/p.png " ..
+                            "--size 64x64" .. (organ and " --organ " .. organ or ""))
+      assert.equal(0, code, out)
+      return tonumber(out:match("(%d+) triangles"))
+    end
+    -- 32 organs: the default leaf (a polygon, 2 triangles), a lanceolate leaf of 12 x 24
+    -- lines, the file's 2 x 4 patches of 2 x 2 lines each
+    assert.same({ 752, 752 + 32 * (12 * 24 * 2 - 2), 752 + 32 * (4 * 8 * 2 - 2) },
+                { tris(), tris("lanceolate"), tris("examples/sketch/organ_leaf.json") })
+    -- the model file takes the organ with it
+    local out, code = run(BIN .. " sketch model " .. SKETCH .. " -o " .. dir .. "/h.lua " ..
+                          "--organ examples/sketch/organ_leaf.json")
+    assert.equal(0, code, out)
+    assert.equal(require("lsys.sketch.organ").load("examples/sketch/organ_leaf.json"):text(),
+                 H.read(dir .. "/h.organ.s"))
+    out, code = run(BIN .. " sketch render " .. SKETCH .. " --organ " .. dir .. "/none.json")
+    assert.equal(1, code)
+    assert.equal("lsys: organ " .. dir .. "/none.json: cannot open '" .. dir .. "/none.json': " ..
+                 "No such file or directory\n", out)
+    os.execute("rm -rf " .. dir)
+  end)
+
+  it("writes the plant for cpfg and L-studio with --cpfg", function()
+    local dir = tmpdir()
+    local out, code = run(BIN .. " sketch model " .. SKETCH .. " --cpfg -o " .. dir .. "/herb.l")
+    assert.equal(0, code, out)
+    local lines = {}
+    for _, f in ipairs { "angle_left.func", "angle_right.func", "internode.func", "l", "map",
+                         "size_left.func", "size_right.func", "stem_shape.func", "v" } do
+      lines[#lines + 1] = "wrote " .. dir .. "/herb." .. f
+    end
+    lines[#lines + 1] = "cpfg -m herb.map herb.l herb.v (in " .. dir .. ") derives the plant " ..
+                        "as lsys does"
+    assert.equal(table.concat(lines, "\n") .. "\n", out)
+    -- lsys runs them as the sketch's model
+    local a = run(BIN .. " derive " .. dir .. "/herb.l " .. dir .. "/herb.v --stats")
+    assert.equal(#require("lsys.sketch").load(SKETCH):model():derive(),
+                 tonumber(a:match("\nmodules (%d+)\n")), a)
+    -- the default name: after the sketch, in the current folder
+    local here = io.popen("pwd"):read("l")
+    out, code = run("cd " .. dir .. " && " .. (BIN:sub(1, 1) == "/" and BIN or here .. "/" ..
+                    BIN) .. " sketch model --cpfg " .. here .. "/" .. SKETCH)
+    assert.equal(0, code, out)
+    assert.truthy(out:find("\nwrote fig8_herb.l\n", 1, true), out)
     os.execute("rm -rf " .. dir)
   end)
 end)

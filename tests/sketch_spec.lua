@@ -320,6 +320,128 @@ describe("a composed plant (§7.2)", function ()
   end)
 end)
 
+describe("plants composed on one stem (lsys.sketch.compose, §7.2)", function ()
+  -- the string of plant k alone as it reads in a composition: its names suffixed, its
+  -- stem moved along (f)
+  local function as_part (s, suffix)
+    return (tostring(s):gsub("(%a+)%(", function (w)
+      if w == "F" then return "f(" end
+      if w ~= "f" then return w .. suffix .. "(" end
+    end))
+  end
+
+  it("derives each plant as alone, the first drawing the stem, the others moving", function ()
+    local a = load():model {}
+    local b = load():model { phyllotaxis = "fibonacci", organ_color = 3 }
+    local m = sketch.compose({ a, b }, { name = "two" })
+    assert.equal("two", m.name)
+    local s = m:derive()
+    assert.equal("[" .. as_part(b:derive(), "2") .. "]" .. tostring(a:derive()), tostring(s))
+    assert.equal(10, s:count("Organ"))
+    assert.equal(5, s:count("Organ2"))
+    assert.equal(a:derive():count("F"), s:count("F"))
+    assert.equal(b:derive():count("F"), s:count("f"))
+    -- each plant's organs in its own colour; the name by default joins the plants'
+    local one = sketch.compose { a, b }
+    assert.equal("syn + syn", one.name)
+    local d = one.sketch.description
+    assert.same({ "Organ(h) --> " .. d.homomorphism[1]:match("^Organ%(h%) %-%-> (.*)$"),
+                  "Organ2(h) --> " .. d.homomorphism[1]:match("^Organ%(h%) %-%-> (.*)$")
+                    :gsub("^;%(2%)", ";(3)") }, d.homomorphism)
+    assert.is_function(getmetatable(d.env.internode2).__call)
+    assert.equal(d.env.XT, d.env.XT2)
+    -- three plants: suffixes 2 and 3, one apex each
+    local three = sketch.compose { a, b, load():model { phyllotaxis = "decussate" } }
+    local s3 = three:derive()
+    assert.same({ 10, 5, 10 }, { s3:count("Organ"), s3:count("Organ2"), s3:count("Organ3") })
+    assert.equal("Organ A2 S2 B2 C2 L2 R2 Organ2 A3 S3 B3 C3 L3 R3 Organ3",
+                 three.sketch.description.modules)
+  end)
+
+  it("gives each plant's organ surface and sub-L-systems names of their own", function ()
+    local org = rectorgan()
+    local function keys (t)
+      local out = {}
+      for k in pairs(t) do out[#out + 1] = k end
+      table.sort(out)
+      return out
+    end
+    local a = load():model { organ = org }
+    local b = load():model { organ = org, phyllotaxis = "fibonacci" }
+    local m = sketch.compose { a, b }
+    local d = m.sketch.description
+    assert.same({ "P", "Q" }, keys(d.surfaces))
+    assert.same({ "Organ(h) --> ;(2) ~P(h)", "Organ2(h) --> ;(2) ~Q(h)" }, d.homomorphism)
+    assert.equal(org, m.view.surfaces.Q)
+    local s = m:derive()
+    assert.equal(15 * RECT_TRIANGLES + a:interpret(a:derive()).ntriangles -
+                 10 * RECT_TRIANGLES, m:interpret(s).ntriangles)
+    -- plants as organs (sub-L-systems): one id each
+    local inner = load():model { organ = org }
+    local pa = load():model { organ = inner }
+    local pb = load():model { organ = inner, phyllotaxis = "fibonacci" }
+    local pm = sketch.compose { pa, pb }
+    assert.same({ 1, 2 }, keys(pm.sketch.description.sub))
+    local ps = pm:derive()
+    assert.equal(100, ps:count("Organ"))         -- 10 inner plants of 10 organs each
+    assert.equal(50, ps:count("Organ2"))         -- 5 of 10
+    local text = tostring(ps)
+    local _, n1 = text:gsub("%?%(1,", "")
+    local _, n2 = text:gsub("%?%(2,", "")
+    assert.same({ 10, 5 }, { n1, n2 })
+  end)
+
+  it("saves the composition as a model file that builds the same plant", function ()
+    local org = rectorgan()
+    local a = load():model { organ = org }
+    local b = load():model { phyllotaxis = "decussate", organ = org }
+    local m = sketch.compose({ a, b }, { name = "pair" })
+    local d = H.tmpdir()
+    assert.equal(d .. "/pair.lua", sketch.save_model(m, d .. "/pair.lua"))
+    assert.equal("pair.lua\npair.organ.Q.s\npair.organ.s\n", (H.sh("ls -A " .. d)))
+    local text = H.read(d .. "/pair.lua")
+    assert.truthy(text:find("-- plant 2 (names ending in 2): the sketch syn, decussate, " ..
+                            "2 nodes per layer, its stem moved along (f)\n", 1, true), text)
+    local back = dofile(d .. "/pair.lua")
+    assert.equal(tostring(m:derive()), tostring(back:derive()))
+    assert.equal(m:interpret(m:derive()).ntriangles, back:interpret(back:derive()).ntriangles)
+    H.rmdir(d)
+  end)
+
+  it("runs the example of docs/sketch.md as shown", function ()
+    local doc = H.read("docs/sketch.md")
+    local code = doc:match("\n```lua\n(local sketch = require \"lsys.sketch\"\nlocal leaves.-)```")
+    assert.is_string(code, "the composition example")
+    local expect = code:match("%-%-> ([^\n]*)")
+    local got = {}
+    local env = setmetatable({ print = function (...)
+      local t = table.pack(...)
+      for i = 1, t.n do t[i] = tostring(t[i]) end
+      got[#got + 1] = table.concat(t, "\t")
+    end }, { __index = _G })
+    assert(_G.load(code, "=docs/sketch.md", "t", env))()
+    assert.same({ expect }, got)
+  end)
+
+  it("says what it cannot compose", function ()
+    local a = load():model {}
+    local cases = {
+      { function () sketch.compose { a } end,
+        "lsys.sketch.compose: a list of two or more sketch Models expected" },
+      { function () sketch.compose({ a, a }, { nmae = "x" }) end,
+        "lsys.sketch.compose: unknown option 'nmae' (name, view)" },
+      { function () sketch.compose { a, require("lsys").lsystem { axiom = "F", name = "f" } } end,
+        "lsys.sketch.compose: models[2]: a Model made by sk:model or lsys.sketch.compose " ..
+        "expected, got the model 'f'" },
+      { function () sketch.compose { sketch.compose { a, a }, a } end,
+        "lsys.sketch.compose: models[1] is a composition already; compose the plants it " ..
+        "was made of" },
+      { function () sketch.save_model(a, 3) end, "lsys.sketch.save_model: a file name expected" },
+    }
+    for _, c in ipairs(cases) do assert.has_error(c[1], c[2]) end
+  end)
+end)
+
 describe("the templates on the expression machine", function ()
   local flat, deep = load(), load { stem = line(200, 500, 200, 100, 80, 0.7) }
 

@@ -196,6 +196,45 @@ describe("the sketch window's state machine", function()
     assert.equal(0, reds())
   end)
 
+  it("hides the old stem while a new one is drawn, as the plant does", function()
+    local st = W.new {}
+    plant_sketch(st)
+    local c = core.canvas(st.width, st.height)
+    local function white (x, y)
+      local px = c:pixels()
+      local i = 4 * (y * st.width + x)
+      return px:byte(i + 1) == 255 and px:byte(i + 2) == 255 and px:byte(i + 3) == 255
+    end
+    W.draw_sketch(st, c)
+    assert.is_false(white(300, 500))                -- the stem at x = 300
+    st:key("1")
+    st:pointer("down", 100, 550, "left")
+    st:pointer("move", 100, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(300, 500))                 -- the old stem is gone from the pane
+    assert.is_false(white(100, 450))                -- the new one is there
+    local stems = 0
+    for _, t in ipairs(st:sketch().strokes) do
+      if t.role == "stem" then stems = stems + 1 assert.equal(100, t.points[1][1]) end
+    end
+    assert.equal(1, stems)                          -- as the plant sees it
+    st:pointer("up", 100, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(300, 500))
+    -- a redrawn boundary hides the old one too; an inclination line adds to the others
+    st:key("2")
+    st:pointer("down", 150, 550, "left")
+    st:pointer("move", 150, 380, "left")
+    W.draw_sketch(st, c)
+    assert.is_true(white(200, 500))
+    st:pointer("up", 150, 380, "left")
+    st:key("4")
+    st:pointer("down", 150, 520, "left")
+    st:pointer("move", 450, 520, "left")
+    W.draw_sketch(st, c)
+    assert.is_false(white(250, 450))               -- the line at y = 450 stays
+  end)
+
   it("moves the nearest stroke with a right drag, and undoes it", function()
     local st = W.new {}
     plant_sketch(st)
@@ -295,7 +334,11 @@ local function fake_viewer ()
   local v = { posts = {}, images = {}, texts = {} }
   function v:layout (lay) self.lay = lay end
   function v:post (frames, opts) self.posts[#self.posts + 1] = { frames = frames, opts = opts } end
-  function v:image (k, px, w, h) self.images[k] = { w = w, h = h, n = #px } end
+  v.pixels, v.nimages = {}, {}
+  function v:image (k, px, w, h)
+    self.images[k] = { w = w, h = h, n = #px }
+    self.pixels[k], self.nimages[k] = px, (self.nimages[k] or 0) + 1
+  end
   function v:text (s) self.texts[#self.texts + 1] = s end
   return v
 end
@@ -351,6 +394,172 @@ describe("the sketch window's session", function()
   end)
 end)
 
+describe("the sketch window's plots", function()
+  it("follow the plant: no stale message once the sketch makes one", function()
+    local v = fake_viewer()
+    local st = W.new {}
+    st:key("1") drag(st, 300, 550, 300, 50, 10)
+    st:key("2") drag(st, 200, 550, 200, 50, 10)
+    st:key("3") drag(st, 400, 550, 400, 50, 10)
+    st:key("4") drag(st, 150, 450, 450, 450, 6)
+    local s = W.session(v, st, {})
+    assert.truthy(s.error:find("at least two inclination lines", 1, true), s.error)
+    local message = v.pixels[3]
+    assert.equal(1, v.nimages[3])
+    -- the second line, still being drawn: the plant is posted, and the plots with it
+    st:pointer("down", 150, 300, "left")
+    st:pointer("move", 300, 300, "left")
+    st:pointer("move", 450, 300, "left")
+    s:compute()
+    assert.is_nil(s.error, s.error)
+    assert.is_true(v.posts[#v.posts].frames[1].scene.ntriangles > 0)
+    assert.equal(2, v.nimages[3])
+    assert.are_not.equal(message, v.pixels[3])
+    local live = v.pixels[3]
+    st:pointer("up", 450, 300, "left")
+    s:compute()
+    assert.equal(live, v.pixels[3])
+    -- and they go back to the message when the sketch makes no plant again
+    st:delete()
+    s:compute()
+    assert.truthy(s.error:find("at least two inclination lines", 1, true), s.error)
+    assert.equal(message, v.pixels[3])
+  end)
+end)
+
+describe("the sketch window's organ (§6: four strokes in three views)", function()
+  local organ = require "lsys.sketch.organ"
+  local LEAF = "examples/sketch/organ_leaf.json"
+
+  -- a stroke through the points pts, four pointer moves a segment
+  local function path (st, pts)
+    st:pointer("down", pts[1][1], pts[1][2], "left")
+    for i = 2, #pts do
+      for k = 1, 4 do
+        st:pointer("move", pts[i - 1][1] + (pts[i][1] - pts[i - 1][1]) * k / 4,
+                   pts[i - 1][2] + (pts[i][2] - pts[i - 1][2]) * k / 4, "left")
+      end
+    end
+    st:pointer("up", pts[#pts][1], pts[#pts][2], "left")
+  end
+
+  -- a leaf drawn in the pane's three views: the top view is the left half, the side view
+  -- the upper right quarter, the front view the lower right one (600 x 600)
+  local function draw_leaf (st)
+    st:key("1") path(st, { { 150, 500 }, { 100, 300 }, { 120, 200 }, { 150, 100 } })
+    st:key("2") path(st, { { 150, 500 }, { 200, 300 }, { 180, 200 }, { 150, 100 } })
+    st:key("3") path(st, { { 450, 280 }, { 470, 60 } })
+    st:key("4") path(st, { { 350, 420 }, { 450, 450 } })
+    path(st, { { 350, 420 }, { 450, 450 }, { 550, 420 } })
+  end
+
+  it("switches to the organ with O; its strokes are the organ's, not the plant's", function()
+    local st = W.new {}
+    plant_sketch(st)
+    assert.equal("organ", st:toggle_organ())
+    assert.is_nil(st:organ_table())
+    draw_leaf(st)
+    assert.equal(6, #st.strokes)                   -- the plant's are untouched
+    local roles = {}
+    for i, x in ipairs(st.organ_strokes) do roles[i] = x.role end
+    assert.same({ "top_left", "top_right", "side", "front" }, roles)   -- one of each
+    local t = st:organ_table().organ
+    assert.same({ 150, 500 }, t.top.left[1])
+    assert.same({ 150, 100 }, t.top.left[#t.top.left])
+    assert.same({ 550, 420 }, t.front[#t.front])  -- the second front stroke replaced the first
+    assert.equal(9, #t.front)
+    local org = organ.load(st:organ_table())
+    assert.truthy(tostring(org):find("^lsys%.Organ"))
+    -- the toolbar's buttons pick the organ's roles now
+    assert.is_true(st:toolbar(2 * W.BUTTON_W + 5))
+    assert.equal("side", st.organ_role)
+    assert.equal("inclination", st.role)          -- the plant's role stays
+    -- the pane shows the views and the organ's strokes, not the plant's
+    local c = core.canvas(st.width, st.height)
+    W.draw_sketch(st, c)
+    local px = c:pixels()
+    local function rgb (x, y) local i = 4 * (y * st.width + x) return { px:byte(i + 1, i + 3) } end
+    assert.same({ 255, 255, 255 }, rgb(300, 500))  -- the stem is not drawn
+    assert.are_not.same({ 255, 255, 255 }, rgb(460, 170))   -- the midrib is
+    -- back to the plant; undo takes back organ strokes as any other
+    st:key("o")
+    assert.equal("plant", st.mode)
+    assert.is_true(st:undo_last())
+    assert.equal(5, #st.organ_strokes[4].points)   -- the first front stroke again
+    assert.equal(6, #st.strokes)
+  end)
+
+  it("shows an organ file's strokes in their views and keeps their own pixels", function()
+    local org = organ.load(LEAF)
+    local st = W.new { organ = org }
+    -- unchanged, the strokes make the same organ
+    assert.equal(org:text(), organ.load(st:organ_table()):text())
+    -- shown inside their regions: the top view in the left half, the side view top right
+    local regions = require("lsys.ui.sketch_organ").regions(st.width, st.height)
+    for _, s in ipairs(st.organ_strokes) do
+      local r = regions[require("lsys.ui.sketch_organ").VIEW[s.role]]
+      for _, p in ipairs(st:pane_points(s)) do
+        assert.is_true(p[1] >= r[1] and p[1] <= r[1] + r[3] and p[2] >= r[2] and
+                       p[2] <= r[2] + r[4], s.role)
+      end
+    end
+    -- a move in the pane moves the stroke in its own pixels, by the pane's scale
+    st:key("o")
+    local side = st.organ_strokes[3]
+    assert.equal("side", side.role)
+    local x0 = side.points[1][1]
+    local q = st:pane_points(side)[20]
+    st:pointer("down", q[1], q[2], "right")
+    st:pointer("move", q[1] + 10, q[2], "right")
+    st:pointer("up", q[1] + 10, q[2], "right")
+    local sc = st.views.side.s
+    assert.near(x0 + 10 / sc, side.points[1][1], 1e-9)
+  end)
+
+  it("draws the plant with the organ, and says why a half-drawn organ makes none", function()
+    local v = fake_viewer()
+    local st = W.new { organ = organ.load(LEAF) }
+    plant_sketch(st)
+    local s = W.session(v, st, {})
+    assert.is_nil(s.error, s.error)
+    local with = s.result.scene.ntriangles
+    local plain = W.pipeline(st:sketch()).scene.ntriangles      -- the default leaf
+    assert.equal(W.pipeline(st:sketch(), organ.load(LEAF)).scene.ntriangles, with)
+    assert.is_true(with > plain + 1000, with .. " against " .. plain)
+    -- an organ of a front stroke alone: no top view, so the default leaf, and the reason
+    local st2 = W.new {}
+    plant_sketch(st2)
+    st2:key("o")
+    st2:key("4") drag(st2, 350, 420, 550, 420, 4)
+    local s2 = W.session(fake_viewer(), st2, {})
+    assert.equal(plain, s2.result.scene.ntriangles)
+    assert.truthy(s2:status():find("organ: ", 1, true), s2:status())
+    assert.truthy(s2:status():find("(the plant shows the default leaf)", 1, true), s2:status())
+  end)
+
+  it("saves the organ beside the sketch when it changed, as organ.load reads it", function()
+    local dir = tmpdir()
+    local st = W.new { file = dir .. "/herb.json" }
+    plant_sketch(st)
+    assert.equal(dir .. "/herb.json", st:save())   -- no organ yet: the sketch alone
+    assert.is_nil(io.open(dir .. "/herb.organ.json"))
+    st:key("o")
+    draw_leaf(st)
+    local spath, opath = st:save()
+    assert.equal(dir .. "/herb.json", spath)
+    assert.equal(dir .. "/herb.organ.json", opath)
+    local back = organ.load(opath)
+    assert.equal(organ.load(st:organ_table()):text(), back:text())
+    assert.equal(1, select("#", st:save()))        -- unchanged since: not written again
+    -- an organ file given is where it goes
+    local st2 = W.new { organ = back, organ_file = dir .. "/leaf.json" }
+    st2:key("o")
+    st2:key("3") drag(st2, 450, 280, 480, 60, 4)
+    assert.equal(dir .. "/leaf.json", select(2, st2:save(dir .. "/x.json")))
+    os.execute("rm -rf " .. dir)
+  end)
+end)
+
 describe("the sketch window's export", function()
   it("writes the plant as .glb, .obj and .png and the model as .lua beside the sketch", function()
     local dir = tmpdir()
@@ -361,9 +570,12 @@ describe("the sketch window's export", function()
     s:compute(true)
     assert.is_nil(s.error, s.error)
     s:export()
-    for _, ext in ipairs { ".glb", ".obj", ".mtl", ".png", ".lua" } do
+    for _, ext in ipairs { ".glb", ".obj", ".mtl", ".png", ".lua", ".l", ".v", ".map",
+                           ".internode.func" } do
       assert.truthy(io.open(dir .. "/herb" .. ext), ext)
     end
+    local back = require("lsys").cpfg.load(dir .. "/herb.l", dir .. "/herb.v")
+    assert.equal(#s.result.lstring, #back:derive())
     assert.truthy(st.status:find("herb.obj", 1, true), st.status)
     local m = dofile(dir .. "/herb.lua")                -- the model file is a model
     assert.equal(tostring(s.result.lstring), tostring(m:derive()))

@@ -1,7 +1,7 @@
 -- Helpers of the sketch examples (not a model file): the files next to them, organs as
--- surfaces that face up, the look of the pictures, and the composition of two sketched
--- plants into one L-system (Anastacio et al. 2009, §7.2). The figures' files load it with
--- `dofile(lsys.here() .. "/common.lua")`.
+-- surfaces that face up and the look of the pictures. (Two sketched plants composed into
+-- one L-system, §7.2 of Anastacio et al. 2009, are lsys.sketch.compose's.) The figures'
+-- files load it with `dofile(lsys.here() .. "/common.lua")`.
 local lsys = require "lsys"
 local sketch = require "lsys.sketch"
 local organ = require "lsys.sketch.organ"
@@ -56,56 +56,6 @@ function M.view (dir, over)
               direction = dir or { 0, -0.35, -1 } }
   for k, x in pairs(over or {}) do v[k] = x end
   return v
-end
-
--- The names a sketch's template uses (docs/sketch.md, "Templates"): its modules and the
--- functions and constants of its env. Other words of the rules (x, d, i, t, h, F, @R) stay.
-local MODULES = { A = true, S = true, B = true, C = true, L = true, R = true, Organ = true }
-
--- The rule text with the modules and env names of `names` suffixed by `suffix`. A word
--- after '@' or '~' is a command or a surface, not a module: it stays.
-local function rename (text, names, suffix)
-  return (text:gsub("()([%a_][%w_]*)", function (at, word)
-    local before = at > 1 and text:sub(at - 1, at - 1) or ""
-    if names[word] and before ~= "@" and before ~= "~" then return word .. suffix end
-  end))
-end
-
---- One L-system from two plants drawn on one stem, made by sk:model with surface organs
--- (§7.2: "combining the grammars of two parameterized L-systems"): the rules of `b` are
--- renamed (modules and functions take the suffix 2, its organ surface is ~Q), its stem
--- pieces move without drawing (f instead of F: the distribution of the organs edited in
--- the rules), and its apex starts in a branch before `a`'s, so both place their organs
--- along the same stem in one derivation. opts: name, view (more view options).
-function M.compose (a, b, opts)
-  opts = opts or {}
-  local oa, ob = a.sketch.description.options, b.sketch.description.options
-  local names = {}
-  for k in pairs(MODULES) do names[k] = true end
-  for k in pairs(ob.env) do names[k] = true end
-  local productions, homomorphism, env = {}, {}, {}
-  for _, l in ipairs(oa.productions) do productions[#productions + 1] = l end
-  for _, l in ipairs(oa.homomorphism) do homomorphism[#homomorphism + 1] = l end
-  for k, v in pairs(oa.env) do env[k] = v end
-  for _, l in ipairs(ob.productions) do
-    l = rename(l, names, "2")
-    l = l:gsub("F%(d%)", "f(d)")
-    productions[#productions + 1] = l
-  end
-  for _, l in ipairs(ob.homomorphism) do
-    homomorphism[#homomorphism + 1] = rename(l, names, "2"):gsub("~P%(", "~Q(")
-  end
-  for k, v in pairs(ob.env) do env[k .. "2"] = v end
-  local view = {}
-  for k, v in pairs(oa.view) do view[k] = v end
-  view.surfaces = { P = oa.view.surfaces.P, Q = ob.view.surfaces.P }
-  for k, v in pairs(opts.view or {}) do view[k] = v end
-  local axiom = "[" .. rename(ob.axiom, names, "2") .. "] " .. oa.axiom
-  return lsys.lsystem {
-    axiom = axiom, productions = productions, homomorphism = homomorphism, env = env,
-    modules = "Organ Organ2 A2 S2 B2 C2 L2 R2", steps = math.max(oa.steps, ob.steps),
-    view = view, name = opts.name,
-  }
 end
 
 return M

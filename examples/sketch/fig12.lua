@@ -4,7 +4,7 @@
 -- per layer, organ_strap.json) and the flower stalk from its centre with red bracts
 -- in its upper third (fig12_spike.json, organ_bract.json), drawn on one stem; the
 -- stalk's rules are renamed, its stem moves without drawing and its apex starts with the
--- rosette's (common.compose).
+-- rosette's (lsys.sketch.compose).
 local lsys = require "lsys"
 local common = dofile(lsys.here() .. "/common.lua")
 
@@ -12,5 +12,5 @@ local leaves = common.sketch("fig12_leaves"):model {
   organ = common.organ("strap"), organ_color = common.LEAF, width = 0.012 }
 local spike = common.sketch("fig12_spike"):model {
   organ = common.organ("bract"), organ_color = common.RED }
-return common.compose(leaves, spike, { name = "bromeliad",
+return lsys.sketch.compose({ leaves, spike }, { name = "bromeliad",
   view = common.view({ 0.3, -0.4, -1 }) })

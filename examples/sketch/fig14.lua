@@ -12,5 +12,5 @@ local leaves = common.sketch("fig14_leaves"):model {
   organ = common.organ("foxleaf"), organ_color = common.DARK, width = 0.012 }
 local flowers = common.sketch("fig14_flowers"):model {
   organ = common.organ("bell"), organ_color = common.BELL }
-return common.compose(leaves, flowers, { name = "foxglove",
+return lsys.sketch.compose({ leaves, flowers }, { name = "foxglove",
   view = common.view({ 0.3, -0.3, -1 }) })

@@ -317,10 +317,13 @@ The saved string keeps the arrangement as @J(h,u,l) joint modules: derive it fur
 ]]
 
 HELP.sketch = [[
-usage: lsys sketch [FILE] [--size WxH] [--nodes N] [--phyllotaxis P]
+usage: lsys sketch [FILE] [--size WxH] [--nodes N] [--phyllotaxis P] [--organ ORGAN]
        lsys sketch plot FILE [-o functions.png] [--size WxH]
-       lsys sketch model FILE [-o plant.lua] [--nodes N] [--phyllotaxis P]
+       lsys sketch model FILE [-o plant.lua] [--nodes N] [--phyllotaxis P] [--organ ORGAN]
+       lsys sketch model FILE --cpfg [-o plant.l] [--nodes N] [--phyllotaxis P]
+                          [--organ ORGAN]
        lsys sketch render FILE [-o plant.png] [--size WxH] [--nodes N] [--phyllotaxis P]
+                          [--organ ORGAN]
 
 Sketch-based parameterization of L-systems (Anastacio et al. 2009; docs/sketch.md): the
 construction lines of a plant -- a stem, left and right boundaries, inclination lines --
@@ -335,11 +338,17 @@ stem or boundary replaces the old one; right drag (or shift drag) moves the near
 stroke; Delete or Backspace deletes the selected (else the last) stroke; Ctrl+Z undoes;
 + and - change the nodes per layer, P the phyllotaxis; the wheel over the sketch (or [
 and ]) sets the pressure of the points drawn next (darker nearer, lighter farther); Tab
-hides the plots; Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua).
+hides the plots; O switches to the organ: its left and right boundaries in a top view (1,
+2), its midrib in a side view (3) and its cross-section in a front view (4), and back;
+Ctrl+S saves the sketch (and a changed organ: the --organ file, else FILE.organ.json);
+Ctrl+E exports the plant (FILE.glb, .obj, .png) and the model (FILE.lua, and FILE.l with
+its files for cpfg).
 Over the plant: drag orbits, right drag pans, the wheel zooms. H lists the keys.
 
   plot     draws the positional functions (six panels, seven with pitch) to a PNG
-  model    writes the generated model as an editable Lua file
+  model    writes the generated model as an editable Lua file; with --cpfg as cpfg's
+           files for cpfg and L-studio: plant.l, plant.v, plant.map, a plant.NAME.func
+           per function and the organ's surface, which cpfg derives as lsys does
   render   renders the plant headless to a PNG
 
 Options:
@@ -349,6 +358,11 @@ Options:
                       900x600, render: 800x800); a new sketch is 600x600 pixels
   --nodes N           nodes per layer (default: the sketch's)
   --phyllotaxis P     distichous, decussate or fibonacci (default: the sketch's)
+  --organ ORGAN       the organ at the nodes: a leaf shape (ovate, lanceolate, elliptic,
+                      obovate, linear, cordate) or an organ file (.json, drawn in three
+                      views; the window draws and saves a new one there); default a
+                      flat leaf
+  --cpfg              model: cpfg's files instead of a Lua model file
   -h, --help          show this help
 
 The window needs a display; a drawing tablet's pen pressure is read when X reports one (XInput2),

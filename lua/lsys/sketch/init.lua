@@ -11,10 +11,12 @@
 -- The steps (lsys.sketch.geometry, .functions, .templates) are exported for the tests and
 -- the sketch window: sketch.geometry, sketch.functions, sketch.templates.
 -- @module lsys.sketch
-local core = require "lsys.core"
 local geometry = require "lsys.sketch.geometry"
 local functions = require "lsys.sketch.functions"
 local templates = require "lsys.sketch.templates"
+local compose = require "lsys.sketch.compose"
+local write = require "lsys.sketch.write"
+local cpfg = require "lsys.sketch.cpfg"
 local model = require "lsys.model"
 
 local type, pairs, ipairs, error, pcall, setmetatable, getmetatable, rawget, tostring,
@@ -296,20 +298,23 @@ function Sketch:_describe (opts)
     local idesc = type(opts.organ) == "table" and type(opts.organ.sketch) == "table"
                   and opts.organ.sketch.description
     homo = idesc and idesc.homomorphism[1] or templates.leaf(opts.organ_color or 2)
-    if idesc and idesc.surface then surface = idesc.surface; d.surface = surface end
+    if idesc and idesc.surfaces then surface = idesc.surfaces.P end
     d.inner = io_
   elseif surface then
     homo = "Organ(h) --> ;(" .. (opts.organ_color or 2) .. ") ~P(h)"
-    d.surface = surface
   end
+  d.surfaces = surface and { P = surface } or nil
   d.homomorphism = { homo }
   local view = { line_style = "cylinder", line_width = width, color = color }
   if surface then view.surfaces = { P = surface } end
   for k, v in pairs(opts.view or {}) do view[k] = v end
   d.view = view
   d.steps = opts.steps or steps
+  d.modules = "Organ"
+  d.plants = { { phyllotaxis = d.phyllotaxis, nodes_per_layer = d.nodes_per_layer,
+                 suffix = "", file = self.file } }
   d.options = { axiom = d.axiom, productions = productions, homomorphism = d.homomorphism,
-                sub = sub, modules = "Organ", env = d.env, steps = d.steps, view = view,
+                sub = sub, modules = d.modules, env = d.env, steps = d.steps, view = view,
                 name = opts.name or (self.file and self.file:match("([^/]*)$")) }
   d.productions = productions
   d.sub = sub
@@ -322,17 +327,6 @@ function M.template (name, threed)
   return templates.text(name, threed)
 end
 
--- Lua source of a number that reads back to the same double.
-local num = require("lsys.util.text").number
-
-local codegen = require "lsys.codegen"
-local quote = codegen.string
-
--- What a written model file may reach when it loads (codegen.check).
-local CHECK = { modules = { lsys = true, ["lsys.func"] = true }, globals = { pairs = pairs },
-                calls = { ["lsys.lsystem"] = true, ["lsys.here"] = true,
-                          ["lsys.func.new"] = true } }
-
 --- Writes a Lua model file that builds the same Model (docs/sketch.md, "Models from
 -- sketches"): the functions inline as control points, the rules as text. opts as
 -- sk:model; an organ of lsys.sketch.organ is written beside it as a cpfg surface file
@@ -342,92 +336,94 @@ function Sketch:save_model (path, opts)
   if type(path) ~= "string" then error("save_model: a file name expected", 2) end
   local ok, d = pcall(self._describe, self, opts)
   if not ok then error(d, 2) end
-  local surfile
-  if d.surface then
-    if surfacekind(d.surface) ~= "organ" then
-      error("save_model: an lsys.Surface organ cannot be written (it keeps no source); " ..
-            "give an organ of lsys.sketch.organ", 2)
-    end
-    local dir, base = path:match("^(.-)([^/]*)$")
-    surfile = base:gsub("%.lua$", "") .. ".organ.s"
-    local oks, err = pcall(d.surface.save, d.surface, dir .. surfile)
-    if not oks then error("save_model: organ: " .. tostring(err):gsub("^save: ", ""), 2) end
-  end
-  local L = {}
-  local function w (...) L[#L + 1] = format(...) end
-  -- the sketch's file name and names are text from elsewhere: through lsys.codegen
-  w("%s", codegen.comment(format("A plant from the sketch %s (lsys.sketch, after Anastacio, " ..
-                                 "Prusinkiewicz and Sousa", self.file or "(a table)")))
-  w("%s", codegen.comment(format("2009): the positional functions of §4 and the %s template " ..
-                                 "of §5. Edit freely:", d.phyllotaxis)))
-  w("-- the functions are clamped cubic B-splines of x in [0, 1] (cpfg's .func form).")
-  w("local lsys = require \"lsys\"")
-  w("local func = require \"lsys.func\"")
-  w("")
-  w("-- The positional functions (§4), %d nodes per layer; each interior point is written",
-    d.nodes_per_layer)
-  w("-- three times so that the spline is the polyline through the points.")
-  w("local F = {}")
-  local names = {}
-  for k in pairs(d.funcs) do names[#names + 1] = k end
-  table.sort(names)
-  for _, k in ipairs(names) do
-    local pts = {}
-    for _, p in ipairs(functions.controls(d.funcs[k])) do
-      pts[#pts + 1] = format("{ %s, %s }", num(p[1]), num(p[2]))
-    end
-    w("%s = func.new { name = %s, points = {", codegen.index("F", k),
-      quote((k:gsub("^o1_", ""))))
-    for i = 1, #pts, 4 do
-      w("  %s,", concat(pts, ", ", i, math.min(i + 3, #pts)))
-    end
-    w("} }")
-  end
-  w("")
-  w("-- Constants of the template: XT stops the nodes at the top inclination line, XE the")
-  w("-- stem at its tip, D is the longest straight piece of stem (stem lengths).")
-  w("local env = {")
-  local ks = {}
-  for k, v in pairs(d.env) do if type(v) == "number" then ks[#ks + 1] = k end end
-  table.sort(ks)
-  for _, k in ipairs(ks) do w("  %s = %s,", codegen.key(k), num(d.env[k])) end
-  w("}")
-  w("for k, f in pairs(F) do env[k] = f end")
-  w("")
-  w("return lsys.lsystem {")
-  if d.options.name then w("  name = %s,", quote(d.options.name)) end
-  w("  modules = \"Organ\",")
-  w("  axiom = %s,", quote(d.axiom))
-  w("  steps = %d,", d.steps)
-  w("  env = env,")
-  w("  %s", codegen.comment(format("the %s template (Anastacio et al. 2009, §5; " ..
-                                   "lsys.sketch.templates)", d.phyllotaxis)))
-  w("  productions = {")
-  for _, l in ipairs(d.productions) do w("    %s,", quote(l)) end
-  w("  },")
-  if d.sub then
-    w("  -- the organ: the inner sketch's plant as a sub-L-system (§7.2)")
-    w("  sub = { [1] = { productions = {")
-    for _, l in ipairs(d.sub[1].productions) do w("    %s,", quote(l)) end
-    w("  } } },")
-  end
-  w("  -- the organ drawn at each node")
-  w("  homomorphism = { %s },", quote(d.homomorphism[1]))
-  w("  view = { line_style = %s, line_width = %s, color = %s,", quote(d.view.line_style),
-    num(d.view.line_width), num(d.view.color))
-  if surfile then
-    w("    -- the organ (lsys.sketch.organ), a cpfg surface file beside this one")
-    w("    dir = lsys.here(), surfaces = { P = %s },", quote(surfile))
-  end
-  w("  },")
-  w("}")
-  local text = concat(L, "\n") .. "\n"
-  local okc, cerr = pcall(codegen.check, text, path:match("[^/]*$"), CHECK)
-  if not okc then error("save_model: " .. cerr, 2) end
-  -- the C writer: an exclusive temporary beside `path`, checked writes, then the rename
-  local okw, err = pcall(core.write_file, path, text)
-  if not okw then error("save_model: " .. tostring(err), 2) end
+  local okw, err = pcall(write.lua, d, path, "save_model")
+  if not okw then error(err, 2) end
   return path
+end
+
+-- The description of a Model made by sk:model or lsys.sketch.compose, or raises for `who`.
+local function description (m, who)
+  local d = type(m) == "table" and type(m.sketch) == "table" and m.sketch.description
+  if type(d) ~= "table" then
+    error(format("%s: a Model made by sk:model or lsys.sketch.compose expected, got %s", who,
+                 type(m) == "table" and (m.name and "the model '" .. tostring(m.name) .. "'"
+                 or "a table") or type(m)), 3)
+  end
+  return d
+end
+
+--- Composes Models made by sk:model into one that draws them on one stem (§7.2;
+-- lsys.sketch.compose): `models` is a list of two or more; the first draws its stem,
+-- the others' names take the suffixes 2, 3, ... and their stems move without drawing.
+-- opts: name, view (more view options).
+function M.compose (models, opts)
+  opts = opts or {}
+  if type(models) ~= "table" or #models < 2 then
+    error("lsys.sketch.compose: a list of two or more sketch Models expected", 2)
+  end
+  if type(opts) ~= "table" then error("lsys.sketch.compose: an options table expected", 2) end
+  for k, v in pairs(opts) do
+    if k ~= "name" and k ~= "view" then
+      error(format("lsys.sketch.compose: unknown option '%s' (name, view)", tostring(k)), 2)
+    end
+    if k == "view" and type(v) ~= "table" or k == "name" and type(v) ~= "string" then
+      error(format("lsys.sketch.compose: option '%s' must be a %s", k,
+                   k == "view" and "table" or "string"), 2)
+    end
+  end
+  local descs, files = {}, {}
+  for i, m in ipairs(models) do
+    local d = description(m, format("lsys.sketch.compose: models[%d]", i))
+    if #d.plants > 1 then
+      error(format("lsys.sketch.compose: models[%d] is a composition already; compose " ..
+                   "the plants it was made of", i), 2)
+    end
+    descs[i], files[i] = d, d.plants[1].file
+  end
+  local names = {}
+  for i, m in ipairs(models) do names[i] = m.name or ("plant " .. i) end
+  local ok, d = pcall(compose.describe, descs, { name = opts.name or concat(names, " + "),
+                                                  view = opts.view }, files)
+  if not ok then error("lsys.sketch." .. tostring(d), 2) end
+  local ok2, m = pcall(model.lsystem, d.options)
+  if not ok2 then error(m, 2) end
+  m.sketch = { composed = models, description = d }
+  return m
+end
+
+--- Writes the Lua model file of a Model made by sk:model or lsys.sketch.compose (as
+-- sk:save_model writes a sketch's).
+function M.save_model (m, path)
+  local d = description(m, "lsys.sketch.save_model")
+  if type(path) ~= "string" then error("lsys.sketch.save_model: a file name expected", 2) end
+  local ok, err = pcall(write.lua, d, path, "lsys.sketch.save_model")
+  if not ok then error(err, 2) end
+  return path
+end
+
+--- Writes the sketch's plant as a cpfg model (docs/sketch.md, "cpfg and L-studio"):
+-- `path` (a .l file), the view file, the function files, a colour map and the organ
+-- surfaces beside it. opts as sk:model. Returns the list of files written and the number
+-- of function readings cpfg cannot tell apart from their neighbours (0 but for very dense
+-- nodes).
+function Sketch:save_cpfg (path, opts)
+  opts = opts or {}
+  if type(path) ~= "string" then error("save_cpfg: a file name expected", 2) end
+  local ok, d = pcall(self._describe, self, opts)
+  if not ok then error(d, 2) end
+  local okw, files, inexact = pcall(cpfg.write, d, path, "save_cpfg")
+  if not okw then error(files, 2) end
+  return files, inexact
+end
+
+--- Writes a Model made by sk:model or lsys.sketch.compose as a cpfg model (as
+-- sk:save_cpfg writes a sketch's).
+function M.save_cpfg (m, path)
+  local d = description(m, "lsys.sketch.save_cpfg")
+  if type(path) ~= "string" then error("lsys.sketch.save_cpfg: a file name expected", 2) end
+  local ok, files, inexact = pcall(cpfg.write, d, path, "lsys.sketch.save_cpfg")
+  if not ok then error(files, 2) end
+  return files, inexact
 end
 
 --- Writes the sketch to a file (lsys.sketch.read's save: JSON).

@@ -600,9 +600,10 @@ function M.load (x)
     error("lsys.sketch.organ.load: a file name or a table expected, got " .. type(x), 2)
   end
   local who = "organ " .. x
-  local ok, text = pcall(core.read_file, x, MAXFILE)
+  local ok, text, why = pcall(core.read_file, x, MAXFILE)
   if not ok or type(text) ~= "string" then
-    error(format("%s: %s", who, tostring(text):gsub("^lsys%.[%w_.]+: ", "")), 2)
+    -- read_file raises on misuse and returns nil and why for a file it cannot read
+    error(format("%s: %s", who, tostring(ok and why or text):gsub("^lsys%.[%w_.]+: ", "")), 2)
   end
   local cjson = require("cjson").new()
   cjson.decode_invalid_numbers(false)

@@ -19,12 +19,14 @@ local model = require "lsys.model"
 local sketch = require "lsys.sketch"
 local read = require "lsys.sketch.read"
 local plot = require "lsys.sketch.plot"
+local organs = require "lsys.sketch.organ"
+local OV = require "lsys.ui.sketch_organ"
 local render = require("lsys.render").render
 local now = require("lsys.program").clock
 local require = require
 
-local type, ipairs, pcall, tostring, error, setmetatable =
-      type, ipairs, pcall, tostring, error, setmetatable
+local type, ipairs, pairs, pcall, tostring, error, setmetatable =
+      type, ipairs, pairs, pcall, tostring, error, setmetatable
 local math, string, table = math, string, table
 local format, remove = string.format, table.remove
 local floor, min, max, huge = math.floor, math.min, math.max, math.huge
@@ -35,12 +37,14 @@ local M = {}
 M.ROLES = { "stem", "boundary_left", "boundary_right", "inclination" }
 M.LABELS = { stem = "1 stem", boundary_left = "2 left", boundary_right = "3 right",
              inclination = "4 incl." }
+M.ORGAN_ROLES = OV.ROLES
 M.PHYLLOTAXIS = { "distichous", "decussate", "fibonacci" }
 M.UNDO_LIMIT = 100           -- sketches kept for Ctrl+Z
 M.PICK_RADIUS = 20           -- pixels: how near a right-press must be to move a stroke
 M.SCROLL_STEP = 0.05         -- pressure per wheel notch ([ and ] step twice that)
 
-local ONCE = { stem = true, boundary_left = true, boundary_right = true }
+local ONCE = { stem = true, boundary_left = true, boundary_right = true, top_left = true,
+               top_right = true, side = true, front = true }
 
 -- {=========================================================================================
 -- The state machine
@@ -62,11 +66,23 @@ end
 
 --- A new sketch session. opts: `sketch` (a sketch table as lsys.sketch.read returns or
 -- takes; default an empty one), `width`, `height` (of a new sketch, default 600 x 600),
--- `nodes` (nodes per layer), `phyllotaxis`, `file` (where `save` writes).
+-- `nodes` (nodes per layer), `phyllotaxis`, `file` (where `save` writes), `organ` (the
+-- organ drawn at the nodes: an Organ of lsys.sketch.organ or its table, { organ = {...} },
+-- whose strokes the O key shows and edits; default none: the default leaf until one is
+-- drawn), `organ_file` (where `save` writes the organ; default FILE.organ.json).
 function M.new (opts)
   opts = opts or {}
   local sk = opts.sketch
+  local org = opts.organ
+  if type(org) == "table" and type(org.to_table) == "function" then org = org:to_table() end
+  local ostrokes, oopts = OV.strokes(org)
   local st = setmetatable({
+    mode = "plant",          -- or "organ": which strokes the pointer draws
+    organ_strokes = ostrokes, organ_opts = oopts,
+    organ_role = "top_left",
+    organ_version = 0,       -- changes with every change of the organ's strokes
+    organ_saved = 0,         -- the version last saved (or read)
+    organ_file = opts.organ_file,
     width = sk and sk.width or opts.width or 600,
     height = sk and sk.height or opts.height or 600,
     nodes = opts.nodes or (sk and sk.nodes_per_layer) or 5,
@@ -84,51 +100,111 @@ function M.new (opts)
     status = nil,
     overlay = true,          -- draw the nodes and rays of the analysis over the sketch
   }, State)
+  st.views = OV.fit(ostrokes, st.width, st.height)
   return st
+end
+
+--- The strokes the pointer works on: the plant's, or the organ's in organ mode.
+function State:list ()
+  return self.mode == "organ" and self.organ_strokes or self.strokes
+end
+
+--- The role of the strokes drawn next.
+function State:current_role ()
+  return self.mode == "organ" and self.organ_role or self.role
+end
+
+-- The points of stroke s in the pane's pixels (an organ's strokes keep their own).
+function State:pane_points (s)
+  local v = OV.VIEW[s.role]
+  if v == nil then return s.points end
+  local t, out = self.views[v], {}
+  for i, p in ipairs(s.points) do
+    local x, y = OV.to_pane(t, p[1], p[2])
+    out[i] = { x, y, p[3] }
+  end
+  return out
+end
+
+-- Points drawn in the pane as stroke `role` keeps them.
+function State:native (role, pts)
+  local v = OV.VIEW[role]
+  if v == nil then return pts end
+  local t, out = self.views[v], {}
+  for i, p in ipairs(pts) do
+    local x, y = OV.from_pane(t, p[1], p[2])
+    out[i] = { x, y, p[3] }
+  end
+  return out
+end
+
+-- Whether stroke i is stood for by the stroke being drawn (once it has two points): the
+-- one redrawn in place, or the old stem or boundary of the role being drawn. The plant and
+-- the sketch pane both leave it out.
+function State:replaced (i, list)
+  local d = self.drawing
+  list = list or self:list()
+  if d == nil or #d.points < 2 or d.list ~= list then return false end
+  return d.replace == i or not d.replace and ONCE[d.role] and list[i].role == d.role
+end
+
+-- The strokes of `list` with the one being drawn (in the list's own coordinates).
+function State:with_drawing (list)
+  local d = self.drawing
+  local out = {}
+  for i, s in ipairs(list) do
+    if not self:replaced(i, list) then
+      out[#out + 1] = { role = s.role, points = copy_points(s.points) }
+    end
+  end
+  if d and #d.points >= 2 and d.list == list then
+    local at = d.replace and d.replace <= #out + 1 and d.replace or #out + 1
+    table.insert(out, at, { role = d.role, points = self:native(d.role, d.points) })
+  end
+  return out
 end
 
 --- The sketch as lsys.sketch.read takes it (JSON shape), with the stroke being drawn when
 -- it has two points or more.
 function State:sketch ()
-  local d = self.drawing
-  local drawn = d and #d.points >= 2
-  local strokes = {}
-  for i, s in ipairs(self.strokes) do     -- a stem being drawn stands for the old one
-    if not (drawn and (d.replace == i or not d.replace and ONCE[d.role] and s.role == d.role))
-    then
-      strokes[#strokes + 1] = { role = s.role, points = copy_points(s.points) }
-    end
-  end
-  if drawn then
-    local at = d.replace and d.replace <= #strokes + 1 and d.replace or #strokes + 1
-    table.insert(strokes, at, { role = d.role, points = copy_points(d.points) })
-  end
   return {
     file = self.file, width = self.width, height = self.height, nodes_per_layer = self.nodes,
-    phyllotaxis = self.phyllotaxis, depth = self.depth, strokes = strokes,
+    phyllotaxis = self.phyllotaxis, depth = self.depth,
+    strokes = self:with_drawing(self.strokes),
   }
+end
+
+--- The organ as lsys.sketch.organ.load takes it ({ organ = {...} }, in the strokes' own
+-- pixels), with the stroke being drawn; nil when it has no strokes.
+function State:organ_table ()
+  return OV.table(self:with_drawing(self.organ_strokes), self.organ_opts)
 end
 
 -- Remembers the strokes and settings for undo.
 function State:push_undo ()
   local u = self.undo
   u[#u + 1] = { strokes = copy_strokes(self.strokes), nodes = self.nodes,
-                phyllotaxis = self.phyllotaxis, selected = self.selected }
+                phyllotaxis = self.phyllotaxis, selected = self.selected,
+                organ = copy_strokes(self.organ_strokes), mode = self.mode }
   if #u > M.UNDO_LIMIT then remove(u, 1) end
 end
 
-function State:touch (msg)
+-- Marks the sketch changed (the organ too when `organ`), with a message.
+function State:touch (msg, organ)
   self.changed = true
+  if organ then self.organ_version = self.organ_version + 1 end
   if msg then self.status = msg end
 end
 
---- Undoes the last change (a stroke drawn, moved or deleted; nodes; phyllotaxis).
+--- Undoes the last change (a stroke drawn, moved or deleted, of the plant or the organ;
+-- nodes; phyllotaxis).
 function State:undo_last ()
   local u = remove(self.undo)
   if u == nil then self.status = "nothing to undo" return false end
-  self.strokes, self.nodes, self.phyllotaxis, self.selected =
-    u.strokes, u.nodes, u.phyllotaxis, u.selected
-  self:touch("undone")
+  self.strokes, self.nodes, self.phyllotaxis, self.organ_strokes =
+    u.strokes, u.nodes, u.phyllotaxis, u.organ
+  self.selected = u.mode == self.mode and u.selected or nil
+  self:touch("undone", true)
   return true
 end
 
@@ -137,8 +213,8 @@ local function clamp01 (p) return p < 0 and 0 or p > 1 and 1 or p end
 -- The stroke nearest (x, y) within M.PICK_RADIUS pixels (distance to its segments).
 function State:nearest (x, y)
   local best, bd = nil, M.PICK_RADIUS
-  for i, s in ipairs(self.strokes) do
-    local pts = s.points
+  for i, s in ipairs(self:list()) do
+    local pts = self:pane_points(s)
     for j = 1, #pts do
       local a, b = pts[j], pts[j + 1] or pts[j]
       local dx, dy = b[1] - a[1], b[2] - a[2]
@@ -162,35 +238,39 @@ function State:pointer (phase, x, y, button, shift, pressure, ctrl)
   if type(pressure) == "number" and phase ~= "up" and (self.drawing or phase == "down") then
     self.pressure = floor(clamp01(pressure) * 1000 + 0.5) / 1000
   end
+  local list, organ = self:list(), self.mode == "organ"
   if phase == "down" then
     if button == "right" or button == "middle" or shift then
       local k = self:nearest(x, y)
       if k == nil then self.status = "no stroke near the pointer to move" return false end
       self:push_undo()
-      self.moving = { index = k, x = x, y = y }
+      self.moving = { index = k, x = x, y = y, list = list }
       self.selected = k
       return false
     end
     if button ~= "left" then return false end
-    self.drawing = { role = self.role, points = { { x, y, self.pressure } } }
+    self.drawing = { role = self:current_role(), points = { { x, y, self.pressure } },
+                     list = list }
     if ctrl then
-      local k = self.strokes[self.selected or 0] and self.selected or self:nearest(x, y)
+      local k = list[self.selected or 0] and self.selected or self:nearest(x, y)
       if k == nil then
         self.drawing = nil
         self.status = "no stroke to redraw: select one (right click) first"
         return false
       end
-      self.drawing.role, self.drawing.replace = self.strokes[k].role, k
-      self.status = format("redrawing stroke %d (%s)", k, self.strokes[k].role)
+      self.drawing.role, self.drawing.replace = list[k].role, k
+      self.status = format("redrawing stroke %d (%s)", k, list[k].role)
     end
     return false
   elseif phase == "move" then
     local m = self.moving
     if m then
-      local dx, dy = x - m.x, y - m.y
-      for _, p in ipairs(self.strokes[m.index].points) do p[1], p[2] = p[1] + dx, p[2] + dy end
+      local t = self.views[OV.VIEW[m.list[m.index].role]]
+      local sc = t and t.s or 1
+      local dx, dy = (x - m.x) / sc, (y - m.y) / sc
+      for _, p in ipairs(m.list[m.index].points) do p[1], p[2] = p[1] + dx, p[2] + dy end
       m.x, m.y = x, y
-      self:touch()
+      self:touch(nil, m.list == self.organ_strokes)
       return true
     end
     local d = self.drawing
@@ -199,12 +279,14 @@ function State:pointer (phase, x, y, button, shift, pressure, ctrl)
     local ddx, ddy = x - last[1], y - last[2]
     if ddx * ddx + ddy * ddy < 1 then return false end   -- under a pixel: nothing new
     d.points[#d.points + 1] = { x, y, self.pressure }
-    if #d.points >= 2 then self:touch() end
+    if #d.points >= 2 then self:touch(nil, d.list == self.organ_strokes) end
     return #d.points >= 2
   elseif phase == "up" then
-    if self.moving then
+    local m = self.moving
+    if m then
       self.moving = nil
-      self:touch(format("moved stroke %d (%s)", self.selected, self.strokes[self.selected].role))
+      self:touch(format("moved stroke %d (%s)", m.index, m.list[m.index].role),
+                 m.list == self.organ_strokes)
       return true
     end
     local d = self.drawing
@@ -216,21 +298,22 @@ function State:pointer (phase, x, y, button, shift, pressure, ctrl)
       return false
     end
     self:push_undo()
+    local stroke = { role = d.role, points = self:native(d.role, d.points) }
     if d.replace then                -- redrawn in place
       local k = d.replace
-      self.strokes[k] = { role = d.role, points = d.points }
+      list[k] = stroke
       self.selected = k
-      self:touch(format("redrew stroke %d (%s, %d points)", k, d.role, #d.points))
+      self:touch(format("redrew stroke %d (%s, %d points)", k, d.role, #d.points), organ)
       return true
     end
-    if ONCE[d.role] then             -- a new stem (or boundary) replaces the old one
-      for i = #self.strokes, 1, -1 do
-        if self.strokes[i].role == d.role then remove(self.strokes, i) end
+    if ONCE[d.role] then             -- a new stem (or boundary, organ stroke) replaces the old
+      for i = #list, 1, -1 do
+        if list[i].role == d.role then remove(list, i) end
       end
     end
-    self.strokes[#self.strokes + 1] = d
-    self.selected = #self.strokes
-    self:touch(format("drew stroke %d (%s, %d points)", #self.strokes, d.role, #d.points))
+    list[#list + 1] = stroke
+    self.selected = #list
+    self:touch(format("drew stroke %d (%s, %d points)", #list, d.role, #d.points), organ)
     return true
   end
   return false
@@ -248,22 +331,41 @@ end
 
 --- Deletes the selected stroke, else the last one.
 function State:delete ()
-  local k = self.selected or #self.strokes
-  if self.strokes[k] == nil then self.status = "no stroke to delete" return false end
+  local list = self:list()
+  local k = self.selected or #list
+  if list[k] == nil then self.status = "no stroke to delete" return false end
   self:push_undo()
-  local s = remove(self.strokes, k)
+  local s = remove(list, k)
   self.selected = nil
-  self:touch(format("deleted stroke %d (%s)", k, s.role))
+  self:touch(format("deleted stroke %d (%s)", k, s.role), list == self.organ_strokes)
   return true
 end
 
---- Picks the role of the strokes drawn next (a name of M.ROLES or its index).
+--- Picks the role of the strokes drawn next (a name of M.ROLES, or in organ mode of
+-- M.ORGAN_ROLES, or its index).
 function State:set_role (r)
-  r = M.ROLES[r] or r
-  for _, x in ipairs(M.ROLES) do
-    if x == r then self.role = r self.status = "drawing: " .. r return true end
+  local roles = self.mode == "organ" and M.ORGAN_ROLES or M.ROLES
+  r = roles[r] or r
+  for _, x in ipairs(roles) do
+    if x == r then
+      if self.mode == "organ" then self.organ_role = r else self.role = r end
+      self.status = "drawing: " .. r
+      return true
+    end
   end
   return false
+end
+
+M.ORGAN_HELP = "the organ (§6): 1 2 its left and right boundaries in the top view, " ..
+               "3 its midrib in the side view, 4 its cross-section in the front view; O: " ..
+               "back to the plant"
+
+--- Switches between drawing the plant's construction lines and the organ's strokes.
+function State:toggle_organ ()
+  self.mode = self.mode == "organ" and "plant" or "organ"
+  self.selected, self.drawing, self.moving = nil, nil, nil
+  self.status = self.mode == "organ" and M.ORGAN_HELP or "the plant's construction lines"
+  return self.mode
 end
 
 function State:set_nodes (n)
@@ -291,8 +393,16 @@ function State:save_path ()
   return f
 end
 
+--- Where Ctrl+S writes the organ: the organ file given, else beside the sketch
+-- (sketch.json: sketch.organ.json).
+function State:organ_path ()
+  return self.organ_file or (self:save_path():gsub("%.[^./]*$", "") .. ".organ.json")
+end
+
 --- Saves the sketch as JSON (lsys.sketch.read.save); a sketch that is not complete yet (no
--- stem) is written as it is. Returns the path.
+-- stem) is written as it is. The organ, when it has strokes that changed since it was
+-- read or saved, goes to its own file (State:organ_path, the form lsys.sketch.organ.load
+-- reads). Returns the path, and the organ's when it was written.
 function State:save (path)
   path = path or self:save_path()
   local t = self:sketch()
@@ -304,6 +414,14 @@ function State:save (path)
     core.write_file(path, cjson.encode(t) .. "\n")
   end
   self.status = "saved " .. path
+  local ot = self:organ_table()
+  if ot and self.organ_version ~= self.organ_saved then
+    local opath = self:organ_path()
+    core.write_file(opath, require("cjson").encode(ot) .. "\n")
+    self.organ_saved = self.organ_version
+    self.status = format("saved %s and %s", path, opath)
+    return path, opath
+  end
   return path
 end
 
@@ -318,6 +436,7 @@ function State:key (name, ctrl)
   end
   if name == "1" or name == "2" or name == "3" or name == "4" then
     self:set_role(name + 0)
+  elseif name == "o" then self:toggle_organ()
   elseif name == "=" or name == "+" then self:set_nodes(self.nodes + 1)
   elseif name == "-" then self:set_nodes(self.nodes - 1)
   elseif name == "p" then self:cycle_phyllotaxis()
@@ -363,6 +482,7 @@ local ROLE_RGB = {
   boundary_left = { 0.15, 0.35, 0.85 }, boundary_right = { 0.1, 0.55, 0.8 },
   inclination = { 0.85, 0.4, 0.1 },
 }
+for r, rgb in pairs(OV.RGB) do ROLE_RGB[r] = rgb end
 
 --- The colour of a stem point of pressure p (§7.3: farther lighter, nearer darker): from
 -- a pale green at 0 (farthest) to a near-black green at 1 (nearest).
@@ -371,8 +491,8 @@ function M.stem_rgb (p)
   return { 0.75 - 0.7 * p, 0.9 - 0.65 * p, 0.75 - 0.7 * p }
 end
 
-local function draw_stroke (c, s, width)
-  local pts = s.points
+local function draw_stroke (c, s, width, pts)
+  pts = pts or s.points
   local rgb = ROLE_RGB[s.role]
   for j = 1, #pts - 1 do
     local a, b = pts[j], pts[j + 1]
@@ -381,18 +501,24 @@ local function draw_stroke (c, s, width)
 end
 
 --- Draws the sketch of `st` into canvas `c` (its size): the strokes by role, the stem by
--- pressure, the selected stroke wider, the stroke being drawn (a stroke redrawn in place
--- hides the old one), and, when given and st.overlay is on, the sketch's analysis `an`
--- (the nodes and the rays of §3.4 to the boundaries, lsys.sketch.plot.analysis).
+-- pressure, the selected stroke wider, the stroke being drawn (which hides the stroke it
+-- replaces: one redrawn in place, the old stem or boundary), and, when given and
+-- st.overlay is on, the sketch's analysis `an` (the nodes and the rays of §3.4 to the
+-- boundaries, lsys.sketch.plot.analysis).
+-- In organ mode, the three views of the organ and their strokes instead.
 function M.draw_sketch (st, c, an)
   c:clear({ 1, 1, 1, 1 })
   local d = st.drawing
-  local drawn = d and #d.points >= 2
-  for i, s in ipairs(st.strokes) do
-    if not (drawn and d.replace == i) then draw_stroke(c, s, i == st.selected and 4 or 2.5) end
+  local list = st:list()
+  local drawn = d and #d.points >= 2 and d.list == list
+  if st.mode == "organ" then OV.frames(c, st.width, st.height) end
+  for i, s in ipairs(list) do
+    if not st:replaced(i) then
+      draw_stroke(c, s, i == st.selected and 4 or 2.5, st:pane_points(s))
+    end
   end
   if drawn then draw_stroke(c, d, 2.5) end
-  if an and st.overlay then
+  if an and st.overlay and st.mode == "plant" then
     plot.analysis(c, an, { x = 0, y = 0, scale = 1 }, { line_width = 1.5 })
   end
   return c
@@ -402,14 +528,16 @@ end
 function M.draw_toolbar (st, c)
   local bw, h = M.BUTTON_W, M.TOOLBAR_H
   c:clear({ 0.93, 0.93, 0.93, 1 })
-  for k, r in ipairs(M.ROLES) do
+  local organ = st.mode == "organ"
+  for k, r in ipairs(organ and M.ORGAN_ROLES or M.ROLES) do
     local x = (k - 1) * bw
-    local on = st.role == r
+    local on = st:current_role() == r
     c:rect(x + 2, 2, bw - 4, h - 4, on and { 0.25, 0.25, 0.3, 1 } or { 1, 1, 1, 1 }, true)
     c:rect(x + 2, 2, bw - 4, h - 4, { 0.5, 0.5, 0.5, 1 })
     local rgb = r == "stem" and M.stem_rgb(st.pressure) or ROLE_RGB[r]
     c:line(x + 8, h / 2, x + 22, h / 2, 3, rgb)
-    c:text(x + 27, h / 2 - 7, M.LABELS[r], 2, on and { 1, 1, 1, 1 } or { 0, 0, 0, 1 })
+    c:text(x + 27, h / 2 - 7, (organ and OV.LABELS or M.LABELS)[r], 2,
+           on and { 1, 1, 1, 1 } or { 0, 0, 0, 1 })
   end
   local x = 4 * bw
   c:text(x + 6, h / 2 - 7, format("-%3d +", st.nodes), 2, { 0, 0, 0, 1 })
@@ -450,11 +578,12 @@ end
 
 --- The pipeline of a sketch table: lsys.sketch's Sketch, its model, derived and
 -- interpreted. Raises the pipeline's error (a sketch that makes no plant yet).
-function M.pipeline (t)
+-- `org`: the organ (an Organ of lsys.sketch.organ; nil, the default leaf).
+function M.pipeline (t, org)
   local sk = sketch.load(t)
-  local m = sk:model { phyllotaxis = t.phyllotaxis }
+  local m = sk:model { phyllotaxis = t.phyllotaxis, organ = org }
   local s = m:derive()
-  return { sketch = sk, model = m, lstring = s, scene = m:interpret(s) }
+  return { sketch = sk, model = m, lstring = s, scene = m:interpret(s), organ = org }
 end
 
 M.HELP = [[
@@ -464,7 +593,10 @@ Delete / Backspace: delete the selected stroke   A: nodes and rays over the sket
 wheel over the sketch, [ ]: pressure of the points drawn next (nearer darker, farther lighter);
 a tablet pen's own pressure when X reports one
 + -: nodes per layer   P: phyllotaxis   Tab: function plots   Ctrl+Z: undo
-Ctrl+S: save the sketch   Ctrl+E: export the plant (.glb, .obj, .png) and the model (.lua)
+O: draw the organ (1 2 top view boundaries, 3 side view midrib, 4 front view section) or
+the plant again
+Ctrl+S: save the sketch (and the organ)   Ctrl+E: export the plant (.glb, .obj, .png) and
+the model (.lua, and .l for cpfg)
 over the plant: drag orbit, right drag pan, wheel zoom   R: reset view   F: fit
 S: screenshot   H: this help   Esc / Q: quit]]
 
@@ -479,10 +611,14 @@ Session.__index = Session
 
 function Session:status ()
   local st = self.st
-  local head = format("%d strokes  %d nodes/layer  %s  pressure %.2f  ", #st.strokes, st.nodes,
+  local head = format("%s%d strokes  %d nodes/layer  %s  pressure %.2f  ",
+                      st.mode == "organ" and "ORGAN  " or "", #st:list(), st.nodes,
                       st.phyllotaxis, st.pressure)
   local tail
   if self.error then tail = self.error
+  elseif self.organ_error then
+    tail = format("organ: %s (the plant shows the default leaf)  |  %d modules  %d triangles",
+                  self.organ_error, #self.result.lstring, self.result.scene.ntriangles)
   elseif self.result then
     tail = format("%d modules  %d triangles", #self.result.lstring, self.result.scene.ntriangles)
   else tail = "draw a stem (1), boundaries (2, 3) and inclination lines (4)" end
@@ -522,11 +658,31 @@ function Session:show_plots ()
   self.v:image(3, c:pixels(), w, h)
 end
 
--- Runs the pipeline on the sketch and posts the plant, or the error.
-function Session:compute (final)
+-- The organ the strokes of the organ make (built again when they changed), or nil and
+-- why not (no strokes: nil, nil).
+function Session:organ ()
+  local st = self.st
+  local drawing = st.drawing and st.drawing.list == st.organ_strokes
+  local key = st.organ_version .. (drawing and ":" .. #st.drawing.points or "")
+  if self.organ_key ~= key then
+    local t = st:organ_table()
+    self.organ_key, self.organ_built, self.organ_why = key, nil, nil
+    if t then
+      local ok, o = pcall(organs.load, t)
+      if ok then self.organ_built = o
+      else self.organ_why = first_line(tostring(o):gsub("^lsys%.sketch%.organ%.load: ", "")) end
+    end
+  end
+  return self.organ_built, self.organ_why
+end
+
+-- Runs the pipeline on the sketch and posts the plant and its plots, or the error.
+function Session:compute ()
   local st = self.st
   st.changed = false
-  local ok, r = pcall(self.pipeline, st:sketch())
+  local org, why = self:organ()
+  self.organ_error = why
+  local ok, r = pcall(self.pipeline, st:sketch(), org)
   if ok then
     self.result, self.error = r, nil
     self.v:post({ { scene = r.scene, modules = #r.lstring } },
@@ -536,7 +692,9 @@ function Session:compute (final)
     self.result, self.error = nil, first_line(r)
     self.v:post({ { scene = self.empty } }, { keep_camera = true, title = self.title })
   end
-  if final then self:show_plots() end
+  -- the plots follow the plant at every update, while drawing too: a plant beside "no
+  -- plant yet" (or functions of a sketch that no longer makes one) would be stale
+  self:show_plots()
 end
 
 -- Says once, at the first press on the sketch, whether a tablet's pressure is read.
@@ -562,8 +720,11 @@ function Session:export ()
   render(r.scene, { out = base .. ".png", width = 800, height = 800 })
   local files = { base .. ".glb", base .. ".obj", base .. ".png" }
   if r.sketch.save_model then
-    r.sketch:save_model(base .. ".lua")
+    r.sketch:save_model(base .. ".lua", { organ = r.organ })
     files[#files + 1] = base .. ".lua"
+    -- and for cpfg and L-studio, as the paper's program exported it (§7)
+    r.sketch:save_cpfg(base .. ".l", { organ = r.organ })
+    files[#files + 1] = base .. ".l (cpfg)"
   end
   self.st.status = "exported " .. table.concat(files, ", ")
   self.out(self.st.status .. "\n")
@@ -586,8 +747,9 @@ function Session:event (ev)
   elseif ev.type == "key" then
     local act = st:key(ev.key, ev.ctrl)
     if act == "save" then
-      local ok, err = pcall(st.save, st)
+      local ok, err, opath = pcall(st.save, st)
       if ok then self.out(format("saved %s\n", err)) else st.status = first_line(err) end
+      if ok and opath then self.out(format("saved %s\n", opath)) end
     elseif act == "export" then
       local ok, err = pcall(self.export, self)
       if not ok then st.status = "cannot export: " .. first_line(err) end
@@ -615,21 +777,23 @@ function M.session (v, st, opts)
     empty = model.lsystem({ axiom = "", name = "no plant" }):interpret(),
   }, Session)
   v:layout(M.layout(self.plots))
-  self:compute(true)
+  self:compute()
   self:show_sketch()
   return self
 end
 
 --- Opens the sketch window and runs it until it is closed. opts: `file` (the sketch file:
 -- read when it exists, where Ctrl+S saves), `width`, `height` (a new sketch's size),
--- `nodes`, `phyllotaxis`, `window` ({w, h}, default 1200 x 800), `pipeline` (default
--- M.pipeline), `out` (function writing the lines the program prints).
+-- `nodes`, `phyllotaxis`, `organ` (an Organ, drawn at the nodes and edited with O),
+-- `organ_file` (where Ctrl+S saves the organ), `window` ({w, h}, default 1200 x 800),
+-- `pipeline` (default M.pipeline), `out` (function writing the lines the program prints).
 function M.run (opts)
   opts = opts or {}
   local sk
   if opts.file and core.filestamp(opts.file) then sk = read.file(opts.file) end
   local st = M.new { sketch = sk, file = opts.file, width = opts.width, height = opts.height,
-                     nodes = opts.nodes, phyllotaxis = opts.phyllotaxis }
+                     nodes = opts.nodes, phyllotaxis = opts.phyllotaxis, organ = opts.organ,
+                     organ_file = opts.organ_file }
   local win = opts.window or { 1200, 800 }
   local v = core.viewer_open { width = win[1], height = win[2] }
   local self = M.session(v, st, opts)
@@ -644,7 +808,7 @@ function M.run (opts)
     end
     -- the plant follows the pen: at most every 50 ms while drawing, always at release
     if st.changed and (st.drawing == nil or now() - last >= 0.05) then
-      self:compute(st.drawing == nil and st.moving == nil)
+      self:compute()
       last = now()
       redraw = true
     end

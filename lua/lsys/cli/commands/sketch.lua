@@ -1,20 +1,46 @@
 --- `lsys sketch`: the sketch window, or with plot, model or render a sketch file's
--- positional functions, generated model or picture written to a file.
+-- positional functions, generated model (a Lua model file, or with --cpfg cpfg's files) or
+-- picture written to a file; --organ gives the organ drawn at the nodes.
 -- @module lsys.cli.commands.sketch
 local A = require "lsys.cli.args"
 local HELP = require("lsys.cli.help").help
 local render = require("lsys.render").render
 
-local tostring, tonumber, error, pcall, require = tostring, tonumber, error, pcall, require
-local string, math = string, math
+local tostring, tonumber, error, pcall, require, ipairs =
+      tostring, tonumber, error, pcall, require, ipairs
+local string, math, table = string, math, table
 local format = string.format
-local parse, out, usage, size_opt = A.parse, A.out, A.usage, A.size_opt
+local parse, out, usage, size_opt, isfile = A.parse, A.out, A.usage, A.size_opt, A.isfile
+local warn = require("lsys.warning").warn
 local _ENV = nil
 
 local SKETCH_OPTS = {
   size = "value", nodes = "value", phyllotaxis = "value", output = "value", help = "flag",
+  organ = "value", cpfg = "flag",
   short = { h = "help", o = "output" },
 }
+
+-- The leaf shapes of lsys.sketch.organ.leaf that --organ takes by name.
+local SHAPES = { ovate = true, lanceolate = true, elliptic = true, obovate = true,
+                 linear = true, cordate = true }
+
+-- A usage error unless --organ's value is a leaf shape or an organ file (.json).
+local function organ_usage (v)
+  if v ~= nil and not SHAPES[v] and not v:lower():find("%.json$") then
+    usage("sketch", "--organ expects a leaf shape (ovate, lanceolate, elliptic, obovate, " ..
+          "linear, cordate) or an organ file (.json), got '%s'", v)
+  end
+end
+
+-- --organ ORGAN: a leaf shape or an organ file (lsys.sketch.organ.load). Returns the Organ
+-- (nil for a file that is not there yet, in the window: the organ drawn is saved there)
+-- and the file.
+local function organ_opt (v, window)
+  if v == nil then return nil, nil end
+  if SHAPES[v] then return require("lsys.sketch.organ").leaf { shape = v }, nil end
+  if window and not isfile(v) then return nil, v end
+  return require("lsys.sketch.organ").load(v), v
+end
 
 -- --nodes and --phyllotaxis of `lsys sketch` as lsys.sketch.load options.
 local function sketch_load_opts (opts)
@@ -42,7 +68,12 @@ local function sketch_file_command (sub, opts, pos)
   if #pos < 2 then usage("sketch", "%s: a sketch FILE is required", sub) end
   if #pos > 2 then usage("sketch", "unexpected argument '%s'", pos[3]) end
   local file = pos[2]
-  local ext = sub == "model" and ".lua" or ".png"
+  if opts.cpfg and sub ~= "model" then usage("sketch", "%s: --cpfg applies to model", sub) end
+  if opts.organ and sub == "plot" then
+    usage("sketch", "plot: --organ applies to the window, model and render")
+  end
+  organ_usage(opts.organ)
+  local ext = sub == "model" and (opts.cpfg and ".l" or ".lua") or ".png"
   local outpath = opts.output or ((file:match("([^/]-)%.?[^./]*$") or "sketch") ..
                                   (sub == "plot" and "-functions" or "") .. ext)
   if not outpath:lower():find("%" .. ext .. "$") then
@@ -53,8 +84,9 @@ local function sketch_file_command (sub, opts, pos)
   if sub == "model" and w then usage("sketch", "model: --size applies to plot and render") end
   local sketch = require "lsys.sketch"
   local ok, err = pcall(function ()
+    local org = organ_opt(opts.organ)
     local sk = sketch.load(file, lo)
-    sketch_file_write(sub, sk, outpath, w, h)
+    sketch_file_write(sub, sk, outpath, w, h, org, opts.cpfg)
   end)
   -- the pipeline's messages name the file and the stroke; where in lsys they were raised
   -- is no news to the user
@@ -62,16 +94,27 @@ local function sketch_file_command (sub, opts, pos)
   return 0
 end
 
--- Writes what `lsys sketch plot|model|render` makes of the Sketch sk.
-function sketch_file_write (sub, sk, outpath, w, h)
+-- Writes what `lsys sketch plot|model|render` makes of the Sketch sk (with the Organ org).
+function sketch_file_write (sub, sk, outpath, w, h, org, cpfg)
   if sub == "plot" then
     require("lsys.sketch.plot").png(sk, outpath, { width = w or 900, height = h or 600 })
     out(format("wrote %s\n", outpath))
+  elseif sub == "model" and cpfg then
+    local files, inexact = sk:save_cpfg(outpath, { organ = org })
+    table.sort(files)
+    for _, f in ipairs(files) do out(format("wrote %s\n", f)) end
+    local base = outpath:match("([^/]*)%.l$")
+    out(format("cpfg -m %s.map %s.l %s.v (in %s) derives the plant as lsys does\n", base,
+               base, base, outpath:match("^(.*)/") or "."))
+    if inexact > 0 then
+      warn(format("lsys: sketch: %d readings of the functions lie closer together than " ..
+                  "cpfg tells apart (0.002 of the stem): cpfg's plant differs there", inexact))
+    end
   elseif sub == "model" then
-    sk:save_model(outpath)
+    sk:save_model(outpath, { organ = org })
     out(format("wrote %s\n", outpath))
   else
-    local m = sk:model {}
+    local m = sk:model { organ = org }
     local scene = m:interpret(m:derive())
     render(scene, { out = outpath, width = w or 800, height = h or 800 })
     out(format("wrote %s (%dx%d, %d triangles, %d lines)\n", outpath, w or 800, h or 800,
@@ -90,9 +133,13 @@ local function run (args)
   local w, h = size_opt("sketch", opts.size)
   local lo = sketch_load_opts(opts)
   if opts.output ~= nil then usage("sketch", "-o applies to plot, model and render") end
+  if opts.cpfg then usage("sketch", "--cpfg applies to model") end
+  organ_usage(opts.organ)
+  local ok, org, ofile = pcall(organ_opt, opts.organ, true)
+  if not ok then error((tostring(org):gsub("^[^:\n]*%.lua:%d+: ", "")), 0) end
   require("lsys.ui.sketch").run {
     file = pos[1], nodes = lo.nodes_per_layer, phyllotaxis = lo.phyllotaxis,
-    window = w and { w, h } or nil, out = out,
+    window = w and { w, h } or nil, out = out, organ = org, organ_file = ofile,
   }
   return 0
 end
