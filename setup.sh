@@ -21,6 +21,7 @@ PACKAGES=(
   graphviz                                 # `lsys components graph` pictures (dot)
   ffmpeg                                   # `lsys animate` videos and GIFs
   parallel                                 # GNU parallel: `lsys batch --shard` tests, bench
+  slurmctld slurmd slurm-client munge      # a one-node Slurm for the job-array test (seconds)
   less tmux                                # the REPL's pager, and a terminal for its test
 )
 BUILD_DIR=${BUILD_DIR:-build}

@@ -1,6 +1,9 @@
 -- Batch runs benchmark: jobs a second of `lsys batch` for 1,000 small plants
--- rendered to 256x256 PNG pictures, in one process and as 2 shards under GNU parallel
--- (`parallel -j2 lsys batch SPEC --shard {}/2 ::: 1 2`), and whether both give the same bytes.
+-- rendered to 256x256 PNG pictures, in one process, as 2 and 4 shards under GNU parallel
+-- (`parallel -j2 lsys batch SPEC --shard {}/2 ::: 1 2`), and as a Slurm job array of 1, 2
+-- and 4 tasks (`--shard slurm`, docs/batch.md §7) on a one-node cluster of this host's own
+-- (tests/slurm.lua; from submission until squeue shows none of the tasks), and whether each
+-- gives the same bytes as one process.
 --
 --   build/bin/lsys bench/batch.lua [JOBS]     # both parts
 --   build/bin/lsys bench/batch.lua stream     # the second part only
@@ -11,9 +14,11 @@
 -- start-up, spec, derivation, interpretation, rendering, PNG writing, manifest), best of 2
 -- runs in fresh folders. Prints lines for scripts:
 --   batch 1 process: 1000 jobs in 9.80 s, 102.0 jobs/s
---   batch 2 shards (GNU parallel -j2): 1000 jobs in 5.30 s, 188.7 jobs/s
---   batch ratio 2 shards / 1 process: 1.85; the same bytes: yes
--- Without GNU parallel (Debian package parallel) it says so and times one process only.
+--   batch 2 shards (GNU parallel -j2): 1000 jobs in 5.30 s, 188.7 jobs/s, ratio 1.85; the
+--   same bytes: yes
+--   batch 4 shards (Slurm job array): 1000 jobs in 7.10 s, 140.8 jobs/s, ratio 1.38; ...
+-- Without GNU parallel (Debian package parallel) or Slurm (slurmctld, slurmd, slurm-client,
+-- munge; root) it says so and leaves those lines out.
 --
 -- Then a sweep of 10^6 jobs (once expanded in memory, when its `--list` took 2.26 GB and
 -- 115 s): the CPU time, wall-clock time and peak memory (VmHWM) of a fresh `lsys batch`
@@ -91,17 +96,43 @@ if not STREAM_ONLY then
     end)(), B.clock_name, RUNS))
   local one = best("one", q(BIN) .. " batch spec.lua -d OUT")
   print(("batch 1 process: %d jobs in %.2f s, %.1f jobs/s"):format(njobs, one, njobs / one))
+  -- the same bytes as one process (the manifests are named by shard)
+  local function same (out)
+    local diff = sh("cd " .. q(dir) .. " && diff -r -q -x 'manifest*' one-1 " .. out)
+    return diff == "" and "yes" or "NO\n" .. diff
+  end
   if (sh("command -v parallel")) == "" then
-    print("batch 2 shards: GNU parallel is not installed (Debian: apt-get install parallel); "
+    print("batch shards: GNU parallel is not installed (Debian: apt-get install parallel); "
       .. "one process only")
   else
-    local two = best("two", "parallel -j2 " .. q(BIN) .. " batch spec.lua -d OUT --shard {}/2 "
-      .. "::: 1 2")
-    print(("batch 2 shards (GNU parallel -j2): %d jobs in %.2f s, %.1f jobs/s"):format(njobs,
-      two, njobs / two))
-    local diff = sh("cd " .. q(dir) .. " && diff -r -q -x 'manifest*' one-1 two-1")
-    print(("batch ratio 2 shards / 1 process: %.2f; the same bytes: %s"):format(one / two,
-      diff == "" and "yes" or "NO\n" .. diff))
+    for _, n in ipairs { 2, 4 } do
+      local list = {}
+      for k = 1, n do list[k] = k end
+      local t = best("par" .. n, ("parallel -j%d %s batch spec.lua -d OUT --shard {}/%d ::: %s")
+        :format(n, q(BIN), n, table.concat(list, " ")))
+      print(("batch %d shards (GNU parallel -j%d): %d jobs in %.2f s, %.1f jobs/s, ratio %.2f; "
+        .. "the same bytes: %s"):format(n, n, njobs, t, njobs / t, one / t, same("par" .. n .. "-1")))
+    end
+  end
+  -- a Slurm job array of 1, 2 and 4 tasks on a one-node cluster of this host's own
+  -- (tests/slurm.lua; the figures include Slurm's scheduling)
+  local here = (arg and arg[0] or "bench/batch.lua"):match("^(.*)/[^/]*$") or "."
+  local S = dofile(here .. "/../tests/slurm.lua")
+  local ok, why = S.start()
+  if not ok then
+    print("batch Slurm: " .. why)
+  else
+    write(dir .. "/array.sh", "#!/bin/bash\ncd \"$SLURM_SUBMIT_DIR\"\n" .. q(BIN)
+      .. " batch spec.lua -d \"$DEST\" --shard slurm\n")
+    for _, n in ipairs { 1, 2, 4 } do
+      -- (sbatch --wait polls every few seconds: this polls squeue every 0.1 s instead)
+      local t = best("slurm" .. n, "export " .. S.env .. "; id=$(DEST=OUT sbatch --parsable "
+        .. "--array=0-" .. n - 1 .. " --cpus-per-task=1 --output=/dev/null array.sh) && "
+        .. "while squeue -h -j \"$id\" | grep -q .; do sleep 0.1; done")
+      print(("batch %d shards (Slurm job array): %d jobs in %.2f s, %.1f jobs/s, ratio %.2f; "
+        .. "the same bytes: %s"):format(n, njobs, t, njobs / t, one / t, same("slurm" .. n .. "-1")))
+    end
+    S.stop()
   end
 end
 

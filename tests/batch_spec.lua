@@ -496,6 +496,47 @@ return { model = "plant.lua", seed = 11, width = 64, height = 64,
     assert.truthy(out:find("sweep.lua: 6 jobs: all done before", 1, true), out)
   end)
 
+  it("gives the same bytes in one process and in a Slurm job array of 4 shards", function()
+    -- docs/batch.md §7's job array, end to end on a one-node cluster of this host's own
+    -- (tests/slurm.lua: munged, slurmctld and slurmd in a private folder)
+    local S = require "tests.slurm"
+    local ok, why = S.start()
+    if not ok then
+      pending(why)
+      return
+    end
+    finally(S.stop)
+    H.write(dir .. "/sweep.lua", SWEEP)
+    local out, code = run("sweep.lua -d solo")
+    assert.equal(0, code, out)
+    H.write(dir .. "/array.sh", "#!/bin/bash\n#SBATCH --job-name=sweep\n#SBATCH --array=0-3\n"
+      .. "#SBATCH --cpus-per-task=1\n#SBATCH --output=logs/sweep-%A_%a.log\n"
+      .. "cd \"$SLURM_SUBMIT_DIR\"\n" .. q(ABSBIN) .. " batch sweep.lua -d arr --shard slurm\n")
+    out, code = sh("cd " .. q(dir) .. " && mkdir -p logs && " .. S.env
+      .. "sbatch --wait array.sh; exit $?")
+    assert.equal(0, code, out)
+    local logs = sh("cat " .. q(dir) .. "/logs/sweep-*.log")
+    for k = 1, 4 do
+      assert.truthy(logs:find("(shard " .. k .. "/4 of 6)", 1, true), logs)
+    end
+    local done = {}
+    for k = 1, 4 do
+      for job, st in pairs(statuses(dir .. "/arr/manifest-" .. k .. "-of-4.jsonl")) do
+        assert.equal("ok", st)
+        assert.is_nil(done[job], job .. " ran twice")
+        done[job] = k
+      end
+    end
+    assert.same({ ["0001"] = 1, ["0002"] = 2, ["0003"] = 3, ["0004"] = 4, ["0005"] = 1,
+                  ["0006"] = 2 }, done)
+    local all = files(dir .. "/solo")
+    assert.equal(6 * 7, #all)
+    assert.same(all, files(dir .. "/arr"))
+    for _, f in ipairs(all) do
+      assert.equal(H.read(dir .. "/solo/" .. f), H.read(dir .. "/arr/" .. f), f)
+    end
+  end)
+
   it("takes its shard from Slurm's variables, says what is wrong with the command line",
   function()
     H.write(dir .. "/p.csv", "model,R,out\nplant.lua,1.2,{id}.txt\nplant.lua,1.3,{id}.txt\n")
