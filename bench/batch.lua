@@ -111,7 +111,8 @@ if not STREAM_ONLY then
       local t = best("par" .. n, ("parallel -j%d %s batch spec.lua -d OUT --shard {}/%d ::: %s")
         :format(n, q(BIN), n, table.concat(list, " ")))
       print(("batch %d shards (GNU parallel -j%d): %d jobs in %.2f s, %.1f jobs/s, ratio %.2f; "
-        .. "the same bytes: %s"):format(n, n, njobs, t, njobs / t, one / t, same("par" .. n .. "-1")))
+        .. "the same bytes: %s"):format(n, n, njobs, t, njobs / t, one / t,
+                                        same("par" .. n .. "-1")))
     end
   end
   -- a Slurm job array of 1, 2 and 4 tasks on a one-node cluster of this host's own
@@ -130,7 +131,8 @@ if not STREAM_ONLY then
         .. "--array=0-" .. n - 1 .. " --cpus-per-task=1 --output=/dev/null array.sh) && "
         .. "while squeue -h -j \"$id\" | grep -q .; do sleep 0.1; done")
       print(("batch %d shards (Slurm job array): %d jobs in %.2f s, %.1f jobs/s, ratio %.2f; "
-        .. "the same bytes: %s"):format(n, njobs, t, njobs / t, one / t, same("slurm" .. n .. "-1")))
+        .. "the same bytes: %s"):format(n, njobs, t, njobs / t, one / t,
+                                        same("slurm" .. n .. "-1")))
     end
     S.stop()
   end

@@ -88,7 +88,9 @@ function S.start ()
   end
   local dir = sh("mktemp -d \"${TMPDIR:-/tmp}/lsys-slurm-XXXXXX\""):gsub("%s+$", "")
   if dir == "" then return nil, "cannot make a folder for the cluster" end
-  for _, d in ipairs { "state", "spool", "log" } do os.execute("mkdir -p " .. q(dir .. "/" .. d)) end
+  for _, d in ipairs { "state", "spool", "log" } do
+    os.execute("mkdir -p " .. q(dir .. "/" .. d))
+  end
   S.dir = dir
   -- ports from this process's id, so that two runs side by side differ
   local pid = tonumber(sh("echo $PPID")) or 0
