@@ -29,7 +29,7 @@ static int lstring_len (lua_State *L) {
 /* Pushes the text of modules [i, j) of 's', parameters with 'digits' significant digits
 ** (0: exact). */
 static void pushtext (lua_State *L, int idx, size_t i, size_t j, int digits) {
-  lsys_lstring *s = checklstring(L, idx);
+  lsys_lstring *s = lsysL_checklstring_any(L, idx);  /* formatted as it is: never widened */
   lsys_buf b = {0};
   if (lsys_lstring_format_digits(&b, s, lsysL_getalphabet(L), lsysL_ownernames(L, idx), i, j,
                                  digits) != LSYS_OK) {
@@ -46,7 +46,7 @@ static int lstring_tostring (lua_State *L) {
     lua_pushliteral(L, "lsys.Lstring (closed)");
     return 1;
   }
-  s = checklstring(L, 1);
+  s = lsysL_checklstring_any(L, 1);
   pushtext(L, 1, 0, s->n, 0);
   return 1;
 }
@@ -82,8 +82,9 @@ static int lstring_write (lua_State *L) {
   int st;
   if (fh != NULL) luaL_argcheck(L, fh->closef != NULL, 2, "attempt to use a closed file");
   else {
-    luaL_argexpected(L, lua_type(L, 2) == LUA_TSTRING, 2, "file or path");
-    path = lua_tostring(L, 2);
+    luaL_argexpected(L, lua_type(L, 2) == LUA_TSTRING || lua_type(L, 2) == LUA_TNUMBER, 2,
+                     "file or path");
+    path = lua_tostring(L, 2);                 /* a number becomes its text, like io.open's */
   }
   s = lsysL_checklstring_any(L, 1);            /* again: a finalizer may have closed it */
   if (fh != NULL) {
@@ -137,7 +138,7 @@ static int lstring_sub (lua_State *L) {
 /* s:text([i [, j [, digits]]]): the text of a range, parameters rounded to 'digits'
 ** significant digits (1 to 17; default: exact) */
 static int lstring_text (lua_State *L) {
-  lsys_lstring *s = checklstring(L, 1);
+  lsys_lstring *s = lsysL_checklstring_any(L, 1);
   size_t i = posrelat(luaL_optinteger(L, 2, 1), s->n);
   lua_Integer je = luaL_optinteger(L, 3, -1);
   lua_Integer digits = luaL_optinteger(L, 4, 0);
