@@ -4,8 +4,9 @@
 -- R = 1.456, 21 steps (bench/write_a.lua, write_b.lua and their cpfg twins write_a.l,
 -- write_b.l).
 --
---   build/bin/lsys bench/write.lua [--cpfg PATH]     (default: /work/oracle/cpfg/bin/cpfg,
---                                                     or $CPFG; skipped when missing)
+--   build/bin/lsys bench/write.lua [--cpfg PATH]     (or CPFG=PATH: a cpfg built for batch
+--                                                     use, docs/cpfg.md; without one, lsys
+--                                                     alone)
 --
 -- Whole processes, wall clock, best of 5, minus the same process on the model with 0
 -- steps (start-up); the file is written to a temporary folder (a real file, not
@@ -56,8 +57,8 @@ local function count (m)
 end
 
 local function main ()
-  local cpfg = arg[1] == "--cpfg" and arg[2] or os.getenv("CPFG") or "/work/oracle/cpfg/bin/cpfg"
-  local have_cpfg = io.open(cpfg, "r")
+  local cpfg = arg[1] == "--cpfg" and arg[2] or os.getenv("CPFG")
+  local have_cpfg = cpfg and cpfg ~= "" and io.open(cpfg, "r")
   if have_cpfg then have_cpfg:close() end
   local lsysbin = root .. "/build/bin/lsys"
   local dir = os.tmpname()
@@ -67,7 +68,10 @@ local function main ()
   print(string.format("lsys derive MODEL > file vs cpfg -g -str file (CPFG_SKIP_VV=1); whole "
     .. "process, wall clock, best of %d, start-up subtracted%s", RUNS,
     TIME and "" or "; no /usr/bin/time: no peak memory"))
-  if not have_cpfg then print("cpfg: skipped, " .. cpfg .. " is missing (--cpfg PATH)") end
+  if not have_cpfg then
+    print("cpfg: skipped, " .. (cpfg and cpfg ~= "" and (cpfg .. " is missing")
+      or "not given (--cpfg PATH or CPFG=PATH; docs/cpfg.md says how to build it)"))
+  end
   print(string.format("%-48s %9s %9s %7s %8s %8s %6s  %s", "model", "lsys M/s", "cpfg M/s",
     "ratio", "lsys MiB", "cpfg MiB", "ratio", "target >=2x, <=1x"))
   for _, m in ipairs(MODELS) do
