@@ -107,4 +107,14 @@ describe("Lstring:write", function()
     local s = dofile(path):derive()
     assert.equal(tostring(s) .. "\n", H.read(dir .. "/out.txt"))
   end)
+
+  it("makes lsys derive fail with the reason when its output cannot be written", function()
+    if not io.open("/dev/full", "w") then return end
+    local path = dir .. "/m.lua"
+    H.write(path, [[return require("lsys").lsystem { axiom = "F", steps = 7,
+      productions = "F --> F[+F]F[-F]F" }]])
+    local out, code = H.sh(("'%s' derive '%s' > /dev/full"):format(H.BIN, path))
+    assert.equal("lsys: cannot write the string: No space left on device\n", out)
+    assert.equal(1, code)
+  end)
 end)
