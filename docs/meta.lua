@@ -1471,6 +1471,15 @@ function Lstring:counts() end
 ---@return lsys.Lstring
 function Lstring:copy() end
 
+--- Writes the text of the string (the bytes of `tostring(s)`), then `tail`, to `target`: an
+--- open file, or a path replaced atomically once everything was written. Streamed from C in
+--- 64 KiB pieces: no Lua string of the whole text is made. Raises when the file cannot be
+--- written (the file at the path is then left as it was).
+---@param target file*|string
+---@param tail? string written after the text (default: nothing)
+---@return lsys.Lstring s
+function Lstring:write(target, tail) end
+
 --- Memory held by the string's arrays, in bytes (capacity, not length).
 ---@return integer
 function Lstring:bytes() end

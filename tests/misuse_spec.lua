@@ -29,7 +29,8 @@ local SKIP = { write_file = true, png_write = true, mkdir = true, viewer_open = 
                outfile = true, tempdir = true, sandbox_strings = true }
 -- the methods that write the file their first argument names (a string or a number) get a
 -- path in the temporary folder, never one of the random arguments
-local WRITES = { ["lsys.Scene:save"] = true, ["lsys.Canvas:save"] = true }
+local WRITES = { ["lsys.Scene:save"] = true, ["lsys.Canvas:save"] = true,
+                 ["lsys.Lstring:write"] = true }
 
 local function close (x) pcall(function () getmetatable(x).__close(x) end) end
 

@@ -290,22 +290,6 @@ int lsys_lstring_parse (lsys_lstring *s, const char *text, size_t len,
   return LSYS_OK;
 }
 
-int lsys_lstring_fmtnum_digits (char *buf, size_t size, double x, int digits) {
-  int prec;
-  if (x == 0) return snprintf(buf, size, signbit(x) ? "-0" : "0");
-  if (x == trunc(x) && fabs(x) < 1e15) return snprintf(buf, size, "%.0f", x);
-  if (digits > 0) return snprintf(buf, size, "%.*g", digits < 17 ? digits : 17, x);
-  for (prec = 15; prec <= 17; prec++) {
-    snprintf(buf, size, "%.*g", prec, x);
-    if (strtod(buf, NULL) == x) break;
-  }
-  return (int)strlen(buf);
-}
-
-int lsys_lstring_fmtnum (char *buf, size_t size, double x) {
-  return lsys_lstring_fmtnum_digits(buf, size, x, 0);
-}
-
 int lsys_lstring_buf_add (lsys_buf *b, const char *s, size_t len) {
   if (lsys_common_grow((void **)&b->p, &b->cap, b->n + len + 1, 1) != LSYS_OK) return LSYS_ENOMEM;
   memcpy(b->p + b->n, s, len);
@@ -317,55 +301,4 @@ int lsys_lstring_buf_add (lsys_buf *b, const char *s, size_t len) {
 void lsys_lstring_buf_free (lsys_buf *b) {
   LSYS_FREE(b->p);
   memset(b, 0, sizeof *b);
-}
-
-int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
-                         const lsys_names *decl, size_t i, size_t j) {
-  return lsys_lstring_format_digits(b, s, a, decl, i, j, 0);
-}
-
-int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
-                                const lsys_names *decl, size_t i, size_t j, int digits) {
-  /* the starts and lengths of the latest parameterless names: a new name
-  ** must not make any of them read back longer */
-  size_t rs[16], rl[16], nr = 0, k, off = lsys_lstring_poff(s, i), window = 4, q;
-  if (decl != NULL)
-    for (q = 0; q < decl->n; q++)
-      if (strlen(decl->v[q]) + 1 > window) window = strlen(decl->v[q]) + 1;
-  if (window > 16) window = 16;
-  for (k = i; k < j; k++) {
-    uint32_t c = lsys_lstring_code(s, k), np = LSYS_CNP(c), m;
-    const char *name = lsys_alphabet_name(a, LSYS_CSYM(c));
-    size_t len = strlen(name), start = b->n;
-    if (lsys_lstring_buf_add(b, name, len) != LSYS_OK) return LSYS_ENOMEM;
-    for (q = 0; q < nr; q++)
-      if (lsys_alphabet_scan(b->p + rs[q], b->n - rs[q], decl) != rl[q]) break;
-    if (q == nr && nr > 0 && np == 0 && lsys_alphabet_scan(b->p + start, len, decl) != len)
-      q = 0;                           /* the name itself would not read back */
-    if (q < nr) {                      /* it would: separate with a space */
-      b->n = start;
-      if (lsys_lstring_buf_add(b, " ", 1) != LSYS_OK ||
-          lsys_lstring_buf_add(b, name, len) != LSYS_OK)
-        return LSYS_ENOMEM;
-      nr = 0;
-      start++;
-    }
-    if (np > 0) nr = 0;
-    else {
-      if (nr == window) { memmove(rs, rs + 1, (nr - 1) * sizeof *rs);
-                          memmove(rl, rl + 1, (nr - 1) * sizeof *rl); nr--; }
-      rs[nr] = start; rl[nr] = len; nr++;
-    }
-    if (np == 0) continue;
-    for (m = 0; m < np; m++) {
-      char num[40];
-      int n = lsys_lstring_fmtnum_digits(num, sizeof num, s->par[off + m], digits);
-      if (lsys_lstring_buf_add(b, m == 0 ? "(" : ",", 1) != LSYS_OK ||
-          lsys_lstring_buf_add(b, num, (size_t)n) != LSYS_OK)
-        return LSYS_ENOMEM;
-    }
-    off += np;
-    if (lsys_lstring_buf_add(b, ")", 1) != LSYS_OK) return LSYS_ENOMEM;
-  }
-  return LSYS_OK;
 }

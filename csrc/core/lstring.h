@@ -116,11 +116,23 @@ int lsys_lstring_format (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
 int lsys_lstring_format_digits (lsys_buf *b, lsys_lstring *s, const lsys_alphabet *a,
                                 const lsys_names *decl, size_t i, size_t j, int digits);
 
+/* Receives the text lsys_lstring_write streams, in pieces of about 64 KiB; returns
+** LSYS_OK, or an error code that stops the writing and is returned by it. */
+typedef int (*lsys_lstring_sink) (void *ud, const char *p, size_t n);
+
+/* Writes the text of modules [i, j) (as lsys_lstring_format_digits: the same bytes)
+** to 'sink' in pieces, never holding more than a piece of it: for strings too big to
+** build as one block of text. Returns LSYS_OK, LSYS_ENOMEM, or the sink's error. */
+int lsys_lstring_write (lsys_lstring *s, const lsys_alphabet *a, const lsys_names *decl,
+                        size_t i, size_t j, int digits, lsys_lstring_sink sink, void *ud);
+
 /* Checks bracket balance; returns -1 when balanced, else the index of the
 ** first module that is unbalanced (a ']' with no '[' or an unclosed '['). */
 long long lsys_lstring_unbalanced (const lsys_lstring *s);
 
-/* Writes the shortest of %.15g/%.16g/%.17g that reads back as 'x'. */
+/* Writes the shortest of %.15g/%.16g/%.17g that reads back as 'x' (whole numbers below
+** 1e15 in full, as %.0f), the same bytes as printf and strtod would choose, found
+** with integer arithmetic where it is exact (lstring_write.c). */
 int lsys_lstring_fmtnum (char *buf, size_t size, double x);
 
 /* Writes 'x' with 'digits' significant digits (%.*g; 0: as lsys_lstring_fmtnum). */

@@ -1,11 +1,14 @@
 /*
 ** lsys.Lstring: the module string as a Lua userdata.
 */
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "lua_aux.h"
 #include "lua_lsys.h"
+#include "outfile.h"
 
 /* __gc and __close: idempotent; a string in use by a running operation is not
 ** freed (it cannot be collected then, but __close can be called on it). */
@@ -26,7 +29,7 @@ static int lstring_len (lua_State *L) {
 /* Pushes the text of modules [i, j) of 's', parameters with 'digits' significant digits
 ** (0: exact). */
 static void pushtext (lua_State *L, int idx, size_t i, size_t j, int digits) {
-  lsys_lstring *s = checklstring(L, idx);
+  lsys_lstring *s = lsysL_checklstring_any(L, idx);  /* formatted as it is: never widened */
   lsys_buf b = {0};
   if (lsys_lstring_format_digits(&b, s, lsysL_getalphabet(L), lsysL_ownernames(L, idx), i, j,
                                  digits) != LSYS_OK) {
@@ -43,8 +46,69 @@ static int lstring_tostring (lua_State *L) {
     lua_pushliteral(L, "lsys.Lstring (closed)");
     return 1;
   }
-  s = checklstring(L, 1);
+  s = lsysL_checklstring_any(L, 1);
   pushtext(L, 1, 0, s->n, 0);
+  return 1;
+}
+
+/* The sinks of s:write: a C stream (its errno kept), an output file. */
+typedef struct filesink { FILE *f; int err; } filesink;
+
+static int tofile (void *ud, const char *p, size_t n) {
+  filesink *fs = (filesink *)ud;
+  if (fwrite(p, 1, n, fs->f) == n) return LSYS_OK;
+  fs->err = errno ? errno : EIO;
+  return LSYS_EARG;
+}
+
+static int tooutfile (void *ud, const char *p, size_t n) {
+  lsys_outfile *o = (lsys_outfile *)ud;
+  lsys_outfile_write(o, p, n);
+  return o->err != 0 ? LSYS_EARG : LSYS_OK;
+}
+
+/* s:write(target [, tail]) -> s: writes the text of s (tostring's bytes) and then the
+** string 'tail' to 'target', an open Lua file (io.stdout) or a path, which is written
+** atomically (outfile.c); the text is streamed in pieces of 64 KiB, never built whole.
+** Raises when the file cannot be written (the target is then left as it was). */
+static int lstring_write (lua_State *L) {
+  lsys_lstring *s = lsysL_checklstring_any(L, 1);    /* a narrow string stays narrow */
+  luaL_Stream *fh = (luaL_Stream *)luaL_testudata(L, 2, LUA_FILEHANDLE);
+  size_t tlen;
+  const char *tail = luaL_optlstring(L, 3, "", &tlen), *path = NULL;
+  const lsys_alphabet *a = lsysL_getalphabet(L);
+  const lsys_names *decl = lsysL_ownernames(L, 1);
+  lsys_error e;
+  int st;
+  if (fh != NULL) luaL_argcheck(L, fh->closef != NULL, 2, "attempt to use a closed file");
+  else {
+    luaL_argexpected(L, lua_type(L, 2) == LUA_TSTRING || lua_type(L, 2) == LUA_TNUMBER, 2,
+                     "file or path");
+    path = lua_tostring(L, 2);                 /* a number becomes its text, like io.open's */
+  }
+  s = lsysL_checklstring_any(L, 1);            /* again: a finalizer may have closed it */
+  if (fh != NULL) {
+    filesink fs = { fh->f, 0 };
+    errno = 0;
+    st = lsys_lstring_write(s, a, decl, 0, s->n, 0, tofile, &fs);
+    if (st == LSYS_OK && tlen > 0) st = tofile(&fs, tail, tlen);
+    if (st == LSYS_OK && fflush(fh->f) != 0) { fs.err = errno ? errno : EIO; st = LSYS_EARG; }
+    if (st == LSYS_ENOMEM) return luaL_error(L, "not enough memory");
+    if (st != LSYS_OK) return luaL_error(L, "cannot write the string: %s", strerror(fs.err));
+  } else {
+    lsys_outfile o;
+    st = lsys_outfile_open(&o, path, &e);
+    if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
+    st = lsys_lstring_write(s, a, decl, 0, s->n, 0, tooutfile, &o);
+    if (st == LSYS_OK && tlen > 0) st = tooutfile(&o, tail, tlen);
+    if (st == LSYS_ENOMEM) {
+      lsys_outfile_abort(&o);
+      return luaL_error(L, "not enough memory");
+    }
+    st = lsys_outfile_commit(&o, &e);          /* reports a failed write, frees o */
+    if (st != LSYS_OK) return lsysL_raise(L, st, &e, 1);
+  }
+  lua_settop(L, 1);
   return 1;
 }
 
@@ -74,7 +138,7 @@ static int lstring_sub (lua_State *L) {
 /* s:text([i [, j [, digits]]]): the text of a range, parameters rounded to 'digits'
 ** significant digits (1 to 17; default: exact) */
 static int lstring_text (lua_State *L) {
-  lsys_lstring *s = checklstring(L, 1);
+  lsys_lstring *s = lsysL_checklstring_any(L, 1);
   size_t i = posrelat(luaL_optinteger(L, 2, 1), s->n);
   lua_Integer je = luaL_optinteger(L, 3, -1);
   lua_Integer digits = luaL_optinteger(L, 4, 0);
@@ -169,17 +233,20 @@ static int lstring_count (lua_State *L) {
 
 /* s:counts() -> { name = count, ... } for every module name in s */
 static int lstring_counts (lua_State *L) {
-  lsys_lstring *s = checklstring(L, 1);
+  lsys_lstring *s = lsysL_checklstring_any(L, 1);    /* counted as it is: never widened */
   lsys_alphabet *a = lsysL_getalphabet(L);
   size_t *n = (size_t *)lua_newuserdatauv(L, (a->n + 1) * sizeof *n, 0);
   size_t i;
   uint32_t k;
-  s = checklstring(L, 1);                   /* again: a finalizer may have closed it */
+  s = lsysL_checklstring_any(L, 1);         /* again: a finalizer may have closed it */
   memset(n, 0, (a->n + 1) * sizeof *n);
-  for (i = 0; i < s->n; i++) {
-    uint32_t sym = LSYS_CSYM(s->code[i]);
-    if (sym < a->n) n[sym]++;
-  }
+  if (s->sym8 != NULL)
+    for (i = 0; i < s->n; i++) { if (s->sym8[i] < a->n) n[s->sym8[i]]++; }
+  else
+    for (i = 0; i < s->n; i++) {
+      uint32_t sym = LSYS_CSYM(s->code[i]);
+      if (sym < a->n) n[sym]++;
+    }
   lua_newtable(L);
   for (k = 1; k < a->n; k++)
     if (n[k] > 0) {
@@ -306,7 +373,7 @@ static const luaL_Reg lstring_methods[] = {
   {"sub", lstring_sub}, {"text", lstring_text}, {"module", lstring_module}, {"set", lstring_set},
   {"insert", lstring_insert},
   {"modules", lstring_modules}, {"count", lstring_count}, {"counts", lstring_counts}, {"copy", lstring_copy},
-  {"bytes", lstring_bytes}, {NULL, NULL}
+  {"bytes", lstring_bytes}, {"write", lstring_write}, {NULL, NULL}
 };
 
 static const luaL_Reg lstring_meta[] = {

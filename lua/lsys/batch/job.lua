@@ -13,7 +13,7 @@ local strip_internal = require("lsys.util.errors").strip_internal
 local fs = require "lsys.util.fs"
 local hint = require("lsys.util.suggest").hint
 
-local pairs, ipairs, next, error, pcall, tostring = pairs, ipairs, next, error, pcall, tostring
+local pairs, ipairs, next, error, pcall = pairs, ipairs, next, error, pcall
 local os, math, string, table = os, math, string, table
 local format = string.format
 local join, dirname = F.join, F.dirname
@@ -117,7 +117,7 @@ local function run_job (job, claims, dir, ctx)
       if o.format == "png" then
         draw(sc, { out = path, width = job.width or B.SIZE, height = job.height or B.SIZE })
       elseif o.format == "lstring" then
-        core.write_file(path, tostring(s) .. "\n")
+        s:write(path, "\n")             -- streamed from C, atomically
       elseif o.format == "stats" then
         core.write_file(path, stats(job, m, s, sc))
       else

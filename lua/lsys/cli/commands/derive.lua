@@ -6,7 +6,7 @@ local S = require "lsys.cli.source"
 local HELP = require("lsys.cli.help").help
 
 local type, pairs, ipairs, tostring, pcall = type, pairs, ipairs, tostring, pcall
-local string, table, math = string, table, math
+local string, table, math, io = string, table, math, io
 local format = string.format
 local parse, out, clock, model_opts = A.parse, A.out, A.clock, A.model_opts
 local prepare, derive = S.prepare, S.derive
@@ -14,11 +14,17 @@ local _ENV = nil
 
 local DERIVE_OPTS = model_opts { stats = "flag", progress = "flag", view = false }
 
+-- The method 'name' of the Lstring 's', or nil when 's' has none.
+local function method (s, name)
+  local ok, f = pcall(function () return s[name] end)
+  return ok and type(f) == "function" and f or nil
+end
+
 -- The number of each module name in 's', as a sorted list of { name, count }.
 local function module_counts (s)
   local counts = {}
-  local ok, f = pcall(function () return s.counts end)
-  if ok and type(f) == "function" then  -- a C-side count when the Lstring has one
+  local f = method(s, "counts")
+  if f then                             -- a C-side count when the Lstring has one
     counts = f(s)
   else
     for _, name in s:modules() do counts[name] = (counts[name] or 0) + 1 end
@@ -39,7 +45,9 @@ local function run (args)
   local elapsed = clock() - t0
 
   if not opts.stats then
-    out(tostring(s), "\n")
+    local write = method(s, "write")
+    if write then write(s, io.stdout, "\n")  -- streamed from C, never one Lua string
+    else out(tostring(s), "\n") end
     return 0
   end
   local counts = module_counts(s)
