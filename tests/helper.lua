@@ -280,4 +280,14 @@ function H.golden (name, px, w, h)
 end
 -- }====================================================================
 
+--- A sketch stroke: n + 1 points evenly from (x0, y0) to (x1, y1), each with pressure p.
+function H.line (x0, y0, x1, y1, n, p)
+  local t = {}
+  for i = 0, n do
+    local f = i / n
+    t[#t + 1] = { x0 + f * (x1 - x0), y0 + f * (y1 - y0), p }
+  end
+  return t
+end
+
 return H

@@ -10,14 +10,7 @@ local sketch = require "lsys.sketch"
 local organ = require "lsys.sketch.organ"
 local cpfgw = require "lsys.sketch.cpfg"
 
-local function line (x0, y0, x1, y1, n, p)
-  local t = {}
-  for i = 0, n do
-    local f = i / n
-    t[#t + 1] = { x0 + f * (x1 - x0), y0 + f * (y1 - y0), p }
-  end
-  return t
-end
+local line = require("tests.helper").line
 
 -- The synthetic sketch of tests/sketch_spec.lua with a leaning stem and a tilted right
 -- boundary, so that every function has slopes; `p` a pressure (3D) or nil.

@@ -4,14 +4,7 @@
 local H = require "tests.helper"
 local sketch = require "lsys.sketch"
 
-local function line (x0, y0, x1, y1, n, p)
-  local t = {}
-  for i = 0, n do
-    local f = i / n
-    t[#t + 1] = { x0 + f * (x1 - x0), y0 + f * (y1 - y0), p }
-  end
-  return t
-end
+local line = require("tests.helper").line
 
 -- A vertical stem from (200, 500) up to (200, 100): L = 400 px; boundaries at x = 150 and
 -- 250 (d = 50 px = 0.125 stem lengths); horizontal inclination lines at y = 400, 300, 200
