@@ -129,6 +129,28 @@ describe("threads", function()
     assert.is_true(s:bytes() >= 2 * #s, "bytes: " .. s:bytes())
   end)
 
+  it("rewrite a model with cpfg's generator on the worker threads when it draws nothing",
+     function()
+    -- a step on the calling thread widens the string to two bytes a module; the worker
+    -- threads keep it at one, so the byte count tells which ran
+    local plain = lsys.lsystem { axiom = "F", random = "cpfg", threads = 2,
+                                 productions = "F --> F[+F]F[-F]F" }:derive(7)
+    assert.is_true(plain:bytes() < #plain + 64, "bytes: " .. plain:bytes())
+    -- ran() and a stochastic set take cpfg's numbers in the order of a scan: one thread
+    for _, p in ipairs { "F --> F[+F]F[-F]F : 1\nF --> F[-F]F : 1",
+                         "F : ran(1) < 0.5 --> F[+F]F[-F]F\nF --> FF" } do
+      local out = {}
+      for _, t in ipairs { 1, 2, 3 } do
+        local s = lsys.lsystem { axiom = "F", random = "cpfg", seed = 5, threads = t,
+                                 productions = p }:derive(7)
+        assert.is_true(#s > 8192, "a short string: " .. #s)
+        assert.is_true(s:bytes() >= 2 * #s, "bytes: " .. s:bytes())
+        out[t] = tostring(s)
+      end
+      assert.is_true(out[2] == out[1] and out[3] == out[1], "threads differ: " .. p)
+    end
+  end)
+
   it("leave the strings each and end_each receive as they were", function()
     for _, t in ipairs(THREADS) do
       local kept, ended = {}, {}

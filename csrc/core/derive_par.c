@@ -171,6 +171,14 @@ static int cruns (const lsys_rule *r) {
   return r->nmore == 0 && !(r->flags & LSYS_RF_DYN) && (r->vm != NULL || !(r->flags & LSYS_RF_CALL));
 }
 
+/* Whether rule r draws random numbers (ran, nran and what is made of them). */
+static int draws (const lsys_rule *r) {
+  int k;
+  for (k = 0; k < r->nvm; k++)
+    if (r->vm[k].op == LSYS_OP_RAN || r->vm[k].op == LSYS_OP_NRAN) return 1;
+  return 0;
+}
+
 static int hascond (const lsys_rule *r) {
   int k;
   for (k = 0; k < r->nvm; k++)
@@ -236,6 +244,8 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
     if ((P->pe = (pent *)LSYS_MALLOC(n * sizeof *P->pe)) == NULL) return 0;
     P->npe = n;
   }
+  for (si = 0; si < nsets && m->cpfg; si++)    /* cpfg's numbers come in the order of a */
+    if (sets[si] != NULL && sets[si]->stoch) return 0;     /* scan: rules that draw them too */
   for (k = 0; k < n; k++) {
     uint32_t nr = 0, b, first = NONE;
     pent *e = &P->pe[k];
@@ -243,7 +253,8 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
       const lsys_ruleset *s = sets[si];
       if (s == NULL || k >= s->nsym) continue;
       for (b = s->start[k]; b < s->start[k + 1]; b++) {
-        if (!cruns(&m->rules[s->byp[b]])) return 0;
+        const lsys_rule *r = &m->rules[s->byp[b]];
+        if (!cruns(r) || (m->cpfg && draws(r))) return 0;
         if (first == NONE) first = s->byp[b];
         nr++;
       }
@@ -767,7 +778,6 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
   size_t n = src->n, tot, ptot, c;
   lsys_lstring *seqout = dst == src ? &m->tmp : dst, *out;
   job *j;
-  if (m->cpfg) return LSYS_PAR_SEQ;       /* cpfg's numbers come in the order of a scan */
   if (n < m->parmin || n < 2) return LSYS_PAR_SEQ;      /* never on the thread count: the
                                     ** strings it makes are kept in other buffers */
   if (m->par == NULL) {
