@@ -742,6 +742,19 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
   for (i = 0; i < src->n; i++) {
+    const lsys_ruleset *s = sets[0];
+    size_t e = i, q = p;
+    while (e < src->n && (LSYS_CSYM(src->code[e]) >= s->nsym ||     /* modules no rule of */
+           s->start[LSYS_CSYM(src->code[e])] == s->start[LSYS_CSYM(src->code[e]) + 1])) {
+      q += LSYS_CNP(src->code[e]);                                  /* the set names: */
+      e++;                                                          /* copied as they are */
+    }
+    if (e > i && dst->n + (e - i) <= m->max_modules) {
+      if ((st = lsys_lstring_append(dst, src, i, e, p)) != LSYS_OK) return fail(m, st, i);
+      i = e - 1;
+      p = q;
+      continue;
+    }
     lsys_rng_at(m->cur, i);      /* one stream of draws for a module and what it becomes */
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
@@ -763,7 +776,8 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
 static int meter (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
-                   m->matchcap * (sizeof *m->match + sizeof *m->poff);
+                   m->matchcap * (sizeof *m->match + sizeof *m->poff) +
+                   lsys_derive_par_bytes(m);
   if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
   m->meter.limit = m->max_memory > 0 ? m->max_memory : lsys_common_memory_limit();

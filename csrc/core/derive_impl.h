@@ -62,6 +62,8 @@ int lsys_derive_needscratch (lsys_scratch *w, size_t nargs);
 int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
                                  lsys_ruleset *const *sets, int nsets);
 void lsys_derive_par_free (lsys_rules *m);
+/* The bytes the parallel step keeps between steps (the choices of its chunks). */
+size_t lsys_derive_par_bytes (const lsys_rules *m);
 
 /* Makes 's' wide within the running step's budget; exchanges two strings'
 ** contents (each keeps its meter). */

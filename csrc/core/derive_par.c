@@ -75,9 +75,21 @@ enum { FL_WIDE = 1, FL_GEN = 2, FL_SHRINK = 4 };
 enum { NK_COPY, NK_TPL, NK_SLOW };
 #define NTPL 32
 
+/* A chunk's choices: what counting found for each module of class PC_GEN
+** (its rule, NORULE when it is copied, and the parameters of its successor),
+** so that filling writes them without choosing again. */
+typedef struct gcache {
+  uint16_t *rid; size_t rcap;
+  double *par; size_t pcap;
+} gcache;
+
+#define NORULE 0xFFFF
+
 /* The workers' scratch, kept by the model between steps. */
 typedef struct lsys_par {
   lsys_scratch ws[LSYS_MAXTHREADS];
+  gcache gc[MAXCHUNKS];       /* by chunk; sized from the step before (gneed*) */
+  size_t gneedr, gneedp;      /* the most choices and parameters a chunk needed */
   pent *pe; size_t npe;       /* per symbol */
   uint8_t *t8; size_t nt8;    /* m->tcode as symbols */
   uint8_t *rnar; size_t nrnar;  /* per rule: its successor fits a narrow string */
@@ -96,6 +108,9 @@ typedef struct chunk {
   size_t fail;                /* filling: the module whose values failed, or SIZE_MAX */
   int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_derive_choose ran; a
                               ** successor shorter than its module */
+  size_t nr, npc;             /* choices kept in the chunk's gcache: entries, parameters */
+  size_t upto;                /* modules [a, upto) have their choices kept */
+  size_t needr, needp;        /* the choices and parameters the whole chunk had */
 } chunk;
 
 enum { PH_NP, PH_COUNT, PH_FILL };
@@ -108,7 +123,7 @@ typedef struct job {
   lsys_lstring *out;
   const view *v;
   lsys_ruleset *const *sets;
-  int nsets, phase, withnp, narrow, inplace;
+  int nsets, phase, withnp, narrow, inplace, keep;   /* keep: choices go in gcaches */
   const lsys_par *P;
   lsys_rng rng;               /* each worker draws from a copy */
   chunk ch[MAXCHUNKS];
@@ -129,11 +144,24 @@ void lsys_derive_par_free (lsys_rules *m) {
     LSYS_FREE(m->par->ws[k].args);
     LSYS_FREE(m->par->ws[k].alt);
   }
+  for (k = 0; k < MAXCHUNKS; k++) {
+    LSYS_FREE(m->par->gc[k].rid);
+    LSYS_FREE(m->par->gc[k].par);
+  }
   LSYS_FREE(m->par->pe);
   LSYS_FREE(m->par->t8);
   LSYS_FREE(m->par->rnar);
   LSYS_FREE(m->par);
   m->par = NULL;
+}
+
+size_t lsys_derive_par_bytes (const lsys_rules *m) {
+  size_t k, n = 0;
+  if (m->par == NULL) return 0;
+  for (k = 0; k < MAXCHUNKS; k++)
+    n += m->par->gc[k].rcap * sizeof *m->par->gc[k].rid +
+         m->par->gc[k].pcap * sizeof *m->par->gc[k].par;
+  return n;
 }
 
 int lsys_derive_default_threads (void) {
@@ -231,13 +259,15 @@ static int prepare (lsys_rules *m, lsys_par *P, int nt) {
 ** The class of every symbol (as the sequential step's fast loop, derive.c's
 ** fasttable, with rules on the expression machine and contexts besides).
 ** Returns 0 when a rule of the sets needs the calling thread, else 1 with
-** *needsp set when counting reads parameters.
+** *needsp set when counting reads parameters and *genp when a symbol is of
+** class PC_GEN.
 */
-static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *needsp) {
+static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *needsp,
+                     int *genp) {
   lsys_par *P = m->par;
   uint32_t k, n = m->ab->n;
   int si;
-  *needsp = 0;
+  *needsp = *genp = 0;
   if (P->npe < n) {
     LSYS_FREE(P->pe);
     P->npe = 0;
@@ -282,6 +312,7 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
       }
     }
     if (e->cls == PC_VMC || e->cls == PC_GEN) *needsp = 1;
+    if (e->cls == PC_GEN) *genp = 1;
     if (k < 256) {               /* narrow modules; wide ones, counted */
       uint32_t q;
       for (q = 0; q <= LSYS_MAXPARAMS; q++)
@@ -338,17 +369,52 @@ static void npchunk (job *j, chunk *c) {
   c->nsp = nsp;
 }
 
+/* The parameters of rule r's successor (arguments 'args', values 'vals') into op. */
+static void succpar (const lsys_rules *m, const lsys_rule *r, const double *args,
+                     const double *vals, double *op) {
+  uint32_t k;
+  for (k = 0; k < r->nsrc; k++) {   /* (no parameter sources at all: m->tsrc is NULL) */
+    const lsys_psrc *ps = &m->tsrc[r->src + k];
+    double x = ps->kind == LSYS_PS_CONST ? ps->value :
+               ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
+    op[k] = m->f32 ? lsys_round32(x) : x;
+  }
+}
+
+/* Keeps the choice for module i of class PC_GEN in the chunk's gcache, while
+** there is room: the first that finds none sets c->upto, and filling
+** chooses again from there on. */
+static void keepchoice (job *j, chunk *c, size_t i, const lsys_rule *r, const double *args,
+                        const double *vals) {
+  const lsys_rules *m = j->m;
+  const gcache *g = &j->P->gc[c - j->ch];
+  uint32_t nsrc = r != NULL ? r->nsrc : 0;
+  c->needr++;
+  c->needp += nsrc;
+  if (c->upto < c->b) return;
+  if (c->nr >= g->rcap || g->pcap - c->npc < nsrc) {
+    c->upto = i;
+    return;
+  }
+  g->rid[c->nr++] = r != NULL ? (uint16_t)(r - m->rules) : NORULE;
+  if (nsrc > 0) succpar(m, r, args, vals, g->par + c->npc);
+  c->npc += nsrc;
+}
+
 /* Counts module i (parameters from 'sp') the general way: adds to *cnt,
 ** *pcnt and *fl. Returns 0 when the step must run sequentially. */
-static int countslow (job *j, lsys_scratch *w, size_t i, uint16_t cd, size_t sp, size_t *cnt,
-                      size_t *pcnt, int *fl) {
+static int countslow (job *j, lsys_scratch *w, chunk *c, size_t i, uint16_t cd, size_t sp,
+                      size_t *cnt, size_t *pcnt, int *fl) {
   uint32_t np = LSYS_CNP(cd);
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   const double *args = j->spar + sp, *vals = NULL;
   const lsys_rule *r;
   if (e->cls <= PC_VM && e->pnp != np) r = NULL;        /* a copy */
   else if (pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
-  if (e->cls == PC_GEN) *fl |= FL_GEN;
+  if (e->cls == PC_GEN) {
+    *fl |= FL_GEN;
+    if (j->keep) keepchoice(j, c, i, r, args, vals);
+  }
   if (r != NULL) {
     *cnt += r->nsucc;
     *pcnt += r->nsrc;
@@ -369,12 +435,14 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
   const pent *pe = j->P->pe;
   size_t i, sp = c->sp, cnt = 0, pcnt = 0;
   int fl = 0;
+  c->nr = c->npc = c->needr = c->needp = 0;
+  c->upto = c->b;
   if (j->code8 != NULL) {                 /* narrow: no parameters */
     const uint8_t *code8 = j->code8, *nkind = j->P->nkind, *nlen = j->P->nlen;
     for (i = c->a; i < c->b; i++) {
       uint8_t b = code8[i];
       if (nkind[b] != NK_SLOW) cnt += nlen[b];
-      else if (!countslow(j, w, i, (uint16_t)LSYS_CODE(b, 0), 0, &cnt, &pcnt, &fl)) {
+      else if (!countslow(j, w, c, i, (uint16_t)LSYS_CODE(b, 0), 0, &cnt, &pcnt, &fl)) {
         c->bad = 1;
         return;
       }
@@ -406,7 +474,7 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
         pcnt += np;
         fl |= np > 0 || LSYS_CSYM(cd) > 255;
       }
-      else if (!countslow(j, w, i, cd, sp, &cnt, &pcnt, &fl)) {
+      else if (!countslow(j, w, c, i, cd, sp, &cnt, &pcnt, &fl)) {
         c->bad = 1;
         return;
       }
@@ -427,12 +495,7 @@ static void put (const lsys_rules *m, const lsys_rule *r, const double *args,
   const uint16_t *t = m->tcode + r->succ;
   uint32_t k;
   for (k = 0; k < r->nsucc; k++) oc[k] = t[k];
-  for (k = 0; k < r->nsrc; k++) {   /* (no parameter sources at all: m->tsrc is NULL) */
-    const lsys_psrc *ps = &m->tsrc[r->src + k];
-    double x = ps->kind == LSYS_PS_CONST ? ps->value :
-               ps->kind == LSYS_PS_ARG ? args[ps->idx] : vals[ps->idx];
-    op[k] = m->f32 ? lsys_round32(x) : x;
-  }
+  succpar(m, r, args, vals, op);
 }
 
 /* A module's values failed (or the chunk went wrong, 'bad'): every worker
@@ -446,7 +509,32 @@ static void halt (job *j, chunk *c, size_t i, int bad) {
 
 /* The output of a chunk being filled, from its end: codes down to o0,
 ** parameters down to p0. */
-typedef struct wout { uint16_t *o0, *oc; double *p0, *op; } wout;
+typedef struct wout {
+  uint16_t *o0, *oc; double *p0, *op;
+  const uint16_t *rid; const double *cp;   /* the chunk's kept choices, */
+  size_t nr, npc, upto;                    /* taken from the end */
+} wout;
+
+/* Sets the cursor of the choices kept for chunk c (none when not kept). */
+static void keptchoices (const job *j, const chunk *c, wout *o) {
+  const gcache *g = &j->P->gc[c - j->ch];
+  o->rid = g->rid; o->cp = g->par;
+  o->nr = c->nr; o->npc = c->npc;
+  o->upto = j->keep ? c->upto : c->a;
+}
+
+/* The kept choice of module i of class PC_GEN: 1 with *r (NULL: a copy) and
+** *kp, the successor's parameters; 0 when it was not kept. */
+static int kept (wout *o, const lsys_rules *m, size_t i, const lsys_rule **r,
+                 const double **kp) {
+  uint16_t id;
+  if (i >= o->upto || o->nr == 0) return 0;
+  id = o->rid[--o->nr];
+  *r = id == NORULE ? NULL : &m->rules[id];
+  if (*r != NULL) o->npc -= (*r)->nsrc;
+  *kp = o->cp + o->npc;
+  return 1;
+}
 
 /* Writes the successor of module i (parameters at 'args') the general way.
 ** Returns 1, 0 when its values failed, -1 when it does not fit (a bug). */
@@ -457,8 +545,19 @@ static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   const lsys_rule *r = NULL;
   const double *vals = NULL;
+  const double *kp;
   double a[LSYS_MAXPARAMS];
   if (e->pnp == np && e->cls == PC_PLAIN) r = &m->rules[e->rule];
+  else if (e->cls == PC_GEN && kept(o, m, i, &r, &kp)) {
+    if (r != NULL) {                               /* counting chose it */
+      if ((size_t)(o->oc - o->o0) < r->nsucc || (size_t)(o->op - o->p0) < r->nsrc) return -1;
+      o->oc -= r->nsucc;
+      o->op -= r->nsrc;
+      memcpy(o->oc, m->tcode + r->succ, r->nsucc * sizeof *o->oc);
+      if (r->nsrc > 0) memcpy(o->op, kp, r->nsrc * sizeof *o->op);
+      return 1;
+    }
+  }
   else if (e->cls > PC_PLAIN && pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
   if (r == NULL) {                                               /* a copy */
     if (o->oc == o->o0 || (size_t)(o->op - o->p0) < np) return -1;
@@ -489,6 +588,7 @@ static void fillwide (job *j, lsys_scratch *w, chunk *c) {
   o.oc = o.o0 + c->cnt;
   o.p0 = j->out->par + c->po;
   o.op = o.p0 + c->pcnt;
+  keptchoices(j, c, &o);
   for (i = c->b; i-- > c->a;) {
     uint16_t cd = srccode(j, i);
     uint32_t np = LSYS_CNP(cd), k;
@@ -548,6 +648,8 @@ static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
   const uint8_t *code8 = j->code8;
   uint8_t *base = j->out->sym8, *o0 = base + c->o, *oc = o0 + c->cnt;
   size_t i, sp = c->sp + c->nsp;
+  wout ko;
+  keptchoices(j, c, &ko);
   for (i = c->b; i-- > c->a;) {
     uint16_t cd;
     if (code8 != NULL) {                  /* narrow to narrow: the usual case */
@@ -585,7 +687,8 @@ static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
       c->lo = i + 1;
       return;
     }
-    if (pick(j, w, i, cd, &args, &vals, &r) < 0) { halt(j, c, i, 0); return; }
+    if (e->cls == PC_GEN && kept(&ko, j->m, i, &r, &vals)) {}    /* counting chose it */
+    else if (pick(j, w, i, cd, &args, &vals, &r) < 0) { halt(j, c, i, 0); return; }
     if (r == NULL) {
       if (oc == o0) { halt(j, c, i, 1); return; }
       *--oc = (uint8_t)LSYS_CSYM(cd);
@@ -741,6 +844,46 @@ static int firsterror (job *j) {
   return lsys_seterror(&m->err, LSYS_ERULE, (size_t)-1, "a step on several threads failed");
 }
 
+/* Room in each chunk's gcache for the choices counting finds, as many a
+** module as the chunks of the step before needed (a quarter the first time)
+** and a quarter more; none when the budget has no room for it (filling then
+** chooses again). */
+static void keeproom (job *j, const lsys_lstring *src) {
+  lsys_rules *m = j->m;
+  lsys_par *P = m->par;
+  size_t c, len = j->ch[0].b - j->ch[0].a + 1;
+  size_t wr = P->gneedr > 0 ? P->gneedr : len / 4;    /* per chunk of this step's size */
+  size_t wp = P->gneedp > 0 || src->npar == 0 ? P->gneedp : len / 4;
+  j->keep = m->nrules < NORULE;
+  wr += wr / 4 + 16;
+  wp += wp > 0 ? wp / 4 + 16 : 0;
+  for (c = 0; c < j->nch && j->keep; c++) {
+    gcache *g = &P->gc[c];
+    if ((g->rcap < wr && !lsys_common_meter_fits(&m->meter, (wr - g->rcap) * sizeof *g->rid)) ||
+        (g->pcap < wp && !lsys_common_meter_fits(&m->meter, (wp - g->pcap) * sizeof *g->par)) ||
+        lsys_common_grow_metered((void **)&g->rid, &g->rcap, wr, sizeof *g->rid, &m->meter)
+          != LSYS_OK ||
+        lsys_common_grow_metered((void **)&g->par, &g->pcap, wp, sizeof *g->par, &m->meter)
+          != LSYS_OK)
+      j->keep = 0;
+  }
+}
+
+/* What the chunks' gcaches needed, scaled to the next step's string of n
+** modules (its chunks are larger by as much). */
+static void keptneed (job *j, size_t n) {
+  lsys_par *P = j->m->par;
+  size_t c, r = 0, p = 0;
+  double grow = j->nch > 0 && j->ch[j->nch - 1].b > 0 ? (double)n / j->ch[j->nch - 1].b : 1;
+  for (c = 0; c < j->nch; c++) {
+    if (j->ch[c].needr > r) r = j->ch[c].needr;
+    if (j->ch[c].needp > p) p = j->ch[c].needp;
+  }
+  if (grow < 1) grow = 1;
+  P->gneedr = (size_t)(r * grow);
+  P->gneedp = (size_t)(p * grow);
+}
+
 /* Counts: the chunks' parameters when counting reads them, then the
 ** successors. Returns 0 when the step must run sequentially. */
 static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
@@ -774,7 +917,8 @@ static int room (job *j, lsys_lstring *src, lsys_lstring *out, size_t tot, size_
 
 int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, const view *v,
                                  lsys_ruleset *const *sets, int nsets) {
-  int nt = m->threads > 0 ? m->threads : lsys_derive_default_threads(), needsp, flags, st = LSYS_OK;
+  int nt = m->threads > 0 ? m->threads : lsys_derive_default_threads(), needsp, gen, flags;
+  int st = LSYS_OK;
   size_t n = src->n, tot, ptot, c;
   lsys_lstring *seqout = dst == src ? &m->tmp : dst, *out;
   job *j;
@@ -784,7 +928,7 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
     if ((m->par = (lsys_par *)LSYS_MALLOC(sizeof *m->par)) == NULL) return LSYS_PAR_SEQ;
     memset(m->par, 0, sizeof *m->par);
   }
-  if (!prepare(m, m->par, nt) || !classify(m, sets, nsets, &needsp)) return LSYS_PAR_SEQ;
+  if (!prepare(m, m->par, nt) || !classify(m, sets, nsets, &needsp, &gen)) return LSYS_PAR_SEQ;
   if ((j = (job *)LSYS_MALLOC(sizeof *j)) == NULL) return LSYS_PAR_SEQ;
   memset(j, 0, sizeof *j);
   j->m = m; j->v = v; j->P = m->par;
@@ -794,7 +938,9 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
   j->rng = *m->cur;
   atomic_init(&j->stop, 0);
   cut(j, n, nt);
+  if (gen) keeproom(j, src);
   if (!count(j, src, needsp, nt) || !prefix(j, &tot, &ptot, &flags)) goto seq;
+  if (j->keep) keptneed(j, tot);
   j->narrow = !(flags & 1) && lsys_rules_setsize(m, LSYS_DECOMP, 0, 0) <= 0;
   j->inplace = dst == src && v->match == NULL && !(flags & 4) &&
                j->narrow == (src->sym8 != NULL);
