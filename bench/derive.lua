@@ -37,6 +37,18 @@ local MODELS = {
     cpfg = "#define R 1.456\nAxiom: A(1)\nA(s) --> F(s)[+A(s/R)][-A(s/R)]\n", cpfg_ratio = 3,
   },
 }
+-- vlab's parametric models, run from their own files (`--vlab DIR`, or VLAB=DIR: vlab's
+-- oofs/ext folder): the object folder is copied to a temporary one, its `#define STEPS` set
+-- to `steps` so that the string reaches millions of modules, and both programs derive it
+-- from there (cpfg as its specifications file runs it).
+local VLAB = {
+  { title = "(v1) vlab 07-fractal-ferns", steps = 36,
+    dir = "11-CPFG/ext/01-Introduction/ext/07-fractal-ferns",
+    l = "leaf.l", v = "leaf.v", palette = "-m leaf.map" },
+  { title = "(v2) vlab 10-sympodial", steps = 340,
+    dir = "11-CPFG/ext/02-Mod-vis-3D/ext/10-sympodial",
+    l = "plant.l", v = "plant.v", palette = "-M material.mat" },
+}
 local RUNS = 3
 local PEER_TIMEOUT = 600          -- seconds per peer process
 
@@ -107,6 +119,20 @@ local function run_child (name, steps)
 
   io.write(string.format("RESULT model=%s steps=%d modules=%d length=%d seconds=%.9f peak_kib=%d\n",
     name, steps, modules, length, best, hwm or -1))
+end
+
+-- child "vlab": the vlab object folder `dir` derived once ("whole"), or its modules over all
+-- steps ("count", printed)
+local function run_vlab (how, dir)
+  local lsys = load_lsys()
+  local m = lsys.cpfg.load_object(dir)
+  if how == "count" then
+    local modules = 0
+    m:derive(nil, { each = function (k, s) if k > 0 then modules = modules + #s end end })
+    io.write("MODULES ", modules, "\n")
+  else
+    io.write(#m:derive(), "\n")
+  end
 end
 
 -- child "whole": derive once and exit, for the whole-process timing beside cpfg
@@ -213,7 +239,66 @@ local function versus_cpfg (cpfg, dir, name, modules)
            cpeak = cpeak, lpeak = lpeak, cstart = c0, lstart = l0 }
 end
 
-local function cpfg_table (cpfg, results)
+-- A copy of vlab model `v` in `dir` (a fresh folder) with its STEPS set to `steps`.
+local function vlab_copy (vlab, v, dir, steps)
+  assert(os.execute("rm -rf " .. shell_quote(dir) .. " && cp -r " ..
+    shell_quote(vlab .. "/" .. v.dir) .. " " .. shell_quote(dir)))
+  local path = dir .. "/" .. v.l
+  local text = assert(read_file(path), "cannot read " .. path)
+  local n
+  text, n = ("\n" .. text):gsub("\n#define STEPS [^\n]*", "\n#define STEPS " .. steps, 1)
+  text = text:sub(2)
+  assert(n == 1, path .. " has no #define STEPS")
+  local f = assert(io.open(path, "w"))
+  f:write(text)
+  f:close()
+end
+
+-- lsys and cpfg on vlab model `v`, whole processes as `whole` times them, start-up (the
+-- model at 0 steps) subtracted.
+local function versus_vlab (cpfg, vlab, tmp, v)
+  local R = 5
+  local function at (steps)
+    local dir = string.format("%s/m%d", tmp, steps)
+    vlab_copy(vlab, v, dir, steps)
+    return dir
+  end
+  local d0, d1 = at(0), at(v.steps)
+  local counted = capture(self_command() .. " vlab count " .. shell_quote(d1))
+  local modules = tonumber(counted:match("MODULES (%d+)"))
+  if not modules then error("lsys failed on " .. v.dir .. ":\n" .. counted, 0) end
+  local function cpfg_cmd (dir)
+    return "sh -c " .. shell_quote(string.format(                 -- in the model's folder
+      "cd %s && CPFG_SKIP_VV=1 exec %s -g %s -strb /dev/null %s %s",
+      shell_quote(dir), shell_quote(cpfg), v.palette, v.l, v.v))
+  end
+  local function lsys_cmd (dir)
+    return self_command() .. " vlab whole " .. shell_quote(dir)
+  end
+  local c0 = whole(cpfg_cmd(d0), R)
+  local c1, cpeak = whole(cpfg_cmd(d1), R)
+  local l0 = whole(lsys_cmd(d0), R)
+  local l1, lpeak = whole(lsys_cmd(d1), R)
+  return { cpfg = modules / math.max(c1 - c0, 1e-9), lsys = modules / math.max(l1 - l0, 1e-9),
+           cpeak = cpeak, lpeak = lpeak, cstart = c0, lstart = l0, modules = modules }
+end
+
+-- One row of the table against cpfg.
+local function cpfg_row (title, r, target)
+  local ratio = r.lsys / r.cpfg
+  local mratio = r.lpeak and r.cpeak and r.lpeak / r.cpeak
+  print(string.format("%-38s %10.1f %10.1f %6.2fx %-12s %9s %9s %7s %-10s", title,
+    r.lsys / 1e6, r.cpfg / 1e6, ratio,
+    string.format(">=%dx %s", target, ratio >= target and "PASS" or "MISS"),
+    r.lpeak and string.format("%.1f", mib(r.lpeak)) or "?",
+    r.cpeak and string.format("%.1f", mib(r.cpeak)) or "?",
+    mratio and string.format("%.2fx", mratio) or "?",
+    mratio and ("<=1x " .. (mratio <= 1 and "PASS" or "MISS")) or ""))
+  print(string.format("  (start-up: lsys %.1f ms, cpfg %.1f ms%s)", r.lstart * 1e3,
+    r.cstart * 1e3, r.modules and string.format("; %d modules", r.modules) or ""))
+end
+
+local function cpfg_table (cpfg, results, vlab)
   local dir = os.tmpname()
   os.remove(dir)
   assert(os.execute("mkdir -p " .. shell_quote(dir)))
@@ -229,24 +314,23 @@ local function cpfg_table (cpfg, results)
     if not ok then
       print(string.format("%-38s cpfg run failed: %s", m.title, tostring(r)))
     else
-      local ratio = r.lsys / r.cpfg
-      local mratio = r.lpeak and r.cpeak and r.lpeak / r.cpeak
-      print(string.format("%-38s %10.1f %10.1f %6.2fx %-12s %9s %9s %7s %-10s", m.title,
-        r.lsys / 1e6, r.cpfg / 1e6, ratio,
-        string.format(">=%dx %s", m.cpfg_ratio, ratio >= m.cpfg_ratio and "PASS" or "MISS"),
-        r.lpeak and string.format("%.1f", mib(r.lpeak)) or "?",
-        r.cpeak and string.format("%.1f", mib(r.cpeak)) or "?",
-        mratio and string.format("%.2fx", mratio) or "?",
-        mratio and ("<=1x " .. (mratio <= 1 and "PASS" or "MISS")) or ""))
-      print(string.format("  (start-up: lsys %.1f ms, cpfg %.1f ms)", r.lstart * 1e3,
-        r.cstart * 1e3))
+      cpfg_row(m.title, r, m.cpfg_ratio)
     end
+  end
+  if vlab then
+    for _, v in ipairs(VLAB) do
+      local ok, r = pcall(versus_vlab, cpfg, vlab, dir, v)
+      if not ok then print(string.format("%-38s failed: %s", v.title, tostring(r)))
+      else cpfg_row(string.format("%s, %d steps", v.title, v.steps), r, 3) end
+    end
+  else
+    print("vlab models: not given (--vlab DIR or VLAB=DIR, vlab's oofs/ext folder)")
   end
   os.execute("rm -rf " .. shell_quote(dir))
 end
 local function mrate (r) return r.modules / r.seconds / 1e6 end
 
-local function main (cpfg)
+local function main (cpfg, vlab)
   local lsys = load_lsys()
   print(string.format("lsys %s derivation benchmark (%s; best of %d, %s)",
     lsys.version or "?", _VERSION, RUNS, clock_name))
@@ -267,7 +351,7 @@ local function main (cpfg)
   end
 
   if cpfg then
-    cpfg_table(cpfg, results)
+    cpfg_table(cpfg, results, vlab)
   else
     print()
     print("cpfg: not given (--cpfg PATH or CPFG=PATH; docs/cpfg.md says how to build it): "
@@ -322,14 +406,18 @@ if MODELS[mode] then
   run_child(mode, tonumber(arg[2]) or MODELS[mode].steps)
 elseif mode == "whole" and MODELS[arg[2]] then
   run_whole(arg[2], tonumber(arg[3]) or MODELS[arg[2]].steps)
-elseif mode == nil or mode == "--cpfg" then
-  local cpfg = mode == "--cpfg" and arg[2] or os.getenv("CPFG")
-  if mode == "--cpfg" and not cpfg then
-    io.stderr:write("derive.lua: --cpfg needs the path of a cpfg program\n")
-    os.exit(2)
-  end
-  main(cpfg ~= "" and cpfg or nil)
+elseif mode == "vlab" and (arg[2] == "whole" or arg[2] == "count") and arg[3] then
+  run_vlab(arg[2], arg[3])
 else
-  io.stderr:write("usage: derive.lua [--cpfg PATH] | [a|b [STEPS]]\n")
-  os.exit(2)
+  local opts, k = { cpfg = os.getenv("CPFG"), vlab = os.getenv("VLAB") }, 1
+  while arg and arg[k] do
+    local o = arg[k]:match("^%-%-(%a+)$")
+    if (o ~= "cpfg" and o ~= "vlab") or not arg[k + 1] then
+      io.stderr:write("usage: derive.lua [--cpfg PATH] [--vlab DIR] | [a|b [STEPS]]\n")
+      os.exit(2)
+    end
+    opts[o] = arg[k + 1]
+    k = k + 2
+  end
+  main(opts.cpfg ~= "" and opts.cpfg or nil, opts.vlab ~= "" and opts.vlab or nil)
 end

@@ -40,6 +40,47 @@ describe("threads", function()
                  14, 50000)
   end)
 
+  it("give Lua's values for conditions and values of one operation (run without the stack)",
+     function()
+    -- the worker threads run such programs directly (expr.h, lsys_expr_fast): the same
+    -- string as the rules written as Lua functions, which run on the calling thread
+    local axiom = H.rep("A(0,2)A(1,3)A(2.5,0.7)E(4)", 3000)
+    local text = lsys.lsystem { axiom = axiom, threads = 2, productions = {
+      "A(x, y) : x < 3 --> A(x + 1, y) B(x * y, 3 - x, x / 4, 5 / y, y - x, x)",
+      "A(x, y) : x >= 3 --> C(y)",
+      "B(a, b, c, d, e, f) --> B(a + 0.5, b, c, d, e, f)",
+      "C(y) : y == 2 --> D",
+      "C(y) : y ~= 3 --> C(y * 1.5)",
+      "E(z) : z <= 4 --> E(z - 0.25)",
+      "E(z) : z > 3.5 --> F",
+    } }
+    local P = lsys.produce
+    local lua = lsys.lsystem { axiom = axiom, productions = {
+      { "A(x, y)", function (x, y)
+          if x < 3 then
+            return P("A(?,?)B(?,?,?,?,?,?)", x + 1, y, x * y, 3 - x, x / 4, 5 / y, y - x, x)
+          end
+          if x >= 3 then return P("C(?)", y) end
+        end },
+      { "B(a, b, c, d, e, f)", function (a, b, c, d, e, f)
+          return P("B(?,?,?,?,?,?)", a + 0.5, b, c, d, e, f)
+        end },
+      { "C(y)", function (y)
+          if y == 2 then return P("D") end
+          if y ~= 3 then return P("C(?)", y * 1.5) end
+        end },
+      { "E(z)", function (z)
+          if z <= 4 then return P("E(?)", z - 0.25) end
+          if z > 3.5 then return P("F") end
+        end },
+    } }
+    local a, b = tostring(text:derive(5)), tostring(lua:derive(5))
+    assert.equal(567000, #a)
+    assert.is_true(a == b, "the strings differ")
+    assert.equal("DB(5,1,0.5,2.5,0,2)B(3.5,2,0.25,2.5,1,1)B(2,3,0,2.5,2,0)C(3)"
+      .. "B(7.5,1,0.5,1.6666666666666667,1,2)", a:sub(1, 95))
+  end)
+
   it("give the same stochastic string", function()
     same_for_all({ axiom = "F", seed = 7, productions = "F --> F[+F]F : 1\nF --> F[-F]F : 2\n"
                    .. "F --> FF : 1" }, 9, 20000)

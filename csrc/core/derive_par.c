@@ -40,12 +40,16 @@
 #define MAXCHUNKS 256
 #define CHUNKMIN 2048             /* modules: smaller chunks cost more than they share */
 
+#define NFAST 4                   /* rules of a symbol of class PC_FAST, at most */
+
 /* What a worker does with a module of a symbol. */
 enum {
   PC_COPY,      /* no rule: copied */
   PC_PLAIN,     /* one rule that always applies: its template */
   PC_VM,        /* one rule on the expression machine, no condition */
   PC_VMC,       /* the same with a condition */
+  PC_FAST,      /* up to NFAST rules without contexts or weights, each a program of
+                ** lsys_expr_fast's form (or a template): the first that applies */
   PC_GEN,       /* contexts, weights, several rules, groups: lsys_derive_choose */
   PC_SEQ        /* the sequential step must run */
 };
@@ -56,9 +60,12 @@ enum {
 typedef struct pent {
   uint8_t cls, pnp, nar;      /* nar: the rule's successor fits a narrow string */
   uint8_t fl;                 /* what the rule's successor asks of the string (FL_*) */
+  uint8_t pargs;              /* the successor takes parameters of the module's own */
   uint32_t nsucc, nsrc, rule;
   const uint16_t *t;
   const uint8_t *t8;          /* the template as symbols (when nar) */
+  lsys_xfast fx;              /* PC_VM: the values without the stack machine (fx.ok) */
+  uint32_t nfr, fr[NFAST];    /* PC_FAST: the rules, in the order they are tried */
 } pent;
 
 #define NOPNP 0xFF
@@ -93,6 +100,7 @@ typedef struct lsys_par {
   pent *pe; size_t npe;       /* per symbol */
   uint8_t *t8; size_t nt8;    /* m->tcode as symbols */
   uint8_t *rnar; size_t nrnar;  /* per rule: its successor fits a narrow string */
+  lsys_xfast *rfx; size_t nrfx; /* per rule: its program without the stack machine */
   uint8_t nkind[256], nlen[256];
   uint64_t wcount[256 << LSYS_NPBITS];  /* codes of symbols below 256: CW_SLOW, or the
                               ** successor's modules, parameters << 24 and FL_* << 48 */
@@ -151,6 +159,7 @@ void lsys_derive_par_free (lsys_rules *m) {
   LSYS_FREE(m->par->pe);
   LSYS_FREE(m->par->t8);
   LSYS_FREE(m->par->rnar);
+  LSYS_FREE(m->par->rfx);
   LSYS_FREE(m->par);
   m->par = NULL;
 }
@@ -232,6 +241,12 @@ static int prepare (lsys_rules *m, lsys_par *P, int nt) {
   uint32_t q;
   if (!bytes(&P->t8, &P->nt8, m->ntcode + 1) || !bytes(&P->rnar, &P->nrnar, m->nrules + 1))
     return 0;
+  if (P->nrfx < m->nrules + 1) {
+    LSYS_FREE(P->rfx);
+    P->nrfx = 0;
+    if ((P->rfx = (lsys_xfast *)LSYS_MALLOC((m->nrules + 1) * sizeof *P->rfx)) == NULL) return 0;
+    P->nrfx = m->nrules + 1;
+  }
   for (k = 0; k < m->ntcode; k++) P->t8[k] = (uint8_t)LSYS_CSYM(m->tcode[k]);
   for (k = 0; k < m->nrules; k++) {
     const lsys_rule *r = &m->rules[k];
@@ -241,6 +256,10 @@ static int prepare (lsys_rules *m, lsys_par *P, int nt) {
       nar = LSYS_CNP(c) == 0 && LSYS_CSYM(c) < 256;
     }
     P->rnar[k] = (uint8_t)nar;
+    memset(&P->rfx[k], 0, sizeof P->rfx[k]);
+    if (r->vm != NULL) lsys_expr_fast(r->vm, r->nvm, &P->rfx[k]);
+    else P->rfx[k].ok = !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN));     /* a template */
+    if (P->rfx[k].ok && P->rfx[k].n != (int)r->nvals) P->rfx[k].ok = 0;
     if (r->nargs + r->nvals + 1 > nargs) nargs = r->nargs + r->nvals + 1;
     nalt += ALTHEAD + r->nargs + r->nvals;
   }
@@ -277,8 +296,10 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
   for (si = 0; si < nsets && m->cpfg; si++)    /* cpfg's numbers come in the order of a */
     if (sets[si] != NULL && sets[si]->stoch) return 0;     /* scan: rules that draw them too */
   for (k = 0; k < n; k++) {
-    uint32_t nr = 0, b, first = NONE;
+    uint32_t nr = 0, b, q, first = NONE;
+    int fast = 1;
     pent *e = &P->pe[k];
+    memset(e, 0, sizeof *e);
     for (si = 0; si < nsets; si++) {
       const lsys_ruleset *s = sets[si];
       if (s == NULL || k >= s->nsym) continue;
@@ -286,10 +307,11 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
         const lsys_rule *r = &m->rules[s->byp[b]];
         if (!cruns(r) || (m->cpfg && draws(r))) return 0;
         if (first == NONE) first = s->byp[b];
+        if (nr < NFAST) e->fr[nr] = s->byp[b];
+        if (r->nlc || r->nrc || (r->flags & LSYS_RF_STOCH) || !P->rfx[s->byp[b]].ok) fast = 0;
         nr++;
       }
     }
-    memset(e, 0, sizeof *e);
     e->pnp = NOPNP;
     e->rule = first;
     if (k == LSYS_SYM_CUT || k == LSYS_SYM_SUB) e->cls = PC_SEQ;
@@ -298,8 +320,11 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
       const lsys_rule *r = &m->rules[first];
       int simple = nr == 1 && r->nlc == 0 && r->nrc == 0 && !(r->flags & LSYS_RF_STOCH);
       if (simple && r->vm == NULL) e->cls = PC_PLAIN;
-      else if (simple) e->cls = hascond(r) ? PC_VMC : PC_VM;
+      else if (simple && !hascond(r)) e->cls = PC_VM;
+      else if (fast && nr <= NFAST) e->cls = PC_FAST;
+      else if (simple) e->cls = PC_VMC;
       else e->cls = PC_GEN;
+      e->nfr = e->cls == PC_FAST ? nr : 0;
       if (e->cls == PC_PLAIN || e->cls == PC_VM) {
         e->pnp = (uint8_t)r->pred_np;
         e->nsucc = r->nsucc;
@@ -307,14 +332,16 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
         e->t = m->tcode + r->succ;
         e->t8 = P->t8 + r->succ;
         e->nar = P->rnar[first];
+        for (q = 0; q < r->nsrc && !e->pargs; q++)
+          e->pargs = m->tsrc[r->src + q].kind == LSYS_PS_ARG;
+        if (e->cls == PC_VM) e->fx = P->rfx[first];
         e->fl = (uint8_t)((e->nar ? 0 : FL_WIDE) |
                           (r->nsucc == 0 || r->nsrc < r->pred_np ? FL_SHRINK : 0));
       }
     }
-    if (e->cls == PC_VMC || e->cls == PC_GEN) *needsp = 1;
+    if (e->cls == PC_VMC || e->cls == PC_FAST || e->cls == PC_GEN) *needsp = 1;
     if (e->cls == PC_GEN) *genp = 1;
     if (k < 256) {               /* narrow modules; wide ones, counted */
-      uint32_t q;
       for (q = 0; q <= LSYS_MAXPARAMS; q++)
         P->wcount[k << LSYS_NPBITS | q] =
           e->pnp == q ? (e->nsucc < (1u << 24) && e->nsrc < (1u << 24) ?
@@ -334,7 +361,7 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
 }
 
 /* The rule that rewrites module i ('cd', parameters *args; classes PC_VM,
-** PC_VMC and PC_GEN), or NULL when the module is copied; *vals gets its
+** PC_VMC, PC_FAST and PC_GEN), or NULL when the module is copied; *vals gets its
 ** values and *args its arguments. Returns -1 when the step must run
 ** sequentially (a value that is not finite, an error of lsys_derive_choose). */
 static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **args,
@@ -352,6 +379,19 @@ static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **
     if (lsys_derive_checkvals(m, w, r, i, w->args) != LSYS_OK) return -1;
     *vals = w->args;
     *rule = r;
+    return 0;
+  }
+  if (e->cls == PC_FAST) {
+    uint32_t q;
+    for (q = 0; q < e->nfr; q++) {
+      const lsys_rule *r = &m->rules[e->fr[q]];
+      if (r->pred_np != LSYS_CNP(cd) || !lsys_expr_runfast(&j->P->rfx[e->fr[q]], *args, w->args))
+        continue;
+      if (lsys_derive_checkvals(m, w, r, i, w->args) != LSYS_OK) return -1;
+      *vals = w->args;
+      *rule = r;
+      return 0;
+    }
     return 0;
   }
   if (e->cls != PC_GEN) return -1;
@@ -615,12 +655,15 @@ static void fillwide (job *j, lsys_scratch *w, chunk *c) {
       const double *args = spar + sp;
       double a[LSYS_MAXPARAMS];
       uint32_t v;
-      if (j->inplace && np > 0) {         /* its own parameters may be where its successor's go */
-        memcpy(a, args, np * sizeof *a);
+      if (j->inplace && e->pargs) {       /* its own parameters may be where its successor's go */
+        for (k = 0; k < np; k++) a[k] = args[k];
         args = a;
       }
-      lsys_rng_at(w->rng, i);
-      lsys_expr_run(r->vm, r->nvm, args, w->args, w->rng, j->m->funcs);
+      if (e->fx.ok && !e->fx.cond) lsys_expr_runfast(&e->fx, args, w->args);
+      else {
+        lsys_rng_at(w->rng, i);
+        lsys_expr_run(r->vm, r->nvm, args, w->args, w->rng, j->m->funcs);
+      }
       for (v = 0; v < r->nvals && isfinite(w->args[v]); v++) {}
       if (v < r->nvals) { halt(j, c, i, 0); return; }
       o.oc -= e->nsucc;

@@ -158,3 +158,50 @@ int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, 
   }
   return 1;
 }
+
+/* An operand at code[pc] (K or ARG) into the term's x (y when 'second'). */
+static int operand (const lsys_ins *i, lsys_xterm *t, int second) {
+  if (i->op == LSYS_OP_K) {
+    if (second) { t->ya = 0; t->yk = i->k; } else { t->xa = 0; t->xk = i->k; }
+    return 1;
+  }
+  if (i->op != LSYS_OP_ARG || i->a < 0 || i->a > 255) return 0;
+  if (second) { t->ya = 1; t->yi = (uint8_t)i->a; } else { t->xa = 1; t->xi = (uint8_t)i->a; }
+  return 1;
+}
+
+/* A term of code[pc..] ending with 'end' (RET or COND): the instructions it took, or 0. */
+static int term (const lsys_ins *code, int pc, int n, int32_t end, lsys_xterm *t) {
+  memset(t, 0, sizeof *t);
+  if (pc + 2 <= n && code[pc + 1].op == end && operand(&code[pc], t, 0)) {
+    t->op = LSYS_OP_K;
+    return 2;
+  }
+  if (pc + 4 <= n && code[pc + 3].op == end && operand(&code[pc], t, 0) &&
+      operand(&code[pc + 1], t, 1)) {
+    int32_t op = code[pc + 2].op;
+    int arith = op >= LSYS_OP_ADD && op <= LSYS_OP_DIV;
+    int cmp = op >= LSYS_OP_LT && op <= LSYS_OP_NE;
+    if (end == LSYS_OP_RET ? !arith : !cmp) return 0;
+    t->op = op;
+    return 4;
+  }
+  return 0;
+}
+
+void lsys_expr_fast (const lsys_ins *code, int n, lsys_xfast *f) {
+  int pc = 0, used;
+  memset(f, 0, sizeof *f);
+  if ((used = term(code, 0, n, LSYS_OP_COND, &f->t[0])) > 0) {
+    f->cond = 1;
+    pc = used;
+  }
+  while (pc < n) {
+    if (f->n == LSYS_XFAST ||
+        (used = term(code, pc, n, LSYS_OP_RET, &f->t[f->cond + f->n])) == 0)
+      return;
+    pc += used;
+    f->n++;
+  }
+  f->ok = 1;
+}

@@ -60,4 +60,53 @@ int lsys_expr_run (const lsys_ins *code, int n, const double *args, double *out,
 int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, double *out,
                     lsys_rng *rng, const lsys_func *const *funcs);
 
+/* A program whose condition (if it has one) and outputs are each one
+** operation on two operands, arguments or constants, or one operand alone
+** (A(t) : t < D --> A(t + 1)), as most programs of a successor are: run
+** without the stack machine, with the same results. */
+#define LSYS_XFAST 8
+typedef struct lsys_xterm {
+  int32_t op;                  /* LSYS_OP_ADD ... DIV, LT ... NE; LSYS_OP_K: x alone */
+  uint8_t xa, ya, xi, yi;      /* xa: x is args[xi], else xk (y alike) */
+  double xk, yk;
+} lsys_xterm;
+
+typedef struct lsys_xfast {
+  int ok;                      /* the program has this form */
+  int cond;                    /* it starts with a condition, t[0]; the outputs follow */
+  int n;                       /* the outputs */
+  lsys_xterm t[LSYS_XFAST + 1];
+} lsys_xfast;
+
+/* Fills *f from a checked program of 'n' instructions (f->ok = 0 when it
+** has another form). */
+void lsys_expr_fast (const lsys_ins *code, int n, lsys_xfast *f);
+
+static inline double lsys_expr_term (const lsys_xterm *t, const double *args) {
+  double x = t->xa ? args[t->xi] : t->xk, y = t->ya ? args[t->yi] : t->yk;
+  switch (t->op) {
+    case LSYS_OP_K: return x;
+    case LSYS_OP_ADD: return x + y;
+    case LSYS_OP_SUB: return x - y;
+    case LSYS_OP_MUL: return x * y;
+    case LSYS_OP_DIV: return x / y;
+    case LSYS_OP_LT: return x < y;
+    case LSYS_OP_LE: return x <= y;
+    case LSYS_OP_GT: return x > y;
+    case LSYS_OP_GE: return x >= y;
+    case LSYS_OP_EQ: return x == y;
+    default: return x != y;
+  }
+}
+
+/* Runs a program of that form: 0 when its condition is false, else 1 with
+** the outputs in 'out'. */
+static inline int lsys_expr_runfast (const lsys_xfast *f, const double *args, double *out) {
+  const lsys_xterm *t = f->t;
+  int k;
+  if (f->cond && lsys_expr_term(t++, args) == 0) return 0;
+  for (k = 0; k < f->n; k++) out[k] = lsys_expr_term(t + k, args);
+  return 1;
+}
+
 #endif

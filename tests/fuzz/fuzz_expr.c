@@ -14,7 +14,8 @@
 ** canary NaN, compared bit for bit (the program cannot make that NaN: its
 ** constants and arguments never have that bit pattern with either sign,
 ** and arithmetic on a signalling NaN quietens it). A second run with the same seed must give
-** the same bits. FUZZ_TRACE=1 in the environment prints what the checker and
+** the same bits, and a program of lsys_expr_fast's form the same bits (and the
+** same answer to its condition) run without the stack. FUZZ_TRACE=1 in the environment prints what the checker and
 ** the machine say.
 **
 **   tools/fuzz.sh 600 expr         (or, by hand:)
@@ -133,6 +134,18 @@ int LLVMFuzzerTestOneInput (const uint8_t *data, size_t size) {
   lsys_rng_seed(&rng, 7);
   st2 = lsys_expr_run(code, n, args, out2, &rng, functions());
   if (st2 != st || memcmp(out, out2, sizeof out) != 0) __builtin_trap();
+  /* the short form, where the program has it: the same answer and bits */
+  {
+    lsys_xfast f;
+    lsys_expr_fast(code, n, &f);
+    if (f.ok) {
+      static double out3[NOUT];
+      if (f.n != nout) __builtin_trap();
+      for (k = 0; k < NOUT; k++) out3[k] = out2[k];
+      if (lsys_expr_runfast(&f, args, out3) != st) __builtin_trap();
+      if (st == 1 && memcmp(out3, out, nout * sizeof *out) != 0) __builtin_trap();
+    }
+  }
   /* more arguments never make a program invalid */
   if (nargs < 8 && lsys_expr_check(code, n, 8, 2) != nout) __builtin_trap();
   /* more functions neither; fewer only when the program calls one beyond them */
