@@ -66,14 +66,72 @@ static inline int skipped (const view *v, uint32_t sym) {
   return v->skip->consider ? !in : in;
 }
 
+/* The module a left context compares with, scanning left from j (cpfg's
+** way: whole branches to the left skipped, out of the current one, ignored
+** modules passed), or -1. Not for rings. */
+static long long leftof (const view *v, long long j) {
+  for (; j >= 0; j--) {
+    uint32_t sym = LSYS_CSYM(v->code[j]);
+    if (sym == LSYS_SYM_RBR) {
+      if (v->match[j] == NONE) return -1;
+      j = (long long)v->match[j];
+    }
+    else if (sym != LSYS_SYM_LBR && !skipped(v, sym)) return j;
+  }
+  return -1;
+}
+
+/* The module a right context's plain pattern module compares with, from j
+** (ignored modules passed, whole branches skipped), or v->n. Not for rings. */
+static size_t rightof (const view *v, size_t j) {
+  while (j < v->n) {
+    uint32_t sym = LSYS_CSYM(v->code[j]);
+    if (skipped(v, sym)) j++;
+    else if (sym == LSYS_SYM_LBR) {
+      if (v->match[j] == NONE) return v->n;
+      j = v->match[j] + 1;
+    }
+    else return j;
+  }
+  return v->n;
+}
+
+/* Whether the pattern modules [p, p + n) are plain: no brackets, no '='. */
+static int plain (const lsys_rules *m, const view *v, uint32_t p, uint32_t n) {
+  uint32_t k;
+  for (k = 0; k < n; k++) {
+    uint32_t sym = m->pat[p + k].sym;
+    if (sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR || sym == v->eq) return 0;
+  }
+  return n <= LSYS_NMEMO;
+}
+
 /* Left context: scans left from 'i', skipping whole branches to the left
 ** and climbing out of the current one; fills the lc parameters of 'args'. */
 int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
-                            double *args) {
+                            double *args, lsys_ctxmemo *mm) {
   long long j = (long long)i - 1;
   size_t steps = 0;
   double *a = args + r->lcargs;
   uint32_t k;
+  if (mm != NULL && !v->ring && plain(m, v, r->lc, r->nlc)) {   /* the scans of the other */
+    int q;                                                     /* rules, kept */
+    for (q = 0; q < (int)r->nlc; q++) {
+      const lsys_patmod *pm = &m->pat[r->lc + r->nlc - 1 - q];
+      size_t at;
+      while (mm->nl <= q && !mm->lend) {
+        long long x = leftof(v, mm->nl == 0 ? j : (long long)mm->l[mm->nl - 1] - 1);
+        if (x < 0) mm->lend = 1;
+        else mm->l[mm->nl++] = (size_t)x;
+      }
+      if (mm->nl <= q) return 0;
+      at = mm->l[q];
+      if (v->code[at] != LSYS_CODE(pm->sym, pm->np)) return 0;
+      a -= pm->np;
+      if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
+    }
+    return 1;
+  }
   for (k = r->nlc; k-- > 0;) {
     const lsys_patmod *pm = &m->pat[r->lc + k];
     for (;;) {
@@ -128,9 +186,27 @@ static size_t branchend (const view *v, size_t j) {
 ** name the brackets). 'a' receives the pattern's parameters.
 */
 int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const lsys_rule *r,
-                             double *a) {
+                             double *a, lsys_ctxmemo *mm) {
   size_t steps = 0;
   uint32_t k;
+  if (mm != NULL && !v->ring && plain(m, v, r->rc, r->nrc)) {   /* as the left context */
+    int q;
+    for (q = 0; q < (int)r->nrc; q++) {
+      const lsys_patmod *pm = &m->pat[r->rc + q];
+      size_t at;
+      while (mm->nr <= q && !mm->rend) {
+        size_t x = rightof(v, mm->nr == 0 ? j : mm->r[mm->nr - 1] + 1);
+        if (x >= v->n) mm->rend = 1;
+        else mm->r[mm->nr++] = x;
+      }
+      if (mm->nr <= q) return 0;
+      at = mm->r[q];
+      if (v->code[at] != LSYS_CODE(pm->sym, pm->np)) return 0;
+      if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
+      a += pm->np;
+    }
+    return 1;
+  }
   for (k = 0; k < r->nrc; k++) {
     const lsys_patmod *pm = &m->pat[r->rc + k];
     if (pm->sym == v->eq && pm->np == 0) {

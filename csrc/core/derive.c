@@ -287,6 +287,8 @@ int lsys_derive_choose (lsys_rules *m, lsys_scratch *w, lsys_ruleset *const *set
   size_t nalt = 0, altn = 0;   /* alternatives and doubles used in w->alt */
   double total = 0, keep[3];
   int si, st, tried;
+  lsys_ctxmemo mm;
+  lsys_context_memo_init(&mm);
   pk->dyn = NULL;
   if (!w->worker) lsys_lstring_clear(&m->altdyn);
   for (si = 0; si < nsets; si++) {
@@ -302,9 +304,12 @@ int lsys_derive_choose (lsys_rules *m, lsys_scratch *w, lsys_ruleset *const *set
       vals = args + r->nargs;
       if (r->nmore && (v->single || !matchmore(m, v, i, r, par, args + r->lcargs + np)))
         continue;
-      if (r->nlc && (v->match == NULL || !lsys_context_matchleft(m, v, i, r, args))) continue;
-      if (r->nrc && (v->match == NULL || !lsys_context_matchright(m, v, i + 1 + r->nmore, r,
-                                                            args + r->lcargs + np + r->moreargs)))
+      if (r->nlc && (v->match == NULL || !lsys_context_matchleft(m, v, i, r, args, &mm)))
+        continue;
+      if (r->nrc && (v->match == NULL ||
+                     !lsys_context_matchright(m, v, i + 1 + r->nmore, r,
+                                              args + r->lcargs + np + r->moreargs,
+                                              r->nmore == 0 ? &mm : NULL)))
         continue;
       if (np) memcpy(args + r->lcargs, par, np * sizeof *args);
       tried = m->cpfg && (r->flags & LSYS_RF_STOCH) && r->vm == NULL;

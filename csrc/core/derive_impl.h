@@ -85,12 +85,27 @@ int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s);
 /* The symbol of '=' in the model's alphabet, or NONE. */
 uint32_t lsys_context_eqsym (const lsys_rules *m);
 
+/* The modules a context of plain pattern modules (no brackets, no '=')
+** compares with, found once for a module and its rules: the nearest NMEMO
+** on each side, found as the rules ask for them. */
+#define LSYS_NMEMO 8
+typedef struct lsys_ctxmemo {
+  int nl, nr;                  /* found so far */
+  int lend, rend;              /* no more on that side */
+  size_t l[LSYS_NMEMO], r[LSYS_NMEMO];
+} lsys_ctxmemo;
+
+static inline void lsys_context_memo_init (lsys_ctxmemo *mm) {
+  mm->nl = mm->nr = mm->lend = mm->rend = 0;
+}
+
 /* Whether rule r's left context matches before module i, and its right
 ** context from module j; they write the contexts' parameters into 'args'
-** (left) and 'a' (right). */
+** (left) and 'a' (right). 'mm' (or NULL) keeps what the scans found for
+** module i's other rules (the right context's only from j = i + 1). */
 int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
-                            double *args);
+                            double *args, lsys_ctxmemo *mm);
 int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const lsys_rule *r,
-                             double *a);
+                             double *a, lsys_ctxmemo *mm);
 
 #endif
