@@ -7,45 +7,68 @@
 
 #include "derive_impl.h"
 
-int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
-  size_t i, off = 0;
-  if (s->n >= NONE) return LSYS_ELIMIT;
-  if (m->matchcap < s->n + 1) {
-    size_t cap = m->matchcap;
-    uint32_t *mt = m->match, *po = m->poff;
-    size_t cap2 = cap;
-    int st;
-    if ((st = lsys_common_grow_metered((void **)&mt, &cap, s->n + 1, sizeof *mt,
-                                       &m->meter)) != LSYS_OK)
-      return st;
-    m->match = mt;
-    if ((st = lsys_common_grow_metered((void **)&po, &cap2, s->n + 1, sizeof *po,
-                                       &m->meter)) != LSYS_OK)
-      return st;
-    m->poff = po;
-    m->matchcap = cap < cap2 ? cap : cap2;
+/* Grows the table *p of *cap entries to exactly 'need' (a context table is
+** made again at each step, for a string that grows by less than doubling),
+** within the model's budget. */
+static int exact (lsys_rules *m, uint32_t **p, size_t *cap, size_t need) {
+  uint32_t *np;
+  if (*cap >= need) return LSYS_OK;
+  if (!lsys_common_meter_fits(&m->meter, (need - *cap) * sizeof **p)) {
+    m->meter.hit = 1;
+    return LSYS_EMEMORY;
   }
+  if ((np = (uint32_t *)LSYS_REALLOC(*p, need * sizeof **p)) == NULL) return LSYS_ENOMEM;
+  lsys_common_hugepages(np, need * sizeof **p);
+  m->meter.used += (need - *cap) * sizeof **p;
+  *p = np;
+  *cap = need;
+  return LSYS_OK;
+}
+
+int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
+  size_t i, off = 0, n = s->n;
+  int st, withp = s->sym8 == NULL && s->npar > 0;
+  uint32_t top = NONE, *mt;
+  if (n >= NONE) return LSYS_ELIMIT;
+  if ((st = exact(m, &m->match, &m->matchcap, n + 1)) != LSYS_OK ||
+      (withp && (st = exact(m, &m->poff, &m->poffcap, n + 1)) != LSYS_OK))
+    return st;
   /* the open brackets are pushed on the match array itself: match[k] of an
   ** open '[' temporarily links to the previous open one */
-  {
-    uint32_t top = NONE;
-    for (i = 0; i < s->n; i++) {
-      uint32_t sym = LSYS_CSYM(s->code[i]);
-      if (off > NONE) return LSYS_ELIMIT;
-      m->poff[i] = (uint32_t)off;
-      off += LSYS_CNP(s->code[i]);
-      m->match[i] = NONE;
-      if (sym == LSYS_SYM_LBR) { m->match[i] = top; top = (uint32_t)i; }
+  mt = m->match;
+  if (s->sym8 != NULL) {
+    const uint8_t *c8 = s->sym8;
+    for (i = 0; i < n; i++) {
+      uint32_t sym = c8[i];
+      mt[i] = NONE;
+      if (sym == LSYS_SYM_LBR) { mt[i] = top; top = (uint32_t)i; }
       else if (sym == LSYS_SYM_RBR && top != NONE) {
-        uint32_t prev = m->match[top];
-        m->match[top] = (uint32_t)i;
-        m->match[i] = top;
+        uint32_t prev = mt[top];
+        mt[top] = (uint32_t)i;
+        mt[i] = top;
         top = prev;
       }
     }
-    while (top != NONE) { uint32_t prev = m->match[top]; m->match[top] = NONE; top = prev; }
-    m->poff[s->n] = (uint32_t)off;
   }
+  else
+    for (i = 0; i < n; i++) {
+      uint32_t sym = LSYS_CSYM(s->code[i]);
+      if (withp) {
+        if (off > NONE) return LSYS_ELIMIT;
+        m->poff[i] = (uint32_t)off;
+        off += LSYS_CNP(s->code[i]);
+      }
+      mt[i] = NONE;
+      if (sym == LSYS_SYM_LBR) { mt[i] = top; top = (uint32_t)i; }
+      else if (sym == LSYS_SYM_RBR && top != NONE) {
+        uint32_t prev = mt[top];
+        mt[top] = (uint32_t)i;
+        mt[i] = top;
+        top = prev;
+      }
+    }
+  while (top != NONE) { uint32_t prev = mt[top]; mt[top] = NONE; top = prev; }
+  if (withp) m->poff[n] = (uint32_t)off;
   return LSYS_OK;
 }
 
@@ -71,7 +94,7 @@ static inline int skipped (const view *v, uint32_t sym) {
 ** modules passed), or -1. Not for rings. */
 static long long leftof (const view *v, long long j) {
   for (; j >= 0; j--) {
-    uint32_t sym = LSYS_CSYM(v->code[j]);
+    uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) {
       if (v->match[j] == NONE) return -1;
       j = (long long)v->match[j];
@@ -85,7 +108,7 @@ static long long leftof (const view *v, long long j) {
 ** (ignored modules passed, whole branches skipped), or v->n. Not for rings. */
 static size_t rightof (const view *v, size_t j) {
   while (j < v->n) {
-    uint32_t sym = LSYS_CSYM(v->code[j]);
+    uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (skipped(v, sym)) j++;
     else if (sym == LSYS_SYM_LBR) {
       if (v->match[j] == NONE) return v->n;
@@ -126,7 +149,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       }
       if (mm->nl <= q) return 0;
       at = mm->l[q];
-      if (v->code[at] != LSYS_CODE(pm->sym, pm->np)) return 0;
+      if (lsys_view_code(v, at) != LSYS_CODE(pm->sym, pm->np)) return 0;
       a -= pm->np;
       if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
     }
@@ -141,7 +164,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
         j = (long long)v->n - 1;
       }
       if (++steps > v->n) return 0;
-      sym = LSYS_CSYM(v->code[j]);
+      sym = LSYS_CSYM(lsys_view_code(v, j));
       if (sym == LSYS_SYM_RBR) {
         if (v->match[j] == NONE) return 0;
         j = (long long)v->match[j] - 1;
@@ -149,7 +172,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       else if (sym == LSYS_SYM_LBR || skipped(v, sym)) j--;
       else break;
     }
-    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    if (lsys_view_code(v, j) != LSYS_CODE(pm->sym, pm->np)) return 0;
     a -= pm->np;
     if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
     j--;
@@ -161,7 +184,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
 ** v->n when there is none): cpfg's '=' in a right context. */
 static size_t branchend (const view *v, size_t j) {
   while (j < v->n) {
-    uint32_t sym = LSYS_CSYM(v->code[j]);
+    uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) return j;
     if (sym == LSYS_SYM_LBR) {
       if (v->match[j] == NONE) return v->n;
@@ -201,7 +224,7 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       }
       if (mm->nr <= q) return 0;
       at = mm->r[q];
-      if (v->code[at] != LSYS_CODE(pm->sym, pm->np)) return 0;
+      if (lsys_view_code(v, at) != LSYS_CODE(pm->sym, pm->np)) return 0;
       if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
       a += pm->np;
     }
@@ -220,7 +243,7 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
         j = 0;                            /* a ring: on from the start */
       }
       if (++steps > 2 * v->n + 2) return 0;
-      sym = LSYS_CSYM(v->code[j]);
+      sym = LSYS_CSYM(lsys_view_code(v, j));
       if (skipped(v, sym)) j++;            /* first, as cpfg: an ignored bracket too */
       else if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
         if (v->match[j] == NONE) return 0;
@@ -228,7 +251,7 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       }
       else break;
     }
-    if (v->code[j] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    if (lsys_view_code(v, j) != LSYS_CODE(pm->sym, pm->np)) return 0;
     if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
     a += pm->np;
     j++;

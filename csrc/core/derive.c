@@ -90,11 +90,11 @@ int lsys_derive_needscratch (lsys_scratch *w, size_t nargs) {
 ** parameters (following 'par', the module's own np of them) into 'args'. */
 static int matchmore (const lsys_rules *m, const view *v, size_t i, const lsys_rule *r,
                       const double *par, double *args) {
-  uint32_t k, np = LSYS_CNP(v->code[i]);
+  uint32_t k, np = LSYS_CNP(lsys_view_code(v, i));
   if (i + r->nmore >= v->n) return 0;
   for (k = 0; k < r->nmore; k++) {
     const lsys_patmod *pm = &m->pat[r->more + k];
-    if (v->code[i + 1 + k] != LSYS_CODE(pm->sym, pm->np)) return 0;
+    if (lsys_view_code(v, i + 1 + k) != LSYS_CODE(pm->sym, pm->np)) return 0;
   }
   if (r->moreargs) memcpy(args, par + np, r->moreargs * sizeof *args);
   return 1;
@@ -417,13 +417,14 @@ static int fail (lsys_rules *m, int st, size_t i) {
 static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v) {
   int st;
   memset(v, 0, sizeof *v);
-  v->code = src->code; v->par = src->par; v->n = src->n; v->ring = m->ring;
+  v->code = src->code; v->code8 = src->sym8; v->par = src->par; v->n = src->n;
+  v->ring = m->ring;
   v->eq = lsys_context_eqsym(m);
   v->skip = lsys_derive_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_context_buildtables(m, src)) != LSYS_OK) return st;
     v->match = m->match;
-    v->poff = m->poff;
+    v->poff = src->sym8 == NULL && src->npar > 0 ? m->poff : NULL;
   }
   return LSYS_OK;
 }
@@ -661,12 +662,12 @@ static int productions (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   view v;
   m->nsub = 0;
   if (compileall(m, LSYS_PROD, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
-  if (hasctx && (st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
-  if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
+  if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);   /* narrow or */
   nsets = prodsets(m, 0, sets);
   if ((st = lsys_derive_par_productions(m, src, dst, &v, sets, nsets)) != LSYS_PAR_SEQ) return st;
   if ((st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
-  v.code = src->code;
+  v.code = src->code;                                   /* the tables stay as they are */
+  v.code8 = NULL;
   lsys_lstring_clear(out);
   st = seqloop(m, src, out, &v, sets, nsets);
   m->choice_ready = 0;
@@ -781,7 +782,7 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
 static int meter (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
-                   m->matchcap * (sizeof *m->match + sizeof *m->poff) +
+                   m->matchcap * sizeof *m->match + m->poffcap * sizeof *m->poff +
                    lsys_derive_par_bytes(m);
   if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
@@ -880,7 +881,7 @@ int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring 
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_context_eqsym(m);
   v.skip = lsys_derive_findskip(m, 0);
-  if (m->hctx) { v.match = m->match; v.poff = m->poff; }
+  if (m->hctx) { v.match = m->match; v.poff = src->npar > 0 ? m->poff : NULL; }
   lsys_lstring_clear(out);
   lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);

@@ -144,7 +144,7 @@ typedef struct lsys_rules {
   lsys_lstring dyn, tmp;
   lsys_lstring altdyn;         /* the successors weighted function rules produced */
   lsys_lstring *levels; size_t nlevels;
-  uint32_t *match, *poff; size_t matchcap;
+  uint32_t *match, *poff; size_t matchcap, poffcap;   /* the context tables */
   uint32_t *substack; size_t nsub, subcap;
   uint32_t *act; size_t actcap;   /* per symbol: what the fast loop does */
   /* state for messages */

@@ -18,10 +18,11 @@
 ** the bracket matches and per-module parameter offsets. */
 typedef struct view {
   const uint16_t *code;
+  const uint8_t *code8;    /* or, of a string at a byte a module, its symbols (code NULL) */
   const double *par;
   size_t n;
   const uint32_t *match;   /* NULL when no context tables were built */
-  const uint32_t *poff;
+  const uint32_t *poff;    /* NULL when the string has no parameters */
   const lsys_skip *skip;
   int ring;
   uint32_t eq;             /* the symbol of '=' (right contexts), or NONE */
@@ -77,10 +78,16 @@ lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int g
 lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub);
 int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s);
 
-/* Builds the bracket-match and parameter-offset tables of 's' in m->match
-** and m->poff (within the model's memory budget). LSYS_OK, LSYS_ELIMIT,
-** LSYS_ENOMEM or LSYS_EMEMORY. */
+/* Builds the bracket-match table of 's' in m->match and, when it has
+** parameters, the parameter offsets in m->poff (else m->poff is left as it
+** was; within the model's memory budget). LSYS_OK, LSYS_ELIMIT, LSYS_ENOMEM
+** or LSYS_EMEMORY. */
 int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s);
+
+/* Module j's code in the view, of either representation. */
+static inline uint16_t lsys_view_code (const view *v, size_t j) {
+  return v->code8 != NULL ? (uint16_t)LSYS_CODE(v->code8[j], 0) : v->code[j];
+}
 
 /* The symbol of '=' in the model's alphabet, or NONE. */
 uint32_t lsys_context_eqsym (const lsys_rules *m);
