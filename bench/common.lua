@@ -97,6 +97,31 @@ function B.measure (args)
   return r
 end
 
+local TIME = io.open("/usr/bin/time", "r") and (io.close(io.open("/usr/bin/time")) and
+  "/usr/bin/time") or nil
+B.has_time = TIME ~= nil
+
+--- The best wall-clock time of the shell command 'cmd' over 'runs' (its standard error
+-- discarded, no input) and its largest resident size in KiB as GNU time reports it (nil
+-- without /usr/bin/time); raises when a run fails. For the whole-process figures against
+-- cpfg: the same command on the model at 0 steps is timed too, and subtracted.
+function B.whole (cmd, runs)
+  local best, peak = math.huge, nil
+  local tmp = os.tmpname()
+  for _ = 1, runs do
+    local t0 = B.clock()
+    local ok = os.execute((TIME and (TIME .. " -f %M -o " .. tmp .. " ") or "") .. cmd
+                          .. " 2>/dev/null </dev/null")
+    local t = B.clock() - t0
+    if not ok then os.remove(tmp) error("failed: " .. cmd, 0) end
+    best = math.min(best, t)
+    local kib = TIME and tonumber((B.read_file(tmp) or ""):match("(%d+)%s*$"))
+    if kib then peak = math.max(peak or 0, kib) end
+  end
+  os.remove(tmp)
+  return best, peak
+end
+
 --- the path of node, or nil
 function B.node_path ()
   local p = io.popen("command -v node 2>/dev/null")

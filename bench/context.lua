@@ -13,6 +13,14 @@
 -- built from vlab), and a peer whose context matching differs is reported as "differs".
 -- Plain Lua works too: LUA_PATH='./lua/?.lua;./lua/?/init.lua;;' LUA_CPATH='./build/?.so;;'
 -- lua5.4 bench/context.lua
+--
+-- With cpfg (`--cpfg PATH`, or CPFG=PATH: a cpfg built for batch use, docs/cpfg.md), both
+-- programs also derive fig. 1.31a-e grown to millions of modules (55 steps, b 50) and (p), a
+-- parametric model whose signal crosses branches with its parameters, as whole processes:
+-- wall clock, best of 5, the same process at 0 steps subtracted, cpfg with `-g -strb` and
+-- CPFG_SKIP_VV=1, peak memory from GNU time. Target (issue 41): at least 3x cpfg's speed,
+-- peak memory at most cpfg's. The strings agree with cpfg's (fig. 1.31 exactly; (p) module
+-- for module, its numbers in cpfg's single precision).
 
 local script = arg and arg[0] or "bench/context.lua"
 local B = dofile((script:match("^(.*)/[^/]*$") or ".") .. "/common.lua")
@@ -20,6 +28,19 @@ local root = B.root
 local lsys = B.load_lsys()
 local RUNS = 3
 local PEER_TIMEOUT = 600          -- seconds per peer run
+local BIG = { a = 55, b = 50, c = 55, d = 55, e = 55 }   -- steps of fig. 1.31 against cpfg
+                                  -- (b passes 50 M modules, max_modules, at 53)
+
+-- (p): a signal from the base through the branches, with parameters (both contexts)
+local PARAM = {
+  name = "(p) parametric signal across branches", steps = 12, ignore = "+-/",
+  axiom = "I(1,0)A(0)",
+  rules = {
+    "A(n) : n < 30 --> I(0,n)/(137)[+A(n+1)][-A(n+1)]I(0,n)A(n+1)",
+    "I(a,d) < I(b,e) > A(n) --> I(b + a * 0.25 + n, e)",
+    "I(a,d) < I(b,e) --> I(b + a * 0.5, e)",
+  },
+}
 
 -- The signal model, and a Hogeweg plant read from its example file.
 local function signal ()
@@ -84,7 +105,86 @@ local function measure_peer (node, m)
   return r
 end
 
-local function main ()
+-- The lsys model of fig. 1.31`letter` ("p": PARAM) for `steps` steps.
+local function big_model (letter, steps)
+  if letter == "p" then
+    return lsys.lsystem { axiom = PARAM.axiom, ignore = PARAM.ignore, steps = steps,
+                          productions = PARAM.rules }
+  end
+  local model = dofile(string.format("%s/examples/abop/fig1_31%s.lua", root, letter))
+  return model
+end
+
+-- The same as a cpfg .l file.
+local function cpfg_text (letter, steps)
+  local m = letter == "p" and PARAM or hogeweg(letter)
+  local rules = {}
+  for i, r in ipairs(m.rules) do
+    rules[i] = type(r) == "string" and r or (r[1]:gsub("<", " < "):gsub(">", " > ") .. " --> " .. r[2])
+  end
+  return string.format("Lsystem: 1\nderivation length: %d\nignore: %s\nAxiom: %s\n%s\nendlsystem\n",
+    steps, m.ignore, m.axiom, table.concat(rules, "\n"))
+end
+
+-- lsys and cpfg on fig. 1.31`letter` (or "p"), whole processes, start-up subtracted.
+local function versus_cpfg (cpfg, dir, letter)
+  local steps = letter == "p" and PARAM.steps or BIG[letter]
+  local R = 5
+  local function lfile (n)
+    local path = string.format("%s/%s%d.l", dir, letter, n)
+    B.write_file(path, cpfg_text(letter, n))
+    return path
+  end
+  local function ccmd (n)
+    return string.format("env CPFG_SKIP_VV=1 %s -g -m %s/e.map -strb /dev/null %s %s/e.v",
+      B.shell_quote(cpfg), dir, B.shell_quote(lfile(n)), dir)
+  end
+  local function lcmd (n)
+    return B.self_command() .. " whole " .. letter .. " " .. n .. " >/dev/null"
+  end
+  local modules = B.measure("count " .. letter .. " " .. steps).modules
+  local c0 = B.whole(ccmd(0), R)
+  local c1, cpeak = B.whole(ccmd(steps), R)
+  local l0 = B.whole(lcmd(0), R)
+  local l1, lpeak = B.whole(lcmd(steps), R)
+  return { steps = steps, modules = modules, cpfg = modules / math.max(c1 - c0, 1e-9),
+           lsys = modules / math.max(l1 - l0, 1e-9), cpeak = cpeak, lpeak = lpeak,
+           cstart = c0, lstart = l0 }
+end
+
+local function cpfg_table (cpfg)
+  local dir = os.tmpname()
+  os.remove(dir)
+  assert(os.execute("mkdir -p " .. B.shell_quote(dir)))
+  B.write_file(dir .. "/e.map", "")
+  B.write_file(dir .. "/e.v", "")
+  print()
+  print("cpfg: " .. cpfg .. " (-g -strb, CPFG_SKIP_VV=1); whole process, wall clock, best of 5, "
+        .. "start-up subtracted" .. (B.has_time and "" or "; no /usr/bin/time: no peak memory"))
+  print(string.format("%-40s %5s %10s %9s %9s %7s %-10s %8s %8s %6s %s", "model", "steps",
+    "modules", "lsys M/s", "cpfg M/s", "ratio", "target", "lsys MiB", "cpfg MiB", "ratio",
+    "target"))
+  for _, letter in ipairs { "a", "b", "c", "d", "e", "p" } do
+    local name = letter == "p" and PARAM.name or "(h) ABOP fig. 1.31" .. letter
+    local ok, r = pcall(versus_cpfg, cpfg, dir, letter)
+    if not ok then
+      print(string.format("%-40s failed: %s", name, tostring(r)))
+    else
+      local ratio, mratio = r.lsys / r.cpfg, r.lpeak and r.cpeak and r.lpeak / r.cpeak
+      print(string.format("%-40s %5d %10d %9.1f %9.1f %6.2fx %-10s %8s %8s %6s %s", name,
+        r.steps, r.modules, r.lsys / 1e6, r.cpfg / 1e6, ratio, ">=3x " .. B.verdict(ratio >= 3),
+        r.lpeak and string.format("%.1f", r.lpeak / 1024) or "?",
+        r.cpeak and string.format("%.1f", r.cpeak / 1024) or "?",
+        mratio and string.format("%.2fx", mratio) or "?",
+        mratio and ("<=1x " .. B.verdict(mratio <= 1)) or ""))
+      print(string.format("  (start-up: lsys %.1f ms, cpfg %.1f ms)", r.lstart * 1e3,
+        r.cstart * 1e3))
+    end
+  end
+  os.execute("rm -rf " .. B.shell_quote(dir))
+end
+
+local function main (cpfg)
   print(string.format("lsys %s context-sensitive derivation benchmark (%s; best of %d, %s)",
     lsys.version or "?", _VERSION, RUNS, B.clock_name))
   local models = { signal() }
@@ -127,6 +227,25 @@ local function main ()
   print()
   print(string.format("lsys peak memory: %.1f MiB (this process, all models)", B.peak_mib()
     or -1))
+  if cpfg then cpfg_table(cpfg)
+  else print("\ncpfg: not given (--cpfg PATH or CPFG=PATH; docs/cpfg.md says how to build it)") end
 end
 
-main()
+local mode = arg and arg[1]
+if mode == "whole" or mode == "count" then       -- a child: one model in this process
+  local letter, steps = arg[2], tonumber(arg[3])
+  local model = big_model(letter, steps)
+  if mode == "whole" then
+    io.write(#model:derive(steps), "\n")
+  else
+    local modules = 0
+    model:derive(steps, { each = function (k, s) if k > 0 then modules = modules + #s end end })
+    io.write(string.format("RESULT modules=%d\n", modules))
+  end
+elseif mode == nil or (mode == "--cpfg" and arg[2]) then
+  local cpfg = mode == "--cpfg" and arg[2] or os.getenv("CPFG")
+  main(cpfg ~= "" and cpfg or nil)
+else
+  io.stderr:write("usage: context.lua [--cpfg PATH]\n")
+  os.exit(2)
+end

@@ -188,26 +188,9 @@ end
 
 local function mib (kib) return kib / 1024 end
 
--- Whole-process timing: the best of 'runs' wall-clock times of `cmd` and the
--- largest resident size (KiB) GNU time reports, or nil when /usr/bin/time is missing.
-local TIME = io.open("/usr/bin/time", "r") and (io.close(io.open("/usr/bin/time")) and
-  "/usr/bin/time") or nil
-local function whole (cmd, runs)
-  local best, peak = math.huge, nil
-  local tmp = os.tmpname()
-  for _ = 1, runs do
-    local t0 = clock()
-    local ok = os.execute((TIME and (TIME .. " -f %M -o " .. tmp .. " ") or "") .. cmd
-                          .. " >/dev/null 2>&1 </dev/null")
-    local t = clock() - t0
-    if not ok then os.remove(tmp) error("failed: " .. cmd, 0) end
-    best = math.min(best, t)
-    local kib = TIME and tonumber((read_file(tmp) or ""):match("(%d+)%s*$"))
-    if kib then peak = math.max(peak or 0, kib) end
-  end
-  os.remove(tmp)
-  return best, peak
-end
+-- Whole-process timing (bench/common.lua), the string to /dev/null.
+local TIME = B.has_time
+local function whole (cmd, runs) return B.whole(cmd .. " >/dev/null", runs) end
 
 -- lsys and cpfg on one model, timed as `whole` does, start-up subtracted.
 local function versus_cpfg (cpfg, dir, name, modules)

@@ -26,26 +26,8 @@ local MODELS = {
   { name = "b", title = "(b) A(s) --> F(s)[+A(s/R)][-A(s/R)], 21 steps", steps = 21 },
 }
 
-local TIME = io.open("/usr/bin/time", "r") and (io.close(io.open("/usr/bin/time")) and
-  "/usr/bin/time") or nil
-
--- best wall-clock time of 'cmd' over 'runs' and its largest resident size (KiB)
-local function whole (cmd, runs)
-  local best, peak = math.huge, nil
-  local tmp = os.tmpname()
-  for _ = 1, runs do
-    local t0 = B.clock()
-    local ok = os.execute((TIME and (TIME .. " -f %M -o " .. tmp .. " ") or "") .. cmd
-                          .. " 2>/dev/null </dev/null")
-    local t = B.clock() - t0
-    if not ok then os.remove(tmp) error("failed: " .. cmd, 0) end
-    best = math.min(best, t)
-    local kib = TIME and tonumber((B.read_file(tmp) or ""):match("(%d+)%s*$"))
-    if kib then peak = math.max(peak or 0, kib) end
-  end
-  os.remove(tmp)
-  return best, peak
-end
+local whole = B.whole
+local TIME = B.has_time
 
 -- the modules of all steps and the final length, derived in this process
 local function count (m)

@@ -367,3 +367,50 @@ describe("ABOP fig. 1.31 (b)", function()
     assert.equal(H.ref_derive("F1F1F1", FIG_1_31B, 30, "+-F"), tostring(s))
   end)
 end)
+
+describe("contexts on long strings (the worker threads' step)", function()
+  -- random bracketed strings of some 20,000 modules, with runs nested 300 deep, across the
+  -- 64-module words of the bracket table
+  local function random_string (seed, n)
+    local x, out, depth = seed, {}, 0
+    local function rnd (k)                     -- a small LCG: the same string everywhere
+      x = (x * 1103515245 + 12345) % 2147483648
+      return x % k + 1
+    end
+    local syms = { "A", "B", "C", "+", "-", "[", "]", "[", "]" }
+    while #out < n do
+      local c = syms[rnd(#syms)]
+      if c == "]" and depth == 0 then c = "A" end
+      if c == "[" then depth = depth + 1 elseif c == "]" then depth = depth - 1 end
+      out[#out + 1] = c
+      if rnd(400) == 1 then
+        out[#out + 1] = string.rep("[A", 300) .. string.rep("B]", 300)
+      end
+    end
+    return table.concat(out) .. string.rep("]", depth)
+  end
+  local RULES = {
+    { lc = "A", pred = "B", rc = "C", succ = "C" },
+    { lc = "BA", pred = "C", succ = "A" },
+    { pred = "A", rc = "CB", succ = "B" },
+    { lc = "C", pred = "A", succ = "[B]" },
+    { pred = "B", rc = "A", succ = "A" },
+  }
+  local function model (axiom, threads)
+    local text = {}
+    for i, r in ipairs(RULES) do text[i] = H.rule_text(r) end
+    return lsys.lsystem { axiom = axiom, ignore = "+-", threads = threads,
+                          productions = table.concat(text, "\n") }
+  end
+  for _, seed in ipairs { 1, 2 } do
+    it("give the reference deriver's string, seed " .. seed, function()
+      local axiom = random_string(seed, 12000)
+      for _, threads in ipairs { 1, 2 } do
+        local s = tostring(model(axiom, threads):derive(3))
+        assert.is_true(#s > 12000, "a short string: " .. #s)
+        assert.is_true(s == H.ref_derive(axiom, RULES, 3, "+-"),
+          ("threads = %d: not the reference deriver's string"):format(threads))
+      end
+    end)
+  end
+end)

@@ -49,12 +49,12 @@ int lsys_vseterror_line (lsys_error *e, int code, size_t pos, const char *name, 
 ** block is marked, its pages included where it starts and ends, so that the
 ** mapping stays one piece (realloc can then move it with mremap, which does
 ** not span mappings of different kinds); what it grows into later stays
-** marked. Blocks under 8 MiB are left alone. */
+** marked. Blocks under 4 MiB are left alone. */
 void lsys_common_hugepages (void *p, size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   const uintptr_t page = 4096;
   uintptr_t a = (uintptr_t)p & ~(page - 1), b = ((uintptr_t)p + n + page - 1) & ~(page - 1);
-  if (n >= ((size_t)8 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
+  if (n >= ((size_t)4 << 20)) madvise((void *)a, b - a, MADV_HUGEPAGE);
 #else
   (void)p; (void)n;
 #endif

@@ -74,7 +74,7 @@ typedef struct lsys_meter {
                               several threads grow within the meter (turtle_par.c) */
 } lsys_meter;
 
-/* Asks for huge pages behind the block of n bytes at p when it is big (8 MiB
+/* Asks for huge pages behind the block of n bytes at p when it is big (4 MiB
 ** or more) and the system gives them on request (Linux): its first touch then
 ** faults every 2 MiB, not every 4 KiB. lsys_common_grow and the meter's growth call it. */
 void lsys_common_hugepages (void *p, size_t n);

@@ -7,68 +7,100 @@
 
 #include "derive_impl.h"
 
-/* Grows the table *p of *cap entries to exactly 'need' (a context table is
-** made again at each step, for a string that grows by less than doubling),
-** within the model's budget. */
-static int exact (lsys_rules *m, uint32_t **p, size_t *cap, size_t need) {
-  uint32_t *np;
+/* Grows the array *p of *cap entries of 'elem' bytes to exactly 'need'
+** within the model's budget: a table made again at each step, for a string
+** that grows by less than doubling. */
+static int exact (lsys_rules *m, void **p, size_t *cap, size_t need, size_t elem) {
+  void *np;
   if (*cap >= need) return LSYS_OK;
-  if (!lsys_common_meter_fits(&m->meter, (need - *cap) * sizeof **p)) {
+  if (need > (size_t)-1 / elem) return LSYS_ENOMEM;
+  if (!lsys_common_meter_fits(&m->meter, (need - *cap) * elem)) {
     m->meter.hit = 1;
     return LSYS_EMEMORY;
   }
-  if ((np = (uint32_t *)LSYS_REALLOC(*p, need * sizeof **p)) == NULL) return LSYS_ENOMEM;
-  lsys_common_hugepages(np, need * sizeof **p);
-  m->meter.used += (need - *cap) * sizeof **p;
+  if ((np = LSYS_REALLOC(*p, need * elem)) == NULL) return LSYS_ENOMEM;
+  lsys_common_hugepages(np, need * elem);
+  m->meter.used += (need - *cap) * elem;
   *p = np;
   *cap = need;
   return LSYS_OK;
 }
 
+static inline uint16_t scode (const lsys_lstring *s, size_t i) {
+  return s->sym8 != NULL ? (uint16_t)LSYS_CODE(s->sym8[i], 0) : s->code[i];
+}
+
 int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
-  size_t i, off = 0, n = s->n;
+  lsys_brk *b = &m->brk;
+  size_t i, w, nw, off = 0, n = s->n, nb = 0, depth = 0;
   int st, withp = s->sym8 == NULL && s->npar > 0;
-  uint32_t top = NONE, *mt;
   if (n >= NONE) return LSYS_ELIMIT;
-  if ((st = exact(m, &m->match, &m->matchcap, n + 1)) != LSYS_OK ||
-      (withp && (st = exact(m, &m->poff, &m->poffcap, n + 1)) != LSYS_OK))
+  nw = n / 64 + 1;
+  if ((st = exact(m, (void **)&b->bits, &b->bitscap, nw, sizeof *b->bits)) != LSYS_OK ||
+      (st = exact(m, (void **)&b->cnt, &b->cntcap, nw, sizeof *b->cnt)) != LSYS_OK ||
+      (withp && (st = exact(m, (void **)&m->poff, &m->poffcap, n + 1, sizeof *m->poff))
+                 != LSYS_OK))
     return st;
-  /* the open brackets are pushed on the match array itself: match[k] of an
-  ** open '[' temporarily links to the previous open one */
-  mt = m->match;
-  if (s->sym8 != NULL) {
-    const uint8_t *c8 = s->sym8;
-    for (i = 0; i < n; i++) {
-      uint32_t sym = c8[i];
-      mt[i] = NONE;
-      if (sym == LSYS_SYM_LBR) { mt[i] = top; top = (uint32_t)i; }
-      else if (sym == LSYS_SYM_RBR && top != NONE) {
-        uint32_t prev = mt[top];
-        mt[top] = (uint32_t)i;
-        mt[i] = top;
-        top = prev;
+  /* the brackets' bits and counts */
+  for (w = 0; w < nw; w++) {
+    size_t e = w * 64 + 64 < n ? w * 64 + 64 : n;
+    uint64_t bits = 0;
+    b->cnt[w] = (uint32_t)nb;
+    if (s->sym8 != NULL)
+      for (i = w * 64; i < e; i++) {
+        uint8_t c = s->sym8[i];
+        if (c == LSYS_SYM_LBR || c == LSYS_SYM_RBR) bits |= (uint64_t)1 << (i & 63);
       }
+    else
+      for (i = w * 64; i < e; i++) {
+        uint32_t sym = LSYS_CSYM(s->code[i]);
+        if (withp) {
+          if (off > NONE) return LSYS_ELIMIT;
+          m->poff[i] = (uint32_t)off;
+          off += LSYS_CNP(s->code[i]);
+        }
+        if (sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) bits |= (uint64_t)1 << (i & 63);
+      }
+    b->bits[w] = bits;
+#if defined(__GNUC__)
+    nb += (size_t)__builtin_popcountll(bits);
+#else
+    for (; bits != 0; bits &= bits - 1) nb++;
+#endif
+  }
+  if (withp) m->poff[n] = (uint32_t)off;
+  /* the partners, by rank: the open brackets wait on a stack of (rank, position) */
+  if ((st = exact(m, (void **)&b->pos, &b->poscap, nb + 1, sizeof *b->pos)) != LSYS_OK)
+    return st;
+  nb = 0;
+  for (w = 0; w < nw; w++) {
+    uint64_t bits = b->bits[w];
+    while (bits != 0) {
+#if defined(__GNUC__)
+      size_t at = w * 64 + (size_t)__builtin_ctzll(bits);
+#else
+      size_t at = w * 64, k;
+      for (k = 0; !((bits >> k) & 1); k++) at++;
+#endif
+      bits &= bits - 1;
+      b->pos[nb] = NONE;
+      if (LSYS_CSYM(scode(s, at)) == LSYS_SYM_LBR) {
+        if (2 * depth + 2 > b->stkcap &&
+            (st = lsys_common_grow_metered((void **)&b->stk, &b->stkcap, 2 * depth + 2,
+                                           sizeof *b->stk, &m->meter)) != LSYS_OK)
+          return st;
+        b->stk[2 * depth] = (uint32_t)nb;
+        b->stk[2 * depth + 1] = (uint32_t)at;
+        depth++;
+      }
+      else if (depth > 0) {
+        depth--;
+        b->pos[b->stk[2 * depth]] = (uint32_t)at;
+        b->pos[nb] = b->stk[2 * depth + 1];
+      }
+      nb++;
     }
   }
-  else
-    for (i = 0; i < n; i++) {
-      uint32_t sym = LSYS_CSYM(s->code[i]);
-      if (withp) {
-        if (off > NONE) return LSYS_ELIMIT;
-        m->poff[i] = (uint32_t)off;
-        off += LSYS_CNP(s->code[i]);
-      }
-      mt[i] = NONE;
-      if (sym == LSYS_SYM_LBR) { mt[i] = top; top = (uint32_t)i; }
-      else if (sym == LSYS_SYM_RBR && top != NONE) {
-        uint32_t prev = mt[top];
-        mt[top] = (uint32_t)i;
-        mt[i] = top;
-        top = prev;
-      }
-    }
-  while (top != NONE) { uint32_t prev = mt[top]; mt[top] = NONE; top = prev; }
-  if (withp) m->poff[n] = (uint32_t)off;
   return LSYS_OK;
 }
 
@@ -96,8 +128,9 @@ static long long leftof (const view *v, long long j) {
   for (; j >= 0; j--) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) {
-      if (v->match[j] == NONE) return -1;
-      j = (long long)v->match[j];
+      uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+      if (p == NONE) return -1;
+      j = (long long)p;
     }
     else if (sym != LSYS_SYM_LBR && !skipped(v, sym)) return j;
   }
@@ -111,8 +144,9 @@ static size_t rightof (const view *v, size_t j) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (skipped(v, sym)) j++;
     else if (sym == LSYS_SYM_LBR) {
-      if (v->match[j] == NONE) return v->n;
-      j = v->match[j] + 1;
+      uint32_t p = lsys_brk_partner(v->match, j);
+      if (p == NONE) return v->n;
+      j = (size_t)p + 1;
     }
     else return j;
   }
@@ -166,8 +200,9 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       if (++steps > v->n) return 0;
       sym = LSYS_CSYM(lsys_view_code(v, j));
       if (sym == LSYS_SYM_RBR) {
-        if (v->match[j] == NONE) return 0;
-        j = (long long)v->match[j] - 1;
+        uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+        if (p == NONE) return 0;
+        j = (long long)p - 1;
       }
       else if (sym == LSYS_SYM_LBR || skipped(v, sym)) j--;
       else break;
@@ -187,8 +222,9 @@ static size_t branchend (const view *v, size_t j) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) return j;
     if (sym == LSYS_SYM_LBR) {
-      if (v->match[j] == NONE) return v->n;
-      j = v->match[j];
+      uint32_t p = lsys_brk_partner(v->match, j);
+      if (p == NONE) return v->n;
+      j = p;
     }
     j++;
   }
@@ -246,8 +282,9 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       sym = LSYS_CSYM(lsys_view_code(v, j));
       if (skipped(v, sym)) j++;            /* first, as cpfg: an ignored bracket too */
       else if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
-        if (v->match[j] == NONE) return 0;
-        j = v->match[j] + 1;
+        uint32_t p = lsys_brk_partner(v->match, j);
+        if (p == NONE) return 0;
+        j = (size_t)p + 1;
       }
       else break;
     }

@@ -423,7 +423,7 @@ static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v)
   v->skip = lsys_derive_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_context_buildtables(m, src)) != LSYS_OK) return st;
-    v->match = m->match;
+    v->match = &m->brk;
     v->poff = src->sym8 == NULL && src->npar > 0 ? m->poff : NULL;
   }
   return LSYS_OK;
@@ -782,7 +782,9 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
 static int meter (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
-                   m->matchcap * sizeof *m->match + m->poffcap * sizeof *m->poff +
+                   m->brk.bitscap * sizeof *m->brk.bits + m->brk.cntcap * sizeof *m->brk.cnt +
+                   m->brk.poscap * sizeof *m->brk.pos + m->brk.stkcap * sizeof *m->brk.stk +
+                   m->poffcap * sizeof *m->poff +
                    lsys_derive_par_bytes(m);
   if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
@@ -881,7 +883,7 @@ int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring 
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_context_eqsym(m);
   v.skip = lsys_derive_findskip(m, 0);
-  if (m->hctx) { v.match = m->match; v.poff = src->npar > 0 ? m->poff : NULL; }
+  if (m->hctx) { v.match = &m->brk; v.poff = src->npar > 0 ? m->poff : NULL; }
   lsys_lstring_clear(out);
   lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);

@@ -21,7 +21,7 @@ typedef struct view {
   const uint8_t *code8;    /* or, of a string at a byte a module, its symbols (code NULL) */
   const double *par;
   size_t n;
-  const uint32_t *match;   /* NULL when no context tables were built */
+  const lsys_brk *match;   /* NULL when no context tables were built */
   const uint32_t *poff;    /* NULL when the string has no parameters */
   const lsys_skip *skip;
   int ring;
@@ -78,7 +78,18 @@ lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int g
 lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub);
 int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s);
 
-/* Builds the bracket-match table of 's' in m->match and, when it has
+/* The partner of the bracket at j (its position, or NONE). */
+static inline uint32_t lsys_brk_partner (const lsys_brk *b, size_t j) {
+  uint64_t w = b->bits[j >> 6] & ((((uint64_t)1) << (j & 63)) - 1);
+  uint32_t r;
+  w = w - ((w >> 1) & 0x5555555555555555u);             /* the bits counted in pairs, */
+  w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);   /* fours, eights */
+  w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  r = (uint32_t)((w * 0x0101010101010101u) >> 56);
+  return b->pos[b->cnt[j >> 6] + r];
+}
+
+/* Builds the bracket table of 's' in m->brk and, when it has
 ** parameters, the parameter offsets in m->poff (else m->poff is left as it
 ** was; within the model's memory budget). LSYS_OK, LSYS_ELIMIT, LSYS_ENOMEM
 ** or LSYS_EMEMORY. */
