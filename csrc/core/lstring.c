@@ -1,8 +1,8 @@
 /*
 ** The module string: storage, text notation in and out.
 */
-#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
-#define _DEFAULT_SOURCE         /* madvise */
+#if defined(__linux__) && !defined(_GNU_SOURCE)
+#define _GNU_SOURCE             /* madvise, mremap */
 #endif
 #ifdef __linux__
 #include <sys/mman.h>
@@ -14,14 +14,112 @@
 
 #include "lstring.h"
 
+/*
+** The arrays of a string (codes, symbols, parameters). A block of BIGBLOCK
+** bytes or more is a mapping of its own on Linux, grown by mremap (which
+** moves pages instead of copying them: a derivation grows its string in
+** place) and given back when freed; smaller ones come from malloc, which
+** keeps their memory for the next string (a plant made again and again
+** faults no fresh pages). A header before the array says which.
+*/
+#define BIGBLOCK ((size_t)1 << 20)
+#define HEAD 16                 /* bytes: the block's size, whether it is mapped */
+
+typedef struct head { size_t size, mapped; } head;
+
+static void *bset (head *h, size_t size, size_t mapped) {
+  h->size = size;
+  h->mapped = mapped;
+  return (char *)h + HEAD;
+}
+
+static void *balloc (size_t n) {
+  size_t size = n + HEAD;
+  head *h;
+  if (n > (size_t)-1 - HEAD - 4096) return NULL;
+#ifdef __linux__
+  if (size >= BIGBLOCK) {
+    size = (size + 4095) & ~(size_t)4095;
+    h = (head *)mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (h == MAP_FAILED) return NULL;
+    lsys_common_hugepages(h, size);
+    return bset(h, size, 1);
+  }
+#endif
+  if ((h = (head *)LSYS_MALLOC(size)) == NULL) return NULL;
+  return bset(h, size, 0);
+}
+
+static void bfree (void *p) {
+  head *h;
+  if (p == NULL) return;
+  h = (head *)(void *)((char *)p - HEAD);
+#ifdef __linux__
+  if (h->mapped) {
+    munmap(h, h->size);
+    return;
+  }
+#endif
+  LSYS_FREE(h);
+}
+
+static void *brealloc (void *p, size_t n) {
+  head *h;
+  size_t size = n + HEAD;
+  if (p == NULL) return balloc(n);
+  if (n > (size_t)-1 - HEAD - 4096) return NULL;
+  h = (head *)(void *)((char *)p - HEAD);
+#if defined(__linux__) && defined(MREMAP_MAYMOVE)     /* (a file that includes this one */
+  if (h->mapped && size >= BIGBLOCK) {            /* may lack it): the pages move */
+    head *nh;
+    size = (size + 4095) & ~(size_t)4095;
+    nh = (head *)mremap(h, h->size, size, MREMAP_MAYMOVE);
+    if (nh == MAP_FAILED) return NULL;
+    if (size > nh->size) lsys_common_hugepages(nh, size);
+    return bset(nh, size, 1);
+  }
+#endif
+#ifdef __linux__
+  if (h->mapped || size >= BIGBLOCK) {            /* from one kind to the other */
+    void *np = balloc(n);
+    if (np == NULL) return NULL;
+    memcpy(np, p, (h->size < size ? h->size : size) - HEAD);
+    bfree(p);
+    return np;
+  }
+#endif
+  if ((h = (head *)LSYS_REALLOC(h, size)) == NULL) return NULL;
+  return bset(h, size, 0);
+}
+
+/* lsys_common_grow_metered for a string's array: capacity doubled, within the meter. */
+static int growm (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *mt) {
+  size_t ncap = *cap ? *cap : 16;
+  void *np;
+  int st;
+  if (need <= *cap) return LSYS_OK;
+  if (mt != NULL) {
+    if ((st = lsys_common_meter_take(mt, *cap, need, elem, &ncap)) != LSYS_OK) return st;
+  }
+  else
+    while (ncap < need) {
+      if (ncap > ((size_t)-1 / 2) / elem) return LSYS_ENOMEM;
+      ncap *= 2;
+    }
+  if ((np = brealloc(*p, ncap * elem)) == NULL) return LSYS_ENOMEM;
+  *p = np;
+  *cap = ncap;
+  return LSYS_OK;
+}
+
 void lsys_lstring_init (lsys_lstring *s) {
   memset(s, 0, sizeof *s);
 }
 
 void lsys_lstring_free (lsys_lstring *s) {
-  LSYS_FREE(s->code);
-  LSYS_FREE(s->sym8);
-  LSYS_FREE(s->par);
+  bfree(s->code);
+  bfree(s->sym8);
+  bfree(s->par);
   LSYS_FREE(s->ck);
   memset(s, 0, sizeof *s);
 }
@@ -30,12 +128,12 @@ int lsys_lstring_reserve (lsys_lstring *s, size_t nmod, size_t npar) {
   int st;
   if (s->sym8 != NULL && (st = lsys_lstring_widen(s)) != LSYS_OK) return st;
   if (s->n + nmod > s->cap &&
-      (st = lsys_common_grow_metered((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code,
-                                     s->meter)) != LSYS_OK)
+      (st = growm((void **)&s->code, &s->cap, s->n + nmod, sizeof *s->code, s->meter))
+        != LSYS_OK)
     return st;
   if (s->npar + npar > s->parcap &&
-      (st = lsys_common_grow_metered((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par,
-                                     s->meter)) != LSYS_OK)
+      (st = growm((void **)&s->par, &s->parcap, s->npar + npar, sizeof *s->par, s->meter))
+        != LSYS_OK)
     return st;
   return LSYS_OK;
 }
@@ -52,10 +150,9 @@ static int regrow (void **p, size_t old, size_t new, lsys_meter *mt) {
       return LSYS_EMEMORY;
     }
   }
-  np = LSYS_REALLOC(*p, new > 0 ? new : 1);
+  np = brealloc(*p, new > 0 ? new : 1);
   if (np == NULL) return LSYS_ENOMEM;
   *p = np;
-  if (new > old) lsys_common_hugepages(np, new);
   if (mt != NULL) mt->used = base + new;
   return LSYS_OK;
 }
@@ -69,7 +166,7 @@ int lsys_lstring_widen (lsys_lstring *s) {
   if ((st = regrow((void **)&s->sym8, s->cap, cap * 2, s->meter)) != LSYS_OK) return st;
   w = (uint16_t *)(void *)s->sym8;
   for (i = s->n; i-- > 0;) w[i] = (uint16_t)LSYS_CODE(s->sym8[i], 0);   /* from the end */
-  LSYS_FREE(s->code);        /* no array (a narrow string has none) */
+  bfree(s->code);            /* no array (a narrow string has none) */
   s->code = w;
   s->sym8 = NULL;
   s->cap = cap;
@@ -110,13 +207,12 @@ static int exact (void **p, size_t *cap, size_t need, size_t elem, lsys_meter *m
       return LSYS_EMEMORY;
     }
   }
-  LSYS_FREE(*p);
+  bfree(*p);
   *p = NULL;
   *cap = 0;
   if (mt != NULL) mt->used = base;
-  np = LSYS_MALLOC(need * elem);
+  np = balloc(need * elem);
   if (np == NULL) return LSYS_ENOMEM;
-  lsys_common_hugepages(np, need * elem);
   *p = np;
   *cap = need;
   if (mt != NULL) mt->used = base + need * elem;
@@ -131,7 +227,7 @@ static void dropother (lsys_lstring *s, int narrow) {
     size_t b = s->cap * (narrow ? sizeof *s->code : 1);
     s->meter->used = s->meter->used > b ? s->meter->used - b : 0;
   }
-  LSYS_FREE(*p);
+  bfree(*p);
   *p = NULL;
   s->cap = 0;
 }

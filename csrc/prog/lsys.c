@@ -694,11 +694,13 @@ int main (int argc, char **argv) {
   lua_State *L;
   int status, code;
 #if defined(__GLIBC__) && defined(M_MMAP_THRESHOLD)
-  /* Blocks of 1 MiB and more are mapped, always (glibc otherwise raises the threshold
-  ** up to 32 MiB as such blocks are freed): a derivation grows its string in place
-  ** (derive_par.c), and realloc then moves the pages instead of copying them, and
-  ** memory freed goes back to the system at once. */
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  /* Blocks under 32 MiB come from the heap, and up to 64 MiB freed at its top stay
+  ** there: a plant made again (an edit, an animation frame, a regeneration) reuses the
+  ** memory of the one before instead of faulting fresh pages, which costs more than the
+  ** work on them (issue 41). A string's arrays map blocks of 1 MiB and more themselves
+  ** (lstring.c), so a derivation still grows its string in place by moving pages. */
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
 #endif
   L = luaL_newstate();
   if (L == NULL) {

@@ -113,7 +113,42 @@ static void test_scan (void) {
   lsys_alphabet_names_free(&d);
 }
 
+/* A string's arrays across the size where they become mappings of their own
+** (lstring.c, BIGBLOCK): grown module by module, in place, widened, prepared
+** again smaller and larger, their contents kept at every change. */
+static void test_blocks (void) {
+  lsys_lstring s;
+  size_t i, n = 600000;                  /* 1.2 MB of codes, 4.8 MB of parameters */
+  lsys_lstring_init(&s);
+  for (i = 0; i < n; i++) {
+    double p = (double)i;
+    assert(lsys_lstring_push(&s, (uint32_t)(i % 200) + 1, &p, i % 2) == LSYS_OK);
+  }
+  for (i = 0; i < n; i += 997) {
+    assert(LSYS_CSYM(s.code[i]) == i % 200 + 1 && LSYS_CNP(s.code[i]) == i % 2);
+  }
+  assert(s.npar == n / 2 && s.par[0] == 1 && s.par[s.npar - 1] == (double)(n - 1));
+  assert(lsys_lstring_grow(&s, 3 * n, 2 * n) == LSYS_OK);     /* larger, in place */
+  assert(s.n == n && LSYS_CSYM(s.code[n - 1]) == (n - 1) % 200 + 1);
+  assert(s.par[s.npar - 1] == (double)(n - 1));
+  assert(lsys_lstring_prepare8(&s, 100) == LSYS_OK);          /* small, narrow */
+  for (i = 0; i < 100; i++) s.sym8[i] = (uint8_t)(i + 1);
+  s.n = 100;
+  assert(lsys_lstring_grow(&s, 2000000, 0) == LSYS_OK);       /* to a mapping */
+  for (i = 100; i < 2000000; i++) s.sym8[i] = (uint8_t)(i % 250 + 1);
+  s.n = 2000000;
+  assert(lsys_lstring_widen(&s) == LSYS_OK && s.sym8 == NULL);
+  assert(LSYS_CSYM(s.code[5]) == 6 && LSYS_CSYM(s.code[1999999]) == 1999999 % 250 + 1);
+  assert(lsys_lstring_prepare(&s, 10, 10) == LSYS_OK);        /* exact: small again */
+  s.code[9] = LSYS_CODE(7, 0);
+  s.n = 10;
+  assert(lsys_lstring_reserve(&s, 1000000, 0) == LSYS_OK);    /* and back */
+  assert(LSYS_CSYM(s.code[9]) == 7);
+  lsys_lstring_free(&s);
+}
+
 int main (void) {
+  test_blocks();
   test_text();
   test_errors();
   test_poff();
