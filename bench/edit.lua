@@ -50,8 +50,9 @@ do
     best = math.min(best, B.clock() - t0)
   end
   print(format("default plant: %d modules, %d triangles", #sc.lstring, sc.ntriangles))
-  print(format("  build      %6.1f ms  (re-derive + interpret; target < %.0f ms: %s)",
-    1000 * best, 1000 * TARGET, B.verdict(best < TARGET)))
+  print(format("  build      %6.1f ms  (re-derive + interpret; target < %.0f ms: %s; "
+    .. "issue 41: < 50 ms: %s)", 1000 * best, 1000 * TARGET, B.verdict(best < TARGET),
+    B.verdict(best < 0.050)))
 end
 
 -- the chestnut's component graph, through the editing session (a stand-in for the window)

@@ -23,7 +23,7 @@ local B = dofile(((arg and arg[0] or "bench/grow.lua"):match("^(.*)/[^/]*$") or 
 local lsys = B.load_lsys()
 local grow = lsys.grow
 local TICKS = tonumber(arg and arg[1]) or 20
-local SIZES = { 100, 1000, 4000, 20000 }
+local SIZES = { 100, 1000, 4000, 5000, 20000 }   -- 5000: the first over 30,000 modules
 local SEED = 1
 local LEVELS = 30       -- the paper stops at level 10 (and 256 limbs a tree): too few limbs here
 
@@ -102,7 +102,7 @@ print(string.format("lsys %s, %s; incremental: %d ticks timed at each size", lsy
 local m = lsystem()
 local s = m:derive()
 for k = 0, 4 do assert(m._rules:hasvm(k), "rule " .. k .. " is not in the expression machine") end
-local at4000
+local at4000, at30k
 for _, n in ipairs(SIZES) do
   -- the L-system first: derived until it has n limbs or more; the world then grows to as
   -- many, so both run at the same size
@@ -122,6 +122,7 @@ for _, n in ipairs(SIZES) do
   print(string.format("  (%d asked; the world's scene %d vertices; %d modules derived and " ..
                       "interpreted)", n, w:scene().nvertices, #s))
   if n == 4000 then at4000 = { inc, reg, size } end
+  if n == 5000 then at30k = { reg, #s } end
 end
 
 if at4000 then
@@ -129,6 +130,11 @@ if at4000 then
                       "least 20x faster than regenerating (%.1fx: %s)", at4000[3], at4000[1],
                       B.verdict(at4000[1] < 1), at4000[2] / at4000[1],
                       B.verdict(at4000[2] / at4000[1] >= 20)))
+end
+
+if at30k then
+  print(string.format("target (issue 41): regenerating a plant of 30,000 modules or more (%d) " ..
+                      "in under 10 ms (%.1f ms: %s)", at30k[2], at30k[1], B.verdict(at30k[1] < 10)))
 end
 
 -- memory once grown: 200 more ticks of the 4,000-limb world
