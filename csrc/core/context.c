@@ -3,6 +3,7 @@
 ** bracket-match tables of a string, and left and right contexts as cpfg
 ** matches them (cpfg guide, Appendix A; the manual's 6.3, docs/manual.md).
 */
+#include <pthread.h>
 #include <string.h>
 
 #include "derive_impl.h"
@@ -124,7 +125,44 @@ static inline int skipped (const view *v, uint32_t sym) {
 /* The module a left context compares with, scanning left from j (cpfg's
 ** way: whole branches to the left skipped, out of the current one, ignored
 ** modules passed), or -1. Not for rings. */
-static long long leftof (const view *v, long long j) {
+enum { SC_STOP, SC_PASS, SC_JUMP };
+
+/* What the scans do at each symbol with the ignore or consider list k (NULL:
+** none): the left one jumps back over a branch at ']', passes '[' and ignored
+** modules; the right one passes ignored modules (brackets too), jumps over a
+** branch at '[' (a plain pattern module's scan). */
+static void classes (const lsys_skip *k, uint8_t *lcls, uint8_t *rcls) {
+  uint32_t sym;
+  for (sym = 0; sym < 256; sym++) {
+    int in = k != NULL && ((k->bits[sym >> 3] >> (sym & 7)) & 1), sk = k != NULL &&
+             (k->consider ? !in : in);
+    lcls[sym] = sym == LSYS_SYM_RBR ? SC_JUMP : sym == LSYS_SYM_LBR || sk ? SC_PASS : SC_STOP;
+    rcls[sym] = sk ? SC_PASS : sym == LSYS_SYM_LBR ? SC_JUMP : SC_STOP;
+  }
+}
+
+void lsys_context_classes (lsys_skip *k) { classes(k, k->lcls, k->rcls); }
+
+static uint8_t nolcls[256], norcls[256];   /* without a list: made once */
+static pthread_once_t noonce = PTHREAD_ONCE_INIT;
+static void nolists (void) { classes(NULL, nolcls, norcls); }
+
+long long lsys_context_leftof (const view *v, long long j) {
+  if (v->code8 != NULL) {                      /* a byte a module: by the tables */
+    const uint8_t *c8 = v->code8, *cls;
+    if (v->skip == NULL) pthread_once(&noonce, nolists);
+    cls = v->skip != NULL ? v->skip->lcls : nolcls;
+    for (; j >= 0; j--) {
+      uint8_t k = cls[c8[j]];
+      if (k == SC_STOP) return j;
+      if (k == SC_JUMP) {
+        uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+        if (p == NONE) return -1;
+        j = (long long)p;
+      }
+    }
+    return -1;
+  }
   for (; j >= 0; j--) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) {
@@ -139,7 +177,23 @@ static long long leftof (const view *v, long long j) {
 
 /* The module a right context's plain pattern module compares with, from j
 ** (ignored modules passed, whole branches skipped), or v->n. Not for rings. */
-static size_t rightof (const view *v, size_t j) {
+size_t lsys_context_rightof (const view *v, size_t j) {
+  if (v->code8 != NULL) {
+    const uint8_t *c8 = v->code8, *cls;
+    if (v->skip == NULL) pthread_once(&noonce, nolists);
+    cls = v->skip != NULL ? v->skip->rcls : norcls;
+    while (j < v->n) {
+      uint8_t k = cls[c8[j]];
+      if (k == SC_STOP) return j;
+      if (k == SC_PASS) j++;
+      else {
+        uint32_t p = lsys_brk_partner(v->match, j);
+        if (p == NONE) return v->n;
+        j = (size_t)p + 1;
+      }
+    }
+    return v->n;
+  }
   while (j < v->n) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (skipped(v, sym)) j++;
@@ -177,7 +231,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       const lsys_patmod *pm = &m->pat[r->lc + r->nlc - 1 - q];
       size_t at;
       while (mm->nl <= q && !mm->lend) {
-        long long x = leftof(v, mm->nl == 0 ? j : (long long)mm->l[mm->nl - 1] - 1);
+        long long x = lsys_context_leftof(v, mm->nl == 0 ? j : (long long)mm->l[mm->nl - 1] - 1);
         if (x < 0) mm->lend = 1;
         else mm->l[mm->nl++] = (size_t)x;
       }
@@ -254,7 +308,7 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       const lsys_patmod *pm = &m->pat[r->rc + q];
       size_t at;
       while (mm->nr <= q && !mm->rend) {
-        size_t x = rightof(v, mm->nr == 0 ? j : mm->r[mm->nr - 1] + 1);
+        size_t x = lsys_context_rightof(v, mm->nr == 0 ? j : mm->r[mm->nr - 1] + 1);
         if (x >= v->n) mm->rend = 1;
         else mm->r[mm->nr++] = x;
       }

@@ -74,6 +74,8 @@ typedef struct lsys_ruleset {
 typedef struct lsys_skip {
   int sub, consider;
   uint8_t bits[(LSYS_MAXSYM + 8) / 8];
+  uint8_t lcls[256], rcls[256];   /* what a context's scan does at symbols below 256
+                                  ** (context.c): stops, passes, or jumps a branch */
 } lsys_skip;
 
 /* The scratch of one thread rewriting modules: formal parameters and

@@ -117,6 +117,14 @@ static inline void lsys_context_memo_init (lsys_ctxmemo *mm) {
   mm->nl = mm->nr = mm->lend = mm->rend = 0;
 }
 
+/* The module a left context's plain pattern module compares with, scanning
+** left from j (-1: none), and a right context's, scanning right from j (v->n:
+** none); not for rings. */
+long long lsys_context_leftof (const view *v, long long j);
+/* Fills k's tables of what the scans do at each symbol below 256. */
+void lsys_context_classes (lsys_skip *k);
+size_t lsys_context_rightof (const view *v, size_t j);
+
 /* Whether rule r's left context matches before module i, and its right
 ** context from module j; they write the contexts' parameters into 'args'
 ** (left) and 'a' (right). 'mm' (or NULL) keeps what the scans found for

@@ -41,6 +41,9 @@
 #define CHUNKMIN 2048             /* modules: smaller chunks cost more than they share */
 
 #define NFAST 4                   /* rules of a symbol of class PC_FAST, at most */
+#define NORULE 0xFFFF             /* no rule (a copy) */
+#define NCTAB 16                  /* symbols of class PC_CTAB, at most */
+#define CTN 257                   /* a context table's side: symbols below 256, and none */
 
 /* What a worker does with a module of a symbol. */
 enum {
@@ -50,6 +53,8 @@ enum {
   PC_VMC,       /* the same with a condition */
   PC_FAST,      /* up to NFAST rules without contexts or weights, each a program of
                 ** lsys_expr_fast's form (or a template): the first that applies */
+  PC_CTAB,      /* rules of templates with a context of at most one module each side,
+                ** of symbols without parameters: the rule by those two symbols */
   PC_GEN,       /* contexts, weights, several rules, groups: lsys_derive_choose */
   PC_SEQ        /* the sequential step must run */
 };
@@ -66,6 +71,7 @@ typedef struct pent {
   const uint8_t *t8;          /* the template as symbols (when nar) */
   lsys_xfast fx;              /* PC_VM: the values without the stack machine (fx.ok) */
   uint32_t nfr, fr[NFAST];    /* PC_FAST: the rules, in the order they are tried */
+  uint16_t *ctab;             /* PC_CTAB: the rule (or NORULE) by left and right symbol */
 } pent;
 
 #define NOPNP 0xFF
@@ -90,7 +96,6 @@ typedef struct gcache {
   double *par; size_t pcap;
 } gcache;
 
-#define NORULE 0xFFFF
 
 /* The workers' scratch, kept by the model between steps. */
 typedef struct lsys_par {
@@ -101,6 +106,7 @@ typedef struct lsys_par {
   uint8_t *t8; size_t nt8;    /* m->tcode as symbols */
   uint8_t *rnar; size_t nrnar;  /* per rule: its successor fits a narrow string */
   lsys_xfast *rfx; size_t nrfx; /* per rule: its program without the stack machine */
+  uint16_t *ctab;             /* NCTAB tables of CTN * CTN rules (PC_CTAB) */
   uint8_t nkind[256], nlen[256];
   uint64_t wcount[256 << LSYS_NPBITS];  /* codes of symbols below 256: CW_SLOW, or the
                               ** successor's modules, parameters << 24 and FL_* << 48 */
@@ -160,6 +166,7 @@ void lsys_derive_par_free (lsys_rules *m) {
   LSYS_FREE(m->par->t8);
   LSYS_FREE(m->par->rnar);
   LSYS_FREE(m->par->rfx);
+  LSYS_FREE(m->par->ctab);
   LSYS_FREE(m->par);
   m->par = NULL;
 }
@@ -274,6 +281,57 @@ static int prepare (lsys_rules *m, lsys_par *P, int nt) {
   return 1;
 }
 
+/* Whether pattern module pm is one a context table can hold: a symbol below
+** 256 without parameters that is neither a bracket nor '='. */
+static int ctsym (const lsys_patmod *pm, uint32_t eq) {
+  return pm->np == 0 && pm->sym < 256 && pm->sym != LSYS_SYM_LBR &&
+         pm->sym != LSYS_SYM_RBR && pm->sym != eq;
+}
+
+/* Makes symbol k's context table in e->ctab when its rules allow one (all of
+** them templates, not weighted, for modules without parameters, with at most
+** one plain module of context each side) and there is room for one more:
+** the first rule that applies for each pair of neighbours, the rules tried
+** in the order lsys_derive_choose tries them. */
+static int ctabfor (lsys_rules *m, lsys_ruleset *const *sets, int nsets, uint32_t k,
+                    int *nctab, pent *e) {
+  lsys_par *P = m->par;
+  uint32_t eq = lsys_context_eqsym(m), b, l, r;
+  uint16_t *t;
+  int si;
+  if (k >= 256 || *nctab >= NCTAB || m->ring || m->nrules >= NORULE) return 0;
+  for (si = 0; si < nsets; si++) {
+    const lsys_ruleset *s = sets[si];
+    if (s == NULL || k >= s->nsym) continue;
+    for (b = s->start[k]; b < s->start[k + 1]; b++) {
+      const lsys_rule *ru = &m->rules[s->byp[b]];
+      if (ru->vm != NULL || (ru->flags & (LSYS_RF_STOCH | LSYS_RF_CALL | LSYS_RF_DYN)) ||
+          ru->nmore || ru->pred_np != 0 || ru->nlc > 1 || ru->nrc > 1 ||
+          (ru->nlc && !ctsym(&m->pat[ru->lc], eq)) || (ru->nrc && !ctsym(&m->pat[ru->rc], eq)))
+        return 0;
+    }
+  }
+  if (P->ctab == NULL &&
+      (P->ctab = (uint16_t *)LSYS_MALLOC((size_t)NCTAB * CTN * CTN * sizeof *P->ctab)) == NULL)
+    return 0;
+  t = P->ctab + (size_t)*nctab * CTN * CTN;
+  for (l = 0; l < CTN * CTN; l++) t[l] = NORULE;
+  for (si = nsets; si-- > 0;) {          /* the last rule first: the first one tried */
+    const lsys_ruleset *s = sets[si];      /* is written last */
+    if (s == NULL || k >= s->nsym) continue;
+    for (b = s->start[k + 1]; b-- > s->start[k];) {
+      const lsys_rule *ru = &m->rules[s->byp[b]];
+      uint32_t l0 = ru->nlc ? m->pat[ru->lc].sym : 0, l1 = ru->nlc ? l0 + 1 : CTN;
+      uint32_t r0 = ru->nrc ? m->pat[ru->rc].sym : 0, r1 = ru->nrc ? r0 + 1 : CTN;
+      for (l = l0; l < l1; l++)
+        for (r = r0; r < r1; r++) t[l * CTN + r] = (uint16_t)s->byp[b];
+    }
+  }
+  e->ctab = t;
+  (*nctab)++;
+  return 1;
+}
+
 /*
 ** The class of every symbol (as the sequential step's fast loop, derive.c's
 ** fasttable, with rules on the expression machine and contexts besides).
@@ -285,7 +343,7 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
                      int *genp) {
   lsys_par *P = m->par;
   uint32_t k, n = m->ab->n;
-  int si;
+  int si, nctab = 0;
   *needsp = *genp = 0;
   if (P->npe < n) {
     LSYS_FREE(P->pe);
@@ -322,6 +380,7 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
       if (simple && r->vm == NULL) e->cls = PC_PLAIN;
       else if (simple && !hascond(r)) e->cls = PC_VM;
       else if (fast && nr <= NFAST) e->cls = PC_FAST;
+      else if (ctabfor(m, sets, nsets, k, &nctab, e)) e->cls = PC_CTAB;
       else if (simple) e->cls = PC_VMC;
       else e->cls = PC_GEN;
       e->nfr = e->cls == PC_FAST ? nr : 0;
@@ -339,7 +398,8 @@ static int classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *n
                           (r->nsucc == 0 || r->nsrc < r->pred_np ? FL_SHRINK : 0));
       }
     }
-    if (e->cls == PC_VMC || e->cls == PC_FAST || e->cls == PC_GEN) *needsp = 1;
+    if (e->cls == PC_VMC || e->cls == PC_FAST || e->cls == PC_CTAB || e->cls == PC_GEN)
+      *needsp = 1;
     if (e->cls == PC_GEN) *genp = 1;
     if (k < 256) {               /* narrow modules; wide ones, counted */
       for (q = 0; q <= LSYS_MAXPARAMS; q++)
@@ -392,6 +452,22 @@ static int pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **
       *rule = r;
       return 0;
     }
+    return 0;
+  }
+  if (e->cls == PC_CTAB) {              /* the neighbours' symbols: 256 when none */
+    const view *v = j->v;
+    long long l = lsys_context_leftof(v, (long long)i - 1);
+    size_t r = lsys_context_rightof(v, i + 1);
+    uint32_t ls = l < 0 ? 256 : LSYS_CSYM(lsys_view_code(v, (size_t)l));
+    uint32_t rs = r >= v->n ? 256 : LSYS_CSYM(lsys_view_code(v, r));
+    uint16_t id;
+    if (LSYS_CNP(cd) != 0) return 0;
+    if (l >= 0 && LSYS_CNP(lsys_view_code(v, (size_t)l)) != 0) ls = 256;  /* never a pattern's */
+    if (r < v->n && LSYS_CNP(lsys_view_code(v, r)) != 0) rs = 256;
+    if (ls > 256) ls = 256;
+    if (rs > 256) rs = 256;
+    id = e->ctab[ls * CTN + rs];
+    if (id != NORULE) *rule = &m->rules[id];
     return 0;
   }
   if (e->cls != PC_GEN) return -1;

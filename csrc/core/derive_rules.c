@@ -98,6 +98,7 @@ int lsys_rules_skiplist (lsys_rules *m, int sub, int consider,
   k->consider = consider;
   for (i = 0; i < n; i++)
     if (syms[i] <= LSYS_MAXSYM) k->bits[syms[i] >> 3] |= (uint8_t)(1u << (syms[i] & 7));
+  lsys_context_classes(k);
   return LSYS_OK;
 }
 
