@@ -735,6 +735,22 @@ static int expandone (lsys_rules *m, int kind, lsys_ruleset *const *sets, int ns
   return lsys_lstring_push(out, LSYS_CSYM(code), par, np);
 }
 
+/* Whether no rule of set s applies to module 'code' (parameters 'par') for
+** certain: every rule for it without contexts or weights, its condition of
+** lsys_expr_fast's form and false. (0: it may apply, or cannot be told so.) */
+static int nonefast (const lsys_rules *m, const lsys_ruleset *s, uint16_t code,
+                     const double *par) {
+  uint32_t sym = LSYS_CSYM(code), np = LSYS_CNP(code), b;
+  for (b = s->start[sym]; b < s->start[sym + 1]; b++) {
+    const lsys_rule *r = &m->rules[s->byp[b]];
+    if (r->pred_np != np) continue;
+    if (r->vm == NULL || !r->fx.ok || !r->fx.cond || r->nlc || r->nrc || r->nmore ||
+        (r->flags & (LSYS_RF_STOCH | LSYS_RF_DYN)) || lsys_expr_term(&r->fx.t[0], par) != 0)
+      return 0;
+  }
+  return 1;
+}
+
 static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
   lsys_ruleset *sets[1];
   int hasctx, st;
@@ -751,9 +767,10 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
     const lsys_ruleset *s = sets[0];
     size_t e = i, q = p;
     while (e < src->n && (LSYS_CSYM(src->code[e]) >= s->nsym ||     /* modules no rule of */
-           s->start[LSYS_CSYM(src->code[e])] == s->start[LSYS_CSYM(src->code[e]) + 1])) {
-      q += LSYS_CNP(src->code[e]);                                  /* the set names: */
-      e++;                                                          /* copied as they are */
+           s->start[LSYS_CSYM(src->code[e])] == s->start[LSYS_CSYM(src->code[e]) + 1] ||
+           nonefast(m, s, src->code[e], parof(src, q)))) {          /* the set applies to: */
+      q += LSYS_CNP(src->code[e]);                                  /* copied as they are */
+      e++;
     }
     if (e > i && dst->n + (e - i) <= m->max_modules) {
       if ((st = lsys_lstring_append(dst, src, i, e, p)) != LSYS_OK) return fail(m, st, i);

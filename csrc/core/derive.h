@@ -44,6 +44,7 @@ typedef struct lsys_rule {
   double weight;
   int id;                       /* the caller's rule number (messages) */
   lsys_ins *vm; int nvm;        /* when set, evaluated in C instead of the callback */
+  lsys_xfast fx;                /* vm without the stack machine, when fx.ok (expr.h) */
   int vmtry, vmtryout;          /* the program's first vmtry instructions: the condition
                                 ** and the weight (vmtryout outputs); cpfg runs the rest,
                                 ** the successor's values, only for the chosen rule */

@@ -232,6 +232,11 @@ int lsys_rules_setvm (lsys_rules *m, size_t idx, const lsys_ins *code, int n) {
   LSYS_FREE(r->vm);
   r->vm = c;
   r->nvm = c ? n : 0;
+  memset(&r->fx, 0, sizeof r->fx);
+  if (c != NULL && !(r->flags & LSYS_RF_WEXPR)) {
+    lsys_expr_fast(c, n, &r->fx);
+    if (r->fx.n != (int)r->nvals) r->fx.ok = 0;
+  }
   r->vmtry = r->vmtryout = 0;
   if (c != NULL) {          /* the condition ends in COND, the weight in the first RET */
     int pc = 0;

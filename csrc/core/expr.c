@@ -159,32 +159,42 @@ int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, 
   return 1;
 }
 
-/* An operand at code[pc] (K or ARG) into the term's x (y when 'second'). */
-static int operand (const lsys_ins *i, lsys_xterm *t, int second) {
-  if (i->op == LSYS_OP_K) {
-    if (second) { t->ya = 0; t->yk = i->k; } else { t->xa = 0; t->xk = i->k; }
-    return 1;
-  }
+/* An operand (K or ARG) into the term's x, y or z (which = 0, 1, 2). */
+static int operand (const lsys_ins *i, lsys_xterm *t, int which) {
+  uint8_t *isarg = which == 0 ? &t->xa : which == 1 ? &t->ya : &t->za;
+  uint8_t *idx = which == 0 ? &t->xi : which == 1 ? &t->yi : &t->zi;
+  double *k = which == 0 ? &t->xk : which == 1 ? &t->yk : &t->zk;
+  if (i->op == LSYS_OP_K) { *isarg = 0; *k = i->k; return 1; }
   if (i->op != LSYS_OP_ARG || i->a < 0 || i->a > 255) return 0;
-  if (second) { t->ya = 1; t->yi = (uint8_t)i->a; } else { t->xa = 1; t->xi = (uint8_t)i->a; }
+  *isarg = 1;
+  *idx = (uint8_t)i->a;
   return 1;
 }
 
-/* A term of code[pc..] ending with 'end' (RET or COND): the instructions it took, or 0. */
+static int arith (int32_t op) { return op >= LSYS_OP_ADD && op <= LSYS_OP_DIV; }
+static int compare (int32_t op) { return op >= LSYS_OP_LT && op <= LSYS_OP_NE; }
+
+/* A term of code[pc..] ending with 'end' (RET or COND): the instructions it
+** took, or 0. Its last operation compares for a condition, computes for an
+** output. */
 static int term (const lsys_ins *code, int pc, int n, int32_t end, lsys_xterm *t) {
+  const lsys_ins *c = code + pc;
+  int left = n - pc;
+  int (*last)(int32_t) = end == LSYS_OP_RET ? arith : compare;
   memset(t, 0, sizeof *t);
-  if (pc + 2 <= n && code[pc + 1].op == end && operand(&code[pc], t, 0)) {
+  if (left >= 2 && c[1].op == end && operand(&c[0], t, 0)) {
     t->op = LSYS_OP_K;
     return 2;
   }
-  if (pc + 4 <= n && code[pc + 3].op == end && operand(&code[pc], t, 0) &&
-      operand(&code[pc + 1], t, 1)) {
-    int32_t op = code[pc + 2].op;
-    int arith = op >= LSYS_OP_ADD && op <= LSYS_OP_DIV;
-    int cmp = op >= LSYS_OP_LT && op <= LSYS_OP_NE;
-    if (end == LSYS_OP_RET ? !arith : !cmp) return 0;
-    t->op = op;
+  if (left < 4 || !operand(&c[0], t, 0) || !operand(&c[1], t, 1)) return 0;
+  if (c[3].op == end && last(c[2].op)) {
+    t->op = c[2].op;
     return 4;
+  }
+  if (left >= 6 && c[5].op == end && arith(c[2].op) && last(c[4].op) && operand(&c[3], t, 2)) {
+    t->op = c[2].op;
+    t->op2 = c[4].op;
+    return 6;
   }
   return 0;
 }

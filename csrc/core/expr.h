@@ -61,14 +61,16 @@ int lsys_expr_span (const lsys_ins *code, int from, int to, const double *args, 
                     lsys_rng *rng, const lsys_func *const *funcs);
 
 /* A program whose condition (if it has one) and outputs are each one
-** operation on two operands, arguments or constants, or one operand alone
-** (A(t) : t < D --> A(t + 1)), as most programs of a successor are: run
-** without the stack machine, with the same results. */
+** operation on two operands, arguments or constants, or one operand alone,
+** or one more operation on the result and a third operand (A(t) : t < D -->
+** A(t + 1), A(t) : t - 1 > 0 --> ...), as most programs of a successor are:
+** run without the stack machine, with the same results. */
 #define LSYS_XFAST 8
 typedef struct lsys_xterm {
   int32_t op;                  /* LSYS_OP_ADD ... DIV, LT ... NE; LSYS_OP_K: x alone */
-  uint8_t xa, ya, xi, yi;      /* xa: x is args[xi], else xk (y alike) */
-  double xk, yk;
+  int32_t op2;                 /* 0, or the operation on op's result and z */
+  uint8_t xa, ya, za, xi, yi, zi;   /* xa: x is args[xi], else xk (y, z alike) */
+  double xk, yk, zk;
 } lsys_xterm;
 
 typedef struct lsys_xfast {
@@ -82,10 +84,8 @@ typedef struct lsys_xfast {
 ** has another form). */
 void lsys_expr_fast (const lsys_ins *code, int n, lsys_xfast *f);
 
-static inline double lsys_expr_term (const lsys_xterm *t, const double *args) {
-  double x = t->xa ? args[t->xi] : t->xk, y = t->ya ? args[t->yi] : t->yk;
-  switch (t->op) {
-    case LSYS_OP_K: return x;
+static inline double lsys_expr_op (int32_t op, double x, double y) {
+  switch (op) {
     case LSYS_OP_ADD: return x + y;
     case LSYS_OP_SUB: return x - y;
     case LSYS_OP_MUL: return x * y;
@@ -97,6 +97,13 @@ static inline double lsys_expr_term (const lsys_xterm *t, const double *args) {
     case LSYS_OP_EQ: return x == y;
     default: return x != y;
   }
+}
+
+static inline double lsys_expr_term (const lsys_xterm *t, const double *args) {
+  double x = t->xa ? args[t->xi] : t->xk, r;
+  if (t->op == LSYS_OP_K) return x;
+  r = lsys_expr_op(t->op, x, t->ya ? args[t->yi] : t->yk);
+  return t->op2 == 0 ? r : lsys_expr_op(t->op2, r, t->za ? args[t->zi] : t->zk);
 }
 
 /* Runs a program of that form: 0 when its condition is false, else 1 with
