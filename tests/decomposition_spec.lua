@@ -103,3 +103,24 @@ describe("decomposition", function()
       "depth_warnings: bad entry 'decomp' %(decomposition = or homomorphism = true or false%)")
   end)
 end)
+
+describe("decomposition with short conditions", function()
+  -- a module whose rules' conditions (of one or two operations) are all false is copied
+  -- without choosing (derive.c, nonefast): the same strings as the rules as Lua functions
+  it("gives the strings of the same rules written as functions", function()
+    local axiom = H.rep("A(2.5)B(0)A(0.5)C", 400)
+    local text = lsys.lsystem { axiom = axiom, productions = "A(t) --> A(t + 0.75)",
+      decomposition = "A(t) : t - 1 > 0 --> B(t - 1)A(t - 1)\nB(x) : x > 3 --> C" }
+    local P = lsys.produce
+    local lua = lsys.lsystem { axiom = axiom, productions = "A(t) --> A(t + 0.75)",
+      decomposition = {
+        { "A(t)", function (t) if t - 1 > 0 then return P("B(?)A(?)", t - 1, t - 1) end end },
+        { "B(x)", function (x) if x > 3 then return P("C") end end },
+      } }
+    for n = 1, 4 do
+      local a, b = tostring(text:derive(n)), tostring(lua:derive(n))
+      assert.is_true(a == b, "step " .. n .. " differs")
+    end
+    assert.equal("B(2.25)B(2)A(2)B(0)B(0.25)A(1)CB", tostring(text:derive(2)):sub(1, 32))
+  end)
+end)

@@ -44,7 +44,7 @@ describe("threads", function()
      function()
     -- the worker threads run such programs directly (expr.h, lsys_expr_fast): the same
     -- string as the rules written as Lua functions, which run on the calling thread
-    local axiom = H.rep("A(0,2)A(1,3)A(2.5,0.7)E(4)", 3000)
+    local axiom = H.rep("A(0,2)A(1,3)A(2.5,0.7)E(4)G(3)", 3000)
     local text = lsys.lsystem { axiom = axiom, threads = 2, productions = {
       "A(x, y) : x < 3 --> A(x + 1, y) B(x * y, 3 - x, x / 4, 5 / y, y - x, x)",
       "A(x, y) : x >= 3 --> C(y)",
@@ -53,6 +53,7 @@ describe("threads", function()
       "C(y) : y ~= 3 --> C(y * 1.5)",
       "E(z) : z <= 4 --> E(z - 0.25)",
       "E(z) : z > 3.5 --> F",
+      "G(x) : x - 1 > 0 --> G(x * 0.5 + 0.25)",
     } }
     local P = lsys.produce
     local lua = lsys.lsystem { axiom = axiom, productions = {
@@ -73,9 +74,10 @@ describe("threads", function()
           if z <= 4 then return P("E(?)", z - 0.25) end
           if z > 3.5 then return P("F") end
         end },
+      { "G(x)", function (x) if x - 1 > 0 then return P("G(?)", x * 0.5 + 0.25) end end },
     } }
     local a, b = tostring(text:derive(5)), tostring(lua:derive(5))
-    assert.equal(567000, #a)
+    assert.equal(594000, #a)
     assert.is_true(a == b, "the strings differ")
     assert.equal("DB(5,1,0.5,2.5,0,2)B(3.5,2,0.25,2.5,1,1)B(2,3,0,2.5,2,0)C(3)"
       .. "B(7.5,1,0.5,1.6666666666666667,1,2)", a:sub(1, 95))
