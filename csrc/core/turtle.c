@@ -15,6 +15,7 @@
 ** (&(30) from the initial frame heads (0, 0.866, -0.5)); tests/cpfg_probe_spec.lua
 ** compares these with cpfg.
 */
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -75,6 +76,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->cs);
   LSYS_FREE(t->patch);
   LSYS_FREE(t->surfsym);
+  LSYS_FREE(t->shash);
   for (k = 0; k < t->nstess; k++) lsys_mesh_free(&t->stess[k]);
   LSYS_FREE(t->stess);
   LSYS_FREE(t->stessok);
@@ -281,43 +283,52 @@ static int setring (run *R) {
   return LSYS_OK;
 }
 
-/* Emits the pending segment with its final top width, in the line style, in
-** the frame, sides and texture it was made with (turns may have come since). */
-static int flush (run *R) {
+/* Draws the pending segment as a ribbon or a cylinder, in the frame, sides and
+** texture it was made with (turns may have come since). */
+static int tube (run *R, double w1) {
   lsys_tstate *st = &R->st;
-  double w1 = st->width * st->scale, H[3], L[3], U[3];
-  int s = LSYS_OK, sides = st->sides, tex = st->texture;
-  size_t nt0;
-  if (!R->pending) return LSYS_OK;
-  R->pending = 0;
-  nt0 = R->t->mesh->nt;
-  R->t->mesh->curtex = (unsigned)R->ptex;
-  if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
+  double H[3], L[3], U[3];
+  int s, sides = st->sides, tex = st->texture;
   vcopy(H, st->H); vcopy(L, st->L); vcopy(U, st->U);
   vcopy(st->H, R->pH); vcopy(st->L, R->pL); vcopy(st->U, R->pU);
   st->sides = R->psides;
   st->texture = R->ptex;
-  switch (R->o->style) {
-    case LSYS_STYLE_LINE:
-      if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
-        s = lsys_turtle_nomem(R);
-      break;
-    case LSYS_STYLE_POLYGON: s = lsys_turtle_ribbon(R, R->p0, R->p1, R->w0, w1, R->pcol); break;
-    default:
-      if ((s = setring(R)) == LSYS_OK)
-        s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
-      break;
-  }
-  /* the segment's record owns the triangles drawn now (its record was made at its F,
-  ** before them): scene:edges and scene:vertices of a tube or ribbon then give them */
-  if (s == LSYS_OK && R->prec != LSYS_NOREC) {
-    lsys_trec *r = &R->t->scene->rec[R->prec - R->recbase];
-    r->tri0 = (uint32_t)nt0;
-    r->ntri = (uint32_t)(R->t->mesh->nt - nt0);
-  }
+  if (R->o->style == LSYS_STYLE_POLYGON)
+    s = lsys_turtle_ribbon(R, R->p0, R->p1, R->w0, w1, R->pcol);
+  else if ((s = setring(R)) == LSYS_OK)
+    s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
   vcopy(st->H, H); vcopy(st->L, L); vcopy(st->U, U);
   st->sides = sides;
   st->texture = tex;
+  return s;
+}
+
+/* Emits the pending segment with its final top width, in the line style or as
+** a tube, and ends its record: the triangles drawn now are its own (its record
+** was begun at its F, before them), so scene:edges and scene:vertices of a tube
+** or ribbon give them; a line's second end is the record's end point. */
+static int flush (run *R) {
+  lsys_mesh *m = R->t->mesh;
+  double w1 = R->st.width * R->st.scale;
+  int s = LSYS_OK, line = 0;
+  size_t nt0;
+  if (!R->pending) return LSYS_OK;
+  R->pending = 0;
+  nt0 = m->nt;
+  m->curtex = (unsigned)R->ptex;
+  if (R->o->style == LSYS_STYLE_LINE) {
+    if (lsys_mesh_line(m, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
+      return lsys_turtle_nomem(R);
+    /* the line keeps the end point when it holds the same float (it clamps at FLT_MAX) */
+    line = fabs(R->p1[0]) <= FLT_MAX && fabs(R->p1[1]) <= FLT_MAX && fabs(R->p1[2]) <= FLT_MAX;
+  }
+  else if ((s = tube(R, w1)) != LSYS_OK) return s;
+  if (R->prec != LSYS_NOREC) {
+    lsys_rshape h;
+    shapeset(&h, LSYS_REC_SEGMENT, R->pH, R->pU, R->plen, R->w0, w1, R->pstiff, nt0,
+             m->nt - nt0, R->pcol, line);
+    s = recend(R, &R->t->scene->rec[R->prec - R->recbase], &h, line ? m->nl - 1 : 0, R->p1);
+  }
   return s;
 }
 
@@ -346,11 +357,13 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   ** F calls StartNode whether or not a polygon is open) */
   if (op == OP_F && R->t->npolys > 0 && (s = lsys_turtle_polyvertex(R)) != LSYS_OK) return s;
   if (!R->draw) return LSYS_OK;
-  if ((s = newrec(R, LSYS_REC_SEGMENT, p0, st->pos, st->width * st->scale,
-                  st->width * st->scale)) != LSYS_OK)
-    return s;
+  {
+    lsys_rec *q;
+    if ((s = recstart(R, &q, &R->pstiff)) != LSYS_OK) return s;
+    R->prec = q == NULL ? LSYS_NOREC : (uint32_t)(R->recbase + R->t->scene->nrec - 1);
+    if (q != NULL) R->plen = reclen(p0, st->pos, fabs(d));
+  }
   st->hasstiff = 0;
-  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->recbase + R->t->scene->nrec - 1);
   st->last = R->prec;
   R->pending = 1;
   vcopy(R->p0, p0);
@@ -793,6 +806,15 @@ static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
   return LSYS_OK;
 }
 
+/* Empties the record shape cache (made on first use). */
+static int clearcache (lsys_turtle *t) {
+  if (t->shash == NULL &&
+      (t->shash = (uint32_t *)LSYS_MALLOC(LSYS_SHASH * sizeof *t->shash)) == NULL)
+    return LSYS_ENOMEM;
+  memset(t->shash, 0, LSYS_SHASH * sizeof *t->shash);
+  return LSYS_OK;
+}
+
 /* Checks the options and readies the run in t->runbuf for 's': the symbol
 ** table, the first state, the caches of the last run marked stale. */
 static int start (lsys_turtle *t, const lsys_alphabet *ab) {
@@ -824,7 +846,9 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   t->mesh = R->draw ? &t->scene->mesh : NULL;
   if (R->draw) {
     lsys_mesh_clear(t->mesh);
-    t->scene->nrec = t->scene->nstiff = 0;
+    t->scene->nrec = t->scene->nshape = t->scene->npt = t->scene->nstiff = 0;
+    if (!o->norecords && clearcache(t) != LSYS_OK)
+      return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
   }
   st = &R->st;
   memset(st, 0, sizeof *st);
@@ -832,7 +856,7 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   vcopy(st->refH, st->H); vcopy(st->refU, st->U);
   st->width = o->width; st->scale = 1;
   st->color = st->color2 = o->color;
-  st->last = st->tip = st->gc = LSYS_NOREC;
+  st->last = st->tip = st->gc = st->shape = LSYS_NOREC;
   st->gtan[0] = st->gtan[1] = LSYS_GC_TANGENT;
   t->ngcp = 0;
   for (k = 0; (size_t)k < t->ncs; k++) t->cs[k].valid = 0;
@@ -932,11 +956,12 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
 
 int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet *ab,
                           size_t a, size_t b, size_t poff, const lsys_tstate *start,
-                          size_t recbase) {
+                          const size_t base[4]) {
   run *R;
   int status;
   memset(&t->err, 0, sizeof t->err);
-  if (t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL)
+  if ((t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL) ||
+      (!t->o->norecords && clearcache(t) != LSYS_OK))
     return lsys_seterror(&t->err, LSYS_ENOMEM, a, "not enough memory");
   R = (run *)t->runbuf;
   memset(R, 0, offsetof(run, cstack));
@@ -945,10 +970,11 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   R->t = t; R->o = t->o; R->ab = ab;
   R->draw = 1;
   R->fixed = 1;
-  R->recbase = recbase;
+  R->recbase = base[0]; R->linebase = base[1]; R->ptbase = base[2]; R->shapebase = base[3];
   R->prec = LSYS_NOREC;
   R->stsize = offsetof(lsys_tstate, elast) + (size_t)t->o->ntrop * sizeof(double);
   R->st = *start;
+  R->st.shape = LSYS_NOREC;       /* the guess was about another run's shapes */
   t->mode = LSYS_TURTLE_DRAW;
   t->mesh = &t->scene->mesh;
   t->npolys = 0; t->nsub = 0;

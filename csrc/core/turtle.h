@@ -80,6 +80,8 @@ typedef struct lsys_tstate {
   uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
   uint32_t gc;                  /* active generalized-cylinder control point (§3.4), or
                                    LSYS_NOREC */
+  uint32_t shape;               /* the run's record shape last used in this state: a guess
+                                   at the next one (turtle_impl.h, recshape) */
   double gtan[2];               /* @Gt: tangent coefficients of the next segments */
   double grad[4];               /* @Gr: radius tangents (angle, length) x 2 */
   int gadjust;                  /* @Gr(1) */
@@ -175,6 +177,10 @@ typedef struct lsys_turtle {
   lsys_csample *cs; size_t ncs;               /* sampled contours by id */
   lsys_lpatch *patch; size_t npatch;          /* @PS/@PC/@PD patches by number */
   uint32_t *surfsym;                          /* symbol id of each view surface */
+  uint32_t *shash;                            /* the record shape cache (LSYS_SHASH slots:
+                                                 shape index + 1, 0 empty) */
+  int fixshape;                               /* 1: the scene's shapes cannot grow (a piece
+                                                 drawn again to counted places) */
   lsys_mesh *stess; uint8_t *stessok; size_t nstess;  /* surfaces tessellated in their
                                                  own frame: 2 per surface (uv modes) */
 } lsys_turtle;
