@@ -324,10 +324,11 @@ static int flush (run *R) {
   }
   else if ((s = tube(R, w1)) != LSYS_OK) return s;
   if (R->prec != LSYS_NOREC) {
-    lsys_rshape h;
+    skey h;
     shapeset(&h, LSYS_REC_SEGMENT, R->pH, R->pU, R->plen, R->w0, w1, R->pstiff, nt0,
              m->nt - nt0, R->pcol, line);
-    s = recend(R, &R->t->scene->rec[R->prec - R->recbase], &h, line ? m->nl - 1 : 0, R->p1);
+    s = recend(R, &R->t->scene->rec[R->prec - R->recbase], &h, line, line ? m->nl - 1 : 0,
+               R->p1);
   }
   return s;
 }
@@ -856,7 +857,7 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   vcopy(st->refH, st->H); vcopy(st->refU, st->U);
   st->width = o->width; st->scale = 1;
   st->color = st->color2 = o->color;
-  st->last = st->tip = st->gc = st->shape = LSYS_NOREC;
+  st->last = st->tip = st->gc = LSYS_NOREC;
   st->gtan[0] = st->gtan[1] = LSYS_GC_TANGENT;
   t->ngcp = 0;
   for (k = 0; (size_t)k < t->ncs; k++) t->cs[k].valid = 0;
@@ -974,7 +975,6 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   R->prec = LSYS_NOREC;
   R->stsize = offsetof(lsys_tstate, elast) + (size_t)t->o->ntrop * sizeof(double);
   R->st = *start;
-  R->st.shape = LSYS_NOREC;       /* the guess was about another run's shapes */
   t->mode = LSYS_TURTLE_DRAW;
   t->mesh = &t->scene->mesh;
   t->npolys = 0; t->nsub = 0;

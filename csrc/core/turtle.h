@@ -80,8 +80,6 @@ typedef struct lsys_tstate {
   uint32_t tip;                 /* open cylinder end to continue from, or LSYS_NOREC */
   uint32_t gc;                  /* active generalized-cylinder control point (§3.4), or
                                    LSYS_NOREC */
-  uint32_t shape;               /* the run's record shape last used in this state: a guess
-                                   at the next one (turtle_impl.h, recshape) */
   double gtan[2];               /* @Gt: tangent coefficients of the next segments */
   double grad[4];               /* @Gr: radius tangents (angle, length) x 2 */
   int gadjust;                  /* @Gr(1) */

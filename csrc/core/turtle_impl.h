@@ -18,6 +18,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "symbols.h"
@@ -138,37 +139,88 @@ static inline int arg (run *R, const double *p, uint32_t np, uint32_t k, double 
 /* The shape cache (scene.h): slots of shape indices, a power of 2. */
 #define LSYS_SHASH 1024
 
-/* 1 when two shapes hold the same bits. */
-static inline int sameshape (const lsys_rshape *a, const lsys_rshape *b) {
-  uint64_t x[6], y[6];
-  uint32_t u, v;
-  memcpy(x, a, sizeof x); memcpy(y, b, sizeof y);
-  memcpy(&u, (const char *)a + sizeof x, sizeof u);
-  memcpy(&v, (const char *)b + sizeof y, sizeof v);
-  return ((x[0] ^ y[0]) | (x[1] ^ y[1]) | (x[2] ^ y[2]) | (x[3] ^ y[3]) | (x[4] ^ y[4]) |
-          (x[5] ^ y[5]) | (u ^ v)) == 0;
+/* Inlined where GCC or Clang would not: a record's shape is found on every
+** segment, and only inlined does its key stay in registers. */
+#if defined(__GNUC__)
+#define HOT static inline __attribute__((always_inline))
+#else
+#define HOT static inline
+#endif
+
+/* A shape as the words of its bits: an lsys_rshape's bytes as six 8-byte
+** words and the last 4. shapeset makes them in registers and stores each
+** whole, and sameshape reads them back in the same widths, so that the
+** processor forwards each store to its load. */
+typedef struct skey { uint64_t q[6]; uint32_t r; } skey;
+_Static_assert(sizeof(lsys_rshape) == 52 && offsetof(lsys_rshape, len) == 24 &&
+               offsetof(lsys_rshape, w0) == 28 && offsetof(lsys_rshape, stiff) == 36 &&
+               offsetof(lsys_rshape, tri0) == 40 && offsetof(lsys_rshape, color) == 48 &&
+               offsetof(lsys_rshape, kind) == 50 && offsetof(lsys_rshape, line) == 51,
+               "lsys_rshape is the words shapeset makes");
+
+/* The 8 bytes of a and b, in this order in memory. */
+HOT uint64_t pair (const void *a, const void *b) {
+  unsigned char x[8];
+  uint64_t v;
+  memcpy(x, a, 4);
+  memcpy(x + 4, b, 4);
+  memcpy(&v, x, sizeof v);
+  return v;
 }
 
-/* The index of a shape equal to *h: the one this state used last, or one the
-** cache knows, else *h appended to the run's shapes. The cache holds the shape
-** last seen in each slot (by a hash of the frame, the widths and the
-** triangles), so that the few frames of a plant's segments are each kept once
-** or nearly; the state's own guess serves the segments that follow one another
-** and the trunk after a branch (']' brings the guess back). LSYS_OK or an
-** error. */
-static inline int recshape (run *R, const lsys_rshape *h, uint32_t *idx) {
+HOT uint64_t fpair (double a, double b) {
+  float x = (float)a, y = (float)b;
+  return pair(&x, &y);
+}
+
+/* Fills a shape's key: its frame and the rest (the fields of lsys_rshape in
+** their order). */
+HOT void shapeset (skey *h, int kind, const double *H, const double *U, float len,
+                             double w0, double w1, uint32_t stiff, size_t tri0, size_t ntri,
+                             int color, int line) {
+  float fw0 = (float)w0, fw1 = (float)w1;
+  uint32_t t0 = (uint32_t)tri0, nt = (uint32_t)ntri;
+  uint16_t c = (uint16_t)color;
+  unsigned char last[4];
+  h->q[0] = fpair(H[0], H[1]);
+  h->q[1] = fpair(H[2], U[0]);
+  h->q[2] = fpair(U[1], U[2]);
+  h->q[3] = pair(&len, &fw0);
+  h->q[4] = pair(&fw1, &stiff);
+  h->q[5] = pair(&t0, &nt);
+  memcpy(last, &c, sizeof c);
+  last[2] = (unsigned char)kind;
+  last[3] = (unsigned char)line;
+  memcpy(&h->r, last, sizeof last);
+}
+
+/* 1 when shape a has the bits of key h. */
+HOT int sameshape (const lsys_rshape *a, const skey *h) {
+  const unsigned char *p = (const unsigned char *)a;
+  uint64_t d = 0, v;
+  uint32_t u;
+  int k;
+  for (k = 0; k < 6; k++) {         /* one load of 8 bytes each (no copy of the whole) */
+    memcpy(&v, p + 8 * k, sizeof v);
+    d |= v ^ h->q[k];
+  }
+  memcpy(&u, p + 48, sizeof u);
+  return (d | (u ^ h->r)) == 0;
+}
+
+/* The index of a shape equal to h: the one the cache knows, else h appended
+** to the run's shapes. The cache holds the shape last seen in each slot (by a
+** hash of its words), so that the few frames of a plant's segments are each
+** kept once or nearly. LSYS_OK or an error. */
+HOT int recshape (run *R, const skey *h, uint32_t *idx) {
   lsys_turtle *t = R->t;
   lsys_scene *S = t->scene;
-  uint32_t w[sizeof *h / 4], x, i = R->st.shape;
-  if (i < S->nshape && sameshape(&S->shape[i], h)) {
-    *idx = (uint32_t)(R->shapebase + i);
-    return LSYS_OK;
-  }
-  memcpy(w, h, sizeof w);
-  x = (w[0] * 0x9e3779b1u) ^ (w[1] * 0x85ebca77u) ^ (w[2] * 0xc2b2ae3du) ^
-      (w[3] * 0x27d4eb2fu) ^ (w[4] * 0x165667b1u) ^ (w[5] * 0xd3a2646cu) ^
-      (w[6] + w[7] + w[8]) * 0xfd7046c5u ^ (w[10] + w[11]) * 0xb55a4f09u;
-  x ^= x >> 15;
+  unsigned char *d;
+  uint64_t y;
+  uint32_t x, i;
+  y = (h->q[0] * 0x9e3779b97f4a7c15u) ^ (h->q[1] * 0xc2b2ae3d27d4eb4fu) ^
+      (h->q[2] * 0x165667b19e3779f9u) ^ ((h->q[3] + h->q[4] + h->q[5]) * 0x27d4eb2f165667c5u);
+  x = (uint32_t)(y >> 32) ^ (uint32_t)y;
   x = (x * 0x2c1b3c6du) >> 22;                       /* 10 bits: LSYS_SHASH slots */
   i = t->shash[x];
   if (i == 0 || !sameshape(&S->shape[i - 1], h)) {
@@ -179,10 +231,11 @@ static inline int recshape (run *R, const lsys_rshape *h, uint32_t *idx) {
         return lsys_turtle_fail(R, LSYS_ELIMIT, "too many turtle records");
       if (lsys_scene_reserve_shapes(S, 1) != LSYS_OK) return lsys_turtle_nomem(R);
     }
-    S->shape[S->nshape] = *h;
+    d = (unsigned char *)&S->shape[S->nshape];
+    memcpy(d, h->q, sizeof h->q);
+    memcpy(d + sizeof h->q, &h->r, sizeof h->r);
     t->shash[x] = i = (uint32_t)++S->nshape;
   }
-  R->st.shape = i - 1;
   *idx = (uint32_t)(R->shapebase + i - 1);
   return LSYS_OK;
 }
@@ -214,12 +267,12 @@ static inline int recstart (run *R, lsys_rec **q, uint32_t *stiff) {
   return LSYS_OK;
 }
 
-/* Gives record q its shape *h and its end point: line 'line' of the scene
-** (h->line set), else p1, appended to the scene's end points. */
-static inline int recend (run *R, lsys_rec *q, const lsys_rshape *h, size_t line,
+/* Gives record q its shape h and its end point: line l of the scene when
+** 'line' (the shape's flag), else p1, appended to the scene's end points. */
+HOT int recend (run *R, lsys_rec *q, const skey *h, int line, size_t l,
                           const double *p1) {
   lsys_scene *S = R->t->scene;
-  if (h->line) q->at = (uint32_t)(R->linebase + line);
+  if (line) q->at = (uint32_t)(R->linebase + l);
   else {
     float *d;
     if (S->npt == S->ptcap / 3) {
@@ -233,21 +286,6 @@ static inline int recend (run *R, lsys_rec *q, const lsys_rshape *h, size_t line
     q->at = (uint32_t)(R->ptbase + S->npt++);
   }
   return recshape(R, h, &q->shape);
-}
-
-/* Fills a shape's frame and the rest from the arguments. */
-static inline void shapeset (lsys_rshape *h, int kind, const double *H, const double *U,
-                             float len, double w0, double w1, uint32_t stiff, size_t tri0,
-                             size_t ntri, int color, int line) {
-  int k;
-  for (k = 0; k < 3; k++) { h->H[k] = (float)H[k]; h->U[k] = (float)U[k]; }
-  h->len = len;
-  h->w0 = (float)w0; h->w1 = (float)w1;
-  h->stiff = stiff;
-  h->tri0 = (uint32_t)tri0; h->ntri = (uint32_t)ntri;
-  h->color = (uint16_t)color;
-  h->kind = (uint8_t)kind;
-  h->line = (uint8_t)line;
 }
 
 /* The length of a segment record from p0 to p1, as a float: sqrt(q) rounded
@@ -271,7 +309,7 @@ static inline int newrecf (run *R, int kind, const double *p0, const double *p1,
                            double w1, const double *H, const double *U) {
   lsys_turtle *t = R->t;
   lsys_rec *q;
-  lsys_rshape h;
+  skey h;
   uint32_t stiff;
   size_t nt = t->mesh != NULL ? t->mesh->nt : 0;
   int s;
@@ -279,7 +317,7 @@ static inline int newrecf (run *R, int kind, const double *p0, const double *p1,
   shapeset(&h, kind, H != NULL ? H : R->st.H, U != NULL ? U : R->st.U,
            kind == LSYS_REC_GCYL ? reclen(p0, p1, 0) : 0.0f, w0, w1, stiff, R->modtri,
            nt > R->modtri ? nt - R->modtri : 0, R->st.color, 0);
-  return recend(R, q, &h, 0, p1);
+  return recend(R, q, &h, 0, 0, p1);
 }
 
 static inline int newrec (run *R, int kind, const double *p0, const double *p1, double w0,

@@ -92,55 +92,73 @@ typedef struct par {
 /* ---------------------------------------------------------------------- */
 /* the cut */
 
-/* What each symbol is to the cut: bracket, crossing, records and lines, from the
-** symbol table's split class of its operation (symbols.h); a class this does not
-** know, like an operation out of the table, crosses branches. */
-static void classify (const lsys_turtle *t, uint8_t *cls, uint8_t *nrec, uint8_t *nline,
-                      uint8_t *npt, uint8_t *nshape) {
+/* What each symbol is to the cut: bracket or crossing (cls), and what it writes
+** (inc: records, lines, record end points and modules that draw triangles, one
+** count in each 16 bits), from the symbol table's split class of its operation
+** (symbols.h); a class this does not know, like an operation out of the table,
+** crosses branches. */
+#define INC(rec, line, pt, shape) \
+  ((uint64_t)(rec) | (uint64_t)(line) << 16 | (uint64_t)(pt) << 32 | (uint64_t)(shape) << 48)
+
+static void classify (const lsys_turtle *t, uint8_t *cls, uint64_t *inc) {
   size_t k;
   int rec = !t->o->norecords, line = t->o->style == LSYS_STYLE_LINE;
   for (k = 0; k < t->nop; k++) {
-    cls[k] = nrec[k] = nline[k] = npt[k] = nshape[k] = 0;
+    cls[k] = 0;
+    inc[k] = 0;
     switch (lsys_symbols_split(t->op[k])) {
       case LSYS_SPLIT_STATE: break;
       case LSYS_SPLIT_OPEN: cls[k] = K_OPEN; break;
       case LSYS_SPLIT_CLOSE: cls[k] = K_CLOSE; break;
       case LSYS_SPLIT_SEGMENT:       /* a line's record has the line's end point */
-        nrec[k] = (uint8_t)rec; nline[k] = (uint8_t)line; npt[k] = (uint8_t)(rec && !line);
-        nshape[k] = (uint8_t)!line;
+        inc[k] = INC(rec, line, rec && !line, !line);
         break;
-      case LSYS_SPLIT_SHAPE: nrec[k] = npt[k] = (uint8_t)rec; nshape[k] = 1; break;
-      case LSYS_SPLIT_RECORD: nrec[k] = npt[k] = (uint8_t)rec; break;
+      case LSYS_SPLIT_SHAPE: inc[k] = INC(rec, 0, rec, 1); break;
+      case LSYS_SPLIT_RECORD: inc[k] = INC(rec, 0, rec, 0); break;
       default: cls[k] = K_CROSS; break;       /* LSYS_SPLIT_CROSS and anything else */
     }
   }
 }
 
+/* Adds the counts packed in *acc to *cur and empties it. */
+static void addcounts (at *cur, uint64_t *acc) {
+  cur->rec += (size_t)(*acc & 0xffff);
+  cur->line += (size_t)(*acc >> 16 & 0xffff);
+  cur->pt += (size_t)(*acc >> 32 & 0xffff);
+  cur->shape += (size_t)(*acc >> 48);
+  *acc = 0;
+}
+
 /* Finds the branches of at least *minsize modules (doubled while there are too
 ** many) and counts the records, lines and parameters; returns 1 when the string
-** is not for pieces, LSYS_ENOMEM, or LSYS_OK with *nb branches in closing order. */
+** is not for pieces, LSYS_ENOMEM, or LSYS_OK with *nb branches in closing order.
+** The counts of the modules since the last bracket add up in 16-bit fields of one
+** word, emptied at each bracket and every 65,535 modules (a module adds at most 1
+** to each). */
 static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *nb,
                  size_t *minsize, at *total) {
   typedef struct opened { size_t i; at a; } opened;
-  size_t i, depth = 0, opencap = 0, nop = t->nop, ntab = nop > 256 ? nop : 256;
+  size_t i, i1, depth = 0, opencap = 0, nop = t->nop, ntab = nop > 256 ? nop : 256;
   const uint8_t *s8 = s->sym8;
-  uint8_t *cls, *nrec, *nline, *npt, *nshape;
+  uint8_t *cls;
+  uint64_t *inc, acc = 0;
   opened *open = NULL;
   at cur = {0, 0, 0, 0, 0};
   int n = 0, st = LSYS_OK;
-  if ((cls = (uint8_t *)LSYS_MALLOC(5 * ntab)) == NULL) return LSYS_ENOMEM;
-  nrec = cls + ntab;
-  nline = nrec + ntab;
-  npt = nline + ntab;
-  nshape = npt + ntab;
-  memset(cls, 0, 5 * ntab);
-  classify(t, cls, nrec, nline, npt, nshape);
-  for (i = 0; i < s->n; i++) {
-    uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
-    uint32_t sym = LSYS_CSYM(c);
-    int k;
-    if (sym >= nop) sym = 0;              /* the table's entry 0 is nothing */
-    if ((k = cls[sym]) != 0) {
+  if ((inc = (uint64_t *)LSYS_MALLOC(ntab * (sizeof *inc + 1))) == NULL) return LSYS_ENOMEM;
+  cls = (uint8_t *)(inc + ntab);
+  memset(inc, 0, ntab * (sizeof *inc + 1));
+  classify(t, cls, inc);
+  for (i = 0; i < s->n && st == LSYS_OK; i = i1) {
+    i1 = s->n - i > 65535 ? i + 65535 : s->n;
+    for (; i < i1; i++) {
+      uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
+      uint32_t sym = LSYS_CSYM(c);
+      int k;
+      if (sym >= nop) sym = 0;              /* the table's entry 0 is nothing */
+      cur.par += LSYS_CNP(c);
+      if ((k = cls[sym]) == 0) { acc += inc[sym]; continue; }
+      addcounts(&cur, &acc);
       if (k == K_CROSS) { st = 1; break; }
       if (k == K_OPEN) {
         if (depth == opencap && (depth >= MAXOPEN || lsys_common_grow((void **)&open, &opencap,
@@ -166,14 +184,10 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
         }
       }
     }
-    cur.rec += nrec[sym];
-    cur.line += nline[sym];
-    cur.pt += npt[sym];
-    cur.shape += nshape[sym];
-    cur.par += LSYS_CNP(c);
+    addcounts(&cur, &acc);
   }
   LSYS_FREE(open);
-  LSYS_FREE(cls);
+  LSYS_FREE(inc);
   *nb = n;
   *total = cur;
   return st;
@@ -560,7 +574,7 @@ int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet 
   int nt = t->threads < 1 ? 1 : t->threads > LSYS_PARTHREADS ? LSYS_PARTHREADS : t->threads;
   size_t minsize = t->piecemin;
   branch *br;
-  at total;
+  at total = {0, 0, 0, 0, 0};
   par P;
   int nb = 0, st, k;
   if (minsize == 0) {                       /* by default, long strings on several threads */
