@@ -104,21 +104,18 @@ static inline int lsys_mesh_line (lsys_mesh *m, const double a[3], const double 
     if (st != LSYS_OK) return st;
   }
   p = m->lpos + 6 * m->nl;
-  {
-    /* the largest magnitude, without a NaN after the first (which takes the slow way) */
-    const double v[8] = {a[0], a[1], a[2], b[0], b[1], b[2], w0, w1};
-    double big = fabs(v[0]);
-    int k;
-    for (k = 1; k < 8; k++) big = fabs(v[k]) > big ? fabs(v[k]) : big;
-    if (big <= FLT_MAX) {                     /* nothing to clamp (a NaN stays NaN) */
-      for (k = 0; k < 6; k++) p[k] = (float)v[k];
-      m->lwidth[2 * m->nl] = (float)w0;
-      m->lwidth[2 * m->nl + 1] = (float)w1;
-    } else {
-      for (k = 0; k < 6; k++) p[k] = lsys_mesh_float(v[k]);
-      m->lwidth[2 * m->nl] = lsys_mesh_float(w0);
-      m->lwidth[2 * m->nl + 1] = lsys_mesh_float(w1);
-    }
+  if ((fabs(a[0]) <= FLT_MAX) & (fabs(a[1]) <= FLT_MAX) & (fabs(a[2]) <= FLT_MAX) &
+      (fabs(b[0]) <= FLT_MAX) & (fabs(b[1]) <= FLT_MAX) & (fabs(b[2]) <= FLT_MAX) &
+      (fabs(w0) <= FLT_MAX) & (fabs(w1) <= FLT_MAX)) {      /* nothing to clamp: one branch */
+    p[0] = (float)a[0]; p[1] = (float)a[1]; p[2] = (float)a[2];
+    p[3] = (float)b[0]; p[4] = (float)b[1]; p[5] = (float)b[2];
+    m->lwidth[2 * m->nl] = (float)w0;
+    m->lwidth[2 * m->nl + 1] = (float)w1;
+  } else {
+    p[0] = lsys_mesh_float(a[0]); p[1] = lsys_mesh_float(a[1]); p[2] = lsys_mesh_float(a[2]);
+    p[3] = lsys_mesh_float(b[0]); p[4] = lsys_mesh_float(b[1]); p[5] = lsys_mesh_float(b[2]);
+    m->lwidth[2 * m->nl] = lsys_mesh_float(w0);
+    m->lwidth[2 * m->nl + 1] = lsys_mesh_float(w1);
   }
   m->lcol[m->nl] = (uint16_t)col;
   m->nl++;

@@ -380,6 +380,15 @@ static int move (run *R, int op, const double *p, uint32_t np) {
 
 /* --- stack ------------------------------------------------------------- */
 
+/* Copies the first 'n' bytes of a state: all but the tropisms' elasticities in
+** a copy of known size (inlined by the compiler), then the view's share of
+** those. */
+static void copystate (lsys_tstate *to, const lsys_tstate *from, size_t n) {
+  memcpy(to, from, offsetof(lsys_tstate, elast));
+  if (n > offsetof(lsys_tstate, elast))
+    memcpy(to->elast, from->elast, n - offsetof(lsys_tstate, elast));
+}
+
 static int push (run *R) {
   lsys_turtle *t = R->t;
   lsys_tstate *to;
@@ -392,7 +401,7 @@ static int push (run *R) {
       return lsys_turtle_nomem(R);
     to = &t->stack[k];
   }
-  memcpy(to, &R->st, R->stsize);
+  copystate(to, &R->st, R->stsize);
   R->depth++;
   return LSYS_OK;
 }
@@ -400,8 +409,8 @@ static int push (run *R) {
 static int pop (run *R) {
   if (R->depth == 0) return LSYS_OK;         /* unbalanced ']': ignored, as cpfg does */
   R->depth--;
-  memcpy(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
-         R->stsize);
+  copystate(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
+            R->stsize);
   return R->t->nring == R->st.sides ? LSYS_OK : setring(R);  /* @!(n) in the branch */
 }
 
@@ -718,16 +727,20 @@ static int subend (run *R) {
   return LSYS_OK;
 }
 
-/* Interprets one module: op, its parameters (overwritten by a query) and
-** whether it is the string's own module. The pending segment is emitted
-** first when the module ends it, as cpfg's EndNode comes at F f G g [ ] { } ~
-** and every @ module (interpret.c), and sub-L-system ends change the scale;
-** turns, colours, widths and queries leave it open (the symbol table's 'keep',
-** symbols.h): a width change before that sets its top width. */
-static int module (run *R, int op, double *p, uint32_t np, int original) {
-  int s;
+/* Emits the pending segment when module 'op' ends it, as cpfg's EndNode comes
+** at F f G g [ ] { } ~ and every @ module (interpret.c), and sub-L-system ends
+** change the scale; turns, colours, widths and queries leave it open (the
+** symbol table's 'keep', symbols.h): a width change before that sets its top
+** width. */
+static int ends (run *R, int op) {
   R->op = op;
-  if (R->pending && !lsys_symbols_keep((unsigned)op) && (s = flush(R)) != LSYS_OK) return s;
+  return R->pending && !lsys_symbols_keep((unsigned)op) ? flush(R) : LSYS_OK;
+}
+
+/* Interprets one module, after ends: op, its parameters (overwritten by a
+** query) and whether it is the string's own module. */
+static int module (run *R, int op, double *p, uint32_t np, int original) {
+  R->op = op;
   R->modtri = R->t->mesh != NULL ? R->t->mesh->nt : 0;   /* what this module draws starts here */
   switch (op) {
     case OP_F: case OP_G: case OP_f: case OP_g: return move(R, op, p, np);
@@ -907,7 +920,8 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
           if (hs < nop && op[hs]) {
             R->sym = hs;
             R->hj = j; R->hnext = hoff + hn;
-            status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
+            if ((status = ends(R, op[hs])) == LSYS_OK)
+              status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
           }
           hoff += hn;
         }
@@ -920,8 +934,36 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
     }
     if (sym < nop && op[sym]) {
       R->sym = sym;
-      status = module(R, op[sym], p, np, 1);
+      if ((status = ends(R, op[sym])) == LSYS_OK) status = module(R, op[sym], p, np, 1);
     }
+  }
+  return status;
+}
+
+/* The loop without a homomorphism (most runs, and every piece of a parallel
+** run): the string's arrays in locals, R's fields set for the modules that do
+** something. */
+static int plainloop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t b,
+                      size_t off) {
+  const uint8_t *s8 = s->sym8, *op = t->op;
+  const uint16_t *code = s->code;
+  double *par = s->par;
+  size_t i, nop = t->nop;
+  int status = LSYS_OK;
+  R->s = s;
+  for (i = a; i < b; i++) {
+    uint32_t c = s8 != NULL ? (uint32_t)LSYS_CODE(s8[i], 0) : code[i];
+    uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
+    int o = sym < nop ? op[sym] : 0;
+    if (o != 0) {
+      R->mod = i;
+      R->nextpar = off + np;
+      R->sym = sym;
+      if ((status = ends(R, o)) != LSYS_OK ||
+          (status = module(R, o, par != NULL ? par + off : NULL, np, 1)) != LSYS_OK)
+        break;
+    }
+    off += np;
   }
   return status;
 }
@@ -948,7 +990,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   if (R->draw && t->expand == NULL && (status = lsys_turtle_par(t, s, ab)) != 1)
     return status;
   if (t->mode == LSYS_TURTLE_STATE && t->stop < n) n = t->stop;
-  status = loop(t, R, s, 0, n, 0);
+  status = t->expand != NULL ? loop(t, R, s, 0, n, 0) : plainloop(t, R, s, 0, n, 0);
   if (status == LSYS_OK) status = flush(R);
   if (status == LSYS_OK && R->draw) status = lsys_turtle_finish(t);
   t->state = R->st;
@@ -979,7 +1021,8 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   t->mesh = &t->scene->mesh;
   t->npolys = 0; t->nsub = 0;
   status = t->nring == R->st.sides ? LSYS_OK : setring(R);   /* started after an @!(n) */
-  if (status == LSYS_OK) status = loop(t, R, s, a, b, poff);
+  if (status == LSYS_OK) status = t->expand != NULL ? loop(t, R, s, a, b, poff)
+                                                    : plainloop(t, R, s, a, b, poff);
   if (status == LSYS_OK) status = flush(R);
   t->state = R->st;
   return status;
