@@ -342,8 +342,7 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   double p0[3], d;
   int s;
   if ((s = arg(R, p, np, 0, R->o->step, &d)) != LSYS_OK) return s;
-  if ((s = flush(R)) != LSYS_OK) return s;
-  if (R->o->ntrop > 0) tropisms(R);
+  if (R->o->ntrop > 0) tropisms(R);     /* (ends emitted the pending segment before this) */
   d *= st->scale;
   vcopy(p0, st->pos);
   vlin(st->pos, st->pos, 1, st->H, d);
