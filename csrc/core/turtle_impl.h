@@ -10,6 +10,7 @@
 **   turtle_polygon.c  polygons and the polygon stack, { . } (cpfg guide §4.2)
 **   turtle_gcyl.c     generalized cylinders, @Gs @Gc @Ge @Gt @Gr (cpfg guide §3)
 **   turtle_surface.c  predefined surfaces ~X and patches @PS @PC @PD (cpfg guide §4.1, §4.3)
+**   turtle_trop.c     tropisms, torques and twist (cpfg guide §6), the orthonormal frame
 ** The helpers every module may call (arg, newrec) are static inline here, so
 ** the interpretation loop pays no call for them.
 */
@@ -106,6 +107,14 @@ struct run {
                                    lines go to places counted beforehand and cannot grow */
 };
 
+/* turtle_trop.c: an orthonormal frame from H and an approximate U; the
+** smallest rotation of the reference frame to the heading (twist removed); the
+** tropisms and torques before a move (§6); cpfg's old-style tropism after it. */
+void lsys_turtle_orthonormal (lsys_tstate *st);
+void lsys_turtle_untwist (lsys_tstate *st);
+void lsys_turtle_tropisms (run *R);
+void lsys_turtle_oldbend (run *R);
+
 /* turtle_env.c: ?E, a query of the environment appended to t->envq. */
 int lsys_turtle_envquery (run *R, const double *p, uint32_t np, int original);
 
@@ -139,12 +148,12 @@ static inline int arg (run *R, const double *p, uint32_t np, uint32_t k, double 
 /* The shape cache (scene.h): slots of shape indices, a power of 2. */
 #define LSYS_SHASH 1024
 
-/* Inlined where GCC or Clang would not: a record's shape is found on every
-** segment, and only inlined does its key stay in registers. */
+/* ALWAYS: inlined where GCC or Clang would not: a record's shape is found on
+** every segment, and only inlined does its key stay in registers. */
 #if defined(__GNUC__)
-#define HOT static inline __attribute__((always_inline))
+#define ALWAYS __attribute__((always_inline))
 #else
-#define HOT static inline
+#define ALWAYS
 #endif
 
 /* A shape as the words of its bits: an lsys_rshape's bytes as six 8-byte
@@ -159,7 +168,7 @@ _Static_assert(sizeof(lsys_rshape) == 52 && offsetof(lsys_rshape, len) == 24 &&
                "lsys_rshape is the words shapeset makes");
 
 /* The 8 bytes of a and b, in this order in memory. */
-HOT uint64_t pair (const void *a, const void *b) {
+static inline ALWAYS uint64_t pair (const void *a, const void *b) {
   unsigned char x[8];
   uint64_t v;
   memcpy(x, a, 4);
@@ -168,16 +177,16 @@ HOT uint64_t pair (const void *a, const void *b) {
   return v;
 }
 
-HOT uint64_t fpair (double a, double b) {
+static inline ALWAYS uint64_t fpair (double a, double b) {
   float x = (float)a, y = (float)b;
   return pair(&x, &y);
 }
 
 /* Fills a shape's key: its frame and the rest (the fields of lsys_rshape in
 ** their order). */
-HOT void shapeset (skey *h, int kind, const double *H, const double *U, float len,
-                             double w0, double w1, uint32_t stiff, size_t tri0, size_t ntri,
-                             int color, int line) {
+static inline ALWAYS void shapeset (skey *h, int kind, const double *H, const double *U,
+                                    float len, double w0, double w1, uint32_t stiff,
+                                    size_t tri0, size_t ntri, int color, int line) {
   float fw0 = (float)w0, fw1 = (float)w1;
   uint32_t t0 = (uint32_t)tri0, nt = (uint32_t)ntri;
   uint16_t c = (uint16_t)color;
@@ -195,7 +204,7 @@ HOT void shapeset (skey *h, int kind, const double *H, const double *U, float le
 }
 
 /* 1 when shape a has the bits of key h. */
-HOT int sameshape (const lsys_rshape *a, const skey *h) {
+static inline ALWAYS int sameshape (const lsys_rshape *a, const skey *h) {
   const unsigned char *p = (const unsigned char *)a;
   uint64_t d = 0, v;
   uint32_t u;
@@ -212,7 +221,7 @@ HOT int sameshape (const lsys_rshape *a, const skey *h) {
 ** to the run's shapes. The cache holds the shape last seen in each slot (by a
 ** hash of its words), so that the few frames of a plant's segments are each
 ** kept once or nearly. LSYS_OK or an error. */
-HOT int recshape (run *R, const skey *h, uint32_t *idx) {
+static inline ALWAYS int recshape (run *R, const skey *h, uint32_t *idx) {
   lsys_turtle *t = R->t;
   lsys_scene *S = t->scene;
   unsigned char *d;
@@ -269,8 +278,8 @@ static inline int recstart (run *R, lsys_rec **q, uint32_t *stiff) {
 
 /* Gives record q its shape h and its end point: line l of the scene when
 ** 'line' (the shape's flag), else p1, appended to the scene's end points. */
-HOT int recend (run *R, lsys_rec *q, const skey *h, int line, size_t l,
-                          const double *p1) {
+static inline ALWAYS int recend (run *R, lsys_rec *q, const skey *h, int line, size_t l,
+                                 const double *p1) {
   lsys_scene *S = R->t->scene;
   if (line) q->at = (uint32_t)(R->linebase + l);
   else {
