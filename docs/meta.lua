@@ -373,8 +373,8 @@ function Model:inspect() end
 ---@field surfaces? table<string, string|{ file: string, scale?: number, texture?: integer, precision?: integer[] }> Predefined surfaces (cpfg .s files) drawn by ~name.
 ---@field functions? (string|lsys.Func|{ file: string, samples?: integer })[] Positional functions for the model's rules (not read by the turtle), as a view file's `function:` lines give them; a model without its own `functions` option takes these.
 
---- A turtle record (docs/drawing.md §5). Its numbers are stored as 32-bit floats (72 bytes
---- a record), so points and widths carry about seven significant digits.
+--- A turtle record (docs/drawing.md §5). Its numbers are stored as 32-bit floats, so points
+--- and widths carry about seven significant digits.
 ---@class lsys.Record
 ---@field kind "segment"|"sphere"|"disc"|"polygon"|"label"|"system"|"gcyl"|"surface"
 ---@field module integer 1-based index of the module in the string.

@@ -178,6 +178,17 @@ describe("scene:deform", function ()
     assert.near({ 0, 3, 0 }, hi, 1e-6)
   end)
 
+  it("leaves the records of lines where the turtle wrote them", function ()
+    local sc = scene("F[+F]F", "line")
+    local before = {}
+    for k, r in sc:records() do before[k] = r end
+    sc:deform(function (x, y, z) return x + 5, y * 2, z end)
+    sc:transform({ { 1, 0, 0, 1 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 } })
+    local lo = sc:bounds()
+    assert.near({ 5, 0, 0 }, lo, 1e-6)                               -- the lines moved
+    for k, r in sc:records() do assert.same(before[k], r) end       -- the records did not
+  end)
+
   it("takes normals of a function from central differences", function ()
     local sc = scene("{ . f . + f . + f . }")                       -- a flat polygon
     local before = vertices(sc)

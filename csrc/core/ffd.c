@@ -175,6 +175,8 @@ static int apply (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1, map
   lsys_mesh *m = &s->mesh;
   size_t v, e;
   int st = LSYS_OK, r;
+  *at = (size_t)-1;
+  if (l1 > l0 && lsys_scene_detach_records(s) != LSYS_OK) return LSYS_ENOMEM;   /* scene.h */
   for (v = v0; v < v1; v++) {
     const float *P = m->pos + 3 * v;
     double p[3] = {P[0], P[1], P[2]}, q[3], J[3][3];
@@ -275,7 +277,9 @@ int lsys_ffd_func (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
   f.h = 1e-4 * rangediag(&s->mesh, v0, v1, l0, l1);
   if (!(f.h > 0) || !isfinite(f.h)) f.h = 1e-4;
   st = apply(s, v0, v1, l0, l1, fnmap, &f, &at);
-  if (st != LSYS_OK)
+  if (st == LSYS_ENOMEM && at == (size_t)-1)
+    lsys_seterror(e, st, at, "not enough memory");
+  else if (st != LSYS_OK)
     lsys_seterror(e, st, at, "the deformation function failed at %s %zu",
                   at < s->mesh.nv ? "vertex" : "line end", at < s->mesh.nv ? at : at - s->mesh.nv);
   return st;
@@ -303,8 +307,8 @@ int lsys_ffd_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t
   r0 = firstrec(s, m0);
   r1 = firstrec(s, m1);
   if (r0 >= r1) return 0;
-  t0 = s->rec[r0].tri0;
-  t1 = r1 < s->nrec ? s->rec[r1].tri0 : m->nt;
+  t0 = lsys_scene_recshape(s, r0)->tri0;
+  t1 = r1 < s->nrec ? lsys_scene_recshape(s, r1)->tri0 : m->nt;
   if (t1 > m->nt) t1 = m->nt;
   if (t0 < t1) {                           /* vertices: see ffd.h */
     size_t before = 0, last = 0;
@@ -314,11 +318,11 @@ int lsys_ffd_module_range (const lsys_scene *s, uint32_t m0, uint32_t m1, size_t
       if (m->tri[t] + (size_t)1 > last) last = m->tri[t] + (size_t)1;
     if (last > before) { *v0 = before; *v1 = last; }
   }
-  for (k = 0; k < s->nrec; k++) nseg += s->rec[k].kind == LSYS_REC_SEGMENT;
+  for (k = 0; k < s->nrec; k++) nseg += lsys_scene_reckind(s, k) == LSYS_REC_SEGMENT;
   if (nseg == m->nl && nseg > 0) {          /* the line style: one line per segment record */
-    for (k = 0; k < r0; k++) *l0 += s->rec[k].kind == LSYS_REC_SEGMENT;
+    for (k = 0; k < r0; k++) *l0 += lsys_scene_reckind(s, k) == LSYS_REC_SEGMENT;
     *l1 = *l0;
-    for (k = r0; k < r1; k++) *l1 += s->rec[k].kind == LSYS_REC_SEGMENT;
+    for (k = r0; k < r1; k++) *l1 += lsys_scene_reckind(s, k) == LSYS_REC_SEGMENT;
   }
   return *v1 > *v0 || *l1 > *l0;
 }

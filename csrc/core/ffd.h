@@ -71,7 +71,10 @@ void lsys_ffd_hyperpatch_eval (const lsys_hyperpatch *hp, const double p[3], dou
                                double J[3][3]);
 
 /* Deforms vertices [v0, v1) and the end points of line segments [l0, l1)
-** by the hyperpatch. LSYS_EARG when a range is reversed or past the end. */
+** by the hyperpatch. LSYS_EARG when a range is reversed or past the end;
+** LSYS_ENOMEM when the records could not keep their end points apart from
+** the lines (lsys_scene_detach_records; nothing moved). The same for the
+** two below. */
 int lsys_ffd_range (lsys_scene *s, size_t v0, size_t v1, size_t l0, size_t l1,
                     const lsys_hyperpatch *hp);
 

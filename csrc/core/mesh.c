@@ -156,11 +156,6 @@ int lsys_mesh_reserve (lsys_mesh *m, size_t nv, size_t nt) {
   return LSYS_OK;
 }
 
-/* double to float, saturating: converting a value beyond FLT_MAX is undefined. */
-static float tofloat (double x) {
-  return x > FLT_MAX ? FLT_MAX : x < -FLT_MAX ? -FLT_MAX : (float)x;
-}
-
 int lsys_mesh_reserve_lines (lsys_mesh *m, size_t nl) {
   void **arr[3] = { (void **)&m->lpos, (void **)&m->lwidth, (void **)&m->lcol };
   const size_t elem[3] = { 6 * sizeof(float), 2 * sizeof(float), sizeof(uint16_t) };
@@ -168,23 +163,6 @@ int lsys_mesh_reserve_lines (lsys_mesh *m, size_t nl) {
   if (m->nl + nl <= m->lcap) return LSYS_OK;
   if (m->fixed) return LSYS_ELIMIT;
   return growall(arr, elem, 3, &m->lcap, m->nl + nl, m->meter);
-}
-
-int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
-                    double w0, double w1, unsigned col) {
-  float *p;
-  if (m->nl == m->lcap) {
-    int st = lsys_mesh_reserve_lines(m, 1);
-    if (st != LSYS_OK) return st;
-  }
-  p = m->lpos + 6 * m->nl;
-  p[0] = tofloat(a[0]); p[1] = tofloat(a[1]); p[2] = tofloat(a[2]);
-  p[3] = tofloat(b[0]); p[4] = tofloat(b[1]); p[5] = tofloat(b[2]);
-  m->lwidth[2 * m->nl] = tofloat(w0);
-  m->lwidth[2 * m->nl + 1] = tofloat(w1);
-  m->lcol[m->nl] = (uint16_t)col;
-  m->nl++;
-  return LSYS_OK;
 }
 
 /* NaN coordinates take no part (every comparison with them is false). */

@@ -11,6 +11,9 @@
 #ifndef LSYS_MESH_H
 #define LSYS_MESH_H
 
+#include <float.h>
+#include <math.h>
+
 #include "common.h"
 #include "texture.h"
 
@@ -87,9 +90,37 @@ static inline void lsys_mesh_tri (lsys_mesh *m, uint32_t a, uint32_t b, uint32_t
   uint32_t *t = m->tri + 3 * m->nt++;
   t[0] = a; t[1] = b; t[2] = c;
 }
-/* Appends a line segment from 'a' to 'b'. */
-int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
-                    double w0, double w1, unsigned col);
+/* A double as a float, saturating: converting a value beyond FLT_MAX is undefined. */
+static inline float lsys_mesh_float (double x) {
+  return x > FLT_MAX ? FLT_MAX : x < -FLT_MAX ? -FLT_MAX : (float)x;
+}
+/* Appends a line segment from 'a' to 'b' (inline: the turtle draws one per F).
+** LSYS_OK, or lsys_mesh_reserve_lines's error. */
+static inline int lsys_mesh_line (lsys_mesh *m, const double a[3], const double b[3],
+                                  double w0, double w1, unsigned col) {
+  float *p;
+  if (m->nl == m->lcap) {
+    int st = lsys_mesh_reserve_lines(m, 1);
+    if (st != LSYS_OK) return st;
+  }
+  p = m->lpos + 6 * m->nl;
+  if ((fabs(a[0]) <= FLT_MAX) & (fabs(a[1]) <= FLT_MAX) & (fabs(a[2]) <= FLT_MAX) &
+      (fabs(b[0]) <= FLT_MAX) & (fabs(b[1]) <= FLT_MAX) & (fabs(b[2]) <= FLT_MAX) &
+      (fabs(w0) <= FLT_MAX) & (fabs(w1) <= FLT_MAX)) {      /* nothing to clamp: one branch */
+    p[0] = (float)a[0]; p[1] = (float)a[1]; p[2] = (float)a[2];
+    p[3] = (float)b[0]; p[4] = (float)b[1]; p[5] = (float)b[2];
+    m->lwidth[2 * m->nl] = (float)w0;
+    m->lwidth[2 * m->nl + 1] = (float)w1;
+  } else {
+    p[0] = lsys_mesh_float(a[0]); p[1] = lsys_mesh_float(a[1]); p[2] = lsys_mesh_float(a[2]);
+    p[3] = lsys_mesh_float(b[0]); p[4] = lsys_mesh_float(b[1]); p[5] = lsys_mesh_float(b[2]);
+    m->lwidth[2 * m->nl] = lsys_mesh_float(w0);
+    m->lwidth[2 * m->nl + 1] = lsys_mesh_float(w1);
+  }
+  m->lcol[m->nl] = (uint16_t)col;
+  m->nl++;
+  return LSYS_OK;
+}
 
 /* Axis-aligned bounds of all vertices and line ends: lo[3], hi[3].
 ** Returns 0 (and lo = hi = 0) for an empty mesh, else 1. */

@@ -59,32 +59,33 @@ static int reserveall (lsys_scene *dst, const lsys_scene *src, int records) {
   if ((st = lsys_mesh_reserve(&dst->mesh, m->nv, m->nt)) != LSYS_OK) return st;
   if ((st = lsys_mesh_reserve_lines(&dst->mesh, m->nl)) != LSYS_OK) return st;
   if (!records || src->nrec == 0) return LSYS_OK;
-  if (src->nrec > (size_t)UINT32_MAX - dst->nrec) return LSYS_ELIMIT;
-  if ((st = lsys_scene_reserve_records(dst, src->nrec)) != LSYS_OK) return st;
+  if (src->nrec > (size_t)UINT32_MAX - 1 - dst->nrec ||
+      src->nshape > (size_t)UINT32_MAX - dst->nshape || src->npt > (size_t)UINT32_MAX - dst->npt)
+    return LSYS_ELIMIT;
+  if ((st = lsys_scene_reserve_records(dst, src->nrec)) != LSYS_OK ||
+      (st = lsys_scene_reserve_shapes(dst, src->nshape)) != LSYS_OK ||
+      (st = lsys_scene_reserve_points(dst, src->npt)) != LSYS_OK)
+    return st;
   if (src->nstiff > 0)
     st = lsys_common_grow_metered((void **)&dst->stiff, &dst->stiffcap,
                                   3 * (dst->nstiff + src->nstiff), sizeof(float), dst->meter);
   return st;
 }
 
-/* Appends src's records and stiffnesses, moved to where dst has them. (An
-** empty array may be NULL: nothing is copied from or to one.) */
-static void addrecords (lsys_scene *dst, const lsys_scene *src) {
-  uint32_t r0 = (uint32_t)dst->nrec, s0 = (uint32_t)dst->nstiff;
-  uint32_t t0 = (uint32_t)(dst->mesh.nt - src->mesh.nt);
-  size_t k;
-  if (src->nrec == 0) return;
-  memcpy(dst->rec + dst->nrec, src->rec, src->nrec * sizeof *src->rec);
-  for (k = 0; k < src->nrec; k++) {
-    lsys_trec *r = &dst->rec[dst->nrec + k];
-    if (r->parent != LSYS_NOREC) r->parent += r0;
-    if (r->stiff != LSYS_NOREC) r->stiff += s0;
-    r->tri0 += t0;
-  }
-  dst->nrec += src->nrec;
+/* Appends src's records and stiffnesses, moved to where dst has them (its
+** geometry was appended: the records' triangles and lines are the last
+** ones). Room was made (reserveall). (An empty array may be NULL: nothing is
+** copied from or to one.) */
+static int addrecords (lsys_scene *dst, const lsys_scene *src) {
+  int st;
+  if (src->nrec == 0) return LSYS_OK;
+  if ((st = lsys_scene_append_records(dst, src, dst->nstiff, dst->mesh.nt - src->mesh.nt,
+                                      dst->mesh.nl - src->mesh.nl)) != LSYS_OK)
+    return st;
   if (src->nstiff > 0)
     memcpy(dst->stiff + 3 * dst->nstiff, src->stiff, 3 * src->nstiff * sizeof(float));
   dst->nstiff += src->nstiff;
+  return LSYS_OK;
 }
 
 /* Appends src's vertices, triangles and segments with their colours moved
@@ -123,10 +124,10 @@ int lsys_population_add (lsys_scene *dst, const lsys_scene *src, const uint16_t 
   if ((st = mergepalette(dst, src, &off)) != LSYS_OK) return st;
   if ((p = lsys_scene_begin_part(dst)) < 0) return LSYS_ENOMEM;
   addgeometry(&dst->mesh, &src->mesh, off, npal, texmap, src->ntex);
-  if (records) addrecords(dst, src);
+  if (records) st = addrecords(dst, src);      /* room was made: it cannot fail */
   lsys_scene_end_part(dst, (size_t)p);
   *part = (size_t)p;
-  return LSYS_OK;
+  return st;
 }
 
 int lsys_population_reserve (lsys_scene *dst, size_t n, lsys_meter *mt) {

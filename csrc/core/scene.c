@@ -27,6 +27,8 @@ void lsys_scene_free (lsys_scene *s) {
   lsys_mesh_free(&s->mesh);
   LSYS_FREE(s->pal);
   LSYS_FREE(s->rec);
+  LSYS_FREE(s->shape);
+  LSYS_FREE(s->recpt);
   LSYS_FREE(s->stiff);
   LSYS_FREE(s->parts);
   LSYS_FREE(s->inst);
@@ -35,7 +37,7 @@ void lsys_scene_free (lsys_scene *s) {
 
 void lsys_scene_clear (lsys_scene *s) {
   lsys_mesh_clear(&s->mesh);
-  s->nrec = s->nstiff = s->nparts = s->ninst = 0;
+  s->nrec = s->nshape = s->npt = s->nstiff = s->nparts = s->ninst = 0;
   s->ndirty = 0;
 }
 
@@ -66,6 +68,126 @@ int lsys_scene_reserve_records (lsys_scene *s, size_t n) {
   if (n > SIZE_MAX - s->nrec) return LSYS_ENOMEM;
   return lsys_common_grow_metered((void **)&s->rec, &s->reccap, s->nrec + n, sizeof *s->rec,
                                   s->meter);
+}
+
+int lsys_scene_reserve_shapes (lsys_scene *s, size_t n) {
+  if (n > SIZE_MAX - s->nshape) return LSYS_ENOMEM;
+  return lsys_common_grow_metered((void **)&s->shape, &s->shapecap, s->nshape + n,
+                                  sizeof *s->shape, s->meter);
+}
+
+int lsys_scene_reserve_points (lsys_scene *s, size_t n) {
+  if (n > SIZE_MAX / 3 - s->npt) return LSYS_ENOMEM;
+  return lsys_common_grow_metered((void **)&s->recpt, &s->ptcap, 3 * (s->npt + n),
+                                  sizeof *s->recpt, s->meter);
+}
+
+void lsys_scene_record (const lsys_scene *s, size_t k, lsys_trec *r) {
+  const lsys_rec *q = &s->rec[k];
+  const lsys_rshape *h = lsys_scene_recshape(s, k);
+  const float *p = NULL;
+  int j;
+  r->module = q->module;
+  r->parent = q->parent;
+  r->kind = h->kind;
+  r->pad = 0;
+  r->color = h->color;
+  r->w0 = h->w0; r->w1 = h->w1;
+  r->len = h->len;
+  r->stiff = h->stiff;
+  r->tri0 = h->tri0; r->ntri = h->ntri;
+  if (h->line) { if (q->at < s->mesh.nl) p = s->mesh.lpos + 6 * (size_t)q->at + 3; }
+  else if (q->at < s->npt) p = s->recpt + 3 * (size_t)q->at;
+  for (j = 0; j < 3; j++) {
+    r->p1[j] = p != NULL ? p[j] : 0.0f;
+    r->H[j] = h->H[j];
+    r->U[j] = h->U[j];
+  }
+}
+
+int lsys_scene_add_record (lsys_scene *s, const lsys_trec *r) {
+  lsys_rshape *h;
+  lsys_rec *q;
+  int st, j;
+  if (s->nrec >= LSYS_NOREC || s->nshape >= UINT32_MAX || s->npt >= UINT32_MAX)
+    return LSYS_ELIMIT;
+  if ((st = lsys_scene_reserve_records(s, 1)) != LSYS_OK ||
+      (st = lsys_scene_reserve_shapes(s, 1)) != LSYS_OK ||
+      (st = lsys_scene_reserve_points(s, 1)) != LSYS_OK)
+    return st;
+  h = &s->shape[s->nshape];
+  memset(h, 0, sizeof *h);
+  h->kind = r->kind;
+  h->color = r->color;
+  h->w0 = r->w0; h->w1 = r->w1;
+  h->len = r->len;
+  h->stiff = r->stiff;
+  h->tri0 = r->tri0; h->ntri = r->ntri;
+  for (j = 0; j < 3; j++) {
+    h->H[j] = r->H[j];
+    h->U[j] = r->U[j];
+    s->recpt[3 * s->npt + j] = r->p1[j];
+  }
+  q = &s->rec[s->nrec++];
+  q->module = r->module;
+  q->parent = r->parent;
+  q->shape = (uint32_t)s->nshape++;
+  q->at = (uint32_t)s->npt++;
+  return LSYS_OK;
+}
+
+int lsys_scene_append_records (lsys_scene *dst, const lsys_scene *src, size_t ds, size_t dt,
+                               size_t dl) {
+  size_t r0 = dst->nrec, h0 = dst->nshape, p0 = dst->npt, k;
+  int st;
+  if (src->nrec == 0) return LSYS_OK;
+  if (src->nrec > LSYS_NOREC - 1 - r0 || src->nshape > UINT32_MAX - h0 ||
+      src->npt > UINT32_MAX - p0)
+    return LSYS_ELIMIT;
+  if ((st = lsys_scene_reserve_records(dst, src->nrec)) != LSYS_OK ||
+      (st = lsys_scene_reserve_shapes(dst, src->nshape)) != LSYS_OK ||
+      (st = lsys_scene_reserve_points(dst, src->npt)) != LSYS_OK)
+    return st;
+  for (k = 0; k < src->nrec; k++) {
+    const lsys_rec *q = &src->rec[k];
+    lsys_rec *d = &dst->rec[r0 + k];
+    int line = q->shape < src->nshape && src->shape[q->shape].line;
+    d->module = q->module;
+    d->parent = q->parent == LSYS_NOREC ? LSYS_NOREC : (uint32_t)(q->parent + r0);
+    d->shape = (uint32_t)(q->shape + h0);
+    d->at = (uint32_t)(q->at + (line ? dl : p0));
+  }
+  for (k = 0; k < src->nshape; k++) {
+    lsys_rshape *h = &dst->shape[h0 + k];
+    *h = src->shape[k];
+    if (h->stiff != LSYS_NOREC) h->stiff += (uint32_t)ds;
+    h->tri0 += (uint32_t)dt;
+  }
+  if (src->npt > 0) memcpy(dst->recpt + 3 * p0, src->recpt, 3 * src->npt * sizeof *src->recpt);
+  dst->nrec += src->nrec;
+  dst->nshape += src->nshape;
+  dst->npt += src->npt;
+  return LSYS_OK;
+}
+
+int lsys_scene_detach_records (lsys_scene *s) {
+  size_t k, n = 0;
+  for (k = 0; k < s->nshape; k++) n += s->shape[k].line;
+  if (n == 0) return LSYS_OK;
+  for (k = 0, n = 0; k < s->nrec; k++) n += lsys_scene_recshape(s, k)->line;
+  if (n > UINT32_MAX - s->npt || lsys_scene_reserve_points(s, n) != LSYS_OK) return LSYS_ENOMEM;
+  for (k = 0; k < s->nrec; k++) {
+    lsys_rec *q = &s->rec[k];
+    float *d;
+    int j;
+    if (!lsys_scene_recshape(s, k)->line) continue;
+    d = s->recpt + 3 * s->npt;
+    for (j = 0; j < 3; j++)
+      d[j] = q->at < s->mesh.nl ? s->mesh.lpos[6 * (size_t)q->at + 3 + j] : 0.0f;
+    q->at = (uint32_t)s->npt++;
+  }
+  for (k = 0; k < s->nshape; k++) s->shape[k].line = 0;
+  return LSYS_OK;
 }
 
 int lsys_scene_add_stiffness (lsys_scene *s, const double k[3], uint32_t *idx) {
@@ -211,6 +333,7 @@ size_t lsys_scene_bytes (const lsys_scene *s) {
          m->tcap * 3 * sizeof(uint32_t) +
          m->lcap * (8 * sizeof(float) + sizeof(uint16_t)) +
          s->palcap * sizeof *s->pal + s->reccap * sizeof *s->rec +
+         s->shapecap * sizeof *s->shape + s->ptcap * sizeof *s->recpt +
          s->stiffcap * sizeof *s->stiff + s->partcap * sizeof *s->parts +
          s->instcap * sizeof *s->inst;
 }

@@ -9,8 +9,9 @@
 **   textures   indexed by the mesh's texture indices, tex[k - 1] (borrowed:
 **              whoever owns the scene keeps them alive; in Lua the Scene's
 **              user values do)
-**   records    one per drawing module (lsys_trec), for picking, arranging,
-**              and the Lua API; with the joint stiffnesses of Z
+**   records    one per drawing module (lsys_rec, read as lsys_trec), for
+**              picking, arranging, and the Lua API; with the joint
+**              stiffnesses of Z
 **   camera, light, background   how to look at it (from the view)
 **   parts      contiguous ranges of vertices, triangles, lines and records:
 **              one plant of a population, one component of a component
@@ -58,10 +59,10 @@ enum {
   LSYS_REC_SURFACE        /* ~X (p1: where the turtle ends) or @PD (p1: the turtle) */
 };
 
-/* Everything a record keeps about a drawing module, in 72 bytes: a big
-** plant has millions. L is H x U. A segment starts at p1 - len * H (it runs
-** along H); other records have len = 0. The stiffness of the joint before a
-** segment, when Z set one, is stiff[3 * stiff .. 3 * stiff + 2] of the scene. */
+/* Everything a record says about a drawing module, unpacked (lsys_scene_record).
+** L is H x U. A segment starts at p1 - len * H (it runs along H); other records
+** have len = 0. The stiffness of the joint before a segment, when Z set one, is
+** stiff[3 * stiff .. 3 * stiff + 2] of the scene. */
 typedef struct lsys_trec {
   uint32_t module;        /* index of the module in the string (0-based) */
   uint32_t parent;        /* record of the segment this one starts from, or LSYS_NOREC */
@@ -75,6 +76,35 @@ typedef struct lsys_trec {
   uint32_t tri0, ntri;    /* the mesh triangles the module drew up to this record: for a
                              polygon, surface, disc or sphere the whole shape (highlights) */
 } lsys_trec;
+
+/*
+** How a scene keeps its records: a big plant has millions, and most of what
+** one says is what many others say too. A stored record (16 bytes) holds its
+** module, its parent, its shape and where its end point is. A shape holds the
+** rest (kind, colour, widths, length, frame, stiffness, triangles), once for
+** all the records that have the same: the segments of a plant without
+** tropisms turn by a few angles, so their frames repeat. The end point of a
+** segment drawn as a line is the second end of its line in the mesh (the same
+** float: both are the turtle's position rounded once); any other record's is
+** in the scene's 'recpt'. Before a scene's lines change or leave it
+** (deformations, a viewer taking the mesh), lsys_scene_detach_records moves
+** those end points to 'recpt', so that records keep what the turtle wrote.
+*/
+typedef struct lsys_rec {
+  uint32_t module, parent;
+  uint32_t shape;         /* its shape: shape[shape] */
+  uint32_t at;            /* its end point: line 'at' of the mesh when the shape's 'line' is
+                             set, else recpt[3 * at .. 3 * at + 2] */
+} lsys_rec;
+
+typedef struct lsys_rshape {
+  float H[3], U[3];
+  float len, w0, w1;
+  uint32_t stiff, tri0, ntri;
+  uint16_t color;
+  uint8_t kind;
+  uint8_t line;           /* 1: the end points of its records are mesh lines' */
+} lsys_rshape;
 
 /*
 ** How to look at a scene (the view's camera). With a target and an eye the
@@ -139,7 +169,9 @@ typedef struct lsys_scene {
   lsys_material *pal; size_t npal;             /* owned; colour c uses pal[c % npal] */
   size_t palcap;                               /* room in pal (lsys_scene_add_material) */
   const lsys_texture *const *tex; int ntex;    /* borrowed; texture k is tex[k - 1] */
-  lsys_trec *rec; size_t nrec, reccap;
+  lsys_rec *rec; size_t nrec, reccap;         /* the records (see lsys_rec) */
+  lsys_rshape *shape; size_t nshape, shapecap; /* what records share */
+  float *recpt; size_t npt, ptcap;             /* 3 per record whose end point is its own */
   float *stiff; size_t nstiff, stiffcap;       /* 3 per Z-stiffened record */
   lsys_camera cam;
   double light[3];      /* world-space direction towards the key light */
@@ -183,6 +215,44 @@ int lsys_scene_add_material (lsys_scene *s, const lsys_material *m, size_t *idx)
 /* Makes room for 'n' more records (within the meter). LSYS_OK, LSYS_ENOMEM
 ** or LSYS_EMEMORY. */
 int lsys_scene_reserve_records (lsys_scene *s, size_t n);
+/* Makes room for 'n' more shapes, and for 'n' more end points (within the meter).
+** LSYS_OK, LSYS_ENOMEM or LSYS_EMEMORY. */
+int lsys_scene_reserve_shapes (lsys_scene *s, size_t n);
+int lsys_scene_reserve_points (lsys_scene *s, size_t n);
+
+/* Record k (< nrec) unpacked into *r. A record whose shape or end point is
+** out of the scene's arrays (a run that failed half way) reads as zeros
+** there. Allocates nothing. */
+void lsys_scene_record (const lsys_scene *s, size_t k, lsys_trec *r);
+
+/* The shape of record k (< nrec), and its kind (a shape of zeros when the
+** record has none in the scene). */
+static inline const lsys_rshape *lsys_scene_recshape (const lsys_scene *s, size_t k) {
+  static const lsys_rshape none = {{0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  uint32_t i = s->rec[k].shape;
+  return i < s->nshape ? &s->shape[i] : &none;
+}
+static inline int lsys_scene_reckind (const lsys_scene *s, size_t k) {
+  return lsys_scene_recshape(s, k)->kind;
+}
+
+/* Appends the record 'r' (its parent and stiffness as they are) with a shape
+** and an end point of its own. LSYS_OK, LSYS_ELIMIT (too many records),
+** LSYS_ENOMEM or LSYS_EMEMORY. */
+int lsys_scene_add_record (lsys_scene *s, const lsys_trec *r);
+
+/* Appends src's records to dst's as they read in src, but with their
+** parents moved by dst's present number of records and their stiffnesses,
+** triangles and lines by 'ds', 'dt' and 'dl' (where src's stiffnesses,
+** triangles and lines start in dst). Room is made first; on a failure (LSYS_ENOMEM,
+** LSYS_EMEMORY, LSYS_ELIMIT) dst's records are as before. */
+int lsys_scene_append_records (lsys_scene *dst, const lsys_scene *src, size_t ds, size_t dt,
+                               size_t dl);
+
+/* Gives every record whose end point is a mesh line's an end point of its own,
+** equal to it: the lines may then change or go. LSYS_OK or LSYS_ENOMEM (the
+** records as they were). */
+int lsys_scene_detach_records (lsys_scene *s);
 
 /* Appends the stiffness (sh, su, sl) and sets *idx to its index (for a
 ** record's 'stiff'). LSYS_OK, LSYS_ENOMEM or LSYS_EMEMORY. */

@@ -15,6 +15,7 @@
 ** (&(30) from the initial frame heads (0, 0.866, -0.5)); tests/cpfg_probe_spec.lua
 ** compares these with cpfg.
 */
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -23,21 +24,6 @@
 
 #include "turtle_impl.h"
 #include "polygon.h"
-
-/* Rebuilds an orthonormal frame from H and an approximate U. */
-static void orthonormal (lsys_tstate *st) {
-  double d;
-  if (!vnorm(st->H)) vset(st->H, 0, 1, 0);
-  d = vdot(st->U, st->H);
-  vlin(st->U, st->U, 1, st->H, -d);
-  if (!vnorm(st->U)) {                  /* U parallel to H: any perpendicular */
-    double t[3] = {1, 0, 0};
-    if (fabs(st->H[0]) > 0.9) vset(t, 0, 0, 1);
-    vcross(st->U, t, st->H);
-    vnorm(st->U);
-  }
-  vcross(st->L, st->H, st->U);
-}
 
 /* ---------------------------------------------------------------------- */
 
@@ -75,6 +61,7 @@ void lsys_turtle_free (lsys_turtle *t) {
   LSYS_FREE(t->cs);
   LSYS_FREE(t->patch);
   LSYS_FREE(t->surfsym);
+  LSYS_FREE(t->shash);
   for (k = 0; k < t->nstess; k++) lsys_mesh_free(&t->stess[k]);
   LSYS_FREE(t->stess);
   LSYS_FREE(t->stessok);
@@ -156,115 +143,6 @@ int lsys_turtle_nomem (run *R) {
   return lsys_turtle_fail(R, LSYS_ENOMEM, "not enough memory");
 }
 
-/* --- tropisms (cpfg guide §6) ----------------------------------------- */
-
-/* Carries the reference frame to the current heading by the smallest
-** rotation, which keeps U free of twist (§3.3), then makes it the
-** reference. */
-static void untwist (lsys_tstate *st) {
-  double axis[3], s, c;
-  vcross(axis, st->refH, st->H);
-  s = vlen(axis);
-  c = vdot(st->refH, st->H);
-  vcopy(st->U, st->refU);
-  if (s > 1e-12) {
-    axis[0] /= s; axis[1] /= s; axis[2] /= s;
-    vrotate(st->U, axis, atan2(s, c));
-  }
-  else if (c < 0) {                      /* reversed: turn about the old U */
-    vlin(st->U, st->U, 1, st->H, 0);
-  }
-  orthonormal(st);
-  vcopy(st->refH, st->H);
-  vcopy(st->refU, st->U);
-}
-
-/* Before each move: bends H toward the tropism vectors (eq. 2, which is
-** eq. 1 for gamma = 0), removes the twist the bend would add, then turns
-** U about H toward the torque vectors (§6.1). */
-static void tropisms (run *R) {
-  const lsys_turtle_opts *o = R->o;
-  lsys_tstate *st = &R->st;
-  double A[3] = {0, 0, 0}, a;
-  int k, bent = 0, twisted = 0;
-  for (k = 0; k < o->ntrop; k++) {
-    const lsys_tropism *tp = &o->trop[k];
-    double T[3], hxt[3], s, e = st->elast[k] * tp->intensity, f;
-    if (tp->torque || e == 0) continue;
-    vcopy(T, tp->vec);
-    if (!vnorm(T)) continue;
-    vcross(hxt, st->H, T);
-    s = vlen(hxt);
-    if (s < 1e-12) continue;               /* H along T: no torque */
-    f = e * (cos(RAD(tp->angle)) - sin(RAD(tp->angle)) * vdot(st->H, T) / s);
-    vlin(A, A, 1, hxt, f);
-    bent = 1;
-  }
-  if (bent && (a = vlen(A)) > 1e-15) {
-    double axis[3];
-    vlin(axis, A, 1.0 / a, A, 0);
-    if (a > 1) a = 1;                      /* at most one radian per segment */
-    vrotate(st->H, axis, a);
-  }
-  if (bent) untwist(st);
-  /* Torques (§6.1) act together, as cpfg's do: D = sum of e_i T_i (unit vectors), V the
-  ** projection of D / |D| on the plane normal to H, of length |H x D/|D||; U turns about H
-  ** towards |D| V by |U x |D| V| radians, at most one. */
-  {
-    double D[3] = {0, 0, 0}, n[3], w[3], V[3], c[3], dl;
-    int any = 0;
-    for (k = 0; k < o->ntrop; k++) {
-      const lsys_tropism *tp = &o->trop[k];
-      double T[3], e = st->elast[k] * tp->intensity;
-      if (!tp->torque || e == 0) continue;
-      vcopy(T, tp->vec);
-      if (!vnorm(T)) continue;
-      vlin(D, D, 1, T, e);
-      any = 1;
-    }
-    if (any && (dl = vlen(D)) > 0) {
-      vlin(n, D, 1.0 / dl, D, 0);
-      vcross(w, st->H, n);
-      if (vdot(w, w) > 1e-8) {
-        vcross(V, w, st->H);
-        vlin(V, V, dl, V, 0);
-        vcross(c, st->U, V);
-        if ((a = vlen(c)) >= 1e-7) {
-          double axis[3];
-          vlin(axis, c, 1.0 / a, c, 0);
-          vrotate(st->U, axis, -(a > 1 ? 1 : a));
-          vcross(st->L, st->H, st->U);
-          orthonormal(st);
-        }
-        twisted = 1;
-      }
-    }
-  }
-  if (!bent || twisted) { vcopy(st->refH, st->H); vcopy(st->refU, st->U); }
-}
-
-/* After each move, cpfg's old-style tropism (its interpret.c `bend`): H turns towards U
-** by the angle whose sine is e (T . U), then towards L by the one whose sine is e (T . L),
-** e the elasticity `_` sets. Each is a rotation in a plane of the frame, so the frame
-** stays orthonormal. */
-static void oldbend (run *R) {
-  lsys_tstate *st = &R->st;
-  const double *T = R->o->otrop;
-  double h[3], c, s;
-  c = st->oelast * vdot(T, st->U);
-  if (c > 1) c = 1; else if (c < -1) c = -1;
-  s = sqrt(1 - c * c);
-  vlin(h, st->H, s, st->U, c);
-  vlin(st->U, st->U, s, st->H, -c);
-  vcopy(st->H, h);
-  c = st->oelast * vdot(T, st->L);
-  if (c > 1) c = 1; else if (c < -1) c = -1;
-  s = sqrt(1 - c * c);
-  vlin(h, st->H, s, st->L, c);
-  vlin(st->L, st->L, s, st->H, -c);
-  vcopy(st->H, h);
-}
-
 /* --- segments ------------------------------------------------------------ */
 
 /* The cos/sin table of the state's sides, for cylinders, discs and spheres. */
@@ -281,43 +159,53 @@ static int setring (run *R) {
   return LSYS_OK;
 }
 
-/* Emits the pending segment with its final top width, in the line style, in
-** the frame, sides and texture it was made with (turns may have come since). */
-static int flush (run *R) {
+/* Draws the pending segment as a ribbon or a cylinder, in the frame, sides and
+** texture it was made with (turns may have come since). */
+static int tube (run *R, double w1) {
   lsys_tstate *st = &R->st;
-  double w1 = st->width * st->scale, H[3], L[3], U[3];
-  int s = LSYS_OK, sides = st->sides, tex = st->texture;
-  size_t nt0;
-  if (!R->pending) return LSYS_OK;
-  R->pending = 0;
-  nt0 = R->t->mesh->nt;
-  R->t->mesh->curtex = (unsigned)R->ptex;
-  if (R->prec != LSYS_NOREC) R->t->scene->rec[R->prec - R->recbase].w1 = (float)w1;
+  double H[3], L[3], U[3];
+  int s, sides = st->sides, tex = st->texture;
   vcopy(H, st->H); vcopy(L, st->L); vcopy(U, st->U);
   vcopy(st->H, R->pH); vcopy(st->L, R->pL); vcopy(st->U, R->pU);
   st->sides = R->psides;
   st->texture = R->ptex;
-  switch (R->o->style) {
-    case LSYS_STYLE_LINE:
-      if (lsys_mesh_line(R->t->mesh, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
-        s = lsys_turtle_nomem(R);
-      break;
-    case LSYS_STYLE_POLYGON: s = lsys_turtle_ribbon(R, R->p0, R->p1, R->w0, w1, R->pcol); break;
-    default:
-      if ((s = setring(R)) == LSYS_OK)
-        s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
-      break;
-  }
-  /* the segment's record owns the triangles drawn now (its record was made at its F,
-  ** before them): scene:edges and scene:vertices of a tube or ribbon then give them */
-  if (s == LSYS_OK && R->prec != LSYS_NOREC) {
-    lsys_trec *r = &R->t->scene->rec[R->prec - R->recbase];
-    r->tri0 = (uint32_t)nt0;
-    r->ntri = (uint32_t)(R->t->mesh->nt - nt0);
-  }
+  if (R->o->style == LSYS_STYLE_POLYGON)
+    s = lsys_turtle_ribbon(R, R->p0, R->p1, R->w0, w1, R->pcol);
+  else if ((s = setring(R)) == LSYS_OK)
+    s = lsys_turtle_cylinder(R, R->p0, R->p1, R->w0, w1, R->len, R->pcol);
   vcopy(st->H, H); vcopy(st->L, L); vcopy(st->U, U);
   st->sides = sides;
   st->texture = tex;
+  return s;
+}
+
+/* Emits the pending segment with its final top width, in the line style or as
+** a tube, and ends its record: the triangles drawn now are its own (its record
+** was begun at its F, before them), so scene:edges and scene:vertices of a tube
+** or ribbon give them; a line's second end is the record's end point. */
+static int flush (run *R) {
+  lsys_mesh *m = R->t->mesh;
+  double w1 = R->st.width * R->st.scale;
+  int s = LSYS_OK, line = 0;
+  size_t nt0;
+  if (!R->pending) return LSYS_OK;
+  R->pending = 0;
+  nt0 = m->nt;
+  m->curtex = (unsigned)R->ptex;
+  if (R->o->style == LSYS_STYLE_LINE) {
+    if (lsys_mesh_line(m, R->p0, R->p1, R->w0, w1, (unsigned)R->pcol) != LSYS_OK)
+      return lsys_turtle_nomem(R);
+    /* the line keeps the end point when it holds the same float (it clamps at FLT_MAX) */
+    line = fabs(R->p1[0]) <= FLT_MAX && fabs(R->p1[1]) <= FLT_MAX && fabs(R->p1[2]) <= FLT_MAX;
+  }
+  else if ((s = tube(R, w1)) != LSYS_OK) return s;
+  if (R->prec != LSYS_NOREC) {
+    skey h;
+    shapeset(&h, LSYS_REC_SEGMENT, R->pH, R->pU, R->plen, R->w0, w1, R->pstiff, nt0,
+             m->nt - nt0, R->pcol, line);
+    s = recend(R, &R->t->scene->rec[R->prec - R->recbase], &h, line, line ? m->nl - 1 : 0,
+               R->p1);
+  }
   return s;
 }
 
@@ -330,14 +218,13 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   double p0[3], d;
   int s;
   if ((s = arg(R, p, np, 0, R->o->step, &d)) != LSYS_OK) return s;
-  if ((s = flush(R)) != LSYS_OK) return s;
-  if (R->o->ntrop > 0) tropisms(R);
+  if (R->o->ntrop > 0) lsys_turtle_tropisms(R);     /* (ends emitted the pending segment before this) */
   d *= st->scale;
   vcopy(p0, st->pos);
   vlin(st->pos, st->pos, 1, st->H, d);
   if (!isfinite(st->pos[0] + st->pos[1] + st->pos[2]))   /* nothing could draw it */
     return lsys_turtle_failop(R, "the position is no longer finite after a move of %g", d);
-  if (st->oelast != 0) oldbend(R);
+  if (st->oelast != 0) lsys_turtle_oldbend(R);
   if (op == OP_f || op == OP_g) {
     st->tip = LSYS_NOREC;
     return op == OP_f && R->t->npolys > 0 ? lsys_turtle_polyvertex(R) : LSYS_OK;
@@ -346,11 +233,13 @@ static int move (run *R, int op, const double *p, uint32_t np) {
   ** F calls StartNode whether or not a polygon is open) */
   if (op == OP_F && R->t->npolys > 0 && (s = lsys_turtle_polyvertex(R)) != LSYS_OK) return s;
   if (!R->draw) return LSYS_OK;
-  if ((s = newrec(R, LSYS_REC_SEGMENT, p0, st->pos, st->width * st->scale,
-                  st->width * st->scale)) != LSYS_OK)
-    return s;
+  {
+    lsys_rec *q;
+    if ((s = recstart(R, &q, &R->pstiff)) != LSYS_OK) return s;
+    R->prec = q == NULL ? LSYS_NOREC : (uint32_t)(R->recbase + R->t->scene->nrec - 1);
+    if (q != NULL) R->plen = reclen(p0, st->pos, fabs(d));
+  }
   st->hasstiff = 0;
-  R->prec = R->o->norecords ? LSYS_NOREC : (uint32_t)(R->recbase + R->t->scene->nrec - 1);
   st->last = R->prec;
   R->pending = 1;
   vcopy(R->p0, p0);
@@ -366,6 +255,15 @@ static int move (run *R, int op, const double *p, uint32_t np) {
 
 /* --- stack ------------------------------------------------------------- */
 
+/* Copies the first 'n' bytes of a state: all but the tropisms' elasticities in
+** a copy of known size (inlined by the compiler), then the view's share of
+** those. */
+static void copystate (lsys_tstate *to, const lsys_tstate *from, size_t n) {
+  memcpy(to, from, offsetof(lsys_tstate, elast));
+  if (n > offsetof(lsys_tstate, elast))
+    memcpy(to->elast, from->elast, n - offsetof(lsys_tstate, elast));
+}
+
 static int push (run *R) {
   lsys_turtle *t = R->t;
   lsys_tstate *to;
@@ -378,7 +276,7 @@ static int push (run *R) {
       return lsys_turtle_nomem(R);
     to = &t->stack[k];
   }
-  memcpy(to, &R->st, R->stsize);
+  copystate(to, &R->st, R->stsize);
   R->depth++;
   return LSYS_OK;
 }
@@ -386,8 +284,8 @@ static int push (run *R) {
 static int pop (run *R) {
   if (R->depth == 0) return LSYS_OK;         /* unbalanced ']': ignored, as cpfg does */
   R->depth--;
-  memcpy(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
-         R->stsize);
+  copystate(&R->st, R->depth < NSTACK ? &R->cstack[R->depth] : &R->t->stack[R->depth - NSTACK],
+            R->stsize);
   return R->t->nring == R->st.sides ? LSYS_OK : setring(R);  /* @!(n) in the branch */
 }
 
@@ -460,7 +358,7 @@ static int setframe (run *R, const double *p, uint32_t np) {
       return s;
   vcopy(st->H, v);
   vcopy(st->U, v + 3);
-  orthonormal(st);
+  lsys_turtle_orthonormal(st);
   return LSYS_OK;
 }
 
@@ -704,16 +602,20 @@ static int subend (run *R) {
   return LSYS_OK;
 }
 
-/* Interprets one module: op, its parameters (overwritten by a query) and
-** whether it is the string's own module. The pending segment is emitted
-** first when the module ends it, as cpfg's EndNode comes at F f G g [ ] { } ~
-** and every @ module (interpret.c), and sub-L-system ends change the scale;
-** turns, colours, widths and queries leave it open (the symbol table's 'keep',
-** symbols.h): a width change before that sets its top width. */
-static int module (run *R, int op, double *p, uint32_t np, int original) {
-  int s;
+/* Emits the pending segment when module 'op' ends it, as cpfg's EndNode comes
+** at F f G g [ ] { } ~ and every @ module (interpret.c), and sub-L-system ends
+** change the scale; turns, colours, widths and queries leave it open (the
+** symbol table's 'keep', symbols.h): a width change before that sets its top
+** width. */
+static int ends (run *R, int op) {
   R->op = op;
-  if (R->pending && !lsys_symbols_keep((unsigned)op) && (s = flush(R)) != LSYS_OK) return s;
+  return R->pending && !lsys_symbols_keep((unsigned)op) ? flush(R) : LSYS_OK;
+}
+
+/* Interprets one module, after ends: op, its parameters (overwritten by a
+** query) and whether it is the string's own module. */
+static int module (run *R, int op, double *p, uint32_t np, int original) {
+  R->op = op;
   R->modtri = R->t->mesh != NULL ? R->t->mesh->nt : 0;   /* what this module draws starts here */
   switch (op) {
     case OP_F: case OP_G: case OP_f: case OP_g: return move(R, op, p, np);
@@ -746,7 +648,7 @@ static int module (run *R, int op, double *p, uint32_t np, int original) {
     case OP_SYSTEM: return systemcall(R);
     case OP_STIFF: return stiffness(R, p, np);
     case OP_TSET: case OP_TINC: case OP_TDEC: return elasticity(R, op, p, np);
-    case OP_TPREVENT: untwist(&R->st); return LSYS_OK;
+    case OP_TPREVENT: lsys_turtle_untwist(&R->st); return LSYS_OK;
     case OP_TFORCE: return forcetwist(R);
     case OP_OLDELAST: return oldelast(R, p, np);
     case OP_SIDES: return sides(R, p, np);
@@ -793,6 +695,15 @@ static int buildops (lsys_turtle *t, const lsys_alphabet *ab) {
   return LSYS_OK;
 }
 
+/* Empties the record shape cache (made on first use). */
+static int clearcache (lsys_turtle *t) {
+  if (t->shash == NULL &&
+      (t->shash = (uint32_t *)LSYS_MALLOC(LSYS_SHASH * sizeof *t->shash)) == NULL)
+    return LSYS_ENOMEM;
+  memset(t->shash, 0, LSYS_SHASH * sizeof *t->shash);
+  return LSYS_OK;
+}
+
 /* Checks the options and readies the run in t->runbuf for 's': the symbol
 ** table, the first state, the caches of the last run marked stale. */
 static int start (lsys_turtle *t, const lsys_alphabet *ab) {
@@ -824,7 +735,9 @@ static int start (lsys_turtle *t, const lsys_alphabet *ab) {
   t->mesh = R->draw ? &t->scene->mesh : NULL;
   if (R->draw) {
     lsys_mesh_clear(t->mesh);
-    t->scene->nrec = t->scene->nstiff = 0;
+    t->scene->nrec = t->scene->nshape = t->scene->npt = t->scene->nstiff = 0;
+    if (!o->norecords && clearcache(t) != LSYS_OK)
+      return lsys_seterror(&t->err, LSYS_ENOMEM, (size_t)-1, "not enough memory");
   }
   st = &R->st;
   memset(st, 0, sizeof *st);
@@ -882,7 +795,8 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
           if (hs < nop && op[hs]) {
             R->sym = hs;
             R->hj = j; R->hnext = hoff + hn;
-            status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
+            if ((status = ends(R, op[hs])) == LSYS_OK)
+              status = module(R, op[hs], hn > 0 ? t->hbuf.par + hoff : NULL, hn, 0);
           }
           hoff += hn;
         }
@@ -895,8 +809,36 @@ static int loop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t
     }
     if (sym < nop && op[sym]) {
       R->sym = sym;
-      status = module(R, op[sym], p, np, 1);
+      if ((status = ends(R, op[sym])) == LSYS_OK) status = module(R, op[sym], p, np, 1);
     }
+  }
+  return status;
+}
+
+/* The loop without a homomorphism (most runs, and every piece of a parallel
+** run): the string's arrays in locals, R's fields set for the modules that do
+** something. */
+static int plainloop (lsys_turtle *t, run *R, const lsys_lstring *s, size_t a, size_t b,
+                      size_t off) {
+  const uint8_t *s8 = s->sym8, *op = t->op;
+  const uint16_t *code = s->code;
+  double *par = s->par;
+  size_t i, nop = t->nop;
+  int status = LSYS_OK;
+  R->s = s;
+  for (i = a; i < b; i++) {
+    uint32_t c = s8 != NULL ? (uint32_t)LSYS_CODE(s8[i], 0) : code[i];
+    uint32_t sym = LSYS_CSYM(c), np = LSYS_CNP(c);
+    int o = sym < nop ? op[sym] : 0;
+    if (o != 0) {
+      R->mod = i;
+      R->nextpar = off + np;
+      R->sym = sym;
+      if ((status = ends(R, o)) != LSYS_OK ||
+          (status = module(R, o, par != NULL ? par + off : NULL, np, 1)) != LSYS_OK)
+        break;
+    }
+    off += np;
   }
   return status;
 }
@@ -923,7 +865,7 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
   if (R->draw && t->expand == NULL && (status = lsys_turtle_par(t, s, ab)) != 1)
     return status;
   if (t->mode == LSYS_TURTLE_STATE && t->stop < n) n = t->stop;
-  status = loop(t, R, s, 0, n, 0);
+  status = t->expand != NULL ? loop(t, R, s, 0, n, 0) : plainloop(t, R, s, 0, n, 0);
   if (status == LSYS_OK) status = flush(R);
   if (status == LSYS_OK && R->draw) status = lsys_turtle_finish(t);
   t->state = R->st;
@@ -932,11 +874,12 @@ int lsys_turtle_run (lsys_turtle *t, lsys_lstring *s, const lsys_alphabet *ab) {
 
 int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet *ab,
                           size_t a, size_t b, size_t poff, const lsys_tstate *start,
-                          size_t recbase) {
+                          const size_t base[4]) {
   run *R;
   int status;
   memset(&t->err, 0, sizeof t->err);
-  if (t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL)
+  if ((t->runbuf == NULL && (t->runbuf = LSYS_MALLOC(sizeof *R)) == NULL) ||
+      (!t->o->norecords && clearcache(t) != LSYS_OK))
     return lsys_seterror(&t->err, LSYS_ENOMEM, a, "not enough memory");
   R = (run *)t->runbuf;
   memset(R, 0, offsetof(run, cstack));
@@ -945,7 +888,7 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   R->t = t; R->o = t->o; R->ab = ab;
   R->draw = 1;
   R->fixed = 1;
-  R->recbase = recbase;
+  R->recbase = base[0]; R->linebase = base[1]; R->ptbase = base[2]; R->shapebase = base[3];
   R->prec = LSYS_NOREC;
   R->stsize = offsetof(lsys_tstate, elast) + (size_t)t->o->ntrop * sizeof(double);
   R->st = *start;
@@ -953,7 +896,8 @@ int lsys_turtle_runpiece (lsys_turtle *t, const lsys_lstring *s, const lsys_alph
   t->mesh = &t->scene->mesh;
   t->npolys = 0; t->nsub = 0;
   status = t->nring == R->st.sides ? LSYS_OK : setring(R);   /* started after an @!(n) */
-  if (status == LSYS_OK) status = loop(t, R, s, a, b, poff);
+  if (status == LSYS_OK) status = t->expand != NULL ? loop(t, R, s, a, b, poff)
+                                                    : plainloop(t, R, s, a, b, poff);
   if (status == LSYS_OK) status = flush(R);
   t->state = R->st;
   return status;

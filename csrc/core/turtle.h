@@ -175,6 +175,10 @@ typedef struct lsys_turtle {
   lsys_csample *cs; size_t ncs;               /* sampled contours by id */
   lsys_lpatch *patch; size_t npatch;          /* @PS/@PC/@PD patches by number */
   uint32_t *surfsym;                          /* symbol id of each view surface */
+  uint32_t *shash;                            /* the record shape cache (LSYS_SHASH slots:
+                                                 shape index + 1, 0 empty) */
+  int fixshape;                               /* 1: the scene's shapes cannot grow (a piece
+                                                 drawn again to counted places) */
   lsys_mesh *stess; uint8_t *stessok; size_t nstess;  /* surfaces tessellated in their
                                                  own frame: 2 per surface (uv modes) */
 } lsys_turtle;

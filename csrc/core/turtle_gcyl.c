@@ -103,17 +103,17 @@ static int gcpoint (run *R, uint32_t *idx) {
   return LSYS_OK;
 }
 
-/* The record of the segment just drawn from 'a' to 'b' runs along the
-** chord, so that its p0 is 'a'. */
-static void chordframe (run *R, const lsys_gcpoint *a, const lsys_gcpoint *b) {
-  lsys_trec *r = &R->t->scene->rec[R->t->scene->nrec - 1];
+/* The frame of the record of a segment from 'a' to 'b': along the chord, so
+** that its p0 is 'a' (the turtle's when the chord is empty). */
+static void chordframe (run *R, const lsys_gcpoint *a, const lsys_gcpoint *b, double H[3],
+                        double U[3]) {
   double c[3], u[3];
-  int k;
+  vcopy(H, R->st.H); vcopy(U, R->st.U);
   vlin(c, b->pos, 1, a->pos, -1);
   if (vnorm(c)) {
     vlin(u, R->st.U, 1, c, -vdot(R->st.U, c));
     if (!vnorm(u)) vcopy(u, R->st.H);
-    for (k = 0; k < 3; k++) { r->H[k] = (float)c[k]; r->U[k] = (float)u[k]; }
+    vcopy(H, c); vcopy(U, u);
   }
 }
 
@@ -161,11 +161,14 @@ int lsys_turtle_gcmodule (run *R, int op, const double *p, uint32_t np) {
   sh.capend = op == OP_GEND;
   if (lsys_gcyl_segment(t->mesh, a, b, &sh, &ca, &cb, R->st.sides) != LSYS_OK)
     return lsys_turtle_nomem(R);
-  if ((s = newrec(R, LSYS_REC_GCYL, a->pos, b->pos, 2 * a->r, 2 * b->r)) != LSYS_OK) return s;
-  if (!R->o->norecords) {
-    chordframe(R, a, b);
-    st->last = (uint32_t)(R->t->scene->nrec - 1);   /* the next segment's parent */
+  {
+    double H[3], U[3];
+    chordframe(R, a, b, H, U);
+    if ((s = newrecf(R, LSYS_REC_GCYL, a->pos, b->pos, 2 * a->r, 2 * b->r, H, U)) != LSYS_OK)
+      return s;
   }
+  if (!R->o->norecords)
+    st->last = (uint32_t)(R->t->scene->nrec - 1);   /* the next segment's parent */
   st->gc = op == OP_GEND ? LSYS_NOREC : ib;
   return LSYS_OK;
 }

@@ -47,18 +47,20 @@ enum { K_OPEN = 1, K_CLOSE = 2, K_CROSS = 4 };
 /* The k-th item of array a, which may be NULL (then empty: no pointer arithmetic on it). */
 #define AT(a, k) ((a) != NULL ? (a) + (k) : NULL)
 
-/* Places in the scene's records and lines, and in the parameter pool; the
-** modules that draw triangles. */
-typedef struct at { size_t rec, line, par, shape; } at;
+/* Places in the scene's records, lines and record end points, and in the
+** parameter pool; the modules that draw triangles. */
+typedef struct at { size_t rec, line, pt, par, shape; } at;
 
 typedef struct branch { size_t i, j; at ai, aj; } branch;   /* modules [i, j) */
 
 typedef struct piece {
   size_t a, b;                 /* modules [a, b) */
   at at;                       /* where its records, lines and parameters start */
-  size_t nrec, nline;          /* how many it writes */
+  size_t nrec, nline, npt;     /* how many it writes */
+  size_t h0;                   /* where its record shapes go in the scene */
   int dep;                     /* the piece whose end state starts it; -1: the first state */
-  lsys_scene sc;               /* its output: records and lines borrowed from the scene's */
+  lsys_scene sc;               /* its output: records, lines and end points borrowed from
+                                  the scene's; its own shapes and stiffnesses */
   lsys_cylend *ends; size_t nends, endcap;
   int foreign;                 /* ends[0] is the open end of piece src, srcend, continued */
   int src; size_t srcend;
@@ -90,53 +92,73 @@ typedef struct par {
 /* ---------------------------------------------------------------------- */
 /* the cut */
 
-/* What each symbol is to the cut: bracket, crossing, records and lines, from the
-** symbol table's split class of its operation (symbols.h); a class this does not
-** know, like an operation out of the table, crosses branches. */
-static void classify (const lsys_turtle *t, uint8_t *cls, uint8_t *nrec, uint8_t *nline,
-                      uint8_t *nshape) {
+/* What each symbol is to the cut: bracket or crossing (cls), and what it writes
+** (inc: records, lines, record end points and modules that draw triangles, one
+** count in each 16 bits), from the symbol table's split class of its operation
+** (symbols.h); a class this does not know, like an operation out of the table,
+** crosses branches. */
+#define INC(rec, line, pt, shape) \
+  ((uint64_t)(rec) | (uint64_t)(line) << 16 | (uint64_t)(pt) << 32 | (uint64_t)(shape) << 48)
+
+static void classify (const lsys_turtle *t, uint8_t *cls, uint64_t *inc) {
   size_t k;
   int rec = !t->o->norecords, line = t->o->style == LSYS_STYLE_LINE;
   for (k = 0; k < t->nop; k++) {
-    cls[k] = nrec[k] = nline[k] = nshape[k] = 0;
+    cls[k] = 0;
+    inc[k] = 0;
     switch (lsys_symbols_split(t->op[k])) {
       case LSYS_SPLIT_STATE: break;
       case LSYS_SPLIT_OPEN: cls[k] = K_OPEN; break;
       case LSYS_SPLIT_CLOSE: cls[k] = K_CLOSE; break;
-      case LSYS_SPLIT_SEGMENT:
-        nrec[k] = (uint8_t)rec; nline[k] = (uint8_t)line; nshape[k] = (uint8_t)!line;
+      case LSYS_SPLIT_SEGMENT:       /* a line's record has the line's end point */
+        inc[k] = INC(rec, line, rec && !line, !line);
         break;
-      case LSYS_SPLIT_SHAPE: nrec[k] = (uint8_t)rec; nshape[k] = 1; break;
-      case LSYS_SPLIT_RECORD: nrec[k] = (uint8_t)rec; break;
+      case LSYS_SPLIT_SHAPE: inc[k] = INC(rec, 0, rec, 1); break;
+      case LSYS_SPLIT_RECORD: inc[k] = INC(rec, 0, rec, 0); break;
       default: cls[k] = K_CROSS; break;       /* LSYS_SPLIT_CROSS and anything else */
     }
   }
 }
 
+/* Adds the counts packed in *acc to *cur and empties it. */
+static void addcounts (at *cur, uint64_t *acc) {
+  cur->rec += (size_t)(*acc & 0xffff);
+  cur->line += (size_t)(*acc >> 16 & 0xffff);
+  cur->pt += (size_t)(*acc >> 32 & 0xffff);
+  cur->shape += (size_t)(*acc >> 48);
+  *acc = 0;
+}
+
 /* Finds the branches of at least *minsize modules (doubled while there are too
 ** many) and counts the records, lines and parameters; returns 1 when the string
-** is not for pieces, LSYS_ENOMEM, or LSYS_OK with *nb branches in closing order. */
+** is not for pieces, LSYS_ENOMEM, or LSYS_OK with *nb branches in closing order.
+** The counts of the modules since the last bracket add up in 16-bit fields of one
+** word, emptied at each bracket and every 65,535 modules (a module adds at most 1
+** to each). */
 static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *nb,
                  size_t *minsize, at *total) {
   typedef struct opened { size_t i; at a; } opened;
-  size_t i, depth = 0, opencap = 0, nop = t->nop, ntab = nop > 256 ? nop : 256;
+  size_t i, i1, depth = 0, opencap = 0, nop = t->nop, ntab = nop > 256 ? nop : 256;
   const uint8_t *s8 = s->sym8;
-  uint8_t *cls, *nrec, *nline, *nshape;
+  uint8_t *cls;
+  uint64_t *inc, acc = 0;
   opened *open = NULL;
-  at cur = {0, 0, 0, 0};
+  at cur = {0, 0, 0, 0, 0};
   int n = 0, st = LSYS_OK;
-  if ((cls = (uint8_t *)LSYS_MALLOC(4 * ntab)) == NULL) return LSYS_ENOMEM;
-  nrec = cls + ntab;
-  nline = nrec + ntab;
-  nshape = nline + ntab;
-  memset(cls, 0, 4 * ntab);
-  classify(t, cls, nrec, nline, nshape);
-  for (i = 0; i < s->n; i++) {
-    uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
-    uint32_t sym = LSYS_CSYM(c);
-    int k;
-    if (sym >= nop) sym = 0;              /* the table's entry 0 is nothing */
-    if ((k = cls[sym]) != 0) {
+  if ((inc = (uint64_t *)LSYS_MALLOC(ntab * (sizeof *inc + 1))) == NULL) return LSYS_ENOMEM;
+  cls = (uint8_t *)(inc + ntab);
+  memset(inc, 0, ntab * (sizeof *inc + 1));
+  classify(t, cls, inc);
+  for (i = 0; i < s->n && st == LSYS_OK; i = i1) {
+    i1 = s->n - i > 65535 ? i + 65535 : s->n;
+    for (; i < i1; i++) {
+      uint16_t c = s8 != NULL ? (uint16_t)LSYS_CODE(s8[i], 0) : s->code[i];
+      uint32_t sym = LSYS_CSYM(c);
+      int k;
+      if (sym >= nop) sym = 0;              /* the table's entry 0 is nothing */
+      cur.par += LSYS_CNP(c);
+      if ((k = cls[sym]) == 0) { acc += inc[sym]; continue; }
+      addcounts(&cur, &acc);
       if (k == K_CROSS) { st = 1; break; }
       if (k == K_OPEN) {
         if (depth == opencap && (depth >= MAXOPEN || lsys_common_grow((void **)&open, &opencap,
@@ -162,13 +184,10 @@ static int scan (const lsys_turtle *t, const lsys_lstring *s, branch *br, int *n
         }
       }
     }
-    cur.rec += nrec[sym];
-    cur.line += nline[sym];
-    cur.shape += nshape[sym];
-    cur.par += LSYS_CNP(c);
+    addcounts(&cur, &acc);
   }
   LSYS_FREE(open);
-  LSYS_FREE(cls);
+  LSYS_FREE(inc);
   *nb = n;
   *total = cur;
   return st;
@@ -194,6 +213,7 @@ static void endpiece (piece *p, size_t b, at x) {
   p->b = b;
   p->nrec = x.rec - p->at.rec;
   p->nline = x.line - p->at.line;
+  p->npt = x.pt - p->at.pt;
 }
 
 /* The pieces of the string from its branches, in string order. A branch of
@@ -201,7 +221,7 @@ static void endpiece (piece *p, size_t b, at x) {
 ** enclose a cut one are cut too: a piece never closes a bracket that another
 ** piece opened, except the ']' that ends its branch. */
 static void cut (par *P, branch *br, int nb, at total) {
-  static const at zero = {0, 0, 0, 0};
+  static const at zero = {0, 0, 0, 0, 0};
   int dep[MAXPIECES / 2], nopen = 0, cur = 0, k;
   size_t close[MAXPIECES / 2];
   at closeat[MAXPIECES / 2];
@@ -261,17 +281,26 @@ static int startof (par *P, lsys_turtle *wt, piece *p, lsys_tstate *st) {
   return LSYS_OK;
 }
 
-/* Runs piece p into the scene shell 'sc': records and lines go to their
-** places in the scene (written again, the same, in phase 1), the rest to the
-** arrays sc holds. */
+/* Runs piece p into the scene shell 'sc': records, lines and record end
+** points go to their places in the scene (written again, the same, in phase
+** 1), the rest to the arrays sc holds: in phase 0 the piece's own shapes (its
+** records name them from 0), in phase 1 their places in the scene. */
 static int runin (par *P, worker *w, piece *p, lsys_scene *sc) {
   lsys_turtle *wt = &w->wt;
   lsys_scene *S = P->t->scene;
   lsys_tstate st;
+  size_t base[4];
   int status;
   sc->rec = AT(S->rec, p->at.rec);
   sc->reccap = p->nrec;
   sc->nrec = 0;
+  sc->recpt = AT(S->recpt, 3 * p->at.pt);
+  sc->ptcap = 3 * p->npt;
+  sc->npt = 0;
+  sc->nshape = 0;
+  base[0] = p->at.rec; base[1] = p->at.line; base[2] = p->at.pt;
+  base[3] = P->phase == 0 ? 0 : p->h0;
+  wt->fixshape = P->phase != 0;
   sc->mesh.lpos = AT(S->mesh.lpos, 6 * p->at.line);
   sc->mesh.lwidth = AT(S->mesh.lwidth, 2 * p->at.line);
   sc->mesh.lcol = AT(S->mesh.lcol, p->at.line);
@@ -281,8 +310,9 @@ static int runin (par *P, worker *w, piece *p, lsys_scene *sc) {
   sc->mesh.meter = S->mesh.meter;
   wt->scene = sc;
   if ((status = startof(P, wt, p, &st)) != LSYS_OK) return status;
-  status = lsys_turtle_runpiece(wt, P->s, P->ab, p->a, p->b, p->at.par, &st, p->at.rec);
-  if (status == LSYS_OK && (sc->nrec != p->nrec || sc->mesh.nl != p->nline))
+  status = lsys_turtle_runpiece(wt, P->s, P->ab, p->a, p->b, p->at.par, &st, base);
+  if (status == LSYS_OK && (sc->nrec != p->nrec || sc->mesh.nl != p->nline ||
+                            sc->npt != p->npt || (P->phase != 0 && sc->nshape != sc->shapecap)))
     status = lsys_seterror(&wt->err, LSYS_ELIMIT, p->a, "internal error: module %zu: the "
                            "records or lines of a piece were miscounted", p->a + 1);
   return status;
@@ -306,6 +336,7 @@ static void runone (par *P, worker *w, piece *p) {
   p->nv = sc.mesh.nv; p->nt = sc.mesh.nt;
   p->curtex = sc.mesh.curtex;
   p->sc.stiff = sc.stiff; p->sc.nstiff = sc.nstiff; p->sc.stiffcap = sc.stiffcap;
+  p->sc.shape = sc.shape; p->sc.nshape = sc.nshape; p->sc.shapecap = sc.shapecap;
   sc.mesh.lpos = NULL; sc.mesh.lwidth = NULL; sc.mesh.lcol = NULL; sc.mesh.lcap = 0;
   w->scratch = sc.mesh;                      /* what grew stays for the next piece */
   if (p->status == LSYS_OK && !P->dry && p->nv + p->nt > 0)
@@ -337,6 +368,7 @@ static int placeone (par *P, worker *w, piece *p) {
     pm->tcap = m->tcap - p->t0;
     pm->fixed = 1;
     sc.stiff = w->stiff; sc.stiffcap = w->stiffcap;
+    sc.shape = AT(S->shape, p->h0); sc.shapecap = p->sc.nshape;
     status = runin(P, w, p, &sc);
     w->stiff = sc.stiff; w->stiffcap = sc.stiffcap;
     if (status == LSYS_OK && (pm->nv != p->nv || pm->nt != p->nt))
@@ -349,11 +381,17 @@ static int placeone (par *P, worker *w, piece *p) {
       pm->tri[k] = x >= FOREIGN ? fr + (x - FOREIGN) : x + v0;
     }
   }
-  if ((p->t0 > 0 || p->s0 > 0) && p->nrec > 0) {
-    lsys_trec *r = S->rec + p->at.rec;
-    for (k = 0; k < p->nrec; k++) {
-      r[k].tri0 += (uint32_t)p->t0;
-      if (r[k].stiff != LSYS_NOREC) r[k].stiff += (uint32_t)p->s0;
+  if (!P->dry && p->sc.nshape > 0) {    /* the shapes to their place, the records to them */
+    lsys_rec *r = S->rec + p->at.rec;
+    memcpy(S->shape + p->h0, p->sc.shape, p->sc.nshape * sizeof *S->shape);
+    if (p->h0 > 0)
+      for (k = 0; k < p->nrec; k++) r[k].shape += (uint32_t)p->h0;
+  }
+  if (p->t0 > 0 || p->s0 > 0) {
+    lsys_rshape *h = AT(S->shape, p->h0);
+    for (k = 0; k < p->sc.nshape; k++) {
+      h[k].tri0 += (uint32_t)p->t0;
+      if (h[k].stiff != LSYS_NOREC) h[k].stiff += (uint32_t)p->s0;
     }
   }
   if (p->sc.nstiff > 0)
@@ -422,19 +460,20 @@ static size_t slack (const par *P, int what) {
 static int places (par *P) {
   lsys_turtle *t = P->t;
   lsys_scene *S = t->scene;
-  size_t nv = 0, ntri = 0, ns = 0, ne = 0;
+  size_t nv = 0, ntri = 0, ns = 0, ne = 0, nh = 0;
   int k;
   for (k = 0; k < P->np; k++) {
     piece *p = &P->p[k];
-    p->v0 = nv; p->t0 = ntri; p->s0 = ns;
-    nv += p->nv; ntri += p->nt; ns += p->sc.nstiff;
+    p->v0 = nv; p->t0 = ntri; p->s0 = ns; p->h0 = nh;
+    nv += p->nv; ntri += p->nt; ns += p->sc.nstiff; nh += p->sc.nshape;
     ne += p->nends - (size_t)p->foreign;
     if (p->foreign && p->ends[0].continued) P->p[p->src].ends[p->srcend].continued = 1;
     if (p->curtex != UINT32_MAX) S->mesh.curtex = p->curtex;
   }
-  if (nv > UINT32_MAX || ns >= LSYS_NOREC)
+  if (nv > UINT32_MAX || ns >= LSYS_NOREC || nh >= LSYS_NOREC)
     return lsys_seterror(&t->err, LSYS_ELIMIT, (size_t)-1, "more than %u vertices",
                          (unsigned)UINT32_MAX);
+  if (nh > 0 && lsys_scene_reserve_shapes(S, nh) != LSYS_OK) goto nomem;
   if ((nv > 0 || ntri > 0) && lsys_mesh_reserve(&S->mesh, nv + slack(P, 0), ntri + slack(P, 1))
                                != LSYS_OK)
     goto nomem;
@@ -451,7 +490,7 @@ static int places (par *P) {
       t->ends[t->nends++].ring += (uint32_t)p->v0;
     }
   }
-  S->mesh.nv = nv; S->mesh.nt = ntri; S->nstiff = ns;
+  S->mesh.nv = nv; S->mesh.nt = ntri; S->nstiff = ns; S->nshape = nh;
   return LSYS_OK;
 nomem:
   return lsys_seterror(&t->err, (S->meter && S->meter->hit) || (S->mesh.meter &&
@@ -466,6 +505,7 @@ static int room (lsys_turtle *t, at total) {
   if (total.rec >= LSYS_NOREC)
     return lsys_seterror(&t->err, LSYS_ELIMIT, (size_t)-1, "too many turtle records");
   if (total.rec > 0) st = lsys_scene_reserve_records(S, total.rec);
+  if (st == LSYS_OK && total.pt > 0) st = lsys_scene_reserve_points(S, total.pt);
   if (st == LSYS_OK && total.line > 0) st = lsys_mesh_reserve_lines(&S->mesh, total.line);
   if (st == LSYS_OK) return LSYS_OK;
   if (st == LSYS_ELIMIT)
@@ -534,7 +574,7 @@ int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet 
   int nt = t->threads < 1 ? 1 : t->threads > LSYS_PARTHREADS ? LSYS_PARTHREADS : t->threads;
   size_t minsize = t->piecemin;
   branch *br;
-  at total;
+  at total = {0, 0, 0, 0, 0};
   par P;
   int nb = 0, st, k;
   if (minsize == 0) {                       /* by default, long strings on several threads */
@@ -564,18 +604,20 @@ int lsys_turtle_par (lsys_turtle *t, const lsys_lstring *s, const lsys_alphabet 
   if ((st = room(t, total)) == LSYS_OK) st = runall(&P, nt > P.np ? P.np : nt);
   if (st == LSYS_OK) {
     S->nrec = total.rec;
+    S->npt = total.pt;
     S->mesh.nl = total.line;
     t->state = P.p[P.np - 1].end;
     st = lsys_turtle_finish(t);
   }
   for (k = 0; k < P.np; k++) {
     LSYS_FREE(P.p[k].sc.stiff);
+    LSYS_FREE(P.p[k].sc.shape);
     LSYS_FREE(P.p[k].ends);
   }
   LSYS_FREE(P.p);
   if (st != LSYS_OK && S != NULL) {          /* no half scene */
     lsys_mesh_clear(&S->mesh);
-    S->nrec = S->nstiff = 0;
+    S->nrec = S->nshape = S->npt = S->nstiff = 0;
   }
   return st;
 }

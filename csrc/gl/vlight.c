@@ -34,8 +34,8 @@ static int isleaf (int kind) {
   return kind == LSYS_REC_DISC || kind == LSYS_REC_POLYGON || kind == LSYS_REC_SURFACE;
 }
 
-int lsys_vlight_leaves (lsys_vframe *f, const lsys_trec *rec, size_t nrec) {
-  size_t k, n = 0, pass;
+int lsys_vlight_leaves (lsys_vframe *f, const lsys_scene *s) {
+  size_t k, n = 0, pass, nrec = s->nrec;
   f->leafr = NULL;
   f->nleafr = 0;
   if (f->sc.ninst > 0) return LSYS_OK;
@@ -43,7 +43,7 @@ int lsys_vlight_leaves (lsys_vframe *f, const lsys_trec *rec, size_t nrec) {
     uint32_t a = 0, b = 0;
     n = 0;
     for (k = 0; k <= nrec; k++) {
-      const lsys_trec *r = k < nrec ? &rec[k] : NULL;
+      const lsys_rshape *r = k < nrec ? lsys_scene_recshape(s, k) : NULL;
       if (r != NULL && (!isleaf(r->kind) || r->ntri == 0)) continue;
       if (r != NULL && b > a && r->tri0 == b) { b += r->ntri; continue; }   /* touches */
       if (b > a) {

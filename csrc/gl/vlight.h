@@ -48,12 +48,12 @@ typedef struct lsys_vlight {
 void lsys_vlight_ramp (double x, float rgb[3]);
 
 /*
-** The triangles of frame f's leaf records among rec[0 .. nrec) (discs,
+** The triangles of frame f's leaf records among the records of s (discs,
 ** polygons, surfaces: their tri0, ntri) into f->leafr, as ranges [a, b)
 ** merged where they touch. A population (f->sc.ninst > 0) gets none.
 ** Returns LSYS_OK or LSYS_ENOMEM (f->leafr NULL).
 */
-int lsys_vlight_leaves (lsys_vframe *f, const lsys_trec *rec, size_t nrec);
+int lsys_vlight_leaves (lsys_vframe *f, const lsys_scene *s);
 
 /*
 ** Computes the light colours of frame f into *l (emptied first; free with

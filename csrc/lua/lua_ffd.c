@@ -374,8 +374,12 @@ static int scene_deform (lua_State *L) {
   g = readrange(L, &S->sc, 3, "scene:deform");
   if (!isfn) hp = checkhp(L, 2);            /* again: the options ran Lua code */
   if (isfn) deform_fn(L, S, &g);
-  else if (lsys_ffd_range(&S->sc, g.v0, g.v1, g.l0, g.l1, hp) != LSYS_OK)
-    return luaL_error(L, "scene:deform: range out of the scene");
+  else {
+    int st = lsys_ffd_range(&S->sc, g.v0, g.v1, g.l0, g.l1, hp);
+    if (st != LSYS_OK)
+      return luaL_error(L, "scene:deform: %s", st == LSYS_ENOMEM ? "not enough memory"
+                                                                 : "range out of the scene");
+  }
   lua_pushinteger(L, (lua_Integer)(g.v1 - g.v0));
   return 1;
 }
@@ -411,8 +415,9 @@ static int scene_transform (lua_State *L) {
     lua_pop(L, 1);
   }
   g = readrange(L, &S->sc, 3, who);
-  if (lsys_ffd_affine(&S->sc, g.v0, g.v1, g.l0, g.l1, m) != LSYS_OK)
-    return luaL_error(L, "%s: range out of the scene", who);
+  if ((r = lsys_ffd_affine(&S->sc, g.v0, g.v1, g.l0, g.l1, m)) != LSYS_OK)
+    return luaL_error(L, "%s: %s", who, r == LSYS_ENOMEM ? "not enough memory"
+                                                         : "range out of the scene");
   lua_pushinteger(L, (lua_Integer)(g.v1 - g.v0));
   return 1;
 }

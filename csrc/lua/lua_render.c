@@ -206,6 +206,8 @@ static void prepare (lua_State *L, shadeprep *p, lsys_scene *v, lsys_render_opts
     v->parts = NULL; v->nparts = 0;
     v->inst = NULL; v->ninst = 0;
     v->rec = NULL; v->nrec = 0;
+    v->shape = NULL; v->nshape = 0;
+    v->recpt = NULL; v->npt = 0;
   }
   if (ground && v->ninst == 0 && v->mesh.nt + v->mesh.nl > 0 && above(&v->cam, &v->mesh)) {
     size_t npal = v->npal > 0 ? v->npal : 1, k;
@@ -411,11 +413,9 @@ static int l_bake (lua_State *L) {
   prepare(L, prep, &v, &o, &so, &g, gcol, ground);
   if (lsys_mesh_copy(&B->sc.mesh, &v.mesh) != LSYS_OK) return luaL_error(L, "not enough memory");
   bakecolours(L, &B->sc, v.npal > 0 ? v.pal : &grey, v.npal > 0 ? v.npal : 1, prep->f);
-  if (!prep->flattened && v.nrec > 0) {
-    if (lsys_scene_reserve_records(&B->sc, v.nrec) != LSYS_OK)
+  if (!prep->flattened && v.nrec > 0) {       /* the mesh copy has the same lines */
+    if (lsys_scene_append_records(&B->sc, &v, 0, 0, 0) != LSYS_OK)
       return luaL_error(L, "not enough memory");
-    memcpy(B->sc.rec, v.rec, v.nrec * sizeof *v.rec);
-    B->sc.nrec = v.nrec;
     if (v.nstiff > 0) {               /* the records' stiffnesses, 3 floats each */
       if ((B->sc.stiff = (float *)LSYS_MALLOC(3 * v.nstiff * sizeof *v.stiff)) == NULL)
         return luaL_error(L, "not enough memory");

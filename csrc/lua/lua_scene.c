@@ -366,7 +366,10 @@ static int l_interpret (lua_State *L) {
   lua_pushvalue(L, 1); lua_setiuservalue(L, 4, LSYS_SCENE_RULES);
   lua_pushvalue(L, 2); lua_setiuservalue(L, 4, LSYS_SCENE_LSTRING);
   lua_pushvalue(L, 3); lua_setiuservalue(L, 4, LSYS_SCENE_OPTS);
-  lua_gc(L, LUA_GCSTEP, (int)((S->sc.mesh.nv * 41 + S->sc.mesh.nt * 12 + S->sc.nrec * sizeof *S->sc.rec) >> 10));
+  lua_gc(L, LUA_GCSTEP, (int)((S->sc.mesh.nv * 41 + S->sc.mesh.nt * 12 +
+                               S->sc.nrec * sizeof *S->sc.rec +
+                               S->sc.nshape * sizeof *S->sc.shape +
+                               S->sc.npt * 3 * sizeof *S->sc.recpt) >> 10));
   lua_settop(L, 4);
   return 1;
 }
@@ -547,7 +550,7 @@ static int scene_gc (lua_State *L) {
 
 static size_t countrec (const lsys_lscene *S, int kind) {
   size_t k, n = 0;
-  for (k = 0; k < S->sc.nrec; k++) n += S->sc.rec[k].kind == kind;
+  for (k = 0; k < S->sc.nrec; k++) n += lsys_scene_reckind(&S->sc, k) == kind;
   return n;
 }
 
@@ -617,8 +620,9 @@ static int scene_area (lua_State *L) {
 ** stiffness) is copied first, the tables are made from the copy (an
 ** allocation may run a finalizer that closes S). */
 static void pushrecord (lua_State *L, const lsys_lscene *S, size_t k) {
-  const lsys_trec rec = S->sc.rec[k], *r = &rec;
+  lsys_trec rec, *r = &rec;
   float l[3], st[3];
+  lsys_scene_record(&S->sc, k, &rec);
   if (r->stiff != LSYS_NOREC) memcpy(st, S->sc.stiff + 3 * r->stiff, sizeof st);
   l[0] = r->H[1] * r->U[2] - r->H[2] * r->U[1];          /* L = H x U */
   l[1] = r->H[2] * r->U[0] - r->H[0] * r->U[2];
@@ -683,7 +687,10 @@ static int scene_find (lua_State *L) {
   lua_Integer m = luaL_checkinteger(L, 2);
   size_t k;
   for (k = 0; k < S->sc.nrec; k++)
-    if ((lua_Integer)S->sc.rec[k].module + 1 == m) { lua_pushinteger(L, (lua_Integer)k + 1); return 1; }
+    if ((lua_Integer)S->sc.rec[k].module + 1 == m) {
+      lua_pushinteger(L, (lua_Integer)k + 1);
+      return 1;
+    }
   lua_pushnil(L);
   return 1;
 }
@@ -694,12 +701,12 @@ static int scene_find (lua_State *L) {
 static int scene_edges (lua_State *L) {
   lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
-  const lsys_trec *r;
+  const lsys_rshape *r;
   uint32_t *e;
   size_t n, i;
   S = lsysL_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec) return luaL_error(L, "scene:edges: no record %d", (int)k);
-  r = &S->sc.rec[k - 1];
+  r = lsys_scene_recshape(&S->sc, (size_t)k - 1);
   e = (uint32_t *)lua_newuserdatauv(L, 6 * (size_t)r->ntri * sizeof *e + 1, 0);
   n = lsys_mesh_edges(&S->sc.mesh, r->tri0, r->ntri, e);
   lua_createtable(L, (int)n, 0);
@@ -721,13 +728,13 @@ static int scene_edges (lua_State *L) {
 static int scene_vertices (lua_State *L) {
   lsys_lscene *S = lsysL_checkscene(L, 1);
   lua_Integer k = luaL_checkinteger(L, 2);
-  const lsys_trec *r;
+  const lsys_rshape *r;
   uint32_t lo = UINT32_MAX, hi = 0, i;
   size_t t;
   S = lsysL_holdscene(L, 1);
   if (k < 1 || (size_t)k > S->sc.nrec)
     return luaL_error(L, "scene:vertices: no record %d", (int)k);
-  r = &S->sc.rec[k - 1];
+  r = lsys_scene_recshape(&S->sc, (size_t)k - 1);
   for (t = 0; t < 3 * (size_t)r->ntri; t++) {
     uint32_t v = S->sc.mesh.tri[3 * (size_t)r->tri0 + t];
     if (v < lo) lo = v;

@@ -124,13 +124,14 @@ static int l_viewer_open (lua_State *L) {
 
 /* The pickable records of a frame (f->picks has room for all): what the
 ** turtle drew, as segments; 'world': widths in world units. */
-static void setpicks (lsys_vframe *f, const lsys_trec *rec, size_t nrec, int world) {
+static void setpicks (lsys_vframe *f, const lsys_scene *s, int world) {
   size_t k;
-  for (k = 0; k < nrec; k++) {
-    const lsys_trec *r = &rec[k];
+  for (k = 0; k < s->nrec; k++) {
+    lsys_trec rec, *r = &rec;
     lsys_vpick *p = &f->picks[f->npicks];
-    int i;
-    if (r->kind == LSYS_REC_LABEL || r->kind == LSYS_REC_SYSTEM) continue;
+    int i, kind = lsys_scene_reckind(s, k);
+    if (kind == LSYS_REC_LABEL || kind == LSYS_REC_SYSTEM) continue;
+    lsys_scene_record(s, k, &rec);
     for (i = 0; i < 3; i++) {
       p->p1[i] = r->p1[i];
       p->p0[i] = r->p1[i] - r->len * r->H[i];
@@ -194,8 +195,10 @@ static void setinstances (lua_State *L, lsys_vframe *f, const lsys_scene *s) {
   f->sc.nparts = f->sc.partcap = np;
   f->sc.ninst = f->sc.instcap = s->ninst;
   for (p = 0, r = 0; p < np; p++) {
-    for (; r < s->parts[p].r0 && r < s->nrec; r++)
-      k += s->rec[r].kind != LSYS_REC_LABEL && s->rec[r].kind != LSYS_REC_SYSTEM;
+    for (; r < s->parts[p].r0 && r < s->nrec; r++) {
+      int kind = lsys_scene_reckind(s, r);
+      k += kind != LSYS_REC_LABEL && kind != LSYS_REC_SYSTEM;
+    }
     f->partpicks[p] = k;
   }
   f->partpicks[np] = f->npicks;
@@ -227,8 +230,8 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   memcpy(f->sc.lights, S->sc.lights, sizeof f->sc.lights);
   f->sc.nlights = S->sc.nlights;
   memcpy(f->sc.background, S->sc.background, sizeof f->sc.background);
-  setpicks(f, S->sc.rec, S->sc.nrec, world);
-  if (lsys_vlight_leaves(f, S->sc.rec, S->sc.nrec) != LSYS_OK)
+  setpicks(f, &S->sc, world);
+  if (lsys_vlight_leaves(f, &S->sc) != LSYS_OK)
     luaL_error(L, "not enough memory for the viewer");
   if (S->sc.ninst > 0) setinstances(L, f, &S->sc);
   if (lsysL_optfield(L, &fo, "lines", LUA_TTABLE, "a list of lines")) {
@@ -239,6 +242,8 @@ static void readframe (lua_State *L, int idx, lsys_vframe *f) {
   if (take) {                               /* the scene's own mesh */
     lsys_lscene *T = lsysL_checkscene(L, -1);
     lsysL_changescene(L, T);
+    if (lsys_scene_detach_records(&T->sc) != LSYS_OK)   /* the records keep their points */
+      luaL_error(L, "not enough memory for the viewer");
     f->sc.mesh = T->sc.mesh;
     lsys_mesh_init(&T->sc.mesh);
   }

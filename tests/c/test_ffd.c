@@ -337,11 +337,11 @@ static void modules (void) {
   for (k = 0; k < 10; k++) lsys_mesh_vertex(&s.mesh, p, n, 0, 0, 1, 0);
   for (k = 0; k < 5; k++) lsys_mesh_tri(&s.mesh, tri[3 * k], tri[3 * k + 1], tri[3 * k + 2]);
   assert(lsys_ffd_module_range(&s, 0, 9, &v0, &v1, &l0, &l1) == 0);   /* no records */
-  assert(lsys_scene_reserve_records(&s, 4) == LSYS_OK);
   for (k = 0; k < 4; k++) {
-    lsys_trec *r = &s.rec[s.nrec++];
-    memset(r, 0, sizeof *r);
-    r->module = mod[k]; r->kind = kind[k]; r->tri0 = t0[k]; r->ntri = nt[k];
+    lsys_trec r;
+    memset(&r, 0, sizeof r);
+    r.module = mod[k]; r.kind = kind[k]; r.tri0 = t0[k]; r.ntri = nt[k];
+    assert(lsys_scene_add_record(&s, &r) == LSYS_OK);
   }
   assert(lsys_ffd_module_range(&s, 0, 1, &v0, &v1, &l0, &l1) == 1);
   assert(v0 == 0 && v1 == 4 && l0 == 0 && l1 == 0);     /* no lines: not the line style */

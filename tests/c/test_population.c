@@ -29,6 +29,7 @@ static void plant (lsys_scene *s, unsigned col, size_t npal, float shade) {
   static const double p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, n[3] = {0, 0, 1};
   static const double a[3] = {0, 0, 0}, b[3] = {0, 2, 0}, k[3] = {1, 2, 3};
   lsys_material pal[4];
+  lsys_trec r;
   uint32_t st;
   size_t i;
   lsys_scene_init(s);
@@ -40,12 +41,12 @@ static void plant (lsys_scene *s, unsigned col, size_t npal, float shade) {
   s->ntex = 1;                 /* texture 1 (not looked at here) */
   lsys_mesh_tri(&s->mesh, 0, 1, 2);
   assert(lsys_mesh_line(&s->mesh, a, b, 2, 1, col + 1) == LSYS_OK);
-  assert(lsys_scene_reserve_records(s, 2) == LSYS_OK);
-  memset(s->rec, 0, 2 * sizeof *s->rec);
-  s->rec[0].parent = LSYS_NOREC; s->rec[0].stiff = LSYS_NOREC; s->rec[0].ntri = 1;
+  memset(&r, 0, sizeof r);
+  r.parent = LSYS_NOREC; r.stiff = LSYS_NOREC; r.ntri = 1;
+  assert(lsys_scene_add_record(s, &r) == LSYS_OK);
   assert(lsys_scene_add_stiffness(s, k, &st) == LSYS_OK);
-  s->rec[1].parent = 0; s->rec[1].stiff = st; s->rec[1].module = 7;
-  s->nrec = 2;
+  r.parent = 0; r.stiff = st; r.module = 7; r.ntri = 0; r.p1[1] = 2;
+  assert(lsys_scene_add_record(s, &r) == LSYS_OK);
 }
 
 /* The column-major T R S of a translation t, a rotation by 'deg' about +y and
@@ -91,8 +92,13 @@ static void prototypes (void) {
   assert(pop.mesh.tex[2] == 5 && pop.mesh.tex[5] == 1 && pop.mesh.tex[8] == 5);
   /* triangles, records moved */
   assert(pop.mesh.tri[3] == 3 && pop.mesh.tri[8] == 8);
-  assert(pop.rec[3].parent == 2 && pop.rec[3].stiff == 1 && pop.rec[2].tri0 == 1);
-  assert(pop.rec[3].module == 7 && pop.rec[2].parent == LSYS_NOREC);
+  {
+    lsys_trec r2, r3;
+    lsys_scene_record(&pop, 2, &r2);
+    lsys_scene_record(&pop, 3, &r3);
+    assert(r3.parent == 2 && r3.stiff == 1 && r2.tri0 == 1 && r2.ntri == 1);
+    assert(r3.module == 7 && r2.parent == LSYS_NOREC && r3.p1[1] == 2.0f);
+  }
   assert(lsys_scene_part_of_record(&pop, 3) == 1);
   lsys_scene_free(&pop);
 }

@@ -18,10 +18,11 @@ static void addvertices (lsys_scene *s, int n) {
 
 static void addrecords (lsys_scene *s, int n) {
   int i;
-  assert(lsys_scene_reserve_records(s, (size_t)n) == LSYS_OK);
   for (i = 0; i < n; i++) {
-    memset(&s->rec[s->nrec], 0, sizeof s->rec[0]);
-    s->rec[s->nrec++].module = (uint32_t)i;
+    lsys_trec r;
+    memset(&r, 0, sizeof r);
+    r.module = (uint32_t)i;
+    assert(lsys_scene_add_record(s, &r) == LSYS_OK);
   }
 }
 
@@ -52,7 +53,7 @@ static void palette (void) {
 
 static void records (void) {
   lsys_scene s;
-  lsys_meter mt = { 10 * sizeof(lsys_trec), 0, 0, NULL };
+  lsys_meter mt = { 10 * sizeof(lsys_rec), 0, 0, NULL };
   const double k[3] = {1, 2, 3};
   uint32_t i0, i1;
   lsys_scene_init(&s);
@@ -72,6 +73,59 @@ static void records (void) {
   assert(lsys_scene_reserve_records(&s, 1) == LSYS_EMEMORY);
   s.meter = NULL;
   lsys_scene_free(&s);
+}
+
+/* Records as the scene keeps them (scene.h): a shape shared, an end point
+** read from a line until the records are detached from the lines, records
+** appended to another scene with their places moved. */
+static void packed (void) {
+  lsys_scene s, d;
+  lsys_trec r;
+  lsys_rshape h;
+  const double a[3] = {0, 0, 0}, b[3] = {1, 2, 3};
+  memset(&h, 0, sizeof h);
+  h.kind = LSYS_REC_SEGMENT; h.line = 1; h.len = 3.75f; h.H[1] = 1; h.U[2] = -1;
+  h.w0 = 2; h.w1 = 1; h.color = 4; h.stiff = LSYS_NOREC; h.tri0 = 5;
+  lsys_scene_init(&s);
+  assert(lsys_mesh_line(&s.mesh, a, b, 2, 1, 4) == LSYS_OK);
+  assert(lsys_mesh_line(&s.mesh, b, a, 2, 1, 4) == LSYS_OK);
+  assert(lsys_scene_reserve_records(&s, 2) == LSYS_OK);
+  assert(lsys_scene_reserve_shapes(&s, 1) == LSYS_OK);
+  s.shape[s.nshape++] = h;
+  s.rec[0].module = 3; s.rec[0].parent = LSYS_NOREC; s.rec[0].shape = 0; s.rec[0].at = 0;
+  s.rec[1].module = 9; s.rec[1].parent = 0; s.rec[1].shape = 0; s.rec[1].at = 1;
+  s.nrec = 2;
+  lsys_scene_record(&s, 1, &r);
+  assert(r.module == 9 && r.parent == 0 && r.kind == LSYS_REC_SEGMENT && r.color == 4);
+  assert(r.p1[0] == 0 && r.p1[1] == 0 && r.p1[2] == 0 && r.len == 3.75f && r.H[1] == 1);
+  assert(r.U[2] == -1 && r.w0 == 2 && r.w1 == 1 && r.tri0 == 5 && r.ntri == 0);
+  lsys_scene_record(&s, 0, &r);
+  assert(r.p1[0] == 1 && r.p1[1] == 2 && r.p1[2] == 3 && lsys_scene_reckind(&s, 0) == 1);
+  /* appended: parents, lines and triangles moved */
+  lsys_scene_init(&d);
+  addrecords(&d, 1);
+  assert(lsys_mesh_line(&d.mesh, b, b, 1, 1, 0) == LSYS_OK);
+  assert(lsys_mesh_line(&d.mesh, a, b, 2, 1, 4) == LSYS_OK);
+  assert(lsys_mesh_line(&d.mesh, b, a, 2, 1, 4) == LSYS_OK);
+  assert(lsys_scene_append_records(&d, &s, 0, 10, 1) == LSYS_OK);
+  assert(d.nrec == 3 && d.nshape == 2 && d.npt == 1);
+  lsys_scene_record(&d, 2, &r);
+  assert(r.module == 9 && r.parent == 1 && r.tri0 == 15 && r.p1[0] == 0);
+  lsys_scene_record(&d, 1, &r);
+  assert(r.parent == LSYS_NOREC && r.p1[2] == 3);
+  /* detached: the lines may change, the records stay */
+  assert(lsys_scene_detach_records(&s) == LSYS_OK);
+  assert(s.npt == 2 && s.shape[0].line == 0);
+  s.mesh.lpos[3] = 7;
+  s.mesh.nl = 0;
+  lsys_scene_record(&s, 0, &r);
+  assert(r.p1[0] == 1 && r.p1[1] == 2 && r.p1[2] == 3 && r.len == 3.75f);
+  /* a record whose shape is not there reads as zeros */
+  s.rec[1].shape = 5;
+  lsys_scene_record(&s, 1, &r);
+  assert(r.kind == 0 && r.len == 0 && r.module == 9 && lsys_scene_reckind(&s, 1) == 0);
+  lsys_scene_free(&s);
+  lsys_scene_free(&d);
 }
 
 static void parts (void) {
@@ -168,6 +222,7 @@ int main (void) {
   defaults();
   palette();
   records();
+  packed();
   parts();
   dirty();
   ranges();

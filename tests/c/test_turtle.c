@@ -22,6 +22,7 @@ static int near (double a, double b) { return fabs(a - b) < 1e-9; }
 
 static void test_draw (void) {
   lsys_alphabet a;
+  lsys_trec r[3];
   lsys_lstring s;
   lsys_scene sc;
   lsys_turtle t;
@@ -38,11 +39,14 @@ static void test_draw (void) {
   parse(&s, &a, "F(2)[+F]!(0.5)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
   assert(sc.nrec == 3);
-  assert(sc.rec[0].module == 0 && sc.rec[1].module == 3 && sc.rec[2].module == 6);
-  assert(sc.rec[1].parent == 0 && sc.rec[2].parent == 0);
-  assert(near(sc.rec[2].p1[1] - sc.rec[2].len * sc.rec[2].H[1], 2) && near(sc.rec[2].p1[1], 3));
+  lsys_scene_record(&sc, 0, &r[0]);
+  lsys_scene_record(&sc, 1, &r[1]);
+  lsys_scene_record(&sc, 2, &r[2]);
+  assert(r[0].module == 0 && r[1].module == 3 && r[2].module == 6);
+  assert(r[1].parent == 0 && r[2].parent == 0);
+  assert(near(r[2].p1[1] - r[2].len * r[2].H[1], 2) && near(r[2].p1[1], 3));
   /* F(2) ends at the bracket: top width 1; the last F starts at width 0.5 */
-  assert(sc.rec[0].w1 == 1.0f && sc.rec[2].w0 == 0.5f);
+  assert(r[0].w1 == 1.0f && r[2].w0 == 0.5f);
   /* three cylinders of 4 sides, none sharing a ring (a width step and a turn), six caps */
   assert(sc.mesh.nt == 3 * 8 + 6 * 4);
   /* a second run reuses the buffers and starts from a cleared mesh */
@@ -181,6 +185,7 @@ static void test_state_and_query (void) {
 
 static void test_errors (void) {
   lsys_alphabet a;
+  lsys_trec r[2];
   lsys_lstring s;
   lsys_scene sc;
   lsys_turtle t;
@@ -212,7 +217,9 @@ static void test_errors (void) {
   /* found by the fuzzer: huge indices were converted to int unchecked */
   parse(&s, &a, ";(3.3e18)F,(-1e300)F@Tx(0)@#(0)F");
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_OK);
-  assert(sc.rec[0].color == 65535 && sc.rec[1].color == 0 && t.state.contour == 0);
+  lsys_scene_record(&sc, 0, &r[0]);
+  lsys_scene_record(&sc, 1, &r[1]);
+  assert(r[0].color == 65535 && r[1].color == 0 && t.state.contour == 0);
   parse(&s, &a, "F@#(-4e9)F");                   /* a negative number names no contour */
   assert(lsys_turtle_run(&t, &s, &a) == LSYS_EARG);
   assert(strstr(t.err.msg, "module 2 '@#': contour -4e+09 is not defined") != NULL);

@@ -55,6 +55,18 @@ static lsys_trec rec (int kind, uint32_t t0, uint32_t n) {
   return r;
 }
 
+/* lsys_vlight_leaves on a scene of the records r[0 .. n). */
+static int leavesof (lsys_vframe *f, const lsys_trec *r, size_t n) {
+  lsys_scene s;
+  size_t k;
+  int st;
+  lsys_scene_init(&s);
+  for (k = 0; k < n; k++) assert(lsys_scene_add_record(&s, &r[k]) == LSYS_OK);
+  st = lsys_vlight_leaves(f, &s);
+  lsys_scene_free(&s);
+  return st;
+}
+
 /* The ramp step a vertex of l shows (npal0 the frame's palette size). */
 static int step (const lsys_vlight *l, uint32_t v, size_t npal0) {
   return (int)l->col[v] - (int)npal0;
@@ -86,11 +98,11 @@ static void test_leaves (void) {
   r[3] = rec(LSYS_REC_SPHERE, 22, 40);
   r[4] = rec(LSYS_REC_SURFACE, 62, 30);
   r[5] = rec(LSYS_REC_DISC, 100, 0);              /* nothing drawn */
-  assert(lsys_vlight_leaves(&f, r, 6) == LSYS_OK);
+  assert(leavesof(&f, r, 6) == LSYS_OK);
   assert(f.nleafr == 2);
   assert(f.leafr[0] == 12 && f.leafr[1] == 22 && f.leafr[2] == 62 && f.leafr[3] == 92);
   LSYS_FREE(f.leafr);
-  assert(lsys_vlight_leaves(&f, r, 1) == LSYS_OK && f.nleafr == 0 && f.leafr == NULL);
+  assert(leavesof(&f, r, 1) == LSYS_OK && f.nleafr == 0 && f.leafr == NULL);
   lsys_scene_free(&f.sc);
   printf("leaves: ok\n");
 }
@@ -119,7 +131,7 @@ static void scene (lsys_vframe *f, lsys_trec r[5]) {
   f->sc.mesh.tex[0] = 1;                          /* a textured roof */
   f->sc.mesh.tex[16] = 1;                         /* and stem */
   assert(lsys_mesh_line(&f->sc.mesh, a, b, 1, 1, 7) == LSYS_OK);   /* 7 % 3 = 1 */
-  assert(lsys_vlight_leaves(f, r, 5) == LSYS_OK);
+  assert(leavesof(f, r, 5) == LSYS_OK);
 }
 
 static void test_colours (void) {
@@ -202,7 +214,7 @@ static void test_none (void) {
   lsys_vlight_free(&l);
   /* no leaves: only the stem's record */
   LSYS_FREE(f.leafr);
-  assert(lsys_vlight_leaves(&f, r + 4, 1) == LSYS_OK);
+  assert(leavesof(&f, r + 4, 1) == LSYS_OK);
   assert(lsys_vlight_compute(&l, &f, 0, 1, NULL, &e) == LSYS_OK);
   assert(l.nleaves == 0 && strcmp(l.msg, "no leaves in this step") == 0);
   /* a population */
