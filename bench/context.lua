@@ -120,7 +120,8 @@ local function cpfg_text (letter, steps)
   local m = letter == "p" and PARAM or hogeweg(letter)
   local rules = {}
   for i, r in ipairs(m.rules) do
-    rules[i] = type(r) == "string" and r or (r[1]:gsub("<", " < "):gsub(">", " > ") .. " --> " .. r[2])
+    rules[i] = type(r) == "string" and r
+      or (r[1]:gsub("<", " < "):gsub(">", " > ") .. " --> " .. r[2])
   end
   return string.format("Lsystem: 1\nderivation length: %d\nignore: %s\nAxiom: %s\n%s\nendlsystem\n",
     steps, m.ignore, m.axiom, table.concat(rules, "\n"))
