@@ -170,7 +170,7 @@ static int ctabfor (lsys_rules *m, lsys_ruleset *const *sets, int nsets, uint32_
 ** class PC_GEN.
 */
 int lsys_derive_par_classify (lsys_rules *m, lsys_ruleset *const *sets, int nsets, int *needsp,
-                           int *genp) {
+                              int *genp) {
   lsys_par *P = m->par;
   uint32_t k, n = m->ab->n;
   int si, nctab = 0;
@@ -255,7 +255,7 @@ int lsys_derive_par_classify (lsys_rules *m, lsys_ruleset *const *sets, int nset
 ** values and *args its arguments. Returns -1 when the step must run
 ** sequentially (a value that is not finite, an error of lsys_derive_choose). */
 int lsys_derive_par_pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const double **args,
-                       const double **vals, const lsys_rule **rule) {
+                          const double **vals, const lsys_rule **rule) {
   lsys_rules *m = j->m;
   const pent *e = &j->P->pe[LSYS_CSYM(cd)];
   lsys_pick pk;
@@ -310,7 +310,7 @@ int lsys_derive_par_pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const 
 
 /* The parameters of rule r's successor (arguments 'args', values 'vals') into op. */
 void lsys_derive_par_succpar (const lsys_rules *m, const lsys_rule *r, const double *args,
-                           const double *vals, double *op) {
+                              const double *vals, double *op) {
   uint32_t k;
   for (k = 0; k < r->nsrc; k++) {   /* (no parameter sources at all: m->tsrc is NULL) */
     const lsys_psrc *ps = &m->tsrc[r->src + k];
@@ -324,7 +324,7 @@ void lsys_derive_par_succpar (const lsys_rules *m, const lsys_rule *r, const dou
 ** there is room: the first that finds none sets c->upto, and filling
 ** chooses again from there on. */
 void lsys_derive_par_keepchoice (job *j, chunk *c, size_t i, const lsys_rule *r, const double *args,
-                              const double *vals) {
+                                 const double *vals) {
   const lsys_rules *m = j->m;
   const gcache *g = &j->P->gc[c - j->ch];
   uint32_t nsrc = r != NULL ? r->nsrc : 0;
@@ -351,7 +351,7 @@ void lsys_derive_par_keptchoices (const job *j, const chunk *c, wout *o) {
 /* The kept choice of module i of class PC_GEN: 1 with *r (NULL: a copy) and
 ** *kp, the successor's parameters; 0 when it was not kept. */
 int lsys_derive_par_kept (wout *o, const lsys_rules *m, size_t i, const lsys_rule **r,
-                       const double **kp) {
+                          const double **kp) {
   uint16_t id;
   if (i >= o->upto || o->nr == 0) return 0;
   id = o->rid[--o->nr];
