@@ -122,6 +122,19 @@ function B.whole (cmd, runs)
   return best, peak
 end
 
+--- A fresh temporary folder for running cpfg: an empty colour map e.map and the view
+-- file e.v holding 'view' (empty by default). Its path; remove it with B.rmdir.
+function B.cpfg_folder (view)
+  local dir = os.tmpname()
+  os.remove(dir)
+  assert(os.execute("mkdir -p " .. B.shell_quote(dir)))
+  B.write_file(dir .. "/e.map", "")
+  B.write_file(dir .. "/e.v", view or "")
+  return dir
+end
+
+function B.rmdir (dir) os.execute("rm -rf " .. B.shell_quote(dir)) end
+
 --- the path of node, or nil
 function B.node_path ()
   local p = io.popen("command -v node 2>/dev/null")

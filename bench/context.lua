@@ -154,11 +154,7 @@ local function versus_cpfg (cpfg, dir, letter)
 end
 
 local function cpfg_table (cpfg)
-  local dir = os.tmpname()
-  os.remove(dir)
-  assert(os.execute("mkdir -p " .. B.shell_quote(dir)))
-  B.write_file(dir .. "/e.map", "")
-  B.write_file(dir .. "/e.v", "")
+  local dir = B.cpfg_folder()
   print()
   print("cpfg: " .. cpfg .. " (-g -strb, CPFG_SKIP_VV=1); whole process, wall clock, best of 5, "
         .. "start-up subtracted" .. (B.has_time and "" or "; no /usr/bin/time: no peak memory"))
@@ -182,7 +178,7 @@ local function cpfg_table (cpfg)
         r.cstart * 1e3))
     end
   end
-  os.execute("rm -rf " .. B.shell_quote(dir))
+  B.rmdir(dir)
 end
 
 local function main (cpfg)

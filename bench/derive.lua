@@ -282,10 +282,7 @@ local function cpfg_row (title, r, target)
 end
 
 local function cpfg_table (cpfg, results, vlab)
-  local dir = os.tmpname()
-  os.remove(dir)
-  assert(os.execute("mkdir -p " .. shell_quote(dir)))
-  for _, f in ipairs { "e.map", "e.v" } do io.close(assert(io.open(dir .. "/" .. f, "w"))) end
+  local dir = B.cpfg_folder()
   print()
   print("cpfg: " .. cpfg .. " (-g -strb, CPFG_SKIP_VV=1); whole process, wall clock, best of 5, "
         .. "start-up subtracted" .. (TIME and "" or "; no /usr/bin/time: no peak memory"))
@@ -309,7 +306,7 @@ local function cpfg_table (cpfg, results, vlab)
   else
     print("vlab models: not given (--vlab DIR or VLAB=DIR, vlab's oofs/ext folder)")
   end
-  os.execute("rm -rf " .. shell_quote(dir))
+  B.rmdir(dir)
 end
 local function mrate (r) return r.modules / r.seconds / 1e6 end
 

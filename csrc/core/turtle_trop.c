@@ -112,20 +112,18 @@ void lsys_turtle_tropisms (run *R) {
 ** by the angle whose sine is e (T . U), then towards L by the one whose sine is e (T . L),
 ** e the elasticity `_` sets. Each is a rotation in a plane of the frame, so the frame
 ** stays orthonormal. */
+/* Turns H towards A (U or L) by the angle whose sine is e (T . A), in their plane. */
+static void bendto (double *H, double *A, const double *T, double e) {
+  double h[3], c = e * vdot(T, A), s;
+  if (c > 1) c = 1; else if (c < -1) c = -1;
+  s = sqrt(1 - c * c);
+  vlin(h, H, s, A, c);
+  vlin(A, A, s, H, -c);
+  vcopy(H, h);
+}
+
 void lsys_turtle_oldbend (run *R) {
   lsys_tstate *st = &R->st;
-  const double *T = R->o->otrop;
-  double h[3], c, s;
-  c = st->oelast * vdot(T, st->U);
-  if (c > 1) c = 1; else if (c < -1) c = -1;
-  s = sqrt(1 - c * c);
-  vlin(h, st->H, s, st->U, c);
-  vlin(st->U, st->U, s, st->H, -c);
-  vcopy(st->H, h);
-  c = st->oelast * vdot(T, st->L);
-  if (c > 1) c = 1; else if (c < -1) c = -1;
-  s = sqrt(1 - c * c);
-  vlin(h, st->H, s, st->L, c);
-  vlin(st->L, st->L, s, st->H, -c);
-  vcopy(st->H, h);
+  bendto(st->H, st->U, R->o->otrop, st->oelast);
+  bendto(st->H, st->L, R->o->otrop, st->oelast);
 }

@@ -697,7 +697,7 @@ int main (int argc, char **argv) {
   /* Blocks under 32 MiB come from the heap, and up to 64 MiB freed at its top stay
   ** there: a plant made again (an edit, an animation frame, a regeneration) reuses the
   ** memory of the one before instead of faulting fresh pages, which costs more than the
-  ** work on them (issue 41). A string's arrays map blocks of 1 MiB and more themselves
+  ** work on them. A string's arrays map blocks of 1 MiB and more themselves
   ** (lstring.c), so a derivation still grows its string in place by moving pages. */
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
