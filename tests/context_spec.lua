@@ -421,3 +421,85 @@ describe("contexts on long strings (the worker threads' step)", function()
     end)
   end
 end)
+
+describe("contexts across far brackets and window edges", function()
+  -- The context tables keep a window of brackets per thread; a bracket whose partner is
+  -- more than 1,024 modules away is found in the string's list of far ones, a nearer one
+  -- outside the window by a scan. These strings have branches of every span from a few
+  -- modules to most of the string, nested 2,000 deep, across every chunk and window edge.
+  local function lcg (seed)
+    local x = seed
+    return function (k)
+      x = (x * 1103515245 + 12345) % 2147483648
+      return x % k + 1
+    end
+  end
+  local function random_string (seed, n, param)
+    local rnd, out, depth = lcg(seed), {}, 0
+    local syms = { "A", "B", "C", "+", "[", "]" }
+    local function mod (c)
+      if param and (c == "A" or c == "B" or c == "C") then return c .. "(" .. rnd(9) .. ")" end
+      return c
+    end
+    while #out < n do
+      local c = syms[rnd(#syms)]
+      if c == "]" and depth == 0 then c = "A" end
+      if c == "[" then depth = depth + 1 elseif c == "]" then depth = depth - 1 end
+      out[#out + 1] = mod(c)
+      local r = rnd(3000)
+      if r == 1 then                              -- deep: spans up to 8,000 modules
+        out[#out + 1] = string.rep("[" .. mod("A"), 2000) .. string.rep(mod("B") .. "]", 2000)
+      elseif r == 2 then                          -- a long branch opens here
+        out[#out + 1] = "["
+        depth = depth + 1
+      end
+    end
+    return table.concat(out) .. string.rep("]", depth)
+  end
+  local RULES = {
+    { lc = "A", pred = "B", rc = "C", succ = "C" },
+    { lc = "BA", pred = "C", succ = "A" },
+    { pred = "A", rc = "CB", succ = "B" },
+    { lc = "C", pred = "A", succ = "[B]" },
+    { pred = "B", rc = "A", succ = "A" },
+  }
+
+  it("give the reference deriver's string on 1 and 2 threads", function()
+    local axiom = random_string(7, 40000)
+    local text = {}
+    for i, r in ipairs(RULES) do text[i] = H.rule_text(r) end
+    local ref = H.ref_derive(axiom, RULES, 2, "+")
+    assert.is_true(#ref > 60000, "a short string: " .. #ref)
+    for _, threads in ipairs { 1, 2 } do
+      local s = tostring(lsys.lsystem { axiom = axiom, ignore = "+", threads = threads,
+                                        productions = table.concat(text, "\n") }:derive(2))
+      assert.is_true(s == ref, ("threads = %d: not the reference deriver's string"):format(threads))
+    end
+  end)
+
+  it("bind the same parameters on the worker threads as on the calling thread", function()
+    -- 150,000 modules: several of the calling thread's windows of 65,536; a rule that runs
+    -- in Lua (Z is in the string) makes the step run there
+    local axiom = random_string(11, 150000, true) .. "Z"
+    local prods = {
+      "A(a) < B(b) > C(c) --> C(a + 10 * b + 100 * c)",
+      "B(a) A(b) < C(c) --> A(a - b + c)",
+      "A(a) > C(b) B(c) --> B(a * b - c)",
+      "C(a) < A(b) --> [B(a + b)]",
+      "B(a) > A(b) --> A(b - a)",
+    }
+    local function derived (threads, seq)
+      local p = { table.unpack(prods) }
+      if seq then p[#p + 1] = { "Z", function () return lsys.produce("Z") end } end
+      return tostring(lsys.lsystem { axiom = axiom, ignore = "+", threads = threads,
+                                     productions = p }:derive(2))
+    end
+    local seq = derived(1, true)
+    assert.is_true(#seq > 150000, "a short string: " .. #seq)
+    assert.truthy(seq:find("C(21", 1, true))   -- some contexts bound their parameters
+    for _, threads in ipairs { 1, 2 } do
+      assert.is_true(derived(threads) == seq,
+        ("threads = %d: not the calling thread's string"):format(threads))
+    end
+  end)
+end)

@@ -8,6 +8,10 @@
 
 #include "derive_impl.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 /* Grows the array *p of *cap entries of 'elem' bytes to exactly 'need'
 ** within the model's budget: a table made again at each step, for a string
 ** that grows by less than doubling. */
@@ -31,48 +35,186 @@ static inline uint16_t scode (const lsys_lstring *s, size_t i) {
   return s->sym8 != NULL ? (uint16_t)LSYS_CODE(s->sym8[i], 0) : s->code[i];
 }
 
-int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
-  lsys_brk *b = &m->brk;
-  size_t i, w, nw, off = 0, n = s->n, nb = 0, depth = 0;
-  int st, withp = s->sym8 == NULL && s->npar > 0;
-  if (n >= NONE) return LSYS_ELIMIT;
-  nw = n / 64 + 1;
-  if ((st = exact(m, (void **)&b->bits, &b->bitscap, nw, sizeof *b->bits)) != LSYS_OK ||
-      (st = exact(m, (void **)&b->cnt, &b->cntcap, nw, sizeof *b->cnt)) != LSYS_OK ||
-      (withp && (st = exact(m, (void **)&m->poff, &m->poffcap, n + 1, sizeof *m->poff))
-                 != LSYS_OK))
+/* Appends a far bracket at 'at' whose partner is 'p'. */
+static int addfar (lsys_rules *m, lsys_brk *g, size_t at, uint32_t p) {
+  int st;
+  if (g->nfar == g->farcap &&
+      (st = lsys_common_grow_metered((void **)&g->far, &g->farcap, g->nfar + 1, sizeof *g->far,
+                                     &m->meter)) != LSYS_OK)
     return st;
-  /* the brackets' bits and counts */
+  g->far[g->nfar++] = (uint64_t)at << 32 | p;
+  return LSYS_OK;
+}
+
+static int cmpfar (const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* One pass over the string with a stack of the open brackets: the far ones and
+** the parameter offsets. */
+int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
+  lsys_brk *g = &m->brk;
+  size_t i, n = s->n, off = 0, depth = 0;
+  int st;
+  if (n >= NONE) return LSYS_ELIMIT;
+  g->nfar = 0;
+  g->withp = s->sym8 == NULL && s->npar > 0;
+  if (g->withp &&
+      (st = exact(m, (void **)&g->pck, &g->pckcap, n / LSYS_BRK_PSTEP + 1, sizeof *g->pck))
+        != LSYS_OK)
+    return st;
+  for (i = 0; i < n; i++) {
+    uint32_t sym;
+    if (s->sym8 != NULL) {
+      uint8_t c = s->sym8[i];
+      if (c != LSYS_SYM_LBR && c != LSYS_SYM_RBR) continue;
+      sym = c;
+    }
+    else {
+      uint16_t cd = s->code[i];
+      if (g->withp) {
+        if (i % LSYS_BRK_PSTEP == 0) {
+          if (off >= NONE) return LSYS_ELIMIT;
+          g->pck[i / LSYS_BRK_PSTEP] = (uint32_t)off;
+        }
+        off += LSYS_CNP(cd);
+      }
+      sym = LSYS_CSYM(cd);
+      if (sym != LSYS_SYM_LBR && sym != LSYS_SYM_RBR) continue;
+    }
+    if (sym == LSYS_SYM_LBR) {
+      if (depth == g->stkcap &&
+          (st = lsys_common_grow_metered((void **)&g->stk, &g->stkcap, depth + 1, sizeof *g->stk,
+                                         &m->meter)) != LSYS_OK)
+        return st;
+      g->stk[depth++] = (uint32_t)i;
+    }
+    else if (depth == 0) {
+      if ((st = addfar(m, g, i, NONE)) != LSYS_OK) return st;
+    }
+    else if (i - g->stk[--depth] > LSYS_BRK_NEAR &&
+             ((st = addfar(m, g, i, g->stk[depth])) != LSYS_OK ||
+              (st = addfar(m, g, g->stk[depth], (uint32_t)i)) != LSYS_OK))
+      return st;
+  }
+  if (g->withp && n % LSYS_BRK_PSTEP == 0) g->pck[n / LSYS_BRK_PSTEP] = (uint32_t)off;
+  while (depth > 0)
+    if ((st = addfar(m, g, g->stk[--depth], NONE)) != LSYS_OK) return st;
+  qsort(g->far, g->nfar, sizeof *g->far, cmpfar);
+  return LSYS_OK;
+}
+
+/* Grows a window's array (the worker threads' windows are not metered: the
+** chunk's share of the string, counted by lsys_context_winbytes). */
+static int wgrow (void **p, size_t *cap, size_t need, size_t elem) {
+  return *cap >= need ? LSYS_OK : lsys_common_grow(p, cap, need, elem);
+}
+
+static inline uint16_t vcode (const view *v, size_t j) { return lsys_view_code(v, j); }
+
+/* Module j's first parameter from the string's offsets. */
+static size_t gpoff (const lsys_brk *g, const uint16_t *code, size_t j) {
+  size_t k = j / LSYS_BRK_PSTEP * LSYS_BRK_PSTEP, off;
+  if (!g->withp) return 0;
+  for (off = g->pck[j / LSYS_BRK_PSTEP]; k < j; k++) off += LSYS_CNP(code[k]);
+  return off;
+}
+
+size_t lsys_context_farpoff (const view *v, size_t j) {
+  return gpoff(v->match->g, v->code, j);
+}
+
+uint32_t lsys_context_farpartner (const view *v, size_t j) {
+  const lsys_brk *g = v->match->g;
+  size_t lo = 0, hi = g->nfar, k, depth = 0;
+  uint64_t key = (uint64_t)j << 32;
+  while (lo < hi) {                        /* the first entry at or after j */
+    size_t mid = lo + (hi - lo) / 2;
+    if (g->far[mid] < key) lo = mid + 1;
+    else hi = mid;
+  }
+  if (lo < g->nfar && g->far[lo] >> 32 == j) return (uint32_t)g->far[lo];
+  /* a near one: within LSYS_BRK_NEAR modules */
+  if (LSYS_CSYM(vcode(v, j)) == LSYS_SYM_LBR) {
+    for (k = j + 1; k < v->n && k <= j + LSYS_BRK_NEAR; k++) {
+      uint32_t sym = LSYS_CSYM(vcode(v, k));
+      if (sym == LSYS_SYM_LBR) depth++;
+      else if (sym == LSYS_SYM_RBR && depth-- == 0) return (uint32_t)k;
+    }
+  }
+  else
+    for (k = j; k-- > 0 && j - k <= LSYS_BRK_NEAR;) {
+      uint32_t sym = LSYS_CSYM(vcode(v, k));
+      if (sym == LSYS_SYM_RBR) depth++;
+      else if (sym == LSYS_SYM_LBR && depth-- == 0) return (uint32_t)k;
+    }
+  return NONE;                             /* (not reached: the far ones are listed) */
+}
+
+static inline size_t popcount (uint64_t w) {
+  w = w - ((w >> 1) & 0x5555555555555555u);
+  w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);
+  w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  return (size_t)((w * 0x0101010101010101u) >> 56);
+}
+
+/* The bits of the brackets among n <= 64 symbols. */
+static inline uint64_t bracketbits (const uint8_t *c, size_t n) {
+  uint64_t bits = 0;
+  size_t i = 0;
+#if defined(__SSE2__)
+  const __m128i l = _mm_set1_epi8((char)LSYS_SYM_LBR), r = _mm_set1_epi8((char)LSYS_SYM_RBR);
+  for (; i + 16 <= n; i += 16) {
+    __m128i x = _mm_loadu_si128((const __m128i *)(const void *)(c + i));
+    unsigned mk = (unsigned)_mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi8(x, l),
+                                                             _mm_cmpeq_epi8(x, r)));
+    bits |= (uint64_t)mk << i;
+  }
+#endif
+  for (; i < n; i++)
+    if (c[i] == LSYS_SYM_LBR || c[i] == LSYS_SYM_RBR) bits |= (uint64_t)1 << i;
+  return bits;
+}
+
+int lsys_context_window (lsys_brkwin *b, const lsys_brk *g, const view *v, size_t a, size_t c) {
+  size_t wa = a > LSYS_BRK_NEAR ? a - LSYS_BRK_NEAR : 0;
+  size_t we = c + LSYS_BRK_NEAR < v->n ? c + LSYS_BRK_NEAR : v->n;
+  size_t i, w, wn = we - wa, nw = wn / 64 + 1, nb = 0, depth = 0, off = 0;
+  int withp = g->withp && v->code != NULL;
+  b->g = g;
+  b->ca = a; b->cb = c;
+  b->wa = wa; b->wn = 0;
+  b->withp = 0;                /* until made: the string's tables answer */
+  if (wgrow((void **)&b->bits, &b->bitscap, nw, sizeof *b->bits) != LSYS_OK ||
+      wgrow((void **)&b->cnt, &b->cntcap, nw, sizeof *b->cnt) != LSYS_OK ||
+      (withp && wgrow((void **)&b->poff, &b->poffcap, wn + 1, sizeof *b->poff) != LSYS_OK))
+    return LSYS_ENOMEM;
+  if (withp) off = gpoff(g, v->code, wa);
+  /* the brackets' bits and counts, the parameters' offsets */
   for (w = 0; w < nw; w++) {
-    size_t e = w * 64 + 64 < n ? w * 64 + 64 : n;
+    size_t e = w * 64 + 64 < wn ? w * 64 + 64 : wn;
     uint64_t bits = 0;
     b->cnt[w] = (uint32_t)nb;
-    if (s->sym8 != NULL)
-      for (i = w * 64; i < e; i++) {
-        uint8_t c = s->sym8[i];
-        if (c == LSYS_SYM_LBR || c == LSYS_SYM_RBR) bits |= (uint64_t)1 << (i & 63);
-      }
+    if (v->code8 != NULL)
+      bits = bracketbits(v->code8 + wa + w * 64, e - w * 64);
     else
       for (i = w * 64; i < e; i++) {
-        uint32_t sym = LSYS_CSYM(s->code[i]);
+        uint16_t cd = v->code[wa + i];
+        uint32_t sym = LSYS_CSYM(cd);
         if (withp) {
-          if (off > NONE) return LSYS_ELIMIT;
-          m->poff[i] = (uint32_t)off;
-          off += LSYS_CNP(s->code[i]);
+          b->poff[i] = (uint32_t)off;
+          off += LSYS_CNP(cd);
         }
         if (sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) bits |= (uint64_t)1 << (i & 63);
       }
     b->bits[w] = bits;
-#if defined(__GNUC__)
-    nb += (size_t)__builtin_popcountll(bits);
-#else
-    for (; bits != 0; bits &= bits - 1) nb++;
-#endif
+    nb += popcount(bits);
   }
-  if (withp) m->poff[n] = (uint32_t)off;
+  if (withp) b->poff[wn] = (uint32_t)off;
+  b->withp = withp;
   /* the partners, by rank: the open brackets wait on a stack of (rank, position) */
-  if ((st = exact(m, (void **)&b->pos, &b->poscap, nb + 1, sizeof *b->pos)) != LSYS_OK)
-    return st;
+  if (wgrow((void **)&b->pos, &b->poscap, nb + 1, sizeof *b->pos) != LSYS_OK) return LSYS_ENOMEM;
   nb = 0;
   for (w = 0; w < nw; w++) {
     uint64_t bits = b->bits[w];
@@ -85,24 +227,43 @@ int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
 #endif
       bits &= bits - 1;
       b->pos[nb] = NONE;
-      if (LSYS_CSYM(scode(s, at)) == LSYS_SYM_LBR) {
-        if (2 * depth + 2 > b->stkcap &&
-            (st = lsys_common_grow_metered((void **)&b->stk, &b->stkcap, 2 * depth + 2,
-                                           sizeof *b->stk, &m->meter)) != LSYS_OK)
-          return st;
+      if (LSYS_CSYM(vcode(v, wa + at)) == LSYS_SYM_LBR) {
+        if (wgrow((void **)&b->stk, &b->stkcap, 2 * depth + 2, sizeof *b->stk) != LSYS_OK)
+          return LSYS_ENOMEM;
         b->stk[2 * depth] = (uint32_t)nb;
-        b->stk[2 * depth + 1] = (uint32_t)at;
+        b->stk[2 * depth + 1] = (uint32_t)(wa + at);
         depth++;
       }
       else if (depth > 0) {
         depth--;
-        b->pos[b->stk[2 * depth]] = (uint32_t)at;
+        b->pos[b->stk[2 * depth]] = (uint32_t)(wa + at);
         b->pos[nb] = b->stk[2 * depth + 1];
       }
       nb++;
     }
   }
+  b->wn = wn;
   return LSYS_OK;
+}
+
+/* The calling thread's windows: LSYS_SEQWIN modules at a time. */
+#define LSYS_SEQWIN 65536
+int lsys_context_ensure (view *v, size_t i) {
+  lsys_brkwin *b = v->match;
+  if (b == NULL || (i >= b->ca && i < b->cb && b->wn > 0)) return LSYS_OK;
+  return lsys_context_window(b, b->g, v, i, i + LSYS_SEQWIN < v->n ? i + LSYS_SEQWIN : v->n);
+}
+
+void lsys_context_freewin (lsys_brkwin *b) {
+  LSYS_FREE(b->bits); LSYS_FREE(b->cnt); LSYS_FREE(b->pos); LSYS_FREE(b->stk);
+  LSYS_FREE(b->poff);
+  memset(b, 0, sizeof *b);
+}
+
+size_t lsys_context_winbytes (const lsys_brkwin *b) {
+  return b->bitscap * sizeof *b->bits + b->cntcap * sizeof *b->cnt +
+         b->poscap * sizeof *b->pos + b->stkcap * sizeof *b->stk +
+         b->poffcap * sizeof *b->poff;
 }
 
 uint32_t lsys_context_eqsym (const lsys_rules *m) {
@@ -156,7 +317,7 @@ long long lsys_context_leftof (const view *v, long long j) {
       uint8_t k = cls[c8[j]];
       if (k == SC_STOP) return j;
       if (k == SC_JUMP) {
-        uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+        uint32_t p = lsys_view_partner(v, (size_t)j);
         if (p == NONE) return -1;
         j = (long long)p;
       }
@@ -166,7 +327,7 @@ long long lsys_context_leftof (const view *v, long long j) {
   for (; j >= 0; j--) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) {
-      uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+      uint32_t p = lsys_view_partner(v, (size_t)j);
       if (p == NONE) return -1;
       j = (long long)p;
     }
@@ -187,7 +348,7 @@ size_t lsys_context_rightof (const view *v, size_t j) {
       if (k == SC_STOP) return j;
       if (k == SC_PASS) j++;
       else {
-        uint32_t p = lsys_brk_partner(v->match, j);
+        uint32_t p = lsys_view_partner(v, j);
         if (p == NONE) return v->n;
         j = (size_t)p + 1;
       }
@@ -198,7 +359,7 @@ size_t lsys_context_rightof (const view *v, size_t j) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (skipped(v, sym)) j++;
     else if (sym == LSYS_SYM_LBR) {
-      uint32_t p = lsys_brk_partner(v->match, j);
+      uint32_t p = lsys_view_partner(v, j);
       if (p == NONE) return v->n;
       j = (size_t)p + 1;
     }
@@ -239,7 +400,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       at = mm->l[q];
       if (lsys_view_code(v, at) != LSYS_CODE(pm->sym, pm->np)) return 0;
       a -= pm->np;
-      if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
+      if (pm->np) memcpy(a, v->par + lsys_view_poff(v, at), pm->np * sizeof *a);
     }
     return 1;
   }
@@ -254,7 +415,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
       if (++steps > v->n) return 0;
       sym = LSYS_CSYM(lsys_view_code(v, j));
       if (sym == LSYS_SYM_RBR) {
-        uint32_t p = lsys_brk_partner(v->match, (size_t)j);
+        uint32_t p = lsys_view_partner(v, (size_t)j);
         if (p == NONE) return 0;
         j = (long long)p - 1;
       }
@@ -263,7 +424,7 @@ int lsys_context_matchleft (const lsys_rules *m, const view *v, size_t i, const 
     }
     if (lsys_view_code(v, j) != LSYS_CODE(pm->sym, pm->np)) return 0;
     a -= pm->np;
-    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    if (pm->np) memcpy(a, v->par + lsys_view_poff(v, (size_t)j), pm->np * sizeof *a);
     j--;
   }
   return 1;
@@ -276,7 +437,7 @@ static size_t branchend (const view *v, size_t j) {
     uint32_t sym = LSYS_CSYM(lsys_view_code(v, j));
     if (sym == LSYS_SYM_RBR) return j;
     if (sym == LSYS_SYM_LBR) {
-      uint32_t p = lsys_brk_partner(v->match, j);
+      uint32_t p = lsys_view_partner(v, j);
       if (p == NONE) return v->n;
       j = p;
     }
@@ -315,7 +476,7 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       if (mm->nr <= q) return 0;
       at = mm->r[q];
       if (lsys_view_code(v, at) != LSYS_CODE(pm->sym, pm->np)) return 0;
-      if (pm->np) memcpy(a, v->par + v->poff[at], pm->np * sizeof *a);
+      if (pm->np) memcpy(a, v->par + lsys_view_poff(v, at), pm->np * sizeof *a);
       a += pm->np;
     }
     return 1;
@@ -336,14 +497,14 @@ int lsys_context_matchright (const lsys_rules *m, const view *v, size_t j, const
       sym = LSYS_CSYM(lsys_view_code(v, j));
       if (skipped(v, sym)) j++;            /* first, as cpfg: an ignored bracket too */
       else if (sym == LSYS_SYM_LBR && pm->sym != LSYS_SYM_LBR) {
-        uint32_t p = lsys_brk_partner(v->match, j);
+        uint32_t p = lsys_view_partner(v, j);
         if (p == NONE) return 0;
         j = (size_t)p + 1;
       }
       else break;
     }
     if (lsys_view_code(v, j) != LSYS_CODE(pm->sym, pm->np)) return 0;
-    if (pm->np) memcpy(a, v->par + v->poff[j], pm->np * sizeof *a);
+    if (pm->np) memcpy(a, v->par + lsys_view_poff(v, (size_t)j), pm->np * sizeof *a);
     a += pm->np;
     j++;
   }

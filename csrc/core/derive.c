@@ -423,8 +423,9 @@ static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v)
   v->skip = lsys_derive_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_context_buildtables(m, src)) != LSYS_OK) return st;
-    v->match = &m->brk;
-    v->poff = src->sym8 == NULL && src->npar > 0 ? m->poff : NULL;
+    m->win.g = &m->brk;                  /* made when the step reaches it */
+    m->win.wn = m->win.ca = m->win.cb = 0;
+    v->match = &m->win;
   }
   return LSYS_OK;
 }
@@ -598,6 +599,7 @@ static int seqloop (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst, view *v
     }
     if (nsets > 1 || (s0 != NULL && sym < s0->nsym && s0->start[sym] != s0->start[sym + 1])) {
       lsys_rng_at(m->cur, i);
+      (void)lsys_context_ensure(&v, i);   /* (without one the string's tables answer) */
       done = rewrite(m, sets, nsets, &v, i, c, spar + p, dst);
       if (done < 0) return fail(m, done, i);
       for (; done > 1; done--) {      /* the predecessor's other modules are rewritten too */
@@ -779,6 +781,7 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
       continue;
     }
     lsys_rng_at(m->cur, i);      /* one stream of draws for a module and what it becomes */
+    (void)lsys_context_ensure(&v, i);
     st = expandone(m, kind, sets, 1, &v, i, src->code[i], parof(src, p), 0, dst);
     if (st < 0) return fail(m, st, i);
     p += LSYS_CNP(src->code[i]);
@@ -799,9 +802,8 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
 static int meter (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   size_t k, used = lsys_lstring_bytes(src) + lsys_lstring_bytes(&m->dyn) +
                    lsys_lstring_bytes(&m->tmp) + lsys_lstring_bytes(&m->altdyn) +
-                   m->brk.bitscap * sizeof *m->brk.bits + m->brk.cntcap * sizeof *m->brk.cnt +
-                   m->brk.poscap * sizeof *m->brk.pos + m->brk.stkcap * sizeof *m->brk.stk +
-                   m->poffcap * sizeof *m->poff +
+                   m->brk.farcap * sizeof *m->brk.far + m->brk.pckcap * sizeof *m->brk.pck +
+                   m->brk.stkcap * sizeof *m->brk.stk + lsys_context_winbytes(&m->win) +
                    lsys_derive_par_bytes(m);
   if (dst != NULL && dst != src) used += lsys_lstring_bytes(dst);
   for (k = 0; k < m->nlevels; k++) used += lsys_lstring_bytes(&m->levels[k]);
@@ -876,6 +878,8 @@ int lsys_derive_homo_begin (lsys_rules *m, lsys_lstring *src) {
     unmeter(m, NULL);
     return fail(m, st, 0);
   }
+  m->win.g = &m->brk;
+  m->win.wn = m->win.ca = m->win.cb = 0;
   m->hsrc = src;
   m->hctx = hasctx;
   m->hkeep = m->cur;
@@ -900,7 +904,10 @@ int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring 
   v.code = src->code; v.par = src->par; v.n = src->n; v.ring = m->ring;
   v.eq = lsys_context_eqsym(m);
   v.skip = lsys_derive_findskip(m, 0);
-  if (m->hctx) { v.match = &m->brk; v.poff = src->npar > 0 ? m->poff : NULL; }
+  if (m->hctx) {
+    v.match = &m->win;
+    (void)lsys_context_ensure(&v, i);
+  }
   lsys_lstring_clear(out);
   lsys_rng_at(m->cur, i);
   st = expandone(m, LSYS_HOMO, sets, 1, &v, i, code, parof(src, poff), 0, out);

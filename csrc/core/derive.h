@@ -81,16 +81,39 @@ typedef struct lsys_skip {
 
 /* The scratch of one thread rewriting modules: formal parameters and
 ** values, the stochastic alternatives, the generator the rules draw from. */
-/* The brackets of a string for its contexts: a bit per module (set at the
-** brackets), the brackets before each 64 modules, and each bracket's partner
-** (its position, NONE when unmatched), by the bracket's rank. About 1.2 bits a
-** module and 4 bytes a bracket. */
+/* The brackets of a string for its contexts (context.c), in two parts that
+** need no table of the whole string's brackets (cpfg keeps none either).
+** The string's own: the far brackets, whose partner is more than
+** LSYS_BRK_NEAR modules away or missing, as position << 32 | partner (NONE
+** when missing) sorted by position, and of a string with parameters its
+** first parameter at every LSYS_BRK_PSTEP-th module. A window of modules (a
+** thread's chunk and a margin): a bit per module (set at the brackets), the
+** brackets before each 64 modules, each bracket's partner in the window by
+** the bracket's rank (NONE: outside it), and the modules' parameter offsets.
+** A partner outside a window is a far one or a scan of at most LSYS_BRK_NEAR
+** modules away; a window costs about 1.2 bits a module and 4 bytes a
+** bracket of the window, the string's part a few bytes a far bracket. */
+#define LSYS_BRK_NEAR 1024
+#define LSYS_BRK_PSTEP 256
 typedef struct lsys_brk {
+  uint64_t *far; size_t nfar, farcap;
+  uint32_t *pck; size_t pckcap;
+  uint32_t *stk; size_t stkcap;   /* building: the open brackets */
+  int withp;                      /* pck holds the parameters' offsets */
+} lsys_brk;
+
+typedef struct lsys_brkwin {
+  const lsys_brk *g;
+  size_t ca, cb;                  /* the modules it was made for (the sequential
+                                  ** step makes the next when one leaves them) */
+  size_t wa, wn;                  /* modules [wa, wa + wn), with the margins */
   uint64_t *bits; size_t bitscap;
   uint32_t *cnt; size_t cntcap;
   uint32_t *pos; size_t poscap;
   uint32_t *stk; size_t stkcap;   /* building: the open brackets, rank and position */
-} lsys_brk;
+  uint32_t *poff; size_t poffcap; /* wn + 1 offsets, when withp */
+  int withp;
+} lsys_brkwin;
 
 typedef struct lsys_scratch {
   double *args; size_t argscap;
@@ -158,8 +181,8 @@ typedef struct lsys_rules {
   lsys_lstring dyn, tmp;
   lsys_lstring altdyn;         /* the successors weighted function rules produced */
   lsys_lstring *levels; size_t nlevels;
-  lsys_brk brk;                /* the context tables: brackets, */
-  uint32_t *poff; size_t poffcap;   /* parameter offsets */
+  lsys_brk brk;                /* the context tables: the string's, */
+  lsys_brkwin win;             /* the calling thread's window */
   uint32_t *substack; size_t nsub, subcap;
   uint32_t *act; size_t actcap;   /* per symbol: what the fast loop does */
   /* state for messages */

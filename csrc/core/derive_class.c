@@ -16,6 +16,7 @@ void lsys_derive_par_free (lsys_rules *m) {
   for (k = 0; k < LSYS_MAXTHREADS; k++) {
     LSYS_FREE(m->par->ws[k].args);
     LSYS_FREE(m->par->ws[k].alt);
+    lsys_context_freewin(&m->par->win[k]);
   }
   for (k = 0; k < MAXCHUNKS; k++) {
     LSYS_FREE(m->par->gc[k].rid);
@@ -33,6 +34,7 @@ void lsys_derive_par_free (lsys_rules *m) {
 size_t lsys_derive_par_bytes (const lsys_rules *m) {
   size_t k, n = 0;
   if (m->par == NULL) return 0;
+  for (k = 0; k < LSYS_MAXTHREADS; k++) n += lsys_context_winbytes(&m->par->win[k]);
   for (k = 0; k < MAXCHUNKS; k++)
     n += m->par->gc[k].rcap * sizeof *m->par->gc[k].rid +
          m->par->gc[k].pcap * sizeof *m->par->gc[k].par;
@@ -285,7 +287,7 @@ int lsys_derive_par_pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const 
     return 0;
   }
   if (e->cls == PC_CTAB) {              /* the neighbours' symbols: 256 when none */
-    const view *v = j->v;
+    const view *v = wview(j, w);
     long long l = lsys_context_leftof(v, (long long)i - 1);
     size_t r = lsys_context_rightof(v, i + 1);
     uint32_t ls = l < 0 ? 256 : LSYS_CSYM(lsys_view_code(v, (size_t)l));
@@ -302,7 +304,7 @@ int lsys_derive_par_pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const 
   }
   if (e->cls != PC_GEN) return -1;
   lsys_rng_at(w->rng, i);
-  st = lsys_derive_choose(m, w, j->sets, j->nsets, j->v, i, cd, *args, &pk);
+  st = lsys_derive_choose(m, w, j->sets, j->nsets, wview(j, w), i, cd, *args, &pk);
   if (st < 0 || st > 1 || (st == 1 && pk.dyn != NULL)) return -1;
   if (st == 1) { *rule = pk.r; *args = pk.args; *vals = pk.vals; }
   return 0;

@@ -15,14 +15,14 @@
 #define ALTHEAD 9
 
 /* A view of the string being matched: codes, parameters, and for contexts
-** the bracket matches and per-module parameter offsets. */
+** the brackets and parameter offsets of a window (derive.h). */
 typedef struct view {
   const uint16_t *code;
   const uint8_t *code8;    /* or, of a string at a byte a module, its symbols (code NULL) */
   const double *par;
   size_t n;
-  const lsys_brk *match;   /* NULL when no context tables were built */
-  const uint32_t *poff;    /* NULL when the string has no parameters */
+  lsys_brkwin *match;      /* NULL when no context tables were built; the thread's
+                              window, made for the modules it rewrites */
   const lsys_skip *skip;
   int ring;
   uint32_t eq;             /* the symbol of '=' (right contexts), or NONE */
@@ -78,22 +78,47 @@ lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int g
 lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub);
 int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s);
 
+/* The partner of a bracket outside the view's window, or whose partner is
+** outside it; the first parameter of module j outside the window. */
+uint32_t lsys_context_farpartner (const view *v, size_t j);
+size_t lsys_context_farpoff (const view *v, size_t j);
+
 /* The partner of the bracket at j (its position, or NONE). */
-static inline uint32_t lsys_brk_partner (const lsys_brk *b, size_t j) {
-  uint64_t w = b->bits[j >> 6] & ((((uint64_t)1) << (j & 63)) - 1);
-  uint32_t r;
-  w = w - ((w >> 1) & 0x5555555555555555u);             /* the bits counted in pairs, */
-  w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);   /* fours, eights */
-  w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
-  r = (uint32_t)((w * 0x0101010101010101u) >> 56);
-  return b->pos[b->cnt[j >> 6] + r];
+static inline uint32_t lsys_view_partner (const view *v, size_t j) {
+  const lsys_brkwin *b = v->match;
+  size_t k = j - b->wa;
+  if (k < b->wn) {
+    uint64_t w = b->bits[k >> 6] & ((((uint64_t)1) << (k & 63)) - 1);
+    uint32_t r, p;
+    w = w - ((w >> 1) & 0x5555555555555555u);             /* the bits counted in pairs, */
+    w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);   /* fours, eights */
+    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+    r = (uint32_t)((w * 0x0101010101010101u) >> 56);
+    if ((p = b->pos[b->cnt[k >> 6] + r]) != NONE) return p;
+  }
+  return lsys_context_farpartner(v, j);
 }
 
-/* Builds the bracket table of 's' in m->brk and, when it has
-** parameters, the parameter offsets in m->poff (else m->poff is left as it
-** was; within the model's memory budget). LSYS_OK, LSYS_ELIMIT, LSYS_ENOMEM
-** or LSYS_EMEMORY. */
+/* The offset of module j's first parameter (a string with parameters). */
+static inline size_t lsys_view_poff (const view *v, size_t j) {
+  const lsys_brkwin *b = v->match;
+  size_t k = j - b->wa;
+  return k <= b->wn && b->withp ? b->poff[k] : lsys_context_farpoff(v, j);
+}
+
+/* Builds the string's part of the context tables of 's' in m->brk (within
+** the model's memory budget): LSYS_OK, LSYS_ELIMIT, LSYS_ENOMEM or
+** LSYS_EMEMORY. */
 int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s);
+
+/* Makes 'w' the window of view v's modules [a, b) and their margins (v->match
+** is w or becomes it): LSYS_OK or LSYS_ENOMEM. lsys_context_ensure makes the
+** calling thread's window hold module i, a window of the next modules when
+** it does not. */
+int lsys_context_window (lsys_brkwin *w, const lsys_brk *g, const view *v, size_t a, size_t b);
+int lsys_context_ensure (view *v, size_t i);
+void lsys_context_freewin (lsys_brkwin *w);
+size_t lsys_context_winbytes (const lsys_brkwin *w);
 
 /* Module j's code in the view, of either representation. */
 static inline uint16_t lsys_view_code (const view *v, size_t j) {

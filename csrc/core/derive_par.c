@@ -97,6 +97,7 @@ static int countslow (job *j, lsys_scratch *w, chunk *c, size_t i, uint16_t cd, 
   const lsys_rule *r;
   if (e->cls <= PC_VM && e->pnp != np) r = NULL;        /* a copy */
   else if (lsys_derive_par_pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
+  if (e->cls == PC_CTAB) *fl |= FL_CTX;
   if (e->cls == PC_GEN) {
     *fl |= FL_GEN;
     if (j->keep) lsys_derive_par_keepchoice(j, c, i, r, args, vals);
@@ -172,6 +173,7 @@ static void countchunk (job *j, lsys_scratch *w, chunk *c) {
   c->wide = fl & FL_WIDE;
   c->gen = (fl & FL_GEN) != 0;
   c->shrink = (fl & FL_SHRINK) != 0;
+  c->ctx = (fl & FL_CTX) != 0;
   if (j->withnp) c->nsp = sp - c->sp;
 }
 
@@ -380,6 +382,14 @@ static int await (job *j, size_t c) {
   return 1;
 }
 
+/* The worker's context window for chunk c (when the rules have contexts; a
+** window that could not be made leaves the string's tables to answer). */
+static void window (job *j, worker *wk, const chunk *c) {
+  view *v = &j->wv[wk->id];
+  if (v->match == NULL) return;
+  (void)lsys_context_window(v->match, j->v->match->g, v, c->a, c->b);
+}
+
 static void *work (void *arg) {
   worker *wk = (worker *)arg;
   job *j = wk->j;
@@ -389,10 +399,14 @@ static void *work (void *arg) {
     chunk *ch;
     wk->rng = j->rng;
     if (j->phase == PH_NP) npchunk(j, &j->ch[k]);
-    else if (j->phase == PH_COUNT) countchunk(j, wk->w, &j->ch[k]);
+    else if (j->phase == PH_COUNT) {
+      window(j, wk, &j->ch[k]);
+      countchunk(j, wk->w, &j->ch[k]);
+    }
     else {                                 /* the last chunk first */
       ch = &j->ch[j->nch - 1 - k];
       if (atomic_load(&j->stop) || (j->inplace && !await(j, j->nch - 1 - k))) continue;
+      if (!j->inplace) window(j, wk, ch);   /* (in place, filling reads no neighbours) */
       if (j->narrow) fillnarrow(j, wk->w, ch);
       else fillwide(j, wk->w, ch);
       if (ch->lo == ch->a) atomic_store_explicit(&j->done[j->nch - 1 - k], 1, memory_order_release);
@@ -412,6 +426,9 @@ static void runphase (job *j, int phase, int nt) {
   for (k = 0; k < nt; k++) {
     wk[k].j = j;
     wk[k].w = &j->m->par->ws[k];
+    wk[k].id = k;
+    j->wv[k] = *j->v;
+    if (j->v->match != NULL) j->wv[k].match = &j->m->par->win[k];
   }
   for (k = 1; k < nt; k++, started++)      /* no thread for one: the caller works alone */
     if (pthread_create(&wk[k].t, NULL, work, &wk[k]) != 0) break;
@@ -439,7 +456,8 @@ static void cut (job *j, size_t n, int nt) {
 }
 
 /* The totals of the counts and the places of the chunks; *flags gets what
-** the chunks need (bit 0 wide, 1 lsys_derive_choose ran, 2 shorter successors).
+** the chunks need (bit 0 wide, 1 lsys_derive_choose ran, 2 shorter successors,
+** 3 filling reads neighbours, 4 a choice was not kept).
 ** Returns 0 when a chunk failed. */
 static int prefix (job *j, size_t *n, size_t *np, int *flags) {
   size_t c, o = 0, po = 0;
@@ -449,7 +467,8 @@ static int prefix (job *j, size_t *n, size_t *np, int *flags) {
     if (ch->bad) return 0;
     ch->o = o; ch->po = po;
     o += ch->cnt; po += ch->pcnt;
-    *flags |= ch->wide | ch->gen << 1 | ch->shrink << 2;
+    *flags |= ch->wide | ch->gen << 1 | ch->shrink << 2 | ch->ctx << 3;
+    if (ch->upto < ch->b) *flags |= 16;
   }
   *n = o;
   *np = po;
@@ -514,10 +533,10 @@ static int firsterror (job *j) {
 static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
   size_t c;
   if (needsp && src->npar > 0) {        /* counting reads parameters: find them first */
-    if (j->v->poff != NULL)            /* the context tables have them */
+    if (j->v->match != NULL && j->v->match->g->withp)   /* the context tables have them */
       for (c = 0; c < j->nch; c++) {
-        j->ch[c].sp = j->v->poff[j->ch[c].a];
-        j->ch[c].nsp = j->v->poff[j->ch[c].b] - j->ch[c].sp;
+        j->ch[c].sp = lsys_context_farpoff(j->v, j->ch[c].a);
+        j->ch[c].nsp = lsys_context_farpoff(j->v, j->ch[c].b) - j->ch[c].sp;
       }
     else {
       runphase(j, PH_NP, nt);
@@ -569,8 +588,10 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
   if (!count(j, src, needsp, nt) || !prefix(j, &tot, &ptot, &flags)) goto seq;
   if (j->keep) lsys_derive_par_keptneed(j, tot);
   j->narrow = !(flags & 1) && lsys_rules_setsize(m, LSYS_DECOMP, 0, 0) <= 0;
-  j->inplace = dst == src && v->match == NULL && !(flags & 4) &&
-               j->narrow == (src->sym8 != NULL);
+  /* in place: filling writes over modules rewritten already, so it must not read
+  ** their neighbours: no contexts, or every choice of contexts kept by counting */
+  j->inplace = dst == src && !(flags & 4) && j->narrow == (src->sym8 != NULL) &&
+               (v->match == NULL || (j->keep && !(flags & (8 | 16))));
   out = j->inplace ? src : seqout;
   if (tot == 0 || !roomy(m, src, seqout, tot, ptot) || !room(j, src, out, tot, ptot)) goto seq;
   if (j->inplace) {                       /* the arrays may have moved */

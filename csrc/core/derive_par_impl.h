@@ -51,7 +51,8 @@ typedef struct pent {
 #define NOPNP 0xFF
 
 /* What a module's successor asks of the new string (chunk flags). */
-enum { FL_WIDE = 1, FL_GEN = 2, FL_SHRINK = 4 };
+enum { FL_WIDE = 1, FL_GEN = 2, FL_SHRINK = 4, FL_CTX = 8 };  /* FL_CTX: filling
+                                  ** reads the neighbours (a context table) */
 
 #define CW_SLOW ((uint64_t)1 << 63)
 #define CW(n, np, fl) ((uint64_t)(n) | (uint64_t)(np) << 24 | (uint64_t)(fl) << 48)
@@ -74,6 +75,7 @@ typedef struct gcache {
 /* The workers' scratch, kept by the model between steps. */
 typedef struct lsys_par {
   lsys_scratch ws[LSYS_MAXTHREADS];
+  lsys_brkwin win[LSYS_MAXTHREADS];   /* the workers' context windows */
   gcache gc[MAXCHUNKS];       /* by chunk; sized from the step before (gneed*) */
   size_t gneedr, gneedp;      /* the most choices and parameters a chunk needed */
   pent *pe; size_t npe;       /* per symbol */
@@ -95,7 +97,8 @@ typedef struct chunk {
   size_t lo;                  /* filling: modules [lo, b) are written */
   size_t fail;                /* filling: the module whose values failed, or SIZE_MAX */
   int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_derive_choose ran; a
-                              ** successor shorter than its module */
+                              ** successor shorter than its module; */
+  int ctx;                    /* filling reads the neighbours */
   size_t nr, npc;             /* choices kept in the chunk's gcache: entries, parameters */
   size_t upto;                /* modules [a, upto) have their choices kept */
   size_t needr, needp;        /* the choices and parameters the whole chunk had */
@@ -110,6 +113,7 @@ typedef struct job {
   const double *spar;
   lsys_lstring *out;
   const view *v;
+  view wv[LSYS_MAXTHREADS];   /* each worker's: v with its own window (contexts) */
   lsys_ruleset *const *sets;
   int nsets, phase, withnp, narrow, inplace, keep;   /* keep: choices go in gcaches */
   const lsys_par *P;
@@ -121,7 +125,12 @@ typedef struct job {
   atomic_size_t next;
 } job;
 
-typedef struct worker { job *j; lsys_scratch *w; lsys_rng rng; pthread_t t; } worker;
+typedef struct worker { job *j; lsys_scratch *w; lsys_rng rng; pthread_t t; int id; } worker;
+
+/* The view worker scratch 'w' matches contexts in. */
+static inline const view *wview (const job *j, const lsys_scratch *w) {
+  return &j->wv[w - j->P->ws];
+}
 
 /* The output of a chunk being filled, from its end: codes down to o0,
 ** parameters down to p0. */

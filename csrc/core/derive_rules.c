@@ -43,11 +43,10 @@ void lsys_rules_free (lsys_rules *m) {
   LSYS_FREE(m->sc.args);
   LSYS_FREE(m->sc.alt);
   lsys_derive_par_free(m);
-  LSYS_FREE(m->brk.bits);
-  LSYS_FREE(m->brk.cnt);
-  LSYS_FREE(m->brk.pos);
+  LSYS_FREE(m->brk.far);
+  LSYS_FREE(m->brk.pck);
   LSYS_FREE(m->brk.stk);
-  LSYS_FREE(m->poff);
+  lsys_context_freewin(&m->win);
   LSYS_FREE(m->substack);
   LSYS_FREE(m->act);
   lsys_lstring_free(&m->dyn);
