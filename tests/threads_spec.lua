@@ -138,6 +138,11 @@ describe("threads", function()
     local m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 9000),
                     productions = "A(x) --> A(1/x)" }
     assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
+    -- two failing modules in different chunks, filled in place: the first one is named
+    -- (chunks filled on several threads copy their modules aside first)
+    m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 30000) .. "A(0)"
+                .. H.rep("A(1)", 9000), productions = "A(x) --> A(1/x) B" }
+    assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
     m = err { axiom = H.rep("A", 20000), productions = "A --> AA", max_modules = 30000 }
     assert.truthy(m:find("the string would exceed max_modules (30000 modules)", 1, true), m)
     m = err { axiom = H.rep("A", 20000), productions = "A --> AAAA", max_memory = 200000 }

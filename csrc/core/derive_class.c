@@ -17,6 +17,9 @@ void lsys_derive_par_free (lsys_rules *m) {
     LSYS_FREE(m->par->ws[k].args);
     LSYS_FREE(m->par->ws[k].alt);
     lsys_context_freewin(&m->par->win[k]);
+    LSYS_FREE(m->par->side[k].code);
+    LSYS_FREE(m->par->side[k].code8);
+    LSYS_FREE(m->par->side[k].par);
   }
   for (k = 0; k < MAXCHUNKS; k++) {
     LSYS_FREE(m->par->gc[k].rid);

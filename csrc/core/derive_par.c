@@ -239,12 +239,51 @@ static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
   return 1;
 }
 
+/* Where filling reads a chunk's source: the string, or the side copy of
+** the worker that filled it (indices from the chunk's first module and
+** parameter). */
+typedef struct srcv {
+  const uint16_t *code; const uint8_t *code8; const double *par;
+  size_t ia, pa;
+} srcv;
+
+static srcv source (const job *j, const chunk *c) {
+  srcv v;
+  if (c->side > 0) {
+    const struct side *sd = &j->P->side[c->side - 1];
+    v.code = j->code8 != NULL ? NULL : sd->code;
+    v.code8 = j->code8 != NULL ? sd->code8 : NULL;
+    v.par = sd->par != NULL ? sd->par : nopar;
+    v.ia = c->a; v.pa = c->sp;
+  }
+  else {
+    v.code = j->code; v.code8 = j->code8; v.par = j->spar;
+    v.ia = v.pa = 0;
+  }
+  return v;
+}
+
+static inline uint16_t vcode (const srcv *v, size_t i) {
+  return v->code8 != NULL ? (uint16_t)LSYS_CODE(v->code8[i - v->ia], 0) : v->code[i - v->ia];
+}
+
+/* Copies chunk c's source to worker k's side copy (room made by sideroom). */
+static void copyside (job *j, chunk *c, int k) {
+  struct side *sd = &j->m->par->side[k];
+  size_t n = c->b - c->a;
+  if (j->code8 != NULL) memcpy(sd->code8, j->code8 + c->a, n);
+  else memcpy(sd->code, j->code + c->a, n * sizeof *sd->code);
+  if (c->nsp > 0) memcpy(sd->par, j->spar + c->sp, c->nsp * sizeof *sd->par);
+  c->side = k + 1;
+}
+
 /* Writes the chunk's successors into a wide string, from its end. */
 static void fillwide (job *j, lsys_scratch *w, chunk *c) {
   const pent *pe = j->P->pe;
-  const double *spar = j->spar;
+  const srcv sv = source(j, c);
+  const double *spar = sv.par;
   wout o;
-  size_t i, sp = c->sp + c->nsp;
+  size_t i, sp = c->sp + c->nsp - sv.pa;   /* (relative to sv.par) */
   int st;
   o.o0 = j->out->code + c->o;
   o.oc = o.o0 + c->cnt;
@@ -252,7 +291,7 @@ static void fillwide (job *j, lsys_scratch *w, chunk *c) {
   o.op = o.p0 + c->pcnt;
   lsys_derive_par_keptchoices(j, c, &o);
   for (i = c->b; i-- > c->a;) {
-    uint16_t cd = srccode(j, i);
+    uint16_t cd = vcode(&sv, i);
     uint32_t np = LSYS_CNP(cd), k;
     const pent *e = &pe[LSYS_CSYM(cd)];
     sp -= np;
@@ -310,15 +349,16 @@ static void fillwide (job *j, lsys_scratch *w, chunk *c) {
 static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
   const lsys_par *P = j->P;
   const pent *pe = P->pe;
-  const uint8_t *code8 = j->code8;
+  const srcv sv = source(j, c);
+  const uint8_t *code8 = sv.code8;
   uint8_t *base = j->out->sym8, *o0 = base + c->o, *oc = o0 + c->cnt;
-  size_t i, sp = c->sp + c->nsp;
+  size_t i, sp = c->sp + c->nsp - sv.pa, ia = sv.ia;
   wout ko;
   lsys_derive_par_keptchoices(j, c, &ko);
   for (i = c->b; i-- > c->a;) {
     uint16_t cd;
     if (code8 != NULL) {                  /* narrow to narrow: the usual case */
-      uint8_t b = code8[i], kind = P->nkind[b];
+      uint8_t b = code8[i - ia], kind = P->nkind[b];
       if (kind == NK_COPY && oc > o0) {
         *--oc = b;
         continue;
@@ -330,7 +370,7 @@ static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
         continue;
       }
     }
-    cd = srccode(j, i);
+    cd = vcode(&sv, i);
     uint32_t np = LSYS_CNP(cd), k;
     const pent *e = &pe[LSYS_CSYM(cd)];
     const lsys_rule *r = NULL;
@@ -347,7 +387,7 @@ static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
       *--oc = (uint8_t)LSYS_CSYM(cd);
       continue;
     }
-    args = j->spar + sp;
+    args = sv.par + sp;
     if ((i & 1023) == 0 && atomic_load_explicit(&j->stop, memory_order_relaxed)) {
       c->lo = i + 1;
       return;
@@ -368,13 +408,14 @@ static void fillnarrow (job *j, lsys_scratch *w, chunk *c) {
 }
 
 /* Filling in place: waits until the chunks whose modules chunk c overwrites
-** are written. Returns 0 when the workers stop. */
+** are written, or (copy) their sources copied aside. Returns 0 when the
+** workers stop. */
 static int await (job *j, size_t c) {
   const chunk *ch = j->ch;
   size_t lim = ch[c].o + ch[c].cnt, plim = ch[c].po + ch[c].pcnt, d;
   for (d = c + 1; d < j->nch && (ch[d].a < lim || ch[d].sp < plim); d++) {
     if (ch[d].b <= ch[c].o && ch[d].sp + ch[d].nsp <= ch[c].po) continue;   /* below it */
-    while (!atomic_load_explicit(&j->done[d], memory_order_acquire)) {
+    while (!atomic_load_explicit(j->copy ? &j->copied[d] : &j->done[d], memory_order_acquire)) {
       if (atomic_load(&j->stop)) return 0;
       sched_yield();
     }
@@ -405,7 +446,12 @@ static void *work (void *arg) {
     }
     else {                                 /* the last chunk first */
       ch = &j->ch[j->nch - 1 - k];
-      if (atomic_load(&j->stop) || (j->inplace && !await(j, j->nch - 1 - k))) continue;
+      if (atomic_load(&j->stop)) continue;
+      if (j->copy) {
+        copyside(j, ch, wk->id);
+        atomic_store_explicit(&j->copied[j->nch - 1 - k], 1, memory_order_release);
+      }
+      if (j->inplace && !await(j, j->nch - 1 - k)) continue;
       if (!j->inplace) window(j, wk, ch);   /* (in place, filling reads no neighbours) */
       if (j->narrow) fillnarrow(j, wk->w, ch);
       else fillwide(j, wk->w, ch);
@@ -451,6 +497,7 @@ static void cut (job *j, size_t n, int nt) {
     ch->lo = ch->b;
     ch->fail = (size_t)-1;
     atomic_init(&j->done[c], 0);
+    atomic_init(&j->copied[c], 0);
   }
   j->nch = nch;
 }
@@ -508,15 +555,17 @@ static int firsterror (job *j) {
   m->sc.rng = &rng;
   for (c = 0; c < j->nch; c++) {
     const chunk *ch = &j->ch[c];
-    size_t sp = ch->sp;
+    const srcv sv = source(j, ch);     /* (a worker's side copy is of the chunk it
+                                       ** stopped in: it takes no other after that) */
+    size_t sp = ch->sp - sv.pa;
     for (i = ch->a; i < ch->lo; i++) {
-      uint16_t cd = srccode(j, i);
+      uint16_t cd = vcode(&sv, i);
       const pent *e = &j->P->pe[LSYS_CSYM(cd)];
       if (e->cls == PC_VM && e->pnp == LSYS_CNP(cd)) {
         const lsys_rule *r = &m->rules[e->rule];
         lsys_rng_at(&rng, i);
         if (lsys_derive_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
-        if (lsys_expr_run(r->vm, r->nvm, j->spar + sp, m->sc.args, &rng, m->funcs) &&
+        if (lsys_expr_run(r->vm, r->nvm, sv.par + sp, m->sc.args, &rng, m->funcs) &&
             lsys_derive_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK)
           return LSYS_ERULE;
       }
@@ -549,6 +598,39 @@ static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
     if (j->ch[c].bad) return 0;
   if (j->withnp) paroffsets(j);
   return 1;
+}
+
+/* Room in the side copies of the first nt workers for the largest chunk; 0
+** when there is none. They are the step's scratch, freed when it ends and not
+** counted against max_memory, so that where a step meets it never depends on
+** the number of threads (an eighth of the string at most). */
+static int sideroom (job *j, int nt) {
+  lsys_rules *m = j->m;
+  size_t c, n = 0, np = 0;
+  int k;
+  for (c = 0; c < j->nch; c++) {
+    if (j->ch[c].b - j->ch[c].a > n) n = j->ch[c].b - j->ch[c].a;
+    if (j->ch[c].nsp > np) np = j->ch[c].nsp;
+  }
+  for (k = 0; k < nt && (size_t)k < j->nch; k++) {
+    struct side *sd = &m->par->side[k];
+    if ((j->code8 != NULL
+           ? lsys_common_grow((void **)&sd->code8, &sd->code8cap, n, 1)
+           : lsys_common_grow((void **)&sd->code, &sd->codecap, n, sizeof *sd->code)) != LSYS_OK ||
+        (np > 0 && lsys_common_grow((void **)&sd->par, &sd->parcap, np, sizeof *sd->par)
+                     != LSYS_OK))
+      return 0;
+  }
+  return 1;
+}
+
+static void freeside (lsys_rules *m) {
+  int k;
+  for (k = 0; k < LSYS_MAXTHREADS; k++) {
+    struct side *sd = &m->par->side[k];
+    LSYS_FREE(sd->code); LSYS_FREE(sd->code8); LSYS_FREE(sd->par);
+    memset(sd, 0, sizeof *sd);
+  }
 }
 
 /* Makes room for the new string: 'src' grown in place, or 'out' made anew. */
@@ -593,6 +675,13 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
   j->inplace = dst == src && !(flags & 4) && j->narrow == (src->sym8 != NULL) &&
                (v->match == NULL || (j->keep && !(flags & (8 | 16))));
   out = j->inplace ? src : seqout;
+  /* on several threads, a chunk filled in place would wait for the chunks after it
+  ** (its successors go where their modules are) unless they copy their sources first */
+  j->copy = j->inplace && nt > 1 && j->nch > 1;
+  if (j->copy && !sideroom(j, nt)) {
+    freeside(m);
+    j->copy = 0;
+  }
   if (tot == 0 || !roomy(m, src, seqout, tot, ptot) || !room(j, src, out, tot, ptot)) goto seq;
   if (j->inplace) {                       /* the arrays may have moved */
     j->code = src->code; j->code8 = src->sym8;
@@ -610,9 +699,11 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
     out->nck = 0;
     if (out != dst) lsys_derive_swapstr(src, out);
   }
+  if (j->copy) freeside(m);
   LSYS_FREE(j);
   return st;
 seq:
+  if (j->copy) freeside(m);
   if (seqout != src) lsys_lstring_clear(seqout);
   LSYS_FREE(j);
   return LSYS_PAR_SEQ;

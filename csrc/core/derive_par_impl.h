@@ -76,6 +76,12 @@ typedef struct gcache {
 typedef struct lsys_par {
   lsys_scratch ws[LSYS_MAXTHREADS];
   lsys_brkwin win[LSYS_MAXTHREADS];   /* the workers' context windows */
+  struct side {                /* filling in place on several threads: the source of the
+                               ** chunk a worker fills, copied before others overwrite it */
+    uint16_t *code; size_t codecap;
+    uint8_t *code8; size_t code8cap;
+    double *par; size_t parcap;
+  } side[LSYS_MAXTHREADS];
   gcache gc[MAXCHUNKS];       /* by chunk; sized from the step before (gneed*) */
   size_t gneedr, gneedp;      /* the most choices and parameters a chunk needed */
   pent *pe; size_t npe;       /* per symbol */
@@ -99,6 +105,8 @@ typedef struct chunk {
   int bad, wide, gen, shrink; /* counting: failed; needs a wide string; lsys_derive_choose ran; a
                               ** successor shorter than its module; */
   int ctx;                    /* filling reads the neighbours */
+  int side;                   /* filling in place: its source is in the side copy of worker
+                              ** side - 1 (0: none) */
   size_t nr, npc;             /* choices kept in the chunk's gcache: entries, parameters */
   size_t upto;                /* modules [a, upto) have their choices kept */
   size_t needr, needp;        /* the choices and parameters the whole chunk had */
@@ -116,10 +124,13 @@ typedef struct job {
   view wv[LSYS_MAXTHREADS];   /* each worker's: v with its own window (contexts) */
   lsys_ruleset *const *sets;
   int nsets, phase, withnp, narrow, inplace, keep;   /* keep: choices go in gcaches */
+  int copy;                   /* filling in place, each chunk copies its source aside
+                              ** first, so that the chunks before it need not wait */
   const lsys_par *P;
   lsys_rng rng;               /* each worker draws from a copy */
   chunk ch[MAXCHUNKS];
-  atomic_int done[MAXCHUNKS]; /* filling in place: chunk written */
+  atomic_int done[MAXCHUNKS]; /* filling in place: chunk written, */
+  atomic_int copied[MAXCHUNKS];   /* or its source copied aside (copy) */
   atomic_int stop;
   size_t nch;
   atomic_size_t next;
