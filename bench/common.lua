@@ -122,6 +122,32 @@ function B.whole (cmd, runs)
   return best, peak
 end
 
+--- B.whole for several commands at once, their runs interleaved (one of each in turn, `runs`
+-- rounds), so that a machine that slows down or speeds up for a while (a virtual machine
+-- does) moves every figure alike and their ratios stay: a list of { best, peak } in the
+-- order of `cmds`.
+function B.wholes (cmds, runs)
+  local out = {}
+  for k = 1, #cmds do out[k] = { math.huge, nil } end
+  for _ = 1, runs do
+    for k, cmd in ipairs(cmds) do
+      local t, kib = B.whole(cmd, 1)
+      out[k][1] = math.min(out[k][1], t)
+      if kib then out[k][2] = math.max(out[k][2] or 0, kib) end
+    end
+  end
+  return out
+end
+
+--- The times of a program against cpfg from B.wholes on four commands: cpfg at 0 steps and
+-- at n, lsys at 0 and at n. Returns cpfg's and lsys's seconds, start-up subtracted, their
+-- peaks at n (KiB) and their start-up seconds.
+function B.versus (c0, c1, l0, l1, runs)
+  local r = B.wholes({ c0, c1, l0, l1 }, runs)
+  return math.max(r[2][1] - r[1][1], 1e-9), math.max(r[4][1] - r[3][1], 1e-9), r[2][2], r[4][2],
+         r[1][1], r[3][1]
+end
+
 --- A fresh temporary folder for running cpfg: an empty colour map e.map and the view
 -- file e.v holding 'view' (empty by default). Its path; remove it with B.rmdir.
 function B.cpfg_folder (view)

@@ -144,12 +144,9 @@ local function versus_cpfg (cpfg, dir, letter)
     return B.self_command() .. " whole " .. letter .. " " .. n .. " >/dev/null"
   end
   local modules = B.measure("count " .. letter .. " " .. steps).modules
-  local c0 = B.whole(ccmd(0), R)
-  local c1, cpeak = B.whole(ccmd(steps), R)
-  local l0 = B.whole(lcmd(0), R)
-  local l1, lpeak = B.whole(lcmd(steps), R)
-  return { steps = steps, modules = modules, cpfg = modules / math.max(c1 - c0, 1e-9),
-           lsys = modules / math.max(l1 - l0, 1e-9), cpeak = cpeak, lpeak = lpeak,
+  local ct, lt, cpeak, lpeak, c0, l0 = B.versus(ccmd(0), ccmd(steps), lcmd(0), lcmd(steps), R)
+  return { steps = steps, modules = modules, cpfg = modules / ct,
+           lsys = modules / lt, cpeak = cpeak, lpeak = lpeak,
            cstart = c0, lstart = l0 }
 end
 

@@ -190,7 +190,6 @@ local function mib (kib) return kib / 1024 end
 
 -- Whole-process timing (bench/common.lua), the string to /dev/null.
 local TIME = B.has_time
-local function whole (cmd, runs) return B.whole(cmd .. " >/dev/null", runs) end
 
 -- lsys and cpfg on one model, timed as `whole` does, start-up subtracted.
 local function versus_cpfg (cpfg, dir, name, modules)
@@ -214,11 +213,10 @@ local function versus_cpfg (cpfg, dir, name, modules)
   end
   local lsys_cmd = function (steps) return self_command() .. " whole " .. name .. " " .. steps end
   local R = 5
-  local c0 = whole(cpfg_cmd(0), R)
-  local c1, cpeak = whole(cpfg_cmd(m.steps), R)
-  local l0 = whole(lsys_cmd(0), R)
-  local l1, lpeak = whole(lsys_cmd(m.steps), R)
-  return { cpfg = modules / math.max(c1 - c0, 1e-9), lsys = modules / math.max(l1 - l0, 1e-9),
+  local q = " >/dev/null"
+  local ct, lt, cpeak, lpeak, c0, l0 = B.versus(cpfg_cmd(0) .. q, cpfg_cmd(m.steps) .. q,
+                                                lsys_cmd(0) .. q, lsys_cmd(m.steps) .. q, R)
+  return { cpfg = modules / ct, lsys = modules / lt,
            cpeak = cpeak, lpeak = lpeak, cstart = c0, lstart = l0 }
 end
 
@@ -258,11 +256,10 @@ local function versus_vlab (cpfg, vlab, tmp, v)
   local function lsys_cmd (dir)
     return self_command() .. " vlab whole " .. shell_quote(dir)
   end
-  local c0 = whole(cpfg_cmd(d0), R)
-  local c1, cpeak = whole(cpfg_cmd(d1), R)
-  local l0 = whole(lsys_cmd(d0), R)
-  local l1, lpeak = whole(lsys_cmd(d1), R)
-  return { cpfg = modules / math.max(c1 - c0, 1e-9), lsys = modules / math.max(l1 - l0, 1e-9),
+  local q = " >/dev/null"
+  local ct, lt, cpeak, lpeak, c0, l0 = B.versus(cpfg_cmd(d0) .. q, cpfg_cmd(d1) .. q,
+                                                lsys_cmd(d0) .. q, lsys_cmd(d1) .. q, R)
+  return { cpfg = modules / ct, lsys = modules / lt,
            cpeak = cpeak, lpeak = lpeak, cstart = c0, lstart = l0, modules = modules }
 end
 

@@ -63,22 +63,23 @@ local function main ()
       return string.format("%s derive %s --steps %d > %s/l.txt", shq(lsysbin), shq(lua), steps,
         shq(dir))
     end
-    local l0 = whole(lcmd(0), RUNS)
-    local l1, lpeak = whole(lcmd(m.steps), RUNS)
-    local lrate = total / math.max(l1 - l0, 1e-9) / 1e6
-    local crate, cpeak = nil, nil
-    if have_cpfg then
-      local function ccmd (steps)
-        local text = assert(B.read_file(string.format("%s/bench/write_%s.l", root, m.name)))
-        local l = string.format("%s/c%d.l", dir, steps)
-        B.write_file(l, (text:gsub("derivation length: %d+", "derivation length: " .. steps)))
-        return string.format("env CPFG_SKIP_VV=1 %s -g -m %s/e.map -str %s/c.str %s %s/e.v",
-          shq(cpfg), shq(dir), shq(dir), shq(l), shq(dir))
-      end
-      local c0 = whole(ccmd(0), RUNS)
-      local c1
-      c1, cpeak = whole(ccmd(m.steps), RUNS)
-      crate = total / math.max(c1 - c0, 1e-9) / 1e6
+    local function ccmd (steps)
+      local text = assert(B.read_file(string.format("%s/bench/write_%s.l", root, m.name)))
+      local l = string.format("%s/c%d.l", dir, steps)
+      B.write_file(l, (text:gsub("derivation length: %d+", "derivation length: " .. steps)))
+      return string.format("env CPFG_SKIP_VV=1 %s -g -m %s/e.map -str %s/c.str %s %s/e.v",
+        shq(cpfg), shq(dir), shq(dir), shq(l), shq(dir))
+    end
+    local lrate, lpeak, crate, cpeak
+    if have_cpfg then                       -- interleaved runs (bench/common.lua, B.versus)
+      local ct, lt
+      ct, lt, cpeak, lpeak = B.versus(ccmd(0), ccmd(m.steps), lcmd(0), lcmd(m.steps), RUNS)
+      lrate, crate = total / lt / 1e6, total / ct / 1e6
+    else
+      local l0 = whole(lcmd(0), RUNS)
+      local l1
+      l1, lpeak = whole(lcmd(m.steps), RUNS)
+      lrate = total / math.max(l1 - l0, 1e-9) / 1e6
     end
     local ratio = crate and lrate / crate
     local mratio = cpeak and lpeak and lpeak / cpeak

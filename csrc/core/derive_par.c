@@ -198,6 +198,14 @@ static void halt (job *j, chunk *c, size_t i, int bad) {
 
 
 
+/* Whether n parameters at p and m at q share memory (filling in place: a
+** module's own and its successor's, which come close only where the string
+** has not grown yet; a copy of a few doubles costs more than the test). */
+static inline int overlap (const double *p, size_t n, const double *q, size_t m) {
+  uintptr_t x = (uintptr_t)p, y = (uintptr_t)q;
+  return x < y + m * sizeof *q && y < x + n * sizeof *p;
+}
+
 /* Writes the successor of module i (parameters at 'args') the general way.
 ** Returns 1, 0 when its values failed, -1 when it does not fit (a bug). */
 static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
@@ -229,8 +237,9 @@ static int fillslow (job *j, lsys_scratch *w, wout *o, size_t i, uint16_t cd,
     return 1;
   }
   if ((size_t)(o->oc - o->o0) < r->nsucc || (size_t)(o->op - o->p0) < r->nsrc) return -1;
-  if (j->inplace && np > 0 && e->cls != PC_GEN) {  /* the module's own parameters may be */
-    memcpy(a, args, np * sizeof *a);              /* where its successor's go */
+  if (j->inplace && np > 0 && e->cls != PC_GEN &&  /* the module's own parameters may be */
+      overlap(args, np, o->op - r->nsrc, r->nsrc)) {   /* where its successor's go */
+    memcpy(a, args, np * sizeof *a);
     args = a;
   }
   o->oc -= r->nsucc;
@@ -316,7 +325,8 @@ static void fillwide (job *j, lsys_scratch *w, chunk *c) {
       const double *args = spar + sp;
       double a[LSYS_MAXPARAMS];
       uint32_t v;
-      if (j->inplace && e->pargs) {       /* its own parameters may be where its successor's go */
+      if (j->inplace && e->pargs &&       /* its own parameters may be where its successor's go */
+          overlap(args, np, o.op - e->nsrc, e->nsrc)) {
         for (k = 0; k < np; k++) a[k] = args[k];
         args = a;
       }
