@@ -124,3 +124,30 @@ describe("decomposition with short conditions", function()
     assert.equal("B(2.25)B(2)A(2)B(0)B(0.25)A(1)CB", tostring(text:derive(2)):sub(1, 32))
   end)
 end)
+
+describe("decomposition that rewrites nothing in most steps", function()
+  -- when no rule of the expression machine applies, the string is not copied (derive.c,
+  -- firstchange); when one does, the modules before it are copied at once: the same strings
+  -- as the rules as Lua functions, which are tried module by module
+  it("gives the strings of the same rules written as functions", function()
+    local axiom = H.rep("B(1)", 3000) .. "A(0)" .. H.rep("B(2)", 3000)
+    local prods = "A(t) --> A(t + 0.25)\nB(x) --> B(x + 1)"
+    local text = lsys.lsystem { axiom = axiom, productions = prods,
+      decomposition = "A(t) : (t - 1) * 2 > 0.1 --> [B(t - 1)]A(t - 1)" }
+    local lua = lsys.lsystem { axiom = axiom, productions = prods,
+      decomposition = {
+        { "A(t)", function (t)
+            if (t - 1) * 2 > 0.1 then return lsys.produce("[B(?)]A(?)", t - 1, t - 1) end
+          end },
+      } }
+    local changed = 0
+    for n = 1, 12 do
+      local a, b = tostring(text:derive(n)), tostring(lua:derive(n))
+      assert.is_true(a == b, "step " .. n .. " differs")
+      if a:find("[", 1, true) then changed = changed + 1 end
+    end
+    assert.equal(8, changed)                   -- from step 5 on (t = 1.25 > 1.05)
+    assert.equal("B(12)", tostring(text:derive(11)):sub(1, 5))
+    assert.truthy(tostring(text:derive(5)):find("B(6)[B(0.25)]A(0.25)B(7)", 1, true))
+  end)
+end)

@@ -753,11 +753,46 @@ static int nonefast (const lsys_rules *m, const lsys_ruleset *s, uint16_t code,
   return 1;
 }
 
-static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst) {
+/* Whether trying the rules of set s has no effect but its answer: rules of
+** the expression machine or templates, drawing no numbers, unweighted. */
+static int pureset (const lsys_rules *m, const lsys_ruleset *s) {
+  uint32_t k;
+  for (k = 0; k < s->nlist; k++) {
+    const lsys_rule *r = &m->rules[s->list[k]];
+    if ((r->flags & (LSYS_RF_DYN | LSYS_RF_STOCH)) || ((r->flags & LSYS_RF_CALL) && r->vm == NULL) ||
+        lsys_rule_draws(r))
+      return 0;
+  }
+  return 1;
+}
+
+/* The first module of 'src' a rule of sets[0] rewrites (src->n: none), *p
+** its first parameter; a rule's error is left for the full loop to give. */
+static size_t firstchange (lsys_rules *m, lsys_ruleset *const *sets, const view *v,
+                           const lsys_lstring *src, size_t *p) {
+  const lsys_ruleset *s = sets[0];
+  size_t i;
+  lsys_pick pk;
+  for (i = 0, *p = 0; i < src->n; *p += LSYS_CNP(src->code[i]), i++) {
+    uint16_t c = src->code[i];
+    uint32_t sym = LSYS_CSYM(c);
+    if (sym >= s->nsym || s->start[sym] == s->start[sym + 1] || nonefast(m, s, c, parof(src, *p)))
+      continue;
+    lsys_rng_at(m->cur, i);
+    m->sc.rng = m->cur;
+    if (lsys_derive_choose(m, &m->sc, sets, 1, v, i, c, parof(src, *p), &pk) != 0) return i;
+  }
+  return src->n;
+}
+
+/* Expands every module of 'src' into 'dst'. With 'same' (not NULL), a string
+** no rule rewrites is not copied: *same = 1, and 'dst' is left empty. */
+static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *dst, int *same) {
   lsys_ruleset *sets[1];
   int hasctx, st;
   size_t i, p = 0;
   view v;
+  if (same != NULL) *same = 0;
   lsys_lstring_clear(dst);
   if ((st = lsys_derive_widen(m, src)) != LSYS_OK) return fail(m, st, 0);
   if (compileall(m, kind, &hasctx) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
@@ -765,7 +800,16 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
     return (st = lsys_lstring_copy(dst, src)) == LSYS_OK ? LSYS_OK : fail(m, st, 0);
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
-  for (i = 0; i < src->n; i++) {
+  i = 0;
+  if (same != NULL && !hasctx && pureset(m, sets[0])) {   /* (a decomposition rewrites few */
+    i = firstchange(m, sets, &v, src, &p);                /* modules, and often none) */
+    if (i == src->n) {
+      *same = 1;
+      return LSYS_OK;
+    }
+    if (i > 0 && (st = lsys_lstring_append(dst, src, 0, i, 0)) != LSYS_OK) return fail(m, st, i);
+  }
+  for (; i < src->n; i++) {
     const lsys_ruleset *s = sets[0];
     size_t e = i, q = p;
     while (e < src->n && (LSYS_CSYM(src->code[e]) >= s->nsym ||     /* modules no rule of */
@@ -851,7 +895,7 @@ int lsys_derive_expand (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   if (kind == LSYS_HOMO && !m->hshare) usehrng(m);
   m->busy = 1;
-  st = expandall(m, kind, src, dst);
+  st = expandall(m, kind, src, dst, NULL);
   m->busy = 0;
   if (kind == LSYS_HOMO && !m->hshare) leavehrng(m);
   unmeter(m, dst);
@@ -932,9 +976,10 @@ static int derivestep (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = productions(m, src, dst)) != LSYS_OK) return st;
   sz = lsys_rules_setsize(m, LSYS_DECOMP, 0, 0);
   if (sz > 0) {
+    int same;
     lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_DECOMP);
-    if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp)) != LSYS_OK) return st;
-    lsys_derive_swapstr(dst, &m->tmp);
+    if ((st = expandall(m, LSYS_DECOMP, dst, &m->tmp, &same)) != LSYS_OK) return st;
+    if (!same) lsys_derive_swapstr(dst, &m->tmp);
   }
   return LSYS_OK;
 }

@@ -50,13 +50,6 @@ static int cruns (const lsys_rule *r) {
          (r->vm != NULL || !(r->flags & LSYS_RF_CALL));
 }
 
-/* Whether rule r draws random numbers (ran, nran and what is made of them). */
-static int draws (const lsys_rule *r) {
-  int k;
-  for (k = 0; k < r->nvm; k++)
-    if (r->vm[k].op == LSYS_OP_RAN || r->vm[k].op == LSYS_OP_NRAN) return 1;
-  return 0;
-}
 
 static int hascond (const lsys_rule *r) {
   int k;
@@ -198,7 +191,7 @@ int lsys_derive_par_classify (lsys_rules *m, lsys_ruleset *const *sets, int nset
       if (s == NULL || k >= s->nsym) continue;
       for (b = s->start[k]; b < s->start[k + 1]; b++) {
         const lsys_rule *r = &m->rules[s->byp[b]];
-        if (!cruns(r) || (m->cpfg && draws(r))) return 0;
+        if (!cruns(r) || (m->cpfg && lsys_rule_draws(r))) return 0;
         if (first == NONE) first = s->byp[b];
         if (nr < NFAST) e->fr[nr] = s->byp[b];
         if (r->nlc || r->nrc || (r->flags & LSYS_RF_STOCH) || !P->rfx[s->byp[b]].ok) fast = 0;

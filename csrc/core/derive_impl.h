@@ -78,6 +78,14 @@ lsys_ruleset *lsys_derive_findset (const lsys_rules *m, int kind, int sub, int g
 lsys_skip *lsys_derive_findskip (const lsys_rules *m, int sub);
 int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s);
 
+/* Whether rule r draws random numbers (ran, nran and what is made of them). */
+static inline int lsys_rule_draws (const lsys_rule *r) {
+  int k;
+  for (k = 0; k < r->nvm; k++)
+    if (r->vm[k].op == LSYS_OP_RAN || r->vm[k].op == LSYS_OP_NRAN) return 1;
+  return 0;
+}
+
 /* The partner of a bracket outside the view's window, or whose partner is
 ** outside it; the first parameter of module j outside the window. */
 uint32_t lsys_context_farpartner (const view *v, size_t j);
