@@ -138,6 +138,14 @@ describe("threads", function()
     local m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 9000),
                     productions = "A(x) --> A(1/x)" }
     assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
+    -- rules of short programs are counted by their conditions alone: their values are
+    -- checked when filling, in place too
+    m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 9000),
+              productions = "A(x) : x < 5 --> A(1 / x) B\nA(x) : x >= 5 --> A(x)" }
+    assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
+    m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 9000),
+              productions = "A(x) : x < 5 --> A(1 / x)\nA(x) : x >= 5 --> A(x)" }
+    assert.truthy(m:find("module 9001: value 1 is infinite", 1, true), m)
     -- two failing modules in different chunks, filled in place: the first one is named
     -- (chunks filled on several threads copy their modules aside first)
     m = err { axiom = H.rep("A(1)", 9000) .. "A(0)" .. H.rep("A(1)", 30000) .. "A(0)"

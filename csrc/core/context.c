@@ -101,7 +101,7 @@ int lsys_context_buildtables (lsys_rules *m, const lsys_lstring *s) {
   if (g->withp && n % LSYS_BRK_PSTEP == 0) g->pck[n / LSYS_BRK_PSTEP] = (uint32_t)off;
   while (depth > 0)
     if ((st = addfar(m, g, g->stk[--depth], NONE)) != LSYS_OK) return st;
-  qsort(g->far, g->nfar, sizeof *g->far, cmpfar);
+  if (g->nfar > 1) qsort(g->far, g->nfar, sizeof *g->far, cmpfar);
   return LSYS_OK;
 }
 

@@ -87,6 +87,20 @@ static void npchunk (job *j, chunk *c) {
 
 
 
+/* The rule of class PC_FAST that rewrites a module (parameters 'args') or
+** NULL, by the conditions alone: counting needs no values (filling computes
+** and checks them; firsterror finds a failure there). */
+static const lsys_rule *fastrule (const job *j, const pent *e, uint16_t cd, const double *args) {
+  uint32_t q;
+  for (q = 0; q < e->nfr; q++) {
+    const lsys_rule *r = &j->m->rules[e->fr[q]];
+    const lsys_xfast *fx = &j->P->rfx[e->fr[q]];
+    if (r->pred_np == LSYS_CNP(cd) && (!fx->cond || lsys_expr_term(&fx->t[0], args) != 0))
+      return r;
+  }
+  return NULL;
+}
+
 /* Counts module i (parameters from 'sp') the general way: adds to *cnt,
 ** *pcnt and *fl. Returns 0 when the step must run sequentially. */
 static int countslow (job *j, lsys_scratch *w, chunk *c, size_t i, uint16_t cd, size_t sp,
@@ -96,6 +110,7 @@ static int countslow (job *j, lsys_scratch *w, chunk *c, size_t i, uint16_t cd, 
   const double *args = j->spar + sp, *vals = NULL;
   const lsys_rule *r;
   if (e->cls <= PC_VM && e->pnp != np) r = NULL;        /* a copy */
+  else if (e->cls == PC_FAST) r = fastrule(j, e, cd, args);
   else if (lsys_derive_par_pick(j, w, i, cd, &args, &vals, &r) < 0) return 0;
   if (e->cls == PC_CTAB) *fl |= FL_CTX;
   if (e->cls == PC_GEN) {
@@ -579,6 +594,14 @@ static int firsterror (job *j) {
             lsys_derive_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK)
           return LSYS_ERULE;
       }
+      else if (e->cls == PC_FAST) {      /* (counted by its conditions alone) */
+        const lsys_rule *r = fastrule(j, e, cd, sv.par + sp);
+        if (r != NULL && r->vm != NULL) {
+          if (lsys_derive_needscratch(&m->sc, r->nvals + 1) != LSYS_OK) return LSYS_ENOMEM;
+          lsys_expr_runfast(&j->P->rfx[r - m->rules], sv.par + sp, m->sc.args);
+          if (lsys_derive_checkvals(m, &m->sc, r, i, m->sc.args) != LSYS_OK) return LSYS_ERULE;
+        }
+      }
       sp += LSYS_CNP(cd);
     }
   }
@@ -613,7 +636,8 @@ static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
 /* Room in the side copies of the first nt workers for the largest chunk; 0
 ** when there is none. They are the step's scratch, freed when it ends and not
 ** counted against max_memory, so that where a step meets it never depends on
-** the number of threads (an eighth of the string at most). */
+** the number of threads (an eighth of a string of 16,384 modules a thread or
+** more: nt of its 8 nt chunks). */
 static int sideroom (job *j, int nt) {
   lsys_rules *m = j->m;
   size_t c, n = 0, np = 0;
