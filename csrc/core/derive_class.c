@@ -355,7 +355,7 @@ int lsys_derive_par_kept (wout *o, const lsys_rules *m, size_t i, const lsys_rul
   id = o->rid[--o->nr];
   *r = id == NORULE ? NULL : &m->rules[id];
   if (*r != NULL) o->npc -= (*r)->nsrc;
-  *kp = o->cp + o->npc;
+  *kp = o->cp != NULL ? o->cp + o->npc : NULL;   /* (no parameters kept: none) */
   return 1;
 }
 
