@@ -753,19 +753,6 @@ static int nonefast (const lsys_rules *m, const lsys_ruleset *s, uint16_t code,
   return 1;
 }
 
-/* Whether trying the rules of set s has no effect but its answer: rules of
-** the expression machine or templates, drawing no numbers, unweighted. */
-static int pureset (const lsys_rules *m, const lsys_ruleset *s) {
-  uint32_t k;
-  for (k = 0; k < s->nlist; k++) {
-    const lsys_rule *r = &m->rules[s->list[k]];
-    if ((r->flags & (LSYS_RF_DYN | LSYS_RF_STOCH)) || ((r->flags & LSYS_RF_CALL) && r->vm == NULL) ||
-        lsys_rule_draws(r))
-      return 0;
-  }
-  return 1;
-}
-
 /* The first module of 'src' a rule of sets[0] rewrites (src->n: none), *p
 ** its first parameter; a rule's error is left for the full loop to give. */
 static size_t firstchange (lsys_rules *m, lsys_ruleset *const *sets, const view *v,
@@ -801,7 +788,7 @@ static int expandall (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring *
   if (needlevels(m, (size_t)m->maxdepth[kind] + 1) != LSYS_OK) return fail(m, LSYS_ENOMEM, 0);
   if ((st = setview(m, src, hasctx, &v)) != LSYS_OK) return fail(m, st, 0);
   i = 0;
-  if (same != NULL && !hasctx && pureset(m, sets[0])) {   /* (a decomposition rewrites few */
+  if (same != NULL && !hasctx && sets[0]->pure) {   /* (a decomposition rewrites few */
     i = firstchange(m, sets, &v, src, &p);                /* modules, and often none) */
     if (i == src->n) {
       *same = 1;

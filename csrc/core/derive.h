@@ -70,6 +70,8 @@ typedef struct lsys_ruleset {
   uint32_t *plain;   /* plain[s]: the first rule for s when it is a pure template copy */
   int compiled, hasctx;
   int stoch;         /* a rule of the set is weighted (cpfg: a stochastic L-system) */
+  int pure;          /* trying its rules has no effect but the answer: each runs on the
+                        expression machine or is a template, draws nothing, unweighted */
 } lsys_ruleset;
 
 typedef struct lsys_skip {

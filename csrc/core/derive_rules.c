@@ -300,8 +300,13 @@ int lsys_derive_compileset (lsys_rules *m, lsys_ruleset *s) {
                    !(r->flags & (LSYS_RF_CALL | LSYS_RF_DYN | LSYS_RF_STOCH)))
                   ? s->byp[s->start[i]] : NONE;
   }
-  for (s->stoch = 0, k = 0; k < s->nlist; k++)
-    if (m->rules[s->list[k]].flags & LSYS_RF_STOCH) s->stoch = 1;
+  for (s->stoch = 0, s->pure = 1, k = 0; k < s->nlist; k++) {
+    const lsys_rule *r = &m->rules[s->list[k]];
+    if (r->flags & LSYS_RF_STOCH) s->stoch = 1;
+    if ((r->flags & (LSYS_RF_DYN | LSYS_RF_STOCH)) || lsys_rule_draws(r) ||
+        ((r->flags & LSYS_RF_CALL) && r->vm == NULL))
+      s->pure = 0;
+  }
   s->nsym = nsym;
   s->compiled = 1;
   return LSYS_OK;
