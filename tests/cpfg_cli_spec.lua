@@ -58,6 +58,15 @@ describe("lsys derive on a cpfg model", function ()
     assert.truthy(out:find("); the preprocessor replaces a #define's name by its value "
       .. "(--define NAME=VALUE sets one)", 1, true), out)
     assert.falsy(out:find(PLANT_STRING, 1, true), out)
+    -- the translator's helpers and the derivation length's Q and Z are not the model's
+    -- variables: neither listed nor set
+    assert.falsy(out:find("_aget", 1, true) or out:find(" Q,", 1, true), out)
+    for _, name in ipairs { "_try", "Q", "Z" } do
+      out, code = lsys("derive " .. PLANT .. " --set " .. name .. "=3")
+      assert.equal(2, code, out)
+      assert.truthy(out:find("--set " .. name .. ": the model has no variable " .. name, 1, true),
+                    out)
+    end
   end)
 
   it("names the file and line of an error, and a missing file", function ()

@@ -130,13 +130,20 @@ end
 
 --- The names of the variables of the env `env` (a model's; nil: none), sorted: what a
 -- message about a variable the model has not lists.
-function M.variables (env)
+function M.variables (env, cpfg)
   local names = {}
   for k in pairs(env or {}) do
-    if type(k) == "string" then names[#names + 1] = k end
+    if type(k) == "string" and not M.hidden(k, cpfg) then names[#names + 1] = k end
   end
   table.sort(names)
   return names
+end
+
+--- Whether env name `k` of a model read from a cpfg file (`cpfg` true) is one of the
+-- translator's (its helpers `_aget`, `_try` ..., the derivation length's Q and Z;
+-- lsys.cpfg.translate): not the model's variable, not to be set from outside.
+function M.hidden (k, cpfg)
+  return cpfg and type(k) == "string" and (k:sub(1, 1) == "_" or k == "Q" or k == "Z") or false
 end
 
 return M

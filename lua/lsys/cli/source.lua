@@ -210,12 +210,14 @@ end
 -- it in its env to take it from the command line.)
 local function set_env (cmd, model, sets, src)
   if model.env == nil then model.env = {} end
-  local names = load.variables(model.env)
+  local cpfg = src.kind ~= "lua"            -- (its env holds the translator's names too)
+  local names = load.variables(model.env, cpfg)
   for _, kv in ipairs(sets) do
-    if model.env[kv[1]] == nil then
+    if model.env[kv[1]] == nil or load.hidden(kv[1], cpfg) then
       local hint = suggest.hint(kv[1], names)
       local have = hint ~= "" and hint
-        or #names == 0 and " (the model has no variables: its env is empty)"
+        or #names == 0 and (cpfg and " (the model has no variables)"
+                            or " (the model has no variables: its env is empty)")
         or " (the model's variables: " .. table.concat(names, ", ") .. ")"
       if src.kind ~= "lua" then
         have = have .. "; the preprocessor replaces a #define's name by its value (--define "
