@@ -111,8 +111,6 @@ static int wgrow (void **p, size_t *cap, size_t need, size_t elem) {
   return *cap >= need ? LSYS_OK : lsys_common_grow(p, cap, need, elem);
 }
 
-static inline uint16_t vcode (const view *v, size_t j) { return lsys_view_code(v, j); }
-
 /* Module j's first parameter from the string's offsets. */
 static size_t gpoff (const lsys_brk *g, const uint16_t *code, size_t j) {
   size_t k = j / LSYS_BRK_PSTEP * LSYS_BRK_PSTEP, off;
@@ -136,27 +134,20 @@ uint32_t lsys_context_farpartner (const view *v, size_t j) {
   }
   if (lo < g->nfar && g->far[lo] >> 32 == j) return (uint32_t)g->far[lo];
   /* a near one: within LSYS_BRK_NEAR modules */
-  if (LSYS_CSYM(vcode(v, j)) == LSYS_SYM_LBR) {
+  if (LSYS_CSYM(lsys_view_code(v, j)) == LSYS_SYM_LBR) {
     for (k = j + 1; k < v->n && k <= j + LSYS_BRK_NEAR; k++) {
-      uint32_t sym = LSYS_CSYM(vcode(v, k));
+      uint32_t sym = LSYS_CSYM(lsys_view_code(v, k));
       if (sym == LSYS_SYM_LBR) depth++;
       else if (sym == LSYS_SYM_RBR && depth-- == 0) return (uint32_t)k;
     }
   }
   else
     for (k = j; k-- > 0 && j - k <= LSYS_BRK_NEAR;) {
-      uint32_t sym = LSYS_CSYM(vcode(v, k));
+      uint32_t sym = LSYS_CSYM(lsys_view_code(v, k));
       if (sym == LSYS_SYM_RBR) depth++;
       else if (sym == LSYS_SYM_LBR && depth-- == 0) return (uint32_t)k;
     }
   return NONE;                             /* (not reached: the far ones are listed) */
-}
-
-static inline size_t popcount (uint64_t w) {
-  w = w - ((w >> 1) & 0x5555555555555555u);
-  w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);
-  w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
-  return (size_t)((w * 0x0101010101010101u) >> 56);
 }
 
 /* The bits of the brackets among n <= 64 symbols. */
@@ -209,7 +200,7 @@ int lsys_context_window (lsys_brkwin *b, const lsys_brk *g, const view *v, size_
         if (sym == LSYS_SYM_LBR || sym == LSYS_SYM_RBR) bits |= (uint64_t)1 << (i & 63);
       }
     b->bits[w] = bits;
-    nb += popcount(bits);
+    nb += lsys_popcount64(bits);
   }
   if (withp) b->poff[wn] = (uint32_t)off;
   b->withp = withp;
@@ -227,7 +218,7 @@ int lsys_context_window (lsys_brkwin *b, const lsys_brk *g, const view *v, size_
 #endif
       bits &= bits - 1;
       b->pos[nb] = NONE;
-      if (LSYS_CSYM(vcode(v, wa + at)) == LSYS_SYM_LBR) {
+      if (LSYS_CSYM(lsys_view_code(v, wa + at)) == LSYS_SYM_LBR) {
         if (wgrow((void **)&b->stk, &b->stkcap, 2 * depth + 2, sizeof *b->stk) != LSYS_OK)
           return LSYS_ENOMEM;
         b->stk[2 * depth] = (uint32_t)nb;

@@ -91,18 +91,22 @@ static inline int lsys_rule_draws (const lsys_rule *r) {
 uint32_t lsys_context_farpartner (const view *v, size_t j);
 size_t lsys_context_farpoff (const view *v, size_t j);
 
+/* The bits set in w (without a popcount instruction, which the build does not assume). */
+static inline uint32_t lsys_popcount64 (uint64_t w) {
+  w = w - ((w >> 1) & 0x5555555555555555u);             /* the bits counted in pairs, */
+  w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);   /* fours, eights */
+  w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  return (uint32_t)((w * 0x0101010101010101u) >> 56);
+}
+
 /* The partner of the bracket at j (its position, or NONE). */
 static inline uint32_t lsys_view_partner (const view *v, size_t j) {
   const lsys_brkwin *b = v->match;
   size_t k = j - b->wa;
   if (k < b->wn) {
     uint64_t w = b->bits[k >> 6] & ((((uint64_t)1) << (k & 63)) - 1);
-    uint32_t r, p;
-    w = w - ((w >> 1) & 0x5555555555555555u);             /* the bits counted in pairs, */
-    w = (w & 0x3333333333333333u) + ((w >> 2) & 0x3333333333333333u);   /* fours, eights */
-    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0fu;
-    r = (uint32_t)((w * 0x0101010101010101u) >> 56);
-    if ((p = b->pos[b->cnt[k >> 6] + r]) != NONE) return p;
+    uint32_t p = b->pos[b->cnt[k >> 6] + lsys_popcount64(w)];
+    if (p != NONE) return p;
   }
   return lsys_context_farpartner(v, j);
 }
