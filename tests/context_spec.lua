@@ -503,3 +503,18 @@ describe("contexts across far brackets and window edges", function()
     end
   end)
 end)
+
+describe("a symbol with several rules and no context", function()
+  -- its modules are rewritten by the table of neighbours' symbols on the worker threads; a
+  -- model without contexts has no context tables, so the rules without a context apply
+  -- (the first one), as the calling thread chooses: the step once read the tables it had not
+  it("takes its first rule on a long bracketed string, in place too", function()
+    local axiom = H.rep("A[B]A[[A]B]", 2000)
+    for _, threads in ipairs { 1, 2 } do    -- (more rules than the short programs' four)
+      local m = lsys.lsystem { axiom = axiom, threads = threads, productions =
+        "A --> C[A]\nA --> D\nA --> E\nA --> F\nA --> G\nB --> B" }
+      local s = tostring(m:derive(2))
+      assert.equal(H.rep("C[C[A]][B]C[C[A]][[C[C[A]]]B]", 2000), s)
+    end
+  end)
+end)

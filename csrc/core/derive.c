@@ -883,6 +883,7 @@ int lsys_derive_expand (lsys_rules *m, int kind, lsys_lstring *src, lsys_lstring
   if (kind == LSYS_HOMO && !m->hshare) usehrng(m);
   m->busy = 1;
   st = expandall(m, kind, src, dst, NULL);
+  lsys_context_freewin(&m->win);      /* the operation's scratch, not the model's */
   m->busy = 0;
   if (kind == LSYS_HOMO && !m->hshare) leavehrng(m);
   unmeter(m, dst);
@@ -947,6 +948,7 @@ int lsys_derive_homo_module (lsys_rules *m, size_t i, size_t poff, lsys_lstring 
 }
 
 void lsys_derive_homo_end (lsys_rules *m) {
+  lsys_context_freewin(&m->win);
   if (m->hsrc != NULL) {
     if (m->cur == &m->hrng) leavehrng(m);
     m->cur = m->hkeep;
@@ -979,6 +981,7 @@ int lsys_derive_step (lsys_rules *m, lsys_lstring *src, lsys_lstring *dst) {
   if ((st = meter(m, src, dst)) != LSYS_OK) return st;
   m->busy = 1;
   st = derivestep(m, src, dst);
+  lsys_context_freewin(&m->win);      /* the operation's scratch, not the model's */
   lsys_rng_stream(&m->rng, m->rng.step, LSYS_RNG_BETWEEN);
   m->busy = 0;
   unmeter(m, dst);

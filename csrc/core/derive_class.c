@@ -37,7 +37,6 @@ void lsys_derive_par_free (lsys_rules *m) {
 size_t lsys_derive_par_bytes (const lsys_rules *m) {
   size_t k, n = 0;
   if (m->par == NULL) return 0;
-  for (k = 0; k < LSYS_MAXTHREADS; k++) n += lsys_context_winbytes(&m->par->win[k]);
   for (k = 0; k < MAXCHUNKS; k++)
     n += m->par->gc[k].rcap * sizeof *m->par->gc[k].rid +
          m->par->gc[k].pcap * sizeof *m->par->gc[k].par;
@@ -284,16 +283,19 @@ int lsys_derive_par_pick (job *j, lsys_scratch *w, size_t i, uint16_t cd, const 
   }
   if (e->cls == PC_CTAB) {              /* the neighbours' symbols: 256 when none */
     const view *v = wview(j, w);
-    long long l = lsys_context_leftof(v, (long long)i - 1);
-    size_t r = lsys_context_rightof(v, i + 1);
-    uint32_t ls = l < 0 ? 256 : LSYS_CSYM(lsys_view_code(v, (size_t)l));
-    uint32_t rs = r >= v->n ? 256 : LSYS_CSYM(lsys_view_code(v, r));
+    uint32_t ls = 256, rs = 256;
     uint16_t id;
     if (LSYS_CNP(cd) != 0) return 0;
-    if (l >= 0 && LSYS_CNP(lsys_view_code(v, (size_t)l)) != 0) ls = 256;  /* never a pattern's */
-    if (r < v->n && LSYS_CNP(lsys_view_code(v, r)) != 0) rs = 256;
-    if (ls > 256) ls = 256;
-    if (rs > 256) rs = 256;
+    if (v->match != NULL) {             /* (without context tables, as lsys_derive_choose, no
+                                        ** context matches: the rules without one apply) */
+      long long l = lsys_context_leftof(v, (long long)i - 1);
+      size_t r = lsys_context_rightof(v, i + 1);
+      if (l >= 0 && LSYS_CNP(lsys_view_code(v, (size_t)l)) == 0)   /* never a pattern's */
+        ls = LSYS_CSYM(lsys_view_code(v, (size_t)l));
+      if (r < v->n && LSYS_CNP(lsys_view_code(v, r)) == 0) rs = LSYS_CSYM(lsys_view_code(v, r));
+      if (ls > 256) ls = 256;
+      if (rs > 256) rs = 256;
+    }
     id = e->ctab[ls * CTN + rs];
     if (id != NORULE) *rule = &m->rules[id];
     return 0;

@@ -635,7 +635,7 @@ static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
 
 /* Room in the side copies of the first nt workers for the largest chunk; 0
 ** when there is none. They are the step's scratch, freed when it ends and not
-** counted against max_memory, so that where a step meets it never depends on
+** counted against max_memory (nor are the workers' context windows), so that where a step meets it never depends on
 ** the number of threads (an eighth of a string of 16,384 modules a thread or
 ** more: nt of its 8 nt chunks). */
 static int sideroom (job *j, int nt) {
@@ -665,6 +665,13 @@ static void freeside (lsys_rules *m) {
     LSYS_FREE(sd->code); LSYS_FREE(sd->code8); LSYS_FREE(sd->par);
     memset(sd, 0, sizeof *sd);
   }
+}
+
+/* The workers' context windows, freed when the step ends as the side copies
+** are (their sizes depend on the number of threads). */
+static void freewins (lsys_rules *m) {
+  int k;
+  for (k = 0; k < LSYS_MAXTHREADS; k++) lsys_context_freewin(&m->par->win[k]);
 }
 
 /* Makes room for the new string: 'src' grown in place, or 'out' made anew. */
@@ -734,10 +741,12 @@ int lsys_derive_par_productions (lsys_rules *m, lsys_lstring *src, lsys_lstring 
     if (out != dst) lsys_derive_swapstr(src, out);
   }
   if (j->copy) freeside(m);
+  if (v->match != NULL) freewins(m);
   LSYS_FREE(j);
   return st;
 seq:
   if (j->copy) freeside(m);
+  if (v->match != NULL) freewins(m);
   if (seqout != src) lsys_lstring_clear(seqout);
   LSYS_FREE(j);
   return LSYS_PAR_SEQ;
