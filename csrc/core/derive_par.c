@@ -635,9 +635,9 @@ static int count (job *j, const lsys_lstring *src, int needsp, int nt) {
 
 /* Room in the side copies of the first nt workers for the largest chunk; 0
 ** when there is none. They are the step's scratch, freed when it ends and not
-** counted against max_memory (nor are the workers' context windows), so that where a step meets it never depends on
-** the number of threads (an eighth of a string of 16,384 modules a thread or
-** more: nt of its 8 nt chunks). */
+** counted against max_memory (nor are the workers' context windows), so that
+** where a step meets it never depends on the number of threads (an eighth of
+** a string of 16,384 modules a thread or more: nt of its 8 nt chunks). */
 static int sideroom (job *j, int nt) {
   lsys_rules *m = j->m;
   size_t c, n = 0, np = 0;
