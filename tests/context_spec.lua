@@ -378,23 +378,33 @@ end)
 describe("contexts on long strings (the worker threads' step)", function()
   -- random bracketed strings of some 20,000 modules, with runs nested 300 deep, across the
   -- 64-module words of the bracket table
-  local function random_string (seed, n)
-    local x, out, depth = seed, {}, 0
-    local function rnd (k)                     -- a small LCG: the same string everywhere
+  local function lcg (seed)                  -- a small LCG: the same strings everywhere
+    local x = seed
+    return function (k)
       x = (x * 1103515245 + 12345) % 2147483648
       return x % k + 1
     end
-    local syms = { "A", "B", "C", "+", "-", "[", "]", "[", "]" }
+  end
+  -- a random bracketed string of about n modules of `syms` (each written by mod), extra
+  -- adding runs after a module and giving the brackets it leaves open
+  local function bracketed (seed, n, syms, mod, extra)
+    local rnd, out, depth = lcg(seed), {}, 0
     while #out < n do
       local c = syms[rnd(#syms)]
       if c == "]" and depth == 0 then c = "A" end
       if c == "[" then depth = depth + 1 elseif c == "]" then depth = depth - 1 end
-      out[#out + 1] = c
-      if rnd(400) == 1 then
-        out[#out + 1] = string.rep("[A", 300) .. string.rep("B]", 300)
-      end
+      out[#out + 1] = mod(c, rnd)
+      depth = depth + extra(out, rnd, mod)
     end
     return table.concat(out) .. string.rep("]", depth)
+  end
+  local function random_string (seed, n)
+    return bracketed(seed, n, { "A", "B", "C", "+", "-", "[", "]", "[", "]" },
+      function (c) return c end,
+      function (out, rnd)
+        if rnd(400) == 1 then out[#out + 1] = string.rep("[A", 300) .. string.rep("B]", 300) end
+        return 0
+      end)
   end
   local RULES = {
     { lc = "A", pred = "B", rc = "C", succ = "C" },
@@ -420,59 +430,36 @@ describe("contexts on long strings (the worker threads' step)", function()
       end
     end)
   end
-end)
 
-describe("contexts across far brackets and window edges", function()
   -- The context tables keep a window of brackets per thread; a bracket whose partner is
   -- more than 1,024 modules away is found in the string's list of far ones, a nearer one
   -- outside the window by a scan. These strings have branches of every span from a few
   -- modules to most of the string, nested 2,000 deep, across every chunk and window edge.
-  local function lcg (seed)
-    local x = seed
-    return function (k)
-      x = (x * 1103515245 + 12345) % 2147483648
-      return x % k + 1
-    end
+  local function far_string (seed, n, param)
+    return bracketed(seed, n, { "A", "B", "C", "+", "[", "]" },
+      function (c, rnd)
+        if param and (c == "A" or c == "B" or c == "C") then return c .. "(" .. rnd(9) .. ")" end
+        return c
+      end,
+      function (out, rnd, mod)
+        local r = rnd(3000)
+        if r == 1 then                            -- deep: spans up to 8,000 modules
+          out[#out + 1] = string.rep("[" .. mod("A", rnd), 2000) ..
+                          string.rep(mod("B", rnd) .. "]", 2000)
+        elseif r == 2 then                        -- a long branch opens here
+          out[#out + 1] = "["
+          return 1
+        end
+        return 0
+      end)
   end
-  local function random_string (seed, n, param)
-    local rnd, out, depth = lcg(seed), {}, 0
-    local syms = { "A", "B", "C", "+", "[", "]" }
-    local function mod (c)
-      if param and (c == "A" or c == "B" or c == "C") then return c .. "(" .. rnd(9) .. ")" end
-      return c
-    end
-    while #out < n do
-      local c = syms[rnd(#syms)]
-      if c == "]" and depth == 0 then c = "A" end
-      if c == "[" then depth = depth + 1 elseif c == "]" then depth = depth - 1 end
-      out[#out + 1] = mod(c)
-      local r = rnd(3000)
-      if r == 1 then                              -- deep: spans up to 8,000 modules
-        out[#out + 1] = string.rep("[" .. mod("A"), 2000) .. string.rep(mod("B") .. "]", 2000)
-      elseif r == 2 then                          -- a long branch opens here
-        out[#out + 1] = "["
-        depth = depth + 1
-      end
-    end
-    return table.concat(out) .. string.rep("]", depth)
-  end
-  local RULES = {
-    { lc = "A", pred = "B", rc = "C", succ = "C" },
-    { lc = "BA", pred = "C", succ = "A" },
-    { pred = "A", rc = "CB", succ = "B" },
-    { lc = "C", pred = "A", succ = "[B]" },
-    { pred = "B", rc = "A", succ = "A" },
-  }
 
-  it("give the reference deriver's string on 1 and 2 threads", function()
-    local axiom = random_string(7, 40000)
-    local text = {}
-    for i, r in ipairs(RULES) do text[i] = H.rule_text(r) end
-    local ref = H.ref_derive(axiom, RULES, 2, "+")
+  it("give the reference deriver's string across far brackets on 1 and 2 threads", function()
+    local axiom = far_string(7, 40000)
+    local ref = H.ref_derive(axiom, RULES, 2, "+-")
     assert.is_true(#ref > 60000, "a short string: " .. #ref)
     for _, threads in ipairs { 1, 2 } do
-      local s = tostring(lsys.lsystem { axiom = axiom, ignore = "+", threads = threads,
-                                        productions = table.concat(text, "\n") }:derive(2))
+      local s = tostring(model(axiom, threads):derive(2))
       assert.is_true(s == ref, ("threads = %d: not the reference deriver's string"):format(threads))
     end
   end)
@@ -480,7 +467,7 @@ describe("contexts across far brackets and window edges", function()
   it("bind the same parameters on the worker threads as on the calling thread", function()
     -- 150,000 modules: several of the calling thread's windows of 65,536; a rule that runs
     -- in Lua (Z is in the string) makes the step run there
-    local axiom = random_string(11, 150000, true) .. "Z"
+    local axiom = far_string(11, 150000, true) .. "Z"
     local prods = {
       "A(a) < B(b) > C(c) --> C(a + 10 * b + 100 * c)",
       "B(a) A(b) < C(c) --> A(a - b + c)",

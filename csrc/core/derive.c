@@ -413,6 +413,13 @@ static int fail (lsys_rules *m, int st, size_t i) {
   return st;
 }
 
+/* The calling thread's context window of the string whose tables were just
+** built: none yet, made when the loop reaches a module (lsys_context_ensure). */
+static void newwin (lsys_rules *m) {
+  m->win.g = &m->brk;
+  m->win.wn = m->win.ca = m->win.cb = 0;
+}
+
 /* The view of 'src' a step reads, with the context tables when its rules have contexts. */
 static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v) {
   int st;
@@ -423,8 +430,7 @@ static int setview (lsys_rules *m, const lsys_lstring *src, int hasctx, view *v)
   v->skip = lsys_derive_findskip(m, 0);
   if (hasctx) {
     if ((st = lsys_context_buildtables(m, src)) != LSYS_OK) return st;
-    m->win.g = &m->brk;                  /* made when the step reaches it */
-    m->win.wn = m->win.ca = m->win.cb = 0;
+    newwin(m);
     v->match = &m->win;
   }
   return LSYS_OK;
@@ -910,8 +916,7 @@ int lsys_derive_homo_begin (lsys_rules *m, lsys_lstring *src) {
     unmeter(m, NULL);
     return fail(m, st, 0);
   }
-  m->win.g = &m->brk;
-  m->win.wn = m->win.ca = m->win.cb = 0;
+  newwin(m);
   m->hsrc = src;
   m->hctx = hasctx;
   m->hkeep = m->cur;
